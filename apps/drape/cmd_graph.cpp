@@ -1,0 +1,64 @@
+// `drape graph check FILE`: validates a graph as a whole and prints its nodes and shapes.
+#include "command.hpp"
+
+#include <drape/graph.hpp>
+
+#include <iomanip>
+#include <iostream>
+
+namespace drape::cli {
+namespace {
+
+std::map<std::string, int> parse_dims(const std::vector<std::string>& items) {
+  std::map<std::string, int> dims;
+  for (const auto& item : items) {
+    const auto eq = item.find('=');
+    try {
+      if (eq == std::string::npos) throw std::invalid_argument(item);
+      dims[item.substr(0, eq)] = std::stoi(item.substr(eq + 1));
+    } catch (const std::exception&) {
+      throw UsageError("--dim wants name=size, got '" + item + "'");
+    }
+  }
+  return dims;
+}
+
+int run(const std::vector<std::string>& args) {
+  po::options_description opts("drape graph check");
+  opts.add_options()("action", po::value<std::string>()->required(), "check")(
+      "file", po::value<std::string>()->required(), "graph YAML file")(
+      "dim", po::value<std::vector<std::string>>()->composing(), "a symbolic size, name=value (repeatable)");
+  po::positional_options_description pos;
+  pos.add("action", 1).add("file", 1);
+  po::variables_map vm;
+  if (!parse("drape graph check FILE [--dim name=size ...]", args, opts, pos, vm)) return 0;
+  if (vm["action"].as<std::string>() != "check") throw UsageError("unknown action '" + vm["action"].as<std::string>() + "' (try: check)");
+
+  const Registry& reg = Registry::load_default(plugin_path(vm));
+  GraphOptions options;
+  if (vm.count("dim")) options.dims = parse_dims(vm["dim"].as<std::vector<std::string>>());
+  const GraphSpec spec = parse_graph_file(vm["file"].as<std::string>());
+  const Graph graph(spec, reg, options);
+
+  std::cout << spec.file << ": ok\n";
+  for (const auto& name : graph.input_names()) std::cout << "  input  " << name << " " << graph.input_shape(name).str() << "\n";
+  std::size_t total = 0;
+  for (const auto& n : graph.describe()) {
+    std::cout << "  " << (n.is_loss ? "loss   " : "node   ") << std::left << std::setw(16) << n.name << std::setw(16)
+              << n.type << n.kind;
+    if (n.is_loss) std::cout << " (weight " << n.weight << ")";
+    if (n.weight_count) std::cout << ", " << n.weight_count << " weights";
+    std::cout << "\n";
+    for (const auto& i : n.inputs) std::cout << "         in  " << i << "\n";
+    for (const auto& [port, shape] : n.outputs) std::cout << "         out " << port << " " << shape.str() << "\n";
+    total += n.weight_count;
+  }
+  for (const auto& name : graph.output_names()) std::cout << "  output " << name << "\n";
+  std::cout << "  " << total << " learnable weights, " << graph.flops_per_sample() << " multiply-adds per sample\n";
+  return 0;
+}
+
+const RegisterCommand registration{{"graph", "check a graph file: types, ports, shapes, cycles", run}};
+
+}  // namespace
+}  // namespace drape::cli

@@ -1,0 +1,40 @@
+#pragma once
+// Subcommands of the `drape` program. Each lives in its own cmd_*.cpp and
+// registers itself; main.cpp dispatches and maps errors to exit codes
+// (0 success, 2 usage/configuration, 1 runtime failure).
+#include <boost/program_options.hpp>
+
+#include <functional>
+#include <string>
+#include <vector>
+
+namespace drape::cli {
+
+namespace po = boost::program_options;
+
+struct Command {
+  std::string name;
+  std::string summary;
+  std::function<int(const std::vector<std::string>& args)> run;
+};
+
+std::vector<Command>& commands();
+
+struct RegisterCommand {
+  explicit RegisterCommand(Command c) { commands().push_back(std::move(c)); }
+};
+
+// Thrown for bad command lines; main prints it with the command's usage hint.
+struct UsageError : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+// Parses `args` against `options` (+ --help and --plugin-path, added here) and
+// the positional names. Returns false when --help was printed.
+bool parse(const std::string& usage, const std::vector<std::string>& args, po::options_description& options,
+           const po::positional_options_description& positional, po::variables_map& vm);
+
+// The plugin search directories given with --plugin-path.
+std::vector<std::string> plugin_path(const po::variables_map& vm);
+
+}  // namespace drape::cli

@@ -1,0 +1,85 @@
+#include "command.hpp"
+
+#include <drape/errors.hpp>
+
+#include <algorithm>
+#include <iostream>
+
+namespace drape::cli {
+
+std::vector<Command>& commands() {
+  static std::vector<Command> list;
+  return list;
+}
+
+bool parse(const std::string& usage, const std::vector<std::string>& args, po::options_description& options,
+           const po::positional_options_description& positional, po::variables_map& vm) {
+  options.add_options()("help,h", "show this help")(
+      "plugin-path", po::value<std::vector<std::string>>()->composing(),
+      "extra directory searched for plugins (repeatable; also $DRAPE_PLUGIN_PATH)");
+  try {
+    po::store(po::command_line_parser(args).options(options).positional(positional).run(), vm);
+    if (vm.count("help")) {
+      std::cout << "usage: " << usage << "\n\n" << options << "\n";
+      return false;
+    }
+    po::notify(vm);
+  } catch (const po::error& e) {
+    throw UsageError(std::string(e.what()) + "\nusage: " + usage);
+  }
+  return true;
+}
+
+std::vector<std::string> plugin_path(const po::variables_map& vm) {
+  return vm.count("plugin-path") ? vm["plugin-path"].as<std::vector<std::string>>() : std::vector<std::string>{};
+}
+
+}  // namespace drape::cli
+
+namespace {
+
+void print_overview() {
+  using drape::cli::commands;
+  std::cout << "drape: predict how a garment drapes on a body, then make it physically right.\n\n"
+               "usage: drape <command> [options]   (drape <command> --help for its options)\n\ncommands:\n";
+  auto list = commands();
+  std::sort(list.begin(), list.end(), [](auto& a, auto& b) { return a.name < b.name; });
+  for (const auto& c : list) std::cout << "  " << c.name << std::string(c.name.size() < 12 ? 12 - c.name.size() : 1, ' ') << c.summary << "\n";
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  using namespace drape::cli;
+  std::vector<std::string> args(argv + 1, argv + argc);
+  if (args.empty() || args[0] == "--help" || args[0] == "-h" || args[0] == "help") {
+    print_overview();
+    return args.empty() ? 2 : 0;
+  }
+  if (args[0] == "--version") {
+    std::cout << "drape 0.1.0\n";
+    return 0;
+  }
+  const std::string name = args[0];
+  args.erase(args.begin());
+  for (const auto& c : commands()) {
+    if (c.name != name) continue;
+    try {
+      return c.run(args);
+    } catch (const UsageError& e) {
+      std::cerr << "drape " << name << ": " << e.what() << "\n";
+      return 2;
+    } catch (const drape::ConfigError& e) {
+      std::cerr << "drape " << name << ": error: " << e.what() << "\n";
+      return 2;
+    } catch (const std::exception& e) {
+      std::cerr << "drape " << name << ": failed: " << e.what() << "\n";
+      return 1;
+    }
+  }
+  std::vector<std::string> names;
+  for (const auto& c : commands()) names.push_back(c.name);
+  std::cerr << "drape: unknown command '" << name << "'" << drape::did_you_mean(name, names)
+            << " (drape --help lists them)\n";
+  return 2;
+}

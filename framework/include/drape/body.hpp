@@ -1,0 +1,44 @@
+#pragma once
+// Body models: a fixed-topology, watertight mesh in A-pose (meters, Y up) driven
+// by a few shape parameters. Plugins of kind "body" provide them.
+#include <drape/energy.hpp>
+#include <drape/mesh.hpp>
+
+#include <Eigen/Core>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace drape {
+
+// What a user asks of a body; the model solves its parameters to match.
+struct BodyRequest {
+  double bmi = 24.0;      // computed from the mesh: volume * 985 kg/m^3 / height^2
+  double height = 1.75;   // m
+  double sex = 1.0;       // 0 female ... 1 male
+};
+
+class BodyModel {
+ public:
+  virtual ~BodyModel() = default;
+  virtual int num_vertices() const = 0;
+  virtual const Eigen::MatrixX3i& faces() const = 0;
+  virtual std::vector<std::string> shape_names() const = 0;
+  virtual Eigen::VectorXd mean_shape() const = 0;
+  virtual Eigen::MatrixX3d vertices(const Eigen::VectorXd& shape) const = 0;
+  // Shape parameters that reach the request; throws ConfigError (naming the
+  // reachable range) when the model cannot reach it.
+  virtual Eigen::VectorXd solve(const BodyRequest& request) const = 0;
+  // The BMI range this model reaches without breaking its mesh.
+  virtual std::pair<double, double> bmi_range() const = 0;
+};
+
+// Garment templates (kind "garment"): the rest garment dressed on the mean body,
+// its material space (UV in meters) and per-face materials.
+class GarmentSource {
+ public:
+  virtual ~GarmentSource() = default;
+  virtual Garment build() const = 0;
+};
+
+}  // namespace drape

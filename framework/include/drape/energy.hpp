@@ -1,0 +1,68 @@
+#pragma once
+// Physics terms in double precision on a garment state. The simulator sums the
+// energies a scene names; EnergyNode exposes any energy as a graph loss so the
+// same code serves simulation, training and per-sample optimisation.
+#include <drape/mesh.hpp>
+
+#include <Eigen/Core>
+#include <Eigen/SparseCore>
+
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace drape {
+
+// A cloth material in physical units.
+struct Material {
+  std::string name;
+  double density = 0.187;  // kg/m^2
+  // ArcSim-style stretching coefficients [k_uu, k_uv(coupling), k_vv, k_shear] in N/m.
+  Eigen::Vector4d stretch{16.6, -14.7, 34.5, 36.9};
+  double bending = 1e-5;   // N*m
+  double thickness = 4.7e-4;  // m
+};
+
+// Closest-point queries against a body surface (implemented by the geometry layer).
+class BodyQuery {
+ public:
+  virtual ~BodyQuery() = default;
+  struct Hit {
+    Eigen::Vector3d point;
+    Eigen::Vector3d normal;  // outward, unit
+    double signed_distance;  // < 0 inside the body
+  };
+  virtual Hit closest(const Eigen::Vector3d& p) const = 0;
+};
+
+// The garment an energy acts on. Material space is the UV layout in meters.
+struct Garment {
+  Mesh mesh;                          // rest (dressed) state + material-space uv per corner
+  std::vector<Material> materials;    // at least one
+  Eigen::VectorXi face_material;      // [F] index into materials; empty = all 0
+  int material_of(int face) const { return face_material.size() ? face_material[face] : 0; }
+};
+
+struct EnergyContext {
+  const Garment* garment = nullptr;
+  const BodyQuery* body = nullptr;  // null unless the scene needs collisions
+  Eigen::Vector3d gravity{0.0, -9.81, 0.0};
+};
+
+using Triplets = std::vector<Eigen::Triplet<double>>;
+
+class Energy {
+ public:
+  virtual ~Energy() = default;
+  // Precompute whatever depends only on the rest state (areas, inverse rest matrices).
+  virtual void bind(const EnergyContext& context) = 0;
+  virtual double value(const Eigen::MatrixX3d& x) const = 0;
+  // Adds dE/dx to g ([V, 3]) and returns E.
+  virtual double add_gradient(const Eigen::MatrixX3d& x, Eigen::MatrixX3d& g) const = 0;
+  // Appends the Hessian as triplets on the flattened index 3*vertex + axis.
+  // With project_psd, each element block is projected to the nearest PSD matrix
+  // (what Newton needs); without, it is the exact Hessian (what tests compare).
+  virtual void add_hessian(const Eigen::MatrixX3d& x, Triplets& h, bool project_psd = true) const = 0;
+};
+
+}  // namespace drape

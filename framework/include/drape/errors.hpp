@@ -1,0 +1,38 @@
+#pragma once
+// Error types. The CLI maps ConfigError to exit code 2 (usage or configuration
+// problems the user can fix in their files) and any other Error to exit code 1.
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace drape {
+
+// Where something came from: a file and a 1-based line (0 = unknown).
+struct SourceLocation {
+  std::string file;
+  int line = 0;
+  std::string str() const;  // "file:line" or "file" or "<unknown>"
+};
+
+class Error : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+// Bad configuration, bad arguments or bad input files: the user's to fix.
+class ConfigError : public Error {
+ public:
+  using Error::Error;
+  ConfigError(const SourceLocation& where, const std::string& what);
+};
+
+// Up to `max_count` candidates closest to `name` by edit distance (case-insensitive),
+// only those close enough to be plausible typos, best first.
+std::vector<std::string> closest_matches(const std::string& name,
+                                         const std::vector<std::string>& candidates,
+                                         std::size_t max_count = 3);
+
+// "; did you mean 'a', 'b'?" or "" when nothing is close.
+std::string did_you_mean(const std::string& name, const std::vector<std::string>& candidates);
+
+}  // namespace drape

@@ -1,0 +1,475 @@
+// Building, validating and running graphs.
+#include <drape/graph.hpp>
+
+#include <algorithm>
+#include <functional>
+
+namespace drape {
+namespace {
+
+// A value flowing along an edge: a node's output port or a graph input.
+struct Source {
+  int node = -1;   // index into Impl::nodes, or -1
+  int port = 0;
+  int input = -1;  // index into Impl::inputs, or -1
+};
+
+std::uint64_t fnv1a(const std::string& s, std::uint64_t h = 1469598103934665603ull) {
+  for (unsigned char c : s) h = (h ^ c) * 1099511628211ull;
+  return h;
+}
+
+std::string join(const std::vector<std::string>& v) {
+  std::string s;
+  for (const auto& e : v) s += (s.empty() ? "" : ", ") + e;
+  return s.empty() ? "(none)" : s;
+}
+
+}  // namespace
+
+struct Graph::Impl {
+  struct Built {
+    NodeSpec spec;
+    const PluginDescriptor* desc = nullptr;
+    std::unique_ptr<Node> node;
+    std::vector<std::string> in_ports;  // connected input ports
+    std::vector<Source> sources;        // parallel to in_ports
+    std::vector<std::string> out_ports;
+    std::vector<Shape> out_shapes;
+    std::vector<Tensor> outputs, out_grads;
+    bool has_grad = false;
+    bool requires_grad = false;  // has weights upstream (or itself)
+    bool for_outputs = false;    // needed to compute the graph outputs
+    bool for_losses = false;     // needed to compute the losses
+    std::string label() const { return "node '" + spec.name + "' (" + spec.type + ")"; }
+  };
+  struct Input {
+    std::string name;
+    Shape shape;
+    SourceLocation where;
+    Tensor value;
+  };
+  std::vector<Built> nodes;  // topological order once built
+  std::vector<Input> inputs;
+  std::vector<std::pair<std::string, Source>> outputs;
+  int batch = 0;
+  bool ran_losses = false;
+
+  Shape shape_of(const Source& s) const {
+    return s.node >= 0 ? nodes[s.node].out_shapes[s.port] : inputs[s.input].shape;
+  }
+  const Tensor& value_of(const Source& s) const {
+    return s.node >= 0 ? nodes[s.node].outputs[s.port] : inputs[s.input].value;
+  }
+};
+
+Graph::~Graph() = default;
+Graph::Graph(Graph&&) noexcept = default;
+
+Graph::Graph(const GraphSpec& spec, const Registry& registry, const GraphOptions& options)
+    : spec_(spec), impl_(std::make_unique<Impl>()) {
+  Impl& g = *impl_;
+
+  // Graph inputs and their shapes (symbolic dimensions come from options.dims).
+  for (const auto& [name, dims] : spec.inputs) {
+    int size[2];
+    for (int i = 0; i < 2; ++i) {
+      const std::string& d = dims.first[i];
+      try {
+        std::size_t used = 0;
+        size[i] = std::stoi(d, &used);
+        if (used != d.size()) throw std::invalid_argument(d);
+      } catch (const std::exception&) {
+        auto it = options.dims.find(d);
+        if (it == options.dims.end()) {
+          std::vector<std::string> known;
+          for (const auto& [k, v] : options.dims) known.push_back(k);
+          throw ConfigError(dims.second, "input '" + name + "': unknown size '" + d + "'" + did_you_mean(d, known) +
+                                             " (known sizes: " + join(known) + ")");
+        }
+        size[i] = it->second;
+      }
+      if (size[i] <= 0) throw ConfigError(dims.second, "input '" + name + "': sizes must be positive");
+    }
+    g.inputs.push_back({name, {size[0], size[1]}, dims.second, {}});
+  }
+
+  // Build every node: type lookup and parameter validation.
+  for (const auto& ns : spec.nodes) {
+    if (ns.is_loss && ns.weight == 0.0) continue;  // a disabled loss is not built
+    Impl::Built b;
+    b.spec = ns;
+    const PluginDescriptor* d = registry.find(ns.type);
+    if (!d) {
+      try {
+        registry.get(ns.type);
+      } catch (const ConfigError& e) {
+        throw ConfigError(ns.where, (ns.is_loss ? "loss '" : "node '") + ns.name + "': " + e.what());
+      }
+    }
+    b.desc = d;
+    if (!d->create_node && !d->create_energy)
+      throw ConfigError(ns.where, "node '" + ns.name + "': '" + ns.type + "' is a " + d->kind + ", not a graph node");
+    if (ns.is_loss && d->kind != "loss" && d->kind != "energy")
+      throw ConfigError(ns.where, "loss '" + ns.name + "' has type '" + ns.type + "', which is a " + d->kind +
+                                      ", not a loss or an energy");
+    const Params params(d->params, ns.params, b.label());
+    b.node = registry.create_node(ns.type, params);
+    for (const auto& p : d->outputs) b.out_ports.push_back(p.name);
+    g.nodes.push_back(std::move(b));
+  }
+
+  auto node_index = [&](const std::string& name) {
+    for (std::size_t i = 0; i < g.nodes.size(); ++i)
+      if (g.nodes[i].spec.name == name) return static_cast<int>(i);
+    return -1;
+  };
+  auto input_index = [&](const std::string& name) {
+    for (std::size_t i = 0; i < g.inputs.size(); ++i)
+      if (g.inputs[i].name == name) return static_cast<int>(i);
+    return -1;
+  };
+  auto all_names = [&] {
+    std::vector<std::string> v;
+    for (const auto& n : g.nodes) v.push_back(n.spec.name);
+    for (const auto& i : g.inputs) v.push_back(i.name);
+    return v;
+  };
+  // Resolves a reference to a node output or a graph input (not to output aliases).
+  std::function<Source(const PortRef&, const std::string&, int)> resolve = [&](const PortRef& r, const std::string& who,
+                                                                                int depth) -> Source {
+    if (const int n = node_index(r.node); n >= 0) {
+      const auto& ports = g.nodes[n].out_ports;
+      if (r.port.empty()) return {n, 0, -1};
+      auto it = std::find(ports.begin(), ports.end(), r.port);
+      if (it == ports.end())
+        throw ConfigError(r.where, who + ": " + g.nodes[n].label() + " has no output '" + r.port + "'" +
+                                       did_you_mean(r.port, ports) + " (outputs: " + join(ports) + ")");
+      return {n, static_cast<int>(it - ports.begin()), -1};
+    }
+    if (const int i = input_index(r.node); i >= 0) {
+      if (!r.port.empty()) throw ConfigError(r.where, who + ": graph input '" + r.node + "' has no ports");
+      return {-1, 0, i};
+    }
+    for (const auto& [name, ref] : spec.outputs)
+      if (name == r.node && depth == 0 && r.port.empty()) return resolve(ref, who, 1);
+    const bool disabled = std::any_of(spec.nodes.begin(), spec.nodes.end(),
+                                      [&](const NodeSpec& n) { return n.name == r.node; });
+    throw ConfigError(r.where, who + ": unknown input '" + r.str() + "'" +
+                                   (disabled ? " (it is a loss with weight 0)" : did_you_mean(r.node, all_names())));
+  };
+
+  // Wire inputs: positional, named, and (for losses) bound by port name.
+  for (auto& b : g.nodes) {
+    const auto& declared = b.desc->inputs;
+    std::vector<std::string> names;
+    for (const auto& p : declared) names.push_back(p.name);
+    std::vector<bool> connected(declared.size(), false);
+    std::size_t positional = 0;
+    for (const auto& [port, ref] : b.spec.inputs) {
+      std::size_t k = 0;
+      if (port.empty()) {
+        if (positional >= declared.size())
+          throw ConfigError(ref.where, b.label() + ": too many inputs; it takes " + std::to_string(declared.size()) +
+                                           " (" + join(names) + ")");
+        k = positional++;
+      } else {
+        auto it = std::find(names.begin(), names.end(), port);
+        if (it == names.end())
+          throw ConfigError(ref.where, b.label() + ": no input port '" + port + "'" + did_you_mean(port, names) +
+                                           " (ports: " + join(names) + ")");
+        k = static_cast<std::size_t>(it - names.begin());
+      }
+      if (connected[k]) throw ConfigError(ref.where, b.label() + ": input '" + names[k] + "' is connected twice");
+      connected[k] = true;
+      b.in_ports.push_back(names[k]);
+      b.sources.push_back(resolve(ref, b.label(), 0));
+    }
+    for (std::size_t k = 0; k < declared.size(); ++k) {
+      if (connected[k]) continue;
+      if (b.spec.is_loss) {
+        PortRef implicit{names[k], "", b.spec.where};
+        if (names[k] == "pred" || names[k] == "x") {
+          if (spec.outputs.empty()) throw ConfigError(b.spec.where, b.label() + ": the graph has no outputs to bind 'pred' to");
+          implicit = spec.outputs.front().second;
+        }
+        if (names[k] == "pred" || names[k] == "x" || input_index(names[k]) >= 0) {
+          b.in_ports.push_back(names[k]);
+          b.sources.push_back(resolve(implicit, b.label(), 0));
+          continue;
+        }
+      }
+      if (!declared[k].optional)
+        throw ConfigError(b.spec.where, b.label() + ": input '" + names[k] + "' is not connected (" + declared[k].doc + ")");
+    }
+  }
+  for (const auto& [name, ref] : spec.outputs) g.outputs.emplace_back(name, resolve(ref, "output '" + name + "'", 0));
+
+  // Topological order (depth-first), reporting a cycle as a path.
+  const int count = static_cast<int>(g.nodes.size());
+  std::vector<int> state(count, 0), order;
+  std::vector<int> stack;
+  std::function<void(int)> visit = [&](int n) {
+    if (state[n] == 2) return;
+    if (state[n] == 1) {
+      std::string path;
+      auto start = std::find(stack.begin(), stack.end(), n);
+      for (auto it = start; it != stack.end(); ++it) path += g.nodes[*it].spec.name + " -> ";
+      throw ConfigError(g.nodes[n].spec.where, "the graph has a cycle: " + path + g.nodes[n].spec.name);
+    }
+    state[n] = 1;
+    stack.push_back(n);
+    for (const auto& s : g.nodes[n].sources)
+      if (s.node >= 0) visit(s.node);
+    stack.pop_back();
+    state[n] = 2;
+    order.push_back(n);
+  };
+  for (int n = 0; n < count; ++n) visit(n);
+  std::vector<int> position(count);
+  for (int i = 0; i < count; ++i) position[order[i]] = i;
+  std::vector<Impl::Built> sorted;
+  for (int n : order) {
+    sorted.push_back(std::move(g.nodes[n]));
+    for (auto& s : sorted.back().sources)
+      if (s.node >= 0) s.node = position[s.node];
+  }
+  g.nodes = std::move(sorted);
+  for (auto& [name, s] : g.outputs)
+    if (s.node >= 0) s.node = position[s.node];
+
+  // Shapes, in order; setup creates the weights.
+  for (auto& b : g.nodes) {
+    ShapeMap in;
+    for (std::size_t k = 0; k < b.in_ports.size(); ++k) in[b.in_ports[k]] = g.shape_of(b.sources[k]);
+    NodeContext ctx{b.spec.name, fnv1a(b.spec.name, options.seed * 0x9E3779B97F4A7C15ull + 1), options.assets};
+    ShapeMap out;
+    try {
+      out = b.node->setup(in, ctx);
+    } catch (const ConfigError& e) {
+      std::string shapes;
+      for (const auto& [p, s] : in) shapes += (shapes.empty() ? "" : ", ") + p + " " + s.str();
+      throw ConfigError(b.spec.where, b.label() + ": " + e.what() + " (inputs: " + (shapes.empty() ? "none" : shapes) + ")");
+    }
+    for (const auto& p : b.out_ports) {
+      auto it = out.find(p);
+      if (it == out.end()) throw Error(b.label() + ": the plugin did not report the shape of output '" + p + "'");
+      b.out_shapes.push_back(it->second);
+    }
+    if (b.spec.is_loss && !(b.out_shapes.size() == 1 && b.out_shapes[0] == Shape{1, 1}))
+      throw ConfigError(b.spec.where, b.label() + ": a loss must have one output of shape [1, 1]");
+    b.requires_grad = !b.node->weights().empty();
+    for (const auto& s : b.sources)
+      if (s.node >= 0 && g.nodes[s.node].requires_grad) b.requires_grad = true;
+  }
+
+  // Which nodes each kind of run needs.
+  std::function<void(int, bool)> mark = [&](int n, bool loss) {
+    bool& flag = loss ? g.nodes[n].for_losses : g.nodes[n].for_outputs;
+    if (flag) return;
+    flag = true;
+    for (const auto& s : g.nodes[n].sources)
+      if (s.node >= 0) mark(s.node, loss);
+  };
+  for (const auto& [name, s] : g.outputs)
+    if (s.node >= 0) mark(s.node, false);
+  for (int n = 0; n < count; ++n)
+    if (g.nodes[n].spec.is_loss) mark(n, true);
+}
+
+std::vector<Graph::NodeInfo> Graph::describe() const {
+  std::vector<NodeInfo> out;
+  for (const auto& b : impl_->nodes) {
+    NodeInfo info{b.spec.name, b.spec.type, b.desc->kind, {}, {}, 0, b.spec.is_loss, b.spec.weight};
+    for (std::size_t k = 0; k < b.in_ports.size(); ++k) {
+      const Source& s = b.sources[k];
+      const std::string from = s.node >= 0 ? impl_->nodes[s.node].spec.name + "." + impl_->nodes[s.node].out_ports[s.port]
+                                           : impl_->inputs[s.input].name;
+      info.inputs.push_back(b.in_ports[k] + " <- " + from + " " + impl_->shape_of(s).str());
+    }
+    for (std::size_t k = 0; k < b.out_ports.size(); ++k) info.outputs.emplace_back(b.out_ports[k], b.out_shapes[k]);
+    for (const auto& [name, w] : b.node->weights()) info.weight_count += w.value.size();
+    out.push_back(std::move(info));
+  }
+  return out;
+}
+
+void Graph::forward(const std::map<std::string, Tensor>& inputs, bool with_losses) {
+  Impl& g = *impl_;
+  auto runs = [&](const Impl::Built& b) { return b.for_outputs || (with_losses && b.for_losses); };
+  std::vector<bool> needed(g.inputs.size(), false);
+  for (const auto& b : g.nodes)
+    if (runs(b))
+      for (const auto& s : b.sources)
+        if (s.input >= 0) needed[s.input] = true;
+  for (const auto& [name, s] : g.outputs)
+    if (s.input >= 0) needed[s.input] = true;
+
+  g.batch = -1;
+  for (std::size_t i = 0; i < g.inputs.size(); ++i) {
+    auto& in = g.inputs[i];
+    auto it = inputs.find(in.name);
+    if (it == inputs.end()) {
+      if (needed[i]) throw ConfigError("graph input '" + in.name + "' " + in.shape.str() + " is required but was not given");
+      continue;
+    }
+    const Tensor& t = it->second;
+    if (t.shape() != in.shape)
+      throw ConfigError("graph input '" + in.name + "' has " + std::to_string(t.rows()) + " x " + std::to_string(t.cols()) +
+                        " per sample, but the graph expects " + std::to_string(in.shape.rows) + " x " +
+                        std::to_string(in.shape.cols) + (in.shape.cols == 3 ? " (vertices x xyz)" : ""));
+    if (g.batch >= 0 && t.batch() != g.batch)
+      throw ConfigError("graph inputs disagree on the batch size (" + std::to_string(g.batch) + " vs " +
+                        std::to_string(t.batch()) + " for '" + in.name + "')");
+    g.batch = t.batch();
+    in.value = t;
+  }
+  if (g.batch <= 0) throw ConfigError("forward needs at least one input with a positive batch size");
+
+  for (auto& b : g.nodes) {
+    if (!runs(b)) continue;
+    TensorIn in;
+    for (std::size_t k = 0; k < b.in_ports.size(); ++k) in[b.in_ports[k]] = &g.value_of(b.sources[k]);
+    b.outputs.resize(b.out_ports.size());
+    TensorOut out;
+    for (std::size_t k = 0; k < b.out_ports.size(); ++k) {
+      b.outputs[k].resize(g.batch, b.out_shapes[k].rows, b.out_shapes[k].cols);
+      out[b.out_ports[k]] = &b.outputs[k];
+    }
+    b.node->forward(in, out);
+  }
+  g.ran_losses = with_losses;
+}
+
+std::map<std::string, double> Graph::loss_terms() const {
+  std::map<std::string, double> out;
+  if (!impl_->ran_losses) return out;
+  for (const auto& b : impl_->nodes) {
+    if (!b.spec.is_loss) continue;
+    double sum = 0.0;
+    for (int i = 0; i < impl_->batch; ++i) sum += b.outputs[0](i, 0, 0);
+    out[b.spec.name] = sum / impl_->batch;
+  }
+  return out;
+}
+
+double Graph::loss() const {
+  double total = 0.0;
+  const auto terms = loss_terms();
+  for (const auto& b : impl_->nodes)
+    if (b.spec.is_loss) total += b.spec.weight * terms.at(b.spec.name);
+  return total;
+}
+
+namespace {
+void run_backward(Graph::Impl& g) {
+  for (auto it = g.nodes.rbegin(); it != g.nodes.rend(); ++it) {
+    auto& b = *it;
+    if (!b.has_grad || !b.requires_grad) continue;
+    TensorIn in, out, gout;
+    for (std::size_t k = 0; k < b.in_ports.size(); ++k) in[b.in_ports[k]] = &g.value_of(b.sources[k]);
+    for (std::size_t k = 0; k < b.out_ports.size(); ++k) {
+      out[b.out_ports[k]] = &b.outputs[k];
+      gout[b.out_ports[k]] = &b.out_grads[k];
+    }
+    std::vector<Tensor> gin(b.in_ports.size());
+    TensorOut gin_map;
+    for (std::size_t k = 0; k < b.in_ports.size(); ++k) {
+      const Tensor& v = g.value_of(b.sources[k]);
+      gin[k] = Tensor(v.batch(), v.rows(), v.cols());
+      gin_map[b.in_ports[k]] = &gin[k];
+    }
+    b.node->backward(in, out, gout, gin_map);
+    for (std::size_t k = 0; k < b.in_ports.size(); ++k) {
+      const auto& s = b.sources[k];
+      if (s.node < 0) continue;
+      auto& src = g.nodes[s.node];
+      src.out_grads[s.port].vec() += gin[k].vec();
+      src.has_grad = true;
+    }
+  }
+}
+
+void reset_grads(Graph::Impl& g) {
+  for (auto& b : g.nodes) {
+    b.has_grad = false;
+    b.out_grads.resize(b.outputs.size());
+    for (std::size_t k = 0; k < b.outputs.size(); ++k)
+      b.out_grads[k] = Tensor(b.outputs[k].batch(), b.outputs[k].rows(), b.outputs[k].cols());
+  }
+}
+}  // namespace
+
+void Graph::backward() {
+  Impl& g = *impl_;
+  if (!g.ran_losses) throw Error("backward() needs a forward() with losses first");
+  reset_grads(g);
+  for (auto& b : g.nodes) {
+    if (!b.spec.is_loss) continue;
+    std::fill(b.out_grads[0].data(), b.out_grads[0].data() + b.out_grads[0].size(),
+              static_cast<float>(b.spec.weight / g.batch));
+    b.has_grad = true;
+  }
+  run_backward(g);
+}
+
+void Graph::backward_from_output(const std::string& output, const Tensor& grad) {
+  Impl& g = *impl_;
+  reset_grads(g);
+  for (const auto& [name, s] : g.outputs) {
+    if (name != output) continue;
+    if (s.node < 0) return;  // an input passed through: no weights involved
+    Tensor& target = g.nodes[s.node].out_grads[s.port];
+    if (target.shape() != grad.shape() || target.batch() != grad.batch())
+      throw Error("backward_from_output: gradient " + grad.shape_str() + " does not match output " + target.shape_str());
+    target.vec() += grad.vec();
+    g.nodes[s.node].has_grad = true;
+    run_backward(g);
+    return;
+  }
+  throw Error("backward_from_output: no output named '" + output + "'");
+}
+
+const Tensor& Graph::output(const std::string& name) const {
+  for (const auto& [n, s] : impl_->outputs)
+    if (n == name) return impl_->value_of(s);
+  throw Error("no graph output named '" + name + "'" + did_you_mean(name, output_names()));
+}
+
+std::vector<std::string> Graph::output_names() const {
+  std::vector<std::string> v;
+  for (const auto& [n, s] : impl_->outputs) v.push_back(n);
+  return v;
+}
+
+std::vector<std::string> Graph::input_names() const {
+  std::vector<std::string> v;
+  for (const auto& i : impl_->inputs) v.push_back(i.name);
+  return v;
+}
+
+Shape Graph::input_shape(const std::string& name) const {
+  for (const auto& i : impl_->inputs)
+    if (i.name == name) return i.shape;
+  throw Error("no graph input named '" + name + "'");
+}
+
+std::vector<std::pair<std::string, Weight*>> Graph::weights() {
+  std::vector<std::pair<std::string, Weight*>> out;
+  for (auto& b : impl_->nodes)
+    for (auto& [name, w] : b.node->weights()) out.emplace_back(b.spec.name + "/" + name, &w);
+  return out;
+}
+
+void Graph::zero_grad() {
+  for (auto& b : impl_->nodes) b.node->zero_grad();
+}
+
+double Graph::flops_per_sample() const {
+  double f = 0.0;
+  for (const auto& b : impl_->nodes)
+    if (b.for_outputs) f += b.node->flops_per_sample();
+  return f;
+}
+
+}  // namespace drape

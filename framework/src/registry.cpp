@@ -1,0 +1,203 @@
+#include <drape/energy_node.hpp>
+#include <drape/registry.hpp>
+
+#include <boost/dll/runtime_symbol_info.hpp>
+#include <boost/dll/shared_library.hpp>
+#include <boost/dll/import.hpp>
+
+#include <algorithm>
+#include <cstdlib>
+#include <iostream>
+#include <set>
+#include <sstream>
+
+namespace fs = std::filesystem;
+
+namespace drape {
+
+struct Registry::Library {
+  boost::dll::shared_library handle;
+  fs::path file;
+};
+
+Registry::Registry() = default;
+Registry::~Registry() {
+  plugins_.clear();  // the descriptors' code lives in the libraries: drop them first
+  libraries_.clear();
+}
+
+namespace {
+
+constexpr const char* kPrefix = "libdrape_plugin_";
+
+bool is_plugin_file(const fs::path& p) {
+  const std::string name = p.filename().string();
+  return name.rfind(kPrefix, 0) == 0 && p.extension() == ".so";
+}
+
+// The plugins shipped with this framework library: <libdir>/drape/plugins when
+// installed, <build>/plugins in the build tree (the library is <build>/framework/).
+std::vector<fs::path> shipped_plugin_dirs() {
+  std::vector<fs::path> out;
+  std::error_code ec;
+  const fs::path self = boost::dll::this_line_location(ec);
+  if (ec) return out;
+  const fs::path dir = self.parent_path();
+  for (const fs::path& candidate : {dir / "drape" / "plugins", dir.parent_path() / "plugins"})
+    if (fs::is_directory(candidate)) out.push_back(candidate);
+  return out;
+}
+
+}  // namespace
+
+std::vector<fs::path> Registry::search_path(const std::vector<std::string>& extra) {
+  std::vector<fs::path> dirs;
+  for (const auto& e : extra)
+    if (!e.empty()) dirs.emplace_back(e);
+  if (const char* env = std::getenv("DRAPE_PLUGIN_PATH")) {
+    std::stringstream ss(env);
+    std::string item;
+    while (std::getline(ss, item, ':'))
+      if (!item.empty()) dirs.emplace_back(item);
+  }
+  for (const auto& d : shipped_plugin_dirs()) dirs.push_back(d);
+  return dirs;
+}
+
+Registry& Registry::load_default(const std::vector<std::string>& extra) {
+  // Never destroyed: plugin code must stay mapped for as long as anything built
+  // from it may live, which includes static objects destroyed at exit.
+  static Registry* instance = [&] {
+    auto* r = new Registry;
+    r->load_path(search_path(extra));
+    return r;
+  }();
+  return *instance;
+}
+
+void Registry::load_path(const std::vector<fs::path>& dirs) {
+  std::set<fs::path> seen_dirs;
+  for (const auto& dir : dirs) {
+    std::error_code ec;
+    if (!fs::is_directory(dir, ec)) {
+      if (fs::exists(dir, ec) && is_plugin_file(dir)) load_file(dir);
+      else std::cerr << "drape: warning: plugin path entry '" << dir.string() << "' is not a directory\n";
+      continue;
+    }
+    const fs::path canonical = fs::canonical(dir, ec);
+    if (!seen_dirs.insert(canonical).second) continue;
+    std::vector<fs::path> files;
+    for (const auto& entry : fs::directory_iterator(dir))
+      if (entry.is_regular_file() && is_plugin_file(entry.path())) files.push_back(entry.path());
+    std::sort(files.begin(), files.end());
+    for (const auto& f : files) load_file(f);
+  }
+}
+
+void Registry::load_file(const fs::path& file) {
+  std::error_code ec;
+  const fs::path canonical = fs::canonical(file, ec);
+  if (ec) throw ConfigError("cannot open plugin '" + file.string() + "': " + ec.message());
+  for (const auto& lib : libraries_)
+    if (lib->file == canonical) return;  // the same file reached twice through the path
+
+  auto lib = std::make_unique<Library>();
+  lib->file = canonical;
+  try {
+    lib->handle.load(canonical.string(), boost::dll::load_mode::rtld_lazy | boost::dll::load_mode::rtld_local);
+  } catch (const std::exception& e) {
+    refused_.push_back(canonical.string() + ": cannot be loaded (" + e.what() + ")");
+    std::cerr << "drape: warning: plugin " << refused_.back() << "\n";
+    return;
+  }
+  if (!lib->handle.has("drape_plugin_abi_version") || !lib->handle.has("drape_plugin_factory")) {
+    refused_.push_back(canonical.string() + ": not a drape plugin (missing drape_plugin_abi_version/factory)");
+    std::cerr << "drape: warning: plugin " << refused_.back() << "\n";
+    return;
+  }
+  // Checked before calling anything else: the factory's return type is only
+  // meaningful when both sides agree on the ABI.
+  const int abi = lib->handle.get<int()>("drape_plugin_abi_version")();
+  if (abi != kAbiVersion) {
+    refused_.push_back(canonical.string() + ": built for drape plugin ABI " + std::to_string(abi) +
+                       ", but this drape uses ABI " + std::to_string(kAbiVersion) + "; rebuild the plugin");
+    std::cerr << "drape: warning: refused plugin " << refused_.back() << "\n";
+    return;
+  }
+  auto factory = lib->handle.get_alias<PluginFactory>("drape_plugin_factory");
+  PluginList list = factory();
+  for (auto& d : list) {
+    d.file = canonical.string();
+    if (d.abi_version != kAbiVersion)
+      throw ConfigError(canonical.string() + ": plugin '" + d.name + "' declares ABI " + std::to_string(d.abi_version) +
+                        " but this drape uses ABI " + std::to_string(kAbiVersion));
+    const int factories = !!d.create_node + !!d.create_energy + !!d.create_body + !!d.create_garment;
+    if (factories != 1)
+      throw ConfigError(canonical.string() + ": plugin '" + d.name +
+                        "' must define exactly one of create_node, create_energy, create_body, create_garment");
+    if (d.create_energy && d.inputs.empty() && d.outputs.empty()) {  // the EnergyNode adapter's ports
+      d.inputs = {{"x", "garment vertex positions [vertices, 3]"}};
+      d.outputs = {{"energy", "the energy of each sample [1, 1]"}};
+    }
+    if (const PluginDescriptor* other = find(d.name))
+      throw ConfigError("two plugins are named '" + d.name + "': " + other->file + " and " + canonical.string() +
+                        "; remove one from the plugin path");
+  }
+  libraries_.push_back(std::move(lib));
+  for (auto& d : list) plugins_.push_back(std::move(d));
+}
+
+const PluginDescriptor* Registry::find(const std::string& name) const {
+  for (const auto& d : plugins_)
+    if (d.name == name) return &d;
+  return nullptr;
+}
+
+std::vector<std::string> Registry::names() const {
+  std::vector<std::string> out;
+  for (const auto& d : plugins_) out.push_back(d.name);
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
+const PluginDescriptor& Registry::get(const std::string& name) const {
+  if (const auto* d = find(name)) return *d;
+  std::string msg = "unknown plugin type '" + name + "'" + did_you_mean(name, names());
+  if (plugins_.empty()) msg += " (no plugins are loaded: check --plugin-path or DRAPE_PLUGIN_PATH)";
+  for (const auto& r : refused_) msg += "\n  note: refused " + r;
+  throw ConfigError(msg);
+}
+
+std::vector<const PluginDescriptor*> Registry::all() const {
+  std::vector<const PluginDescriptor*> out;
+  for (const auto& d : plugins_) out.push_back(&d);
+  std::sort(out.begin(), out.end(), [](auto* a, auto* b) { return std::tie(a->kind, a->name) < std::tie(b->kind, b->name); });
+  return out;
+}
+
+std::unique_ptr<Node> Registry::create_node(const std::string& name, const Params& params) const {
+  const PluginDescriptor& d = get(name);
+  if (d.create_node) return d.create_node(params);
+  if (d.create_energy) return std::make_unique<EnergyNode>(d.create_energy(params));
+  throw ConfigError("'" + name + "' is a " + d.kind + "; it cannot be a node of a graph");
+}
+
+std::unique_ptr<BodyModel> Registry::create_body(const std::string& name, const Params& params) const {
+  const PluginDescriptor& d = get(name);
+  if (!d.create_body) throw ConfigError("'" + name + "' is a " + d.kind + ", not a body model");
+  return d.create_body(params);
+}
+
+std::unique_ptr<GarmentSource> Registry::create_garment(const std::string& name, const Params& params) const {
+  const PluginDescriptor& d = get(name);
+  if (!d.create_garment) throw ConfigError("'" + name + "' is a " + d.kind + ", not a garment template");
+  return d.create_garment(params);
+}
+
+std::unique_ptr<Energy> Registry::create_energy(const std::string& name, const Params& params) const {
+  const PluginDescriptor& d = get(name);
+  if (!d.create_energy) throw ConfigError("'" + name + "' is a " + d.kind + ", not an energy");
+  return d.create_energy(params);
+}
+
+}  // namespace drape

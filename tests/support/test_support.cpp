@@ -1,0 +1,48 @@
+#include "test_support.hpp"
+
+#include <array>
+#include <cstdio>
+#include <random>
+#include <sys/wait.h>
+
+namespace fs = std::filesystem;
+
+namespace drape::test {
+
+const Registry& plugins() {
+  static Registry* r = [] {
+    auto* reg = new Registry;  // kept for the whole run: plugin code must stay loaded
+    reg->load_path({DRAPE_BUILD_PLUGIN_DIR});
+    return reg;
+  }();
+  return *r;
+}
+
+TempDir::TempDir() {
+  std::random_device rd;
+  path_ = fs::temp_directory_path() / ("drape-test-" + std::to_string(rd()) + std::to_string(rd()));
+  fs::create_directories(path_);
+}
+TempDir::~TempDir() {
+  std::error_code ec;
+  fs::remove_all(path_, ec);
+}
+
+fs::path shared_assets() {
+  const fs::path p = DRAPE_SHARED_ASSETS_DIR;
+  return fs::is_directory(p) ? fs::canonical(p) : fs::path();
+}
+fs::path source_dir() { return DRAPE_SOURCE_DIR; }
+fs::path drape_program() { return fs::path(DRAPE_BINARY_DIR) / "bin" / "drape"; }
+
+int run(const std::string& command, std::string& output) {
+  output.clear();
+  FILE* pipe = popen((command + " 2>&1").c_str(), "r");
+  if (!pipe) return -1;
+  std::array<char, 4096> buffer{};
+  while (fgets(buffer.data(), buffer.size(), pipe)) output += buffer.data();
+  const int status = pclose(pipe);
+  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+
+}  // namespace drape::test

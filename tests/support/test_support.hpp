@@ -1,0 +1,34 @@
+#pragma once
+// Helpers shared by the tests: the build tree's plugins, temporary folders,
+// the optional shared assets, the drape program.
+#include <drape/registry.hpp>
+
+#include <filesystem>
+#include <string>
+
+namespace drape::test {
+
+// A registry holding every plugin of the build tree (loaded once).
+const Registry& plugins();
+
+// A fresh empty directory under the system temp dir, removed at exit of the scope.
+class TempDir {
+ public:
+  TempDir();
+  ~TempDir();
+  const std::filesystem::path& path() const { return path_; }
+  std::filesystem::path operator/(const std::string& name) const { return path_ / name; }
+
+ private:
+  std::filesystem::path path_;
+};
+
+// ../shared/assets next to the source tree, or empty when absent.
+std::filesystem::path shared_assets();
+std::filesystem::path source_dir();
+std::filesystem::path drape_program();
+
+// Runs a shell command, returns its exit code; stdout+stderr go to `output`.
+int run(const std::string& command, std::string& output);
+
+}  // namespace drape::test
