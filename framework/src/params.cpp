@@ -88,12 +88,12 @@ YAML::Node validate(const ParamSpec& s, const YAML::Node& n) {
     }
     case ParamType::IntList:
     case ParamType::FloatList: {
-      YAML::Node list = n;
-      if (n.IsScalar()) {  // a single value is a list of one
-        list = YAML::Node(YAML::NodeType::Sequence);
-        list.push_back(n);
-      }
-      if (!list.IsSequence()) throw std::invalid_argument("expected a list");
+      // A single value is a list of one. (A fresh node: assigning to a yaml-cpp
+      // node that aliases `n` would overwrite the user's value in place.)
+      YAML::Node list(YAML::NodeType::Sequence);
+      if (n.IsScalar()) list.push_back(YAML::Clone(n));
+      else if (n.IsSequence()) list = YAML::Clone(n);
+      else throw std::invalid_argument("expected a list");
       for (const auto& e : list) check_range(s, scalar(e, s.type == ParamType::IntList));
       return list;
     }

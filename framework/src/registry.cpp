@@ -128,23 +128,33 @@ void Registry::load_file(const fs::path& file) {
   PluginList list = factory();
   for (auto& d : list) {
     d.file = canonical.string();
-    if (d.abi_version != kAbiVersion)
-      throw ConfigError(canonical.string() + ": plugin '" + d.name + "' declares ABI " + std::to_string(d.abi_version) +
-                        " but this drape uses ABI " + std::to_string(kAbiVersion));
-    const int factories = !!d.create_node + !!d.create_energy + !!d.create_body + !!d.create_garment;
-    if (factories != 1)
-      throw ConfigError(canonical.string() + ": plugin '" + d.name +
-                        "' must define exactly one of create_node, create_energy, create_body, create_garment");
-    if (d.create_energy && d.inputs.empty() && d.outputs.empty()) {  // the EnergyNode adapter's ports
-      d.inputs = {{"x", "garment vertex positions [vertices, 3]"}};
-      d.outputs = {{"energy", "the energy of each sample [1, 1]"}};
-    }
-    if (const PluginDescriptor* other = find(d.name))
-      throw ConfigError("two plugins are named '" + d.name + "': " + other->file + " and " + canonical.string() +
-                        "; remove one from the plugin path");
+    validate(d);
   }
   libraries_.push_back(std::move(lib));
   for (auto& d : list) plugins_.push_back(std::move(d));
+}
+
+void Registry::add(PluginDescriptor d) {
+  if (d.file.empty()) d.file = "<in-process>";
+  validate(d);
+  plugins_.push_back(std::move(d));
+}
+
+void Registry::validate(PluginDescriptor& d) const {
+  if (d.abi_version != kAbiVersion)
+    throw ConfigError(d.file + ": plugin '" + d.name + "' declares ABI " + std::to_string(d.abi_version) +
+                      " but this drape uses ABI " + std::to_string(kAbiVersion));
+  const int factories = !!d.create_node + !!d.create_energy + !!d.create_body + !!d.create_garment;
+  if (factories != 1)
+    throw ConfigError(d.file + ": plugin '" + d.name +
+                      "' must define exactly one of create_node, create_energy, create_body, create_garment");
+  if (d.create_energy && d.inputs.empty() && d.outputs.empty()) {  // the EnergyNode adapter's ports
+    d.inputs = {{"x", "garment vertex positions [vertices, 3]"}};
+    d.outputs = {{"energy", "the energy of each sample [1, 1]"}};
+  }
+  if (const PluginDescriptor* other = find(d.name))
+    throw ConfigError("two plugins are named '" + d.name + "': " + other->file + " and " + d.file +
+                      "; remove one from the plugin path");
 }
 
 const PluginDescriptor* Registry::find(const std::string& name) const {

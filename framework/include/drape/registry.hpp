@@ -27,6 +27,9 @@ class Registry {
   static Registry& load_default(const std::vector<std::string>& extra = {});
   void load_path(const std::vector<std::filesystem::path>& dirs);
   void load_file(const std::filesystem::path& file);
+  // Registers a descriptor built in-process (embedding applications, tests).
+  // Same checks as for a library; `file` is set to "<in-process>" when empty.
+  void add(PluginDescriptor descriptor);
 
   // Throws ConfigError listing close matches when `name` is unknown.
   const PluginDescriptor& get(const std::string& name) const;
@@ -44,6 +47,7 @@ class Registry {
   std::unique_ptr<GarmentSource> create_garment(const std::string& name, const Params& params) const;
 
  private:
+  void validate(PluginDescriptor& descriptor) const;
   struct Library;
   std::vector<std::unique_ptr<Library>> libraries_;
   std::vector<PluginDescriptor> plugins_;

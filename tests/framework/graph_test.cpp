@@ -1,0 +1,192 @@
+#include <drape/gradcheck.hpp>
+#include <drape/graph.hpp>
+
+#include <catch2/catch.hpp>
+
+#include <fstream>
+
+#include "test_nodes.hpp"
+
+using namespace drape;
+
+namespace {
+
+const char* kGraph = R"(
+inputs:
+  rest: [n, 3]
+  target: [n, 3]
+nodes:
+  lift:  { type: test_affine, in: rest }
+  twice: { type: scale, in: lift.y, params: { factor: 2.0 } }
+  sum:   { type: add, in: [twice, rest] }
+outputs: { garment: sum }
+losses:
+  l2: 1.0
+)";
+
+std::string error_of(const std::string& yaml, const std::map<std::string, int>& dims = {{"n", 4}}) {
+  try {
+    Graph g(parse_graph_text(yaml, "g.yaml"), test::registry_with_test_nodes(), {dims});
+  } catch (const ConfigError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+void write(const std::filesystem::path& p, const std::string& text) { std::ofstream(p) << text; }
+
+Tensor random_tensor(int b, int r, int c, float scale = 1.0f) {
+  Tensor t(b, r, c);
+  for (std::size_t i = 0; i < t.size(); ++i) t.data()[i] = scale * std::sin(0.7f * static_cast<float>(i) + 0.3f);
+  return t;
+}
+
+}  // namespace
+
+TEST_CASE("a graph builds, orders its nodes and infers shapes", "[graph]") {
+  Graph g(parse_graph_text(kGraph, "g.yaml"), test::registry_with_test_nodes(), {{{"n", 5}}});
+  const auto nodes = g.describe();
+  REQUIRE(nodes.size() == 4);
+  CHECK(nodes[0].name == "lift");
+  CHECK(nodes[3].name == "l2");
+  CHECK(nodes[3].is_loss);
+  CHECK(nodes[2].outputs[0].second == Shape{5, 3});
+  CHECK(g.weights().size() == 2);
+}
+
+TEST_CASE("forward computes the graph and backward matches finite differences", "[graph]") {
+  Graph g(parse_graph_text(kGraph, "g.yaml"), test::registry_with_test_nodes(), {{{"n", 3}}});
+  std::map<std::string, Tensor> in{{"rest", random_tensor(2, 3, 3)}, {"target", random_tensor(2, 3, 3, 0.5f)}};
+  g.forward(in);
+  // garment = 2 * (1.5 x + 0.25) + x
+  const Tensor& out = g.output("garment");
+  CHECK(out(1, 2, 1) == Approx(4.0 * in["rest"](1, 2, 1) + 0.5));
+  const double loss = g.loss();
+  g.zero_grad();
+  g.backward();
+  for (auto& [name, w] : g.weights()) {
+    for (int c = 0; c < 3; ++c) {
+      const float saved = w->value(0, 0, c);
+      const float h = 1e-3f;
+      w->value(0, 0, c) = saved + h;
+      g.forward(in);
+      const double plus = g.loss();
+      w->value(0, 0, c) = saved - h;
+      g.forward(in);
+      const double minus = g.loss();
+      w->value(0, 0, c) = saved;
+      CHECK(w->grad(0, 0, c) == Approx((plus - minus) / (2 * h)).epsilon(1e-2).margin(1e-4));
+    }
+  }
+  g.forward(in);
+  CHECK(g.loss() == Approx(loss));
+}
+
+TEST_CASE("inference skips the losses and needs no target", "[graph]") {
+  Graph g(parse_graph_text(kGraph, "g.yaml"), test::registry_with_test_nodes(), {{{"n", 3}}});
+  g.forward({{"rest", random_tensor(1, 3, 3)}}, false);
+  CHECK(g.output("garment").batch() == 1);
+  CHECK_THROWS_WITH(g.forward({{"rest", random_tensor(1, 3, 3)}}, true), Catch::Contains("'target'"));
+}
+
+TEST_CASE("a wrong-size input says what was expected", "[graph]") {
+  Graph g(parse_graph_text(kGraph, "g.yaml"), test::registry_with_test_nodes(), {{{"n", 3}}});
+  CHECK_THROWS_WITH(g.forward({{"rest", random_tensor(1, 7, 3)}}, false),
+                    Catch::Contains("'rest' has 7 x 3") && Catch::Contains("expects 3 x 3"));
+}
+
+TEST_CASE("graph errors name the file, the line and the node", "[graph]") {
+  // Unknown type with close matches, on the node's line.
+  std::string e = error_of("inputs: { rest: [n, 3] }\nnodes:\n  a: { type: scael, in: rest }\noutputs: [a]\n");
+  CHECK_THAT(e, Catch::Contains("g.yaml:3") && Catch::Contains("scael") && Catch::Contains("did you mean 'scale'"));
+  // Missing input.
+  e = error_of("inputs: { rest: [n, 3] }\nnodes:\n  a: { type: add, in: [rest] }\noutputs: [a]\n");
+  CHECK_THAT(e, Catch::Contains("g.yaml:3") && Catch::Contains("input 'b' is not connected"));
+  // Extra input.
+  e = error_of("inputs: { rest: [n, 3] }\nnodes:\n  a: { type: scale, in: [rest, rest] }\noutputs: [a]\n");
+  CHECK_THAT(e, Catch::Contains("too many inputs"));
+  // Unknown reference.
+  e = error_of("inputs: { rest: [n, 3] }\nnodes:\n  a: { type: scale, in: reest }\noutputs: [a]\n");
+  CHECK_THAT(e, Catch::Contains("unknown input 'reest'") && Catch::Contains("did you mean 'rest'"));
+  // Unknown output port.
+  e = error_of("inputs: { rest: [n, 3] }\nnodes:\n  a: { type: scale, in: rest }\n  b: { type: scale, in: a.outt }\noutputs: [b]\n");
+  CHECK_THAT(e, Catch::Contains("g.yaml:4") && Catch::Contains("no output 'outt'"));
+  // Cycle.
+  e = error_of("inputs: { rest: [n, 3] }\nnodes:\n  a: { type: add, in: [rest, b] }\n  b: { type: scale, in: a }\noutputs: [b]\n");
+  CHECK_THAT(e, Catch::Contains("cycle") && Catch::Contains("a -> b -> a"));
+  // Shape mismatch.
+  e = error_of("inputs: { rest: [n, 3], other: [n, 2] }\nnodes:\n  a: { type: add, in: [rest, other] }\noutputs: [a]\n");
+  CHECK_THAT(e, Catch::Contains("g.yaml:3") && Catch::Contains("node 'a' (add)") && Catch::Contains("cannot add"));
+  // Unknown symbolic size.
+  e = error_of("inputs: { rest: [m, 3] }\nnodes:\n  a: { type: scale, in: rest }\noutputs: [a]\n");
+  CHECK_THAT(e, Catch::Contains("unknown size 'm'"));
+  // Unknown top-level key and node key.
+  CHECK_THAT(error_of("inptus: {}\n"), Catch::Contains("g.yaml:1") && Catch::Contains("did you mean 'inputs'"));
+  CHECK_THAT(error_of("nodes:\n  a: { type: scale, parms: {} }\n"), Catch::Contains("g.yaml:2") && Catch::Contains("'parms'"));
+  // Bad parameter value, on its own line.
+  e = error_of("inputs: { rest: [n, 3] }\nnodes:\n  a:\n    type: scale\n    in: rest\n    params:\n      factor: big\noutputs: [a]\n");
+  CHECK_THAT(e, Catch::Contains("g.yaml:7") && Catch::Contains("factor"));
+  // A loss whose type is not a loss.
+  CHECK_THAT(error_of(std::string(kGraph) + "  scale: 1.0\n"), Catch::Contains("not a loss"));
+}
+
+TEST_CASE("malformed YAML names the file and line", "[graph]") {
+  test::TempDir dir;
+  write(dir / "bad.yaml", "nodes:\n  a: { type: scale, in: [rest }\n");
+  try {
+    parse_graph_file(dir / "bad.yaml");
+    FAIL("no error");
+  } catch (const ConfigError& e) {
+    CHECK_THAT(e.what(), Catch::Contains("bad.yaml:2") && Catch::Contains("malformed YAML"));
+  }
+}
+
+TEST_CASE("an ablation overrides a few nodes and loss weights of its base", "[graph]") {
+  test::TempDir dir;
+  write(dir / "base.yaml", kGraph);
+  std::filesystem::create_directories(dir / "ablations");
+  write(dir / "ablations" / "more.yaml",
+        "base: ../base.yaml\nnodes:\n  twice: { params: { factor: 3.0 } }\nlosses:\n  l2: 0.5\n");
+  const GraphSpec spec = parse_graph_file(dir / "ablations" / "more.yaml");
+  Graph g(spec, test::registry_with_test_nodes(), {{{"n", 2}}});
+  std::map<std::string, Tensor> in{{"rest", random_tensor(1, 2, 3)}, {"target", random_tensor(1, 2, 3)}};
+  g.forward(in);
+  CHECK(g.output("garment")(0, 1, 2) == Approx(3.0 * (1.5 * in["rest"](0, 1, 2) + 0.25) + in["rest"](0, 1, 2)));
+  CHECK(g.loss() == Approx(0.5 * g.loss_terms().at("l2")));
+  // The resolved text holds no base and rebuilds the same graph.
+  CHECK(spec.text.find("base") == std::string::npos);
+  Graph again(parse_graph_text(spec.text, "resolved"), test::registry_with_test_nodes(), {{{"n", 2}}});
+  again.forward(in);
+  CHECK(again.output("garment")(0, 1, 2) == Approx(g.output("garment")(0, 1, 2)));
+
+  // Type change drops the old params; a null removes; weight 0 disables.
+  write(dir / "ablations" / "swap.yaml", "base: ../base.yaml\nnodes:\n  twice: { type: test_affine }\nlosses:\n  l2: 0\n");
+  Graph swapped(parse_graph_file(dir / "ablations" / "swap.yaml"), test::registry_with_test_nodes(), {{{"n", 2}}});
+  CHECK(swapped.weights().size() == 4);
+  swapped.forward(in);
+  CHECK(swapped.loss_terms().empty());
+  // Errors in an ablation point at the ablation file.
+  write(dir / "ablations" / "typo.yaml", "base: ../base.yaml\nnodes:\n  twice: { type: scalee }\n");
+  CHECK_THROWS_WITH(Graph(parse_graph_file(dir / "ablations" / "typo.yaml"), test::registry_with_test_nodes(), {{{"n", 2}}}),
+                    Catch::Contains("typo.yaml:3") && Catch::Contains("did you mean 'scale'"));
+  write(dir / "loop.yaml", "base: loop.yaml\n");
+  CHECK_THROWS_WITH(parse_graph_file(dir / "loop.yaml"), Catch::Contains("loops back"));
+}
+
+TEST_CASE("the gradient checker catches a wrong gradient", "[gradcheck]") {
+  // A node whose backward is off by a factor must fail the check.
+  class Wrong final : public Node {
+   public:
+    ShapeMap setup(const ShapeMap& in, const NodeContext&) override { return {{"y", in.at("x")}}; }
+    void forward(const TensorIn& in, const TensorOut& out) override { out.at("y")->vec() = in.at("x")->vec() * 2.0f; }
+    void backward(const TensorIn&, const TensorIn&, const TensorIn& g, const TensorOut& gin) override {
+      gin.at("x")->vec() = g.at("y")->vec() * 2.2f;
+    }
+  } wrong;
+  CHECK_FALSE(check_node_gradients(wrong, {{"x", random_tensor(2, 4, 3)}}).ok(1e-2));
+  test::Affine right;
+  const auto report = check_node_gradients(right, {{"x", random_tensor(2, 4, 3)}});
+  INFO(report.str());
+  CHECK(report.ok(1e-2));
+  CHECK(report.entries.size() == 3);  // input x, weights b and w
+}
