@@ -1,0 +1,61 @@
+#!/usr/bin/env bash
+# One command from a fresh Debian 12 clone to a working drape:
+#   1. installs every build dependency with apt-get (sudo only when not root),
+#   2. configures (Release) and builds into $BUILD_DIR (default: build),
+#   3. runs the main job on built-in defaults.
+# Environment: BUILD_DIR (build folder, default build), SKIP_APT=1 (dependencies
+# already installed), JOBS (parallel build jobs, default nproc).
+set -euo pipefail
+
+cd "$(dirname "${BASH_SOURCE[0]}")/.."
+BUILD_DIR=${BUILD_DIR:-build}
+JOBS=${JOBS:-$(nproc)}
+
+step() { printf '\n==> %s\n' "$*"; }
+fail() { printf 'setup.sh: error: %s\n' "$*" >&2; exit 1; }
+
+PACKAGES=(
+  build-essential cmake pkg-config
+  libeigen3-dev libspectra-dev libyaml-cpp-dev libhdf5-dev libassimp-dev
+  libboost-dev libboost-program-options-dev libboost-filesystem-dev
+  catch2 libnanoflann-dev libopenblas-dev libsuitesparse-dev
+)
+
+install_dependencies() {
+  if [[ "${SKIP_APT:-0}" == 1 ]]; then
+    step "Skipping apt-get (SKIP_APT=1)"
+    return
+  fi
+  command -v apt-get >/dev/null || fail "apt-get not found: install these packages by hand, then rerun with SKIP_APT=1: ${PACKAGES[*]}"
+  local sudo=()
+  if [[ $(id -u) -ne 0 ]]; then
+    command -v sudo >/dev/null || fail "not root and sudo is missing: run as root or install: ${PACKAGES[*]}"
+    sudo=(sudo)
+  fi
+  step "Installing dependencies with apt-get: ${PACKAGES[*]}"
+  "${sudo[@]}" env DEBIAN_FRONTEND=noninteractive apt-get update -q
+  "${sudo[@]}" env DEBIAN_FRONTEND=noninteractive apt-get install -y -q --no-install-recommends "${PACKAGES[@]}"
+}
+
+build() {
+  step "Configuring (Release) into $BUILD_DIR"
+  cmake -S . -B "$BUILD_DIR" -DCMAKE_BUILD_TYPE=Release
+  step "Building with $JOBS jobs"
+  cmake --build "$BUILD_DIR" -j "$JOBS"
+}
+
+# The main job on built-in defaults. When `drape predict` exists this becomes:
+#   "$DRAPE" predict --bmi 35 --out garment.obj
+main_job() {
+  local DRAPE="$BUILD_DIR/bin/drape"
+  [[ -x "$DRAPE" ]] || fail "$DRAPE was not built"
+  step "Plugins"
+  "$DRAPE" plugins --brief
+  step "Checking the example graph"
+  "$DRAPE" graph check graphs/examples/residual.yaml --dim garment_vertices=100
+}
+
+install_dependencies
+build
+main_job
+step "Done. Run the tests with: ctest --test-dir $BUILD_DIR --output-on-failure -j2"

@@ -1,0 +1,72 @@
+// The registry refuses what it cannot trust: a library built for another plugin
+// ABI (skipped with a message giving both versions, its factory never called)
+// and two plugins of one name (an error naming both files).
+#include <catch2/catch.hpp>
+
+#include <drape/registry.hpp>
+
+#include <filesystem>
+
+#include "test_support.hpp"
+
+using namespace drape;
+namespace fs = std::filesystem;
+
+namespace {
+const fs::path kFixtures = DRAPE_FIXTURE_DIR;
+}
+
+TEST_CASE("a plugin built for another ABI is refused with both versions", "[registry]") {
+  const fs::path file = fs::canonical(kFixtures / "wrong_abi" / "libdrape_plugin_future_abi.so");
+  Registry registry;
+  REQUIRE_NOTHROW(registry.load_path({file.parent_path()}));
+
+  REQUIRE(registry.refused().size() == 1);
+  const std::string& why = registry.refused().front();
+  CHECK_THAT(why, Catch::Contains(file.string()) && Catch::Contains("ABI") &&
+                      Catch::Contains("ABI " + std::to_string(kAbiVersion + 1)) &&
+                      Catch::Contains("ABI " + std::to_string(kAbiVersion)));
+  // The factory was never called, so its plugin does not exist...
+  CHECK(registry.find("future") == nullptr);
+  // ...and asking for it explains why.
+  CHECK_THROWS_WITH(registry.get("future"), Catch::Contains("refused") && Catch::Contains(file.string()));
+}
+
+TEST_CASE("loading the wrong-ABI file directly refuses it too", "[registry]") {
+  Registry registry;
+  registry.load_file(kFixtures / "wrong_abi" / "libdrape_plugin_future_abi.so");
+  CHECK(registry.refused().size() == 1);
+  CHECK(registry.all().empty());
+}
+
+TEST_CASE("two plugins with one name are an error naming both files", "[registry]") {
+  const fs::path dir = kFixtures / "duplicate";
+  const fs::path a = fs::canonical(dir / "libdrape_plugin_twin_a.so");
+  const fs::path b = fs::canonical(dir / "libdrape_plugin_twin_b.so");
+  Registry registry;
+  CHECK_THROWS_AS(registry.load_path({dir}), ConfigError);
+  Registry again;
+  CHECK_THROWS_WITH(again.load_path({dir}), Catch::Contains("'twin'") && Catch::Contains(a.string()) &&
+                                                Catch::Contains(b.string()));
+}
+
+TEST_CASE("one directory reached twice through the path is loaded once", "[registry]") {
+  // Not a duplicate: the same file, e.g. --plugin-path equal to $DRAPE_PLUGIN_PATH.
+  const fs::path dir = kFixtures / "duplicate";
+  Registry registry;
+  REQUIRE_NOTHROW(registry.load_file(dir / "libdrape_plugin_twin_a.so"));
+  REQUIRE_NOTHROW(registry.load_file(dir / "." / "libdrape_plugin_twin_a.so"));
+  CHECK(registry.names() == std::vector<std::string>{"twin"});
+}
+
+TEST_CASE("drape plugins reports a refused library and fails on duplicates", "[registry][cli]") {
+  std::string out;
+  const std::string drape = "env -u DRAPE_PLUGIN_PATH " + test::drape_program().string() + " plugins --brief";
+  REQUIRE(test::run(drape + " --plugin-path " + (kFixtures / "wrong_abi").string(), out) == 0);
+  CHECK_THAT(out, Catch::Contains("refused") && Catch::Contains("libdrape_plugin_future_abi.so") &&
+                      Catch::Contains("ABI " + std::to_string(kAbiVersion + 1)));
+  CHECK(out.find("op future") == std::string::npos);
+
+  CHECK(test::run(drape + " --plugin-path " + (kFixtures / "duplicate").string(), out) == 2);
+  CHECK_THAT(out, Catch::Contains("libdrape_plugin_twin_a.so") && Catch::Contains("libdrape_plugin_twin_b.so"));
+}
