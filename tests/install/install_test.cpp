@@ -98,6 +98,16 @@ TEST_CASE("an installed drape builds, lists and loads an out-of-tree energy plug
   REQUIRE(test::run(drape + " plugins --kind energy --brief --plugin-path " + quote(example_build), out) == 0);
   CHECK_THAT(out, Catch::StartsWith("energy wind - "));
 
+  // Every plugin of the build tree was installed and loads from the prefix
+  // (a plugin whose own libraries were not installed would be refused).
+  REQUIRE(test::run(drape + " plugins --brief", out) == 0);
+  out = "\n" + out;
+  for (const PluginDescriptor* p : test::plugins().all())
+    CHECK_THAT(out, Catch::Contains("\n" + p->kind + " " + p->name + " - "));
+  std::size_t refused = 0;
+  for (std::size_t at = out.find("\nrefused "); at != std::string::npos; at = out.find("\nrefused ", at + 1)) ++refused;
+  CHECK(refused == test::plugins().refused().size());
+
   // 4. Load the built plugin here and check the physics.
   Registry registry;
   registry.load_file(wind_file);
