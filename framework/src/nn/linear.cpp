@@ -1,0 +1,27 @@
+#include <drape/errors.hpp>
+#include <drape/nn/linear.hpp>
+
+#include <string>
+
+namespace drape::nn {
+
+namespace {
+std::string dims(Eigen::Index r, Eigen::Index c) { return "[" + std::to_string(r) + ", " + std::to_string(c) + "]"; }
+}  // namespace
+
+void linear_forward(ConstMatRef x, ConstMatRef w, ConstMatRef b, MatRef y) {
+  if (x.cols() != w.rows() || b.rows() != 1 || b.cols() != w.cols() || y.rows() != x.rows() || y.cols() != w.cols())
+    throw Error("linear_forward: x " + dims(x.rows(), x.cols()) + ", w " + dims(w.rows(), w.cols()) + ", b " +
+                dims(b.rows(), b.cols()) + ", y " + dims(y.rows(), y.cols()) + " do not fit");
+  y.noalias() = x * w;
+  y.rowwise() += b.row(0);
+}
+
+void linear_backward_weights(ConstMatRef x, ConstMatRef gy, MatRef gw, MatRef gb) {
+  gw.noalias() += x.transpose() * gy;
+  gb.row(0) += gy.colwise().sum();
+}
+
+void linear_backward_input(ConstMatRef w, ConstMatRef gy, MatRef gx) { gx.noalias() = gy * w.transpose(); }
+
+}  // namespace drape::nn

@@ -1,0 +1,81 @@
+// Gravitational potential energy, the seed's L_g (eq. 6.16), written with the
+// sign of a potential: E = -sum_v m(v) g^T x(v), so with g pointing down (-Y)
+// E = sum_v m(v) |g| y(v) grows with height and minimising it lets cloth fall.
+// Masses are lumped: each face's material-space area (UV in meters) times its
+// material's density, a third to each corner. E is linear in x: the gradient is
+// constant and the Hessian is zero (add_hessian appends nothing).
+#include <drape/plugin.hpp>
+
+namespace {
+
+using namespace drape;
+
+class Gravity final : public Energy {
+ public:
+  explicit Gravity(double g) : g_(g) {}
+
+  void bind(const EnergyContext& context) override {
+    if (!context.garment) throw ConfigError("gravity: no garment is bound");
+    const Garment& garment = *context.garment;
+    const Mesh& mesh = garment.mesh;
+    if (!mesh.has_uv())
+      throw ConfigError("gravity: the garment has no material-space UVs (uv and uv_faces), so its masses are unknown");
+    if (garment.materials.empty()) throw ConfigError("gravity: the garment has no materials");
+    const double norm = context.gravity.norm();
+    if (!(norm > 0.0)) throw ConfigError("gravity: the scene's gravity direction is zero");
+    // The direction comes from the scene, the magnitude from the parameter `g`.
+    force_per_kg_ = context.gravity / norm * g_;
+    mass_ = Eigen::VectorXd::Zero(mesh.num_vertices());
+    for (int f = 0; f < mesh.num_faces(); ++f) {
+      const Eigen::Vector2d a = mesh.uv.row(mesh.uv_faces(f, 0)), b = mesh.uv.row(mesh.uv_faces(f, 1)),
+                            c = mesh.uv.row(mesh.uv_faces(f, 2));
+      const Eigen::Vector2d e1 = b - a, e2 = c - a;
+      const double area = 0.5 * std::abs(e1.x() * e2.y() - e1.y() * e2.x());
+      const int m = garment.material_of(f);
+      if (m < 0 || m >= static_cast<int>(garment.materials.size()))
+        throw ConfigError("gravity: face " + std::to_string(f) + " names material " + std::to_string(m) + " of " +
+                          std::to_string(garment.materials.size()));
+      const double third = area * garment.materials[m].density / 3.0;
+      for (int k = 0; k < 3; ++k) mass_[mesh.faces(f, k)] += third;
+    }
+  }
+
+  double value(const Eigen::MatrixX3d& x) const override {
+    check(x);
+    return -mass_.dot(x * force_per_kg_);
+  }
+
+  double add_gradient(const Eigen::MatrixX3d& x, Eigen::MatrixX3d& g) const override {
+    check(x);
+    g.noalias() -= mass_ * force_per_kg_.transpose();
+    return value(x);
+  }
+
+  void add_hessian(const Eigen::MatrixX3d&, Triplets&, bool) const override {}
+
+  const Eigen::VectorXd& masses() const { return mass_; }
+
+ private:
+  void check(const Eigen::MatrixX3d& x) const {
+    if (x.rows() != mass_.size())
+      throw Error("gravity: " + std::to_string(x.rows()) + " vertices given, the bound garment has " +
+                  std::to_string(mass_.size()) + (mass_.size() == 0 ? " (bind() was not called)" : ""));
+  }
+  double g_;
+  Eigen::Vector3d force_per_kg_ = Eigen::Vector3d::Zero();
+  Eigen::VectorXd mass_;
+};
+
+PluginList plugins() {
+  PluginDescriptor d;
+  d.kind = "energy";
+  d.name = "gravity";
+  d.doc = "Gravitational potential energy sum_v m(v) g y(v), lumped masses from material-space areas and densities.";
+  d.params = {{"g", ParamType::Float, "9.81", "gravitational acceleration in m/s^2 (direction from the scene, -Y)", 0.0, 1000.0}};
+  d.create_energy = [](const Params& p) { return std::make_unique<Gravity>(p.get_float("g")); };
+  return {d};
+}
+
+}  // namespace
+
+DRAPE_PLUGIN_EXPORT(plugins)

@@ -1,0 +1,108 @@
+// The seed's edge loss L_e (eq. 6.9): the mean over the garment's edges of
+// | |u_x - v_x| - |u_y - v_y| | / |u_y - v_y|, the relative error of each edge
+// length of the prediction x against the ground truth y. The edge set comes from
+// the bound garment template (NodeContext::assets). Computed in double per sample.
+#include <drape/assets.hpp>
+#include <drape/plugin.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <utility>
+
+namespace {
+
+using namespace drape;
+
+// Below this length an edge direction is undefined; such edges contribute no gradient.
+constexpr double kTiny = 1e-12;
+
+class EdgeLoss final : public Node {
+ public:
+  ShapeMap setup(const ShapeMap& in, const NodeContext& context) override {
+    if (!context.assets || !context.assets->garment)
+      throw ConfigError("the edge loss needs the garment's edges, but no garment template is bound to this graph "
+                        "(set `assets:` in the graph or pass a garment)");
+    const Shape pred = in.at("pred"), target = in.at("target");
+    if (!(pred == target)) throw ConfigError("pred " + pred.str() + " and target " + target.str() + " differ in shape");
+    const Mesh& mesh = context.assets->garment->mesh;
+    if (pred.cols != 3 || pred.rows != mesh.num_vertices())
+      throw ConfigError("pred must be [" + std::to_string(mesh.num_vertices()) + ", 3] (the garment's vertices), got " +
+                        pred.str());
+    edges_.clear();
+    for (int f = 0; f < mesh.num_faces(); ++f)
+      for (int k = 0; k < 3; ++k) {
+        const int a = mesh.faces(f, k), b = mesh.faces(f, (k + 1) % 3);
+        edges_.emplace_back(std::min(a, b), std::max(a, b));
+      }
+    std::sort(edges_.begin(), edges_.end());
+    edges_.erase(std::unique(edges_.begin(), edges_.end()), edges_.end());
+    if (edges_.empty()) throw ConfigError("the garment template has no edges");
+    return {{"loss", {1, 1}}};
+  }
+
+  void forward(const TensorIn& in, const TensorOut& out) override {
+    const Tensor &x = *in.at("pred"), &y = *in.at("target");
+    Tensor& loss = *out.at("loss");
+#pragma omp parallel for schedule(static) if (x.batch() > 1)
+    for (int b = 0; b < x.batch(); ++b) {
+      double sum = 0.0;
+      for (const auto& [u, v] : edges_) {
+        const double lx = length(x, b, u, v), ly = std::max(length(y, b, u, v), kTiny);
+        sum += std::abs(lx - ly) / ly;
+      }
+      loss(b, 0, 0) = static_cast<float>(sum / double(edges_.size()));
+    }
+  }
+
+  void backward(const TensorIn& in, const TensorIn&, const TensorIn& gout, const TensorOut& gin) override {
+    const Tensor &x = *in.at("pred"), &y = *in.at("target");
+    Tensor* gx = gin.count("pred") ? gin.at("pred") : nullptr;
+    Tensor* gy = gin.count("target") ? gin.at("target") : nullptr;
+    if (gx) gx->set_zero();
+    if (gy) gy->set_zero();
+#pragma omp parallel for schedule(static) if (x.batch() > 1)
+    for (int b = 0; b < x.batch(); ++b) {
+      const double scale = (*gout.at("loss"))(b, 0, 0) / double(edges_.size());
+      for (const auto& [u, v] : edges_) {
+        const Eigen::Vector3d dx = diff(x, b, u, v), dy = diff(y, b, u, v);
+        const double lx = dx.norm(), ly = std::max(dy.norm(), kTiny);
+        const double s = lx > ly ? 1.0 : (lx < ly ? -1.0 : 0.0);
+        // d/dlx = s / ly, d/dly = -s lx / ly^2; d|d|/dd = d / |d|.
+        if (gx && lx > kTiny) add(*gx, b, u, v, (scale * s / (ly * lx)) * dx);
+        if (gy && dy.norm() > kTiny) add(*gy, b, u, v, (-scale * s * lx / (ly * ly * ly)) * dy);
+      }
+    }
+  }
+
+  double flops_per_sample() const override { return 20.0 * double(edges_.size()); }
+
+ private:
+  static Eigen::Vector3d diff(const Tensor& t, int b, int u, int v) {
+    return Eigen::Vector3d(t(b, u, 0) - t(b, v, 0), t(b, u, 1) - t(b, v, 1), t(b, u, 2) - t(b, v, 2));
+  }
+  static double length(const Tensor& t, int b, int u, int v) { return diff(t, b, u, v).norm(); }
+  // Adds w to vertex u and -w to vertex v.
+  static void add(Tensor& g, int b, int u, int v, const Eigen::Vector3d& w) {
+    for (int k = 0; k < 3; ++k) {
+      g(b, u, k) += static_cast<float>(w[k]);
+      g(b, v, k) -= static_cast<float>(w[k]);
+    }
+  }
+
+  std::vector<std::pair<int, int>> edges_;
+};
+
+PluginList plugins() {
+  PluginDescriptor d;
+  d.kind = "loss";
+  d.name = "edge";
+  d.doc = "Mean relative edge-length error against the ground truth over the garment's edges (the seed's L_e).";
+  d.inputs = {{"pred", "predicted garment vertices [N, 3]"}, {"target", "ground-truth garment vertices [N, 3]"}};
+  d.outputs = {{"loss", "per-sample loss [1, 1]"}};
+  d.create_node = [](const Params&) { return std::make_unique<EdgeLoss>(); };
+  return {d};
+}
+
+}  // namespace
+
+DRAPE_PLUGIN_EXPORT(plugins)
