@@ -1,0 +1,141 @@
+#pragma once
+// The drape dataset file (layout in docs/formats.md): N samples of body
+// parameters, body vertices and draped garment vertices, a train/val/test split,
+// per-sample statistics and a `done` flag, plus the scene and template hash.
+//
+// Crash safety. A DatasetWriter works on `<out>.partial`:
+//  - the partial file is created complete but empty (every dataset allocated at
+//    its final size, contiguous, attributes written) in a temporary file that is
+//    renamed into place, so `<out>.partial` either does not exist or is valid;
+//  - a sample write changes raw bytes at fixed offsets only, never HDF5
+//    metadata: the arrays first, a flush, then done[i] = 1, another flush. A kill
+//    at any point leaves the file readable with sample i either complete and
+//    marked done or marked not done (and rewritten on resume);
+//  - finish() renames `<out>.partial` to `<out>` once every sample is done, so
+//    `<out>` always holds a complete dataset.
+// Flushes hand the data to the operating system (safe against a killed process);
+// `sync` in DatasetWriter::Options also fsyncs (safe against a power loss, slower).
+#include <drape/errors.hpp>
+#include <drape/tensor.hpp>
+
+#include <Eigen/Core>
+
+#include <cstdint>
+#include <filesystem>
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace drape {
+
+enum class Split : std::int8_t { Train = 0, Val = 1, Test = 2 };
+const char* to_string(Split split);  // "train", "val", "test"
+Split parse_split(const std::string& name);  // ConfigError for anything else
+
+// What a dataset file holds, apart from the samples themselves.
+struct DatasetLayout {
+  std::size_t samples = 0;
+  int body_params = 0;       // P
+  int body_vertices = 0;     // Nb
+  int garment_vertices = 0;  // Ng
+  std::vector<std::string> stats;  // names of the per-sample statistics (/stats/<name>)
+  std::string scene;               // YAML text of the scene that generated it
+  std::string template_hash;
+  std::string drape_version = "0.1.0";
+  std::string created;  // ISO 8601 UTC; empty: the writer fills in the time of creation
+  std::map<std::string, std::string> attributes;  // any other root string attributes
+};
+
+struct DatasetSample {
+  Eigen::VectorXf body_params;  // [P]
+  MatrixRM body_vertices;       // [Nb, 3]
+  MatrixRM garment_vertices;    // [Ng, 3]
+  Split split = Split::Train;
+  // Values for some or all of the layout's stats; absent ones are stored as NaN.
+  std::map<std::string, double> stats;
+};
+
+class DatasetWriter {
+ public:
+  struct Options {
+    bool sync = false;  // fsync after each sample (survives a power loss)
+  };
+  // Creates `<path>.partial` for layout.samples samples, or reopens it to resume.
+  // On resume the sizes, the stats names, scene and template_hash must match the
+  // file (ConfigError naming the first difference); `created` and the extra
+  // attributes are kept from the first run. ConfigError when `<path>` already
+  // exists (a finished dataset is never overwritten) or the partial file is
+  // unreadable ("delete it to start over").
+  DatasetWriter(const std::filesystem::path& path, const DatasetLayout& layout, const Options& options);
+  DatasetWriter(const std::filesystem::path& path, const DatasetLayout& layout)
+      : DatasetWriter(path, layout, Options{}) {}
+  ~DatasetWriter();  // closes the partial file, leaving it for a later resume
+  DatasetWriter(const DatasetWriter&) = delete;
+  DatasetWriter& operator=(const DatasetWriter&) = delete;
+
+  static std::filesystem::path partial_path(const std::filesystem::path& path);  // "<path>.partial"
+
+  const DatasetLayout& layout() const { return layout_; }
+  bool resumed() const { return resumed_; }
+  // Writes (or rewrites) sample `index`, marking it done last. Error when a size differs.
+  void write(std::size_t index, const DatasetSample& sample);
+  bool is_done(std::size_t index) const { return done_.at(index) != 0; }
+  std::vector<std::size_t> missing() const;  // indices not yet done, ascending
+  std::size_t done_count() const;
+  // Closes the file and renames it to the final path. Error when samples are missing.
+  void finish();
+  // Closes without finishing (what a killed process leaves behind, minus the kill).
+  void close();
+
+  struct Impl;
+
+ private:
+  std::filesystem::path path_;
+  DatasetLayout layout_;
+  Options options_;
+  bool resumed_ = false;
+  std::vector<std::uint8_t> done_;
+  std::unique_ptr<Impl> impl_;
+};
+
+// Reads a dataset file (finished, or a `.partial` one: then only done samples count).
+class DatasetReader {
+ public:
+  explicit DatasetReader(const std::filesystem::path& path);
+  ~DatasetReader();
+  DatasetReader(DatasetReader&&) noexcept;
+
+  const DatasetLayout& layout() const { return layout_; }
+  std::size_t size() const { return layout_.samples; }
+  const std::vector<std::int8_t>& splits() const { return split_; }
+  const std::vector<std::uint8_t>& done() const { return done_; }
+
+  std::vector<std::size_t> indices() const;             // every done sample
+  std::vector<std::size_t> indices(Split split) const;  // done samples of one split
+
+  // Rows in the order of `indices`, as network-ready float tensors.
+  Tensor body_params(const std::vector<std::size_t>& indices) const;       // [n, 1, P]
+  Tensor body_vertices(const std::vector<std::size_t>& indices) const;     // [n, Nb, 3]
+  Tensor garment_vertices(const std::vector<std::size_t>& indices) const;  // [n, Ng, 3]
+  std::vector<double> stat(const std::string& name, const std::vector<std::size_t>& indices) const;
+  DatasetSample sample(std::size_t index) const;
+
+  struct Impl;
+
+ private:
+  DatasetLayout layout_;
+  std::vector<std::int8_t> split_;
+  std::vector<std::uint8_t> done_;
+  std::unique_ptr<Impl> impl_;
+};
+
+// Concatenates the done samples of several shard files (in order) into `out`,
+// written atomically. The shards must agree on sizes, stats, scene and
+// template hash (ConfigError naming the shard that differs). With
+// require_complete, a shard with samples not done is an error; otherwise those
+// samples are skipped. Returns the number of samples written.
+std::size_t merge_datasets(const std::vector<std::filesystem::path>& shards, const std::filesystem::path& out,
+                           bool require_complete = true);
+
+}  // namespace drape

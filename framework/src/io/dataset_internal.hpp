@@ -1,0 +1,39 @@
+#pragma once
+// Private to the dataset files: dataset names, creating the empty layout,
+// reading it back and comparing two layouts.
+#include <drape/dataset.hpp>
+#include <drape/h5.hpp>
+
+#include <string>
+
+namespace drape::dataset_detail {
+
+inline constexpr const char* kParams = "/bodies/params";
+inline constexpr const char* kBodyVertices = "/bodies/vertices";
+inline constexpr const char* kGarmentVertices = "/garments/vertices";
+inline constexpr const char* kSplit = "/split";
+inline constexpr const char* kDone = "/done";
+inline constexpr const char* kStats = "/stats";
+inline constexpr const char* kFormat = "drape dataset 1";  // root attribute `format`
+
+inline std::string stat_path(const std::string& name) { return std::string(kStats) + "/" + name; }
+
+// The current time as ISO 8601 UTC ("2024-05-01T12:00:00Z").
+std::string now_utc();
+
+// Creates every dataset at its final size (contiguous, preallocated, so that
+// sample writes never touch metadata) and the root attributes.
+void create_layout(h5::File& file, const DatasetLayout& layout);
+
+// Reads and checks the layout of an existing file (ConfigError naming the
+// dataset or attribute that is missing or inconsistent).
+DatasetLayout read_layout(const h5::File& file);
+
+// "" when `now` may continue / be merged with `have`, else the first difference
+// ("body_vertices is 100 in the file, 120 now").
+std::string layout_difference(const DatasetLayout& have, const DatasetLayout& now);
+
+// Checks a sample's sizes against the layout (Error naming the array).
+void check_sample(const DatasetLayout& layout, const DatasetSample& sample, const std::string& where);
+
+}  // namespace drape::dataset_detail

@@ -1,0 +1,155 @@
+// The dataset file's layout: creating it empty, reading it back, comparing.
+#include "dataset_internal.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <ctime>
+#include <set>
+
+namespace drape {
+
+const char* to_string(Split split) {
+  switch (split) {
+    case Split::Train: return "train";
+    case Split::Val: return "val";
+    case Split::Test: return "test";
+  }
+  return "?";
+}
+
+Split parse_split(const std::string& name) {
+  for (Split s : {Split::Train, Split::Val, Split::Test})
+    if (name == to_string(s)) return s;
+  throw ConfigError("unknown split '" + name + "' (expected train, val or test)");
+}
+
+namespace dataset_detail {
+
+namespace {
+
+// Root attributes with a meaning of their own; everything else is an extra.
+const std::set<std::string> kReserved = {"format", "scene", "template_hash", "drape_version", "created"};
+
+std::size_t to_size(int n) { return static_cast<std::size_t>(n); }
+
+}  // namespace
+
+std::string now_utc() {
+  const std::time_t t = std::time(nullptr);
+  std::tm tm{};
+  gmtime_r(&t, &tm);
+  char buffer[32];
+  std::strftime(buffer, sizeof buffer, "%Y-%m-%dT%H:%M:%SZ", &tm);
+  return buffer;
+}
+
+void create_layout(h5::File& file, const DatasetLayout& layout) {
+  if (layout.body_params < 0 || layout.body_vertices < 0 || layout.garment_vertices < 0)
+    throw Error("dataset layout: negative sizes");
+  for (const auto& [name, value] : layout.attributes)
+    if (kReserved.count(name)) throw Error("dataset attribute '" + name + "' is reserved; it is set from the layout");
+  for (const auto& name : layout.stats)
+    if (name.empty() || name.find('/') != std::string::npos)
+      throw Error("dataset statistic '" + name + "': names must be non-empty and contain no '/'");
+  const std::size_t n = layout.samples;
+  // Big arrays: no fill (sparse on disk until written; `done` says what is valid).
+  const h5::CreateOptions arrays{.preallocate = true};
+  file.create<float>(kParams, {n, to_size(layout.body_params)}, arrays);
+  file.create<float>(kBodyVertices, {n, to_size(layout.body_vertices), 3}, arrays);
+  file.create<float>(kGarmentVertices, {n, to_size(layout.garment_vertices), 3}, arrays);
+  file.create<std::int8_t>(kSplit, {n}, {.preallocate = true, .fill = 0.0});
+  file.create<std::uint8_t>(kDone, {n}, {.preallocate = true, .fill = 0.0});
+  file.create_group(kStats);
+  for (const auto& name : layout.stats) file.create<double>(stat_path(name), {n}, {.preallocate = true, .fill = std::nan("")});
+  file.set_attribute("/", "format", kFormat);
+  file.set_attribute("/", "scene", layout.scene);
+  file.set_attribute("/", "template_hash", layout.template_hash);
+  file.set_attribute("/", "drape_version", layout.drape_version);
+  file.set_attribute("/", "created", layout.created.empty() ? now_utc() : layout.created);
+  for (const auto& [name, value] : layout.attributes) file.set_attribute("/", name, value);
+}
+
+DatasetLayout read_layout(const h5::File& file) {
+  const std::string name = file.path().string();
+  const auto format = file.string_attribute("/", "format");
+  if (format && *format != kFormat)
+    throw ConfigError(name + ": not a drape dataset (format '" + *format + "', expected '" + kFormat + "')");
+  DatasetLayout layout;
+  const h5::Dims split = file.shape(kSplit);
+  if (split.size() != 1) throw ConfigError(name + ": " + kSplit + " has shape " + h5::to_string(split) + ", expected [N]");
+  layout.samples = split[0];
+  const std::size_t n = layout.samples;
+  auto expect = [&](const char* path, std::size_t rank, std::size_t last) {
+    const h5::Dims d = file.shape(path);
+    if (d.size() != rank || d[0] != n || (rank == 3 && d[2] != last))
+      throw ConfigError(name + ": " + path + " has shape " + h5::to_string(d) + ", expected [" + std::to_string(n) +
+                        (rank == 3 ? ", *, 3]" : ", *]"));
+    return static_cast<int>(d[1]);
+  };
+  layout.body_params = expect(kParams, 2, 0);
+  layout.body_vertices = expect(kBodyVertices, 3, 3);
+  layout.garment_vertices = expect(kGarmentVertices, 3, 3);
+  if (file.shape(kDone) != h5::Dims{n})
+    throw ConfigError(name + ": " + kDone + " has shape " + h5::to_string(file.shape(kDone)) + ", expected [" + std::to_string(n) + "]");
+  if (file.is_group(kStats)) {
+    for (const auto& stat : file.datasets_below(kStats)) {
+      if (file.shape(stat_path(stat)) != h5::Dims{n})
+        throw ConfigError(name + ": " + stat_path(stat) + " has shape " + h5::to_string(file.shape(stat_path(stat))) +
+                          ", expected [" + std::to_string(n) + "]");
+      layout.stats.push_back(stat);
+    }
+  }
+  layout.scene = file.require_string_attribute("/", "scene");
+  layout.template_hash = file.require_string_attribute("/", "template_hash");
+  layout.drape_version = file.require_string_attribute("/", "drape_version");
+  layout.created = file.require_string_attribute("/", "created");
+  for (const auto& attr : file.attribute_names("/")) {
+    if (kReserved.count(attr)) continue;
+    if (auto value = file.string_attribute("/", attr)) layout.attributes[attr] = *value;
+  }
+  return layout;
+}
+
+std::string layout_difference(const DatasetLayout& have, const DatasetLayout& now) {
+  auto number = [](const char* what, std::size_t a, std::size_t b) {
+    return a == b ? std::string() : std::string(what) + " is " + std::to_string(a) + " in the file, " + std::to_string(b) + " now";
+  };
+  for (const std::string& d : {number("samples", have.samples, now.samples),
+                               number("body_params", to_size(have.body_params), to_size(now.body_params)),
+                               number("body_vertices", to_size(have.body_vertices), to_size(now.body_vertices)),
+                               number("garment_vertices", to_size(have.garment_vertices), to_size(now.garment_vertices))})
+    if (!d.empty()) return d;
+  auto sorted = [](std::vector<std::string> v) {
+    std::sort(v.begin(), v.end());
+    return v;
+  };
+  if (sorted(have.stats) != sorted(now.stats)) {
+    std::string a, b;
+    for (const auto& s : sorted(have.stats)) a += (a.empty() ? "" : ", ") + s;
+    for (const auto& s : sorted(now.stats)) b += (b.empty() ? "" : ", ") + s;
+    return "stats are [" + a + "] in the file, [" + b + "] now";
+  }
+  if (have.scene != now.scene) return "the scene YAML differs";
+  if (have.template_hash != now.template_hash)
+    return "template_hash is '" + have.template_hash + "' in the file, '" + now.template_hash + "' now";
+  return "";
+}
+
+void check_sample(const DatasetLayout& layout, const DatasetSample& sample, const std::string& where) {
+  auto check = [&](const char* what, Eigen::Index rows, Eigen::Index cols, int want_rows, int want_cols) {
+    if (rows != want_rows || cols != want_cols)
+      throw Error(where + ": " + what + " is [" + std::to_string(rows) + ", " + std::to_string(cols) + "], the dataset holds [" +
+                  std::to_string(want_rows) + ", " + std::to_string(want_cols) + "]");
+  };
+  check("body_params", sample.body_params.size(), 1, layout.body_params, 1);
+  check("body_vertices", sample.body_vertices.rows(), sample.body_vertices.cols(), layout.body_vertices, 3);
+  check("garment_vertices", sample.garment_vertices.rows(), sample.garment_vertices.cols(), layout.garment_vertices, 3);
+  const int split = static_cast<int>(sample.split);
+  if (split < 0 || split > 2) throw Error(where + ": split " + std::to_string(split) + " is not 0, 1 or 2");
+  for (const auto& [name, value] : sample.stats)
+    if (std::find(layout.stats.begin(), layout.stats.end(), name) == layout.stats.end())
+      throw Error(where + ": statistic '" + name + "' is not in the dataset's stats" + did_you_mean(name, layout.stats));
+}
+
+}  // namespace dataset_detail
+}  // namespace drape

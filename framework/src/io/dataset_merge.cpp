@@ -1,0 +1,95 @@
+// merge_datasets: shard files concatenated into one finished dataset.
+#include "dataset_internal.hpp"
+
+#include <drape/atomic_file.hpp>
+
+#include <algorithm>
+
+namespace fs = std::filesystem;
+
+namespace drape {
+
+using namespace dataset_detail;
+
+namespace {
+
+// Copies `count` rows starting at `from` in `in` to row `to` of `out`, for every array.
+void copy_rows(const h5::File& in, h5::File& out, const DatasetLayout& layout, std::size_t from, std::size_t to,
+               std::size_t count) {
+  auto copy = [&](const std::string& dataset, std::size_t row_size, auto tag) {
+    using T = decltype(tag);
+    std::vector<T> rows(count * row_size);
+    in.read_rows(dataset, from, count, rows.data());
+    out.write_rows(dataset, to, count, rows.data());
+  };
+  copy(kParams, static_cast<std::size_t>(layout.body_params), float{});
+  copy(kBodyVertices, static_cast<std::size_t>(layout.body_vertices) * 3, float{});
+  copy(kGarmentVertices, static_cast<std::size_t>(layout.garment_vertices) * 3, float{});
+  copy(kSplit, 1, std::int8_t{});
+  for (const auto& name : layout.stats) copy(stat_path(name), 1, double{});
+  const std::vector<std::uint8_t> done(count, 1);
+  out.write_rows(kDone, to, count, done.data());
+}
+
+}  // namespace
+
+std::size_t merge_datasets(const std::vector<fs::path>& shards, const fs::path& out, bool require_complete) {
+  if (shards.empty()) throw ConfigError("merge: no shard files given");
+  std::vector<h5::File> files;
+  std::vector<std::vector<std::uint8_t>> done;
+  DatasetLayout merged;
+  std::size_t total = 0;
+  for (const auto& shard : shards) {
+    if (fs::exists(out) && fs::equivalent(shard, out)) throw ConfigError(shard.string() + ": the output is also a shard");
+    files.push_back(h5::File::open(shard));
+    const DatasetLayout layout = read_layout(files.back());
+    done.push_back(files.back().read<std::uint8_t>(kDone));
+    const std::size_t n = static_cast<std::size_t>(std::count(done.back().begin(), done.back().end(), 1));
+    if (require_complete && n != layout.samples)
+      throw ConfigError(shard.string() + ": only " + std::to_string(n) + " of " + std::to_string(layout.samples) +
+                        " samples are done; finish generating it first");
+    if (files.size() == 1) {
+      merged = layout;
+    } else {
+      DatasetLayout same = layout;
+      same.samples = merged.samples;  // shards may differ in length, nothing else
+      const std::string difference = layout_difference(merged, same);
+      if (!difference.empty())
+        throw ConfigError(shard.string() + ": cannot merge with " + shards.front().string() + ": " + difference);
+    }
+    total += n;
+  }
+  merged.samples = total;
+  merged.created = now_utc();
+  std::string names;
+  for (const auto& shard : shards) names += (names.empty() ? "" : "\n") + shard.filename().string();
+  merged.attributes["merged_from"] = names;
+
+  write_atomically(out, [&](const fs::path& tmp) {
+    h5::File result = h5::File::create(tmp);
+    create_layout(result, merged);
+    std::size_t to = 0;
+    for (std::size_t s = 0; s < files.size(); ++s) {
+      const auto& d = done[s];
+      // Runs of consecutive done samples, in blocks that keep memory bounded.
+      constexpr std::size_t kBlock = 64;
+      std::size_t i = 0;
+      while (i < d.size()) {
+        if (!d[i]) {
+          ++i;
+          continue;
+        }
+        std::size_t run = 1;
+        while (i + run < d.size() && d[i + run] && run < kBlock) ++run;
+        copy_rows(files[s], result, merged, i, to, run);
+        i += run;
+        to += run;
+      }
+    }
+    result.flush(true);
+    result.close();
+  });
+  return total;
+}
+
+}  // namespace drape

@@ -1,0 +1,123 @@
+// DatasetWriter: one sample at a time into `<out>.partial`, resumable after a kill.
+#include "dataset_internal.hpp"
+
+#include <drape/atomic_file.hpp>
+
+#include <cmath>
+
+namespace fs = std::filesystem;
+
+namespace drape {
+
+using namespace dataset_detail;
+
+struct DatasetWriter::Impl {
+  h5::File file;
+};
+
+fs::path DatasetWriter::partial_path(const fs::path& path) { return path.string() + ".partial"; }
+
+DatasetWriter::DatasetWriter(const fs::path& path, const DatasetLayout& layout, const Options& options)
+    : path_(path), layout_(layout), options_(options) {
+  const fs::path partial = partial_path(path);
+  std::error_code ec;
+  if (fs::exists(path, ec))
+    throw ConfigError(path.string() + ": already exists (a finished dataset); delete it to generate it again");
+  if (fs::exists(partial, ec)) {
+    // Resume. A partial file that does not open was damaged outside our control
+    // (our writes never leave it unreadable): say so instead of guessing.
+    h5::File file = [&] {
+      try {
+        return h5::File::open(partial, h5::Access::ReadWrite);
+      } catch (const ConfigError& e) {
+        throw ConfigError(std::string(e.what()) + "; cannot resume from it, delete it to start over");
+      }
+    }();
+    const DatasetLayout have = read_layout(file);
+    const std::string difference = layout_difference(have, layout);
+    if (!difference.empty())
+      throw ConfigError(partial.string() + ": cannot resume, " + difference + "; delete it to start over");
+    layout_ = have;  // keeps `created` and the extra attributes of the first run
+    impl_ = std::make_unique<Impl>(Impl{std::move(file)});
+    resumed_ = true;
+  } else {
+    if (layout.created.empty()) layout_.created = now_utc();
+    // Created whole in a temporary file, then renamed: `<out>.partial` exists
+    // only once every dataset and attribute is in it.
+    write_atomically(partial, [&](const fs::path& tmp) {
+      h5::File file = h5::File::create(tmp);
+      create_layout(file, layout_);
+      file.flush(options_.sync);
+      file.close();
+    });
+    impl_ = std::make_unique<Impl>(Impl{h5::File::open(partial, h5::Access::ReadWrite)});
+  }
+  done_ = impl_->file.read<std::uint8_t>(kDone);
+}
+
+DatasetWriter::~DatasetWriter() = default;
+
+void DatasetWriter::write(std::size_t index, const DatasetSample& sample) {
+  if (!impl_) throw Error(path_.string() + ": the dataset writer is closed");
+  const std::string where = partial_path(path_).string() + ": sample " + std::to_string(index);
+  if (index >= layout_.samples)
+    throw Error(where + " is out of range (the dataset holds " + std::to_string(layout_.samples) + ")");
+  check_sample(layout_, sample, where);
+  h5::File& file = impl_->file;
+  const std::uint8_t not_done = 0, done = 1;
+  if (done_[index]) {
+    // Rewriting a finished sample: unmark it first, so a kill halfway through
+    // leaves it "not done" rather than done with mixed contents.
+    file.write_rows(kDone, index, 1, &not_done);
+    file.flush(options_.sync);
+    done_[index] = 0;
+  }
+  file.write_rows(kParams, index, 1, sample.body_params.data());
+  file.write_rows(kBodyVertices, index, 1, sample.body_vertices.data());
+  file.write_rows(kGarmentVertices, index, 1, sample.garment_vertices.data());
+  const auto split = static_cast<std::int8_t>(sample.split);
+  file.write_rows(kSplit, index, 1, &split);
+  for (const auto& name : layout_.stats) {
+    const auto it = sample.stats.find(name);
+    const double value = it == sample.stats.end() ? std::nan("") : it->second;
+    file.write_rows(stat_path(name), index, 1, &value);
+  }
+  // Everything above reaches the file before the flag that says it is valid.
+  file.flush(options_.sync);
+  file.write_rows(kDone, index, 1, &done);
+  file.flush(options_.sync);
+  done_[index] = 1;
+}
+
+std::vector<std::size_t> DatasetWriter::missing() const {
+  std::vector<std::size_t> out;
+  for (std::size_t i = 0; i < done_.size(); ++i)
+    if (!done_[i]) out.push_back(i);
+  return out;
+}
+
+std::size_t DatasetWriter::done_count() const {
+  std::size_t n = 0;
+  for (auto d : done_) n += d != 0;
+  return n;
+}
+
+void DatasetWriter::close() {
+  if (!impl_) return;
+  impl_->file.close();
+  impl_.reset();
+}
+
+void DatasetWriter::finish() {
+  const std::size_t missing_count = layout_.samples - done_count();
+  if (missing_count)
+    throw Error(partial_path(path_).string() + ": cannot finish, " + std::to_string(missing_count) + " of " +
+                std::to_string(layout_.samples) + " samples are not written yet");
+  if (impl_) impl_->file.flush(true);
+  close();
+  std::error_code ec;
+  fs::rename(partial_path(path_), path_, ec);
+  if (ec) throw Error(path_.string() + ": cannot rename the finished dataset into place: " + ec.message());
+}
+
+}  // namespace drape

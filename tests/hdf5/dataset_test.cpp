@@ -1,0 +1,278 @@
+// The dataset file: resumable writing that loses or duplicates nothing, even
+// when the writer is killed; reading splits; merging shards.
+#include <catch2/catch.hpp>
+
+#include "test_support.hpp"
+
+#include <drape/dataset.hpp>
+#include <drape/h5.hpp>
+
+#include <csignal>
+#include <cmath>
+#include <fstream>
+#include <sys/wait.h>
+#include <unistd.h>
+
+using namespace drape;
+using drape::test::TempDir;
+namespace fs = std::filesystem;
+
+namespace {
+
+DatasetLayout small_layout(std::size_t n = 10) {
+  DatasetLayout l;
+  l.samples = n;
+  l.body_params = 4;
+  l.body_vertices = 7;
+  l.garment_vertices = 5;
+  l.stats = {"energy", "penetration", "seconds"};
+  l.scene = "body: { model: parametric }\neffects: [gravity, stretching]\n";
+  l.template_hash = "abc123";
+  l.attributes = {{"generator", "unit test"}};
+  return l;
+}
+
+// Every value depends on the sample index and position, so a sample written to
+// the wrong row, twice, or half is caught.
+float value(std::size_t sample, int array, int k) { return static_cast<float>(sample) * 1000.0f + array * 100.0f + k * 0.25f; }
+
+DatasetSample make_sample(const DatasetLayout& l, std::size_t i) {
+  DatasetSample s;
+  s.body_params.resize(l.body_params);
+  for (int k = 0; k < l.body_params; ++k) s.body_params[k] = value(i, 0, k);
+  s.body_vertices.resize(l.body_vertices, 3);
+  for (int k = 0; k < l.body_vertices * 3; ++k) s.body_vertices.data()[k] = value(i, 1, k);
+  s.garment_vertices.resize(l.garment_vertices, 3);
+  for (int k = 0; k < l.garment_vertices * 3; ++k) s.garment_vertices.data()[k] = value(i, 2, k);
+  s.split = static_cast<Split>(i % 3);
+  s.stats = {{"energy", 0.5 * static_cast<double>(i)}, {"seconds", 1.0 + static_cast<double>(i)}};  // penetration absent
+  return s;
+}
+
+void check_sample(const DatasetReader& reader, std::size_t i) {
+  const DatasetSample want = make_sample(reader.layout(), i);
+  const DatasetSample got = reader.sample(i);
+  CHECK(got.body_params == want.body_params);
+  CHECK(got.body_vertices == want.body_vertices);
+  CHECK(got.garment_vertices == want.garment_vertices);
+  CHECK(got.split == want.split);
+  CHECK(got.stats.at("energy") == want.stats.at("energy"));
+  CHECK(got.stats.at("seconds") == want.stats.at("seconds"));
+  CHECK(std::isnan(got.stats.at("penetration")));
+}
+
+void check_complete(const fs::path& path, std::size_t n) {
+  const DatasetReader reader(path);
+  REQUIRE(reader.size() == n);
+  CHECK(reader.indices().size() == n);
+  for (std::size_t i = 0; i < n; ++i) check_sample(reader, i);
+}
+
+std::string message_of(const std::function<void()>& fn) {
+  try {
+    fn();
+  } catch (const std::exception& e) {
+    return e.what();
+  }
+  return "(no exception)";
+}
+
+}  // namespace
+
+TEST_CASE("dataset: resume after an unfinished run loses and duplicates nothing", "[hdf5][dataset]") {
+  TempDir dir;
+  const fs::path out = dir / "data.h5";
+  const fs::path partial = DatasetWriter::partial_path(out);
+  const DatasetLayout layout = small_layout();
+  {
+    DatasetWriter writer(out, layout);
+    CHECK_FALSE(writer.resumed());
+    CHECK(writer.missing().size() == 10);
+    for (std::size_t i : {0, 1, 2, 3, 5}) writer.write(i, make_sample(layout, i));
+    writer.write(2, make_sample(layout, 2));  // rewriting keeps one copy
+    CHECK(fs::exists(partial));
+    CHECK_FALSE(fs::exists(out));
+    CHECK_THROWS_AS(writer.finish(), Error);
+    // Closed unfinished, as if the process stopped here.
+  }
+  {
+    // A torn sample: its arrays were being written when the process died, so
+    // `done` was never set. It must count as missing and be rewritten.
+    auto file = h5::File::open(partial, h5::Access::ReadWrite);
+    const std::vector<float> garbage(layout.garment_vertices * 3, -7.0f);
+    file.write_rows("/garments/vertices", 7, 1, garbage.data());
+  }
+  {
+    DatasetLayout again = layout;
+    again.attributes = {{"generator", "second run"}};  // extras are kept from the first run
+    DatasetWriter writer(out, again);
+    CHECK(writer.resumed());
+    CHECK(writer.missing() == std::vector<std::size_t>{4, 6, 7, 8, 9});
+    CHECK(writer.done_count() == 5);
+    for (std::size_t i : writer.missing()) writer.write(i, make_sample(layout, i));
+    CHECK(writer.missing().empty());
+    writer.finish();
+  }
+  CHECK_FALSE(fs::exists(partial));
+  check_complete(out, 10);
+  const DatasetReader reader(out);
+  CHECK(reader.layout().attributes.at("generator") == "unit test");
+  CHECK(reader.layout().scene == layout.scene);
+  CHECK(reader.layout().template_hash == "abc123");
+  CHECK(reader.layout().drape_version == "0.1.0");
+  CHECK(reader.layout().created.size() == 20);  // 2024-05-01T12:00:00Z
+  // A finished dataset is never overwritten.
+  CHECK_THROWS_AS(DatasetWriter(out, layout), ConfigError);
+}
+
+TEST_CASE("dataset: a writer killed with SIGKILL at an arbitrary moment resumes cleanly", "[hdf5][dataset]") {
+  TempDir dir;
+  const fs::path out = dir / "killed.h5";
+  const DatasetLayout layout = small_layout(40);
+  int pipe_fds[2];
+  REQUIRE(::pipe(pipe_fds) == 0);
+  const pid_t child = ::fork();
+  REQUIRE(child >= 0);
+  if (child == 0) {
+    // The child writes samples and reports each one; it gets killed by the
+    // parent while it is writing a later one (or in between).
+    ::close(pipe_fds[0]);
+    try {
+      DatasetWriter writer(out, layout);
+      for (std::size_t i = 0; i < layout.samples; ++i) {
+        writer.write(i, make_sample(layout, i));
+        const char c = 'x';
+        if (::write(pipe_fds[1], &c, 1) != 1) ::_exit(3);
+      }
+      for (;;) writer.write(layout.samples - 1, make_sample(layout, layout.samples - 1));  // keep writing until killed
+    } catch (...) {
+      ::_exit(2);
+    }
+  }
+  ::close(pipe_fds[1]);
+  char c;
+  for (int reported = 0; reported < 5; ++reported) REQUIRE(::read(pipe_fds[0], &c, 1) == 1);
+  ::kill(child, SIGKILL);
+  int status = 0;
+  ::waitpid(child, &status, 0);
+  ::close(pipe_fds[0]);
+  REQUIRE(WIFSIGNALED(status));
+
+  DatasetWriter writer(out, layout);
+  REQUIRE(writer.resumed());
+  const std::size_t survived = writer.done_count();
+  CHECK(survived >= 5);  // every reported sample was flushed before it was reported
+  {
+    // What survived the kill is exact.
+    const DatasetReader partial(DatasetWriter::partial_path(out));
+    for (std::size_t i : partial.indices()) check_sample(partial, i);
+  }
+  for (std::size_t i : writer.missing()) writer.write(i, make_sample(layout, i));
+  writer.finish();
+  check_complete(out, layout.samples);
+}
+
+TEST_CASE("dataset: resuming with another layout or a damaged partial file is refused clearly", "[hdf5][dataset]") {
+  TempDir dir;
+  const fs::path out = dir / "data.h5";
+  const fs::path partial = DatasetWriter::partial_path(out);
+  const DatasetLayout layout = small_layout();
+  DatasetWriter(out, layout).write(0, make_sample(layout, 0));
+
+  DatasetLayout other = layout;
+  other.garment_vertices = 6;
+  CHECK(message_of([&] { DatasetWriter(out, other); }) ==
+        partial.string() + ": cannot resume, garment_vertices is 5 in the file, 6 now; delete it to start over");
+  other = layout;
+  other.template_hash = "def";
+  CHECK_THROWS_WITH(DatasetWriter(out, other), Catch::Contains("template_hash is 'abc123' in the file, 'def' now"));
+  other = layout;
+  other.stats = {"energy"};
+  CHECK_THROWS_AS(DatasetWriter(out, other), ConfigError);
+  other = layout;
+  other.scene += "# changed\n";
+  CHECK_THROWS_WITH(DatasetWriter(out, other), Catch::Contains("the scene YAML differs"));
+
+  // A sample of the wrong size is the caller's bug: Error naming the array.
+  DatasetWriter writer(out, layout);
+  DatasetSample bad = make_sample(layout, 1);
+  bad.garment_vertices.resize(4, 3);
+  CHECK_THROWS_WITH(writer.write(1, bad), Catch::Contains("sample 1: garment_vertices is [4, 3], the dataset holds [5, 3]"));
+  bad = make_sample(layout, 1);
+  bad.stats["energie"] = 1.0;
+  CHECK_THROWS_WITH(writer.write(1, bad), Catch::Contains("did you mean 'energy'"));
+  CHECK_THROWS_AS(writer.write(10, make_sample(layout, 0)), Error);
+  writer.close();
+
+  std::ofstream(partial, std::ios::trunc) << "garbage";
+  CHECK(message_of([&] { DatasetWriter(out, layout); }) ==
+        partial.string() + ": not an HDF5 file; cannot resume from it, delete it to start over");
+  CHECK_THROWS_AS(DatasetWriter(out, layout), ConfigError);
+}
+
+TEST_CASE("dataset: reading splits and gathering rows in the order asked", "[hdf5][dataset]") {
+  TempDir dir;
+  const fs::path out = dir / "data.h5";
+  const DatasetLayout layout = small_layout(9);
+  {
+    DatasetWriter writer(out, layout);
+    for (std::size_t i = 0; i < 9; ++i)
+      if (i != 4) writer.write(i, make_sample(layout, i));
+  }
+  const DatasetReader reader(DatasetWriter::partial_path(out));
+  CHECK(reader.indices(Split::Train) == std::vector<std::size_t>{0, 3, 6});
+  CHECK(reader.indices(Split::Val) == std::vector<std::size_t>{1, 7});  // 4 is not done
+  CHECK(reader.indices(Split::Test) == std::vector<std::size_t>{2, 5, 8});
+  const std::vector<std::size_t> order = {8, 2, 3, 5, 6};
+  const Tensor garments = reader.garment_vertices(order);
+  REQUIRE(garments.batch() == 5);
+  REQUIRE(garments.shape() == Shape{5, 3});
+  const Tensor params = reader.body_params(order);
+  REQUIRE(params.shape() == Shape{1, 4});
+  const Tensor bodies = reader.body_vertices(order);
+  for (std::size_t b = 0; b < order.size(); ++b) {
+    for (int k = 0; k < 15; ++k) CHECK(garments.data()[b * 15 + k] == value(order[b], 2, k));
+    for (int k = 0; k < 21; ++k) CHECK(bodies.data()[b * 21 + k] == value(order[b], 1, k));
+    for (int k = 0; k < 4; ++k) CHECK(params(static_cast<int>(b), 0, k) == value(order[b], 0, k));
+  }
+  CHECK(reader.stat("energy", {3, 1}) == std::vector<double>{1.5, 0.5});
+  CHECK_THROWS_WITH(reader.body_params({4}), Catch::Contains("sample 4 was never written completely"));
+  CHECK_THROWS_WITH(reader.stat("energi", {0}), Catch::Contains("did you mean 'energy'"));
+  CHECK(parse_split("val") == Split::Val);
+  CHECK_THROWS_AS(parse_split("validation"), ConfigError);
+}
+
+TEST_CASE("dataset: merging shards concatenates their samples", "[hdf5][dataset]") {
+  TempDir dir;
+  const DatasetLayout a = small_layout(4), b = small_layout(3);
+  // Shard b's samples continue a's numbering: sample k of b is global sample 4 + k.
+  {
+    DatasetWriter w(dir / "a.h5", a);
+    for (std::size_t i = 0; i < 4; ++i) w.write(i, make_sample(a, i));
+    w.finish();
+    DatasetWriter v(dir / "b.h5", b);
+    for (std::size_t i = 0; i < 3; ++i) v.write(i, make_sample(b, 4 + i));
+    v.finish();
+  }
+  CHECK(merge_datasets({dir / "a.h5", dir / "b.h5"}, dir / "all.h5") == 7);
+  check_complete(dir / "all.h5", 7);
+  CHECK(DatasetReader(dir / "all.h5").layout().attributes.at("merged_from") == "a.h5\nb.h5");
+
+  // An unfinished shard, or one from another template, is refused.
+  {
+    DatasetWriter w(dir / "c.h5", a);
+    w.write(0, make_sample(a, 0));
+  }
+  const fs::path c = DatasetWriter::partial_path(dir / "c.h5");
+  CHECK_THROWS_WITH(merge_datasets({dir / "a.h5", c}, dir / "bad.h5"), Catch::Contains("only 1 of 4 samples are done"));
+  CHECK(merge_datasets({dir / "a.h5", c}, dir / "some.h5", false) == 5);
+  DatasetLayout other = small_layout(2);
+  other.template_hash = "zzz";
+  {
+    DatasetWriter w(dir / "d.h5", other);
+    for (std::size_t i = 0; i < 2; ++i) w.write(i, make_sample(other, i));
+    w.finish();
+  }
+  CHECK_THROWS_AS(merge_datasets({dir / "a.h5", dir / "d.h5"}, dir / "bad.h5"), ConfigError);
+  CHECK_FALSE(fs::exists(dir / "bad.h5"));
+}
