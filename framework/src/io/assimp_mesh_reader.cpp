@@ -1,0 +1,131 @@
+// Every format other than OBJ is read through assimp, and assimp's vertex order
+// is mapped back to the file's.
+//
+// What assimp 5.2.5 does, measured by writing shuffled meshes and reading them
+// back with no post-processing (tests/io/mesh_round_trip_test.cpp keeps checking it):
+// - PLY: mVertices in the order of the file's vertex element, unused vertices
+//   kept, polygons kept as written (a quad stays one 4-index face).
+// - glTF/GLB: mVertices in accessor order, one aiMesh per primitive.
+// - OBJ (not used, we parse it ourselves): one vertex per face corner, in face
+//   order; JoinIdenticalVertices then splits at UV seams, so the `v` order is lost.
+// - STL and similar "triangle soup" formats: one vertex per corner.
+// So the rule is: vertices in assimp's order, and a vertex whose position is
+// bit-identical to an earlier one is merged into that first occurrence. This
+// undoes per-corner copies and UV-seam copies (which write_mesh appends after
+// the original vertices, see assimp_mesh_writer.cpp). Its price: two distinct
+// vertices at exactly the same position become one (none in the MakeHuman assets).
+// Node transforms are ignored: vertices stay in mesh coordinates.
+#include <drape/errors.hpp>
+
+#include "mesh_io_internal.hpp"
+
+#include <assimp/Importer.hpp>
+#include <assimp/scene.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <unordered_map>
+#include <vector>
+
+namespace drape::mesh_io {
+namespace {
+
+struct PositionKey {
+  std::uint32_t bits[3];
+  bool operator==(const PositionKey& o) const {
+    return bits[0] == o.bits[0] && bits[1] == o.bits[1] && bits[2] == o.bits[2];
+  }
+};
+struct PositionHash {
+  std::size_t operator()(const PositionKey& k) const {
+    std::uint64_t h = 1469598103934665603ull;
+    for (std::uint32_t b : k.bits) h = (h ^ b) * 1099511628211ull;
+    return static_cast<std::size_t>(h ^ (h >> 29));
+  }
+};
+PositionKey key_of(const aiVector3D& p) {
+  PositionKey key{};
+  const float xyz[3] = {p.x + 0.0f, p.y + 0.0f, p.z + 0.0f};  // + 0 turns -0 into +0
+  std::memcpy(key.bits, xyz, sizeof xyz);
+  return key;
+}
+
+std::string one_line(std::string s) {
+  std::replace(s.begin(), s.end(), '\n', ' ');
+  while (!s.empty() && (s.back() == ' ' || s.back() == '\r')) s.pop_back();
+  return s;
+}
+
+}  // namespace
+
+Mesh read_with_assimp(const std::filesystem::path& file) {
+  const SourceLocation where{file.string(), 0};
+  Assimp::Importer importer;
+  // No post-processing at all: Triangulate may pick the other diagonal of a quad,
+  // JoinIdenticalVertices and ImproveCacheLocality reorder vertices.
+  const aiScene* scene = importer.ReadFile(file.string(), 0);
+  if (!scene) throw ConfigError(where, "cannot read this mesh: " + one_line(importer.GetErrorString()));
+  if (scene->mNumMeshes == 0) throw ConfigError(where, "the file holds no mesh");
+
+  bool with_uv = true;
+  for (unsigned m = 0; m < scene->mNumMeshes; ++m) with_uv = with_uv && scene->mMeshes[m]->HasTextureCoords(0);
+
+  std::unordered_map<PositionKey, int, PositionHash> first_at;
+  std::vector<double> positions, uvs;
+  std::vector<int> faces, uv_faces;
+  std::vector<int> merged;  // aiMesh vertex -> our vertex, for the current aiMesh
+  int uv_offset = 0;
+  for (unsigned m = 0; m < scene->mNumMeshes; ++m) {
+    const aiMesh* mesh = scene->mMeshes[m];
+    merged.assign(mesh->mNumVertices, 0);
+    for (unsigned i = 0; i < mesh->mNumVertices; ++i) {
+      const aiVector3D& p = mesh->mVertices[i];
+      if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z))
+        throw ConfigError(where, "vertex " + std::to_string(i) + " of mesh " + std::to_string(m) +
+                                     " has a coordinate that is not a finite number");
+      const auto [it, added] = first_at.try_emplace(key_of(p), static_cast<int>(positions.size() / 3));
+      if (added) positions.insert(positions.end(), {p.x, p.y, p.z});
+      merged[i] = it->second;
+      if (with_uv) {
+        const aiVector3D& t = mesh->mTextureCoords[0][i];
+        if (!std::isfinite(t.x) || !std::isfinite(t.y))
+          throw ConfigError(where, "texture coordinate of vertex " + std::to_string(i) + " of mesh " +
+                                       std::to_string(m) + " is not a finite number");
+        uvs.insert(uvs.end(), {t.x, t.y});
+      }
+    }
+    for (unsigned f = 0; f < mesh->mNumFaces; ++f) {
+      const aiFace& face = mesh->mFaces[f];
+      for (unsigned k = 0; k < face.mNumIndices; ++k)
+        if (face.mIndices[k] >= mesh->mNumVertices)
+          throw ConfigError(where, "face " + std::to_string(f) + " of mesh " + std::to_string(m) +
+                                       " refers to vertex " + std::to_string(face.mIndices[k]) + " but there are " +
+                                       std::to_string(mesh->mNumVertices));
+      // Points and lines carry no surface; polygons become a fan like in OBJ.
+      for (unsigned k = 1; k + 1 < face.mNumIndices; ++k) {
+        for (unsigned c : {0u, k, k + 1}) {
+          faces.push_back(merged[face.mIndices[c]]);
+          if (with_uv) uv_faces.push_back(uv_offset + static_cast<int>(face.mIndices[c]));
+        }
+      }
+    }
+    uv_offset += static_cast<int>(mesh->mNumVertices);
+  }
+
+  using RowMajor3d = Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor>;
+  using RowMajor2d = Eigen::Matrix<double, Eigen::Dynamic, 2, Eigen::RowMajor>;
+  using RowMajor3i = Eigen::Matrix<int, Eigen::Dynamic, 3, Eigen::RowMajor>;
+  Mesh out;
+  out.vertices = Eigen::Map<const RowMajor3d>(positions.data(), static_cast<Eigen::Index>(positions.size() / 3), 3);
+  out.faces = Eigen::Map<const RowMajor3i>(faces.data(), static_cast<Eigen::Index>(faces.size() / 3), 3);
+  if (with_uv) {
+    out.uv = Eigen::Map<const RowMajor2d>(uvs.data(), static_cast<Eigen::Index>(uvs.size() / 2), 2);
+    out.uv_faces = Eigen::Map<const RowMajor3i>(uv_faces.data(), static_cast<Eigen::Index>(uv_faces.size() / 3), 3);
+  }
+  if (out.num_vertices() == 0) throw ConfigError(where, "the file holds no vertices");
+  return out;
+}
+
+}  // namespace drape::mesh_io

@@ -1,0 +1,120 @@
+// read_mesh / write_mesh: pick the reader or writer by extension, check the
+// mesh, write atomically.
+#include <drape/atomic_file.hpp>
+#include <drape/errors.hpp>
+#include <drape/mesh_io.hpp>
+
+#include "mesh_io_internal.hpp"
+
+#include <assimp/Importer.hpp>
+
+#include <algorithm>
+#include <cctype>
+#include <cerrno>
+#include <cstring>
+#include <fstream>
+
+namespace fs = std::filesystem;
+
+namespace drape {
+namespace mesh_io {
+
+std::string lower_extension(const fs::path& file) {
+  std::string ext = file.extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  return ext;
+}
+
+std::string read_file_bytes(const fs::path& file) {
+  std::ifstream in(file, std::ios::binary);
+  if (!in) throw ConfigError(SourceLocation{file.string(), 0}, std::string("cannot open: ") + std::strerror(errno));
+  std::string bytes;
+  in.seekg(0, std::ios::end);
+  bytes.resize(static_cast<std::size_t>(in.tellg()));
+  in.seekg(0, std::ios::beg);
+  in.read(bytes.data(), static_cast<std::streamsize>(bytes.size()));
+  if (!in) throw ConfigError(SourceLocation{file.string(), 0}, "cannot read the whole file");
+  return bytes;
+}
+
+void write_file_bytes(const fs::path& file, const std::string& bytes) {
+  std::ofstream out(file, std::ios::binary | std::ios::trunc);
+  out.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
+  out.close();
+  if (!out) throw Error("cannot write '" + file.string() + "': " + std::strerror(errno));
+}
+
+}  // namespace mesh_io
+
+namespace {
+
+// An invalid mesh handed to write_mesh is a program error, not the user's.
+void check_mesh(const Mesh& mesh, const std::string& what) {
+  const auto fail = [&](const std::string& why) { throw Error("cannot write " + what + ": " + why); };
+  if (!mesh.vertices.allFinite()) fail("a vertex coordinate is not a finite number");
+  if (mesh.num_faces() > 0 && (mesh.faces.minCoeff() < 0 || mesh.faces.maxCoeff() >= mesh.num_vertices()))
+    fail("a face index is outside 0.." + std::to_string(mesh.num_vertices() - 1));
+  if (mesh.uv.rows() == 0) return;
+  if (mesh.uv_faces.rows() != mesh.faces.rows())
+    fail("uv_faces has " + std::to_string(mesh.uv_faces.rows()) + " rows but there are " +
+         std::to_string(mesh.faces.rows()) + " faces");
+  if (!mesh.uv.allFinite()) fail("a texture coordinate is not a finite number");
+  if (mesh.num_faces() > 0 && (mesh.uv_faces.minCoeff() < 0 || mesh.uv_faces.maxCoeff() >= mesh.uv.rows()))
+    fail("a uv_faces index is outside 0.." + std::to_string(mesh.uv.rows() - 1));
+}
+
+const char* const kWritable = ".obj, .ply, .gltf or .glb";
+
+}  // namespace
+
+Mesh read_mesh(const fs::path& file) {
+  const SourceLocation where{file.string(), 0};
+  std::error_code ec;
+  if (!fs::exists(file, ec)) throw ConfigError(where, "no such file");
+  if (fs::is_directory(file, ec)) throw ConfigError(where, "is a folder, not a mesh file");
+  const std::string ext = mesh_io::lower_extension(file);
+  if (ext == ".obj") return triangulate(read_obj_polygons(file));
+  if (ext.empty() || !Assimp::Importer().IsExtensionSupported(ext))
+    throw ConfigError(where, "unknown mesh format '" + ext + "'; use " + kWritable + " (or another format assimp reads)");
+  return mesh_io::read_with_assimp(file);
+}
+
+void write_mesh(const fs::path& file, const Mesh& mesh) {
+  const std::string ext = mesh_io::lower_extension(file);
+  const std::string what = "'" + file.string() + "'";
+  std::string assimp_format;
+  if (ext == ".ply") {
+    assimp_format = "plyb";  // binary: compact, and exact floats
+  } else if (ext == ".gltf") {
+    assimp_format = "gltf2";
+  } else if (ext == ".glb") {
+    assimp_format = "glb2";
+  } else if (ext != ".obj") {
+    throw ConfigError("cannot write " + what + ": unknown mesh format '" + ext + "'; use " + kWritable +
+                      did_you_mean(ext, {".obj", ".ply", ".gltf", ".glb"}));
+  }
+  const fs::path folder = file.has_parent_path() ? file.parent_path() : fs::path(".");
+  std::error_code ec;
+  if (!fs::is_directory(folder, ec))
+    throw ConfigError("cannot write " + what + ": folder '" + folder.string() + "' does not exist");
+  check_mesh(mesh, what);
+  write_atomically(file, [&](const fs::path& tmp) {
+    if (assimp_format.empty()) {
+      mesh_io::write_obj(tmp, mesh);
+    } else {
+      mesh_io::write_with_assimp(tmp, mesh, assimp_format, what);
+    }
+  });
+}
+
+void require_vertex_count(const Mesh& mesh, int expected, const std::string& what_file, const std::string& why) {
+  if (mesh.num_vertices() == expected) return;
+  throw ConfigError(what_file + " has " + std::to_string(mesh.num_vertices()) + " vertices, expected " +
+                    std::to_string(expected) + (why.empty() ? "" : " (" + why + ")"));
+}
+
+void require_vertex_count(const Mesh& mesh, int expected, const std::string& what) {
+  require_vertex_count(mesh, expected, what, "");
+}
+
+}  // namespace drape

@@ -1,0 +1,26 @@
+#pragma once
+// Shared between the mesh readers and writers; not part of the public API.
+#include <drape/mesh.hpp>
+
+#include <filesystem>
+#include <string>
+
+namespace drape::mesh_io {
+
+// Through assimp: any format it reads; vertex order restored (see the .cpp).
+Mesh read_with_assimp(const std::filesystem::path& file);
+
+// These write straight to `file` (the temporary of write_atomically).
+// `format_id` is assimp's exporter id: "plyb", "gltf2" or "glb2".
+void write_with_assimp(const std::filesystem::path& file, const Mesh& mesh, const std::string& format_id,
+                       const std::string& what);
+void write_obj(const std::filesystem::path& file, const Mesh& mesh);
+void write_file_bytes(const std::filesystem::path& file, const std::string& bytes);
+
+// The whole file as bytes; ConfigError naming the file if it cannot be read.
+std::string read_file_bytes(const std::filesystem::path& file);
+
+// Lower-case extension with the dot (".obj").
+std::string lower_extension(const std::filesystem::path& file);
+
+}  // namespace drape::mesh_io

@@ -1,0 +1,139 @@
+// Bad input files give one ConfigError line naming the file (and the line for
+// OBJ); a failed write leaves nothing behind.
+#include <drape/errors.hpp>
+#include <drape/mesh_io.hpp>
+
+#include "mesh_test_util.hpp"
+#include "test_support.hpp"
+
+#include <catch2/catch.hpp>
+
+using namespace drape;
+using drape::test::TempDir;
+namespace fs = std::filesystem;
+
+namespace {
+
+// The message of the ConfigError that reading `text` as `name` throws.
+std::string obj_error(const std::string& text) {
+  TempDir dir;
+  drape::test::write_text(dir / "bad.obj", text);
+  try {
+    read_mesh(dir / "bad.obj");
+  } catch (const ConfigError& e) {
+    const std::string message = e.what();
+    CHECK(message.find('\n') == std::string::npos);
+    return message;
+  }
+  FAIL("no ConfigError for:\n" << text);
+  return "";
+}
+
+// The message of the ConfigError that `action` throws, or a marker if none.
+template <class Action>
+std::string config_error(Action&& action) {
+  try {
+    action();
+  } catch (const ConfigError& e) {
+    return e.what();
+  }
+  return "<no ConfigError>";
+}
+
+int files_in(const fs::path& dir) {
+  int n = 0;
+  for ([[maybe_unused]] const auto& entry : fs::directory_iterator(dir)) ++n;
+  return n;
+}
+
+}  // namespace
+
+TEST_CASE("malformed OBJ files name the file and the line", "[io]") {
+  using Catch::Contains;
+  const std::string tri = "v 0 0 0\nv 1 0 0\nv 0 1 0\n";
+  CHECK_THAT(obj_error("# x\nv 0 0 0\nv 1 2\n"), Contains("bad.obj:3:") && Contains("three numbers"));
+  CHECK_THAT(obj_error(tri + "f 1 2 4\n"), Contains("bad.obj:4:") && Contains("vertex 4"));
+  CHECK_THAT(obj_error(tri + "f 1 2 -4\n"), Contains("bad.obj:4:"));
+  CHECK_THAT(obj_error(tri + "f 0 1 2\n"), Contains("bad.obj:4:"));
+  CHECK_THAT(obj_error(tri + "vt 0 0\nf 1/1 2/2 3/1\n"), Contains("bad.obj:5:") && Contains("texture coordinate 2"));
+  CHECK_THAT(obj_error("v 0 nan 0\n"), Contains("bad.obj:1:") && Contains("finite"));
+  CHECK_THAT(obj_error("v 0 1e999 0\n"), Contains("bad.obj:1:"));
+  CHECK_THAT(obj_error("v 0 0x 0\n"), Contains("bad.obj:1:"));
+  CHECK_THAT(obj_error(tri + "f 1 2\n"), Contains("bad.obj:4:") && Contains("2 corners"));
+  CHECK_THAT(obj_error(tri + "f 1 2 a\n"), Contains("bad.obj:4:"));
+  CHECK_THAT(obj_error(tri + "vt 0 0\nf 1/1 2/1 3/1\nf 1 2 3\n"), Contains("bad.obj:6:") && Contains("line 5"));
+  CHECK_THAT(obj_error(tri + "vt 0 0\nf 1/1 2 3/1\n"), Contains("bad.obj:5:") && Contains("some corners"));
+  CHECK_THAT(obj_error("# nothing\n"), Contains("bad.obj") && Contains("no vertices"));
+}
+
+TEST_CASE("missing, corrupt and unknown mesh files give a ConfigError naming the file", "[io]") {
+  using Catch::Contains;
+  TempDir dir;
+  CHECK_THAT(config_error([&] { read_mesh(dir / "absent.ply"); }), Contains("absent.ply: no such file"));
+  CHECK_THAT(config_error([&] { read_mesh(dir.path()); }), Contains("folder"));
+
+  drape::test::write_text(dir / "junk.ply", "this is not a ply file at all\n");
+  CHECK_THAT(config_error([&] { read_mesh(dir / "junk.ply"); }), Contains("junk.ply"));
+  drape::test::write_text(dir / "junk.glb", std::string("glTF\x02\0\0\0garbage", 16));
+  CHECK_THAT(config_error([&] { read_mesh(dir / "junk.glb"); }), Contains("junk.glb"));
+  drape::test::write_text(dir / "junk.gltf", "{ \"asset\": ");
+  CHECK_THAT(config_error([&] { read_mesh(dir / "junk.gltf"); }), Contains("junk.gltf"));
+  drape::test::write_text(dir / "mesh.qqq", "1 2 3\n");
+  CHECK_THAT(config_error([&] { read_mesh(dir / "mesh.qqq"); }), Contains("mesh.qqq") && Contains("unknown mesh format '.qqq'"));
+}
+
+TEST_CASE("a PLY face index out of range is a ConfigError naming the file", "[io]") {
+  TempDir dir;
+  drape::test::write_text(dir / "range.ply",
+                          "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+                          "property float z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n"
+                          "0 0 0\n1 0 0\n0 1 0\n3 0 1 7\n");
+  CHECK_THAT(config_error([&] { read_mesh(dir / "range.ply"); }), Catch::Contains("range.ply"));
+}
+
+TEST_CASE("writing into a missing folder throws and creates nothing", "[io]") {
+  TempDir dir;
+  const Mesh grid = drape::test::shuffled_grid(3, 3, 1);
+  for (const char* name : {"out.obj", "out.ply", "out.gltf", "out.glb"}) {
+    CHECK_THAT(config_error([&] { write_mesh(dir / "missing" / name, grid); }), Catch::Contains("missing") && Catch::Contains("does not exist"));
+  }
+  CHECK(files_in(dir.path()) == 0);
+  CHECK_THAT(config_error([&] { write_mesh(dir / "out.stl", grid); }), Catch::Contains("'.stl'"));
+  CHECK(files_in(dir.path()) == 0);
+}
+
+TEST_CASE("a failed write leaves no file and keeps an older one untouched", "[io]") {
+  TempDir dir;
+  Mesh grid = drape::test::shuffled_grid(3, 3, 1);
+  write_mesh(dir / "keep.glb", grid);
+  const auto size_before = fs::file_size(dir / "keep.glb");
+
+  SECTION("a face index out of range") {
+    grid.faces(2, 1) = 99;
+    for (const char* name : {"keep.glb", "new.obj", "new.ply"}) CHECK_THROWS_AS(write_mesh(dir / name, grid), Error);
+  }
+  SECTION("a NaN coordinate") {
+    grid.vertices(4, 0) = std::nan("");
+    for (const char* name : {"keep.glb", "new.obj"}) CHECK_THROWS_AS(write_mesh(dir / name, grid), Error);
+  }
+  SECTION("glTF cannot keep a vertex that no face uses") {
+    grid.vertices.conservativeResize(grid.num_vertices() + 1, 3);
+    grid.vertices.bottomRows(1).setConstant(2.0);
+    CHECK_THAT(config_error([&] { write_mesh(dir / "keep.glb", grid); }), Catch::Contains("keep.glb") && Catch::Contains("vertex 9"));
+    // PLY keeps it.
+    write_mesh(dir / "unused.ply", grid);
+    CHECK(read_mesh(dir / "unused.ply").num_vertices() == 10);
+    fs::remove(dir / "unused.ply");
+  }
+  CHECK(files_in(dir.path()) == 1);
+  CHECK(fs::file_size(dir / "keep.glb") == size_before);
+}
+
+TEST_CASE("require_vertex_count names the file and the reason", "[io]") {
+  const Mesh grid = drape::test::shuffled_grid(3, 3, 1);
+  CHECK_NOTHROW(require_vertex_count(grid, 9, "grid.obj"));
+  CHECK_THROWS_MATCHES(require_vertex_count(grid, 6890, "body.obj", "the body model's topology"), ConfigError,
+                       Catch::Message("body.obj has 9 vertices, expected 6890 (the body model's topology)"));
+  CHECK_THROWS_MATCHES(require_vertex_count(grid, 4, "grid.obj"), ConfigError,
+                       Catch::Message("grid.obj has 9 vertices, expected 4"));
+}

@@ -1,0 +1,159 @@
+// Vertex order and count are the identity of a fixed-topology mesh: every
+// format must give them back unchanged. The shuffled grid makes any reordering
+// by assimp (measured: none for PLY and glTF when reading with no
+// post-processing) show up here.
+#include <drape/mesh_io.hpp>
+
+#include "mesh_test_util.hpp"
+#include "test_support.hpp"
+
+#include <catch2/catch.hpp>
+
+using namespace drape;
+using drape::test::TempDir;
+
+namespace {
+
+// Float precision relative to the mesh size: the binary formats store floats.
+constexpr double kFloatTolerance = 1e-6;
+
+// The UV seen at every face corner, which is what must survive (the uv table
+// itself may be laid out differently by PLY and glTF).
+Eigen::MatrixXd corner_uvs(const Mesh& m) {
+  Eigen::MatrixXd out(m.num_faces() * 3, 2);
+  for (int f = 0; f < m.num_faces(); ++f)
+    for (int k = 0; k < 3; ++k) out.row(3 * f + k) = m.uv.row(m.uv_faces(f, k));
+  return out;
+}
+
+void require_same_geometry(const Mesh& read, const Mesh& written, double tolerance) {
+  REQUIRE(read.num_vertices() == written.num_vertices());
+  REQUIRE(read.num_faces() == written.num_faces());
+  CHECK((read.vertices - written.vertices).cwiseAbs().maxCoeff() <= tolerance);
+  CHECK(read.faces == written.faces);
+}
+
+}  // namespace
+
+TEST_CASE("every format keeps a shuffled mesh's vertex order, positions, faces and corner UVs", "[io]") {
+  TempDir dir;
+  const Mesh grid = drape::test::shuffled_grid(9, 7, 42);
+  for (const char* name : {"grid.obj", "grid.ply", "grid.gltf", "grid.glb"}) {
+    SECTION(name) {
+      write_mesh(dir / name, grid);
+      const Mesh back = read_mesh(dir / name);
+      const bool obj = std::string(name).ends_with(".obj");
+      require_same_geometry(back, grid, obj ? 0.0 : kFloatTolerance);
+      REQUIRE(back.has_uv());
+      CHECK((corner_uvs(back) - corner_uvs(grid)).cwiseAbs().maxCoeff() <= (obj ? 0.0 : kFloatTolerance));
+    }
+  }
+}
+
+TEST_CASE("a mesh without UVs round-trips without UVs", "[io]") {
+  TempDir dir;
+  Mesh grid = drape::test::shuffled_grid(5, 4, 7);
+  grid.uv.resize(0, 2);
+  grid.uv_faces.resize(0, 3);
+  for (const char* name : {"plain.obj", "plain.ply", "plain.glb"}) {
+    SECTION(name) {
+      write_mesh(dir / name, grid);
+      const Mesh back = read_mesh(dir / name);
+      require_same_geometry(back, grid, kFloatTolerance);
+      CHECK_FALSE(back.has_uv());
+    }
+  }
+}
+
+TEST_CASE("quads are split into a fan that keeps the corner order", "[io]") {
+  TempDir dir;
+  drape::test::write_text(dir / "cube.obj", drape::test::cube_obj());
+  const Mesh cube = read_mesh(dir / "cube.obj");
+  REQUIRE(cube.num_vertices() == 8);
+  REQUIRE(cube.num_faces() == 12);
+  // front quad 1 2 3 4 -> (0,1,2) (0,2,3); bottom quad 5 6 2 1 -> (4,5,1) (4,1,0)
+  CHECK(cube.faces.row(0) == Eigen::RowVector3i(0, 1, 2));
+  CHECK(cube.faces.row(1) == Eigen::RowVector3i(0, 2, 3));
+  CHECK(cube.faces.row(10) == Eigen::RowVector3i(4, 5, 1));
+  CHECK(cube.faces.row(11) == Eigen::RowVector3i(4, 1, 0));
+  CHECK(cube.uv_faces.row(11) == Eigen::RowVector3i(13, 1, 0));
+}
+
+TEST_CASE("a cube with UV seams stays 8 vertices in every format", "[io]") {
+  TempDir dir;
+  drape::test::write_text(dir / "cube.obj", drape::test::cube_obj());
+  const Mesh cube = read_mesh(dir / "cube.obj");
+  REQUIRE(cube.uv.rows() == 14);
+
+  SECTION("OBJ keeps the 14 per-corner UVs exactly") {
+    write_mesh(dir / "again.obj", cube);
+    const Mesh back = read_mesh(dir / "again.obj");
+    require_same_geometry(back, cube, 0.0);
+    CHECK(back.uv == cube.uv);
+    CHECK(back.uv_faces == cube.uv_faces);
+  }
+  for (const char* name : {"cube.ply", "cube.gltf", "cube.glb"}) {
+    SECTION(name) {
+      write_mesh(dir / name, cube);
+      const Mesh back = read_mesh(dir / name);
+      require_same_geometry(back, cube, kFloatTolerance);
+      // The seam copies came back as extra UV rows, not as extra vertices.
+      CHECK(back.uv.rows() == 14);
+      CHECK((corner_uvs(back) - corner_uvs(cube)).cwiseAbs().maxCoeff() <= kFloatTolerance);
+    }
+  }
+}
+
+TEST_CASE("OBJ polygons keep their groups", "[io]") {
+  TempDir dir;
+  drape::test::write_text(dir / "cube.obj", drape::test::cube_obj());
+  const PolygonMesh cube = read_obj_polygons(dir / "cube.obj");
+  REQUIRE(cube.num_faces() == 6);
+  CHECK(cube.face_size(5) == 4);
+  CHECK(cube.group_names == std::vector<std::string>{"sides", "caps"});
+  CHECK(cube.face_group == std::vector<int>{0, 0, 0, 0, 1, 1});
+  CHECK(group_vertices(cube, "caps", "cube.obj") == std::vector<int>{0, 1, 2, 3, 4, 5, 6, 7});
+  CHECK(group_vertices(cube, "sides", "cube.obj").size() == 8);
+  CHECK_THROWS_WITH(group_vertices(cube, "cap", "cube.obj"), Catch::Contains("no group 'cap'") && Catch::Contains("caps"));
+}
+
+TEST_CASE("OBJ details: negative indices, v//vn corners, comments, CRLF, unused vertices", "[io]") {
+  TempDir dir;
+  drape::test::write_text(dir / "t.obj",
+                          "v 0 0 0\r\nv 1 0 0 # trailing comment\r\nv 0 1 0\r\nv 5 5 5\r\nvn 0 0 1\r\n"
+                          "f 1//1 2//1 3//1\r\nf -4 -3 -2\r\n");
+  const Mesh m = read_mesh(dir / "t.obj");
+  CHECK(m.num_vertices() == 4);  // vertex 4 is used by no face but keeps its place
+  REQUIRE(m.num_faces() == 2);
+  CHECK(m.faces.row(1) == Eigen::RowVector3i(0, 1, 2));
+  CHECK_FALSE(m.has_uv());
+  CHECK(m.vertices(3, 2) == 5.0);
+}
+
+TEST_CASE("a triangle soup read through assimp is merged back in first-occurrence order", "[io]") {
+  TempDir dir;
+  // Two triangles sharing an edge, written with one vertex per corner.
+  drape::test::write_text(dir / "soup.ply",
+                          "ply\nformat ascii 1.0\nelement vertex 6\nproperty float x\nproperty float y\n"
+                          "property float z\nelement face 2\nproperty list uchar int vertex_indices\nend_header\n"
+                          "0 0 0\n1 0 0\n1 1 0\n0 0 0\n1 1 0\n0 1 0\n3 0 1 2\n3 3 4 5\n");
+  const Mesh m = read_mesh(dir / "soup.ply");
+  REQUIRE(m.num_vertices() == 4);
+  CHECK(m.faces.row(0) == Eigen::RowVector3i(0, 1, 2));
+  CHECK(m.faces.row(1) == Eigen::RowVector3i(0, 2, 3));
+  CHECK(m.vertices.row(3) == Eigen::RowVector3d(0, 1, 0));
+}
+
+TEST_CASE("a PLY with a quad and an unused vertex keeps the vertex and fans the quad", "[io]") {
+  TempDir dir;
+  drape::test::write_text(dir / "quad.ply",
+                          "ply\nformat ascii 1.0\nelement vertex 5\nproperty float x\nproperty float y\n"
+                          "property float z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n"
+                          "9 9 9\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n4 1 2 3 4\n");
+  const Mesh m = read_mesh(dir / "quad.ply");
+  REQUIRE(m.num_vertices() == 5);
+  CHECK(m.vertices.row(0) == Eigen::RowVector3d(9, 9, 9));
+  REQUIRE(m.num_faces() == 2);
+  CHECK(m.faces.row(0) == Eigen::RowVector3i(1, 2, 3));
+  CHECK(m.faces.row(1) == Eigen::RowVector3i(1, 3, 4));
+}
