@@ -1,0 +1,42 @@
+#pragma once
+// Model checkpoints (layout in docs/formats.md):
+//   /weights/<node>/<weight>      f32 [rows, cols]   every learnable weight
+//   root attribute `graph`        the resolved graph YAML (GraphSpec::text)
+//   root attribute `format`       "drape checkpoint 1"
+//   /meta                         string attributes (epoch, seed, best_val_loss, ...)
+//   /optimizer/<slot>/<weight>    f32 [rows, cols]   optional optimiser state,
+//                                 attributes `type` and the scalars (step, ...)
+// Written atomically (temporary file + rename): a save that fails or is killed
+// leaves the previous checkpoint untouched.
+#include <drape/optimizer.hpp>
+
+#include <filesystem>
+#include <map>
+#include <optional>
+#include <string>
+
+namespace drape {
+
+class Graph;
+
+struct Checkpoint {
+  std::string graph;                        // YAML text
+  std::map<std::string, std::string> meta;  // string key/values
+  std::optional<OptimizerState> optimizer;
+};
+
+void save_checkpoint(const std::filesystem::path& path, const NamedWeights& weights, const Checkpoint& checkpoint);
+// The graph's weights and YAML text, the given metadata and optionally the optimiser's state.
+void save_checkpoint(const std::filesystem::path& path, Graph& graph, const std::map<std::string, std::string>& meta,
+                     const Optimizer* optimizer = nullptr);
+
+// Everything but the weights.
+Checkpoint read_checkpoint(const std::filesystem::path& path);
+
+// Fills every weight from the file, all or nothing. ConfigError naming the
+// weight that is missing ("model.h5: missing dataset /weights/encoder/w"), has
+// another shape, or (unless allow_extra) is in the file but not in `weights`.
+void load_weights(const std::filesystem::path& path, const NamedWeights& weights, bool allow_extra = false);
+void load_weights(const std::filesystem::path& path, Graph& graph, bool allow_extra = false);
+
+}  // namespace drape

@@ -1,0 +1,114 @@
+// Checkpoints: weights, graph YAML, metadata and optimiser state in one HDF5 file.
+#include <drape/atomic_file.hpp>
+#include <drape/checkpoint.hpp>
+#include <drape/graph.hpp>
+#include <drape/h5.hpp>
+
+#include <set>
+
+namespace fs = std::filesystem;
+
+namespace drape {
+
+namespace {
+
+constexpr const char* kFormat = "drape checkpoint 1";
+
+h5::Dims matrix_dims(const Tensor& t) {
+  return {static_cast<std::size_t>(t.rows()), static_cast<std::size_t>(t.cols())};
+}
+
+void write_matrix(h5::File& file, const std::string& dataset, const Tensor& t) {
+  if (t.batch() != 1) throw Error(file.path().string() + ": " + dataset + " has batch " + std::to_string(t.batch()) + ", expected 1");
+  file.write(dataset, matrix_dims(t), t.data());
+}
+
+Tensor read_matrix(const h5::File& file, const std::string& dataset) {
+  const h5::Dims d = file.shape(dataset);
+  if (d.size() != 2)
+    throw ConfigError(file.path().string() + ": " + h5::normalize(dataset) + " has shape " + h5::to_string(d) + ", expected [rows, cols]");
+  Tensor t(1, static_cast<int>(d[0]), static_cast<int>(d[1]));
+  file.read(dataset, d, t.data());
+  return t;
+}
+
+void check_format(const h5::File& file) {
+  const auto format = file.string_attribute("/", "format");
+  if (!format || *format != kFormat)
+    throw ConfigError(file.path().string() + ": not a drape checkpoint (format attribute '" + format.value_or("") +
+                      "', expected '" + kFormat + "')");
+}
+
+}  // namespace
+
+void save_checkpoint(const fs::path& path, const NamedWeights& weights, const Checkpoint& checkpoint) {
+  write_atomically(path, [&](const fs::path& tmp) {
+    h5::File file = h5::File::create(tmp);
+    file.set_attribute("/", "format", kFormat);
+    file.set_attribute("/", "graph", checkpoint.graph);
+    file.create_group("/weights");
+    for (const auto& [name, w] : weights) write_matrix(file, "/weights/" + name, w->value);
+    file.create_group("/meta");
+    for (const auto& [key, value] : checkpoint.meta) file.set_attribute("/meta", key, value);
+    if (checkpoint.optimizer) {
+      const OptimizerState& s = *checkpoint.optimizer;
+      file.create_group("/optimizer");
+      for (const auto& [name, t] : s.tensors) write_matrix(file, "/optimizer/" + name, t);
+      file.set_attribute("/optimizer", "type", s.type);
+      for (const auto& [key, value] : s.scalars) file.set_attribute("/optimizer", key, value);
+    }
+    file.flush(true);
+    file.close();
+  });
+}
+
+void save_checkpoint(const fs::path& path, Graph& graph, const std::map<std::string, std::string>& meta, const Optimizer* optimizer) {
+  Checkpoint c;
+  c.graph = graph.spec().text;
+  c.meta = meta;
+  if (optimizer) c.optimizer = optimizer->state();
+  save_checkpoint(path, graph.weights(), c);
+}
+
+Checkpoint read_checkpoint(const fs::path& path) {
+  const h5::File file = h5::File::open(path);
+  check_format(file);
+  Checkpoint c;
+  c.graph = file.require_string_attribute("/", "graph");
+  if (file.is_group("/meta"))
+    for (const auto& key : file.attribute_names("/meta")) c.meta[key] = file.require_string_attribute("/meta", key);
+  if (file.is_group("/optimizer")) {
+    OptimizerState s;
+    s.type = file.require_string_attribute("/optimizer", "type");
+    for (const auto& key : file.attribute_names("/optimizer"))
+      if (key != "type") s.scalars[key] = file.number_attribute("/optimizer", key).value();
+    for (const auto& name : file.datasets_below("/optimizer")) s.tensors[name] = read_matrix(file, "/optimizer/" + name);
+    c.optimizer = std::move(s);
+  }
+  return c;
+}
+
+void load_weights(const fs::path& path, const NamedWeights& weights, bool allow_extra) {
+  const h5::File file = h5::File::open(path);
+  check_format(file);
+  std::vector<Tensor> loaded;
+  std::set<std::string> wanted;
+  for (const auto& [name, w] : weights) {
+    Tensor t = read_matrix(file, "/weights/" + name);
+    if (t.shape() != w->value.shape())
+      throw ConfigError(path.string() + ": weight " + name + " is " + t.shape().str() + " in the file, the graph has " +
+                        w->value.shape().str());
+    loaded.push_back(std::move(t));
+    wanted.insert(name);
+  }
+  if (!allow_extra && file.is_group("/weights"))
+    for (const auto& name : file.datasets_below("/weights"))
+      if (!wanted.count(name))
+        throw ConfigError(path.string() + ": weight " + name + " in the file is not in the graph (was it saved from another graph?)");
+  // Copied into the existing storage: nodes may hold views of their weights.
+  for (std::size_t i = 0; i < weights.size(); ++i) weights[i].second->value.vec() = loaded[i].vec();
+}
+
+void load_weights(const fs::path& path, Graph& graph, bool allow_extra) { load_weights(path, graph.weights(), allow_extra); }
+
+}  // namespace drape
