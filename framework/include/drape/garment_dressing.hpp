@@ -1,0 +1,37 @@
+#pragma once
+// Dressing a garment on a specific body.
+//
+// The split: a garment template (plugin kind "garment") builds its mesh placed
+// around a *canonical* torso described by a few numbers (half-width, depth,
+// neck height, arm angle; defaults measured from the mean parametric body), so
+// templates never depend on a body plugin. dress() then fits that placement to
+// an actual body mesh: it pushes every vertex that lies inside the body or
+// closer than `margin` to it out along the body normal, and spreads the
+// correction over the neighbouring vertices so the surface stays smooth. The
+// material space (UVs) is untouched: only the 3D rest/start state changes.
+#include <drape/energy.hpp>
+#include <drape/mesh.hpp>
+
+namespace drape {
+
+struct DressOptions {
+  double margin = 0.01;     // m: wanted clearance between garment vertices and body
+  int max_iterations = 30;  // push + smooth rounds
+  int smoothing_steps = 3;  // displacement-averaging steps per round
+};
+
+struct DressReport {
+  int inside_before = 0;          // vertices inside the body before dressing
+  int pushed = 0;                 // vertices moved at least once
+  int iterations = 0;
+  double deepest_before = 0;      // m, largest penetration before dressing (>= 0)
+  double min_distance_after = 0;  // m, smallest signed distance after dressing
+};
+
+// Fits `garment.mesh.vertices` to the body; `body` answers closest-point queries.
+DressReport dress(Garment& garment, const BodyQuery& body, const DressOptions& options = {});
+
+// The same against a closed, outward-oriented body mesh (a geometry::BodySurface).
+DressReport dress(Garment& garment, const Mesh& body, const DressOptions& options = {});
+
+}  // namespace drape

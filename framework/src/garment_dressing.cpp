@@ -1,0 +1,72 @@
+#include <drape/garment_dressing.hpp>
+
+#include <drape/errors.hpp>
+#include <drape/geometry/closest_point.hpp>
+
+#include <Eigen/Geometry>
+
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+namespace drape {
+DressReport dress(Garment& garment, const BodyQuery& body, const DressOptions& options) {
+  Eigen::MatrixX3d& x = garment.mesh.vertices;
+  const Eigen::MatrixX3d start = x;
+  const int nv = static_cast<int>(x.rows());
+  std::vector<std::vector<int>> nb(static_cast<std::size_t>(nv));
+  for (Eigen::Index f = 0; f < garment.mesh.faces.rows(); ++f)
+    for (int k = 0; k < 3; ++k) nb[garment.mesh.faces(f, k)].push_back(garment.mesh.faces(f, (k + 1) % 3)),
+                                nb[garment.mesh.faces(f, (k + 1) % 3)].push_back(garment.mesh.faces(f, k));
+  DressReport report;
+  std::vector<char> moved(static_cast<std::size_t>(nv), 0);
+  // One pass of pushing vertices out to the clearance; returns how many moved.
+  auto push = [&](bool first) {
+    int count = 0;
+    for (int v = 0; v < nv; ++v) {
+      const BodyQuery::Hit hit = body.closest(x.row(v).transpose());
+      if (first && hit.signed_distance < 0) ++report.inside_before, report.deepest_before = std::max(report.deepest_before, -hit.signed_distance);
+      // The micrometre of slack keeps a vertex just placed at the clearance from
+      // being pushed again forever by rounding.
+      if (hit.signed_distance < options.margin - 1e-6) {
+        x.row(v) = hit.point + options.margin * hit.normal;
+        moved[v] = 1;
+        ++count;
+      }
+    }
+    return count;
+  };
+  for (int it = 0; it < options.max_iterations; ++it) {
+    report.iterations = it + 1;
+    if (push(it == 0) == 0) break;
+    // Spread the correction: averaging displacements lets the neighbours of a
+    // pushed vertex follow it instead of leaving a spike. Vertices once pushed
+    // keep their displacement (smoothing them would pull them back in and the
+    // rounds would oscillate), so the rounds stop once nothing new needs a push.
+    Eigen::MatrixX3d d = x - start;
+    for (int s = 0; s < options.smoothing_steps; ++s) {
+      Eigen::MatrixX3d next = d;
+      for (int v = 0; v < nv; ++v) {
+        if (nb[v].empty() || moved[v]) continue;
+        Eigen::RowVector3d mean = Eigen::RowVector3d::Zero();
+        for (int w : nb[v]) mean += d.row(w);
+        next.row(v) = 0.5 * d.row(v) + 0.5 * mean / static_cast<double>(nb[v].size());
+      }
+      d.swap(next);
+    }
+    x = start + d;
+  }
+  // A final push so that the result never ends inside, whatever the smoothing did.
+  push(false);
+  report.pushed = static_cast<int>(std::count(moved.begin(), moved.end(), 1));
+  report.min_distance_after = INFINITY;
+  for (int v = 0; v < nv; ++v)
+    report.min_distance_after = std::min(report.min_distance_after, body.closest(x.row(v).transpose()).signed_distance);
+  return report;
+}
+
+DressReport dress(Garment& garment, const Mesh& body, const DressOptions& options) {
+  return dress(garment, geometry::BodySurface(body), options);
+}
+
+}  // namespace drape

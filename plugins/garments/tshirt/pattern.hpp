@@ -1,0 +1,57 @@
+#pragma once
+// The T-shirt's sewing pattern: two T-shaped panels (front, back) with kimono
+// half-sleeves, in meters. Coordinates are the "front frame": u to the wearer's
+// left (+x in 3D), v up from the hem. The back panel has the same outline with
+// a shallower neckline, so every seam piece is the same polyline on both panels.
+#include <drape/geometry/polygon2d.hpp>
+
+#include <vector>
+
+namespace drape::tshirt {
+
+using geometry::Polygon2;
+
+struct PatternSpec {
+  double half_width = 0.27;          // half the chest width of one panel (circumference 4x this)
+  double length = 0.70;              // hem to the neck point
+  double neck_half_width = 0.085;
+  double front_neck_depth = 0.10;    // below the neck points
+  double back_neck_depth = 0.025;
+  double shoulder_slope_deg = 18;    // the shoulder seam drops this much from the neck
+  double shoulder_half_width = 0.22; // u of the shoulder point, where the sleeve starts
+  double sleeve_angle_deg = 20;      // sleeve below horizontal, in the flat pattern
+  double sleeve_length = 0.22;       // along the top seam from the shoulder point
+  double sleeve_opening = 0.19;      // flat width of the sleeve end (half its circumference)
+
+  // The same pattern graded by `s` in width and length (sizes share topology).
+  PatternSpec scaled(double s) const;
+};
+
+// The corners of the right half (u >= 0); the left half is the mirror image.
+struct PatternPoints {
+  Eigen::Vector2d neck, shoulder, sleeve_top, sleeve_bottom, armpit, hem;
+  Eigen::Vector2d sleeve_dir;     // along the sleeve, away from the body
+  Eigen::Vector2d sleeve_across;  // from the top seam towards the underarm seam
+  double armpit_s = 0;            // distance of the armpit along sleeve_dir from the shoulder point
+};
+PatternPoints pattern_points(const PatternSpec& spec);
+
+// v of the top seam (shoulder, then top of sleeve) above |u|; the neck line above |u| < neck.
+double top_seam_v(const PatternSpec& spec, double u);
+
+struct Outline {
+  Polygon2 loop;              // counter-clockwise
+  std::vector<char> on_seam;  // per point: lies on a seam (shared with the other panel)
+};
+
+// The panel's boundary sampled about `spacing` apart; seam pieces give
+// bit-identical points for front and back.
+Outline panel_outline(const PatternSpec& spec, bool front, double spacing);
+
+// The front panel's bounding box (normalised print coordinates refer to it).
+struct Box2 {
+  Eigen::Vector2d lo, hi;
+};
+Box2 front_box(const PatternSpec& spec);
+
+}  // namespace drape::tshirt

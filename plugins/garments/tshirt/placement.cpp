@@ -1,0 +1,85 @@
+#include "placement.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace drape::tshirt {
+namespace {
+
+double smoothstep(double t) {
+  t = std::clamp(t, 0.0, 1.0);
+  return t * t * (3 - 2 * t);
+}
+
+// Ramanujan's approximation of an ellipse's perimeter.
+double ellipse_perimeter(double a, double b) {
+  return M_PI * (3 * (a + b) - std::sqrt((3 * a + b) * (a + 3 * b)));
+}
+
+struct Ellipse {
+  double a, b;
+};
+
+// Grown from the body's chest + margin until half its perimeter holds the
+// panel's width, so the wrap does not stretch the knit around the chest. The
+// ease goes mostly to the sides, as on a worn tee (the flat panels stand off the
+// body at the side seams, not in front of the chest): depth grows by the square
+// root of the overall factor, and the half-width takes the rest.
+Ellipse torso_ellipse(const PatternSpec& spec, const TorsoFrame& torso) {
+  const double a0 = torso.half_width + torso.margin, b0 = torso.half_depth + torso.margin;
+  const double half = 2 * spec.half_width;
+  const double s = half / (0.5 * ellipse_perimeter(a0, b0));
+  if (s <= 1) return {a0, b0};
+  const double b = b0 * std::sqrt(s);
+  double lo = a0, hi = 4 * a0;
+  for (int k = 0; k < 60; ++k) {
+    const double mid = 0.5 * (lo + hi);
+    (0.5 * ellipse_perimeter(mid, b) < half ? lo : hi) = mid;
+  }
+  return {0.5 * (lo + hi), b};
+}
+
+// The body part for u >= 0.
+Eigen::Vector3d torso_map(const PatternSpec& spec, const TorsoFrame& torso, const Ellipse& e, double u, double v,
+                          double side) {
+  const double phi = M_PI / 2 * std::min(u / spec.half_width, 1.0);
+  const double x = e.a * std::sin(phi) + std::max(0.0, u - spec.half_width);
+  // Over the shoulder the depth falls to zero at the top seam along a quarter
+  // ellipse, so front and back meet there.
+  const double fold_radius = 0.6 * e.b;
+  const double t = std::clamp((top_seam_v(spec, u) - v) / fold_radius, 0.0, 1.0);
+  const double depth = e.b * std::cos(phi) * std::sqrt(1 - (1 - t) * (1 - t));
+  return {x, torso.neck_height - (spec.length - v), torso.centre_z + side * depth};
+}
+
+}  // namespace
+
+Eigen::Vector3d place(const PatternSpec& spec, const TorsoFrame& torso, const Eigen::Vector2d& p, double side) {
+  const Ellipse e = torso_ellipse(spec, torso);
+  const double mirror = p.x() < 0 ? -1 : 1;
+  const double u = std::abs(p.x()), v = p.y();
+  const Eigen::Vector3d body = torso_map(spec, torso, e, u, v, side);
+
+  // Sleeve: s along the sleeve from the shoulder point, w across it from the top seam.
+  const PatternPoints pp = pattern_points(spec);
+  const Eigen::Vector2d q = Eigen::Vector2d(u, v) - pp.shoulder;
+  const double s = q.dot(pp.sleeve_dir), w = q.dot(pp.sleeve_across);
+  const double weight = smoothstep(s / pp.armpit_s) * (1 - smoothstep((w - spec.sleeve_opening) / 0.04));
+  Eigen::Vector3d out = body;
+  if (weight > 0) {
+    const double theta = torso.arm_angle_deg * M_PI / 180;
+    const Eigen::Vector3d along(std::cos(theta), -std::sin(theta), 0), up(std::sin(theta), std::cos(theta), 0);
+    const double radius = spec.sleeve_opening / M_PI;  // the flat width is half the circumference
+    // The tube's top line starts at the torso's shoulder point, so the maps meet there.
+    const Eigen::Vector3d axis0 =
+        torso_map(spec, torso, e, pp.shoulder.x(), pp.shoulder.y(), side) - radius * up;
+    const double psi = M_PI * std::clamp(w / spec.sleeve_opening, 0.0, 1.0);
+    const Eigen::Vector3d sleeve =
+        axis0 + s * along + radius * (std::cos(psi) * up + side * std::sin(psi) * Eigen::Vector3d::UnitZ());
+    out = (1 - weight) * body + weight * sleeve;
+  }
+  out.x() *= mirror;
+  return out;
+}
+
+}  // namespace drape::tshirt

@@ -1,0 +1,82 @@
+// The procedural T-shirt template (plugin kind "garment"): a front and a back
+// T-shaped panel with half-sleeves, sewn at the shoulders/top of the sleeves and
+// under the arms/along the sides, placed around a canonical torso (see
+// placement.hpp; drape::dress fits it to a specific body).
+#include "tshirt_mesh.hpp"
+
+#include <drape/plugin.hpp>
+
+#include <cctype>
+#include <string>
+
+namespace {
+
+using namespace drape;
+
+int parse_resolution(const std::string& text) {
+  if (text == "default") return 3500;
+  if (text == "coarse") return 1000;
+  std::size_t used = 0;
+  long count = -1;
+  try {
+    count = std::stol(text, &used);
+  } catch (const std::exception&) {
+  }
+  if (used != text.size() || count < 300 || count > 50000)
+    throw ConfigError("tshirt: resolution '" + text +
+                      "' is neither 'default', 'coarse' nor a vertex count between 300 and 50000");
+  return static_cast<int>(count);
+}
+
+class TshirtSource final : public GarmentSource {
+ public:
+  explicit TshirtSource(tshirt::TshirtOptions options) : options_(std::move(options)) {}
+  Garment build() const override { return tshirt::build_tshirt(options_).garment; }
+
+ private:
+  tshirt::TshirtOptions options_;
+};
+
+PluginList plugins() {
+  const tshirt::TorsoFrame torso;
+  PluginDescriptor d;
+  d.kind = "garment";
+  d.name = "tshirt";
+  d.doc = "Procedural T-shirt: two sewn T-shaped panels with half-sleeves, UV in meters, optional front print.";
+  d.params = {
+      {"size", ParamType::String, "regular", "pattern size (small = regular graded by 0.9, same topology)", {}, {},
+       {"regular", "small"}},
+      {"resolution", ParamType::String, "default", "default (~3.5k vertices), coarse (~1k) or a vertex count"},
+      {"print", ParamType::Bool, "false", "front print region with its own material (id 1)"},
+      {"print_polygon", ParamType::FloatList, "[0.35, 0.5, 0.65, 0.5, 0.65, 0.78, 0.35, 0.78]",
+       "print outline x0, y0, x1, y1, ... in the front panel's normalised [0,1]^2 coordinates", 0.0, 1.0},
+      {"torso_half_width", ParamType::Float, std::to_string(torso.half_width), "canonical torso: chest half-width, m",
+       0.05, 1.0},
+      {"torso_half_depth", ParamType::Float, std::to_string(torso.half_depth), "canonical torso: chest half-depth, m",
+       0.05, 1.0},
+      {"torso_centre_z", ParamType::Float, std::to_string(torso.centre_z), "canonical torso: chest centre z, m", -1.0,
+       1.0},
+      {"neck_height", ParamType::Float, std::to_string(torso.neck_height), "canonical torso: y of the neck points, m",
+       0.5, 2.5},
+      {"arm_angle", ParamType::Float, std::to_string(torso.arm_angle_deg), "canonical torso: arms below horizontal, deg",
+       0.0, 90.0},
+  };
+  d.create_garment = [](const Params& p) -> std::unique_ptr<GarmentSource> {
+    tshirt::TshirtOptions o;
+    o.size_scale = p.get_string("size") == "small" ? 0.9 : 1.0;
+    o.target_vertices = parse_resolution(p.get_string("resolution"));
+    o.print = p.get_bool("print");
+    o.print_polygon = geometry::polygon_from_flat(p.get_float_list("print_polygon"), "tshirt: print_polygon");
+    o.torso.half_width = p.get_float("torso_half_width");
+    o.torso.half_depth = p.get_float("torso_half_depth");
+    o.torso.centre_z = p.get_float("torso_centre_z");
+    o.torso.neck_height = p.get_float("neck_height");
+    o.torso.arm_angle_deg = p.get_float("arm_angle");
+    return std::make_unique<TshirtSource>(std::move(o));
+  };
+  return {d};
+}
+
+}  // namespace
+
+DRAPE_PLUGIN_EXPORT(plugins)

@@ -1,0 +1,200 @@
+// The procedural T-shirt template: topology, UV charts, sizes, resolutions,
+// print materials.
+#include "tshirt_support.hpp"
+
+#include <drape/errors.hpp>
+#include <drape/geometry/index_locality.hpp>
+#include <drape/geometry/polygon2d.hpp>
+#include <drape/geometry/topology.hpp>
+
+#include <catch2/catch.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <set>
+
+using namespace drape;
+using drape::test::build_tshirt;
+using drape::test::uv_chart_of_faces;
+
+namespace {
+
+double uv_twice_area(const Mesh& m, int f) {
+  const Eigen::Vector2d a = m.uv.row(m.uv_faces(f, 0)), b = m.uv.row(m.uv_faces(f, 1)), c = m.uv.row(m.uv_faces(f, 2));
+  return (b - a).x() * (c - a).y() - (b - a).y() * (c - a).x();
+}
+
+// The regular pattern's area from its documented measurements (docs/garments.md),
+// independent of the plugin's code: the T outline minus the neckline's half ellipse.
+double pattern_area(double neck_depth) {
+  const double W = 0.27, L = 0.70, nw = 0.085, su = 0.22, slope = 18 * M_PI / 180, alpha = 20 * M_PI / 180,
+               sl = 0.22, so = 0.19;
+  const Eigen::Vector2d d(std::cos(alpha), -std::sin(alpha)), n(-std::sin(alpha), -std::cos(alpha));
+  const Eigen::Vector2d S(su, L - (su - nw) * std::tan(slope));
+  const double t = (W - su + so * std::sin(alpha)) / std::cos(alpha);
+  const geometry::Polygon2 right{{0, 0}, {W, 0}, S + so * n + t * d, S + sl * d + so * n, S + sl * d, S, {nw, L}, {0, L}};
+  return 2 * geometry::signed_area(right) - M_PI / 2 * nw * neck_depth;
+}
+
+}  // namespace
+
+TEST_CASE("tshirt: default and coarse resolutions have the documented vertex counts", "[garments][tshirt]") {
+  const Garment fine = build_tshirt();
+  const Garment coarse = build_tshirt("{resolution: coarse}");
+  INFO("default " << fine.mesh.num_vertices() << " vertices, " << fine.mesh.num_faces() << " faces; coarse "
+                  << coarse.mesh.num_vertices() << ", " << coarse.mesh.num_faces());
+  CHECK(fine.mesh.num_vertices() >= 3000);
+  CHECK(fine.mesh.num_vertices() <= 4000);
+  CHECK(coarse.mesh.num_vertices() >= 800);
+  CHECK(coarse.mesh.num_vertices() <= 1200);
+  const Garment counted = build_tshirt("{resolution: '2000'}");
+  CHECK(counted.mesh.num_vertices() == Approx(2000).epsilon(0.1));
+}
+
+TEST_CASE("tshirt: a bad resolution or print polygon is one clear config error", "[garments][tshirt]") {
+  CHECK_THROWS_WITH(build_tshirt("{resolution: fine}"), Catch::Contains("resolution 'fine'"));
+  CHECK_THROWS_AS(build_tshirt("{resolution: '12'}"), ConfigError);
+  CHECK_THROWS_WITH(build_tshirt("{print: true, print_polygon: [0.1, 0.1, 0.5]}"), Catch::Contains("print_polygon"));
+  CHECK_THROWS_AS(build_tshirt("{size: large}"), ConfigError);
+}
+
+TEST_CASE("tshirt: one manifold surface with collar, two sleeve and hem openings", "[garments][tshirt]") {
+  for (const char* yaml : {"{}", "{resolution: coarse}", "{size: small}"}) {
+    const Garment g = build_tshirt(yaml);
+    const geometry::TopologyReport t = geometry::check_topology(g.mesh.faces, g.mesh.num_vertices());
+    INFO(yaml << ": " << t.str());
+    CHECK(t.manifold());
+    CHECK(t.oriented());
+    CHECK(t.unreferenced_vertices == 0);
+    CHECK(t.boundary_loops == 4);
+    CHECK(t.euler_characteristic == -2);
+  }
+}
+
+TEST_CASE("tshirt: small is the same topology on a smaller pattern", "[garments][tshirt]") {
+  const Garment regular = build_tshirt(), small = build_tshirt("{size: small}");
+  REQUIRE(regular.mesh.num_vertices() == small.mesh.num_vertices());
+  CHECK(regular.mesh.faces == small.mesh.faces);
+  CHECK(regular.mesh.uv_faces == small.mesh.uv_faces);
+  double area_regular = 0, area_small = 0;
+  for (int f = 0; f < regular.mesh.num_faces(); ++f)
+    area_regular += uv_twice_area(regular.mesh, f) / 2, area_small += uv_twice_area(small.mesh, f) / 2;
+  CHECK(area_small / area_regular == Approx(0.9 * 0.9).epsilon(1e-6));
+  const double height_regular = regular.mesh.uv.col(1).maxCoeff() - regular.mesh.uv.col(1).minCoeff();
+  const double height_small = small.mesh.uv.col(1).maxCoeff() - small.mesh.uv.col(1).minCoeff();
+  CHECK(height_small / height_regular == Approx(0.9));
+}
+
+TEST_CASE("tshirt: two UV charts in meters, counter-clockwise, covering the pattern", "[garments][tshirt]") {
+  const Garment g = build_tshirt();
+  const Mesh& m = g.mesh;
+  REQUIRE(m.has_uv());
+  const std::vector<int> chart = uv_chart_of_faces(m);
+  double area[2] = {0, 0};
+  double min_angle = 180;
+  int nonpositive = 0;
+  for (int f = 0; f < m.num_faces(); ++f) {
+    const double twice = uv_twice_area(m, f);
+    if (twice <= 0) ++nonpositive;
+    area[chart[f]] += twice / 2;
+    for (int k = 0; k < 3; ++k) {
+      const Eigen::Vector2d u = m.uv.row(m.uv_faces(f, (k + 1) % 3)) - m.uv.row(m.uv_faces(f, k));
+      const Eigen::Vector2d w = m.uv.row(m.uv_faces(f, (k + 2) % 3)) - m.uv.row(m.uv_faces(f, k));
+      min_angle = std::min(min_angle, std::atan2(std::abs(u.x() * w.y() - u.y() * w.x()), u.dot(w)) * 180 / M_PI);
+    }
+  }
+  WARN("tshirt default: " << m.num_vertices() << " vertices, " << m.num_faces() << " faces, min UV angle "
+                          << min_angle << " deg, front " << area[0] << " m2, back " << area[1] << " m2");
+  CHECK(nonpositive == 0);
+  CHECK(min_angle > 20);
+  CHECK(std::count(chart.begin(), chart.end(), 0) > 0);
+  CHECK(std::count(chart.begin(), chart.end(), 1) > 0);
+  // The chords of the sampled neckline cut a little of the curve off.
+  CHECK(area[0] == Approx(pattern_area(0.10)).epsilon(0.005));
+  CHECK(area[1] == Approx(pattern_area(0.025)).epsilon(0.005));
+}
+
+TEST_CASE("tshirt: seam vertices are shared and carry one UV per panel", "[garments][tshirt]") {
+  const Garment g = build_tshirt("{resolution: coarse}");
+  const Mesh& m = g.mesh;
+  const std::vector<int> chart = uv_chart_of_faces(m);
+  std::vector<std::set<int>> uvs(m.num_vertices());
+  std::vector<int> charts_of(m.num_vertices(), 0);
+  for (int f = 0; f < m.num_faces(); ++f)
+    for (int k = 0; k < 3; ++k) uvs[m.faces(f, k)].insert(m.uv_faces(f, k)), charts_of[m.faces(f, k)] |= 1 << chart[f];
+  int seam = 0;
+  for (int v = 0; v < m.num_vertices(); ++v) {
+    if (charts_of[v] == 3) {
+      ++seam;
+      REQUIRE(uvs[v].size() == 2);
+      CHECK((m.uv.row(*uvs[v].begin()) - m.uv.row(*uvs[v].rbegin())).norm() > 0.01);
+    } else {
+      CHECK(uvs[v].size() == 1);
+    }
+  }
+  INFO("seam vertices " << seam);
+  CHECK(seam > 40);
+  // Front and back meet at the same 3D points along the whole seam: no duplicated vertex lies on another.
+  int duplicates = 0;
+  for (int v = 0; v < m.num_vertices(); ++v)
+    for (int w = v + 1; w < m.num_vertices(); ++w)
+      if ((m.vertices.row(v) - m.vertices.row(w)).norm() < 1e-9) ++duplicates;
+  CHECK(duplicates == 0);
+}
+
+TEST_CASE("tshirt: vertex order follows the rows of the panels", "[garments][tshirt]") {
+  const Garment g = build_tshirt();
+  const geometry::IndexLocality loc = geometry::index_locality(g.mesh.faces, g.mesh.num_vertices());
+  INFO("one hop " << loc.one_hop << ", two hop " << loc.two_hop);
+  CHECK(loc.one_hop > 0.85);
+}
+
+TEST_CASE("tshirt: materials are knit, plus the print only when asked", "[garments][tshirt]") {
+  const Garment plain = build_tshirt();
+  REQUIRE(plain.materials.size() == 1);
+  CHECK(plain.materials[0].name == "knit");
+  CHECK(plain.materials[0].density == 0.187);
+  CHECK(plain.materials[0].stretch == Eigen::Vector4d(16.6, -14.7, 34.5, 36.9));
+  CHECK(plain.materials[0].bending == 1e-5);
+  for (int f = 0; f < plain.mesh.num_faces(); ++f) REQUIRE(plain.material_of(f) == 0);
+
+  const Garment printed = build_tshirt("{print: true}");
+  REQUIRE(printed.materials.size() == 2);
+  const Material &knit = printed.materials[0], &print = printed.materials[1];
+  CHECK(print.name == "print");
+  CHECK(print.density == Approx(2 * knit.density));
+  CHECK(print.stretch.isApprox(5 * knit.stretch));
+  CHECK(print.bending == Approx(10 * knit.bending));
+  CHECK(printed.mesh.faces == plain.mesh.faces);
+
+  // Print faces: front chart only, UV centroid inside the default polygon
+  // (normalised to the front chart's bounding box).
+  const Mesh& m = printed.mesh;
+  const std::vector<int> chart = uv_chart_of_faces(m);
+  Eigen::Vector2d lo(INFINITY, INFINITY), hi(-INFINITY, -INFINITY);
+  for (int f = 0; f < m.num_faces(); ++f)
+    if (chart[f] == 0)
+      for (int k = 0; k < 3; ++k)
+        lo = lo.cwiseMin(m.uv.row(m.uv_faces(f, k)).transpose()), hi = hi.cwiseMax(m.uv.row(m.uv_faces(f, k)).transpose());
+  const geometry::Polygon2 region{{0.35, 0.5}, {0.65, 0.5}, {0.65, 0.78}, {0.35, 0.78}};
+  int prints = 0, expected = 0;
+  for (int f = 0; f < m.num_faces(); ++f) {
+    Eigen::Vector2d c = Eigen::Vector2d::Zero();
+    for (int k = 0; k < 3; ++k) c += m.uv.row(m.uv_faces(f, k)).transpose() / 3;
+    const bool inside = chart[f] == 0 && geometry::point_in_polygon(region, (c - lo).cwiseQuotient(hi - lo));
+    expected += inside;
+    prints += printed.material_of(f) == 1;
+    CHECK(printed.material_of(f) == (inside ? 1 : 0));
+  }
+  INFO("print faces " << prints);
+  CHECK(prints > 50);
+  CHECK(prints == expected);
+
+  // A custom polygon moves the print: a triangle low on the left has no face in common with the default.
+  const Garment low = build_tshirt("{print: true, print_polygon: [0.3, 0.05, 0.5, 0.05, 0.4, 0.3]}");
+  int overlap = 0, low_prints = 0;
+  for (int f = 0; f < m.num_faces(); ++f)
+    low_prints += low.material_of(f) == 1, overlap += low.material_of(f) == 1 && printed.material_of(f) == 1;
+  CHECK(low_prints > 10);
+  CHECK(overlap == 0);
+}
