@@ -3,6 +3,8 @@
 // driven helpers: ReduceOnPlateau scales the rate down when the validation loss
 // stalls, EarlyStopping says when to stop. Both keep their state as numbers so a
 // checkpoint can store them and a resumed run continues exactly.
+#include <drape/errors.hpp>
+
 #include <yaml-cpp/yaml.h>
 
 #include <limits>
