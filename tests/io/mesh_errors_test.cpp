@@ -91,6 +91,24 @@ TEST_CASE("a PLY face index out of range is a ConfigError naming the file", "[io
   CHECK_THAT(config_error([&] { read_mesh(dir / "range.ply"); }), Catch::Contains("range.ply"));
 }
 
+TEST_CASE("a PLY cut short is a ConfigError, not a smaller mesh", "[io]") {
+  TempDir dir;
+  const std::string header =
+      "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+      "property float z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n";
+  drape::test::write_text(dir / "whole.ply", header + "0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n");
+  CHECK(read_mesh(dir / "whole.ply").num_faces() == 1);
+  drape::test::write_text(dir / "cut.ply", header + "0 0 0\n1 0 0\n");
+  CHECK_THAT(config_error([&] { read_mesh(dir / "cut.ply"); }), Catch::Contains("cut.ply") && Catch::Contains("cut short"));
+  // A binary PLY (as write_mesh makes it) cut short.
+  write_mesh(dir / "binary.ply", drape::test::shuffled_grid(4, 4, 3));
+  CHECK(read_mesh(dir / "binary.ply").num_vertices() == 16);
+  std::filesystem::resize_file(dir / "binary.ply", std::filesystem::file_size(dir / "binary.ply") - 10);
+  CHECK_THAT(config_error([&] { read_mesh(dir / "binary.ply"); }), Catch::Contains("binary.ply") && Catch::Contains("cut short"));
+  drape::test::write_text(dir / "nan.ply", header + "nan 0 0\n1 0 0\n0 1 0\n3 0 1 2\n");
+  CHECK_THAT(config_error([&] { read_mesh(dir / "nan.ply"); }), Catch::Contains("nan.ply") && Catch::Contains("finite"));
+}
+
 TEST_CASE("writing into a missing folder throws and creates nothing", "[io]") {
   TempDir dir;
   const Mesh grid = drape::test::shuffled_grid(3, 3, 1);

@@ -69,6 +69,8 @@ Mesh read_with_assimp(const std::filesystem::path& file) {
   if (!scene) throw ConfigError(where, "cannot read this mesh: " + one_line(importer.GetErrorString()));
   if (scene->mNumMeshes == 0) throw ConfigError(where, "the file holds no mesh");
 
+  if (lower_extension(file) == ".ply") require_complete_ply(file);
+
   bool with_uv = true;
   for (unsigned m = 0; m < scene->mNumMeshes; ++m) with_uv = with_uv && scene->mMeshes[m]->HasTextureCoords(0);
 

@@ -10,6 +10,10 @@ namespace drape::mesh_io {
 // Through assimp: any format it reads; vertex order restored (see the .cpp).
 Mesh read_with_assimp(const std::filesystem::path& file);
 
+// assimp reads a PLY that is cut short without complaint (it fills in what is
+// missing), so the body's size is checked against the header: ConfigError if short.
+void require_complete_ply(const std::filesystem::path& file);
+
 // These write straight to `file` (the temporary of write_atomically).
 // `format_id` is assimp's exporter id: "plyb", "gltf2" or "glb2".
 void write_with_assimp(const std::filesystem::path& file, const Mesh& mesh, const std::string& format_id,

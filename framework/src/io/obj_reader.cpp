@@ -79,12 +79,12 @@ class LineCursor {
 };
 
 // Resolves a 1-based (or negative, relative) OBJ index against `count` entries defined so far.
-int resolve_index(long index, std::size_t count, const char* kind, const SourceLocation& where) {
+int resolve_index(long index, std::size_t count, const char* kind, const char* kinds, const SourceLocation& where) {
   const long n = static_cast<long>(count);
   const long resolved = index > 0 ? index - 1 : n + index;
   if (index == 0 || resolved < 0 || resolved >= n)
     throw ConfigError(where, "face refers to " + std::string(kind) + " " + std::to_string(index) + " but " +
-                                 std::to_string(n) + " " + kind + (n == 1 ? " is" : "s are") +
+                                 std::to_string(n) + " " + (n == 1 ? kind : kinds) + (n == 1 ? " is" : " are") +
                                  " defined before this line");
   return static_cast<int>(resolved);
 }
@@ -124,9 +124,9 @@ struct ObjParser {
     while (!c.at_end()) {
       long v = 0, t = 0;
       if (!c.corner(v, t)) throw ConfigError(where, "face corner is not of the form v, v/vt, v//vn or v/vt/vn");
-      out.corner_vertex.push_back(resolve_index(v, positions.size() / 3, "vertex", where));
+      out.corner_vertex.push_back(resolve_index(v, positions.size() / 3, "vertex", "vertices", where));
       if (t != 0) {
-        out.corner_uv.push_back(resolve_index(t, uvs.size() / 2, "texture coordinate", where));
+        out.corner_uv.push_back(resolve_index(t, uvs.size() / 2, "texture coordinate", "texture coordinates", where));
         any_uv = true;
       } else {
         any_missing_uv = true;
