@@ -1,0 +1,135 @@
+#include "implicit_body.hpp"
+
+#include <Eigen/Geometry>
+
+#include <algorithm>
+#include <cmath>
+
+namespace drape::parametric {
+namespace {
+
+// A unit vector perpendicular to u, as close to +Z (the body's front) as possible,
+// so that cone frames are stable as limbs change direction.
+Eigen::Vector3d front_perpendicular(const Eigen::Vector3d& u) {
+  Eigen::Vector3d ref = std::abs(u.z()) < 0.9 ? Eigen::Vector3d::UnitZ() : Eigen::Vector3d::UnitX();
+  return (ref - ref.dot(u) * u).normalized();
+}
+
+}  // namespace
+
+Primitive Primitive::ellipsoid(const Eigen::Vector3d& centre, const Eigen::Vector3d& semi, double blend,
+                               const Eigen::Matrix3d& frame) {
+  Primitive p;
+  p.kind = Kind::Ellipsoid;
+  p.a = centre;
+  p.semi = semi;
+  p.frame = frame;
+  p.blend = blend;
+  p.bound_centre = centre;
+  p.bound_radius = semi.maxCoeff();
+  p.bound_slope = std::pow(semi.minCoeff() / semi.maxCoeff(), 2);
+  return p;
+}
+
+Primitive Primitive::cone(const Eigen::Vector3d& a, double ra, const Eigen::Vector3d& b, double rb, double blend) {
+  Primitive p;
+  p.kind = Kind::Cone;
+  p.a = a, p.b = b, p.ra = ra, p.rb = rb;
+  const Eigen::Vector3d u = (b - a).normalized(), e1 = front_perpendicular(u);
+  p.frame.col(0) = u;
+  p.frame.col(1) = e1;
+  p.frame.col(2) = u.cross(e1);
+  p.blend = blend;
+  p.bound_centre = 0.5 * (a + b);
+  p.bound_radius = 0.5 * (b - a).norm() + std::max(ra, rb);
+  return p;
+}
+
+double Primitive::lower_bound(const Eigen::Vector3d& p) const {
+  const double gap = (p - bound_centre).norm() - bound_radius;
+  if (kind == Kind::Cone) return gap;  // d - r >= |p - mid| - length / 2 - max radius
+  // With D = |q| > s_max: k0 >= D / s_max and k1 <= D / s_min^2, so
+  // k0 (k0 - 1) / k1 >= (D - s_max) s_min^2 / s_max^2. Inside the sphere: no bound.
+  return gap > 0 ? gap * bound_slope : -INFINITY;
+}
+
+double Primitive::eval(const Eigen::Vector3d& p, Eigen::Vector3d* gradient) const {
+  if (kind == Kind::Ellipsoid) {
+    // Quilez's ellipsoid bound k0 (k0 - 1) / k1: close to the true distance near
+    // the surface even for elongated ellipsoids, which keeps blends even.
+    const Eigen::Vector3d q = frame.transpose() * (p - a);
+    const Eigen::Vector3d s2 = semi.cwiseProduct(semi);
+    const Eigen::Vector3d q1 = q.cwiseQuotient(semi), q2 = q.cwiseQuotient(s2);
+    const double k0 = std::max(q1.norm(), 1e-12), k1 = std::max(q2.norm(), 1e-12);
+    const double f = k0 * (k0 - 1) / k1;
+    if (gradient) {
+      const Eigen::Vector3d g0 = q2 / k0;                                 // d k0 / dq
+      const Eigen::Vector3d g1 = q2.cwiseQuotient(s2) / k1;               // d k1 / dq
+      const Eigen::Vector3d gq = ((2 * k0 - 1) * g0 - f * g1) / k1;
+      *gradient = frame * gq;
+    }
+    return f;
+  }
+  const Eigen::Vector3d u = frame.col(0);
+  const double len = (b - a).norm();
+  const double t_raw = (p - a).dot(u) / len, t = std::clamp(t_raw, 0.0, 1.0);
+  const Eigen::Vector3d c = a + t * len * u, off = p - c;
+  const double d = std::max(off.norm(), 1e-12), r = ra + t * (rb - ra);
+  if (gradient) {
+    *gradient = off / d;
+    if (t_raw > 0 && t_raw < 1) *gradient -= (rb - ra) / len * u;
+  }
+  return d - r;
+}
+
+Eigen::Vector3d Primitive::carry(const Eigen::Vector3d& p, const Primitive& to) const {
+  if (kind == Kind::Ellipsoid) {
+    const Eigen::Vector3d q = frame.transpose() * (p - a);
+    return to.a + to.frame * q.cwiseQuotient(semi).cwiseProduct(to.semi);
+  }
+  const Eigen::Vector3d u = frame.col(0);
+  const double len = (b - a).norm();
+  const double t = std::clamp((p - a).dot(u) / len, 0.0, 1.0);
+  const Eigen::Vector3d local = frame.transpose() * (p - (a + t * len * u));
+  const double r = ra + t * (rb - ra), r_to = to.ra + t * (to.rb - to.ra);
+  return to.a + t * (to.b - to.a) + to.frame * local * (r_to / r);
+}
+
+double ImplicitBody::eval(const Eigen::Vector3d& p, Eigen::Vector3d* gradient) const {
+  Eigen::Vector3d g, gi;
+  double f = parts.front().eval(p, gradient ? &g : nullptr);
+  for (std::size_t i = 1; i < parts.size(); ++i) {
+    const Primitive& prim = parts[i];
+    // Parts that are surely further than the blend radius cannot change the value.
+    if (prim.lower_bound(p) >= f + prim.blend) continue;
+    const double fi = prim.eval(p, gradient ? &gi : nullptr);
+    const double k = prim.blend;
+    if (k <= 0 || std::abs(fi - f) >= k) {
+      if (fi < f) {
+        f = fi;
+        if (gradient) g = gi;
+      }
+      continue;
+    }
+    // Polynomial smooth minimum; its gradient is exactly the h-weighted mix.
+    const double h = 0.5 + 0.5 * (fi - f) / k;  // weight of the union so far
+    f = f * h + fi * (1 - h) - k * h * (1 - h);
+    if (gradient) g = g * h + gi * (1 - h);
+  }
+  if (gradient) *gradient = g;
+  return f;
+}
+
+Eigen::Vector3d ImplicitBody::project(Eigen::Vector3d p, int steps) const {
+  Eigen::Vector3d g;
+  for (int i = 0; i < steps; ++i) {
+    const double f = eval(p, &g);
+    const double g2 = g.squaredNorm();
+    if (g2 < 1e-12) break;
+    p -= f / g2 * g;
+    if (std::abs(f) < 1e-8) break;  // 10 nm: far below any use of the mesh
+  }
+  return p;
+}
+
+}  // namespace drape::parametric

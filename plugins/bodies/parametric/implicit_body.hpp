@@ -1,0 +1,51 @@
+#pragma once
+// A body as an implicit surface: rounded cones (limbs) and ellipsoids (torso,
+// head, hands, feet) joined one after another by a polynomial smooth minimum.
+// Negative inside, zero on the skin; the gradient is exact (analytic).
+#include <Eigen/Core>
+
+#include <vector>
+
+namespace drape::parametric {
+
+struct Primitive {
+  enum class Kind { Ellipsoid, Cone };
+  Kind kind = Kind::Ellipsoid;
+  // Ellipsoid: centre `a`, local axes (columns of `frame`), semi-axes `semi`.
+  // Cone: from `a` (radius ra) to `b` (radius rb); frame columns are the axis
+  // and two perpendiculars, so that a deformation can carry the offsets along.
+  Eigen::Vector3d a = Eigen::Vector3d::Zero(), b = Eigen::Vector3d::Zero();
+  double ra = 0, rb = 0;
+  Eigen::Matrix3d frame = Eigen::Matrix3d::Identity();
+  Eigen::Vector3d semi = Eigen::Vector3d::Ones();
+  // Blend radius with everything before it (0: plain union). The first primitive's is unused.
+  double blend = 0;
+  // A lower bound of eval() from a sphere holding the part, which lets the union
+  // skip parts that cannot change its value: see lower_bound().
+  Eigen::Vector3d bound_centre = Eigen::Vector3d::Zero();
+  double bound_radius = 0;
+  double bound_slope = 1;  // (smallest / largest semi-axis)^2 for ellipsoids
+  double lower_bound(const Eigen::Vector3d& p) const;
+
+  static Primitive ellipsoid(const Eigen::Vector3d& centre, const Eigen::Vector3d& semi, double blend,
+                             const Eigen::Matrix3d& frame = Eigen::Matrix3d::Identity());
+  static Primitive cone(const Eigen::Vector3d& a, double ra, const Eigen::Vector3d& b, double rb, double blend);
+
+  // Approximate signed distance and its gradient.
+  double eval(const Eigen::Vector3d& p, Eigen::Vector3d* gradient) const;
+  // Maps a point near this primitive to the same place near `to` (same kind):
+  // along the axis by length, across it by radius. Used to carry a template
+  // vertex to a new shape.
+  Eigen::Vector3d carry(const Eigen::Vector3d& p, const Primitive& to) const;
+};
+
+class ImplicitBody {
+ public:
+  std::vector<Primitive> parts;
+
+  double eval(const Eigen::Vector3d& p, Eigen::Vector3d* gradient = nullptr) const;
+  // Moves `p` onto the zero level set with Newton steps along the gradient.
+  Eigen::Vector3d project(Eigen::Vector3d p, int steps = 6) const;
+};
+
+}  // namespace drape::parametric

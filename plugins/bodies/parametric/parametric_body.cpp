@@ -1,0 +1,117 @@
+// The built-in parametric body: the default body model everywhere.
+#include "body_plan.hpp"
+#include "body_template.hpp"
+#include "shape_fit.hpp"
+
+#include <drape/geometry/volume.hpp>
+#include <drape/plugin.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <memory>
+#include <sstream>
+
+namespace drape::parametric {
+namespace {
+
+constexpr double kDensity = 985.0;  // kg/m^3, as the seed computes BMI from the mesh
+constexpr double kBmiMin = 10.0, kBmiMax = 65.0;
+constexpr double kBmiTolerance = 0.05;  // the solve stops this close to the request
+// BMI ~ kBmiAtZeroWeight * exp(weight / kWeightPerLogBmi): the solver's first guess.
+constexpr double kBmiAtZeroWeight = 20.0, kWeightPerLogBmi = 0.83;
+
+// Built once per process (about a tenth of a second) and shared by every instance.
+const BodyTemplate& shared_template() {
+  static const BodyTemplate tpl = build_template(6500);
+  return tpl;
+}
+
+class ParametricBody final : public BodyModel {
+ public:
+  ParametricBody() : tpl_(shared_template()) {}
+
+  int num_vertices() const override { return static_cast<int>(tpl_.vertices.rows()); }
+  const Eigen::MatrixX3i& faces() const override { return tpl_.faces; }
+  std::vector<std::string> shape_names() const override {
+    std::vector<std::string> names;
+    for (const auto& s : shape_specs()) names.push_back(s.name);
+    return names;
+  }
+  Eigen::VectorXd mean_shape() const override { return mean_shape_vector(); }
+
+  Eigen::MatrixX3d vertices(const Eigen::VectorXd& shape) const override {
+    check_shape(shape);
+    Eigen::MatrixX3d v = fit_template(tpl_, plan_body(shape));
+    normalise_height(v, shape[kHeight]);
+    return v;
+  }
+
+  Eigen::VectorXd solve(const BodyRequest& req) const override {
+    const ShapeSpec& h = shape_specs()[kHeight];
+    std::ostringstream bad;
+    if (!(req.bmi >= kBmiMin && req.bmi <= kBmiMax))
+      bad << "BMI " << req.bmi << " is outside the reachable range [" << kBmiMin << ", " << kBmiMax << "]";
+    else if (!(req.height >= h.min && req.height <= h.max))
+      bad << "height " << req.height << " m is outside the reachable range [" << h.min << ", " << h.max << "] m";
+    else if (!(req.sex >= 0 && req.sex <= 1))
+      bad << "sex " << req.sex << " is outside [0, 1]";
+    if (!bad.str().empty()) throw ConfigError("body parametric: " + bad.str());
+
+    Eigen::VectorXd shape = mean_shape_vector();
+    shape[kHeight] = req.height;
+    shape[kSex] = req.sex;
+    const ShapeSpec& w = shape_specs()[kWeight];
+    auto residual = [&](double weight) {
+      shape[kWeight] = weight;
+      return bmi(shape) - req.bmi;
+    };
+    // BMI grows monotonically and smoothly with weight: secant steps from a
+    // calibrated guess, kept inside the bracket known so far (bisection otherwise).
+    double lo = w.min, hi = w.max;
+    double x0 = std::clamp(kWeightPerLogBmi * std::log(req.bmi / kBmiAtZeroWeight), lo, hi), f0 = residual(x0);
+    double x1 = x0 + (f0 > 0 ? -0.1 : 0.1), f1 = residual(x1);
+    for (double x : {x0, x1}) (x == x0 ? f0 : f1) < 0 ? lo = std::max(lo, x) : hi = std::min(hi, x);
+    for (int it = 0; it < 40 && std::abs(f1) > kBmiTolerance && hi - lo > 1e-9; ++it) {
+      double x2 = f1 != f0 ? x1 - f1 * (x1 - x0) / (f1 - f0) : 0.5 * (lo + hi);
+      if (!(x2 > lo && x2 < hi)) x2 = 0.5 * (lo + hi);
+      const double f2 = residual(x2);
+      (f2 < 0 ? lo : hi) = x2;
+      x0 = x1, f0 = f1, x1 = x2, f1 = f2;
+    }
+    if (std::abs(f1) > 0.25) {
+      std::ostringstream m;
+      m << "body parametric: BMI " << req.bmi << " is not reachable at height " << req.height << " m, sex " << req.sex
+        << " (weight in [" << w.min << ", " << w.max << "] gives BMI " << residual(w.min) + req.bmi << " to "
+        << residual(w.max) + req.bmi << ")";
+      throw ConfigError(m.str());
+    }
+    shape[kWeight] = x1;
+    return shape;  // holds the last weight evaluated
+  }
+
+  std::pair<double, double> bmi_range() const override { return {kBmiMin, kBmiMax}; }
+
+  double bmi(const Eigen::VectorXd& shape) const {
+    const Eigen::MatrixX3d v = vertices(shape);
+    return geometry::mesh_volume(v, tpl_.faces) * kDensity / (shape[kHeight] * shape[kHeight]);
+  }
+
+ private:
+  const BodyTemplate& tpl_;
+};
+
+PluginList plugins() {
+  PluginDescriptor d;
+  d.kind = "body";
+  d.name = "parametric";
+  d.doc = "Built-in parametric body: smooth implicit primitives meshed once into a fixed watertight topology "
+          "(~6k vertices, A-pose, Y up, feet at y=0, facing +Z); shape = height, sex, weight and six girths; "
+          "solve() reaches BMI 10-65.";
+  d.create_body = [](const Params&) { return std::make_unique<ParametricBody>(); };
+  return {d};
+}
+
+}  // namespace
+}  // namespace drape::parametric
+
+DRAPE_PLUGIN_EXPORT(drape::parametric::plugins)
