@@ -14,11 +14,16 @@
 namespace drape::cli {
 namespace {
 
-std::vector<int> parse_k_list(const std::string& text) {
+// "16,64,all": 'all' stands for every vertex.
+std::vector<int> parse_k_list(const std::string& text, int n) {
   std::vector<int> ks;
   std::stringstream in(text);
   std::string item;
   while (std::getline(in, item, ',')) {
+    if (item == "all") {
+      ks.push_back(n);
+      continue;
+    }
     try {
       std::size_t used = 0;
       const int k = std::stoi(item, &used);
@@ -35,7 +40,7 @@ std::vector<int> parse_k_list(const std::string& text) {
 int run(const std::vector<std::string>& args) {
   po::options_description opts("drape spectral");
   opts.add_options()("mesh", po::value<std::string>()->required(), "the garment (any mesh format drape reads)")(
-      "k", po::value<std::string>()->default_value("16,64,256,1000"), "numbers of eigenvectors, comma separated; 'all' = n")(
+      "k", po::value<std::string>()->default_value("16,64,256,1000"), "numbers of eigenvectors, comma separated ('all' = every vertex)")(
       "drape", po::value<std::vector<std::string>>()->composing(),
       "shapes of the same garment (same vertex order) to reconstruct; default: the garment itself")(
       "operator", po::value<std::string>()->default_value("cotangent"), "cotangent or combinatorial")(
@@ -47,7 +52,7 @@ int run(const std::vector<std::string>& args) {
   const Mesh mesh = read_mesh(vm["mesh"].as<std::string>());
   const int n = mesh.num_vertices();
   const std::string k_text = vm["k"].as<std::string>();
-  std::vector<int> ks = k_text == "all" ? std::vector<int>{n} : parse_k_list(k_text);
+  std::vector<int> ks = parse_k_list(k_text, n);
   for (int& k : ks) k = std::min(k, n);
 
   EigenbasisOptions options;
