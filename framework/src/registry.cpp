@@ -103,8 +103,10 @@ void Registry::load_file(const fs::path& file) {
 
   auto lib = std::make_unique<Library>();
   lib->file = canonical;
+  // rtld_now: a plugin with an unresolved symbol is refused at load time with the
+  // loader's message, instead of crashing in the middle of a run.
   try {
-    lib->handle.load(canonical.string(), boost::dll::load_mode::rtld_lazy | boost::dll::load_mode::rtld_local);
+    lib->handle.load(canonical.string(), boost::dll::load_mode::rtld_now | boost::dll::load_mode::rtld_local);
   } catch (const std::exception& e) {
     refused_.push_back(canonical.string() + ": cannot be loaded (" + e.what() + ")");
     std::cerr << "drape: warning: plugin " << refused_.back() << "\n";

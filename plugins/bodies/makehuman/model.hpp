@@ -1,0 +1,39 @@
+#pragma once
+// The MakeHuman body model read from a MakeHuman data folder (the CC0 assets in
+// ../shared/assets/makehuman, or the user's own): base mesh hm08 + macro targets.
+// Helper geometry (eyes, teeth, tights, joints, ...) is morphed along with the body
+// (clothes bind to the tights helper) but only the `body` group is the body mesh.
+#include "targets.hpp"
+
+#include <drape/mesh.hpp>
+
+#include <filesystem>
+
+namespace drape::makehuman {
+
+inline constexpr double kMetersPerUnit = 0.1;  // MakeHuman meshes are in decimetres
+
+class Model {
+ public:
+  explicit Model(const std::filesystem::path& root);
+
+  const std::filesystem::path& root() const { return root_; }
+  // Every base vertex after the targets, in MakeHuman units (dm), helpers included.
+  Eigen::MatrixX3d morph(const Sliders& sliders) const;
+  // The body group as a triangle mesh in meters, Y up, feet at y = 0.
+  Mesh body(const Sliders& sliders) const;
+  // Same units and placement as body(): positions of a morphed base (raw dm) in meters.
+  Eigen::MatrixX3d to_body_frame(const Eigen::MatrixX3d& raw_points, const Eigen::MatrixX3d& morphed_base) const;
+
+  int body_vertex_count() const { return body_vertices_; }
+  const Eigen::MatrixX3i& body_faces() const { return body_faces_; }
+
+ private:
+  std::filesystem::path root_;
+  Eigen::MatrixX3d base_;
+  Eigen::MatrixX3i body_faces_;
+  int body_vertices_ = 0;
+  std::vector<Target> targets_;
+};
+
+}  // namespace drape::makehuman

@@ -1,0 +1,92 @@
+// Plugins over MakeHuman data (a folder laid out like ../shared/assets/makehuman):
+//   body `makehuman`          sliders -> body mesh, BMI search over weight/muscle
+//   garment `makehuman_tshirt` the T-shirt of an outfit, dressed through its .mhclo
+#include "body_model.hpp"
+#include "clothes.hpp"
+
+#include <drape/plugin.hpp>
+
+#include <cstdlib>
+#include <map>
+#include <mutex>
+
+namespace {
+
+using namespace drape;
+using namespace drape::makehuman;
+
+// "" means $DRAPE_MAKEHUMAN_DIR, else the assets folder beside the source tree.
+std::string resolve(const std::string& path) {
+  if (!path.empty()) return path;
+  if (const char* env = std::getenv("DRAPE_MAKEHUMAN_DIR")) return env;
+  return DRAPE_DEFAULT_MAKEHUMAN_DIR;
+}
+
+// Loading the targets costs ~0.5 s: share one model per folder.
+std::shared_ptr<const Model> model_for(const std::string& given) {
+  const std::string path = resolve(given);
+  static std::mutex mutex;
+  static std::map<std::string, std::weak_ptr<const Model>> cache;
+  std::lock_guard<std::mutex> lock(mutex);
+  if (auto m = cache[path].lock()) return m;
+  auto m = std::make_shared<const Model>(path);
+  cache[path] = m;
+  return m;
+}
+
+const char* kDefaultPath = "\"\"";
+
+std::vector<ParamSpec> slider_params() {
+  return {{"gender", ParamType::Float, "1.0", "0 female, 1 male", 0.0, 1.0},
+          {"muscle", ParamType::Float, "0.5", "muscle slider", 0.0, 1.0},
+          {"weight", ParamType::Float, "0.5", "weight slider", 0.0, 1.0},
+          {"height", ParamType::Float, "0.5", "height slider", 0.0, 1.0},
+          {"proportions", ParamType::Float, "0.5", "body proportions slider", 0.0, 1.0}};
+}
+
+class TshirtSource final : public GarmentSource {
+ public:
+  TshirtSource(std::shared_ptr<const Model> model, std::filesystem::path outfit, Sliders body)
+      : model_(std::move(model)), outfit_(std::move(outfit)), body_(body) {}
+  Garment build() const override { return load_tshirt(*model_, outfit_, body_); }
+
+ private:
+  std::shared_ptr<const Model> model_;
+  std::filesystem::path outfit_;
+  Sliders body_;
+};
+
+PluginList plugins() {
+  PluginDescriptor body;
+  body.kind = "body";
+  body.name = "makehuman";
+  body.doc = "MakeHuman hm08 body (CC0 data folder): macro sliders, helpers removed, meters; BMI search over weight/muscle.";
+  body.params = {{"path", ParamType::String, kDefaultPath, "MakeHuman data folder (base/base.obj, targets/macrodetails/); empty: $DRAPE_MAKEHUMAN_DIR or ../shared/assets/makehuman"},
+                 {"muscle", ParamType::Float, "-1", "fixed muscle slider for the BMI search; -1 moves it with weight", -1.0, 1.0}};
+  body.create_body = [](const Params& p) {
+    return std::make_unique<MakeHumanBody>(model_for(p.get_string("path")), p.get_float("muscle"));
+  };
+
+  PluginDescriptor shirt;
+  shirt.kind = "garment";
+  shirt.name = "makehuman_tshirt";
+  shirt.doc = "The T-shirt of a MakeHuman outfit (first piece of its .obj), fitted to a MakeHuman body by its .mhclo.";
+  shirt.params = {{"path", ParamType::String, kDefaultPath, "MakeHuman data folder"},
+                  {"outfit", ParamType::String, "male_casualsuit04", "outfit folder under clothes/"}};
+  for (auto& s : slider_params()) shirt.params.push_back(s);
+  shirt.create_garment = [](const Params& p) {
+    Sliders s;
+    s.gender = p.get_float("gender");
+    s.muscle = p.get_float("muscle");
+    s.weight = p.get_float("weight");
+    s.height = p.get_float("height");
+    s.proportions = p.get_float("proportions");
+    const std::string root = resolve(p.get_string("path"));
+    return std::make_unique<TshirtSource>(model_for(root), std::filesystem::path(root) / "clothes" / p.get_string("outfit"), s);
+  };
+  return {body, shirt};
+}
+
+}  // namespace
+
+DRAPE_PLUGIN_EXPORT(plugins)

@@ -1,0 +1,119 @@
+// The MakeHuman plugins on the CC0 data in ../shared/assets/makehuman; every
+// test skips with a message when that folder is absent.
+#include <drape/geometry/closest_point.hpp>
+#include <drape/geometry/topology.hpp>
+#include <drape/geometry/volume.hpp>
+#include <drape/mesh_io.hpp>
+
+#include <catch2/catch.hpp>
+
+#include "test_support.hpp"
+
+using namespace drape;
+
+namespace {
+
+bool assets_present() {
+  if (!test::shared_assets().empty() && std::filesystem::exists(test::shared_assets() / "makehuman/base/base.obj")) return true;
+  WARN("SKIPPED: ../shared/assets/makehuman is absent; the MakeHuman tests need it");
+  return false;
+}
+
+ParamValues path_param() {
+  return {{"path", {YAML::Node((test::shared_assets() / "makehuman").string()), {}}}};
+}
+
+std::unique_ptr<BodyModel> makehuman_body() {
+  const auto& d = test::plugins().get("makehuman");
+  return test::plugins().create_body("makehuman", Params(d.params, path_param(), "makehuman"));
+}
+
+double bmi_of(const Mesh& m) {
+  const double h = m.vertices.col(1).maxCoeff() - m.vertices.col(1).minCoeff();
+  return geometry::mesh_volume(m.vertices, m.faces) * 985.0 / (h * h);
+}
+
+}  // namespace
+
+TEST_CASE("the MakeHuman body drops helpers, is in meters and hits a requested BMI", "[makehuman]") {
+  if (!assets_present()) {
+    SUCCEED("skipped");
+    return;
+  }
+  const auto body = makehuman_body();
+  CHECK(body->num_vertices() == 13380);  // the `body` group of hm08, helpers removed
+  Mesh mean{body->vertices(body->mean_shape()), body->faces(), {}, {}};
+  const double height = mean.vertices.col(1).maxCoeff() - mean.vertices.col(1).minCoeff();
+  CHECK(height > 1.5);
+  CHECK(height < 1.9);
+  CHECK(mean.vertices.col(1).minCoeff() == Approx(0.0).margin(1e-9));
+  const auto topo = geometry::check_topology(mean.faces, mean.num_vertices());
+  INFO(topo.str());
+  CHECK(topo.manifold());
+  CHECK(geometry::mesh_volume(mean.vertices, mean.faces) > 0.03);  // a person is ~0.06-0.1 m^3
+
+  const auto [lo, hi] = body->bmi_range();
+  INFO("MakeHuman BMI range " << lo << " - " << hi);
+  CHECK(lo < 16);
+  CHECK(hi > 35);
+  for (double target : {16.0, 22.0, 30.0, 35.0}) {
+    const Eigen::VectorXd shape = body->solve({target, 1.75, 1.0});
+    Mesh m{body->vertices(shape), body->faces(), {}, {}};
+    CHECK(bmi_of(m) == Approx(target).margin(0.5));
+    CHECK(m.vertices.col(1).maxCoeff() - m.vertices.col(1).minCoeff() == Approx(1.75).margin(0.01));
+  }
+  CHECK_THROWS_WITH(body->solve({55.0, 1.75, 1.0}), Catch::Contains("outside") && Catch::Contains("reaches BMI"));
+}
+
+TEST_CASE("a missing MakeHuman folder is a clear error", "[makehuman]") {
+  const auto& d = test::plugins().get("makehuman");
+  ParamValues bad{{"path", {YAML::Node("/nonexistent/makehuman"), {}}}};
+  CHECK_THROWS_WITH(test::plugins().create_body("makehuman", Params(d.params, bad, "makehuman")),
+                    Catch::Contains("/nonexistent/makehuman") && Catch::Contains("base.obj"));
+}
+
+TEST_CASE("the MakeHuman T-shirt loads, triangulates and dresses bodies through .mhclo", "[makehuman]") {
+  if (!assets_present()) {
+    SUCCEED("skipped");
+    return;
+  }
+  const auto& d = test::plugins().get("makehuman_tshirt");
+  for (const char* outfit : {"male_casualsuit04", "male_casualsuit06"}) {
+    ParamValues values = path_param();
+    values["outfit"] = {YAML::Node(outfit), {}};
+    const Garment g = test::plugins().create_garment("makehuman_tshirt", Params(d.params, values, "shirt"))->build();
+    INFO(outfit);
+    CHECK(g.mesh.num_vertices() == (std::string(outfit) == "male_casualsuit04" ? 810 : 2822));
+    CHECK(g.mesh.has_uv());
+    const auto topo = geometry::check_topology(g.mesh.faces, g.mesh.num_vertices());
+    INFO(topo.str());
+    CHECK(topo.manifold());
+    CHECK(topo.boundary_loops == 4);  // collar, two sleeves, hem
+    // Material space in meters: the UV area is of the order of a shirt (~1 m^2).
+    double uv_area = 0;
+    for (int f = 0; f < g.mesh.num_faces(); ++f) {
+      const Eigen::Vector2d a = g.mesh.uv.row(g.mesh.uv_faces(f, 0)), b = g.mesh.uv.row(g.mesh.uv_faces(f, 1)),
+                            c = g.mesh.uv.row(g.mesh.uv_faces(f, 2));
+      uv_area += 0.5 * std::abs((b - a).x() * (c - a).y() - (b - a).y() * (c - a).x());
+    }
+    CHECK(uv_area > 0.5);
+    CHECK(uv_area < 2.0);
+  }
+  // Dressed on a heavy MakeHuman body, the shirt follows it: it widens, and few
+  // vertices end up inside the body (MakeHuman's own binding, not a simulation).
+  const auto body = makehuman_body();
+  const Eigen::VectorXd heavy = body->solve({34.0, 1.75, 1.0});
+  ParamValues values = path_param();
+  const char* names[] = {"gender", "muscle", "weight", "height", "proportions"};
+  for (int i = 0; i < 5; ++i) values[names[i]] = {YAML::Node(heavy[i]), {}};
+  const Garment thin_shirt = test::plugins().create_garment("makehuman_tshirt", Params(d.params, path_param(), "s"))->build();
+  const Garment heavy_shirt = test::plugins().create_garment("makehuman_tshirt", Params(d.params, values, "s"))->build();
+  const auto width = [](const Mesh& m) { return m.vertices.col(2).maxCoeff() - m.vertices.col(2).minCoeff(); };
+  CHECK(width(heavy_shirt.mesh) > width(thin_shirt.mesh) + 0.03);
+  const geometry::BodySurface surface(Mesh{body->vertices(heavy), body->faces(), {}, {}});
+  int inside = 0;
+  for (int v = 0; v < heavy_shirt.mesh.num_vertices(); ++v)
+    if (surface.closest(heavy_shirt.mesh.vertices.row(v).transpose()).signed_distance < -0.005) ++inside;
+  INFO(inside << " of " << heavy_shirt.mesh.num_vertices() << " shirt vertices deeper than 5 mm in the body");
+  CHECK(inside < heavy_shirt.mesh.num_vertices() / 20);
+}
