@@ -70,7 +70,9 @@ int run(const std::vector<std::string>& args) {
       "out", po::value<std::string>(), "mesh file to write (.obj, .ply, .gltf, .glb)")(
       "sample", po::value<int>(), "draw this many bodies, BMI uniform in the --bmi range")(
       "seed", po::value<unsigned>()->default_value(0), "random seed for --sample")(
-      "out-dir", po::value<std::string>(), "folder for --sample: body_00000.obj ... and bodies.csv");
+      "out-dir", po::value<std::string>(), "folder for --sample: body_00000.obj ... and bodies.csv")(
+      "param", po::value<std::vector<std::string>>()->composing(),
+      "a parameter of the body plugin, name=value (repeatable), e.g. file=smpl.h5 for --model smpl");
   po::variables_map vm;
   const std::string usage =
       "drape body --bmi 38 --height 1.80 [--sex 1] [--out body.obj]\n"
@@ -82,7 +84,14 @@ int run(const std::vector<std::string>& args) {
   const PluginDescriptor& desc = reg.get(model);
   if (!desc.create_body) throw ConfigError("drape body: plugin '" + model + "' is a " + desc.kind + ", not a body model");
   const auto t0 = std::chrono::steady_clock::now();
-  const auto body = reg.create_body(model, Params(desc.params, {}, "body " + model));
+  ParamValues values;
+  if (vm.count("param"))
+    for (const auto& item : vm["param"].as<std::vector<std::string>>()) {
+      const auto eq = item.find('=');
+      if (eq == std::string::npos || eq == 0) throw UsageError("--param wants name=value, got '" + item + "'");
+      values[item.substr(0, eq)] = {YAML::Load(item.substr(eq + 1)), {"--param", 0}};
+    }
+  const auto body = reg.create_body(model, Params(desc.params, values, "body " + model));
   const double load_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   const auto names = body->shape_names();
   const Range bmi = parse_range("bmi", vm["bmi"].as<std::string>());

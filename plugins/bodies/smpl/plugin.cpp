@@ -1,0 +1,24 @@
+// body `smpl`: an SMPL model converted to HDF5 (see docs/smpl.md).
+#include "smpl_model.hpp"
+
+#include <drape/plugin.hpp>
+
+namespace {
+
+drape::PluginList plugins() {
+  using namespace drape;
+  PluginDescriptor d;
+  d.kind = "body";
+  d.name = "smpl";
+  d.doc = "SMPL body (licence required) from an HDF5 conversion: v_template, shapedirs, f; shape only, BMI along the volume direction.";
+  d.params = {{"file", ParamType::String, "smpl_neutral.h5", "the converted model (docs/smpl.md)"},
+              {"betas", ParamType::Int, "10", "how many shape coefficients to use", 1.0, 300.0}};
+  d.create_body = [](const Params& p) {
+    return std::make_unique<smpl::SmplBody>(smpl::read_smpl_h5(p.get_string("file")), static_cast<int>(p.get_int("betas")));
+  };
+  return {d};
+}
+
+}  // namespace
+
+DRAPE_PLUGIN_EXPORT(plugins)
