@@ -1,16 +1,69 @@
 #pragma once
 // Precomputed data of one garment template that nodes ask for: the garment
-// itself (rest shape, material space, materials). Later layers add the
-// hierarchy, correspondences and eigenbasis here (and bump DRAPE_ABI_VERSION).
+// dressed on the mean body (rest and start state, material space, materials),
+// the mean body, the fixed body->garment correspondences, the 4-level hierarchy
+// with its UV-space up-sampling and graph Laplacians, and the spectral basis.
+// build_assets() computes all of it once and caches it in HDF5, keyed by a hash
+// of the template and the settings (docs/formats.md, "Assets cache").
 #include <drape/energy.hpp>
+#include <drape/geometry/hierarchy.hpp>
+#include <drape/tensor.hpp>
 
+#include <Eigen/SparseCore>
+
+#include <filesystem>
+#include <map>
 #include <memory>
+#include <string>
+#include <vector>
 
 namespace drape {
 
+class Registry;
+
 class Assets {
  public:
-  std::shared_ptr<const Garment> garment;
+  std::shared_ptr<const Garment> garment;  // dressed on the mean body
+  Mesh body;                               // the mean body (topology of every input body)
+  std::vector<int> correspondence;         // [garment vertices] -> body vertex
+  geometry::Hierarchy hierarchy;           // levels[0] is the garment
+  // Random-walk graph Laplacian I - D^-1 A of each hierarchy level (eq. 6.12), float for the losses.
+  std::vector<Eigen::SparseMatrix<float, Eigen::RowMajor>> laplacians;
+  Eigen::VectorXd eigenvalues;             // [k] ascending
+  MatrixRM eigenvectors;                   // [garment vertices, k] orthonormal columns
+  std::string hash;                        // of the template and settings
+  std::string spec_text;                   // the settings as YAML
+
+  // Sizes graphs use in `inputs:`: body_vertices, garment_vertices,
+  // level1_vertices .. level3_vertices, eigen_k.
+  std::map<std::string, int> dims() const;
 };
+
+// What to build. Plugin parameters are YAML scalars/lists by name.
+struct AssetsSpec {
+  std::string body_model = "parametric";
+  std::map<std::string, std::string> body_params;
+  std::string garment = "tshirt";
+  std::map<std::string, std::string> garment_params;  // e.g. size: small, resolution: coarse
+  int levels = 4;
+  int eigen_k = 1000;  // clamped to the garment's vertex count
+  std::string yaml() const;  // canonical text: the cache key's source
+};
+
+struct AssetsTimings {
+  double garment = 0, correspondence = 0, hierarchy = 0, eigenbasis = 0, load = 0;
+  bool from_cache = false;
+  std::filesystem::path cache_file;
+};
+
+// $DRAPE_CACHE_DIR, else $XDG_CACHE_HOME/drape, else ~/.cache/drape.
+std::filesystem::path default_cache_dir();
+
+// Builds the garment and mean body (cheap), hashes them with the spec, and loads
+// the rest from <cache_dir>/assets-<hash>.h5 when present, else computes it and
+// writes that file atomically. An empty cache_dir disables caching.
+std::shared_ptr<const Assets> build_assets(const Registry& registry, const AssetsSpec& spec,
+                                           const std::filesystem::path& cache_dir = default_cache_dir(),
+                                           AssetsTimings* timings = nullptr);
 
 }  // namespace drape

@@ -1,0 +1,71 @@
+// `drape assets`: builds (or loads from the cache) everything precomputed for a
+// garment template and prints its sizes and what each part cost.
+#include "command.hpp"
+
+#include <drape/assets.hpp>
+#include <drape/geometry/index_locality.hpp>
+#include <drape/registry.hpp>
+
+#include <filesystem>
+#include <iomanip>
+#include <iostream>
+
+namespace drape::cli {
+namespace {
+
+int run(const std::vector<std::string>& args) {
+  po::options_description opts("drape assets");
+  opts.add_options()("body", po::value<std::string>()->default_value("parametric"), "body plugin (its mean shape)")(
+      "garment", po::value<std::string>()->default_value("tshirt"), "garment template plugin")(
+      "size", po::value<std::string>(), "garment size (tshirt: regular | small)")(
+      "resolution", po::value<std::string>(), "garment resolution (tshirt: default | coarse | a vertex count)")(
+      "print", "add the front print material region")(
+      "k", po::value<int>()->default_value(1000), "eigenvectors of the spectral basis")(
+      "levels", po::value<int>()->default_value(4), "hierarchy levels including the garment")(
+      "cache-dir", po::value<std::string>(), "cache folder (default $DRAPE_CACHE_DIR or ~/.cache/drape)")(
+      "no-cache", "compute everything, read and write no cache");
+  po::variables_map vm;
+  if (!parse("drape assets [--garment tshirt] [--size regular] [--resolution default] [--print] [--k 1000]", args, opts,
+             {}, vm))
+    return 0;
+  if (vm["k"].as<int>() < 1) throw UsageError("--k must be at least 1");
+  if (vm["levels"].as<int>() < 1) throw UsageError("--levels must be at least 1");
+  const Registry& reg = Registry::load_default(plugin_path(vm));
+  AssetsSpec spec;
+  spec.body_model = vm["body"].as<std::string>();
+  spec.garment = vm["garment"].as<std::string>();
+  if (vm.count("size")) spec.garment_params["size"] = vm["size"].as<std::string>();
+  if (vm.count("resolution")) spec.garment_params["resolution"] = vm["resolution"].as<std::string>();
+  if (vm.count("print")) spec.garment_params["print"] = "true";
+  spec.eigen_k = vm["k"].as<int>();
+  spec.levels = vm["levels"].as<int>();
+  const std::filesystem::path cache =
+      vm.count("no-cache") ? std::filesystem::path() : vm.count("cache-dir") ? std::filesystem::path(vm["cache-dir"].as<std::string>())
+                                                                           : default_cache_dir();
+  AssetsTimings t;
+  const auto a = build_assets(reg, spec, cache, &t);
+
+  const Mesh& g = a->garment->mesh;
+  std::cout << std::fixed << std::setprecision(3);
+  std::cout << "assets " << a->hash << (t.from_cache ? " (from cache " : " (built") << (t.from_cache ? t.cache_file.string() + ")" : ")")
+            << "\n";
+  std::cout << "  body     " << spec.body_model << ": " << a->body.num_vertices() << " vertices, " << a->body.num_faces()
+            << " faces, consecutive-index neighbours "
+            << 100.0 * geometry::index_locality(a->body.faces, a->body.num_vertices()).one_hop << "%\n";
+  int print_faces = 0;
+  for (int f = 0; f < g.num_faces(); ++f) print_faces += a->garment->material_of(f) != 0;
+  std::cout << "  garment  " << spec.garment << ": " << g.num_vertices() << " vertices, " << g.num_faces() << " faces, "
+            << g.uv.rows() << " uvs, " << a->garment->materials.size() << " materials, " << print_faces << " print faces\n";
+  std::cout << "  hierarchy:";
+  for (const auto& level : a->hierarchy.levels) std::cout << " " << level.mesh.num_vertices();
+  std::cout << " vertices\n  spectral: k = " << a->eigenvalues.size() << ", eigenvalues " << a->eigenvalues[0] << " .. "
+            << a->eigenvalues[a->eigenvalues.size() - 1] << "\n";
+  std::cout << "  time: garment+body " << t.garment << " s, correspondences " << t.correspondence << " s, hierarchy "
+            << t.hierarchy << " s, eigenbasis " << t.eigenbasis << " s, cache load " << t.load << " s\n";
+  return 0;
+}
+
+const RegisterCommand registration{{"assets", "build or load the cached template data (hierarchy, correspondences, eigenbasis)", run}};
+
+}  // namespace
+}  // namespace drape::cli

@@ -1,0 +1,147 @@
+#include "assets_cache.hpp"
+
+#include <drape/assets.hpp>
+#include <drape/garment_dressing.hpp>
+#include <drape/geometry/body_correspondence.hpp>
+#include <drape/geometry/laplacian.hpp>
+#include <drape/registry.hpp>
+#include <drape/spectral.hpp>
+
+#include <chrono>
+#include <cstdlib>
+#include <iomanip>
+#include <sstream>
+
+namespace fs = std::filesystem;
+
+namespace drape {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
+
+// FNV-1a over bytes: stable across runs and machines (std::hash is not promised to be).
+struct Hasher {
+  std::uint64_t h = 1469598103934665603ull;
+  void bytes(const void* data, std::size_t n) {
+    const auto* p = static_cast<const unsigned char*>(data);
+    for (std::size_t i = 0; i < n; ++i) h = (h ^ p[i]) * 1099511628211ull;
+  }
+  template <class M>
+  void matrix(const M& m) {
+    bytes(m.data(), static_cast<std::size_t>(m.size()) * sizeof(typename M::Scalar));
+  }
+  std::string hex() const {
+    std::ostringstream o;
+    o << std::hex << std::setw(16) << std::setfill('0') << h;
+    return o.str();
+  }
+};
+
+ParamValues values_of(const std::map<std::string, std::string>& given, const std::string& what) {
+  ParamValues out;
+  for (const auto& [k, v] : given) out[k] = {YAML::Load(v), {what, 0}};
+  return out;
+}
+
+}  // namespace
+
+std::string AssetsSpec::yaml() const {
+  std::ostringstream o;
+  o << "body: { model: " << body_model << ", params: {";
+  for (const auto& [k, v] : body_params) o << " " << k << ": " << v << ",";
+  o << " } }\ngarment: { template: " << garment << ", params: {";
+  for (const auto& [k, v] : garment_params) o << " " << k << ": " << v << ",";
+  o << " } }\nlevels: " << levels << "\neigen_k: " << eigen_k << "\n";
+  return o.str();
+}
+
+std::map<std::string, int> Assets::dims() const {
+  std::map<std::string, int> d{{"body_vertices", body.num_vertices()},
+                               {"garment_vertices", garment ? garment->mesh.num_vertices() : 0},
+                               {"eigen_k", static_cast<int>(eigenvalues.size())}};
+  for (int l = 1; l < hierarchy.num_levels(); ++l)
+    d["level" + std::to_string(l) + "_vertices"] = hierarchy.levels[static_cast<std::size_t>(l)].mesh.num_vertices();
+  return d;
+}
+
+fs::path default_cache_dir() {
+  if (const char* d = std::getenv("DRAPE_CACHE_DIR"); d && *d) return d;
+  if (const char* x = std::getenv("XDG_CACHE_HOME"); x && *x) return fs::path(x) / "drape";
+  if (const char* home = std::getenv("HOME"); home && *home) return fs::path(home) / ".cache" / "drape";
+  return fs::temp_directory_path() / "drape-cache";
+}
+
+std::shared_ptr<const Assets> build_assets(const Registry& registry, const AssetsSpec& spec, const fs::path& cache_dir,
+                                           AssetsTimings* timings) {
+  AssetsTimings t;
+  auto a = std::make_shared<Assets>();
+  a->spec_text = spec.yaml();
+
+  // The cheap part, always computed: mean body and the garment dressed on it.
+  auto start = Clock::now();
+  const PluginDescriptor& bd = registry.get(spec.body_model);
+  const auto body_model = registry.create_body(spec.body_model, Params(bd.params, values_of(spec.body_params, "assets body"),
+                                                                       "body '" + spec.body_model + "'"));
+  a->body.vertices = body_model->vertices(body_model->mean_shape());
+  a->body.faces = body_model->faces();
+  const PluginDescriptor& gd = registry.get(spec.garment);
+  Garment garment = registry
+                        .create_garment(spec.garment, Params(gd.params, values_of(spec.garment_params, "assets garment"),
+                                                             "garment '" + spec.garment + "'"))
+                        ->build();
+  dress(garment, a->body);
+  a->garment = std::make_shared<const Garment>(std::move(garment));
+  t.garment = since(start);
+
+  Hasher h;
+  h.bytes(a->spec_text.data(), a->spec_text.size());
+  h.matrix(a->body.vertices);
+  h.matrix(a->body.faces);
+  const Mesh& gm = a->garment->mesh;
+  h.matrix(gm.vertices);
+  h.matrix(gm.faces);
+  h.matrix(gm.uv);
+  h.matrix(gm.uv_faces);
+  a->hash = h.hex();
+
+  const fs::path cache_file = cache_dir.empty() ? fs::path() : cache_dir / ("assets-" + a->hash + ".h5");
+  t.cache_file = cache_file;
+  bool loaded = false;
+  if (!cache_file.empty() && fs::exists(cache_file)) {
+    start = Clock::now();
+    try {
+      assets_cache::load(cache_file, *a);
+      loaded = true;
+    } catch (const Error&) {
+      loaded = false;  // unreadable or stale: rebuild and overwrite below
+    }
+    t.load = since(start);
+  }
+  if (!loaded) {
+    start = Clock::now();
+    a->correspondence = geometry::body_to_garment_correspondence(a->body, gm);
+    t.correspondence = since(start);
+    start = Clock::now();
+    geometry::HierarchyOptions ho;
+    ho.levels = spec.levels;
+    a->hierarchy = geometry::build_hierarchy(gm, ho);
+    t.hierarchy = since(start);
+    start = Clock::now();
+    const Eigenbasis basis = compute_eigenbasis(gm, std::min(spec.eigen_k, gm.num_vertices()));
+    a->eigenvalues = basis.values;
+    a->eigenvectors = basis.vectors.cast<float>();
+    t.eigenbasis = since(start);
+    if (!cache_file.empty()) {
+      fs::create_directories(cache_dir);
+      assets_cache::save(cache_file, *a);
+    }
+  }
+  t.from_cache = loaded;
+  for (const auto& level : a->hierarchy.levels)
+    a->laplacians.push_back(geometry::graph_laplacian(level.mesh.faces, level.mesh.num_vertices()).cast<float>());
+  if (timings) *timings = t;
+  return a;
+}
+
+}  // namespace drape
