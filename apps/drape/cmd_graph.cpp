@@ -1,6 +1,7 @@
 // `drape graph check FILE`: validates a graph as a whole and prints its nodes and shapes.
 #include "command.hpp"
 
+#include <drape/assets.hpp>
 #include <drape/graph.hpp>
 
 #include <iomanip>
@@ -27,7 +28,11 @@ int run(const std::vector<std::string>& args) {
   po::options_description opts("drape graph check");
   opts.add_options()("action", po::value<std::string>()->required(), "check")(
       "file", po::value<std::string>()->required(), "graph YAML file")(
-      "dim", po::value<std::vector<std::string>>()->composing(), "a symbolic size, name=value (repeatable)");
+      "dim", po::value<std::vector<std::string>>()->composing(), "a symbolic size, name=value (repeatable)")(
+      "garment", po::value<std::string>()->default_value("tshirt"), "garment template whose assets give the sizes")(
+      "resolution", po::value<std::string>(), "garment resolution (tshirt: default | coarse | a vertex count)")(
+      "k", po::value<int>()->default_value(1000), "eigenvectors in the assets")(
+      "no-assets", "bind no garment template: every symbolic size must come from --dim");
   po::positional_options_description pos;
   pos.add("action", 1).add("file", 1);
   po::variables_map vm;
@@ -38,6 +43,18 @@ int run(const std::vector<std::string>& args) {
   GraphOptions options;
   if (vm.count("dim")) options.dims = parse_dims(vm["dim"].as<std::vector<std::string>>());
   const GraphSpec spec = parse_graph_file(vm["file"].as<std::string>());
+  // Sizes such as garment_vertices and the garment itself come from the
+  // template's assets (cached after the first build); --dim overrides.
+  std::shared_ptr<const Assets> assets;
+  if (!vm.count("no-assets")) {
+    AssetsSpec as;
+    as.garment = vm["garment"].as<std::string>();
+    if (vm.count("resolution")) as.garment_params["resolution"] = vm["resolution"].as<std::string>();
+    as.eigen_k = vm["k"].as<int>();
+    assets = build_assets(reg, as);
+    options.assets = assets.get();
+    for (const auto& [name, size] : assets->dims()) options.dims.emplace(name, size);
+  }
   const Graph graph(spec, reg, options);
 
   std::cout << spec.file << ": ok\n";

@@ -24,7 +24,7 @@ TEST_CASE("drape plugins lists plugins with kind, ports and parameters", "[cli]"
 TEST_CASE("drape graph check validates a shipped graph", "[cli]") {
   std::string out;
   const auto graph = (test::source_dir() / "graphs/examples/residual.yaml").string();
-  REQUIRE(run_drape("graph check " + graph + " --dim garment_vertices=10", out) == 0);
+  REQUIRE(run_drape("graph check " + graph + " --no-assets --dim garment_vertices=10", out) == 0);
   CHECK_THAT(out, Catch::Contains(": ok") && Catch::Contains("[10, 3]"));
 }
 
@@ -32,15 +32,15 @@ TEST_CASE("configuration errors exit 2 with file, line and close matches", "[cli
   test::TempDir dir;
   std::string out;
   std::ofstream(dir / "broken.yaml") << "inputs: { x: [4, 3] }\nnodes:\n  a: { type: scale, in: [x }\n";
-  CHECK(run_drape("graph check " + (dir / "broken.yaml").string(), out) == 2);
+  CHECK(run_drape("graph check --no-assets " + (dir / "broken.yaml").string(), out) == 2);
   CHECK_THAT(out, Catch::Contains("broken.yaml:3") && Catch::Contains("malformed YAML"));
 
   std::ofstream(dir / "typo.yaml") << "inputs: { x: [4, 3] }\nnodes:\n  a: { type: scal, in: x }\noutputs: [a]\n";
-  CHECK(run_drape("graph check " + (dir / "typo.yaml").string(), out) == 2);
+  CHECK(run_drape("graph check --no-assets " + (dir / "typo.yaml").string(), out) == 2);
   CHECK_THAT(out, Catch::Contains("typo.yaml:3") && Catch::Contains("unknown plugin type 'scal'") &&
                       Catch::Contains("did you mean 'scale'"));
 
-  CHECK(run_drape("graph check " + (dir / "missing.yaml").string(), out) == 2);
+  CHECK(run_drape("graph check --no-assets " + (dir / "missing.yaml").string(), out) == 2);
   CHECK_THAT(out, Catch::Contains("missing.yaml"));
 }
 
@@ -54,4 +54,17 @@ TEST_CASE("usage errors exit 2, help exits 0", "[cli]") {
   CHECK_THAT(out, Catch::Contains("usage: drape graph check"));
   CHECK(run_drape("--help", out) == 0);
   CHECK_THAT(out, Catch::Contains("plugins") && Catch::Contains("graph"));
+}
+
+TEST_CASE("drape graph check takes sizes and the garment from the template's assets", "[cli]") {
+  test::TempDir cache;
+  std::string out;
+  const auto graph = (test::source_dir() / "graphs/examples/mlp_baseline.yaml").string();
+  const std::string cmd = "env DRAPE_CACHE_DIR=" + cache.path().string() + " " + test::drape_program().string() +
+                          " graph check " + graph + " --resolution coarse --k 16";
+  REQUIRE(test::run(cmd, out) == 0);
+  CHECK_THAT(out, Catch::Contains("input  body [6490, 3]") && Catch::Contains("out out [") && Catch::Contains("loss   edge"));
+  // Without a template the symbolic sizes are unknown: a configuration error.
+  CHECK(run_drape("graph check " + graph + " --no-assets", out) == 2);
+  CHECK_THAT(out, Catch::Contains("unknown size 'body_vertices'"));
 }

@@ -2,6 +2,7 @@
 // mapped by dense layers to `rows` x 3 coordinates. It is the seed's MLP decoder
 // ablation (Table 6.2) and TailorNet's low-frequency MLP. Every output vertex
 // depends on every input entry, so the parameter count grows with R*C*width.
+#include <drape/assets.hpp>
 #include <drape/nn/dense_stack.hpp>
 #include <drape/plugin.hpp>
 
@@ -17,7 +18,10 @@ class MlpDecoder final : public Node {
   ShapeMap setup(const ShapeMap& in, const NodeContext& context) override {
     const Shape x = in.at("x");
     if (x.rows < 1 || x.cols < 1) throw ConfigError("input 'x' is empty: " + x.str());
-    out_rows_ = rows_ > 0 ? rows_ : x.rows;
+    // 0: the garment template's vertex count when assets are bound (decoding a
+    // global feature into the garment), else the input's row count.
+    const bool garment_bound = context.assets && context.assets->garment;
+    out_rows_ = rows_ > 0 ? rows_ : garment_bound ? context.assets->garment->mesh.num_vertices() : x.rows;
     std::vector<int> sizes{x.rows * x.cols};
     for (long w : widths_) sizes.push_back(static_cast<int>(w));
     sizes.push_back(3 * out_rows_);
@@ -65,7 +69,7 @@ PluginList plugins() {
   d.inputs = {{"x", "features [R, C], flattened per sample (e.g. an encoder's global [1, C])"}};
   d.outputs = {{"out", "vertices [rows, 3]"}};
   d.params = {{"widths", ParamType::IntList, "[256, 256]", "hidden layer widths (may be empty: [])", 1, 65536},
-              {"rows", ParamType::Int, "0", "output vertices; 0 takes the input's row count", 0, 10000000},
+              {"rows", ParamType::Int, "0", "output vertices; 0: the garment's vertex count (assets bound) or the input's row count", 0, 10000000},
               nn::activation_param("relu"),
               nn::negative_slope_param()};
   d.create_node = [](const Params& p) {
