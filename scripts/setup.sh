@@ -44,15 +44,22 @@ build() {
   cmake --build "$BUILD_DIR" -j "$JOBS"
 }
 
-# The main job on built-in defaults. When `drape predict` exists this becomes:
-#   "$DRAPE" predict --bmi 35 --out garment.obj
+# The main job on built-in defaults: what is there so far, end to end on the
+# default body and T-shirt. When `drape predict` exists this ends with:
+#   "$DRAPE" predict --bmi 35 --out out/garment.obj
 main_job() {
   local DRAPE="$BUILD_DIR/bin/drape"
   [[ -x "$DRAPE" ]] || fail "$DRAPE was not built"
+  mkdir -p out
   step "Plugins"
   "$DRAPE" plugins --brief
-  step "Checking the example graph"
-  "$DRAPE" graph check graphs/examples/residual.yaml --dim garment_vertices=100
+  step "A body of BMI 35 from the built-in parametric model"
+  "$DRAPE" body --bmi 35 --height 1.75 --out out/body_bmi35.obj
+  step "Assets of the default T-shirt (built once, then cached)"
+  "$DRAPE" assets
+  step "Checking the example graphs against the template"
+  "$DRAPE" graph check graphs/examples/mlp_baseline.yaml
+  "$DRAPE" graph check graphs/examples/residual.yaml
 }
 
 install_dependencies
