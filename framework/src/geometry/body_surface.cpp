@@ -1,0 +1,162 @@
+#include <drape/geometry/closest_point.hpp>
+
+#include "triangle_bvh.hpp"
+
+#include <drape/errors.hpp>
+
+#include <Eigen/Geometry>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <string>
+
+namespace drape::geometry {
+namespace {
+
+void check_faces(const Eigen::MatrixX3i& faces, int num_vertices) {
+  if (faces.rows() == 0) throw Error("body surface: the mesh has no faces");
+  for (int f = 0; f < faces.rows(); ++f)
+    for (int k = 0; k < 3; ++k)
+      if (faces(f, k) < 0 || faces(f, k) >= num_vertices)
+        throw Error("body surface: face " + std::to_string(f) + " uses vertex " + std::to_string(faces(f, k)) +
+                    ", outside [0, " + std::to_string(num_vertices) + ")");
+}
+
+// The face across each edge (ab, bc, ca) of each face; -1 on a boundary and on
+// edges shared by more than two faces (their pseudo-normal is then the face's own).
+Eigen::MatrixX3i edge_mates(const Eigen::MatrixX3i& faces) {
+  const int nf = static_cast<int>(faces.rows());
+  std::vector<std::array<int, 4>> edges;  // smaller vertex, larger vertex, face, edge slot
+  edges.reserve(3 * static_cast<std::size_t>(nf));
+  for (int f = 0; f < nf; ++f)
+    for (int k = 0; k < 3; ++k) {
+      const int a = faces(f, k), b = faces(f, (k + 1) % 3);
+      edges.push_back({std::min(a, b), std::max(a, b), f, k});
+    }
+  std::sort(edges.begin(), edges.end());
+  Eigen::MatrixX3i mate = Eigen::MatrixX3i::Constant(nf, 3, -1);
+  for (std::size_t i = 0; i < edges.size();) {
+    std::size_t j = i;
+    while (j < edges.size() && edges[j][0] == edges[i][0] && edges[j][1] == edges[i][1]) ++j;
+    if (j - i == 2) {
+      mate(edges[i][2], edges[i][3]) = edges[i + 1][2];
+      mate(edges[i + 1][2], edges[i + 1][3]) = edges[i][2];
+    }
+    i = j;
+  }
+  return mate;
+}
+
+}  // namespace
+
+BodySurface::BodySurface(const Eigen::MatrixX3d& vertices, const Eigen::MatrixX3i& faces)
+    : vertices_(vertices), faces_(faces) {
+  check_faces(faces_, static_cast<int>(vertices_.rows()));
+  if (!vertices_.allFinite()) throw Error("body surface: the vertices are not all finite");
+  edge_mate_ = edge_mates(faces_);
+  compute_normals();
+  bvh_ = std::make_unique<TriangleBvh>(vertices_, faces_);
+}
+
+BodySurface::BodySurface(const Mesh& mesh) : BodySurface(mesh.vertices, mesh.faces) {}
+BodySurface::~BodySurface() = default;
+BodySurface::BodySurface(BodySurface&&) noexcept = default;
+BodySurface& BodySurface::operator=(BodySurface&&) noexcept = default;
+
+void BodySurface::compute_normals() {
+  const int nf = static_cast<int>(faces_.rows());
+  face_normals_.resize(nf, 3);
+  vertex_normals_ = Eigen::MatrixX3d::Zero(vertices_.rows(), 3);
+  for (int f = 0; f < nf; ++f) {
+    Eigen::Vector3d p[3];
+    for (int k = 0; k < 3; ++k) p[k] = vertices_.row(faces_(f, k));
+    const Eigen::Vector3d n = (p[1] - p[0]).cross(p[2] - p[0]);
+    const double length = n.norm();
+    // A degenerate face has no direction: it adds nothing to its neighbours' pseudo-normals.
+    face_normals_.row(f) = length > 0 ? Eigen::Vector3d(n / length) : Eigen::Vector3d::Zero();
+    for (int k = 0; k < 3; ++k) {
+      const Eigen::Vector3d e1 = p[(k + 1) % 3] - p[k], e2 = p[(k + 2) % 3] - p[k];
+      const double angle = std::atan2(e1.cross(e2).norm(), e1.dot(e2));
+      vertex_normals_.row(faces_(f, k)) += angle * face_normals_.row(f);
+    }
+  }
+  vertex_normals_.rowwise().normalize();
+  edge_normals_.resize(3 * static_cast<Eigen::Index>(nf), 3);
+  for (int f = 0; f < nf; ++f)
+    for (int k = 0; k < 3; ++k) {
+      const int g = edge_mate_(f, k);
+      Eigen::Vector3d n = face_normals_.row(f);
+      if (g >= 0) n += face_normals_.row(g).transpose();
+      edge_normals_.row(3 * f + k) = n.normalized();
+    }
+  const double diagonal = (vertices_.colwise().maxCoeff() - vertices_.colwise().minCoeff()).norm();
+  on_surface_tolerance_ = 1e-10 * std::max(diagonal, 1e-300);
+}
+
+void BodySurface::update(const Eigen::MatrixX3d& vertices) {
+  if (vertices.rows() != vertices_.rows())
+    throw Error("body surface update: " + std::to_string(vertices.rows()) + " vertices given, the body has " +
+                std::to_string(vertices_.rows()));
+  if (!vertices.allFinite()) throw Error("body surface update: the vertices are not all finite");
+  vertices_ = vertices;
+  compute_normals();
+  bvh_->refit(vertices_);
+}
+
+void BodySurface::rebuild() { bvh_ = std::make_unique<TriangleBvh>(vertices_, faces_); }
+
+SurfacePoint BodySurface::finish(const Eigen::Vector3d& p, int face, const TrianglePoint& hit) const {
+  using F = TriangleFeature;
+  Eigen::Vector3d pseudo;
+  switch (hit.feature) {
+    case F::vertex_a: pseudo = vertex_normals_.row(faces_(face, 0)); break;
+    case F::vertex_b: pseudo = vertex_normals_.row(faces_(face, 1)); break;
+    case F::vertex_c: pseudo = vertex_normals_.row(faces_(face, 2)); break;
+    case F::edge_ab: pseudo = edge_normals_.row(3 * face + 0); break;
+    case F::edge_bc: pseudo = edge_normals_.row(3 * face + 1); break;
+    case F::edge_ca: pseudo = edge_normals_.row(3 * face + 2); break;
+    default: pseudo = face_normals_.row(face); break;
+  }
+  SurfacePoint r;
+  r.face = face;
+  r.barycentric = hit.barycentric;
+  r.point = hit.point;
+  r.feature = hit.feature;
+  const Eigen::Vector3d offset = p - hit.point;
+  const double distance = offset.norm();
+  r.signed_distance = offset.dot(pseudo) < 0 ? -distance : distance;
+  r.normal = distance > on_surface_tolerance_ ? Eigen::Vector3d(offset / r.signed_distance) : pseudo;
+  return r;
+}
+
+SurfacePoint BodySurface::locate(const Eigen::Vector3d& p, double max_distance) const {
+  TrianglePoint hit;
+  const double bound = std::isinf(max_distance) ? max_distance : max_distance * max_distance;
+  const int face = bvh_->nearest(p, bound, hit);
+  if (face < 0) return {};
+  return finish(p, face, hit);
+}
+
+std::vector<SurfacePoint> BodySurface::locate_all(const Eigen::MatrixX3d& points, double max_distance) const {
+  std::vector<SurfacePoint> out(points.rows());
+  const Eigen::Index n = points.rows();
+#pragma omp parallel for schedule(static, 64)
+  for (Eigen::Index i = 0; i < n; ++i) out[i] = locate(points.row(i).transpose(), max_distance);
+  return out;
+}
+
+Eigen::VectorXd BodySurface::signed_distances(const Eigen::MatrixX3d& points) const {
+  Eigen::VectorXd d(points.rows());
+  const Eigen::Index n = points.rows();
+#pragma omp parallel for schedule(static, 64)
+  for (Eigen::Index i = 0; i < n; ++i) d[i] = locate(points.row(i).transpose()).signed_distance;
+  return d;
+}
+
+BodyQuery::Hit BodySurface::closest(const Eigen::Vector3d& p) const {
+  const SurfacePoint s = locate(p);
+  return {s.point, s.normal, s.signed_distance};
+}
+
+}  // namespace drape::geometry

@@ -1,0 +1,50 @@
+#pragma once
+// A bounding-volume hierarchy over the triangles of a mesh for closest-point
+// queries (internal to the geometry layer; see drape/geometry/closest_point.hpp).
+//
+// Median split on the longest centroid axis, four triangles per leaf, nodes in
+// depth-first order (left child next to its parent) so that refitting is one
+// backward sweep. For nearest-point queries a median split is as good as SAH
+// (SAH optimises ray hits, not distance bounds) and keeps the tree balanced,
+// so the traversal stack has a fixed bound.
+#include <drape/geometry/closest_point.hpp>
+
+#include <Eigen/Core>
+
+#include <vector>
+
+namespace drape::geometry {
+
+class TriangleBvh {
+ public:
+  TriangleBvh(const Eigen::MatrixX3d& vertices, const Eigen::MatrixX3i& faces);
+
+  // Same faces, new positions: boxes grow or shrink, the tree stays.
+  void refit(const Eigen::MatrixX3d& vertices);
+
+  // The closest triangle to p strictly within sqrt(max_squared_distance);
+  // returns -1 (and leaves `hit` alone) when there is none.
+  int nearest(const Eigen::Vector3d& p, double max_squared_distance, TrianglePoint& hit) const;
+
+  int num_nodes() const { return static_cast<int>(nodes_.size()); }
+
+ private:
+  struct Node {
+    Eigen::Vector3d lo, hi;
+    int first = 0;  // leaf: first triangle in leaf order; inner: right child (left is this + 1)
+    int count = 0;  // triangles in the leaf; 0 for an inner node
+  };
+  static constexpr int kLeafSize = 4;
+  static constexpr int kMaxDepth = 64;
+
+  int build(std::vector<int>& order, const std::vector<Eigen::Vector3d>& centroids, int begin, int end, int depth);
+  void gather_corners(const Eigen::MatrixX3d& vertices);
+  double box_distance2(const Node& n, const Eigen::Vector3d& p) const;
+
+  Eigen::MatrixX3i faces_;
+  std::vector<Node> nodes_;
+  std::vector<int> face_of_;                // face id of each triangle in leaf order
+  std::vector<Eigen::Vector3d> corners_;    // 3 per triangle in leaf order (contiguous for the cache)
+};
+
+}  // namespace drape::geometry
