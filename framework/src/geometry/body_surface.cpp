@@ -9,6 +9,8 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdint>
+#include <utility>
 #include <string>
 
 namespace drape::geometry {
@@ -27,21 +29,23 @@ void check_faces(const Eigen::MatrixX3i& faces, int num_vertices) {
 // edges shared by more than two faces (their pseudo-normal is then the face's own).
 Eigen::MatrixX3i edge_mates(const Eigen::MatrixX3i& faces) {
   const int nf = static_cast<int>(faces.rows());
-  std::vector<std::array<int, 4>> edges;  // smaller vertex, larger vertex, face, edge slot
+  // (undirected edge key, 3 * face + slot), sorted so that an edge's faces are adjacent.
+  std::vector<std::pair<std::uint64_t, int>> edges;
   edges.reserve(3 * static_cast<std::size_t>(nf));
   for (int f = 0; f < nf; ++f)
     for (int k = 0; k < 3; ++k) {
-      const int a = faces(f, k), b = faces(f, (k + 1) % 3);
-      edges.push_back({std::min(a, b), std::max(a, b), f, k});
+      const auto [lo, hi] = std::minmax(faces(f, k), faces(f, (k + 1) % 3));
+      edges.emplace_back(static_cast<std::uint64_t>(lo) << 32 | static_cast<std::uint32_t>(hi), 3 * f + k);
     }
   std::sort(edges.begin(), edges.end());
   Eigen::MatrixX3i mate = Eigen::MatrixX3i::Constant(nf, 3, -1);
   for (std::size_t i = 0; i < edges.size();) {
     std::size_t j = i;
-    while (j < edges.size() && edges[j][0] == edges[i][0] && edges[j][1] == edges[i][1]) ++j;
+    while (j < edges.size() && edges[j].first == edges[i].first) ++j;
     if (j - i == 2) {
-      mate(edges[i][2], edges[i][3]) = edges[i + 1][2];
-      mate(edges[i + 1][2], edges[i + 1][3]) = edges[i][2];
+      const int a = edges[i].second, b = edges[i + 1].second;
+      mate(a / 3, a % 3) = b / 3;
+      mate(b / 3, b % 3) = a / 3;
     }
     i = j;
   }
