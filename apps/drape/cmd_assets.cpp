@@ -3,6 +3,8 @@
 #include "command.hpp"
 
 #include <drape/assets.hpp>
+#include <drape/garment_dressing.hpp>
+#include <drape/mesh_io.hpp>
 #include <drape/geometry/index_locality.hpp>
 #include <drape/registry.hpp>
 
@@ -23,7 +25,9 @@ int run(const std::vector<std::string>& args) {
       "k", po::value<int>()->default_value(1000), "eigenvectors of the spectral basis")(
       "levels", po::value<int>()->default_value(4), "hierarchy levels including the garment")(
       "cache-dir", po::value<std::string>(), "cache folder (default $DRAPE_CACHE_DIR or ~/.cache/drape)")(
-      "no-cache", "compute everything, read and write no cache");
+      "no-cache", "compute everything, read and write no cache")(
+      "write-garment", po::value<std::string>(), "write the template garment (dressed on the mean body) to this mesh file")(
+      "dress-on", po::value<std::string>(), "with --write-garment: dress it on this body mesh instead (same model topology)");
   po::variables_map vm;
   if (!parse("drape assets [--garment tshirt] [--size regular] [--resolution default] [--print] [--k 1000]", args, opts,
              {}, vm))
@@ -46,6 +50,18 @@ int run(const std::vector<std::string>& args) {
   const auto a = build_assets(reg, spec, cache, &t);
 
   const Mesh& g = a->garment->mesh;
+  if (vm.count("dress-on") && !vm.count("write-garment")) throw UsageError("--dress-on needs --write-garment");
+  if (vm.count("write-garment")) {
+    Garment out = *a->garment;
+    if (vm.count("dress-on")) {
+      const Mesh body = read_mesh(vm["dress-on"].as<std::string>());
+      require_vertex_count(body, a->body.num_vertices(), vm["dress-on"].as<std::string>(), "the " + spec.body_model + " body's topology");
+      const DressReport r = dress(out, body);
+      std::cout << "dressed on " << vm["dress-on"].as<std::string>() << ": " << r.inside_before << " vertices were inside the body\n";
+    }
+    write_mesh(vm["write-garment"].as<std::string>(), out.mesh);
+    std::cout << "wrote " << vm["write-garment"].as<std::string>() << "\n";
+  }
   std::cout << std::fixed << std::setprecision(3);
   std::cout << "assets " << a->hash << (t.from_cache ? " (from cache " : " (built") << (t.from_cache ? t.cache_file.string() + ")" : ")")
             << "\n";
