@@ -14,6 +14,7 @@
 
 using namespace drape;
 using drape::test::TempDir;
+using drape::test::message_of;
 namespace fs = std::filesystem;
 
 namespace {
@@ -81,15 +82,6 @@ std::vector<float> values(Graph& g) {
   std::vector<float> out;
   for (const auto& [name, w] : g.weights()) out.insert(out.end(), w->value.data(), w->value.data() + w->value.size());
   return out;
-}
-
-std::string message_of(const std::function<void()>& fn) {
-  try {
-    fn();
-  } catch (const std::exception& e) {
-    return e.what();
-  }
-  return "(no exception)";
 }
 
 }  // namespace

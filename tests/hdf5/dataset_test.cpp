@@ -15,6 +15,7 @@
 
 using namespace drape;
 using drape::test::TempDir;
+using drape::test::message_of;
 namespace fs = std::filesystem;
 
 namespace {
@@ -66,15 +67,6 @@ void check_complete(const fs::path& path, std::size_t n) {
   REQUIRE(reader.size() == n);
   CHECK(reader.indices().size() == n);
   for (std::size_t i = 0; i < n; ++i) check_sample(reader, i);
-}
-
-std::string message_of(const std::function<void()>& fn) {
-  try {
-    fn();
-  } catch (const std::exception& e) {
-    return e.what();
-  }
-  return "(no exception)";
 }
 
 }  // namespace

@@ -12,19 +12,7 @@
 
 using namespace drape;
 using drape::test::TempDir;
-
-namespace {
-
-std::string message_of(const std::function<void()>& fn) {
-  try {
-    fn();
-  } catch (const std::exception& e) {
-    return e.what();
-  }
-  return "(no exception)";
-}
-
-}  // namespace
+using drape::test::message_of;
 
 TEST_CASE("h5: arrays of every element type and rank round-trip exactly", "[hdf5]") {
   TempDir dir;

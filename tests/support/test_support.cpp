@@ -35,6 +35,15 @@ fs::path shared_assets() {
 fs::path source_dir() { return DRAPE_SOURCE_DIR; }
 fs::path drape_program() { return fs::path(DRAPE_BINARY_DIR) / "bin" / "drape"; }
 
+std::string message_of(const std::function<void()>& fn) {
+  try {
+    fn();
+  } catch (const std::exception& e) {
+    return e.what();
+  }
+  return "(no exception)";
+}
+
 int run(const std::string& command, std::string& output) {
   output.clear();
   FILE* pipe = popen((command + " 2>&1").c_str(), "r");

@@ -4,6 +4,7 @@
 #include <drape/registry.hpp>
 
 #include <filesystem>
+#include <functional>
 #include <string>
 
 namespace drape::test {
@@ -27,6 +28,9 @@ class TempDir {
 std::filesystem::path shared_assets();
 std::filesystem::path source_dir();
 std::filesystem::path drape_program();
+
+// The message of the exception fn throws, or "(no exception)".
+std::string message_of(const std::function<void()>& fn);
 
 // Runs a shell command, returns its exit code; stdout+stderr go to `output`.
 int run(const std::string& command, std::string& output);
