@@ -63,6 +63,9 @@ class Energy {
   // With project_psd, each element block is projected to the nearest PSD matrix
   // (what Newton needs); without, it is the exact Hessian (what tests compare).
   virtual void add_hessian(const Eigen::MatrixX3d& x, Triplets& h, bool project_psd = true) const = 0;
+  // True when bind() needs EnergyContext::body. The simulator builds the body's
+  // closest-point structure only when some active energy asks for it.
+  virtual bool needs_body() const { return false; }
 };
 
 }  // namespace drape

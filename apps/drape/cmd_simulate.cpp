@@ -1,0 +1,99 @@
+// `drape simulate scene.yaml --out garment.obj`: drape the scene's garment on
+// its body (or on --body FILE), the body morphing from the mean shape.
+#include "command.hpp"
+
+#include <drape/mesh_io.hpp>
+#include <drape/registry.hpp>
+#include <drape/simulation.hpp>
+
+#include <cstdio>
+#include <iostream>
+
+namespace drape::cli {
+namespace {
+
+// Overrides of the scene's target shape from the command line.
+void override_shape(Scene& scene, const po::variables_map& vm) {
+  for (const char* key : {"bmi", "height", "sex"})
+    if (vm.count(key)) scene.shape[key] = ParamValue{YAML::Node(vm[key].as<double>()), {"command line", 0}};
+}
+
+int run(const std::vector<std::string>& args) {
+  po::options_description opts("drape simulate");
+  opts.add_options()("scene", po::value<std::string>(), "scene file (graphs/scenes/*.yaml)")(
+      "out", po::value<std::string>(), "draped garment mesh to write (.obj, .ply, .gltf, .glb)")(
+      "body", po::value<std::string>(), "drape on this body mesh (the scene body model's topology) instead")(
+      "body-out", po::value<std::string>(), "also write the target body mesh")(
+      "bmi", po::value<double>(), "override the scene's target BMI")("height", po::value<double>(), "override the height, m")(
+      "sex", po::value<double>(), "override the sex (0 female ... 1 male)")(
+      "verbose,v", po::bool_switch(), "print every solver step");
+  po::positional_options_description pos;
+  pos.add("scene", 1);
+  po::variables_map vm;
+  const std::string usage = "drape simulate SCENE.yaml [--out garment.obj] [--body body.obj | --bmi 35] [--verbose]";
+  if (!parse(usage, args, opts, pos, vm)) return 0;
+  if (!vm.count("scene")) throw UsageError("a scene file is required, e.g. graphs/scenes/tshirt.yaml");
+  if (vm.count("body") && (vm.count("bmi") || vm.count("height") || vm.count("sex")))
+    throw UsageError("--body gives the body itself: drop --bmi/--height/--sex");
+
+  Registry& registry = Registry::load_default(plugin_path(vm));
+  Scene scene = load_scene(vm["scene"].as<std::string>());
+  override_shape(scene, vm);
+  const Simulation sim(registry, scene);
+
+  Eigen::MatrixX3d target;
+  if (vm.count("body")) {
+    const std::string file = vm["body"].as<std::string>();
+    const Mesh body = read_mesh(file);
+    require_vertex_count(body, static_cast<int>(sim.mean_body().rows()), file,
+                         "the scene's body model '" + sim.scene().body_model + "' has that many");
+    target = body.vertices;
+  } else {
+    target = sim.body_vertices(sim.target_shape());
+  }
+
+  const bool verbose = vm["verbose"].as<bool>();
+  SimulationOptions options;
+  options.on_step = [&](const SimulationStep& s) {
+    if (!verbose) return;
+    std::printf("step %3d/%d %-7s newton %2d  residual %.2e  Phi %.6g -> %.6g%s\n", s.step, s.total_steps,
+                s.morphing ? "morph" : "settle", s.report.iterations, s.report.residual, s.report.phi_start,
+                s.report.phi_end, s.static_residual >= 0 ? ("  |grad E|/|W| " + std::to_string(s.static_residual)).c_str() : "");
+  };
+  std::printf("simulating %s: garment %d vertices, body %d vertices, effects:", sim.scene().file.c_str(),
+              sim.garment().mesh.num_vertices(), static_cast<int>(target.rows()));
+  for (const auto& e : sim.scene().effects) std::printf(" %s", e.name.c_str());
+  std::printf("\n");
+  const SimulationResult r = sim.run(target, options);
+
+  std::printf("%s after %d steps, %d Newton iterations (%d line-search stops), %s Cholesky\n",
+              r.converged ? "settled" : "NOT settled", r.steps, r.iterations, r.line_search_failures,
+              r.linear_solver.c_str());
+  std::printf("  %-12s %14s\n", "energy", "J");
+  for (const auto& t : r.energies) std::printf("  %-12s %14.6g\n", t.name.c_str(), t.value);
+  std::printf("  %-12s %14.6g\n", "total", r.total_energy);
+  std::printf("residual |grad E|/|weight| = %.2e, penetration p = %.3f%% of garment vertices, time %.2f s\n", r.residual,
+              100.0 * r.penetration, r.seconds);
+  std::printf("time split: gradient %.2f s, hessian %.2f s, assembly %.2f s, factorisation %.2f s (%d), line search %.2f s\n",
+              r.timings.gradient, r.timings.hessian, r.timings.assembly, r.timings.factorization, r.timings.factorizations,
+              r.timings.line_search);
+  if (vm.count("out")) {
+    Mesh out = sim.garment().mesh;
+    out.vertices = r.garment;
+    write_mesh(vm["out"].as<std::string>(), out);
+    std::printf("wrote %s\n", vm["out"].as<std::string>().c_str());
+  }
+  if (vm.count("body-out")) {
+    Mesh body;
+    body.vertices = r.body;
+    body.faces = sim.body_model().faces();
+    write_mesh(vm["body-out"].as<std::string>(), body);
+    std::printf("wrote %s\n", vm["body-out"].as<std::string>().c_str());
+  }
+  return r.converged ? 0 : 1;
+}
+
+const RegisterCommand registered{{"simulate", "drape a garment on a body by cloth simulation (a scene file)", run}};
+
+}  // namespace
+}  // namespace drape::cli

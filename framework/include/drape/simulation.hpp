@@ -1,0 +1,91 @@
+#pragma once
+// A scene, made runnable: the body model, the garment dressed on the mean body
+// with its regions' materials, and a run that morphs the body from the mean
+// shape to a target while the garment follows (backward Euler, solver.hpp),
+// then lets it settle -- the seed's ground-truth protocol (ArcSim: 2 s of
+// morphing, 2 s of settling).
+//
+// Only what the scene names is built: an energy per effect, the body's
+// closest-point hierarchy only when an effect needs the body, the per-face
+// material map only when the garment's faces differ in material.
+#include <drape/body.hpp>
+#include <drape/scene.hpp>
+#include <drape/solver.hpp>
+
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace drape {
+
+class Registry;
+
+struct SimulationStep {
+  int step = 0, total_steps = 0;  // total = morph + the settling budget
+  bool morphing = false;
+  StepReport report;
+  double static_residual = 0;  // |grad E| / |weight| after the step
+};
+
+struct SimulationResult {
+  Eigen::MatrixX3d garment;  // final garment vertices
+  Eigen::MatrixX3d body;     // the target body's vertices
+  std::vector<EnergyTerm> energies;  // each effect's energy at the end (J)
+  double total_energy = 0;
+  double initial_energy = 0;   // on the target body, before settling (after morphing)
+  double penetration = -1;     // fraction of garment vertices inside the body (-1: not measured)
+  double residual = 0;         // |grad E| / |weight| at the end
+  bool converged = false;      // residual <= settle_tolerance
+  int steps = 0, iterations = 0, line_search_failures = 0;
+  double seconds = 0;
+  std::string linear_solver;
+  ClothSolver::Timings timings;
+};
+
+struct SimulationOptions {
+  bool measure_penetration = true;  // p at the end (a measurement: one closest-point pass)
+  std::function<void(const SimulationStep&)> on_step;
+  // Overrides the start state (default: the garment dressed on the mean body).
+  const Eigen::MatrixX3d* start_garment = nullptr;
+  const Eigen::MatrixX3d* start_body = nullptr;  // default: the mean body
+};
+
+class Simulation {
+ public:
+  // Validates the scene against the registry and builds what it names.
+  Simulation(const Registry& registry, Scene scene);
+  ~Simulation();
+
+  const Scene& scene() const { return scene_; }
+  const BodyModel& body_model() const { return *body_model_; }
+  const Garment& garment() const { return *garment_; }
+  const Eigen::MatrixX3d& mean_body() const { return mean_body_; }
+  // Shape parameters and vertices of the scene's target body, or of another request.
+  Eigen::VectorXd target_shape() const;
+  Eigen::VectorXd shape_for(const BodyRequest& request) const;
+  Eigen::MatrixX3d body_vertices(const Eigen::VectorXd& shape) const;
+
+  // Drapes the garment on `target_body` (the body model's topology). Thread-safe:
+  // every run builds its own energies and body structure.
+  SimulationResult run(const Eigen::MatrixX3d& target_body, const SimulationOptions& options = {}) const;
+
+  // The energies of the scene's effects, bound to the garment (and to `body`
+  // when an effect needs one; ConfigError when it does and body is null).
+  std::vector<NamedEnergy> make_energies(const BodyQuery* body) const;
+  bool needs_body() const { return needs_body_; }
+  SolverSettings solver_settings() const;
+
+ private:
+  const Registry& registry_;
+  Scene scene_;
+  std::unique_ptr<BodyModel> body_model_;
+  std::shared_ptr<Garment> garment_;
+  Eigen::MatrixX3d mean_body_;
+  std::vector<Params> effect_params_;
+  bool needs_body_ = false;
+  int morph_steps_ = 0, settle_steps_ = 0;
+  Eigen::Vector3d gravity_direction_{0, -1, 0};
+};
+
+}  // namespace drape

@@ -1,0 +1,104 @@
+#pragma once
+// The cloth solver: implicit (backward) Euler written as an optimisation.
+//
+// One time step from (x_n, v_n) minimises the incremental potential
+//     Phi(x) = 1/(2 h^2) (x - x_hat)^T M (x - x_hat) + sum_i E_i(x),  x_hat = x_n + h v_n,
+// whose minimiser is exactly the backward-Euler update (the inertia term is a
+// mass-weighted proximal term). Newton's method on Phi with the energies'
+// PSD-projected Hessians, a sparse Cholesky factorisation whose symbolic
+// analysis is done once (the pattern is fixed by the garment's topology),
+// and a backtracking (Armijo) line search, so Phi decreases at every accepted
+// iteration. `damping` scales the velocity carried to the next step: 0 is
+// plain backward Euler, 1 makes every step a quasi-static proximal step.
+//
+// Convergence is measured on forces: a step has converged when
+// |grad Phi| <= tolerance * |W|, with |W| the norm of the garment's weight
+// vector (m_v * 9.81 per vertex) -- a physical force scale that does not
+// depend on which effects a scene names (zero gravity included).
+#include <drape/energy.hpp>
+
+#include <Eigen/Core>
+
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace drape {
+
+struct SolverSettings {
+  double time_step = 0.1;          // s
+  double damping = 0.2;            // fraction of the velocity dropped per step (0..1)
+  int max_newton_iterations = 8;   // per time step
+  double tolerance = 1e-3;         // per step: |grad Phi| / |W|
+  double settle_tolerance = 5e-3;  // drape done: |grad E| / |W| of the static energy
+  double max_displacement = 0.02;  // m, a Newton step moves no vertex farther (keeps thin parts from being crossed)
+  double armijo = 1e-4;            // sufficient-decrease constant of the line search
+  int max_line_search = 30;        // halvings before a step is given up
+  std::string linear_solver = "auto";  // auto | eigen | cholmod
+};
+
+// An energy term with the name its scene gave it.
+struct NamedEnergy {
+  std::string name;
+  std::unique_ptr<Energy> energy;
+};
+
+struct EnergyTerm {
+  std::string name;
+  double value = 0;
+};
+
+struct StepReport {
+  int iterations = 0;             // Newton iterations taken
+  int line_search_failures = 0;   // iterations whose line search found no decrease
+  double residual = 0;            // |grad Phi| / |W| at the end
+  double phi_start = 0, phi_end = 0;
+  bool converged = false;
+};
+
+class ClothSolver {
+ public:
+  // Energies must already be bound (to the same garment). Masses for the
+  // inertia term come from the garment's material-space areas and densities.
+  ClothSolver(const Garment& garment, std::vector<NamedEnergy>& energies, SolverSettings settings);
+  ~ClothSolver();
+  ClothSolver(const ClothSolver&) = delete;
+  ClothSolver& operator=(const ClothSolver&) = delete;
+
+  // One backward-Euler step: updates x and v in place.
+  StepReport step(Eigen::MatrixX3d& x, Eigen::MatrixX3d& v);
+
+  // Static energy sum_i E_i(x), its gradient's relative norm |grad E| / |W|, and the terms.
+  double energy(const Eigen::MatrixX3d& x, std::vector<EnergyTerm>* terms = nullptr) const;
+  double static_residual(const Eigen::MatrixX3d& x) const;
+
+  const Eigen::VectorXd& masses() const { return masses_; }
+  double force_scale() const { return force_scale_; }
+  const SolverSettings& settings() const { return settings_; }
+  // The linear solver in use ("eigen" or "cholmod").
+  std::string linear_solver() const;
+
+  struct Timings {
+    double gradient = 0, hessian = 0, assembly = 0, factorization = 0, line_search = 0;
+    int factorizations = 0;
+  };
+  const Timings& timings() const { return timings_; }
+
+  struct Impl;
+
+ private:
+  double phi(const Eigen::MatrixX3d& x, const Eigen::MatrixX3d& x_hat) const;
+  const Garment& garment_;
+  std::vector<NamedEnergy>& energies_;
+  SolverSettings settings_;
+  Eigen::VectorXd masses_;
+  double force_scale_ = 1;
+  Timings timings_;
+  std::unique_ptr<Impl> impl_;
+};
+
+// Lumped masses: a third of each face's material-space area times its material's density.
+Eigen::VectorXd lumped_masses(const Garment& garment);
+
+}  // namespace drape

@@ -1,0 +1,182 @@
+// Newton on the backward-Euler incremental potential (see solver.hpp).
+#include <drape/errors.hpp>
+#include <drape/solver.hpp>
+
+#include "hessian_pattern.hpp"
+#include "sparse_cholesky.hpp"
+
+#include <chrono>
+#include <cmath>
+
+namespace drape {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
+
+Eigen::Map<const Eigen::VectorXd> flat(const Eigen::MatrixX3d& m) { return {m.data(), m.size()}; }
+
+bool finite(const Eigen::MatrixX3d& m) { return m.allFinite(); }
+
+}  // namespace
+
+struct ClothSolver::Impl {
+  physics::HessianPattern pattern;
+  std::unique_ptr<physics::SparseCholesky> cholesky;
+  Triplets triplets;
+  physics::SparseMatrix hessian;
+};
+
+Eigen::VectorXd lumped_masses(const Garment& garment) {
+  const Mesh& mesh = garment.mesh;
+  if (!mesh.has_uv()) throw ConfigError("the garment has no material-space UVs, so its masses are unknown");
+  Eigen::VectorXd mass = Eigen::VectorXd::Zero(mesh.num_vertices());
+  for (int f = 0; f < mesh.num_faces(); ++f) {
+    const Eigen::Vector2d a = mesh.uv.row(mesh.uv_faces(f, 0)), b = mesh.uv.row(mesh.uv_faces(f, 1)),
+                          c = mesh.uv.row(mesh.uv_faces(f, 2));
+    const Eigen::Vector2d e1 = b - a, e2 = c - a;
+    const double area = 0.5 * std::abs(e1.x() * e2.y() - e1.y() * e2.x());
+    const int m = garment.material_of(f);
+    if (m < 0 || m >= static_cast<int>(garment.materials.size()))
+      throw ConfigError("face " + std::to_string(f) + " names material " + std::to_string(m) + " of " +
+                        std::to_string(garment.materials.size()));
+    for (int k = 0; k < 3; ++k) mass[mesh.faces(f, k)] += area * garment.materials[m].density / 3.0;
+  }
+  return mass;
+}
+
+ClothSolver::ClothSolver(const Garment& garment, std::vector<NamedEnergy>& energies, SolverSettings settings)
+    : garment_(garment), energies_(energies), settings_(std::move(settings)), impl_(std::make_unique<Impl>()) {
+  if (!(settings_.time_step > 0)) throw ConfigError("solver: time_step must be > 0");
+  if (settings_.damping < 0 || settings_.damping > 1) throw ConfigError("solver: damping must be in [0, 1]");
+  if (settings_.max_newton_iterations < 1) throw ConfigError("solver: max_newton_iterations must be >= 1");
+  masses_ = lumped_masses(garment);
+  // A vertex whose faces all have zero material-space area would have no
+  // inertia and make the Newton matrix singular: give it a tiny mass floor.
+  const double floor = 1e-9 * std::max(masses_.maxCoeff(), 1e-12);
+  masses_ = masses_.cwiseMax(floor);
+  force_scale_ = std::max(masses_.norm() * 9.81, 1e-12);
+  impl_->pattern = physics::HessianPattern(garment.mesh);
+  impl_->cholesky = physics::make_sparse_cholesky(settings_.linear_solver);
+}
+
+ClothSolver::~ClothSolver() = default;
+
+std::string ClothSolver::linear_solver() const { return impl_->cholesky->name(); }
+
+double ClothSolver::energy(const Eigen::MatrixX3d& x, std::vector<EnergyTerm>* terms) const {
+  double total = 0;
+  if (terms) terms->clear();
+  for (const NamedEnergy& e : energies_) {
+    const double v = e.energy->value(x);
+    total += v;
+    if (terms) terms->push_back({e.name, v});
+  }
+  return total;
+}
+
+double ClothSolver::static_residual(const Eigen::MatrixX3d& x) const {
+  Eigen::MatrixX3d g = Eigen::MatrixX3d::Zero(x.rows(), 3);
+  for (const NamedEnergy& e : energies_) e.energy->add_gradient(x, g);
+  return g.norm() / force_scale_;
+}
+
+double ClothSolver::phi(const Eigen::MatrixX3d& x, const Eigen::MatrixX3d& x_hat) const {
+  const double inv_h2 = 1.0 / (settings_.time_step * settings_.time_step);
+  const double inertia = 0.5 * inv_h2 * (masses_.asDiagonal() * (x - x_hat)).cwiseProduct(x - x_hat).sum();
+  return inertia + energy(x);
+}
+
+StepReport ClothSolver::step(Eigen::MatrixX3d& x, Eigen::MatrixX3d& v) {
+  const int n = static_cast<int>(x.rows());
+  if (n != masses_.size() || v.rows() != n)
+    throw Error("solver: state has " + std::to_string(n) + " vertices, the garment " + std::to_string(masses_.size()));
+  const double h = settings_.time_step, inv_h2 = 1.0 / (h * h);
+  const Eigen::MatrixX3d x_start = x;
+  const Eigen::MatrixX3d x_hat = x + h * v;
+  StepReport report;
+  report.phi_start = phi(x, x_hat);
+  double phi_x = report.phi_start;
+  Eigen::MatrixX3d g(n, 3);
+
+  auto gradient = [&](const Eigen::MatrixX3d& at) {
+    const auto t = Clock::now();
+    g = inv_h2 * (masses_.asDiagonal() * (at - x_hat));
+    for (NamedEnergy& e : energies_) e.energy->add_gradient(at, g);
+    timings_.gradient += since(t);
+    if (!finite(g)) throw Error("solver: the gradient became non-finite (an energy produced NaN or inf)");
+  };
+
+  for (;;) {
+    gradient(x);
+    report.residual = g.norm() / force_scale_;
+    if (report.residual <= settings_.tolerance) {
+      report.converged = true;
+      break;
+    }
+    if (report.iterations >= settings_.max_newton_iterations) break;
+    ++report.iterations;
+
+    // Newton matrix: M / h^2 + sum of projected Hessians, on the fixed pattern.
+    auto t = Clock::now();
+    Triplets& trip = impl_->triplets;
+    trip.clear();
+    for (NamedEnergy& e : energies_) e.energy->add_hessian(x, trip, true);
+    timings_.hessian += since(t);
+    t = Clock::now();
+    Eigen::VectorXd diagonal(3 * n);
+    for (int i = 0; i < n; ++i) diagonal.segment<3>(3 * i).setConstant(masses_[i] * inv_h2);
+    impl_->pattern.assemble(trip, diagonal, impl_->hessian);
+    timings_.assembly += since(t);
+
+    t = Clock::now();
+    // The inertia term makes the matrix positive definite in exact arithmetic;
+    // a failed factorisation (round-off on a huge stiffness ratio) is retried
+    // with a growing diagonal shift, which keeps the direction a descent one.
+    bool factored = impl_->cholesky->factorize(impl_->hessian);
+    ++timings_.factorizations;
+    for (double shift = 1e-8 * impl_->hessian.diagonal().cwiseAbs().maxCoeff(); !factored && shift < 1e30; shift *= 100) {
+      physics::SparseMatrix shifted = impl_->hessian;
+      for (int k = 0; k < shifted.rows(); ++k) shifted.coeffRef(k, k) += shift;
+      factored = impl_->cholesky->factorize(shifted);
+      ++timings_.factorizations;
+    }
+    if (!factored) throw Error("solver: the Newton matrix could not be factorised even with a diagonal shift");
+    const Eigen::VectorXd rhs = -flat(g);
+    Eigen::MatrixX3d d = Eigen::Map<const Eigen::MatrixX3d>(impl_->cholesky->solve(rhs).data(), n, 3);
+    timings_.factorization += since(t);
+    if (!finite(d)) throw Error("solver: the Newton direction is not finite");
+
+    // Cap the largest vertex move: a long step could carry cloth through a thin limb.
+    const double longest = d.rowwise().norm().maxCoeff();
+    if (longest > settings_.max_displacement) d *= settings_.max_displacement / longest;
+
+    t = Clock::now();
+    const double slope = flat(g).dot(flat(d));
+    double alpha = 1;
+    bool accepted = false;
+    if (slope < 0) {
+      for (int k = 0; k < settings_.max_line_search; ++k, alpha *= 0.5) {
+        const Eigen::MatrixX3d trial = x + alpha * d;
+        const double phi_trial = phi(trial, x_hat);
+        if (std::isfinite(phi_trial) && phi_trial <= phi_x + settings_.armijo * alpha * slope) {
+          x = trial;
+          phi_x = phi_trial;
+          accepted = true;
+          break;
+        }
+      }
+    }
+    timings_.line_search += since(t);
+    if (!accepted) {
+      ++report.line_search_failures;
+      break;  // no decrease along the Newton direction: the step is as good as it gets
+    }
+  }
+  report.phi_end = phi_x;
+  v = (x - x_start) / h * (1.0 - settings_.damping);
+  return report;
+}
+
+}  // namespace drape

@@ -1,0 +1,30 @@
+#include "scene_materials.hpp"
+
+#include <algorithm>
+
+namespace drape::scene_detail {
+
+void apply_scene_materials(Garment& garment, const Scene& scene) {
+  std::vector<std::string> regions;
+  for (const Material& m : garment.materials) regions.push_back(m.name);
+  for (const SceneMaterial& sm : scene.materials) {
+    const auto it = std::find(regions.begin(), regions.end(), sm.region);
+    if (it == regions.end()) {
+      std::string list;
+      for (const auto& r : regions) list += (list.empty() ? "" : ", ") + r;
+      throw ConfigError(sm.where, "materials: the garment '" + scene.garment + "' has no region '" + sm.region + "'" +
+                                      did_you_mean(sm.region, regions) + " (its regions: " + list + ")");
+    }
+    // TODO(materials): resolve sm.spec through the preset table.
+  }
+  // One material for every face: no per-face map.
+  if (garment.face_material.size() > 0) {
+    const int first = garment.face_material[0];
+    if ((garment.face_material.array() == first).all()) {
+      garment.materials = {garment.materials[static_cast<std::size_t>(first)]};
+      garment.face_material.resize(0);
+    }
+  }
+}
+
+}  // namespace drape::scene_detail

@@ -1,0 +1,211 @@
+// Reading scene files (see scene.hpp): YAML -> Scene, following `base:` chains.
+#include <drape/registry.hpp>
+#include <drape/scene.hpp>
+
+#include <algorithm>
+#include <fstream>
+#include <sstream>
+
+namespace fs = std::filesystem;
+
+namespace drape {
+namespace {
+
+SourceLocation at(const std::string& file, const YAML::Node& n) { return {file, n ? n.Mark().line + 1 : 0}; }
+
+std::string scalar(const std::string& file, const YAML::Node& n, const std::string& what) {
+  if (!n.IsScalar()) throw ConfigError(at(file, n), what + " must be a single value");
+  return n.Scalar();
+}
+
+void check_keys(const std::string& file, const YAML::Node& map, const std::vector<std::string>& allowed,
+                const std::string& owner) {
+  if (!map.IsMap()) throw ConfigError(at(file, map), owner + " must be a map");
+  for (const auto& kv : map) {
+    const auto key = kv.first.as<std::string>();
+    if (std::find(allowed.begin(), allowed.end(), key) == allowed.end()) {
+      std::string list;
+      for (const auto& a : allowed) list += (list.empty() ? "" : ", ") + a;
+      throw ConfigError(at(file, kv.first),
+                        owner + ": unknown key '" + key + "'" + did_you_mean(key, allowed) + " (allowed: " + list + ")");
+    }
+  }
+}
+
+// Entries of `map` override `into`; a null value removes the entry.
+void merge_values(ParamValues& into, const std::string& file, const YAML::Node& map, const std::string& owner) {
+  if (!map || map.IsNull()) return;
+  if (!map.IsMap()) throw ConfigError(at(file, map), owner + " must be a map of name: value");
+  for (const auto& kv : map) {
+    const auto key = kv.first.as<std::string>();
+    if (kv.second.IsNull())
+      into.erase(key);
+    else
+      into[key] = ParamValue{kv.second, at(file, kv.first)};
+  }
+}
+
+void set_effect(Scene& s, const std::string& name, ParamValues params, const SourceLocation& where) {
+  auto it = std::find_if(s.effects.begin(), s.effects.end(), [&](const SceneEffect& e) { return e.name == name; });
+  if (it == s.effects.end())
+    s.effects.push_back({name, std::move(params), where});
+  else
+    *it = {name, std::move(params), where};
+}
+
+void parse_effects(Scene& s, const std::string& file, const YAML::Node& n) {
+  if (n.IsSequence()) {  // a list replaces the base's effects
+    s.effects.clear();
+    for (const auto& e : n) {
+      if (e.IsScalar()) {
+        set_effect(s, e.Scalar(), {}, at(file, e));
+      } else if (e.IsMap() && e.size() == 1) {
+        const auto kv = *e.begin();
+        ParamValues p;
+        merge_values(p, file, kv.second, "effect '" + kv.first.as<std::string>() + "'");
+        set_effect(s, kv.first.as<std::string>(), std::move(p), at(file, kv.first));
+      } else {
+        throw ConfigError(at(file, e), "an effect is a name or `name: {params}`");
+      }
+    }
+  } else if (n.IsMap()) {  // a map adds, overrides or (with null) removes single effects
+    for (const auto& kv : n) {
+      const auto name = kv.first.as<std::string>();
+      if (kv.second.IsNull()) {  // `name: null` (or `name:`) removes it; `name: {}` adds it with defaults
+        s.effects.erase(std::remove_if(s.effects.begin(), s.effects.end(), [&](const SceneEffect& e) { return e.name == name; }),
+                        s.effects.end());
+        continue;
+      }
+      auto existing = std::find_if(s.effects.begin(), s.effects.end(), [&](const SceneEffect& e) { return e.name == name; });
+      ParamValues p = existing == s.effects.end() ? ParamValues{} : existing->params;
+      merge_values(p, file, kv.second, "effect '" + name + "'");
+      set_effect(s, name, std::move(p), at(file, kv.first));
+    }
+  } else if (!n.IsNull()) {
+    throw ConfigError(at(file, n), "`effects` must be a list of energy names or a map name: {params}");
+  }
+}
+
+void apply(Scene& s, const fs::path& path, const std::string& file, const YAML::Node& root, std::vector<fs::path>& chain) {
+  if (!root || root.IsNull()) return;
+  check_keys(file, root, {"base", "description", "body", "garment", "materials", "effects", "solver"}, "scene");
+  if (root["base"]) {
+    if (path.empty()) throw ConfigError(at(file, root["base"]), "`base:` needs a scene file (relative to it)");
+    const fs::path base = path.parent_path() / scalar(file, root["base"], "`base`");
+    std::error_code ec;
+    if (!fs::exists(base, ec)) throw ConfigError(at(file, root["base"]), "base scene '" + base.string() + "' does not exist");
+    const fs::path canonical = fs::canonical(base);
+    if (std::find(chain.begin(), chain.end(), canonical) != chain.end())
+      throw ConfigError(at(file, root["base"]), "`base:` chain loops back to '" + base.string() + "'");
+    chain.push_back(canonical);
+    YAML::Node base_root;
+    try {
+      base_root = YAML::LoadFile(base.string());
+    } catch (const YAML::Exception& e) {
+      throw ConfigError({base.string(), e.mark.line + 1}, "malformed YAML: " + e.msg);
+    }
+    apply(s, base, base.string(), base_root, chain);
+  }
+  if (root["description"]) s.description = scalar(file, root["description"], "`description`");
+  if (const YAML::Node body = root["body"]) {
+    check_keys(file, body, {"model", "params", "shape"}, "body");
+    if (body["model"]) {
+      const std::string model = scalar(file, body["model"], "body `model`");
+      if (model != s.body_model) s.body_params.clear();  // another model's parameters do not carry over
+      s.body_model = model;
+    }
+    merge_values(s.body_params, file, body["params"], "body `params`");
+    merge_values(s.shape, file, body["shape"], "body `shape`");
+  }
+  if (const YAML::Node garment = root["garment"]) {
+    check_keys(file, garment, {"template", "params"}, "garment");
+    if (garment["template"]) {
+      const std::string t = scalar(file, garment["template"], "garment `template`");
+      if (t != s.garment) s.garment_params.clear();
+      s.garment = t;
+    }
+    merge_values(s.garment_params, file, garment["params"], "garment `params`");
+  }
+  if (const YAML::Node materials = root["materials"]) {
+    if (!materials.IsMap()) throw ConfigError(at(file, materials), "`materials` must be a map region: preset");
+    for (const auto& kv : materials) {
+      const auto region = kv.first.as<std::string>();
+      auto it = std::find_if(s.materials.begin(), s.materials.end(), [&](const SceneMaterial& m) { return m.region == region; });
+      if (kv.second.IsNull()) {
+        if (it != s.materials.end()) s.materials.erase(it);
+        continue;
+      }
+      SceneMaterial m{region, kv.second, file, at(file, kv.first)};
+      if (it == s.materials.end())
+        s.materials.push_back(std::move(m));
+      else
+        *it = std::move(m);
+    }
+  }
+  if (const YAML::Node effects = root["effects"]) parse_effects(s, file, effects);
+  merge_values(s.solver, file, root["solver"], "`solver`");
+}
+
+YAML::Node values_yaml(const ParamValues& values) {
+  YAML::Node n(YAML::NodeType::Map);
+  for (const auto& [k, v] : values) n[k] = v.node;
+  return n;
+}
+
+}  // namespace
+
+bool Scene::has_effect(const std::string& name) const {
+  return std::any_of(effects.begin(), effects.end(), [&](const SceneEffect& e) { return e.name == name; });
+}
+
+std::string Scene::yaml() const {
+  YAML::Emitter out;
+  out << YAML::BeginMap;
+  if (!description.empty()) out << YAML::Key << "description" << YAML::Value << description;
+  out << YAML::Key << "body" << YAML::Value << YAML::BeginMap << YAML::Key << "model" << YAML::Value << body_model
+      << YAML::Key << "params" << YAML::Value << YAML::Flow << values_yaml(body_params) << YAML::Key << "shape"
+      << YAML::Value << YAML::Flow << values_yaml(shape) << YAML::EndMap;
+  out << YAML::Key << "garment" << YAML::Value << YAML::BeginMap << YAML::Key << "template" << YAML::Value << garment
+      << YAML::Key << "params" << YAML::Value << YAML::Flow << values_yaml(garment_params) << YAML::EndMap;
+  out << YAML::Key << "materials" << YAML::Value << YAML::BeginMap;
+  for (const auto& m : materials) out << YAML::Key << m.region << YAML::Value << YAML::Flow << m.spec;
+  out << YAML::EndMap;
+  out << YAML::Key << "effects" << YAML::Value << YAML::BeginMap;
+  for (const auto& e : effects) out << YAML::Key << e.name << YAML::Value << YAML::Flow << values_yaml(e.params);
+  out << YAML::EndMap;
+  out << YAML::Key << "solver" << YAML::Value << YAML::Flow << values_yaml(solver);
+  out << YAML::EndMap;
+  return std::string(out.c_str()) + "\n";
+}
+
+Scene load_scene(const fs::path& file) {
+  std::error_code ec;
+  if (!fs::exists(file, ec)) throw ConfigError("scene file '" + file.string() + "' does not exist");
+  YAML::Node root;
+  try {
+    root = YAML::LoadFile(file.string());
+  } catch (const YAML::Exception& e) {
+    throw ConfigError({file.string(), e.mark.line + 1}, "malformed YAML: " + e.msg);
+  }
+  Scene s;
+  s.file = file.string();
+  std::vector<fs::path> chain{fs::canonical(file)};
+  apply(s, file, file.string(), root, chain);
+  return s;
+}
+
+Scene parse_scene(const std::string& text, const std::string& name_for_errors) {
+  YAML::Node root;
+  try {
+    root = YAML::Load(text);
+  } catch (const YAML::Exception& e) {
+    throw ConfigError({name_for_errors, e.mark.line + 1}, "malformed YAML: " + e.msg);
+  }
+  Scene s;
+  s.file = name_for_errors;
+  std::vector<fs::path> chain;
+  apply(s, {}, name_for_errors, root, chain);
+  return s;
+}
+
+}  // namespace drape

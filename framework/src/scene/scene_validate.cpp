@@ -1,0 +1,78 @@
+// Scene settings' specs and the check of a scene's names against the registry.
+#include <drape/registry.hpp>
+#include <drape/scene.hpp>
+
+namespace drape {
+
+const std::vector<ParamSpec>& scene_solver_specs() {
+  static const std::vector<ParamSpec> specs = {
+      {"time_step", ParamType::Float, "0.1", "backward-Euler time step, s", 1e-5, 10.0},
+      {"damping", ParamType::Float, "0.2", "fraction of the velocity dropped per step (1 = quasi-static)", 0.0, 1.0},
+      {"morph_steps", ParamType::Int, "20", "steps over which the body morphs from the mean shape to the target", 0.0, 1e6},
+      {"settle_steps", ParamType::Int, "60", "at most this many steps on the target body to settle", 0.0, 1e6},
+      {"max_newton_iterations", ParamType::Int, "8", "Newton iterations per step at most", 1.0, 1e4},
+      {"tolerance", ParamType::Float, "1e-3", "a step converges at |grad Phi| <= tolerance * |weight|", 1e-14, 1.0},
+      {"settle_tolerance", ParamType::Float, "5e-3", "the drape is settled at |grad E| <= this * |weight|", 1e-14, 10.0},
+      {"max_displacement", ParamType::Float, "0.02", "m: no vertex moves farther in one Newton iteration", 1e-6, 10.0},
+      {"linear_solver", ParamType::String, "auto", "sparse Cholesky: auto (cholmod when built with it), eigen, cholmod",
+       {}, {}, {"auto", "eigen", "cholmod"}},
+      {"gravity_direction", ParamType::FloatList, "[0, -1, 0]", "direction of gravity (the magnitude is the gravity effect's g)"},
+  };
+  return specs;
+}
+
+const std::vector<ParamSpec>& scene_shape_specs() {
+  static const std::vector<ParamSpec> specs = {
+      {"bmi", ParamType::Float, "24", "body mass index of the target body, kg/m^2", 5.0, 100.0},
+      {"height", ParamType::Float, "1.75", "height of the target body, m", 0.5, 2.5},
+      {"sex", ParamType::Float, "1", "0 female ... 1 male", 0.0, 1.0},
+  };
+  return specs;
+}
+
+namespace {
+
+std::vector<std::string> names_of_kind(const Registry& registry, const std::string& kind) {
+  std::vector<std::string> out;
+  for (const PluginDescriptor* d : registry.all())
+    if (d->kind == kind) out.push_back(d->name);
+  return out;
+}
+
+std::string joined(const std::vector<std::string>& names) {
+  std::string s;
+  for (const auto& n : names) s += (s.empty() ? "" : ", ") + n;
+  return s;
+}
+
+const PluginDescriptor& plugin_of_kind(const Registry& registry, const std::string& name, const std::string& kind,
+                                       const std::string& what, const SourceLocation& where) {
+  const PluginDescriptor* d = registry.find(name);
+  if (!d || d->kind != kind) {
+    const auto known = names_of_kind(registry, kind);
+    throw ConfigError(where, "unknown " + what + " '" + name + "'" + did_you_mean(name, known) + "; known " + what +
+                                 "s: " + (known.empty() ? "none (no " + kind + " plugin was loaded)" : joined(known)));
+  }
+  return *d;
+}
+
+}  // namespace
+
+void validate_scene(const Scene& scene, const Registry& registry) {
+  const SourceLocation file{scene.file, 0};
+  const PluginDescriptor& body = plugin_of_kind(registry, scene.body_model, "body", "body model", file);
+  Params(body.params, scene.body_params, "body '" + scene.body_model + "'");
+  Params(scene_shape_specs(), scene.shape, "body shape");
+  const PluginDescriptor& garment = plugin_of_kind(registry, scene.garment, "garment", "garment template", file);
+  Params(garment.params, scene.garment_params, "garment '" + scene.garment + "'");
+  if (scene.effects.empty()) throw ConfigError(file, "the scene names no effects: list the energies to simulate under `effects:`");
+  for (const SceneEffect& e : scene.effects) {
+    const PluginDescriptor& d = plugin_of_kind(registry, e.name, "energy", "effect", e.where);
+    Params(d.params, e.params, "effect '" + e.name + "'");
+  }
+  const Params solver(scene_solver_specs(), scene.solver, "solver");
+  const auto g = solver.get_float_list("gravity_direction");
+  if (g.size() != 3) throw ConfigError(file, "solver: gravity_direction must have 3 numbers");
+}
+
+}  // namespace drape

@@ -1,0 +1,154 @@
+// Scene -> energies, body and garment; the morph-then-settle run (simulation.hpp).
+#include <drape/garment_dressing.hpp>
+#include <drape/geometry/closest_point.hpp>
+#include <drape/registry.hpp>
+#include <drape/simulation.hpp>
+
+#include "scene_materials.hpp"
+
+#include <chrono>
+
+namespace drape {
+
+namespace {
+using Clock = std::chrono::steady_clock;
+double since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
+}  // namespace
+
+Simulation::Simulation(const Registry& registry, Scene scene) : registry_(registry), scene_(std::move(scene)) {
+  validate_scene(scene_, registry_);
+  const PluginDescriptor& bd = registry_.get(scene_.body_model);
+  body_model_ = registry_.create_body(scene_.body_model, Params(bd.params, scene_.body_params, "body '" + scene_.body_model + "'"));
+  mean_body_ = body_model_->vertices(body_model_->mean_shape());
+
+  const PluginDescriptor& gd = registry_.get(scene_.garment);
+  Garment garment =
+      registry_.create_garment(scene_.garment, Params(gd.params, scene_.garment_params, "garment '" + scene_.garment + "'"))
+          ->build();
+  Mesh mean;
+  mean.vertices = mean_body_;
+  mean.faces = body_model_->faces();
+  dress(garment, mean);
+  scene_detail::apply_scene_materials(garment, scene_);
+  garment_ = std::make_shared<Garment>(std::move(garment));
+
+  for (const SceneEffect& e : scene_.effects) {
+    const PluginDescriptor& d = registry_.get(e.name);
+    effect_params_.emplace_back(d.params, e.params, "effect '" + e.name + "'");
+    needs_body_ = needs_body_ || registry_.create_energy(e.name, effect_params_.back())->needs_body();
+  }
+  const Params solver(scene_solver_specs(), scene_.solver, "solver");
+  morph_steps_ = static_cast<int>(solver.get_int("morph_steps"));
+  settle_steps_ = static_cast<int>(solver.get_int("settle_steps"));
+  const auto g = solver.get_float_list("gravity_direction");
+  gravity_direction_ = Eigen::Vector3d(g[0], g[1], g[2]);
+  if (!(gravity_direction_.norm() > 0)) throw ConfigError({scene_.file, 0}, "solver: gravity_direction must not be zero");
+  gravity_direction_.normalize();
+}
+
+Simulation::~Simulation() = default;
+
+SolverSettings Simulation::solver_settings() const {
+  const Params p(scene_solver_specs(), scene_.solver, "solver");
+  SolverSettings s;
+  s.time_step = p.get_float("time_step");
+  s.damping = p.get_float("damping");
+  s.max_newton_iterations = static_cast<int>(p.get_int("max_newton_iterations"));
+  s.tolerance = p.get_float("tolerance");
+  s.settle_tolerance = p.get_float("settle_tolerance");
+  s.max_displacement = p.get_float("max_displacement");
+  s.linear_solver = p.get_string("linear_solver");
+  return s;
+}
+
+Eigen::VectorXd Simulation::shape_for(const BodyRequest& request) const { return body_model_->solve(request); }
+
+Eigen::VectorXd Simulation::target_shape() const {
+  const Params p(scene_shape_specs(), scene_.shape, "body shape");
+  BodyRequest r;
+  r.bmi = p.get_float("bmi");
+  r.height = p.get_float("height");
+  r.sex = p.get_float("sex");
+  return shape_for(r);
+}
+
+Eigen::MatrixX3d Simulation::body_vertices(const Eigen::VectorXd& shape) const { return body_model_->vertices(shape); }
+
+std::vector<NamedEnergy> Simulation::make_energies(const BodyQuery* body) const {
+  EnergyContext context;
+  context.garment = garment_.get();
+  context.body = body;
+  context.gravity = gravity_direction_ * 9.81;
+  std::vector<NamedEnergy> energies;
+  for (std::size_t i = 0; i < scene_.effects.size(); ++i) {
+    const std::string& name = scene_.effects[i].name;
+    auto e = registry_.create_energy(name, effect_params_[i]);
+    if (e->needs_body() && !body)
+      throw ConfigError(scene_.effects[i].where, "effect '" + name + "' needs a body and none was given");
+    e->bind(context);
+    energies.push_back({name, std::move(e)});
+  }
+  return energies;
+}
+
+SimulationResult Simulation::run(const Eigen::MatrixX3d& target_body, const SimulationOptions& options) const {
+  const auto start = Clock::now();
+  if (target_body.rows() != mean_body_.rows())
+    throw ConfigError("the target body has " + std::to_string(target_body.rows()) + " vertices; the scene's body model '" +
+                      scene_.body_model + "' has " + std::to_string(mean_body_.rows()));
+  if (!target_body.allFinite()) throw ConfigError("the target body has non-finite vertices");
+  const Eigen::MatrixX3d& body_start = options.start_body ? *options.start_body : mean_body_;
+  const Eigen::MatrixX3d& garment_start = options.start_garment ? *options.start_garment : garment_->mesh.vertices;
+  if (body_start.rows() != mean_body_.rows() || garment_start.rows() != garment_->mesh.vertices.rows())
+    throw ConfigError("simulation start state has the wrong vertex count");
+
+  // The body's closest-point structure exists only when an effect needs it.
+  std::unique_ptr<geometry::BodySurface> surface;
+  if (needs_body_) surface = std::make_unique<geometry::BodySurface>(morph_steps_ > 0 ? body_start : target_body, body_model_->faces());
+  std::vector<NamedEnergy> energies = make_energies(surface.get());
+  ClothSolver solver(*garment_, energies, solver_settings());
+
+  SimulationResult result;
+  Eigen::MatrixX3d x = garment_start;
+  Eigen::MatrixX3d v = Eigen::MatrixX3d::Zero(x.rows(), 3);
+  const int total = morph_steps_ + settle_steps_;
+  auto record = [&](int k, bool morphing, const StepReport& r, double residual) {
+    ++result.steps;
+    result.iterations += r.iterations;
+    result.line_search_failures += r.line_search_failures;
+    if (options.on_step) options.on_step({k, total, morphing, r, residual});
+  };
+  for (int k = 1; k <= morph_steps_; ++k) {
+    const double t = static_cast<double>(k) / morph_steps_;
+    if (surface) surface->update(body_start + t * (target_body - body_start));
+    const StepReport r = solver.step(x, v);
+    record(k, true, r, -1);
+  }
+  if (surface && morph_steps_ > 0) {
+    surface->update(target_body);
+    surface->rebuild();  // the hierarchy was built on the start shape
+  }
+  result.initial_energy = solver.energy(x);
+  result.residual = solver.static_residual(x);
+  const double settle_tolerance = solver.settings().settle_tolerance;
+  for (int k = 1; k <= settle_steps_ && result.residual > settle_tolerance; ++k) {
+    const StepReport r = solver.step(x, v);
+    result.residual = solver.static_residual(x);
+    record(morph_steps_ + k, false, r, result.residual);
+  }
+  result.converged = result.residual <= settle_tolerance;
+  result.total_energy = solver.energy(x, &result.energies);
+  result.garment = x;
+  result.body = target_body;
+  result.linear_solver = solver.linear_solver();
+  result.timings = solver.timings();
+  if (options.measure_penetration) {
+    if (!surface) surface = std::make_unique<geometry::BodySurface>(target_body, body_model_->faces());
+    const Eigen::VectorXd d = surface->signed_distances(x);
+    result.penetration = static_cast<double>((d.array() < 0).count()) / static_cast<double>(d.size());
+  }
+  result.seconds = since(start);
+  return result;
+}
+
+}  // namespace drape
