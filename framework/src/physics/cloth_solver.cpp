@@ -15,7 +15,17 @@ namespace {
 using Clock = std::chrono::steady_clock;
 double since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
 
-Eigen::Map<const Eigen::VectorXd> flat(const Eigen::MatrixX3d& m) { return {m.data(), m.size()}; }
+// The Hessian's index is 3 * vertex + axis (energy.hpp); Eigen's MatrixX3d is
+// column-major, so vectors are interleaved explicitly.
+Eigen::VectorXd interleaved(const Eigen::MatrixX3d& m) {
+  Eigen::VectorXd v(m.size());
+  Eigen::Map<Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor>>(v.data(), m.rows(), 3) = m;
+  return v;
+}
+
+Eigen::MatrixX3d per_vertex(const Eigen::VectorXd& v) {
+  return Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor>>(v.data(), v.size() / 3, 3);
+}
 
 bool finite(const Eigen::MatrixX3d& m) { return m.allFinite(); }
 
@@ -143,8 +153,7 @@ StepReport ClothSolver::step(Eigen::MatrixX3d& x, Eigen::MatrixX3d& v) {
       ++timings_.factorizations;
     }
     if (!factored) throw Error("solver: the Newton matrix could not be factorised even with a diagonal shift");
-    const Eigen::VectorXd rhs = -flat(g);
-    Eigen::MatrixX3d d = Eigen::Map<const Eigen::MatrixX3d>(impl_->cholesky->solve(rhs).data(), n, 3);
+    Eigen::MatrixX3d d = per_vertex(impl_->cholesky->solve(-interleaved(g)));
     timings_.factorization += since(t);
     if (!finite(d)) throw Error("solver: the Newton direction is not finite");
 
@@ -153,7 +162,7 @@ StepReport ClothSolver::step(Eigen::MatrixX3d& x, Eigen::MatrixX3d& v) {
     if (longest > settings_.max_displacement) d *= settings_.max_displacement / longest;
 
     t = Clock::now();
-    const double slope = flat(g).dot(flat(d));
+    const double slope = g.cwiseProduct(d).sum();
     double alpha = 1;
     bool accepted = false;
     if (slope < 0) {

@@ -1,0 +1,125 @@
+// Scene files: base chains, overrides, removal, and errors that name file:line.
+#include <drape/scene.hpp>
+
+#include <catch2/catch.hpp>
+
+#include <fstream>
+
+#include "test_support.hpp"
+
+using namespace drape;
+using namespace drape::test;
+
+namespace {
+
+void write(const std::filesystem::path& p, const std::string& text) { std::ofstream(p) << text; }
+
+const char* kBase = R"(description: base
+body:
+  model: parametric
+  shape: {bmi: 30, height: 1.8}
+garment:
+  template: tshirt
+  params: {resolution: coarse}
+materials:
+  knit: gray-interlock
+effects: [gravity, stretching, bending, collision]
+solver: {time_step: 0.05, morph_steps: 10}
+)";
+
+}  // namespace
+
+TEST_CASE("a scene reads body, garment, materials, effects and solver", "[scene]") {
+  const Scene s = parse_scene(kBase, "base.yaml");
+  CHECK(s.description == "base");
+  CHECK(s.body_model == "parametric");
+  CHECK(s.shape.at("bmi").node.as<double>() == 30);
+  CHECK(s.shape.at("height").where.line == 4);
+  CHECK(s.garment == "tshirt");
+  CHECK(s.garment_params.at("resolution").node.as<std::string>() == "coarse");
+  REQUIRE(s.materials.size() == 1);
+  CHECK(s.materials[0].region == "knit");
+  REQUIRE(s.effects.size() == 4);
+  CHECK(s.effects[3].name == "collision");
+  CHECK(s.has_effect("bending"));
+  CHECK_FALSE(s.has_effect("wind"));
+  CHECK(s.solver.at("morph_steps").node.as<int>() == 10);
+}
+
+TEST_CASE("a derived scene overrides single entries and removes effects with null", "[scene]") {
+  TempDir dir;
+  write(dir / "base.yaml", kBase);
+  write(dir / "derived.yaml", R"(base: base.yaml
+body: {shape: {bmi: 65}}
+garment: {params: {print: true}}
+materials: {print: {base: screen-print, multipliers: {stretch: 100}}}
+effects: {collision: null, bending: {stiffness_scale: 2}}
+solver: {morph_steps: 0}
+)");
+  const Scene s = load_scene(dir / "derived.yaml");
+  CHECK(s.shape.at("bmi").node.as<double>() == 65);
+  CHECK(s.shape.at("bmi").where.file == (dir / "derived.yaml").string());
+  CHECK(s.shape.at("height").node.as<double>() == 1.8);  // kept from the base
+  CHECK(s.garment_params.size() == 2);
+  CHECK(s.materials.size() == 2);
+  REQUIRE(s.effects.size() == 3);
+  CHECK_FALSE(s.has_effect("collision"));
+  CHECK(s.effects[2].name == "bending");
+  CHECK(s.effects[2].params.at("stiffness_scale").node.as<double>() == 2);
+  CHECK(s.solver.at("morph_steps").node.as<int>() == 0);
+  CHECK(s.solver.at("time_step").node.as<double>() == 0.05);
+  // The resolved text has no base and reads back to the same scene.
+  const Scene again = parse_scene(s.yaml());
+  CHECK(again.effects.size() == 3);
+  CHECK(again.shape.at("bmi").node.as<double>() == 65);
+  CHECK(again.materials.size() == 2);
+}
+
+TEST_CASE("an effects list in a derived scene replaces the base's", "[scene]") {
+  TempDir dir;
+  write(dir / "base.yaml", kBase);
+  write(dir / "d.yaml", "base: base.yaml\neffects: [gravity]\n");
+  const Scene s = load_scene(dir / "d.yaml");
+  REQUIRE(s.effects.size() == 1);
+  CHECK(s.effects[0].name == "gravity");
+}
+
+TEST_CASE("scene errors name the file, the line and the key", "[scene]") {
+  CHECK_THAT(message_of([] { parse_scene("body: {model: parametric}\neffect: [gravity]\n", "s.yaml"); }),
+             Catch::Contains("s.yaml:2") && Catch::Contains("unknown key 'effect'") && Catch::Contains("effects"));
+  CHECK_THAT(message_of([] { parse_scene("body: {modle: parametric}\n", "s.yaml"); }),
+             Catch::Contains("s.yaml:1") && Catch::Contains("'modle'") && Catch::Contains("model"));
+  CHECK_THAT(message_of([] { parse_scene("effects: [gravity\n", "s.yaml"); }),
+             Catch::Contains("s.yaml") && Catch::Contains("malformed YAML"));
+  CHECK_THAT(message_of([] { parse_scene("effects: 3\n", "s.yaml"); }), Catch::Contains("s.yaml:1"));
+  TempDir dir;
+  write(dir / "a.yaml", "base: b.yaml\n");
+  write(dir / "b.yaml", "base: a.yaml\n");
+  CHECK_THAT(message_of([&] { load_scene(dir / "a.yaml"); }), Catch::Contains("loops back"));
+  CHECK_THAT(message_of([&] { load_scene(dir / "missing.yaml"); }), Catch::Contains("does not exist"));
+}
+
+TEST_CASE("a misspelt effect is refused with the list of known effects", "[scene]") {
+  const Scene s = parse_scene("effects: [gravity, gravty]\n", "s.yaml");
+  const std::string m = message_of([&] { validate_scene(s, plugins()); });
+  CHECK_THAT(m, Catch::Contains("s.yaml:1") && Catch::Contains("unknown effect 'gravty'") &&
+                    Catch::Contains("did you mean 'gravity'") && Catch::Contains("known effects: "));
+  // Other kinds of plugin are not effects.
+  CHECK_THAT(message_of([&] { validate_scene(parse_scene("effects: [mlp]\n", "s.yaml"), plugins()); }),
+             Catch::Contains("unknown effect 'mlp'"));
+  CHECK_THAT(message_of([&] { validate_scene(parse_scene("effects: []\n", "s.yaml"), plugins()); }),
+             Catch::Contains("no effects"));
+  CHECK_THAT(message_of([&] { validate_scene(parse_scene("effects: [gravity]\nsolver: {time_stp: 1}\n", "s.yaml"), plugins()); }),
+             Catch::Contains("time_stp") && Catch::Contains("time_step"));
+  CHECK_THAT(message_of([&] { validate_scene(parse_scene("effects: {gravity: {g: -1}}\n", "s.yaml"), plugins()); }),
+             Catch::Contains("'g'") && Catch::Contains("s.yaml:1"));
+  CHECK_NOTHROW(validate_scene(parse_scene("effects: [gravity]\n", "s.yaml"), plugins()));
+}
+
+TEST_CASE("the shipped scenes are valid", "[scene]") {
+  for (const auto& entry : std::filesystem::directory_iterator(source_dir() / "graphs" / "scenes")) {
+    INFO(entry.path());
+    const Scene s = load_scene(entry.path());
+    CHECK_NOTHROW(validate_scene(s, plugins()));
+  }
+}

@@ -1,0 +1,233 @@
+// The backward-Euler Newton solver on energies with known minimisers, and the
+// fixed-pattern Hessian assembly against Eigen's own triplet assembly.
+#include <drape/solver.hpp>
+
+#include "../../framework/src/physics/hessian_pattern.hpp"
+
+#include <catch2/catch.hpp>
+
+#include <random>
+
+#include "test_support.hpp"
+
+using namespace drape;
+
+namespace {
+
+// A flat n x n grid of cloth with material-space UVs equal to its rest positions.
+Garment grid(int n, double spacing) {
+  Garment g;
+  Mesh& m = g.mesh;
+  m.vertices.resize(n * n, 3);
+  m.uv.resize(n * n, 2);
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < n; ++j) {
+      m.vertices.row(i * n + j) << j * spacing, 0.0, i * spacing;
+      m.uv.row(i * n + j) << j * spacing, i * spacing;
+    }
+  m.faces.resize(2 * (n - 1) * (n - 1), 3);
+  int f = 0;
+  for (int i = 0; i + 1 < n; ++i)
+    for (int j = 0; j + 1 < n; ++j) {
+      const int a = i * n + j, b = a + 1, c = a + n, d = c + 1;
+      m.faces.row(f++) << a, b, d;
+      m.faces.row(f++) << a, d, c;
+    }
+  m.uv_faces = m.faces;
+  g.materials.push_back(Material{});
+  return g;
+}
+
+// E = k/2 sum_v |x_v - a_v|^2 - sum_v f^T x_v: minimiser a + f / k.
+class AnchorSprings final : public Energy {
+ public:
+  AnchorSprings(Eigen::MatrixX3d anchors, double k, Eigen::Vector3d force) : a_(std::move(anchors)), k_(k), f_(force) {}
+  void bind(const EnergyContext&) override {}
+  double value(const Eigen::MatrixX3d& x) const override {
+    return 0.5 * k_ * (x - a_).squaredNorm() - (x * f_).sum();
+  }
+  double add_gradient(const Eigen::MatrixX3d& x, Eigen::MatrixX3d& g) const override {
+    g += k_ * (x - a_);
+    g.rowwise() -= f_.transpose();
+    return value(x);
+  }
+  void add_hessian(const Eigen::MatrixX3d& x, Triplets& h, bool) const override {
+    for (int i = 0; i < 3 * x.rows(); ++i) h.emplace_back(i, i, k_);
+  }
+
+ private:
+  Eigen::MatrixX3d a_;
+  double k_;
+  Eigen::Vector3d f_;
+};
+
+// Non-convex: each vertex in a double well along y, E = c sum_v (y_v^2 - w^2)^2.
+// The projected Hessian drops the concave part, so the Newton model is poor and
+// the line search has to do its job.
+class DoubleWell final : public Energy {
+ public:
+  DoubleWell(double c, double w) : c_(c), w_(w) {}
+  void bind(const EnergyContext&) override {}
+  double value(const Eigen::MatrixX3d& x) const override {
+    return c_ * (x.col(1).array().square() - w_ * w_).square().sum();
+  }
+  double add_gradient(const Eigen::MatrixX3d& x, Eigen::MatrixX3d& g) const override {
+    g.col(1).array() += 4 * c_ * x.col(1).array() * (x.col(1).array().square() - w_ * w_);
+    return value(x);
+  }
+  void add_hessian(const Eigen::MatrixX3d& x, Triplets& h, bool project) const override {
+    for (int v = 0; v < x.rows(); ++v) {
+      const double y = x(v, 1), d2 = c_ * (12 * y * y - 4 * w_ * w_);
+      h.emplace_back(3 * v + 1, 3 * v + 1, project ? std::max(d2, 0.0) : d2);
+    }
+  }
+
+ private:
+  double c_, w_;
+};
+
+std::vector<NamedEnergy> one(std::unique_ptr<Energy> e) {
+  std::vector<NamedEnergy> v;
+  v.push_back({"test", std::move(e)});
+  return v;
+}
+
+}  // namespace
+
+TEST_CASE("lumped masses are a third of each face's material-space area times the density", "[solver]") {
+  const Garment g = grid(3, 0.5);  // 1 m x 1 m
+  const Eigen::VectorXd m = lumped_masses(g);
+  CHECK(m.sum() == Approx(0.187).epsilon(1e-12));
+  CHECK(m[4] == Approx(0.187 * 6 * 0.125 / 3).epsilon(1e-12));  // the centre touches 6 faces of 1/8 m^2
+}
+
+TEST_CASE("a quasi-static step with a long time step lands on the minimiser of a quadratic energy", "[solver]") {
+  const Garment g = grid(4, 0.1);
+  const Eigen::Vector3d f(0.0, -2.0, 0.5);
+  auto energies = one(std::make_unique<AnchorSprings>(g.mesh.vertices, 50.0, f));
+  SolverSettings s;
+  s.time_step = 1e4;  // the inertia term vanishes
+  s.damping = 1;
+  s.tolerance = 1e-10;
+  s.max_displacement = 10;
+  for (const std::string solver : {"eigen", "auto"}) {
+    ClothSolver cs(g, energies, s);
+    Eigen::MatrixX3d x = g.mesh.vertices, v = Eigen::MatrixX3d::Zero(x.rows(), 3);
+    const StepReport r = cs.step(x, v);
+    CHECK(r.converged);
+    CHECK(r.iterations <= 2);
+    const Eigen::MatrixX3d expected = g.mesh.vertices.rowwise() + (f / 50.0).transpose();
+    CHECK((x - expected).cwiseAbs().maxCoeff() < 1e-9);
+    CHECK(v.cwiseAbs().maxCoeff() == 0.0);  // damping 1: no velocity carried
+    CHECK(r.phi_end < r.phi_start);
+  }
+}
+
+TEST_CASE("the step length is capped by max_displacement and Newton continues from there", "[solver]") {
+  const Garment g = grid(3, 0.1);
+  auto energies = one(std::make_unique<AnchorSprings>(g.mesh.vertices, 1.0, Eigen::Vector3d(0, -1, 0)));  // 1 m away
+  SolverSettings s;
+  s.time_step = 1e4;
+  s.damping = 1;
+  s.max_displacement = 0.3;
+  s.max_newton_iterations = 2;
+  ClothSolver cs(g, energies, s);
+  Eigen::MatrixX3d x = g.mesh.vertices, v = Eigen::MatrixX3d::Zero(x.rows(), 3);
+  const StepReport r = cs.step(x, v);
+  CHECK_FALSE(r.converged);
+  CHECK(r.iterations == 2);
+  CHECK(((x - g.mesh.vertices).rowwise().norm().array() - 0.6).abs().maxCoeff() < 1e-9);
+}
+
+TEST_CASE("backward Euler carries velocity: a free cloth under a constant force accelerates", "[solver]") {
+  const Garment g = grid(3, 0.1);
+  auto energies = one(std::make_unique<AnchorSprings>(g.mesh.vertices, 0.0, Eigen::Vector3d(0, -1, 0)));
+  SolverSettings s;
+  s.time_step = 0.01;
+  s.damping = 0;
+  s.tolerance = 1e-12;
+  s.max_displacement = 100;
+  ClothSolver cs(g, energies, s);
+  Eigen::MatrixX3d x = g.mesh.vertices, v = Eigen::MatrixX3d::Zero(x.rows(), 3);
+  cs.step(x, v);
+  cs.step(x, v);
+  // Implicit Euler with a constant force F on mass m: v_n = n h F/m, x_2 - x_0 = 3 h^2 F / m.
+  const Eigen::VectorXd& m = cs.masses();
+  for (int i = 0; i < x.rows(); ++i) {
+    CHECK(v(i, 1) == Approx(-2 * 0.01 / m[i]).epsilon(1e-8));
+    CHECK(x(i, 1) - g.mesh.vertices(i, 1) == Approx(-3 * 1e-4 / m[i]).epsilon(1e-8));
+  }
+}
+
+TEST_CASE("on a non-convex energy the line search keeps Phi decreasing and Newton reaches a well", "[solver]") {
+  const Garment g = grid(4, 0.1);
+  auto energies = one(std::make_unique<DoubleWell>(10.0, 0.2));
+  SolverSettings s;
+  s.time_step = 1.0;
+  s.damping = 1;
+  s.max_newton_iterations = 50;
+  s.tolerance = 1e-8;
+  ClothSolver cs(g, energies, s);
+  Eigen::MatrixX3d x = g.mesh.vertices, v = Eigen::MatrixX3d::Zero(x.rows(), 3);
+  x.col(1).setConstant(0.05);  // on the hump's shoulder, where the true Hessian is negative
+  double previous = cs.energy(x) + 1;
+  for (int k = 0; k < 30; ++k) {
+    const StepReport r = cs.step(x, v);
+    CHECK(r.phi_end <= r.phi_start);
+    CHECK(cs.energy(x) <= previous);
+    previous = cs.energy(x);
+    CHECK(x.allFinite());
+  }
+  CHECK((x.col(1).array() - 0.2).abs().maxCoeff() < 1e-4);
+}
+
+TEST_CASE("solver settings are checked", "[solver]") {
+  const Garment g = grid(3, 0.1);
+  auto energies = one(std::make_unique<DoubleWell>(1.0, 0.2));
+  SolverSettings s;
+  s.time_step = 0;
+  CHECK_THROWS_AS(ClothSolver(g, energies, s), ConfigError);
+  s = {};
+  s.linear_solver = "lu";
+  CHECK_THROWS_WITH(ClothSolver(g, energies, s), Catch::Contains("unknown 'lu'"));
+}
+
+TEST_CASE("the fixed-pattern assembly equals Eigen's triplet assembly and grows for foreign couplings", "[solver]") {
+  const Garment g = grid(5, 0.1);
+  physics::HessianPattern pattern(g.mesh);
+  const int n = 3 * g.mesh.num_vertices();
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<double> u(-1, 1);
+  Triplets t;
+  // Symmetric 3x3 blocks on the pairs of every face, like an energy emits.
+  for (int f = 0; f < g.mesh.num_faces(); ++f)
+    for (int a = 0; a < 3; ++a)
+      for (int b = 0; b < 3; ++b)
+        for (int i = 0; i < 3; ++i)
+          for (int j = 0; j < 3; ++j) {
+            const int r = 3 * g.mesh.faces(f, a) + i, c = 3 * g.mesh.faces(f, b) + j;
+            if (r >= c) {
+              const double value = u(rng);
+              t.emplace_back(r, c, value);
+              if (r != c) t.emplace_back(c, r, value);
+            }
+          }
+  Eigen::VectorXd diagonal = Eigen::VectorXd::Constant(n, 5.0);
+  auto reference = [&](const Triplets& trip) {
+    Eigen::SparseMatrix<double> r(n, n);
+    r.setFromTriplets(trip.begin(), trip.end());
+    Eigen::MatrixXd d = Eigen::MatrixXd(r).triangularView<Eigen::Lower>();
+    d.diagonal() += diagonal;
+    return d;
+  };
+  Eigen::SparseMatrix<double> h;
+  pattern.assemble(t, diagonal, h);
+  CHECK((Eigen::MatrixXd(h) - reference(t)).cwiseAbs().maxCoeff() < 1e-12);
+  const auto before = pattern.nonzeros();
+  // Couple two far corners of the grid: not in the topology's pattern.
+  t.emplace_back(3 * 24, 0, 0.75);
+  t.emplace_back(0, 3 * 24, 0.75);
+  pattern.assemble(t, diagonal, h);
+  CHECK(pattern.nonzeros() > before);
+  CHECK((Eigen::MatrixXd(h) - reference(t)).cwiseAbs().maxCoeff() < 1e-12);
+}
