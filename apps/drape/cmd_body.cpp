@@ -1,6 +1,7 @@
 // `drape body`: solve a body model for a BMI and height and write its mesh, or
 // draw many bodies uniformly in BMI (as the seed's data set does).
 #include "command.hpp"
+#include "sample_ranges.hpp"
 
 #include <drape/atomic_file.hpp>
 #include <drape/geometry/index_locality.hpp>
@@ -21,29 +22,6 @@ namespace drape::cli {
 namespace {
 
 constexpr double kDensity = 985.0;  // kg/m^3: the seed's BMI from the mesh volume
-
-struct Range {
-  double lo, hi;
-};
-
-// "38" or "10:65".
-Range parse_range(const std::string& option, const std::string& text) {
-  try {
-    std::size_t used = 0;
-    const auto colon = text.find(':');
-    if (colon == std::string::npos) {
-      const double v = std::stod(text, &used);
-      if (used == text.size()) return {v, v};
-    } else {
-      const double lo = std::stod(text.substr(0, colon), &used);
-      std::size_t used2 = 0;
-      const double hi = std::stod(text.substr(colon + 1), &used2);
-      if (used == colon && used2 == text.size() - colon - 1 && lo <= hi) return {lo, hi};
-    }
-  } catch (const std::exception&) {
-  }
-  throw UsageError("--" + option + " '" + text + "': expected a number or a range lo:hi with lo <= hi");
-}
 
 struct Measured {
   double bmi, height;

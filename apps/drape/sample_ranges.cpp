@@ -1,0 +1,25 @@
+#include "sample_ranges.hpp"
+
+#include "command.hpp"
+
+namespace drape::cli {
+
+Range parse_range(const std::string& option, const std::string& text) {
+  try {
+    std::size_t used = 0;
+    const auto colon = text.find(':');
+    if (colon == std::string::npos) {
+      const double v = std::stod(text, &used);
+      if (used == text.size()) return {v, v};
+    } else {
+      const double lo = std::stod(text.substr(0, colon), &used);
+      std::size_t used2 = 0;
+      const double hi = std::stod(text.substr(colon + 1), &used2);
+      if (used == colon && used2 == text.size() - colon - 1 && lo <= hi) return {lo, hi};
+    }
+  } catch (const std::exception&) {
+  }
+  throw UsageError("--" + option + " '" + text + "': expected a number or a range lo:hi with lo <= hi");
+}
+
+}  // namespace drape::cli
