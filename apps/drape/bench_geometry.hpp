@@ -1,5 +1,5 @@
 #pragma once
-// Shared pieces of `drape bench-geometry`: the closest-point methods it compares
+// Shared pieces of `drape bench geometry`: the closest-point methods it compares
 // each report one row of timings on the same body and queries.
 #include <Eigen/Core>
 

@@ -1,4 +1,4 @@
-// The CGAL AABB-tree row of `drape bench-geometry`. CGAL is optional (not in
+// The CGAL AABB-tree row of `drape bench geometry`. CGAL is optional (not in
 // scripts/setup.sh): without its headers this row is simply absent.
 #include "bench_geometry.hpp"
 

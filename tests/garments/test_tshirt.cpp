@@ -153,9 +153,11 @@ TEST_CASE("tshirt: materials are knit, plus the print only when asked", "[garmen
   const Garment plain = build_tshirt();
   REQUIRE(plain.materials.size() == 1);
   CHECK(plain.materials[0].name == "knit");
+  // The knit's numbers are the built-in gray-interlock preset's (ArcSim's measured knit).
   CHECK(plain.materials[0].density == 0.187);
-  CHECK(plain.materials[0].stretch == Eigen::Vector4d(16.6, -14.7, 34.5, 36.9));
+  CHECK(plain.materials[0].stretch == Eigen::Vector4d(16.593832, -14.69599, 34.477123, 36.860302));
   CHECK(plain.materials[0].bending == 1e-5);
+  CHECK(plain.materials[0].thickness == 4.7e-4);
   for (int f = 0; f < plain.mesh.num_faces(); ++f) REQUIRE(plain.material_of(f) == 0);
 
   const Garment printed = build_tshirt("{print: true}");
@@ -165,6 +167,7 @@ TEST_CASE("tshirt: materials are knit, plus the print only when asked", "[garmen
   CHECK(print.density == Approx(2 * knit.density));
   CHECK(print.stretch.isApprox(5 * knit.stretch));
   CHECK(print.bending == Approx(10 * knit.bending));
+  CHECK(print.thickness == Approx(2 * knit.thickness));
   CHECK(printed.mesh.faces == plain.mesh.faces);
 
   // Print faces: front chart only, UV centroid inside the default polygon

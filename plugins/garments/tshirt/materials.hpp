@@ -1,31 +1,26 @@
 #pragma once
-// The T-shirt's material presets, in one place until the physics issue moves
-// presets to YAML. Index = material id in Garment::face_material.
+// The T-shirt's two regions and their cloth. The physical numbers come from
+// drape's built-in material presets (graphs/materials/presets.yaml); the region
+// names "knit" and "print" stay the T-shirt's own (Material::name is the region
+// name here). Index = material id in Garment::face_material.
 #include <drape/energy.hpp>
+#include <drape/materials.hpp>
 
-#include <vector>
+#include <string>
 
 namespace drape::tshirt {
 
-// ArcSim's gray-interlock knit.
-inline Material knit_material() {
-  Material m;
-  m.name = "knit";
-  m.density = 0.187;
-  m.stretch = {16.6, -14.7, 34.5, 36.9};
-  m.bending = 1e-5;
+inline Material region_material(const std::string& region, const std::string& preset) {
+  Material m = MaterialTable::builtin().get(preset);
+  m.name = region;
   return m;
 }
 
+// ArcSim's gray-interlock T-shirt knit.
+inline Material knit_material() { return region_material("knit", "gray-interlock"); }
+
 // A screen print: the knit plus a layer of plastisol ink, heavier and much stiffer.
-inline Material print_material() {
-  Material m = knit_material();
-  m.name = "print";
-  m.density *= 2;
-  m.stretch *= 5;
-  m.bending *= 10;
-  return m;
-}
+inline Material print_material() { return region_material("print", "screen-print"); }
 
 inline constexpr int kKnit = 0;
 inline constexpr int kPrint = 1;

@@ -11,7 +11,7 @@
 // it wrong near edges and vertices (both faces of a sharp edge "see" the point).
 //
 // Acceleration: a bounding-volume hierarchy over the triangles whose boxes are
-// refitted (not rebuilt) when the body moves; `drape bench-geometry` measures it
+// refitted (not rebuilt) when the body moves; `drape bench geometry` measures it
 // against CGAL's AABB tree, a nanoflann kd-tree over vertices and a uniform grid.
 #include <drape/energy.hpp>
 #include <drape/mesh.hpp>

@@ -1,9 +1,9 @@
-// `drape bench-geometry`: closest-point queries against a body-sized closed
+// `drape bench geometry`: closest-point queries against a body-sized closed
 // mesh, timed for the methods one could use (the project's BVH, a nanoflann
 // kd-tree over vertices, CGAL's AABB tree when installed) on the same queries,
 // each checked against exhaustive search.
+#include "bench.hpp"
 #include "bench_geometry.hpp"
-#include "command.hpp"
 
 #include <drape/geometry/closed_shapes.hpp>
 #include <drape/geometry/closest_point.hpp>
@@ -142,7 +142,7 @@ Row bench_kdtree(const Problem& pb) {
 }
 
 int run(const std::vector<std::string>& args) {
-  po::options_description opts("drape bench-geometry");
+  po::options_description opts("drape bench geometry");
   opts.add_options()("ring", po::value<int>()->default_value(112), "segments around the tube body")(
       "tube", po::value<int>()->default_value(58), "segments across the tube (vertices = ring * tube)")(
       "queries", po::value<int>()->default_value(4000), "query points within --band of the surface")(
@@ -151,7 +151,7 @@ int run(const std::vector<std::string>& args) {
       "repeats", po::value<int>()->default_value(3), "timings are the best of this many runs")(
       "body", po::value<std::string>(), "a mesh file to use as the body instead of the tube (e.g. a `drape body` output)");
   po::variables_map vm;
-  if (!parse("drape bench-geometry [--body FILE | --ring N --tube N] [--queries N] [--band M] [--check N] [--repeats N]", args, opts,
+  if (!parse("drape bench geometry [--body FILE | --ring N --tube N] [--queries N] [--band M] [--check N] [--repeats N]", args, opts,
              {}, vm))
     return 0;
   const int ring = vm["ring"].as<int>(), tube = vm["tube"].as<int>(), nq = vm["queries"].as<int>();
@@ -201,7 +201,7 @@ int run(const std::vector<std::string>& args) {
   return 0;
 }
 
-const RegisterCommand registration{{"bench-geometry", "time closest-point queries on a body-sized mesh (BVH vs kd-tree vs CGAL)", run}};
+const RegisterBench registration{{"geometry", "time closest-point queries on a body-sized mesh (BVH vs kd-tree vs CGAL)", run}};
 
 }  // namespace
 }  // namespace drape::cli

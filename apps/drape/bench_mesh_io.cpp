@@ -1,7 +1,7 @@
-// `drape bench-mesh-io FILE`: how long reading FILE takes, and writing and
+// `drape bench mesh-io FILE`: how long reading FILE takes, and writing and
 // reading it back in every format (best of several runs, wall time), with a
 // check that each round trip kept vertex count and faces.
-#include "command.hpp"
+#include "bench.hpp"
 
 #include <drape/mesh_io.hpp>
 
@@ -28,13 +28,13 @@ double best_ms(int repeats, const std::function<void()>& action) {
 }
 
 int run(const std::vector<std::string>& args) {
-  po::options_description opts("drape bench-mesh-io");
+  po::options_description opts("drape bench mesh-io");
   opts.add_options()("file", po::value<std::string>()->required(), "mesh to read (e.g. MakeHuman base.obj)")(
       "repeats", po::value<int>()->default_value(5), "runs per measurement; the best is shown");
   po::positional_options_description positional;
   positional.add("file", 1);
   po::variables_map vm;
-  if (!parse("drape bench-mesh-io FILE [--repeats N]", args, opts, positional, vm)) return 0;
+  if (!parse("drape bench mesh-io FILE [--repeats N]", args, opts, positional, vm)) return 0;
   const fs::path file = vm["file"].as<std::string>();
   const int repeats = std::max(1, vm["repeats"].as<int>());
 
@@ -64,7 +64,7 @@ int run(const std::vector<std::string>& args) {
   return failures == 0 ? 0 : 1;
 }
 
-const RegisterCommand registration{{"bench-mesh-io", "time mesh reading and writing in every format", run}};
+const RegisterBench registration{{"mesh-io", "time mesh reading and writing in every format", run}};
 
 }  // namespace
 }  // namespace drape::cli

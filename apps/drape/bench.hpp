@@ -1,0 +1,29 @@
+#pragma once
+// Benchmarks of `drape bench <name>`. Each lives in its own bench_*.cpp and
+// registers itself with one line:
+//
+//   const RegisterBench registration{{"geometry", "time closest-point queries ...", run}};
+//
+// `run` gets the arguments after the name and parses them with cli::parse()
+// (usage "drape bench <name> ..."); it returns the exit code like a command.
+#include "command.hpp"
+
+#include <functional>
+#include <string>
+#include <vector>
+
+namespace drape::cli {
+
+struct Bench {
+  std::string name;
+  std::string summary;
+  std::function<int(const std::vector<std::string>& args)> run;
+};
+
+std::vector<Bench>& benches();
+
+struct RegisterBench {
+  explicit RegisterBench(Bench b) { benches().push_back(std::move(b)); }
+};
+
+}  // namespace drape::cli

@@ -1,0 +1,122 @@
+// `drape dataset merge --out all.h5 shard0.h5 shard1.h5 ...`: joins shards
+// generated in parallel (drape::merge_datasets).
+// `drape dataset info data.h5`: what a dataset file holds (docs/formats.md).
+#include "command.hpp"
+
+#include <drape/dataset.hpp>
+#include <drape/errors.hpp>
+
+#include <cmath>
+#include <filesystem>
+#include <iomanip>
+#include <iostream>
+#include <sstream>
+
+namespace drape::cli {
+namespace {
+
+namespace fs = std::filesystem;
+
+const char* kMergeUsage = "drape dataset merge --out FILE SHARD... [--allow-incomplete] [--force]";
+const char* kInfoUsage = "drape dataset info FILE [--scene-lines N]";
+
+int merge(const std::vector<std::string>& args) {
+  po::options_description opts("drape dataset merge");
+  opts.add_options()("out,o", po::value<std::string>()->required(), "the merged dataset to write")(
+      "shards", po::value<std::vector<std::string>>()->required(), "shard files, joined in this order")(
+      "allow-incomplete", "skip the samples a shard has not finished (default: refuse such a shard)")(
+      "force", "replace --out if it exists");
+  po::positional_options_description positional;
+  positional.add("shards", -1);
+  po::variables_map vm;
+  if (!parse(kMergeUsage, args, opts, positional, vm)) return 0;
+  const fs::path out = vm["out"].as<std::string>();
+  std::vector<fs::path> shards;
+  for (const auto& s : vm["shards"].as<std::vector<std::string>>()) shards.emplace_back(s);
+  // A finished dataset is never overwritten by accident (as DatasetWriter does).
+  if (fs::exists(out) && !vm.count("force"))
+    throw ConfigError(SourceLocation{out.string(), 0}, "exists; pass --force to replace it");
+  const std::size_t n = merge_datasets(shards, out, !vm.count("allow-incomplete"));
+  std::cout << "merged " << n << " samples from " << shards.size() << " shard" << (shards.size() == 1 ? "" : "s")
+            << " into " << out.string() << "\n";
+  return 0;
+}
+
+// "name: 12 recorded, mean 0.5, min 0, max 1" over the done samples.
+std::string stat_summary(const DatasetReader& reader, const std::string& name, const std::vector<std::size_t>& done) {
+  const std::vector<double> values = reader.stat(name, done);
+  std::size_t recorded = 0;
+  double sum = 0, lo = INFINITY, hi = -INFINITY;
+  for (double v : values) {
+    if (!std::isfinite(v)) continue;  // NaN: not recorded for that sample
+    ++recorded;
+    sum += v;
+    lo = std::min(lo, v);
+    hi = std::max(hi, v);
+  }
+  std::ostringstream s;
+  s << name << ": " << recorded << " of " << done.size() << " recorded";
+  if (recorded) s << ", mean " << sum / static_cast<double>(recorded) << ", min " << lo << ", max " << hi;
+  return s.str();
+}
+
+int info(const std::vector<std::string>& args) {
+  po::options_description opts("drape dataset info");
+  opts.add_options()("file", po::value<std::string>()->required(), "dataset file (finished or .partial)")(
+      "scene-lines", po::value<int>()->default_value(8), "lines of the scene YAML to show");
+  po::positional_options_description positional;
+  positional.add("file", 1);
+  po::variables_map vm;
+  if (!parse(kInfoUsage, args, opts, positional, vm)) return 0;
+  const fs::path path = vm["file"].as<std::string>();
+  if (!fs::exists(path)) throw ConfigError(SourceLocation{path.string(), 0}, "no such file");
+
+  const DatasetReader reader(path);
+  const DatasetLayout& layout = reader.layout();
+  const std::vector<std::size_t> done = reader.indices();
+  const bool complete = done.size() == layout.samples;
+  std::cout << path.string() << ": drape dataset, " << (complete ? "complete" : "incomplete") << "\n"
+            << "  samples   " << layout.samples << ", done " << done.size() << "\n"
+            << "  sizes     body params P = " << layout.body_params << ", body vertices Nb = " << layout.body_vertices
+            << ", garment vertices Ng = " << layout.garment_vertices << "\n"
+            << "  splits    train " << reader.indices(Split::Train).size() << ", val " << reader.indices(Split::Val).size()
+            << ", test " << reader.indices(Split::Test).size() << " (done samples)\n"
+            << "  stats     " << layout.stats.size() << " per sample" << (layout.stats.empty() ? "" : ", over the done samples:")
+            << "\n";
+  for (const auto& name : layout.stats) std::cout << "    " << stat_summary(reader, name, done) << "\n";
+  std::cout << "  template  " << layout.template_hash << "\n"
+            << "  created   " << layout.created << " by drape " << layout.drape_version << "\n";
+  for (const auto& [name, value] : layout.attributes) {
+    std::string one_line;  // multi-line values (merged_from: one shard per line) on one line
+    for (char c : value) one_line += c == '\n' ? std::string(", ") : std::string(1, c);
+    std::cout << "  " << name << ": " << one_line << "\n";
+  }
+  std::istringstream scene(layout.scene);
+  std::vector<std::string> lines;
+  for (std::string line; std::getline(scene, line);) lines.push_back(line);
+  const std::size_t shown = std::min(lines.size(), static_cast<std::size_t>(std::max(0, vm["scene-lines"].as<int>())));
+  std::cout << "  scene     " << lines.size() << " line" << (lines.size() == 1 ? "" : "s") << (shown ? ":" : "") << "\n";
+  for (std::size_t i = 0; i < shown; ++i) std::cout << "    | " << lines[i] << "\n";
+  if (shown < lines.size()) std::cout << "    | ... (" << lines.size() - shown << " more)\n";
+  return 0;
+}
+
+int run(const std::vector<std::string>& args) {
+  const std::string usage = std::string("usage: ") + kMergeUsage + "\n       " + kInfoUsage;
+  if (args.empty()) throw UsageError("merge or info?\n" + usage);
+  const std::string& action = args[0];
+  const std::vector<std::string> rest(args.begin() + 1, args.end());
+  if (action == "merge") return merge(rest);
+  if (action == "info") return info(rest);
+  if (action == "--help" || action == "-h" || action == "help") {
+    std::cout << usage << "\n\n  merge  join shards generated in parallel into one dataset\n"
+                          "  info   sizes, splits, stats and scene of a dataset file\n";
+    return 0;
+  }
+  throw UsageError("unknown action '" + action + "'" + did_you_mean(action, {"merge", "info"}) + "\n" + usage);
+}
+
+const RegisterCommand registration{{"dataset", "merge dataset shards, or show what a dataset file holds", run}};
+
+}  // namespace
+}  // namespace drape::cli

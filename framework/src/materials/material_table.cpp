@@ -1,0 +1,159 @@
+// MaterialTable: preset files, merging, and resolving presets through their
+// `base:` chains (multipliers on the base's values, then the preset's own fields).
+#include <drape/materials.hpp>
+
+#include "material_validation.hpp"
+
+#include <algorithm>
+#include <cerrno>
+#include <cstring>
+#include <fstream>
+#include <sstream>
+
+namespace drape {
+namespace {
+
+SourceLocation at(const std::string& file, const YAML::Node& n) { return {file, n ? n.Mark().line + 1 : 0}; }
+
+std::string joined(const std::vector<std::string>& items, const std::string& separator) {
+  std::string s;
+  for (const auto& i : items) s += (s.empty() ? "" : separator) + i;
+  return s;
+}
+
+std::string owner_of(const MaterialPreset& p) {
+  return p.name.empty() ? std::string("inline material") : "material '" + p.name + "'";
+}
+
+}  // namespace
+
+MaterialTable MaterialTable::parse(const std::string& yaml_text, const std::string& file) {
+  YAML::Node root;
+  try {
+    root = YAML::Load(yaml_text);
+  } catch (const YAML::ParserException& e) {
+    throw ConfigError({file, e.mark.line + 1}, "malformed YAML: " + e.msg);
+  }
+  MaterialTable table;
+  if (!root || root.IsNull()) return table;  // an empty file: no presets
+  if (!root.IsMap())
+    throw ConfigError({file, 1}, "a material file must be a map of name: {density, stretch, bending, thickness} "
+                                 "or name: {base, multipliers, ...}");
+  for (const auto& kv : root) {
+    const SourceLocation where = at(file, kv.first);
+    if (!kv.first.IsScalar() || kv.first.Scalar().empty())
+      throw ConfigError(where, "a material name must be a non-empty string");
+    const std::string name = kv.first.Scalar();
+    if (const auto it = table.presets_.find(name); it != table.presets_.end())
+      throw ConfigError(where, "material '" + name + "' is defined twice (first at line " +
+                                   std::to_string(it->second.where.line) + ")");
+    table.presets_.emplace(name, parse_material_preset(name, kv.second, file, where));
+  }
+  return table;
+}
+
+MaterialTable MaterialTable::load(const std::filesystem::path& path) {
+  std::ifstream in(path);
+  if (!in) throw ConfigError(SourceLocation{path.string(), 0}, std::string("cannot read material file: ") + std::strerror(errno));
+  std::stringstream text;
+  text << in.rdbuf();
+  return parse(text.str(), path.string());
+}
+
+MaterialTable MaterialTable::builtin() {
+  // Parsed and checked once; a broken shipped file is a build defect that the
+  // tests catch, so every call reporting it again is fine.
+  static const MaterialTable table = [] {
+    MaterialTable t = parse(builtin_material_presets_yaml(), "graphs/materials/presets.yaml");
+    t.check();
+    return t;
+  }();
+  return table;
+}
+
+void MaterialTable::merge(const MaterialTable& other) {
+  for (const auto& [name, preset] : other.presets_) presets_.insert_or_assign(name, preset);
+}
+
+std::vector<std::string> MaterialTable::names() const {
+  std::vector<std::string> out;
+  for (const auto& kv : presets_) out.push_back(kv.first);
+  return out;
+}
+
+const MaterialPreset& MaterialTable::preset(const std::string& name) const {
+  const auto it = presets_.find(name);
+  if (it == presets_.end())
+    throw ConfigError("unknown material '" + name + "'" + did_you_mean(name, names()) + " (known: " + joined(names(), ", ") + ")");
+  return it->second;
+}
+
+Material MaterialTable::get(const std::string& name) const {
+  std::vector<std::string> chain;
+  return resolve_preset(preset(name), chain);
+}
+
+Material MaterialTable::resolve_preset(const MaterialPreset& p, std::vector<std::string>& chain) const {
+  const std::string owner = owner_of(p);
+  Material m;
+  if (p.base.empty()) {
+    // parse_material_preset guarantees all four fields without a base.
+    m.density = *p.density;
+    m.stretch = *p.stretch;
+    m.bending = *p.bending;
+    m.thickness = *p.thickness;
+  } else {
+    chain.push_back(p.name);
+    if (const auto loop = std::find(chain.begin(), chain.end(), p.base); loop != chain.end()) {
+      const std::vector<std::string> cycle(loop, chain.end());
+      throw ConfigError(p.base_where, owner + ": `base` makes a cycle: " + joined(cycle, " -> ") + " -> " + p.base);
+    }
+    const auto it = presets_.find(p.base);
+    if (it == presets_.end()) {
+      std::vector<std::string> others = names();  // a preset cannot be its own base: don't suggest it
+      others.erase(std::remove(others.begin(), others.end(), p.name), others.end());
+      throw ConfigError(p.base_where, owner + ": unknown `base` '" + p.base + "'" + did_you_mean(p.base, others) +
+                                          " (known: " + joined(others, ", ") + ")");
+    }
+    m = resolve_preset(it->second, chain);
+    chain.pop_back();
+    m.density *= p.density_multiplier;
+    m.stretch *= p.stretch_multiplier;
+    m.bending *= p.bend_multiplier;
+    m.thickness *= p.thickness_multiplier;
+    if (p.density) m.density = *p.density;
+    if (p.stretch) m.stretch = *p.stretch;
+    if (p.bending) m.bending = *p.bending;
+    if (p.thickness) m.thickness = *p.thickness;
+  }
+  // Positive factors keep a positive definite stretch so; checked again anyway
+  // because this is the value the simulator will use.
+  const auto field = p.field_where.find("stretch");
+  materials_detail::check_stretch(m.stretch, field != p.field_where.end() ? field->second : p.where, owner);
+  m.name = !p.name.empty() ? p.name : !p.base.empty() ? p.base : "inline";
+  return m;
+}
+
+Material MaterialTable::resolve(const YAML::Node& spec, const std::string& file) const {
+  const SourceLocation where = at(file, spec);
+  if (spec && spec.IsScalar()) {
+    const std::string name = spec.Scalar();
+    if (!contains(name))
+      throw ConfigError(where, "unknown material '" + name + "'" + did_you_mean(name, names()) + " (known: " +
+                                   joined(names(), ", ") + ")");
+    return get(name);
+  }
+  if (spec && spec.IsMap()) {
+    const MaterialPreset inline_preset = parse_material_preset("", spec, file, where);
+    std::vector<std::string> chain;
+    return resolve_preset(inline_preset, chain);
+  }
+  throw ConfigError(where, "a material must be a preset name (one of " + joined(names(), ", ") +
+                               ") or a map such as {base: gray-interlock, multipliers: {stretch: 2}}");
+}
+
+void MaterialTable::check() const {
+  for (const auto& kv : presets_) get(kv.first);
+}
+
+}  // namespace drape

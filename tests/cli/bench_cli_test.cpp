@@ -1,0 +1,45 @@
+// `drape bench <name>`: the registry of benchmarks, its listing and errors, and
+// the two shipped benchmarks on tiny inputs (no timing is checked).
+#include <catch2/catch.hpp>
+
+#include <fstream>
+
+#include "test_support.hpp"
+
+using namespace drape;
+
+namespace {
+int run_drape(const std::string& args, std::string& out) { return test::run(test::drape_program().string() + " " + args, out); }
+}  // namespace
+
+TEST_CASE("drape bench lists its benchmarks and refuses unknown ones", "[cli][bench]") {
+  std::string out;
+  REQUIRE(run_drape("bench list", out) == 0);
+  CHECK_THAT(out, Catch::Contains("geometry") && Catch::Contains("mesh-io") && Catch::Contains("usage: drape bench <name>"));
+  REQUIRE(run_drape("bench --help", out) == 0);
+  CHECK_THAT(out, Catch::Contains("geometry") && Catch::Contains("mesh-io"));
+  CHECK(run_drape("bench", out) == 2);
+  CHECK_THAT(out, Catch::Contains("which benchmark") && Catch::Contains("mesh-io"));
+  CHECK(run_drape("bench geomtry", out) == 2);
+  CHECK_THAT(out, Catch::Contains("unknown benchmark 'geomtry'") && Catch::Contains("did you mean 'geometry'"));
+  // The old command names are gone; the error points to the new one.
+  CHECK(run_drape("bench-geometry", out) == 2);
+  CHECK_THAT(out, Catch::Contains("did you mean 'bench'"));
+  REQUIRE(run_drape("bench geometry --help", out) == 0);
+  CHECK_THAT(out, Catch::Contains("usage: drape bench geometry"));
+  CHECK(run_drape("bench geometry --ring 2", out) == 2);
+}
+
+TEST_CASE("drape bench geometry and mesh-io run on tiny inputs", "[cli][bench]") {
+  std::string out;
+  REQUIRE(run_drape("bench geometry --ring 8 --tube 6 --queries 40 --check 40 --repeats 1", out) == 0);
+  CHECK_THAT(out, Catch::Contains("48 vertices") && Catch::Contains("drape BodySurface") && Catch::Contains("max error"));
+
+  test::TempDir dir;
+  std::ofstream(dir / "quad.obj") << "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3\nf 1 3 4\n";
+  REQUIRE(run_drape("bench mesh-io " + (dir / "quad.obj").string() + " --repeats 1", out) == 0);
+  CHECK_THAT(out, Catch::Contains("4 vertices, 2 triangles") && Catch::Contains(".ply") &&
+                      Catch::Contains("order and count kept"));
+  CHECK(out.find("CHANGED") == std::string::npos);
+  CHECK(run_drape("bench mesh-io " + (dir / "absent.obj").string(), out) == 2);
+}

@@ -1,0 +1,123 @@
+// `drape dataset merge` and `drape dataset info` on tiny datasets written here.
+#include <catch2/catch.hpp>
+
+#include <drape/dataset.hpp>
+
+#include "test_support.hpp"
+
+using namespace drape;
+namespace fs = std::filesystem;
+
+namespace {
+
+int run_drape(const std::string& args, std::string& out) { return test::run(test::drape_program().string() + " " + args, out); }
+
+DatasetLayout layout(std::size_t samples, int garment_vertices = 4) {
+  DatasetLayout l;
+  l.samples = samples;
+  l.body_params = 2;
+  l.body_vertices = 3;
+  l.garment_vertices = garment_vertices;
+  l.stats = {"energy", "seconds"};
+  l.scene = "# tiny test scene\nbody: {model: parametric}\ngarment: tshirt\neffects: [gravity]\n";
+  l.template_hash = "feedbeef";
+  return l;
+}
+
+// Sample `i` of shard `shard`: its first body parameter identifies it.
+DatasetSample sample(const DatasetLayout& l, int shard, std::size_t i) {
+  DatasetSample s;
+  s.body_params = Eigen::VectorXf::Constant(l.body_params, static_cast<float>(100 * shard + static_cast<int>(i)));
+  s.body_vertices = MatrixRM::Constant(l.body_vertices, 3, 0.5f);
+  s.garment_vertices = MatrixRM::Constant(l.garment_vertices, 3, 0.25f);
+  s.split = static_cast<Split>(i % 3);
+  s.stats = {{"energy", 1.0 + static_cast<double>(i)}};  // seconds not recorded
+  return s;
+}
+
+// A shard with `done` of `samples` written; finished when all are.
+void write_shard(const fs::path& path, int shard, std::size_t samples, std::size_t done, int garment_vertices = 4) {
+  const DatasetLayout l = layout(samples, garment_vertices);
+  DatasetWriter writer(path, l);
+  for (std::size_t i = 0; i < done; ++i) writer.write(i, sample(l, shard, i));
+  if (done == samples) writer.finish();
+}
+
+}  // namespace
+
+TEST_CASE("drape dataset merge joins shards in order", "[cli][dataset]") {
+  test::TempDir dir;
+  write_shard(dir / "a.h5", 0, 3, 3);
+  write_shard(dir / "b.h5", 1, 2, 2);
+  const std::string a = (dir / "a.h5").string(), b = (dir / "b.h5").string(), all = (dir / "all.h5").string();
+  std::string out;
+  REQUIRE(run_drape("dataset merge --out " + all + " " + a + " " + b, out) == 0);
+  CHECK_THAT(out, Catch::Contains("merged 5 samples from 2 shards"));
+  {
+    const DatasetReader merged(all);
+    REQUIRE(merged.size() == 5);
+    CHECK(merged.indices().size() == 5);
+    CHECK(merged.sample(2).body_params[0] == 2.0f);    // a's last
+    CHECK(merged.sample(3).body_params[0] == 100.0f);  // b's first
+    CHECK(merged.layout().attributes.at("merged_from") == "a.h5\nb.h5");
+  }
+  // A finished dataset is not overwritten without --force.
+  CHECK(run_drape("dataset merge --out " + all + " " + b, out) == 2);
+  CHECK_THAT(out, Catch::Contains("all.h5") && Catch::Contains("--force"));
+  REQUIRE(run_drape("dataset merge --force -o " + all + " " + b, out) == 0);
+  CHECK(DatasetReader(all).size() == 2);
+}
+
+TEST_CASE("drape dataset merge refuses unfinished or mismatched shards", "[cli][dataset]") {
+  test::TempDir dir;
+  write_shard(dir / "a.h5", 0, 3, 3);
+  write_shard(dir / "c.h5", 2, 3, 1);  // leaves c.h5.partial with 1 of 3 done
+  write_shard(dir / "d.h5", 3, 2, 2, 5);
+  const std::string a = (dir / "a.h5").string(), c = (dir / "c.h5.partial").string(), d = (dir / "d.h5").string();
+  std::string out;
+  CHECK(run_drape("dataset merge --out " + (dir / "x.h5").string() + " " + a + " " + c, out) == 2);
+  CHECK_THAT(out, Catch::Contains("c.h5.partial") && Catch::Contains("only 1 of 3 samples are done"));
+  CHECK(!fs::exists(dir / "x.h5"));
+  REQUIRE(run_drape("dataset merge --allow-incomplete --out " + (dir / "x.h5").string() + " " + a + " " + c, out) == 0);
+  CHECK_THAT(out, Catch::Contains("merged 4 samples"));
+  CHECK(DatasetReader(dir / "x.h5").sample(3).body_params[0] == 200.0f);
+
+  CHECK(run_drape("dataset merge --out " + (dir / "y.h5").string() + " " + a + " " + d, out) == 2);
+  CHECK_THAT(out, Catch::Contains("d.h5") && Catch::Contains("garment_vertices"));
+  CHECK(run_drape("dataset merge --out " + (dir / "y.h5").string() + " " + (dir / "absent.h5").string(), out) == 2);
+  CHECK_THAT(out, Catch::Contains("absent.h5"));
+  CHECK(run_drape("dataset merge " + a, out) == 2);  // no --out
+  CHECK_THAT(out, Catch::Contains("out"));
+}
+
+TEST_CASE("drape dataset info shows layout, splits, stats and the scene", "[cli][dataset]") {
+  test::TempDir dir;
+  write_shard(dir / "a.h5", 0, 3, 3);
+  write_shard(dir / "b.h5", 1, 4, 2);
+  std::string out;
+  REQUIRE(run_drape("dataset info " + (dir / "a.h5").string(), out) == 0);
+  CHECK_THAT(out, Catch::Contains("drape dataset, complete") && Catch::Contains("samples   3, done 3") &&
+                      Catch::Contains("P = 2") && Catch::Contains("Nb = 3") && Catch::Contains("Ng = 4") &&
+                      Catch::Contains("train 1, val 1, test 1") && Catch::Contains("stats     2 per sample") && Catch::Contains("energy: 3 of 3 recorded, mean 2, min 1, max 3") &&
+                      Catch::Contains("seconds: 0 of 3 recorded") && Catch::Contains("template  feedbeef") &&
+                      Catch::Contains("scene     4 lines") && Catch::Contains("| # tiny test scene") &&
+                      Catch::Contains("| effects: [gravity]"));
+
+  REQUIRE(run_drape("dataset info --scene-lines 1 " + (dir / "b.h5.partial").string(), out) == 0);
+  CHECK_THAT(out, Catch::Contains("drape dataset, incomplete") && Catch::Contains("samples   4, done 2") &&
+                      Catch::Contains("train 1, val 1, test 0") && Catch::Contains("| # tiny test scene") &&
+                      Catch::Contains("(3 more)"));
+
+  REQUIRE(run_drape("dataset merge --out " + (dir / "all.h5").string() + " " + (dir / "a.h5").string() + " " +
+                        (dir / "a.h5").string(), out) == 0);
+  REQUIRE(run_drape("dataset info " + (dir / "all.h5").string(), out) == 0);
+  CHECK_THAT(out, Catch::Contains("samples   6, done 6") && Catch::Contains("merged_from: a.h5, a.h5"));
+
+  CHECK(run_drape("dataset info " + (dir / "absent.h5").string(), out) == 2);
+  CHECK_THAT(out, Catch::Contains("absent.h5"));
+  CHECK(run_drape("dataset", out) == 2);
+  CHECK(run_drape("dataset mrege", out) == 2);
+  CHECK_THAT(out, Catch::Contains("did you mean 'merge'"));
+  REQUIRE(run_drape("dataset --help", out) == 0);
+  CHECK_THAT(out, Catch::Contains("drape dataset merge") && Catch::Contains("drape dataset info"));
+}
