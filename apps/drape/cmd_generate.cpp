@@ -138,12 +138,13 @@ int run(const std::vector<std::string>& args) {
   if (threads <= 0) threads = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
   threads = static_cast<int>(std::min<std::size_t>(static_cast<std::size_t>(threads), std::max<std::size_t>(todo.size(), 1)));
   std::printf("generating %zu samples (%zu..%zu of %zu) into %s%s, %d at a time; %s\n", layout.samples, first, last - 1,
-              total, out.c_str(), writer.resumed() ? " (resuming: " + std::to_string(already) + " done)" : "", threads,
+              total, out.c_str(), writer.resumed() ? (" (resuming: " + std::to_string(already) + " done)").c_str() : "", threads,
               ranges.str().c_str());
   std::fflush(stdout);
 
-  ProgressBar bar("generate", layout.samples);
-  bar.resume_from(already);
+  ProgressBar::Options bar_options;
+  bar_options.start = already;  // a resumed job: the ETA counts this run's rate only
+  ProgressBar bar("generate", layout.samples, std::cerr, bar_options);
   std::mutex write_mutex;
   std::atomic<std::size_t> next{0};
   std::atomic<int> not_settled{0}, penetrating{0};

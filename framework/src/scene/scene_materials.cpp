@@ -1,10 +1,13 @@
 #include "scene_materials.hpp"
 
+#include <drape/materials.hpp>
+
 #include <algorithm>
 
 namespace drape::scene_detail {
 
 void apply_scene_materials(Garment& garment, const Scene& scene) {
+  const MaterialTable table = MaterialTable::builtin();
   std::vector<std::string> regions;
   for (const Material& m : garment.materials) regions.push_back(m.name);
   for (const SceneMaterial& sm : scene.materials) {
@@ -15,7 +18,10 @@ void apply_scene_materials(Garment& garment, const Scene& scene) {
       throw ConfigError(sm.where, "materials: the garment '" + scene.garment + "' has no region '" + sm.region + "'" +
                                       did_you_mean(sm.region, regions) + " (its regions: " + list + ")");
     }
-    // TODO(materials): resolve sm.spec through the preset table.
+    // The region keeps its name; the physics comes from the preset.
+    Material m = table.resolve(sm.spec, sm.file);
+    m.name = sm.region;
+    garment.materials[static_cast<std::size_t>(it - regions.begin())] = m;
   }
   // One material for every face: no per-face map.
   if (garment.face_material.size() > 0) {
