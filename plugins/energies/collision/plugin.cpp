@@ -16,7 +16,7 @@ PluginList plugins() {
   d.params = {
       // 30 Pa (a shirt's tension over the torso) at 1.7 mm into the margin, 100 Pa at 3.2 mm.
       {"stiffness", ParamType::Float, "1e7",
-       "k in N/m^4: contact pressure k * (margin - d)^2 Pa; the default holds 30 Pa 1.3 mm off the skin", 0.0, 1e15},
+       "k in N/m^4: contact pressure k * (margin - d)^2 Pa; the default holds 30 Pa 1.3 mm off the skin", 0.0},
       {"margin", ParamType::Float, "0.003", "m: wanted clearance between the cloth's mid-surface and the body", 0.0,
        0.1},
       {"max_depth", ParamType::Float, "0",
