@@ -1,0 +1,35 @@
+#include <drape/geometry/vertex_areas.hpp>
+
+#include <drape/errors.hpp>
+
+#include <cmath>
+#include <string>
+
+namespace drape::geometry {
+
+Eigen::VectorXd vertex_areas(const Garment& garment) {
+  const Mesh& mesh = garment.mesh;
+  if (!mesh.has_uv())
+    throw ConfigError("vertex areas: the garment has no material-space UVs (uv and uv_faces, one UV face per face)");
+  const int nv = mesh.num_vertices();
+  const Eigen::Index nuv = mesh.uv.rows();
+  Eigen::VectorXd area = Eigen::VectorXd::Zero(nv);
+  for (int f = 0; f < mesh.num_faces(); ++f) {
+    for (int k = 0; k < 3; ++k) {
+      if (mesh.faces(f, k) < 0 || mesh.faces(f, k) >= nv)
+        throw Error("vertex areas: face " + std::to_string(f) + " uses vertex " + std::to_string(mesh.faces(f, k)) +
+                    ", outside [0, " + std::to_string(nv) + ")");
+      if (mesh.uv_faces(f, k) < 0 || mesh.uv_faces(f, k) >= nuv)
+        throw Error("vertex areas: face " + std::to_string(f) + " uses UV " + std::to_string(mesh.uv_faces(f, k)) +
+                    ", outside [0, " + std::to_string(nuv) + ")");
+    }
+    const Eigen::Vector2d a = mesh.uv.row(mesh.uv_faces(f, 0)), b = mesh.uv.row(mesh.uv_faces(f, 1)),
+                          c = mesh.uv.row(mesh.uv_faces(f, 2));
+    const Eigen::Vector2d e1 = b - a, e2 = c - a;
+    const double third = std::abs(e1.x() * e2.y() - e1.y() * e2.x()) / 6.0;
+    for (int k = 0; k < 3; ++k) area[mesh.faces(f, k)] += third;
+  }
+  return area;
+}
+
+}  // namespace drape::geometry

@@ -1,0 +1,90 @@
+#include "body_collision.hpp"
+
+#include "contacts.hpp"
+
+#include <drape/errors.hpp>
+#include <drape/geometry/vertex_areas.hpp>
+
+#include <string>
+
+namespace drape::collision {
+
+BodyCollision::BodyCollision(const CollisionSettings& settings) : settings_(settings) {
+  penalty_.margin = settings.margin;
+  if (settings.max_depth > 0) penalty_.delta_max = settings.margin + settings.max_depth;
+}
+
+void BodyCollision::bind(const EnergyContext& context) {
+  if (!context.garment) throw ConfigError("collision: no garment is bound");
+  if (!context.body)
+    throw ConfigError(
+        "collision: no body is bound; the collision energy keeps the garment outside a body, so the scene or "
+        "solver must provide one (EnergyContext::body, e.g. a geometry::BodySurface)");
+  if (context.garment->mesh.num_vertices() == 0) throw ConfigError("collision: the garment has no vertices");
+  try {
+    area_ = geometry::vertex_areas(*context.garment);
+  } catch (const ConfigError& e) {
+    throw ConfigError(std::string("collision: ") + e.what());
+  }
+  body_ = context.body;
+}
+
+void BodyCollision::check(const Eigen::MatrixX3d& x) const {
+  if (!body_) throw Error("collision: bind() was not called");
+  if (x.rows() != area_.size())
+    throw Error("collision: " + std::to_string(x.rows()) + " vertices given, the bound garment has " +
+                std::to_string(area_.size()));
+  for (Eigen::Index v = 0; v < x.rows(); ++v)
+    if (!x.row(v).allFinite()) throw Error("collision: garment vertex " + std::to_string(v) + " is not finite");
+}
+
+double BodyCollision::value(const Eigen::MatrixX3d& x) const {
+  check(x);
+  const std::vector<Contact> contacts = body_contacts(*body_, x, false);
+  double energy = 0;
+  for (std::size_t v = 0; v < contacts.size(); ++v)
+    energy += area_[static_cast<Eigen::Index>(v)] * penalty_.value(penalty_.delta(contacts[v].distance));
+  return settings_.stiffness * energy;
+}
+
+double BodyCollision::add_gradient(const Eigen::MatrixX3d& x, Eigen::MatrixX3d& g) const {
+  check(x);
+  if (g.rows() != x.rows()) throw Error("collision: the gradient has " + std::to_string(g.rows()) + " rows, x has " +
+                                        std::to_string(x.rows()));
+  const std::vector<Contact> contacts = body_contacts(*body_, x, false);
+  double energy = 0;
+  for (std::size_t i = 0; i < contacts.size(); ++i) {
+    const auto v = static_cast<Eigen::Index>(i);
+    const double delta = penalty_.delta(contacts[i].distance);
+    if (delta <= 0) continue;
+    const double c = settings_.stiffness * area_[v];
+    energy += c * penalty_.value(delta);
+    // d delta / dx = -n: the energy falls as the vertex moves out.
+    g.row(v) -= c * penalty_.slope(delta) * contacts[i].normal.transpose();
+  }
+  return energy;
+}
+
+void BodyCollision::add_hessian(const Eigen::MatrixX3d& x, Triplets& h, bool project_psd) const {
+  check(x);
+  const std::vector<Contact> contacts = body_contacts(*body_, x, true);
+  h.reserve(h.size() + 9 * contacts.size());
+  for (std::size_t i = 0; i < contacts.size(); ++i) {
+    const auto v = static_cast<Eigen::Index>(i);
+    const Contact& contact = contacts[i];
+    const double delta = penalty_.delta(contact.distance);
+    Eigen::Matrix3d block = Eigen::Matrix3d::Zero();
+    if (delta > 0) {
+      const double c = settings_.stiffness * area_[v];
+      block = c * penalty_.curvature(delta) * contact.normal * contact.normal.transpose();
+      // -c phi' D is negative semi-definite outside the body (D = P / d with
+      // d > 0) and positive semi-definite inside: the projection keeps it there only.
+      if (!project_psd || contact.distance < 0) block -= c * penalty_.slope(delta) * contact.distance_hessian;
+    }
+    const int base = 3 * static_cast<int>(v);
+    for (int r = 0; r < 3; ++r)
+      for (int col = 0; col < 3; ++col) h.emplace_back(base + r, base + col, block(r, col));
+  }
+}
+
+}  // namespace drape::collision

@@ -1,0 +1,29 @@
+#pragma once
+// Where each garment vertex stands relative to the body: signed distance, its
+// gradient (the outward unit normal at the closest point) and, when the body can
+// say which feature the closest point lies on, the Hessian of the signed distance.
+#include <drape/geometry/closest_point.hpp>
+
+#include <Eigen/Core>
+
+#include <vector>
+
+namespace drape::collision {
+
+struct Contact {
+  Eigen::Vector3d normal = Eigen::Vector3d::Zero();  // d(distance)/dx, unit, outward
+  double distance = 0;                               // signed, < 0 inside the body
+  // d^2(distance)/dx^2: zero when the closest point is inside a face (the
+  // surface is flat there), (I - n n^T) / distance at a body vertex (distance to
+  // a point), (I - n n^T - t t^T) / distance on an edge of direction t (distance
+  // to a line). Left zero when not asked for or not known (see body_contacts).
+  Eigen::Matrix3d distance_hessian = Eigen::Matrix3d::Zero();
+};
+
+// One contact per row of x. A BodySurface is queried in parallel and reports the
+// feature (face, edge, vertex) of each closest point, which the distance Hessian
+// needs; any other BodyQuery is asked closest() one point at a time (its thread
+// safety is unknown) and its contacts carry no distance Hessian.
+std::vector<Contact> body_contacts(const BodyQuery& body, const Eigen::MatrixX3d& x, bool with_hessian);
+
+}  // namespace drape::collision

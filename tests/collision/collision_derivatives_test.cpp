@@ -1,0 +1,257 @@
+// Finite-difference checks of the collision energy's gradient and exact Hessian,
+// PSD projection, a stiff case, the linear tail of max_depth, and the constant
+// sparsity pattern the solver relies on.
+#include "collision_test_util.hpp"
+
+#include <catch2/catch.hpp>
+
+#include <Eigen/Eigenvalues>
+
+#include <set>
+
+using namespace drape;
+using namespace drape::test;
+using geometry::TriangleFeature;
+
+namespace {
+
+// Points near a body, a step of length |t|, t in [lo, hi], from a random face
+// point: into the body (t < 0) along the face normal from a face interior; out
+// of it (t > 0) along the normal from a face interior, tilted over an edge from
+// a point on that edge, about the vertex normal from a corner (in turn). On
+// convex parts the outward steps from edges and corners end nearest that edge or
+// corner, and the inward ones stay off the medial axis (where the distance has
+// a kink: a step in from an edge would land on it). The actual closest feature
+// is whatever the body says.
+Eigen::MatrixX3d points_near_faces(const geometry::BodySurface& body, int count, double lo, double hi,
+                                   std::uint64_t seed) {
+  std::mt19937_64 rng(seed);
+  std::uniform_int_distribution<int> face(0, static_cast<int>(body.faces().rows()) - 1);
+  std::uniform_real_distribution<double> u(0, 1), offset(lo, hi), tilt(0.1, 0.8);
+  Eigen::MatrixX3d x(count, 3);
+  for (int i = 0; i < count; ++i) {
+    const int f = face(rng);
+    Eigen::Vector3d corner[3];
+    for (int k = 0; k < 3; ++k) corner[k] = body.vertices().row(body.faces()(f, k));
+    const Eigen::Vector3d n = (corner[1] - corner[0]).cross(corner[2] - corner[0]).normalized();
+    const double t = offset(rng);
+    Eigen::Vector3d w(u(rng), u(rng), u(rng));
+    if (t > 0 && i % 3 > 0) w[2] = 0;  // on edge ab
+    if (t > 0 && i % 3 > 1) w[1] = 0;  // at corner a
+    w /= w.sum();
+    const Eigen::Vector3d p = w[0] * corner[0] + w[1] * corner[1] + w[2] * corner[2];
+    Eigen::Vector3d dir = n;
+    if (t > 0 && i % 3 == 1) {
+      const Eigen::Vector3d edge = (corner[1] - corner[0]).normalized();
+      Eigen::Vector3d away = p - corner[2];
+      away = (away - away.dot(edge) * edge).normalized();
+      dir = (n + tilt(rng) * away).normalized();
+    } else if (t > 0 && i % 3 == 2) {
+      // Off the vertex normal: on a symmetric mesh it lies in a mirror plane, and
+      // outside a concave vertex that plane is where two faces are equally near.
+      const Eigen::Vector3d jitter(u(rng) - 0.5, u(rng) - 0.5, u(rng) - 0.5);
+      dir = (body.vertex_normals().row(body.faces()(f, 0)).transpose() + 0.4 * jitter).normalized();
+    }
+    x.row(i) = p + t * dir;
+  }
+  return x;
+}
+
+struct FeatureCounts {
+  int interior = 0, edge = 0, vertex = 0, inside = 0, in_margin = 0;
+  int inside_off_face = 0;  // inside, nearest an edge or a vertex: a concave part of the body
+};
+
+FeatureCounts count_features(const geometry::BodySurface& body, const Eigen::MatrixX3d& x, double margin) {
+  FeatureCounts c;
+  for (const auto& s : body.locate_all(x)) {
+    if (s.signed_distance >= margin) continue;
+    ++c.in_margin;
+    if (s.signed_distance < 0) ++c.inside;
+    if (s.signed_distance < 0 && s.feature != TriangleFeature::interior) ++c.inside_off_face;
+    if (s.feature == TriangleFeature::interior) ++c.interior;
+    else if (s.feature == TriangleFeature::edge_ab || s.feature == TriangleFeature::edge_bc ||
+             s.feature == TriangleFeature::edge_ca) ++c.edge;
+    else ++c.vertex;
+  }
+  return c;
+}
+
+Eigen::MatrixXd dense_hessian(const Energy& e, const Eigen::MatrixX3d& x, bool project) {
+  Triplets t;
+  e.add_hessian(x, t, project);
+  Eigen::SparseMatrix<double> h(3 * x.rows(), 3 * x.rows());
+  h.setFromTriplets(t.begin(), t.end());
+  return Eigen::MatrixXd(h);
+}
+
+}  // namespace
+
+TEST_CASE("collision derivatives match finite differences where closest points are inside faces", "[collision][gradcheck]") {
+  // A large, finely tessellated sphere: points within a few mm of it project
+  // into face interiors, where the tangent-plane Hessian is exact.
+  const geometry::BodySurface body = sphere_body(3, 0.5);
+  const auto garment = grid_garment(6, 0.02);
+  const Eigen::Vector3d center(1.0 / 3, 1.0 / 3, 1.0 / 3);
+  std::mt19937_64 rng(11);
+  std::uniform_int_distribution<int> face(0, static_cast<int>(body.faces().rows()) - 1);
+  Eigen::MatrixX3d x(36, 3);
+  for (int v = 0; v < 36; ++v) {
+    const double offset = -0.006 + 0.011 * (v + 0.5) / 36;  // inside the body, in the margin and beyond
+    x.row(v) = off_face(body, face(rng), center, offset);
+  }
+  const FeatureCounts c = count_features(body, x, 0.003);
+  REQUIRE(c.interior == c.in_margin);
+  REQUIRE(c.inside >= 5);
+  REQUIRE(c.in_margin - c.inside >= 5);
+  REQUIRE(c.in_margin < 36);  // some beyond the margin too
+  const auto e = collision_energy("{}", *garment, &body);
+  const GradCheckReport r = check_energy_derivatives(*e, x);
+  INFO(r.str());
+  CHECK(r.entries.size() == 3);
+  CHECK(r.ok(1e-6));
+}
+
+TEST_CASE("collision's exact Hessian includes the body's curvature at edges and vertices", "[collision][gradcheck]") {
+  // A coarse icosahedron: points outside it are mostly nearest an edge or a
+  // vertex, where the signed distance is curved (distance to a line or point).
+  const geometry::BodySurface body = sphere_body(0, 0.2);
+  const auto garment = grid_garment(7, 0.02);
+  const Eigen::MatrixX3d x = points_near_faces(body, 49, -0.01, 0.006, 21);
+  const FeatureCounts c = count_features(body, x, 0.01);
+  INFO("interior " << c.interior << ", edge " << c.edge << ", vertex " << c.vertex);
+  REQUIRE(c.edge >= 3);
+  REQUIRE(c.vertex >= 1);
+  const auto e = collision_energy("{margin: 0.01}", *garment, &body);
+  const GradCheckReport r = check_energy_derivatives(*e, x);
+  INFO(r.str());
+  CHECK(r.ok(1e-5));
+  // Outside a convex body the curvature term is negative in the tangent
+  // directions: the exact Hessian is indefinite and the projection matters.
+  const Eigen::MatrixXd exact = dense_hessian(*e, x, false);
+  CHECK(Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(exact).eigenvalues().minCoeff() < 0);
+}
+
+TEST_CASE("collision derivatives and PSD projection on a torus, with concave and saddle regions", "[collision][gradcheck]") {
+  const geometry::BodySurface body(geometry::torus(0.3, 0.1, 24, 12));
+  const auto garment = grid_garment(8, 0.02);
+  const Eigen::MatrixX3d x = points_near_faces(body, 64, -0.015, 0.008, 5);
+  const FeatureCounts c = count_features(body, x, 0.01);
+  INFO("interior " << c.interior << ", edge " << c.edge << ", vertex " << c.vertex << ", inside " << c.inside);
+  REQUIRE(c.inside >= 10);
+  REQUIRE(c.edge + c.vertex >= 5);
+  const auto e = collision_energy("{margin: 0.01}", *garment, &body);
+  const GradCheckReport r = check_energy_derivatives(*e, x);
+  INFO(r.str());
+  CHECK(r.ok(1e-5));
+}
+
+TEST_CASE("collision keeps the body's curvature in the projected Hessian inside concave parts", "[collision][gradcheck]") {
+  // An icosahedron turned inside out is a body everywhere concave: the cavity
+  // is outside it. Points just outside the original solid are inside this body,
+  // nearest its edges and vertices, where -k a phi' D is positive semi-definite:
+  // the projection must keep it (tangential stiffness), not drop it.
+  const Mesh solid = geometry::icosphere(0, 0.2);
+  Eigen::MatrixX3i inverted = solid.faces;
+  inverted.col(1).swap(inverted.col(2));
+  const geometry::BodySurface cavity(solid.vertices, inverted);
+  const geometry::BodySurface convex(solid);
+  const Eigen::MatrixX3d x = points_near_faces(convex, 36, 0.0005, 0.006, 9);
+  const FeatureCounts c = count_features(cavity, x, 0.003);
+  INFO("interior " << c.interior << ", edge " << c.edge << ", vertex " << c.vertex << ", inside " << c.inside);
+  REQUIRE(c.inside == 36);
+  REQUIRE(c.inside_off_face >= 12);
+  const auto garment = grid_garment(6, 0.02);
+  const auto e = collision_energy("{}", *garment, &cavity);
+  const GradCheckReport r = check_energy_derivatives(*e, x);
+  INFO(r.str());
+  CHECK(r.ok(1e-5));
+  const Eigen::MatrixXd exact = dense_hessian(*e, x, false), projected = dense_hessian(*e, x, true);
+  CHECK((exact - projected).norm() <= 1e-12 * exact.norm());
+  // Blocks of vertices nearest an edge or a vertex have rank 2 or 3, not 1.
+  int curved = 0;
+  for (int v = 0; v < 36; ++v) {
+    const Eigen::Matrix3d block = projected.block<3, 3>(3 * v, 3 * v);
+    const Eigen::Vector3d eig = Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(block).eigenvalues();
+    CHECK(eig.minCoeff() >= -1e-12 * eig.maxCoeff());
+    curved += eig[1] > 1e-6 * eig[2];
+  }
+  CHECK(curved == c.inside_off_face);
+}
+
+TEST_CASE("collision derivatives hold for a very stiff penalty", "[collision][gradcheck]") {
+  const geometry::BodySurface body = sphere_body(3, 0.5);
+  const auto garment = grid_garment(5, 0.02);
+  const Eigen::MatrixX3d x = points_at_distances(body, Eigen::Vector3d::Zero(), 25, -0.004, 0.004, 17);
+  const auto e = collision_energy("{stiffness: 1e13}", *garment, &body);
+  Eigen::MatrixX3d g = Eigen::MatrixX3d::Zero(25, 3);
+  e->add_gradient(x, g);
+  REQUIRE(g.cwiseAbs().maxCoeff() > 1e3);
+  const GradCheckReport r = check_energy_derivatives(*e, x);
+  INFO(r.str());
+  CHECK(r.ok(1e-5));
+}
+
+TEST_CASE("collision with max_depth: linear beyond it, still pushing outward, derivatives exact", "[collision][gradcheck]") {
+  const geometry::BodySurface body = sphere_body(3, 0.5);
+  const auto garment = grid_garment(5, 0.02);
+  // Depths from 0 to 4 cm, on both sides of max_depth = 1 cm.
+  const Eigen::MatrixX3d x = points_at_distances(body, Eigen::Vector3d::Zero(), 25, -0.04, 0.0, 23);
+  const auto capped = collision_energy("{max_depth: 0.01}", *garment, &body);
+  const auto cubic = collision_energy("{}", *garment, &body);
+  const GradCheckReport r = check_energy_derivatives(*capped, x);
+  INFO(r.str());
+  CHECK(r.ok(1e-6));
+
+  Eigen::MatrixX3d g = Eigen::MatrixX3d::Zero(25, 3), g_cubic = Eigen::MatrixX3d::Zero(25, 3);
+  capped->add_gradient(x, g);
+  cubic->add_gradient(x, g_cubic);
+  const Eigen::VectorXd area = [&] {
+    Eigen::VectorXd a = Eigen::VectorXd::Zero(25);
+    const Mesh& m = garment->mesh;
+    for (int f = 0; f < m.num_faces(); ++f)
+      for (int k = 0; k < 3; ++k) a[m.faces(f, k)] += 0.02 * 0.02 / 6;
+    return a;
+  }();
+  int deep = 0;
+  for (int v = 0; v < 25; ++v) {
+    const auto s = body.locate(x.row(v).transpose());
+    const double delta = 0.003 - s.signed_distance;
+    const double push = -g.row(v).dot(s.normal);  // outward force
+    if (s.signed_distance < -0.01) {
+      ++deep;
+      CHECK(push == Approx(1e7 * area[v] * 0.013 * 0.013).epsilon(1e-9));  // capped at the max_depth pressure
+      CHECK(push < -g_cubic.row(v).dot(s.normal));
+    } else {
+      CHECK(push == Approx(1e7 * area[v] * delta * delta).epsilon(1e-9));
+    }
+    CHECK((g.row(v) + push * s.normal.transpose()).norm() <= 1e-9 * push);  // along the normal only
+  }
+  CHECK(deep >= 10);
+  CHECK(capped->value(x) < cubic->value(x));
+}
+
+TEST_CASE("collision emits one 3x3 diagonal block per vertex whatever the contact state", "[collision]") {
+  const geometry::BodySurface body = sphere_body(3, 0.2);
+  const auto garment = grid_garment(5, 0.02);
+  const auto e = collision_energy("{}", *garment, &body);
+  const Eigen::MatrixX3d far = points_at_distances(body, Eigen::Vector3d::Zero(), 25, 0.01, 0.05, 1);
+  const Eigen::MatrixX3d mixed = points_at_distances(body, Eigen::Vector3d::Zero(), 25, -0.01, 0.01, 2);
+  auto pattern = [&](const Eigen::MatrixX3d& x, bool project) {
+    Triplets h = {{0, 0, 1.0}};  // appended to, never cleared
+    e->add_hessian(x, h, project);
+    std::vector<std::pair<int, int>> p;
+    for (std::size_t i = 1; i < h.size(); ++i) p.emplace_back(h[i].row(), h[i].col());
+    REQUIRE(h[0].value() == 1.0);
+    return p;
+  };
+  const auto reference = pattern(far, true);
+  REQUIRE(reference.size() == 9 * 25);
+  std::set<std::pair<int, int>> distinct(reference.begin(), reference.end());
+  CHECK(distinct.size() == 9 * 25);
+  for (const auto& [r, c] : reference) CHECK(r / 3 == c / 3);
+  CHECK(pattern(mixed, true) == reference);
+  CHECK(pattern(mixed, false) == reference);
+  CHECK(dense_hessian(*e, far, true).isZero(0.0));
+  CHECK(!dense_hessian(*e, mixed, true).isZero(0.0));
+}
