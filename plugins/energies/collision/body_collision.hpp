@@ -65,6 +65,7 @@ class BodyCollision final : public Energy {
 
   // Needs context.garment (with material-space UVs) and context.body.
   void bind(const EnergyContext& context) override;
+  bool needs_body() const override { return true; }
   double value(const Eigen::MatrixX3d& x) const override;
   double add_gradient(const Eigen::MatrixX3d& x, Eigen::MatrixX3d& g) const override;
   // Sparsity contract: appends exactly one 3x3 block (9 triplets) on the
