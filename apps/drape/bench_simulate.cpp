@@ -1,0 +1,138 @@
+// `drape bench simulate`: what a drape costs on one core. (1) Whole drapes of
+// the default and the coarse T-shirt. (2) One solver iteration with every
+// effect, then with each effect removed in turn, and with each linear solver:
+// an effect the scene does not name costs nothing, because nothing of it is
+// built (its energy, the body's closest-point hierarchy for collision).
+#include "bench.hpp"
+
+#include <drape/geometry/closest_point.hpp>
+#include <drape/registry.hpp>
+#include <drape/simulation.hpp>
+
+#ifdef _OPENMP
+#include <omp.h>
+#endif
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <fstream>
+#include <sstream>
+
+namespace drape::cli {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
+
+struct Row {
+  std::string config;
+  double ms = 0;  // best per iteration
+  double relative = 0;
+};
+
+// Best time of one Newton iteration of a fresh step from (x, v) on `body`.
+double iteration_ms(const Simulation& sim, const Eigen::MatrixX3d& body, const Eigen::MatrixX3d& x0, int repeats,
+                    const std::string& linear_solver) {
+  std::unique_ptr<geometry::BodySurface> surface;
+  if (sim.needs_body()) surface = std::make_unique<geometry::BodySurface>(body, sim.body_model().faces());
+  auto energies = sim.make_energies(surface.get());
+  SolverSettings settings = sim.solver_settings();
+  settings.max_newton_iterations = 1;
+  settings.tolerance = 0;  // always iterate
+  settings.linear_solver = linear_solver;
+  ClothSolver solver(sim.garment(), energies, settings);
+  double best = 1e300;
+  for (int r = 0; r < repeats + 1; ++r) {  // the first run also analyses the pattern: not counted
+    Eigen::MatrixX3d x = x0, v = Eigen::MatrixX3d::Zero(x0.rows(), 3);
+    const auto t = Clock::now();
+    solver.step(x, v);
+    if (r > 0) best = std::min(best, since(t));
+  }
+  return best * 1e3;
+}
+
+Scene without(const Scene& scene, const std::string& effect) {
+  Scene s = scene;
+  s.effects.erase(std::remove_if(s.effects.begin(), s.effects.end(), [&](const SceneEffect& e) { return e.name == effect; }),
+                  s.effects.end());
+  return s;
+}
+
+int run(const std::vector<std::string>& args) {
+  po::options_description opts("drape bench simulate");
+  opts.add_options()("scene", po::value<std::string>()->default_value("graphs/scenes/tshirt.yaml"), "scene of the full drape")(
+      "coarse-scene", po::value<std::string>()->default_value("graphs/scenes/tshirt_coarse.yaml"), "scene of the coarse drape ('' to skip)")(
+      "bmi", po::value<double>()->default_value(35), "target BMI of the drapes")(
+      "repeats", po::value<int>()->default_value(5), "iterations timed per configuration (best shown)")(
+      "threads", po::value<int>()->default_value(1), "OpenMP threads (figures are per core with 1)")(
+      "out", po::value<std::string>(), "also write the tables as Markdown here");
+  po::variables_map vm;
+  if (!parse("drape bench simulate [--scene S] [--coarse-scene S] [--bmi 35] [--repeats 5] [--out bench.md]", args, opts, {},
+             vm))
+    return 0;
+#ifdef _OPENMP
+  omp_set_num_threads(std::max(1, vm["threads"].as<int>()));
+#endif
+  const int repeats = std::max(1, vm["repeats"].as<int>());
+  Registry& registry = Registry::load_default(plugin_path(vm));
+  std::ostringstream md;
+  std::string report;  // everything printed, for --out
+
+  // (1) Whole drapes.
+  md << "## Whole drapes (BMI " << vm["bmi"].as<double>() << ", " << vm["threads"].as<int>() << " thread)\n\n"
+     << "| scene | garment vertices | steps | Newton iterations | settled | p (%) | time (s) |\n|---|---|---|---|---|---|---|\n";
+  Eigen::MatrixX3d body, draped;
+  std::vector<std::string> scenes{vm["scene"].as<std::string>()};
+  if (!vm["coarse-scene"].as<std::string>().empty()) scenes.push_back(vm["coarse-scene"].as<std::string>());
+  for (std::size_t k = 0; k < scenes.size(); ++k) {
+    Scene scene = load_scene(scenes[k]);
+    scene.shape["bmi"] = ParamValue{YAML::Node(vm["bmi"].as<double>()), {"command line", 0}};
+    const Simulation sim(registry, scene);
+    const Eigen::MatrixX3d target = sim.body_vertices(sim.target_shape());
+    const SimulationResult r = sim.run(target);
+    md << "| " << scenes[k] << " | " << sim.garment().mesh.num_vertices() << " | " << r.steps << " | " << r.iterations << " | "
+       << (r.converged ? "yes" : "no") << " | " << 100 * r.penetration << " | " << r.seconds << " |\n";
+    std::printf("%s", md.str().c_str());
+    std::fflush(stdout);
+    report += md.str();
+    md.str("");
+    md.clear();
+    if (k == 0) {
+      body = target;
+      draped = r.garment;
+    }
+  }
+
+  // (2) One iteration, on the settled default drape.
+  const Scene scene = load_scene(scenes[0]);
+  const Simulation all(registry, scene);
+  std::vector<Row> rows;
+  const double base = iteration_ms(all, body, draped, repeats, "auto");
+  rows.push_back({"all effects", base, 1});
+  for (const SceneEffect& e : scene.effects) {
+    if (scene.effects.size() < 2) break;
+    const Simulation sim(registry, without(scene, e.name));
+    const double ms = iteration_ms(sim, body, draped, repeats, "auto");
+    rows.push_back({"without " + e.name, ms, ms / base});
+  }
+  const double eigen = iteration_ms(all, body, draped, repeats, "eigen");
+  rows.push_back({"all effects, Eigen SimplicialLLT", eigen, eigen / base});
+  md << "\n## One solver iteration (" << all.garment().mesh.num_vertices() << " garment vertices, "
+     << all.mean_body().rows() << " body vertices; best of " << repeats << ")\n\n"
+     << "| configuration | ms per iteration | relative |\n|---|---|---|\n";
+  char line[256];
+  for (const Row& r : rows) {
+    std::snprintf(line, sizeof line, "| %s | %.1f | %.2f |\n", r.config.c_str(), r.ms, r.relative);
+    md << line;
+  }
+  std::printf("%s", md.str().c_str());
+  report += md.str();
+  if (vm.count("out")) std::ofstream(vm["out"].as<std::string>()) << report;
+  return 0;
+}
+
+const RegisterBench registration{{"simulate", "time one drape and one solver iteration with and without each effect", run}};
+
+}  // namespace
+}  // namespace drape::cli
