@@ -138,19 +138,29 @@ TEST_CASE("stretching with a 100x stiffer material stays finite and exact", "[st
 }
 
 TEST_CASE("stretching's projected Hessian is the nearest PSD matrix of each face's block", "[stretching]") {
-  // Compressed by 20% the stress matrix S is negative and the exact block indefinite.
-  for (const double squeeze : {0.8, 1.2}) {
-    const Garment g = unit_triangle();
+  Eigen::MatrixX3d on_a_line(3, 3), at_a_point = Eigen::MatrixX3d::Constant(3, 3, 0.3);
+  on_a_line << 0, 0, 0, 0.5, 0.2, 0.1, -0.4, -0.16, -0.08;  // rank-1 F
+  const std::vector<std::pair<std::string, Eigen::MatrixX3d>> states = {
+      {"compressed 20%", perturbed(triangle(0.8, 0.1, 0.8), 0.05, 2)},  // S < 0: the exact block is indefinite
+      {"stretched 20%", perturbed(triangle(1.2, 0.1, 1.2), 0.05, 2)},   // S > 0: already PSD
+      {"stretched in u, compressed in v", perturbed(triangle(1.3, 0.0, 0.7), 0.05, 3)},
+      {"collapsed to a line", on_a_line},
+      {"collapsed to a point", at_a_point}};
+  for (const bool odd_material : {false, true}) {
+    Garment g = unit_triangle();
+    // A (non-physical) stiffness whose K is indefinite: projection needed even under tension.
+    if (odd_material) g.materials[0].stretch << 10.0, 30.0, 10.0, 5.0;
     const auto e = bound_energy("stretching", "{}", g);
-    Eigen::MatrixX3d x = perturbed(triangle(squeeze, 0.1, squeeze), 0.05, 2);
-    const Eigen::MatrixXd exact = dense_hessian(*e, x, false);
-    Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(exact);
-    const Eigen::MatrixXd nearest =
-        eig.eigenvectors() * eig.eigenvalues().cwiseMax(0.0).asDiagonal() * eig.eigenvectors().transpose();
-    const Eigen::MatrixXd projected = dense_hessian(*e, x, true);
-    INFO("squeeze " << squeeze << ", smallest exact eigenvalue " << eig.eigenvalues().minCoeff());
-    if (squeeze < 1.0) CHECK(eig.eigenvalues().minCoeff() < -1e-3 * eig.eigenvalues().maxCoeff());
-    CHECK((projected - nearest).cwiseAbs().maxCoeff() < 1e-10 * nearest.cwiseAbs().maxCoeff());
+    for (const auto& [what, x] : states) {
+      const Eigen::MatrixXd exact = dense_hessian(*e, x, false);
+      Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(exact);
+      const Eigen::MatrixXd nearest =
+          eig.eigenvectors() * eig.eigenvalues().cwiseMax(0.0).asDiagonal() * eig.eigenvectors().transpose();
+      const Eigen::MatrixXd projected = dense_hessian(*e, x, true);
+      INFO(what << (odd_material ? ", indefinite K" : "") << ": exact eigenvalues " << eig.eigenvalues().transpose());
+      if (what == "compressed 20%") CHECK(eig.eigenvalues().minCoeff() < -1e-3 * eig.eigenvalues().maxCoeff());
+      CHECK((projected - nearest).cwiseAbs().maxCoeff() <= 1e-10 * exact.cwiseAbs().maxCoeff());
+    }
   }
 }
 

@@ -4,6 +4,12 @@
 // of threads: values are summed in fixed chunks in a fixed order, per-element
 // gradients are written to fixed slots and summed per vertex in a fixed order,
 // and Hessian blocks are written as triplets at fixed offsets.
+//
+// Threads are used only where the work pays for them: sums and gathers over a
+// few thousand elements take a fraction of a millisecond serially, less than
+// what starting threads can cost on a busy machine, so they run in parallel
+// from kParallelSumMinimum elements on; Hessian loops (tens of flops and 81-144
+// triplets per element) from kParallelHessianMinimum on.
 #include <drape/energy.hpp>
 
 #include <Eigen/Core>
@@ -14,6 +20,9 @@
 
 namespace drape {
 
+inline constexpr int kParallelSumMinimum = 16384;
+inline constexpr int kParallelHessianMinimum = 1024;
+
 // Calls body(i) for i in [0, n), in parallel, and returns the sum of the results,
 // accumulated element by element within chunks of a fixed size and then over the
 // chunks in order.
@@ -22,7 +31,7 @@ double deterministic_sum(int n, Body&& body) {
   constexpr int kChunk = 256;
   const int chunks = (n + kChunk - 1) / kChunk;
   std::vector<double> partial(static_cast<std::size_t>(chunks), 0.0);
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (n >= kParallelSumMinimum)
   for (int c = 0; c < chunks; ++c) {
     double sum = 0.0;
     const int end = std::min(n, (c + 1) * kChunk);
@@ -56,7 +65,7 @@ class CornerGather {
   // g.row(v) += the sum of per_corner[slot] over the slots of v.
   void add_to(const std::vector<Eigen::Vector3d>& per_corner, Eigen::MatrixX3d& g) const {
     const int n = num_vertices();
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (slots_.size() >= static_cast<std::size_t>(kParallelSumMinimum))
     for (int v = 0; v < n; ++v) {
       Eigen::Vector3d sum = Eigen::Vector3d::Zero();
       for (int s = start_[static_cast<std::size_t>(v)]; s < start_[static_cast<std::size_t>(v) + 1]; ++s)

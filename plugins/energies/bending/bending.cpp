@@ -160,7 +160,7 @@ class Bending final : public Energy {
     const std::size_t offset = t.size();
     const int n = num_hinges();
     t.resize(offset + 144 * static_cast<std::size_t>(n));
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (n >= kParallelHessianMinimum)
     for (int i = 0; i < n; ++i) {
       const HingeElement& h = hinges_[static_cast<std::size_t>(i)];
       const dh::Hinge hinge = hinge_at(x, h);
@@ -172,7 +172,9 @@ class Bending final : public Energy {
         const dh::Vec12 grad = dh::gradient(w0, w1);
         block = (2.0 * h.c) * grad * grad.transpose();
         if (!project_psd || projection_ == Projection::Eigen) {
-          block += (2.0 * h.c * angle_offset(hinge.angle(), h.rest_angle)) * dh::hessian(w0, w1);
+          const dh::WingDerivatives d0(w0, hinge.e, hinge.a0, hinge.n0, hinge.q0, hinge.e2, 1.0);
+          const dh::WingDerivatives d1(w1, hinge.e, hinge.a1, hinge.n1, hinge.q1, hinge.e2, -1.0);
+          block += (2.0 * h.c * angle_offset(hinge.angle(), h.rest_angle)) * dh::hessian(w0, d0, w1, d1);
           if (project_psd) project_to_psd(block);
         }
       }
@@ -181,8 +183,8 @@ class Bending final : public Energy {
   }
 
  private:
-  static dh::Wing wing0(const dh::Hinge& h) { return dh::Wing(h.e, h.a0, h.n0, h.q0, h.e2, 1.0); }
-  static dh::Wing wing1(const dh::Hinge& h) { return dh::Wing(h.e, h.a1, h.n1, h.q1, h.e2, -1.0); }
+  static dh::Wing wing0(const dh::Hinge& h) { return dh::Wing(h.e, h.a0, h.n0, h.q0, h.e2); }
+  static dh::Wing wing1(const dh::Hinge& h) { return dh::Wing(h.e, h.a1, h.n1, h.q1, h.e2); }
   int num_hinges() const { return static_cast<int>(hinges_.size()); }
   void check(const Eigen::MatrixX3d& x) const {
     if (x.rows() != vertices_)

@@ -63,25 +63,30 @@ struct Hinge {
   }
 };
 
-// One wing's u = N |e| / |N|^2 and t = (a . e) / |e|^2 with their derivatives
-// with respect to the edge vector e and the wing vector a. `sign` is +1 when
-// N = e x a (wing 0) and -1 when N = a x e (wing 1).
+// One wing's u = N |e| / |N|^2 and t = (a . e) / |e|^2 (all the gradient needs).
 struct Wing {
   Eigen::Vector3d u;
   double t;
+  Wing(const Eigen::Vector3d& e, const Eigen::Vector3d& a, const Eigen::Vector3d& n, double q, double e2)
+      : u(n * (std::sqrt(e2) / q)), t(a.dot(e) / e2) {}
+};
+
+// The derivatives of a wing's u and t with respect to the edge vector e and the
+// wing vector a (what the Hessian needs besides u and t). `sign` is +1 when
+// N = e x a (wing 0) and -1 when N = a x e (wing 1).
+struct WingDerivatives {
   Eigen::Matrix3d du_de, du_da;
   Eigen::Vector3d dt_de, dt_da;
 
-  Wing(const Eigen::Vector3d& e, const Eigen::Vector3d& a, const Eigen::Vector3d& n, double q, double e2, double sign) {
+  WingDerivatives(const Wing& w, const Eigen::Vector3d& e, const Eigen::Vector3d& a, const Eigen::Vector3d& n, double q,
+                  double e2, double sign) {
     const double len = std::sqrt(e2);
-    u = n * (len / q);
-    t = a.dot(e) / e2;
     // du/dN = |e|/q (I - 2 N N^T / q); dN/de = -sign [a]x, dN/da = sign [e]x.
     const Eigen::Matrix3d du_dn = (len / q) * (Eigen::Matrix3d::Identity() - (2.0 / q) * n * n.transpose());
     du_de = -sign * du_dn * cross_matrix(a) + n * (e.transpose() / (len * q));
     du_da = sign * du_dn * cross_matrix(e);
     dt_da = e / e2;
-    dt_de = (a - 2.0 * t * e) / e2;
+    dt_de = (a - 2.0 * w.t * e) / e2;
   }
 };
 
@@ -96,22 +101,22 @@ inline Vec12 gradient(const Wing& w0, const Wing& w1) {
 }
 
 // d2theta/dx2 over (x0, x1, x2, x3), symmetric.
-inline Mat12 hessian(const Wing& w0, const Wing& w1) {
+inline Mat12 hessian(const Wing& w0, const WingDerivatives& d0, const Wing& w1, const WingDerivatives& d1) {
   // Derivatives of u_i and t_i by vertex: x_tip enters through a, x1 through e,
   // x0 through both (a = x_tip - x0, e = x1 - x0). Wing 0's tip is x2, wing 1's x3.
   Eigen::Matrix3d du[2][4];
   Eigen::Vector3d dt[2][4];
   const Wing* wing[2] = {&w0, &w1};
+  const WingDerivatives* d[2] = {&d0, &d1};
   for (int i = 0; i < 2; ++i) {
-    const Wing& w = *wing[i];
-    du[i][0] = -(w.du_de + w.du_da);
-    du[i][1] = w.du_de;
+    du[i][0] = -(d[i]->du_de + d[i]->du_da);
+    du[i][1] = d[i]->du_de;
     du[i][2] = du[i][3] = Eigen::Matrix3d::Zero();
-    du[i][2 + i] = w.du_da;
-    dt[i][0] = -(w.dt_de + w.dt_da);
-    dt[i][1] = w.dt_de;
+    du[i][2 + i] = d[i]->du_da;
+    dt[i][0] = -(d[i]->dt_de + d[i]->dt_da);
+    dt[i][1] = d[i]->dt_de;
     dt[i][2] = dt[i][3] = Eigen::Vector3d::Zero();
-    dt[i][2 + i] = w.dt_da;
+    dt[i][2 + i] = d[i]->dt_da;
   }
   Mat12 h;
   for (int j = 0; j < 4; ++j) {

@@ -20,7 +20,11 @@
 // F = [f0 f1]) and S (x) I3 comes from the second derivatives of g. The first
 // term is PSD whenever K is; the second is PSD iff S is (which fails under
 // compression), so a face's Hessian is PSD whenever K and S both are.
+#include <Eigen/Cholesky>
 #include <Eigen/Core>
+#include <Eigen/Eigenvalues>
+
+#include <cmath>
 
 namespace drape::membrane {
 
@@ -94,20 +98,6 @@ inline bool stress_is_psd(const Eigen::Vector3d& s) {
   return s[0] >= 0.0 && s[1] >= 0.0 && s[0] * s[1] >= 0.25 * s[2] * s[2];
 }
 
-// The 6x6 matrix m with blocks m_pq = sum_rs a(p, r) a(q, s) h_rs (3x3 blocks):
-// h expressed through vec(F a^T) = (a (x) I3) vec(F).
-inline Mat6 congruence(const Mat6& h, const Eigen::Matrix2d& a) {
-  Mat6 m;
-  for (int p = 0; p < 2; ++p)
-    for (int q = 0; q < 2; ++q) {
-      Eigen::Matrix3d b = Eigen::Matrix3d::Zero();
-      for (int r = 0; r < 2; ++r)
-        for (int s = 0; s < 2; ++s) b += a(p, r) * a(q, s) * h.block<3, 3>(3 * r, 3 * s);
-      m.block<3, 3>(3 * p, 3 * q) = b;
-    }
-  return m;
-}
-
 // The 9x9 Hessian over (x0, x1, x2) of a function of F = X m: blocks
 // H_ab = sum_pq m(a, p) m(b, q) h_pq.
 inline Mat9 lift(const Mat6& h, const Mat32& m) {
@@ -121,6 +111,100 @@ inline Mat9 lift(const Mat6& h, const Mat32& m) {
       if (b != a) H.block<3, 3>(3 * b, 3 * a) = block.transpose();
     }
   return H;
+}
+
+// The nearest PSD matrix of a symmetric 2x2 matrix, in closed form.
+inline Eigen::Matrix2d project_to_psd_2x2(const Eigen::Matrix2d& m) {
+  const double a = m(0, 0), b = 0.5 * (m(0, 1) + m(1, 0)), c = m(1, 1);
+  if (a >= 0.0 && c >= 0.0 && a * c >= b * b) return m;
+  const double mean = 0.5 * (a + c), radius = std::hypot(0.5 * (a - c), b);
+  const double top = mean + radius;  // the other eigenvalue is negative
+  if (!(top > 0.0)) return Eigen::Matrix2d::Zero();
+  // Eigenvector of `top` from whichever row of (m - top I) is better conditioned.
+  Eigen::Vector2d v = std::abs(a - top) > std::abs(c - top) ? Eigen::Vector2d(b, top - a) : Eigen::Vector2d(top - c, b);
+  const double norm = v.norm();
+  if (!(norm > 0.0)) return m;  // a = c = top, b = 0: cannot happen with a negative eigenvalue
+  v /= norm;
+  return top * v * v.transpose();
+}
+
+// An orthonormal frame (u0, u1, n) whose first two vectors span F's columns
+// (completed arbitrarily when F has rank < 2).
+inline Eigen::Matrix3d column_frame(const Mat32& F) {
+  const double tiny = 1e-12 * (F.col(0).norm() + F.col(1).norm());
+  Eigen::Vector3d u0 = Eigen::Vector3d::UnitX();
+  int first = -1;
+  for (int c = 0; c < 2 && first < 0; ++c)
+    if (F.col(c).norm() > tiny && F.col(c).norm() > 0.0) {
+      u0 = F.col(c).normalized();
+      first = c;
+    }
+  Eigen::Vector3d u1;
+  const Eigen::Vector3d other = first >= 0 ? Eigen::Vector3d(F.col(1 - first)) : Eigen::Vector3d::Zero();
+  const Eigen::Vector3d w = other - u0.dot(other) * u0;
+  if (w.norm() > tiny && w.norm() > 0.0) {
+    u1 = w.normalized();
+  } else {
+    Eigen::Index axis;
+    u0.cwiseAbs().minCoeff(&axis);
+    u1 = u0.cross(Eigen::Vector3d::Unit(axis)).normalized();
+  }
+  Eigen::Matrix3d frame;
+  frame << u0, u1, u0.cross(u1);
+  return frame;
+}
+
+// The nearest PSD matrix of d2E/dvec(Y)^2 for F = Y t (t 2x2), found without a
+// 6x6 eigen-decomposition. In a frame (u0, u1, n) with F's columns in the
+// (u0, u1) plane, variations split exactly into in-plane ones (Y = U Z, 4 dofs)
+// and out-of-plane ones (n w^T, 2 dofs): the latter leave F^T F unchanged to
+// first order, so they do not couple to the former and their block is the
+// closed form t S t^T (the membrane's buckling modes under compression). The
+// in-plane 4x4 block is the 2D version of hessian_in_F; it is PSD-tested with a
+// Cholesky factorisation and eigen-decomposed only when that fails.
+inline Mat6 projected_hessian_in_Y(const Mat32& F, const Eigen::Vector4d& k, const Eigen::Vector3d& s,
+                                   const Eigen::Matrix2d& t) {
+  const Eigen::Matrix3d frame = column_frame(F);
+  const Eigen::Matrix<double, 3, 2> U = frame.leftCols<2>();
+  const Eigen::Vector3d n = frame.col(2);
+  const Eigen::Matrix2d Fp = U.transpose() * F;  // F in the plane's coordinates
+
+  Eigen::Matrix<double, 3, 4> J = Eigen::Matrix<double, 3, 4>::Zero();
+  J.block<1, 2>(0, 0) = Fp.col(0).transpose();
+  J.block<1, 2>(1, 2) = Fp.col(1).transpose();
+  J.block<1, 2>(2, 0) = 0.5 * Fp.col(1).transpose();
+  J.block<1, 2>(2, 2) = 0.5 * Fp.col(0).transpose();
+  Eigen::Matrix3d K;
+  K << k[0], k[1], 0.0, k[1], k[2], 0.0, 0.0, 0.0, k[3];
+  Eigen::Matrix4d hf = J.transpose() * K * J;
+  for (int i = 0; i < 2; ++i) {
+    hf(i, i) += s[0];
+    hf(2 + i, 2 + i) += s[1];
+    hf(i, 2 + i) += 0.5 * s[2];
+    hf(2 + i, i) += 0.5 * s[2];
+  }
+  Eigen::Matrix4d in_plane;
+  for (int p = 0; p < 2; ++p)
+    for (int q = 0; q < 2; ++q) {
+      Eigen::Matrix2d b = Eigen::Matrix2d::Zero();
+      for (int r = 0; r < 2; ++r)
+        for (int c = 0; c < 2; ++c) b += t(p, r) * t(q, c) * hf.block<2, 2>(2 * r, 2 * c);
+      in_plane.block<2, 2>(2 * p, 2 * q) = b;
+    }
+  if (Eigen::LLT<Eigen::Matrix4d>(in_plane).info() != Eigen::Success) {
+    Eigen::SelfAdjointEigenSolver<Eigen::Matrix4d> eig(in_plane);
+    in_plane = eig.eigenvectors() * eig.eigenvalues().cwiseMax(0.0).asDiagonal() * eig.eigenvectors().transpose();
+  }
+  Eigen::Matrix2d S;
+  S << s[0], 0.5 * s[2], 0.5 * s[2], s[1];
+  const Eigen::Matrix2d out_of_plane = project_to_psd_2x2(t * S * t.transpose());
+
+  const Eigen::Matrix3d nn = n * n.transpose();
+  Mat6 h;
+  for (int p = 0; p < 2; ++p)
+    for (int q = 0; q < 2; ++q)
+      h.block<3, 3>(3 * p, 3 * q) = U * in_plane.block<2, 2>(2 * p, 2 * q) * U.transpose() + out_of_plane(p, q) * nn;
+  return h;
 }
 
 }  // namespace drape::membrane

@@ -10,13 +10,14 @@
 //
 // PSD projection (project_psd): a face whose K and stress matrix S are both PSD
 // already has a PSD Hessian and is left alone (the common case under tension).
-// Otherwise the exact nearest PSD matrix of the 9x9 block is computed from a 6x6
-// eigen-decomposition: with F = X c and c = q t (q orthonormal), the 9x9 block is
-// (q (x) I3) H6 (q (x) I3)^T with H6 = (t (x) I3) d2E/dF2 (t (x) I3)^T, and an
-// orthonormal embedding commutes with clamping eigenvalues.
+// Otherwise the exact nearest PSD matrix of the 9x9 block is computed from far
+// smaller problems: with F = X c and c = q t (q 3x2 orthonormal), Y = X q, the
+// block is (q (x) I3) H_Y (q (x) I3)^T with H_Y = d2E/dY2, and an orthonormal
+// embedding commutes with clamping eigenvalues; H_Y splits further into an
+// out-of-plane 2x2 block (closed form) and an in-plane 4x4 block
+// (membrane.hpp, projected_hessian_in_Y).
 #include <drape/element_assembly.hpp>
 #include <drape/plugin.hpp>
-#include <drape/psd_projection.hpp>
 
 #include <cmath>
 #include <iostream>
@@ -127,20 +128,16 @@ class Stretching final : public Energy {
     const std::size_t offset = h.size();
     const int n = num_faces();
     h.resize(offset + 81 * static_cast<std::size_t>(n));
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (n >= kParallelHessianMinimum)
     for (int i = 0; i < n; ++i) {
       const mb::Face& f = faces_[static_cast<std::size_t>(i)];
       const mb::Mat32 F = mb::deformation_gradient(x, f);
       const Eigen::Vector3d s = mb::strain_stress(f.k, mb::green_strain(F));
-      const mb::Mat6 hf = mb::hessian_in_F(F, f.k, s);
       mb::Mat9 block;
-      if (!project_psd || (f.k_psd && mb::stress_is_psd(s))) {
-        block = mb::lift(hf, f.c);
-      } else {
-        mb::Mat6 reduced = mb::congruence(hf, f.t);
-        project_to_psd(reduced);
-        block = mb::lift(reduced, f.q);
-      }
+      if (!project_psd || (f.k_psd && mb::stress_is_psd(s)))
+        block = mb::lift(mb::hessian_in_F(F, f.k, s), f.c);
+      else
+        block = mb::lift(mb::projected_hessian_in_Y(F, f.k, s, f.t), f.q);
       write_hessian_blocks<3>(block, f.vertex, h.data() + offset + 81 * static_cast<std::size_t>(i));
     }
   }
