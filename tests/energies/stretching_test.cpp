@@ -229,6 +229,8 @@ TEST_CASE("stretching reports a garment without UVs or with a bad material index
   auto two = grid_garment(3, 0.1, true);
   two->face_material[3] = 2;
   CHECK_THROWS_WITH(bound_energy("stretching", "{}", *two), Catch::Contains("face 3 names material 2"));
+  two->face_material.resize(5);
+  CHECK_THROWS_WITH(bound_energy("stretching", "{}", *two), Catch::Contains("5 face materials for 8 faces"));
   const auto e = bound_energy("stretching", "{}", *grid_garment(3, 0.1));
   CHECK_THROWS_WITH(e->value(Eigen::MatrixX3d::Zero(4, 3)), Catch::Contains("4 vertices given"));
 }

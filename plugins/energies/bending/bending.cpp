@@ -79,6 +79,9 @@ class Bending final : public Energy {
     if (!mesh.has_uv())
       throw ConfigError("bending: the garment has no material-space UVs (uv and uv_faces), so its rest lengths are unknown");
     if (garment.materials.empty()) throw ConfigError("bending: the garment has no materials");
+    if (garment.face_material.size() && garment.face_material.size() != mesh.num_faces())
+      throw ConfigError("bending: the garment has " + std::to_string(garment.face_material.size()) +
+                        " face materials for " + std::to_string(mesh.num_faces()) + " faces");
     if (!mesh.uv.allFinite()) throw ConfigError("bending: the garment's UVs are not all finite");
     if (initial_rest_ && !mesh.vertices.allFinite())
       throw ConfigError("bending: rest: initial needs finite rest positions, the garment's are not");

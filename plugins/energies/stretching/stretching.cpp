@@ -42,6 +42,9 @@ class Stretching final : public Energy {
     if (!mesh.has_uv())
       throw ConfigError("stretching: the garment has no material-space UVs (uv and uv_faces), so its rest shape is unknown");
     if (garment.materials.empty()) throw ConfigError("stretching: the garment has no materials");
+    if (garment.face_material.size() && garment.face_material.size() != mesh.num_faces())
+      throw ConfigError("stretching: the garment has " + std::to_string(garment.face_material.size()) +
+                        " face materials for " + std::to_string(mesh.num_faces()) + " faces");
     if (!mesh.uv.allFinite()) throw ConfigError("stretching: the garment's UVs are not all finite");
     for (const Material& m : garment.materials)
       if (!m.stretch.allFinite()) throw ConfigError("stretching: material '" + m.name + "' has a non-finite stretch stiffness");
