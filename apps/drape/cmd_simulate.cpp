@@ -67,7 +67,7 @@ int run(const std::vector<std::string>& args) {
   const SimulationResult r = sim.run(target, options);
 
   std::printf("%s after %d steps, %d Newton iterations (%d line-search stops), %s Cholesky\n",
-              r.converged ? "settled" : "NOT settled", r.steps, r.iterations, r.line_search_failures,
+              r.converged ? (r.at_rest ? "settled (at rest)" : "settled") : "NOT settled", r.steps, r.iterations, r.line_search_failures,
               r.linear_solver.c_str());
   std::printf("  %-12s %14s\n", "energy", "J");
   for (const auto& t : r.energies) std::printf("  %-12s %14.6g\n", t.name.c_str(), t.value);

@@ -36,7 +36,13 @@ struct SimulationResult {
   double initial_energy = 0;   // on the target body, before settling (after morphing)
   double penetration = -1;     // fraction of garment vertices inside the body (-1: not measured)
   double residual = 0;         // |grad E| / |weight| at the end
-  bool converged = false;      // residual <= settle_tolerance
+  // Settled: residual <= settle_tolerance, or at rest (no vertex moved more
+  // than rest_displacement in the last step). Rest covers contact kinks: where
+  // cloth lies in a concave crease of the body mesh the penalty's gradient
+  // jumps between the two faces' normals, the residual cannot fall further,
+  // and the line search (rightly) refuses to move.
+  bool converged = false;
+  bool at_rest = false;        // settled by the rest criterion
   int steps = 0, iterations = 0, line_search_failures = 0;
   double seconds = 0;
   std::string linear_solver;

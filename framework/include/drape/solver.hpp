@@ -32,9 +32,10 @@ struct SolverSettings {
   int max_newton_iterations = 8;   // per time step
   double tolerance = 1e-3;         // per step: |grad Phi| / |W|
   double settle_tolerance = 5e-3;  // drape done: |grad E| / |W| of the static energy
+  double rest_displacement = 1e-5; // m: or done when no vertex moved farther in a step (at rest)
   double max_displacement = 0.02;  // m, a Newton step moves no vertex farther (keeps thin parts from being crossed)
   double armijo = 1e-4;            // sufficient-decrease constant of the line search
-  int max_line_search = 30;        // halvings before a step is given up
+  int max_line_search = 12;        // halvings (down to alpha = 2.4e-4) before an iteration is given up
   std::string linear_solver = "auto";  // auto | eigen | cholmod
 };
 
@@ -54,6 +55,7 @@ struct StepReport {
   int line_search_failures = 0;   // iterations whose line search found no decrease
   double residual = 0;            // |grad Phi| / |W| at the end
   double phi_start = 0, phi_end = 0;
+  double max_displacement = 0;    // m, the farthest any vertex moved in the step
   bool converged = false;
 };
 

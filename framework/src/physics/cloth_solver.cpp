@@ -184,6 +184,7 @@ StepReport ClothSolver::step(Eigen::MatrixX3d& x, Eigen::MatrixX3d& v) {
     }
   }
   report.phi_end = phi_x;
+  report.max_displacement = (x - x_start).rowwise().norm().maxCoeff();
   v = (x - x_start) / h * (1.0 - settings_.damping);
   return report;
 }

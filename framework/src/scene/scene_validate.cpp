@@ -13,6 +13,7 @@ const std::vector<ParamSpec>& scene_solver_specs() {
       {"max_newton_iterations", ParamType::Int, "8", "Newton iterations per step at most", 1.0, 1e4},
       {"tolerance", ParamType::Float, "1e-3", "a step converges at |grad Phi| <= tolerance * |weight|", 1e-14, 1.0},
       {"settle_tolerance", ParamType::Float, "5e-3", "the drape is settled at |grad E| <= this * |weight|", 1e-14, 10.0},
+      {"rest_displacement", ParamType::Float, "1e-5", "m: settled when no vertex moves farther in a step", 0.0, 1.0},
       {"max_displacement", ParamType::Float, "0.02", "m: no vertex moves farther in one Newton iteration", 1e-6, 10.0},
       {"linear_solver", ParamType::String, "auto", "sparse Cholesky: auto (cholmod when built with it), eigen, cholmod",
        {}, {}, {"auto", "eigen", "cholmod"}},

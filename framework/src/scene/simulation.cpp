@@ -57,6 +57,7 @@ SolverSettings Simulation::solver_settings() const {
   s.tolerance = p.get_float("tolerance");
   s.settle_tolerance = p.get_float("settle_tolerance");
   s.max_displacement = p.get_float("max_displacement");
+  s.rest_displacement = p.get_float("rest_displacement");
   s.linear_solver = p.get_string("linear_solver");
   return s;
 }
@@ -131,12 +132,13 @@ SimulationResult Simulation::run(const Eigen::MatrixX3d& target_body, const Simu
   result.initial_energy = solver.energy(x);
   result.residual = solver.static_residual(x);
   const double settle_tolerance = solver.settings().settle_tolerance;
-  for (int k = 1; k <= settle_steps_ && result.residual > settle_tolerance; ++k) {
+  for (int k = 1; k <= settle_steps_ && result.residual > settle_tolerance && !result.at_rest; ++k) {
     const StepReport r = solver.step(x, v);
     result.residual = solver.static_residual(x);
+    result.at_rest = r.max_displacement <= solver.settings().rest_displacement;
     record(morph_steps_ + k, false, r, result.residual);
   }
-  result.converged = result.residual <= settle_tolerance;
+  result.converged = result.residual <= settle_tolerance || result.at_rest;
   result.total_energy = solver.energy(x, &result.energies);
   result.garment = x;
   result.body = target_body;

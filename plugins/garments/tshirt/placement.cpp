@@ -44,12 +44,24 @@ Eigen::Vector3d torso_map(const PatternSpec& spec, const TorsoFrame& torso, cons
                           double side) {
   const double phi = M_PI / 2 * std::min(u / spec.half_width, 1.0);
   const double x = e.a * std::sin(phi) + std::max(0.0, u - spec.half_width);
-  // Over the shoulder the depth falls to zero at the top seam along a quarter
-  // ellipse, so front and back meet there.
-  const double fold_radius = 0.6 * e.b;
-  const double t = std::clamp((top_seam_v(spec, u) - v) / fold_radius, 0.0, 1.0);
-  const double depth = e.b * std::cos(phi) * std::sqrt(1 - (1 - t) * (1 - t));
-  return {x, torso.neck_height - (spec.length - v), torso.centre_z + side * depth};
+  // Over the shoulder the panel bends along a quarter circle whose radius is
+  // the local depth, so front and back meet at the top seam. The circle is
+  // parametrised by arc length (the pattern's v), so the fold is isometric:
+  // mapping v straight to height instead stretched the shoulders up to 2.5x.
+  const double radius = e.b * std::cos(phi);
+  const double y_seam = torso.neck_height - (spec.length - top_seam_v(spec, u));
+  const double s = std::max(0.0, top_seam_v(spec, u) - v);  // along the panel from the seam
+  const double arc = M_PI / 2 * radius;
+  double y = 0, depth = 0;
+  if (s < arc) {
+    const double theta = s / radius;  // radius > 0 here since arc > s >= 0
+    y = y_seam - radius + radius * std::cos(theta);
+    depth = radius * std::sin(theta);
+  } else {
+    y = y_seam - radius - (s - arc);
+    depth = radius;
+  }
+  return {x, y, torso.centre_z + side * depth};
 }
 
 }  // namespace
