@@ -57,6 +57,8 @@ main_job() {
   "$DRAPE" body --bmi 35 --height 1.75 --out out/body_bmi35.obj
   step "Assets of the default T-shirt (built once, then cached)"
   "$DRAPE" assets
+  step "Simulating the coarse T-shirt on the BMI 35 body (only the effects the scene names)"
+  "$DRAPE" simulate graphs/scenes/tshirt_coarse.yaml --bmi 35 --out out/garment_simulated.obj --body-out out/body_simulated.obj
   step "Checking the example graphs against the template"
   "$DRAPE" graph check graphs/examples/mlp_baseline.yaml
   "$DRAPE" graph check graphs/examples/residual.yaml
