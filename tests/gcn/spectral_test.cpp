@@ -45,23 +45,27 @@ TEST_CASE("spectral scales the last layer's initial weights by init_scale", "[gc
 
 TEST_CASE("spectral: Delta c from the MLP on the flattened input, Delta x = V Delta c", "[gcn][spectral]") {
   const auto assets = gcn_assets();
-  auto node = make_node("spectral", "{widths: [5], k: 4, activation: tanh, init_scale: 1.0}");
-  const Tensor x = random_tensor(3, 2, 4, 2);  // [R=2, C=4] flattened to 8 inputs
-  const auto out = run_forward(*node, {{"x", x}}, {"spec", 1, assets.get()});
-  const DenseF v = assets->eigenvectors.cast<float>().leftCols(4);
-  for (int b = 0; b < 3; ++b) {
-    const Eigen::RowVectorXf flat = Eigen::Map<const Eigen::RowVectorXf>(x.mat(b).data(), 8);
-    const Eigen::RowVectorXf hidden =
-        ((flat * weight_of(*node, "mlp_w0")) + bias_of(*node, "mlp_b0")).array().tanh().matrix();
-    const Eigen::RowVectorXf mlp = hidden * weight_of(*node, "mlp_w1") + bias_of(*node, "mlp_b1");
-    DenseF dc(4, 3);
-    for (int i = 0; i < 4; ++i)
-      for (int c = 0; c < 3; ++c) dc(i, c) = mlp(3 * i + c);  // coefficient i of axis c
-    CHECK((dense_of(out.at("coefficients"), b) - dc).cwiseAbs().maxCoeff() < 1e-5f);
-    CHECK((dense_of(out.at("out"), b) - v * dc).cwiseAbs().maxCoeff() < 1e-5f);
+  const DenseF v = assets->eigenvectors.leftCols(4);
+  // One sample streams over V's rows, three use a matrix product: both give V Delta c.
+  for (int batch : {1, 3}) {
+    INFO("batch " << batch);
+    auto node = make_node("spectral", "{widths: [5], k: 4, activation: tanh, init_scale: 1.0}");
+    const Tensor x = random_tensor(batch, 2, 4, 2);  // [R=2, C=4] flattened to 8 inputs
+    const auto out = run_forward(*node, {{"x", x}}, {"spec", 1, assets.get()});
+    for (int b = 0; b < batch; ++b) {
+      const Eigen::RowVectorXf flat = Eigen::Map<const Eigen::RowVectorXf>(x.mat(b).data(), 8);
+      const Eigen::RowVectorXf hidden =
+          ((flat * weight_of(*node, "mlp_w0")) + bias_of(*node, "mlp_b0")).array().tanh().matrix();
+      const Eigen::RowVectorXf mlp = hidden * weight_of(*node, "mlp_w1") + bias_of(*node, "mlp_b1");
+      DenseF dc(4, 3);
+      for (int i = 0; i < 4; ++i)
+        for (int c = 0; c < 3; ++c) dc(i, c) = mlp(3 * i + c);  // coefficient i of axis c
+      CHECK((dense_of(out.at("coefficients"), b) - dc).cwiseAbs().maxCoeff() < 1e-5f);
+      CHECK((dense_of(out.at("out"), b) - v * dc).cwiseAbs().maxCoeff() < 1e-5f);
+      // Orthonormal columns: the coefficients come back from the residual, V^T Delta x = Delta c.
+      CHECK((v.transpose() * dense_of(out.at("out"), b) - dc).cwiseAbs().maxCoeff() < 1e-5f);
+    }
   }
-  // Orthonormal columns: the coefficients come back from the residual, V^T Delta x = Delta c.
-  CHECK((v.transpose() * dense_of(out.at("out"), 0) - dense_of(out.at("coefficients"), 0)).cwiseAbs().maxCoeff() < 1e-5f);
 }
 
 TEST_CASE("spectral rejects bad parameters, inputs and missing assets", "[gcn][spectral]") {
@@ -78,13 +82,15 @@ TEST_CASE("spectral rejects bad parameters, inputs and missing assets", "[gcn][s
 
 TEST_CASE("spectral backward matches finite differences through both outputs", "[gcn][spectral][gradcheck]") {
   const auto assets = gcn_assets();
-  const std::pair<const char*, bool> configs[] = {{"{widths: [5], k: 4, activation: tanh, init_scale: 1.0}", false},
-                                                   {"{widths: [], init_scale: 0.5}", false},
-                                                   {"{widths: [6, 4], k: 3, init_scale: 1.0}", true}};
-  for (const auto& [params, piecewise_linear] : configs) {
-    INFO(params);
+  // Batches of 1 and 2 stream over V's rows, 4 uses matrix products.
+  const std::tuple<const char*, bool, int> configs[] = {{"{widths: [5], k: 4, activation: tanh, init_scale: 1.0}", false, 2},
+                                                        {"{widths: [5], k: 4, activation: tanh, init_scale: 1.0}", false, 4},
+                                                        {"{widths: [], init_scale: 0.5}", false, 1},
+                                                        {"{widths: [6, 4], k: 3, init_scale: 1.0}", true, 4}};
+  for (const auto& [params, piecewise_linear, batch] : configs) {
+    INFO(params << " batch " << batch);
     auto node = make_node("spectral", params);
-    const GradCheckReport r = check_node_gradients(*node, {{"x", random_tensor(2, 1, 7, 4)}}, {"spec", 5, assets.get()},
+    const GradCheckReport r = check_node_gradients(*node, {{"x", random_tensor(batch, 1, 7, 4)}}, {"spec", 5, assets.get()},
                                                    piecewise_linear ? kink_safe() : GradCheckOptions{});
     INFO(r.str());
     CHECK(r.entries.size() == 1 + node->weights().size());
