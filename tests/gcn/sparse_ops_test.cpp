@@ -139,6 +139,24 @@ TEST_CASE("SparseOperator applies A and its transpose to every sample of a batch
   CHECK_THROWS_AS(op.apply(x, 1, wrong), Error);  // x is two samples' worth
 }
 
+TEST_CASE("SparseOperator: every channel count (register blocks and the rest) and strided views", "[gcn][nn]") {
+  const nn::SparseRM m = nn::kipf_adjacency(small_graph());
+  const nn::SparseOperator op(m);
+  const DenseF a(m);
+  for (int c : {1, 3, 8, 16, 20, 32, 37, 64, 70, 128}) {
+    INFO(c << " channels");
+    // x and y are column blocks of wider matrices: rows are strided.
+    const MatrixRM wide = random_rows(2 * 8, c + 5, std::uint64_t(c));
+    MatrixRM out = MatrixRM::Constant(2 * 8, c + 3, 7.0f);
+    op.apply(wide.leftCols(c), 2, out.rightCols(c));
+    for (int b = 0; b < 2; ++b) {
+      const DenseF expected = a * DenseF(wide.block(8 * b, 0, 8, c));
+      CHECK((DenseF(out.block(8 * b, 3, 8, c)) - expected).cwiseAbs().maxCoeff() < 1e-5f);
+    }
+    CHECK((out.leftCols(3).array() == 7.0f).all());  // nothing written outside the view
+  }
+}
+
 TEST_CASE("LearnedAggregation: the weights are the matrix values in row-major order, with exact gradients", "[gcn][nn]") {
   struct Owner final : Node {
     ShapeMap setup(const ShapeMap&, const NodeContext&) override { return {}; }
