@@ -16,15 +16,15 @@ void check_batch(const char* what, Eigen::Index in_rows, Eigen::Index in_cols, E
                 " does not fit input " + dims(in_rows, in_cols) + " and output " + dims(out_rows, out_cols));
 }
 
-// The rows [first, last) of y = A x for a compressed row-major A, with C
+// y = A x (A compressed row-major with `rows` rows) with C
 // channels at compile time: each output row accumulates in registers and is
 // stored once (Eigen's generic product adds into the output row for every
 // non-zero, 2-3x slower at 32-64 channels).
 template <int C>
-void sparse_rows_fixed(const int* outer, const int* inner, const float* values, int first, int last, const float* x,
+void sparse_rows_fixed(const int* outer, const int* inner, const float* values, int rows, const float* x,
                        Eigen::Index x_stride, float* y, Eigen::Index y_stride) {
   using Row = Eigen::Matrix<float, 1, C>;
-  for (int i = first; i < last; ++i) {
+  for (int i = 0; i < rows; ++i) {
     Row acc = Row::Zero();
     for (int k = outer[i]; k < outer[i + 1]; ++k)
       acc.noalias() += values[k] * Eigen::Map<const Row>(x + Eigen::Index(inner[k]) * x_stride);
@@ -33,15 +33,15 @@ void sparse_rows_fixed(const int* outer, const int* inner, const float* values, 
 }
 
 // Any channel count: blocks of 16 channels in registers, then the rest.
-void sparse_rows_any(const int* outer, const int* inner, const float* values, int first, int last, const float* x,
+void sparse_rows_any(const int* outer, const int* inner, const float* values, int rows, const float* x,
                      Eigen::Index x_stride, int c, float* y, Eigen::Index y_stride) {
   constexpr int kBlock = 16;
   const int blocked = c - c % kBlock;
   for (int start = 0; start < blocked; start += kBlock)
-    sparse_rows_fixed<kBlock>(outer, inner, values, first, last, x + start, x_stride, y + start, y_stride);
+    sparse_rows_fixed<kBlock>(outer, inner, values, rows, x + start, x_stride, y + start, y_stride);
   if (blocked == c) return;
   Eigen::RowVectorXf acc(c - blocked);
-  for (int i = first; i < last; ++i) {
+  for (int i = 0; i < rows; ++i) {
     acc.setZero();
     for (int k = outer[i]; k < outer[i + 1]; ++k)
       acc.noalias() += values[k] * Eigen::Map<const Eigen::RowVectorXf>(x + Eigen::Index(inner[k]) * x_stride + blocked, c - blocked);
@@ -63,11 +63,11 @@ void per_sample_product(const Sparse& a, ConstMatRef x, int batch, MatRef y) {
     float* yb = y.data() + b * r * y.outerStride();
     const int rows = static_cast<int>(r);
     switch (channels) {
-      case 8: sparse_rows_fixed<8>(outer, inner, values, 0, rows, xb, x.outerStride(), yb, y.outerStride()); break;
-      case 16: sparse_rows_fixed<16>(outer, inner, values, 0, rows, xb, x.outerStride(), yb, y.outerStride()); break;
-      case 32: sparse_rows_fixed<32>(outer, inner, values, 0, rows, xb, x.outerStride(), yb, y.outerStride()); break;
-      case 64: sparse_rows_fixed<64>(outer, inner, values, 0, rows, xb, x.outerStride(), yb, y.outerStride()); break;
-      default: sparse_rows_any(outer, inner, values, 0, rows, xb, x.outerStride(), channels, yb, y.outerStride());
+      case 8: sparse_rows_fixed<8>(outer, inner, values, rows, xb, x.outerStride(), yb, y.outerStride()); break;
+      case 16: sparse_rows_fixed<16>(outer, inner, values, rows, xb, x.outerStride(), yb, y.outerStride()); break;
+      case 32: sparse_rows_fixed<32>(outer, inner, values, rows, xb, x.outerStride(), yb, y.outerStride()); break;
+      case 64: sparse_rows_fixed<64>(outer, inner, values, rows, xb, x.outerStride(), yb, y.outerStride()); break;
+      default: sparse_rows_any(outer, inner, values, rows, xb, x.outerStride(), channels, yb, y.outerStride());
     }
   }
 }
