@@ -90,7 +90,7 @@ class Simulation {
   Eigen::MatrixX3d mean_body_;
   std::vector<Params> effect_params_;
   bool needs_body_ = false;
-  int morph_steps_ = 0, settle_steps_ = 0;
+  int morph_steps_ = 0, settle_steps_ = 0, morph_newton_ = 3;
   Eigen::Vector3d gravity_direction_{0, -1, 0};
 };
 

@@ -19,6 +19,7 @@
 
 #include <Eigen/Core>
 
+#include <algorithm>
 #include <functional>
 #include <memory>
 #include <string>
@@ -78,6 +79,8 @@ class ClothSolver {
   const Eigen::VectorXd& masses() const { return masses_; }
   double force_scale() const { return force_scale_; }
   const SolverSettings& settings() const { return settings_; }
+  // Changes the Newton budget per step (the morph needs fewer than the settling).
+  void set_max_newton_iterations(int n) { settings_.max_newton_iterations = std::max(1, n); }
   // The linear solver in use ("eigen" or "cholmod").
   std::string linear_solver() const;
 

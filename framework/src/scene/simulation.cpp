@@ -40,6 +40,7 @@ Simulation::Simulation(const Registry& registry, Scene scene) : registry_(regist
   const Params solver(scene_solver_specs(), scene_.solver, "solver");
   morph_steps_ = static_cast<int>(solver.get_int("morph_steps"));
   settle_steps_ = static_cast<int>(solver.get_int("settle_steps"));
+  morph_newton_ = static_cast<int>(solver.get_int("morph_newton_iterations"));
   const auto g = solver.get_float_list("gravity_direction");
   gravity_direction_ = Eigen::Vector3d(g[0], g[1], g[2]);
   if (!(gravity_direction_.norm() > 0)) throw ConfigError({scene_.file, 0}, "solver: gravity_direction must not be zero");
@@ -119,6 +120,10 @@ SimulationResult Simulation::run(const Eigen::MatrixX3d& target_body, const Simu
     result.line_search_failures += r.line_search_failures;
     if (options.on_step) options.on_step({k, total, morphing, r, residual});
   };
+  // While the body morphs each step only has to follow it approximately; the
+  // settling steps get the full Newton budget.
+  const int settle_newton = solver.settings().max_newton_iterations;
+  solver.set_max_newton_iterations(std::min(settle_newton, morph_newton_));
   for (int k = 1; k <= morph_steps_; ++k) {
     const double t = static_cast<double>(k) / morph_steps_;
     if (surface) surface->update(body_start + t * (target_body - body_start));
@@ -129,6 +134,7 @@ SimulationResult Simulation::run(const Eigen::MatrixX3d& target_body, const Simu
     surface->update(target_body);
     surface->rebuild();  // the hierarchy was built on the start shape
   }
+  solver.set_max_newton_iterations(settle_newton);
   result.initial_energy = solver.energy(x);
   result.residual = solver.static_residual(x);
   const double settle_tolerance = solver.settings().settle_tolerance;
