@@ -15,6 +15,7 @@ const std::vector<ParamSpec>& scene_solver_specs() {
       {"tolerance", ParamType::Float, "1e-3", "a step converges at |grad Phi| <= tolerance * |weight|", 1e-14, 1.0},
       {"settle_tolerance", ParamType::Float, "5e-3", "the drape is settled at |grad E| <= this * |weight|", 1e-14, 10.0},
       {"rest_displacement", ParamType::Float, "1e-5", "m: settled when no vertex moves farther in a step", 0.0, 1.0},
+      {"kink_tolerance", ParamType::Float, "5e-2", "at rest counts as settled only below this |grad E| / |weight|", 0.0, 1e6},
       {"max_displacement", ParamType::Float, "0.02", "m: no vertex moves farther in one Newton iteration", 1e-6, 10.0},
       {"linear_solver", ParamType::String, "auto", "sparse Cholesky: auto (cholmod when built with it), eigen, cholmod",
        {}, {}, {"auto", "eigen", "cholmod"}},
