@@ -39,6 +39,7 @@ struct SolverSettings {
   double armijo = 1e-4;            // sufficient-decrease constant of the line search
   int max_line_search = 12;        // halvings (down to alpha = 2.4e-4) before an iteration is given up
   std::string linear_solver = "auto";  // auto | eigen | cholmod
+  bool reuse_factorization = true;  // keep the last factor while full steps keep halving the residual
 };
 
 // An energy term with the name its scene gave it.

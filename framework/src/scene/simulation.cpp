@@ -61,6 +61,7 @@ SolverSettings Simulation::solver_settings() const {
   s.rest_displacement = p.get_float("rest_displacement");
   s.kink_tolerance = p.get_float("kink_tolerance");
   s.linear_solver = p.get_string("linear_solver");
+  s.reuse_factorization = p.get_bool("reuse_factorization");
   return s;
 }
 
