@@ -93,6 +93,7 @@ class DirectionLoss final : public Node {
     }
   }
 
+  // An estimate: two closest-point queries (~40 box and triangle tests of ~30 flops) and the terms per vertex.
   double flops_per_sample() const override { return 2.0 * 40.0 * 30.0 * rows_ + 40.0 * rows_; }
 
  private:

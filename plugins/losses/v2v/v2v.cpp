@@ -95,7 +95,7 @@ class V2vLoss final : public Node {
     }
   }
 
-  // Two closest-point queries (~40 box and triangle tests each) and the L1 terms per vertex.
+  // An estimate: two closest-point queries (~40 box and triangle tests of ~30 flops) and the L1 terms per vertex.
   double flops_per_sample() const override { return 2.0 * 40.0 * 30.0 * rows_ + 12.0 * rows_; }
 
  private:
