@@ -5,6 +5,7 @@
 #include <catch2/catch.hpp>
 
 #include <cmath>
+#include <limits>
 
 #include "losses_test_util.hpp"
 
@@ -22,6 +23,11 @@ TEST_CASE("direction loads as a loss and checks its inputs", "[losses][direction
                     Catch::Contains("[8, 3]"));
   CHECK_THROWS_AS(node->setup({{"pred", {2, 3}}, {"target", {3, 3}}, {"body", {8, 3}}}, {"d", 0, assets.get()}), ConfigError);
   CHECK_THROWS_WITH(make_node("direction", "{outside_weight: -1}"), Catch::Contains("outside_weight"));
+  Tensor nan_target(1, 2, 3, 0.5f);
+  nan_target(0, 1, 2) = std::numeric_limits<float>::quiet_NaN();
+  CHECK_THROWS_WITH(run_forward(*node, {{"pred", Tensor(1, 2, 3, 0.5f)}, {"target", nan_target},
+                                        {"body", tensor_of(assets->body.vertices)}}, {"d", 0, assets.get()}),
+                    Catch::Contains("non-finite target"));
 }
 
 TEST_CASE("direction is the ReLU on the correspondence plus one minus the offset cosine", "[losses][direction]") {

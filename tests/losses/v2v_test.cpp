@@ -4,6 +4,8 @@
 
 #include <catch2/catch.hpp>
 
+#include <limits>
+
 #include "losses_test_util.hpp"
 
 using namespace drape;
@@ -23,6 +25,16 @@ TEST_CASE("v2v loads as a loss, needs the body's faces and checks shapes", "[los
   CHECK_THROWS_WITH(node->setup({{"pred", {4, 2}}, {"target", {4, 2}}, {"body", {8, 3}}}, {"v", 0, assets.get()}),
                     Catch::Contains("[vertices, 3]"));
   CHECK_THROWS_WITH(make_node("v2v", "{reduction: max}"), Catch::Contains("reduction"));
+  // Non-finite values are an error, not a NaN loss.
+  Tensor nan_pred(1, 4, 3, 0.5f);
+  nan_pred(0, 2, 1) = std::numeric_limits<float>::quiet_NaN();
+  const Tensor finite(1, 4, 3, 0.5f), cube = tensor_of(assets->body.vertices);
+  CHECK_THROWS_WITH(run_forward(*node, {{"pred", nan_pred}, {"target", finite}, {"body", cube}}, {"v", 0, assets.get()}),
+                    Catch::Contains("non-finite pred"));
+  Tensor nan_body = cube;
+  nan_body(0, 3, 0) = std::numeric_limits<float>::infinity();
+  CHECK_THROWS_WITH(run_forward(*node, {{"pred", finite}, {"target", finite}, {"body", nan_body}}, {"v", 0, assets.get()}),
+                    Catch::Contains("not all finite"));
 }
 
 TEST_CASE("v2v is the L1 of the closest-point and displacement parts", "[losses][v2v]") {

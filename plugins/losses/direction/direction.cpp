@@ -19,6 +19,7 @@
 
 #include <cmath>
 #include <memory>
+#include <string>
 #include <vector>
 
 namespace {
@@ -60,6 +61,9 @@ class DirectionLoss final : public Node {
     for (int b = 0; b < batch; ++b) {
       surface_->update(to_double(body, b));
       const Eigen::MatrixX3d xb = to_double(x, b), yb = to_double(y, b);
+      if (!xb.allFinite() || !yb.allFinite())
+        throw Error("direction: sample " + std::to_string(b) + " has non-finite " + (xb.allFinite() ? "target" : "pred") +
+                    " vertices");
       hits_x_[b] = locate(xb);
       hits_y_[b] = locate(yb);
       double sum = 0.0;
