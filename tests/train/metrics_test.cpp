@@ -106,7 +106,7 @@ TEST_CASE("p counts garment vertices inside the body", "[metrics]") {
   CHECK(f.metrics.evaluate(away, f.garment, f.body).penetration_percent == 0.0);
 }
 
-TEST_CASE("metrics refuse wrong sizes and non-finite vertices; summaries average", "[metrics]") {
+TEST_CASE("metrics refuse wrong sizes and non-finite vertices, and summaries average", "[metrics]") {
   Fixture f;
   CHECK_THROWS_WITH(f.metrics.evaluate(f.garment.topRows(10), f.garment, f.body),
                     Catch::Contains("has 10 vertices, expected " + std::to_string(f.garment.rows())));

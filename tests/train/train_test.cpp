@@ -92,7 +92,7 @@ TEST_CASE("training mlp_baseline reduces the loss and writes a loadable model", 
   CHECK(error == Approx(c.history.at("val_loss_l2")[static_cast<std::size_t>(r.best_epoch - 1)]).epsilon(1e-3));
 }
 
-TEST_CASE("a seed reproduces the weights bit for bit; another seed does not", "[train]") {
+TEST_CASE("a seed reproduces the weights bit for bit and another seed does not", "[train]") {
   TinyData d;
   auto o = test::tiny_training(d.data, d.dir / "a.h5");
   o.epochs = 3;
