@@ -42,23 +42,6 @@ Shard parse_shard(const std::string& text) {
   throw UsageError("--shard '" + text + "': expected i/N with 0 <= i < N");
 }
 
-// FNV-1a over the garment template and the body topology: a dataset is tied to them.
-std::string template_hash(const Simulation& sim) {
-  std::uint64_t h = 1469598103934665603ull;
-  auto bytes = [&](const void* data, std::size_t n) {
-    const auto* p = static_cast<const unsigned char*>(data);
-    for (std::size_t i = 0; i < n; ++i) h = (h ^ p[i]) * 1099511628211ull;
-  };
-  const Mesh& g = sim.garment().mesh;
-  bytes(g.vertices.data(), sizeof(double) * g.vertices.size());
-  bytes(g.faces.data(), sizeof(int) * g.faces.size());
-  bytes(g.uv.data(), sizeof(double) * g.uv.size());
-  bytes(sim.body_model().faces().data(), sizeof(int) * sim.body_model().faces().size());
-  std::ostringstream o;
-  o << std::hex << std::setw(16) << std::setfill('0') << h;
-  return o.str();
-}
-
 // The 8:1:1 split of the whole set (all shards): a seeded permutation, the
 // first 80% train, the next 10% validation, the rest test.
 std::vector<Split> splits(std::size_t total, std::uint64_t seed) {
@@ -121,7 +104,7 @@ int run(const std::vector<std::string>& args) {
                         "height", "sex", "global_index"})
     layout.stats.push_back(s);
   layout.scene = scene.yaml();
-  layout.template_hash = template_hash(sim);
+  layout.template_hash = template_hash(sim.garment().mesh, sim.body_model().faces());
   std::ostringstream ranges;
   ranges << "bmi " << bmi.lo << ":" << bmi.hi << ", height " << height.lo << ":" << height.hi << ", sex " << sex.lo
          << ":" << sex.hi << ", seed " << seed << ", count " << total << ", shard " << shard.index << "/" << shard.count;

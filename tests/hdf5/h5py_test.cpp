@@ -43,7 +43,7 @@ TEST_CASE("h5py reads datasets and checkpoints with the documented layout", "[hd
   Weight w;
   w.value = Tensor(1, 2, 3, 0.5f);
   w.grad = Tensor(1, 2, 3);
-  save_checkpoint(dir / "model.h5", NamedWeights{{"encoder/w", &w}}, Checkpoint{"nodes: {}\n", {{"epoch", "7"}}, std::nullopt});
+  save_checkpoint(dir / "model.h5", NamedWeights{{"encoder/w", &w}}, Checkpoint{"nodes: {}\n", {{"epoch", "7"}}, std::nullopt, {}});
 
   std::ofstream(dir / "check.py") << R"(import sys, h5py, numpy as np
 d = h5py.File(sys.argv[1], 'r')

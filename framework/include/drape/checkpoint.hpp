@@ -6,6 +6,7 @@
 //   /meta                         string attributes (epoch, seed, best_val_loss, ...)
 //   /optimizer/<slot>/<weight>    f32 [rows, cols]   optional optimiser state,
 //                                 attributes `type` and the scalars (step, ...)
+//   /history/<name>               f64 [n]            optional series (per-epoch losses, ...)
 // Written atomically (temporary file + rename): a save that fails or is killed
 // leaves the previous checkpoint untouched.
 #include <drape/optimizer.hpp>
@@ -14,6 +15,7 @@
 #include <map>
 #include <optional>
 #include <string>
+#include <vector>
 
 namespace drape {
 
@@ -23,6 +25,7 @@ struct Checkpoint {
   std::string graph;                        // YAML text
   std::map<std::string, std::string> meta;  // string key/values
   std::optional<OptimizerState> optimizer;
+  std::map<std::string, std::vector<double>> history;  // /history/<name>, e.g. per-epoch losses
 };
 
 void save_checkpoint(const std::filesystem::path& path, const NamedWeights& weights, const Checkpoint& checkpoint);

@@ -16,6 +16,7 @@
 // Flushes hand the data to the operating system (safe against a killed process);
 // `sync` in DatasetWriter::Options also fsyncs (safe against a power loss, slower).
 #include <drape/errors.hpp>
+#include <drape/mesh.hpp>
 #include <drape/tensor.hpp>
 
 #include <Eigen/Core>
@@ -129,6 +130,11 @@ class DatasetReader {
   std::vector<std::uint8_t> done_;
   std::unique_ptr<Impl> impl_;
 };
+
+// The `template_hash` of a dataset (DatasetLayout::template_hash): FNV-1a over
+// the garment template's vertices, faces and UVs and the body model's faces,
+// as 16 hex digits. A dataset is only usable with the template it was made for.
+std::string template_hash(const Mesh& garment, const Eigen::MatrixX3i& body_faces);
 
 // Concatenates the done samples of several shard files (in order) into `out`,
 // written atomically. The shards must agree on sizes, stats, scene and

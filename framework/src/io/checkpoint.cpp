@@ -57,6 +57,10 @@ void save_checkpoint(const fs::path& path, const NamedWeights& weights, const Ch
       file.set_attribute("/optimizer", "type", s.type);
       for (const auto& [key, value] : s.scalars) file.set_attribute("/optimizer", key, value);
     }
+    if (!checkpoint.history.empty()) {
+      file.create_group("/history");
+      for (const auto& [name, values] : checkpoint.history) file.write("/history/" + name, values);
+    }
     file.flush(true);
     file.close();
   });
@@ -85,6 +89,8 @@ Checkpoint read_checkpoint(const fs::path& path) {
     for (const auto& name : file.datasets_below("/optimizer")) s.tensors[name] = read_matrix(file, "/optimizer/" + name);
     c.optimizer = std::move(s);
   }
+  if (file.is_group("/history"))
+    for (const auto& name : file.datasets_below("/history")) c.history[name] = file.read<double>("/history/" + name);
   return c;
 }
 

@@ -1,0 +1,93 @@
+// `drape bench infer --model model.h5` (or --graph g.yaml with fresh weights):
+// milliseconds per body of one forward pass on one core, best of N, with the
+// graph's multiply-adds per sample (Node::flops_per_sample) and the rate.
+#include "bench.hpp"
+
+#include <drape/data_parallel.hpp>
+#include <drape/model.hpp>
+#include <drape/registry.hpp>
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+
+namespace drape::cli {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+int run(const std::vector<std::string>& args) {
+  po::options_description opts("drape bench infer");
+  opts.add_options()("model", po::value<std::string>(), "model file from drape train")(
+      "graph", po::value<std::string>(), "or a graph YAML, timed with freshly initialised weights")(
+      "resolution", po::value<std::string>()->default_value("default"), "with --graph: garment resolution")(
+      "k", po::value<int>()->default_value(1000), "with --graph: eigenvectors in the assets")(
+      "bmi", po::value<double>()->default_value(35), "BMI of the body fed to the model")(
+      "batch", po::value<int>()->default_value(1), "bodies per forward pass (figures are per body)")(
+      "repeats", po::value<int>()->default_value(20), "timed passes (the best is reported)");
+  po::variables_map vm;
+  const std::string usage = "drape bench infer (--model model.h5 | --graph g.yaml [--resolution default]) [--repeats 20]";
+  if (!parse(usage, args, opts, {}, vm)) return 0;
+  if (vm.count("model") == vm.count("graph")) throw UsageError("give exactly one of --model FILE and --graph FILE");
+  const int repeats = std::max(1, vm["repeats"].as<int>()), batch_size = std::max(1, vm["batch"].as<int>());
+
+  Registry& registry = Registry::load_default(plugin_path(vm));
+  std::unique_ptr<Model> model;
+  std::shared_ptr<const Assets> assets;
+  AssetsSpec spec;
+  std::unique_ptr<Graph> fresh;
+  std::string what;
+  if (vm.count("model")) {
+    what = vm["model"].as<std::string>();
+    model = std::make_unique<Model>(Model::load(registry, what));
+    assets = model->shared_assets();
+    spec = model->assets_spec();
+  } else {
+    what = vm["graph"].as<std::string>() + " (fresh weights)";
+    spec.garment_params["resolution"] = vm["resolution"].as<std::string>();
+    spec.eigen_k = vm["k"].as<int>();
+    assets = build_assets(registry, spec);
+  }
+  const auto body_model = make_body_model(registry, spec);
+  if (!model) {
+    const GraphSpec graph_spec = parse_graph_file(vm["graph"].as<std::string>());
+    check_graph_inputs(graph_spec);
+    GraphOptions options;
+    options.dims = graph_dims(*assets, static_cast<int>(body_model->mean_shape().size()));
+    options.assets = assets.get();
+    fresh = std::make_unique<Graph>(graph_spec, registry, options);
+  }
+  Graph& graph = model ? model->graph() : *fresh;
+  const std::string output = model ? model->output() : garment_output(graph);
+
+  BodyRequest request;
+  request.bmi = vm["bmi"].as<double>();
+  const SampleBatch batch = body_batch(*body_model, request, batch_size);
+  const auto inputs = graph_inputs(graph, batch, false);
+
+  const OmpThreadsScope one_core(1);
+  graph.forward(inputs, false);  // warm-up: allocations, caches
+  std::vector<double> ms;
+  for (int r = 0; r < repeats; ++r) {
+    const auto t = Clock::now();
+    graph.forward(inputs, false);
+    ms.push_back(std::chrono::duration<double, std::milli>(Clock::now() - t).count() / batch_size);
+  }
+  std::sort(ms.begin(), ms.end());
+  const double best = ms.front(), median = ms[ms.size() / 2];
+  const double macs = graph.flops_per_sample();
+  std::size_t weights = 0;
+  for (const auto& [name, w] : graph.weights()) weights += w->value.size();
+  std::printf("## Inference on one core: %s\n\n", what.c_str());
+  std::printf("garment %d vertices, body %d vertices, output '%s', %zu learnable weights, batch %d\n\n",
+              assets->garment->mesh.num_vertices(), assets->body.num_vertices(), output.c_str(), weights, batch_size);
+  std::printf("| ms per body (best of %d) | median | multiply-adds per body | GFLOP/s (2 per multiply-add) |\n|---|---|---|---|\n",
+              repeats);
+  std::printf("| %.3f | %.3f | %.4g | %.2f |\n", best, median, macs, 2.0 * macs / (best * 1e-3) / 1e9);
+  return 0;
+}
+
+const RegisterBench registration{{"infer", "ms per body of a model's forward pass on one core, with FLOPs and GFLOP/s", run}};
+
+}  // namespace
+}  // namespace drape::cli

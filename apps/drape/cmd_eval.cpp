@@ -1,0 +1,136 @@
+// `drape eval --model model.h5 --data data.h5 [--split test]`: the seed's
+// metrics (drape/metrics.hpp) of a model's predictions on one split.
+#include "command.hpp"
+
+#include <drape/atomic_file.hpp>
+#include <drape/dataset.hpp>
+#include <drape/metrics.hpp>
+#include <drape/model.hpp>
+#include <drape/progress.hpp>
+#include <drape/trainer.hpp>
+
+#include <cstdio>
+#include <fstream>
+#include <sstream>
+#include <iostream>
+
+namespace drape::cli {
+namespace {
+
+namespace fs = std::filesystem;
+
+std::string format(const char* f, double v) {
+  char b[64];
+  std::snprintf(b, sizeof b, f, v);
+  return b;
+}
+
+void write_report(const fs::path& file, const std::string& model, const std::string& data, const std::string& split,
+                  const MetricsSummary& s, double reference_p) {
+  const std::string ext = file.extension().string();
+  std::ostringstream o;
+  if (ext == ".csv") {
+    o << "metric,unit,mean,std\n";
+    for (const auto& c : metric_columns())
+      o << c.name << "," << c.unit << "," << format("%.9g", s.mean.*c.field) << "," << format("%.9g", s.stddev.*c.field) << "\n";
+  } else {
+    auto quoted = [](const std::string& t) {
+      std::string q = "\"";
+      for (char ch : t) q += (ch == '"' || ch == '\\') ? std::string("\\") + ch : std::string(1, ch);
+      return q + "\"";
+    };
+    o << "{\n  \"model\": " << quoted(model) << ",\n  \"data\": " << quoted(data) << ",\n  \"split\": " << quoted(split)
+      << ",\n  \"samples\": " << s.samples << ",\n  \"ground_truth_p_percent\": " << format("%.9g", reference_p)
+      << ",\n  \"metrics\": {\n";
+    const auto& columns = metric_columns();
+    for (std::size_t i = 0; i < columns.size(); ++i)
+      o << "    " << quoted(columns[i].name) << ": {\"unit\": " << quoted(columns[i].unit)
+        << ", \"mean\": " << format("%.9g", s.mean.*columns[i].field) << ", \"std\": " << format("%.9g", s.stddev.*columns[i].field)
+        << "}" << (i + 1 < columns.size() ? "," : "") << "\n";
+    o << "  }\n}\n";
+  }
+  write_atomically(file, [&](const fs::path& tmp) {
+    std::ofstream f(tmp);
+    f << o.str();
+    if (!f) throw Error("cannot write " + file.string());
+  });
+}
+
+int run(const std::vector<std::string>& args) {
+  po::options_description opts("drape eval");
+  opts.add_options()("model", po::value<std::string>(), "model file from drape train")(
+      "data", po::value<std::string>(), "dataset (drape generate) with ground-truth drapes")(
+      "split", po::value<std::string>()->default_value("test"), "train | val | test | all")(
+      "batch", po::value<int>()->default_value(16), "bodies per forward pass")(
+      "out", po::value<std::string>(), "also write the table: metrics.csv or metrics.json");
+  po::variables_map vm;
+  const std::string usage = "drape eval --model model.h5 --data data.h5 [--split test] [--out metrics.csv|json]";
+  if (!parse(usage, args, opts, {}, vm)) return 0;
+  if (!vm.count("model")) throw UsageError("--model FILE is required (from drape train)");
+  if (!vm.count("data")) throw UsageError("--data FILE is required (a dataset from drape generate)");
+  if (vm.count("out")) {
+    const std::string ext = fs::path(vm["out"].as<std::string>()).extension().string();
+    if (ext != ".csv" && ext != ".json") throw UsageError("--out must end in .csv or .json");
+  }
+  const int batch_size = vm["batch"].as<int>();
+  if (batch_size < 1) throw UsageError("--batch must be at least 1");
+  const std::string split = vm["split"].as<std::string>();
+  const std::string model_file = vm["model"].as<std::string>(), data = vm["data"].as<std::string>();
+
+  Registry& registry = Registry::load_default(plugin_path(vm));
+  Model model = Model::load(registry, model_file);
+  const DatasetReader reader(data);
+  check_dataset_template(reader, data, model.assets());
+  const std::vector<std::size_t> indices = split == "all" ? reader.indices() : reader.indices(parse_split(split));
+  if (indices.empty()) throw ConfigError(data + ": the " + split + " split has no samples");
+
+  const MetricsContext metrics(model.assets());
+  std::vector<GarmentMetrics> per_sample(indices.size());
+  double reference_p = 0;
+  ProgressBar bar("eval", indices.size(), std::cerr);
+  for (std::size_t first = 0; first < indices.size(); first += static_cast<std::size_t>(batch_size)) {
+    const std::vector<std::size_t> part(indices.begin() + static_cast<long>(first),
+                                        indices.begin() + static_cast<long>(std::min(indices.size(), first + static_cast<std::size_t>(batch_size))));
+    SampleBatch batch;
+    batch.body = reader.body_vertices(part);
+    if (model.needs_body_params()) batch.body_params = reader.body_params(part);
+    const Tensor truth = reader.garment_vertices(part);
+    const Tensor predicted = model.predict(batch);
+    const int n = static_cast<int>(part.size());
+    std::vector<double> ref(part.size());
+    std::vector<std::string> errors(part.size());
+#pragma omp parallel for schedule(dynamic)
+    for (int b = 0; b < n; ++b) {
+      try {  // no exception may leave an OpenMP region
+        const Eigen::MatrixX3d x = predicted.mat(b).cast<double>(), y = truth.mat(b).cast<double>(),
+                               body = batch.body.mat(b).cast<double>();
+        per_sample[first + static_cast<std::size_t>(b)] = metrics.evaluate(x, y, body);
+        ref[static_cast<std::size_t>(b)] = metrics.penetration(y, body);
+      } catch (const std::exception& e) {
+        errors[static_cast<std::size_t>(b)] = e.what();
+      }
+    }
+    for (std::size_t b = 0; b < part.size(); ++b)
+      if (!errors[b].empty()) throw Error("sample " + std::to_string(part[b]) + ": " + errors[b]);
+    for (double r : ref) reference_p += 100.0 * r / double(indices.size());
+    bar.advance(part.size());
+  }
+  bar.finish();
+  const MetricsSummary s = summarize(per_sample);
+
+  std::printf("%s on %s, %s split (%zu samples)\n\n", model_file.c_str(), data.c_str(), split.c_str(), s.samples);
+  std::printf("| metric | mean | std | unit |\n|---|---|---|---|\n");
+  for (const auto& c : metric_columns())
+    std::printf("| %s | %.4g | %.3g | %s |\n", c.name.c_str(), s.mean.*c.field, s.stddev.*c.field, c.unit.c_str());
+  std::printf("\nthe ground truth itself has p = %.3g %%\n", reference_p);
+  if (vm.count("out")) {
+    write_report(vm["out"].as<std::string>(), model_file, data, split, s, reference_p);
+    std::printf("wrote %s\n", vm["out"].as<std::string>().c_str());
+  }
+  return 0;
+}
+
+const RegisterCommand registered{{"eval", "the seed's metrics (ME, L_l, L_e, L_s, L_d, p) of a model on a dataset split", run}};
+
+}  // namespace
+}  // namespace drape::cli

@@ -1,0 +1,86 @@
+// `drape predict --model model.h5 (--body body.obj | --bmi 35) --out garment.obj`:
+// the garment a trained model predicts for one body.
+#include "command.hpp"
+
+#include <drape/geometry/penetration.hpp>
+#include <drape/mesh_io.hpp>
+#include <drape/model.hpp>
+
+#include <chrono>
+#include <cstdio>
+#include <iostream>
+
+namespace drape::cli {
+namespace {
+
+int run(const std::vector<std::string>& args) {
+  po::options_description opts("drape predict");
+  opts.add_options()("model", po::value<std::string>(), "model file from drape train")(
+      "body", po::value<std::string>(), "body mesh (.obj, .ply, .gltf, .glb, ...) in the model's body topology")(
+      "bmi", po::value<double>(), "make the body with the model's body plugin instead: target BMI")(
+      "height", po::value<double>(), "with --bmi: height in m (default 1.75)")(
+      "sex", po::value<double>(), "with --bmi: 0 female ... 1 male (default 1)")(
+      "out", po::value<std::string>(), "garment mesh to write (.obj, .ply, .gltf, .glb): the template's faces and UVs")(
+      "body-out", po::value<std::string>(), "also write the body mesh");
+  po::variables_map vm;
+  const std::string usage =
+      "drape predict --model model.h5 (--body body.obj | --bmi 35 [--height 1.75 --sex 1]) --out garment.obj "
+      "[--body-out body.obj]";
+  if (!parse(usage, args, opts, {}, vm)) return 0;
+  if (!vm.count("model")) throw UsageError("--model FILE is required (from drape train)");
+  if (!vm.count("out")) throw UsageError("--out FILE is required (the garment mesh to write)");
+  if (vm.count("body") == vm.count("bmi"))
+    throw UsageError("give the body either as a mesh (--body FILE) or by its BMI (--bmi X), exactly one");
+  if (vm.count("body") && (vm.count("height") || vm.count("sex")))
+    throw UsageError("--height and --sex go with --bmi; --body gives the body itself");
+
+  Registry& registry = Registry::load_default(plugin_path(vm));
+  Model model = Model::load(registry, vm["model"].as<std::string>());
+  if (model.assets_changed())
+    std::cerr << "warning: the template assets differ from the ones " << vm["model"].as<std::string>()
+              << " was trained with (a plugin changed since?)\n";
+  const int nb = model.assets().body.num_vertices();
+  SampleBatch batch;
+  Mesh body;
+  body.faces = model.assets().body.faces;
+  if (vm.count("body")) {
+    const std::string file = vm["body"].as<std::string>();
+    const Mesh given = read_mesh(file);
+    require_vertex_count(given, nb, file,
+                         "the model's body model '" + model.assets_spec().body_model + "' has that many");
+    if (model.needs_body_params())
+      throw ConfigError("this model's graph takes the body parameters (input body_params), which a mesh does not "
+                        "give: use --bmi");
+    body.vertices = given.vertices;
+    batch.body = Tensor(1, nb, 3);
+    batch.body.mat(0) = given.vertices.cast<float>();
+  } else {
+    BodyRequest request;
+    request.bmi = vm["bmi"].as<double>();
+    if (vm.count("height")) request.height = vm["height"].as<double>();
+    if (vm.count("sex")) request.sex = vm["sex"].as<double>();
+    batch = model.body_for(request);
+    body.vertices = batch.body.mat(0).cast<double>();
+  }
+
+  const auto start = std::chrono::steady_clock::now();
+  const Tensor garment = model.predict(batch);
+  const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  Mesh out = model.assets().garment->mesh;  // the template's faces and UVs
+  out.vertices = garment.mat(0).cast<double>();
+  if (!out.vertices.allFinite()) throw Error("the model predicted a non-finite vertex");
+  const double p = geometry::penetration_ratio(geometry::BodySurface(body.vertices, body.faces), out.vertices);
+  write_mesh(vm["out"].as<std::string>(), out);
+  std::printf("wrote %s: %d garment vertices predicted in %.2f ms; p = %.2f%% of them inside the body\n",
+              vm["out"].as<std::string>().c_str(), out.num_vertices(), ms, 100.0 * p);
+  if (vm.count("body-out")) {
+    write_mesh(vm["body-out"].as<std::string>(), body);
+    std::printf("wrote %s\n", vm["body-out"].as<std::string>().c_str());
+  }
+  return 0;
+}
+
+const RegisterCommand registered{{"predict", "the garment a trained model predicts for a body (--body or --bmi)", run}};
+
+}  // namespace
+}  // namespace drape::cli

@@ -1,0 +1,103 @@
+// `drape train GRAPH.yaml --data data.h5 --out model.h5`: train a graph on a
+// dataset (drape/trainer.hpp), resumable with --resume after a kill.
+#include "command.hpp"
+
+#include <drape/trainer.hpp>
+
+#include <iostream>
+#include <thread>
+
+namespace drape::cli {
+namespace {
+
+// A test hook kept out of --help: stop after N epochs as a kill would, so
+// tests can resume deterministically. Removed from the arguments here.
+long take_hidden_epoch_limit(std::vector<std::string>& args) {
+  const std::string flag = "--max-epochs-this-run";
+  for (std::size_t i = 0; i < args.size(); ++i) {
+    std::string value;
+    if (args[i] == flag && i + 1 < args.size()) {
+      value = args[i + 1];
+      args.erase(args.begin() + static_cast<long>(i), args.begin() + static_cast<long>(i) + 2);
+    } else if (args[i].rfind(flag + "=", 0) == 0) {
+      value = args[i].substr(flag.size() + 1);
+      args.erase(args.begin() + static_cast<long>(i));
+    } else {
+      continue;
+    }
+    try {
+      const long n = std::stol(value);
+      if (n > 0) return n;
+    } catch (const std::exception&) {
+    }
+    throw UsageError(flag + " wants a positive number, got '" + value + "'");
+  }
+  return 0;
+}
+
+int run(const std::vector<std::string>& given) {
+  std::vector<std::string> args = given;
+  TrainOptions o;
+  o.max_epochs_this_run = take_hidden_epoch_limit(args);
+  po::options_description opts("drape train");
+  opts.add_options()("graph", po::value<std::string>(), "graph YAML (graphs/examples/*.yaml)")(
+      "data", po::value<std::string>(), "dataset from drape generate")(
+      "out", po::value<std::string>(), "model file to write (HDF5); the resumable state goes to <out>.state")(
+      "epochs", po::value<long>()->default_value(100), "epochs (passes over the training split)")(
+      "batch", po::value<int>()->default_value(8), "samples per step")(
+      "lr", po::value<double>()->default_value(1e-3), "Adam's learning rate")(
+      "schedule", po::value<std::string>()->default_value("constant"), "learning rate over epochs: constant | cosine")(
+      "patience", po::value<int>()->default_value(20), "stop after this many epochs without a better validation loss")(
+      "seed", po::value<std::uint64_t>()->default_value(0), "seed of the initial weights and the shuffles")(
+      "threads", po::value<int>()->default_value(0), "threads, each on a part of every batch (0: all cores); results "
+                                                     "depend on it, so give it to reproduce a run elsewhere")(
+      "k", po::value<int>()->default_value(1000), "eigenvectors in the template assets (eigen_k; 1000 as in drape assets, which shares the cache)")(
+      "resume", po::bool_switch(), "continue an interrupted training from <out>.state (starts afresh when there is none)")(
+      "force", po::bool_switch(), "start over, deleting <out> and <out>.state")(
+      "quiet,q", po::bool_switch(), "no progress bar");
+  po::positional_options_description pos;
+  pos.add("graph", 1);
+  po::variables_map vm;
+  const std::string usage =
+      "drape train GRAPH.yaml --data data.h5 --out model.h5 [--epochs N] [--batch B] [--lr X] [--seed S] [--threads T] "
+      "[--resume]";
+  if (!parse(usage, args, opts, pos, vm)) return 0;
+  if (!vm.count("graph")) throw UsageError("a graph file is required, e.g. graphs/examples/mlp_baseline.yaml");
+  if (!vm.count("data")) throw UsageError("--data FILE is required (a dataset from drape generate)");
+  if (!vm.count("out")) throw UsageError("--out FILE is required (the model file to write)");
+  if (vm["resume"].as<bool>() && vm["force"].as<bool>()) throw UsageError("--resume and --force exclude each other");
+  o.graph = vm["graph"].as<std::string>();
+  o.data = vm["data"].as<std::string>();
+  o.out = vm["out"].as<std::string>();
+  o.epochs = vm["epochs"].as<long>();
+  o.batch = vm["batch"].as<int>();
+  o.lr = vm["lr"].as<double>();
+  o.schedule = vm["schedule"].as<std::string>();
+  o.patience = vm["patience"].as<int>();
+  o.seed = vm["seed"].as<std::uint64_t>();
+  o.threads = vm["threads"].as<int>();
+  if (o.threads == 0) o.threads = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+  o.eigen_k = vm["k"].as<int>();
+  o.resume = vm["resume"].as<bool>();
+  o.force = vm["force"].as<bool>();
+  o.log = &std::cout;
+  if (!vm["quiet"].as<bool>()) o.progress = &std::cerr;
+
+  Registry& registry = Registry::load_default(plugin_path(vm));
+  const TrainReport r = train(registry, o);
+  std::cout << "wrote " << o.out.string() << ": best epoch " << r.best_epoch << " (loss " << r.best_loss << ") of "
+            << r.epochs_done << "; ";
+  if (r.early_stopped)
+    std::cout << "stopped early";
+  else if (r.finished)
+    std::cout << "all epochs done";
+  else
+    std::cout << "interrupted after " << r.epochs_this_run << " epochs of this run: resume with the same command and --resume";
+  std::cout << " (" << r.seconds << " s)\n";
+  return 0;
+}
+
+const RegisterCommand registered{{"train", "train a graph on a dataset (Adam, data-parallel, resumable)", run}};
+
+}  // namespace
+}  // namespace drape::cli

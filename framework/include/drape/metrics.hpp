@@ -1,0 +1,97 @@
+#pragma once
+// The seed's evaluation metrics (Sec. 6.5.2, the columns of Tables 6.1-6.3) for
+// one predicted garment x against the ground truth y on the same body:
+//
+//   ME   (cm)  mean over vertices of |x_i - y_i|                      (replaces L_V2V)
+//   L_l  (cm)  eq. 6.12: sum over the 4 hierarchy levels k of the mean over
+//              level-k vertices of |(L_k (x - y))_i|_1, L_k the random-walk
+//              graph Laplacian of level k (x, y restricted to its vertices)
+//   L_e  (%)   eq. 6.9: mean over edges of | |u_x - v_x| - |u_y - v_y| | / |u_y - v_y|
+//   L_s  (m)   eq. 6.13: mean over the k x 3 entries of |V^T (x - y)|, V the
+//              model's k eigenvectors (so the value is comparable across k)
+//   L_d        eq. 6.10-6.11: mean over faces of sum |F_x - F_y| (the six
+//              entries), F = [x1-x0, x2-x0] [X1-X0, X2-X0]^-1 with X the
+//              material-space (UV, metres) corners of the face
+//   p    (%)   share of garment vertices strictly inside the body
+//              (geometry::penetration_ratio, tolerance 0)
+//
+// The seed writes the sums of eqs. 6.10, 6.12 and 6.13 without saying how they
+// are normalised; means per element make the values independent of the mesh
+// resolution and the batch. Everything is computed in double.
+#include <drape/assets.hpp>
+
+#include <Eigen/Core>
+#include <Eigen/SparseCore>
+
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace drape {
+
+struct GarmentMetrics {
+  double me_cm = 0;         // ME
+  double laplacian_cm = 0;  // L_l
+  double edge_percent = 0;  // L_e
+  double spectral = 0;      // L_s (m)
+  double deformation = 0;   // L_d
+  double penetration_percent = 0;  // p
+};
+
+// Names, units and values in table order: {"ME", "cm"}, {"L_l", "cm"}, {"L_e", "%"},
+// {"L_s", "m"}, {"L_d", ""}, {"p", "%"}.
+struct MetricColumn {
+  std::string name, unit;
+  double GarmentMetrics::*field;
+};
+const std::vector<MetricColumn>& metric_columns();
+
+// What the metrics need of a garment template, precomputed once.
+class MetricsContext {
+ public:
+  // The garment (level 0 of the hierarchy, material space from its UVs), the
+  // hierarchy levels, the eigenvectors and the body faces, all from `assets`.
+  // Throws ConfigError when the garment has no UVs or a face has a degenerate
+  // material-space triangle.
+  explicit MetricsContext(const Assets& assets);
+
+  int garment_vertices() const { return garment_vertices_; }
+  int body_vertices() const { return body_vertices_; }
+
+  // Every metric of one sample. x, y: [garment vertices, 3]; body: [body
+  // vertices, 3] in the assets' body topology. Throws Error on a size mismatch
+  // or a non-finite input.
+  GarmentMetrics evaluate(const Eigen::MatrixX3d& x, const Eigen::MatrixX3d& y, const Eigen::MatrixX3d& body) const;
+
+  // The parts, for tests and for callers that need only some.
+  double mean_error(const Eigen::MatrixX3d& x, const Eigen::MatrixX3d& y) const;         // m
+  double laplacian_difference(const Eigen::MatrixX3d& x, const Eigen::MatrixX3d& y) const;  // m
+  double edge_error(const Eigen::MatrixX3d& x, const Eigen::MatrixX3d& y) const;          // fraction
+  double spectral_difference(const Eigen::MatrixX3d& x, const Eigen::MatrixX3d& y) const;   // m
+  double deformation_difference(const Eigen::MatrixX3d& x, const Eigen::MatrixX3d& y) const;
+  double penetration(const Eigen::MatrixX3d& x, const Eigen::MatrixX3d& body) const;      // fraction
+
+ private:
+  void check(const Eigen::MatrixX3d& m, int rows, const char* what) const;
+
+  int garment_vertices_ = 0, body_vertices_ = 0;
+  Eigen::MatrixX3i faces_;
+  std::vector<Eigen::Matrix2d> material_inverse_;  // per face: [X1-X0, X2-X0]^-1
+  std::vector<std::pair<int, int>> edges_;
+  struct Level {
+    Eigen::VectorXi fine_index;  // level vertex -> garment vertex
+    Eigen::SparseMatrix<double, Eigen::RowMajor> laplacian;
+  };
+  std::vector<Level> levels_;
+  Eigen::MatrixXd eigenvectors_;  // [garment vertices, k]
+  Eigen::MatrixX3i body_faces_;
+};
+
+// Mean and standard deviation of each metric over samples.
+struct MetricsSummary {
+  std::size_t samples = 0;
+  GarmentMetrics mean, stddev;
+};
+MetricsSummary summarize(const std::vector<GarmentMetrics>& samples);
+
+}  // namespace drape

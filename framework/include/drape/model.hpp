@@ -1,0 +1,105 @@
+#pragma once
+// A trained model (`drape train` writes it, `drape predict`, `drape eval` and
+// `drape bench infer` read it; layout in docs/formats.md): a checkpoint whose
+// root attribute `graph` is the resolved graph, whose /weights are the best
+// weights, whose /meta names the template assets (meta `assets`, the
+// AssetsSpec as YAML) so that the same assets are rebuilt, and whose /history
+// holds the per-epoch losses.
+//
+// Graph inputs are fed by name, the same way in training and at inference:
+//   body         [body_vertices, 3]   body vertices (metres, the body model's topology)
+//   body_params  [1, body_params]     the body model's shape parameters
+//   target       [garment_vertices, 3] the ground-truth garment (losses only)
+// A graph input of any other name is refused when the graph is loaded. The
+// predicted garment is the output named `garment`, else the graph's first output.
+#include <drape/assets.hpp>
+#include <drape/body.hpp>
+#include <drape/checkpoint.hpp>
+#include <drape/graph.hpp>
+#include <drape/scene.hpp>
+
+#include <filesystem>
+#include <map>
+#include <memory>
+#include <string>
+
+namespace drape {
+
+// The inverse of AssetsSpec::yaml(). ConfigError naming `what` for anything else.
+AssetsSpec parse_assets_spec(const std::string& yaml, const std::string& what);
+
+// The assets of the template a scene (a dataset's `scene` attribute) drapes:
+// its body model and garment with their parameters.
+AssetsSpec assets_spec_for(const Scene& scene, int eigen_k, int levels = 4);
+
+// Samples as graph-ready tensors; empty tensors are "not available".
+struct SampleBatch {
+  Tensor body;         // [n, Nb, 3]
+  Tensor body_params;  // [n, 1, P]
+  Tensor target;       // [n, Ng, 3]
+  int size() const { return body.batch(); }
+  // Samples first .. first+count-1 of every tensor that is present.
+  SampleBatch slice(int first, int count) const;
+};
+
+// The body plugin an assets spec names, with its parameters.
+std::unique_ptr<BodyModel> make_body_model(const Registry& registry, const AssetsSpec& spec);
+// A body of `model` for a request (ConfigError when the model cannot reach
+// it), as `copies` identical samples: vertices and parameters.
+SampleBatch body_batch(const BodyModel& model, const BodyRequest& request, int copies = 1);
+
+// Known graph inputs and their sizes (`dims` for GraphOptions): the assets'
+// sizes plus body_params.
+std::map<std::string, int> graph_dims(const Assets& assets, int body_params);
+// ConfigError (naming the graph file) when the graph has an input other than
+// body, body_params and target.
+void check_graph_inputs(const GraphSpec& spec);
+// The batch's tensors under the names of the graph's inputs; `target` only
+// when with_target (a forward pass without losses does not need it). A
+// declared input the batch does not hold is a ConfigError.
+std::map<std::string, Tensor> graph_inputs(const Graph& graph, const SampleBatch& batch, bool with_target);
+// The output that holds the predicted garment.
+std::string garment_output(const Graph& graph);
+
+class Model {
+ public:
+  // Reads the model file, rebuilds the assets (from `cache_dir`, see
+  // build_assets) and the graph, and loads the weights. ConfigError for a file
+  // that is not a drape model or does not fit its graph.
+  static Model load(const Registry& registry, const std::filesystem::path& file,
+                    const std::filesystem::path& cache_dir = default_cache_dir());
+
+  Model(Model&&) noexcept;
+  ~Model();
+
+  const std::filesystem::path& file() const { return file_; }
+  const Checkpoint& checkpoint() const { return checkpoint_; }  // graph text, meta, history
+  const AssetsSpec& assets_spec() const { return assets_spec_; }
+  const Assets& assets() const { return *assets_; }
+  std::shared_ptr<const Assets> shared_assets() const { return assets_; }
+  const BodyModel& body_model() const { return *body_model_; }
+  Graph& graph() { return *graph_; }
+  const std::string& output() const { return output_; }
+  bool needs_body_params() const;
+  // True when the rebuilt assets differ from the ones the model was trained
+  // with (meta `assets_hash`), e.g. after a change of the garment plugin.
+  bool assets_changed() const { return assets_changed_; }
+
+  // Garments [n, Ng, 3] for the batch's bodies (and body_params when the graph uses them).
+  Tensor predict(const SampleBatch& batch);
+  // A body of the model's body plugin for a request: vertices and parameters.
+  SampleBatch body_for(const BodyRequest& request) const;
+
+ private:
+  Model() = default;
+  std::filesystem::path file_;
+  Checkpoint checkpoint_;
+  AssetsSpec assets_spec_;
+  std::shared_ptr<const Assets> assets_;
+  std::unique_ptr<BodyModel> body_model_;
+  std::unique_ptr<Graph> graph_;
+  std::string output_;
+  bool assets_changed_ = false;
+};
+
+}  // namespace drape

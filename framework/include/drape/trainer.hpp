@@ -1,0 +1,80 @@
+#pragma once
+// Training a graph on a drape dataset (`drape train`): Adam on shuffled
+// mini-batches, data-parallel over threads (data_parallel.hpp), the
+// validation loss after every epoch, the best weights kept, early stopping.
+//
+// Files (layouts in docs/formats.md), both written atomically after every epoch:
+//   <out>         the model: the best weights so far, the graph, the assets
+//                 spec and the per-epoch history (what predict/eval read)
+//   <out>.state   everything a resumed run needs: the current and the best
+//                 weights, Adam's moments and step, the early-stopping
+//                 counters, the history and the settings that must not change
+// A killed run continues with the same command plus `resume`: the epoch it was
+// in is run again from the state after the last finished epoch, and the result
+// is identical to an uninterrupted run. The shuffle of epoch e is drawn from
+// Rng::derive(seed, "epoch-e"), so the random state is (seed, epoch).
+#include <drape/assets.hpp>
+#include <drape/registry.hpp>
+
+#include <cstdint>
+#include <filesystem>
+#include <iosfwd>
+#include <memory>
+#include <string>
+
+namespace drape {
+
+struct TrainOptions {
+  std::filesystem::path graph;  // graph YAML
+  std::filesystem::path data;   // dataset (drape generate)
+  std::filesystem::path out;    // model file
+  long epochs = 100;
+  int batch = 8;
+  double lr = 1e-3;
+  std::string schedule = "constant";  // or "cosine" (to 0 over `epochs`)
+  std::uint64_t seed = 0;
+  int threads = 1;
+  int patience = 20;          // epochs without a better validation loss before stopping
+  bool resume = false;        // continue from <out>.state when it exists
+  bool force = false;         // start over even when <out> or <out>.state exists
+  long max_epochs_this_run = 0;  // > 0: stop after that many epochs as if killed (tests)
+  int eigen_k = 1000;         // eigenvectors in the assets (eigen_k; L_s of drape eval uses them)
+  std::filesystem::path cache_dir = default_cache_dir();  // of the assets (build_assets)
+  // Prebuilt assets of the dataset's template (checked against it), e.g. for
+  // several trainings in one process; null: built from the dataset's scene.
+  std::shared_ptr<const Assets> assets;
+  std::ostream* log = nullptr;       // one line per epoch; null: quiet
+  std::ostream* progress = nullptr;  // the progress bar; null: none
+};
+
+struct TrainReport {
+  long epochs_done = 0;      // in total, over all runs
+  long epochs_this_run = 0;
+  long best_epoch = 0;       // 1-based; 0 when no epoch finished
+  double best_loss = 0;      // the monitored loss (validation, or training without a validation split)
+  bool resumed = false;
+  bool early_stopped = false;
+  bool finished = false;     // the epochs are done or training stopped early
+  double seconds = 0;        // this run
+  int train_samples = 0, val_samples = 0;
+};
+
+// Throws ConfigError for bad settings, a dataset made for another template,
+// an existing output without resume/force, or a state that belongs to other
+// settings; Error when the loss stops being finite.
+TrainReport train(const Registry& registry, const TrainOptions& options);
+
+// "<out>.state"
+std::filesystem::path training_state_path(const std::filesystem::path& out);
+
+class DatasetReader;
+// The assets of the template a dataset was generated for (its scene's body
+// model and garment, with eigen_k eigenvectors), checked against the
+// dataset's sizes and template hash (ConfigError when they differ).
+std::shared_ptr<const Assets> assets_for_dataset(const Registry& registry, const DatasetReader& reader,
+                                                 const std::filesystem::path& data, int eigen_k,
+                                                 const std::filesystem::path& cache_dir, AssetsSpec* spec = nullptr);
+// The same check for assets from elsewhere (a model's).
+void check_dataset_template(const DatasetReader& reader, const std::filesystem::path& data, const Assets& assets);
+
+}  // namespace drape

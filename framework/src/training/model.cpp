@@ -1,0 +1,190 @@
+// Trained models: the assets spec as text, graph inputs by name, loading and prediction.
+#include <drape/model.hpp>
+#include <drape/registry.hpp>
+
+#include <yaml-cpp/yaml.h>
+
+#include <algorithm>
+
+namespace fs = std::filesystem;
+
+namespace drape {
+namespace {
+
+const std::vector<std::string> kKnownInputs{"body", "body_params", "target"};
+
+// A parameter value as one line of flow YAML, as AssetsSpec::yaml() writes it.
+std::string flow(const YAML::Node& node) {
+  YAML::Emitter e;
+  e << YAML::Flow << node;
+  return e.c_str();
+}
+
+std::map<std::string, std::string> params_text(const ParamValues& values) {
+  std::map<std::string, std::string> out;
+  for (const auto& [k, v] : values) out[k] = flow(v.node);
+  return out;
+}
+
+ParamValues param_values(const std::map<std::string, std::string>& text, const std::string& what) {
+  ParamValues out;
+  for (const auto& [k, v] : text) out[k] = {YAML::Load(v), {what, 0}};
+  return out;
+}
+
+Tensor slice_tensor(const Tensor& t, int first, int count) {
+  if (t.empty()) return {};
+  Tensor out(count, t.rows(), t.cols());
+  const std::size_t per = static_cast<std::size_t>(t.rows()) * static_cast<std::size_t>(t.cols());
+  std::copy(t.data() + per * static_cast<std::size_t>(first), t.data() + per * static_cast<std::size_t>(first + count),
+            out.data());
+  return out;
+}
+
+}  // namespace
+
+AssetsSpec parse_assets_spec(const std::string& yaml, const std::string& what) {
+  AssetsSpec spec;
+  try {
+    const YAML::Node root = YAML::Load(yaml);
+    if (!root.IsMap()) throw ConfigError(what + ": the assets spec is not a YAML map");
+    auto text_map = [&](const YAML::Node& n, const char* key) {
+      std::map<std::string, std::string> out;
+      if (!n[key]) return out;
+      if (!n[key].IsMap()) throw ConfigError(what + ": assets `" + key + "` is not a map");
+      for (const auto& kv : n[key]) out[kv.first.as<std::string>()] = flow(kv.second);
+      return out;
+    };
+    for (const auto& kv : root) {
+      const auto key = kv.first.as<std::string>();
+      if (key != "body" && key != "garment" && key != "levels" && key != "eigen_k")
+        throw ConfigError(what + ": unknown assets key '" + key + "'");
+    }
+    if (!root["body"] || !root["body"]["model"] || !root["garment"] || !root["garment"]["template"])
+      throw ConfigError(what + ": the assets spec must name body.model and garment.template");
+    spec.body_model = root["body"]["model"].as<std::string>();
+    spec.body_params = text_map(root["body"], "params");
+    spec.garment = root["garment"]["template"].as<std::string>();
+    spec.garment_params = text_map(root["garment"], "params");
+    if (root["levels"]) spec.levels = root["levels"].as<int>();
+    if (root["eigen_k"]) spec.eigen_k = root["eigen_k"].as<int>();
+  } catch (const YAML::Exception& e) {
+    throw ConfigError(what + ": bad assets spec: " + e.what());
+  }
+  return spec;
+}
+
+AssetsSpec assets_spec_for(const Scene& scene, int eigen_k, int levels) {
+  AssetsSpec spec;
+  spec.body_model = scene.body_model;
+  spec.body_params = params_text(scene.body_params);
+  spec.garment = scene.garment;
+  spec.garment_params = params_text(scene.garment_params);
+  spec.eigen_k = eigen_k;
+  spec.levels = levels;
+  return spec;
+}
+
+SampleBatch SampleBatch::slice(int first, int count) const {
+  return {slice_tensor(body, first, count), slice_tensor(body_params, first, count), slice_tensor(target, first, count)};
+}
+
+std::map<std::string, int> graph_dims(const Assets& assets, int body_params) {
+  auto dims = assets.dims();
+  dims["body_params"] = body_params;
+  return dims;
+}
+
+void check_graph_inputs(const GraphSpec& spec) {
+  for (const auto& [name, shape] : spec.inputs)
+    if (std::find(kKnownInputs.begin(), kKnownInputs.end(), name) == kKnownInputs.end())
+      throw ConfigError(shape.second, "graph input '" + name + "' is not one drape feeds" + did_you_mean(name, kKnownInputs) +
+                                          " (inputs: body [body_vertices, 3], body_params [1, body_params], target "
+                                          "[garment_vertices, 3])");
+}
+
+std::map<std::string, Tensor> graph_inputs(const Graph& graph, const SampleBatch& batch, bool with_target) {
+  std::map<std::string, Tensor> in;
+  for (const auto& name : graph.input_names()) {
+    const Tensor* t = name == "body" ? &batch.body : name == "body_params" ? &batch.body_params : &batch.target;
+    if (name == "target" && !with_target) continue;
+    if (t->empty()) throw ConfigError("the graph takes input '" + name + "', which is not available here");
+    in[name] = *t;
+  }
+  return in;
+}
+
+std::string garment_output(const Graph& graph) {
+  const auto names = graph.output_names();
+  if (names.empty()) throw ConfigError(graph.spec().file + ": the graph has no outputs (the predicted garment)");
+  return std::find(names.begin(), names.end(), "garment") != names.end() ? "garment" : names.front();
+}
+
+Model::Model(Model&&) noexcept = default;
+Model::~Model() = default;
+
+Model Model::load(const Registry& registry, const fs::path& file, const fs::path& cache_dir) {
+  Model m;
+  m.file_ = file;
+  m.checkpoint_ = read_checkpoint(file);
+  const auto& meta = m.checkpoint_.meta;
+  const auto assets = meta.find("assets");
+  if (assets == meta.end())
+    throw ConfigError(file.string() + ": not a drape model: /meta has no `assets` (a training state or a plain "
+                      "checkpoint? drape train writes the model to --out)");
+  m.assets_spec_ = parse_assets_spec(assets->second, file.string() + ": /meta assets");
+  m.assets_ = build_assets(registry, m.assets_spec_, cache_dir);
+  if (auto h = meta.find("assets_hash"); h != meta.end()) m.assets_changed_ = h->second != m.assets_->hash;
+
+  m.body_model_ = make_body_model(registry, m.assets_spec_);
+
+  const GraphSpec spec = parse_graph_text(m.checkpoint_.graph, file.string() + " (graph)");
+  check_graph_inputs(spec);
+  GraphOptions options;
+  options.dims = graph_dims(*m.assets_, static_cast<int>(m.body_model_->mean_shape().size()));
+  options.assets = m.assets_.get();
+  m.graph_ = std::make_unique<Graph>(spec, registry, options);
+  load_weights(file, *m.graph_);
+  const auto output = meta.find("output");
+  m.output_ = output != meta.end() ? output->second : garment_output(*m.graph_);
+  m.graph_->output(m.output_);  // throws naming the outputs when it is not one
+  return m;
+}
+
+bool Model::needs_body_params() const {
+  const auto names = graph_->input_names();
+  return std::find(names.begin(), names.end(), "body_params") != names.end();
+}
+
+Tensor Model::predict(const SampleBatch& batch) {
+  if (batch.size() <= 0) throw Error("predict: no bodies");
+  if (batch.body.rows() != assets_->body.num_vertices())
+    throw ConfigError("the body has " + std::to_string(batch.body.rows()) + " vertices, expected " +
+                      std::to_string(assets_->body.num_vertices()) + " (the model's body model '" + assets_spec_.body_model +
+                      "')");
+  graph_->forward(graph_inputs(*graph_, batch, false), false);
+  return graph_->output(output_);
+}
+
+SampleBatch Model::body_for(const BodyRequest& request) const { return body_batch(*body_model_, request); }
+
+std::unique_ptr<BodyModel> make_body_model(const Registry& registry, const AssetsSpec& spec) {
+  const PluginDescriptor& d = registry.get(spec.body_model);
+  return registry.create_body(spec.body_model, Params(d.params, param_values(spec.body_params, "assets body"),
+                                                      "body '" + spec.body_model + "'"));
+}
+
+SampleBatch body_batch(const BodyModel& model, const BodyRequest& request, int copies) {
+  const Eigen::VectorXd shape = model.solve(request);
+  const Eigen::MatrixX3d v = model.vertices(shape);
+  SampleBatch b;
+  b.body = Tensor(copies, static_cast<int>(v.rows()), 3);
+  b.body_params = Tensor(copies, 1, static_cast<int>(shape.size()));
+  for (int c = 0; c < copies; ++c) {
+    b.body.mat(c) = v.cast<float>();
+    for (Eigen::Index i = 0; i < shape.size(); ++i) b.body_params(c, 0, static_cast<int>(i)) = static_cast<float>(shape[i]);
+  }
+  return b;
+}
+
+}  // namespace drape

@@ -1,0 +1,386 @@
+// `drape train`: epochs of Adam over shuffled mini-batches, validation, the best
+// weights, early stopping, and atomic model and state files after every epoch.
+#include <drape/data_parallel.hpp>
+#include <drape/dataset.hpp>
+#include <drape/optimizer.hpp>
+#include <drape/progress.hpp>
+#include <drape/rng.hpp>
+#include <drape/schedule.hpp>
+#include <drape/trainer.hpp>
+
+#include <unistd.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <iostream>
+#include <memory>
+#include <thread>
+
+namespace fs = std::filesystem;
+
+namespace drape {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
+
+constexpr const char* kModelKind = "drape model";
+constexpr const char* kStateKind = "drape training state";
+
+// Round-trips a double exactly through text (meta values are strings).
+std::string exact(double v) {
+  char b[40];
+  std::snprintf(b, sizeof b, "%.17g", v);
+  return b;
+}
+std::string brief(double v) {
+  char b[40];
+  std::snprintf(b, sizeof b, "%.4g", v);
+  return b;
+}
+
+double meta_number(const Checkpoint& c, const std::string& key, const fs::path& file) {
+  const auto it = c.meta.find(key);
+  if (it == c.meta.end()) throw ConfigError(file.string() + ": missing /meta attribute '" + key + "'");
+  try {
+    return std::stod(it->second);
+  } catch (const std::exception&) {
+    throw ConfigError(file.string() + ": /meta attribute '" + key + "' is not a number: '" + it->second + "'");
+  }
+}
+
+// A copy of a graph's weights (the best so far), savable under a prefix.
+class WeightCopy {
+ public:
+  explicit WeightCopy(const NamedWeights& from) {
+    for (const auto& [name, w] : from) {
+      names_.push_back(name);
+      store_.push_back(Weight{w->value, Tensor()});
+    }
+  }
+  void assign(const NamedWeights& from) {
+    for (std::size_t i = 0; i < from.size(); ++i) store_[i].value.vec() = from[i].second->value.vec();
+  }
+  NamedWeights named(const std::string& prefix) {
+    NamedWeights out;
+    for (std::size_t i = 0; i < store_.size(); ++i) out.emplace_back(prefix + names_[i], &store_[i]);
+    return out;
+  }
+
+ private:
+  std::vector<std::string> names_;
+  std::vector<Weight> store_;
+};
+
+NamedWeights prefixed(const NamedWeights& weights, const std::string& prefix) {
+  NamedWeights out;
+  for (const auto& [name, w] : weights) out.emplace_back(prefix + name, w);
+  return out;
+}
+
+SampleBatch read_batch(const DatasetReader& reader, const std::vector<std::size_t>& indices, bool params) {
+  SampleBatch b;
+  b.body = reader.body_vertices(indices);
+  b.target = reader.garment_vertices(indices);
+  if (params) b.body_params = reader.body_params(indices);
+  return b;
+}
+
+void check_options(const TrainOptions& o) {
+  auto bad = [](const std::string& what) { throw ConfigError(what); };
+  if (o.epochs < 1) bad("--epochs must be at least 1, got " + std::to_string(o.epochs));
+  if (o.batch < 1) bad("--batch must be at least 1, got " + std::to_string(o.batch));
+  if (!(o.lr > 0) || !std::isfinite(o.lr)) bad("--lr must be a positive number, got " + exact(o.lr));
+  if (o.patience < 1) bad("--patience must be at least 1, got " + std::to_string(o.patience));
+  if (o.threads < 1) bad("--threads must be at least 1, got " + std::to_string(o.threads));
+  if (o.eigen_k < 1) bad("--k must be at least 1, got " + std::to_string(o.eigen_k));
+  if (o.schedule != "constant" && o.schedule != "cosine")
+    bad("--schedule must be constant or cosine, got '" + o.schedule + "'");
+}
+
+// Per-epoch series (/history in the files); every series gets one value per epoch.
+struct History {
+  std::map<std::string, std::vector<double>> series;
+  void add(const std::string& name, double value) { series[name].push_back(value); }
+};
+
+std::string terms_text(const LossValues& l) {
+  if (l.terms.size() < 2) return "";
+  std::string s = " [";
+  for (const auto& [name, v] : l.terms) s += (s.size() > 2 ? ", " : "") + name + " " + brief(v);
+  return s + "]";
+}
+
+}  // namespace
+
+fs::path training_state_path(const fs::path& out) { return fs::path(out.string() + ".state"); }
+
+std::shared_ptr<const Assets> assets_for_dataset(const Registry& registry, const DatasetReader& reader,
+                                                 const fs::path& data, int eigen_k, const fs::path& cache_dir,
+                                                 AssetsSpec* spec) {
+  const DatasetLayout& layout = reader.layout();
+  const Scene scene = parse_scene(layout.scene, data.string() + " (scene attribute)");
+  const AssetsSpec assets_spec = assets_spec_for(scene, eigen_k);
+  auto assets = build_assets(registry, assets_spec, cache_dir);
+  check_dataset_template(reader, data, *assets);
+  if (spec) *spec = assets_spec;
+  return assets;
+}
+
+void check_dataset_template(const DatasetReader& reader, const fs::path& data, const Assets& assets) {
+  const DatasetLayout& layout = reader.layout();
+  const int ng = assets.garment->mesh.num_vertices(), nb = assets.body.num_vertices();
+  if (layout.garment_vertices != ng || layout.body_vertices != nb)
+    throw ConfigError(data.string() + " has " + std::to_string(layout.garment_vertices) + " garment and " +
+                      std::to_string(layout.body_vertices) + " body vertices per sample, but the template has " +
+                      std::to_string(ng) + " and " + std::to_string(nb));
+  const std::string hash = template_hash(assets.garment->mesh, assets.body.faces);
+  if (!layout.template_hash.empty() && layout.template_hash != hash)
+    throw ConfigError(data.string() + ": made for template " + layout.template_hash + ", but the template here is " +
+                      hash + " (another garment, size or resolution, or the plugin changed: regenerate the dataset)");
+}
+
+TrainReport train(const Registry& registry, const TrainOptions& o) {
+  check_options(o);
+  const auto run_start = Clock::now();
+  TrainReport report;
+  const fs::path state_path = training_state_path(o.out);
+  if (!o.force && !o.resume && (fs::exists(o.out) || fs::exists(state_path)))
+    throw ConfigError(o.out.string() + " exists (from an earlier or interrupted training): pass --resume to continue "
+                      "it, or --force to start over");
+  if (!o.force && o.resume && fs::exists(o.out) && !fs::exists(state_path))
+    throw ConfigError(o.out.string() + " exists, but there is no " + state_path.filename().string() +
+                      " to resume it from: --force to start over");
+
+  // The dataset and the template it was made for.
+  const DatasetReader reader(o.data);
+  const DatasetLayout& layout = reader.layout();
+  AssetsSpec assets_spec;
+  std::shared_ptr<const Assets> assets;
+  if (o.assets) {
+    assets = o.assets;
+    assets_spec = parse_assets_spec(assets->spec_text, "TrainOptions::assets");
+    check_dataset_template(reader, o.data, *assets);
+  } else {
+    assets = assets_for_dataset(registry, reader, o.data, o.eigen_k, o.cache_dir, &assets_spec);
+  }
+  const int ng = assets->garment->mesh.num_vertices(), nb = assets->body.num_vertices();
+  const std::vector<std::size_t> train_idx = reader.indices(Split::Train), val_idx = reader.indices(Split::Val);
+  if (train_idx.empty()) throw ConfigError(o.data.string() + ": no training samples (split 0) are done");
+  report.train_samples = static_cast<int>(train_idx.size());
+  report.val_samples = static_cast<int>(val_idx.size());
+
+  // The graph, its replicas and the optimiser.
+  const GraphSpec graph_spec = parse_graph_file(o.graph);
+  check_graph_inputs(graph_spec);
+  GraphOptions graph_options;
+  graph_options.dims = graph_dims(*assets, layout.body_params);
+  graph_options.assets = assets.get();
+  graph_options.seed = o.seed;
+  DataParallelGraph dp(graph_spec, registry, graph_options, o.threads);
+  Graph& graph = dp.graph();
+  if (graph.weights().empty()) throw ConfigError(o.graph.string() + ": the graph has no learnable weights");
+  if (graph.spec().nodes.end() == std::find_if(graph.spec().nodes.begin(), graph.spec().nodes.end(),
+                                                [](const NodeSpec& n) { return n.is_loss && n.weight != 0.0; }))
+    throw ConfigError(o.graph.string() + ": the graph has no losses to train with");
+  const std::string output = garment_output(graph);
+  const auto inputs = graph.input_names();
+  const bool needs_params = std::find(inputs.begin(), inputs.end(), "body_params") != inputs.end();
+  Adam adam(graph.weights());
+  EarlyStopping stopper({o.patience, 0.0});
+  LrSchedule schedule;
+  schedule.base = o.lr;
+  if (o.schedule == "cosine") {
+    schedule.kind = LrSchedule::Kind::Cosine;
+    schedule.total = o.epochs;
+  }
+  WeightCopy best(graph.weights());
+  History history;
+
+  // What a resumed run must share with the interrupted one.
+  std::map<std::string, std::string> settings{
+      {"assets", assets_spec.yaml()},
+      {"dataset_template_hash", layout.template_hash},
+      {"train_samples", std::to_string(train_idx.size())},
+      {"val_samples", std::to_string(val_idx.size())},
+      {"seed", std::to_string(o.seed)},
+      {"batch", std::to_string(o.batch)},
+      {"threads", std::to_string(o.threads)},
+      {"lr", exact(o.lr)},
+      {"schedule", o.schedule},
+      {"patience", std::to_string(o.patience)}};
+  if (o.schedule == "cosine") settings["epochs"] = std::to_string(o.epochs);
+
+  // Start over, or continue.
+  if (o.force) {
+    fs::remove(state_path);
+    fs::remove(o.out);
+  }
+  long epochs_done = 0;
+  std::string status = "training";
+  double seconds_before = 0;
+  if (o.resume && fs::exists(state_path)) {
+    const Checkpoint st = read_checkpoint(state_path);
+    if (st.meta.count("kind") == 0 || st.meta.at("kind") != kStateKind)
+      throw ConfigError(state_path.string() + ": not a drape training state");
+    for (const auto& [key, value] : settings) {
+      const auto it = st.meta.find(key);
+      const std::string was = it == st.meta.end() ? "(none)" : it->second;
+      if (was != value)
+        throw ConfigError(state_path.string() + ": cannot resume: the interrupted run had " + key + " " + was +
+                          ", this one has " + key + " " + value + " (rerun with the same settings, or --force to start over)");
+    }
+    if (st.graph != graph_spec.text)
+      throw ConfigError(state_path.string() + ": cannot resume: the interrupted run trained another graph than " +
+                        o.graph.string() + " (or --force to start over)");
+    NamedWeights all = prefixed(graph.weights(), "current/");
+    for (const auto& w : best.named("best/")) all.push_back(w);
+    load_weights(state_path, all);
+    if (!st.optimizer) throw ConfigError(state_path.string() + ": no optimiser state");
+    adam.set_state(*st.optimizer);
+    std::map<std::string, double> es;
+    for (const auto& [key, value] : st.meta)
+      if (key.rfind("early_stopping.", 0) == 0) es[key.substr(15)] = meta_number(st, key, state_path);
+    stopper.set_state(es);
+    history.series = st.history;
+    epochs_done = static_cast<long>(meta_number(st, "epoch", state_path));
+    report.best_epoch = static_cast<long>(meta_number(st, "best_epoch", state_path));
+    report.best_loss = meta_number(st, "best_loss", state_path);
+    seconds_before = meta_number(st, "seconds", state_path);
+    status = st.meta.count("status") ? st.meta.at("status") : "training";
+    if (status == "finished" && epochs_done < o.epochs) status = "training";  // more epochs than before
+    dp.sync_weights();
+    report.resumed = true;
+  }
+  report.epochs_done = epochs_done;
+  report.early_stopped = status == "early stopped";
+
+  auto save = [&] {
+    std::map<std::string, std::string> meta = settings;
+    meta["assets_hash"] = assets->hash;
+    meta["output"] = output;
+    meta["dataset"] = fs::absolute(o.data).string();
+    meta["epochs"] = std::to_string(o.epochs);
+    meta["epoch"] = std::to_string(epochs_done);
+    meta["best_epoch"] = std::to_string(report.best_epoch);
+    meta["best_loss"] = exact(report.best_loss);
+    meta["monitor"] = val_idx.empty() ? "train_loss" : "val_loss";
+    meta["status"] = status;
+    meta["seconds"] = exact(seconds_before + since(run_start));
+    meta["drape_version"] = "0.1.0";
+    Checkpoint model{graph_spec.text, meta, std::nullopt, history.series};
+    model.meta["kind"] = kModelKind;
+    save_checkpoint(o.out, best.named(""), model);
+    Checkpoint state{graph_spec.text, meta, adam.state(), history.series};
+    for (const auto& [key, value] : settings) state.meta[key] = value;
+    state.meta["kind"] = kStateKind;
+    for (const auto& [key, value] : stopper.state()) state.meta["early_stopping." + key] = exact(value);
+    NamedWeights all = prefixed(graph.weights(), "current/");
+    for (const auto& w : best.named("best/")) all.push_back(w);
+    // The model first: a kill between the two writes leaves the state one
+    // epoch behind, and the resumed run redoes that epoch identically.
+    save_checkpoint(state_path, all, state);
+  };
+
+  const std::size_t steps_per_epoch = (train_idx.size() + static_cast<std::size_t>(o.batch) - 1) / static_cast<std::size_t>(o.batch);
+  const bool nothing_to_do = report.early_stopped || epochs_done >= o.epochs;
+  if (o.log) {
+    *o.log << (report.resumed ? "resuming " : "training ") << o.out.string() << ": " << graph_spec.file << " on "
+           << o.data.string() << " (" << train_idx.size() << " train, " << val_idx.size() << " val samples; "
+           << ng << " garment, " << nb << " body vertices), " << graph.weights().size() << " weight tensors, batch "
+           << o.batch << ", " << o.threads << " thread" << (o.threads > 1 ? "s" : "") << ", lr " << brief(o.lr) << " ("
+           << o.schedule << "), seed " << o.seed;
+    if (report.resumed) *o.log << ", " << epochs_done << " epochs done";
+    *o.log << "\n";
+    if (val_idx.empty()) *o.log << "no validation samples: the training loss picks the best epoch and stops early\n";
+    if (nothing_to_do)
+      *o.log << "nothing to do: " << (report.early_stopped ? "training stopped early" : "all epochs are done") << " at epoch "
+             << epochs_done << " (best epoch " << report.best_epoch << ")\n";
+    o.log->flush();
+  }
+  if (nothing_to_do) {
+    report.finished = true;
+    report.seconds = since(run_start);
+    return report;
+  }
+
+  std::unique_ptr<ProgressBar> bar;
+  ProgressBar::Options bar_options;
+  bar_options.start = static_cast<std::size_t>(epochs_done) * steps_per_epoch;
+  if (o.progress)
+    bar = std::make_unique<ProgressBar>("train", static_cast<std::size_t>(o.epochs) * steps_per_epoch, *o.progress,
+                                        bar_options);
+  const bool bar_on_terminal = o.progress == &std::cerr && ::isatty(STDERR_FILENO) == 1;
+
+  const OmpThreadsScope one_thread(1);  // the parallelism is over samples (DataParallelGraph)
+  const std::size_t batch = static_cast<std::size_t>(o.batch);
+  while (epochs_done < o.epochs && status == "training") {
+    if (o.max_epochs_this_run > 0 && report.epochs_this_run >= o.max_epochs_this_run) break;
+    const auto epoch_start = Clock::now();
+    const long e = epochs_done;
+    const auto order = Rng(Rng::derive(o.seed, "epoch-" + std::to_string(e))).permutation(train_idx.size());
+    const double lr = schedule.at(e);
+    LossValues train_loss;
+    for (std::size_t first = 0; first < order.size(); first += batch) {
+      std::vector<std::size_t> indices;
+      for (std::size_t k = first; k < std::min(order.size(), first + batch); ++k) indices.push_back(train_idx[order[k]]);
+      const LossValues l = dp.gradients(read_batch(reader, indices, needs_params));
+      if (!std::isfinite(l.total))
+        throw Error("the training loss is " + brief(l.total) + " in epoch " + std::to_string(e + 1) +
+                    " (try a smaller --lr); " + o.out.string() + " keeps the last finished epoch");
+      adam.step(lr);
+      dp.sync_weights();
+      train_loss.merge(l);
+      if (bar) {
+        bar->set_status("epoch " + std::to_string(e + 1) + "/" + std::to_string(o.epochs) + " loss " + brief(train_loss.total) +
+                        (report.best_epoch ? ", best val " + brief(report.best_loss) : ""));
+        bar->advance();
+      }
+    }
+    LossValues val_loss;
+    for (std::size_t first = 0; first < val_idx.size(); first += batch) {
+      const std::vector<std::size_t> indices(val_idx.begin() + static_cast<long>(first),
+                                             val_idx.begin() + static_cast<long>(std::min(val_idx.size(), first + batch)));
+      val_loss.merge(dp.losses(read_batch(reader, indices, needs_params)));
+    }
+    const double monitored = val_idx.empty() ? train_loss.total : val_loss.total;
+    if (!std::isfinite(monitored))
+      throw Error("the validation loss is " + brief(monitored) + " after epoch " + std::to_string(e + 1));
+    const bool stop = stopper.update(monitored);
+    if (stopper.improved()) {
+      best.assign(graph.weights());
+      report.best_epoch = e + 1;
+      report.best_loss = monitored;
+    }
+    ++epochs_done;
+    ++report.epochs_this_run;
+    status = stop ? "early stopped" : epochs_done >= o.epochs ? "finished" : "training";
+    const double seconds = since(epoch_start);
+    history.add("epoch", double(epochs_done));
+    history.add("train_loss", train_loss.total);
+    history.add("val_loss", val_idx.empty() ? NAN : val_loss.total);
+    history.add("lr", lr);
+    history.add("seconds", seconds);
+    for (const auto& [name, v] : train_loss.terms) history.add("train_loss_" + name, v);
+    for (const auto& [name, v] : val_loss.terms) history.add("val_loss_" + name, v);
+    save();
+    if (o.log) {
+      if (bar_on_terminal) *o.progress << "\r\033[K" << std::flush;
+      *o.log << "epoch " << epochs_done << "/" << o.epochs << "  train " << brief(train_loss.total) << terms_text(train_loss);
+      if (!val_idx.empty()) *o.log << "  val " << brief(val_loss.total) << terms_text(val_loss);
+      *o.log << "  lr " << brief(lr) << "  " << ProgressBar::format_duration(seconds)
+             << (stopper.improved() ? "  (best)" : "") << (stop ? "  -- stopping early" : "") << "\n";
+      o.log->flush();
+    }
+  }
+  if (bar) bar->finish();
+  report.epochs_done = epochs_done;
+  report.early_stopped = status == "early stopped";
+  report.finished = status != "training";
+  report.seconds = since(run_start);
+  return report;
+}
+
+}  // namespace drape

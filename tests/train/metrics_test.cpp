@@ -1,0 +1,128 @@
+// The seed's metrics (drape/metrics.hpp) on the 300-vertex T-shirt: zero for
+// the ground truth itself, and values worked out by hand for translations,
+// scalings and a one-vertex bump.
+#include <catch2/catch.hpp>
+
+#include <drape/geometry/penetration.hpp>
+#include <drape/metrics.hpp>
+
+#include <set>
+
+#include "train_test_util.hpp"
+
+using namespace drape;
+
+namespace {
+
+struct Fixture {
+  std::shared_ptr<const Assets> assets = test::tiny_assets();
+  MetricsContext metrics{*assets};
+  Eigen::MatrixX3d garment = assets->garment->mesh.vertices;
+  Eigen::MatrixX3d body = assets->body.vertices;
+};
+
+}  // namespace
+
+TEST_CASE("the ground truth scores zero on every metric but p", "[metrics]") {
+  Fixture f;
+  const GarmentMetrics m = f.metrics.evaluate(f.garment, f.garment, f.body);
+  CHECK(m.me_cm == 0.0);
+  CHECK(m.laplacian_cm == 0.0);
+  CHECK(m.edge_percent == 0.0);
+  CHECK(m.spectral == 0.0);
+  CHECK(m.deformation == 0.0);
+  const double p = geometry::penetration_ratio(geometry::BodySurface(f.body, f.assets->body.faces), f.garment);
+  CHECK(m.penetration_percent == Approx(100.0 * p));
+  REQUIRE(metric_columns().size() == 6);
+  std::vector<std::string> names;
+  for (const auto& c : metric_columns()) names.push_back(c.name);
+  CHECK(names == std::vector<std::string>{"ME", "L_l", "L_e", "L_s", "L_d", "p"});
+}
+
+TEST_CASE("a translation changes ME and L_s only", "[metrics]") {
+  Fixture f;
+  const Eigen::RowVector3d t(0.01, -0.02, 0.005);
+  const Eigen::MatrixX3d x = f.garment.rowwise() + t;
+  const GarmentMetrics m = f.metrics.evaluate(x, f.garment, f.body);
+  CHECK(m.me_cm == Approx(100.0 * t.norm()));
+  CHECK(m.laplacian_cm == Approx(0.0).margin(1e-9));  // Laplacian rows sum to zero
+  CHECK(m.edge_percent == Approx(0.0).margin(1e-9));
+  CHECK(m.deformation == Approx(0.0).margin(1e-9));
+  // V^T (1 t) has entries (column sum of V_j) * t_k: the mean of their magnitudes factorises.
+  const Eigen::MatrixXd V = f.assets->eigenvectors.cast<double>();
+  REQUIRE(V.cols() == test::kTinyK);
+  const double expected = V.colwise().sum().cwiseAbs().mean() * t.cwiseAbs().mean();
+  CHECK(m.spectral == Approx(expected).epsilon(1e-6));
+  CHECK(m.spectral > 0.0);
+}
+
+TEST_CASE("a uniform scaling by s gives L_e = |s - 1| and L_d linear in s - 1", "[metrics]") {
+  Fixture f;
+  const Eigen::RowVector3d c = f.garment.colwise().mean();
+  auto scaled = [&](double s) { return Eigen::MatrixX3d((c.replicate(f.garment.rows(), 1) + s * (f.garment.rowwise() - c))); };
+  const GarmentMetrics m = f.metrics.evaluate(scaled(1.1), f.garment, f.body);
+  CHECK(m.edge_percent == Approx(10.0).epsilon(1e-9));
+  CHECK(m.me_cm == Approx(100.0 * 0.1 * (f.garment.rowwise() - c).rowwise().norm().mean()).epsilon(1e-9));
+  const double ld_double = f.metrics.deformation_difference(scaled(2.0), f.garment);
+  CHECK(m.deformation == Approx(0.1 * ld_double).epsilon(1e-9));
+  // Doubling gives mean sum |F| of the rest garment: about 2 to 2 sqrt(3) for a near-isometric
+  // dressing of the material space (each column of F a unit 3-vector).
+  CHECK(ld_double > 1.5);
+  CHECK(ld_double < 4.0);
+}
+
+TEST_CASE("L_l of a one-vertex bump: the bump and its share in each neighbour's mean", "[metrics]") {
+  Fixture f;
+  const Mesh& mesh = f.assets->garment->mesh;
+  // A vertex that no coarser level keeps, so only level 0 sees the bump.
+  std::set<int> coarse;
+  for (int l = 1; l < f.assets->hierarchy.num_levels(); ++l)
+    for (int i = 0; i < f.assets->hierarchy.levels[l].fine_index.size(); ++i) coarse.insert(f.assets->hierarchy.levels[l].fine_index[i]);
+  int v = 0;
+  while (coarse.count(v)) ++v;
+  std::vector<std::set<int>> neighbours(static_cast<std::size_t>(mesh.num_vertices()));
+  for (int face = 0; face < mesh.num_faces(); ++face)
+    for (int k = 0; k < 3; ++k) {
+      const int a = mesh.faces(face, k), b = mesh.faces(face, (k + 1) % 3);
+      neighbours[a].insert(b);
+      neighbours[b].insert(a);
+    }
+  const Eigen::RowVector3d bump(0.01, -0.004, 0.0);
+  Eigen::MatrixX3d x = f.garment;
+  x.row(v) += bump;
+  // (L d)_v = d_v; (L d)_j = -d_v / deg(j) for each neighbour j; mean over the level's vertices.
+  double expected = bump.cwiseAbs().sum();
+  for (int j : neighbours[v]) expected += bump.cwiseAbs().sum() / double(neighbours[j].size());
+  expected /= mesh.num_vertices();
+  CHECK(f.metrics.laplacian_difference(x, f.garment) == Approx(expected).epsilon(1e-9));
+}
+
+TEST_CASE("p counts garment vertices inside the body", "[metrics]") {
+  Fixture f;
+  const Eigen::RowVector3d c = f.body.colwise().mean();
+  const Eigen::MatrixX3d shrunk = c.replicate(f.garment.rows(), 1) + 0.3 * (f.garment.rowwise() - c);
+  CHECK(f.metrics.evaluate(shrunk, f.garment, f.body).penetration_percent > 50.0);
+  const Eigen::MatrixX3d away = f.garment.rowwise() + Eigen::RowVector3d(0, 0, 2.0);
+  CHECK(f.metrics.evaluate(away, f.garment, f.body).penetration_percent == 0.0);
+}
+
+TEST_CASE("metrics refuse wrong sizes and non-finite vertices, and summaries average", "[metrics]") {
+  Fixture f;
+  CHECK_THROWS_WITH(f.metrics.evaluate(f.garment.topRows(10), f.garment, f.body),
+                    Catch::Contains("has 10 vertices, expected " + std::to_string(f.garment.rows())));
+  CHECK_THROWS_WITH(f.metrics.evaluate(f.garment, f.garment, f.body.topRows(5)), Catch::Contains("the body has 5 vertices"));
+  Eigen::MatrixX3d bad = f.garment;
+  bad(3, 1) = NAN;
+  CHECK_THROWS_WITH(f.metrics.evaluate(bad, f.garment, f.body), Catch::Contains("non-finite"));
+
+  GarmentMetrics a, b;
+  a.me_cm = 1.0;
+  b.me_cm = 3.0;
+  a.penetration_percent = 2.0;
+  b.penetration_percent = 2.0;
+  const MetricsSummary s = summarize({a, b});
+  CHECK(s.samples == 2);
+  CHECK(s.mean.me_cm == 2.0);
+  CHECK(s.stddev.me_cm == Approx(std::sqrt(2.0)));
+  CHECK(s.stddev.penetration_percent == 0.0);
+}

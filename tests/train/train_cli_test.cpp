@@ -1,0 +1,163 @@
+// The commands: drape train (interrupted by the hidden epoch limit, refused
+// without --resume, resumed; killed with SIGKILL and resumed), predict (a BMI
+// or a mesh; a body of the wrong topology is refused), eval (every metric, CSV
+// and JSON), bench infer and bench train. Every drape process loads the body
+// model (most of its second), so each case runs only a few.
+#include <catch2/catch.hpp>
+
+#include <drape/checkpoint.hpp>
+#include <drape/h5.hpp>
+#include <drape/mesh_io.hpp>
+
+#include <csignal>
+#include <fstream>
+#include <thread>
+
+#include "train_test_util.hpp"
+
+using namespace drape;
+namespace fs = std::filesystem;
+
+namespace {
+
+std::string train_args(const fs::path& data, const fs::path& out, const std::string& more = "", int epochs = 3) {
+  return "train " + test::baseline_graph().string() + " --data " + data.string() + " --out " + out.string() +
+         " --epochs " + std::to_string(epochs) + " --batch 4 --lr 3e-3 --seed 5 --threads 2 --k " +
+         std::to_string(test::kTinyK) + " " + more;
+}
+
+std::map<std::string, std::vector<float>> weights_of(const fs::path& file) {
+  const h5::File f = h5::File::open(file);
+  std::map<std::string, std::vector<float>> w;
+  for (const auto& name : f.datasets_below("/weights")) w[name] = f.read<float>("/weights/" + name);
+  return w;
+}
+
+// A dataset and a model trained on it in this process.
+struct Trained {
+  test::TempDir dir;
+  fs::path data = dir / "data.h5", model = dir / "model.h5";
+  Trained() {
+    test::write_tiny_dataset(data, 14, 8, 3);
+    auto o = test::tiny_training(data, model);
+    o.epochs = 2;
+    train(test::plugins(), o);
+  }
+};
+
+}  // namespace
+
+TEST_CASE("drape train stops at the hidden epoch limit, refuses to overwrite and continues with --resume", "[train][cli]") {
+  test::TempDir dir;
+  const fs::path data = dir / "data.h5", model = dir / "model.h5";
+  test::write_tiny_dataset(data, 10, 6, 2);
+  std::string out;
+  REQUIRE(test::run(test::drape_command(train_args(data, model, "--max-epochs-this-run 1")), out) == 0);
+  INFO(out);
+  CHECK_THAT(out, Catch::Contains("epoch 1/3") && Catch::Contains("interrupted after 1 epochs"));
+  CHECK(test::run(test::drape_command(train_args(data, model)), out) == 2);
+  CHECK_THAT(out, Catch::Contains("exists") && Catch::Contains("--resume"));
+  REQUIRE(test::run(test::drape_command(train_args(data, model, "--resume")), out) == 0);
+  CHECK_THAT(out, Catch::Contains("resuming") && Catch::Contains("epoch 3/3") && Catch::Contains("all epochs done"));
+  CHECK(read_checkpoint(model).history.at("train_loss").size() == 3);
+  CHECK(test::run(test::drape_command("train --help"), out) == 0);
+  CHECK_THAT(out, !Catch::Contains("max-epochs-this-run") && Catch::Contains("--resume"));
+}
+
+TEST_CASE("a training killed with SIGKILL continues with --resume to the uninterrupted result", "[train][cli]") {
+  test::TempDir dir;
+  const fs::path data = dir / "data.h5", killed = dir / "killed.h5", whole = dir / "whole.h5";
+  test::write_tiny_dataset(data, 12, 10, 2);
+  // The uninterrupted run, in this process with the command's settings.
+  auto o = test::tiny_training(data, whole);
+  o.epochs = 6;
+  train(test::plugins(), o);
+
+  // Start in the background and kill it once the first epoch is saved.
+  std::string out;
+  const std::string args = train_args(data, killed, "--quiet", 6);
+  REQUIRE(test::run(test::drape_command(args) + " > /dev/null 2>&1 & echo $!", out) == 0);
+  const pid_t pid = static_cast<pid_t>(std::stol(out));
+  for (int i = 0; i < 1000 && !fs::exists(training_state_path(killed)); ++i)
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  ::kill(pid, SIGKILL);
+  REQUIRE(fs::exists(training_state_path(killed)));
+  CHECK(std::stol(read_checkpoint(training_state_path(killed)).meta.at("epoch")) < 6);  // it was stopped mid-way
+  REQUIRE(test::run(test::drape_command(args + " --resume"), out) == 0);
+  INFO(out);
+  CHECK(weights_of(killed) == weights_of(whole));
+  CHECK(weights_of(training_state_path(killed)) == weights_of(training_state_path(whole)));
+  CHECK(read_checkpoint(killed).history.at("val_loss") == read_checkpoint(whole).history.at("val_loss"));
+}
+
+TEST_CASE("drape predict writes the template's mesh for a BMI or a body mesh, and refuses another topology", "[train][cli]") {
+  Trained t;
+  const auto assets = test::tiny_assets();
+  std::string out;
+  REQUIRE(test::run(test::drape_command("predict --model " + t.model.string() + " --bmi 30 --out " +
+                                        (t.dir / "g.obj").string() + " --body-out " + (t.dir / "b.ply").string()),
+                    out) == 0);
+  INFO(out);
+  CHECK_THAT(out, Catch::Contains("inside the body"));
+  const Mesh g = read_mesh(t.dir / "g.obj");
+  CHECK(g.num_vertices() == assets->garment->mesh.num_vertices());
+  CHECK(g.faces == assets->garment->mesh.faces);
+  CHECK(g.has_uv());
+  CHECK(read_mesh(t.dir / "b.ply").num_vertices() == assets->body.num_vertices());
+
+  // The body just written, as a mesh: the same garment.
+  REQUIRE(test::run(test::drape_command("predict --model " + t.model.string() + " --body " + (t.dir / "b.ply").string() +
+                                        " --out " + (t.dir / "g2.ply").string()),
+                    out) == 0);
+  CHECK((read_mesh(t.dir / "g2.ply").vertices - g.vertices).cwiseAbs().maxCoeff() < 1e-5);
+
+  std::ofstream(t.dir / "small.obj") << "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 2 3\nf 1 3 4\n";
+  CHECK(test::run(test::drape_command("predict --model " + t.model.string() + " --body " + (t.dir / "small.obj").string() +
+                                      " --out " + (t.dir / "g3.obj").string()),
+                  out) == 2);
+  CHECK_THAT(out, Catch::Contains("small.obj has 4 vertices, expected " + std::to_string(assets->body.num_vertices())));
+  CHECK_FALSE(fs::exists(t.dir / "g3.obj"));
+  CHECK(test::run(test::drape_command("predict --model " + t.model.string() + " --out x.obj"), out) == 2);
+  CHECK_THAT(out, Catch::Contains("exactly one"));
+}
+
+TEST_CASE("drape eval prints every metric and writes them as JSON or CSV", "[train][cli]") {
+  Trained t;
+  std::string out;
+  REQUIRE(test::run(test::drape_command("eval --model " + t.model.string() + " --data " + t.data.string() +
+                                        " --split test --out " + (t.dir / "m.json").string()),
+                    out) == 0);
+  INFO(out);
+  for (const char* metric : {"| ME |", "| L_l |", "| L_e |", "| L_s |", "| L_d |", "| p |"}) CHECK_THAT(out, Catch::Contains(metric));
+  CHECK_THAT(out, Catch::Contains("test split (3 samples)") && Catch::Contains("the ground truth itself has p"));
+  std::ifstream json(t.dir / "m.json");
+  const std::string json_text((std::istreambuf_iterator<char>(json)), std::istreambuf_iterator<char>());
+  CHECK_THAT(json_text, Catch::Contains("\"L_d\": {\"unit\": \"\", \"mean\": ") && Catch::Contains("\"samples\": 3"));
+
+  REQUIRE(test::run(test::drape_command("eval --model " + t.model.string() + " --data " + t.data.string() +
+                                        " --split val --out " + (t.dir / "m.csv").string()),
+                    out) == 0);
+  std::ifstream csv(t.dir / "m.csv");
+  std::string line;
+  std::vector<std::string> lines;
+  while (std::getline(csv, line)) lines.push_back(line);
+  REQUIRE(lines.size() == 7);
+  CHECK(lines[0] == "metric,unit,mean,std");
+  CHECK(lines[1].rfind("ME,cm,", 0) == 0);
+  CHECK(lines[6].rfind("p,%,", 0) == 0);
+  CHECK(test::run(test::drape_command("eval --model " + t.model.string() + " --data " + t.data.string() + " --out m.txt"),
+                  out) == 2);
+}
+
+TEST_CASE("drape bench infer and bench train report their figures", "[train][cli]") {
+  Trained t;
+  std::string out;
+  REQUIRE(test::run(test::drape_command("bench infer --model " + t.model.string() + " --repeats 2"), out) == 0);
+  INFO(out);
+  CHECK_THAT(out, Catch::Contains("ms per body") && Catch::Contains("GFLOP/s") &&
+                      Catch::Contains("garment " + std::to_string(test::tiny_assets()->garment->mesh.num_vertices()) + " vertices"));
+  REQUIRE(test::run(test::drape_command("bench train --model " + t.model.string() + " --data " + t.data.string() +
+                                        " --steps 1 --batch 2"),
+                    out) == 0);
+  CHECK_THAT(out, Catch::Contains("samples/s per core") && Catch::Contains("VmHWM"));
+}

@@ -1,0 +1,229 @@
+// drape::train on tiny datasets: the loss falls, a seed reproduces the weights
+// bit for bit, an interrupted run resumed gives the uninterrupted result,
+// early stopping, and the refusals (existing output, other settings, another template).
+#include <catch2/catch.hpp>
+
+#include <drape/checkpoint.hpp>
+#include <drape/h5.hpp>
+
+#include "train_test_util.hpp"
+
+using namespace drape;
+namespace fs = std::filesystem;
+
+namespace {
+
+// Every /weights array of a checkpoint, by name.
+std::map<std::string, std::vector<float>> weights_of(const fs::path& file) {
+  const h5::File f = h5::File::open(file);
+  std::map<std::string, std::vector<float>> out;
+  for (const auto& name : f.datasets_below("/weights")) out[name] = f.read<float>("/weights/" + name);
+  return out;
+}
+
+// The history without the wall-clock column.
+std::map<std::string, std::vector<double>> history_of(const fs::path& file) {
+  auto h = read_checkpoint(file).history;
+  h.erase("seconds");
+  return h;
+}
+
+struct TinyData {
+  test::TempDir dir;
+  fs::path data = dir / "data.h5";
+  TinyData(int n = 16, int n_train = 12, int n_val = 4) { test::write_tiny_dataset(data, n, n_train, n_val); }
+};
+
+}  // namespace
+
+TEST_CASE("training mlp_baseline reduces the loss and writes a loadable model", "[train]") {
+  TinyData d;
+  auto o = test::tiny_training(d.data, d.dir / "model.h5");
+  o.epochs = 12;
+  const TrainReport r = train(test::plugins(), o);
+  CHECK(r.epochs_done == 12);
+  CHECK(r.epochs_this_run == 12);
+  CHECK(r.finished);
+  CHECK(r.train_samples == 12);
+  CHECK(r.val_samples == 4);
+
+  const Checkpoint c = read_checkpoint(o.out);
+  const auto& train_loss = c.history.at("train_loss");
+  const auto& val_loss = c.history.at("val_loss");
+  REQUIRE(train_loss.size() == 12);
+  REQUIRE(val_loss.size() == 12);
+  INFO("train loss " << train_loss.front() << " -> " << train_loss.back() << ", val " << val_loss.front() << " -> "
+                     << val_loss.back());
+  CHECK(train_loss.back() < 0.5 * train_loss.front());
+  CHECK(val_loss.back() < 0.5 * val_loss.front());
+  CHECK(c.history.count("train_loss_l2"));
+  CHECK(c.history.count("val_loss_edge"));
+  CHECK(c.meta.at("kind") == "drape model");
+  CHECK(c.meta.at("status") == "finished");
+  CHECK(std::stol(c.meta.at("best_epoch")) == r.best_epoch);
+  // The best epoch is the one with the lowest validation loss.
+  const auto best = std::min_element(val_loss.begin(), val_loss.end());
+  CHECK(r.best_epoch == best - val_loss.begin() + 1);
+  CHECK(r.best_loss == Approx(*best).epsilon(1e-12));
+
+  // The untrained graph (same seed) on the validation split: training must have beaten it.
+  const DatasetReader reader(d.data);
+  SampleBatch batch;
+  batch.body = reader.body_vertices(reader.indices(Split::Val));
+  batch.target = reader.garment_vertices(reader.indices(Split::Val));
+  GraphOptions options;
+  options.dims = graph_dims(*test::tiny_assets(), reader.layout().body_params);
+  options.assets = test::tiny_assets().get();
+  options.seed = o.seed;
+  Graph untrained(parse_graph_file(o.graph), test::plugins(), options);
+  untrained.forward(graph_inputs(untrained, batch, true));
+  INFO("untrained validation loss " << untrained.loss());
+  CHECK(r.best_loss < 0.5 * untrained.loss());
+
+  // predict/eval read it back: same graph, assets from the spec in /meta, the best weights.
+  Model m = Model::load(test::plugins(), o.out, test::assets_cache());
+  CHECK(m.output() == "garment");
+  CHECK_FALSE(m.assets_changed());
+  batch.target = Tensor();
+  const Tensor predicted = m.predict(batch);
+  const Tensor truth = reader.garment_vertices(reader.indices(Split::Val));
+  const double error = (predicted.vec() - truth.vec()).squaredNorm() / double(predicted.rows()) / predicted.batch();
+  // The l2 term of the best epoch's validation loss is this mean squared distance.
+  CHECK(error == Approx(c.history.at("val_loss_l2")[static_cast<std::size_t>(r.best_epoch - 1)]).epsilon(1e-3));
+}
+
+TEST_CASE("a seed reproduces the weights bit for bit and another seed does not", "[train]") {
+  TinyData d;
+  auto o = test::tiny_training(d.data, d.dir / "a.h5");
+  o.epochs = 3;
+  train(test::plugins(), o);
+  o.out = d.dir / "b.h5";
+  train(test::plugins(), o);
+  o.out = d.dir / "c.h5";
+  o.seed = 6;
+  train(test::plugins(), o);
+  CHECK(weights_of(d.dir / "a.h5") == weights_of(d.dir / "b.h5"));
+  CHECK(weights_of(d.dir / "a.h5.state") == weights_of(d.dir / "b.h5.state"));
+  CHECK(history_of(d.dir / "a.h5") == history_of(d.dir / "b.h5"));
+  CHECK(weights_of(d.dir / "a.h5") != weights_of(d.dir / "c.h5"));
+}
+
+TEST_CASE("an interrupted training resumed gives the uninterrupted result", "[train]") {
+  TinyData d;
+  auto o = test::tiny_training(d.data, d.dir / "whole.h5");
+  o.epochs = 5;
+  const TrainReport whole = train(test::plugins(), o);
+  REQUIRE(whole.finished);
+
+  o.out = d.dir / "parts.h5";
+  o.max_epochs_this_run = 2;
+  const TrainReport first = train(test::plugins(), o);
+  CHECK(first.epochs_done == 2);
+  CHECK_FALSE(first.finished);
+  CHECK(read_checkpoint(o.out).meta.at("status") == "training");
+  o.resume = true;
+  const TrainReport second = train(test::plugins(), o);
+  CHECK(second.resumed);
+  CHECK(second.epochs_done == 4);
+  o.max_epochs_this_run = 0;
+  const TrainReport third = train(test::plugins(), o);
+  CHECK(third.epochs_done == 5);
+  CHECK(third.epochs_this_run == 1);
+  CHECK(third.finished);
+  CHECK(third.best_epoch == whole.best_epoch);
+  CHECK(third.best_loss == whole.best_loss);
+
+  CHECK(weights_of(d.dir / "whole.h5") == weights_of(d.dir / "parts.h5"));
+  CHECK(weights_of(d.dir / "whole.h5.state") == weights_of(d.dir / "parts.h5.state"));
+  CHECK(history_of(d.dir / "whole.h5") == history_of(d.dir / "parts.h5"));
+  const auto adam_whole = read_checkpoint(d.dir / "whole.h5.state").optimizer;
+  const auto adam_parts = read_checkpoint(d.dir / "parts.h5.state").optimizer;
+  REQUIRE(adam_whole);
+  REQUIRE(adam_parts);
+  CHECK(adam_whole->scalars == adam_parts->scalars);
+
+  // Resuming a finished run does nothing.
+  const TrainReport again = train(test::plugins(), o);
+  CHECK(again.epochs_this_run == 0);
+  CHECK(again.finished);
+
+  // Resuming with more epochs continues it, as if it had been asked for them from the start.
+  o.epochs = 7;
+  CHECK(train(test::plugins(), o).epochs_this_run == 2);
+  auto longer = test::tiny_training(d.data, d.dir / "longer.h5");
+  longer.epochs = 7;
+  train(test::plugins(), longer);
+  CHECK(weights_of(d.dir / "longer.h5") == weights_of(d.dir / "parts.h5"));
+  CHECK(history_of(d.dir / "longer.h5") == history_of(d.dir / "parts.h5"));
+}
+
+TEST_CASE("training stops early after `patience` epochs without a better validation loss", "[train]") {
+  TinyData d;
+  auto o = test::tiny_training(d.data, d.dir / "model.h5");
+  o.epochs = 40;
+  o.patience = 2;
+  o.lr = 0.05;  // far too large: the validation loss soon stops improving
+  const TrainReport r = train(test::plugins(), o);
+  REQUIRE(r.early_stopped);
+  CHECK(r.epochs_done == r.best_epoch + 2);
+  CHECK(r.epochs_done < 40);
+  const Checkpoint c = read_checkpoint(o.out);
+  CHECK(c.meta.at("status") == "early stopped");
+  CHECK(c.history.at("val_loss").size() == static_cast<std::size_t>(r.epochs_done));
+  // The model keeps the best epoch's weights; the state has them and the last ones.
+  const auto model = weights_of(o.out);
+  const auto state = weights_of(training_state_path(o.out));
+  bool last_differs = false;
+  for (const auto& [name, w] : model) {
+    CHECK(state.at("best/" + name) == w);
+    last_differs = last_differs || state.at("current/" + name) != w;
+  }
+  CHECK(last_differs);
+}
+
+TEST_CASE("train refuses to overwrite, resumes only with the same settings, and checks the template", "[train]") {
+  TinyData d;
+  auto o = test::tiny_training(d.data, d.dir / "model.h5");
+  o.epochs = 2;
+  o.max_epochs_this_run = 1;
+  train(test::plugins(), o);
+  o.max_epochs_this_run = 0;
+  CHECK_THROWS_WITH(train(test::plugins(), o), Catch::Contains("exists") && Catch::Contains("--resume"));
+  o.resume = true;
+  o.batch = 3;
+  CHECK_THROWS_WITH(train(test::plugins(), o), Catch::Contains("batch 4") && Catch::Contains("batch 3"));
+  o.batch = 4;
+  o.threads = 1;
+  CHECK_THROWS_WITH(train(test::plugins(), o), Catch::Contains("threads 2"));
+  o.threads = 2;
+  CHECK(train(test::plugins(), o).epochs_done == 2);
+  o.resume = false;
+  o.force = true;
+  CHECK(train(test::plugins(), o).epochs_this_run == 2);  // started over
+  fs::remove(training_state_path(o.out));
+  o.force = false;
+  o.resume = true;
+  CHECK_THROWS_WITH(train(test::plugins(), o), Catch::Contains("no model.h5.state to resume it from"));
+
+  // A dataset whose template hash differs from the scene's template.
+  test::TempDir other;
+  DatasetLayout layout = DatasetReader(d.data).layout();
+  layout.template_hash = "0123456789abcdef";
+  layout.created.clear();
+  {
+    DatasetWriter w(other / "data.h5", layout);
+    const DatasetReader r(d.data);
+    for (std::size_t i = 0; i < layout.samples; ++i) w.write(i, r.sample(i));
+    w.finish();
+  }
+  auto bad = test::tiny_training(other / "data.h5", other / "model.h5");
+  CHECK_THROWS_WITH(train(test::plugins(), bad), Catch::Contains("made for template 0123456789abcdef"));
+
+  // Bad settings are configuration errors.
+  bad = test::tiny_training(d.data, other / "m.h5");
+  bad.lr = -1;
+  CHECK_THROWS_AS(train(test::plugins(), bad), ConfigError);
+  bad.lr = 1e-3;
+  bad.schedule = "linear";
+  CHECK_THROWS_WITH(train(test::plugins(), bad), Catch::Contains("constant or cosine"));
+}
