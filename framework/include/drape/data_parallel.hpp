@@ -1,6 +1,6 @@
 #pragma once
 // Data-parallel training on one machine: T replicas of a graph, each run by
-// its own thread on a contiguous part of every batch. Replica 0 holds the
+// its own (OpenMP) thread on a contiguous part of every batch. Replica 0 holds the
 // weights the optimiser updates; after a step sync_weights() copies them to
 // the others. The batch gradient is the sample-weighted sum of the replicas'
 // mean gradients, added in replica order, so a run is deterministic for a

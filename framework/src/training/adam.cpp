@@ -25,6 +25,9 @@ void Adam::step(double learning_rate) {
     auto g = weights_[i].second->grad.vec();
     auto m = m_[i].vec();
     auto v = v_[i].vec();
+    // Element-wise and independent: threads (OpenMP, as many as the caller
+    // allows) change nothing in the result.
+#pragma omp parallel for schedule(static) if (w.size() > (1 << 15))
     for (Eigen::Index k = 0; k < w.size(); ++k) {
       float gk = g[k];
       if (options_.weight_decay != 0.0) {

@@ -7,9 +7,12 @@
 
 #include <cmath>
 #include <exception>
-#include <thread>
 
 namespace drape {
+namespace {
+// Below this many elements a weight is reduced by one thread (not worth a team).
+constexpr long kParallelElements = 1L << 15;
+}  // namespace
 
 void LossValues::merge(const LossValues& other) {
   if (other.samples == 0) return;
@@ -45,9 +48,13 @@ DataParallelGraph::~DataParallelGraph() = default;
 
 void DataParallelGraph::sync_weights() {
   const auto master = replicas_.front()->weights();
-  for (std::size_t r = 1; r < replicas_.size(); ++r) {
-    const auto w = replicas_[r]->weights();
-    for (std::size_t i = 0; i < w.size(); ++i) w[i].second->value.vec() = master[i].second->value.vec();
+  std::vector<NamedWeights> others;
+  for (std::size_t r = 1; r < replicas_.size(); ++r) others.push_back(replicas_[r]->weights());
+  const int threads = static_cast<int>(replicas_.size());
+#pragma omp parallel for schedule(dynamic) num_threads(threads) if (threads > 1)
+  for (long job = 0; job < static_cast<long>(others.size() * master.size()); ++job) {
+    const std::size_t r = static_cast<std::size_t>(job) / master.size(), i = static_cast<std::size_t>(job) % master.size();
+    others[r][i].second->value.vec() = master[i].second->value.vec();
   }
 }
 
@@ -79,31 +86,36 @@ LossValues DataParallelGraph::run(const SampleBatch& batch, bool backward) {
       errors[static_cast<std::size_t>(t)] = std::current_exception();
     }
   };
-  std::vector<std::thread> pool;
-  for (int t = 1; t < workers; ++t)
-    pool.emplace_back([&, t] {
-      const OmpThreadsScope one(1);
-      work(t);
-    });
-  {
-    const OmpThreadsScope one(1);
-    work(0);
+  // One OpenMP team for the replicas, Adam and the reductions: std::threads
+  // next to OpenMP's spinning idle workers would fight over the cores.
+  // Iteration t always runs replica t, so the thread that takes it changes nothing.
+#pragma omp parallel for schedule(static, 1) num_threads(workers) if (workers > 1)
+  for (int t = 0; t < workers; ++t) {
+    const OmpThreadsScope one(1);  // plugins' own parallel loops stay serial inside
+    work(t);
   }
-  for (auto& th : pool) th.join();
   for (const auto& e : errors)
     if (e) std::rethrow_exception(e);
 
   LossValues total;
   for (const auto& r : results) total.merge(r);
   if (backward) {
-    // Replica 0's gradient becomes the sample-weighted mean of all replicas', in replica order.
-    const auto master = replicas_.front()->weights();
-    const float w0 = float(results[0].samples) / float(n);
-    for (const auto& [name, w] : master) w->grad.vec() *= w0;
-    for (int t = 1; t < workers; ++t) {
-      const auto w = replicas_[static_cast<std::size_t>(t)]->weights();
-      const float wt = float(results[static_cast<std::size_t>(t)].samples) / float(n);
-      for (std::size_t i = 0; i < w.size(); ++i) master[i].second->grad.vec() += wt * w[i].second->grad.vec();
+    // Replica 0's gradient becomes the sample-weighted mean of all replicas',
+    // added in replica order for every element (so any split of the elements
+    // among threads gives the same bits).
+    std::vector<float> share(static_cast<std::size_t>(workers));
+    for (int t = 0; t < workers; ++t) share[static_cast<std::size_t>(t)] = float(results[static_cast<std::size_t>(t)].samples) / float(n);
+    std::vector<NamedWeights> all;
+    for (int t = 0; t < workers; ++t) all.push_back(replicas_[static_cast<std::size_t>(t)]->weights());
+    for (std::size_t i = 0; i < all[0].size(); ++i) {
+      float* g0 = all[0][i].second->grad.data();
+      const long size = static_cast<long>(all[0][i].second->grad.size());
+#pragma omp parallel for schedule(static) num_threads(workers) if (workers > 1 && size > kParallelElements)
+      for (long k = 0; k < size; ++k) {
+        float sum = share[0] * g0[k];
+        for (int t = 1; t < workers; ++t) sum += share[static_cast<std::size_t>(t)] * all[static_cast<std::size_t>(t)][i].second->grad.data()[k];
+        g0[k] = sum;
+      }
     }
   }
   return total;

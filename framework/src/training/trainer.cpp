@@ -330,7 +330,10 @@ TrainReport train(const Registry& registry, const TrainOptions& o) {
       if (!std::isfinite(l.total))
         throw Error("the training loss is " + brief(l.total) + " in epoch " + std::to_string(e + 1) +
                     " (try a smaller --lr); " + o.out.string() + " keeps the last finished epoch");
-      adam.step(lr);
+      {
+        const OmpThreadsScope all(o.threads);  // Adam is element-wise: threads do not change its result
+        adam.step(lr);
+      }
       dp.sync_weights();
       train_loss.merge(l);
       if (bar) {
