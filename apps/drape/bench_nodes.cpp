@@ -43,11 +43,52 @@ std::vector<std::string> split(const std::string& list) {
   return out;
 }
 
+// Best forward and forward+backward times (ms, whole batch) of one node with
+// default parameters, and its multiply-adds per sample. ConfigError when the
+// node refuses the inputs' shapes.
+struct NodeTimes {
+  double forward, both, flops;
+};
+
+NodeTimes time_node(const Registry& reg, const std::string& name, const std::map<std::string, Tensor>& inputs,
+                    const Assets& assets, int batch, int repeats) {
+  const PluginDescriptor& d = reg.get(name);
+  auto node = reg.create_node(name, Params(d.params, {}, name));
+  ShapeMap shapes;
+  TensorIn in;
+  TensorOut gin_map;
+  std::map<std::string, Tensor> grads;
+  for (const auto& port : d.inputs) {
+    const auto it = inputs.find(port.name);
+    if (it == inputs.end()) throw UsageError(name + ": no bench input for port '" + port.name + "'");
+    shapes[port.name] = it->second.shape();
+    in[port.name] = &it->second;
+    grads[port.name] = Tensor(batch, it->second.shape());
+  }
+  for (auto& [port, t] : grads) gin_map[port] = &t;
+  std::map<std::string, Tensor> outputs, ones;
+  TensorOut out;
+  TensorIn out_in, gout;
+  for (const auto& [port, s] : node->setup(shapes, {name, 1, &assets})) {
+    outputs[port] = Tensor(batch, s);
+    ones[port] = Tensor(batch, s, 1.0f);
+  }
+  for (auto& [port, t] : outputs) out[port] = &t, out_in[port] = &t;
+  for (auto& [port, t] : ones) gout[port] = &t;
+  const double forward = best_ms(repeats, [&] { node->forward(in, out); });
+  const double both = best_ms(repeats, [&] {
+    node->forward(in, out);
+    node->backward(in, out_in, gout, gin_map);
+  });
+  return {forward, both, node->flops_per_sample()};
+}
+
 int run(const std::vector<std::string>& args) {
   po::options_description opts("drape bench nodes");
   opts.add_options()("nodes", po::value<std::string>()->default_value(
-                                  "l2,v2v,direction,edge,deformation,laplacian,spectral_loss,cnn1d_decoder,uvcnn"),
-                     "comma-separated plugins (losses and [Ng, C] -> [Ng, 3] decoders), default parameters")(
+                                  "cnn1d,pointnet,gcn,gcn_learned,l2,v2v,direction,edge,deformation,laplacian,spectral_loss,"
+                                  "mlp,msgcn,gcn_decoder,cnn1d_decoder,uvcnn,spectral"),
+                     "comma-separated plugins (encoders, losses, decoders), default parameters")(
       "resolution", po::value<std::string>()->default_value("default"), "garment resolution (default | coarse | a count)")(
       "k", po::value<int>()->default_value(1000), "eigenvectors of the spectral basis")(
       "channels", po::value<int>()->default_value(32), "feature channels C of the decoders' input")(
@@ -78,44 +119,36 @@ int run(const std::vector<std::string>& args) {
   loss_inputs["pred"] = pred;
   const std::map<std::string, Tensor> decoder_inputs{{"x", random_tensor(batch, ng, channels, 1.0f, rng)}};
 
+  const std::map<std::string, Tensor> encoder_inputs{{"body", loss_inputs.at("body")}};
+  const std::map<std::string, Tensor> global_inputs{{"x", random_tensor(batch, 1, 128, 1.0f, rng)}};
+
   std::printf("%-16s %-8s %12s %14s %14s\n", "node", "kind", "forward ms", "fwd+bwd ms", "MFLOP/sample");
   for (const std::string& name : split(vm["nodes"].as<std::string>())) {
     const PluginDescriptor& d = reg.get(name);
-    auto node = reg.create_node(name, Params(d.params, {}, name));
-    const auto& inputs = d.kind == "loss" ? loss_inputs : decoder_inputs;
-    ShapeMap shapes;
-    TensorIn in;
-    TensorOut gin_map;
-    std::map<std::string, Tensor> grads;
-    for (const auto& port : d.inputs) {
-      const auto it = inputs.find(port.name);
-      if (it == inputs.end()) throw UsageError(name + ": no bench input for port '" + port.name + "'");
-      shapes[port.name] = it->second.shape();
-      in[port.name] = &it->second;
-      grads[port.name] = Tensor(batch, it->second.shape());
+    // Decoders take per-vertex features [Ng, C], or a global feature [1, 128]
+    // (the spectral branch): the first the node accepts at setup.
+    std::vector<const std::map<std::string, Tensor>*> candidates;
+    if (d.kind == "loss")
+      candidates = {&loss_inputs};
+    else if (d.kind == "encoder")
+      candidates = {&encoder_inputs};
+    else
+      candidates = {&decoder_inputs, &global_inputs};
+    for (std::size_t c = 0; c < candidates.size(); ++c) {
+      try {
+        const auto [forward, both, flops] = time_node(reg, name, *candidates[c], *assets, batch, repeats);
+        std::printf("%-16s %-8s %12.3f %14.3f %14.2f\n", name.c_str(), d.kind.c_str(), forward / batch, both / batch,
+                    flops / 1e6);
+        break;
+      } catch (const ConfigError&) {
+        if (c + 1 == candidates.size()) throw;
+      }
     }
-    for (auto& [port, t] : grads) gin_map[port] = &t;
-    std::map<std::string, Tensor> outputs, ones;
-    TensorOut out;
-    TensorIn out_in, gout;
-    for (const auto& [port, s] : node->setup(shapes, {name, 1, assets.get()})) {
-      outputs[port] = Tensor(batch, s);
-      ones[port] = Tensor(batch, s, 1.0f);
-    }
-    for (auto& [port, t] : outputs) out[port] = &t, out_in[port] = &t;
-    for (auto& [port, t] : ones) gout[port] = &t;
-    const double forward = best_ms(repeats, [&] { node->forward(in, out); });
-    const double both = best_ms(repeats, [&] {
-      node->forward(in, out);
-      node->backward(in, out_in, gout, gin_map);
-    });
-    std::printf("%-16s %-8s %12.3f %14.3f %14.2f\n", name.c_str(), d.kind.c_str(), forward / batch, both / batch,
-                node->flops_per_sample() / 1e6);
   }
   return 0;
 }
 
-const RegisterBench registration{{"nodes", "time forward and backward of loss and decoder plugins on the template's assets", run}};
+const RegisterBench registration{{"nodes", "time forward and backward of encoder, loss and decoder plugins on the template's assets", run}};
 
 }  // namespace
 }  // namespace drape::cli
