@@ -1,6 +1,8 @@
 // Reading graph files: YAML -> GraphSpec, following `base:` chains.
 #include <drape/graph.hpp>
 
+#include "yaml_util.hpp"
+
 #include <fstream>
 #include <set>
 #include <sstream>
@@ -10,30 +12,10 @@ namespace fs = std::filesystem;
 namespace drape {
 namespace {
 
-SourceLocation at(const std::string& file, const YAML::Node& n) { return {file, n ? n.Mark().line + 1 : 0}; }
-
-std::string scalar_or_throw(const std::string& file, const YAML::Node& n, const std::string& what) {
-  if (!n.IsScalar()) throw ConfigError(at(file, n), what + " must be a single value");
-  return n.Scalar();
-}
-
-void check_keys(const std::string& file, const YAML::Node& map, const std::vector<std::string>& allowed,
-                const std::string& owner) {
-  for (const auto& kv : map) {
-    const auto key = kv.first.as<std::string>();
-    if (std::find(allowed.begin(), allowed.end(), key) == allowed.end()) {
-      std::string list;
-      for (const auto& a : allowed) list += (list.empty() ? "" : ", ") + a;
-      throw ConfigError(at(file, kv.first),
-                        owner + ": unknown key '" + key + "'" + did_you_mean(key, allowed) + " (allowed: " + list + ")");
-    }
-  }
-}
-
 PortRef parse_ref(const std::string& file, const YAML::Node& n) {
-  const std::string text = scalar_or_throw(file, n, "an input reference");
+  const std::string text = yaml::scalar(file, n, "an input reference");
   PortRef r;
-  r.where = at(file, n);
+  r.where = yaml::at(file, n);
   const auto dot = text.find('.');
   r.node = text.substr(0, dot);
   if (dot != std::string::npos) r.port = text.substr(dot + 1);
@@ -51,7 +33,7 @@ std::vector<std::pair<std::string, PortRef>> parse_inputs(const std::string& fil
   } else if (n.IsMap()) {
     for (const auto& kv : n) out.emplace_back(kv.first.as<std::string>(), parse_ref(file, kv.second));
   } else if (!n.IsNull()) {
-    throw ConfigError(at(file, n), "`in` must be a reference, a list of references or a map port: reference");
+    throw ConfigError(yaml::at(file, n), "`in` must be a reference, a list of references or a map port: reference");
   }
   return out;
 }
@@ -60,7 +42,7 @@ double parse_weight(const std::string& file, const YAML::Node& n) {
   try {
     return n.as<double>();
   } catch (const YAML::Exception&) {
-    throw ConfigError(at(file, n), "a loss weight must be a number, got '" + (n.IsScalar() ? n.Scalar() : "?") + "'");
+    throw ConfigError(yaml::at(file, n), "a loss weight must be a number, got '" + (n.IsScalar() ? n.Scalar() : "?") + "'");
   }
 }
 
@@ -73,7 +55,7 @@ NodeSpec* find_node(GraphSpec& spec, const std::string& name) {
 // Applies a `nodes:` or `losses:` entry onto the spec (new node or override).
 void apply_node(GraphSpec& spec, const std::string& file, const YAML::Node& key, const YAML::Node& body, bool loss) {
   const std::string name = key.as<std::string>();
-  const SourceLocation where = at(file, key);
+  const SourceLocation where = yaml::at(file, key);
   NodeSpec* existing = find_node(spec, name);
   if (existing && existing->is_loss != loss)
     throw ConfigError(where, "'" + name + "' is a " + (loss ? "node" : "loss") + " in the base graph; it cannot become a " +
@@ -92,11 +74,11 @@ void apply_node(GraphSpec& spec, const std::string& file, const YAML::Node& key,
     n.weight = parse_weight(file, body);
     if (!existing) n.type = name;
   } else if (body.IsMap()) {
-    check_keys(file, body, loss ? std::vector<std::string>{"type", "in", "params", "weight"}
+    yaml::check_keys(file, body, loss ? std::vector<std::string>{"type", "in", "params", "weight"}
                                 : std::vector<std::string>{"type", "in", "params"},
                (loss ? "loss '" : "node '") + name + "'");
     if (body["type"]) {
-      const std::string type = scalar_or_throw(file, body["type"], "`type`");
+      const std::string type = yaml::scalar(file, body["type"], "`type`");
       if (existing && type != n.type) n.params.clear();  // another plugin: the old params mean nothing to it
       n.type = type;
     } else if (!existing) {
@@ -116,50 +98,38 @@ void apply_node(GraphSpec& spec, const std::string& file, const YAML::Node& key,
 
 void apply_file(GraphSpec& spec, const fs::path& path, const YAML::Node& root, std::set<fs::path>& chain);
 
-YAML::Node load_yaml(const fs::path& path) {
-  std::ifstream in(path);
-  if (!in) throw ConfigError("cannot read graph file '" + path.string() + "'");
-  std::stringstream ss;
-  ss << in.rdbuf();
-  try {
-    return YAML::Load(ss.str());
-  } catch (const YAML::ParserException& e) {
-    throw ConfigError({path.string(), e.mark.line + 1}, "malformed YAML: " + e.msg);
-  }
-}
-
 void apply_file(GraphSpec& spec, const fs::path& path, const YAML::Node& root, std::set<fs::path>& chain) {
   const std::string file = path.string();
   if (!root.IsMap()) throw ConfigError({file, 1}, "a graph file must be a YAML map (inputs, nodes, outputs, losses)");
-  check_keys(file, root, {"base", "description", "inputs", "nodes", "outputs", "losses"}, "graph");
+  yaml::check_keys(file, root, {"base", "description", "inputs", "nodes", "outputs", "losses"}, "graph");
   if (root["base"]) {
-    const fs::path base = path.parent_path() / scalar_or_throw(file, root["base"], "`base`");
+    const fs::path base = path.parent_path() / yaml::scalar(file, root["base"], "`base`");
     std::error_code ec;
-    if (!fs::exists(base, ec)) throw ConfigError(at(file, root["base"]), "base graph '" + base.string() + "' does not exist");
+    if (!fs::exists(base, ec)) throw ConfigError(yaml::at(file, root["base"]), "base graph '" + base.string() + "' does not exist");
     const fs::path canonical = fs::canonical(base);
     if (!chain.insert(canonical).second)
-      throw ConfigError(at(file, root["base"]), "`base:` chain loops back to '" + base.string() + "'");
-    apply_file(spec, base, load_yaml(base), chain);
+      throw ConfigError(yaml::at(file, root["base"]), "`base:` chain loops back to '" + base.string() + "'");
+    apply_file(spec, base, yaml::load_file(base), chain);
   }
   if (const auto inputs = root["inputs"]) {
-    if (!inputs.IsMap()) throw ConfigError(at(file, inputs), "`inputs` must be a map name: [rows, cols]");
+    if (!inputs.IsMap()) throw ConfigError(yaml::at(file, inputs), "`inputs` must be a map name: [rows, cols]");
     for (const auto& kv : inputs) {
       const auto name = kv.first.as<std::string>();
       if (!kv.second.IsSequence() || kv.second.size() != 2)
-        throw ConfigError(at(file, kv.first), "input '" + name + "' needs a shape [rows, cols]");
+        throw ConfigError(yaml::at(file, kv.first), "input '" + name + "' needs a shape [rows, cols]");
       std::vector<std::string> dims;
-      for (const auto& d : kv.second) dims.push_back(scalar_or_throw(file, d, "a dimension"));
+      for (const auto& d : kv.second) dims.push_back(yaml::scalar(file, d, "a dimension"));
       auto it = std::find_if(spec.inputs.begin(), spec.inputs.end(), [&](auto& p) { return p.first == name; });
-      if (it != spec.inputs.end()) it->second = {dims, at(file, kv.first)};
-      else spec.inputs.push_back({name, {dims, at(file, kv.first)}});
+      if (it != spec.inputs.end()) it->second = {dims, yaml::at(file, kv.first)};
+      else spec.inputs.push_back({name, {dims, yaml::at(file, kv.first)}});
     }
   }
   if (const auto nodes = root["nodes"]) {
-    if (!nodes.IsMap()) throw ConfigError(at(file, nodes), "`nodes` must be a map name: {type, in, params}");
+    if (!nodes.IsMap()) throw ConfigError(yaml::at(file, nodes), "`nodes` must be a map name: {type, in, params}");
     for (const auto& kv : nodes) apply_node(spec, file, kv.first, kv.second, false);
   }
   if (const auto losses = root["losses"]) {
-    if (!losses.IsMap()) throw ConfigError(at(file, losses), "`losses` must be a map name: weight or name: {type, in, weight}");
+    if (!losses.IsMap()) throw ConfigError(yaml::at(file, losses), "`losses` must be a map name: weight or name: {type, in, weight}");
     for (const auto& kv : losses) apply_node(spec, file, kv.first, kv.second, true);
   }
   if (const auto outputs = root["outputs"]) {
@@ -224,7 +194,7 @@ GraphSpec parse_graph_file(const fs::path& file) {
   std::set<fs::path> chain;
   std::error_code ec;
   if (fs::exists(file, ec)) chain.insert(fs::canonical(file));
-  apply_file(spec, file, load_yaml(file), chain);
+  apply_file(spec, file, yaml::load_file(file), chain);
   spec.text = emit(spec);
   return spec;
 }
@@ -232,12 +202,7 @@ GraphSpec parse_graph_file(const fs::path& file) {
 GraphSpec parse_graph_text(const std::string& yaml, const std::string& name_for_errors) {
   GraphSpec spec;
   spec.file = name_for_errors;
-  YAML::Node root;
-  try {
-    root = YAML::Load(yaml);
-  } catch (const YAML::ParserException& e) {
-    throw ConfigError({name_for_errors, e.mark.line + 1}, "malformed YAML: " + e.msg);
-  }
+  const YAML::Node root = yaml::load_text(yaml, name_for_errors);
   if (root.IsMap() && root["base"]) throw ConfigError({name_for_errors, 1}, "`base:` is only allowed in graph files");
   std::set<fs::path> chain;
   apply_file(spec, name_for_errors, root, chain);

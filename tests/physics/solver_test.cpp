@@ -1,5 +1,6 @@
 // The backward-Euler Newton solver on energies with known minimisers, and the
 // fixed-pattern Hessian assembly against Eigen's own triplet assembly.
+#include <drape/geometry/vertex_areas.hpp>
 #include <drape/solver.hpp>
 
 #include "../../framework/src/physics/hessian_pattern.hpp"
@@ -96,7 +97,7 @@ std::vector<NamedEnergy> one(std::unique_ptr<Energy> e) {
 
 TEST_CASE("lumped masses are a third of each face's material-space area times the density", "[solver]") {
   const Garment g = grid(3, 0.5);  // 1 m x 1 m
-  const Eigen::VectorXd m = lumped_masses(g);
+  const Eigen::VectorXd m = geometry::vertex_masses(g);
   CHECK(m.sum() == Approx(0.187).epsilon(1e-12));
   CHECK(m[4] == Approx(0.187 * 6 * 0.125 / 3).epsilon(1e-12));  // the centre touches 6 faces of 1/8 m^2
 }

@@ -105,7 +105,5 @@ class ClothSolver {
   std::unique_ptr<Impl> impl_;
 };
 
-// Lumped masses: a third of each face's material-space area times its material's density.
-Eigen::VectorXd lumped_masses(const Garment& garment);
 
 }  // namespace drape

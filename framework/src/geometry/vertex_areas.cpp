@@ -7,7 +7,11 @@
 
 namespace drape::geometry {
 
-Eigen::VectorXd vertex_areas(const Garment& garment) {
+namespace {
+
+// A third of each face's UV area times weight(face) to each corner.
+template <class FaceWeight>
+Eigen::VectorXd lumped(const Garment& garment, FaceWeight weight) {
   const Mesh& mesh = garment.mesh;
   if (!mesh.has_uv())
     throw ConfigError("vertex areas: the garment has no material-space UVs (uv and uv_faces, one UV face per face)");
@@ -26,10 +30,28 @@ Eigen::VectorXd vertex_areas(const Garment& garment) {
     const Eigen::Vector2d a = mesh.uv.row(mesh.uv_faces(f, 0)), b = mesh.uv.row(mesh.uv_faces(f, 1)),
                           c = mesh.uv.row(mesh.uv_faces(f, 2));
     const Eigen::Vector2d e1 = b - a, e2 = c - a;
-    const double third = std::abs(e1.x() * e2.y() - e1.y() * e2.x()) / 6.0;
+    const double third = std::abs(e1.x() * e2.y() - e1.y() * e2.x()) / 6.0 * weight(f);
     for (int k = 0; k < 3; ++k) area[mesh.faces(f, k)] += third;
   }
   return area;
+}
+
+}  // namespace
+
+Eigen::VectorXd vertex_areas(const Garment& garment) {
+  return lumped(garment, [](int) { return 1.0; });
+}
+
+Eigen::VectorXd vertex_masses(const Garment& garment) {
+  const int materials = static_cast<int>(garment.materials.size());
+  if (materials == 0) throw ConfigError("vertex masses: the garment has no materials");
+  return lumped(garment, [&](int f) {
+    const int m = garment.material_of(f);
+    if (m < 0 || m >= materials)
+      throw ConfigError("vertex masses: face " + std::to_string(f) + " names material " + std::to_string(m) + " of " +
+                        std::to_string(materials));
+    return garment.materials[static_cast<std::size_t>(m)].density;
+  });
 }
 
 }  // namespace drape::geometry

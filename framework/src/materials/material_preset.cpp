@@ -3,6 +3,7 @@
 #include <drape/materials.hpp>
 
 #include "material_validation.hpp"
+#include "../yaml_util.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -38,23 +39,10 @@ namespace {
 
 using materials_detail::check_stretch;
 
-SourceLocation at(const std::string& file, const YAML::Node& n) { return {file, n ? n.Mark().line + 1 : 0}; }
+using yaml::at;
 
-std::string list(const std::vector<std::string>& items) {
-  std::string s;
-  for (const auto& i : items) s += (s.empty() ? "" : ", ") + i;
-  return s;
-}
 
-void check_keys(const std::string& file, const YAML::Node& map, const std::vector<std::string>& allowed,
-                const std::string& owner) {
-  for (const auto& kv : map) {
-    const std::string key = kv.first.as<std::string>();
-    if (std::find(allowed.begin(), allowed.end(), key) == allowed.end())
-      throw ConfigError(at(file, kv.first), owner + ": unknown key '" + key + "'" + did_you_mean(key, allowed) +
-                                                " (allowed: " + list(allowed) + ")");
-  }
-}
+using yaml::check_keys;
 
 double number(const std::string& file, const YAML::Node& n, const std::string& owner, const std::string& key) {
   if (!n.IsScalar())
@@ -157,7 +145,7 @@ MaterialPreset parse_material_preset(const std::string& name, const YAML::Node& 
     if (!p.thickness) missing.push_back("thickness");
     if (!missing.empty())
       throw ConfigError(p.where, owner + " has no `base`, so it must set density, stretch, bending and thickness; missing: " +
-                                     list(missing));
+                                     yaml::joined(missing));
   }
   return p;
 }

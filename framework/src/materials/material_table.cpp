@@ -3,6 +3,7 @@
 #include <drape/materials.hpp>
 
 #include "material_validation.hpp"
+#include "../yaml_util.hpp"
 
 #include <algorithm>
 #include <cerrno>
@@ -13,13 +14,8 @@
 namespace drape {
 namespace {
 
-SourceLocation at(const std::string& file, const YAML::Node& n) { return {file, n ? n.Mark().line + 1 : 0}; }
-
-std::string joined(const std::vector<std::string>& items, const std::string& separator) {
-  std::string s;
-  for (const auto& i : items) s += (s.empty() ? "" : separator) + i;
-  return s;
-}
+using yaml::at;
+using yaml::joined;
 
 std::string owner_of(const MaterialPreset& p) {
   return p.name.empty() ? std::string("inline material") : "material '" + p.name + "'";
@@ -28,12 +24,7 @@ std::string owner_of(const MaterialPreset& p) {
 }  // namespace
 
 MaterialTable MaterialTable::parse(const std::string& yaml_text, const std::string& file) {
-  YAML::Node root;
-  try {
-    root = YAML::Load(yaml_text);
-  } catch (const YAML::ParserException& e) {
-    throw ConfigError({file, e.mark.line + 1}, "malformed YAML: " + e.msg);
-  }
+  const YAML::Node root = yaml::load_text(yaml_text, file);
   MaterialTable table;
   if (!root || root.IsNull()) return table;  // an empty file: no presets
   if (!root.IsMap())

@@ -1,5 +1,6 @@
 // Newton on the backward-Euler incremental potential (see solver.hpp).
 #include <drape/errors.hpp>
+#include <drape/geometry/vertex_areas.hpp>
 #include <drape/solver.hpp>
 
 #include "hessian_pattern.hpp"
@@ -38,30 +39,12 @@ struct ClothSolver::Impl {
   physics::SparseMatrix hessian;
 };
 
-Eigen::VectorXd lumped_masses(const Garment& garment) {
-  const Mesh& mesh = garment.mesh;
-  if (!mesh.has_uv()) throw ConfigError("the garment has no material-space UVs, so its masses are unknown");
-  Eigen::VectorXd mass = Eigen::VectorXd::Zero(mesh.num_vertices());
-  for (int f = 0; f < mesh.num_faces(); ++f) {
-    const Eigen::Vector2d a = mesh.uv.row(mesh.uv_faces(f, 0)), b = mesh.uv.row(mesh.uv_faces(f, 1)),
-                          c = mesh.uv.row(mesh.uv_faces(f, 2));
-    const Eigen::Vector2d e1 = b - a, e2 = c - a;
-    const double area = 0.5 * std::abs(e1.x() * e2.y() - e1.y() * e2.x());
-    const int m = garment.material_of(f);
-    if (m < 0 || m >= static_cast<int>(garment.materials.size()))
-      throw ConfigError("face " + std::to_string(f) + " names material " + std::to_string(m) + " of " +
-                        std::to_string(garment.materials.size()));
-    for (int k = 0; k < 3; ++k) mass[mesh.faces(f, k)] += area * garment.materials[m].density / 3.0;
-  }
-  return mass;
-}
-
 ClothSolver::ClothSolver(const Garment& garment, std::vector<NamedEnergy>& energies, SolverSettings settings)
     : garment_(garment), energies_(energies), settings_(std::move(settings)), impl_(std::make_unique<Impl>()) {
   if (!(settings_.time_step > 0)) throw ConfigError("solver: time_step must be > 0");
   if (settings_.damping < 0 || settings_.damping > 1) throw ConfigError("solver: damping must be in [0, 1]");
   if (settings_.max_newton_iterations < 1) throw ConfigError("solver: max_newton_iterations must be >= 1");
-  masses_ = lumped_masses(garment);
+  masses_ = geometry::vertex_masses(garment);
   // A vertex whose faces all have zero material-space area would have no
   // inertia and make the Newton matrix singular: give it a tiny mass floor.
   const double floor = 1e-9 * std::max(masses_.maxCoeff(), 1e-12);

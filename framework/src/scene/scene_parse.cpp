@@ -2,6 +2,8 @@
 #include <drape/registry.hpp>
 #include <drape/scene.hpp>
 
+#include "../yaml_util.hpp"
+
 #include <algorithm>
 #include <fstream>
 #include <sstream>
@@ -11,37 +13,16 @@ namespace fs = std::filesystem;
 namespace drape {
 namespace {
 
-SourceLocation at(const std::string& file, const YAML::Node& n) { return {file, n ? n.Mark().line + 1 : 0}; }
-
-std::string scalar(const std::string& file, const YAML::Node& n, const std::string& what) {
-  if (!n.IsScalar()) throw ConfigError(at(file, n), what + " must be a single value");
-  return n.Scalar();
-}
-
-void check_keys(const std::string& file, const YAML::Node& map, const std::vector<std::string>& allowed,
-                const std::string& owner) {
-  if (!map.IsMap()) throw ConfigError(at(file, map), owner + " must be a map");
-  for (const auto& kv : map) {
-    const auto key = kv.first.as<std::string>();
-    if (std::find(allowed.begin(), allowed.end(), key) == allowed.end()) {
-      std::string list;
-      for (const auto& a : allowed) list += (list.empty() ? "" : ", ") + a;
-      throw ConfigError(at(file, kv.first),
-                        owner + ": unknown key '" + key + "'" + did_you_mean(key, allowed) + " (allowed: " + list + ")");
-    }
-  }
-}
-
 // Entries of `map` override `into`; a null value removes the entry.
 void merge_values(ParamValues& into, const std::string& file, const YAML::Node& map, const std::string& owner) {
   if (!map || map.IsNull()) return;
-  if (!map.IsMap()) throw ConfigError(at(file, map), owner + " must be a map of name: value");
+  if (!map.IsMap()) throw ConfigError(yaml::at(file, map), owner + " must be a map of name: value");
   for (const auto& kv : map) {
     const auto key = kv.first.as<std::string>();
     if (kv.second.IsNull())
       into.erase(key);
     else
-      into[key] = ParamValue{kv.second, at(file, kv.first)};
+      into[key] = ParamValue{kv.second, yaml::at(file, kv.first)};
   }
 }
 
@@ -58,14 +39,14 @@ void parse_effects(Scene& s, const std::string& file, const YAML::Node& n) {
     s.effects.clear();
     for (const auto& e : n) {
       if (e.IsScalar()) {
-        set_effect(s, e.Scalar(), {}, at(file, e));
+        set_effect(s, e.Scalar(), {}, yaml::at(file, e));
       } else if (e.IsMap() && e.size() == 1) {
         const auto kv = *e.begin();
         ParamValues p;
         merge_values(p, file, kv.second, "effect '" + kv.first.as<std::string>() + "'");
-        set_effect(s, kv.first.as<std::string>(), std::move(p), at(file, kv.first));
+        set_effect(s, kv.first.as<std::string>(), std::move(p), yaml::at(file, kv.first));
       } else {
-        throw ConfigError(at(file, e), "an effect is a name or `name: {params}`");
+        throw ConfigError(yaml::at(file, e), "an effect is a name or `name: {params}`");
       }
     }
   } else if (n.IsMap()) {  // a map adds, overrides or (with null) removes single effects
@@ -79,38 +60,32 @@ void parse_effects(Scene& s, const std::string& file, const YAML::Node& n) {
       auto existing = std::find_if(s.effects.begin(), s.effects.end(), [&](const SceneEffect& e) { return e.name == name; });
       ParamValues p = existing == s.effects.end() ? ParamValues{} : existing->params;
       merge_values(p, file, kv.second, "effect '" + name + "'");
-      set_effect(s, name, std::move(p), at(file, kv.first));
+      set_effect(s, name, std::move(p), yaml::at(file, kv.first));
     }
   } else if (!n.IsNull()) {
-    throw ConfigError(at(file, n), "`effects` must be a list of energy names or a map name: {params}");
+    throw ConfigError(yaml::at(file, n), "`effects` must be a list of energy names or a map name: {params}");
   }
 }
 
 void apply(Scene& s, const fs::path& path, const std::string& file, const YAML::Node& root, std::vector<fs::path>& chain) {
   if (!root || root.IsNull()) return;
-  check_keys(file, root, {"base", "description", "body", "garment", "materials", "effects", "solver"}, "scene");
+  yaml::check_keys(file, root, {"base", "description", "body", "garment", "materials", "effects", "solver"}, "scene");
   if (root["base"]) {
-    if (path.empty()) throw ConfigError(at(file, root["base"]), "`base:` needs a scene file (relative to it)");
-    const fs::path base = path.parent_path() / scalar(file, root["base"], "`base`");
+    if (path.empty()) throw ConfigError(yaml::at(file, root["base"]), "`base:` needs a scene file (relative to it)");
+    const fs::path base = path.parent_path() / yaml::scalar(file, root["base"], "`base`");
     std::error_code ec;
-    if (!fs::exists(base, ec)) throw ConfigError(at(file, root["base"]), "base scene '" + base.string() + "' does not exist");
+    if (!fs::exists(base, ec)) throw ConfigError(yaml::at(file, root["base"]), "base scene '" + base.string() + "' does not exist");
     const fs::path canonical = fs::canonical(base);
     if (std::find(chain.begin(), chain.end(), canonical) != chain.end())
-      throw ConfigError(at(file, root["base"]), "`base:` chain loops back to '" + base.string() + "'");
+      throw ConfigError(yaml::at(file, root["base"]), "`base:` chain loops back to '" + base.string() + "'");
     chain.push_back(canonical);
-    YAML::Node base_root;
-    try {
-      base_root = YAML::LoadFile(base.string());
-    } catch (const YAML::Exception& e) {
-      throw ConfigError({base.string(), e.mark.line + 1}, "malformed YAML: " + e.msg);
-    }
-    apply(s, base, base.string(), base_root, chain);
+    apply(s, base, base.string(), yaml::load_file(base), chain);
   }
-  if (root["description"]) s.description = scalar(file, root["description"], "`description`");
+  if (root["description"]) s.description = yaml::scalar(file, root["description"], "`description`");
   if (const YAML::Node body = root["body"]) {
-    check_keys(file, body, {"model", "params", "shape"}, "body");
+    yaml::check_keys(file, body, {"model", "params", "shape"}, "body");
     if (body["model"]) {
-      const std::string model = scalar(file, body["model"], "body `model`");
+      const std::string model = yaml::scalar(file, body["model"], "body `model`");
       if (model != s.body_model) s.body_params.clear();  // another model's parameters do not carry over
       s.body_model = model;
     }
@@ -118,16 +93,16 @@ void apply(Scene& s, const fs::path& path, const std::string& file, const YAML::
     merge_values(s.shape, file, body["shape"], "body `shape`");
   }
   if (const YAML::Node garment = root["garment"]) {
-    check_keys(file, garment, {"template", "params"}, "garment");
+    yaml::check_keys(file, garment, {"template", "params"}, "garment");
     if (garment["template"]) {
-      const std::string t = scalar(file, garment["template"], "garment `template`");
+      const std::string t = yaml::scalar(file, garment["template"], "garment `template`");
       if (t != s.garment) s.garment_params.clear();
       s.garment = t;
     }
     merge_values(s.garment_params, file, garment["params"], "garment `params`");
   }
   if (const YAML::Node materials = root["materials"]) {
-    if (!materials.IsMap()) throw ConfigError(at(file, materials), "`materials` must be a map region: preset");
+    if (!materials.IsMap()) throw ConfigError(yaml::at(file, materials), "`materials` must be a map region: preset");
     for (const auto& kv : materials) {
       const auto region = kv.first.as<std::string>();
       auto it = std::find_if(s.materials.begin(), s.materials.end(), [&](const SceneMaterial& m) { return m.region == region; });
@@ -135,7 +110,7 @@ void apply(Scene& s, const fs::path& path, const std::string& file, const YAML::
         if (it != s.materials.end()) s.materials.erase(it);
         continue;
       }
-      SceneMaterial m{region, kv.second, file, at(file, kv.first)};
+      SceneMaterial m{region, kv.second, file, yaml::at(file, kv.first)};
       if (it == s.materials.end())
         s.materials.push_back(std::move(m));
       else
@@ -181,30 +156,18 @@ std::string Scene::yaml() const {
 Scene load_scene(const fs::path& file) {
   std::error_code ec;
   if (!fs::exists(file, ec)) throw ConfigError("scene file '" + file.string() + "' does not exist");
-  YAML::Node root;
-  try {
-    root = YAML::LoadFile(file.string());
-  } catch (const YAML::Exception& e) {
-    throw ConfigError({file.string(), e.mark.line + 1}, "malformed YAML: " + e.msg);
-  }
   Scene s;
   s.file = file.string();
   std::vector<fs::path> chain{fs::canonical(file)};
-  apply(s, file, file.string(), root, chain);
+  apply(s, file, file.string(), yaml::load_file(file), chain);
   return s;
 }
 
 Scene parse_scene(const std::string& text, const std::string& name_for_errors) {
-  YAML::Node root;
-  try {
-    root = YAML::Load(text);
-  } catch (const YAML::Exception& e) {
-    throw ConfigError({name_for_errors, e.mark.line + 1}, "malformed YAML: " + e.msg);
-  }
   Scene s;
   s.file = name_for_errors;
   std::vector<fs::path> chain;
-  apply(s, {}, name_for_errors, root, chain);
+  apply(s, {}, name_for_errors, yaml::load_text(text, name_for_errors), chain);
   return s;
 }
 

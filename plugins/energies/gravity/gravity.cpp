@@ -4,6 +4,7 @@
 // Masses are lumped: each face's material-space area (UV in meters) times its
 // material's density, a third to each corner. E is linear in x: the gradient is
 // constant and the Hessian is zero (add_hessian appends nothing).
+#include <drape/geometry/vertex_areas.hpp>
 #include <drape/plugin.hpp>
 
 namespace {
@@ -17,26 +18,17 @@ class Gravity final : public Energy {
   void bind(const EnergyContext& context) override {
     if (!context.garment) throw ConfigError("gravity: no garment is bound");
     const Garment& garment = *context.garment;
-    const Mesh& mesh = garment.mesh;
-    if (!mesh.has_uv())
+    if (!garment.mesh.has_uv())
       throw ConfigError("gravity: the garment has no material-space UVs (uv and uv_faces), so its masses are unknown");
     if (garment.materials.empty()) throw ConfigError("gravity: the garment has no materials");
     const double norm = context.gravity.norm();
     if (!(norm > 0.0)) throw ConfigError("gravity: the scene's gravity direction is zero");
     // The direction comes from the scene, the magnitude from the parameter `g`.
     force_per_kg_ = context.gravity / norm * g_;
-    mass_ = Eigen::VectorXd::Zero(mesh.num_vertices());
-    for (int f = 0; f < mesh.num_faces(); ++f) {
-      const Eigen::Vector2d a = mesh.uv.row(mesh.uv_faces(f, 0)), b = mesh.uv.row(mesh.uv_faces(f, 1)),
-                            c = mesh.uv.row(mesh.uv_faces(f, 2));
-      const Eigen::Vector2d e1 = b - a, e2 = c - a;
-      const double area = 0.5 * std::abs(e1.x() * e2.y() - e1.y() * e2.x());
-      const int m = garment.material_of(f);
-      if (m < 0 || m >= static_cast<int>(garment.materials.size()))
-        throw ConfigError("gravity: face " + std::to_string(f) + " names material " + std::to_string(m) + " of " +
-                          std::to_string(garment.materials.size()));
-      const double third = area * garment.materials[m].density / 3.0;
-      for (int k = 0; k < 3; ++k) mass_[mesh.faces(f, k)] += third;
+    try {
+      mass_ = geometry::vertex_masses(garment);
+    } catch (const ConfigError& e) {
+      throw ConfigError(std::string("gravity: ") + e.what());
     }
   }
 

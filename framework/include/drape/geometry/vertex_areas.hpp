@@ -15,4 +15,9 @@ namespace drape::geometry {
 // face names a vertex or UV index out of range.
 Eigen::VectorXd vertex_areas(const Garment& garment);
 
+// Lumped masses (kg): the same thirds, each face's area times its material's
+// density. What gravity and the solver's inertia use. ConfigError also when a
+// face names a material the garment does not have.
+Eigen::VectorXd vertex_masses(const Garment& garment);
+
 }  // namespace drape::geometry

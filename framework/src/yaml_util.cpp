@@ -1,0 +1,49 @@
+#include "yaml_util.hpp"
+
+#include <algorithm>
+#include <fstream>
+#include <sstream>
+
+namespace drape::yaml {
+
+SourceLocation at(const std::string& file, const YAML::Node& n) { return {file, n ? n.Mark().line + 1 : 0}; }
+
+std::string joined(const std::vector<std::string>& items, const std::string& separator) {
+  std::string s;
+  for (const auto& i : items) s += (s.empty() ? "" : separator) + i;
+  return s;
+}
+
+std::string scalar(const std::string& file, const YAML::Node& n, const std::string& what) {
+  if (!n.IsScalar()) throw ConfigError(at(file, n), what + " must be a single value");
+  return n.Scalar();
+}
+
+void check_keys(const std::string& file, const YAML::Node& map, const std::vector<std::string>& allowed,
+                const std::string& owner) {
+  if (!map.IsMap()) throw ConfigError(at(file, map), owner + " must be a map");
+  for (const auto& kv : map) {
+    const auto key = kv.first.as<std::string>();
+    if (std::find(allowed.begin(), allowed.end(), key) == allowed.end())
+      throw ConfigError(at(file, kv.first), owner + ": unknown key '" + key + "'" + did_you_mean(key, allowed) +
+                                                " (allowed: " + joined(allowed) + ")");
+  }
+}
+
+YAML::Node load_text(const std::string& text, const std::string& name_for_errors) {
+  try {
+    return YAML::Load(text);
+  } catch (const YAML::Exception& e) {
+    throw ConfigError({name_for_errors, e.mark.line + 1}, "malformed YAML: " + e.msg);
+  }
+}
+
+YAML::Node load_file(const std::filesystem::path& path) {
+  std::ifstream in(path);
+  if (!in) throw ConfigError("cannot read '" + path.string() + "'");
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return load_text(ss.str(), path.string());
+}
+
+}  // namespace drape::yaml
