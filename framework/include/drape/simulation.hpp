@@ -37,7 +37,7 @@ struct SimulationResult {
   double penetration = -1;     // fraction of garment vertices inside the body (-1: not measured)
   double residual = 0;         // |grad E| / |weight| at the end
   // Settled: residual <= settle_tolerance, or at rest (no vertex moved more
-  // than rest_displacement in the last step). Rest covers contact kinks: where
+  // than rest_displacement in the last step) with residual <= kink_tolerance. Rest covers contact kinks: where
   // cloth lies in a concave crease of the body mesh the penalty's gradient
   // jumps between the two faces' normals, the residual cannot fall further,
   // and the line search (rightly) refuses to move.
@@ -90,7 +90,7 @@ class Simulation {
   Eigen::MatrixX3d mean_body_;
   std::vector<Params> effect_params_;
   bool needs_body_ = false;
-  int morph_steps_ = 0, settle_steps_ = 0;
+  int morph_steps_ = 0, settle_steps_ = 0, morph_newton_ = 3;
   Eigen::Vector3d gravity_direction_{0, -1, 0};
 };
 

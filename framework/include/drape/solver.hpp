@@ -19,6 +19,7 @@
 
 #include <Eigen/Core>
 
+#include <algorithm>
 #include <functional>
 #include <memory>
 #include <string>
@@ -32,11 +33,13 @@ struct SolverSettings {
   int max_newton_iterations = 8;   // per time step
   double tolerance = 1e-3;         // per step: |grad Phi| / |W|
   double settle_tolerance = 5e-3;  // drape done: |grad E| / |W| of the static energy
-  double rest_displacement = 1e-5; // m: or done when no vertex moved farther in a step (at rest)
+  double rest_displacement = 1e-5; // m: or done when no vertex moved farther in a step (at rest)...
+  double kink_tolerance = 5e-2;    // ...and |grad E| / |W| is below this (the floor contact kinks leave)
   double max_displacement = 0.02;  // m, a Newton step moves no vertex farther (keeps thin parts from being crossed)
   double armijo = 1e-4;            // sufficient-decrease constant of the line search
   int max_line_search = 12;        // halvings (down to alpha = 2.4e-4) before an iteration is given up
   std::string linear_solver = "auto";  // auto | eigen | cholmod
+  bool reuse_factorization = true;  // keep the last factor while full steps keep halving the residual
 };
 
 // An energy term with the name its scene gave it.
@@ -78,6 +81,8 @@ class ClothSolver {
   const Eigen::VectorXd& masses() const { return masses_; }
   double force_scale() const { return force_scale_; }
   const SolverSettings& settings() const { return settings_; }
+  // Changes the Newton budget per step (the morph needs fewer than the settling).
+  void set_max_newton_iterations(int n) { settings_.max_newton_iterations = std::max(1, n); }
   // The linear solver in use ("eigen" or "cholmod").
   std::string linear_solver() const;
 

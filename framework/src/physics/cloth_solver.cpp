@@ -118,6 +118,8 @@ StepReport ClothSolver::step(Eigen::MatrixX3d& x, Eigen::MatrixX3d& v) {
     if (!finite(g)) throw Error("solver: the gradient became non-finite (an energy produced NaN or inf)");
   };
 
+  bool have_factor = false;
+  double last_alpha = 0, last_residual = 0;
   for (;;) {
     gradient(x);
     report.residual = g.norm() / force_scale_;
@@ -129,30 +131,40 @@ StepReport ClothSolver::step(Eigen::MatrixX3d& x, Eigen::MatrixX3d& v) {
     ++report.iterations;
 
     // Newton matrix: M / h^2 + sum of projected Hessians, on the fixed pattern.
+    // Factorising dominates an iteration, so the previous factor is reused
+    // (a modified Newton step: still a descent direction, the matrix being
+    // positive definite) while it keeps working -- the last iteration took the
+    // full step and at least halved the residual; otherwise it is rebuilt.
+    const bool reuse = settings_.reuse_factorization && have_factor && last_alpha == 1.0 &&
+                       report.residual <= 0.5 * last_residual;
     auto t = Clock::now();
-    Triplets& trip = impl_->triplets;
-    trip.clear();
-    for (NamedEnergy& e : energies_) e.energy->add_hessian(x, trip, true);
-    timings_.hessian += since(t);
-    t = Clock::now();
-    Eigen::VectorXd diagonal(3 * n);
-    for (int i = 0; i < n; ++i) diagonal.segment<3>(3 * i).setConstant(masses_[i] * inv_h2);
-    impl_->pattern.assemble(trip, diagonal, impl_->hessian);
-    timings_.assembly += since(t);
+    if (!reuse) {
+      Triplets& trip = impl_->triplets;
+      trip.clear();
+      for (NamedEnergy& e : energies_) e.energy->add_hessian(x, trip, true);
+      timings_.hessian += since(t);
+      t = Clock::now();
+      Eigen::VectorXd diagonal(3 * n);
+      for (int i = 0; i < n; ++i) diagonal.segment<3>(3 * i).setConstant(masses_[i] * inv_h2);
+      impl_->pattern.assemble(trip, diagonal, impl_->hessian);
+      timings_.assembly += since(t);
 
-    t = Clock::now();
-    // The inertia term makes the matrix positive definite in exact arithmetic;
-    // a failed factorisation (round-off on a huge stiffness ratio) is retried
-    // with a growing diagonal shift, which keeps the direction a descent one.
-    bool factored = impl_->cholesky->factorize(impl_->hessian);
-    ++timings_.factorizations;
-    for (double shift = 1e-8 * impl_->hessian.diagonal().cwiseAbs().maxCoeff(); !factored && shift < 1e30; shift *= 100) {
-      physics::SparseMatrix shifted = impl_->hessian;
-      for (int k = 0; k < shifted.rows(); ++k) shifted.coeffRef(k, k) += shift;
-      factored = impl_->cholesky->factorize(shifted);
+      t = Clock::now();
+      // The inertia term makes the matrix positive definite in exact arithmetic;
+      // a failed factorisation (round-off on a huge stiffness ratio) is retried
+      // with a growing diagonal shift, which keeps the direction a descent one.
+      bool factored = impl_->cholesky->factorize(impl_->hessian);
       ++timings_.factorizations;
+      for (double shift = 1e-8 * impl_->hessian.diagonal().cwiseAbs().maxCoeff(); !factored && shift < 1e30; shift *= 100) {
+        physics::SparseMatrix shifted = impl_->hessian;
+        for (int k = 0; k < shifted.rows(); ++k) shifted.coeffRef(k, k) += shift;
+        factored = impl_->cholesky->factorize(shifted);
+        ++timings_.factorizations;
+      }
+      if (!factored) throw Error("solver: the Newton matrix could not be factorised even with a diagonal shift");
+      have_factor = true;
     }
-    if (!factored) throw Error("solver: the Newton matrix could not be factorised even with a diagonal shift");
+    last_residual = report.residual;
     Eigen::MatrixX3d d = per_vertex(impl_->cholesky->solve(-interleaved(g)));
     timings_.factorization += since(t);
     if (!finite(d)) throw Error("solver: the Newton direction is not finite");
@@ -173,6 +185,7 @@ StepReport ClothSolver::step(Eigen::MatrixX3d& x, Eigen::MatrixX3d& v) {
           x = trial;
           phi_x = phi_trial;
           accepted = true;
+          last_alpha = alpha;
           break;
         }
       }

@@ -10,13 +10,16 @@ const std::vector<ParamSpec>& scene_solver_specs() {
       {"damping", ParamType::Float, "0.2", "fraction of the velocity dropped per step (1 = quasi-static)", 0.0, 1.0},
       {"morph_steps", ParamType::Int, "20", "steps over which the body morphs from the mean shape to the target", 0.0, 1e6},
       {"settle_steps", ParamType::Int, "60", "at most this many steps on the target body to settle", 0.0, 1e6},
-      {"max_newton_iterations", ParamType::Int, "8", "Newton iterations per step at most", 1.0, 1e4},
+      {"max_newton_iterations", ParamType::Int, "8", "Newton iterations per settling step at most", 1.0, 1e4},
+      {"morph_newton_iterations", ParamType::Int, "3", "Newton iterations per morphing step at most", 1.0, 1e4},
       {"tolerance", ParamType::Float, "1e-3", "a step converges at |grad Phi| <= tolerance * |weight|", 1e-14, 1.0},
       {"settle_tolerance", ParamType::Float, "5e-3", "the drape is settled at |grad E| <= this * |weight|", 1e-14, 10.0},
       {"rest_displacement", ParamType::Float, "1e-5", "m: settled when no vertex moves farther in a step", 0.0, 1.0},
+      {"kink_tolerance", ParamType::Float, "5e-2", "at rest counts as settled only below this |grad E| / |weight|", 0.0, 1e6},
       {"max_displacement", ParamType::Float, "0.02", "m: no vertex moves farther in one Newton iteration", 1e-6, 10.0},
       {"linear_solver", ParamType::String, "auto", "sparse Cholesky: auto (cholmod when built with it), eigen, cholmod",
        {}, {}, {"auto", "eigen", "cholmod"}},
+      {"reuse_factorization", ParamType::Bool, "true", "reuse the last Cholesky factor while full steps keep halving the residual"},
       {"gravity_direction", ParamType::FloatList, "[0, -1, 0]", "direction of gravity (the magnitude is the gravity effect's g)"},
   };
   return specs;

@@ -1,0 +1,194 @@
+// The seed's direction loss L_dir (eq. 6.7), per garment vertex i and averaged:
+//   L_dir = mean_i [ R( -n' (c_x - c_y) / |c_x - c_y| )                  (1) correspondence outside
+//                  + ( 1 - (x - c_y)' d_y / (|x - c_y| |d_y|) ) ]         (2) direction of the offset
+// with c_x, c_y the closest points of the prediction x and the ground truth y on
+// this sample's body, d_y = y - c_y (eq. 6.6), n the outward body normal at c_y
+// and R the ReLU. n is the gradient of the signed distance at y (for y off the
+// body, n = d_y / signed distance; on the body, the pseudo-normal there).
+//
+// Both terms are scale-free as the seed writes them: (1) is the sine of the
+// angle by which c_x dips below the tangent plane at c_y, whatever |c_x - c_y|;
+// (2) is one minus the cosine between x - c_y and d_y. Where a direction is
+// undefined (c_x = c_y, x = c_y or d_y = 0, to 1e-9 m) that term is 0 and
+// passes no gradient. Gradients reach pred, target and body through the closest
+// points and n (geometry/closest_point_gradient.hpp). Computed in double.
+#include <drape/assets.hpp>
+#include <drape/geometry/closest_point.hpp>
+#include <drape/geometry/closest_point_gradient.hpp>
+#include <drape/plugin.hpp>
+
+#include <cmath>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace {
+
+using namespace drape;
+using geometry::SurfacePoint;
+
+// Shorter vectors have no direction (float positions carry ~1e-7 m of rounding).
+constexpr double kNoDirection = 1e-9;
+
+Eigen::MatrixX3d to_double(const Tensor& t, int b) { return t.mat(b).cast<double>(); }
+
+class DirectionLoss final : public Node {
+ public:
+  DirectionLoss(bool mean, double outside_weight, double offset_weight)
+      : mean_(mean), outside_weight_(outside_weight), offset_weight_(offset_weight) {}
+
+  ShapeMap setup(const ShapeMap& in, const NodeContext& context) override {
+    if (!context.assets || context.assets->body.num_faces() == 0)
+      throw ConfigError("the direction loss needs the body's faces, but no assets with a body mesh are bound to this graph");
+    const Shape pred = in.at("pred"), target = in.at("target"), body = in.at("body");
+    if (!(pred == target)) throw ConfigError("pred " + pred.str() + " and target " + target.str() + " differ in shape");
+    if (pred.cols != 3 || pred.rows < 1) throw ConfigError("pred must be [vertices, 3], got " + pred.str());
+    const Mesh& mean_body = context.assets->body;
+    if (body.cols != 3 || body.rows != mean_body.num_vertices())
+      throw ConfigError("body must be [" + std::to_string(mean_body.num_vertices()) +
+                        ", 3] (the vertices of a body with the assets' topology), got " + body.str());
+    rows_ = pred.rows;
+    faces_ = mean_body.faces;
+    surface_ = std::make_unique<geometry::BodySurface>(mean_body);
+    return {{"loss", {1, 1}}};
+  }
+
+  void forward(const TensorIn& in, const TensorOut& out) override {
+    const Tensor &x = *in.at("pred"), &y = *in.at("target"), &body = *in.at("body");
+    const int batch = x.batch();
+    hits_x_.assign(batch, {});
+    hits_y_.assign(batch, {});
+    for (int b = 0; b < batch; ++b) {
+      surface_->update(to_double(body, b));
+      const Eigen::MatrixX3d xb = to_double(x, b), yb = to_double(y, b);
+      if (!xb.allFinite() || !yb.allFinite())
+        throw Error("direction: sample " + std::to_string(b) + " has non-finite " + (xb.allFinite() ? "target" : "pred") +
+                    " vertices");
+      hits_x_[b] = locate(xb);
+      hits_y_[b] = locate(yb);
+      double sum = 0.0;
+      for (int i = 0; i < rows_; ++i) sum += vertex_term(xb.row(i).transpose(), yb.row(i).transpose(), hits_x_[b][i], hits_y_[b][i], nullptr);
+      (*out.at("loss"))(b, 0, 0) = static_cast<float>(mean_ ? sum / rows_ : sum);
+    }
+  }
+
+  void backward(const TensorIn& in, const TensorIn&, const TensorIn& gout, const TensorOut& gin) override {
+    const Tensor &x = *in.at("pred"), &y = *in.at("target"), &body = *in.at("body");
+    const int batch = x.batch();
+    if (static_cast<int>(hits_x_.size()) != batch) throw Error("direction: backward without a matching forward");
+    for (int b = 0; b < batch; ++b) {
+      const double scale = (*gout.at("loss"))(b, 0, 0) / (mean_ ? double(rows_) : 1.0);
+      const Eigen::MatrixX3d xb = to_double(x, b), yb = to_double(y, b), vb = to_double(body, b);
+      Eigen::MatrixX3d gx(rows_, 3), gy(rows_, 3), gcx(rows_, 3), gcy(rows_, 3);
+      for (int i = 0; i < rows_; ++i) {
+        Grad g;
+        vertex_term(xb.row(i).transpose(), yb.row(i).transpose(), hits_x_[b][i], hits_y_[b][i], &g);
+        gx.row(i) = scale * g.x;
+        gy.row(i) = scale * g.y;
+        gcx.row(i) = scale * g.cx;
+        gcy.row(i) = scale * g.cy;
+      }
+      Eigen::MatrixX3d gbody = Eigen::MatrixX3d::Zero(vb.rows(), 3);
+      geometry::closest_points_backward(vb, faces_, xb, hits_x_[b], gcx, gx, gbody);
+      geometry::closest_points_backward(vb, faces_, yb, hits_y_[b], gcy, gy, gbody);
+      if (gin.count("pred")) gin.at("pred")->mat(b) = gx.cast<float>();
+      if (gin.count("target")) gin.at("target")->mat(b) = gy.cast<float>();
+      if (gin.count("body")) gin.at("body")->mat(b) = gbody.cast<float>();
+    }
+  }
+
+  // An estimate: two closest-point queries (~40 box and triangle tests of ~30 flops) and the terms per vertex.
+  double flops_per_sample() const override { return 2.0 * 40.0 * 30.0 * rows_ + 40.0 * rows_; }
+
+ private:
+  // The closest body point of every row; threads only where there is work for them.
+  std::vector<SurfacePoint> locate(const Eigen::MatrixX3d& points) const {
+    std::vector<SurfacePoint> hits(points.rows());
+#pragma omp parallel for schedule(static, 64) if (points.rows() > 512)
+    for (Eigen::Index i = 0; i < points.rows(); ++i) hits[i] = surface_->locate(points.row(i).transpose());
+    return hits;
+  }
+
+  // dTerm/d(x, y, c_x, c_y), n's dependence on y and c_y folded in.
+  struct Grad {
+    Eigen::Vector3d x = Eigen::Vector3d::Zero(), y = Eigen::Vector3d::Zero();
+    Eigen::Vector3d cx = Eigen::Vector3d::Zero(), cy = Eigen::Vector3d::Zero();
+  };
+
+  // One vertex's two terms; fills g when given.
+  double vertex_term(const Eigen::Vector3d& x, const Eigen::Vector3d& y, const SurfacePoint& hx, const SurfacePoint& hy,
+                     Grad* g) const {
+    const Eigen::Vector3d& n = hy.normal;
+    double value = 0.0;
+    Eigen::Vector3d gn = Eigen::Vector3d::Zero();  // dTerm/dn
+    // (1) R(-n'e / |e|), e = c_x - c_y: d/de = -(I - ê ê') n / |e|, d/dn = -ê.
+    const Eigen::Vector3d e = hx.point - hy.point;
+    const double le = e.norm();
+    if (outside_weight_ != 0.0 && le > kNoDirection) {
+      const Eigen::Vector3d eh = e / le;
+      const double r = -n.dot(eh);
+      if (r > 0) {
+        value += outside_weight_ * r;
+        if (g) {
+          const Eigen::Vector3d de = -outside_weight_ * (n - n.dot(eh) * eh) / le;
+          g->cx += de;
+          g->cy -= de;
+          gn -= outside_weight_ * eh;
+        }
+      }
+    }
+    // (2) 1 - cos(u, d), u = x - c_y, d = y - c_y: dcos/du = (d̂ - cos û) / |u|, dcos/dd = (û - cos d̂) / |d|.
+    const Eigen::Vector3d u = x - hy.point, d = y - hy.point;
+    const double lu = u.norm(), ld = d.norm();
+    if (offset_weight_ != 0.0 && lu > kNoDirection && ld > kNoDirection) {
+      const Eigen::Vector3d uh = u / lu, dh = d / ld;
+      const double cos = uh.dot(dh);
+      value += offset_weight_ * (1.0 - cos);
+      if (g) {
+        const Eigen::Vector3d gu = -offset_weight_ * (dh - cos * uh) / lu;
+        const Eigen::Vector3d gd = -offset_weight_ * (uh - cos * dh) / ld;
+        g->x += gu;
+        g->cy -= gu + gd;
+        g->y += gd;
+      }
+    }
+    // n = (y - c_y) / signed distance off the body: dn = (I - n n') d(y - c_y) / sd.
+    if (g && std::abs(hy.signed_distance) > kNoDirection && !gn.isZero(0.0)) {
+      const Eigen::Vector3d gd = (gn - n.dot(gn) * n) / hy.signed_distance;
+      g->y += gd;
+      g->cy -= gd;
+    }
+    return value;
+  }
+
+  bool mean_;
+  double outside_weight_, offset_weight_;
+  int rows_ = 0;
+  Eigen::MatrixX3i faces_;
+  std::unique_ptr<geometry::BodySurface> surface_;
+  std::vector<std::vector<SurfacePoint>> hits_x_, hits_y_;  // of the last forward, per sample
+};
+
+PluginList plugins() {
+  PluginDescriptor d;
+  d.kind = "loss";
+  d.name = "direction";
+  d.doc = "The seed's L_dir (eq. 6.7): closest body point of pred not below the ground truth's tangent plane, "
+          "and pred's offset from the ground truth's body point along the ground truth's.";
+  d.inputs = {{"pred", "predicted garment vertices [N, 3]"},
+              {"target", "ground-truth garment vertices [N, 3]"},
+              {"body", "this sample's body vertices [Nb, 3] (the assets' body topology)"}};
+  d.outputs = {{"loss", "per-sample loss [1, 1]"}};
+  d.params = {{"reduction", ParamType::String, "mean", "mean over vertices, or the seed's plain sum", {}, {}, {"mean", "sum"}},
+              {"outside_weight", ParamType::Float, "1", "weight of term (1), the ReLU on the correspondence", 0.0, {}},
+              {"offset_weight", ParamType::Float, "1", "weight of term (2), the offset direction", 0.0, {}}};
+  d.create_node = [](const Params& p) {
+    return std::make_unique<DirectionLoss>(p.get_string("reduction") == "mean", p.get_float("outside_weight"),
+                                           p.get_float("offset_weight"));
+  };
+  return {d};
+}
+
+}  // namespace
+
+DRAPE_PLUGIN_EXPORT(plugins)
