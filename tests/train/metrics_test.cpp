@@ -5,6 +5,7 @@
 
 #include <drape/geometry/penetration.hpp>
 #include <drape/metrics.hpp>
+#include <drape/plugin.hpp>
 
 #include <set>
 
@@ -48,10 +49,10 @@ TEST_CASE("a translation changes ME and L_s only", "[metrics]") {
   CHECK(m.laplacian_cm == Approx(0.0).margin(1e-9));  // Laplacian rows sum to zero
   CHECK(m.edge_percent == Approx(0.0).margin(1e-9));
   CHECK(m.deformation == Approx(0.0).margin(1e-9));
-  // V^T (1 t) has entries (column sum of V_j) * t_k: the mean of their magnitudes factorises.
+  // V^T (1 t) has rows (column sum of V_j) t: the mean of their L1 norms factorises.
   const Eigen::MatrixXd V = f.assets->eigenvectors.cast<double>();
   REQUIRE(V.cols() == test::kTinyK);
-  const double expected = V.colwise().sum().cwiseAbs().mean() * t.cwiseAbs().mean();
+  const double expected = V.colwise().sum().cwiseAbs().mean() * t.cwiseAbs().sum();
   CHECK(m.spectral == Approx(expected).epsilon(1e-6));
   CHECK(m.spectral > 0.0);
 }
@@ -125,4 +126,33 @@ TEST_CASE("metrics refuse wrong sizes and non-finite vertices, and summaries ave
   CHECK(s.mean.me_cm == 2.0);
   CHECK(s.stddev.me_cm == Approx(std::sqrt(2.0)));
   CHECK(s.stddev.penetration_percent == 0.0);
+}
+
+TEST_CASE("L_e, L_l, L_s and L_d are the values of the loss plugins (reduction: mean)", "[metrics]") {
+  Fixture f;
+  // A smooth sway plus vertex noise, so that every metric is well away from zero.
+  Eigen::MatrixX3d x = f.garment;
+  Rng rng(9);
+  for (Eigen::Index i = 0; i < x.rows(); ++i) {
+    x(i, 0) += 0.02 * std::sin(8.0 * f.garment(i, 1));
+    for (int k = 0; k < 3; ++k) x(i, k) += rng.uniform(-0.003, 0.003);
+  }
+  Tensor pred(1, static_cast<int>(x.rows()), 3), target(1, static_cast<int>(x.rows()), 3);
+  pred.mat(0) = x.cast<float>();
+  target.mat(0) = f.garment.cast<float>();
+  const NodeContext context{"loss", 1, f.assets.get()};
+  auto loss = [&](const std::string& type) {
+    const PluginDescriptor& d = test::plugins().get(type);
+    auto node = test::plugins().create_node(type, Params(d.params, {}, type));
+    const ShapeMap shapes{{"pred", pred.shape()}, {"target", target.shape()}};
+    node->setup(shapes, context);
+    Tensor out(1, 1, 1);
+    node->forward({{"pred", &pred}, {"target", &target}}, {{"loss", &out}});
+    return double(out(0, 0, 0));
+  };
+  const Eigen::MatrixX3d xf = pred.mat(0).cast<double>(), yf = target.mat(0).cast<double>();  // what the losses see
+  CHECK(f.metrics.edge_error(xf, yf) == Approx(loss("edge")).epsilon(1e-4));
+  CHECK(f.metrics.laplacian_difference(xf, yf) == Approx(loss("laplacian")).epsilon(1e-4));
+  CHECK(f.metrics.spectral_difference(xf, yf) == Approx(loss("spectral_loss")).epsilon(1e-4));
+  CHECK(f.metrics.deformation_difference(xf, yf) == Approx(loss("deformation")).epsilon(1e-4));
 }

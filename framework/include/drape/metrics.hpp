@@ -7,8 +7,8 @@
 //              level-k vertices of |(L_k (x - y))_i|_1, L_k the random-walk
 //              graph Laplacian of level k (x, y restricted to its vertices)
 //   L_e  (%)   eq. 6.9: mean over edges of | |u_x - v_x| - |u_y - v_y| | / |u_y - v_y|
-//   L_s  (m)   eq. 6.13: mean over the k x 3 entries of |V^T (x - y)|, V the
-//              model's k eigenvectors (so the value is comparable across k)
+//   L_s  (m)   eq. 6.13: mean over the k coefficients j of |(V^T (x - y))_j|_1,
+//              V the assets' k eigenvectors (so the value is comparable across k)
 //   L_d        eq. 6.10-6.11: mean over faces of sum |F_x - F_y| (the six
 //              entries), F = [x1-x0, x2-x0] [X1-X0, X2-X0]^-1 with X the
 //              material-space (UV, metres) corners of the face
@@ -17,7 +17,9 @@
 //
 // The seed writes the sums of eqs. 6.10, 6.12 and 6.13 without saying how they
 // are normalised; means per element make the values independent of the mesh
-// resolution and the batch. Everything is computed in double.
+// resolution. They are the values of the loss plugins edge, laplacian,
+// spectral_loss and deformation with their default `reduction: mean`
+// (docs/losses.md). Everything is computed in double.
 #include <drape/assets.hpp>
 
 #include <Eigen/Core>

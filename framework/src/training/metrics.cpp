@@ -102,8 +102,8 @@ double MetricsContext::edge_error(const Eigen::MatrixX3d& x, const Eigen::Matrix
 
 double MetricsContext::spectral_difference(const Eigen::MatrixX3d& x, const Eigen::MatrixX3d& y) const {
   if (eigenvectors_.cols() == 0) return 0.0;
-  const Eigen::MatrixXd c = eigenvectors_.transpose() * (x - y);
-  return c.cwiseAbs().mean();
+  const Eigen::MatrixXd c = eigenvectors_.transpose() * (x - y);  // [k, 3]
+  return c.cwiseAbs().rowwise().sum().mean();
 }
 
 double MetricsContext::deformation_difference(const Eigen::MatrixX3d& x, const Eigen::MatrixX3d& y) const {

@@ -285,11 +285,13 @@ TrainReport train(const Registry& registry, const TrainOptions& o) {
   };
 
   const std::size_t steps_per_epoch = (train_idx.size() + static_cast<std::size_t>(o.batch) - 1) / static_cast<std::size_t>(o.batch);
+  std::size_t weight_count = 0;
+  for (const auto& [name, w] : graph.weights()) weight_count += w->value.size();
   const bool nothing_to_do = report.early_stopped || epochs_done >= o.epochs;
   if (o.log) {
     *o.log << (report.resumed ? "resuming " : "training ") << o.out.string() << ": " << graph_spec.file << " on "
            << o.data.string() << " (" << train_idx.size() << " train, " << val_idx.size() << " val samples; "
-           << ng << " garment, " << nb << " body vertices), " << graph.weights().size() << " weight tensors, batch "
+           << ng << " garment, " << nb << " body vertices), " << weight_count << " learnable weights, batch "
            << o.batch << ", " << o.threads << " thread" << (o.threads > 1 ? "s" : "") << ", lr " << brief(o.lr) << " ("
            << o.schedule << "), seed " << o.seed;
     if (report.resumed) *o.log << ", " << epochs_done << " epochs done";
