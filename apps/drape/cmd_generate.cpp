@@ -10,6 +10,7 @@
 #include <drape/registry.hpp>
 #include <drape/rng.hpp>
 #include <drape/simulation.hpp>
+#include <drape/solver.hpp>
 
 #ifdef _OPENMP
 #include <omp.h>
@@ -184,6 +185,7 @@ int run(const std::vector<std::string>& args) {
       }
     }
   };
+  if (threads > 1) set_blas_threads(1);  // one solver per core already fills them
   std::vector<std::thread> pool;
   for (int t = 0; t < threads; ++t) pool.emplace_back(worker);
   for (auto& t : pool) t.join();

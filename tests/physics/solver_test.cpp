@@ -5,6 +5,8 @@
 
 #include "../../framework/src/physics/hessian_pattern.hpp"
 
+#include <dlfcn.h>
+
 #include <catch2/catch.hpp>
 
 #include <random>
@@ -231,4 +233,18 @@ TEST_CASE("the fixed-pattern assembly equals Eigen's triplet assembly and grows 
   pattern.assemble(t, diagonal, h);
   CHECK(pattern.nonzeros() > before);
   CHECK((Eigen::MatrixXd(h) - reference(t)).cwiseAbs().maxCoeff() < 1e-12);
+}
+
+TEST_CASE("set_blas_threads reaches OpenBLAS when it is the BLAS linked", "[solver]") {
+  using GetThreads = int (*)();
+  void* get = dlsym(RTLD_DEFAULT, "openblas_get_num_threads");
+  if (!get) {
+    SUCCEED("the BLAS linked is not OpenBLAS");
+    return;
+  }
+  const int before = reinterpret_cast<GetThreads>(get)();
+  REQUIRE(set_blas_threads(1));
+  CHECK(reinterpret_cast<GetThreads>(get)() == 1);
+  set_blas_threads(before);
+  CHECK(reinterpret_cast<GetThreads>(get)() == before);
 }

@@ -1,3 +1,4 @@
+#include <drape/assets.hpp>
 #include <drape/gradcheck.hpp>
 
 #include <catch2/catch.hpp>
@@ -7,11 +8,10 @@
 using namespace drape;
 using namespace drape::test;
 
-TEST_CASE("gather loads as an op; indices are required and checked against the input", "[gather]") {
+TEST_CASE("gather loads as an op; indices are checked against the input", "[gather]") {
   const PluginDescriptor& d = plugins().get("gather");
   CHECK(d.kind == "op");
   CHECK(d.file.find("libdrape_plugin_gather") != std::string::npos);
-  CHECK_THROWS_WITH(make_node("gather"), Catch::Contains("indices"));
   CHECK_THROWS_AS(make_node("gather", "{indices: [0, -1]}"), ConfigError);
   CHECK_THROWS_AS(make_node("gather", "{indices: [0.5]}"), ConfigError);
   auto node = make_node("gather", "{indices: [0, 4, 5]}");
@@ -44,4 +44,24 @@ TEST_CASE("gather backward matches finite differences", "[gather][gradcheck]") {
   INFO(r.str());
   CHECK(r.entries.size() == 1);
   CHECK(r.ok(1e-2));
+}
+
+TEST_CASE("gather without indices picks the assets' body->garment correspondences", "[gather]") {
+  // Without assets there is nothing to pick by: a clear error, not an empty output.
+  CHECK_THROWS_WITH(make_node("gather")->setup({{"x", {5, 2}}}, {}), Catch::Contains("correspondences"));
+
+  Assets assets;
+  NodeContext context;
+  context.assets = &assets;
+  CHECK_THROWS_WITH(make_node("gather")->setup({{"x", {5, 2}}}, context), Catch::Contains("no body->garment"));
+
+  assets.correspondence = {4, 0, 4, 2};
+  CHECK_THROWS_WITH(make_node("gather")->setup({{"x", {4, 2}}}, context), Catch::Contains("entry 0 is 4"));
+  auto node = make_node("gather");
+  CHECK(node->setup({{"x", {5, 2}}}, context).at("out") == Shape{4, 2});
+  const Tensor x = random_tensor(2, 5, 2, 7);
+  const auto out = run_forward(*node, {{"x", x}}, context);
+  for (int b = 0; b < 2; ++b)
+    for (int i = 0; i < 4; ++i)
+      for (int c = 0; c < 2; ++c) CHECK(out.at("out")(b, i, c) == x(b, assets.correspondence[i], c));
 }

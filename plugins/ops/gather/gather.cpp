@@ -1,8 +1,11 @@
 // Picks rows of the input by index: out.row(i) = x.row(indices[i]). This is how
 // body features are distributed to garment vertices through fixed
-// correspondences. The indices come from the `indices` parameter for now;
-// correspondences computed from the template assets will feed the same node.
-// Backward scatter-adds, so a row picked twice receives both gradients.
+// correspondences. By default the indices are the template assets'
+// correspondences (garment vertex -> closest body vertex on the mean body,
+// Assets::correspondence); the `indices` parameter overrides them for graphs
+// that pick rows of something else. Backward scatter-adds, so a row picked
+// twice receives both gradients.
+#include <drape/assets.hpp>
 #include <drape/plugin.hpp>
 
 namespace {
@@ -11,10 +14,19 @@ using namespace drape;
 
 class Gather final : public Node {
  public:
-  explicit Gather(std::vector<long> indices) : indices_(std::move(indices)) {}
+  // Empty `indices`: take them from the assets at every setup.
+  explicit Gather(std::vector<long> indices) : from_assets_(indices.empty()), indices_(std::move(indices)) {}
 
-  ShapeMap setup(const ShapeMap& in, const NodeContext&) override {
+  ShapeMap setup(const ShapeMap& in, const NodeContext& context) override {
     const Shape x = in.at("x");
+    if (from_assets_) {
+      if (!context.assets)
+        throw ConfigError("no `indices` given and no template assets bound: the correspondences come from the assets "
+                          "(drape graph check, train and predict bind them), or list the rows in `indices`");
+      const auto& c = context.assets->correspondence;
+      if (c.empty()) throw ConfigError("the template assets hold no body->garment correspondences");
+      indices_.assign(c.begin(), c.end());
+    }
     for (std::size_t i = 0; i < indices_.size(); ++i)
       if (indices_[i] >= x.rows)
         throw ConfigError("parameter 'indices' entry " + std::to_string(i) + " is " + std::to_string(indices_[i]) +
@@ -53,6 +65,7 @@ class Gather final : public Node {
   double flops_per_sample() const override { return double(indices_.size()) * cols_; }
 
  private:
+  bool from_assets_;
   std::vector<long> indices_;
   int cols_ = 0;
 };
@@ -62,14 +75,11 @@ PluginList plugins() {
   d.kind = "op";
   d.name = "gather";
   d.doc = "Rows of the input picked by index (body-to-garment correspondences); backward scatter-adds.";
-  d.inputs = {{"x", "features [R, C]"}};
-  d.outputs = {{"out", "the picked rows [len(indices), C]"}};
-  d.params = {{"indices", ParamType::IntList, "[]", "row of x for each output row (0-based)", 0, {}}};
-  d.create_node = [](const Params& p) {
-    auto indices = p.get_int_list("indices");
-    if (indices.empty()) throw ConfigError("gather: parameter 'indices' is empty; list the input row of each output row");
-    return std::make_unique<Gather>(std::move(indices));
-  };
+  d.inputs = {{"x", "features [R, C] (body features [Nb, C] for the correspondences)"}};
+  d.outputs = {{"out", "the picked rows [len(indices), C] (garment vertices [Ng, C] for the correspondences)"}};
+  d.params = {{"indices", ParamType::IntList, "[]",
+                "row of x for each output row (0-based); empty: the assets' body->garment correspondences", 0, {}}};
+  d.create_node = [](const Params& p) { return std::make_unique<Gather>(p.get_int_list("indices")); };
   return {d};
 }
 
