@@ -1,4 +1,4 @@
-// `drape predict --model model.h5 (--body body.obj | --bmi 35) --out garment.obj`:
+// `drape predict [--model model.h5] (--body body.obj | --bmi 35) --out garment.obj`:
 // the garment a trained model predicts for one body.
 #include "command.hpp"
 
@@ -15,7 +15,8 @@ namespace {
 
 int run(const std::vector<std::string>& args) {
   po::options_description opts("drape predict");
-  opts.add_options()("model", po::value<std::string>(), "model file from drape train")(
+  opts.add_options()("model", po::value<std::string>(),
+                     "model file from drape train (default: the shipped pretrained model, models/tshirt-coarse.h5)")(
       "body", po::value<std::string>(), "body mesh (.obj, .ply, .gltf, .glb, ...) in the model's body topology")(
       "bmi", po::value<double>(), "make the body with the model's body plugin instead: target BMI")(
       "height", po::value<double>(), "with --bmi: height in m (default 1.75)")(
@@ -24,10 +25,19 @@ int run(const std::vector<std::string>& args) {
       "body-out", po::value<std::string>(), "also write the body mesh");
   po::variables_map vm;
   const std::string usage =
-      "drape predict --model model.h5 (--body body.obj | --bmi 35 [--height 1.75 --sex 1]) --out garment.obj "
+      "drape predict [--model model.h5] (--body body.obj | --bmi 35 [--height 1.75 --sex 1]) --out garment.obj "
       "[--body-out body.obj]";
   if (!parse(usage, args, opts, {}, vm)) return 0;
-  if (!vm.count("model")) throw UsageError("--model FILE is required (from drape train)");
+  std::string model_file;
+  if (vm.count("model")) {
+    model_file = vm["model"].as<std::string>();
+  } else {
+    model_file = default_model_path().string();
+    if (model_file.empty())
+      throw UsageError("no --model given and the shipped model (models/tshirt-coarse.h5) was not found: give "
+                       "--model FILE from drape train, or set DRAPE_MODEL");
+    std::printf("model: %s (the shipped pretrained model; --model chooses another)\n", model_file.c_str());
+  }
   if (!vm.count("out")) throw UsageError("--out FILE is required (the garment mesh to write)");
   if (vm.count("body") == vm.count("bmi"))
     throw UsageError("give the body either as a mesh (--body FILE) or by its BMI (--bmi X), exactly one");
@@ -35,9 +45,9 @@ int run(const std::vector<std::string>& args) {
     throw UsageError("--height and --sex go with --bmi; --body gives the body itself");
 
   Registry& registry = Registry::load_default(plugin_path(vm));
-  Model model = Model::load(registry, vm["model"].as<std::string>());
+  Model model = Model::load(registry, model_file);
   if (model.assets_changed())
-    std::cerr << "warning: the template assets differ from the ones " << vm["model"].as<std::string>()
+    std::cerr << "warning: the template assets differ from the ones " << model_file
               << " was trained with (a plugin changed since?)\n";
   const int nb = model.assets().body.num_vertices();
   SampleBatch batch;

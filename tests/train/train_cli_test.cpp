@@ -7,6 +7,7 @@
 
 #include <drape/checkpoint.hpp>
 #include <drape/h5.hpp>
+#include <drape/geometry/penetration.hpp>
 #include <drape/mesh_io.hpp>
 
 #include <csignal>
@@ -119,6 +120,47 @@ TEST_CASE("drape predict writes the template's mesh for a BMI or a body mesh, an
   CHECK_FALSE(fs::exists(t.dir / "g3.obj"));
   CHECK(test::run(test::drape_command("predict --model " + t.model.string() + " --out x.obj"), out) == 2);
   CHECK_THAT(out, Catch::Contains("exactly one"));
+}
+
+TEST_CASE("drape predict without --model uses DRAPE_MODEL, else the shipped model", "[train][cli]") {
+  Trained t;
+  std::string out;
+  // DRAPE_MODEL names the default model; a missing file is named in the error.
+  REQUIRE(test::run("env DRAPE_MODEL=" + t.model.string() + " " +
+                        test::drape_command("predict --bmi 30 --out " + (t.dir / "g.obj").string()),
+                    out) == 0);
+  INFO(out);
+  CHECK_THAT(out, Catch::Contains("model: " + t.model.string() + " (the shipped pretrained model"));
+  CHECK(read_mesh(t.dir / "g.obj").num_vertices() == test::tiny_assets()->garment->mesh.num_vertices());
+  CHECK(test::run("env DRAPE_MODEL=" + (t.dir / "missing.h5").string() + " " +
+                      test::drape_command("predict --bmi 30 --out " + (t.dir / "g2.obj").string()),
+                  out) != 0);
+  CHECK_THAT(out, Catch::Contains("missing.h5"));
+  CHECK_FALSE(fs::exists(t.dir / "g2.obj"));
+}
+
+TEST_CASE("the shipped pretrained model drapes a T-shirt on a BMI 35 body out of the box", "[train][cli][shipped]") {
+  const fs::path shipped = test::source_dir() / "models/tshirt-coarse.h5";
+  REQUIRE(fs::exists(shipped));  // part of the repository (docs/training.md says how it was made)
+  test::TempDir dir;
+  std::string out;
+  // A cache of its own: the shipped model's template (coarse T-shirt, k = 1000) builds in seconds.
+  REQUIRE(test::run("env -u DRAPE_MODEL DRAPE_CACHE_DIR=" + dir.path().string() + " " + test::drape_program().string() + " predict --bmi 35 --out " +
+                        (dir / "g.obj").string() + " --body-out " + (dir / "b.obj").string(),
+                    out) == 0);
+  INFO(out);
+  CHECK_THAT(out, Catch::Contains("tshirt-coarse.h5 (the shipped pretrained model"));
+  const Mesh g = read_mesh(dir / "g.obj");
+  const Mesh b = read_mesh(dir / "b.obj");
+  REQUIRE(g.vertices.allFinite());
+  // A drape, not the template: the garment hangs around the body's torso.
+  const Eigen::RowVector3d lo = b.vertices.colwise().minCoeff(), hi = b.vertices.colwise().maxCoeff();
+  for (int i = 0; i < g.num_vertices(); ++i) {
+    CHECK(g.vertices(i, 1) > lo(1) + 0.4 * (hi(1) - lo(1)));
+    CHECK(g.vertices(i, 1) < hi(1));
+  }
+  const double p = geometry::penetration_ratio(geometry::BodySurface(b.vertices, b.faces), g.vertices);
+  CHECK(p < 0.05);
 }
 
 TEST_CASE("drape eval prints every metric and writes them as JSON or CSV", "[train][cli]") {

@@ -102,4 +102,11 @@ class Model {
   bool assets_changed_ = false;
 };
 
+// The pretrained model shipped with drape (models/tshirt-coarse.h5 of the
+// source tree, trained as docs/training.md describes), which `drape predict`
+// uses when no --model is given. Looked up in order: $DRAPE_MODEL;
+// <prefix>/share/drape/models next to an installed framework library; the
+// source tree this build came from. Empty when none of them exists.
+std::filesystem::path default_model_path();
+
 }  // namespace drape
