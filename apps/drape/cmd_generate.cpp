@@ -185,7 +185,10 @@ int run(const std::vector<std::string>& args) {
       }
     }
   };
-  if (threads > 1) set_blas_threads(1);  // one solver per core already fills them
+  // One BLAS thread, whatever --threads: one solver per core already fills
+  // them, and a sample must not depend on how many ran beside it (a
+  // multi-threaded BLAS rounds differently, and the solver's path can follow).
+  set_blas_threads(1);
   std::vector<std::thread> pool;
   for (int t = 0; t < threads; ++t) pool.emplace_back(worker);
   for (auto& t : pool) t.join();

@@ -39,7 +39,12 @@ struct SolverSettings {
   double armijo = 1e-4;            // sufficient-decrease constant of the line search
   int max_line_search = 12;        // halvings (down to alpha = 2.4e-4) before an iteration is given up
   std::string linear_solver = "auto";  // auto | eigen | cholmod
-  bool reuse_factorization = true;  // keep the last factor while full steps keep halving the residual
+  // Keep the last Cholesky factor (across iterations and time steps) as the
+  // preconditioner of conjugate gradients; factorise anew only when PCG does
+  // not reach |H d + g| <= newton_forcing |g| within max_cg_iterations.
+  bool reuse_factorization = true;
+  double newton_forcing = 0.1;
+  int max_cg_iterations = 20;
 };
 
 // An energy term with the name its scene gave it.
@@ -89,6 +94,7 @@ class ClothSolver {
   struct Timings {
     double gradient = 0, hessian = 0, assembly = 0, factorization = 0, line_search = 0;
     int factorizations = 0;
+    long cg_iterations = 0;  // PCG iterations of the steps solved with an earlier factor
   };
   const Timings& timings() const { return timings_; }
 

@@ -35,9 +35,44 @@ bool finite(const Eigen::MatrixX3d& m) { return m.allFinite(); }
 struct ClothSolver::Impl {
   physics::HessianPattern pattern;
   std::unique_ptr<physics::SparseCholesky> cholesky;
+  bool have_factor = false;  // the factor of an earlier Newton matrix, kept across iterations and steps
   Triplets triplets;
   physics::SparseMatrix hessian;
 };
+
+namespace {
+
+// Preconditioned conjugate gradients on H d = b from d = 0, with the factor of
+// an earlier Newton matrix as the preconditioner. Every iterate from 0 is a
+// descent direction of the quadratic model (H and the preconditioner are
+// positive definite), so stopping early still gives a usable Newton step.
+// Returns the iterations taken, or -1 when |H d - b| <= tolerance |b| was not
+// reached within max_iterations.
+int preconditioned_cg(const physics::SparseMatrix& h, const physics::SparseCholesky& preconditioner,
+                      const Eigen::VectorXd& b, double tolerance, int max_iterations, Eigen::VectorXd& d) {
+  // The matrix holds its lower triangle only (sparse_cholesky.hpp).
+  const auto sym = h.selfadjointView<Eigen::Lower>();
+  d.setZero(b.size());
+  Eigen::VectorXd r = b, z = preconditioner.solve(r), p = z, hp(b.size());
+  double rz = r.dot(z);
+  const double goal = tolerance * b.norm();
+  for (int k = 1; k <= max_iterations; ++k) {
+    hp.noalias() = sym * p;
+    const double php = p.dot(hp);
+    if (!(php > 0)) return -1;
+    const double step = rz / php;
+    d += step * p;
+    r -= step * hp;
+    if (r.norm() <= goal) return k;
+    z = preconditioner.solve(r);
+    const double rz_next = r.dot(z);
+    p = z + (rz_next / rz) * p;
+    rz = rz_next;
+  }
+  return -1;
+}
+
+}  // namespace
 
 ClothSolver::ClothSolver(const Garment& garment, std::vector<NamedEnergy>& energies, SolverSettings settings)
     : garment_(garment), energies_(energies), settings_(std::move(settings)), impl_(std::make_unique<Impl>()) {
@@ -101,8 +136,6 @@ StepReport ClothSolver::step(Eigen::MatrixX3d& x, Eigen::MatrixX3d& v) {
     if (!finite(g)) throw Error("solver: the gradient became non-finite (an energy produced NaN or inf)");
   };
 
-  bool have_factor = false;
-  double last_alpha = 0, last_residual = 0;
   for (;;) {
     gradient(x);
     report.residual = g.norm() / force_scale_;
@@ -114,28 +147,35 @@ StepReport ClothSolver::step(Eigen::MatrixX3d& x, Eigen::MatrixX3d& v) {
     ++report.iterations;
 
     // Newton matrix: M / h^2 + sum of projected Hessians, on the fixed pattern.
-    // Factorising dominates an iteration, so the previous factor is reused
-    // (a modified Newton step: still a descent direction, the matrix being
-    // positive definite) while it keeps working -- the last iteration took the
-    // full step and at least halved the residual; otherwise it is rebuilt.
-    const bool reuse = settings_.reuse_factorization && have_factor && last_alpha == 1.0 &&
-                       report.residual <= 0.5 * last_residual;
     auto t = Clock::now();
-    if (!reuse) {
-      Triplets& trip = impl_->triplets;
-      trip.clear();
-      for (NamedEnergy& e : energies_) e.energy->add_hessian(x, trip, true);
-      timings_.hessian += since(t);
-      t = Clock::now();
-      Eigen::VectorXd diagonal(3 * n);
-      for (int i = 0; i < n; ++i) diagonal.segment<3>(3 * i).setConstant(masses_[i] * inv_h2);
-      impl_->pattern.assemble(trip, diagonal, impl_->hessian);
-      timings_.assembly += since(t);
+    Triplets& trip = impl_->triplets;
+    trip.clear();
+    for (NamedEnergy& e : energies_) e.energy->add_hessian(x, trip, true);
+    timings_.hessian += since(t);
+    t = Clock::now();
+    Eigen::VectorXd diagonal(3 * n);
+    for (int i = 0; i < n; ++i) diagonal.segment<3>(3 * i).setConstant(masses_[i] * inv_h2);
+    impl_->pattern.assemble(trip, diagonal, impl_->hessian);
+    timings_.assembly += since(t);
 
-      t = Clock::now();
+    // Factorising dominates an iteration. The matrix changes little from one
+    // iteration (and time step) to the next, so an earlier factor is a very
+    // good preconditioner: an inexact Newton step by PCG costs a few
+    // triangular solves. Only when PCG stalls is the matrix factorised anew.
+    t = Clock::now();
+    const Eigen::VectorXd rhs = -interleaved(g);
+    Eigen::VectorXd direction;
+    int cg = -1;
+    if (settings_.reuse_factorization && impl_->have_factor) {
+      cg = preconditioned_cg(impl_->hessian, *impl_->cholesky, rhs, settings_.newton_forcing, settings_.max_cg_iterations,
+                             direction);
+      if (cg > 0) timings_.cg_iterations += cg;
+    }
+    if (cg < 0) {
       // The inertia term makes the matrix positive definite in exact arithmetic;
       // a failed factorisation (round-off on a huge stiffness ratio) is retried
       // with a growing diagonal shift, which keeps the direction a descent one.
+      impl_->have_factor = false;
       bool factored = impl_->cholesky->factorize(impl_->hessian);
       ++timings_.factorizations;
       for (double shift = 1e-8 * impl_->hessian.diagonal().cwiseAbs().maxCoeff(); !factored && shift < 1e30; shift *= 100) {
@@ -145,10 +185,10 @@ StepReport ClothSolver::step(Eigen::MatrixX3d& x, Eigen::MatrixX3d& v) {
         ++timings_.factorizations;
       }
       if (!factored) throw Error("solver: the Newton matrix could not be factorised even with a diagonal shift");
-      have_factor = true;
+      impl_->have_factor = true;
+      direction = impl_->cholesky->solve(rhs);
     }
-    last_residual = report.residual;
-    Eigen::MatrixX3d d = per_vertex(impl_->cholesky->solve(-interleaved(g)));
+    Eigen::MatrixX3d d = per_vertex(direction);
     timings_.factorization += since(t);
     if (!finite(d)) throw Error("solver: the Newton direction is not finite");
 
@@ -168,7 +208,6 @@ StepReport ClothSolver::step(Eigen::MatrixX3d& x, Eigen::MatrixX3d& v) {
           x = trial;
           phi_x = phi_trial;
           accepted = true;
-          last_alpha = alpha;
           break;
         }
       }

@@ -19,7 +19,9 @@ const std::vector<ParamSpec>& scene_solver_specs() {
       {"max_displacement", ParamType::Float, "0.02", "m: no vertex moves farther in one Newton iteration", 1e-6, 10.0},
       {"linear_solver", ParamType::String, "auto", "sparse Cholesky: auto (cholmod when built with it), eigen, cholmod",
        {}, {}, {"auto", "eigen", "cholmod"}},
-      {"reuse_factorization", ParamType::Bool, "true", "reuse the last Cholesky factor while full steps keep halving the residual"},
+      {"reuse_factorization", ParamType::Bool, "true", "precondition CG with the last Cholesky factor; factorise only when CG stalls"},
+      {"newton_forcing", ParamType::Float, "0.1", "inexact Newton: CG stops at |H d + g| <= this * |g|", 1e-12, 0.9},
+      {"max_cg_iterations", ParamType::Int, "20", "CG iterations before the Newton matrix is factorised anew", 1, 10000},
       {"gravity_direction", ParamType::FloatList, "[0, -1, 0]", "direction of gravity (the magnitude is the gravity effect's g)"},
   };
   return specs;

@@ -62,6 +62,8 @@ SolverSettings Simulation::solver_settings() const {
   s.kink_tolerance = p.get_float("kink_tolerance");
   s.linear_solver = p.get_string("linear_solver");
   s.reuse_factorization = p.get_bool("reuse_factorization");
+  s.newton_forcing = p.get_float("newton_forcing");
+  s.max_cg_iterations = static_cast<int>(p.get_int("max_cg_iterations"));
   return s;
 }
 
