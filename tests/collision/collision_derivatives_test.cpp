@@ -255,3 +255,89 @@ TEST_CASE("collision emits one 3x3 diagonal block per vertex whatever the contac
   CHECK(dense_hessian(*e, far, true).isZero(0.0));
   CHECK(!dense_hessian(*e, mixed, true).isZero(0.0));
 }
+
+TEST_CASE("smooth collision derivatives match finite differences on a torus, across its creases and saddles",
+          "[collision][gradcheck][smooth]") {
+  // Points within the margin of the torus, inside it, and beyond: with
+  // smoothing every vertex within R blends in, so no face or edge is special.
+  const geometry::BodySurface body(geometry::torus(0.3, 0.1, 24, 12));
+  const auto garment = grid_garment(8, 0.02);
+  const Eigen::MatrixX3d x = points_near_faces(body, 64, -0.015, 0.008, 5);
+  const auto e = collision_energy("{margin: 0.01, smoothing: 0.06}", *garment, &body);
+  const GradCheckReport r = check_energy_derivatives(*e, x);
+  INFO(r.str());
+  CHECK(r.entries.size() == 3);
+  CHECK(r.ok(1e-5));
+  // The projected Hessian is PSD; the exact one is not (the blended surface curves).
+  const Eigen::MatrixXd projected = dense_hessian(*e, x, true);
+  CHECK(Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(projected).eigenvalues().minCoeff() > -1e-9 * projected.norm());
+  const Eigen::MatrixXd exact = dense_hessian(*e, x, false);
+  CHECK(Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(exact).eigenvalues().minCoeff() < 0);
+}
+
+TEST_CASE("smooth collision has no kink in a concave crease, where the exact distance switches faces",
+          "[collision][smooth]") {
+  // Two faces meeting at a 90-degree concave crease along z (an L-shaped
+  // trough, the body below/left). Along the bisector the closest face of the
+  // exact distance switches; its gradient jumps there. The smooth distance's
+  // gradient is continuous across it.
+  const double s = 0.05;
+  // Floor y = 0 for x in [0, 1], wall x = 0 for y in [0, 1], z in [-1, 1]; a fine grid of vertices.
+  std::vector<Eigen::Vector3d> v;
+  std::vector<Eigen::Vector3i> f;
+  const int n = 20;
+  auto add_quad_grid = [&](auto at) {
+    const int base = static_cast<int>(v.size());
+    for (int i = 0; i <= n; ++i)
+      for (int j = 0; j <= n; ++j) v.push_back(at(double(i) / n, double(j) / n));
+    for (int i = 0; i < n; ++i)
+      for (int j = 0; j < n; ++j) {
+        const int a = base + i * (n + 1) + j, b = a + 1, c = a + n + 1, d = c + 1;
+        f.emplace_back(a, c, b);
+        f.emplace_back(b, c, d);
+      }
+  };
+  add_quad_grid([&](double u, double w) { return Eigen::Vector3d(u * 20 * s, 0, (2 * w - 1) * 20 * s); });  // floor
+  add_quad_grid([&](double u, double w) { return Eigen::Vector3d(0, u * 20 * s, (2 * w - 1) * 20 * s); });  // wall
+  Eigen::MatrixX3d vertices(static_cast<Eigen::Index>(v.size()), 3);
+  for (std::size_t i = 0; i < v.size(); ++i) vertices.row(static_cast<Eigen::Index>(i)) = v[i];
+  Eigen::MatrixX3i faces(static_cast<Eigen::Index>(f.size()), 3);
+  for (std::size_t i = 0; i < f.size(); ++i) faces.row(static_cast<Eigen::Index>(i)) = f[i];
+  // Orient every face towards +x +y (into the trough, "outside" the body).
+  for (Eigen::Index i = 0; i < faces.rows(); ++i) {
+    const Eigen::Vector3d a = vertices.row(faces(i, 0)), b = vertices.row(faces(i, 1)), c = vertices.row(faces(i, 2));
+    if ((b - a).cross(c - a).dot(Eigen::Vector3d(1, 1, 0)) < 0) std::swap(faces(i, 1), faces(i, 2));
+  }
+  const geometry::BodySurface body(vertices, faces);
+  const auto garment = grid_garment(2, 0.02);  // 4 vertices, the points below
+  const auto exact = collision_energy("{margin: 0.02}", *garment, &body);
+  const auto smooth = collision_energy("{margin: 0.02, smoothing: 0.08}", *garment, &body);
+  // Two points 1 mm either side of the bisector x = y, 1 cm from the crease line, well inside the margin.
+  const double h = 1e-3, r = 0.01;
+  Eigen::MatrixX3d x(4, 3);
+  x.row(0) << r + h, r - h, 0.0;
+  x.row(1) << r - h, r + h, 0.0;
+  x.row(2) << 0.5, 0.5, 0.0;  // far away, no contact
+  x.row(3) << 0.6, 0.5, 0.0;
+  auto grad = [&](const Energy& e) {
+    Eigen::MatrixX3d g = Eigen::MatrixX3d::Zero(4, 3);
+    e.add_gradient(x, g);
+    return g;
+  };
+  const Eigen::MatrixX3d ge = grad(*exact), gs = grad(*smooth);
+  // The push on the two points, 2 mm apart (their lumped areas differ, so compare directions).
+  const double turn_exact = (ge.row(0).normalized() - ge.row(1).normalized()).norm();
+  const double turn_smooth = (gs.row(0).normalized() - gs.row(1).normalized()).norm();
+  INFO("exact " << ge.row(0) << " | " << ge.row(1) << "; smooth " << gs.row(0) << " | " << gs.row(1));
+  CHECK(turn_exact > 1.4);    // 90 degrees: the exact push flips from one wall to the other
+  CHECK(turn_smooth < 0.15);  // under 9 degrees: the smooth push turns gradually
+  CHECK(ge.row(2).norm() == 0.0);
+  CHECK(gs.row(2).norm() == 0.0);
+}
+
+TEST_CASE("smooth collision refuses a radius within the margin", "[collision][smooth]") {
+  const geometry::BodySurface body = sphere_body(2, 0.2);
+  const auto garment = grid_garment(2, 0.02);
+  CHECK_THROWS_WITH(collision_energy("{margin: 0.01, smoothing: 0.005}", *garment, &body),
+                    Catch::Contains("must exceed the margin"));
+}

@@ -1,15 +1,21 @@
 #include "body_collision.hpp"
 
 #include "contacts.hpp"
+#include "smooth_distance.hpp"
 
 #include <drape/errors.hpp>
+#include <drape/geometry/closest_point.hpp>
 #include <drape/geometry/vertex_areas.hpp>
+#include <drape/psd_projection.hpp>
 
 #include <string>
 
 namespace drape::collision {
 
 BodyCollision::BodyCollision(const CollisionSettings& settings) : settings_(settings) {
+  if (settings.smoothing > 0 && settings.smoothing <= settings.margin)
+    throw ConfigError("collision: smoothing (" + std::to_string(settings.smoothing) + " m) must exceed the margin (" +
+                      std::to_string(settings.margin) + " m), or be 0 for the exact distance");
   penalty_.margin = settings.margin;
   if (settings.max_depth > 0) penalty_.delta_max = settings.margin + settings.max_depth;
 }
@@ -27,6 +33,17 @@ void BodyCollision::bind(const EnergyContext& context) {
     throw ConfigError(std::string("collision: ") + e.what());
   }
   body_ = context.body;
+  if (settings_.smoothing > 0 && !dynamic_cast<const geometry::BodySurface*>(body_))
+    throw ConfigError("collision: smoothing needs the body's vertices and normals (a geometry::BodySurface); this body "
+                      "only answers closest-point queries: set smoothing to 0");
+}
+
+std::vector<Contact> BodyCollision::contacts(const Eigen::MatrixX3d& x, bool with_hessian) const {
+  std::vector<Contact> exact = body_contacts(*body_, x, with_hessian);
+  if (!(settings_.smoothing > 0)) return exact;
+  const auto& surface = static_cast<const geometry::BodySurface&>(*body_);
+  return smooth_contacts(surface.vertices(), surface.vertex_normals(), x, settings_.smoothing, std::move(exact),
+                         with_hessian);
 }
 
 void BodyCollision::check(const Eigen::MatrixX3d& x) const {
@@ -40,7 +57,7 @@ void BodyCollision::check(const Eigen::MatrixX3d& x) const {
 
 double BodyCollision::value(const Eigen::MatrixX3d& x) const {
   check(x);
-  const std::vector<Contact> contacts = body_contacts(*body_, x, false);
+  const std::vector<Contact> contacts = this->contacts(x, false);
   double energy = 0;
   for (std::size_t v = 0; v < contacts.size(); ++v)
     energy += area_[static_cast<Eigen::Index>(v)] * penalty_.value(penalty_.delta(contacts[v].distance));
@@ -51,7 +68,7 @@ double BodyCollision::add_gradient(const Eigen::MatrixX3d& x, Eigen::MatrixX3d& 
   check(x);
   if (g.rows() != x.rows()) throw Error("collision: the gradient has " + std::to_string(g.rows()) + " rows, x has " +
                                         std::to_string(x.rows()));
-  const std::vector<Contact> contacts = body_contacts(*body_, x, false);
+  const std::vector<Contact> contacts = this->contacts(x, false);
   double energy = 0;
   for (std::size_t i = 0; i < contacts.size(); ++i) {
     const auto v = static_cast<Eigen::Index>(i);
@@ -67,7 +84,7 @@ double BodyCollision::add_gradient(const Eigen::MatrixX3d& x, Eigen::MatrixX3d& 
 
 void BodyCollision::add_hessian(const Eigen::MatrixX3d& x, Triplets& h, bool project_psd) const {
   check(x);
-  const std::vector<Contact> contacts = body_contacts(*body_, x, true);
+  const std::vector<Contact> contacts = this->contacts(x, true);
   h.reserve(h.size() + 9 * contacts.size());
   for (std::size_t i = 0; i < contacts.size(); ++i) {
     const auto v = static_cast<Eigen::Index>(i);
@@ -77,9 +94,15 @@ void BodyCollision::add_hessian(const Eigen::MatrixX3d& x, Triplets& h, bool pro
     if (delta > 0) {
       const double c = settings_.stiffness * area_[v];
       block = c * penalty_.curvature(delta) * contact.normal * contact.normal.transpose();
-      // -c phi' D is negative semi-definite outside the body (D = P / d with
-      // d > 0) and positive semi-definite inside: the projection keeps it there only.
-      if (!project_psd || contact.distance < 0) block -= c * penalty_.slope(delta) * contact.distance_hessian;
+      if (settings_.smoothing > 0) {
+        // The smooth distance's Hessian has no structure to exploit: project the whole block.
+        block -= c * penalty_.slope(delta) * contact.distance_hessian;
+        if (project_psd) project_to_psd(block);
+      } else if (!project_psd || contact.distance < 0) {
+        // -c phi' D is negative semi-definite outside the body (D = P / d with
+        // d > 0) and positive semi-definite inside: the projection keeps it there only.
+        block -= c * penalty_.slope(delta) * contact.distance_hessian;
+      }
     }
     const int base = 3 * static_cast<int>(v);
     for (int r = 0; r < 3; ++r)

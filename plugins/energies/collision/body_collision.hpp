@@ -45,11 +45,14 @@
 //
 // The body is queried at every call (the solver morphs it between calls with
 // BodySurface::update); it must outlive the energy.
+#include "contacts.hpp"
 #include "penalty.hpp"
 
 #include <drape/energy.hpp>
 
 #include <Eigen/Core>
+
+#include <vector>
 
 namespace drape::collision {
 
@@ -57,6 +60,9 @@ struct CollisionSettings {
   double stiffness = 1e7;  // N/m^4
   double margin = 3e-3;    // m
   double max_depth = 0;    // m; 0: no cap (pure cubic)
+  // m: R of the smooth distance (smooth_distance.hpp) over the body's vertices
+  // within R; 0: the exact closest-point distance. Must exceed the margin.
+  double smoothing = 0;
 };
 
 class BodyCollision final : public Energy {
@@ -77,6 +83,8 @@ class BodyCollision final : public Energy {
 
  private:
   void check(const Eigen::MatrixX3d& x) const;
+  // The exact contacts, or the smooth ones when settings_.smoothing > 0.
+  std::vector<Contact> contacts(const Eigen::MatrixX3d& x, bool with_hessian) const;
 
   CollisionSettings settings_;
   CubicPenalty penalty_;

@@ -22,12 +22,17 @@ PluginList plugins() {
       {"max_depth", ParamType::Float, "0",
        "m: beyond this depth inside the body the penalty grows linearly (push capped, still outward); 0 = no cap",
        0.0, 10.0},
+      {"smoothing", ParamType::Float, "0",
+       "m: distance to a smooth surface blended from the body's vertex planes within this radius (rounds concave "
+       "creases, where the exact distance kinks); 0 = exact closest point; must exceed the margin",
+       0.0, 1.0},
   };
   d.create_energy = [](const Params& p) {
     collision::CollisionSettings s;
     s.stiffness = p.get_float("stiffness");
     s.margin = p.get_float("margin");
     s.max_depth = p.get_float("max_depth");
+    s.smoothing = p.get_float("smoothing");
     return std::make_unique<collision::BodyCollision>(s);
   };
   return {d};
