@@ -7,8 +7,10 @@
 #include <drape/metrics.hpp>
 #include <drape/model.hpp>
 #include <drape/progress.hpp>
+#include <drape/svg_figure.hpp>
 #include <drape/trainer.hpp>
 
+#include <algorithm>
 #include <cstdio>
 #include <fstream>
 #include <sstream>
@@ -56,15 +58,57 @@ void write_report(const fs::path& file, const std::string& model, const std::str
   });
 }
 
+// Three panels: the bodies of the split with the lowest, median and highest
+// BMI (body volume when the dataset has no BMI statistic), each with the
+// predicted garment coloured by its distance to the ground truth.
+void draw_errors(const fs::path& file, Model& model, const DatasetReader& reader, const std::vector<std::size_t>& indices,
+                 const std::string& split) {
+  std::vector<double> key;
+  const auto& names = reader.layout().stats;
+  const bool has_bmi = std::find(names.begin(), names.end(), "bmi") != names.end();
+  if (has_bmi) key = reader.stat("bmi", indices);
+  std::vector<std::size_t> order(indices.size());
+  for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+  if (has_bmi) std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return key[a] < key[b]; });
+  std::vector<std::size_t> chosen = {indices[order.front()], indices[order[order.size() / 2]], indices[order.back()]};
+  chosen.erase(std::unique(chosen.begin(), chosen.end()), chosen.end());
+
+  SampleBatch batch;
+  batch.body = reader.body_vertices(chosen);
+  if (model.needs_body_params()) batch.body_params = reader.body_params(chosen);
+  const Tensor truth = reader.garment_vertices(chosen), predicted = model.predict(batch);
+  SvgFigure figure("drape eval: " + model.file().filename().string() + ", " + split + " split, error of each garment vertex");
+  double top = 0;
+  std::vector<Eigen::VectorXd> errors;
+  for (std::size_t i = 0; i < chosen.size(); ++i) {
+    const int b = static_cast<int>(i);
+    errors.push_back(100.0 * (predicted.mat(b) - truth.mat(b)).cast<double>().rowwise().norm());
+    top = std::max(top, errors.back().maxCoeff());
+  }
+  for (std::size_t i = 0; i < chosen.size(); ++i) {
+    const int b = static_cast<int>(i);
+    SvgLayer body{batch.body.mat(b).cast<double>(), model.assets().body.faces, "#c9b8a8", {}, true};
+    SvgLayer garment{predicted.mat(b).cast<double>(), model.assets().garment->mesh.faces, "", errors[i], false, 0.02};
+    std::string title = "sample " + std::to_string(chosen[i]);
+    if (has_bmi) title += format(", BMI %.1f", reader.stat("bmi", {chosen[i]})[0]);
+    title += format(", ME %.2f cm", errors[i].mean());
+    figure.add_panel({title, {std::move(body), std::move(garment)}});
+  }
+  figure.set_colour_scale({"distance to the simulated garment (cm)", 0.0, std::max(top, 0.1)});
+  figure.write(file);
+}
+
 int run(const std::vector<std::string>& args) {
   po::options_description opts("drape eval");
   opts.add_options()("model", po::value<std::string>(), "model file from drape train")(
       "data", po::value<std::string>(), "dataset (drape generate) with ground-truth drapes")(
       "split", po::value<std::string>()->default_value("test"), "train | val | test | all")(
       "batch", po::value<int>()->default_value(16), "bodies per forward pass")(
-      "out", po::value<std::string>(), "also write the table: metrics.csv or metrics.json");
+      "out", po::value<std::string>(), "also write the table: metrics.csv or metrics.json")(
+      "svg", po::value<std::string>(), "also draw the per-vertex error of the thinnest, median and heaviest body of the split");
   po::variables_map vm;
-  const std::string usage = "drape eval --model model.h5 --data data.h5 [--split test] [--out metrics.csv|json]";
+  const std::string usage =
+      "drape eval --model model.h5 --data data.h5 [--split test] [--out metrics.csv|json] [--svg errors.svg]";
   if (!parse(usage, args, opts, {}, vm)) return 0;
   if (!vm.count("model")) throw UsageError("--model FILE is required (from drape train)");
   if (!vm.count("data")) throw UsageError("--data FILE is required (a dataset from drape generate)");
@@ -126,6 +170,10 @@ int run(const std::vector<std::string>& args) {
   if (vm.count("out")) {
     write_report(vm["out"].as<std::string>(), model_file, data, split, s, reference_p);
     std::printf("wrote %s\n", vm["out"].as<std::string>().c_str());
+  }
+  if (vm.count("svg")) {
+    draw_errors(vm["svg"].as<std::string>(), model, reader, indices, split);
+    std::printf("wrote %s\n", vm["svg"].as<std::string>().c_str());
   }
   return 0;
 }

@@ -5,6 +5,7 @@
 #include <drape/geometry/penetration.hpp>
 #include <drape/mesh_io.hpp>
 #include <drape/model.hpp>
+#include <drape/svg_figure.hpp>
 
 #include <chrono>
 #include <cstdio>
@@ -22,7 +23,8 @@ int run(const std::vector<std::string>& args) {
       "height", po::value<double>(), "with --bmi: height in m (default 1.75)")(
       "sex", po::value<double>(), "with --bmi: 0 female ... 1 male (default 1)")(
       "out", po::value<std::string>(), "garment mesh to write (.obj, .ply, .gltf, .glb): the template's faces and UVs")(
-      "body-out", po::value<std::string>(), "also write the body mesh");
+      "body-out", po::value<std::string>(), "also write the body mesh")(
+      "svg", po::value<std::string>(), "also draw the drape (front view, the garment coloured by its distance to the body)");
   po::variables_map vm;
   const std::string usage =
       "drape predict [--model model.h5] (--body body.obj | --bmi 35 [--height 1.75 --sex 1]) --out garment.obj "
@@ -83,6 +85,13 @@ int run(const std::vector<std::string>& args) {
   write_mesh(vm["out"].as<std::string>(), out);
   std::printf("wrote %s: %d garment vertices predicted in %.2f ms; p = %.2f%% of them inside the body\n",
               vm["out"].as<std::string>().c_str(), out.num_vertices(), ms, 100.0 * p);
+  if (vm.count("svg")) {
+    char caption[96];
+    std::snprintf(caption, sizeof caption, "predicted in %.1f ms, p = %.2f%%", ms, 100.0 * p);
+    drape_figure("drape predict: " + std::filesystem::path(model_file).filename().string(), caption, body, out)
+        .write(vm["svg"].as<std::string>());
+    std::printf("wrote %s\n", vm["svg"].as<std::string>().c_str());
+  }
   if (vm.count("body-out")) {
     write_mesh(vm["body-out"].as<std::string>(), body);
     std::printf("wrote %s\n", vm["body-out"].as<std::string>().c_str());

@@ -5,6 +5,7 @@
 #include <drape/mesh_io.hpp>
 #include <drape/registry.hpp>
 #include <drape/simulation.hpp>
+#include <drape/svg_figure.hpp>
 
 #include <cstdio>
 #include <iostream>
@@ -24,6 +25,7 @@ int run(const std::vector<std::string>& args) {
       "out", po::value<std::string>(), "draped garment mesh to write (.obj, .ply, .gltf, .glb)")(
       "body", po::value<std::string>(), "drape on this body mesh (the scene body model's topology) instead")(
       "body-out", po::value<std::string>(), "also write the target body mesh")(
+      "svg", po::value<std::string>(), "also draw the drape (front view, the garment coloured by its distance to the body)")(
       "bmi", po::value<double>(), "override the scene's target BMI")("height", po::value<double>(), "override the height, m")(
       "sex", po::value<double>(), "override the sex (0 female ... 1 male)")(
       "verbose,v", po::bool_switch(), "print every solver step");
@@ -87,12 +89,21 @@ int run(const std::vector<std::string>& args) {
     write_mesh(vm["out"].as<std::string>(), out);
     std::printf("wrote %s\n", vm["out"].as<std::string>().c_str());
   }
+  Mesh body;
+  body.vertices = r.body;
+  body.faces = sim.body_model().faces();
   if (vm.count("body-out")) {
-    Mesh body;
-    body.vertices = r.body;
-    body.faces = sim.body_model().faces();
     write_mesh(vm["body-out"].as<std::string>(), body);
     std::printf("wrote %s\n", vm["body-out"].as<std::string>().c_str());
+  }
+  if (vm.count("svg")) {
+    Mesh garment = sim.garment().mesh;
+    garment.vertices = r.garment;
+    char caption[128];
+    std::snprintf(caption, sizeof caption, "%s, %d iterations, %.1f s, p = %.2f%%", r.converged ? "settled" : "NOT settled",
+                  r.iterations, r.seconds, 100.0 * r.penetration);
+    drape_figure("drape simulate: " + vm["scene"].as<std::string>(), caption, body, garment).write(vm["svg"].as<std::string>());
+    std::printf("wrote %s\n", vm["svg"].as<std::string>().c_str());
   }
   return r.converged ? 0 : 1;
 }

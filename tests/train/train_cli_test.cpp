@@ -127,9 +127,13 @@ TEST_CASE("drape predict without --model uses DRAPE_MODEL, else the shipped mode
   std::string out;
   // DRAPE_MODEL names the default model; a missing file is named in the error.
   REQUIRE(test::run("env DRAPE_MODEL=" + t.model.string() + " " +
-                        test::drape_command("predict --bmi 30 --out " + (t.dir / "g.obj").string()),
+                        test::drape_command("predict --bmi 30 --out " + (t.dir / "g.obj").string() + " --svg " +
+                                            (t.dir / "drape.svg").string()),
                     out) == 0);
   INFO(out);
+  std::ifstream svg(t.dir / "drape.svg");
+  const std::string picture((std::istreambuf_iterator<char>(svg)), std::istreambuf_iterator<char>());
+  CHECK(picture.find("<path ") != std::string::npos);
   CHECK_THAT(out, Catch::Contains("model: " + t.model.string() + " (the shipped pretrained model"));
   CHECK(read_mesh(t.dir / "g.obj").num_vertices() == test::tiny_assets()->garment->mesh.num_vertices());
   CHECK(test::run("env DRAPE_MODEL=" + (t.dir / "missing.h5").string() + " " +
@@ -167,9 +171,14 @@ TEST_CASE("drape eval prints every metric and writes them as JSON or CSV", "[tra
   Trained t;
   std::string out;
   REQUIRE(test::run(test::drape_command("eval --model " + t.model.string() + " --data " + t.data.string() +
-                                        " --split test --out " + (t.dir / "m.json").string()),
+                                        " --split test --out " + (t.dir / "m.json").string() + " --svg " +
+                                        (t.dir / "errors.svg").string()),
                     out) == 0);
   INFO(out);
+  std::ifstream svg(t.dir / "errors.svg");
+  const std::string picture((std::istreambuf_iterator<char>(svg)), std::istreambuf_iterator<char>());
+  CHECK(picture.find("distance to the simulated garment (cm)") != std::string::npos);
+  CHECK(picture.find("<path ") != std::string::npos);
   for (const char* metric : {"| ME |", "| L_l |", "| L_e |", "| L_s |", "| L_d |", "| p |"}) CHECK_THAT(out, Catch::Contains(metric));
   CHECK_THAT(out, Catch::Contains("test split (3 samples)") && Catch::Contains("the ground truth itself has p"));
   std::ifstream json(t.dir / "m.json");

@@ -1,0 +1,62 @@
+#pragma once
+// Pictures of drapes for people to look at: meshes drawn in an orthographic
+// front view (x to the right, y up, seen from +z, the bodies' facing
+// direction), one panel per drape, written as a single SVG file. Triangles are
+// sorted back to front (painter's algorithm) and flat-shaded by a light from
+// the viewer, so shapes read as 3D; a layer is either one colour or a value
+// per vertex through a colour map, with a colour bar.
+#include <Eigen/Core>
+
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace drape {
+
+struct SvgLayer {
+  Eigen::MatrixX3d vertices;
+  Eigen::MatrixX3i faces;
+  std::string colour = "#b8b8b8";          // used when `values` is empty
+  Eigen::VectorXd values;                  // per vertex (face colour: the mean of its corners)
+  bool cull_back_faces = false;            // true for closed meshes (a body): halves the file
+  // m towards the viewer when sorting: cloth lies within millimetres of the
+  // skin, closer than the body's triangles are long, so without it skin pokes through.
+  double depth_bias = 0;
+};
+
+struct SvgPanel {
+  std::string title;
+  std::vector<SvgLayer> layers;
+};
+
+struct SvgColourScale {
+  std::string label;  // e.g. "error (cm)"
+  double lo = 0, hi = 1;
+};
+
+class SvgFigure {
+ public:
+  explicit SvgFigure(std::string title) : title_(std::move(title)) {}
+  void add_panel(SvgPanel panel) { panels_.push_back(std::move(panel)); }
+  // The range of the `values` of every layer (values outside are clamped).
+  void set_colour_scale(SvgColourScale scale) { scale_ = std::move(scale); }
+  std::string svg() const;
+  // Atomically (atomic_file.hpp).
+  void write(const std::filesystem::path& file) const;
+
+ private:
+  std::string title_;
+  std::vector<SvgPanel> panels_;
+  std::optional<SvgColourScale> scale_;
+};
+
+// Viridis, approximated by linear segments; t in [0, 1] -> "#rrggbb".
+std::string colour_map(double t);
+
+struct Mesh;
+// One drape as a figure: the body, and the garment coloured by its signed
+// distance to the body (0 to 5 cm; a vertex inside the body shows as 0).
+SvgFigure drape_figure(const std::string& title, const std::string& caption, const Mesh& body, const Mesh& garment);
+
+}  // namespace drape

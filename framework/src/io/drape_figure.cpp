@@ -1,0 +1,18 @@
+#include <drape/geometry/closest_point.hpp>
+#include <drape/mesh.hpp>
+#include <drape/svg_figure.hpp>
+
+namespace drape {
+
+SvgFigure drape_figure(const std::string& title, const std::string& caption, const Mesh& body, const Mesh& garment) {
+  const geometry::BodySurface surface(body.vertices, body.faces);
+  const Eigen::VectorXd clearance = 100.0 * surface.signed_distances(garment.vertices);
+  SvgFigure figure(title);
+  figure.add_panel({caption,
+                    {SvgLayer{body.vertices, body.faces, "#c9b8a8", {}, true},
+                     SvgLayer{garment.vertices, garment.faces, "", clearance.cwiseMax(0.0), false, 0.02}}});
+  figure.set_colour_scale({"distance of the garment to the body (cm)", 0.0, 5.0});
+  return figure;
+}
+
+}  // namespace drape

@@ -1,0 +1,166 @@
+#include <drape/atomic_file.hpp>
+#include <drape/errors.hpp>
+#include <drape/svg_figure.hpp>
+
+#include <Eigen/Geometry>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <sstream>
+
+namespace drape {
+
+namespace {
+
+constexpr double kPanelWidth = 300, kPanelHeight = 420, kMargin = 12, kTitleHeight = 34, kBarHeight = 46;
+
+std::array<double, 3> rgb_of(const std::string& hex) {
+  unsigned r = 0, g = 0, b = 0;
+  if (hex.size() != 7 || std::sscanf(hex.c_str(), "#%02x%02x%02x", &r, &g, &b) != 3)
+    throw Error("svg: colour '" + hex + "' is not #rrggbb");
+  return {double(r), double(g), double(b)};
+}
+
+std::string hex_of(const std::array<double, 3>& c) {
+  char out[8];
+  std::snprintf(out, sizeof out, "#%02x%02x%02x", int(std::clamp(c[0], 0.0, 255.0)), int(std::clamp(c[1], 0.0, 255.0)),
+                int(std::clamp(c[2], 0.0, 255.0)));
+  return out;
+}
+
+std::string escaped(const std::string& text) {
+  std::string out;
+  for (char ch : text) {
+    if (ch == '<') out += "&lt;";
+    else if (ch == '>') out += "&gt;";
+    else if (ch == '&') out += "&amp;";
+    else out += ch;
+  }
+  return out;
+}
+
+struct Triangle {
+  double depth;
+  std::array<Eigen::Vector2d, 3> corners;  // in panel pixels
+  std::string fill;
+};
+
+}  // namespace
+
+std::string colour_map(double t) {
+  static const std::array<std::array<double, 3>, 5> stops = {{
+      {68, 1, 84}, {59, 82, 139}, {33, 145, 140}, {94, 201, 98}, {253, 231, 37}}};
+  t = std::clamp(std::isfinite(t) ? t : 0.0, 0.0, 1.0) * (stops.size() - 1);
+  const auto i = std::min<std::size_t>(static_cast<std::size_t>(t), stops.size() - 2);
+  const double f = t - double(i);
+  std::array<double, 3> c;
+  for (int k = 0; k < 3; ++k) c[k] = (1 - f) * stops[i][k] + f * stops[i + 1][k];
+  return hex_of(c);
+}
+
+std::string SvgFigure::svg() const {
+  if (panels_.empty()) throw Error("svg: a figure needs at least one panel");
+  // One scale for all panels, so drapes compare: the largest extent of any panel.
+  double extent = 0, tallest = 0;
+  for (const SvgPanel& p : panels_)
+    for (const SvgLayer& l : p.layers)
+      if (l.vertices.rows() > 0) {
+        const Eigen::RowVector3d lo = l.vertices.colwise().minCoeff(), hi = l.vertices.colwise().maxCoeff();
+        extent = std::max({extent, (hi(0) - lo(0)) / (kPanelWidth - 2 * kMargin), (hi(1) - lo(1)) / (kPanelHeight - 30)});
+        tallest = std::max(tallest, hi(1) - lo(1));
+      }
+  if (!(extent > 0)) throw Error("svg: nothing to draw");
+  const double scale = 1.0 / extent;
+  const double panel_height = tallest * scale + 30;  // the drawing, then the panel's title
+  const double width = kMargin + panels_.size() * (kPanelWidth + kMargin);
+  const double height = kTitleHeight + panel_height + (scale_ ? kBarHeight : 0) + kMargin;
+  std::ostringstream o;
+  o.setf(std::ios::fixed);
+  o.precision(1);
+  o << "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" << width << "\" height=\"" << height << "\" viewBox=\"0 0 "
+    << width << " " << height << "\" font-family=\"sans-serif\">\n";
+  o << "<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n";
+  o << "<text x=\"" << kMargin << "\" y=\"20\" font-size=\"15\">" << escaped(title_) << "</text>\n";
+
+  const Eigen::Vector3d light = Eigen::Vector3d(0.3, 0.4, 1.0).normalized();
+
+  for (std::size_t pi = 0; pi < panels_.size(); ++pi) {
+    const SvgPanel& panel = panels_[pi];
+    const double left = kMargin + pi * (kPanelWidth + kMargin), top = kTitleHeight;
+    // Centre the panel's content horizontally, its top a little below the title.
+    Eigen::RowVector3d lo = Eigen::RowVector3d::Constant(1e30), hi = Eigen::RowVector3d::Constant(-1e30);
+    for (const SvgLayer& l : panel.layers)
+      if (l.vertices.rows() > 0) {
+        lo = lo.cwiseMin(l.vertices.colwise().minCoeff());
+        hi = hi.cwiseMax(l.vertices.colwise().maxCoeff());
+      }
+    const double cx = 0.5 * (lo(0) + hi(0));
+    auto to_pixels = [&](const Eigen::RowVector3d& v) {
+      return Eigen::Vector2d(left + kPanelWidth / 2 + (v(0) - cx) * scale, top + 24 + (hi(1) - v(1)) * scale);
+    };
+    std::vector<Triangle> triangles;
+    for (const SvgLayer& l : panel.layers) {
+      const bool by_value = l.values.size() > 0;
+      if (by_value && l.values.size() != l.vertices.rows())
+        throw Error("svg: a layer has " + std::to_string(l.values.size()) + " values for " +
+                    std::to_string(l.vertices.rows()) + " vertices");
+      const auto base = by_value ? std::array<double, 3>{} : rgb_of(l.colour);
+      for (Eigen::Index f = 0; f < l.faces.rows(); ++f) {
+        const Eigen::RowVector3d a = l.vertices.row(l.faces(f, 0)), b = l.vertices.row(l.faces(f, 1)),
+                                 c = l.vertices.row(l.faces(f, 2));
+        Eigen::Vector3d n = Eigen::Vector3d(b - a).cross(Eigen::Vector3d(c - a));
+        if (!(n.norm() > 0)) continue;
+        n.normalize();
+        if (l.cull_back_faces && n.z() < 0) continue;
+        // Two-sided lighting for open cloth, a floor so nothing turns black.
+        const double shade = 0.45 + 0.55 * std::abs(n.dot(light));
+        std::array<double, 3> rgb = base;
+        if (by_value) {
+          const double v = (l.values(l.faces(f, 0)) + l.values(l.faces(f, 1)) + l.values(l.faces(f, 2))) / 3;
+          const double t = scale_ ? (v - scale_->lo) / std::max(scale_->hi - scale_->lo, 1e-30) : v;
+          rgb = rgb_of(colour_map(t));
+        }
+        for (double& ch : rgb) ch *= shade;
+        triangles.push_back({(a(2) + b(2) + c(2)) / 3 + l.depth_bias, {to_pixels(a), to_pixels(b), to_pixels(c)}, hex_of(rgb)});
+      }
+    }
+    std::sort(triangles.begin(), triangles.end(), [](const Triangle& x, const Triangle& y) { return x.depth < y.depth; });
+    o << "<g>\n<text x=\"" << left + 4 << "\" y=\"" << top + 14 << "\" font-size=\"12\">" << escaped(panel.title)
+      << "</text>\n";
+    for (const Triangle& t : triangles) {
+      o << "<path d=\"M" << t.corners[0].x() << " " << t.corners[0].y() << "L" << t.corners[1].x() << " "
+        << t.corners[1].y() << "L" << t.corners[2].x() << " " << t.corners[2].y() << "Z\" fill=\"" << t.fill
+        << "\" stroke=\"" << t.fill << "\" stroke-width=\"0.3\"/>\n";
+    }
+    o << "</g>\n";
+  }
+  if (scale_) {
+    const double y = kTitleHeight + panel_height + 8, x0 = kMargin, w = std::min(360.0, width - 2 * kMargin);
+    o << "<defs><linearGradient id=\"cmap\">";
+    for (int i = 0; i <= 8; ++i) o << "<stop offset=\"" << i / 8.0 << "\" stop-color=\"" << colour_map(i / 8.0) << "\"/>";
+    o << "</linearGradient></defs>\n";
+    o << "<rect x=\"" << x0 << "\" y=\"" << y << "\" width=\"" << w << "\" height=\"12\" fill=\"url(#cmap)\"/>\n";
+    o.precision(2);
+    o << "<text x=\"" << x0 << "\" y=\"" << y + 28 << "\" font-size=\"11\">" << scale_->lo << "</text>\n";
+    o << "<text x=\"" << x0 + w << "\" y=\"" << y + 28 << "\" font-size=\"11\" text-anchor=\"end\">&#8805; " << scale_->hi
+      << "</text>\n";
+    o << "<text x=\"" << x0 + w / 2 << "\" y=\"" << y + 28 << "\" font-size=\"11\" text-anchor=\"middle\">"
+      << escaped(scale_->label) << "</text>\n";
+  }
+  o << "</svg>\n";
+  return o.str();
+}
+
+void SvgFigure::write(const std::filesystem::path& file) const {
+  const std::string text = svg();
+  write_atomically(file, [&](const std::filesystem::path& tmp) {
+    std::ofstream f(tmp);
+    f << text;
+    if (!f) throw Error("cannot write " + file.string());
+  });
+}
+
+}  // namespace drape

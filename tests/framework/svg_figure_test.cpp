@@ -1,0 +1,98 @@
+// Pictures: the SVG figure draws every visible triangle once, back to front,
+// coloured by value through the colour map, and is written atomically.
+#include <drape/errors.hpp>
+#include <drape/svg_figure.hpp>
+
+#include <catch2/catch.hpp>
+
+#include <fstream>
+#include <regex>
+#include <sstream>
+
+#include "test_support.hpp"
+
+using namespace drape;
+
+namespace {
+
+int count(const std::string& text, const std::string& what) {
+  int n = 0;
+  for (std::size_t at = text.find(what); at != std::string::npos; at = text.find(what, at + 1)) ++n;
+  return n;
+}
+
+// A unit cube (12 outward triangles) centred at the origin.
+SvgLayer cube() {
+  SvgLayer l;
+  l.vertices.resize(8, 3);
+  for (int i = 0; i < 8; ++i) l.vertices.row(i) << (i & 1) - 0.5, ((i >> 1) & 1) - 0.5, ((i >> 2) & 1) - 0.5;
+  l.faces.resize(12, 3);
+  l.faces << 0, 2, 1, 1, 2, 3, 4, 5, 6, 5, 7, 6, 0, 1, 4, 1, 5, 4, 2, 6, 3, 3, 6, 7, 0, 4, 2, 2, 4, 6, 1, 3, 5, 3, 7, 5;
+  return l;
+}
+
+}  // namespace
+
+TEST_CASE("colour_map runs from dark purple to yellow and clamps", "[svg]") {
+  CHECK(colour_map(0.0) == "#440154");
+  CHECK(colour_map(1.0) == "#fde725");
+  CHECK(colour_map(-3.0) == colour_map(0.0));
+  CHECK(colour_map(7.0) == colour_map(1.0));
+  CHECK(colour_map(0.5) == "#21918c");
+}
+
+TEST_CASE("an SVG figure draws each visible triangle once, culls back faces of closed meshes", "[svg]") {
+  SvgLayer all = cube();
+  SvgLayer culled = cube();
+  culled.cull_back_faces = true;
+  SvgFigure a("all"), b("culled");
+  a.add_panel({"cube", {all}});
+  b.add_panel({"cube", {culled}});
+  const std::string sa = a.svg(), sb = b.svg();
+  CHECK(count(sa, "<path ") == 12);
+  // Seen from +z: the faces whose normal has z >= 0 are the front (2) and the
+  // four sides (8, edge-on, kept); the back (2) goes.
+  CHECK(count(sb, "<path ") == 10);
+  CHECK(sa.rfind("<svg ", 0) == 0);
+  CHECK(sa.find("</svg>") != std::string::npos);
+}
+
+TEST_CASE("values are coloured through the colour scale, with a colour bar", "[svg]") {
+  SvgLayer l = cube();
+  l.values = Eigen::VectorXd::Constant(8, 2.0);  // the top of the scale everywhere
+  SvgFigure f("errors");
+  f.add_panel({"cube <1>", {l}});
+  f.set_colour_scale({"error (cm)", 0.0, 2.0});
+  const std::string s = f.svg();
+  CHECK(s.find("linearGradient") != std::string::npos);
+  CHECK(s.find("error (cm)") != std::string::npos);
+  CHECK(s.find("cube &lt;1&gt;") != std::string::npos);  // titles are escaped
+  // Every face is yellow, darkened by the shading: red and green channels well above blue.
+  const std::regex fill("fill=\"#([0-9a-f]{2})([0-9a-f]{2})([0-9a-f]{2})\" stroke");
+  int faces = 0;
+  for (auto it = std::sregex_iterator(s.begin(), s.end(), fill); it != std::sregex_iterator(); ++it, ++faces) {
+    const int r = std::stoi((*it)[1], nullptr, 16), g = std::stoi((*it)[2], nullptr, 16), b = std::stoi((*it)[3], nullptr, 16);
+    CHECK(r > 2 * b);
+    CHECK(g > 2 * b);
+  }
+  CHECK(faces == 12);
+  SvgLayer wrong = cube();
+  wrong.values = Eigen::VectorXd::Zero(3);
+  SvgFigure g("bad");
+  g.add_panel({"", {wrong}});
+  CHECK_THROWS_WITH(g.svg(), Catch::Contains("3 values for 8 vertices"));
+  CHECK_THROWS_AS(SvgFigure("empty").svg(), Error);
+}
+
+TEST_CASE("an SVG figure is written atomically", "[svg]") {
+  test::TempDir dir;
+  SvgFigure f("cube");
+  f.add_panel({"", {cube()}});
+  f.write(dir / "cube.svg");
+  std::ifstream in(dir / "cube.svg");
+  std::stringstream text;
+  text << in.rdbuf();
+  CHECK(text.str() == f.svg());
+  CHECK_THROWS(f.write(dir / "no-such-dir" / "cube.svg"));
+  CHECK_FALSE(std::filesystem::exists(dir / "no-such-dir"));
+}
