@@ -71,7 +71,7 @@ main_job() {
   step "Checking the seed's model graph against the template"
   "$DRAPE" graph check graphs/drape.yaml --resolution coarse | tail -n 1
   step "Predicting the T-shirt on a BMI 35 body with the shipped pretrained model (no training needed)"
-  "$DRAPE" predict --bmi 35 --out out/garment.obj --body-out out/body.obj
+  "$DRAPE" predict --bmi 35 --out out/garment.obj --body-out out/body.obj --svg out/garment.svg
 }
 
 install_dependencies
