@@ -1,6 +1,7 @@
 // Pictures: the SVG figure draws every visible triangle once, back to front,
 // coloured by value through the colour map, and is written atomically.
 #include <drape/errors.hpp>
+#include <drape/svg_chart.hpp>
 #include <drape/svg_figure.hpp>
 
 #include <catch2/catch.hpp>
@@ -95,4 +96,29 @@ TEST_CASE("an SVG figure is written atomically", "[svg]") {
   CHECK(text.str() == f.svg());
   CHECK_THROWS(f.write(dir / "no-such-dir" / "cube.svg"));
   CHECK_FALSE(std::filesystem::exists(dir / "no-such-dir"));
+}
+
+TEST_CASE("a scatter chart places labelled points on a log time axis with decade ticks", "[svg][chart]") {
+  ScatterChart chart;
+  chart.title = "accuracy <vs> time";
+  chart.x_label = "ms";
+  chart.y_label = "ME (cm)";
+  chart.points = {{2.0, 0.5, "network"}, {4000.0, 0.0, "simulation"}};
+  const std::string s = chart.svg();
+  CHECK(count(s, "<circle ") == 2);
+  // 2 ms .. 4000 ms spans the decades 1 .. 10000: five ticks.
+  for (const char* tick : {">1<", ">10<", ">100<", ">1000<", ">10000<"}) CHECK(s.find(tick) != std::string::npos);
+  CHECK(s.find("accuracy &lt;vs&gt; time") != std::string::npos);
+  CHECK(s.find("ms (log scale)") != std::string::npos);
+  // The faster point is further left, the more accurate one lower (SVG y grows downwards).
+  const std::regex circle("cx=\"([0-9.]+)\" cy=\"([0-9.]+)\"");
+  std::vector<std::pair<double, double>> at;
+  for (auto it = std::sregex_iterator(s.begin(), s.end(), circle); it != std::sregex_iterator(); ++it)
+    at.emplace_back(std::stod((*it)[1]), std::stod((*it)[2]));
+  REQUIRE(at.size() == 2);
+  CHECK(at[0].first < at[1].first);
+  CHECK(at[0].second < at[1].second);
+  chart.points.push_back({0.0, 1.0, "instant"});
+  CHECK_THROWS_WITH(chart.svg(), Catch::Contains("log axis"));
+  CHECK_THROWS_AS(ScatterChart{}.svg(), Error);
 }

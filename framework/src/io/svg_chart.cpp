@@ -1,0 +1,99 @@
+#include <drape/atomic_file.hpp>
+#include <drape/errors.hpp>
+#include <drape/svg_chart.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <sstream>
+
+namespace drape {
+
+namespace {
+
+constexpr double kWidth = 640, kHeight = 420, kLeft = 70, kRight = 30, kTop = 40, kBottom = 56;
+
+std::string escaped(const std::string& text) {
+  std::string out;
+  for (char ch : text) out += ch == '<' ? "&lt;" : ch == '>' ? "&gt;" : ch == '&' ? "&amp;" : std::string(1, ch);
+  return out;
+}
+
+std::string number(double v) {
+  std::ostringstream o;
+  o << v;
+  return o.str();
+}
+
+}  // namespace
+
+std::string ScatterChart::svg() const {
+  if (points.empty()) throw Error("chart: no points");
+  auto tx = [&](double x) {
+    if (log_x && !(x > 0)) throw Error("chart: x = " + number(x) + " on a log axis");
+    return log_x ? std::log10(x) : x;
+  };
+  double x0 = 1e300, x1 = -1e300, y1 = 0;
+  for (const ChartPoint& p : points) {
+    x0 = std::min(x0, tx(p.x));
+    x1 = std::max(x1, tx(p.x));
+    y1 = std::max(y1, p.y);
+  }
+  if (log_x) {
+    x0 = std::floor(x0);
+    x1 = std::max(std::ceil(x1), x0 + 1);
+  } else if (x1 <= x0) {
+    x1 = x0 + 1;
+  }
+  y1 = y1 > 0 ? 1.15 * y1 : 1;
+  const double w = kWidth - kLeft - kRight, h = kHeight - kTop - kBottom;
+  auto px = [&](double x) { return kLeft + (tx(x) - x0) / (x1 - x0) * w; };
+  auto py = [&](double y) { return kTop + h - y / y1 * h; };
+
+  std::ostringstream o;
+  o.setf(std::ios::fixed);
+  o.precision(1);
+  o << "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" << kWidth << "\" height=\"" << kHeight
+    << "\" font-family=\"sans-serif\" font-size=\"12\">\n<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n";
+  o << "<text x=\"" << kLeft << "\" y=\"22\" font-size=\"15\">" << escaped(title) << "</text>\n";
+  o << "<path d=\"M" << kLeft << " " << kTop << "V" << kTop + h << "H" << kLeft + w << "\" stroke=\"black\" fill=\"none\"/>\n";
+  // x ticks: decades on a log axis, 5 even steps otherwise.
+  const int steps = log_x ? static_cast<int>(x1 - x0) : 5;
+  for (int i = 0; i <= steps; ++i) {
+    const double t = x0 + (x1 - x0) * i / steps;
+    const double value = log_x ? std::pow(10.0, t) : t;
+    const double x = kLeft + (t - x0) / (x1 - x0) * w;
+    o << "<path d=\"M" << x << " " << kTop + h << "v5\" stroke=\"black\"/><text x=\"" << x << "\" y=\"" << kTop + h + 18
+      << "\" text-anchor=\"middle\">" << number(value) << "</text>\n";
+    if (i > 0) o << "<path d=\"M" << x << " " << kTop << "V" << kTop + h << "\" stroke=\"#e4e4e4\"/>\n";
+  }
+  for (int i = 0; i <= 4; ++i) {
+    const double value = y1 * i / 4, y = py(value);
+    o << "<path d=\"M" << kLeft - 5 << " " << y << "h5\" stroke=\"black\"/><text x=\"" << kLeft - 8 << "\" y=\"" << y + 4
+      << "\" text-anchor=\"end\">" << number(std::round(value * 100) / 100) << "</text>\n";
+  }
+  o << "<text x=\"" << kLeft + w / 2 << "\" y=\"" << kHeight - 14 << "\" text-anchor=\"middle\">" << escaped(x_label)
+    << (log_x ? " (log scale)" : "") << "</text>\n";
+  o << "<text transform=\"translate(16 " << kTop + h / 2 << ") rotate(-90)\" text-anchor=\"middle\">" << escaped(y_label)
+    << "</text>\n";
+  for (const ChartPoint& p : points) {
+    const double x = px(p.x), y = py(p.y);
+    o << "<circle cx=\"" << x << "\" cy=\"" << y << "\" r=\"5\" fill=\"#3b528b\"/>\n";
+    const bool right_half = x > kLeft + w * 0.6;
+    o << "<text x=\"" << (right_half ? x - 8 : x + 8) << "\" y=\"" << y - 8 << "\"" << (right_half ? " text-anchor=\"end\"" : "")
+      << ">" << escaped(p.label) << "</text>\n";
+  }
+  o << "</svg>\n";
+  return o.str();
+}
+
+void ScatterChart::write(const std::filesystem::path& file) const {
+  const std::string text = svg();
+  write_atomically(file, [&](const std::filesystem::path& tmp) {
+    std::ofstream f(tmp);
+    f << text;
+    if (!f) throw Error("cannot write " + file.string());
+  });
+}
+
+}  // namespace drape
