@@ -3,6 +3,7 @@
 // renamed over it, so a crash or kill never leaves a half-written file behind.
 #include <filesystem>
 #include <functional>
+#include <string>
 
 namespace drape {
 
@@ -11,5 +12,8 @@ namespace drape {
 // The temporary lives in the same directory (rename is atomic only within a filesystem).
 void write_atomically(const std::filesystem::path& target,
                       const std::function<void(const std::filesystem::path& tmp)>& write);
+
+// A text file (reports, pictures), atomically; Error when it cannot be written.
+void write_text_atomically(const std::filesystem::path& target, const std::string& text);
 
 }  // namespace drape

@@ -4,6 +4,7 @@
 #include <unistd.h>
 
 #include <atomic>
+#include <fstream>
 #include <string>
 
 namespace fs = std::filesystem;
@@ -29,6 +30,15 @@ void write_atomically(const fs::path& target, const std::function<void(const fs:
     fs::remove(tmp, ec);
     throw Error("cannot move the finished file into place at '" + target.string() + "': " + ec.message());
   }
+}
+
+void write_text_atomically(const fs::path& target, const std::string& text) {
+  write_atomically(target, [&](const fs::path& tmp) {
+    std::ofstream f(tmp);
+    f << text;
+    f.close();
+    if (!f) throw Error("cannot write '" + target.string() + "'");
+  });
 }
 
 }  // namespace drape

@@ -2,9 +2,10 @@
 #include <drape/errors.hpp>
 #include <drape/svg_chart.hpp>
 
+#include "xml_escape.hpp"
+
 #include <algorithm>
 #include <cmath>
-#include <fstream>
 #include <sstream>
 
 namespace drape {
@@ -12,12 +13,6 @@ namespace drape {
 namespace {
 
 constexpr double kWidth = 640, kHeight = 420, kLeft = 70, kRight = 30, kTop = 40, kBottom = 56;
-
-std::string escaped(const std::string& text) {
-  std::string out;
-  for (char ch : text) out += ch == '<' ? "&lt;" : ch == '>' ? "&gt;" : ch == '&' ? "&amp;" : std::string(1, ch);
-  return out;
-}
 
 std::string number(double v) {
   std::ostringstream o;
@@ -55,7 +50,7 @@ std::string ScatterChart::svg() const {
   o.precision(1);
   o << "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" << kWidth << "\" height=\"" << kHeight
     << "\" font-family=\"sans-serif\" font-size=\"12\">\n<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n";
-  o << "<text x=\"" << kLeft << "\" y=\"22\" font-size=\"15\">" << escaped(title) << "</text>\n";
+  o << "<text x=\"" << kLeft << "\" y=\"22\" font-size=\"15\">" << xml_escaped(title) << "</text>\n";
   o << "<path d=\"M" << kLeft << " " << kTop << "V" << kTop + h << "H" << kLeft + w << "\" stroke=\"black\" fill=\"none\"/>\n";
   // x ticks: decades on a log axis, 5 even steps otherwise.
   const int steps = log_x ? static_cast<int>(x1 - x0) : 5;
@@ -72,28 +67,21 @@ std::string ScatterChart::svg() const {
     o << "<path d=\"M" << kLeft - 5 << " " << y << "h5\" stroke=\"black\"/><text x=\"" << kLeft - 8 << "\" y=\"" << y + 4
       << "\" text-anchor=\"end\">" << number(std::round(value * 100) / 100) << "</text>\n";
   }
-  o << "<text x=\"" << kLeft + w / 2 << "\" y=\"" << kHeight - 14 << "\" text-anchor=\"middle\">" << escaped(x_label)
+  o << "<text x=\"" << kLeft + w / 2 << "\" y=\"" << kHeight - 14 << "\" text-anchor=\"middle\">" << xml_escaped(x_label)
     << (log_x ? " (log scale)" : "") << "</text>\n";
-  o << "<text transform=\"translate(16 " << kTop + h / 2 << ") rotate(-90)\" text-anchor=\"middle\">" << escaped(y_label)
+  o << "<text transform=\"translate(16 " << kTop + h / 2 << ") rotate(-90)\" text-anchor=\"middle\">" << xml_escaped(y_label)
     << "</text>\n";
   for (const ChartPoint& p : points) {
     const double x = px(p.x), y = py(p.y);
     o << "<circle cx=\"" << x << "\" cy=\"" << y << "\" r=\"5\" fill=\"#3b528b\"/>\n";
     const bool right_half = x > kLeft + w * 0.6;
     o << "<text x=\"" << (right_half ? x - 8 : x + 8) << "\" y=\"" << y - 8 << "\"" << (right_half ? " text-anchor=\"end\"" : "")
-      << ">" << escaped(p.label) << "</text>\n";
+      << ">" << xml_escaped(p.label) << "</text>\n";
   }
   o << "</svg>\n";
   return o.str();
 }
 
-void ScatterChart::write(const std::filesystem::path& file) const {
-  const std::string text = svg();
-  write_atomically(file, [&](const std::filesystem::path& tmp) {
-    std::ofstream f(tmp);
-    f << text;
-    if (!f) throw Error("cannot write " + file.string());
-  });
-}
+void ScatterChart::write(const std::filesystem::path& file) const { write_text_atomically(file, svg()); }
 
 }  // namespace drape

@@ -2,13 +2,14 @@
 #include <drape/errors.hpp>
 #include <drape/svg_figure.hpp>
 
+#include "xml_escape.hpp"
+
 #include <Eigen/Geometry>
 
 #include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdio>
-#include <fstream>
 #include <sstream>
 
 namespace drape {
@@ -28,17 +29,6 @@ std::string hex_of(const std::array<double, 3>& c) {
   char out[8];
   std::snprintf(out, sizeof out, "#%02x%02x%02x", int(std::clamp(c[0], 0.0, 255.0)), int(std::clamp(c[1], 0.0, 255.0)),
                 int(std::clamp(c[2], 0.0, 255.0)));
-  return out;
-}
-
-std::string escaped(const std::string& text) {
-  std::string out;
-  for (char ch : text) {
-    if (ch == '<') out += "&lt;";
-    else if (ch == '>') out += "&gt;";
-    else if (ch == '&') out += "&amp;";
-    else out += ch;
-  }
   return out;
 }
 
@@ -83,7 +73,7 @@ std::string SvgFigure::svg() const {
   o << "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" << width << "\" height=\"" << height << "\" viewBox=\"0 0 "
     << width << " " << height << "\" font-family=\"sans-serif\">\n";
   o << "<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n";
-  o << "<text x=\"" << kMargin << "\" y=\"20\" font-size=\"15\">" << escaped(title_) << "</text>\n";
+  o << "<text x=\"" << kMargin << "\" y=\"20\" font-size=\"15\">" << xml_escaped(title_) << "</text>\n";
 
   const Eigen::Vector3d light = Eigen::Vector3d(0.3, 0.4, 1.0).normalized();
 
@@ -128,7 +118,7 @@ std::string SvgFigure::svg() const {
       }
     }
     std::sort(triangles.begin(), triangles.end(), [](const Triangle& x, const Triangle& y) { return x.depth < y.depth; });
-    o << "<g>\n<text x=\"" << left + 4 << "\" y=\"" << top + 14 << "\" font-size=\"12\">" << escaped(panel.title)
+    o << "<g>\n<text x=\"" << left + 4 << "\" y=\"" << top + 14 << "\" font-size=\"12\">" << xml_escaped(panel.title)
       << "</text>\n";
     for (const Triangle& t : triangles) {
       o << "<path d=\"M" << t.corners[0].x() << " " << t.corners[0].y() << "L" << t.corners[1].x() << " "
@@ -148,19 +138,12 @@ std::string SvgFigure::svg() const {
     o << "<text x=\"" << x0 + w << "\" y=\"" << y + 28 << "\" font-size=\"11\" text-anchor=\"end\">&#8805; " << scale_->hi
       << "</text>\n";
     o << "<text x=\"" << x0 + w / 2 << "\" y=\"" << y + 28 << "\" font-size=\"11\" text-anchor=\"middle\">"
-      << escaped(scale_->label) << "</text>\n";
+      << xml_escaped(scale_->label) << "</text>\n";
   }
   o << "</svg>\n";
   return o.str();
 }
 
-void SvgFigure::write(const std::filesystem::path& file) const {
-  const std::string text = svg();
-  write_atomically(file, [&](const std::filesystem::path& tmp) {
-    std::ofstream f(tmp);
-    f << text;
-    if (!f) throw Error("cannot write " + file.string());
-  });
-}
+void SvgFigure::write(const std::filesystem::path& file) const { write_text_atomically(file, svg()); }
 
 }  // namespace drape
