@@ -51,11 +51,7 @@ void write_report(const fs::path& file, const std::string& model, const std::str
         << "}" << (i + 1 < columns.size() ? "," : "") << "\n";
     o << "  }\n}\n";
   }
-  write_atomically(file, [&](const fs::path& tmp) {
-    std::ofstream f(tmp);
-    f << o.str();
-    if (!f) throw Error("cannot write " + file.string());
-  });
+  write_text_atomically(file, o.str());
 }
 
 // Three panels: the bodies of the split with the lowest, median and highest
