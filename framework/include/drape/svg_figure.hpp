@@ -39,6 +39,7 @@ class SvgFigure {
  public:
   explicit SvgFigure(std::string title) : title_(std::move(title)) {}
   void add_panel(SvgPanel panel) { panels_.push_back(std::move(panel)); }
+  const std::vector<SvgPanel>& panels() const { return panels_; }
   // The range of the `values` of every layer (values outside are clamped).
   void set_colour_scale(SvgColourScale scale) { scale_ = std::move(scale); }
   std::string svg() const;

@@ -1,0 +1,114 @@
+// `drape optimize --model model.h5 --scene scene.yaml (--body body.obj | --bmi 35)
+// --iters 100 --out garment.obj`: the seed's physics-enforced optimisation of
+// one drape (drape/physics_optimization.hpp) -- the network's weights
+// fine-tuned for this body to minimise the scene's potential energy.
+#include "command.hpp"
+
+#include <drape/mesh_io.hpp>
+#include <drape/model.hpp>
+#include <drape/physics_optimization.hpp>
+#include <drape/registry.hpp>
+#include <drape/scene.hpp>
+#include <drape/simulation.hpp>
+#include <drape/svg_figure.hpp>
+
+#include <cstdio>
+#include <filesystem>
+
+namespace drape::cli {
+namespace {
+
+void print_terms(const char* when, const std::vector<EnergyTerm>& terms, double total, double p) {
+  std::printf("%-7s", when);
+  for (const auto& t : terms) std::printf("  %s %.6g", t.name.c_str(), t.value);
+  std::printf("  | L_p %.6g J  | p %.3f%%\n", total, 100.0 * p);
+}
+
+int run(const std::vector<std::string>& args) {
+  po::options_description opts("drape optimize");
+  opts.add_options()("model", po::value<std::string>(), "model file from drape train (default: the shipped model)")(
+      "scene", po::value<std::string>(), "scene whose effects and materials make the potential (graphs/scenes/*.yaml)")(
+      "body", po::value<std::string>(), "body mesh in the model's body topology")(
+      "bmi", po::value<double>(), "or make the body with the model's body plugin: target BMI")(
+      "height", po::value<double>(), "with --bmi: height in m")("sex", po::value<double>(), "with --bmi: 0 female ... 1 male")(
+      "iters", po::value<int>()->default_value(100), "Adam iterations on the network's weights")(
+      "lr", po::value<double>()->default_value(1e-4), "Adam's learning rate")(
+      "out", po::value<std::string>(), "optimised garment mesh to write")(
+      "before", po::value<std::string>(), "also write the network's prediction before optimising")(
+      "svg", po::value<std::string>(), "also draw the drape before and after")(
+      "verbose,v", po::bool_switch(), "print L_p at every iteration");
+  po::variables_map vm;
+  const std::string usage =
+      "drape optimize [--model model.h5] --scene scene.yaml (--body body.obj | --bmi 35) [--iters 100] [--lr 1e-4] "
+      "--out garment.obj";
+  if (!parse(usage, args, opts, {}, vm)) return 0;
+  if (!vm.count("scene")) throw UsageError("--scene FILE is required (its effects and materials make the potential)");
+  if (!vm.count("out")) throw UsageError("--out FILE is required (the optimised garment)");
+  if (vm.count("body") == vm.count("bmi"))
+    throw UsageError("give the body either as a mesh (--body FILE) or by its BMI (--bmi X), exactly one");
+  std::string model_file = vm.count("model") ? vm["model"].as<std::string>() : default_model_path().string();
+  if (model_file.empty()) throw UsageError("no --model given and the shipped model was not found");
+
+  Registry& registry = Registry::load_default(plugin_path(vm));
+  Model model = Model::load(registry, model_file);
+  const Simulation scene(registry, load_scene(vm["scene"].as<std::string>()));
+  SampleBatch batch;
+  if (vm.count("body")) {
+    const std::string file = vm["body"].as<std::string>();
+    const Mesh given = read_mesh(file);
+    require_vertex_count(given, model.assets().body.num_vertices(), file,
+                         "the model's body model '" + model.assets_spec().body_model + "' has that many");
+    if (model.needs_body_params()) throw ConfigError("this model's graph takes body parameters, which a mesh does not give: use --bmi");
+    batch.body = Tensor(1, given.num_vertices(), 3);
+    batch.body.mat(0) = given.vertices.cast<float>();
+  } else {
+    BodyRequest request;
+    request.bmi = vm["bmi"].as<double>();
+    if (vm.count("height")) request.height = vm["height"].as<double>();
+    if (vm.count("sex")) request.sex = vm["sex"].as<double>();
+    batch = model.body_for(request);
+  }
+
+  PhysicsOptimizationOptions o;
+  o.iterations = vm["iters"].as<int>();
+  o.learning_rate = vm["lr"].as<double>();
+  if (vm["verbose"].as<bool>()) o.on_iteration = [](int it, double lp) { std::printf("iteration %4d  L_p %.8g J\n", it, lp); };
+  const PhysicsOptimizationResult r = optimize_drape(model, scene, batch, o);
+
+  std::printf("optimised %s for %s: %d iterations in %.2f s (%.1f ms each), best at iteration %d\n", model_file.c_str(),
+              vm["scene"].as<std::string>().c_str(), o.iterations, r.seconds, 1000.0 * r.seconds / std::max(1, o.iterations),
+              r.best_iteration);
+  print_terms("before", r.energies_before, r.potential_before, r.penetration_before);
+  print_terms("after", r.energies_after, r.potential_after, r.penetration_after);
+
+  Mesh body;
+  body.vertices = batch.body.mat(0).cast<double>();
+  body.faces = model.assets().body.faces;
+  Mesh out = scene.garment().mesh;
+  out.vertices = r.after;
+  write_mesh(vm["out"].as<std::string>(), out);
+  std::printf("wrote %s\n", vm["out"].as<std::string>().c_str());
+  if (vm.count("before")) {
+    Mesh before = out;
+    before.vertices = r.before;
+    write_mesh(vm["before"].as<std::string>(), before);
+    std::printf("wrote %s\n", vm["before"].as<std::string>().c_str());
+  }
+  if (vm.count("svg")) {
+    Mesh before = out;
+    before.vertices = r.before;
+    char a[96], b[96];
+    std::snprintf(a, sizeof a, "network: L_p %.4g J, p %.2f%%", r.potential_before, 100.0 * r.penetration_before);
+    std::snprintf(b, sizeof b, "optimised: L_p %.4g J, p %.2f%%", r.potential_after, 100.0 * r.penetration_after);
+    SvgFigure figure = drape_figure("drape optimize: " + std::filesystem::path(model_file).filename().string(), a, body, before);
+    figure.add_panel(drape_figure("", b, body, out).panels().front());
+    figure.write(vm["svg"].as<std::string>());
+    std::printf("wrote %s\n", vm["svg"].as<std::string>().c_str());
+  }
+  return 0;
+}
+
+const RegisterCommand registered{{"optimize", "fine-tune a model for one body to minimise the scene's potential energy", run}};
+
+}  // namespace
+}  // namespace drape::cli

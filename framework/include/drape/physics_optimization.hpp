@@ -1,0 +1,42 @@
+#pragma once
+// The seed's physics-enforced optimisation (Sec. 6.4): fine-tune a network's
+// weights for one body so that the garment it predicts minimises the scene's
+// potential energy L_p (gravity + stretching + bending + penetration: the
+// effects the scene names, in double precision), back-propagating the energy
+// gradient through the network (Graph::backward_from_output) and stepping the
+// weights with Adam. This fixes residual penetrations and stretch of the
+// prediction and adapts it to materials never seen in training (a scene with a
+// print).
+#include <drape/model.hpp>
+#include <drape/simulation.hpp>
+
+#include <functional>
+#include <vector>
+
+namespace drape {
+
+struct PhysicsOptimizationOptions {
+  int iterations = 100;
+  double learning_rate = 1e-4;  // Adam's, on the network's weights
+  // After every evaluation: iteration (0 = the network as loaded) and L_p in J.
+  std::function<void(int iteration, double potential)> on_iteration;
+};
+
+struct PhysicsOptimizationResult {
+  Eigen::MatrixX3d before, after;  // garment vertices: the network's prediction, the optimised drape
+  std::vector<EnergyTerm> energies_before, energies_after;  // each effect, J
+  double potential_before = 0, potential_after = 0;         // L_p, J
+  double penetration_before = 0, penetration_after = 0;     // fraction of garment vertices inside the body
+  std::vector<double> history;  // L_p at every iteration, history[0] = before
+  int best_iteration = 0;       // the iterate returned as `after` (the lowest L_p seen)
+  double seconds = 0;
+};
+
+// Changes the model's weights in place (Model::load again to undo). `body` holds
+// one sample (SampleBatch::body [1, Nb, 3], body_params when the graph takes
+// them). ConfigError when the scene's garment is not the model's template
+// (another vertex count or other faces); Error when an energy stops being finite.
+PhysicsOptimizationResult optimize_drape(Model& model, const Simulation& scene, const SampleBatch& body,
+                                         const PhysicsOptimizationOptions& options = {});
+
+}  // namespace drape
