@@ -9,6 +9,7 @@
 
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <random>
 
 #include "test_support.hpp"
@@ -232,6 +233,19 @@ TEST_CASE("the fixed-pattern assembly equals Eigen's triplet assembly and grows 
   t.emplace_back(0, 3 * 24, 0.75);
   pattern.assemble(t, diagonal, h);
   CHECK(pattern.nonzeros() > before);
+  CHECK((Eigen::MatrixXd(h) - reference(t)).cwiseAbs().maxCoeff() < 1e-12);
+
+  // The same positions with new values (the remembered slots), then in another
+  // order (a new search), then fewer triplets: always the reference, no stale values.
+  for (auto& e : t) e = Eigen::Triplet<double>(e.row(), e.col(), e.value() * 2 - 0.5);
+  diagonal.setConstant(7.0);
+  pattern.assemble(t, diagonal, h);
+  CHECK((Eigen::MatrixXd(h) - reference(t)).cwiseAbs().maxCoeff() < 1e-12);
+  std::shuffle(t.begin(), t.end(), rng);
+  pattern.assemble(t, diagonal, h);
+  CHECK((Eigen::MatrixXd(h) - reference(t)).cwiseAbs().maxCoeff() < 1e-12);
+  t.resize(t.size() / 2);
+  pattern.assemble(t, diagonal, h);
   CHECK((Eigen::MatrixXd(h) - reference(t)).cwiseAbs().maxCoeff() < 1e-12);
 }
 

@@ -39,7 +39,27 @@ void HessianPattern::build(std::vector<std::pair<int, int>> vertex_pairs) {
   pattern_.makeCompressed();
 }
 
+namespace {
+std::uint64_t key_of(int r, int c) { return (std::uint64_t(std::uint32_t(r)) << 32) | std::uint32_t(c); }
+}  // namespace
+
+bool HessianPattern::assemble_cached(const Triplets& triplets, const Eigen::VectorXd& diagonal,
+                                     Eigen::SparseMatrix<double>& out) const {
+  if (cached_keys_.size() != triplets.size() || out.nonZeros() != pattern_.nonZeros() || out.rows() != pattern_.rows() ||
+      static_cast<Eigen::Index>(diagonal_slots_.size()) != diagonal.size())
+    return false;
+  for (std::size_t i = 0; i < triplets.size(); ++i)
+    if (cached_keys_[i] != key_of(triplets[i].row(), triplets[i].col())) return false;
+  double* values = out.valuePtr();
+  std::fill(values, values + out.nonZeros(), 0.0);
+  for (std::size_t i = 0; i < triplets.size(); ++i)
+    if (cached_slots_[i] >= 0) values[cached_slots_[i]] += triplets[i].value();
+  for (Eigen::Index k = 0; k < diagonal.size(); ++k) values[diagonal_slots_[static_cast<std::size_t>(k)]] += diagonal[k];
+  return true;
+}
+
 void HessianPattern::assemble(const Triplets& triplets, const Eigen::VectorXd& diagonal, Eigen::SparseMatrix<double>& out) {
+  if (assemble_cached(triplets, diagonal, out)) return;
   for (;;) {
     out = pattern_;  // same structure, zero values
     double* values = out.valuePtr();
@@ -52,16 +72,28 @@ void HessianPattern::assemble(const Triplets& triplets, const Eigen::VectorXd& d
       return (it != end && *it == r) ? values + (it - inner) : nullptr;
     };
     std::vector<std::pair<int, int>> missing;
-    for (const auto& t : triplets) {
-      const int r = t.row(), c = t.col();
+    cached_keys_.resize(triplets.size());
+    cached_slots_.resize(triplets.size());
+    for (std::size_t i = 0; i < triplets.size(); ++i) {
+      const int r = triplets[i].row(), c = triplets[i].col();
+      cached_keys_[i] = key_of(r, c);
+      cached_slots_[i] = -1;
       if (r < c) continue;  // symmetric: the lower triangle carries it
-      if (double* p = slot(r, c))
-        *p += t.value();
-      else
+      if (double* p = slot(r, c)) {
+        *p += triplets[i].value();
+        cached_slots_[i] = static_cast<int>(p - values);
+      } else {
         missing.emplace_back(r / 3, c / 3);
+      }
     }
-    for (int k = 0; k < diagonal.size(); ++k) *slot(k, k) += diagonal[k];
+    diagonal_slots_.resize(static_cast<std::size_t>(diagonal.size()));
+    for (int k = 0; k < diagonal.size(); ++k) {
+      double* p = slot(k, k);
+      *p += diagonal[k];
+      diagonal_slots_[static_cast<std::size_t>(k)] = static_cast<int>(p - values);
+    }
     if (missing.empty()) return;
+    cached_keys_.clear();  // the pattern grows: slots move
     missing.insert(missing.end(), pairs_.begin(), pairs_.end());
     build(std::move(missing));
   }

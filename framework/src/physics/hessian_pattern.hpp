@@ -11,11 +11,15 @@
 // millions of triplets at every iteration (what setFromTriplets would do).
 // Triplets outside the pattern (an energy coupling vertices the topology does
 // not) grow it, which triggers a new symbolic analysis; nothing is dropped.
+// The energies emit their triplets in the same order at every iteration, so
+// the slot of each is remembered: while the (row, column) sequence repeats,
+// assembly is one comparison and one addition per triplet, no search.
 #include <drape/energy.hpp>
 #include <drape/mesh.hpp>
 
 #include <Eigen/SparseCore>
 
+#include <cstdint>
 #include <utility>
 #include <vector>
 
@@ -33,7 +37,12 @@ class HessianPattern {
 
  private:
   void build(std::vector<std::pair<int, int>> vertex_pairs);
+  bool assemble_cached(const Triplets& triplets, const Eigen::VectorXd& diagonal, Eigen::SparseMatrix<double>& out) const;
   Eigen::SparseMatrix<double> pattern_;  // values unused
+  // The last triplet sequence: (row << 32 | column) and its value slot (-1: upper triangle, skipped).
+  std::vector<std::uint64_t> cached_keys_;
+  std::vector<int> cached_slots_;
+  std::vector<int> diagonal_slots_;
   std::vector<std::pair<int, int>> pairs_;  // vertex pairs (a >= b) of the blocks
   int vertices_ = 0;
 };
