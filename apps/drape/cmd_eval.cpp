@@ -74,13 +74,16 @@ void draw_errors(const fs::path& file, Model& model, const DatasetReader& reader
   if (model.needs_body_params()) batch.body_params = reader.body_params(chosen);
   const Tensor truth = reader.garment_vertices(chosen), predicted = model.predict(batch);
   SvgFigure figure("drape eval: " + model.file().filename().string() + ", " + split + " split, error of each garment vertex");
-  double top = 0;
   std::vector<Eigen::VectorXd> errors;
+  std::vector<double> all;
   for (std::size_t i = 0; i < chosen.size(); ++i) {
     const int b = static_cast<int>(i);
     errors.push_back(100.0 * (predicted.mat(b) - truth.mat(b)).cast<double>().rowwise().norm());
-    top = std::max(top, errors.back().maxCoeff());
+    all.insert(all.end(), errors.back().data(), errors.back().data() + errors.back().size());
   }
+  // The scale ends at the 98th percentile, so a few outliers do not turn the rest dark.
+  std::sort(all.begin(), all.end());
+  const double top = all[static_cast<std::size_t>(0.98 * double(all.size() - 1))];
   for (std::size_t i = 0; i < chosen.size(); ++i) {
     const int b = static_cast<int>(i);
     SvgLayer body{batch.body.mat(b).cast<double>(), model.assets().body.faces, "#c9b8a8", {}, true};
