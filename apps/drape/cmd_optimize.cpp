@@ -4,7 +4,10 @@
 // fine-tuned for this body to minimise the scene's potential energy.
 #include "command.hpp"
 
+#include "optimize_dataset.hpp"
+
 #include <drape/data_parallel.hpp>
+#include <drape/dataset.hpp>
 #include <drape/mesh_io.hpp>
 #include <drape/model.hpp>
 #include <drape/physics_optimization.hpp>
@@ -15,6 +18,7 @@
 
 #include <cstdio>
 #include <filesystem>
+#include <thread>
 
 namespace drape::cli {
 namespace {
@@ -23,6 +27,30 @@ void print_terms(const char* when, const std::vector<EnergyTerm>& terms, double 
   std::printf("%-7s", when);
   for (const auto& t : terms) std::printf("  %s %.6g", t.name.c_str(), t.value);
   std::printf("  | L_p %.6g J  | p %.3f%%\n", total, 100.0 * p);
+}
+
+std::string model_or_default(const po::variables_map& vm) {
+  const std::string file = vm.count("model") ? vm["model"].as<std::string>() : default_model_path().string();
+  if (file.empty()) throw UsageError("no --model given and the shipped model was not found");
+  return file;
+}
+
+int run_on_dataset(const po::variables_map& vm) {
+  if (vm.count("body") || vm.count("bmi")) throw UsageError("--data optimises the dataset's bodies: drop --body/--bmi");
+  OptimizeDatasetOptions o;
+  o.model = model_or_default(vm);
+  o.data = vm["data"].as<std::string>();
+  o.out = vm["out"].as<std::string>();
+  o.scene_file = vm["scene"].as<std::string>();
+  o.split = vm["split"].as<std::string>();
+  if (o.split != "all") parse_split(o.split);  // ConfigError for a misspelt split
+  o.threads = vm["threads"].as<int>();
+  if (o.threads <= 0) o.threads = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+  o.optimization.iterations = vm["iters"].as<int>();
+  o.optimization.learning_rate = vm["lr"].as<double>();
+  const std::size_t n = optimize_dataset(Registry::load_default(plugin_path(vm)), o);
+  std::printf("wrote %s: %zu samples optimised in this run\n", o.out.c_str(), n);
+  return 0;
 }
 
 int run(const std::vector<std::string>& args) {
@@ -37,18 +65,22 @@ int run(const std::vector<std::string>& args) {
       "out", po::value<std::string>(), "optimised garment mesh to write")(
       "before", po::value<std::string>(), "also write the network's prediction before optimising")(
       "svg", po::value<std::string>(), "also draw the drape before and after")(
+      "data", po::value<std::string>(), "or optimise every sample of a dataset split (then --out is a dataset)")(
+      "split", po::value<std::string>()->default_value("train"), "with --data: train | val | test | all")(
+      "threads", po::value<int>()->default_value(0), "with --data: samples at once (0: all cores)")(
       "verbose,v", po::bool_switch(), "print L_p at every iteration");
   po::variables_map vm;
   const std::string usage =
       "drape optimize [--model model.h5] --scene scene.yaml (--body body.obj | --bmi 35) [--iters 100] [--lr 1e-4] "
-      "--out garment.obj";
+      "--out garment.obj\n       drape optimize [--model model.h5] --scene scene.yaml --data data.h5 [--split train] "
+      "--out optimized.h5 [--threads T]";
   if (!parse(usage, args, opts, {}, vm)) return 0;
   if (!vm.count("scene")) throw UsageError("--scene FILE is required (its effects and materials make the potential)");
-  if (!vm.count("out")) throw UsageError("--out FILE is required (the optimised garment)");
+  if (!vm.count("out")) throw UsageError("--out FILE is required (the optimised garment, or dataset with --data)");
+  if (vm.count("data")) return run_on_dataset(vm);
   if (vm.count("body") == vm.count("bmi"))
     throw UsageError("give the body either as a mesh (--body FILE) or by its BMI (--bmi X), exactly one");
-  std::string model_file = vm.count("model") ? vm["model"].as<std::string>() : default_model_path().string();
-  if (model_file.empty()) throw UsageError("no --model given and the shipped model was not found");
+  const std::string model_file = model_or_default(vm);
 
   Registry& registry = Registry::load_default(plugin_path(vm));
   Model model = Model::load(registry, model_file);

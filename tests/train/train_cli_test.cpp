@@ -6,6 +6,7 @@
 #include <catch2/catch.hpp>
 
 #include <drape/checkpoint.hpp>
+#include <drape/dataset.hpp>
 #include <drape/h5.hpp>
 #include <drape/geometry/penetration.hpp>
 #include <drape/mesh_io.hpp>
@@ -165,6 +166,41 @@ TEST_CASE("the shipped pretrained model drapes a T-shirt on a BMI 35 body out of
   }
   const double p = geometry::penetration_ratio(geometry::BodySurface(b.vertices, b.faces), g.vertices);
   CHECK(p < 0.05);
+}
+
+TEST_CASE("drape optimize improves one drape, and every sample of a split into a resumable dataset", "[train][cli][optimize]") {
+  Trained t;
+  std::ofstream(t.dir / "scene.yaml") << "body: {model: parametric}\n"
+                                         "garment: {template: tshirt, params: {resolution: 300}}\n"
+                                         "effects:\n  gravity: {}\n  stretching: {}\n  bending: {}\n"
+                                         "  collision: {stiffness: 1.0e8, margin: 0.004}\n";
+  const std::string scene = (t.dir / "scene.yaml").string();
+  std::string out;
+  REQUIRE(test::run(test::drape_command("optimize --model " + t.model.string() + " --scene " + scene +
+                                        " --bmi 30 --iters 10 --lr 1e-3 --out " + (t.dir / "g.obj").string() +
+                                        " --svg " + (t.dir / "o.svg").string()),
+                    out) == 0);
+  INFO(out);
+  CHECK_THAT(out, Catch::Contains("before ") && Catch::Contains("after ") && Catch::Contains("L_p"));
+  CHECK(read_mesh(t.dir / "g.obj").num_vertices() == test::tiny_assets()->garment->mesh.num_vertices());
+  CHECK(fs::exists(t.dir / "o.svg"));
+
+  const std::string batch = "optimize --model " + t.model.string() + " --scene " + scene + " --data " + t.data.string() +
+                            " --split train --iters 4 --lr 1e-3 --threads 2 --out " + (t.dir / "opt.h5").string();
+  REQUIRE(test::run(test::drape_command(batch), out) == 0);
+  const DatasetReader opt(t.dir / "opt.h5");
+  const DatasetReader source(t.data);
+  REQUIRE(opt.size() == source.indices(Split::Train).size());
+  const auto after = opt.stat("energy_total", opt.indices()), before = opt.stat("energy_total_before", opt.indices());
+  for (std::size_t i = 0; i < after.size(); ++i) CHECK(after[i] <= before[i]);
+  // The bodies are the source's, in order.
+  CHECK((opt.body_vertices({0}).vec() - source.body_vertices({source.indices(Split::Train).front()}).vec())
+            .cwiseAbs().maxCoeff() == 0.0f);
+  // A finished dataset is never overwritten; a misspelt split is refused.
+  CHECK(test::run(test::drape_command(batch), out) == 2);
+  CHECK(test::run(test::drape_command("optimize --model " + t.model.string() + " --scene " + scene + " --data " +
+                                      t.data.string() + " --split tain --out " + (t.dir / "x.h5").string()),
+                  out) == 2);
 }
 
 TEST_CASE("drape eval prints every metric and writes them as JSON or CSV", "[train][cli]") {

@@ -1,0 +1,129 @@
+#include "optimize_dataset.hpp"
+
+#include <drape/data_parallel.hpp>
+#include <drape/dataset.hpp>
+#include <drape/progress.hpp>
+#include <drape/registry.hpp>
+#include <drape/scene.hpp>
+#include <drape/trainer.hpp>
+
+#include <atomic>
+#include <cstdio>
+#include <exception>
+#include <iomanip>
+#include <mutex>
+#include <sstream>
+#include <thread>
+
+namespace drape::cli {
+
+std::size_t optimize_dataset(const Registry& registry, const OptimizeDatasetOptions& o) {
+  const DatasetReader reader(o.data);
+  const std::vector<std::size_t> source = o.split == "all" ? reader.indices() : reader.indices(parse_split(o.split));
+  if (source.empty()) throw ConfigError(o.data.string() + ": the " + o.split + " split has no samples");
+  const Scene scene = load_scene(o.scene_file);
+  const Simulation simulation(registry, scene);
+  {
+    const Model probe = Model::load(registry, o.model);
+    check_dataset_template(reader, o.data, probe.assets());
+  }
+
+  DatasetLayout layout;
+  layout.samples = source.size();
+  layout.body_params = reader.layout().body_params;
+  layout.body_vertices = reader.layout().body_vertices;
+  layout.garment_vertices = reader.layout().garment_vertices;
+  for (const auto& e : scene.effects) layout.stats.push_back("energy_" + e.name);
+  for (const char* s : {"energy_total", "energy_total_before", "penetration", "penetration_before", "best_iteration",
+                        "seconds", "source_index", "bmi"})
+    layout.stats.push_back(s);
+  layout.scene = scene.yaml();
+  layout.template_hash = reader.layout().template_hash;
+  layout.attributes = reader.layout().attributes;
+  std::ostringstream what;
+  what << "drape optimize: model " << o.model.filename().string() << ", data " << o.data.filename().string() << " ("
+       << o.split << "), " << o.optimization.iterations << " iterations, lr " << o.optimization.learning_rate;
+  layout.attributes["generator"] = what.str();
+
+  DatasetWriter writer(o.out, layout);
+  const std::vector<std::size_t> todo = writer.missing();
+  const int threads = std::max(1, std::min(o.threads, static_cast<int>(todo.size())));
+  std::printf("optimising %zu samples of %s (%s split) into %s%s, %d at a time\n", source.size(), o.data.c_str(),
+              o.split.c_str(), o.out.c_str(),
+              writer.resumed() ? (" (resuming: " + std::to_string(source.size() - todo.size()) + " done)").c_str() : "",
+              threads);
+  std::fflush(stdout);
+  const auto& stats = reader.layout().stats;
+  const bool has_bmi = std::find(stats.begin(), stats.end(), "bmi") != stats.end();
+
+  ProgressBar::Options bar_options;
+  bar_options.start = source.size() - todo.size();
+  ProgressBar bar("optimize", source.size(), std::cerr, bar_options);
+  std::mutex io;  // the HDF5 files are read and written by one thread at a time
+  std::atomic<std::size_t> next{0};
+  std::atomic<bool> stop{false};
+  std::exception_ptr failure;
+  auto worker = [&] {
+    const OmpThreadsScope one_core(1);  // parallel over samples, not inside one
+    try {
+      // Each worker fine-tunes its own copy of the network, restored before every sample.
+      Model model = Model::load(registry, o.model);
+      std::vector<Tensor> initial;
+      for (const auto& [name, w] : model.graph().weights()) initial.push_back(w->value);
+      while (!stop) {
+        const std::size_t k = next++;
+        if (k >= todo.size()) return;
+        const std::size_t local = todo[k], index = source[local];
+        std::size_t w = 0;
+        for (const auto& [name, weight] : model.graph().weights()) weight->value = initial[w++];
+        DatasetSample sample;
+        SampleBatch batch;
+        {
+          const std::lock_guard<std::mutex> lock(io);
+          sample = reader.sample(index);
+          batch.body = reader.body_vertices({index});
+          if (model.needs_body_params()) batch.body_params = reader.body_params({index});
+        }
+        const PhysicsOptimizationResult r = optimize_drape(model, simulation, batch, o.optimization);
+        sample.garment_vertices = r.after.cast<float>();
+        const double bmi = has_bmi ? sample.stats["bmi"] : NAN;
+        sample.stats.clear();
+        for (const auto& t : r.energies_after) sample.stats["energy_" + t.name] = t.value;
+        sample.stats["energy_total"] = r.potential_after;
+        sample.stats["energy_total_before"] = r.potential_before;
+        sample.stats["penetration"] = r.penetration_after;
+        sample.stats["penetration_before"] = r.penetration_before;
+        sample.stats["best_iteration"] = r.best_iteration;
+        sample.stats["seconds"] = r.seconds;
+        sample.stats["source_index"] = static_cast<double>(index);
+        sample.stats["bmi"] = bmi;
+        {
+          const std::lock_guard<std::mutex> lock(io);
+          writer.write(local, sample);
+        }
+        std::ostringstream status;
+        status << "last: L_p " << std::setprecision(4) << r.potential_before << " -> " << r.potential_after << " J, "
+               << std::setprecision(2) << r.seconds << " s";
+        bar.set_status(status.str());
+        bar.advance();
+      }
+    } catch (...) {
+      const std::lock_guard<std::mutex> lock(io);
+      if (!failure) failure = std::current_exception();
+      stop = true;
+    }
+  };
+  std::vector<std::thread> pool;
+  for (int t = 0; t < threads; ++t) pool.emplace_back(worker);
+  for (auto& t : pool) t.join();
+  bar.finish();
+  if (failure) {
+    writer.close();
+    std::fprintf(stderr, "stopped: the samples done so far are kept; run the same command again to resume\n");
+    std::rethrow_exception(failure);
+  }
+  writer.finish();
+  return todo.size();
+}
+
+}  // namespace drape::cli

@@ -1,0 +1,24 @@
+#pragma once
+// `drape optimize --data data.h5 --split S --out optimized.h5`: the
+// physics-enforced optimisation of every sample of a dataset split, parallel
+// over samples, resumable (the output is a dataset written like drape
+// generate's), with a progress bar. Its garments can train the network again:
+// the seed's self-correcting loop.
+#include <drape/physics_optimization.hpp>
+
+#include <filesystem>
+#include <string>
+
+namespace drape::cli {
+
+struct OptimizeDatasetOptions {
+  std::filesystem::path model, data, out, scene_file;
+  std::string split = "train";  // train | val | test | all
+  int threads = 1;
+  PhysicsOptimizationOptions optimization;
+};
+
+// Returns the number of samples optimised in this run.
+std::size_t optimize_dataset(const Registry& registry, const OptimizeDatasetOptions& options);
+
+}  // namespace drape::cli
