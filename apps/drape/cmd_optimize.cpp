@@ -4,6 +4,7 @@
 // fine-tuned for this body to minimise the scene's potential energy.
 #include "command.hpp"
 
+#include "model_body.hpp"
 #include "optimize_dataset.hpp"
 
 #include <drape/data_parallel.hpp>
@@ -85,22 +86,7 @@ int run(const std::vector<std::string>& args) {
   Registry& registry = Registry::load_default(plugin_path(vm));
   Model model = Model::load(registry, model_file);
   const Simulation scene(registry, load_scene(vm["scene"].as<std::string>()));
-  SampleBatch batch;
-  if (vm.count("body")) {
-    const std::string file = vm["body"].as<std::string>();
-    const Mesh given = read_mesh(file);
-    require_vertex_count(given, model.assets().body.num_vertices(), file,
-                         "the model's body model '" + model.assets_spec().body_model + "' has that many");
-    if (model.needs_body_params()) throw ConfigError("this model's graph takes body parameters, which a mesh does not give: use --bmi");
-    batch.body = Tensor(1, given.num_vertices(), 3);
-    batch.body.mat(0) = given.vertices.cast<float>();
-  } else {
-    BodyRequest request;
-    request.bmi = vm["bmi"].as<double>();
-    if (vm.count("height")) request.height = vm["height"].as<double>();
-    if (vm.count("sex")) request.sex = vm["sex"].as<double>();
-    batch = model.body_for(request);
-  }
+  const SampleBatch batch = model_body(model, vm);
 
   PhysicsOptimizationOptions o;
   o.iterations = vm["iters"].as<int>();

@@ -1,6 +1,7 @@
 // `drape predict [--model model.h5] (--body body.obj | --bmi 35) --out garment.obj`:
 // the garment a trained model predicts for one body.
 #include "command.hpp"
+#include "model_body.hpp"
 
 #include <drape/geometry/penetration.hpp>
 #include <drape/mesh_io.hpp>
@@ -51,29 +52,10 @@ int run(const std::vector<std::string>& args) {
   if (model.assets_changed())
     std::cerr << "warning: the template assets differ from the ones " << model_file
               << " was trained with (a plugin changed since?)\n";
-  const int nb = model.assets().body.num_vertices();
-  SampleBatch batch;
+  const SampleBatch batch = model_body(model, vm);
   Mesh body;
   body.faces = model.assets().body.faces;
-  if (vm.count("body")) {
-    const std::string file = vm["body"].as<std::string>();
-    const Mesh given = read_mesh(file);
-    require_vertex_count(given, nb, file,
-                         "the model's body model '" + model.assets_spec().body_model + "' has that many");
-    if (model.needs_body_params())
-      throw ConfigError("this model's graph takes the body parameters (input body_params), which a mesh does not "
-                        "give: use --bmi");
-    body.vertices = given.vertices;
-    batch.body = Tensor(1, nb, 3);
-    batch.body.mat(0) = given.vertices.cast<float>();
-  } else {
-    BodyRequest request;
-    request.bmi = vm["bmi"].as<double>();
-    if (vm.count("height")) request.height = vm["height"].as<double>();
-    if (vm.count("sex")) request.sex = vm["sex"].as<double>();
-    batch = model.body_for(request);
-    body.vertices = batch.body.mat(0).cast<double>();
-  }
+  body.vertices = batch.body.mat(0).cast<double>();
 
   const auto start = std::chrono::steady_clock::now();
   const Tensor garment = model.predict(batch);
