@@ -81,7 +81,7 @@ int run(const std::vector<std::string>& args) {
               100.0 * r.penetration, r.seconds);
   std::printf("time split: gradient %.2f s, hessian %.2f s, assembly %.2f s, linear solves %.2f s (%d factorisations, "
               "%ld PCG iterations), line search %.2f s\n",
-              r.timings.gradient, r.timings.hessian, r.timings.assembly, r.timings.factorization, r.timings.factorizations,
+              r.timings.gradient, r.timings.hessian, r.timings.assembly, r.timings.linear_solves, r.timings.factorizations,
               r.timings.cg_iterations, r.timings.line_search);
   if (vm.count("out")) {
     Mesh out = sim.garment().mesh;

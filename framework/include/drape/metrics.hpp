@@ -25,6 +25,7 @@
 #include <Eigen/Core>
 #include <Eigen/SparseCore>
 
+#include <array>
 #include <string>
 #include <utility>
 #include <vector>
@@ -79,7 +80,7 @@ class MetricsContext {
   int garment_vertices_ = 0, body_vertices_ = 0;
   Eigen::MatrixX3i faces_;
   std::vector<Eigen::Matrix2d> material_inverse_;  // per face: [X1-X0, X2-X0]^-1
-  std::vector<std::pair<int, int>> edges_;
+  std::vector<std::array<int, 2>> edges_;
   struct Level {
     Eigen::VectorXi fine_index;  // level vertex -> garment vertex
     Eigen::SparseMatrix<double, Eigen::RowMajor> laplacian;

@@ -92,7 +92,7 @@ class ClothSolver {
   std::string linear_solver() const;
 
   struct Timings {
-    double gradient = 0, hessian = 0, assembly = 0, factorization = 0, line_search = 0;
+    double gradient = 0, hessian = 0, assembly = 0, linear_solves = 0, line_search = 0;  // s; linear solves: factorisations and PCG
     int factorizations = 0;
     long cg_iterations = 0;  // PCG iterations of the steps solved with an earlier factor
   };

@@ -189,7 +189,7 @@ StepReport ClothSolver::step(Eigen::MatrixX3d& x, Eigen::MatrixX3d& v) {
       direction = impl_->cholesky->solve(rhs);
     }
     Eigen::MatrixX3d d = per_vertex(direction);
-    timings_.factorization += since(t);
+    timings_.linear_solves += since(t);
     if (!finite(d)) throw Error("solver: the Newton direction is not finite");
 
     // Cap the largest vertex move: a long step could carry cloth through a thin limb.

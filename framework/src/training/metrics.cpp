@@ -1,5 +1,6 @@
 // The seed's evaluation metrics (see metrics.hpp for the definitions).
 #include <drape/errors.hpp>
+#include <drape/geometry/adjacency.hpp>
 #include <drape/geometry/laplacian.hpp>
 #include <drape/geometry/penetration.hpp>
 #include <drape/metrics.hpp>
@@ -40,13 +41,7 @@ MetricsContext::MetricsContext(const Assets& assets) {
     material_inverse_[static_cast<std::size_t>(f)] = X.inverse();
   }
 
-  for (int f = 0; f < mesh.num_faces(); ++f)
-    for (int k = 0; k < 3; ++k) {
-      const int a = mesh.faces(f, k), b = mesh.faces(f, (k + 1) % 3);
-      edges_.emplace_back(std::min(a, b), std::max(a, b));
-    }
-  std::sort(edges_.begin(), edges_.end());
-  edges_.erase(std::unique(edges_.begin(), edges_.end()), edges_.end());
+  edges_ = geometry::edge_list(mesh.faces);
 
   // Level 0 is the garment itself even when no hierarchy was built.
   const auto& levels = assets.hierarchy.levels;

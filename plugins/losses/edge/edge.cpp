@@ -3,11 +3,12 @@
 // length of the prediction x against the ground truth y. The edge set comes from
 // the bound garment template (NodeContext::assets). Computed in double per sample.
 #include <drape/assets.hpp>
+#include <drape/geometry/adjacency.hpp>
 #include <drape/plugin.hpp>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
-#include <utility>
 
 namespace {
 
@@ -28,14 +29,7 @@ class EdgeLoss final : public Node {
     if (pred.cols != 3 || pred.rows != mesh.num_vertices())
       throw ConfigError("pred must be [" + std::to_string(mesh.num_vertices()) + ", 3] (the garment's vertices), got " +
                         pred.str());
-    edges_.clear();
-    for (int f = 0; f < mesh.num_faces(); ++f)
-      for (int k = 0; k < 3; ++k) {
-        const int a = mesh.faces(f, k), b = mesh.faces(f, (k + 1) % 3);
-        edges_.emplace_back(std::min(a, b), std::max(a, b));
-      }
-    std::sort(edges_.begin(), edges_.end());
-    edges_.erase(std::unique(edges_.begin(), edges_.end()), edges_.end());
+    edges_ = geometry::edge_list(mesh.faces);
     if (edges_.empty()) throw ConfigError("the garment template has no edges");
     return {{"loss", {1, 1}}};
   }
@@ -89,7 +83,7 @@ class EdgeLoss final : public Node {
     }
   }
 
-  std::vector<std::pair<int, int>> edges_;
+  std::vector<std::array<int, 2>> edges_;
 };
 
 PluginList plugins() {
