@@ -3,6 +3,7 @@
 // simulation, in parallel over samples, resumable after a kill, shardable
 // across a cluster job array (merge with `drape dataset merge`).
 #include "command.hpp"
+#include "parallel_samples.hpp"
 #include "sample_ranges.hpp"
 
 #include <drape/dataset.hpp>
@@ -130,75 +131,54 @@ int run(const std::vector<std::string>& args) {
   bar_options.start = already;  // a resumed job: the ETA counts this run's rate only
   ProgressBar bar("generate", layout.samples, std::cerr, bar_options);
   std::mutex write_mutex;
-  std::atomic<std::size_t> next{0};
   std::atomic<int> not_settled{0}, penetrating{0};
-  std::exception_ptr failure;
-  std::atomic<bool> stop{false};
-  auto worker = [&] {
-#ifdef _OPENMP
-    omp_set_num_threads(1);  // parallel over samples, not inside one
-#endif
-    while (!stop) {
-      const std::size_t k = next++;
-      if (k >= todo.size()) return;
-      const std::size_t local = todo[k], global = first + local;
-      try {
-        Rng rng(Rng::derive(seed, "sample-" + std::to_string(global)));
-        BodyRequest request;
-        request.bmi = rng.uniform(bmi.lo, bmi.hi);
-        request.height = height.lo == height.hi ? height.lo : rng.uniform(height.lo, height.hi);
-        request.sex = sex.lo == sex.hi ? sex.lo : (rng.uniform() < 0.5 ? sex.lo : sex.hi);
-        const Eigen::VectorXd shape = sim.shape_for(request);
-        const SimulationResult r = sim.run(sim.body_vertices(shape));
-        DatasetSample s;
-        s.body_params = shape.cast<float>();
-        s.body_vertices = r.body.cast<float>();
-        s.garment_vertices = r.garment.cast<float>();
-        s.split = split[global];
-        for (const auto& t : r.energies) s.stats["energy_" + t.name] = t.value;
-        s.stats["energy_total"] = r.total_energy;
-        s.stats["penetration"] = r.penetration;
-        s.stats["residual"] = r.residual;
-        s.stats["converged"] = r.converged ? 1 : 0;
-        s.stats["iterations"] = r.iterations;
-        s.stats["steps"] = r.steps;
-        s.stats["seconds"] = r.seconds;
-        s.stats["bmi"] = request.bmi;
-        s.stats["height"] = request.height;
-        s.stats["sex"] = request.sex;
-        s.stats["global_index"] = static_cast<double>(global);
-        if (!r.converged) ++not_settled;
-        if (r.penetration > 0) ++penetrating;
-        {
-          const std::lock_guard<std::mutex> lock(write_mutex);
-          writer.write(local, s);
-        }
-        std::ostringstream status;
-        status << "last: BMI " << std::fixed << std::setprecision(1) << request.bmi << ", " << r.iterations << " it, "
-               << std::setprecision(2) << r.seconds << " s";
-        bar.set_status(status.str());
-        bar.advance();
-      } catch (...) {
-        const std::lock_guard<std::mutex> lock(write_mutex);
-        if (!failure) failure = std::current_exception();
-        stop = true;
-      }
-    }
-  };
   // One BLAS thread, whatever --threads: one solver per core already fills
   // them, and a sample must not depend on how many ran beside it (a
   // multi-threaded BLAS rounds differently, and the solver's path can follow).
   set_blas_threads(1);
-  std::vector<std::thread> pool;
-  for (int t = 0; t < threads; ++t) pool.emplace_back(worker);
-  for (auto& t : pool) t.join();
-  bar.finish();
-  if (failure) {
-    writer.close();
-    std::fprintf(stderr, "stopped: the samples done so far are kept; run the same command again to resume\n");
-    std::rethrow_exception(failure);
-  }
-  writer.finish();
+  make_samples_in_parallel(writer, bar, todo, threads, [&]() -> SampleWorker {
+#ifdef _OPENMP
+    omp_set_num_threads(1);  // parallel over samples, not inside one
+#endif
+    return [&](std::size_t local) {
+      const std::size_t global = first + local;
+      Rng rng(Rng::derive(seed, "sample-" + std::to_string(global)));
+      BodyRequest request;
+      request.bmi = rng.uniform(bmi.lo, bmi.hi);
+      request.height = height.lo == height.hi ? height.lo : rng.uniform(height.lo, height.hi);
+      request.sex = sex.lo == sex.hi ? sex.lo : (rng.uniform() < 0.5 ? sex.lo : sex.hi);
+      const Eigen::VectorXd shape = sim.shape_for(request);
+      const SimulationResult r = sim.run(sim.body_vertices(shape));
+      DatasetSample s;
+      s.body_params = shape.cast<float>();
+      s.body_vertices = r.body.cast<float>();
+      s.garment_vertices = r.garment.cast<float>();
+      s.split = split[global];
+      for (const auto& t : r.energies) s.stats["energy_" + t.name] = t.value;
+      s.stats["energy_total"] = r.total_energy;
+      s.stats["penetration"] = r.penetration;
+      s.stats["residual"] = r.residual;
+      s.stats["converged"] = r.converged ? 1 : 0;
+      s.stats["iterations"] = r.iterations;
+      s.stats["steps"] = r.steps;
+      s.stats["seconds"] = r.seconds;
+      s.stats["bmi"] = request.bmi;
+      s.stats["height"] = request.height;
+      s.stats["sex"] = request.sex;
+      s.stats["global_index"] = static_cast<double>(global);
+      if (!r.converged) ++not_settled;
+      if (r.penetration > 0) ++penetrating;
+      {
+        const std::lock_guard<std::mutex> lock(write_mutex);
+        writer.write(local, s);
+      }
+      std::ostringstream status;
+      status << "last: BMI " << std::fixed << std::setprecision(1) << request.bmi << ", " << r.iterations << " it, "
+             << std::setprecision(2) << r.seconds << " s";
+      bar.set_status(status.str());
+      bar.advance();
+    };
+  });
   std::printf("wrote %s: %zu samples; %d not settled, %d with a vertex inside the body (this run)\n", out.c_str(),
               layout.samples, not_settled.load(), penetrating.load());
   return 0;

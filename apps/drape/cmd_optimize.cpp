@@ -7,7 +7,6 @@
 #include "model_body.hpp"
 #include "optimize_dataset.hpp"
 
-#include <drape/data_parallel.hpp>
 #include <drape/dataset.hpp>
 #include <drape/mesh_io.hpp>
 #include <drape/model.hpp>
@@ -92,9 +91,6 @@ int run(const std::vector<std::string>& args) {
   o.iterations = vm["iters"].as<int>();
   o.learning_rate = vm["lr"].as<double>();
   if (vm["verbose"].as<bool>()) o.on_iteration = [](int it, double lp) { std::printf("iteration %4d  L_p %.8g J\n", it, lp); };
-  // One drape is too little work to split across cores: with OpenMP teams on a
-  // busy machine an iteration took 20x longer (380 against 18 ms, coarse shirt).
-  const OmpThreadsScope one_core(1);
   const PhysicsOptimizationResult r = optimize_drape(model, scene, batch, o);
 
   std::printf("optimised %s for %s: %d iterations in %.2f s (%.1f ms each), best at iteration %d\n", model_file.c_str(),

@@ -1,19 +1,18 @@
 #include "optimize_dataset.hpp"
 
-#include <drape/data_parallel.hpp>
+#include "parallel_samples.hpp"
+
 #include <drape/dataset.hpp>
 #include <drape/progress.hpp>
 #include <drape/registry.hpp>
 #include <drape/scene.hpp>
 #include <drape/trainer.hpp>
 
-#include <atomic>
 #include <cstdio>
-#include <exception>
 #include <iomanip>
+#include <memory>
 #include <mutex>
 #include <sstream>
-#include <thread>
 
 namespace drape::cli {
 
@@ -60,69 +59,52 @@ std::size_t optimize_dataset(const Registry& registry, const OptimizeDatasetOpti
   bar_options.start = source.size() - todo.size();
   ProgressBar bar("optimize", source.size(), std::cerr, bar_options);
   std::mutex io;  // the HDF5 files are read and written by one thread at a time
-  std::atomic<std::size_t> next{0};
-  std::atomic<bool> stop{false};
-  std::exception_ptr failure;
-  auto worker = [&] {
-    const OmpThreadsScope one_core(1);  // parallel over samples, not inside one
-    try {
-      // Each worker fine-tunes its own copy of the network, restored before every sample.
-      Model model = Model::load(registry, o.model);
-      std::vector<Tensor> initial;
-      for (const auto& [name, w] : model.graph().weights()) initial.push_back(w->value);
-      while (!stop) {
-        const std::size_t k = next++;
-        if (k >= todo.size()) return;
-        const std::size_t local = todo[k], index = source[local];
-        std::size_t w = 0;
-        for (const auto& [name, weight] : model.graph().weights()) weight->value = initial[w++];
-        DatasetSample sample;
-        SampleBatch batch;
-        {
-          const std::lock_guard<std::mutex> lock(io);
-          sample = reader.sample(index);
-          batch.body = reader.body_vertices({index});
-          if (model.needs_body_params()) batch.body_params = reader.body_params({index});
-        }
-        const PhysicsOptimizationResult r = optimize_drape(model, simulation, batch, o.optimization);
-        sample.garment_vertices = r.after.cast<float>();
-        const double bmi = has_bmi ? sample.stats["bmi"] : NAN;
-        sample.stats.clear();
-        for (const auto& t : r.energies_after) sample.stats["energy_" + t.name] = t.value;
-        sample.stats["energy_total"] = r.potential_after;
-        sample.stats["energy_total_before"] = r.potential_before;
-        sample.stats["penetration"] = r.penetration_after;
-        sample.stats["penetration_before"] = r.penetration_before;
-        sample.stats["best_iteration"] = r.best_iteration;
-        sample.stats["seconds"] = r.seconds;
-        sample.stats["source_index"] = static_cast<double>(index);
-        sample.stats["bmi"] = bmi;
-        {
-          const std::lock_guard<std::mutex> lock(io);
-          writer.write(local, sample);
-        }
-        std::ostringstream status;
-        status << "last: L_p " << std::setprecision(4) << r.potential_before << " -> " << r.potential_after << " J, "
-               << std::setprecision(2) << r.seconds << " s";
-        bar.set_status(status.str());
-        bar.advance();
+  make_samples_in_parallel(writer, bar, todo, threads, [&]() -> SampleWorker {
+    // Each worker fine-tunes its own copy of the network, restored before every sample.
+    auto model = std::make_shared<Model>(Model::load(registry, o.model));
+    auto initial = std::make_shared<std::vector<Tensor>>();
+    for (const auto& [name, w] : model->graph().weights()) initial->push_back(w->value);
+    return [&, model, initial](std::size_t local) {
+      const std::size_t index = source[local];
+      std::size_t w = 0;
+      for (const auto& [name, weight] : model->graph().weights()) weight->value = (*initial)[w++];
+      DatasetSample sample;
+      {
+        const std::lock_guard<std::mutex> lock(io);
+        sample = reader.sample(index);
       }
-    } catch (...) {
-      const std::lock_guard<std::mutex> lock(io);
-      if (!failure) failure = std::current_exception();
-      stop = true;
-    }
-  };
-  std::vector<std::thread> pool;
-  for (int t = 0; t < threads; ++t) pool.emplace_back(worker);
-  for (auto& t : pool) t.join();
-  bar.finish();
-  if (failure) {
-    writer.close();
-    std::fprintf(stderr, "stopped: the samples done so far are kept; run the same command again to resume\n");
-    std::rethrow_exception(failure);
-  }
-  writer.finish();
+      // The sample already holds the body: the network's input comes from it, not from a second read.
+      SampleBatch batch;
+      batch.body = Tensor(1, layout.body_vertices, 3);
+      batch.body.mat(0) = sample.body_vertices;
+      if (model->needs_body_params()) {
+        batch.body_params = Tensor(1, 1, layout.body_params);
+        batch.body_params.mat(0).row(0) = sample.body_params.transpose();
+      }
+      const PhysicsOptimizationResult r = optimize_drape(*model, simulation, batch, o.optimization);
+      sample.garment_vertices = r.after.cast<float>();
+      const double bmi = has_bmi ? sample.stats["bmi"] : NAN;
+      sample.stats.clear();
+      for (const auto& t : r.energies_after) sample.stats["energy_" + t.name] = t.value;
+      sample.stats["energy_total"] = r.potential_after;
+      sample.stats["energy_total_before"] = r.potential_before;
+      sample.stats["penetration"] = r.penetration_after;
+      sample.stats["penetration_before"] = r.penetration_before;
+      sample.stats["best_iteration"] = r.best_iteration;
+      sample.stats["seconds"] = r.seconds;
+      sample.stats["source_index"] = static_cast<double>(index);
+      sample.stats["bmi"] = bmi;
+      {
+        const std::lock_guard<std::mutex> lock(io);
+        writer.write(local, sample);
+      }
+      std::ostringstream status;
+      status << "last: L_p " << std::setprecision(4) << r.potential_before << " -> " << r.potential_after << " J, "
+             << std::setprecision(2) << r.seconds << " s";
+      bar.set_status(status.str());
+      bar.advance();
+    };
+  });
   return todo.size();
 }
 

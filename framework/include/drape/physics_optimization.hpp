@@ -32,7 +32,8 @@ struct PhysicsOptimizationResult {
   double seconds = 0;
 };
 
-// Changes the model's weights in place (Model::load again to undo). `body` holds
+// Changes the model's weights in place (Model::load again to undo). Runs on
+// the calling thread alone (OpenMP set to one thread for the call). `body` holds
 // one sample (SampleBatch::body [1, Nb, 3], body_params when the graph takes
 // them). ConfigError when the scene's garment is not the model's template
 // (another vertex count or other faces); Error when an energy stops being finite.
