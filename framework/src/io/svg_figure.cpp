@@ -40,7 +40,10 @@ struct Triangle {
 
 }  // namespace
 
-std::string colour_map(double t) {
+namespace {
+
+// Viridis by linear segments, as 0-255 channels.
+std::array<double, 3> colour_rgb(double t) {
   static const std::array<std::array<double, 3>, 5> stops = {{
       {68, 1, 84}, {59, 82, 139}, {33, 145, 140}, {94, 201, 98}, {253, 231, 37}}};
   t = std::clamp(std::isfinite(t) ? t : 0.0, 0.0, 1.0) * (stops.size() - 1);
@@ -48,8 +51,12 @@ std::string colour_map(double t) {
   const double f = t - double(i);
   std::array<double, 3> c;
   for (int k = 0; k < 3; ++k) c[k] = (1 - f) * stops[i][k] + f * stops[i + 1][k];
-  return hex_of(c);
+  return c;
 }
+
+}  // namespace
+
+std::string colour_map(double t) { return hex_of(colour_rgb(t)); }
 
 std::string SvgFigure::svg() const {
   if (panels_.empty()) throw Error("svg: a figure needs at least one panel");
@@ -111,7 +118,7 @@ std::string SvgFigure::svg() const {
         if (by_value) {
           const double v = (l.values(l.faces(f, 0)) + l.values(l.faces(f, 1)) + l.values(l.faces(f, 2))) / 3;
           const double t = scale_ ? (v - scale_->lo) / std::max(scale_->hi - scale_->lo, 1e-30) : v;
-          rgb = rgb_of(colour_map(t));
+          rgb = colour_rgb(t);
         }
         for (double& ch : rgb) ch *= shade;
         triangles.push_back({(a(2) + b(2) + c(2)) / 3 + l.depth_bias, {to_pixels(a), to_pixels(b), to_pixels(c)}, hex_of(rgb)});
