@@ -7,7 +7,7 @@
 
 #include <drape/data_parallel.hpp>
 #include <drape/dataset.hpp>
-#include <drape/metrics.hpp>
+#include <drape/evaluation.hpp>
 #include <drape/model.hpp>
 #include <drape/registry.hpp>
 #include <drape/svg_chart.hpp>
@@ -40,20 +40,11 @@ Row measure(const Registry& registry, const std::string& file, const DatasetRead
   check_dataset_template(reader, file, model.assets());
   Row row;
   row.name = std::filesystem::path(file).stem().string();
-  const MetricsContext metrics(model.assets());
+  const SplitEvaluation evaluation = evaluate_model(model, reader, indices);
   std::vector<double> me, p;
-  for (std::size_t first = 0; first < indices.size(); first += 16) {
-    const std::vector<std::size_t> part(indices.begin() + long(first), indices.begin() + long(std::min(indices.size(), first + 16)));
-    SampleBatch batch;
-    batch.body = reader.body_vertices(part);
-    if (model.needs_body_params()) batch.body_params = reader.body_params(part);
-    const Tensor truth = reader.garment_vertices(part), predicted = model.predict(batch);
-    for (int b = 0; b < predicted.batch(); ++b) {
-      const GarmentMetrics m = metrics.evaluate(predicted.mat(b).cast<double>(), truth.mat(b).cast<double>(),
-                                                batch.body.mat(b).cast<double>());
-      me.push_back(m.me_cm);
-      p.push_back(m.penetration_percent);
-    }
+  for (const GarmentMetrics& m : evaluation.samples) {
+    me.push_back(m.me_cm);
+    p.push_back(m.penetration_percent);
   }
   row.me_cm = mean(me);
   row.p_percent = mean(p);

@@ -4,6 +4,7 @@
 
 #include <drape/atomic_file.hpp>
 #include <drape/dataset.hpp>
+#include <drape/evaluation.hpp>
 #include <drape/metrics.hpp>
 #include <drape/model.hpp>
 #include <drape/progress.hpp>
@@ -127,39 +128,12 @@ int run(const std::vector<std::string>& args) {
   const std::vector<std::size_t> indices = split == "all" ? reader.indices() : reader.indices(parse_split(split));
   if (indices.empty()) throw ConfigError(data + ": the " + split + " split has no samples");
 
-  const MetricsContext metrics(model.assets());
-  std::vector<GarmentMetrics> per_sample(indices.size());
-  double reference_p = 0;
   ProgressBar bar("eval", indices.size(), std::cerr);
-  for (std::size_t first = 0; first < indices.size(); first += static_cast<std::size_t>(batch_size)) {
-    const std::vector<std::size_t> part(indices.begin() + static_cast<long>(first),
-                                        indices.begin() + static_cast<long>(std::min(indices.size(), first + static_cast<std::size_t>(batch_size))));
-    SampleBatch batch;
-    batch.body = reader.body_vertices(part);
-    if (model.needs_body_params()) batch.body_params = reader.body_params(part);
-    const Tensor truth = reader.garment_vertices(part);
-    const Tensor predicted = model.predict(batch);
-    const int n = static_cast<int>(part.size());
-    std::vector<double> ref(part.size());
-    std::vector<std::string> errors(part.size());
-#pragma omp parallel for schedule(dynamic)
-    for (int b = 0; b < n; ++b) {
-      try {  // no exception may leave an OpenMP region
-        const Eigen::MatrixX3d x = predicted.mat(b).cast<double>(), y = truth.mat(b).cast<double>(),
-                               body = batch.body.mat(b).cast<double>();
-        per_sample[first + static_cast<std::size_t>(b)] = metrics.evaluate(x, y, body);
-        ref[static_cast<std::size_t>(b)] = metrics.penetration(y, body);
-      } catch (const std::exception& e) {
-        errors[static_cast<std::size_t>(b)] = e.what();
-      }
-    }
-    for (std::size_t b = 0; b < part.size(); ++b)
-      if (!errors[b].empty()) throw Error("sample " + std::to_string(part[b]) + ": " + errors[b]);
-    for (double r : ref) reference_p += 100.0 * r / double(indices.size());
-    bar.advance(part.size());
-  }
+  const SplitEvaluation evaluation = evaluate_model(model, reader, indices, batch_size, &bar);
   bar.finish();
-  const MetricsSummary s = summarize(per_sample);
+  double reference_p = 0;
+  for (double r : evaluation.ground_truth_penetration) reference_p += 100.0 * r / double(indices.size());
+  const MetricsSummary s = summarize(evaluation.samples);
 
   std::printf("%s on %s, %s split (%zu samples)\n\n", model_file.c_str(), data.c_str(), split.c_str(), s.samples);
   std::printf("| metric | mean | std | unit |\n|---|---|---|---|\n");

@@ -1,0 +1,24 @@
+#pragma once
+// A model's predictions on samples of a dataset, measured with the seed's
+// metrics (metrics.hpp): what drape eval prints and drape bench tradeoff
+// plots. Bodies are predicted in batches; the metrics of a batch run in
+// parallel (OpenMP).
+#include <drape/dataset.hpp>
+#include <drape/metrics.hpp>
+#include <drape/model.hpp>
+#include <drape/progress.hpp>
+
+#include <vector>
+
+namespace drape {
+
+struct SplitEvaluation {
+  std::vector<GarmentMetrics> samples;          // in the order of the indices
+  std::vector<double> ground_truth_penetration; // fraction of the simulated garment's vertices inside the body
+};
+
+// Error naming the sample when a metric fails (a non-finite prediction).
+SplitEvaluation evaluate_model(Model& model, const DatasetReader& reader, const std::vector<std::size_t>& indices,
+                               int batch_size = 16, ProgressBar* progress = nullptr);
+
+}  // namespace drape

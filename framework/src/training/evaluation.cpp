@@ -1,0 +1,45 @@
+#include <drape/errors.hpp>
+#include <drape/evaluation.hpp>
+
+#include <algorithm>
+#include <string>
+
+namespace drape {
+
+SplitEvaluation evaluate_model(Model& model, const DatasetReader& reader, const std::vector<std::size_t>& indices,
+                               int batch_size, ProgressBar* progress) {
+  if (batch_size < 1) throw ConfigError("evaluate: the batch size must be at least 1");
+  const MetricsContext metrics(model.assets());
+  SplitEvaluation out;
+  out.samples.resize(indices.size());
+  out.ground_truth_penetration.resize(indices.size());
+  const auto step = static_cast<std::size_t>(batch_size);
+  for (std::size_t first = 0; first < indices.size(); first += step) {
+    const std::vector<std::size_t> part(indices.begin() + static_cast<long>(first),
+                                        indices.begin() + static_cast<long>(std::min(indices.size(), first + step)));
+    SampleBatch batch;
+    batch.body = reader.body_vertices(part);
+    if (model.needs_body_params()) batch.body_params = reader.body_params(part);
+    const Tensor truth = reader.garment_vertices(part);
+    const Tensor predicted = model.predict(batch);
+    const int n = static_cast<int>(part.size());
+    std::vector<std::string> errors(part.size());
+#pragma omp parallel for schedule(dynamic)
+    for (int b = 0; b < n; ++b) {
+      try {  // no exception may leave an OpenMP region
+        const Eigen::MatrixX3d x = predicted.mat(b).cast<double>(), y = truth.mat(b).cast<double>(),
+                               body = batch.body.mat(b).cast<double>();
+        out.samples[first + static_cast<std::size_t>(b)] = metrics.evaluate(x, y, body);
+        out.ground_truth_penetration[first + static_cast<std::size_t>(b)] = metrics.penetration(y, body);
+      } catch (const std::exception& e) {
+        errors[static_cast<std::size_t>(b)] = e.what();
+      }
+    }
+    for (std::size_t b = 0; b < part.size(); ++b)
+      if (!errors[b].empty()) throw Error("sample " + std::to_string(part[b]) + ": " + errors[b]);
+    if (progress) progress->advance(part.size());
+  }
+  return out;
+}
+
+}  // namespace drape
