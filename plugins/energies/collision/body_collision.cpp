@@ -39,11 +39,21 @@ void BodyCollision::bind(const EnergyContext& context) {
 }
 
 std::vector<Contact> BodyCollision::contacts(const Eigen::MatrixX3d& x, bool with_hessian) const {
-  std::vector<Contact> exact = body_contacts(*body_, x, with_hessian);
-  if (!(settings_.smoothing > 0)) return exact;
+  if (!(settings_.smoothing > 0)) return body_contacts(*body_, x, with_hessian);
   const auto& surface = static_cast<const geometry::BodySurface&>(*body_);
-  return smooth_contacts(surface.vertices(), surface.vertex_normals(), x, settings_.smoothing, std::move(exact),
-                         with_hessian);
+  std::vector<char> covered;
+  std::vector<Contact> out = smooth_contacts(surface.vertices(), surface.vertex_normals(), x, settings_.smoothing,
+                                             with_hessian, covered);
+  // The exact closest point only where no body vertex was within R.
+  std::vector<Eigen::Index> rest;
+  for (std::size_t v = 0; v < covered.size(); ++v)
+    if (!covered[v]) rest.push_back(static_cast<Eigen::Index>(v));
+  if (rest.empty()) return out;
+  Eigen::MatrixX3d far(static_cast<Eigen::Index>(rest.size()), 3);
+  for (std::size_t i = 0; i < rest.size(); ++i) far.row(static_cast<Eigen::Index>(i)) = x.row(rest[i]);
+  const std::vector<Contact> exact = body_contacts(*body_, far, with_hessian);
+  for (std::size_t i = 0; i < rest.size(); ++i) out[static_cast<std::size_t>(rest[i])] = exact[i];
+  return out;
 }
 
 void BodyCollision::check(const Eigen::MatrixX3d& x) const {

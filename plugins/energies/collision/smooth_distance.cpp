@@ -21,9 +21,11 @@ long long VertexGrid::key(const Eigen::Vector3i& c) {
 }
 
 std::vector<Contact> smooth_contacts(const Eigen::MatrixX3d& body_vertices, const Eigen::MatrixX3d& body_normals,
-                                     const Eigen::MatrixX3d& x, double radius, std::vector<Contact> exact,
-                                     bool with_hessian) {
+                                     const Eigen::MatrixX3d& x, double radius, bool with_hessian,
+                                     std::vector<char>& covered) {
   const VertexGrid grid(body_vertices, radius);
+  std::vector<Contact> out(static_cast<std::size_t>(x.rows()));
+  covered.assign(static_cast<std::size_t>(x.rows()), 0);
   const double r2 = radius * radius;
 #pragma omp parallel for schedule(static, 64) if (x.rows() > 512)
   for (Eigen::Index v = 0; v < x.rows(); ++v) {
@@ -51,16 +53,15 @@ std::vector<Contact> smooth_contacts(const Eigen::MatrixX3d& body_vertices, cons
         hess_d += ddw;
       }
     });
-    if (!(d_sum > 0)) continue;  // no vertex within R: keep the exact contact
-    Contact& c = exact[static_cast<std::size_t>(v)];
+    if (!(d_sum > 0)) continue;  // no vertex within R: the exact contact is the caller's
+    covered[static_cast<std::size_t>(v)] = 1;
+    Contact& c = out[static_cast<std::size_t>(v)];
     c.distance = n_sum / d_sum;
     c.normal = (grad_n - c.distance * grad_d) / d_sum;
     if (with_hessian)
       c.distance_hessian = (hess_n - c.normal * grad_d.transpose() - grad_d * c.normal.transpose() - c.distance * hess_d) / d_sum;
-    else
-      c.distance_hessian.setZero();
   }
-  return exact;
+  return out;
 }
 
 }  // namespace drape::collision

@@ -52,10 +52,11 @@ class VertexGrid {
 };
 
 // One contact per row of x: the IMLS distance, its gradient (not unit length)
-// and, with with_hessian, its Hessian; the exact contact where no body vertex
-// is within `radius`. `exact` are the closest-point contacts of the same rows.
+// and, with with_hessian, its Hessian. Rows with no body vertex within
+// `radius` are left default and marked false in `covered`: the caller gives
+// them the exact closest-point contact (only those rows need the BVH).
 std::vector<Contact> smooth_contacts(const Eigen::MatrixX3d& body_vertices, const Eigen::MatrixX3d& body_normals,
-                                     const Eigen::MatrixX3d& x, double radius, std::vector<Contact> exact,
-                                     bool with_hessian);
+                                     const Eigen::MatrixX3d& x, double radius, bool with_hessian,
+                                     std::vector<char>& covered);
 
 }  // namespace drape::collision
