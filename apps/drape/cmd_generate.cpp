@@ -11,7 +11,6 @@
 #include <drape/registry.hpp>
 #include <drape/rng.hpp>
 #include <drape/simulation.hpp>
-#include <drape/solver.hpp>
 
 #ifdef _OPENMP
 #include <omp.h>
@@ -132,10 +131,6 @@ int run(const std::vector<std::string>& args) {
   ProgressBar bar("generate", layout.samples, std::cerr, bar_options);
   std::mutex write_mutex;
   std::atomic<int> not_settled{0}, penetrating{0};
-  // One BLAS thread, whatever --threads: one solver per core already fills
-  // them, and a sample must not depend on how many ran beside it (a
-  // multi-threaded BLAS rounds differently, and the solver's path can follow).
-  set_blas_threads(1);
   make_samples_in_parallel(writer, bar, todo, threads, [&]() -> SampleWorker {
 #ifdef _OPENMP
     omp_set_num_threads(1);  // parallel over samples, not inside one

@@ -38,9 +38,6 @@ int run(const std::vector<std::string>& args) {
   if (vm.count("body") && (vm.count("bmi") || vm.count("height") || vm.count("sex")))
     throw UsageError("--body gives the body itself: drop --bmi/--height/--sex");
 
-  // As drape generate: one BLAS thread (no slower at these sizes), so a drape
-  // simulated here is bit-identical to the same sample of a dataset.
-  set_blas_threads(1);
   Registry& registry = Registry::load_default(plugin_path(vm));
   Scene scene = load_scene(vm["scene"].as<std::string>());
   override_shape(scene, vm);

@@ -111,11 +111,9 @@ class ClothSolver {
   std::unique_ptr<Impl> impl_;
 };
 
-// Threads the BLAS may use inside CHOLMOD's supernodal factorisation, for the
-// whole process. OpenBLAS starts one thread per core, and its idle threads spin:
-// with one solver per core (drape generate) they fight over the cores and each
-// drape took 3x longer (13.6 s against 4.4 s per coarse drape, 2 workers on 2
-// cores). Returns false when the BLAS linked offers no such control.
+// Threads the BLAS may use, for the whole process (OpenBLAS, BLIS). Creating a
+// CHOLMOD solver sets it to 1 (sparse_cholesky.cpp says why). Returns false
+// when the BLAS linked offers no such control.
 bool set_blas_threads(int threads);
 
 }  // namespace drape

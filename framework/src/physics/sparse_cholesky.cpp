@@ -1,6 +1,7 @@
 #include "sparse_cholesky.hpp"
 
 #include <drape/errors.hpp>
+#include <drape/solver.hpp>
 
 #include <Eigen/SparseCholesky>
 #ifdef DRAPE_HAVE_CHOLMOD
@@ -68,6 +69,12 @@ std::unique_ptr<SparseCholesky> make_sparse_cholesky(const std::string& name) {
     cholmod_common& common = c->solver().cholmod();
     common.nmethods = 1;
     common.method[0].ordering = CHOLMOD_NESDIS;
+    // One BLAS thread inside CHOLMOD, for every solver: these factorisations
+    // are too small to gain from more (measured the same time), OpenBLAS's idle
+    // threads spin against one-solver-per-core jobs (drape generate: 13.6 s
+    // instead of 4.4 s per coarse drape), and a multi-threaded BLAS rounds
+    // differently, which would make a drape depend on the thread count.
+    set_blas_threads(1);
     return c;
 #else
     throw ConfigError("linear_solver: cholmod was not found when drape was built (install libsuitesparse-dev); use eigen");
