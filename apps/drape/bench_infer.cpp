@@ -5,6 +5,7 @@
 
 #include <drape/data_parallel.hpp>
 #include <drape/model.hpp>
+#include <drape/nn/dot_rows.hpp>
 #include <drape/registry.hpp>
 
 #include <algorithm>
@@ -68,10 +69,15 @@ int run(const std::vector<std::string>& args) {
   const OmpThreadsScope one_core(1);
   graph.forward(inputs, false);  // warm-up: allocations, caches
   std::vector<double> ms;
+  std::vector<std::vector<double>> node_ms;  // per node, per repeat
+  std::vector<Graph::NodeTime> nodes;
   for (int r = 0; r < repeats; ++r) {
     const auto t = Clock::now();
     graph.forward(inputs, false);
     ms.push_back(std::chrono::duration<double, std::milli>(Clock::now() - t).count() / batch_size);
+    nodes = graph.last_forward_times();
+    node_ms.resize(nodes.size());
+    for (std::size_t n = 0; n < nodes.size(); ++n) node_ms[n].push_back(nodes[n].ms / batch_size);
   }
   std::sort(ms.begin(), ms.end());
   const double best = ms.front(), median = ms[ms.size() / 2];
@@ -79,11 +85,26 @@ int run(const std::vector<std::string>& args) {
   std::size_t weights = 0;
   for (const auto& [name, w] : graph.weights()) weights += w->value.size();
   std::printf("## Inference on one core: %s\n\n", what.c_str());
-  std::printf("garment %d vertices, body %d vertices, output '%s', %zu learnable weights, batch %d\n\n",
-              assets->garment->mesh.num_vertices(), assets->body.num_vertices(), output.c_str(), weights, batch_size);
+  std::printf("garment %d vertices, body %d vertices, output '%s', %zu learnable weights, batch %d, thin-product kernel %s\n\n",
+              assets->garment->mesh.num_vertices(), assets->body.num_vertices(), output.c_str(), weights, batch_size,
+              nn::dot_rows_version());
   std::printf("| ms per body (best of %d) | median | multiply-adds per body | GFLOP/s (2 per multiply-add) |\n|---|---|---|---|\n",
               repeats);
   std::printf("| %.3f | %.3f | %.4g | %.2f |\n", best, median, macs, 2.0 * macs / (best * 1e-3) / 1e9);
+  // Where the time goes: the median pass of each node, so a reader sees which
+  // node is far from the machine's peak (memory-bound or scalar code).
+  std::printf("\n| node | type | ms per body (median) | share | multiply-adds | GFLOP/s |\n|---|---|---|---|---|---|\n");
+  double total = 0.0;
+  std::vector<double> node_median(nodes.size());
+  for (std::size_t n = 0; n < nodes.size(); ++n) {
+    std::sort(node_ms[n].begin(), node_ms[n].end());
+    node_median[n] = node_ms[n][node_ms[n].size() / 2];
+    total += node_median[n];
+  }
+  for (std::size_t n = 0; n < nodes.size(); ++n)
+    std::printf("| %s | %s | %.3f | %.0f%% | %.3g | %.2f |\n", nodes[n].name.c_str(), nodes[n].type.c_str(), node_median[n],
+                100.0 * node_median[n] / std::max(total, 1e-12), nodes[n].flops_per_sample,
+                node_median[n] > 0 ? 2.0 * nodes[n].flops_per_sample / (node_median[n] * 1e-3) / 1e9 : 0.0);
   return 0;
 }
 

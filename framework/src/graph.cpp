@@ -1,6 +1,8 @@
 // Building, validating and running graphs.
 #include <drape/graph.hpp>
 
+#include <chrono>
+
 #include <algorithm>
 #include <functional>
 
@@ -41,6 +43,7 @@ struct Graph::Impl {
     bool requires_grad = false;  // has weights upstream (or itself)
     bool for_outputs = false;    // needed to compute the graph outputs
     bool for_losses = false;     // needed to compute the losses
+    double forward_ms = 0.0;     // wall time of the last forward (0 when it did not run)
     std::string label() const { return "node '" + spec.name + "' (" + spec.type + ")"; }
   };
   struct Input {
@@ -327,6 +330,7 @@ void Graph::forward(const std::map<std::string, Tensor>& inputs, bool with_losse
   if (g.batch <= 0) throw ConfigError("forward needs at least one input with a positive batch size");
 
   for (auto& b : g.nodes) {
+    b.forward_ms = 0.0;
     if (!runs(b)) continue;
     TensorIn in;
     for (std::size_t k = 0; k < b.in_ports.size(); ++k) in[b.in_ports[k]] = &g.value_of(b.sources[k]);
@@ -336,9 +340,18 @@ void Graph::forward(const std::map<std::string, Tensor>& inputs, bool with_losse
       b.outputs[k].resize(g.batch, b.out_shapes[k].rows, b.out_shapes[k].cols);
       out[b.out_ports[k]] = &b.outputs[k];
     }
+    const auto start = std::chrono::steady_clock::now();
     b.node->forward(in, out);
+    b.forward_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   }
   g.ran_losses = with_losses;
+}
+
+std::vector<Graph::NodeTime> Graph::last_forward_times() const {
+  std::vector<NodeTime> out;
+  for (const auto& b : impl_->nodes)
+    if (b.forward_ms > 0.0) out.push_back({b.spec.name, b.spec.type, b.forward_ms, b.node->flops_per_sample()});
+  return out;
 }
 
 std::map<std::string, double> Graph::loss_terms() const {

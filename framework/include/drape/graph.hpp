@@ -101,6 +101,15 @@ class Graph {
   void zero_grad();
   double flops_per_sample() const;  // the nodes needed for the outputs
 
+  // Where the last forward spent its time, node by node in execution order
+  // (the nodes that ran), with each node's multiply-adds per sample.
+  struct NodeTime {
+    std::string name, type;
+    double ms = 0.0;
+    double flops_per_sample = 0.0;
+  };
+  std::vector<NodeTime> last_forward_times() const;
+
   struct Impl;  // opaque
 
  private:
