@@ -46,6 +46,10 @@ TEST_CASE("spectral scales the last layer's initial weights by init_scale", "[gc
 TEST_CASE("spectral: Delta c from the MLP on the flattened input, Delta x = V Delta c", "[gcn][spectral]") {
   const auto assets = gcn_assets();
   const DenseF v = assets->eigenvectors.leftCols(4);
+  // The node keeps V in bfloat16; Eigen's own conversion (round to nearest even) is the reference.
+  const DenseF v16 = v.unaryExpr([](float e) { return static_cast<float>(Eigen::bfloat16(e)); });
+  CHECK((v16 - v).cwiseAbs().maxCoeff() > 0.0f);  // the rounding is real at this size
+  CHECK(((v16 - v).cwiseAbs().array() <= v.cwiseAbs().array() / 256).all());
   // One sample streams over V's rows, three use a matrix product: both give V Delta c.
   for (int batch : {1, 3}) {
     INFO("batch " << batch);
@@ -61,9 +65,9 @@ TEST_CASE("spectral: Delta c from the MLP on the flattened input, Delta x = V De
       for (int i = 0; i < 4; ++i)
         for (int c = 0; c < 3; ++c) dc(i, c) = mlp(3 * i + c);  // coefficient i of axis c
       CHECK((dense_of(out.at("coefficients"), b) - dc).cwiseAbs().maxCoeff() < 1e-5f);
-      CHECK((dense_of(out.at("out"), b) - v * dc).cwiseAbs().maxCoeff() < 1e-5f);
-      // Orthonormal columns: the coefficients come back from the residual, V^T Delta x = Delta c.
-      CHECK((v.transpose() * dense_of(out.at("out"), b) - dc).cwiseAbs().maxCoeff() < 1e-5f);
+      CHECK((dense_of(out.at("out"), b) - v16 * dc).cwiseAbs().maxCoeff() < 1e-5f);
+      // Orthonormal columns up to the rounding: the coefficients come back, V^T Delta x = Delta c.
+      CHECK((v.transpose() * dense_of(out.at("out"), b) - dc).cwiseAbs().maxCoeff() < 1e-2f * dc.cwiseAbs().maxCoeff());
     }
   }
 }
