@@ -102,7 +102,7 @@ int run(const std::vector<std::string>& args) {
   po::options_description opts("drape eval");
   opts.add_options()("model", po::value<std::string>(), "model file from drape train")(
       "data", po::value<std::string>(), "dataset (drape generate) with ground-truth drapes")(
-      "split", po::value<std::string>()->default_value("test"), "train | val | test | all")(
+      "split", po::value<std::string>()->default_value("test"), "train | val | test | all, or a list: train,val")(
       "batch", po::value<int>()->default_value(16), "bodies per forward pass")(
       "out", po::value<std::string>(), "also write the table: metrics.csv or metrics.json")(
       "svg", po::value<std::string>(), "also draw the per-vertex error of the thinnest, median and heaviest body of the split");
@@ -125,7 +125,7 @@ int run(const std::vector<std::string>& args) {
   Model model = Model::load(registry, model_file);
   const DatasetReader reader(data);
   check_dataset_template(reader, data, model.assets());
-  const std::vector<std::size_t> indices = split == "all" ? reader.indices() : reader.indices(parse_split(split));
+  const std::vector<std::size_t> indices = reader.indices(split);
   if (indices.empty()) throw ConfigError(data + ": the " + split + " split has no samples");
 
   ProgressBar bar("eval", indices.size(), std::cerr);

@@ -43,7 +43,7 @@ int run_on_dataset(const po::variables_map& vm) {
   o.out = vm["out"].as<std::string>();
   o.scene_file = vm["scene"].as<std::string>();
   o.split = vm["split"].as<std::string>();
-  if (o.split != "all") parse_split(o.split);  // ConfigError for a misspelt split
+  DatasetReader::check_splits(o.split);  // a misspelt split fails before any work
   o.threads = vm["threads"].as<int>();
   if (o.threads <= 0) o.threads = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
   o.optimization.iterations = vm["iters"].as<int>();
@@ -66,7 +66,7 @@ int run(const std::vector<std::string>& args) {
       "before", po::value<std::string>(), "also write the network's prediction before optimising")(
       "svg", po::value<std::string>(), "also draw the drape before and after")(
       "data", po::value<std::string>(), "or optimise every sample of a dataset split (then --out is a dataset)")(
-      "split", po::value<std::string>()->default_value("train"), "with --data: train | val | test | all")(
+      "split", po::value<std::string>()->default_value("train"), "with --data: train | val | test | all, or a list: train,val")(
       "threads", po::value<int>()->default_value(0), "with --data: samples at once (0: all cores)")(
       "verbose,v", po::bool_switch(), "print L_p at every iteration");
   po::variables_map vm;

@@ -47,6 +47,7 @@ int run(const std::vector<std::string>& given) {
       "batch", po::value<int>()->default_value(8), "samples per step")(
       "lr", po::value<double>()->default_value(1e-3), "Adam's learning rate")(
       "schedule", po::value<std::string>()->default_value("constant"), "learning rate over epochs: constant | cosine")(
+      "fraction", po::value<double>()->default_value(1.0), "train on this fraction of the training split (the seed's 4k model: 0.25)")(
       "patience", po::value<int>()->default_value(20), "stop after this many epochs without a better validation loss")(
       "seed", po::value<std::uint64_t>()->default_value(0), "seed of the initial weights and the shuffles")(
       "threads", po::value<int>()->default_value(0), "threads, each on a part of every batch (0: all cores); results "
@@ -74,6 +75,7 @@ int run(const std::vector<std::string>& given) {
   o.lr = vm["lr"].as<double>();
   o.schedule = vm["schedule"].as<std::string>();
   o.patience = vm["patience"].as<int>();
+  o.train_fraction = vm["fraction"].as<double>();
   o.seed = vm["seed"].as<std::uint64_t>();
   o.threads = vm["threads"].as<int>();
   if (o.threads == 0) o.threads = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));

@@ -18,7 +18,7 @@ namespace drape::cli {
 
 std::size_t optimize_dataset(const Registry& registry, const OptimizeDatasetOptions& o) {
   const DatasetReader reader(o.data);
-  const std::vector<std::size_t> source = o.split == "all" ? reader.indices() : reader.indices(parse_split(o.split));
+  const std::vector<std::size_t> source = reader.indices(o.split);
   if (source.empty()) throw ConfigError(o.data.string() + ": the " + o.split + " split has no samples");
   const Scene scene = load_scene(o.scene_file);
   const Simulation simulation(registry, scene);

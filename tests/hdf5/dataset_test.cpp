@@ -215,6 +215,11 @@ TEST_CASE("dataset: reading splits and gathering rows in the order asked", "[hdf
   CHECK(reader.indices(Split::Train) == std::vector<std::size_t>{0, 3, 6});
   CHECK(reader.indices(Split::Val) == std::vector<std::size_t>{1, 7});  // 4 is not done
   CHECK(reader.indices(Split::Test) == std::vector<std::size_t>{2, 5, 8});
+  CHECK(reader.indices("train,val") == std::vector<std::size_t>{0, 1, 3, 6, 7});
+  CHECK(reader.indices("test") == reader.indices(Split::Test));
+  CHECK(reader.indices("all") == reader.indices());
+  CHECK_THROWS_WITH(reader.indices("train,tset"), Catch::Contains("unknown split 'tset'"));
+  CHECK_THROWS_AS(DatasetReader::check_splits("train,"), ConfigError);
   const std::vector<std::size_t> order = {8, 2, 3, 5, 6};
   const Tensor garments = reader.garment_vertices(order);
   REQUIRE(garments.batch() == 5);

@@ -92,6 +92,22 @@ TEST_CASE("training mlp_baseline reduces the loss and writes a loadable model", 
   CHECK(error == Approx(c.history.at("val_loss_l2")[static_cast<std::size_t>(r.best_epoch - 1)]).epsilon(1e-3));
 }
 
+TEST_CASE("a training fraction trains on the first part of the training split only", "[train]") {
+  TinyData d;
+  auto o = test::tiny_training(d.data, d.dir / "quarter.h5");
+  o.epochs = 2;
+  o.train_fraction = 0.25;
+  const TrainReport r = train(test::plugins(), o);
+  CHECK(r.train_samples == 3);  // ceil(0.25 * 12)
+  CHECK(r.val_samples == 4);    // the validation split stays whole
+  // Resuming with another fraction is another run: refused.
+  o.resume = true;
+  o.train_fraction = 0.5;
+  CHECK_THROWS_WITH(train(test::plugins(), o), Catch::Contains("train_samples 3"));
+  o.train_fraction = 0.0;
+  CHECK_THROWS_WITH(train(test::plugins(), o), Catch::Contains("--fraction must be in (0, 1]"));
+}
+
 TEST_CASE("a seed reproduces the weights bit for bit and another seed does not", "[train]") {
   TinyData d;
   auto o = test::tiny_training(d.data, d.dir / "a.h5");

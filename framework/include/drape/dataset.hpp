@@ -114,6 +114,10 @@ class DatasetReader {
 
   std::vector<std::size_t> indices() const;             // every done sample
   std::vector<std::size_t> indices(Split split) const;  // done samples of one split
+  // Done samples of the splits a text names: "test", "train,val" or "all", in
+  // file order. ConfigError for an unknown split name.
+  std::vector<std::size_t> indices(const std::string& splits) const;
+  static void check_splits(const std::string& splits);  // the same ConfigError, without a file
 
   // Rows in the order of `indices`, as network-ready float tensors.
   Tensor body_params(const std::vector<std::size_t>& indices) const;       // [n, 1, P]

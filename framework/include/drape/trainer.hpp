@@ -35,6 +35,10 @@ struct TrainOptions {
   std::uint64_t seed = 0;
   int threads = 1;
   int patience = 20;          // epochs without a better validation loss before stopping
+  // Train on this fraction of the training split only (its first samples in
+  // file order: the split is a seeded random permutation, so a random subset);
+  // the validation split stays whole. The seed's "4k" model is fraction 0.25.
+  double train_fraction = 1.0;
   bool resume = false;        // continue from <out>.state when it exists
   bool force = false;         // start over even when <out> or <out>.state exists
   long max_epochs_this_run = 0;  // > 0: stop after that many epochs as if killed (tests)

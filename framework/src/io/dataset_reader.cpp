@@ -49,6 +49,32 @@ std::vector<std::size_t> DatasetReader::indices(Split split) const {
 
 namespace {
 
+std::vector<bool> wanted_splits(const std::string& splits) {
+  std::vector<bool> wanted(3, splits == "all");
+  if (splits == "all") return wanted;
+  std::size_t start = 0;
+  while (start <= splits.size()) {
+    const std::size_t comma = std::min(splits.find(',', start), splits.size());
+    wanted[static_cast<std::size_t>(parse_split(splits.substr(start, comma - start)))] = true;
+    start = comma + 1;
+  }
+  return wanted;
+}
+
+}  // namespace
+
+void DatasetReader::check_splits(const std::string& splits) { wanted_splits(splits); }
+
+std::vector<std::size_t> DatasetReader::indices(const std::string& splits) const {
+  const std::vector<bool> wanted = wanted_splits(splits);
+  std::vector<std::size_t> out;
+  for (std::size_t i = 0; i < done_.size(); ++i)
+    if (done_[i] && split_[i] >= 0 && split_[i] < 3 && wanted[static_cast<std::size_t>(split_[i])]) out.push_back(i);
+  return out;
+}
+
+namespace {
+
 void check_indices(const DatasetReader& reader, const std::vector<std::size_t>& indices, const fs::path& path) {
   for (std::size_t i : indices) {
     if (i >= reader.size())

@@ -13,6 +13,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cmath>
 #include <cstdio>
 #include <iostream>
 #include <memory>
@@ -96,6 +97,8 @@ void check_options(const TrainOptions& o) {
   if (o.patience < 1) bad("--patience must be at least 1, got " + std::to_string(o.patience));
   if (o.threads < 1) bad("--threads must be at least 1, got " + std::to_string(o.threads));
   if (o.eigen_k < 1) bad("--k must be at least 1, got " + std::to_string(o.eigen_k));
+  if (!(o.train_fraction > 0 && o.train_fraction <= 1))
+    bad("--fraction must be in (0, 1], got " + exact(o.train_fraction));
   if (o.schedule != "constant" && o.schedule != "cosine")
     bad("--schedule must be constant or cosine, got '" + o.schedule + "'");
 }
@@ -167,7 +170,9 @@ TrainReport train(const Registry& registry, const TrainOptions& o) {
     assets = assets_for_dataset(registry, reader, o.data, o.eigen_k, o.cache_dir, &assets_spec);
   }
   const int ng = assets->garment->mesh.num_vertices(), nb = assets->body.num_vertices();
-  const std::vector<std::size_t> train_idx = reader.indices(Split::Train), val_idx = reader.indices(Split::Val);
+  std::vector<std::size_t> train_idx = reader.indices(Split::Train);
+  const std::vector<std::size_t> val_idx = reader.indices(Split::Val);
+  train_idx.resize(static_cast<std::size_t>(std::ceil(o.train_fraction * static_cast<double>(train_idx.size()))));
   if (train_idx.empty()) throw ConfigError(o.data.string() + ": no training samples (split 0) are done");
   report.train_samples = static_cast<int>(train_idx.size());
   report.val_samples = static_cast<int>(val_idx.size());
