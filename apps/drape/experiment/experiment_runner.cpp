@@ -1,0 +1,353 @@
+#include "experiment_runner.hpp"
+
+#include "../command.hpp"
+
+#include <drape/checkpoint.hpp>
+#include <drape/data_parallel.hpp>
+#include <drape/dataset.hpp>
+#include <drape/model.hpp>
+#include <drape/registry.hpp>
+#include <drape/scene.hpp>
+
+#include <yaml-cpp/yaml.h>
+
+#include <algorithm>
+#include <cctype>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <iostream>
+#include <set>
+#include <sstream>
+#include <thread>
+
+namespace drape::cli {
+namespace fs = std::filesystem;
+
+namespace {
+
+std::string slug(const std::string& name) {
+  std::string s;
+  for (char c : name) {
+    const bool keep = std::isalnum(static_cast<unsigned char>(c)) || c == '-' || c == '.' || c == '_';
+    const char out = keep ? static_cast<char>(std::tolower(static_cast<unsigned char>(c))) : '_';
+    if (out == '_' && !s.empty() && s.back() == '_') continue;
+    s += out;
+  }
+  while (!s.empty() && s.back() == '_') s.pop_back();
+  return s.empty() ? "row" : s;
+}
+
+std::string hex8(const std::string& text) {
+  std::uint64_t h = 1469598103934665603ull;  // FNV-1a
+  for (unsigned char c : text) h = (h ^ c) * 1099511628211ull;
+  char b[17];
+  std::snprintf(b, sizeof b, "%016llx", static_cast<unsigned long long>(h));
+  return std::string(b, 8);
+}
+
+std::string exact(double v) {
+  std::ostringstream o;
+  o.precision(17);
+  o << v;
+  return o.str();
+}
+
+// An output is up to date when it exists and is newer than every input.
+bool up_to_date(const fs::path& out, const std::vector<fs::path>& inputs) {
+  if (!fs::exists(out)) return false;
+  for (const auto& in : inputs)
+    if (fs::exists(in) && fs::last_write_time(in) > fs::last_write_time(out)) return false;
+  return true;
+}
+
+double mean(const std::vector<double>& v) {
+  double s = 0;
+  for (double x : v) s += x;
+  return v.empty() ? NAN : s / double(v.size());
+}
+
+double sum(const std::vector<double>& v) {
+  double s = 0;
+  for (double x : v) s += x;
+  return s;
+}
+
+bool has_stat(const DatasetReader& r, const std::string& name) {
+  const auto& s = r.layout().stats;
+  return std::find(s.begin(), s.end(), name) != s.end();
+}
+
+// The energy columns and p from a dataset's statistics (a simulation or an optimisation).
+void physics_columns(const DatasetReader& r, const std::vector<std::size_t>& indices, std::map<std::string, double>& out) {
+  const std::pair<const char*, const char*> energies[] = {{"L_st", "energy_stretching"}, {"L_b", "energy_bending"},
+                                                          {"L_g", "energy_gravity"},     {"L_c", "energy_collision"},
+                                                          {"L_p", "energy_total"}};
+  for (const auto& [column, stat] : energies)
+    if (has_stat(r, stat)) out[column] = mean(r.stat(stat, indices));
+  if (has_stat(r, "penetration")) out["p"] = 100.0 * mean(r.stat("penetration", indices));
+}
+
+class Runner {
+ public:
+  Runner(const ExperimentSpec& spec, const ExperimentOptions& options)
+      : spec_(spec), o_(options), work_(experiment_work_dir(spec, options)) {}
+
+  ExperimentTable run() {
+    if (!o_.dry_run) {
+      fs::create_directories(work_);
+      fs::create_directories(o_.data_dir);
+    }
+    ExperimentTable table;
+    table.title = spec_.title.empty() ? spec_.name : spec_.title;
+    table.note = spec_.note;
+    table.columns = spec_.columns;
+    for (const auto& d : spec_.datasets) dataset(d.key);
+    for (const auto& row : spec_.rows) {
+      std::printf("\n== %s: row '%s'\n", spec_.name.c_str(), row.name.c_str());
+      std::fflush(stdout);
+      ExperimentTableRow out = this->row(row);
+      table.rows.push_back(out);
+      table.seed.push_back(row.seed_values);
+    }
+    table.setup = setup_text();
+    return table;
+  }
+
+ private:
+  // Runs `drape <args>` in this process, printed first so that it can be repeated by hand.
+  void drape(const std::vector<std::string>& args) {
+    std::string line = "$ drape";
+    for (const auto& a : args) line += " " + a;
+    std::printf("%s\n", line.c_str());
+    std::fflush(stdout);
+    if (o_.dry_run) return;
+    const auto& all = commands();
+    const auto it = std::find_if(all.begin(), all.end(), [&](const Command& c) { return c.name == args.front(); });
+    if (it == all.end()) throw Error("drape experiment: no command '" + args.front() + "'");
+    const int code = it->run(std::vector<std::string>(args.begin() + 1, args.end()));
+    if (code != 0) throw Error("drape experiment: '" + line.substr(2) + "' exited with " + std::to_string(code));
+  }
+
+  long scaled(long count) const { return std::max(10L, std::lround(double(count) * o_.scale)); }
+  std::string threads() const { return std::to_string(o_.threads); }
+
+  const fs::path& dataset(const std::string& key) {
+    const auto known = datasets_.find(key);
+    if (known != datasets_.end()) return known->second;
+    const ExperimentDataset& d = spec_.dataset(key);
+    const auto given = o_.data_files.find(key);
+    if (given != o_.data_files.end()) {
+      std::printf("dataset '%s': using %s as given\n", key.c_str(), given->second.c_str());
+      return datasets_[key] = given->second;
+    }
+    const long count = scaled(d.count);
+    const std::string identity = load_scene(d.scene).yaml() + "|" + std::to_string(count) + "|" + d.bmi + "|" +
+                                 std::to_string(d.seed);
+    const fs::path file = o_.data_dir / (key + "-" + std::to_string(count) + "-" + hex8(identity) + ".h5");
+    if (fs::exists(file))
+      std::printf("dataset '%s': reusing %s\n", key.c_str(), file.c_str());
+    else
+      drape({"generate", d.scene.string(), "--count", std::to_string(count), "--bmi", d.bmi, "--seed",
+             std::to_string(d.seed), "--threads", threads(), "--out", file.string()});
+    return datasets_[key] = file;
+  }
+
+  fs::path model_file(const ExperimentRow& row) const { return work_ / (slug(row.name) + ".h5"); }
+
+  // Trains (or resumes, or finds finished) the model of a training row.
+  fs::path train(const ExperimentRow& row) {
+    const fs::path model = model_file(row);
+    if (trained_.count(row.name)) return model;
+    fs::path data = dataset(row.data);
+    if (!row.on_optimized.empty()) data = optimized_training_data(row);
+    const ExperimentTraining& t = row.training;
+    const long epochs = o_.epochs > 0 ? o_.epochs : t.epochs;
+    if (finished_training(model, data, epochs)) {
+      std::printf("model %s: trained already\n", model.c_str());
+      trained_.insert(row.name);
+      return model;
+    }
+    drape({"train", row.graph.string(), "--data", data.string(), "--out", model.string(), "--epochs",
+           std::to_string(epochs), "--batch", std::to_string(t.batch), "--lr", exact(t.lr),
+           "--schedule", t.schedule, "--patience", std::to_string(t.patience), "--seed", std::to_string(t.seed),
+           "--fraction", exact(row.fraction), "--threads", threads(), "--resume"});
+    trained_.insert(row.name);
+    return model;
+  }
+
+  // A model whose training ended (all epochs, or stopped early) on this data;
+  // anything else goes back to drape train --resume, which checks the settings.
+  static bool finished_training(const fs::path& model, const fs::path& data, long epochs) {
+    if (!fs::exists(model) || !up_to_date(model, {data})) return false;
+    const Checkpoint c = read_checkpoint(model);
+    const auto status = c.meta.find("status");
+    const auto planned = c.meta.find("epochs");
+    return status != c.meta.end() && (status->second == "finished" || status->second == "early stopped") &&
+           planned != c.meta.end() && planned->second == std::to_string(epochs);
+  }
+
+  // The source row's model optimised on every train and validation body: the seed's retraining data.
+  fs::path optimized_training_data(const ExperimentRow& row) {
+    const ExperimentRow& source = spec_.row(row.on_optimized);
+    const fs::path model = train(source);
+    const fs::path out = work_ / (slug(source.name) + ".optimized-" + std::to_string(row.iterations) + ".h5");
+    optimize(model, row.scene, dataset(source.data), "train,val", row.iterations, out);
+    return out;
+  }
+
+  void optimize(const fs::path& model, const fs::path& scene, const fs::path& data, const std::string& split,
+                int iterations, const fs::path& out) {
+    if (up_to_date(out, {model, data})) return;
+    if (!o_.dry_run && fs::exists(out)) fs::remove(out);  // made from an older model
+    drape({"optimize", "--model", model.string(), "--scene", scene.string(), "--data", data.string(), "--split", split,
+           "--iters", std::to_string(iterations), "--threads", threads(), "--out", out.string()});
+  }
+
+  // Core-hours behind a trained model: the simulations it learnt from, its
+  // training, and for a retrained model its source and the optimisation.
+  double core_hours(const ExperimentRow& row) {
+    const Checkpoint c = read_checkpoint(model_file(row));
+    const double threads_used = c.meta.count("threads") ? std::stod(c.meta.at("threads")) : 1.0;
+    double seconds = std::stod(c.meta.at("seconds")) * threads_used;
+    if (row.on_optimized.empty()) {
+      const DatasetReader r(dataset(row.data));
+      std::vector<std::size_t> used = r.indices(Split::Train);
+      used.resize(static_cast<std::size_t>(std::ceil(row.fraction * double(used.size()))));
+      const auto val = r.indices(Split::Val);
+      used.insert(used.end(), val.begin(), val.end());
+      if (has_stat(r, "seconds")) seconds += sum(r.stat("seconds", used));
+      return seconds / 3600.0;
+    }
+    const ExperimentRow& source = spec_.row(row.on_optimized);
+    const DatasetReader opt(optimized_training_data(row));
+    seconds += sum(opt.stat("seconds", opt.indices()));
+    return seconds / 3600.0 + core_hours(source);
+  }
+
+  // Milliseconds per body of the model's forward pass on one core (best of 20), cached next to the model.
+  double inference_ms(const ExperimentRow& row, const fs::path& model) {
+    const fs::path cache = work_ / (slug(row.name) + ".infer-ms.txt");
+    if (up_to_date(cache, {model})) {
+      double ms = 0;
+      std::ifstream(cache) >> ms;
+      if (ms > 0) return ms;
+    }
+    Model m = Model::load(Registry::load_default({}), model);
+    const DatasetReader r(dataset(row.test));
+    const std::vector<std::size_t> one = {r.indices(Split::Test).front()};
+    SampleBatch batch;
+    batch.body = r.body_vertices(one);
+    if (m.needs_body_params()) batch.body_params = r.body_params(one);
+    const OmpThreadsScope one_core(1);
+    m.predict(batch);
+    double best = 1e300;
+    for (int i = 0; i < 20; ++i) {
+      const auto start = std::chrono::steady_clock::now();
+      m.predict(batch);
+      best = std::min(best, std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
+    }
+    std::ofstream(cache) << exact(best) << "\n";
+    return best;
+  }
+
+  bool wants(const std::string& column) const {
+    return std::find(spec_.columns.begin(), spec_.columns.end(), column) != spec_.columns.end();
+  }
+
+  ExperimentTableRow row(const ExperimentRow& row) {
+    ExperimentTableRow out;
+    out.name = row.name;
+    if (row.kind == ExperimentRowKind::Simulation) {
+      const fs::path data = dataset(row.data);
+      out.provenance = data.string() + " (test split)";
+      if (o_.dry_run) return out;
+      const DatasetReader r(data);
+      const auto test = r.indices(Split::Test);
+      physics_columns(r, test, out.values);
+      out.values["e2e_h"] = 0;
+      if (has_stat(r, "seconds")) out.values["infer"] = mean(r.stat("seconds", test));
+      out.infer_unit = "s";
+      return out;
+    }
+    if (row.kind == ExperimentRowKind::Optimize) {
+      const ExperimentRow& source = spec_.row(row.source);
+      const fs::path model = train(source);
+      const fs::path out_file = work_ / (slug(row.name) + ".opt.h5");
+      optimize(model, row.scene, dataset(source.test), "test", row.iterations, out_file);
+      out.provenance = out_file.string();
+      if (o_.dry_run) return out;
+      const DatasetReader r(out_file);
+      physics_columns(r, r.indices(), out.values);
+      out.values["infer"] = mean(r.stat("seconds", r.indices()));
+      out.infer_unit = "s";
+      if (wants("e2e_h")) out.values["e2e_h"] = core_hours(source);
+      return out;
+    }
+    const fs::path model = train(row);
+    const fs::path test = dataset(row.test);
+    const fs::path eval = work_ / (slug(row.name) + ".eval.json");
+    out.provenance = model.string();
+    if (!up_to_date(eval, {model, test}))
+      drape({"eval", "--model", model.string(), "--data", test.string(), "--split", "test", "--out", eval.string()});
+    fs::path physics;
+    if (!row.physics.empty()) {
+      physics = work_ / (slug(row.name) + ".physics.h5");
+      optimize(model, row.physics, test, "test", 0, physics);
+    }
+    if (o_.dry_run) return out;
+    if (!physics.empty()) {
+      const DatasetReader r(physics);
+      physics_columns(r, r.indices(), out.values);
+    }
+    const YAML::Node metrics = YAML::LoadFile(eval.string())["metrics"];
+    for (const auto& kv : metrics) out.values[kv.first.as<std::string>()] = kv.second["mean"].as<double>();
+    const Checkpoint c = read_checkpoint(model);
+    out.values["train_h"] = std::stod(c.meta.at("seconds")) / 3600.0;
+    if (wants("e2e_h")) out.values["e2e_h"] = core_hours(row);
+    if (wants("infer")) out.values["infer"] = inference_ms(row, model);
+    out.infer_unit = "ms";
+    return out;
+  }
+
+  std::string setup_text() const {
+    std::ostringstream s;
+    s << "Run: `drape experiment " << spec_.file.string() << (o_.scale != 1 ? " --scale " + exact(o_.scale) : "")
+      << (o_.epochs > 0 ? " --epochs " + std::to_string(o_.epochs) : "") << " --threads " << o_.threads << "` ("
+      << std::thread::hardware_concurrency() << " cores here). Datasets:";
+    for (const auto& d : spec_.datasets)
+      s << " " << d.key << " = " << d.scene.filename().string() << ", " << scaled(d.count) << " bodies, BMI " << d.bmi
+        << ", seed " << d.seed << ";";
+    const ExperimentTraining& t = spec_.training;
+    s << " training: " << (o_.epochs > 0 ? o_.epochs : t.epochs) << " epochs, batch " << t.batch << ", lr " << t.lr << " ("
+      << t.schedule << "), patience " << t.patience << ", seed " << t.seed << " (rows may override).";
+    return s.str();
+  }
+
+  const ExperimentSpec& spec_;
+  const ExperimentOptions& o_;
+  fs::path work_;
+  std::map<std::string, fs::path> datasets_;
+  std::set<std::string> trained_;
+};
+
+}  // namespace
+
+fs::path experiment_work_dir(const ExperimentSpec& spec, const ExperimentOptions& options) {
+  if (!options.work_dir.empty()) return options.work_dir;
+  std::string name = spec.name;
+  if (options.scale != 1.0) {
+    std::ostringstream s;
+    s << "-x" << options.scale;
+    name += s.str();
+  }
+  if (options.epochs > 0) name += "-e" + std::to_string(options.epochs);
+  return fs::path("runs") / name;
+}
+
+ExperimentTable run_experiment(const ExperimentSpec& spec, const ExperimentOptions& options) {
+  return Runner(spec, options).run();
+}
+
+}  // namespace drape::cli

@@ -1,0 +1,237 @@
+#include <drape/experiment.hpp>
+
+#include "../yaml_util.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace drape {
+namespace fs = std::filesystem;
+
+const std::vector<ExperimentColumn>& experiment_columns() {
+  static const std::vector<ExperimentColumn> columns = {
+      {"ME", "ME", "cm", "mean distance to the simulated garment, test split"},
+      {"L_l", "L_l", "cm", "Laplacian difference, four resolutions"},
+      {"L_e", "L_e", "%", "relative edge length error"},
+      {"L_s", "L_s", "m", "spectral coefficient error"},
+      {"L_d", "L_d", "", "deformation gradient error"},
+      {"p", "p", "%", "garment vertices inside the body"},
+      {"L_st", "L_st", "J", "stretching energy"},
+      {"L_b", "L_b", "J", "bending energy"},
+      {"L_g", "L_g", "J", "gravitational energy"},
+      {"L_c", "L_c", "J", "collision (penetration) energy"},
+      {"L_p", "L_p", "J", "potential: the sum of the scene's energies"},
+      {"train_h", "training", "h", "wall time of the training on the threads used"},
+      {"e2e_h", "end-to-end", "core-h", "simulation + training + optimisation + retraining, in core-hours"},
+      {"infer", "inference", "", "time per body on one core: ms for a network, s for optimisation and simulation"},
+  };
+  return columns;
+}
+
+const ExperimentDataset& ExperimentSpec::dataset(const std::string& key) const {
+  for (const auto& d : datasets)
+    if (d.key == key) return d;
+  throw ConfigError(file.string() + ": no dataset '" + key + "'");
+}
+
+const ExperimentRow& ExperimentSpec::row(const std::string& row_name) const {
+  for (const auto& r : rows)
+    if (r.name == row_name) return r;
+  throw ConfigError(file.string() + ": no row '" + row_name + "'");
+}
+
+namespace {
+
+struct Reader {
+  std::string file;
+  fs::path dir;
+
+  SourceLocation at(const YAML::Node& n) const { return yaml::at(file, n); }
+  std::string text(const YAML::Node& n, const std::string& what) const { return yaml::scalar(file, n, what); }
+
+  template <class T>
+  T number(const YAML::Node& n, const std::string& what) const {
+    const std::string s = text(n, what);
+    try {
+      return n.as<T>();
+    } catch (const YAML::Exception&) {
+      throw ConfigError(at(n), what + " must be a number, got '" + s + "'");
+    }
+  }
+
+  // A path relative to the experiment file that must exist.
+  fs::path path(const YAML::Node& n, const std::string& what) const {
+    const fs::path p = dir / text(n, what);
+    if (!fs::exists(p)) throw ConfigError(at(n), what + ": no file " + p.string());
+    return p.lexically_normal();
+  }
+
+  ExperimentTraining training(const YAML::Node& n, ExperimentTraining t, const std::string& owner) const {
+    yaml::check_keys(file, n, {"epochs", "batch", "lr", "schedule", "patience", "seed"}, owner);
+    if (n["epochs"]) t.epochs = number<long>(n["epochs"], owner + ".epochs");
+    if (n["batch"]) t.batch = number<int>(n["batch"], owner + ".batch");
+    if (n["lr"]) t.lr = number<double>(n["lr"], owner + ".lr");
+    if (n["schedule"]) t.schedule = text(n["schedule"], owner + ".schedule");
+    if (n["patience"]) t.patience = number<int>(n["patience"], owner + ".patience");
+    if (n["seed"]) t.seed = number<std::uint64_t>(n["seed"], owner + ".seed");
+    if (t.epochs < 1 || t.batch < 1 || !(t.lr > 0) || t.patience < 1)
+      throw ConfigError(at(n), owner + ": epochs, batch, lr and patience must be positive");
+    if (t.schedule != "constant" && t.schedule != "cosine")
+      throw ConfigError(at(n["schedule"]), owner + ".schedule must be constant or cosine, got '" + t.schedule + "'");
+    return t;
+  }
+};
+
+std::vector<std::string> column_names() {
+  std::vector<std::string> names;
+  for (const auto& c : experiment_columns()) names.push_back(c.name);
+  return names;
+}
+
+void check_column(const Reader& r, const YAML::Node& n, const std::string& name, const std::string& owner) {
+  const auto names = column_names();
+  if (std::find(names.begin(), names.end(), name) == names.end())
+    throw ConfigError(r.at(n), owner + ": unknown column '" + name + "'" + did_you_mean(name, names) +
+                                   " (known: " + yaml::joined(names) + ")");
+}
+
+ExperimentRow parse_row(const Reader& r, const YAML::Node& n, const ExperimentSpec& spec) {
+  ExperimentRow row;
+  row.where = r.at(n);
+  yaml::check_keys(r.file, n,
+                   {"name", "train", "optimize", "simulation", "data", "test", "fraction", "on_optimized", "physics",
+                    "scene", "iterations", "training", "seed"},
+                   "row");
+  if (!n["name"]) throw ConfigError(r.at(n), "row: 'name' is required");
+  row.name = r.text(n["name"], "row name");
+  const std::string owner = "row '" + row.name + "'";
+  for (const auto& other : spec.rows)
+    if (other.name == row.name) throw ConfigError(r.at(n["name"]), owner + " is defined twice");
+  const int kinds = (n["train"] ? 1 : 0) + (n["optimize"] ? 1 : 0) + (n["simulation"] ? 1 : 0);
+  if (kinds != 1) throw ConfigError(r.at(n), owner + ": give exactly one of train (a graph), optimize (a row) and simulation (a dataset)");
+
+  auto dataset_key = [&](const char* key) {
+    const std::string k = r.text(n[key], owner + "." + key);
+    std::vector<std::string> keys;
+    for (const auto& d : spec.datasets) keys.push_back(d.key);
+    if (std::find(keys.begin(), keys.end(), k) == keys.end())
+      throw ConfigError(r.at(n[key]), owner + "." + key + ": no dataset '" + k + "'" + did_you_mean(k, keys) +
+                                           " (datasets: " + yaml::joined(keys) + ")");
+    return k;
+  };
+  auto earlier_train_row = [&](const char* key) {
+    const std::string k = r.text(n[key], owner + "." + key);
+    std::vector<std::string> names;
+    for (const auto& other : spec.rows)
+      if (other.kind == ExperimentRowKind::Train) names.push_back(other.name);
+    if (std::find(names.begin(), names.end(), k) == names.end())
+      throw ConfigError(r.at(n[key]), owner + "." + key + ": no earlier training row '" + k + "'" + did_you_mean(k, names) +
+                                           (names.empty() ? "" : " (training rows so far: " + yaml::joined(names) + ")"));
+    return k;
+  };
+  const std::string first_dataset = spec.datasets.front().key;
+
+  if (n["train"]) {
+    row.kind = ExperimentRowKind::Train;
+    row.graph = r.path(n["train"], owner + ".train");
+    row.data = n["data"] ? dataset_key("data") : first_dataset;
+    row.test = n["test"] ? dataset_key("test") : row.data;
+    if (n["fraction"]) {
+      row.fraction = r.number<double>(n["fraction"], owner + ".fraction");
+      if (!(row.fraction > 0 && row.fraction <= 1)) throw ConfigError(r.at(n["fraction"]), owner + ".fraction must be in (0, 1]");
+    }
+    if (n["on_optimized"]) {
+      row.on_optimized = earlier_train_row("on_optimized");
+      if (!n["scene"]) throw ConfigError(r.at(n), owner + ": on_optimized needs the scene whose energy is minimised (scene:)");
+      if (n["data"]) throw ConfigError(r.at(n["data"]), owner + ": on_optimized rows train on the optimised data, not on 'data'");
+      row.data = spec.row(row.on_optimized).data;
+      if (!n["test"]) row.test = row.data;
+    }
+    if (n["physics"]) row.physics = r.path(n["physics"], owner + ".physics");
+  } else if (n["optimize"]) {
+    row.kind = ExperimentRowKind::Optimize;
+    row.source = earlier_train_row("optimize");
+    if (!n["scene"]) throw ConfigError(r.at(n), owner + ": optimize needs the scene whose energy is minimised (scene:)");
+    row.test = spec.row(row.source).test;
+    for (const char* k : {"data", "fraction", "physics", "training"})
+      if (n[k]) throw ConfigError(r.at(n[k]), owner + ": '" + k + "' does not apply to an optimize row");
+  } else {
+    row.kind = ExperimentRowKind::Simulation;
+    row.data = dataset_key("simulation");
+    row.test = row.data;
+    for (const char* k : {"data", "test", "fraction", "physics", "training", "scene", "iterations", "on_optimized"})
+      if (n[k]) throw ConfigError(r.at(n[k]), owner + ": '" + k + "' does not apply to a simulation row");
+  }
+  if (n["scene"]) {
+    if (row.kind == ExperimentRowKind::Train && row.on_optimized.empty())
+      throw ConfigError(r.at(n["scene"]), owner + ": 'scene' is for optimize and on_optimized rows (use physics: to measure energies)");
+    row.scene = r.path(n["scene"], owner + ".scene");
+  }
+  if (n["iterations"]) {
+    row.iterations = r.number<int>(n["iterations"], owner + ".iterations");
+    if (row.iterations < 0) throw ConfigError(r.at(n["iterations"]), owner + ".iterations must be >= 0");
+  }
+  row.training = n["training"] ? r.training(n["training"], spec.training, owner + ".training") : spec.training;
+  if (n["seed"]) {
+    if (!n["seed"].IsMap()) throw ConfigError(r.at(n["seed"]), owner + ".seed must map columns to the seed's numbers");
+    for (const auto& kv : n["seed"]) {
+      const std::string column = kv.first.as<std::string>();
+      check_column(r, kv.first, column, owner + ".seed");
+      row.seed_values[column] = r.number<double>(kv.second, owner + ".seed." + column);
+    }
+  }
+  return row;
+}
+
+}  // namespace
+
+ExperimentSpec parse_experiment_file(const fs::path& file) {
+  const YAML::Node root = yaml::load_file(file);
+  const Reader r{file.string(), file.parent_path()};
+  ExperimentSpec spec;
+  spec.file = file;
+  yaml::check_keys(r.file, root, {"name", "title", "note", "datasets", "training", "columns", "rows"}, "experiment");
+  for (const char* key : {"name", "datasets", "columns", "rows"})
+    if (!root[key]) throw ConfigError(r.at(root), std::string("experiment: '") + key + "' is required");
+  spec.name = r.text(root["name"], "name");
+  if (spec.name.empty() || spec.name.find_first_of("/\\ ") != std::string::npos)
+    throw ConfigError(r.at(root["name"]), "name must be a non-empty word (it names the run's folder)");
+  if (root["title"]) spec.title = r.text(root["title"], "title");
+  if (root["note"]) spec.note = r.text(root["note"], "note");
+
+  if (!root["datasets"].IsMap() || root["datasets"].size() == 0)
+    throw ConfigError(r.at(root["datasets"]), "datasets must map names to {scene, count, bmi, seed}");
+  for (const auto& kv : root["datasets"]) {
+    ExperimentDataset d;
+    d.key = kv.first.as<std::string>();
+    d.where = r.at(kv.first);
+    const std::string owner = "dataset '" + d.key + "'";
+    yaml::check_keys(r.file, kv.second, {"scene", "count", "bmi", "seed"}, owner);
+    if (!kv.second["scene"] || !kv.second["count"]) throw ConfigError(d.where, owner + ": scene and count are required");
+    d.scene = r.path(kv.second["scene"], owner + ".scene");
+    d.count = r.number<long>(kv.second["count"], owner + ".count");
+    if (d.count < 10) throw ConfigError(r.at(kv.second["count"]), owner + ".count must be at least 10 (an 8:1:1 split)");
+    if (kv.second["bmi"]) d.bmi = r.text(kv.second["bmi"], owner + ".bmi");
+    if (kv.second["seed"]) d.seed = r.number<std::uint64_t>(kv.second["seed"], owner + ".seed");
+    spec.datasets.push_back(d);
+  }
+  if (root["training"]) spec.training = r.training(root["training"], spec.training, "training");
+
+  if (!root["columns"].IsSequence() || root["columns"].size() == 0)
+    throw ConfigError(r.at(root["columns"]), "columns must be a list, e.g. [ME, L_l, L_e, L_s, L_d, p]");
+  for (const auto& c : root["columns"]) {
+    const std::string name = r.text(c, "a column");
+    check_column(r, c, name, "columns");
+    spec.columns.push_back(name);
+  }
+  if (!root["rows"].IsSequence() || root["rows"].size() == 0) throw ConfigError(r.at(root["rows"]), "rows must be a list");
+  for (const auto& n : root["rows"]) spec.rows.push_back(parse_row(r, n, spec));
+  for (const auto& row : spec.rows)
+    for (const auto& [column, value] : row.seed_values)
+      if (std::find(spec.columns.begin(), spec.columns.end(), column) == spec.columns.end())
+        throw ConfigError(row.where, "row '" + row.name + "': the seed's " + column + " is given but " + column +
+                                         " is not among the columns");
+  return spec;
+}
+
+}  // namespace drape

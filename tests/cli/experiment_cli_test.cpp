@@ -1,0 +1,127 @@
+// `drape experiment`: a miniature experiment with every kind of row runs end to
+// end, writes its table as Markdown and CSV next to the seed's numbers, reuses
+// its datasets and outputs when run again, and refuses bad files clearly.
+#include <catch2/catch.hpp>
+
+#include <drape/dataset.hpp>
+#include <drape/experiment.hpp>
+
+#include <fstream>
+#include <sstream>
+
+#include "test_support.hpp"
+
+using namespace drape;
+namespace fs = std::filesystem;
+
+namespace {
+
+const char* kTinyScene = R"(body: {model: parametric}
+garment: {template: tshirt, params: {resolution: 300}}
+effects:
+  gravity: {}
+  stretching: {}
+  bending: {}
+  collision: {stiffness: 1.0e8, margin: 0.004}
+solver: {morph_steps: 2, settle_steps: 3}
+)";
+
+std::string tiny_experiment() {
+  const std::string graph = (test::source_dir() / "graphs/examples/mlp_baseline.yaml").string();
+  return "name: tiny\n"
+         "title: a miniature of every kind of row\n"
+         "datasets:\n"
+         "  shirts: {scene: tiny.yaml, count: 10, bmi: \"15:40\", seed: 2}\n"
+         "training: {epochs: 2, batch: 4, lr: 1.0e-3, schedule: constant, patience: 5, seed: 0}\n"
+         "columns: [ME, p, L_p, L_st, e2e_h, infer]\n"
+         "rows:\n"
+         "  - {name: Simulation, simulation: shirts, seed: {L_p: 1.0e-4, p: 0.0}}\n"
+         "  - {name: half, train: " + graph + ", fraction: 0.5, physics: tiny.yaml, seed: {ME: 0.33}}\n"
+         "  - {name: half-opt, optimize: half, scene: tiny.yaml, iterations: 3}\n"
+         "  - {name: half-retrain, train: " + graph + ", on_optimized: half, scene: tiny.yaml, iterations: 3}\n";
+}
+
+std::string read(const fs::path& file) {
+  std::ifstream in(file);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+}  // namespace
+
+TEST_CASE("experiment: every kind of row runs, the table is written, and a second run reuses everything", "[experiment]") {
+  test::TempDir dir;
+  std::ofstream(dir / "tiny.yaml") << kTinyScene;
+  std::ofstream(dir / "tiny_experiment.yaml") << tiny_experiment();
+  const std::string command = "cd " + dir.path().string() + " && " + test::drape_program().string() +
+                              " experiment tiny_experiment.yaml --threads 2";
+  std::string out;
+  REQUIRE(test::run(command, out) == 0);
+  INFO(out);
+  CHECK_THAT(out, Catch::Contains("$ drape generate"));
+  CHECK_THAT(out, Catch::Contains("--fraction 0.5"));
+  CHECK_THAT(out, Catch::Contains("--split train,val --iters 3"));
+  const fs::path work = dir / "runs/tiny";
+  const std::string md = read(work / "table.md"), csv = read(work / "table.csv");
+  CHECK_THAT(md, Catch::Contains("| half |"));
+  CHECK_THAT(md, Catch::Contains("/ 0.33 |"));  // the seed's number next to ours
+  CHECK_THAT(csv, Catch::StartsWith("row,ME,ME_seed,p,p_seed,L_p,L_p_seed,L_st,L_st_seed,e2e_h,e2e_h_seed,infer,infer_seed"));
+  // Four rows, each with the values that apply to it.
+  std::istringstream lines(csv);
+  std::string line;
+  std::getline(lines, line);
+  int rows = 0;
+  while (std::getline(lines, line)) {
+    ++rows;
+    INFO(line);
+    std::vector<std::string> f;
+    std::stringstream fields(line);
+    for (std::string x; std::getline(fields, x, ',');) f.push_back(x);
+    REQUIRE(f.size() >= 13);
+    const bool network = f[0] == "half" || f[0] == "half-retrain";
+    CHECK(f[1].empty() == !network);   // ME only for networks
+    CHECK_FALSE(f[3].empty());         // p for every row
+    CHECK(f[5].empty() == (f[0] == "half-retrain"));  // L_p: physics asked for, optimised, simulated
+    CHECK_FALSE(f[11].empty());        // inference time
+    if (!f[5].empty()) CHECK(std::isfinite(std::stod(f[5])));
+  }
+  CHECK(rows == 4);
+  // The retraining learnt from the optimised train+val drapes of 'half'.
+  const DatasetReader optimized(work / "half.optimized-3.h5");
+  CHECK(optimized.indices().size() == 9);  // 8 train + 1 val of 10
+  CHECK(optimized.indices("test").empty());
+
+  // Again: nothing is generated, trained or optimised; the same table comes out.
+  std::string again;
+  REQUIRE(test::run(command, again) == 0);
+  INFO(again);
+  CHECK_THAT(again, !Catch::Contains("$ drape generate"));
+  CHECK_THAT(again, !Catch::Contains("$ drape train"));
+  CHECK_THAT(again, !Catch::Contains("$ drape optimize"));
+  CHECK_THAT(again, Catch::Contains("reusing"));
+  CHECK(read(work / "table.csv") == csv);
+}
+
+TEST_CASE("experiment files: errors name the file, the line and the key", "[experiment]") {
+  test::TempDir dir;
+  std::ofstream(dir / "tiny.yaml") << kTinyScene;
+  auto error_of = [&](const std::string& text) {
+    std::ofstream(dir / "e.yaml") << text;
+    return test::message_of([&] { parse_experiment_file(dir / "e.yaml"); });
+  };
+  const std::string head = "name: e\ndatasets:\n  shirts: {scene: tiny.yaml, count: 10}\ncolumns: [ME]\n";
+  CHECK_THAT(error_of(head + "rows:\n  - {name: a, train: nowhere.yaml}\n"), Catch::Contains("e.yaml:6") && Catch::Contains("no file"));
+  CHECK_THAT(error_of(head + "rows:\n  - {name: a, simulation: shrits}\n"),
+             Catch::Contains("e.yaml:6") && Catch::Contains("did you mean 'shirts'"));
+  CHECK_THAT(error_of(head + "rows:\n  - {name: a, simulation: shirts, fraktion: 1}\n"),
+             Catch::Contains("unknown key 'fraktion'") && Catch::Contains("fraction"));
+  CHECK_THAT(error_of(head + "rows:\n  - {name: a, optimize: b, scene: tiny.yaml}\n"),
+             Catch::Contains("no earlier training row 'b'"));
+  CHECK_THAT(error_of("name: e\ndatasets:\n  shirts: {scene: tiny.yaml, count: 10}\ncolumns: [MEE]\nrows: []\n"),
+             Catch::Contains("e.yaml:4") && Catch::Contains("did you mean 'ME'"));
+  CHECK_THAT(error_of(head + "rows:\n  - {name: a, simulation: shirts, seed: {p: 1}}\n"),
+             Catch::Contains("p is not among the columns"));
+  CHECK_THAT(error_of("name: e\ndatasets: {shirts: {scene: tiny.yaml, count: 10}}\ncolumns: [ME\n"),
+             Catch::Contains("malformed YAML"));
+}
