@@ -19,6 +19,7 @@ PACKAGES=(
   libeigen3-dev libspectra-dev libyaml-cpp-dev libhdf5-dev libassimp-dev
   libboost-dev libboost-program-options-dev libboost-filesystem-dev
   catch2 libnanoflann-dev libopenblas-dev libsuitesparse-dev
+  chromium  # headless, for the test that the 3D viewer pages of drape render draw
 )
 
 install_dependencies() {
@@ -72,6 +73,8 @@ main_job() {
   "$DRAPE" graph check graphs/drape.yaml --resolution coarse | tail -n 1
   step "Predicting the T-shirt on a BMI 35 body with the shipped pretrained model (no training needed)"
   "$DRAPE" predict --bmi 35 --out out/garment.obj --body-out out/body.obj --svg out/garment.svg
+  step "A page to look at: the drape in a 3D viewer, coloured by its distance to the body (open out/drape.html)"
+  "$DRAPE" render --bmi 35 --out out/drape.html
 }
 
 install_dependencies

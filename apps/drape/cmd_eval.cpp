@@ -105,7 +105,7 @@ int run(const std::vector<std::string>& args) {
       "split", po::value<std::string>()->default_value("test"), "train | val | test | all, or a list: train,val")(
       "batch", po::value<int>()->default_value(16), "bodies per forward pass")(
       "out", po::value<std::string>(), "also write the table: metrics.csv or metrics.json")(
-      "svg", po::value<std::string>(), "also draw the per-vertex error of the thinnest, median and heaviest body of the split");
+      "svg", po::value<std::string>(), "also draw the per-vertex error of the thinnest, median and heaviest body of the split (.svg, or .html: a 3D viewer)");
   po::variables_map vm;
   const std::string usage =
       "drape eval --model model.h5 --data data.h5 [--split test] [--out metrics.csv|json] [--svg errors.svg]";

@@ -64,7 +64,7 @@ int run(const std::vector<std::string>& args) {
       "lr", po::value<double>()->default_value(1e-4), "Adam's learning rate")(
       "out", po::value<std::string>(), "optimised garment mesh to write")(
       "before", po::value<std::string>(), "also write the network's prediction before optimising")(
-      "svg", po::value<std::string>(), "also draw the drape before and after")(
+      "svg", po::value<std::string>(), "also draw the drape before and after (.svg, or .html: a 3D viewer)")(
       "data", po::value<std::string>(), "or optimise every sample of a dataset split (then --out is a dataset)")(
       "split", po::value<std::string>()->default_value("train"), "with --data: train | val | test | all, or a list: train,val")(
       "threads", po::value<int>()->default_value(0), "with --data: samples at once (0: all cores)")(

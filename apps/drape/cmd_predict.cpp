@@ -25,7 +25,7 @@ int run(const std::vector<std::string>& args) {
       "sex", po::value<double>(), "with --bmi: 0 female ... 1 male (default 1)")(
       "out", po::value<std::string>(), "garment mesh to write (.obj, .ply, .gltf, .glb): the template's faces and UVs")(
       "body-out", po::value<std::string>(), "also write the body mesh")(
-      "svg", po::value<std::string>(), "also draw the drape (front view, the garment coloured by its distance to the body)");
+      "svg", po::value<std::string>(), "also draw the drape, the garment coloured by its distance to the body (.svg: front view; .html: a 3D viewer)");
   po::variables_map vm;
   const std::string usage =
       "drape predict [--model model.h5] (--body body.obj | --bmi 35 [--height 1.75 --sex 1]) --out garment.obj "

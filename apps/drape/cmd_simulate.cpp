@@ -25,7 +25,7 @@ int run(const std::vector<std::string>& args) {
       "out", po::value<std::string>(), "draped garment mesh to write (.obj, .ply, .gltf, .glb)")(
       "body", po::value<std::string>(), "drape on this body mesh (the scene body model's topology) instead")(
       "body-out", po::value<std::string>(), "also write the target body mesh")(
-      "svg", po::value<std::string>(), "also draw the drape (front view, the garment coloured by its distance to the body)")(
+      "svg", po::value<std::string>(), "also draw the drape, the garment coloured by its distance to the body (.svg: front view; .html: a 3D viewer)")(
       "bmi", po::value<double>(), "override the scene's target BMI")("height", po::value<double>(), "override the height, m")(
       "sex", po::value<double>(), "override the sex (0 female ... 1 male)")(
       "verbose,v", po::bool_switch(), "print every solver step");

@@ -4,6 +4,7 @@
 
 #include <drape/checkpoint.hpp>
 #include <drape/data_parallel.hpp>
+#include <drape/graph.hpp>
 #include <drape/dataset.hpp>
 #include <drape/model.hpp>
 #include <drape/registry.hpp>
@@ -164,7 +165,7 @@ class Runner {
     if (!row.on_optimized.empty()) data = optimized_training_data(row);
     const ExperimentTraining& t = row.training;
     const long epochs = o_.epochs > 0 ? o_.epochs : t.epochs;
-    if (finished_training(model, data, epochs)) {
+    if (finished_training(model, row.graph, data, epochs)) {
       std::printf("model %s: trained already\n", model.c_str());
       trained_.insert(row.name);
       return model;
@@ -179,9 +180,10 @@ class Runner {
 
   // A model whose training ended (all epochs, or stopped early) on this data;
   // anything else goes back to drape train --resume, which checks the settings.
-  static bool finished_training(const fs::path& model, const fs::path& data, long epochs) {
+  static bool finished_training(const fs::path& model, const fs::path& graph, const fs::path& data, long epochs) {
     if (!fs::exists(model) || !up_to_date(model, {data})) return false;
     const Checkpoint c = read_checkpoint(model);
+    if (c.graph != parse_graph_file(graph).text) return false;  // the graph was edited since
     const auto status = c.meta.find("status");
     const auto planned = c.meta.find("epochs");
     return status != c.meta.end() && (status->second == "finished" || status->second == "early stopped") &&

@@ -7,6 +7,7 @@
 // per vertex through a colour map, with a colour bar.
 #include <Eigen/Core>
 
+#include <array>
 #include <filesystem>
 #include <optional>
 #include <string>
@@ -42,8 +43,13 @@ class SvgFigure {
   const std::vector<SvgPanel>& panels() const { return panels_; }
   // The range of the `values` of every layer (values outside are clamped).
   void set_colour_scale(SvgColourScale scale) { scale_ = std::move(scale); }
+  const std::string& title() const { return title_; }
+  const std::optional<SvgColourScale>& colour_scale() const { return scale_; }
   std::string svg() const;
-  // Atomically (atomic_file.hpp).
+  // The same figure as a self-contained HTML page with a 3D viewer (figure_html.cpp):
+  // drag to turn each drape, wheel to zoom; no network, no WebGL.
+  std::string html() const;
+  // Atomically (atomic_file.hpp): HTML when the file ends in .html or .htm, else SVG.
   void write(const std::filesystem::path& file) const;
 
  private:
@@ -54,6 +60,8 @@ class SvgFigure {
 
 // Viridis, approximated by linear segments; t in [0, 1] -> "#rrggbb".
 std::string colour_map(double t);
+// The same as 0-255 channels.
+std::array<double, 3> colour_map_rgb(double t);
 
 struct Mesh;
 // One drape as a figure: the body, and the garment coloured by its signed

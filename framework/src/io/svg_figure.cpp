@@ -40,10 +40,8 @@ struct Triangle {
 
 }  // namespace
 
-namespace {
-
 // Viridis by linear segments, as 0-255 channels.
-std::array<double, 3> colour_rgb(double t) {
+std::array<double, 3> colour_map_rgb(double t) {
   static const std::array<std::array<double, 3>, 5> stops = {{
       {68, 1, 84}, {59, 82, 139}, {33, 145, 140}, {94, 201, 98}, {253, 231, 37}}};
   t = std::clamp(std::isfinite(t) ? t : 0.0, 0.0, 1.0) * (stops.size() - 1);
@@ -54,9 +52,7 @@ std::array<double, 3> colour_rgb(double t) {
   return c;
 }
 
-}  // namespace
-
-std::string colour_map(double t) { return hex_of(colour_rgb(t)); }
+std::string colour_map(double t) { return hex_of(colour_map_rgb(t)); }
 
 std::string SvgFigure::svg() const {
   if (panels_.empty()) throw Error("svg: a figure needs at least one panel");
@@ -118,7 +114,7 @@ std::string SvgFigure::svg() const {
         if (by_value) {
           const double v = (l.values(l.faces(f, 0)) + l.values(l.faces(f, 1)) + l.values(l.faces(f, 2))) / 3;
           const double t = scale_ ? (v - scale_->lo) / std::max(scale_->hi - scale_->lo, 1e-30) : v;
-          rgb = colour_rgb(t);
+          rgb = colour_map_rgb(t);
         }
         for (double& ch : rgb) ch *= shade;
         triangles.push_back({(a(2) + b(2) + c(2)) / 3 + l.depth_bias, {to_pixels(a), to_pixels(b), to_pixels(c)}, hex_of(rgb)});
@@ -151,6 +147,9 @@ std::string SvgFigure::svg() const {
   return o.str();
 }
 
-void SvgFigure::write(const std::filesystem::path& file) const { write_text_atomically(file, svg()); }
+void SvgFigure::write(const std::filesystem::path& file) const {
+  const std::string ext = file.extension().string();
+  write_text_atomically(file, ext == ".html" || ext == ".htm" ? html() : svg());
+}
 
 }  // namespace drape

@@ -1,0 +1,143 @@
+// `drape render`: a picture of a body and its drape to look at -- a
+// self-contained HTML page with a 3D viewer (drag to turn), or an SVG front
+// view -- with the garment coloured by its distance to the body, its error
+// against the simulated drape, or its strain against the material space.
+// The garment is a model's prediction (default: the shipped model) or a mesh.
+#include "command.hpp"
+
+#include <drape/dataset.hpp>
+#include <drape/geometry/closest_point.hpp>
+#include <drape/geometry/penetration.hpp>
+#include <drape/mesh_io.hpp>
+#include <drape/model.hpp>
+#include <drape/registry.hpp>
+#include <drape/svg_figure.hpp>
+#include <drape/trainer.hpp>
+
+#include "model_body.hpp"
+
+#include <cstdio>
+#include <filesystem>
+
+namespace drape::cli {
+namespace {
+
+// Per vertex: the mean relative length change (%) of its edges against their
+// lengths in the material space (the template's UVs, in metres).
+Eigen::VectorXd edge_strain_percent(const Mesh& garment, const Mesh& material) {
+  Eigen::VectorXd sum = Eigen::VectorXd::Zero(garment.num_vertices()), count = sum;
+  for (int f = 0; f < garment.num_faces(); ++f)
+    for (int k = 0; k < 3; ++k) {
+      const int a = garment.faces(f, k), b = garment.faces(f, (k + 1) % 3);
+      const double rest = (material.uv.row(material.uv_faces(f, (k + 1) % 3)) - material.uv.row(material.uv_faces(f, k))).norm();
+      if (!(rest > 0)) continue;
+      const double strain = 100.0 * std::abs((garment.vertices.row(b) - garment.vertices.row(a)).norm() / rest - 1.0);
+      for (int v : {a, b}) {
+        sum(v) += strain;
+        count(v) += 1;
+      }
+    }
+  return sum.cwiseQuotient(count.cwiseMax(1.0));
+}
+
+int run(const std::vector<std::string>& args) {
+  po::options_description opts("drape render");
+  opts.add_options()("model", po::value<std::string>(), "model file (default: the shipped model); its template gives the faces")(
+      "garment", po::value<std::string>(), "draw this garment mesh (the model's template topology) instead of a prediction")(
+      "body", po::value<std::string>(), "body mesh in the model's body topology")(
+      "bmi", po::value<double>(), "or make the body: target BMI")(
+      "height", po::value<double>(), "with --bmi: height in m (default 1.75)")(
+      "sex", po::value<double>(), "with --bmi: 0 female ... 1 male (default 1)")(
+      "data", po::value<std::string>(), "or take body (and the simulated garment, for --colour error) from a dataset")(
+      "sample", po::value<std::size_t>()->default_value(0), "with --data: the sample index")(
+      "colour", po::value<std::string>()->default_value("distance"),
+      "distance (to the body, cm) | error (to the simulated garment of --data, cm) | strain (edge length change, %)")(
+      "out", po::value<std::string>(), "picture to write: .html (3D viewer) or .svg (front view)");
+  po::variables_map vm;
+  const std::string usage =
+      "drape render [--model model.h5] (--bmi 35 | --body body.obj | --data data.h5 --sample I) [--garment g.obj] "
+      "[--colour distance|error|strain] --out drape.html";
+  if (!parse(usage, args, opts, {}, vm)) return 0;
+  if (!vm.count("out")) throw UsageError("--out FILE is required (.html or .svg)");
+  const std::string ext = std::filesystem::path(vm["out"].as<std::string>()).extension().string();
+  if (ext != ".html" && ext != ".htm" && ext != ".svg") throw UsageError("--out must end in .html or .svg");
+  if (vm.count("body") + vm.count("bmi") + vm.count("data") != 1)
+    throw UsageError("give the body exactly one way: --bmi X, --body FILE or --data FILE --sample I");
+  const std::string colour = vm["colour"].as<std::string>();
+  if (colour != "distance" && colour != "error" && colour != "strain")
+    throw UsageError("--colour must be distance, error or strain, got '" + colour + "'");
+  if (colour == "error" && !vm.count("data"))
+    throw UsageError("--colour error compares with a simulated drape: give --data FILE --sample I");
+  const std::string model_file = vm.count("model") ? vm["model"].as<std::string>() : default_model_path().string();
+  if (model_file.empty()) throw UsageError("no --model given and the shipped model was not found (or set DRAPE_MODEL)");
+
+  Registry& registry = Registry::load_default(plugin_path(vm));
+  Model model = Model::load(registry, model_file);
+  SampleBatch batch;
+  Mesh truth;
+  std::string what;
+  if (vm.count("data")) {
+    const DatasetReader reader(vm["data"].as<std::string>());
+    check_dataset_template(reader, vm["data"].as<std::string>(), model.assets());
+    const std::size_t i = vm["sample"].as<std::size_t>();
+    if (i >= reader.size()) throw UsageError("--sample " + std::to_string(i) + ": the dataset has " + std::to_string(reader.size()) + " samples");
+    batch.body = reader.body_vertices({i});
+    if (model.needs_body_params()) batch.body_params = reader.body_params({i});
+    truth = model.assets().garment->mesh;
+    truth.vertices = reader.garment_vertices({i}).mat(0).cast<double>();
+    what = "sample " + std::to_string(i) + " of " + std::filesystem::path(vm["data"].as<std::string>()).filename().string();
+  } else {
+    batch = model_body(model, vm);
+    what = vm.count("bmi") ? "BMI " + std::to_string(vm["bmi"].as<double>()).substr(0, 4) : vm["body"].as<std::string>();
+  }
+  Mesh body;
+  body.faces = model.assets().body.faces;
+  body.vertices = batch.body.mat(0).cast<double>();
+  Mesh garment = model.assets().garment->mesh;
+  if (vm.count("garment")) {
+    const Mesh given = read_mesh(vm["garment"].as<std::string>());
+    if (given.num_vertices() != garment.num_vertices())
+      throw ConfigError(vm["garment"].as<std::string>() + " has " + std::to_string(given.num_vertices()) +
+                        " vertices, but the model's garment template has " + std::to_string(garment.num_vertices()));
+    garment.vertices = given.vertices;
+    what = vm["garment"].as<std::string>() + " on " + what;
+  } else {
+    garment.vertices = model.predict(batch).mat(0).cast<double>();
+    what = "prediction of " + std::filesystem::path(model_file).filename().string() + " for " + what;
+  }
+
+  SvgFigure figure("drape render: " + what);
+  const geometry::BodySurface surface(body.vertices, body.faces);
+  const double p = geometry::penetration_ratio(surface, garment.vertices);
+  Eigen::VectorXd values;
+  SvgColourScale scale;
+  char caption[160];
+  if (colour == "distance") {
+    values = (100.0 * surface.signed_distances(garment.vertices)).cwiseMax(0.0);
+    scale = {"distance of the garment to the body (cm)", 0.0, 5.0};
+    std::snprintf(caption, sizeof caption, "p = %.2f%% of the vertices inside the body", 100.0 * p);
+  } else if (colour == "error") {
+    values = 100.0 * (garment.vertices - truth.vertices).rowwise().norm();
+    scale = {"distance to the simulated garment (cm)", 0.0, 2.0};
+    std::snprintf(caption, sizeof caption, "ME %.2f cm, max %.2f cm, p = %.2f%%", values.mean(), values.maxCoeff(), 100.0 * p);
+  } else {
+    const Mesh& material = model.assets().garment->mesh;
+    if (!material.has_uv()) throw ConfigError("--colour strain needs the template's material space (UVs); it has none");
+    values = edge_strain_percent(garment, material);
+    scale = {"edge length change against the material space (%)", 0.0, 10.0};
+    std::snprintf(caption, sizeof caption, "mean strain %.2f%%, max %.2f%%, p = %.2f%%", values.mean(), values.maxCoeff(), 100.0 * p);
+  }
+  figure.add_panel({caption,
+                    {SvgLayer{body.vertices, body.faces, "#c9b8a8", {}, true},
+                     SvgLayer{garment.vertices, garment.faces, "", values, false, 0.02}}});
+  figure.set_colour_scale(scale);
+  figure.write(vm["out"].as<std::string>());
+  std::printf("wrote %s (%s; %s)\n", vm["out"].as<std::string>().c_str(), what.c_str(), caption);
+  return 0;
+}
+
+const RegisterCommand registered{
+    {"render", "a picture of a body and its drape: HTML 3D viewer or SVG, coloured by distance, error or strain", run}};
+
+}  // namespace
+}  // namespace drape::cli

@@ -1,0 +1,92 @@
+// `drape render`: the pictures a person looks at. The HTML page carries the
+// meshes and its own renderer; where Debian's Chromium is installed, the page
+// is loaded headless and must really draw (pixels differ from the background)
+// and give a screenshot.
+#include <catch2/catch.hpp>
+
+#include <cstdlib>
+#include <fstream>
+#include <regex>
+#include <sstream>
+
+#include "test_support.hpp"
+
+using namespace drape;
+namespace fs = std::filesystem;
+
+namespace {
+
+std::string read(const fs::path& file) {
+  std::ifstream in(file, std::ios::binary);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+std::string chromium() {
+  if (const char* c = std::getenv("CHROMIUM")) return c;
+  for (const char* c : {"/usr/bin/chromium", "/usr/bin/chromium-browser", "/usr/bin/google-chrome"})
+    if (fs::exists(c)) return c;
+  return "";
+}
+
+long attribute(const std::string& dom, const std::string& name) {
+  std::smatch m;
+  if (!std::regex_search(dom, m, std::regex(name + "=\"([0-9]+)\""))) return -1;
+  return std::stol(m[1]);
+}
+
+}  // namespace
+
+TEST_CASE("render writes an HTML viewer and an SVG of a predicted drape, with the colour asked for", "[render]") {
+  test::TempDir dir;
+  const std::string drape = test::drape_program().string() + " render ";
+  std::string out;
+  REQUIRE(test::run(drape + "--bmi 30 --colour strain --out " + (dir / "d.html").string(), out) == 0);
+  CHECK_THAT(out, Catch::Contains("mean strain"));
+  const std::string page = read(dir / "d.html");
+  CHECK_THAT(page, Catch::StartsWith("<!DOCTYPE html>"));
+  CHECK_THAT(page, Catch::Contains("id=\"figure-data\""));
+  CHECK_THAT(page, Catch::Contains("edge length change against the material space"));
+  CHECK(page.find("http://") == std::string::npos);  // self-contained: nothing to fetch
+  CHECK(page.find("https://") == std::string::npos);
+  REQUIRE(test::run(drape + "--bmi 30 --out " + (dir / "d.svg").string(), out) == 0);
+  CHECK_THAT(read(dir / "d.svg"), Catch::Contains("<svg"));
+  CHECK_THAT(out, Catch::Contains("p = "));
+
+  CHECK(test::run(drape + "--bmi 30 --colour heat --out " + (dir / "x.html").string(), out) == 2);
+  CHECK_THAT(out, Catch::Contains("distance, error or strain"));
+  CHECK(test::run(drape + "--bmi 30 --colour error --out " + (dir / "x.html").string(), out) == 2);
+  CHECK_THAT(out, Catch::Contains("--data"));
+  CHECK(test::run(drape + "--bmi 30 --out " + (dir / "x.png").string(), out) == 2);
+  CHECK(test::run(drape + "--body " + (dir / "d.svg").string() + " --bmi 30 --out " + (dir / "x.html").string(), out) == 2);
+}
+
+TEST_CASE("the 3D viewer page draws in headless Chromium and its screenshot is not blank", "[render][browser]") {
+  const std::string browser = chromium();
+  if (browser.empty()) {
+    WARN("skipped: Chromium is not installed (apt-get install chromium, as scripts/setup.sh does; or set CHROMIUM)");
+    return;
+  }
+  test::TempDir dir;
+  std::string out;
+  REQUIRE(test::run(test::drape_program().string() + " render --bmi 35 --out " + (dir / "page.html").string(), out) == 0);
+  const std::string flags = " --headless --no-sandbox --disable-gpu --hide-scrollbars --user-data-dir=" +
+                            (dir / "profile").string() + " --window-size=900,700 ";
+  const std::string url = "file://" + (dir / "page.html").string();
+  std::string dom;
+  REQUIRE(test::run(browser + flags + "--dump-dom " + url + " 2>/dev/null", dom) == 0);
+  INFO(dom.substr(0, 300));
+  // The page counts its own non-background pixels after drawing: one 420x560 panel, most of it covered.
+  CHECK(attribute(dom, "data-triangles") > 5000);  // the body's front-facing half + the garment
+  CHECK(attribute(dom, "data-drawn-pixels") > 20000);
+  std::string shot_log;
+  REQUIRE(test::run("cd " + dir.path().string() + " && " + browser + flags + "--screenshot=" + (dir / "shot.png").string() +
+                        " " + url + " 2>&1",
+                    shot_log) == 0);
+  INFO(shot_log);
+  const std::string png = read(dir / "shot.png");
+  REQUIRE(png.size() > 8);
+  CHECK(png.substr(1, 3) == "PNG");
+  CHECK(png.size() > 20000);  // a white page compresses to a few kB; a shaded drape does not
+}
