@@ -72,6 +72,26 @@ TEST_CASE("spectral: Delta c from the MLP on the flattened input, Delta x = V De
   }
 }
 
+TEST_CASE("spectral: use_k applies only the first eigenvectors, with the same weights", "[gcn][spectral]") {
+  const auto assets = gcn_assets();
+  const DenseF v16 = assets->eigenvectors.leftCols(5).unaryExpr([](float e) { return static_cast<float>(Eigen::bfloat16(e)); });
+  for (int batch : {1, 3}) {
+    INFO("batch " << batch);
+    const Tensor x = random_tensor(batch, 1, 8, 7);
+    auto all = make_node("spectral", "{widths: [5], k: 5, init_scale: 1.0}");
+    auto two = make_node("spectral", "{widths: [5], k: 5, use_k: 2, init_scale: 1.0}");
+    const auto full = run_forward(*all, {{"x", x}}, {"spec", 1, assets.get()});
+    const auto cut = run_forward(*two, {{"x", x}}, {"spec", 1, assets.get()});
+    CHECK(two->flops_per_sample() < all->flops_per_sample());
+    for (int b = 0; b < batch; ++b) {
+      const DenseF dc = dense_of(full.at("coefficients"), b);
+      CHECK(dense_of(cut.at("coefficients"), b) == dc);  // same weights, same coefficients
+      CHECK((dense_of(cut.at("out"), b) - v16.leftCols(2) * dc.topRows(2)).cwiseAbs().maxCoeff() < 1e-5f);
+      CHECK((dense_of(full.at("out"), b) - v16 * dc).cwiseAbs().maxCoeff() < 1e-5f);
+    }
+  }
+}
+
 TEST_CASE("spectral rejects bad parameters, inputs and missing assets", "[gcn][spectral]") {
   const auto assets = gcn_assets();
   CHECK_THROWS_AS(make_node("spectral", "{k: -1}"), ConfigError);
@@ -90,7 +110,9 @@ TEST_CASE("spectral backward matches finite differences through both outputs", "
   const std::tuple<const char*, bool, int> configs[] = {{"{widths: [5], k: 4, activation: tanh, init_scale: 1.0}", false, 2},
                                                         {"{widths: [5], k: 4, activation: tanh, init_scale: 1.0}", false, 4},
                                                         {"{widths: [], init_scale: 0.5}", false, 1},
-                                                        {"{widths: [6, 4], k: 3, init_scale: 1.0}", true, 4}};
+                                                        {"{widths: [6, 4], k: 3, init_scale: 1.0}", true, 4},
+                                                        {"{widths: [5], k: 5, use_k: 2, activation: tanh, init_scale: 1.0}", false, 1},
+                                                        {"{widths: [5], k: 5, use_k: 2, activation: tanh, init_scale: 1.0}", false, 4}};
   for (const auto& [params, piecewise_linear, batch] : configs) {
     INFO(params << " batch " << batch);
     auto node = make_node("spectral", params);

@@ -68,6 +68,12 @@ class Model {
   // that is not a drape model or does not fit its graph.
   static Model load(const Registry& registry, const std::filesystem::path& file,
                     const std::filesystem::path& cache_dir = default_cache_dir());
+  // The same with some node parameters changed before the graph is built (node
+  // name -> parameter -> YAML value), for knobs that leave the weights' shapes
+  // alone, e.g. {"spectral", {{"use_k", "64"}}}. ConfigError for an unknown node.
+  using ParamOverrides = std::map<std::string, std::map<std::string, std::string>>;
+  static Model load(const Registry& registry, const std::filesystem::path& file, const ParamOverrides& overrides,
+                    const std::filesystem::path& cache_dir = default_cache_dir());
 
   Model(Model&&) noexcept;
   ~Model();

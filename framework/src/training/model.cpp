@@ -124,6 +124,10 @@ Model::Model(Model&&) noexcept = default;
 Model::~Model() = default;
 
 Model Model::load(const Registry& registry, const fs::path& file, const fs::path& cache_dir) {
+  return load(registry, file, ParamOverrides{}, cache_dir);
+}
+
+Model Model::load(const Registry& registry, const fs::path& file, const ParamOverrides& overrides, const fs::path& cache_dir) {
   Model m;
   m.file_ = file;
   m.checkpoint_ = read_checkpoint(file);
@@ -138,7 +142,12 @@ Model Model::load(const Registry& registry, const fs::path& file, const fs::path
 
   m.body_model_ = make_body_model(registry, m.assets_spec_);
 
-  const GraphSpec spec = parse_graph_text(m.checkpoint_.graph, file.string() + " (graph)");
+  GraphSpec spec = parse_graph_text(m.checkpoint_.graph, file.string() + " (graph)");
+  for (const auto& [node, params] : overrides) {
+    auto it = std::find_if(spec.nodes.begin(), spec.nodes.end(), [&](const NodeSpec& n) { return n.name == node; });
+    if (it == spec.nodes.end()) throw ConfigError(file.string() + ": the model's graph has no node '" + node + "' to change");
+    for (const auto& [key, value] : params) it->params[key] = ParamValue{YAML::Load(value), {file.string() + " (override)", 0}};
+  }
   check_graph_inputs(spec);
   GraphOptions options;
   options.dims = graph_dims(*m.assets_, static_cast<int>(m.body_model_->mean_shape().size()));

@@ -45,8 +45,9 @@ void from_bfloat16(const std::uint16_t* in, float* out, int n) {
 
 class SpectralDecoder final : public Node {
  public:
-  SpectralDecoder(std::vector<long> widths, int k, double init_scale, nn::Activation activation)
-      : widths_(std::move(widths)), requested_k_(k), init_scale_(static_cast<float>(init_scale)), activation_(activation) {}
+  SpectralDecoder(std::vector<long> widths, int k, int use_k, double init_scale, nn::Activation activation)
+      : widths_(std::move(widths)), requested_k_(k), requested_use_k_(use_k), init_scale_(static_cast<float>(init_scale)),
+        activation_(activation) {}
 
   ShapeMap setup(const ShapeMap& in, const NodeContext& context) override {
     const Shape x = in.at("x");
@@ -59,6 +60,7 @@ class SpectralDecoder final : public Node {
                         std::to_string(context.assets->garment->mesh.num_vertices()) + " vertices");
     vertices_ = static_cast<int>(v.rows());
     k_ = requested_k_ > 0 ? std::min<int>(requested_k_, static_cast<int>(v.cols())) : static_cast<int>(v.cols());
+    use_k_ = requested_use_k_ > 0 ? std::min(requested_use_k_, k_) : k_;
     basis16_.resize(std::size_t(vertices_) * k_);
     for (int i = 0; i < vertices_; ++i)
       for (int j = 0; j < k_; ++j) basis16_[std::size_t(i) * k_ + j] = to_bfloat16(v(i, j));
@@ -87,15 +89,15 @@ class SpectralDecoder final : public Node {
       // buffer that stays in L1 for its few dot products.
       row_.resize(k_);
       for (int i = 0; i < vertices_; ++i) {
-        from_bfloat16(basis16_.data() + std::size_t(i) * k_, row_.data(), k_);
+        from_bfloat16(basis16_.data() + std::size_t(i) * k_, row_.data(), use_k_);
         float dots[3 * kStreamBatch];
-        nn::dot_rows(row_.data(), coefficients_.data(), k_, k_, 3 * batch, dots);
+        nn::dot_rows(row_.data(), coefficients_.data(), use_k_, k_, 3 * batch, dots);
         for (int r = 0; r < 3 * batch; ++r) dx(r / 3, i, r % 3) = dots[r];
       }
       return;
     }
     product_.resize(vertices_, 3 * batch);
-    product_.noalias() = basis() * coefficients_.transpose();
+    product_.noalias() = basis().leftCols(use_k_) * coefficients_.leftCols(use_k_).transpose();
     for (int b = 0; b < batch; ++b) dx.mat(b) = product_.middleCols(3 * b, 3);
   }
 
@@ -110,15 +112,16 @@ class SpectralDecoder final : public Node {
       coefficients_.setZero();
       row_.resize(k_);
       for (int i = 0; i < vertices_; ++i) {
-        from_bfloat16(basis16_.data() + std::size_t(i) * k_, row_.data(), k_);
+        from_bfloat16(basis16_.data() + std::size_t(i) * k_, row_.data(), use_k_);
         float scale[3 * kStreamBatch];
         for (int r = 0; r < 3 * batch; ++r) scale[r] = gdx(r / 3, i, r % 3);
-        nn::axpy_rows(row_.data(), scale, k_, k_, 3 * batch, coefficients_.data());
+        nn::axpy_rows(row_.data(), scale, use_k_, k_, 3 * batch, coefficients_.data());
       }
     } else {
       product_.resize(vertices_, 3 * batch);
       for (int b = 0; b < batch; ++b) product_.middleCols(3 * b, 3) = gdx.mat(b);
-      coefficients_.noalias() = product_.transpose() * basis();
+      coefficients_.setZero();
+      coefficients_.leftCols(use_k_).noalias() = product_.transpose() * basis().leftCols(use_k_);
     }
     MatrixRM g(batch, 3 * k_);
     for (int b = 0; b < batch; ++b) {
@@ -136,7 +139,7 @@ class SpectralDecoder final : public Node {
     gx->second->vec() = Eigen::Map<const Eigen::VectorXf>(gflat.data(), gflat.size());
   }
 
-  double flops_per_sample() const override { return mlp_.flops_per_row() + double(vertices_) * k_ * 3; }
+  double flops_per_sample() const override { return mlp_.flops_per_row() + double(vertices_) * use_k_ * 3; }
 
  private:
   // Up to this batch a streaming pass over V's rows beats a matrix product
@@ -155,13 +158,13 @@ class SpectralDecoder final : public Node {
   }
 
   std::vector<long> widths_;
-  int requested_k_;
+  int requested_k_, requested_use_k_;
   float init_scale_;
   nn::Activation activation_;
   std::vector<std::uint16_t> basis16_;  // [Ng, k] row-major, bfloat16
   MatrixRM basis_;                      // [Ng, k] the same values as floats, or empty
   Eigen::RowVectorXf row_;              // one row of V widened
-  int vertices_ = 0, k_ = 0;
+  int vertices_ = 0, k_ = 0, use_k_ = 0;  // use_k_: the eigenvectors applied to Delta x
   nn::DenseStack mlp_;
   MatrixRM coefficients_;  // [3*batch, k]: row 3b + c is sample b's Delta c of axis c (or its gradient)
   MatrixRM product_;       // [Ng, 3*batch] for the matrix-product path
@@ -177,11 +180,15 @@ PluginList plugins() {
                {"coefficients", "the predicted spectral coefficients Delta c [k, 3]"}};
   d.params = {{"widths", ParamType::IntList, "[256]", "hidden layer widths of the MLP (may be empty: [])", 1, 65536},
               {"k", ParamType::Int, "0", "eigenvectors used; 0 or more than the assets hold: all of them", 0, 100000},
+              {"use_k", ParamType::Int, "0",
+               "eigenvectors applied to Delta x (0: all k): fewer trade accuracy for time at inference, same weights",
+               0, 100000},
               {"init_scale", ParamType::Float, "0.01", "factor on the last layer's initial weights (a small initial residual)", 0.0, 1.0},
               nn::activation_param("relu"),
               nn::negative_slope_param()};
   d.create_node = [](const Params& p) {
     return std::make_unique<SpectralDecoder>(p.get_int_list("widths"), static_cast<int>(p.get_int("k")),
+                                             static_cast<int>(p.get_int("use_k")),
                                              p.get_float("init_scale"), nn::activation_from(p));
   };
   return {d};
