@@ -104,6 +104,8 @@ int run(const std::vector<std::string>& args) {
       "data", po::value<std::string>(), "dataset (drape generate) with ground-truth drapes")(
       "split", po::value<std::string>()->default_value("test"), "train | val | test | all, or a list: train,val")(
       "batch", po::value<int>()->default_value(16), "bodies per forward pass")(
+      "set", po::value<std::vector<std::string>>(), "node.param=value: change a parameter of the model's graph that leaves "
+                                                    "the weights alone, e.g. post.enabled=true (repeatable)")(
       "out", po::value<std::string>(), "also write the table: metrics.csv or metrics.json")(
       "svg", po::value<std::string>(), "also draw the per-vertex error of the thinnest, median and heaviest body of the split (.svg, or .html: a 3D viewer)");
   po::variables_map vm;
@@ -122,7 +124,7 @@ int run(const std::vector<std::string>& args) {
   const std::string model_file = vm["model"].as<std::string>(), data = vm["data"].as<std::string>();
 
   Registry& registry = Registry::load_default(plugin_path(vm));
-  Model model = Model::load(registry, model_file);
+  Model model = Model::load(registry, model_file, parse_param_overrides(vm));
   const DatasetReader reader(data);
   check_dataset_template(reader, data, model.assets());
   const std::vector<std::size_t> indices = reader.indices(split);

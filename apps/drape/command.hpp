@@ -5,6 +5,7 @@
 #include <boost/program_options.hpp>
 
 #include <functional>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -36,5 +37,8 @@ bool parse(const std::string& usage, const std::vector<std::string>& args, po::o
 
 // The plugin search directories given with --plugin-path.
 std::vector<std::string> plugin_path(const po::variables_map& vm);
+
+// The --set node.param=value options as Model::load overrides (UsageError for a malformed one).
+std::map<std::string, std::map<std::string, std::string>> parse_param_overrides(const po::variables_map& vm);
 
 }  // namespace drape::cli

@@ -34,6 +34,18 @@ std::vector<std::string> plugin_path(const po::variables_map& vm) {
   return vm.count("plugin-path") ? vm["plugin-path"].as<std::vector<std::string>>() : std::vector<std::string>{};
 }
 
+std::map<std::string, std::map<std::string, std::string>> parse_param_overrides(const po::variables_map& vm) {
+  std::map<std::string, std::map<std::string, std::string>> out;
+  if (!vm.count("set")) return out;
+  for (const auto& item : vm["set"].as<std::vector<std::string>>()) {
+    const auto dot = item.find('.'), eq = item.find('=');
+    if (dot == std::string::npos || eq == std::string::npos || dot == 0 || eq < dot + 2 || eq + 1 == item.size())
+      throw UsageError("--set wants node.param=value, got '" + item + "'");
+    out[item.substr(0, dot)][item.substr(dot + 1, eq - dot - 1)] = item.substr(eq + 1);
+  }
+  return out;
+}
+
 }  // namespace drape::cli
 
 namespace {

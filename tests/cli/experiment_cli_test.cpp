@@ -28,6 +28,7 @@ solver: {morph_steps: 2, settle_steps: 3}
 
 std::string tiny_experiment() {
   const std::string graph = (test::source_dir() / "graphs/examples/mlp_baseline.yaml").string();
+  const std::string tailornet = (test::source_dir() / "graphs/baselines/tailornet_no_anchor.yaml").string();
   return "name: tiny\n"
          "title: a miniature of every kind of row\n"
          "datasets:\n"
@@ -38,7 +39,9 @@ std::string tiny_experiment() {
          "  - {name: Simulation, simulation: shirts, seed: {L_p: 1.0e-4, p: 0.0}}\n"
          "  - {name: half, train: " + graph + ", fraction: 0.5, physics: tiny.yaml, seed: {ME: 0.33}}\n"
          "  - {name: half-opt, optimize: half, scene: tiny.yaml, iterations: 3}\n"
-         "  - {name: half-retrain, train: " + graph + ", on_optimized: half, scene: tiny.yaml, iterations: 3}\n";
+         "  - {name: half-retrain, train: " + graph + ", on_optimized: half, scene: tiny.yaml, iterations: 3}\n"
+         "  - {name: tn, train: " + tailornet + "}\n"
+         "  - {name: tn-post, evaluate: tn, set: {post.enabled: 'true', post.epsilon: 0.003}}\n";
 }
 
 std::string read(const fs::path& file) {
@@ -79,14 +82,16 @@ TEST_CASE("experiment: every kind of row runs, the table is written, and a secon
     std::stringstream fields(line);
     for (std::string x; std::getline(fields, x, ',');) f.push_back(x);
     REQUIRE(f.size() >= 13);
-    const bool network = f[0] == "half" || f[0] == "half-retrain";
+    const bool network = f[0] == "half" || f[0] == "half-retrain" || f[0] == "tn" || f[0] == "tn-post";
     CHECK(f[1].empty() == !network);   // ME only for networks
     CHECK_FALSE(f[3].empty());         // p for every row
-    CHECK(f[5].empty() == (f[0] == "half-retrain"));  // L_p: physics asked for, optimised, simulated
+    CHECK(f[5].empty() == (f[0] == "half-retrain" || f[0] == "tn" || f[0] == "tn-post"));  // L_p: physics asked for, optimised, simulated
+    if (f[0] == "tn-post") CHECK(std::stod(f[3]) == 0.0);  // pushed out: no vertex inside the body
     CHECK_FALSE(f[11].empty());        // inference time
     if (!f[5].empty()) CHECK(std::isfinite(std::stod(f[5])));
   }
-  CHECK(rows == 4);
+  CHECK(rows == 6);
+  CHECK_THAT(out, Catch::Contains("--set post.enabled=true --set post.epsilon=0.003"));
   // The retraining learnt from the optimised train+val drapes of 'half'.
   const DatasetReader optimized(work / "half.optimized-3.h5");
   CHECK(optimized.indices().size() == 9);  // 8 train + 1 val of 10

@@ -229,14 +229,14 @@ class Runner {
   }
 
   // Milliseconds per body of the model's forward pass on one core (best of 20), cached next to the model.
-  double inference_ms(const ExperimentRow& row, const fs::path& model) {
+  double inference_ms(const ExperimentRow& row, const fs::path& model, const Model::ParamOverrides& overrides = {}) {
     const fs::path cache = work_ / (slug(row.name) + ".infer-ms.txt");
     if (up_to_date(cache, {model})) {
       double ms = 0;
       std::ifstream(cache) >> ms;
       if (ms > 0) return ms;
     }
-    Model m = Model::load(Registry::load_default({}), model);
+    Model m = Model::load(Registry::load_default({}), model, overrides);
     const DatasetReader r(dataset(row.test));
     const std::vector<std::size_t> one = {r.indices(Split::Test).front()};
     SampleBatch batch;
@@ -287,14 +287,22 @@ class Runner {
       if (wants("e2e_h")) out.values["e2e_h"] = core_hours(source);
       return out;
     }
-    const fs::path model = train(row);
+    const ExperimentRow& trained = row.kind == ExperimentRowKind::Evaluate ? spec_.row(row.source) : row;
+    const fs::path model = train(trained);
     const fs::path test = dataset(row.test);
     const fs::path eval = work_ / (slug(row.name) + ".eval.json");
     out.provenance = model.string();
-    if (!up_to_date(eval, {model, test}))
-      drape({"eval", "--model", model.string(), "--data", test.string(), "--split", "test", "--out", eval.string()});
+    Model::ParamOverrides overrides;
+    std::vector<std::string> eval_args = {"eval", "--model", model.string(), "--data", test.string(), "--split", "test"};
+    for (const auto& [key, value] : row.set) {
+      overrides[key.substr(0, key.find('.'))][key.substr(key.find('.') + 1)] = value;
+      eval_args.insert(eval_args.end(), {"--set", key + "=" + value});
+      out.provenance += " with " + key + "=" + value;
+    }
+    eval_args.insert(eval_args.end(), {"--out", eval.string()});
+    if (!up_to_date(eval, {model, test})) drape(eval_args);
     fs::path physics;
-    if (!row.physics.empty()) {
+    if (!row.physics.empty() && row.kind == ExperimentRowKind::Train) {
       physics = work_ / (slug(row.name) + ".physics.h5");
       optimize(model, row.physics, test, "test", 0, physics);
     }
@@ -307,8 +315,8 @@ class Runner {
     for (const auto& kv : metrics) out.values[kv.first.as<std::string>()] = kv.second["mean"].as<double>();
     const Checkpoint c = read_checkpoint(model);
     out.values["train_h"] = std::stod(c.meta.at("seconds")) / 3600.0;
-    if (wants("e2e_h")) out.values["e2e_h"] = core_hours(row);
-    if (wants("infer")) out.values["infer"] = inference_ms(row, model);
+    if (wants("e2e_h")) out.values["e2e_h"] = core_hours(trained);
+    if (wants("infer")) out.values["infer"] = inference_ms(row, model, overrides);
     out.infer_unit = "ms";
     return out;
   }

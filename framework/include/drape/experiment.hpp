@@ -52,6 +52,7 @@ enum class ExperimentRowKind {
   Train,       // train a graph, evaluate it on the test split (and its energies under `physics`)
   Optimize,    // optimise another row's model on every test body (Sec. 6.4)
   Simulation,  // the simulated test drapes of a dataset themselves
+  Evaluate,    // another row's model measured with some graph parameters changed (e.g. post-processing on)
 };
 
 struct ExperimentRow {
@@ -62,7 +63,8 @@ struct ExperimentRow {
   std::string test;                // Train: dataset whose test split is measured (default: data)
   double fraction = 1.0;           // Train: of the training split
   std::string on_optimized;        // Train: train on this row's model optimised over train+val (the seed's retraining)
-  std::string source;              // Optimize: the row whose model is optimised
+  std::string source;              // Optimize, Evaluate: the row whose model is used
+  std::map<std::string, std::string> set;  // Evaluate: "node.param" -> YAML value
   std::filesystem::path physics;   // Train: scene whose energies are measured on the predictions (optional)
   std::filesystem::path scene;     // Optimize, and on_optimized: the scene whose L_p is minimised
   int iterations = 100;            // Optimize, on_optimized

@@ -99,16 +99,19 @@ ExperimentRow parse_row(const Reader& r, const YAML::Node& n, const ExperimentSp
   ExperimentRow row;
   row.where = r.at(n);
   yaml::check_keys(r.file, n,
-                   {"name", "train", "optimize", "simulation", "data", "test", "fraction", "on_optimized", "physics",
-                    "scene", "iterations", "training", "seed"},
+                   {"name", "train", "optimize", "simulation", "evaluate", "set", "data", "test", "fraction", "on_optimized",
+                    "physics", "scene", "iterations", "training", "seed"},
                    "row");
   if (!n["name"]) throw ConfigError(r.at(n), "row: 'name' is required");
   row.name = r.text(n["name"], "row name");
   const std::string owner = "row '" + row.name + "'";
   for (const auto& other : spec.rows)
     if (other.name == row.name) throw ConfigError(r.at(n["name"]), owner + " is defined twice");
-  const int kinds = (n["train"] ? 1 : 0) + (n["optimize"] ? 1 : 0) + (n["simulation"] ? 1 : 0);
-  if (kinds != 1) throw ConfigError(r.at(n), owner + ": give exactly one of train (a graph), optimize (a row) and simulation (a dataset)");
+  const int kinds = (n["train"] ? 1 : 0) + (n["optimize"] ? 1 : 0) + (n["simulation"] ? 1 : 0) + (n["evaluate"] ? 1 : 0);
+  if (kinds != 1)
+    throw ConfigError(r.at(n), owner + ": give exactly one of train (a graph), optimize (a row), evaluate (a row) and "
+                                       "simulation (a dataset)");
+  if (n["set"] && !n["evaluate"]) throw ConfigError(r.at(n["set"]), owner + ": 'set' goes with evaluate");
 
   auto dataset_key = [&](const char* key) {
     const std::string k = r.text(n[key], owner + "." + key);
@@ -155,6 +158,22 @@ ExperimentRow parse_row(const Reader& r, const YAML::Node& n, const ExperimentSp
     row.test = spec.row(row.source).test;
     for (const char* k : {"data", "fraction", "physics", "training"})
       if (n[k]) throw ConfigError(r.at(n[k]), owner + ": '" + k + "' does not apply to an optimize row");
+  } else if (n["evaluate"]) {
+    row.kind = ExperimentRowKind::Evaluate;
+    row.source = earlier_train_row("evaluate");
+    row.test = spec.row(row.source).test;
+    row.physics = spec.row(row.source).physics;
+    if (!n["set"] || !n["set"].IsMap() || n["set"].size() == 0)
+      throw ConfigError(r.at(n), owner + ": evaluate needs set: {node.param: value, ...}");
+    for (const auto& kv : n["set"]) {
+      const std::string key = kv.first.as<std::string>();
+      const auto dot = key.find('.');
+      if (dot == std::string::npos || dot == 0 || dot + 1 == key.size())
+        throw ConfigError(r.at(kv.first), owner + ".set: '" + key + "' is not node.param");
+      row.set[key] = r.text(kv.second, owner + ".set." + key);
+    }
+    for (const char* k : {"data", "test", "fraction", "physics", "training", "scene", "iterations", "on_optimized"})
+      if (n[k]) throw ConfigError(r.at(n[k]), owner + ": '" + k + "' does not apply to an evaluate row");
   } else {
     row.kind = ExperimentRowKind::Simulation;
     row.data = dataset_key("simulation");

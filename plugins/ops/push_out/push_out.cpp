@@ -1,0 +1,75 @@
+// `push_out`: TailorNet's post-processing -- every garment vertex inside the
+// body, or closer to it than `epsilon`, is moved along the body's normal to
+// `epsilon` outside. Exact closest points on the body mesh (the bound
+// template's faces, the sample's vertices). Not a learnt layer: its backward
+// passes the gradient straight through, so a graph may keep it in place while
+// training, and `enabled: false` turns it off without changing the weights
+// (drape eval --set post.enabled=true measures a model with and without it).
+#include <drape/assets.hpp>
+#include <drape/geometry/closest_point.hpp>
+#include <drape/plugin.hpp>
+
+namespace {
+
+using namespace drape;
+
+class PushOut final : public Node {
+ public:
+  PushOut(double epsilon, bool enabled) : epsilon_(epsilon), enabled_(enabled) {}
+
+  ShapeMap setup(const ShapeMap& in, const NodeContext& context) override {
+    if (!context.assets) throw ConfigError("push_out needs the body's faces: no template assets are bound");
+    faces_ = context.assets->body.faces;
+    const Shape body = in.at("body");
+    if (body.rows != context.assets->body.num_vertices() || body.cols != 3)
+      throw ConfigError("input 'body' must be [" + std::to_string(context.assets->body.num_vertices()) + ", 3], got " + body.str());
+    if (in.at("x").cols != 3) throw ConfigError("input 'x' must be vertices [N, 3], got " + in.at("x").str());
+    return {{"out", in.at("x")}};
+  }
+
+  void forward(const TensorIn& in, const TensorOut& out) override {
+    const Tensor& x = *in.at("x");
+    Tensor& y = *out.at("out");
+    y.vec() = x.vec();
+    pushed_ = 0;
+    if (!enabled_) return;
+    for (int b = 0; b < x.batch(); ++b) {
+      const geometry::BodySurface body(in.at("body")->mat(b).cast<double>(), faces_);
+      const Eigen::MatrixX3d points = x.mat(b).cast<double>();
+      const auto hits = body.locate_all(points);
+      for (int i = 0; i < x.rows(); ++i) {
+        const auto& h = hits[static_cast<std::size_t>(i)];
+        if (h.face < 0 || h.signed_distance >= epsilon_) continue;
+        y.mat(b).row(i) = (h.point + epsilon_ * h.normal).transpose().cast<float>();
+        ++pushed_;
+      }
+    }
+  }
+
+  void backward(const TensorIn&, const TensorIn&, const TensorIn& gout, const TensorOut& gin) override {
+    if (auto g = gin.find("x"); g != gin.end()) g->second->vec() = gout.at("out")->vec();  // straight through
+  }
+
+ private:
+  double epsilon_;
+  bool enabled_;
+  Eigen::MatrixX3i faces_;
+  long pushed_ = 0;
+};
+
+PluginList plugins() {
+  PluginDescriptor d;
+  d.kind = "op";
+  d.name = "push_out";
+  d.doc = "TailorNet's post-processing: garment vertices inside the body (or within epsilon) moved to epsilon outside.";
+  d.inputs = {{"x", "garment vertices [Ng, 3]"}, {"body", "body vertices [Nb, 3] of the bound template's topology"}};
+  d.outputs = {{"out", "the garment with no vertex inside the body [Ng, 3]"}};
+  d.params = {{"epsilon", ParamType::Float, "0.002", "clearance in m a pushed vertex gets", 0.0, 0.1},
+              {"enabled", ParamType::Bool, "true", "false: pass the garment through unchanged"}};
+  d.create_node = [](const Params& p) { return std::make_unique<PushOut>(p.get_float("epsilon"), p.get_bool("enabled")); };
+  return {d};
+}
+
+}  // namespace
+
+DRAPE_PLUGIN_EXPORT(plugins)

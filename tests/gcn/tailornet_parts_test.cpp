@@ -1,0 +1,110 @@
+// The parts of the TailorNet-style baseline (graphs/baselines/tailornet_*.yaml):
+// spectral_lowpass (the low-frequency target), anchor_blend (the anchors'
+// high frequencies) and push_out (its post-processing).
+#include <drape/geometry/closest_point.hpp>
+#include <drape/gradcheck.hpp>
+
+#include <catch2/catch.hpp>
+
+#include "gcn_test_util.hpp"
+
+using namespace drape;
+using namespace drape::test;
+
+TEST_CASE("spectral_lowpass projects on the first k eigenvectors, and its gradient checks", "[gcn][tailornet]") {
+  const auto assets = gcn_assets();  // 6 orthonormal eigenvectors
+  const int ng = vertices_of(*assets, 0);
+  auto node = make_node("spectral_lowpass", "{k: 3}");
+  const Tensor x = random_tensor(2, ng, 3, 5);
+  const auto out = run_forward(*node, {{"x", x}}, {"low", 1, assets.get()});
+  const DenseF v = assets->eigenvectors.leftCols(3);
+  for (int b = 0; b < 2; ++b) {
+    CHECK((dense_of(out.at("out"), b) - v * (v.transpose() * dense_of(x, b))).cwiseAbs().maxCoeff() < 1e-5f);
+    // A projection: applying it again changes nothing.
+    const auto twice = run_forward(*node, {{"x", out.at("out")}}, {"low", 1, assets.get()});
+    CHECK((dense_of(twice.at("out"), b) - dense_of(out.at("out"), b)).cwiseAbs().maxCoeff() < 1e-5f);
+  }
+  const GradCheckReport r = check_node_gradients(*make_node("spectral_lowpass", "{k: 4}"), {{"x", x}}, {"low", 1, assets.get()});
+  INFO(r.str());
+  CHECK(r.ok(1e-2));
+  CHECK_THROWS_WITH(make_node("spectral_lowpass")->setup({{"x", {ng + 1, 3}}}, {"low", 1, assets.get()}), Catch::Contains("must be"));
+}
+
+TEST_CASE("anchor_blend: inverse-distance weights over learnt anchors, and its gradient checks", "[gcn][tailornet]") {
+  const auto assets = gcn_assets();
+  const int ng = vertices_of(*assets, 0);
+  auto node = make_node("anchor_blend", "{anchors: 3, power: 2}");
+  const Tensor x = random_tensor(2, 1, 4, 8);
+  node->setup({{"x", {1, 4}}}, {"hf", 1, assets.get()});
+  randomise_weights(*node, 4, 0.5f);
+  const auto out = run_forward(*node, {{"x", x}}, {"hf", 1, assets.get()});
+  const DenseF codes = weight_of(*node, "codes"), anchors = weight_of(*node, "anchors");
+  for (int b = 0; b < 2; ++b) {
+    Eigen::RowVectorXd u(3);
+    for (int k = 0; k < 3; ++k) {
+      double d = 1e-6;
+      for (int j = 0; j < 4; ++j) d += std::pow(double(x.data()[4 * b + j]) - double(codes(k, j)), 2);
+      u(k) = 1.0 / d;  // p = 2
+    }
+    const Eigen::RowVectorXd w = u / u.sum();
+    CHECK((dense_of(out.at("weights"), b).cast<double>() - w).cwiseAbs().maxCoeff() < 1e-5);
+    const Eigen::RowVectorXf field = w.cast<float>() * anchors;
+    CHECK((dense_of(out.at("out"), b) - Eigen::Map<const DenseF>(field.data(), 3, ng).transpose()).cwiseAbs().maxCoeff() < 1e-5f);
+  }
+  // A body on an anchor takes that anchor's field (the weights stay finite).
+  Tensor on(1, 1, 4);
+  on.mat(0) = codes.row(1);
+  const auto at = run_forward(*node, {{"x", on}}, {"hf", 1, assets.get()});
+  CHECK(dense_of(at.at("weights"), 0)(1) > 0.999f);
+  auto fresh = make_node("anchor_blend", "{anchors: 3, power: 2}");
+  const GradCheckReport r = check_node_gradients(*fresh, {{"x", x}}, {"hf", 2, assets.get()});
+  INFO(r.str());
+  CHECK(r.entries.size() == 1 + fresh->weights().size());
+  CHECK(r.ok(1e-2));
+}
+
+namespace {
+
+// A closed unit cube centred at the origin, faces counter-clockwise seen from outside.
+std::shared_ptr<Assets> cube_body_assets() {
+  auto a = gcn_assets();
+  Mesh& cube = a->body;
+  cube.vertices.resize(8, 3);
+  for (int i = 0; i < 8; ++i) cube.vertices.row(i) << (i & 1 ? 0.5 : -0.5), (i & 2 ? 0.5 : -0.5), (i & 4 ? 0.5 : -0.5);
+  cube.faces.resize(12, 3);
+  cube.faces << 0, 2, 1, 1, 2, 3, 4, 5, 6, 5, 7, 6, 0, 1, 4, 1, 5, 4, 2, 6, 3, 3, 6, 7, 0, 4, 2, 2, 4, 6, 1, 3, 5, 3, 7, 5;
+  cube.uv.resize(0, 2);
+  cube.uv_faces.resize(0, 3);
+  return a;
+}
+
+}  // namespace
+
+TEST_CASE("push_out moves vertices inside the body to epsilon outside and leaves the rest", "[gcn][tailornet]") {
+  const auto assets = cube_body_assets();
+  Tensor body(1, 8, 3);
+  body.mat(0) = assets->body.vertices.cast<float>();
+  Tensor x(1, 4, 3);
+  x.mat(0) << 0.0f, 0.0f, 0.4f,   // inside, 0.1 below the top face z = 0.5
+      0.3f, 0.0f, 0.0f,           // inside, nearest the x = 0.5 face
+      0.0f, 0.0f, 0.501f,         // outside but closer than epsilon
+      0.0f, 0.9f, 0.0f;           // well outside
+  auto node = make_node("push_out", "{epsilon: 0.01}");
+  const auto out = run_forward(*node, {{"x", x}, {"body", body}}, {"post", 1, assets.get()});
+  const DenseF y = dense_of(out.at("out"), 0);
+  CHECK((y.row(0) - Eigen::RowVector3f(0, 0, 0.51f)).norm() < 1e-5f);
+  CHECK((y.row(1) - Eigen::RowVector3f(0.51f, 0, 0)).norm() < 1e-5f);
+  CHECK((y.row(2) - Eigen::RowVector3f(0, 0, 0.51f)).norm() < 1e-5f);
+  CHECK(y.row(3) == x.mat(0).row(3));
+  const geometry::BodySurface surface(assets->body.vertices, assets->body.faces);
+  CHECK(surface.signed_distances(y.cast<double>()).minCoeff() >= 0.01 - 1e-6);
+
+  auto off = make_node("push_out", "{epsilon: 0.01, enabled: false}");
+  CHECK(dense_of(run_forward(*off, {{"x", x}, {"body", body}}, {"post", 1, assets.get()}).at("out"), 0) == DenseF(x.mat(0)));
+  // Straight-through backward for the garment.
+  Tensor g(1, 4, 3);
+  g.vec().setLinSpaced(-1, 1);
+  Tensor gx(1, 4, 3);
+  node->backward({{"x", &x}, {"body", &body}}, {}, {{"out", &g}}, {{"x", &gx}});
+  CHECK(gx.vec() == g.vec());
+}
