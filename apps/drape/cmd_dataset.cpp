@@ -17,7 +17,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-const char* kMergeUsage = "drape dataset merge --out FILE SHARD... [--allow-incomplete] [--force]";
+const char* kMergeUsage = "drape dataset merge --out FILE SHARD... [--allow-incomplete] [--mixed-sizes] [--force]";
 const char* kInfoUsage = "drape dataset info FILE [--scene-lines N]";
 
 int merge(const std::vector<std::string>& args) {
@@ -25,6 +25,7 @@ int merge(const std::vector<std::string>& args) {
   opts.add_options()("out,o", po::value<std::string>()->required(), "the merged dataset to write")(
       "shards", po::value<std::vector<std::string>>()->required(), "shard files, joined in this order")(
       "allow-incomplete", "skip the samples a shard has not finished (default: refuse such a shard)")(
+      "mixed-sizes", "the shards wear different sizes of one garment (their garment_size statistic tells them apart)")(
       "force", "replace --out if it exists");
   po::positional_options_description positional;
   positional.add("shards", -1);
@@ -36,7 +37,7 @@ int merge(const std::vector<std::string>& args) {
   // A finished dataset is never overwritten by accident (as DatasetWriter does).
   if (fs::exists(out) && !vm.count("force"))
     throw ConfigError(SourceLocation{out.string(), 0}, "exists; pass --force to replace it");
-  const std::size_t n = merge_datasets(shards, out, !vm.count("allow-incomplete"));
+  const std::size_t n = merge_datasets(shards, out, !vm.count("allow-incomplete"), vm.count("mixed-sizes") > 0);
   std::cout << "merged " << n << " samples from " << shards.size() << " shard" << (shards.size() == 1 ? "" : "s")
             << " into " << out.string() << "\n";
   return 0;

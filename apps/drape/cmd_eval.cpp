@@ -104,6 +104,8 @@ int run(const std::vector<std::string>& args) {
       "data", po::value<std::string>(), "dataset (drape generate) with ground-truth drapes")(
       "split", po::value<std::string>()->default_value("test"), "train | val | test | all, or a list: train,val")(
       "batch", po::value<int>()->default_value(16), "bodies per forward pass")(
+      "where", po::value<std::string>(), "only the samples whose statistic has this value, e.g. garment_size=1 (the small "
+                                          "shirts of a dataset of two sizes)")(
       "set", po::value<std::vector<std::string>>(), "node.param=value: change a parameter of the model's graph that leaves "
                                                     "the weights alone, e.g. post.enabled=true (repeatable)")(
       "out", po::value<std::string>(), "also write the table: metrics.csv or metrics.json")(
@@ -127,8 +129,24 @@ int run(const std::vector<std::string>& args) {
   Model model = Model::load(registry, model_file, parse_param_overrides(vm));
   const DatasetReader reader(data);
   check_dataset_template(reader, data, model.assets());
-  const std::vector<std::size_t> indices = reader.indices(split);
-  if (indices.empty()) throw ConfigError(data + ": the " + split + " split has no samples");
+  std::vector<std::size_t> indices = reader.indices(split);
+  if (vm.count("where")) {
+    const std::string where = vm["where"].as<std::string>();
+    const auto eq = where.find('=');
+    double wanted = 0;
+    try {
+      if (eq == std::string::npos || eq == 0) throw std::invalid_argument("no =");
+      wanted = std::stod(where.substr(eq + 1));
+    } catch (const std::exception&) {
+      throw UsageError("--where wants STAT=NUMBER, got '" + where + "'");
+    }
+    const std::vector<double> values = reader.stat(where.substr(0, eq), indices);
+    std::vector<std::size_t> kept;
+    for (std::size_t i = 0; i < indices.size(); ++i)
+      if (values[i] == wanted) kept.push_back(indices[i]);
+    indices = kept;
+  }
+  if (indices.empty()) throw ConfigError(data + ": the " + split + " split has no samples" + (vm.count("where") ? " where " + vm["where"].as<std::string>() : std::string()));
 
   ProgressBar bar("eval", indices.size(), std::cerr);
   const SplitEvaluation evaluation = evaluate_model(model, reader, indices, batch_size, &bar);

@@ -91,6 +91,10 @@ int run(const std::vector<std::string>& args) {
     throw UsageError(o.str());
   }
 
+  // The size flag of a graph trained on several sizes: 0 regular, 1 small.
+  const auto size_param = scene.garment_params.find("size");
+  const double garment_size = size_param != scene.garment_params.end() && size_param->second.node.as<std::string>() == "small" ? 1.0 : 0.0;
+
   // This shard's global sample indices: a contiguous block.
   const std::size_t first = total * shard.index / shard.count, last = total * (shard.index + 1) / shard.count;
   const std::vector<Split> split = splits(total, seed);
@@ -102,7 +106,7 @@ int run(const std::vector<std::string>& args) {
   layout.garment_vertices = sim.garment().mesh.num_vertices();
   for (const auto& e : scene.effects) layout.stats.push_back("energy_" + e.name);
   for (const char* s : {"energy_total", "penetration", "residual", "converged", "iterations", "steps", "seconds", "bmi",
-                        "height", "sex", "global_index"})
+                        "height", "sex", "global_index", "garment_size"})
     layout.stats.push_back(s);
   layout.scene = scene.yaml();
   layout.template_hash = template_hash(sim.garment().mesh, sim.body_model().faces());
@@ -161,6 +165,7 @@ int run(const std::vector<std::string>& args) {
       s.stats["height"] = request.height;
       s.stats["sex"] = request.sex;
       s.stats["global_index"] = static_cast<double>(global);
+      s.stats["garment_size"] = garment_size;
       if (!r.converged) ++not_settled;
       if (r.penetration > 0) ++penetrating;
       {

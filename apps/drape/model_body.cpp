@@ -4,7 +4,20 @@
 
 namespace drape::cli {
 
-SampleBatch model_body(const Model& model, const po::variables_map& vm) {
+namespace {
+
+// A model trained on several garment sizes takes the size as an input (0 regular, 1 small).
+void add_garment_size(const Model& model, const po::variables_map& vm, SampleBatch& batch) {
+  if (!model.needs_input("garment_size")) return;
+  const std::string size = vm.count("garment-size") ? vm["garment-size"].as<std::string>() : "";
+  if (size != "regular" && size != "small")
+    throw ConfigError("this model was trained on several garment sizes (input garment_size): give --garment-size "
+                      "regular or small");
+  batch.garment_size = Tensor(1, 1, 1);
+  batch.garment_size(0, 0, 0) = size == "small" ? 1.0f : 0.0f;
+}
+
+SampleBatch body_of(const Model& model, const po::variables_map& vm) {
   SampleBatch batch;
   if (vm.count("body")) {
     const std::string file = vm["body"].as<std::string>();
@@ -23,6 +36,14 @@ SampleBatch model_body(const Model& model, const po::variables_map& vm) {
   if (vm.count("height")) request.height = vm["height"].as<double>();
   if (vm.count("sex")) request.sex = vm["sex"].as<double>();
   return model.body_for(request);
+}
+
+}  // namespace
+
+SampleBatch model_body(const Model& model, const po::variables_map& vm) {
+  SampleBatch batch = body_of(model, vm);
+  add_garment_size(model, vm, batch);
+  return batch;
 }
 
 }  // namespace drape::cli

@@ -36,6 +36,9 @@ std::size_t optimize_dataset(const Registry& registry, const OptimizeDatasetOpti
   for (const char* s : {"energy_total", "energy_total_before", "penetration", "penetration_before", "best_iteration",
                         "seconds", "source_index", "bmi"})
     layout.stats.push_back(s);
+  const auto& source_stats = reader.layout().stats;
+  if (std::find(source_stats.begin(), source_stats.end(), "garment_size") != source_stats.end())
+    layout.stats.push_back("garment_size");
   layout.scene = scene.yaml();
   layout.template_hash = reader.layout().template_hash;
   layout.attributes = reader.layout().attributes;
@@ -54,6 +57,7 @@ std::size_t optimize_dataset(const Registry& registry, const OptimizeDatasetOpti
   std::fflush(stdout);
   const auto& stats = reader.layout().stats;
   const bool has_bmi = std::find(stats.begin(), stats.end(), "bmi") != stats.end();
+  const bool has_size = std::find(stats.begin(), stats.end(), "garment_size") != stats.end();
 
   ProgressBar::Options bar_options;
   bar_options.start = source.size() - todo.size();
@@ -81,9 +85,17 @@ std::size_t optimize_dataset(const Registry& registry, const OptimizeDatasetOpti
         batch.body_params = Tensor(1, 1, layout.body_params);
         batch.body_params.mat(0).row(0) = sample.body_params.transpose();
       }
+      if (model->needs_input("garment_size")) {
+        const auto size = sample.stats.find("garment_size");
+        if (size == sample.stats.end()) throw ConfigError(o.data.string() + ": the model takes garment_size, the dataset has no such statistic");
+        batch.garment_size = Tensor(1, 1, 1);
+        batch.garment_size(0, 0, 0) = static_cast<float>(size->second);
+      }
       const PhysicsOptimizationResult r = optimize_drape(*model, simulation, batch, o.optimization);
       sample.garment_vertices = r.after.cast<float>();
       const double bmi = has_bmi ? sample.stats["bmi"] : NAN;
+      const auto size = sample.stats.find("garment_size");
+      const double garment_size = size != sample.stats.end() ? size->second : NAN;
       sample.stats.clear();
       for (const auto& t : r.energies_after) sample.stats["energy_" + t.name] = t.value;
       sample.stats["energy_total"] = r.potential_after;
@@ -94,6 +106,7 @@ std::size_t optimize_dataset(const Registry& registry, const OptimizeDatasetOpti
       sample.stats["seconds"] = r.seconds;
       sample.stats["source_index"] = static_cast<double>(index);
       sample.stats["bmi"] = bmi;
+      if (has_size) sample.stats["garment_size"] = garment_size;
       {
         const std::lock_guard<std::mutex> lock(io);
         writer.write(local, sample);

@@ -108,3 +108,22 @@ TEST_CASE("push_out moves vertices inside the body to epsilon outside and leaves
   node->backward({{"x", &x}, {"body", &body}}, {}, {{"out", &g}}, {{"x", &gx}});
   CHECK(gx.vec() == g.vec());
 }
+
+TEST_CASE("concat puts a one-row flag beside every row, and its gradient checks", "[gcn][sizes]") {
+  const auto assets = gcn_assets();
+  auto node = make_node("concat");
+  const Tensor a = random_tensor(2, 5, 3, 1), b = random_tensor(2, 1, 1, 2);
+  const auto out = run_forward(*node, {{"a", a}, {"b", b}}, {"cat", 1, assets.get()});
+  for (int s = 0; s < 2; ++s) {
+    CHECK(dense_of(out.at("out"), s).leftCols(3) == dense_of(a, s));
+    for (int r = 0; r < 5; ++r) CHECK(out.at("out")(s, r, 3) == b(s, 0, 0));
+  }
+  for (const auto& [rows_b, cols_b] : std::vector<std::pair<int, int>>{{1, 2}, {5, 2}}) {
+    INFO("b " << rows_b << " x " << cols_b);
+    auto fresh = make_node("concat");
+    const GradCheckReport r = check_node_gradients(*fresh, {{"a", a}, {"b", random_tensor(2, rows_b, cols_b, 3)}}, {"cat", 1, assets.get()});
+    INFO(r.str());
+    CHECK(r.ok(1e-2));
+  }
+  CHECK_THROWS_WITH(make_node("concat")->setup({{"a", {5, 3}}, {"b", {2, 1}}}, {"cat", 1, assets.get()}), Catch::Contains("rows or one"));
+}

@@ -143,6 +143,24 @@ class Runner {
       std::printf("dataset '%s': using %s as given\n", key.c_str(), given->second.c_str());
       return datasets_[key] = given->second;
     }
+    if (!d.merge.empty()) {
+      std::vector<std::string> args = {"dataset", "merge", "--mixed-sizes", "--out"};
+      std::string identity;
+      std::vector<std::string> parts;
+      for (const auto& part : d.merge) {
+        parts.push_back(dataset(part).string());
+        identity += parts.back() + "|";
+      }
+      const fs::path file = o_.data_dir / (key + "-" + hex8(identity) + ".h5");
+      if (fs::exists(file)) {
+        std::printf("dataset '%s': reusing %s\n", key.c_str(), file.c_str());
+      } else {
+        args.push_back(file.string());
+        args.insert(args.end(), parts.begin(), parts.end());
+        drape(args);
+      }
+      return datasets_[key] = file;
+    }
     const long count = scaled(d.count);
     const std::string identity = load_scene(d.scene).yaml() + "|" + std::to_string(count) + "|" + d.bmi + "|" +
                                  std::to_string(d.seed);
@@ -299,6 +317,7 @@ class Runner {
       eval_args.insert(eval_args.end(), {"--set", key + "=" + value});
       out.provenance += " with " + key + "=" + value;
     }
+    if (!row.test_where.empty()) eval_args.insert(eval_args.end(), {"--where", row.test_where});
     eval_args.insert(eval_args.end(), {"--out", eval.string()});
     if (!up_to_date(eval, {model, test})) drape(eval_args);
     fs::path physics;

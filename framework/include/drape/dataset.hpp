@@ -145,7 +145,14 @@ std::string template_hash(const Mesh& garment, const Eigen::MatrixX3i& body_face
 // template hash (ConfigError naming the shard that differs). With
 // require_complete, a shard with samples not done is an error; otherwise those
 // samples are skipped. Returns the number of samples written.
+//
+// With mixed_sizes, the shards may come from scenes that differ in the garment
+// (another size of the same template topology: the seed's small and regular
+// T-shirts); every shard must then record the garment_size statistic, which
+// tells a graph trained on them which size each sample wears. The merged file
+// keeps the first shard's scene and template hash (a model trained on it uses
+// that template) and lists every shard's hash in the attribute `templates`.
 std::size_t merge_datasets(const std::vector<std::filesystem::path>& shards, const std::filesystem::path& out,
-                           bool require_complete = true);
+                           bool require_complete = true, bool mixed_sizes = false);
 
 }  // namespace drape

@@ -32,6 +32,7 @@ namespace drape {
 
 struct ExperimentDataset {
   std::string key;
+  std::vector<std::string> merge;  // non-empty: the union of these datasets (of different garment sizes)
   std::filesystem::path scene;
   long count = 0;            // before --scale
   std::string bmi = "10:65";
@@ -61,6 +62,7 @@ struct ExperimentRow {
   std::filesystem::path graph;     // Train
   std::string data;                // Train: dataset key (default: the first); Simulation: its dataset
   std::string test;                // Train: dataset whose test split is measured (default: data)
+  std::string test_where;          // Train, Evaluate: only test samples with this statistic value ("garment_size=1")
   double fraction = 1.0;           // Train: of the training split
   std::string on_optimized;        // Train: train on this row's model optimised over train+val (the seed's retraining)
   std::string source;              // Optimize, Evaluate: the row whose model is used

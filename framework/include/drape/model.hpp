@@ -37,6 +37,9 @@ struct SampleBatch {
   Tensor body;         // [n, Nb, 3]
   Tensor body_params;  // [n, 1, P]
   Tensor target;       // [n, Ng, 3]
+  // [n, 1, 1]: which garment size each sample wears, the dataset statistic
+  // garment_size (0 regular, 1 small), for graphs trained on several sizes.
+  Tensor garment_size;
   int size() const { return body.batch(); }
   // Samples first .. first+count-1 of every tensor that is present.
   SampleBatch slice(int first, int count) const;
@@ -60,6 +63,12 @@ void check_graph_inputs(const GraphSpec& spec);
 std::map<std::string, Tensor> graph_inputs(const Graph& graph, const SampleBatch& batch, bool with_target);
 // The output that holds the predicted garment.
 std::string garment_output(const Graph& graph);
+
+// A batch of dataset samples with what `graph` takes: body, body_params and
+// garment_size when it has those inputs, the target when with_target.
+class DatasetReader;
+SampleBatch read_samples(const DatasetReader& reader, const std::vector<std::size_t>& indices, const Graph& graph,
+                         bool with_target);
 
 class Model {
  public:
@@ -87,6 +96,7 @@ class Model {
   Graph& graph() { return *graph_; }
   const std::string& output() const { return output_; }
   bool needs_body_params() const;
+  bool needs_input(const std::string& name) const;
   // True when the rebuilt assets differ from the ones the model was trained
   // with (meta `assets_hash`), e.g. after a change of the garment plugin.
   bool assets_changed() const { return assets_changed_; }

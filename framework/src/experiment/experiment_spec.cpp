@@ -99,8 +99,8 @@ ExperimentRow parse_row(const Reader& r, const YAML::Node& n, const ExperimentSp
   ExperimentRow row;
   row.where = r.at(n);
   yaml::check_keys(r.file, n,
-                   {"name", "train", "optimize", "simulation", "evaluate", "set", "data", "test", "fraction", "on_optimized",
-                    "physics", "scene", "iterations", "training", "seed"},
+                   {"name", "train", "optimize", "simulation", "evaluate", "set", "data", "test", "where", "fraction",
+                    "on_optimized", "physics", "scene", "iterations", "training", "seed"},
                    "row");
   if (!n["name"]) throw ConfigError(r.at(n), "row: 'name' is required");
   row.name = r.text(n["name"], "row name");
@@ -112,6 +112,11 @@ ExperimentRow parse_row(const Reader& r, const YAML::Node& n, const ExperimentSp
     throw ConfigError(r.at(n), owner + ": give exactly one of train (a graph), optimize (a row), evaluate (a row) and "
                                        "simulation (a dataset)");
   if (n["set"] && !n["evaluate"]) throw ConfigError(r.at(n["set"]), owner + ": 'set' goes with evaluate");
+  if (n["where"]) {
+    if (n["optimize"] || n["simulation"]) throw ConfigError(r.at(n["where"]), owner + ": 'where' goes with train and evaluate");
+    row.test_where = r.text(n["where"], owner + ".where");
+    if (row.test_where.find('=') == std::string::npos) throw ConfigError(r.at(n["where"]), owner + ".where must be STAT=VALUE");
+  }
 
   auto dataset_key = [&](const char* key) {
     const std::string k = r.text(n[key], owner + "." + key);
@@ -161,18 +166,20 @@ ExperimentRow parse_row(const Reader& r, const YAML::Node& n, const ExperimentSp
   } else if (n["evaluate"]) {
     row.kind = ExperimentRowKind::Evaluate;
     row.source = earlier_train_row("evaluate");
-    row.test = spec.row(row.source).test;
+    row.test = n["test"] ? dataset_key("test") : spec.row(row.source).test;
     row.physics = spec.row(row.source).physics;
-    if (!n["set"] || !n["set"].IsMap() || n["set"].size() == 0)
-      throw ConfigError(r.at(n), owner + ": evaluate needs set: {node.param: value, ...}");
-    for (const auto& kv : n["set"]) {
+    if (!n["set"] && !n["where"] && !n["test"])
+      throw ConfigError(r.at(n), owner + ": evaluate changes something about the row it evaluates: set, test or where");
+    if (n["set"] && (!n["set"].IsMap() || n["set"].size() == 0))
+      throw ConfigError(r.at(n["set"]), owner + ": set must map node.param to values");
+    if (n["set"]) for (const auto& kv : n["set"]) {
       const std::string key = kv.first.as<std::string>();
       const auto dot = key.find('.');
       if (dot == std::string::npos || dot == 0 || dot + 1 == key.size())
         throw ConfigError(r.at(kv.first), owner + ".set: '" + key + "' is not node.param");
       row.set[key] = r.text(kv.second, owner + ".set." + key);
     }
-    for (const char* k : {"data", "test", "fraction", "physics", "training", "scene", "iterations", "on_optimized"})
+    for (const char* k : {"data", "fraction", "physics", "training", "scene", "iterations", "on_optimized"})
       if (n[k]) throw ConfigError(r.at(n[k]), owner + ": '" + k + "' does not apply to an evaluate row");
   } else {
     row.kind = ExperimentRowKind::Simulation;
@@ -225,7 +232,21 @@ ExperimentSpec parse_experiment_file(const fs::path& file) {
     d.key = kv.first.as<std::string>();
     d.where = r.at(kv.first);
     const std::string owner = "dataset '" + d.key + "'";
-    yaml::check_keys(r.file, kv.second, {"scene", "count", "bmi", "seed"}, owner);
+    yaml::check_keys(r.file, kv.second, {"scene", "count", "bmi", "seed", "merge"}, owner);
+    if (kv.second["merge"]) {
+      if (!kv.second["merge"].IsSequence() || kv.second["merge"].size() < 2)
+        throw ConfigError(r.at(kv.second["merge"]), owner + ".merge must list two or more datasets defined above it");
+      for (const auto& m : kv.second["merge"]) {
+        const std::string key = r.text(m, owner + ".merge");
+        if (std::none_of(spec.datasets.begin(), spec.datasets.end(), [&](const ExperimentDataset& e) { return e.key == key; }))
+          throw ConfigError(r.at(m), owner + ".merge: no dataset '" + key + "' above it");
+        d.merge.push_back(key);
+      }
+      for (const char* k : {"scene", "count", "bmi", "seed"})
+        if (kv.second[k]) throw ConfigError(r.at(kv.second[k]), owner + ": a merged dataset takes its samples from its parts, not '" + k + "'");
+      spec.datasets.push_back(d);
+      continue;
+    }
     if (!kv.second["scene"] || !kv.second["count"]) throw ConfigError(d.where, owner + ": scene and count are required");
     d.scene = r.path(kv.second["scene"], owner + ".scene");
     d.count = r.number<long>(kv.second["count"], owner + ".count");

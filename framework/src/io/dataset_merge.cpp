@@ -33,18 +33,24 @@ void copy_rows(const h5::File& in, h5::File& out, const DatasetLayout& layout, s
 
 }  // namespace
 
-std::size_t merge_datasets(const std::vector<fs::path>& shards, const fs::path& out, bool require_complete) {
+std::size_t merge_datasets(const std::vector<fs::path>& shards, const fs::path& out, bool require_complete,
+                           bool mixed_sizes) {
   if (shards.empty()) throw ConfigError("merge: no shard files given");
   std::vector<h5::File> files;
   std::vector<std::vector<std::uint8_t>> done;
   DatasetLayout merged;
   std::size_t total = 0;
+  std::string templates;
   for (const auto& shard : shards) {
     if (fs::exists(out) && fs::equivalent(shard, out)) throw ConfigError(shard.string() + ": the output is also a shard");
     files.push_back(h5::File::open(shard));
     const DatasetLayout layout = read_layout(files.back());
     done.push_back(files.back().read<std::uint8_t>(kDone));
     const std::size_t n = static_cast<std::size_t>(std::count(done.back().begin(), done.back().end(), 1));
+    if (mixed_sizes && std::find(layout.stats.begin(), layout.stats.end(), "garment_size") == layout.stats.end())
+      throw ConfigError(shard.string() + ": merging garment sizes needs the garment_size statistic in every shard "
+                        "(datasets made by drape generate since it records one)");
+    templates += (templates.empty() ? "" : ",") + layout.template_hash;
     if (require_complete && n != layout.samples)
       throw ConfigError(shard.string() + ": only " + std::to_string(n) + " of " + std::to_string(layout.samples) +
                         " samples are done; finish generating it first");
@@ -53,9 +59,18 @@ std::size_t merge_datasets(const std::vector<fs::path>& shards, const fs::path& 
     } else {
       DatasetLayout same = layout;
       same.samples = merged.samples;  // shards may differ in length, nothing else
+      if (mixed_sizes) {             // ... and in the garment's size
+        same.scene = merged.scene;
+        same.template_hash = merged.template_hash;
+        same.attributes = merged.attributes;
+      }
       const std::string difference = layout_difference(merged, same);
+      const bool other_garment = same.scene != merged.scene || same.template_hash != merged.template_hash;
       if (!difference.empty())
-        throw ConfigError(shard.string() + ": cannot merge with " + shards.front().string() + ": " + difference);
+        throw ConfigError(shard.string() + ": cannot merge with " + shards.front().string() + ": " + difference +
+                          (other_garment && !mixed_sizes ? " (another scene or garment template; shards of different "
+                                                           "garment sizes merge with --mixed-sizes)"
+                                                         : ""));
     }
     total += n;
   }
@@ -64,6 +79,7 @@ std::size_t merge_datasets(const std::vector<fs::path>& shards, const fs::path& 
   std::string names;
   for (const auto& shard : shards) names += (names.empty() ? "" : "\n") + shard.filename().string();
   merged.attributes["merged_from"] = names;
+  if (mixed_sizes) merged.attributes["templates"] = templates;
 
   write_atomically(out, [&](const fs::path& tmp) {
     h5::File result = h5::File::create(tmp);

@@ -17,9 +17,7 @@ SplitEvaluation evaluate_model(Model& model, const DatasetReader& reader, const 
   for (std::size_t first = 0; first < indices.size(); first += step) {
     const std::vector<std::size_t> part(indices.begin() + static_cast<long>(first),
                                         indices.begin() + static_cast<long>(std::min(indices.size(), first + step)));
-    SampleBatch batch;
-    batch.body = reader.body_vertices(part);
-    if (model.needs_body_params()) batch.body_params = reader.body_params(part);
+    const SampleBatch batch = read_samples(reader, part, model.graph(), false);
     const Tensor truth = reader.garment_vertices(part);
     const Tensor predicted = model.predict(batch);
     const int n = static_cast<int>(part.size());

@@ -1,4 +1,5 @@
 // Trained models: the assets spec as text, graph inputs by name, loading and prediction.
+#include <drape/dataset.hpp>
 #include <drape/model.hpp>
 #include <drape/registry.hpp>
 
@@ -11,7 +12,7 @@ namespace fs = std::filesystem;
 namespace drape {
 namespace {
 
-const std::vector<std::string> kKnownInputs{"body", "body_params", "target"};
+const std::vector<std::string> kKnownInputs{"body", "body_params", "target", "garment_size"};
 
 // A parameter value as one line of flow YAML, as AssetsSpec::yaml() writes it.
 std::string flow(const YAML::Node& node) {
@@ -86,7 +87,8 @@ AssetsSpec assets_spec_for(const Scene& scene, int eigen_k, int levels) {
 }
 
 SampleBatch SampleBatch::slice(int first, int count) const {
-  return {slice_tensor(body, first, count), slice_tensor(body_params, first, count), slice_tensor(target, first, count)};
+  return {slice_tensor(body, first, count), slice_tensor(body_params, first, count), slice_tensor(target, first, count),
+          slice_tensor(garment_size, first, count)};
 }
 
 std::map<std::string, int> graph_dims(const Assets& assets, int body_params) {
@@ -100,13 +102,16 @@ void check_graph_inputs(const GraphSpec& spec) {
     if (std::find(kKnownInputs.begin(), kKnownInputs.end(), name) == kKnownInputs.end())
       throw ConfigError(shape.second, "graph input '" + name + "' is not one drape feeds" + did_you_mean(name, kKnownInputs) +
                                           " (inputs: body [body_vertices, 3], body_params [1, body_params], target "
-                                          "[garment_vertices, 3])");
+                                          "[garment_vertices, 3], garment_size [1, 1])");
 }
 
 std::map<std::string, Tensor> graph_inputs(const Graph& graph, const SampleBatch& batch, bool with_target) {
   std::map<std::string, Tensor> in;
   for (const auto& name : graph.input_names()) {
-    const Tensor* t = name == "body" ? &batch.body : name == "body_params" ? &batch.body_params : &batch.target;
+    const Tensor* t = name == "body"          ? &batch.body
+                      : name == "body_params"  ? &batch.body_params
+                      : name == "garment_size" ? &batch.garment_size
+                                               : &batch.target;
     if (name == "target" && !with_target) continue;
     if (t->empty()) throw ConfigError("the graph takes input '" + name + "', which is not available here");
     in[name] = *t;
@@ -158,6 +163,31 @@ Model Model::load(const Registry& registry, const fs::path& file, const ParamOve
   m.output_ = output != meta.end() ? output->second : garment_output(*m.graph_);
   m.graph_->output(m.output_);  // throws naming the outputs when it is not one
   return m;
+}
+
+bool Model::needs_input(const std::string& name) const {
+  const auto names = graph_->input_names();
+  return std::find(names.begin(), names.end(), name) != names.end();
+}
+
+SampleBatch read_samples(const DatasetReader& reader, const std::vector<std::size_t>& indices, const Graph& graph,
+                         bool with_target) {
+  const auto inputs = graph.input_names();
+  auto takes = [&](const char* name) { return std::find(inputs.begin(), inputs.end(), name) != inputs.end(); };
+  SampleBatch b;
+  b.body = reader.body_vertices(indices);
+  if (with_target) b.target = reader.garment_vertices(indices);
+  if (takes("body_params")) b.body_params = reader.body_params(indices);
+  if (takes("garment_size")) {
+    const auto& stats = reader.layout().stats;
+    if (std::find(stats.begin(), stats.end(), "garment_size") == stats.end())
+      throw ConfigError("the graph takes garment_size, but the dataset has no garment_size statistic (datasets made "
+                        "by drape generate since it records one)");
+    const std::vector<double> size = reader.stat("garment_size", indices);
+    b.garment_size = Tensor(static_cast<int>(indices.size()), 1, 1);
+    for (std::size_t i = 0; i < size.size(); ++i) b.garment_size(static_cast<int>(i), 0, 0) = static_cast<float>(size[i]);
+  }
+  return b;
 }
 
 bool Model::needs_body_params() const {

@@ -81,13 +81,6 @@ NamedWeights prefixed(const NamedWeights& weights, const std::string& prefix) {
   return out;
 }
 
-SampleBatch read_batch(const DatasetReader& reader, const std::vector<std::size_t>& indices, bool params) {
-  SampleBatch b;
-  b.body = reader.body_vertices(indices);
-  b.target = reader.garment_vertices(indices);
-  if (params) b.body_params = reader.body_params(indices);
-  return b;
-}
 
 void check_options(const TrainOptions& o) {
   auto bad = [](const std::string& what) { throw ConfigError(what); };
@@ -191,8 +184,6 @@ TrainReport train(const Registry& registry, const TrainOptions& o) {
                                                 [](const NodeSpec& n) { return n.is_loss && n.weight != 0.0; }))
     throw ConfigError(o.graph.string() + ": the graph has no losses to train with");
   const std::string output = garment_output(graph);
-  const auto inputs = graph.input_names();
-  const bool needs_params = std::find(inputs.begin(), inputs.end(), "body_params") != inputs.end();
   Adam adam(graph.weights());
   EarlyStopping stopper({o.patience, 0.0});
   LrSchedule schedule;
@@ -333,7 +324,7 @@ TrainReport train(const Registry& registry, const TrainOptions& o) {
     for (std::size_t first = 0; first < order.size(); first += batch) {
       std::vector<std::size_t> indices;
       for (std::size_t k = first; k < std::min(order.size(), first + batch); ++k) indices.push_back(train_idx[order[k]]);
-      const LossValues l = dp.gradients(read_batch(reader, indices, needs_params));
+      const LossValues l = dp.gradients(read_samples(reader, indices, graph, true));
       if (!std::isfinite(l.total))
         throw Error("the training loss is " + brief(l.total) + " in epoch " + std::to_string(e + 1) +
                     " (try a smaller --lr); " + o.out.string() + " keeps the last finished epoch");
@@ -353,7 +344,7 @@ TrainReport train(const Registry& registry, const TrainOptions& o) {
     for (std::size_t first = 0; first < val_idx.size(); first += batch) {
       const std::vector<std::size_t> indices(val_idx.begin() + static_cast<long>(first),
                                              val_idx.begin() + static_cast<long>(std::min(val_idx.size(), first + batch)));
-      val_loss.merge(dp.losses(read_batch(reader, indices, needs_params)));
+      val_loss.merge(dp.losses(read_samples(reader, indices, graph, true)));
     }
     const double monitored = val_idx.empty() ? train_loss.total : val_loss.total;
     if (!std::isfinite(monitored))
