@@ -13,16 +13,6 @@ namespace fs = std::filesystem;
 
 namespace {
 
-const char* kTinyScene = R"(body: {model: parametric}
-garment: {template: tshirt, params: {resolution: 300}}
-effects:
-  gravity: {}
-  stretching: {}
-  bending: {}
-  collision: {stiffness: 1.0e8, margin: 0.004}
-solver: {morph_steps: 2, settle_steps: 3}
-)";
-
 struct Row {
   std::string name;
   double seconds, me, potential, p;
@@ -52,7 +42,7 @@ std::vector<Row> read_csv(const fs::path& file) {
 
 TEST_CASE("bench accuracy-time measures every method against a converged drape", "[bench][accuracy-time]") {
   test::TempDir dir;
-  std::ofstream(dir / "tiny.yaml") << kTinyScene;
+  std::ofstream(dir / "tiny.yaml") << test::tiny_simulation_scene();
   const std::string drape = test::drape_program().string();
   std::string out;
   REQUIRE(test::run(drape + " generate " + (dir / "tiny.yaml").string() + " --count 10 --bmi 15:40 --seed 3 --out " +

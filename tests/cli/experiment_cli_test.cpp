@@ -16,16 +16,6 @@ namespace fs = std::filesystem;
 
 namespace {
 
-const char* kTinyScene = R"(body: {model: parametric}
-garment: {template: tshirt, params: {resolution: 300}}
-effects:
-  gravity: {}
-  stretching: {}
-  bending: {}
-  collision: {stiffness: 1.0e8, margin: 0.004}
-solver: {morph_steps: 2, settle_steps: 3}
-)";
-
 std::string tiny_experiment() {
   const std::string graph = (test::source_dir() / "graphs/examples/mlp_baseline.yaml").string();
   const std::string tailornet = (test::source_dir() / "graphs/baselines/tailornet_no_anchor.yaml").string();
@@ -55,7 +45,7 @@ std::string read(const fs::path& file) {
 
 TEST_CASE("experiment: every kind of row runs, the table is written, and a second run reuses everything", "[experiment]") {
   test::TempDir dir;
-  std::ofstream(dir / "tiny.yaml") << kTinyScene;
+  std::ofstream(dir / "tiny.yaml") << test::tiny_simulation_scene();
   std::ofstream(dir / "tiny_experiment.yaml") << tiny_experiment();
   const std::string command = "cd " + dir.path().string() + " && " + test::drape_program().string() +
                               " experiment tiny_experiment.yaml --threads 2";
@@ -110,7 +100,7 @@ TEST_CASE("experiment: every kind of row runs, the table is written, and a secon
 
 TEST_CASE("experiment files: errors name the file, the line and the key", "[experiment]") {
   test::TempDir dir;
-  std::ofstream(dir / "tiny.yaml") << kTinyScene;
+  std::ofstream(dir / "tiny.yaml") << test::tiny_simulation_scene();
   auto error_of = [&](const std::string& text) {
     std::ofstream(dir / "e.yaml") << text;
     return test::message_of([&] { parse_experiment_file(dir / "e.yaml"); });

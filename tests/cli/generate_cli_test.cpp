@@ -18,17 +18,6 @@ namespace fs = std::filesystem;
 
 namespace {
 
-// A ~300-vertex shirt and a few steps: a fraction of a second per sample.
-const char* kTinyScene = R"(body: {model: parametric}
-garment: {template: tshirt, params: {resolution: 300}}
-effects:
-  gravity: {}
-  stretching: {}
-  bending: {}
-  collision: {stiffness: 1.0e8, margin: 0.004}
-solver: {morph_steps: 2, settle_steps: 3}
-)";
-
 std::string generate(const fs::path& scene, const std::string& args) {
   return test::drape_program().string() + " generate " + scene.string() + " --bmi 15:50 --seed 4 " + args;
 }
@@ -42,7 +31,7 @@ Tensor garments(const fs::path& file) {
 
 TEST_CASE("generate writes every sample once, with stats and the 8:1:1 split, and never overwrites", "[generate]") {
   test::TempDir dir;
-  std::ofstream(dir / "tiny.yaml") << kTinyScene;
+  std::ofstream(dir / "tiny.yaml") << test::tiny_simulation_scene();
   std::string out;
   REQUIRE(test::run(generate(dir / "tiny.yaml", "--count 10 --threads 2 --out " + (dir / "a.h5").string()), out) == 0);
   INFO(out);
@@ -64,7 +53,7 @@ TEST_CASE("generate writes every sample once, with stats and the 8:1:1 split, an
 
 TEST_CASE("shards made separately merge into the same set one job makes", "[generate]") {
   test::TempDir dir;
-  std::ofstream(dir / "tiny.yaml") << kTinyScene;
+  std::ofstream(dir / "tiny.yaml") << test::tiny_simulation_scene();
   std::string out;
   REQUIRE(test::run(generate(dir / "tiny.yaml", "--count 4 --threads 1 --out " + (dir / "all.h5").string()), out) == 0);
   for (int s = 0; s < 2; ++s)
@@ -82,7 +71,7 @@ TEST_CASE("shards made separately merge into the same set one job makes", "[gene
 
 TEST_CASE("a generate job killed mid-run resumes without losing or duplicating a sample", "[generate]") {
   test::TempDir dir;
-  std::ofstream(dir / "tiny.yaml") << kTinyScene;
+  std::ofstream(dir / "tiny.yaml") << test::tiny_simulation_scene();
   const fs::path file = dir / "k.h5", partial = dir / "k.h5.partial";
   std::string out;
   // Start in the background, wait until some (not all) samples are done, kill -9.

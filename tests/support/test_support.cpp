@@ -54,4 +54,16 @@ int run(const std::string& command, std::string& output) {
   return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
 }
 
+const char* tiny_simulation_scene() {
+  return R"(body: {model: parametric}
+garment: {template: tshirt, params: {resolution: 300}}
+effects:
+  gravity: {}
+  stretching: {}
+  bending: {}
+  collision: {stiffness: 1.0e8, margin: 0.004}
+solver: {morph_steps: 2, settle_steps: 3}
+)";
+}
+
 }  // namespace drape::test

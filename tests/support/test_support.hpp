@@ -32,6 +32,11 @@ std::filesystem::path drape_program();
 // The message of the exception fn throws, or "(no exception)".
 std::string message_of(const std::function<void()>& fn);
 
+// A scene that simulates in a fraction of a second: a ~300-vertex T-shirt,
+// every effect, a few steps -- for tests that need real drapes (generate,
+// experiments, benchmarks), not good ones.
+const char* tiny_simulation_scene();
+
 // Runs a shell command, returns its exit code; stdout+stderr go to `output`.
 int run(const std::string& command, std::string& output);
 
