@@ -18,6 +18,7 @@
 #include <drape/graph.hpp>
 #include <drape/scene.hpp>
 
+#include <cstdint>
 #include <filesystem>
 #include <map>
 #include <memory>
@@ -83,6 +84,11 @@ class Model {
   using ParamOverrides = std::map<std::string, std::map<std::string, std::string>>;
   static Model load(const Registry& registry, const std::filesystem::path& file, const ParamOverrides& overrides,
                     const std::filesystem::path& cache_dir = default_cache_dir());
+
+  // A model with freshly initialised weights (seed) of a graph on the assets
+  // of a spec -- what benchmarks time when the cost does not depend on the weights.
+  static Model untrained(const Registry& registry, const GraphSpec& graph, const AssetsSpec& spec, std::uint64_t seed = 0,
+                         const std::filesystem::path& cache_dir = default_cache_dir());
 
   Model(Model&&) noexcept;
   ~Model();

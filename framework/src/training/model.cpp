@@ -165,6 +165,24 @@ Model Model::load(const Registry& registry, const fs::path& file, const ParamOve
   return m;
 }
 
+Model Model::untrained(const Registry& registry, const GraphSpec& graph, const AssetsSpec& spec, std::uint64_t seed,
+                       const fs::path& cache_dir) {
+  Model m;
+  m.file_ = graph.file + " (untrained)";
+  m.assets_spec_ = spec;
+  m.assets_ = build_assets(registry, spec, cache_dir);
+  m.body_model_ = make_body_model(registry, spec);
+  m.checkpoint_.graph = graph.text;
+  check_graph_inputs(graph);
+  GraphOptions options;
+  options.dims = graph_dims(*m.assets_, static_cast<int>(m.body_model_->mean_shape().size()));
+  options.assets = m.assets_.get();
+  options.seed = seed;
+  m.graph_ = std::make_unique<Graph>(graph, registry, options);
+  m.output_ = garment_output(*m.graph_);
+  return m;
+}
+
 bool Model::needs_input(const std::string& name) const {
   const auto names = graph_->input_names();
   return std::find(names.begin(), names.end(), name) != names.end();

@@ -1,0 +1,61 @@
+// `drape bench optimize`: the cost of the physics-enforced optimisation on one
+// core -- N Adam iterations of the network's weights against the scene's
+// potential, for one body -- at the resolution of the scene's garment. The
+// time does not depend on the weights, so `--graph` times a graph with fresh
+// weights on any resolution (the seed's target: 100 iterations at the default
+// resolution within 2 s, 7 s on its GPU); `--model` times a trained model.
+#include "bench.hpp"
+
+#include <drape/model.hpp>
+#include <drape/physics_optimization.hpp>
+#include <drape/registry.hpp>
+#include <drape/scene.hpp>
+#include <drape/simulation.hpp>
+
+#include <cstdio>
+
+namespace drape::cli {
+namespace {
+
+int run(const std::vector<std::string>& args) {
+  po::options_description opts("drape bench optimize");
+  opts.add_options()("model", po::value<std::string>(), "a trained model whose template is the scene's garment")(
+      "graph", po::value<std::string>(), "or a graph, with fresh weights on the scene's template")(
+      "scene", po::value<std::string>()->default_value("graphs/scenes/tshirt.yaml"), "scene whose potential is minimised")(
+      "bmi", po::value<double>()->default_value(35), "BMI of the body")(
+      "iterations", po::value<int>()->default_value(100), "Adam iterations")(
+      "k", po::value<int>()->default_value(1000), "with --graph: eigenvectors in the assets");
+  po::variables_map vm;
+  const std::string usage =
+      "drape bench optimize (--graph graphs/drape.yaml | --model model.h5) [--scene graphs/scenes/tshirt.yaml] [--iterations 100]";
+  if (!parse(usage, args, opts, {}, vm)) return 0;
+  if (vm.count("model") == vm.count("graph")) throw UsageError("give exactly one of --model FILE and --graph FILE");
+  Registry& registry = Registry::load_default(plugin_path(vm));
+  const Scene scene = load_scene(vm["scene"].as<std::string>());
+  const Simulation simulation(registry, scene);
+  Model model = vm.count("model") ? Model::load(registry, vm["model"].as<std::string>())
+                                  : Model::untrained(registry, parse_graph_file(vm["graph"].as<std::string>()),
+                                                     assets_spec_for(scene, vm["k"].as<int>()));
+  BodyRequest request;
+  request.bmi = vm["bmi"].as<double>();
+  const SampleBatch body = model.body_for(request);
+  PhysicsOptimizationOptions o;
+  o.iterations = 1;
+  optimize_drape(model, simulation, body, o);  // warm-up: allocations, caches
+  o.iterations = vm["iterations"].as<int>();
+  const PhysicsOptimizationResult r = optimize_drape(model, simulation, body, o);
+  std::printf("## Physics-enforced optimisation on one core: %s, scene %s\n\n", model.file().string().c_str(),
+              vm["scene"].as<std::string>().c_str());
+  std::printf("garment %d vertices, body %d vertices, BMI %g\n\n", model.assets().garment->mesh.num_vertices(),
+              model.assets().body.num_vertices(), request.bmi);
+  std::printf("| iterations | s | ms per iteration | L_p before -> after (J) |\n|---|---|---|---|\n");
+  std::printf("| %d | %.3f | %.2f | %.5g -> %.5g |\n", o.iterations, r.seconds, 1000.0 * r.seconds / std::max(1, o.iterations),
+              r.potential_before, r.potential_after);
+  return 0;
+}
+
+const RegisterBench registration{
+    {"optimize", "seconds for N iterations of physics-enforced optimisation of one body on one core", run}};
+
+}  // namespace
+}  // namespace drape::cli

@@ -1,0 +1,29 @@
+// `drape bench optimize`: times N optimisation iterations of one body, for an
+// untrained graph on any template (Model::untrained) or a trained model.
+#include <catch2/catch.hpp>
+
+#include <fstream>
+#include <regex>
+
+#include "test_support.hpp"
+
+using namespace drape;
+
+TEST_CASE("bench optimize times the optimisation of an untrained graph on the scene's template", "[bench]") {
+  test::TempDir dir;
+  std::ofstream(dir / "tiny.yaml") << test::tiny_simulation_scene();
+  const std::string bench = test::drape_program().string() + " bench optimize ";
+  std::string out;
+  REQUIRE(test::run(bench + "--graph " + (test::source_dir() / "graphs/drape.yaml").string() + " --scene " +
+                        (dir / "tiny.yaml").string() + " --iterations 3 --k 16",
+                    out) == 0);
+  INFO(out);
+  std::smatch m;
+  REQUIRE(std::regex_search(out, m, std::regex(R"(\| 3 \| ([0-9.]+) \| ([0-9.]+) \| ([0-9.e+-]+) -> ([0-9.e+-]+) \|)")));
+  CHECK(std::stod(m[1]) > 0);
+  CHECK(std::stod(m[2]) == Approx(1000.0 * std::stod(m[1]) / 3).epsilon(0.01));
+  CHECK(std::stod(m[4]) <= std::stod(m[3]));  // the best iterate is kept: never worse than the start
+  CHECK_THAT(out, Catch::Contains("(untrained)"));
+  CHECK(test::run(bench + "--iterations 3", out) == 2);
+  CHECK_THAT(out, Catch::Contains("exactly one of --model"));
+}
