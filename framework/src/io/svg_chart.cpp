@@ -48,7 +48,10 @@ std::string ScatterChart::svg() const {
   std::ostringstream o;
   o.setf(std::ios::fixed);
   o.precision(1);
-  o << "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" << kWidth << "\" height=\"" << kHeight
+  // Points are numbered on the chart and labelled in a list under it: long
+  // labels of points at similar heights would otherwise run into each other.
+  const double legend_line = 16, height = kHeight + legend_line * static_cast<double>(points.size()) + 8;
+  o << "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" << kWidth << "\" height=\"" << height
     << "\" font-family=\"sans-serif\" font-size=\"12\">\n<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n";
   o << "<text x=\"" << kLeft << "\" y=\"22\" font-size=\"15\">" << xml_escaped(title) << "</text>\n";
   o << "<path d=\"M" << kLeft << " " << kTop << "V" << kTop + h << "H" << kLeft + w << "\" stroke=\"black\" fill=\"none\"/>\n";
@@ -71,12 +74,15 @@ std::string ScatterChart::svg() const {
     << (log_x ? " (log scale)" : "") << "</text>\n";
   o << "<text transform=\"translate(16 " << kTop + h / 2 << ") rotate(-90)\" text-anchor=\"middle\">" << xml_escaped(y_label)
     << "</text>\n";
-  for (const ChartPoint& p : points) {
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    const ChartPoint& p = points[i];
     const double x = px(p.x), y = py(p.y);
     o << "<circle cx=\"" << x << "\" cy=\"" << y << "\" r=\"5\" fill=\"#3b528b\"/>\n";
-    const bool right_half = x > kLeft + w * 0.6;
-    o << "<text x=\"" << (right_half ? x - 8 : x + 8) << "\" y=\"" << y - 8 << "\"" << (right_half ? " text-anchor=\"end\"" : "")
-      << ">" << xml_escaped(p.label) << "</text>\n";
+    const bool right_half = x > kLeft + w * 0.85;
+    o << "<text x=\"" << (right_half ? x - 7 : x + 7) << "\" y=\"" << y - 6 << "\" font-weight=\"bold\""
+      << (right_half ? " text-anchor=\"end\"" : "") << ">" << i + 1 << "</text>\n";
+    o << "<text x=\"" << kLeft << "\" y=\"" << kHeight + legend_line * static_cast<double>(i) << "\"><tspan font-weight=\"bold\">"
+      << i + 1 << "</tspan>  " << xml_escaped(p.label) << "</text>\n";
   }
   o << "</svg>\n";
   return o.str();
