@@ -71,10 +71,10 @@ main_job() {
   fi
   step "Checking the seed's model graph against the template"
   "$DRAPE" graph check graphs/drape.yaml --resolution coarse | tail -n 1
+  step "A page to look at: the shipped model's drape in a 3D viewer, coloured by its distance to the body (open out/drape.html)"
+  "$DRAPE" render --bmi 35 --out out/drape.html
   step "Predicting the T-shirt on a BMI 35 body with the shipped pretrained model (no training needed)"
   "$DRAPE" predict --bmi 35 --out out/garment.obj --body-out out/body.obj --svg out/garment.svg
-  step "A page to look at: the drape in a 3D viewer, coloured by its distance to the body (open out/drape.html)"
-  "$DRAPE" render --bmi 35 --out out/drape.html
 }
 
 install_dependencies
