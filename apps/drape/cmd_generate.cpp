@@ -7,6 +7,7 @@
 #include "sample_ranges.hpp"
 
 #include <drape/dataset.hpp>
+#include <drape/model.hpp>
 #include <drape/progress.hpp>
 #include <drape/registry.hpp>
 #include <drape/rng.hpp>
@@ -91,9 +92,10 @@ int run(const std::vector<std::string>& args) {
     throw UsageError(o.str());
   }
 
-  // The size flag of a graph trained on several sizes: 0 regular, 1 small.
+  // The size flag of a graph trained on several sizes (garment_size_flag).
   const auto size_param = scene.garment_params.find("size");
-  const double garment_size = size_param != scene.garment_params.end() && size_param->second.node.as<std::string>() == "small" ? 1.0 : 0.0;
+  const double garment_size =
+      garment_size_flag(size_param != scene.garment_params.end() ? size_param->second.node.as<std::string>() : "regular");
 
   // This shard's global sample indices: a contiguous block.
   const std::size_t first = total * shard.index / shard.count, last = total * (shard.index + 1) / shard.count;

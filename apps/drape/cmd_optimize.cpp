@@ -29,16 +29,10 @@ void print_terms(const char* when, const std::vector<EnergyTerm>& terms, double 
   std::printf("  | L_p %.6g J  | p %.3f%%\n", total, 100.0 * p);
 }
 
-std::string model_or_default(const po::variables_map& vm) {
-  const std::string file = vm.count("model") ? vm["model"].as<std::string>() : default_model_path().string();
-  if (file.empty()) throw UsageError("no --model given and the shipped model was not found");
-  return file;
-}
-
 int run_on_dataset(const po::variables_map& vm) {
   if (vm.count("body") || vm.count("bmi")) throw UsageError("--data optimises the dataset's bodies: drop --body/--bmi");
   OptimizeDatasetOptions o;
-  o.model = model_or_default(vm);
+  o.model = model_file_or_default(vm);
   o.data = vm["data"].as<std::string>();
   o.out = vm["out"].as<std::string>();
   o.scene_file = vm["scene"].as<std::string>();
@@ -81,7 +75,7 @@ int run(const std::vector<std::string>& args) {
   if (vm.count("data")) return run_on_dataset(vm);
   if (vm.count("body") == vm.count("bmi"))
     throw UsageError("give the body either as a mesh (--body FILE) or by its BMI (--bmi X), exactly one");
-  const std::string model_file = model_or_default(vm);
+  const std::string model_file = model_file_or_default(vm);
 
   Registry& registry = Registry::load_default(plugin_path(vm));
   Model model = Model::load(registry, model_file);

@@ -32,16 +32,9 @@ int run(const std::vector<std::string>& args) {
       "drape predict [--model model.h5] (--body body.obj | --bmi 35 [--height 1.75 --sex 1]) --out garment.obj "
       "[--body-out body.obj]";
   if (!parse(usage, args, opts, {}, vm)) return 0;
-  std::string model_file;
-  if (vm.count("model")) {
-    model_file = vm["model"].as<std::string>();
-  } else {
-    model_file = default_model_path().string();
-    if (model_file.empty())
-      throw UsageError("no --model given and the shipped model (models/tshirt-coarse.h5) was not found: give "
-                       "--model FILE from drape train, or set DRAPE_MODEL");
+  const std::string model_file = model_file_or_default(vm);
+  if (!vm.count("model"))
     std::printf("model: %s (the shipped pretrained model; --model chooses another)\n", model_file.c_str());
-  }
   if (!vm.count("out")) throw UsageError("--out FILE is required (the garment mesh to write)");
   if (vm.count("body") == vm.count("bmi"))
     throw UsageError("give the body either as a mesh (--body FILE) or by its BMI (--bmi X), exactly one");

@@ -9,12 +9,11 @@ namespace {
 // A model trained on several garment sizes takes the size as an input (0 regular, 1 small).
 void add_garment_size(const Model& model, const po::variables_map& vm, SampleBatch& batch) {
   if (!model.needs_input("garment_size")) return;
-  const std::string size = vm.count("garment-size") ? vm["garment-size"].as<std::string>() : "";
-  if (size != "regular" && size != "small")
+  if (!vm.count("garment-size"))
     throw ConfigError("this model was trained on several garment sizes (input garment_size): give --garment-size "
                       "regular or small");
   batch.garment_size = Tensor(1, 1, 1);
-  batch.garment_size(0, 0, 0) = size == "small" ? 1.0f : 0.0f;
+  batch.garment_size(0, 0, 0) = garment_size_flag(vm["garment-size"].as<std::string>());
 }
 
 SampleBatch body_of(const Model& model, const po::variables_map& vm) {
@@ -39,6 +38,15 @@ SampleBatch body_of(const Model& model, const po::variables_map& vm) {
 }
 
 }  // namespace
+
+std::string model_file_or_default(const po::variables_map& vm) {
+  if (vm.count("model")) return vm["model"].as<std::string>();
+  const std::string file = default_model_path().string();
+  if (file.empty())
+    throw UsageError("no --model given and the shipped model (models/tshirt-coarse.h5) was not found: give "
+                     "--model FILE from drape train, or set DRAPE_MODEL");
+  return file;
+}
 
 SampleBatch model_body(const Model& model, const po::variables_map& vm) {
   SampleBatch batch = body_of(model, vm);

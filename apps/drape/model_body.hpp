@@ -1,7 +1,8 @@
 #pragma once
-// The body a model-driven command works on: `--body FILE` (a mesh in the
-// model's body topology) or `--bmi X [--height H --sex S]` (made by the
-// model's body plugin). Shared by predict and optimize.
+// The model and the body a model-driven command works on: `--model FILE` or
+// the shipped model, and `--body FILE` (a mesh in the model's body topology)
+// or `--bmi X [--height H --sex S]` (made by the model's body plugin). Shared
+// by predict, optimize, render and the benchmarks.
 #include "command.hpp"
 
 #include <drape/model.hpp>
@@ -9,7 +10,11 @@
 namespace drape::cli {
 
 // One sample. ConfigError for a mesh of the wrong vertex count, or a mesh
-// given to a graph that takes body parameters.
+// given to a graph that takes body parameters. A model trained on several
+// garment sizes also gets --garment-size.
 SampleBatch model_body(const Model& model, const po::variables_map& vm);
+
+// --model, or the shipped pretrained model (default_model_path); UsageError when neither exists.
+std::string model_file_or_default(const po::variables_map& vm);
 
 }  // namespace drape::cli

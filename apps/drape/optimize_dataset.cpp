@@ -10,6 +10,7 @@
 
 #include <cstdio>
 #include <iomanip>
+#include <map>
 #include <memory>
 #include <mutex>
 #include <sstream>
@@ -34,11 +35,13 @@ std::size_t optimize_dataset(const Registry& registry, const OptimizeDatasetOpti
   layout.garment_vertices = reader.layout().garment_vertices;
   for (const auto& e : scene.effects) layout.stats.push_back("energy_" + e.name);
   for (const char* s : {"energy_total", "energy_total_before", "penetration", "penetration_before", "best_iteration",
-                        "seconds", "source_index", "bmi"})
+                        "seconds", "source_index"})
     layout.stats.push_back(s);
-  const auto& source_stats = reader.layout().stats;
-  if (std::find(source_stats.begin(), source_stats.end(), "garment_size") != source_stats.end())
-    layout.stats.push_back("garment_size");
+  // Statistics of the source sample that still describe the optimised one.
+  std::vector<std::string> carried;
+  for (const char* s : {"bmi", "garment_size"})
+    if (reader.layout().has_stat(s)) carried.push_back(s);
+  layout.stats.insert(layout.stats.end(), carried.begin(), carried.end());
   layout.scene = scene.yaml();
   layout.template_hash = reader.layout().template_hash;
   layout.attributes = reader.layout().attributes;
@@ -55,9 +58,6 @@ std::size_t optimize_dataset(const Registry& registry, const OptimizeDatasetOpti
               writer.resumed() ? (" (resuming: " + std::to_string(source.size() - todo.size()) + " done)").c_str() : "",
               threads);
   std::fflush(stdout);
-  const auto& stats = reader.layout().stats;
-  const bool has_bmi = std::find(stats.begin(), stats.end(), "bmi") != stats.end();
-  const bool has_size = std::find(stats.begin(), stats.end(), "garment_size") != stats.end();
 
   ProgressBar::Options bar_options;
   bar_options.start = source.size() - todo.size();
@@ -78,25 +78,12 @@ std::size_t optimize_dataset(const Registry& registry, const OptimizeDatasetOpti
         sample = reader.sample(index);
       }
       // The sample already holds the body: the network's input comes from it, not from a second read.
-      SampleBatch batch;
-      batch.body = Tensor(1, layout.body_vertices, 3);
-      batch.body.mat(0) = sample.body_vertices;
-      if (model->needs_body_params()) {
-        batch.body_params = Tensor(1, 1, layout.body_params);
-        batch.body_params.mat(0).row(0) = sample.body_params.transpose();
-      }
-      if (model->needs_input("garment_size")) {
-        const auto size = sample.stats.find("garment_size");
-        if (size == sample.stats.end()) throw ConfigError(o.data.string() + ": the model takes garment_size, the dataset has no such statistic");
-        batch.garment_size = Tensor(1, 1, 1);
-        batch.garment_size(0, 0, 0) = static_cast<float>(size->second);
-      }
+      const SampleBatch batch = sample_batch(sample, reader.layout(), model->graph());
       const PhysicsOptimizationResult r = optimize_drape(*model, simulation, batch, o.optimization);
       sample.garment_vertices = r.after.cast<float>();
-      const double bmi = has_bmi ? sample.stats["bmi"] : NAN;
-      const auto size = sample.stats.find("garment_size");
-      const double garment_size = size != sample.stats.end() ? size->second : NAN;
-      sample.stats.clear();
+      std::map<std::string, double> stats;
+      for (const auto& name : carried) stats[name] = sample.stats.at(name);
+      sample.stats = std::move(stats);
       for (const auto& t : r.energies_after) sample.stats["energy_" + t.name] = t.value;
       sample.stats["energy_total"] = r.potential_after;
       sample.stats["energy_total_before"] = r.potential_before;
@@ -105,8 +92,6 @@ std::size_t optimize_dataset(const Registry& registry, const OptimizeDatasetOpti
       sample.stats["best_iteration"] = r.best_iteration;
       sample.stats["seconds"] = r.seconds;
       sample.stats["source_index"] = static_cast<double>(index);
-      sample.stats["bmi"] = bmi;
-      if (has_size) sample.stats["garment_size"] = garment_size;
       {
         const std::lock_guard<std::mutex> lock(io);
         writer.write(local, sample);

@@ -46,6 +46,8 @@ struct DatasetLayout {
   std::string drape_version = "0.1.0";
   std::string created;  // ISO 8601 UTC; empty: the writer fills in the time of creation
   std::map<std::string, std::string> attributes;  // any other root string attributes
+
+  bool has_stat(const std::string& name) const;
 };
 
 struct DatasetSample {

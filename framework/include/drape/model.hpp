@@ -68,8 +68,15 @@ std::string garment_output(const Graph& graph);
 // A batch of dataset samples with what `graph` takes: body, body_params and
 // garment_size when it has those inputs, the target when with_target.
 class DatasetReader;
+struct DatasetLayout;
+struct DatasetSample;
 SampleBatch read_samples(const DatasetReader& reader, const std::vector<std::size_t>& indices, const Graph& graph,
                          bool with_target);
+// The same for one sample already read (DatasetReader::sample), without the target.
+SampleBatch sample_batch(const DatasetSample& sample, const DatasetLayout& layout, const Graph& graph);
+
+// The garment_size input of a size name: 0 regular, 1 small (ConfigError otherwise).
+float garment_size_flag(const std::string& size);
 
 class Model {
  public:
@@ -114,6 +121,9 @@ class Model {
 
  private:
   Model() = default;
+  // The assets, body model and graph (fresh weights) shared by load and untrained.
+  static Model build(const Registry& registry, const GraphSpec& graph, const AssetsSpec& spec, std::uint64_t seed,
+                     const std::filesystem::path& cache_dir);
   std::filesystem::path file_;
   Checkpoint checkpoint_;
   AssetsSpec assets_spec_;

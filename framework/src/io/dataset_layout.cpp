@@ -8,6 +8,10 @@
 
 namespace drape {
 
+bool DatasetLayout::has_stat(const std::string& name) const {
+  return std::find(stats.begin(), stats.end(), name) != stats.end();
+}
+
 const char* to_string(Split split) {
   switch (split) {
     case Split::Train: return "train";

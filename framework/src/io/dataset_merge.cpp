@@ -47,7 +47,7 @@ std::size_t merge_datasets(const std::vector<fs::path>& shards, const fs::path& 
     const DatasetLayout layout = read_layout(files.back());
     done.push_back(files.back().read<std::uint8_t>(kDone));
     const std::size_t n = static_cast<std::size_t>(std::count(done.back().begin(), done.back().end(), 1));
-    if (mixed_sizes && std::find(layout.stats.begin(), layout.stats.end(), "garment_size") == layout.stats.end())
+    if (mixed_sizes && !layout.has_stat("garment_size"))
       throw ConfigError(shard.string() + ": merging garment sizes needs the garment_size statistic in every shard "
                         "(datasets made by drape generate since it records one)");
     templates += (templates.empty() ? "" : ",") + layout.template_hash;

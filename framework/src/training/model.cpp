@@ -133,46 +133,43 @@ Model Model::load(const Registry& registry, const fs::path& file, const fs::path
 }
 
 Model Model::load(const Registry& registry, const fs::path& file, const ParamOverrides& overrides, const fs::path& cache_dir) {
-  Model m;
-  m.file_ = file;
-  m.checkpoint_ = read_checkpoint(file);
-  const auto& meta = m.checkpoint_.meta;
+  Checkpoint checkpoint = read_checkpoint(file);
+  const auto& meta = checkpoint.meta;
   const auto assets = meta.find("assets");
   if (assets == meta.end())
     throw ConfigError(file.string() + ": not a drape model: /meta has no `assets` (a training state or a plain "
                       "checkpoint? drape train writes the model to --out)");
-  m.assets_spec_ = parse_assets_spec(assets->second, file.string() + ": /meta assets");
-  m.assets_ = build_assets(registry, m.assets_spec_, cache_dir);
-  if (auto h = meta.find("assets_hash"); h != meta.end()) m.assets_changed_ = h->second != m.assets_->hash;
-
-  m.body_model_ = make_body_model(registry, m.assets_spec_);
-
-  GraphSpec spec = parse_graph_text(m.checkpoint_.graph, file.string() + " (graph)");
+  GraphSpec spec = parse_graph_text(checkpoint.graph, file.string() + " (graph)");
   for (const auto& [node, params] : overrides) {
     auto it = std::find_if(spec.nodes.begin(), spec.nodes.end(), [&](const NodeSpec& n) { return n.name == node; });
     if (it == spec.nodes.end()) throw ConfigError(file.string() + ": the model's graph has no node '" + node + "' to change");
     for (const auto& [key, value] : params) it->params[key] = ParamValue{YAML::Load(value), {file.string() + " (override)", 0}};
   }
-  check_graph_inputs(spec);
-  GraphOptions options;
-  options.dims = graph_dims(*m.assets_, static_cast<int>(m.body_model_->mean_shape().size()));
-  options.assets = m.assets_.get();
-  m.graph_ = std::make_unique<Graph>(spec, registry, options);
+  Model m = build(registry, spec, parse_assets_spec(assets->second, file.string() + ": /meta assets"), 0, cache_dir);
+  m.file_ = file;
+  m.checkpoint_ = std::move(checkpoint);
+  const auto& loaded = m.checkpoint_.meta;
+  if (auto h = loaded.find("assets_hash"); h != loaded.end()) m.assets_changed_ = h->second != m.assets_->hash;
   load_weights(file, *m.graph_);
-  const auto output = meta.find("output");
-  m.output_ = output != meta.end() ? output->second : garment_output(*m.graph_);
+  if (const auto output = loaded.find("output"); output != loaded.end()) m.output_ = output->second;
   m.graph_->output(m.output_);  // throws naming the outputs when it is not one
   return m;
 }
 
 Model Model::untrained(const Registry& registry, const GraphSpec& graph, const AssetsSpec& spec, std::uint64_t seed,
                        const fs::path& cache_dir) {
-  Model m;
+  Model m = build(registry, graph, spec, seed, cache_dir);
   m.file_ = graph.file + " (untrained)";
+  m.checkpoint_.graph = graph.text;
+  return m;
+}
+
+Model Model::build(const Registry& registry, const GraphSpec& graph, const AssetsSpec& spec, std::uint64_t seed,
+                   const fs::path& cache_dir) {
+  Model m;
   m.assets_spec_ = spec;
   m.assets_ = build_assets(registry, spec, cache_dir);
   m.body_model_ = make_body_model(registry, spec);
-  m.checkpoint_.graph = graph.text;
   check_graph_inputs(graph);
   GraphOptions options;
   options.dims = graph_dims(*m.assets_, static_cast<int>(m.body_model_->mean_shape().size()));
@@ -188,19 +185,35 @@ bool Model::needs_input(const std::string& name) const {
   return std::find(names.begin(), names.end(), name) != names.end();
 }
 
+float garment_size_flag(const std::string& size) {
+  if (size == "regular") return 0.0f;
+  if (size == "small") return 1.0f;
+  throw ConfigError("garment size '" + size + "': a model trained on several sizes knows regular and small");
+}
+
+namespace {
+
+bool takes(const Graph& graph, const char* input) {
+  const auto inputs = graph.input_names();
+  return std::find(inputs.begin(), inputs.end(), input) != inputs.end();
+}
+
+void require_garment_size(const DatasetLayout& layout) {
+  if (!layout.has_stat("garment_size"))
+    throw ConfigError("the graph takes garment_size, but the dataset has no garment_size statistic (datasets made "
+                      "by drape generate since it records one)");
+}
+
+}  // namespace
+
 SampleBatch read_samples(const DatasetReader& reader, const std::vector<std::size_t>& indices, const Graph& graph,
                          bool with_target) {
-  const auto inputs = graph.input_names();
-  auto takes = [&](const char* name) { return std::find(inputs.begin(), inputs.end(), name) != inputs.end(); };
   SampleBatch b;
   b.body = reader.body_vertices(indices);
   if (with_target) b.target = reader.garment_vertices(indices);
-  if (takes("body_params")) b.body_params = reader.body_params(indices);
-  if (takes("garment_size")) {
-    const auto& stats = reader.layout().stats;
-    if (std::find(stats.begin(), stats.end(), "garment_size") == stats.end())
-      throw ConfigError("the graph takes garment_size, but the dataset has no garment_size statistic (datasets made "
-                        "by drape generate since it records one)");
+  if (takes(graph, "body_params")) b.body_params = reader.body_params(indices);
+  if (takes(graph, "garment_size")) {
+    require_garment_size(reader.layout());
     const std::vector<double> size = reader.stat("garment_size", indices);
     b.garment_size = Tensor(static_cast<int>(indices.size()), 1, 1);
     for (std::size_t i = 0; i < size.size(); ++i) b.garment_size(static_cast<int>(i), 0, 0) = static_cast<float>(size[i]);
@@ -208,10 +221,23 @@ SampleBatch read_samples(const DatasetReader& reader, const std::vector<std::siz
   return b;
 }
 
-bool Model::needs_body_params() const {
-  const auto names = graph_->input_names();
-  return std::find(names.begin(), names.end(), "body_params") != names.end();
+SampleBatch sample_batch(const DatasetSample& sample, const DatasetLayout& layout, const Graph& graph) {
+  SampleBatch b;
+  b.body = Tensor(1, static_cast<int>(sample.body_vertices.rows()), 3);
+  b.body.mat(0) = sample.body_vertices;
+  if (takes(graph, "body_params")) {
+    b.body_params = Tensor(1, 1, static_cast<int>(sample.body_params.size()));
+    b.body_params.mat(0).row(0) = sample.body_params.transpose();
+  }
+  if (takes(graph, "garment_size")) {
+    require_garment_size(layout);
+    b.garment_size = Tensor(1, 1, 1);
+    b.garment_size(0, 0, 0) = static_cast<float>(sample.stats.at("garment_size"));
+  }
+  return b;
 }
+
+bool Model::needs_body_params() const { return needs_input("body_params"); }
 
 Tensor Model::predict(const SampleBatch& batch) {
   if (batch.size() <= 0) throw Error("predict: no bodies");
