@@ -61,8 +61,7 @@ void write_report(const fs::path& file, const std::string& model, const std::str
 void draw_errors(const fs::path& file, Model& model, const DatasetReader& reader, const std::vector<std::size_t>& indices,
                  const std::string& split) {
   std::vector<double> key;
-  const auto& names = reader.layout().stats;
-  const bool has_bmi = std::find(names.begin(), names.end(), "bmi") != names.end();
+  const bool has_bmi = reader.layout().has_stat("bmi");
   if (has_bmi) key = reader.stat("bmi", indices);
   std::vector<std::size_t> order(indices.size());
   for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
@@ -70,10 +69,9 @@ void draw_errors(const fs::path& file, Model& model, const DatasetReader& reader
   std::vector<std::size_t> chosen = {indices[order.front()], indices[order[order.size() / 2]], indices[order.back()]};
   chosen.erase(std::unique(chosen.begin(), chosen.end()), chosen.end());
 
-  SampleBatch batch;
-  batch.body = reader.body_vertices(chosen);
-  if (model.needs_body_params()) batch.body_params = reader.body_params(chosen);
-  const Tensor truth = reader.garment_vertices(chosen), predicted = model.predict(batch);
+  const SampleBatch batch = read_samples(reader, chosen, model.graph(), true);
+  const Tensor& truth = batch.target;
+  const Tensor predicted = model.predict(batch);
   SvgFigure figure("drape eval: " + model.file().filename().string() + ", " + split + " split, error of each garment vertex");
   std::vector<Eigen::VectorXd> errors;
   std::vector<double> all;
@@ -87,12 +85,13 @@ void draw_errors(const fs::path& file, Model& model, const DatasetReader& reader
   const double top = all[static_cast<std::size_t>(0.98 * double(all.size() - 1))];
   for (std::size_t i = 0; i < chosen.size(); ++i) {
     const int b = static_cast<int>(i);
-    SvgLayer body{batch.body.mat(b).cast<double>(), model.assets().body.faces, "#c9b8a8", {}, true};
-    SvgLayer garment{predicted.mat(b).cast<double>(), model.assets().garment->mesh.faces, "", errors[i], false, 0.02};
+    Mesh body = model.assets().body, garment = model.assets().garment->mesh;
+    body.vertices = batch.body.mat(b).cast<double>();
+    garment.vertices = predicted.mat(b).cast<double>();
     std::string title = "sample " + std::to_string(chosen[i]);
     if (has_bmi) title += format(", BMI %.1f", reader.stat("bmi", {chosen[i]})[0]);
     title += format(", ME %.2f cm", errors[i].mean());
-    figure.add_panel({title, {std::move(body), std::move(garment)}});
+    figure.add_panel(drape_panel(title, body, garment, errors[i]));
   }
   figure.set_colour_scale({"distance to the simulated garment (cm)", 0.0, std::max(top, 0.1)});
   figure.write(file);

@@ -69,8 +69,7 @@ int run(const std::vector<std::string>& args) {
     throw UsageError("--colour must be distance, error or strain, got '" + colour + "'");
   if (colour == "error" && !vm.count("data"))
     throw UsageError("--colour error compares with a simulated drape: give --data FILE --sample I");
-  const std::string model_file = vm.count("model") ? vm["model"].as<std::string>() : default_model_path().string();
-  if (model_file.empty()) throw UsageError("no --model given and the shipped model was not found (or set DRAPE_MODEL)");
+  const std::string model_file = model_file_or_default(vm);
 
   Registry& registry = Registry::load_default(plugin_path(vm));
   Model model = Model::load(registry, model_file);
@@ -82,8 +81,7 @@ int run(const std::vector<std::string>& args) {
     check_dataset_template(reader, vm["data"].as<std::string>(), model.assets());
     const std::size_t i = vm["sample"].as<std::size_t>();
     if (i >= reader.size()) throw UsageError("--sample " + std::to_string(i) + ": the dataset has " + std::to_string(reader.size()) + " samples");
-    batch.body = reader.body_vertices({i});
-    if (model.needs_body_params()) batch.body_params = reader.body_params({i});
+    batch = read_samples(reader, {i}, model.graph(), false);
     truth = model.assets().garment->mesh;
     truth.vertices = reader.garment_vertices({i}).mat(0).cast<double>();
     what = "sample " + std::to_string(i) + " of " + std::filesystem::path(vm["data"].as<std::string>()).filename().string();
@@ -128,9 +126,7 @@ int run(const std::vector<std::string>& args) {
     scale = {"edge length change against the material space (%)", 0.0, 10.0};
     std::snprintf(caption, sizeof caption, "mean strain %.2f%%, max %.2f%%, p = %.2f%%", values.mean(), values.maxCoeff(), 100.0 * p);
   }
-  figure.add_panel({caption,
-                    {SvgLayer{body.vertices, body.faces, "#c9b8a8", {}, true},
-                     SvgLayer{garment.vertices, garment.faces, "", values, false, 0.02}}});
+  figure.add_panel(drape_panel(caption, body, garment, std::move(values)));
   figure.set_colour_scale(scale);
   figure.write(vm["out"].as<std::string>());
   std::printf("wrote %s (%s; %s)\n", vm["out"].as<std::string>().c_str(), what.c_str(), caption);

@@ -46,6 +46,10 @@ class SvgFigure {
   const std::string& title() const { return title_; }
   const std::optional<SvgColourScale>& colour_scale() const { return scale_; }
   std::string svg() const;
+  // Each face's colour (0-255 channels, unshaded): the layer's colour, or the
+  // colour map at the mean of its corners' values over the colour scale.
+  // Error when a layer has values for another number of vertices.
+  std::vector<std::array<double, 3>> face_colours(const SvgLayer& layer) const;
   // The same figure as a self-contained HTML page with a 3D viewer (figure_html.cpp):
   // drag to turn each drape, wheel to zoom; no network, no WebGL.
   std::string html() const;
@@ -64,6 +68,9 @@ std::string colour_map(double t);
 std::array<double, 3> colour_map_rgb(double t);
 
 struct Mesh;
+// One drape as a panel: the body (skin colour, back faces culled) and the
+// garment coloured by a value per vertex, drawn a little in front of the skin.
+SvgPanel drape_panel(const std::string& caption, const Mesh& body, const Mesh& garment, Eigen::VectorXd garment_values);
 // One drape as a figure: the body, and the garment coloured by its signed
 // distance to the body (0 to 5 cm; a vertex inside the body shows as 0).
 SvgFigure drape_figure(const std::string& title, const std::string& caption, const Mesh& body, const Mesh& garment);

@@ -4,13 +4,17 @@
 
 namespace drape {
 
+SvgPanel drape_panel(const std::string& caption, const Mesh& body, const Mesh& garment, Eigen::VectorXd garment_values) {
+  return {caption,
+          {SvgLayer{body.vertices, body.faces, "#c9b8a8", {}, true},
+           SvgLayer{garment.vertices, garment.faces, "", std::move(garment_values), false, 0.02}}};
+}
+
 SvgFigure drape_figure(const std::string& title, const std::string& caption, const Mesh& body, const Mesh& garment) {
   const geometry::BodySurface surface(body.vertices, body.faces);
   const Eigen::VectorXd clearance = 100.0 * surface.signed_distances(garment.vertices);
   SvgFigure figure(title);
-  figure.add_panel({caption,
-                    {SvgLayer{body.vertices, body.faces, "#c9b8a8", {}, true},
-                     SvgLayer{garment.vertices, garment.faces, "", clearance.cwiseMax(0.0), false, 0.02}}});
+  figure.add_panel(drape_panel(caption, body, garment, clearance.cwiseMax(0.0)));
   figure.set_colour_scale({"distance of the garment to the body (cm)", 0.0, 5.0});
   return figure;
 }

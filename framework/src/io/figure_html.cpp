@@ -158,23 +158,11 @@ std::string SvgFigure::html() const {
       data << "],\"f\":[";
       for (Eigen::Index f = 0; f < layer.faces.rows(); ++f)
         for (int k = 0; k < 3; ++k) data << (f || k ? "," : "") << layer.faces(f, k);
-      // One colour per face: the layer's, or the colour map at the mean of the corners' values.
-      std::array<double, 3> plain{184, 184, 184};
-      if (layer.values.size() == 0 && layer.colour.size() == 7) {
-        unsigned r = 0, g = 0, b = 0;
-        if (std::sscanf(layer.colour.c_str(), "#%02x%02x%02x", &r, &g, &b) == 3) plain = {double(r), double(g), double(b)};
-      }
-      const bool by_value = layer.values.size() == layer.vertices.rows() && layer.values.size() > 0;
-      const double lo = scale_ ? scale_->lo : 0.0, hi = scale_ ? scale_->hi : 1.0;
       data << "],\"c\":[";
-      for (Eigen::Index f = 0; f < layer.faces.rows(); ++f) {
-        std::array<double, 3> rgb = plain;
-        if (by_value) {
-          const double v = (layer.values(layer.faces(f, 0)) + layer.values(layer.faces(f, 1)) + layer.values(layer.faces(f, 2))) / 3;
-          rgb = colour_map_rgb(hi > lo ? (v - lo) / (hi - lo) : 0.0);
-        }
-        for (int k = 0; k < 3; ++k) data << (f || k ? "," : "") << static_cast<int>(std::lround(std::clamp(rgb[k], 0.0, 255.0)));
-      }
+      const std::vector<std::array<double, 3>> colours = face_colours(layer);
+      for (std::size_t f = 0; f < colours.size(); ++f)
+        for (int k = 0; k < 3; ++k)
+          data << (f || k ? "," : "") << static_cast<int>(std::lround(std::clamp(colours[f][k], 0.0, 255.0)));
       data << "]}";
     }
     data << "]}";

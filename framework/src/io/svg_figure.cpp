@@ -54,6 +54,21 @@ std::array<double, 3> colour_map_rgb(double t) {
 
 std::string colour_map(double t) { return hex_of(colour_map_rgb(t)); }
 
+std::vector<std::array<double, 3>> SvgFigure::face_colours(const SvgLayer& l) const {
+  const bool by_value = l.values.size() > 0;
+  if (by_value && l.values.size() != l.vertices.rows())
+    throw Error("figure: a layer has " + std::to_string(l.values.size()) + " values for " +
+                std::to_string(l.vertices.rows()) + " vertices");
+  std::vector<std::array<double, 3>> out(static_cast<std::size_t>(l.faces.rows()), by_value ? std::array<double, 3>{} : rgb_of(l.colour));
+  if (!by_value) return out;
+  for (Eigen::Index f = 0; f < l.faces.rows(); ++f) {
+    const double v = (l.values(l.faces(f, 0)) + l.values(l.faces(f, 1)) + l.values(l.faces(f, 2))) / 3;
+    out[static_cast<std::size_t>(f)] =
+        colour_map_rgb(scale_ ? (v - scale_->lo) / std::max(scale_->hi - scale_->lo, 1e-30) : v);
+  }
+  return out;
+}
+
 std::string SvgFigure::svg() const {
   if (panels_.empty()) throw Error("svg: a figure needs at least one panel");
   // One scale for all panels, so drapes compare: the largest extent of any panel.
@@ -96,11 +111,7 @@ std::string SvgFigure::svg() const {
     };
     std::vector<Triangle> triangles;
     for (const SvgLayer& l : panel.layers) {
-      const bool by_value = l.values.size() > 0;
-      if (by_value && l.values.size() != l.vertices.rows())
-        throw Error("svg: a layer has " + std::to_string(l.values.size()) + " values for " +
-                    std::to_string(l.vertices.rows()) + " vertices");
-      const auto base = by_value ? std::array<double, 3>{} : rgb_of(l.colour);
+      const std::vector<std::array<double, 3>> colours = face_colours(l);
       for (Eigen::Index f = 0; f < l.faces.rows(); ++f) {
         const Eigen::RowVector3d a = l.vertices.row(l.faces(f, 0)), b = l.vertices.row(l.faces(f, 1)),
                                  c = l.vertices.row(l.faces(f, 2));
@@ -110,12 +121,7 @@ std::string SvgFigure::svg() const {
         if (l.cull_back_faces && n.z() < 0) continue;
         // Two-sided lighting for open cloth, a floor so nothing turns black.
         const double shade = 0.45 + 0.55 * std::abs(n.dot(light));
-        std::array<double, 3> rgb = base;
-        if (by_value) {
-          const double v = (l.values(l.faces(f, 0)) + l.values(l.faces(f, 1)) + l.values(l.faces(f, 2))) / 3;
-          const double t = scale_ ? (v - scale_->lo) / std::max(scale_->hi - scale_->lo, 1e-30) : v;
-          rgb = colour_map_rgb(t);
-        }
+        std::array<double, 3> rgb = colours[static_cast<std::size_t>(f)];
         for (double& ch : rgb) ch *= shade;
         triangles.push_back({(a(2) + b(2) + c(2)) / 3 + l.depth_bias, {to_pixels(a), to_pixels(b), to_pixels(c)}, hex_of(rgb)});
       }
