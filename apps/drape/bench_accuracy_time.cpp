@@ -8,10 +8,12 @@
 // table, optionally CSV, and an SVG chart of ME against time with the Pareto
 // front (the methods no other method beats on both axes) named.
 #include "bench.hpp"
+#include "model_body.hpp"
 
 #include <drape/atomic_file.hpp>
 #include <drape/data_parallel.hpp>
 #include <drape/dataset.hpp>
+#include <drape/evaluation.hpp>
 #include <drape/model.hpp>
 #include <drape/physics_optimization.hpp>
 #include <drape/progress.hpp>
@@ -22,7 +24,6 @@
 #include <drape/trainer.hpp>
 
 #include <algorithm>
-#include <chrono>
 #include <cstdio>
 #include <iostream>
 #include <sstream>
@@ -30,21 +31,42 @@
 namespace drape::cli {
 namespace {
 
-using Clock = std::chrono::steady_clock;
-
 struct Method {
   std::string name;
   double seconds = 0, me_cm = 0, potential = 0, p_percent = 0;  // means over the bodies
   bool pareto = false;
+
+  // One body's result, as its share of the means over `bodies` bodies.
+  void add(double body_seconds, const Eigen::MatrixX3d& garment, const Eigen::MatrixX3d& reference, double body_potential,
+           double penetration, std::size_t bodies) {
+    const double n = double(bodies);
+    seconds += body_seconds / n;
+    me_cm += 100.0 * (garment - reference).rowwise().norm().mean() / n;
+    potential += body_potential / n;
+    p_percent += 100.0 * std::max(0.0, penetration) / n;
+  }
 };
+
+// "10,30,100" -> {10, 30, 100}; UsageError naming the option otherwise.
+std::vector<int> int_list(const po::variables_map& vm, const char* option) {
+  std::vector<int> out;
+  for (std::stringstream s(vm[option].as<std::string>()); s.good();) {
+    std::string item;
+    std::getline(s, item, ',');
+    try {
+      out.push_back(std::stoi(item));
+    } catch (const std::exception&) {
+      throw UsageError(std::string("--") + option + ": '" + item + "' is not a number");
+    }
+  }
+  return out;
+}
 
 Scene with_budget(Scene scene, int morph_steps, int settle_steps) {
   scene.solver["morph_steps"].node = YAML::Node(morph_steps);
   scene.solver["settle_steps"].node = YAML::Node(settle_steps);
   return scene;
 }
-
-double me_cm(const Eigen::MatrixX3d& a, const Eigen::MatrixX3d& b) { return 100.0 * (a - b).rowwise().norm().mean(); }
 
 int run(const std::vector<std::string>& args) {
   po::options_description opts("drape bench accuracy-time");
@@ -64,8 +86,7 @@ int run(const std::vector<std::string>& args) {
   if (!parse(usage, args, opts, {}, vm)) return 0;
   if (!vm.count("data")) throw UsageError("--data FILE is required (its test bodies are the held-out bodies)");
   const std::string data = vm["data"].as<std::string>();
-  const std::string model_file = vm.count("model") ? vm["model"].as<std::string>() : default_model_path().string();
-  if (model_file.empty()) throw UsageError("no --model and no shipped model found");
+  const std::string model_file = model_file_or_default(vm);
   std::vector<std::pair<int, int>> budgets;
   for (std::stringstream s(vm["budgets"].as<std::string>()); s.good();) {
     std::string item;
@@ -75,27 +96,7 @@ int run(const std::vector<std::string>& args) {
       throw UsageError("--budgets: '" + item + "' is not morph_steps:settle_steps");
     budgets.push_back({m, n});
   }
-  std::vector<int> iterations;
-  for (std::stringstream s(vm["iterations"].as<std::string>()); s.good();) {
-    std::string item;
-    std::getline(s, item, ',');
-    try {
-      iterations.push_back(std::stoi(item));
-    } catch (const std::exception&) {
-      throw UsageError("--iterations: '" + item + "' is not a number");
-    }
-  }
-
-  std::vector<int> spectral_k;
-  for (std::stringstream s(vm["spectral-k"].as<std::string>()); s.good();) {
-    std::string item;
-    std::getline(s, item, ',');
-    try {
-      spectral_k.push_back(std::stoi(item));
-    } catch (const std::exception&) {
-      throw UsageError("--spectral-k: '" + item + "' is not a number");
-    }
-  }
+  const std::vector<int> iterations = int_list(vm, "iterations"), spectral_k = int_list(vm, "spectral-k");
   Registry& registry = Registry::load_default(plugin_path(vm));
   const DatasetReader reader(data);
   std::vector<std::size_t> bodies = reader.indices(Split::Test);
@@ -103,14 +104,11 @@ int run(const std::vector<std::string>& args) {
   if (bodies.empty()) throw ConfigError(data + ": the test split is empty");
   const Scene scene = parse_scene(reader.layout().scene);
   const Tensor body_tensor = reader.body_vertices(bodies);
-  {
-    const Model probe = Model::load(registry, model_file);
-    check_dataset_template(reader, data, probe.assets());
-  }
   // The spectral branch (if any) at fewer eigenvectors than it was trained with.
   std::vector<std::pair<std::string, int>> spectral_cuts;
   {
     Model probe = Model::load(registry, model_file);
+    check_dataset_template(reader, data, probe.assets());
     for (const auto& node : probe.graph().describe())
       if (node.type == "spectral")
         for (const auto& [port, shape] : node.outputs)
@@ -138,68 +136,50 @@ int run(const std::vector<std::string>& args) {
   }
 
   std::vector<Method> methods;
-  auto add = [&](Method m) { methods.push_back(std::move(m)); };
-  const double n = double(bodies.size());
+  const std::size_t n = bodies.size();
   for (const auto& [m, s] : budgets) {
     const Simulation sim(registry, with_budget(scene, m, s));
     Method row{"simulation " + std::to_string(m) + "+" + std::to_string(s) + " steps"};
-    for (std::size_t b = 0; b < bodies.size(); ++b) {
+    for (std::size_t b = 0; b < n; ++b) {
       const SimulationResult r = sim.run(body_tensor.mat(static_cast<int>(b)).cast<double>());
-      row.seconds += r.seconds / n;
-      row.me_cm += me_cm(r.garment, reference[b]) / n;
-      row.potential += r.total_energy / n;
-      row.p_percent += 100.0 * std::max(0.0, r.penetration) / n;
+      row.add(r.seconds, r.garment, reference[b], r.total_energy, r.penetration, n);
       bar.advance();
     }
-    add(row);
+    methods.push_back(row);
   }
-  // The network alone (its potential and p from a zero-iteration optimisation),
-  // with its spectral branch cut to fewer eigenvectors, then optimised.
+  // The network alone (its potential and p from a zero-iteration optimisation,
+  // which leaves the weights alone), with its spectral branch cut to fewer
+  // eigenvectors, then optimised (from the loaded weights for every body).
   const Simulation sim(registry, scene);
   auto measure_network = [&](const std::string& name, const Model::ParamOverrides& overrides) {
-  Method network{name};
-  for (std::size_t b = 0; b < bodies.size(); ++b) {
+    Method row{name};
     Model model = Model::load(registry, model_file, overrides);
-    SampleBatch one;
-    one.body = reader.body_vertices({bodies[b]});
-    if (model.needs_body_params()) one.body_params = reader.body_params({bodies[b]});
-    model.predict(one);
-    double best = 1e300;
-    for (int r = 0; r < 5; ++r) {
-      const auto t = Clock::now();
-      model.predict(one);
-      best = std::min(best, std::chrono::duration<double>(Clock::now() - t).count());
-    }
     PhysicsOptimizationOptions none;
     none.iterations = 0;
-    const PhysicsOptimizationResult r = optimize_drape(model, sim, one, none);
-    network.seconds += best / n;
-    network.me_cm += me_cm(r.before, reference[b]) / n;
-    network.potential += r.potential_before / n;
-    network.p_percent += 100.0 * r.penetration_before / n;
-    bar.advance();
-  }
-  add(network);
-  };
-  measure_network("network", {});
-  for (const auto& [node, k] : spectral_cuts) measure_network("network, spectral branch k = " + std::to_string(k), {{node, {{"use_k", std::to_string(k)}}}});
-  for (int its : iterations) {
-    Method row{"network + " + std::to_string(its) + " optimisation iterations"};
-    for (std::size_t b = 0; b < bodies.size(); ++b) {
-      Model model = Model::load(registry, model_file);  // fresh weights for every body
-      SampleBatch one;
-      one.body = reader.body_vertices({bodies[b]});
-      if (model.needs_body_params()) one.body_params = reader.body_params({bodies[b]});
-      PhysicsOptimizationOptions o;
-      o.iterations = its;
-      const PhysicsOptimizationResult r = optimize_drape(model, sim, one, o);
-      row.seconds += r.seconds / n;
-      row.me_cm += me_cm(r.after, reference[b]) / n;
-      row.potential += r.potential_after / n;
-      row.p_percent += 100.0 * r.penetration_after / n;
+    for (std::size_t b = 0; b < n; ++b) {
+      const SampleBatch one = read_samples(reader, {bodies[b]}, model.graph(), false);
+      const double seconds = 1e-3 * prediction_ms(model, one, 5);
+      const PhysicsOptimizationResult r = optimize_drape(model, sim, one, none);
+      row.add(seconds, r.before, reference[b], r.potential_before, r.penetration_before, n);
       bar.advance();
     }
-    add(row);
+    methods.push_back(row);
+  };
+  measure_network("network", {});
+  for (const auto& [node, k] : spectral_cuts)
+    measure_network("network, spectral branch k = " + std::to_string(k), {{node, {{"use_k", std::to_string(k)}}}});
+  for (int its : iterations) {
+    Method row{"network + " + std::to_string(its) + " optimisation iterations"};
+    PhysicsOptimizationOptions o;
+    o.iterations = its;
+    for (std::size_t b = 0; b < n; ++b) {
+      Model model = Model::load(registry, model_file);  // the optimisation changes the weights
+      const PhysicsOptimizationResult r =
+          optimize_drape(model, sim, read_samples(reader, {bodies[b]}, model.graph(), false), o);
+      row.add(r.seconds, r.after, reference[b], r.potential_after, r.penetration_after, n);
+      bar.advance();
+    }
+    methods.push_back(row);
   }
   bar.finish();
   for (Method& m : methods) {

@@ -5,7 +5,6 @@
 // a chart of error against time.
 #include "bench.hpp"
 
-#include <drape/data_parallel.hpp>
 #include <drape/dataset.hpp>
 #include <drape/evaluation.hpp>
 #include <drape/model.hpp>
@@ -14,14 +13,11 @@
 #include <drape/trainer.hpp>
 
 #include <algorithm>
-#include <chrono>
 #include <cstdio>
 #include <filesystem>
 
 namespace drape::cli {
 namespace {
-
-using Clock = std::chrono::steady_clock;
 
 struct Row {
   std::string name;
@@ -48,19 +44,7 @@ Row measure(const Registry& registry, const std::string& file, const DatasetRead
   }
   row.me_cm = mean(me);
   row.p_percent = mean(p);
-  // One body at a time on one core, as a user would run it: best of `repeats`.
-  SampleBatch one;
-  one.body = reader.body_vertices({indices.front()});
-  if (model.needs_body_params()) one.body_params = reader.body_params({indices.front()});
-  const OmpThreadsScope one_core(1);
-  model.predict(one);
-  double best = 1e300;
-  for (int r = 0; r < repeats; ++r) {
-    const auto t = Clock::now();
-    model.predict(one);
-    best = std::min(best, std::chrono::duration<double, std::milli>(Clock::now() - t).count());
-  }
-  row.ms = best;
+  row.ms = prediction_ms(model, read_samples(reader, {indices.front()}, model.graph(), false), repeats);
   return row;
 }
 
@@ -85,9 +69,7 @@ int run(const std::vector<std::string>& args) {
   std::vector<Row> rows;
   for (const std::string& file : vm["model"].as<std::vector<std::string>>())
     rows.push_back(measure(registry, file, reader, indices, std::max(1, vm["repeats"].as<int>())));
-  const auto& stats = reader.layout().stats;
-  auto has = [&](const char* name) { return std::find(stats.begin(), stats.end(), name) != stats.end(); };
-  if (has("seconds") && has("penetration"))
+  if (reader.layout().has_stat("seconds") && reader.layout().has_stat("penetration"))
     rows.push_back({"simulation (the ground truth)", 1000.0 * mean(reader.stat("seconds", indices)), 0.0,
                     100.0 * mean(reader.stat("penetration", indices))});
 

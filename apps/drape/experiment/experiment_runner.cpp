@@ -3,18 +3,18 @@
 #include "../command.hpp"
 
 #include <drape/checkpoint.hpp>
-#include <drape/data_parallel.hpp>
 #include <drape/graph.hpp>
 #include <drape/dataset.hpp>
+#include <drape/evaluation.hpp>
 #include <drape/model.hpp>
 #include <drape/registry.hpp>
+#include <drape/rng.hpp>
 #include <drape/scene.hpp>
 
 #include <yaml-cpp/yaml.h>
 
 #include <algorithm>
 #include <cctype>
-#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <fstream>
@@ -40,11 +40,10 @@ std::string slug(const std::string& name) {
   return s.empty() ? "row" : s;
 }
 
+// Eight hex digits of a stable hash (Rng::derive: FNV-1a, the same on every machine and run).
 std::string hex8(const std::string& text) {
-  std::uint64_t h = 1469598103934665603ull;  // FNV-1a
-  for (unsigned char c : text) h = (h ^ c) * 1099511628211ull;
   char b[17];
-  std::snprintf(b, sizeof b, "%016llx", static_cast<unsigned long long>(h));
+  std::snprintf(b, sizeof b, "%016llx", static_cast<unsigned long long>(Rng::derive(0, text)));
   return std::string(b, 8);
 }
 
@@ -75,19 +74,14 @@ double sum(const std::vector<double>& v) {
   return s;
 }
 
-bool has_stat(const DatasetReader& r, const std::string& name) {
-  const auto& s = r.layout().stats;
-  return std::find(s.begin(), s.end(), name) != s.end();
-}
-
 // The energy columns and p from a dataset's statistics (a simulation or an optimisation).
 void physics_columns(const DatasetReader& r, const std::vector<std::size_t>& indices, std::map<std::string, double>& out) {
   const std::pair<const char*, const char*> energies[] = {{"L_st", "energy_stretching"}, {"L_b", "energy_bending"},
                                                           {"L_g", "energy_gravity"},     {"L_c", "energy_collision"},
                                                           {"L_p", "energy_total"}};
   for (const auto& [column, stat] : energies)
-    if (has_stat(r, stat)) out[column] = mean(r.stat(stat, indices));
-  if (has_stat(r, "penetration")) out["p"] = 100.0 * mean(r.stat("penetration", indices));
+    if (r.layout().has_stat(stat)) out[column] = mean(r.stat(stat, indices));
+  if (r.layout().has_stat("penetration")) out["p"] = 100.0 * mean(r.stat("penetration", indices));
 }
 
 class Runner {
@@ -237,7 +231,7 @@ class Runner {
       used.resize(static_cast<std::size_t>(std::ceil(row.fraction * double(used.size()))));
       const auto val = r.indices(Split::Val);
       used.insert(used.end(), val.begin(), val.end());
-      if (has_stat(r, "seconds")) seconds += sum(r.stat("seconds", used));
+      if (r.layout().has_stat("seconds")) seconds += sum(r.stat("seconds", used));
       return seconds / 3600.0;
     }
     const ExperimentRow& source = spec_.row(row.on_optimized);
@@ -256,18 +250,7 @@ class Runner {
     }
     Model m = Model::load(Registry::load_default({}), model, overrides);
     const DatasetReader r(dataset(row.test));
-    const std::vector<std::size_t> one = {r.indices(Split::Test).front()};
-    SampleBatch batch;
-    batch.body = r.body_vertices(one);
-    if (m.needs_body_params()) batch.body_params = r.body_params(one);
-    const OmpThreadsScope one_core(1);
-    m.predict(batch);
-    double best = 1e300;
-    for (int i = 0; i < 20; ++i) {
-      const auto start = std::chrono::steady_clock::now();
-      m.predict(batch);
-      best = std::min(best, std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
-    }
+    const double best = prediction_ms(m, read_samples(r, {r.indices(Split::Test).front()}, m.graph(), false));
     std::ofstream(cache) << exact(best) << "\n";
     return best;
   }
@@ -287,7 +270,7 @@ class Runner {
       const auto test = r.indices(Split::Test);
       physics_columns(r, test, out.values);
       out.values["e2e_h"] = 0;
-      if (has_stat(r, "seconds")) out.values["infer"] = mean(r.stat("seconds", test));
+      if (r.layout().has_stat("seconds")) out.values["infer"] = mean(r.stat("seconds", test));
       out.infer_unit = "s";
       return out;
     }

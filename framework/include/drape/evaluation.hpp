@@ -17,6 +17,10 @@ struct SplitEvaluation {
   std::vector<double> ground_truth_penetration; // fraction of the simulated garment's vertices inside the body
 };
 
+// Milliseconds of one prediction of a one-body batch on one core, as a user
+// runs it: the best of `repeats` after a warm-up pass.
+double prediction_ms(Model& model, const SampleBatch& one, int repeats = 20);
+
 // Error naming the sample when a metric fails (a non-finite prediction).
 SplitEvaluation evaluate_model(Model& model, const DatasetReader& reader, const std::vector<std::size_t>& indices,
                                int batch_size = 16, ProgressBar* progress = nullptr);

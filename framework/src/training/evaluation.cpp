@@ -1,10 +1,24 @@
+#include <drape/data_parallel.hpp>
 #include <drape/errors.hpp>
 #include <drape/evaluation.hpp>
 
 #include <algorithm>
+#include <chrono>
 #include <string>
 
 namespace drape {
+
+double prediction_ms(Model& model, const SampleBatch& one, int repeats) {
+  const OmpThreadsScope one_core(1);
+  model.predict(one);  // warm-up: allocations, caches
+  double best = 1e300;
+  for (int r = 0; r < std::max(1, repeats); ++r) {
+    const auto start = std::chrono::steady_clock::now();
+    model.predict(one);
+    best = std::min(best, std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
+  }
+  return best;
+}
 
 SplitEvaluation evaluate_model(Model& model, const DatasetReader& reader, const std::vector<std::size_t>& indices,
                                int batch_size, ProgressBar* progress) {
