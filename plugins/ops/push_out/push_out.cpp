@@ -31,7 +31,6 @@ class PushOut final : public Node {
     const Tensor& x = *in.at("x");
     Tensor& y = *out.at("out");
     y.vec() = x.vec();
-    pushed_ = 0;
     if (!enabled_) return;
     for (int b = 0; b < x.batch(); ++b) {
       const geometry::BodySurface body(in.at("body")->mat(b).cast<double>(), faces_);
@@ -39,9 +38,7 @@ class PushOut final : public Node {
       const auto hits = body.locate_all(points);
       for (int i = 0; i < x.rows(); ++i) {
         const auto& h = hits[static_cast<std::size_t>(i)];
-        if (h.face < 0 || h.signed_distance >= epsilon_) continue;
-        y.mat(b).row(i) = (h.point + epsilon_ * h.normal).transpose().cast<float>();
-        ++pushed_;
+        if (h.face >= 0 && h.signed_distance < epsilon_) y.mat(b).row(i) = (h.point + epsilon_ * h.normal).transpose().cast<float>();
       }
     }
   }
@@ -54,7 +51,6 @@ class PushOut final : public Node {
   double epsilon_;
   bool enabled_;
   Eigen::MatrixX3i faces_;
-  long pushed_ = 0;
 };
 
 PluginList plugins() {
