@@ -1,5 +1,6 @@
 // `drape simulate scene.yaml --out garment.obj`: drape the scene's garment on
 // its body (or on --body FILE), the body morphing from the mean shape.
+#include <algorithm>
 #include "command.hpp"
 
 #include <drape/mesh_io.hpp>
@@ -80,6 +81,20 @@ int run(const std::vector<std::string>& args) {
               "%ld PCG iterations), line search %.2f s\n",
               r.timings.gradient, r.timings.hessian, r.timings.assembly, r.timings.linear_solves, r.timings.factorizations,
               r.timings.cg_iterations, r.timings.line_search);
+  if (verbose) {
+    // Where the drape is out of balance: the vertices with the largest unbalanced forces.
+    std::vector<int> order(r.vertex_force.size());
+    for (int i = 0; i < static_cast<int>(order.size()); ++i) order[i] = i;
+    const int shown = std::min<int>(8, static_cast<int>(order.size()));
+    std::partial_sort(order.begin(), order.begin() + shown, order.end(),
+                      [&](int a, int b) { return r.vertex_force[a] > r.vertex_force[b]; });
+    std::printf("largest unbalanced forces (vertex, N, position m, distance to the body m):\n");
+    for (int k = 0; k < shown; ++k) {
+      const int i = order[k];
+      std::printf("  %5d  %.3e  (%+.3f %+.3f %+.3f)  %s\n", i, r.vertex_force[i], r.garment(i, 0), r.garment(i, 1),
+                  r.garment(i, 2), r.body_distance.size() ? std::to_string(r.body_distance[i]).c_str() : "-");
+    }
+  }
   if (vm.count("out")) {
     Mesh out = sim.garment().mesh;
     out.vertices = r.garment;

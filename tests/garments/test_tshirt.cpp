@@ -55,7 +55,7 @@ TEST_CASE("tshirt: a bad resolution or print polygon is one clear config error",
   CHECK_THROWS_WITH(build_tshirt("{resolution: fine}"), Catch::Contains("resolution 'fine'"));
   CHECK_THROWS_AS(build_tshirt("{resolution: '12'}"), ConfigError);
   CHECK_THROWS_WITH(build_tshirt("{print: true, print_polygon: [0.1, 0.1, 0.5]}"), Catch::Contains("print_polygon"));
-  CHECK_THROWS_AS(build_tshirt("{size: large}"), ConfigError);
+  CHECK_THROWS_AS(build_tshirt("{size: huge}"), ConfigError);
 }
 
 TEST_CASE("tshirt: one manifold surface with collar, two sleeve and hem openings", "[garments][tshirt]") {
@@ -71,18 +71,27 @@ TEST_CASE("tshirt: one manifold surface with collar, two sleeve and hem openings
   }
 }
 
-TEST_CASE("tshirt: small is the same topology on a smaller pattern", "[garments][tshirt]") {
-  const Garment regular = build_tshirt(), small = build_tshirt("{size: small}");
-  REQUIRE(regular.mesh.num_vertices() == small.mesh.num_vertices());
-  CHECK(regular.mesh.faces == small.mesh.faces);
-  CHECK(regular.mesh.uv_faces == small.mesh.uv_faces);
-  double area_regular = 0, area_small = 0;
-  for (int f = 0; f < regular.mesh.num_faces(); ++f)
-    area_regular += uv_twice_area(regular.mesh, f) / 2, area_small += uv_twice_area(small.mesh, f) / 2;
-  CHECK(area_small / area_regular == Approx(0.9 * 0.9).epsilon(1e-6));
+TEST_CASE("tshirt: every graded size is the same topology on a scaled pattern", "[garments][tshirt]") {
+  const Garment regular = build_tshirt();
+  double area_regular = 0;
+  for (int f = 0; f < regular.mesh.num_faces(); ++f) area_regular += uv_twice_area(regular.mesh, f) / 2;
   const double height_regular = regular.mesh.uv.col(1).maxCoeff() - regular.mesh.uv.col(1).minCoeff();
-  const double height_small = small.mesh.uv.col(1).maxCoeff() - small.mesh.uv.col(1).minCoeff();
-  CHECK(height_small / height_regular == Approx(0.9));
+  for (const auto& [size, grade] : {std::pair<std::string, double>{"small", 0.9}, {"large", 1.12}, {"xlarge", 1.25}}) {
+    INFO(size);
+    const Garment graded = build_tshirt("{size: " + size + "}");
+    REQUIRE(regular.mesh.num_vertices() == graded.mesh.num_vertices());
+    CHECK(regular.mesh.faces == graded.mesh.faces);
+    CHECK(regular.mesh.uv_faces == graded.mesh.uv_faces);
+    double area = 0;
+    for (int f = 0; f < graded.mesh.num_faces(); ++f) area += uv_twice_area(graded.mesh, f) / 2;
+    CHECK(area / area_regular == Approx(grade * grade).epsilon(1e-6));
+    const double height = graded.mesh.uv.col(1).maxCoeff() - graded.mesh.uv.col(1).minCoeff();
+    CHECK(height / height_regular == Approx(grade));
+  }
+}
+
+TEST_CASE("tshirt: an unknown size is refused with the known ones", "[garments][tshirt]") {
+  CHECK_THROWS_WITH(build_tshirt("{size: medium}"), Catch::Matchers::Contains("small") && Catch::Matchers::Contains("xlarge"));
 }
 
 TEST_CASE("tshirt: two UV charts in meters, counter-clockwise, covering the pattern", "[garments][tshirt]") {

@@ -36,6 +36,8 @@ struct SimulationResult {
   double initial_energy = 0;   // on the target body, before settling (after morphing)
   double penetration = -1;     // fraction of garment vertices inside the body (-1: not measured)
   double residual = 0;         // |grad E| / |weight| at the end
+  Eigen::VectorXd vertex_force;  // N: |grad E| per vertex at the end (where the drape is not in equilibrium)
+  Eigen::VectorXd body_distance; // m: signed distance of each garment vertex to the body (when measured)
   // Settled: residual <= settle_tolerance, or at rest (no vertex moved more
   // than rest_displacement in the last step) with residual <= kink_tolerance. Rest covers contact kinks: where
   // cloth lies in a concave crease of the body mesh the penalty's gradient

@@ -82,6 +82,8 @@ class ClothSolver {
   // Static energy sum_i E_i(x), its gradient's relative norm |grad E| / |W|, and the terms.
   double energy(const Eigen::MatrixX3d& x, std::vector<EnergyTerm>* terms = nullptr) const;
   double static_residual(const Eigen::MatrixX3d& x) const;
+  // grad E per vertex (N): the unbalanced force on each vertex, negated.
+  Eigen::MatrixX3d static_gradient(const Eigen::MatrixX3d& x) const;
 
   const Eigen::VectorXd& masses() const { return masses_; }
   double force_scale() const { return force_scale_; }

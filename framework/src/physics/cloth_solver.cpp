@@ -104,11 +104,13 @@ double ClothSolver::energy(const Eigen::MatrixX3d& x, std::vector<EnergyTerm>* t
   return total;
 }
 
-double ClothSolver::static_residual(const Eigen::MatrixX3d& x) const {
+Eigen::MatrixX3d ClothSolver::static_gradient(const Eigen::MatrixX3d& x) const {
   Eigen::MatrixX3d g = Eigen::MatrixX3d::Zero(x.rows(), 3);
   for (const NamedEnergy& e : energies_) e.energy->add_gradient(x, g);
-  return g.norm() / force_scale_;
+  return g;
 }
+
+double ClothSolver::static_residual(const Eigen::MatrixX3d& x) const { return static_gradient(x).norm() / force_scale_; }
 
 double ClothSolver::phi(const Eigen::MatrixX3d& x, const Eigen::MatrixX3d& x_hat) const {
   const double inv_h2 = 1.0 / (settings_.time_step * settings_.time_step);
@@ -196,26 +198,38 @@ StepReport ClothSolver::step(Eigen::MatrixX3d& x, Eigen::MatrixX3d& v) {
     const double longest = d.rowwise().norm().maxCoeff();
     if (longest > settings_.max_displacement) d *= settings_.max_displacement / longest;
 
+    // Armijo backtracking along d; at a contact kink (the closest body face
+    // switches across a crease) the Newton model can point where Phi does not
+    // fall, so a failed search is retried along the Jacobi-preconditioned
+    // gradient, which is a descent direction of the non-smooth Phi too.
     t = Clock::now();
-    const double slope = g.cwiseProduct(d).sum();
-    double alpha = 1;
-    bool accepted = false;
-    if (slope < 0) {
+    auto line_search = [&](const Eigen::MatrixX3d& dir) {
+      const double slope = g.cwiseProduct(dir).sum();
+      if (!(slope < 0)) return false;
+      double alpha = 1;
       for (int k = 0; k < settings_.max_line_search; ++k, alpha *= 0.5) {
-        const Eigen::MatrixX3d trial = x + alpha * d;
+        const Eigen::MatrixX3d trial = x + alpha * dir;
         const double phi_trial = phi(trial, x_hat);
         if (std::isfinite(phi_trial) && phi_trial <= phi_x + settings_.armijo * alpha * slope) {
           x = trial;
           phi_x = phi_trial;
-          accepted = true;
-          break;
+          return true;
         }
       }
+      return false;
+    };
+    bool accepted = line_search(d);
+    if (!accepted) {
+      const Eigen::VectorXd diag = impl_->hessian.diagonal();
+      Eigen::MatrixX3d jacobi = -g.cwiseQuotient(per_vertex(diag));
+      const double longest_jacobi = jacobi.rowwise().norm().maxCoeff();
+      if (longest_jacobi > settings_.max_displacement) jacobi *= settings_.max_displacement / longest_jacobi;
+      accepted = jacobi.allFinite() && line_search(jacobi);
     }
     timings_.line_search += since(t);
     if (!accepted) {
       ++report.line_search_failures;
-      break;  // no decrease along the Newton direction: the step is as good as it gets
+      break;  // no decrease along either direction: the step is as good as it gets
     }
   }
   report.phi_end = phi_x;

@@ -152,13 +152,15 @@ SimulationResult Simulation::run(const Eigen::MatrixX3d& target_body, const Simu
   result.converged = result.residual <= settle_tolerance ||
                      (result.at_rest && result.residual <= solver.settings().kink_tolerance);
   result.total_energy = solver.energy(x, &result.energies);
+  result.vertex_force = solver.static_gradient(x).rowwise().norm();
   result.garment = x;
   result.body = target_body;
   result.linear_solver = solver.linear_solver();
   result.timings = solver.timings();
   if (options.measure_penetration) {
     if (!surface) surface = std::make_unique<geometry::BodySurface>(target_body, body_model_->faces());
-    const Eigen::VectorXd d = surface->signed_distances(x);
+    result.body_distance = surface->signed_distances(x);
+    const Eigen::VectorXd& d = result.body_distance;
     result.penetration = static_cast<double>((d.array() < 0).count()) / static_cast<double>(d.size());
   }
   result.seconds = since(start);

@@ -31,6 +31,14 @@ PatternSpec PatternSpec::scaled(double s) const {
   return g;
 }
 
+double size_grade(const std::string& size) {
+  if (size == "regular") return 1.0;
+  if (size == "small") return 0.9;
+  if (size == "large") return 1.12;
+  if (size == "xlarge") return 1.25;
+  throw ConfigError("tshirt: unknown size '" + size + "'; known: small, regular, large, xlarge");
+}
+
 PatternPoints pattern_points(const PatternSpec& spec) {
   PatternPoints p;
   const double alpha = rad(spec.sleeve_angle_deg);

@@ -7,6 +7,8 @@
 
 #include <vector>
 
+#include <string>
+
 namespace drape::tshirt {
 
 using geometry::Polygon2;
@@ -26,6 +28,13 @@ struct PatternSpec {
   // The same pattern graded by `s` in width and length (sizes share topology).
   PatternSpec scaled(double s) const;
 };
+
+// Graded sizes: the regular pattern scaled in width and length; every size has
+// the same mesh (faces identical, only UVs and positions scale), which is what
+// lets one network serve several. The steps follow a common tee grading of
+// 4-6 cm of chest per size: regular 1.08 m around, large 1.21, xlarge 1.35 --
+// the last fits the BMI 60-65 bodies the regular cannot (docs/garments.md).
+double size_grade(const std::string& size);
 
 // The corners of the right half (u >= 0); the left half is the mirror image.
 struct PatternPoints {

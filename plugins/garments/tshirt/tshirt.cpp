@@ -44,8 +44,8 @@ PluginList plugins() {
   d.name = "tshirt";
   d.doc = "Procedural T-shirt: two sewn T-shaped panels with half-sleeves, UV in meters, optional front print.";
   d.params = {
-      {"size", ParamType::String, "regular", "pattern size (small = regular graded by 0.9, same topology)", {}, {},
-       {"regular", "small"}},
+      {"size", ParamType::String, "regular", "pattern size: the regular pattern graded in width and length by small 0.9, large 1.12, xlarge 1.25 (same topology)", {}, {},
+       {"regular", "small", "large", "xlarge"}},
       {"resolution", ParamType::String, "default", "default (~3.5k vertices), coarse (~1k) or a vertex count"},
       {"print", ParamType::Bool, "false", "front print region with its own material (id 1)"},
       {"print_polygon", ParamType::FloatList, "[0.35, 0.5, 0.65, 0.5, 0.65, 0.78, 0.35, 0.78]",
@@ -63,7 +63,7 @@ PluginList plugins() {
   };
   d.create_garment = [](const Params& p) -> std::unique_ptr<GarmentSource> {
     tshirt::TshirtOptions o;
-    o.size_scale = p.get_string("size") == "small" ? 0.9 : 1.0;
+    o.size_scale = tshirt::size_grade(p.get_string("size"));
     o.target_vertices = parse_resolution(p.get_string("resolution"));
     o.print = p.get_bool("print");
     o.print_polygon = geometry::polygon_from_flat(p.get_float_list("print_polygon"), "tshirt: print_polygon");
