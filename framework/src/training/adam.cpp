@@ -20,23 +20,31 @@ void Adam::step(double learning_rate) {
   const float eps = static_cast<float>(options_.epsilon * std::sqrt(c2));
   const float decay = static_cast<float>(learning_rate * options_.weight_decay);
   const float l2 = static_cast<float>(options_.weight_decay);
+  // Single precision throughout, with the weight-decay choice hoisted out of
+  // the loop, so the compiler vectorises it: the per-sample optimisation runs
+  // Adam over 0.88 M weights every iteration, where the mixed double/float
+  // loop took 4.5 ms (drape bench optimize) and this one about a quarter.
+  const float b1f = static_cast<float>(b1), b2f = static_cast<float>(b2);
+  const float a1 = 1.0f - b1f, a2 = 1.0f - b2f;
+  const bool decoupled = options_.weight_decay != 0.0 && options_.decoupled_weight_decay;
+  const bool coupled = options_.weight_decay != 0.0 && !options_.decoupled_weight_decay;
   for (std::size_t i = 0; i < weights_.size(); ++i) {
-    auto w = weights_[i].second->value.vec();
-    auto g = weights_[i].second->grad.vec();
-    auto m = m_[i].vec();
-    auto v = v_[i].vec();
+    float* w = weights_[i].second->value.vec().data();
+    const float* g = weights_[i].second->grad.vec().data();
+    float* m = m_[i].vec().data();
+    float* v = v_[i].vec().data();
+    const Eigen::Index n = weights_[i].second->value.vec().size();
     // Element-wise and independent: threads (OpenMP, as many as the caller
     // allows) change nothing in the result.
-#pragma omp parallel for schedule(static) if (w.size() > (1 << 15))
-    for (Eigen::Index k = 0; k < w.size(); ++k) {
-      float gk = g[k];
-      if (options_.weight_decay != 0.0) {
-        if (options_.decoupled_weight_decay) w[k] -= decay * w[k];
-        else gk += l2 * w[k];
-      }
-      m[k] = static_cast<float>(b1 * m[k] + (1.0 - b1) * gk);
-      v[k] = static_cast<float>(b2 * v[k] + (1.0 - b2) * gk * gk);
-      w[k] -= step_size * m[k] / (std::sqrt(v[k]) + eps);
+#pragma omp parallel for simd schedule(static) if (n > (1 << 15))
+    for (Eigen::Index k = 0; k < n; ++k) {
+      const float gk = coupled ? g[k] + l2 * w[k] : g[k];
+      const float wk = decoupled ? w[k] - decay * w[k] : w[k];
+      const float mk = b1f * m[k] + a1 * gk;
+      const float vk = b2f * v[k] + a2 * gk * gk;
+      m[k] = mk;
+      v[k] = vk;
+      w[k] = wk - step_size * mk / (std::sqrt(vk) + eps);
     }
   }
 }
