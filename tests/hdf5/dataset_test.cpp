@@ -273,3 +273,43 @@ TEST_CASE("dataset: merging shards concatenates their samples", "[hdf5][dataset]
   CHECK_THROWS_AS(merge_datasets({dir / "a.h5", dir / "d.h5"}, dir / "bad.h5"), ConfigError);
   CHECK_FALSE(fs::exists(dir / "bad.h5"));
 }
+
+TEST_CASE("dataset: a shard made before garment_size was recorded merges with its scene's size", "[hdf5][dataset]") {
+  TempDir dir;
+  DatasetLayout old = small_layout(3);  // no garment_size statistic: a regular shirt by its scene
+  old.scene = "garment: {template: tshirt, params: {resolution: coarse, size: regular}}\n";
+  DatasetLayout small = small_layout(2);
+  small.stats = {"energy", "garment_size", "penetration", "seconds"};
+  small.scene = "garment: {template: tshirt, params: {resolution: coarse, size: small}}\n";
+  small.template_hash = "def456";
+  {
+    DatasetWriter w(dir / "old.h5", old);
+    for (std::size_t i = 0; i < 3; ++i) w.write(i, make_sample(old, i));
+    w.finish();
+    DatasetWriter v(dir / "small.h5", small);
+    for (std::size_t i = 0; i < 2; ++i) {
+      DatasetSample s = make_sample(small, 3 + i);
+      s.stats["garment_size"] = 1.0;
+      v.write(i, s);
+    }
+    v.finish();
+  }
+  // Without --mixed-sizes the templates still differ.
+  CHECK_THROWS_AS(merge_datasets({dir / "old.h5", dir / "small.h5"}, dir / "bad.h5"), ConfigError);
+  REQUIRE(merge_datasets({dir / "old.h5", dir / "small.h5"}, dir / "both.h5", true, true) == 5);
+  const DatasetReader both(dir / "both.h5");
+  CHECK(both.layout().has_stat("garment_size"));
+  CHECK(both.stat("garment_size", {0, 1, 2, 3, 4}) == std::vector<double>{0, 0, 0, 1, 1});
+  CHECK(both.stat("energy", {0, 4}) == std::vector<double>{0.0, 0.5 * 4});
+
+  // A stored scene whose size no model flag knows is refused with the shard's name.
+  DatasetLayout large = old;
+  large.scene = "garment: {template: tshirt, params: {size: xlarge}}\n";
+  {
+    DatasetWriter w(dir / "large.h5", large);
+    for (std::size_t i = 0; i < 3; ++i) w.write(i, make_sample(large, i));
+    w.finish();
+  }
+  CHECK_THROWS_WITH(merge_datasets({dir / "large.h5", dir / "small.h5"}, dir / "bad.h5", true, true),
+                    Catch::Contains("large.h5") && Catch::Contains("xlarge"));
+}

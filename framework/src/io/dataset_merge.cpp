@@ -2,8 +2,12 @@
 #include "dataset_internal.hpp"
 
 #include <drape/atomic_file.hpp>
+#include <drape/model.hpp>
+
+#include <yaml-cpp/yaml.h>
 
 #include <algorithm>
+#include <optional>
 
 namespace fs = std::filesystem;
 
@@ -13,9 +17,35 @@ using namespace dataset_detail;
 
 namespace {
 
-// Copies `count` rows starting at `from` in `in` to row `to` of `out`, for every array.
+constexpr const char* kGarmentSize = "garment_size";
+
+// The size flag of a shard made before drape generate recorded garment_size:
+// every sample of it has the garment of its stored (resolved) scene.
+double garment_size_from_scene(const fs::path& shard, const std::string& scene_text) {
+  std::string size = "regular";
+  try {
+    const YAML::Node params = YAML::Load(scene_text)["garment"]["params"];
+    if (params && params["size"]) size = params["size"].as<std::string>();
+  } catch (const YAML::Exception& e) {
+    throw ConfigError(shard.string() + ": its stored scene does not parse (" + e.what() + ")");
+  }
+  try {
+    return garment_size_flag(size);
+  } catch (const ConfigError& e) {
+    throw ConfigError(shard.string() + ": " + e.what());
+  }
+}
+
+void add_garment_size_stat(DatasetLayout& layout) {
+  if (layout.has_stat(kGarmentSize)) return;
+  layout.stats.push_back(kGarmentSize);
+  std::sort(layout.stats.begin(), layout.stats.end());
+}
+
+// Copies `count` rows starting at `from` in `in` to row `to` of `out`, for
+// every array; a shard without the garment_size statistic gets `size_fill`.
 void copy_rows(const h5::File& in, h5::File& out, const DatasetLayout& layout, std::size_t from, std::size_t to,
-               std::size_t count) {
+               std::size_t count, std::optional<double> size_fill) {
   auto copy = [&](const std::string& dataset, std::size_t row_size, auto tag) {
     using T = decltype(tag);
     std::vector<T> rows(count * row_size);
@@ -26,7 +56,14 @@ void copy_rows(const h5::File& in, h5::File& out, const DatasetLayout& layout, s
   copy(kBodyVertices, static_cast<std::size_t>(layout.body_vertices) * 3, float{});
   copy(kGarmentVertices, static_cast<std::size_t>(layout.garment_vertices) * 3, float{});
   copy(kSplit, 1, std::int8_t{});
-  for (const auto& name : layout.stats) copy(stat_path(name), 1, double{});
+  for (const auto& name : layout.stats) {
+    if (name == kGarmentSize && size_fill) {
+      const std::vector<double> fill(count, *size_fill);
+      out.write_rows(stat_path(name), to, count, fill.data());
+    } else {
+      copy(stat_path(name), 1, double{});
+    }
+  }
   const std::vector<std::uint8_t> done(count, 1);
   out.write_rows(kDone, to, count, done.data());
 }
@@ -41,15 +78,19 @@ std::size_t merge_datasets(const std::vector<fs::path>& shards, const fs::path& 
   DatasetLayout merged;
   std::size_t total = 0;
   std::string templates;
+  std::vector<std::optional<double>> size_fill;  // per shard: its flag when it has no garment_size statistic
   for (const auto& shard : shards) {
     if (fs::exists(out) && fs::equivalent(shard, out)) throw ConfigError(shard.string() + ": the output is also a shard");
     files.push_back(h5::File::open(shard));
-    const DatasetLayout layout = read_layout(files.back());
+    DatasetLayout layout = read_layout(files.back());
     done.push_back(files.back().read<std::uint8_t>(kDone));
     const std::size_t n = static_cast<std::size_t>(std::count(done.back().begin(), done.back().end(), 1));
-    if (mixed_sizes && !layout.has_stat("garment_size"))
-      throw ConfigError(shard.string() + ": merging garment sizes needs the garment_size statistic in every shard "
-                        "(datasets made by drape generate since it records one)");
+    size_fill.emplace_back();
+    if (mixed_sizes && !layout.has_stat(kGarmentSize)) {
+      // Made before the statistic existed: every sample has its scene's size.
+      size_fill.back() = garment_size_from_scene(shard, layout.scene);
+      add_garment_size_stat(layout);
+    }
     templates += (templates.empty() ? "" : ",") + layout.template_hash;
     if (require_complete && n != layout.samples)
       throw ConfigError(shard.string() + ": only " + std::to_string(n) + " of " + std::to_string(layout.samples) +
@@ -97,7 +138,7 @@ std::size_t merge_datasets(const std::vector<fs::path>& shards, const fs::path& 
         }
         std::size_t run = 1;
         while (i + run < d.size() && d[i + run] && run < kBlock) ++run;
-        copy_rows(files[s], result, merged, i, to, run);
+        copy_rows(files[s], result, merged, i, to, run, size_fill[s]);
         i += run;
         to += run;
       }
