@@ -302,14 +302,14 @@ TEST_CASE("dataset: a shard made before garment_size was recorded merges with it
   CHECK(both.stat("garment_size", {0, 1, 2, 3, 4}) == std::vector<double>{0, 0, 0, 1, 1});
   CHECK(both.stat("energy", {0, 4}) == std::vector<double>{0.0, 0.5 * 4});
 
-  // A stored scene whose size no model flag knows is refused with the shard's name.
-  DatasetLayout large = old;
-  large.scene = "garment: {template: tshirt, params: {size: xlarge}}\n";
+  // A stored scene whose size no flag knows is refused with the shard's name.
+  DatasetLayout odd = old;
+  odd.scene = "garment: {template: tshirt, params: {size: medium}}\n";
   {
-    DatasetWriter w(dir / "large.h5", large);
-    for (std::size_t i = 0; i < 3; ++i) w.write(i, make_sample(large, i));
+    DatasetWriter w(dir / "odd.h5", odd);
+    for (std::size_t i = 0; i < 3; ++i) w.write(i, make_sample(odd, i));
     w.finish();
   }
-  CHECK_THROWS_WITH(merge_datasets({dir / "large.h5", dir / "small.h5"}, dir / "bad.h5", true, true),
-                    Catch::Contains("large.h5") && Catch::Contains("xlarge"));
+  CHECK_THROWS_WITH(merge_datasets({dir / "odd.h5", dir / "small.h5"}, dir / "bad.h5", true, true),
+                    Catch::Contains("odd.h5") && Catch::Contains("medium"));
 }

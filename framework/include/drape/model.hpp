@@ -75,7 +75,8 @@ SampleBatch read_samples(const DatasetReader& reader, const std::vector<std::siz
 // The same for one sample already read (DatasetReader::sample), without the target.
 SampleBatch sample_batch(const DatasetSample& sample, const DatasetLayout& layout, const Graph& graph);
 
-// The garment_size input of a size name: 0 regular, 1 small (ConfigError otherwise).
+// The garment_size input of a size name: 0 regular, 1 small (the seed's flag),
+// then 2 large, 3 xlarge; ConfigError for another name.
 float garment_size_flag(const std::string& size);
 
 class Model {

@@ -106,6 +106,7 @@ void BodySurface::update(const Eigen::MatrixX3d& vertices) {
   vertices_ = vertices;
   compute_normals();
   bvh_->refit(vertices_);
+  ++revision_;
 }
 
 void BodySurface::rebuild() { bvh_ = std::make_unique<TriangleBvh>(vertices_, faces_); }

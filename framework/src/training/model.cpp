@@ -188,7 +188,9 @@ bool Model::needs_input(const std::string& name) const {
 float garment_size_flag(const std::string& size) {
   if (size == "regular") return 0.0f;
   if (size == "small") return 1.0f;
-  throw ConfigError("garment size '" + size + "': a model trained on several sizes knows regular and small");
+  if (size == "large") return 2.0f;
+  if (size == "xlarge") return 3.0f;
+  throw ConfigError("garment size '" + size + "': the size flag knows regular (0), small (1), large (2) and xlarge (3)");
 }
 
 namespace {

@@ -33,6 +33,11 @@ void BodyCollision::bind(const EnergyContext& context) {
     throw ConfigError(std::string("collision: ") + e.what());
   }
   body_ = context.body;
+  surface_ = dynamic_cast<const geometry::BodySurface*>(body_);
+  {
+    std::lock_guard<std::mutex> lock(cache_.mutex);
+    cache_.contacts.reset();
+  }
   if (settings_.smoothing > 0 && !dynamic_cast<const geometry::BodySurface*>(body_))
     throw ConfigError("collision: smoothing needs the body's vertices and normals (a geometry::BodySurface); this body "
                       "only answers closest-point queries: set smoothing to 0");
@@ -56,6 +61,21 @@ std::vector<Contact> BodyCollision::contacts(const Eigen::MatrixX3d& x, bool wit
   return out;
 }
 
+std::shared_ptr<const std::vector<Contact>> BodyCollision::cached_contacts(const Eigen::MatrixX3d& x) const {
+  if (!surface_) return std::make_shared<const std::vector<Contact>>(contacts(x, true));
+  {
+    std::lock_guard<std::mutex> lock(cache_.mutex);
+    if (cache_.contacts && cache_.revision == surface_->revision() && cache_.x.rows() == x.rows() && cache_.x == x)
+      return cache_.contacts;
+  }
+  auto fresh = std::make_shared<const std::vector<Contact>>(contacts(x, true));
+  std::lock_guard<std::mutex> lock(cache_.mutex);
+  cache_.x = x;
+  cache_.revision = surface_->revision();
+  cache_.contacts = fresh;
+  return fresh;
+}
+
 void BodyCollision::check(const Eigen::MatrixX3d& x) const {
   if (!body_) throw Error("collision: bind() was not called");
   if (x.rows() != area_.size())
@@ -67,7 +87,8 @@ void BodyCollision::check(const Eigen::MatrixX3d& x) const {
 
 double BodyCollision::value(const Eigen::MatrixX3d& x) const {
   check(x);
-  const std::vector<Contact> contacts = this->contacts(x, false);
+  const auto cached = cached_contacts(x);
+  const std::vector<Contact>& contacts = *cached;
   double energy = 0;
   for (std::size_t v = 0; v < contacts.size(); ++v)
     energy += area_[static_cast<Eigen::Index>(v)] * penalty_.value(penalty_.delta(contacts[v].distance));
@@ -78,7 +99,8 @@ double BodyCollision::add_gradient(const Eigen::MatrixX3d& x, Eigen::MatrixX3d& 
   check(x);
   if (g.rows() != x.rows()) throw Error("collision: the gradient has " + std::to_string(g.rows()) + " rows, x has " +
                                         std::to_string(x.rows()));
-  const std::vector<Contact> contacts = this->contacts(x, false);
+  const auto cached = cached_contacts(x);
+  const std::vector<Contact>& contacts = *cached;
   double energy = 0;
   for (std::size_t i = 0; i < contacts.size(); ++i) {
     const auto v = static_cast<Eigen::Index>(i);
@@ -94,7 +116,8 @@ double BodyCollision::add_gradient(const Eigen::MatrixX3d& x, Eigen::MatrixX3d& 
 
 void BodyCollision::add_hessian(const Eigen::MatrixX3d& x, Triplets& h, bool project_psd) const {
   check(x);
-  const std::vector<Contact> contacts = this->contacts(x, true);
+  const auto cached = cached_contacts(x);
+  const std::vector<Contact>& contacts = *cached;
   h.reserve(h.size() + 9 * contacts.size());
   for (std::size_t i = 0; i < contacts.size(); ++i) {
     const auto v = static_cast<Eigen::Index>(i);

@@ -43,15 +43,22 @@
 // while every vertex deeper than max_depth is still pushed out with the
 // pressure it would have at max_depth.
 //
-// The body is queried at every call (the solver morphs it between calls with
-// BodySurface::update); it must outlive the energy.
+// The body must outlive the energy. A Newton iteration asks for the value, the
+// gradient and the Hessian at the same x (and the line search's accepted trial
+// is the next gradient's x), so the contacts of the last x are kept and
+// reused while x and the body (BodySurface::revision, bumped by every morph
+// update) are unchanged: one closest-point pass per iteration instead of three.
 #include "contacts.hpp"
 #include "penalty.hpp"
 
 #include <drape/energy.hpp>
+#include <drape/geometry/closest_point.hpp>
 
 #include <Eigen/Core>
 
+#include <cstdint>
+#include <memory>
+#include <mutex>
 #include <vector>
 
 namespace drape::collision {
@@ -85,11 +92,22 @@ class BodyCollision final : public Energy {
   void check(const Eigen::MatrixX3d& x) const;
   // The exact contacts, or the smooth ones when settings_.smoothing > 0.
   std::vector<Contact> contacts(const Eigen::MatrixX3d& x, bool with_hessian) const;
+  // The contacts (with distance Hessians) of x, from the cache when x and the body are unchanged.
+  std::shared_ptr<const std::vector<Contact>> cached_contacts(const Eigen::MatrixX3d& x) const;
 
   CollisionSettings settings_;
   CubicPenalty penalty_;
   const BodyQuery* body_ = nullptr;
   Eigen::VectorXd area_;  // lumped material-space area per vertex, m^2
+  const geometry::BodySurface* surface_ = nullptr;  // the body when it can tell its revision (cache on)
+
+  struct Cache {
+    std::mutex mutex;  // energies may be evaluated from several threads (graph loss nodes)
+    Eigen::MatrixX3d x;
+    std::uint64_t revision = 0;
+    std::shared_ptr<const std::vector<Contact>> contacts;
+  };
+  mutable Cache cache_;
 };
 
 }  // namespace drape::collision

@@ -82,6 +82,9 @@ class BodySurface final : public BodyQuery {
   // built on; then rebuild() restores it. Throws Error on a wrong vertex count.
   void update(const Eigen::MatrixX3d& vertices);
   void rebuild();
+  // Counts update() calls: a caller that keeps answers for some points knows
+  // they still hold while the revision is the same.
+  std::uint64_t revision() const { return revision_; }
 
   const Eigen::MatrixX3d& vertices() const { return vertices_; }
   const Eigen::MatrixX3i& faces() const { return faces_; }
@@ -99,6 +102,7 @@ class BodySurface final : public BodyQuery {
   Eigen::MatrixX3d edge_normals_;    // [3F] per face edge (ab, bc, ca): sum of its faces' normals, unit
   Eigen::MatrixX3i edge_mate_;       // [F, 3] the face across each edge, -1 on a boundary
   double on_surface_tolerance_ = 0;  // below this distance the normal is the pseudo-normal
+  std::uint64_t revision_ = 0;
   std::unique_ptr<TriangleBvh> bvh_;
 };
 
