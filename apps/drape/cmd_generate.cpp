@@ -107,7 +107,7 @@ int run(const std::vector<std::string>& args) {
   layout.body_vertices = static_cast<int>(sim.mean_body().rows());
   layout.garment_vertices = sim.garment().mesh.num_vertices();
   for (const auto& e : scene.effects) layout.stats.push_back("energy_" + e.name);
-  for (const char* s : {"energy_total", "penetration", "residual", "converged", "iterations", "steps", "seconds", "bmi",
+  for (const char* s : {"energy_total", "penetration", "residual", "stationarity", "converged", "iterations", "steps", "seconds", "bmi",
                         "height", "sex", "global_index", "garment_size"})
     layout.stats.push_back(s);
   layout.scene = scene.yaml();
@@ -159,6 +159,7 @@ int run(const std::vector<std::string>& args) {
       s.stats["energy_total"] = r.total_energy;
       s.stats["penetration"] = r.penetration;
       s.stats["residual"] = r.residual;
+      s.stats["stationarity"] = r.stationarity;
       s.stats["converged"] = r.converged ? 1 : 0;
       s.stats["iterations"] = r.iterations;
       s.stats["steps"] = r.steps;

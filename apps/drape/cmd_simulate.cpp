@@ -61,7 +61,7 @@ int run(const std::vector<std::string>& args) {
     if (!verbose) return;
     std::printf("step %3d/%d %-7s newton %2d  residual %.2e  Phi %.6g -> %.6g%s\n", s.step, s.total_steps,
                 s.morphing ? "morph" : "settle", s.report.iterations, s.report.residual, s.report.phi_start,
-                s.report.phi_end, s.static_residual >= 0 ? ("  |grad E|/|W| " + std::to_string(s.static_residual)).c_str() : "");
+                s.report.phi_end, s.static_residual >= 0 ? ("  stationarity/|W| " + std::to_string(s.static_residual)).c_str() : "");
   };
   std::printf("simulating %s: garment %d vertices, body %d vertices, effects:", sim.scene().file.c_str(),
               sim.garment().mesh.num_vertices(), static_cast<int>(target.rows()));
@@ -75,7 +75,8 @@ int run(const std::vector<std::string>& args) {
   std::printf("  %-12s %14s\n", "energy", "J");
   for (const auto& t : r.energies) std::printf("  %-12s %14.6g\n", t.name.c_str(), t.value);
   std::printf("  %-12s %14.6g\n", "total", r.total_energy);
-  std::printf("residual |grad E|/|weight| = %.2e, penetration p = %.3f%% of garment vertices, time %.2f s\n", r.residual,
+  std::printf("residual |grad E|/|weight| = %.2e (stationarity %.2e), penetration p = %.3f%% of garment vertices, time %.2f s\n",
+              r.residual, r.stationarity,
               100.0 * r.penetration, r.seconds);
   std::printf("time split: gradient %.2f s, hessian %.2f s, assembly %.2f s, linear solves %.2f s (%d factorisations, "
               "%ld PCG iterations), line search %.2f s\n",

@@ -5,6 +5,8 @@
 
 #include <catch2/catch.hpp>
 
+#include <drape/solver.hpp>
+
 #include <Eigen/Eigenvalues>
 
 #include <set>
@@ -275,12 +277,12 @@ TEST_CASE("smooth collision derivatives match finite differences on a torus, acr
   CHECK(Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(exact).eigenvalues().minCoeff() < 0);
 }
 
-TEST_CASE("smooth collision has no kink in a concave crease, where the exact distance switches faces",
-          "[collision][smooth]") {
-  // Two faces meeting at a 90-degree concave crease along z (an L-shaped
-  // trough, the body below/left). Along the bisector the closest face of the
-  // exact distance switches; its gradient jumps there. The smooth distance's
-  // gradient is continuous across it.
+namespace {
+
+// Two faces meeting at a 90-degree concave crease along z (an L-shaped
+// trough, the body below/left): floor y = 0 for x in [0, 1], wall x = 0 for
+// y in [0, 1], z in [-1, 1], on a fine grid, faces oriented into the trough.
+geometry::BodySurface crease_body() {
   const double s = 0.05;
   // Floor y = 0 for x in [0, 1], wall x = 0 for y in [0, 1], z in [-1, 1]; a fine grid of vertices.
   std::vector<Eigen::Vector3d> v;
@@ -308,7 +310,18 @@ TEST_CASE("smooth collision has no kink in a concave crease, where the exact dis
     const Eigen::Vector3d a = vertices.row(faces(i, 0)), b = vertices.row(faces(i, 1)), c = vertices.row(faces(i, 2));
     if ((b - a).cross(c - a).dot(Eigen::Vector3d(1, 1, 0)) < 0) std::swap(faces(i, 1), faces(i, 2));
   }
-  const geometry::BodySurface body(vertices, faces);
+  return geometry::BodySurface(vertices, faces);
+}
+
+}  // namespace
+
+TEST_CASE("smooth collision has no kink in a concave crease, where the exact distance switches faces",
+          "[collision][smooth]") {
+  // Two faces meeting at a 90-degree concave crease along z (an L-shaped
+  // trough, the body below/left). Along the bisector the closest face of the
+  // exact distance switches; its gradient jumps there. The smooth distance's
+  // gradient is continuous across it.
+  const geometry::BodySurface body = crease_body();
   const auto garment = grid_garment(2, 0.02);  // 4 vertices, the points below
   const auto exact = collision_energy("{margin: 0.02}", *garment, &body);
   const auto smooth = collision_energy("{margin: 0.02, smoothing: 0.08}", *garment, &body);
@@ -340,4 +353,78 @@ TEST_CASE("smooth collision refuses a radius within the margin", "[collision][sm
   const auto garment = grid_garment(2, 0.02);
   CHECK_THROWS_WITH(collision_energy("{margin: 0.01, smoothing: 0.005}", *garment, &body),
                     Catch::Contains("must exceed the margin"));
+}
+
+namespace {
+
+// A constant force per vertex: E = sum_v g_v . x_v, so grad E = g.
+class ConstantGradient final : public Energy {
+ public:
+  explicit ConstantGradient(Eigen::MatrixX3d g) : g_(std::move(g)) {}
+  void bind(const EnergyContext&) override {}
+  double value(const Eigen::MatrixX3d& x) const override { return g_.cwiseProduct(x).sum(); }
+  double add_gradient(const Eigen::MatrixX3d& x, Eigen::MatrixX3d& g) const override {
+    g += g_;
+    return value(x);
+  }
+  void add_hessian(const Eigen::MatrixX3d&, Triplets&, bool) const override {}
+
+ private:
+  Eigen::MatrixX3d g_;
+};
+
+}  // namespace
+
+TEST_CASE("stationarity counts both faces of a concave crease, where the plain residual cannot fall",
+          "[collision][solver]") {
+  // Cloth pressed along the bisector into the crease is held by both walls,
+  // half each; the exact contact at any one point pushes off one wall only.
+  const geometry::BodySurface body = crease_body();
+  const auto garment = grid_garment(2, 0.02);
+  auto contact = collision_energy("{margin: 0.02}", *garment, &body);
+  const double r = 0.01;  // every vertex on the bisector x = y, 1 cm from the crease line
+  Eigen::MatrixX3d x(4, 3);
+  for (int v = 0; v < 4; ++v) x.row(v) << r, r, 0.1 * v;
+  Eigen::MatrixX3d push = Eigen::MatrixX3d::Zero(4, 3);
+  contact->add_gradient(x, push);
+  Eigen::MatrixX3d balanced(4, 3), unbalanced(4, 3);
+  for (int v = 0; v < 4; ++v) {
+    const double p = push.row(v).norm();  // the one-wall push, -P n
+    REQUIRE(p > 0);
+    balanced.row(v) << p / 2, p / 2, 0.0;  // pressed into the corner: half of P on each wall
+    unbalanced.row(v) << p, p, 0.0;        // twice harder than the walls push there
+  }
+  auto measure = [&](const Eigen::MatrixX3d& load, double& plain, double& stationary) {
+    std::vector<NamedEnergy> energies;
+    energies.push_back({"load", std::make_unique<ConstantGradient>(load)});
+    energies.push_back({"collision", collision_energy("{margin: 0.02}", *garment, &body)});
+    ClothSolver solver(*garment, energies, SolverSettings{});
+    plain = solver.static_residual(x);
+    stationary = solver.stationarity(x, 1e-3);
+  };
+  double plain = 0, stationary = 0;
+  measure(balanced, plain, stationary);
+  INFO("balanced: plain " << plain << ", stationarity " << stationary);
+  CHECK(plain > 1);                    // |(P/2, P/2) - P n_wall| = P / sqrt(2) per vertex
+  CHECK(stationary < 1e-3 * plain);    // the hull holds (P/2, P/2): balanced
+  measure(unbalanced, plain, stationary);
+  INFO("unbalanced: plain " << plain << ", stationarity " << stationary);
+  CHECK(stationary > 0.1 * plain);     // no combination of the walls' pushes balances it
+  CHECK(stationary <= plain);
+
+  // The samples are the pushes 1 mm around the vertex: both walls appear.
+  std::vector<Eigen::Vector3d> samples;
+  REQUIRE(contact->vertex_gradient_samples(x, 0, 1e-3, samples));
+  REQUIRE(samples.size() == 6);
+  bool floor = false, wall = false;
+  for (const auto& g : samples) {
+    floor = floor || (g.y() < 0 && std::abs(g.x()) < 1e-9 * g.norm());
+    wall = wall || (g.x() < 0 && std::abs(g.y()) < 1e-9 * g.norm());
+  }
+  CHECK(floor);
+  CHECK(wall);
+  // The smooth distance has no kink: nothing to sample.
+  auto smooth = collision_energy("{margin: 0.02, smoothing: 0.08}", *garment, &body);
+  samples.clear();
+  CHECK_FALSE(smooth->vertex_gradient_samples(x, 0, 1e-3, samples));
 }

@@ -25,7 +25,7 @@ struct SimulationStep {
   int step = 0, total_steps = 0;  // total = morph + the settling budget
   bool morphing = false;
   StepReport report;
-  double static_residual = 0;  // |grad E| / |weight| after the step
+  double static_residual = 0;  // stationarity / |weight| after the step (ClothSolver::stationarity)
 };
 
 struct SimulationResult {
@@ -36,13 +36,14 @@ struct SimulationResult {
   double initial_energy = 0;   // on the target body, before settling (after morphing)
   double penetration = -1;     // fraction of garment vertices inside the body (-1: not measured)
   double residual = 0;         // |grad E| / |weight| at the end
+  double stationarity = 0;     // the same with both faces of a body crease counted (ClothSolver::stationarity); settles the drape
   Eigen::VectorXd vertex_force;  // N: |grad E| per vertex at the end (where the drape is not in equilibrium)
   Eigen::VectorXd body_distance; // m: signed distance of each garment vertex to the body (when measured)
-  // Settled: residual <= settle_tolerance, or at rest (no vertex moved more
-  // than rest_displacement in the last step) with residual <= kink_tolerance. Rest covers contact kinks: where
-  // cloth lies in a concave crease of the body mesh the penalty's gradient
-  // jumps between the two faces' normals, the residual cannot fall further,
-  // and the line search (rightly) refuses to move.
+  // Settled: stationarity <= settle_tolerance, or at rest (no vertex moved
+  // more than rest_displacement in the last step) with stationarity <=
+  // kink_tolerance. Where cloth lies in a concave crease of the body mesh the
+  // penalty's gradient jumps between the two faces' normals and the plain
+  // residual cannot fall further; stationarity counts both pushes.
   bool converged = false;
   bool at_rest = false;        // settled by the rest criterion
   int steps = 0, iterations = 0, line_search_failures = 0;

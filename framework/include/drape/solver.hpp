@@ -35,6 +35,7 @@ struct SolverSettings {
   double settle_tolerance = 5e-3;  // drape done: |grad E| / |W| of the static energy
   double rest_displacement = 1e-5; // m: or done when no vertex moved farther in a step (at rest)...
   double kink_tolerance = 5e-2;    // ...and |grad E| / |W| is below this (the floor contact kinks leave)
+  double kink_radius = 1e-3;       // m: radius of the gradient samples of stationarity()
   double max_displacement = 0.02;  // m, a Newton step moves no vertex farther (keeps thin parts from being crossed)
   double armijo = 1e-4;            // sufficient-decrease constant of the line search
   int max_line_search = 12;        // halvings (down to alpha = 2.4e-4) before an iteration is given up
@@ -84,6 +85,16 @@ class ClothSolver {
   double static_residual(const Eigen::MatrixX3d& x) const;
   // grad E per vertex (N): the unbalanced force on each vertex, negated.
   Eigen::MatrixX3d static_gradient(const Eigen::MatrixX3d& x) const;
+  // Stationarity of the non-smooth static energy, relative to |W|: like
+  // static_residual, but a vertex touched by a non-smooth energy (the exact
+  // contact, whose push jumps between two faces of a body crease) counts the
+  // smallest unbalanced force over the convex hull of that energy's gradients
+  // at its position and `radius` around it (Energy::vertex_gradient_samples):
+  // Goldstein's epsilon-subdifferential, the stationarity of gradient sampling
+  // methods (Burke, Lewis & Overton 2005). At a crease the cloth is balanced
+  // by the sum of both faces' pushes, which no single closest face gives; on
+  // smooth parts it equals the plain residual.
+  double stationarity(const Eigen::MatrixX3d& x, double radius) const;
 
   const Eigen::VectorXd& masses() const { return masses_; }
   double force_scale() const { return force_scale_; }

@@ -1,13 +1,18 @@
 // Newton on the backward-Euler incremental potential (see solver.hpp).
 #include <drape/errors.hpp>
+#include <drape/geometry/closest_point.hpp>
 #include <drape/geometry/vertex_areas.hpp>
 #include <drape/solver.hpp>
+
+#include <Eigen/LU>
 
 #include "hessian_pattern.hpp"
 #include "sparse_cholesky.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <limits>
 
 namespace drape {
 
@@ -111,6 +116,72 @@ Eigen::MatrixX3d ClothSolver::static_gradient(const Eigen::MatrixX3d& x) const {
 }
 
 double ClothSolver::static_residual(const Eigen::MatrixX3d& x) const { return static_gradient(x).norm() / force_scale_; }
+
+namespace {
+
+// min |base + sum_k l_k p_k| over the simplex l >= 0, sum l = 1, exactly: the
+// hull's nearest point to the origin lies on one of its triangles (edges and
+// corners are degenerate triangles), unless the origin is inside one of its
+// tetrahedra. A handful of points, so enumerating them all is cheap.
+double min_norm_in_hull(const Eigen::Vector3d& base, const std::vector<Eigen::Vector3d>& points) {
+  std::vector<Eigen::Vector3d> q;
+  q.reserve(points.size());
+  for (const auto& p : points) q.push_back(base + p);
+  const std::size_t n = q.size();
+  const Eigen::Vector3d origin = Eigen::Vector3d::Zero();
+  double best = std::numeric_limits<double>::infinity();
+  for (std::size_t i = 0; i < n; ++i)
+    for (std::size_t j = i; j < n; ++j)
+      for (std::size_t k = j; k < n; ++k)
+        best = std::min(best, geometry::closest_point_on_triangle(origin, q[i], q[j], q[k]).point.norm());
+  for (std::size_t i = 0; i < n; ++i)
+    for (std::size_t j = i + 1; j < n; ++j)
+      for (std::size_t k = j + 1; k < n; ++k)
+        for (std::size_t l = k + 1; l < n; ++l) {
+          Eigen::Matrix3d m;
+          m << q[j] - q[i], q[k] - q[i], q[l] - q[i];
+          const double scale = m.colwise().norm().prod();
+          if (!(std::abs(m.determinant()) > 1e-12 * scale)) continue;
+          const Eigen::Vector3d w = m.partialPivLu().solve(-q[i]);
+          if (w.minCoeff() >= 0 && w.sum() <= 1) return 0;
+        }
+  return best;
+}
+
+}  // namespace
+
+double ClothSolver::stationarity(const Eigen::MatrixX3d& x, double radius) const {
+  Eigen::MatrixX3d smooth = Eigen::MatrixX3d::Zero(x.rows(), 3), rough = smooth;
+  std::vector<const Energy*> nonsmooth;
+  std::vector<Eigen::Vector3d> probe;
+  for (const NamedEnergy& e : energies_) {
+    probe.clear();
+    const bool sampled = x.rows() > 0 && e.energy->vertex_gradient_samples(x, 0, radius, probe);
+    e.energy->add_gradient(x, sampled ? rough : smooth);
+    if (sampled) nonsmooth.push_back(e.energy.get());
+  }
+  double sum = 0;
+  std::vector<Eigen::Vector3d> points, samples;
+  for (Eigen::Index v = 0; v < x.rows(); ++v) {
+    const Eigen::Vector3d base = smooth.row(v).transpose(), own = rough.row(v).transpose();
+    double r = (base + own).norm();
+    if (!nonsmooth.empty() && own.squaredNorm() > 0 && r > 0) {
+      // The hull of the non-smooth gradients at v and around it; with several
+      // non-smooth energies, their k-th samples summed (a subset of the
+      // Minkowski sum, so r can only be overestimated).
+      points.assign(1, own);
+      for (const Energy* e : nonsmooth) {
+        samples.clear();
+        e->vertex_gradient_samples(x, static_cast<int>(v), radius, samples);
+        if (points.size() < samples.size() + 1) points.resize(samples.size() + 1, Eigen::Vector3d::Zero());
+        for (std::size_t k = 0; k < samples.size(); ++k) points[k + 1] += samples[k];
+      }
+      r = std::min(r, min_norm_in_hull(base, points));
+    }
+    sum += r * r;
+  }
+  return std::sqrt(sum) / force_scale_;
+}
 
 double ClothSolver::phi(const Eigen::MatrixX3d& x, const Eigen::MatrixX3d& x_hat) const {
   const double inv_h2 = 1.0 / (settings_.time_step * settings_.time_step);

@@ -144,3 +144,24 @@ void BodyCollision::add_hessian(const Eigen::MatrixX3d& x, Triplets& h, bool pro
 }
 
 }  // namespace drape::collision
+
+namespace drape::collision {
+
+bool BodyCollision::vertex_gradient_samples(const Eigen::MatrixX3d& x, int vertex, double radius,
+                                            std::vector<Eigen::Vector3d>& samples) const {
+  if (settings_.smoothing > 0) return false;
+  check(x);
+  if (vertex < 0 || vertex >= x.rows()) throw Error("collision: vertex " + std::to_string(vertex) + " out of range");
+  const double c = settings_.stiffness * area_[vertex];
+  for (int axis = 0; axis < 3; ++axis)
+    for (const double sign : {-1.0, 1.0}) {
+      Eigen::Vector3d p = x.row(vertex).transpose();
+      p[axis] += sign * radius;
+      const BodyQuery::Hit hit = body_->closest(p);
+      const double delta = penalty_.delta(hit.signed_distance);
+      samples.push_back(delta > 0 ? Eigen::Vector3d(-c * penalty_.slope(delta) * hit.normal) : Eigen::Vector3d::Zero());
+    }
+  return true;
+}
+
+}  // namespace drape::collision

@@ -87,6 +87,10 @@ class BodyCollision final : public Energy {
   // change when vertices enter or leave contact, so the solver can keep its
   // symbolic factorisation across iterations.
   void add_hessian(const Eigen::MatrixX3d& x, Triplets& h, bool project_psd = true) const override;
+  // The exact distance's push at the six points `radius` away from the vertex
+  // (false with smoothing: that distance is C2, there is no kink to sample).
+  bool vertex_gradient_samples(const Eigen::MatrixX3d& x, int vertex, double radius,
+                               std::vector<Eigen::Vector3d>& samples) const override;
 
  private:
   void check(const Eigen::MatrixX3d& x) const;
