@@ -1,6 +1,5 @@
 // `drape simulate scene.yaml --out garment.obj`: drape the scene's garment on
 // its body (or on --body FILE), the body morphing from the mean shape.
-#include <algorithm>
 #include "command.hpp"
 
 #include <drape/mesh_io.hpp>
@@ -8,6 +7,7 @@
 #include <drape/simulation.hpp>
 #include <drape/svg_figure.hpp>
 
+#include <algorithm>
 #include <cstdio>
 #include <iostream>
 
@@ -61,7 +61,7 @@ int run(const std::vector<std::string>& args) {
     if (!verbose) return;
     std::printf("step %3d/%d %-7s newton %2d  residual %.2e  Phi %.6g -> %.6g%s\n", s.step, s.total_steps,
                 s.morphing ? "morph" : "settle", s.report.iterations, s.report.residual, s.report.phi_start,
-                s.report.phi_end, s.static_residual >= 0 ? ("  stationarity/|W| " + std::to_string(s.static_residual)).c_str() : "");
+                s.report.phi_end, s.stationarity >= 0 ? ("  stationarity/|W| " + std::to_string(s.stationarity)).c_str() : "");
   };
   std::printf("simulating %s: garment %d vertices, body %d vertices, effects:", sim.scene().file.c_str(),
               sim.garment().mesh.num_vertices(), static_cast<int>(target.rows()));

@@ -66,17 +66,16 @@ class Energy {
   // True when bind() needs EnergyContext::body. The simulator builds the body's
   // closest-point structure only when some active energy asks for it.
   virtual bool needs_body() const { return false; }
-  // For an energy that is a sum of per-vertex terms and not differentiable
-  // everywhere (the exact body contact: its gradient jumps where the closest
-  // body face switches across a crease). Appends this energy's gradient at
-  // `vertex` evaluated with that vertex moved by `radius` along +-x, +-y, +-z
-  // (the others fixed) and returns true; smooth energies return false. The
-  // solver's stationarity measure takes the convex hull of these samples,
-  // Goldstein's epsilon-subdifferential (solver.hpp).
-  virtual bool vertex_gradient_samples(const Eigen::MatrixX3d& /*x*/, int /*vertex*/, double /*radius*/,
-                                       std::vector<Eigen::Vector3d>& /*samples*/) const {
-    return false;
-  }
+  // True for an energy that is a sum of per-vertex terms and not
+  // differentiable everywhere (the exact body contact: its gradient jumps
+  // where the closest body face switches across a crease). Such an energy
+  // implements vertex_gradient_samples: it appends its gradient at `vertex`
+  // evaluated with that vertex moved by `radius` along +-x, +-y, +-z (the
+  // others fixed). The solver's stationarity measure takes the convex hull of
+  // these samples, Goldstein's epsilon-subdifferential (solver.hpp).
+  virtual bool has_kinks() const { return false; }
+  virtual void vertex_gradient_samples(const Eigen::MatrixX3d& /*x*/, int /*vertex*/, double /*radius*/,
+                                       std::vector<Eigen::Vector3d>& /*samples*/) const {}
 };
 
 }  // namespace drape

@@ -25,7 +25,7 @@ struct SimulationStep {
   int step = 0, total_steps = 0;  // total = morph + the settling budget
   bool morphing = false;
   StepReport report;
-  double static_residual = 0;  // stationarity / |weight| after the step (ClothSolver::stationarity)
+  double stationarity = -1;    // settling steps: stationarity / |weight| after the step (ClothSolver::stationarity); -1 while morphing
 };
 
 struct SimulationResult {

@@ -120,29 +120,26 @@ double ClothSolver::static_residual(const Eigen::MatrixX3d& x) const { return st
 namespace {
 
 // min |base + sum_k l_k p_k| over the simplex l >= 0, sum l = 1, exactly: the
-// hull's nearest point to the origin lies on one of its triangles (edges and
-// corners are degenerate triangles), unless the origin is inside one of its
-// tetrahedra. A handful of points, so enumerating them all is cheap.
-double min_norm_in_hull(const Eigen::Vector3d& base, const std::vector<Eigen::Vector3d>& points) {
-  std::vector<Eigen::Vector3d> q;
-  q.reserve(points.size());
-  for (const auto& p : points) q.push_back(base + p);
-  const std::size_t n = q.size();
-  const Eigen::Vector3d origin = Eigen::Vector3d::Zero();
+// nearest point of the hull of the p_k to -base lies on one of its triangles
+// (edges and corners are degenerate triangles), unless -base is inside one of
+// its tetrahedra. A handful of points, so enumerating them all is cheap.
+double min_norm_in_hull(const Eigen::Vector3d& base, const std::vector<Eigen::Vector3d>& p) {
+  const Eigen::Vector3d target = -base;
+  const std::size_t n = p.size();
   double best = std::numeric_limits<double>::infinity();
   for (std::size_t i = 0; i < n; ++i)
     for (std::size_t j = i; j < n; ++j)
       for (std::size_t k = j; k < n; ++k)
-        best = std::min(best, geometry::closest_point_on_triangle(origin, q[i], q[j], q[k]).point.norm());
+        best = std::min(best, (geometry::closest_point_on_triangle(target, p[i], p[j], p[k]).point - target).norm());
   for (std::size_t i = 0; i < n; ++i)
     for (std::size_t j = i + 1; j < n; ++j)
       for (std::size_t k = j + 1; k < n; ++k)
         for (std::size_t l = k + 1; l < n; ++l) {
           Eigen::Matrix3d m;
-          m << q[j] - q[i], q[k] - q[i], q[l] - q[i];
+          m << p[j] - p[i], p[k] - p[i], p[l] - p[i];
           const double scale = m.colwise().norm().prod();
           if (!(std::abs(m.determinant()) > 1e-12 * scale)) continue;
-          const Eigen::Vector3d w = m.partialPivLu().solve(-q[i]);
+          const Eigen::Vector3d w = m.partialPivLu().solve(target - p[i]);
           if (w.minCoeff() >= 0 && w.sum() <= 1) return 0;
         }
   return best;
@@ -152,25 +149,22 @@ double min_norm_in_hull(const Eigen::Vector3d& base, const std::vector<Eigen::Ve
 
 double ClothSolver::stationarity(const Eigen::MatrixX3d& x, double radius) const {
   Eigen::MatrixX3d smooth = Eigen::MatrixX3d::Zero(x.rows(), 3), rough = smooth;
-  std::vector<const Energy*> nonsmooth;
-  std::vector<Eigen::Vector3d> probe;
+  std::vector<const Energy*> kinked;
   for (const NamedEnergy& e : energies_) {
-    probe.clear();
-    const bool sampled = x.rows() > 0 && e.energy->vertex_gradient_samples(x, 0, radius, probe);
-    e.energy->add_gradient(x, sampled ? rough : smooth);
-    if (sampled) nonsmooth.push_back(e.energy.get());
+    e.energy->add_gradient(x, e.energy->has_kinks() ? rough : smooth);
+    if (e.energy->has_kinks()) kinked.push_back(e.energy.get());
   }
   double sum = 0;
   std::vector<Eigen::Vector3d> points, samples;
   for (Eigen::Index v = 0; v < x.rows(); ++v) {
     const Eigen::Vector3d base = smooth.row(v).transpose(), own = rough.row(v).transpose();
     double r = (base + own).norm();
-    if (!nonsmooth.empty() && own.squaredNorm() > 0 && r > 0) {
+    if (!kinked.empty() && own.squaredNorm() > 0 && r > 0) {
       // The hull of the non-smooth gradients at v and around it; with several
       // non-smooth energies, their k-th samples summed (a subset of the
       // Minkowski sum, so r can only be overestimated).
       points.assign(1, own);
-      for (const Energy* e : nonsmooth) {
+      for (const Energy* e : kinked) {
         samples.clear();
         e->vertex_gradient_samples(x, static_cast<int>(v), radius, samples);
         if (points.size() < samples.size() + 1) points.resize(samples.size() + 1, Eigen::Vector3d::Zero());

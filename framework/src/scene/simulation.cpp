@@ -119,11 +119,11 @@ SimulationResult Simulation::run(const Eigen::MatrixX3d& target_body, const Simu
   Eigen::MatrixX3d x = garment_start;
   Eigen::MatrixX3d v = Eigen::MatrixX3d::Zero(x.rows(), 3);
   const int total = morph_steps_ + settle_steps_;
-  auto record = [&](int k, bool morphing, const StepReport& r, double residual) {
+  auto record = [&](int k, bool morphing, const StepReport& r, double stationarity) {
     ++result.steps;
     result.iterations += r.iterations;
     result.line_search_failures += r.line_search_failures;
-    if (options.on_step) options.on_step({k, total, morphing, r, residual});
+    if (options.on_step) options.on_step({k, total, morphing, r, stationarity});
   };
   // While the body morphs each step only has to follow it approximately; the
   // settling steps get the full Newton budget.
@@ -152,12 +152,13 @@ SimulationResult Simulation::run(const Eigen::MatrixX3d& target_body, const Simu
     result.at_rest = r.max_displacement <= solver.settings().rest_displacement;
     record(morph_steps_ + k, false, r, result.stationarity);
   }
-  result.residual = solver.static_residual(x);
   // At rest counts only near equilibrium: a stall with large unbalanced forces is not a drape.
   result.converged = result.stationarity <= settle_tolerance ||
                      (result.at_rest && result.stationarity <= solver.settings().kink_tolerance);
   result.total_energy = solver.energy(x, &result.energies);
-  result.vertex_force = solver.static_gradient(x).rowwise().norm();
+  const Eigen::MatrixX3d gradient = solver.static_gradient(x);
+  result.residual = gradient.norm() / solver.force_scale();
+  result.vertex_force = gradient.rowwise().norm();
   result.garment = x;
   result.body = target_body;
   result.linear_solver = solver.linear_solver();

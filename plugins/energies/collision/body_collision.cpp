@@ -38,17 +38,16 @@ void BodyCollision::bind(const EnergyContext& context) {
     std::lock_guard<std::mutex> lock(cache_.mutex);
     cache_.contacts.reset();
   }
-  if (settings_.smoothing > 0 && !dynamic_cast<const geometry::BodySurface*>(body_))
+  if (settings_.smoothing > 0 && !surface_)
     throw ConfigError("collision: smoothing needs the body's vertices and normals (a geometry::BodySurface); this body "
                       "only answers closest-point queries: set smoothing to 0");
 }
 
-std::vector<Contact> BodyCollision::contacts(const Eigen::MatrixX3d& x, bool with_hessian) const {
-  if (!(settings_.smoothing > 0)) return body_contacts(*body_, x, with_hessian);
-  const auto& surface = static_cast<const geometry::BodySurface&>(*body_);
+std::vector<Contact> BodyCollision::contacts(const Eigen::MatrixX3d& x) const {
+  if (!(settings_.smoothing > 0)) return body_contacts(*body_, x, true);
   std::vector<char> covered;
-  std::vector<Contact> out = smooth_contacts(surface.vertices(), surface.vertex_normals(), x, settings_.smoothing,
-                                             with_hessian, covered);
+  std::vector<Contact> out =
+      smooth_contacts(surface_->vertices(), surface_->vertex_normals(), x, settings_.smoothing, true, covered);
   // The exact closest point only where no body vertex was within R.
   std::vector<Eigen::Index> rest;
   for (std::size_t v = 0; v < covered.size(); ++v)
@@ -56,24 +55,29 @@ std::vector<Contact> BodyCollision::contacts(const Eigen::MatrixX3d& x, bool wit
   if (rest.empty()) return out;
   Eigen::MatrixX3d far(static_cast<Eigen::Index>(rest.size()), 3);
   for (std::size_t i = 0; i < rest.size(); ++i) far.row(static_cast<Eigen::Index>(i)) = x.row(rest[i]);
-  const std::vector<Contact> exact = body_contacts(*body_, far, with_hessian);
+  const std::vector<Contact> exact = body_contacts(*body_, far, true);
   for (std::size_t i = 0; i < rest.size(); ++i) out[static_cast<std::size_t>(rest[i])] = exact[i];
   return out;
 }
 
 std::shared_ptr<const std::vector<Contact>> BodyCollision::cached_contacts(const Eigen::MatrixX3d& x) const {
-  if (!surface_) return std::make_shared<const std::vector<Contact>>(contacts(x, true));
+  if (!surface_) return std::make_shared<const std::vector<Contact>>(contacts(x));
   {
     std::lock_guard<std::mutex> lock(cache_.mutex);
     if (cache_.contacts && cache_.revision == surface_->revision() && cache_.x.rows() == x.rows() && cache_.x == x)
       return cache_.contacts;
   }
-  auto fresh = std::make_shared<const std::vector<Contact>>(contacts(x, true));
+  auto fresh = std::make_shared<const std::vector<Contact>>(contacts(x));
   std::lock_guard<std::mutex> lock(cache_.mutex);
   cache_.x = x;
   cache_.revision = surface_->revision();
   cache_.contacts = fresh;
   return fresh;
+}
+
+Eigen::Vector3d BodyCollision::push_gradient(Eigen::Index v, double delta, const Eigen::Vector3d& normal) const {
+  // d delta / dx = -n: the energy falls as the vertex moves out.
+  return -settings_.stiffness * area_[v] * penalty_.slope(delta) * normal;
 }
 
 void BodyCollision::check(const Eigen::MatrixX3d& x) const {
@@ -106,10 +110,8 @@ double BodyCollision::add_gradient(const Eigen::MatrixX3d& x, Eigen::MatrixX3d& 
     const auto v = static_cast<Eigen::Index>(i);
     const double delta = penalty_.delta(contacts[i].distance);
     if (delta <= 0) continue;
-    const double c = settings_.stiffness * area_[v];
-    energy += c * penalty_.value(delta);
-    // d delta / dx = -n: the energy falls as the vertex moves out.
-    g.row(v) -= c * penalty_.slope(delta) * contacts[i].normal.transpose();
+    energy += settings_.stiffness * area_[v] * penalty_.value(delta);
+    g.row(v) += push_gradient(v, delta, contacts[i].normal).transpose();
   }
   return energy;
 }
@@ -143,25 +145,24 @@ void BodyCollision::add_hessian(const Eigen::MatrixX3d& x, Triplets& h, bool pro
   }
 }
 
-}  // namespace drape::collision
 
-namespace drape::collision {
-
-bool BodyCollision::vertex_gradient_samples(const Eigen::MatrixX3d& x, int vertex, double radius,
+void BodyCollision::vertex_gradient_samples(const Eigen::MatrixX3d& x, int vertex, double radius,
                                             std::vector<Eigen::Vector3d>& samples) const {
-  if (settings_.smoothing > 0) return false;
-  check(x);
-  if (vertex < 0 || vertex >= x.rows()) throw Error("collision: vertex " + std::to_string(vertex) + " out of range");
-  const double c = settings_.stiffness * area_[vertex];
+  if (!has_kinks()) return;
+  // One vertex's check, not check(x): the solver asks once per contact vertex.
+  if (!body_) throw Error("collision: bind() was not called");
+  if (x.rows() != area_.size() || vertex < 0 || vertex >= x.rows())
+    throw Error("collision: vertex " + std::to_string(vertex) + " of " + std::to_string(x.rows()) +
+                " given, the bound garment has " + std::to_string(area_.size()));
+  if (!x.row(vertex).allFinite()) throw Error("collision: garment vertex " + std::to_string(vertex) + " is not finite");
   for (int axis = 0; axis < 3; ++axis)
     for (const double sign : {-1.0, 1.0}) {
       Eigen::Vector3d p = x.row(vertex).transpose();
       p[axis] += sign * radius;
       const BodyQuery::Hit hit = body_->closest(p);
       const double delta = penalty_.delta(hit.signed_distance);
-      samples.push_back(delta > 0 ? Eigen::Vector3d(-c * penalty_.slope(delta) * hit.normal) : Eigen::Vector3d::Zero());
+      samples.push_back(delta > 0 ? push_gradient(vertex, delta, hit.normal) : Eigen::Vector3d::Zero());
     }
-  return true;
 }
 
 }  // namespace drape::collision

@@ -87,17 +87,20 @@ class BodyCollision final : public Energy {
   // change when vertices enter or leave contact, so the solver can keep its
   // symbolic factorisation across iterations.
   void add_hessian(const Eigen::MatrixX3d& x, Triplets& h, bool project_psd = true) const override;
-  // The exact distance's push at the six points `radius` away from the vertex
-  // (false with smoothing: that distance is C2, there is no kink to sample).
-  bool vertex_gradient_samples(const Eigen::MatrixX3d& x, int vertex, double radius,
+  // The exact distance has kinks; the smooth one (smoothing > 0) is C2.
+  bool has_kinks() const override { return !(settings_.smoothing > 0); }
+  // The exact distance's push at the six points `radius` away from the vertex.
+  void vertex_gradient_samples(const Eigen::MatrixX3d& x, int vertex, double radius,
                                std::vector<Eigen::Vector3d>& samples) const override;
 
  private:
   void check(const Eigen::MatrixX3d& x) const;
-  // The exact contacts, or the smooth ones when settings_.smoothing > 0.
-  std::vector<Contact> contacts(const Eigen::MatrixX3d& x, bool with_hessian) const;
-  // The contacts (with distance Hessians) of x, from the cache when x and the body are unchanged.
+  // The exact contacts, or the smooth ones when settings_.smoothing > 0, with distance Hessians.
+  std::vector<Contact> contacts(const Eigen::MatrixX3d& x) const;
+  // The contacts of x, from the cache when x and the body are unchanged.
   std::shared_ptr<const std::vector<Contact>> cached_contacts(const Eigen::MatrixX3d& x) const;
+  // The gradient of vertex v's penalty at penetration delta (> 0) into the margin along `normal`.
+  Eigen::Vector3d push_gradient(Eigen::Index v, double delta, const Eigen::Vector3d& normal) const;
 
   CollisionSettings settings_;
   CubicPenalty penalty_;
