@@ -26,4 +26,8 @@ struct RegisterBench {
   explicit RegisterBench(Bench b) { benches().push_back(std::move(b)); }
 };
 
+// The benches that time a trained model (--model FILE) or a graph with fresh
+// weights (--graph FILE) take exactly one of the two (UsageError otherwise).
+void require_model_or_graph(const po::variables_map& vm);
+
 }  // namespace drape::cli

@@ -1,4 +1,4 @@
-// `drape bench infer --model model.h5` (or --graph g.yaml with fresh weights):
+// `drape bench infer --model model.h5` (or --graph g.yaml with fresh weights, Model::untrained):
 // milliseconds per body of one forward pass on one core, best of N, with the
 // graph's multiply-adds per sample (Node::flops_per_sample) and the rate.
 #include "bench.hpp"
@@ -29,41 +29,23 @@ int run(const std::vector<std::string>& args) {
   po::variables_map vm;
   const std::string usage = "drape bench infer (--model model.h5 | --graph g.yaml [--resolution default]) [--repeats 20]";
   if (!parse(usage, args, opts, {}, vm)) return 0;
-  if (vm.count("model") == vm.count("graph")) throw UsageError("give exactly one of --model FILE and --graph FILE");
+  require_model_or_graph(vm);
   const int repeats = std::max(1, vm["repeats"].as<int>()), batch_size = std::max(1, vm["batch"].as<int>());
 
   Registry& registry = Registry::load_default(plugin_path(vm));
-  std::unique_ptr<Model> model;
-  std::shared_ptr<const Assets> assets;
-  AssetsSpec spec;
-  std::unique_ptr<Graph> fresh;
-  std::string what;
-  if (vm.count("model")) {
-    what = vm["model"].as<std::string>();
-    model = std::make_unique<Model>(Model::load(registry, what));
-    assets = model->shared_assets();
-    spec = model->assets_spec();
-  } else {
-    what = vm["graph"].as<std::string>() + " (fresh weights)";
-    spec.garment_params["resolution"] = vm["resolution"].as<std::string>();
-    spec.eigen_k = vm["k"].as<int>();
-    assets = build_assets(registry, spec);
-  }
-  const auto body_model = make_body_model(registry, spec);
-  if (!model) {
-    const GraphSpec graph_spec = parse_graph_file(vm["graph"].as<std::string>());
-    check_graph_inputs(graph_spec);
-    GraphOptions options;
-    options.dims = graph_dims(*assets, static_cast<int>(body_model->mean_shape().size()));
-    options.assets = assets.get();
-    fresh = std::make_unique<Graph>(graph_spec, registry, options);
-  }
-  Graph& graph = model ? model->graph() : *fresh;
-  const std::string output = model ? model->output() : garment_output(graph);
+  AssetsSpec fresh_assets;  // with --graph: the default template at the asked resolution
+  fresh_assets.garment_params["resolution"] = vm["resolution"].as<std::string>();
+  fresh_assets.eigen_k = vm["k"].as<int>();
+  Model model = vm.count("model")
+                    ? Model::load(registry, vm["model"].as<std::string>())
+                    : Model::untrained(registry, parse_graph_file(vm["graph"].as<std::string>()), fresh_assets);
+  Graph& graph = model.graph();
+  const Assets& assets = model.assets();
+  const std::string& output = model.output();
 
   BodyRequest request;
   request.bmi = vm["bmi"].as<double>();
-  const SampleBatch batch = body_batch(*body_model, request, batch_size);
+  const SampleBatch batch = body_batch(model.body_model(), request, batch_size);
   const auto inputs = graph_inputs(graph, batch, false);
 
   const OmpThreadsScope one_core(1);
@@ -84,9 +66,9 @@ int run(const std::vector<std::string>& args) {
   const double macs = graph.flops_per_sample();
   std::size_t weights = 0;
   for (const auto& [name, w] : graph.weights()) weights += w->value.size();
-  std::printf("## Inference on one core: %s\n\n", what.c_str());
+  std::printf("## Inference on one core: %s\n\n", model.file().string().c_str());
   std::printf("garment %d vertices, body %d vertices, output '%s', %zu learnable weights, batch %d, thin-product kernel %s\n\n",
-              assets->garment->mesh.num_vertices(), assets->body.num_vertices(), output.c_str(), weights, batch_size,
+              assets.garment->mesh.num_vertices(), assets.body.num_vertices(), output.c_str(), weights, batch_size,
               nn::dot_rows_version());
   std::printf("| ms per body (best of %d) | median | multiply-adds per body | GFLOP/s (2 per multiply-add) |\n|---|---|---|---|\n",
               repeats);

@@ -29,7 +29,7 @@ int run(const std::vector<std::string>& args) {
   const std::string usage =
       "drape bench optimize (--graph graphs/drape.yaml | --model model.h5) [--scene graphs/scenes/tshirt.yaml] [--iterations 100]";
   if (!parse(usage, args, opts, {}, vm)) return 0;
-  if (vm.count("model") == vm.count("graph")) throw UsageError("give exactly one of --model FILE and --graph FILE");
+  require_model_or_graph(vm);
   Registry& registry = Registry::load_default(plugin_path(vm));
   const Scene scene = load_scene(vm["scene"].as<std::string>());
   const Simulation simulation(registry, scene);

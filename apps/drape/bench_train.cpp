@@ -45,7 +45,7 @@ int run(const std::vector<std::string>& args) {
   const std::string usage =
       "drape bench train (--model model.h5 | --graph g.yaml) --data data.h5 [--batch 8] [--threads 1] [--steps 10]";
   if (!parse(usage, args, opts, {}, vm)) return 0;
-  if (vm.count("model") == vm.count("graph")) throw UsageError("give exactly one of --model FILE and --graph FILE");
+  require_model_or_graph(vm);
   if (!vm.count("data")) throw UsageError("--data FILE is required");
   const int batch_size = std::max(1, vm["batch"].as<int>()), steps = std::max(1, vm["steps"].as<int>());
   int threads = vm["threads"].as<int>();

@@ -14,6 +14,10 @@ std::vector<Bench>& benches() {
   return list;
 }
 
+void require_model_or_graph(const po::variables_map& vm) {
+  if (vm.count("model") == vm.count("graph")) throw UsageError("give exactly one of --model FILE and --graph FILE");
+}
+
 namespace {
 
 const char* kUsage = "drape bench <name> [options]   (drape bench <name> --help for its options)";
