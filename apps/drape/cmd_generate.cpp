@@ -93,9 +93,7 @@ int run(const std::vector<std::string>& args) {
   }
 
   // The size flag of a graph trained on several sizes (garment_size_flag).
-  const auto size_param = scene.garment_params.find("size");
-  const double garment_size =
-      garment_size_flag(size_param != scene.garment_params.end() ? size_param->second.node.as<std::string>() : "regular");
+  const double garment_size = garment_size_flag(scene);
 
   // This shard's global sample indices: a contiguous block.
   const std::size_t first = total * shard.index / shard.count, last = total * (shard.index + 1) / shard.count;

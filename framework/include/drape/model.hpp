@@ -78,6 +78,8 @@ SampleBatch sample_batch(const DatasetSample& sample, const DatasetLayout& layou
 // The garment_size input of a size name: 0 regular, 1 small (the seed's flag),
 // then 2 large, 3 xlarge; ConfigError for another name.
 float garment_size_flag(const std::string& size);
+// The same for the garment a scene names (its `size` parameter; regular when absent).
+float garment_size_flag(const Scene& scene);
 
 class Model {
  public:

@@ -3,8 +3,7 @@
 
 #include <drape/atomic_file.hpp>
 #include <drape/model.hpp>
-
-#include <yaml-cpp/yaml.h>
+#include <drape/scene.hpp>
 
 #include <algorithm>
 #include <optional>
@@ -22,15 +21,9 @@ constexpr const char* kGarmentSize = "garment_size";
 // The size flag of a shard made before drape generate recorded garment_size:
 // every sample of it has the garment of its stored (resolved) scene.
 double garment_size_from_scene(const fs::path& shard, const std::string& scene_text) {
-  std::string size = "regular";
+  const Scene scene = parse_scene(scene_text, shard.string() + " (its stored scene)");
   try {
-    const YAML::Node params = YAML::Load(scene_text)["garment"]["params"];
-    if (params && params["size"]) size = params["size"].as<std::string>();
-  } catch (const YAML::Exception& e) {
-    throw ConfigError(shard.string() + ": its stored scene does not parse (" + e.what() + ")");
-  }
-  try {
-    return garment_size_flag(size);
+    return garment_size_flag(scene);
   } catch (const ConfigError& e) {
     throw ConfigError(shard.string() + ": " + e.what());
   }

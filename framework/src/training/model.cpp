@@ -180,10 +180,17 @@ Model Model::build(const Registry& registry, const GraphSpec& graph, const Asset
   return m;
 }
 
-bool Model::needs_input(const std::string& name) const {
-  const auto names = graph_->input_names();
-  return std::find(names.begin(), names.end(), name) != names.end();
+namespace {
+
+// Whether the graph has an input of this name (what a batch must then carry).
+bool takes(const Graph& graph, const std::string& input) {
+  const auto inputs = graph.input_names();
+  return std::find(inputs.begin(), inputs.end(), input) != inputs.end();
 }
+
+}  // namespace
+
+bool Model::needs_input(const std::string& name) const { return takes(*graph_, name); }
 
 float garment_size_flag(const std::string& size) {
   if (size == "regular") return 0.0f;
@@ -193,12 +200,12 @@ float garment_size_flag(const std::string& size) {
   throw ConfigError("garment size '" + size + "': the size flag knows regular (0), small (1), large (2) and xlarge (3)");
 }
 
-namespace {
-
-bool takes(const Graph& graph, const char* input) {
-  const auto inputs = graph.input_names();
-  return std::find(inputs.begin(), inputs.end(), input) != inputs.end();
+float garment_size_flag(const Scene& scene) {
+  const auto size = scene.garment_params.find("size");
+  return garment_size_flag(size != scene.garment_params.end() ? size->second.node.as<std::string>() : "regular");
 }
+
+namespace {
 
 void require_garment_size(const DatasetLayout& layout) {
   if (!layout.has_stat("garment_size"))

@@ -31,12 +31,19 @@ PatternSpec PatternSpec::scaled(double s) const {
   return g;
 }
 
+std::vector<std::string> size_names() {
+  std::vector<std::string> names;
+  for (const SizeGrade& g : kSizeGrades) names.emplace_back(g.name);
+  return names;
+}
+
 double size_grade(const std::string& size) {
-  if (size == "regular") return 1.0;
-  if (size == "small") return 0.9;
-  if (size == "large") return 1.12;
-  if (size == "xlarge") return 1.25;
-  throw ConfigError("tshirt: unknown size '" + size + "'; known: small, regular, large, xlarge");
+  std::string known;
+  for (const SizeGrade& g : kSizeGrades) {
+    if (size == g.name) return g.scale;
+    known += (known.empty() ? "" : ", ") + std::string(g.name);
+  }
+  throw ConfigError("tshirt: unknown size '" + size + "'; known: " + known);
 }
 
 PatternPoints pattern_points(const PatternSpec& spec) {

@@ -5,9 +5,8 @@
 // a shallower neckline, so every seam piece is the same polyline on both panels.
 #include <drape/geometry/polygon2d.hpp>
 
-#include <vector>
-
 #include <string>
+#include <vector>
 
 namespace drape::tshirt {
 
@@ -34,7 +33,13 @@ struct PatternSpec {
 // lets one network serve several. The steps follow a common tee grading of
 // 4-6 cm of chest per size: regular 1.08 m around, large 1.21, xlarge 1.35 --
 // the last fits the BMI 60-65 bodies the regular cannot (docs/garments.md).
-double size_grade(const std::string& size);
+struct SizeGrade {
+  const char* name;
+  double scale;
+};
+inline constexpr SizeGrade kSizeGrades[] = {{"small", 0.9}, {"regular", 1.0}, {"large", 1.12}, {"xlarge", 1.25}};
+std::vector<std::string> size_names();
+double size_grade(const std::string& size);  // ConfigError naming the known sizes
 
 // The corners of the right half (u >= 0); the left half is the mirror image.
 struct PatternPoints {

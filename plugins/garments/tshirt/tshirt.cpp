@@ -44,8 +44,9 @@ PluginList plugins() {
   d.name = "tshirt";
   d.doc = "Procedural T-shirt: two sewn T-shaped panels with half-sleeves, UV in meters, optional front print.";
   d.params = {
-      {"size", ParamType::String, "regular", "pattern size: the regular pattern graded in width and length by small 0.9, large 1.12, xlarge 1.25 (same topology)", {}, {},
-       {"regular", "small", "large", "xlarge"}},
+      {"size", ParamType::String, "regular",
+       "pattern size: the regular pattern graded in width and length by small 0.9, large 1.12, xlarge 1.25 (same topology)",
+       {}, {}, tshirt::size_names()},
       {"resolution", ParamType::String, "default", "default (~3.5k vertices), coarse (~1k) or a vertex count"},
       {"print", ParamType::Bool, "false", "front print region with its own material (id 1)"},
       {"print_polygon", ParamType::FloatList, "[0.35, 0.5, 0.65, 0.5, 0.65, 0.78, 0.35, 0.78]",
