@@ -6,12 +6,12 @@ namespace drape::cli {
 
 namespace {
 
-// A model trained on several garment sizes takes the size as an input (0 regular, 1 small).
+// A model trained on several garment sizes takes the size as an input (garment_size_flag).
 void add_garment_size(const Model& model, const po::variables_map& vm, SampleBatch& batch) {
   if (!model.needs_input("garment_size")) return;
   if (!vm.count("garment-size"))
     throw ConfigError("this model was trained on several garment sizes (input garment_size): give --garment-size "
-                      "regular or small");
+                      "small, regular, large or xlarge");
   batch.garment_size = Tensor(1, 1, 1);
   batch.garment_size(0, 0, 0) = garment_size_flag(vm["garment-size"].as<std::string>());
 }
