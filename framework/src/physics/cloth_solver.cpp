@@ -35,6 +35,13 @@ Eigen::MatrixX3d per_vertex(const Eigen::VectorXd& v) {
 
 bool finite(const Eigen::MatrixX3d& m) { return m.allFinite(); }
 
+// Scales a step so that no vertex moves farther than `limit` (a long step
+// could carry cloth through a thin limb).
+void cap_longest_move(Eigen::MatrixX3d& step, double limit) {
+  const double longest = step.rowwise().norm().maxCoeff();
+  if (longest > limit) step *= limit / longest;
+}
+
 }  // namespace
 
 struct ClothSolver::Impl {
@@ -151,8 +158,9 @@ double ClothSolver::stationarity(const Eigen::MatrixX3d& x, double radius) const
   Eigen::MatrixX3d smooth = Eigen::MatrixX3d::Zero(x.rows(), 3), rough = smooth;
   std::vector<const Energy*> kinked;
   for (const NamedEnergy& e : energies_) {
-    e.energy->add_gradient(x, e.energy->has_kinks() ? rough : smooth);
-    if (e.energy->has_kinks()) kinked.push_back(e.energy.get());
+    const bool kinks = e.energy->has_kinks();
+    e.energy->add_gradient(x, kinks ? rough : smooth);
+    if (kinks) kinked.push_back(e.energy.get());
   }
   double sum = 0;
   std::vector<Eigen::Vector3d> points, samples;
@@ -259,9 +267,7 @@ StepReport ClothSolver::step(Eigen::MatrixX3d& x, Eigen::MatrixX3d& v) {
     timings_.linear_solves += since(t);
     if (!finite(d)) throw Error("solver: the Newton direction is not finite");
 
-    // Cap the largest vertex move: a long step could carry cloth through a thin limb.
-    const double longest = d.rowwise().norm().maxCoeff();
-    if (longest > settings_.max_displacement) d *= settings_.max_displacement / longest;
+    cap_longest_move(d, settings_.max_displacement);
 
     // Armijo backtracking along d; at a contact kink (the closest body face
     // switches across a crease) the Newton model can point where Phi does not
@@ -287,8 +293,7 @@ StepReport ClothSolver::step(Eigen::MatrixX3d& x, Eigen::MatrixX3d& v) {
     if (!accepted) {
       const Eigen::VectorXd diag = impl_->hessian.diagonal();
       Eigen::MatrixX3d jacobi = -g.cwiseQuotient(per_vertex(diag));
-      const double longest_jacobi = jacobi.rowwise().norm().maxCoeff();
-      if (longest_jacobi > settings_.max_displacement) jacobi *= settings_.max_displacement / longest_jacobi;
+      cap_longest_move(jacobi, settings_.max_displacement);
       accepted = jacobi.allFinite() && line_search(jacobi);
     }
     timings_.line_search += since(t);
