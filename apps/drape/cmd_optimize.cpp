@@ -54,7 +54,8 @@ int run(const std::vector<std::string>& args) {
       "body", po::value<std::string>(), "body mesh in the model's body topology")(
       "bmi", po::value<double>(), "or make the body with the model's body plugin: target BMI")(
       "height", po::value<double>(), "with --bmi: height in m")("sex", po::value<double>(), "with --bmi: 0 female ... 1 male")(
-      "garment-size", po::value<std::string>(), "for a model trained on several sizes: small, regular, large or xlarge")(
+      "garment-size", po::value<std::string>(),
+      ("for a model trained on several sizes: " + garment_size_choices()).c_str())(
       "iters", po::value<int>()->default_value(100), "Adam iterations on the network's weights")(
       "lr", po::value<double>()->default_value(1e-4), "Adam's learning rate")(
       "out", po::value<std::string>(), "optimised garment mesh to write")(

@@ -23,7 +23,8 @@ int run(const std::vector<std::string>& args) {
       "bmi", po::value<double>(), "make the body with the model's body plugin instead: target BMI")(
       "height", po::value<double>(), "with --bmi: height in m (default 1.75)")(
       "sex", po::value<double>(), "with --bmi: 0 female ... 1 male (default 1)")(
-      "garment-size", po::value<std::string>(), "for a model trained on several sizes: small, regular, large or xlarge")(
+      "garment-size", po::value<std::string>(),
+      ("for a model trained on several sizes: " + garment_size_choices()).c_str())(
       "out", po::value<std::string>(), "garment mesh to write (.obj, .ply, .gltf, .glb): the template's faces and UVs")(
       "body-out", po::value<std::string>(), "also write the body mesh")(
       "svg", po::value<std::string>(), "also draw the drape, the garment coloured by its distance to the body (.svg: front view; .html: a 3D viewer)");

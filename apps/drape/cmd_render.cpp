@@ -48,7 +48,8 @@ int run(const std::vector<std::string>& args) {
       "bmi", po::value<double>(), "or make the body: target BMI")(
       "height", po::value<double>(), "with --bmi: height in m (default 1.75)")(
       "sex", po::value<double>(), "with --bmi: 0 female ... 1 male (default 1)")(
-      "garment-size", po::value<std::string>(), "for a model trained on several sizes: small, regular, large or xlarge")(
+      "garment-size", po::value<std::string>(),
+      ("for a model trained on several sizes: " + garment_size_choices()).c_str())(
       "data", po::value<std::string>(), "or take body (and the simulated garment, for --colour error) from a dataset")(
       "sample", po::value<std::size_t>()->default_value(0), "with --data: the sample index")(
       "colour", po::value<std::string>()->default_value("distance"),

@@ -10,8 +10,8 @@ namespace {
 void add_garment_size(const Model& model, const po::variables_map& vm, SampleBatch& batch) {
   if (!model.needs_input("garment_size")) return;
   if (!vm.count("garment-size"))
-    throw ConfigError("this model was trained on several garment sizes (input garment_size): give --garment-size "
-                      "small, regular, large or xlarge");
+    throw ConfigError("this model was trained on several garment sizes (input garment_size): give --garment-size, one of " +
+                      garment_size_choices());
   batch.garment_size = Tensor(1, 1, 1);
   batch.garment_size(0, 0, 0) = garment_size_flag(vm["garment-size"].as<std::string>());
 }

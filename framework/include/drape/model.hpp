@@ -80,6 +80,8 @@ SampleBatch sample_batch(const DatasetSample& sample, const DatasetLayout& layou
 float garment_size_flag(const std::string& size);
 // The same for the garment a scene names (its `size` parameter; regular when absent).
 float garment_size_flag(const Scene& scene);
+// "regular (0), small (1), large (2) or xlarge (3)": the sizes the flag knows, for messages.
+std::string garment_size_choices();
 
 class Model {
  public:

@@ -6,6 +6,7 @@
 #include <yaml-cpp/yaml.h>
 
 #include <algorithm>
+#include <iterator>
 
 namespace fs = std::filesystem;
 
@@ -192,12 +193,30 @@ bool takes(const Graph& graph, const std::string& input) {
 
 bool Model::needs_input(const std::string& name) const { return takes(*graph_, name); }
 
+namespace {
+
+// The flag of each size: the seed's 0 regular, 1 small, then the larger grades.
+struct SizeFlag {
+  const char* name;
+  float flag;
+};
+constexpr SizeFlag kSizeFlags[] = {{"regular", 0.0f}, {"small", 1.0f}, {"large", 2.0f}, {"xlarge", 3.0f}};
+
+}  // namespace
+
 float garment_size_flag(const std::string& size) {
-  if (size == "regular") return 0.0f;
-  if (size == "small") return 1.0f;
-  if (size == "large") return 2.0f;
-  if (size == "xlarge") return 3.0f;
-  throw ConfigError("garment size '" + size + "': the size flag knows regular (0), small (1), large (2) and xlarge (3)");
+  for (const SizeFlag& s : kSizeFlags)
+    if (size == s.name) return s.flag;
+  throw ConfigError("garment size '" + size + "': the size flag knows " + garment_size_choices());
+}
+
+std::string garment_size_choices() {
+  std::string text;
+  const std::size_t n = std::size(kSizeFlags);
+  for (std::size_t i = 0; i < n; ++i)
+    text += (i == 0 ? "" : i + 1 == n ? " or " : ", ") + std::string(kSizeFlags[i].name) + " (" +
+            std::to_string(static_cast<int>(kSizeFlags[i].flag)) + ")";
+  return text;
 }
 
 float garment_size_flag(const Scene& scene) {
