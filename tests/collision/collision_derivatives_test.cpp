@@ -284,7 +284,6 @@ namespace {
 // y in [0, 1], z in [-1, 1], on a fine grid, faces oriented into the trough.
 geometry::BodySurface crease_body() {
   const double s = 0.05;
-  // Floor y = 0 for x in [0, 1], wall x = 0 for y in [0, 1], z in [-1, 1]; a fine grid of vertices.
   std::vector<Eigen::Vector3d> v;
   std::vector<Eigen::Vector3i> f;
   const int n = 20;
