@@ -10,6 +10,7 @@
 #include <algorithm>
 #include <cstdio>
 #include <iostream>
+#include <numeric>
 
 namespace drape::cli {
 namespace {
@@ -85,7 +86,7 @@ int run(const std::vector<std::string>& args) {
   if (verbose) {
     // Where the drape is out of balance: the vertices with the largest unbalanced forces.
     std::vector<int> order(r.vertex_force.size());
-    for (int i = 0; i < static_cast<int>(order.size()); ++i) order[i] = i;
+    std::iota(order.begin(), order.end(), 0);
     const int shown = std::min<int>(8, static_cast<int>(order.size()));
     std::partial_sort(order.begin(), order.begin() + shown, order.end(),
                       [&](int a, int b) { return r.vertex_force[a] > r.vertex_force[b]; });
