@@ -121,6 +121,44 @@ TEST_CASE("collision sees a body moved by BodySurface::update at the next call",
   CHECK(e->value(x) == 0.0);
 }
 
+TEST_CASE("vertices skipped as surely beyond the margin change nothing: value, gradient and Hessian as a fresh energy's",
+          "[collision]") {
+  // One energy follows a trajectory (and so keeps its record of where each
+  // vertex was and how far out); at every point it must answer bit for bit as
+  // an energy that has never seen the garment. The trajectory wanders in and
+  // out of the margin and the body, in small steps and large ones, and the
+  // body moves half way.
+  const auto garment = grid_garment(6, 0.03);
+  geometry::BodySurface body = sphere_body(3, 0.2);
+  const auto followed = collision_energy("{margin: 0.01}", *garment, &body);
+  Eigen::MatrixX3d x = points_at_distances(body, Eigen::Vector3d::Zero(), 36, -0.02, 0.06, 9);
+  std::mt19937_64 rng(17);
+  std::normal_distribution<double> step;
+  int inside_margin = 0, beyond = 0;
+  for (int it = 0; it < 40; ++it) {
+    if (it == 20) body.update(geometry::icosphere(3, 0.2).vertices.rowwise() + Eigen::RowVector3d(0.01, 0.0, -0.005));
+    const auto fresh = collision_energy("{margin: 0.01}", *garment, &body);
+    Eigen::MatrixX3d g = Eigen::MatrixX3d::Zero(x.rows(), 3), g_fresh = g;
+    const double value = followed->add_gradient(x, g);
+    CHECK(value == fresh->add_gradient(x, g_fresh));
+    CHECK(followed->value(x) == fresh->value(x));
+    CHECK(g == g_fresh);
+    Triplets h, h_fresh;
+    followed->add_hessian(x, h, true);
+    fresh->add_hessian(x, h_fresh, true);
+    REQUIRE(h.size() == h_fresh.size());
+    for (std::size_t k = 0; k < h.size(); ++k) CHECK(h[k].value() == h_fresh[k].value());
+    const Eigen::VectorXd d = body.signed_distances(x);
+    inside_margin += static_cast<int>((d.array() < 0.01).count());
+    beyond += static_cast<int>((d.array() >= 0.01).count());
+    const double scale = it % 5 == 4 ? 0.02 : 0.002;
+    for (Eigen::Index v = 0; v < x.rows(); ++v) x.row(v) += scale * Eigen::RowVector3d(step(rng), step(rng), step(rng));
+  }
+  // Both kinds were met, so both paths were compared.
+  CHECK(inside_margin > 100);
+  CHECK(beyond > 100);
+}
+
 namespace {
 
 // A body known only through BodyQuery::closest (not a BodySurface).

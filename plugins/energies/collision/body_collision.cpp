@@ -37,6 +37,8 @@ void BodyCollision::bind(const EnergyContext& context) {
   {
     std::lock_guard<std::mutex> lock(cache_.mutex);
     cache_.contacts.reset();
+    cache_.faces.clear();
+    cache_.reference.resize(0, 3);
   }
   if (settings_.smoothing > 0 && !surface_)
     throw ConfigError("collision: smoothing needs the body's vertices and normals (a geometry::BodySurface); this body "
@@ -44,7 +46,7 @@ void BodyCollision::bind(const EnergyContext& context) {
 }
 
 std::vector<Contact> BodyCollision::contacts(const Eigen::MatrixX3d& x) const {
-  if (!(settings_.smoothing > 0)) return body_contacts(*body_, x, true);
+  if (!(settings_.smoothing > 0)) return surface_ ? exact_contacts(x) : body_contacts(*body_, x, true);
   std::vector<char> covered;
   std::vector<Contact> out =
       smooth_contacts(surface_->vertices(), surface_->vertex_normals(), x, settings_.smoothing, true, covered);
@@ -57,6 +59,64 @@ std::vector<Contact> BodyCollision::contacts(const Eigen::MatrixX3d& x) const {
   for (std::size_t i = 0; i < rest.size(); ++i) far.row(static_cast<Eigen::Index>(i)) = x.row(rest[i]);
   const std::vector<Contact> exact = body_contacts(*body_, far, true);
   for (std::size_t i = 0; i < rest.size(); ++i) out[static_cast<std::size_t>(rest[i])] = exact[i];
+  return out;
+}
+
+// Most of a drape's vertices hang beyond the margin, where the penalty and all
+// its derivatives are zero, and the search for their closest body point is the
+// slowest (the ball it must clear is large). The signed distance is
+// 1-Lipschitz and changes sign only through zero on a closed body, so a vertex
+// that was d_ref outside and has moved m since, on the same body, is still at
+// least d_ref - m outside: beyond the margin when d_ref - m > margin. Such a
+// vertex gets that lower bound as its distance (a zero penalty, exactly what
+// the full query gives) and is not searched; the others are searched from
+// their last closest face. Between time steps of a morph the body changes and
+// every vertex is searched again.
+std::vector<Contact> BodyCollision::exact_contacts(const Eigen::MatrixX3d& x) const {
+  const Eigen::Index n = x.rows();
+  Eigen::MatrixX3d reference;
+  Eigen::VectorXd reference_distance;
+  std::vector<int> faces;
+  bool bounded = false;
+  {
+    std::lock_guard<std::mutex> lock(cache_.mutex);
+    bounded = cache_.reference.rows() == n && cache_.reference_revision == surface_->revision();
+    if (bounded) reference = cache_.reference, reference_distance = cache_.reference_distance;
+    faces = cache_.faces;
+  }
+  if (!bounded) reference = x, reference_distance = Eigen::VectorXd::Zero(n);
+  faces.resize(static_cast<std::size_t>(n), -1);
+
+  std::vector<Contact> out(static_cast<std::size_t>(n));
+  std::vector<Eigen::Index> search;
+  search.reserve(static_cast<std::size_t>(n));
+  for (Eigen::Index v = 0; v < n; ++v) {
+    const double lower = reference_distance[v] - (x.row(v) - reference.row(v)).norm();
+    if (bounded && lower > settings_.margin) {
+      out[static_cast<std::size_t>(v)].distance = lower;
+    } else {
+      search.push_back(v);
+    }
+  }
+  Eigen::MatrixX3d points(static_cast<Eigen::Index>(search.size()), 3);
+  std::vector<int> start(search.size());
+  for (std::size_t i = 0; i < search.size(); ++i) {
+    points.row(static_cast<Eigen::Index>(i)) = x.row(search[i]);
+    start[i] = faces[static_cast<std::size_t>(search[i])];
+  }
+  const std::vector<Contact> found = body_contacts(*surface_, points, true, &start);
+  for (std::size_t i = 0; i < search.size(); ++i) {
+    const Eigen::Index v = search[i];
+    out[static_cast<std::size_t>(v)] = found[i];
+    reference.row(v) = x.row(v);
+    reference_distance[v] = found[i].distance;
+    faces[static_cast<std::size_t>(v)] = start[i];
+  }
+  std::lock_guard<std::mutex> lock(cache_.mutex);
+  cache_.reference = std::move(reference);
+  cache_.reference_distance = std::move(reference_distance);
+  cache_.reference_revision = surface_->revision();
+  cache_.faces = std::move(faces);
   return out;
 }
 

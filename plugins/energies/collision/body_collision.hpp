@@ -97,6 +97,8 @@ class BodyCollision final : public Energy {
   void check(const Eigen::MatrixX3d& x) const;
   // The exact contacts, or the smooth ones when settings_.smoothing > 0, with distance Hessians.
   std::vector<Contact> contacts(const Eigen::MatrixX3d& x) const;
+  // The exact closest-point contacts; vertices provably beyond the margin are skipped (see the .cpp).
+  std::vector<Contact> exact_contacts(const Eigen::MatrixX3d& x) const;
   // The contacts of x, from the cache when x and the body are unchanged.
   std::shared_ptr<const std::vector<Contact>> cached_contacts(const Eigen::MatrixX3d& x) const;
   // The gradient of vertex v's penalty at penetration delta (> 0) into the margin along `normal`.
@@ -113,6 +115,13 @@ class BodyCollision final : public Energy {
     Eigen::MatrixX3d x;
     std::uint64_t revision = 0;
     std::shared_ptr<const std::vector<Contact>> contacts;
+    // Per vertex, where it was and its signed distance at its last exact
+    // query (on body revision `reference_revision`), and the closest face
+    // then: where the next search starts.
+    Eigen::MatrixX3d reference;
+    Eigen::VectorXd reference_distance;
+    std::uint64_t reference_revision = 0;
+    std::vector<int> faces;
   };
   mutable Cache cache_;
 };
