@@ -5,6 +5,7 @@
 #include <Eigen/SparseCore>
 
 #include <algorithm>
+#include <limits>
 #include <numeric>
 #include <random>
 #include <sstream>
@@ -156,6 +157,23 @@ GradCheckReport check_energy_derivatives(const Energy& energy, const Eigen::Matr
   const double min_eig = eig.eigenvalues().size() ? eig.eigenvalues().minCoeff() : 0.0;
   const double pscale = std::max(1e-300, hp.cwiseAbs().maxCoeff());
   report.entries.push_back({"psd", std::max(0.0, -min_eig) / pscale, static_cast<std::size_t>(dofs)});
+
+  // add_hessian_lower against the lower triangle of add_hessian, both ways.
+  GradCheckEntry lower{"lower", 0.0, 0};
+  for (const bool project : {false, true}) {
+    Triplets t;
+    energy.add_hessian_lower(x0, t, project);
+    for (const auto& entry : t)
+      if (entry.row() < entry.col()) lower.max_error = std::numeric_limits<double>::infinity();
+    Eigen::SparseMatrix<double> sparse(dofs, dofs);
+    sparse.setFromTriplets(t.begin(), t.end());
+    const Eigen::MatrixXd full = project ? hp : h;
+    const Eigen::MatrixXd expected = full.triangularView<Eigen::Lower>();
+    const double scale = std::max(1e-300, full.cwiseAbs().maxCoeff());
+    lower.max_error = std::max(lower.max_error, (Eigen::MatrixXd(sparse) - expected).cwiseAbs().maxCoeff() / scale);
+    lower.checked += t.size();
+  }
+  report.entries.push_back(lower);
   return report;
 }
 

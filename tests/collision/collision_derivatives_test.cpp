@@ -110,7 +110,7 @@ TEST_CASE("collision derivatives match finite differences where closest points a
   const auto e = collision_energy("{}", *garment, &body);
   const GradCheckReport r = check_energy_derivatives(*e, x);
   INFO(r.str());
-  CHECK(r.entries.size() == 3);
+  CHECK(r.entries.size() == 4);
   CHECK(r.ok(1e-6));
 }
 
@@ -268,7 +268,7 @@ TEST_CASE("smooth collision derivatives match finite differences on a torus, acr
   const auto e = collision_energy("{margin: 0.01, smoothing: 0.06}", *garment, &body);
   const GradCheckReport r = check_energy_derivatives(*e, x);
   INFO(r.str());
-  CHECK(r.entries.size() == 3);
+  CHECK(r.entries.size() == 4);
   CHECK(r.ok(1e-5));
   // The projected Hessian is PSD; the exact one is not (the blended surface curves).
   const Eigen::MatrixXd projected = dense_hessian(*e, x, true);

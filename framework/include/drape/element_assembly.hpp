@@ -92,4 +92,40 @@ inline void write_hessian_blocks(const Eigen::Matrix<double, 3 * N, 3 * N>& h, c
         for (int j = 0; j < 3; ++j) *out++ = Eigen::Triplet<double>(3 * vertex[a] + i, 3 * vertex[b] + j, h(3 * a + i, 3 * b + j));
 }
 
+// The entries of an element's Hessian on or below the global diagonal (row >=
+// column), what a solver that stores a symmetric matrix's lower triangle needs:
+// kLowerEntries<N> triplets, about half of write_hessian_blocks' 9 N^2, written
+// from `out`. Each pair of element vertices a > b fills one 3 x 3 block, placed
+// below the diagonal by their global order; a vertex repeated within the
+// element (a degenerate element) folds its two blocks into one lower triangle
+// of 6 entries, padded with 3 zeros, so that every element writes the same
+// count and elements can be written in parallel at fixed offsets.
+template <int N>
+inline constexpr int kLowerEntries = 3 * N * (3 * N + 1) / 2;
+
+template <int N>
+inline void write_lower_hessian_blocks(const Eigen::Matrix<double, 3 * N, 3 * N>& h, const int (&vertex)[N],
+                                       Eigen::Triplet<double>* out) {
+  for (int a = 0; a < N; ++a) {
+    const int va = vertex[a];
+    for (int i = 0; i < 3; ++i)
+      for (int j = 0; j <= i; ++j) *out++ = Eigen::Triplet<double>(3 * va + i, 3 * va + j, h(3 * a + i, 3 * a + j));
+    for (int b = 0; b < a; ++b) {
+      const int vb = vertex[b];
+      if (va == vb) {
+        for (int i = 0; i < 3; ++i)
+          for (int j = 0; j <= i; ++j)
+            *out++ = Eigen::Triplet<double>(3 * va + i, 3 * va + j, h(3 * a + i, 3 * b + j) + h(3 * b + i, 3 * a + j));
+        for (int k = 0; k < 3; ++k) *out++ = Eigen::Triplet<double>(3 * va, 3 * va, 0.0);
+        continue;
+      }
+      // The block of the larger vertex's rows and the smaller one's columns.
+      const int hi = va > vb ? a : b, lo = va > vb ? b : a;
+      for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j)
+          *out++ = Eigen::Triplet<double>(3 * vertex[hi] + i, 3 * vertex[lo] + j, h(3 * hi + i, 3 * lo + j));
+    }
+  }
+}
+
 }  // namespace drape

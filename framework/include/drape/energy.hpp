@@ -7,6 +7,7 @@
 #include <Eigen/Core>
 #include <Eigen/SparseCore>
 
+#include <algorithm>
 #include <memory>
 #include <string>
 #include <vector>
@@ -63,6 +64,17 @@ class Energy {
   // With project_psd, each element block is projected to the nearest PSD matrix
   // (what Newton needs); without, it is the exact Hessian (what tests compare).
   virtual void add_hessian(const Eigen::MatrixX3d& x, Triplets& h, bool project_psd = true) const = 0;
+  // The same matrix's entries with row >= column only: what the solver stores
+  // of the symmetric Newton matrix, and about half the triplets to write and
+  // assemble. This default filters add_hessian's; element energies write the
+  // lower triangle directly (element_assembly.hpp).
+  virtual void add_hessian_lower(const Eigen::MatrixX3d& x, Triplets& h, bool project_psd = true) const {
+    const std::size_t start = h.size();
+    add_hessian(x, h, project_psd);
+    h.erase(std::remove_if(h.begin() + static_cast<std::ptrdiff_t>(start), h.end(),
+                           [](const Eigen::Triplet<double>& t) { return t.row() < t.col(); }),
+            h.end());
+  }
   // True when bind() needs EnergyContext::body. The simulator builds the body's
   // closest-point structure only when some active energy asks for it.
   virtual bool needs_body() const { return false; }

@@ -11,7 +11,7 @@
 namespace drape {
 
 struct GradCheckEntry {
-  std::string what;        // "input x", "weight w1", "gradient", "hessian", "psd"
+  std::string what;        // "input x", "weight w1", "gradient", "hessian", "psd", "lower"
   double max_error = 0.0;  // max |analytic - numeric| / max |analytic| over the tensor
   std::size_t checked = 0;
 };
@@ -36,7 +36,9 @@ GradCheckReport check_node_gradients(Node& node, const std::map<std::string, Ten
 
 // Gradient vs differences of value(); exact Hessian vs differences of the
 // gradient; and the projected Hessian's smallest eigenvalue >= -1e-9 * scale
-// (entry "psd", error = max(0, -min eigenvalue) / max |H|). Keep x small (dense).
+// (entry "psd", error = max(0, -min eigenvalue) / max |H|); add_hessian_lower
+// equals the lower triangle of add_hessian, exact and projected (entry
+// "lower"; an entry above the diagonal is an infinite error). Keep x small (dense).
 GradCheckReport check_energy_derivatives(const Energy& energy, const Eigen::MatrixX3d& x,
                                          const GradCheckOptions& options = {1e-6, 64, 7});
 

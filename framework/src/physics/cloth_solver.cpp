@@ -225,7 +225,7 @@ StepReport ClothSolver::step(Eigen::MatrixX3d& x, Eigen::MatrixX3d& v) {
     auto t = Clock::now();
     Triplets& trip = impl_->triplets;
     trip.clear();
-    for (NamedEnergy& e : energies_) e.energy->add_hessian(x, trip, true);
+    for (NamedEnergy& e : energies_) e.energy->add_hessian_lower(x, trip, true);
     timings_.hessian += since(t);
     t = Clock::now();
     Eigen::VectorXd diagonal(3 * n);

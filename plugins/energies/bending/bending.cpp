@@ -159,10 +159,19 @@ class Bending final : public Energy {
   }
 
   void add_hessian(const Eigen::MatrixX3d& x, Triplets& t, bool project_psd) const override {
+    hessian(x, t, project_psd, false);
+  }
+  void add_hessian_lower(const Eigen::MatrixX3d& x, Triplets& t, bool project_psd) const override {
+    hessian(x, t, project_psd, true);
+  }
+
+ private:
+  void hessian(const Eigen::MatrixX3d& x, Triplets& t, bool project_psd, bool lower) const {
     check(x);
     const std::size_t offset = t.size();
     const int n = num_hinges();
-    t.resize(offset + 144 * static_cast<std::size_t>(n));
+    const std::size_t per_hinge = lower ? kLowerEntries<4> : 144;
+    t.resize(offset + per_hinge * static_cast<std::size_t>(n));
 #pragma omp parallel for schedule(static) if (n >= kParallelHessianMinimum)
     for (int i = 0; i < n; ++i) {
       const HingeElement& h = hinges_[static_cast<std::size_t>(i)];
@@ -181,11 +190,14 @@ class Bending final : public Energy {
           if (project_psd) project_to_psd(block);
         }
       }
-      write_hessian_blocks<4>(block, h.vertex, t.data() + offset + 144 * static_cast<std::size_t>(i));
+      Eigen::Triplet<double>* out = t.data() + offset + per_hinge * static_cast<std::size_t>(i);
+      if (lower)
+        write_lower_hessian_blocks<4>(block, h.vertex, out);
+      else
+        write_hessian_blocks<4>(block, h.vertex, out);
     }
   }
 
- private:
   static dh::Wing wing0(const dh::Hinge& h) { return dh::Wing(h.e, h.a0, h.n0, h.q0, h.e2); }
   static dh::Wing wing1(const dh::Hinge& h) { return dh::Wing(h.e, h.a1, h.n1, h.q1, h.e2); }
   int num_hinges() const { return static_cast<int>(hinges_.size()); }

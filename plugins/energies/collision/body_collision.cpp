@@ -176,6 +176,25 @@ double BodyCollision::add_gradient(const Eigen::MatrixX3d& x, Eigen::MatrixX3d& 
   return energy;
 }
 
+Eigen::Matrix3d BodyCollision::vertex_hessian(Eigen::Index v, const Contact& contact, bool project_psd) const {
+  const double delta = penalty_.delta(contact.distance);
+  Eigen::Matrix3d block = Eigen::Matrix3d::Zero();
+  if (delta > 0) {
+    const double c = settings_.stiffness * area_[v];
+    block = c * penalty_.curvature(delta) * contact.normal * contact.normal.transpose();
+    if (settings_.smoothing > 0) {
+      // The smooth distance's Hessian has no structure to exploit: project the whole block.
+      block -= c * penalty_.slope(delta) * contact.distance_hessian;
+      if (project_psd) project_to_psd(block);
+    } else if (!project_psd || contact.distance < 0) {
+      // -c phi' D is negative semi-definite outside the body (D = P / d with
+      // d > 0) and positive semi-definite inside: the projection keeps it there only.
+      block -= c * penalty_.slope(delta) * contact.distance_hessian;
+    }
+  }
+  return block;
+}
+
 void BodyCollision::add_hessian(const Eigen::MatrixX3d& x, Triplets& h, bool project_psd) const {
   check(x);
   const auto cached = cached_contacts(x);
@@ -183,28 +202,26 @@ void BodyCollision::add_hessian(const Eigen::MatrixX3d& x, Triplets& h, bool pro
   h.reserve(h.size() + 9 * contacts.size());
   for (std::size_t i = 0; i < contacts.size(); ++i) {
     const auto v = static_cast<Eigen::Index>(i);
-    const Contact& contact = contacts[i];
-    const double delta = penalty_.delta(contact.distance);
-    Eigen::Matrix3d block = Eigen::Matrix3d::Zero();
-    if (delta > 0) {
-      const double c = settings_.stiffness * area_[v];
-      block = c * penalty_.curvature(delta) * contact.normal * contact.normal.transpose();
-      if (settings_.smoothing > 0) {
-        // The smooth distance's Hessian has no structure to exploit: project the whole block.
-        block -= c * penalty_.slope(delta) * contact.distance_hessian;
-        if (project_psd) project_to_psd(block);
-      } else if (!project_psd || contact.distance < 0) {
-        // -c phi' D is negative semi-definite outside the body (D = P / d with
-        // d > 0) and positive semi-definite inside: the projection keeps it there only.
-        block -= c * penalty_.slope(delta) * contact.distance_hessian;
-      }
-    }
+    const Eigen::Matrix3d block = vertex_hessian(v, contacts[i], project_psd);
     const int base = 3 * static_cast<int>(v);
     for (int r = 0; r < 3; ++r)
       for (int col = 0; col < 3; ++col) h.emplace_back(base + r, base + col, block(r, col));
   }
 }
 
+void BodyCollision::add_hessian_lower(const Eigen::MatrixX3d& x, Triplets& h, bool project_psd) const {
+  check(x);
+  const auto cached = cached_contacts(x);
+  const std::vector<Contact>& contacts = *cached;
+  h.reserve(h.size() + 6 * contacts.size());
+  for (std::size_t i = 0; i < contacts.size(); ++i) {
+    const auto v = static_cast<Eigen::Index>(i);
+    const Eigen::Matrix3d block = vertex_hessian(v, contacts[i], project_psd);
+    const int base = 3 * static_cast<int>(v);
+    for (int r = 0; r < 3; ++r)
+      for (int col = 0; col <= r; ++col) h.emplace_back(base + r, base + col, block(r, col));
+  }
+}
 
 void BodyCollision::vertex_gradient_samples(const Eigen::MatrixX3d& x, int vertex, double radius,
                                             std::vector<Eigen::Vector3d>& samples) const {

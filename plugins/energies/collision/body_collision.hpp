@@ -87,6 +87,8 @@ class BodyCollision final : public Energy {
   // change when vertices enter or leave contact, so the solver can keep its
   // symbolic factorisation across iterations.
   void add_hessian(const Eigen::MatrixX3d& x, Triplets& h, bool project_psd = true) const override;
+  // The same blocks' lower triangles: 6 triplets for every vertex, in vertex order.
+  void add_hessian_lower(const Eigen::MatrixX3d& x, Triplets& h, bool project_psd = true) const override;
   // The exact distance has kinks; the smooth one (smoothing > 0) is C2.
   bool has_kinks() const override { return !(settings_.smoothing > 0); }
   // The exact distance's push at the six points `radius` away from the vertex.
@@ -101,6 +103,8 @@ class BodyCollision final : public Energy {
   std::vector<Contact> exact_contacts(const Eigen::MatrixX3d& x) const;
   // The contacts of x, from the cache when x and the body are unchanged.
   std::shared_ptr<const std::vector<Contact>> cached_contacts(const Eigen::MatrixX3d& x) const;
+  // Vertex v's 3 x 3 Hessian block at its contact (zero outside the margin).
+  Eigen::Matrix3d vertex_hessian(Eigen::Index v, const Contact& contact, bool project_psd) const;
   // The gradient of vertex v's penalty at penetration delta (> 0) into the margin along `normal`.
   Eigen::Vector3d push_gradient(Eigen::Index v, double delta, const Eigen::Vector3d& normal) const;
 

@@ -129,10 +129,19 @@ class Stretching final : public Energy {
   }
 
   void add_hessian(const Eigen::MatrixX3d& x, Triplets& h, bool project_psd) const override {
+    hessian(x, h, project_psd, false);
+  }
+  void add_hessian_lower(const Eigen::MatrixX3d& x, Triplets& h, bool project_psd) const override {
+    hessian(x, h, project_psd, true);
+  }
+
+ private:
+  void hessian(const Eigen::MatrixX3d& x, Triplets& h, bool project_psd, bool lower) const {
     check(x);
     const std::size_t offset = h.size();
     const int n = num_faces();
-    h.resize(offset + 81 * static_cast<std::size_t>(n));
+    const std::size_t per_face = lower ? kLowerEntries<3> : 81;
+    h.resize(offset + per_face * static_cast<std::size_t>(n));
 #pragma omp parallel for schedule(static) if (n >= kParallelHessianMinimum)
     for (int i = 0; i < n; ++i) {
       const mb::Face& f = faces_[static_cast<std::size_t>(i)];
@@ -143,11 +152,14 @@ class Stretching final : public Energy {
         block = mb::lift(mb::hessian_in_F(F, f.k, s), f.c);
       else
         block = mb::lift(mb::projected_hessian_in_Y(F, f.k, s, f.t), f.q);
-      write_hessian_blocks<3>(block, f.vertex, h.data() + offset + 81 * static_cast<std::size_t>(i));
+      Eigen::Triplet<double>* out = h.data() + offset + per_face * static_cast<std::size_t>(i);
+      if (lower)
+        write_lower_hessian_blocks<3>(block, f.vertex, out);
+      else
+        write_hessian_blocks<3>(block, f.vertex, out);
     }
   }
 
- private:
   int num_faces() const { return static_cast<int>(faces_.size()); }
   void check(const Eigen::MatrixX3d& x) const {
     if (x.rows() != vertices_)
