@@ -264,35 +264,6 @@ TEST_CASE("batch queries equal single queries; max_distance limits the search") 
   }
 }
 
-TEST_CASE("a search started from an earlier closest face answers exactly as a fresh search") {
-  // The bumpy torus is not convex: starting faces on the far side of the hole
-  // and hints that are no faces at all must not change an answer either.
-  const Mesh m = bumpy_torus();
-  const BodySurface surface(m);
-  std::mt19937 rng(41);
-  std::uniform_int_distribution<int> any_face(0, m.num_faces() - 1);
-  std::uniform_real_distribution<double> box(-1.6, 1.6);
-  Eigen::MatrixX3d points(600, 3);  // inside the tube, in the hole and around the torus
-  for (int i = 0; i < points.rows(); ++i) points.row(i) << box(rng), box(rng), box(rng);
-  std::vector<int> faces(static_cast<std::size_t>(points.rows()), -1);
-  for (int round = 0; round < 6; ++round) {
-    if (round == 3)
-      for (std::size_t i = 0; i < faces.size(); ++i) faces[i] = i % 3 == 0 ? any_face(rng) : i % 3 == 1 ? -7 : m.num_faces() + 5;
-    const std::vector<SurfacePoint> hinted = surface.locate_all(points, faces);
-    const std::vector<SurfacePoint> fresh = surface.locate_all(points);
-    for (int i = 0; i < points.rows(); ++i) {
-      INFO("round " << round << ", point " << i);
-      CHECK(hinted[i].face == fresh[i].face);
-      CHECK(faces[static_cast<std::size_t>(i)] == fresh[i].face);
-      CHECK(hinted[i].signed_distance == fresh[i].signed_distance);
-      CHECK(hinted[i].point == fresh[i].point);
-      CHECK(hinted[i].normal == fresh[i].normal);
-    }
-    // Small moves (the next Newton iterate) and, every other round, large ones.
-    for (int i = 0; i < points.rows(); ++i) points.row(i) += (round % 2 ? 0.3 : 0.01) * random_direction(rng).transpose();
-  }
-}
-
 TEST_CASE("bad body meshes are refused with a message naming the problem") {
   Mesh m = drape::geometry::icosphere(0);
   m.faces(7, 1) = 12;

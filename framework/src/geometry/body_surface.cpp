@@ -151,33 +151,6 @@ std::vector<SurfacePoint> BodySurface::locate_all(const Eigen::MatrixX3d& points
   return out;
 }
 
-SurfacePoint BodySurface::locate_near(const Eigen::Vector3d& p, int face) const {
-  if (face < 0 || face >= faces_.rows()) return locate(p);
-  const TrianglePoint q = closest_point_on_triangle(p, vertices_.row(faces_(face, 0)).transpose(),
-                                                    vertices_.row(faces_(face, 1)).transpose(),
-                                                    vertices_.row(faces_(face, 2)).transpose());
-  // Slack over the face's own distance, so that the face (or one as close)
-  // still passes the traversal's strict test whatever the rounding.
-  const double bound = (q.point - p).squaredNorm() * (1.0 + 1e-9) + 1e-300;
-  if (!std::isfinite(bound)) return locate(p);
-  TrianglePoint hit;
-  const int found = bvh_->nearest(p, bound, hit);
-  return found < 0 ? locate(p) : finish(p, found, hit);
-}
-
-std::vector<SurfacePoint> BodySurface::locate_all(const Eigen::MatrixX3d& points, std::vector<int>& faces) const {
-  const Eigen::Index n = points.rows();
-  faces.resize(static_cast<std::size_t>(n), -1);
-  std::vector<SurfacePoint> out(static_cast<std::size_t>(n));
-#pragma omp parallel for schedule(static, 64)
-  for (Eigen::Index i = 0; i < n; ++i) {
-    const auto k = static_cast<std::size_t>(i);
-    out[k] = locate_near(points.row(i).transpose(), faces[k]);
-    faces[k] = out[k].face;
-  }
-  return out;
-}
-
 Eigen::VectorXd BodySurface::signed_distances(const Eigen::MatrixX3d& points) const {
   Eigen::VectorXd d(points.rows());
   const Eigen::Index n = points.rows();

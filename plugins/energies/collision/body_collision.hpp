@@ -120,12 +120,10 @@ class BodyCollision final : public Energy {
     std::uint64_t revision = 0;
     std::shared_ptr<const std::vector<Contact>> contacts;
     // Per vertex, where it was and its signed distance at its last exact
-    // query (on body revision `reference_revision`), and the closest face
-    // then: where the next search starts.
+    // query (on body revision `reference_revision`).
     Eigen::MatrixX3d reference;
     Eigen::VectorXd reference_distance;
     std::uint64_t reference_revision = 0;
-    std::vector<int> faces;
   };
   mutable Cache cache_;
 };

@@ -40,11 +40,10 @@ Eigen::Matrix3d distance_hessian(const BodySurface& body, const SurfacePoint& s)
 
 }  // namespace
 
-std::vector<Contact> body_contacts(const BodyQuery& body, const Eigen::MatrixX3d& x, bool with_hessian,
-                                   std::vector<int>* faces) {
+std::vector<Contact> body_contacts(const BodyQuery& body, const Eigen::MatrixX3d& x, bool with_hessian) {
   std::vector<Contact> out(static_cast<std::size_t>(x.rows()));
   if (const auto* surface = dynamic_cast<const BodySurface*>(&body)) {
-    const std::vector<SurfacePoint> located = faces ? surface->locate_all(x, *faces) : surface->locate_all(x);
+    const std::vector<SurfacePoint> located = surface->locate_all(x);
     for (std::size_t v = 0; v < out.size(); ++v) {
       out[v].normal = located[v].normal;
       out[v].distance = located[v].signed_distance;

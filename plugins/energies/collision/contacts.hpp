@@ -24,9 +24,6 @@ struct Contact {
 // feature (face, edge, vertex) of each closest point, which the distance Hessian
 // needs; any other BodyQuery is asked closest() one point at a time (its thread
 // safety is unknown) and its contacts carry no distance Hessian.
-// With `faces` (a BodySurface only): the closest faces of an earlier call on
-// nearby points, which speed the search up (BodySurface::locate_all), updated.
-std::vector<Contact> body_contacts(const BodyQuery& body, const Eigen::MatrixX3d& x, bool with_hessian,
-                                   std::vector<int>* faces = nullptr);
+std::vector<Contact> body_contacts(const BodyQuery& body, const Eigen::MatrixX3d& x, bool with_hessian);
 
 }  // namespace drape::collision

@@ -74,13 +74,6 @@ class BodySurface final : public BodyQuery {
   SurfacePoint locate(const Eigen::Vector3d& p, double max_distance = std::numeric_limits<double>::infinity()) const;
   // One query per row of `points`, in parallel (OpenMP).
   std::vector<SurfacePoint> locate_all(const Eigen::MatrixX3d& points, double max_distance = std::numeric_limits<double>::infinity()) const;
-  // As locate_all, each search bounded from the start by the distance to
-  // faces[i], a face found closest to a nearby point earlier (-1: none); on
-  // return faces[i] is this call's answer. Cloth moves little between queries,
-  // so the bound prunes nearly all of the hierarchy at once. The answers are
-  // exactly locate_all's: the bound lies above the true distance and the
-  // traversal visits the surviving nodes in the same order.
-  std::vector<SurfacePoint> locate_all(const Eigen::MatrixX3d& points, std::vector<int>& faces) const;
   Eigen::VectorXd signed_distances(const Eigen::MatrixX3d& points) const;
 
   // New vertex positions for the same faces (a morphing or moving body): the
@@ -101,7 +94,6 @@ class BodySurface final : public BodyQuery {
  private:
   void compute_normals();
   SurfacePoint finish(const Eigen::Vector3d& p, int face, const TrianglePoint& hit) const;
-  SurfacePoint locate_near(const Eigen::Vector3d& p, int face) const;
 
   Eigen::MatrixX3d vertices_;
   Eigen::MatrixX3i faces_;
