@@ -3,6 +3,8 @@
 #include <catch2/catch.hpp>
 
 #include <fstream>
+#include <iterator>
+#include <regex>
 
 #include "test_support.hpp"
 
@@ -42,4 +44,30 @@ TEST_CASE("drape bench geometry and mesh-io run on tiny inputs", "[cli][bench]")
                       Catch::Contains("order and count kept"));
   CHECK(out.find("CHANGED") == std::string::npos);
   CHECK(run_drape("bench mesh-io " + (dir / "absent.obj").string(), out) == 2);
+}
+
+TEST_CASE("bench simulate reports whole drapes (best and median of repeated runs) and one iteration per effect",
+          "[cli][bench]") {
+  test::TempDir dir;
+  std::ofstream(dir / "tiny.yaml") << test::tiny_simulation_scene();
+  std::string out;
+  REQUIRE(run_drape("bench simulate --scene " + (dir / "tiny.yaml").string() +
+                        " --coarse-scene '' --repeats 1 --drape-repeats 2 --out " + (dir / "bench.md").string(),
+                    out) == 0);
+  INFO(out);
+  CHECK_THAT(out, Catch::Contains("best of 2 | median |"));
+  std::smatch m;
+  // | scene | vertices | steps | iterations | settled | p | best | median |
+  const std::regex drape_row(R"(tiny\.yaml \| (\d+) \| (\d+) \| (\d+) \| (yes|no) \| ([0-9.e+-]+) \| ([0-9.e+-]+) \| ([0-9.e+-]+) \|)");
+  REQUIRE(std::regex_search(out, m, drape_row));
+  CHECK(std::stoi(m[1]) > 100);
+  CHECK(std::stoi(m[2]) >= 2);  // at least the two morph steps
+  CHECK(std::stod(m[6]) > 0);
+  CHECK(std::stod(m[7]) >= std::stod(m[6]));
+  for (const char* row : {"| all effects |", "| without gravity |", "| without stretching |", "| without bending |",
+                          "| without collision |", "Eigen SimplicialLLT"})
+    CHECK_THAT(out, Catch::Contains(row));
+  std::ifstream md(dir / "bench.md");
+  const std::string written((std::istreambuf_iterator<char>(md)), std::istreambuf_iterator<char>());
+  CHECK_THAT(written, Catch::Contains("## Whole drapes") && Catch::Contains("## One solver iteration"));
 }
