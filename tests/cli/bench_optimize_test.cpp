@@ -28,7 +28,9 @@ TEST_CASE("bench optimize times the optimisation of an untrained graph on the sc
   REQUIRE(std::regex_search(out, m, row));
   CHECK(std::stod(m[1]) > 0);
   CHECK(std::stod(m[2]) >= std::stod(m[1]));  // the median is never below the best
-  CHECK(std::stod(m[3]) == Approx(1000.0 * std::stod(m[1]) / 3).epsilon(0.01));
+  // Seconds are printed to the millisecond: over 3 iterations that rounding
+  // alone moves the per-iteration figure by up to 0.17 ms.
+  CHECK(std::stod(m[3]) == Approx(1000.0 * std::stod(m[1]) / 3).margin(0.17 + 0.005));
   CHECK(std::stod(m[5]) <= std::stod(m[4]));  // the best iterate is kept: never worse than the start
   // Every run starts from the same weights: the third ends where the only one did.
   CHECK(m[4].str() == first[4].str());
