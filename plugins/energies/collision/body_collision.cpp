@@ -186,30 +186,24 @@ Eigen::Matrix3d BodyCollision::vertex_hessian(Eigen::Index v, const Contact& con
 }
 
 void BodyCollision::add_hessian(const Eigen::MatrixX3d& x, Triplets& h, bool project_psd) const {
-  check(x);
-  const auto cached = cached_contacts(x);
-  const std::vector<Contact>& contacts = *cached;
-  h.reserve(h.size() + 9 * contacts.size());
-  for (std::size_t i = 0; i < contacts.size(); ++i) {
-    const auto v = static_cast<Eigen::Index>(i);
-    const Eigen::Matrix3d block = vertex_hessian(v, contacts[i], project_psd);
-    const int base = 3 * static_cast<int>(v);
-    for (int r = 0; r < 3; ++r)
-      for (int col = 0; col < 3; ++col) h.emplace_back(base + r, base + col, block(r, col));
-  }
+  hessian(x, h, project_psd, false);
 }
 
 void BodyCollision::add_hessian_lower(const Eigen::MatrixX3d& x, Triplets& h, bool project_psd) const {
+  hessian(x, h, project_psd, true);
+}
+
+void BodyCollision::hessian(const Eigen::MatrixX3d& x, Triplets& h, bool project_psd, bool lower) const {
   check(x);
   const auto cached = cached_contacts(x);
   const std::vector<Contact>& contacts = *cached;
-  h.reserve(h.size() + 6 * contacts.size());
+  h.reserve(h.size() + (lower ? 6 : 9) * contacts.size());
   for (std::size_t i = 0; i < contacts.size(); ++i) {
     const auto v = static_cast<Eigen::Index>(i);
     const Eigen::Matrix3d block = vertex_hessian(v, contacts[i], project_psd);
     const int base = 3 * static_cast<int>(v);
     for (int r = 0; r < 3; ++r)
-      for (int col = 0; col <= r; ++col) h.emplace_back(base + r, base + col, block(r, col));
+      for (int col = 0; col <= (lower ? r : 2); ++col) h.emplace_back(base + r, base + col, block(r, col));
   }
 }
 

@@ -103,6 +103,8 @@ class BodyCollision final : public Energy {
   std::vector<Contact> exact_contacts(const Eigen::MatrixX3d& x) const;
   // The contacts of x, from the cache when x and the body are unchanged.
   std::shared_ptr<const std::vector<Contact>> cached_contacts(const Eigen::MatrixX3d& x) const;
+  // Every vertex's block in vertex order: all 9 entries, or the 6 of its lower triangle.
+  void hessian(const Eigen::MatrixX3d& x, Triplets& h, bool project_psd, bool lower) const;
   // Vertex v's 3 x 3 Hessian block at its contact (zero outside the margin).
   Eigen::Matrix3d vertex_hessian(Eigen::Index v, const Contact& contact, bool project_psd) const;
   // The gradient of vertex v's penalty at penetration delta (> 0) into the margin along `normal`.
