@@ -26,6 +26,13 @@ struct RegisterBench {
   explicit RegisterBench(Bench b) { benches().push_back(std::move(b)); }
 };
 
+// Times of repeated runs on a shared, noisy machine: the best is the cost of
+// the work, the median what to expect. `times` must not be empty.
+struct BestAndMedian {
+  double best = 0, median = 0;
+};
+BestAndMedian best_and_median(std::vector<double> times);
+
 // The benches that time a trained model (--model FILE) or a graph with fresh
 // weights (--graph FILE) take exactly one of the two (UsageError otherwise).
 void require_model_or_graph(const po::variables_map& vm);

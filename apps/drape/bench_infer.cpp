@@ -61,8 +61,7 @@ int run(const std::vector<std::string>& args) {
     node_ms.resize(nodes.size());
     for (std::size_t n = 0; n < nodes.size(); ++n) node_ms[n].push_back(nodes[n].ms / batch_size);
   }
-  std::sort(ms.begin(), ms.end());
-  const double best = ms.front(), median = ms[ms.size() / 2];
+  const auto [best, median] = best_and_median(ms);
   const double macs = graph.flops_per_sample();
   std::size_t weights = 0;
   for (const auto& [name, w] : graph.weights()) weights += w->value.size();
@@ -79,8 +78,7 @@ int run(const std::vector<std::string>& args) {
   double total = 0.0;
   std::vector<double> node_median(nodes.size());
   for (std::size_t n = 0; n < nodes.size(); ++n) {
-    std::sort(node_ms[n].begin(), node_ms[n].end());
-    node_median[n] = node_ms[n][node_ms[n].size() / 2];
+    node_median[n] = best_and_median(node_ms[n]).median;
     total += node_median[n];
   }
   for (std::size_t n = 0; n < nodes.size(); ++n)

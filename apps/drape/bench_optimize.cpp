@@ -55,8 +55,6 @@ int run(const std::vector<std::string>& args) {
   o.iterations = 1;
   optimize_drape(model, simulation, body, o);  // warm-up: allocations, caches
   o.iterations = vm["iterations"].as<int>();
-  // The machine is shared and noisy (runs differ by up to a third): the best
-  // of a few runs is the cost of the work, the median what to expect.
   const int repeats = std::max(1, vm["repeats"].as<int>());
   std::vector<double> seconds;
   PhysicsOptimizationResult r;
@@ -65,8 +63,7 @@ int run(const std::vector<std::string>& args) {
     r = optimize_drape(model, simulation, body, o);
     seconds.push_back(r.seconds);
   }
-  std::sort(seconds.begin(), seconds.end());
-  const double best = seconds.front(), median = seconds[seconds.size() / 2];
+  const auto [best, median] = best_and_median(seconds);
   std::printf("## Physics-enforced optimisation on one core: %s, scene %s\n\n", model.file().string().c_str(),
               vm["scene"].as<std::string>().c_str());
   std::printf("garment %d vertices, body %d vertices, BMI %g\n\n", model.assets().garment->mesh.num_vertices(),

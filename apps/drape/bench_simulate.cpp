@@ -82,9 +82,7 @@ int run(const std::vector<std::string>& args) {
   std::string report;  // everything printed, for --out
 
   // (1) Whole drapes.
-  // A drape is deterministic, so repeated runs differ only in how busy the
-  // machine was (by up to a third here): the best is the cost of the work,
-  // the median what to expect.
+  // A drape is deterministic: repeated runs differ only in how busy the machine was.
   const int drape_repeats = std::max(1, vm["drape-repeats"].as<int>());
   md << "## Whole drapes (BMI " << vm["bmi"].as<double>() << ", " << vm["threads"].as<int>() << " thread)\n\n"
      << "| scene | garment vertices | steps | Newton iterations | settled | p (%) | time (s), best of " << drape_repeats
@@ -103,10 +101,10 @@ int run(const std::vector<std::string>& args) {
       r = sim.run(target);
       seconds.push_back(r.seconds);
     }
-    std::sort(seconds.begin(), seconds.end());
+    const BestAndMedian time = best_and_median(seconds);
     md << "| " << scenes[k] << " | " << sim.garment().mesh.num_vertices() << " | " << r.steps << " | " << r.iterations << " | "
-       << (r.converged ? "yes" : "no") << " | " << 100 * r.penetration << " | " << seconds.front() << " | "
-       << seconds[seconds.size() / 2] << " |\n";
+       << (r.converged ? "yes" : "no") << " | " << 100 * r.penetration << " | " << time.best << " | " << time.median
+       << " |\n";
     std::printf("%s", md.str().c_str());
     std::fflush(stdout);
     report += md.str();

@@ -14,6 +14,11 @@ std::vector<Bench>& benches() {
   return list;
 }
 
+BestAndMedian best_and_median(std::vector<double> times) {
+  std::sort(times.begin(), times.end());
+  return {times.front(), times[times.size() / 2]};
+}
+
 void require_model_or_graph(const po::variables_map& vm) {
   if (vm.count("model") == vm.count("graph")) throw UsageError("give exactly one of --model FILE and --graph FILE");
 }
