@@ -128,4 +128,20 @@ inline void write_lower_hessian_blocks(const Eigen::Matrix<double, 3 * N, 3 * N>
   }
 }
 
+// Triplets per element of either form, and the writer of that form: what an
+// element energy's add_hessian (lower = false) and add_hessian_lower (true) share.
+template <int N>
+constexpr std::size_t hessian_entries(bool lower) {
+  return lower ? kLowerEntries<N> : 9 * N * N;
+}
+
+template <int N>
+inline void write_element_hessian(const Eigen::Matrix<double, 3 * N, 3 * N>& h, const int (&vertex)[N], bool lower,
+                                  Eigen::Triplet<double>* out) {
+  if (lower)
+    write_lower_hessian_blocks<N>(h, vertex, out);
+  else
+    write_hessian_blocks<N>(h, vertex, out);
+}
+
 }  // namespace drape

@@ -170,7 +170,7 @@ class Bending final : public Energy {
     check(x);
     const std::size_t offset = t.size();
     const int n = num_hinges();
-    const std::size_t per_hinge = lower ? kLowerEntries<4> : 144;
+    const std::size_t per_hinge = hessian_entries<4>(lower);
     t.resize(offset + per_hinge * static_cast<std::size_t>(n));
 #pragma omp parallel for schedule(static) if (n >= kParallelHessianMinimum)
     for (int i = 0; i < n; ++i) {
@@ -190,11 +190,7 @@ class Bending final : public Energy {
           if (project_psd) project_to_psd(block);
         }
       }
-      Eigen::Triplet<double>* out = t.data() + offset + per_hinge * static_cast<std::size_t>(i);
-      if (lower)
-        write_lower_hessian_blocks<4>(block, h.vertex, out);
-      else
-        write_hessian_blocks<4>(block, h.vertex, out);
+      write_element_hessian<4>(block, h.vertex, lower, t.data() + offset + per_hinge * static_cast<std::size_t>(i));
     }
   }
 

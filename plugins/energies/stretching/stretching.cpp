@@ -140,7 +140,7 @@ class Stretching final : public Energy {
     check(x);
     const std::size_t offset = h.size();
     const int n = num_faces();
-    const std::size_t per_face = lower ? kLowerEntries<3> : 81;
+    const std::size_t per_face = hessian_entries<3>(lower);
     h.resize(offset + per_face * static_cast<std::size_t>(n));
 #pragma omp parallel for schedule(static) if (n >= kParallelHessianMinimum)
     for (int i = 0; i < n; ++i) {
@@ -152,11 +152,7 @@ class Stretching final : public Energy {
         block = mb::lift(mb::hessian_in_F(F, f.k, s), f.c);
       else
         block = mb::lift(mb::projected_hessian_in_Y(F, f.k, s, f.t), f.q);
-      Eigen::Triplet<double>* out = h.data() + offset + per_face * static_cast<std::size_t>(i);
-      if (lower)
-        write_lower_hessian_blocks<3>(block, f.vertex, out);
-      else
-        write_hessian_blocks<3>(block, f.vertex, out);
+      write_element_hessian<3>(block, f.vertex, lower, h.data() + offset + per_face * static_cast<std::size_t>(i));
     }
   }
 
