@@ -73,26 +73,27 @@ std::vector<Contact> BodyCollision::contacts(const Eigen::MatrixX3d& x) const {
 // from the vertex's last closest face was tried as well: no faster.)
 std::vector<Contact> BodyCollision::exact_contacts(const Eigen::MatrixX3d& x) const {
   const Eigen::Index n = x.rows();
-  Eigen::MatrixX3d reference;
-  Eigen::VectorXd reference_distance;
-  bool bounded = false;
-  {
-    std::lock_guard<std::mutex> lock(cache_.mutex);
-    bounded = cache_.reference.rows() == n && cache_.reference_revision == surface_->revision();
-    if (bounded) reference = cache_.reference, reference_distance = cache_.reference_distance;
+  // The record is read and updated in place, so the lock is held throughout
+  // (the search itself runs in parallel inside).
+  std::lock_guard<std::mutex> lock(cache_.mutex);
+  Eigen::MatrixX3d& reference = cache_.reference;
+  Eigen::VectorXd& reference_distance = cache_.reference_distance;
+  const bool bounded = reference.rows() == n && cache_.reference_revision == surface_->revision();
+  if (!bounded) {  // every vertex is searched below and fills its row
+    reference.resize(n, 3);
+    reference_distance.resize(n);
+    cache_.reference_revision = surface_->revision();
   }
-  if (!bounded) reference = x, reference_distance = Eigen::VectorXd::Zero(n);
 
   std::vector<Contact> out(static_cast<std::size_t>(n));
   std::vector<Eigen::Index> search;
   search.reserve(static_cast<std::size_t>(n));
   for (Eigen::Index v = 0; v < n; ++v) {
-    const double lower = reference_distance[v] - (x.row(v) - reference.row(v)).norm();
-    if (bounded && lower > settings_.margin) {
+    const double lower = bounded ? reference_distance[v] - (x.row(v) - reference.row(v)).norm() : 0.0;
+    if (bounded && lower > settings_.margin)
       out[static_cast<std::size_t>(v)].distance = lower;
-    } else {
+    else
       search.push_back(v);
-    }
   }
   Eigen::MatrixX3d points(static_cast<Eigen::Index>(search.size()), 3);
   for (std::size_t i = 0; i < search.size(); ++i) points.row(static_cast<Eigen::Index>(i)) = x.row(search[i]);
@@ -103,10 +104,6 @@ std::vector<Contact> BodyCollision::exact_contacts(const Eigen::MatrixX3d& x) co
     reference.row(v) = x.row(v);
     reference_distance[v] = found[i].distance;
   }
-  std::lock_guard<std::mutex> lock(cache_.mutex);
-  cache_.reference = std::move(reference);
-  cache_.reference_distance = std::move(reference_distance);
-  cache_.reference_revision = surface_->revision();
   return out;
 }
 
