@@ -322,7 +322,7 @@ TEST_CASE("smooth collision has no kink in a concave crease, where the exact dis
   // gradient is continuous across it.
   const geometry::BodySurface body = crease_body();
   const auto garment = grid_garment(2, 0.02);  // 4 vertices, the points below
-  const auto exact = collision_energy("{margin: 0.02}", *garment, &body);
+  const auto exact = collision_energy("{margin: 0.02, creases: false}", *garment, &body);
   const auto smooth = collision_energy("{margin: 0.02, smoothing: 0.08}", *garment, &body);
   // Two points 1 mm either side of the bisector x = y, 1 cm from the crease line, well inside the margin.
   const double h = 1e-3, r = 0.01;
@@ -345,6 +345,61 @@ TEST_CASE("smooth collision has no kink in a concave crease, where the exact dis
   CHECK(turn_smooth < 0.15);  // under 9 degrees: the smooth push turns gradually
   CHECK(ge.row(2).norm() == 0.0);
   CHECK(gs.row(2).norm() == 0.0);
+}
+
+TEST_CASE("with creases on (the default) both walls of a concave crease push, and the push turns smoothly",
+          "[collision][crease]") {
+  // The trough above: the floor's faces point up, the wall's along +x, so they
+  // fall in different normal groups and each is the other's far side.
+  const geometry::BodySurface body = crease_body();
+  const auto garment = grid_garment(2, 0.02);
+  const auto one_sided = collision_energy("{margin: 0.02, creases: false}", *garment, &body);
+  const auto two_sided = collision_energy("{margin: 0.02}", *garment, &body);
+  const double h = 1e-5, r = 0.01;
+  Eigen::MatrixX3d x(4, 3);
+  x.row(0) << r + h, r - h, 0.013;  // nearer the floor (y = 0)
+  x.row(1) << r - h, r + h, 0.013;  // nearer the wall (x = 0)
+  x.row(2) << 0.5, 0.5, 0.0;
+  x.row(3) << 0.6, 0.5, 0.0;
+  Eigen::MatrixX3d g1 = Eigen::MatrixX3d::Zero(4, 3), g2 = g1;
+  one_sided->add_gradient(x, g1);
+  two_sided->add_gradient(x, g2);
+  INFO("one-sided " << g1.row(0) << " | " << g1.row(1) << "; two-sided " << g2.row(0) << " | " << g2.row(1));
+  // 20 um apart across the bisector the one-sided push flips by 90 degrees; the
+  // sum of both walls' pushes hardly turns.
+  CHECK((g1.row(0).normalized() - g1.row(1).normalized()).norm() > 1.4);
+  CHECK((g2.row(0).normalized() - g2.row(1).normalized()).norm() < 1e-2);
+  // Point 0: the floor pushes up (its near side) and the wall along +x (c = 0.7 here, weight 1).
+  const double floor = std::pow(0.02 - (r - h), 2), wall = std::pow(0.02 - (r + h), 2);
+  CHECK(-g2(0, 1) / -g2(0, 0) == Approx(floor / wall).epsilon(1e-9));
+  CHECK(two_sided->value(x) > one_sided->value(x));
+}
+
+TEST_CASE("crease collision derivatives match finite differences in the gap of a crease", "[collision][crease][gradcheck]") {
+  // Points all over the trough's gap: on and off its bisector, near one wall
+  // (where the far wall's weight w(c) is between 0 and 1), slightly inside a
+  // wall (where the far term fades out) and beyond the margin.
+  const geometry::BodySurface body = crease_body();
+  const auto garment = grid_garment(5, 0.02);
+  std::mt19937_64 rng(5);
+  std::uniform_real_distribution<double> u(-0.004, 0.02), z(-0.05, 0.05);
+  Eigen::MatrixX3d x(25, 3);
+  for (int v = 0; v < 25; ++v) x.row(v) << u(rng), u(rng), z(rng);
+  // z = 0 is a line of the grid: points there project onto an edge of the flat
+  // floor, where the one-sided distance's Hessian is that of a line (a set of
+  // measure zero that the other collision tests avoid too).
+  x.row(0) << 0.008, 0.008, 0.013;   // on the bisector
+  x.row(1) << 0.012, 0.002, 0.01;    // near the floor: c ~ 0.16 to 0.5 across its neighbourhood
+  x.row(2) << 0.015, 0.004, 0.02;
+  x.row(3) << 0.009, -0.0005, 0.013;  // just inside the floor
+  for (int v = 0; v < 25; ++v)  // keep out of the trough's solid corner x, y < 0
+    if (x(v, 0) < 0 && x(v, 1) < 0) x(v, 0) = -x(v, 0);
+  const auto e = collision_energy("{margin: 0.02}", *garment, &body);
+  const auto off = collision_energy("{margin: 0.02, creases: false}", *garment, &body);
+  REQUIRE(e->value(x) > off->value(x));  // the far side counts somewhere
+  const GradCheckReport r = check_energy_derivatives(*e, x);
+  INFO(r.str());
+  CHECK(r.ok(1e-5));
 }
 
 TEST_CASE("smooth collision refuses a radius within the margin", "[collision][smooth]") {
@@ -380,7 +435,7 @@ TEST_CASE("stationarity counts both faces of a concave crease, where the plain r
   // half each; the exact contact at any one point pushes off one wall only.
   const geometry::BodySurface body = crease_body();
   const auto garment = grid_garment(2, 0.02);
-  auto contact = collision_energy("{margin: 0.02}", *garment, &body);
+  auto contact = collision_energy("{margin: 0.02, creases: false}", *garment, &body);
   const double r = 0.01;  // every vertex on the bisector x = y, 1 cm from the crease line
   Eigen::MatrixX3d x(4, 3);
   for (int v = 0; v < 4; ++v) x.row(v) << r, r, 0.1 * v;
@@ -396,7 +451,7 @@ TEST_CASE("stationarity counts both faces of a concave crease, where the plain r
   auto measure = [&](const Eigen::MatrixX3d& load, double& plain, double& stationary) {
     std::vector<NamedEnergy> energies;
     energies.push_back({"load", std::make_unique<ConstantGradient>(load)});
-    energies.push_back({"collision", collision_energy("{margin: 0.02}", *garment, &body)});
+    energies.push_back({"collision", collision_energy("{margin: 0.02, creases: false}", *garment, &body)});
     ClothSolver solver(*garment, energies, SolverSettings{});
     plain = solver.static_residual(x);
     stationary = solver.stationarity(x, 1e-3);

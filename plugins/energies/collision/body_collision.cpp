@@ -39,6 +39,8 @@ void BodyCollision::bind(const EnergyContext& context) {
     cache_.contacts.reset();
     cache_.reference.resize(0, 3);
   }
+  creases_.reset();
+  if (settings_.creases && !(settings_.smoothing > 0) && surface_) creases_ = std::make_unique<CreaseSearch>(*surface_);
   if (settings_.smoothing > 0 && !surface_)
     throw ConfigError("collision: smoothing needs the body's vertices and normals (a geometry::BodySurface); this body "
                       "only answers closest-point queries: set smoothing to 0");
@@ -104,7 +106,28 @@ std::vector<Contact> BodyCollision::exact_contacts(const Eigen::MatrixX3d& x) co
     reference.row(v) = x.row(v);
     reference_distance[v] = found[i].distance;
   }
+  if (creases_) add_crease_terms(x, search, out);
   return out;
+}
+
+void BodyCollision::add_crease_terms(const Eigen::MatrixX3d& x, const std::vector<Eigen::Index>& searched,
+                                     std::vector<Contact>& contacts) const {
+  creases_->follow(*surface_);
+  const auto n = static_cast<std::ptrdiff_t>(searched.size());
+#pragma omp parallel for schedule(dynamic, 16)
+  for (std::ptrdiff_t i = 0; i < n; ++i) {
+    const Eigen::Index v = searched[static_cast<std::size_t>(i)];
+    Contact& contact = contacts[static_cast<std::size_t>(v)];
+    if (!(penalty_.delta(contact.distance) > 0) || contact.face < 0) continue;
+    contact.crease = crease_at(x.row(v).transpose(), contact, v);
+  }
+}
+
+CreaseTerm BodyCollision::crease_at(const Eigen::Vector3d& p, const Contact& contact, Eigen::Index v) const {
+  const CreaseSearch::Hit far = creases_->locate_elsewhere(p, creases_->group_of(contact.face), settings_.margin);
+  if (far.point.face < 0) return {};
+  return crease_term(p, contact.closest, closest_point_of(*far.surface, far.point), penalty_,
+                     settings_.stiffness * area_[v]);
 }
 
 std::shared_ptr<const std::vector<Contact>> BodyCollision::cached_contacts(const Eigen::MatrixX3d& x) const {
@@ -141,9 +164,12 @@ double BodyCollision::value(const Eigen::MatrixX3d& x) const {
   const auto cached = cached_contacts(x);
   const std::vector<Contact>& contacts = *cached;
   double energy = 0;
-  for (std::size_t v = 0; v < contacts.size(); ++v)
+  double crease = 0;
+  for (std::size_t v = 0; v < contacts.size(); ++v) {
     energy += area_[static_cast<Eigen::Index>(v)] * penalty_.value(penalty_.delta(contacts[v].distance));
-  return settings_.stiffness * energy;
+    crease += contacts[v].crease.value;
+  }
+  return settings_.stiffness * energy + crease;
 }
 
 double BodyCollision::add_gradient(const Eigen::MatrixX3d& x, Eigen::MatrixX3d& g) const {
@@ -157,8 +183,8 @@ double BodyCollision::add_gradient(const Eigen::MatrixX3d& x, Eigen::MatrixX3d& 
     const auto v = static_cast<Eigen::Index>(i);
     const double delta = penalty_.delta(contacts[i].distance);
     if (delta <= 0) continue;
-    energy += settings_.stiffness * area_[v] * penalty_.value(delta);
-    g.row(v) += push_gradient(v, delta, contacts[i].normal).transpose();
+    energy += settings_.stiffness * area_[v] * penalty_.value(delta) + contacts[i].crease.value;
+    g.row(v) += (push_gradient(v, delta, contacts[i].normal) + contacts[i].crease.gradient).transpose();
   }
   return energy;
 }
@@ -177,6 +203,10 @@ Eigen::Matrix3d BodyCollision::vertex_hessian(Eigen::Index v, const Contact& con
       // -c phi' D is negative semi-definite outside the body (D = P / d with
       // d > 0) and positive semi-definite inside: the projection keeps it there only.
       block -= c * penalty_.slope(delta) * contact.distance_hessian;
+    }
+    if (contact.crease.value > 0) {
+      block += contact.crease.hessian;
+      if (project_psd) project_to_psd(block);
     }
   }
   return block;
@@ -213,13 +243,28 @@ void BodyCollision::vertex_gradient_samples(const Eigen::MatrixX3d& x, int verte
     throw Error("collision: vertex " + std::to_string(vertex) + " of " + std::to_string(x.rows()) +
                 " given, the bound garment has " + std::to_string(area_.size()));
   if (!x.row(vertex).allFinite()) throw Error("collision: garment vertex " + std::to_string(vertex) + " is not finite");
+  if (creases_) {
+    std::lock_guard<std::mutex> lock(cache_.mutex);
+    creases_->follow(*surface_);
+  }
   for (int axis = 0; axis < 3; ++axis)
     for (const double sign : {-1.0, 1.0}) {
       Eigen::Vector3d p = x.row(vertex).transpose();
       p[axis] += sign * radius;
-      const BodyQuery::Hit hit = body_->closest(p);
-      const double delta = penalty_.delta(hit.signed_distance);
-      samples.push_back(delta > 0 ? push_gradient(vertex, delta, hit.normal) : Eigen::Vector3d::Zero());
+      if (!surface_) {
+        const BodyQuery::Hit hit = body_->closest(p);
+        const double delta = penalty_.delta(hit.signed_distance);
+        samples.push_back(delta > 0 ? push_gradient(vertex, delta, hit.normal) : Eigen::Vector3d::Zero());
+        continue;
+      }
+      const Contact contact = contact_of(*surface_, surface_->locate(p), false);
+      const double delta = penalty_.delta(contact.distance);
+      Eigen::Vector3d sample = Eigen::Vector3d::Zero();
+      if (delta > 0) {
+        sample = push_gradient(vertex, delta, contact.normal);
+        if (creases_) sample += crease_at(p, contact, vertex).gradient;
+      }
+      samples.push_back(sample);
     }
 }
 

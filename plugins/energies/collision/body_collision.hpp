@@ -49,6 +49,7 @@
 // reused while x and the body (BodySurface::revision, bumped by every morph
 // update) are unchanged: one closest-point pass per iteration instead of three.
 #include "contacts.hpp"
+#include "crease_search.hpp"
 #include "penalty.hpp"
 
 #include <drape/energy.hpp>
@@ -70,6 +71,9 @@ struct CollisionSettings {
   // m: R of the smooth distance (smooth_distance.hpp) over the body's vertices
   // within R; 0: the exact closest-point distance. Must exceed the margin.
   double smoothing = 0;
+  // Push off the far side of a concave crease too (crease_penalty.hpp), when
+  // the body is a BodySurface and the distance is exact (smoothing 0).
+  bool creases = true;
 };
 
 class BodyCollision final : public Energy {
@@ -107,6 +111,11 @@ class BodyCollision final : public Energy {
   void hessian(const Eigen::MatrixX3d& x, Triplets& h, bool project_psd, bool lower) const;
   // Vertex v's 3 x 3 Hessian block at its contact (zero outside the margin).
   Eigen::Matrix3d vertex_hessian(Eigen::Index v, const Contact& contact, bool project_psd) const;
+  // The far-side terms of the contacts of the searched vertices within the margin (crease_penalty.hpp).
+  void add_crease_terms(const Eigen::MatrixX3d& x, const std::vector<Eigen::Index>& searched,
+                        std::vector<Contact>& contacts) const;
+  // Vertex v's far-side term at p, whose nearest body point is `contact`'s.
+  CreaseTerm crease_at(const Eigen::Vector3d& p, const Contact& contact, Eigen::Index v) const;
   // The gradient of vertex v's penalty at penetration delta (> 0) into the margin along `normal`.
   Eigen::Vector3d push_gradient(Eigen::Index v, double delta, const Eigen::Vector3d& normal) const;
 
@@ -115,6 +124,7 @@ class BodyCollision final : public Energy {
   const BodyQuery* body_ = nullptr;
   Eigen::VectorXd area_;  // lumped material-space area per vertex, m^2
   const geometry::BodySurface* surface_ = nullptr;  // the body when it can tell its revision (cache on)
+  std::unique_ptr<CreaseSearch> creases_;  // null: creases off, smoothing on, or no BodySurface
 
   struct Cache {
     std::mutex mutex;  // energies may be evaluated from several threads (graph loss nodes)

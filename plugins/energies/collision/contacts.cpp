@@ -1,6 +1,9 @@
 #include "contacts.hpp"
 
+#include <Eigen/Geometry>
+
 #include <algorithm>
+#include <utility>
 #include <cmath>
 
 namespace drape::collision {
@@ -38,17 +41,54 @@ Eigen::Matrix3d distance_hessian(const BodySurface& body, const SurfacePoint& s)
   return projector / radius;
 }
 
+// The edge (two slots of the face) a closest point lies on; a = b = -1 inside
+// the face, a >= 0 and b = -1 at a corner.
+std::pair<int, int> feature_slots(TriangleFeature feature) {
+  switch (feature) {
+    case TriangleFeature::interior: return {-1, -1};
+    case TriangleFeature::edge_ab: return {0, 1};
+    case TriangleFeature::edge_bc: return {1, 2};
+    case TriangleFeature::edge_ca: return {2, 0};
+    case TriangleFeature::vertex_a: return {0, -1};
+    case TriangleFeature::vertex_b: return {1, -1};
+    default: return {2, -1};
+  }
+}
+
 }  // namespace
+
+ClosestPoint closest_point_of(const BodySurface& surface, const SurfacePoint& s) {
+  ClosestPoint q;
+  q.point = s.point;
+  q.sign = s.signed_distance < 0 ? -1 : 1;
+  const auto corner = [&](int slot) -> Eigen::Vector3d { return surface.vertices().row(surface.faces()(s.face, slot)); };
+  const auto [a, b] = feature_slots(s.feature);
+  if (a < 0) {
+    const Eigen::Vector3d n = (corner(1) - corner(0)).cross(corner(2) - corner(0));
+    // A degenerate face has no plane; its closest points lie on its edges (closest_point_on_triangle).
+    if (n.norm() > 0) q.slide = Eigen::Matrix3d::Identity() - n.normalized() * n.normalized().transpose();
+  } else if (b >= 0) {
+    const Eigen::Vector3d t = corner(b) - corner(a);
+    if (t.norm() > 0) q.slide = t.normalized() * t.normalized().transpose();
+  }
+  return q;
+}
+
+Contact contact_of(const BodySurface& surface, const SurfacePoint& s, bool with_hessian) {
+  Contact c;
+  c.normal = s.normal;
+  c.distance = s.signed_distance;
+  if (with_hessian) c.distance_hessian = distance_hessian(surface, s);
+  c.closest = closest_point_of(surface, s);
+  c.face = s.face;
+  return c;
+}
 
 std::vector<Contact> body_contacts(const BodyQuery& body, const Eigen::MatrixX3d& x, bool with_hessian) {
   std::vector<Contact> out(static_cast<std::size_t>(x.rows()));
   if (const auto* surface = dynamic_cast<const BodySurface*>(&body)) {
     const std::vector<SurfacePoint> located = surface->locate_all(x);
-    for (std::size_t v = 0; v < out.size(); ++v) {
-      out[v].normal = located[v].normal;
-      out[v].distance = located[v].signed_distance;
-      if (with_hessian) out[v].distance_hessian = distance_hessian(*surface, located[v]);
-    }
+    for (std::size_t v = 0; v < out.size(); ++v) out[v] = contact_of(*surface, located[v], with_hessian);
     return out;
   }
   for (Eigen::Index v = 0; v < x.rows(); ++v) {

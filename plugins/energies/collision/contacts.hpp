@@ -2,6 +2,8 @@
 // Where each garment vertex stands relative to the body: signed distance, its
 // gradient (the outward unit normal at the closest point) and, when the body can
 // say which feature the closest point lies on, the Hessian of the signed distance.
+#include "crease_penalty.hpp"
+
 #include <drape/geometry/closest_point.hpp>
 
 #include <Eigen/Core>
@@ -18,7 +20,18 @@ struct Contact {
   // a point), (I - n n^T - t t^T) / distance on an edge of direction t (distance
   // to a line). Left zero when not asked for or not known (see body_contacts).
   Eigen::Matrix3d distance_hessian = Eigen::Matrix3d::Zero();
+  // From a BodySurface only: the closest point and its face (-1 otherwise).
+  ClosestPoint closest;
+  int face = -1;
+  // The far side of a crease (crease_penalty.hpp), filled in by the collision energy.
+  CreaseTerm crease;
 };
+
+// The closest point of a surface query with dq/dp: I - n n^T inside a face (n
+// its normal), t t^T on an edge of direction t, zero at a vertex.
+ClosestPoint closest_point_of(const geometry::BodySurface& surface, const geometry::SurfacePoint& s);
+// The contact of one surface query.
+Contact contact_of(const geometry::BodySurface& surface, const geometry::SurfacePoint& s, bool with_hessian);
 
 // One contact per row of x. A BodySurface is queried in parallel and reports the
 // feature (face, edge, vertex) of each closest point, which the distance Hessian

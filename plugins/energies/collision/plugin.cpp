@@ -26,6 +26,9 @@ PluginList plugins() {
        "m: distance to a smooth surface blended from the body's vertex planes within this radius (rounds concave "
        "creases, where the exact distance kinks); 0 = exact closest point; must exceed the margin",
        0.0, 1.0},
+      {"creases", ParamType::Bool, "true",
+       "also push off the far side of a concave crease of the body (the armpit of a heavy body), so that cloth "
+       "squeezed into it has a smooth equilibrium; needs smoothing 0"},
   };
   d.create_energy = [](const Params& p) {
     collision::CollisionSettings s;
@@ -33,6 +36,7 @@ PluginList plugins() {
     s.margin = p.get_float("margin");
     s.max_depth = p.get_float("max_depth");
     s.smoothing = p.get_float("smoothing");
+    s.creases = p.get_bool("creases");
     return std::make_unique<collision::BodyCollision>(s);
   };
   return {d};
