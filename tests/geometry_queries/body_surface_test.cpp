@@ -273,3 +273,44 @@ TEST_CASE("bad body meshes are refused with a message naming the problem") {
   CHECK_THROWS_WITH(surface.update(Eigen::MatrixX3d::Zero(5, 3)), Catch::Contains("5 vertices") && Catch::Contains("12"));
   CHECK_THROWS_AS(BodySurface(Eigen::MatrixX3d::Zero(3, 3), Eigen::MatrixX3i(0, 3)), drape::Error);
 }
+
+TEST_CASE("locate_excluding finds the closest point on the faces outside one label") {
+  const Mesh m = drape::geometry::icosphere(2);
+  const BodySurface surface(m);
+  // Label the faces by the octant of their centroid: 8 labels, each a patch of the sphere.
+  std::vector<int> label(static_cast<std::size_t>(m.num_faces()));
+  for (int f = 0; f < m.num_faces(); ++f) {
+    Eigen::Vector3d c = Eigen::Vector3d::Zero();
+    for (int k = 0; k < 3; ++k) c += m.vertices.row(m.faces(f, k)).transpose();
+    label[static_cast<std::size_t>(f)] = (c.x() > 0) + 2 * (c.y() > 0) + 4 * (c.z() > 0);
+  }
+  std::mt19937 rng(31);
+  const std::vector<Eigen::Vector3d> points = hard_points(m, rng, 300);
+  for (const Eigen::Vector3d& p : points) {
+    const SurfacePoint near = surface.locate(p);
+    const int excluded = label[static_cast<std::size_t>(near.face)];
+    const SurfacePoint far = surface.locate_excluding(p, label, excluded);
+    INFO("p = " << p.transpose());
+    REQUIRE(far.face >= 0);
+    CHECK(label[static_cast<std::size_t>(far.face)] != excluded);
+    // Exhaustively over the faces that are not excluded.
+    long double best = INFINITY;
+    for (int f = 0; f < m.num_faces(); ++f)
+      if (label[static_cast<std::size_t>(f)] != excluded)
+        best = std::min(best, drape::test::triangle_distance2(p, m.vertices.row(m.faces(f, 0)), m.vertices.row(m.faces(f, 1)),
+                                                             m.vertices.row(m.faces(f, 2))));
+    CHECK(std::abs(std::abs(far.signed_distance) - static_cast<double>(std::sqrt(best))) <= 1e-12);
+    CHECK(std::abs(far.signed_distance) >= std::abs(near.signed_distance));
+    // The sign says which side of the far face's plane the point is on (of its
+    // edge's or vertex's pseudo-normal off the face interior, as locate()).
+    if (far.feature == drape::geometry::TriangleFeature::interior) {
+      const Eigen::Vector3d a = m.vertices.row(m.faces(far.face, 0)), b = m.vertices.row(m.faces(far.face, 1)),
+                            c = m.vertices.row(m.faces(far.face, 2));
+      CHECK((far.signed_distance < 0) == ((p - a).dot((b - a).cross(c - a)) < 0));
+    }
+    // Excluding a label no face has is the plain search.
+    CHECK(surface.locate_excluding(p, label, -1).signed_distance == near.signed_distance);
+  }
+  CHECK_THROWS_WITH(surface.locate_excluding(points[0], std::vector<int>(3, 0), 0),
+                    Catch::Contains("3 face labels given, the body has 320 faces"));
+}

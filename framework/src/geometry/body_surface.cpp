@@ -135,12 +135,25 @@ SurfacePoint BodySurface::finish(const Eigen::Vector3d& p, int face, const Trian
   return r;
 }
 
-SurfacePoint BodySurface::locate(const Eigen::Vector3d& p, double max_distance) const {
+SurfacePoint BodySurface::search(const Eigen::Vector3d& p, double max_distance, const int* face_labels,
+                                 int excluded) const {
   TrianglePoint hit;
   const double bound = std::isinf(max_distance) ? max_distance : max_distance * max_distance;
-  const int face = bvh_->nearest(p, bound, hit);
+  const int face = bvh_->nearest(p, bound, hit, face_labels, excluded);
   if (face < 0) return {};
   return finish(p, face, hit);
+}
+
+SurfacePoint BodySurface::locate(const Eigen::Vector3d& p, double max_distance) const {
+  return search(p, max_distance, nullptr, 0);
+}
+
+SurfacePoint BodySurface::locate_excluding(const Eigen::Vector3d& p, const std::vector<int>& face_labels, int excluded,
+                                           double max_distance) const {
+  if (face_labels.size() != static_cast<std::size_t>(faces_.rows()))
+    throw Error("body surface: " + std::to_string(face_labels.size()) + " face labels given, the body has " +
+                std::to_string(faces_.rows()) + " faces");
+  return search(p, max_distance, face_labels.data(), excluded);
 }
 
 std::vector<SurfacePoint> BodySurface::locate_all(const Eigen::MatrixX3d& points, double max_distance) const {

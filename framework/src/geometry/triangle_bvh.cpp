@@ -70,7 +70,8 @@ double TriangleBvh::box_distance2(const Node& n, const Eigen::Vector3d& p) const
   return (n.lo - p).cwiseMax(p - n.hi).cwiseMax(0.0).squaredNorm();
 }
 
-int TriangleBvh::nearest(const Eigen::Vector3d& p, double max_squared_distance, TrianglePoint& hit) const {
+int TriangleBvh::nearest(const Eigen::Vector3d& p, double max_squared_distance, TrianglePoint& hit,
+                         const int* face_labels, int excluded) const {
   if (nodes_.empty()) return -1;
   double best = max_squared_distance;
   int best_triangle = -1;
@@ -86,6 +87,7 @@ int TriangleBvh::nearest(const Eigen::Vector3d& p, double max_squared_distance, 
     const Node& n = nodes_[node];
     if (n.count > 0) {
       for (int t = n.first; t < n.first + n.count; ++t) {
+        if (face_labels && face_labels[face_of_[t]] == excluded) continue;
         const TrianglePoint q = closest_point_on_triangle(p, corners_[3 * t], corners_[3 * t + 1], corners_[3 * t + 2]);
         const double d2 = (q.point - p).squaredNorm();
         if (d2 < best) best = d2, best_triangle = t, hit = q;

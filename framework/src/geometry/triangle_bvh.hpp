@@ -23,8 +23,10 @@ class TriangleBvh {
   void refit(const Eigen::MatrixX3d& vertices);
 
   // The closest triangle to p strictly within sqrt(max_squared_distance);
-  // returns -1 (and leaves `hit` alone) when there is none.
-  int nearest(const Eigen::Vector3d& p, double max_squared_distance, TrianglePoint& hit) const;
+  // returns -1 (and leaves `hit` alone) when there is none. With face_labels
+  // (one per face), faces labelled `excluded` are passed over.
+  int nearest(const Eigen::Vector3d& p, double max_squared_distance, TrianglePoint& hit,
+              const int* face_labels = nullptr, int excluded = 0) const;
 
   int num_nodes() const { return static_cast<int>(nodes_.size()); }
 

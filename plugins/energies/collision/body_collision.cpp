@@ -1,6 +1,7 @@
 #include "body_collision.hpp"
 
 #include "contacts.hpp"
+#include "normal_groups.hpp"
 #include "smooth_distance.hpp"
 
 #include <drape/errors.hpp>
@@ -39,8 +40,8 @@ void BodyCollision::bind(const EnergyContext& context) {
     cache_.contacts.reset();
     cache_.reference.resize(0, 3);
   }
-  creases_.reset();
-  if (settings_.creases && !(settings_.smoothing > 0) && surface_) creases_ = std::make_unique<CreaseSearch>(*surface_);
+  face_group_.clear();
+  if (settings_.creases && !(settings_.smoothing > 0) && surface_) face_group_ = normal_groups(*surface_);
   if (settings_.smoothing > 0 && !surface_)
     throw ConfigError("collision: smoothing needs the body's vertices and normals (a geometry::BodySurface); this body "
                       "only answers closest-point queries: set smoothing to 0");
@@ -106,13 +107,12 @@ std::vector<Contact> BodyCollision::exact_contacts(const Eigen::MatrixX3d& x) co
     reference.row(v) = x.row(v);
     reference_distance[v] = found[i].distance;
   }
-  if (creases_) add_crease_terms(x, search, out);
+  if (!face_group_.empty()) add_crease_terms(x, search, out);
   return out;
 }
 
 void BodyCollision::add_crease_terms(const Eigen::MatrixX3d& x, const std::vector<Eigen::Index>& searched,
                                      std::vector<Contact>& contacts) const {
-  creases_->follow(*surface_);
   const auto n = static_cast<std::ptrdiff_t>(searched.size());
 #pragma omp parallel for schedule(dynamic, 16)
   for (std::ptrdiff_t i = 0; i < n; ++i) {
@@ -124,10 +124,10 @@ void BodyCollision::add_crease_terms(const Eigen::MatrixX3d& x, const std::vecto
 }
 
 CreaseTerm BodyCollision::crease_at(const Eigen::Vector3d& p, const Contact& contact, Eigen::Index v) const {
-  const CreaseSearch::Hit far = creases_->locate_elsewhere(p, creases_->group_of(contact.face), settings_.margin);
-  if (far.point.face < 0) return {};
-  return crease_term(p, contact.closest, closest_point_of(*far.surface, far.point), penalty_,
-                     settings_.stiffness * area_[v]);
+  const geometry::SurfacePoint far =
+      surface_->locate_excluding(p, face_group_, face_group_[static_cast<std::size_t>(contact.face)], settings_.margin);
+  if (far.face < 0) return {};
+  return crease_term(p, contact.closest, closest_point_of(*surface_, far), penalty_, settings_.stiffness * area_[v]);
 }
 
 std::shared_ptr<const std::vector<Contact>> BodyCollision::cached_contacts(const Eigen::MatrixX3d& x) const {
@@ -243,26 +243,16 @@ void BodyCollision::vertex_gradient_samples(const Eigen::MatrixX3d& x, int verte
     throw Error("collision: vertex " + std::to_string(vertex) + " of " + std::to_string(x.rows()) +
                 " given, the bound garment has " + std::to_string(area_.size()));
   if (!x.row(vertex).allFinite()) throw Error("collision: garment vertex " + std::to_string(vertex) + " is not finite");
-  if (creases_) {
-    std::lock_guard<std::mutex> lock(cache_.mutex);
-    creases_->follow(*surface_);
-  }
   for (int axis = 0; axis < 3; ++axis)
     for (const double sign : {-1.0, 1.0}) {
       Eigen::Vector3d p = x.row(vertex).transpose();
       p[axis] += sign * radius;
-      if (!surface_) {
-        const BodyQuery::Hit hit = body_->closest(p);
-        const double delta = penalty_.delta(hit.signed_distance);
-        samples.push_back(delta > 0 ? push_gradient(vertex, delta, hit.normal) : Eigen::Vector3d::Zero());
-        continue;
-      }
-      const Contact contact = contact_of(*surface_, surface_->locate(p), false);
+      const Contact contact = body_contact(*body_, p, false);
       const double delta = penalty_.delta(contact.distance);
       Eigen::Vector3d sample = Eigen::Vector3d::Zero();
       if (delta > 0) {
         sample = push_gradient(vertex, delta, contact.normal);
-        if (creases_) sample += crease_at(p, contact, vertex).gradient;
+        if (!face_group_.empty()) sample += crease_at(p, contact, vertex).gradient;
       }
       samples.push_back(sample);
     }

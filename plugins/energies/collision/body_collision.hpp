@@ -49,7 +49,6 @@
 // reused while x and the body (BodySurface::revision, bumped by every morph
 // update) are unchanged: one closest-point pass per iteration instead of three.
 #include "contacts.hpp"
-#include "crease_search.hpp"
 #include "penalty.hpp"
 
 #include <drape/energy.hpp>
@@ -124,7 +123,8 @@ class BodyCollision final : public Energy {
   const BodyQuery* body_ = nullptr;
   Eigen::VectorXd area_;  // lumped material-space area per vertex, m^2
   const geometry::BodySurface* surface_ = nullptr;  // the body when it can tell its revision (cache on)
-  std::unique_ptr<CreaseSearch> creases_;  // null: creases off, smoothing on, or no BodySurface
+  // Per body face, its normal group (normal_groups.hpp); empty: creases off, smoothing on, or no BodySurface.
+  std::vector<int> face_group_;
 
   struct Cache {
     std::mutex mutex;  // energies may be evaluated from several threads (graph loss nodes)

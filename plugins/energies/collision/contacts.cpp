@@ -18,29 +18,6 @@ using geometry::TriangleFeature;
 // clamp keeps the Hessian finite when a point sits on the surface.
 constexpr double kMinCurvatureRadius = 1e-6;  // m
 
-Eigen::Matrix3d distance_hessian(const BodySurface& body, const SurfacePoint& s) {
-  int a = -1, b = -1;  // the edge's corners (slots in the face), or a = b = -1 for a vertex
-  switch (s.feature) {
-    case TriangleFeature::interior: return Eigen::Matrix3d::Zero();
-    case TriangleFeature::edge_ab: a = 0, b = 1; break;
-    case TriangleFeature::edge_bc: a = 1, b = 2; break;
-    case TriangleFeature::edge_ca: a = 2, b = 0; break;
-    default: break;  // one of the corners
-  }
-  Eigen::Matrix3d projector = Eigen::Matrix3d::Identity() - s.normal * s.normal.transpose();
-  if (a >= 0) {
-    const Eigen::Vector3d edge =
-        body.vertices().row(body.faces()(s.face, b)) - body.vertices().row(body.faces()(s.face, a));
-    // A degenerate (zero-length) edge is a point: keep the vertex form.
-    if (edge.norm() > 0) {
-      const Eigen::Vector3d t = edge.normalized();
-      projector -= t * t.transpose();
-    }
-  }
-  const double radius = std::copysign(std::max(std::abs(s.signed_distance), kMinCurvatureRadius), s.signed_distance);
-  return projector / radius;
-}
-
 // The edge (two slots of the face) a closest point lies on; a = b = -1 inside
 // the face, a >= 0 and b = -1 at a corner.
 std::pair<int, int> feature_slots(TriangleFeature feature) {
@@ -53,6 +30,27 @@ std::pair<int, int> feature_slots(TriangleFeature feature) {
     case TriangleFeature::vertex_b: return {1, -1};
     default: return {2, -1};
   }
+}
+
+// Zero inside a face (the surface is flat there); off it, the distance is to
+// the feature the closest point slides on (a line or a point), whose Hessian is
+// the projector onto the directions the point cannot follow, over the distance:
+// (I - n n^T - slide) / d.
+Eigen::Matrix3d distance_hessian(const SurfacePoint& s, const ClosestPoint& q) {
+  if (s.feature == TriangleFeature::interior) return Eigen::Matrix3d::Zero();
+  const Eigen::Matrix3d projector = Eigen::Matrix3d::Identity() - s.normal * s.normal.transpose() - q.slide;
+  const double radius = std::copysign(std::max(std::abs(s.signed_distance), kMinCurvatureRadius), s.signed_distance);
+  return projector / radius;
+}
+
+Contact contact_of(const BodySurface& surface, const SurfacePoint& s, bool with_hessian) {
+  Contact c;
+  c.normal = s.normal;
+  c.distance = s.signed_distance;
+  c.closest = closest_point_of(surface, s);
+  c.face = s.face;
+  if (with_hessian) c.distance_hessian = distance_hessian(s, c.closest);
+  return c;
 }
 
 }  // namespace
@@ -68,19 +66,20 @@ ClosestPoint closest_point_of(const BodySurface& surface, const SurfacePoint& s)
     // A degenerate face has no plane; its closest points lie on its edges (closest_point_on_triangle).
     if (n.norm() > 0) q.slide = Eigen::Matrix3d::Identity() - n.normalized() * n.normalized().transpose();
   } else if (b >= 0) {
+    // A degenerate (zero-length) edge is a point: it does not slide.
     const Eigen::Vector3d t = corner(b) - corner(a);
     if (t.norm() > 0) q.slide = t.normalized() * t.normalized().transpose();
   }
   return q;
 }
 
-Contact contact_of(const BodySurface& surface, const SurfacePoint& s, bool with_hessian) {
+Contact body_contact(const BodyQuery& body, const Eigen::Vector3d& p, bool with_hessian) {
+  if (const auto* surface = dynamic_cast<const BodySurface*>(&body))
+    return contact_of(*surface, surface->locate(p), with_hessian);
+  const BodyQuery::Hit hit = body.closest(p);
   Contact c;
-  c.normal = s.normal;
-  c.distance = s.signed_distance;
-  if (with_hessian) c.distance_hessian = distance_hessian(surface, s);
-  c.closest = closest_point_of(surface, s);
-  c.face = s.face;
+  c.normal = hit.normal;
+  c.distance = hit.signed_distance;
   return c;
 }
 
@@ -91,11 +90,8 @@ std::vector<Contact> body_contacts(const BodyQuery& body, const Eigen::MatrixX3d
     for (std::size_t v = 0; v < out.size(); ++v) out[v] = contact_of(*surface, located[v], with_hessian);
     return out;
   }
-  for (Eigen::Index v = 0; v < x.rows(); ++v) {
-    const BodyQuery::Hit hit = body.closest(x.row(v).transpose());
-    out[static_cast<std::size_t>(v)].normal = hit.normal;
-    out[static_cast<std::size_t>(v)].distance = hit.signed_distance;
-  }
+  for (Eigen::Index v = 0; v < x.rows(); ++v)
+    out[static_cast<std::size_t>(v)] = body_contact(body, x.row(v).transpose(), with_hessian);
   return out;
 }
 

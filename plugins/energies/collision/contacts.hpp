@@ -30,8 +30,9 @@ struct Contact {
 // The closest point of a surface query with dq/dp: I - n n^T inside a face (n
 // its normal), t t^T on an edge of direction t, zero at a vertex.
 ClosestPoint closest_point_of(const geometry::BodySurface& surface, const geometry::SurfacePoint& s);
-// The contact of one surface query.
-Contact contact_of(const geometry::BodySurface& surface, const geometry::SurfacePoint& s, bool with_hessian);
+
+// The contact of one point (with the distance Hessian only from a BodySurface).
+Contact body_contact(const BodyQuery& body, const Eigen::Vector3d& p, bool with_hessian);
 
 // One contact per row of x. A BodySurface is queried in parallel and reports the
 // feature (face, edge, vertex) of each closest point, which the distance Hessian

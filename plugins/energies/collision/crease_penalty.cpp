@@ -42,9 +42,10 @@ CreaseTerm crease_term(const Eigen::Vector3d& p, const ClosestPoint& near, const
   for (int i = 0; i < 3; ++i) x[static_cast<std::size_t>(i)] = Dual2::variable(p[i], i);
   const Dual2Vector q1 = moving_point(near), q2 = moving_point(far);
   const Dual2Vector chord = q2 - q1, offset1 = x - q1, offset2 = x - q2;
-  const Dual2 c = near.sign * (dot(chord, offset1) / (sqrt(dot(chord, chord)) * sqrt(dot(offset1, offset1))));
+  const Dual2 r1 = sqrt(dot(offset1, offset1));  // |d1|
+  const Dual2 c = near.sign * (dot(chord, offset1) / (sqrt(dot(chord, chord)) * r1));
   const Dual2 w = smoother_step((1.0 / (kCreaseFull - kCreaseFrom)) * (c - Dual2::constant(kCreaseFrom)));
-  const Dual2 d1 = near.sign * sqrt(dot(offset1, offset1)), d2 = far.sign * sqrt(dot(offset2, offset2));
+  const Dual2 d1 = near.sign * r1, d2 = far.sign * sqrt(dot(offset2, offset2));
   const Dual2 in_gap = smoother_step((1 / fade) * (d1 + Dual2::constant(fade))) *
                        smoother_step((1 / fade) * (d2 + Dual2::constant(fade)));
   const Dual2 delta = Dual2::constant(penalty.margin) - d2;

@@ -7,7 +7,7 @@
 // the vertex flipping between the sides: the drapes at BMI 61.5 and 65 that
 // did not settle). So, besides the nearest point, the collision energy also
 // pushes off the nearest point on the body's faces that face another way (the
-// groups of crease_search.hpp):
+// groups of normal_groups.hpp):
 //
 //   E_v = a_v k [ phi(margin - d1) + w(c) g(d1) g(d2) phi(margin - d2) ]
 //
@@ -30,7 +30,7 @@
 // The energy is continuous: where the nearest group changes the two terms swap,
 // and at equal distances c is the same seen from either side. Its gradient and
 // Hessian are exact: both closest points move linearly with the vertex on the
-// feature they lie on (contacts.hpp, Contact::slide), and the rest is a chain
+// feature they lie on (ClosestPoint::slide), and the rest is a chain
 // of elementary functions differentiated by Dual2.
 #include "dual2.hpp"
 #include "penalty.hpp"

@@ -72,6 +72,12 @@ class BodySurface final : public BodyQuery {
 
   // The closest surface point; with max_distance, face = -1 when the surface is farther.
   SurfacePoint locate(const Eigen::Vector3d& p, double max_distance = std::numeric_limits<double>::infinity()) const;
+  // The closest point on the faces not labelled `excluded` (face_labels: one
+  // label per face), signed like locate()'s: by the face normal, or the whole
+  // surface's pseudo-normal at an edge or vertex. (Near the label's border that
+  // is the side of the far patch's surface, not inside/outside the body.)
+  SurfacePoint locate_excluding(const Eigen::Vector3d& p, const std::vector<int>& face_labels, int excluded,
+                                double max_distance = std::numeric_limits<double>::infinity()) const;
   // One query per row of `points`, in parallel (OpenMP).
   std::vector<SurfacePoint> locate_all(const Eigen::MatrixX3d& points, double max_distance = std::numeric_limits<double>::infinity()) const;
   Eigen::VectorXd signed_distances(const Eigen::MatrixX3d& points) const;
@@ -94,6 +100,8 @@ class BodySurface final : public BodyQuery {
  private:
   void compute_normals();
   SurfacePoint finish(const Eigen::Vector3d& p, int face, const TrianglePoint& hit) const;
+  // locate and locate_excluding: face_labels null for every face.
+  SurfacePoint search(const Eigen::Vector3d& p, double max_distance, const int* face_labels, int excluded) const;
 
   Eigen::MatrixX3d vertices_;
   Eigen::MatrixX3i faces_;
