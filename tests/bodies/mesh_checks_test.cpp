@@ -8,6 +8,8 @@
 #include <drape/geometry/topology.hpp>
 #include <drape/geometry/volume.hpp>
 
+#include <algorithm>
+#include <array>
 #include <cmath>
 
 namespace {
@@ -69,6 +71,37 @@ TEST_CASE("topology of a closed box, an open box and a non-manifold pair") {
   Eigen::MatrixX3i fin(13, 3);
   fin << f, Eigen::RowVector3i(0, 1, 7);
   CHECK(check_topology(fin, 8).nonmanifold_edges == 1);
+}
+
+TEST_CASE("face neighbours across each edge") {
+  Eigen::MatrixX3d v;
+  Eigen::MatrixX3i f;
+  box(1, 1, 1, v, f);
+  const auto across = face_neighbours(f);
+  REQUIRE(across.size() == 12);
+  // Face 0 (0, 2, 1): edge 0-2 borders face 8 (x = 0), 2-1 the diagonal of
+  // the z = 0 side (face 1), 1-0 face 4 (y = 0).
+  CHECK(across[0] == std::array<int, 3>{8, 1, 4});
+  // Symmetric, and each neighbour really shares the edge.
+  for (int g = 0; g < 12; ++g)
+    for (int k = 0; k < 3; ++k) {
+      const int h = across[static_cast<std::size_t>(g)][static_cast<std::size_t>(k)];
+      REQUIRE(h >= 0);
+      const auto& back = across[static_cast<std::size_t>(h)];
+      CHECK(std::count(back.begin(), back.end(), g) == 1);
+      const int a = f(g, k), b = f(g, (k + 1) % 3);
+      CHECK(((f.row(h).array() == a).any() && (f.row(h).array() == b).any()));
+    }
+  // An open box has no neighbour across its rim; a fin (a third face on an
+  // edge) leaves that edge without a single neighbour.
+  const Eigen::MatrixX3i open = f.bottomRows(10);
+  int rim = 0;
+  for (const auto& n : face_neighbours(open)) rim += static_cast<int>(std::count(n.begin(), n.end(), -1));
+  CHECK(rim == 4);
+  Eigen::MatrixX3i fin(13, 3);
+  fin << f, Eigen::RowVector3i(0, 1, 7);
+  CHECK(face_neighbours(fin)[12][0] == -1);
+  CHECK(face_neighbours(fin)[0][2] == -1);
 }
 
 TEST_CASE("degenerate, inverted and folded faces") {

@@ -402,6 +402,79 @@ TEST_CASE("crease collision derivatives match finite differences in the gap of a
   CHECK(r.ok(1e-5));
 }
 
+namespace {
+
+// A shallow V-shaped valley along z, the body below: one welded grid over
+// u in [-0.2, 0.2] m, each side rising at 12 degrees, so the two sides'
+// normals are 24 degrees apart and fall in one normal group (both nearest
+// +y of the 26 directions). The faces next to the valley line share its edges.
+geometry::BodySurface valley_body() {
+  const int n = 20;
+  const double slope = std::tan(12.0 * M_PI / 180);
+  Eigen::MatrixX3d vertices((n + 1) * (n + 1), 3);
+  for (int i = 0; i <= n; ++i)
+    for (int j = 0; j <= n; ++j) {
+      const double u = (2.0 * i / n - 1) * 0.2, z = (2.0 * j / n - 1) * 0.2;
+      vertices.row(i * (n + 1) + j) << u, std::abs(u) * slope, z;
+    }
+  Eigen::MatrixX3i faces(2 * n * n, 3);
+  for (int i = 0, k = 0; i < n; ++i)
+    for (int j = 0; j < n; ++j) {
+      const int a = i * (n + 1) + j, b = a + 1, c = a + n + 1, d = c + 1;
+      faces.row(k++) << a, c, b;
+      faces.row(k++) << b, c, d;
+    }
+  for (Eigen::Index i = 0; i < faces.rows(); ++i) {  // face up (+y, "outside")
+    const Eigen::Vector3d a = vertices.row(faces(i, 0)), b = vertices.row(faces(i, 1)), c = vertices.row(faces(i, 2));
+    if ((b - a).cross(c - a).y() < 0) std::swap(faces(i, 1), faces(i, 2));
+  }
+  return geometry::BodySurface(vertices, faces);
+}
+
+}  // namespace
+
+TEST_CASE("in a mild crease between adjacent faces of one normal group both faces push, and the push turns smoothly",
+          "[collision][crease]") {
+  // Where a heavy body's armpit folds by ~24 degrees, both faces are in one
+  // normal group, so no far wall is found outside it; the face across the near
+  // face's edge is the far side (c = sin 12 deg = 0.21 on the bisector: full weight).
+  const geometry::BodySurface body = valley_body();
+  const auto garment = grid_garment(2, 0.02);
+  const auto one_sided = collision_energy("{margin: 0.02, creases: false}", *garment, &body);
+  const auto two_sided = collision_energy("{margin: 0.02}", *garment, &body);
+  Eigen::MatrixX3d x(4, 3);
+  x.row(0) << 1e-5, 0.01, 0.013;  // 10 um either side of the bisector x = 0, 1 cm above the valley line
+  x.row(1) << -1e-5, 0.01, 0.013;
+  x.row(2) << 0.1, 0.5, 0.0;  // far away
+  x.row(3) << 0.15, 0.5, 0.0;
+  Eigen::MatrixX3d g1 = Eigen::MatrixX3d::Zero(4, 3), g2 = g1;
+  one_sided->add_gradient(x, g1);
+  two_sided->add_gradient(x, g2);
+  INFO("one-sided " << g1.row(0) << " | " << g1.row(1) << "; two-sided " << g2.row(0) << " | " << g2.row(1));
+  const double turn_one = (g1.row(0).normalized() - g1.row(1).normalized()).norm();
+  const double turn_two = (g2.row(0).normalized() - g2.row(1).normalized()).norm();
+  CHECK(turn_one > 0.4);   // 24 degrees: the one-sided push flips between the sides
+  CHECK(turn_two < 1e-3);  // both sides push on both sides of the bisector
+  CHECK(std::abs(g2(0, 0)) < 1e-2 * std::abs(g2(0, 1)));  // straight up: the sideways pushes cancel
+  CHECK(two_sided->value(x) > 1.9 * one_sided->value(x));  // both sides' penalties, nearly equal there
+
+  // Gradient and Hessian against finite differences all over the valley:
+  // on and near the bisector, where the weight is partial, beyond the feet's faces.
+  const auto grid = grid_garment(5, 0.02);
+  std::mt19937_64 rng(7);
+  std::uniform_real_distribution<double> across(-0.03, 0.03), up(0.002, 0.018), along(-0.015, 0.035);
+  Eigen::MatrixX3d y(25, 3);
+  for (int v = 0; v < 25; ++v) y.row(v) << across(rng), std::abs(y(v, 0)) * std::tan(12.0 * M_PI / 180) + up(rng), along(rng);
+  y.row(0) << 0.0, 0.008, 0.013;  // on the bisector
+  y.row(1) << 0.003, 0.006, 0.011;
+  const auto e = collision_energy("{margin: 0.02}", *grid, &body);
+  const auto off = collision_energy("{margin: 0.02, creases: false}", *grid, &body);
+  REQUIRE(e->value(y) > off->value(y));
+  const GradCheckReport r = check_energy_derivatives(*e, y);
+  INFO(r.str());
+  CHECK(r.ok(1e-5));
+}
+
 TEST_CASE("smooth collision refuses a radius within the margin", "[collision][smooth]") {
   const geometry::BodySurface body = sphere_body(2, 0.2);
   const auto garment = grid_garment(2, 0.02);

@@ -27,4 +27,33 @@ std::vector<std::vector<int>> vertex_neighbours(const Eigen::MatrixX3i& faces, i
   return nbrs;
 }
 
+std::vector<std::array<int, 3>> face_neighbours(const Eigen::MatrixX3i& faces) {
+  // (smaller vertex, larger vertex, face, slot) for every face's edge, sorted so
+  // the sides of one edge are adjacent.
+  struct Side {
+    int u, v, face, slot;
+  };
+  std::vector<Side> sides;
+  sides.reserve(static_cast<std::size_t>(faces.rows()) * 3);
+  for (Eigen::Index f = 0; f < faces.rows(); ++f)
+    for (int k = 0; k < 3; ++k) {
+      const int a = faces(f, k), b = faces(f, (k + 1) % 3);
+      sides.push_back({std::min(a, b), std::max(a, b), static_cast<int>(f), k});
+    }
+  std::sort(sides.begin(), sides.end(), [](const Side& x, const Side& y) {
+    return x.u != y.u ? x.u < y.u : x.v != y.v ? x.v < y.v : x.face < y.face;
+  });
+  std::vector<std::array<int, 3>> out(static_cast<std::size_t>(faces.rows()), {-1, -1, -1});
+  for (std::size_t i = 0; i < sides.size();) {
+    std::size_t j = i;
+    while (j < sides.size() && sides[j].u == sides[i].u && sides[j].v == sides[i].v) ++j;
+    if (j - i == 2) {
+      out[static_cast<std::size_t>(sides[i].face)][static_cast<std::size_t>(sides[i].slot)] = sides[i + 1].face;
+      out[static_cast<std::size_t>(sides[i + 1].face)][static_cast<std::size_t>(sides[i + 1].slot)] = sides[i].face;
+    }
+    i = j;
+  }
+  return out;
+}
+
 }  // namespace drape::geometry

@@ -5,10 +5,12 @@
 #include "smooth_distance.hpp"
 
 #include <drape/errors.hpp>
+#include <drape/geometry/adjacency.hpp>
 #include <drape/geometry/closest_point.hpp>
 #include <drape/geometry/vertex_areas.hpp>
 #include <drape/psd_projection.hpp>
 
+#include <algorithm>
 #include <string>
 
 namespace drape::collision {
@@ -41,7 +43,11 @@ void BodyCollision::bind(const EnergyContext& context) {
     cache_.reference.resize(0, 3);
   }
   face_group_.clear();
-  if (settings_.creases && !(settings_.smoothing > 0) && surface_) face_group_ = normal_groups(*surface_);
+  face_neighbours_.clear();
+  if (settings_.creases && !(settings_.smoothing > 0) && surface_) {
+    face_group_ = normal_groups(*surface_);
+    face_neighbours_ = geometry::face_neighbours(surface_->faces());
+  }
   if (settings_.smoothing > 0 && !surface_)
     throw ConfigError("collision: smoothing needs the body's vertices and normals (a geometry::BodySurface); this body "
                       "only answers closest-point queries: set smoothing to 0");
@@ -124,10 +130,19 @@ void BodyCollision::add_crease_terms(const Eigen::MatrixX3d& x, const std::vecto
 }
 
 CreaseTerm BodyCollision::crease_at(const Eigen::Vector3d& p, const Contact& contact, Eigen::Index v) const {
+  const double coefficient = settings_.stiffness * area_[v];
+  const std::array<int, 3>& across = face_neighbours_[static_cast<std::size_t>(contact.face)];
+  CreaseTerm sum;
+  for (const int face : across)
+    if (face >= 0)
+      sum += crease_term(p, contact.closest, closest_point_on_face(*surface_, p, face), penalty_, coefficient,
+                         kNeighbourRamp);
   const geometry::SurfacePoint far =
       surface_->locate_excluding(p, face_group_, face_group_[static_cast<std::size_t>(contact.face)], settings_.margin);
-  if (far.face < 0) return {};
-  return crease_term(p, contact.closest, closest_point_of(*surface_, far), penalty_, settings_.stiffness * area_[v]);
+  // A far wall across an edge of the near face is counted above already.
+  if (far.face >= 0 && std::find(across.begin(), across.end(), far.face) == across.end())
+    sum += crease_term(p, contact.closest, closest_point_of(*surface_, far), penalty_, coefficient, kFarWallRamp);
+  return sum;
 }
 
 std::shared_ptr<const std::vector<Contact>> BodyCollision::cached_contacts(const Eigen::MatrixX3d& x) const {

@@ -57,6 +57,7 @@
 #include <Eigen/Core>
 
 #include <cstdint>
+#include <array>
 #include <memory>
 #include <mutex>
 #include <vector>
@@ -113,7 +114,9 @@ class BodyCollision final : public Energy {
   // The far-side terms of the contacts of the searched vertices within the margin (crease_penalty.hpp).
   void add_crease_terms(const Eigen::MatrixX3d& x, const std::vector<Eigen::Index>& searched,
                         std::vector<Contact>& contacts) const;
-  // Vertex v's far-side term at p, whose nearest body point is `contact`'s.
+  // Vertex v's far-side terms at p, whose nearest body point is `contact`'s:
+  // the far wall outside the near face's normal group, and the faces across
+  // the near face's edges (the two ramps of crease_penalty.hpp).
   CreaseTerm crease_at(const Eigen::Vector3d& p, const Contact& contact, Eigen::Index v) const;
   // The gradient of vertex v's penalty at penetration delta (> 0) into the margin along `normal`.
   Eigen::Vector3d push_gradient(Eigen::Index v, double delta, const Eigen::Vector3d& normal) const;
@@ -125,6 +128,8 @@ class BodyCollision final : public Energy {
   const geometry::BodySurface* surface_ = nullptr;  // the body when it can tell its revision (cache on)
   // Per body face, its normal group (normal_groups.hpp); empty: creases off, smoothing on, or no BodySurface.
   std::vector<int> face_group_;
+  // Per body face, the faces across its edges (geometry::face_neighbours); filled with face_group_.
+  std::vector<std::array<int, 3>> face_neighbours_;
 
   struct Cache {
     std::mutex mutex;  // energies may be evaluated from several threads (graph loss nodes)

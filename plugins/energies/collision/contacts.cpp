@@ -73,6 +73,18 @@ ClosestPoint closest_point_of(const BodySurface& surface, const SurfacePoint& s)
   return q;
 }
 
+ClosestPoint closest_point_on_face(const BodySurface& surface, const Eigen::Vector3d& p, int face) {
+  const auto corner = [&](int slot) -> Eigen::Vector3d { return surface.vertices().row(surface.faces()(face, slot)); };
+  const geometry::TrianglePoint t = geometry::closest_point_on_triangle(p, corner(0), corner(1), corner(2));
+  SurfacePoint s;
+  s.face = face;
+  s.point = t.point;
+  s.feature = t.feature;
+  const Eigen::Vector3d n = (corner(1) - corner(0)).cross(corner(2) - corner(0));
+  s.signed_distance = (p - t.point).dot(n) < 0 ? -(p - t.point).norm() : (p - t.point).norm();
+  return closest_point_of(surface, s);
+}
+
 Contact body_contact(const BodyQuery& body, const Eigen::Vector3d& p, bool with_hessian) {
   if (const auto* surface = dynamic_cast<const BodySurface*>(&body))
     return contact_of(*surface, surface->locate(p), with_hessian);

@@ -31,6 +31,10 @@ struct Contact {
 // its normal), t t^T on an edge of direction t, zero at a vertex.
 ClosestPoint closest_point_of(const geometry::BodySurface& surface, const geometry::SurfacePoint& s);
 
+// The closest point to p on one given face of the surface (not necessarily
+// the surface's closest), signed by that face's normal.
+ClosestPoint closest_point_on_face(const geometry::BodySurface& surface, const Eigen::Vector3d& p, int face);
+
 // The contact of one point (with the distance Hessian only from a BodySurface).
 Contact body_contact(const BodyQuery& body, const Eigen::Vector3d& p, bool with_hessian);
 

@@ -26,17 +26,18 @@ Dual2 smoother_step(const Dual2& t) {
 }  // namespace
 
 CreaseTerm crease_term(const Eigen::Vector3d& p, const ClosestPoint& near, const ClosestPoint& far,
-                       const CubicPenalty& penalty, double coefficient) {
+                       const CubicPenalty& penalty, double coefficient, CreaseRamp ramp) {
   CreaseTerm out;
-  const double fade = penalty.margin;  // see the header
+  // The gap factor rises from d = gap_lo to gap_lo + gap_width (see the header).
+  const double gap_lo = ramp.gap_from * penalty.margin, gap_width = (ramp.gap_full - ramp.gap_from) * penalty.margin;
   const double far_distance = far.sign * (p - far.point).norm();
   const double near_distance = near.sign * (p - near.point).norm();
-  if (!(penalty.delta(far_distance) > 0) || !(far_distance > -fade) || !(near_distance > -fade)) return out;
+  if (!(penalty.delta(far_distance) > 0) || !(far_distance > gap_lo) || !(near_distance > gap_lo)) return out;
   const Eigen::Vector3d chord0 = far.point - near.point, offset0 = p - near.point;
   if (chord0.norm() < kTiny || offset0.norm() < kTiny) return out;
   // A cheap test with plain doubles first: most contacts are not in a crease.
   const double c0 = near.sign * chord0.dot(offset0) / (chord0.norm() * offset0.norm());
-  if (!(c0 > kCreaseFrom)) return out;
+  if (!(c0 > ramp.from)) return out;
 
   Dual2Vector x;
   for (int i = 0; i < 3; ++i) x[static_cast<std::size_t>(i)] = Dual2::variable(p[i], i);
@@ -44,10 +45,10 @@ CreaseTerm crease_term(const Eigen::Vector3d& p, const ClosestPoint& near, const
   const Dual2Vector chord = q2 - q1, offset1 = x - q1, offset2 = x - q2;
   const Dual2 r1 = sqrt(dot(offset1, offset1));  // |d1|
   const Dual2 c = near.sign * (dot(chord, offset1) / (sqrt(dot(chord, chord)) * r1));
-  const Dual2 w = smoother_step((1.0 / (kCreaseFull - kCreaseFrom)) * (c - Dual2::constant(kCreaseFrom)));
+  const Dual2 w = smoother_step((1.0 / (ramp.full - ramp.from)) * (c - Dual2::constant(ramp.from)));
   const Dual2 d1 = near.sign * r1, d2 = far.sign * sqrt(dot(offset2, offset2));
-  const Dual2 in_gap = smoother_step((1 / fade) * (d1 + Dual2::constant(fade))) *
-                       smoother_step((1 / fade) * (d2 + Dual2::constant(fade)));
+  const Dual2 in_gap = smoother_step((1 / gap_width) * (d1 - Dual2::constant(gap_lo))) *
+                       smoother_step((1 / gap_width) * (d2 - Dual2::constant(gap_lo)));
   const Dual2 delta = Dual2::constant(penalty.margin) - d2;
   const Dual2 phi = chain(delta, penalty.value(delta.v), penalty.slope(delta.v), penalty.curvature(delta.v));
   const Dual2 term = coefficient * (w * in_gap * phi);

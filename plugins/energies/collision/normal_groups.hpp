@@ -7,8 +7,9 @@
 // G is its nearest point on the faces of all other groups
 // (BodySurface::locate_excluding). Where the groups meet on smooth skin that
 // point is the same skin seen again beside the near one, and the crease weight
-// (kCreaseFrom) leaves it out; across a fold, such as the armpit of a heavy
-// body, it is the other side of the fold.
+// (kFarWallRamp) leaves it out; across a fold, such as the armpit of a heavy
+// body, it is the other side of the fold. A milder fold between two faces of
+// one group is found across the near face's edges instead (face_neighbours).
 //
 // The collision energy labels the faces once, when it is bound (from the
 // body's normals then: the mean shape at the start of a morph), so within a

@@ -13,4 +13,9 @@ std::vector<std::array<int, 2>> edge_list(const Eigen::MatrixX3i& faces);
 // Sorted neighbour lists of each vertex (size num_vertices; isolated vertices get none).
 std::vector<std::vector<int>> vertex_neighbours(const Eigen::MatrixX3i& faces, int num_vertices);
 
+// For each face, the face across each of its edges: slot k is across the edge
+// from corner k to corner k + 1 (mod 3); -1 on a border, or where the edge is
+// shared by more than two faces (non-manifold: no single neighbour).
+std::vector<std::array<int, 3>> face_neighbours(const Eigen::MatrixX3i& faces);
+
 }  // namespace drape::geometry
