@@ -43,6 +43,10 @@ Eigen::Matrix3d distance_hessian(const SurfacePoint& s, const ClosestPoint& q) {
   return projector / radius;
 }
 
+Eigen::Vector3d corner_of(const BodySurface& surface, int face, int slot) {
+  return surface.vertices().row(surface.faces()(face, slot));
+}
+
 Contact contact_of(const BodySurface& surface, const SurfacePoint& s, bool with_hessian) {
   Contact c;
   c.normal = s.normal;
@@ -59,7 +63,7 @@ ClosestPoint closest_point_of(const BodySurface& surface, const SurfacePoint& s)
   ClosestPoint q;
   q.point = s.point;
   q.sign = s.signed_distance < 0 ? -1 : 1;
-  const auto corner = [&](int slot) -> Eigen::Vector3d { return surface.vertices().row(surface.faces()(s.face, slot)); };
+  const auto corner = [&](int slot) { return corner_of(surface, s.face, slot); };
   const auto [a, b] = feature_slots(s.feature);
   if (a < 0) {
     const Eigen::Vector3d n = (corner(1) - corner(0)).cross(corner(2) - corner(0));
@@ -74,7 +78,7 @@ ClosestPoint closest_point_of(const BodySurface& surface, const SurfacePoint& s)
 }
 
 ClosestPoint closest_point_on_face(const BodySurface& surface, const Eigen::Vector3d& p, int face) {
-  const auto corner = [&](int slot) -> Eigen::Vector3d { return surface.vertices().row(surface.faces()(face, slot)); };
+  const auto corner = [&](int slot) { return corner_of(surface, face, slot); };
   const geometry::TrianglePoint t = geometry::closest_point_on_triangle(p, corner(0), corner(1), corner(2));
   SurfacePoint s;
   s.face = face;
