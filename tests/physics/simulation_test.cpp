@@ -107,10 +107,11 @@ TEST_CASE("hard case: the extreme bodies, BMI 10 and 65", "[simulation][hard]") 
     const Checked c = simulate(sim, body_of(sim, bmi));
     require_sound(c);
     INFO("residual " << c.result.residual << " at rest " << c.result.at_rest << " steps " << c.result.steps << " p " << c.result.penetration);
-    // Not asserted: settling. Cloth pressed into the armpit creases can stall
-    // above the tolerance (a contact kink, docs/scenes.md); the run must still
-    // end at rest, finite, and out of the body.
-    CHECK((c.result.converged || c.result.at_rest));
+    // Settled: cloth pressed into the armpit creases is held by both walls
+    // (the crease contact, docs/scenes.md), so the stationarity falls below
+    // the tolerance rather than stalling at a contact kink.
+    INFO("stationarity " << c.result.stationarity << ", at rest " << c.result.at_rest);
+    CHECK(c.result.converged);
     CHECK(c.result.penetration <= 0.02);
   }
 }
@@ -144,10 +145,11 @@ materials: {print: {base: gray-interlock, multipliers: {stretch: 100, bend: 100}
   CHECK(sim.garment().materials[1].stretch[0] == Approx(100 * sim.garment().materials[0].stretch[0]));
   const Checked c = simulate(sim, body_of(sim, 35));
   require_sound(c);
-  // Not asserted: settling. Cloth pressed into the armpit creases can stall
-  // above the tolerance (a contact kink, docs/scenes.md); the run must still
-  // end at rest, finite, and out of the body.
-  CHECK((c.result.converged || c.result.at_rest));
+  // Settled: cloth pressed into the armpit creases is held by both walls
+  // (the crease contact, docs/scenes.md), so the stationarity falls below
+  // the tolerance rather than stalling at a contact kink.
+  INFO("stationarity " << c.result.stationarity << ", at rest " << c.result.at_rest);
+  CHECK(c.result.converged);
   CHECK(c.result.penetration <= 0.02);
 }
 
@@ -156,9 +158,10 @@ TEST_CASE("hard case: zero gravity keeps the shirt where the body puts it", "[si
   const Checked c = simulate(sim, body_of(sim, 30));
   require_sound(c);
   for (const auto& t : c.result.energies) CHECK(t.name != "gravity");
-  // Not asserted: settling. Cloth pressed into the armpit creases can stall
-  // above the tolerance (a contact kink, docs/scenes.md); the run must still
-  // end at rest, finite, and out of the body.
-  CHECK((c.result.converged || c.result.at_rest));
+  // Settled: cloth pressed into the armpit creases is held by both walls
+  // (the crease contact, docs/scenes.md), so the stationarity falls below
+  // the tolerance rather than stalling at a contact kink.
+  INFO("stationarity " << c.result.stationarity << ", at rest " << c.result.at_rest);
+  CHECK(c.result.converged);
   CHECK(c.result.penetration <= 0.02);
 }
