@@ -314,6 +314,35 @@ geometry::BodySurface crease_body() {
 
 }  // namespace
 
+namespace {
+
+// The collision's push (its gradient) on two points a and b near a body, with
+// the one-sided distance (creases off) and with the crease contact; the
+// garment's other two vertices are far from the body. Margin 2 cm.
+struct CreasePushes {
+  Eigen::MatrixX3d one_sided, two_sided;  // rows 0 and 1: a and b
+  double one_sided_energy = 0, two_sided_energy = 0;
+  // How far the push turns from a to b (|difference of the unit pushes|).
+  double turn_one_sided() const { return (one_sided.row(0).normalized() - one_sided.row(1).normalized()).norm(); }
+  double turn_two_sided() const { return (two_sided.row(0).normalized() - two_sided.row(1).normalized()).norm(); }
+};
+
+CreasePushes crease_pushes(const geometry::BodySurface& body, const Eigen::RowVector3d& a, const Eigen::RowVector3d& b,
+                           const Eigen::RowVector3d& far) {
+  const auto garment = grid_garment(2, 0.02);
+  const auto one_sided = collision_energy("{margin: 0.02, creases: false}", *garment, &body);
+  const auto two_sided = collision_energy("{margin: 0.02}", *garment, &body);
+  Eigen::MatrixX3d x(4, 3);
+  x << a, b, far, far + Eigen::RowVector3d(0.05, 0, 0);
+  CreasePushes out;
+  out.one_sided = out.two_sided = Eigen::MatrixX3d::Zero(4, 3);
+  out.one_sided_energy = one_sided->add_gradient(x, out.one_sided);
+  out.two_sided_energy = two_sided->add_gradient(x, out.two_sided);
+  return out;
+}
+
+}  // namespace
+
 TEST_CASE("smooth collision has no kink in a concave crease, where the exact distance switches faces",
           "[collision][smooth]") {
   // Two faces meeting at a 90-degree concave crease along z (an L-shaped
@@ -351,28 +380,20 @@ TEST_CASE("with creases on (the default) both walls of a concave crease push, an
           "[collision][crease]") {
   // The trough above: the floor's faces point up, the wall's along +x, so they
   // fall in different normal groups and each is the other's far side.
-  const geometry::BodySurface body = crease_body();
-  const auto garment = grid_garment(2, 0.02);
-  const auto one_sided = collision_energy("{margin: 0.02, creases: false}", *garment, &body);
-  const auto two_sided = collision_energy("{margin: 0.02}", *garment, &body);
   const double h = 1e-5, r = 0.01;
-  Eigen::MatrixX3d x(4, 3);
-  x.row(0) << r + h, r - h, 0.013;  // nearer the floor (y = 0)
-  x.row(1) << r - h, r + h, 0.013;  // nearer the wall (x = 0)
-  x.row(2) << 0.5, 0.5, 0.0;
-  x.row(3) << 0.6, 0.5, 0.0;
-  Eigen::MatrixX3d g1 = Eigen::MatrixX3d::Zero(4, 3), g2 = g1;
-  one_sided->add_gradient(x, g1);
-  two_sided->add_gradient(x, g2);
-  INFO("one-sided " << g1.row(0) << " | " << g1.row(1) << "; two-sided " << g2.row(0) << " | " << g2.row(1));
+  const CreasePushes push = crease_pushes(crease_body(), {r + h, r - h, 0.013},  // nearer the floor (y = 0)
+                                          {r - h, r + h, 0.013},                 // nearer the wall (x = 0)
+                                          {0.5, 0.5, 0.0});
+  const Eigen::MatrixX3d& g2 = push.two_sided;
+  INFO("one-sided " << push.one_sided.topRows(2) << "; two-sided " << g2.topRows(2));
   // 20 um apart across the bisector the one-sided push flips by 90 degrees; the
   // sum of both walls' pushes hardly turns.
-  CHECK((g1.row(0).normalized() - g1.row(1).normalized()).norm() > 1.4);
-  CHECK((g2.row(0).normalized() - g2.row(1).normalized()).norm() < 1e-2);
+  CHECK(push.turn_one_sided() > 1.4);
+  CHECK(push.turn_two_sided() < 1e-2);
   // Point 0: the floor pushes up (its near side) and the wall along +x (c = 0.7 here, weight 1).
   const double floor = std::pow(0.02 - (r - h), 2), wall = std::pow(0.02 - (r + h), 2);
   CHECK(-g2(0, 1) / -g2(0, 0) == Approx(floor / wall).epsilon(1e-9));
-  CHECK(two_sided->value(x) > one_sided->value(x));
+  CHECK(push.two_sided_energy > push.one_sided_energy);
 }
 
 TEST_CASE("crease collision derivatives match finite differences in the gap of a crease", "[collision][crease][gradcheck]") {
@@ -439,24 +460,14 @@ TEST_CASE("in a mild crease between adjacent faces of one normal group both face
   // normal group, so no far wall is found outside it; the face across the near
   // face's edge is the far side (c = sin 12 deg = 0.21 on the bisector: full weight).
   const geometry::BodySurface body = valley_body();
-  const auto garment = grid_garment(2, 0.02);
-  const auto one_sided = collision_energy("{margin: 0.02, creases: false}", *garment, &body);
-  const auto two_sided = collision_energy("{margin: 0.02}", *garment, &body);
-  Eigen::MatrixX3d x(4, 3);
-  x.row(0) << 1e-5, 0.01, 0.013;  // 10 um either side of the bisector x = 0, 1 cm above the valley line
-  x.row(1) << -1e-5, 0.01, 0.013;
-  x.row(2) << 0.1, 0.5, 0.0;  // far away
-  x.row(3) << 0.15, 0.5, 0.0;
-  Eigen::MatrixX3d g1 = Eigen::MatrixX3d::Zero(4, 3), g2 = g1;
-  one_sided->add_gradient(x, g1);
-  two_sided->add_gradient(x, g2);
-  INFO("one-sided " << g1.row(0) << " | " << g1.row(1) << "; two-sided " << g2.row(0) << " | " << g2.row(1));
-  const double turn_one = (g1.row(0).normalized() - g1.row(1).normalized()).norm();
-  const double turn_two = (g2.row(0).normalized() - g2.row(1).normalized()).norm();
-  CHECK(turn_one > 0.4);   // 24 degrees: the one-sided push flips between the sides
-  CHECK(turn_two < 1e-3);  // both sides push on both sides of the bisector
+  // 10 um either side of the bisector x = 0, 1 cm above the valley line.
+  const CreasePushes push = crease_pushes(body, {1e-5, 0.01, 0.013}, {-1e-5, 0.01, 0.013}, {0.1, 0.5, 0.0});
+  const Eigen::MatrixX3d& g2 = push.two_sided;
+  INFO("one-sided " << push.one_sided.topRows(2) << "; two-sided " << g2.topRows(2));
+  CHECK(push.turn_one_sided() > 0.4);   // 24 degrees: the one-sided push flips between the sides
+  CHECK(push.turn_two_sided() < 1e-3);  // both sides push on both sides of the bisector
   CHECK(std::abs(g2(0, 0)) < 1e-2 * std::abs(g2(0, 1)));  // straight up: the sideways pushes cancel
-  CHECK(two_sided->value(x) > 1.9 * one_sided->value(x));  // both sides' penalties, nearly equal there
+  CHECK(push.two_sided_energy > 1.9 * push.one_sided_energy);  // both sides' penalties, nearly equal there
 
   // Gradient and Hessian against finite differences all over the valley:
   // on and near the bisector, where the weight is partial, beyond the feet's faces.
