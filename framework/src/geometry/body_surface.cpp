@@ -3,6 +3,7 @@
 #include "triangle_bvh.hpp"
 
 #include <drape/errors.hpp>
+#include <drape/geometry/adjacency.hpp>
 
 #include <Eigen/Geometry>
 
@@ -25,40 +26,13 @@ void check_faces(const Eigen::MatrixX3i& faces, int num_vertices) {
                     ", outside [0, " + std::to_string(num_vertices) + ")");
 }
 
-// The face across each edge (ab, bc, ca) of each face; -1 on a boundary and on
-// edges shared by more than two faces (their pseudo-normal is then the face's own).
-Eigen::MatrixX3i edge_mates(const Eigen::MatrixX3i& faces) {
-  const int nf = static_cast<int>(faces.rows());
-  // (undirected edge key, 3 * face + slot), sorted so that an edge's faces are adjacent.
-  std::vector<std::pair<std::uint64_t, int>> edges;
-  edges.reserve(3 * static_cast<std::size_t>(nf));
-  for (int f = 0; f < nf; ++f)
-    for (int k = 0; k < 3; ++k) {
-      const auto [lo, hi] = std::minmax(faces(f, k), faces(f, (k + 1) % 3));
-      edges.emplace_back(static_cast<std::uint64_t>(lo) << 32 | static_cast<std::uint32_t>(hi), 3 * f + k);
-    }
-  std::sort(edges.begin(), edges.end());
-  Eigen::MatrixX3i mate = Eigen::MatrixX3i::Constant(nf, 3, -1);
-  for (std::size_t i = 0; i < edges.size();) {
-    std::size_t j = i;
-    while (j < edges.size() && edges[j].first == edges[i].first) ++j;
-    if (j - i == 2) {
-      const int a = edges[i].second, b = edges[i + 1].second;
-      mate(a / 3, a % 3) = b / 3;
-      mate(b / 3, b % 3) = a / 3;
-    }
-    i = j;
-  }
-  return mate;
-}
-
 }  // namespace
 
 BodySurface::BodySurface(const Eigen::MatrixX3d& vertices, const Eigen::MatrixX3i& faces)
     : vertices_(vertices), faces_(faces) {
   check_faces(faces_, static_cast<int>(vertices_.rows()));
   if (!vertices_.allFinite()) throw Error("body surface: the vertices are not all finite");
-  edge_mate_ = edge_mates(faces_);
+  face_neighbours_ = geometry::face_neighbours(faces_);
   compute_normals();
   bvh_ = std::make_unique<TriangleBvh>(vertices_, faces_);
 }
@@ -89,7 +63,8 @@ void BodySurface::compute_normals() {
   edge_normals_.resize(3 * static_cast<Eigen::Index>(nf), 3);
   for (int f = 0; f < nf; ++f)
     for (int k = 0; k < 3; ++k) {
-      const int g = edge_mate_(f, k);
+      // Non-manifold edges have no single mate: their pseudo-normal is the face's own.
+      const int g = face_neighbours_[static_cast<std::size_t>(f)][static_cast<std::size_t>(k)];
       Eigen::Vector3d n = face_normals_.row(f);
       if (g >= 0) n += face_normals_.row(g).transpose();
       edge_normals_.row(3 * f + k) = n.normalized();

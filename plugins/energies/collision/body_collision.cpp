@@ -5,7 +5,6 @@
 #include "smooth_distance.hpp"
 
 #include <drape/errors.hpp>
-#include <drape/geometry/adjacency.hpp>
 #include <drape/geometry/closest_point.hpp>
 #include <drape/geometry/vertex_areas.hpp>
 #include <drape/psd_projection.hpp>
@@ -43,11 +42,7 @@ void BodyCollision::bind(const EnergyContext& context) {
     cache_.reference.resize(0, 3);
   }
   face_group_.clear();
-  face_neighbours_.clear();
-  if (settings_.creases && !(settings_.smoothing > 0) && surface_) {
-    face_group_ = normal_groups(*surface_);
-    face_neighbours_ = geometry::face_neighbours(surface_->faces());
-  }
+  if (settings_.creases && !(settings_.smoothing > 0) && surface_) face_group_ = normal_groups(*surface_);
   if (settings_.smoothing > 0 && !surface_)
     throw ConfigError("collision: smoothing needs the body's vertices and normals (a geometry::BodySurface); this body "
                       "only answers closest-point queries: set smoothing to 0");
@@ -131,7 +126,7 @@ void BodyCollision::add_crease_terms(const Eigen::MatrixX3d& x, const std::vecto
 
 CreaseTerm BodyCollision::crease_at(const Eigen::Vector3d& p, const Contact& contact, Eigen::Index v) const {
   const double coefficient = settings_.stiffness * area_[v];
-  const std::array<int, 3>& across = face_neighbours_[static_cast<std::size_t>(contact.face)];
+  const std::array<int, 3>& across = surface_->face_neighbours()[static_cast<std::size_t>(contact.face)];
   CreaseTerm sum;
   for (const int face : across)
     if (face >= 0)

@@ -57,7 +57,6 @@
 #include <Eigen/Core>
 
 #include <cstdint>
-#include <array>
 #include <memory>
 #include <mutex>
 #include <vector>
@@ -128,8 +127,6 @@ class BodyCollision final : public Energy {
   const geometry::BodySurface* surface_ = nullptr;  // the body when it can tell its revision (cache on)
   // Per body face, its normal group (normal_groups.hpp); empty: creases off, smoothing on, or no BodySurface.
   std::vector<int> face_group_;
-  // Per body face, the faces across its edges (geometry::face_neighbours); filled with face_group_.
-  std::vector<std::array<int, 3>> face_neighbours_;
 
   struct Cache {
     std::mutex mutex;  // energies may be evaluated from several threads (graph loss nodes)

@@ -1,7 +1,5 @@
 #include "contacts.hpp"
 
-#include <Eigen/Geometry>
-
 #include <algorithm>
 #include <utility>
 #include <cmath>
@@ -66,9 +64,9 @@ ClosestPoint closest_point_of(const BodySurface& surface, const SurfacePoint& s)
   const auto corner = [&](int slot) { return corner_of(surface, s.face, slot); };
   const auto [a, b] = feature_slots(s.feature);
   if (a < 0) {
-    const Eigen::Vector3d n = (corner(1) - corner(0)).cross(corner(2) - corner(0));
-    // A degenerate face has no plane; its closest points lie on its edges (closest_point_on_triangle).
-    if (n.norm() > 0) q.slide = Eigen::Matrix3d::Identity() - n.normalized() * n.normalized().transpose();
+    const Eigen::Vector3d n = surface.face_normals().row(s.face);
+    // A degenerate face has no plane (zero normal); its closest points lie on its edges (closest_point_on_triangle).
+    if (n.squaredNorm() > 0) q.slide = Eigen::Matrix3d::Identity() - n * n.transpose();
   } else if (b >= 0) {
     // A degenerate (zero-length) edge is a point: it does not slide.
     const Eigen::Vector3d t = corner(b) - corner(a);
@@ -84,7 +82,7 @@ ClosestPoint closest_point_on_face(const BodySurface& surface, const Eigen::Vect
   s.face = face;
   s.point = t.point;
   s.feature = t.feature;
-  const Eigen::Vector3d n = (corner(1) - corner(0)).cross(corner(2) - corner(0));
+  const Eigen::Vector3d n = surface.face_normals().row(face);
   s.signed_distance = (p - t.point).dot(n) < 0 ? -(p - t.point).norm() : (p - t.point).norm();
   return closest_point_of(surface, s);
 }

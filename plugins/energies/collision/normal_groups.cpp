@@ -1,7 +1,5 @@
 #include "normal_groups.hpp"
 
-#include <Eigen/Geometry>
-
 #include <cmath>
 
 namespace drape::collision {
@@ -31,13 +29,10 @@ int nearest_direction(const Eigen::Vector3d& normal) {
 }  // namespace
 
 std::vector<int> normal_groups(const geometry::BodySurface& body) {
-  const Eigen::MatrixX3i& faces = body.faces();
-  const Eigen::MatrixX3d& x = body.vertices();
-  std::vector<int> group(static_cast<std::size_t>(faces.rows()));
-  for (Eigen::Index f = 0; f < faces.rows(); ++f) {
-    const Eigen::Vector3d a = x.row(faces(f, 0)), b = x.row(faces(f, 1)), c = x.row(faces(f, 2));
-    group[static_cast<std::size_t>(f)] = nearest_direction((b - a).cross(c - a));
-  }
+  const Eigen::MatrixX3d& normals = body.face_normals();
+  std::vector<int> group(static_cast<std::size_t>(normals.rows()));
+  for (Eigen::Index f = 0; f < normals.rows(); ++f)
+    group[static_cast<std::size_t>(f)] = nearest_direction(normals.row(f).transpose());
   return group;
 }
 

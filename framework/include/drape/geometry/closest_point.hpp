@@ -18,6 +18,7 @@
 
 #include <Eigen/Core>
 
+#include <array>
 #include <cstdint>
 #include <limits>
 #include <memory>
@@ -96,6 +97,10 @@ class BodySurface final : public BodyQuery {
   const Eigen::MatrixX3i& faces() const { return faces_; }
   // Unit angle-weighted pseudo-normals of the vertices (outward on a closed mesh).
   const Eigen::MatrixX3d& vertex_normals() const { return vertex_normals_; }
+  // Unit face normals (zero for a degenerate face), current with update().
+  const Eigen::MatrixX3d& face_normals() const { return face_normals_; }
+  // The face across each edge of each face (geometry::face_neighbours).
+  const std::vector<std::array<int, 3>>& face_neighbours() const { return face_neighbours_; }
 
  private:
   void compute_normals();
@@ -108,7 +113,7 @@ class BodySurface final : public BodyQuery {
   Eigen::MatrixX3d face_normals_;    // unit (zero for degenerate faces)
   Eigen::MatrixX3d vertex_normals_;  // unit angle-weighted pseudo-normals
   Eigen::MatrixX3d edge_normals_;    // [3F] per face edge (ab, bc, ca): sum of its faces' normals, unit
-  Eigen::MatrixX3i edge_mate_;       // [F, 3] the face across each edge, -1 on a boundary
+  std::vector<std::array<int, 3>> face_neighbours_;  // the face across each edge (ab, bc, ca), -1 on a boundary
   double on_surface_tolerance_ = 0;  // below this distance the normal is the pseudo-normal
   std::uint64_t revision_ = 0;
   std::unique_ptr<TriangleBvh> bvh_;
