@@ -6,12 +6,16 @@
 #include <drape/nn/activation.hpp>
 #include <drape/nn/conv1d.hpp>
 #include <drape/nn/dense_stack.hpp>
+#include <drape/nn/gemm.hpp>
 #include <drape/nn/init.hpp>
 #include <drape/nn/linear.hpp>
 
 #include <catch2/catch.hpp>
 
+#include <array>
 #include <cmath>
+#include <string>
+#include <vector>
 #include <random>
 
 using namespace drape;
@@ -102,6 +106,42 @@ TEST_CASE("linear layer: y = x w + b and its gradients", "[nn]") {
   CHECK(gx(4, 0) == Approx(gy.row(4).dot(w.row(0))));
   MatrixRM wrong(5, 5);
   CHECK_THROWS_AS(nn::linear_forward(x, w, b, wrong), Error);
+}
+
+TEST_CASE("gemm: every transpose combination, strided views, alpha and beta, both backends", "[nn]") {
+  // Sizes on both sides of the BLAS threshold; the operands are blocks of
+  // larger matrices, so that leading dimensions differ from the row lengths.
+  for (const auto& [m, n, k] : std::vector<std::array<int, 3>>{{3, 4, 5}, {70, 48, 33}, {1, 300, 256}, {200, 1, 64}}) {
+    const std::string backend = nn::gemm_backend(m, n, k);
+    INFO("m " << m << ", n " << n << ", k " << k << ": " << backend);
+    for (const bool ta : {false, true})
+      for (const bool tb : {false, true}) {
+        const MatrixRM big_a = random_matrix(ta ? k + 2 : m + 2, ta ? m + 3 : k + 3, 11);
+        const MatrixRM big_b = random_matrix(tb ? n + 1 : k + 1, tb ? k + 4 : n + 4, 12);
+        const auto a = big_a.block(1, 2, ta ? k : m, ta ? m : k);
+        const auto b = big_b.block(1, 1, tb ? n : k, tb ? k : n);
+        MatrixRM big_c = random_matrix(m + 2, n + 5, 13);
+        const MatrixRM c0 = big_c.block(1, 3, m, n);
+        auto c = big_c.block(1, 3, m, n);
+        nn::gemm(ta ? nn::Op::Transpose : nn::Op::None, tb ? nn::Op::Transpose : nn::Op::None, 0.5f, a, b, 2.0f, c);
+        Eigen::MatrixXd expected = 2.0 * c0.cast<double>();
+        const Eigen::MatrixXd ad = ta ? Eigen::MatrixXd(a.cast<double>().transpose()) : Eigen::MatrixXd(a.cast<double>());
+        const Eigen::MatrixXd bd = tb ? Eigen::MatrixXd(b.cast<double>().transpose()) : Eigen::MatrixXd(b.cast<double>());
+        expected += 0.5 * ad * bd;
+        INFO("transposes " << ta << tb);
+        CHECK((c.cast<double>() - expected).cwiseAbs().maxCoeff() < 1e-4 * std::sqrt(double(k)));
+        // Nothing outside the block is touched.
+        CHECK(big_c.topRows(1) == random_matrix(m + 2, n + 5, 13).topRows(1));
+        CHECK(big_c.leftCols(3) == random_matrix(m + 2, n + 5, 13).leftCols(3));
+        // beta = 0 ignores what c held, NaN included.
+        MatrixRM nan_c = MatrixRM::Constant(m, n, std::nanf(""));
+        nn::gemm(ta ? nn::Op::Transpose : nn::Op::None, tb ? nn::Op::Transpose : nn::Op::None, 1.0f, a, b, 0.0f, nan_c);
+        CHECK(nan_c.allFinite());
+      }
+  }
+  MatrixRM c(3, 3);
+  CHECK_THROWS_WITH(nn::gemm(nn::Op::None, nn::Op::None, 1.0f, random_matrix(3, 4, 1), random_matrix(5, 3, 2), 0.0f, c),
+                    Catch::Contains("does not fit"));
 }
 
 TEST_CASE("activations and their derivatives from the output", "[nn]") {

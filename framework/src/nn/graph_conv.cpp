@@ -1,4 +1,5 @@
 #include <drape/errors.hpp>
+#include <drape/nn/gemm.hpp>
 #include <drape/nn/graph_conv.hpp>
 #include <drape/nn/init.hpp>
 #include <drape/nn/linear.hpp>
@@ -63,7 +64,7 @@ const MatrixRM& GraphConvLayer::forward(ConstMatRef x, int batch) {
     linear_forward(mid_, w_->value.mat(0), b_->value.mat(0), out_);
   } else {
     mid_.resize(rows, out_channels_);
-    mid_.noalias() = x * w_->value.mat(0);
+    gemm(Op::None, Op::None, 1.0f, x, w_->value.mat(0), 0.0f, mid_);
     aggregate(mid_, batch, out_);
     out_.rowwise() += b_->value.mat(0).row(0);
   }
@@ -95,7 +96,7 @@ void GraphConvLayer::backward(ConstMatRef x, ConstMatRef gy, int batch, MatrixRM
     MatrixRM gmid(gz.rows(), out_channels_);
     MatRef gmid_ref(gmid);
     aggregate_backward(mid_, gz, batch, &gmid_ref);
-    gw.noalias() += x.transpose() * gmid;
+    gemm(Op::Transpose, Op::None, 1.0f, x, gmid, 1.0f, gw);
     if (gx) {
       gx->resize(x.rows(), in_);
       linear_backward_input(w_->value.mat(0), gmid, *gx);

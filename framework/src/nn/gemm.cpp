@@ -1,0 +1,76 @@
+#include <drape/errors.hpp>
+#include <drape/nn/gemm.hpp>
+#include <drape/solver.hpp>
+
+#include <algorithm>
+#include <cstdlib>
+#include <string>
+
+#ifdef DRAPE_HAVE_BLAS
+// The Fortran BLAS symbol: every BLAS exports it, so no cblas.h is needed.
+extern "C" void sgemm_(const char* transa, const char* transb, const int* m, const int* n, const int* k,
+                       const float* alpha, const float* a, const int* lda, const float* b, const int* ldb,
+                       const float* beta, float* c, const int* ldc);
+#endif
+
+namespace drape::nn {
+
+namespace {
+
+// Below this many multiply-adds Eigen's inline product beats the call and
+// the packing of a BLAS GEMM (measured on the graph layers: a 1 x 256 x 3000
+// spectral layer still gains, 8 x 8 x 8 does not).
+constexpr double kBlasMinimumWork = 32768;
+
+bool use_blas(long m, long n, long k) {
+#ifdef DRAPE_HAVE_BLAS
+  // DRAPE_EIGEN_GEMM=1 keeps every product in Eigen (to compare, or to get
+  // the same bits on every x86-64 CPU).
+  static const bool allowed = [] {
+    if (std::getenv("DRAPE_EIGEN_GEMM")) return false;
+    set_blas_threads(1);
+    return true;
+  }();
+  return allowed && double(m) * double(n) * double(k) >= kBlasMinimumWork;
+#else
+  (void)m, (void)n, (void)k;
+  return false;
+#endif
+}
+
+std::string dims(Eigen::Index r, Eigen::Index c) { return "[" + std::to_string(r) + ", " + std::to_string(c) + "]"; }
+
+}  // namespace
+
+const char* gemm_backend(long m, long n, long k) { return use_blas(m, n, k) ? "blas" : "eigen"; }
+
+void gemm(Op op_a, Op op_b, float alpha, ConstMatRef a, ConstMatRef b, float beta, MatRef c) {
+  const bool ta = op_a == Op::Transpose, tb = op_b == Op::Transpose;
+  const Eigen::Index m = ta ? a.cols() : a.rows(), k = ta ? a.rows() : a.cols();
+  const Eigen::Index kb = tb ? b.cols() : b.rows(), n = tb ? b.rows() : b.cols();
+  if (k != kb || c.rows() != m || c.cols() != n)
+    throw Error("gemm: " + std::string(ta ? "a^T " : "a ") + dims(a.rows(), a.cols()) + (tb ? " times b^T " : " times b ") +
+                dims(b.rows(), b.cols()) + " does not fit c " + dims(c.rows(), c.cols()));
+  if (m == 0 || n == 0) return;
+#ifdef DRAPE_HAVE_BLAS
+  if (k > 0 && use_blas(m, n, k)) {
+    // Row-major X with leading dimension ld is column-major X^T: compute
+    // c^T = op(b)^T op(a)^T in column-major terms.
+    const int mi = int(n), ni = int(m), ki = int(k);
+    // (A single row's outer stride may read 1; BLAS wants at least the row length.)
+    const auto ld = [](const auto& x) { return int(std::max<Eigen::Index>({x.outerStride(), x.cols(), 1})); };
+    const int lda = ld(b), ldb = ld(a), ldc = ld(c);
+    sgemm_(tb ? "T" : "N", ta ? "T" : "N", &mi, &ni, &ki, &alpha, b.data(), &lda, a.data(), &ldb, &beta, c.data(), &ldc);
+    return;
+  }
+#endif
+  if (beta == 0.0f) c.setZero();
+  else if (beta != 1.0f) c *= beta;
+  if (k == 0) return;
+  if (ta && tb) c.noalias() += alpha * (a.transpose() * b.transpose());
+  else if (ta) c.noalias() += alpha * (a.transpose() * b);
+  else if (tb) c.noalias() += alpha * (a * b.transpose());
+  else c.noalias() += alpha * (a * b);
+}
+
+}  // namespace drape::nn
