@@ -15,6 +15,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <fstream>
 #include <sstream>
@@ -42,6 +43,10 @@ double iteration_ms(const Simulation& sim, const Eigen::MatrixX3d& body, const E
   settings.max_newton_iterations = 1;
   settings.tolerance = 0;  // always iterate
   settings.linear_solver = linear_solver;
+  // Every configuration factorises its own Newton matrix: with the factor
+  // kept, an iteration's cost would depend on how far the configuration's
+  // first PCG solve happens to get, not on the effects it evaluates.
+  settings.reuse_factorization = false;
   ClothSolver solver(sim.garment(), energies, settings);
   double best = 1e300;
   for (int r = 0; r < repeats + 1; ++r) {  // the first run also analyses the pattern: not counted
@@ -50,6 +55,35 @@ double iteration_ms(const Simulation& sim, const Eigen::MatrixX3d& body, const E
     solver.step(x, v);
     if (r > 0) best = std::min(best, since(t));
   }
+  return best * 1e3;
+}
+
+// Best time to evaluate what the scene's effects contribute to one Newton
+// iteration: the energy with its gradient, then the lower Hessian's triplets.
+// This part depends only on which effects are built, not on where the solver
+// goes next, so it shows what each one costs. The drape alternates with a
+// copy moved by 0.1 um, so that no evaluation is served from the collision's
+// cache of the last x.
+double evaluation_ms(const Simulation& sim, const Eigen::MatrixX3d& body, const Eigen::MatrixX3d& x0, int repeats) {
+  std::unique_ptr<geometry::BodySurface> surface;
+  if (sim.needs_body()) surface = std::make_unique<geometry::BodySurface>(body, sim.body_model().faces());
+  auto energies = sim.make_energies(surface.get());
+  const Eigen::MatrixX3d x1 = x0.array() + 1e-7;
+  Eigen::MatrixX3d g(x0.rows(), 3);
+  Triplets h;
+  double best = 1e300, sink = 0;
+  for (int r = 0; r < 2 * repeats + 1; ++r) {  // the first run fills caches and allocations: not counted
+    const Eigen::MatrixX3d& x = r % 2 ? x1 : x0;
+    const auto t = Clock::now();
+    g.setZero();
+    h.clear();
+    for (NamedEnergy& e : energies) {
+      sink += e.energy->add_gradient(x, g);
+      e.energy->add_hessian_lower(x, h);
+    }
+    if (r > 0) best = std::min(best, since(t));
+  }
+  if (!std::isfinite(sink)) std::printf("(a non-finite energy in the evaluation benchmark)\n");
   return best * 1e3;
 }
 
@@ -130,12 +164,29 @@ int run(const std::vector<std::string>& args) {
   }
   const double eigen = iteration_ms(all, body, draped, repeats, "eigen");
   rows.push_back({"all effects, Eigen SimplicialLLT", eigen, eigen / base});
+  std::vector<Row> evaluations;
+  const double all_effects = evaluation_ms(all, body, draped, repeats);
+  evaluations.push_back({"all effects", all_effects, 1});
+  for (const SceneEffect& e : scene.effects) {
+    const double ms = evaluation_ms(Simulation(registry, without(scene, e.name)), body, draped, repeats);
+    evaluations.push_back({"without " + e.name, ms, ms / all_effects});
+  }
   md << "\n## One solver iteration (" << all.garment().mesh.num_vertices() << " garment vertices, "
      << all.mean_body().rows() << " body vertices; best of " << repeats << ")\n\n"
      << "| configuration | ms per iteration | relative |\n|---|---|---|\n";
   char line[256];
   for (const Row& r : rows) {
     std::snprintf(line, sizeof line, "| %s | %.1f | %.2f |\n", r.config.c_str(), r.ms, r.relative);
+    md << line;
+  }
+  md << "\nEach iteration above factorises its own Newton matrix and runs the line search from the same drape; "
+        "without an effect the drape is no longer at rest, so the search may take a different number of trials. "
+        "What the effects themselves cost per iteration (energy, gradient and Hessian, best of "
+     << 2 * repeats << "):\n\n| configuration | ms to evaluate | relative | the removed effect's share (ms) |\n|---|---|---|---|\n";
+  for (const Row& r : evaluations) {
+    char share[32] = "";
+    if (&r != &evaluations.front()) std::snprintf(share, sizeof share, "%.2f", all_effects - r.ms);
+    std::snprintf(line, sizeof line, "| %s | %.2f | %.2f | %s |\n", r.config.c_str(), r.ms, r.relative, share);
     md << line;
   }
   std::printf("%s", md.str().c_str());

@@ -67,6 +67,11 @@ TEST_CASE("bench simulate reports whole drapes (best and median of repeated runs
   for (const char* row : {"| all effects |", "| without gravity |", "| without stretching |", "| without bending |",
                           "| without collision |", "Eigen SimplicialLLT"})
     CHECK_THAT(out, Catch::Contains(row));
+  // The effects' own evaluation cost: a row per configuration, the removed effect's share beside it.
+  CHECK_THAT(out, Catch::Contains("| configuration | ms to evaluate | relative | the removed effect's share (ms) |"));
+  const std::regex evaluation_row(R"(\| without collision \| ([0-9.]+) \| ([0-9.]+) \| (-?[0-9.]+) \|)");
+  REQUIRE(std::regex_search(out, m, evaluation_row));
+  CHECK(std::stod(m[1]) > 0);
   std::ifstream md(dir / "bench.md");
   const std::string written((std::istreambuf_iterator<char>(md)), std::istreambuf_iterator<char>());
   CHECK_THAT(written, Catch::Contains("## Whole drapes") && Catch::Contains("## One solver iteration"));
