@@ -1,7 +1,9 @@
 // `drape dataset merge --out all.h5 shard0.h5 shard1.h5 ...`: joins shards
 // generated in parallel (drape::merge_datasets).
 // `drape dataset info data.h5`: what a dataset file holds (docs/formats.md).
+// `drape dataset potential data.h5 --scene S`: its drapes' energies under a scene.
 #include "command.hpp"
+#include "dataset_potential.hpp"
 
 #include <drape/dataset.hpp>
 #include <drape/errors.hpp>
@@ -103,21 +105,24 @@ int info(const std::vector<std::string>& args) {
 }
 
 int run(const std::vector<std::string>& args) {
-  const std::string usage = std::string("usage: ") + kMergeUsage + "\n       " + kInfoUsage;
+  const std::string usage =
+      std::string("usage: ") + kMergeUsage + "\n       " + kInfoUsage + "\n       " + kPotentialUsage;
   if (args.empty()) throw UsageError("merge or info?\n" + usage);
   const std::string& action = args[0];
   const std::vector<std::string> rest(args.begin() + 1, args.end());
   if (action == "merge") return merge(rest);
   if (action == "info") return info(rest);
+  if (action == "potential") return dataset_potential(rest);
   if (action == "--help" || action == "-h" || action == "help") {
     std::cout << usage << "\n\n  merge  join shards generated in parallel into one dataset\n"
-                          "  info   sizes, splits, stats and scene of a dataset file\n";
+                          "  info   sizes, splits, stats and scene of a dataset file\n"
+                          "  potential  every effect's energy, L_p and p of the stored drapes under a scene\n";
     return 0;
   }
-  throw UsageError("unknown action '" + action + "'" + did_you_mean(action, {"merge", "info"}) + "\n" + usage);
+  throw UsageError("unknown action '" + action + "'" + did_you_mean(action, {"merge", "info", "potential"}) + "\n" + usage);
 }
 
-const RegisterCommand registration{{"dataset", "merge dataset shards, or show what a dataset file holds", run}};
+const RegisterCommand registration{{"dataset", "merge dataset shards, show what a dataset file holds, or its drapes' potential under a scene", run}};
 
 }  // namespace
 }  // namespace drape::cli

@@ -1,7 +1,10 @@
-// `drape dataset merge` and `drape dataset info` on tiny datasets written here.
+// `drape dataset merge`, `info` and `potential` on tiny datasets written here.
 #include <catch2/catch.hpp>
 
 #include <drape/dataset.hpp>
+
+#include <fstream>
+#include <regex>
 
 #include "test_support.hpp"
 
@@ -120,4 +123,34 @@ TEST_CASE("drape dataset info shows layout, splits, stats and the scene", "[cli]
   CHECK_THAT(out, Catch::Contains("did you mean 'merge'"));
   REQUIRE(run_drape("dataset --help", out) == 0);
   CHECK_THAT(out, Catch::Contains("drape dataset merge") && Catch::Contains("drape dataset info"));
+}
+
+TEST_CASE("drape dataset potential re-evaluates stored drapes under a scene", "[cli][dataset]") {
+  test::TempDir dir;
+  std::ofstream(dir / "tiny.yaml") << test::tiny_simulation_scene();
+  const std::string data = (dir / "tiny.h5").string(), scene = (dir / "tiny.yaml").string();
+  std::string out;
+  REQUIRE(run_drape("generate " + scene + " --count 4 --bmi 15:40 --seed 2 --out " + data, out) == 0);
+  REQUIRE(run_drape("dataset potential " + data + " --scene " + scene + " --split train,val,test", out) == 0);
+  INFO(out);
+  // Under the scene that made them, the energies are the ones the simulation
+  // recorded (up to the float32 storage of the vertices).
+  const DatasetReader reader(data);
+  const std::vector<std::size_t> all = reader.indices();
+  for (const char* effect : {"gravity", "stretching", "bending", "collision"}) {
+    const std::vector<double> recorded = reader.stat(std::string("energy_") + effect, all);
+    double mean = 0;
+    for (double v : recorded) mean += v / static_cast<double>(recorded.size());
+    std::smatch m;
+    const std::regex row("\\| " + std::string(effect) + " \\| ([-0-9.e+]+) \\|");
+    REQUIRE(std::regex_search(out, m, row));
+    CHECK(std::stod(m[1]) == Approx(mean).epsilon(2e-3).margin(1e-6));
+  }
+  CHECK_THAT(out, Catch::Contains("4 drapes under the effects of") && Catch::Contains("| L_p (total) |") &&
+                      Catch::Contains("penetration p: mean"));
+
+  // Another resolution of the garment is refused with both sizes named.
+  std::ofstream(dir / "coarse.yaml") << "base: tiny.yaml\ngarment: {template: tshirt, params: {resolution: coarse}}\n";
+  CHECK(run_drape("dataset potential " + data + " --scene " + (dir / "coarse.yaml").string(), out) == 2);
+  CHECK_THAT(out, Catch::Contains("but the scene's garment has"));
 }

@@ -1,0 +1,81 @@
+// `drape dataset potential`: every effect's energy, L_p and p of the garments a
+// dataset stores (simulated, predicted or optimised), under the effects of the
+// scene given, so that drapes made by different means are compared under one
+// potential: the simulation's drapes, and the optimised ones, under the stiff
+// contact scene the optimisation used, say (Table 6.4 of the seed).
+#include "dataset_potential.hpp"
+
+#include "command.hpp"
+
+#include <drape/dataset.hpp>
+#include <drape/errors.hpp>
+#include <drape/geometry/closest_point.hpp>
+#include <drape/geometry/penetration.hpp>
+#include <drape/registry.hpp>
+#include <drape/scene.hpp>
+#include <drape/simulation.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <map>
+
+namespace drape::cli {
+
+const char* kPotentialUsage = "drape dataset potential FILE --scene S [--split test]";
+
+int dataset_potential(const std::vector<std::string>& args) {
+  po::options_description opts("drape dataset potential");
+  opts.add_options()("file", po::value<std::string>()->required(), "dataset file")(
+      "scene", po::value<std::string>()->required(), "scene whose effects (and materials) define the potential")(
+      "split", po::value<std::string>()->default_value("test"), "train, val, test, or a comma list");
+  po::positional_options_description positional;
+  positional.add("file", 1);
+  po::variables_map vm;
+  if (!parse(kPotentialUsage, args, opts, positional, vm)) return 0;
+  const std::filesystem::path path = vm["file"].as<std::string>();
+  if (!std::filesystem::exists(path)) throw ConfigError(SourceLocation{path.string(), 0}, "no such file");
+  Registry& registry = Registry::load_default(plugin_path(vm));
+  const Simulation sim(registry, load_scene(vm["scene"].as<std::string>()));
+  const DatasetReader reader(path);
+  const int garment = sim.garment().mesh.num_vertices(), body = sim.body_model().num_vertices();
+  if (static_cast<int>(reader.layout().garment_vertices) != garment || static_cast<int>(reader.layout().body_vertices) != body)
+    throw ConfigError(SourceLocation{path.string(), 0},
+                      "holds garments of " + std::to_string(reader.layout().garment_vertices) + " and bodies of " +
+                          std::to_string(reader.layout().body_vertices) + " vertices, but the scene's garment has " +
+                          std::to_string(garment) + " and its body " + std::to_string(body));
+  const std::vector<std::size_t> samples = reader.indices(vm["split"].as<std::string>());
+  if (samples.empty()) throw ConfigError(SourceLocation{path.string(), 0}, "has no finished sample in that split");
+
+  std::map<std::string, double> sums;  // per effect, over the samples
+  std::vector<std::string> order;
+  double total = 0, p_sum = 0, p_max = 0;
+  std::size_t clear = 0;
+  for (std::size_t index : samples) {
+    const DatasetSample s = reader.sample(index);
+    const Eigen::MatrixX3d b = s.body_vertices.cast<double>(), x = s.garment_vertices.cast<double>();
+    const geometry::BodySurface surface(b, sim.body_model().faces());
+    const std::vector<NamedEnergy> energies = sim.make_energies(&surface);
+    for (const NamedEnergy& e : energies) {
+      const double value = e.energy->value(x);
+      if (!sums.count(e.name)) order.push_back(e.name);
+      sums[e.name] += value;
+      total += value;
+    }
+    const double p = geometry::penetration_ratio(surface, x);
+    p_sum += p;
+    p_max = std::max(p_max, p);
+    clear += p == 0;
+  }
+  const double n = static_cast<double>(samples.size());
+  std::printf("%s, split %s: %zu drapes under the effects of %s\n\n| effect | mean energy (J) |\n|---|---|\n",
+              path.string().c_str(), vm["split"].as<std::string>().c_str(), samples.size(),
+              vm["scene"].as<std::string>().c_str());
+  for (const std::string& name : order) std::printf("| %s | %.6g |\n", name.c_str(), sums[name] / n);
+  std::printf("| L_p (total) | %.6g |\n\npenetration p: mean %.3f %%, max %.3f %%; %zu of %zu drapes with no vertex inside\n",
+              total / n, 100 * p_sum / n, 100 * p_max, clear, samples.size());
+  return 0;
+}
+
+}  // namespace drape::cli
