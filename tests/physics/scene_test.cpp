@@ -114,6 +114,10 @@ TEST_CASE("a misspelt effect is refused with the list of known effects", "[scene
   CHECK_THAT(message_of([&] { validate_scene(parse_scene("effects: {gravity: {g: -1}}\n", "s.yaml"), plugins()); }),
              Catch::Contains("'g'") && Catch::Contains("s.yaml:1"));
   CHECK_NOTHROW(validate_scene(parse_scene("effects: [gravity]\n", "s.yaml"), plugins()));
+  // The preconditioner's precision is one of two words.
+  CHECK_THAT(message_of([&] { validate_scene(parse_scene("effects: [gravity]\nsolver: {preconditioner: half}\n", "s.yaml"), plugins()); }),
+             Catch::Contains("'half'") && Catch::Contains("float") && Catch::Contains("double"));
+  CHECK_NOTHROW(validate_scene(parse_scene("effects: [gravity]\nsolver: {preconditioner: double}\n", "s.yaml"), plugins()));
 }
 
 TEST_CASE("the shipped scenes are valid", "[scene]") {

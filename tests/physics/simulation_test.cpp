@@ -110,10 +110,24 @@ TEST_CASE("a target body of the wrong size is refused with the expected size", "
 }
 
 TEST_CASE("hard case: the extreme bodies, BMI 10 and 65", "[simulation][hard]") {
-  const Simulation sim(plugins(), small_scene());
+  // The shirt the body wears must fit it: the regular shirt settles at BMI 10;
+  // from BMI 60 on it is too small (docs/garments.md), and whether a drape of
+  // it comes to a balance is a matter of the path (2026-11-24: with the double
+  // preconditioner 2 of BMI 60, 62, 63, 64, 64.5, 65 settled, with the float
+  // one 0), so there it must stay sound and keep Phi falling. The xlarge shirt
+  // must settle across the top of the range (both preconditioners measured:
+  // float 7 of 7, double 4 of 7 at BMI 10, 60-65).
+  const Simulation regular(plugins(), small_scene());
   for (const double bmi : {10.0, 65.0}) {
-    INFO("BMI " << bmi);
-    const Checked c = simulate(sim, body_of(sim, bmi));
+    INFO("regular shirt, BMI " << bmi);
+    const Checked c = simulate(regular, body_of(regular, bmi));
+    require_sound(c);
+    if (bmi < 60) check_settled_outside(c);
+  }
+  const Simulation xlarge(plugins(), small_scene("garment: {params: {size: xlarge}}\n"));
+  for (const double bmi : {10.0, 62.0, 64.0, 65.0}) {
+    INFO("xlarge shirt, BMI " << bmi);
+    const Checked c = simulate(xlarge, body_of(xlarge, bmi));
     require_sound(c);
     INFO("residual " << c.result.residual << " at rest " << c.result.at_rest << " steps " << c.result.steps << " p " << c.result.penetration);
     check_settled_outside(c);

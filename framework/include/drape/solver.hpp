@@ -44,6 +44,11 @@ struct SolverSettings {
   // preconditioner of conjugate gradients; factorise anew only when PCG does
   // not reach |H d + g| <= newton_forcing |g| within max_cg_iterations.
   bool reuse_factorization = true;
+  // CG applies that factor in single precision (CHOLMOD back end): a
+  // preconditioner need not be exact, and the float copy's solves stream half
+  // the bytes. The Newton direction is still CG's, in double, and a direct
+  // solve with a fresh factor stays in double. Measured in docs/scenes.md.
+  bool float_preconditioner = true;
   double newton_forcing = 0.1;
   int max_cg_iterations = 20;
 };

@@ -65,7 +65,7 @@ int preconditioned_cg(const physics::SparseMatrix& h, const physics::SparseChole
   // The matrix holds its lower triangle only (sparse_cholesky.hpp).
   const auto sym = h.selfadjointView<Eigen::Lower>();
   d.setZero(b.size());
-  Eigen::VectorXd r = b, z = preconditioner.solve(r), p = z, hp(b.size());
+  Eigen::VectorXd r = b, z = preconditioner.precondition(r), p = z, hp(b.size());
   double rz = r.dot(z);
   const double goal = tolerance * b.norm();
   for (int k = 1; k <= max_iterations; ++k) {
@@ -76,7 +76,7 @@ int preconditioned_cg(const physics::SparseMatrix& h, const physics::SparseChole
     d += step * p;
     r -= step * hp;
     if (r.norm() <= goal) return k;
-    z = preconditioner.solve(r);
+    z = preconditioner.precondition(r);
     const double rz_next = r.dot(z);
     p = z + (rz_next / rz) * p;
     rz = rz_next;
@@ -98,7 +98,7 @@ ClothSolver::ClothSolver(const Garment& garment, std::vector<NamedEnergy>& energ
   masses_ = masses_.cwiseMax(floor);
   force_scale_ = std::max(masses_.norm() * 9.81, 1e-12);
   impl_->pattern = physics::HessianPattern(garment.mesh);
-  impl_->cholesky = physics::make_sparse_cholesky(settings_.linear_solver);
+  impl_->cholesky = physics::make_sparse_cholesky(settings_.linear_solver, settings_.float_preconditioner);
 }
 
 ClothSolver::~ClothSolver() = default;
@@ -239,35 +239,41 @@ StepReport ClothSolver::step(Eigen::MatrixX3d& x, Eigen::MatrixX3d& v) {
     // triangular solves. Only when PCG stalls is the matrix factorised anew.
     t = Clock::now();
     const Eigen::VectorXd rhs = -interleaved(g);
-    Eigen::VectorXd direction;
-    int cg = -1;
-    if (settings_.reuse_factorization && impl_->have_factor) {
-      cg = preconditioned_cg(impl_->hessian, *impl_->cholesky, rhs, settings_.newton_forcing, settings_.max_cg_iterations,
-                             direction);
-      if (cg > 0) timings_.cg_iterations += cg;
-    }
-    if (cg < 0) {
-      // The inertia term makes the matrix positive definite in exact arithmetic;
-      // a failed factorisation (round-off on a huge stiffness ratio) is retried
-      // with a growing diagonal shift, which keeps the direction a descent one.
-      impl_->have_factor = false;
-      bool factored = impl_->cholesky->factorize(impl_->hessian);
-      ++timings_.factorizations;
-      for (double shift = 1e-8 * impl_->hessian.diagonal().cwiseAbs().maxCoeff(); !factored && shift < 1e30; shift *= 100) {
-        physics::SparseMatrix shifted = impl_->hessian;
-        for (int k = 0; k < shifted.rows(); ++k) shifted.coeffRef(k, k) += shift;
-        factored = impl_->cholesky->factorize(shifted);
-        ++timings_.factorizations;
+    // fresh: factorise the current matrix and solve exactly, instead of PCG
+    // with the kept factor.
+    auto newton_direction = [&](bool fresh) {
+      Eigen::VectorXd direction;
+      int cg = -1;
+      if (!fresh && settings_.reuse_factorization && impl_->have_factor) {
+        cg = preconditioned_cg(impl_->hessian, *impl_->cholesky, rhs, settings_.newton_forcing,
+                               settings_.max_cg_iterations, direction);
+        if (cg > 0) timings_.cg_iterations += cg;
       }
-      if (!factored) throw Error("solver: the Newton matrix could not be factorised even with a diagonal shift");
-      impl_->have_factor = true;
-      direction = impl_->cholesky->solve(rhs);
-    }
-    Eigen::MatrixX3d d = per_vertex(direction);
+      if (cg < 0) {
+        // The inertia term makes the matrix positive definite in exact arithmetic;
+        // a failed factorisation (round-off on a huge stiffness ratio) is retried
+        // with a growing diagonal shift, which keeps the direction a descent one.
+        impl_->have_factor = false;
+        bool factored = impl_->cholesky->factorize(impl_->hessian);
+        ++timings_.factorizations;
+        for (double shift = 1e-8 * impl_->hessian.diagonal().cwiseAbs().maxCoeff(); !factored && shift < 1e30;
+             shift *= 100) {
+          physics::SparseMatrix shifted = impl_->hessian;
+          for (int k = 0; k < shifted.rows(); ++k) shifted.coeffRef(k, k) += shift;
+          factored = impl_->cholesky->factorize(shifted);
+          ++timings_.factorizations;
+        }
+        if (!factored) throw Error("solver: the Newton matrix could not be factorised even with a diagonal shift");
+        impl_->have_factor = true;
+        direction = impl_->cholesky->solve(rhs);
+      }
+      Eigen::MatrixX3d d = per_vertex(direction);
+      if (!finite(d)) throw Error("solver: the Newton direction is not finite");
+      cap_longest_move(d, settings_.max_displacement);
+      return std::make_pair(d, cg > 0);
+    };
+    auto [d, inexact] = newton_direction(false);
     timings_.linear_solves += since(t);
-    if (!finite(d)) throw Error("solver: the Newton direction is not finite");
-
-    cap_longest_move(d, settings_.max_displacement);
 
     // Armijo backtracking along d; at a contact kink (the closest body face
     // switches across a crease) the Newton model can point where Phi does not
@@ -290,6 +296,17 @@ StepReport ClothSolver::step(Eigen::MatrixX3d& x, Eigen::MatrixX3d& v) {
       return false;
     };
     bool accepted = line_search(d);
+    if (!accepted && inexact) {
+      // PCG's inexact step from an older factor can miss where Phi falls at a
+      // contact kink; the exact Newton step of the current matrix is tried
+      // before the gradient (measured: the BMI 65 hard case stalled without it).
+      const auto t_solve = Clock::now();
+      d = newton_direction(true).first;
+      const auto solve_time = Clock::now() - t_solve;
+      timings_.linear_solves += std::chrono::duration<double>(solve_time).count();
+      t += solve_time;  // the line search's time counts only its own trials
+      accepted = line_search(d);
+    }
     if (!accepted) {
       const Eigen::VectorXd diag = impl_->hessian.diagonal();
       Eigen::MatrixX3d jacobi = -g.cwiseQuotient(per_vertex(diag));

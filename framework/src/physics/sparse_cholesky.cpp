@@ -1,5 +1,7 @@
 #include "sparse_cholesky.hpp"
 
+#include "supernodal_solve.hpp"
+
 #include <drape/errors.hpp>
 #include <drape/solver.hpp>
 
@@ -46,6 +48,66 @@ class EigenBackedCholesky final : public SparseCholesky {
   PatternKey key_;
 };
 
+#ifdef DRAPE_HAVE_CHOLMOD
+// Eigen keeps CHOLMOD's factor protected; this exposes it read-only.
+class SupernodalLLT final : public Eigen::CholmodSupernodalLLT<SparseMatrix, Eigen::Lower> {
+ public:
+  const cholmod_factor* factor() const { return m_cholmodFactor; }
+};
+
+// CHOLMOD's supernodal LL' (nested dissection) for the factorisation and the
+// exact solve; preconditioning solves run on a float copy of its factor
+// (supernodal_solve.hpp).
+class CholmodCholesky final : public SparseCholesky {
+ public:
+  explicit CholmodCholesky(bool float_preconditioner) : float_preconditioner_(float_preconditioner) {
+    // Nested dissection only: on the default T-shirt (10.5k dofs) it needs
+    // 5.0e8 flops per factorisation against 7.1e8 for AMD, which CHOLMOD's
+    // default (try AMD, then METIS) ends up close to; measured 67 vs 81 ms.
+    cholmod_common& common = llt_.cholmod();
+    common.nmethods = 1;
+    common.method[0].ordering = CHOLMOD_NESDIS;
+    // One BLAS thread inside CHOLMOD, for every solver: these factorisations
+    // are too small to gain from more (measured the same time), OpenBLAS's idle
+    // threads spin against one-solver-per-core jobs (drape generate: 13.6 s
+    // instead of 4.4 s per coarse drape), and a multi-threaded BLAS rounds
+    // differently, which would make a drape depend on the thread count.
+    set_blas_threads(1);
+  }
+  bool factorize(const SparseMatrix& a) override {
+    if (!key_.same(a)) {
+      llt_.analyzePattern(a);
+      key_.set(a);
+    }
+    llt_.factorize(a);
+    if (llt_.info() != Eigen::Success) return false;
+    if (float_preconditioner_) {
+      const cholmod_factor* l = llt_.factor();
+      if (!l || !l->is_super || !l->is_ll || l->xtype != CHOLMOD_REAL || l->itype != CHOLMOD_INT)
+        throw Error("cholmod: expected a real supernodal LL' factor with int indices");
+      single_.assign(static_cast<int>(l->n), static_cast<int>(l->nsuper), static_cast<const int*>(l->Perm),
+                     static_cast<const int*>(l->super), static_cast<const int*>(l->pi), static_cast<const int*>(l->px),
+                     static_cast<const int*>(l->s), static_cast<const double*>(l->x), l->xsize);
+    }
+    return true;
+  }
+  Eigen::VectorXd solve(const Eigen::VectorXd& b) const override { return llt_.solve(b); }
+  Eigen::VectorXd precondition(const Eigen::VectorXd& r) const override {
+    if (!float_preconditioner_) return solve(r);
+    Eigen::VectorXd z;
+    single_.solve(r, z);
+    return z;
+  }
+  std::string name() const override { return float_preconditioner_ ? "cholmod" : "cholmod (double preconditioner)"; }
+
+ private:
+  bool float_preconditioner_;
+  SupernodalLLT llt_;
+  PatternKey key_;
+  FloatSupernodalFactor single_;
+};
+#endif
+
 }  // namespace
 
 bool cholmod_available() {
@@ -56,26 +118,13 @@ bool cholmod_available() {
 #endif
 }
 
-std::unique_ptr<SparseCholesky> make_sparse_cholesky(const std::string& name) {
+std::unique_ptr<SparseCholesky> make_sparse_cholesky(const std::string& name, bool float_preconditioner) {
   if (name == "eigen" || (name == "auto" && !cholmod_available()))
     return std::make_unique<EigenBackedCholesky<Eigen::SimplicialLLT<SparseMatrix, Eigen::Lower, Eigen::AMDOrdering<int>>>>(
         "eigen");
   if (name == "cholmod" || name == "auto") {
 #ifdef DRAPE_HAVE_CHOLMOD
-    auto c = std::make_unique<EigenBackedCholesky<Eigen::CholmodSupernodalLLT<SparseMatrix, Eigen::Lower>>>("cholmod");
-    // Nested dissection only: on the default T-shirt (10.5k dofs) it needs
-    // 5.0e8 flops per factorisation against 7.1e8 for AMD, which CHOLMOD's
-    // default (try AMD, then METIS) ends up close to; measured 67 vs 81 ms.
-    cholmod_common& common = c->solver().cholmod();
-    common.nmethods = 1;
-    common.method[0].ordering = CHOLMOD_NESDIS;
-    // One BLAS thread inside CHOLMOD, for every solver: these factorisations
-    // are too small to gain from more (measured the same time), OpenBLAS's idle
-    // threads spin against one-solver-per-core jobs (drape generate: 13.6 s
-    // instead of 4.4 s per coarse drape), and a multi-threaded BLAS rounds
-    // differently, which would make a drape depend on the thread count.
-    set_blas_threads(1);
-    return c;
+    return std::make_unique<CholmodCholesky>(float_preconditioner);
 #else
     throw ConfigError("linear_solver: cholmod was not found when drape was built (install libsuitesparse-dev); use eigen");
 #endif

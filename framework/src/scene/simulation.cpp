@@ -63,6 +63,7 @@ SolverSettings Simulation::solver_settings() const {
   s.kink_radius = p.get_float("kink_radius");
   s.linear_solver = p.get_string("linear_solver");
   s.reuse_factorization = p.get_bool("reuse_factorization");
+  s.float_preconditioner = p.get_string("preconditioner") == "float";
   s.newton_forcing = p.get_float("newton_forcing");
   s.max_cg_iterations = static_cast<int>(p.get_int("max_cg_iterations"));
   return s;
