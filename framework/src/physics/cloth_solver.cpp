@@ -239,41 +239,35 @@ StepReport ClothSolver::step(Eigen::MatrixX3d& x, Eigen::MatrixX3d& v) {
     // triangular solves. Only when PCG stalls is the matrix factorised anew.
     t = Clock::now();
     const Eigen::VectorXd rhs = -interleaved(g);
-    // fresh: factorise the current matrix and solve exactly, instead of PCG
-    // with the kept factor.
-    auto newton_direction = [&](bool fresh) {
-      Eigen::VectorXd direction;
-      int cg = -1;
-      if (!fresh && settings_.reuse_factorization && impl_->have_factor) {
-        cg = preconditioned_cg(impl_->hessian, *impl_->cholesky, rhs, settings_.newton_forcing,
-                               settings_.max_cg_iterations, direction);
-        if (cg > 0) timings_.cg_iterations += cg;
-      }
-      if (cg < 0) {
-        // The inertia term makes the matrix positive definite in exact arithmetic;
-        // a failed factorisation (round-off on a huge stiffness ratio) is retried
-        // with a growing diagonal shift, which keeps the direction a descent one.
-        impl_->have_factor = false;
-        bool factored = impl_->cholesky->factorize(impl_->hessian);
+    Eigen::VectorXd direction;
+    int cg = -1;
+    if (settings_.reuse_factorization && impl_->have_factor) {
+      cg = preconditioned_cg(impl_->hessian, *impl_->cholesky, rhs, settings_.newton_forcing, settings_.max_cg_iterations,
+                             direction);
+      if (cg > 0) timings_.cg_iterations += cg;
+    }
+    if (cg < 0) {
+      // The inertia term makes the matrix positive definite in exact arithmetic;
+      // a failed factorisation (round-off on a huge stiffness ratio) is retried
+      // with a growing diagonal shift, which keeps the direction a descent one.
+      impl_->have_factor = false;
+      bool factored = impl_->cholesky->factorize(impl_->hessian);
+      ++timings_.factorizations;
+      for (double shift = 1e-8 * impl_->hessian.diagonal().cwiseAbs().maxCoeff(); !factored && shift < 1e30; shift *= 100) {
+        physics::SparseMatrix shifted = impl_->hessian;
+        for (int k = 0; k < shifted.rows(); ++k) shifted.coeffRef(k, k) += shift;
+        factored = impl_->cholesky->factorize(shifted);
         ++timings_.factorizations;
-        for (double shift = 1e-8 * impl_->hessian.diagonal().cwiseAbs().maxCoeff(); !factored && shift < 1e30;
-             shift *= 100) {
-          physics::SparseMatrix shifted = impl_->hessian;
-          for (int k = 0; k < shifted.rows(); ++k) shifted.coeffRef(k, k) += shift;
-          factored = impl_->cholesky->factorize(shifted);
-          ++timings_.factorizations;
-        }
-        if (!factored) throw Error("solver: the Newton matrix could not be factorised even with a diagonal shift");
-        impl_->have_factor = true;
-        direction = impl_->cholesky->solve(rhs);
       }
-      Eigen::MatrixX3d d = per_vertex(direction);
-      if (!finite(d)) throw Error("solver: the Newton direction is not finite");
-      cap_longest_move(d, settings_.max_displacement);
-      return std::make_pair(d, cg > 0);
-    };
-    auto [d, inexact] = newton_direction(false);
+      if (!factored) throw Error("solver: the Newton matrix could not be factorised even with a diagonal shift");
+      impl_->have_factor = true;
+      direction = impl_->cholesky->solve(rhs);
+    }
+    Eigen::MatrixX3d d = per_vertex(direction);
     timings_.linear_solves += since(t);
+    if (!finite(d)) throw Error("solver: the Newton direction is not finite");
+
+    cap_longest_move(d, settings_.max_displacement);
 
     // Armijo backtracking along d; at a contact kink (the closest body face
     // switches across a crease) the Newton model can point where Phi does not
@@ -296,17 +290,6 @@ StepReport ClothSolver::step(Eigen::MatrixX3d& x, Eigen::MatrixX3d& v) {
       return false;
     };
     bool accepted = line_search(d);
-    if (!accepted && inexact) {
-      // PCG's inexact step from an older factor can miss where Phi falls at a
-      // contact kink; the exact Newton step of the current matrix is tried
-      // before the gradient (measured: the BMI 65 hard case stalled without it).
-      const auto t_solve = Clock::now();
-      d = newton_direction(true).first;
-      const auto solve_time = Clock::now() - t_solve;
-      timings_.linear_solves += std::chrono::duration<double>(solve_time).count();
-      t += solve_time;  // the line search's time counts only its own trials
-      accepted = line_search(d);
-    }
     if (!accepted) {
       const Eigen::VectorXd diag = impl_->hessian.diagonal();
       Eigen::MatrixX3d jacobi = -g.cwiseQuotient(per_vertex(diag));
