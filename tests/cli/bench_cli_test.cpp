@@ -75,4 +75,12 @@ TEST_CASE("bench simulate reports whole drapes (best and median of repeated runs
   std::ifstream md(dir / "bench.md");
   const std::string written((std::istreambuf_iterator<char>(md)), std::istreambuf_iterator<char>());
   CHECK_THAT(written, Catch::Contains("## Whole drapes") && Catch::Contains("## One solver iteration"));
+
+  // A scene of one effect has nothing to remove: both tables keep their "all effects" row only.
+  std::ofstream(dir / "gravity.yaml") << "base: tiny.yaml\neffects: [gravity]\n";
+  REQUIRE(run_drape("bench simulate --scene " + (dir / "gravity.yaml").string() +
+                        " --coarse-scene '' --repeats 1 --drape-repeats 1",
+                    out) == 0);
+  CHECK_THAT(out, Catch::Contains("| all effects |") && Catch::Contains("ms to evaluate"));
+  CHECK(out.find("| without ") == std::string::npos);
 }
