@@ -78,6 +78,7 @@ class CholmodCholesky final : public SparseCholesky {
     if (!key_.same(a)) {
       llt_.analyzePattern(a);
       key_.set(a);
+      single_pattern_stale_ = true;
     }
     llt_.factorize(a);
     if (llt_.info() != Eigen::Success) return false;
@@ -85,9 +86,12 @@ class CholmodCholesky final : public SparseCholesky {
       const cholmod_factor* l = llt_.factor();
       if (!l || !l->is_super || !l->is_ll || l->xtype != CHOLMOD_REAL || l->itype != CHOLMOD_INT)
         throw Error("cholmod: expected a real supernodal LL' factor with int indices");
-      single_.assign(static_cast<int>(l->n), static_cast<int>(l->nsuper), static_cast<const int*>(l->Perm),
-                     static_cast<const int*>(l->super), static_cast<const int*>(l->pi), static_cast<const int*>(l->px),
-                     static_cast<const int*>(l->s), static_cast<const double*>(l->x), l->xsize);
+      if (single_pattern_stale_)
+        single_.set_pattern(static_cast<int>(l->n), static_cast<int>(l->nsuper), static_cast<const int*>(l->Perm),
+                            static_cast<const int*>(l->super), static_cast<const int*>(l->pi),
+                            static_cast<const int*>(l->px), static_cast<const int*>(l->s));
+      single_pattern_stale_ = false;
+      single_.set_values(static_cast<const double*>(l->x), l->xsize);
     }
     return true;
   }
@@ -105,6 +109,7 @@ class CholmodCholesky final : public SparseCholesky {
   SupernodalLLT llt_;
   PatternKey key_;
   FloatSupernodalFactor single_;
+  bool single_pattern_stale_ = true;  // the float copy's pattern predates the last analysis
 };
 #endif
 

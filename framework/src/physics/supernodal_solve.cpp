@@ -6,9 +6,8 @@
 
 namespace drape::physics {
 
-void FloatSupernodalFactor::assign(int n, int supernodes, const int* perm, const int* super, const int* row_start,
-                                   const int* value_start, const int* rows, const double* values,
-                                   std::size_t value_count) {
+void FloatSupernodalFactor::set_pattern(int n, int supernodes, const int* perm, const int* super, const int* row_start,
+                                        const int* value_start, const int* rows) {
   n_ = n;
   supernodes_ = supernodes;
   perm_.assign(perm, perm + n);
@@ -16,16 +15,19 @@ void FloatSupernodalFactor::assign(int n, int supernodes, const int* perm, const
   row_start_.assign(row_start, row_start + supernodes + 1);
   value_start_.assign(value_start, value_start + supernodes + 1);
   rows_.assign(rows, rows + row_start[supernodes]);
-  values_.resize(value_count);
-  std::copy(values, values + value_count, values_.begin());  // rounds each value to the nearest float
   widest_ = 0;
   for (int s = 0; s < supernodes; ++s) widest_ = std::max(widest_, row_start[s + 1] - row_start[s]);
+  y_.resize(n_);
+  gathered_.resize(widest_);
+}
+
+void FloatSupernodalFactor::set_values(const double* values, std::size_t count) {
+  values_.resize(count);
+  std::copy(values, values + count, values_.begin());  // rounds each value to the nearest float
 }
 
 void FloatSupernodalFactor::solve(const Eigen::VectorXd& b, Eigen::VectorXd& x) const {
   using Block = Eigen::Map<const Eigen::MatrixXf, 0, Eigen::OuterStride<>>;
-  y_.resize(n_);
-  gathered_.resize(widest_);
   for (int k = 0; k < n_; ++k) y_[k] = static_cast<float>(b[perm_[k]]);
   // L y = P b, supernode by supernode: the diagonal block's triangle, then the
   // rows below it take the block's contribution (gathered, multiplied, scattered).

@@ -19,11 +19,13 @@ namespace drape::physics {
 // A supernodal LL' factor in CHOLMOD's layout (int indices), values in float.
 class FloatSupernodalFactor {
  public:
-  // Copies the pattern's arrays and rounds the values. `values` holds
-  // `value_count` doubles, each supernode column-major (rows x columns).
-  void assign(int n, int supernodes, const int* perm, const int* super, const int* row_start, const int* value_start,
-              const int* rows, const double* values, std::size_t value_count);
-  bool empty() const { return n_ == 0; }
+  // The factor's pattern, fixed by the symbolic analysis: copied once per
+  // analysis, not per factorisation.
+  void set_pattern(int n, int supernodes, const int* perm, const int* super, const int* row_start,
+                   const int* value_start, const int* rows);
+  // The numeric values (`count` doubles, each supernode column-major, rows x
+  // columns), rounded to float.
+  void set_values(const double* values, std::size_t count);
   // x = A^-1 b for A = P' L L' P, to float precision.
   void solve(const Eigen::VectorXd& b, Eigen::VectorXd& x) const;
 
