@@ -19,7 +19,6 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
-#include <map>
 
 namespace drape::cli {
 
@@ -48,8 +47,8 @@ int dataset_potential(const std::vector<std::string>& args) {
   const std::vector<std::size_t> samples = reader.indices(vm["split"].as<std::string>());
   if (samples.empty()) throw ConfigError(SourceLocation{path.string(), 0}, "has no finished sample in that split");
 
-  std::map<std::string, double> sums;  // per effect, over the samples
-  std::vector<std::string> order;
+  std::vector<std::string> names;  // the scene's effects, in its order (the same for every sample)
+  std::vector<double> sums;        // each effect's energy, summed over the samples
   double total = 0, p_sum = 0, p_max = 0;
   std::size_t clear = 0;
   for (std::size_t index : samples) {
@@ -57,10 +56,13 @@ int dataset_potential(const std::vector<std::string>& args) {
     const Eigen::MatrixX3d b = s.body_vertices.cast<double>(), x = s.garment_vertices.cast<double>();
     const geometry::BodySurface surface(b, sim.body_model().faces());
     const std::vector<NamedEnergy> energies = sim.make_energies(&surface);
-    for (const NamedEnergy& e : energies) {
-      const double value = e.energy->value(x);
-      if (!sums.count(e.name)) order.push_back(e.name);
-      sums[e.name] += value;
+    if (names.empty()) {
+      for (const NamedEnergy& e : energies) names.push_back(e.name);
+      sums.assign(energies.size(), 0.0);
+    }
+    for (std::size_t k = 0; k < energies.size(); ++k) {
+      const double value = energies[k].energy->value(x);
+      sums[k] += value;
       total += value;
     }
     const double p = geometry::penetration_ratio(surface, x);
@@ -72,7 +74,7 @@ int dataset_potential(const std::vector<std::string>& args) {
   std::printf("%s, split %s: %zu drapes under the effects of %s\n\n| effect | mean energy (J) |\n|---|---|\n",
               path.string().c_str(), vm["split"].as<std::string>().c_str(), samples.size(),
               vm["scene"].as<std::string>().c_str());
-  for (const std::string& name : order) std::printf("| %s | %.6g |\n", name.c_str(), sums[name] / n);
+  for (std::size_t k = 0; k < names.size(); ++k) std::printf("| %s | %.6g |\n", names[k].c_str(), sums[k] / n);
   std::printf("| L_p (total) | %.6g |\n\npenetration p: mean %.3f %%, max %.3f %%; %zu of %zu drapes with no vertex inside\n",
               total / n, 100 * p_sum / n, 100 * p_max, clear, samples.size());
   return 0;
