@@ -118,11 +118,15 @@ TEST_CASE("hard case: the extreme bodies, BMI 10 and 65", "[simulation][hard]") 
   // must settle across the top of the range (both preconditioners measured:
   // float 7 of 7, double 4 of 7 at BMI 10, 60-65).
   const Simulation regular(plugins(), small_scene());
-  for (const double bmi : {10.0, 65.0}) {
-    INFO("regular shirt, BMI " << bmi);
-    const Checked c = simulate(regular, body_of(regular, bmi));
+  {
+    INFO("regular shirt, BMI 10");
+    const Checked c = simulate(regular, body_of(regular, 10));
     require_sound(c);
-    if (bmi < 60) check_settled_outside(c);
+    check_settled_outside(c);
+  }
+  {
+    INFO("regular shirt, BMI 65");
+    require_sound(simulate(regular, body_of(regular, 65)));
   }
   const Simulation xlarge(plugins(), small_scene("garment: {params: {size: xlarge}}\n"));
   for (const double bmi : {10.0, 62.0, 64.0, 65.0}) {
