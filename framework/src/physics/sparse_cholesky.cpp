@@ -30,7 +30,6 @@ template <class Solver>
 class EigenBackedCholesky final : public SparseCholesky {
  public:
   explicit EigenBackedCholesky(std::string name) : name_(std::move(name)) {}
-  Solver& solver() { return solver_; }
   bool factorize(const SparseMatrix& a) override {
     if (!key_.same(a)) {
       solver_.analyzePattern(a);
