@@ -3,7 +3,7 @@
 // Cholesky factor that CHOLMOD computed in double precision.
 //
 // Why: the cloth solver preconditions conjugate gradients with the last
-// factor and applies it ~50 times per factorisation (docs/scenes.md), and
+// factor and applies it ~40 times per factorisation (docs/scenes.md), and
 // those triangular solves were a third of a drape. A preconditioner need not
 // be exact: the float copy (the factor rounded to float, so L L' stays
 // symmetric positive definite) halves the bytes each solve streams and doubles
