@@ -84,7 +84,7 @@ class CornerGather {
 // `vertex` as triplets starting at `out` (9 N^2 entries), on the flattened
 // index 3 * vertex + axis.
 template <int N>
-inline void write_hessian_blocks(const Eigen::Matrix<double, 3 * N, 3 * N>& h, const int (&vertex)[N],
+inline void write_hessian_blocks(const Eigen::Matrix<double, 3 * N, 3 * N>& h, const int* vertex,
                                  Eigen::Triplet<double>* out) {
   for (int a = 0; a < N; ++a)
     for (int b = 0; b < N; ++b)
@@ -104,7 +104,7 @@ template <int N>
 inline constexpr int kLowerEntries = 3 * N * (3 * N + 1) / 2;
 
 template <int N>
-inline void write_lower_hessian_blocks(const Eigen::Matrix<double, 3 * N, 3 * N>& h, const int (&vertex)[N],
+inline void write_lower_hessian_blocks(const Eigen::Matrix<double, 3 * N, 3 * N>& h, const int* vertex,
                                        Eigen::Triplet<double>* out) {
   for (int a = 0; a < N; ++a) {
     const int va = vertex[a];
@@ -136,7 +136,7 @@ constexpr std::size_t hessian_entries(bool lower) {
 }
 
 template <int N>
-inline void write_element_hessian(const Eigen::Matrix<double, 3 * N, 3 * N>& h, const int (&vertex)[N], bool lower,
+inline void write_element_hessian(const Eigen::Matrix<double, 3 * N, 3 * N>& h, const int* vertex, bool lower,
                                   Eigen::Triplet<double>* out) {
   if (lower)
     write_lower_hessian_blocks<N>(h, vertex, out);

@@ -1,21 +1,17 @@
 #pragma once
-// ArcSim's membrane (in-plane stretching) energy of one triangle, its gradient
-// and Hessian (Narain, Samii & O'Brien 2012, "Adaptive anisotropic remeshing
-// for cloth simulation"; the model of Wang, Ramamoorthi & O'Brien 2011).
+// The kinematics of a membrane (in-plane stretching) energy of one triangle
+// whose density psi(g) depends on the Green strain g = (G00, G11, G01): its
+// gradient and (projected) Hessian in the positions, for any psi
+// (drape/arcsim_material.hpp gives ArcSim's and the linear one).
 //
 // With material-space (UV) edge matrix Dm = [u1 - u0, u2 - u0] and world
 // positions x0, x1, x2, the deformation gradient is
 //   F = [x1 - x0, x2 - x0] Dm^-1 = X C,   X = [x0 x1 x2] (3x3), C = D Dm^-1 (3x2),
-// with D = [[-1, -1], [1, 0], [0, 1]]. The Green strain is G = (F^T F - I) / 2 and
-//   E = A (k0 G00^2 + k2 G11^2 + 2 k1 G00 G11 + k3 G01^2) / 2,
-// A the material-space area, k = [k_uu, k_uv coupling, k_vv, k_shear].
-// This is exactly ArcSim's stretching_energy: the shear strain G01 enters once,
-// with k3 (not twice as in the full contraction G:K:G, where G01 = G10 would
-// each contribute); a k_shear measured for ArcSim therefore means the same here.
-//
-// Writing g = (G00, G11, G01) and K = [[k0, k1, 0], [k1, k2, 0], [0, 0, k3]]:
-//   E = A g^T K g / 2,  dE/dF = A J^T K g,
-//   d2E/dF2 = A (J^T K J + S (x) I3),  S = [[s0, s2/2], [s2/2, s1]],  s = K g,
+// with D = [[-1, -1], [1, 0], [0, 1]]. The Green strain is G = (F^T F - I) / 2,
+// g = (G00, G11, G01), and the face's energy is E = A psi(g), A the
+// material-space area. With s = dpsi/dg and K = d2psi/dg2:
+//   dE/dF = A J^T s,
+//   d2E/dF2 = A (J^T K J + S (x) I3),  S = [[s0, s2/2], [s2/2, s1]],
 // where J = dg/dvec(F) (rows [f0^T, 0], [0, f1^T], [f1^T/2, f0^T/2] for
 // F = [f0 f1]) and S (x) I3 comes from the second derivatives of g. The first
 // term is PSD whenever K is; the second is PSD iff S is (which fails under
@@ -32,39 +28,12 @@ using Mat32 = Eigen::Matrix<double, 3, 2>;
 using Mat6 = Eigen::Matrix<double, 6, 6>;
 using Mat9 = Eigen::Matrix<double, 9, 9>;
 
-// What a face needs at run time, precomputed from the rest state.
-struct Face {
-  int vertex[3];
-  Mat32 c;            // F = X c
-  Mat32 q;            // c = q t with q^T q = I (thin QR): an orthonormal basis of c's columns
-  Eigen::Matrix2d t;
-  Eigen::Vector4d k;  // area * stiffness_scale * [k_uu, k_uv, k_vv, k_shear]
-  bool k_psd;         // K = [[k0, k1, 0], [k1, k2, 0], [0, 0, k3]] is PSD
-};
-
-inline bool stiffness_is_psd(const Eigen::Vector4d& k) {
-  return k[0] >= 0.0 && k[2] >= 0.0 && k[3] >= 0.0 && k[0] * k[2] >= k[1] * k[1];
-}
-
-inline Mat32 deformation_gradient(const Eigen::MatrixX3d& x, const Face& f) {
-  Mat32 F = x.row(f.vertex[0]).transpose() * f.c.row(0);
-  F.noalias() += x.row(f.vertex[1]).transpose() * f.c.row(1);
-  F.noalias() += x.row(f.vertex[2]).transpose() * f.c.row(2);
-  return F;
-}
+// F = X c for the face's positions X (3x3, one vertex per column).
+inline Mat32 deformation_gradient(const Eigen::Matrix3d& X, const Mat32& c) { return X * c; }
 
 // g = (G00, G11, G01) of the Green strain.
 inline Eigen::Vector3d green_strain(const Mat32& F) {
   return {0.5 * (F.col(0).squaredNorm() - 1.0), 0.5 * (F.col(1).squaredNorm() - 1.0), 0.5 * F.col(0).dot(F.col(1))};
-}
-
-// s = K g.
-inline Eigen::Vector3d strain_stress(const Eigen::Vector4d& k, const Eigen::Vector3d& g) {
-  return {k[0] * g[0] + k[1] * g[1], k[1] * g[0] + k[2] * g[1], k[3] * g[2]};
-}
-
-inline double energy(const Eigen::Vector4d& k, const Eigen::Vector3d& g) {
-  return 0.5 * (k[0] * g[0] * g[0] + k[2] * g[1] * g[1] + 2.0 * k[1] * g[0] * g[1] + k[3] * g[2] * g[2]);
 }
 
 // dE/dF = [s0 f0 + s2 f1 / 2, s1 f1 + s2 f0 / 2].
@@ -76,14 +45,13 @@ inline Mat32 stress(const Mat32& F, const Eigen::Vector3d& s) {
 }
 
 // d2E/dvec(F)^2 (vec stacks the columns f0, f1).
-inline Mat6 hessian_in_F(const Mat32& F, const Eigen::Vector4d& k, const Eigen::Vector3d& s) {
+// K = d2psi/dg2 (3x3), s = dpsi/dg.
+inline Mat6 hessian_in_F(const Mat32& F, const Eigen::Matrix3d& K, const Eigen::Vector3d& s) {
   Eigen::Matrix<double, 3, 6> J = Eigen::Matrix<double, 3, 6>::Zero();
   J.block<1, 3>(0, 0) = F.col(0).transpose();
   J.block<1, 3>(1, 3) = F.col(1).transpose();
   J.block<1, 3>(2, 0) = 0.5 * F.col(1).transpose();
   J.block<1, 3>(2, 3) = 0.5 * F.col(0).transpose();
-  Eigen::Matrix3d K;
-  K << k[0], k[1], 0.0, k[1], k[2], 0.0, 0.0, 0.0, k[3];
   Mat6 H = J.transpose() * K * J;
   for (int i = 0; i < 3; ++i) {
     H(i, i) += s[0];
@@ -92,6 +60,10 @@ inline Mat6 hessian_in_F(const Mat32& F, const Eigen::Vector4d& k, const Eigen::
     H(3 + i, i) += 0.5 * s[2];
   }
   return H;
+}
+
+inline bool stiffness_is_psd(const Eigen::Matrix3d& K) {
+  return K(2, 2) >= 0.0 && K(0, 0) >= 0.0 && K(1, 1) >= 0.0 && Eigen::LLT<Eigen::Matrix3d>(K).info() == Eigen::Success;
 }
 
 inline bool stress_is_psd(const Eigen::Vector3d& s) {
@@ -162,7 +134,7 @@ inline Eigen::Matrix3d column_frame(const Mat32& F) {
 // closed form t S t^T (the membrane's buckling modes under compression). The
 // in-plane 4x4 block is the 2D version of hessian_in_F; it is PSD-tested with a
 // Cholesky factorisation and eigen-decomposed only when that fails.
-inline Mat6 projected_hessian_in_Y(const Mat32& F, const Eigen::Vector4d& k, const Eigen::Vector3d& s,
+inline Mat6 projected_hessian_in_Y(const Mat32& F, const Eigen::Matrix3d& K, const Eigen::Vector3d& s,
                                    const Eigen::Matrix2d& t) {
   const Eigen::Matrix3d frame = column_frame(F);
   const Eigen::Matrix<double, 3, 2> U = frame.leftCols<2>();
@@ -174,8 +146,6 @@ inline Mat6 projected_hessian_in_Y(const Mat32& F, const Eigen::Vector4d& k, con
   J.block<1, 2>(1, 2) = Fp.col(1).transpose();
   J.block<1, 2>(2, 0) = 0.5 * Fp.col(1).transpose();
   J.block<1, 2>(2, 2) = 0.5 * Fp.col(0).transpose();
-  Eigen::Matrix3d K;
-  K << k[0], k[1], 0.0, k[1], k[2], 0.0, 0.0, 0.0, k[3];
   Eigen::Matrix4d hf = J.transpose() * K * J;
   for (int i = 0; i < 2; ++i) {
     hf(i, i) += s[0];

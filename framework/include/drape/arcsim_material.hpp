@@ -1,0 +1,104 @@
+#pragma once
+// ArcSim's data-driven cloth model (Wang, Ramamoorthi & O'Brien 2011, as
+// ArcSim's dde.cpp and physics.cpp evaluate it), with the derivatives a
+// Newton solver needs. docs/materials.md, "How drape evaluates ArcSim's
+// model", lists every convention and each place drape departs from ArcSim.
+//
+// Stretching. ArcSim tabulates a stiffness k = [k_uu, k_uv, k_vv, k_shear]
+// (N/m) over the Green strain G = (g0, g1, g2) = (G_uu, G_vv, G_uv):
+//  * a sample (evaluate_stretching_sample) takes the largest principal stretch
+//    w of C = 2G + I and the angle of its direction from u, interpolates
+//    bilinearly between the zero-strain row and the five rows measured at
+//    w = 1 + 1/6 (0, 22.5, 45, 67.5, 90 degrees), with the strain weight
+//    6 (w - 1) clamped to [0, 1), clamps each coefficient at 0 and doubles it;
+//  * the samples sit on a 30^3 grid, G_uu and G_vv in -0.25 + i/30, G_uv in
+//    i/30, and k(G) is their trilinear interpolation at (G_uu, G_vv, |G_uv|)
+//    (stretching_stiffness), clamped to the grid.
+// The energy per unit rest area is ArcSim's with its force's shear term,
+//   psi(G) = (k_uu g0^2 + k_vv g1^2 + 2 k_uv g0 g1 + 2 k_shear g2^2) / 2,
+// with k = k(G): a true potential of the positions, differentiated exactly
+// (k's own derivative included). One departure: |G_uv| is smoothed within
+// kShearSmoothing of zero (see there).
+//
+// Bending. ArcSim's stiffness (bending_stiffness) of a hinge side is the
+// bilinear interpolation of the 3 x 5 table over the edge's material-space
+// direction (0, 45, 90 degrees from u, folded by symmetry) and the curvature
+// value |theta| l / (A0 + A1) / (10 1/m) (columns 0..4, clamped at 4), clamped
+// at 0; a hinge takes the smaller of its two sides'. ArcSim takes theta with
+// its sign, so a fold one way extrapolates below the first column and clamps
+// to zero stiffness; drape takes |theta|: a fold costs the same either way.
+#include <drape/energy.hpp>
+
+#include <Eigen/Core>
+
+#include <array>
+#include <vector>
+
+namespace drape::arcsim {
+
+// ArcSim's grid size and the strain where the measured rows apply.
+inline constexpr int kGridSamples = 30;
+inline constexpr double kMeasuredStretch = 1.0 / 6.0;
+
+// |G_uv| enters ArcSim's lookup as a kink at zero shear: the energy's
+// gradient would jump there (by as much as the gradient itself on a face
+// stretched along u), a V-shaped valley no Newton step settles into. drape
+// replaces |s| by 2 s^2 / d - |s|^3 / d^2 for |s| < d (C1; equal to |s| at 0
+// and from d on): exact at zero shear and wherever |G_uv| >= 1e-3 (0.1 % shear).
+inline constexpr double kShearSmoothing = 1e-3;
+
+// One of ArcSim's samples: the (doubled, clamped) stiffness at strain G.
+Eigen::Vector4d stretching_sample(const ArcsimData& data, double g_uu, double g_vv, double g_uv);
+
+// The stiffness k and its derivatives in g = (G_uu, G_vv, G_uv).
+struct StiffnessDerivatives {
+  Eigen::Vector4d k;
+  Eigen::Matrix<double, 4, 3> dk;              // dk_l / dg_m
+  std::array<Eigen::Matrix3d, 4> d2k;          // d2k_l / dg_m dg_n
+};
+
+// The energy density psi(g) (J/m^2 per unit rest area) and its derivatives.
+struct MembraneDensity {
+  double psi = 0.0;
+  Eigen::Vector3d dpsi = Eigen::Vector3d::Zero();  // dpsi/dg
+  Eigen::Matrix3d d2psi = Eigen::Matrix3d::Zero();
+};
+
+class StretchingTable {
+ public:
+  explicit StretchingTable(const ArcsimData& data);
+
+  // ArcSim's lookup exactly (|G_uv|, no smoothing): what the tests compare with.
+  Eigen::Vector4d stiffness(double g_uu, double g_vv, double g_uv) const;
+  // drape's lookup (|G_uv| smoothed below kShearSmoothing) with derivatives.
+  StiffnessDerivatives stiffness_derivatives(const Eigen::Vector3d& g) const;
+  // psi(g) with k = k(g), and its exact first and second derivatives.
+  MembraneDensity density(const Eigen::Vector3d& g) const;
+
+ private:
+  const Eigen::Vector4d& sample(int i, int j, int k) const {
+    return samples_[static_cast<std::size_t>((i * kGridSamples + j) * kGridSamples + k)];
+  }
+  std::vector<Eigen::Vector4d> samples_;  // [i][j][k] row-major
+};
+
+// The linear model's density, (k_uu g0^2 + k_vv g1^2 + 2 k_uv g0 g1 + k_shear g2^2) / 2
+// (drape's form before ArcSim's tables: shear counted once, as ArcSim's energy).
+MembraneDensity linear_membrane_density(const Eigen::Vector4d& k, const Eigen::Vector3d& g);
+
+// One hinge side's stiffness against the curvature value: the table's rows
+// interpolated at the edge's material-space direction `du`.
+struct BendingCurve {
+  std::array<double, 5> samples{};  // N*m at curvature value 0..4 (0, 10, ..., 40 1/m)
+};
+BendingCurve bending_curve(const ArcsimData& data, const Eigen::Vector2d& du);
+
+// ArcSim's stiffness at curvature |theta| l / A (1/m; A the two faces' area),
+// and its derivative in that curvature.
+struct BendingStiffness {
+  double k = 0.0;
+  double dk_dcurvature = 0.0;
+};
+BendingStiffness bending_stiffness(const BendingCurve& curve, double curvature);
+
+}  // namespace drape::arcsim

@@ -1,0 +1,205 @@
+// ArcSim's data-driven stiffness (dde.cpp's evaluate_stretching_sample,
+// stretching_stiffness and bending_stiffness, re-derived from their
+// definitions) with the derivatives drape's Newton solver needs.
+#include <drape/arcsim_material.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+namespace drape::arcsim {
+namespace {
+
+constexpr int kN = kGridSamples;
+// ArcSim clamps lookups just inside the last cell.
+constexpr double kGridTop = kN - 1 - 1e-5;
+
+// Grid coordinate of a strain component on an axis starting at `origin`,
+// clamped as ArcSim clamps it; `slope` is d(coordinate)/d(strain) (0 where clamped).
+struct Coordinate {
+  int cell;
+  double frac, slope;
+};
+
+Coordinate coordinate(double t, double slope) {
+  if (!(t > 0.0)) {
+    t = 0.0;
+    slope = 0.0;
+  } else if (t > kGridTop) {
+    t = kGridTop;
+    slope = 0.0;
+  }
+  const int cell = std::min(static_cast<int>(std::floor(t)), kN - 2);
+  return {cell, t - cell, slope};
+}
+
+// |s| made C1 within kShearSmoothing = d of 0, with its first two
+// derivatives: 2 t^2 / d - t^3 / d^2 for t = |s| < d, equal to |s| at 0 and
+// from d on, with slope 0 at 0 and 1 at d.
+struct Smoothed {
+  double value, d1, d2;
+};
+
+Smoothed smoothed_abs(double s) {
+  const double d = kShearSmoothing, t = std::abs(s), sign = s < 0 ? -1.0 : 1.0;
+  if (t >= d) return {t, sign, 0.0};
+  return {2.0 * t * t / d - t * t * t / (d * d), sign * (4.0 * t / d - 3.0 * t * t / (d * d)), 4.0 / d - 6.0 * t / (d * d)};
+}
+
+}  // namespace
+
+Eigen::Vector4d stretching_sample(const ArcsimData& data, double g_uu, double g_vv, double g_uv) {
+  // The right Cauchy-Green tensor C = 2 G + I and its larger eigenpair.
+  const double a = 2.0 * g_uu + 1.0, b = 2.0 * g_uv, d = 2.0 * g_vv + 1.0;
+  const double largest = 0.5 * (a + d + std::sqrt(4.0 * b * b + (a - d) * (a - d)));
+  Eigen::Vector2d direction;
+  if (b != 0.0)
+    direction = Eigen::Vector2d(largest - d, b);
+  else
+    direction = a >= d ? Eigen::Vector2d(1.0, 0.0) : Eigen::Vector2d(0.0, 1.0);
+  // The direction's angle from u in units of 22.5 degrees, clamped to [0, 4).
+  double angle = std::abs(std::atan2(direction.y(), direction.x()) / std::numbers::pi) * 8.0;
+  angle = std::clamp(angle, 0.0, 4.0 - 1e-6);
+  const int angle_id = static_cast<int>(angle);
+  const double angle_weight = angle - angle_id;
+  // The weight of the measured rows: 0 at rest, 1 at a principal stretch of 1 + 1/6.
+  const double strain_weight = std::clamp((std::sqrt(largest) - 1.0) / kMeasuredStretch, 0.0, 1.0 - 1e-6);
+  const Eigen::Vector4d& rest = data.stretching[0];
+  const Eigen::Vector4d k = rest * (1.0 - strain_weight) * (1.0 - angle_weight) +
+                            data.stretching[static_cast<std::size_t>(1 + angle_id)] * strain_weight * (1.0 - angle_weight) +
+                            rest * (1.0 - strain_weight) * angle_weight +
+                            data.stretching[static_cast<std::size_t>(2 + std::min(angle_id, 3))] * strain_weight * angle_weight;
+  return 2.0 * k.cwiseMax(0.0);
+}
+
+StretchingTable::StretchingTable(const ArcsimData& data) {
+  samples_.resize(static_cast<std::size_t>(kN) * kN * kN);
+  for (int i = 0; i < kN; ++i)
+    for (int j = 0; j < kN; ++j)
+      for (int k = 0; k < kN; ++k)
+        samples_[static_cast<std::size_t>((i * kN + j) * kN + k)] =
+            stretching_sample(data, -0.25 + i / double(kN), -0.25 + j / double(kN), k / double(kN));
+}
+
+Eigen::Vector4d StretchingTable::stiffness(double g_uu, double g_vv, double g_uv) const {
+  const Coordinate a = coordinate((g_uu + 0.25) * kN, 0.0), b = coordinate((g_vv + 0.25) * kN, 0.0),
+                   c = coordinate(std::abs(g_uv) * kN, 0.0);
+  Eigen::Vector4d k = Eigen::Vector4d::Zero();
+  for (int i = 0; i < 2; ++i)
+    for (int j = 0; j < 2; ++j)
+      for (int l = 0; l < 2; ++l) {
+        const double w = (i ? a.frac : 1.0 - a.frac) * (j ? b.frac : 1.0 - b.frac) * (l ? c.frac : 1.0 - c.frac);
+        k += w * sample(a.cell + i, b.cell + j, c.cell + l);
+      }
+  return k;
+}
+
+StiffnessDerivatives StretchingTable::stiffness_derivatives(const Eigen::Vector3d& g) const {
+  const Smoothed shear = smoothed_abs(g[2]);
+  const Coordinate a = coordinate((g[0] + 0.25) * kN, kN), b = coordinate((g[1] + 0.25) * kN, kN),
+                   c = coordinate(shear.value * kN, kN);
+  // Trilinear weights and their derivatives along each grid axis.
+  const double wa[2] = {1.0 - a.frac, a.frac}, wb[2] = {1.0 - b.frac, b.frac}, wc[2] = {1.0 - c.frac, c.frac};
+  const double sign[2] = {-1.0, 1.0};
+  Eigen::Vector4d k = Eigen::Vector4d::Zero(), k_a = k, k_b = k, k_c = k, k_ab = k, k_ac = k, k_bc = k;
+  for (int i = 0; i < 2; ++i)
+    for (int j = 0; j < 2; ++j)
+      for (int l = 0; l < 2; ++l) {
+        const Eigen::Vector4d& s = sample(a.cell + i, b.cell + j, c.cell + l);
+        k += wa[i] * wb[j] * wc[l] * s;
+        k_a += sign[i] * wb[j] * wc[l] * s;
+        k_b += wa[i] * sign[j] * wc[l] * s;
+        k_c += wa[i] * wb[j] * sign[l] * s;
+        k_ab += sign[i] * sign[j] * wc[l] * s;
+        k_ac += sign[i] * wb[j] * sign[l] * s;
+        k_bc += wa[i] * sign[j] * sign[l] * s;
+      }
+  // Chain rule to g: a = (g0 + 1/4) N, b = (g1 + 1/4) N, c = |g2|~ N (each
+  // slope 0 where clamped); trilinear interpolation has no second derivative
+  // along one axis, so only the smoothed |g2| adds a diagonal term.
+  const double da = a.slope, db = b.slope, dc = c.slope * shear.d1, dc2 = c.slope * shear.d2;
+  StiffnessDerivatives out;
+  out.k = k;
+  out.dk.col(0) = da * k_a;
+  out.dk.col(1) = db * k_b;
+  out.dk.col(2) = dc * k_c;
+  for (int l = 0; l < 4; ++l) {
+    Eigen::Matrix3d& h = out.d2k[static_cast<std::size_t>(l)];
+    h.setZero();
+    h(0, 1) = h(1, 0) = da * db * k_ab[l];
+    h(0, 2) = h(2, 0) = da * dc * k_ac[l];
+    h(1, 2) = h(2, 1) = db * dc * k_bc[l];
+    h(2, 2) = dc2 * k_c[l];
+  }
+  return out;
+}
+
+MembraneDensity StretchingTable::density(const Eigen::Vector3d& g) const {
+  const StiffnessDerivatives s = stiffness_derivatives(g);
+  // psi = 1/2 sum_l k_l q_l with q = (g0^2, 2 g0 g1, g1^2, 2 g2^2): ArcSim's
+  // energy, its shear term doubled as in the force its solver integrates.
+  const Eigen::Vector4d q(g[0] * g[0], 2.0 * g[0] * g[1], g[1] * g[1], 2.0 * g[2] * g[2]);
+  Eigen::Matrix<double, 3, 4> dq;  // column l: dq_l/dg
+  dq << 2.0 * g[0], 2.0 * g[1], 0.0, 0.0,  //
+      0.0, 2.0 * g[0], 2.0 * g[1], 0.0,    //
+      0.0, 0.0, 0.0, 4.0 * g[2];
+  MembraneDensity out;
+  out.psi = 0.5 * s.k.dot(q);
+  out.dpsi = 0.5 * (s.dk.transpose() * q + dq * s.k);
+  Eigen::Matrix3d h = Eigen::Matrix3d::Zero();
+  for (int l = 0; l < 4; ++l) {
+    h += q[l] * s.d2k[static_cast<std::size_t>(l)];
+    const Eigen::Vector3d cross = s.dk.row(l).transpose() * 1.0;
+    h += cross * dq.col(l).transpose() + dq.col(l) * cross.transpose();
+  }
+  // sum_l k_l d2q_l.
+  h(0, 0) += 2.0 * s.k[0];
+  h(0, 1) += 2.0 * s.k[1];
+  h(1, 0) += 2.0 * s.k[1];
+  h(1, 1) += 2.0 * s.k[2];
+  h(2, 2) += 4.0 * s.k[3];
+  out.d2psi = 0.5 * h;
+  return out;
+}
+
+MembraneDensity linear_membrane_density(const Eigen::Vector4d& k, const Eigen::Vector3d& g) {
+  MembraneDensity out;
+  out.d2psi << k[0], k[1], 0.0, k[1], k[2], 0.0, 0.0, 0.0, k[3];
+  out.dpsi = out.d2psi * g;
+  out.psi = 0.5 * g.dot(out.dpsi);
+  return out;
+}
+
+BendingCurve bending_curve(const ArcsimData& data, const Eigen::Vector2d& du) {
+  // The edge's angle from u in units of 45 degrees, folded onto [0, 2]
+  // (0 along u, 1 diagonal, 2 along v) since an edge has no direction.
+  double bias = std::abs(std::atan2(du.y(), du.x()) * 4.0 / std::numbers::pi);
+  if (bias > 4.0) bias = 8.0 - bias;
+  if (bias > 2.0) bias = 4.0 - bias;
+  const int row = std::clamp(static_cast<int>(bias), 0, 1);
+  const double w = bias - row;
+  BendingCurve curve;
+  for (std::size_t j = 0; j < 5; ++j)
+    curve.samples[j] = data.bending[static_cast<std::size_t>(row)][j] * (1.0 - w) + data.bending[static_cast<std::size_t>(row + 1)][j] * w;
+  return curve;
+}
+
+BendingStiffness bending_stiffness(const BendingCurve& curve, double curvature) {
+  // Columns every 10 1/m (ArcSim: "samples are per 0.05 cm^-1" of half the curvature).
+  double value = 0.1 * std::abs(curvature);
+  double slope = 0.1;
+  if (value > 4.0) {
+    value = 4.0;
+    slope = 0.0;
+  }
+  const int column = std::min(static_cast<int>(value), 3);
+  const double w = value - column;
+  const double lo = curve.samples[static_cast<std::size_t>(column)], hi = curve.samples[static_cast<std::size_t>(column + 1)];
+  BendingStiffness out;
+  out.k = lo * (1.0 - w) + hi * w;
+  out.dk_dcurvature = slope * (hi - lo) * (curvature < 0 ? -1.0 : 1.0);
+  if (!(out.k > 0.0)) out = {0.0, 0.0};
+  return out;
+}
+
+}  // namespace drape::arcsim

@@ -1,0 +1,200 @@
+// drape's ArcSim material against ArcSim's own definitions. The expected
+// numbers were computed by scripts/reference/arcsim_reference.py, a plain
+// Python re-implementation of ArcSim's dde.cpp and physics.cpp that shares no
+// code with drape; the material data is ArcSim's gray-interlock.json, typed
+// here from that file.
+#include <drape/arcsim_material.hpp>
+#include <drape/gradcheck.hpp>
+
+#include <catch2/catch.hpp>
+
+#include <cmath>
+#include <numbers>
+
+#include "energy_test_util.hpp"
+
+using namespace drape;
+using namespace drape::test;
+
+namespace {
+
+Material gray_interlock() {
+  Material m;
+  m.name = "knit";
+  m.model = Material::Model::Arcsim;
+  m.density = 0.187;
+  m.arcsim.stretching = {Eigen::Vector4d(16.593832, -14.695990, 34.477123, 36.860302),
+                         Eigen::Vector4d(46.364765, 53.694656, 261.013855, -29.691301),
+                         Eigen::Vector4d(49.285110, 87.596100, 206.373993, 22.768457),
+                         Eigen::Vector4d(123.989220, 105.181770, 365.966217, 44.217571),
+                         Eigen::Vector4d(139.686325, 73.592560, 413.553162, -174.43853),
+                         Eigen::Vector4d(127.443810, 85.848587, 405.872833, 32.238411)};
+  m.arcsim.bending = {{{23.191698e-6, 32.932217e-6, 34.406498e-6, 39.014420e-6, 23.382786e-6},
+                       {24.749964e-6, 18.651314e-6, 16.370552e-6, 25.095791e-6, 8.860165e-6},
+                       {14.267624e-6, 7.052906e-6, 14.515154e-6, 24.665127e-6, 19.383726e-6}}};
+  return m;
+}
+
+// One triangle with 1 cm legs along u and v; its positions are F applied to
+// the UV layout (in the plane z = 0).
+Garment triangle_garment() {
+  Eigen::MatrixX3d x(3, 3);
+  x << 0, 0, 0, 0.01, 0, 0, 0, 0.01, 0;
+  Eigen::MatrixX3i f(1, 3);
+  f << 0, 1, 2;
+  Eigen::MatrixX2d uv(3, 2);
+  uv << 0, 0, 0.01, 0, 0, 0.01;
+  Garment g = small_garment(x, f, uv);
+  g.materials[0] = gray_interlock();
+  return g;
+}
+
+// Stretched by s along the direction at `degrees` from u: F = I + (s - 1) d d^T.
+Eigen::MatrixX3d stretched_triangle(double degrees, double s) {
+  const double a = degrees * std::numbers::pi / 180.0;
+  const Eigen::Vector2d d(std::cos(a), std::sin(a));
+  const Eigen::Matrix2d F = Eigen::Matrix2d::Identity() + (s - 1.0) * d * d.transpose();
+  Eigen::MatrixX3d x = Eigen::MatrixX3d::Zero(3, 3);
+  const Eigen::Vector2d u[3] = {{0, 0}, {0.01, 0}, {0, 0.01}};
+  for (int i = 0; i < 3; ++i) x.row(i).head<2>() = (F * u[i]).transpose();
+  return x;
+}
+
+struct TriangleCase {
+  double degrees, stretch, energy;
+};
+
+// Hinge of edge 1 cm with wings 1 cm high (A0 = A1 = 0.5 cm^2), its UV layout
+// turned by `uv_degrees` from u; the second wing folded about the edge by phi.
+Eigen::MatrixX3d hinge_positions(double phi) {
+  Eigen::MatrixX3d x(4, 3);
+  x << 0, 0, 0, 0.01, 0, 0, 0.005, 0.01, 0, 0.005, -0.01 * std::cos(phi), 0.01 * std::sin(phi);
+  return x;
+}
+
+Garment hinge_garment(double uv_degrees) {
+  const double a = uv_degrees * std::numbers::pi / 180.0;
+  Eigen::Matrix2d r;
+  r << std::cos(a), -std::sin(a), std::sin(a), std::cos(a);
+  Eigen::MatrixX2d uv(4, 2);
+  uv << 0, 0, 0.01, 0, 0.005, 0.01, 0.005, -0.01;
+  uv = (uv * r.transpose()).eval();
+  Eigen::MatrixX3i f(2, 3);
+  f << 0, 1, 2, 1, 0, 3;
+  Garment g = small_garment(hinge_positions(0.0), f, uv);
+  g.materials[0] = gray_interlock();
+  return g;
+}
+
+struct HingeCase {
+  double uv_degrees, theta, energy;
+};
+
+}  // namespace
+
+TEST_CASE("ArcSim's stiffness sample at one strain equals ArcSim's definition", "[arcsim][stretching]") {
+  // evaluate_stretching_sample at G = (0.1, 0, 0.05): reference script, "sample".
+  const Eigen::Vector4d k = arcsim::stretching_sample(gray_interlock().arcsim, 0.1, 0.0, 0.05);
+  CHECK(k[0] == Approx(77.984220532).epsilon(1e-8));
+  CHECK(k[1] == Approx(110.777926862).epsilon(1e-8));
+  CHECK(k[2] == Approx(304.502940506).epsilon(1e-8));
+  CHECK(k[3] == Approx(54.410678852).epsilon(1e-8));
+  // At rest the stiffness is the zero-strain row, clamped at 0 and doubled.
+  const Eigen::Vector4d rest = arcsim::stretching_sample(gray_interlock().arcsim, 0.0, 0.0, 0.0);
+  CHECK(rest[0] == Approx(2 * 16.593832));
+  CHECK(rest[1] == 0.0);
+  CHECK(rest[2] == Approx(2 * 34.477123));
+  CHECK(rest[3] == Approx(2 * 36.860302));
+}
+
+TEST_CASE("stretching of one triangle equals ArcSim's energy along warp, weft, 45 and 30 degrees", "[arcsim][stretching]") {
+  // E = A/2 (k_uu G_uu^2 + k_vv G_vv^2 + 2 k_uv G_uu G_vv + 2 k_shear G_uv^2), k
+  // from ArcSim's sample grid; 1.17 and 1.25 are past the measured strain 1 + 1/6.
+  const TriangleCase cases[] = {
+      {0, 1.01, 1.012629857845e-07},  {0, 1.10, 1.898465558289e-05},  {0, 1.17, 7.887059324641e-05},
+      {0, 1.25, 1.833761500759e-04},  {90, 1.01, 3.053951396198e-07}, {90, 1.10, 1.417270024214e-04},
+      {90, 1.17, 6.904256495094e-04}, {90, 1.25, 1.605257324807e-03}, {45, 1.01, 1.989780412197e-07},
+      {45, 1.10, 6.896049220889e-05}, {45, 1.17, 3.146119549310e-04}, {45, 1.25, 7.572034498617e-04},
+      {30, 1.01, 1.491100454114e-07}, {30, 1.10, 3.893431145264e-05}, {30, 1.17, 1.721992279651e-04},
+      {30, 1.25, 4.110277868858e-04}};
+  const Garment g = triangle_garment();
+  const auto e = bound_energy("stretching", "{}", g);
+  for (const TriangleCase& c : cases) {
+    INFO("stretch " << c.stretch << " at " << c.degrees << " degrees from u");
+    CHECK(e->value(stretched_triangle(c.degrees, c.stretch)) == Approx(c.energy).epsilon(1e-6));
+  }
+  CHECK(e->value(stretched_triangle(0, 1.0)) == Approx(0.0).margin(1e-20));
+}
+
+TEST_CASE("the linear model keeps drape's old constant knit, several times softer than ArcSim's", "[arcsim][stretching]") {
+  Garment g = triangle_garment();
+  g.materials[0] = Material{};  // model linear, the first row as constants
+  const auto linear = bound_energy("stretching", "{}", g);
+  // By hand: A k_uu G^2 / 2 with G = (1.01^2 - 1)/2, A = 5e-5 m^2, k_uu = 16.6.
+  const double G = (1.01 * 1.01 - 1.0) / 2.0;
+  CHECK(linear->value(stretched_triangle(0, 1.01)) == Approx(5e-5 * 16.6 * G * G / 2).epsilon(1e-10));
+  // The reference's ArcSim energy at 1 % warp is 2.4x that (k_uu 40.1 against 16.6).
+  CHECK(1.012629857845e-07 / linear->value(stretched_triangle(0, 1.01)) == Approx(40.103160 / 16.6).epsilon(1e-4));
+}
+
+TEST_CASE("bending of one hinge equals ArcSim's energy, folded either way", "[arcsim][bending]") {
+  // E = k_b(|theta|) l^2 / (2 (A0 + A1)) theta^2 / 4 with ArcSim's table at the
+  // edge's UV direction; a fold one way costs what the other does.
+  const HingeCase cases[] = {{0, 0.05, 8.769361718750e-09},  {0, 0.3, 4.389122250000e-07},
+                             {0, 1.2, 4.208901480000e-06},   {45, 0.05, 6.781449687500e-09},
+                             {45, 0.3, 2.823276487500e-07},  {45, 1.2, 1.594829700000e-06},
+                             {90, 0.05, 3.331332812500e-09}, {90, 0.3, 2.774826787500e-07},
+                             {90, 1.2, 3.489070680000e-06}};
+  for (const HingeCase& c : cases) {
+    const Garment g = hinge_garment(c.uv_degrees);
+    const auto e = bound_energy("bending", "{}", g);
+    INFO("edge at " << c.uv_degrees << " degrees from u, fold " << c.theta);
+    CHECK(e->value(hinge_positions(c.theta)) == Approx(c.energy).epsilon(1e-6));
+    CHECK(e->value(hinge_positions(-c.theta)) == Approx(c.energy).epsilon(1e-6));
+  }
+  // An edge at atan(0.3) = 16.7 degrees interpolates between the 0 and 45 degree rows.
+  const Garment g = hinge_garment(std::atan(0.3) * 180.0 / std::numbers::pi);
+  const auto e = bound_energy("bending", "{}", g);
+  CHECK(e->value(hinge_positions(0.3)) == Approx(3.808045787317e-07).epsilon(1e-6));
+  CHECK(e->value(hinge_positions(-1.2)) == Approx(3.238834300013e-06).epsilon(1e-6));
+}
+
+TEST_CASE("ArcSim-model derivatives match finite differences, including a 100x stiffer print", "[arcsim][gradcheck]") {
+  for (double stiffer : {1.0, 100.0}) {
+    auto garment = two_material_grid(5, 0.1);
+    garment->materials[0] = gray_interlock();
+    garment->materials[1] = gray_interlock();
+    for (auto& row : garment->materials[1].arcsim.stretching) row *= stiffer;
+    for (auto& row : garment->materials[1].arcsim.bending)
+      for (double& v : row) v *= stiffer;
+    garment->materials[1].name = "print";
+    for (const char* energy : {"stretching", "bending"}) {
+      const auto e = bound_energy(energy, "{}", *garment);
+      // Stretched by 8 % along u and perturbed: strains across several grid cells.
+      Eigen::MatrixX3d x = garment->mesh.vertices;
+      x.col(0) *= 1.08;
+      for (double amount : {0.004, 0.02}) {
+        const Eigen::MatrixX3d y = perturbed(x, amount, 17);
+        const GradCheckReport r = check_energy_derivatives(*e, y);
+        INFO(energy << " print x" << stiffer << ", perturbation " << amount << "\n" << r.str());
+        CHECK(std::isfinite(e->value(y)));
+        CHECK(r.ok(1e-5));
+      }
+    }
+  }
+}
+
+TEST_CASE("the smoothed zero-shear lookup is ArcSim's at zero shear and from 0.1 % shear on", "[arcsim][stretching]") {
+  const arcsim::StretchingTable table(gray_interlock().arcsim);
+  for (double shear : {0.0, 1e-3, -1e-3, 0.02, -0.07}) {
+    const Eigen::Vector4d exact = table.stiffness(0.05, 0.01, shear);
+    const Eigen::Vector4d smooth = table.stiffness_derivatives(Eigen::Vector3d(0.05, 0.01, shear)).k;
+    INFO("G_uv " << shear);
+    CHECK((exact - smooth).norm() <= 1e-9 * exact.norm());
+  }
+  // Within the smoothing band the stiffness stays between its values at 0 and 1e-3.
+  const double lo = table.stiffness(0.05, 0.01, 0.0)[3], hi = table.stiffness(0.05, 0.01, 1e-3)[3];
+  const double mid = table.stiffness_derivatives(Eigen::Vector3d(0.05, 0.01, 5e-4)).k[3];
+  CHECK(mid >= std::min(lo, hi) - 1e-12);
+  CHECK(mid <= std::max(lo, hi) + 1e-12);
+}

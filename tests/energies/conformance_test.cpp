@@ -1,0 +1,159 @@
+// Every energy the registry finds, whatever its name, passes the same checks:
+// its gradient and exact Hessian match finite differences, its projected
+// Hessian is PSD, its lower-triangle Hessian is the full one's lower triangle
+// (check_energy_derivatives), and value, gradient and both Hessians are
+// bit-identical with 1 and 2 threads. A new energy plugin is checked here
+// without being named; its own test file adds what is particular to it.
+#include <drape/element_assembly.hpp>
+#include <drape/gradcheck.hpp>
+#include <drape/materials.hpp>
+
+#include <catch2/catch.hpp>
+
+#ifdef _OPENMP
+#include <omp.h>
+#endif
+
+#include "../collision/collision_test_util.hpp"
+#include "energy_test_util.hpp"
+
+using namespace drape;
+using namespace drape::test;
+
+namespace {
+
+// ArcSim's gray-interlock knit (materials/gray-interlock.json) and a linear
+// print: both stiffness models in one garment.
+Material arcsim_knit() {
+  Material m = MaterialTable::builtin().get("gray-interlock");
+  m.name = "knit";
+  return m;
+}
+
+// A box whose top face, z = top, spans [x0, x1] x [y0, y1]; counter-clockwise from outside.
+Mesh box(double x0, double x1, double y0, double y1, double top) {
+  Mesh m;
+  m.vertices.resize(8, 3);
+  const double z0 = top - 2.0;
+  for (int i = 0; i < 8; ++i) m.vertices.row(i) << (i & 1 ? x1 : x0), (i & 2 ? y1 : y0), (i & 4 ? top : z0);
+  m.faces.resize(12, 3);
+  m.faces << 0, 2, 1, 1, 2, 3,  // bottom (z0), facing -z
+      4, 5, 6, 5, 7, 6,         // top, facing +z
+      0, 1, 4, 1, 5, 4,         // y0, facing -y
+      2, 6, 3, 3, 6, 7,         // y1, facing +y
+      0, 4, 2, 2, 4, 6,         // x0, facing -x
+      1, 3, 5, 3, 7, 5;         // x1, facing +x
+  return m;
+}
+
+// A grid garment of both stiffness models lying on a body: the body's top is
+// 2 mm above the garment's plane, so every vertex is in contact (inside by up
+// to 2 mm) and every energy has work to do. The contact is with one flat face
+// pair, away from the body's edges: a kinked energy (has_kinks: its gradient
+// jumps where the closest body feature changes) is smooth there, so its
+// derivatives can be compared with differences.
+struct Scene {
+  std::shared_ptr<Garment> garment;
+  geometry::BodySurface body;
+  Eigen::MatrixX3d x;
+};
+
+Scene scene(int n, double spacing, double perturbation) {
+  const double size = (n - 1) * spacing;
+  Scene s{two_material_grid(n, spacing), geometry::BodySurface(box(-1.0, 1.0 + size, 0.0, 2.0 + size, 0.002)), {}};
+  s.garment->materials[0] = arcsim_knit();
+  Eigen::MatrixX3d x = s.garment->mesh.vertices;
+  x.col(0) *= 1.05;  // in tension along u: the strain-dependent stiffness is away from its rest values
+  s.x = perturbed(x, perturbation, 23);
+  return s;
+}
+
+std::vector<std::string> energy_names() {
+  std::vector<std::string> names;
+  for (const auto& name : plugins().names())
+    if (plugins().get(name).kind == "energy") names.push_back(name);
+  return names;
+}
+
+std::unique_ptr<Energy> bound(const std::string& name, const Scene& s) {
+  auto e = plugins().create_energy(name, params_for(name, "{}"));
+  EnergyContext ctx;
+  ctx.garment = s.garment.get();
+  if (e->needs_body()) ctx.body = &s.body;
+  e->bind(ctx);
+  return e;
+}
+
+struct Evaluation {
+  double value, gradient_value;
+  Eigen::MatrixX3d gradient;
+  Triplets hessian, projected, lower;
+};
+
+Evaluation evaluate(const Energy& e, const Eigen::MatrixX3d& x) {
+  Evaluation r;
+  r.value = e.value(x);
+  r.gradient = Eigen::MatrixX3d::Zero(x.rows(), 3);
+  r.gradient_value = e.add_gradient(x, r.gradient);
+  e.add_hessian(x, r.hessian, false);
+  e.add_hessian(x, r.projected, true);
+  e.add_hessian_lower(x, r.lower, true);
+  return r;
+}
+
+bool identical(const Triplets& a, const Triplets& b) {
+  if (a.size() != b.size()) return false;
+  for (std::size_t i = 0; i < a.size(); ++i)
+    if (a[i].row() != b[i].row() || a[i].col() != b[i].col() || a[i].value() != b[i].value()) return false;
+  return true;
+}
+
+}  // namespace
+
+TEST_CASE("the registry has the shipped energies", "[conformance]") {
+  const auto names = energy_names();
+  for (const char* shipped : {"gravity", "stretching", "bending", "collision"})
+    CHECK(std::find(names.begin(), names.end(), shipped) != names.end());
+}
+
+TEST_CASE("every registered energy's derivatives match finite differences and its Newton Hessian is PSD", "[conformance][gradcheck]") {
+  const Scene s = scene(6, 0.04, 0.002);
+  for (const std::string& name : energy_names()) {
+    const auto e = bound(name, s);
+    // Central differences with a step of 1e-7 m: ArcSim's stiffness varies
+    // fast with strain (grid cells of 1/30), so the truncation error of a
+    // 1e-6 step reaches 2e-5 on this grid; it falls as the step squared.
+    const GradCheckReport r = check_energy_derivatives(*e, s.x, {1e-7, 64, 7});
+    INFO(name << "\n" << r.str());
+    CHECK(std::isfinite(e->value(s.x)));
+    CHECK(r.ok(1e-5));
+  }
+}
+
+TEST_CASE("every registered energy gives bit-identical results with 1 and 2 threads", "[conformance]") {
+#ifndef _OPENMP
+  WARN("built without OpenMP: nothing to compare");
+#else
+  // 8464 vertices, 16562 faces, 24655 hinges: past the sizes from which sums run in parallel.
+  const Scene s = scene(92, 0.005, 0.0015);
+  static_assert(2 * 91 * 91 >= kParallelSumMinimum);
+  for (const std::string& name : energy_names()) {
+    const auto e = bound(name, s);
+    const int threads = omp_get_max_threads();
+    omp_set_num_threads(1);
+    const Evaluation one = evaluate(*e, s.x);
+    omp_set_num_threads(2);
+    const Evaluation two = evaluate(*e, s.x);
+    omp_set_num_threads(threads);
+    INFO(name);
+    CHECK(std::isfinite(one.value));
+    CHECK(one.value == two.value);
+    CHECK(one.gradient_value == Approx(one.value).epsilon(1e-12));
+    CHECK(two.gradient_value == one.gradient_value);
+    CHECK(one.gradient == two.gradient);
+    CHECK(identical(one.hessian, two.hessian));
+    CHECK(identical(one.projected, two.projected));
+    CHECK(identical(one.lower, two.lower));
+  }
+#endif
+}
