@@ -117,12 +117,19 @@ TEST_CASE("stretching of one triangle equals ArcSim's energy along warp, weft, 4
       {45, 1.10, 6.896049220889e-05}, {45, 1.17, 3.146119549310e-04}, {45, 1.25, 7.572034498617e-04},
       {30, 1.01, 1.491100454114e-07}, {30, 1.10, 3.893431145264e-05}, {30, 1.17, 1.721992279651e-04},
       {30, 1.25, 4.110277868858e-04}};
+  // drape rounds the trilinear lookup's corners within 0.1 cell of a grid
+  // plane (kCornerSmoothing); three cases lie there (1.17 along u and v, 1.10
+  // at 45 degrees) and differ by 0.08-0.16 %, the rest agree to round-off.
   const Garment g = triangle_garment();
   const auto e = bound_energy("stretching", "{}", g);
+  int exact = 0;
   for (const TriangleCase& c : cases) {
     INFO("stretch " << c.stretch << " at " << c.degrees << " degrees from u");
-    CHECK(e->value(stretched_triangle(c.degrees, c.stretch)) == Approx(c.energy).epsilon(1e-6));
+    const double v = e->value(stretched_triangle(c.degrees, c.stretch));
+    CHECK(v == Approx(c.energy).epsilon(2e-3));
+    exact += std::abs(v - c.energy) <= 1e-9 * c.energy;
   }
+  CHECK(exact == 13);
   CHECK(e->value(stretched_triangle(0, 1.0)) == Approx(0.0).margin(1e-20));
 }
 
@@ -184,17 +191,18 @@ TEST_CASE("ArcSim-model derivatives match finite differences, including a 100x s
   }
 }
 
-TEST_CASE("the smoothed zero-shear lookup is ArcSim's at zero shear and from 0.1 % shear on", "[arcsim][stretching]") {
+TEST_CASE("the C1 lookup is ArcSim's at zero shear, from 0.1 % shear on, and away from grid planes", "[arcsim][stretching]") {
   const arcsim::StretchingTable table(gray_interlock().arcsim);
   for (double shear : {0.0, 1e-3, -1e-3, 0.02, -0.07}) {
-    const Eigen::Vector4d exact = table.stiffness(0.05, 0.01, shear);
-    const Eigen::Vector4d smooth = table.stiffness_derivatives(Eigen::Vector3d(0.05, 0.01, shear)).k;
+    // G_uu = 0.055, G_vv = 0.01: 0.15 and 0.2 cell from the nearest grid planes.
+    const Eigen::Vector4d exact = table.stiffness(0.055, 0.01, shear);
+    const Eigen::Vector4d smooth = table.stiffness_derivatives(Eigen::Vector3d(0.055, 0.01, shear)).k;
     INFO("G_uv " << shear);
     CHECK((exact - smooth).norm() <= 1e-9 * exact.norm());
   }
   // Within the smoothing band the stiffness stays between its values at 0 and 1e-3.
-  const double lo = table.stiffness(0.05, 0.01, 0.0)[3], hi = table.stiffness(0.05, 0.01, 1e-3)[3];
-  const double mid = table.stiffness_derivatives(Eigen::Vector3d(0.05, 0.01, 5e-4)).k[3];
+  const double lo = table.stiffness(0.055, 0.01, 0.0)[3], hi = table.stiffness(0.055, 0.01, 1e-3)[3];
+  const double mid = table.stiffness_derivatives(Eigen::Vector3d(0.055, 0.01, 5e-4)).k[3];
   CHECK(mid >= std::min(lo, hi) - 1e-12);
   CHECK(mid <= std::max(lo, hi) + 1e-12);
 }

@@ -162,7 +162,7 @@ TEST_CASE("tshirt: materials are knit, plus the print only when asked", "[garmen
   const Garment plain = build_tshirt();
   REQUIRE(plain.materials.size() == 1);
   CHECK(plain.materials[0].name == "knit");
-  // The knit's numbers are the built-in gray-interlock preset's (ArcSim's measured knit).
+  // The knit's numbers are the built-in gray-interlock-linear preset's (the template's default).
   CHECK(plain.materials[0].density == 0.187);
   CHECK(plain.materials[0].stretch == Eigen::Vector4d(16.593832, -14.69599, 34.477123, 36.860302));
   CHECK(plain.materials[0].bending == 1e-5);

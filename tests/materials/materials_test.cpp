@@ -34,12 +34,16 @@ YAML::Node yaml(const std::string& text) { return YAML::Load(text); }
 
 }  // namespace
 
-TEST_CASE("materials: the built-in table has ArcSim's gray-interlock with the published numbers", "[materials]") {
+TEST_CASE("materials: the built-in table has drape's linear gray-interlock with its published numbers", "[materials]") {
   const MaterialTable table = MaterialTable::builtin();
-  const auto names = table.names();
-  CHECK(names == std::vector<std::string>{"gray-interlock", "screen-print", "snug-knit"});
-  const Material knit = table.get("gray-interlock");
-  CHECK(knit.name == "gray-interlock");
+  for (const char* name : {"gray-interlock", "gray-interlock-linear", "screen-print", "screen-print-linear", "snug-knit"})
+    CHECK(table.contains(name));
+  // gray-interlock itself is ArcSim's full table (arcsim_files_test.cpp); the
+  // linear model's numbers stay available to reproduce older results.
+  CHECK(table.get("gray-interlock").model == Material::Model::Arcsim);
+  const Material knit = table.get("gray-interlock-linear");
+  CHECK(knit.name == "gray-interlock-linear");
+  CHECK(knit.model == Material::Model::Linear);
   // The zero-strain row of ArcSim's materials/gray-interlock.json (Wang et al. 2011).
   CHECK(knit.density == 0.187);
   CHECK(knit.stretch == Eigen::Vector4d(16.593832, -14.69599, 34.477123, 36.860302));
@@ -58,15 +62,17 @@ TEST_CASE("materials: the embedded presets are the shipped file as it is now", "
   CHECK(builtin_material_presets_yaml() == text.str());
 }
 
-TEST_CASE("materials: screen-print is gray-interlock with its multipliers", "[materials]") {
+TEST_CASE("materials: screen-print-linear is gray-interlock-linear with its multipliers", "[materials]") {
   const MaterialTable table = MaterialTable::builtin();
-  const Material knit = table.get("gray-interlock"), print = table.get("screen-print");
-  CHECK(print.name == "screen-print");
+  const Material knit = table.get("gray-interlock-linear"), print = table.get("screen-print-linear");
+  CHECK(print.name == "screen-print-linear");
+  CHECK(print.model == Material::Model::Linear);
   CHECK(print.stretch == 5 * knit.stretch);
   CHECK(print.bending == 10 * knit.bending);
   CHECK(print.density == 2 * knit.density);
   CHECK(print.thickness == 2 * knit.thickness);
-  CHECK(table.preset("screen-print").base == "gray-interlock");
+  CHECK(table.preset("screen-print-linear").base == "gray-interlock-linear");
+  CHECK(table.preset("screen-print").base == "gray-interlock");  // the arcsim one: arcsim_files_test.cpp
 }
 
 TEST_CASE("materials: snug-knit is SNUG's StVK constants in the four coefficients", "[materials]") {
@@ -115,23 +121,24 @@ TEST_CASE("materials: a user file adds presets, builds on built-in ones and repl
   // Built-in presets built on a replaced base follow it (the later file wins).
   CHECK(table.get("screen-print").stretch == Eigen::Vector4d(100, -50, 150, 200));
   CHECK(table.get("screen-print").thickness == Approx(1.0e-3));
-  CHECK(table.names().size() == 4);
+  CHECK(table.names().size() == MaterialTable::builtin().names().size() + 1);
 }
 
 TEST_CASE("materials: inline specs are a preset name or a map", "[materials]") {
   const MaterialTable table = MaterialTable::builtin();
   CHECK(table.resolve(yaml("snug-knit"), "scene.yaml").stretch == table.get("snug-knit").stretch);
 
-  const Material stiff = table.resolve(yaml("{base: gray-interlock, multipliers: {stretch: 2, bend: 3}, density: 0.25}"), "scene.yaml");
-  const Material knit = table.get("gray-interlock");
-  CHECK(stiff.name == "gray-interlock");
+  const Material stiff =
+      table.resolve(yaml("{base: gray-interlock-linear, multipliers: {stretch: 2, bend: 3}, density: 0.25}"), "scene.yaml");
+  const Material knit = table.get("gray-interlock-linear");
+  CHECK(stiff.name == "gray-interlock-linear");
   CHECK(stiff.stretch == 2 * knit.stretch);
   CHECK(stiff.bending == 3 * knit.bending);
   CHECK(stiff.density == 0.25);
   CHECK(stiff.thickness == knit.thickness);
 
   // A base that itself has a base.
-  const Material print_light = table.resolve(yaml("{base: screen-print, multipliers: {density: 0.5}}"), "scene.yaml");
+  const Material print_light = table.resolve(yaml("{base: screen-print-linear, multipliers: {density: 0.5}}"), "scene.yaml");
   CHECK(print_light.density == Approx(knit.density));
   CHECK(print_light.stretch == 5 * knit.stretch);
 
@@ -161,24 +168,24 @@ TEST_CASE("materials: bad values name file, line and key", "[materials]") {
   e = load_error(dir, "m.yaml", "a:\n  density: heavy\n" + full);
   CHECK_THAT(e, Catch::Contains("m.yaml:2") && Catch::Contains("`density` must be a number, got 'heavy'"));
 
-  e = load_error(dir, "m.yaml", "a:\n  base: gray-interlock\n\n  stretch: [16, -14, 34]\n");
+  e = load_error(dir, "m.yaml", "a:\n  base: gray-interlock-linear\n\n  stretch: [16, -14, 34]\n");
   CHECK_THAT(e, Catch::Contains("m.yaml:4") && Catch::Contains("`stretch` must be a list of 4 numbers") &&
                     Catch::Contains("got 3"));
-  e = load_error(dir, "m.yaml", "a:\n  base: gray-interlock\n  stretch: 16\n");
+  e = load_error(dir, "m.yaml", "a:\n  base: gray-interlock-linear\n  stretch: 16\n");
   CHECK_THAT(e, Catch::Contains("m.yaml:3") && Catch::Contains("`stretch` must be a list of 4 numbers"));
-  e = load_error(dir, "m.yaml", "a:\n  base: gray-interlock\n  stretch: [16, x, 34, 36]\n");
+  e = load_error(dir, "m.yaml", "a:\n  base: gray-interlock-linear\n  stretch: [16, x, 34, 36]\n");
   CHECK_THAT(e, Catch::Contains("m.yaml:3") && Catch::Contains("`stretch` must be a number, got 'x'"));
 
   // |k_uv| = 20 > sqrt(10 * 30): stretching along u and v together would release energy.
-  e = load_error(dir, "m.yaml", "a:\n  base: gray-interlock\n  stretch: [10, 20, 30, 5]\n");
+  e = load_error(dir, "m.yaml", "a:\n  base: gray-interlock-linear\n  stretch: [10, 20, 30, 5]\n");
   CHECK_THAT(e, Catch::Contains("m.yaml:3") && Catch::Contains("`stretch`") &&
                     Catch::Contains("not positive definite") && Catch::Contains("k_uu k_vv - k_uv^2 = -100"));
-  e = load_error(dir, "m.yaml", "a:\n  base: gray-interlock\n  stretch: [10, 1, 30, 0]\n");
+  e = load_error(dir, "m.yaml", "a:\n  base: gray-interlock-linear\n  stretch: [10, 1, 30, 0]\n");
   CHECK_THAT(e, Catch::Contains("m.yaml:3") && Catch::Contains("k_shear > 0"));
 
-  e = load_error(dir, "m.yaml", "a:\n  base: gray-interlock\n  multipliers: {stretch: -2}\n");
+  e = load_error(dir, "m.yaml", "a:\n  base: gray-interlock-linear\n  multipliers: {stretch: -2}\n");
   CHECK_THAT(e, Catch::Contains("m.yaml:3") && Catch::Contains("`multipliers.stretch` must be > 0"));
-  e = load_error(dir, "m.yaml", "a:\n  base: gray-interlock\n  density: 0.3\n  multipliers: {density: 2}\n");
+  e = load_error(dir, "m.yaml", "a:\n  base: gray-interlock-linear\n  density: 0.3\n  multipliers: {density: 2}\n");
   CHECK_THAT(e, Catch::Contains("m.yaml:4") && Catch::Contains("`multipliers.density` and `density` both given"));
 }
 

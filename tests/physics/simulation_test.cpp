@@ -18,7 +18,7 @@ namespace {
 // A ~400-vertex T-shirt and a short schedule keep each run around a second.
 const char* kSmallScene = R"(body: {model: parametric, shape: {bmi: 24}}
 garment: {template: tshirt, params: {resolution: 400}}
-materials: {knit: gray-interlock}
+materials: {knit: gray-interlock-linear}
 effects:
   gravity: {}
   stretching: {}
@@ -161,7 +161,7 @@ TEST_CASE("hard case: a garment starting deep inside the body is pushed out", "[
 
 TEST_CASE("hard case: a print 100x stiffer than the knit", "[simulation][hard]") {
   const Simulation sim(plugins(), small_scene(R"(garment: {params: {print: true}}
-materials: {print: {base: gray-interlock, multipliers: {stretch: 100, bend: 100}}}
+materials: {print: {base: gray-interlock-linear, multipliers: {stretch: 100, bend: 100}}}
 )"));
   REQUIRE(sim.garment().materials.size() == 2);
   CHECK(sim.garment().materials[1].stretch[0] == Approx(100 * sim.garment().materials[0].stretch[0]));

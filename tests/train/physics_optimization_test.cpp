@@ -78,7 +78,7 @@ TEST_CASE("optimize_drape stays finite from a start deep inside the body, with a
   const SampleBatch body = model.body_for(request);
   const Simulation stiff(plugins(), parse_scene("body: {model: parametric}\n"
                                                "garment: {template: tshirt, params: {resolution: 300}}\n"
-                                               "materials: {knit: {base: gray-interlock, multipliers: {stretch: 100, bend: 100}}}\n"
+                                               "materials: {knit: {base: gray-interlock-linear, multipliers: {stretch: 100, bend: 100}}}\n"
                                                "effects:\n  gravity: {}\n  stretching: {}\n  bending: {}\n"
                                                "  collision: {stiffness: 1.0e8, margin: 0.004}\n"));
   PhysicsOptimizationOptions o;

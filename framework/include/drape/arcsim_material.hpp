@@ -47,6 +47,17 @@ inline constexpr double kMeasuredStretch = 1.0 / 6.0;
 // and from d on): exact at zero shear and wherever |G_uv| >= 1e-3 (0.1 % shear).
 inline constexpr double kShearSmoothing = 1e-3;
 
+// Trilinear interpolation is only C0: the energy's gradient jumps across every
+// face of the 30^3 grid, by as much as the gradient itself where the stiffness
+// switches on with stretch (a face compressed one way and at rest the other,
+// the common state of a wrinkled drape), and Newton stalls on such kinks.
+// drape evaluates the trilinear stiffness averaged over a box of half-width
+// kCornerSmoothing cells about G (separably: each 1D hat's corners rounded,
+// the weights still summing to 1): C1, and equal to ArcSim's wherever the
+// trilinear function is linear over the box, i.e. farther than 0.1 cell
+// (1/300 in strain) from a grid plane.
+inline constexpr double kCornerSmoothing = 0.1;
+
 // One of ArcSim's samples: the (doubled, clamped) stiffness at strain G.
 Eigen::Vector4d stretching_sample(const ArcsimData& data, double g_uu, double g_vv, double g_uv);
 
@@ -70,12 +81,16 @@ class StretchingTable {
 
   // ArcSim's lookup exactly (|G_uv|, no smoothing): what the tests compare with.
   Eigen::Vector4d stiffness(double g_uu, double g_vv, double g_uv) const;
-  // drape's lookup (|G_uv| smoothed below kShearSmoothing) with derivatives.
+  // drape's C1 lookup (kShearSmoothing, kCornerSmoothing) with derivatives.
   StiffnessDerivatives stiffness_derivatives(const Eigen::Vector3d& g) const;
+  // drape's C1 lookup alone, and psi alone (what energy values need).
+  Eigen::Vector4d smoothed_stiffness(const Eigen::Vector3d& g) const;
+  double energy_density(const Eigen::Vector3d& g) const;
   // psi(g) with k = k(g), and its exact first and second derivatives.
   MembraneDensity density(const Eigen::Vector3d& g) const;
 
  private:
+  Eigen::Vector4d node(int i, int j, int k) const;  // a sample, extended beyond the grid
   const Eigen::Vector4d& sample(int i, int j, int k) const {
     return samples_[static_cast<std::size_t>((i * kGridSamples + j) * kGridSamples + k)];
   }

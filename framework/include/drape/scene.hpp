@@ -33,7 +33,7 @@ struct SceneEffect {
 
 struct SceneMaterial {
   std::string region;  // a region name of the garment template ("knit", "print")
-  YAML::Node spec;     // a preset name or an inline preset (see materials.hpp)
+  YAML::Node spec;     // a preset name, an ArcSim file (x.json, relative to `file`) or an inline preset (materials.hpp)
   std::string file;
   SourceLocation where;
 };

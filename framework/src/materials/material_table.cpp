@@ -16,12 +16,58 @@ namespace {
 
 using yaml::at;
 using yaml::joined;
+using Model = Material::Model;
 
-std::string owner_of(const MaterialPreset& p) {
-  return p.name.empty() ? std::string("inline material") : "material '" + p.name + "'";
+std::string owner_of(const MaterialPreset& p) { return materials_detail::owner_of(p.name); }
+
+const char* model_name(Model m) { return m == Model::Arcsim ? "arcsim" : "linear"; }
+
+// Where the preset's fields are checked again after resolution: the field
+// itself when the preset sets it, else the preset.
+SourceLocation where_of(const MaterialPreset& p, const std::string& field) {
+  const auto it = p.field_where.find(field);
+  return it != p.field_where.end() ? it->second : p.where;
+}
+
+// The value the simulator will use must be valid whatever chain produced it
+// (positive factors keep valid values valid; checked anyway).
+void check_resolved(const Material& m, const MaterialPreset& p) {
+  if (m.model == Model::Linear)
+    materials_detail::check_stretch(m.stretch, where_of(p, "stretch"), owner_of(p));
+  else
+    materials_detail::check_zero_strain_row(m.arcsim.stretching[0], where_of(p, "stretching"), owner_of(p));
+}
+
+std::string name_of(const MaterialPreset& p) {
+  if (!p.name.empty()) return p.name;
+  if (!p.base.empty()) return p.base;
+  if (!p.file.empty()) return std::filesystem::path(p.file).stem().string();
+  return "inline";
 }
 
 }  // namespace
+
+namespace materials_detail {
+
+Material complete_material(const MaterialPreset& p) {
+  // parse_material_preset guarantees the model's fields without a base.
+  Material m;
+  m.model = *p.model;
+  m.density = *p.density;
+  m.thickness = *p.thickness;
+  if (m.model == Model::Linear) {
+    m.stretch = *p.stretch;
+    m.bending = *p.bending;
+  } else {
+    m.arcsim.stretching = *p.stretching;
+    m.arcsim.bending = *p.bending_table;
+  }
+  check_resolved(m, p);
+  m.name = name_of(p);
+  return m;
+}
+
+}  // namespace materials_detail
 
 MaterialTable MaterialTable::parse(const std::string& yaml_text, const std::string& file) {
   const YAML::Node root = yaml::load_text(yaml_text, file);
@@ -85,48 +131,55 @@ Material MaterialTable::get(const std::string& name) const {
 }
 
 Material MaterialTable::resolve_preset(const MaterialPreset& p, std::vector<std::string>& chain) const {
+  if (p.base.empty()) return materials_detail::complete_material(p);
   const std::string owner = owner_of(p);
-  Material m;
-  if (p.base.empty()) {
-    // parse_material_preset guarantees all four fields without a base.
-    m.density = *p.density;
-    m.stretch = *p.stretch;
-    m.bending = *p.bending;
-    m.thickness = *p.thickness;
-  } else {
-    chain.push_back(p.name);
-    if (const auto loop = std::find(chain.begin(), chain.end(), p.base); loop != chain.end()) {
-      const std::vector<std::string> cycle(loop, chain.end());
-      throw ConfigError(p.base_where, owner + ": `base` makes a cycle: " + joined(cycle, " -> ") + " -> " + p.base);
-    }
-    const auto it = presets_.find(p.base);
-    if (it == presets_.end()) {
-      std::vector<std::string> others = names();  // a preset cannot be its own base: don't suggest it
-      others.erase(std::remove(others.begin(), others.end(), p.name), others.end());
-      throw ConfigError(p.base_where, owner + ": unknown `base` '" + p.base + "'" + did_you_mean(p.base, others) +
-                                          " (known: " + joined(others, ", ") + ")");
-    }
-    m = resolve_preset(it->second, chain);
-    chain.pop_back();
-    m.density *= p.density_multiplier;
+  chain.push_back(p.name);
+  if (const auto loop = std::find(chain.begin(), chain.end(), p.base); loop != chain.end()) {
+    const std::vector<std::string> cycle(loop, chain.end());
+    throw ConfigError(p.base_where, owner + ": `base` makes a cycle: " + joined(cycle, " -> ") + " -> " + p.base);
+  }
+  const auto it = presets_.find(p.base);
+  if (it == presets_.end()) {
+    std::vector<std::string> others = names();  // a preset cannot be its own base: don't suggest it
+    others.erase(std::remove(others.begin(), others.end(), p.name), others.end());
+    throw ConfigError(p.base_where, owner + ": unknown `base` '" + p.base + "'" + did_you_mean(p.base, others) +
+                                        " (known: " + joined(others, ", ") + ")");
+  }
+  Material m = resolve_preset(it->second, chain);
+  chain.pop_back();
+  // The preset's fields are of one model; a base of the other has no such fields.
+  if (p.model && *p.model != m.model)
+    throw ConfigError(where_of(p, "model"), owner + " is model " + model_name(*p.model) + " but its base '" + p.base +
+                                                "' is model " + model_name(m.model) +
+                                                "; a preset keeps its base's model");
+  m.density *= p.density_multiplier;
+  m.thickness *= p.thickness_multiplier;
+  if (p.density) m.density = *p.density;
+  if (p.thickness) m.thickness = *p.thickness;
+  if (m.model == Model::Linear) {
     m.stretch *= p.stretch_multiplier;
     m.bending *= p.bend_multiplier;
-    m.thickness *= p.thickness_multiplier;
-    if (p.density) m.density = *p.density;
     if (p.stretch) m.stretch = *p.stretch;
     if (p.bending) m.bending = *p.bending;
-    if (p.thickness) m.thickness = *p.thickness;
+  } else {
+    // As ArcSim's stretching_mult and bending_mult: every sample of the tables.
+    for (Eigen::Vector4d& row : m.arcsim.stretching) row *= p.stretch_multiplier;
+    for (auto& row : m.arcsim.bending)
+      for (double& b : row) b *= p.bend_multiplier;
+    if (p.stretching) m.arcsim.stretching = *p.stretching;
+    if (p.bending_table) m.arcsim.bending = *p.bending_table;
   }
-  // Positive factors keep a positive definite stretch so; checked again anyway
-  // because this is the value the simulator will use.
-  const auto field = p.field_where.find("stretch");
-  materials_detail::check_stretch(m.stretch, field != p.field_where.end() ? field->second : p.where, owner);
-  m.name = !p.name.empty() ? p.name : !p.base.empty() ? p.base : "inline";
+  check_resolved(m, p);
+  m.name = name_of(p);
   return m;
 }
 
 Material MaterialTable::resolve(const YAML::Node& spec, const std::string& file) const {
   const SourceLocation where = at(file, spec);
+  if (spec && spec.IsScalar() && materials_detail::names_arcsim_file(spec.Scalar())) {
+    const std::filesystem::path path = materials_detail::relative_to(file, spec.Scalar());
+    return materials_detail::complete_material(materials_detail::read_arcsim_file(path, path.stem().string(), where));
+  }
   if (spec && spec.IsScalar()) {
     const std::string name = spec.Scalar();
     if (!contains(name))
@@ -140,7 +193,8 @@ Material MaterialTable::resolve(const YAML::Node& spec, const std::string& file)
     return resolve_preset(inline_preset, chain);
   }
   throw ConfigError(where, "a material must be a preset name (one of " + joined(names(), ", ") +
-                               ") or a map such as {base: gray-interlock, multipliers: {stretch: 2}}");
+                               "), the path of an ArcSim material file (x.json) or a map such as "
+                               "{base: gray-interlock, multipliers: {stretch: 2}}");
 }
 
 void MaterialTable::check() const {

@@ -94,30 +94,86 @@ Eigen::Vector4d StretchingTable::stiffness(double g_uu, double g_vv, double g_uv
   return k;
 }
 
+namespace {
+
+// The hat function of linear interpolation averaged over [x - e, x + e]
+// (e = kCornerSmoothing): equal to max(0, 1 - |x|) except within e of its
+// corners at 0 and +-1, where it is quadratic; C1, and the weights of all
+// nodes still sum to 1. Value, first and second derivative.
+struct Weight {
+  double w, d1, d2;
+};
+
+Weight smoothed_hat(double x) {
+  const double e = kCornerSmoothing, t = std::abs(x), sign = x < 0 ? -1.0 : 1.0;
+  if (t <= e) return {1.0 - (t * t + e * e) / (2.0 * e), -x / e, -1.0 / e};
+  if (t <= 1.0 - e) return {1.0 - t, -sign, 0.0};
+  if (t < 1.0 + e) {
+    const double r = 1.0 + e - t;
+    return {r * r / (4.0 * e), -sign * r / (2.0 * e), 1.0 / (2.0 * e)};
+  }
+  return {0.0, 0.0, 0.0};
+}
+
+// The up to four nodes whose smoothed hats reach coordinate t, with weights.
+struct AxisWeights {
+  int first;  // node of weights[0]
+  int count;
+  Weight weights[4];
+};
+
+AxisWeights axis_weights(double t) {
+  AxisWeights out{static_cast<int>(std::floor(t)) - 1, 4, {}};
+  for (int k = 0; k < 4; ++k) out.weights[k] = smoothed_hat(t - (out.first + k));
+  return out;
+}
+
+}  // namespace
+
+Eigen::Vector4d StretchingTable::node(int i, int j, int k) const {
+  // Beyond the grid: the edge samples on the G_uu and G_vv axes (ArcSim clamps
+  // there); below G_uv = 0 the first cell's line continued, so that averaging
+  // across zero leaves the value at zero shear exact (|G_uv| is even by itself).
+  i = std::clamp(i, 0, kN - 1);
+  j = std::clamp(j, 0, kN - 1);
+  if (k < 0) return 2.0 * sample(i, j, 0) - sample(i, j, 1);
+  return sample(i, j, std::min(k, kN - 1));
+}
+
 StiffnessDerivatives StretchingTable::stiffness_derivatives(const Eigen::Vector3d& g) const {
   const Smoothed shear = smoothed_abs(g[2]);
-  const Coordinate a = coordinate((g[0] + 0.25) * kN, kN), b = coordinate((g[1] + 0.25) * kN, kN),
-                   c = coordinate(shear.value * kN, kN);
-  // Trilinear weights and their derivatives along each grid axis.
-  const double wa[2] = {1.0 - a.frac, a.frac}, wb[2] = {1.0 - b.frac, b.frac}, wc[2] = {1.0 - c.frac, c.frac};
-  const double sign[2] = {-1.0, 1.0};
-  Eigen::Vector4d k = Eigen::Vector4d::Zero(), k_a = k, k_b = k, k_c = k, k_ab = k, k_ac = k, k_bc = k;
-  for (int i = 0; i < 2; ++i)
-    for (int j = 0; j < 2; ++j)
-      for (int l = 0; l < 2; ++l) {
-        const Eigen::Vector4d& s = sample(a.cell + i, b.cell + j, c.cell + l);
-        k += wa[i] * wb[j] * wc[l] * s;
-        k_a += sign[i] * wb[j] * wc[l] * s;
-        k_b += wa[i] * sign[j] * wc[l] * s;
-        k_c += wa[i] * wb[j] * sign[l] * s;
-        k_ab += sign[i] * sign[j] * wc[l] * s;
-        k_ac += sign[i] * wb[j] * sign[l] * s;
-        k_bc += wa[i] * sign[j] * sign[l] * s;
+  const Coordinate ca = coordinate((g[0] + 0.25) * kN, kN), cb = coordinate((g[1] + 0.25) * kN, kN),
+                   cc = coordinate(shear.value * kN, kN);
+  const AxisWeights wa = axis_weights(ca.cell + ca.frac), wb = axis_weights(cb.cell + cb.frac),
+                    wc = axis_weights(cc.cell + cc.frac);
+  Eigen::Vector4d k = Eigen::Vector4d::Zero(), k_a = k, k_b = k, k_c = k, k_aa = k, k_bb = k, k_cc = k, k_ab = k,
+                  k_ac = k, k_bc = k;
+  for (int i = 0; i < 4; ++i) {
+    const Weight& x = wa.weights[i];
+    if (x.w == 0.0 && x.d1 == 0.0 && x.d2 == 0.0) continue;
+    for (int j = 0; j < 4; ++j) {
+      const Weight& y = wb.weights[j];
+      if (y.w == 0.0 && y.d1 == 0.0 && y.d2 == 0.0) continue;
+      for (int l = 0; l < 4; ++l) {
+        const Weight& z = wc.weights[l];
+        if (z.w == 0.0 && z.d1 == 0.0 && z.d2 == 0.0) continue;
+        const Eigen::Vector4d s = node(wa.first + i, wb.first + j, wc.first + l);
+        k += x.w * y.w * z.w * s;
+        k_a += x.d1 * y.w * z.w * s;
+        k_b += x.w * y.d1 * z.w * s;
+        k_c += x.w * y.w * z.d1 * s;
+        k_aa += x.d2 * y.w * z.w * s;
+        k_bb += x.w * y.d2 * z.w * s;
+        k_cc += x.w * y.w * z.d2 * s;
+        k_ab += x.d1 * y.d1 * z.w * s;
+        k_ac += x.d1 * y.w * z.d1 * s;
+        k_bc += x.w * y.d1 * z.d1 * s;
       }
+    }
+  }
   // Chain rule to g: a = (g0 + 1/4) N, b = (g1 + 1/4) N, c = |g2|~ N (each
-  // slope 0 where clamped); trilinear interpolation has no second derivative
-  // along one axis, so only the smoothed |g2| adds a diagonal term.
-  const double da = a.slope, db = b.slope, dc = c.slope * shear.d1, dc2 = c.slope * shear.d2;
+  // slope 0 where clamped).
+  const double da = ca.slope, db = cb.slope, dc = cc.slope * shear.d1, dc2 = cc.slope * shear.d2;
   StiffnessDerivatives out;
   out.k = k;
   out.dk.col(0) = da * k_a;
@@ -125,13 +181,37 @@ StiffnessDerivatives StretchingTable::stiffness_derivatives(const Eigen::Vector3
   out.dk.col(2) = dc * k_c;
   for (int l = 0; l < 4; ++l) {
     Eigen::Matrix3d& h = out.d2k[static_cast<std::size_t>(l)];
-    h.setZero();
+    h(0, 0) = da * da * k_aa[l];
+    h(1, 1) = db * db * k_bb[l];
+    h(2, 2) = dc * dc * k_cc[l] + dc2 * k_c[l];
     h(0, 1) = h(1, 0) = da * db * k_ab[l];
     h(0, 2) = h(2, 0) = da * dc * k_ac[l];
     h(1, 2) = h(2, 1) = db * dc * k_bc[l];
-    h(2, 2) = dc2 * k_c[l];
   }
   return out;
+}
+
+Eigen::Vector4d StretchingTable::smoothed_stiffness(const Eigen::Vector3d& g) const {
+  const Coordinate ca = coordinate((g[0] + 0.25) * kN, kN), cb = coordinate((g[1] + 0.25) * kN, kN),
+                   cc = coordinate(smoothed_abs(g[2]).value * kN, kN);
+  const AxisWeights wa = axis_weights(ca.cell + ca.frac), wb = axis_weights(cb.cell + cb.frac),
+                    wc = axis_weights(cc.cell + cc.frac);
+  Eigen::Vector4d k = Eigen::Vector4d::Zero();
+  for (int i = 0; i < 4; ++i) {
+    if (wa.weights[i].w == 0.0) continue;
+    for (int j = 0; j < 4; ++j) {
+      if (wb.weights[j].w == 0.0) continue;
+      for (int l = 0; l < 4; ++l)
+        if (wc.weights[l].w != 0.0)
+          k += (wa.weights[i].w * wb.weights[j].w * wc.weights[l].w) * node(wa.first + i, wb.first + j, wc.first + l);
+    }
+  }
+  return k;
+}
+
+double StretchingTable::energy_density(const Eigen::Vector3d& g) const {
+  const Eigen::Vector4d k = smoothed_stiffness(g);
+  return 0.5 * (k[0] * g[0] * g[0] + 2.0 * k[1] * g[0] * g[1] + k[2] * g[1] * g[1] + 2.0 * k[3] * g[2] * g[2]);
 }
 
 MembraneDensity StretchingTable::density(const Eigen::Vector3d& g) const {
@@ -163,10 +243,11 @@ MembraneDensity StretchingTable::density(const Eigen::Vector3d& g) const {
 }
 
 MembraneDensity linear_membrane_density(const Eigen::Vector4d& k, const Eigen::Vector3d& g) {
+  // Written term by term as drape's linear membrane always was (same rounding).
   MembraneDensity out;
   out.d2psi << k[0], k[1], 0.0, k[1], k[2], 0.0, 0.0, 0.0, k[3];
-  out.dpsi = out.d2psi * g;
-  out.psi = 0.5 * g.dot(out.dpsi);
+  out.dpsi = Eigen::Vector3d(k[0] * g[0] + k[1] * g[1], k[1] * g[0] + k[2] * g[1], k[3] * g[2]);
+  out.psi = 0.5 * (k[0] * g[0] * g[0] + k[2] * g[1] * g[1] + 2.0 * k[1] * g[0] * g[1] + k[3] * g[2] * g[2]);
   return out;
 }
 

@@ -1,4 +1,5 @@
 // Reading scene files (see scene.hpp): YAML -> Scene, following `base:` chains.
+#include <drape/materials.hpp>
 #include <drape/registry.hpp>
 #include <drape/scene.hpp>
 
@@ -143,7 +144,10 @@ std::string Scene::yaml() const {
   out << YAML::Key << "garment" << YAML::Value << YAML::BeginMap << YAML::Key << "template" << YAML::Value << garment
       << YAML::Key << "params" << YAML::Value << YAML::Flow << values_yaml(garment_params) << YAML::EndMap;
   out << YAML::Key << "materials" << YAML::Value << YAML::BeginMap;
-  for (const auto& m : materials) out << YAML::Key << m.region << YAML::Value << YAML::Flow << m.spec;
+  // A material file is named relative to its scene; the text goes elsewhere
+  // (datasets), so it carries the file's data instead of the path.
+  for (const auto& m : materials)
+    out << YAML::Key << m.region << YAML::Value << YAML::Flow << self_contained_material_spec(m.spec, m.file);
   out << YAML::EndMap;
   out << YAML::Key << "effects" << YAML::Value << YAML::BeginMap;
   for (const auto& e : effects) out << YAML::Key << e.name << YAML::Value << YAML::Flow << values_yaml(e.params);

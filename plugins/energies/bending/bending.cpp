@@ -52,6 +52,7 @@ constexpr double kDegenerateAreaFraction = 1e-10;
 
 struct HingeElement {
   double shape;          // stiffness_scale * l^2 / (8 (A0 + A1)): E = k_b shape (theta - rest)^2
+  double c_linear;       // both faces linear: stiffness_scale * k_b l^2 / (8 (A0 + A1)), E = c (theta - rest)^2
   double curvature;      // l / (A0 + A1): ArcSim's curvature is |theta| times this
   double rest_angle;
   double k_linear;       // both faces linear: the smaller constant stiffness
@@ -125,6 +126,7 @@ class Bending final : public ElementEnergy<4> {
           h.k_linear = std::min(h.k_linear, m.bending);
         }
       }
+      h.c_linear = scale_ * h.k_linear * l * l / (8.0 * area);
       Element v;
       std::copy(std::begin(t.vertex), std::end(t.vertex), v.begin());
       h.rest_angle = 0.0;
@@ -145,8 +147,10 @@ class Bending final : public ElementEnergy<4> {
  private:
   AngleEnergy angle_energy(const HingeElement& h, double theta) const {
     const double d = angle_offset(theta, h.rest_angle);
-    double k = h.k_linear, dk = 0.0;
-    if (h.tabulated) {
+    // Linear: drape's constant model, in its old order of operations.
+    if (!h.tabulated) return {h.c_linear * d * d, 2.0 * h.c_linear * d, 2.0 * h.c_linear};
+    double k = 0.0, dk = 0.0;
+    {
       // The softer side at this curvature (ArcSim's min over the two faces).
       const double curvature = theta * h.curvature;
       const arcsim::BendingStiffness s0 = arcsim::bending_stiffness(h.side[0], curvature),

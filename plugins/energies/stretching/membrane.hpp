@@ -29,7 +29,14 @@ using Mat6 = Eigen::Matrix<double, 6, 6>;
 using Mat9 = Eigen::Matrix<double, 9, 9>;
 
 // F = X c for the face's positions X (3x3, one vertex per column).
-inline Mat32 deformation_gradient(const Eigen::Matrix3d& X, const Mat32& c) { return X * c; }
+// (Summed vertex by vertex, in the order drape always has, so that the linear
+// model's drapes are reproduced bit for bit.)
+inline Mat32 deformation_gradient(const Eigen::Matrix3d& X, const Mat32& c) {
+  Mat32 F = X.col(0) * c.row(0);
+  F.noalias() += X.col(1) * c.row(1);
+  F.noalias() += X.col(2) * c.row(2);
+  return F;
+}
 
 // g = (G00, G11, G01) of the Green strain.
 inline Eigen::Vector3d green_strain(const Mat32& F) {

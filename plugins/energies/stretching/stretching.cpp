@@ -104,11 +104,13 @@ class Stretching final : public ElementEnergy<3> {
   }
 
  private:
-  // psi and its derivatives at strain g, scaled by the face's area.
+  // psi and its derivatives at strain g, scaled by the face's area. The
+  // linear model scales its stiffness first, as drape did before the ArcSim
+  // model, so that old drapes are reproduced bit for bit.
   arcsim::MembraneDensity density(const Face& f, const Eigen::Vector3d& g) const {
     const std::size_t m = static_cast<std::size_t>(f.material);
-    arcsim::MembraneDensity d =
-        tables_[m] ? tables_[m]->density(g) : arcsim::linear_membrane_density(materials_[m].stretch, g);
+    if (!tables_[m]) return arcsim::linear_membrane_density(f.area * materials_[m].stretch, g);
+    arcsim::MembraneDensity d = tables_[m]->density(g);
     d.psi *= f.area;
     d.dpsi *= f.area;
     d.d2psi *= f.area;
@@ -119,7 +121,7 @@ class Stretching final : public ElementEnergy<3> {
     const Face& f = faces_[static_cast<std::size_t>(e)];
     const Eigen::Vector3d g = mb::green_strain(mb::deformation_gradient(x, f.c));
     const std::size_t m = static_cast<std::size_t>(f.material);
-    return tables_[m] ? f.area * tables_[m]->density(g).psi : f.area * arcsim::linear_membrane_density(materials_[m].stretch, g).psi;
+    return tables_[m] ? f.area * tables_[m]->energy_density(g) : arcsim::linear_membrane_density(f.area * materials_[m].stretch, g).psi;
   }
 
   double element_gradient(int e, const Stencil& x, StencilGradient& grad) const override {
