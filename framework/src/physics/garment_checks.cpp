@@ -30,10 +30,12 @@ const Garment& checked_garment(const EnergyContext& context, const std::string& 
                         std::to_string(materials));
   }
   for (const Material& m : garment.materials) {
-    const bool finite = m.model == Material::Model::Linear
-                            ? m.stretch.allFinite() && std::isfinite(m.bending)
-                            : std::all_of(m.arcsim.stretching.begin(), m.arcsim.stretching.end(),
-                                          [](const Eigen::Vector4d& r) { return r.allFinite(); });
+    bool finite = m.model == Material::Model::Linear ? m.stretch.allFinite() && std::isfinite(m.bending) : true;
+    if (m.model == Material::Model::Arcsim) {
+      for (const Eigen::Vector4d& row : m.arcsim.stretching) finite = finite && row.allFinite();
+      for (const auto& row : m.arcsim.bending)
+        for (const double b : row) finite = finite && std::isfinite(b);
+    }
     if (!finite) throw ConfigError(energy + ": material '" + m.name + "' has a non-finite stiffness");
   }
   return garment;

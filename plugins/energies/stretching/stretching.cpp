@@ -117,11 +117,16 @@ class Stretching final : public ElementEnergy<3> {
     return d;
   }
 
+  // psi alone (what energy values and the line search need): the ArcSim
+  // lookup without its derivatives.
+  double energy(const Face& f, const Eigen::Vector3d& g) const {
+    const std::size_t m = static_cast<std::size_t>(f.material);
+    return tables_[m] ? f.area * tables_[m]->energy_density(g) : density(f, g).psi;
+  }
+
   double element_value(int e, const Stencil& x) const override {
     const Face& f = faces_[static_cast<std::size_t>(e)];
-    const Eigen::Vector3d g = mb::green_strain(mb::deformation_gradient(x, f.c));
-    const std::size_t m = static_cast<std::size_t>(f.material);
-    return tables_[m] ? f.area * tables_[m]->energy_density(g) : arcsim::linear_membrane_density(f.area * materials_[m].stretch, g).psi;
+    return energy(f, mb::green_strain(mb::deformation_gradient(x, f.c)));
   }
 
   double element_gradient(int e, const Stencil& x, StencilGradient& grad) const override {
