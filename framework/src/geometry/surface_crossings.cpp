@@ -1,0 +1,229 @@
+// Garment edges through body triangles and body edges through garment
+// triangles. Each mesh's triangles are listed in a uniform grid over their
+// bounding boxes; each edge of the other mesh tests only the triangles whose
+// boxes overlap its own, with exact orientation signs (exact_orientation.hpp).
+#include <drape/errors.hpp>
+#include <drape/geometry/adjacency.hpp>
+#include <drape/geometry/surface_crossings.hpp>
+
+#include "exact_orientation.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <string>
+#include <utility>
+
+namespace drape::geometry {
+namespace {
+
+using Vec2 = Eigen::Vector2d;
+using Vec3 = Eigen::Vector3d;
+
+// The projection along `axis`: the other two coordinates.
+Vec2 dropping(const Vec3& p, int axis) { return {p[(axis + 1) % 3], p[(axis + 2) % 3]}; }
+
+// r inside the bounding box of (p, q): on the closed segment when the three are collinear.
+bool in_box(const Vec2& p, const Vec2& q, const Vec2& r) {
+  return std::min(p.x(), q.x()) <= r.x() && r.x() <= std::max(p.x(), q.x()) && std::min(p.y(), q.y()) <= r.y() &&
+         r.y() <= std::max(p.y(), q.y());
+}
+
+// Closed 2D segments (p, q) and (a, b) share a point (proper crossing, or an
+// endpoint of one on the other; collinear overlaps are endpoints on the other).
+bool segments_meet_2d(const Vec2& p, const Vec2& q, const Vec2& a, const Vec2& b) {
+  const int o1 = exact::orient2d(p, q, a), o2 = exact::orient2d(p, q, b);
+  const int o3 = exact::orient2d(a, b, p), o4 = exact::orient2d(a, b, q);
+  if (o1 * o2 < 0 && o3 * o4 < 0) return true;
+  return (o1 == 0 && in_box(p, q, a)) || (o2 == 0 && in_box(p, q, b)) || (o3 == 0 && in_box(a, b, p)) ||
+         (o4 == 0 && in_box(a, b, q));
+}
+
+// p in the closed counter-clockwise triangle (a, b, c).
+bool in_triangle_2d(const Vec2& p, const Vec2& a, const Vec2& b, const Vec2& c) {
+  return exact::orient2d(a, b, p) >= 0 && exact::orient2d(b, c, p) >= 0 && exact::orient2d(c, a, p) >= 0;
+}
+
+// All five points in one plane. Dropping an axis along which the triangle
+// keeps a non-zero area maps that plane one-to-one onto the other two, so the
+// 2D answer is the 3D one. None exists for a zero-area triangle: not pierced.
+bool coplanar_segment_meets_triangle(const Vec3& p, const Vec3& q, const Vec3& a, const Vec3& b, const Vec3& c) {
+  for (int axis = 0; axis < 3; ++axis) {
+    Vec2 a2 = dropping(a, axis), b2 = dropping(b, axis), c2 = dropping(c, axis);
+    const int turn = exact::orient2d(a2, b2, c2);
+    if (turn == 0) continue;
+    if (turn < 0) std::swap(b2, c2);
+    const Vec2 p2 = dropping(p, axis), q2 = dropping(q, axis);
+    // A segment meeting a convex region either ends in it or crosses its boundary.
+    return in_triangle_2d(p2, a2, b2, c2) || in_triangle_2d(q2, a2, b2, c2) || segments_meet_2d(p2, q2, a2, b2) ||
+           segments_meet_2d(p2, q2, b2, c2) || segments_meet_2d(p2, q2, c2, a2);
+  }
+  return false;
+}
+
+// Faces' vertex indices in range and vertices finite; the message names the mesh.
+void check_mesh(const Eigen::MatrixX3d& vertices, const Eigen::MatrixX3i& faces, const std::string& mesh) {
+  for (Eigen::Index i = 0; i < vertices.rows(); ++i)
+    if (!vertices.row(i).allFinite())
+      throw Error("surface crossings: " + mesh + " vertex " + std::to_string(i) + " is not finite");
+  for (Eigen::Index f = 0; f < faces.rows(); ++f)
+    for (int k = 0; k < 3; ++k)
+      if (faces(f, k) < 0 || faces(f, k) >= vertices.rows())
+        throw Error("surface crossings: " + mesh + " face " + std::to_string(f) + " has vertex index " +
+                    std::to_string(faces(f, k)) + ", but the " + mesh + " has " + std::to_string(vertices.rows()) +
+                    " vertices");
+}
+
+// The triangles of one mesh, each listed in the grid cells its bounding box
+// covers. Cells are about twice the mean triangle extent (at most ~256 per
+// axis), so a query box of an edge of similar size meets a few cells of a few
+// triangles each.
+class TriangleGrid {
+ public:
+  TriangleGrid(const Eigen::MatrixX3d& vertices, const Eigen::MatrixX3i& faces) {
+    const auto nf = static_cast<std::size_t>(faces.rows());
+    if (nf == 0) return;
+    lo_.resize(nf), hi_.resize(nf);
+    box_lo_ = Vec3::Constant(INFINITY), box_hi_ = -box_lo_;
+    double mean_extent = 0;
+    for (std::size_t f = 0; f < nf; ++f) {
+      const auto row = static_cast<Eigen::Index>(f);
+      Vec3 l = vertices.row(faces(row, 0)), h = l;
+      for (int k = 1; k < 3; ++k) {
+        l = l.cwiseMin(vertices.row(faces(row, k)).transpose());
+        h = h.cwiseMax(vertices.row(faces(row, k)).transpose());
+      }
+      lo_[f] = l, hi_[f] = h;
+      box_lo_ = box_lo_.cwiseMin(l), box_hi_ = box_hi_.cwiseMax(h);
+      mean_extent += (h - l).maxCoeff();
+    }
+    mean_extent /= static_cast<double>(nf);
+    cell_ = std::max({2 * mean_extent, (box_hi_ - box_lo_).maxCoeff() / 256, 1e-12});
+    for (int k = 0; k < 3; ++k)
+      dims_[static_cast<std::size_t>(k)] = static_cast<std::int64_t>(std::floor((box_hi_[k] - box_lo_[k]) / cell_));
+
+    std::vector<std::pair<std::int64_t, int>> entries;
+    for (std::size_t f = 0; f < nf; ++f) {
+      const auto a = cell_of(lo_[f]), b = cell_of(hi_[f]);
+      for (auto x = a[0]; x <= b[0]; ++x)
+        for (auto y = a[1]; y <= b[1]; ++y)
+          for (auto z = a[2]; z <= b[2]; ++z) entries.emplace_back(key(x, y, z), static_cast<int>(f));
+    }
+    std::sort(entries.begin(), entries.end());
+    // Compressed rows: the faces of cell keys_[i] are faces_[starts_[i] .. starts_[i + 1]).
+    for (const auto& [cell_key, face] : entries) {
+      if (keys_.empty() || keys_.back() != cell_key) keys_.push_back(cell_key), starts_.push_back(faces_.size());
+      faces_.push_back(face);
+    }
+    starts_.push_back(faces_.size());
+  }
+
+  // Calls visit(face) once for each triangle whose box overlaps [lo, hi] until
+  // visit returns true; returns whether one did.
+  template <class Visit>
+  bool find(const Vec3& lo, const Vec3& hi, Visit&& visit) const {
+    if (keys_.empty() || (hi.array() < box_lo_.array()).any() || (lo.array() > box_hi_.array()).any()) return false;
+    const auto a = cell_of(lo.cwiseMax(box_lo_)), b = cell_of(hi.cwiseMin(box_hi_));
+    for (auto x = a[0]; x <= b[0]; ++x)
+      for (auto y = a[1]; y <= b[1]; ++y)
+        for (auto z = a[2]; z <= b[2]; ++z) {
+          const std::int64_t k = key(x, y, z);
+          const auto it = std::lower_bound(keys_.begin(), keys_.end(), k);
+          if (it == keys_.end() || *it != k) continue;
+          const auto row = static_cast<std::size_t>(it - keys_.begin());
+          for (std::size_t i = starts_[row]; i < starts_[row + 1]; ++i) {
+            const int f = faces_[i];
+            const auto fs = static_cast<std::size_t>(f);
+            if ((hi_[fs].array() < lo.array()).any() || (hi.array() < lo_[fs].array()).any()) continue;
+            // Visit a face only in the first cell both boxes cover, so once.
+            const auto first = cell_of(lo.cwiseMax(lo_[fs]));
+            if (key(first[0], first[1], first[2]) != k) continue;
+            if (visit(f)) return true;
+          }
+        }
+    return false;
+  }
+
+ private:
+  std::array<std::int64_t, 3> cell_of(const Vec3& p) const {
+    std::array<std::int64_t, 3> c{};
+    for (int k = 0; k < 3; ++k) {
+      const auto i = static_cast<std::int64_t>(std::floor((p[k] - box_lo_[k]) / cell_));
+      c[static_cast<std::size_t>(k)] = std::clamp<std::int64_t>(i, 0, dims_[static_cast<std::size_t>(k)]);
+    }
+    return c;
+  }
+  std::int64_t key(std::int64_t x, std::int64_t y, std::int64_t z) const {
+    return (x * (dims_[1] + 1) + y) * (dims_[2] + 1) + z;
+  }
+
+  std::vector<Vec3> lo_, hi_;  // per face
+  Vec3 box_lo_, box_hi_;
+  double cell_ = 1;
+  std::array<std::int64_t, 3> dims_{};  // the last cell index per axis
+  std::vector<std::int64_t> keys_;
+  std::vector<std::size_t> starts_;
+  std::vector<int> faces_;
+};
+
+Vec3 corner(const Eigen::MatrixX3d& vertices, const Eigen::MatrixX3i& faces, int f, int k) {
+  return vertices.row(faces(f, k)).transpose();
+}
+
+}  // namespace
+
+bool segment_pierces_triangle(const Vec3& p, const Vec3& q, const Vec3& a, const Vec3& b, const Vec3& c) {
+  const int side_p = exact::orient3d(a, b, c, p), side_q = exact::orient3d(a, b, c, q);
+  if (side_p * side_q > 0) return false;  // both strictly on one side of the plane
+  if (side_p == 0 && side_q == 0) return coplanar_segment_meets_triangle(p, q, a, b, c);
+  // The segment reaches the plane in one point (and the triangle has an area:
+  // p or q is off its plane). There, the line meets the closed triangle iff it
+  // passes no edge on the wrong side: the volumes (p, q, edge) never have
+  // strictly opposite signs.
+  const int s1 = exact::orient3d(p, q, a, b), s2 = exact::orient3d(p, q, b, c), s3 = exact::orient3d(p, q, c, a);
+  const bool some_positive = s1 > 0 || s2 > 0 || s3 > 0, some_negative = s1 < 0 || s2 < 0 || s3 < 0;
+  return !(some_positive && some_negative);
+}
+
+SurfaceCrossings surface_crossings(const Eigen::MatrixX3d& garment_vertices, const Eigen::MatrixX3i& garment_faces,
+                                   const Eigen::MatrixX3d& body_vertices, const Eigen::MatrixX3i& body_faces) {
+  check_mesh(garment_vertices, garment_faces, "garment");
+  check_mesh(body_vertices, body_faces, "body");
+  SurfaceCrossings out;
+  std::vector<char> marked(static_cast<std::size_t>(garment_vertices.rows()), 0);
+
+  const TriangleGrid body_grid(body_vertices, body_faces);
+  for (const auto& [i, j] : edge_list(garment_faces)) {
+    const Vec3 p = garment_vertices.row(i), q = garment_vertices.row(j);
+    const bool pierces = body_grid.find(p.cwiseMin(q), p.cwiseMax(q), [&](int f) {
+      return segment_pierces_triangle(p, q, corner(body_vertices, body_faces, f, 0), corner(body_vertices, body_faces, f, 1),
+                                      corner(body_vertices, body_faces, f, 2));
+    });
+    if (!pierces) continue;
+    ++out.garment_edges_through_body;
+    marked[static_cast<std::size_t>(i)] = marked[static_cast<std::size_t>(j)] = 1;
+  }
+
+  // Every crossed garment face is wanted (for its vertices), so no early stop.
+  const TriangleGrid garment_grid(garment_vertices, garment_faces);
+  for (const auto& [i, j] : edge_list(body_faces)) {
+    const Vec3 p = body_vertices.row(i), q = body_vertices.row(j);
+    bool pierces = false;
+    garment_grid.find(p.cwiseMin(q), p.cwiseMax(q), [&](int f) {
+      if (segment_pierces_triangle(p, q, corner(garment_vertices, garment_faces, f, 0),
+                                   corner(garment_vertices, garment_faces, f, 1), corner(garment_vertices, garment_faces, f, 2))) {
+        pierces = true;
+        for (int k = 0; k < 3; ++k) marked[static_cast<std::size_t>(garment_faces(f, k))] = 1;
+      }
+      return false;
+    });
+    if (pierces) ++out.body_edges_through_garment;
+  }
+
+  for (std::size_t v = 0; v < marked.size(); ++v)
+    if (marked[v]) out.garment_vertices.push_back(static_cast<int>(v));
+  return out;
+}
+
+}  // namespace drape::geometry
