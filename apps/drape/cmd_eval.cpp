@@ -1,5 +1,5 @@
 // `drape eval --model model.h5 --data data.h5 [--split test]`: the seed's
-// metrics (drape/metrics.hpp) of a model's predictions on one split.
+// metrics (drape/metrics.hpp) and surface crossings of a model's predictions on one split.
 #include "command.hpp"
 
 #include <drape/atomic_file.hpp>
@@ -29,13 +29,17 @@ std::string format(const char* f, double v) {
 }
 
 void write_report(const fs::path& file, const std::string& model, const std::string& data, const std::string& split,
-                  const MetricsSummary& s, double reference_p) {
+                  const MetricsSummary& s, double reference_p, const CrossingsSummary& crossings,
+                  const CrossingsSummary& reference_crossings) {
   const std::string ext = file.extension().string();
   std::ostringstream o;
   if (ext == ".csv") {
     o << "metric,unit,mean,std\n";
     for (const auto& c : metric_columns())
       o << c.name << "," << c.unit << "," << format("%.9g", s.mean.*c.field) << "," << format("%.9g", s.stddev.*c.field) << "\n";
+    o << "crossings,edges," << format("%.9g", crossings.mean) << "," << format("%.9g", crossings.stddev) << "\n";
+    o << "crossed_samples,%," << format("%.9g", 100 * crossings.crossed_fraction) << ","
+      << format("%.9g", 100 * crossings.crossed_stddev) << "\n";
   } else {
     auto quoted = [](const std::string& t) {
       std::string q = "\"";
@@ -44,12 +48,17 @@ void write_report(const fs::path& file, const std::string& model, const std::str
     };
     o << "{\n  \"model\": " << quoted(model) << ",\n  \"data\": " << quoted(data) << ",\n  \"split\": " << quoted(split)
       << ",\n  \"samples\": " << s.samples << ",\n  \"ground_truth_p_percent\": " << format("%.9g", reference_p)
+      << ",\n  \"ground_truth_crossings\": " << format("%.9g", reference_crossings.mean)
+      << ",\n  \"ground_truth_crossed_samples_percent\": " << format("%.9g", 100 * reference_crossings.crossed_fraction)
       << ",\n  \"metrics\": {\n";
-    const auto& columns = metric_columns();
-    for (std::size_t i = 0; i < columns.size(); ++i)
-      o << "    " << quoted(columns[i].name) << ": {\"unit\": " << quoted(columns[i].unit)
-        << ", \"mean\": " << format("%.9g", s.mean.*columns[i].field) << ", \"std\": " << format("%.9g", s.stddev.*columns[i].field)
-        << "}" << (i + 1 < columns.size() ? "," : "") << "\n";
+    for (const auto& c : metric_columns())
+      o << "    " << quoted(c.name) << ": {\"unit\": " << quoted(c.unit) << ", \"mean\": " << format("%.9g", s.mean.*c.field)
+        << ", \"std\": " << format("%.9g", s.stddev.*c.field) << "},\n";
+    // Surface crossings per sample (garment edges through the body + body edges through the garment), and the samples with any.
+    o << "    \"crossings\": {\"unit\": \"edges\", \"mean\": " << format("%.9g", crossings.mean)
+      << ", \"std\": " << format("%.9g", crossings.stddev) << "},\n";
+    o << "    \"crossed_samples\": {\"unit\": \"%\", \"mean\": " << format("%.9g", 100 * crossings.crossed_fraction)
+      << ", \"std\": " << format("%.9g", 100 * crossings.crossed_stddev) << "}\n";
     o << "  }\n}\n";
   }
   write_text_atomically(file, o.str());
@@ -153,14 +162,20 @@ int run(const std::vector<std::string>& args) {
   double reference_p = 0;
   for (double r : evaluation.ground_truth_penetration) reference_p += 100.0 * r / double(indices.size());
   const MetricsSummary s = summarize(evaluation.samples);
+  const CrossingsSummary crossings = summarize_crossings(evaluation.crossings);
+  const CrossingsSummary reference_crossings = summarize_crossings(evaluation.ground_truth_crossings);
 
   std::printf("%s on %s, %s split (%zu samples)\n\n", model_file.c_str(), data.c_str(), split.c_str(), s.samples);
   std::printf("| metric | mean | std | unit |\n|---|---|---|---|\n");
   for (const auto& c : metric_columns())
     std::printf("| %s | %.4g | %.3g | %s |\n", c.name.c_str(), s.mean.*c.field, s.stddev.*c.field, c.unit.c_str());
-  std::printf("\nthe ground truth itself has p = %.3g %%\n", reference_p);
+  // Where the surfaces cross with no vertex inside, p sees nothing: count the crossing edges too.
+  std::printf("| crossings | %.4g | %.3g | edges |\n", crossings.mean, crossings.stddev);
+  std::printf("| crossed samples | %.4g | %.3g | %% |\n", 100 * crossings.crossed_fraction, 100 * crossings.crossed_stddev);
+  std::printf("\nthe ground truth itself has p = %.3g %%, %.4g surface crossings per sample (%.3g %% of samples with any)\n",
+              reference_p, reference_crossings.mean, 100 * reference_crossings.crossed_fraction);
   if (vm.count("out")) {
-    write_report(vm["out"].as<std::string>(), model_file, data, split, s, reference_p);
+    write_report(vm["out"].as<std::string>(), model_file, data, split, s, reference_p, crossings, reference_crossings);
     std::printf("wrote %s\n", vm["out"].as<std::string>().c_str());
   }
   if (vm.count("svg")) {
@@ -170,7 +185,8 @@ int run(const std::vector<std::string>& args) {
   return 0;
 }
 
-const RegisterCommand registered{{"eval", "the seed's metrics (ME, L_l, L_e, L_s, L_d, p) of a model on a dataset split", run}};
+const RegisterCommand registered{
+    {"eval", "the seed's metrics (ME, L_l, L_e, L_s, L_d, p) and the surface crossings of a model on a dataset split", run}};
 
 }  // namespace
 }  // namespace drape::cli

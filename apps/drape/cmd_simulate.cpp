@@ -21,6 +21,14 @@ void override_shape(Scene& scene, const po::variables_map& vm) {
     if (vm.count(key)) scene.shape[key] = ParamValue{YAML::Node(vm[key].as<double>()), {"command line", 0}};
 }
 
+// "surface crossings 106 garment edges / 257 body edges": where the surfaces
+// cross with no vertex inside, which p does not see.
+std::string crossings_summary(const SimulationResult& r) {
+  if (!r.crossings) return "surface crossings not measured";
+  return "surface crossings " + std::to_string(r.crossings->garment_edges_through_body) + " garment edges / " +
+         std::to_string(r.crossings->body_edges_through_garment) + " body edges";
+}
+
 int run(const std::vector<std::string>& args) {
   po::options_description opts("drape simulate");
   opts.add_options()("scene", po::value<std::string>(), "scene file (graphs/scenes/*.yaml)")(
@@ -76,9 +84,9 @@ int run(const std::vector<std::string>& args) {
   std::printf("  %-12s %14s\n", "energy", "J");
   for (const auto& t : r.energies) std::printf("  %-12s %14.6g\n", t.name.c_str(), t.value);
   std::printf("  %-12s %14.6g\n", "total", r.total_energy);
-  std::printf("residual |grad E|/|weight| = %.2e (stationarity %.2e), penetration p = %.3f%% of garment vertices, time %.2f s\n",
+  std::printf("residual |grad E|/|weight| = %.2e (stationarity %.2e), penetration p = %.3f%% of garment vertices, %s, time %.2f s\n",
               r.residual, r.stationarity,
-              100.0 * r.penetration, r.seconds);
+              100.0 * r.penetration, crossings_summary(r).c_str(), r.seconds);
   std::printf("time split: gradient %.2f s, hessian %.2f s, assembly %.2f s, linear solves %.2f s (%d factorisations, "
               "%ld PCG iterations), line search %.2f s\n",
               r.timings.gradient, r.timings.hessian, r.timings.assembly, r.timings.linear_solves, r.timings.factorizations,
@@ -95,6 +103,13 @@ int run(const std::vector<std::string>& args) {
       const int i = order[k];
       std::printf("  %5d  %.3e  (%+.3f %+.3f %+.3f)  %s\n", i, r.vertex_force[i], r.garment(i, 0), r.garment(i, 1),
                   r.garment(i, 2), r.body_distance.size() ? std::to_string(r.body_distance[i]).c_str() : "-");
+    }
+    if (r.crossings && !r.crossings->garment_vertices.empty()) {
+      // Where the surfaces cross: a few of the garment vertices there, to look up in the mesh.
+      const std::vector<int>& at = r.crossings->garment_vertices;
+      std::printf("garment vertices at surface crossings: %zu (", at.size());
+      for (std::size_t k = 0; k < std::min<std::size_t>(12, at.size()); ++k) std::printf("%s%d", k ? " " : "", at[k]);
+      std::printf("%s)\n", at.size() > 12 ? " ..." : "");
     }
   }
   if (vm.count("out")) {
@@ -113,9 +128,10 @@ int run(const std::vector<std::string>& args) {
   if (vm.count("svg")) {
     Mesh garment = sim.garment().mesh;
     garment.vertices = r.garment;
-    char caption[128];
-    std::snprintf(caption, sizeof caption, "%s, %d iterations, %.1f s, p = %.2f%%", r.converged ? "settled" : "NOT settled",
-                  r.iterations, r.seconds, 100.0 * r.penetration);
+    char caption[160];
+    std::snprintf(caption, sizeof caption, "%s, %d iterations, %.1f s, p = %.2f%%, %d surface crossings",
+                  r.converged ? "settled" : "NOT settled", r.iterations, r.seconds, 100.0 * r.penetration,
+                  r.crossings ? r.crossings->total() : -1);
     drape_figure("drape simulate: " + vm["scene"].as<std::string>(), caption, body, garment).write(vm["svg"].as<std::string>());
     std::printf("wrote %s\n", vm["svg"].as<std::string>().c_str());
   }

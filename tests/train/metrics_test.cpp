@@ -3,6 +3,7 @@
 // scalings and a one-vertex bump.
 #include <catch2/catch.hpp>
 
+#include <drape/evaluation.hpp>
 #include <drape/geometry/penetration.hpp>
 #include <drape/metrics.hpp>
 #include <drape/plugin.hpp>
@@ -126,6 +127,20 @@ TEST_CASE("metrics refuse wrong sizes and non-finite vertices, and summaries ave
   CHECK(s.mean.me_cm == 2.0);
   CHECK(s.stddev.me_cm == Approx(std::sqrt(2.0)));
   CHECK(s.stddev.penetration_percent == 0.0);
+}
+
+TEST_CASE("crossing summaries: mean per sample and the share of samples with any", "[metrics]") {
+  // {0, 4, 0, 2}: mean 1.5, sample variance ((1.5^2 + 2.5^2 + 1.5^2 + 0.5^2) / 3) = 11/3;
+  // crossed 0/1: {0, 1, 0, 1}, mean 0.5, variance (4 * 0.25) / 3 = 1/3.
+  const CrossingsSummary s = summarize_crossings({0, 4, 0, 2});
+  CHECK(s.mean == 1.5);
+  CHECK(s.stddev == Approx(std::sqrt(11.0 / 3.0)));
+  CHECK(s.crossed_fraction == 0.5);
+  CHECK(s.crossed_stddev == Approx(std::sqrt(1.0 / 3.0)));
+  const CrossingsSummary none = summarize_crossings({});
+  CHECK(none.mean == 0.0);
+  CHECK(none.crossed_fraction == 0.0);
+  CHECK(summarize_crossings({3}).stddev == 0.0);
 }
 
 TEST_CASE("L_e, L_l, L_s and L_d are the values of the loss plugins (reduction: mean)", "[metrics]") {

@@ -106,6 +106,21 @@ class Energy {
   // others fixed). The solver's stationarity measure takes the convex hull of
   // these samples, Goldstein's epsilon-subdifferential (solver.hpp).
   virtual bool has_kinks() const { return false; }
+  // The largest fraction alpha in [0, 1] of the move x -> x + dx (with the
+  // body moving from `body_from` to `body_to` over the same interval when
+  // they are given, else standing still) along which this energy stays
+  // finite: a barrier contact returns where its closest pair would come too
+  // close (continuous collision detection), so a line search that starts at
+  // alpha never lets the surfaces cross. Energies finite everywhere return 1.
+  virtual double max_step(const Eigen::MatrixX3d& /*x*/, const Eigen::MatrixX3d& /*dx*/,
+                          const Eigen::MatrixX3d* /*body_from*/ = nullptr,
+                          const Eigen::MatrixX3d* /*body_to*/ = nullptr) const {
+    return 1.0;
+  }
+  // True when max_step can return less than 1 (a barrier contact): the
+  // simulator then carries the garment with the morphing body and checks
+  // every body move, since a state this energy calls infinite must never be entered.
+  virtual bool bounds_steps() const { return false; }
   virtual void vertex_gradient_samples(const Eigen::MatrixX3d& /*x*/, int /*vertex*/, double /*radius*/,
                                        std::vector<Eigen::Vector3d>& /*samples*/) const {}
 };

@@ -9,11 +9,13 @@
 // closest-point hierarchy only when an effect needs the body, the per-face
 // material map only when the garment's faces differ in material.
 #include <drape/body.hpp>
+#include <drape/geometry/surface_crossings.hpp>
 #include <drape/scene.hpp>
 #include <drape/solver.hpp>
 
 #include <functional>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -35,6 +37,9 @@ struct SimulationResult {
   double total_energy = 0;
   double initial_energy = 0;   // on the target body, before settling (after morphing)
   double penetration = -1;     // fraction of garment vertices inside the body (-1: not measured)
+  // Garment edges through body triangles and body edges through garment ones
+  // at the end: the crossings p misses (no vertex inside). Empty: not measured.
+  std::optional<geometry::SurfaceCrossings> crossings;
   double residual = 0;         // |grad E| / |weight| at the end
   double stationarity = 0;     // the same with both faces of a body crease counted (ClothSolver::stationarity); settles the drape
   Eigen::VectorXd vertex_force;  // N: |grad E| per vertex at the end (where the drape is not in equilibrium)
@@ -46,14 +51,23 @@ struct SimulationResult {
   // residual cannot fall further; stationarity counts both pushes.
   bool converged = false;
   bool at_rest = false;        // settled by the rest criterion
+  // When not settled: why, in words (how far from balance, where the largest
+  // unbalanced forces are, whether the steps had stopped moving).
+  std::string unsettled;
   int steps = 0, iterations = 0, line_search_failures = 0;
+  // With a barrier contact: morph steps split because the body's move would
+  // have brought a pair too close (each part is solved before the rest of the move).
+  int morph_substeps = 0;
+  // m: with a barrier contact, how far the start body was shrunk along its
+  // normals so that the garment starts separated from it (0: not).
+  double start_shrink = 0;
   double seconds = 0;
   std::string linear_solver;
   ClothSolver::Timings timings;
 };
 
 struct SimulationOptions {
-  bool measure_penetration = true;  // p at the end (a measurement: one closest-point pass)
+  bool measure_penetration = true;  // p and the surface crossings at the end (measurements: one closest-point pass, one crossing count)
   std::function<void(const SimulationStep&)> on_step;
   // Overrides the start state (default: the garment dressed on the mean body).
   const Eigen::MatrixX3d* start_garment = nullptr;
@@ -83,6 +97,7 @@ class Simulation {
   // when an effect needs one; ConfigError when it does and body is null).
   std::vector<NamedEnergy> make_energies(const BodyQuery* body) const;
   bool needs_body() const { return needs_body_; }
+
   SolverSettings solver_settings() const;
 
  private:

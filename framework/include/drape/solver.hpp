@@ -101,6 +101,12 @@ class ClothSolver {
   // smooth parts it equals the plain residual.
   double stationarity(const Eigen::MatrixX3d& x, double radius) const;
 
+  // The largest fraction in [0, 1] of the move x -> x + dx (and of the body's
+  // from -> to, when given) that every energy allows (Energy::max_step): 1
+  // without a barrier contact.
+  double max_step(const Eigen::MatrixX3d& x, const Eigen::MatrixX3d& dx, const Eigen::MatrixX3d* body_from = nullptr,
+                  const Eigen::MatrixX3d* body_to = nullptr) const;
+
   const Eigen::VectorXd& masses() const { return masses_; }
   double force_scale() const { return force_scale_; }
   const SolverSettings& settings() const { return settings_; }
@@ -111,6 +117,7 @@ class ClothSolver {
 
   struct Timings {
     double gradient = 0, hessian = 0, assembly = 0, linear_solves = 0, line_search = 0;  // s; linear solves: factorisations and PCG
+    double collision_checks = 0;  // s: continuous collision checks (part of line_search; also the morph's body moves)
     int factorizations = 0;
     long cg_iterations = 0;  // PCG iterations of the steps solved with an earlier factor
   };
@@ -125,7 +132,7 @@ class ClothSolver {
   SolverSettings settings_;
   Eigen::VectorXd masses_;
   double force_scale_ = 1;
-  Timings timings_;
+  mutable Timings timings_;
   std::unique_ptr<Impl> impl_;
 };
 

@@ -185,6 +185,15 @@ double ClothSolver::stationarity(const Eigen::MatrixX3d& x, double radius) const
   return std::sqrt(sum) / force_scale_;
 }
 
+double ClothSolver::max_step(const Eigen::MatrixX3d& x, const Eigen::MatrixX3d& dx, const Eigen::MatrixX3d* body_from,
+                             const Eigen::MatrixX3d* body_to) const {
+  const auto t = Clock::now();
+  double alpha = 1;
+  for (const NamedEnergy& e : energies_) alpha = std::min(alpha, e.energy->max_step(x, dx, body_from, body_to));
+  timings_.collision_checks += since(t);
+  return alpha;
+}
+
 double ClothSolver::phi(const Eigen::MatrixX3d& x, const Eigen::MatrixX3d& x_hat) const {
   const double inv_h2 = 1.0 / (settings_.time_step * settings_.time_step);
   const double inertia = 0.5 * inv_h2 * (masses_.asDiagonal() * (x - x_hat)).cwiseProduct(x - x_hat).sum();
@@ -277,7 +286,11 @@ StepReport ClothSolver::step(Eigen::MatrixX3d& x, Eigen::MatrixX3d& v) {
     auto line_search = [&](const Eigen::MatrixX3d& dir) {
       const double slope = g.cwiseProduct(dir).sum();
       if (!(slope < 0)) return false;
-      double alpha = 1;
+      // A barrier contact bounds the step where its closest pair would come
+      // too close (continuous collision detection): searching only below that
+      // bound, no accepted state has crossed the body.
+      double alpha = max_step(x, dir);
+      if (!(alpha > 0)) return false;
       for (int k = 0; k < settings_.max_line_search; ++k, alpha *= 0.5) {
         const Eigen::MatrixX3d trial = x + alpha * dir;
         const double phi_trial = phi(trial, x_hat);

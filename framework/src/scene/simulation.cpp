@@ -4,14 +4,23 @@
 #include <drape/registry.hpp>
 #include <drape/simulation.hpp>
 
+#include "garment_carry.hpp"
 #include "scene_materials.hpp"
+#include "separated_start.hpp"
 
+#include <algorithm>
 #include <chrono>
 
 namespace drape {
 
 namespace {
 using Clock = std::chrono::steady_clock;
+// Garment vertices within kCarryInner of the skin move with it during the
+// morph, fading out at kCarryOuter (garment_carry.hpp); a morph step may be
+// cut into at most kMaxMorphParts partial moves.
+constexpr double kCarryInner = 0.005, kCarryOuter = 0.02;
+constexpr int kMaxMorphParts = 64;
+
 double since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
 }  // namespace
 
@@ -130,11 +139,58 @@ SimulationResult Simulation::run(const Eigen::MatrixX3d& target_body, const Simu
   // settling steps get the full Newton budget.
   const int settle_newton = solver.settings().max_newton_iterations;
   solver.set_max_newton_iterations(std::min(settle_newton, morph_newton_));
+  const bool barrier = std::any_of(energies.begin(), energies.end(), [](const NamedEnergy& e) { return e.energy->bounds_steps(); });
+  // The morph starts from a body the garment is separated from (shrunk when
+  // the dressed start cuts through it); without morph steps the target itself
+  // must be separated.
+  Eigen::MatrixX3d separated_body;
+  if (barrier && morph_steps_ > 0) {
+    // A start a little inside the body is rescued by shrinking the start
+    // body along its normals (by a few centimetres at most) until the garment
+    // is clear of it; the morph then grows it to the target under the
+    // barrier. A start that cuts through the body is refused, naming where.
+    separated_body = scene_detail::separated_start_body(x, body_start, body_model_->faces(), garment_->mesh.faces,
+                                                        &result.start_shrink);
+    surface->update(separated_body);
+  } else if (barrier) {
+    scene_detail::check_separated_start(x, *surface, garment_->mesh.faces);
+  }
+  const Eigen::MatrixX3d& morph_from = separated_body.rows() ? separated_body : body_start;
   for (int k = 1; k <= morph_steps_; ++k) {
     const double t = static_cast<double>(k) / morph_steps_;
-    if (surface) surface->update(body_start + t * (target_body - body_start));
-    const StepReport r = solver.step(x, v);
-    record(k, true, r, -1);
+    const Eigen::MatrixX3d next = morph_from + t * (target_body - morph_from);
+    if (!barrier) {
+      if (surface) surface->update(next);
+      const StepReport r = solver.step(x, v);
+      record(k, true, r, -1);
+      continue;
+    }
+    // Under a barrier the body's move is checked too: the garment is carried
+    // with it (garment_carry.hpp) and the joint move is cut where a pair would
+    // come too close; the cloth is then solved at that body before the rest of
+    // the move, so no state on the way has the surfaces crossing.
+    for (int part = 0;; ++part) {
+      const Eigen::MatrixX3d from = surface->vertices();
+      const Eigen::MatrixX3d carried = scene_detail::carried_with_body(x, *surface, next, kCarryInner, kCarryOuter);
+      const double alpha = solver.max_step(x, carried - x, &from, &next);
+      if (alpha >= 1) {
+        x = carried;
+        surface->update(next);
+        const StepReport r = solver.step(x, v);
+        record(k, true, r, -1);
+        break;
+      }
+      if (part >= kMaxMorphParts)
+        throw Error("simulate: the body grows into the garment faster than the contact can push it away (morph step " +
+                    std::to_string(k) + " still blocked after " + std::to_string(kMaxMorphParts) +
+                    " partial moves); the garment does not fit this body");
+      ++result.morph_substeps;
+      x += alpha * (carried - x);
+      surface->update(from + alpha * (next - from));
+      const StepReport r = solver.step(x, v);
+      result.iterations += r.iterations;
+      result.line_search_failures += r.line_search_failures;
+    }
   }
   if (surface && morph_steps_ > 0) {
     surface->update(target_body);
@@ -160,6 +216,7 @@ SimulationResult Simulation::run(const Eigen::MatrixX3d& target_body, const Simu
   const Eigen::MatrixX3d gradient = solver.static_gradient(x);
   result.residual = gradient.norm() / solver.force_scale();
   result.vertex_force = gradient.rowwise().norm();
+  if (!result.converged) result.unsettled = scene_detail::why_unsettled(result, x, settle_tolerance, settle_steps_);
   result.garment = x;
   result.body = target_body;
   result.linear_solver = solver.linear_solver();
@@ -169,6 +226,7 @@ SimulationResult Simulation::run(const Eigen::MatrixX3d& target_body, const Simu
     result.body_distance = surface->signed_distances(x);
     const Eigen::VectorXd& d = result.body_distance;
     result.penetration = static_cast<double>((d.array() < 0).count()) / static_cast<double>(d.size());
+    result.crossings = geometry::surface_crossings(x, garment_->mesh.faces, target_body, body_model_->faces());
   }
   result.seconds = since(start);
   return result;

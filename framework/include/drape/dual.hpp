@@ -1,0 +1,116 @@
+#pragma once
+// A number that carries its gradient and Hessian with respect to N variables:
+// forward-mode differentiation to second order. Contact distances (a point to
+// a triangle's plane, two lines) are short chains of products, quotients and
+// cross products whose hand-written Hessians run to pages; written once over
+// Dual<N>, the value, the exact gradient and the exact Hessian come out of the
+// same code and cannot drift apart. Each operation applies the product or
+// chain rule to (value, gradient, Hessian). Cost: O(N^2) per operation, meant
+// for stencils of a few vertices (N <= 12).
+#include <Eigen/Core>
+
+#include <array>
+#include <cmath>
+
+namespace drape {
+
+template <int N>
+struct Dual {
+  using Gradient = Eigen::Matrix<double, N, 1>;
+  using Hessian = Eigen::Matrix<double, N, N>;
+  double v = 0;
+  Gradient g = Gradient::Zero();
+  Hessian h = Hessian::Zero();
+
+  static Dual constant(double value) {
+    Dual d;
+    d.v = value;
+    return d;
+  }
+  // The variable number `index` itself, at value `value`.
+  static Dual variable(double value, int index) {
+    Dual d = constant(value);
+    d.g[index] = 1;
+    return d;
+  }
+};
+
+template <int N>
+Dual<N> operator+(const Dual<N>& a, const Dual<N>& b) {
+  return {a.v + b.v, a.g + b.g, a.h + b.h};
+}
+template <int N>
+Dual<N> operator-(const Dual<N>& a, const Dual<N>& b) {
+  return {a.v - b.v, a.g - b.g, a.h - b.h};
+}
+template <int N>
+Dual<N> operator-(const Dual<N>& a) {
+  return {-a.v, -a.g, -a.h};
+}
+template <int N>
+Dual<N> operator*(double s, const Dual<N>& a) {
+  return {s * a.v, s * a.g, s * a.h};
+}
+template <int N>
+Dual<N> operator*(const Dual<N>& a, const Dual<N>& b) {
+  Dual<N> r;
+  r.v = a.v * b.v;
+  r.g = a.g * b.v + b.g * a.v;
+  r.h = a.h * b.v + b.h * a.v;
+  r.h.noalias() += a.g * b.g.transpose();
+  r.h.noalias() += b.g * a.g.transpose();
+  return r;
+}
+
+// f(a) from f, f' and f'' at a.v: the chain rule to second order.
+template <int N>
+Dual<N> chain(const Dual<N>& a, double f, double df, double d2f) {
+  Dual<N> r;
+  r.v = f;
+  r.g = df * a.g;
+  r.h = df * a.h;
+  r.h.noalias() += d2f * a.g * a.g.transpose();
+  return r;
+}
+template <int N>
+Dual<N> inverse(const Dual<N>& a) {
+  return chain(a, 1 / a.v, -1 / (a.v * a.v), 2 / (a.v * a.v * a.v));
+}
+template <int N>
+Dual<N> operator/(const Dual<N>& a, const Dual<N>& b) {
+  return a * inverse(b);
+}
+
+// Plain doubles take the same code paths (value only).
+inline double inverse(double a) { return 1 / a; }
+
+// A 3-vector of scalars (double or Dual<N>) and the few operations contact needs.
+template <class S>
+using Vec3 = std::array<S, 3>;
+
+template <class S>
+Vec3<S> operator-(const Vec3<S>& a, const Vec3<S>& b) {
+  return {a[0] - b[0], a[1] - b[1], a[2] - b[2]};
+}
+template <class S>
+S dot(const Vec3<S>& a, const Vec3<S>& b) {
+  return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+}
+template <class S>
+Vec3<S> cross(const Vec3<S>& a, const Vec3<S>& b) {
+  return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
+}
+
+// Point k of a stencil as scalars: variables 3k..3k+2 when k is free, constants when fixed.
+template <int N>
+Vec3<Dual<N>> variable_point(const Eigen::Vector3d& p, int first_index) {
+  return {Dual<N>::variable(p[0], first_index), Dual<N>::variable(p[1], first_index + 1),
+          Dual<N>::variable(p[2], first_index + 2)};
+}
+template <int N>
+Vec3<Dual<N>> constant_point(const Eigen::Vector3d& p) {
+  return {Dual<N>::constant(p[0]), Dual<N>::constant(p[1]), Dual<N>::constant(p[2])};
+}
+inline Vec3<double> plain_point(const Eigen::Vector3d& p) { return {p[0], p[1], p[2]}; }
+
+}  // namespace drape

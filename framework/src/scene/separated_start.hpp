@@ -1,0 +1,44 @@
+#pragma once
+// A barrier contact keeps separated surfaces separated; it cannot untangle a
+// garment that starts inside or through the body (every state it accepts is
+// reached from the start without crossing). So a run with a barrier starts
+// only from a garment with no vertex inside the body and no surface crossing
+// (geometry::surface_crossings), and says where it fails otherwise.
+#include <drape/geometry/closest_point.hpp>
+
+#include <Eigen/Core>
+
+#include <string>
+#include <vector>
+
+namespace drape {
+struct SimulationResult;
+}
+
+namespace drape::scene_detail {
+
+// Throws ConfigError naming the region (how many garment vertices, where)
+// when the garment x is inside or crosses the body.
+void check_separated_start(const Eigen::MatrixX3d& x, const geometry::BodySurface& body, const Eigen::MatrixX3i& garment_faces);
+
+// A body the garment x is separated from, to start the morph with: `body`
+// itself when it is, else `body` shrunk along its vertex normals by the least
+// of 0.5, 1, 2, 3, 4, 6 cm that separates them (a garment pushed a few
+// centimetres into the body then starts around it). The morph grows the body
+// back into the garment, which the barrier handles. A garment whose triangles
+// pass through a limb (the T-shirt template's armholes, docs/scenes.md) is
+// not separated by any shrink.
+// Throws check_separated_start's error for the unshrunk body when none does.
+Eigen::MatrixX3d separated_start_body(const Eigen::MatrixX3d& x, const Eigen::MatrixX3d& body,
+                                      const Eigen::MatrixX3i& body_faces, const Eigen::MatrixX3i& garment_faces,
+                                      double* shrink = nullptr);
+
+// Why a run did not settle, for SimulationResult::unsettled: the stationarity
+// against the tolerance, the region of the largest unbalanced forces, and
+// whether the last steps stopped moving (line searches finding no decrease).
+std::string why_unsettled(const SimulationResult& result, const Eigen::MatrixX3d& x, double tolerance, int settle_steps);
+
+// "12 garment vertices around (0.10, 1.32, 0.02) m, heights 1.28-1.36 m (vertex 401, ...)".
+std::string describe_region(const Eigen::MatrixX3d& x, const std::vector<int>& vertices);
+
+}  // namespace drape::scene_detail

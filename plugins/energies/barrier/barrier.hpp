@@ -1,0 +1,112 @@
+#pragma once
+// Barrier contact between the garment and the body, after IPC (Li et al.
+// 2020, "Incremental Potential Contact"): a log barrier on every primitive
+// pair closer than the activation distance d_hat,
+//
+//   E(x) = kappa d_hat  sum_pairs  w_pair m_pair b(d_pair(x)^2 / d_hat^2),
+//
+// over three kinds of pairs: a garment vertex and a body triangle, a body
+// vertex and a garment triangle, a garment edge and a body edge (vertices
+// alone are not enough: the body is finer than the cloth, so its edges and
+// vertices poke through cloth triangles whose corners are all outside).
+// b is the log barrier (barrier_function.hpp), d the pair's distance by its
+// distance type (pair_distance.hpp), m IPC's mollifier on edge-edge pairs (1
+// for the others), w an area that makes kappa a pressure: the garment
+// vertex's material-space area, the body vertex's area, or the garment
+// edge's third of its faces' areas. Units: kappa in Pa, d_hat in m, E in J;
+// the push of a pair at distance d is kappa w |b'(r)| 2 d / d_hat (N), about
+// 0.2 kappa at d = 0.9 d_hat, 4.3 kappa at d_hat / 2, rising without bound.
+//
+// E is infinite when a pair touches, and max_step() is the continuous
+// collision check: the largest fraction of a move (of the garment, and of the
+// body when it morphs) along which no pair comes closer than a tenth of its
+// starting distance (additive CCD, drape/geometry/ccd.hpp). A solver that
+// starts its line search there keeps the two surfaces apart at every accepted
+// state, by construction. Only the garment's vertices are variables; the body
+// is prescribed (it moves between solves, through max_step's body motion).
+//
+// The body must be a geometry::BodySurface and outlive the energy. Pairs are
+// found through box overlaps (geometry::overlapping_boxes) and kept for the
+// last x and body revision, as a Newton iteration asks for value, gradient and
+// Hessian at the same x.
+#include "pair_distance.hpp"
+
+#include <drape/energy.hpp>
+#include <drape/geometry/closest_point.hpp>
+
+#include <Eigen/Core>
+
+#include <cstdint>
+#include <memory>
+#include <mutex>
+#include <vector>
+
+namespace drape::barrier {
+
+struct BarrierSettings {
+  double distance = 1e-3;     // d_hat, m
+  double stiffness = 1e3;     // kappa, Pa
+  double min_separation = 0.1;  // CCD stops a move where a pair is down to this fraction of its distance
+};
+
+enum class PairKind : unsigned char { GarmentVertexBodyFace, BodyVertexGarmentFace, GarmentEdgeBodyEdge };
+
+struct ContactPair {
+  PairKind kind;
+  int garment = 0;  // garment vertex, face or edge
+  int body = 0;     // body face, vertex or edge
+  DistanceType type;
+  double distance2 = 0;
+};
+
+class BarrierContact final : public Energy {
+ public:
+  explicit BarrierContact(const BarrierSettings& settings);
+  ~BarrierContact() override;
+
+  // Needs context.garment (with material-space UVs) and context.body, a BodySurface.
+  void bind(const EnergyContext& context) override;
+  bool needs_body() const override { return true; }
+  bool bounds_steps() const override { return true; }
+  double value(const Eigen::MatrixX3d& x) const override;
+  double add_gradient(const Eigen::MatrixX3d& x, Eigen::MatrixX3d& g) const override;
+  void add_hessian(const Eigen::MatrixX3d& x, Triplets& h, bool project_psd = true) const override;
+  void add_hessian_lower(const Eigen::MatrixX3d& x, Triplets& h, bool project_psd = true) const override;
+  double max_step(const Eigen::MatrixX3d& x, const Eigen::MatrixX3d& dx, const Eigen::MatrixX3d* body_from = nullptr,
+                  const Eigen::MatrixX3d* body_to = nullptr) const override;
+
+  // The pairs within d_hat at x on the current body (for tests and reports).
+  std::vector<ContactPair> pairs(const Eigen::MatrixX3d& x) const;
+  // The smallest pair distance within d_hat at x (infinity: no pair that close).
+  double min_distance(const Eigen::MatrixX3d& x) const;
+
+  struct Topology;  // the garment's and body's primitives (barrier.cpp)
+
+ private:
+  void check(const Eigen::MatrixX3d& x) const;
+  std::shared_ptr<const std::vector<ContactPair>> cached_pairs(const Eigen::MatrixX3d& x) const;
+  // The pair's 4 points: garment and body vertices as its kind orders them.
+  std::array<Eigen::Vector3d, 4> pair_points(const ContactPair& pair, const Eigen::MatrixX3d& x) const;
+  // The pair's garment vertices (its variables), and how many.
+  int pair_vertices(const ContactPair& pair, std::array<int, 3>& vertex) const;
+  double pair_value(const ContactPair& pair, const Eigen::MatrixX3d& x) const;
+  // The pair's energy with its gradient and Hessian over its garment vertices.
+  template <int N>
+  double pair_derivatives(const ContactPair& pair, const Eigen::MatrixX3d& x, Eigen::Matrix<double, N, 1>& g,
+                          Eigen::Matrix<double, N, N>* h) const;
+  void hessian(const Eigen::MatrixX3d& x, Triplets& h, bool project_psd, bool lower) const;
+
+  BarrierSettings settings_;
+  const geometry::BodySurface* body_ = nullptr;
+  std::unique_ptr<Topology> topology_;
+
+  struct Cache {
+    std::mutex mutex;  // energies may be evaluated from several threads (graph loss nodes)
+    Eigen::MatrixX3d x;
+    std::uint64_t revision = 0;
+    std::shared_ptr<const std::vector<ContactPair>> pairs;
+  };
+  mutable Cache cache_;
+};
+
+}  // namespace drape::barrier

@@ -1,0 +1,40 @@
+#pragma once
+// IPC's log barrier (Li et al. 2020, eq. 6) on the squared distance s of a
+// pair, made dimensionless by the activation distance d_hat (r = s / d_hat^2):
+//
+//   b(r) = -(r - 1)^2 ln r   for 0 < r < 1,   0 for r >= 1.
+//
+// b, b' and b'' vanish at r = 1 (the barrier switches on C2-smoothly as a
+// pair comes within d_hat) and b -> infinity as r -> 0, so a state whose
+// energy is finite has no touching pair, and a line search that never crosses
+// (continuous collision detection) keeps it so.
+#include <cmath>
+
+namespace drape::barrier {
+
+struct BarrierValue {
+  double b = 0, db = 0, d2b = 0;  // b(r), b'(r), b''(r)
+};
+
+inline BarrierValue log_barrier(double r) {
+  if (!(r < 1)) return {};
+  if (!(r > 0)) return {INFINITY, -INFINITY, INFINITY};
+  const double m = r - 1, log_r = std::log(r);
+  return {-m * m * log_r, -2 * m * log_r - m * m / r, -2 * log_r - 4 * m / r + m * m / (r * r)};
+}
+
+// IPC's edge-edge mollifier (Li et al. 2020, eq. 11) on c = |e0 x e1|^2 with
+// threshold eps: (2 - c / eps) c / eps below eps, else 1. It fades an
+// edge-edge pair out as the edges turn parallel, where their distance is not
+// smooth, while the point-triangle pairs of their endpoints hold the contact.
+struct MollifierValue {
+  double m = 1, dm = 0, d2m = 0;  // m(c), m'(c), m''(c)
+};
+
+inline MollifierValue edge_mollifier(double c, double eps) {
+  if (!(c < eps)) return {};
+  const double u = c / eps;
+  return {(2 - u) * u, (2 - 2 * u) / eps, -2 / (eps * eps)};
+}
+
+}  // namespace drape::barrier
