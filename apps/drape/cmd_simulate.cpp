@@ -81,6 +81,10 @@ int run(const std::vector<std::string>& args) {
   std::printf("%s after %d steps, %d Newton iterations (%d line-search stops), %s Cholesky\n",
               r.converged ? (r.at_rest ? "settled (at rest)" : "settled") : "NOT settled", r.steps, r.iterations, r.line_search_failures,
               r.linear_solver.c_str());
+  if (!r.unsettled.empty()) std::printf("why: %s\n", r.unsettled.c_str());
+  if (r.start_shrink > 0 || r.morph_substeps > 0)
+    std::printf("barrier contact: start body shrunk by %.1f cm to separate it from the garment, %d morph steps cut short\n",
+                100.0 * r.start_shrink, r.morph_substeps);
   std::printf("  %-12s %14s\n", "energy", "J");
   for (const auto& t : r.energies) std::printf("  %-12s %14.6g\n", t.name.c_str(), t.value);
   std::printf("  %-12s %14.6g\n", "total", r.total_energy);

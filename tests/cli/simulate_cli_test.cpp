@@ -25,3 +25,26 @@ TEST_CASE("drape simulate reports the surface crossings next to p", "[cli][simul
   const std::string picture((std::istreambuf_iterator<char>(svg)), std::istreambuf_iterator<char>());
   CHECK(std::regex_search(picture, std::regex("p = [0-9.]+%, [0-9]+ surface crossings")));
 }
+
+TEST_CASE("drape simulate with the barrier contact refuses a garment that starts through the body, naming where",
+          "[cli][simulate][barrier]") {
+  // The T-shirt template's armholes pass through the shoulders of the mean
+  // body (docs/scenes.md, "Contact"): a barrier cannot untangle that start.
+  test::TempDir dir;
+  std::ofstream(dir / "barrier.yaml") << R"(body: {model: parametric}
+garment: {template: tshirt, params: {resolution: 300}}
+effects:
+  gravity: {}
+  stretching: {}
+  bending: {}
+  barrier: {}
+solver: {morph_steps: 2, settle_steps: 3}
+)";
+  std::string out;
+  const int code = test::run(test::drape_program().string() + " simulate " + (dir / "barrier.yaml").string(), out);
+  INFO(out);
+  CHECK(code != 0);
+  CHECK(std::regex_search(out, std::regex("starts crossing the body surface \\([0-9]+ garment edges through body faces, "
+                                          "[0-9]+ body edges through garment faces; [0-9]+ garment vertices around "
+                                          "\\([-0-9., ]+\\) m, heights")));
+}

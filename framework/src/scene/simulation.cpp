@@ -10,6 +10,8 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cstdio>
+#include <cstdlib>
 
 namespace drape {
 
@@ -187,7 +189,11 @@ SimulationResult Simulation::run(const Eigen::MatrixX3d& target_body, const Simu
       ++result.morph_substeps;
       x += alpha * (carried - x);
       surface->update(from + alpha * (next - from));
+      // The cut move left a pair close: the cloth gets the settling budget to
+      // move away before the rest of the move.
+      solver.set_max_newton_iterations(settle_newton);
       const StepReport r = solver.step(x, v);
+      solver.set_max_newton_iterations(std::min(settle_newton, morph_newton_));
       result.iterations += r.iterations;
       result.line_search_failures += r.line_search_failures;
     }
