@@ -77,6 +77,21 @@ std::shared_ptr<Garment> sheet_over_corner(int n, double s, double z) {
 
 }  // namespace
 
+TEST_CASE("barrier: bad parameters, a missing body and a wrong vertex count are refused", "[barrier]") {
+  CHECK_THROWS_WITH(params_for("barrier", "{distance: 0}"), Catch::Contains("'distance'"));
+  CHECK_THROWS_WITH(params_for("barrier", "{stiffness: -1}"), Catch::Contains("'stiffness'"));
+  CHECK_THROWS_WITH(params_for("barrier", "{min_separation: 1}"), Catch::Contains("'min_separation'"));
+  CHECK_THROWS_AS(params_for("barrier", "{distanse: 0.001}"), ConfigError);
+  const geometry::BodySurface body(box(-1, 1, 0, 2, -2, 0));
+  const Garment g = one_triangle({-0.5, 0.5, 1e-3}, {-0.49, 0.5, 1e-3}, {-0.5, 0.51, 1e-3});
+  auto e = plugins().create_energy("barrier", params_for("barrier", "{}"));
+  EnergyContext no_body;
+  no_body.garment = &g;
+  CHECK_THROWS_WITH(e->bind(no_body), Catch::Contains("barrier: needs the body"));
+  const auto bound = barrier_on(g, body);
+  CHECK_THROWS_WITH(bound->value(Eigen::MatrixX3d::Zero(4, 3)), Catch::Contains("4 vertices given, the bound garment has 3"));
+}
+
 TEST_CASE("barrier: a garment triangle over a face costs kappa d_hat a_v b(d) per vertex", "[barrier]") {
   // Top face z = 0 of a 2 m box; the triangle 0.5 mm above it, far from the
   // face's diagonal and edges, so only its three vertex-face pairs are active.

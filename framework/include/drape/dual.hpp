@@ -81,8 +81,21 @@ Dual<N> operator/(const Dual<N>& a, const Dual<N>& b) {
   return a * inverse(b);
 }
 
-// Plain doubles take the same code paths (value only).
+template <int N>
+Dual<N> sqrt(const Dual<N>& a) {
+  const double r = std::sqrt(a.v);
+  return chain(a, r, 0.5 / r, -0.25 / (r * a.v));
+}
+
+// Plain doubles take the same code paths (value only), so one function
+// template gives a value in double and its derivatives in Dual<N>.
 inline double inverse(double a) { return 1 / a; }
+inline double chain(double /*a*/, double f, double /*df*/, double /*d2f*/) { return f; }
+inline double primal(double a) { return a; }
+template <int N>
+double primal(const Dual<N>& a) {
+  return a.v;
+}
 
 // A 3-vector of scalars (double or Dual<N>) and the few operations contact needs.
 template <class S>

@@ -6,6 +6,7 @@
 #include <drape/element_assembly.hpp>
 #include <drape/element_energy.hpp>
 #include <drape/errors.hpp>
+#include <drape/geometry/adjacency.hpp>
 #include <drape/geometry/box_pairs.hpp>
 #include <drape/geometry/ccd.hpp>
 #include <drape/geometry/vertex_areas.hpp>
@@ -16,73 +17,76 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <map>
 #include <string>
+#include <type_traits>
 
 namespace drape::barrier {
 
 using geometry::Box;
 
-// The garment's primitives (fixed at bind) and the body's (its faces fixed,
-// its per-vertex quantities recomputed when it moves).
+// The garment's primitives and their material-space weights, and the body's
+// faces and edges: fixed at bind.
 struct BarrierContact::Topology {
   Eigen::MatrixX3i garment_faces;
-  std::vector<std::array<int, 2>> garment_edges;
+  std::vector<std::array<int, 2>> garment_edges;  // geometry::edge_list: sorted
   Eigen::VectorXd garment_vertex_area;   // m^2, material space
   Eigen::VectorXd garment_edge_area;     // m^2: a third of each adjacent face's material area
   Eigen::VectorXd garment_edge_rest2;    // m^2: squared material-space length (the mollifier's scale)
   int garment_vertices = 0;
-
   Eigen::MatrixX3i body_faces;
   std::vector<std::array<int, 2>> body_edges;
-  // Of the body at `body_revision`: vertex areas, squared edge lengths, face and edge boxes.
-  std::uint64_t body_revision = std::numeric_limits<std::uint64_t>::max();
-  Eigen::VectorXd body_vertex_area;
-  Eigen::VectorXd body_edge_length2;
-  std::vector<Box> body_face_boxes, body_edge_boxes;
+};
+
+// Of the body at one revision: its vertices' lumped areas (the weights of
+// body vertex pairs), its squared edge lengths (the mollifier's scale) and the
+// boxes of its vertices, faces and edges (the broad phase).
+struct BarrierContact::BodyState {
+  std::uint64_t revision = 0;
+  Eigen::VectorXd vertex_area;
+  Eigen::VectorXd edge_length2;
+  std::vector<Box> point_boxes, face_boxes, edge_boxes;
 };
 
 namespace {
 
-std::vector<std::array<int, 2>> unique_edges(const Eigen::MatrixX3i& faces) {
-  std::vector<std::array<int, 2>> edges;
-  edges.reserve(static_cast<std::size_t>(faces.rows()) * 3);
-  for (Eigen::Index f = 0; f < faces.rows(); ++f)
-    for (int k = 0; k < 3; ++k) {
-      const int a = faces(f, k), b = faces(f, (k + 1) % 3);
-      edges.push_back({std::min(a, b), std::max(a, b)});
-    }
-  std::sort(edges.begin(), edges.end());
-  edges.erase(std::unique(edges.begin(), edges.end()), edges.end());
-  return edges;
-}
-
-Box point_box(const Eigen::Vector3d& p, double inflate) {
-  return {(p.array() - inflate).matrix(), (p.array() + inflate).matrix()};
-}
-
-void grow(Box& box, const Eigen::Vector3d& p) {
-  box.lo = box.lo.cwiseMin(p);
-  box.hi = box.hi.cwiseMax(p);
-}
-
+// The box of the primitive's vertices in x, and in x_end too when given (the
+// box it sweeps over a linear move), grown by `inflate`.
 template <std::size_t K>
 Box primitive_box(const std::array<int, K>& v, const Eigen::MatrixX3d& x, const Eigen::MatrixX3d* x_end, double inflate) {
-  Box box = point_box(x.row(v[0]).transpose(), inflate);
+  Box box{x.row(v[0]).transpose(), x.row(v[0]).transpose()};
   for (std::size_t k = 0; k < K; ++k) {
-    const Eigen::Vector3d p = x.row(v[k]).transpose();
-    grow(box, (p.array() - inflate).matrix());
-    grow(box, (p.array() + inflate).matrix());
+    box.lo = box.lo.cwiseMin(x.row(v[k]).transpose());
+    box.hi = box.hi.cwiseMax(x.row(v[k]).transpose());
     if (x_end) {
-      const Eigen::Vector3d q = x_end->row(v[k]).transpose();
-      grow(box, (q.array() - inflate).matrix());
-      grow(box, (q.array() + inflate).matrix());
+      box.lo = box.lo.cwiseMin(x_end->row(v[k]).transpose());
+      box.hi = box.hi.cwiseMax(x_end->row(v[k]).transpose());
     }
   }
+  box.lo.array() -= inflate;
+  box.hi.array() += inflate;
   return box;
 }
 
 std::array<int, 3> face(const Eigen::MatrixX3i& faces, int f) { return {faces(f, 0), faces(f, 1), faces(f, 2)}; }
+
+// The boxes of every vertex, face and edge of a mesh moving from x to x_end
+// (x_end null: standing), grown by `inflate`.
+struct MeshBoxes {
+  std::vector<Box> points, faces, edges;
+};
+MeshBoxes mesh_boxes(const Eigen::MatrixX3d& x, const Eigen::MatrixX3d* x_end, const Eigen::MatrixX3i& faces,
+                     const std::vector<std::array<int, 2>>& edges, double inflate) {
+  MeshBoxes b;
+  b.points.resize(static_cast<std::size_t>(x.rows()));
+  b.faces.resize(static_cast<std::size_t>(faces.rows()));
+  b.edges.resize(edges.size());
+  for (Eigen::Index v = 0; v < x.rows(); ++v)
+    b.points[static_cast<std::size_t>(v)] = primitive_box(std::array<int, 1>{static_cast<int>(v)}, x, x_end, inflate);
+  for (Eigen::Index f = 0; f < faces.rows(); ++f)
+    b.faces[static_cast<std::size_t>(f)] = primitive_box(face(faces, static_cast<int>(f)), x, x_end, inflate);
+  for (std::size_t e = 0; e < edges.size(); ++e) b.edges[e] = primitive_box(edges[e], x, x_end, inflate);
+  return b;
+}
 
 // Which of a pair's 4 points are garment vertices (the variables).
 bool is_variable(PairKind kind, int point) {
@@ -92,6 +96,24 @@ bool is_variable(PairKind kind, int point) {
     case PairKind::GarmentEdgeBodyEdge: break;
   }
   return point <= 1;
+}
+
+// Calls f(std::integral_constant<int, K>{}) with K the number of garment
+// vertices of a pair of this kind (1, 3 or 2): the size of its stencil.
+template <class F>
+void with_stencil_size(PairKind kind, F&& f) {
+  switch (kind) {
+    case PairKind::GarmentVertexBodyFace: f(std::integral_constant<int, 1>{}); return;
+    case PairKind::BodyVertexGarmentFace: f(std::integral_constant<int, 3>{}); return;
+    case PairKind::GarmentEdgeBodyEdge: f(std::integral_constant<int, 2>{}); return;
+  }
+}
+
+[[noreturn]] void touching(const ContactPair& p) {
+  throw Error("barrier: garment " +
+              std::string(p.kind == PairKind::GarmentVertexBodyFace   ? "vertex " :
+                          p.kind == PairKind::BodyVertexGarmentFace ? "face " : "edge ") +
+              std::to_string(p.garment) + " touches the body (distance 0): the state is not separated from the body");
 }
 
 }  // namespace
@@ -114,11 +136,9 @@ void BarrierContact::bind(const EnergyContext& context) {
   Topology& t = *topology_;
   t.garment_faces = garment.mesh.faces;
   t.garment_vertices = garment.mesh.num_vertices();
-  t.garment_edges = unique_edges(t.garment_faces);
+  t.garment_edges = geometry::edge_list(t.garment_faces);
   t.garment_vertex_area = geometry::vertex_areas(garment);
   // Each face's material area, a third to each of its edges.
-  std::map<std::array<int, 2>, int> edge_index;
-  for (std::size_t e = 0; e < t.garment_edges.size(); ++e) edge_index[t.garment_edges[e]] = static_cast<int>(e);
   t.garment_edge_area = Eigen::VectorXd::Zero(static_cast<Eigen::Index>(t.garment_edges.size()));
   t.garment_edge_rest2 = Eigen::VectorXd::Zero(t.garment_edge_area.size());
   const Mesh& mesh = garment.mesh;
@@ -129,15 +149,16 @@ void BarrierContact::bind(const EnergyContext& context) {
     const double third = std::abs(e1.x() * e2.y() - e1.y() * e2.x()) / 6.0;
     for (int k = 0; k < 3; ++k) {
       const int a = mesh.faces(f, k), b = mesh.faces(f, (k + 1) % 3);
-      const int e = edge_index.at({std::min(a, b), std::max(a, b)});
+      const std::array<int, 2> key{std::min(a, b), std::max(a, b)};
+      const auto e = std::lower_bound(t.garment_edges.begin(), t.garment_edges.end(), key) - t.garment_edges.begin();
       t.garment_edge_area[e] += third;
       t.garment_edge_rest2[e] = (uv[(k + 1) % 3] - uv[k]).squaredNorm();
     }
   }
   t.body_faces = body_->faces();
-  t.body_edges = unique_edges(t.body_faces);
-  t.body_revision = std::numeric_limits<std::uint64_t>::max();
+  t.body_edges = geometry::edge_list(t.body_faces);
   std::lock_guard<std::mutex> lock(cache_.mutex);
+  cache_.body.reset();
   cache_.pairs.reset();
 }
 
@@ -179,105 +200,85 @@ int BarrierContact::pair_vertices(const ContactPair& pair, std::array<int, 3>& v
   return 2;
 }
 
-template <int N>
-double BarrierContact::pair_derivatives(const ContactPair& pair, const Eigen::MatrixX3d& x, Eigen::Matrix<double, N, 1>& g,
-                                        Eigen::Matrix<double, N, N>* h) const {
+template <class S>
+S BarrierContact::pair_energy(const ContactPair& pair, const BodyState& body, const std::array<Vec3<S>, 4>& q) const {
   const Topology& t = *topology_;
-  const std::array<Eigen::Vector3d, 4> p = pair_points(pair, x);
-  std::array<Vec3<Dual<N>>, 4> q;
-  int next = 0;
-  for (int k = 0; k < 4; ++k)
-    q[static_cast<std::size_t>(k)] = is_variable(pair.kind, k) ? variable_point<N>(p[static_cast<std::size_t>(k)], 3 * next++)
-                                                               : constant_point<N>(p[static_cast<std::size_t>(k)]);
   const double dhat2 = settings_.distance * settings_.distance;
-  const Dual<N> s = typed_distance2(pair.type, q);
-  const BarrierValue bv = log_barrier(s.v / dhat2);
-  Dual<N> e = chain(s, bv.b, bv.db / dhat2, bv.d2b / (dhat2 * dhat2));
+  const S s = typed_distance2(pair.type, q);
+  const BarrierValue bv = log_barrier(primal(s) / dhat2);
+  S e = chain(s, bv.b, bv.db / dhat2, bv.d2b / (dhat2 * dhat2));
   double weight = 0;
   switch (pair.kind) {
     case PairKind::GarmentVertexBodyFace: weight = t.garment_vertex_area[pair.garment]; break;
-    case PairKind::BodyVertexGarmentFace: weight = t.body_vertex_area[pair.body]; break;
+    case PairKind::BodyVertexGarmentFace: weight = body.vertex_area[pair.body]; break;
     case PairKind::GarmentEdgeBodyEdge: {
       weight = t.garment_edge_area[pair.garment];
-      const Vec3<Dual<N>> n = cross(q[1] - q[0], q[3] - q[2]);
-      const Dual<N> c = dot(n, n);
-      const double eps = 1e-3 * t.garment_edge_rest2[pair.garment] * t.body_edge_length2[pair.body];
-      const MollifierValue mv = edge_mollifier(c.v, eps);
+      const Vec3<S> n = cross(q[1] - q[0], q[3] - q[2]);
+      const S c = dot(n, n);
+      const MollifierValue mv = edge_mollifier(primal(c), 1e-3 * t.garment_edge_rest2[pair.garment] * body.edge_length2[pair.body]);
       if (mv.m != 1) e = chain(c, mv.m, mv.dm, mv.d2m) * e;
       break;
     }
   }
-  const double scale = settings_.stiffness * settings_.distance * weight;
-  g = scale * e.g;
-  if (h) *h = scale * e.h;
-  return scale * e.v;
+  return (settings_.stiffness * settings_.distance * weight) * e;
 }
 
-double BarrierContact::pair_value(const ContactPair& pair, const Eigen::MatrixX3d& x) const {
-  const Topology& t = *topology_;
+template <int N>
+Dual<N> BarrierContact::pair_dual(const ContactPair& pair, const BodyState& body, const Eigen::MatrixX3d& x) const {
   const std::array<Eigen::Vector3d, 4> p = pair_points(pair, x);
-  const std::array<Vec3<double>, 4> q{plain_point(p[0]), plain_point(p[1]), plain_point(p[2]), plain_point(p[3])};
-  const double dhat2 = settings_.distance * settings_.distance;
-  double e = log_barrier(typed_distance2(pair.type, q) / dhat2).b;
-  double weight = 0;
-  switch (pair.kind) {
-    case PairKind::GarmentVertexBodyFace: weight = t.garment_vertex_area[pair.garment]; break;
-    case PairKind::BodyVertexGarmentFace: weight = t.body_vertex_area[pair.body]; break;
-    case PairKind::GarmentEdgeBodyEdge: {
-      weight = t.garment_edge_area[pair.garment];
-      const Vec3<double> n = cross(q[1] - q[0], q[3] - q[2]);
-      e *= edge_mollifier(dot(n, n), 1e-3 * t.garment_edge_rest2[pair.garment] * t.body_edge_length2[pair.body]).m;
-      break;
-    }
-  }
-  return settings_.stiffness * settings_.distance * weight * e;
+  std::array<Vec3<Dual<N>>, 4> q;
+  int next = 0;
+  for (std::size_t k = 0; k < 4; ++k)
+    q[k] = is_variable(pair.kind, static_cast<int>(k)) ? variable_point<N>(p[k], 3 * next++) : constant_point<N>(p[k]);
+  return pair_energy(pair, body, q);
 }
 
-std::shared_ptr<const std::vector<ContactPair>> BarrierContact::cached_pairs(const Eigen::MatrixX3d& x) const {
+std::shared_ptr<const BarrierContact::BodyState> BarrierContact::body_state_locked() const {
+  const std::uint64_t revision = body_->revision();
+  if (cache_.body && cache_.body->revision == revision) return cache_.body;
+  const Topology& t = *topology_;
+  const Eigen::MatrixX3d& body = body_->vertices();
+  auto state = std::make_shared<BodyState>();
+  state->revision = revision;
+  state->vertex_area = Eigen::VectorXd::Zero(body.rows());
+  for (Eigen::Index f = 0; f < t.body_faces.rows(); ++f) {
+    const auto v = face(t.body_faces, static_cast<int>(f));
+    const Eigen::Vector3d a = body.row(v[0]), b = body.row(v[1]), c = body.row(v[2]);
+    const double third = (b - a).cross(c - a).norm() / 6.0;
+    for (int k : v) state->vertex_area[k] += third;
+  }
+  state->edge_length2.resize(static_cast<Eigen::Index>(t.body_edges.size()));
+  for (std::size_t e = 0; e < t.body_edges.size(); ++e)
+    state->edge_length2[static_cast<Eigen::Index>(e)] = (body.row(t.body_edges[e][0]) - body.row(t.body_edges[e][1])).squaredNorm();
+  MeshBoxes boxes = mesh_boxes(body, nullptr, t.body_faces, t.body_edges, 0.0);
+  state->point_boxes = std::move(boxes.points);
+  state->face_boxes = std::move(boxes.faces);
+  state->edge_boxes = std::move(boxes.edges);
+  cache_.body = state;
+  return state;
+}
+
+std::shared_ptr<const BarrierContact::BodyState> BarrierContact::body_state() const {
+  std::lock_guard<std::mutex> lock(cache_.mutex);
+  return body_state_locked();
+}
+
+std::shared_ptr<const BarrierContact::PairSet> BarrierContact::cached_pairs(const Eigen::MatrixX3d& x) const {
   check(x);
   std::lock_guard<std::mutex> lock(cache_.mutex);
-  Topology& t = *topology_;
-  const std::uint64_t revision = body_->revision();
-  if (cache_.pairs && cache_.revision == revision && cache_.x.rows() == x.rows() && cache_.x == x) return cache_.pairs;
+  const std::shared_ptr<const BodyState> body = body_state_locked();
+  if (cache_.pairs && cache_.pairs->body == body && cache_.x == x) return cache_.pairs;
 
-  const Eigen::MatrixX3d& body = body_->vertices();
-  if (t.body_revision != revision) {
-    // Body quantities: lumped face areas, edge lengths, boxes (faces, edges).
-    const Eigen::Index nb = body.rows();
-    t.body_vertex_area = Eigen::VectorXd::Zero(nb);
-    t.body_face_boxes.resize(static_cast<std::size_t>(t.body_faces.rows()));
-    for (Eigen::Index f = 0; f < t.body_faces.rows(); ++f) {
-      const auto v = face(t.body_faces, static_cast<int>(f));
-      const Eigen::Vector3d a = body.row(v[0]), b = body.row(v[1]), c = body.row(v[2]);
-      const double third = (b - a).cross(c - a).norm() / 6.0;
-      for (int k : v) t.body_vertex_area[k] += third;
-      t.body_face_boxes[static_cast<std::size_t>(f)] = primitive_box(v, body, nullptr, 0.0);
-    }
-    t.body_edge_length2.resize(static_cast<Eigen::Index>(t.body_edges.size()));
-    t.body_edge_boxes.resize(t.body_edges.size());
-    for (std::size_t e = 0; e < t.body_edges.size(); ++e) {
-      t.body_edge_length2[static_cast<Eigen::Index>(e)] = (body.row(t.body_edges[e][0]) - body.row(t.body_edges[e][1])).squaredNorm();
-      t.body_edge_boxes[e] = primitive_box(t.body_edges[e], body, nullptr, 0.0);
-    }
-    t.body_revision = revision;
-  }
-
-  // Broad phase: garment boxes grown by d_hat against the body's, per kind.
-  const double dhat = settings_.distance, dhat2 = dhat * dhat;
-  std::vector<Box> garment_points(static_cast<std::size_t>(x.rows())), garment_faces(static_cast<std::size_t>(t.garment_faces.rows())),
-      garment_edges(t.garment_edges.size()), body_points(static_cast<std::size_t>(body.rows()));
-  for (Eigen::Index v = 0; v < x.rows(); ++v) garment_points[static_cast<std::size_t>(v)] = point_box(x.row(v).transpose(), dhat);
-  for (Eigen::Index f = 0; f < t.garment_faces.rows(); ++f)
-    garment_faces[static_cast<std::size_t>(f)] = primitive_box(face(t.garment_faces, static_cast<int>(f)), x, nullptr, dhat);
-  for (std::size_t e = 0; e < t.garment_edges.size(); ++e) garment_edges[e] = primitive_box(t.garment_edges[e], x, nullptr, dhat);
-  for (Eigen::Index v = 0; v < body.rows(); ++v) body_points[static_cast<std::size_t>(v)] = point_box(body.row(v).transpose(), 0.0);
-
+  // Broad phase: the garment's boxes grown by d_hat against the body's, per kind.
+  const Topology& t = *topology_;
+  const double dhat2 = settings_.distance * settings_.distance;
+  const MeshBoxes garment = mesh_boxes(x, nullptr, t.garment_faces, t.garment_edges, settings_.distance);
   std::vector<ContactPair> candidates;
-  for (auto [g, b] : geometry::overlapping_boxes(garment_points, t.body_face_boxes))
+  for (auto [g, b] : geometry::overlapping_boxes(garment.points, body->face_boxes))
     candidates.push_back({PairKind::GarmentVertexBodyFace, g, b, {}, 0});
-  for (auto [g, b] : geometry::overlapping_boxes(garment_faces, body_points))
+  for (auto [g, b] : geometry::overlapping_boxes(garment.faces, body->point_boxes))
     candidates.push_back({PairKind::BodyVertexGarmentFace, g, b, {}, 0});
-  for (auto [g, b] : geometry::overlapping_boxes(garment_edges, t.body_edge_boxes))
+  for (auto [g, b] : geometry::overlapping_boxes(garment.edges, body->edge_boxes))
     candidates.push_back({PairKind::GarmentEdgeBodyEdge, g, b, {}, 0});
 
   // Narrow phase: exact distances and types, in parallel; kept in candidate order.
@@ -296,81 +297,50 @@ std::shared_ptr<const std::vector<ContactPair>> BarrierContact::cached_pairs(con
     }
     keep[static_cast<std::size_t>(i)] = c.distance2 < dhat2;
   }
-  auto pairs = std::make_shared<std::vector<ContactPair>>();
+  auto set = std::make_shared<PairSet>();
+  set->body = body;
   for (int i = 0; i < n; ++i)
-    if (keep[static_cast<std::size_t>(i)]) pairs->push_back(candidates[static_cast<std::size_t>(i)]);
+    if (keep[static_cast<std::size_t>(i)]) set->pairs.push_back(candidates[static_cast<std::size_t>(i)]);
   cache_.x = x;
-  cache_.revision = revision;
-  cache_.pairs = pairs;
-  return pairs;
-}
-
-std::vector<ContactPair> BarrierContact::pairs(const Eigen::MatrixX3d& x) const { return *cached_pairs(x); }
-
-double BarrierContact::min_distance(const Eigen::MatrixX3d& x) const {
-  double d2 = std::numeric_limits<double>::infinity();
-  for (const ContactPair& p : *cached_pairs(x)) d2 = std::min(d2, p.distance2);
-  return std::sqrt(d2);
+  cache_.pairs = set;
+  return set;
 }
 
 double BarrierContact::value(const Eigen::MatrixX3d& x) const {
-  const auto pairs = cached_pairs(x);
-  for (const ContactPair& p : *pairs)
+  const auto set = cached_pairs(x);
+  const std::vector<ContactPair>& pairs = set->pairs;
+  for (const ContactPair& p : pairs)
     if (!(p.distance2 > 0)) return std::numeric_limits<double>::infinity();
-  return deterministic_sum(static_cast<int>(pairs->size()), [&](int i) { return pair_value((*pairs)[static_cast<std::size_t>(i)], x); });
+  return deterministic_sum(static_cast<int>(pairs.size()), [&](int i) {
+    const ContactPair& pair = pairs[static_cast<std::size_t>(i)];
+    const std::array<Eigen::Vector3d, 4> p = pair_points(pair, x);
+    return pair_energy(pair, *set->body, std::array<Vec3<double>, 4>{plain_point(p[0]), plain_point(p[1]), plain_point(p[2]), plain_point(p[3])});
+  });
 }
-
-namespace {
-
-[[noreturn]] void touching(const ContactPair& p) {
-  throw Error("barrier: garment " +
-              std::string(p.kind == PairKind::GarmentVertexBodyFace   ? "vertex " :
-                          p.kind == PairKind::BodyVertexGarmentFace ? "face " : "edge ") +
-              std::to_string(p.garment) + " touches the body (distance 0): the state is not separated from the body");
-}
-
-}  // namespace
 
 double BarrierContact::add_gradient(const Eigen::MatrixX3d& x, Eigen::MatrixX3d& g) const {
-  const auto pairs = cached_pairs(x);
-  const int n = static_cast<int>(pairs->size());
-  for (const ContactPair& p : *pairs)
+  const auto set = cached_pairs(x);
+  const std::vector<ContactPair>& pairs = set->pairs;
+  const int n = static_cast<int>(pairs.size());
+  for (const ContactPair& p : pairs)
     if (!(p.distance2 > 0)) touching(p);
   // Per-pair gradients in parallel, gathered in pair order (deterministic).
   std::vector<Eigen::Matrix<double, 9, 1>> grads(static_cast<std::size_t>(n));
   std::vector<double> values(static_cast<std::size_t>(n));
 #pragma omp parallel for schedule(static) if (n >= 1024)
   for (int i = 0; i < n; ++i) {
-    const ContactPair& p = (*pairs)[static_cast<std::size_t>(i)];
-    auto& out = grads[static_cast<std::size_t>(i)];
-    out.setZero();
-    double v = 0;
-    switch (p.kind) {
-      case PairKind::GarmentVertexBodyFace: {
-        Eigen::Matrix<double, 3, 1> ge;
-        v = pair_derivatives<3>(p, x, ge, nullptr);
-        out.head<3>() = ge;
-        break;
-      }
-      case PairKind::BodyVertexGarmentFace: {
-        Eigen::Matrix<double, 9, 1> ge;
-        v = pair_derivatives<9>(p, x, ge, nullptr);
-        out = ge;
-        break;
-      }
-      case PairKind::GarmentEdgeBodyEdge: {
-        Eigen::Matrix<double, 6, 1> ge;
-        v = pair_derivatives<6>(p, x, ge, nullptr);
-        out.head<6>() = ge;
-        break;
-      }
-    }
-    values[static_cast<std::size_t>(i)] = v;
+    const ContactPair& p = pairs[static_cast<std::size_t>(i)];
+    with_stencil_size(p.kind, [&](auto size) {
+      constexpr int N = 3 * decltype(size)::value;
+      const Dual<N> e = pair_dual<N>(p, *set->body, x);
+      grads[static_cast<std::size_t>(i)].template head<N>() = e.g;
+      values[static_cast<std::size_t>(i)] = e.v;
+    });
   }
   double total = 0;
   std::array<int, 3> vertex{};
   for (int i = 0; i < n; ++i) {
-    const int k = pair_vertices((*pairs)[static_cast<std::size_t>(i)], vertex);
+    const int k = pair_vertices(pairs[static_cast<std::size_t>(i)], vertex);
     for (int j = 0; j < k; ++j) g.row(vertex[static_cast<std::size_t>(j)]) += grads[static_cast<std::size_t>(i)].segment<3>(3 * j).transpose();
     total += values[static_cast<std::size_t>(i)];
   }
@@ -378,51 +348,29 @@ double BarrierContact::add_gradient(const Eigen::MatrixX3d& x, Eigen::MatrixX3d&
 }
 
 void BarrierContact::hessian(const Eigen::MatrixX3d& x, Triplets& h, bool project_psd, bool lower) const {
-  const auto pairs = cached_pairs(x);
-  const int n = static_cast<int>(pairs->size());
-  for (const ContactPair& p : *pairs)
+  const auto set = cached_pairs(x);
+  const std::vector<ContactPair>& pairs = set->pairs;
+  const int n = static_cast<int>(pairs.size());
+  for (const ContactPair& p : pairs)
     if (!(p.distance2 > 0)) touching(p);
   // Slots: each pair writes its blocks at a fixed offset (prefix sum).
   std::vector<std::size_t> offset(static_cast<std::size_t>(n) + 1, h.size());
-  std::array<int, 3> vertex{};
-  for (int i = 0; i < n; ++i) {
-    const int k = pair_vertices((*pairs)[static_cast<std::size_t>(i)], vertex);
-    const std::size_t entries = k == 1 ? hessian_entries<1>(lower) : k == 2 ? hessian_entries<2>(lower) : hessian_entries<3>(lower);
-    offset[static_cast<std::size_t>(i) + 1] = offset[static_cast<std::size_t>(i)] + entries;
-  }
+  for (int i = 0; i < n; ++i)
+    with_stencil_size(pairs[static_cast<std::size_t>(i)].kind, [&](auto size) {
+      offset[static_cast<std::size_t>(i) + 1] = offset[static_cast<std::size_t>(i)] + hessian_entries<decltype(size)::value>(lower);
+    });
   h.resize(offset.back());
 #pragma omp parallel for schedule(static) if (n >= 512)
   for (int i = 0; i < n; ++i) {
-    const ContactPair& p = (*pairs)[static_cast<std::size_t>(i)];
+    const ContactPair& p = pairs[static_cast<std::size_t>(i)];
     std::array<int, 3> v{};
     pair_vertices(p, v);
-    Eigen::Triplet<double>* out = h.data() + offset[static_cast<std::size_t>(i)];
-    switch (p.kind) {
-      case PairKind::GarmentVertexBodyFace: {
-        Eigen::Matrix<double, 3, 1> g;
-        Eigen::Matrix<double, 3, 3> block;
-        pair_derivatives<3>(p, x, g, &block);
-        if (project_psd) project_to_psd<3>(block);
-        write_element_hessian<1>(block, v.data(), lower, out);
-        break;
-      }
-      case PairKind::BodyVertexGarmentFace: {
-        Eigen::Matrix<double, 9, 1> g;
-        Eigen::Matrix<double, 9, 9> block;
-        pair_derivatives<9>(p, x, g, &block);
-        if (project_psd) project_to_psd<9>(block);
-        write_element_hessian<3>(block, v.data(), lower, out);
-        break;
-      }
-      case PairKind::GarmentEdgeBodyEdge: {
-        Eigen::Matrix<double, 6, 1> g;
-        Eigen::Matrix<double, 6, 6> block;
-        pair_derivatives<6>(p, x, g, &block);
-        if (project_psd) project_to_psd<6>(block);
-        write_element_hessian<2>(block, v.data(), lower, out);
-        break;
-      }
-    }
+    with_stencil_size(p.kind, [&](auto size) {
+      constexpr int K = decltype(size)::value;
+      Eigen::Matrix<double, 3 * K, 3 * K> block = pair_dual<3 * K>(p, *set->body, x).h;
+      if (project_psd) project_to_psd<3 * K>(block);
+      write_element_hessian<K>(block, v.data(), lower, h.data() + offset[static_cast<std::size_t>(i)]);
+    });
   }
 }
 
@@ -445,22 +393,17 @@ double BarrierContact::max_step(const Eigen::MatrixX3d& x, const Eigen::MatrixX3
   const Eigen::MatrixX3d x1 = x + dx;
   const Eigen::MatrixX3d db = b1 - b0;
 
-  // Candidates: swept boxes that overlap (a pair whose boxes never meet cannot touch).
-  std::vector<Box> gp(static_cast<std::size_t>(x.rows())), gf(static_cast<std::size_t>(t.garment_faces.rows())),
-      ge(t.garment_edges.size()), bp(static_cast<std::size_t>(b0.rows())), bf(static_cast<std::size_t>(t.body_faces.rows())),
-      be(t.body_edges.size());
-  for (Eigen::Index v = 0; v < x.rows(); ++v) gp[static_cast<std::size_t>(v)] = primitive_box(std::array<int, 1>{static_cast<int>(v)}, x, &x1, 0.0);
-  for (Eigen::Index f = 0; f < t.garment_faces.rows(); ++f)
-    gf[static_cast<std::size_t>(f)] = primitive_box(face(t.garment_faces, static_cast<int>(f)), x, &x1, 0.0);
-  for (std::size_t e = 0; e < ge.size(); ++e) ge[e] = primitive_box(t.garment_edges[e], x, &x1, 0.0);
-  for (Eigen::Index v = 0; v < b0.rows(); ++v) bp[static_cast<std::size_t>(v)] = primitive_box(std::array<int, 1>{static_cast<int>(v)}, b0, &b1, 0.0);
-  for (Eigen::Index f = 0; f < t.body_faces.rows(); ++f)
-    bf[static_cast<std::size_t>(f)] = primitive_box(face(t.body_faces, static_cast<int>(f)), b0, &b1, 0.0);
-  for (std::size_t e = 0; e < be.size(); ++e) be[e] = primitive_box(t.body_edges[e], b0, &b1, 0.0);
-
-  const auto pt = geometry::overlapping_boxes(gp, bf);
-  const auto tp = geometry::overlapping_boxes(gf, bp);
-  const auto ee = geometry::overlapping_boxes(ge, be);
+  // Candidates: swept boxes that overlap (a pair whose boxes never meet
+  // cannot touch). A standing body's boxes are those of its state.
+  const MeshBoxes garment = mesh_boxes(x, &x1, t.garment_faces, t.garment_edges, 0.0);
+  std::shared_ptr<const BodyState> state;
+  MeshBoxes moving;
+  const bool body_moves = body_from || body_to;
+  if (body_moves) moving = mesh_boxes(b0, &b1, t.body_faces, t.body_edges, 0.0);
+  else state = body_state();
+  const auto pt = geometry::overlapping_boxes(garment.points, body_moves ? moving.faces : state->face_boxes);
+  const auto tp = geometry::overlapping_boxes(garment.faces, body_moves ? moving.points : state->point_boxes);
+  const auto ee = geometry::overlapping_boxes(garment.edges, body_moves ? moving.edges : state->edge_boxes);
   const double s = settings_.min_separation;
   auto g0 = [&](int v) -> Eigen::Vector3d { return x.row(v).transpose(); };
   auto gd = [&](int v) -> Eigen::Vector3d { return dx.row(v).transpose(); };

@@ -31,6 +31,7 @@
 // Hessian at the same x.
 #include "pair_distance.hpp"
 
+#include <drape/dual.hpp>
 #include <drape/energy.hpp>
 #include <drape/geometry/closest_point.hpp>
 
@@ -75,25 +76,30 @@ class BarrierContact final : public Energy {
   double max_step(const Eigen::MatrixX3d& x, const Eigen::MatrixX3d& dx, const Eigen::MatrixX3d* body_from = nullptr,
                   const Eigen::MatrixX3d* body_to = nullptr) const override;
 
-  // The pairs within d_hat at x on the current body (for tests and reports).
-  std::vector<ContactPair> pairs(const Eigen::MatrixX3d& x) const;
-  // The smallest pair distance within d_hat at x (infinity: no pair that close).
-  double min_distance(const Eigen::MatrixX3d& x) const;
-
-  struct Topology;  // the garment's and body's primitives (barrier.cpp)
+  struct Topology;   // the garment's and body's primitives, fixed at bind (barrier.cpp)
+  struct BodyState;  // what depends on the body's current positions (barrier.cpp)
+  // The pairs within d_hat at some x, with the body state they were found on.
+  struct PairSet {
+    std::shared_ptr<const BodyState> body;
+    std::vector<ContactPair> pairs;
+  };
 
  private:
   void check(const Eigen::MatrixX3d& x) const;
-  std::shared_ptr<const std::vector<ContactPair>> cached_pairs(const Eigen::MatrixX3d& x) const;
+  // The body state of the current body revision (rebuilt when it moved); caller holds the mutex.
+  std::shared_ptr<const BodyState> body_state_locked() const;
+  std::shared_ptr<const BodyState> body_state() const;
+  std::shared_ptr<const PairSet> cached_pairs(const Eigen::MatrixX3d& x) const;
   // The pair's 4 points: garment and body vertices as its kind orders them.
   std::array<Eigen::Vector3d, 4> pair_points(const ContactPair& pair, const Eigen::MatrixX3d& x) const;
   // The pair's garment vertices (its variables), and how many.
   int pair_vertices(const ContactPair& pair, std::array<int, 3>& vertex) const;
-  double pair_value(const ContactPair& pair, const Eigen::MatrixX3d& x) const;
-  // The pair's energy with its gradient and Hessian over its garment vertices.
+  // The pair's energy over the scalar S: double for the value, Dual<3 K> for
+  // the value, gradient and Hessian over its K garment vertices.
+  template <class S>
+  S pair_energy(const ContactPair& pair, const BodyState& body, const std::array<Vec3<S>, 4>& q) const;
   template <int N>
-  double pair_derivatives(const ContactPair& pair, const Eigen::MatrixX3d& x, Eigen::Matrix<double, N, 1>& g,
-                          Eigen::Matrix<double, N, N>* h) const;
+  Dual<N> pair_dual(const ContactPair& pair, const BodyState& body, const Eigen::MatrixX3d& x) const;
   void hessian(const Eigen::MatrixX3d& x, Triplets& h, bool project_psd, bool lower) const;
 
   BarrierSettings settings_;
@@ -102,9 +108,9 @@ class BarrierContact final : public Energy {
 
   struct Cache {
     std::mutex mutex;  // energies may be evaluated from several threads (graph loss nodes)
+    std::shared_ptr<const BodyState> body;
     Eigen::MatrixX3d x;
-    std::uint64_t revision = 0;
-    std::shared_ptr<const std::vector<ContactPair>> pairs;
+    std::shared_ptr<const PairSet> pairs;
   };
   mutable Cache cache_;
 };
