@@ -36,8 +36,7 @@
 // and at equal distances c is the same seen from either side. Its gradient and
 // Hessian are exact: both closest points move linearly with the vertex on the
 // feature they lie on (ClosestPoint::slide), and the rest is a chain
-// of elementary functions differentiated by Dual2.
-#include "dual2.hpp"
+// of elementary functions differentiated by drape::Dual<3> (drape/dual.hpp).
 #include "penalty.hpp"
 
 #include <Eigen/Core>
