@@ -3,8 +3,8 @@
 // scalings and a one-vertex bump.
 #include <catch2/catch.hpp>
 
-#include <drape/evaluation.hpp>
 #include <drape/geometry/penetration.hpp>
+#include <drape/geometry/surface_crossings.hpp>
 #include <drape/metrics.hpp>
 #include <drape/plugin.hpp>
 
@@ -35,10 +35,16 @@ TEST_CASE("the ground truth scores zero on every metric but p", "[metrics]") {
   CHECK(m.deformation == 0.0);
   const double p = geometry::penetration_ratio(geometry::BodySurface(f.body, f.assets->body.faces), f.garment);
   CHECK(m.penetration_percent == Approx(100.0 * p));
-  REQUIRE(metric_columns().size() == 6);
+  // A garment on itself over the body: the fixture's drape, whose crossings the
+  // independent count gives.
+  const int crossings = geometry::surface_crossings(f.garment, f.assets->garment->mesh.faces, f.body, f.assets->body.faces).total();
+  CHECK(m.crossings == crossings);
+  CHECK(m.crossed_percent == (crossings > 0 ? 100.0 : 0.0));
+  REQUIRE(metric_columns().size() == 8);
   std::vector<std::string> names;
   for (const auto& c : metric_columns()) names.push_back(c.name);
-  CHECK(names == std::vector<std::string>{"ME", "L_l", "L_e", "L_s", "L_d", "p"});
+  // The seed's six, then the surface crossings.
+  CHECK(names == std::vector<std::string>{"ME", "L_l", "L_e", "L_s", "L_d", "p", "crossings", "crossed_samples"});
 }
 
 TEST_CASE("a translation changes ME and L_s only", "[metrics]") {
@@ -132,15 +138,25 @@ TEST_CASE("metrics refuse wrong sizes and non-finite vertices, and summaries ave
 TEST_CASE("crossing summaries: mean per sample and the share of samples with any", "[metrics]") {
   // {0, 4, 0, 2}: mean 1.5, sample variance ((1.5^2 + 2.5^2 + 1.5^2 + 0.5^2) / 3) = 11/3;
   // crossed 0/1: {0, 1, 0, 1}, mean 0.5, variance (4 * 0.25) / 3 = 1/3.
-  const CrossingsSummary s = summarize_crossings({0, 4, 0, 2});
-  CHECK(s.mean == 1.5);
-  CHECK(s.stddev == Approx(std::sqrt(11.0 / 3.0)));
-  CHECK(s.crossed_fraction == 0.5);
-  CHECK(s.crossed_stddev == Approx(std::sqrt(1.0 / 3.0)));
-  const CrossingsSummary none = summarize_crossings({});
-  CHECK(none.mean == 0.0);
-  CHECK(none.crossed_fraction == 0.0);
-  CHECK(summarize_crossings({3}).stddev == 0.0);
+  auto summary_of = [](std::vector<int> crossings) {
+    std::vector<GarmentMetrics> samples;
+    for (int c : crossings) {
+      GarmentMetrics m;
+      m.crossings = c;
+      m.crossed_percent = c > 0 ? 100.0 : 0.0;
+      samples.push_back(m);
+    }
+    return summarize(samples);
+  };
+  const MetricsSummary s = summary_of({0, 4, 0, 2});
+  CHECK(s.mean.crossings == 1.5);
+  CHECK(s.stddev.crossings == Approx(std::sqrt(11.0 / 3.0)));
+  CHECK(s.mean.crossed_percent == 50.0);
+  CHECK(s.stddev.crossed_percent == Approx(100 * std::sqrt(1.0 / 3.0)));
+  const MetricsSummary none = summary_of({});
+  CHECK(none.mean.crossings == 0.0);
+  CHECK(none.mean.crossed_percent == 0.0);
+  CHECK(summary_of({3}).stddev.crossings == 0.0);
 }
 
 TEST_CASE("L_e, L_l, L_s and L_d are the values of the loss plugins (reduction: mean)", "[metrics]") {

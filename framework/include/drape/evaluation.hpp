@@ -15,19 +15,9 @@ namespace drape {
 struct SplitEvaluation {
   std::vector<GarmentMetrics> samples;          // in the order of the indices
   std::vector<double> ground_truth_penetration; // fraction of the simulated garment's vertices inside the body
-  // Garment edges through body triangles + body edges through garment ones
-  // (geometry::surface_crossings): where the surfaces cross, which p misses
-  // when no vertex is inside. Of each prediction, and of the simulated garment.
-  std::vector<int> crossings, ground_truth_crossings;
+  // Surface crossings of the simulated garment (MetricsContext::crossings).
+  std::vector<int> ground_truth_crossings;
 };
-
-// Over samples: mean and standard deviation of the crossings per sample, and
-// the fraction of samples with any (and the standard deviation of that 0/1).
-struct CrossingsSummary {
-  double mean = 0, stddev = 0;
-  double crossed_fraction = 0, crossed_stddev = 0;
-};
-CrossingsSummary summarize_crossings(const std::vector<int>& crossings);
 
 // Milliseconds of one prediction of a one-body batch on one core, as a user
 // runs it: the best of `repeats` after a warm-up pass.

@@ -39,10 +39,16 @@ struct GarmentMetrics {
   double spectral = 0;      // L_s (m)
   double deformation = 0;   // L_d
   double penetration_percent = 0;  // p
+  // Not the seed's: garment edges through body triangles plus body edges
+  // through garment triangles (geometry::surface_crossings), which p misses
+  // where no vertex is inside; and 100 when there is any, else 0 (its mean over
+  // samples is the share of samples with a crossing).
+  double crossings = 0;
+  double crossed_percent = 0;
 };
 
 // Names, units and values in table order: {"ME", "cm"}, {"L_l", "cm"}, {"L_e", "%"},
-// {"L_s", "m"}, {"L_d", ""}, {"p", "%"}.
+// {"L_s", "m"}, {"L_d", ""}, {"p", "%"}, then {"crossings", "edges"}, {"crossed_samples", "%"}.
 struct MetricColumn {
   std::string name, unit;
   double GarmentMetrics::*field;
@@ -73,6 +79,7 @@ class MetricsContext {
   double spectral_difference(const Eigen::MatrixX3d& x, const Eigen::MatrixX3d& y) const;   // m
   double deformation_difference(const Eigen::MatrixX3d& x, const Eigen::MatrixX3d& y) const;
   double penetration(const Eigen::MatrixX3d& x, const Eigen::MatrixX3d& body) const;      // fraction
+  int crossings(const Eigen::MatrixX3d& x, const Eigen::MatrixX3d& body) const;           // edges
 
  private:
   void check(const Eigen::MatrixX3d& m, int rows, const char* what) const;

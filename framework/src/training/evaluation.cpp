@@ -1,11 +1,9 @@
 #include <drape/data_parallel.hpp>
 #include <drape/errors.hpp>
 #include <drape/evaluation.hpp>
-#include <drape/geometry/surface_crossings.hpp>
 
 #include <algorithm>
 #include <chrono>
-#include <cmath>
 #include <string>
 
 namespace drape {
@@ -29,10 +27,7 @@ SplitEvaluation evaluate_model(Model& model, const DatasetReader& reader, const 
   SplitEvaluation out;
   out.samples.resize(indices.size());
   out.ground_truth_penetration.resize(indices.size());
-  out.crossings.resize(indices.size());
   out.ground_truth_crossings.resize(indices.size());
-  const Eigen::MatrixX3i& garment_faces = model.assets().garment->mesh.faces;  // MetricsContext checked there is one
-  const Eigen::MatrixX3i& body_faces = model.assets().body.faces;
   const auto step = static_cast<std::size_t>(batch_size);
   for (std::size_t first = 0; first < indices.size(); first += step) {
     const std::vector<std::size_t> part(indices.begin() + static_cast<long>(first),
@@ -49,9 +44,7 @@ SplitEvaluation evaluate_model(Model& model, const DatasetReader& reader, const 
                                body = batch.body.mat(b).cast<double>();
         out.samples[first + static_cast<std::size_t>(b)] = metrics.evaluate(x, y, body);
         out.ground_truth_penetration[first + static_cast<std::size_t>(b)] = metrics.penetration(y, body);
-        const std::size_t i = first + static_cast<std::size_t>(b);
-        out.crossings[i] = geometry::surface_crossings(x, garment_faces, body, body_faces).total();
-        out.ground_truth_crossings[i] = geometry::surface_crossings(y, garment_faces, body, body_faces).total();
+        out.ground_truth_crossings[first + static_cast<std::size_t>(b)] = metrics.crossings(y, body);
       } catch (const std::exception& e) {
         errors[static_cast<std::size_t>(b)] = e.what();
       }
@@ -61,22 +54,6 @@ SplitEvaluation evaluate_model(Model& model, const DatasetReader& reader, const 
     if (progress) progress->advance(part.size());
   }
   return out;
-}
-
-CrossingsSummary summarize_crossings(const std::vector<int>& crossings) {
-  CrossingsSummary s;
-  if (crossings.empty()) return s;
-  const auto n = static_cast<double>(crossings.size());
-  for (int c : crossings) s.mean += c / n, s.crossed_fraction += (c > 0) / n;
-  double var = 0, crossed_var = 0;
-  for (int c : crossings) {
-    var += (c - s.mean) * (c - s.mean);
-    crossed_var += ((c > 0) - s.crossed_fraction) * ((c > 0) - s.crossed_fraction);
-  }
-  // Sample standard deviations, as summarize() in metrics.cpp.
-  s.stddev = crossings.size() > 1 ? std::sqrt(var / (n - 1)) : 0.0;
-  s.crossed_stddev = crossings.size() > 1 ? std::sqrt(crossed_var / (n - 1)) : 0.0;
-  return s;
 }
 
 }  // namespace drape

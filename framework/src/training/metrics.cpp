@@ -3,6 +3,7 @@
 #include <drape/geometry/adjacency.hpp>
 #include <drape/geometry/laplacian.hpp>
 #include <drape/geometry/penetration.hpp>
+#include <drape/geometry/surface_crossings.hpp>
 #include <drape/metrics.hpp>
 
 #include <Eigen/LU>
@@ -16,7 +17,8 @@ const std::vector<MetricColumn>& metric_columns() {
   static const std::vector<MetricColumn> columns{
       {"ME", "cm", &GarmentMetrics::me_cm},           {"L_l", "cm", &GarmentMetrics::laplacian_cm},
       {"L_e", "%", &GarmentMetrics::edge_percent},    {"L_s", "m", &GarmentMetrics::spectral},
-      {"L_d", "", &GarmentMetrics::deformation},      {"p", "%", &GarmentMetrics::penetration_percent}};
+      {"L_d", "", &GarmentMetrics::deformation},      {"p", "%", &GarmentMetrics::penetration_percent},
+      {"crossings", "edges", &GarmentMetrics::crossings}, {"crossed_samples", "%", &GarmentMetrics::crossed_percent}};
   return columns;
 }
 
@@ -120,6 +122,10 @@ double MetricsContext::penetration(const Eigen::MatrixX3d& x, const Eigen::Matri
   return geometry::penetration_ratio(surface, x);
 }
 
+int MetricsContext::crossings(const Eigen::MatrixX3d& x, const Eigen::MatrixX3d& body) const {
+  return geometry::surface_crossings(x, faces_, body, body_faces_).total();
+}
+
 GarmentMetrics MetricsContext::evaluate(const Eigen::MatrixX3d& x, const Eigen::MatrixX3d& y,
                                         const Eigen::MatrixX3d& body) const {
   check(x, garment_vertices_, "the prediction");
@@ -132,6 +138,8 @@ GarmentMetrics MetricsContext::evaluate(const Eigen::MatrixX3d& x, const Eigen::
   m.spectral = spectral_difference(x, y);
   m.deformation = deformation_difference(x, y);
   m.penetration_percent = 100.0 * penetration(x, body);
+  m.crossings = crossings(x, body);
+  m.crossed_percent = m.crossings > 0 ? 100.0 : 0.0;
   return m;
 }
 
