@@ -9,16 +9,16 @@
 #include <Eigen/Core>
 
 #include <string>
-#include <vector>
-
-namespace drape {
-struct SimulationResult;
-}
 
 namespace drape::scene_detail {
 
-// Throws ConfigError naming the region (how many garment vertices, where)
-// when the garment x is inside or crosses the body.
+// What keeps the garment x from being separated from the body, naming the
+// region (garment_region.hpp): vertices inside, or edges of either surface
+// through the other. Empty when there is nothing.
+std::string separation_problem(const Eigen::MatrixX3d& x, const geometry::BodySurface& body,
+                               const Eigen::MatrixX3i& garment_faces);
+
+// Throws ConfigError with separation_problem's words when there is one.
 void check_separated_start(const Eigen::MatrixX3d& x, const geometry::BodySurface& body, const Eigen::MatrixX3i& garment_faces);
 
 // A body the garment x is separated from, to start the morph with: `body`
@@ -32,13 +32,5 @@ void check_separated_start(const Eigen::MatrixX3d& x, const geometry::BodySurfac
 Eigen::MatrixX3d separated_start_body(const Eigen::MatrixX3d& x, const Eigen::MatrixX3d& body,
                                       const Eigen::MatrixX3i& body_faces, const Eigen::MatrixX3i& garment_faces,
                                       double* shrink = nullptr);
-
-// Why a run did not settle, for SimulationResult::unsettled: the stationarity
-// against the tolerance, the region of the largest unbalanced forces, and
-// whether the last steps stopped moving (line searches finding no decrease).
-std::string why_unsettled(const SimulationResult& result, const Eigen::MatrixX3d& x, double tolerance, int settle_steps);
-
-// "12 garment vertices around (0.10, 1.32, 0.02) m, heights 1.28-1.36 m (vertex 401, ...)".
-std::string describe_region(const Eigen::MatrixX3d& x, const std::vector<int>& vertices);
 
 }  // namespace drape::scene_detail

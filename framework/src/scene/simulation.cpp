@@ -4,25 +4,18 @@
 #include <drape/registry.hpp>
 #include <drape/simulation.hpp>
 
-#include "garment_carry.hpp"
+#include "barrier_morph.hpp"
 #include "scene_materials.hpp"
 #include "separated_start.hpp"
+#include "unsettled.hpp"
 
 #include <algorithm>
 #include <chrono>
-#include <cstdio>
-#include <cstdlib>
 
 namespace drape {
 
 namespace {
 using Clock = std::chrono::steady_clock;
-// Garment vertices within kCarryInner of the skin move with it during the
-// morph, fading out at kCarryOuter (garment_carry.hpp); a morph step may be
-// cut into at most kMaxMorphParts partial moves.
-constexpr double kCarryInner = 0.005, kCarryOuter = 0.02;
-constexpr int kMaxMorphParts = 64;
-
 double since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
 }  // namespace
 
@@ -158,44 +151,18 @@ SimulationResult Simulation::run(const Eigen::MatrixX3d& target_body, const Simu
     scene_detail::check_separated_start(x, *surface, garment_->mesh.faces);
   }
   const Eigen::MatrixX3d& morph_from = separated_body.rows() ? separated_body : body_start;
+  scene_detail::BarrierMorph barrier_morph;
+  barrier_morph.morph_newton = std::min(settle_newton, morph_newton_);
+  barrier_morph.settle_newton = settle_newton;
   for (int k = 1; k <= morph_steps_; ++k) {
     const double t = static_cast<double>(k) / morph_steps_;
     const Eigen::MatrixX3d next = morph_from + t * (target_body - morph_from);
-    if (!barrier) {
+    if (barrier) {
+      // The body's move is checked too (barrier_morph.hpp).
+      record(k, true, scene_detail::barrier_morph_step(solver, *surface, next, k, barrier_morph, x, v, result), -1);
+    } else {
       if (surface) surface->update(next);
-      const StepReport r = solver.step(x, v);
-      record(k, true, r, -1);
-      continue;
-    }
-    // Under a barrier the body's move is checked too: the garment is carried
-    // with it (garment_carry.hpp) and the joint move is cut where a pair would
-    // come too close; the cloth is then solved at that body before the rest of
-    // the move, so no state on the way has the surfaces crossing.
-    for (int part = 0;; ++part) {
-      const Eigen::MatrixX3d from = surface->vertices();
-      const Eigen::MatrixX3d carried = scene_detail::carried_with_body(x, *surface, next, kCarryInner, kCarryOuter);
-      const double alpha = solver.max_step(x, carried - x, &from, &next);
-      if (alpha >= 1) {
-        x = carried;
-        surface->update(next);
-        const StepReport r = solver.step(x, v);
-        record(k, true, r, -1);
-        break;
-      }
-      if (part >= kMaxMorphParts)
-        throw Error("simulate: the body grows into the garment faster than the contact can push it away (morph step " +
-                    std::to_string(k) + " still blocked after " + std::to_string(kMaxMorphParts) +
-                    " partial moves); the garment does not fit this body");
-      ++result.morph_substeps;
-      x += alpha * (carried - x);
-      surface->update(from + alpha * (next - from));
-      // The cut move left a pair close: the cloth gets the settling budget to
-      // move away before the rest of the move.
-      solver.set_max_newton_iterations(settle_newton);
-      const StepReport r = solver.step(x, v);
-      solver.set_max_newton_iterations(std::min(settle_newton, morph_newton_));
-      result.iterations += r.iterations;
-      result.line_search_failures += r.line_search_failures;
+      record(k, true, solver.step(x, v), -1);
     }
   }
   if (surface && morph_steps_ > 0) {

@@ -1,0 +1,66 @@
+// One morph step under a barrier contact (barrier_morph.hpp).
+#include "barrier_morph.hpp"
+
+#include <drape/errors.hpp>
+
+#include <algorithm>
+#include <string>
+
+namespace drape::scene_detail {
+
+namespace {
+
+// x moved with the body from its current vertices to `next` (see the header).
+Eigen::MatrixX3d carried_with_body(const Eigen::MatrixX3d& x, const geometry::BodySurface& body,
+                                   const Eigen::MatrixX3d& next, double inner, double outer) {
+  const std::vector<geometry::SurfacePoint> hits = body.locate_all(x, outer);
+  const Eigen::MatrixX3d& from = body.vertices();
+  const Eigen::MatrixX3i& faces = body.faces();
+  Eigen::MatrixX3d carried = x;
+  for (Eigen::Index v = 0; v < x.rows(); ++v) {
+    const geometry::SurfacePoint& hit = hits[static_cast<std::size_t>(v)];
+    if (hit.face < 0) continue;
+    const double d = std::abs(hit.signed_distance);
+    const double weight = d <= inner ? 1.0 : std::max(0.0, (outer - d) / (outer - inner));
+    Eigen::RowVector3d move = Eigen::RowVector3d::Zero();
+    for (int k = 0; k < 3; ++k) {
+      const int c = faces(hit.face, k);
+      move += hit.barycentric[k] * (next.row(c) - from.row(c));
+    }
+    carried.row(v) += weight * move;
+  }
+  return carried;
+}
+
+}  // namespace
+
+StepReport barrier_morph_step(ClothSolver& solver, geometry::BodySurface& body, const Eigen::MatrixX3d& next, int step,
+                              const BarrierMorph& settings, Eigen::MatrixX3d& x, Eigen::MatrixX3d& v,
+                              SimulationResult& result) {
+  for (int cuts = 0;; ++cuts) {
+    const Eigen::MatrixX3d from = body.vertices();
+    const Eigen::MatrixX3d carried = carried_with_body(x, body, next, settings.carry_inner, settings.carry_outer);
+    const double alpha = solver.max_step(x, carried - x, &from, &next);
+    if (alpha >= 1) {
+      x = carried;
+      body.update(next);
+      return solver.step(x, v);
+    }
+    if (cuts >= settings.max_cuts)
+      throw Error("simulate: the body grows into the garment faster than the contact can push it away (morph step " +
+                  std::to_string(step) + " still blocked after " + std::to_string(settings.max_cuts) +
+                  " partial moves); the garment does not fit this body");
+    ++result.morph_substeps;
+    x += alpha * (carried - x);
+    body.update(from + alpha * (next - from));
+    // The cut left a pair close: the cloth gets the settling budget to move
+    // away before the rest of the move.
+    solver.set_max_newton_iterations(settings.settle_newton);
+    const StepReport r = solver.step(x, v);
+    solver.set_max_newton_iterations(settings.morph_newton);
+    result.iterations += r.iterations;
+    result.line_search_failures += r.line_search_failures;
+  }
+}
+
+}  // namespace drape::scene_detail

@@ -1,0 +1,38 @@
+#pragma once
+// One morph step under a barrier contact: the body moves to its next shape
+// and the garment must never be crossed on the way.
+//
+// A barrier must never enter a state where the surfaces touch, so a body
+// growing into the cloth cannot simply be moved and the cloth pushed out
+// afterwards (what the penalty contact does). Instead each garment vertex
+// near the body first moves with its closest body point (the barycentric
+// blend of that face's corner displacements), fully within `carry_inner` of
+// the skin and fading linearly to not at all at `carry_outer`: cloth lying on
+// the skin keeps its distance while the body moves under it. The joint move of
+// garment and body is then checked (Energy::max_step with the body's motion);
+// where it would bring a pair too close it is cut there, the cloth is solved
+// at that body with the settling Newton budget, and the rest of the move
+// follows, at most `max_cuts` times.
+#include <drape/geometry/closest_point.hpp>
+#include <drape/simulation.hpp>
+#include <drape/solver.hpp>
+
+#include <Eigen/Core>
+
+namespace drape::scene_detail {
+
+struct BarrierMorph {
+  double carry_inner = 0.005, carry_outer = 0.02;  // m
+  int max_cuts = 64;
+  int morph_newton = 3, settle_newton = 8;  // Newton budgets: a whole step, a step after a cut
+};
+
+// Moves `body` to `next` and the garment x (velocity v) with it; returns the
+// report of the step solved at `next`. Cuts and the Newton iterations of the
+// cut parts are added to `result`. Throws Error naming the step when the move
+// is still blocked after max_cuts cuts (the garment does not fit the body).
+StepReport barrier_morph_step(ClothSolver& solver, geometry::BodySurface& body, const Eigen::MatrixX3d& next, int step,
+                              const BarrierMorph& settings, Eigen::MatrixX3d& x, Eigen::MatrixX3d& v,
+                              SimulationResult& result);
+
+}  // namespace drape::scene_detail

@@ -1,0 +1,14 @@
+#pragma once
+// Where on the garment something happens, in words a user can look up: how
+// many vertices, their centre and heights, and the first few indices.
+#include <Eigen/Core>
+
+#include <string>
+#include <vector>
+
+namespace drape::scene_detail {
+
+// "12 garment vertices around (0.10, 1.32, 0.02) m, heights 1.28-1.36 m (vertex 401, ...)".
+std::string describe_region(const Eigen::MatrixX3d& x, const std::vector<int>& vertices);
+
+}  // namespace drape::scene_detail

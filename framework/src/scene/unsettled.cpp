@@ -1,0 +1,33 @@
+// Why a drape did not settle, in words (unsettled.hpp).
+#include "unsettled.hpp"
+
+#include "garment_region.hpp"
+
+#include <algorithm>
+#include <cstdio>
+#include <numeric>
+
+namespace drape::scene_detail {
+
+std::string why_unsettled(const SimulationResult& result, const Eigen::MatrixX3d& x, double tolerance, int settle_steps) {
+  char head[200];
+  std::snprintf(head, sizeof head, "not settled after %d settling steps: stationarity %.2e of the weight, tolerance %.2e",
+                settle_steps, result.stationarity, tolerance);
+  std::string out = head;
+  // The vertices carrying the largest unbalanced forces (the top 2 %, at least 3).
+  const Eigen::VectorXd& f = result.vertex_force;
+  std::vector<int> order(static_cast<std::size_t>(f.size()));
+  std::iota(order.begin(), order.end(), 0);
+  const std::size_t shown = std::min(order.size(), std::max<std::size_t>(3, order.size() / 50));
+  std::partial_sort(order.begin(), order.begin() + static_cast<std::ptrdiff_t>(shown), order.end(),
+                    [&](int a, int b) { return f[a] > f[b]; });
+  order.resize(shown);
+  std::sort(order.begin(), order.end());
+  out += "; the largest unbalanced forces (up to " + std::to_string(f.maxCoeff()) + " N) are on " + describe_region(x, order);
+  if (result.line_search_failures > 0)
+    out += "; " + std::to_string(result.line_search_failures) +
+           " Newton iterations found no decrease (the garment may be pinched between parts of the body, or not fit it)";
+  return out;
+}
+
+}  // namespace drape::scene_detail

@@ -1,0 +1,13 @@
+#pragma once
+// Why a run did not settle, for SimulationResult::unsettled: the stationarity
+// against the tolerance, the region of the largest unbalanced forces, and
+// whether the steps had stopped moving (line searches finding no decrease).
+#include <drape/simulation.hpp>
+
+#include <string>
+
+namespace drape::scene_detail {
+
+std::string why_unsettled(const SimulationResult& result, const Eigen::MatrixX3d& x, double tolerance, int settle_steps);
+
+}  // namespace drape::scene_detail
