@@ -1,6 +1,8 @@
 // The framework's mesh checks on meshes whose answers are known by construction.
 #include <catch2/catch.hpp>
 
+#include <random>
+
 #include <drape/geometry/adjacency.hpp>
 #include <drape/geometry/face_quality.hpp>
 #include <drape/geometry/index_locality.hpp>
@@ -170,3 +172,36 @@ TEST_CASE("index locality of a strip") {
 }
 
 }  // namespace
+
+TEST_CASE("self_intersections finds exactly the pairs a brute-force loop finds") {
+  // Two crumpled 10 x 10 sheets over the same square (random heights, fixed
+  // seed), one mesh: they cross each other in many places.
+  const int n = 10, sheet = n * n;
+  Eigen::MatrixX3d v(2 * sheet, 3);
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> height(-0.5, 0.5), wobble(-0.3, 0.3);
+  for (int s = 0; s < 2; ++s)
+    for (int i = 0; i < n; ++i)
+      for (int j = 0; j < n; ++j) v.row(s * sheet + i * n + j) << j + wobble(rng), i + wobble(rng), height(rng);
+  Eigen::MatrixX3i f(4 * (n - 1) * (n - 1), 3);
+  int k = 0;
+  for (int s = 0; s < 2; ++s)
+    for (int i = 0; i + 1 < n; ++i)
+      for (int j = 0; j + 1 < n; ++j) {
+        const int a = s * sheet + i * n + j;
+        f.row(k++) << a, a + 1, a + n + 1;
+        f.row(k++) << a, a + n + 1, a + n;
+      }
+  std::vector<std::pair<int, int>> expected;
+  for (int a = 0; a < f.rows(); ++a)
+    for (int b = a + 1; b < f.rows(); ++b) {
+      bool shared = false;
+      for (int s = 0; s < 3; ++s)
+        for (int t = 0; t < 3; ++t) shared = shared || f(a, s) == f(b, t);
+      if (!shared && triangles_intersect(v.row(f(a, 0)), v.row(f(a, 1)), v.row(f(a, 2)), v.row(f(b, 0)), v.row(f(b, 1)),
+                                         v.row(f(b, 2))))
+        expected.emplace_back(a, b);
+    }
+  REQUIRE(expected.size() > 20);
+  CHECK(self_intersections(v, f, 100000) == expected);
+}
