@@ -14,10 +14,14 @@
 
 namespace drape {
 
-template <int N>
+// Order 2 carries the Hessian; order 1 only the gradient (what a gradient
+// evaluation needs: O(N) per operation instead of O(N^2)).
+template <int N, int Order = 2>
 struct Dual {
+  static_assert(Order == 1 || Order == 2, "Dual: order 1 or 2");
+  static constexpr int kHessianSize = Order == 2 ? N : 0;
   using Gradient = Eigen::Matrix<double, N, 1>;
-  using Hessian = Eigen::Matrix<double, N, N>;
+  using Hessian = Eigen::Matrix<double, kHessianSize, kHessianSize>;
   double v = 0;
   Gradient g = Gradient::Zero();
   Hessian h = Hessian::Zero();
@@ -35,54 +39,57 @@ struct Dual {
   }
 };
 
-template <int N>
-Dual<N> operator+(const Dual<N>& a, const Dual<N>& b) {
+template <int N, int O>
+Dual<N, O> operator+(const Dual<N, O>& a, const Dual<N, O>& b) {
   return {a.v + b.v, a.g + b.g, a.h + b.h};
 }
-template <int N>
-Dual<N> operator-(const Dual<N>& a, const Dual<N>& b) {
+template <int N, int O>
+Dual<N, O> operator-(const Dual<N, O>& a, const Dual<N, O>& b) {
   return {a.v - b.v, a.g - b.g, a.h - b.h};
 }
-template <int N>
-Dual<N> operator-(const Dual<N>& a) {
+template <int N, int O>
+Dual<N, O> operator-(const Dual<N, O>& a) {
   return {-a.v, -a.g, -a.h};
 }
-template <int N>
-Dual<N> operator*(double s, const Dual<N>& a) {
+template <int N, int O>
+Dual<N, O> operator*(double s, const Dual<N, O>& a) {
   return {s * a.v, s * a.g, s * a.h};
 }
-template <int N>
-Dual<N> operator*(const Dual<N>& a, const Dual<N>& b) {
-  Dual<N> r;
+template <int N, int O>
+Dual<N, O> operator*(const Dual<N, O>& a, const Dual<N, O>& b) {
+  Dual<N, O> r;
   r.v = a.v * b.v;
   r.g = a.g * b.v + b.g * a.v;
-  r.h = a.h * b.v + b.h * a.v;
-  r.h.noalias() += a.g * b.g.transpose();
-  r.h.noalias() += b.g * a.g.transpose();
+  if constexpr (O == 2) {
+    r.h = a.h * b.v + b.h * a.v;
+    r.h.noalias() += a.g * b.g.transpose();
+    r.h.noalias() += b.g * a.g.transpose();
+  }
   return r;
 }
 
 // f(a) from f, f' and f'' at a.v: the chain rule to second order.
-template <int N>
-Dual<N> chain(const Dual<N>& a, double f, double df, double d2f) {
-  Dual<N> r;
+template <int N, int O>
+Dual<N, O> chain(const Dual<N, O>& a, double f, double df, double d2f) {
+  Dual<N, O> r;
   r.v = f;
   r.g = df * a.g;
-  r.h = df * a.h;
-  r.h.noalias() += d2f * a.g * a.g.transpose();
+  if constexpr (O == 2) {
+    r.h = df * a.h;
+    r.h.noalias() += d2f * a.g * a.g.transpose();
+  }
   return r;
 }
-template <int N>
-Dual<N> inverse(const Dual<N>& a) {
+template <int N, int O>
+Dual<N, O> inverse(const Dual<N, O>& a) {
   return chain(a, 1 / a.v, -1 / (a.v * a.v), 2 / (a.v * a.v * a.v));
 }
-template <int N>
-Dual<N> operator/(const Dual<N>& a, const Dual<N>& b) {
+template <int N, int O>
+Dual<N, O> operator/(const Dual<N, O>& a, const Dual<N, O>& b) {
   return a * inverse(b);
 }
-
-template <int N>
-Dual<N> sqrt(const Dual<N>& a) {
+template <int N, int O>
+Dual<N, O> sqrt(const Dual<N, O>& a) {
   const double r = std::sqrt(a.v);
   return chain(a, r, 0.5 / r, -0.25 / (r * a.v));
 }
@@ -92,8 +99,8 @@ Dual<N> sqrt(const Dual<N>& a) {
 inline double inverse(double a) { return 1 / a; }
 inline double chain(double /*a*/, double f, double /*df*/, double /*d2f*/) { return f; }
 inline double primal(double a) { return a; }
-template <int N>
-double primal(const Dual<N>& a) {
+template <int N, int O>
+double primal(const Dual<N, O>& a) {
   return a.v;
 }
 
@@ -114,15 +121,14 @@ Vec3<S> cross(const Vec3<S>& a, const Vec3<S>& b) {
   return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
 }
 
-// Point k of a stencil as scalars: variables 3k..3k+2 when k is free, constants when fixed.
-template <int N>
-Vec3<Dual<N>> variable_point(const Eigen::Vector3d& p, int first_index) {
-  return {Dual<N>::variable(p[0], first_index), Dual<N>::variable(p[1], first_index + 1),
-          Dual<N>::variable(p[2], first_index + 2)};
+// A point of a stencil as scalars: variables first_index..+2, or constants.
+template <class D>
+Vec3<D> variable_point(const Eigen::Vector3d& p, int first_index) {
+  return {D::variable(p[0], first_index), D::variable(p[1], first_index + 1), D::variable(p[2], first_index + 2)};
 }
-template <int N>
-Vec3<Dual<N>> constant_point(const Eigen::Vector3d& p) {
-  return {Dual<N>::constant(p[0]), Dual<N>::constant(p[1]), Dual<N>::constant(p[2])};
+template <class D>
+Vec3<D> constant_point(const Eigen::Vector3d& p) {
+  return {D::constant(p[0]), D::constant(p[1]), D::constant(p[2])};
 }
 inline Vec3<double> plain_point(const Eigen::Vector3d& p) { return {p[0], p[1], p[2]}; }
 

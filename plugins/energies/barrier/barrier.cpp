@@ -223,13 +223,13 @@ S BarrierContact::pair_energy(const ContactPair& pair, const BodyState& body, co
   return (settings_.stiffness * settings_.distance * weight) * e;
 }
 
-template <int N>
-Dual<N> BarrierContact::pair_dual(const ContactPair& pair, const BodyState& body, const Eigen::MatrixX3d& x) const {
+template <class D>
+D BarrierContact::pair_dual(const ContactPair& pair, const BodyState& body, const Eigen::MatrixX3d& x) const {
   const std::array<Eigen::Vector3d, 4> p = pair_points(pair, x);
-  std::array<Vec3<Dual<N>>, 4> q;
+  std::array<Vec3<D>, 4> q;
   int next = 0;
   for (std::size_t k = 0; k < 4; ++k)
-    q[k] = is_variable(pair.kind, static_cast<int>(k)) ? variable_point<N>(p[k], 3 * next++) : constant_point<N>(p[k]);
+    q[k] = is_variable(pair.kind, static_cast<int>(k)) ? variable_point<D>(p[k], 3 * next++) : constant_point<D>(p[k]);
   return pair_energy(pair, body, q);
 }
 
@@ -332,7 +332,7 @@ double BarrierContact::add_gradient(const Eigen::MatrixX3d& x, Eigen::MatrixX3d&
     const ContactPair& p = pairs[static_cast<std::size_t>(i)];
     with_stencil_size(p.kind, [&](auto size) {
       constexpr int N = 3 * decltype(size)::value;
-      const Dual<N> e = pair_dual<N>(p, *set->body, x);
+      const auto e = pair_dual<Dual<N, 1>>(p, *set->body, x);  // first order: no Hessian work
       grads[static_cast<std::size_t>(i)].template head<N>() = e.g;
       values[static_cast<std::size_t>(i)] = e.v;
     });
@@ -367,7 +367,7 @@ void BarrierContact::hessian(const Eigen::MatrixX3d& x, Triplets& h, bool projec
     pair_vertices(p, v);
     with_stencil_size(p.kind, [&](auto size) {
       constexpr int K = decltype(size)::value;
-      Eigen::Matrix<double, 3 * K, 3 * K> block = pair_dual<3 * K>(p, *set->body, x).h;
+      Eigen::Matrix<double, 3 * K, 3 * K> block = pair_dual<Dual<3 * K, 2>>(p, *set->body, x).h;
       if (project_psd) project_to_psd<3 * K>(block);
       write_element_hessian<K>(block, v.data(), lower, h.data() + offset[static_cast<std::size_t>(i)]);
     });

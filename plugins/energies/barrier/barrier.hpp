@@ -94,12 +94,13 @@ class BarrierContact final : public Energy {
   std::array<Eigen::Vector3d, 4> pair_points(const ContactPair& pair, const Eigen::MatrixX3d& x) const;
   // The pair's garment vertices (its variables), and how many.
   int pair_vertices(const ContactPair& pair, std::array<int, 3>& vertex) const;
-  // The pair's energy over the scalar S: double for the value, Dual<3 K> for
-  // the value, gradient and Hessian over its K garment vertices.
+  // The pair's energy over the scalar S: double for the value, Dual<3 K, order>
+  // for its derivatives over its K garment vertices.
   template <class S>
   S pair_energy(const ContactPair& pair, const BodyState& body, const std::array<Vec3<S>, 4>& q) const;
-  template <int N>
-  Dual<N> pair_dual(const ContactPair& pair, const BodyState& body, const Eigen::MatrixX3d& x) const;
+  // D: Dual<3 K, 1> for the gradient, Dual<3 K, 2> for the Hessian too.
+  template <class D>
+  D pair_dual(const ContactPair& pair, const BodyState& body, const Eigen::MatrixX3d& x) const;
   void hessian(const Eigen::MatrixX3d& x, Triplets& h, bool project_psd, bool lower) const;
 
   BarrierSettings settings_;
