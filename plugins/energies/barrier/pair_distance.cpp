@@ -1,6 +1,7 @@
 // Picking the distance type of a contact pair (pair_distance.hpp).
 #include "pair_distance.hpp"
 
+#include <drape/geometry/ccd.hpp>
 #include <drape/geometry/closest_point.hpp>
 
 #include <Eigen/Geometry>
@@ -72,33 +73,23 @@ DistanceType point_triangle_type(const Eigen::Vector3d& p, const Eigen::Vector3d
 
 DistanceType edge_edge_type(const Eigen::Vector3d& a0, const Eigen::Vector3d& a1, const Eigen::Vector3d& b0,
                             const Eigen::Vector3d& b1) {
-  const Eigen::Vector3d d1 = a1 - a0, d2 = b1 - b0, r = a0 - b0;
-  const double a = d1.squaredNorm(), e = d2.squaredNorm(), b = d1.dot(d2), c = d1.dot(r), f = d2.dot(r);
-  const double denominator = a * e - b * b;  // |d1 x d2|^2
   // The lines' formula is used only off parallel (sin^2 of the angle above
   // 1e-6): near parallel it divides by a vanishing |d1 x d2|^2, and there the
   // endpoint types give the distance anyway (the closest points can be taken at
   // an endpoint). The edge-edge mollifier (barrier.hpp) fades these pairs out
   // before the switch matters.
-  if (a > 0 && e > 0 && denominator > 1e-6 * a * e) {
-    double s = std::clamp((b * f - c * e) / denominator, 0.0, 1.0);
-    double t = (b * s + f) / e;
-    if (t < 0) {
-      t = 0;
-      s = std::clamp(-c / a, 0.0, 1.0);
-    } else if (t > 1) {
-      t = 1;
-      s = std::clamp((b - c) / a, 0.0, 1.0);
-    }
-    if (s > 0 && s < 1 && t > 0 && t < 1) return make(Kind::LineLine, 0, 1, 2, 3);
+  const Eigen::Vector3d d1 = a1 - a0, d2 = b1 - b0;
+  if (d1.cross(d2).squaredNorm() > 1e-6 * d1.squaredNorm() * d2.squaredNorm()) {
+    const geometry::SegmentPoints q = geometry::closest_points_on_segments(a0, a1, b0, b1);
+    if (q.s > 0 && q.s < 1 && q.t > 0 && q.t < 1) return make(Kind::LineLine, 0, 1, 2, 3);
   }
   const std::array<Eigen::Vector3d, 4> x{a0, a1, b0, b1};
   DistanceType best, candidate;
   double nearest = std::numeric_limits<double>::infinity();
   const std::array<std::array<unsigned char, 3>, 4> tries{{{0, 2, 3}, {1, 2, 3}, {2, 0, 1}, {3, 0, 1}}};
   for (const auto& t : tries) {
-    const double d2 = point_segment(x, t[0], t[1], t[2], candidate);
-    if (d2 < nearest) nearest = d2, best = candidate;
+    const double distance2 = point_segment(x, t[0], t[1], t[2], candidate);
+    if (distance2 < nearest) nearest = distance2, best = candidate;
   }
   return best;
 }
