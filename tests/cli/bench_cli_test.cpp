@@ -84,3 +84,18 @@ TEST_CASE("bench simulate reports whole drapes (best and median of repeated runs
   CHECK_THAT(out, Catch::Contains("| all effects |") && Catch::Contains("ms to evaluate"));
   CHECK(out.find("| without ") == std::string::npos);
 }
+
+TEST_CASE("drape bench contact times both contacts on a small shell, and the barrier's bound stops short of the body",
+          "[cli][bench][barrier]") {
+  std::string out;
+  REQUIRE(run_drape("bench contact --garment-level 2 --body-level 3 --repeats 1", out) == 0);
+  CHECK_THAT(out, Catch::Contains("garment 162 vertices, 320 faces; body 642 vertices, 1280 faces"));
+  // The shell moves 95 % of the way to the body: the barrier's CCD bound is
+  // below 1 (and positive), the penalty's is 1 (it bounds nothing).
+  std::smatch m;
+  REQUIRE(std::regex_search(out, m, std::regex("\\| barrier \\|.*alpha ([0-9.]+) \\|")));
+  CHECK(std::stod(m[1]) > 0.0);
+  CHECK(std::stod(m[1]) < 1.0);
+  CHECK(std::regex_search(out, std::regex("\\| collision \\|.*alpha 1\\.000 \\|")));
+  CHECK(run_drape("bench contact --gap 0", out) == 2);
+}
