@@ -522,6 +522,26 @@ TEST_CASE("overlapping boxes match a double loop, sorted and without duplicates"
   }
 }
 
+TEST_CASE("a box grid built once answers many queries as a fresh search would") {
+  // The barrier keeps the still body's grid across line-search trials: every
+  // query, including boxes far outside the grid's bounds, an empty query and
+  // queries after others, must match the double loop.
+  std::mt19937 rng(11);
+  const std::vector<Box> b = random_boxes(rng, 900);
+  const BoxGrid grid(b, 0.05);
+  CHECK(grid.boxes().size() == b.size());
+  for (int query = 0; query < 6; ++query) {
+    std::vector<Box> a = random_boxes(rng, 40 + 150 * query);
+    if (query == 3) a.clear();
+    if (query == 4)
+      for (Box& box : a) box = {box.lo * 5 + V(3, 0, 0), box.hi * 5 + V(3, 0, 0)};  // mostly outside b's bounds
+    INFO("query " << query << ", " << a.size() << " boxes");
+    CHECK(grid.overlapping(a) == overlapping_boxes_reference(a, b));
+  }
+  // A grid of no boxes overlaps nothing.
+  CHECK(BoxGrid(std::vector<Box>{}).overlapping(random_boxes(rng, 30)).empty());
+}
+
 TEST_CASE("overlapping boxes: touching counts, points and degenerate grids") {
   const Box unit{V(0, 0, 0), V(1, 1, 1)};
   // Sharing a face, an edge, a corner; a point on the surface and inside; just apart.

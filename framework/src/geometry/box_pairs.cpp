@@ -11,6 +11,7 @@
 #include <array>
 #include <cmath>
 #include <cstddef>
+#include <utility>
 
 namespace drape::geometry {
 namespace {
@@ -86,26 +87,25 @@ Grid make_grid(const Eigen::Vector3d& lo, const Eigen::Vector3d& hi, double cell
 
 }  // namespace
 
-std::vector<std::pair<int, int>> overlapping_boxes(const std::vector<Box>& a, const std::vector<Box>& b,
-                                                   double cell_size) {
-  std::vector<std::pair<int, int>> pairs;
+BoxGrid::BoxGrid(std::vector<Box> boxes, double cell_size) : boxes_(std::move(boxes)) {
   std::vector<int> in_grid;
   Eigen::Vector3d lo = Eigen::Vector3d::Constant(INFINITY), hi = -lo;
-  for (std::size_t j = 0; j < b.size(); ++j)
-    if (valid(b[j])) {
+  for (std::size_t j = 0; j < boxes_.size(); ++j)
+    if (valid(boxes_[j])) {
       in_grid.push_back(static_cast<int>(j));
-      lo = lo.cwiseMin(b[j].lo), hi = hi.cwiseMax(b[j].hi);
+      lo = lo.cwiseMin(boxes_[j].lo), hi = hi.cwiseMax(boxes_[j].hi);
     }
-  if (a.empty() || in_grid.empty()) return pairs;
-  const Box bounds{lo, hi};
-  Grid grid = make_grid(lo, hi, cell_size > 0 ? cell_size : median_extent(b, in_grid), in_grid.size());
+  start_.assign(2, 0);
+  if (in_grid.empty()) return;
+  bounds_ = {lo, hi};
+  Grid grid = make_grid(lo, hi, cell_size > 0 ? cell_size : median_extent(boxes_, in_grid), in_grid.size());
   // Boxes much larger than the cells (a mix of sizes) would each fill many
   // cells: coarsen until the cell lists hold a few entries per box.
   const double max_entries = 16.0 * static_cast<double>(in_grid.size()) + 4096.0;
   for (;;) {
     double entries = 0;
     for (int j : in_grid) {
-      const Cell c0 = grid.cell_of(b[static_cast<std::size_t>(j)].lo), c1 = grid.cell_of(b[static_cast<std::size_t>(j)].hi);
+      const Cell c0 = grid.cell_of(boxes_[static_cast<std::size_t>(j)].lo), c1 = grid.cell_of(boxes_[static_cast<std::size_t>(j)].hi);
       double covered = 1;
       for (std::size_t k = 0; k < 3; ++k) covered *= c1[k] - c0[k] + 1;
       entries += covered;
@@ -113,35 +113,41 @@ std::vector<std::pair<int, int>> overlapping_boxes(const std::vector<Box>& a, co
     if (entries <= max_entries || grid.size() == 1) break;
     grid = make_grid(lo, hi, 2 * grid.cell, in_grid.size());
   }
+  origin_ = grid.origin, cell_ = grid.cell, dims_ = grid.dims;
 
-  // Compressed cell lists (counting sort): cell c holds items[start[c] .. start[c + 1]),
-  // each with the box's low cell inline, so the duplicate test reads memory in order.
-  struct Item {
-    int box;
-    Cell low;
-  };
-  std::vector<int> start(grid.size() + 1, 0);
-  std::vector<Item> items;
+  // Compressed cell lists (counting sort), each item with the box's low cell
+  // inline, so the duplicate test reads memory in order.
+  start_.assign(grid.size() + 1, 0);
   for (int pass = 0; pass < 2; ++pass) {
     std::vector<int> fill;
     if (pass == 1) {
-      for (std::size_t c = 0; c < grid.size(); ++c) start[c + 1] += start[c];
-      items.resize(static_cast<std::size_t>(start.back()));
-      fill.assign(start.begin(), start.end() - 1);
+      for (std::size_t c = 0; c < grid.size(); ++c) start_[c + 1] += start_[c];
+      items_.resize(static_cast<std::size_t>(start_.back()));
+      fill.assign(start_.begin(), start_.end() - 1);
     }
     for (int j : in_grid) {
       const auto js = static_cast<std::size_t>(j);
-      const Cell c0 = grid.cell_of(b[js].lo), c1 = grid.cell_of(b[js].hi);
+      const Cell c0 = grid.cell_of(boxes_[js].lo), c1 = grid.cell_of(boxes_[js].hi);
       for (int z = c0[2]; z <= c1[2]; ++z)
         for (int y = c0[1]; y <= c1[1]; ++y)
           for (int x = c0[0]; x <= c1[0]; ++x) {
             const std::size_t c = grid.index(x, y, z);
-            if (pass == 0) ++start[c + 1];
-            else items[static_cast<std::size_t>(fill[c]++)] = {j, c0};
+            if (pass == 0) ++start_[c + 1];
+            else items_[static_cast<std::size_t>(fill[c]++)] = {j, c0};
           }
     }
   }
+}
 
+std::array<int, 3> BoxGrid::cell_of(const Eigen::Vector3d& p) const {
+  return Grid{origin_, cell_, dims_}.cell_of(p);
+}
+
+std::size_t BoxGrid::index(int x, int y, int z) const { return Grid{origin_, cell_, dims_}.index(x, y, z); }
+
+std::vector<std::pair<int, int>> BoxGrid::overlapping(const std::vector<Box>& a) const {
+  std::vector<std::pair<int, int>> pairs;
+  if (a.empty() || items_.empty()) return pairs;
   // Fixed chunks of a, each with its own output, joined in order: the result
   // is the same for any number of threads.
   constexpr int chunk = 256;
@@ -153,19 +159,19 @@ std::vector<std::pair<int, int>> overlapping_boxes(const std::vector<Box>& a, co
     auto& out = found[static_cast<std::size_t>(k)];
     for (int i = k * chunk; i < std::min(na, (k + 1) * chunk); ++i) {
       const Box& q = a[static_cast<std::size_t>(i)];
-      if (!valid(q) || !overlap(q, bounds)) continue;
-      const Cell c0 = grid.cell_of(q.lo), c1 = grid.cell_of(q.hi);
+      if (!valid(q) || !overlap(q, bounds_)) continue;
+      const Cell c0 = cell_of(q.lo), c1 = cell_of(q.hi);
       hits.clear();
       for (int z = c0[2]; z <= c1[2]; ++z)
         for (int y = c0[1]; y <= c1[1]; ++y)
           for (int x = c0[0]; x <= c1[0]; ++x) {
-            const std::size_t c = grid.index(x, y, z);
-            for (int s = start[c]; s < start[c + 1]; ++s) {
-              const Item& item = items[static_cast<std::size_t>(s)];
+            const std::size_t c = index(x, y, z);
+            for (int s = start_[c]; s < start_[c + 1]; ++s) {
+              const Item& item = items_[static_cast<std::size_t>(s)];
               const Cell& l = item.low;
               // Only in the cell of the intersection's low corner (see the top).
               if (x != std::max(c0[0], l[0]) || y != std::max(c0[1], l[1]) || z != std::max(c0[2], l[2])) continue;
-              if (overlap(q, b[static_cast<std::size_t>(item.box)])) hits.push_back(item.box);
+              if (overlap(q, boxes_[static_cast<std::size_t>(item.box)])) hits.push_back(item.box);
             }
           }
       std::sort(hits.begin(), hits.end());
@@ -177,6 +183,12 @@ std::vector<std::pair<int, int>> overlapping_boxes(const std::vector<Box>& a, co
   pairs.reserve(total);
   for (const auto& f : found) pairs.insert(pairs.end(), f.begin(), f.end());
   return pairs;
+}
+
+std::vector<std::pair<int, int>> overlapping_boxes(const std::vector<Box>& a, const std::vector<Box>& b,
+                                                   double cell_size) {
+  if (a.empty()) return {};
+  return BoxGrid(b, cell_size).overlapping(a);
 }
 
 }  // namespace drape::geometry

@@ -33,18 +33,23 @@ struct BarrierContact::Topology {
   Eigen::VectorXd garment_edge_area;     // m^2: a third of each adjacent face's material area
   Eigen::VectorXd garment_edge_rest2;    // m^2: squared material-space length (the mollifier's scale)
   int garment_vertices = 0;
+  // The cell of the body's box grids: the larger of the typical garment and
+  // body edge. Cells of the body's (smaller) edges alone made each garment
+  // box visit dozens of cells, and the queries took a sixth of a drape.
+  double grid_cell = 0;
   Eigen::MatrixX3i body_faces;
   std::vector<std::array<int, 2>> body_edges;
 };
 
 // Of the body at one revision: its vertices' lumped areas (the weights of
 // body vertex pairs), its squared edge lengths (the mollifier's scale) and the
-// boxes of its vertices, faces and edges (the broad phase).
+// boxes of its vertices, faces and edges in grids (the broad phase, queried
+// by every line-search trial while the body stands still).
 struct BarrierContact::BodyState {
   std::uint64_t revision = 0;
   Eigen::VectorXd vertex_area;
   Eigen::VectorXd edge_length2;
-  std::vector<Box> point_boxes, face_boxes, edge_boxes;
+  geometry::BoxGrid points, faces, edges;
 };
 
 namespace {
@@ -68,6 +73,20 @@ Box primitive_box(const std::array<int, K>& v, const Eigen::MatrixX3d& x, const 
 }
 
 std::array<int, 3> face(const Eigen::MatrixX3i& faces, int f) { return {faces(f, 0), faces(f, 1), faces(f, 2)}; }
+
+Eigen::VectorXd edge_lengths(const Eigen::MatrixX3d& x, const std::vector<std::array<int, 2>>& edges) {
+  Eigen::VectorXd length(static_cast<Eigen::Index>(edges.size()));
+  for (std::size_t e = 0; e < edges.size(); ++e)
+    length[static_cast<Eigen::Index>(e)] = (x.row(edges[e][0]) - x.row(edges[e][1])).norm();
+  return length;
+}
+
+double median_edge_length(Eigen::VectorXd length) {
+  if (length.size() == 0) return 0;
+  auto middle = length.begin() + length.size() / 2;
+  std::nth_element(length.begin(), middle, length.end());
+  return *middle;
+}
 
 // The boxes of every vertex, face and edge of a mesh moving from x to x_end
 // (x_end null: standing), grown by `inflate`.
@@ -157,6 +176,8 @@ void BarrierContact::bind(const EnergyContext& context) {
   }
   t.body_faces = body_->faces();
   t.body_edges = geometry::edge_list(t.body_faces);
+  t.grid_cell = std::max(median_edge_length(t.garment_edge_rest2.cwiseSqrt()),
+                         median_edge_length(edge_lengths(body_->vertices(), t.body_edges)));
   std::lock_guard<std::mutex> lock(cache_.mutex);
   cache_.body.reset();
   cache_.pairs.reset();
@@ -251,9 +272,9 @@ std::shared_ptr<const BarrierContact::BodyState> BarrierContact::body_state_lock
   for (std::size_t e = 0; e < t.body_edges.size(); ++e)
     state->edge_length2[static_cast<Eigen::Index>(e)] = (body.row(t.body_edges[e][0]) - body.row(t.body_edges[e][1])).squaredNorm();
   MeshBoxes boxes = mesh_boxes(body, nullptr, t.body_faces, t.body_edges, 0.0);
-  state->point_boxes = std::move(boxes.points);
-  state->face_boxes = std::move(boxes.faces);
-  state->edge_boxes = std::move(boxes.edges);
+  state->points = geometry::BoxGrid(std::move(boxes.points), t.grid_cell);
+  state->faces = geometry::BoxGrid(std::move(boxes.faces), t.grid_cell);
+  state->edges = geometry::BoxGrid(std::move(boxes.edges), t.grid_cell);
   cache_.body = state;
   return state;
 }
@@ -274,11 +295,11 @@ std::shared_ptr<const BarrierContact::PairSet> BarrierContact::cached_pairs(cons
   const double dhat2 = settings_.distance * settings_.distance;
   const MeshBoxes garment = mesh_boxes(x, nullptr, t.garment_faces, t.garment_edges, settings_.distance);
   std::vector<ContactPair> candidates;
-  for (auto [g, b] : geometry::overlapping_boxes(garment.points, body->face_boxes))
+  for (auto [g, b] : body->faces.overlapping(garment.points))
     candidates.push_back({PairKind::GarmentVertexBodyFace, g, b, {}, 0});
-  for (auto [g, b] : geometry::overlapping_boxes(garment.faces, body->point_boxes))
+  for (auto [g, b] : body->points.overlapping(garment.faces))
     candidates.push_back({PairKind::BodyVertexGarmentFace, g, b, {}, 0});
-  for (auto [g, b] : geometry::overlapping_boxes(garment.edges, body->edge_boxes))
+  for (auto [g, b] : body->edges.overlapping(garment.edges))
     candidates.push_back({PairKind::GarmentEdgeBodyEdge, g, b, {}, 0});
 
   // Narrow phase: exact distances and types, in parallel; kept in candidate order.
@@ -401,9 +422,9 @@ double BarrierContact::max_step(const Eigen::MatrixX3d& x, const Eigen::MatrixX3
   const bool body_moves = body_from || body_to;
   if (body_moves) moving = mesh_boxes(b0, &b1, t.body_faces, t.body_edges, 0.0);
   else state = body_state();
-  const auto pt = geometry::overlapping_boxes(garment.points, body_moves ? moving.faces : state->face_boxes);
-  const auto tp = geometry::overlapping_boxes(garment.faces, body_moves ? moving.points : state->point_boxes);
-  const auto ee = geometry::overlapping_boxes(garment.edges, body_moves ? moving.edges : state->edge_boxes);
+  const auto pt = body_moves ? geometry::overlapping_boxes(garment.points, moving.faces) : state->faces.overlapping(garment.points);
+  const auto tp = body_moves ? geometry::overlapping_boxes(garment.faces, moving.points) : state->points.overlapping(garment.faces);
+  const auto ee = body_moves ? geometry::overlapping_boxes(garment.edges, moving.edges) : state->edges.overlapping(garment.edges);
   const double s = settings_.min_separation;
   auto g0 = [&](int v) -> Eigen::Vector3d { return x.row(v).transpose(); };
   auto gd = [&](int v) -> Eigen::Vector3d { return dx.row(v).transpose(); };
