@@ -1,8 +1,8 @@
 // The barrier contact in a whole simulation: a band of cloth around the
 // waist of the parametric body while the body morphs from the mean shape to a
 // heavy one and sweeps into it. The garment is a band (a tube, registered
-// in-process) because the T-shirt template's armholes start through the
-// shoulders, which a barrier run refuses (tests/cli/simulate_cli_test.cpp).
+// in-process): small enough to drape in a few seconds, and simple enough that
+// where it must end (pushed out past the waist it started on) is known.
 // What is checked does not share code with the contact: the crossing count
 // and the signed distances of the final drape.
 #include <drape/body.hpp>

@@ -28,11 +28,12 @@ TEST_CASE("drape simulate reports the surface crossings next to p", "[cli][simul
 
 TEST_CASE("drape simulate with the barrier contact refuses a garment that starts through the body, naming where",
           "[cli][simulate][barrier]") {
-  // The T-shirt template's armholes pass through the shoulders of the mean
-  // body (docs/scenes.md, "Contact"): a barrier cannot untangle that start.
+  // A T-shirt placed 22 cm too low: its shoulders and collar cut through the
+  // chest of the mean body, deeper than the 6 cm start-body shrink can free,
+  // and a barrier cannot untangle surfaces that already cross.
   test::TempDir dir;
   std::ofstream(dir / "barrier.yaml") << R"(body: {model: parametric}
-garment: {template: tshirt, params: {resolution: 300}}
+garment: {template: tshirt, params: {resolution: 300, neck_height: 1.30}}
 effects:
   gravity: {}
   stretching: {}

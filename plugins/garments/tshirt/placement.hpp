@@ -17,9 +17,20 @@ struct TorsoFrame {
   double half_width = 0.155;  // x extent of the chest from the centre line (y = 1.24-1.28)
   double half_depth = 0.112;  // z extent of the chest from centre_z
   double centre_z = 0.008;
-  double neck_height = 1.50;  // y of the top seam at the neck points (base of the neck)
-  double arm_angle_deg = 53;  // arms below horizontal (principal axis of the upper arms)
+  double neck_height = 1.52;  // y of the top seam at the neck points (2 cm above the base of the neck: clear of the trapezius)
+  double arm_angle_deg = 47;  // upper arms below horizontal (their axis, from cross-sections)
+  // A point on the left upper arm's axis; its cross-sections are about 5 cm in
+  // radius. The sleeve tube is coaxial with it, so the arm lies inside the
+  // sleeve from the start (a tube hung from the shoulder seam instead sat 6 cm
+  // low, and the top of the arm came out through the sleeve's top).
+  double arm_axis_x = 0.292, arm_axis_y = 1.324, arm_axis_z = -0.016;
   double margin = 0.015;      // clearance added around half_width/half_depth
+  // Half the depth of the shoulders (6.3 cm at the arm root, measured) plus
+  // the margin: how far the panels stand off the arm's centre above the armpits.
+  double shoulder_half_depth = 0.078;
+  // The neck's section above its base (measured at y = 1.50-1.54).
+  double neck_half_width = 0.056, neck_half_depth = 0.057, neck_centre_z = -0.013;
+  double neck_base_height = 1.46;
 };
 
 // 3D position of pattern point `p` (front frame) on the front (side = +1) or back (-1) panel.
