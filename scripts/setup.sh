@@ -59,15 +59,15 @@ main_job() {
   step "Assets of the default T-shirt (built once, then cached)"
   "$DRAPE" assets
   step "Simulating the coarse T-shirt on the BMI 35 body (only the effects the scene names)"
-  # Exit code 1 with a written mesh means the drape ended at rest above the
-  # settle tolerance (contact kinks in the armpits, docs/scenes.md): reported,
+  # Exit code 1 with a written mesh means the drape did not reach the settle
+  # tolerance (it says why, docs/scenes.md): reported,
   # not fatal. Anything else is a failure.
   local rc=0
   rm -f out/garment_simulated.obj
   "$DRAPE" simulate graphs/scenes/tshirt_coarse.yaml --bmi 35 --out out/garment_simulated.obj --body-out out/body_simulated.obj || rc=$?
   if [[ $rc -ne 0 ]]; then
     [[ $rc -eq 1 && -s out/garment_simulated.obj ]] || fail "drape simulate failed (exit $rc)"
-    echo "note: the drape stopped at rest above the settle tolerance (see docs/scenes.md)"
+    echo "note: the drape did not settle; the lines above say why (see docs/scenes.md)"
   fi
   step "Checking the seed's model graph against the template"
   "$DRAPE" graph check graphs/drape.yaml --resolution coarse | tail -n 1

@@ -105,7 +105,7 @@ int run(const std::vector<std::string>& args) {
   layout.body_vertices = static_cast<int>(sim.mean_body().rows());
   layout.garment_vertices = sim.garment().mesh.num_vertices();
   for (const auto& e : scene.effects) layout.stats.push_back("energy_" + e.name);
-  for (const char* s : {"energy_total", "penetration", "residual", "stationarity", "converged", "iterations", "steps", "seconds", "bmi",
+  for (const char* s : {"energy_total", "penetration", "crossings", "residual", "stationarity", "converged", "iterations", "steps", "seconds", "bmi",
                         "height", "sex", "global_index", "garment_size"})
     layout.stats.push_back(s);
   layout.scene = scene.yaml();
@@ -134,7 +134,7 @@ int run(const std::vector<std::string>& args) {
   bar_options.start = already;  // a resumed job: the ETA counts this run's rate only
   ProgressBar bar("generate", layout.samples, std::cerr, bar_options);
   std::mutex write_mutex;
-  std::atomic<int> not_settled{0}, penetrating{0};
+  std::atomic<int> not_settled{0}, penetrating{0}, crossing{0};
   make_samples_in_parallel(writer, bar, todo, threads, [&]() -> SampleWorker {
 #ifdef _OPENMP
     omp_set_num_threads(1);  // parallel over samples, not inside one
@@ -156,6 +156,7 @@ int run(const std::vector<std::string>& args) {
       for (const auto& t : r.energies) s.stats["energy_" + t.name] = t.value;
       s.stats["energy_total"] = r.total_energy;
       s.stats["penetration"] = r.penetration;
+      s.stats["crossings"] = (r.crossings ? r.crossings->total() : 0);
       s.stats["residual"] = r.residual;
       s.stats["stationarity"] = r.stationarity;
       s.stats["converged"] = r.converged ? 1 : 0;
@@ -169,6 +170,7 @@ int run(const std::vector<std::string>& args) {
       s.stats["garment_size"] = garment_size;
       if (!r.converged) ++not_settled;
       if (r.penetration > 0) ++penetrating;
+      if ((r.crossings ? r.crossings->total() : 0) > 0) ++crossing;
       {
         const std::lock_guard<std::mutex> lock(write_mutex);
         writer.write(local, s);
@@ -180,8 +182,8 @@ int run(const std::vector<std::string>& args) {
       bar.advance();
     };
   });
-  std::printf("wrote %s: %zu samples; %d not settled, %d with a vertex inside the body (this run)\n", out.c_str(),
-              layout.samples, not_settled.load(), penetrating.load());
+  std::printf("wrote %s: %zu samples; %d not settled, %d with a vertex inside the body, %d with crossing surfaces (this run)\n",
+              out.c_str(), layout.samples, not_settled.load(), penetrating.load(), crossing.load());
   return 0;
 }
 

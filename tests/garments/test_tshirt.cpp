@@ -162,11 +162,15 @@ TEST_CASE("tshirt: materials are knit, plus the print only when asked", "[garmen
   const Garment plain = build_tshirt();
   REQUIRE(plain.materials.size() == 1);
   CHECK(plain.materials[0].name == "knit");
-  // The knit's numbers are the built-in gray-interlock-linear preset's (the template's default).
-  CHECK(plain.materials[0].density == 0.187);
-  CHECK(plain.materials[0].stretch == Eigen::Vector4d(16.593832, -14.69599, 34.477123, 36.860302));
-  CHECK(plain.materials[0].bending == 1e-5);
-  CHECK(plain.materials[0].thickness == 4.7e-4);
+  // The template's own knit is ArcSim's measured gray-interlock: the numbers
+  // below are from ArcSim's materials/gray-interlock.json (its first
+  // stretching row, its first bending sample), not from drape's preset file.
+  const Material& own = plain.materials[0];
+  CHECK(own.model == Material::Model::Arcsim);
+  CHECK(own.density == Approx(0.187));
+  CHECK(own.arcsim.stretching[0].isApprox(Eigen::Vector4d(16.593832, -14.695990, 34.477123, 36.860302)));
+  CHECK(own.arcsim.bending[0][0] == Approx(23.191698e-6));
+  CHECK(own.thickness == Approx(4.7e-4));
   for (int f = 0; f < plain.mesh.num_faces(); ++f) REQUIRE(plain.material_of(f) == 0);
 
   const Garment printed = build_tshirt("{print: true}");
@@ -174,8 +178,10 @@ TEST_CASE("tshirt: materials are knit, plus the print only when asked", "[garmen
   const Material &knit = printed.materials[0], &print = printed.materials[1];
   CHECK(print.name == "print");
   CHECK(print.density == Approx(2 * knit.density));
-  CHECK(print.stretch.isApprox(5 * knit.stretch));
-  CHECK(print.bending == Approx(10 * knit.bending));
+  CHECK(print.model == Material::Model::Arcsim);
+  for (int k = 0; k < 6; ++k) CHECK(print.arcsim.stretching[k].isApprox(5 * knit.arcsim.stretching[k]));
+  for (int b = 0; b < 3; ++b)
+    for (int j = 0; j < 5; ++j) CHECK(print.arcsim.bending[b][j] == Approx(10 * knit.arcsim.bending[b][j]));
   CHECK(print.thickness == Approx(2 * knit.thickness));
   CHECK(printed.mesh.faces == plain.mesh.faces);
 

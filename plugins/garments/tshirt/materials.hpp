@@ -16,15 +16,14 @@ inline Material region_material(const std::string& region, const std::string& pr
   return m;
 }
 
-// The template's own cloth: the linear knit (gray-interlock's zero-strain row as
-// constants) and its print. ArcSim's measured knit (preset gray-interlock,
-// scenes tshirt_arcsim*.yaml) pulls 5-20x harder at drape strains, more than
-// the penalty contact holds (docs/materials.md, "ArcSim's knit on the
-// shipped scenes"), so it is not yet the default.
-inline Material knit_material() { return region_material("knit", "gray-interlock-linear"); }
+// The template's own cloth: ArcSim's measured gray-interlock knit (strain- and
+// direction-dependent, docs/materials.md) and its print. The constant-stiffness
+// knit the project used before is preset gray-interlock-linear (scenes
+// tshirt_penalty*.yaml reproduce the old drapes).
+inline Material knit_material() { return region_material("knit", "gray-interlock"); }
 
 // A screen print: the knit plus a layer of plastisol ink, heavier and much stiffer.
-inline Material print_material() { return region_material("print", "screen-print-linear"); }
+inline Material print_material() { return region_material("print", "screen-print"); }
 
 inline constexpr int kKnit = 0;
 inline constexpr int kPrint = 1;
