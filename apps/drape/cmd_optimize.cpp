@@ -8,6 +8,7 @@
 #include "optimize_dataset.hpp"
 
 #include <drape/dataset.hpp>
+#include <drape/geometry/surface_crossings.hpp>
 #include <drape/mesh_io.hpp>
 #include <drape/model.hpp>
 #include <drape/physics_optimization.hpp>
@@ -94,7 +95,20 @@ int run(const std::vector<std::string>& args) {
               r.best_iteration);
   print_terms("before", r.energies_before, r.potential_before, r.penetration_before);
   print_terms("after", r.energies_after, r.potential_after, r.penetration_after);
-
+  // Counted by exact segment-triangle tests that share no code with the contact energies.
+  const auto crossings = [&](const Eigen::MatrixX3d& g) {
+    return geometry::surface_crossings(g, scene.garment().mesh.faces, batch.body.mat(0).cast<double>(), model.assets().body.faces)
+        .total();
+  };
+  std::printf("surface crossings (garment + body edges through the other's faces): before %d, after %d\n",
+              crossings(r.before), crossings(r.after));
+  if (r.start_shrink > 0)
+    std::printf("barrier: the prediction crosses the body, so the contact started on the body shrunk by %.1f cm, "
+                "grown back as the cloth moved out\n", 100 * r.start_shrink);
+  if (r.refused_steps > 0)
+    std::printf("%d steps undone because they would have crossed the body (each retried with half the learning rate)\n",
+                r.refused_steps);
+  if (!r.separated) std::printf("NOT separated from the body, so not a result: %s\n", r.unseparated.c_str());
   Mesh body;
   body.vertices = batch.body.mat(0).cast<double>();
   body.faces = model.assets().body.faces;
@@ -119,7 +133,7 @@ int run(const std::vector<std::string>& args) {
     figure.write(vm["svg"].as<std::string>());
     std::printf("wrote %s\n", vm["svg"].as<std::string>().c_str());
   }
-  return 0;
+  return r.separated ? 0 : 1;
 }
 
 const RegisterCommand registered{{"optimize", "fine-tune a model for one body to minimise the scene's potential energy", run}};

@@ -1,7 +1,11 @@
 // The physics-enforced optimisation (drape/physics_optimization.hpp) on the
 // tiny T-shirt: the potential falls from the network's prediction, the best
 // iterate is returned, the weights change in place, hard starts stay finite,
-// and a scene of another template is refused.
+// a scene of another template is refused, and with a barrier no result
+// crosses the body.
+#include <drape/geometry/closest_point.hpp>
+#include <drape/geometry/penetration.hpp>
+#include <drape/geometry/surface_crossings.hpp>
 #include <drape/physics_optimization.hpp>
 
 #include <catch2/catch.hpp>
@@ -107,4 +111,44 @@ TEST_CASE("optimize_drape refuses a scene of another template and bad settings",
   SampleBatch two;
   two.body = Tensor(2, body.body.rows(), 3);
   CHECK_THROWS_WITH(optimize_drape(model, scene, two), Catch::Contains("one body at a time"));
+}
+
+namespace {
+
+// Separated from the body, by tools that share no code with the contact: the
+// exact crossing count and the signed distance of every vertex.
+bool clear_of_body(const Eigen::MatrixX3d& garment, const Mesh& template_mesh, const SampleBatch& body, const Model& model) {
+  const Eigen::MatrixX3d b = body.body.mat(0).cast<double>();
+  const geometry::SurfaceCrossings c = geometry::surface_crossings(garment, template_mesh.faces, b, model.assets().body.faces);
+  return c.total() == 0 && geometry::penetration_ratio(geometry::BodySurface(b, model.assets().body.faces), garment) == 0;
+}
+
+}  // namespace
+
+TEST_CASE("optimize_drape with a barrier ends clear of the body whatever the learning rate", "[optimize][barrier]") {
+  TinyModel tiny;
+  BodyRequest request;
+  request.bmi = 27;  // the prediction starts a little inside this body
+  const std::string barrier = "barrier: {}", both = "barrier: {}\n  collision: {stiffness: 1.0e10, margin: 0.004, smoothing: 0.02}";
+  for (const auto& [contact, lr] : {std::pair{barrier, 1e-2}, std::pair{barrier, 1.0}, std::pair{both, 1e-2}}) {
+    const Simulation scene(plugins(), tiny_physics_scene(contact));
+    Model model = tiny.load();
+    const SampleBatch body = model.body_for(request);
+    PhysicsOptimizationOptions o;
+    o.iterations = 100;
+    o.learning_rate = lr;
+    const PhysicsOptimizationResult r = optimize_drape(model, scene, body, o);
+    INFO(contact << ", learning rate " << lr << ": start shrink " << r.start_shrink << " m, " << r.refused_steps
+                 << " steps refused; " << r.unseparated);
+    CHECK_FALSE(clear_of_body(r.before, scene.garment().mesh, body, model));  // a genuinely crossing start
+    CHECK(r.start_shrink > 0);
+    REQUIRE(r.separated);
+    CHECK(clear_of_body(r.after, scene.garment().mesh, body, model));
+    CHECK(r.best_iteration > 0);
+    CHECK(std::find_if(r.energies_after.begin(), r.energies_after.end(),
+                       [](const EnergyTerm& t) { return t.name == "barrier"; }) != r.energies_after.end());
+    for (double lp : r.history) CHECK(std::isfinite(lp));
+    // With Adam's steps 100x too long the collision checks had to undo some.
+    if (lr > 0.5) CHECK(r.refused_steps > 0);
+  }
 }

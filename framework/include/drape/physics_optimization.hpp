@@ -11,6 +11,7 @@
 #include <drape/simulation.hpp>
 
 #include <functional>
+#include <string>
 #include <vector>
 
 namespace drape {
@@ -30,8 +31,24 @@ struct PhysicsOptimizationResult {
   std::vector<double> history;  // L_p at every iteration, history[0] = before
   int best_iteration = 0;       // the iterate returned as `after` (the lowest L_p seen)
   double seconds = 0;
+  // With a barrier in the scene: the shrink of the body that separated the
+  // prediction from it (m; 0 when it was already clear), the steps undone
+  // because they would have crossed the body (each retried with half the
+  // learning rate), and whether a drape on the fully grown-back body was
+  // reached (`after` is then the best of those, else the last drape, and
+  // `unseparated` says why). Always true without a barrier.
+  double start_shrink = 0;
+  int refused_steps = 0;
+  bool separated = true;
+  std::string unseparated;
 };
 
+// A scene with a barrier (an energy that bounds steps): no accepted drape
+// crosses the body, whatever the learning rate. A prediction that crosses the
+// body starts against the body shrunk until it is clear (0.5-6 cm), which
+// grows back as the barrier pushes the cloth out; only drapes on the true body
+// are returned as results (`separated`).
+//
 // Changes the model's weights in place (Model::load again to undo). Runs on
 // the calling thread alone (OpenMP set to one thread for the call). `body` holds
 // one sample (SampleBatch::body [1, Nb, 3], body_params when the graph takes

@@ -5,7 +5,11 @@
 #include <drape/optimizer.hpp>
 #include <drape/physics_optimization.hpp>
 
+#include "../scene/separated_start.hpp"
+
+#include <algorithm>
 #include <chrono>
+#include <cstdio>
 #include <cmath>
 #include <memory>
 
@@ -13,13 +17,15 @@ namespace drape {
 
 namespace {
 
-// L_p and its gradient at x: every energy of the scene, in double.
+// L_p and its gradient at x: every energy of the scene, in double; the
+// step-bounding ones (the barrier) only when `with_bounding`.
 double potential(std::vector<NamedEnergy>& energies, const Eigen::MatrixX3d& x, Eigen::MatrixX3d& gradient,
-                 std::vector<EnergyTerm>* terms) {
+                 std::vector<EnergyTerm>* terms, bool with_bounding) {
   gradient.setZero(x.rows(), 3);
   if (terms) terms->clear();
   double total = 0;
   for (NamedEnergy& e : energies) {
+    if (e.energy->bounds_steps() && !with_bounding) continue;
     const double value = e.energy->add_gradient(x, gradient);
     if (!std::isfinite(value)) throw Error("optimize: the " + e.name + " energy is not finite");
     total += value;
@@ -28,6 +34,34 @@ double potential(std::vector<NamedEnergy>& energies, const Eigen::MatrixX3d& x, 
   if (!gradient.allFinite()) throw Error("optimize: the energy gradient is not finite");
   return total;
 }
+
+// The largest fraction of the move x -> x + dx that the step-bounding energies allow.
+double allowed_step(const std::vector<NamedEnergy>& energies, const Eigen::MatrixX3d& x, const Eigen::MatrixX3d& dx) {
+  double alpha = 1;
+  for (const NamedEnergy& e : energies)
+    if (e.energy->bounds_steps()) alpha = std::min(alpha, e.energy->max_step(x, dx));
+  return alpha;
+}
+
+// The weights and the optimiser's state at the last accepted drape, to go
+// back to when a step would cross the body.
+struct Accepted {
+  std::vector<Tensor> weights;
+  OptimizerState optimizer;
+  void save(const Optimizer& o) {
+    weights.clear();
+    for (const auto& [name, w] : o.weights()) weights.push_back(w->value);
+    optimizer = o.state();
+  }
+  void restore(Optimizer& o) const {
+    for (std::size_t k = 0; k < weights.size(); ++k) o.weights()[k].second->value = weights[k];
+    o.set_state(optimizer);
+  }
+};
+
+// Refused steps in a row (each halving the learning rate) before the drape is
+// taken as stuck against the body: 2^-30 of the step is below float round-off.
+constexpr int kMaxRefusalsInARow = 30;
 
 }  // namespace
 
@@ -54,19 +88,42 @@ PhysicsOptimizationResult optimize_drape(Model& model, const Simulation& scene, 
   if (scene.needs_body()) surface = std::make_unique<geometry::BodySurface>(body_vertices, model.assets().body.faces);
   std::vector<NamedEnergy> energies = scene.make_energies(surface.get());
 
+  // With a barrier (an energy that bounds steps) no accepted drape crosses the
+  // body. A barrier keeps separated surfaces apart but cannot see through a
+  // crossing one, and a network's prediction usually crosses the body
+  // somewhere. So, as the simulation does, the barrier starts on the body
+  // shrunk along its normals by the least of 0.5-6 cm that separates the
+  // prediction, and the body grows back to its true shape as far as the
+  // continuous collision checks allow after every step, the barrier pushing
+  // the cloth out ahead of it. Every weight step is checked over the straight
+  // move from the last accepted drape: one that would cross is undone and
+  // retried with half the learning rate. Only drapes on the fully grown body
+  // are results (docs/optimization.md).
+  const bool bounded = std::any_of(energies.begin(), energies.end(), [](const NamedEnergy& e) { return e.energy->bounds_steps(); });
+  const Eigen::MatrixX3i& garment_faces = garment.faces;
+  const Eigen::MatrixX3i& body_faces = model.assets().body.faces;
+
   Graph& graph = model.graph();
   const auto inputs = graph_inputs(graph, body, false);
   Adam adam(graph.weights());
   PhysicsOptimizationResult r;
   Eigen::MatrixX3d x, gradient;
   Tensor grad(1, garment.num_vertices(), 3);
-  double best = INFINITY;
-  for (int it = 0;; ++it) {
+  auto predict = [&]() -> Eigen::MatrixX3d {
     graph.forward(inputs, false);
-    x = graph.output(model.output()).mat(0).cast<double>();
-    if (!x.allFinite()) throw Error("optimize: the network predicted a non-finite vertex at iteration " + std::to_string(it));
-    std::vector<EnergyTerm> terms;
-    const double lp = potential(energies, x, gradient, &terms);
+    Eigen::MatrixX3d out = graph.output(model.output()).mat(0).cast<double>();
+    if (!out.allFinite())
+      throw Error("optimize: the network predicted a non-finite vertex at iteration " + std::to_string(r.history.size()));
+    return out;
+  };
+  bool with_barrier = false;  // the barrier acts: the drape is clear of the body the contact sees
+  Eigen::MatrixX3d body_now = body_vertices;  // the body the contact sees: shrunk, growing back
+  bool grown = true;
+  double start_gap = 0;  // |true body - shrunk start body|
+  double best = INFINITY;
+  std::vector<EnergyTerm> terms;  // of the latest drape
+  auto evaluate = [&](int it) {
+    const double lp = potential(energies, x, gradient, &terms, with_barrier);
     r.history.push_back(lp);
     if (options.on_iteration) options.on_iteration(it, lp);
     if (it == 0) {
@@ -74,23 +131,91 @@ PhysicsOptimizationResult optimize_drape(Model& model, const Simulation& scene, 
       r.energies_before = terms;
       r.potential_before = lp;
     }
-    if (lp < best) {
+    if (grown && with_barrier == bounded && lp < best) {
       best = lp;
       r.after = x;
       r.energies_after = terms;
       r.potential_after = lp;
       r.best_iteration = it;
     }
-    if (it == options.iterations) break;
+  };
+  // The body grows towards its true shape as far as no pair comes too close.
+  auto grow_body = [&]() {
+    const Eigen::MatrixX3d zero = Eigen::MatrixX3d::Zero(x.rows(), 3);
+    double alpha = 1;
+    for (const NamedEnergy& e : energies)
+      if (e.energy->bounds_steps()) alpha = std::min(alpha, e.energy->max_step(x, zero, &body_now, &body_vertices));
+    body_now = alpha >= 1 ? body_vertices : Eigen::MatrixX3d(body_now + alpha * (body_vertices - body_now));
+    grown = alpha >= 1;
+    surface->update(body_now);
+  };
+
+  x = predict();
+  // L_p before is the prediction's on the true body; the barrier counts in it
+  // only when the prediction is clear of the body (it cannot see a crossing).
+  with_barrier = bounded && scene_detail::separation_problem(x, *surface, garment_faces).empty();
+  evaluate(0);
+  if (bounded && !with_barrier) {
+    try {
+      body_now = scene_detail::separated_start_body(x, body_vertices, body_faces, garment_faces, &r.start_shrink);
+      grown = false;
+      start_gap = (body_vertices - body_now).norm();
+      surface->update(body_now);
+      with_barrier = true;
+      potential(energies, x, gradient, nullptr, true);  // the first step's gradient, against the shrunk body
+    } catch (const ConfigError& e) {
+      r.unseparated = e.what();  // the other energies still act, but nothing is a result
+    }
+  }
+  Accepted accepted;
+  if (with_barrier) accepted.save(adam);
+  double scale = 1;  // of the learning rate, halved at each refused step
+  int refused_in_a_row = 0;
+  for (int it = 1; it <= options.iterations;) {
     grad.mat(0) = gradient.cast<float>();
     graph.zero_grad();
     graph.backward_from_output(model.output(), grad);
-    adam.step(options.learning_rate);
+    adam.step(options.learning_rate * scale);
+    Eigen::MatrixX3d next = predict();
+    if (with_barrier && allowed_step(energies, x, next - x) < 1) {
+      ++r.refused_steps;
+      if (++refused_in_a_row > kMaxRefusalsInARow) break;  // stuck against the body: the best drape stands
+      accepted.restore(adam);
+      x = predict();  // the accepted drape again, and the activations its backward pass needs
+      scale *= 0.5;
+      continue;
+    }
+    refused_in_a_row = 0;
+    scale = std::min(1.0, 2 * scale);
+    x = std::move(next);
+    if (with_barrier) {
+      if (!grown) grow_body();
+      accepted.save(adam);
+    }
+    evaluate(it++);
   }
-  // p is measured whether or not the scene has collisions (it is the seed's metric).
-  if (!surface) surface = std::make_unique<geometry::BodySurface>(body_vertices, model.assets().body.faces);
-  r.penetration_before = geometry::penetration_ratio(*surface, r.before);
-  r.penetration_after = geometry::penetration_ratio(*surface, r.after);
+  r.separated = !bounded || (with_barrier && grown);
+  if (!r.separated) {
+    // No drape on the true body that is known to be clear of it: return the
+    // last one, and say why it is not a result.
+    r.after = x;
+    r.energies_after = terms;
+    r.potential_after = r.history.back();
+    r.best_iteration = static_cast<int>(r.history.size()) - 1;
+    if (with_barrier) {
+      const double left = (body_vertices - body_now).norm() / std::max(start_gap, 1e-300);
+      char why[200];
+      std::snprintf(why, sizeof why,
+                    "the body, shrunk by %.1f cm to separate the prediction, grew back only %.0f %% of the way in %d "
+                    "iterations: give more iterations",
+                    100 * r.start_shrink, 100 * (1 - left), options.iterations);
+      r.unseparated = why;
+    }
+  }
+  // p is measured on the true body whether or not the scene has collisions (it is the seed's metric).
+  const geometry::BodySurface true_body(body_vertices, body_faces);
+  r.penetration_before = geometry::penetration_ratio(true_body, r.before);
+  r.penetration_after = geometry::penetration_ratio(true_body, r.after);
   r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return r;
 }
