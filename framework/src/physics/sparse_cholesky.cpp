@@ -10,6 +10,8 @@
 #include <Eigen/CholmodSupport>
 #endif
 
+#include <mutex>
+
 namespace drape::physics {
 
 namespace {
@@ -75,6 +77,14 @@ class CholmodCholesky final : public SparseCholesky {
   }
   bool factorize(const SparseMatrix& a) override {
     if (!key_.same(a)) {
+      // METIS (CHOLMOD's nested dissection) draws from one process-wide random
+      // generator: two solvers ordering at the same moment (drape generate's
+      // workers, most often the samples a resumed job starts together)
+      // interleave its draws and get orderings that depend on the timing, so
+      // drapes that round differently. One ordering at a time, each from
+      // METIS's fixed seed, gives the same ordering whatever runs beside it.
+      static std::mutex metis;
+      const std::lock_guard<std::mutex> lock(metis);
       llt_.analyzePattern(a);
       key_.set(a);
       single_pattern_stale_ = true;
