@@ -13,6 +13,7 @@
 
 #include <csignal>
 #include <fstream>
+#include <regex>
 #include <thread>
 
 #include "train_test_util.hpp"
@@ -168,10 +169,12 @@ TEST_CASE("the shipped pretrained model drapes a T-shirt on a BMI 35 body out of
   CHECK(p < 0.05);
 }
 
-TEST_CASE("the shipped model optimised with the contact scene leaves no vertex inside a BMI 65 body", "[train][cli][shipped][optimize]") {
+TEST_CASE("the shipped model optimised with the contact scene ends clear of a BMI 65 body", "[train][cli][shipped][optimize]") {
   // The heaviest body of the range, on which the regular shirt is too small:
-  // the prediction has ~1.4 % of its vertices inside; 100 iterations against
-  // the stiff smooth contact clear them all (docs/optimization.md).
+  // the prediction crosses the body (a few vertices inside, edges through
+  // faces); 100 iterations under the barrier end with neither, whatever the
+  // start (docs/optimization.md). The counts are drape's exact crossing test
+  // and p, which share no code with the contact.
   test::TempDir dir;
   std::string out;
   REQUIRE(test::run("env -u DRAPE_MODEL DRAPE_CACHE_DIR=" + dir.path().string() + " " + test::drape_program().string() +
@@ -186,9 +189,13 @@ TEST_CASE("the shipped model optimised with the contact scene leaves no vertex i
     REQUIRE(at != std::string::npos);
     return std::stod(out.substr(at + 4));
   };
-  CHECK(p_of("before") > 1.0);  // percent
+  std::smatch crossings;
+  REQUIRE(std::regex_search(out, crossings, std::regex("surface crossings \\(.*\\): before ([0-9]+), after ([0-9]+)")));
+  CHECK((p_of("before") > 0.0 || std::stoi(crossings[1]) > 0));  // a start that crosses the body
   CHECK(p_of("after") == 0.0);
-  CHECK(read_mesh(dir / "g.obj").vertices.allFinite());
+  CHECK(std::stoi(crossings[2]) == 0);
+  const Mesh garment = read_mesh(dir / "g.obj");
+  CHECK(garment.vertices.allFinite());
 }
 
 TEST_CASE("drape optimize improves one drape, and every sample of a split into a resumable dataset", "[train][cli][optimize]") {
