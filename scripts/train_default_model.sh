@@ -7,11 +7,12 @@
 #   bash scripts/train_default_model.sh [WORK_DIR]     (default: work/)
 #
 # With the barrier contact and ArcSim's knit (graphs/scenes/tshirt.yaml) a
-# coarse drape takes 4-30 s per core (BMI 10-65), so the shipped model was
-# made from COUNT=400 drapes (~45 min on 2 cores), then the trainings (~10 min
-# for the seed's model, a few minutes for each baseline run) and their
-# evaluations. Environment: COUNT (drapes, default 1000), BUILD_DIR (default
-# build), THREADS (default all cores).
+# coarse drape takes 17 s per core on average (6 s at BMI 10-30, 25-37 s above
+# BMI 40), so the shipped model was made with COUNT=400: 58 minutes of drapes on
+# 2 cores, then 7.5 minutes for the seed's model, about a minute for each
+# baseline run, and their evaluations (docs/training.md). The default
+# COUNT=1000 takes about 2.5 hours. Environment: COUNT (drapes, default 1000),
+# BUILD_DIR (default build), THREADS (default all cores).
 set -euo pipefail
 cd "$(dirname "${BASH_SOURCE[0]}")/.."
 DRAPE=${BUILD_DIR:-build}/bin/drape
@@ -21,8 +22,8 @@ COUNT=${COUNT:-1000}
 DATA="$WORK/coarse$COUNT.h5"
 mkdir -p "$WORK"
 
-# COUNT drapes of the coarse T-shirt (991 vertices) on bodies of BMI 10-65:
-# 800 train, 100 validation, 100 test.
+# COUNT drapes of the coarse T-shirt (991 vertices) on bodies of BMI 10-65,
+# split 80/10/10 % into train, validation and test.
 "$DRAPE" generate graphs/scenes/tshirt_coarse.yaml --count "$COUNT" --bmi 10:65 --seed 1 \
   --out "$DATA" --threads "$THREADS"
 
