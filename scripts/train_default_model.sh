@@ -10,15 +10,15 @@
 # coarse drape takes 17 s per core on average (6 s at BMI 10-30, 25-37 s above
 # BMI 40), so the shipped model was made with COUNT=400: 58 minutes of drapes on
 # 2 cores, then 7.5 minutes for the seed's model, about a minute for each
-# baseline run, and their evaluations (docs/training.md). The default
-# COUNT=1000 takes about 2.5 hours. Environment: COUNT (drapes, default 1000),
+# baseline run, and their evaluations (docs/training.md); COUNT=1000 takes
+# about 2.5 hours. Environment: COUNT (drapes, default 400, the shipped run),
 # BUILD_DIR (default build), THREADS (default all cores).
 set -euo pipefail
 cd "$(dirname "${BASH_SOURCE[0]}")/.."
 DRAPE=${BUILD_DIR:-build}/bin/drape
 WORK=${1:-work}
 THREADS=${THREADS:-$(nproc)}
-COUNT=${COUNT:-1000}
+COUNT=${COUNT:-400}
 DATA="$WORK/coarse$COUNT.h5"
 mkdir -p "$WORK"
 
