@@ -87,6 +87,15 @@ PhysicsOptimizationResult optimize_drape(Model& model, const Simulation& scene, 
   std::unique_ptr<geometry::BodySurface> surface;
   if (scene.needs_body()) surface = std::make_unique<geometry::BodySurface>(body_vertices, model.assets().body.faces);
   std::vector<NamedEnergy> energies = scene.make_energies(surface.get());
+  // The barrier gets a body of its own, which may start shrunk (below); a
+  // penalty contact beside it keeps the true body and pushes the cloth out of it.
+  std::unique_ptr<geometry::BodySurface> barrier_surface;
+  if (std::any_of(energies.begin(), energies.end(), [](const NamedEnergy& e) { return e.energy->bounds_steps(); })) {
+    barrier_surface = std::make_unique<geometry::BodySurface>(body_vertices, model.assets().body.faces);
+    std::vector<NamedEnergy> on_own_body = scene.make_energies(barrier_surface.get());
+    for (std::size_t k = 0; k < energies.size(); ++k)
+      if (energies[k].energy->bounds_steps()) energies[k] = std::move(on_own_body[k]);
+  }
 
   // With a barrier (an energy that bounds steps) no accepted drape crosses the
   // body. A barrier keeps separated surfaces apart but cannot see through a
@@ -147,7 +156,7 @@ PhysicsOptimizationResult optimize_drape(Model& model, const Simulation& scene, 
       if (e.energy->bounds_steps()) alpha = std::min(alpha, e.energy->max_step(x, zero, &body_now, &body_vertices));
     body_now = alpha >= 1 ? body_vertices : Eigen::MatrixX3d(body_now + alpha * (body_vertices - body_now));
     grown = alpha >= 1;
-    surface->update(body_now);
+    barrier_surface->update(body_now);
   };
 
   x = predict();
@@ -160,7 +169,7 @@ PhysicsOptimizationResult optimize_drape(Model& model, const Simulation& scene, 
       body_now = scene_detail::separated_start_body(x, body_vertices, body_faces, garment_faces, &r.start_shrink);
       grown = false;
       start_gap = (body_vertices - body_now).norm();
-      surface->update(body_now);
+      barrier_surface->update(body_now);
       with_barrier = true;
       potential(energies, x, gradient, nullptr, true);  // the first step's gradient, against the shrunk body
     } catch (const ConfigError& e) {
