@@ -176,6 +176,10 @@ SimulationResult Simulation::run(const Eigen::MatrixX3d& target_body, const Simu
   const double kink_radius = solver.settings().kink_radius;
   result.stationarity = solver.stationarity(x, kink_radius);
   const double settle_tolerance = solver.settings().settle_tolerance;
+  // A step that moves no vertex ends the settling: further steps from a
+  // stall change nothing (tried: on a stalled BMI 65 body 54 more steps only
+  // found no decrease). Whether that counts as settled is decided below.
+  const double at_rest_limit = solver.settings().kink_tolerance;
   for (int k = 1; k <= settle_steps_ && result.stationarity > settle_tolerance && !result.at_rest; ++k) {
     const StepReport r = solver.step(x, v);
     result.stationarity = solver.stationarity(x, kink_radius);
@@ -183,13 +187,13 @@ SimulationResult Simulation::run(const Eigen::MatrixX3d& target_body, const Simu
     record(morph_steps_ + k, false, r, result.stationarity);
   }
   // At rest counts only near equilibrium: a stall with large unbalanced forces is not a drape.
-  result.converged = result.stationarity <= settle_tolerance ||
-                     (result.at_rest && result.stationarity <= solver.settings().kink_tolerance);
+  result.converged = result.stationarity <= settle_tolerance || (result.at_rest && result.stationarity <= at_rest_limit);
   result.total_energy = solver.energy(x, &result.energies);
   const Eigen::MatrixX3d gradient = solver.static_gradient(x);
   result.residual = gradient.norm() / solver.force_scale();
   result.vertex_force = gradient.rowwise().norm();
-  if (!result.converged) result.unsettled = scene_detail::why_unsettled(result, x, settle_tolerance, settle_steps_);
+  if (!result.converged)
+    result.unsettled = scene_detail::why_unsettled(result, x, settle_tolerance, result.steps - morph_steps_, at_rest_limit);
   result.garment = x;
   result.body = target_body;
   result.linear_solver = solver.linear_solver();

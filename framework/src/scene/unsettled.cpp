@@ -9,10 +9,17 @@
 
 namespace drape::scene_detail {
 
-std::string why_unsettled(const SimulationResult& result, const Eigen::MatrixX3d& x, double tolerance, int settle_steps) {
-  char head[200];
-  std::snprintf(head, sizeof head, "not settled after %d settling steps: stationarity %.2e of the weight, tolerance %.2e",
-                settle_steps, result.stationarity, tolerance);
+std::string why_unsettled(const SimulationResult& result, const Eigen::MatrixX3d& x, double tolerance, int settle_steps,
+                          double at_rest_limit) {
+  char head[300];
+  if (result.at_rest)
+    std::snprintf(head, sizeof head,
+                  "stopped at rest after %d settling steps (no vertex moved in the last one) with stationarity %.2e of "
+                  "the weight, above the tolerance %.2e and the at-rest limit %.2e",
+                  settle_steps, result.stationarity, tolerance, at_rest_limit);
+  else
+    std::snprintf(head, sizeof head, "not settled after %d settling steps: stationarity %.2e of the weight, tolerance %.2e",
+                  settle_steps, result.stationarity, tolerance);
   std::string out = head;
   // The vertices carrying the largest unbalanced forces (the top 2 %, at least 3).
   const Eigen::VectorXd& f = result.vertex_force;

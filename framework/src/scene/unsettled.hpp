@@ -8,6 +8,7 @@
 
 namespace drape::scene_detail {
 
-std::string why_unsettled(const SimulationResult& result, const Eigen::MatrixX3d& x, double tolerance, int settle_steps);
+std::string why_unsettled(const SimulationResult& result, const Eigen::MatrixX3d& x, double tolerance, int settle_steps,
+                          double at_rest_limit);
 
 }  // namespace drape::scene_detail
