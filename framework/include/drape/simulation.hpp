@@ -95,7 +95,10 @@ class Simulation {
 
   // The energies of the scene's effects, bound to the garment (and to `body`
   // when an effect needs one; ConfigError when it does and body is null).
-  std::vector<NamedEnergy> make_energies(const BodyQuery* body) const;
+  // With `step_bounding_body`, the energies that bound steps (the barrier) are
+  // bound to it instead: the physics-enforced optimisation gives the barrier a
+  // body of its own that starts shrunk, while a penalty keeps the true one.
+  std::vector<NamedEnergy> make_energies(const BodyQuery* body, const BodyQuery* step_bounding_body = nullptr) const;
   bool needs_body() const { return needs_body_; }
 
   SolverSettings solver_settings() const;

@@ -86,16 +86,16 @@ Eigen::VectorXd Simulation::target_shape() const {
 
 Eigen::MatrixX3d Simulation::body_vertices(const Eigen::VectorXd& shape) const { return body_model_->vertices(shape); }
 
-std::vector<NamedEnergy> Simulation::make_energies(const BodyQuery* body) const {
+std::vector<NamedEnergy> Simulation::make_energies(const BodyQuery* body, const BodyQuery* step_bounding_body) const {
   EnergyContext context;
   context.garment = garment_.get();
-  context.body = body;
   context.gravity = gravity_direction_ * 9.81;
   std::vector<NamedEnergy> energies;
   for (std::size_t i = 0; i < scene_.effects.size(); ++i) {
     const std::string& name = scene_.effects[i].name;
     auto e = registry_.create_energy(name, effect_params_[i]);
-    if (e->needs_body() && !body)
+    context.body = e->bounds_steps() && step_bounding_body ? step_bounding_body : body;
+    if (e->needs_body() && !context.body)
       throw ConfigError(scene_.effects[i].where, "effect '" + name + "' needs a body and none was given");
     e->bind(context);
     energies.push_back({name, std::move(e)});

@@ -49,8 +49,8 @@ struct Accepted {
   std::vector<Tensor> weights;
   OptimizerState optimizer;
   void save(const Optimizer& o) {
-    weights.clear();
-    for (const auto& [name, w] : o.weights()) weights.push_back(w->value);
+    weights.resize(o.weights().size());  // copied into the same buffers at every accepted step
+    for (std::size_t k = 0; k < weights.size(); ++k) weights[k] = o.weights()[k].second->value;
     optimizer = o.state();
   }
   void restore(Optimizer& o) const {
@@ -84,18 +84,14 @@ PhysicsOptimizationResult optimize_drape(Model& model, const Simulation& scene, 
                       "and resolution");
 
   const Eigen::MatrixX3d body_vertices = body.body.mat(0).cast<double>();
-  std::unique_ptr<geometry::BodySurface> surface;
-  if (scene.needs_body()) surface = std::make_unique<geometry::BodySurface>(body_vertices, model.assets().body.faces);
-  std::vector<NamedEnergy> energies = scene.make_energies(surface.get());
+  const Eigen::MatrixX3i& body_faces = model.assets().body.faces;
+  // p is measured on the true body whether or not the scene has collisions
+  // (it is the seed's metric), so its surface always exists.
+  const geometry::BodySurface surface(body_vertices, body_faces);
   // The barrier gets a body of its own, which may start shrunk (below); a
   // penalty contact beside it keeps the true body and pushes the cloth out of it.
-  std::unique_ptr<geometry::BodySurface> barrier_surface;
-  if (std::any_of(energies.begin(), energies.end(), [](const NamedEnergy& e) { return e.energy->bounds_steps(); })) {
-    barrier_surface = std::make_unique<geometry::BodySurface>(body_vertices, model.assets().body.faces);
-    std::vector<NamedEnergy> on_own_body = scene.make_energies(barrier_surface.get());
-    for (std::size_t k = 0; k < energies.size(); ++k)
-      if (energies[k].energy->bounds_steps()) energies[k] = std::move(on_own_body[k]);
-  }
+  geometry::BodySurface barrier_surface(body_vertices, body_faces);
+  std::vector<NamedEnergy> energies = scene.make_energies(scene.needs_body() ? &surface : nullptr, &barrier_surface);
 
   // With a barrier (an energy that bounds steps) no accepted drape crosses the
   // body. A barrier keeps separated surfaces apart but cannot see through a
@@ -110,7 +106,6 @@ PhysicsOptimizationResult optimize_drape(Model& model, const Simulation& scene, 
   // are results (docs/optimization.md).
   const bool bounded = std::any_of(energies.begin(), energies.end(), [](const NamedEnergy& e) { return e.energy->bounds_steps(); });
   const Eigen::MatrixX3i& garment_faces = garment.faces;
-  const Eigen::MatrixX3i& body_faces = model.assets().body.faces;
 
   Graph& graph = model.graph();
   const auto inputs = graph_inputs(graph, body, false);
@@ -156,20 +151,20 @@ PhysicsOptimizationResult optimize_drape(Model& model, const Simulation& scene, 
       if (e.energy->bounds_steps()) alpha = std::min(alpha, e.energy->max_step(x, zero, &body_now, &body_vertices));
     body_now = alpha >= 1 ? body_vertices : Eigen::MatrixX3d(body_now + alpha * (body_vertices - body_now));
     grown = alpha >= 1;
-    barrier_surface->update(body_now);
+    barrier_surface.update(body_now);
   };
 
   x = predict();
   // L_p before is the prediction's on the true body; the barrier counts in it
   // only when the prediction is clear of the body (it cannot see a crossing).
-  with_barrier = bounded && scene_detail::separation_problem(x, *surface, garment_faces).empty();
+  with_barrier = bounded && scene_detail::separation_problem(x, surface, garment_faces).empty();
   evaluate(0);
   if (bounded && !with_barrier) {
     try {
       body_now = scene_detail::separated_start_body(x, body_vertices, body_faces, garment_faces, &r.start_shrink);
       grown = false;
       start_gap = (body_vertices - body_now).norm();
-      barrier_surface->update(body_now);
+      barrier_surface.update(body_now);
       with_barrier = true;
       potential(energies, x, gradient, nullptr, true);  // the first step's gradient, against the shrunk body
     } catch (const ConfigError& e) {
@@ -221,10 +216,8 @@ PhysicsOptimizationResult optimize_drape(Model& model, const Simulation& scene, 
       r.unseparated = why;
     }
   }
-  // p is measured on the true body whether or not the scene has collisions (it is the seed's metric).
-  const geometry::BodySurface true_body(body_vertices, body_faces);
-  r.penetration_before = geometry::penetration_ratio(true_body, r.before);
-  r.penetration_after = geometry::penetration_ratio(true_body, r.after);
+  r.penetration_before = geometry::penetration_ratio(surface, r.before);
+  r.penetration_after = geometry::penetration_ratio(surface, r.after);
   r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return r;
 }
