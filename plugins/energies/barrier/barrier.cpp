@@ -33,10 +33,6 @@ struct BarrierContact::Topology {
   Eigen::VectorXd garment_edge_area;     // m^2: a third of each adjacent face's material area
   Eigen::VectorXd garment_edge_rest2;    // m^2: squared material-space length (the mollifier's scale)
   int garment_vertices = 0;
-  // The cell of the body's box grids: the larger of the typical garment and
-  // body edge. Cells of the body's (smaller) edges alone made each garment
-  // box visit dozens of cells, and the queries took a sixth of a drape.
-  double grid_cell = 0;
   Eigen::MatrixX3i body_faces;
   std::vector<std::array<int, 2>> body_edges;
 };
@@ -74,17 +70,10 @@ Box primitive_box(const std::array<int, K>& v, const Eigen::MatrixX3d& x, const 
 
 std::array<int, 3> face(const Eigen::MatrixX3i& faces, int f) { return {faces(f, 0), faces(f, 1), faces(f, 2)}; }
 
-Eigen::VectorXd edge_lengths(const Eigen::MatrixX3d& x, const std::vector<std::array<int, 2>>& edges) {
-  Eigen::VectorXd length(static_cast<Eigen::Index>(edges.size()));
-  for (std::size_t e = 0; e < edges.size(); ++e)
-    length[static_cast<Eigen::Index>(e)] = (x.row(edges[e][0]) - x.row(edges[e][1])).norm();
-  return length;
-}
-
-double median_edge_length(Eigen::VectorXd length) {
-  if (length.size() == 0) return 0;
-  auto middle = length.begin() + length.size() / 2;
-  std::nth_element(length.begin(), middle, length.end());
+double median(Eigen::VectorXd values) {
+  if (values.size() == 0) return 0;
+  auto middle = values.begin() + values.size() / 2;
+  std::nth_element(values.begin(), middle, values.end());
   return *middle;
 }
 
@@ -176,8 +165,6 @@ void BarrierContact::bind(const EnergyContext& context) {
   }
   t.body_faces = body_->faces();
   t.body_edges = geometry::edge_list(t.body_faces);
-  t.grid_cell = std::max(median_edge_length(t.garment_edge_rest2.cwiseSqrt()),
-                         median_edge_length(edge_lengths(body_->vertices(), t.body_edges)));
   std::lock_guard<std::mutex> lock(cache_.mutex);
   cache_.body.reset();
   cache_.pairs.reset();
@@ -271,10 +258,14 @@ std::shared_ptr<const BarrierContact::BodyState> BarrierContact::body_state_lock
   state->edge_length2.resize(static_cast<Eigen::Index>(t.body_edges.size()));
   for (std::size_t e = 0; e < t.body_edges.size(); ++e)
     state->edge_length2[static_cast<Eigen::Index>(e)] = (body.row(t.body_edges[e][0]) - body.row(t.body_edges[e][1])).squaredNorm();
+  // Grid cells as large as the typical garment or body edge, whichever is
+  // longer: cells of the body's (shorter) edges alone made each garment box
+  // visit dozens of cells, and the queries took a sixth of a drape.
+  const double cell = std::sqrt(std::max(median(t.garment_edge_rest2), median(state->edge_length2)));
   MeshBoxes boxes = mesh_boxes(body, nullptr, t.body_faces, t.body_edges, 0.0);
-  state->points = geometry::BoxGrid(std::move(boxes.points), t.grid_cell);
-  state->faces = geometry::BoxGrid(std::move(boxes.faces), t.grid_cell);
-  state->edges = geometry::BoxGrid(std::move(boxes.edges), t.grid_cell);
+  state->points = geometry::BoxGrid(std::move(boxes.points), cell);
+  state->faces = geometry::BoxGrid(std::move(boxes.faces), cell);
+  state->edges = geometry::BoxGrid(std::move(boxes.edges), cell);
   cache_.body = state;
   return state;
 }
