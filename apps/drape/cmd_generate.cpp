@@ -156,7 +156,8 @@ int run(const std::vector<std::string>& args) {
       for (const auto& t : r.energies) s.stats["energy_" + t.name] = t.value;
       s.stats["energy_total"] = r.total_energy;
       s.stats["penetration"] = r.penetration;
-      s.stats["crossings"] = (r.crossings ? r.crossings->total() : 0);
+      const int crossings = r.crossings ? r.crossings->total() : 0;
+      s.stats["crossings"] = crossings;
       s.stats["residual"] = r.residual;
       s.stats["stationarity"] = r.stationarity;
       s.stats["converged"] = r.converged ? 1 : 0;
@@ -170,7 +171,7 @@ int run(const std::vector<std::string>& args) {
       s.stats["garment_size"] = garment_size;
       if (!r.converged) ++not_settled;
       if (r.penetration > 0) ++penetrating;
-      if ((r.crossings ? r.crossings->total() : 0) > 0) ++crossing;
+      if (crossings > 0) ++crossing;
       {
         const std::lock_guard<std::mutex> lock(write_mutex);
         writer.write(local, s);

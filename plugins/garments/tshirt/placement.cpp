@@ -40,8 +40,8 @@ Ellipse torso_ellipse(const PatternSpec& spec, const TorsoFrame& torso) {
 }
 
 // The body part for u >= 0.
-Eigen::Vector3d torso_map(const PatternSpec& spec, const TorsoFrame& torso, const Ellipse& e, double u, double v,
-                          double side) {
+Eigen::Vector3d torso_map(const PatternSpec& spec, const PatternPoints& pp, const TorsoFrame& torso, const Ellipse& e,
+                          double u, double v, double side) {
   const double phi = M_PI / 2 * std::min(u / spec.half_width, 1.0);
   const double x = e.a * std::sin(phi) + std::max(0.0, u - spec.half_width);
   // Above the armpits the body is the shoulders, deeper than the chest's
@@ -50,7 +50,7 @@ Eigen::Vector3d torso_map(const PatternSpec& spec, const TorsoFrame& torso, cons
   // and its centre moves to the arm's, over a band above the armpit. Below the
   // armpit (every side and underarm seam point) nothing changes, so the seams
   // stay closed. Without it the back panel started 4 cm inside the shoulder blades.
-  const double above_armpit = smoothstep((v - pattern_points(spec).armpit.y()) / 0.10);
+  const double above_armpit = smoothstep((v - pp.armpit.y()) / 0.10);
   const double lateral = smoothstep((phi - M_PI / 4) / (M_PI / 4));
   const double centre_z = torso.centre_z + above_armpit * lateral * (torso.arm_axis_z - torso.centre_z);
   // Over the shoulder the panel bends along a quarter circle whose radius is
@@ -101,10 +101,10 @@ Eigen::Vector3d place(const PatternSpec& spec, const TorsoFrame& torso, const Ei
   const Ellipse e = torso_ellipse(spec, torso);
   const double mirror = p.x() < 0 ? -1 : 1;
   const double u = std::abs(p.x()), v = p.y();
-  const Eigen::Vector3d body = clear_neck(torso, torso_map(spec, torso, e, u, v, side), side);
+  const PatternPoints pp = pattern_points(spec);
+  const Eigen::Vector3d body = clear_neck(torso, torso_map(spec, pp, torso, e, u, v, side), side);
 
   // Sleeve: s along the sleeve from the shoulder point, w across it from the top seam.
-  const PatternPoints pp = pattern_points(spec);
   const Eigen::Vector2d q = Eigen::Vector2d(u, v) - pp.shoulder;
   const double s = q.dot(pp.sleeve_dir), w = q.dot(pp.sleeve_across);
   const double weight = smoothstep(s / pp.armpit_s) * (1 - smoothstep((w - spec.sleeve_opening) / 0.04));
@@ -116,7 +116,7 @@ Eigen::Vector3d place(const PatternSpec& spec, const TorsoFrame& torso, const Ei
     // The tube is coaxial with the arm and starts level with the torso's
     // shoulder point; the blend weight joins the two maps across the armhole.
     const Eigen::Vector3d arm(torso.arm_axis_x, torso.arm_axis_y, torso.arm_axis_z);
-    const Eigen::Vector3d shoulder = torso_map(spec, torso, e, pp.shoulder.x(), pp.shoulder.y(), side);
+    const Eigen::Vector3d shoulder = torso_map(spec, pp, torso, e, pp.shoulder.x(), pp.shoulder.y(), side);
     const Eigen::Vector3d axis0 = arm + (shoulder - arm).dot(along) * along;
     const double psi = M_PI * std::clamp(w / spec.sleeve_opening, 0.0, 1.0);
     const Eigen::Vector3d sleeve =
