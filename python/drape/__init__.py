@@ -1,0 +1,201 @@
+"""drape from Python: bodies, garment assets, trained models, cloth scenes and
+their energies, datasets -- NumPy arrays in and out (docs/python.md).
+
+    import drape
+    body, faces = drape.body(bmi=35, height=1.80, sex=1)
+    model = drape.Model.load()                  # the shipped pretrained model
+    garment = model.predict(model.body(bmi=35))  # float32 [991, 3]
+    result = drape.simulate("graphs/scenes/tshirt_coarse.yaml", body)
+
+Errors are drape.ConfigError (also a ValueError: bad input, exit code 2 of the
+drape program) and drape.Error (a RuntimeError: anything else), with the
+program's one-line messages. The PyTorch bridge is drape.torch_bridge.
+"""
+import json as _json
+import os as _os
+import tempfile as _tempfile
+
+import numpy as _np
+
+from ._drape import (  # noqa: F401  (re-exported)
+    BodyModel,
+    ConfigError,
+    Dataset,
+    Error,
+    Model,
+    __version__,
+    body,
+    load_plugins,
+    plugin_search_path,
+    plugins,
+)
+from . import _drape
+
+__all__ = [
+    "Assets", "BodyModel", "ConfigError", "Dataset", "Energy", "Error", "Model", "Scene", "assets", "body",
+    "load_plugins", "plugin_search_path", "plugins", "simulate", "sparse",
+]
+
+
+def sparse(coo):
+    """A (rows, cols, values, shape) COO tuple as a SciPy CSR matrix (duplicates summed), or the tuple itself
+    when SciPy is not installed."""
+    try:
+        import scipy.sparse
+    except ImportError:
+        return coo
+    rows, cols, values, shape = coo
+    return scipy.sparse.coo_matrix((values, (rows, cols)), shape=shape).tocsr()
+
+
+class Assets:
+    """A garment template's precomputed assets: the garment dressed on the mean body, its UVs, the mean body,
+    the body->garment correspondences, the 4-level hierarchy, graph Laplacians and the spectral basis.
+    Arrays are read-only views of drape's cached assets."""
+
+    def __init__(self, native):
+        self._a = native
+
+    def __getattr__(self, name):
+        return getattr(self._a, name)
+
+    @property
+    def laplacians(self):
+        """Random-walk graph Laplacian I - D^-1 A of each hierarchy level (SciPy sparse, or COO tuples)."""
+        return [sparse(c) for c in self._a._laplacians]
+
+    @property
+    def hierarchy(self):
+        levels = self._a.hierarchy
+        for level in levels:
+            if level["upsample"] is not None:
+                level["upsample"] = sparse(level["upsample"])
+        return levels
+
+    def __repr__(self):
+        d = self._a.dims
+        return f"<drape.Assets garment {d['garment_vertices']} vertices, body {d['body_vertices']}, k {d['eigen_k']}>"
+
+
+def assets(resolution=None, garment="tshirt", size=None, body_model="parametric", eigen_k=1000, levels=4,
+           garment_params=None, body_params=None, cache_dir=None):
+    """The template's assets as `drape assets` builds them (cached in HDF5 under $DRAPE_CACHE_DIR or
+    ~/.cache/drape), e.g. drape.assets(resolution="coarse")."""
+    gp = dict(garment_params or {})
+    if resolution is not None:
+        gp["resolution"] = resolution
+    if size is not None:
+        gp["size"] = size
+    return Assets(_drape._assets(garment, gp, body_model, dict(body_params or {}), int(eigen_k), int(levels), cache_dir))
+
+
+_Model_assets = Model.assets
+Model.assets = property(lambda self: Assets(_Model_assets.fget(self)), doc="the model's template assets (drape.Assets)")
+
+
+class Energy:
+    """One effect of a scene bound to the garment and a body: value, gradient and Hessian at a garment state
+    x (float [Ng, 3], metres). Physics in double precision."""
+
+    def __init__(self, energies, name):
+        self._e = energies
+        self.name = name
+
+    def value(self, x):
+        """E(x) in J."""
+        return self._e.value(self.name, x)
+
+    def gradient(self, x):
+        """dE/dx, float64 [Ng, 3] (N)."""
+        return self._e.value_and_gradient(self.name, x)[1]
+
+    def value_and_gradient(self, x):
+        return self._e.value_and_gradient(self.name, x)
+
+    def hessian(self, x, project_psd=False):
+        """d2E/dx2 on the flattened index 3*vertex + axis, [3Ng, 3Ng]: SciPy sparse (CSR) when SciPy is
+        installed, else the COO tuple (rows, cols, values, shape) with duplicates to be summed. project_psd
+        projects each element block to the nearest PSD matrix, as the Newton solver does."""
+        return sparse(self._e.hessian(self.name, x, bool(project_psd)))
+
+    def max_step(self, x, dx):
+        """The largest fraction of the move x -> x + dx along which the energy stays finite (1 except for a barrier)."""
+        return self._e.max_step(self.name, x, dx)
+
+    def __repr__(self):
+        return f"<drape.Energy {self.name}>"
+
+
+class Scene:
+    """A simulation scene (graphs/scenes/*.yaml, docs/scenes.md) made runnable: a path, or a dict laid out as the
+    YAML file (a relative `base:` is resolved against base_dir, default the current folder)."""
+
+    def __init__(self, scene, base_dir=None):
+        if isinstance(scene, Scene):
+            self._s = scene._s
+        elif isinstance(scene, dict):
+            scene = dict(scene)
+            base = scene.get("base")
+            if base is None:
+                self._s = _drape._Scene.from_text(_json.dumps(scene), "<dict>")  # JSON is YAML
+            else:
+                # drape follows `base:` only from a file: the dict goes through one (JSON is YAML).
+                scene["base"] = _os.path.abspath(_os.path.join(base_dir or _os.getcwd(), _os.fspath(base)))
+                with _tempfile.TemporaryDirectory(prefix="drape-scene-") as tmp:
+                    path = _os.path.join(tmp, "scene.yaml")
+                    with open(path, "w") as f:
+                        _json.dump(scene, f)
+                    self._s = _drape._Scene.from_file(path)
+        elif isinstance(scene, (str, _os.PathLike)):
+            self._s = _drape._Scene.from_file(_os.fspath(scene))
+        else:
+            raise TypeError(f"scene: expected a path or a dict, got {type(scene).__name__}")
+
+    def __getattr__(self, name):
+        return getattr(self._s, name)
+
+    def energies(self, body_vertices=None):
+        """{effect name: drape.Energy} bound to the garment and this body (default: the scene's own target body)."""
+        native = self._s.energies(body_vertices)
+        return {name: Energy(native, name) for name in native.names}
+
+    def simulate(self, body_vertices=None, start_garment=None, measure_penetration=True):
+        """Drapes the garment on the body (default: the scene's own): a dict of garment and body (float64
+        [N, 3]), energies {effect: J}, total_energy, converged, residual, stationarity, penetration (p),
+        crossings, steps, iterations, seconds, and `unsettled` (why, when not converged). The GIL is released."""
+        return self._s.simulate(body_vertices, start_garment, measure_penetration)
+
+    def __repr__(self):
+        return f"<drape.Scene {self._s.file}: {', '.join(self._s.effects)}>"
+
+
+def simulate(scene, body_vertices=None, **options):
+    """drape.simulate(scene path or dict or Scene, body_vertices) -> the garment and per-effect energies
+    (Scene.simulate)."""
+    return Scene(scene).simulate(body_vertices, **options)
+
+
+def _native_scene(scene):
+    return Scene(scene)._s
+
+
+_Model_optimize = Model.optimize
+
+
+def _optimize(self, scene, body_vertices, body_params=None, iterations=100, learning_rate=1e-4):
+    return _Model_optimize(self, _native_scene(scene), body_vertices, body_params, iterations, learning_rate)
+
+
+_optimize.__doc__ = _Model_optimize.__doc__
+Model.optimize = _optimize
+
+
+def write_obj(path, vertices, faces):
+    """A small OBJ writer (vertices [N, 3], 0-based faces [F, 3]), written to a temporary file and renamed."""
+    vertices = _np.asarray(vertices, dtype=_np.float64)
+    faces = _np.asarray(faces)
+    tmp = f"{path}.tmp{_os.getpid()}"
+    with open(tmp, "w") as f:
+        _np.savetxt(f, vertices, fmt="v %.6f %.6f %.6f")
+        _np.savetxt(f, faces + 1, fmt="f %d %d %d")
+    _os.replace(tmp, path)

@@ -1,0 +1,152 @@
+// Bodies and plugins: drape.body(bmi=..., height=..., sex=..., **girths),
+// drape.BodyModel (any body plugin by name), drape.plugins(), drape.load_plugins().
+#include "common.hpp"
+
+#include <drape/body.hpp>
+#include <drape/errors.hpp>
+#include <drape/params.hpp>
+
+#include <yaml-cpp/yaml.h>
+
+#include <memory>
+
+namespace drape::python {
+namespace {
+
+ParamValues plugin_params(const py::dict& params, const std::string& what) {
+  ParamValues values;
+  for (const auto& [key, value] : params) {
+    // YAML reads Python's str() of numbers, booleans and paths the way a scene file would.
+    const std::string text = py::isinstance<py::bool_>(value) ? (value.cast<bool>() ? "true" : "false")
+                                                               : py::str(value).cast<std::string>();
+    values[key.cast<std::string>()] = {YAML::Load(text), {what, 0}};
+  }
+  return values;
+}
+
+class PyBodyModel {
+ public:
+  PyBodyModel(const std::string& name, const py::dict& params) : name_(name) {
+    const PluginDescriptor& d = registry().get(name);
+    if (!d.create_body) throw ConfigError("body model '" + name + "': the plugin is a " + d.kind + ", not a body model");
+    model_ = registry().create_body(name, Params(d.params, plugin_params(params, "drape.BodyModel"), "body " + name));
+  }
+
+  const std::string& name() const { return name_; }
+  std::vector<std::string> shape_names() const { return model_->shape_names(); }
+
+  // The shape vector that reaches the request, then the named entries (girths) set as given.
+  Eigen::VectorXd solve(double bmi, double height, double sex, const py::dict& overrides) const {
+    BodyRequest request;
+    request.bmi = bmi;
+    request.height = height;
+    request.sex = sex;
+    Eigen::VectorXd shape;
+    {
+      py::gil_scoped_release release;
+      shape = model_->solve(request);
+    }
+    const auto names = model_->shape_names();
+    for (const auto& [key, value] : overrides) {
+      const std::string k = key.cast<std::string>();
+      const auto it = std::find(names.begin(), names.end(), k);
+      if (it == names.end()) {
+        std::string list;
+        for (const auto& n : names) list += (list.empty() ? "" : ", ") + n;
+        throw py::value_error("body model '" + name_ + "' has no shape parameter '" + k + "'" + did_you_mean(k, names) +
+                              " (it has " + list + ")");
+      }
+      shape[it - names.begin()] = value.cast<double>();
+    }
+    return shape;
+  }
+
+  Eigen::MatrixX3d vertices(const py::handle& shape_arg) const {
+    auto shape = py::array_t<double, py::array::forcecast>::ensure(shape_arg);
+    const auto n = static_cast<py::ssize_t>(model_->shape_names().size());
+    if (!shape || shape.ndim() != 1 || shape.shape(0) != n)
+      throw py::value_error("shape: expected a float array of shape [" + std::to_string(n) + "] (" + name_ +
+                            "'s shape parameters, BodyModel.shape_names)");
+    Eigen::VectorXd s = Eigen::Map<const Eigen::VectorXd>(shape.data(), n);
+    py::gil_scoped_release release;
+    return model_->vertices(s);
+  }
+
+  const BodyModel& model() const { return *model_; }
+
+ private:
+  std::string name_;
+  std::unique_ptr<BodyModel> model_;
+};
+
+}  // namespace
+
+void register_bodies(py::module_& m) {
+  py::class_<PyBodyModel>(m, "BodyModel",
+                          "A body plugin (parametric, makehuman, smpl, ...): fixed topology, watertight, A-pose, metres, Y up.")
+      .def(py::init<const std::string&, const py::dict&>(), py::arg("name") = "parametric", py::arg("params") = py::dict(),
+           "The body plugin `name` with its plugin parameters (e.g. {'file': 'smpl.h5'} for smpl).")
+      .def_property_readonly("name", &PyBodyModel::name)
+      .def_property_readonly("shape_names", &PyBodyModel::shape_names, "names of the shape parameters, in vector order")
+      .def_property_readonly("mean_shape", [](const PyBodyModel& b) { return to_numpy(b.model().mean_shape()); })
+      .def_property_readonly("bmi_range", [](const PyBodyModel& b) { return b.model().bmi_range(); })
+      .def_property_readonly("vertex_count", [](const PyBodyModel& b) { return b.model().num_vertices(); })
+      .def_property_readonly("faces", [](const PyBodyModel& b) { return to_numpy(Eigen::MatrixX3i(b.model().faces())); },
+                             "int32 [F, 3], counter-clockwise seen from outside")
+      .def(
+          "solve",
+          [](const PyBodyModel& b, double bmi, double height, double sex, const py::kwargs& girths) {
+            return to_numpy(b.solve(bmi, height, sex, girths));
+          },
+          py::arg("bmi") = 24.0, py::arg("height") = 1.75, py::arg("sex") = 1.0,
+          "Shape parameters reaching the BMI, height and sex; keyword shape parameters (girths) are then set as given.")
+      .def("vertices", [](const PyBodyModel& b, const py::handle& shape) { return to_numpy(b.vertices(shape)); },
+           py::arg("shape"), "float64 [N, 3] vertices of a shape vector");
+
+  m.def(
+      "body",
+      [](double bmi, double height, double sex, const std::string& model, const py::dict& params, const py::kwargs& girths) {
+        PyBodyModel b(model, params);
+        const Eigen::VectorXd shape = b.solve(bmi, height, sex, girths);
+        Eigen::MatrixX3d v;
+        {
+          py::gil_scoped_release release;
+          v = b.model().vertices(shape);
+        }
+        return py::make_tuple(to_numpy(std::move(v)), to_numpy(Eigen::MatrixX3i(b.model().faces())));
+      },
+      py::arg("bmi") = 24.0, py::arg("height") = 1.75, py::arg("sex") = 1.0, py::kw_only(), py::arg("model") = "parametric",
+      py::arg("params") = py::dict(),
+      "(vertices float64 [N, 3], faces int32 [F, 3]) of a body of that BMI, height (m) and sex (0 female ... 1 male)\n"
+      "from a body plugin. Other keywords set named shape parameters after the solve, e.g. chest=0.2 (the\n"
+      "parametric model's girths: chest, waist, belly, hips, arms, thighs, log factors in [-0.5, 0.5]).");
+
+  m.def(
+      "plugins",
+      []() {
+        py::list out;
+        for (const PluginDescriptor* d : registry().all()) {
+          py::dict p;
+          p["name"] = d->name;
+          p["kind"] = d->kind;
+          p["file"] = d->file;
+          out.append(p);
+        }
+        return out;
+      },
+      "Every plugin loaded: dicts of name, kind and file (as `drape plugins`).");
+  m.def(
+      "load_plugins",
+      [](const std::string& dir) { registry().load_path({std::filesystem::path(dir)}); },
+      py::arg("path"), "Loads the plugins of a folder (or one plugin file), as --plugin-path does.");
+  m.def(
+      "plugin_search_path",
+      []() {
+        std::vector<std::string> out;
+        for (const auto& p : Registry::search_path()) out.push_back(p.string());
+        return out;
+      },
+      "Where plugins are looked for: $DRAPE_PLUGIN_PATH, then the plugins shipped next to the framework library.");
+}
+
+}  // namespace drape::python

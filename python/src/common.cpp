@@ -1,0 +1,133 @@
+// The shared helpers of common.hpp and the exception mapping: drape::ConfigError
+// becomes drape.ConfigError (also a ValueError: the caller's input is at
+// fault), any other drape::Error becomes drape.Error (a RuntimeError). Both
+// carry the same one-line message the drape program prints.
+#include "common.hpp"
+
+#include <drape/errors.hpp>
+
+#include <Python.h>
+
+#include <sstream>
+
+namespace drape::python {
+
+Registry& registry() { return Registry::load_default(); }
+
+std::string describe(const py::array& a) {
+  std::ostringstream s;
+  s << py::str(a.dtype()).cast<std::string>() << " [";
+  for (py::ssize_t i = 0; i < a.ndim(); ++i) s << (i ? ", " : "") << a.shape(i);
+  s << "]";
+  return s.str();
+}
+
+void bad_argument(const std::string& name, const std::string& expected, const py::array& got) {
+  throw py::value_error(name + ": expected " + expected + ", got " + describe(got));
+}
+
+namespace {
+
+py::array as_array(const py::handle& value, const std::string& name, const std::string& expected) {
+  if (py::isinstance<py::array>(value)) return py::reinterpret_borrow<py::array>(value);
+  // Lists and objects exposing __array__ (a CPU torch tensor) become arrays; anything else is refused.
+  py::array a = py::array::ensure(value);
+  if (!a) throw py::value_error(name + ": expected " + expected + ", got " + py::str(py::type::of(value)).cast<std::string>());
+  return a;
+}
+
+std::string rows_text(int rows) { return rows < 0 ? "N" : "N = " + std::to_string(rows); }
+
+void require_float(const py::array& a, const std::string& name, const std::string& expected) {
+  if (a.dtype().kind() != 'f') bad_argument(name, expected, a);
+}
+
+}  // namespace
+
+Eigen::MatrixX3d vertices_arg(const py::handle& value, const std::string& name, int rows) {
+  const std::string expected = "a float array of shape [N, 3]" + (rows < 0 ? std::string() : " (" + rows_text(rows) + ")");
+  py::array a = as_array(value, name, expected);
+  require_float(a, name, expected);
+  if (a.ndim() != 2 || a.shape(1) != 3 || (rows >= 0 && a.shape(0) != rows)) bad_argument(name, expected, a);
+  auto d = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(a);
+  Eigen::MatrixX3d m(d.shape(0), 3);
+  const double* p = d.data();
+  for (py::ssize_t i = 0; i < d.shape(0); ++i) m.row(i) << p[3 * i], p[3 * i + 1], p[3 * i + 2];
+  return m;
+}
+
+Tensor vertices_batch_arg(const py::handle& value, const std::string& name, int rows, bool* batched) {
+  const std::string expected = "a float array of shape [" + rows_text(rows) + ", 3] or [batch, " + std::to_string(rows) + ", 3]";
+  py::array a = as_array(value, name, expected);
+  require_float(a, name, expected);
+  const bool three = a.ndim() == 3;
+  if ((a.ndim() != 2 && !three) || a.shape(a.ndim() - 1) != 3 || a.shape(a.ndim() - 2) != rows ||
+      (three && a.shape(0) < 1))
+    bad_argument(name, expected, a);
+  if (batched) *batched = three;
+  auto f = py::array_t<float, py::array::c_style | py::array::forcecast>::ensure(a);
+  Tensor t(three ? static_cast<int>(f.shape(0)) : 1, rows, 3);
+  std::copy(f.data(), f.data() + t.size(), t.data());
+  if (!t.vec().allFinite()) throw py::value_error(name + ": non-finite vertex coordinates");
+  return t;
+}
+
+py::array_t<float> to_numpy(Tensor&& t, bool drop_batch) {
+  auto* owned = new Tensor(std::move(t));
+  py::capsule free_it(owned, [](void* p) { delete static_cast<Tensor*>(p); });
+  std::vector<py::ssize_t> shape{owned->batch(), owned->rows(), owned->cols()};
+  if (drop_batch) shape.erase(shape.begin());
+  return py::array_t<float>(shape, owned->data(), free_it);
+}
+
+py::array_t<double> to_numpy(Eigen::MatrixX3d&& m) {
+  auto* owned = new Eigen::MatrixX3d(std::move(m));
+  py::capsule free_it(owned, [](void* p) { delete static_cast<Eigen::MatrixX3d*>(p); });
+  const auto n = static_cast<py::ssize_t>(owned->rows());
+  return py::array_t<double>({n, py::ssize_t{3}}, {py::ssize_t{sizeof(double)}, static_cast<py::ssize_t>(n * sizeof(double))},
+                             owned->data(), free_it);
+}
+
+py::array_t<double> to_numpy(Eigen::VectorXd&& v) {
+  auto* owned = new Eigen::VectorXd(std::move(v));
+  py::capsule free_it(owned, [](void* p) { delete static_cast<Eigen::VectorXd*>(p); });
+  return py::array_t<double>({static_cast<py::ssize_t>(owned->size())}, owned->data(), free_it);
+}
+
+py::array_t<int> to_numpy(Eigen::MatrixX3i&& m) {
+  auto* owned = new Eigen::MatrixX3i(std::move(m));
+  py::capsule free_it(owned, [](void* p) { delete static_cast<Eigen::MatrixX3i*>(p); });
+  const auto n = static_cast<py::ssize_t>(owned->rows());
+  return py::array_t<int>({n, py::ssize_t{3}}, {py::ssize_t{sizeof(int)}, static_cast<py::ssize_t>(n * sizeof(int))},
+                          owned->data(), free_it);
+}
+
+py::dict energy_dict(const std::vector<std::pair<std::string, double>>& terms) {
+  py::dict d;
+  for (const auto& [name, value] : terms) d[py::str(name)] = value;
+  return d;
+}
+
+void register_errors(py::module_& m) {
+  // Created with the C API so that ConfigError can derive from both drape.Error and ValueError.
+  static PyObject* error = PyErr_NewExceptionWithDoc(
+      "drape.Error", "A drape failure (the drape program's exit code 1); the message is the program's.", PyExc_RuntimeError,
+      nullptr);
+  static PyObject* config_bases = PyTuple_Pack(2, error, PyExc_ValueError);
+  static PyObject* config_error = PyErr_NewExceptionWithDoc(
+      "drape.ConfigError", "Bad configuration, arguments or input files (exit code 2): the caller's to fix.",
+      config_bases, nullptr);
+  m.attr("Error") = py::handle(error);
+  m.attr("ConfigError") = py::handle(config_error);
+  py::register_exception_translator([](std::exception_ptr p) {
+    try {
+      if (p) std::rethrow_exception(p);
+    } catch (const ConfigError& e) {
+      PyErr_SetString(config_error, e.what());
+    } catch (const Error& e) {
+      PyErr_SetString(error, e.what());
+    }
+  });
+}
+
+}  // namespace drape::python

@@ -1,0 +1,91 @@
+// Datasets of drape generate: open, list samples by split, read a batch.
+#include "common.hpp"
+
+#include <drape/dataset.hpp>
+
+namespace drape::python {
+namespace {
+
+std::vector<std::size_t> indices_arg(const DatasetReader& r, const py::handle& value) {
+  const std::string expected = "an integer array of sample indices [n] (0 <= i < " + std::to_string(r.size()) + ", done samples)";
+  py::array a = py::array::ensure(value);
+  if (!a || (a.dtype().kind() != 'i' && a.dtype().kind() != 'u') || a.ndim() != 1)
+    throw py::value_error("indices: expected " + expected + (a ? ", got " + describe(a) : std::string()));
+  auto i64 = py::array_t<long long, py::array::c_style | py::array::forcecast>::ensure(a);
+  std::vector<std::size_t> out;
+  for (py::ssize_t k = 0; k < i64.shape(0); ++k) {
+    const long long i = i64.data()[k];
+    if (i < 0 || static_cast<std::size_t>(i) >= r.size() || !r.done()[static_cast<std::size_t>(i)])
+      throw py::value_error("indices: sample " + std::to_string(i) + " is not a done sample of this dataset (it has " +
+                            std::to_string(r.size()) + ")");
+    out.push_back(static_cast<std::size_t>(i));
+  }
+  return out;
+}
+
+py::array_t<long long> index_array(const std::vector<std::size_t>& v) {
+  std::vector<long long> out(v.begin(), v.end());
+  return to_numpy(std::move(out));
+}
+
+}  // namespace
+
+void register_dataset(py::module_& m) {
+  py::class_<DatasetReader>(m, "Dataset", "A dataset file of drape generate (or a .partial one: its done samples).")
+      .def(py::init([](const std::string& path) {
+             py::gil_scoped_release release;
+             return std::make_unique<DatasetReader>(path);
+           }),
+           py::arg("path"))
+      .def("__len__", [](const DatasetReader& r) { return r.indices().size(); }, "done samples")
+      .def_property_readonly("size", &DatasetReader::size, "samples the file was made for, done or not")
+      .def_property_readonly("layout", [](const DatasetReader& r) {
+        const DatasetLayout& l = r.layout();
+        py::dict d;
+        d["samples"] = l.samples;
+        d["body_params"] = l.body_params;
+        d["body_vertices"] = l.body_vertices;
+        d["garment_vertices"] = l.garment_vertices;
+        d["stats"] = l.stats;
+        d["scene"] = l.scene;
+        d["template_hash"] = l.template_hash;
+        d["drape_version"] = l.drape_version;
+        d["created"] = l.created;
+        d["attributes"] = l.attributes;
+        return d;
+      })
+      .def("indices", [](const DatasetReader& r, const std::string& splits) { return index_array(r.indices(splits)); },
+           py::arg("split") = "all", "done samples of 'train', 'val', 'test', 'train,val' or 'all', in file order")
+      .def(
+          "read",
+          [](const DatasetReader& r, const py::handle& indices) {
+            const auto idx = indices_arg(r, indices);
+            Tensor body, garment, params;
+            {
+              py::gil_scoped_release release;
+              body = r.body_vertices(idx);
+              garment = r.garment_vertices(idx);
+              params = r.body_params(idx);
+            }
+            std::vector<std::int8_t> splits;
+            for (auto i : idx) splits.push_back(r.splits()[i]);
+            py::dict d;
+            d["indices"] = index_array(idx);
+            d["body"] = to_numpy(std::move(body), false);
+            d["garment"] = to_numpy(std::move(garment), false);
+            const int n = params.batch(), p = params.cols();
+            d["body_params"] = to_numpy(std::move(params), false).reshape({n, p});
+            d["split"] = to_numpy(std::move(splits));
+            return d;
+          },
+          py::arg("indices"),
+          "A batch: body float32 [n, Nb, 3], garment float32 [n, Ng, 3], body_params float32 [n, P], split int8 [n] (0 train, 1 val, 2 test)")
+      .def(
+          "stat",
+          [](const DatasetReader& r, const std::string& name, const py::handle& indices) {
+            return to_numpy(r.stat(name, indices_arg(r, indices)));
+          },
+          py::arg("name"), py::arg("indices"), "a per-sample statistic (layout['stats'] names them)");
+}
+
+}  // namespace drape::python

@@ -1,0 +1,292 @@
+// Trained models: drape.Model.load(path).predict(body_vertices) (batched),
+// optimize(scene, body), and what the PyTorch bridge needs -- the weights as
+// writable arrays over drape's own memory, and reverse mode from a gradient of
+// the predicted garment to the weights.
+#include "common.hpp"
+
+#include <drape/errors.hpp>
+#include <drape/graph.hpp>
+#include <drape/model.hpp>
+#include <drape/physics_optimization.hpp>
+
+#include <chrono>
+#include <filesystem>
+#include <mutex>
+
+namespace drape::python {
+namespace {
+
+namespace fs = std::filesystem;
+
+class PyModel {
+ public:
+  explicit PyModel(Model model) : model_(std::make_unique<Model>(std::move(model))) {}
+
+  Model& model() { return *model_; }
+  std::mutex& mutex() { return mutex_; }
+
+  // The batch a graph takes for these bodies: body, and body_params / garment_size when the graph has those inputs.
+  SampleBatch batch(const py::handle& body, const py::handle& body_params, const py::handle& garment_size, bool* batched) {
+    SampleBatch b;
+    b.body = vertices_batch_arg(body, "body_vertices", model_->assets().body.num_vertices(), batched);
+    const int n = b.body.batch();
+    if (model_->needs_body_params()) {
+      const int p = model_->graph().input_shape("body_params").cols;
+      const std::string expected = "a float array of shape [" + std::to_string(p) + "] or [" + std::to_string(n) + ", " +
+                                   std::to_string(p) + "] (this model's graph takes the body parameters: Model.body_params())";
+      if (body_params.is_none()) throw py::value_error("body_params: expected " + expected + ", got None");
+      py::array a = py::array::ensure(body_params);
+      if (!a || a.dtype().kind() != 'f' || a.shape(a.ndim() - 1) != p || a.ndim() > 2 || (a.ndim() == 2 && a.shape(0) != n))
+        throw py::value_error("body_params: expected " + expected + (a ? ", got " + describe(a) : std::string()));
+      auto f = py::array_t<float, py::array::c_style | py::array::forcecast>::ensure(a);
+      b.body_params = Tensor(n, 1, p);
+      for (int i = 0; i < n; ++i) std::copy(f.data() + (a.ndim() == 2 ? i * p : 0), f.data() + (a.ndim() == 2 ? i * p : 0) + p, &b.body_params(i, 0, 0));
+    }
+    if (model_->needs_input("garment_size")) {
+      if (garment_size.is_none())
+        throw py::value_error("garment_size: this model was trained on several garment sizes, give one of " + garment_size_choices());
+      b.garment_size = Tensor(n, 1, 1, garment_size_flag(garment_size.cast<std::string>()));
+    }
+    return b;
+  }
+
+  Tensor predict(const SampleBatch& b) {
+    py::gil_scoped_release release;
+    std::lock_guard lock(mutex_);
+    Tensor out = model_->predict(b);
+    forward_id_ = ++forwards_;
+    return out;
+  }
+  std::uint64_t last_forward() const { return forward_id_; }
+
+  // dL/dweights for a gradient of the garment, accumulated into the weights'
+  // grad arrays (zeroed first). The graph keeps the state of its last forward;
+  // when another forward ran since `forward_id` (a gradient check's
+  // perturbations), this batch's forward is run again first.
+  void backward(const SampleBatch& b, const py::handle& grad, std::uint64_t forward_id) {
+    const int ng = model_->assets().garment->mesh.num_vertices();
+    bool batched = false;
+    const Tensor g = vertices_batch_arg(grad, "grad_garment", ng, &batched);
+    if (g.batch() != b.body.batch())
+      throw py::value_error("grad_garment: expected " + std::to_string(b.body.batch()) + " samples like the forward, got " +
+                            std::to_string(g.batch()));
+    py::gil_scoped_release release;
+    std::lock_guard lock(mutex_);
+    if (forward_id != forward_id_) {
+      model_->predict(b);
+      forward_id_ = ++forwards_;
+    }
+    model_->graph().zero_grad();
+    model_->graph().backward_from_output(model_->output(), g);
+  }
+
+ private:
+  std::unique_ptr<Model> model_;
+  std::mutex mutex_;
+  std::uint64_t forwards_ = 0, forward_id_ = 0;
+};
+
+Model::ParamOverrides overrides_of(const py::dict& d) {
+  Model::ParamOverrides out;
+  for (const auto& [node, params] : d)
+    for (const auto& [name, value] : params.cast<py::dict>())
+      out[node.cast<std::string>()][name.cast<std::string>()] = py::str(value).cast<std::string>();
+  return out;
+}
+
+fs::path cache_dir_of(const std::optional<std::string>& dir) { return dir ? fs::path(*dir) : default_cache_dir(); }
+
+py::dict result_dict(PhysicsOptimizationResult&& r) {
+  auto terms = [](const std::vector<EnergyTerm>& t) {
+    std::vector<std::pair<std::string, double>> v;
+    for (const auto& e : t) v.emplace_back(e.name, e.value);
+    return energy_dict(v);
+  };
+  py::dict d;
+  d["before"] = to_numpy(std::move(r.before));
+  d["after"] = to_numpy(std::move(r.after));
+  d["energies_before"] = terms(r.energies_before);
+  d["energies_after"] = terms(r.energies_after);
+  d["potential_before"] = r.potential_before;
+  d["potential_after"] = r.potential_after;
+  d["penetration_before"] = r.penetration_before;
+  d["penetration_after"] = r.penetration_after;
+  d["history"] = to_numpy(std::move(r.history));
+  d["best_iteration"] = r.best_iteration;
+  d["seconds"] = r.seconds;
+  d["start_shrink"] = r.start_shrink;
+  d["refused_steps"] = r.refused_steps;
+  d["separated"] = r.separated;
+  d["unseparated"] = r.unseparated;
+  return d;
+}
+
+BodyRequest request(double bmi, double height, double sex) {
+  BodyRequest r;
+  r.bmi = bmi;
+  r.height = height;
+  r.sex = sex;
+  return r;
+}
+
+py::array weight_view(py::object self, Tensor& t) {
+  // Writable: an optimiser (the PyTorch bridge's) steps drape's weights in place.
+  return py::array_t<float>({static_cast<py::ssize_t>(t.rows()), static_cast<py::ssize_t>(t.cols())}, t.data(), self);
+}
+
+}  // namespace
+
+void register_model(py::module_& m) {
+  py::class_<PyModel>(m, "Model", "A trained model (drape train's output), or a graph with fresh weights.")
+      .def_static(
+          "load",
+          [](const std::optional<std::string>& path, const py::dict& overrides, const std::optional<std::string>& cache_dir) {
+            fs::path file = path ? fs::path(*path) : default_model_path();
+            if (file.empty())
+              throw ConfigError("no model given and the shipped model (models/tshirt-coarse.h5) was not found: give a file from drape train, or set DRAPE_MODEL");
+            py::gil_scoped_release release;
+            return std::make_unique<PyModel>(Model::load(registry(), file, overrides_of(overrides), cache_dir_of(cache_dir)));
+          },
+          py::arg("path") = py::none(), py::arg("overrides") = py::dict(), py::arg("cache_dir") = py::none(),
+          "Reads a model file (default: the shipped models/tshirt-coarse.h5). overrides: {node: {param: value}} for knobs "
+          "that leave the weights' shapes alone.")
+      .def_static(
+          "untrained",
+          [](const std::string& graph, const py::dict& garment_params, int eigen_k, std::uint64_t seed,
+             const std::optional<std::string>& cache_dir) {
+            const bool is_file = graph.find('\n') == std::string::npos && fs::exists(graph);
+            const GraphSpec spec = is_file ? parse_graph_file(graph) : parse_graph_text(graph, "<graph text>");
+            AssetsSpec assets;
+            for (const auto& [k, v] : garment_params) assets.garment_params[k.cast<std::string>()] = py::str(v).cast<std::string>();
+            assets.eigen_k = eigen_k;
+            py::gil_scoped_release release;
+            return std::make_unique<PyModel>(Model::untrained(registry(), spec, assets, seed, cache_dir_of(cache_dir)));
+          },
+          py::arg("graph"), py::arg("garment_params") = py::dict(), py::arg("eigen_k") = 1000, py::arg("seed") = 0,
+          py::arg("cache_dir") = py::none(),
+          "A graph (a YAML file or its text) with freshly initialised weights on the template's assets, e.g. "
+          "garment_params={'resolution': 'coarse'}.")
+      .def_property_readonly("file", [](PyModel& p) { return p.model().file().string(); })
+      .def_property_readonly("assets", [](PyModel& p) { return wrap_assets(p.model().shared_assets()); })
+      .def_property_readonly("body_vertex_count", [](PyModel& p) { return p.model().assets().body.num_vertices(); })
+      .def_property_readonly("garment_vertex_count", [](PyModel& p) { return p.model().assets().garment->mesh.num_vertices(); })
+      .def_property_readonly("inputs", [](PyModel& p) { return p.model().graph().input_names(); })
+      .def_property_readonly("needs_body_params", [](PyModel& p) { return p.model().needs_body_params(); })
+      .def_property_readonly("needs_garment_size", [](PyModel& p) { return p.model().needs_input("garment_size"); })
+      .def_property_readonly("assets_changed", [](PyModel& p) { return p.model().assets_changed(); })
+      .def_property_readonly("graph", [](PyModel& p) { return p.model().checkpoint().graph; }, "the resolved graph, YAML")
+      .def(
+          "body",
+          [](PyModel& p, double bmi, double height, double sex) {
+            SampleBatch b;
+            {
+              py::gil_scoped_release release;
+              b = p.model().body_for(request(bmi, height, sex));
+            }
+            return to_numpy(std::move(b.body), true);
+          },
+          py::arg("bmi") = 24.0, py::arg("height") = 1.75, py::arg("sex") = 1.0,
+          "float32 [Nb, 3]: a body of the model's own body plugin")
+      .def(
+          "body_params",
+          [](PyModel& p, double bmi, double height, double sex) {
+            SampleBatch b;
+            {
+              py::gil_scoped_release release;
+              b = p.model().body_for(request(bmi, height, sex));
+            }
+            Tensor params = std::move(b.body_params);
+            const int n = params.cols();
+            auto a = to_numpy(std::move(params), true);
+            return a.reshape({n});
+          },
+          py::arg("bmi") = 24.0, py::arg("height") = 1.75, py::arg("sex") = 1.0,
+          "float32 [P]: the body plugin's shape parameters of that body (for graphs that take body_params)")
+      .def(
+          "predict",
+          [](PyModel& p, const py::handle& body, const py::handle& body_params, const py::handle& garment_size) {
+            bool batched = false;
+            const SampleBatch b = p.batch(body, body_params, garment_size, &batched);
+            return to_numpy(p.predict(b), !batched);
+          },
+          py::arg("body_vertices"), py::arg("body_params") = py::none(), py::arg("garment_size") = py::none(),
+          "float32 garments [Ng, 3] for a body [Nb, 3], or [n, Ng, 3] for a batch [n, Nb, 3]. The GIL is released.")
+      .def(
+          "optimize",
+          [](PyModel& p, const PyScene& scene, const py::handle& body, const py::handle& body_params, int iterations,
+             double learning_rate) {
+            bool batched = false;
+            const SampleBatch b = p.batch(body, body_params, py::none(), &batched);
+            if (b.size() != 1) throw py::value_error("body_vertices: optimize takes one body [Nb, 3], got a batch of " + std::to_string(b.size()));
+            if (iterations < 0) throw py::value_error("iterations: expected >= 0");
+            PhysicsOptimizationOptions o;
+            o.iterations = iterations;
+            o.learning_rate = learning_rate;
+            PhysicsOptimizationResult r;
+            {
+              py::gil_scoped_release release;
+              std::lock_guard lock(p.mutex());
+              r = optimize_drape(p.model(), *scene.simulation, b, o);
+            }
+            return result_dict(std::move(r));
+          },
+          py::arg("scene"), py::arg("body_vertices"), py::arg("body_params") = py::none(), py::arg("iterations") = 100,
+          py::arg("learning_rate") = 1e-4,
+          "The seed's physics-enforced optimisation (as drape optimize): fine-tunes this model's weights in place so that "
+          "its drape of one body minimises the scene's potential. Returns before/after garments, energies, p and the "
+          "history. The GIL is released.")
+      .def(
+          "weights",
+          [](py::object self) {
+            py::dict d;
+            for (auto& [name, w] : self.cast<PyModel&>().model().graph().weights()) d[py::str(name)] = weight_view(self, w->value);
+            return d;
+          },
+          "{node/weight: float32 [rows, cols]}: writable views of the model's own weights (no copies)")
+      .def(
+          "grads",
+          [](py::object self) {
+            py::dict d;
+            for (auto& [name, w] : self.cast<PyModel&>().model().graph().weights()) d[py::str(name)] = weight_view(self, w->grad);
+            return d;
+          },
+          "{node/weight: float32 [rows, cols]}: views of the gradients the last _backward accumulated")
+      .def(
+          "_forward",
+          [](PyModel& p, const py::handle& body, const py::handle& body_params, const py::handle& garment_size) {
+            bool batched = false;
+            const SampleBatch b = p.batch(body, body_params, garment_size, &batched);
+            py::array out = to_numpy(p.predict(b), !batched);
+            return py::make_tuple(out, p.last_forward());
+          },
+          py::arg("body_vertices"), py::arg("body_params") = py::none(), py::arg("garment_size") = py::none())
+      .def(
+          "_backward",
+          [](PyModel& p, const py::handle& grad, std::uint64_t forward_id, const py::handle& body, const py::handle& body_params,
+             const py::handle& garment_size) {
+            bool batched = false;
+            const SampleBatch b = p.batch(body, body_params, garment_size, &batched);
+            p.backward(b, grad, forward_id);
+          },
+          py::arg("grad_garment"), py::arg("forward_id"), py::arg("body_vertices"), py::arg("body_params") = py::none(),
+          py::arg("garment_size") = py::none())
+      .def(
+          "_predict_timed",
+          [](PyModel& p, const py::handle& body, int repeats) {
+            // The C++ side of the overhead benchmark: Model::predict timed in C++, no Python in the loop.
+            bool batched = false;
+            const SampleBatch b = p.batch(body, py::none(), py::none(), &batched);
+            std::vector<double> seconds;
+            py::gil_scoped_release release;
+            std::lock_guard lock(p.mutex());
+            for (int i = 0; i < repeats; ++i) {
+              const auto t0 = std::chrono::steady_clock::now();
+              const Tensor out = p.model().predict(b);
+              seconds.push_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
+            }
+            return seconds;
+          },
+          py::arg("body_vertices"), py::arg("repeats"));
+}
+
+}  // namespace drape::python

@@ -1,0 +1,200 @@
+// Scenes: the cloth simulation (drape.simulate) and each energy of a scene on
+// its own -- value, gradient and Hessian -- which is what the PyTorch bridge
+// turns into an autograd Function. Physics in double, as in the simulator.
+#include "common.hpp"
+
+#include <drape/errors.hpp>
+#include <drape/geometry/closest_point.hpp>
+#include <drape/scene.hpp>
+#include <drape/simulation.hpp>
+
+#include <memory>
+
+namespace drape::python {
+namespace {
+
+// A scene's energies bound to the garment and one body, as the simulator binds them.
+class PyEnergies {
+ public:
+  PyEnergies(std::shared_ptr<const Simulation> sim, const Eigen::MatrixX3d& body) : sim_(std::move(sim)) {
+    if (sim_->needs_body()) body_ = std::make_unique<geometry::BodySurface>(body, sim_->body_model().faces());
+    energies_ = sim_->make_energies(body_.get());
+  }
+
+  std::vector<std::string> names() const {
+    std::vector<std::string> out;
+    for (const auto& e : energies_) out.push_back(e.name);
+    return out;
+  }
+  int garment_vertices() const { return sim_->garment().mesh.num_vertices(); }
+
+  const Energy& get(const std::string& name) const {
+    for (const auto& e : energies_)
+      if (e.name == name) return *e.energy;
+    throw py::key_error("the scene has no effect '" + name + "'" + did_you_mean(name, names()));
+  }
+  Eigen::MatrixX3d state(const py::handle& x) const { return vertices_arg(x, "garment_vertices", garment_vertices()); }
+
+  double value(const std::string& name, const py::handle& x_arg) const {
+    const Energy& e = get(name);
+    const Eigen::MatrixX3d x = state(x_arg);
+    py::gil_scoped_release release;
+    return e.value(x);
+  }
+  py::tuple value_and_gradient(const std::string& name, const py::handle& x_arg) const {
+    const Energy& e = get(name);
+    const Eigen::MatrixX3d x = state(x_arg);
+    Eigen::MatrixX3d g = Eigen::MatrixX3d::Zero(x.rows(), 3);
+    double v = 0;
+    {
+      py::gil_scoped_release release;
+      v = e.add_gradient(x, g);
+    }
+    return py::make_tuple(v, to_numpy(std::move(g)));
+  }
+  // Triplets on the flattened index 3*vertex + axis; duplicates are summed by whoever assembles them.
+  py::tuple hessian(const std::string& name, const py::handle& x_arg, bool project_psd) const {
+    const Energy& e = get(name);
+    const Eigen::MatrixX3d x = state(x_arg);
+    Triplets t;
+    {
+      py::gil_scoped_release release;
+      e.add_hessian(x, t, project_psd);
+    }
+    std::vector<int> rows(t.size()), cols(t.size());
+    std::vector<double> values(t.size());
+    for (std::size_t i = 0; i < t.size(); ++i) {
+      rows[i] = t[i].row();
+      cols[i] = t[i].col();
+      values[i] = t[i].value();
+    }
+    const int n = 3 * garment_vertices();
+    return py::make_tuple(to_numpy(std::move(rows)), to_numpy(std::move(cols)), to_numpy(std::move(values)), py::make_tuple(n, n));
+  }
+  double max_step(const std::string& name, const py::handle& x_arg, const py::handle& dx_arg) const {
+    const Energy& e = get(name);
+    const Eigen::MatrixX3d x = state(x_arg), dx = vertices_arg(dx_arg, "step", garment_vertices());
+    py::gil_scoped_release release;
+    return e.max_step(x, dx);
+  }
+
+ private:
+  std::shared_ptr<const Simulation> sim_;
+  std::unique_ptr<geometry::BodySurface> body_;
+  std::vector<NamedEnergy> energies_;
+};
+
+PyScene make_scene(Scene scene) {
+  py::gil_scoped_release release;
+  return PyScene{std::make_shared<const Simulation>(registry(), std::move(scene))};
+}
+
+Eigen::MatrixX3d body_or_target(const Simulation& sim, const py::handle& body) {
+  if (body.is_none()) return sim.body_vertices(sim.target_shape());
+  return vertices_arg(body, "body_vertices", static_cast<int>(sim.mean_body().rows()));
+}
+
+py::dict result_dict(SimulationResult&& r) {
+  std::vector<std::pair<std::string, double>> terms;
+  for (const auto& e : r.energies) terms.emplace_back(e.name, e.value);
+  py::dict d;
+  d["garment"] = to_numpy(std::move(r.garment));
+  d["body"] = to_numpy(std::move(r.body));
+  d["energies"] = energy_dict(terms);
+  d["total_energy"] = r.total_energy;
+  d["initial_energy"] = r.initial_energy;
+  d["penetration"] = r.penetration;
+  if (r.crossings) {
+    py::dict c;
+    c["garment_edges_through_body"] = r.crossings->garment_edges_through_body;
+    c["body_edges_through_garment"] = r.crossings->body_edges_through_garment;
+    d["crossings"] = c;
+  } else {
+    d["crossings"] = py::none();
+  }
+  d["residual"] = r.residual;
+  d["stationarity"] = r.stationarity;
+  d["converged"] = r.converged;
+  d["at_rest"] = r.at_rest;
+  d["unsettled"] = r.unsettled;
+  d["steps"] = r.steps;
+  d["iterations"] = r.iterations;
+  d["start_shrink"] = r.start_shrink;
+  d["seconds"] = r.seconds;
+  return d;
+}
+
+}  // namespace
+
+void register_scene(py::module_& m) {
+  py::class_<PyScene>(m, "_Scene")
+      .def_static("from_file", [](const std::string& path) { return make_scene(load_scene(path)); }, py::arg("path"))
+      .def_static("from_text", [](const std::string& text, const std::string& name) { return make_scene(parse_scene(text, name)); },
+                  py::arg("text"), py::arg("name"))
+      .def_property_readonly("file", [](const PyScene& s) { return s.simulation->scene().file; })
+      .def_property_readonly("yaml", [](const PyScene& s) { return s.simulation->scene().yaml(); })
+      .def_property_readonly("effects", [](const PyScene& s) {
+        std::vector<std::string> out;
+        for (const auto& e : s.simulation->scene().effects) out.push_back(e.name);
+        return out;
+      })
+      .def_property_readonly("garment_vertices", [](py::object self) { return view(self.cast<PyScene&>().simulation->garment().mesh.vertices, self); },
+                             "float64 [Ng, 3]: the garment dressed on the mean body (the start state)")
+      .def_property_readonly("garment_faces", [](py::object self) { return view(self.cast<PyScene&>().simulation->garment().mesh.faces, self); })
+      .def_property_readonly("mean_body", [](py::object self) { return view(self.cast<PyScene&>().simulation->mean_body(), self); })
+      .def_property_readonly("body_faces", [](py::object self) { return view(self.cast<PyScene&>().simulation->body_model().faces(), self); })
+      .def(
+          "body",
+          [](const PyScene& s, const std::optional<double>& bmi, const std::optional<double>& height, const std::optional<double>& sex) {
+            if (!bmi && !height && !sex) return to_numpy(s.simulation->body_vertices(s.simulation->target_shape()));
+            BodyRequest r;
+            if (bmi) r.bmi = *bmi;
+            if (height) r.height = *height;
+            if (sex) r.sex = *sex;
+            Eigen::MatrixX3d v;
+            {
+              py::gil_scoped_release release;
+              v = s.simulation->body_vertices(s.simulation->shape_for(r));
+            }
+            return to_numpy(std::move(v));
+          },
+          py::arg("bmi") = py::none(), py::arg("height") = py::none(), py::arg("sex") = py::none(),
+          "float64 [Nb, 3]: the scene's own target body, or one of this BMI, height and sex")
+      .def(
+          "simulate",
+          [](const PyScene& s, const py::handle& body, const py::handle& start_garment, bool measure_penetration) {
+            const Eigen::MatrixX3d target = body_or_target(*s.simulation, body);
+            Eigen::MatrixX3d start;
+            SimulationOptions o;
+            o.measure_penetration = measure_penetration;
+            if (!start_garment.is_none()) {
+              start = vertices_arg(start_garment, "start_garment", s.simulation->garment().mesh.num_vertices());
+              o.start_garment = &start;
+            }
+            SimulationResult r;
+            {
+              py::gil_scoped_release release;
+              r = s.simulation->run(target, o);
+            }
+            return result_dict(std::move(r));
+          },
+          py::arg("body_vertices") = py::none(), py::arg("start_garment") = py::none(), py::arg("measure_penetration") = true)
+      .def(
+          "energies",
+          [](const PyScene& s, const py::handle& body) {
+            const Eigen::MatrixX3d b = body_or_target(*s.simulation, body);
+            py::gil_scoped_release release;
+            return std::make_unique<PyEnergies>(s.simulation, b);
+          },
+          py::arg("body_vertices") = py::none());
+
+  py::class_<PyEnergies>(m, "_Energies")
+      .def_property_readonly("names", &PyEnergies::names)
+      .def_property_readonly("garment_vertex_count", &PyEnergies::garment_vertices)
+      .def("value", &PyEnergies::value, py::arg("name"), py::arg("garment_vertices"))
+      .def("value_and_gradient", &PyEnergies::value_and_gradient, py::arg("name"), py::arg("garment_vertices"))
+      .def("hessian", &PyEnergies::hessian, py::arg("name"), py::arg("garment_vertices"), py::arg("project_psd") = false)
+      .def("max_step", &PyEnergies::max_step, py::arg("name"), py::arg("garment_vertices"), py::arg("step"));
+}
+
+}  // namespace drape::python

@@ -1,0 +1,50 @@
+"""Shared fixtures of the drape Python tests. CTest runs each test file with PYTHONPATH at the build tree's
+python/ folder and DRAPE_SOURCE_DIR / DRAPE_BINARY_DIR set (python/CMakeLists.txt)."""
+import os
+import pathlib
+import subprocess
+
+import numpy as np
+import pytest
+
+SOURCE = pathlib.Path(os.environ.get("DRAPE_SOURCE_DIR", pathlib.Path(__file__).resolve().parents[2]))
+BINARY = pathlib.Path(os.environ.get("DRAPE_BINARY_DIR", SOURCE / "build"))
+DRAPE = BINARY / "bin" / "drape"
+COARSE = SOURCE / "graphs" / "scenes" / "tshirt_coarse.yaml"
+CONTACT = SOURCE / "graphs" / "scenes" / "tshirt_coarse_contact.yaml"
+
+
+def run_drape(*args, expect=0):
+    """Runs the drape program; returns (stdout, stderr). Fails the test on another exit code."""
+    p = subprocess.run([str(DRAPE), *map(str, args)], capture_output=True, text=True, timeout=120)
+    assert p.returncode == expect, f"drape {' '.join(map(str, args))} exited {p.returncode}:\n{p.stderr}"
+    return p.stdout, p.stderr
+
+
+def read_obj(path):
+    """Vertices and 0-based faces of an OBJ file, parsed here (independently of drape's reader)."""
+    v, f = [], []
+    for line in pathlib.Path(path).read_text().splitlines():
+        parts = line.split()
+        if not parts:
+            continue
+        if parts[0] == "v":
+            v.append([float(c) for c in parts[1:4]])
+        elif parts[0] == "f":
+            f.append([int(c.split("/")[0]) - 1 for c in parts[1:4]])
+    return np.array(v), np.array(f)
+
+
+@pytest.fixture(scope="session")
+def drape_module():
+    import drape
+    return drape
+
+
+@pytest.fixture
+def tiny_scene(tmp_path):
+    """The coarse T-shirt without body contact, settled for a few steps from the mean body: a simulation
+    that takes about a second."""
+    path = tmp_path / "tiny.yaml"
+    path.write_text(f"base: {COARSE}\neffects: {{barrier: null}}\nsolver: {{morph_steps: 0, settle_steps: 3}}\n")
+    return path

@@ -1,0 +1,101 @@
+"""drape.Model against the drape program and the model file read with h5py; assets; argument checks."""
+import h5py
+import numpy as np
+import pytest
+
+import drape
+from conftest import CONTACT, SOURCE, read_obj, run_drape
+
+SHIPPED = SOURCE / "models" / "tshirt-coarse.h5"
+
+
+@pytest.fixture(scope="module")
+def model():
+    return drape.Model.load(str(SHIPPED))
+
+
+def test_predict_matches_the_program(model, tmp_path):
+    body = model.body(bmi=35, height=1.7)
+    drape.write_obj(tmp_path / "body.obj", body, model.assets.body_faces)
+    run_drape("predict", "--model", SHIPPED, "--body", tmp_path / "body.obj", "--out", tmp_path / "g.obj")
+    expected, faces = read_obj(tmp_path / "g.obj")
+    garment = model.predict(body)
+    assert garment.dtype == np.float32 and garment.shape == (model.garment_vertex_count, 3)
+    np.testing.assert_allclose(garment, expected, atol=2e-5)
+    np.testing.assert_array_equal(faces, model.assets.garment_faces)
+
+
+def test_batched_predict_equals_one_by_one(model):
+    bodies = np.stack([model.body(bmi=b) for b in (20, 35, 50)])
+    batch = model.predict(bodies)
+    assert batch.shape == (3, model.garment_vertex_count, 3)
+    for i in range(3):
+        np.testing.assert_allclose(batch[i], model.predict(bodies[i]), atol=1e-5)
+    # float64 input and a torch-like list are accepted too.
+    np.testing.assert_allclose(model.predict(bodies[0].astype(np.float64)), batch[0], atol=1e-5)
+
+
+def test_weights_are_the_files(model):
+    weights = model.weights()
+    with h5py.File(SHIPPED, "r") as f:
+        names = []
+        f["weights"].visititems(lambda name, obj: names.append(name) if isinstance(obj, h5py.Dataset) else None)
+        assert sorted(names) == sorted(weights)
+        for name in names[:5]:
+            np.testing.assert_array_equal(weights[name], np.asarray(f["weights"][name]).reshape(weights[name].shape))
+
+
+def test_wrong_shapes_and_dtypes_name_the_argument(model):
+    nb = model.body_vertex_count
+    with pytest.raises(ValueError, match=rf"body_vertices: expected a float array of shape \[N = {nb}, 3\].*got float32 \[10, 3\]"):
+        model.predict(np.zeros((10, 3), np.float32))
+    with pytest.raises(ValueError, match=r"body_vertices: .* got int64"):
+        model.predict(np.zeros((nb, 3), np.int64))
+    with pytest.raises(ValueError, match=r"body_vertices: .* got float64 \[2, 2, 3\]"):
+        model.predict(np.zeros((2, 2, 3)))
+    with pytest.raises(ValueError, match="body_vertices: non-finite"):
+        model.predict(np.full((nb, 3), np.nan, np.float32))
+    with pytest.raises(drape.ConfigError, match="README.md"):
+        drape.Model.load(str(SOURCE / "README.md"))
+
+
+def test_assets(model):
+    a = drape.assets(resolution="coarse", size="regular")
+    assert a.hash == model.assets.hash  # the same template and settings the model was trained on
+    d = a.dims
+    ng, nb = d["garment_vertices"], d["body_vertices"]
+    assert a.garment_vertices.shape == (ng, 3) and a.body_vertices.shape == (nb, 3)
+    assert not a.garment_vertices.flags.writeable  # a view of the cached assets, not a copy
+    assert a.garment_uv_faces.shape == a.garment_faces.shape and a.garment_uv.shape[1] == 2
+    assert a.correspondence.shape == (ng,) and 0 <= a.correspondence.min() and a.correspondence.max() < nb
+    levels = a.hierarchy
+    assert len(levels) == 4 and levels[0]["vertices"].shape == (ng, 3)
+    for fine, coarse in zip(levels, levels[1:]):
+        up = fine["upsample"]
+        assert up.shape == (len(fine["vertices"]), len(coarse["vertices"]))
+        np.testing.assert_allclose(np.asarray(up.sum(axis=1)).ravel(), 1, atol=1e-5)  # barycentric rows
+    for L, level in zip(a.laplacians, levels):  # I - D^-1 A: unit diagonal, rows summing to zero
+        assert L.shape == (len(level["vertices"]),) * 2
+        np.testing.assert_allclose(L.diagonal(), 1, atol=1e-6)
+        np.testing.assert_allclose(np.asarray(L.sum(axis=1)).ravel(), 0, atol=1e-5)
+    U = a.eigenvectors.astype(np.float64)
+    k = min(64, U.shape[1])
+    np.testing.assert_allclose(U[:, :k].T @ U[:, :k], np.eye(k), atol=1e-4)
+    assert np.all(np.diff(a.eigenvalues) >= -1e-9)
+
+
+def test_optimize_lowers_the_scene_potential(tmp_path):
+    model = drape.Model.load(str(SHIPPED))  # optimize changes the weights: a model of its own
+    scene = drape.Scene(CONTACT)
+    body = model.body(bmi=30)
+    r = model.optimize(scene, body, iterations=3, learning_rate=1e-4)
+    assert len(r["history"]) == 4 and r["separated"]
+    # The potential optimize reports is the sum of the scene's energies, computed here through Scene.energies.
+    energies = scene.energies(body.astype(np.float64))
+    before = sum(e.value(r["before"]) for e in energies.values())
+    assert before == pytest.approx(r["potential_before"], rel=1e-9)
+    after = sum(e.value(r["after"]) for e in energies.values())
+    assert after == pytest.approx(r["potential_after"], rel=1e-9)
+    assert r["potential_after"] <= r["potential_before"]
+    # The model itself changed: predicting again gives the optimised drape.
+    np.testing.assert_allclose(model.predict(body), r["after"], atol=1e-5)
