@@ -2,6 +2,7 @@
 find_package(Eigen3 3.4 REQUIRED CONFIG)
 find_package(yaml-cpp REQUIRED CONFIG)
 find_package(HDF5 REQUIRED COMPONENTS C CXX)
+find_package(ZLIB REQUIRED)  # CRC-32 of sealed HDF5 files (framework/src/io/h5_seal.hpp)
 find_package(assimp REQUIRED CONFIG)
 find_package(Boost 1.74 REQUIRED COMPONENTS program_options)
 find_package(Threads REQUIRED)

@@ -16,7 +16,7 @@ fail() { printf 'setup.sh: error: %s\n' "$*" >&2; exit 1; }
 
 PACKAGES=(
   build-essential cmake pkg-config
-  libeigen3-dev libspectra-dev libyaml-cpp-dev libhdf5-dev libassimp-dev
+  libeigen3-dev libspectra-dev libyaml-cpp-dev libhdf5-dev zlib1g-dev libassimp-dev
   libboost-dev libboost-program-options-dev libboost-filesystem-dev
   catch2 libnanoflann-dev libopenblas-dev libsuitesparse-dev
   chromium  # headless, for the test that the 3D viewer pages of drape render draw

@@ -9,9 +9,13 @@ using detail::guarded;
 
 namespace {
 
-H5::StrType utf8_string_type() {
-  // Variable length + UTF-8 is what h5py writes for a Python str and reads back as str.
-  H5::StrType type(H5::PredType::C_S1, H5T_VARIABLE);
+H5::StrType utf8_string_type(const std::string& value) {
+  // Fixed length, not variable: a variable-length string lives in HDF5's
+  // global heap, which has no checksum, and a damaged heap entry can loop
+  // HDF5's reader forever. A fixed-length one sits in the object header,
+  // which the 1.8 format checksums. h5py reads it as bytes (docs/formats.md).
+  H5::StrType type(H5::PredType::C_S1, std::max<std::size_t>(value.size(), 1));
+  type.setStrpad(H5T_STR_NULLPAD);
   type.setCset(H5T_CSET_UTF8);
   return type;
 }
@@ -27,9 +31,9 @@ void File::set_attribute(const std::string& object, const std::string& name, con
   auto obj = impl_->open_object(object);
   guarded(*impl_, false, "writing " + describe(object, name) + " failed", [&] {
     if (obj->attrExists(name)) obj->removeAttr(name);
-    const H5::StrType type = utf8_string_type();
+    const H5::StrType type = utf8_string_type(value);
     H5::Attribute attr = obj->createAttribute(name, type, H5::DataSpace(H5S_SCALAR));
-    attr.write(type, value);
+    attr.write(type, value.empty() ? std::string(1, '\0') : value);
   });
 }
 

@@ -1,5 +1,6 @@
 // drape::h5::File: opening, creating, flushing and the group structure.
 #include "h5_internal.hpp"
+#include "h5_seal.hpp"
 
 #include <unistd.h>
 
@@ -162,10 +163,17 @@ File File::open(const fs::path& path, Access access) {
   std::error_code ec;
   if (!fs::exists(path, ec)) throw ConfigError(path.string() + ": no such file");
   if (fs::is_directory(path, ec)) throw ConfigError(path.string() + ": is a folder, not an HDF5 file");
+  // The checksum first: HDF5 must never parse a damaged file (h5_seal.hpp).
+  seal::verify(path);
   if (!is_hdf5(path)) throw ConfigError(path.string() + ": not an HDF5 file");
   auto impl = std::make_unique<Impl>();
   impl->path = path;
   impl->writable = access == Access::ReadWrite;
+  if (impl->writable && seal::state(path) == seal::State::Sealed) {
+    // Written to, the checksum goes stale: cleared now, written again by close().
+    seal::unseal(path);
+    impl->sealed = true;
+  }
   guarded(*impl, true, "cannot open the HDF5 file, it is truncated or corrupt", [&] {
     impl->file.openFile(path.string(), impl->writable ? H5F_ACC_RDWR : H5F_ACC_RDONLY);
   });
@@ -177,10 +185,19 @@ File File::create(const fs::path& path) {
   auto impl = std::make_unique<Impl>();
   impl->path = path;
   impl->writable = true;
-  // The default (earliest) file format on purpose: its superblock has no
-  // "open for writing" flag, so a file whose writer was killed opens again
-  // without h5clear, and every h5py/HDF5 version reads it.
-  guarded(*impl, false, "cannot create the HDF5 file", [&] { impl->file = H5::H5File(path.string(), H5F_ACC_TRUNC); });
+  impl->sealed = true;
+  guarded(*impl, false, "cannot create the HDF5 file", [&] {
+    // Room for the checksum close() writes (h5_seal.hpp).
+    H5::FileCreatPropList create;
+    create.setUserblock(seal::kUserBlock);
+    // HDF5 1.8's format: its object headers and the other metadata it
+    // parses carry checksums of their own, which the earliest format (HDF5's
+    // default) lacks. Not 1.10's: that superblock marks a file open for
+    // writing, and a file whose writer was killed would need h5clear.
+    H5::FileAccPropList access;
+    access.setLibverBounds(H5F_LIBVER_V18, H5F_LIBVER_V18);
+    impl->file = H5::H5File(path.string(), H5F_ACC_TRUNC, create, access);
+  });
   return File(std::move(impl));
 }
 
@@ -206,6 +223,7 @@ void File::close() {
   if (!is_open()) return;
   impl_->open = false;
   guarded(*impl_, false, "closing failed", [&] { impl_->file.close(); });
+  if (impl_->writable && impl_->sealed) seal::seal(impl_->path);
 }
 
 bool File::exists(const std::string& path) const { return impl_->has(path); }

@@ -26,6 +26,7 @@ struct File::Impl {
   H5::H5File file;
   bool writable = false;
   bool open = true;
+  bool sealed = false;  // close() writes the file's checksum (h5_seal.hpp)
 
   std::string name() const { return path.string(); }
   bool has(const std::string& path) const;  // a link at every level of path
