@@ -1,9 +1,12 @@
 // `drape train GRAPH.yaml --data data.h5 --out model.h5`: train a graph on a
 // dataset (drape/trainer.hpp), resumable with --resume after a kill.
 #include "command.hpp"
+#include "mpi_ranks.hpp"
 
+#include <drape/errors.hpp>
 #include <drape/trainer.hpp>
 
+#include <exception>
 #include <iostream>
 #include <thread>
 
@@ -50,8 +53,9 @@ int run(const std::vector<std::string>& given) {
       "fraction", po::value<double>()->default_value(1.0), "train on this fraction of the training split (the seed's 4k model: 0.25)")(
       "patience", po::value<int>()->default_value(20), "stop after this many epochs without a better validation loss")(
       "seed", po::value<std::uint64_t>()->default_value(0), "seed of the initial weights and the shuffles")(
-      "threads", po::value<int>()->default_value(0), "threads, each on a part of every batch (0: all cores); results "
-                                                     "depend on it, so give it to reproduce a run elsewhere")(
+      "threads", po::value<int>()->default_value(0), "threads, each on a part of every batch (0: all cores, or 1 per "
+                                                     "rank under mpirun); results depend on it, so give it to reproduce "
+                                                     "a run elsewhere")(
       "k", po::value<int>()->default_value(1000), "eigenvectors in the template assets (eigen_k; 1000 as in drape assets, which shares the cache)")(
       "resume", po::bool_switch(), "continue an interrupted training from <out>.state (starts afresh when there is none)")(
       "force", po::bool_switch(), "start over, deleting <out> and <out>.state")(
@@ -61,7 +65,9 @@ int run(const std::vector<std::string>& given) {
   po::variables_map vm;
   const std::string usage =
       "drape train GRAPH.yaml --data data.h5 --out model.h5 [--epochs N] [--batch B] [--lr X] [--seed S] [--threads T] "
-      "[--resume]";
+      "[--resume]" +
+      std::string(built_with_mpi() ? "\n       mpirun -np N drape train ... (built with MPI: N ranks, each on a part of every batch)"
+                                   : "\n       (built without MPI: one process)");
   if (!parse(usage, args, opts, pos, vm)) return 0;
   if (!vm.count("graph")) throw UsageError("a graph file is required, e.g. graphs/examples/mlp_baseline.yaml");
   if (!vm.count("data")) throw UsageError("--data FILE is required (a dataset from drape generate)");
@@ -77,8 +83,12 @@ int run(const std::vector<std::string>& given) {
   o.patience = vm["patience"].as<int>();
   o.train_fraction = vm["fraction"].as<double>();
   o.seed = vm["seed"].as<std::uint64_t>();
+  // Under mpirun the ranks share the cores (mpirun binds each to its own).
+  const std::unique_ptr<Ranks> ranks = mpi_ranks_if_launched();
+  o.ranks = ranks.get();
   o.threads = vm["threads"].as<int>();
-  if (o.threads == 0) o.threads = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+  if (o.threads == 0)
+    o.threads = ranks ? 1 : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
   o.eigen_k = vm["k"].as<int>();
   o.resume = vm["resume"].as<bool>();
   o.force = vm["force"].as<bool>();
@@ -86,7 +96,16 @@ int run(const std::vector<std::string>& given) {
   if (!vm["quiet"].as<bool>()) o.progress = &std::cerr;
 
   Registry& registry = Registry::load_default(plugin_path(vm));
-  const TrainReport r = train(registry, o);
+  TrainReport r;
+  try {
+    r = train(registry, o);
+  } catch (const std::exception& e) {
+    if (!ranks || ranks->size() == 1) throw;
+    // The other ranks may be waiting for this one in a collective: end them all.
+    std::cerr << "drape train: rank " << ranks->rank() << " of " << ranks->size() << ": " << e.what() << std::endl;
+    abort_all_ranks(dynamic_cast<const ConfigError*>(&e) || dynamic_cast<const UsageError*>(&e) ? 2 : 1);
+  }
+  if (ranks && ranks->rank() != 0) return 0;
   std::cout << "wrote " << o.out.string() << ": best epoch " << r.best_epoch << " (loss " << r.best_loss << ") of "
             << r.epochs_done << "; ";
   if (r.early_stopped)

@@ -14,6 +14,7 @@
 // is identical to an uninterrupted run. The shuffle of epoch e is drawn from
 // Rng::derive(seed, "epoch-e"), so the random state is (seed, epoch).
 #include <drape/assets.hpp>
+#include <drape/ranks.hpp>
 #include <drape/registry.hpp>
 
 #include <cstdint>
@@ -48,6 +49,10 @@ struct TrainOptions {
   // several trainings in one process; null: built from the dataset's scene.
   std::shared_ptr<const Assets> assets;
   std::ostream* log = nullptr;       // one line per epoch; null: quiet
+  // The processes training together (mpirun, drape/distributed.hpp): each
+  // runs its part of every batch and validation batch; rank 0 alone logs,
+  // shows the progress and writes <out> and <out>.state. null: this one alone.
+  const Ranks* ranks = nullptr;
   std::ostream* progress = nullptr;  // the progress bar; null: none
 };
 

@@ -1,6 +1,7 @@
 // `drape train`: epochs of Adam over shuffled mini-batches, validation, the best
 // weights, early stopping, and atomic model and state files after every epoch.
 #include <drape/data_parallel.hpp>
+#include <drape/distributed.hpp>
 #include <drape/dataset.hpp>
 #include <drape/optimizer.hpp>
 #include <drape/progress.hpp>
@@ -138,7 +139,11 @@ void check_dataset_template(const DatasetReader& reader, const fs::path& data, c
                       hash + " (another garment, size or resolution, or the plugin changed: regenerate the dataset)");
 }
 
-TrainReport train(const Registry& registry, const TrainOptions& o) {
+TrainReport train(const Registry& registry, const TrainOptions& given) {
+  // Ranks of an MPI run: every rank trains, rank 0 alone talks and writes files.
+  const int rank = given.ranks ? given.ranks->rank() : 0, ranks = given.ranks ? given.ranks->size() : 1;
+  TrainOptions o = given;
+  if (rank != 0) o.log = o.progress = nullptr;
   check_options(o);
   const auto run_start = Clock::now();
   TrainReport report;
@@ -208,11 +213,16 @@ TrainReport train(const Registry& registry, const TrainOptions& o) {
       {"schedule", o.schedule},
       {"patience", std::to_string(o.patience)}};
   if (o.schedule == "cosine") settings["epochs"] = std::to_string(o.epochs);
+  if (ranks > 1) settings["ranks"] = std::to_string(ranks);  // like threads, they change the sums' rounding
 
   // Start over, or continue.
   if (o.force) {
-    fs::remove(state_path);
-    fs::remove(o.out);
+    if (ranks > 1) o.ranks->barrier();  // every rank has looked at the files before rank 0 removes them
+    if (rank == 0) {
+      fs::remove(state_path);
+      fs::remove(o.out);
+    }
+    if (ranks > 1) o.ranks->barrier();
   }
   long epochs_done = 0;
   std::string status = "training";
@@ -228,6 +238,13 @@ TrainReport train(const Registry& registry, const TrainOptions& o) {
         throw ConfigError(state_path.string() + ": cannot resume: the interrupted run had " + key + " " + was +
                           ", this one has " + key + " " + value + " (rerun with the same settings, or --force to start over)");
     }
+    // Settings only multi-rank runs record (absent: one process).
+    const auto had_ranks = st.meta.find("ranks");
+    const std::string was_ranks = had_ranks == st.meta.end() ? "1" : had_ranks->second;
+    if (was_ranks != std::to_string(ranks))
+      throw ConfigError(state_path.string() + ": cannot resume: the interrupted run had ranks " + was_ranks +
+                        ", this one has ranks " + std::to_string(ranks) +
+                        " (rerun with the same mpirun -np, or --force to start over)");
     if (st.graph != graph_spec.text)
       throw ConfigError(state_path.string() + ": cannot resume: the interrupted run trained another graph than " +
                         o.graph.string() + " (or --force to start over)");
@@ -254,6 +271,7 @@ TrainReport train(const Registry& registry, const TrainOptions& o) {
   report.early_stopped = status == "early stopped";
 
   auto save = [&] {
+    if (rank != 0) return;  // every rank holds the same weights and state
     std::map<std::string, std::string> meta = settings;
     meta["assets_hash"] = assets->hash;
     meta["output"] = output;
@@ -288,7 +306,8 @@ TrainReport train(const Registry& registry, const TrainOptions& o) {
     *o.log << (report.resumed ? "resuming " : "training ") << o.out.string() << ": " << graph_spec.file << " on "
            << o.data.string() << " (" << train_idx.size() << " train, " << val_idx.size() << " val samples; "
            << ng << " garment, " << nb << " body vertices), " << weight_count << " learnable weights, batch "
-           << o.batch << ", " << o.threads << " thread" << (o.threads > 1 ? "s" : "") << ", lr " << brief(o.lr) << " ("
+           << o.batch << ", " << o.threads << " thread" << (o.threads > 1 ? "s" : "")
+           << (ranks > 1 ? (" on each of " + std::to_string(ranks) + " ranks") : std::string()) << ", lr " << brief(o.lr) << " ("
            << o.schedule << "), seed " << o.seed;
     if (report.resumed) *o.log << ", " << epochs_done << " epochs done";
     *o.log << "\n";
@@ -312,6 +331,9 @@ TrainReport train(const Registry& registry, const TrainOptions& o) {
                                         bar_options);
   const bool bar_on_terminal = o.progress == &std::cerr && ::isatty(STDERR_FILENO) == 1;
 
+  DistributedGraph distributed(dp, o.ranks, [&](const std::vector<std::size_t>& indices) {
+    return read_samples(reader, indices, graph, true);
+  });
   const OmpThreadsScope one_thread(1);  // the parallelism is over samples (DataParallelGraph)
   const std::size_t batch = static_cast<std::size_t>(o.batch);
   while (epochs_done < o.epochs && status == "training") {
@@ -324,7 +346,7 @@ TrainReport train(const Registry& registry, const TrainOptions& o) {
     for (std::size_t first = 0; first < order.size(); first += batch) {
       std::vector<std::size_t> indices;
       for (std::size_t k = first; k < std::min(order.size(), first + batch); ++k) indices.push_back(train_idx[order[k]]);
-      const LossValues l = dp.gradients(read_samples(reader, indices, graph, true));
+      const LossValues l = distributed.gradients(indices);
       if (!std::isfinite(l.total))
         throw Error("the training loss is " + brief(l.total) + " in epoch " + std::to_string(e + 1) +
                     " (try a smaller --lr); " + o.out.string() + " keeps the last finished epoch");
@@ -344,7 +366,7 @@ TrainReport train(const Registry& registry, const TrainOptions& o) {
     for (std::size_t first = 0; first < val_idx.size(); first += batch) {
       const std::vector<std::size_t> indices(val_idx.begin() + static_cast<long>(first),
                                              val_idx.begin() + static_cast<long>(std::min(val_idx.size(), first + batch)));
-      val_loss.merge(dp.losses(read_samples(reader, indices, graph, true)));
+      val_loss.merge(distributed.losses(indices));
     }
     const double monitored = val_idx.empty() ? train_loss.total : val_loss.total;
     if (!std::isfinite(monitored))

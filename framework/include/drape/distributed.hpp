@@ -1,0 +1,45 @@
+#pragma once
+// Data-parallel training over processes (drape/ranks.hpp) on top of each
+// process's threads (drape/data_parallel.hpp). A global batch is cut into
+// min(ranks, samples) contiguous parts exactly as DataParallelGraph cuts a
+// batch among its threads; each rank reads and runs only its part, the parts'
+// mean gradients are gathered on every rank and combined in rank order with
+// the same float expression the threads use. So every rank ends a step with
+// the same gradient bits, runs the same Adam step and keeps the same weights
+// without a broadcast, and N ranks of one thread each give bit for bit what one
+// process with N threads gives (and one thread up to float round-off).
+#include <drape/data_parallel.hpp>
+#include <drape/ranks.hpp>
+
+#include <cstddef>
+#include <functional>
+#include <vector>
+
+namespace drape {
+
+class DistributedGraph {
+ public:
+  // Reads the samples with these dataset indices as a batch.
+  using Reader = std::function<SampleBatch(const std::vector<std::size_t>& indices)>;
+
+  // ranks null (or of size 1): this process alone, exactly DataParallelGraph.
+  DistributedGraph(DataParallelGraph& local, const Ranks* ranks, Reader read);
+
+  int rank() const;
+  int size() const;
+  // Forward and backward over the global batch `indices` (the same on every
+  // rank): on return the local graph's gradients are the batch's mean
+  // gradient, and the losses are the whole batch's, on every rank.
+  LossValues gradients(const std::vector<std::size_t>& indices);
+  // Forward with losses only (validation), split the same way.
+  LossValues losses(const std::vector<std::size_t>& indices);
+
+ private:
+  LossValues run(const std::vector<std::size_t>& indices, bool backward);
+  DataParallelGraph& local_;
+  const Ranks* ranks_;
+  Reader read_;
+  std::vector<float> mine_, all_;  // gradient buffers, kept between steps
+};
+
+}  // namespace drape
