@@ -87,25 +87,33 @@ class ModelFunction(torch.autograd.Function):
     model before the forward."""
 
     @staticmethod
-    def forward(ctx, body, model, names, *weights):
+    def _load(model, names, weights):
         views = model.weights()
         for name, w in zip(names, weights):
             view = views[name]
             if w.data_ptr() != view.ctypes.data:
                 view[...] = _numpy(w).reshape(view.shape)
+
+    @staticmethod
+    def forward(ctx, body, model, names, *weights):
+        ModelFunction._load(model, names, weights)
         body_np = np.ascontiguousarray(_numpy(body), dtype=np.float32)
         garment, forward_id = model._forward(body_np)
         ctx.model, ctx.names, ctx.forward_id, ctx.body = model, names, forward_id, body_np
-        ctx.weight_dtypes = [w.dtype for w in weights]
+        ctx.weights = [w.detach() for w in weights]  # references: the values at backward are the forward's
         return torch.from_numpy(garment).to(device=body.device)
 
     @staticmethod
     @torch.autograd.function.once_differentiable
     def backward(ctx, grad_garment):
         g = np.ascontiguousarray(_numpy(grad_garment), dtype=np.float32)
+        if ctx.model._last_forward != ctx.forward_id:
+            # Another forward ran since (a gradient check's perturbations): the graph is run again on this
+            # forward's weights, which go back into drape's memory first.
+            ModelFunction._load(ctx.model, ctx.names, ctx.weights)
         ctx.model._backward(g, ctx.forward_id, ctx.body)
         grads = ctx.model.grads()
-        out = [torch.from_numpy(np.array(grads[n])).to(dtype=dt) for n, dt in zip(ctx.names, ctx.weight_dtypes)]
+        out = [torch.from_numpy(np.array(grads[n])).to(dtype=w.dtype) for n, w in zip(ctx.names, ctx.weights)]
         return (None, None, None, *out)
 
 

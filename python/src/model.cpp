@@ -260,6 +260,7 @@ void register_model(py::module_& m) {
             return py::make_tuple(out, p.last_forward());
           },
           py::arg("body_vertices"), py::arg("body_params") = py::none(), py::arg("garment_size") = py::none())
+      .def_property_readonly("_last_forward", &PyModel::last_forward, "the id of the forward whose state the graph holds")
       .def(
           "_backward",
           [](PyModel& p, const py::handle& grad, std::uint64_t forward_id, const py::handle& body, const py::handle& body_params,

@@ -1,0 +1,60 @@
+"""drape.Dataset against the same file read with h5py (the layout of docs/formats.md)."""
+import h5py
+import numpy as np
+import pytest
+
+import drape
+from conftest import run_drape
+
+
+@pytest.fixture(scope="module")
+def dataset(tmp_path_factory, request):
+    tmp = tmp_path_factory.mktemp("data")
+    scene = request.getfixturevalue("module_tiny_scene")
+    out = tmp / "data.h5"
+    run_drape("generate", scene, "--count", 4, "--bmi", "20:30", "--seed", 3, "--out", out, "--threads", 2)
+    return out
+
+
+@pytest.fixture(scope="module")
+def module_tiny_scene(tmp_path_factory):
+    from conftest import COARSE
+    path = tmp_path_factory.mktemp("scene") / "tiny.yaml"
+    path.write_text(f"base: {COARSE}\neffects: {{barrier: null}}\n"
+                    "solver: {morph_steps: 0, settle_steps: 1, linear_solver: eigen}\n")
+    return path
+
+
+def test_read_matches_h5py(dataset):
+    d = drape.Dataset(str(dataset))
+    assert len(d) == d.size == 4
+    layout = d.layout
+    with h5py.File(dataset, "r") as f:
+        split = np.asarray(f["split"])
+        for name in ("train", "val", "test"):
+            code = {"train": 0, "val": 1, "test": 2}[name]
+            np.testing.assert_array_equal(d.indices(name), np.flatnonzero(split == code))
+        np.testing.assert_array_equal(d.indices(), np.arange(4))
+        idx = np.array([3, 1])
+        batch = d.read(idx)
+        np.testing.assert_array_equal(batch["indices"], idx)
+        np.testing.assert_array_equal(batch["body"], np.asarray(f["bodies/vertices"])[idx])
+        np.testing.assert_array_equal(batch["garment"], np.asarray(f["garments/vertices"])[idx])
+        np.testing.assert_array_equal(batch["body_params"], np.asarray(f["bodies/params"])[idx])
+        np.testing.assert_array_equal(batch["split"], split[idx])
+        assert batch["body"].shape == (2, layout["body_vertices"], 3) and batch["body"].dtype == np.float32
+        for stat in layout["stats"][:3]:
+            np.testing.assert_array_equal(d.stat(stat, idx), np.asarray(f["stats"][stat])[idx])
+    assert "tshirt" in layout["scene"] and layout["garment_vertices"] == batch["garment"].shape[1]
+
+
+def test_bad_indices_and_files(dataset, tmp_path):
+    d = drape.Dataset(str(dataset))
+    with pytest.raises(ValueError, match=r"indices: sample 4 is not a done sample of this dataset \(it has 4\)"):
+        d.read(np.array([0, 4]))
+    with pytest.raises(ValueError, match=r"indices: expected an integer array"):
+        d.read(np.array([0.5]))
+    with pytest.raises(drape.ConfigError, match="split"):
+        d.indices("tset")
+    with pytest.raises(drape.Error, match="missing.h5"):
+        drape.Dataset(str(tmp_path / "missing.h5"))

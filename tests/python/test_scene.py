@@ -1,0 +1,103 @@
+"""drape.simulate against the drape program; each energy's gradient and Hessian against finite differences
+(NumPy here; the PyTorch gradcheck is in test_torch.py); the GIL is released while drape works."""
+import sys
+import threading
+
+import numpy as np
+import pytest
+
+import drape
+from conftest import CONTACT, read_obj, run_drape
+
+
+def test_simulate_matches_the_program(tiny_scene, tmp_path):
+    # Three settling steps do not settle the drape: the program writes it and exits 1, saying so.
+    run_drape("simulate", tiny_scene, "--bmi", 30, "--out", tmp_path / "g.obj", "--body-out", tmp_path / "b.obj", expect=1)
+    expected, faces = read_obj(tmp_path / "g.obj")
+    body, _ = read_obj(tmp_path / "b.obj")
+    scene = drape.Scene(str(tiny_scene))
+    np.testing.assert_allclose(scene.body(bmi=30), body, atol=2e-6)
+    r = drape.simulate(str(tiny_scene), scene.body(bmi=30))
+    assert r["garment"].shape == expected.shape and not r["converged"] and "not settled" in r["unsettled"]
+    np.testing.assert_allclose(r["garment"], expected, atol=2e-6)
+    np.testing.assert_array_equal(faces, scene.garment_faces)
+    assert set(r["energies"]) == {"gravity", "stretching", "bending"}
+    assert r["total_energy"] == pytest.approx(sum(r["energies"].values()), rel=1e-12)
+    # The per-effect energies of the result are the scene's energies at the drape.
+    energies = scene.energies()
+    for name, value in r["energies"].items():
+        assert energies[name].value(r["garment"]) == pytest.approx(value, rel=1e-9, abs=1e-12)
+
+
+def test_a_scene_from_a_dict_is_the_file(tiny_scene):
+    from_file = drape.Scene(str(tiny_scene))
+    from_dict = drape.Scene({"base": str(tiny_scene.parent / "tiny.yaml")})
+    assert from_dict.effects == from_file.effects
+    inline = drape.Scene({"garment": {"template": "tshirt", "params": {"resolution": "coarse"}},
+                          "effects": {"gravity": {}, "stretching": {}}})
+    assert inline.effects == ["gravity", "stretching"]
+    with pytest.raises(drape.ConfigError, match=r"<dict>:1.*effect 'strething'.*did you mean 'stretching'"):
+        drape.Scene({"effects": {"strething": {}}})
+
+
+@pytest.fixture(scope="module")
+def contact_energies():
+    """Every energy of the contact scene on the mean body, at the dressed garment moved a little."""
+    scene = drape.Scene(str(CONTACT))
+    energies = scene.energies(np.array(scene.mean_body))
+    x = np.array(scene.garment_vertices) + np.random.default_rng(1).normal(scale=5e-4, size=scene.garment_vertices.shape)
+    return energies, x
+
+
+def test_gradients_and_hessians_match_finite_differences(contact_energies):
+    energies, x = contact_energies
+    assert list(energies) == ["gravity", "stretching", "bending", "barrier", "collision"]
+    rng = np.random.default_rng(2)
+    h = 1e-6
+    for name, e in energies.items():
+        value, g = e.value_and_gradient(x)
+        assert value == e.value(x) and g.shape == x.shape
+        d = rng.normal(size=x.shape)
+        d /= np.linalg.norm(d)
+        fd = (e.value(x + h * d) - e.value(x - h * d)) / (2 * h)
+        assert np.sum(g * d) == pytest.approx(fd, rel=1e-5, abs=1e-7), name
+        H = e.hessian(x)
+        assert H.shape == (x.size, x.size)
+        fd_h = (e.gradient(x + h * d) - e.gradient(x - h * d)).ravel() / (2 * h)
+        np.testing.assert_allclose(H @ d.ravel(), fd_h, rtol=1e-4, atol=1e-4 * max(1.0, np.abs(fd_h).max()), err_msg=name)
+        np.testing.assert_allclose((H - H.T).data, 0, atol=1e-9 * max(1.0, abs(H).max()), err_msg=name)
+
+
+def test_psd_projection_and_coo_without_scipy(contact_energies, monkeypatch):
+    energies, x = contact_energies
+    H = energies["stretching"].hessian(x, project_psd=True)
+    d = np.random.default_rng(3).normal(size=x.size)
+    assert d @ (H @ d) >= 0
+    monkeypatch.setitem(sys.modules, "scipy", None)  # as if SciPy were not installed
+    rows, cols, values, shape = energies["stretching"].hessian(x)
+    assert shape == (x.size, x.size) and rows.dtype == np.int32 and len(rows) == len(cols) == len(values)
+    dense = np.zeros(shape)
+    np.add.at(dense, (rows, cols), values)
+    monkeypatch.undo()
+    np.testing.assert_allclose(dense, energies["stretching"].hessian(x).toarray(), atol=1e-9)
+
+
+def test_arguments_are_checked(contact_energies):
+    energies, x = contact_energies
+    with pytest.raises(ValueError, match=r"garment_vertices: expected a float array of shape \[N, 3\] \(N = 991\), got float64 \[990, 3\]"):
+        energies["gravity"].value(x[:-1])
+    with pytest.raises(ValueError, match=r"garment_vertices: .*got int64"):
+        energies["gravity"].value(x.astype(np.int64))
+
+
+def test_the_gil_is_released_while_drape_simulates(tiny_scene):
+    scene = drape.Scene(str(tiny_scene))
+    body = scene.body(bmi=30)
+    done = threading.Event()
+    worker = threading.Thread(target=lambda: (scene.simulate(body, measure_penetration=False), done.set()))
+    ticks = 0
+    worker.start()
+    while not done.is_set():
+        ticks += 1  # runs only while the simulating thread does not hold the GIL
+    worker.join()
+    assert ticks > 10000
