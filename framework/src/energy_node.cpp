@@ -29,7 +29,9 @@ void EnergyNode::forward(const TensorIn& in, const TensorOut& out) {
 void EnergyNode::backward(const TensorIn& in, const TensorIn&, const TensorIn& grad_out, const TensorOut& grad_in) {
   const Tensor& x = *in.at("x");
   const Tensor& ge = *grad_out.at("energy");
-  Tensor& gx = *grad_in.at("x");
+  const auto wanted = grad_in.find("x");
+  if (wanted == grad_in.end()) return;  // nothing upstream learns
+  Tensor& gx = *wanted->second;
   Eigen::MatrixX3d g(vertices_, 3);
   for (int b = 0; b < x.batch(); ++b) {
     g.setZero();

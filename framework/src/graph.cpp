@@ -44,6 +44,7 @@ struct Graph::Impl {
     bool for_outputs = false;    // needed to compute the graph outputs
     bool for_losses = false;     // needed to compute the losses
     double forward_ms = 0.0;     // wall time of the last forward (0 when it did not run)
+    double backward_ms = 0.0;    // wall time of the last backward (0 when it did not run)
     std::string label() const { return "node '" + spec.name + "' (" + spec.type + ")"; }
   };
   struct Input {
@@ -350,8 +351,29 @@ void Graph::forward(const std::map<std::string, Tensor>& inputs, bool with_losse
 std::vector<Graph::NodeTime> Graph::last_forward_times() const {
   std::vector<NodeTime> out;
   for (const auto& b : impl_->nodes)
-    if (b.forward_ms > 0.0) out.push_back({b.spec.name, b.spec.type, b.forward_ms, b.node->flops_per_sample()});
+    if (b.forward_ms > 0.0)
+      out.push_back({b.spec.name, b.spec.type, b.forward_ms, b.node->flops_per_sample(), 0.0, b.spec.is_loss});
   return out;
+}
+
+std::vector<Graph::NodeTime> Graph::last_step_times() const {
+  std::vector<NodeTime> out;
+  for (const auto& b : impl_->nodes)
+    if (b.forward_ms > 0.0 || b.backward_ms > 0.0)
+      out.push_back(
+          {b.spec.name, b.spec.type, b.forward_ms, b.node->flops_per_sample(), b.backward_ms, b.spec.is_loss});
+  return out;
+}
+
+std::vector<std::string> Graph::gradient_ports(const std::string& node) const {
+  for (const auto& b : impl_->nodes) {
+    if (b.spec.name != node) continue;
+    std::vector<std::string> ports;
+    for (std::size_t k = 0; k < b.in_ports.size(); ++k)
+      if (b.sources[k].node >= 0 && impl_->nodes[b.sources[k].node].requires_grad) ports.push_back(b.in_ports[k]);
+    return ports;
+  }
+  throw Error("no node named '" + node + "'");
 }
 
 std::map<std::string, double> Graph::loss_terms() const {
@@ -379,36 +401,45 @@ void run_backward(Graph::Impl& g) {
   for (auto it = g.nodes.rbegin(); it != g.nodes.rend(); ++it) {
     auto& b = *it;
     if (!b.has_grad || !b.requires_grad) continue;
+    const auto start = std::chrono::steady_clock::now();
     TensorIn in, out, gout;
     for (std::size_t k = 0; k < b.in_ports.size(); ++k) in[b.in_ports[k]] = &g.value_of(b.sources[k]);
     for (std::size_t k = 0; k < b.out_ports.size(); ++k) {
       out[b.out_ports[k]] = &b.outputs[k];
       gout[b.out_ports[k]] = &b.out_grads[k];
     }
+    // Only the ports whose gradient reaches a weight (Caffe's propagate_down):
+    // a graph input's or a constant's would be computed and thrown away.
     std::vector<Tensor> gin(b.in_ports.size());
     TensorOut gin_map;
     for (std::size_t k = 0; k < b.in_ports.size(); ++k) {
-      const Tensor& v = g.value_of(b.sources[k]);
+      const auto& s = b.sources[k];
+      if (s.node < 0 || !g.nodes[s.node].requires_grad) continue;
+      const Tensor& v = g.value_of(s);
       gin[k] = Tensor(v.batch(), v.rows(), v.cols());
       gin_map[b.in_ports[k]] = &gin[k];
     }
     b.node->backward(in, out, gout, gin_map);
     for (std::size_t k = 0; k < b.in_ports.size(); ++k) {
       const auto& s = b.sources[k];
-      if (s.node < 0) continue;
+      if (s.node < 0 || !g.nodes[s.node].requires_grad) continue;
       auto& src = g.nodes[s.node];
       src.out_grads[s.port].vec() += gin[k].vec();
       src.has_grad = true;
     }
+    b.backward_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   }
 }
 
 void reset_grads(Graph::Impl& g) {
   for (auto& b : g.nodes) {
     b.has_grad = false;
+    b.backward_ms = 0.0;
     b.out_grads.resize(b.outputs.size());
+    // A node without weights upstream never runs backward: no gradient buffers to zero.
+    const bool used = b.requires_grad || b.spec.is_loss;
     for (std::size_t k = 0; k < b.outputs.size(); ++k)
-      b.out_grads[k] = Tensor(b.outputs[k].batch(), b.outputs[k].rows(), b.outputs[k].cols());
+      b.out_grads[k] = used ? Tensor(b.outputs[k].batch(), b.outputs[k].rows(), b.outputs[k].cols()) : Tensor();
   }
 }
 }  // namespace
@@ -432,6 +463,10 @@ void Graph::backward_from_output(const std::string& output, const Tensor& grad) 
   for (const auto& [name, s] : g.outputs) {
     if (name != output) continue;
     if (s.node < 0) return;  // an input passed through: no weights involved
+    const Tensor& value = g.nodes[s.node].outputs[s.port];
+    if (value.shape() != grad.shape() || value.batch() != grad.batch())
+      throw Error("backward_from_output: gradient " + grad.shape_str() + " does not match output " + value.shape_str());
+    if (!g.nodes[s.node].requires_grad) return;  // no weights upstream of it
     Tensor& target = g.nodes[s.node].out_grads[s.port];
     if (target.shape() != grad.shape() || target.batch() != grad.batch())
       throw Error("backward_from_output: gradient " + grad.shape_str() + " does not match output " + target.shape_str());

@@ -190,3 +190,65 @@ TEST_CASE("the gradient checker catches a wrong gradient", "[gradcheck]") {
   CHECK(report.ok(1e-2));
   CHECK(report.entries.size() == 3);  // input x, weights b and w
 }
+
+TEST_CASE("backward asks a node only for the input gradients that reach a weight (propagate_down)", "[graph]") {
+  // A node that records which input gradients backward asked it for.
+  static std::vector<std::vector<std::string>> asked;
+  class Recorder final : public Node {
+   public:
+    ShapeMap setup(const ShapeMap& in, const NodeContext&) override { return {{"y", in.at("a")}}; }
+    void forward(const TensorIn& in, const TensorOut& out) override {
+      out.at("y")->vec() = in.at("a")->vec() + in.at("b")->vec();
+    }
+    void backward(const TensorIn&, const TensorIn&, const TensorIn& g, const TensorOut& gin) override {
+      std::vector<std::string> ports;
+      for (const auto& [port, t] : gin) {
+        ports.push_back(port);
+        t->vec() = g.at("y")->vec();
+      }
+      asked.push_back(ports);
+    }
+  };
+  Registry reg;
+  reg.load_path({DRAPE_BUILD_PLUGIN_DIR});
+  reg.add(test::affine_descriptor());
+  PluginDescriptor d;
+  d.kind = "op";
+  d.name = "test_recorder";
+  d.doc = "test node";
+  d.inputs = {{"a", "input"}, {"b", "input"}};
+  d.outputs = {{"y", "a + b"}};
+  d.create_node = [](const Params&) { return std::make_unique<Recorder>(); };
+  reg.add(d);
+  const char* yaml = R"(
+inputs:
+  rest: [n, 3]
+  target: [n, 3]
+nodes:
+  first:  { type: test_recorder, in: { a: rest, b: target } }
+  lift:   { type: test_affine, in: first }
+  second: { type: test_recorder, in: { a: lift.y, b: rest } }
+outputs: { garment: second }
+losses:
+  l2: 1.0
+)";
+  Graph g(parse_graph_text(yaml, "g.yaml"), reg, {{{"n", 3}}});
+  CHECK(g.gradient_ports("first").empty());  // graph inputs only: its backward never runs
+  CHECK(g.gradient_ports("lift").empty());   // fed by a node without weights upstream
+  CHECK(g.gradient_ports("second") == std::vector<std::string>{"a"});
+  CHECK(g.gradient_ports("l2") == std::vector<std::string>{"pred"});  // not the target
+  CHECK_THROWS_WITH(g.gradient_ports("nope"), Catch::Contains("no node named 'nope'"));
+  g.forward({{"rest", random_tensor(2, 3, 3)}, {"target", random_tensor(2, 3, 3, 0.5f)}});
+  g.zero_grad();
+  asked.clear();
+  g.backward();
+  REQUIRE(asked.size() == 1);  // `first` has no weights upstream: never asked
+  CHECK(asked[0] == std::vector<std::string>{"a"});
+  for (auto& [name, w] : g.weights()) CHECK(w->grad.vec().norm() > 0);  // the weights still learn
+  // Per-node times of the last step: every node ran forward, backward only where gradients flow.
+  const auto times = g.last_step_times();
+  REQUIRE(times.size() == 4);
+  CHECK(times[0].backward_ms == 0.0);
+  CHECK(times[3].is_loss);
+  CHECK(times[3].backward_ms > 0.0);
+}

@@ -29,9 +29,10 @@ class Affine final : public Node {
     auto& b = weights().at("b");
     const Tensor& x = *in.at("x");
     const Tensor& gy = *gout.at("y");
+    const auto gx = gin.find("x");  // absent when x is a graph input (propagate_down)
     for (int i = 0; i < x.batch(); ++i)
       for (int r = 0; r < x.rows(); ++r) {
-        gin.at("x")->mat(i).row(r) = gy.mat(i).row(r).array() * w.value.mat(0).row(0).array();
+        if (gx != gin.end()) gx->second->mat(i).row(r) = gy.mat(i).row(r).array() * w.value.mat(0).row(0).array();
         w.grad.mat(0).row(0).array() += gy.mat(i).row(r).array() * x.mat(i).row(r).array();
         b.grad.mat(0).row(0) += gy.mat(i).row(r);
       }

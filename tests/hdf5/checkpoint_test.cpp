@@ -39,7 +39,7 @@ class Dense final : public Node {
     const Tensor& x = *in.at("x");
     for (int i = 0; i < x.batch(); ++i) {
       const auto gy = gout.at("y")->mat(i);
-      gin.at("x")->mat(i) = gy * weights().at("w").value.mat(0).transpose();
+      if (auto gx = gin.find("x"); gx != gin.end()) gx->second->mat(i) = gy * weights().at("w").value.mat(0).transpose();
       weights().at("w").grad.mat(0) += x.mat(i).transpose() * gy;
       weights().at("b").grad.mat(0) += gy.colwise().sum();
     }

@@ -107,8 +107,17 @@ class Graph {
     std::string name, type;
     double ms = 0.0;
     double flops_per_sample = 0.0;
+    double backward_ms = 0.0;  // of the last backward (0 when it did not run the node)
+    bool is_loss = false;
   };
   std::vector<NodeTime> last_forward_times() const;
+  // The same with the last backward's time per node: the nodes that ran in either.
+  std::vector<NodeTime> last_step_times() const;
+
+  // Which input ports of a node backward fills (Caffe's propagate_down): those
+  // fed by a node that has weights upstream. Graph inputs and constants get no
+  // gradient, so a node is never asked for one (`grad_in` lacks those ports).
+  std::vector<std::string> gradient_ports(const std::string& node) const;
 
   struct Impl;  // opaque
 

@@ -46,7 +46,10 @@ class Node {
 
   // Reverse mode. grad_out holds dLoss/dOutput for every output port; write
   // (overwrite) dLoss/dInput into every grad_in tensor (allocated, zeroed) and
-  // accumulate (+=) weight gradients into weights()[..].grad.
+  // accumulate (+=) weight gradients into weights()[..].grad. grad_in holds
+  // only the ports whose gradient is wanted (Caffe's propagate_down): a graph
+  // omits those fed by graph inputs or by nodes with no weights upstream, so
+  // look ports up with find() and skip the work for the missing ones.
   virtual void backward(const TensorIn& in, const TensorIn& out, const TensorIn& grad_out,
                         const TensorOut& grad_in) = 0;
 

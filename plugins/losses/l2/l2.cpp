@@ -23,8 +23,8 @@ class L2Loss final : public Node {
     const Tensor &x = *in.at("pred"), &y = *in.at("target");
     for (int b = 0; b < x.batch(); ++b) {
       const float s = 2.0f * (*gout.at("loss"))(b, 0, 0) / rows_;
-      gin.at("pred")->mat(b) = s * (x.mat(b) - y.mat(b));
-      gin.at("target")->mat(b) = -s * (x.mat(b) - y.mat(b));
+      if (auto g = gin.find("pred"); g != gin.end()) g->second->mat(b) = s * (x.mat(b) - y.mat(b));
+      if (auto g = gin.find("target"); g != gin.end()) g->second->mat(b) = -s * (x.mat(b) - y.mat(b));
     }
   }
   double flops_per_sample() const override { return 3.0 * rows_; }

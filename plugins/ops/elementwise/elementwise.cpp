@@ -31,7 +31,7 @@ class Scale final : public Node {
   ShapeMap setup(const ShapeMap& in, const NodeContext&) override { return {{"out", in.at("x")}}; }
   void forward(const TensorIn& in, const TensorOut& out) override { out.at("out")->vec() = factor_ * in.at("x")->vec(); }
   void backward(const TensorIn&, const TensorIn&, const TensorIn& gout, const TensorOut& gin) override {
-    gin.at("x")->vec() = factor_ * gout.at("out")->vec();
+    if (auto g = gin.find("x"); g != gin.end()) g->second->vec() = factor_ * gout.at("out")->vec();
   }
 
  private:
