@@ -1,6 +1,7 @@
 #include "command.hpp"
 
 #include <drape/errors.hpp>
+#include <drape/nn/gemm.hpp>
 
 #include <algorithm>
 #include <iostream>
@@ -63,6 +64,9 @@ void print_overview() {
 
 int main(int argc, char** argv) {
   using namespace drape::cli;
+  // OpenBLAS on a CPU newer than itself runs SSE3 kernels: start again asking
+  // for the AVX-512/AVX2 ones the CPU has (if exec fails, carry on as we are).
+  drape::nn::reexec_with_native_blas(argv);
   std::vector<std::string> args(argv + 1, argv + argc);
   if (args.empty() || args[0] == "--help" || args[0] == "-h" || args[0] == "help") {
     print_overview();

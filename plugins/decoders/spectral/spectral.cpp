@@ -17,6 +17,7 @@
 #include <drape/assets.hpp>
 #include <drape/nn/dense_stack.hpp>
 #include <drape/nn/dot_rows.hpp>
+#include <drape/nn/gemm.hpp>
 #include <drape/plugin.hpp>
 
 #include <algorithm>
@@ -96,8 +97,10 @@ class SpectralDecoder final : public Node {
       }
       return;
     }
+    // Through the BLAS (AVX2/AVX-512 kernels; Eigen's product is compiled for SSE2).
     product_.resize(vertices_, 3 * batch);
-    product_.noalias() = basis().leftCols(use_k_) * coefficients_.leftCols(use_k_).transpose();
+    nn::gemm(nn::Op::None, nn::Op::Transpose, 1.0f, basis().leftCols(use_k_), coefficients_.leftCols(use_k_), 0.0f,
+             product_);
     for (int b = 0; b < batch; ++b) dx.mat(b) = product_.middleCols(3 * b, 3);
   }
 
@@ -121,7 +124,8 @@ class SpectralDecoder final : public Node {
       product_.resize(vertices_, 3 * batch);
       for (int b = 0; b < batch; ++b) product_.middleCols(3 * b, 3) = gdx.mat(b);
       coefficients_.setZero();
-      coefficients_.leftCols(use_k_).noalias() = product_.transpose() * basis().leftCols(use_k_);
+      nn::gemm(nn::Op::Transpose, nn::Op::None, 1.0f, product_, basis().leftCols(use_k_), 0.0f,
+               coefficients_.leftCols(use_k_));
     }
     MatrixRM g(batch, 3 * k_);
     for (int b = 0; b < batch; ++b) {

@@ -9,6 +9,7 @@
 // Reading V (N x k floats, 14 MB at the default resolution) is the cost here:
 // once per sample forward, once per batch backward.
 #include <drape/assets.hpp>
+#include <drape/nn/gemm.hpp>
 #include <drape/plugin.hpp>
 
 #include <string>
@@ -40,16 +41,15 @@ class SpectralLoss final : public Node {
   void forward(const TensorIn& in, const TensorOut& out) override {
     const Tensor &x = *in.at("pred"), &y = *in.at("target");
     const int batch = x.batch(), n = x.rows();
-    // C' = (x - y)' V [3, k] as rank-one updates, one row of V at a time: V is
-    // streamed from memory once per sample and C' stays in cache (about 2x faster
-    // than a GEMM that packs V for a product with only 3 columns).
-    coefficients_.setZero(3 * batch, basis_.cols());
+    // C = D' V [3B, k] for the whole batch, D [N, 3B] the samples' x - y side
+    // by side: one matrix product through the BLAS (AVX2/AVX-512 kernels; the
+    // row-at-a-time updates this replaces ran in Eigen's SSE2 code, 6x slower).
+    difference_.resize(n, 3 * batch);
+    for (int b = 0; b < batch; ++b) difference_.middleCols(3 * b, 3) = x.mat(b) - y.mat(b);
+    coefficients_.resize(3 * batch, basis_.cols());
+    nn::gemm(nn::Op::Transpose, nn::Op::None, 1.0f, difference_, basis_, 0.0f, coefficients_);
     for (int b = 0; b < batch; ++b) {
-      const auto xb = x.mat(b), yb = y.mat(b);
-      auto c = coefficients_.middleRows(3 * b, 3);
-      for (int i = 0; i < n; ++i)
-        for (int j = 0; j < 3; ++j) c.row(j) += (xb(i, j) - yb(i, j)) * basis_.row(i);
-      const double s = c.cast<double>().lpNorm<1>();
+      const double s = coefficients_.middleRows(3 * b, 3).cast<double>().lpNorm<1>();
       (*out.at("loss"))(b, 0, 0) = static_cast<float>(mean_ ? s / double(basis_.cols()) : s);
     }
   }
@@ -65,10 +65,13 @@ class SpectralLoss final : public Node {
       signs.middleCols(3 * b, 3) = coefficients_.middleRows(3 * b, 3).transpose().unaryExpr(
           [scale](float v) { return v > 0 ? scale : (v < 0 ? -scale : 0.0f); });
     }
-    const MatrixRM g = basis_ * signs;
+    const auto gpred = gin.find("pred"), gtarget = gin.find("target");
+    if (gpred == gin.end() && gtarget == gin.end()) return;
+    MatrixRM g(basis_.rows(), 3 * batch);
+    nn::gemm(nn::Op::None, nn::Op::None, 1.0f, basis_, signs, 0.0f, g);
     for (int b = 0; b < batch; ++b) {
-      if (gin.count("pred")) gin.at("pred")->mat(b) = g.middleCols(3 * b, 3);
-      if (gin.count("target")) gin.at("target")->mat(b) = -g.middleCols(3 * b, 3);
+      if (gpred != gin.end()) gpred->second->mat(b) = g.middleCols(3 * b, 3);
+      if (gtarget != gin.end()) gtarget->second->mat(b) = -g.middleCols(3 * b, 3);
     }
   }
 
@@ -78,6 +81,7 @@ class SpectralLoss final : public Node {
   bool mean_;
   int k_;
   MatrixRM basis_;         // [N, k] the first k eigenvectors
+  MatrixRM difference_;    // [N, 3B] x - y of the last forward, sample b in columns 3b..3b+2
   MatrixRM coefficients_;  // [3B, k] (V' (x - y))' of the last forward, three rows per sample
 };
 
