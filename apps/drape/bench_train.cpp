@@ -1,11 +1,20 @@
 // `drape bench train (--model model.h5 | --graph g.yaml) --data data.h5`: the
 // training throughput -- samples per second (and per core) of full steps
-// (read the batch, forward, backward, gradient reduction, Adam) -- and the
-// process's peak resident memory (VmHWM of /proc/self/status).
+// (read the batch, forward, backward, gradient reduction, Adam) -- the
+// process's peak resident memory (VmHWM of /proc/self/status), and where a
+// step's time goes: forward and backward of every node, the network's and the
+// losses' totals.
+//
+// Training meets each sample once per epoch, and what depends only on the
+// data (the ground truth's closest body points) is computed at its first
+// meeting and cached (geometry::SurfaceCache). The timed steps are those of
+// the later epochs: an untimed epoch over the pool (--pool samples of the
+// train split) comes first, unless --cold.
 #include "bench.hpp"
 
 #include <drape/data_parallel.hpp>
 #include <drape/dataset.hpp>
+#include <drape/geometry/surface_cache.hpp>
 #include <drape/model.hpp>
 #include <drape/optimizer.hpp>
 #include <drape/registry.hpp>
@@ -16,6 +25,7 @@
 #include <chrono>
 #include <cstdio>
 #include <fstream>
+#include <map>
 #include <thread>
 
 namespace drape::cli {
@@ -40,10 +50,13 @@ int run(const std::vector<std::string>& args) {
       "batch", po::value<int>()->default_value(8), "samples per step")(
       "threads", po::value<int>()->default_value(1), "threads (0: all cores); samples/s per core divides by it")(
       "steps", po::value<int>()->default_value(10), "timed steps (after one untimed)")(
+      "pool", po::value<int>()->default_value(64), "samples of the train split the batches are drawn from (0: all)")(
+      "cold", po::bool_switch(), "time the first epoch's steps (nothing cached yet) instead of the later ones'")(
       "k", po::value<int>()->default_value(1000), "with --graph: eigenvectors in the assets");
   po::variables_map vm;
   const std::string usage =
-      "drape bench train (--model model.h5 | --graph g.yaml) --data data.h5 [--batch 8] [--threads 1] [--steps 10]";
+      "drape bench train (--model model.h5 | --graph g.yaml) --data data.h5 [--batch 8] [--threads 1] [--steps 10] "
+      "[--pool 64] [--cold]";
   if (!parse(usage, args, opts, {}, vm)) return 0;
   require_model_or_graph(vm);
   if (!vm.count("data")) throw UsageError("--data FILE is required");
@@ -83,8 +96,25 @@ int run(const std::vector<std::string>& args) {
   std::vector<std::size_t> pool = reader.indices(Split::Train);
   if (pool.empty()) pool = reader.indices();
   if (pool.empty()) throw ConfigError(data + ": no samples");
+  if (const int keep = vm["pool"].as<int>(); keep > 0 && static_cast<std::size_t>(keep) < pool.size()) pool.resize(keep);
   Rng rng(1);
   const OmpThreadsScope one(1);
+  auto read_batch = [&](const std::vector<std::size_t>& indices) {
+    SampleBatch batch;
+    batch.body = reader.body_vertices(indices);
+    batch.target = reader.garment_vertices(indices);
+    if (params) batch.body_params = reader.body_params(indices);
+    return batch;
+  };
+  // The first epoch, untimed: training sees every sample before it sees one again.
+  if (!vm["cold"].as<bool>())
+    for (std::size_t first = 0; first < pool.size(); first += batch_size) {
+      const std::vector<std::size_t> indices(pool.begin() + first,
+                                             pool.begin() + std::min(pool.size(), first + batch_size));
+      dp.losses(read_batch(indices));
+    }
+  // Per node (replica 0's share of the batch): forward and backward ms summed over the timed steps.
+  std::vector<Graph::NodeTime> node_sums;
   // Seconds in each part of a step: reading, forward+backward+reduction, Adam, copying the weights.
   double read = 0, grad = 0, step = 0, sync = 0;
   auto lap = [](Clock::time_point& t) {
@@ -98,13 +128,21 @@ int run(const std::vector<std::string>& args) {
     for (int k = 0; k < batch_size; ++k) indices.push_back(pool[rng.index(pool.size())]);
     const bool timed = s > 0;  // the first step allocates
     auto t = Clock::now();
-    SampleBatch batch;
-    batch.body = reader.body_vertices(indices);
-    batch.target = reader.garment_vertices(indices);
-    if (params) batch.body_params = reader.body_params(indices);
+    const SampleBatch batch = read_batch(indices);
     read += timed * lap(t);
     dp.gradients(batch);
     grad += timed * lap(t);
+    if (timed) {
+      const auto times = dp.graph().last_step_times();
+      if (node_sums.empty()) {
+        node_sums = times;
+        for (auto& n : node_sums) n.ms = n.backward_ms = 0.0;
+      }
+      for (std::size_t n = 0; n < times.size() && n < node_sums.size(); ++n) {
+        node_sums[n].ms += times[n].ms;
+        node_sums[n].backward_ms += times[n].backward_ms;
+      }
+    }
     {
       const OmpThreadsScope all(threads);
       adam.step(1e-4);
@@ -124,6 +162,31 @@ int run(const std::vector<std::string>& args) {
               "|---|---|---|---|---|---|---|---|\n");
   std::printf("| %.2f | %.2f | %.1f | %.1f | %.1f | %.1f | %.1f | %.0f |\n", rate, rate / threads, 1e3 * seconds / steps,
               1e3 * read / steps, 1e3 * grad / steps, 1e3 * step / steps, 1e3 * sync / steps, peak_memory_mib());
+
+  // Where forward+backward goes, node by node: the network's nodes, then the losses.
+  const int share = threads > 1 ? (batch_size + threads - 1) / threads : batch_size;
+  std::printf("\nPer node, ms per step (replica 0: %d of the %d samples%s):\n\n", share, batch_size,
+              threads > 1 ? "; the other replicas run theirs at the same time" : "");
+  std::printf("| node | type | forward | backward | total | share of forward+backward |\n|---|---|---|---|---|---|\n");
+  double network[2] = {0, 0}, losses[2] = {0, 0};
+  const double all_ms = 1e3 * grad / steps;
+  for (const bool loss : {false, true})
+    for (const auto& n : node_sums) {
+      if (n.is_loss != loss) continue;
+      const double f = n.ms / steps, b = n.backward_ms / steps;
+      (loss ? losses : network)[0] += f;
+      (loss ? losses : network)[1] += b;
+      std::printf("| %s%s | %s | %.2f | %.2f | %.2f | %.1f %% |\n", loss ? "loss " : "", n.name.c_str(), n.type.c_str(), f,
+                  b, f + b, 100.0 * (f + b) / all_ms);
+    }
+  std::printf("| **network** | | %.2f | %.2f | %.2f | %.1f %% |\n", network[0], network[1], network[0] + network[1],
+              100.0 * (network[0] + network[1]) / all_ms);
+  std::printf("| **losses** | | %.2f | %.2f | %.2f | %.1f %% |\n", losses[0], losses[1], losses[0] + losses[1],
+              100.0 * (losses[0] + losses[1]) / all_ms);
+  const auto& cache = geometry::SurfaceCache::shared();
+  if (cache.entries() > 0)
+    std::printf("\nground-truth closest points cached: %zu samples, %.1f MiB of the %.0f MiB budget ($DRAPE_SURFACE_CACHE_MIB)\n",
+                cache.entries(), cache.bytes() / 1048576.0, cache.budget() / 1048576.0);
   return 0;
 }
 

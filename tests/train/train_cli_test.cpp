@@ -284,4 +284,12 @@ TEST_CASE("drape bench infer and bench train report their figures", "[train][cli
                                         " --steps 1 --batch 2"),
                     out) == 0);
   CHECK_THAT(out, Catch::Contains("samples/s per core") && Catch::Contains("VmHWM"));
+  // Per node and per loss: forward and backward of each, the network's and the losses' totals.
+  CHECK_THAT(out, Catch::Contains("| node | type | forward | backward |") && Catch::Contains("| loss l2 | l2 |") &&
+                      Catch::Contains("| loss edge | edge |") && Catch::Contains("**network**") &&
+                      Catch::Contains("**losses**"));
+  REQUIRE(test::run(test::drape_command("bench train --model " + t.model.string() + " --data " + t.data.string() +
+                                        " --steps 1 --batch 2 --cold --pool 3"),
+                    out) == 0);
+  CHECK_THAT(out, Catch::Contains("**losses**"));
 }

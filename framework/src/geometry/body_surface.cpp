@@ -111,16 +111,20 @@ SurfacePoint BodySurface::finish(const Eigen::Vector3d& p, int face, const Trian
 }
 
 SurfacePoint BodySurface::search(const Eigen::Vector3d& p, double max_distance, const int* face_labels,
-                                 int excluded) const {
+                                 int excluded, int hint) const {
   TrianglePoint hit;
   const double bound = std::isinf(max_distance) ? max_distance : max_distance * max_distance;
-  const int face = bvh_->nearest(p, bound, hit, face_labels, excluded);
+  const int face = bvh_->nearest(p, bound, hit, face_labels, excluded, hint);
   if (face < 0) return {};
   return finish(p, face, hit);
 }
 
 SurfacePoint BodySurface::locate(const Eigen::Vector3d& p, double max_distance) const {
   return search(p, max_distance, nullptr, 0);
+}
+
+SurfacePoint BodySurface::locate_near(const Eigen::Vector3d& p, int hint) const {
+  return search(p, std::numeric_limits<double>::infinity(), nullptr, 0, hint < faces_.rows() ? hint : -1);
 }
 
 SurfacePoint BodySurface::locate_excluding(const Eigen::Vector3d& p, const std::vector<int>& face_labels, int excluded,

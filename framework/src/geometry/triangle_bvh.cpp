@@ -15,6 +15,8 @@ TriangleBvh::TriangleBvh(const Eigen::MatrixX3d& vertices, const Eigen::MatrixX3
   nodes_.reserve(2 * static_cast<std::size_t>(nf / kLeafSize + 1));
   if (nf > 0) build(order, centroids, 0, nf, 0);
   face_of_ = std::move(order);
+  slot_of_face_.assign(nf, -1);
+  for (int t = 0; t < nf; ++t) slot_of_face_[face_of_[t]] = t;
   refit(vertices);
 }
 
@@ -66,15 +68,17 @@ void TriangleBvh::refit(const Eigen::MatrixX3d& vertices) {
   }
 }
 
-double TriangleBvh::box_distance2(const Node& n, const Eigen::Vector3d& p) const {
-  return (n.lo - p).cwiseMax(p - n.hi).cwiseMax(0.0).squaredNorm();
-}
-
 int TriangleBvh::nearest(const Eigen::Vector3d& p, double max_squared_distance, TrianglePoint& hit,
-                         const int* face_labels, int excluded) const {
+                         const int* face_labels, int excluded, int hint) const {
   if (nodes_.empty()) return -1;
   double best = max_squared_distance;
   int best_triangle = -1;
+  if (hint >= 0 && hint < static_cast<int>(slot_of_face_.size()) && !(face_labels && face_labels[hint] == excluded)) {
+    const int t = slot_of_face_[hint];
+    const TrianglePoint q = closest_point_on_triangle(p, corners_[3 * t], corners_[3 * t + 1], corners_[3 * t + 2]);
+    const double d2 = (q.point - p).squaredNorm();
+    if (d2 < best) best = d2, best_triangle = t, hit = q;
+  }
   struct Pending {
     int node;
     double distance2;
@@ -82,12 +86,12 @@ int TriangleBvh::nearest(const Eigen::Vector3d& p, double max_squared_distance, 
   Pending stack[kMaxDepth];
   int top = 0;
   int node = 0;
-  if (box_distance2(nodes_[0], p) >= best) return -1;
+  if (box_distance2(nodes_[0], p) >= best) return best_triangle < 0 ? -1 : face_of_[best_triangle];
   for (;;) {
     const Node& n = nodes_[node];
     if (n.count > 0) {
       for (int t = n.first; t < n.first + n.count; ++t) {
-        if (face_labels && face_labels[face_of_[t]] == excluded) continue;
+        if (t == best_triangle || (face_labels && face_labels[face_of_[t]] == excluded)) continue;
         const TrianglePoint q = closest_point_on_triangle(p, corners_[3 * t], corners_[3 * t + 1], corners_[3 * t + 2]);
         const double d2 = (q.point - p).squaredNorm();
         if (d2 < best) best = d2, best_triangle = t, hit = q;

@@ -11,6 +11,7 @@
 
 #include <Eigen/Core>
 
+#include <algorithm>
 #include <vector>
 
 namespace drape::geometry {
@@ -24,9 +25,13 @@ class TriangleBvh {
 
   // The closest triangle to p strictly within sqrt(max_squared_distance);
   // returns -1 (and leaves `hit` alone) when there is none. With face_labels
-  // (one per face), faces labelled `excluded` are passed over.
+  // (one per face), faces labelled `excluded` are passed over. A hint (a face
+  // expected near p, e.g. the answer for a nearby point) is tested first: its
+  // distance bounds the search, which then opens only the boxes closer than
+  // it. The answer is the same closest point; of faces at equal distance the
+  // hint wins.
   int nearest(const Eigen::Vector3d& p, double max_squared_distance, TrianglePoint& hit,
-              const int* face_labels = nullptr, int excluded = 0) const;
+              const int* face_labels = nullptr, int excluded = 0, int hint = -1) const;
 
   int num_nodes() const { return static_cast<int>(nodes_.size()); }
 
@@ -41,11 +46,18 @@ class TriangleBvh {
 
   int build(std::vector<int>& order, const std::vector<Eigen::Vector3d>& centroids, int begin, int end, int depth);
   void gather_corners(const Eigen::MatrixX3d& vertices);
-  double box_distance2(const Node& n, const Eigen::Vector3d& p) const;
+  // Inline: it is most of a query's work, and an exported member would go through the PLT.
+  static double box_distance2(const Node& n, const Eigen::Vector3d& p) {
+    const double dx = std::max({n.lo.x() - p.x(), p.x() - n.hi.x(), 0.0});
+    const double dy = std::max({n.lo.y() - p.y(), p.y() - n.hi.y(), 0.0});
+    const double dz = std::max({n.lo.z() - p.z(), p.z() - n.hi.z(), 0.0});
+    return dx * dx + dy * dy + dz * dz;
+  }
 
   Eigen::MatrixX3i faces_;
   std::vector<Node> nodes_;
   std::vector<int> face_of_;                // face id of each triangle in leaf order
+  std::vector<int> slot_of_face_;           // its inverse: the leaf-order slot of each face
   std::vector<Eigen::Vector3d> corners_;    // 3 per triangle in leaf order (contiguous for the cache)
 };
 

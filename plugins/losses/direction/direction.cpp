@@ -11,9 +11,11 @@
 // (2) is one minus the cosine between x - c_y and d_y. Where a direction is
 // undefined (c_x = c_y, x = c_y or d_y = 0, to 1e-9 m) that term is 0 and
 // passes no gradient. Gradients reach pred, target and body through the closest
-// points and n (geometry/closest_point_gradient.hpp). Computed in double.
+// points and n (geometry/closest_point_gradient.hpp), those of the three the
+// graph wants (training: pred only). Computed in double; the closest points come
+// from geometry::BodyPoints (the target's cached, shared with v2v).
 #include <drape/assets.hpp>
-#include <drape/geometry/closest_point.hpp>
+#include <drape/geometry/body_points.hpp>
 #include <drape/geometry/closest_point_gradient.hpp>
 #include <drape/plugin.hpp>
 
@@ -49,7 +51,7 @@ class DirectionLoss final : public Node {
                         ", 3] (the vertices of a body with the assets' topology), got " + body.str());
     rows_ = pred.rows;
     faces_ = mean_body.faces;
-    surface_ = std::make_unique<geometry::BodySurface>(mean_body);
+    points_ = std::make_unique<geometry::BodyPoints>(mean_body, "direction");
     return {{"loss", {1, 1}}};
   }
 
@@ -59,15 +61,13 @@ class DirectionLoss final : public Node {
     hits_x_.assign(batch, {});
     hits_y_.assign(batch, {});
     for (int b = 0; b < batch; ++b) {
-      surface_->update(to_double(body, b));
-      const Eigen::MatrixX3d xb = to_double(x, b), yb = to_double(y, b);
-      if (!xb.allFinite() || !yb.allFinite())
-        throw Error("direction: sample " + std::to_string(b) + " has non-finite " + (xb.allFinite() ? "target" : "pred") +
-                    " vertices");
-      hits_x_[b] = locate(xb);
-      hits_y_[b] = locate(yb);
+      hits_y_[b] = points_->ground_truth(body, y, b);
+      hits_x_[b] = points_->prediction(body, x, b, *hits_y_[b]);
+      const auto xb = x.mat(b), yb = y.mat(b);
+      const auto &hx = *hits_x_[b], &hy = *hits_y_[b];
       double sum = 0.0;
-      for (int i = 0; i < rows_; ++i) sum += vertex_term(xb.row(i).transpose(), yb.row(i).transpose(), hits_x_[b][i], hits_y_[b][i], nullptr);
+      for (int i = 0; i < rows_; ++i)
+        sum += vertex_term(xb.row(i).transpose().cast<double>(), yb.row(i).transpose().cast<double>(), hx[i], hy[i], nullptr);
       (*out.at("loss"))(b, 0, 0) = static_cast<float>(mean_ ? sum / rows_ : sum);
     }
   }
@@ -76,24 +76,28 @@ class DirectionLoss final : public Node {
     const Tensor &x = *in.at("pred"), &y = *in.at("target"), &body = *in.at("body");
     const int batch = x.batch();
     if (static_cast<int>(hits_x_.size()) != batch) throw Error("direction: backward without a matching forward");
+    const auto gpred = gin.find("pred"), gtarget = gin.find("target"), gbody_port = gin.find("body");
+    const bool want_y = gtarget != gin.end() || gbody_port != gin.end();  // the target's closest points move with both
+    if (gpred == gin.end() && !want_y) return;
     for (int b = 0; b < batch; ++b) {
       const double scale = (*gout.at("loss"))(b, 0, 0) / (mean_ ? double(rows_) : 1.0);
       const Eigen::MatrixX3d xb = to_double(x, b), yb = to_double(y, b), vb = to_double(body, b);
+      const auto &hx = *hits_x_[b], &hy = *hits_y_[b];
       Eigen::MatrixX3d gx(rows_, 3), gy(rows_, 3), gcx(rows_, 3), gcy(rows_, 3);
       for (int i = 0; i < rows_; ++i) {
         Grad g;
-        vertex_term(xb.row(i).transpose(), yb.row(i).transpose(), hits_x_[b][i], hits_y_[b][i], &g);
+        vertex_term(xb.row(i).transpose(), yb.row(i).transpose(), hx[i], hy[i], &g);
         gx.row(i) = scale * g.x;
         gy.row(i) = scale * g.y;
         gcx.row(i) = scale * g.cx;
         gcy.row(i) = scale * g.cy;
       }
       Eigen::MatrixX3d gbody = Eigen::MatrixX3d::Zero(vb.rows(), 3);
-      geometry::closest_points_backward(vb, faces_, xb, hits_x_[b], gcx, gx, gbody);
-      geometry::closest_points_backward(vb, faces_, yb, hits_y_[b], gcy, gy, gbody);
-      if (gin.count("pred")) gin.at("pred")->mat(b) = gx.cast<float>();
-      if (gin.count("target")) gin.at("target")->mat(b) = gy.cast<float>();
-      if (gin.count("body")) gin.at("body")->mat(b) = gbody.cast<float>();
+      geometry::closest_points_backward(vb, faces_, xb, hx, gcx, gx, gbody);
+      if (want_y) geometry::closest_points_backward(vb, faces_, yb, hy, gcy, gy, gbody);
+      if (gpred != gin.end()) gpred->second->mat(b) = gx.cast<float>();
+      if (gtarget != gin.end()) gtarget->second->mat(b) = gy.cast<float>();
+      if (gbody_port != gin.end()) gbody_port->second->mat(b) = gbody.cast<float>();
     }
   }
 
@@ -101,14 +105,6 @@ class DirectionLoss final : public Node {
   double flops_per_sample() const override { return 2.0 * 40.0 * 30.0 * rows_ + 40.0 * rows_; }
 
  private:
-  // The closest body point of every row; threads only where there is work for them.
-  std::vector<SurfacePoint> locate(const Eigen::MatrixX3d& points) const {
-    std::vector<SurfacePoint> hits(points.rows());
-#pragma omp parallel for schedule(static, 64) if (points.rows() > 512)
-    for (Eigen::Index i = 0; i < points.rows(); ++i) hits[i] = surface_->locate(points.row(i).transpose());
-    return hits;
-  }
-
   // dTerm/d(x, y, c_x, c_y), n's dependence on y and c_y folded in.
   struct Grad {
     Eigen::Vector3d x = Eigen::Vector3d::Zero(), y = Eigen::Vector3d::Zero();
@@ -165,8 +161,8 @@ class DirectionLoss final : public Node {
   double outside_weight_, offset_weight_;
   int rows_ = 0;
   Eigen::MatrixX3i faces_;
-  std::unique_ptr<geometry::BodySurface> surface_;
-  std::vector<std::vector<SurfacePoint>> hits_x_, hits_y_;  // of the last forward, per sample
+  std::unique_ptr<geometry::BodyPoints> points_;
+  std::vector<std::shared_ptr<const geometry::BodyPoints::Hits>> hits_x_, hits_y_;  // of the last forward, per sample
 };
 
 PluginList plugins() {

@@ -7,9 +7,12 @@
 // on this sample's body (input `body`, with the faces of the assets' mean body),
 // so the loss separates sliding along the body from lifting off it, which plain
 // L1/L2 cannot. Gradients flow through the closest points to pred, target and
-// body (geometry/closest_point_gradient.hpp). Closest points in double.
+// body (geometry/closest_point_gradient.hpp), to those of the three the graph
+// wants (training: pred only). Closest points in double, found by
+// geometry::BodyPoints: the target's computed once per sample and cached, the
+// prediction's searched from the target's faces.
 #include <drape/assets.hpp>
-#include <drape/geometry/closest_point.hpp>
+#include <drape/geometry/body_points.hpp>
 #include <drape/geometry/closest_point_gradient.hpp>
 #include <drape/plugin.hpp>
 
@@ -44,7 +47,7 @@ class V2vLoss final : public Node {
                         ", 3] (the vertices of a body with the assets' topology), got " + body.str());
     rows_ = pred.rows;
     faces_ = mean_body.faces;
-    surface_ = std::make_unique<geometry::BodySurface>(mean_body);
+    points_ = std::make_unique<geometry::BodyPoints>(mean_body, "v2v");
     return {{"loss", {1, 1}}};
   }
 
@@ -54,17 +57,14 @@ class V2vLoss final : public Node {
     hits_x_.assign(batch, {});
     hits_y_.assign(batch, {});
     for (int b = 0; b < batch; ++b) {
-      surface_->update(to_double(body, b));
-      const Eigen::MatrixX3d xb = to_double(x, b), yb = to_double(y, b);
-      if (!xb.allFinite() || !yb.allFinite())
-        throw Error("v2v: sample " + std::to_string(b) + " has non-finite " + (xb.allFinite() ? "target" : "pred") +
-                    " vertices");
-      hits_x_[b] = locate(xb);
-      hits_y_[b] = locate(yb);
+      hits_y_[b] = points_->ground_truth(body, y, b);
+      hits_x_[b] = points_->prediction(body, x, b, *hits_y_[b]);
+      const auto xb = x.mat(b), yb = y.mat(b);
+      const auto &hx = *hits_x_[b], &hy = *hits_y_[b];
       double sum = 0.0;
       for (int i = 0; i < rows_; ++i) {
-        const Eigen::Vector3d cx = hits_x_[b][i].point, cy = hits_y_[b][i].point;
-        const Eigen::Vector3d dx = xb.row(i).transpose() - cx, dy = yb.row(i).transpose() - cy;
+        const Eigen::Vector3d cx = hx[i].point, cy = hy[i].point;
+        const Eigen::Vector3d dx = xb.row(i).transpose().cast<double>() - cx, dy = yb.row(i).transpose().cast<double>() - cy;
         sum += (cx - cy).lpNorm<1>() + (dx - dy).lpNorm<1>();
       }
       (*out.at("loss"))(b, 0, 0) = static_cast<float>(mean_ ? sum / rows_ : sum);
@@ -75,14 +75,18 @@ class V2vLoss final : public Node {
     const Tensor &x = *in.at("pred"), &y = *in.at("target"), &body = *in.at("body");
     const int batch = x.batch();
     if (static_cast<int>(hits_x_.size()) != batch) throw Error("v2v: backward without a matching forward");
+    const auto gpred = gin.find("pred"), gtarget = gin.find("target"), gbody_port = gin.find("body");
+    const bool want_y = gtarget != gin.end() || gbody_port != gin.end();  // the target's closest points move with both
+    if (gpred == gin.end() && !want_y) return;
     for (int b = 0; b < batch; ++b) {
       const double scale = (*gout.at("loss"))(b, 0, 0) / (mean_ ? double(rows_) : 1.0);
       const Eigen::MatrixX3d xb = to_double(x, b), yb = to_double(y, b), vb = to_double(body, b);
+      const auto &hx = *hits_x_[b], &hy = *hits_y_[b];
       // With s_c = sign(c_x - c_y) and s_d = sign(d_x - d_y), d = p - c:
       // dL/dc_x = s_c - s_d, dL/dx (direct) = s_d; dL/dc_y = s_d - s_c, dL/dy (direct) = -s_d.
       Eigen::MatrixX3d gx(rows_, 3), gy(rows_, 3), gcx(rows_, 3), gcy(rows_, 3);
       for (int i = 0; i < rows_; ++i) {
-        const Eigen::Vector3d cx = hits_x_[b][i].point, cy = hits_y_[b][i].point;
+        const Eigen::Vector3d cx = hx[i].point, cy = hy[i].point;
         const Eigen::Vector3d sc = l1_sign(cx - cy);
         const Eigen::Vector3d sd = l1_sign((xb.row(i).transpose() - cx) - (yb.row(i).transpose() - cy));
         gx.row(i) = scale * sd;
@@ -91,11 +95,11 @@ class V2vLoss final : public Node {
         gcy.row(i) = scale * (sd - sc);
       }
       Eigen::MatrixX3d gbody = Eigen::MatrixX3d::Zero(vb.rows(), 3);
-      geometry::closest_points_backward(vb, faces_, xb, hits_x_[b], gcx, gx, gbody);
-      geometry::closest_points_backward(vb, faces_, yb, hits_y_[b], gcy, gy, gbody);
-      if (gin.count("pred")) gin.at("pred")->mat(b) = gx.cast<float>();
-      if (gin.count("target")) gin.at("target")->mat(b) = gy.cast<float>();
-      if (gin.count("body")) gin.at("body")->mat(b) = gbody.cast<float>();
+      geometry::closest_points_backward(vb, faces_, xb, hx, gcx, gx, gbody);
+      if (want_y) geometry::closest_points_backward(vb, faces_, yb, hy, gcy, gy, gbody);
+      if (gpred != gin.end()) gpred->second->mat(b) = gx.cast<float>();
+      if (gtarget != gin.end()) gtarget->second->mat(b) = gy.cast<float>();
+      if (gbody_port != gin.end()) gbody_port->second->mat(b) = gbody.cast<float>();
     }
   }
 
@@ -103,19 +107,11 @@ class V2vLoss final : public Node {
   double flops_per_sample() const override { return 2.0 * 40.0 * 30.0 * rows_ + 12.0 * rows_; }
 
  private:
-  // The closest body point of every row; threads only where there is work for them.
-  std::vector<SurfacePoint> locate(const Eigen::MatrixX3d& points) const {
-    std::vector<SurfacePoint> hits(points.rows());
-#pragma omp parallel for schedule(static, 64) if (points.rows() > 512)
-    for (Eigen::Index i = 0; i < points.rows(); ++i) hits[i] = surface_->locate(points.row(i).transpose());
-    return hits;
-  }
-
   bool mean_;
   int rows_ = 0;
   Eigen::MatrixX3i faces_;
-  std::unique_ptr<geometry::BodySurface> surface_;
-  std::vector<std::vector<SurfacePoint>> hits_x_, hits_y_;  // of the last forward, per sample
+  std::unique_ptr<geometry::BodyPoints> points_;
+  std::vector<std::shared_ptr<const geometry::BodyPoints::Hits>> hits_x_, hits_y_;  // of the last forward, per sample
 };
 
 PluginList plugins() {

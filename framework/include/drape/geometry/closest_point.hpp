@@ -73,6 +73,9 @@ class BodySurface final : public BodyQuery {
 
   // The closest surface point; with max_distance, face = -1 when the surface is farther.
   SurfacePoint locate(const Eigen::Vector3d& p, double max_distance = std::numeric_limits<double>::infinity()) const;
+  // The same closest point, the search started from a face expected near p
+  // (its distance bounds the search; of faces at equal distance the hint wins).
+  SurfacePoint locate_near(const Eigen::Vector3d& p, int hint) const;
   // The closest point on the faces not labelled `excluded` (face_labels: one
   // label per face), signed like locate()'s: by the face normal, or the whole
   // surface's pseudo-normal at an edge or vertex. (Near the label's border that
@@ -106,7 +109,8 @@ class BodySurface final : public BodyQuery {
   void compute_normals();
   SurfacePoint finish(const Eigen::Vector3d& p, int face, const TrianglePoint& hit) const;
   // locate and locate_excluding: face_labels null for every face.
-  SurfacePoint search(const Eigen::Vector3d& p, double max_distance, const int* face_labels, int excluded) const;
+  SurfacePoint search(const Eigen::Vector3d& p, double max_distance, const int* face_labels, int excluded,
+                      int hint = -1) const;
 
   Eigen::MatrixX3d vertices_;
   Eigen::MatrixX3i faces_;

@@ -1,0 +1,63 @@
+#pragma once
+// Closest body points that depend only on the data, kept across training
+// steps. The v2v and direction losses need the ground truth's closest points on
+// its own body at every step, though neither ever changes: the first step that
+// meets a sample computes them, every later epoch finds them here.
+//
+// Entries are keyed by the contents (a 128-bit hash of the body and the query
+// points, and the body topology), so any caller gets its own data back, however
+// batches are drawn and whichever replica or loss asks. Process-wide and
+// thread-safe. Memory is bounded: beyond the budget new entries are not kept
+// (nothing is evicted: with shuffled epochs every sample is as likely to come
+// back, so a full cache keeps its hit rate). The budget is
+// $DRAPE_SURFACE_CACHE_MIB (MiB, default 2048; 0 turns the cache off).
+#include <drape/geometry/closest_point.hpp>
+
+#include <cstddef>
+#include <cstdint>
+#include <memory>
+#include <mutex>
+#include <shared_mutex>
+#include <unordered_map>
+#include <vector>
+
+namespace drape::geometry {
+
+struct SurfaceKey {
+  std::uint64_t a = 0, b = 0;
+  bool operator==(const SurfaceKey& o) const { return a == o.a && b == o.b; }
+};
+
+// A hash of the mesh topology (the faces), computed once per mesh.
+std::uint64_t topology_hash(const Eigen::MatrixX3i& faces);
+// The key of the closest points of `points` (n floats) on the body `body` (m floats) of that topology.
+SurfaceKey surface_key(std::uint64_t topology, const float* body, std::size_t m, const float* points, std::size_t n);
+
+class SurfaceCache {
+ public:
+  using Hits = std::vector<SurfacePoint>;
+
+  explicit SurfaceCache(std::size_t budget_bytes) : budget_(budget_bytes) {}
+  // The process-wide cache, its budget from $DRAPE_SURFACE_CACHE_MIB.
+  static SurfaceCache& shared();
+
+  // Null when the key is not there.
+  std::shared_ptr<const Hits> find(const SurfaceKey& key) const;
+  // Keeps hits under key when the budget allows; returns them either way.
+  std::shared_ptr<const Hits> insert(const SurfaceKey& key, Hits hits);
+
+  std::size_t bytes() const;
+  std::size_t entries() const;
+  std::size_t budget() const { return budget_; }
+
+ private:
+  struct KeyHash {
+    std::size_t operator()(const SurfaceKey& k) const { return static_cast<std::size_t>(k.a ^ (k.b * 0x9E3779B97F4A7C15ull)); }
+  };
+  std::size_t budget_;
+  std::size_t bytes_ = 0;
+  mutable std::shared_mutex mutex_;
+  std::unordered_map<SurfaceKey, std::shared_ptr<const Hits>, KeyHash> entries_;
+};
+
+}  // namespace drape::geometry

@@ -1,0 +1,86 @@
+#include <drape/geometry/body_points.hpp>
+
+#include <drape/errors.hpp>
+
+#include <string>
+#include <utility>
+
+namespace drape::geometry {
+
+BodyPoints::BodyPoints(const Mesh& body, std::string who)
+    : who_(std::move(who)), topology_(topology_hash(body.faces)), surface_(body), nearest_(body.vertices, body.faces) {}
+
+BodyPoints::~BodyPoints() = default;
+
+void BodyPoints::use_body(const Tensor& body, int b, bool with_normals) {
+  const float* data = body.data() + static_cast<std::size_t>(b) * body.rows() * body.cols();
+  const SurfaceKey key = surface_key(topology_, data, static_cast<std::size_t>(body.rows()) * body.cols(), nullptr, 0);
+  SurfaceKey& held = with_normals ? surface_body_ : nearest_body_;
+  if (held == key && !(key == SurfaceKey{})) return;
+  const Eigen::MatrixX3d vertices = body.mat(b).cast<double>();
+  if (with_normals)
+    surface_.update(vertices);
+  else
+    nearest_.update(vertices);
+  held = key;
+}
+
+std::shared_ptr<const BodyPoints::Hits> BodyPoints::ground_truth(const Tensor& body, const Tensor& target, int b) {
+  const std::size_t nb = static_cast<std::size_t>(body.rows()) * body.cols();
+  const std::size_t nt = static_cast<std::size_t>(target.rows()) * target.cols();
+  const SurfaceKey key = surface_key(topology_, body.data() + b * nb, nb, target.data() + b * nt, nt);
+  SurfaceCache& cache = SurfaceCache::shared();
+  if (auto hit = cache.find(key)) return hit;
+  const Eigen::MatrixX3d y = target.mat(b).cast<double>();
+  if (!y.allFinite()) throw Error(who_ + ": sample " + std::to_string(b) + " has non-finite target vertices");
+  use_body(body, b, true);
+  Hits hits(static_cast<std::size_t>(y.rows()));
+  const bool hinted = static_cast<Eigen::Index>(last_faces_.size()) == y.rows();
+  for (Eigen::Index i = 0; i < y.rows(); ++i)
+    hits[i] = surface_.locate_near(y.row(i).transpose(), hinted ? last_faces_[static_cast<std::size_t>(i)] : -1);
+  last_faces_.resize(hits.size());
+  for (std::size_t i = 0; i < hits.size(); ++i) last_faces_[i] = hits[i].face;
+  return cache.insert(key, std::move(hits));
+}
+
+std::shared_ptr<const BodyPoints::Hits> BodyPoints::prediction(const Tensor& body, const Tensor& pred, int b,
+                                                               const Hits& hints) {
+  const std::size_t nb = static_cast<std::size_t>(body.rows()) * body.cols();
+  const std::size_t np = static_cast<std::size_t>(pred.rows()) * pred.cols();
+  const SurfaceKey key = surface_key(~topology_, body.data() + b * nb, nb, pred.data() + b * np, np);
+  RecentPoints& recent = RecentPoints::shared();
+  if (auto hit = recent.find(key)) return hit;
+  const Eigen::MatrixX3d x = pred.mat(b).cast<double>();
+  if (!x.allFinite()) throw Error(who_ + ": sample " + std::to_string(b) + " has non-finite pred vertices");
+  if (static_cast<Eigen::Index>(hints.size()) != x.rows())
+    throw Error(who_ + ": " + std::to_string(hints.size()) + " hints for " + std::to_string(x.rows()) + " points");
+  use_body(body, b, false);
+  auto hits = std::make_shared<Hits>(static_cast<std::size_t>(x.rows()));
+  for (Eigen::Index i = 0; i < x.rows(); ++i) (*hits)[i] = nearest_.nearest(x.row(i).transpose(), hints[i].face);
+  recent.insert(key, hits);
+  return hits;
+}
+
+RecentPoints& RecentPoints::shared() {
+  static RecentPoints recent;
+  return recent;
+}
+
+std::shared_ptr<const SurfaceCache::Hits> RecentPoints::find(const SurfaceKey& key) const {
+  std::lock_guard lock(mutex_);
+  for (const auto& [k, hits] : ring_)
+    if (k == key) return hits;
+  return nullptr;
+}
+
+void RecentPoints::insert(const SurfaceKey& key, std::shared_ptr<const SurfaceCache::Hits> hits) {
+  std::lock_guard lock(mutex_);
+  if (static_cast<int>(ring_.size()) < kSize) {
+    ring_.emplace_back(key, std::move(hits));
+    return;
+  }
+  ring_[static_cast<std::size_t>(next_)] = {key, std::move(hits)};
+  next_ = (next_ + 1) % kSize;
+}
+
+}  // namespace drape::geometry

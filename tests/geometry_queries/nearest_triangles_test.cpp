@@ -1,0 +1,111 @@
+// Closest points without signs (NearestTriangles) and searches started from a
+// hint face (here and in BodySurface::locate_near): the same points as an
+// exhaustive search, whatever the hint, also after the mesh moved; and the
+// cache of data-only closest points keeps entries by content within its budget.
+#include "reference.hpp"
+
+#include <drape/errors.hpp>
+#include <drape/geometry/closed_shapes.hpp>
+#include <drape/geometry/closest_point.hpp>
+#include <drape/geometry/nearest_triangles.hpp>
+#include <drape/geometry/surface_cache.hpp>
+
+#include <catch2/catch.hpp>
+
+#include <random>
+
+using drape::Mesh;
+using namespace drape::geometry;
+
+namespace {
+
+// A bumpy, non-convex closed surface: an icosphere with its vertices pushed in and out.
+Mesh bumpy_sphere(unsigned seed) {
+  Mesh m = icosphere(3);
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> scale(0.8, 1.2);
+  for (int v = 0; v < m.num_vertices(); ++v) m.vertices.row(v) *= scale(rng);
+  return m;
+}
+
+std::vector<Eigen::Vector3d> spread_points(std::mt19937& rng, int count) {
+  std::uniform_real_distribution<double> u(-1.6, 1.6);
+  std::vector<Eigen::Vector3d> out;
+  for (int i = 0; i < count; ++i) out.emplace_back(u(rng), u(rng), u(rng));
+  return out;
+}
+
+}  // namespace
+
+TEST_CASE("nearest triangles and hinted searches find the exhaustive search's closest point", "[geometry][nearest]") {
+  Mesh m = bumpy_sphere(4);
+  NearestTriangles nearest(m.vertices, m.faces);
+  BodySurface surface(m);
+  std::mt19937 rng(5);
+  std::uniform_int_distribution<int> any_face(0, m.num_faces() - 1);
+  for (int round = 0; round < 2; ++round) {
+    if (round == 1) {  // the mesh moves: both refit
+      m = bumpy_sphere(6);
+      nearest.update(m.vertices);
+      surface.update(m.vertices);
+    }
+    for (const Eigen::Vector3d& p : spread_points(rng, 400)) {
+      const double reference = drape::test::mesh_distance(m, p);
+      const SurfacePoint plain = surface.locate(p);
+      // Hints: none, the answer itself, a random (mostly far) face, an out-of-range one.
+      for (const int hint : {-1, plain.face, any_face(rng), m.num_faces() + 5}) {
+        const SurfacePoint n = nearest.nearest(p, hint < m.num_faces() ? hint : -1);
+        const SurfacePoint s = surface.locate_near(p, hint);
+        CHECK(n.signed_distance == Approx(reference).margin(1e-12));
+        CHECK((n.point - p).norm() == Approx(reference).margin(1e-12));
+        CHECK((s.point - p).norm() == Approx(reference).margin(1e-12));
+        CHECK((n.point - plain.point).norm() < 1e-12);
+        CHECK((s.point - plain.point).norm() < 1e-12);
+        // The signed query keeps its sign and normal with a hint.
+        CHECK(s.signed_distance == Approx(plain.signed_distance).margin(1e-12));
+        CHECK((s.normal - plain.normal).norm() < 1e-9);
+        // The barycentric weights give the point on the face found.
+        const Eigen::Vector3d from_weights = n.barycentric[0] * m.vertices.row(m.faces(n.face, 0)).transpose() +
+                                             n.barycentric[1] * m.vertices.row(m.faces(n.face, 1)).transpose() +
+                                             n.barycentric[2] * m.vertices.row(m.faces(n.face, 2)).transpose();
+        CHECK((from_weights - n.point).norm() < 1e-12);
+      }
+    }
+  }
+  const Eigen::MatrixX3d points = Eigen::MatrixX3d::Random(20, 3);
+  const auto all = nearest.nearest_all(points);
+  for (int i = 0; i < 20; ++i) CHECK((all[i].point - surface.locate(points.row(i).transpose()).point).norm() < 1e-12);
+  CHECK_THROWS_WITH(nearest.nearest_all(points, std::vector<int>(3, 0)), Catch::Contains("3 hints for 20 points"));
+  CHECK_THROWS_WITH(nearest.update(Eigen::MatrixX3d::Zero(4, 3)), Catch::Contains("4 vertices given"));
+  CHECK_THROWS_WITH(NearestTriangles(m.vertices, Eigen::MatrixX3i::Constant(1, 3, 99999)), Catch::Contains("face 0 uses vertex 99999"));
+}
+
+TEST_CASE("the surface cache finds entries by content and stops growing at its budget", "[geometry][nearest]") {
+  const Mesh m = icosphere(1);
+  const std::uint64_t topology = topology_hash(m.faces);
+  CHECK(topology != topology_hash(icosphere(2).faces));
+  std::vector<float> body(30, 0.5f), points(12, 0.25f);
+  const SurfaceKey key = surface_key(topology, body.data(), body.size(), points.data(), points.size());
+  CHECK(key == surface_key(topology, body.data(), body.size(), points.data(), points.size()));
+  points[7] = std::nextafter(points[7], 1.0f);  // one ulp of one coordinate is another sample
+  const SurfaceKey other = surface_key(topology, body.data(), body.size(), points.data(), points.size());
+  CHECK_FALSE(key == other);
+  CHECK_FALSE(key == surface_key(topology + 1, body.data(), body.size(), points.data(), points.size() - 1));
+
+  // Room for two entries of 10 points.
+  SurfaceCache cache(2 * (10 * sizeof(SurfacePoint) + 64));
+  SurfaceCache::Hits hits(10);
+  hits[3].face = 7;
+  CHECK(cache.find(key) == nullptr);
+  CHECK(cache.insert(key, hits)->at(3).face == 7);
+  REQUIRE(cache.find(key) != nullptr);
+  CHECK(cache.find(key)->at(3).face == 7);
+  CHECK(cache.find(other) == nullptr);
+  cache.insert(other, SurfaceCache::Hits(10));
+  CHECK(cache.entries() == 2);
+  const SurfaceKey third{1, 2};
+  CHECK(cache.insert(third, SurfaceCache::Hits(10))->size() == 10);  // handed back, not kept
+  CHECK(cache.find(third) == nullptr);
+  CHECK(cache.entries() == 2);
+  CHECK(cache.bytes() <= cache.budget());
+}
