@@ -39,6 +39,14 @@ std::size_t element_count(const Dims& dims);
 
 enum class Access { ReadOnly, ReadWrite };
 
+// File::open of a file another process holds HDF5's lock on (a writer still
+// at work, or readers when this one wants to write): the file is busy, not
+// damaged, and the message says so.
+class FileInUse : public ConfigError {
+ public:
+  using ConfigError::ConfigError;
+};
+
 // How a dataset is laid out on disk when it is created with File::create.
 struct CreateOptions {
   // Growable along the first axis (chunked storage). Otherwise contiguous, which
@@ -55,7 +63,8 @@ struct CreateOptions {
 
 class File {
  public:
-  // Opens an existing file. ConfigError when it is missing, not an HDF5 file or unreadable.
+  // Opens an existing file. ConfigError when it is missing, not an HDF5 file or
+  // unreadable; FileInUse when another process has it locked.
   static File open(const std::filesystem::path& path, Access access = Access::ReadOnly);
   // Creates a file, replacing any file of that name.
   static File create(const std::filesystem::path& path);

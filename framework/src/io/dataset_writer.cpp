@@ -29,6 +29,8 @@ DatasetWriter::DatasetWriter(const fs::path& path, const DatasetLayout& layout, 
     h5::File file = [&] {
       try {
         return h5::File::open(partial, h5::Access::ReadWrite);
+      } catch (const h5::FileInUse&) {
+        throw;  // busy, not damaged: never advise deleting it
       } catch (const ConfigError& e) {
         throw ConfigError(std::string(e.what()) + "; cannot resume from it, delete it to start over");
       }

@@ -2,7 +2,11 @@
 #include "h5_internal.hpp"
 #include "h5_seal.hpp"
 
+#include <fcntl.h>
+#include <sys/file.h>
 #include <unistd.h>
+
+#include <cerrno>
 
 #include <algorithm>
 #include <functional>
@@ -104,6 +108,22 @@ bool is_hdf5(const fs::path& path) {
   return H5Fis_hdf5(path.c_str()) > 0;
 }
 
+namespace {
+// Whether another process holds a lock on the file that the one HDF5 takes to
+// open it (shared to read, exclusive to write) conflicts with.
+bool locked_by_another_process(const fs::path& path, bool exclusive) {
+  const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
+  if (fd < 0) return false;
+  bool locked = false;
+  if (::flock(fd, (exclusive ? LOCK_EX : LOCK_SH) | LOCK_NB) != 0)
+    locked = errno == EWOULDBLOCK;
+  else
+    ::flock(fd, LOCK_UN);
+  ::close(fd);
+  return locked;
+}
+}  // namespace
+
 // --- Impl helpers
 
 bool File::Impl::has(const std::string& path) const {
@@ -174,9 +194,22 @@ File File::open(const fs::path& path, Access access) {
     seal::unseal(path);
     impl->sealed = true;
   }
-  guarded(*impl, true, "cannot open the HDF5 file, it is truncated or corrupt", [&] {
-    impl->file.openFile(path.string(), impl->writable ? H5F_ACC_RDWR : H5F_ACC_RDONLY);
-  });
+  try {
+    guarded(*impl, true, "cannot open the HDF5 file, it is truncated or corrupt", [&] {
+      impl->file.openFile(path.string(), impl->writable ? H5F_ACC_RDWR : H5F_ACC_RDONLY);
+    });
+  } catch (const ConfigError&) {
+    // HDF5 locks a file it opens (shared to read, exclusive to write) and
+    // fails the open when another process holds a conflicting lock; its
+    // message then blames the file. Asked only after a failure: this process's
+    // own open files are shared by HDF5 and never conflict.
+    if (locked_by_another_process(path, impl->writable))
+      throw FileInUse(path.string() + ": the file is in use: another process has it open" +
+                      (impl->writable ? "" : " for writing") +
+                      " (a drape generate, train or merge still writing it?); wait until it ends or stop it, then "
+                      "run this again. The file is not damaged by this");
+    throw;
+  }
   return File(std::move(impl));
 }
 
