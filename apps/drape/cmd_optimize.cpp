@@ -53,6 +53,7 @@ int run(const std::vector<std::string>& args) {
   opts.add_options()("model", po::value<std::string>(), "model file from drape train (default: the shipped model)")(
       "scene", po::value<std::string>(), "scene whose effects and materials make the potential (graphs/scenes/*.yaml)")(
       "body", po::value<std::string>(), "body mesh in the model's body topology")(
+      "strict", "refuse (exit 2) a body outside the model's training domain instead of warning")(
       "bmi", po::value<double>(), "or make the body with the model's body plugin: target BMI")(
       "height", po::value<double>(), "with --bmi: height in m")("sex", po::value<double>(), "with --bmi: 0 female ... 1 male")(
       "garment-size", po::value<std::string>(),

@@ -20,6 +20,7 @@ int run(const std::vector<std::string>& args) {
   opts.add_options()("model", po::value<std::string>(),
                      "model file from drape train (default: the shipped pretrained model, models/tshirt-coarse.h5)")(
       "body", po::value<std::string>(), "body mesh (.obj, .ply, .gltf, .glb, ...) in the model's body topology")(
+      "strict", "refuse (exit 2) a body outside the model's training domain instead of warning")(
       "bmi", po::value<double>(), "make the body with the model's body plugin instead: target BMI")(
       "height", po::value<double>(), "with --bmi: height in m (default 1.75)")(
       "sex", po::value<double>(), "with --bmi: 0 female ... 1 male (default 1)")(

@@ -45,6 +45,7 @@ int run(const std::vector<std::string>& args) {
   opts.add_options()("model", po::value<std::string>(), "model file (default: the shipped model); its template gives the faces")(
       "garment", po::value<std::string>(), "draw this garment mesh (the model's template topology) instead of a prediction")(
       "body", po::value<std::string>(), "body mesh in the model's body topology")(
+      "strict", "refuse (exit 2) a body outside the model's training domain instead of warning")(
       "bmi", po::value<double>(), "or make the body: target BMI")(
       "height", po::value<double>(), "with --bmi: height in m (default 1.75)")(
       "sex", po::value<double>(), "with --bmi: 0 female ... 1 male (default 1)")(

@@ -1,6 +1,9 @@
 #include "model_body.hpp"
 
 #include <drape/mesh_io.hpp>
+#include <drape/model_domain.hpp>
+
+#include <iostream>
 
 namespace drape::cli {
 
@@ -51,7 +54,29 @@ std::string model_file_or_default(const po::variables_map& vm) {
 SampleBatch model_body(const Model& model, const po::variables_map& vm) {
   SampleBatch batch = body_of(model, vm);
   add_garment_size(model, vm, batch);
+  check_domain(model, batch, vm.count("strict") > 0);
   return batch;
+}
+
+void check_domain(const Model& model, const SampleBatch& batch, bool strict) {
+  const std::optional<ModelDomain> domain = read_domain(model.file());
+  const std::string name = model.file().filename().string();
+  if (!domain) {
+    std::cerr << "note: " << name << " records no training domain, so a body outside it cannot be told (drape model "
+              << "domain adds it)\n";
+    if (strict) throw ConfigError("--strict: " + model.file().string() + " records no training domain to check the body against");
+    return;
+  }
+  const Eigen::MatrixX3d body = batch.body.mat(0).cast<double>();
+  Eigen::VectorXd params;
+  if (batch.body_params.size() > 0) params = batch.body_params.mat(0).row(0).transpose().cast<double>();
+  const std::vector<std::string> outside =
+      domain_violations(*domain, body, model.assets().body.faces, params.size() ? &params : nullptr);
+  if (outside.empty()) return;
+  for (const std::string& why : outside)
+    std::cerr << (strict ? "error" : "warning") << ": the body is outside what " << name << " was trained on: " << why << "\n";
+  if (strict) throw ConfigError("--strict: the body is outside the model's training domain (" + outside.front() + ")");
+  std::cerr << "warning: the prediction may be wrong without showing it (--strict refuses such a body)\n";
 }
 
 }  // namespace drape::cli

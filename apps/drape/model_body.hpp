@@ -14,6 +14,12 @@ namespace drape::cli {
 // garment sizes also gets --garment-size.
 SampleBatch model_body(const Model& model, const po::variables_map& vm);
 
+// Warns on stderr, naming the measure and the trained range, when the body
+// lies outside the model's training domain (model_domain.hpp); with strict
+// (the commands' --strict) a ConfigError instead, so the command exits 2.
+// model_body calls it, reading --strict from vm.
+void check_domain(const Model& model, const SampleBatch& batch, bool strict);
+
 // --model, or the shipped pretrained model (default_model_path); UsageError when neither exists.
 std::string model_file_or_default(const po::variables_map& vm);
 

@@ -1,0 +1,128 @@
+// `drape model info MODEL`: what a model file holds and the domain it knows.
+// `drape model domain MODEL --data DATA [--out FILE]`: records the training
+// domain of DATA's training split in the model (for models trained before
+// drape train recorded it), atomically, rewriting the file in the current
+// format (sealed: docs/formats.md).
+#include "command.hpp"
+
+#include <drape/atomic_file.hpp>
+#include <drape/checkpoint.hpp>
+#include <drape/dataset.hpp>
+#include <drape/errors.hpp>
+#include <drape/h5.hpp>
+#include <drape/model.hpp>
+#include <drape/model_domain.hpp>
+#include <drape/optimizer.hpp>
+
+#include <cstdio>
+#include <filesystem>
+#include <iostream>
+
+namespace drape::cli {
+namespace {
+
+namespace fs = std::filesystem;
+
+const char* kInfoUsage = "drape model info MODEL";
+const char* kDomainUsage = "drape model domain MODEL --data DATA [--out FILE]";
+
+void print_domain(const ModelDomain& d) {
+  std::printf("domain: body model '%s', %zu training bodies from %s\n", d.body_model.c_str(), d.samples,
+              d.source.empty() ? "(unknown)" : d.source.c_str());
+  std::printf("  %-10s %8.3f .. %-8.3f m\n", "height", d.height.min, d.height.max);
+  std::printf("  %-10s %8.2f .. %-8.2f\n", "BMI", d.bmi.min, d.bmi.max);
+  for (std::size_t p = 0; p < d.params.size(); ++p)
+    std::printf("  %-10s %8.3f .. %-8.3f%s\n", d.param_names[p].c_str(), d.params[p].min, d.params[p].max,
+                d.params[p].min == d.params[p].max ? "  (fixed)" : "");
+  std::printf("  a body farther than %.2f cm (RMS over %zu vertices) from every training body is outside\n",
+              100 * d.neighbour_limit, d.descriptor_vertices.size());
+}
+
+// The checkpoint `from` written anew to `to` in the current format (sealed,
+// fixed-length strings), whatever format it was written in.
+void rewrite_checkpoint(const fs::path& from, const fs::path& to) {
+  const Checkpoint c = read_checkpoint(from);
+  const h5::File source = h5::File::open(from);
+  const std::vector<std::string> names = source.datasets_below("/weights");
+  std::vector<Weight> weights(names.size());
+  NamedWeights named;
+  for (std::size_t i = 0; i < names.size(); ++i) {
+    const h5::Dims shape = source.shape("/weights/" + names[i]);
+    if (shape.size() != 2) throw ConfigError(from.string() + ": weight " + names[i] + " is not a matrix");
+    weights[i].value = Tensor(1, static_cast<int>(shape[0]), static_cast<int>(shape[1]));
+    source.read("/weights/" + names[i], shape, weights[i].value.data());
+    named.emplace_back(names[i], &weights[i]);
+  }
+  save_checkpoint(to, named, c);
+}
+
+int info(const std::vector<std::string>& args) {
+  po::options_description opts("drape model info");
+  opts.add_options()("model", po::value<std::string>()->required(), "model file");
+  po::positional_options_description positional;
+  positional.add("model", 1);
+  po::variables_map vm;
+  if (!parse(kInfoUsage, args, opts, positional, vm)) return 0;
+  const fs::path file = vm["model"].as<std::string>();
+  const Checkpoint c = read_checkpoint(file);
+  std::printf("%s\n", file.string().c_str());
+  for (const char* key : {"kind", "status", "epoch", "best_epoch", "best_loss", "dataset", "train_samples", "drape_version"})
+    if (auto it = c.meta.find(key); it != c.meta.end()) std::printf("  %-14s %s\n", key, it->second.c_str());
+  if (auto domain = read_domain(file)) print_domain(*domain);
+  else
+    std::printf("domain: not recorded (a model written before drape recorded it): predict cannot tell a body outside "
+                "it; add it with `drape model domain %s --data DATASET`\n",
+                file.string().c_str());
+  return 0;
+}
+
+int domain(const std::vector<std::string>& args) {
+  po::options_description opts("drape model domain");
+  opts.add_options()("model", po::value<std::string>()->required(), "model file")(
+      "data", po::value<std::string>()->required(), "the dataset it was trained on (its training split is the domain)")(
+      "out", po::value<std::string>(), "write here instead of replacing MODEL");
+  po::positional_options_description positional;
+  positional.add("model", 1);
+  po::variables_map vm;
+  if (!parse(kDomainUsage, args, opts, positional, vm)) return 0;
+  const fs::path file = vm["model"].as<std::string>();
+  const fs::path out = vm.count("out") ? fs::path(vm["out"].as<std::string>()) : file;
+  Registry& registry = Registry::load_default(plugin_path(vm));
+  const Model model = Model::load(registry, file);
+  const DatasetReader data(vm["data"].as<std::string>());
+  if (data.layout().body_vertices != model.assets().body.num_vertices())
+    throw ConfigError(vm["data"].as<std::string>() + ": its bodies have " + std::to_string(data.layout().body_vertices) +
+                      " vertices; the model's body model has " + std::to_string(model.assets().body.num_vertices()));
+  ModelDomain d = domain_of_dataset(data, model.assets_spec().body_model, model.body_model().shape_names(),
+                                    model.assets().body.faces);
+  d.source = fs::path(vm["data"].as<std::string>()).filename().string();
+  write_atomically(out, [&](const fs::path& tmp) {
+    rewrite_checkpoint(file, tmp);
+    h5::File f = h5::File::open(tmp, h5::Access::ReadWrite);
+    write_domain(f, d);
+    f.close();
+  });
+  std::printf("wrote %s\n", out.string().c_str());
+  print_domain(d);
+  return 0;
+}
+
+int run(const std::vector<std::string>& args) {
+  const std::string usage = std::string("usage: ") + kInfoUsage + "\n       " + kDomainUsage;
+  if (args.empty()) throw UsageError("info or domain?\n" + usage);
+  const std::string& action = args[0];
+  const std::vector<std::string> rest(args.begin() + 1, args.end());
+  if (action == "info") return info(rest);
+  if (action == "domain") return domain(rest);
+  if (action == "--help" || action == "-h" || action == "help") {
+    std::cout << usage << "\n\n  info    what a model file holds and the body domain it was trained on\n"
+                          "  domain  record the domain of a dataset's training split in a model\n";
+    return 0;
+  }
+  throw UsageError("unknown action '" + action + "'" + did_you_mean(action, {"info", "domain"}) + "\n" + usage);
+}
+
+const RegisterCommand registration{{"model", "what a model file holds, and the body domain it knows (info, domain)", run}};
+
+}  // namespace
+}  // namespace drape::cli

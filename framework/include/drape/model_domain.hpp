@@ -1,0 +1,75 @@
+#pragma once
+// The domain a model was trained on: which body model, the range of every
+// shape parameter and of the body's measured height and BMI over its training
+// bodies, and a coarse descriptor of each training body, so that a body a
+// user brings can be told to lie outside it (a network answers anything, and
+// far from its data it answers wrongly without a sign: issue 21 measured
+// p = 29 % on a female body given to a model trained on male ones).
+//
+// Stored in the model file under /domain (docs/formats.md):
+//   attributes  body_model, source (the dataset), param_names (comma-joined),
+//               measure_names ("height,bmi"), samples, neighbour_limit (m)
+//   /domain/param_range     f64 [P, 2]   min, max of each shape parameter
+//   /domain/measure_range   f64 [2, 2]   min, max of height (m) and BMI
+//   /domain/descriptors     f32 [n, 3K]  K body vertices of each training body
+//   /domain/descriptor_vertices i32 [K]  which vertices
+#include <drape/dataset.hpp>
+
+#include <Eigen/Core>
+
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace drape {
+
+struct ValueRange {
+  double min = 0, max = 0;
+};
+
+struct ModelDomain {
+  std::string body_model;
+  std::string source;
+  std::vector<std::string> param_names;
+  std::vector<ValueRange> params;
+  ValueRange height, bmi;
+  std::vector<int> descriptor_vertices;
+  Eigen::MatrixXf descriptors;  // [n, 3K], centred on each body's centroid
+  // A body farther (RMS over the descriptor vertices) from every training body
+  // than this is outside: the largest distance of a training body to its
+  // nearest other training body, times a margin (model_domain.cpp).
+  double neighbour_limit = 0;
+  std::size_t samples = 0;
+};
+
+// Height (y extent, m) and BMI (enclosed volume * 985 kg/m^3 / height^2, the
+// project's definition) of a body mesh.
+double body_height(const Eigen::MatrixX3d& vertices);
+double body_bmi(const Eigen::MatrixX3d& vertices, const Eigen::MatrixX3i& faces);
+
+// The domain of a dataset's training split (its done samples with split
+// train). ConfigError when it has none.
+ModelDomain domain_of_dataset(const DatasetReader& data, const std::string& body_model,
+                              const std::vector<std::string>& param_names, const Eigen::MatrixX3i& body_faces);
+
+// The RMS distance (m) of a body to its nearest training body over the
+// descriptor vertices.
+double distance_to_training(const ModelDomain& domain, const Eigen::MatrixX3d& body);
+
+// One line per way a body lies outside the domain, naming the measure, its
+// value and the trained range; empty when inside. `params` are the body's
+// shape parameters when known (a body made by the model's own plugin).
+std::vector<std::string> domain_violations(const ModelDomain& domain, const Eigen::MatrixX3d& body,
+                                           const Eigen::MatrixX3i& faces, const Eigen::VectorXd* params);
+
+// Written into an open model file / read from one (nullopt: the file records
+// no domain, as models written before 2026-11-25).
+namespace h5 {
+class File;
+}
+void write_domain(h5::File& file, const ModelDomain& domain);
+std::optional<ModelDomain> read_domain(const h5::File& file);
+std::optional<ModelDomain> read_domain(const std::filesystem::path& model_file);
+
+}  // namespace drape

@@ -1,0 +1,213 @@
+// A model's training domain: ranges, body descriptors and the check of a
+// body against them (model_domain.hpp).
+#include <drape/errors.hpp>
+#include <drape/geometry/volume.hpp>
+#include <drape/h5.hpp>
+#include <drape/model_domain.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+#include <sstream>
+
+namespace drape {
+
+namespace {
+
+// About this many body vertices describe a body's shape: enough to tell a
+// female body from a male one of the same BMI, few enough to keep thousands
+// of training bodies in the model file (200 * 3 floats each).
+constexpr int kDescriptorVertices = 200;
+// A body up to this many times the largest nearest-neighbour gap between the
+// training bodies from its nearest training body is still inside.
+constexpr double kNeighbourMargin = 1.5;
+
+std::vector<int> descriptor_vertices(int body_vertices) {
+  const int stride = std::max(1, body_vertices / kDescriptorVertices);
+  std::vector<int> v;
+  for (int i = 0; i < body_vertices; i += stride) v.push_back(i);
+  return v;
+}
+
+Eigen::VectorXf descriptor(const Eigen::MatrixX3d& body, const std::vector<int>& vertices) {
+  Eigen::MatrixX3d points(static_cast<Eigen::Index>(vertices.size()), 3);
+  for (std::size_t k = 0; k < vertices.size(); ++k) points.row(static_cast<Eigen::Index>(k)) = body.row(vertices[k]);
+  points.rowwise() -= points.colwise().mean();
+  Eigen::VectorXf d(points.size());
+  Eigen::Map<Eigen::Matrix<float, Eigen::Dynamic, 3, Eigen::RowMajor>>(d.data(), points.rows(), 3) = points.cast<float>();
+  return d;
+}
+
+// RMS over the descriptor's vertices of the distance between two descriptors.
+double rms_distance(const Eigen::VectorXf& a, const Eigen::VectorXf& b) {
+  return std::sqrt((a - b).cast<double>().squaredNorm() / (static_cast<double>(a.size()) / 3.0));
+}
+
+void widen(ValueRange& r, double v, bool first) {
+  if (first) r = {v, v};
+  r.min = std::min(r.min, v);
+  r.max = std::max(r.max, v);
+}
+
+std::string fmt(double v) {
+  char s[32];
+  std::snprintf(s, sizeof s, "%.3g", v);
+  return s;
+}
+
+std::string outside(const std::string& what, double value, const ValueRange& r, const std::string& unit) {
+  return what + " " + fmt(value) + unit + " is outside the trained range " + fmt(r.min) + ".." + fmt(r.max) + unit;
+}
+
+std::vector<std::string> split_names(const std::string& joined) {
+  std::vector<std::string> names;
+  std::stringstream in(joined);
+  for (std::string n; std::getline(in, n, ',');) names.push_back(n);
+  return names;
+}
+
+}  // namespace
+
+double body_height(const Eigen::MatrixX3d& vertices) { return vertices.col(1).maxCoeff() - vertices.col(1).minCoeff(); }
+
+double body_bmi(const Eigen::MatrixX3d& vertices, const Eigen::MatrixX3i& faces) {
+  const double h = body_height(vertices);
+  return geometry::mesh_volume(vertices, faces) * 985.0 / (h * h);
+}
+
+ModelDomain domain_of_dataset(const DatasetReader& data, const std::string& body_model,
+                              const std::vector<std::string>& param_names, const Eigen::MatrixX3i& body_faces) {
+  const std::vector<std::size_t> train = data.indices(Split::Train);
+  if (train.empty()) throw ConfigError("the dataset has no training samples to take a model's domain from");
+  ModelDomain d;
+  d.body_model = body_model;
+  d.param_names = param_names;
+  d.samples = train.size();
+  const Tensor params = data.body_params(train);
+  const int P = params.cols();
+  if (static_cast<std::size_t>(P) != param_names.size())
+    throw ConfigError("the dataset stores " + std::to_string(P) + " body parameters; the body model '" + body_model +
+                      "' has " + std::to_string(param_names.size()));
+  d.params.assign(static_cast<std::size_t>(P), {});
+  const int nb = data.layout().body_vertices;
+  d.descriptor_vertices = descriptor_vertices(nb);
+  d.descriptors.resize(static_cast<Eigen::Index>(train.size()), static_cast<Eigen::Index>(3 * d.descriptor_vertices.size()));
+  // In slices: a default-resolution dataset's bodies do not all fit in memory at once.
+  constexpr std::size_t kSlice = 256;
+  for (std::size_t first = 0; first < train.size(); first += kSlice) {
+    const std::vector<std::size_t> slice(train.begin() + static_cast<std::ptrdiff_t>(first),
+                                         train.begin() + static_cast<std::ptrdiff_t>(std::min(train.size(), first + kSlice)));
+    const Tensor bodies = data.body_vertices(slice);
+    for (int i = 0; i < bodies.batch(); ++i) {
+      const std::size_t s = first + static_cast<std::size_t>(i);
+      const Eigen::MatrixX3d v = bodies.mat(i).cast<double>();
+      widen(d.height, body_height(v), s == 0);
+      widen(d.bmi, body_bmi(v, body_faces), s == 0);
+      for (int p = 0; p < P; ++p) widen(d.params[static_cast<std::size_t>(p)], params(static_cast<int>(s), 0, p), s == 0);
+      d.descriptors.row(static_cast<Eigen::Index>(s)) = descriptor(v, d.descriptor_vertices).transpose();
+    }
+  }
+  // The largest gap from a training body to its nearest other one.
+  double widest = 0;
+  for (Eigen::Index i = 0; i < d.descriptors.rows(); ++i) {
+    double nearest = std::numeric_limits<double>::infinity();
+    for (Eigen::Index j = 0; j < d.descriptors.rows(); ++j)
+      if (j != i) nearest = std::min(nearest, rms_distance(d.descriptors.row(i), d.descriptors.row(j)));
+    if (std::isfinite(nearest)) widest = std::max(widest, nearest);
+  }
+  // One training body: allow what a fitted shape differs by (1 cm).
+  d.neighbour_limit = std::max(kNeighbourMargin * widest, 0.01);
+  return d;
+}
+
+double distance_to_training(const ModelDomain& domain, const Eigen::MatrixX3d& body) {
+  const Eigen::VectorXf d = descriptor(body, domain.descriptor_vertices);
+  double nearest = std::numeric_limits<double>::infinity();
+  for (Eigen::Index i = 0; i < domain.descriptors.rows(); ++i)
+    nearest = std::min(nearest, rms_distance(domain.descriptors.row(i).transpose(), d));
+  return nearest;
+}
+
+std::vector<std::string> domain_violations(const ModelDomain& domain, const Eigen::MatrixX3d& body,
+                                           const Eigen::MatrixX3i& faces, const Eigen::VectorXd* params) {
+  std::vector<std::string> out;
+  // A little slack on the measured ranges: the same body measured again
+  // (another mesh writer's rounding) must not fall out.
+  auto slack = [](ValueRange r, double s) { return ValueRange{r.min - s, r.max + s}; };
+  const double h = body_height(body), bmi = body_bmi(body, faces);
+  if (h < slack(domain.height, 0.005).min || h > slack(domain.height, 0.005).max)
+    out.push_back(outside("height", h, domain.height, " m"));
+  if (bmi < slack(domain.bmi, 0.1).min || bmi > slack(domain.bmi, 0.1).max) out.push_back(outside("BMI", bmi, domain.bmi, ""));
+  if (params && static_cast<std::size_t>(params->size()) == domain.params.size())
+    for (std::size_t p = 0; p < domain.params.size(); ++p) {
+      const double v = (*params)(static_cast<Eigen::Index>(p));
+      const ValueRange& r = domain.params[p];
+      const double s = 1e-6 * std::max(1.0, r.max - r.min);
+      if (v < r.min - s || v > r.max + s) out.push_back(outside("shape parameter '" + domain.param_names[p] + "'", v, r, ""));
+    }
+  if (!domain.descriptor_vertices.empty() && domain.descriptors.rows() > 0 &&
+      domain.descriptor_vertices.back() < body.rows()) {
+    const double d = distance_to_training(domain, body);
+    if (d > domain.neighbour_limit)
+      out.push_back("the body is " + fmt(100 * d) + " cm (RMS) from the nearest of the " + std::to_string(domain.samples) +
+                    " training bodies (limit " + fmt(100 * domain.neighbour_limit) + " cm)");
+  }
+  return out;
+}
+
+void write_domain(h5::File& file, const ModelDomain& d) {
+  file.create_group("/domain");
+  file.set_attribute("/domain", "body_model", d.body_model);
+  file.set_attribute("/domain", "source", d.source);
+  std::string names;
+  for (std::size_t i = 0; i < d.param_names.size(); ++i) names += (i ? "," : "") + d.param_names[i];
+  file.set_attribute("/domain", "param_names", names);
+  file.set_attribute("/domain", "measure_names", "height,bmi");
+  file.set_attribute("/domain", "samples", static_cast<double>(d.samples));
+  file.set_attribute("/domain", "neighbour_limit", d.neighbour_limit);
+  std::vector<double> ranges;
+  for (const ValueRange& r : d.params) ranges.insert(ranges.end(), {r.min, r.max});
+  file.write("/domain/param_range", {d.params.size(), 2}, ranges.data());
+  const std::vector<double> measures{d.height.min, d.height.max, d.bmi.min, d.bmi.max};
+  file.write("/domain/measure_range", {2, 2}, measures.data());
+  const Eigen::Matrix<float, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> rows = d.descriptors;
+  file.write("/domain/descriptors", {static_cast<std::size_t>(rows.rows()), static_cast<std::size_t>(rows.cols())}, rows.data());
+  const std::vector<std::int32_t> vertices(d.descriptor_vertices.begin(), d.descriptor_vertices.end());
+  file.write("/domain/descriptor_vertices", vertices);
+}
+
+std::optional<ModelDomain> read_domain(const h5::File& file) {
+  if (!file.is_group("/domain")) return std::nullopt;
+  ModelDomain d;
+  d.body_model = file.require_string_attribute("/domain", "body_model");
+  d.source = file.string_attribute("/domain", "source").value_or("");
+  d.param_names = split_names(file.require_string_attribute("/domain", "param_names"));
+  d.samples = static_cast<std::size_t>(file.number_attribute("/domain", "samples").value_or(0));
+  d.neighbour_limit = file.number_attribute("/domain", "neighbour_limit").value_or(0);
+  h5::Dims shape;
+  const std::vector<double> ranges = file.read<double>("/domain/param_range", &shape);
+  if (shape.size() != 2 || shape[1] != 2 || shape[0] != d.param_names.size())
+    throw ConfigError(file.path().string() + ": /domain/param_range has shape " + h5::to_string(shape) + ", expected [" +
+                      std::to_string(d.param_names.size()) + ", 2]");
+  for (std::size_t p = 0; p < shape[0]; ++p) d.params.push_back({ranges[2 * p], ranges[2 * p + 1]});
+  const std::vector<double> measures = file.read<double>("/domain/measure_range", &shape);
+  if (measures.size() != 4) throw ConfigError(file.path().string() + ": /domain/measure_range is not [2, 2]");
+  d.height = {measures[0], measures[1]};
+  d.bmi = {measures[2], measures[3]};
+  const std::vector<std::int32_t> vertices = file.read<std::int32_t>("/domain/descriptor_vertices");
+  d.descriptor_vertices.assign(vertices.begin(), vertices.end());
+  const std::vector<float> rows = file.read<float>("/domain/descriptors", &shape);
+  if (shape.size() != 2 || shape[1] != 3 * vertices.size())
+    throw ConfigError(file.path().string() + ": /domain/descriptors has shape " + h5::to_string(shape) + ", expected [n, " +
+                      std::to_string(3 * vertices.size()) + "]");
+  d.descriptors = Eigen::Map<const Eigen::Matrix<float, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>>(
+      rows.data(), static_cast<Eigen::Index>(shape[0]), static_cast<Eigen::Index>(shape[1]));
+  return d;
+}
+
+std::optional<ModelDomain> read_domain(const std::filesystem::path& model_file) {
+  return read_domain(h5::File::open(model_file));
+}
+
+}  // namespace drape

@@ -1,0 +1,143 @@
+// A model's training domain (model_domain.hpp): its ranges against values
+// derived from how the tiny dataset was made (body i is the mean body grown by
+// 1 + a_i about its centroid, a_i drawn as train_test_util.hpp draws them), a
+// body outside named by measure, and predict warning or refusing (--strict).
+#include <catch2/catch.hpp>
+
+#include "train_test_util.hpp"
+
+#include <drape/geometry/volume.hpp>
+#include <drape/h5.hpp>
+#include <drape/mesh_io.hpp>
+#include <drape/model_domain.hpp>
+
+using namespace drape;
+namespace fs = std::filesystem;
+
+namespace {
+
+// The growth factors 1 + a_i of the tiny dataset's first n_train samples.
+std::pair<double, double> training_growth(int n_train, std::uint64_t seed = 3) {
+  Rng rng(seed);
+  double lo = 1e9, hi = -1e9;
+  for (int i = 0; i < n_train; ++i) {
+    const double s = 1.0 + rng.uniform(0.0, 0.2);
+    lo = std::min(lo, s);
+    hi = std::max(hi, s);
+  }
+  return {lo, hi};
+}
+
+Eigen::MatrixX3d grown(const Eigen::MatrixX3d& body, double s) {
+  const Eigen::RowVector3d c = body.colwise().mean();
+  return c.replicate(body.rows(), 1) + s * (body.rowwise() - c);
+}
+
+std::vector<std::string> param_names(int n) {
+  std::vector<std::string> names;
+  for (int i = 0; i < n; ++i) names.push_back("p" + std::to_string(i));
+  return names;
+}
+
+bool mentions(const std::vector<std::string>& lines, const std::string& what) {
+  for (const auto& l : lines)
+    if (l.find(what) != std::string::npos) return true;
+  return false;
+}
+
+}  // namespace
+
+TEST_CASE("model domain: ranges of a dataset's training bodies, and the bodies outside them", "[train][domain]") {
+  test::TempDir dir;
+  test::write_tiny_dataset(dir / "data.h5", 12, 8, 2);
+  const auto assets = test::tiny_assets();
+  const Eigen::MatrixX3d& mean = assets->body.vertices;
+  const Eigen::MatrixX3i& faces = assets->body.faces;
+  const DatasetReader data(dir / "data.h5");
+  const int P = data.layout().body_params;
+  const ModelDomain d = domain_of_dataset(data, "parametric", param_names(P), faces);
+
+  // Height grows with s, volume with s^3, so BMI = volume * 985 / height^2 with s.
+  const auto [lo, hi] = training_growth(8);
+  const double h0 = mean.col(1).maxCoeff() - mean.col(1).minCoeff();
+  const double bmi0 = geometry::mesh_volume(mean, faces) * 985.0 / (h0 * h0);
+  CHECK(d.samples == 8);
+  CHECK(d.height.min == Approx(lo * h0).epsilon(1e-5));
+  CHECK(d.height.max == Approx(hi * h0).epsilon(1e-5));
+  CHECK(d.bmi.min == Approx(lo * bmi0).epsilon(1e-4));
+  CHECK(d.bmi.max == Approx(hi * bmi0).epsilon(1e-4));
+  // Parameter 0 was raised by a = s - 1; the others are the mean shape's.
+  CHECK(d.params[0].max - d.params[0].min == Approx(hi - lo).epsilon(1e-4));
+  for (int p = 1; p < P; ++p) CHECK(d.params[static_cast<std::size_t>(p)].min == d.params[static_cast<std::size_t>(p)].max);
+
+  SECTION("a body between the training bodies is inside") {
+    CHECK(domain_violations(d, grown(mean, 0.5 * (lo + hi)), faces, nullptr).empty());
+  }
+  SECTION("a body larger than any is outside in height, BMI and shape, each named") {
+    const auto why = domain_violations(d, grown(mean, hi + 0.3), faces, nullptr);
+    CHECK(mentions(why, "height"));
+    CHECK(mentions(why, "BMI"));
+    CHECK(mentions(why, "from the nearest of the 8 training bodies"));
+  }
+  SECTION("a body of the right height and volume but another shape is outside by its distance") {
+    // Wider and shallower by the same factor: height and volume (so BMI) unchanged.
+    Eigen::MatrixX3d other = grown(mean, 0.5 * (lo + hi));
+    const Eigen::RowVector3d c = other.colwise().mean();
+    other.col(0) = (other.col(0).array() - c(0)) * 1.25 + c(0);
+    other.col(2) = (other.col(2).array() - c(2)) / 1.25 + c(2);
+    const auto why = domain_violations(d, other, faces, nullptr);
+    REQUIRE(why.size() == 1);
+    CHECK(mentions(why, "cm (RMS) from the nearest"));
+  }
+  SECTION("a shape parameter outside its range is named") {
+    Eigen::VectorXd params = Eigen::VectorXd::Zero(P);
+    for (int p = 0; p < P; ++p) params(p) = d.params[static_cast<std::size_t>(p)].min;
+    CHECK(domain_violations(d, grown(mean, lo), faces, &params).empty());
+    params(P - 1) += 1.0;
+    CHECK(mentions(domain_violations(d, grown(mean, lo), faces, &params), "shape parameter 'p" + std::to_string(P - 1) + "'"));
+  }
+  SECTION("written into a file and read back unchanged") {
+    {
+      h5::File f = h5::File::create(dir / "m.h5");
+      write_domain(f, d);
+      f.close();
+    }
+    const auto back = read_domain(dir / "m.h5");
+    REQUIRE(back);
+    CHECK(back->param_names == d.param_names);
+    CHECK(back->height.min == d.height.min);
+    CHECK(back->bmi.max == d.bmi.max);
+    CHECK(back->descriptors == d.descriptors);
+    CHECK(back->neighbour_limit == d.neighbour_limit);
+    CHECK(back->descriptor_vertices == d.descriptor_vertices);
+  }
+}
+
+TEST_CASE("drape model domain records it; predict warns outside it and --strict refuses", "[train][domain][cli]") {
+  test::TempDir dir;
+  const fs::path data = dir / "data.h5", model = dir / "model.h5";
+  test::write_tiny_dataset(data, 14, 8, 3);
+  auto o = test::tiny_training(data, model);
+  o.epochs = 1;
+  train(test::plugins(), o);
+  std::string out;
+  REQUIRE(test::run(test::drape_command("model info " + model.string()), out) == 0);
+  CHECK_THAT(out, Catch::Contains("domain: not recorded"));
+  REQUIRE(test::run(test::drape_command("predict --model " + model.string() + " --bmi 45 --strict --out " +
+                                        (dir / "g.obj").string()),
+                    out) == 2);
+  CHECK_THAT(out, Catch::Contains("records no training domain"));
+
+  REQUIRE(test::run(test::drape_command("model domain " + model.string() + " --data " + data.string()), out) == 0);
+  REQUIRE(test::run(test::drape_command("model info " + model.string()), out) == 0);
+  CHECK_THAT(out, Catch::Contains("8 training bodies from data.h5"));
+  // The training bodies are the mean body grown by at most 1.2: BMI 45 is far outside.
+  REQUIRE(test::run(test::drape_command("predict --model " + model.string() + " --bmi 45 --out " + (dir / "g.obj").string()),
+                    out) == 0);
+  CHECK_THAT(out, Catch::Contains("warning: the body is outside what model.h5 was trained on: BMI"));
+  REQUIRE(test::run(test::drape_command("predict --model " + model.string() + " --bmi 45 --strict --out " +
+                                        (dir / "g2.obj").string()),
+                    out) == 2);
+  CHECK_THAT(out, Catch::Contains("--strict: the body is outside the model's training domain"));
+  CHECK(!fs::exists(dir / "g2.obj"));
+}
