@@ -28,22 +28,6 @@
 namespace drape::cli {
 namespace {
 
-struct Shard {
-  std::size_t index = 0, count = 1;
-};
-
-Shard parse_shard(const std::string& text) {
-  const auto slash = text.find('/');
-  try {
-    if (slash != std::string::npos) {
-      const long i = std::stol(text.substr(0, slash)), n = std::stol(text.substr(slash + 1));
-      if (n >= 1 && i >= 0 && i < n) return {static_cast<std::size_t>(i), static_cast<std::size_t>(n)};
-    }
-  } catch (const std::exception&) {
-  }
-  throw UsageError("--shard '" + text + "': expected i/N with 0 <= i < N");
-}
-
 // The 8:1:1 split of the whole set (all shards): a seeded permutation, the
 // first 80% train, the next 10% validation, the rest test.
 std::vector<Split> splits(std::size_t total, std::uint64_t seed) {
@@ -96,7 +80,7 @@ int run(const std::vector<std::string>& args) {
   const double garment_size = garment_size_flag(scene);
 
   // This shard's global sample indices: a contiguous block.
-  const std::size_t first = total * shard.index / shard.count, last = total * (shard.index + 1) / shard.count;
+  const std::size_t first = shard.first(total), last = shard.last(total);
   const std::vector<Split> split = splits(total, seed);
 
   DatasetLayout layout;

@@ -38,6 +38,7 @@ int run_on_dataset(const po::variables_map& vm) {
   o.out = vm["out"].as<std::string>();
   o.scene_file = vm["scene"].as<std::string>();
   o.split = vm["split"].as<std::string>();
+  o.shard = parse_shard(vm["shard"].as<std::string>());
   DatasetReader::check_splits(o.split);  // a misspelt split fails before any work
   o.threads = vm["threads"].as<int>();
   if (o.threads <= 0) o.threads = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
@@ -66,12 +67,13 @@ int run(const std::vector<std::string>& args) {
       "data", po::value<std::string>(), "or optimise every sample of a dataset split (then --out is a dataset)")(
       "split", po::value<std::string>()->default_value("train"), "with --data: train | val | test | all, or a list: train,val")(
       "threads", po::value<int>()->default_value(0), "with --data: samples at once (0: all cores)")(
+      "shard", po::value<std::string>()->default_value("0/1"), "with --data: only part i of N of the split (a job array's task; join with drape dataset merge)")(
       "verbose,v", po::bool_switch(), "print L_p at every iteration");
   po::variables_map vm;
   const std::string usage =
       "drape optimize [--model model.h5] --scene scene.yaml (--body body.obj | --bmi 35) [--iters 100] [--lr 1e-4] "
       "--out garment.obj\n       drape optimize [--model model.h5] --scene scene.yaml --data data.h5 [--split train] "
-      "--out optimized.h5 [--threads T]";
+      "--out optimized.h5 [--threads T] [--shard i/N]";
   if (!parse(usage, args, opts, {}, vm)) return 0;
   if (!vm.count("scene")) throw UsageError("--scene FILE is required (its effects and materials make the potential)");
   if (!vm.count("out")) throw UsageError("--out FILE is required (the optimised garment, or dataset with --data)");

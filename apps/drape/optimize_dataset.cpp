@@ -19,8 +19,14 @@ namespace drape::cli {
 
 std::size_t optimize_dataset(const Registry& registry, const OptimizeDatasetOptions& o) {
   const DatasetReader reader(o.data);
-  const std::vector<std::size_t> source = reader.indices(o.split);
-  if (source.empty()) throw ConfigError(o.data.string() + ": the " + o.split + " split has no samples");
+  const std::vector<std::size_t> whole = reader.indices(o.split);
+  if (whole.empty()) throw ConfigError(o.data.string() + ": the " + o.split + " split has no samples");
+  const std::vector<std::size_t> source(whole.begin() + static_cast<long>(o.shard.first(whole.size())),
+                                        whole.begin() + static_cast<long>(o.shard.last(whole.size())));
+  if (source.empty())
+    throw ConfigError("--shard " + std::to_string(o.shard.index) + "/" + std::to_string(o.shard.count) + ": the " + o.split +
+                      " split of " + o.data.string() + " has only " + std::to_string(whole.size()) +
+                      " samples, none for this shard (use fewer shards)");
   const Scene scene = load_scene(o.scene_file);
   const Simulation simulation(registry, scene);
   {
@@ -47,7 +53,8 @@ std::size_t optimize_dataset(const Registry& registry, const OptimizeDatasetOpti
   layout.attributes = reader.layout().attributes;
   std::ostringstream what;
   what << "drape optimize: model " << o.model.filename().string() << ", data " << o.data.filename().string() << " ("
-       << o.split << "), " << o.optimization.iterations << " iterations, lr " << o.optimization.learning_rate;
+       << o.split << (o.shard.count > 1 ? ", shard " + std::to_string(o.shard.index) + "/" + std::to_string(o.shard.count) : "")
+       << "), " << o.optimization.iterations << " iterations, lr " << o.optimization.learning_rate;
   layout.attributes["generator"] = what.str();
 
   DatasetWriter writer(o.out, layout);

@@ -4,6 +4,8 @@
 // over samples, resumable (the output is a dataset written like drape
 // generate's), with a progress bar. Its garments can train the network again:
 // the seed's self-correcting loop.
+#include "sample_ranges.hpp"
+
 #include <drape/physics_optimization.hpp>
 
 #include <filesystem>
@@ -14,6 +16,7 @@ namespace drape::cli {
 struct OptimizeDatasetOptions {
   std::filesystem::path model, data, out, scene_file;
   std::string split = "train";  // train | val | test | all
+  Shard shard;                  // only this part of the split's samples (a job array's task)
   int threads = 1;
   PhysicsOptimizationOptions optimization;
 };

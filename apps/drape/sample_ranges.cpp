@@ -22,4 +22,18 @@ Range parse_range(const std::string& option, const std::string& text) {
   throw UsageError("--" + option + " '" + text + "': expected a number or a range lo:hi with lo <= hi");
 }
 
+Shard parse_shard(const std::string& text) {
+  const auto slash = text.find('/');
+  try {
+    if (slash != std::string::npos) {
+      std::size_t used = 0, used2 = 0;
+      const long i = std::stol(text.substr(0, slash), &used), n = std::stol(text.substr(slash + 1), &used2);
+      if (used == slash && used2 == text.size() - slash - 1 && n >= 1 && i >= 0 && i < n)
+        return {static_cast<std::size_t>(i), static_cast<std::size_t>(n)};
+    }
+  } catch (const std::exception&) {
+  }
+  throw UsageError("--shard '" + text + "': expected i/N with 0 <= i < N");
+}
+
 }  // namespace drape::cli

@@ -1,0 +1,20 @@
+#!/bin/bash
+# Queues a drape job array and the merge that follows it:
+#   scripts/cluster/submit.sh generate SHARDS    (settings of generate.sbatch in the environment)
+#   scripts/cluster/submit.sh optimize SHARDS    (settings of optimize.sbatch)
+# e.g. COUNT=20000 SEED=1 OUT=/scratch/tshirt.h5 scripts/cluster/submit.sh generate 100
+# Extra sbatch options (partition, account, cpus) go in SBATCH_OPTIONS, e.g.
+# SBATCH_OPTIONS="--partition=cpu --cpus-per-task=8". Prints the two job ids.
+set -euo pipefail
+usage="usage: $0 generate|optimize SHARDS"
+stage=${1:?$usage}
+shards=${2:?$usage}
+[[ "$stage" == generate || "$stage" == optimize ]] || { echo "$0: unknown stage '$stage': $usage" >&2; exit 2; }
+[[ "$shards" =~ ^[1-9][0-9]*$ ]] || { echo "$0: SHARDS must be a positive number, got '$shards'" >&2; exit 2; }
+: "${OUT:?OUT (the merged dataset to make) is required}"
+here=$(cd "$(dirname "$0")" && pwd)
+read -r -a extra <<< "${SBATCH_OPTIONS:-}"
+array=$(sbatch --parsable "${extra[@]}" --array="0-$((shards - 1))" --export="ALL,SHARDS=$shards" "$here/$stage.sbatch")
+array=${array%%;*}  # "id;cluster" on federated clusters
+merge=$(sbatch --parsable "${extra[@]}" --dependency="afterok:$array" --export="ALL,SHARDS=$shards" "$here/merge.sbatch")
+echo "queued $stage array job $array ($shards tasks) and merge job ${merge%%;*} into $OUT"
