@@ -4,6 +4,7 @@
 // the predicted garment to the weights.
 #include "common.hpp"
 
+#include <drape/checkpoint.hpp>
 #include <drape/errors.hpp>
 #include <drape/graph.hpp>
 #include <drape/model.hpp>
@@ -235,6 +236,25 @@ void register_model(py::module_& m) {
           "The seed's physics-enforced optimisation (as drape optimize): fine-tunes this model's weights in place so that "
           "its drape of one body minimises the scene's potential. Returns before/after garments, energies, p and the "
           "history. The GIL is released.")
+      .def(
+          "save",
+          [](PyModel& p, const std::string& path, const std::map<std::string, std::string>& meta) {
+            // The model as drape train writes one (docs/formats.md): what Model::load and the drape program read back.
+            Model& m = p.model();
+            Checkpoint c = m.checkpoint();
+            c.optimizer.reset();  // an optimiser state belongs to the training that wrote it
+            for (const auto& [k, v] : meta) c.meta[k] = v;
+            c.meta["kind"] = "drape model";
+            c.meta["assets"] = m.assets_spec().yaml();
+            c.meta["assets_hash"] = m.assets().hash;
+            c.meta["output"] = m.output();
+            py::gil_scoped_release release;
+            std::lock_guard lock(p.mutex());
+            save_checkpoint(path, m.graph().weights(), c);
+          },
+          py::arg("path"), py::arg("meta") = std::map<std::string, std::string>{},
+          "Writes the model with its current weights (after optimize or a PyTorch loop) as a model file, atomically; "
+          "meta: extra string attributes for /meta.")
       .def(
           "weights",
           [](py::object self) {

@@ -99,3 +99,23 @@ def test_optimize_lowers_the_scene_potential(tmp_path):
     assert r["potential_after"] <= r["potential_before"]
     # The model itself changed: predicting again gives the optimised drape.
     np.testing.assert_allclose(model.predict(body), r["after"], atol=1e-5)
+
+
+def test_changed_weights_save_and_load_back(tmp_path):
+    model = drape.Model.load(str(SHIPPED))
+    body = model.body(bmi=28)
+    before = model.predict(body)
+    name = next(n for n in model.weights() if n.startswith("transfer"))
+    model.weights()[name][...] *= 1.5  # a view of the model's own weights: predict changes with it
+    changed = model.predict(body)
+    assert np.abs(changed - before).max() > 1e-3
+    out = tmp_path / "tuned.h5"
+    model.save(str(out), {"note": "scaled in a test"})
+    again = drape.Model.load(str(out))
+    np.testing.assert_array_equal(again.predict(body), changed)
+    drape.write_obj(tmp_path / "body.obj", body, model.assets.body_faces)
+    run_drape("predict", "--model", out, "--body", tmp_path / "body.obj", "--out", tmp_path / "g.obj")
+    np.testing.assert_allclose(read_obj(tmp_path / "g.obj")[0], changed, atol=2e-5)
+    with h5py.File(out, "r") as f:
+        text = lambda v: v.decode() if isinstance(v, bytes) else v
+        assert text(f["meta"].attrs["note"]) == "scaled in a test" and text(f["meta"].attrs["kind"]) == "drape model"

@@ -18,7 +18,10 @@ constexpr const char* kModelName = "tshirt-coarse.h5";
 fs::path default_model_path() {
   std::error_code ec;
   if (const char* env = std::getenv("DRAPE_MODEL"); env && *env) return env;
-  const fs::path self = boost::dll::this_line_location(ec);  // lib/libdrape_framework.so
+  // lib/libdrape_framework.so, as the loader named it: the Python module finds it through
+  // $ORIGIN/../../.., which parent_path() would walk up lexically into the wrong folder.
+  fs::path self = boost::dll::this_line_location(ec);
+  if (!ec) self = fs::weakly_canonical(self, ec);
   if (!ec) {
     const fs::path installed = self.parent_path().parent_path() / "share" / "drape" / "models" / kModelName;
     if (fs::is_regular_file(installed, ec)) return installed;
