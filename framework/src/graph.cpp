@@ -410,11 +410,24 @@ void run_backward(Graph::Impl& g) {
     }
     // Only the ports whose gradient reaches a weight (Caffe's propagate_down):
     // a graph input's or a constant's would be computed and thrown away.
+    // The first consumer of an output writes its gradient straight into the
+    // output's (zeroed) gradient buffer; later ones into a zeroed temporary
+    // that is then added.
     std::vector<Tensor> gin(b.in_ports.size());
+    std::vector<bool> direct(b.in_ports.size(), false);
     TensorOut gin_map;
     for (std::size_t k = 0; k < b.in_ports.size(); ++k) {
       const auto& s = b.sources[k];
       if (s.node < 0 || !g.nodes[s.node].requires_grad) continue;
+      auto& src = g.nodes[s.node];
+      bool taken = src.has_grad;
+      for (std::size_t j = 0; j < k && !taken; ++j)
+        taken = direct[j] && b.sources[j].node == s.node && b.sources[j].port == s.port;
+      if (!taken) {
+        direct[k] = true;
+        gin_map[b.in_ports[k]] = &src.out_grads[s.port];
+        continue;
+      }
       const Tensor& v = g.value_of(s);
       gin[k] = Tensor(v.batch(), v.rows(), v.cols());
       gin_map[b.in_ports[k]] = &gin[k];
@@ -424,7 +437,7 @@ void run_backward(Graph::Impl& g) {
       const auto& s = b.sources[k];
       if (s.node < 0 || !g.nodes[s.node].requires_grad) continue;
       auto& src = g.nodes[s.node];
-      src.out_grads[s.port].vec() += gin[k].vec();
+      if (!direct[k]) src.out_grads[s.port].vec() += gin[k].vec();
       src.has_grad = true;
     }
     b.backward_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
@@ -438,8 +451,19 @@ void reset_grads(Graph::Impl& g) {
     b.out_grads.resize(b.outputs.size());
     // A node without weights upstream never runs backward: no gradient buffers to zero.
     const bool used = b.requires_grad || b.spec.is_loss;
-    for (std::size_t k = 0; k < b.outputs.size(); ++k)
-      b.out_grads[k] = used ? Tensor(b.outputs[k].batch(), b.outputs[k].rows(), b.outputs[k].cols()) : Tensor();
+    // Buffers of the same size are zeroed in place: a fresh one of many MiB
+    // (the encoder's per-body-vertex features) comes from mmap and costs page
+    // faults at every step.
+    for (std::size_t k = 0; k < b.outputs.size(); ++k) {
+      Tensor& grad = b.out_grads[k];
+      const Tensor& value = b.outputs[k];
+      if (!used)
+        grad = Tensor();
+      else if (grad.batch() == value.batch() && grad.shape() == value.shape())
+        grad.set_zero();
+      else
+        grad = Tensor(value.batch(), value.rows(), value.cols());
+    }
   }
 }
 }  // namespace

@@ -293,3 +293,23 @@ TEST_CASE("drape bench infer and bench train report their figures", "[train][cli
                     out) == 0);
   CHECK_THAT(out, Catch::Contains("**losses**"));
 }
+
+TEST_CASE("the libtorch version of the network trains beside drape's with the same weight count", "[train][cli][libtorch]") {
+  const fs::path exe = test::drape_program().parent_path() / "drape-libtorch-bench";
+  if (!fs::exists(exe)) {
+    WARN("skipped: drape-libtorch-bench was not built (CMake did not find Debian's libtorch-dev)");
+    return;
+  }
+  test::TempDir dir;
+  const fs::path data = dir / "data.h5";
+  test::write_tiny_dataset(data, 6, 4, 1);
+  std::string out;
+  REQUIRE(test::run(exe.string() + " --data " + data.string() + " --k " + std::to_string(test::kTinyK) +
+                        " --batch 2 --steps 1 --rounds 1",
+                    out) == 0);
+  INFO(out);
+  CHECK_THAT(out, Catch::Contains("weights in both") && Catch::Contains("| drape |") && Catch::Contains("| libtorch |") &&
+                      Catch::Contains("drape / libtorch: training"));
+  CHECK(test::run(exe.string() + " --batch 2", out) == 2);
+  CHECK_THAT(out, Catch::Contains("--data FILE is required"));
+}
