@@ -4,10 +4,14 @@
 #include "sample_ranges.hpp"
 
 #include <drape/atomic_file.hpp>
+#include <drape/body_space.hpp>
+#include <drape/geometry/self_intersection.hpp>
 #include <drape/geometry/index_locality.hpp>
 #include <drape/geometry/volume.hpp>
 #include <drape/mesh_io.hpp>
 #include <drape/registry.hpp>
+#include <drape/rng.hpp>
+#include <drape/svg_figure.hpp>
 
 #include <chrono>
 #include <cstdio>
@@ -46,15 +50,21 @@ int run(const std::vector<std::string>& args) {
       "height", po::value<std::string>(), "height in m, or a range (default 1.75; 1.5:2.0 with --sample)")(
       "sex", po::value<double>(), "0 female ... 1 male (default 1; random 0/1 with --sample)")(
       "out", po::value<std::string>(), "mesh file to write (.obj, .ply, .gltf, .glb)")(
-      "sample", po::value<int>(), "draw this many bodies, BMI uniform in the --bmi range")(
+      "girth", po::value<std::vector<std::string>>()->composing(),
+      "a proportion held while BMI is reached, name=value (repeatable; parametric: chest, waist, belly, hips, arms, "
+      "thighs in [-0.15, 0.15], log factors)")(
+      "sample", po::value<int>(), "draw this many bodies: BMI uniform in the --bmi range, sex, height and girths independently")(
+      "girths", po::value<double>()->default_value(1.0),
+      "with --sample: the spread of the girths, as a fraction of the model's range (0: the mean build)")(
       "seed", po::value<unsigned>()->default_value(0), "random seed for --sample")(
       "out-dir", po::value<std::string>(), "folder for --sample: body_00000.obj ... and bodies.csv")(
+      "svg", po::value<std::string>(), "with --sample: also draw the first 16 bodies side by side (.svg, or .html: a 3D viewer)")(
       "param", po::value<std::vector<std::string>>()->composing(),
       "a parameter of the body plugin, name=value (repeatable), e.g. file=smpl.h5 for --model smpl");
   po::variables_map vm;
   const std::string usage =
       "drape body --bmi 38 --height 1.80 [--sex 1] [--out body.obj]\n"
-      "       drape body --sample N --bmi 10:65 [--height 1.5:2.0] [--seed S] --out-dir DIR";
+      "       drape body --sample N --bmi 10:65 [--height 1.5:2.0] [--girths 1] [--seed S] --out-dir DIR";
   if (!parse(usage, args, opts, {}, vm)) return 0;
 
   const Registry& reg = Registry::load_default(plugin_path(vm));
@@ -80,7 +90,18 @@ int run(const std::vector<std::string>& args) {
     if (height.lo != height.hi) throw UsageError("--height: a range needs --sample");
     const double sex = vm.count("sex") ? vm["sex"].as<double>() : 1.0;
     const auto t1 = std::chrono::steady_clock::now();
-    const Eigen::VectorXd shape = body->solve({bmi.lo, height.lo, sex});
+    BodyRequest request{bmi.lo, height.lo, sex, {}};
+    if (vm.count("girth"))
+      for (const auto& item : vm["girth"].as<std::vector<std::string>>()) {
+        const auto eq = item.find('=');
+        if (eq == std::string::npos || eq == 0) throw UsageError("--girth wants name=value, got '" + item + "'");
+        try {
+          request.proportions[item.substr(0, eq)] = std::stod(item.substr(eq + 1));
+        } catch (const std::exception&) {
+          throw UsageError("--girth " + item + ": the value is not a number");
+        }
+      }
+    const Eigen::VectorXd shape = body->solve(request);
     const double solve_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t1).count();
     const Mesh mesh = body_mesh(*body, shape);
     const Measured got = measure(mesh.vertices, mesh.faces);
@@ -105,36 +126,64 @@ int run(const std::vector<std::string>& args) {
   const std::filesystem::path dir = vm["out-dir"].as<std::string>();
   std::filesystem::create_directories(dir);
   const Range height = vm.count("height") ? parse_range("height", vm["height"].as<std::string>()) : Range{1.5, 2.0};
-  std::mt19937_64 rng(vm["seed"].as<unsigned>());
-  std::uniform_real_distribution<double> u01(0.0, 1.0);
+  BodySpace space;
+  space.bmi_lo = bmi.lo;
+  space.bmi_hi = bmi.hi;
+  space.height_lo = height.lo;
+  space.height_hi = height.hi;
+  if (vm.count("sex")) space.sex_lo = space.sex_hi = vm["sex"].as<double>();
+  space.proportion_spread = vm["girths"].as<double>();
+  if (!(space.proportion_spread >= 0 && space.proportion_spread <= 1)) throw UsageError("--girths: expected a fraction in [0, 1]");
+  if (vm.count("girth")) throw UsageError("--girth holds one body's proportions; --sample draws them (--girths sets their spread)");
+  Rng rng(vm["seed"].as<unsigned>());
   std::ostringstream csv;
   csv << std::setprecision(10) << "index,file,requested_bmi,requested_height,sex";
   for (const auto& n : names) csv << ",shape_" << n;
-  csv << ",measured_bmi,measured_height\n";
+  csv << ",girth_halvings,measured_bmi,measured_height,self_intersections\n";
   double worst = 0;
+  int intersecting = 0, halved = 0;
+  SvgFigure figure("drape body --sample: BMI " + std::to_string(bmi.lo).substr(0, 4) + "-" + std::to_string(bmi.hi).substr(0, 4) +
+                   ", height " + std::to_string(height.lo).substr(0, 4) + "-" + std::to_string(height.hi).substr(0, 4) +
+                   " m, girth spread " + std::to_string(space.proportion_spread).substr(0, 4));
+  constexpr int kDrawn = 16;
   for (int i = 0; i < count; ++i) {
-    const double b = bmi.lo + (bmi.hi - bmi.lo) * u01(rng);
-    const double h = height.lo + (height.hi - height.lo) * u01(rng);
-    const double coin = u01(rng);
-    const double sex = vm.count("sex") ? vm["sex"].as<double>() : (coin < 0.5 ? 0.0 : 1.0);
-    const Eigen::VectorXd shape = body->solve({b, h, sex});
+    BodyRequest request = draw_body(space, *body, rng);
+    int halvings = 0;
+    const Eigen::VectorXd shape = solve_in_space(*body, request, &halvings);
     const Mesh mesh = body_mesh(*body, shape);
     const Measured got = measure(mesh.vertices, mesh.faces);
+    const std::size_t crossing = geometry::self_intersections(mesh.vertices, mesh.faces, 10).size();
     char file[32];
     std::snprintf(file, sizeof file, "body_%05d.obj", i);
     write_mesh(dir / file, mesh);
-    csv << i << "," << file << "," << b << "," << h << "," << sex;
+    csv << i << "," << file << "," << request.bmi << "," << request.height << "," << request.sex;
     for (Eigen::Index k = 0; k < shape.size(); ++k) csv << "," << shape[k];
-    csv << "," << got.bmi << "," << got.height << "\n";
-    worst = std::max(worst, std::abs(got.bmi - b));
+    csv << "," << halvings << "," << got.bmi << "," << got.height << "," << crossing << "\n";
+    worst = std::max(worst, std::abs(got.bmi - request.bmi));
+    intersecting += crossing > 0;
+    halved += halvings > 0;
+    if (vm.count("svg") && i < kDrawn) {
+      char caption[96];
+      std::snprintf(caption, sizeof caption, "%s, %.2f m, BMI %.1f", request.sex < 0.5 ? "F" : "M", got.height, got.bmi);
+      SvgLayer skin;
+      skin.vertices = mesh.vertices;
+      skin.faces = mesh.faces;
+      skin.colour = "#d9a384";
+      skin.cull_back_faces = true;
+      figure.add_panel({caption, {skin}});
+    }
+  }
+  if (vm.count("svg")) {
+    figure.write(vm["svg"].as<std::string>());
+    std::cout << "wrote " << vm["svg"].as<std::string>() << "\n";
   }
   write_atomically(dir / "bodies.csv", [&](const std::filesystem::path& tmp) {
     std::ofstream out(tmp);
     out << csv.str();
     if (!out) throw Error("cannot write " + tmp.string());
   });
-  std::cout << "wrote " << count << " bodies and bodies.csv to " << dir.string() << " (worst |BMI error| " << worst
-            << ")\n";
+  std::cout << "wrote " << count << " bodies and bodies.csv to " << dir.string() << " (worst |BMI error| " << worst << "; "
+            << intersecting << " self-intersecting; " << halved << " with girths halved to reach their BMI)\n";
   return 0;
 }
 

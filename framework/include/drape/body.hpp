@@ -5,6 +5,7 @@
 #include <drape/mesh.hpp>
 
 #include <Eigen/Core>
+#include <map>
 #include <string>
 #include <utility>
 #include <vector>
@@ -16,6 +17,10 @@ struct BodyRequest {
   double bmi = 24.0;      // computed from the mesh: volume * 985 kg/m^3 / height^2
   double height = 1.75;   // m
   double sex = 1.0;       // 0 female ... 1 male
+  // Proportions held while the model reaches BMI and height, by name (the
+  // parametric body's girths: chest, waist, belly, hips, arms, thighs); a
+  // model refuses a name not in its proportion_names().
+  std::map<std::string, double> proportions;
 };
 
 class BodyModel {
@@ -31,6 +36,14 @@ class BodyModel {
   virtual Eigen::VectorXd solve(const BodyRequest& request) const = 0;
   // The BMI range this model reaches without breaking its mesh.
   virtual std::pair<double, double> bmi_range() const = 0;
+  // Shape parameters a BodyRequest may hold (proportions) and the range over
+  // which the model stays a plausible, watertight body at every BMI; none by
+  // default.
+  struct Proportion {
+    std::string name;
+    double min = 0, max = 0;
+  };
+  virtual std::vector<Proportion> proportions() const { return {}; }
 };
 
 // Garment templates (kind "garment"): the rest garment dressed on the mean body,

@@ -1,5 +1,6 @@
 #include "body_model.hpp"
 
+#include <drape/body_space.hpp>
 #include <drape/errors.hpp>
 #include <drape/geometry/volume.hpp>
 
@@ -84,6 +85,7 @@ std::pair<double, double> MakeHumanBody::bmi_range() const {
 }
 
 Eigen::VectorXd MakeHumanBody::solve(const BodyRequest& r) const {
+  check_proportions(*this, "makehuman", r);  // it offers none: a request with girths is refused
   if (!(r.sex >= 0.0 && r.sex <= 1.0)) throw ConfigError("sex must be in [0, 1] (0 female, 1 male)");
   Sliders s;
   s.gender = r.sex;

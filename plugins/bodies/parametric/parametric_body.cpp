@@ -3,6 +3,7 @@
 #include "body_template.hpp"
 #include "shape_fit.hpp"
 
+#include <drape/body_space.hpp>
 #include <drape/geometry/volume.hpp>
 #include <drape/plugin.hpp>
 
@@ -19,6 +20,14 @@ constexpr double kBmiMin = 10.0, kBmiMax = 65.0;
 constexpr double kBmiTolerance = 0.05;  // the solve stops this close to the request
 // BMI ~ kBmiAtZeroWeight * exp(weight / kWeightPerLogBmi): the solver's first guess.
 constexpr double kBmiAtZeroWeight = 20.0, kWeightPerLogBmi = 0.83;
+// Girths a request may hold: +-0.15 in log factor, +-16 % of a girth.
+constexpr double kGirthSpread = 0.15;
+
+int index_of(const std::string& name) {
+  for (int i = 0; i < kNumShape; ++i)
+    if (shape_specs()[static_cast<std::size_t>(i)].name == name) return i;
+  throw ConfigError("body parametric: no shape parameter '" + name + "'");
+}
 
 // Built once per process (about a tenth of a second) and shared by every instance.
 const BodyTemplate& shared_template() {
@@ -57,9 +66,11 @@ class ParametricBody final : public BodyModel {
       bad << "sex " << req.sex << " is outside [0, 1]";
     if (!bad.str().empty()) throw ConfigError("body parametric: " + bad.str());
 
+    check_proportions(*this, "parametric", req);
     Eigen::VectorXd shape = mean_shape_vector();
     shape[kHeight] = req.height;
     shape[kSex] = req.sex;
+    for (const auto& [name, value] : req.proportions) shape[index_of(name)] = value;
     const ShapeSpec& w = shape_specs()[kWeight];
     auto residual = [&](double weight) {
       shape[kWeight] = weight;
@@ -90,6 +101,13 @@ class ParametricBody final : public BodyModel {
   }
 
   std::pair<double, double> bmi_range() const override { return {kBmiMin, kBmiMax}; }
+
+  // The girths, over the range sampled bodies stay plausible in (docs/bodies.md).
+  std::vector<Proportion> proportions() const override {
+    std::vector<Proportion> out;
+    for (int i = kChest; i < kNumShape; ++i) out.push_back({shape_specs()[static_cast<std::size_t>(i)].name, -kGirthSpread, kGirthSpread});
+    return out;
+  }
 
   double bmi(const Eigen::VectorXd& shape) const {
     const Eigen::MatrixX3d v = vertices(shape);

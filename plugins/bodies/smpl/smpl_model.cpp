@@ -1,5 +1,6 @@
 #include "smpl_model.hpp"
 
+#include <drape/body_space.hpp>
 #include <drape/errors.hpp>
 #include <drape/geometry/volume.hpp>
 #include <drape/h5.hpp>
@@ -93,6 +94,7 @@ double SmplBody::bmi_at(double t, double height) const { return bmi_of(vertices(
 std::pair<double, double> SmplBody::bmi_range() const { return {bmi_at(-t_max_, 1.75), bmi_at(t_max_, 1.75)}; }
 
 Eigen::VectorXd SmplBody::solve(const BodyRequest& r) const {
+  check_proportions(*this, "smpl", r);  // it offers none: a request with girths is refused
   if (!(r.height > 0.5 && r.height < 3.0)) throw ConfigError("height must be in meters (0.5 - 3.0)");
   double lo = -t_max_, hi = t_max_;
   const double bmi_lo = bmi_at(lo, r.height), bmi_hi = bmi_at(hi, r.height);

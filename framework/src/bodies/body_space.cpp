@@ -1,0 +1,59 @@
+// Sampling the body space (body_space.hpp).
+#include <drape/body_space.hpp>
+#include <drape/errors.hpp>
+
+#include <cstdio>
+
+namespace drape {
+
+BodyRequest draw_body(const BodySpace& space, const BodyModel& model, Rng& rng) {
+  BodyRequest r;
+  // A fixed number of draws per body, in a fixed order, whatever the ranges:
+  // body i of a seed stays body i when one range changes.
+  const double b = rng.uniform(), h = rng.uniform(), s = rng.uniform();
+  r.bmi = space.bmi_lo + (space.bmi_hi - space.bmi_lo) * b;
+  r.height = space.height_lo + (space.height_hi - space.height_lo) * h;
+  r.sex = space.sex_lo == space.sex_hi ? space.sex_lo : (s < 0.5 ? space.sex_lo : space.sex_hi);
+  for (const BodyModel::Proportion& p : model.proportions()) {
+    const double u = rng.uniform();
+    const double lo = space.proportion_spread * p.min, hi = space.proportion_spread * p.max;
+    if (space.proportion_spread > 0) r.proportions[p.name] = lo + (hi - lo) * u;
+  }
+  return r;
+}
+
+Eigen::VectorXd solve_in_space(const BodyModel& model, BodyRequest& request, int* halvings) {
+  for (int k = 0;; ++k) {
+    try {
+      if (halvings) *halvings = k;
+      return model.solve(request);
+    } catch (const ConfigError&) {
+      if (request.proportions.empty()) throw;
+      if (k == 4) request.proportions.clear();
+      for (auto& [name, value] : request.proportions) value *= 0.5;
+    }
+  }
+}
+
+void check_proportions(const BodyModel& model, const std::string& model_name, const BodyRequest& request) {
+  const auto offered = model.proportions();
+  for (const auto& [name, value] : request.proportions) {
+    const BodyModel::Proportion* found = nullptr;
+    for (const auto& p : offered)
+      if (p.name == name) found = &p;
+    if (!found) {
+      std::string names;
+      for (const auto& p : offered) names += (names.empty() ? "" : ", ") + p.name;
+      throw ConfigError("body " + model_name + ": no proportion '" + name + "'" +
+                        (names.empty() ? " (this model takes BMI, height and sex only)" : " (it has: " + names + ")"));
+    }
+    if (!(value >= found->min && value <= found->max)) {
+      char m[160];
+      std::snprintf(m, sizeof m, "body %s: proportion '%s' = %g is outside [%g, %g]", model_name.c_str(), name.c_str(), value,
+                    found->min, found->max);
+      throw ConfigError(m);
+    }
+  }
+}
+
+}  // namespace drape
