@@ -35,30 +35,20 @@ class PyBodyModel {
   const std::string& name() const { return name_; }
   std::vector<std::string> shape_names() const { return model_->shape_names(); }
 
-  // The shape vector that reaches the request, then the named entries (girths) set as given.
-  Eigen::VectorXd solve(double bmi, double height, double sex, const py::dict& overrides) const {
+  // The shape vector that reaches the request with the named proportions (girths) held, as drape body --girth.
+  Eigen::VectorXd solve(double bmi, double height, double sex, const py::dict& girths) const {
     BodyRequest request;
     request.bmi = bmi;
     request.height = height;
     request.sex = sex;
-    Eigen::VectorXd shape;
-    {
-      py::gil_scoped_release release;
-      shape = model_->solve(request);
+    for (const auto& [key, value] : girths) {
+      if (!py::isinstance<py::float_>(value) && !py::isinstance<py::int_>(value))
+        throw py::value_error(key.cast<std::string>() + ": expected a number (a proportion of body model '" + name_ +
+                              "'), got " + py::str(py::type::of(value)).cast<std::string>());
+      request.proportions[key.cast<std::string>()] = value.cast<double>();
     }
-    const auto names = model_->shape_names();
-    for (const auto& [key, value] : overrides) {
-      const std::string k = key.cast<std::string>();
-      const auto it = std::find(names.begin(), names.end(), k);
-      if (it == names.end()) {
-        std::string list;
-        for (const auto& n : names) list += (list.empty() ? "" : ", ") + n;
-        throw py::value_error("body model '" + name_ + "' has no shape parameter '" + k + "'" + did_you_mean(k, names) +
-                              " (it has " + list + ")");
-      }
-      shape[it - names.begin()] = value.cast<double>();
-    }
-    return shape;
+    py::gil_scoped_release release;
+    return model_->solve(request);  // ConfigError naming the proportions the model takes, or their range
   }
 
   Eigen::MatrixX3d vertices(const py::handle& shape_arg) const {
@@ -90,6 +80,11 @@ void register_bodies(py::module_& m) {
       .def_property_readonly("shape_names", &PyBodyModel::shape_names, "names of the shape parameters, in vector order")
       .def_property_readonly("mean_shape", [](const PyBodyModel& b) { return to_numpy(b.model().mean_shape()); })
       .def_property_readonly("bmi_range", [](const PyBodyModel& b) { return b.model().bmi_range(); })
+      .def_property_readonly("proportions", [](const PyBodyModel& b) {
+             py::dict d;
+             for (const auto& p : b.model().proportions()) d[py::str(p.name)] = py::make_tuple(p.min, p.max);
+             return d;
+           }, "{name: (min, max)}: the proportions (girths) a body request may hold")
       .def_property_readonly("vertex_count", [](const PyBodyModel& b) { return b.model().num_vertices(); })
       .def_property_readonly("faces", [](const PyBodyModel& b) { return to_numpy(Eigen::MatrixX3i(b.model().faces())); },
                              "int32 [F, 3], counter-clockwise seen from outside")
@@ -99,7 +94,7 @@ void register_bodies(py::module_& m) {
             return to_numpy(b.solve(bmi, height, sex, girths));
           },
           py::arg("bmi") = 24.0, py::arg("height") = 1.75, py::arg("sex") = 1.0,
-          "Shape parameters reaching the BMI, height and sex; keyword shape parameters (girths) are then set as given.")
+          "Shape parameters reaching the BMI, height and sex with the keyword proportions (girths) held.")
       .def("vertices", [](const PyBodyModel& b, const py::handle& shape) { return to_numpy(b.vertices(shape)); },
            py::arg("shape"), "float64 [N, 3] vertices of a shape vector");
 
@@ -118,8 +113,8 @@ void register_bodies(py::module_& m) {
       py::arg("bmi") = 24.0, py::arg("height") = 1.75, py::arg("sex") = 1.0, py::kw_only(), py::arg("model") = "parametric",
       py::arg("params") = py::dict(),
       "(vertices float64 [N, 3], faces int32 [F, 3]) of a body of that BMI, height (m) and sex (0 female ... 1 male)\n"
-      "from a body plugin. Other keywords set named shape parameters after the solve, e.g. chest=0.2 (the\n"
-      "parametric model's girths: chest, waist, belly, hips, arms, thighs, log factors in [-0.5, 0.5]).");
+      "from a body plugin. Other keywords are proportions held while the BMI is reached, as drape body --girth\n"
+      "(the parametric model's girths: chest, waist, belly, hips, arms, thighs, log factors in [-0.15, 0.15]).");
 
   m.def(
       "plugins",

@@ -122,11 +122,12 @@ py::dict result_dict(PhysicsOptimizationResult&& r) {
   return d;
 }
 
-BodyRequest request(double bmi, double height, double sex) {
+BodyRequest request(double bmi, double height, double sex, const py::kwargs& girths) {
   BodyRequest r;
   r.bmi = bmi;
   r.height = height;
   r.sex = sex;
+  for (const auto& [key, value] : girths) r.proportions[key.cast<std::string>()] = value.cast<double>();
   return r;
 }
 
@@ -178,23 +179,25 @@ void register_model(py::module_& m) {
       .def_property_readonly("graph", [](PyModel& p) { return p.model().checkpoint().graph; }, "the resolved graph, YAML")
       .def(
           "body",
-          [](PyModel& p, double bmi, double height, double sex) {
+          [](PyModel& p, double bmi, double height, double sex, const py::kwargs& girths) {
+            const BodyRequest r = request(bmi, height, sex, girths);
             SampleBatch b;
             {
               py::gil_scoped_release release;
-              b = p.model().body_for(request(bmi, height, sex));
+              b = p.model().body_for(r);
             }
             return to_numpy(std::move(b.body), true);
           },
           py::arg("bmi") = 24.0, py::arg("height") = 1.75, py::arg("sex") = 1.0,
-          "float32 [Nb, 3]: a body of the model's own body plugin")
+          "float32 [Nb, 3]: a body of the model's own body plugin; keywords are proportions held (girths, as drape.body)")
       .def(
           "body_params",
-          [](PyModel& p, double bmi, double height, double sex) {
+          [](PyModel& p, double bmi, double height, double sex, const py::kwargs& girths) {
+            const BodyRequest r = request(bmi, height, sex, girths);
             SampleBatch b;
             {
               py::gil_scoped_release release;
-              b = p.model().body_for(request(bmi, height, sex));
+              b = p.model().body_for(r);
             }
             Tensor params = std::move(b.body_params);
             const int n = params.cols();
