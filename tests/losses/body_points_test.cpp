@@ -9,6 +9,7 @@
 
 #include <catch2/catch.hpp>
 
+#include <cmath>
 #include <random>
 
 #include "losses_test_util.hpp"
@@ -91,6 +92,14 @@ TEST_CASE("v2v and direction: cached ground-truth points give the plain search's
       CHECK(again(b, 0, 0) == first.at("loss")(b, 0, 0));  // bit for bit from the cache
       if (type == "v2v") CHECK(first.at("loss")(b, 0, 0) == Approx(v2v_reference(sphere, s, b)).epsilon(1e-6));
     }
+    // The next step's prediction (moved up to 2 cm) is searched from this one's
+    // faces and still finds the exact closest points.
+    Samples moved = s;
+    for (std::size_t i = 0; i < moved.pred.size(); ++i) moved.pred.data()[i] += 0.02f * std::sin(float(i));
+    const TensorIn in_moved{{"pred", &moved.pred}, {"target", &moved.target}, {"body", &moved.body}};
+    node->forward(in_moved, {{"loss", &again}});
+    if (type == "v2v")
+      for (int b = 0; b < 3; ++b) CHECK(again(b, 0, 0) == Approx(v2v_reference(sphere, moved, b)).epsilon(1e-6));
   }
 }
 

@@ -92,7 +92,17 @@ int TriangleBvh::nearest(const Eigen::Vector3d& p, double max_squared_distance, 
     if (n.count > 0) {
       for (int t = n.first; t < n.first + n.count; ++t) {
         if (t == best_triangle || (face_labels && face_labels[face_of_[t]] == excluded)) continue;
-        const TrianglePoint q = closest_point_on_triangle(p, corners_[3 * t], corners_[3 * t + 1], corners_[3 * t + 2]);
+        // The triangle's own box first: no triangle is nearer than its box, and
+        // the box test costs a fraction of the exact one.
+        const Eigen::Vector3d &a = corners_[3 * t], &b = corners_[3 * t + 1], &c = corners_[3 * t + 2];
+        double box = 0;
+        for (int k = 0; k < 3; ++k) {
+          const double lo = std::min({a[k], b[k], c[k]}), hi = std::max({a[k], b[k], c[k]});
+          const double e = std::max({lo - p[k], p[k] - hi, 0.0});
+          box += e * e;
+        }
+        if (box >= best) continue;
+        const TrianglePoint q = closest_point_on_triangle(p, a, b, c);
         const double d2 = (q.point - p).squaredNorm();
         if (d2 < best) best = d2, best_triangle = t, hit = q;
       }
