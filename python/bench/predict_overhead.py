@@ -56,6 +56,9 @@ def main():
     med_c = statistics.median(t for r in cpp for t in r)
     med_p = statistics.median(t for r in py for t in r)
     print(f"model {model.file}, garment {model.garment_vertex_count} vertices, body {model.body_vertex_count}, batch 1")
+    better = drape.better_blas_coretype()
+    print(f"OpenBLAS kernels: {drape.blas_corename() or '(not OpenBLAS)'}" +
+          (f" (this CPU runs {better}: set OPENBLAS_CORETYPE={better} before Python starts)" if better else ""))
     print(f"{args.rounds} rounds x {args.calls} calls per side\n")
     print("| | ms per call (best round's median) | median of all calls |")
     print("|---|---|---|")

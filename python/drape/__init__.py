@@ -24,6 +24,8 @@ from ._drape import (  # noqa: F401  (re-exported)
     Error,
     Model,
     __version__,
+    better_blas_coretype,
+    blas_corename,
     body,
     load_plugins,
     plugin_search_path,
@@ -32,7 +34,8 @@ from ._drape import (  # noqa: F401  (re-exported)
 from . import _drape
 
 __all__ = [
-    "Assets", "BodyModel", "ConfigError", "Dataset", "Energy", "Error", "Model", "Scene", "assets", "body",
+    "Assets", "BodyModel", "ConfigError", "Dataset", "Energy", "Error", "Model", "Scene", "assets",
+    "better_blas_coretype", "blas_corename", "body",
     "load_plugins", "plugin_search_path", "plugins", "simulate", "sparse",
 ]
 

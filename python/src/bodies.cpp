@@ -4,6 +4,7 @@
 
 #include <drape/body.hpp>
 #include <drape/errors.hpp>
+#include <drape/nn/gemm.hpp>
 #include <drape/params.hpp>
 
 #include <yaml-cpp/yaml.h>
@@ -134,6 +135,17 @@ void register_bodies(py::module_& m) {
       "load_plugins",
       [](const std::string& dir) { registry().load_path({std::filesystem::path(dir)}); },
       py::arg("path"), "Loads the plugins of a folder (or one plugin file), as --plugin-path does.");
+  m.def("blas_corename", []() { return std::string(nn::blas_corename()); },
+        "The kernel set OpenBLAS chose for this process ('' for another BLAS), e.g. 'Prescott' or 'SkylakeX'.");
+  m.def(
+      "better_blas_coretype",
+      []() -> std::optional<std::string> {
+        const char* c = nn::better_blas_coretype();
+        return c ? std::optional<std::string>(c) : std::nullopt;
+      },
+      "The OPENBLAS_CORETYPE this CPU could run when OpenBLAS fell back to its SSE3 kernels (None otherwise). "
+      "The drape program re-executes itself with it; a Python process gets it only when the variable is set "
+      "before Python starts.");
   m.def(
       "plugin_search_path",
       []() {

@@ -119,3 +119,16 @@ def test_changed_weights_save_and_load_back(tmp_path):
     with h5py.File(out, "r") as f:
         text = lambda v: v.decode() if isinstance(v, bytes) else v
         assert text(f["meta"].attrs["note"]) == "scaled in a test" and text(f["meta"].attrs["kind"]) == "drape model"
+
+
+def test_openblas_kernels_follow_the_variable_set_before_python_starts():
+    import os
+    import subprocess
+    import sys
+    better = drape.better_blas_coretype()
+    if better is None:
+        pytest.skip(f"OpenBLAS chose {drape.blas_corename()!r} on its own")
+    env = dict(os.environ, OPENBLAS_CORETYPE=better)
+    out = subprocess.run([sys.executable, "-c", "import drape; print(drape.blas_corename(), drape.better_blas_coretype())"],
+                         env=env, capture_output=True, text=True, check=True).stdout.split()
+    assert out == [better, "None"]
