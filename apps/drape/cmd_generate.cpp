@@ -6,6 +6,8 @@
 #include "parallel_samples.hpp"
 #include "sample_ranges.hpp"
 
+#include <drape/body_space.hpp>
+
 #include <drape/dataset.hpp>
 #include <drape/model.hpp>
 #include <drape/progress.hpp>
@@ -45,6 +47,9 @@ int run(const std::vector<std::string>& args) {
       "bmi", po::value<std::string>()->default_value("10:65"), "BMI range lo:hi (uniform) or a value")(
       "height", po::value<std::string>()->default_value("1.75"), "height range lo:hi in m, or a value")(
       "sex", po::value<std::string>()->default_value("1"), "0, 1, or 0:1 for a random one per sample")(
+      "girths", po::value<double>()->default_value(0.0),
+      "spread of the body's girths (chest, waist, belly, hips, arms, thighs) as a fraction of the body model's range, "
+      "each drawn uniformly; 0 keeps the mean build (docs/bodies.md)")(
       "seed", po::value<std::uint64_t>()->default_value(0), "seed of the bodies and the split")(
       "out", po::value<std::string>(), "dataset file (HDF5) to write")(
       "shard", po::value<std::string>()->default_value("0/1"), "make only shard i of N (a contiguous part), e.g. 3/16")(
@@ -62,6 +67,8 @@ int run(const std::vector<std::string>& args) {
   const Range bmi = parse_range("bmi", vm["bmi"].as<std::string>());
   const Range height = parse_range("height", vm["height"].as<std::string>());
   const Range sex = parse_range("sex", vm["sex"].as<std::string>());
+  const double girths = vm["girths"].as<double>();
+  if (!(girths >= 0 && girths <= 1)) throw UsageError("--girths: expected a fraction in [0, 1]");
   const std::uint64_t seed = vm["seed"].as<std::uint64_t>();
   const std::string out = vm["out"].as<std::string>();
 
@@ -96,7 +103,7 @@ int run(const std::vector<std::string>& args) {
   layout.template_hash = template_hash(sim.garment().mesh, sim.body_model().faces());
   std::ostringstream ranges;
   ranges << "bmi " << bmi.lo << ":" << bmi.hi << ", height " << height.lo << ":" << height.hi << ", sex " << sex.lo
-         << ":" << sex.hi << ", seed " << seed << ", count " << total << ", shard " << shard.index << "/" << shard.count;
+         << ":" << sex.hi << ", girths " << girths << ", seed " << seed << ", count " << total << ", shard " << shard.index << "/" << shard.count;
   layout.attributes["generator"] = "drape generate: " + ranges.str();
   layout.attributes["body_model"] = scene.body_model;
   std::string names;
@@ -130,7 +137,12 @@ int run(const std::vector<std::string>& args) {
       request.bmi = rng.uniform(bmi.lo, bmi.hi);
       request.height = height.lo == height.hi ? height.lo : rng.uniform(height.lo, height.hi);
       request.sex = sex.lo == sex.hi ? sex.lo : (rng.uniform() < 0.5 ? sex.lo : sex.hi);
-      const Eigen::VectorXd shape = sim.shape_for(request);
+      // Drawn after the rest, and only with a spread, so a seed without
+      // girths draws the bodies it always drew.
+      if (girths > 0)
+        for (const BodyModel::Proportion& p : sim.body_model().proportions())
+          request.proportions[p.name] = girths * rng.uniform(p.min, p.max);
+      const Eigen::VectorXd shape = solve_in_space(sim.body_model(), request);
       const SimulationResult r = sim.run(sim.body_vertices(shape));
       DatasetSample s;
       s.body_params = shape.cast<float>();
