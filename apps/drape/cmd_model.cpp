@@ -12,7 +12,6 @@
 #include <drape/h5.hpp>
 #include <drape/model.hpp>
 #include <drape/model_domain.hpp>
-#include <drape/optimizer.hpp>
 
 #include <cstdio>
 #include <filesystem>
@@ -36,24 +35,6 @@ void print_domain(const ModelDomain& d) {
                 d.params[p].min == d.params[p].max ? "  (fixed)" : "");
   std::printf("  a body farther than %.2f cm (RMS over %zu vertices) from every training body is outside\n",
               100 * d.neighbour_limit, d.descriptor_vertices.size());
-}
-
-// The checkpoint `from` written anew to `to` in the current format (sealed,
-// fixed-length strings), whatever format it was written in.
-void rewrite_checkpoint(const fs::path& from, const fs::path& to) {
-  const Checkpoint c = read_checkpoint(from);
-  const h5::File source = h5::File::open(from);
-  const std::vector<std::string> names = source.datasets_below("/weights");
-  std::vector<Weight> weights(names.size());
-  NamedWeights named;
-  for (std::size_t i = 0; i < names.size(); ++i) {
-    const h5::Dims shape = source.shape("/weights/" + names[i]);
-    if (shape.size() != 2) throw ConfigError(from.string() + ": weight " + names[i] + " is not a matrix");
-    weights[i].value = Tensor(1, static_cast<int>(shape[0]), static_cast<int>(shape[1]));
-    source.read("/weights/" + names[i], shape, weights[i].value.data());
-    named.emplace_back(names[i], &weights[i]);
-  }
-  save_checkpoint(to, named, c);
 }
 
 int info(const std::vector<std::string>& args) {
@@ -88,20 +69,7 @@ int domain(const std::vector<std::string>& args) {
   const fs::path file = vm["model"].as<std::string>();
   const fs::path out = vm.count("out") ? fs::path(vm["out"].as<std::string>()) : file;
   Registry& registry = Registry::load_default(plugin_path(vm));
-  const Model model = Model::load(registry, file);
-  const DatasetReader data(vm["data"].as<std::string>());
-  if (data.layout().body_vertices != model.assets().body.num_vertices())
-    throw ConfigError(vm["data"].as<std::string>() + ": its bodies have " + std::to_string(data.layout().body_vertices) +
-                      " vertices; the model's body model has " + std::to_string(model.assets().body.num_vertices()));
-  ModelDomain d = domain_of_dataset(data, model.assets_spec().body_model, model.body_model().shape_names(),
-                                    model.assets().body.faces);
-  d.source = fs::path(vm["data"].as<std::string>()).filename().string();
-  write_atomically(out, [&](const fs::path& tmp) {
-    rewrite_checkpoint(file, tmp);
-    h5::File f = h5::File::open(tmp, h5::Access::ReadWrite);
-    write_domain(f, d);
-    f.close();
-  });
+  const ModelDomain d = record_model_domain(registry, file, vm["data"].as<std::string>(), out);
   std::printf("wrote %s\n", out.string().c_str());
   print_domain(d);
   return 0;

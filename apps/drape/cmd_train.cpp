@@ -3,6 +3,8 @@
 #include "command.hpp"
 #include "mpi_ranks.hpp"
 
+#include <drape/model_domain.hpp>
+
 #include <drape/errors.hpp>
 #include <drape/trainer.hpp>
 
@@ -106,6 +108,11 @@ int run(const std::vector<std::string>& given) {
     abort_all_ranks(dynamic_cast<const ConfigError*>(&e) || dynamic_cast<const UsageError*>(&e) ? 2 : 1);
   }
   if (ranks && ranks->rank() != 0) return 0;
+  // The bodies it learnt from, so that predict can tell a body outside them
+  // (model_domain.hpp); after every run, so an interrupted model has it too.
+  const ModelDomain domain = record_model_domain(registry, o.out, o.data, o.out);
+  std::cout << "recorded the model's domain: " << domain.samples << " training bodies, BMI " << domain.bmi.min << "-"
+            << domain.bmi.max << ", height " << domain.height.min << "-" << domain.height.max << " m\n";
   std::cout << "wrote " << o.out.string() << ": best epoch " << r.best_epoch << " (loss " << r.best_loss << ") of "
             << r.epochs_done << "; ";
   if (r.early_stopped)

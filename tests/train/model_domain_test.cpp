@@ -141,3 +141,24 @@ TEST_CASE("drape model domain records it; predict warns outside it and --strict 
   CHECK_THAT(out, Catch::Contains("--strict: the body is outside the model's training domain"));
   CHECK(!fs::exists(dir / "g2.obj"));
 }
+
+TEST_CASE("drape train records the domain of its training split in the model", "[train][domain][cli]") {
+  test::TempDir dir;
+  const fs::path data = dir / "data.h5", model = dir / "model.h5";
+  test::write_tiny_dataset(data, 12, 7, 3);
+  std::string out;
+  REQUIRE(test::run(test::drape_command("train " + test::baseline_graph().string() + " --data " + data.string() + " --out " +
+                                        model.string() + " --epochs 1 --batch 4 --seed 5 --threads 1 --k " +
+                                        std::to_string(test::kTinyK)),
+                    out) == 0);
+  INFO(out);
+  CHECK_THAT(out, Catch::Contains("recorded the model's domain: 7 training bodies"));
+  const auto domain = read_domain(model);
+  REQUIRE(domain);
+  CHECK(domain->samples == 7);
+  CHECK(domain->source == "data.h5");
+  // Still a model drape predict loads, and sealed.
+  REQUIRE(test::run(test::drape_command("predict --model " + model.string() + " --bmi 24 --out " + (dir / "g.obj").string()),
+                    out) == 0);
+  CHECK(h5::File::open(model).is_group("/weights"));
+}

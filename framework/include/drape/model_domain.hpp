@@ -63,6 +63,14 @@ double distance_to_training(const ModelDomain& domain, const Eigen::MatrixX3d& b
 std::vector<std::string> domain_violations(const ModelDomain& domain, const Eigen::MatrixX3d& body,
                                            const Eigen::MatrixX3i& faces, const Eigen::VectorXd* params);
 
+// Records the domain of `data`'s training split in the model file `model`,
+// written to `out` (may be `model`) atomically and in the current, sealed
+// format: drape train does it when it ends, drape model domain for older
+// models. Returns what it recorded.
+class Registry;
+ModelDomain record_model_domain(const Registry& registry, const std::filesystem::path& model,
+                                const std::filesystem::path& data, const std::filesystem::path& out);
+
 // Written into an open model file / read from one (nullopt: the file records
 // no domain, as models written before 2026-11-25).
 namespace h5 {
