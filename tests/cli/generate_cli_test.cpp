@@ -149,7 +149,8 @@ TEST_CASE("a 2-thread generate job killed mid-run resumes to the bits of an unin
   const auto job = [&](const std::string& args) {
     return test::drape_program().string() + " generate " + (dir / "barrier.yaml").string() + " --bmi 10:25 --seed 3 " + args;
   };
-  const std::string cmd = job("--count 6 --threads 2 --out " + file.string());
+  // 8 samples: after the first 2, enough left (~3 s) for the second job and the reader to find it busy.
+  const std::string cmd = job("--count 8 --threads 2 --out " + file.string());
   std::string out;
   REQUIRE(test::run("(" + cmd + " > " + (dir / "log").string() + " 2>&1 & echo $! > " + (dir / "pid").string() + ")", out) == 0);
   std::size_t done_at_kill = 0;
@@ -159,7 +160,7 @@ TEST_CASE("a 2-thread generate job killed mid-run resumes to the bits of an unin
     std::string line;
     while (std::getline(log, line, ']')) {
       std::size_t n = 0;
-      if (std::sscanf(line.c_str(), " %zu/6", &n) == 1) done_at_kill = std::max(done_at_kill, n);
+      if (std::sscanf(line.c_str(), " %zu/8", &n) == 1) done_at_kill = std::max(done_at_kill, n);
     }
   }
   // While it writes: a second job, and a reader, on the same file.
@@ -180,10 +181,10 @@ TEST_CASE("a 2-thread generate job killed mid-run resumes to the bits of an unin
 
   REQUIRE(test::run(cmd, out) == 0);
   CHECK_THAT(out, Catch::Contains("resuming"));
-  REQUIRE(test::run(job("--count 6 --threads 1 --out " + (dir / "ref.h5").string()), out) == 0);
+  REQUIRE(test::run(job("--count 8 --threads 2 --out " + (dir / "ref.h5").string()), out) == 0);
   INFO(sample_differences(file, dir / "ref.h5"));
   const DatasetReader a(file), b(dir / "ref.h5");
-  REQUIRE(a.indices().size() == 6);
+  REQUIRE(a.indices().size() == 8);
   const Tensor ga = a.garment_vertices(a.indices()), gb = b.garment_vertices(b.indices());
   CHECK((ga.flat() - gb.flat()).cwiseAbs().maxCoeff() == 0.0f);
   for (const char* stat : {"energy_total", "iterations", "stationarity", "bmi"})
