@@ -79,6 +79,15 @@ int TriangleBvh::nearest(const Eigen::Vector3d& p, double max_squared_distance, 
     const double d2 = (q.point - p).squaredNorm();
     if (d2 < best) best = d2, best_triangle = t, hit = q;
   }
+  // Of faces at the same computed distance the lowest index wins, and a box is
+  // passed over only when it is farther than the best by more than rounding:
+  // the answer is the argmin of (distance, face) over all faces, whatever the
+  // hint and the order of the search (so a training step that warm-starts from
+  // other faces, or a resumed run that has none, finds the same bits).
+  auto farther = [&best](double d2) { return d2 > best * (1 + 1e-12); };
+  auto better = [&](double d2, int t) {
+    return d2 < best || (best_triangle >= 0 && d2 == best && face_of_[t] < face_of_[best_triangle]);
+  };
   struct Pending {
     int node;
     double distance2;
@@ -86,7 +95,7 @@ int TriangleBvh::nearest(const Eigen::Vector3d& p, double max_squared_distance, 
   Pending stack[kMaxDepth];
   int top = 0;
   int node = 0;
-  if (box_distance2(nodes_[0], p) >= best) return best_triangle < 0 ? -1 : face_of_[best_triangle];
+  if (farther(box_distance2(nodes_[0], p))) return best_triangle < 0 ? -1 : face_of_[best_triangle];
   for (;;) {
     const Node& n = nodes_[node];
     if (n.count > 0) {
@@ -101,18 +110,18 @@ int TriangleBvh::nearest(const Eigen::Vector3d& p, double max_squared_distance, 
           const double e = std::max({lo - p[k], p[k] - hi, 0.0});
           box += e * e;
         }
-        if (box >= best) continue;
+        if (farther(box)) continue;
         const TrianglePoint q = closest_point_on_triangle(p, a, b, c);
         const double d2 = (q.point - p).squaredNorm();
-        if (d2 < best) best = d2, best_triangle = t, hit = q;
+        if (better(d2, t)) best = d2, best_triangle = t, hit = q;
       }
     } else {
       // Visit the nearer child first: it tightens `best` and prunes the other.
       int near = node + 1, far = n.first;
       double dn = box_distance2(nodes_[near], p), df = box_distance2(nodes_[far], p);
       if (df < dn) std::swap(near, far), std::swap(dn, df);
-      if (df < best) stack[top++] = {far, df};
-      if (dn < best) {
+      if (!farther(df)) stack[top++] = {far, df};
+      if (!farther(dn)) {
         node = near;
         continue;
       }
@@ -121,7 +130,7 @@ int TriangleBvh::nearest(const Eigen::Vector3d& p, double max_squared_distance, 
     for (;;) {
       if (top == 0) return best_triangle < 0 ? -1 : face_of_[best_triangle];
       const Pending next = stack[--top];
-      if (next.distance2 < best) {
+      if (!farther(next.distance2)) {
         node = next.node;
         break;
       }

@@ -28,8 +28,8 @@ class TriangleBvh {
   // (one per face), faces labelled `excluded` are passed over. A hint (a face
   // expected near p, e.g. the answer for a nearby point) is tested first: its
   // distance bounds the search, which then opens only the boxes closer than
-  // it. The answer is the same closest point; of faces at equal distance the
-  // hint wins.
+  // it. The answer does not depend on the hint: of faces at the same computed
+  // distance the lowest-numbered wins.
   int nearest(const Eigen::Vector3d& p, double max_squared_distance, TrianglePoint& hit,
               const int* face_labels = nullptr, int excluded = 0, int hint = -1) const;
 

@@ -14,7 +14,8 @@
 //   same step finds them.
 //
 // Everything is in double and gives the same points as BodySurface::locate
-// (bit for bit, except that of faces at equal distance the hint wins).
+// (bit for bit: of faces at the same distance the lowest-numbered wins, whatever
+// the search started from, so the cache and the warm starts change no result).
 #include <drape/geometry/nearest_triangles.hpp>
 #include <drape/geometry/surface_cache.hpp>
 #include <drape/mesh.hpp>

@@ -74,7 +74,8 @@ class BodySurface final : public BodyQuery {
   // The closest surface point; with max_distance, face = -1 when the surface is farther.
   SurfacePoint locate(const Eigen::Vector3d& p, double max_distance = std::numeric_limits<double>::infinity()) const;
   // The same closest point, the search started from a face expected near p
-  // (its distance bounds the search; of faces at equal distance the hint wins).
+  // (its distance bounds the search; the answer is locate()'s: of faces at the
+  // same distance the lowest-numbered wins, with or without a hint).
   SurfacePoint locate_near(const Eigen::Vector3d& p, int hint) const;
   // The closest point on the faces not labelled `excluded` (face_labels: one
   // label per face), signed like locate()'s: by the face normal, or the whole

@@ -33,7 +33,7 @@ class NearestTriangles {
   // BodySurface::locate finds them; signed_distance is the unsigned distance
   // and normal is zero (no sign without pseudo-normals). hint: a face expected
   // near p, or -1. The point is the same with or without a hint; between
-  // faces at equal distance the hint wins.
+  // faces at the same distance the lowest-numbered wins, whatever the hint.
   SurfacePoint nearest(const Eigen::Vector3d& p, int hint = -1) const;
 
   // One query per row of `points`; hints (one per row, -1 for none) may be empty.
