@@ -59,6 +59,10 @@ TEST_CASE("experiment: every kind of row runs, the table is written, and a secon
   const std::string md = read(work / "table.md"), csv = read(work / "table.csv");
   CHECK_THAT(md, Catch::Contains("| half |"));
   CHECK_THAT(md, Catch::Contains("/ 0.33 |"));  // the seed's number next to ours
+  // The seed's energies are in units it does not state: given apart, not beside ours.
+  CHECK_THAT(md, Catch::Contains("| L_p (J) * |"));
+  CHECK_THAT(md, Catch::Contains("* The seed's L_p (Simulation 1.00e-04) does not compare with ours"));
+  CHECK_THAT(md, !Catch::Contains("/ 1.00e-04"));
   CHECK_THAT(csv, Catch::StartsWith("row,ME,ME_seed,p,p_seed,L_p,L_p_seed,L_st,L_st_seed,e2e_h,e2e_h_seed,infer,infer_seed"));
   // Four rows, each with the values that apply to it.
   std::istringstream lines(csv);

@@ -48,8 +48,9 @@ std::string table_markdown(const ExperimentTable& t) {
   o << "## " << t.title << "\n\n";
   if (!t.note.empty()) o << t.note << "\n\n";
   if (!t.setup.empty()) o << t.setup << "\n\n";
-  o << "Each cell: ours / the seed's (— where the seed has no number or the column does not apply).\n\n| row |";
-  for (const auto& c : t.columns) o << " " << header(c, "") << " |";
+  o << "Each cell: ours / the seed's (— where the seed has no number or the column does not apply); a column marked "
+       "* holds ours alone, because the seed's number there is another quantity (below the table).\n\n| row |";
+  for (const auto& c : t.columns) o << " " << header(c, "") << (column(c).not_as_the_seed ? " *" : "") << " |";
   o << "\n|---|";
   for (std::size_t i = 0; i < t.columns.size(); ++i) o << "---|";
   o << "\n";
@@ -61,11 +62,24 @@ std::string table_markdown(const ExperimentTable& t) {
       const auto seed = t.seed[r].find(c);
       std::string cell = ours == row.values.end() ? "—" : number(ours->second);
       if (c == "infer" && ours != row.values.end()) cell += " " + row.infer_unit;
-      cell += " / ";
-      cell += seed == t.seed[r].end() ? "—" : number(seed->second);
+      if (!column(c).not_as_the_seed) {
+        cell += " / ";
+        cell += seed == t.seed[r].end() ? "—" : number(seed->second);
+      }
       o << " " << cell << " |";
     }
     o << "\n";
+  }
+  // The seed's numbers of the columns that do not compare, apart, with why.
+  for (const auto& c : t.columns) {
+    const ExperimentColumn& col = column(c);
+    if (!col.not_as_the_seed) continue;
+    std::string values;
+    for (std::size_t r = 0; r < t.rows.size(); ++r)
+      if (const auto seed = t.seed[r].find(c); seed != t.seed[r].end())
+        values += (values.empty() ? "" : ", ") + t.rows[r].name + " " + number(seed->second);
+    if (values.empty()) continue;
+    o << "\n* The seed's " << col.header << " (" << values << ") does not compare with ours: " << col.not_as_the_seed << ".\n";
   }
   o << "\nColumns: ";
   for (std::size_t i = 0; i < t.columns.size(); ++i) {

@@ -78,6 +78,9 @@ struct ExperimentRow {
 struct ExperimentColumn {
   std::string name, header, unit;
   const char* doc;
+  // Why the seed's number in this column is not the same quantity as ours
+  // (nullptr: it is): tables then give ours alone and the seed's apart.
+  const char* not_as_the_seed = nullptr;
 };
 // Every column an experiment may ask for, in a fixed order.
 const std::vector<ExperimentColumn>& experiment_columns();
