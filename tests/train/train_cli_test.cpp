@@ -313,3 +313,22 @@ TEST_CASE("the libtorch version of the network trains beside drape's with the sa
   CHECK(test::run(exe.string() + " --batch 2", out) == 2);
   CHECK_THAT(out, Catch::Contains("--data FILE is required"));
 }
+
+TEST_CASE("with the seed's six losses a resumed run (no cached or warm-started closest points) gives the uninterrupted bits",
+          "[train][cli][cache]") {
+  test::TempDir dir;
+  const fs::path data = dir / "data.h5", whole = dir / "whole.h5", resumed = dir / "resumed.h5";
+  test::write_tiny_dataset(data, 10, 8, 2);
+  auto args = [&](const fs::path& out, int epochs) {
+    return "train " + (test::source_dir() / "graphs/drape.yaml").string() + " --data " + data.string() + " --out " +
+           out.string() + " --epochs " + std::to_string(epochs) + " --batch 4 --seed 4 --threads 1 --quiet --k " +
+           std::to_string(test::kTinyK);
+  };
+  std::string out;
+  REQUIRE(test::run(test::drape_command(args(whole, 3)), out) == 0);
+  REQUIRE(test::run(test::drape_command(args(resumed, 1)), out) == 0);
+  REQUIRE(test::run(test::drape_command(args(resumed, 3) + " --resume"), out) == 0);
+  INFO(out);
+  CHECK(weights_of(resumed) == weights_of(whole));
+  CHECK(read_checkpoint(resumed).history.at("train_loss") == read_checkpoint(whole).history.at("train_loss"));
+}
