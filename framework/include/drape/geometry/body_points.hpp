@@ -6,9 +6,8 @@
 // - the ground truth's points depend only on the data: they come from the
 //   process-wide SurfaceCache after the first time a sample is seen, and are
 //   computed exactly as BodySurface::locate finds them otherwise;
-// - the prediction's are searched from the face the same vertex found the last
-//   time the sample was seen (the first time: the ground truth's face), with
-//   NearestTriangles (no normals, a refit of the boxes);
+// - the prediction's are searched from the face found for the same vertex of
+//   the ground truth (NearestTriangles: no normals, a refit of the boxes);
 // - the last prediction's points are kept too, keyed by content like the
 //   ground truth's, so the second loss that asks for the same sample in the
 //   same step finds them.
@@ -39,9 +38,7 @@ class BodyPoints {
   // The closest points of target sample b on body sample b (with signs and normals).
   std::shared_ptr<const Hits> ground_truth(const Tensor& body, const Tensor& target, int b);
   // The closest points of pred sample b on body sample b (unsigned, no normals),
-  // each searched from the face the same vertex found the last time this sample
-  // (the ground truth last given to ground_truth() for b) was seen, else from the
-  // face of the same row of `hints` (ground_truth's).
+  // each searched from the face of the same row of `hints` (ground_truth's).
   std::shared_ptr<const Hits> prediction(const Tensor& body, const Tensor& pred, int b, const Hits& hints);
 
  private:
@@ -53,7 +50,6 @@ class BodyPoints {
   NearestTriangles nearest_;   // unsigned queries, for the prediction
   SurfaceKey surface_body_{}, nearest_body_{};  // which body each holds (a hash of it)
   std::vector<int> last_faces_;                  // the last ground truth's faces: hints for the next
-  std::vector<SurfaceKey> sample_keys_;          // per batch row: the key of its last ground_truth()
 };
 
 // The process-wide cache of the last few predictions' closest points (a ring of
