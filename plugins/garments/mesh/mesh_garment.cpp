@@ -1,0 +1,199 @@
+// A garment from a mesh file (plugin kind "garment", name "mesh"): a user's
+// own garment, modelled around the scene body model's mean shape, in any
+// format drape reads (OBJ, PLY, glTF/GLB), vertex order kept.
+//
+// Material space -- what the cloth's rest lengths and angles are measured in:
+//   uv    the file's per-corner UVs, a sewing pattern, times uv_scale
+//         (metres per UV unit): the T-shirt's convention, and ArcSim's.
+//   rest  the rest 3D shape itself, as HOOD does: each triangle laid flat as
+//         it is in the file (its own corners, so the pattern needs no seams);
+//         for garments whose UVs are a texture atlas, not a pattern.
+// One region, "cloth" (the knit unless the scene's materials say otherwise).
+// Bad input is refused with one line naming the file and the element.
+#include <drape/errors.hpp>
+#include <drape/materials.hpp>
+#include <drape/mesh_io.hpp>
+#include <drape/plugin.hpp>
+
+#include <Eigen/Geometry>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <map>
+#include <string>
+#include <utility>
+
+namespace {
+
+using namespace drape;
+
+struct MeshGarmentOptions {
+  std::string file;
+  std::string material_space = "uv";
+  double uv_scale = 1.0;
+  bool weld = false;
+  double weld_distance = 1e-6;
+};
+
+std::string where(const MeshGarmentOptions& o) { return "garment mesh '" + o.file + "'"; }
+
+// Vertices closer than `distance` to an earlier one: the seams of a garment
+// exported with split vertices. Returns, per vertex, the vertex it merges into
+// (itself when kept).
+std::vector<int> duplicates(const Eigen::MatrixX3d& v, double distance) {
+  std::vector<int> order(static_cast<std::size_t>(v.rows()));
+  for (int i = 0; i < v.rows(); ++i) order[static_cast<std::size_t>(i)] = i;
+  std::sort(order.begin(), order.end(), [&](int a, int b) { return v(a, 0) < v(b, 0) || (v(a, 0) == v(b, 0) && a < b); });
+  std::vector<int> into(static_cast<std::size_t>(v.rows()));
+  for (int i = 0; i < v.rows(); ++i) into[static_cast<std::size_t>(i)] = i;
+  for (std::size_t a = 0; a < order.size(); ++a)
+    for (std::size_t b = a + 1; b < order.size() && v(order[b], 0) - v(order[a], 0) <= distance; ++b) {
+      const int i = order[a], j = order[b];
+      if ((v.row(i) - v.row(j)).norm() <= distance) {
+        const int keep = std::min(into[static_cast<std::size_t>(i)], into[static_cast<std::size_t>(j)]);
+        into[static_cast<std::size_t>(std::max(i, j))] = keep;
+      }
+    }
+  return into;
+}
+
+// Welds split seam vertices (weld: true) or refuses them, naming the first pair.
+void handle_duplicates(Mesh& mesh, const MeshGarmentOptions& o) {
+  const std::vector<int> into = duplicates(mesh.vertices, o.weld_distance);
+  int merged = 0, first = -1;
+  for (int i = 0; i < mesh.num_vertices(); ++i)
+    if (into[static_cast<std::size_t>(i)] != i) {
+      ++merged;
+      if (first < 0) first = i;
+    }
+  if (merged == 0) return;
+  if (!o.weld)
+    throw ConfigError(where(o) + ": " + std::to_string(merged) + " vertices duplicate an earlier one (vertex " +
+                      std::to_string(first) + " sits on vertex " + std::to_string(into[static_cast<std::size_t>(first)]) +
+                      "): a seam exported with split vertices would let the garment fall apart there; set weld: true "
+                      "to merge them (the garment then has fewer vertices than the file)");
+  std::vector<int> index(static_cast<std::size_t>(mesh.num_vertices()), -1);
+  Eigen::MatrixX3d kept(mesh.num_vertices() - merged, 3);
+  int n = 0;
+  for (int i = 0; i < mesh.num_vertices(); ++i)
+    if (into[static_cast<std::size_t>(i)] == i) {
+      index[static_cast<std::size_t>(i)] = n;
+      kept.row(n++) = mesh.vertices.row(i);
+    }
+  for (int f = 0; f < mesh.num_faces(); ++f)
+    for (int c = 0; c < 3; ++c) mesh.faces(f, c) = index[static_cast<std::size_t>(into[static_cast<std::size_t>(mesh.faces(f, c))])];
+  mesh.vertices = kept;
+}
+
+// Cloth must be a 2-manifold: an edge of three or more faces is refused, as is
+// a face that uses a vertex twice.
+void check_manifold(const Mesh& mesh, const MeshGarmentOptions& o) {
+  std::map<std::pair<int, int>, int> edges;
+  for (int f = 0; f < mesh.num_faces(); ++f) {
+    const int a = mesh.faces(f, 0), b = mesh.faces(f, 1), c = mesh.faces(f, 2);
+    if (a == b || b == c || a == c)
+      throw ConfigError(where(o) + ": face " + std::to_string(f) + " uses a vertex twice");
+    for (int k = 0; k < 3; ++k) {
+      const int u = mesh.faces(f, k), v = mesh.faces(f, (k + 1) % 3);
+      if (++edges[{std::min(u, v), std::max(u, v)}] == 3)
+        throw ConfigError(where(o) + ": the edge between vertices " + std::to_string(std::min(u, v)) + " and " +
+                          std::to_string(std::max(u, v)) + " is shared by 3 or more faces (non-manifold); cloth needs "
+                          "every edge on one or two faces");
+    }
+  }
+}
+
+// Per-corner material coordinates (metres) of the rest shape: each triangle
+// laid flat with its first edge along u.
+void rest_shape_material_space(Mesh& mesh) {
+  mesh.uv.resize(3 * mesh.num_faces(), 2);
+  mesh.uv_faces.resize(mesh.num_faces(), 3);
+  for (int f = 0; f < mesh.num_faces(); ++f) {
+    const Eigen::Vector3d p0 = mesh.vertices.row(mesh.faces(f, 0)), p1 = mesh.vertices.row(mesh.faces(f, 1)),
+                          p2 = mesh.vertices.row(mesh.faces(f, 2));
+    const Eigen::Vector3d e1 = p1 - p0, e2 = p2 - p0;
+    const Eigen::Vector3d u = e1.normalized(), n = e1.cross(e2).normalized(), v = n.cross(u);
+    mesh.uv.row(3 * f) << 0, 0;
+    mesh.uv.row(3 * f + 1) << e1.norm(), 0;
+    mesh.uv.row(3 * f + 2) << e2.dot(u), e2.dot(v);
+    mesh.uv_faces.row(f) << 3 * f, 3 * f + 1, 3 * f + 2;
+  }
+}
+
+// Refuses a face whose material-space triangle is degenerate (zero or negative
+// area, or a sliver), naming it: its rest strain would be undefined.
+void check_material_space(const Mesh& mesh, const MeshGarmentOptions& o) {
+  for (int f = 0; f < mesh.num_faces(); ++f) {
+    const Eigen::Vector2d a = mesh.uv.row(mesh.uv_faces(f, 0)), b = mesh.uv.row(mesh.uv_faces(f, 1)),
+                          c = mesh.uv.row(mesh.uv_faces(f, 2));
+    const Eigen::Vector2d e1 = b - a, e2 = c - a;
+    const double area = 0.5 * std::abs(e1.x() * e2.y() - e1.y() * e2.x());
+    const double longest = std::max({e1.norm(), e2.norm(), (c - b).norm()});
+    if (!(area > 1e-4 * longest * longest))
+      throw ConfigError(where(o) + ": face " + std::to_string(f) + " is degenerate in material space (" +
+                        (o.material_space == "uv" ? "its UV triangle" : "its rest triangle") + " has area " +
+                        std::to_string(area) + " m^2 for a longest side of " + std::to_string(longest) +
+                        " m): fix its UVs, or use material_space: rest");
+  }
+}
+
+class MeshGarment final : public GarmentSource {
+ public:
+  explicit MeshGarment(MeshGarmentOptions o) : o_(std::move(o)) {}
+
+  Garment build() const override {
+    if (o_.file.empty() || o_.file == "none") throw ConfigError("garment mesh: give the file, e.g. params: {file: my_skirt.obj}");
+    if (!std::filesystem::exists(o_.file)) throw ConfigError(where(o_) + ": no such file");
+    Garment g;
+    g.mesh = read_mesh(o_.file);
+    if (g.mesh.num_faces() == 0) throw ConfigError(where(o_) + ": has no faces");
+    if (!g.mesh.vertices.allFinite()) throw ConfigError(where(o_) + ": has a non-finite vertex");
+    if (o_.material_space == "uv") {
+      if (!g.mesh.has_uv())
+        throw ConfigError(where(o_) + ": has no UVs (per-corner texture coordinates); give the file a sewing pattern "
+                          "as UVs, or use material_space: rest to measure the cloth on its rest shape");
+      g.mesh.uv *= o_.uv_scale;
+    }
+    handle_duplicates(g.mesh, o_);
+    check_manifold(g.mesh, o_);
+    if (o_.material_space == "rest") rest_shape_material_space(g.mesh);
+    check_material_space(g.mesh, o_);
+    Material cloth = MaterialTable::builtin().get("gray-interlock");
+    cloth.name = "cloth";
+    g.materials = {cloth};
+    return g;
+  }
+
+ private:
+  MeshGarmentOptions o_;
+};
+
+PluginList plugins() {
+  PluginDescriptor d;
+  d.kind = "garment";
+  d.name = "mesh";
+  d.doc = "A garment from a mesh file (OBJ, PLY, glTF/GLB), modelled around the body model's mean shape; material space "
+          "from its UVs (a sewing pattern, uv_scale metres per unit) or its rest shape; one region 'cloth' "
+          "(docs/garments.md).";
+  d.params = {
+      {"file", ParamType::String, "none", "the garment mesh (required; relative to the working folder); its vertex order is kept"},
+      {"material_space", ParamType::String, "uv", "uv: the file's UVs are a sewing pattern; rest: the rest 3D shape",
+       {}, {}, {"uv", "rest"}},
+      {"uv_scale", ParamType::Float, "1.0", "metres per UV unit (material_space: uv)", 1e-6, 1e6},
+      {"weld", ParamType::Bool, "false", "merge vertices that duplicate an earlier one (seams exported split)"},
+  };
+  d.create_garment = [](const Params& p) -> std::unique_ptr<GarmentSource> {
+    MeshGarmentOptions o;
+    o.file = p.get_string("file");
+    o.material_space = p.get_string("material_space");
+    o.uv_scale = p.get_float("uv_scale");
+    o.weld = p.get_bool("weld");
+    return std::make_unique<MeshGarment>(std::move(o));
+  };
+  return {d};
+}
+
+}  // namespace
+
+DRAPE_PLUGIN_EXPORT(plugins)

@@ -1,0 +1,152 @@
+// The `mesh` garment: a user's garment from a file -- here a tube with a sewing
+// pattern as UVs, written by the test -- simulated on the parametric body; and
+// every kind of bad garment refused with one line naming the file and element.
+#include <catch2/catch.hpp>
+
+#include <drape/mesh_io.hpp>
+#include <drape/scene.hpp>
+#include <drape/simulation.hpp>
+
+#include <cmath>
+
+#include "test_support.hpp"
+
+using namespace drape;
+namespace fs = std::filesystem;
+
+namespace {
+
+// An open tube (a skirt) of `around` x `up` quads around the mean body's
+// hips: radius r, from y0 to y1. UVs are its unrolled pattern in metres, so
+// the seam column has its own UVs (a pattern edge sewn to the other).
+Mesh tube(int around = 24, int up = 6, double r = 0.26, double y0 = 0.92, double y1 = 1.1) {
+  Mesh m;
+  m.vertices.resize(around * (up + 1), 3);
+  for (int j = 0; j <= up; ++j)
+    for (int i = 0; i < around; ++i) {
+      const double a = 2 * M_PI * i / around;
+      m.vertices.row(j * around + i) << r * std::sin(a), y0 + (y1 - y0) * j / up, r * std::cos(a);
+    }
+  m.uv.resize((around + 1) * (up + 1), 2);
+  for (int j = 0; j <= up; ++j)
+    for (int i = 0; i <= around; ++i) m.uv.row(j * (around + 1) + i) << 2 * M_PI * r * i / around, (y1 - y0) * j / up;
+  m.faces.resize(2 * around * up, 3);
+  m.uv_faces.resize(2 * around * up, 3);
+  int f = 0;
+  for (int j = 0; j < up; ++j)
+    for (int i = 0; i < around; ++i) {
+      const int a = j * around + i, b = j * around + (i + 1) % around, c = a + around, d = b + around;
+      const int ta = j * (around + 1) + i, tb = ta + 1, tc = ta + around + 1, td = tb + around + 1;
+      m.faces.row(f) << a, b, d;
+      m.uv_faces.row(f++) << ta, tb, td;
+      m.faces.row(f) << a, d, c;
+      m.uv_faces.row(f++) << ta, td, tc;
+    }
+  return m;
+}
+
+std::string scene_text(const fs::path& file, const std::string& extra = "") {
+  return "body: {model: parametric}\n"
+         "garment: {template: mesh, params: {file: " + file.string() + extra + "}}\n"
+         "effects: {gravity: {}, stretching: {}, bending: {}, barrier: {}}\n"
+         "solver: {morph_steps: 2, settle_steps: 6}\n";
+}
+
+std::string build_error(const fs::path& file, const std::string& extra = "") {
+  return test::message_of([&] { Simulation(test::plugins(), parse_scene(scene_text(file, extra))); });
+}
+
+}  // namespace
+
+TEST_CASE("mesh garment: a tube from an OBJ with a UV pattern drapes on the parametric body", "[garments][mesh]") {
+  test::TempDir dir;
+  const Mesh skirt = tube();
+  write_mesh(dir / "skirt.obj", skirt);
+  const Simulation sim(test::plugins(), parse_scene(scene_text(dir / "skirt.obj")));
+  // Vertex order and count kept; the material space is the pattern.
+  REQUIRE(sim.garment().mesh.num_vertices() == skirt.num_vertices());
+  CHECK(sim.garment().mesh.uv.isApprox(skirt.uv, 1e-6));
+  CHECK(sim.garment().materials.size() == 1);
+  CHECK(sim.garment().materials[0].name == "cloth");
+  BodyRequest r;
+  r.bmi = 28;
+  const SimulationResult result = sim.run(sim.body_vertices(sim.shape_for(r)));
+  CHECK(result.garment.allFinite());
+  CHECK(result.penetration == 0);
+  REQUIRE(result.crossings);
+  CHECK(result.crossings->total() == 0);
+  // It fell under gravity and kept its pattern's size: no edge stretched by more than 20 %.
+  CHECK(result.garment.col(1).mean() < skirt.vertices.col(1).mean());
+  double worst = 0;
+  for (int f = 0; f < skirt.num_faces(); ++f)
+    for (int k = 0; k < 3; ++k) {
+      const int a = skirt.faces(f, k), b = skirt.faces(f, (k + 1) % 3);
+      const double rest = (skirt.uv.row(skirt.uv_faces(f, k)) - skirt.uv.row(skirt.uv_faces(f, (k + 1) % 3))).norm();
+      worst = std::max(worst, (result.garment.row(a) - result.garment.row(b)).norm() / rest - 1);
+    }
+  CHECK(worst < 0.2);
+}
+
+TEST_CASE("mesh garment: material space from the rest shape needs no UVs", "[garments][mesh]") {
+  test::TempDir dir;
+  Mesh plain = tube();
+  plain.uv.resize(0, 2);
+  plain.uv_faces.resize(0, 3);
+  write_mesh(dir / "plain.obj", plain);
+  CHECK_THAT(build_error(dir / "plain.obj"), Catch::Contains("plain.obj': has no UVs") && Catch::Contains("material_space: rest"));
+  const Simulation sim(test::plugins(), parse_scene(scene_text(dir / "plain.obj", ", material_space: rest")));
+  // Each rest triangle laid flat: its material-space edges are its 3D edges.
+  const Mesh& m = sim.garment().mesh;
+  REQUIRE(m.has_uv());
+  for (int f = 0; f < m.num_faces(); f += 7)
+    for (int k = 0; k < 3; ++k) {
+      const double uv = (m.uv.row(m.uv_faces(f, k)) - m.uv.row(m.uv_faces(f, (k + 1) % 3))).norm();
+      const double xyz = (plain.vertices.row(plain.faces(f, k)) - plain.vertices.row(plain.faces(f, (k + 1) % 3))).norm();
+      CHECK(uv == Approx(xyz).epsilon(1e-9));
+    }
+}
+
+TEST_CASE("mesh garment: bad garments are refused naming the file and the element", "[garments][mesh]") {
+  test::TempDir dir;
+  SECTION("a seam exported with split vertices: refused, or welded on request") {
+    Mesh split = tube();
+    // Vertex 0's faces get a copy of it appended at the end.
+    const int copy = split.num_vertices();
+    split.vertices.conservativeResize(copy + 1, 3);
+    split.vertices.row(copy) = split.vertices.row(0);
+    for (int f = 0; f < split.num_faces(); f += 2)
+      for (int k = 0; k < 3; ++k)
+        if (split.faces(f, k) == 0) split.faces(f, k) = copy;
+    write_mesh(dir / "split.obj", split);
+    CHECK_THAT(build_error(dir / "split.obj"),
+               Catch::Contains("split.obj': 1 vertices duplicate an earlier one (vertex " + std::to_string(copy) + " sits on vertex 0)"));
+    const Simulation sim(test::plugins(), parse_scene(scene_text(dir / "split.obj", ", weld: true")));
+    CHECK(sim.garment().mesh.num_vertices() == copy);
+  }
+  SECTION("an edge of three faces") {
+    Mesh fin = tube();
+    const int n = fin.num_vertices();
+    fin.vertices.conservativeResize(n + 1, 3);
+    fin.vertices.row(n) << 0.0, 1.3, 0.6;
+    fin.faces.conservativeResize(fin.num_faces() + 1, 3);
+    // Along face 0's edge b-d, which faces 0 and 3 already share.
+    fin.faces.row(fin.num_faces() - 1) << fin.faces(0, 1), fin.faces(0, 2), n;
+    fin.uv_faces.conservativeResize(fin.faces.rows(), 3);
+    fin.uv_faces.row(fin.faces.rows() - 1) << 0, 1, 30;
+    write_mesh(dir / "fin.obj", fin);
+    CHECK_THAT(build_error(dir / "fin.obj"), Catch::Contains("fin.obj': the edge between vertices") && Catch::Contains("non-manifold"));
+  }
+  SECTION("a degenerate UV triangle") {
+    Mesh flat = tube();
+    flat.uv.row(flat.uv_faces(5, 2)) = flat.uv.row(flat.uv_faces(5, 0));
+    write_mesh(dir / "flat.obj", flat);
+    CHECK_THAT(build_error(dir / "flat.obj"), Catch::Contains("flat.obj': face ") && Catch::Contains("degenerate in material space"));
+  }
+  SECTION("a missing file, and none given") {
+    CHECK_THAT(build_error(dir / "nowhere.obj"), Catch::Contains("nowhere.obj': no such file"));
+    CHECK_THAT(test::message_of([&] {
+                 Simulation(test::plugins(), parse_scene("body: {model: parametric}\ngarment: {template: mesh}\neffects: [gravity]\n"));
+               }),
+               Catch::Contains("garment mesh: give the file"));
+  }
+}
