@@ -22,6 +22,8 @@ int run(const std::vector<std::string>& args) {
       "size", po::value<std::string>(), "garment size (tshirt: regular | small)")(
       "resolution", po::value<std::string>(), "garment resolution (tshirt: default | coarse | a vertex count)")(
       "print", "add the front print material region")(
+      "garment-param", po::value<std::vector<std::string>>()->composing(),
+      "any parameter of the garment plugin, name=value (repeatable), e.g. file=skirt.obj for --garment mesh")(
       "k", po::value<int>()->default_value(1000), "eigenvectors of the spectral basis")(
       "levels", po::value<int>()->default_value(4), "hierarchy levels including the garment")(
       "cache-dir", po::value<std::string>(), "cache folder (default $DRAPE_CACHE_DIR or ~/.cache/drape)")(
@@ -41,6 +43,12 @@ int run(const std::vector<std::string>& args) {
   if (vm.count("size")) spec.garment_params["size"] = vm["size"].as<std::string>();
   if (vm.count("resolution")) spec.garment_params["resolution"] = vm["resolution"].as<std::string>();
   if (vm.count("print")) spec.garment_params["print"] = "true";
+  if (vm.count("garment-param"))
+    for (const auto& item : vm["garment-param"].as<std::vector<std::string>>()) {
+      const auto eq = item.find('=');
+      if (eq == std::string::npos || eq == 0) throw UsageError("--garment-param wants name=value, got '" + item + "'");
+      spec.garment_params[item.substr(0, eq)] = item.substr(eq + 1);
+    }
   spec.eigen_k = vm["k"].as<int>();
   spec.levels = vm["levels"].as<int>();
   const std::filesystem::path cache =

@@ -150,3 +150,17 @@ TEST_CASE("mesh garment: bad garments are refused naming the file and the elemen
                Catch::Contains("garment mesh: give the file"));
   }
 }
+
+TEST_CASE("mesh garment: drape assets builds its correspondences, hierarchy and eigenbasis", "[garments][mesh][cli]") {
+  test::TempDir dir;
+  write_mesh(dir / "skirt.obj", tube());
+  std::string out;
+  REQUIRE(test::run(test::drape_program().string() + " assets --garment mesh --garment-param file=" +
+                        (dir / "skirt.obj").string() + " --k 20 --no-cache",
+                    out) == 0);
+  INFO(out);
+  CHECK_THAT(out, Catch::Contains("garment  mesh: 168 vertices, 288 faces"));
+  CHECK_THAT(out, Catch::Contains("spectral: k = 20"));
+  CHECK(test::run(test::drape_program().string() + " assets --garment mesh --garment-param file", out) == 2);
+  CHECK_THAT(out, Catch::Contains("--garment-param wants name=value"));
+}
