@@ -8,6 +8,7 @@
 #include <drape/simulation.hpp>
 
 #include <cmath>
+#include <fstream>
 
 #include "test_support.hpp"
 
@@ -163,4 +164,34 @@ TEST_CASE("mesh garment: drape assets builds its correspondences, hierarchy and 
   CHECK_THAT(out, Catch::Contains("spectral: k = 20"));
   CHECK(test::run(test::drape_program().string() + " assets --garment mesh --garment-param file", out) == 2);
   CHECK_THAT(out, Catch::Contains("--garment-param wants name=value"));
+}
+
+TEST_CASE("mesh garment: an OBJ's usemtl groups are material regions the scene names", "[garments][mesh]") {
+  test::TempDir dir;
+  const Mesh skirt = tube();
+  write_mesh(dir / "plain.obj", skirt);
+  // The same file with the first half of its faces in 'panel' and the rest in 'print'.
+  std::ifstream in(dir / "plain.obj");
+  std::ofstream out(dir / "regions.obj");
+  int faces = 0;
+  for (std::string line; std::getline(in, line);) {
+    if (line.rfind("f ", 0) == 0) {
+      if (faces == 0) out << "usemtl panel\n";
+      if (faces == skirt.num_faces() / 2) out << "usemtl print\n";
+      ++faces;
+    }
+    out << line << "\n";
+  }
+  out.close();
+  const Scene scene = parse_scene(scene_text(dir / "regions.obj") + "materials: {print: screen-print}\n");
+  const Simulation sim(test::plugins(), scene);
+  const Garment& g = sim.garment();
+  REQUIRE(g.materials.size() == 2);
+  CHECK(g.materials[0].name == "panel");
+  CHECK(g.materials[1].name == "print");
+  CHECK(g.materials[1].density > g.materials[0].density);  // the print is the heavier cloth
+  CHECK(g.material_of(0) == 0);
+  CHECK(g.material_of(skirt.num_faces() - 1) == 1);
+  CHECK_THAT(test::message_of([&] { Simulation(test::plugins(), parse_scene(scene_text(dir / "regions.obj") + "materials: {sleeve: screen-print}\n")); }),
+             Catch::Contains("has no region 'sleeve'") && Catch::Contains("panel, print"));
 }

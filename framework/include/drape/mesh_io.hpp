@@ -40,6 +40,9 @@ struct PolygonMesh {
   std::vector<std::string> group_names; // distinct names, in order of first use by a face;
                                         // faces before any g/o are in group "default"
   std::vector<int> face_group;          // per face, index into group_names
+  std::vector<std::string> material_names; // `usemtl` names in order of first use by a face;
+                                           // faces before any usemtl are in material "default"
+  std::vector<int> face_material;       // per face, index into material_names
 
   int num_vertices() const { return static_cast<int>(vertices.rows()); }
   int num_faces() const { return static_cast<int>(face_start.size()) - 1; }

@@ -96,6 +96,9 @@ struct ObjParser {
   std::unordered_map<std::string, int> group_index;
   std::string group = "default";
   int group_id = -1;  // looked up when the first face of the group comes
+  std::unordered_map<std::string, int> material_index;
+  std::string material = "default";
+  int material_id = -1;  // the same for `usemtl`
   int first_face_line = 0;
   bool faces_have_uv = false;
 
@@ -150,6 +153,12 @@ struct ObjParser {
       group_id = it->second;
     }
     out.face_group.push_back(group_id);
+    if (material_id < 0) {
+      const auto [it, added] = material_index.try_emplace(material, static_cast<int>(out.material_names.size()));
+      if (added) out.material_names.push_back(material);
+      material_id = it->second;
+    }
+    out.face_material.push_back(material_id);
   }
 
   void parse(const std::string& text) {
@@ -174,8 +183,12 @@ struct ObjParser {
         const std::string_view name = c.rest();
         group = name.empty() ? "default" : std::string(name);
         group_id = -1;
+      } else if (key == "usemtl") {
+        const std::string_view name = c.rest();
+        material = name.empty() ? "default" : std::string(name);
+        material_id = -1;
       }
-      // vn, s, usemtl, mtllib, l, p and unknown statements carry nothing we keep.
+      // vn, s, mtllib, l, p and unknown statements carry nothing we keep.
     }
     finish();
   }

@@ -8,7 +8,8 @@
 //   rest  the rest 3D shape itself, as HOOD does: each triangle laid flat as
 //         it is in the file (its own corners, so the pattern needs no seams);
 //         for garments whose UVs are a texture atlas, not a pattern.
-// One region, "cloth" (the knit unless the scene's materials say otherwise).
+// Material regions: an OBJ's `usemtl` groups, by name, or one region "cloth";
+// each is the knit unless the scene's materials say otherwise.
 // Bad input is refused with one line naming the file and the element.
 #include <drape/errors.hpp>
 #include <drape/materials.hpp>
@@ -147,6 +148,19 @@ class MeshGarment final : public GarmentSource {
     if (!std::filesystem::exists(o_.file)) throw ConfigError(where(o_) + ": no such file");
     Garment g;
     g.mesh = read_mesh(o_.file);
+    // Material regions: an OBJ's `usemtl` groups (one region "cloth" otherwise).
+    std::vector<std::string> regions{"cloth"};
+    Eigen::VectorXi face_region;
+    if (std::filesystem::path(o_.file).extension() == ".obj") {
+      const PolygonMesh polygons = read_obj_polygons(o_.file);
+      if (polygons.material_names.size() > 1) {
+        regions = polygons.material_names;
+        face_region.resize(g.mesh.num_faces());
+        int t = 0;  // read_mesh splits polygon f into face_size(f) - 2 consecutive triangles
+        for (int f = 0; f < polygons.num_faces(); ++f)
+          for (int k = 0; k < polygons.face_size(f) - 2; ++k) face_region[t++] = polygons.face_material[static_cast<std::size_t>(f)];
+      }
+    }
     if (g.mesh.num_faces() == 0) throw ConfigError(where(o_) + ": has no faces");
     if (!g.mesh.vertices.allFinite()) throw ConfigError(where(o_) + ": has a non-finite vertex");
     if (o_.material_space == "uv") {
@@ -159,9 +173,14 @@ class MeshGarment final : public GarmentSource {
     check_manifold(g.mesh, o_);
     if (o_.material_space == "rest") rest_shape_material_space(g.mesh);
     check_material_space(g.mesh, o_);
-    Material cloth = MaterialTable::builtin().get("gray-interlock");
-    cloth.name = "cloth";
-    g.materials = {cloth};
+    // Every region starts as the knit; the scene's `materials:` names each
+    // region's cloth (materials: {print: screen-print}).
+    for (const std::string& region : regions) {
+      Material m = MaterialTable::builtin().get("gray-interlock");
+      m.name = region;
+      g.materials.push_back(m);
+    }
+    g.face_material = face_region;
     return g;
   }
 
