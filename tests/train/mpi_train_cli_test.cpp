@@ -95,8 +95,10 @@ TEST_CASE("mpirun -np 2 drape train: the weights of one process on the same glob
   // mean of part means instead of one mean): a relative 1e-7 per gradient,
   // which Adam turns into weight differences of about lr * 1e-7 per step, far
   // below 1e-5 after 9 steps. A mistake in the combination (a part dropped or
-  // counted twice, a wrong share) moves weights by about lr = 3e-3 a step, as
-  // training on other batches does -- checked below to be far outside.
+  // counted twice, a wrong share) turns the gradient as training on other
+  // batches does, which moves weights by far more -- checked below. (A uniform
+  // scale of every part would not show here, Adam normalises it away; the
+  // bit-for-bit comparison with 2 threads above catches it.)
   const Weights one = weights_of(dir / "threads1.h5");
   CHECK(max_difference(mpi, one) < 1e-5);
   REQUIRE(test::run(test::drape_command(train_args(data, dir / "batch4.h5", "--threads 1", 4)), out) == 0);
