@@ -25,16 +25,11 @@
 namespace drape::cli {
 namespace {
 
-constexpr double kDensity = 985.0;  // kg/m^3: the seed's BMI from the mesh volume
-
 struct Measured {
   double bmi, height;
 };
 
-Measured measure(const Eigen::MatrixX3d& v, const Eigen::MatrixX3i& f) {
-  const double h = v.col(1).maxCoeff() - v.col(1).minCoeff();
-  return {geometry::mesh_volume(v, f) * kDensity / (h * h), h};
-}
+Measured measure(const Eigen::MatrixX3d& v, const Eigen::MatrixX3i& f) { return {geometry::body_bmi(v, f), geometry::body_height(v)}; }
 
 Mesh body_mesh(const BodyModel& body, const Eigen::VectorXd& shape) {
   Mesh m;

@@ -43,11 +43,6 @@ struct ModelDomain {
   std::size_t samples = 0;
 };
 
-// Height (y extent, m) and BMI (enclosed volume * 985 kg/m^3 / height^2, the
-// project's definition) of a body mesh.
-double body_height(const Eigen::MatrixX3d& vertices);
-double body_bmi(const Eigen::MatrixX3d& vertices, const Eigen::MatrixX3i& faces);
-
 // The domain of a dataset's training split (its done samples with split
 // train). ConfigError when it has none.
 ModelDomain domain_of_dataset(const DatasetReader& data, const std::string& body_model,

@@ -22,4 +22,12 @@ double mesh_area(const Eigen::MatrixX3d& vertices, const Eigen::MatrixX3i& faces
   return twice_area / 2.0;
 }
 
+double body_height(const Eigen::MatrixX3d& vertices) { return vertices.col(1).maxCoeff() - vertices.col(1).minCoeff(); }
+
+double body_bmi(const Eigen::MatrixX3d& vertices, const Eigen::MatrixX3i& faces) {
+  constexpr double kBodyDensity = 985.0;  // kg/m^3
+  const double h = body_height(vertices);
+  return mesh_volume(vertices, faces) * kBodyDensity / (h * h);
+}
+
 }  // namespace drape::geometry

@@ -13,6 +13,9 @@
 
 namespace drape {
 
+using geometry::body_bmi;
+using geometry::body_height;
+
 namespace {
 
 // About this many body vertices describe a body's shape: enough to tell a
@@ -68,13 +71,6 @@ std::vector<std::string> split_names(const std::string& joined) {
 }
 
 }  // namespace
-
-double body_height(const Eigen::MatrixX3d& vertices) { return vertices.col(1).maxCoeff() - vertices.col(1).minCoeff(); }
-
-double body_bmi(const Eigen::MatrixX3d& vertices, const Eigen::MatrixX3i& faces) {
-  const double h = body_height(vertices);
-  return geometry::mesh_volume(vertices, faces) * 985.0 / (h * h);
-}
 
 ModelDomain domain_of_dataset(const DatasetReader& data, const std::string& body_model,
                               const std::vector<std::string>& param_names, const Eigen::MatrixX3i& body_faces) {
@@ -132,19 +128,18 @@ double distance_to_training(const ModelDomain& domain, const Eigen::MatrixX3d& b
 std::vector<std::string> domain_violations(const ModelDomain& domain, const Eigen::MatrixX3d& body,
                                            const Eigen::MatrixX3i& faces, const Eigen::VectorXd* params) {
   std::vector<std::string> out;
-  // A little slack on the measured ranges: the same body measured again
-  // (another mesh writer's rounding) must not fall out.
-  auto slack = [](ValueRange r, double s) { return ValueRange{r.min - s, r.max + s}; };
+  // Each range with a little slack: the same body measured again (another
+  // mesh writer's rounding) must not fall out.
+  auto within = [](double v, const ValueRange& r, double slack) { return v >= r.min - slack && v <= r.max + slack; };
   const double h = body_height(body), bmi = body_bmi(body, faces);
-  if (h < slack(domain.height, 0.005).min || h > slack(domain.height, 0.005).max)
-    out.push_back(outside("height", h, domain.height, " m"));
-  if (bmi < slack(domain.bmi, 0.1).min || bmi > slack(domain.bmi, 0.1).max) out.push_back(outside("BMI", bmi, domain.bmi, ""));
+  if (!within(h, domain.height, 0.005)) out.push_back(outside("height", h, domain.height, " m"));
+  if (!within(bmi, domain.bmi, 0.1)) out.push_back(outside("BMI", bmi, domain.bmi, ""));
   if (params && static_cast<std::size_t>(params->size()) == domain.params.size())
     for (std::size_t p = 0; p < domain.params.size(); ++p) {
       const double v = (*params)(static_cast<Eigen::Index>(p));
       const ValueRange& r = domain.params[p];
-      const double s = 1e-6 * std::max(1.0, r.max - r.min);
-      if (v < r.min - s || v > r.max + s) out.push_back(outside("shape parameter '" + domain.param_names[p] + "'", v, r, ""));
+      if (!within(v, r, 1e-6 * std::max(1.0, r.max - r.min)))
+        out.push_back(outside("shape parameter '" + domain.param_names[p] + "'", v, r, ""));
     }
   if (!domain.descriptor_vertices.empty() && domain.descriptors.rows() > 0 &&
       domain.descriptor_vertices.back() < body.rows()) {

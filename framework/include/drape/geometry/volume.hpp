@@ -10,4 +10,9 @@ double mesh_volume(const Eigen::MatrixX3d& vertices, const Eigen::MatrixX3i& fac
 
 double mesh_area(const Eigen::MatrixX3d& vertices, const Eigen::MatrixX3i& faces);
 
+// A body mesh's height (its y extent, m) and BMI as the project measures it
+// from the mesh, as the seed does: enclosed volume * 985 kg/m^3 / height^2.
+double body_height(const Eigen::MatrixX3d& vertices);
+double body_bmi(const Eigen::MatrixX3d& vertices, const Eigen::MatrixX3i& faces);
+
 }  // namespace drape::geometry
