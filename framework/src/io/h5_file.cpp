@@ -184,12 +184,12 @@ File File::open(const fs::path& path, Access access) {
   if (!fs::exists(path, ec)) throw ConfigError(path.string() + ": no such file");
   if (fs::is_directory(path, ec)) throw ConfigError(path.string() + ": is a folder, not an HDF5 file");
   // The checksum first: HDF5 must never parse a damaged file (h5_seal.hpp).
-  seal::verify(path);
+  const bool sealed = seal::verify(path);
   if (!is_hdf5(path)) throw ConfigError(path.string() + ": not an HDF5 file");
   auto impl = std::make_unique<Impl>();
   impl->path = path;
   impl->writable = access == Access::ReadWrite;
-  if (impl->writable && seal::state(path) == seal::State::Sealed) {
+  if (impl->writable && sealed) {
     // Written to, the checksum goes stale: cleared now, written again by close().
     seal::unseal(path);
     impl->sealed = true;

@@ -108,9 +108,9 @@ State state(const std::filesystem::path& path) {
   return State::Unsealed;
 }
 
-void verify(const std::filesystem::path& path) {
+bool verify(const std::filesystem::path& path) {
   const State s = state(path);
-  if (s == State::Unsealed) return;
+  if (s == State::Unsealed) return false;
   const std::string corrupt = path.string() + ": is corrupt: ";
   if (s == State::Damaged) throw ConfigError(corrupt + "its checksum header is damaged");
   Fd f{::open(path.c_str(), O_RDONLY | O_CLOEXEC)};
@@ -131,6 +131,7 @@ void verify(const std::filesystem::path& path) {
                       " bytes, its checksum covers " + std::to_string(kUserBlock + length));
   if (crc_of(f.fd, kUserBlock, length, path) != crc)
     throw ConfigError(corrupt + "its contents do not match the checksum written with it (damaged on disk or in transfer)");
+  return true;
 }
 
 void seal(const std::filesystem::path& path) {
@@ -152,7 +153,6 @@ void seal(const std::filesystem::path& path) {
 }
 
 void unseal(const std::filesystem::path& path) {
-  if (state(path) != State::Sealed) return;
   Fd f{::open(path.c_str(), O_RDWR | O_CLOEXEC)};
   if (f.fd < 0) throw Error(system_error(path, "cannot open to clear its checksum"));
   const std::array<char, kUserBlock> zeros{};

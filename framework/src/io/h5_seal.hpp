@@ -25,13 +25,14 @@ enum class State {
 State state(const std::filesystem::path& path);
 
 // ConfigError naming the file when it is sealed and its bytes, length or
-// header do not match; nothing for an unsealed file.
-void verify(const std::filesystem::path& path);
+// header do not match. True for a sealed file that matches, false for an
+// unsealed one.
+bool verify(const std::filesystem::path& path);
 
 // Writes the header of a closed file created with a user block; fsyncs.
 void seal(const std::filesystem::path& path);
 
-// Zeros the header of a sealed file (before it is opened for writing).
+// Zeros the header of a file verify() found sealed (before it is opened for writing).
 void unseal(const std::filesystem::path& path);
 
 }  // namespace drape::h5::seal
