@@ -143,6 +143,11 @@ TEST_CASE("mesh garment: bad garments are refused naming the file and the elemen
     write_mesh(dir / "flat.obj", flat);
     CHECK_THAT(build_error(dir / "flat.obj"), Catch::Contains("flat.obj': face ") && Catch::Contains("degenerate in material space"));
   }
+  SECTION("a material space it does not know, and a scale out of range") {
+    write_mesh(dir / "skirt.obj", tube());
+    CHECK_THAT(build_error(dir / "skirt.obj", ", material_space: sideways"), Catch::Contains("material_space") && Catch::Contains("uv"));
+    CHECK_THAT(build_error(dir / "skirt.obj", ", uv_scale: 0"), Catch::Contains("uv_scale"));
+  }
   SECTION("a missing file, and none given") {
     CHECK_THAT(build_error(dir / "nowhere.obj"), Catch::Contains("nowhere.obj': no such file"));
     CHECK_THAT(test::message_of([&] {

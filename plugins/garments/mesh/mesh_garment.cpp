@@ -147,16 +147,20 @@ class MeshGarment final : public GarmentSource {
     if (o_.file.empty() || o_.file == "none") throw ConfigError("garment mesh: give the file, e.g. params: {file: my_skirt.obj}");
     if (!std::filesystem::exists(o_.file)) throw ConfigError(where(o_) + ": no such file");
     Garment g;
-    g.mesh = read_mesh(o_.file);
-    // Material regions: an OBJ's `usemtl` groups (one region "cloth" otherwise).
+    // Material regions: an OBJ's `usemtl` groups (one region "cloth" otherwise),
+    // from the polygons the triangles are made of (read once: read_mesh of an
+    // OBJ is triangulate(read_obj_polygons)).
     std::vector<std::string> regions{"cloth"};
     Eigen::VectorXi face_region;
-    if (std::filesystem::path(o_.file).extension() == ".obj") {
+    if (std::filesystem::path(o_.file).extension() != ".obj") {
+      g.mesh = read_mesh(o_.file);
+    } else {
       const PolygonMesh polygons = read_obj_polygons(o_.file);
+      g.mesh = triangulate(polygons);
       if (polygons.material_names.size() > 1) {
         regions = polygons.material_names;
         face_region.resize(g.mesh.num_faces());
-        int t = 0;  // read_mesh splits polygon f into face_size(f) - 2 consecutive triangles
+        int t = 0;  // triangulate splits polygon f into face_size(f) - 2 consecutive triangles
         for (int f = 0; f < polygons.num_faces(); ++f)
           for (int k = 0; k < polygons.face_size(f) - 2; ++k) face_region[t++] = polygons.face_material[static_cast<std::size_t>(f)];
       }
@@ -193,8 +197,8 @@ PluginList plugins() {
   d.kind = "garment";
   d.name = "mesh";
   d.doc = "A garment from a mesh file (OBJ, PLY, glTF/GLB), modelled around the body model's mean shape; material space "
-          "from its UVs (a sewing pattern, uv_scale metres per unit) or its rest shape; one region 'cloth' "
-          "(docs/garments.md).";
+          "from its UVs (a sewing pattern, uv_scale metres per unit) or its rest shape; material regions from an OBJ's "
+          "usemtl groups, else one region 'cloth' (docs/garments.md).";
   d.params = {
       {"file", ParamType::String, "none", "the garment mesh (required; relative to the working folder); its vertex order is kept"},
       {"material_space", ParamType::String, "uv", "uv: the file's UVs are a sewing pattern; rest: the rest 3D shape",
