@@ -13,10 +13,10 @@ namespace drape {
 
 namespace {
 
-// The checkpoint `from` written anew to `to` in the current format (sealed,
-// fixed-length strings), whatever format it was written in.
-void rewrite_checkpoint(const fs::path& from, const fs::path& to) {
-  const Checkpoint c = read_checkpoint(from);
+// The checkpoint `from` (its non-weight part `c` already read) written anew
+// to `to` in the current format (sealed, fixed-length strings), whatever
+// format it was written in.
+void rewrite_checkpoint(const fs::path& from, const Checkpoint& c, const fs::path& to) {
   const h5::File source = h5::File::open(from);
   const std::vector<std::string> names = source.datasets_below("/weights");
   std::vector<Weight> weights(names.size());
@@ -35,16 +35,21 @@ void rewrite_checkpoint(const fs::path& from, const fs::path& to) {
 
 ModelDomain record_model_domain(const Registry& registry, const fs::path& model_file, const fs::path& data_file,
                                 const fs::path& out) {
-  const Model model = Model::load(registry, model_file);
+  // Only the body model is needed, not the garment's assets or the graph.
+  const Checkpoint checkpoint = read_checkpoint(model_file);
+  const auto assets = checkpoint.meta.find("assets");
+  if (assets == checkpoint.meta.end())
+    throw ConfigError(model_file.string() + ": not a drape model (no meta 'assets' naming its body model)");
+  const AssetsSpec spec = parse_assets_spec(assets->second, model_file.string() + " meta 'assets'");
+  const std::unique_ptr<BodyModel> body = make_body_model(registry, spec);
   const DatasetReader data(data_file);
-  if (data.layout().body_vertices != model.assets().body.num_vertices())
+  if (data.layout().body_vertices != body->num_vertices())
     throw ConfigError(data_file.string() + ": its bodies have " + std::to_string(data.layout().body_vertices) +
-                      " vertices; the model's body model has " + std::to_string(model.assets().body.num_vertices()));
-  ModelDomain d = domain_of_dataset(data, model.assets_spec().body_model, model.body_model().shape_names(),
-                                    model.assets().body.faces);
+                      " vertices; the model's body model has " + std::to_string(body->num_vertices()));
+  ModelDomain d = domain_of_dataset(data, spec.body_model, body->shape_names(), body->faces());
   d.source = data_file.filename().string();
   write_atomically(out, [&](const fs::path& tmp) {
-    rewrite_checkpoint(model_file, tmp);
+    rewrite_checkpoint(model_file, checkpoint, tmp);
     h5::File f = h5::File::open(tmp, h5::Access::ReadWrite);
     write_domain(f, d);
     f.close();
