@@ -139,9 +139,7 @@ int run(const std::vector<std::string>& args) {
       request.sex = sex.lo == sex.hi ? sex.lo : (rng.uniform() < 0.5 ? sex.lo : sex.hi);
       // Drawn after the rest, and only with a spread, so a seed without
       // girths draws the bodies it always drew.
-      if (girths > 0)
-        for (const BodyModel::Proportion& p : sim.body_model().proportions())
-          request.proportions[p.name] = girths * rng.uniform(p.min, p.max);
+      if (girths > 0) draw_proportions(girths, sim.body_model(), rng, request);
       const Eigen::VectorXd shape = solve_in_space(sim.body_model(), request);
       const SimulationResult r = sim.run(sim.body_vertices(shape));
       DatasetSample s;

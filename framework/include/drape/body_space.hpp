@@ -25,6 +25,10 @@ struct BodySpace {
 // i of a seed keeps its draws when one range changes.
 BodyRequest draw_body(const BodySpace& space, const BodyModel& model, Rng& rng);
 
+// The proportions part of that draw alone: each of the model's proportions
+// uniform over `spread` of its range, one draw each; none when spread is 0.
+void draw_proportions(double spread, const BodyModel& model, Rng& rng, BodyRequest& request);
+
 // The shape that reaches the request. Proportions with which the model cannot
 // reach the BMI (a very lean build at BMI 65) are halved towards the mean
 // build until it can, at most four times, then dropped; `halvings` tells how

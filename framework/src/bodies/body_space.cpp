@@ -14,12 +14,15 @@ BodyRequest draw_body(const BodySpace& space, const BodyModel& model, Rng& rng) 
   r.bmi = space.bmi_lo + (space.bmi_hi - space.bmi_lo) * b;
   r.height = space.height_lo + (space.height_hi - space.height_lo) * h;
   r.sex = space.sex_lo == space.sex_hi ? space.sex_lo : (s < 0.5 ? space.sex_lo : space.sex_hi);
+  draw_proportions(space.proportion_spread, model, rng, r);
+  return r;
+}
+
+void draw_proportions(double spread, const BodyModel& model, Rng& rng, BodyRequest& request) {
   for (const BodyModel::Proportion& p : model.proportions()) {
     const double u = rng.uniform();
-    const double lo = space.proportion_spread * p.min, hi = space.proportion_spread * p.max;
-    if (space.proportion_spread > 0) r.proportions[p.name] = lo + (hi - lo) * u;
+    if (spread > 0) request.proportions[p.name] = spread * (p.min + (p.max - p.min) * u);
   }
-  return r;
 }
 
 Eigen::VectorXd solve_in_space(const BodyModel& model, BodyRequest& request, int* halvings) {
