@@ -38,16 +38,7 @@ class PyBodyModel {
 
   // The shape vector that reaches the request with the named proportions (girths) held, as drape body --girth.
   Eigen::VectorXd solve(double bmi, double height, double sex, const py::dict& girths) const {
-    BodyRequest request;
-    request.bmi = bmi;
-    request.height = height;
-    request.sex = sex;
-    for (const auto& [key, value] : girths) {
-      if (!py::isinstance<py::float_>(value) && !py::isinstance<py::int_>(value))
-        throw py::value_error(key.cast<std::string>() + ": expected a number (a proportion of body model '" + name_ +
-                              "'), got " + py::str(py::type::of(value)).cast<std::string>());
-      request.proportions[key.cast<std::string>()] = value.cast<double>();
-    }
+    const BodyRequest request = body_request(bmi, height, sex, girths, name_);
     py::gil_scoped_release release;
     return model_->solve(request);  // ConfigError naming the proportions the model takes, or their range
   }

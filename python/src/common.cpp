@@ -130,4 +130,18 @@ void register_errors(py::module_& m) {
   });
 }
 
+BodyRequest body_request(double bmi, double height, double sex, const py::dict& girths, const std::string& model_name) {
+  BodyRequest request;
+  request.bmi = bmi;
+  request.height = height;
+  request.sex = sex;
+  for (const auto& [key, value] : girths) {
+    if (!py::isinstance<py::float_>(value) && !py::isinstance<py::int_>(value))
+      throw py::value_error(key.cast<std::string>() + ": expected a number (a proportion of body model '" + model_name +
+                            "'), got " + py::str(py::type::of(value)).cast<std::string>());
+    request.proportions[key.cast<std::string>()] = value.cast<double>();
+  }
+  return request;
+}
+
 }  // namespace drape::python

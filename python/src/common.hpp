@@ -37,6 +37,10 @@ Eigen::MatrixX3d vertices_arg(const py::handle& value, const std::string& name, 
 // [n, rows, 3]; `batched` says which was given.
 Tensor vertices_batch_arg(const py::handle& value, const std::string& name, int rows, bool* batched);
 
+// A body request from Python's arguments: keywords are proportions (girths)
+// held while the BMI is reached; ValueError for one that is not a number.
+BodyRequest body_request(double bmi, double height, double sex, const py::dict& girths, const std::string& model_name);
+
 // Arrays that keep drape's buffers alive through a capsule: no copy.
 py::array_t<float> to_numpy(Tensor&& t, bool drop_batch);
 py::array_t<double> to_numpy(Eigen::MatrixX3d&& m);  // [N, 3], column-major strides (Fortran order)

@@ -122,15 +122,6 @@ py::dict result_dict(PhysicsOptimizationResult&& r) {
   return d;
 }
 
-BodyRequest request(double bmi, double height, double sex, const py::kwargs& girths) {
-  BodyRequest r;
-  r.bmi = bmi;
-  r.height = height;
-  r.sex = sex;
-  for (const auto& [key, value] : girths) r.proportions[key.cast<std::string>()] = value.cast<double>();
-  return r;
-}
-
 py::array weight_view(py::object self, Tensor& t) {
   // Writable: an optimiser (the PyTorch bridge's) steps drape's weights in place.
   return py::array_t<float>({static_cast<py::ssize_t>(t.rows()), static_cast<py::ssize_t>(t.cols())}, t.data(), self);
@@ -180,7 +171,7 @@ void register_model(py::module_& m) {
       .def(
           "body",
           [](PyModel& p, double bmi, double height, double sex, const py::kwargs& girths) {
-            const BodyRequest r = request(bmi, height, sex, girths);
+            const BodyRequest r = body_request(bmi, height, sex, girths, p.model().assets_spec().body_model);
             SampleBatch b;
             {
               py::gil_scoped_release release;
@@ -193,7 +184,7 @@ void register_model(py::module_& m) {
       .def(
           "body_params",
           [](PyModel& p, double bmi, double height, double sex, const py::kwargs& girths) {
-            const BodyRequest r = request(bmi, height, sex, girths);
+            const BodyRequest r = body_request(bmi, height, sex, girths, p.model().assets_spec().body_model);
             SampleBatch b;
             {
               py::gil_scoped_release release;
