@@ -12,7 +12,9 @@
 
 #include <catch2/catch.hpp>
 
+#include <limits>
 #include <random>
+#include <utility>
 
 using drape::Mesh;
 using namespace drape::geometry;
@@ -94,6 +96,64 @@ TEST_CASE("nearest triangles and hinted searches find the exhaustive search's cl
   CHECK_THROWS_WITH(nearest.nearest_all(points, std::vector<int>(3, 0)), Catch::Contains("3 hints for 20 points"));
   CHECK_THROWS_WITH(nearest.update(Eigen::MatrixX3d::Zero(4, 3)), Catch::Contains("4 vertices given"));
   CHECK_THROWS_WITH(NearestTriangles(m.vertices, Eigen::MatrixX3i::Constant(1, 3, 99999)), Catch::Contains("face 0 uses vertex 99999"));
+}
+
+namespace {
+
+// The argmin of (distance, face) over every face, by brute force.
+std::pair<int, Eigen::Vector3d> exhaustive_nearest(const Mesh& m, const Eigen::Vector3d& p) {
+  int best_face = -1;
+  double best = std::numeric_limits<double>::infinity();
+  Eigen::Vector3d best_point = Eigen::Vector3d::Zero();
+  for (int f = 0; f < m.num_faces(); ++f) {
+    const TrianglePoint q = closest_point_on_triangle(p, m.vertices.row(m.faces(f, 0)).transpose(),
+                                                      m.vertices.row(m.faces(f, 1)).transpose(),
+                                                      m.vertices.row(m.faces(f, 2)).transpose());
+    const double d2 = (q.point - p).squaredNorm();
+    if (d2 < best) best = d2, best_face = f, best_point = q.point;
+  }
+  return {best_face, best_point};
+}
+
+}  // namespace
+
+// The hierarchy keeps its boxes in float (rounded outwards, the query's own
+// rounding subtracted): far from the origin, where a float ulp is millimetres,
+// at points on the surface and among thin, crowded triangles it must still
+// find exactly what brute force finds in double.
+TEST_CASE("the float-boxed hierarchy finds the brute-force argmin far from the origin and on slivers",
+          "[geometry][nearest]") {
+  std::mt19937 rng(11);
+  for (const double offset : {0.0, 1e3, 1e5}) {
+    Mesh m = bumpy_sphere(7);
+    m.vertices.rowwise() += Eigen::RowVector3d(offset, -0.5 * offset, 0.25 * offset);
+    // Squash one axis by 1e-4: a near-flat surface of slivers whose boxes overlap everywhere.
+    Mesh flat = m;
+    flat.vertices.col(1) = (flat.vertices.col(1).array() - flat.vertices.col(1).mean()) * 1e-4 +
+                           flat.vertices.col(1).mean();
+    for (const Mesh* mesh : {&m, &flat}) {
+      NearestTriangles nearest(mesh->vertices, mesh->faces);
+      const Eigen::Vector3d centre = mesh->vertices.colwise().mean().transpose();
+      std::vector<Eigen::Vector3d> points;
+      for (const Eigen::Vector3d& p : spread_points(rng, 150)) points.push_back(centre + p);
+      // Points on the surface itself (a corner, an edge's midpoint, a face's centroid)
+      // and 1e-9 above it.
+      for (int f = 0; f < mesh->num_faces(); f += 37) {
+        const Eigen::Vector3d a = mesh->vertices.row(mesh->faces(f, 0)), b = mesh->vertices.row(mesh->faces(f, 1)),
+                              c = mesh->vertices.row(mesh->faces(f, 2));
+        points.push_back(a);
+        points.push_back(0.5 * (a + b));
+        points.push_back((a + b + c) / 3);
+        points.push_back((a + b + c) / 3 + Eigen::Vector3d(0, 1e-9, 0));
+      }
+      for (const Eigen::Vector3d& p : points) {
+        const auto [face, point] = exhaustive_nearest(*mesh, p);
+        const SurfacePoint n = nearest.nearest(p);
+        CHECK(n.face == face);
+        CHECK(n.point == point);
+      }
+    }
+  }
 }
 
 TEST_CASE("the surface cache finds entries by content and stops growing at its budget", "[geometry][nearest]") {

@@ -2,8 +2,37 @@
 
 #include <algorithm>
 #include <cassert>
+#include <cmath>
+#include <limits>
 
 namespace drape::geometry {
+
+namespace {
+
+constexpr double kInfinity = std::numeric_limits<double>::infinity();
+
+// Float bounds that contain the double value: a box rounded outwards only grows.
+float round_down(double x) {
+  float f = static_cast<float>(x);
+  if (static_cast<double>(f) > x) f = std::nextafter(f, -std::numeric_limits<float>::infinity());
+  return f;
+}
+float round_up(double x) {
+  float f = static_cast<float>(x);
+  if (static_cast<double>(f) < x) f = std::nextafter(f, std::numeric_limits<float>::infinity());
+  return f;
+}
+
+// The float threshold a box's float distance must exceed to be passed over.
+// The margin (1e-5 relative) is far above the few float roundings of the
+// distance itself (~1e-7 relative), so a box is only skipped when it is
+// farther than `best` in exact arithmetic.
+float prune_bound(double best) {
+  if (!(best < kInfinity)) return std::numeric_limits<float>::infinity();
+  return round_up(best * (1 + 1e-5));
+}
+
+}  // namespace
 
 TriangleBvh::TriangleBvh(const Eigen::MatrixX3d& vertices, const Eigen::MatrixX3i& faces) : faces_(faces) {
   const int nf = static_cast<int>(faces.rows());
@@ -12,7 +41,7 @@ TriangleBvh::TriangleBvh(const Eigen::MatrixX3d& vertices, const Eigen::MatrixX3
     centroids[f] = (vertices.row(faces(f, 0)) + vertices.row(faces(f, 1)) + vertices.row(faces(f, 2))).transpose() / 3;
   std::vector<int> order(nf);
   for (int f = 0; f < nf; ++f) order[f] = f;
-  nodes_.reserve(2 * static_cast<std::size_t>(nf / kLeafSize + 1));
+  nodes_.reserve(static_cast<std::size_t>(nf / 2 + 1));
   if (nf > 0) build(order, centroids, 0, nf, 0);
   face_of_ = std::move(order);
   slot_of_face_.assign(nf, -1);
@@ -22,25 +51,35 @@ TriangleBvh::TriangleBvh(const Eigen::MatrixX3d& vertices, const Eigen::MatrixX3
 
 int TriangleBvh::build(std::vector<int>& order, const std::vector<Eigen::Vector3d>& centroids, int begin, int end,
                        int depth) {
+  assert(depth < kMaxDepth);
   const int index = static_cast<int>(nodes_.size());
   nodes_.emplace_back();
-  if (end - begin <= kLeafSize) {
-    nodes_[index].first = begin;
-    nodes_[index].count = end - begin;
+  if (end - begin <= kWidth) {
+    Node& leaf = nodes_[index];
+    leaf.leaf = true;
+    leaf.count = end - begin;
+    for (int s = 0; s < leaf.count; ++s) leaf.child[s] = begin + s;
     return index;
   }
-  Eigen::Vector3d lo = centroids[order[begin]], hi = lo;
-  for (int i = begin + 1; i < end; ++i) lo = lo.cwiseMin(centroids[order[i]]), hi = hi.cwiseMax(centroids[order[i]]);
-  int axis = 0;
-  (hi - lo).maxCoeff(&axis);
-  const int mid = begin + (end - begin) / 2;
-  std::nth_element(order.begin() + begin, order.begin() + mid, order.begin() + end,
-                   [&](int a, int b) { return centroids[a][axis] < centroids[b][axis]; });
-  // Splitting by count keeps the depth at log2(F / kLeafSize) + 1 whatever the geometry.
-  assert(depth < kMaxDepth);
-  build(order, centroids, begin, mid, depth + 1);
-  const int right = build(order, centroids, mid, end, depth + 1);
-  nodes_[index].first = right;
+  // Median on the longest centroid axis; splitting by count keeps the tree balanced.
+  auto split = [&](int b, int e) {
+    Eigen::Vector3d lo = centroids[order[b]], hi = lo;
+    for (int i = b + 1; i < e; ++i) lo = lo.cwiseMin(centroids[order[i]]), hi = hi.cwiseMax(centroids[order[i]]);
+    int axis = 0;
+    (hi - lo).maxCoeff(&axis);
+    const int mid = b + (e - b) / 2;
+    std::nth_element(order.begin() + b, order.begin() + mid, order.begin() + e,
+                     [&](int x, int y) { return centroids[x][axis] < centroids[y][axis]; });
+    return mid;
+  };
+  // Two levels of the binary split give the four children (each non-empty: end - begin >= 5).
+  const int mid = split(begin, end);
+  const int bounds[kWidth + 1] = {begin, split(begin, mid), mid, split(mid, end), end};
+  for (int s = 0; s < kWidth; ++s) {
+    const int child = build(order, centroids, bounds[s], bounds[s + 1], depth + 1);
+    nodes_[index].child[s] = child;  // by index: building the child may have moved the vector
+  }
+  nodes_[index].count = kWidth;
   return index;
 }
 
@@ -50,27 +89,35 @@ void TriangleBvh::gather_corners(const Eigen::MatrixX3d& vertices) {
     for (int k = 0; k < 3; ++k) corners_[3 * t + k] = vertices.row(faces_(face_of_[t], k)).transpose();
 }
 
+TriangleBvh::Box TriangleBvh::triangle_box(int t) const {
+  const Eigen::Vector3d &a = corners_[3 * t], &b = corners_[3 * t + 1], &c = corners_[3 * t + 2];
+  return {a.cwiseMin(b).cwiseMin(c), a.cwiseMax(b).cwiseMax(c)};
+}
+
 void TriangleBvh::refit(const Eigen::MatrixX3d& vertices) {
   gather_corners(vertices);
+  node_box_.resize(nodes_.size());
   // Children come after their parent, so a backward sweep sees them first.
   for (int i = num_nodes() - 1; i >= 0; --i) {
     Node& n = nodes_[i];
-    if (n.count > 0) {
-      n.lo = n.hi = corners_[3 * n.first];
-      for (int c = 3 * n.first + 1; c < 3 * (n.first + n.count); ++c)
-        n.lo = n.lo.cwiseMin(corners_[c]), n.hi = n.hi.cwiseMax(corners_[c]);
-    } else {
-      const Node& l = nodes_[i + 1];
-      const Node& r = nodes_[n.first];
-      n.lo = l.lo.cwiseMin(r.lo);
-      n.hi = l.hi.cwiseMax(r.hi);
+    Box all{Eigen::Vector3d::Constant(kInfinity), Eigen::Vector3d::Constant(-kInfinity)};
+    for (int s = 0; s < kWidth; ++s) {
+      if (s >= n.count) {  // an empty box: every gap is infinite
+        for (int k = 0; k < 3; ++k) n.lo[k][s] = std::numeric_limits<float>::infinity(), n.hi[k][s] = -n.lo[k][s];
+        continue;
+      }
+      const Box b = n.leaf ? triangle_box(n.child[s]) : node_box_[static_cast<std::size_t>(n.child[s])];
+      for (int k = 0; k < 3; ++k) n.lo[k][s] = round_down(b.lo[k]), n.hi[k][s] = round_up(b.hi[k]);
+      all.lo = all.lo.cwiseMin(b.lo);
+      all.hi = all.hi.cwiseMax(b.hi);
     }
+    node_box_[static_cast<std::size_t>(i)] = all;
   }
 }
 
 int TriangleBvh::nearest(const Eigen::Vector3d& p, double max_squared_distance, TrianglePoint& hit,
                          const int* face_labels, int excluded, int hint) const {
-  if (nodes_.empty()) return -1;
+  if (nodes_.empty() || !p.allFinite()) return -1;
   double best = max_squared_distance;
   int best_triangle = -1;
   if (hint >= 0 && hint < static_cast<int>(slot_of_face_.size()) && !(face_labels && face_labels[hint] == excluded)) {
@@ -80,49 +127,70 @@ int TriangleBvh::nearest(const Eigen::Vector3d& p, double max_squared_distance, 
     if (d2 < best) best = d2, best_triangle = t, hit = q;
   }
   // Of faces at the same computed distance the lowest index wins, and a box is
-  // passed over only when it is farther than the best by more than rounding:
-  // the answer is the argmin of (distance, face) over all faces, whatever the
-  // hint and the order of the search (so a training step that warm-starts from
-  // other faces, or a resumed run that has none, finds the same bits).
-  auto farther = [&best](double d2) { return d2 > best * (1 + 1e-12); };
+  // passed over only when it is provably farther than the best: the answer is
+  // the argmin of (distance, face) over all faces, whatever the hint and the
+  // order of the search (so a training step that warm-starts from other faces,
+  // or a resumed run that has none, finds the same bits).
   auto better = [&](double d2, int t) {
     return d2 < best || (best_triangle >= 0 && d2 == best && face_of_[t] < face_of_[best_triangle]);
   };
+  float bound = prune_bound(best);
+
+  // The query in float, and how far rounding moved it along each axis (rounded
+  // up): subtracted from every gap, so a float gap never exceeds the exact one.
+  Lanes point[3], moved[3];
+  for (int k = 0; k < 3; ++k) {
+    const float pk = static_cast<float>(p[k]);
+    const float ek = round_up(std::abs(p[k] - static_cast<double>(pk)));
+    point[k] = Lanes{pk, pk, pk, pk};
+    moved[k] = Lanes{ek, ek, ek, ek};
+  }
+  const Lanes zero = {0, 0, 0, 0};
+  auto distance2 = [&](const Node& n) {
+    Lanes d2 = zero;
+    for (int k = 0; k < 3; ++k) {
+      const Lanes below = n.lo[k] - point[k], above = point[k] - n.hi[k];
+      Lanes gap = (below > above ? below : above) - moved[k];
+      gap = gap > zero ? gap : zero;
+      d2 += gap * gap;
+    }
+    return d2;
+  };
+
   struct Pending {
     int node;
-    double distance2;
+    float distance2;
   };
-  Pending stack[kMaxDepth];
+  Pending stack[(kWidth - 1) * kMaxDepth + 1];  // a level pushes at most three siblings
   int top = 0;
   int node = 0;
-  if (farther(box_distance2(nodes_[0], p))) return best_triangle < 0 ? -1 : face_of_[best_triangle];
   for (;;) {
-    const Node& n = nodes_[node];
-    if (n.count > 0) {
-      for (int t = n.first; t < n.first + n.count; ++t) {
-        if (t == best_triangle || (face_labels && face_labels[face_of_[t]] == excluded)) continue;
-        // The triangle's own box first: no triangle is nearer than its box, and
-        // the box test costs a fraction of the exact one.
-        const Eigen::Vector3d &a = corners_[3 * t], &b = corners_[3 * t + 1], &c = corners_[3 * t + 2];
-        double box = 0;
-        for (int k = 0; k < 3; ++k) {
-          const double lo = std::min({a[k], b[k], c[k]}), hi = std::max({a[k], b[k], c[k]});
-          const double e = std::max({lo - p[k], p[k] - hi, 0.0});
-          box += e * e;
-        }
-        if (farther(box)) continue;
-        const TrianglePoint q = closest_point_on_triangle(p, a, b, c);
-        const double d2 = (q.point - p).squaredNorm();
-        if (better(d2, t)) best = d2, best_triangle = t, hit = q;
+    const Node& n = nodes_[static_cast<std::size_t>(node)];
+    const Lanes d2 = distance2(n);
+    if (n.leaf) {
+      for (int s = 0; s < n.count; ++s) {
+        const int t = n.child[s];
+        // The triangle's own box first: no triangle is nearer than its box.
+        if (d2[s] > bound || t == best_triangle || (face_labels && face_labels[face_of_[t]] == excluded)) continue;
+        const TrianglePoint q = closest_point_on_triangle(p, corners_[3 * t], corners_[3 * t + 1], corners_[3 * t + 2]);
+        const double dq = (q.point - p).squaredNorm();
+        if (better(dq, t)) best = dq, best_triangle = t, hit = q, bound = prune_bound(best);
       }
     } else {
-      // Visit the nearer child first: it tightens `best` and prunes the other.
-      int near = node + 1, far = n.first;
-      double dn = box_distance2(nodes_[near], p), df = box_distance2(nodes_[far], p);
-      if (df < dn) std::swap(near, far), std::swap(dn, df);
-      if (!farther(df)) stack[top++] = {far, df};
-      if (!farther(dn)) {
-        node = near;
+      // The children that can still hold something closer, nearest first: it
+      // tightens `best` and prunes the others.
+      int near[kWidth];
+      float near_d2[kWidth];
+      int m = 0;
+      for (int s = 0; s < n.count; ++s) {
+        if (!(d2[s] <= bound)) continue;
+        int j = m++;
+        for (; j > 0 && near_d2[j - 1] > d2[s]; --j) near[j] = near[j - 1], near_d2[j] = near_d2[j - 1];
+        near[j] = n.child[s], near_d2[j] = d2[s];
+      }
+      if (m > 0) {
+        for (int j = m - 1; j >= 1; --j) stack[top++] = {near[j], near_d2[j]};
+        node = near[0];
         continue;
       }
     }
@@ -130,7 +198,7 @@ int TriangleBvh::nearest(const Eigen::Vector3d& p, double max_squared_distance, 
     for (;;) {
       if (top == 0) return best_triangle < 0 ? -1 : face_of_[best_triangle];
       const Pending next = stack[--top];
-      if (!farther(next.distance2)) {
+      if (next.distance2 <= bound) {
         node = next.node;
         break;
       }

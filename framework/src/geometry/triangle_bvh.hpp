@@ -2,16 +2,26 @@
 // A bounding-volume hierarchy over the triangles of a mesh for closest-point
 // queries (internal to the geometry layer; see drape/geometry/closest_point.hpp).
 //
-// Median split on the longest centroid axis, four triangles per leaf, nodes in
-// depth-first order (left child next to its parent) so that refitting is one
-// backward sweep. For nearest-point queries a median split is as good as SAH
-// (SAH optimises ray hits, not distance bounds) and keeps the tree balanced,
-// so the traversal stack has a fixed bound.
+// Four children a node, their boxes stored side by side in float so that one
+// vector instruction measures the distance from a point to all four (GCC's
+// vector extensions: SSE on x86-64, NEON on ARM, no intrinsics). A binary tree
+// with double boxes tested ~170 boxes one by one for a point 1 cm from a
+// 13,000-triangle body; the cost of a query was the descent, not the exact
+// triangle tests. The float boxes are rounded outwards and the query's own
+// rounding is subtracted from every gap, so a box is passed over only when it
+// is provably farther than the best triangle: the answer is the same argmin of
+// (distance, face) as an exhaustive search in double.
+//
+// Built by count (median splits on the longest centroid axis, twice a level),
+// so the depth is log4(F) + 1 whatever the geometry and the traversal stack has
+// a fixed bound; leaves hold up to four triangles, each with its own box.
+// Nodes are in depth-first order (children after their parent), so refitting
+// is one backward sweep.
 #include <drape/geometry/closest_point.hpp>
 
 #include <Eigen/Core>
 
-#include <algorithm>
+#include <array>
 #include <vector>
 
 namespace drape::geometry {
@@ -36,26 +46,27 @@ class TriangleBvh {
   int num_nodes() const { return static_cast<int>(nodes_.size()); }
 
  private:
+  static constexpr int kWidth = 4;
+  static constexpr int kMaxDepth = 48;
+  typedef float Lanes __attribute__((vector_size(4 * sizeof(float))));
+
   struct Node {
-    Eigen::Vector3d lo, hi;
-    int first = 0;  // leaf: first triangle in leaf order; inner: right child (left is this + 1)
-    int count = 0;  // triangles in the leaf; 0 for an inner node
+    Lanes lo[3], hi[3];   // per axis, the four children's boxes (an unused slot is empty: lo > hi)
+    int child[kWidth];    // inner: node index; leaf: triangle in leaf order
+    int count = 0;        // slots in use
+    bool leaf = false;
   };
-  static constexpr int kLeafSize = 4;
-  static constexpr int kMaxDepth = 64;
+  struct Box {
+    Eigen::Vector3d lo, hi;
+  };
 
   int build(std::vector<int>& order, const std::vector<Eigen::Vector3d>& centroids, int begin, int end, int depth);
   void gather_corners(const Eigen::MatrixX3d& vertices);
-  // Inline: it is most of a query's work, and an exported member would go through the PLT.
-  static double box_distance2(const Node& n, const Eigen::Vector3d& p) {
-    const double dx = std::max({n.lo.x() - p.x(), p.x() - n.hi.x(), 0.0});
-    const double dy = std::max({n.lo.y() - p.y(), p.y() - n.hi.y(), 0.0});
-    const double dz = std::max({n.lo.z() - p.z(), p.z() - n.hi.z(), 0.0});
-    return dx * dx + dy * dy + dz * dz;
-  }
+  Box triangle_box(int t) const;
 
   Eigen::MatrixX3i faces_;
   std::vector<Node> nodes_;
+  std::vector<Box> node_box_;               // each node's own box in double, its parent's slot at refit
   std::vector<int> face_of_;                // face id of each triangle in leaf order
   std::vector<int> slot_of_face_;           // its inverse: the leaf-order slot of each face
   std::vector<Eigen::Vector3d> corners_;    // 3 per triangle in leaf order (contiguous for the cache)

@@ -9,11 +9,14 @@
 // F is linear in the positions, so F_x - F_y = (x - y)(f) X^-1 and the
 // gradients for pred and target are opposite.
 #include <drape/assets.hpp>
+#include <drape/errors.hpp>
 #include <drape/plugin.hpp>
 
 #include <Eigen/LU>
 
+#include <array>
 #include <cmath>
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -54,25 +57,36 @@ class DeformationLoss final : public Node {
   void forward(const TensorIn& in, const TensorOut& out) override {
     const Tensor &x = *in.at("pred"), &y = *in.at("target");
     const int faces = static_cast<int>(faces_.rows());
+    // Backward needs only the signs of F_x - F_y: kept here (6 bytes a face)
+    // instead of computing every face's difference a second time.
+    signs_.resize(static_cast<std::size_t>(x.batch()) * faces);
     for (int b = 0; b < x.batch(); ++b) {
       const auto xb = x.mat(b), yb = y.mat(b);
+      Signs* signs = signs_.data() + static_cast<std::size_t>(b) * faces;
       double sum = 0.0;
 #pragma omp parallel for reduction(+ : sum) schedule(static) if (faces > 20000)
-      for (int f = 0; f < faces; ++f) sum += difference(xb, yb, f).lpNorm<1>();
+      for (int f = 0; f < faces; ++f) {
+        const Eigen::Matrix<double, 3, 2> D = difference(xb, yb, f);
+        sum += D.lpNorm<1>();
+        for (int k = 0; k < 6; ++k) signs[f][k] = static_cast<std::int8_t>((D(k) > 0) - (D(k) < 0));
+      }
       (*out.at("loss"))(b, 0, 0) = static_cast<float>(mean_ ? sum / faces : sum);
     }
   }
 
   void backward(const TensorIn& in, const TensorIn&, const TensorIn& gout, const TensorOut& gin) override {
-    const Tensor &x = *in.at("pred"), &y = *in.at("target");
+    const Tensor& x = *in.at("pred");
     const int faces = static_cast<int>(faces_.rows());
+    if (signs_.size() != static_cast<std::size_t>(x.batch()) * faces)
+      throw Error("deformation: backward without a matching forward");
     for (int b = 0; b < x.batch(); ++b) {
       const double scale = (*gout.at("loss"))(b, 0, 0) / (mean_ ? double(faces) : 1.0);
-      const auto xb = x.mat(b), yb = y.mat(b);
-      Eigen::MatrixX3d g = Eigen::MatrixX3d::Zero(x.rows(), 3);
+      const Signs* signs = signs_.data() + static_cast<std::size_t>(b) * faces;
+      // Row-major: a vertex's three coordinates are adjacent for the scatter.
+      Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor> g = decltype(g)::Zero(x.rows(), 3);
       for (int f = 0; f < faces; ++f) {
-        const Eigen::Matrix<double, 3, 2> D = difference(xb, yb, f);
-        const Eigen::Matrix<double, 3, 2> S = D.unaryExpr([](double v) { return v > 0 ? 1.0 : (v < 0 ? -1.0 : 0.0); });
+        Eigen::Matrix<double, 3, 2> S;
+        for (int k = 0; k < 6; ++k) S(k) = signs[f][k];
         // dL/d[e1 e2] = sign(D) X^-T; e_k = v_k - v_0.
         const Eigen::Matrix<double, 3, 2> ge = scale * S * inverse_rest_[f].transpose();
         g.row(faces_(f, 1)) += ge.col(0).transpose();
@@ -99,6 +113,8 @@ class DeformationLoss final : public Node {
   bool mean_;
   Eigen::MatrixX3i faces_;
   std::vector<Eigen::Matrix2d> inverse_rest_;  // X(f)^-1 per face
+  using Signs = std::array<std::int8_t, 6>;    // sign(F_x - F_y) of a face, column-major 3x2
+  std::vector<Signs> signs_;                   // of the last forward, faces of sample b from b * F
 };
 
 PluginList plugins() {
