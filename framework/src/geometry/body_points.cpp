@@ -2,6 +2,7 @@
 
 #include <drape/errors.hpp>
 
+#include <cstring>
 #include <string>
 #include <utility>
 
@@ -13,16 +14,18 @@ BodyPoints::BodyPoints(const Mesh& body, std::string who)
 BodyPoints::~BodyPoints() = default;
 
 void BodyPoints::use_body(const Tensor& body, int b, bool with_normals) {
-  const float* data = body.data() + static_cast<std::size_t>(b) * body.rows() * body.cols();
-  const SurfaceKey key = surface_key(topology_, data, static_cast<std::size_t>(body.rows()) * body.cols(), nullptr, 0);
-  SurfaceKey& held = with_normals ? surface_body_ : nearest_body_;
-  if (held == key && !(key == SurfaceKey{})) return;
+  // The body each structure was last fitted to is kept as it came (floats):
+  // comparing with it costs a memcmp, where a hash of it cost 0.1 ms a call.
+  const std::size_t n = static_cast<std::size_t>(body.rows()) * body.cols();
+  const float* data = body.data() + static_cast<std::size_t>(b) * n;
+  std::vector<float>& held = with_normals ? surface_body_ : nearest_body_;
+  if (held.size() == n && std::memcmp(held.data(), data, n * sizeof(float)) == 0) return;
   const Eigen::MatrixX3d vertices = body.mat(b).cast<double>();
   if (with_normals)
     surface_.update(vertices);
   else
     nearest_.update(vertices);
-  held = key;
+  held.assign(data, data + n);
 }
 
 std::shared_ptr<const BodyPoints::Hits> BodyPoints::ground_truth(const Tensor& body, const Tensor& target, int b) {

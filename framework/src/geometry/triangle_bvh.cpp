@@ -177,20 +177,24 @@ int TriangleBvh::nearest(const Eigen::Vector3d& p, double max_squared_distance, 
         if (better(dq, t)) best = dq, best_triangle = t, hit = q, bound = prune_bound(best);
       }
     } else {
-      // The children that can still hold something closer, nearest first: it
-      // tightens `best` and prunes the others.
-      int near[kWidth];
-      float near_d2[kWidth];
-      int m = 0;
-      for (int s = 0; s < n.count; ++s) {
-        if (!(d2[s] <= bound)) continue;
-        int j = m++;
-        for (; j > 0 && near_d2[j - 1] > d2[s]; --j) near[j] = near[j - 1], near_d2[j] = near_d2[j - 1];
-        near[j] = n.child[s], near_d2[j] = d2[s];
-      }
-      if (m > 0) {
-        for (int j = m - 1; j >= 1; --j) stack[top++] = {near[j], near_d2[j]};
-        node = near[0];
+      // The children that can still hold something closer: the nearest is
+      // visited next (it tightens `best` and prunes the others), the rest wait
+      // on the stack with their distances. Unused slots have infinite boxes.
+      unsigned open = 0;
+      for (int s = 0; s < kWidth; ++s) open |= static_cast<unsigned>(d2[s] <= bound) << s;
+      open &= (1u << n.count) - 1;
+      if (open != 0) {
+        int nearest_slot = __builtin_ctz(open);
+        for (unsigned rest = open & (open - 1); rest != 0; rest &= rest - 1) {
+          const int s = __builtin_ctz(rest);
+          if (d2[s] < d2[nearest_slot]) {
+            stack[top++] = {n.child[nearest_slot], d2[nearest_slot]};
+            nearest_slot = s;
+          } else {
+            stack[top++] = {n.child[s], d2[s]};
+          }
+        }
+        node = n.child[nearest_slot];
         continue;
       }
     }

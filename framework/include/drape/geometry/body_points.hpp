@@ -48,7 +48,7 @@ class BodyPoints {
   std::uint64_t topology_;
   BodySurface surface_;        // signed queries, for the ground truth when it is not cached
   NearestTriangles nearest_;   // unsigned queries, for the prediction
-  SurfaceKey surface_body_{}, nearest_body_{};  // which body each holds (a hash of it)
+  std::vector<float> surface_body_, nearest_body_;  // the body each holds, as it came
   std::vector<int> last_faces_;                  // the last ground truth's faces: hints for the next
 };
 
