@@ -185,3 +185,48 @@ TEST_CASE("the surface cache finds entries by content and stops growing at its b
   CHECK(cache.entries() == 2);
   CHECK(cache.bytes() <= cache.budget());
 }
+
+TEST_CASE("surface cache entries travel between processes as bytes and come back the same", "[geometry][nearest]") {
+  SurfaceCache cache(std::size_t{1} << 20);
+  SurfaceCache::Hits hits(3);
+  for (int i = 0; i < 3; ++i) {
+    hits[i].face = 10 + i;
+    hits[i].barycentric = Eigen::Vector3d(0.25, 0.5, 0.25) * (i + 1);
+    hits[i].point = Eigen::Vector3d(1.0 / 3, -2.5e-7, 1e300) * (i + 1);
+    hits[i].normal = Eigen::Vector3d(0, 0, -1);
+    hits[i].signed_distance = -0.125 * i;
+    hits[i].feature = i == 2 ? TriangleFeature::edge_ca : TriangleFeature::interior;
+  }
+  const SurfaceKey k1{1, 2}, k2{3, 4}, k3{5, 6};
+  cache.insert(k1, hits);
+  cache.insert(k2, SurfaceCache::Hits{});
+  const auto computed = cache.take_computed();
+  REQUIRE(computed.size() == 2);
+  CHECK(cache.take_computed().empty());  // handed out once
+  const auto bytes = pack_surface_entries(computed);
+  CHECK(bytes.size() == packed_entry_bytes(3) + packed_entry_bytes(0));
+  const auto back = unpack_surface_entries(bytes.data(), bytes.size());
+  REQUIRE(back.size() == 2);
+  CHECK(back[0].first == k1);
+  REQUIRE(back[0].second.size() == 3);
+  for (int i = 0; i < 3; ++i) {
+    const SurfacePoint &a = back[0].second[i], &b = hits[i];
+    CHECK(a.face == b.face);
+    CHECK(a.barycentric == b.barycentric);
+    CHECK(a.point == b.point);
+    CHECK(a.normal == b.normal);
+    CHECK(a.signed_distance == b.signed_distance);
+    CHECK(a.feature == b.feature);
+  }
+  CHECK(back[1].first == k2);
+  CHECK(back[1].second.empty());
+  // Adopted entries are found but not handed out again as this process's own.
+  SurfaceCache other(std::size_t{1} << 20);
+  other.adopt(k3, back[0].second);
+  REQUIRE(other.find(k3) != nullptr);
+  CHECK(other.find(k3)->at(2).feature == TriangleFeature::edge_ca);
+  CHECK(other.take_computed().empty());
+  // A cut buffer is refused, not read past its end.
+  CHECK_THROWS_WITH(unpack_surface_entries(bytes.data(), bytes.size() - 1), Catch::Contains("surface cache entries"));
+  CHECK_THROWS_WITH(unpack_surface_entries(bytes.data(), 10), Catch::Contains("10 bytes left"));
+}

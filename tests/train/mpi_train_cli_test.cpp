@@ -128,3 +128,32 @@ TEST_CASE("mpirun -np 2 drape train resumes to the uninterrupted result and refu
   CHECK(weights_of(model) == weights_of(dir / "whole.h5"));
   CHECK(weights_of(training_state_path(model)) == weights_of(training_state_path(dir / "whole.h5")));
 }
+
+// With the seed's six losses, v2v and direction keep the ground truth's
+// closest points in a cache per process; after each epoch the ranks hand each
+// other what they computed. Their training must still be the two threads'
+// bit for bit (a wrong point under a key would change every later loss).
+TEST_CASE("mpirun -np 2 drape train with the six losses shares closest points and still matches two threads",
+          "[train][mpi]") {
+  const std::string why = cannot_run_mpi();
+  if (!why.empty()) {
+    WARN("skipped: " << why);
+    SUCCEED("skipped");
+    return;
+  }
+  test::TempDir dir;
+  const fs::path data = dir / "data.h5";
+  test::write_tiny_dataset(data, 14, 11, 3);
+  const std::string graph = (test::source_dir() / "graphs/drape.yaml").string();
+  auto args = [&](const fs::path& out, const std::string& more) {
+    return "train " + graph + " --data " + data.string() + " --out " + out.string() + " --epochs 3 --batch 5 --lr 1e-3 --seed 5 --quiet --k " +
+           std::to_string(test::kTinyK) + " " + more;
+  };
+  std::string out;
+  REQUIRE(test::run(mpirun(args(dir / "mpi.h5", "--threads 1")), out) == 0);
+  INFO(out);
+  REQUIRE(test::run(test::drape_command(args(dir / "threads2.h5", "--threads 2")), out) == 0);
+  CHECK(weights_of(dir / "mpi.h5") == weights_of(dir / "threads2.h5"));
+  CHECK(read_checkpoint(dir / "mpi.h5").history.at("train_loss") == read_checkpoint(dir / "threads2.h5").history.at("train_loss"));
+  CHECK(read_checkpoint(dir / "mpi.h5").history.at("val_loss") == read_checkpoint(dir / "threads2.h5").history.at("val_loss"));
+}

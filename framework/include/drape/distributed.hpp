@@ -42,4 +42,15 @@ class DistributedGraph {
   std::vector<float> mine_, all_;  // gradient buffers, kept between steps
 };
 
+// Every rank hands the others the data-only closest points it computed since
+// the last call (geometry::SurfaceCache::take_computed) and keeps theirs, so
+// that after the first epoch every rank's cache holds every sample its budget
+// allows, as one process's does. (Each rank meets a different half of the
+// samples every epoch: with caches of their own, two ranks still missed ~6 %
+// of them in the fourth epoch and trained 1.6x one rank's speed over the
+// first six epochs, against 1.8x with full caches.) Collective: every rank
+// calls it at the same point. Sent in rounds of at most 64 MiB a rank.
+// Returns the entries adopted from the other ranks.
+std::size_t share_surface_cache(const Ranks& ranks);
+
 }  // namespace drape

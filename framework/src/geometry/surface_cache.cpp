@@ -1,5 +1,7 @@
 #include <drape/geometry/surface_cache.hpp>
 
+#include <drape/errors.hpp>
+
 #include <cstdlib>
 #include <cstring>
 #include <string>
@@ -93,15 +95,100 @@ std::shared_ptr<const SurfaceCache::Hits> SurfaceCache::find(const SurfaceKey& k
   return it == entries_.end() ? nullptr : it->second;
 }
 
-std::shared_ptr<const SurfaceCache::Hits> SurfaceCache::insert(const SurfaceKey& key, Hits hits) {
-  auto entry = std::make_shared<const Hits>(std::move(hits));
+bool SurfaceCache::keep(const SurfaceKey& key, const std::shared_ptr<const Hits>& entry) {
   const std::size_t size = sizeof(SurfacePoint) * entry->size() + 64;
-  std::unique_lock lock(mutex_);
-  if (const auto it = entries_.find(key); it != entries_.end()) return it->second;
-  if (bytes_ + size > budget_) return entry;
+  if (bytes_ + size > budget_) return false;
   bytes_ += size;
   entries_.emplace(key, entry);
+  return true;
+}
+
+std::shared_ptr<const SurfaceCache::Hits> SurfaceCache::insert(const SurfaceKey& key, Hits hits) {
+  auto entry = std::make_shared<const Hits>(std::move(hits));
+  std::unique_lock lock(mutex_);
+  if (const auto it = entries_.find(key); it != entries_.end()) return it->second;
+  if (keep(key, entry)) computed_.push_back(key);
   return entry;
+}
+
+void SurfaceCache::adopt(const SurfaceKey& key, Hits hits) {
+  auto entry = std::make_shared<const Hits>(std::move(hits));
+  std::unique_lock lock(mutex_);
+  if (entries_.count(key) == 0) keep(key, entry);
+}
+
+std::vector<std::pair<SurfaceKey, std::shared_ptr<const SurfaceCache::Hits>>> SurfaceCache::take_computed() {
+  std::unique_lock lock(mutex_);
+  std::vector<std::pair<SurfaceKey, std::shared_ptr<const Hits>>> out;
+  out.reserve(computed_.size());
+  for (const SurfaceKey& key : computed_) out.emplace_back(key, entries_.at(key));
+  computed_.clear();
+  return out;
+}
+
+namespace {
+
+// A point as it travels: face and feature (two 32-bit words), then barycentric,
+// point, normal and signed distance (ten doubles), 88 bytes, in this machine's
+// byte order (the ranks of one run share the machine type and the binary).
+constexpr std::size_t kPointBytes = 2 * sizeof(std::int32_t) + 10 * sizeof(double);
+static_assert(kPointBytes == 88, "packed_entry_bytes in the header says 88");
+
+void put_point(const SurfacePoint& p, std::uint8_t* at) {
+  const std::int32_t ints[2] = {p.face, static_cast<std::int32_t>(p.feature)};
+  double reals[10];
+  for (int k = 0; k < 3; ++k) reals[k] = p.barycentric[k], reals[3 + k] = p.point[k], reals[6 + k] = p.normal[k];
+  reals[9] = p.signed_distance;
+  std::memcpy(at, ints, sizeof ints);
+  std::memcpy(at + sizeof ints, reals, sizeof reals);
+}
+
+SurfacePoint get_point(const std::uint8_t* at) {
+  std::int32_t ints[2];
+  double reals[10];
+  std::memcpy(ints, at, sizeof ints);
+  std::memcpy(reals, at + sizeof ints, sizeof reals);
+  SurfacePoint p;
+  p.face = ints[0];
+  p.feature = static_cast<TriangleFeature>(ints[1]);
+  for (int k = 0; k < 3; ++k) p.barycentric[k] = reals[k], p.point[k] = reals[3 + k], p.normal[k] = reals[6 + k];
+  p.signed_distance = reals[9];
+  return p;
+}
+
+}  // namespace
+
+std::vector<std::uint8_t> pack_surface_entries(
+    const std::vector<std::pair<SurfaceKey, std::shared_ptr<const SurfaceCache::Hits>>>& entries) {
+  // Per entry: key.a, key.b, the number of points (three 64-bit words), then the points.
+  std::size_t size = 0;
+  for (const auto& [key, hits] : entries) size += 3 * sizeof(std::uint64_t) + kPointBytes * hits->size();
+  std::vector<std::uint8_t> out(size);
+  std::uint8_t* at = out.data();
+  for (const auto& [key, hits] : entries) {
+    const std::uint64_t head[3] = {key.a, key.b, hits->size()};
+    std::memcpy(at, head, sizeof head);
+    at += sizeof head;
+    for (const SurfacePoint& p : *hits) put_point(p, at), at += kPointBytes;
+  }
+  return out;
+}
+
+std::vector<std::pair<SurfaceKey, SurfaceCache::Hits>> unpack_surface_entries(const std::uint8_t* data, std::size_t size) {
+  std::vector<std::pair<SurfaceKey, SurfaceCache::Hits>> out;
+  std::size_t at = 0;
+  while (at < size) {
+    std::uint64_t head[3];
+    if (size - at < sizeof head) throw Error("surface cache entries: " + std::to_string(size - at) + " bytes left, not an entry");
+    std::memcpy(head, data + at, sizeof head);
+    at += sizeof head;
+    if (head[2] > (size - at) / kPointBytes)
+      throw Error("surface cache entries: an entry of " + std::to_string(head[2]) + " points runs past the end");
+    SurfaceCache::Hits hits(head[2]);
+    for (auto& p : hits) p = get_point(data + at), at += kPointBytes;
+    out.emplace_back(SurfaceKey{head[0], head[1]}, std::move(hits));
+  }
+  return out;
 }
 
 std::size_t SurfaceCache::bytes() const {

@@ -2,8 +2,11 @@
 // batch, the parts' gradients are gathered and combined in rank order.
 #include <drape/distributed.hpp>
 #include <drape/errors.hpp>
+#include <drape/geometry/surface_cache.hpp>
 
 #include <algorithm>
+#include <cstdint>
+#include <cstring>
 
 namespace drape {
 
@@ -64,7 +67,8 @@ LossValues DistributedGraph::run(const std::vector<std::size_t>& indices, bool b
   const NamedWeights weights = local_.graph().weights();
   std::size_t length = 0;
   for (const auto& [name, w] : weights) length += w->grad.size();
-  mine_.assign(length, 0.0f);
+  mine_.resize(length);
+  if (r >= parts) std::fill(mine_.begin(), mine_.end(), 0.0f);
   if (r < parts) {
     std::size_t at = 0;
     for (const auto& [name, w] : weights) {
@@ -82,14 +86,66 @@ LossValues DistributedGraph::run(const std::vector<std::size_t>& indices, bool b
   for (const auto& [name, w] : weights) {
     float* g = w->grad.data();
     const std::size_t size_w = w->grad.size();
-    for (std::size_t k = 0; k < size_w; ++k) {
-      float sum = share[0] * all_[at + k];
-      for (int q = 1; q < parts; ++q) sum += share[static_cast<std::size_t>(q)] * all_[length * static_cast<std::size_t>(q) + at + k];
-      g[k] = sum;
+    // Parts outermost, so that each pass is a plain vector loop; the sum of
+    // every element still runs over the parts in rank order.
+    const float* first_part = all_.data() + at;
+    for (std::size_t k = 0; k < size_w; ++k) g[k] = share[0] * first_part[k];
+    for (int q = 1; q < parts; ++q) {
+      const float s = share[static_cast<std::size_t>(q)];
+      const float* part = all_.data() + length * static_cast<std::size_t>(q) + at;
+      for (std::size_t k = 0; k < size_w; ++k) g[k] += s * part[k];
     }
     at += size_w;
   }
   return total;
+}
+
+std::size_t share_surface_cache(const Ranks& ranks) {
+  if (ranks.size() <= 1) return 0;
+  geometry::SurfaceCache& cache = geometry::SurfaceCache::shared();
+  // Cut this rank's new entries into rounds of at most kRound bytes.
+  constexpr std::size_t kRound = std::size_t{64} << 20;
+  const auto computed = cache.take_computed();
+  std::vector<std::vector<std::uint8_t>> rounds;
+  for (std::size_t first = 0; first < computed.size();) {
+    std::size_t bytes = 0, last = first;
+    while (last < computed.size() &&
+           (last == first || bytes + geometry::packed_entry_bytes(computed[last].second->size()) <= kRound))
+      bytes += geometry::packed_entry_bytes(computed[last].second->size()), ++last;
+    rounds.push_back(geometry::pack_surface_entries({computed.begin() + static_cast<long>(first),
+                                                     computed.begin() + static_cast<long>(last)}));
+    first = last;
+  }
+  const int size = ranks.size(), me = ranks.rank();
+  auto gather_counts = [&](double mine) {
+    std::vector<double> all(static_cast<std::size_t>(size));
+    ranks.all_gather(&mine, 1, all.data());
+    return all;
+  };
+  const std::vector<double> round_counts = gather_counts(double(rounds.size()));
+  const std::size_t total_rounds = static_cast<std::size_t>(*std::max_element(round_counts.begin(), round_counts.end()));
+  std::size_t adopted = 0;
+  for (std::size_t round = 0; round < total_rounds; ++round) {
+    const std::vector<std::uint8_t> none;
+    const std::vector<std::uint8_t>& mine = round < rounds.size() ? rounds[round] : none;
+    const std::vector<double> sizes = gather_counts(double(mine.size()));
+    const std::size_t widest = static_cast<std::size_t>(*std::max_element(sizes.begin(), sizes.end()));
+    const std::size_t words = (widest + sizeof(double) - 1) / sizeof(double);
+    if (words == 0) continue;
+    // Bytes travel inside doubles (MPI copies them unchanged between ranks of one machine type).
+    std::vector<double> send(words, 0.0), all(words * static_cast<std::size_t>(size));
+    if (!mine.empty()) std::memcpy(send.data(), mine.data(), mine.size());
+    ranks.all_gather(send.data(), words, all.data());
+    for (int q = 0; q < size; ++q) {
+      if (q == me) continue;
+      const auto* bytes = reinterpret_cast<const std::uint8_t*>(all.data() + words * static_cast<std::size_t>(q));
+      for (auto& [key, hits] : geometry::unpack_surface_entries(bytes, static_cast<std::size_t>(sizes[static_cast<std::size_t>(q)]))) {
+        cache.adopt(key, std::move(hits));
+        ++adopted;
+      }
+    }
+  }
+  return adopted;
 }
 
 }  // namespace drape

@@ -368,6 +368,9 @@ TrainReport train(const Registry& registry, const TrainOptions& given) {
                                              val_idx.begin() + static_cast<long>(std::min(val_idx.size(), first + batch)));
       val_loss.merge(distributed.losses(indices));
     }
+    // Each rank computed the data-only closest points of the samples it met;
+    // from now on every rank has them all.
+    if (ranks > 1) share_surface_cache(*o.ranks);
     const double monitored = val_idx.empty() ? train_loss.total : val_loss.total;
     if (!std::isfinite(monitored))
       throw Error("the validation loss is " + brief(monitored) + " after epoch " + std::to_string(e + 1));

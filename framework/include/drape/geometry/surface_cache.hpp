@@ -19,6 +19,7 @@
 #include <mutex>
 #include <shared_mutex>
 #include <unordered_map>
+#include <utility>
 #include <vector>
 
 namespace drape::geometry {
@@ -46,6 +47,14 @@ class SurfaceCache {
   // Keeps hits under key when the budget allows; returns them either way.
   std::shared_ptr<const Hits> insert(const SurfaceKey& key, Hits hits);
 
+  // The entries this process computed and kept (insert) since the last call:
+  // what a data-parallel rank shares with the others, so that every rank's
+  // cache fills in one epoch instead of one sample at a time over many.
+  std::vector<std::pair<SurfaceKey, std::shared_ptr<const Hits>>> take_computed();
+  // Keeps hits another process computed (when the budget allows); they are not
+  // reported by take_computed.
+  void adopt(const SurfaceKey& key, Hits hits);
+
   std::size_t bytes() const;
   std::size_t entries() const;
   std::size_t budget() const { return budget_; }
@@ -58,6 +67,17 @@ class SurfaceCache {
   std::size_t bytes_ = 0;
   mutable std::shared_mutex mutex_;
   std::unordered_map<SurfaceKey, std::shared_ptr<const Hits>, KeyHash> entries_;
+  std::vector<SurfaceKey> computed_;  // kept by insert since the last take_computed
+  bool keep(const SurfaceKey& key, const std::shared_ptr<const Hits>& entry);
 };
+
+// The bytes an entry of n points packs into: 24 + 88 n.
+inline std::size_t packed_entry_bytes(std::size_t points) { return 24 + 88 * points; }
+// Entries as bytes, to send to another process of the same program (raw
+// SurfacePoints: the same binary reads them), and back. unpack throws Error on
+// a buffer that does not parse.
+std::vector<std::uint8_t> pack_surface_entries(
+    const std::vector<std::pair<SurfaceKey, std::shared_ptr<const SurfaceCache::Hits>>>& entries);
+std::vector<std::pair<SurfaceKey, SurfaceCache::Hits>> unpack_surface_entries(const std::uint8_t* data, std::size_t size);
 
 }  // namespace drape::geometry
