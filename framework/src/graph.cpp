@@ -39,6 +39,11 @@ struct Graph::Impl {
     std::vector<std::string> out_ports;
     std::vector<Shape> out_shapes;
     std::vector<Tensor> outputs, out_grads;
+    // Per output: its gradient buffer holds a value (a consumer wrote it, or
+    // the loss seed). Buffers are reused across steps without being zeroed:
+    // the first consumer overwrites one, later ones add to it, and one nobody
+    // wrote is zeroed just before the node's backward reads it.
+    std::vector<bool> grad_written;
     bool has_grad = false;
     bool requires_grad = false;  // has weights upstream (or itself)
     bool for_outputs = false;    // needed to compute the graph outputs
@@ -405,14 +410,15 @@ void run_backward(Graph::Impl& g) {
     TensorIn in, out, gout;
     for (std::size_t k = 0; k < b.in_ports.size(); ++k) in[b.in_ports[k]] = &g.value_of(b.sources[k]);
     for (std::size_t k = 0; k < b.out_ports.size(); ++k) {
+      if (!b.grad_written[k]) b.out_grads[k].set_zero();  // an output no consumer took a gradient through
       out[b.out_ports[k]] = &b.outputs[k];
       gout[b.out_ports[k]] = &b.out_grads[k];
     }
     // Only the ports whose gradient reaches a weight (Caffe's propagate_down):
     // a graph input's or a constant's would be computed and thrown away.
     // The first consumer of an output writes its gradient straight into the
-    // output's (zeroed) gradient buffer; later ones into a zeroed temporary
-    // that is then added.
+    // output's gradient buffer (Node::backward overwrites); later ones into a
+    // temporary that is then added.
     std::vector<Tensor> gin(b.in_ports.size());
     std::vector<bool> direct(b.in_ports.size(), false);
     TensorOut gin_map;
@@ -420,7 +426,7 @@ void run_backward(Graph::Impl& g) {
       const auto& s = b.sources[k];
       if (s.node < 0 || !g.nodes[s.node].requires_grad) continue;
       auto& src = g.nodes[s.node];
-      bool taken = src.has_grad;
+      bool taken = src.grad_written[s.port];
       for (std::size_t j = 0; j < k && !taken; ++j)
         taken = direct[j] && b.sources[j].node == s.node && b.sources[j].port == s.port;
       if (!taken) {
@@ -438,6 +444,7 @@ void run_backward(Graph::Impl& g) {
       if (s.node < 0 || !g.nodes[s.node].requires_grad) continue;
       auto& src = g.nodes[s.node];
       if (!direct[k]) src.out_grads[s.port].vec() += gin[k].vec();
+      src.grad_written[s.port] = true;
       src.has_grad = true;
     }
     b.backward_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
@@ -449,19 +456,19 @@ void reset_grads(Graph::Impl& g) {
     b.has_grad = false;
     b.backward_ms = 0.0;
     b.out_grads.resize(b.outputs.size());
-    // A node without weights upstream never runs backward: no gradient buffers to zero.
+    b.grad_written.assign(b.outputs.size(), false);
+    // A node without weights upstream never runs backward: no gradient buffers.
     const bool used = b.requires_grad || b.spec.is_loss;
-    // Buffers of the same size are zeroed in place: a fresh one of many MiB
-    // (the encoder's per-body-vertex features) comes from mmap and costs page
-    // faults at every step.
+    // Buffers of the same size are kept as they are (not zeroed: see
+    // grad_written): a fresh one of many MiB (the encoder's per-body-vertex
+    // features) comes from mmap and costs page faults at every step, and
+    // zeroing it cost a memset the first consumer then overwrote.
     for (std::size_t k = 0; k < b.outputs.size(); ++k) {
       Tensor& grad = b.out_grads[k];
       const Tensor& value = b.outputs[k];
       if (!used)
         grad = Tensor();
-      else if (grad.batch() == value.batch() && grad.shape() == value.shape())
-        grad.set_zero();
-      else
+      else if (!(grad.batch() == value.batch() && grad.shape() == value.shape()))
         grad = Tensor(value.batch(), value.rows(), value.cols());
     }
   }
@@ -476,6 +483,7 @@ void Graph::backward() {
     if (!b.spec.is_loss) continue;
     std::fill(b.out_grads[0].data(), b.out_grads[0].data() + b.out_grads[0].size(),
               static_cast<float>(b.spec.weight / g.batch));
+    b.grad_written[0] = true;
     b.has_grad = true;
   }
   run_backward(g);
@@ -494,7 +502,8 @@ void Graph::backward_from_output(const std::string& output, const Tensor& grad) 
     Tensor& target = g.nodes[s.node].out_grads[s.port];
     if (target.shape() != grad.shape() || target.batch() != grad.batch())
       throw Error("backward_from_output: gradient " + grad.shape_str() + " does not match output " + target.shape_str());
-    target.vec() += grad.vec();
+    target.vec() = grad.vec();
+    g.nodes[s.node].grad_written[s.port] = true;
     g.nodes[s.node].has_grad = true;
     run_backward(g);
     return;

@@ -45,7 +45,8 @@ class Node {
   virtual void forward(const TensorIn& in, const TensorOut& out) = 0;
 
   // Reverse mode. grad_out holds dLoss/dOutput for every output port; write
-  // (overwrite) dLoss/dInput into every grad_in tensor (allocated, zeroed) and
+  // (overwrite) dLoss/dInput into every element of every grad_in tensor
+  // (allocated, its contents unspecified: the graph reuses buffers unzeroed) and
   // accumulate (+=) weight gradients into weights()[..].grad. grad_in holds
   // only the ports whose gradient is wanted (Caffe's propagate_down): a graph
   // omits those fed by graph inputs or by nodes with no weights upstream, so
