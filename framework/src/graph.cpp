@@ -2,6 +2,7 @@
 #include <drape/graph.hpp>
 
 #include <chrono>
+#include <limits>
 
 #include <algorithm>
 #include <functional>
@@ -63,6 +64,7 @@ struct Graph::Impl {
   std::vector<std::pair<std::string, Source>> outputs;
   int batch = 0;
   bool ran_losses = false;
+  bool poison_gradient_buffers = false;  // GraphOptions::poison_gradient_buffers
 
   Shape shape_of(const Source& s) const {
     return s.node >= 0 ? nodes[s.node].out_shapes[s.port] : inputs[s.input].shape;
@@ -78,6 +80,7 @@ Graph::Graph(Graph&&) noexcept = default;
 Graph::Graph(const GraphSpec& spec, const Registry& registry, const GraphOptions& options)
     : spec_(spec), impl_(std::make_unique<Impl>()) {
   Impl& g = *impl_;
+  g.poison_gradient_buffers = options.poison_gradient_buffers;
 
   // Graph inputs and their shapes (symbolic dimensions come from options.dims).
   for (const auto& [name, dims] : spec.inputs) {
@@ -436,6 +439,7 @@ void run_backward(Graph::Impl& g) {
       }
       const Tensor& v = g.value_of(s);
       gin[k] = Tensor(v.batch(), v.rows(), v.cols());
+      if (g.poison_gradient_buffers) gin[k].vec().setConstant(std::numeric_limits<float>::quiet_NaN());
       gin_map[b.in_ports[k]] = &gin[k];
     }
     b.node->backward(in, out, gout, gin_map);
@@ -470,6 +474,7 @@ void reset_grads(Graph::Impl& g) {
         grad = Tensor();
       else if (!(grad.batch() == value.batch() && grad.shape() == value.shape()))
         grad = Tensor(value.batch(), value.rows(), value.cols());
+      if (used && g.poison_gradient_buffers) grad.vec().setConstant(std::numeric_limits<float>::quiet_NaN());
     }
   }
 }
