@@ -17,7 +17,7 @@
 #include <drape/assets.hpp>
 #include <drape/nn/dense_stack.hpp>
 #include <drape/nn/dot_rows.hpp>
-#include <drape/nn/gemm.hpp>
+#include <drape/nn/basis_products.hpp>
 #include <drape/plugin.hpp>
 
 #include <algorithm>
@@ -65,7 +65,6 @@ class SpectralDecoder final : public Node {
     basis16_.resize(std::size_t(vertices_) * k_);
     for (int i = 0; i < vertices_; ++i)
       for (int j = 0; j < k_; ++j) basis16_[std::size_t(i) * k_ + j] = to_bfloat16(v(i, j));
-    basis_.resize(0, 0);
     std::vector<int> sizes{x.rows * x.cols};
     for (long w : widths_) sizes.push_back(static_cast<int>(w));
     sizes.push_back(3 * k_);
@@ -97,10 +96,10 @@ class SpectralDecoder final : public Node {
       }
       return;
     }
-    // Through the BLAS (AVX2/AVX-512 kernels; Eigen's product is compiled for SSE2).
+    // One pass over the 16-bit V in blocks (nn::basis_times: half the bytes of
+    // a float copy, and the BLAS copied all of that before every product).
     product_.resize(vertices_, 3 * batch);
-    nn::gemm(nn::Op::None, nn::Op::Transpose, 1.0f, basis().leftCols(use_k_), coefficients_.leftCols(use_k_), 0.0f,
-             product_);
+    nn::basis_times(basis(use_k_), coefficients_.leftCols(use_k_), product_);
     for (int b = 0; b < batch; ++b) dx.mat(b) = product_.middleCols(3 * b, 3);
   }
 
@@ -124,8 +123,7 @@ class SpectralDecoder final : public Node {
       product_.resize(vertices_, 3 * batch);
       for (int b = 0; b < batch; ++b) product_.middleCols(3 * b, 3) = gdx.mat(b);
       coefficients_.setZero();
-      nn::gemm(nn::Op::Transpose, nn::Op::None, 1.0f, product_, basis().leftCols(use_k_), 0.0f,
-               coefficients_.leftCols(use_k_));
+      nn::basis_transpose_times(product_, basis(use_k_), coefficients_.leftCols(use_k_));
     }
     MatrixRM g(batch, 3 * k_);
     for (int b = 0; b < batch; ++b) {
@@ -151,22 +149,14 @@ class SpectralDecoder final : public Node {
   // product's blocking wins.
   static constexpr int kStreamBatch = 2;
 
-  // V widened to floats for the batched matrix products, made on first use
-  // (training), so that inference keeps only the 16-bit copy.
-  const MatrixRM& basis() {
-    if (basis_.rows() != vertices_) {
-      basis_.resize(vertices_, k_);
-      for (int i = 0; i < vertices_; ++i) from_bfloat16(basis16_.data() + std::size_t(i) * k_, basis_.row(i).data(), k_);
-    }
-    return basis_;
-  }
+  // The first `columns` eigenvectors as the bfloat16 matrix the products read.
+  nn::Bfloat16Matrix basis(int columns) const { return {basis16_.data(), vertices_, columns, k_}; }
 
   std::vector<long> widths_;
   int requested_k_, requested_use_k_;
   float init_scale_;
   nn::Activation activation_;
   std::vector<std::uint16_t> basis16_;  // [Ng, k] row-major, bfloat16
-  MatrixRM basis_;                      // [Ng, k] the same values as floats, or empty
   Eigen::RowVectorXf row_;              // one row of V widened
   int vertices_ = 0, k_ = 0, use_k_ = 0;  // use_k_: the eigenvectors applied to Delta x
   nn::DenseStack mlp_;

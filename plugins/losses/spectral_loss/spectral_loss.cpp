@@ -7,9 +7,9 @@
 // three coordinates; mean over the k coefficients (`reduction: sum` gives the
 // seed's plain sum).
 // Reading V (N x k floats, 14 MB at the default resolution) is the cost here:
-// once per sample forward, once per batch backward.
+// once per batch forward, once backward.
 #include <drape/assets.hpp>
-#include <drape/nn/gemm.hpp>
+#include <drape/nn/basis_products.hpp>
 #include <drape/plugin.hpp>
 
 #include <string>
@@ -42,12 +42,12 @@ class SpectralLoss final : public Node {
     const Tensor &x = *in.at("pred"), &y = *in.at("target");
     const int batch = x.batch(), n = x.rows();
     // C = D' V [3B, k] for the whole batch, D [N, 3B] the samples' x - y side
-    // by side: one matrix product through the BLAS (AVX2/AVX-512 kernels; the
-    // row-at-a-time updates this replaces ran in Eigen's SSE2 code, 6x slower).
+    // by side: one pass over V (nn::basis_transpose_times; the BLAS copied all
+    // of V before every product).
     difference_.resize(n, 3 * batch);
     for (int b = 0; b < batch; ++b) difference_.middleCols(3 * b, 3) = x.mat(b) - y.mat(b);
     coefficients_.resize(3 * batch, basis_.cols());
-    nn::gemm(nn::Op::Transpose, nn::Op::None, 1.0f, difference_, basis_, 0.0f, coefficients_);
+    nn::basis_transpose_times(difference_, basis_, coefficients_);
     for (int b = 0; b < batch; ++b) {
       const double s = coefficients_.middleRows(3 * b, 3).cast<double>().lpNorm<1>();
       (*out.at("loss"))(b, 0, 0) = static_cast<float>(mean_ ? s / double(basis_.cols()) : s);
@@ -58,17 +58,18 @@ class SpectralLoss final : public Node {
     const Tensor& x = *in.at("pred");
     const int batch = x.batch();
     if (coefficients_.rows() != 3 * batch) throw Error("spectral_loss: backward without a matching forward");
-    // dL/dx = V sign(V' (x - y)), all samples in one product: [N, k] x [k, 3B].
-    MatrixRM signs(basis_.cols(), 3 * batch);
+    // dL/dx = V sign(V' (x - y)), all samples in one product: [N, k] x [k, 3B]
+    // (the signs held as rows, [3B, k], as basis_times takes them).
+    MatrixRM signs(3 * batch, basis_.cols());
     for (int b = 0; b < batch; ++b) {
       const float scale = (*gout.at("loss"))(b, 0, 0) / (mean_ ? float(basis_.cols()) : 1.0f);
-      signs.middleCols(3 * b, 3) = coefficients_.middleRows(3 * b, 3).transpose().unaryExpr(
+      signs.middleRows(3 * b, 3) = coefficients_.middleRows(3 * b, 3).unaryExpr(
           [scale](float v) { return v > 0 ? scale : (v < 0 ? -scale : 0.0f); });
     }
     const auto gpred = gin.find("pred"), gtarget = gin.find("target");
     if (gpred == gin.end() && gtarget == gin.end()) return;
     MatrixRM g(basis_.rows(), 3 * batch);
-    nn::gemm(nn::Op::None, nn::Op::None, 1.0f, basis_, signs, 0.0f, g);
+    nn::basis_times(basis_, signs, g);
     for (int b = 0; b < batch; ++b) {
       if (gpred != gin.end()) gpred->second->mat(b) = g.middleCols(3 * b, 3);
       if (gtarget != gin.end()) gtarget->second->mat(b) = -g.middleCols(3 * b, 3);
