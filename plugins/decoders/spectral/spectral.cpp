@@ -23,6 +23,7 @@
 #include <algorithm>
 #include <cstdint>
 #include <cstring>
+#include <string>
 #include <vector>
 
 namespace {
@@ -99,7 +100,10 @@ class SpectralDecoder final : public Node {
     // One pass over the 16-bit V in blocks (nn::basis_times: half the bytes of
     // a float copy, and the BLAS copied all of that before every product).
     product_.resize(vertices_, 3 * batch);
-    nn::basis_times(basis(use_k_), coefficients_.leftCols(use_k_), product_);
+    if (const MatrixRM* wide = float_basis())
+      nn::basis_times(wide->leftCols(use_k_), coefficients_.leftCols(use_k_), product_);
+    else
+      nn::basis_times(basis(use_k_), coefficients_.leftCols(use_k_), product_);
     for (int b = 0; b < batch; ++b) dx.mat(b) = product_.middleCols(3 * b, 3);
   }
 
@@ -123,7 +127,10 @@ class SpectralDecoder final : public Node {
       product_.resize(vertices_, 3 * batch);
       for (int b = 0; b < batch; ++b) product_.middleCols(3 * b, 3) = gdx.mat(b);
       coefficients_.setZero();
-      nn::basis_transpose_times(product_, basis(use_k_), coefficients_.leftCols(use_k_));
+      if (const MatrixRM* wide = float_basis())
+        nn::basis_transpose_times(product_, wide->leftCols(use_k_), coefficients_.leftCols(use_k_));
+      else
+        nn::basis_transpose_times(product_, basis(use_k_), coefficients_.leftCols(use_k_));
     }
     MatrixRM g(batch, 3 * k_);
     for (int b = 0; b < batch; ++b) {
@@ -151,12 +158,23 @@ class SpectralDecoder final : public Node {
 
   // The first `columns` eigenvectors as the bfloat16 matrix the products read.
   nn::Bfloat16Matrix basis(int columns) const { return {basis16_.data(), vertices_, columns, k_}; }
+  // Where the products go through the BLAS (no AVX-512), a float copy of V
+  // made once, instead of widening all of V at every product; else null.
+  const MatrixRM* float_basis() {
+    if (std::string(nn::basis_products_version()) == "avx512f") return nullptr;
+    if (basis_.rows() != vertices_) {
+      basis_.resize(vertices_, k_);
+      for (int i = 0; i < vertices_; ++i) from_bfloat16(basis16_.data() + std::size_t(i) * k_, basis_.row(i).data(), k_);
+    }
+    return &basis_;
+  }
 
   std::vector<long> widths_;
   int requested_k_, requested_use_k_;
   float init_scale_;
   nn::Activation activation_;
   std::vector<std::uint16_t> basis16_;  // [Ng, k] row-major, bfloat16
+  MatrixRM basis_;                      // the same values as floats, only where float_basis() needs them
   Eigen::RowVectorXf row_;              // one row of V widened
   int vertices_ = 0, k_ = 0, use_k_ = 0;  // use_k_: the eigenvectors applied to Delta x
   nn::DenseStack mlp_;
