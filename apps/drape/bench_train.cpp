@@ -93,10 +93,20 @@ int run(const std::vector<std::string>& args) {
   const auto inputs = dp.graph().input_names();
   const bool params = std::find(inputs.begin(), inputs.end(), "body_params") != inputs.end();
 
+  // Every sample of the file, the training split first: a benchmark has no
+  // use for the splits, and a pool smaller than the batch would repeat samples
+  // within a batch, whose closest points the losses then find in the batch's
+  // own cache (a faster step than training ever takes).
   std::vector<std::size_t> pool = reader.indices(Split::Train);
+  for (const Split other : {Split::Val, Split::Test})
+    for (const std::size_t i : reader.indices(other)) pool.push_back(i);
   if (pool.empty()) pool = reader.indices();
   if (pool.empty()) throw ConfigError(data + ": no samples");
   if (const int keep = vm["pool"].as<int>(); keep > 0 && static_cast<std::size_t>(keep) < pool.size()) pool.resize(keep);
+  if (pool.size() < static_cast<std::size_t>(batch_size))
+    std::fprintf(stderr, "warning: %zu samples for batches of %d: batches repeat samples, and the repeats' closest "
+                 "points are not computed again (give --data a file with at least --batch samples)\n",
+                 pool.size(), batch_size);
   Rng rng(1);
   const OmpThreadsScope one(1);
   auto read_batch = [&](const std::vector<std::size_t>& indices) {
