@@ -19,6 +19,35 @@
 
 using drape::MatrixRM;
 
+namespace {
+
+// The largest difference between out = V A' and the same sums in double.
+double worst_error_times(const Eigen::Ref<const MatrixRM>& v, const MatrixRM& a, const MatrixRM& out) {
+  double worst = 0;
+  for (int i = 0; i < v.rows(); ++i)
+    for (int r = 0; r < a.rows(); ++r) {
+      double s = 0;
+      for (int j = 0; j < v.cols(); ++j) s += double(v(i, j)) * double(a(r, j));
+      worst = std::max(worst, std::abs(s - double(out(i, r))));
+    }
+  return worst;
+}
+
+// The largest difference between out = B' V and the same sums in double.
+double worst_error_transpose_times(const MatrixRM& b, const Eigen::Ref<const MatrixRM>& v,
+                                   const Eigen::Ref<const MatrixRM>& out) {
+  double worst = 0;
+  for (int r = 0; r < b.cols(); ++r)
+    for (int j = 0; j < v.cols(); ++j) {
+      double s = 0;
+      for (int i = 0; i < v.rows(); ++i) s += double(b(i, r)) * double(v(i, j));
+      worst = std::max(worst, std::abs(s - double(out(r, j))));
+    }
+  return worst;
+}
+
+}  // namespace
+
 TEST_CASE("basis products agree with double-precision sums on every tail and on strided views", "[gcn][kernels]") {
   INFO("version " << drape::nn::basis_products_version());
   const std::string version = drape::nn::basis_products_version();
@@ -37,22 +66,9 @@ TEST_CASE("basis products agree with double-precision sums on every tail and on 
         auto out_t = out_wide.leftCols(k);  // a strided output; the 3 columns past it untouched
         drape::nn::basis_transpose_times(b, v, out_t);
 
-        double worst = 0, worst_t = 0;
-        for (int i = 0; i < n; ++i)
-          for (int r = 0; r < m; ++r) {
-            double s = 0;
-            for (int j = 0; j < k; ++j) s += double(v(i, j)) * double(a(r, j));
-            worst = std::max(worst, std::abs(s - double(out(i, r))));
-          }
-        for (int r = 0; r < m; ++r)
-          for (int j = 0; j < k; ++j) {
-            double s = 0;
-            for (int i = 0; i < n; ++i) s += double(b(i, r)) * double(v(i, j));
-            worst_t = std::max(worst_t, std::abs(s - double(out_t(r, j))));
-          }
         // Float sums of k (or n) products of numbers in [-1, 1].
-        CHECK(worst <= 1e-6 * (k + 1));
-        CHECK(worst_t <= 1e-6 * (n + 1));
+        CHECK(worst_error_times(v, a, out) <= 1e-6 * (k + 1));
+        CHECK(worst_error_transpose_times(b, v, out_t) <= 1e-6 * (n + 1));
         CHECK((out_wide.rightCols(3).array() == 7.0f).all());
 
         // The same V rounded to bfloat16 and read as 16-bit words: the products
@@ -76,21 +92,8 @@ TEST_CASE("basis products agree with double-precision sums on every tail and on 
         MatrixRM out16 = MatrixRM::Constant(n, m, 7.0f), out16_t = MatrixRM::Constant(m, k, 7.0f);
         drape::nn::basis_times(v_bf16, a, out16);
         drape::nn::basis_transpose_times(b, v_bf16, out16_t);
-        double worst16 = 0, worst16_t = 0;
-        for (int i = 0; i < n; ++i)
-          for (int r = 0; r < m; ++r) {
-            double s = 0;
-            for (int j = 0; j < k; ++j) s += double(widened(i, j)) * double(a(r, j));
-            worst16 = std::max(worst16, std::abs(s - double(out16(i, r))));
-          }
-        for (int r = 0; r < m; ++r)
-          for (int j = 0; j < k; ++j) {
-            double s = 0;
-            for (int i = 0; i < n; ++i) s += double(b(i, r)) * double(widened(i, j));
-            worst16_t = std::max(worst16_t, std::abs(s - double(out16_t(r, j))));
-          }
-        CHECK(worst16 <= 1e-6 * (k + 1));
-        CHECK(worst16_t <= 1e-6 * (n + 1));
+        CHECK(worst_error_times(widened, a, out16) <= 1e-6 * (k + 1));
+        CHECK(worst_error_transpose_times(b, widened, out16_t) <= 1e-6 * (n + 1));
       }
     }
   }

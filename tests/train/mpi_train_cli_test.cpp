@@ -62,15 +62,19 @@ std::string cannot_run_mpi() {
   return "";
 }
 
+// True (and a warning saying why) when this machine cannot run the MPI tests.
+bool skipped_without_mpi() {
+  const std::string why = cannot_run_mpi();
+  if (why.empty()) return false;
+  WARN("skipped: " << why);
+  SUCCEED("skipped");
+  return true;
+}
+
 }  // namespace
 
 TEST_CASE("mpirun -np 2 drape train: the weights of one process on the same global batches", "[train][mpi]") {
-  const std::string why = cannot_run_mpi();
-  if (!why.empty()) {
-    WARN("skipped: " << why);
-    SUCCEED("skipped");
-    return;
-  }
+  if (skipped_without_mpi()) return;
   test::TempDir dir;
   const fs::path data = dir / "data.h5";
   test::write_tiny_dataset(data, 14, 11, 3);
@@ -106,12 +110,7 @@ TEST_CASE("mpirun -np 2 drape train: the weights of one process on the same glob
 }
 
 TEST_CASE("mpirun -np 2 drape train resumes to the uninterrupted result and refuses another rank count", "[train][mpi]") {
-  const std::string why = cannot_run_mpi();
-  if (!why.empty()) {
-    WARN("skipped: " << why);
-    SUCCEED("skipped");
-    return;
-  }
+  if (skipped_without_mpi()) return;
   test::TempDir dir;
   const fs::path data = dir / "data.h5", model = dir / "model.h5";
   test::write_tiny_dataset(data, 10, 8, 2);
@@ -135,12 +134,7 @@ TEST_CASE("mpirun -np 2 drape train resumes to the uninterrupted result and refu
 // bit for bit (a wrong point under a key would change every later loss).
 TEST_CASE("mpirun -np 2 drape train with the six losses shares closest points and still matches two threads",
           "[train][mpi]") {
-  const std::string why = cannot_run_mpi();
-  if (!why.empty()) {
-    WARN("skipped: " << why);
-    SUCCEED("skipped");
-    return;
-  }
+  if (skipped_without_mpi()) return;
   test::TempDir dir;
   const fs::path data = dir / "data.h5";
   test::write_tiny_dataset(data, 14, 11, 3);
