@@ -5,6 +5,7 @@
 
 #include <drape/data_parallel.hpp>
 #include <drape/model.hpp>
+#include <drape/nn/basis_products.hpp>
 #include <drape/nn/dot_rows.hpp>
 #include <drape/registry.hpp>
 
@@ -66,9 +67,9 @@ int run(const std::vector<std::string>& args) {
   std::size_t weights = 0;
   for (const auto& [name, w] : graph.weights()) weights += w->value.size();
   std::printf("## Inference on one core: %s\n\n", model.file().string().c_str());
-  std::printf("garment %d vertices, body %d vertices, output '%s', %zu learnable weights, batch %d, thin-product kernel %s\n\n",
+  std::printf("garment %d vertices, body %d vertices, output '%s', %zu learnable weights, batch %d, basis products %s (rows: %s)\n\n",
               assets.garment->mesh.num_vertices(), assets.body.num_vertices(), output.c_str(), weights, batch_size,
-              nn::dot_rows_version());
+              nn::basis_products_version(), nn::dot_rows_version());
   std::printf("| ms per body (best of %d) | median | multiply-adds per body | GFLOP/s (2 per multiply-add) |\n|---|---|---|---|\n",
               repeats);
   std::printf("| %.3f | %.3f | %.4g | %.2f |\n", best, median, macs, 2.0 * macs / (best * 1e-3) / 1e9);

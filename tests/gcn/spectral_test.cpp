@@ -50,7 +50,7 @@ TEST_CASE("spectral: Delta c from the MLP on the flattened input, Delta x = V De
   const DenseF v16 = v.unaryExpr([](float e) { return static_cast<float>(Eigen::bfloat16(e)); });
   CHECK((v16 - v).cwiseAbs().maxCoeff() > 0.0f);  // the rounding is real at this size
   CHECK(((v16 - v).cwiseAbs().array() <= v.cwiseAbs().array() / 256).all());
-  // One sample streams over V's rows, three use a matrix product: both give V Delta c.
+  // Any batch size gives V Delta c (one sample and three: the products' row blocks and their tails).
   for (int batch : {1, 3}) {
     INFO("batch " << batch);
     auto node = make_node("spectral", "{widths: [5], k: 4, activation: tanh, init_scale: 1.0}");
@@ -106,7 +106,7 @@ TEST_CASE("spectral rejects bad parameters, inputs and missing assets", "[gcn][s
 
 TEST_CASE("spectral backward matches finite differences through both outputs", "[gcn][spectral][gradcheck]") {
   const auto assets = gcn_assets();
-  // Batches of 1 and 2 stream over V's rows, 4 uses matrix products.
+  // Batches of 1, 2 and 4 (the products' row blocks and their tails).
   const std::tuple<const char*, bool, int> configs[] = {{"{widths: [5], k: 4, activation: tanh, init_scale: 1.0}", false, 2},
                                                         {"{widths: [5], k: 4, activation: tanh, init_scale: 1.0}", false, 4},
                                                         {"{widths: [], init_scale: 0.5}", false, 1},

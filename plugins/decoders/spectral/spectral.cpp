@@ -13,17 +13,16 @@
 // 45% of the whole model's inference time), and halving its bytes nearly halves
 // that time. The rounding (relative 2^-9 per entry) is the basis's definition
 // for training and inference alike, so every batch size and both directions use
-// the same V and the gradients stay exact for it.
+// the same V and the gradients stay exact for it. Both products read the 16-bit
+// V in place (nn::basis_times, nn::basis_transpose_times), at any batch size.
 #include <drape/assets.hpp>
 #include <drape/nn/dense_stack.hpp>
-#include <drape/nn/dot_rows.hpp>
 #include <drape/nn/basis_products.hpp>
 #include <drape/plugin.hpp>
 
 #include <algorithm>
 #include <cstdint>
 #include <cstring>
-#include <string>
 #include <vector>
 
 namespace {
@@ -35,14 +34,6 @@ std::uint16_t to_bfloat16(float f) {
   std::memcpy(&u, &f, sizeof u);
   u += 0x7FFFu + ((u >> 16) & 1u);  // round to nearest, ties to even (eigenvectors are finite)
   return static_cast<std::uint16_t>(u >> 16);
-}
-
-// A plain loop over 16-bit words that GCC vectorises (unpack + shift) at -O2/-O3.
-void from_bfloat16(const std::uint16_t* in, float* out, int n) {
-  for (int j = 0; j < n; ++j) {
-    const std::uint32_t u = std::uint32_t(in[j]) << 16;
-    std::memcpy(out + j, &u, sizeof u);
-  }
 }
 
 class SpectralDecoder final : public Node {
@@ -85,25 +76,10 @@ class SpectralDecoder final : public Node {
     coefficients_.resize(3 * batch, k_);
     for (int b = 0; b < batch; ++b) coefficients_.middleRows(3 * b, 3) = coefficients.mat(b).transpose();
     Tensor& dx = *out.at("out");
-    if (batch <= kStreamBatch) {
-      // V is the big operand: one pass over its rows, each widened into a small
-      // buffer that stays in L1 for its few dot products.
-      row_.resize(k_);
-      for (int i = 0; i < vertices_; ++i) {
-        from_bfloat16(basis16_.data() + std::size_t(i) * k_, row_.data(), use_k_);
-        float dots[3 * kStreamBatch];
-        nn::dot_rows(row_.data(), coefficients_.data(), use_k_, k_, 3 * batch, dots);
-        for (int r = 0; r < 3 * batch; ++r) dx(r / 3, i, r % 3) = dots[r];
-      }
-      return;
-    }
-    // One pass over the 16-bit V in blocks (nn::basis_times: half the bytes of
-    // a float copy, and the BLAS copied all of that before every product).
+    // One pass over the 16-bit V (nn::basis_times reads it in place: half the
+    // bytes of a float copy; the BLAS copied all of that before every product).
     product_.resize(vertices_, 3 * batch);
-    if (const MatrixRM* wide = float_basis())
-      nn::basis_times(wide->leftCols(use_k_), coefficients_.leftCols(use_k_), product_);
-    else
-      nn::basis_times(basis(use_k_), coefficients_.leftCols(use_k_), product_);
+    nn::basis_times(basis(use_k_), coefficients_.leftCols(use_k_), product_);
     for (int b = 0; b < batch; ++b) dx.mat(b) = product_.middleCols(3 * b, 3);
   }
 
@@ -114,24 +90,10 @@ class SpectralDecoder final : public Node {
     const int batch = x.batch();
     // dLoss/dC = G^T V with G [Ng, 3*batch] the residual's gradient (V^T G, transposed).
     coefficients_.resize(3 * batch, k_);
-    if (batch <= kStreamBatch) {
-      coefficients_.setZero();
-      row_.resize(k_);
-      for (int i = 0; i < vertices_; ++i) {
-        from_bfloat16(basis16_.data() + std::size_t(i) * k_, row_.data(), use_k_);
-        float scale[3 * kStreamBatch];
-        for (int r = 0; r < 3 * batch; ++r) scale[r] = gdx(r / 3, i, r % 3);
-        nn::axpy_rows(row_.data(), scale, use_k_, k_, 3 * batch, coefficients_.data());
-      }
-    } else {
-      product_.resize(vertices_, 3 * batch);
-      for (int b = 0; b < batch; ++b) product_.middleCols(3 * b, 3) = gdx.mat(b);
-      coefficients_.setZero();
-      if (const MatrixRM* wide = float_basis())
-        nn::basis_transpose_times(product_, wide->leftCols(use_k_), coefficients_.leftCols(use_k_));
-      else
-        nn::basis_transpose_times(product_, basis(use_k_), coefficients_.leftCols(use_k_));
-    }
+    product_.resize(vertices_, 3 * batch);
+    for (int b = 0; b < batch; ++b) product_.middleCols(3 * b, 3) = gdx.mat(b);
+    coefficients_.setZero();
+    nn::basis_transpose_times(product_, basis(use_k_), coefficients_.leftCols(use_k_));
     MatrixRM g(batch, 3 * k_);
     for (int b = 0; b < batch; ++b) {
       Eigen::Map<MatrixRM> gb(g.row(b).data(), k_, 3);
@@ -151,31 +113,14 @@ class SpectralDecoder final : public Node {
   double flops_per_sample() const override { return mlp_.flops_per_row() + double(vertices_) * use_k_ * 3; }
 
  private:
-  // Up to this batch a streaming pass over V's rows beats a matrix product
-  // (measured 1.4x forward, 2x backward at one sample, k = 1000); beyond it the
-  // product's blocking wins.
-  static constexpr int kStreamBatch = 2;
-
   // The first `columns` eigenvectors as the bfloat16 matrix the products read.
   nn::Bfloat16Matrix basis(int columns) const { return {basis16_.data(), vertices_, columns, k_}; }
-  // Where the products go through the BLAS (no AVX-512), a float copy of V
-  // made once, instead of widening all of V at every product; else null.
-  const MatrixRM* float_basis() {
-    if (std::string(nn::basis_products_version()) == "avx512f") return nullptr;
-    if (basis_.rows() != vertices_) {
-      basis_.resize(vertices_, k_);
-      for (int i = 0; i < vertices_; ++i) from_bfloat16(basis16_.data() + std::size_t(i) * k_, basis_.row(i).data(), k_);
-    }
-    return &basis_;
-  }
 
   std::vector<long> widths_;
   int requested_k_, requested_use_k_;
   float init_scale_;
   nn::Activation activation_;
   std::vector<std::uint16_t> basis16_;  // [Ng, k] row-major, bfloat16
-  MatrixRM basis_;                      // the same values as floats, only where float_basis() needs them
-  Eigen::RowVectorXf row_;              // one row of V widened
   int vertices_ = 0, k_ = 0, use_k_ = 0;  // use_k_: the eigenvectors applied to Delta x
   nn::DenseStack mlp_;
   MatrixRM coefficients_;  // [3*batch, k]: row 3b + c is sample b's Delta c of axis c (or its gradient)

@@ -11,7 +11,9 @@
 // training step, because every call first copies all of V into the library's
 // blocked layout. These kernels read V in place, in blocks that stay in L1 or
 // L2 while the small operand is reused from registers: AVX-512F, chosen at run
-// time; on other CPUs, or with DRAPE_PORTABLE_KERNELS=1, the BLAS product.
+// time; on other CPUs, or with DRAPE_PORTABLE_KERNELS=1, the BLAS product (a
+// float V) or one pass over V's rows through dot_rows/axpy_rows (a bfloat16
+// V, widened a row at a time).
 // The sums run in another order than the BLAS's: results agree to float
 // rounding, and each path gives the same bits every time.
 #include <drape/nn/refs.hpp>
@@ -35,7 +37,7 @@ struct Bfloat16Matrix {
 void basis_times(const Bfloat16Matrix& v, ConstMatRef a, MatRef out);
 void basis_transpose_times(ConstMatRef b, const Bfloat16Matrix& v, MatRef out);
 
-// Which version runs here: "avx512f" (with BW and VL) or "blas".
+// Which version runs here: "avx512f" (with BW and VL) or "portable".
 const char* basis_products_version();
 
 }  // namespace drape::nn
