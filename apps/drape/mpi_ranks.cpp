@@ -54,6 +54,10 @@ class MpiRanks final : public Ranks {
     check(MPI_Allgather(mine, static_cast<int>(count), MPI_DOUBLE, all, static_cast<int>(count), MPI_DOUBLE, MPI_COMM_WORLD),
           "MPI_Allgather");
   }
+  void all_gather(const std::uint8_t* mine, std::size_t count, std::uint8_t* all) const override {
+    check(MPI_Allgather(mine, static_cast<int>(count), MPI_BYTE, all, static_cast<int>(count), MPI_BYTE, MPI_COMM_WORLD),
+          "MPI_Allgather");
+  }
   void barrier() const override { check(MPI_Barrier(MPI_COMM_WORLD), "MPI_Barrier"); }
 
  private:

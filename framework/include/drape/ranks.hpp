@@ -5,6 +5,7 @@
 // drape program implements them with MPI when it was built with MPI
 // (apps/drape/mpi_ranks.cpp), so the library itself never depends on MPI.
 #include <cstddef>
+#include <cstdint>
 
 namespace drape {
 
@@ -17,6 +18,8 @@ class Ranks {
   // all), one rank after another in rank order, into `all` (size * count).
   virtual void all_gather(const float* mine, std::size_t count, float* all) const = 0;
   virtual void all_gather(const double* mine, std::size_t count, double* all) const = 0;
+  // Bytes, copied unchanged (the ranks of one run are one binary on one machine type).
+  virtual void all_gather(const std::uint8_t* mine, std::size_t count, std::uint8_t* all) const = 0;
   // Returns once every rank has called it.
   virtual void barrier() const = 0;
 };

@@ -6,7 +6,6 @@
 
 #include <algorithm>
 #include <cstdint>
-#include <cstring>
 
 namespace drape {
 
@@ -103,43 +102,42 @@ LossValues DistributedGraph::run(const std::vector<std::size_t>& indices, bool b
 std::size_t share_surface_cache(const Ranks& ranks) {
   if (ranks.size() <= 1) return 0;
   geometry::SurfaceCache& cache = geometry::SurfaceCache::shared();
-  // Cut this rank's new entries into rounds of at most kRound bytes.
+  // This rank's new entries, cut into rounds of at most kRound bytes (each
+  // packed only when its turn comes: the first epoch's entries can be GBs).
   constexpr std::size_t kRound = std::size_t{64} << 20;
   const auto computed = cache.take_computed();
-  std::vector<std::vector<std::uint8_t>> rounds;
-  for (std::size_t first = 0; first < computed.size();) {
-    std::size_t bytes = 0, last = first;
-    while (last < computed.size() &&
-           (last == first || bytes + geometry::packed_entry_bytes(computed[last].second->size()) <= kRound))
-      bytes += geometry::packed_entry_bytes(computed[last].second->size()), ++last;
-    rounds.push_back(geometry::pack_surface_entries({computed.begin() + static_cast<long>(first),
-                                                     computed.begin() + static_cast<long>(last)}));
-    first = last;
+  std::vector<std::size_t> cuts{0};
+  for (std::size_t e = 0, bytes = 0; e < computed.size(); ++e) {
+    const std::size_t entry = geometry::packed_entry_bytes(computed[e].second->size());
+    if (e > cuts.back() && bytes + entry > kRound) cuts.push_back(e), bytes = 0;
+    bytes += entry;
   }
+  if (!computed.empty()) cuts.push_back(computed.size());
+  const std::size_t my_rounds = cuts.size() - 1;
   const int size = ranks.size(), me = ranks.rank();
-  auto gather_counts = [&](double mine) {
+  auto gather_one = [&](double mine) {
     std::vector<double> all(static_cast<std::size_t>(size));
     ranks.all_gather(&mine, 1, all.data());
     return all;
   };
-  const std::vector<double> round_counts = gather_counts(double(rounds.size()));
-  const std::size_t total_rounds = static_cast<std::size_t>(*std::max_element(round_counts.begin(), round_counts.end()));
+  const std::vector<double> round_counts = gather_one(double(my_rounds));
+  const auto total_rounds = static_cast<std::size_t>(*std::max_element(round_counts.begin(), round_counts.end()));
   std::size_t adopted = 0;
   for (std::size_t round = 0; round < total_rounds; ++round) {
-    const std::vector<std::uint8_t> none;
-    const std::vector<std::uint8_t>& mine = round < rounds.size() ? rounds[round] : none;
-    const std::vector<double> sizes = gather_counts(double(mine.size()));
-    const std::size_t widest = static_cast<std::size_t>(*std::max_element(sizes.begin(), sizes.end()));
-    const std::size_t words = (widest + sizeof(double) - 1) / sizeof(double);
-    if (words == 0) continue;
-    // Bytes travel inside doubles (MPI copies them unchanged between ranks of one machine type).
-    std::vector<double> send(words, 0.0), all(words * static_cast<std::size_t>(size));
-    if (!mine.empty()) std::memcpy(send.data(), mine.data(), mine.size());
-    ranks.all_gather(send.data(), words, all.data());
+    std::vector<std::uint8_t> mine;
+    if (round < my_rounds)
+      mine = geometry::pack_surface_entries({computed.begin() + static_cast<long>(cuts[round]),
+                                             computed.begin() + static_cast<long>(cuts[round + 1])});
+    const std::vector<double> sizes = gather_one(double(mine.size()));
+    const auto widest = static_cast<std::size_t>(*std::max_element(sizes.begin(), sizes.end()));
+    if (widest == 0) continue;
+    mine.resize(widest);  // every rank sends as many bytes; the sizes say how many count
+    std::vector<std::uint8_t> all(widest * static_cast<std::size_t>(size));
+    ranks.all_gather(mine.data(), widest, all.data());
     for (int q = 0; q < size; ++q) {
       if (q == me) continue;
-      const auto* bytes = reinterpret_cast<const std::uint8_t*>(all.data() + words * static_cast<std::size_t>(q));
-      for (auto& [key, hits] : geometry::unpack_surface_entries(bytes, static_cast<std::size_t>(sizes[static_cast<std::size_t>(q)]))) {
+      const std::uint8_t* theirs = all.data() + widest * static_cast<std::size_t>(q);
+      for (auto& [key, hits] : geometry::unpack_surface_entries(theirs, static_cast<std::size_t>(sizes[static_cast<std::size_t>(q)]))) {
         cache.adopt(key, std::move(hits));
         ++adopted;
       }
