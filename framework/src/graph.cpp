@@ -45,7 +45,8 @@ struct Graph::Impl {
     // the first consumer overwrites one, later ones add to it, and one nobody
     // wrote is zeroed just before the node's backward reads it.
     std::vector<bool> grad_written;
-    bool has_grad = false;
+    // A gradient reached one of its outputs: its backward runs.
+    bool has_grad() const { return std::find(grad_written.begin(), grad_written.end(), true) != grad_written.end(); }
     bool requires_grad = false;  // has weights upstream (or itself)
     bool for_outputs = false;    // needed to compute the graph outputs
     bool for_losses = false;     // needed to compute the losses
@@ -408,7 +409,7 @@ namespace {
 void run_backward(Graph::Impl& g) {
   for (auto it = g.nodes.rbegin(); it != g.nodes.rend(); ++it) {
     auto& b = *it;
-    if (!b.has_grad || !b.requires_grad) continue;
+    if (!b.requires_grad || !b.has_grad()) continue;
     const auto start = std::chrono::steady_clock::now();
     TensorIn in, out, gout;
     for (std::size_t k = 0; k < b.in_ports.size(); ++k) in[b.in_ports[k]] = &g.value_of(b.sources[k]);
@@ -449,7 +450,6 @@ void run_backward(Graph::Impl& g) {
       auto& src = g.nodes[s.node];
       if (!direct[k]) src.out_grads[s.port].vec() += gin[k].vec();
       src.grad_written[s.port] = true;
-      src.has_grad = true;
     }
     b.backward_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   }
@@ -457,7 +457,6 @@ void run_backward(Graph::Impl& g) {
 
 void reset_grads(Graph::Impl& g) {
   for (auto& b : g.nodes) {
-    b.has_grad = false;
     b.backward_ms = 0.0;
     b.out_grads.resize(b.outputs.size());
     b.grad_written.assign(b.outputs.size(), false);
@@ -489,7 +488,6 @@ void Graph::backward() {
     std::fill(b.out_grads[0].data(), b.out_grads[0].data() + b.out_grads[0].size(),
               static_cast<float>(b.spec.weight / g.batch));
     b.grad_written[0] = true;
-    b.has_grad = true;
   }
   run_backward(g);
 }
@@ -509,7 +507,6 @@ void Graph::backward_from_output(const std::string& output, const Tensor& grad) 
       throw Error("backward_from_output: gradient " + grad.shape_str() + " does not match output " + target.shape_str());
     target.vec() = grad.vec();
     g.nodes[s.node].grad_written[s.port] = true;
-    g.nodes[s.node].has_grad = true;
     run_backward(g);
     return;
   }
