@@ -73,6 +73,8 @@ TEST_CASE("topology of a closed box, an open box and a non-manifold pair") {
   Eigen::MatrixX3i fin(13, 3);
   fin << f, Eigen::RowVector3i(0, 1, 7);
   CHECK(check_topology(fin, 8).nonmanifold_edges == 1);
+  CHECK(check_topology(fin, 8).first_nonmanifold_edge == std::array<int, 2>{0, 1});  // the fin's edge, named
+  CHECK(t.first_nonmanifold_edge == std::array<int, 2>{-1, -1});
 }
 
 TEST_CASE("face neighbours across each edge") {

@@ -76,7 +76,7 @@ TopologyReport check_topology(const Eigen::MatrixX3i& faces, int num_vertices) {
       boundary.unite(half[i].lo, half[i].hi);
       on_boundary[static_cast<std::size_t>(half[i].lo)] = on_boundary[static_cast<std::size_t>(half[i].hi)] = 1;
     } else if (count > 2) {
-      ++r.nonmanifold_edges;
+      if (r.nonmanifold_edges++ == 0) r.first_nonmanifold_edge = {half[i].lo, half[i].hi};
     } else if (forward != 1) {
       ++r.misoriented_edges;
     }

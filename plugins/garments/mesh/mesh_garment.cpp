@@ -12,6 +12,7 @@
 // each is the knit unless the scene's materials say otherwise.
 // Bad input is refused with one line naming the file and the element.
 #include <drape/errors.hpp>
+#include <drape/geometry/topology.hpp>
 #include <drape/materials.hpp>
 #include <drape/mesh_io.hpp>
 #include <drape/plugin.hpp>
@@ -21,7 +22,6 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
-#include <map>
 #include <string>
 #include <utility>
 
@@ -90,19 +90,15 @@ void handle_duplicates(Mesh& mesh, const MeshGarmentOptions& o) {
 // Cloth must be a 2-manifold: an edge of three or more faces is refused, as is
 // a face that uses a vertex twice.
 void check_manifold(const Mesh& mesh, const MeshGarmentOptions& o) {
-  std::map<std::pair<int, int>, int> edges;
   for (int f = 0; f < mesh.num_faces(); ++f) {
     const int a = mesh.faces(f, 0), b = mesh.faces(f, 1), c = mesh.faces(f, 2);
-    if (a == b || b == c || a == c)
-      throw ConfigError(where(o) + ": face " + std::to_string(f) + " uses a vertex twice");
-    for (int k = 0; k < 3; ++k) {
-      const int u = mesh.faces(f, k), v = mesh.faces(f, (k + 1) % 3);
-      if (++edges[{std::min(u, v), std::max(u, v)}] == 3)
-        throw ConfigError(where(o) + ": the edge between vertices " + std::to_string(std::min(u, v)) + " and " +
-                          std::to_string(std::max(u, v)) + " is shared by 3 or more faces (non-manifold); cloth needs "
-                          "every edge on one or two faces");
-    }
+    if (a == b || b == c || a == c) throw ConfigError(where(o) + ": face " + std::to_string(f) + " uses a vertex twice");
   }
+  const geometry::TopologyReport t = geometry::check_topology(mesh.faces, mesh.num_vertices());
+  if (t.nonmanifold_edges > 0)
+    throw ConfigError(where(o) + ": the edge between vertices " + std::to_string(t.first_nonmanifold_edge[0]) + " and " +
+                      std::to_string(t.first_nonmanifold_edge[1]) + " is shared by 3 or more faces (non-manifold; " +
+                      std::to_string(t.nonmanifold_edges) + " such edges); cloth needs every edge on one or two faces");
 }
 
 // Per-corner material coordinates (metres) of the rest shape: each triangle

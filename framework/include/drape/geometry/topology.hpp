@@ -2,6 +2,7 @@
 // Manifoldness, watertightness and orientation of triangle meshes.
 #include <Eigen/Core>
 
+#include <array>
 #include <string>
 
 namespace drape::geometry {
@@ -17,6 +18,7 @@ struct TopologyReport {
   int unreferenced_vertices = 0;  // vertices used by no face
   int boundary_loops = 0;         // closed chains of boundary edges
   int euler_characteristic = 0;   // V - E + F (2 for a closed genus-0 surface)
+  std::array<int, 2> first_nonmanifold_edge{-1, -1};  // its vertices (lower first), for messages; -1 when none
 
   bool manifold() const { return nonmanifold_edges == 0 && nonmanifold_vertices == 0; }
   bool watertight() const { return boundary_edges == 0; }
