@@ -89,17 +89,41 @@ int resolve_index(long index, std::size_t count, const char* kind, const char* k
   return static_cast<int>(resolved);
 }
 
+// A face label an OBJ sets by statement (`g`/`o` groups, `usemtl`
+// materials): the distinct names in order of first use by a face, and each
+// face's index into them ("default" before the first statement).
+struct FaceLabels {
+  std::vector<std::string>& names;
+  std::vector<int>& per_face;
+  std::unordered_map<std::string, int> index{};
+  std::string current = "default";
+  int id = -1;  // looked up when the first face under the current name comes
+
+  void set(std::string_view name) {
+    current = name.empty() ? "default" : std::string(name);
+    id = -1;
+  }
+  void label_face() {
+    if (id < 0) {
+      const auto [it, added] = index.try_emplace(current, static_cast<int>(names.size()));
+      if (added) names.push_back(current);
+      id = it->second;
+    }
+    per_face.push_back(id);
+  }
+};
+
 struct ObjParser {
   std::string path;
   std::vector<double> positions, uvs;
   PolygonMesh out;
-  std::unordered_map<std::string, int> group_index;
-  std::string group = "default";
-  int group_id = -1;  // looked up when the first face of the group comes
-  std::unordered_map<std::string, int> material_index;
-  std::string material = "default";
-  int material_id = -1;  // the same for `usemtl`
+  FaceLabels groups{out.group_names, out.face_group};  // refer into `out`: the parser is not copied
+  FaceLabels materials{out.material_names, out.face_material};
   int first_face_line = 0;
+
+  ObjParser() = default;
+  ObjParser(const ObjParser&) = delete;
+  ObjParser& operator=(const ObjParser&) = delete;
   bool faces_have_uv = false;
 
   void vertex(LineCursor& c, const SourceLocation& where) {
@@ -147,18 +171,8 @@ struct ObjParser {
                                    std::to_string(first_face_line) + ") " + (any_uv ? "has none" : "has them"));
     }
     out.face_start.push_back(static_cast<int>(out.corner_vertex.size()));
-    if (group_id < 0) {
-      const auto [it, added] = group_index.try_emplace(group, static_cast<int>(out.group_names.size()));
-      if (added) out.group_names.push_back(group);
-      group_id = it->second;
-    }
-    out.face_group.push_back(group_id);
-    if (material_id < 0) {
-      const auto [it, added] = material_index.try_emplace(material, static_cast<int>(out.material_names.size()));
-      if (added) out.material_names.push_back(material);
-      material_id = it->second;
-    }
-    out.face_material.push_back(material_id);
+    groups.label_face();
+    materials.label_face();
   }
 
   void parse(const std::string& text) {
@@ -180,13 +194,9 @@ struct ObjParser {
       } else if (key == "f") {
         face(c, where);
       } else if (key == "g" || key == "o") {
-        const std::string_view name = c.rest();
-        group = name.empty() ? "default" : std::string(name);
-        group_id = -1;
+        groups.set(c.rest());
       } else if (key == "usemtl") {
-        const std::string_view name = c.rest();
-        material = name.empty() ? "default" : std::string(name);
-        material_id = -1;
+        materials.set(c.rest());
       }
       // vn, s, mtllib, l, p and unknown statements carry nothing we keep.
     }
