@@ -8,22 +8,38 @@
 namespace drape {
 namespace fs = std::filesystem;
 
+namespace {
+
+// Why a column does not stand beside the seed's number (ExperimentColumn::not_as_the_seed).
+std::string unnormalised_sum(const char* equation) {
+  return std::string("the seed's eq. ") + equation +
+         " is a sum whose normalisation it does not state, and its tables' magnitudes fit neither that sum over this "
+         "shirt's elements nor the per-element mean reported here";
+}
+const char* const kEnergyUnits =
+    "the seed does not state the units of its energies (its simulated L_p is 1e-4); only ratios between rows compare";
+
+}  // namespace
+
 const std::vector<ExperimentColumn>& experiment_columns() {
+  // ExperimentColumn keeps a pointer to its reason: these live as long as the table.
+  static const std::string laplacian_sum = unnormalised_sum("6.12"), spectral_sum = unnormalised_sum("6.13"),
+                           deformation_sum = unnormalised_sum("6.10");
   static const std::vector<ExperimentColumn> columns = {
       {"ME", "ME", "cm", "mean distance to the simulated garment, test split"},
       {"L_l", "L_l", "cm", "Laplacian difference, four resolutions",
-       "the seed's eq. 6.12 is a sum whose normalisation it does not state, and its tables' magnitudes fit neither that sum over this shirt's elements nor the per-element mean reported here"},
+       laplacian_sum.c_str()},
       {"L_e", "L_e", "%", "relative edge length error"},
       {"L_s", "L_s", "m", "spectral coefficient error",
-       "the seed's eq. 6.13 is a sum whose normalisation it does not state, and its tables' magnitudes fit neither that sum over this shirt's elements nor the per-element mean reported here"},
+       spectral_sum.c_str()},
       {"L_d", "L_d", "", "deformation gradient error",
-       "the seed's eq. 6.10 is a sum whose normalisation it does not state, and its tables' magnitudes fit neither that sum over this shirt's elements nor the per-element mean reported here"},
+       deformation_sum.c_str()},
       {"p", "p", "%", "garment vertices inside the body"},
-      {"L_st", "L_st", "J", "stretching energy", "the seed does not state the units of its energies (its simulated L_p is 1e-4); only ratios between rows compare"},
-      {"L_b", "L_b", "J", "bending energy", "the seed does not state the units of its energies (its simulated L_p is 1e-4); only ratios between rows compare"},
-      {"L_g", "L_g", "J", "gravitational energy", "the seed does not state the units of its energies (its simulated L_p is 1e-4); only ratios between rows compare"},
-      {"L_c", "L_c", "J", "collision (penetration) energy", "the seed does not state the units of its energies (its simulated L_p is 1e-4); only ratios between rows compare"},
-      {"L_p", "L_p", "J", "potential: the sum of the scene's energies", "the seed does not state the units of its energies (its simulated L_p is 1e-4); only ratios between rows compare"},
+      {"L_st", "L_st", "J", "stretching energy", kEnergyUnits},
+      {"L_b", "L_b", "J", "bending energy", kEnergyUnits},
+      {"L_g", "L_g", "J", "gravitational energy", kEnergyUnits},
+      {"L_c", "L_c", "J", "collision (penetration) energy", kEnergyUnits},
+      {"L_p", "L_p", "J", "potential: the sum of the scene's energies", kEnergyUnits},
       {"train_h", "training", "h", "wall time of the training on the threads used"},
       {"e2e_h", "end-to-end", "core-h", "simulation + training + optimisation + retraining, in core-hours"},
       {"infer", "inference", "", "time per body on one core: ms for a network, s for optimisation and simulation"},

@@ -120,11 +120,11 @@ struct ObjParser {
   FaceLabels groups{out.group_names, out.face_group};  // refer into `out`: the parser is not copied
   FaceLabels materials{out.material_names, out.face_material};
   int first_face_line = 0;
+  bool faces_have_uv = false;
 
   ObjParser() = default;
   ObjParser(const ObjParser&) = delete;
   ObjParser& operator=(const ObjParser&) = delete;
-  bool faces_have_uv = false;
 
   void vertex(LineCursor& c, const SourceLocation& where) {
     double x[3];
