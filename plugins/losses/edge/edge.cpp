@@ -49,35 +49,47 @@ class EdgeLoss final : public Node {
   void forward(const TensorIn& in, const TensorOut& out) override {
     const Tensor &x = *in.at("pred"), &y = *in.at("target");
     Tensor& loss = *out.at("loss");
+    const std::size_t edges = edges_.size();
+    // Backward needs, per edge, only the factors of d/d(u - v) below: kept here
+    // instead of taking both lengths (two square roots) a second time.
+    pred_factor_.resize(static_cast<std::size_t>(x.batch()) * edges);
+    target_factor_.resize(pred_factor_.size());
 #pragma omp parallel for schedule(static) if (x.batch() > 1)
     for (int b = 0; b < x.batch(); ++b) {
+      double* fx = pred_factor_.data() + static_cast<std::size_t>(b) * edges;
+      double* fy = target_factor_.data() + static_cast<std::size_t>(b) * edges;
       double sum = 0.0;
-      for (std::size_t e = 0; e < edges_.size(); ++e) {
+      for (std::size_t e = 0; e < edges; ++e) {
         const auto [u, v] = edges_[e];
-        const double lx = length(x, b, u, v), ly = std::max(length(y, b, u, v), floor_[e]);
+        const double lx = length(x, b, u, v), true_ly = length(y, b, u, v), ly = std::max(true_ly, floor_[e]);
         sum += std::abs(lx - ly) / ly;
+        const double s = lx > ly ? 1.0 : (lx < ly ? -1.0 : 0.0);
+        // d/dlx = s / ly, d/dly = -s lx / ly^2; d|d|/dd = d / |d|. A floored ly is constant.
+        fx[e] = lx > kTiny ? s / (ly * lx) : 0.0;
+        fy[e] = true_ly > floor_[e] ? -s * lx / (ly * ly * ly) : 0.0;
       }
-      loss(b, 0, 0) = static_cast<float>(sum / double(edges_.size()));
+      loss(b, 0, 0) = static_cast<float>(sum / double(edges));
     }
   }
 
   void backward(const TensorIn& in, const TensorIn&, const TensorIn& gout, const TensorOut& gin) override {
     const Tensor &x = *in.at("pred"), &y = *in.at("target");
+    const std::size_t edges = edges_.size();
+    if (pred_factor_.size() != static_cast<std::size_t>(x.batch()) * edges)
+      throw Error("edge: backward without a matching forward");
     Tensor* gx = gin.count("pred") ? gin.at("pred") : nullptr;
     Tensor* gy = gin.count("target") ? gin.at("target") : nullptr;
     if (gx) gx->set_zero();
     if (gy) gy->set_zero();
 #pragma omp parallel for schedule(static) if (x.batch() > 1)
     for (int b = 0; b < x.batch(); ++b) {
-      const double scale = (*gout.at("loss"))(b, 0, 0) / double(edges_.size());
-      for (std::size_t e = 0; e < edges_.size(); ++e) {
+      const double scale = (*gout.at("loss"))(b, 0, 0) / double(edges);
+      const double* fx = pred_factor_.data() + static_cast<std::size_t>(b) * edges;
+      const double* fy = target_factor_.data() + static_cast<std::size_t>(b) * edges;
+      for (std::size_t e = 0; e < edges; ++e) {
         const auto [u, v] = edges_[e];
-        const Eigen::Vector3d dx = diff(x, b, u, v), dy = diff(y, b, u, v);
-        const double lx = dx.norm(), true_ly = dy.norm(), ly = std::max(true_ly, floor_[e]);
-        const double s = lx > ly ? 1.0 : (lx < ly ? -1.0 : 0.0);
-        // d/dlx = s / ly, d/dly = -s lx / ly^2; d|d|/dd = d / |d|. A floored ly is constant.
-        if (gx && lx > kTiny) add(*gx, b, u, v, (scale * s / (ly * lx)) * dx);
-        if (gy && true_ly > floor_[e]) add(*gy, b, u, v, (-scale * s * lx / (ly * ly * ly)) * dy);
+        if (gx && fx[e] != 0.0) add(*gx, b, u, v, (scale * fx[e]) * diff(x, b, u, v));
+        if (gy && fy[e] != 0.0) add(*gy, b, u, v, (scale * fy[e]) * diff(y, b, u, v));
       }
     }
   }
@@ -99,6 +111,8 @@ class EdgeLoss final : public Node {
 
   std::vector<std::array<int, 2>> edges_;
   std::vector<double> floor_;  // per edge: kFloor times its template length (at least kTiny)
+  // Of the last forward, per sample and edge: dL/d(u - v) = scale * factor * (u - v), for pred and target.
+  std::vector<double> pred_factor_, target_factor_;
 };
 
 PluginList plugins() {

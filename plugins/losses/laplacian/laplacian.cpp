@@ -11,6 +11,8 @@
 #include <drape/assets.hpp>
 #include <drape/plugin.hpp>
 
+#include <algorithm>
+#include <cmath>
 #include <string>
 #include <vector>
 
@@ -49,26 +51,42 @@ class LaplacianLoss final : public Node {
         if (h.fine_index[i] < 0 || h.fine_index[i] >= ng)
           throw ConfigError("hierarchy level " + std::to_string(k) + " names garment vertex " +
                             std::to_string(h.fine_index[i]) + ", outside [0, " + std::to_string(ng) + ")");
-      level_.push_back({L, SparseRM(L.transpose()), h.fine_index});
+      level_.push_back(fold_restriction(L, h.fine_index));
     }
     return {{"loss", {1, 1}}};
   }
 
   void forward(const TensorIn& in, const TensorOut& out) override {
     const Tensor &x = *in.at("pred"), &y = *in.at("target");
-    residual_.assign(x.batch(), {});
-    for (int b = 0; b < x.batch(); ++b) {
-      const MatrixRM delta = x.mat(b) - y.mat(b);
+    const int batch = x.batch(), n = x.rows();
+    std::size_t per_sample = 0;
+    for (const Level& l : level_) per_sample += 3 * static_cast<std::size_t>(l.rows());
+    residual_.resize(static_cast<std::size_t>(batch) * per_sample);
+    delta_.resize(3 * static_cast<std::size_t>(n));
+    for (int b = 0; b < batch; ++b) {
+      const float *xb = x.data() + static_cast<std::size_t>(b) * 3 * n, *yb = y.data() + static_cast<std::size_t>(b) * 3 * n;
+      for (std::size_t j = 0; j < delta_.size(); ++j) delta_[j] = xb[j] - yb[j];
+      float* r = residual_.data() + static_cast<std::size_t>(b) * per_sample;
       double sum = 0.0;
-      residual_[b].resize(level_.size());
-      for (std::size_t k = 0; k < level_.size(); ++k) {
-        const Level& l = level_[k];
-        restricted_.resize(l.fine_index.size(), 3);
-        for (Eigen::Index i = 0; i < l.fine_index.size(); ++i) restricted_.row(i) = delta.row(l.fine_index[i]);
-        MatrixRM& r = residual_[b][k];
-        r.noalias() = l.L * restricted_;
-        const double s = r.cast<double>().lpNorm<1>();
-        sum += mean_ ? s / double(r.rows()) : s;
+      for (const Level& l : level_) {
+        // r_i = sum_j L_ij (x - y)_fine(j), in the order of the row's entries
+        // (as the sparse product summed them).
+        double level_sum = 0.0;
+        for (int i = 0; i < l.rows(); ++i, r += 3) {
+          float r0 = 0.0f, r1 = 0.0f, r2 = 0.0f;
+          for (int e = l.start[i]; e < l.start[i + 1]; ++e) {
+            const float w = l.weight[e];
+            const float* d = delta_.data() + 3 * static_cast<std::size_t>(l.vertex[e]);
+            r0 += w * d[0];
+            r1 += w * d[1];
+            r2 += w * d[2];
+          }
+          r[0] = r0;
+          r[1] = r1;
+          r[2] = r2;
+          level_sum += double(std::abs(r0)) + double(std::abs(r1)) + double(std::abs(r2));
+        }
+        sum += mean_ ? level_sum / double(l.rows()) : level_sum;
       }
       (*out.at("loss"))(b, 0, 0) = static_cast<float>(sum);
     }
@@ -76,40 +94,76 @@ class LaplacianLoss final : public Node {
 
   void backward(const TensorIn& in, const TensorIn&, const TensorIn& gout, const TensorOut& gin) override {
     const Tensor& x = *in.at("pred");
-    if (static_cast<int>(residual_.size()) != x.batch()) throw Error("laplacian: backward without a matching forward");
-    for (int b = 0; b < x.batch(); ++b) {
-      MatrixRM g = MatrixRM::Zero(x.rows(), 3);
-      for (std::size_t k = 0; k < level_.size(); ++k) {
-        const Level& l = level_[k];
-        const MatrixRM& r = residual_[b][k];
-        const float scale = (*gout.at("loss"))(b, 0, 0) / (mean_ ? float(r.rows()) : 1.0f);
-        const MatrixRM s = r.unaryExpr([scale](float v) { return v > 0 ? scale : (v < 0 ? -scale : 0.0f); });
-        const MatrixRM gk = l.LT * s;  // dL/dx_k = L_k' sign(L_k (x_k - y_k))
-        for (Eigen::Index i = 0; i < gk.rows(); ++i) g.row(l.fine_index[i]) += gk.row(i);
+    const int batch = x.batch(), n = x.rows();
+    std::size_t per_sample = 0;
+    for (const Level& l : level_) per_sample += 3 * static_cast<std::size_t>(l.rows());
+    if (residual_.size() != static_cast<std::size_t>(batch) * per_sample)
+      throw Error("laplacian: backward without a matching forward");
+    const auto gpred = gin.find("pred"), gtarget = gin.find("target");
+    if (gpred == gin.end() && gtarget == gin.end()) return;
+    g_.resize(3 * static_cast<std::size_t>(n));
+    for (int b = 0; b < batch; ++b) {
+      std::fill(g_.begin(), g_.end(), 0.0f);
+      const float* r = residual_.data() + static_cast<std::size_t>(b) * per_sample;
+      for (const Level& l : level_) {
+        // dL/dx_k = L_k' sign(L_k (x_k - y_k)), scattered to the garment vertices.
+        const float scale = (*gout.at("loss"))(b, 0, 0) / (mean_ ? float(l.rows()) : 1.0f);
+        for (int i = 0; i < l.rows(); ++i, r += 3) {
+          const float s0 = sign(r[0], scale), s1 = sign(r[1], scale), s2 = sign(r[2], scale);
+          for (int e = l.start[i]; e < l.start[i + 1]; ++e) {
+            const float w = l.weight[e];
+            float* g = g_.data() + 3 * static_cast<std::size_t>(l.vertex[e]);
+            g[0] += w * s0;
+            g[1] += w * s1;
+            g[2] += w * s2;
+          }
+        }
       }
-      if (gin.count("pred")) gin.at("pred")->mat(b) = g;
-      if (gin.count("target")) gin.at("target")->mat(b) = -g;
+      const std::size_t offset = static_cast<std::size_t>(b) * 3 * n;
+      if (gpred != gin.end()) std::copy(g_.begin(), g_.end(), gpred->second->data() + offset);
+      if (gtarget != gin.end())
+        for (std::size_t j = 0; j < g_.size(); ++j) gtarget->second->data()[offset + j] = -g_[j];
     }
   }
 
   double flops_per_sample() const override {
     double f = 0.0;
-    for (const auto& l : level_) f += 3.0 * double(l.L.nonZeros()) + 3.0 * double(l.L.rows());
+    for (const auto& l : level_) f += 6.0 * double(l.weight.size()) + 3.0 * double(l.rows());
     return f;
   }
 
  private:
+  // L_k with the restriction folded in: row i of the level, its entries naming
+  // garment vertices (compressed rows).
   struct Level {
-    SparseRM L;                 // I - D^-1 A of the level
-    SparseRM LT;                // its transpose, row-major for the backward product
-    Eigen::VectorXi fine_index;  // level vertex -> garment vertex
+    std::vector<int> start;    // row i's entries are [start[i], start[i + 1])
+    std::vector<int> vertex;   // garment vertex of each entry
+    std::vector<float> weight;  // L_k's value
+    int rows() const { return static_cast<int>(start.size()) - 1; }
   };
+
+  static Level fold_restriction(const SparseRM& L, const Eigen::VectorXi& fine_index) {
+    Level l;
+    l.start.reserve(static_cast<std::size_t>(L.rows()) + 1);
+    l.start.push_back(0);
+    for (int i = 0; i < L.rows(); ++i) {
+      for (SparseRM::InnerIterator it(L, i); it; ++it) {
+        l.vertex.push_back(fine_index[it.col()]);
+        l.weight.push_back(it.value());
+      }
+      l.start.push_back(static_cast<int>(l.vertex.size()));
+    }
+    return l;
+  }
+
+  static float sign(float v, float scale) { return v > 0 ? scale : (v < 0 ? -scale : 0.0f); }
 
   bool mean_;
   int levels_;
   std::vector<Level> level_;
-  std::vector<std::vector<MatrixRM>> residual_;  // [batch][level] L_k (x_k - y_k) of the last forward
-  MatrixRM restricted_;                          // x_k - y_k (scratch)
+  std::vector<float> residual_;  // L_k (x_k - y_k) of the last forward: per sample, the levels' rows in turn
+  std::vector<float> delta_;     // x - y of one sample (scratch)
+  std::vector<float> g_;         // one sample's gradient (scratch)
 };
 
 PluginList plugins() {
