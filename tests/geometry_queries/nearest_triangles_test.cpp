@@ -230,3 +230,64 @@ TEST_CASE("surface cache entries travel between processes as bytes and come back
   CHECK_THROWS_WITH(unpack_surface_entries(bytes.data(), bytes.size() - 1), Catch::Contains("surface cache entries"));
   CHECK_THROWS_WITH(unpack_surface_entries(bytes.data(), 10), Catch::Contains("10 bytes left"));
 }
+
+// The training losses find the prediction's closest points among the faces
+// listed near the ground truth's vertex (NearbyFaces): the same face and point
+// bits as the tree search, for predictions next to the ground truth (the list
+// proves the answer), far from it (the tree is searched), on a vertex where
+// faces tie, and with lists cut short.
+TEST_CASE("nearby-face lists give the tree search's closest point, bit for bit", "[geometry][nearest]") {
+  const Mesh m = bumpy_sphere(9);
+  NearestTriangles nearest(m.vertices, m.faces);
+  std::mt19937 rng(13);
+  std::normal_distribution<double> gauss(0.0, 1.0);
+  // Ground truth: points 0-5 cm off the surface (the sphere's radius is ~1 m), and points right above vertices.
+  std::vector<Eigen::Vector3d> truth;
+  std::uniform_real_distribution<double> height(0.0, 0.05);
+  for (int f = 0; f < m.num_faces(); f += 3) {
+    const Eigen::Vector3d c = (m.vertices.row(m.faces(f, 0)) + m.vertices.row(m.faces(f, 1)) +
+                               m.vertices.row(m.faces(f, 2))).transpose() / 3;
+    truth.push_back(c * (1.0 + height(rng)));
+  }
+  for (int v = 0; v < m.num_vertices(); v += 5) truth.push_back(m.vertices.row(v).transpose() * 1.02);
+  Eigen::MatrixX3d y(static_cast<Eigen::Index>(truth.size()), 3);
+  for (std::size_t i = 0; i < truth.size(); ++i) y.row(static_cast<Eigen::Index>(i)) = truth[i].transpose();
+  const std::vector<SurfacePoint> hits = nearest.nearest_all(y);
+
+  int listed = 0, searched = 0;
+  for (const auto& [slack, max_faces] : {std::pair{0.02, 16}, std::pair{0.02, 2}, std::pair{0.0, 1}, std::pair{0.3, 64}}) {
+    const NearbyFaces near = nearest.nearby(y, hits, slack, max_faces);
+    REQUIRE(near.points() == y.rows());
+    for (Eigen::Index i = 0; i < y.rows(); ++i) {
+      const int begin = near.start[i], end = near.start[i + 1];
+      CHECK(end - begin <= max_faces);
+      CHECK(end > begin);  // the ground truth's own face at least
+      for (int k = begin + 1; k < end; ++k) CHECK(near.reach[k - 1] <= near.reach[k]);
+      // Predictions: the ground truth itself, then further and further away, and straight onto a vertex.
+      for (const double step : {0.0, 1e-4, 2e-3, 1e-2, 5e-2, 0.3}) {
+        const Eigen::Vector3d dir(gauss(rng), gauss(rng), gauss(rng));
+        const Eigen::Vector3d x = y.row(i).transpose() + step * dir.normalized();
+        const SurfacePoint tree = nearest.nearest(x);
+        const SurfacePoint listed_point = nearest.nearest_from(x, y.row(i).transpose(), near, static_cast<int>(i));
+        CHECK(listed_point.face == tree.face);
+        CHECK(listed_point.point == tree.point);
+        CHECK(listed_point.feature == tree.feature);
+        CHECK(listed_point.signed_distance == tree.signed_distance);
+        // How often the list alone proved it: compared with the tree's work below.
+        const double best = (tree.point - x).norm(), moved = (x - y.row(i).transpose()).norm();
+        (double(near.complete[i]) - moved > best + 1e-9 ? listed : searched) += 1;
+      }
+      const Eigen::Vector3d corner = m.vertices.row(m.faces(hits[i].face, 0)).transpose() * 1.01;
+      CHECK(nearest.nearest_from(corner, y.row(i).transpose(), near, static_cast<int>(i)).face ==
+            nearest.nearest(corner).face);
+    }
+  }
+  // Both ways were taken: proofs from the lists, and searches of the tree.
+  CHECK(listed > 100);
+  CHECK(searched > 100);
+  const NearbyFaces near = nearest.nearby(y, hits, 0.02, 4);
+  CHECK_THROWS_WITH(nearest.nearest_from(Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero(), near, -1),
+                    Catch::Contains("no nearby list -1"));
+  CHECK_THROWS_WITH(nearest.nearby(y, std::vector<SurfacePoint>(2), 0.02, 4), Catch::Contains("2 closest points for"));
+  CHECK_THROWS_WITH(nearest.nearby(y, hits, 0.02, 0), Catch::Contains("max_faces >= 1"));
+}

@@ -33,7 +33,11 @@ std::shared_ptr<const BodyPoints::Hits> BodyPoints::ground_truth(const Tensor& b
   const std::size_t nt = static_cast<std::size_t>(target.rows()) * target.cols();
   const SurfaceKey key = surface_key(topology_, body.data() + b * nb, nb, target.data() + b * nt, nt);
   SurfaceCache& cache = SurfaceCache::shared();
-  if (auto hit = cache.find(key)) return hit;
+  if (auto hit = cache.find(key)) {
+    last_truth_ = hit;
+    last_truth_key_ = key;
+    return hit;
+  }
   const Eigen::MatrixX3d y = target.mat(b).cast<double>();
   if (!y.allFinite()) throw Error(who_ + ": sample " + std::to_string(b) + " has non-finite target vertices");
   use_body(body, b, true);
@@ -43,11 +47,13 @@ std::shared_ptr<const BodyPoints::Hits> BodyPoints::ground_truth(const Tensor& b
     hits[i] = surface_.locate_near(y.row(i).transpose(), hinted ? last_faces_[static_cast<std::size_t>(i)] : -1);
   last_faces_.resize(hits.size());
   for (std::size_t i = 0; i < hits.size(); ++i) last_faces_[i] = hits[i].face;
-  return cache.insert(key, std::move(hits));
+  last_truth_ = cache.insert(key, std::move(hits));
+  last_truth_key_ = key;
+  return last_truth_;
 }
 
-std::shared_ptr<const BodyPoints::Hits> BodyPoints::prediction(const Tensor& body, const Tensor& pred, int b,
-                                                               const Hits& hints) {
+std::shared_ptr<const BodyPoints::Hits> BodyPoints::prediction(const Tensor& body, const Tensor& pred,
+                                                               const Tensor& target, int b, const Hits& truth) {
   const std::size_t nb = static_cast<std::size_t>(body.rows()) * body.cols();
   const std::size_t np = static_cast<std::size_t>(pred.rows()) * pred.cols();
   const SurfaceKey key = surface_key(~topology_, body.data() + b * nb, nb, pred.data() + b * np, np);
@@ -55,18 +61,41 @@ std::shared_ptr<const BodyPoints::Hits> BodyPoints::prediction(const Tensor& bod
   if (auto hit = recent.find(key)) return hit;
   const Eigen::MatrixX3d x = pred.mat(b).cast<double>();
   if (!x.allFinite()) throw Error(who_ + ": sample " + std::to_string(b) + " has non-finite pred vertices");
-  if (static_cast<Eigen::Index>(hints.size()) != x.rows())
-    throw Error(who_ + ": " + std::to_string(hints.size()) + " hints for " + std::to_string(x.rows()) + " points");
+  if (static_cast<Eigen::Index>(truth.size()) != x.rows() || target.rows() != x.rows())
+    throw Error(who_ + ": " + std::to_string(truth.size()) + " ground-truth points for " + std::to_string(x.rows()) +
+                " predicted points");
   use_body(body, b, false);
-  // Each search starts from the ground truth's face of the same vertex. (The
-  // prediction's own face from the last epoch does no better: counted on a
-  // trained model's predictions, 170 boxes and 25 triangles a query either
-  // way, or without a start; the cost is proving no triangle is closer.)
   auto hits = std::make_shared<Hits>(static_cast<std::size_t>(x.rows()));
-  for (Eigen::Index i = 0; i < x.rows(); ++i)
-    (*hits)[i] = nearest_.nearest(x.row(i).transpose(), hints[static_cast<std::size_t>(i)].face);
+  if (const auto near = nearby_faces(body, target, b, truth)) {
+    const Eigen::MatrixX3d y = target.mat(b).cast<double>();
+    for (Eigen::Index i = 0; i < x.rows(); ++i)
+      (*hits)[i] = nearest_.nearest_from(x.row(i).transpose(), y.row(i).transpose(), *near, static_cast<int>(i));
+  } else {
+    // No room to keep the lists: each search starts from the ground truth's
+    // face of the same vertex.
+    for (Eigen::Index i = 0; i < x.rows(); ++i)
+      (*hits)[i] = nearest_.nearest(x.row(i).transpose(), truth[static_cast<std::size_t>(i)].face);
+  }
   recent.insert(key, hits);
   return hits;
+}
+
+std::shared_ptr<const NearbyFaces> BodyPoints::nearby_faces(const Tensor& body, const Tensor& target, int b,
+                                                           const Hits& truth) {
+  SurfaceKey key;
+  if (last_truth_.get() == &truth) {
+    key = last_truth_key_;
+  } else {
+    const std::size_t nb = static_cast<std::size_t>(body.rows()) * body.cols();
+    const std::size_t nt = static_cast<std::size_t>(target.rows()) * target.cols();
+    key = surface_key(topology_, body.data() + b * nb, nb, target.data() + b * nt, nt);
+  }
+  SurfaceCache& cache = SurfaceCache::shared();
+  if (auto near = cache.find_nearby(key)) return near;
+  // Lists are only worth making when they are kept for the epochs to come.
+  const std::size_t estimate = static_cast<std::size_t>(target.rows()) * (8 * kNearbyFaces + 8);
+  if (cache.bytes() + estimate > cache.budget()) return nullptr;
+  return cache.insert_nearby(key, nearest_.nearby(target.mat(b).cast<double>(), truth, kNearbySlack, kNearbyFaces));
 }
 
 RecentPoints& RecentPoints::shared() {

@@ -117,6 +117,24 @@ void SurfaceCache::adopt(const SurfaceKey& key, Hits hits) {
   if (entries_.count(key) == 0) keep(key, entry);
 }
 
+std::shared_ptr<const NearbyFaces> SurfaceCache::find_nearby(const SurfaceKey& key) const {
+  std::shared_lock lock(mutex_);
+  const auto it = nearby_.find(key);
+  return it == nearby_.end() ? nullptr : it->second;
+}
+
+std::shared_ptr<const NearbyFaces> SurfaceCache::insert_nearby(const SurfaceKey& key, NearbyFaces near) {
+  auto entry = std::make_shared<const NearbyFaces>(std::move(near));
+  const std::size_t size = entry->bytes() + 64;
+  std::unique_lock lock(mutex_);
+  if (const auto it = nearby_.find(key); it != nearby_.end()) return it->second;
+  if (bytes_ + size <= budget_) {
+    bytes_ += size;
+    nearby_.emplace(key, entry);
+  }
+  return entry;
+}
+
 std::vector<std::pair<SurfaceKey, std::shared_ptr<const SurfaceCache::Hits>>> SurfaceCache::take_computed() {
   std::unique_lock lock(mutex_);
   std::vector<std::pair<SurfaceKey, std::shared_ptr<const Hits>>> out;

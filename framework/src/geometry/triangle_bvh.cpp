@@ -128,6 +128,27 @@ void TriangleBvh::refit(const Eigen::MatrixX3d& vertices) {
   }
 }
 
+TriangleBvh::FloatQuery::FloatQuery(const Eigen::Vector3d& p) {
+  for (int k = 0; k < 3; ++k) {
+    const float pk = static_cast<float>(p[k]);
+    const float ek = round_up(std::abs(p[k] - static_cast<double>(pk)));
+    point[k] = Lanes{pk, pk, pk, pk};
+    moved[k] = Lanes{ek, ek, ek, ek};
+  }
+}
+
+TriangleBvh::Lanes TriangleBvh::FloatQuery::distance2(const Node& n) const {
+  const Lanes zero = {0, 0, 0, 0};
+  Lanes d2 = zero;
+  for (int k = 0; k < 3; ++k) {
+    const Lanes below = n.lo[k] - point[k], above = point[k] - n.hi[k];
+    Lanes gap = (below > above ? below : above) - moved[k];
+    gap = gap > zero ? gap : zero;
+    d2 += gap * gap;
+  }
+  return d2;
+}
+
 int TriangleBvh::nearest(const Eigen::Vector3d& p, double max_squared_distance, TrianglePoint& hit,
                          const int* face_labels, int excluded, int hint) const {
   if (nodes_.empty() || !p.allFinite()) return -1;
@@ -149,26 +170,8 @@ int TriangleBvh::nearest(const Eigen::Vector3d& p, double max_squared_distance, 
   };
   float bound = prune_bound(best);
 
-  // The query in float, and how far rounding moved it along each axis (rounded
-  // up): subtracted from every gap, so a float gap never exceeds the exact one.
-  Lanes point[3], moved[3];
-  for (int k = 0; k < 3; ++k) {
-    const float pk = static_cast<float>(p[k]);
-    const float ek = round_up(std::abs(p[k] - static_cast<double>(pk)));
-    point[k] = Lanes{pk, pk, pk, pk};
-    moved[k] = Lanes{ek, ek, ek, ek};
-  }
-  const Lanes zero = {0, 0, 0, 0};
-  auto distance2 = [&](const Node& n) {
-    Lanes d2 = zero;
-    for (int k = 0; k < 3; ++k) {
-      const Lanes below = n.lo[k] - point[k], above = point[k] - n.hi[k];
-      Lanes gap = (below > above ? below : above) - moved[k];
-      gap = gap > zero ? gap : zero;
-      d2 += gap * gap;
-    }
-    return d2;
-  };
+  const FloatQuery query(p);
+  auto distance2 = [&](const Node& n) { return query.distance2(n); };
 
   struct Pending {
     int node;
@@ -221,6 +224,37 @@ int TriangleBvh::nearest(const Eigen::Vector3d& p, double max_squared_distance, 
       }
     }
   }
+}
+
+void TriangleBvh::within(const Eigen::Vector3d& p, double max_squared_distance,
+                         std::vector<std::pair<double, int>>& out) const {
+  out.clear();
+  if (nodes_.empty() || !p.allFinite() || !(max_squared_distance >= 0)) return;
+  const float bound = prune_bound(max_squared_distance);
+  const FloatQuery query(p);
+  int stack[(kWidth - 1) * kMaxDepth + kWidth];
+  int top = 0;
+  stack[top++] = 0;
+  while (top > 0) {
+    const Node& n = nodes_[static_cast<std::size_t>(stack[--top])];
+    const Lanes d2 = query.distance2(n);
+    for (int s = 0; s < n.count; ++s) {
+      if (d2[s] > bound) continue;
+      if (!n.leaf) {
+        stack[top++] = n.child[s];
+        continue;
+      }
+      const int t = n.child[s];
+      const TrianglePoint q = closest_point_on_triangle(p, corners_[3 * t], corners_[3 * t + 1], corners_[3 * t + 2]);
+      const double dq = (q.point - p).squaredNorm();
+      if (dq <= max_squared_distance) out.emplace_back(dq, face_of_[t]);
+    }
+  }
+}
+
+TrianglePoint TriangleBvh::face_point(const Eigen::Vector3d& p, int face) const {
+  const int t = slot_of_face_.at(static_cast<std::size_t>(face));
+  return closest_point_on_triangle(p, corners_[3 * t], corners_[3 * t + 1], corners_[3 * t + 2]);
 }
 
 }  // namespace drape::geometry

@@ -22,6 +22,7 @@
 #include <Eigen/Core>
 
 #include <array>
+#include <utility>
 #include <vector>
 
 namespace drape::geometry {
@@ -43,6 +44,14 @@ class TriangleBvh {
   int nearest(const Eigen::Vector3d& p, double max_squared_distance, TrianglePoint& hit,
               const int* face_labels = nullptr, int excluded = 0, int hint = -1) const;
 
+  // Every face whose computed squared distance to p is at most
+  // max_squared_distance, as (squared distance, face) pairs in no set order;
+  // the distances are the bits nearest() computes for the same faces.
+  void within(const Eigen::Vector3d& p, double max_squared_distance, std::vector<std::pair<double, int>>& out) const;
+
+  // The closest point of one face to p, computed as nearest() computes it.
+  TrianglePoint face_point(const Eigen::Vector3d& p, int face) const;
+
   int num_nodes() const { return static_cast<int>(nodes_.size()); }
 
  private:
@@ -55,6 +64,15 @@ class TriangleBvh {
     int child[kWidth];    // inner: node index; leaf: triangle in leaf order
     int count = 0;        // slots in use
     bool leaf = false;
+  };
+  // A query point in float for the box tests, and how far rounding moved it
+  // along each axis (rounded up): subtracted from every gap, so a float gap
+  // never exceeds the exact one.
+  struct FloatQuery {
+    explicit FloatQuery(const Eigen::Vector3d& p);
+    // Lower bounds of the squared distances to the node's four boxes.
+    Lanes distance2(const Node& n) const;
+    Lanes point[3], moved[3];
   };
   struct Box {
     Eigen::Vector3d lo, hi;

@@ -62,7 +62,7 @@ class DirectionLoss final : public Node {
     hits_y_.assign(batch, {});
     for (int b = 0; b < batch; ++b) {
       hits_y_[b] = points_->ground_truth(body, y, b);
-      hits_x_[b] = points_->prediction(body, x, b, *hits_y_[b]);
+      hits_x_[b] = points_->prediction(body, x, y, b, *hits_y_[b]);
       const auto xb = x.mat(b), yb = y.mat(b);
       const auto &hx = *hits_x_[b], &hy = *hits_y_[b];
       double sum = 0.0;

@@ -6,8 +6,11 @@
 // - the ground truth's points depend only on the data: they come from the
 //   process-wide SurfaceCache after the first time a sample is seen, and are
 //   computed exactly as BodySurface::locate finds them otherwise;
-// - the prediction's are searched from the face found for the same vertex of
-//   the ground truth (NearestTriangles: no normals, a refit of the boxes);
+// - the prediction's are found among the faces nearest the ground-truth
+//   vertex of the same row (NearbyFaces: made once per sample and kept in the
+//   SurfaceCache beside its points), the tree searched only when the
+//   prediction is too far from the ground truth for those faces to prove the
+//   answer (NearestTriangles: no normals, a refit of the boxes);
 // - the last prediction's points are kept too, keyed by content like the
 //   ground truth's, so the second loss that asks for the same sample in the
 //   same step finds them.
@@ -37,12 +40,23 @@ class BodyPoints {
 
   // The closest points of target sample b on body sample b (with signs and normals).
   std::shared_ptr<const Hits> ground_truth(const Tensor& body, const Tensor& target, int b);
-  // The closest points of pred sample b on body sample b (unsigned, no normals),
-  // each searched from the face of the same row of `hints` (ground_truth's).
-  std::shared_ptr<const Hits> prediction(const Tensor& body, const Tensor& pred, int b, const Hits& hints);
+  // The closest points of pred sample b on body sample b (unsigned, no normals);
+  // truth: ground_truth's points of target sample b.
+  std::shared_ptr<const Hits> prediction(const Tensor& body, const Tensor& pred, const Tensor& target, int b,
+                                         const Hits& truth);
+
+  // The nearby lists hold the faces within the ground truth's distance plus
+  // this of each ground-truth vertex, at most kNearbyFaces of them: enough to
+  // prove the answer while the prediction is within about half of it
+  // (measured: see docs/training.md).
+  static constexpr double kNearbySlack = 0.02;
+  static constexpr int kNearbyFaces = 16;
 
  private:
   void use_body(const Tensor& body, int b, bool with_normals);
+  // The nearby lists of target sample b from the cache, made when missing;
+  // null when the cache has no room for them.
+  std::shared_ptr<const NearbyFaces> nearby_faces(const Tensor& body, const Tensor& target, int b, const Hits& truth);
 
   std::string who_;
   std::uint64_t topology_;
@@ -50,6 +64,8 @@ class BodyPoints {
   NearestTriangles nearest_;   // unsigned queries, for the prediction
   std::vector<float> surface_body_, nearest_body_;  // the body each holds, as it came
   std::vector<int> last_faces_;                  // the last ground truth's faces: hints for the next
+  std::shared_ptr<const Hits> last_truth_;       // the last ground truth returned (held: its address stays its own)
+  SurfaceKey last_truth_key_;                    // and its key
 };
 
 // The process-wide cache of the last few predictions' closest points (a ring of

@@ -10,6 +10,7 @@
 // truth, usually the answer or next to it, so the search opens only the few
 // boxes closer than that face.
 #include <drape/geometry/closest_point.hpp>
+#include <drape/geometry/nearby_faces.hpp>
 
 #include <Eigen/Core>
 
@@ -38,6 +39,18 @@ class NearestTriangles {
 
   // One query per row of `points`; hints (one per row, -1 for none) may be empty.
   std::vector<SurfacePoint> nearest_all(const Eigen::MatrixX3d& points, const std::vector<int>& hints = {}) const;
+
+  // For each row y_i of `points` with its closest point hits[i] on this mesh,
+  // the faces within dist(y_i, hits[i]) + slack of y_i, nearest first, at most
+  // max_faces of them (the list is then complete up to the first left out).
+  NearbyFaces nearby(const Eigen::MatrixX3d& points, const std::vector<SurfacePoint>& hits, double slack,
+                     int max_faces) const;
+
+  // nearest(x), found from the faces listed near row i of the points the list
+  // was made for (y, the same double values): the same point, face and
+  // feature bits as nearest(x) whatever x, the tree searched only when the
+  // list cannot prove the answer (x too far from y).
+  SurfacePoint nearest_from(const Eigen::Vector3d& x, const Eigen::Vector3d& y, const NearbyFaces& near, int i) const;
 
   const Eigen::MatrixX3i& faces() const { return faces_; }
 

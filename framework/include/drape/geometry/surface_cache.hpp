@@ -12,6 +12,7 @@
 // back, so a full cache keeps its hit rate). The budget is
 // $DRAPE_SURFACE_CACHE_MIB (MiB, default 2048; 0 turns the cache off).
 #include <drape/geometry/closest_point.hpp>
+#include <drape/geometry/nearby_faces.hpp>
 
 #include <cstddef>
 #include <cstdint>
@@ -55,6 +56,12 @@ class SurfaceCache {
   // reported by take_computed.
   void adopt(const SurfaceKey& key, Hits hits);
 
+  // The faces near each point of an entry (NearbyFaces), kept under the
+  // entry's key within the same budget. Derived from the entry by whichever
+  // process needs them: not reported by take_computed.
+  std::shared_ptr<const NearbyFaces> find_nearby(const SurfaceKey& key) const;
+  std::shared_ptr<const NearbyFaces> insert_nearby(const SurfaceKey& key, NearbyFaces near);
+
   std::size_t bytes() const;
   std::size_t entries() const;
   std::size_t budget() const { return budget_; }
@@ -67,6 +74,7 @@ class SurfaceCache {
   std::size_t bytes_ = 0;
   mutable std::shared_mutex mutex_;
   std::unordered_map<SurfaceKey, std::shared_ptr<const Hits>, KeyHash> entries_;
+  std::unordered_map<SurfaceKey, std::shared_ptr<const NearbyFaces>, KeyHash> nearby_;
   std::vector<SurfaceKey> computed_;  // kept by insert since the last take_computed
   bool keep(const SurfaceKey& key, const std::shared_ptr<const Hits>& entry);
 };
