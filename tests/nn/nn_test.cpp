@@ -9,6 +9,7 @@
 #include <drape/nn/gemm.hpp>
 #include <drape/nn/init.hpp>
 #include <drape/nn/linear.hpp>
+#include <drape/nn/skinny_gemm.hpp>
 
 #include <catch2/catch.hpp>
 
@@ -217,4 +218,61 @@ TEST_CASE("He initialisation has the requested spread and follows the seed", "[n
   CHECK(std::abs(mean) < 0.01);
   CHECK(std::sqrt(a.vec().squaredNorm() / double(a.size())) == Approx(0.3).epsilon(0.03));
   CHECK(nn::mix_seed(5, 1) != nn::mix_seed(5, 2));
+}
+
+// The kernels nn::gemm uses first for a small weight matrix against a tall
+// stack of vertex features: against double products, on strided blocks, with
+// widths that end mid-vector and row counts that end mid-block.
+TEST_CASE("skinny gemm: tall outputs and weight gradients match double products", "[nn]") {
+  const MatrixRM probe_a = random_matrix(64, 8, 1), probe_b = random_matrix(8, 8, 2);
+  MatrixRM probe_c(64, 8);
+  if (!nn::detail::skinny_gemm(false, false, 1.0f, probe_a, probe_b, 0.0f, probe_c)) {
+    WARN("skinny gemm skipped: this CPU has no AVX-512 (or DRAPE_PORTABLE_KERNELS is set); nn::gemm uses the BLAS");
+    return;
+  }
+  struct Case {
+    bool ta, tb;
+    int m, n, k;
+  };
+  std::vector<Case> cases;
+  for (const int n : {1, 3, 16, 17, 33, 64, 65, 130, 320})
+    for (const int k : {1, 3, 15, 64, 160, 320}) {
+      cases.push_back({false, false, 301, n, k});
+      cases.push_back({false, true, 301, n, k});
+    }
+  for (const int m : {1, 3, 15, 25, 64, 320})
+    for (const int n : {1, 3, 16, 50, 64, 320}) cases.push_back({true, false, m, n, 700});
+  for (const Case& t : cases) {
+    INFO("m " << t.m << ", n " << t.n << ", k " << t.k << ", transposes " << t.ta << t.tb);
+    const MatrixRM big_a = random_matrix(t.ta ? t.k + 2 : t.m + 2, t.ta ? t.m + 3 : t.k + 3, 21);
+    const MatrixRM big_b = random_matrix(t.tb ? t.n + 1 : t.k + 1, t.tb ? t.k + 4 : t.n + 4, 22);
+    const auto a = big_a.block(1, 2, t.ta ? t.k : t.m, t.ta ? t.m : t.k);
+    const auto b = big_b.block(1, 1, t.tb ? t.n : t.k, t.tb ? t.k : t.n);
+    const Eigen::MatrixXd ad = t.ta ? Eigen::MatrixXd(a.cast<double>().transpose()) : Eigen::MatrixXd(a.cast<double>());
+    const Eigen::MatrixXd bd = t.tb ? Eigen::MatrixXd(b.cast<double>().transpose()) : Eigen::MatrixXd(b.cast<double>());
+    const Eigen::MatrixXd product = ad * bd;
+    const double tolerance = 1e-5 * std::sqrt(double(t.k)) * (1.0 + product.cwiseAbs().maxCoeff());
+    for (const float beta : {0.0f, 1.0f}) {
+      MatrixRM big_c = random_matrix(t.m + 2, t.n + 5, 23);
+      if (beta == 0.0f) big_c.block(1, 3, t.m, t.n).setConstant(std::nanf(""));  // beta = 0 never reads c
+      const MatrixRM before = big_c;
+      auto c = big_c.block(1, 3, t.m, t.n);
+      REQUIRE(nn::detail::skinny_gemm(t.ta, t.tb, 1.0f, a, b, beta, c));
+      const Eigen::MatrixXd expected =
+          product + (beta == 1.0f ? Eigen::MatrixXd(before.block(1, 3, t.m, t.n).cast<double>()) : Eigen::MatrixXd::Zero(t.m, t.n));
+      CHECK((c.cast<double>() - expected).cwiseAbs().maxCoeff() < tolerance);
+      // Nothing outside the block is touched.
+      CHECK(big_c.topRows(1) == before.topRows(1));
+      CHECK(big_c.bottomRows(1) == before.bottomRows(1));
+      CHECK(big_c.leftCols(3) == before.leftCols(3));
+      CHECK(big_c.rightCols(2) == before.rightCols(2));
+    }
+  }
+  // What it does not take is left to the caller, c untouched.
+  MatrixRM c = MatrixRM::Constant(64, 8, 7.0f);
+  CHECK_FALSE(nn::detail::skinny_gemm(false, false, 0.5f, probe_a, probe_b, 0.0f, c));
+  CHECK_FALSE(nn::detail::skinny_gemm(false, false, 1.0f, probe_a, probe_b, 2.0f, c));
+  CHECK_FALSE(nn::detail::skinny_gemm(true, true, 1.0f, random_matrix(8, 64, 3), random_matrix(8, 8, 4), 0.0f, c));
+  CHECK_FALSE(nn::detail::skinny_gemm(false, false, 1.0f, random_matrix(64, 400, 5), random_matrix(400, 8, 6), 0.0f, c));
+  CHECK((c.array() == 7.0f).all());
 }

@@ -2,6 +2,8 @@
 #include <drape/nn/gemm.hpp>
 #include <drape/solver.hpp>
 
+#include <drape/nn/skinny_gemm.hpp>
+
 #include <algorithm>
 #include <cstdlib>
 #include <string>
@@ -56,6 +58,9 @@ void gemm(Op op_a, Op op_b, float alpha, ConstMatRef a, ConstMatRef b, float bet
   if (m == 0 || n == 0) return;
 #ifdef DRAPE_HAVE_BLAS
   if (k > 0 && use_blas(m, n, k)) {
+    // A small weight matrix against a tall stack of vertex features: read in
+    // place instead of packed (skinny_gemm.hpp).
+    if (detail::skinny_gemm(ta, tb, alpha, a, b, beta, c)) return;
     // Row-major X with leading dimension ld is column-major X^T: compute
     // c^T = op(b)^T op(a)^T in column-major terms.
     const int mi = int(n), ni = int(m), ki = int(k);
