@@ -31,9 +31,7 @@ class Linear final : public Node {
       layer_.backward(in.at("x")->flat(), gout.at("out")->flat(), nullptr);
       return;
     }
-    MatrixRM g;
-    layer_.backward(in.at("x")->flat(), gout.at("out")->flat(), &g);
-    gx->second->flat() = g;
+    layer_.backward_into(in.at("x")->flat(), gout.at("out")->flat(), gx->second->flat());
   }
 
   double flops_per_sample() const override { return rows_ * layer_.flops_per_row(); }

@@ -8,6 +8,7 @@
 #include <drape/nn/refs.hpp>
 
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -29,6 +30,8 @@ class DenseStack {
   // gy = dLoss/d(output) [N, out] of the last forward with this same x.
   // Accumulates weight gradients; writes dLoss/dx into gx when given.
   void backward(ConstMatRef x, ConstMatRef gy, MatrixRM* gx);
+  // The same, dLoss/dx written into gx [N, in] in place (say, a graph tensor).
+  void backward_into(ConstMatRef x, ConstMatRef gy, MatRef gx);
 
   int in() const { return sizes_.front(); }
   int out() const { return sizes_.back(); }
@@ -41,6 +44,8 @@ class DenseStack {
   Activation hidden_, last_;
   std::vector<Weight*> w_, b_;
   std::vector<MatrixRM> out_;  // the activated output of each layer
+  MatrixRM g_, gin_;           // backward's gradients of a layer's output and input (scratch)
+  void backward_layers(ConstMatRef x, ConstMatRef gy, std::optional<MatRef> gx);
 };
 
 }  // namespace drape::nn
