@@ -110,6 +110,11 @@ SurfacePoint NearestTriangles::nearest_from(const Eigen::Vector3d& x, const Eige
   int best_face = -1;
   TrianglePoint hit;
   const int begin = near.start[static_cast<std::size_t>(i)], end = near.start[static_cast<std::size_t>(i) + 1];
+  // x's best distance is about y's (reach[begin]); the list proves it only if
+  // it is complete beyond that plus how far x moved. When it is not, testing
+  // its faces first would be wasted: straight to the tree.
+  if (begin == end || double(near.complete[static_cast<std::size_t>(i)]) - moved <= double(near.reach[static_cast<std::size_t>(begin)]))
+    return nearest(x, begin == end ? -1 : near.face[static_cast<std::size_t>(begin)]);
   for (int k = begin; k < end; ++k) {
     // Listed nearest first: from here on no face can come within `best`.
     if (double(near.reach[static_cast<std::size_t>(k)]) - moved > std::sqrt(best) + kProofMargin)
