@@ -12,6 +12,7 @@
 
 #include <catch2/catch.hpp>
 
+#include <cstring>
 #include <limits>
 #include <random>
 #include <utility>
@@ -197,20 +198,35 @@ TEST_CASE("surface cache entries travel between processes as bytes and come back
     hits[i].signed_distance = -0.125 * i;
     hits[i].feature = i == 2 ? TriangleFeature::edge_ca : TriangleFeature::interior;
   }
+  // Nearby lists travel with the points: point 0 lists two faces, 1 none, 2 one.
+  NearbyFaces near;
+  near.start = {0, 2, 2, 3};
+  near.face = {10, 4, 12};
+  near.reach = {0.0f, 0.03125f, 1e-7f};
+  near.complete = {0.5f, 0.0f, 0.25f};
   const SurfaceKey k1{1, 2}, k2{3, 4}, k3{5, 6};
-  cache.insert(k1, hits);
+  cache.insert(k1, SurfaceEntry{hits, near});
   cache.insert(k2, SurfaceCache::Hits{});
+  REQUIRE(cache.find_nearby(k1) != nullptr);
+  CHECK(cache.find_nearby(k2) == nullptr);  // an entry without lists
   const auto computed = cache.take_computed();
   REQUIRE(computed.size() == 2);
   CHECK(cache.take_computed().empty());  // handed out once
   const auto bytes = pack_surface_entries(computed);
-  CHECK(bytes.size() == packed_entry_bytes(3) + packed_entry_bytes(0));
+  // 40 bytes of head, 88 a point, and the lists: 4 (points + 1) + 8 per face + 4 per point.
+  CHECK(bytes.size() == (40 + 3 * 88 + 4 * 4 + 3 * 8 + 3 * 4) + 40);
+  CHECK(packed_entry_bytes(*computed[0].second) == 40 + 3 * 88 + 4 * 4 + 3 * 8 + 3 * 4);
   const auto back = unpack_surface_entries(bytes.data(), bytes.size());
   REQUIRE(back.size() == 2);
   CHECK(back[0].first == k1);
-  REQUIRE(back[0].second.size() == 3);
+  REQUIRE(back[0].second.hits.size() == 3);
+  CHECK(back[0].second.nearby.start == near.start);
+  CHECK(back[0].second.nearby.face == near.face);
+  CHECK(back[0].second.nearby.reach == near.reach);
+  CHECK(back[0].second.nearby.complete == near.complete);
+  CHECK(back[1].second.nearby.points() == 0);
   for (int i = 0; i < 3; ++i) {
-    const SurfacePoint &a = back[0].second[i], &b = hits[i];
+    const SurfacePoint &a = back[0].second.hits[i], &b = hits[i];
     CHECK(a.face == b.face);
     CHECK(a.barycentric == b.barycentric);
     CHECK(a.point == b.point);
@@ -219,16 +235,23 @@ TEST_CASE("surface cache entries travel between processes as bytes and come back
     CHECK(a.feature == b.feature);
   }
   CHECK(back[1].first == k2);
-  CHECK(back[1].second.empty());
+  CHECK(back[1].second.hits.empty());
   // Adopted entries are found but not handed out again as this process's own.
   SurfaceCache other(std::size_t{1} << 20);
   other.adopt(k3, back[0].second);
   REQUIRE(other.find(k3) != nullptr);
   CHECK(other.find(k3)->at(2).feature == TriangleFeature::edge_ca);
+  REQUIRE(other.find_nearby(k3) != nullptr);
+  CHECK(other.find_nearby(k3)->face == near.face);
   CHECK(other.take_computed().empty());
   // A cut buffer is refused, not read past its end.
   CHECK_THROWS_WITH(unpack_surface_entries(bytes.data(), bytes.size() - 1), Catch::Contains("surface cache entries"));
   CHECK_THROWS_WITH(unpack_surface_entries(bytes.data(), 10), Catch::Contains("10 bytes left"));
+  CHECK_THROWS_WITH(unpack_surface_entries(bytes.data(), 40 + 3 * 88 + 20), Catch::Contains("run past the end"));
+  std::vector<std::uint8_t> bad = bytes;
+  const std::int32_t wrong = 5;  // point 1's offset past the faces listed
+  std::memcpy(bad.data() + 40 + 3 * 88 + 4, &wrong, sizeof wrong);
+  CHECK_THROWS_WITH(unpack_surface_entries(bad.data(), bad.size()), Catch::Contains("do not add up"));
 }
 
 // The training losses find the prediction's closest points among the faces

@@ -47,7 +47,16 @@ std::shared_ptr<const BodyPoints::Hits> BodyPoints::ground_truth(const Tensor& b
     hits[i] = surface_.locate_near(y.row(i).transpose(), hinted ? last_faces_[static_cast<std::size_t>(i)] : -1);
   last_faces_.resize(hits.size());
   for (std::size_t i = 0; i < hits.size(); ++i) last_faces_[i] = hits[i].face;
-  last_truth_ = cache.insert(key, std::move(hits));
+  SurfaceEntry entry{std::move(hits), {}};
+  // The faces near each vertex, for the prediction's searches at every later
+  // step: made with the points, so that they are shared with them (data-parallel
+  // ranks exchange whole entries), when the cache has room to keep them.
+  const std::size_t estimate = entry.bytes() + static_cast<std::size_t>(y.rows()) * (8 * kNearbyFaces + 8);
+  if (cache.bytes() + estimate <= cache.budget()) {
+    use_body(body, b, false);
+    entry.nearby = nearest_.nearby(y, entry.hits, kNearbySlack, kNearbyFaces);
+  }
+  last_truth_ = cache.insert(key, std::move(entry));
   last_truth_key_ = key;
   return last_truth_;
 }
@@ -82,20 +91,10 @@ std::shared_ptr<const BodyPoints::Hits> BodyPoints::prediction(const Tensor& bod
 
 std::shared_ptr<const NearbyFaces> BodyPoints::nearby_faces(const Tensor& body, const Tensor& target, int b,
                                                            const Hits& truth) {
-  SurfaceKey key;
-  if (last_truth_.get() == &truth) {
-    key = last_truth_key_;
-  } else {
-    const std::size_t nb = static_cast<std::size_t>(body.rows()) * body.cols();
-    const std::size_t nt = static_cast<std::size_t>(target.rows()) * target.cols();
-    key = surface_key(topology_, body.data() + b * nb, nb, target.data() + b * nt, nt);
-  }
-  SurfaceCache& cache = SurfaceCache::shared();
-  if (auto near = cache.find_nearby(key)) return near;
-  // Lists are only worth making when they are kept for the epochs to come.
-  const std::size_t estimate = static_cast<std::size_t>(target.rows()) * (8 * kNearbyFaces + 8);
-  if (cache.bytes() + estimate > cache.budget()) return nullptr;
-  return cache.insert_nearby(key, nearest_.nearby(target.mat(b).cast<double>(), truth, kNearbySlack, kNearbyFaces));
+  if (last_truth_.get() == &truth) return SurfaceCache::shared().find_nearby(last_truth_key_);
+  const std::size_t nb = static_cast<std::size_t>(body.rows()) * body.cols();
+  const std::size_t nt = static_cast<std::size_t>(target.rows()) * target.cols();
+  return SurfaceCache::shared().find_nearby(surface_key(topology_, body.data() + b * nb, nb, target.data() + b * nt, nt));
 }
 
 RecentPoints& RecentPoints::shared() {

@@ -2,6 +2,7 @@
 
 #include <drape/errors.hpp>
 
+#include <algorithm>
 #include <cstdlib>
 #include <cstring>
 #include <string>
@@ -92,52 +93,42 @@ SurfaceCache& SurfaceCache::shared() {
 std::shared_ptr<const SurfaceCache::Hits> SurfaceCache::find(const SurfaceKey& key) const {
   std::shared_lock lock(mutex_);
   const auto it = entries_.find(key);
-  return it == entries_.end() ? nullptr : it->second;
+  if (it == entries_.end()) return nullptr;
+  return std::shared_ptr<const Hits>(it->second, &it->second->hits);
 }
 
-bool SurfaceCache::keep(const SurfaceKey& key, const std::shared_ptr<const Hits>& entry) {
-  const std::size_t size = sizeof(SurfacePoint) * entry->size() + 64;
+std::shared_ptr<const NearbyFaces> SurfaceCache::find_nearby(const SurfaceKey& key) const {
+  std::shared_lock lock(mutex_);
+  const auto it = entries_.find(key);
+  if (it == entries_.end() || it->second->nearby.points() == 0) return nullptr;
+  return std::shared_ptr<const NearbyFaces>(it->second, &it->second->nearby);
+}
+
+bool SurfaceCache::keep(const SurfaceKey& key, const std::shared_ptr<const SurfaceEntry>& entry) {
+  const std::size_t size = entry->bytes();
   if (bytes_ + size > budget_) return false;
   bytes_ += size;
   entries_.emplace(key, entry);
   return true;
 }
 
-std::shared_ptr<const SurfaceCache::Hits> SurfaceCache::insert(const SurfaceKey& key, Hits hits) {
-  auto entry = std::make_shared<const Hits>(std::move(hits));
+std::shared_ptr<const SurfaceCache::Hits> SurfaceCache::insert(const SurfaceKey& key, SurfaceEntry entry) {
+  auto kept = std::make_shared<const SurfaceEntry>(std::move(entry));
   std::unique_lock lock(mutex_);
-  if (const auto it = entries_.find(key); it != entries_.end()) return it->second;
-  if (keep(key, entry)) computed_.push_back(key);
-  return entry;
+  if (const auto it = entries_.find(key); it != entries_.end()) kept = it->second;
+  else if (keep(key, kept)) computed_.push_back(key);
+  return std::shared_ptr<const Hits>(kept, &kept->hits);
 }
 
-void SurfaceCache::adopt(const SurfaceKey& key, Hits hits) {
-  auto entry = std::make_shared<const Hits>(std::move(hits));
+void SurfaceCache::adopt(const SurfaceKey& key, SurfaceEntry entry) {
+  auto kept = std::make_shared<const SurfaceEntry>(std::move(entry));
   std::unique_lock lock(mutex_);
-  if (entries_.count(key) == 0) keep(key, entry);
+  if (entries_.count(key) == 0) keep(key, kept);
 }
 
-std::shared_ptr<const NearbyFaces> SurfaceCache::find_nearby(const SurfaceKey& key) const {
-  std::shared_lock lock(mutex_);
-  const auto it = nearby_.find(key);
-  return it == nearby_.end() ? nullptr : it->second;
-}
-
-std::shared_ptr<const NearbyFaces> SurfaceCache::insert_nearby(const SurfaceKey& key, NearbyFaces near) {
-  auto entry = std::make_shared<const NearbyFaces>(std::move(near));
-  const std::size_t size = entry->bytes() + 64;
+SurfaceCache::Entries SurfaceCache::take_computed() {
   std::unique_lock lock(mutex_);
-  if (const auto it = nearby_.find(key); it != nearby_.end()) return it->second;
-  if (bytes_ + size <= budget_) {
-    bytes_ += size;
-    nearby_.emplace(key, entry);
-  }
-  return entry;
-}
-
-std::vector<std::pair<SurfaceKey, std::shared_ptr<const SurfaceCache::Hits>>> SurfaceCache::take_computed() {
-  std::unique_lock lock(mutex_);
-  std::vector<std::pair<SurfaceKey, std::shared_ptr<const Hits>>> out;
+  Entries out;
   out.reserve(computed_.size());
   for (const SurfaceKey& key : computed_) out.emplace_back(key, entries_.at(key));
   computed_.clear();
@@ -176,35 +167,84 @@ SurfacePoint get_point(const std::uint8_t* at) {
 
 }  // namespace
 
-std::vector<std::uint8_t> pack_surface_entries(
-    const std::vector<std::pair<SurfaceKey, std::shared_ptr<const SurfaceCache::Hits>>>& entries) {
-  // Per entry: key.a, key.b, the number of points (three 64-bit words), then the points.
+std::size_t packed_entry_bytes(const SurfaceEntry& entry) {
+  const NearbyFaces& near = entry.nearby;
+  std::size_t size = 5 * sizeof(std::uint64_t) + kPointBytes * entry.hits.size();
+  if (near.points() > 0) size += sizeof(float) * (near.complete.size() + near.reach.size()) + sizeof(std::int32_t) * (near.start.size() + near.face.size());
+  return size;
+}
+
+namespace {
+
+template <class T>
+void put_array(const std::vector<T>& v, std::uint8_t*& at) {
+  if (!v.empty()) std::memcpy(at, v.data(), sizeof(T) * v.size());
+  at += sizeof(T) * v.size();
+}
+
+template <class T>
+void get_array(std::vector<T>& v, std::size_t count, const std::uint8_t*& at) {
+  v.resize(count);
+  if (count) std::memcpy(v.data(), at, sizeof(T) * count);
+  at += sizeof(T) * count;
+}
+
+}  // namespace
+
+std::vector<std::uint8_t> pack_surface_entries(const SurfaceCache::Entries& entries) {
+  // Per entry five 64-bit words: key.a, key.b, the number of points, whether
+  // nearby lists follow and how many faces they list; then the points; then
+  // the lists (start, face, reach, complete).
   std::size_t size = 0;
-  for (const auto& [key, hits] : entries) size += 3 * sizeof(std::uint64_t) + kPointBytes * hits->size();
+  for (const auto& [key, entry] : entries) size += packed_entry_bytes(*entry);
   std::vector<std::uint8_t> out(size);
   std::uint8_t* at = out.data();
-  for (const auto& [key, hits] : entries) {
-    const std::uint64_t head[3] = {key.a, key.b, hits->size()};
+  for (const auto& [key, entry] : entries) {
+    const NearbyFaces& near = entry->nearby;
+    const bool lists = near.points() > 0;
+    const std::uint64_t head[5] = {key.a, key.b, entry->hits.size(), lists ? 1u : 0u, near.face.size()};
     std::memcpy(at, head, sizeof head);
     at += sizeof head;
-    for (const SurfacePoint& p : *hits) put_point(p, at), at += kPointBytes;
+    for (const SurfacePoint& p : entry->hits) put_point(p, at), at += kPointBytes;
+    if (!lists) continue;
+    put_array(near.start, at);
+    put_array(near.face, at);
+    put_array(near.reach, at);
+    put_array(near.complete, at);
   }
   return out;
 }
 
-std::vector<std::pair<SurfaceKey, SurfaceCache::Hits>> unpack_surface_entries(const std::uint8_t* data, std::size_t size) {
-  std::vector<std::pair<SurfaceKey, SurfaceCache::Hits>> out;
-  std::size_t at = 0;
-  while (at < size) {
-    std::uint64_t head[3];
-    if (size - at < sizeof head) throw Error("surface cache entries: " + std::to_string(size - at) + " bytes left, not an entry");
-    std::memcpy(head, data + at, sizeof head);
+std::vector<std::pair<SurfaceKey, SurfaceEntry>> unpack_surface_entries(const std::uint8_t* data, std::size_t size) {
+  std::vector<std::pair<SurfaceKey, SurfaceEntry>> out;
+  const std::uint8_t* at = data;
+  const std::uint8_t* const end = data + size;
+  auto left = [&] { return static_cast<std::size_t>(end - at); };
+  while (at < end) {
+    std::uint64_t head[5];
+    if (left() < sizeof head) throw Error("surface cache entries: " + std::to_string(left()) + " bytes left, not an entry");
+    std::memcpy(head, at, sizeof head);
     at += sizeof head;
-    if (head[2] > (size - at) / kPointBytes)
-      throw Error("surface cache entries: an entry of " + std::to_string(head[2]) + " points runs past the end");
-    SurfaceCache::Hits hits(head[2]);
-    for (auto& p : hits) p = get_point(data + at), at += kPointBytes;
-    out.emplace_back(SurfaceKey{head[0], head[1]}, std::move(hits));
+    const std::uint64_t points = head[2], listed = head[4];
+    const bool lists = head[3] == 1;
+    if (head[3] > 1 || points > left() / kPointBytes)
+      throw Error("surface cache entries: an entry of " + std::to_string(points) + " points runs past the end");
+    SurfaceEntry entry;
+    entry.hits.resize(points);
+    for (auto& p : entry.hits) p = get_point(at), at += kPointBytes;
+    if (lists) {
+      if (listed > left() / 8 || 8 * points + 4 > left() - 8 * listed)
+        throw Error("surface cache entries: nearby lists of " + std::to_string(listed) + " faces run past the end");
+      NearbyFaces& near = entry.nearby;
+      get_array(near.start, points + 1, at);
+      get_array(near.face, listed, at);
+      get_array(near.reach, listed, at);
+      get_array(near.complete, points, at);
+      if (near.start.front() != 0 || static_cast<std::uint64_t>(near.start.back()) != listed ||
+          !std::is_sorted(near.start.begin(), near.start.end()))
+        throw Error("surface cache entries: nearby lists whose offsets do not add up");
+    }
+    out.emplace_back(SurfaceKey{head[0], head[1]}, std::move(entry));
   }
   return out;
 }

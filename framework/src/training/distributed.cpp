@@ -108,7 +108,7 @@ std::size_t share_surface_cache(const Ranks& ranks) {
   const auto computed = cache.take_computed();
   std::vector<std::size_t> cuts{0};
   for (std::size_t e = 0, bytes = 0; e < computed.size(); ++e) {
-    const std::size_t entry = geometry::packed_entry_bytes(computed[e].second->size());
+    const std::size_t entry = geometry::packed_entry_bytes(*computed[e].second);
     if (e > cuts.back() && bytes + entry > kRound) cuts.push_back(e), bytes = 0;
     bytes += entry;
   }
@@ -137,8 +137,8 @@ std::size_t share_surface_cache(const Ranks& ranks) {
     for (int q = 0; q < size; ++q) {
       if (q == me) continue;
       const std::uint8_t* theirs = all.data() + widest * static_cast<std::size_t>(q);
-      for (auto& [key, hits] : geometry::unpack_surface_entries(theirs, static_cast<std::size_t>(sizes[static_cast<std::size_t>(q)]))) {
-        cache.adopt(key, std::move(hits));
+      for (auto& [key, entry] : geometry::unpack_surface_entries(theirs, static_cast<std::size_t>(sizes[static_cast<std::size_t>(q)]))) {
+        cache.adopt(key, std::move(entry));
         ++adopted;
       }
     }

@@ -7,8 +7,8 @@
 //   process-wide SurfaceCache after the first time a sample is seen, and are
 //   computed exactly as BodySurface::locate finds them otherwise;
 // - the prediction's are found among the faces nearest the ground-truth
-//   vertex of the same row (NearbyFaces: made once per sample and kept in the
-//   SurfaceCache beside its points), the tree searched only when the
+//   vertex of the same row (NearbyFaces: made with the ground truth's points
+//   and kept in the same SurfaceCache entry), the tree searched only when the
 //   prediction is too far from the ground truth for those faces to prove the
 //   answer (NearestTriangles: no normals, a refit of the boxes);
 // - the last prediction's points are kept too, keyed by content like the
@@ -54,8 +54,8 @@ class BodyPoints {
 
  private:
   void use_body(const Tensor& body, int b, bool with_normals);
-  // The nearby lists of target sample b from the cache, made when missing;
-  // null when the cache has no room for them.
+  // The nearby lists of target sample b from the cache (made by ground_truth
+  // with the points); null when the cache did not keep them.
   std::shared_ptr<const NearbyFaces> nearby_faces(const Tensor& body, const Tensor& target, int b, const Hits& truth);
 
   std::string who_;

@@ -35,9 +35,18 @@ std::uint64_t topology_hash(const Eigen::MatrixX3i& faces);
 // The key of the closest points of `points` (n floats) on the body `body` (m floats) of that topology.
 SurfaceKey surface_key(std::uint64_t topology, const float* body, std::size_t m, const float* points, std::size_t n);
 
+// What is kept for one sample: the closest points, and the faces listed near
+// each point (empty when the caller made none), both data only.
+struct SurfaceEntry {
+  std::vector<SurfacePoint> hits;
+  NearbyFaces nearby;
+  std::size_t bytes() const { return sizeof(SurfacePoint) * hits.size() + nearby.bytes() + 64; }
+};
+
 class SurfaceCache {
  public:
   using Hits = std::vector<SurfacePoint>;
+  using Entries = std::vector<std::pair<SurfaceKey, std::shared_ptr<const SurfaceEntry>>>;
 
   explicit SurfaceCache(std::size_t budget_bytes) : budget_(budget_bytes) {}
   // The process-wide cache, its budget from $DRAPE_SURFACE_CACHE_MIB.
@@ -45,22 +54,19 @@ class SurfaceCache {
 
   // Null when the key is not there.
   std::shared_ptr<const Hits> find(const SurfaceKey& key) const;
-  // Keeps hits under key when the budget allows; returns them either way.
-  std::shared_ptr<const Hits> insert(const SurfaceKey& key, Hits hits);
+  // The entry's nearby lists; null when the key is not there or has none.
+  std::shared_ptr<const NearbyFaces> find_nearby(const SurfaceKey& key) const;
+  // Keeps the entry under key when the budget allows; returns its hits either way.
+  std::shared_ptr<const Hits> insert(const SurfaceKey& key, SurfaceEntry entry);
+  std::shared_ptr<const Hits> insert(const SurfaceKey& key, Hits hits) { return insert(key, SurfaceEntry{std::move(hits), {}}); }
 
   // The entries this process computed and kept (insert) since the last call:
   // what a data-parallel rank shares with the others, so that every rank's
   // cache fills in one epoch instead of one sample at a time over many.
-  std::vector<std::pair<SurfaceKey, std::shared_ptr<const Hits>>> take_computed();
-  // Keeps hits another process computed (when the budget allows); they are not
-  // reported by take_computed.
-  void adopt(const SurfaceKey& key, Hits hits);
-
-  // The faces near each point of an entry (NearbyFaces), kept under the
-  // entry's key within the same budget. Derived from the entry by whichever
-  // process needs them: not reported by take_computed.
-  std::shared_ptr<const NearbyFaces> find_nearby(const SurfaceKey& key) const;
-  std::shared_ptr<const NearbyFaces> insert_nearby(const SurfaceKey& key, NearbyFaces near);
+  Entries take_computed();
+  // Keeps an entry another process computed (when the budget allows); it is
+  // not reported by take_computed.
+  void adopt(const SurfaceKey& key, SurfaceEntry entry);
 
   std::size_t bytes() const;
   std::size_t entries() const;
@@ -73,19 +79,18 @@ class SurfaceCache {
   std::size_t budget_;
   std::size_t bytes_ = 0;
   mutable std::shared_mutex mutex_;
-  std::unordered_map<SurfaceKey, std::shared_ptr<const Hits>, KeyHash> entries_;
-  std::unordered_map<SurfaceKey, std::shared_ptr<const NearbyFaces>, KeyHash> nearby_;
+  std::unordered_map<SurfaceKey, std::shared_ptr<const SurfaceEntry>, KeyHash> entries_;
   std::vector<SurfaceKey> computed_;  // kept by insert since the last take_computed
-  bool keep(const SurfaceKey& key, const std::shared_ptr<const Hits>& entry);
+  bool keep(const SurfaceKey& key, const std::shared_ptr<const SurfaceEntry>& entry);
 };
 
-// The bytes an entry of n points packs into: 24 + 88 n.
-inline std::size_t packed_entry_bytes(std::size_t points) { return 24 + 88 * points; }
+// The bytes an entry packs into: 40 + 88 per point, and with nearby lists
+// 8 per point + 8 per listed face + 4.
+std::size_t packed_entry_bytes(const SurfaceEntry& entry);
 // Entries as bytes, to send to another process of the same program (raw
 // SurfacePoints: the same binary reads them), and back. unpack throws Error on
 // a buffer that does not parse.
-std::vector<std::uint8_t> pack_surface_entries(
-    const std::vector<std::pair<SurfaceKey, std::shared_ptr<const SurfaceCache::Hits>>>& entries);
-std::vector<std::pair<SurfaceKey, SurfaceCache::Hits>> unpack_surface_entries(const std::uint8_t* data, std::size_t size);
+std::vector<std::uint8_t> pack_surface_entries(const SurfaceCache::Entries& entries);
+std::vector<std::pair<SurfaceKey, SurfaceEntry>> unpack_surface_entries(const std::uint8_t* data, std::size_t size);
 
 }  // namespace drape::geometry
