@@ -10,7 +10,7 @@
 // body (geometry/closest_point_gradient.hpp), to those of the three the graph
 // wants (training: pred only). Closest points in double, found by
 // geometry::BodyPoints: the target's computed once per sample and cached, the
-// prediction's searched from the target's faces.
+// prediction's among the faces listed near the target's vertex.
 #include <drape/assets.hpp>
 #include <drape/geometry/body_points.hpp>
 #include <drape/geometry/closest_point_gradient.hpp>
