@@ -8,7 +8,10 @@
 #include <drape/simulation.hpp>
 
 #include <cmath>
+#include <algorithm>
+#include <cstdint>
 #include <fstream>
+#include <sstream>
 
 #include "test_support.hpp"
 
@@ -199,4 +202,111 @@ TEST_CASE("mesh garment: an OBJ's usemtl groups are material regions the scene n
   CHECK(g.material_of(skirt.num_faces() - 1) == 1);
   CHECK_THAT(test::message_of([&] { Simulation(test::plugins(), parse_scene(scene_text(dir / "regions.obj") + "materials: {sleeve: screen-print}\n")); }),
              Catch::Contains("has no region 'sleeve'") && Catch::Contains("panel, print"));
+}
+
+namespace {
+
+std::string base64(const std::string& bytes) {
+  static const char* digits = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+  std::string out;
+  for (std::size_t i = 0; i < bytes.size(); i += 3) {
+    unsigned n = static_cast<unsigned char>(bytes[i]) << 16;
+    if (i + 1 < bytes.size()) n |= static_cast<unsigned char>(bytes[i + 1]) << 8;
+    if (i + 2 < bytes.size()) n |= static_cast<unsigned char>(bytes[i + 2]);
+    // Output character k carries bits of input byte k - 1 (k >= 1); past the end, '='.
+    for (int k = 0; k < 4; ++k) out += (k < 2 || i + k - 1 < bytes.size()) ? digits[(n >> (18 - 6 * k)) & 63] : '=';
+  }
+  return out;
+}
+
+template <class T>
+void append(std::string& bytes, const T& value) {
+  bytes.append(reinterpret_cast<const char*>(&value), sizeof value);
+}
+
+// The mesh as a glTF 2.0 file written by hand (not through drape's or
+// assimp's writer): one vertex per distinct (position, UV) corner, and one
+// primitive per run of faces with the same material, named as given.
+void write_gltf_by_hand(const fs::path& file, const Mesh& m, const std::vector<std::pair<std::string, int>>& runs) {
+  std::vector<std::pair<int, int>> corners;  // (vertex, uv) of each glTF vertex
+  std::vector<std::uint32_t> index;
+  for (int f = 0; f < m.num_faces(); ++f)
+    for (int k = 0; k < 3; ++k) {
+      const std::pair<int, int> c{m.faces(f, k), m.uv_faces(f, k)};
+      auto it = std::find(corners.begin(), corners.end(), c);
+      if (it == corners.end()) it = corners.insert(corners.end(), c);
+      index.push_back(static_cast<std::uint32_t>(it - corners.begin()));
+    }
+  std::string bin;
+  Eigen::Vector3f lo = Eigen::Vector3f::Constant(1e30f), hi = -lo;
+  for (const auto& [v, t] : corners) {
+    const Eigen::Vector3f p = m.vertices.row(v).transpose().cast<float>();
+    lo = lo.cwiseMin(p), hi = hi.cwiseMax(p);
+    for (int k = 0; k < 3; ++k) append(bin, p[k]);
+  }
+  const std::size_t uv_at = bin.size();
+  for (const auto& [v, t] : corners)
+    for (int k = 0; k < 2; ++k) append(bin, static_cast<float>(m.uv(t, k)));
+  std::ostringstream views, accessors, primitives, materials;
+  const std::size_t n = corners.size();
+  views << "{\"buffer\":0,\"byteOffset\":0,\"byteLength\":" << uv_at << "},{\"buffer\":0,\"byteOffset\":" << uv_at
+        << ",\"byteLength\":" << 8 * n << "}";
+  accessors << "{\"bufferView\":0,\"componentType\":5126,\"count\":" << n << ",\"type\":\"VEC3\",\"min\":[" << lo[0] << ","
+            << lo[1] << "," << lo[2] << "],\"max\":[" << hi[0] << "," << hi[1] << "," << hi[2] << "]},"
+            << "{\"bufferView\":1,\"componentType\":5126,\"count\":" << n << ",\"type\":\"VEC2\"}";
+  int face = 0;
+  for (std::size_t r = 0; r < runs.size(); ++r) {
+    const std::size_t at = bin.size();
+    for (int f = face; f < face + runs[r].second; ++f)
+      for (int k = 0; k < 3; ++k) append(bin, index[static_cast<std::size_t>(3 * f + k)]);
+    face += runs[r].second;
+    views << ",{\"buffer\":0,\"byteOffset\":" << at << ",\"byteLength\":" << bin.size() - at << "}";
+    accessors << ",{\"bufferView\":" << r + 2 << ",\"componentType\":5125,\"count\":" << 3 * runs[r].second
+              << ",\"type\":\"SCALAR\"}";
+    primitives << (r ? "," : "") << "{\"attributes\":{\"POSITION\":0,\"TEXCOORD_0\":1},\"indices\":" << r + 2
+               << ",\"material\":" << r << "}";
+    materials << (r ? "," : "") << "{\"name\":\"" << runs[r].first << "\"}";
+  }
+  std::ofstream out(file);
+  out << "{\"asset\":{\"version\":\"2.0\"},\"scene\":0,\"scenes\":[{\"nodes\":[0]}],\"nodes\":[{\"mesh\":0}],"
+      << "\"meshes\":[{\"primitives\":[" << primitives.str() << "]}],\"materials\":[" << materials.str() << "],"
+      << "\"buffers\":[{\"byteLength\":" << bin.size() << ",\"uri\":\"data:application/octet-stream;base64,"
+      << base64(bin) << "\"}],\"bufferViews\":[" << views.str() << "],\"accessors\":[" << accessors.str() << "]}\n";
+}
+
+}  // namespace
+
+TEST_CASE("mesh garment: a glTF's materials are material regions the scene names", "[garments][mesh]") {
+  test::TempDir dir;
+  const Mesh skirt = tube();
+  const int half = skirt.num_faces() / 2;
+  write_gltf_by_hand(dir / "regions.gltf", skirt, {{"panel", half}, {"print", skirt.num_faces() - half}});
+  // The reader: the tube's vertices (seam corners merged back), its faces in order, each face's material.
+  const MaterialMesh read = read_mesh_with_materials(dir / "regions.gltf");
+  CHECK(read.mesh.num_vertices() == skirt.num_vertices());
+  REQUIRE(read.mesh.num_faces() == skirt.num_faces());
+  CHECK(read.material_names == std::vector<std::string>{"panel", "print"});
+  REQUIRE(read.face_material.size() == static_cast<std::size_t>(skirt.num_faces()));
+  for (int f = 0; f < skirt.num_faces(); ++f) CHECK(read.face_material[static_cast<std::size_t>(f)] == (f < half ? 0 : 1));
+  for (int f = 0; f < skirt.num_faces(); f += 17)
+    for (int k = 0; k < 3; ++k)
+      CHECK((read.mesh.vertices.row(read.mesh.faces(f, k)) - skirt.vertices.row(skirt.faces(f, k))).norm() < 1e-6);
+
+  const Scene scene = parse_scene(scene_text(dir / "regions.gltf") + "materials: {print: screen-print}\n");
+  const Simulation sim(test::plugins(), scene);
+  const Garment& g = sim.garment();
+  REQUIRE(g.materials.size() == 2);
+  CHECK(g.materials[0].name == "panel");
+  CHECK(g.materials[1].name == "print");
+  CHECK(g.materials[1].density > g.materials[0].density);
+  CHECK(g.material_of(0) == 0);
+  CHECK(g.material_of(skirt.num_faces() - 1) == 1);
+  // A PLY carries no materials: one region, "cloth".
+  write_mesh(dir / "plain.ply", skirt);
+  const MaterialMesh ply = read_mesh_with_materials(dir / "plain.ply");
+  CHECK(ply.material_names.size() == 1);
+  CHECK(ply.face_material.size() == static_cast<std::size_t>(skirt.num_faces()));
+  const Simulation plain(test::plugins(), parse_scene(scene_text(dir / "plain.ply", ", material_space: rest")));
+  REQUIRE(plain.garment().materials.size() == 1);
+  CHECK(plain.garment().materials[0].name == "cloth");
 }

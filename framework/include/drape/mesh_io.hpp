@@ -23,6 +23,17 @@ namespace drape {
 // the corner order, so polygon f with n corners becomes n-2 consecutive triangles.
 Mesh read_mesh(const std::filesystem::path& file);
 
+// A triangle mesh with the material of every triangle: an OBJ's `usemtl`
+// names; through assimp the material of each of the file's meshes (glTF/GLB:
+// each primitive's material, by its name). Triangles without one are in
+// "default". read_mesh's mesh, the same vertices and triangles.
+struct MaterialMesh {
+  Mesh mesh;
+  std::vector<std::string> material_names;  // in order of first use by a triangle
+  std::vector<int> face_material;           // per triangle, index into material_names
+};
+MaterialMesh read_mesh_with_materials(const std::filesystem::path& file);
+
 // .obj (v, vt, f v/vt), .ply (binary), .gltf (one file, buffer embedded) or .glb.
 // Throws ConfigError for an unknown extension or a missing folder; an invalid
 // mesh (index out of range, non-finite value) is an Error. Nothing is left

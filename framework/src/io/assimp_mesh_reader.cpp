@@ -14,12 +14,14 @@
 // undoes per-corner copies and UV-seam copies (which write_mesh appends after
 // the original vertices, see assimp_mesh_writer.cpp). Its price: two distinct
 // vertices at exactly the same position become one (none in the MakeHuman assets).
-// Node transforms are ignored: vertices stay in mesh coordinates.
+// Node transforms are ignored: vertices stay in mesh coordinates. Each aiMesh
+// has one material: with MaterialMesh, its name labels the mesh's triangles.
 #include <drape/errors.hpp>
 
 #include "mesh_io_internal.hpp"
 
 #include <assimp/Importer.hpp>
+#include <assimp/material.h>
 #include <assimp/scene.h>
 
 #include <algorithm>
@@ -60,7 +62,7 @@ std::string one_line(std::string s) {
 
 }  // namespace
 
-Mesh read_with_assimp(const std::filesystem::path& file) {
+Mesh read_with_assimp(const std::filesystem::path& file, MaterialMesh* materials) {
   const SourceLocation where{file.string(), 0};
   Assimp::Importer importer;
   // No post-processing at all: Triangulate may pick the other diagonal of a quad,
@@ -79,8 +81,23 @@ Mesh read_with_assimp(const std::filesystem::path& file) {
   std::vector<int> faces, uv_faces;
   std::vector<int> merged;  // aiMesh vertex -> our vertex, for the current aiMesh
   int uv_offset = 0;
+  std::unordered_map<unsigned, int> region_of_material;  // assimp material -> index into materials->material_names
   for (unsigned m = 0; m < scene->mNumMeshes; ++m) {
     const aiMesh* mesh = scene->mMeshes[m];
+    int region = 0;
+    if (materials) {
+      // Each aiMesh has one material; its name is the region (glTF: the
+      // material's "name"; assimp names one it made up "DefaultMaterial").
+      const auto [it, added] = region_of_material.try_emplace(mesh->mMaterialIndex, static_cast<int>(materials->material_names.size()));
+      if (added) {
+        aiString name;
+        const bool named = mesh->mMaterialIndex < scene->mNumMaterials &&
+                           scene->mMaterials[mesh->mMaterialIndex]->Get(AI_MATKEY_NAME, name) == aiReturn_SUCCESS &&
+                           name.length > 0;
+        materials->material_names.push_back(named ? name.C_Str() : "default");
+      }
+      region = it->second;
+    }
     merged.assign(mesh->mNumVertices, 0);
     for (unsigned i = 0; i < mesh->mNumVertices; ++i) {
       const aiVector3D& p = mesh->mVertices[i];
@@ -111,6 +128,7 @@ Mesh read_with_assimp(const std::filesystem::path& file) {
           faces.push_back(merged[face.mIndices[c]]);
           if (with_uv) uv_faces.push_back(uv_offset + static_cast<int>(face.mIndices[c]));
         }
+        if (materials) materials->face_material.push_back(region);
       }
     }
     uv_offset += static_cast<int>(mesh->mNumVertices);

@@ -67,16 +67,42 @@ const char* const kWritable = ".obj, .ply, .gltf or .glb";
 
 }  // namespace
 
-Mesh read_mesh(const fs::path& file) {
+namespace {
+
+// The file's extension when it is a mesh drape reads; ConfigError otherwise.
+std::string readable_extension(const fs::path& file) {
   const SourceLocation where{file.string(), 0};
   std::error_code ec;
   if (!fs::exists(file, ec)) throw ConfigError(where, "no such file");
   if (fs::is_directory(file, ec)) throw ConfigError(where, "is a folder, not a mesh file");
   const std::string ext = mesh_io::lower_extension(file);
-  if (ext == ".obj") return triangulate(read_obj_polygons(file));
-  if (ext.empty() || !Assimp::Importer().IsExtensionSupported(ext))
+  if (ext != ".obj" && (ext.empty() || !Assimp::Importer().IsExtensionSupported(ext)))
     throw ConfigError(where, "unknown mesh format '" + ext + "'; use " + kWritable + " (or another format assimp reads)");
+  return ext;
+}
+
+}  // namespace
+
+Mesh read_mesh(const fs::path& file) {
+  if (readable_extension(file) == ".obj") return triangulate(read_obj_polygons(file));
   return mesh_io::read_with_assimp(file);
+}
+
+MaterialMesh read_mesh_with_materials(const fs::path& file) {
+  MaterialMesh out;
+  if (readable_extension(file) != ".obj") {
+    out.mesh = mesh_io::read_with_assimp(file, &out);
+    return out;
+  }
+  const PolygonMesh polygons = read_obj_polygons(file);
+  out.mesh = triangulate(polygons);
+  out.material_names = polygons.material_names;
+  out.face_material.reserve(static_cast<std::size_t>(out.mesh.num_faces()));
+  // triangulate splits polygon f into face_size(f) - 2 consecutive triangles
+  for (int f = 0; f < polygons.num_faces(); ++f)
+    out.face_material.insert(out.face_material.end(), static_cast<std::size_t>(polygons.face_size(f) - 2),
+                             polygons.face_material[static_cast<std::size_t>(f)]);
+  return out;
 }
 
 void write_mesh(const fs::path& file, const Mesh& mesh) {

@@ -1,6 +1,7 @@
 #pragma once
 // Shared between the mesh readers and writers; not part of the public API.
 #include <drape/mesh.hpp>
+#include <drape/mesh_io.hpp>
 
 #include <filesystem>
 #include <string>
@@ -8,7 +9,8 @@
 namespace drape::mesh_io {
 
 // Through assimp: any format it reads; vertex order restored (see the .cpp).
-Mesh read_with_assimp(const std::filesystem::path& file);
+// With `materials`, also each triangle's material (MaterialMesh).
+Mesh read_with_assimp(const std::filesystem::path& file, MaterialMesh* materials = nullptr);
 
 // assimp reads a PLY that is cut short without complaint (it fills in what is
 // missing), so the body's size is checked against the header: ConfigError if short.

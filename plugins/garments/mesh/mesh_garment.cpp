@@ -8,7 +8,8 @@
 //   rest  the rest 3D shape itself, as HOOD does: each triangle laid flat as
 //         it is in the file (its own corners, so the pattern needs no seams);
 //         for garments whose UVs are a texture atlas, not a pattern.
-// Material regions: an OBJ's `usemtl` groups, by name, or one region "cloth";
+// Material regions: an OBJ's `usemtl` groups or a glTF's materials, by name,
+// or one region "cloth";
 // each is the knit unless the scene's materials say otherwise.
 // Bad input is refused with one line naming the file and the element.
 #include <drape/errors.hpp>
@@ -143,23 +144,15 @@ class MeshGarment final : public GarmentSource {
     if (o_.file.empty() || o_.file == "none") throw ConfigError("garment mesh: give the file, e.g. params: {file: my_skirt.obj}");
     if (!std::filesystem::exists(o_.file)) throw ConfigError(where(o_) + ": no such file");
     Garment g;
-    // Material regions: an OBJ's `usemtl` groups (one region "cloth" otherwise),
-    // from the polygons the triangles are made of (read once: read_mesh of an
-    // OBJ is triangulate(read_obj_polygons)).
+    // Material regions: an OBJ's `usemtl` groups or a glTF's materials (one
+    // region "cloth" when the file has fewer than two).
+    MaterialMesh file = read_mesh_with_materials(o_.file);
+    g.mesh = std::move(file.mesh);
     std::vector<std::string> regions{"cloth"};
     Eigen::VectorXi face_region;
-    if (std::filesystem::path(o_.file).extension() != ".obj") {
-      g.mesh = read_mesh(o_.file);
-    } else {
-      const PolygonMesh polygons = read_obj_polygons(o_.file);
-      g.mesh = triangulate(polygons);
-      if (polygons.material_names.size() > 1) {
-        regions = polygons.material_names;
-        face_region.resize(g.mesh.num_faces());
-        int t = 0;  // triangulate splits polygon f into face_size(f) - 2 consecutive triangles
-        for (int f = 0; f < polygons.num_faces(); ++f)
-          for (int k = 0; k < polygons.face_size(f) - 2; ++k) face_region[t++] = polygons.face_material[static_cast<std::size_t>(f)];
-      }
+    if (file.material_names.size() > 1) {
+      regions = file.material_names;
+      face_region = Eigen::Map<const Eigen::VectorXi>(file.face_material.data(), static_cast<Eigen::Index>(file.face_material.size()));
     }
     if (g.mesh.num_faces() == 0) throw ConfigError(where(o_) + ": has no faces");
     if (!g.mesh.vertices.allFinite()) throw ConfigError(where(o_) + ": has a non-finite vertex");
@@ -194,7 +187,7 @@ PluginList plugins() {
   d.name = "mesh";
   d.doc = "A garment from a mesh file (OBJ, PLY, glTF/GLB), modelled around the body model's mean shape; material space "
           "from its UVs (a sewing pattern, uv_scale metres per unit) or its rest shape; material regions from an OBJ's "
-          "usemtl groups, else one region 'cloth' (docs/garments.md).";
+          "usemtl groups or a glTF's materials, else one region 'cloth' (docs/garments.md).";
   d.params = {
       {"file", ParamType::String, "none", "the garment mesh (required; relative to the working folder); its vertex order is kept"},
       {"material_space", ParamType::String, "uv", "uv: the file's UVs are a sewing pattern; rest: the rest 3D shape",
