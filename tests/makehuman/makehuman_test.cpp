@@ -7,6 +7,11 @@
 
 #include <catch2/catch.hpp>
 
+#include <algorithm>
+#include <filesystem>
+#include <fstream>
+#include <string>
+
 #include "test_support.hpp"
 
 using namespace drape;
@@ -116,4 +121,79 @@ TEST_CASE("the MakeHuman T-shirt loads, triangulates and dresses bodies through 
     if (surface.closest(heavy_shirt.mesh.vertices.row(v).transpose()).signed_distance < -0.005) ++inside;
   INFO(inside << " of " << heavy_shirt.mesh.num_vertices() << " shirt vertices deeper than 5 mm in the body");
   CHECK(inside < heavy_shirt.mesh.num_vertices() / 20);
+}
+
+// Any piece of an outfit binds through the .mhclo: the trousers of
+// male_casualsuit04 (piece 1, 886 vertices) follow a heavy body as the shirt
+// does; a piece that does not exist, a group the .obj lacks and a binding made
+// for another base mesh are refused naming the file.
+TEST_CASE("MakeHuman clothes: any piece of an outfit binds to the body through its .mhclo", "[makehuman]") {
+  if (!assets_present()) {
+    SUCCEED("skipped");
+    return;
+  }
+  const auto& d = test::plugins().get("makehuman_clothes");
+  auto build = [&](ParamValues values) { return test::plugins().create_garment("makehuman_clothes", Params(d.params, values, "clothes"))->build(); };
+  ParamValues values = path_param();
+  // Piece 0 is the T-shirt piece: the same garment as makehuman_tshirt's.
+  const Garment shirt = build(values);
+  const auto& ds = test::plugins().get("makehuman_tshirt");
+  const Garment tshirt = test::plugins().create_garment("makehuman_tshirt", Params(ds.params, path_param(), "s"))->build();
+  CHECK(shirt.mesh.vertices == tshirt.mesh.vertices);
+  CHECK(shirt.mesh.faces == tshirt.mesh.faces);
+  values["piece"] = {YAML::Node("1"), {}};
+  const Garment trousers = build(values);
+  CHECK(trousers.mesh.num_vertices() == 886);
+  CHECK(trousers.mesh.faces.maxCoeff() < trousers.mesh.num_vertices());
+  CHECK(trousers.mesh.has_uv());
+  // Below the shirt: trousers reach the ankles.
+  CHECK(trousers.mesh.vertices.col(1).minCoeff() < 0.2);
+  CHECK(trousers.mesh.vertices.col(1).maxCoeff() < shirt.mesh.vertices.col(1).maxCoeff());
+  // They follow a heavy body: wider, and few vertices deeper than 5 mm inside it.
+  const auto body = makehuman_body();
+  const Eigen::VectorXd heavy = body->solve({34.0, 1.75, 1.0});
+  ParamValues heavy_values = values;
+  const char* names[] = {"gender", "muscle", "weight", "height", "proportions"};
+  for (int i = 0; i < 5; ++i) heavy_values[names[i]] = {YAML::Node(heavy[i]), {}};
+  const Garment heavy_trousers = build(heavy_values);
+  // Front to back (the legs' spread sets the side to side extent in the A-pose).
+  const auto depth = [](const Mesh& m) { return m.vertices.col(2).maxCoeff() - m.vertices.col(2).minCoeff(); };
+  CHECK(depth(heavy_trousers.mesh) > depth(trousers.mesh) + 0.03);
+  const geometry::BodySurface surface(Mesh{body->vertices(heavy), body->faces(), {}, {}});
+  int inside = 0;
+  for (int v = 0; v < heavy_trousers.mesh.num_vertices(); ++v)
+    if (surface.closest(heavy_trousers.mesh.vertices.row(v).transpose()).signed_distance < -0.005) ++inside;
+  INFO(inside << " of " << heavy_trousers.mesh.num_vertices() << " trouser vertices deeper than 5 mm in the body");
+  CHECK(inside < heavy_trousers.mesh.num_vertices() / 20);
+
+  values["piece"] = {YAML::Node("2"), {}};
+  CHECK_THROWS_WITH(build(values), Catch::Contains("male_casualsuit04.obj") && Catch::Contains("2 connected pieces") &&
+                                       Catch::Contains("no piece 2"));
+  values["piece"] = {YAML::Node("jacket"), {}};
+  CHECK_THROWS_WITH(build(values), Catch::Contains("male_casualsuit04.obj") && Catch::Contains("jacket"));
+
+  // A binding for another base mesh: the outfit copied with one reference moved past the base mesh's vertices.
+  test::TempDir dir;
+  const auto root = test::shared_assets() / "makehuman";
+  std::filesystem::create_directories(dir / "mh");
+  for (const char* sub : {"base", "targets"}) std::filesystem::create_directory_symlink(root / sub, dir / "mh" / sub);
+  const auto outfit = dir / "mh/clothes/male_casualsuit04";
+  std::filesystem::create_directories(outfit);
+  std::filesystem::copy_file(root / "clothes/male_casualsuit04/male_casualsuit04.obj", outfit / "male_casualsuit04.obj");
+  std::ifstream in(root / "clothes/male_casualsuit04/male_casualsuit04.mhclo");
+  std::ofstream out(outfit / "male_casualsuit04.mhclo");
+  bool in_verts = false, changed = false;
+  for (std::string line; std::getline(in, line);) {
+    if (in_verts && !changed && std::count(line.begin(), line.end(), ' ') >= 2) {
+      line = "99999" + line.substr(line.find(' '));
+      changed = true;
+    }
+    if (line.rfind("verts", 0) == 0) in_verts = true;
+    out << line << "\n";
+  }
+  out.close();
+  REQUIRE(changed);
+  ParamValues other{{"path", {YAML::Node((dir / "mh").string()), {}}}};
+  CHECK_THROWS_WITH(build(other), Catch::Contains("male_casualsuit04.mhclo") && Catch::Contains("base vertex 99999") &&
+                                      Catch::Contains("another base mesh"));
 }

@@ -6,6 +6,8 @@
 #include <Eigen/Geometry>
 
 #include <numeric>
+#include <string>
+#include <vector>
 
 namespace fs = std::filesystem;
 
@@ -37,7 +39,7 @@ double area2d(const Eigen::Vector2d& a, const Eigen::Vector2d& b, const Eigen::V
 
 }  // namespace
 
-Garment load_tshirt(const Model& model, const fs::path& dir, const Sliders& body) {
+Garment load_clothes(const Model& model, const fs::path& dir, const Sliders& body, const std::string& piece_name) {
   const std::string name = dir.filename().string();
   const fs::path obj = dir / (name + ".obj"), clo = dir / (name + ".mhclo");
   const PolygonMesh outfit = read_obj_polygons(obj);
@@ -46,31 +48,55 @@ Garment load_tshirt(const Model& model, const fs::path& dir, const Sliders& body
     throw ConfigError(clo.string() + " binds " + std::to_string(binding.refs.size()) + " vertices but " + obj.string() +
                       " has " + std::to_string(outfit.num_vertices()));
   if (outfit.corner_uv.empty()) throw ConfigError(obj.string() + ": the garment needs UVs (its material space)");
-
-  // The shirt is the piece of vertex 0; MakeHuman outfits list it first, so its
-  // vertices are a prefix 0..n-1 and the garment keeps the outfit's vertex order.
-  const std::vector<int> piece = piece_of_vertex(outfit);
-  int n = 0;
-  while (n < outfit.num_vertices() && piece[static_cast<std::size_t>(n)] == piece[0]) ++n;
-  for (int v = n; v < outfit.num_vertices(); ++v)
-    if (piece[static_cast<std::size_t>(v)] == piece[0])
-      throw ConfigError(obj.string() + ": the first piece (the T-shirt) does not occupy a prefix of the vertices");
-
+  // A binding made for another base mesh names base vertices this one lacks.
   const Eigen::MatrixX3d morphed = model.morph(body);
-  const Eigen::MatrixX3d fitted = model.to_body_frame(fit_clothes(binding, morphed), morphed);
+  for (std::size_t i = 0; i < binding.refs.size(); ++i)
+    for (int k = 0; k < 3; ++k)
+      if (binding.refs[i].vertex[static_cast<std::size_t>(k)] >= morphed.rows())
+        throw ConfigError(clo.string() + ": garment vertex " + std::to_string(i) + " is bound to base vertex " +
+                          std::to_string(binding.refs[i].vertex[static_cast<std::size_t>(k)]) + ", but the MakeHuman base mesh has " +
+                          std::to_string(morphed.rows()) + " vertices: a binding for another base mesh");
 
+  // The piece's vertices, in the outfit's order.
+  const std::vector<int> piece = piece_of_vertex(outfit);
+  std::vector<char> chosen(static_cast<std::size_t>(outfit.num_vertices()), 0);
+  const bool by_index = !piece_name.empty() && piece_name.find_first_not_of("0123456789") == std::string::npos;
+  if (by_index) {
+    std::vector<int> roots;  // pieces numbered by their first vertex
+    for (int v = 0; v < outfit.num_vertices(); ++v)
+      if (piece[static_cast<std::size_t>(v)] == v) roots.push_back(v);
+    const std::size_t index = std::stoul(piece_name);
+    if (index >= roots.size())
+      throw ConfigError(obj.string() + ": has " + std::to_string(roots.size()) + " connected pieces (0-" +
+                        std::to_string(roots.size() - 1) + "), no piece " + piece_name);
+    for (int v = 0; v < outfit.num_vertices(); ++v) chosen[static_cast<std::size_t>(v)] = piece[static_cast<std::size_t>(v)] == roots[index];
+  } else {
+    for (int v : group_vertices(outfit, piece_name, obj.string())) chosen[static_cast<std::size_t>(v)] = 1;
+  }
+  std::vector<int> new_index(static_cast<std::size_t>(outfit.num_vertices()), -1);
+  std::vector<int> kept;
+  for (int v = 0; v < outfit.num_vertices(); ++v)
+    if (chosen[static_cast<std::size_t>(v)]) new_index[static_cast<std::size_t>(v)] = static_cast<int>(kept.size()), kept.push_back(v);
+
+  const Eigen::MatrixX3d fitted = model.to_body_frame(fit_clothes(binding, morphed), morphed);
   Garment g;
-  g.mesh.vertices = fitted.topRows(n);
+  g.mesh.vertices.resize(static_cast<Eigen::Index>(kept.size()), 3);
+  for (std::size_t i = 0; i < kept.size(); ++i) g.mesh.vertices.row(static_cast<Eigen::Index>(i)) = fitted.row(kept[i]);
   std::vector<Eigen::Vector3i> faces, uv_faces;
+  std::vector<Eigen::Vector3i> outfit_faces;  // the same faces in the outfit's numbering, for the rest shape
   for (int f = 0; f < outfit.num_faces(); ++f) {
     const int s = outfit.face_start[static_cast<std::size_t>(f)];
-    if (outfit.corner_vertex[static_cast<std::size_t>(s)] >= n) continue;
+    if (!chosen[static_cast<std::size_t>(outfit.corner_vertex[static_cast<std::size_t>(s)])]) continue;
     for (int k = 1; k + 1 < outfit.face_size(f); ++k) {
       const std::size_t c[3] = {static_cast<std::size_t>(s), static_cast<std::size_t>(s + k), static_cast<std::size_t>(s + k + 1)};
-      faces.emplace_back(outfit.corner_vertex[c[0]], outfit.corner_vertex[c[1]], outfit.corner_vertex[c[2]]);
+      const Eigen::Vector3i of(outfit.corner_vertex[c[0]], outfit.corner_vertex[c[1]], outfit.corner_vertex[c[2]]);
+      outfit_faces.push_back(of);
+      faces.emplace_back(new_index[static_cast<std::size_t>(of[0])], new_index[static_cast<std::size_t>(of[1])],
+                         new_index[static_cast<std::size_t>(of[2])]);
       uv_faces.emplace_back(outfit.corner_uv[c[0]], outfit.corner_uv[c[1]], outfit.corner_uv[c[2]]);
     }
   }
+  if (faces.empty()) throw ConfigError(obj.string() + ": piece " + piece_name + " has no faces");
   g.mesh.faces.resize(static_cast<Eigen::Index>(faces.size()), 3);
   g.mesh.uv_faces.resize(static_cast<Eigen::Index>(faces.size()), 3);
   for (std::size_t i = 0; i < faces.size(); ++i) {
@@ -78,17 +104,17 @@ Garment load_tshirt(const Model& model, const fs::path& dir, const Sliders& body
     g.mesh.uv_faces.row(static_cast<Eigen::Index>(i)) = uv_faces[i].transpose();
   }
   // Texture UVs are in [0,1]; material space must be in meters. One uniform
-  // scale makes the total UV area equal the 3D area of the garment as fitted to
-  // the default body, so the shirt starts near its rest size.
+  // scale makes the total UV area equal the 3D area of the piece as fitted to
+  // the default body, so the garment starts near its rest size.
   const Eigen::MatrixX3d rest = model.to_body_frame(fit_clothes(binding, model.morph(Sliders{})), model.morph(Sliders{}));
   double area3 = 0, area_uv = 0;
   for (std::size_t i = 0; i < faces.size(); ++i) {
-    const auto& f = faces[i];
+    const auto& f = outfit_faces[i];
     area3 += 0.5 * (rest.row(f[1]) - rest.row(f[0])).cross(rest.row(f[2]) - rest.row(f[0])).norm();
     const auto& t = uv_faces[i];
     area_uv += area2d(outfit.uv.row(t[0]), outfit.uv.row(t[1]), outfit.uv.row(t[2]));
   }
-  if (area_uv <= 0) throw ConfigError(obj.string() + ": the T-shirt's UV layout has zero area");
+  if (area_uv <= 0) throw ConfigError(obj.string() + ": piece " + piece_name + "'s UV layout has zero area");
   g.mesh.uv = outfit.uv * std::sqrt(area3 / area_uv);
   Material knit;
   knit.name = "knit";

@@ -1,6 +1,7 @@
 // Plugins over MakeHuman data (a folder laid out like ../shared/assets/makehuman):
 //   body `makehuman`          sliders -> body mesh, BMI search over weight/muscle
 //   garment `makehuman_tshirt` the T-shirt of an outfit, dressed through its .mhclo
+//   garment `makehuman_clothes` any piece of an outfit (index or group), the same way
 #include "body_model.hpp"
 #include "clothes.hpp"
 
@@ -44,17 +45,31 @@ std::vector<ParamSpec> slider_params() {
           {"proportions", ParamType::Float, "0.5", "body proportions slider", 0.0, 1.0}};
 }
 
-class TshirtSource final : public GarmentSource {
+class ClothesSource final : public GarmentSource {
  public:
-  TshirtSource(std::shared_ptr<const Model> model, std::filesystem::path outfit, Sliders body)
-      : model_(std::move(model)), outfit_(std::move(outfit)), body_(body) {}
-  Garment build() const override { return load_tshirt(*model_, outfit_, body_); }
+  ClothesSource(std::shared_ptr<const Model> model, std::filesystem::path outfit, Sliders body, std::string piece)
+      : model_(std::move(model)), outfit_(std::move(outfit)), body_(body), piece_(std::move(piece)) {}
+  Garment build() const override { return load_clothes(*model_, outfit_, body_, piece_); }
 
  private:
   std::shared_ptr<const Model> model_;
   std::filesystem::path outfit_;
   Sliders body_;
+  std::string piece_;
 };
+
+// The body sliders the garment is fitted to, and the outfit folder.
+std::unique_ptr<GarmentSource> clothes_source(const Params& p, const std::string& piece) {
+  Sliders s;
+  s.gender = p.get_float("gender");
+  s.muscle = p.get_float("muscle");
+  s.weight = p.get_float("weight");
+  s.height = p.get_float("height");
+  s.proportions = p.get_float("proportions");
+  const std::string root = resolve(p.get_string("path"));
+  return std::make_unique<ClothesSource>(model_for(root), std::filesystem::path(root) / "clothes" / p.get_string("outfit"), s,
+                                         piece);
+}
 
 PluginList plugins() {
   PluginDescriptor body;
@@ -74,17 +89,17 @@ PluginList plugins() {
   shirt.params = {{"path", ParamType::String, kDefaultPath, "MakeHuman data folder"},
                   {"outfit", ParamType::String, "male_casualsuit04", "outfit folder under clothes/"}};
   for (auto& s : slider_params()) shirt.params.push_back(s);
-  shirt.create_garment = [](const Params& p) {
-    Sliders s;
-    s.gender = p.get_float("gender");
-    s.muscle = p.get_float("muscle");
-    s.weight = p.get_float("weight");
-    s.height = p.get_float("height");
-    s.proportions = p.get_float("proportions");
-    const std::string root = resolve(p.get_string("path"));
-    return std::make_unique<TshirtSource>(model_for(root), std::filesystem::path(root) / "clothes" / p.get_string("outfit"), s);
-  };
-  return {body, shirt};
+  shirt.create_garment = [](const Params& p) { return clothes_source(p, "0"); };
+
+  PluginDescriptor clothes = shirt;
+  clothes.name = "makehuman_clothes";
+  clothes.doc = "Any piece of a MakeHuman outfit (by connected-piece index or OBJ group name), fitted to a MakeHuman body "
+                "by the outfit's .mhclo so that it follows the body's shape.";
+  clothes.params.push_back({"piece", ParamType::String, "0",
+                            "the piece: its index among the outfit .obj's connected pieces (numbered by first vertex: 0 "
+                            "the shirt, 1 the trousers in MakeHuman's suits) or the name of an OBJ group"});
+  clothes.create_garment = [](const Params& p) { return clothes_source(p, p.get_string("piece")); };
+  return {body, shirt, clothes};
 }
 
 }  // namespace
