@@ -310,3 +310,40 @@ TEST_CASE("mesh garment: a glTF's materials are material regions the scene names
   REQUIRE(plain.garment().materials.size() == 1);
   CHECK(plain.garment().materials[0].name == "cloth");
 }
+
+// `drape experiment` on a user's garment: a table of two models trained on
+// drapes of the tube, every column filled (nothing assumes the T-shirt).
+TEST_CASE("mesh garment: drape experiment trains and tabulates models of it", "[garments][mesh][cli]") {
+  test::TempDir dir;
+  write_mesh(dir / "skirt.obj", tube());
+  {
+    std::ofstream scene(dir / "skirt.yaml");
+    scene << scene_text(dir / "skirt.obj");
+    std::ofstream experiment(dir / "skirt_models.yaml");
+    experiment << "name: skirt_models\n"
+               << "title: \"A user's skirt\"\n"
+               << "datasets:\n  regular: {scene: skirt.yaml, count: 10, bmi: \"20:28\", seed: 1}\n"
+               << "training: {epochs: 2, batch: 4, lr: 1.0e-3, schedule: cosine, patience: 5, seed: 0}\n"
+               << "columns: [ME, L_l, L_e, L_s, L_d, p, train_h, infer]\n"
+               << "rows:\n"
+               << "  - {name: CNN, train: " << (test::source_dir() / "graphs/drape.yaml").string() << "}\n"
+               << "  - {name: MLP, train: " << (test::source_dir() / "graphs/baselines/mlp_l2.yaml").string() << "}\n";
+  }
+  std::string out;
+  const int status = test::run(test::drape_program().string() + " experiment " + (dir / "skirt_models.yaml").string() +
+                                   " --threads 1 --work " + (dir / "run").string() + " --data-dir " + (dir / "data").string(),
+                               out);
+  INFO(out);
+  REQUIRE(status == 0);
+  std::ifstream table(dir / "run/table.md");
+  const std::string text((std::istreambuf_iterator<char>(table)), std::istreambuf_iterator<char>());
+  for (const char* row : {"| CNN |", "| MLP |"}) {
+    const auto at = text.find(row);
+    REQUIRE(at != std::string::npos);
+    const std::string line = text.substr(at, text.find('\n', at) - at);
+    INFO(line);
+    CHECK(std::count(line.begin(), line.end(), '|') == 10);  // the row name and 8 columns
+    CHECK(line.find("nan") == std::string::npos);
+    CHECK(line.find(" ms") != std::string::npos);  // inference measured
+  }
+}
