@@ -1,0 +1,26 @@
+#pragma once
+// A tape measure around a mesh: the girth of its horizontal cross-section at
+// a height (Y up), as a tailor measures a chest. The plane y = height cuts the
+// mesh's faces into segments; they are chained into loops, and the loop that
+// encloses the vertical line through `centre` (x, z) is the one measured
+// (the torso, not an arm beside it). A tape spans the hollows between
+// ribs or folds, so the girth of a closed body is the perimeter of the
+// loop's convex hull; the loop's own length is what a garment's fabric
+// spans, and is given too.
+#include <Eigen/Core>
+
+namespace drape::geometry {
+
+struct Girth {
+  bool found = false;     // a loop encloses the centre line
+  double tape = 0.0;      // m: perimeter of the loop's convex hull
+  double length = 0.0;    // m: the loop's own length
+  int loops = 0;          // closed loops the plane cut (arms, legs, ...)
+};
+
+// Faces lying in the plane or touching it at a single vertex add nothing; the
+// height is nudged by 1e-9 m off any vertex so that every cut is a clean one.
+Girth horizontal_girth(const Eigen::MatrixX3d& vertices, const Eigen::MatrixX3i& faces, double height,
+                       const Eigen::Vector2d& centre);
+
+}  // namespace drape::geometry

@@ -1,0 +1,111 @@
+#include <drape/geometry/girth.hpp>
+
+#include <drape/geometry/polygon2d.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <utility>
+#include <vector>
+
+namespace drape::geometry {
+namespace {
+
+// Andrew's monotone chain; the hull's perimeter.
+double hull_perimeter(std::vector<Eigen::Vector2d> p) {
+  if (p.size() < 3) return 0.0;
+  std::sort(p.begin(), p.end(), [](const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
+    return a.x() < b.x() || (a.x() == b.x() && a.y() < b.y());
+  });
+  auto cross = [](const Eigen::Vector2d& o, const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
+    return (a - o).x() * (b - o).y() - (a - o).y() * (b - o).x();
+  };
+  std::vector<Eigen::Vector2d> hull(2 * p.size());
+  std::size_t k = 0;
+  for (const auto& q : p) {
+    while (k >= 2 && cross(hull[k - 2], hull[k - 1], q) <= 0) --k;
+    hull[k++] = q;
+  }
+  for (std::size_t i = p.size() - 1, lower = k + 1; i-- > 0;) {
+    while (k >= lower && cross(hull[k - 2], hull[k - 1], p[i]) <= 0) --k;
+    hull[k++] = p[i];
+  }
+  hull.resize(k - 1);
+  double perimeter = 0.0;
+  for (std::size_t i = 0; i < hull.size(); ++i) perimeter += (hull[(i + 1) % hull.size()] - hull[i]).norm();
+  return perimeter;
+}
+
+}  // namespace
+
+Girth horizontal_girth(const Eigen::MatrixX3d& vertices, const Eigen::MatrixX3i& faces, double height,
+                       const Eigen::Vector2d& centre) {
+  // Off every vertex: a vertex exactly on the plane would cut its faces at a
+  // corner, and the segments would not chain.
+  for (bool moved = true; moved;) {
+    moved = false;
+    for (Eigen::Index v = 0; v < vertices.rows(); ++v)
+      if (vertices(v, 1) == height) {
+        height += 1e-9;
+        moved = true;
+        break;
+      }
+  }
+  // Each cut face gives one segment between two cut edges; an edge is named
+  // by its sorted vertex pair, so that neighbouring faces share the point.
+  using Edge = std::pair<int, int>;
+  std::map<Edge, Eigen::Vector2d> point;
+  std::map<Edge, std::vector<Edge>> next;
+  for (Eigen::Index f = 0; f < faces.rows(); ++f) {
+    std::vector<Edge> cut;
+    for (int k = 0; k < 3; ++k) {
+      const int a = faces(f, k), b = faces(f, (k + 1) % 3);
+      const double ya = vertices(a, 1) - height, yb = vertices(b, 1) - height;
+      if ((ya < 0) == (yb < 0)) continue;
+      const Edge e{std::min(a, b), std::max(a, b)};
+      const double t = ya / (ya - yb);
+      const Eigen::Vector3d p = vertices.row(a) + t * (vertices.row(b) - vertices.row(a));
+      point.emplace(e, Eigen::Vector2d(p.x(), p.z()));
+      cut.push_back(e);
+    }
+    if (cut.size() != 2) continue;
+    next[cut[0]].push_back(cut[1]);
+    next[cut[1]].push_back(cut[0]);
+  }
+  Girth out;
+  std::map<Edge, bool> visited;
+  for (const auto& [start, unused] : next) {
+    if (visited[start]) continue;
+    // Walk the chain; a loop closes when it comes back to its start.
+    Polygon2 loop;
+    Edge previous{-1, -1}, current = start;
+    bool closed = false;
+    while (!visited[current]) {
+      visited[current] = true;
+      loop.push_back(point.at(current));
+      const auto& n = next.at(current);
+      Edge step{-1, -1};
+      for (const Edge& e : n)
+        if (e != previous && !visited[e]) step = e;
+      if (step.first < 0) {
+        closed = std::find(n.begin(), n.end(), start) != n.end() && loop.size() > 2;
+        break;
+      }
+      previous = current;
+      current = step;
+    }
+    if (!closed) continue;
+    ++out.loops;
+    if (!point_in_polygon(loop, centre)) continue;
+    Polygon2 ring = loop;
+    ring.push_back(loop.front());
+    const double length = polyline_length(ring);
+    if (out.found && length <= out.length) continue;  // of nested loops, the outer one
+    out.found = true;
+    out.length = length;
+    out.tape = hull_perimeter(loop);
+  }
+  return out;
+}
+
+}  // namespace drape::geometry
