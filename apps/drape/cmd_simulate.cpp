@@ -3,6 +3,7 @@
 #include "command.hpp"
 
 #include <drape/mesh_io.hpp>
+#include <drape/garment_size.hpp>
 #include <drape/registry.hpp>
 #include <drape/simulation.hpp>
 #include <drape/svg_figure.hpp>
@@ -10,6 +11,7 @@
 #include <algorithm>
 #include <cstdio>
 #include <iostream>
+#include <memory>
 #include <numeric>
 
 namespace drape::cli {
@@ -51,17 +53,28 @@ int run(const std::vector<std::string>& args) {
   Registry& registry = Registry::load_default(plugin_path(vm));
   Scene scene = load_scene(vm["scene"].as<std::string>());
   override_shape(scene, vm);
-  const Simulation sim(registry, scene);
+  // size: auto -- the body comes first (from a scene with the default size),
+  // then the size its girth needs (garment_size.hpp).
+  const bool auto_size = garment_size_is_auto(scene);
+  std::unique_ptr<Simulation> sim = std::make_unique<Simulation>(
+      registry, auto_size ? with_garment_size(scene, default_garment_size(registry, scene)) : scene);
 
   Eigen::MatrixX3d target;
   if (vm.count("body")) {
     const std::string file = vm["body"].as<std::string>();
     const Mesh body = read_mesh(file);
-    require_vertex_count(body, static_cast<int>(sim.mean_body().rows()), file,
-                         "the scene's body model '" + sim.scene().body_model + "' has that many");
+    require_vertex_count(body, static_cast<int>(sim->mean_body().rows()), file,
+                         "the scene's body model '" + sim->scene().body_model + "' has that many");
     target = body.vertices;
   } else {
-    target = sim.body_vertices(sim.target_shape());
+    target = sim->body_vertices(sim->target_shape());
+  }
+  if (auto_size) {
+    const SizeChoice choice = choose_garment_size(registry, scene, target);
+    if (choice.size.empty())
+      throw ConfigError(scene.file + ": garment '" + scene.garment + "' with size: auto does not fit this body: " + choice.summary());
+    std::printf("size auto: %s\n", choice.summary().c_str());
+    sim = std::make_unique<Simulation>(registry, with_garment_size(scene, choice.size));
   }
 
   const bool verbose = vm["verbose"].as<bool>();
@@ -72,11 +85,11 @@ int run(const std::vector<std::string>& args) {
                 s.morphing ? "morph" : "settle", s.report.iterations, s.report.residual, s.report.phi_start,
                 s.report.phi_end, s.stationarity >= 0 ? ("  stationarity/|W| " + std::to_string(s.stationarity)).c_str() : "");
   };
-  std::printf("simulating %s: garment %d vertices, body %d vertices, effects:", sim.scene().file.c_str(),
-              sim.garment().mesh.num_vertices(), static_cast<int>(target.rows()));
-  for (const auto& e : sim.scene().effects) std::printf(" %s", e.name.c_str());
+  std::printf("simulating %s: garment %d vertices, body %d vertices, effects:", sim->scene().file.c_str(),
+              sim->garment().mesh.num_vertices(), static_cast<int>(target.rows()));
+  for (const auto& e : sim->scene().effects) std::printf(" %s", e.name.c_str());
   std::printf("\n");
-  const SimulationResult r = sim.run(target, options);
+  const SimulationResult r = sim->run(target, options);
 
   std::printf("%s after %d steps, %d Newton iterations (%d line-search stops), %s Cholesky\n",
               r.converged ? (r.at_rest ? "settled (at rest)" : "settled") : "NOT settled", r.steps, r.iterations, r.line_search_failures,
@@ -117,20 +130,20 @@ int run(const std::vector<std::string>& args) {
     }
   }
   if (vm.count("out")) {
-    Mesh out = sim.garment().mesh;
+    Mesh out = sim->garment().mesh;
     out.vertices = r.garment;
     write_mesh(vm["out"].as<std::string>(), out);
     std::printf("wrote %s\n", vm["out"].as<std::string>().c_str());
   }
   Mesh body;
   body.vertices = r.body;
-  body.faces = sim.body_model().faces();
+  body.faces = sim->body_model().faces();
   if (vm.count("body-out")) {
     write_mesh(vm["body-out"].as<std::string>(), body);
     std::printf("wrote %s\n", vm["body-out"].as<std::string>().c_str());
   }
   if (vm.count("svg")) {
-    Mesh garment = sim.garment().mesh;
+    Mesh garment = sim->garment().mesh;
     garment.vertices = r.garment;
     char caption[160];
     std::snprintf(caption, sizeof caption, "%s, %d iterations, %.1f s, p = %.2f%%, %d surface crossings",

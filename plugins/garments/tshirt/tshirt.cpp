@@ -4,10 +4,12 @@
 // placement.hpp; drape::dress fits it to a specific body).
 #include "tshirt_mesh.hpp"
 
+#include <drape/errors.hpp>
 #include <drape/plugin.hpp>
 
 #include <cctype>
 #include <string>
+#include <vector>
 
 namespace {
 
@@ -37,6 +39,13 @@ class TshirtSource final : public GarmentSource {
   tshirt::TshirtOptions options_;
 };
 
+// The graded sizes, smallest first, and "auto".
+std::vector<std::string> size_choices() {
+  std::vector<std::string> names = tshirt::size_names();
+  names.push_back("auto");
+  return names;
+}
+
 PluginList plugins() {
   const tshirt::TorsoFrame torso;
   PluginDescriptor d;
@@ -45,8 +54,9 @@ PluginList plugins() {
   d.doc = "Procedural T-shirt: two sewn T-shaped panels with half-sleeves, UV in meters, optional front print.";
   d.params = {
       {"size", ParamType::String, "regular",
-       "pattern size: the regular pattern graded in width and length by small 0.9, large 1.12, xlarge 1.25 (same topology)",
-       {}, {}, tshirt::size_names()},
+       "pattern size: the regular pattern graded in width and length by small 0.9, large 1.12, xlarge 1.25 (same "
+       "topology); auto: drape simulate picks the size for each body (docs/garments.md)",
+       {}, {}, size_choices()},
       {"resolution", ParamType::String, "default", "default (~3.5k vertices), coarse (~1k) or a vertex count"},
       {"print", ParamType::Bool, "false", "front print region with its own material (id 1)"},
       {"print_polygon", ParamType::FloatList, "[0.35, 0.5, 0.65, 0.5, 0.65, 0.78, 0.35, 0.78]",
@@ -64,6 +74,9 @@ PluginList plugins() {
   };
   d.create_garment = [](const Params& p) -> std::unique_ptr<GarmentSource> {
     tshirt::TshirtOptions o;
+    if (p.get_string("size") == "auto")
+      throw ConfigError("tshirt: size auto is chosen for each body from its girth by drape simulate (docs/garments.md, "
+                        "\"Which size fits which body\"); here give a size: small, regular, large or xlarge");
     o.size_scale = tshirt::size_grade(p.get_string("size"));
     o.target_vertices = parse_resolution(p.get_string("resolution"));
     o.print = p.get_bool("print");
