@@ -36,7 +36,7 @@ Eigen::MatrixX3d vertex_normals(const Eigen::MatrixX3d& v, const Eigen::MatrixX3
 
 TEST_CASE("tshirt: every size starts clear of the mean body shrunk by 1 cm, so a barrier run can begin",
           "[barrier][garments][tshirt]") {
-  const auto size = GENERATE(as<std::string>{}, "small", "regular", "large", "xlarge");
+  const auto size = GENERATE(as<std::string>{}, "small", "regular", "large", "xlarge", "2xlarge", "5xlarge");
   const Scene scene = parse_scene("body: {model: parametric}\ngarment: {template: tshirt, params: {size: " + size +
                                   ", resolution: coarse}}\neffects: {gravity: {}, barrier: {}}\n");
   const Simulation sim(test::plugins(), scene);

@@ -6,6 +6,7 @@
 
 #include <drape/dataset.hpp>
 #include <drape/garment_size.hpp>
+#include <drape/mesh_io.hpp>
 #include <drape/scene.hpp>
 #include <drape/simulation.hpp>
 
@@ -85,7 +86,8 @@ TEST_CASE("two garment sizes: merge, train with the size flag, evaluate and pred
 
 // size: auto (garment_size.hpp): the size whose ease over the body's chest or
 // belly girth is nearest the regular shirt's on the mean body, never a size
-// smaller than the body; none: the scene says the shirt does not fit.
+// smaller than the body; none (a body larger than the body space's): the
+// scene says the shirt does not fit.
 TEST_CASE("size auto: the tailor's rule picks the size from the body's girth, or says nothing fits", "[sizes]") {
   test::TempDir dir;
   const std::string text = "body: {model: parametric}\ngarment: {template: tshirt, params: {resolution: coarse, size: auto}}\n"
@@ -97,17 +99,19 @@ TEST_CASE("size auto: the tailor's rule picks the size from the body's girth, or
   // The mean body: the design size, with the design ease.
   const SizeChoice mean = choose_garment_size(test::plugins(), scene, regular.mean_body());
   CHECK(mean.size == "regular");
-  CHECK(mean.ease.size() == 4);
+  CHECK(mean.ease.size() == 9);
   CHECK(mean.design_ease > 0.0);
   CHECK(mean.ease[1].second == Approx(mean.design_ease).epsilon(1e-12));
   // The sizes' girths grow with their grades (0.9, 1, 1.12, 1.25) in proportion.
-  REQUIRE(mean.girth.size() == 4);
+  REQUIRE(mean.girth.size() == 9);
   CHECK(mean.girth[3].second / mean.girth[1].second == Approx(1.25).epsilon(0.02));
   CHECK(mean.girth[0].second / mean.girth[1].second == Approx(0.9).epsilon(0.02));
+  CHECK(mean.girth[8].second / mean.girth[1].second == Approx(2.0).epsilon(0.02));
   // A heavier body takes a larger size, and every size's ease follows from the girths.
-  auto body_of = [&](double bmi) {
+  auto body_of = [&](double bmi, double height = 1.75) {
     Scene s = with_garment_size(scene, "regular");
     s.shape["bmi"] = ParamValue{YAML::Node(bmi), {}};
+    s.shape["height"] = ParamValue{YAML::Node(height), {}};
     const Simulation sim(test::plugins(), s);
     return sim.body_vertices(sim.target_shape());
   };
@@ -116,10 +120,16 @@ TEST_CASE("size auto: the tailor's rule picks the size from the body's girth, or
   for (const auto& [size, ease] : heavy.ease) CHECK(ease == Approx(heavy.garment_girth(size) / heavy.body_girth - 1.0));
   for (const auto& [size, ease] : heavy.ease)
     if (size == heavy.size) CHECK(ease >= 0.0);
-  // BMI 60: larger than every size.
-  const SizeChoice none = choose_garment_size(test::plugins(), scene, body_of(60.0));
+  // A plus size for BMI 60, and for the heaviest, tallest corner of the body space.
+  const SizeChoice plus = choose_garment_size(test::plugins(), scene, body_of(60.0));
+  CHECK(plus.size.find("xlarge") == 1);  // 2xlarge ... 6xlarge
+  CHECK_FALSE(choose_garment_size(test::plugins(), scene, body_of(65.0, 2.0)).size.empty());
+  // A body 1.3 times that one's size is larger than every size.
+  const Eigen::MatrixX3d giant = 1.3 * body_of(65.0, 2.0);
+  const SizeChoice none = choose_garment_size(test::plugins(), scene, giant);
   CHECK(none.size.empty());
-  CHECK(none.body_girth > none.garment_girth("xlarge"));
+  CHECK(none.body_girth > none.garment_girth("6xlarge"));
+  write_mesh(dir / "giant.obj", Mesh{giant, regular.body_model().faces(), {}, {}});
   CHECK_THAT(none.summary(), Catch::Contains("does not fit"));
 
   // The command: the size it took, or exit 2 and why.
@@ -127,8 +137,10 @@ TEST_CASE("size auto: the tailor's rule picks the size from the body's girth, or
   // (exit 1: two settling steps do not settle it; the size is what is checked here)
   CHECK(test::run(test::drape_program().string() + " simulate " + (dir / "auto.yaml").string() + " --bmi 24", out) <= 1);
   CHECK_THAT(out, Catch::Contains("size auto:") && Catch::Contains("size regular"));
-  CHECK(test::run(test::drape_program().string() + " simulate " + (dir / "auto.yaml").string() + " --bmi 60", out) == 2);
-  CHECK_THAT(out, Catch::Contains("does not fit this body") && Catch::Contains("xlarge"));
+  CHECK(test::run(test::drape_program().string() + " simulate " + (dir / "auto.yaml").string() + " --body " +
+                      (dir / "giant.obj").string(),
+                  out) == 2);
+  CHECK_THAT(out, Catch::Contains("does not fit this body") && Catch::Contains("6xlarge"));
   // Commands that do not choose a size say so.
   CHECK(test::run(test::drape_program().string() + " generate " + (dir / "auto.yaml").string() +
                       " --count 10 --bmi 20:30 --seed 1 --out " + (dir / "d.h5").string(),

@@ -76,7 +76,7 @@ TEST_CASE("tshirt: every graded size is the same topology on a scaled pattern", 
   double area_regular = 0;
   for (int f = 0; f < regular.mesh.num_faces(); ++f) area_regular += uv_twice_area(regular.mesh, f) / 2;
   const double height_regular = regular.mesh.uv.col(1).maxCoeff() - regular.mesh.uv.col(1).minCoeff();
-  for (const auto& [size, grade] : {std::pair<std::string, double>{"small", 0.9}, {"large", 1.12}, {"xlarge", 1.25}}) {
+  for (const auto& [size, grade] : {std::pair<std::string, double>{"small", 0.9}, {"large", 1.12}, {"xlarge", 1.25}, {"3xlarge", 1.55}, {"5xlarge", 1.85}}) {
     INFO(size);
     const Garment graded = build_tshirt("{size: " + size + "}");
     REQUIRE(regular.mesh.num_vertices() == graded.mesh.num_vertices());

@@ -200,7 +200,9 @@ struct SizeFlag {
   const char* name;
   float flag;
 };
-constexpr SizeFlag kSizeFlags[] = {{"regular", 0.0f}, {"small", 1.0f}, {"large", 2.0f}, {"xlarge", 3.0f}};
+constexpr SizeFlag kSizeFlags[] = {{"regular", 0.0f}, {"small", 1.0f},   {"large", 2.0f},   {"xlarge", 3.0f},
+                                   {"2xlarge", 4.0f}, {"3xlarge", 5.0f}, {"4xlarge", 6.0f}, {"5xlarge", 7.0f},
+                                   {"6xlarge", 8.0f}};
 
 }  // namespace
 

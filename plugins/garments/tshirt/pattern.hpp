@@ -31,13 +31,19 @@ struct PatternSpec {
 // Graded sizes: the regular pattern scaled in width and length; every size has
 // the same mesh (faces identical, only UVs and positions scale), which is what
 // lets one network serve several. The steps follow a common tee grading of
-// 4-6 cm of chest per size: regular 1.08 m around, large 1.21, xlarge 1.35 --
-// the last fits the BMI 60-65 bodies the regular cannot (docs/garments.md).
+// 4-6 cm of chest per size: regular 1.08 m around, large 1.21, xlarge 1.35.
+// The plus sizes continue by ~15 % of the regular's girth a step, up to 2.16 m
+// around (6xlarge), for the heaviest bodies of the seed's range, whose chest
+// or belly girth reaches 1.6-2.1 m (docs/garments.md, "size: auto"). Their
+// length grows with the width (one scale, as for the other grades), so they
+// are long shirts.
 struct SizeGrade {
   const char* name;
   double scale;
 };
-inline constexpr SizeGrade kSizeGrades[] = {{"small", 0.9}, {"regular", 1.0}, {"large", 1.12}, {"xlarge", 1.25}};
+inline constexpr SizeGrade kSizeGrades[] = {{"small", 0.9},    {"regular", 1.0},  {"large", 1.12},   {"xlarge", 1.25},
+                                            {"2xlarge", 1.4},  {"3xlarge", 1.55}, {"4xlarge", 1.7},  {"5xlarge", 1.85},
+                                            {"6xlarge", 2.0}};
 std::vector<std::string> size_names();
 double size_grade(const std::string& size);  // ConfigError naming the known sizes
 

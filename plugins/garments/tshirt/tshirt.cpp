@@ -54,8 +54,9 @@ PluginList plugins() {
   d.doc = "Procedural T-shirt: two sewn T-shaped panels with half-sleeves, UV in meters, optional front print.";
   d.params = {
       {"size", ParamType::String, "regular",
-       "pattern size: the regular pattern graded in width and length by small 0.9, large 1.12, xlarge 1.25 (same "
-       "topology); auto: drape simulate picks the size for each body (docs/garments.md)",
+       "pattern size: the regular pattern graded in width and length by small 0.9, large 1.12, xlarge 1.25, 2xlarge "
+       "1.4, 3xlarge 1.55, 4xlarge 1.7, 5xlarge 1.85, 6xlarge 2.0 (same topology); auto: drape simulate picks the size for each body "
+       "(docs/garments.md)",
        {}, {}, size_choices()},
       {"resolution", ParamType::String, "default", "default (~3.5k vertices), coarse (~1k) or a vertex count"},
       {"print", ParamType::Bool, "false", "front print region with its own material (id 1)"},
@@ -76,7 +77,7 @@ PluginList plugins() {
     tshirt::TshirtOptions o;
     if (p.get_string("size") == "auto")
       throw ConfigError("tshirt: size auto is chosen for each body from its girth by drape simulate (docs/garments.md, "
-                        "\"Which size fits which body\"); here give a size: small, regular, large or xlarge");
+                        "\"Which size fits which body\"); here give a size: small, regular, large, xlarge or 2xlarge-6xlarge");
     o.size_scale = tshirt::size_grade(p.get_string("size"));
     o.target_vertices = parse_resolution(p.get_string("resolution"));
     o.print = p.get_bool("print");
