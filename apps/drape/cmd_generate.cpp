@@ -9,6 +9,7 @@
 #include <drape/body_space.hpp>
 
 #include <drape/dataset.hpp>
+#include <drape/garment_size.hpp>
 #include <drape/model.hpp>
 #include <drape/progress.hpp>
 #include <drape/registry.hpp>
@@ -23,6 +24,8 @@
 #include <cstdio>
 #include <iomanip>
 #include <iostream>
+#include <map>
+#include <memory>
 #include <mutex>
 #include <sstream>
 #include <thread>
@@ -74,7 +77,20 @@ int run(const std::vector<std::string>& args) {
 
   Registry& registry = Registry::load_default(plugin_path(vm));
   const Scene scene = load_scene(vm["scene"].as<std::string>());
-  const Simulation sim(registry, scene);
+  // size: auto -- each body wears the size its girth needs (garment_size.hpp):
+  // one simulation per size, made up front; the dataset's template is the
+  // design size's (the sizes share its topology), each sample records its
+  // size in the garment_size statistic.
+  const bool auto_size = garment_size_is_auto(scene);
+  const Scene design_scene = auto_size ? with_garment_size(scene, default_garment_size(registry, scene)) : scene;
+  const Simulation sim(registry, design_scene);
+  std::unique_ptr<SizeChart> chart;
+  std::map<std::string, std::unique_ptr<Simulation>> sized;
+  if (auto_size) {
+    chart = std::make_unique<SizeChart>(registry, scene);
+    for (const std::string& size : chart->sizes())
+      sized[size] = std::make_unique<Simulation>(registry, with_garment_size(scene, size));
+  }
   const auto [bmi_lo, bmi_hi] = sim.body_model().bmi_range();
   if (bmi.lo < bmi_lo - 1e-9 || bmi.hi > bmi_hi + 1e-9) {
     std::ostringstream o;
@@ -84,7 +100,7 @@ int run(const std::vector<std::string>& args) {
   }
 
   // The size flag of a graph trained on several sizes (garment_size_flag).
-  const double garment_size = garment_size_flag(scene);
+  const double garment_size = garment_size_flag(design_scene);
 
   // This shard's global sample indices: a contiguous block.
   const std::size_t first = shard.first(total), last = shard.last(total);
@@ -100,6 +116,7 @@ int run(const std::vector<std::string>& args) {
                         "height", "sex", "global_index", "garment_size"})
     layout.stats.push_back(s);
   layout.scene = scene.yaml();
+  if (auto_size) layout.attributes["garment_sizes"] = "auto: each sample's size in its garment_size statistic (docs/garments.md)";
   layout.template_hash = template_hash(sim.garment().mesh, sim.body_model().faces());
   std::ostringstream ranges;
   ranges << "bmi " << bmi.lo << ":" << bmi.hi << ", height " << height.lo << ":" << height.hi << ", sex " << sex.lo
@@ -141,7 +158,22 @@ int run(const std::vector<std::string>& args) {
       // girths draws the bodies it always drew.
       if (girths > 0) draw_proportions(girths, sim.body_model(), rng, request);
       const Eigen::VectorXd shape = solve_in_space(sim.body_model(), request);
-      const SimulationResult r = sim.run(sim.body_vertices(shape));
+      const Eigen::MatrixX3d body = sim.body_vertices(shape);
+      const Simulation* wearing = &sim;
+      double size_flag = garment_size;
+      if (chart) {
+        const SizeChoice choice = chart->choose(body);
+        if (choice.size.empty()) {
+          std::ostringstream o;
+          o << "sample " << global << " (BMI " << request.bmi << ", height " << request.height << " m, sex " << request.sex
+            << "): garment '" << scene.garment << "' with size: auto does not fit this body: " << choice.summary()
+            << "; narrow --bmi or --height";
+          throw ConfigError(o.str());
+        }
+        wearing = sized.at(choice.size).get();
+        size_flag = garment_size_flag(choice.size);
+      }
+      const SimulationResult r = wearing->run(body);
       DatasetSample s;
       s.body_params = shape.cast<float>();
       s.body_vertices = r.body.cast<float>();
@@ -162,7 +194,7 @@ int run(const std::vector<std::string>& args) {
       s.stats["height"] = request.height;
       s.stats["sex"] = request.sex;
       s.stats["global_index"] = static_cast<double>(global);
-      s.stats["garment_size"] = garment_size;
+      s.stats["garment_size"] = size_flag;
       if (!r.converged) ++not_settled;
       if (r.penetration > 0) ++penetrating;
       if (crossings > 0) ++crossing;

@@ -50,8 +50,26 @@ std::string default_garment_size(const Registry& registry, const Scene& scene);
 Scene with_garment_size(const Scene& scene, const std::string& size);
 // The body's girth by the rule above (vertices of a body mesh, Y up).
 double body_girth(const Eigen::MatrixX3d& body, const Eigen::MatrixX3i& faces);
-// The size for `body` (the scene body model's topology); ConfigError when the
-// scene's garment has no size parameter with choices.
+// The sizes' girths and the design ease of a scene's garment, measured once
+// (each size's garment is built and measured on the mean body); then a
+// choice per body. ConfigError when the scene's garment has no size
+// parameter with choices. choose() is const and may be called from threads.
+class SizeChart {
+ public:
+  SizeChart(const Registry& registry, const Scene& scene);
+  // The size for `body` (the scene body model's topology).
+  SizeChoice choose(const Eigen::MatrixX3d& body) const;
+  const std::vector<std::string>& sizes() const { return sizes_; }
+
+ private:
+  std::vector<std::string> sizes_;
+  std::vector<std::pair<std::string, double>> girth_;
+  double design_ease_ = 0.0;
+  Eigen::Index body_vertices_ = 0;
+  Eigen::MatrixX3i faces_;
+};
+
+// SizeChart(registry, scene).choose(body).
 SizeChoice choose_garment_size(const Registry& registry, const Scene& scene, const Eigen::MatrixX3d& body);
 
 }  // namespace drape

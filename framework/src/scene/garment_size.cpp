@@ -83,38 +83,48 @@ double body_girth(const Eigen::MatrixX3d& body, const Eigen::MatrixX3i& faces) {
   return largest;
 }
 
-SizeChoice choose_garment_size(const Registry& registry, const Scene& scene, const Eigen::MatrixX3d& body) {
+SizeChart::SizeChart(const Registry& registry, const Scene& scene) {
   const ParamSpec* spec = size_spec(registry, scene);
   if (!spec) throw ConfigError("garment '" + scene.garment + "' has no sizes to choose from (size: auto)");
-  SizeChoice choice;
   double design_girth = 0.0;
   Eigen::MatrixX3d mean_body;
-  Eigen::MatrixX3i faces;
   for (const std::string& s : spec->choices) {
     if (s == "auto") continue;
     const Simulation sim(registry, with_garment_size(scene, s));
     const double g = garment_girth_on(sim.garment().mesh, sim.mean_body());
     if (!std::isfinite(g)) throw ConfigError("size " + s + " of garment '" + scene.garment + "': no loop of it goes around the body to measure");
-    choice.girth.emplace_back(s, g);
+    sizes_.push_back(s);
+    girth_.emplace_back(s, g);
     if (s == spec->default_value) design_girth = g;
     mean_body = sim.mean_body();
-    faces = sim.body_model().faces();
+    faces_ = sim.body_model().faces();
   }
-  if (body.rows() != mean_body.rows())
+  body_vertices_ = mean_body.rows();
+  design_ease_ = design_girth / body_girth(mean_body, faces_) - 1.0;
+}
+
+SizeChoice SizeChart::choose(const Eigen::MatrixX3d& body) const {
+  if (body.rows() != body_vertices_)
     throw ConfigError("the body has " + std::to_string(body.rows()) + " vertices; the scene's body model has " +
-                      std::to_string(mean_body.rows()));
-  choice.design_ease = design_girth / body_girth(mean_body, faces) - 1.0;
-  choice.body_girth = body_girth(body, faces);
+                      std::to_string(body_vertices_));
+  SizeChoice choice;
+  choice.girth = girth_;
+  choice.design_ease = design_ease_;
+  choice.body_girth = body_girth(body, faces_);
   double best = std::numeric_limits<double>::infinity();
-  for (const auto& [s, g] : choice.girth) {
+  for (const auto& [s, g] : girth_) {
     const double ease = g / choice.body_girth - 1.0;
     choice.ease.emplace_back(s, ease);
-    if (ease >= kMinimumEase && std::abs(ease - choice.design_ease) < best) {
-      best = std::abs(ease - choice.design_ease);
+    if (ease >= kMinimumEase && std::abs(ease - design_ease_) < best) {
+      best = std::abs(ease - design_ease_);
       choice.size = s;
     }
   }
   return choice;
+}
+
+SizeChoice choose_garment_size(const Registry& registry, const Scene& scene, const Eigen::MatrixX3d& body) {
+  return SizeChart(registry, scene).choose(body);
 }
 
 }  // namespace drape

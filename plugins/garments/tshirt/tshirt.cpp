@@ -55,7 +55,7 @@ PluginList plugins() {
   d.params = {
       {"size", ParamType::String, "regular",
        "pattern size: the regular pattern graded in width and length by small 0.9, large 1.12, xlarge 1.25, 2xlarge "
-       "1.4, 3xlarge 1.55, 4xlarge 1.7, 5xlarge 1.85, 6xlarge 2.0 (same topology); auto: drape simulate picks the size for each body "
+       "1.4, 3xlarge 1.55, 4xlarge 1.7, 5xlarge 1.85, 6xlarge 2.0 (same topology); auto: drape simulate and generate pick the size for each body "
        "(docs/garments.md)",
        {}, {}, size_choices()},
       {"resolution", ParamType::String, "default", "default (~3.5k vertices), coarse (~1k) or a vertex count"},
@@ -76,7 +76,7 @@ PluginList plugins() {
   d.create_garment = [](const Params& p) -> std::unique_ptr<GarmentSource> {
     tshirt::TshirtOptions o;
     if (p.get_string("size") == "auto")
-      throw ConfigError("tshirt: size auto is chosen for each body from its girth by drape simulate (docs/garments.md, "
+      throw ConfigError("tshirt: size auto is chosen for each body from its girth by drape simulate and drape generate (docs/garments.md, "
                         "\"Which size fits which body\"); here give a size: small, regular, large, xlarge or 2xlarge-6xlarge");
     o.size_scale = tshirt::size_grade(p.get_string("size"));
     o.target_vertices = parse_resolution(p.get_string("resolution"));
