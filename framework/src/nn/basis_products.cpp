@@ -4,19 +4,19 @@
 #include <drape/nn/dot_rows.hpp>
 #include <drape/nn/gemm.hpp>
 
+#include "kernel_choice.hpp"
+
 #include <cstdint>
-#include <cstdlib>
 #include <cstring>
 #include <string>
 #include <vector>
 
-#if defined(__x86_64__) && defined(__GNUC__)
+#ifdef DRAPE_NN_X86
 // GCC 12 warns that _mm512_reduce_add_ps's "undefined" vectors are used
 // uninitialized (they are placeholders the instruction ignores).
 #pragma GCC diagnostic ignored "-Wuninitialized"
 #pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
 #include <immintrin.h>
-#define DRAPE_BASIS_X86 1
 #endif
 
 namespace drape::nn {
@@ -29,9 +29,7 @@ void check(bool ok, const char* what, long r1, long c1, long r2, long c2, long r
                 std::to_string(c3) + "] do not fit");
 }
 
-#ifdef DRAPE_BASIS_X86
-#define DRAPE_AVX512 __attribute__((target("avx512f,avx512bw,avx512vl")))
-
+#ifdef DRAPE_NN_X86
 // Sixteen lanes of a row as floats; with a mask, the lanes past k read as zero.
 DRAPE_AVX512 inline __m512 load16(const float* p) { return _mm512_loadu_ps(p); }
 DRAPE_AVX512 inline __m512 load16(const float* p, __mmask16 mask) { return _mm512_maskz_loadu_ps(mask, p); }
@@ -149,11 +147,6 @@ DRAPE_AVX512 void basis_transpose_times_avx512(const float* b, long ldb, long n,
   }
 }
 
-bool use_avx512() {
-  static const bool yes = __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512bw") &&
-                          __builtin_cpu_supports("avx512vl") && !std::getenv("DRAPE_PORTABLE_KERNELS");
-  return yes;
-}
 #endif
 
 }  // namespace
@@ -161,8 +154,8 @@ bool use_avx512() {
 void basis_times(ConstMatRef v, ConstMatRef a, MatRef out) {
   check(v.cols() == a.cols() && out.rows() == v.rows() && out.cols() == a.rows(), "basis_times", v.rows(), v.cols(),
         a.rows(), a.cols(), out.rows(), out.cols());
-#ifdef DRAPE_BASIS_X86
-  if (use_avx512() && v.rows() > 0 && a.rows() > 0)
+#ifdef DRAPE_NN_X86
+  if (detail::avx512_kernels() && v.rows() > 0 && a.rows() > 0)
     return basis_times_avx512(v.data(), v.outerStride(), v.rows(), v.cols(), a.data(), a.outerStride(), a.rows(),
                               out.data(), out.outerStride());
 #endif
@@ -172,8 +165,8 @@ void basis_times(ConstMatRef v, ConstMatRef a, MatRef out) {
 void basis_transpose_times(ConstMatRef b, ConstMatRef v, MatRef out) {
   check(b.rows() == v.rows() && out.rows() == b.cols() && out.cols() == v.cols(), "basis_transpose_times", b.rows(),
         b.cols(), v.rows(), v.cols(), out.rows(), out.cols());
-#ifdef DRAPE_BASIS_X86
-  if (use_avx512() && b.cols() > 0 && v.cols() > 0)
+#ifdef DRAPE_NN_X86
+  if (detail::avx512_kernels() && b.cols() > 0 && v.cols() > 0)
     return basis_transpose_times_avx512(b.data(), b.outerStride(), b.rows(), b.cols(), v.data(), v.outerStride(),
                                         v.cols(), out.data(), out.outerStride());
 #endif
@@ -195,8 +188,8 @@ void widen_row(const Bfloat16Matrix& v, long i, float* row) {
 void basis_times(const Bfloat16Matrix& v, ConstMatRef a, MatRef out) {
   check(v.cols == a.cols() && out.rows() == v.rows && out.cols() == a.rows(), "basis_times", v.rows, v.cols, a.rows(),
         a.cols(), out.rows(), out.cols());
-#ifdef DRAPE_BASIS_X86
-  if (use_avx512() && v.rows > 0 && a.rows() > 0)
+#ifdef DRAPE_NN_X86
+  if (detail::avx512_kernels() && v.rows > 0 && a.rows() > 0)
     return basis_times_avx512(v.data, v.stride, v.rows, v.cols, a.data(), a.outerStride(), a.rows(), out.data(),
                               out.outerStride());
 #endif
@@ -213,8 +206,8 @@ void basis_times(const Bfloat16Matrix& v, ConstMatRef a, MatRef out) {
 void basis_transpose_times(ConstMatRef b, const Bfloat16Matrix& v, MatRef out) {
   check(b.rows() == v.rows && out.rows() == b.cols() && out.cols() == v.cols, "basis_transpose_times", b.rows(),
         b.cols(), v.rows, v.cols, out.rows(), out.cols());
-#ifdef DRAPE_BASIS_X86
-  if (use_avx512() && b.cols() > 0 && v.cols > 0)
+#ifdef DRAPE_NN_X86
+  if (detail::avx512_kernels() && b.cols() > 0 && v.cols > 0)
     return basis_transpose_times_avx512(b.data(), b.outerStride(), b.rows(), b.cols(), v.data, v.stride, v.cols,
                                         out.data(), out.outerStride());
 #endif
@@ -228,8 +221,8 @@ void basis_transpose_times(ConstMatRef b, const Bfloat16Matrix& v, MatRef out) {
 }
 
 const char* basis_products_version() {
-#ifdef DRAPE_BASIS_X86
-  if (use_avx512()) return "avx512f";
+#ifdef DRAPE_NN_X86
+  if (detail::avx512_kernels()) return "avx512f";
 #endif
   return "portable";
 }

@@ -1,10 +1,9 @@
 #include <drape/nn/dot_rows.hpp>
 
-#include <cstdlib>
+#include "kernel_choice.hpp"
 
-#if defined(__x86_64__) && defined(__GNUC__)
+#ifdef DRAPE_NN_X86
 #include <immintrin.h>
-#define DRAPE_DOT_ROWS_X86 1
 #endif
 
 namespace drape::nn {
@@ -41,7 +40,7 @@ namespace {
 using detail::axpy_rows_portable;
 using detail::dot_rows_portable;
 
-#ifdef DRAPE_DOT_ROWS_X86
+#ifdef DRAPE_NN_X86
 __attribute__((target("avx2,fma"))) float hsum(__m256 v) {
   const __m128 s = _mm_add_ps(_mm256_castps256_ps128(v), _mm256_extractf128_ps(v, 1));
   const __m128 t = _mm_add_ps(s, _mm_movehl_ps(s, s));
@@ -79,32 +78,27 @@ __attribute__((target("avx2,fma"))) void axpy_rows_avx2(const float* row, const 
   }
 }
 
-bool has_avx2_fma() {
-  static const bool yes = __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma") &&
-                          !std::getenv("DRAPE_PORTABLE_KERNELS");
-  return yes;
-}
 #endif
 
 }  // namespace
 
 void dot_rows(const float* row, const float* others, int n, int stride, int count, float* out) {
-#ifdef DRAPE_DOT_ROWS_X86
-  if (has_avx2_fma()) return dot_rows_avx2(row, others, n, stride, count, out);
+#ifdef DRAPE_NN_X86
+  if (detail::avx2_kernels()) return dot_rows_avx2(row, others, n, stride, count, out);
 #endif
   dot_rows_portable(row, others, n, stride, count, out);
 }
 
 void axpy_rows(const float* row, const float* scale, int n, int stride, int count, float* others) {
-#ifdef DRAPE_DOT_ROWS_X86
-  if (has_avx2_fma()) return axpy_rows_avx2(row, scale, n, stride, count, others);
+#ifdef DRAPE_NN_X86
+  if (detail::avx2_kernels()) return axpy_rows_avx2(row, scale, n, stride, count, others);
 #endif
   axpy_rows_portable(row, scale, n, stride, count, others);
 }
 
 const char* dot_rows_version() {
-#ifdef DRAPE_DOT_ROWS_X86
-  if (has_avx2_fma()) return "avx2+fma";
+#ifdef DRAPE_NN_X86
+  if (detail::avx2_kernels()) return "avx2+fma";
 #endif
   return "portable";
 }

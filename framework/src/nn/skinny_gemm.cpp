@@ -1,20 +1,18 @@
 #include <drape/nn/skinny_gemm.hpp>
 
+#include "kernel_choice.hpp"
+
 #include <algorithm>
-#include <cstdlib>
 #include <vector>
 
-#if defined(__x86_64__) && defined(__GNUC__)
+#ifdef DRAPE_NN_X86
 #include <immintrin.h>
-#define DRAPE_SKINNY_X86 1
 #endif
 
 namespace drape::nn::detail {
 
-#ifdef DRAPE_SKINNY_X86
+#ifdef DRAPE_NN_X86
 namespace {
-
-#define DRAPE_AVX512 __attribute__((target("avx512f,avx512bw,avx512vl")))
 
 constexpr long kMaxSmall = 320;  // the small matrix's sides
 constexpr long kMinTall = 64;    // the tall side
@@ -98,12 +96,6 @@ DRAPE_AVX512 void panels(long rows, long n, const float* a, long rs, long ks, co
   }
 }
 
-bool use_avx512() {
-  static const bool yes = __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512bw") &&
-                          __builtin_cpu_supports("avx512vl") && !std::getenv("DRAPE_PORTABLE_KERNELS");
-  return yes;
-}
-
 // A row-major view's row stride (a single row or column may report 1).
 template <class M>
 long stride(const M& x) {
@@ -113,7 +105,7 @@ long stride(const M& x) {
 }  // namespace
 
 bool skinny_gemm(bool transpose_a, bool transpose_b, float alpha, ConstMatRef a, ConstMatRef b, float beta, MatRef c) {
-  if (alpha != 1.0f || (beta != 0.0f && beta != 1.0f) || !use_avx512()) return false;
+  if (alpha != 1.0f || (beta != 0.0f && beta != 1.0f) || !avx512_kernels()) return false;
   const long m = c.rows(), n = c.cols(), k = transpose_a ? a.rows() : a.cols();
   if (m == 0 || n == 0 || k == 0) return false;
   const long lda = stride(a), ldb = stride(b), ldc = stride(c);
