@@ -78,19 +78,16 @@ int run(const std::vector<std::string>& args) {
   Registry& registry = Registry::load_default(plugin_path(vm));
   const Scene scene = load_scene(vm["scene"].as<std::string>());
   // size: auto -- each body wears the size its girth needs (garment_size.hpp):
-  // one simulation per size, made up front; the dataset's template is the
-  // design size's (the sizes share its topology), each sample records its
-  // size in the garment_size statistic.
-  const bool auto_size = garment_size_is_auto(scene);
-  const Scene design_scene = auto_size ? with_garment_size(scene, default_garment_size(registry, scene)) : scene;
-  const Simulation sim(registry, design_scene);
+  // every size built once (SizeChart); the dataset's template is the design
+  // size's (the sizes share its topology), each sample records its size in
+  // the garment_size statistic.
   std::unique_ptr<SizeChart> chart;
-  std::map<std::string, std::unique_ptr<Simulation>> sized;
-  if (auto_size) {
+  std::unique_ptr<Simulation> own;
+  if (garment_size_is_auto(scene))
     chart = std::make_unique<SizeChart>(registry, scene);
-    for (const std::string& size : chart->sizes())
-      sized[size] = std::make_unique<Simulation>(registry, with_garment_size(scene, size));
-  }
+  else
+    own = std::make_unique<Simulation>(registry, scene);
+  const Simulation& sim = chart ? chart->design() : *own;
   const auto [bmi_lo, bmi_hi] = sim.body_model().bmi_range();
   if (bmi.lo < bmi_lo - 1e-9 || bmi.hi > bmi_hi + 1e-9) {
     std::ostringstream o;
@@ -100,7 +97,7 @@ int run(const std::vector<std::string>& args) {
   }
 
   // The size flag of a graph trained on several sizes (garment_size_flag).
-  const double garment_size = garment_size_flag(design_scene);
+  const double garment_size = garment_size_flag(sim.scene());
 
   // This shard's global sample indices: a contiguous block.
   const std::size_t first = shard.first(total), last = shard.last(total);
@@ -116,7 +113,7 @@ int run(const std::vector<std::string>& args) {
                         "height", "sex", "global_index", "garment_size"})
     layout.stats.push_back(s);
   layout.scene = scene.yaml();
-  if (auto_size) layout.attributes["garment_sizes"] = "auto: each sample's size in its garment_size statistic (docs/garments.md)";
+  if (chart) layout.attributes["garment_sizes"] = "auto: each sample's size in its garment_size statistic (docs/garments.md)";
   layout.template_hash = template_hash(sim.garment().mesh, sim.body_model().faces());
   std::ostringstream ranges;
   ranges << "bmi " << bmi.lo << ":" << bmi.hi << ", height " << height.lo << ":" << height.hi << ", sex " << sex.lo
@@ -170,7 +167,7 @@ int run(const std::vector<std::string>& args) {
             << "; narrow --bmi or --height";
           throw ConfigError(o.str());
         }
-        wearing = sized.at(choice.size).get();
+        wearing = &chart->simulation(choice.size);
         size_flag = garment_size_flag(choice.size);
       }
       const SimulationResult r = wearing->run(body);

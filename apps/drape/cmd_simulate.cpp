@@ -53,11 +53,15 @@ int run(const std::vector<std::string>& args) {
   Registry& registry = Registry::load_default(plugin_path(vm));
   Scene scene = load_scene(vm["scene"].as<std::string>());
   override_shape(scene, vm);
-  // size: auto -- the body comes first (from a scene with the default size),
-  // then the size its girth needs (garment_size.hpp).
-  const bool auto_size = garment_size_is_auto(scene);
-  std::unique_ptr<Simulation> sim = std::make_unique<Simulation>(
-      registry, auto_size ? with_garment_size(scene, default_garment_size(registry, scene)) : scene);
+  // size: auto -- every size is built once (SizeChart); the body comes from
+  // the design size's, then runs in the size its girth needs (garment_size.hpp).
+  std::unique_ptr<SizeChart> chart;
+  std::unique_ptr<Simulation> own;
+  if (garment_size_is_auto(scene))
+    chart = std::make_unique<SizeChart>(registry, scene);
+  else
+    own = std::make_unique<Simulation>(registry, scene);
+  const Simulation* sim = chart ? &chart->design() : own.get();
 
   Eigen::MatrixX3d target;
   if (vm.count("body")) {
@@ -69,12 +73,12 @@ int run(const std::vector<std::string>& args) {
   } else {
     target = sim->body_vertices(sim->target_shape());
   }
-  if (auto_size) {
-    const SizeChoice choice = choose_garment_size(registry, scene, target);
+  if (chart) {
+    const SizeChoice choice = chart->choose(target);
     if (choice.size.empty())
       throw ConfigError(scene.file + ": garment '" + scene.garment + "' with size: auto does not fit this body: " + choice.summary());
     std::printf("size auto: %s\n", choice.summary().c_str());
-    sim = std::make_unique<Simulation>(registry, with_garment_size(scene, choice.size));
+    sim = &chart->simulation(choice.size);
   }
 
   const bool verbose = vm["verbose"].as<bool>();

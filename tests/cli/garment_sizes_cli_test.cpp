@@ -97,13 +97,15 @@ TEST_CASE("size auto: the tailor's rule picks the size from the body's girth, or
   std::ofstream(dir / "auto.yaml") << text;
   const Scene scene = parse_scene(text);
   REQUIRE(garment_size_is_auto(scene));
-  const Simulation regular(test::plugins(), with_garment_size(scene, "regular"));
+  const SizeChart chart(test::plugins(), scene);
+  const Simulation& regular = chart.design();
+  CHECK(regular.scene().garment_params.at("size").node.as<std::string>() == "regular");
   // The mean body: the design size, with the design ease.
-  const SizeChoice mean = choose_garment_size(test::plugins(), scene, regular.mean_body());
+  const SizeChoice mean = chart.choose(regular.mean_body());
   CHECK(mean.size == "regular");
-  CHECK(mean.ease.size() == 9);
+  CHECK(mean.girth.size() == 9);
   CHECK(mean.design_ease > 0.0);
-  CHECK(mean.ease[1].second == Approx(mean.design_ease).epsilon(1e-12));
+  CHECK(mean.ease("regular") == Approx(mean.design_ease).epsilon(1e-12));
   // The sizes' girths grow with their grades (0.9, 1, 1.12, 1.25) in proportion.
   REQUIRE(mean.girth.size() == 9);
   CHECK(mean.girth[3].second / mean.girth[1].second == Approx(1.25).epsilon(0.02));
@@ -117,18 +119,17 @@ TEST_CASE("size auto: the tailor's rule picks the size from the body's girth, or
     const Simulation sim(test::plugins(), s);
     return sim.body_vertices(sim.target_shape());
   };
-  const SizeChoice heavy = choose_garment_size(test::plugins(), scene, body_of(33.0));
+  const SizeChoice heavy = chart.choose(body_of(33.0));
   CHECK((heavy.size == "large" || heavy.size == "xlarge"));
-  for (const auto& [size, ease] : heavy.ease) CHECK(ease == Approx(heavy.garment_girth(size) / heavy.body_girth - 1.0));
-  for (const auto& [size, ease] : heavy.ease)
-    if (size == heavy.size) CHECK(ease >= 0.0);
+  for (const auto& [size, girth] : heavy.girth) CHECK(heavy.ease(size) == Approx(girth / heavy.body_girth - 1.0));
+  CHECK(heavy.ease(heavy.size) >= 0.0);
   // A plus size for BMI 60, and for the heaviest, tallest corner of the body space.
-  const SizeChoice plus = choose_garment_size(test::plugins(), scene, body_of(60.0));
+  const SizeChoice plus = chart.choose(body_of(60.0));
   CHECK(plus.size.find("xlarge") == 1);  // 2xlarge ... 6xlarge
-  CHECK_FALSE(choose_garment_size(test::plugins(), scene, body_of(65.0, 2.0)).size.empty());
+  CHECK_FALSE(chart.choose(body_of(65.0, 2.0)).size.empty());
   // A body 1.3 times that one's size is larger than every size.
   const Eigen::MatrixX3d giant = 1.3 * body_of(65.0, 2.0);
-  const SizeChoice none = choose_garment_size(test::plugins(), scene, giant);
+  const SizeChoice none = chart.choose(giant);
   CHECK(none.size.empty());
   CHECK(none.body_girth > none.garment_girth("6xlarge"));
   write_mesh(dir / "giant.obj", Mesh{giant, regular.body_model().faces(), {}, {}});
@@ -163,7 +164,7 @@ TEST_CASE("size auto: drape generate dresses each body in its size and records i
   const DatasetReader data(dir / "d.h5");
   const Scene scene = parse_scene(text);
   const SizeChart chart(test::plugins(), scene);
-  const Simulation regular(test::plugins(), with_garment_size(scene, "regular"));
+  const Simulation& regular = chart.design();
   // The template is the regular shirt's.
   CHECK(data.layout().template_hash == template_hash(regular.garment().mesh, regular.body_model().faces()));
   std::vector<std::size_t> all(10);

@@ -19,9 +19,11 @@
 //   unsettled: the caller says so instead.
 #include <drape/registry.hpp>
 #include <drape/scene.hpp>
+#include <drape/simulation.hpp>
 
 #include <Eigen/Core>
 
+#include <memory>
 #include <string>
 #include <utility>
 #include <vector>
@@ -29,12 +31,12 @@
 namespace drape {
 
 struct SizeChoice {
-  std::string size;                                  // empty when no size fits
-  double body_girth = 0.0;                           // m
-  double design_ease = 0.0;                          // the default size's ease on the mean body
-  std::vector<std::pair<std::string, double>> ease;  // every size's ease on this body, smallest size first
-  double garment_girth(const std::string& s) const;  // m, of size s
-  std::vector<std::pair<std::string, double>> girth; // every size's girth, m
+  std::string size;                                   // empty when no size fits
+  double body_girth = 0.0;                            // m
+  double design_ease = 0.0;                           // the default size's ease on the mean body
+  std::vector<std::pair<std::string, double>> girth;  // every size's girth, m, smallest size first
+  double garment_girth(const std::string& s) const;   // m, of size s (0 when unknown)
+  double ease(const std::string& s) const { return garment_girth(s) / body_girth - 1.0; }
   // One line: the measurements and the choice, or why nothing fits.
   std::string summary() const;
 };
@@ -50,26 +52,28 @@ std::string default_garment_size(const Registry& registry, const Scene& scene);
 Scene with_garment_size(const Scene& scene, const std::string& size);
 // The body's girth by the rule above (vertices of a body mesh, Y up).
 double body_girth(const Eigen::MatrixX3d& body, const Eigen::MatrixX3i& faces);
-// The sizes' girths and the design ease of a scene's garment, measured once
-// (each size's garment is built and measured on the mean body); then a
-// choice per body. ConfigError when the scene's garment has no size
-// parameter with choices. choose() is const and may be called from threads.
+// The sizes of a scene's garment, each built as a Simulation once, with their
+// girths and the design ease; then a choice per body. ConfigError when the
+// scene's garment has no size parameter with choices. choose() and
+// simulation() are const and may be called from threads.
 class SizeChart {
  public:
   SizeChart(const Registry& registry, const Scene& scene);
+  ~SizeChart();
   // The size for `body` (the scene body model's topology).
   SizeChoice choose(const Eigen::MatrixX3d& body) const;
   const std::vector<std::string>& sizes() const { return sizes_; }
+  // The scene with that size (one of sizes()), ready to run; the default
+  // size's gives the scene's body model and bodies.
+  const Simulation& simulation(const std::string& size) const;
+  const Simulation& design() const { return simulation(design_size_); }
 
  private:
   std::vector<std::string> sizes_;
+  std::string design_size_;
+  std::vector<std::unique_ptr<Simulation>> simulations_;  // one per size, in the order of sizes_
   std::vector<std::pair<std::string, double>> girth_;
   double design_ease_ = 0.0;
-  Eigen::Index body_vertices_ = 0;
-  Eigen::MatrixX3i faces_;
 };
-
-// SizeChart(registry, scene).choose(body).
-SizeChoice choose_garment_size(const Registry& registry, const Scene& scene, const Eigen::MatrixX3d& body);
 
 }  // namespace drape

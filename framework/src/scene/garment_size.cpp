@@ -3,12 +3,13 @@
 #include <drape/errors.hpp>
 #include <drape/geometry/girth.hpp>
 #include <drape/geometry/volume.hpp>
-#include <drape/simulation.hpp>
 
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <limits>
+#include <memory>
+#include <vector>
 
 namespace drape {
 namespace {
@@ -21,15 +22,17 @@ const ParamSpec* size_spec(const Registry& registry, const Scene& scene) {
   return nullptr;
 }
 
-// The garment's narrowest loop around the body's axis over the band, on the mean body.
-double garment_girth_on(const Mesh& garment, const Eigen::MatrixX3d& mean_body) {
-  const double y0 = mean_body.col(1).minCoeff(), h = geometry::body_height(mean_body);
-  double narrowest = std::numeric_limits<double>::infinity();
+// The girths of a mesh at the band's heights of `body` (from its soles), those
+// where a loop goes around the vertical axis.
+std::vector<geometry::Girth> band_girths(const Eigen::MatrixX3d& vertices, const Eigen::MatrixX3i& faces,
+                                         const Eigen::MatrixX3d& body) {
+  const double y0 = body.col(1).minCoeff(), h = geometry::body_height(body);
+  std::vector<geometry::Girth> out;
   for (double f = kGirthBandLow; f <= kGirthBandHigh + 1e-9; f += kBandStep) {
-    const geometry::Girth g = geometry::horizontal_girth(garment.vertices, garment.faces, y0 + f * h, {0.0, 0.0});
-    if (g.found) narrowest = std::min(narrowest, g.length);
+    const geometry::Girth g = geometry::horizontal_girth(vertices, faces, y0 + f * h, {0.0, 0.0});
+    if (g.found) out.push_back(g);
   }
-  return narrowest;
+  return out;
 }
 
 }  // namespace
@@ -45,9 +48,9 @@ std::string SizeChoice::summary() const {
   std::snprintf(head, sizeof head, "body girth %.3f m (chest or belly); design ease %.1f %%; ease by size:", body_girth,
                 100.0 * design_ease);
   std::string out = head;
-  for (const auto& [name, e] : ease) {
+  for (const auto& [name, g] : girth) {
     char item[64];
-    std::snprintf(item, sizeof item, " %s %+.1f %%", name.c_str(), 100.0 * e);
+    std::snprintf(item, sizeof item, " %s %+.1f %%", name.c_str(), 100.0 * ease(name));
     out += item;
   }
   if (size.empty()) return out + ": no size is as large as the body, the garment does not fit it";
@@ -73,12 +76,8 @@ Scene with_garment_size(const Scene& scene, const std::string& size) {
 }
 
 double body_girth(const Eigen::MatrixX3d& body, const Eigen::MatrixX3i& faces) {
-  const double y0 = body.col(1).minCoeff(), h = geometry::body_height(body);
   double largest = 0.0;
-  for (double f = kGirthBandLow; f <= kGirthBandHigh + 1e-9; f += kBandStep) {
-    const geometry::Girth g = geometry::horizontal_girth(body, faces, y0 + f * h, {0.0, 0.0});
-    if (g.found) largest = std::max(largest, g.tape);
-  }
+  for (const geometry::Girth& g : band_girths(body, faces, body)) largest = std::max(largest, g.tape);
   if (!(largest > 0.0)) throw ConfigError("the body has no torso cross-section around its vertical axis to measure");
   return largest;
 }
@@ -86,45 +85,51 @@ double body_girth(const Eigen::MatrixX3d& body, const Eigen::MatrixX3i& faces) {
 SizeChart::SizeChart(const Registry& registry, const Scene& scene) {
   const ParamSpec* spec = size_spec(registry, scene);
   if (!spec) throw ConfigError("garment '" + scene.garment + "' has no sizes to choose from (size: auto)");
+  design_size_ = spec->default_value;
   double design_girth = 0.0;
-  Eigen::MatrixX3d mean_body;
   for (const std::string& s : spec->choices) {
     if (s == "auto") continue;
-    const Simulation sim(registry, with_garment_size(scene, s));
-    const double g = garment_girth_on(sim.garment().mesh, sim.mean_body());
-    if (!std::isfinite(g)) throw ConfigError("size " + s + " of garment '" + scene.garment + "': no loop of it goes around the body to measure");
+    auto sim = std::make_unique<Simulation>(registry, with_garment_size(scene, s));
+    // A size's girth: its fabric's narrowest loop over the band on the mean body.
+    double narrowest = std::numeric_limits<double>::infinity();
+    for (const geometry::Girth& g : band_girths(sim->garment().mesh.vertices, sim->garment().mesh.faces, sim->mean_body())) narrowest = std::min(narrowest, g.length);
+    if (!std::isfinite(narrowest))
+      throw ConfigError("size " + s + " of garment '" + scene.garment + "': no loop of it goes around the body to measure");
+    if (s == design_size_) design_girth = narrowest;
     sizes_.push_back(s);
-    girth_.emplace_back(s, g);
-    if (s == spec->default_value) design_girth = g;
-    mean_body = sim.mean_body();
-    faces_ = sim.body_model().faces();
+    girth_.emplace_back(s, narrowest);
+    simulations_.push_back(std::move(sim));
   }
-  body_vertices_ = mean_body.rows();
-  design_ease_ = design_girth / body_girth(mean_body, faces_) - 1.0;
+  const Simulation& d = design();
+  design_ease_ = design_girth / body_girth(d.mean_body(), d.body_model().faces()) - 1.0;
+}
+
+SizeChart::~SizeChart() = default;
+
+const Simulation& SizeChart::simulation(const std::string& size) const {
+  for (std::size_t i = 0; i < sizes_.size(); ++i)
+    if (sizes_[i] == size) return *simulations_[i];
+  throw ConfigError("size '" + size + "' is not one of the garment's sizes");
 }
 
 SizeChoice SizeChart::choose(const Eigen::MatrixX3d& body) const {
-  if (body.rows() != body_vertices_)
+  const Simulation& d = design();
+  if (body.rows() != d.mean_body().rows())
     throw ConfigError("the body has " + std::to_string(body.rows()) + " vertices; the scene's body model has " +
-                      std::to_string(body_vertices_));
+                      std::to_string(d.mean_body().rows()));
   SizeChoice choice;
   choice.girth = girth_;
   choice.design_ease = design_ease_;
-  choice.body_girth = body_girth(body, faces_);
+  choice.body_girth = body_girth(body, d.body_model().faces());
   double best = std::numeric_limits<double>::infinity();
-  for (const auto& [s, g] : girth_) {
-    const double ease = g / choice.body_girth - 1.0;
-    choice.ease.emplace_back(s, ease);
+  for (const std::string& s : sizes_) {
+    const double ease = choice.ease(s);
     if (ease >= kMinimumEase && std::abs(ease - design_ease_) < best) {
       best = std::abs(ease - design_ease_);
       choice.size = s;
     }
   }
   return choice;
-}
-
-SizeChoice choose_garment_size(const Registry& registry, const Scene& scene, const Eigen::MatrixX3d& body) {
-  return SizeChart(registry, scene).choose(body);
 }
 
 }  // namespace drape
