@@ -48,14 +48,7 @@ Garment load_clothes(const Model& model, const fs::path& dir, const Sliders& bod
     throw ConfigError(clo.string() + " binds " + std::to_string(binding.refs.size()) + " vertices but " + obj.string() +
                       " has " + std::to_string(outfit.num_vertices()));
   if (outfit.corner_uv.empty()) throw ConfigError(obj.string() + ": the garment needs UVs (its material space)");
-  // A binding made for another base mesh names base vertices this one lacks.
   const Eigen::MatrixX3d morphed = model.morph(body);
-  for (std::size_t i = 0; i < binding.refs.size(); ++i)
-    for (int k = 0; k < 3; ++k)
-      if (binding.refs[i].vertex[static_cast<std::size_t>(k)] >= morphed.rows())
-        throw ConfigError(clo.string() + ": garment vertex " + std::to_string(i) + " is bound to base vertex " +
-                          std::to_string(binding.refs[i].vertex[static_cast<std::size_t>(k)]) + ", but the MakeHuman base mesh has " +
-                          std::to_string(morphed.rows()) + " vertices: a binding for another base mesh");
 
   // The piece's vertices, in the outfit's order.
   const std::vector<int> piece = piece_of_vertex(outfit);
@@ -106,7 +99,8 @@ Garment load_clothes(const Model& model, const fs::path& dir, const Sliders& bod
   // Texture UVs are in [0,1]; material space must be in meters. One uniform
   // scale makes the total UV area equal the 3D area of the piece as fitted to
   // the default body, so the garment starts near its rest size.
-  const Eigen::MatrixX3d rest = model.to_body_frame(fit_clothes(binding, model.morph(Sliders{})), model.morph(Sliders{}));
+  const Eigen::MatrixX3d default_body = model.morph(Sliders{});
+  const Eigen::MatrixX3d rest = model.to_body_frame(fit_clothes(binding, default_body), default_body);
   double area3 = 0, area_uv = 0;
   for (std::size_t i = 0; i < faces.size(); ++i) {
     const auto& f = outfit_faces[i];

@@ -2,6 +2,7 @@
 
 #include <drape/errors.hpp>
 
+#include <algorithm>
 #include <fstream>
 #include <sstream>
 
@@ -11,6 +12,7 @@ ClothesBinding read_mhclo(const std::filesystem::path& file) {
   std::ifstream in(file);
   if (!in) throw ConfigError("cannot read MakeHuman clothes binding '" + file.string() + "'");
   ClothesBinding b;
+  b.file = file.string();
   std::string line;
   int line_no = 0;
   bool in_verts = false;
@@ -60,7 +62,9 @@ Eigen::MatrixX3d fit_clothes(const ClothesBinding& b, const Eigen::MatrixX3d& ba
   Eigen::Vector3d scale;
   for (int axis = 0; axis < 3; ++axis) {
     const auto& s = b.scale[static_cast<std::size_t>(axis)];
-    if (s.a >= base.rows() || s.b >= base.rows()) throw ConfigError(b.name + ": scale reference vertex out of range");
+    if (s.a >= base.rows() || s.b >= base.rows())
+      throw ConfigError(b.file + ": a scale reference names base vertex " + std::to_string(std::max(s.a, s.b)) +
+                        ", but the base mesh has " + std::to_string(base.rows()) + " vertices: a binding for another base mesh");
     scale[axis] = std::abs(base(s.a, axis) - base(s.b, axis)) / s.reference;
   }
   Eigen::MatrixX3d out(static_cast<Eigen::Index>(b.refs.size()), 3);
@@ -69,8 +73,9 @@ Eigen::MatrixX3d fit_clothes(const ClothesBinding& b, const Eigen::MatrixX3d& ba
     Eigen::Vector3d p = Eigen::Vector3d::Zero();
     for (int k = 0; k < 3; ++k) {
       if (r.vertex[k] < 0 || r.vertex[k] >= base.rows())
-        throw ConfigError(b.name + ": garment vertex " + std::to_string(i) + " refers to base vertex " +
-                          std::to_string(r.vertex[k]) + ", outside the base mesh");
+        throw ConfigError(b.file + ": garment vertex " + std::to_string(i) + " is bound to base vertex " +
+                          std::to_string(r.vertex[k]) + ", but the base mesh has " + std::to_string(base.rows()) +
+                          " vertices: a binding for another base mesh");
       p += r.weight[k] * base.row(r.vertex[k]).transpose();
     }
     out.row(static_cast<Eigen::Index>(i)) = p + r.offset.cwiseProduct(scale);

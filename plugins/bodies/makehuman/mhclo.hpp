@@ -13,6 +13,7 @@
 namespace drape::makehuman {
 
 struct ClothesBinding {
+  std::string file;  // the .mhclo it was read from, for messages
   std::string name;
   std::string obj_file;
   struct Scale {
