@@ -60,6 +60,20 @@ std::string build_error(const fs::path& file, const std::string& extra = "") {
   return test::message_of([&] { Simulation(test::plugins(), parse_scene(scene_text(file, extra))); });
 }
 
+// A file whose first faces are in region 'panel' and the last in 'print',
+// simulated with the print as screen-print: both regions, in that order, the
+// print the heavier cloth.
+void check_panel_and_print(const fs::path& file, int faces) {
+  const Simulation sim(test::plugins(), parse_scene(scene_text(file) + "materials: {print: screen-print}\n"));
+  const Garment& g = sim.garment();
+  REQUIRE(g.materials.size() == 2);
+  CHECK(g.materials[0].name == "panel");
+  CHECK(g.materials[1].name == "print");
+  CHECK(g.materials[1].density > g.materials[0].density);  // the print is the heavier cloth
+  CHECK(g.material_of(0) == 0);
+  CHECK(g.material_of(faces - 1) == 1);
+}
+
 }  // namespace
 
 TEST_CASE("mesh garment: a tube from an OBJ with a UV pattern drapes on the parametric body", "[garments][mesh]") {
@@ -191,15 +205,7 @@ TEST_CASE("mesh garment: an OBJ's usemtl groups are material regions the scene n
     out << line << "\n";
   }
   out.close();
-  const Scene scene = parse_scene(scene_text(dir / "regions.obj") + "materials: {print: screen-print}\n");
-  const Simulation sim(test::plugins(), scene);
-  const Garment& g = sim.garment();
-  REQUIRE(g.materials.size() == 2);
-  CHECK(g.materials[0].name == "panel");
-  CHECK(g.materials[1].name == "print");
-  CHECK(g.materials[1].density > g.materials[0].density);  // the print is the heavier cloth
-  CHECK(g.material_of(0) == 0);
-  CHECK(g.material_of(skirt.num_faces() - 1) == 1);
+  check_panel_and_print(dir / "regions.obj", skirt.num_faces());
   CHECK_THAT(test::message_of([&] { Simulation(test::plugins(), parse_scene(scene_text(dir / "regions.obj") + "materials: {sleeve: screen-print}\n")); }),
              Catch::Contains("has no region 'sleeve'") && Catch::Contains("panel, print"));
 }
@@ -292,15 +298,7 @@ TEST_CASE("mesh garment: a glTF's materials are material regions the scene names
     for (int k = 0; k < 3; ++k)
       CHECK((read.mesh.vertices.row(read.mesh.faces(f, k)) - skirt.vertices.row(skirt.faces(f, k))).norm() < 1e-6);
 
-  const Scene scene = parse_scene(scene_text(dir / "regions.gltf") + "materials: {print: screen-print}\n");
-  const Simulation sim(test::plugins(), scene);
-  const Garment& g = sim.garment();
-  REQUIRE(g.materials.size() == 2);
-  CHECK(g.materials[0].name == "panel");
-  CHECK(g.materials[1].name == "print");
-  CHECK(g.materials[1].density > g.materials[0].density);
-  CHECK(g.material_of(0) == 0);
-  CHECK(g.material_of(skirt.num_faces() - 1) == 1);
+  check_panel_and_print(dir / "regions.gltf", skirt.num_faces());
   // A PLY carries no materials: one region, "cloth".
   write_mesh(dir / "plain.ply", skirt);
   const MaterialMesh ply = read_mesh_with_materials(dir / "plain.ply");

@@ -77,6 +77,36 @@ TEST_CASE("a missing MakeHuman folder is a clear error", "[makehuman]") {
                     Catch::Contains("/nonexistent/makehuman") && Catch::Contains("base.obj"));
 }
 
+namespace {
+
+// The sliders of a heavy MakeHuman body (BMI 34, 1.75 m, male) as garment
+// parameters on top of `values`, and that body's vertices.
+struct HeavyBody {
+  ParamValues values;
+  Mesh mesh;
+};
+HeavyBody heavy_body(ParamValues values) {
+  const auto body = makehuman_body();
+  const Eigen::VectorXd heavy = body->solve({34.0, 1.75, 1.0});
+  const char* names[] = {"gender", "muscle", "weight", "height", "proportions"};
+  for (int i = 0; i < 5; ++i) values[names[i]] = {YAML::Node(heavy[i]), {}};
+  return {values, Mesh{body->vertices(heavy), body->faces(), {}, {}}};
+}
+
+// Garment vertices deeper than 5 mm inside the body.
+int deeper_than_5mm(const Mesh& body, const Mesh& garment) {
+  const geometry::BodySurface surface(body);
+  int inside = 0;
+  for (int v = 0; v < garment.num_vertices(); ++v)
+    if (surface.closest(garment.vertices.row(v).transpose()).signed_distance < -0.005) ++inside;
+  return inside;
+}
+
+// Front to back (the legs' spread sets the side to side extent in the A-pose).
+double depth(const Mesh& m) { return m.vertices.col(2).maxCoeff() - m.vertices.col(2).minCoeff(); }
+
+}  // namespace
+
 TEST_CASE("the MakeHuman T-shirt loads, triangulates and dresses bodies through .mhclo", "[makehuman]") {
   if (!assets_present()) {
     SUCCEED("skipped");
@@ -106,19 +136,11 @@ TEST_CASE("the MakeHuman T-shirt loads, triangulates and dresses bodies through 
   }
   // Dressed on a heavy MakeHuman body, the shirt follows it: it widens, and few
   // vertices end up inside the body (MakeHuman's own binding, not a simulation).
-  const auto body = makehuman_body();
-  const Eigen::VectorXd heavy = body->solve({34.0, 1.75, 1.0});
-  ParamValues values = path_param();
-  const char* names[] = {"gender", "muscle", "weight", "height", "proportions"};
-  for (int i = 0; i < 5; ++i) values[names[i]] = {YAML::Node(heavy[i]), {}};
+  const HeavyBody heavy = heavy_body(path_param());
   const Garment thin_shirt = test::plugins().create_garment("makehuman_tshirt", Params(d.params, path_param(), "s"))->build();
-  const Garment heavy_shirt = test::plugins().create_garment("makehuman_tshirt", Params(d.params, values, "s"))->build();
-  const auto width = [](const Mesh& m) { return m.vertices.col(2).maxCoeff() - m.vertices.col(2).minCoeff(); };
-  CHECK(width(heavy_shirt.mesh) > width(thin_shirt.mesh) + 0.03);
-  const geometry::BodySurface surface(Mesh{body->vertices(heavy), body->faces(), {}, {}});
-  int inside = 0;
-  for (int v = 0; v < heavy_shirt.mesh.num_vertices(); ++v)
-    if (surface.closest(heavy_shirt.mesh.vertices.row(v).transpose()).signed_distance < -0.005) ++inside;
+  const Garment heavy_shirt = test::plugins().create_garment("makehuman_tshirt", Params(d.params, heavy.values, "s"))->build();
+  CHECK(depth(heavy_shirt.mesh) > depth(thin_shirt.mesh) + 0.03);
+  const int inside = deeper_than_5mm(heavy.mesh, heavy_shirt.mesh);
   INFO(inside << " of " << heavy_shirt.mesh.num_vertices() << " shirt vertices deeper than 5 mm in the body");
   CHECK(inside < heavy_shirt.mesh.num_vertices() / 20);
 }
@@ -150,19 +172,10 @@ TEST_CASE("MakeHuman clothes: any piece of an outfit binds to the body through i
   CHECK(trousers.mesh.vertices.col(1).minCoeff() < 0.2);
   CHECK(trousers.mesh.vertices.col(1).maxCoeff() < shirt.mesh.vertices.col(1).maxCoeff());
   // They follow a heavy body: wider, and few vertices deeper than 5 mm inside it.
-  const auto body = makehuman_body();
-  const Eigen::VectorXd heavy = body->solve({34.0, 1.75, 1.0});
-  ParamValues heavy_values = values;
-  const char* names[] = {"gender", "muscle", "weight", "height", "proportions"};
-  for (int i = 0; i < 5; ++i) heavy_values[names[i]] = {YAML::Node(heavy[i]), {}};
-  const Garment heavy_trousers = build(heavy_values);
-  // Front to back (the legs' spread sets the side to side extent in the A-pose).
-  const auto depth = [](const Mesh& m) { return m.vertices.col(2).maxCoeff() - m.vertices.col(2).minCoeff(); };
+  const HeavyBody heavy = heavy_body(values);
+  const Garment heavy_trousers = build(heavy.values);
   CHECK(depth(heavy_trousers.mesh) > depth(trousers.mesh) + 0.03);
-  const geometry::BodySurface surface(Mesh{body->vertices(heavy), body->faces(), {}, {}});
-  int inside = 0;
-  for (int v = 0; v < heavy_trousers.mesh.num_vertices(); ++v)
-    if (surface.closest(heavy_trousers.mesh.vertices.row(v).transpose()).signed_distance < -0.005) ++inside;
+  const int inside = deeper_than_5mm(heavy.mesh, heavy_trousers.mesh);
   INFO(inside << " of " << heavy_trousers.mesh.num_vertices() << " trouser vertices deeper than 5 mm in the body");
   CHECK(inside < heavy_trousers.mesh.num_vertices() / 20);
 
