@@ -57,7 +57,8 @@ Girth horizontal_girth(const Eigen::MatrixX3d& vertices, const Eigen::MatrixX3i&
   std::map<Edge, Eigen::Vector2d> point;
   std::map<Edge, std::vector<Edge>> next;
   for (Eigen::Index f = 0; f < faces.rows(); ++f) {
-    std::vector<Edge> cut;
+    Edge cut[3];
+    int cuts = 0;
     for (int k = 0; k < 3; ++k) {
       const int a = faces(f, k), b = faces(f, (k + 1) % 3);
       const double ya = vertices(a, 1) - height, yb = vertices(b, 1) - height;
@@ -66,9 +67,9 @@ Girth horizontal_girth(const Eigen::MatrixX3d& vertices, const Eigen::MatrixX3i&
       const double t = ya / (ya - yb);
       const Eigen::Vector3d p = vertices.row(a) + t * (vertices.row(b) - vertices.row(a));
       point.emplace(e, Eigen::Vector2d(p.x(), p.z()));
-      cut.push_back(e);
+      cut[cuts++] = e;
     }
-    if (cut.size() != 2) continue;
+    if (cuts != 2) continue;
     next[cut[0]].push_back(cut[1]);
     next[cut[1]].push_back(cut[0]);
   }
@@ -78,7 +79,7 @@ Girth horizontal_girth(const Eigen::MatrixX3d& vertices, const Eigen::MatrixX3i&
     if (visited[start]) continue;
     // Walk the chain; a loop closes when it comes back to its start.
     Polygon2 loop;
-    Edge previous{-1, -1}, current = start;
+    Edge current = start;
     bool closed = false;
     while (!visited[current]) {
       visited[current] = true;
@@ -86,12 +87,11 @@ Girth horizontal_girth(const Eigen::MatrixX3d& vertices, const Eigen::MatrixX3i&
       const auto& n = next.at(current);
       Edge step{-1, -1};
       for (const Edge& e : n)
-        if (e != previous && !visited[e]) step = e;
+        if (!visited[e]) step = e;  // the way back is visited already
       if (step.first < 0) {
         closed = std::find(n.begin(), n.end(), start) != n.end() && loop.size() > 2;
         break;
       }
-      previous = current;
       current = step;
     }
     if (!closed) continue;
