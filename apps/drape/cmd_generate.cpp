@@ -24,8 +24,6 @@
 #include <cstdio>
 #include <iomanip>
 #include <iostream>
-#include <map>
-#include <memory>
 #include <mutex>
 #include <sstream>
 #include <thread>
@@ -77,17 +75,11 @@ int run(const std::vector<std::string>& args) {
 
   Registry& registry = Registry::load_default(plugin_path(vm));
   const Scene scene = load_scene(vm["scene"].as<std::string>());
-  // size: auto -- each body wears the size its girth needs (garment_size.hpp):
-  // every size built once (SizeChart); the dataset's template is the design
-  // size's (the sizes share its topology), each sample records its size in
-  // the garment_size statistic.
-  std::unique_ptr<SizeChart> chart;
-  std::unique_ptr<Simulation> own;
-  if (garment_size_is_auto(scene))
-    chart = std::make_unique<SizeChart>(registry, scene);
-  else
-    own = std::make_unique<Simulation>(registry, scene);
-  const Simulation& sim = chart ? chart->design() : *own;
+  // size: auto -- each body wears the size its girth needs (garment_size.hpp,
+  // every size built once); the dataset's template is the design size's (the
+  // sizes share its topology), each sample records its size in garment_size.
+  const SceneSimulations simulations(registry, scene);
+  const Simulation& sim = simulations.design();
   const auto [bmi_lo, bmi_hi] = sim.body_model().bmi_range();
   if (bmi.lo < bmi_lo - 1e-9 || bmi.hi > bmi_hi + 1e-9) {
     std::ostringstream o;
@@ -113,7 +105,7 @@ int run(const std::vector<std::string>& args) {
                         "height", "sex", "global_index", "garment_size"})
     layout.stats.push_back(s);
   layout.scene = scene.yaml();
-  if (chart) layout.attributes["garment_sizes"] = "auto: each sample's size in its garment_size statistic (docs/garments.md)";
+  if (simulations.auto_size()) layout.attributes["garment_sizes"] = "auto: each sample's size in its garment_size statistic (docs/garments.md)";
   layout.template_hash = template_hash(sim.garment().mesh, sim.body_model().faces());
   std::ostringstream ranges;
   ranges << "bmi " << bmi.lo << ":" << bmi.hi << ", height " << height.lo << ":" << height.hi << ", sex " << sex.lo
@@ -156,21 +148,13 @@ int run(const std::vector<std::string>& args) {
       if (girths > 0) draw_proportions(girths, sim.body_model(), rng, request);
       const Eigen::VectorXd shape = solve_in_space(sim.body_model(), request);
       const Eigen::MatrixX3d body = sim.body_vertices(shape);
-      const Simulation* wearing = &sim;
-      double size_flag = garment_size;
-      if (chart) {
-        const SizeChoice choice = chart->choose(body);
-        if (choice.size.empty()) {
-          std::ostringstream o;
-          o << "sample " << global << " (BMI " << request.bmi << ", height " << request.height << " m, sex " << request.sex
-            << "): garment '" << scene.garment << "' with size: auto does not fit this body: " << choice.summary()
-            << "; narrow --bmi or --height";
-          throw ConfigError(o.str());
-        }
-        wearing = &chart->simulation(choice.size);
-        size_flag = garment_size_flag(choice.size);
-      }
-      const SimulationResult r = wearing->run(body);
+      std::ostringstream who;
+      who << "sample " << global << " (BMI " << request.bmi << ", height " << request.height << " m, sex " << request.sex
+          << "; narrow --bmi or --height)";
+      SizeChoice choice;
+      const Simulation& wearing = simulations.for_body(body, who.str(), &choice);
+      const double size_flag = simulations.auto_size() ? garment_size_flag(choice.size) : garment_size;
+      const SimulationResult r = wearing.run(body);
       DatasetSample s;
       s.body_params = shape.cast<float>();
       s.body_vertices = r.body.cast<float>();

@@ -11,7 +11,6 @@
 #include <algorithm>
 #include <cstdio>
 #include <iostream>
-#include <memory>
 #include <numeric>
 
 namespace drape::cli {
@@ -55,13 +54,8 @@ int run(const std::vector<std::string>& args) {
   override_shape(scene, vm);
   // size: auto -- every size is built once (SizeChart); the body comes from
   // the design size's, then runs in the size its girth needs (garment_size.hpp).
-  std::unique_ptr<SizeChart> chart;
-  std::unique_ptr<Simulation> own;
-  if (garment_size_is_auto(scene))
-    chart = std::make_unique<SizeChart>(registry, scene);
-  else
-    own = std::make_unique<Simulation>(registry, scene);
-  const Simulation* sim = chart ? &chart->design() : own.get();
+  const SceneSimulations simulations(registry, scene);
+  const Simulation* sim = &simulations.design();
 
   Eigen::MatrixX3d target;
   if (vm.count("body")) {
@@ -73,12 +67,10 @@ int run(const std::vector<std::string>& args) {
   } else {
     target = sim->body_vertices(sim->target_shape());
   }
-  if (chart) {
-    const SizeChoice choice = chart->choose(target);
-    if (choice.size.empty())
-      throw ConfigError(scene.file + ": garment '" + scene.garment + "' with size: auto does not fit this body: " + choice.summary());
+  if (simulations.auto_size()) {
+    SizeChoice choice;
+    sim = &simulations.for_body(target, scene.file, &choice);
     std::printf("size auto: %s\n", choice.summary().c_str());
-    sim = &chart->simulation(choice.size);
   }
 
   const bool verbose = vm["verbose"].as<bool>();

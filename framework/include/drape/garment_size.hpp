@@ -76,4 +76,25 @@ class SizeChart {
   double design_ease_ = 0.0;
 };
 
+// What a command runs a scene with: its one Simulation, or with size: auto
+// the SizeChart of every size (garment_size_is_auto).
+class SceneSimulations {
+ public:
+  SceneSimulations(const Registry& registry, const Scene& scene);
+  ~SceneSimulations();
+  // The scene's simulation; with size: auto the design size's (the body model,
+  // the bodies and the dataset template come from it).
+  const Simulation& design() const;
+  bool auto_size() const { return chart_ != nullptr; }
+  // The simulation `body` is draped with: design() without size: auto, else
+  // the size the chart chooses (into *choice when given). ConfigError
+  // "<what>: garment ... does not fit this body: <summary>" when none fits.
+  const Simulation& for_body(const Eigen::MatrixX3d& body, const std::string& what, SizeChoice* choice = nullptr) const;
+
+ private:
+  std::string garment_;
+  std::unique_ptr<SizeChart> chart_;
+  std::unique_ptr<Simulation> own_;
+};
+
 }  // namespace drape

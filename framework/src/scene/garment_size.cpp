@@ -132,4 +132,25 @@ SizeChoice SizeChart::choose(const Eigen::MatrixX3d& body) const {
   return choice;
 }
 
+SceneSimulations::SceneSimulations(const Registry& registry, const Scene& scene) : garment_(scene.garment) {
+  if (garment_size_is_auto(scene))
+    chart_ = std::make_unique<SizeChart>(registry, scene);
+  else
+    own_ = std::make_unique<Simulation>(registry, scene);
+}
+
+SceneSimulations::~SceneSimulations() = default;
+
+const Simulation& SceneSimulations::design() const { return chart_ ? chart_->design() : *own_; }
+
+const Simulation& SceneSimulations::for_body(const Eigen::MatrixX3d& body, const std::string& what,
+                                             SizeChoice* choice) const {
+  if (!chart_) return *own_;
+  const SizeChoice chosen = chart_->choose(body);
+  if (chosen.size.empty())
+    throw ConfigError(what + ": garment '" + garment_ + "' with size: auto does not fit this body: " + chosen.summary());
+  if (choice) *choice = chosen;
+  return chart_->simulation(chosen.size);
+}
+
 }  // namespace drape
