@@ -8,9 +8,15 @@ from ArcSim's source and sharing nothing with drape's C++. It prints the
 energies of one triangle and one hinge that tests/energies/arcsim_reference_test.cpp
 compares drape with. Run: python3 scripts/reference/arcsim_reference.py
 
-Conventions (docs/materials.md): the stretching energy is ArcSim's
-stretching_energy with the shear term of the force its solver integrates
-(2 k_shear G_uv^2, printed as E); E_energy_fn is stretching_energy as written
+Conventions (docs/materials.md): ArcSim's solver integrates the stress
+s(G) = A(k(G)) G, A = [[k_uu, k_uv, 0], [k_uv, k_vv, 0], [0, 0, 2 k_shear]]
+(stretching_force: the shear term doubled against stretching_energy). Once k
+depends on G no energy has that stress as its gradient; drape's energy is the
+work it does along the straight strain path from rest, printed as W (computed
+here by a 20,000-interval midpoint rule, independently of drape's quadrature)
+together with the stress itself (s) for stretches along u and v. E is
+stretching_energy at G with the force's shear (2 k_shear G_uv^2), drape's
+energy before 2026-11-26; E_energy_fn is stretching_energy as written
 (k_shear G_uv^2). Bending takes |theta| for the curvature (ArcSim's signed
 theta is printed too, as E_signed).
 """
@@ -100,6 +106,29 @@ def triangle_energy(F, area):
     return area * 0.5 * (base + 2 * k[3] * G01 ** 2), area * 0.5 * (base + k[3] * G01 ** 2), (G00, G11, G01), k
 
 
+def strain_of(F):
+    C00 = F[0][0] ** 2 + F[1][0] ** 2
+    C11 = F[0][1] ** 2 + F[1][1] ** 2
+    C01 = F[0][0] * F[0][1] + F[1][0] * F[1][1]
+    return 0.5 * (C00 - 1), 0.5 * (C11 - 1), 0.5 * C01
+
+
+def stress(G):
+    """The stress ArcSim's solver integrates, s = A(k(G)) G."""
+    k = stiffness(*G)
+    return (k[0] * G[0] + k[1] * G[1], k[1] * G[0] + k[2] * G[1], 2 * k[3] * G[2])
+
+
+def work(G, intervals=20000):
+    """int_0^1 s(t G) . G dt by the midpoint rule."""
+    total = 0.0
+    for i in range(intervals):
+        t = (i + 0.5) / intervals
+        s = stress([t * g for g in G])
+        total += sum(a * b for a, b in zip(s, G))
+    return total / intervals
+
+
 def stretch_along(angle_deg, s):
     c, n = math.cos(math.radians(angle_deg)), math.sin(math.radians(angle_deg))
     # F = I + (s - 1) d d^T
@@ -142,8 +171,13 @@ if __name__ == "__main__":
     for angle in (0.0, 90.0, 45.0, 30.0):
         for s in (1.01, 1.10, 1.17, 1.25):
             E, E_fn, G, k = triangle_energy(stretch_along(angle, s), area)
-            print(f"angle {angle:5.1f} stretch {s:.2f}: E = {E:.12e}  E_energy_fn = {E_fn:.12e}  "
+            W = area * work(G)
+            print(f"angle {angle:5.1f} stretch {s:.2f}: W = {W:.12e}  E = {E:.12e}  E_energy_fn = {E_fn:.12e}  "
                   f"G = ({G[0]:.6f}, {G[1]:.6f}, {G[2]:.6f})  k = [{', '.join(f'{x:.6f}' for x in k)}]")
+    print("# stress s = A(k(G)) G (N/m) along u and v: G = (g, 0, 0) and (0, g, 0)")
+    for g in (0.01, 0.05, 0.1, 0.15, 0.18, 0.25):
+        su, sv = stress((g, 0.0, 0.0)), stress((0.0, g, 0.0))
+        print(f"g {g:.2f}: s_uu = {su[0]:.12e}  s_vv = {sv[1]:.12e}")
     print("# one sample, ArcSim's evaluate_stretching_sample, at G = (0.1, 0, 0.05)")
     print("sample", [f"{x:.9f}" for x in sample(0.1, 0.0, 0.05)])
     print("# hinge: edge (0,0)-(1 cm, 0) in UV, wings at (0.5 cm, +-1 cm): l = 1 cm, A0 = A1 = 0.5 cm^2")

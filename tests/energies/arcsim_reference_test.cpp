@@ -107,30 +107,69 @@ TEST_CASE("ArcSim's stiffness sample at one strain equals ArcSim's definition", 
   CHECK(rest[3] == Approx(2 * 36.860302));
 }
 
-TEST_CASE("stretching of one triangle equals ArcSim's energy along warp, weft, 45 and 30 degrees", "[arcsim][stretching]") {
-  // E = A/2 (k_uu G_uu^2 + k_vv G_vv^2 + 2 k_uv G_uu G_vv + 2 k_shear G_uv^2), k
-  // from ArcSim's sample grid; 1.17 and 1.25 are past the measured strain 1 + 1/6.
+TEST_CASE("stretching of one triangle equals the work of ArcSim's force along warp, weft, 45 and 30 degrees",
+          "[arcsim][stretching]") {
+  // W = A int_0^1 s(t G) . G dt with s = A(k(G)) G the stress ArcSim's solver
+  // integrates, k from ArcSim's sample grid: the reference script's W, from a
+  // 20,000-interval midpoint rule; 1.17 and 1.25 are past the measured strain
+  // 1 + 1/6. drape integrates with 8 Gauss points over its C1 lookup.
   const TriangleCase cases[] = {
-      {0, 1.01, 1.012629857845e-07},  {0, 1.10, 1.898465558289e-05},  {0, 1.17, 7.887059324641e-05},
-      {0, 1.25, 1.833761500759e-04},  {90, 1.01, 3.053951396198e-07}, {90, 1.10, 1.417270024214e-04},
-      {90, 1.17, 6.904256495094e-04}, {90, 1.25, 1.605257324807e-03}, {45, 1.01, 1.989780412197e-07},
-      {45, 1.10, 6.896049220889e-05}, {45, 1.17, 3.146119549310e-04}, {45, 1.25, 7.572034498617e-04},
-      {30, 1.01, 1.491100454114e-07}, {30, 1.10, 3.893431145264e-05}, {30, 1.17, 1.721992279651e-04},
-      {30, 1.25, 4.110277868858e-04}};
-  // drape rounds the trilinear lookup's corners within 0.1 cell of a grid
-  // plane (kCornerSmoothing); three cases lie there (1.17 along u and v, 1.10
-  // at 45 degrees) and differ by 0.08-0.16 %, the rest agree to round-off.
+      {0, 1.01, 1.025543526256e-07},  {0, 1.10, 1.580112492570e-05},  {0, 1.17, 6.319580221805e-05},
+      {0, 1.25, 1.677013590237e-04},  {90, 1.01, 2.960475339179e-07}, {90, 1.10, 1.014636479548e-04},
+      {90, 1.17, 4.943324253340e-04}, {90, 1.25, 1.409164100319e-03}, {45, 1.01, 1.922092266088e-07},
+      {45, 1.10, 4.931144658755e-05}, {45, 1.17, 2.340815947691e-04}, {45, 1.25, 6.637690389036e-04},
+      {30, 1.01, 1.455959951118e-07}, {30, 1.10, 3.015505597730e-05}, {30, 1.17, 1.330715001201e-04},
+      {30, 1.25, 3.669513817707e-04}};
   const Garment g = triangle_garment();
   const auto e = bound_energy("stretching", "{}", g);
-  int exact = 0;
   for (const TriangleCase& c : cases) {
     INFO("stretch " << c.stretch << " at " << c.degrees << " degrees from u");
-    const double v = e->value(stretched_triangle(c.degrees, c.stretch));
-    CHECK(v == Approx(c.energy).epsilon(2e-3));
-    exact += std::abs(v - c.energy) <= 1e-9 * c.energy;
+    CHECK(e->value(stretched_triangle(c.degrees, c.stretch)) == Approx(c.energy).epsilon(1e-2));
   }
-  CHECK(exact == 13);
   CHECK(e->value(stretched_triangle(0, 1.0)) == Approx(0.0).margin(1e-20));
+}
+
+TEST_CASE("along warp and weft the stretching stress is ArcSim's force", "[arcsim][stretching]") {
+  // The reference script's s_uu = k_uu(G) g at G = (g, 0, 0), s_vv at (0, g, 0),
+  // up to the end of the measured range (G = 0.18). Past it the quadrature's
+  // stress drifts: 1.9 % low at G = 0.25 (docs/materials.md).
+  struct StressCase {
+    double g, s_uu, s_vv;
+  };
+  const StressCase cases[] = {{0.01, 4.011079326410e-01, 1.208903237512e+00}, {0.05, 2.531234169208e+00, 1.432415061718e+01},
+                              {0.10, 6.724779052448e+00, 4.938581324467e+01}, {0.15, 1.248982533997e+01, 1.040521315905e+02},
+                              {0.18, 1.652095325501e+01, 1.439889358391e+02}};
+  const arcsim::StretchingTable table(gray_interlock().arcsim);
+  for (const StressCase& c : cases) {
+    INFO("G " << c.g);
+    CHECK(table.density(Eigen::Vector3d(c.g, 0, 0)).dpsi[0] == Approx(c.s_uu).epsilon(1e-2));
+    CHECK(table.density(Eigen::Vector3d(0, c.g, 0)).dpsi[1] == Approx(c.s_vv).epsilon(1e-2));
+  }
+}
+
+TEST_CASE("the stretching stress keeps rising past ArcSim's measured range", "[arcsim][stretching]") {
+  // ArcSim's stiffness stops growing at a principal stretch of 1 + 1/6 (G =
+  // 0.18); the energy k(G) . q(G) / 2 has a stress that falls there (a negative
+  // stiffness). The work potential's must not, along either axis or 45 degrees,
+  // through that point and to G = 0.2 (beyond, the 8-point quadrature of an
+  // integrand with kinks lets the stiffness dip below zero at places from
+  // G = 0.205 along u; docs/materials.md).
+  const arcsim::StretchingTable table(gray_interlock().arcsim);
+  for (const Eigen::Vector3d& direction : {Eigen::Vector3d(1, 0, 0), Eigen::Vector3d(0, 1, 0), Eigen::Vector3d(0.5, 0.5, 0.5)}) {
+    double previous = 0.0;
+    for (double g = 0.005; g <= 0.2 + 1e-9; g += 0.005) {
+      const arcsim::MembraneDensity d = table.density(g * direction);
+      const double along = d.dpsi.dot(direction);
+      INFO("direction " << direction.transpose() << ", G " << g);
+      CHECK(along > previous);
+      CHECK(direction.dot(d.d2psi * direction) > 0.0);
+      previous = along;
+    }
+  }
+  // The integrand alone (drape's energy before) does fall at the end of the range.
+  const double before = table.point_density(Eigen::Vector3d(0.175, 0, 0)).dpsi[0],
+               after = table.point_density(Eigen::Vector3d(0.19, 0, 0)).dpsi[0];
+  CHECK(after < before);
 }
 
 TEST_CASE("the linear model keeps drape's old constant knit, several times softer than ArcSim's", "[arcsim][stretching]") {
@@ -182,7 +221,13 @@ TEST_CASE("ArcSim-model derivatives match finite differences, including a 100x s
       x.col(0) *= 1.08;
       for (double amount : {0.004, 0.02}) {
         const Eigen::MatrixX3d y = perturbed(x, amount, 17);
-        const GradCheckReport r = check_energy_derivatives(*e, y);
+        // Differences of 1e-8 m: ArcSim's |G_uv| is smoothed over 1e-3 of shear,
+        // where the Hessian changes fast (third derivatives ~1e7), and each of
+        // the work integral's 8 points has that band at its own strain; a step
+        // of 1e-6 m crosses a band's width in strain and differences then
+        // miss the Hessian by up to 28 % (the analytic one agrees with 1e-7
+        // differences of the density itself to 1e-8).
+        const GradCheckReport r = check_energy_derivatives(*e, y, {1e-8, 64, 7});
         INFO(energy << " print x" << stiffer << ", perturbation " << amount << "\n" << r.str());
         CHECK(std::isfinite(e->value(y)));
         CHECK(r.ok(1e-5));
@@ -206,3 +251,37 @@ TEST_CASE("the C1 lookup is ArcSim's at zero shear, from 0.1 % shear on, and awa
   CHECK(mid >= std::min(lo, hi) - 1e-12);
   CHECK(mid <= std::max(lo, hi) + 1e-12);
 }
+
+TEST_CASE("the C1 lookup joins the grid's edges smoothly and equals ArcSim's clamp beyond them", "[arcsim][stretching]") {
+  // The G_uu and G_vv axes end at -0.25 and -0.25 + 29/30 = 0.7167 (heavy drapes
+  // reach both in the armpits); ArcSim holds the edge sample beyond. drape's
+  // lookup rounds that corner like every other one: its slope is continuous
+  // across the edge, and its value is ArcSim's outside the rounding band.
+  const arcsim::StretchingTable table(gray_interlock().arcsim);
+  const double top = -0.25 + 29.0 / 30.0, bottom = -0.25;
+  for (const double edge : {top, bottom}) {
+    for (int axis = 0; axis < 2; ++axis) {
+      Eigen::Vector3d g(0.055, 0.01, 0.02);  // each 0.15-0.4 cell from a grid plane
+      g[axis] = edge;
+      const Eigen::Vector3d below = g - Eigen::Vector3d::Unit(axis) * 1e-7, above = g + Eigen::Vector3d::Unit(axis) * 1e-7;
+      const Eigen::Vector4d slope_below = table.stiffness_derivatives(below).dk.col(axis),
+                            slope_above = table.stiffness_derivatives(above).dk.col(axis);
+      INFO("edge " << edge << ", axis " << axis);
+      // Half a cell's change in slope across the rounding band would be ~1e3
+      // N/m per unit strain; across 2e-7 it must be tiny.
+      CHECK((slope_below - slope_above).norm() <= 1e-3 * (1.0 + slope_below.norm()));
+      // Outside the band (0.1 cell = 1/300 of strain) it is ArcSim's clamped
+      // lookup (ArcSim clamps 1e-5 cell inside the top edge: a 1e-8 difference).
+      Eigen::Vector3d outside = g, inside = g;
+      outside[axis] = edge + (edge == top ? 0.05 : -0.05);
+      inside[axis] = edge + (edge == top ? -0.02 : 0.02);
+      for (const Eigen::Vector3d& q : {outside, inside}) {
+        const Eigen::Vector4d exact = table.stiffness(q[0], q[1], q[2]), smooth = table.stiffness_derivatives(q).k;
+        CHECK((exact - smooth).norm() <= 1e-7 * exact.norm());
+      }
+      // Beyond the edge the stiffness no longer changes along that axis.
+      CHECK(table.stiffness_derivatives(outside).dk.col(axis).norm() <= 1e-9 * table.stiffness_derivatives(inside).dk.col(axis).norm());
+    }
+  }
+}
+

@@ -14,11 +14,22 @@
 //  * the samples sit on a 30^3 grid, G_uu and G_vv in -0.25 + i/30, G_uv in
 //    i/30, and k(G) is their trilinear interpolation at (G_uu, G_vv, |G_uv|)
 //    (stretching_stiffness), clamped to the grid.
-// The energy per unit rest area is ArcSim's with its force's shear term,
-//   psi(G) = (k_uu g0^2 + k_vv g1^2 + 2 k_uv g0 g1 + 2 k_shear g2^2) / 2,
-// with k = k(G): a true potential of the positions, differentiated exactly
-// (k's own derivative included). One departure: |G_uv| is smoothed within
-// kShearSmoothing of zero (see there).
+// ArcSim's solver integrates the stress s(G) = A(k(G)) G with
+//   A(k) = [[k_uu, k_uv, 0], [k_uv, k_vv, 0], [0, 0, 2 k_shear]]
+// (the derivative of (k_uu g0^2 + k_vv g1^2 + 2 k_uv g0 g1 + 2 k_shear g2^2) / 2
+// with k held fixed), which no energy has as its gradient once k depends on G.
+// drape's energy per unit rest area is the work that stress does along the
+// straight strain path from rest,
+//   psi(G) = int_0^1 s(t G) . G dt = int_0^1 (2 / t) phi(t G) dt,
+//   phi(G) = (k_uu g0^2 + k_vv g1^2 + 2 k_uv g0 g1 + 2 k_shear g2^2) / 2, k = k(G),
+// by kWorkQuadrature-point Gauss-Legendre quadrature, differentiated exactly:
+// a true potential of the positions whose stress along a uniaxial stretch is
+// ArcSim's force. phi itself (ArcSim's stretching_energy with the force's
+// shear) was drape's energy until 2026-11-26: its stress k G + (dk/dG) G^2 / 2
+// exceeds ArcSim's force by up to 40 % at 10-17 % strain and falls where the
+// measured range ends (a negative stiffness, a material instability on which
+// heavy drapes did not settle; docs/materials.md). One departure inside k:
+// |G_uv| is smoothed within kShearSmoothing of zero (see there).
 //
 // Bending. ArcSim's stiffness (bending_stiffness) of a hinge side is the
 // bilinear interpolation of the 3 x 5 table over the edge's material-space
@@ -40,6 +51,11 @@ namespace drape::arcsim {
 inline constexpr int kGridSamples = 30;
 inline constexpr double kMeasuredStretch = 1.0 / 6.0;
 
+// Gauss-Legendre points of the work integral: within 0.4 % of the exact
+// integral over uniaxial stretches of 1-25 % in every direction (4 points:
+// 1.7 %; scripts/reference/arcsim_reference.py).
+inline constexpr int kWorkQuadrature = 8;
+
 // |G_uv| enters ArcSim's lookup as a kink at zero shear: the energy's
 // gradient would jump there (by as much as the gradient itself on a face
 // stretched along u), a V-shaped valley no Newton step settles into. drape
@@ -55,7 +71,8 @@ inline constexpr double kShearSmoothing = 1e-3;
 // kCornerSmoothing cells about G (separably: each 1D hat's corners rounded,
 // the weights still summing to 1): C1, and equal to ArcSim's wherever the
 // trilinear function is linear over the box, i.e. farther than 0.1 cell
-// (1/300 in strain) from a grid plane.
+// (1/300 in strain) from a grid plane. The grid's own edges (G_uu, G_vv =
+// -0.25 and 0.717, where ArcSim holds the edge sample) are rounded the same way.
 inline constexpr double kCornerSmoothing = 0.1;
 
 // One of ArcSim's samples: the (doubled, clamped) stiffness at strain G.
@@ -86,8 +103,10 @@ class StretchingTable {
   // drape's C1 lookup alone, and psi alone (what energy values need).
   Eigen::Vector4d smoothed_stiffness(const Eigen::Vector3d& g) const;
   double energy_density(const Eigen::Vector3d& g) const;
-  // psi(g) with k = k(g), and its exact first and second derivatives.
+  // psi(g), the work integral, and its exact first and second derivatives.
   MembraneDensity density(const Eigen::Vector3d& g) const;
+  // phi(g) = k(g) . q(g) / 2 at one strain with its derivatives: the integrand.
+  MembraneDensity point_density(const Eigen::Vector3d& g) const;
 
  private:
   Eigen::Vector4d node(int i, int j, int k) const;  // a sample, extended beyond the grid

@@ -4,6 +4,7 @@
 #include <drape/arcsim_material.hpp>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <numbers>
 
@@ -44,6 +45,26 @@ Smoothed smoothed_abs(double s) {
   const double d = kShearSmoothing, t = std::abs(s), sign = s < 0 ? -1.0 : 1.0;
   if (t >= d) return {t, sign, 0.0};
   return {2.0 * t * t / d - t * t * t / (d * d), sign * (4.0 * t / d - 3.0 * t * t / (d * d)), 4.0 / d - 6.0 * t / (d * d)};
+}
+
+// The same for drape's C1 lookup: the coordinate runs on past the grid, whose
+// nodes continue its edge samples (StretchingTable::node), so the rounded hats
+// join the last cell to the constant beyond smoothly. Clamping at the edge as
+// ArcSim does left a kink there: the regular shirt on a BMI 60 body stretches
+// armpit faces to G_uu = 0.75 and compresses them to G_vv = -0.36, past the
+// grid's edges at 0.717 and -0.25. Two cells out every node is the edge
+// sample, so the stiffness is constant and the slope zero.
+Coordinate smooth_coordinate(double t, double slope) {
+  constexpr double lo = -2.0, hi = kN + 1.0;
+  if (!(t > lo)) {
+    t = lo;
+    slope = 0.0;
+  } else if (t > hi) {
+    t = hi;
+    slope = 0.0;
+  }
+  const int cell = static_cast<int>(std::floor(t));
+  return {cell, t - cell, slope};
 }
 
 }  // namespace
@@ -142,8 +163,8 @@ Eigen::Vector4d StretchingTable::node(int i, int j, int k) const {
 
 StiffnessDerivatives StretchingTable::stiffness_derivatives(const Eigen::Vector3d& g) const {
   const Smoothed shear = smoothed_abs(g[2]);
-  const Coordinate ca = coordinate((g[0] + 0.25) * kN, kN), cb = coordinate((g[1] + 0.25) * kN, kN),
-                   cc = coordinate(shear.value * kN, kN);
+  const Coordinate ca = smooth_coordinate((g[0] + 0.25) * kN, kN), cb = smooth_coordinate((g[1] + 0.25) * kN, kN),
+                   cc = smooth_coordinate(shear.value * kN, kN);
   const AxisWeights wa = axis_weights(ca.cell + ca.frac), wb = axis_weights(cb.cell + cb.frac),
                     wc = axis_weights(cc.cell + cc.frac);
   Eigen::Vector4d k = Eigen::Vector4d::Zero(), k_a = k, k_b = k, k_c = k, k_aa = k, k_bb = k, k_cc = k, k_ab = k,
@@ -192,8 +213,8 @@ StiffnessDerivatives StretchingTable::stiffness_derivatives(const Eigen::Vector3
 }
 
 Eigen::Vector4d StretchingTable::smoothed_stiffness(const Eigen::Vector3d& g) const {
-  const Coordinate ca = coordinate((g[0] + 0.25) * kN, kN), cb = coordinate((g[1] + 0.25) * kN, kN),
-                   cc = coordinate(smoothed_abs(g[2]).value * kN, kN);
+  const Coordinate ca = smooth_coordinate((g[0] + 0.25) * kN, kN), cb = smooth_coordinate((g[1] + 0.25) * kN, kN),
+                   cc = smooth_coordinate(smoothed_abs(g[2]).value * kN, kN);
   const AxisWeights wa = axis_weights(ca.cell + ca.frac), wb = axis_weights(cb.cell + cb.frac),
                     wc = axis_weights(cc.cell + cc.frac);
   Eigen::Vector4d k = Eigen::Vector4d::Zero();
@@ -209,12 +230,68 @@ Eigen::Vector4d StretchingTable::smoothed_stiffness(const Eigen::Vector3d& g) co
   return k;
 }
 
+namespace {
+
+// Gauss-Legendre points and weights on [0, 1].
+struct Quadrature {
+  std::array<double, kWorkQuadrature> t{}, w{};
+  Quadrature() {
+    // Newton's iteration on the Legendre polynomial from Chebyshev guesses.
+    constexpr int n = kWorkQuadrature;
+    for (int i = 0; i < n; ++i) {
+      double x = std::cos(std::numbers::pi * (i + 0.75) / (n + 0.5)), dp = 1.0;
+      for (int it = 0; it < 100; ++it) {
+        double p0 = 1.0, p1 = x;
+        for (int k = 2; k <= n; ++k) {
+          const double p2 = ((2.0 * k - 1.0) * x * p1 - (k - 1.0) * p0) / k;
+          p0 = p1;
+          p1 = p2;
+        }
+        dp = n * (x * p1 - p0) / (x * x - 1.0);
+        const double step = p1 / dp;
+        x -= step;
+        if (std::abs(step) < 1e-16) break;
+      }
+      t[static_cast<std::size_t>(i)] = 0.5 * (1.0 - x);
+      w[static_cast<std::size_t>(i)] = 1.0 / ((1.0 - x * x) * dp * dp);
+    }
+  }
+};
+
+const Quadrature& work_quadrature() {
+  static const Quadrature q;
+  return q;
+}
+
+}  // namespace
+
 double StretchingTable::energy_density(const Eigen::Vector3d& g) const {
-  const Eigen::Vector4d k = smoothed_stiffness(g);
-  return 0.5 * (k[0] * g[0] * g[0] + 2.0 * k[1] * g[0] * g[1] + k[2] * g[1] * g[1] + 2.0 * k[3] * g[2] * g[2]);
+  // psi = sum_i w_i (2 / t_i) phi(t_i g).
+  const Quadrature& q = work_quadrature();
+  double psi = 0.0;
+  for (std::size_t i = 0; i < q.t.size(); ++i) {
+    const Eigen::Vector3d y = q.t[i] * g;
+    const Eigen::Vector4d k = smoothed_stiffness(y);
+    const double phi = 0.5 * (k[0] * y[0] * y[0] + 2.0 * k[1] * y[0] * y[1] + k[2] * y[1] * y[1] + 2.0 * k[3] * y[2] * y[2]);
+    psi += 2.0 * q.w[i] / q.t[i] * phi;
+  }
+  return psi;
 }
 
 MembraneDensity StretchingTable::density(const Eigen::Vector3d& g) const {
+  // d/dg phi(t g) = t phi'(t g), d2/dg2 = t^2 phi''(t g).
+  const Quadrature& q = work_quadrature();
+  MembraneDensity out;
+  for (std::size_t i = 0; i < q.t.size(); ++i) {
+    const MembraneDensity d = point_density(q.t[i] * g);
+    out.psi += 2.0 * q.w[i] / q.t[i] * d.psi;
+    out.dpsi += 2.0 * q.w[i] * d.dpsi;
+    out.d2psi += 2.0 * q.w[i] * q.t[i] * d.d2psi;
+  }
+  return out;
+}
+
+MembraneDensity StretchingTable::point_density(const Eigen::Vector3d& g) const {
   const StiffnessDerivatives s = stiffness_derivatives(g);
   // psi = 1/2 sum_l k_l q_l with q = (g0^2, 2 g0 g1, g1^2, 2 g2^2): ArcSim's
   // energy, its shear term doubled as in the force its solver integrates.
