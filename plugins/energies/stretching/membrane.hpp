@@ -140,9 +140,15 @@ inline Eigen::Matrix3d column_frame(const Mat32& F) {
 // first order, so they do not couple to the former and their block is the
 // closed form t S t^T (the membrane's buckling modes under compression). The
 // in-plane 4x4 block is the 2D version of hessian_in_F; it is PSD-tested with a
-// Cholesky factorisation and eigen-decomposed only when that fails.
+// Cholesky factorisation and eigen-decomposed only when that fails. Its
+// negative eigenvalues are clamped to zero (the nearest PSD matrix) or, with
+// `absolute`, replaced by their magnitudes (Chen et al. 2024, "Stabler
+// Neo-Hookean simulation: absolute eigenvalue filtering for projected Newton"):
+// a direction of negative curvature then gets a finite step instead of an
+// unbounded one. The out-of-plane block is always clamped: its negative
+// eigenvalues are the buckling of a compressed face, which should stay free.
 inline Mat6 projected_hessian_in_Y(const Mat32& F, const Eigen::Matrix3d& K, const Eigen::Vector3d& s,
-                                   const Eigen::Matrix2d& t) {
+                                   const Eigen::Matrix2d& t, bool absolute = false) {
   const Eigen::Matrix3d frame = column_frame(F);
   const Eigen::Matrix<double, 3, 2> U = frame.leftCols<2>();
   const Eigen::Vector3d n = frame.col(2);
@@ -170,7 +176,8 @@ inline Mat6 projected_hessian_in_Y(const Mat32& F, const Eigen::Matrix3d& K, con
     }
   if (Eigen::LLT<Eigen::Matrix4d>(in_plane).info() != Eigen::Success) {
     Eigen::SelfAdjointEigenSolver<Eigen::Matrix4d> eig(in_plane);
-    in_plane = eig.eigenvectors() * eig.eigenvalues().cwiseMax(0.0).asDiagonal() * eig.eigenvectors().transpose();
+    const Eigen::Vector4d filtered = absolute ? Eigen::Vector4d(eig.eigenvalues().cwiseAbs()) : Eigen::Vector4d(eig.eigenvalues().cwiseMax(0.0));
+    in_plane = eig.eigenvectors() * filtered.asDiagonal() * eig.eigenvectors().transpose();
   }
   Eigen::Matrix2d S;
   S << s[0], 0.5 * s[2], 0.5 * s[2], s[1];
