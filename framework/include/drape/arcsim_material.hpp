@@ -99,14 +99,16 @@ class StretchingTable {
   // ArcSim's lookup exactly (|G_uv|, no smoothing): what the tests compare with.
   Eigen::Vector4d stiffness(double g_uu, double g_vv, double g_uv) const;
   // drape's C1 lookup (kShearSmoothing, kCornerSmoothing) with derivatives.
-  StiffnessDerivatives stiffness_derivatives(const Eigen::Vector3d& g) const;
+  // (second = false: d2k left zero, for callers that need no Hessian.)
+  StiffnessDerivatives stiffness_derivatives(const Eigen::Vector3d& g, bool second = true) const;
   // drape's C1 lookup alone, and psi alone (what energy values need).
   Eigen::Vector4d smoothed_stiffness(const Eigen::Vector3d& g) const;
   double energy_density(const Eigen::Vector3d& g) const;
-  // psi(g), the work integral, and its exact first and second derivatives.
-  MembraneDensity density(const Eigen::Vector3d& g) const;
+  // psi(g), the work integral, and its exact first and second derivatives
+  // (hessian = false: d2psi left zero, for the gradient alone).
+  MembraneDensity density(const Eigen::Vector3d& g, bool hessian = true) const;
   // phi(g) = k(g) . q(g) / 2 at one strain with its derivatives: the integrand.
-  MembraneDensity point_density(const Eigen::Vector3d& g) const;
+  MembraneDensity point_density(const Eigen::Vector3d& g, bool hessian = true) const;
 
  private:
   Eigen::Vector4d node(int i, int j, int k) const;  // a sample, extended beyond the grid

@@ -161,35 +161,55 @@ Eigen::Vector4d StretchingTable::node(int i, int j, int k) const {
   return sample(i, j, std::min(k, kN - 1));
 }
 
-StiffnessDerivatives StretchingTable::stiffness_derivatives(const Eigen::Vector3d& g) const {
+StiffnessDerivatives StretchingTable::stiffness_derivatives(const Eigen::Vector3d& g, bool second) const {
   const Smoothed shear = smoothed_abs(g[2]);
   const Coordinate ca = smooth_coordinate((g[0] + 0.25) * kN, kN), cb = smooth_coordinate((g[1] + 0.25) * kN, kN),
                    cc = smooth_coordinate(shear.value * kN, kN);
   const AxisWeights wa = axis_weights(ca.cell + ca.frac), wb = axis_weights(cb.cell + cb.frac),
                     wc = axis_weights(cc.cell + cc.frac);
+  auto zero = [](const Weight& w) { return w.w == 0.0 && w.d1 == 0.0 && w.d2 == 0.0; };
+  // The weights are separable, so the sums contract one axis at a time: over
+  // c (value, first and second derivative), then b, then a.
   Eigen::Vector4d k = Eigen::Vector4d::Zero(), k_a = k, k_b = k, k_c = k, k_aa = k, k_bb = k, k_cc = k, k_ab = k,
                   k_ac = k, k_bc = k;
   for (int i = 0; i < 4; ++i) {
     const Weight& x = wa.weights[i];
-    if (x.w == 0.0 && x.d1 == 0.0 && x.d2 == 0.0) continue;
+    if (zero(x)) continue;
+    // Over b and c at this a-node: w = value, 1 = d/db, c = d/dc, ...
+    Eigen::Vector4d bw_cw = Eigen::Vector4d::Zero(), b1_cw = bw_cw, bw_c1 = bw_cw, b2_cw = bw_cw, bw_c2 = bw_cw,
+                    b1_c1 = bw_cw;
     for (int j = 0; j < 4; ++j) {
       const Weight& y = wb.weights[j];
-      if (y.w == 0.0 && y.d1 == 0.0 && y.d2 == 0.0) continue;
+      if (zero(y)) continue;
+      Eigen::Vector4d cw = Eigen::Vector4d::Zero(), c1 = cw, c2 = cw;
       for (int l = 0; l < 4; ++l) {
         const Weight& z = wc.weights[l];
-        if (z.w == 0.0 && z.d1 == 0.0 && z.d2 == 0.0) continue;
+        if (zero(z)) continue;
         const Eigen::Vector4d s = node(wa.first + i, wb.first + j, wc.first + l);
-        k += x.w * y.w * z.w * s;
-        k_a += x.d1 * y.w * z.w * s;
-        k_b += x.w * y.d1 * z.w * s;
-        k_c += x.w * y.w * z.d1 * s;
-        k_aa += x.d2 * y.w * z.w * s;
-        k_bb += x.w * y.d2 * z.w * s;
-        k_cc += x.w * y.w * z.d2 * s;
-        k_ab += x.d1 * y.d1 * z.w * s;
-        k_ac += x.d1 * y.w * z.d1 * s;
-        k_bc += x.w * y.d1 * z.d1 * s;
+        cw += z.w * s;
+        c1 += z.d1 * s;
+        if (second) c2 += z.d2 * s;
       }
+      bw_cw += y.w * cw;
+      b1_cw += y.d1 * cw;
+      bw_c1 += y.w * c1;
+      if (second) {
+        b2_cw += y.d2 * cw;
+        bw_c2 += y.w * c2;
+        b1_c1 += y.d1 * c1;
+      }
+    }
+    k += x.w * bw_cw;
+    k_a += x.d1 * bw_cw;
+    k_b += x.w * b1_cw;
+    k_c += x.w * bw_c1;
+    if (second) {
+      k_aa += x.d2 * bw_cw;
+      k_bb += x.w * b2_cw;
+      k_cc += x.w * bw_c2;
+      k_ab += x.d1 * b1_cw;
+      k_ac += x.d1 * bw_c1;
+      k_bc += x.w * b1_c1;
     }
   }
   // Chain rule to g: a = (g0 + 1/4) N, b = (g1 + 1/4) N, c = |g2|~ N (each
@@ -278,12 +298,12 @@ double StretchingTable::energy_density(const Eigen::Vector3d& g) const {
   return psi;
 }
 
-MembraneDensity StretchingTable::density(const Eigen::Vector3d& g) const {
+MembraneDensity StretchingTable::density(const Eigen::Vector3d& g, bool hessian) const {
   // d/dg phi(t g) = t phi'(t g), d2/dg2 = t^2 phi''(t g).
   const Quadrature& q = work_quadrature();
   MembraneDensity out;
   for (std::size_t i = 0; i < q.t.size(); ++i) {
-    const MembraneDensity d = point_density(q.t[i] * g);
+    const MembraneDensity d = point_density(q.t[i] * g, hessian);
     out.psi += 2.0 * q.w[i] / q.t[i] * d.psi;
     out.dpsi += 2.0 * q.w[i] * d.dpsi;
     out.d2psi += 2.0 * q.w[i] * q.t[i] * d.d2psi;
@@ -291,8 +311,8 @@ MembraneDensity StretchingTable::density(const Eigen::Vector3d& g) const {
   return out;
 }
 
-MembraneDensity StretchingTable::point_density(const Eigen::Vector3d& g) const {
-  const StiffnessDerivatives s = stiffness_derivatives(g);
+MembraneDensity StretchingTable::point_density(const Eigen::Vector3d& g, bool hessian) const {
+  const StiffnessDerivatives s = stiffness_derivatives(g, hessian);
   // psi = 1/2 sum_l k_l q_l with q = (g0^2, 2 g0 g1, g1^2, 2 g2^2): ArcSim's
   // energy, its shear term doubled as in the force its solver integrates.
   const Eigen::Vector4d q(g[0] * g[0], 2.0 * g[0] * g[1], g[1] * g[1], 2.0 * g[2] * g[2]);
@@ -303,6 +323,7 @@ MembraneDensity StretchingTable::point_density(const Eigen::Vector3d& g) const {
   MembraneDensity out;
   out.psi = 0.5 * s.k.dot(q);
   out.dpsi = 0.5 * (s.dk.transpose() * q + dq * s.k);
+  if (!hessian) return out;
   Eigen::Matrix3d h = Eigen::Matrix3d::Zero();
   for (int l = 0; l < 4; ++l) {
     h += q[l] * s.d2k[static_cast<std::size_t>(l)];

@@ -115,10 +115,10 @@ class Stretching final : public ElementEnergy<3> {
   // psi and its derivatives at strain g, scaled by the face's area. The
   // linear model scales its stiffness first, as drape did before the ArcSim
   // model, so that old drapes are reproduced bit for bit.
-  arcsim::MembraneDensity density(const Face& f, const Eigen::Vector3d& g) const {
+  arcsim::MembraneDensity density(const Face& f, const Eigen::Vector3d& g, bool hessian = true) const {
     const std::size_t m = static_cast<std::size_t>(f.material);
     if (!tables_[m]) return arcsim::linear_membrane_density(f.area * materials_[m].stretch, g);
-    arcsim::MembraneDensity d = tables_[m]->density(g);
+    arcsim::MembraneDensity d = tables_[m]->density(g, hessian);
     d.psi *= f.area;
     d.dpsi *= f.area;
     d.d2psi *= f.area;
@@ -140,7 +140,7 @@ class Stretching final : public ElementEnergy<3> {
   double element_gradient(int e, const Stencil& x, StencilGradient& grad) const override {
     const Face& f = faces_[static_cast<std::size_t>(e)];
     const mb::Mat32 F = mb::deformation_gradient(x, f.c);
-    const arcsim::MembraneDensity d = density(f, mb::green_strain(F));
+    const arcsim::MembraneDensity d = density(f, mb::green_strain(F), false);
     // dE/dx_a = P c_a^T since F = sum_a x_a c_a.
     const mb::Mat32 P = mb::stress(F, d.dpsi);
     for (int a = 0; a < 3; ++a) grad.segment<3>(3 * a) = P * f.c.row(a).transpose();
