@@ -285,3 +285,26 @@ TEST_CASE("the C1 lookup joins the grid's edges smoothly and equals ArcSim's cla
   }
 }
 
+TEST_CASE("a stiffness that never changes makes the work potential the quadratic energy", "[arcsim][stretching]") {
+  // Every row of the table equal: k = 2 row everywhere, and the work of the
+  // stress A(k) G along any path is (k_uu g0^2 + 2 k_uv g0 g1 + k_vv g1^2 +
+  // 2 k_shear g2^2) / 2, with stress A(k) G and Hessian A(k) -- checked by hand
+  // here, which pins the quadrature's nodes and weights.
+  ArcsimData data;
+  for (auto& row : data.stretching) row = Eigen::Vector4d(30, 5, 40, 20);
+  const arcsim::StretchingTable table(data);
+  const Eigen::Vector4d k(60, 10, 80, 40);
+  for (const Eigen::Vector3d& g : {Eigen::Vector3d(0.1, -0.05, 0.03), Eigen::Vector3d(-0.2, 0.3, -0.12), Eigen::Vector3d(0.02, 0.01, 0.0)}) {
+    const arcsim::MembraneDensity d = table.density(g);
+    const double psi = 0.5 * (k[0] * g[0] * g[0] + 2 * k[1] * g[0] * g[1] + k[2] * g[1] * g[1] + 2 * k[3] * g[2] * g[2]);
+    const Eigen::Vector3d stress(k[0] * g[0] + k[1] * g[1], k[1] * g[0] + k[2] * g[1], 2 * k[3] * g[2]);
+    Eigen::Matrix3d hessian;
+    hessian << k[0], k[1], 0, k[1], k[2], 0, 0, 0, 2 * k[3];
+    INFO("G " << g.transpose());
+    CHECK(d.psi == Approx(psi).epsilon(1e-12));
+    CHECK(table.energy_density(g) == Approx(psi).epsilon(1e-12));
+    CHECK((d.dpsi - stress).norm() <= 1e-12 * stress.norm());
+    CHECK((d.d2psi - hessian).norm() <= 1e-12 * hessian.norm());
+  }
+}
+
