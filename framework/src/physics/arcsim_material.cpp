@@ -143,6 +143,14 @@ struct AxisWeights {
   Weight weights[4];
 };
 
+// Whether a coordinate lies inside the grid and farther than kCornerSmoothing
+// from every grid plane: there the rounded hats are the plain ones (weights
+// 1 - f and f on nodes cell and cell + 1, slopes -1 and +1, no curvature), and
+// the lookup is trilinear -- the common case, taken without the 4^3 loop.
+bool plain_cell(const Coordinate& c) {
+  return c.cell >= 0 && c.cell <= kN - 2 && c.frac >= kCornerSmoothing && c.frac <= 1.0 - kCornerSmoothing;
+}
+
 AxisWeights axis_weights(double t) {
   AxisWeights out{static_cast<int>(std::floor(t)) - 1, 4, {}};
   for (int k = 0; k < 4; ++k) out.weights[k] = smoothed_hat(t - (out.first + k));
@@ -161,17 +169,67 @@ Eigen::Vector4d StretchingTable::node(int i, int j, int k) const {
   return sample(i, j, std::min(k, kN - 1));
 }
 
+namespace {
+
+// The lookup's derivatives in its grid coordinates taken to the strain g by the
+// chain rule: a = (g0 + 1/4) N, b = (g1 + 1/4) N, c = |g2|~ N (each slope 0
+// where clamped).
+StiffnessDerivatives chain_to_strain(const Coordinate& ca, const Coordinate& cb, const Coordinate& cc, const Smoothed& shear,
+                                     const Eigen::Vector4d& k, const Eigen::Vector4d& k_a, const Eigen::Vector4d& k_b,
+                                     const Eigen::Vector4d& k_c, const Eigen::Vector4d& k_aa, const Eigen::Vector4d& k_bb,
+                                     const Eigen::Vector4d& k_cc, const Eigen::Vector4d& k_ab, const Eigen::Vector4d& k_ac,
+                                     const Eigen::Vector4d& k_bc) {
+  const double da = ca.slope, db = cb.slope, dc = cc.slope * shear.d1, dc2 = cc.slope * shear.d2;
+  StiffnessDerivatives out;
+  out.k = k;
+  out.dk.col(0) = da * k_a;
+  out.dk.col(1) = db * k_b;
+  out.dk.col(2) = dc * k_c;
+  for (int l = 0; l < 4; ++l) {
+    Eigen::Matrix3d& h = out.d2k[static_cast<std::size_t>(l)];
+    h(0, 0) = da * da * k_aa[l];
+    h(1, 1) = db * db * k_bb[l];
+    h(2, 2) = dc * dc * k_cc[l] + dc2 * k_c[l];
+    h(0, 1) = h(1, 0) = da * db * k_ab[l];
+    h(0, 2) = h(2, 0) = da * dc * k_ac[l];
+    h(1, 2) = h(2, 1) = db * dc * k_bc[l];
+  }
+  return out;
+}
+
+}  // namespace
+
 StiffnessDerivatives StretchingTable::stiffness_derivatives(const Eigen::Vector3d& g, bool second) const {
   const Smoothed shear = smoothed_abs(g[2]);
   const Coordinate ca = smooth_coordinate((g[0] + 0.25) * kN, kN), cb = smooth_coordinate((g[1] + 0.25) * kN, kN),
                    cc = smooth_coordinate(shear.value * kN, kN);
   const AxisWeights wa = axis_weights(ca.cell + ca.frac), wb = axis_weights(cb.cell + cb.frac),
                     wc = axis_weights(cc.cell + cc.frac);
+  Eigen::Vector4d k = Eigen::Vector4d::Zero(), k_a = k, k_b = k, k_c = k, k_aa = k, k_bb = k, k_cc = k, k_ab = k,
+                  k_ac = k, k_bc = k;
+  if (plain_cell(ca) && plain_cell(cb) && plain_cell(cc) && std::abs(g[2]) >= kShearSmoothing) {
+    // Trilinear: the 8 corners of the cell, weights (1 - f, f), slopes (-1, +1).
+    const double wa[2] = {1.0 - ca.frac, ca.frac}, wb[2] = {1.0 - cb.frac, cb.frac}, wc[2] = {1.0 - cc.frac, cc.frac};
+    constexpr double d[2] = {-1.0, 1.0};
+    for (int i = 0; i < 2; ++i)
+      for (int j = 0; j < 2; ++j)
+        for (int l = 0; l < 2; ++l) {
+          const Eigen::Vector4d& s = sample(ca.cell + i, cb.cell + j, cc.cell + l);
+          k += (wa[i] * wb[j] * wc[l]) * s;
+          k_a += (d[i] * wb[j] * wc[l]) * s;
+          k_b += (wa[i] * d[j] * wc[l]) * s;
+          k_c += (wa[i] * wb[j] * d[l]) * s;
+          if (second) {
+            k_ab += (d[i] * d[j] * wc[l]) * s;
+            k_ac += (d[i] * wb[j] * d[l]) * s;
+            k_bc += (wa[i] * d[j] * d[l]) * s;
+          }
+        }
+    return chain_to_strain(ca, cb, cc, shear, k, k_a, k_b, k_c, k_aa, k_bb, k_cc, k_ab, k_ac, k_bc);
+  }
   auto zero = [](const Weight& w) { return w.w == 0.0 && w.d1 == 0.0 && w.d2 == 0.0; };
   // The weights are separable, so the sums contract one axis at a time: over
   // c (value, first and second derivative), then b, then a.
-  Eigen::Vector4d k = Eigen::Vector4d::Zero(), k_a = k, k_b = k, k_c = k, k_aa = k, k_bb = k, k_cc = k, k_ab = k,
-                  k_ac = k, k_bc = k;
   for (int i = 0; i < 4; ++i) {
     const Weight& x = wa.weights[i];
     if (zero(x)) continue;
@@ -212,32 +270,22 @@ StiffnessDerivatives StretchingTable::stiffness_derivatives(const Eigen::Vector3
       k_bc += x.w * b1_c1;
     }
   }
-  // Chain rule to g: a = (g0 + 1/4) N, b = (g1 + 1/4) N, c = |g2|~ N (each
-  // slope 0 where clamped).
-  const double da = ca.slope, db = cb.slope, dc = cc.slope * shear.d1, dc2 = cc.slope * shear.d2;
-  StiffnessDerivatives out;
-  out.k = k;
-  out.dk.col(0) = da * k_a;
-  out.dk.col(1) = db * k_b;
-  out.dk.col(2) = dc * k_c;
-  for (int l = 0; l < 4; ++l) {
-    Eigen::Matrix3d& h = out.d2k[static_cast<std::size_t>(l)];
-    h(0, 0) = da * da * k_aa[l];
-    h(1, 1) = db * db * k_bb[l];
-    h(2, 2) = dc * dc * k_cc[l] + dc2 * k_c[l];
-    h(0, 1) = h(1, 0) = da * db * k_ab[l];
-    h(0, 2) = h(2, 0) = da * dc * k_ac[l];
-    h(1, 2) = h(2, 1) = db * dc * k_bc[l];
-  }
-  return out;
+  return chain_to_strain(ca, cb, cc, shear, k, k_a, k_b, k_c, k_aa, k_bb, k_cc, k_ab, k_ac, k_bc);
 }
 
 Eigen::Vector4d StretchingTable::smoothed_stiffness(const Eigen::Vector3d& g) const {
   const Coordinate ca = smooth_coordinate((g[0] + 0.25) * kN, kN), cb = smooth_coordinate((g[1] + 0.25) * kN, kN),
                    cc = smooth_coordinate(smoothed_abs(g[2]).value * kN, kN);
+  Eigen::Vector4d k = Eigen::Vector4d::Zero();
+  if (plain_cell(ca) && plain_cell(cb) && plain_cell(cc) && std::abs(g[2]) >= kShearSmoothing) {
+    const double wa[2] = {1.0 - ca.frac, ca.frac}, wb[2] = {1.0 - cb.frac, cb.frac}, wc[2] = {1.0 - cc.frac, cc.frac};
+    for (int i = 0; i < 2; ++i)
+      for (int j = 0; j < 2; ++j)
+        for (int l = 0; l < 2; ++l) k += (wa[i] * wb[j] * wc[l]) * sample(ca.cell + i, cb.cell + j, cc.cell + l);
+    return k;
+  }
   const AxisWeights wa = axis_weights(ca.cell + ca.frac), wb = axis_weights(cb.cell + cb.frac),
                     wc = axis_weights(cc.cell + cc.frac);
-  Eigen::Vector4d k = Eigen::Vector4d::Zero();
   for (int i = 0; i < 4; ++i) {
     if (wa.weights[i].w == 0.0) continue;
     for (int j = 0; j < 4; ++j) {
