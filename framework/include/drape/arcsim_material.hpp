@@ -99,8 +99,8 @@ class StretchingTable {
   // ArcSim's lookup exactly (|G_uv|, no smoothing): what the tests compare with.
   Eigen::Vector4d stiffness(double g_uu, double g_vv, double g_uv) const;
   // drape's C1 lookup (kShearSmoothing, kCornerSmoothing) with derivatives.
-  // (second = false: d2k left zero, for callers that need no Hessian.)
-  StiffnessDerivatives stiffness_derivatives(const Eigen::Vector3d& g, bool second = true) const;
+  // (order 1: d2k left zero, for callers that need no Hessian; 0: k alone.)
+  StiffnessDerivatives stiffness_derivatives(const Eigen::Vector3d& g, int order = 2) const;
   // drape's C1 lookup alone, and psi alone (what energy values need).
   Eigen::Vector4d smoothed_stiffness(const Eigen::Vector3d& g) const;
   double energy_density(const Eigen::Vector3d& g) const;

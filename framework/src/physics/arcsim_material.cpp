@@ -3,6 +3,8 @@
 // definitions) with the derivatives drape's Newton solver needs.
 #include <drape/arcsim_material.hpp>
 
+#include <boost/math/quadrature/gauss.hpp>
+
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -12,27 +14,28 @@ namespace drape::arcsim {
 namespace {
 
 constexpr int kN = kGridSamples;
-// ArcSim clamps lookups just inside the last cell.
-constexpr double kGridTop = kN - 1 - 1e-5;
 
-// Grid coordinate of a strain component on an axis starting at `origin`,
-// clamped as ArcSim clamps it; `slope` is d(coordinate)/d(strain) (0 where clamped).
+// Grid coordinate t of a strain component, clamped to [lo, hi]; `slope` is
+// d(coordinate)/d(strain), 0 where clamped.
 struct Coordinate {
   int cell;
   double frac, slope;
 };
 
-Coordinate coordinate(double t, double slope) {
-  if (!(t > 0.0)) {
-    t = 0.0;
+Coordinate axis_coordinate(double t, double slope, double lo, double hi) {
+  if (!(t > lo)) {
+    t = lo;
     slope = 0.0;
-  } else if (t > kGridTop) {
-    t = kGridTop;
+  } else if (t > hi) {
+    t = hi;
     slope = 0.0;
   }
-  const int cell = std::min(static_cast<int>(std::floor(t)), kN - 2);
+  const int cell = static_cast<int>(std::floor(t));
   return {cell, t - cell, slope};
 }
+
+// ArcSim clamps lookups just inside the last cell.
+Coordinate arcsim_coordinate(double t) { return axis_coordinate(t, 0.0, 0.0, kN - 1 - 1e-5); }
 
 // |s| made C1 within kShearSmoothing = d of 0, with its first two
 // derivatives: 2 t^2 / d - t^3 / d^2 for t = |s| < d, equal to |s| at 0 and
@@ -47,24 +50,19 @@ Smoothed smoothed_abs(double s) {
   return {2.0 * t * t / d - t * t * t / (d * d), sign * (4.0 * t / d - 3.0 * t * t / (d * d)), 4.0 / d - 6.0 * t / (d * d)};
 }
 
-// The same for drape's C1 lookup: the coordinate runs on past the grid, whose
-// nodes continue its edge samples (StretchingTable::node), so the rounded hats
-// join the last cell to the constant beyond smoothly. Clamping at the edge as
+// drape's C1 lookup lets the coordinate run on past the grid, whose nodes
+// continue its edge samples (StretchingTable::node), so the rounded hats join
+// the last cell to the constant beyond smoothly. Clamping at the edge as
 // ArcSim does left a kink there: the regular shirt on a BMI 60 body stretches
 // armpit faces to G_uu = 0.75 and compresses them to G_vv = -0.36, past the
 // grid's edges at 0.717 and -0.25. Two cells out every node is the edge
 // sample, so the stiffness is constant and the slope zero.
-Coordinate smooth_coordinate(double t, double slope) {
-  constexpr double lo = -2.0, hi = kN + 1.0;
-  if (!(t > lo)) {
-    t = lo;
-    slope = 0.0;
-  } else if (t > hi) {
-    t = hi;
-    slope = 0.0;
-  }
-  const int cell = static_cast<int>(std::floor(t));
-  return {cell, t - cell, slope};
+Coordinate smooth_coordinate(double t) { return axis_coordinate(t, kN, -2.0, kN + 1.0); }
+
+// q(g) = (g0^2, 2 g0 g1, g1^2, 2 g2^2): ArcSim's energy is k . q / 2, its
+// shear term doubled as in the force its solver integrates.
+Eigen::Vector4d strain_products(const Eigen::Vector3d& g) {
+  return {g[0] * g[0], 2.0 * g[0] * g[1], g[1] * g[1], 2.0 * g[2] * g[2]};
 }
 
 }  // namespace
@@ -103,8 +101,8 @@ StretchingTable::StretchingTable(const ArcsimData& data) {
 }
 
 Eigen::Vector4d StretchingTable::stiffness(double g_uu, double g_vv, double g_uv) const {
-  const Coordinate a = coordinate((g_uu + 0.25) * kN, 0.0), b = coordinate((g_vv + 0.25) * kN, 0.0),
-                   c = coordinate(std::abs(g_uv) * kN, 0.0);
+  const Coordinate a = arcsim_coordinate((g_uu + 0.25) * kN), b = arcsim_coordinate((g_vv + 0.25) * kN),
+                   c = arcsim_coordinate(std::abs(g_uv) * kN);
   Eigen::Vector4d k = Eigen::Vector4d::Zero();
   for (int i = 0; i < 2; ++i)
     for (int j = 0; j < 2; ++j)
@@ -136,24 +134,33 @@ Weight smoothed_hat(double x) {
   return {0.0, 0.0, 0.0};
 }
 
-// The up to four nodes whose smoothed hats reach coordinate t, with weights.
+// The nodes whose rounded hats reach coordinate t (consecutive, from `first`):
+// two away from the grid planes (weights 1 - f and f, no curvature), three
+// within kCornerSmoothing of one.
 struct AxisWeights {
-  int first;  // node of weights[0]
-  int count;
-  Weight weights[4];
+  int first = 0;
+  int count = 0;
+  Weight weights[3];
 };
 
-// Whether a coordinate lies inside the grid and farther than kCornerSmoothing
-// from every grid plane: there the rounded hats are the plain ones (weights
-// 1 - f and f on nodes cell and cell + 1, slopes -1 and +1, no curvature), and
-// the lookup is trilinear -- the common case, taken without the 4^3 loop.
-bool plain_cell(const Coordinate& c) {
-  return c.cell >= 0 && c.cell <= kN - 2 && c.frac >= kCornerSmoothing && c.frac <= 1.0 - kCornerSmoothing;
-}
-
 AxisWeights axis_weights(double t) {
-  AxisWeights out{static_cast<int>(std::floor(t)) - 1, 4, {}};
-  for (int k = 0; k < 4; ++k) out.weights[k] = smoothed_hat(t - (out.first + k));
+  AxisWeights out;
+  const double cell = std::floor(t), f = t - cell;
+  if (f >= kCornerSmoothing && f <= 1.0 - kCornerSmoothing) {
+    // Away from the planes: the plain hats (smoothed_hat's middle branch).
+    out.first = static_cast<int>(cell);
+    out.count = 2;
+    out.weights[0] = {1.0 - f, -1.0, 0.0};
+    out.weights[1] = {f, 1.0, 0.0};
+    return out;
+  }
+  const int base = static_cast<int>(cell) - 1;
+  for (int k = 0; k < 4; ++k) {
+    const Weight w = smoothed_hat(t - (base + k));
+    if (w.w == 0.0 && w.d1 == 0.0 && w.d2 == 0.0) continue;
+    if (out.count == 0) out.first = base + k;
+    out.weights[out.count++] = w;
+  }
   return out;
 }
 
@@ -171,17 +178,44 @@ Eigen::Vector4d StretchingTable::node(int i, int j, int k) const {
 
 namespace {
 
-// The lookup's derivatives in its grid coordinates taken to the strain g by the
-// chain rule: a = (g0 + 1/4) N, b = (g1 + 1/4) N, c = |g2|~ N (each slope 0
-// where clamped).
-StiffnessDerivatives chain_to_strain(const Coordinate& ca, const Coordinate& cb, const Coordinate& cc, const Smoothed& shear,
-                                     const Eigen::Vector4d& k, const Eigen::Vector4d& k_a, const Eigen::Vector4d& k_b,
-                                     const Eigen::Vector4d& k_c, const Eigen::Vector4d& k_aa, const Eigen::Vector4d& k_bb,
-                                     const Eigen::Vector4d& k_cc, const Eigen::Vector4d& k_ab, const Eigen::Vector4d& k_ac,
-                                     const Eigen::Vector4d& k_bc) {
-  const double da = ca.slope, db = cb.slope, dc = cc.slope * shear.d1, dc2 = cc.slope * shear.d2;
+// The C1 lookup at strain g with its derivatives up to Order (0: k alone; 1:
+// dk too; 2: d2k too), `node(i, j, k)` giving the extended grid's samples.
+template <int Order, class Node>
+StiffnessDerivatives smooth_lookup(const Eigen::Vector3d& g, const Node& node) {
+  const Smoothed shear = smoothed_abs(g[2]);
+  const Coordinate ca = smooth_coordinate((g[0] + 0.25) * kN), cb = smooth_coordinate((g[1] + 0.25) * kN),
+                   cc = smooth_coordinate(shear.value * kN);
+  const AxisWeights wa = axis_weights(ca.cell + ca.frac), wb = axis_weights(cb.cell + cb.frac),
+                    wc = axis_weights(cc.cell + cc.frac);
+  // Sums over the 8-27 nodes that reach g, in grid coordinates a, b, c.
+  Eigen::Vector4d k = Eigen::Vector4d::Zero(), k_a = k, k_b = k, k_c = k, k_aa = k, k_bb = k, k_cc = k, k_ab = k,
+                  k_ac = k, k_bc = k;
+  for (int i = 0; i < wa.count; ++i)
+    for (int j = 0; j < wb.count; ++j)
+      for (int l = 0; l < wc.count; ++l) {
+        const Weight &x = wa.weights[i], &y = wb.weights[j], &z = wc.weights[l];
+        const Eigen::Vector4d s = node(wa.first + i, wb.first + j, wc.first + l);
+        k += x.w * y.w * z.w * s;
+        if constexpr (Order >= 1) {
+          k_a += x.d1 * y.w * z.w * s;
+          k_b += x.w * y.d1 * z.w * s;
+          k_c += x.w * y.w * z.d1 * s;
+        }
+        if constexpr (Order >= 2) {
+          k_aa += x.d2 * y.w * z.w * s;
+          k_bb += x.w * y.d2 * z.w * s;
+          k_cc += x.w * y.w * z.d2 * s;
+          k_ab += x.d1 * y.d1 * z.w * s;
+          k_ac += x.d1 * y.w * z.d1 * s;
+          k_bc += x.w * y.d1 * z.d1 * s;
+        }
+      }
   StiffnessDerivatives out;
   out.k = k;
+  if constexpr (Order == 0) return out;
+  // Chain rule to g: a = (g0 + 1/4) N, b = (g1 + 1/4) N, c = |g2|~ N (each
+  // slope 0 where clamped).
+  const double da = ca.slope, db = cb.slope, dc = cc.slope * shear.d1, dc2 = cc.slope * shear.d2;
   out.dk.col(0) = da * k_a;
   out.dk.col(1) = db * k_b;
   out.dk.col(2) = dc * k_c;
@@ -199,129 +233,28 @@ StiffnessDerivatives chain_to_strain(const Coordinate& ca, const Coordinate& cb,
 
 }  // namespace
 
-StiffnessDerivatives StretchingTable::stiffness_derivatives(const Eigen::Vector3d& g, bool second) const {
-  const Smoothed shear = smoothed_abs(g[2]);
-  const Coordinate ca = smooth_coordinate((g[0] + 0.25) * kN, kN), cb = smooth_coordinate((g[1] + 0.25) * kN, kN),
-                   cc = smooth_coordinate(shear.value * kN, kN);
-  const AxisWeights wa = axis_weights(ca.cell + ca.frac), wb = axis_weights(cb.cell + cb.frac),
-                    wc = axis_weights(cc.cell + cc.frac);
-  Eigen::Vector4d k = Eigen::Vector4d::Zero(), k_a = k, k_b = k, k_c = k, k_aa = k, k_bb = k, k_cc = k, k_ab = k,
-                  k_ac = k, k_bc = k;
-  if (plain_cell(ca) && plain_cell(cb) && plain_cell(cc) && std::abs(g[2]) >= kShearSmoothing) {
-    // Trilinear: the 8 corners of the cell, weights (1 - f, f), slopes (-1, +1).
-    const double wa[2] = {1.0 - ca.frac, ca.frac}, wb[2] = {1.0 - cb.frac, cb.frac}, wc[2] = {1.0 - cc.frac, cc.frac};
-    constexpr double d[2] = {-1.0, 1.0};
-    for (int i = 0; i < 2; ++i)
-      for (int j = 0; j < 2; ++j)
-        for (int l = 0; l < 2; ++l) {
-          const Eigen::Vector4d& s = sample(ca.cell + i, cb.cell + j, cc.cell + l);
-          k += (wa[i] * wb[j] * wc[l]) * s;
-          k_a += (d[i] * wb[j] * wc[l]) * s;
-          k_b += (wa[i] * d[j] * wc[l]) * s;
-          k_c += (wa[i] * wb[j] * d[l]) * s;
-          if (second) {
-            k_ab += (d[i] * d[j] * wc[l]) * s;
-            k_ac += (d[i] * wb[j] * d[l]) * s;
-            k_bc += (wa[i] * d[j] * d[l]) * s;
-          }
-        }
-    return chain_to_strain(ca, cb, cc, shear, k, k_a, k_b, k_c, k_aa, k_bb, k_cc, k_ab, k_ac, k_bc);
-  }
-  auto zero = [](const Weight& w) { return w.w == 0.0 && w.d1 == 0.0 && w.d2 == 0.0; };
-  // The weights are separable, so the sums contract one axis at a time: over
-  // c (value, first and second derivative), then b, then a.
-  for (int i = 0; i < 4; ++i) {
-    const Weight& x = wa.weights[i];
-    if (zero(x)) continue;
-    // Over b and c at this a-node: w = value, 1 = d/db, c = d/dc, ...
-    Eigen::Vector4d bw_cw = Eigen::Vector4d::Zero(), b1_cw = bw_cw, bw_c1 = bw_cw, b2_cw = bw_cw, bw_c2 = bw_cw,
-                    b1_c1 = bw_cw;
-    for (int j = 0; j < 4; ++j) {
-      const Weight& y = wb.weights[j];
-      if (zero(y)) continue;
-      Eigen::Vector4d cw = Eigen::Vector4d::Zero(), c1 = cw, c2 = cw;
-      for (int l = 0; l < 4; ++l) {
-        const Weight& z = wc.weights[l];
-        if (zero(z)) continue;
-        const Eigen::Vector4d s = node(wa.first + i, wb.first + j, wc.first + l);
-        cw += z.w * s;
-        c1 += z.d1 * s;
-        if (second) c2 += z.d2 * s;
-      }
-      bw_cw += y.w * cw;
-      b1_cw += y.d1 * cw;
-      bw_c1 += y.w * c1;
-      if (second) {
-        b2_cw += y.d2 * cw;
-        bw_c2 += y.w * c2;
-        b1_c1 += y.d1 * c1;
-      }
-    }
-    k += x.w * bw_cw;
-    k_a += x.d1 * bw_cw;
-    k_b += x.w * b1_cw;
-    k_c += x.w * bw_c1;
-    if (second) {
-      k_aa += x.d2 * bw_cw;
-      k_bb += x.w * b2_cw;
-      k_cc += x.w * bw_c2;
-      k_ab += x.d1 * b1_cw;
-      k_ac += x.d1 * bw_c1;
-      k_bc += x.w * b1_c1;
-    }
-  }
-  return chain_to_strain(ca, cb, cc, shear, k, k_a, k_b, k_c, k_aa, k_bb, k_cc, k_ab, k_ac, k_bc);
+StiffnessDerivatives StretchingTable::stiffness_derivatives(const Eigen::Vector3d& g, int order) const {
+  const auto nodes = [this](int i, int j, int k) { return node(i, j, k); };
+  return order <= 0 ? smooth_lookup<0>(g, nodes) : order == 1 ? smooth_lookup<1>(g, nodes) : smooth_lookup<2>(g, nodes);
 }
 
-Eigen::Vector4d StretchingTable::smoothed_stiffness(const Eigen::Vector3d& g) const {
-  const Coordinate ca = smooth_coordinate((g[0] + 0.25) * kN, kN), cb = smooth_coordinate((g[1] + 0.25) * kN, kN),
-                   cc = smooth_coordinate(smoothed_abs(g[2]).value * kN, kN);
-  Eigen::Vector4d k = Eigen::Vector4d::Zero();
-  if (plain_cell(ca) && plain_cell(cb) && plain_cell(cc) && std::abs(g[2]) >= kShearSmoothing) {
-    const double wa[2] = {1.0 - ca.frac, ca.frac}, wb[2] = {1.0 - cb.frac, cb.frac}, wc[2] = {1.0 - cc.frac, cc.frac};
-    for (int i = 0; i < 2; ++i)
-      for (int j = 0; j < 2; ++j)
-        for (int l = 0; l < 2; ++l) k += (wa[i] * wb[j] * wc[l]) * sample(ca.cell + i, cb.cell + j, cc.cell + l);
-    return k;
-  }
-  const AxisWeights wa = axis_weights(ca.cell + ca.frac), wb = axis_weights(cb.cell + cb.frac),
-                    wc = axis_weights(cc.cell + cc.frac);
-  for (int i = 0; i < 4; ++i) {
-    if (wa.weights[i].w == 0.0) continue;
-    for (int j = 0; j < 4; ++j) {
-      if (wb.weights[j].w == 0.0) continue;
-      for (int l = 0; l < 4; ++l)
-        if (wc.weights[l].w != 0.0)
-          k += (wa.weights[i].w * wb.weights[j].w * wc.weights[l].w) * node(wa.first + i, wb.first + j, wc.first + l);
-    }
-  }
-  return k;
-}
+Eigen::Vector4d StretchingTable::smoothed_stiffness(const Eigen::Vector3d& g) const { return stiffness_derivatives(g, 0).k; }
 
 namespace {
 
-// Gauss-Legendre points and weights on [0, 1].
+// Gauss-Legendre points and weights on [0, 1] (Boost.Math's rule on [-1, 1]
+// lists the non-negative half).
 struct Quadrature {
   std::array<double, kWorkQuadrature> t{}, w{};
   Quadrature() {
-    // Newton's iteration on the Legendre polynomial from Chebyshev guesses.
-    constexpr int n = kWorkQuadrature;
-    for (int i = 0; i < n; ++i) {
-      double x = std::cos(std::numbers::pi * (i + 0.75) / (n + 0.5)), dp = 1.0;
-      for (int it = 0; it < 100; ++it) {
-        double p0 = 1.0, p1 = x;
-        for (int k = 2; k <= n; ++k) {
-          const double p2 = ((2.0 * k - 1.0) * x * p1 - (k - 1.0) * p0) / k;
-          p0 = p1;
-          p1 = p2;
-        }
-        dp = n * (x * p1 - p0) / (x * x - 1.0);
-        const double step = p1 / dp;
-        x -= step;
-        if (std::abs(step) < 1e-16) break;
-      }
-      t[static_cast<std::size_t>(i)] = 0.5 * (1.0 - x);
-      w[static_cast<std::size_t>(i)] = 1.0 / ((1.0 - x * x) * dp * dp);
+    using Rule = boost::math::quadrature::gauss<double, kWorkQuadrature>;
+    static_assert(kWorkQuadrature % 2 == 0, "an even rule: no point at the middle");
+    const auto& x = Rule::abscissa();
+    const auto& weight = Rule::weights();
+    for (std::size_t i = 0; i < x.size(); ++i) {
+      t[2 * i] = 0.5 * (1.0 - x[i]);
+      t[2 * i + 1] = 0.5 * (1.0 + x[i]);
+      w[2 * i] = w[2 * i + 1] = 0.5 * weight[i];
     }
   }
 };
@@ -339,9 +272,7 @@ double StretchingTable::energy_density(const Eigen::Vector3d& g) const {
   double psi = 0.0;
   for (std::size_t i = 0; i < q.t.size(); ++i) {
     const Eigen::Vector3d y = q.t[i] * g;
-    const Eigen::Vector4d k = smoothed_stiffness(y);
-    const double phi = 0.5 * (k[0] * y[0] * y[0] + 2.0 * k[1] * y[0] * y[1] + k[2] * y[1] * y[1] + 2.0 * k[3] * y[2] * y[2]);
-    psi += 2.0 * q.w[i] / q.t[i] * phi;
+    psi += q.w[i] / q.t[i] * smoothed_stiffness(y).dot(strain_products(y));
   }
   return psi;
 }
@@ -360,10 +291,8 @@ MembraneDensity StretchingTable::density(const Eigen::Vector3d& g, bool hessian)
 }
 
 MembraneDensity StretchingTable::point_density(const Eigen::Vector3d& g, bool hessian) const {
-  const StiffnessDerivatives s = stiffness_derivatives(g, hessian);
-  // psi = 1/2 sum_l k_l q_l with q = (g0^2, 2 g0 g1, g1^2, 2 g2^2): ArcSim's
-  // energy, its shear term doubled as in the force its solver integrates.
-  const Eigen::Vector4d q(g[0] * g[0], 2.0 * g[0] * g[1], g[1] * g[1], 2.0 * g[2] * g[2]);
+  const StiffnessDerivatives s = stiffness_derivatives(g, hessian ? 2 : 1);
+  const Eigen::Vector4d q = strain_products(g);  // psi = k . q / 2
   Eigen::Matrix<double, 3, 4> dq;  // column l: dq_l/dg
   dq << 2.0 * g[0], 2.0 * g[1], 0.0, 0.0,  //
       0.0, 2.0 * g[0], 2.0 * g[1], 0.0,    //
@@ -375,8 +304,8 @@ MembraneDensity StretchingTable::point_density(const Eigen::Vector3d& g, bool he
   Eigen::Matrix3d h = Eigen::Matrix3d::Zero();
   for (int l = 0; l < 4; ++l) {
     h += q[l] * s.d2k[static_cast<std::size_t>(l)];
-    const Eigen::Vector3d cross = s.dk.row(l).transpose() * 1.0;
-    h += cross * dq.col(l).transpose() + dq.col(l) * cross.transpose();
+    const Eigen::Vector3d dk = s.dk.row(l).transpose();
+    h += dk * dq.col(l).transpose() + dq.col(l) * dk.transpose();
   }
   // sum_l k_l d2q_l.
   h(0, 0) += 2.0 * s.k[0];
