@@ -24,10 +24,9 @@
 // arcsim faces the in-plane block's negative eigenvalues are replaced by their
 // magnitudes instead of clamped (absolute eigenvalue filtering): ArcSim's
 // table makes the density non-convex over much of the strain space, and with
-// clamping Newton's model predicted no curvature where the energy curves up.
-// Over 12 coarse drapes of BMI 10-65 that took 5 -> 7 settled drapes (12 with
-// the work potential too) and a fifth fewer Newton iterations
-// (docs/scenes.md). Linear faces keep the nearest PSD matrix, as before.
+// clamping Newton's model predicted no curvature where the energy curves up
+// (measured in docs/scenes.md, "What settles the heavy drapes"). Linear faces
+// keep the nearest PSD matrix, as before.
 #include <drape/arcsim_material.hpp>
 #include <drape/element_energy.hpp>
 #include <drape/plugin.hpp>
@@ -151,10 +150,12 @@ class Stretching final : public ElementEnergy<3> {
     const Face& f = faces_[static_cast<std::size_t>(e)];
     const mb::Mat32 F = mb::deformation_gradient(x, f.c);
     const arcsim::MembraneDensity d = density(f, mb::green_strain(F));
-    if (!project_psd || (mb::stress_is_psd(d.dpsi) && mb::stiffness_is_psd(d.d2psi)))
+    if (!project_psd || (mb::stress_is_psd(d.dpsi) && mb::stiffness_is_psd(d.d2psi))) {
       h = mb::lift(mb::hessian_in_F(F, d.d2psi, d.dpsi), f.c);
-    else
-      h = mb::lift(mb::projected_hessian_in_Y(F, d.d2psi, d.dpsi, f.t, tables_[static_cast<std::size_t>(f.material)] != nullptr), f.q);
+      return;
+    }
+    const bool arcsim_face = tables_[static_cast<std::size_t>(f.material)] != nullptr;  // absolute filtering
+    h = mb::lift(mb::projected_hessian_in_Y(F, d.d2psi, d.dpsi, f.t, arcsim_face), f.q);
   }
 
   double scale_;
