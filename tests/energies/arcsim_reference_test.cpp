@@ -236,20 +236,57 @@ TEST_CASE("ArcSim-model derivatives match finite differences, including a 100x s
   }
 }
 
-TEST_CASE("the C1 lookup is ArcSim's at zero shear, from 0.1 % shear on, and away from grid planes", "[arcsim][stretching]") {
+TEST_CASE("the C1 lookup is ArcSim's at zero shear, beyond the shear band, and away from grid planes", "[arcsim][stretching]") {
   const arcsim::StretchingTable table(gray_interlock().arcsim);
-  for (double shear : {0.0, 1e-3, -1e-3, 0.02, -0.07}) {
-    // G_uu = 0.055, G_vv = 0.01: 0.15 and 0.2 cell from the nearest grid planes.
+  // G_uu = 0.055, G_vv = 0.01 (0.15 and 0.2 cell from the nearest grid
+  // planes): the band's width is sqrt(0.25^2 (0.055^2 + 0.01^2) + 0.001^2)
+  // = 0.01401, so shears of 0.0141 and more are ArcSim's lookup exactly.
+  for (double shear : {0.0, 0.0141, -0.0141, 0.02, -0.07}) {
     const Eigen::Vector4d exact = table.stiffness(0.055, 0.01, shear);
     const Eigen::Vector4d smooth = table.stiffness_derivatives(Eigen::Vector3d(0.055, 0.01, shear)).k;
     INFO("G_uv " << shear);
     CHECK((exact - smooth).norm() <= 1e-9 * exact.norm());
   }
-  // Within the smoothing band the stiffness stays between its values at 0 and 1e-3.
-  const double lo = table.stiffness(0.055, 0.01, 0.0)[3], hi = table.stiffness(0.055, 0.01, 1e-3)[3];
-  const double mid = table.stiffness_derivatives(Eigen::Vector3d(0.055, 0.01, 5e-4)).k[3];
-  CHECK(mid >= std::min(lo, hi) - 1e-12);
-  CHECK(mid <= std::max(lo, hi) + 1e-12);
+  // Within the band the stiffness stays between its values at 0 and the band's edge.
+  const double lo = table.stiffness(0.055, 0.01, 0.0)[3], hi = table.stiffness(0.055, 0.01, 0.01401)[3];
+  for (double shear : {0.001, 0.005, 0.0139}) {
+    const double mid = table.stiffness_derivatives(Eigen::Vector3d(0.055, 0.01, shear)).k[3];
+    INFO("G_uv " << shear);
+    CHECK(mid >= std::min(lo, hi) - 1e-12);
+    CHECK(mid <= std::max(lo, hi) + 1e-12);
+  }
+  // The band grows with the stretch: at G_uu = 0.205 (width 0.051) a shear of
+  // 0.04 is inside it, at G_uu = 0.025 (width 0.0064) outside.
+  const auto off_arcsim = [&](double g_uu, double g_uv) {
+    return (table.stiffness_derivatives(Eigen::Vector3d(g_uu, 0.0, g_uv)).k - table.stiffness(g_uu, 0.0, g_uv)).norm() /
+           table.stiffness(g_uu, 0.0, g_uv).norm();
+  };
+  CHECK(off_arcsim(0.205, 0.04) > 1e-4);
+  CHECK(off_arcsim(0.025, 0.04) <= 1e-9);
+}
+
+TEST_CASE("the C1 lookup's derivatives match finite differences inside and outside the shear band", "[arcsim][gradcheck]") {
+  // Inside the band the shear coordinate depends on G_uu and G_vv too (the
+  // band's width does), which the cross derivatives must carry. The points
+  // keep 0.15 cell or more from the boundaries of the corner rounding, where
+  // the C1 lookup's second derivative jumps.
+  const arcsim::StretchingTable table(gray_interlock().arcsim);
+  for (const Eigen::Vector3d& g : {Eigen::Vector3d(0.1, 0.025, 0.005), Eigen::Vector3d(0.125, -0.04, -0.011),
+                                   Eigen::Vector3d(-0.03, 0.15, 0.02), Eigen::Vector3d(0.05, 0.05, 0.04)}) {
+    const arcsim::StiffnessDerivatives d = table.stiffness_derivatives(g);
+    const double h = 1e-7;
+    for (int m = 0; m < 3; ++m) {
+      const Eigen::Vector3d e = Eigen::Vector3d::Unit(m) * h;
+      const arcsim::StiffnessDerivatives p = table.stiffness_derivatives(g + e), q = table.stiffness_derivatives(g - e);
+      const Eigen::Vector4d fd = (p.k - q.k) / (2 * h);
+      INFO("g " << g.transpose() << ", axis " << m);
+      CHECK((fd - d.dk.col(m)).norm() <= 1e-5 * (1.0 + d.dk.norm()));
+      for (int l = 0; l < 4; ++l) {
+        const Eigen::Vector3d fd2 = (p.dk.row(l) - q.dk.row(l)).transpose() / (2 * h);
+        CHECK((fd2 - d.d2k[static_cast<std::size_t>(l)].col(m)).norm() <= 1e-4 * (1.0 + d.d2k[static_cast<std::size_t>(l)].norm()));
+      }
+    }
+  }
 }
 
 TEST_CASE("the C1 lookup joins the grid's edges smoothly and equals ArcSim's clamp beyond them", "[arcsim][stretching]") {
@@ -261,7 +298,9 @@ TEST_CASE("the C1 lookup joins the grid's edges smoothly and equals ArcSim's cla
   const double top = -0.25 + 29.0 / 30.0, bottom = -0.25;
   for (const double edge : {top, bottom}) {
     for (int axis = 0; axis < 2; ++axis) {
-      Eigen::Vector3d g(0.055, 0.01, 0.02);  // each 0.15-0.4 cell from a grid plane
+      // Each coordinate 0.15-0.4 cell from a grid plane; the shear beyond the
+      // shear band (0.19 wide at the top edge).
+      Eigen::Vector3d g(0.055, 0.01, 0.205);
       g[axis] = edge;
       const Eigen::Vector3d below = g - Eigen::Vector3d::Unit(axis) * 1e-7, above = g + Eigen::Vector3d::Unit(axis) * 1e-7;
       const Eigen::Vector4d slope_below = table.stiffness_derivatives(below).dk.col(axis),

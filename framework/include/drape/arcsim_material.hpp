@@ -29,7 +29,8 @@
 // exceeds ArcSim's force by up to 40 % at 10-17 % strain and falls where the
 // measured range ends (a negative stiffness, a material instability on which
 // heavy drapes did not settle; docs/materials.md). One departure inside k:
-// |G_uv| is smoothed within kShearSmoothing of zero (see there).
+// |G_uv| is smoothed near zero, over a band relative to the stretch (see
+// kShearBand).
 //
 // Bending. ArcSim's stiffness (bending_stiffness) of a hinge side is the
 // bilinear interpolation of the 3 x 5 table over the edge's material-space
@@ -56,12 +57,22 @@ inline constexpr double kMeasuredStretch = 1.0 / 6.0;
 // 1.7 %; scripts/reference/arcsim_reference.py).
 inline constexpr int kWorkQuadrature = 8;
 
-// |G_uv| enters ArcSim's lookup as a kink at zero shear: the energy's
-// gradient would jump there (by as much as the gradient itself on a face
-// stretched along u), a V-shaped valley no Newton step settles into. drape
-// replaces |s| by 2 s^2 / d - |s|^3 / d^2 for |s| < d (C1; equal to |s| at 0
-// and from d on): exact at zero shear and wherever |G_uv| >= 1e-3 (0.1 % shear).
+// |G_uv| enters ArcSim's lookup as a kink at zero shear (through the angle
+// of the principal stretch, |atan2(...)|): the energy's gradient would jump
+// there (by as much as the gradient itself on a face stretched along u), a
+// V-shaped valley no Newton step settles into. drape replaces |s| by
+// m f(s / m), f(x) = 2 x^2 - |x|^3 for |x| < 1 and |x| beyond (C1; equal to
+// |s| at 0 and from m on), over a band that grows with the stretch,
+//   m = sqrt(kShearBand^2 (G_uu^2 + G_vv^2) + kShearSmoothing^2),
+// because the kink's size grows with it: the valley's walls differ in slope
+// by dk/d|G_uv| times G^2, so a fixed band of 1e-3 made the Hessian of a
+// taut face change twentyfold within 0.1 mm of motion, and Newton steps on
+// the default shirt reached a third of the decrease their model predicted.
+// Exact at zero shear and wherever |G_uv| >= m: on a uniaxial stretch 20
+// degrees or more from the warp or weft (|G_uv| / |(G_uu, G_vv)| >= 0.36
+// there) once |G| exceeds 0.4 %, like the fixed band of 1e-3 it replaced.
 inline constexpr double kShearSmoothing = 1e-3;
+inline constexpr double kShearBand = 0.25;
 
 // Trilinear interpolation is only C0: the energy's gradient jumps across every
 // face of the 30^3 grid, by as much as the gradient itself where the stiffness

@@ -37,17 +37,33 @@ Coordinate axis_coordinate(double t, double slope, double lo, double hi) {
 // ArcSim clamps lookups just inside the last cell.
 Coordinate arcsim_coordinate(double t) { return axis_coordinate(t, 0.0, 0.0, kN - 1 - 1e-5); }
 
-// |s| made C1 within kShearSmoothing = d of 0, with its first two
-// derivatives: 2 t^2 / d - t^3 / d^2 for t = |s| < d, equal to |s| at 0 and
-// from d on, with slope 0 at 0 and 1 at d.
-struct Smoothed {
-  double value, d1, d2;
+// |G_uv| made C1 (kShearBand): c = m f(s / m) with m the band's width at
+// G, and c's gradient and Hessian in G.
+struct SmoothedShear {
+  double value;
+  Eigen::Vector3d d1;
+  Eigen::Matrix3d d2;
 };
 
-Smoothed smoothed_abs(double s) {
-  const double d = kShearSmoothing, t = std::abs(s), sign = s < 0 ? -1.0 : 1.0;
-  if (t >= d) return {t, sign, 0.0};
-  return {2.0 * t * t / d - t * t * t / (d * d), sign * (4.0 * t / d - 3.0 * t * t / (d * d)), 4.0 / d - 6.0 * t / (d * d)};
+SmoothedShear smoothed_shear(const Eigen::Vector3d& g) {
+  const double s = g[2], t = std::abs(s), sign = s < 0 ? -1.0 : 1.0;
+  const double m = std::sqrt(kShearBand * kShearBand * (g[0] * g[0] + g[1] * g[1]) + kShearSmoothing * kShearSmoothing);
+  SmoothedShear out{t, Eigen::Vector3d(0.0, 0.0, sign), Eigen::Matrix3d::Zero()};
+  if (t >= m) return out;
+  // f(x) = 2 x^2 - |x|^3 and its derivatives; c = m f(x), x = s / m.
+  const double x = s / m, ax = t / m;
+  const double f = 2.0 * x * x - ax * ax * ax, f1 = 4.0 * x - 3.0 * x * ax, f2 = 4.0 - 6.0 * ax;
+  const double c_s = f1, c_m = f - x * f1, c_ss = f2 / m, c_sm = -x * f2 / m, c_mm = x * x * f2 / m;
+  // m's gradient and Hessian in (G_uu, G_vv).
+  const double b2 = kShearBand * kShearBand;
+  const Eigen::Vector2d m1(b2 * g[0] / m, b2 * g[1] / m);
+  const Eigen::Matrix2d m2 = b2 / m * Eigen::Matrix2d::Identity() - m1 * m1.transpose() / m;
+  out.value = m * f;
+  out.d1 << c_m * m1, c_s;
+  out.d2.topLeftCorner<2, 2>() = c_mm * m1 * m1.transpose() + c_m * m2;
+  out.d2.block<2, 1>(0, 2) = out.d2.block<1, 2>(2, 0).transpose() = c_sm * m1;
+  out.d2(2, 2) = c_ss;
+  return out;
 }
 
 // drape's C1 lookup lets the coordinate run on past the grid, whose nodes
@@ -182,7 +198,7 @@ namespace {
 // dk too; 2: d2k too), `node(i, j, k)` giving the extended grid's samples.
 template <int Order, class Node>
 StiffnessDerivatives smooth_lookup(const Eigen::Vector3d& g, const Node& node) {
-  const Smoothed shear = smoothed_abs(g[2]);
+  const SmoothedShear shear = smoothed_shear(g);
   const Coordinate ca = smooth_coordinate((g[0] + 0.25) * kN), cb = smooth_coordinate((g[1] + 0.25) * kN),
                    cc = smooth_coordinate(shear.value * kN);
   const AxisWeights wa = axis_weights(ca.cell + ca.frac), wb = axis_weights(cb.cell + cb.frac),
@@ -213,20 +229,22 @@ StiffnessDerivatives smooth_lookup(const Eigen::Vector3d& g, const Node& node) {
   StiffnessDerivatives out;
   out.k = k;
   if constexpr (Order == 0) return out;
-  // Chain rule to g: a = (g0 + 1/4) N, b = (g1 + 1/4) N, c = |g2|~ N (each
-  // slope 0 where clamped).
-  const double da = ca.slope, db = cb.slope, dc = cc.slope * shear.d1, dc2 = cc.slope * shear.d2;
-  out.dk.col(0) = da * k_a;
-  out.dk.col(1) = db * k_b;
-  out.dk.col(2) = dc * k_c;
+  // Chain rule to g through the grid coordinates' Jacobian: a = (g0 + 1/4) N,
+  // b = (g1 + 1/4) N, c = N |g2|~ (each slope 0 where clamped); c depends on
+  // g0 and g1 too, through the shear band's width.
+  Eigen::Matrix3d jacobian = Eigen::Matrix3d::Zero();
+  jacobian(0, 0) = ca.slope;
+  jacobian(1, 1) = cb.slope;
+  jacobian.row(2) = cc.slope * shear.d1.transpose();
+  for (int l = 0; l < 4; ++l) out.dk.row(l) = (jacobian.transpose() * Eigen::Vector3d(k_a[l], k_b[l], k_c[l])).transpose();
+  if constexpr (Order == 1) {
+    out.d2k.fill(Eigen::Matrix3d::Zero());
+    return out;
+  }
   for (int l = 0; l < 4; ++l) {
-    Eigen::Matrix3d& h = out.d2k[static_cast<std::size_t>(l)];
-    h(0, 0) = da * da * k_aa[l];
-    h(1, 1) = db * db * k_bb[l];
-    h(2, 2) = dc * dc * k_cc[l] + dc2 * k_c[l];
-    h(0, 1) = h(1, 0) = da * db * k_ab[l];
-    h(0, 2) = h(2, 0) = da * dc * k_ac[l];
-    h(1, 2) = h(2, 1) = db * dc * k_bc[l];
+    Eigen::Matrix3d grid;
+    grid << k_aa[l], k_ab[l], k_ac[l], k_ab[l], k_bb[l], k_bc[l], k_ac[l], k_bc[l], k_cc[l];
+    out.d2k[static_cast<std::size_t>(l)] = jacobian.transpose() * grid * jacobian + k_c[l] * cc.slope * shear.d2;
   }
   return out;
 }
