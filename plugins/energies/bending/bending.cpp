@@ -26,10 +26,19 @@
 // term; `eigen` clamps the negative eigenvalues of the exact 12x12 block, the
 // nearest PSD matrix, at several times the cost.
 //
+// Collapsing wings: E_e is multiplied by a weight w that fades from 1 to 0 as
+// a wing's 3D height over the edge falls below kFadeFraction (10 %) of its rest
+// (UV) height (wing_fade.hpp), because theta's derivatives grow like 1/h and
+// 1/h^2 there. Derivatives are exact: w E' dtheta + E dw, and w H_e + E' (dtheta
+// dw^T + dw dtheta^T) + E d2w. A faded hinge's block is made PSD by clamping its
+// eigenvalues under either projection (the product has no rank-one
+// Gauss-Newton form); hinges outside the fade are computed exactly as before.
+//
 // Degenerate input: hinges whose two faces have (nearly) zero total UV area
 // (at most 1e-10 times the mean) are skipped with one warning from bind().
 // A wing of (near) zero area in the current 3D state has no normal: its hinge
-// keeps a finite energy but contributes no gradient or Hessian (dihedral_angle.hpp).
+// contributes nothing (w = 0), or, for a wing below 1e-10 of the edge length
+// but not at 0, a tiny energy w E whose dtheta terms are dropped (dihedral_angle.hpp).
 #include <drape/arcsim_material.hpp>
 #include <drape/element_energy.hpp>
 #include <drape/plugin.hpp>
@@ -42,6 +51,7 @@
 
 #include "dihedral_angle.hpp"
 #include "hinges.hpp"
+#include "wing_fade.hpp"
 
 namespace {
 
@@ -55,6 +65,7 @@ struct HingeElement {
   double c_linear;       // both faces linear: stiffness_scale * k_b l^2 / (8 (A0 + A1)), E = c (theta - rest)^2
   double curvature;      // l / (A0 + A1): ArcSim's curvature is |theta| times this
   double rest_angle;
+  double fade_height[2];  // kFadeFraction times each wing's UV height over the edge (0: never faded)
   double k_linear;       // both faces linear: the smaller constant stiffness
   bool tabulated;        // some face is arcsim: k_b from the curves
   arcsim::BendingCurve side[2];  // per face; a linear face's curve is its constant
@@ -104,7 +115,8 @@ class Bending final : public ElementEnergy<4> {
     std::vector<Element> elements;
     int skipped = 0;
     for (const auto& t : topology) {
-      const double area = uv_area(mesh, t.face[0]) + uv_area(mesh, t.face[1]);
+      const double face_area[2] = {uv_area(mesh, t.face[0]), uv_area(mesh, t.face[1])};
+      const double area = face_area[0] + face_area[1];
       if (!(area > 2.0 * kDegenerateAreaFraction * mean_area)) {
         ++skipped;
         continue;
@@ -129,6 +141,10 @@ class Bending final : public ElementEnergy<4> {
       h.c_linear = scale_ * h.k_linear * l * l / (8.0 * area);
       Element v;
       std::copy(std::begin(t.vertex), std::end(t.vertex), v.begin());
+      for (int s = 0; s < 2; ++s) {
+        const double len = du[s].norm();  // a zero-length UV edge has zero area: no fade
+        h.fade_height[s] = len > 0.0 ? bending::kFadeFraction * 2.0 * face_area[s] / len : 0.0;
+      }
       h.rest_angle = 0.0;
       if (initial_rest_) {
         Eigen::Matrix<double, 3, 4> rest;
@@ -164,36 +180,76 @@ class Bending final : public ElementEnergy<4> {
   }
 
   double element_value(int e, const Stencil& x) const override {
-    return angle_energy(hinges_[static_cast<std::size_t>(e)], hinge_at(x).angle()).e;
+    const HingeElement& h = hinges_[static_cast<std::size_t>(e)];
+    const dh::Hinge hinge = hinge_at(x);
+    const double energy = angle_energy(h, hinge.angle()).e;
+    if (!bending::faded(hinge, h.fade_height)) return energy;
+    const bending::Fade fade(hinge, h.fade_height, 0);
+    return fade.w > 0.0 ? fade.w * energy : 0.0;
   }
 
   double element_gradient(int e, const Stencil& x, StencilGradient& g) const override {
+    const HingeElement& h = hinges_[static_cast<std::size_t>(e)];
     const dh::Hinge hinge = hinge_at(x);
-    const AngleEnergy a = angle_energy(hinges_[static_cast<std::size_t>(e)], hinge.angle());
+    const AngleEnergy a = angle_energy(h, hinge.angle());
     if (hinge.degenerate())
       g.setZero();
     else
       g = a.de * dh::gradient(wing0(hinge), wing1(hinge));
-    return a.e;
+    if (!bending::faded(hinge, h.fade_height)) return a.e;
+    const bending::Fade fade(hinge, h.fade_height, 1);
+    if (!(fade.w > 0.0)) {
+      g.setZero();
+      return 0.0;
+    }
+    g = fade.w * g + a.e * fade.dw;
+    return fade.w * a.e;
   }
 
   void element_hessian(int e, const Stencil& x, bool project_psd, StencilHessian& block) const override {
+    const HingeElement& h = hinges_[static_cast<std::size_t>(e)];
     const dh::Hinge hinge = hinge_at(x);
+    if (bending::faded(hinge, h.fade_height)) {
+      faded_hessian(h, hinge, project_psd, block);
+      return;
+    }
     if (hinge.degenerate()) {
       block.setZero();
       return;
     }
-    const AngleEnergy a = angle_energy(hinges_[static_cast<std::size_t>(e)], hinge.angle());
+    const AngleEnergy a = angle_energy(h, hinge.angle());
     const dh::Wing w0 = wing0(hinge), w1 = wing1(hinge);
     const dh::Vec12 grad = dh::gradient(w0, w1);
     if (project_psd && projection_ == Projection::GaussNewton) {
       block = std::max(a.d2e, 0.0) * grad * grad.transpose();
       return;
     }
+    block = a.d2e * grad * grad.transpose() + a.de * angle_hessian(hinge, w0, w1);
+    if (project_psd) project_to_psd(block);
+  }
+
+  // w E's exact Hessian, eigen-projected when asked (module comment).
+  void faded_hessian(const HingeElement& h, const dh::Hinge& hinge, bool project_psd, StencilHessian& block) const {
+    const bending::Fade fade(hinge, h.fade_height, 2);
+    if (!(fade.w > 0.0)) {
+      block.setZero();
+      return;
+    }
+    const AngleEnergy a = angle_energy(h, hinge.angle());
+    block = a.e * fade.d2w;
+    if (!hinge.degenerate()) {
+      const dh::Wing w0 = wing0(hinge), w1 = wing1(hinge);
+      const dh::Vec12 dtheta = dh::gradient(w0, w1), de = a.de * dtheta;
+      block += fade.w * (a.d2e * dtheta * dtheta.transpose() + a.de * angle_hessian(hinge, w0, w1)) +
+               de * fade.dw.transpose() + fade.dw * de.transpose();
+    }
+    if (project_psd) project_to_psd(block);
+  }
+
+  static dh::Mat12 angle_hessian(const dh::Hinge& hinge, const dh::Wing& w0, const dh::Wing& w1) {
     const dh::WingDerivatives d0(w0, hinge.e, hinge.a0, hinge.n0, hinge.q0, hinge.e2, 1.0);
     const dh::WingDerivatives d1(w1, hinge.e, hinge.a1, hinge.n1, hinge.q1, hinge.e2, -1.0);
-    block = a.d2e * grad * grad.transpose() + a.de * dh::hessian(w0, d0, w1, d1);
-    if (project_psd) project_to_psd(block);
+    return dh::hessian(w0, d0, w1, d1);
   }
 
   static dh::Wing wing0(const dh::Hinge& h) { return dh::Wing(h.e, h.a0, h.n0, h.q0, h.e2); }
@@ -211,7 +267,8 @@ PluginList plugins() {
   d.name = "bending";
   d.doc = "ArcSim's bending energy: per interior edge k_b l^2 / (2 (A0 + A1)) (theta - theta_rest)^2 / 4 of the signed "
           "dihedral angle, l and A from the material-space (UV) rest shape; k_b from ArcSim's table over curvature and "
-          "edge direction (model arcsim) or constant (model linear).";
+          "edge direction (model arcsim) or constant (model linear); faded out smoothly on a wing crushed below 10 % of "
+          "its rest height.";
   d.params = {
       {"stiffness_scale", ParamType::Float, "1.0", "multiplies every material's bending stiffness (N*m)", 0.0, 1e6},
       {"rest", ParamType::String, "flat", "rest dihedral angles: flat (0, panels cut flat) or initial (the garment's rest positions)",
