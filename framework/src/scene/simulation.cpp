@@ -5,6 +5,7 @@
 #include <drape/simulation.hpp>
 
 #include "barrier_morph.hpp"
+#include "body_overlap.hpp"
 #include "scene_materials.hpp"
 #include "separated_start.hpp"
 #include "unsettled.hpp"
@@ -15,6 +16,11 @@
 namespace drape {
 
 namespace {
+
+// m: body faces this close to the dressed garment lie under it (a shirt is
+// worn within a few centimetres of the skin; sleeves hang farther).
+constexpr double kGarmentReach = 0.05;
+
 using Clock = std::chrono::steady_clock;
 double since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
 }  // namespace
@@ -114,6 +120,13 @@ SimulationResult Simulation::run(const Eigen::MatrixX3d& target_body, const Simu
   if (body_start.rows() != mean_body_.rows() || garment_start.rows() != garment_->mesh.vertices.rows())
     throw ConfigError("simulation start state has the wrong vertex count");
 
+  // A body that passes through itself under the garment has no inside there
+  // (body_overlap.hpp): refused, naming the place.
+  if (needs_body_) {
+    const std::string overlap = scene_detail::body_overlap_near_garment(body_start, target_body, body_model_->faces(),
+                                                                        garment_start, kGarmentReach);
+    if (!overlap.empty()) throw ConfigError(overlap);
+  }
   // The body's closest-point structure exists only when an effect needs it.
   std::unique_ptr<geometry::BodySurface> surface;
   if (needs_body_) surface = std::make_unique<geometry::BodySurface>(morph_steps_ > 0 ? body_start : target_body, body_model_->faces());

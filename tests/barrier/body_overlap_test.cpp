@@ -1,0 +1,81 @@
+// A body mesh that passes through itself where the garment lies has no
+// inside there: the scene refuses it, naming the place, instead of draping on
+// it and reporting a p that means nothing. A body that crosses itself far from
+// the garment (its feet) is not the garment's business.
+#include <drape/errors.hpp>
+#include <drape/geometry/self_intersection.hpp>
+#include <drape/registry.hpp>
+#include <drape/scene.hpp>
+#include <drape/simulation.hpp>
+
+#include <catch2/catch.hpp>
+
+#include "../../framework/src/scene/body_overlap.hpp"
+#include "test_support.hpp"
+
+using namespace drape;
+
+namespace {
+
+Simulation coarse_shirt_scene() {
+  return Simulation(test::plugins(), parse_scene("body: {model: parametric}\n"
+                                                 "garment: {template: tshirt, params: {size: regular, resolution: coarse}}\n"
+                                                 "effects: {gravity: {}, stretching: {}, barrier: {}}\n"
+                                                 "solver: {morph_steps: 2, settle_steps: 1}\n"));
+}
+
+// The mean body with the vertices in a box moved by `shift`.
+Eigen::MatrixX3d moved(const Eigen::MatrixX3d& body, const Eigen::RowVector3d& lo, const Eigen::RowVector3d& hi,
+                       const Eigen::RowVector3d& shift, int* count) {
+  Eigen::MatrixX3d out = body;
+  *count = 0;
+  for (Eigen::Index v = 0; v < body.rows(); ++v)
+    if ((body.row(v).array() >= lo.array()).all() && (body.row(v).array() <= hi.array()).all()) {
+      out.row(v) += shift;
+      ++*count;
+    }
+  return out;
+}
+
+}  // namespace
+
+TEST_CASE("a body that passes through itself under the garment is refused, naming where", "[barrier][bodies]") {
+  const Simulation sim = coarse_shirt_scene();
+  const Eigen::MatrixX3d& mean = sim.mean_body();
+  const Eigen::RowVector3d lo = mean.colwise().minCoeff(), hi = mean.colwise().maxCoeff();
+  const double height = hi.y() - lo.y(), mid_z = 0.5 * (lo.z() + hi.z());
+  // A patch of the chest, at 72-76 % of the height, pushed 0.6 m through the
+  // back (deeper than any torso).
+  int count = 0;
+  const Eigen::MatrixX3d body =
+      moved(mean, Eigen::RowVector3d(-0.06, lo.y() + 0.72 * height, mid_z), Eigen::RowVector3d(0.06, lo.y() + 0.76 * height, hi.z()),
+            Eigen::RowVector3d(0, 0, -0.6), &count);
+  REQUIRE(count >= 4);
+  // Read independently of the scene: the moved mesh does cross itself.
+  REQUIRE_FALSE(geometry::self_intersections(body, sim.body_model().faces(), 1).empty());
+  try {
+    sim.run(body);
+    FAIL("a self-intersecting body under the shirt was draped");
+  } catch (const ConfigError& e) {
+    const std::string what = e.what();
+    INFO(what);
+    CHECK_THAT(what, Catch::Contains("intersects itself where the garment lies"));
+    CHECK_THAT(what, Catch::Contains("heights"));
+  }
+  // The unmodified body passes the check.
+  CHECK(scene_detail::body_overlap_near_garment(mean, mean, sim.body_model().faces(), sim.garment().mesh.vertices, 0.05).empty());
+}
+
+TEST_CASE("a body that crosses itself only far below the shirt passes the check", "[barrier][bodies]") {
+  const Simulation sim = coarse_shirt_scene();
+  const Eigen::MatrixX3d& mean = sim.mean_body();
+  const Eigen::RowVector3d lo = mean.colwise().minCoeff(), hi = mean.colwise().maxCoeff();
+  const double height = hi.y() - lo.y();
+  // One foot (x > 0, the lowest 5 % of the height) pushed across into the other.
+  int count = 0;
+  const Eigen::MatrixX3d body = moved(mean, Eigen::RowVector3d(0.0, lo.y(), lo.z()),
+                                      Eigen::RowVector3d(hi.x(), lo.y() + 0.05 * height, hi.z()), Eigen::RowVector3d(-0.2, 0, 0), &count);
+  REQUIRE(count >= 4);
+  REQUIRE_FALSE(geometry::self_intersections(body, sim.body_model().faces(), 1).empty());
+  CHECK(scene_detail::body_overlap_near_garment(mean, body, sim.body_model().faces(), sim.garment().mesh.vertices, 0.05).empty());
+}
