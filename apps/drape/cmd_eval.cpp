@@ -33,9 +33,10 @@ void write_report(const fs::path& file, const std::string& model, const std::str
   const std::string ext = file.extension().string();
   std::ostringstream o;
   if (ext == ".csv") {
-    o << "metric,unit,mean,std\n";
+    o << "metric,unit,mean,std,max\n";
     for (const auto& c : metric_columns())
-      o << c.name << "," << c.unit << "," << format("%.9g", s.mean.*c.field) << "," << format("%.9g", s.stddev.*c.field) << "\n";
+      o << c.name << "," << c.unit << "," << format("%.9g", s.mean.*c.field) << "," << format("%.9g", s.stddev.*c.field) << ","
+        << format("%.9g", s.max.*c.field) << "\n";
   } else {
     auto quoted = [](const std::string& t) {
       std::string q = "\"";
@@ -51,7 +52,7 @@ void write_report(const fs::path& file, const std::string& model, const std::str
     for (std::size_t i = 0; i < columns.size(); ++i)
       o << "    " << quoted(columns[i].name) << ": {\"unit\": " << quoted(columns[i].unit)
         << ", \"mean\": " << format("%.9g", s.mean.*columns[i].field) << ", \"std\": " << format("%.9g", s.stddev.*columns[i].field)
-        << "}" << (i + 1 < columns.size() ? "," : "") << "\n";
+        << ", \"max\": " << format("%.9g", s.max.*columns[i].field) << "}" << (i + 1 < columns.size() ? "," : "") << "\n";
     o << "  }\n}\n";
   }
   write_text_atomically(file, o.str());
@@ -161,9 +162,10 @@ int run(const std::vector<std::string>& args) {
   const MetricsSummary s = summarize(evaluation.samples);
 
   std::printf("%s on %s, %s split (%zu samples)\n\n", model_file.c_str(), data.c_str(), split.c_str(), s.samples);
-  std::printf("| metric | mean | std | unit |\n|---|---|---|---|\n");
+  std::printf("| metric | mean | std | max (worst sample) | unit |\n|---|---|---|---|---|\n");
   for (const auto& c : metric_columns())
-    std::printf("| %s | %.4g | %.3g | %s |\n", c.name.c_str(), s.mean.*c.field, s.stddev.*c.field, c.unit.c_str());
+    std::printf("| %s | %.4g | %.3g | %.4g | %s |\n", c.name.c_str(), s.mean.*c.field, s.stddev.*c.field, s.max.*c.field,
+                c.unit.c_str());
   std::printf("\nthe ground truth itself has p = %.3g %%, %.4g surface crossings per sample (%.3g %% of samples with any)\n",
               reference_p, reference_crossings, reference_crossed);
   if (vm.count("out")) {

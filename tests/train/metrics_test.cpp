@@ -40,11 +40,13 @@ TEST_CASE("the ground truth scores zero on every metric but p", "[metrics]") {
   const int crossings = geometry::surface_crossings(f.garment, f.assets->garment->mesh.faces, f.body, f.assets->body.faces).total();
   CHECK(m.crossings == crossings);
   CHECK(m.crossed_percent == (crossings > 0 ? 100.0 : 0.0));
-  REQUIRE(metric_columns().size() == 8);
+  CHECK(m.edge_stretch_max == 0.0);
+  REQUIRE(metric_columns().size() == 9);
   std::vector<std::string> names;
   for (const auto& c : metric_columns()) names.push_back(c.name);
-  // The seed's six, then the surface crossings.
-  CHECK(names == std::vector<std::string>{"ME", "L_l", "L_e", "L_s", "L_d", "p", "crossings", "crossed_samples"});
+  // The seed's six, then the surface crossings and the worst edge.
+  CHECK(names ==
+        std::vector<std::string>{"ME", "L_l", "L_e", "L_s", "L_d", "p", "crossings", "crossed_samples", "edge_stretch_max"});
 }
 
 TEST_CASE("a translation changes ME and L_s only", "[metrics]") {
@@ -133,6 +135,8 @@ TEST_CASE("metrics refuse wrong sizes and non-finite vertices, and summaries ave
   CHECK(s.mean.me_cm == 2.0);
   CHECK(s.stddev.me_cm == Approx(std::sqrt(2.0)));
   CHECK(s.stddev.penetration_percent == 0.0);
+  CHECK(s.max.me_cm == 3.0);  // the worst sample
+  CHECK(s.max.penetration_percent == 2.0);
 }
 
 TEST_CASE("crossing summaries: mean per sample and the share of samples with any", "[metrics]") {
@@ -186,4 +190,27 @@ TEST_CASE("L_e, L_l, L_s and L_d are the values of the loss plugins (reduction: 
   CHECK(f.metrics.laplacian_difference(xf, yf) == Approx(loss("laplacian")).epsilon(1e-4));
   CHECK(f.metrics.spectral_difference(xf, yf) == Approx(loss("spectral_loss")).epsilon(1e-4));
   CHECK(f.metrics.deformation_difference(xf, yf) == Approx(loss("deformation")).epsilon(1e-4));
+}
+
+TEST_CASE("edge_stretch_max is the most stretched edge against the ground truth", "[metrics]") {
+  Fixture f;
+  // Scaled by 1.1 about the origin every edge is 10 % longer; pulling one
+  // vertex far away tears its edges: the worst is that of its shortest edge,
+  // computed here from the mesh.
+  CHECK(f.metrics.evaluate(1.1 * f.garment, f.garment, f.body).edge_stretch_max == Approx(10.0));
+  CHECK(f.metrics.evaluate(0.9 * f.garment, f.garment, f.body).edge_stretch_max == Approx(0.0).margin(1e-9));  // shrinking stretches nothing
+  Eigen::MatrixX3d torn = f.garment;
+  const int v = 7;
+  torn.row(v) += Eigen::RowVector3d(0.0, 0.0, 0.5);
+  double expected = 0.0;
+  const Eigen::MatrixX3i& faces = f.assets->garment->mesh.faces;
+  for (Eigen::Index k = 0; k < faces.rows(); ++k)
+    for (int j = 0; j < 3; ++j) {
+      const int a = faces(k, j), b = faces(k, (j + 1) % 3);
+      if (a != v && b != v) continue;
+      const double before = (f.garment.row(a) - f.garment.row(b)).norm(), after = (torn.row(a) - torn.row(b)).norm();
+      expected = std::max(expected, 100.0 * (after / before - 1.0));
+    }
+  REQUIRE(expected > 100.0);
+  CHECK(f.metrics.evaluate(torn, f.garment, f.body).edge_stretch_max == Approx(expected));
 }

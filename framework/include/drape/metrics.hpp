@@ -45,10 +45,15 @@ struct GarmentMetrics {
   // samples is the share of samples with a crossing).
   double crossings = 0;
   double crossed_percent = 0;
+  // Not the seed's: the most stretched edge against the ground truth,
+  // 100 (l_pred / l_true - 1), so that a torn prediction (an edge pulled
+  // across the body) shows even where the mean edge error L_e is small.
+  double edge_stretch_max = 0;
 };
 
 // Names, units and values in table order: {"ME", "cm"}, {"L_l", "cm"}, {"L_e", "%"},
-// {"L_s", "m"}, {"L_d", ""}, {"p", "%"}, then {"crossings", "edges"}, {"crossed_samples", "%"}.
+// {"L_s", "m"}, {"L_d", ""}, {"p", "%"}, then {"crossings", "edges"}, {"crossed_samples", "%"},
+// {"edge_stretch_max", "%"}.
 struct MetricColumn {
   std::string name, unit;
   double GarmentMetrics::*field;
@@ -76,6 +81,7 @@ class MetricsContext {
   double mean_error(const Eigen::MatrixX3d& x, const Eigen::MatrixX3d& y) const;         // m
   double laplacian_difference(const Eigen::MatrixX3d& x, const Eigen::MatrixX3d& y) const;  // m
   double edge_error(const Eigen::MatrixX3d& x, const Eigen::MatrixX3d& y) const;          // fraction
+  double edge_stretch_max(const Eigen::MatrixX3d& x, const Eigen::MatrixX3d& y) const;    // fraction
   double spectral_difference(const Eigen::MatrixX3d& x, const Eigen::MatrixX3d& y) const;   // m
   double deformation_difference(const Eigen::MatrixX3d& x, const Eigen::MatrixX3d& y) const;
   double penetration(const Eigen::MatrixX3d& x, const Eigen::MatrixX3d& body) const;      // fraction
@@ -97,10 +103,11 @@ class MetricsContext {
   Eigen::MatrixX3i body_faces_;
 };
 
-// Mean and standard deviation of each metric over samples.
+// Mean, standard deviation and largest value of each metric over samples
+// (the largest: the worst body, e.g. the highest p).
 struct MetricsSummary {
   std::size_t samples = 0;
-  GarmentMetrics mean, stddev;
+  GarmentMetrics mean, stddev, max;
 };
 MetricsSummary summarize(const std::vector<GarmentMetrics>& samples);
 

@@ -18,7 +18,8 @@ const std::vector<MetricColumn>& metric_columns() {
       {"ME", "cm", &GarmentMetrics::me_cm},           {"L_l", "cm", &GarmentMetrics::laplacian_cm},
       {"L_e", "%", &GarmentMetrics::edge_percent},    {"L_s", "m", &GarmentMetrics::spectral},
       {"L_d", "", &GarmentMetrics::deformation},      {"p", "%", &GarmentMetrics::penetration_percent},
-      {"crossings", "edges", &GarmentMetrics::crossings}, {"crossed_samples", "%", &GarmentMetrics::crossed_percent}};
+      {"crossings", "edges", &GarmentMetrics::crossings}, {"crossed_samples", "%", &GarmentMetrics::crossed_percent},
+      {"edge_stretch_max", "%", &GarmentMetrics::edge_stretch_max}};
   return columns;
 }
 
@@ -97,6 +98,15 @@ double MetricsContext::edge_error(const Eigen::MatrixX3d& x, const Eigen::Matrix
   return sum / double(edges_.size());
 }
 
+double MetricsContext::edge_stretch_max(const Eigen::MatrixX3d& x, const Eigen::MatrixX3d& y) const {
+  double worst = 0.0;
+  for (const auto& [u, v] : edges_) {
+    const double lx = (x.row(u) - x.row(v)).norm(), ly = (y.row(u) - y.row(v)).norm();
+    worst = std::max(worst, lx / std::max(ly, 1e-12) - 1.0);
+  }
+  return worst;
+}
+
 double MetricsContext::spectral_difference(const Eigen::MatrixX3d& x, const Eigen::MatrixX3d& y) const {
   if (eigenvectors_.cols() == 0) return 0.0;
   const Eigen::MatrixXd c = eigenvectors_.transpose() * (x - y);  // [k, 3]
@@ -140,6 +150,7 @@ GarmentMetrics MetricsContext::evaluate(const Eigen::MatrixX3d& x, const Eigen::
   m.penetration_percent = 100.0 * penetration(x, body);
   m.crossings = crossings(x, body);
   m.crossed_percent = m.crossings > 0 ? 100.0 : 0.0;
+  m.edge_stretch_max = 100.0 * edge_stretch_max(x, y);
   return m;
 }
 
@@ -154,6 +165,8 @@ MetricsSummary summarize(const std::vector<GarmentMetrics>& samples) {
     double var = 0.0;
     for (const auto& m : samples) var += (m.*column.field - mean) * (m.*column.field - mean);
     s.mean.*column.field = mean;
+    s.max.*column.field = samples.front().*column.field;
+    for (const auto& m : samples) s.max.*column.field = std::max(s.max.*column.field, m.*column.field);
     s.stddev.*column.field = samples.size() > 1 ? std::sqrt(var / double(samples.size() - 1)) : 0.0;
   }
   return s;
