@@ -162,3 +162,28 @@ TEST_CASE("drape train records the domain of its training split in the model", "
                     out) == 0);
   CHECK(h5::File::open(model).is_group("/weights"));
 }
+
+TEST_CASE("model domain: a parameter at the edge of the range its bodies were drawn from is inside", "[train][domain]") {
+  // 288 heights drawn over 1.50-2.00 m span 1.5022-1.9988 (the shipped body
+  // space's first model): the ends fall short of the drawn range by about
+  // 0.5 / 289 = 1.7 mm each, so 1.50 and 2.00 m are inside (within twice
+  // that), 1.49 m is not.
+  const auto assets = test::tiny_assets();
+  ModelDomain d;
+  d.samples = 288;
+  d.param_names = {"height"};
+  d.params = {ValueRange{1.5022, 1.9988}};
+  d.height = {0.0, 10.0};
+  d.bmi = {0.0, 1000.0};
+  const auto violations = [&](double height) {
+    const Eigen::VectorXd params = Eigen::VectorXd::Constant(1, height);
+    return domain_violations(d, assets->body.vertices, assets->body.faces, &params);
+  };
+  CHECK(violations(1.50).empty());
+  CHECK(violations(2.00).empty());
+  CHECK(violations(1.75).empty());
+  const auto low = violations(1.49);
+  REQUIRE(low.size() == 1);
+  // The range printed to four digits, so that the reader sees why 1.49 is out.
+  CHECK_THAT(low.front(), Catch::Contains("shape parameter 'height' 1.49 is outside the trained range 1.502..1.999"));
+}
