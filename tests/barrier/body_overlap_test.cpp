@@ -63,7 +63,8 @@ TEST_CASE("a body that passes through itself under the garment is refused, namin
     CHECK_THAT(what, Catch::Contains("heights"));
   }
   // The unmodified body passes the check.
-  CHECK(scene_detail::body_overlap_near_garment(mean, mean, sim.body_model().faces(), sim.garment().mesh.vertices, 0.05).empty());
+  const geometry::BodySurface dressed_on(mean, sim.body_model().faces());
+  CHECK(scene_detail::body_overlap_near_garment(dressed_on, mean, sim.garment().mesh.vertices, 0.05).empty());
 }
 
 TEST_CASE("a body that crosses itself only far below the shirt passes the check", "[barrier][bodies]") {
@@ -77,5 +78,6 @@ TEST_CASE("a body that crosses itself only far below the shirt passes the check"
                                       Eigen::RowVector3d(hi.x(), lo.y() + 0.05 * height, hi.z()), Eigen::RowVector3d(-0.2, 0, 0), &count);
   REQUIRE(count >= 4);
   REQUIRE_FALSE(geometry::self_intersections(body, sim.body_model().faces(), 1).empty());
-  CHECK(scene_detail::body_overlap_near_garment(mean, body, sim.body_model().faces(), sim.garment().mesh.vertices, 0.05).empty());
+  const geometry::BodySurface dressed_on(mean, sim.body_model().faces());
+  CHECK(scene_detail::body_overlap_near_garment(dressed_on, body, sim.garment().mesh.vertices, 0.05).empty());
 }

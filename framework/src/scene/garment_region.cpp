@@ -1,4 +1,4 @@
-// A region of garment vertices in words (garment_region.hpp).
+// A region of garment (or body) vertices in words (garment_region.hpp).
 #include "garment_region.hpp"
 
 #include <algorithm>
@@ -6,8 +6,8 @@
 
 namespace drape::scene_detail {
 
-std::string describe_region(const Eigen::MatrixX3d& x, const std::vector<int>& vertices) {
-  if (vertices.empty()) return "no garment vertices";
+std::string describe_region(const Eigen::MatrixX3d& x, const std::vector<int>& vertices, const char* surface) {
+  if (vertices.empty()) return std::string("no ") + surface + " vertices";
   Eigen::RowVector3d centre = Eigen::RowVector3d::Zero();
   double low = x(vertices.front(), 1), high = low;
   for (int v : vertices) {
@@ -16,9 +16,9 @@ std::string describe_region(const Eigen::MatrixX3d& x, const std::vector<int>& v
     high = std::max(high, x(v, 1));
   }
   centre /= static_cast<double>(vertices.size());
-  char text[160];
-  std::snprintf(text, sizeof text, "%zu garment vertices around (%.3f, %.3f, %.3f) m, heights %.3f-%.3f m (vertex %d",
-                vertices.size(), centre[0], centre[1], centre[2], low, high, vertices.front());
+  char text[200];
+  std::snprintf(text, sizeof text, "%zu %s vertices around (%.3f, %.3f, %.3f) m, heights %.3f-%.3f m (vertex %d",
+                vertices.size(), surface, centre[0], centre[1], centre[2], low, high, vertices.front());
   std::string out = text;
   for (std::size_t i = 1; i < std::min<std::size_t>(vertices.size(), 5); ++i) out += ", " + std::to_string(vertices[i]);
   return out + (vertices.size() > 5 ? ", ...)" : ")");

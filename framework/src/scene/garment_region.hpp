@@ -8,7 +8,8 @@
 
 namespace drape::scene_detail {
 
-// "12 garment vertices around (0.10, 1.32, 0.02) m, heights 1.28-1.36 m (vertex 401, ...)".
-std::string describe_region(const Eigen::MatrixX3d& x, const std::vector<int>& vertices);
+// "12 garment vertices around (0.10, 1.32, 0.02) m, heights 1.28-1.36 m (vertex 401, ...)";
+// `surface` names whose vertices they are ("body" for a place on the body).
+std::string describe_region(const Eigen::MatrixX3d& x, const std::vector<int>& vertices, const char* surface = "garment");
 
 }  // namespace drape::scene_detail

@@ -120,16 +120,15 @@ SimulationResult Simulation::run(const Eigen::MatrixX3d& target_body, const Simu
   if (body_start.rows() != mean_body_.rows() || garment_start.rows() != garment_->mesh.vertices.rows())
     throw ConfigError("simulation start state has the wrong vertex count");
 
-  // A body that passes through itself under the garment has no inside there
-  // (body_overlap.hpp): refused, naming the place.
-  if (needs_body_) {
-    const std::string overlap = scene_detail::body_overlap_near_garment(body_start, target_body, body_model_->faces(),
-                                                                        garment_start, kGarmentReach);
-    if (!overlap.empty()) throw ConfigError(overlap);
-  }
   // The body's closest-point structure exists only when an effect needs it.
   std::unique_ptr<geometry::BodySurface> surface;
-  if (needs_body_) surface = std::make_unique<geometry::BodySurface>(morph_steps_ > 0 ? body_start : target_body, body_model_->faces());
+  if (needs_body_) {
+    surface = std::make_unique<geometry::BodySurface>(morph_steps_ > 0 ? body_start : target_body, body_model_->faces());
+    // A body that passes through itself under the garment has no inside
+    // there (body_overlap.hpp): refused, naming the place.
+    const std::string overlap = scene_detail::body_overlap_near_garment(*surface, target_body, garment_start, kGarmentReach);
+    if (!overlap.empty()) throw ConfigError(overlap);
+  }
   std::vector<NamedEnergy> energies = make_energies(surface.get());
   ClothSolver solver(*garment_, energies, solver_settings());
 
