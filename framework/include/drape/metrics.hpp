@@ -81,7 +81,11 @@ class MetricsContext {
   double mean_error(const Eigen::MatrixX3d& x, const Eigen::MatrixX3d& y) const;         // m
   double laplacian_difference(const Eigen::MatrixX3d& x, const Eigen::MatrixX3d& y) const;  // m
   double edge_error(const Eigen::MatrixX3d& x, const Eigen::MatrixX3d& y) const;          // fraction
-  double edge_stretch_max(const Eigen::MatrixX3d& x, const Eigen::MatrixX3d& y) const;    // fraction
+  // L_e and the most stretched edge (both fractions) in one pass over the edges.
+  struct EdgeErrors {
+    double mean_relative = 0, max_stretch = 0;
+  };
+  EdgeErrors edge_errors(const Eigen::MatrixX3d& x, const Eigen::MatrixX3d& y) const;
   double spectral_difference(const Eigen::MatrixX3d& x, const Eigen::MatrixX3d& y) const;   // m
   double deformation_difference(const Eigen::MatrixX3d& x, const Eigen::MatrixX3d& y) const;
   double penetration(const Eigen::MatrixX3d& x, const Eigen::MatrixX3d& body) const;      // fraction

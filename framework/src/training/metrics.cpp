@@ -87,24 +87,21 @@ double MetricsContext::laplacian_difference(const Eigen::MatrixX3d& x, const Eig
   return sum;
 }
 
-double MetricsContext::edge_error(const Eigen::MatrixX3d& x, const Eigen::MatrixX3d& y) const {
-  if (edges_.empty()) return 0.0;
-  double sum = 0.0;
+MetricsContext::EdgeErrors MetricsContext::edge_errors(const Eigen::MatrixX3d& x, const Eigen::MatrixX3d& y) const {
+  EdgeErrors out;
+  if (edges_.empty()) return out;
   for (const auto& [u, v] : edges_) {
-    const double lx = (x.row(u) - x.row(v)).norm(), ly = (y.row(u) - y.row(v)).norm();
     // A ground-truth edge of length zero has no relative error; the loss plugin clamps alike.
-    sum += std::abs(lx - ly) / std::max(ly, 1e-12);
+    const double lx = (x.row(u) - x.row(v)).norm(), ly = (y.row(u) - y.row(v)).norm(), denominator = std::max(ly, 1e-12);
+    out.mean_relative += std::abs(lx - ly) / denominator;
+    out.max_stretch = std::max(out.max_stretch, lx / denominator - 1.0);
   }
-  return sum / double(edges_.size());
+  out.mean_relative /= double(edges_.size());
+  return out;
 }
 
-double MetricsContext::edge_stretch_max(const Eigen::MatrixX3d& x, const Eigen::MatrixX3d& y) const {
-  double worst = 0.0;
-  for (const auto& [u, v] : edges_) {
-    const double lx = (x.row(u) - x.row(v)).norm(), ly = (y.row(u) - y.row(v)).norm();
-    worst = std::max(worst, lx / std::max(ly, 1e-12) - 1.0);
-  }
-  return worst;
+double MetricsContext::edge_error(const Eigen::MatrixX3d& x, const Eigen::MatrixX3d& y) const {
+  return edge_errors(x, y).mean_relative;
 }
 
 double MetricsContext::spectral_difference(const Eigen::MatrixX3d& x, const Eigen::MatrixX3d& y) const {
@@ -144,13 +141,14 @@ GarmentMetrics MetricsContext::evaluate(const Eigen::MatrixX3d& x, const Eigen::
   GarmentMetrics m;
   m.me_cm = 100.0 * mean_error(x, y);
   m.laplacian_cm = 100.0 * laplacian_difference(x, y);
-  m.edge_percent = 100.0 * edge_error(x, y);
+  const EdgeErrors edges = edge_errors(x, y);
+  m.edge_percent = 100.0 * edges.mean_relative;
   m.spectral = spectral_difference(x, y);
   m.deformation = deformation_difference(x, y);
   m.penetration_percent = 100.0 * penetration(x, body);
   m.crossings = crossings(x, body);
   m.crossed_percent = m.crossings > 0 ? 100.0 : 0.0;
-  m.edge_stretch_max = 100.0 * edge_stretch_max(x, y);
+  m.edge_stretch_max = 100.0 * edges.max_stretch;
   return m;
 }
 
@@ -159,14 +157,16 @@ MetricsSummary summarize(const std::vector<GarmentMetrics>& samples) {
   s.samples = samples.size();
   if (samples.empty()) return s;
   for (const auto& column : metric_columns()) {
-    double sum = 0.0;
-    for (const auto& m : samples) sum += m.*column.field;
+    double sum = 0.0, largest = samples.front().*column.field;
+    for (const auto& m : samples) {
+      sum += m.*column.field;
+      largest = std::max(largest, m.*column.field);
+    }
     const double mean = sum / double(samples.size());
     double var = 0.0;
     for (const auto& m : samples) var += (m.*column.field - mean) * (m.*column.field - mean);
     s.mean.*column.field = mean;
-    s.max.*column.field = samples.front().*column.field;
-    for (const auto& m : samples) s.max.*column.field = std::max(s.max.*column.field, m.*column.field);
+    s.max.*column.field = largest;
     s.stddev.*column.field = samples.size() > 1 ? std::sqrt(var / double(samples.size() - 1)) : 0.0;
   }
   return s;
