@@ -38,28 +38,32 @@ Coordinate axis_coordinate(double t, double slope, double lo, double hi) {
 Coordinate arcsim_coordinate(double t) { return axis_coordinate(t, 0.0, 0.0, kN - 1 - 1e-5); }
 
 // |G_uv| made C1 (kShearBand): c = m f(s / m) with m the band's width at
-// G, and c's gradient and Hessian in G.
+// G, and c's gradient and Hessian in G up to `order` (the rest left zero: an
+// energy value in the line search needs c alone).
 struct SmoothedShear {
   double value;
   Eigen::Vector3d d1;
   Eigen::Matrix3d d2;
 };
 
-SmoothedShear smoothed_shear(const Eigen::Vector3d& g) {
+SmoothedShear smoothed_shear(const Eigen::Vector3d& g, int order) {
   const double s = g[2], t = std::abs(s), sign = s < 0 ? -1.0 : 1.0;
   const double m = std::sqrt(kShearBand * kShearBand * (g[0] * g[0] + g[1] * g[1]) + kShearSmoothing * kShearSmoothing);
   SmoothedShear out{t, Eigen::Vector3d(0.0, 0.0, sign), Eigen::Matrix3d::Zero()};
   if (t >= m) return out;
   // f(x) = 2 x^2 - |x|^3 and its derivatives; c = m f(x), x = s / m.
   const double x = s / m, ax = t / m;
-  const double f = 2.0 * x * x - ax * ax * ax, f1 = 4.0 * x - 3.0 * x * ax, f2 = 4.0 - 6.0 * ax;
-  const double c_s = f1, c_m = f - x * f1, c_ss = f2 / m, c_sm = -x * f2 / m, c_mm = x * x * f2 / m;
-  // m's gradient and Hessian in (G_uu, G_vv).
+  const double f = 2.0 * x * x - ax * ax * ax;
+  out.value = m * f;
+  if (order < 1) return out;
+  const double f1 = 4.0 * x - 3.0 * x * ax, c_s = f1, c_m = f - x * f1;
+  // m's gradient in (G_uu, G_vv).
   const double b2 = kShearBand * kShearBand;
   const Eigen::Vector2d m1(b2 * g[0] / m, b2 * g[1] / m);
-  const Eigen::Matrix2d m2 = b2 / m * Eigen::Matrix2d::Identity() - m1 * m1.transpose() / m;
-  out.value = m * f;
   out.d1 << c_m * m1, c_s;
+  if (order < 2) return out;
+  const double f2 = 4.0 - 6.0 * ax, c_ss = f2 / m, c_sm = -x * f2 / m, c_mm = x * x * f2 / m;
+  const Eigen::Matrix2d m2 = b2 / m * Eigen::Matrix2d::Identity() - m1 * m1.transpose() / m;
   out.d2.topLeftCorner<2, 2>() = c_mm * m1 * m1.transpose() + c_m * m2;
   out.d2.block<2, 1>(0, 2) = out.d2.block<1, 2>(2, 0).transpose() = c_sm * m1;
   out.d2(2, 2) = c_ss;
@@ -198,7 +202,7 @@ namespace {
 // dk too; 2: d2k too), `node(i, j, k)` giving the extended grid's samples.
 template <int Order, class Node>
 StiffnessDerivatives smooth_lookup(const Eigen::Vector3d& g, const Node& node) {
-  const SmoothedShear shear = smoothed_shear(g);
+  const SmoothedShear shear = smoothed_shear(g, Order);
   const Coordinate ca = smooth_coordinate((g[0] + 0.25) * kN), cb = smooth_coordinate((g[1] + 0.25) * kN),
                    cc = smooth_coordinate(shear.value * kN);
   const AxisWeights wa = axis_weights(ca.cell + ca.frac), wb = axis_weights(cb.cell + cb.frac),
