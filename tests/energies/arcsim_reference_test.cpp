@@ -8,6 +8,7 @@
 
 #include <catch2/catch.hpp>
 
+#include <array>
 #include <cmath>
 #include <numbers>
 
@@ -185,7 +186,10 @@ TEST_CASE("the linear model keeps drape's old constant knit, several times softe
 
 TEST_CASE("bending of one hinge equals ArcSim's energy, folded either way", "[arcsim][bending]") {
   // E = k_b(|theta|) l^2 / (2 (A0 + A1)) theta^2 / 4 with ArcSim's table at the
-  // edge's UV direction; a fold one way costs what the other does.
+  // edge's UV direction; a fold one way costs what the other does. The hinge's
+  // curvature is 100 |theta| 1/m, so theta = 0.3 sits on column 3, where drape
+  // rounds the table's corner (kBendingCornerDeviation): within 1 % there
+  // (the issue's target), to 1e-6 elsewhere.
   const HingeCase cases[] = {{0, 0.05, 8.769361718750e-09},  {0, 0.3, 4.389122250000e-07},
                              {0, 1.2, 4.208901480000e-06},   {45, 0.05, 6.781449687500e-09},
                              {45, 0.3, 2.823276487500e-07},  {45, 1.2, 1.594829700000e-06},
@@ -195,14 +199,92 @@ TEST_CASE("bending of one hinge equals ArcSim's energy, folded either way", "[ar
     const Garment g = hinge_garment(c.uv_degrees);
     const auto e = bound_energy("bending", "{}", g);
     INFO("edge at " << c.uv_degrees << " degrees from u, fold " << c.theta);
-    CHECK(e->value(hinge_positions(c.theta)) == Approx(c.energy).epsilon(1e-6));
-    CHECK(e->value(hinge_positions(-c.theta)) == Approx(c.energy).epsilon(1e-6));
+    const double tolerance = c.theta == 0.3 ? 1e-2 : 1e-6;
+    CHECK(e->value(hinge_positions(c.theta)) == Approx(c.energy).epsilon(tolerance));
+    CHECK(e->value(hinge_positions(-c.theta)) == Approx(c.energy).epsilon(tolerance));
   }
   // An edge at atan(0.3) = 16.7 degrees interpolates between the 0 and 45 degree rows.
   const Garment g = hinge_garment(std::atan(0.3) * 180.0 / std::numbers::pi);
   const auto e = bound_energy("bending", "{}", g);
-  CHECK(e->value(hinge_positions(0.3)) == Approx(3.808045787317e-07).epsilon(1e-6));
+  CHECK(e->value(hinge_positions(0.3)) == Approx(3.808045787317e-07).epsilon(1e-2));
   CHECK(e->value(hinge_positions(-1.2)) == Approx(3.238834300013e-06).epsilon(1e-6));
+  // Off the columns, exactly ArcSim's interpolation: theta = 0.25 is curvature
+  // value 2.5, halfway between 34.406498e-6 and 39.014420e-6 on the 0 degree row.
+  const auto warp = bound_energy("bending", "{}", hinge_garment(0));
+  const double k = 0.5 * (34.406498e-6 + 39.014420e-6);
+  CHECK(warp->value(hinge_positions(0.25)) == Approx(k * 1e-4 / 2e-4 * 0.25 * 0.25 / 4).epsilon(1e-6));
+}
+
+TEST_CASE("the bending lookup rounds each column's corner: C1, exact outside the band, within 0.5 % on it",
+          "[arcsim][bending]") {
+  // The 0 degree row of gray-interlock: its slope jumps at every column (by
+  // -20.2e-6 per column at column 3), a kink of ArcSim's linear interpolation.
+  const arcsim::BendingCurve curve = arcsim::bending_curve(gray_interlock().arcsim, Eigen::Vector2d(1, 0));
+  const std::array<double, 5> row = {23.191698e-6, 32.932217e-6, 34.406498e-6, 39.014420e-6, 23.382786e-6};
+  for (int j = 0; j < 5; ++j) CHECK(curve.samples[static_cast<std::size_t>(j)] == Approx(row[static_cast<std::size_t>(j)]).epsilon(1e-12));
+  auto at = [&](double value) { return arcsim::bending_stiffness(curve, 10.0 * value); };  // curvature 10 1/m per column
+  for (int j = 1; j <= 3; ++j) {
+    INFO("column " << j);
+    const double left = row[static_cast<std::size_t>(j)] - row[static_cast<std::size_t>(j - 1)];
+    const double right = row[static_cast<std::size_t>(j + 1)] - row[static_cast<std::size_t>(j)];
+    // 0.2 columns either side: ArcSim's straight lines, by hand.
+    CHECK(at(j - 0.2).k == Approx(row[static_cast<std::size_t>(j)] - 0.2 * left).epsilon(1e-12));
+    CHECK(at(j + 0.2).k == Approx(row[static_cast<std::size_t>(j)] + 0.2 * right).epsilon(1e-12));
+    CHECK(at(j - 0.2).dk_dcurvature == Approx(0.1 * left).epsilon(1e-12));
+    CHECK(at(j + 0.2).dk_dcurvature == Approx(0.1 * right).epsilon(1e-12));
+    // On the column: within 0.5 % of the sample, and one slope from either side.
+    CHECK(std::abs(at(j).k - row[static_cast<std::size_t>(j)]) <= 0.005 * row[static_cast<std::size_t>(j)] * (1 + 1e-9));
+    CHECK(at(j - 1e-9).dk_dcurvature == Approx(at(j + 1e-9).dk_dcurvature).epsilon(1e-6));
+    // Finite differences inside the band.
+    for (double u : {-0.01, 0.005, 0.02}) {
+      const double c = 10.0 * (j + u), h = 1e-6;
+      const double fd = (arcsim::bending_stiffness(curve, c + h).k - arcsim::bending_stiffness(curve, c - h).k) / (2 * h);
+      CHECK(arcsim::bending_stiffness(curve, c).dk_dcurvature == Approx(fd).epsilon(1e-6));
+      const double fd2 = (arcsim::bending_stiffness(curve, c + h).dk_dcurvature -
+                          arcsim::bending_stiffness(curve, c - h).dk_dcurvature) / (2 * h);
+      CHECK(arcsim::bending_stiffness(curve, c).d2k_dcurvature2 == Approx(fd2).epsilon(1e-6));
+    }
+  }
+  // Past the table, flat; joined to the last segment smoothly at column 4.
+  CHECK(at(4.5).k == Approx(row[4]).epsilon(1e-12));
+  CHECK(at(4.5).dk_dcurvature == 0.0);
+  CHECK(at(4 - 1e-9).dk_dcurvature == Approx(at(4 + 1e-9).dk_dcurvature).margin(1e-12));
+  // A fold either way: k even in the curvature, its derivative odd.
+  CHECK(at(-2.37).k == at(2.37).k);
+  CHECK(at(-2.37).dk_dcurvature == -at(2.37).dk_dcurvature);
+}
+
+TEST_CASE("a hinge between two materials bends with the softer side's stiffness, smoothly where they cross",
+          "[arcsim][bending][gradcheck]") {
+  // Face 0 knit (0 degree row: 23.19e-6 + 9.74e-6 per column over column
+  // 0-1), face 1 a flat 30e-6 table: they cross at curvature value
+  // (30 - 23.191698) / 9.740519 = 0.699, theta* = 0.0699 on this hinge
+  // (curvature 100 theta 1/m). Away from the crossing the hinge takes the
+  // smaller, as ArcSim does; across it the force is continuous (ArcSim's plain
+  // min jumps there by k' theta / 2k = 11 % of it).
+  Garment g = hinge_garment(0);
+  g.materials.push_back(gray_interlock());
+  g.materials[1].name = "flat";
+  for (auto& r : g.materials[1].arcsim.bending) r = {30e-6, 30e-6, 30e-6, 30e-6, 30e-6};
+  g.face_material.resize(2);
+  g.face_material << 0, 1;
+  const auto e = bound_energy("bending", "{}", g);
+  const double c = 1e-4 / 2e-4 / 4;  // l^2 / (2 (A0 + A1)) / 4 with l = 1 cm, A0 + A1 = 1 cm^2
+  CHECK(e->value(hinge_positions(0.05)) == Approx(0.5 * (23.191698e-6 + 32.932217e-6) * c * 0.05 * 0.05).epsilon(1e-6));
+  CHECK(e->value(hinge_positions(0.2)) == Approx(30e-6 * c * 0.2 * 0.2).epsilon(1e-6));
+  const double crossing = 0.1 * (30.0 - 23.191698) / (32.932217 - 23.191698);
+  auto force = [&](double theta) {
+    Eigen::MatrixX3d grad = Eigen::MatrixX3d::Zero(4, 3);
+    e->add_gradient(hinge_positions(theta), grad);
+    return grad;
+  };
+  const Eigen::MatrixX3d below = force(crossing - 1e-7), above = force(crossing + 1e-7);
+  CHECK((above - below).norm() <= 1e-4 * below.norm());
+  for (double theta : {crossing - 2e-4, crossing, crossing + 1e-4}) {
+    const GradCheckReport r = check_energy_derivatives(*e, hinge_positions(theta), {1e-8, 64, 7});
+    INFO("theta " << theta << "\n" << r.str());
+    CHECK(r.ok(1e-5));
+  }
 }
 
 TEST_CASE("ArcSim-model derivatives match finite differences, including a 100x stiffer print", "[arcsim][gradcheck]") {

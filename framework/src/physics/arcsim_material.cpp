@@ -363,20 +363,36 @@ BendingCurve bending_curve(const ArcsimData& data, const Eigen::Vector2d& du) {
 }
 
 BendingStiffness bending_stiffness(const BendingCurve& curve, double curvature) {
-  // Columns every 10 1/m (ArcSim: "samples are per 0.05 cm^-1" of half the curvature).
-  double value = 0.1 * std::abs(curvature);
-  double slope = 0.1;
-  if (value > 4.0) {
-    value = 4.0;
-    slope = 0.0;
+  // Columns every 10 1/m (ArcSim: "samples are per 0.05 cm^-1" of half the
+  // curvature), interpolated linearly with ArcSim, except within a band of
+  // each column (kBendingCornerBand) where the corner is rounded.
+  const double a = 0.1 * std::abs(curvature);
+  const auto& k = curve.samples;
+  // slope(j): dk/da on segment j (j = -1 mirrors segment 0: k depends on |a|; j = 4: flat past the table).
+  auto slope = [&](int j) { return j < 0 ? -(k[1] - k[0]) : j >= 4 ? 0.0 : k[static_cast<std::size_t>(j + 1)] - k[static_cast<std::size_t>(j)]; };
+  const int knot = std::min(static_cast<int>(std::lround(a)), 4);
+  const double u = a - knot, before = slope(knot - 1), jump = slope(knot) - before;
+  const double band = std::min(kBendingCornerBand, kBendingCornerDeviation * 4.0 * std::abs(k[static_cast<std::size_t>(knot)]) /
+                                                       std::max(std::abs(jump), 1e-300));
+  double value = 0.0, dk_da = 0.0, d2k_da2 = 0.0;
+  if (std::abs(u) < band) {
+    // A quadratic that meets both lines with their slopes at u = -band and u = +band (C1).
+    value = k[static_cast<std::size_t>(knot)] + before * u + jump * (u + band) * (u + band) / (4.0 * band);
+    dk_da = before + jump * (u + band) / (2.0 * band);
+    d2k_da2 = jump / (2.0 * band);
+  } else if (a >= 4.0) {
+    value = k[4];
+  } else {
+    const int column = std::min(static_cast<int>(a), 3);
+    const double w = a - column, lo = k[static_cast<std::size_t>(column)], hi = k[static_cast<std::size_t>(column + 1)];
+    value = lo * (1.0 - w) + hi * w;
+    dk_da = hi - lo;
   }
-  const int column = std::min(static_cast<int>(value), 3);
-  const double w = value - column;
-  const double lo = curve.samples[static_cast<std::size_t>(column)], hi = curve.samples[static_cast<std::size_t>(column + 1)];
   BendingStiffness out;
-  out.k = lo * (1.0 - w) + hi * w;
-  out.dk_dcurvature = slope * (hi - lo) * (curvature < 0 ? -1.0 : 1.0);
-  if (!(out.k > 0.0)) out = {0.0, 0.0};
+  out.k = value;
+  out.dk_dcurvature = 0.1 * dk_da * (curvature < 0 ? -1.0 : 1.0);
+  out.d2k_dcurvature2 = 0.01 * d2k_da2;
+  if (!(out.k > 0.0)) out = {};
   return out;
 }
 

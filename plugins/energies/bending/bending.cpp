@@ -44,6 +44,7 @@
 #include <drape/plugin.hpp>
 #include <drape/psd_projection.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <iostream>
 #include <limits>
@@ -68,8 +69,47 @@ struct HingeElement {
   double fade_height[2];  // kFadeFraction times each wing's UV height over the edge (0: never faded)
   double k_linear;       // both faces linear: the smaller constant stiffness
   bool tabulated;        // some face is arcsim: k_b from the curves
+  int softer;            // the side whose curve is nowhere above the other's (0 or 1), or -1: the curves cross
   arcsim::BendingCurve side[2];  // per face; a linear face's curve is its constant
 };
+
+// ArcSim's min over a hinge's two sides, rounded where they differ by less
+// than kSideBand times their mean: min's kink where the two curves cross
+// (a seam between the knit and a print) would be a kink of the energy, which
+// stalls Newton as the table's columns did (arcsim_material.hpp). C1; at most
+// kSideBand / 4 of the mean below the plain min, where the two are equal.
+constexpr double kSideBand = 0.02;
+
+arcsim::BendingStiffness softer_side(const arcsim::BendingStiffness& a, const arcsim::BendingStiffness& b) {
+  const double sum = a.k + b.k, gap = a.k - b.k;
+  if (!(std::abs(gap) < 0.5 * kSideBand * sum)) return a.k <= b.k ? a : b;
+  // In s = a + b and g = a - b: m = s / 2 - kSideBand s / 8 - g^2 / (2 kSideBand s).
+  const double c = kSideBand;
+  const double m_s = 0.5 - c / 8 + gap * gap / (2 * c * sum * sum), m_g = -gap / (c * sum);
+  const double m_ss = -gap * gap / (c * sum * sum * sum), m_sg = gap / (c * sum * sum), m_gg = -1.0 / (c * sum);
+  const double ds = a.dk_dcurvature + b.dk_dcurvature, dg = a.dk_dcurvature - b.dk_dcurvature;
+  const double d2s = a.d2k_dcurvature2 + b.d2k_dcurvature2, d2g = a.d2k_dcurvature2 - b.d2k_dcurvature2;
+  return {0.5 * sum - c * sum / 8 - gap * gap / (2 * c * sum), m_s * ds + m_g * dg,
+          m_ss * ds * ds + 2 * m_sg * ds * dg + m_gg * dg * dg + m_s * d2s + m_g * d2g};
+}
+
+// Which side is the softer at every curvature: the curves are linear between
+// the same columns, so comparing the columns decides (the corner rounding
+// moves each by under 0.5 %). Most hinges have one material and one edge
+// direction on both sides, so one curve is taken and ArcSim's min is exact;
+// only curves that cross (a seam between the knit and a print, a UV seam)
+// need softer_side.
+int softer_everywhere(const arcsim::BendingCurve& a, const arcsim::BendingCurve& b) {
+  // Equal to rounding counts as below: an edge's direction, reversed on the
+  // other face, can interpolate the table's rows in the last bit.
+  bool a_below = true, b_below = true;
+  for (std::size_t j = 0; j < a.samples.size(); ++j) {
+    const double tie = 1e-9 * std::max(std::abs(a.samples[j]), std::abs(b.samples[j]));
+    a_below = a_below && a.samples[j] <= b.samples[j] + tie;
+    b_below = b_below && b.samples[j] <= a.samples[j] + tie;
+  }
+  return a_below ? 0 : b_below ? 1 : -1;
+}
 
 // theta - rest wrapped to [-pi, pi].
 double angle_offset(double theta, double rest) { return std::remainder(theta - rest, 2.0 * std::numbers::pi); }
@@ -139,6 +179,7 @@ class Bending final : public ElementEnergy<4> {
         }
       }
       h.c_linear = scale_ * h.k_linear * l * l / (8.0 * area);
+      h.softer = softer_everywhere(h.side[0], h.side[1]);
       Element v;
       std::copy(std::begin(t.vertex), std::end(t.vertex), v.begin());
       for (int s = 0; s < 2; ++s) {
@@ -165,18 +206,19 @@ class Bending final : public ElementEnergy<4> {
     const double d = angle_offset(theta, h.rest_angle);
     // Linear: drape's constant model, in its old order of operations.
     if (!h.tabulated) return {h.c_linear * d * d, 2.0 * h.c_linear * d, 2.0 * h.c_linear};
-    double k = 0.0, dk = 0.0;
+    double k = 0.0, dk = 0.0, d2k = 0.0;
     {
       // The softer side at this curvature (ArcSim's min over the two faces).
       const double curvature = theta * h.curvature;
-      const arcsim::BendingStiffness s0 = arcsim::bending_stiffness(h.side[0], curvature),
-                                     s1 = arcsim::bending_stiffness(h.side[1], curvature);
-      const arcsim::BendingStiffness& s = s0.k <= s1.k ? s0 : s1;
+      const arcsim::BendingStiffness s0 = h.softer == 1 ? arcsim::BendingStiffness{} : arcsim::bending_stiffness(h.side[0], curvature),
+                                     s1 = h.softer == 0 ? arcsim::BendingStiffness{} : arcsim::bending_stiffness(h.side[1], curvature);
+      const arcsim::BendingStiffness s = h.softer == 0 ? s0 : h.softer == 1 ? s1 : softer_side(s0, s1);
       k = s.k;
       dk = s.dk_dcurvature * h.curvature;
+      d2k = s.d2k_dcurvature2 * h.curvature * h.curvature;
     }
-    // E = k(theta) c d^2: E' = c (k' d^2 + 2 k d), E'' = c (4 k' d + 2 k) (k piecewise linear).
-    return {k * h.shape * d * d, h.shape * (dk * d * d + 2.0 * k * d), h.shape * (4.0 * dk * d + 2.0 * k)};
+    // E = k(theta) c d^2: E' = c (k' d^2 + 2 k d), E'' = c (k'' d^2 + 4 k' d + 2 k).
+    return {k * h.shape * d * d, h.shape * (dk * d * d + 2.0 * k * d), h.shape * (d2k * d * d + 4.0 * dk * d + 2.0 * k)};
   }
 
   double element_value(int e, const Stencil& x) const override {
