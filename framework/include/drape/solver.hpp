@@ -49,7 +49,7 @@ struct SolverSettings {
   // the bytes. The Newton direction is still CG's, in double, and a direct
   // solve with a fresh factor stays in double. Measured in docs/scenes.md.
   bool float_preconditioner = true;
-  double newton_forcing = 0.1;
+  double newton_forcing = 1e-3;
   int max_cg_iterations = 20;
 };
 

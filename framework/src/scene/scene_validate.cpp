@@ -26,7 +26,7 @@ const std::vector<ParamSpec>& scene_solver_specs() {
       {"preconditioner", ParamType::String, "float",
        "precision of the kept factor's solves inside CG (cholmod): float halves their memory traffic; double is exact",
        {}, {}, {"float", "double"}},
-      {"newton_forcing", ParamType::Float, "0.1", "inexact Newton: CG stops at |H d + g| <= this * |g|", 1e-12, 0.9},
+      {"newton_forcing", ParamType::Float, "1e-3", "inexact Newton: CG stops at |H d + g| <= this * |g|", 1e-12, 0.9},
       {"max_cg_iterations", ParamType::Int, "20", "CG iterations before the Newton matrix is factorised anew", 1, 10000},
       {"gravity_direction", ParamType::FloatList, "[0, -1, 0]", "direction of gravity (the magnitude is the gravity effect's g)"},
   };
