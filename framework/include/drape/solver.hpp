@@ -30,7 +30,7 @@ namespace drape {
 struct SolverSettings {
   double time_step = 0.1;          // s
   double damping = 0.2;            // fraction of the velocity dropped per step (0..1)
-  int max_newton_iterations = 8;   // per time step
+  int max_newton_iterations = 30;  // per time step
   double tolerance = 1e-3;         // per step: |grad Phi| / |W|
   double settle_tolerance = 5e-3;  // drape done: |grad E| / |W| of the static energy
   double rest_displacement = 1e-5; // m: or done when no vertex moved farther in a step (at rest)...

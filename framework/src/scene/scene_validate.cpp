@@ -10,7 +10,7 @@ const std::vector<ParamSpec>& scene_solver_specs() {
       {"damping", ParamType::Float, "0.2", "fraction of the velocity dropped per step (1 = quasi-static)", 0.0, 1.0},
       {"morph_steps", ParamType::Int, "20", "steps over which the body morphs from the mean shape to the target", 0.0, 1e6},
       {"settle_steps", ParamType::Int, "60", "at most this many steps on the target body to settle", 0.0, 1e6},
-      {"max_newton_iterations", ParamType::Int, "8", "Newton iterations per settling step at most", 1.0, 1e4},
+      {"max_newton_iterations", ParamType::Int, "30", "Newton iterations per settling step at most", 1.0, 1e4},
       {"morph_newton_iterations", ParamType::Int, "3", "Newton iterations per morphing step at most", 1.0, 1e4},
       {"tolerance", ParamType::Float, "1e-3", "a step converges at |grad Phi| <= tolerance * |weight|", 1e-14, 1.0},
       {"settle_tolerance", ParamType::Float, "5e-3", "the drape is settled at |grad E| <= this * |weight|", 1e-14, 10.0},
