@@ -210,9 +210,9 @@ class Bending final : public ElementEnergy<4> {
     {
       // The softer side at this curvature (ArcSim's min over the two faces).
       const double curvature = theta * h.curvature;
-      const arcsim::BendingStiffness s0 = h.softer == 1 ? arcsim::BendingStiffness{} : arcsim::bending_stiffness(h.side[0], curvature),
-                                     s1 = h.softer == 0 ? arcsim::BendingStiffness{} : arcsim::bending_stiffness(h.side[1], curvature);
-      const arcsim::BendingStiffness s = h.softer == 0 ? s0 : h.softer == 1 ? s1 : softer_side(s0, s1);
+      const arcsim::BendingStiffness s =
+          h.softer >= 0 ? arcsim::bending_stiffness(h.side[h.softer], curvature)
+                        : softer_side(arcsim::bending_stiffness(h.side[0], curvature), arcsim::bending_stiffness(h.side[1], curvature));
       k = s.k;
       dk = s.dk_dcurvature * h.curvature;
       d2k = s.d2k_dcurvature2 * h.curvature * h.curvature;
