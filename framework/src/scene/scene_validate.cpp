@@ -1,33 +1,52 @@
 // Scene settings' specs and the check of a scene's names against the registry.
 #include <drape/registry.hpp>
 #include <drape/scene.hpp>
+#include <drape/solver.hpp>
+
+#include <cstdio>
+#include <string>
 
 namespace drape {
 
+namespace {
+
+// The solver's own defaults (SolverSettings) written as scene defaults, so
+// that the two cannot drift apart.
+std::string number(double v) {
+  char s[32];
+  std::snprintf(s, sizeof s, "%.6g", v);
+  return s;
+}
+std::string number(int v) { return std::to_string(v); }
+std::string number(bool v) { return v ? "true" : "false"; }
+
+}  // namespace
+
 const std::vector<ParamSpec>& scene_solver_specs() {
+  static const SolverSettings d;
   static const std::vector<ParamSpec> specs = {
-      {"time_step", ParamType::Float, "0.1", "backward-Euler time step, s", 1e-5, 10.0},
-      {"damping", ParamType::Float, "0.2", "fraction of the velocity dropped per step (1 = quasi-static)", 0.0, 1.0},
+      {"time_step", ParamType::Float, number(d.time_step), "backward-Euler time step, s", 1e-5, 10.0},
+      {"damping", ParamType::Float, number(d.damping), "fraction of the velocity dropped per step (1 = quasi-static)", 0.0, 1.0},
       {"morph_steps", ParamType::Int, "20", "steps over which the body morphs from the mean shape to the target", 0.0, 1e6},
       {"settle_steps", ParamType::Int, "60", "at most this many steps on the target body to settle", 0.0, 1e6},
-      {"max_newton_iterations", ParamType::Int, "30", "Newton iterations per settling step at most", 1.0, 1e4},
+      {"max_newton_iterations", ParamType::Int, number(d.max_newton_iterations), "Newton iterations per settling step at most", 1.0, 1e4},
       {"morph_newton_iterations", ParamType::Int, "3", "Newton iterations per morphing step at most", 1.0, 1e4},
-      {"tolerance", ParamType::Float, "1e-3", "a step converges at |grad Phi| <= tolerance * |weight|", 1e-14, 1.0},
-      {"settle_tolerance", ParamType::Float, "5e-3", "the drape is settled at |grad E| <= this * |weight|", 1e-14, 10.0},
-      {"rest_displacement", ParamType::Float, "1e-5", "m: settled when no vertex moves farther in a step", 0.0, 1.0},
-      {"kink_tolerance", ParamType::Float, "5e-2", "at rest counts as settled only below this stationarity / |weight|", 0.0, 1e6},
-      {"kink_radius", ParamType::Float, "1e-3",
+      {"tolerance", ParamType::Float, number(d.tolerance), "a step converges at |grad Phi| <= tolerance * |weight|", 1e-14, 1.0},
+      {"settle_tolerance", ParamType::Float, number(d.settle_tolerance), "the drape is settled at |grad E| <= this * |weight|", 1e-14, 10.0},
+      {"rest_displacement", ParamType::Float, number(d.rest_displacement), "m: settled when no vertex moves farther in a step", 0.0, 1.0},
+      {"kink_tolerance", ParamType::Float, number(d.kink_tolerance), "at rest counts as settled only below this stationarity / |weight|", 0.0, 1e6},
+      {"kink_radius", ParamType::Float, number(d.kink_radius),
        "m: contact pushes sampled this far around a vertex count towards its balance (the stationarity of a crease)", 0.0,
        0.1},
-      {"max_displacement", ParamType::Float, "0.02", "m: no vertex moves farther in one Newton iteration", 1e-6, 10.0},
-      {"linear_solver", ParamType::String, "auto", "sparse Cholesky: auto (cholmod when built with it), eigen, cholmod",
+      {"max_displacement", ParamType::Float, number(d.max_displacement), "m: no vertex moves farther in one Newton iteration", 1e-6, 10.0},
+      {"linear_solver", ParamType::String, d.linear_solver, "sparse Cholesky: auto (cholmod when built with it), eigen, cholmod",
        {}, {}, {"auto", "eigen", "cholmod"}},
-      {"reuse_factorization", ParamType::Bool, "true", "precondition CG with the last Cholesky factor; factorise only when CG stalls"},
-      {"preconditioner", ParamType::String, "float",
+      {"reuse_factorization", ParamType::Bool, number(d.reuse_factorization), "precondition CG with the last Cholesky factor; factorise only when CG stalls"},
+      {"preconditioner", ParamType::String, d.float_preconditioner ? "float" : "double",
        "precision of the kept factor's solves inside CG (cholmod): float halves their memory traffic; double is exact",
        {}, {}, {"float", "double"}},
-      {"newton_forcing", ParamType::Float, "1e-3", "inexact Newton: CG stops at |H d + g| <= this * |g|", 1e-12, 0.9},
-      {"max_cg_iterations", ParamType::Int, "20", "CG iterations before the Newton matrix is factorised anew", 1, 10000},
+      {"newton_forcing", ParamType::Float, number(d.newton_forcing), "inexact Newton: CG stops at |H d + g| <= this * |g|", 1e-12, 0.9},
+      {"max_cg_iterations", ParamType::Int, number(d.max_cg_iterations), "CG iterations before the Newton matrix is factorised anew", 1, 10000},
       {"gravity_direction", ParamType::FloatList, "[0, -1, 0]", "direction of gravity (the magnitude is the gravity effect's g)"},
   };
   return specs;
