@@ -8,10 +8,7 @@ MakeHuman model).
 """
 import argparse
 
-import h5py
 import numpy as np
-
-import drape
 
 SPLITS = {"train": 0, "val": 1, "test": 2}
 
@@ -37,6 +34,9 @@ def main():
     parser.add_argument("data")
     parser.add_argument("--split", default="test", choices=sorted(SPLITS))
     args = parser.parse_args()
+    import h5py  # here, so that winding_numbers can be imported without drape or h5py
+
+    import drape
     model = drape.Model.load(args.model)
     faces = np.asarray(model.assets.body_faces)
     with h5py.File(args.data, "r") as f:
