@@ -43,15 +43,8 @@ import tempfile
 
 import numpy as np
 
-
-def read_obj(path):
-    v, f = [], []
-    for line in open(path):
-        if line.startswith("v "):
-            v.append([float(x) for x in line.split()[1:4]])
-        elif line.startswith("f "):
-            f.append([int(x.split("/")[0]) - 1 for x in line.split()[1:4]])
-    return np.array(v), np.array(f)
+sys.path.insert(0, str(pathlib.Path(__file__).resolve().parents[1] / "reference"))
+from obj_file import read_obj  # noqa: E402
 
 
 class Slicer:

@@ -1,33 +1,15 @@
 #!/usr/bin/env python3
 """p (percent of garment vertices inside the body) of written drapes, by the
-generalized winding number of winding_number_p.py, reading the OBJ files with
-a parser written here: nothing of drape's is used (no mesh loader, no inside
+generalized winding number of winding_number.py, reading the OBJ files with
+obj_file.py: nothing of drape's is used (no mesh loader, no inside
 test), so it checks `drape simulate --out G.obj --body-out B.obj` from outside.
 
     /usr/bin/python3 scripts/reference/winding_number_meshes.py G1.obj B1.obj [G2.obj B2.obj ...]
 """
 import sys
 
-import numpy as np
-
-from winding_number_p import winding_numbers
-
-
-def read_obj(path):
-    """Vertices and triangles of an OBJ file (polygons fanned; v/vt/vn indices; 1-based or negative)."""
-    vertices, faces = [], []
-    with open(path) as f:
-        for line in f:
-            parts = line.split()
-            if not parts:
-                continue
-            if parts[0] == "v":
-                vertices.append([float(t) for t in parts[1:4]])
-            elif parts[0] == "f":
-                ids = [int(t.split("/")[0]) for t in parts[1:]]
-                ids = [i - 1 if i > 0 else len(vertices) + i for i in ids]
-                faces.extend([ids[0], ids[k], ids[k + 1]] for k in range(1, len(ids) - 1))
-    return np.array(vertices, dtype=np.float64), np.array(faces, dtype=np.int64)
+from obj_file import read_obj
+from winding_number import winding_numbers
 
 
 def main():

@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 """p (percent of garment vertices inside the body) of a model's predictions on
-a dataset split, by a generalized winding number written here in numpy: it
+a dataset split, by the generalized winding number of winding_number.py (numpy): it
 shares no code with drape's own inside test (docs/garments.md uses it for the
 MakeHuman model).
 
@@ -8,24 +8,13 @@ MakeHuman model).
 """
 import argparse
 
+import h5py
 import numpy as np
 
+import drape
+from winding_number import winding_numbers
+
 SPLITS = {"train": 0, "val": 1, "test": 2}
-
-
-def winding_numbers(vertices, faces, points, chunk=64):
-    """Van Oosterom-Strackee solid angles summed over the faces, / 4 pi."""
-    a_all, b_all, c_all = vertices[faces[:, 0]], vertices[faces[:, 1]], vertices[faces[:, 2]]
-    w = np.zeros(len(points))
-    for s in range(0, len(points), chunk):
-        p = points[s:s + chunk, None]
-        a, b, c = a_all[None] - p, b_all[None] - p, c_all[None] - p
-        la, lb, lc = (np.linalg.norm(x, axis=2) for x in (a, b, c))
-        det = np.einsum("ijk,ijk->ij", a, np.cross(b, c))
-        den = (la * lb * lc + np.einsum("ijk,ijk->ij", a, b) * lc + np.einsum("ijk,ijk->ij", b, c) * la +
-               np.einsum("ijk,ijk->ij", c, a) * lb)
-        w[s:s + chunk] = np.arctan2(det, den).sum(axis=1) / (2 * np.pi)
-    return w
 
 
 def main():
@@ -34,9 +23,6 @@ def main():
     parser.add_argument("data")
     parser.add_argument("--split", default="test", choices=sorted(SPLITS))
     args = parser.parse_args()
-    import h5py  # here, so that winding_numbers can be imported without drape or h5py
-
-    import drape
     model = drape.Model.load(args.model)
     faces = np.asarray(model.assets.body_faces)
     with h5py.File(args.data, "r") as f:

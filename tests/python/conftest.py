@@ -3,8 +3,8 @@ python/ folder and DRAPE_SOURCE_DIR / DRAPE_BINARY_DIR set (python/CMakeLists.tx
 import os
 import pathlib
 import subprocess
+import sys
 
-import numpy as np
 import pytest
 
 SOURCE = pathlib.Path(os.environ.get("DRAPE_SOURCE_DIR", pathlib.Path(__file__).resolve().parents[2]))
@@ -12,6 +12,10 @@ BINARY = pathlib.Path(os.environ.get("DRAPE_BINARY_DIR", SOURCE / "build"))
 DRAPE = BINARY / "bin" / "drape"
 COARSE = SOURCE / "graphs" / "scenes" / "tshirt_coarse.yaml"
 CONTACT = SOURCE / "graphs" / "scenes" / "tshirt_coarse_contact.yaml"
+REFERENCE = SOURCE / "scripts" / "reference"  # the checks written apart from drape (numpy only)
+
+sys.path.insert(0, str(REFERENCE))
+from obj_file import read_obj  # noqa: E402,F401  (an OBJ reader independent of drape's, for the tests)
 
 
 def run_drape(*args, expect=0):
@@ -19,20 +23,6 @@ def run_drape(*args, expect=0):
     p = subprocess.run([str(DRAPE), *map(str, args)], capture_output=True, text=True, timeout=120)
     assert p.returncode == expect, f"drape {' '.join(map(str, args))} exited {p.returncode}:\n{p.stderr}"
     return p.stdout, p.stderr
-
-
-def read_obj(path):
-    """Vertices and 0-based faces of an OBJ file, parsed here (independently of drape's reader)."""
-    v, f = [], []
-    for line in pathlib.Path(path).read_text().splitlines():
-        parts = line.split()
-        if not parts:
-            continue
-        if parts[0] == "v":
-            v.append([float(c) for c in parts[1:4]])
-        elif parts[0] == "f":
-            f.append([int(c.split("/")[0]) - 1 for c in parts[1:4]])
-    return np.array(v), np.array(f)
 
 
 @pytest.fixture(scope="session")

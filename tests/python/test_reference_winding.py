@@ -1,19 +1,14 @@
 """The independent inside test of scripts/reference (a generalized winding number in numpy, its own OBJ reader):
 what docs and notes use to confirm drape's p from outside. Checked on a cube by hand, then on a body drape
 written by the program."""
-import os
 import subprocess
 import sys
 
 import numpy as np
 import pytest
 
-from conftest import COARSE, run_drape
-
-REFERENCE = os.path.join(os.environ.get("DRAPE_SOURCE_DIR", "."), "scripts", "reference")
-sys.path.insert(0, REFERENCE)
-from winding_number_meshes import read_obj  # noqa: E402
-from winding_number_p import winding_numbers  # noqa: E402
+from conftest import COARSE, REFERENCE, read_obj, run_drape
+from winding_number import winding_numbers
 
 
 def write_cube(path):
@@ -40,7 +35,7 @@ def test_cube_by_hand(tmp_path):
 def test_a_drape_and_a_pushed_in_copy(tmp_path):
     garment, body = tmp_path / "g.obj", tmp_path / "b.obj"
     run_drape("simulate", COARSE, "--bmi", 22, "--out", garment, "--body-out", body)
-    script = os.path.join(REFERENCE, "winding_number_meshes.py")
+    script = str(REFERENCE / "winding_number_meshes.py")
     out = subprocess.run([sys.executable, script, str(garment), str(body)], capture_output=True, text=True, check=True)
     assert "p = 0.000 %" in out.stdout  # the barrier drape: no vertex inside
     # Half of the shirt's vertices pulled 70 % of the way to the body's centre of mass are inside it.
