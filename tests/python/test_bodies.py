@@ -1,9 +1,11 @@
 """drape.body and drape.BodyModel against the drape program's bodies, and their errors."""
+import sys
+
 import numpy as np
 import pytest
 
 import drape
-from conftest import read_obj, run_drape
+from conftest import SOURCE, read_obj, run_drape
 
 
 def test_body_matches_the_program(tmp_path):
@@ -66,3 +68,18 @@ def test_plugins_are_listed():
     kinds = {p["name"]: p["kind"] for p in drape.plugins()}
     assert kinds["parametric"] == "body" and kinds["stretching"] == "energy" and kinds["tshirt"] == "garment"
     assert drape.plugin_search_path()
+
+
+@pytest.mark.parametrize("sex", [0, 1])
+@pytest.mark.parametrize("height", [1.5, 2.0])
+def test_heavy_corners_keep_human_proportions(sex, height):
+    """Issue 21's report: at BMI 65 a woman's hips were 1.20 times her shoulders and her ankles thinner than
+    her wrists would be on a person (1.24 times the wrist girth; MakeHuman 1.26-1.48 over BMI 20-39). Measured
+    on the mesh alone by scripts/figures/body_proportions.py (slices and tape girths, no drape code)."""
+    sys.path.insert(0, str(SOURCE / "scripts" / "figures"))
+    from body_proportions import measure
+
+    v, f = drape.body(bmi=65, height=height, sex=sex)
+    m = measure(np.asarray(v, dtype=np.float64), np.asarray(f))
+    assert m["hip/sh"] <= 1.15, m
+    assert 1.35 <= m["ank/wr"] <= 2.0, m
