@@ -11,6 +11,7 @@
 #include <drape/scene.hpp>
 #include <drape/simulation.hpp>
 
+#include <cstdio>
 #include <fstream>
 #include <set>
 
@@ -126,6 +127,13 @@ TEST_CASE("size auto: the tailor's rule picks the size from the body's girth, or
   // A plus size for BMI 60, and for the heaviest, tallest corner of the body space.
   const SizeChoice plus = chart.choose(body_of(60.0));
   CHECK(plus.size.find("xlarge") == 1);  // 2xlarge ... 6xlarge
+  // One size's ease on its own (what an unsettled drape reports): the chart's.
+  const Garment& shirt = regular.garment();
+  CHECK(garment_ease(shirt.mesh.vertices, shirt.mesh.faces, regular.mean_body(), regular.mean_body(),
+                     regular.body_model().faces()) == Approx(mean.design_ease).epsilon(1e-12));
+  CHECK(garment_ease(shirt.mesh.vertices, shirt.mesh.faces, regular.mean_body(), body_of(60.0),
+                     regular.body_model().faces()) == Approx(plus.ease("regular")).epsilon(1e-12));
+  CHECK(plus.ease("regular") < -0.3);
   CHECK_FALSE(chart.choose(body_of(65.0, 2.0)).size.empty());
   // A body 1.3 times that one's size is larger than every size.
   const Eigen::MatrixX3d giant = 1.3 * body_of(65.0, 2.0);
@@ -144,6 +152,17 @@ TEST_CASE("size auto: the tailor's rule picks the size from the body's girth, or
                       (dir / "giant.obj").string(),
                   out) == 2);
   CHECK_THAT(out, Catch::Contains("does not fit this body") && Catch::Contains("6xlarge"));
+  // A drape left unsettled in a size smaller than the body says how much smaller.
+  std::ofstream(dir / "regular.yaml") << "body: {model: parametric}\ngarment: {template: tshirt, params: {resolution: coarse}}\n"
+                                          "effects: [gravity, stretching, bending, collision]\n"
+                                          "solver: {morph_steps: 2, settle_steps: 0}\n";
+  CHECK(test::run(test::drape_program().string() + " simulate " + (dir / "regular.yaml").string() + " --bmi 60", out) == 1);
+  char smaller[32];
+  std::snprintf(smaller, sizeof smaller, "%.1f %% smaller around", -100.0 * plus.ease("regular"));
+  CHECK_THAT(out, Catch::Contains("NOT settled") && Catch::Contains(smaller));
+  // ... and one in a size that fits does not.
+  CHECK(test::run(test::drape_program().string() + " simulate " + (dir / "regular.yaml").string() + " --bmi 22", out) == 1);
+  CHECK_THAT(out, Catch::Contains("NOT settled") && !Catch::Contains("smaller around"));
   // Commands that do not choose a size say so.
   CHECK(test::run(test::drape_program().string() + " assets --garment tshirt --size auto --no-cache", out) == 2);
   CHECK_THAT(out, Catch::Contains("size auto is chosen for each body") && Catch::Contains("drape generate"));

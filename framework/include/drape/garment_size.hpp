@@ -52,6 +52,15 @@ std::string default_garment_size(const Registry& registry, const Scene& scene);
 Scene with_garment_size(const Scene& scene, const std::string& size);
 // The body's girth by the rule above (vertices of a body mesh, Y up).
 double body_girth(const Eigen::MatrixX3d& body, const Eigen::MatrixX3i& faces);
+// A garment's girth by the rule above: the narrowest loop of its rest mesh
+// (`garment`, dressed on `mean_body`) over the band; infinity when no loop of
+// it goes around the body there.
+double garment_girth(const Eigen::MatrixX3d& garment, const Eigen::MatrixX3i& garment_faces,
+                     const Eigen::MatrixX3d& mean_body);
+// The garment's ease on `body`: garment_girth / body_girth - 1 (negative: the
+// garment is smaller than the body). NaN when either cannot be measured.
+double garment_ease(const Eigen::MatrixX3d& garment, const Eigen::MatrixX3i& garment_faces,
+                    const Eigen::MatrixX3d& mean_body, const Eigen::MatrixX3d& body, const Eigen::MatrixX3i& body_faces);
 // The sizes of a scene's garment, each built as a Simulation once, with their
 // girths and the design ease; then a choice per body. ConfigError when the
 // scene's garment has no size parameter with choices. choose() and

@@ -82,6 +82,22 @@ double body_girth(const Eigen::MatrixX3d& body, const Eigen::MatrixX3i& faces) {
   return largest;
 }
 
+double garment_girth(const Eigen::MatrixX3d& garment, const Eigen::MatrixX3i& garment_faces,
+                     const Eigen::MatrixX3d& mean_body) {
+  double narrowest = std::numeric_limits<double>::infinity();
+  for (const geometry::Girth& g : band_girths(garment, garment_faces, mean_body)) narrowest = std::min(narrowest, g.length);
+  return narrowest;
+}
+
+double garment_ease(const Eigen::MatrixX3d& garment, const Eigen::MatrixX3i& garment_faces,
+                    const Eigen::MatrixX3d& mean_body, const Eigen::MatrixX3d& body, const Eigen::MatrixX3i& body_faces) {
+  const double loop = garment_girth(garment, garment_faces, mean_body);
+  double around = 0.0;
+  for (const geometry::Girth& g : band_girths(body, body_faces, body)) around = std::max(around, g.tape);
+  if (!std::isfinite(loop) || !(around > 0.0)) return std::numeric_limits<double>::quiet_NaN();
+  return loop / around - 1.0;
+}
+
 SizeChart::SizeChart(const Registry& registry, const Scene& scene) {
   const ParamSpec* spec = size_spec(registry, scene);
   if (!spec) throw ConfigError("garment '" + scene.garment + "' has no sizes to choose from (size: auto)");
@@ -91,8 +107,7 @@ SizeChart::SizeChart(const Registry& registry, const Scene& scene) {
     if (s == "auto") continue;
     auto sim = std::make_unique<Simulation>(registry, with_garment_size(scene, s));
     // A size's girth: its fabric's narrowest loop over the band on the mean body.
-    double narrowest = std::numeric_limits<double>::infinity();
-    for (const geometry::Girth& g : band_girths(sim->garment().mesh.vertices, sim->garment().mesh.faces, sim->mean_body())) narrowest = std::min(narrowest, g.length);
+    const double narrowest = garment_girth(sim->garment().mesh.vertices, sim->garment().mesh.faces, sim->mean_body());
     if (!std::isfinite(narrowest))
       throw ConfigError("size " + s + " of garment '" + scene.garment + "': no loop of it goes around the body to measure");
     if (s == design_size_) design_girth = narrowest;

@@ -1,5 +1,6 @@
 // Scene -> energies, body and garment; the morph-then-settle run (simulation.hpp).
 #include <drape/garment_dressing.hpp>
+#include <drape/garment_size.hpp>
 #include <drape/geometry/closest_point.hpp>
 #include <drape/registry.hpp>
 #include <drape/simulation.hpp>
@@ -204,8 +205,11 @@ SimulationResult Simulation::run(const Eigen::MatrixX3d& target_body, const Simu
   const Eigen::MatrixX3d gradient = solver.static_gradient(x);
   result.residual = gradient.norm() / solver.force_scale();
   result.vertex_force = gradient.rowwise().norm();
-  if (!result.converged)
-    result.unsettled = scene_detail::why_unsettled(result, x, settle_tolerance, result.steps - morph_steps_, at_rest_limit);
+  if (!result.converged) {
+    const double ease = garment_ease(garment_->mesh.vertices, garment_->mesh.faces, mean_body_, target_body, body_model_->faces());
+    result.unsettled =
+        scene_detail::why_unsettled(result, x, settle_tolerance, result.steps - morph_steps_, at_rest_limit, ease);
+  }
   result.garment = x;
   result.body = target_body;
   result.linear_solver = solver.linear_solver();

@@ -3,6 +3,8 @@
 
 #include "garment_region.hpp"
 
+#include <drape/garment_size.hpp>
+
 #include <algorithm>
 #include <cstdio>
 #include <numeric>
@@ -10,7 +12,7 @@
 namespace drape::scene_detail {
 
 std::string why_unsettled(const SimulationResult& result, const Eigen::MatrixX3d& x, double tolerance, int settle_steps,
-                          double at_rest_limit) {
+                          double at_rest_limit, double ease) {
   char head[300];
   if (result.at_rest)
     std::snprintf(head, sizeof head,
@@ -34,6 +36,17 @@ std::string why_unsettled(const SimulationResult& result, const Eigen::MatrixX3d
   if (result.line_search_failures > 0)
     out += "; " + std::to_string(result.line_search_failures) +
            " Newton iterations found no decrease (the garment may be pinched between parts of the body, or not fit it)";
+  if (ease < kMinimumEase) {
+    // A fact, not a verdict: the knit stretches, and the regular shirt settles
+    // on bodies it is up to about 40 % smaller than (docs/scenes.md); the
+    // farther below, the likelier the drape is pulled into the body everywhere.
+    char fit[300];
+    std::snprintf(fit, sizeof fit,
+                  "; the garment is %.1f %% smaller around than the body's chest or belly, so it is stretched onto the "
+                  "body (size: auto chooses a size at least as large as the body)",
+                  -100.0 * ease);
+    out += fit;
+  }
   return out;
 }
 
