@@ -62,12 +62,12 @@ TEST_CASE("the MakeHuman body drops helpers, is in meters and hits a requested B
   CHECK(lo < 16);
   CHECK(hi > 35);
   for (double target : {16.0, 22.0, 30.0, 35.0}) {
-    const Eigen::VectorXd shape = body->solve({target, 1.75, 1.0});
+    const Eigen::VectorXd shape = body->solve({target, 1.75, 1.0, {}});
     Mesh m{body->vertices(shape), body->faces(), {}, {}};
     CHECK(bmi_of(m) == Approx(target).margin(0.5));
     CHECK(m.vertices.col(1).maxCoeff() - m.vertices.col(1).minCoeff() == Approx(1.75).margin(0.01));
   }
-  CHECK_THROWS_WITH(body->solve({55.0, 1.75, 1.0}), Catch::Contains("outside") && Catch::Contains("reaches BMI"));
+  CHECK_THROWS_WITH(body->solve({55.0, 1.75, 1.0, {}}), Catch::Contains("outside") && Catch::Contains("reaches BMI"));
 }
 
 TEST_CASE("a missing MakeHuman folder is a clear error", "[makehuman]") {
@@ -87,7 +87,7 @@ struct HeavyBody {
 };
 HeavyBody heavy_body(ParamValues values) {
   const auto body = makehuman_body();
-  const Eigen::VectorXd heavy = body->solve({34.0, 1.75, 1.0});
+  const Eigen::VectorXd heavy = body->solve({34.0, 1.75, 1.0, {}});
   const char* names[] = {"gender", "muscle", "weight", "height", "proportions"};
   for (int i = 0; i < 5; ++i) values[names[i]] = {YAML::Node(heavy[i]), {}};
   return {values, Mesh{body->vertices(heavy), body->faces(), {}, {}}};

@@ -45,6 +45,9 @@ const Row kRows[] = {
     {"ablations/losses/l3_edge.yaml", "cnn1d", "msgcn", true, {"v2v", "direction", "laplacian", "edge"}},
     {"ablations/losses/l4_spectral.yaml", "cnn1d", "msgcn", true,
      {"v2v", "direction", "laplacian", "edge", "spectral_loss"}},
+    // Not the seed's: its full model plus the penetration loss.
+    {"ablations/losses/l6_penetration.yaml", "cnn1d", "msgcn", true,
+     {"v2v", "direction", "edge", "deformation", "laplacian", "spectral_loss", "penetration"}},
     // The baseline of issue 5: MLP decoder, L2 alone.
     {"baselines/mlp_l2.yaml", "cnn1d", "mlp", false, {"l2"}},
 };

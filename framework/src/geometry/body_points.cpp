@@ -89,6 +89,16 @@ std::shared_ptr<const BodyPoints::Hits> BodyPoints::prediction(const Tensor& bod
   return hits;
 }
 
+BodyPoints::Hits BodyPoints::signed_prediction(const Tensor& body, const Tensor& pred, const Tensor& target, int b,
+                                               const Hits& truth) {
+  Hits hits = *prediction(body, pred, target, b, truth);
+  use_body(body, b, true);
+  const auto x = pred.mat(b);
+  for (std::size_t i = 0; i < hits.size(); ++i)
+    hits[i] = surface_.with_sign(x.row(static_cast<Eigen::Index>(i)).transpose().cast<double>(), hits[i]);
+  return hits;
+}
+
 std::shared_ptr<const NearbyFaces> BodyPoints::nearby_faces(const Tensor& body, const Tensor& target, int b,
                                                            const Hits& truth) {
   if (last_truth_.get() == &truth) return SurfaceCache::shared().find_nearby(last_truth_key_);

@@ -11,6 +11,7 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <string>
 #include <utility>
 #include <string>
 
@@ -117,6 +118,13 @@ SurfacePoint BodySurface::search(const Eigen::Vector3d& p, double max_distance, 
   const int face = bvh_->nearest(p, bound, hit, face_labels, excluded, hint);
   if (face < 0) return {};
   return finish(p, face, hit);
+}
+
+SurfacePoint BodySurface::with_sign(const Eigen::Vector3d& p, const SurfacePoint& closest) const {
+  if (closest.face < 0 || closest.face >= faces_.rows())
+    throw Error("body surface: closest point on face " + std::to_string(closest.face) + " of " +
+                std::to_string(faces_.rows()));
+  return finish(p, closest.face, TrianglePoint{closest.point, closest.barycentric, closest.feature});
 }
 
 SurfacePoint BodySurface::locate(const Eigen::Vector3d& p, double max_distance) const {

@@ -44,6 +44,8 @@ class BodyPoints {
   // truth: ground_truth's points of target sample b.
   std::shared_ptr<const Hits> prediction(const Tensor& body, const Tensor& pred, const Tensor& target, int b,
                                          const Hits& truth);
+  // The same points with their signs and normals (BodySurface::with_sign).
+  Hits signed_prediction(const Tensor& body, const Tensor& pred, const Tensor& target, int b, const Hits& truth);
 
   // The nearby lists hold the faces within the ground truth's distance plus
   // this of each ground-truth vertex, at most kNearbyFaces of them: enough to
