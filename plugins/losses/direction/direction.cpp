@@ -15,6 +15,7 @@
 // graph wants (training: pred only). Computed in double; the closest points come
 // from geometry::BodyPoints (the target's cached, shared with v2v).
 #include <drape/assets.hpp>
+#include <drape/body_loss_inputs.hpp>
 #include <drape/geometry/body_points.hpp>
 #include <drape/geometry/closest_point_gradient.hpp>
 #include <drape/plugin.hpp>
@@ -40,16 +41,8 @@ class DirectionLoss final : public Node {
       : mean_(mean), outside_weight_(outside_weight), offset_weight_(offset_weight) {}
 
   ShapeMap setup(const ShapeMap& in, const NodeContext& context) override {
-    if (!context.assets || context.assets->body.num_faces() == 0)
-      throw ConfigError("the direction loss needs the body's faces, but no assets with a body mesh are bound to this graph");
-    const Shape pred = in.at("pred"), target = in.at("target"), body = in.at("body");
-    if (!(pred == target)) throw ConfigError("pred " + pred.str() + " and target " + target.str() + " differ in shape");
-    if (pred.cols != 3 || pred.rows < 1) throw ConfigError("pred must be [vertices, 3], got " + pred.str());
+    rows_ = check_body_loss_inputs(in, context, "direction");
     const Mesh& mean_body = context.assets->body;
-    if (body.cols != 3 || body.rows != mean_body.num_vertices())
-      throw ConfigError("body must be [" + std::to_string(mean_body.num_vertices()) +
-                        ", 3] (the vertices of a body with the assets' topology), got " + body.str());
-    rows_ = pred.rows;
     faces_ = mean_body.faces;
     points_ = std::make_unique<geometry::BodyPoints>(mean_body, "direction");
     return {{"loss", {1, 1}}};

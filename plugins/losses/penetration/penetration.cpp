@@ -18,6 +18,7 @@
 // body too, but only pred's gradient is given: this is a training loss, and
 // the graph asks for no other (setup refuses a body or target gradient).
 #include <drape/assets.hpp>
+#include <drape/body_loss_inputs.hpp>
 #include <drape/errors.hpp>
 #include <drape/geometry/body_points.hpp>
 #include <drape/plugin.hpp>
@@ -35,17 +36,8 @@ class PenetrationLoss final : public Node {
   explicit PenetrationLoss(double margin) : margin_(margin) {}
 
   ShapeMap setup(const ShapeMap& in, const NodeContext& context) override {
-    if (!context.assets || context.assets->body.num_faces() == 0)
-      throw ConfigError("the penetration loss needs the body's faces, but no assets with a body mesh are bound to this graph");
-    const Shape pred = in.at("pred"), target = in.at("target"), body = in.at("body");
-    if (!(pred == target)) throw ConfigError("pred " + pred.str() + " and target " + target.str() + " differ in shape");
-    if (pred.cols != 3 || pred.rows < 1) throw ConfigError("pred must be [vertices, 3], got " + pred.str());
-    const Mesh& mean_body = context.assets->body;
-    if (body.cols != 3 || body.rows != mean_body.num_vertices())
-      throw ConfigError("body must be [" + std::to_string(mean_body.num_vertices()) +
-                        ", 3] (the vertices of a body with the assets' topology), got " + body.str());
-    rows_ = pred.rows;
-    points_ = std::make_unique<geometry::BodyPoints>(mean_body, "penetration");
+    rows_ = check_body_loss_inputs(in, context, "penetration");
+    points_ = std::make_unique<geometry::BodyPoints>(context.assets->body, "penetration");
     return {{"loss", {1, 1}}};
   }
 

@@ -12,6 +12,7 @@
 // geometry::BodyPoints: the target's computed once per sample and cached, the
 // prediction's among the faces listed near the target's vertex.
 #include <drape/assets.hpp>
+#include <drape/body_loss_inputs.hpp>
 #include <drape/geometry/body_points.hpp>
 #include <drape/geometry/closest_point_gradient.hpp>
 #include <drape/plugin.hpp>
@@ -36,16 +37,8 @@ class V2vLoss final : public Node {
   explicit V2vLoss(bool mean) : mean_(mean) {}
 
   ShapeMap setup(const ShapeMap& in, const NodeContext& context) override {
-    if (!context.assets || context.assets->body.num_faces() == 0)
-      throw ConfigError("the v2v loss needs the body's faces, but no assets with a body mesh are bound to this graph");
-    const Shape pred = in.at("pred"), target = in.at("target"), body = in.at("body");
-    if (!(pred == target)) throw ConfigError("pred " + pred.str() + " and target " + target.str() + " differ in shape");
-    if (pred.cols != 3 || pred.rows < 1) throw ConfigError("pred must be [vertices, 3], got " + pred.str());
+    rows_ = check_body_loss_inputs(in, context, "v2v");
     const Mesh& mean_body = context.assets->body;
-    if (body.cols != 3 || body.rows != mean_body.num_vertices())
-      throw ConfigError("body must be [" + std::to_string(mean_body.num_vertices()) +
-                        ", 3] (the vertices of a body with the assets' topology), got " + body.str());
-    rows_ = pred.rows;
     faces_ = mean_body.faces;
     points_ = std::make_unique<geometry::BodyPoints>(mean_body, "v2v");
     return {{"loss", {1, 1}}};
