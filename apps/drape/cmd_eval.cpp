@@ -5,6 +5,7 @@
 #include <drape/atomic_file.hpp>
 #include <drape/dataset.hpp>
 #include <drape/evaluation.hpp>
+#include <drape/geometry/push_out.hpp>
 #include <drape/metrics.hpp>
 #include <drape/model.hpp>
 #include <drape/progress.hpp>
@@ -110,6 +111,9 @@ int run(const std::vector<std::string>& args) {
                                           "shirts of a dataset of two sizes)")(
       "set", po::value<std::vector<std::string>>(), "node.param=value: change a parameter of the model's graph that leaves "
                                                     "the weights alone, e.g. post.enabled=true (repeatable)")(
+      "push-out", po::value<double>()->implicit_value(geometry::kPushOutMargin),
+      "measure the predictions after pushing their vertices out of the body to this clearance in m (TailorNet's "
+      "post-processing; default 0.001 when given without a value)")(
       "out", po::value<std::string>(), "also write the table: metrics.csv or metrics.json")(
       "svg", po::value<std::string>(), "also draw the per-vertex error of the thinnest, median and heaviest body of the split (.svg, or .html: a 3D viewer)");
   po::variables_map vm;
@@ -151,7 +155,10 @@ int run(const std::vector<std::string>& args) {
   if (indices.empty()) throw ConfigError(data + ": the " + split + " split has no samples" + (vm.count("where") ? " where " + vm["where"].as<std::string>() : std::string()));
 
   ProgressBar bar("eval", indices.size(), std::cerr);
-  const SplitEvaluation evaluation = evaluate_model(model, reader, indices, batch_size, &bar);
+  const double push_out_margin = vm.count("push-out") ? vm["push-out"].as<double>() : -1.0;
+  if (vm.count("push-out") && !(push_out_margin >= 0 && push_out_margin <= 0.1))
+    throw UsageError("--push-out wants a clearance in m within [0, 0.1]");
+  const SplitEvaluation evaluation = evaluate_model(model, reader, indices, batch_size, &bar, push_out_margin);
   bar.finish();
   double reference_p = 0, reference_crossings = 0, reference_crossed = 0;
   for (double r : evaluation.ground_truth_penetration) reference_p += 100.0 * r / double(indices.size());
@@ -161,7 +168,8 @@ int run(const std::vector<std::string>& args) {
   }
   const MetricsSummary s = summarize(evaluation.samples);
 
-  std::printf("%s on %s, %s split (%zu samples)\n\n", model_file.c_str(), data.c_str(), split.c_str(), s.samples);
+  std::printf("%s on %s, %s split (%zu samples)%s\n\n", model_file.c_str(), data.c_str(), split.c_str(), s.samples,
+              push_out_margin >= 0 ? format(", every prediction pushed out of the body to %.4g m", push_out_margin).c_str() : "");
   std::printf("| metric | mean | std | max (worst sample) | unit |\n|---|---|---|---|---|\n");
   for (const auto& c : metric_columns())
     std::printf("| %s | %.4g | %.3g | %.4g | %s |\n", c.name.c_str(), s.mean.*c.field, s.stddev.*c.field, s.max.*c.field,

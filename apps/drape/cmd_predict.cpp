@@ -4,6 +4,7 @@
 #include "model_body.hpp"
 
 #include <drape/geometry/penetration.hpp>
+#include <drape/geometry/push_out.hpp>
 #include <drape/mesh_io.hpp>
 #include <drape/model.hpp>
 #include <drape/svg_figure.hpp>
@@ -26,6 +27,9 @@ int run(const std::vector<std::string>& args) {
       "sex", po::value<double>(), "with --bmi: 0 female ... 1 male (default 1)")(
       "garment-size", po::value<std::string>(),
       ("for a model trained on several sizes: " + garment_size_choices()).c_str())(
+      "push-out", po::value<double>()->implicit_value(geometry::kPushOutMargin),
+      "then push the vertices inside the body out to this clearance in m (TailorNet's post-processing; 0.001 when given "
+      "without a value)")(
       "out", po::value<std::string>(), "garment mesh to write (.obj, .ply, .gltf, .glb): the template's faces and UVs")(
       "body-out", po::value<std::string>(), "also write the body mesh")(
       "svg", po::value<std::string>(), "also draw the drape, the garment coloured by its distance to the body (.svg: front view; .html: a 3D viewer)");
@@ -59,7 +63,16 @@ int run(const std::vector<std::string>& args) {
   Mesh out = model.assets().garment->mesh;  // the template's faces and UVs
   out.vertices = garment.mat(0).cast<double>();
   if (!out.vertices.allFinite()) throw Error("the model predicted a non-finite vertex");
-  const double p = geometry::penetration_ratio(geometry::BodySurface(body.vertices, body.faces), out.vertices);
+  const geometry::BodySurface surface(body.vertices, body.faces);
+  double p = geometry::penetration_ratio(surface, out.vertices);
+  if (vm.count("push-out")) {
+    const double margin = vm["push-out"].as<double>();
+    if (!(margin >= 0 && margin <= 0.1)) throw UsageError("--push-out wants a clearance in m within [0, 0.1]");
+    const geometry::PushOutReport pushed = geometry::push_out(surface, out.vertices, margin);
+    std::printf("pushed out: %d vertices moved (at most %.2f cm), from p = %.2f%% of them inside the body\n",
+                pushed.moved, 100.0 * pushed.largest_move, 100.0 * p);
+    p = geometry::penetration_ratio(surface, out.vertices);
+  }
   write_mesh(vm["out"].as<std::string>(), out);
   std::printf("wrote %s: %d garment vertices predicted in %.2f ms; p = %.2f%% of them inside the body\n",
               vm["out"].as<std::string>().c_str(), out.num_vertices(), ms, 100.0 * p);

@@ -53,3 +53,22 @@ def test_a_drape_and_a_pushed_in_copy(tmp_path):
     expected = 100.0 * len(half) / len(g)
     p = float(out.stdout.split("p = ")[1].split(" %")[0])
     assert p == pytest.approx(expected, abs=100.0 * 30 / len(g))  # the body's centre is in its torso; a few may miss
+
+
+def test_a_prediction_pushed_out(tmp_path):
+    """drape predict --push-out: the shipped model's shirt on a body it was not trained for (a woman of BMI 40)
+    has vertices inside; pushed out, none is, by the winding number."""
+    garment, pushed, body = tmp_path / "g.obj", tmp_path / "pushed.obj", tmp_path / "b.obj"
+    run_drape("predict", "--bmi", 40, "--sex", 0, "--out", garment, "--body-out", body)
+    out, _ = run_drape("predict", "--bmi", 40, "--sex", 0, "--push-out", "--out", pushed)
+    assert "pushed out:" in out
+    script = str(REFERENCE / "winding_number_meshes.py")
+    before = subprocess.run([sys.executable, script, str(garment), str(body)], capture_output=True, text=True, check=True)
+    after = subprocess.run([sys.executable, script, str(pushed), str(body)], capture_output=True, text=True, check=True)
+    assert float(before.stdout.split("p = ")[1].split(" %")[0]) > 1.0
+    assert "p = 0.000 %" in after.stdout
+    # Only the vertices that were inside or within 1 mm moved.
+    g, _ = read_obj(str(garment))
+    q, _ = read_obj(str(pushed))
+    moved = np.linalg.norm(q - g, axis=1) > 1e-6
+    assert 0 < moved.sum() < len(g)

@@ -274,6 +274,13 @@ TEST_CASE("drape eval prints every metric and writes them as JSON or CSV", "[tra
   CHECK(lines[9].rfind("edge_stretch_max,%,", 0) == 0);
   CHECK(test::run(test::drape_command("eval --model " + t.model.string() + " --data " + t.data.string() + " --out m.txt"),
                   out) == 2);
+  // Pushed out of the body (TailorNet's post-processing): no vertex inside, said in the heading.
+  REQUIRE(test::run(test::drape_command("eval --model " + t.model.string() + " --data " + t.data.string() +
+                                        " --split test --push-out --out " + (t.dir / "pushed.csv").string()),
+                    out) == 0);
+  CHECK_THAT(out, Catch::Contains("pushed out of the body to 0.001 m") && Catch::Contains("| p | 0 | 0 | 0 | % |"));
+  CHECK(test::run(test::drape_command("eval --model " + t.model.string() + " --data " + t.data.string() + " --push-out 0.5"),
+                  out) == 2);
 }
 
 TEST_CASE("drape bench infer and bench train report their figures", "[train][cli]") {

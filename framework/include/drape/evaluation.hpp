@@ -24,7 +24,10 @@ struct SplitEvaluation {
 double prediction_ms(Model& model, const SampleBatch& one, int repeats = 20);
 
 // Error naming the sample when a metric fails (a non-finite prediction).
+// push_out_margin >= 0: each prediction is first pushed out of its body to
+// that clearance (geometry::push_out, TailorNet's post-processing); < 0: the
+// model's own output is measured (the seed's metrics).
 SplitEvaluation evaluate_model(Model& model, const DatasetReader& reader, const std::vector<std::size_t>& indices,
-                               int batch_size = 16, ProgressBar* progress = nullptr);
+                               int batch_size = 16, ProgressBar* progress = nullptr, double push_out_margin = -1);
 
 }  // namespace drape

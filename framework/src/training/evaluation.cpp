@@ -1,6 +1,7 @@
 #include <drape/data_parallel.hpp>
 #include <drape/errors.hpp>
 #include <drape/evaluation.hpp>
+#include <drape/geometry/push_out.hpp>
 
 #include <algorithm>
 #include <chrono>
@@ -21,7 +22,7 @@ double prediction_ms(Model& model, const SampleBatch& one, int repeats) {
 }
 
 SplitEvaluation evaluate_model(Model& model, const DatasetReader& reader, const std::vector<std::size_t>& indices,
-                               int batch_size, ProgressBar* progress) {
+                               int batch_size, ProgressBar* progress, double push_out_margin) {
   if (batch_size < 1) throw ConfigError("evaluate: the batch size must be at least 1");
   const MetricsContext metrics(model.assets());
   SplitEvaluation out;
@@ -40,8 +41,10 @@ SplitEvaluation evaluate_model(Model& model, const DatasetReader& reader, const 
 #pragma omp parallel for schedule(dynamic)
     for (int b = 0; b < n; ++b) {
       try {  // no exception may leave an OpenMP region
-        const Eigen::MatrixX3d x = predicted.mat(b).cast<double>(), y = truth.mat(b).cast<double>(),
-                               body = batch.body.mat(b).cast<double>();
+        const Eigen::MatrixX3d y = truth.mat(b).cast<double>(), body = batch.body.mat(b).cast<double>();
+        Eigen::MatrixX3d x = predicted.mat(b).cast<double>();
+        if (push_out_margin >= 0)
+          geometry::push_out(geometry::BodySurface(body, model.assets().body.faces), x, push_out_margin);
         out.samples[first + static_cast<std::size_t>(b)] = metrics.evaluate(x, y, body);
         out.ground_truth_penetration[first + static_cast<std::size_t>(b)] = metrics.penetration(y, body);
         out.ground_truth_crossings[first + static_cast<std::size_t>(b)] = metrics.crossings(y, body);

@@ -1,12 +1,13 @@
 // `push_out`: TailorNet's post-processing -- every garment vertex inside the
 // body, or closer to it than `epsilon`, is moved along the body's normal to
-// `epsilon` outside. Exact closest points on the body mesh (the bound
-// template's faces, the sample's vertices). Not a learnt layer: its backward
+// `epsilon` outside (geometry::push_out: exact closest points on the body mesh
+// of the bound template's faces and the sample's vertices, searched again
+// where a move brought a vertex near another part of the body). Not a learnt layer: its backward
 // passes the gradient straight through, so a graph may keep it in place while
 // training, and `enabled: false` turns it off without changing the weights
 // (drape eval --set post.enabled=true measures a model with and without it).
 #include <drape/assets.hpp>
-#include <drape/geometry/closest_point.hpp>
+#include <drape/geometry/push_out.hpp>
 #include <drape/plugin.hpp>
 
 namespace {
@@ -34,12 +35,9 @@ class PushOut final : public Node {
     if (!enabled_) return;
     for (int b = 0; b < x.batch(); ++b) {
       const geometry::BodySurface body(in.at("body")->mat(b).cast<double>(), faces_);
-      const Eigen::MatrixX3d points = x.mat(b).cast<double>();
-      const auto hits = body.locate_all(points);
-      for (int i = 0; i < x.rows(); ++i) {
-        const auto& h = hits[static_cast<std::size_t>(i)];
-        if (h.face >= 0 && h.signed_distance < epsilon_) y.mat(b).row(i) = (h.point + epsilon_ * h.normal).transpose().cast<float>();
-      }
+      Eigen::MatrixX3d points = x.mat(b).cast<double>();
+      geometry::push_out(body, points, epsilon_);
+      y.mat(b) = points.cast<float>();
     }
   }
 

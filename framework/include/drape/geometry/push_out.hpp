@@ -1,0 +1,32 @@
+#pragma once
+// A predicted garment's vertices moved out of the body: each vertex nearer the
+// body than `margin` (or inside it) is moved along the signed distance's
+// gradient (the outward normal at its closest body point) to `margin` outside,
+// and the search repeated, since a move can change which part of the body is
+// closest (a vertex in a crease); the rest stay where they are. The
+// post-processing TailorNet applies (the seed's Table 6.6, "-post"), for a
+// network's prediction, never for a simulated drape. It clears the vertices
+// only: an edge between two moved vertices can still pass through a thin
+// part of the body (the crossings metric counts those).
+#include <drape/geometry/closest_point.hpp>
+
+#include <Eigen/Core>
+
+namespace drape::geometry {
+
+struct PushOutReport {
+  int moved = 0;             // vertices moved at least once
+  double largest_move = 0;   // m
+  int passes = 0;            // searches run (at most max_passes)
+  int still_within = 0;      // vertices still nearer than margin / 2 after the last pass
+};
+
+// The clearance drape eval --push-out and drape predict --push-out give: about
+// the barrier's activation distance, where the simulated cloth rests.
+inline constexpr double kPushOutMargin = 1e-3;
+
+// Moves `vertices` in place. margin >= 0, max_passes >= 1.
+PushOutReport push_out(const BodySurface& body, Eigen::MatrixX3d& vertices, double margin = kPushOutMargin,
+                       int max_passes = 4);
+
+}  // namespace drape::geometry

@@ -1,0 +1,43 @@
+#include <drape/geometry/push_out.hpp>
+
+#include <drape/errors.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+namespace drape::geometry {
+
+PushOutReport push_out(const BodySurface& body, Eigen::MatrixX3d& vertices, double margin, int max_passes) {
+  if (!(margin >= 0) || !std::isfinite(margin)) throw Error("push_out: the margin must be finite and >= 0");
+  if (max_passes < 1) throw Error("push_out: at least one pass");
+  if (!vertices.allFinite()) throw Error("push_out: the garment has a non-finite vertex");
+  PushOutReport report;
+  const Eigen::MatrixX3d start = vertices;
+  std::vector<char> moved(static_cast<std::size_t>(vertices.rows()), 0);
+  std::vector<SurfacePoint> near = body.locate_all(vertices);
+  for (int pass = 0; pass < max_passes; ++pass) {
+    ++report.passes;
+    int count = 0;
+    for (Eigen::Index i = 0; i < vertices.rows(); ++i) {
+      const SurfacePoint& s = near[static_cast<std::size_t>(i)];
+      if (s.face < 0 || s.signed_distance >= margin) continue;
+      // Onto the level set s = margin along the gradient of s: exact while the
+      // closest point stays on the same face, edge or vertex.
+      const Eigen::Vector3d step = (margin - s.signed_distance) * s.normal;
+      vertices.row(i) += step.transpose();
+      moved[static_cast<std::size_t>(i)] = 1;
+      ++count;
+    }
+    near = body.locate_all(vertices);
+    if (count == 0) break;
+  }
+  if (vertices.rows() > 0) report.largest_move = (vertices - start).rowwise().norm().maxCoeff();
+  for (std::size_t i = 0; i < near.size(); ++i) {
+    report.moved += moved[i];
+    report.still_within += near[i].face >= 0 && near[i].signed_distance < 0.5 * margin;
+  }
+  return report;
+}
+
+}  // namespace drape::geometry
