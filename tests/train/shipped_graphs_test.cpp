@@ -6,6 +6,8 @@
 
 #include <catch2/catch.hpp>
 
+#include <cmath>
+#include <fstream>
 #include <set>
 
 #include "train_test_util.hpp"
@@ -45,6 +47,8 @@ const Row kRows[] = {
     {"ablations/losses/l3_edge.yaml", "cnn1d", "msgcn", true, {"v2v", "direction", "laplacian", "edge"}},
     {"ablations/losses/l4_spectral.yaml", "cnn1d", "msgcn", true,
      {"v2v", "direction", "laplacian", "edge", "spectral_loss"}},
+    // Not the seed's: its full model with the template following the body.
+    {"bodyspace/drape_follow.yaml", "cnn1d", "msgcn", true, kSeedLosses},
     // Not the seed's: its full model plus the penetration loss.
     {"ablations/losses/l6_penetration.yaml", "cnn1d", "msgcn", true,
      {"v2v", "direction", "edge", "deformation", "laplacian", "spectral_loss", "penetration"}},
@@ -126,4 +130,37 @@ TEST_CASE("the full model's prediction starts at the template and its first step
   CHECK(r.finished);
   // Epoch lines hold the validation loss; the best one must beat the first.
   CHECK(r.best_epoch > 1);
+}
+
+TEST_CASE("drape_follow: the garment is the template moved with its body vertices plus what the network predicts",
+          "[graphs]") {
+  const auto assets = tiny_assets();
+  TempDir dir;
+  // The same graph with the network's two terms as outputs too.
+  std::ofstream(dir.path() / "probe.yaml") << "base: " << (source_dir() / "graphs/bodyspace/drape_follow.yaml").string()
+                                           << "\noutputs: { garment: garment, decoded: decoder, residual: spectral.out }\n";
+  GraphOptions options;
+  options.dims = assets->dims();
+  options.assets = assets.get();
+  options.seed = 3;
+  Graph graph(parse_graph_file(dir.path() / "probe.yaml"), plugins(), options);
+  const int nb = assets->body.num_vertices(), ng = assets->garment->mesh.num_vertices();
+  // A body unlike the mean one: every vertex moved by its own amount.
+  Eigen::MatrixX3d shift(nb, 3);
+  for (int v = 0; v < nb; ++v) shift.row(v) << 0.01 * std::sin(v), 0.02 * std::cos(0.5 * v), -0.005 * (v % 7);
+  Tensor body(1, nb, 3), target(1, ng, 3);
+  body.mat(0) = (assets->body.vertices + shift).cast<float>();
+  target.mat(0) = assets->garment->mesh.vertices.cast<float>();
+  graph.forward({{"body", body}, {"target", target}});
+  const Eigen::MatrixX3d garment = graph.output("garment").mat(0).cast<double>(),
+                         network = (graph.output("decoded").mat(0) + graph.output("residual").mat(0)).cast<double>();
+  REQUIRE(static_cast<int>(assets->correspondence.size()) == ng);
+  double worst = 0;
+  for (int i = 0; i < ng; ++i) {
+    const Eigen::RowVector3d expected = assets->garment->mesh.vertices.row(i) +
+                                        shift.row(assets->correspondence[static_cast<std::size_t>(i)]) + network.row(i);
+    worst = std::max(worst, (garment.row(i) - expected).norm());
+  }
+  CHECK(worst < 1e-5);  // float rounding of ~1 m coordinates
+  CHECK(shift.cwiseAbs().maxCoeff() > 0.01);
 }
