@@ -184,20 +184,6 @@ AxisWeights axis_weights(double t) {
   return out;
 }
 
-}  // namespace
-
-Eigen::Vector4d StretchingTable::node(int i, int j, int k) const {
-  // Beyond the grid: the edge samples on the G_uu and G_vv axes (ArcSim clamps
-  // there); below G_uv = 0 the first cell's line continued, so that averaging
-  // across zero leaves the value at zero shear exact (|G_uv| is even by itself).
-  i = std::clamp(i, 0, kN - 1);
-  j = std::clamp(j, 0, kN - 1);
-  if (k < 0) return 2.0 * sample(i, j, 0) - sample(i, j, 1);
-  return sample(i, j, std::min(k, kN - 1));
-}
-
-namespace {
-
 // The C1 lookup at strain g with its derivatives up to Order (0: k alone; 1:
 // dk too; 2: d2k too), `node(i, j, k)` giving the extended grid's samples.
 template <int Order, class Node>
