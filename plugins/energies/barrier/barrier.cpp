@@ -281,17 +281,31 @@ std::shared_ptr<const BarrierContact::PairSet> BarrierContact::cached_pairs(cons
   const std::shared_ptr<const BodyState> body = body_state_locked();
   if (cache_.pairs && cache_.pairs->body == body && cache_.x == x) return cache_.pairs;
 
-  // Broad phase: the garment's boxes grown by d_hat against the body's, per kind.
-  const Topology& t = *topology_;
+  // Broad phase: the garment's boxes grown by d_hat + skin against the body's,
+  // per kind, kept while no garment coordinate has moved more than the skin
+  // since (a Verlet list): a pair within d_hat now was within d_hat + skin of
+  // overlapping then. The line search's trials and the next iterations move
+  // the cloth by less than that, and rebuilding the candidates for each cost
+  // a sixth of a drape. The narrow phase below keeps exactly the pairs within
+  // d_hat, in candidate order, which is the (garment, body) order of every
+  // kind whatever the skin, so the pairs are those a fresh search finds.
+  const double skin = settings_.distance;
+  if (!(cache_.candidates_body == body && cache_.candidates_x.rows() == x.rows() &&
+        (x - cache_.candidates_x).cwiseAbs().maxCoeff() <= skin)) {
+    const Topology& t = *topology_;
+    const MeshBoxes garment = mesh_boxes(x, nullptr, t.garment_faces, t.garment_edges, settings_.distance + skin);
+    cache_.candidates.clear();
+    for (auto [g, b] : body->faces.overlapping(garment.points))
+      cache_.candidates.push_back({PairKind::GarmentVertexBodyFace, g, b, {}, 0});
+    for (auto [g, b] : body->points.overlapping(garment.faces))
+      cache_.candidates.push_back({PairKind::BodyVertexGarmentFace, g, b, {}, 0});
+    for (auto [g, b] : body->edges.overlapping(garment.edges))
+      cache_.candidates.push_back({PairKind::GarmentEdgeBodyEdge, g, b, {}, 0});
+    cache_.candidates_x = x;
+    cache_.candidates_body = body;
+  }
   const double dhat2 = settings_.distance * settings_.distance;
-  const MeshBoxes garment = mesh_boxes(x, nullptr, t.garment_faces, t.garment_edges, settings_.distance);
-  std::vector<ContactPair> candidates;
-  for (auto [g, b] : body->faces.overlapping(garment.points))
-    candidates.push_back({PairKind::GarmentVertexBodyFace, g, b, {}, 0});
-  for (auto [g, b] : body->points.overlapping(garment.faces))
-    candidates.push_back({PairKind::BodyVertexGarmentFace, g, b, {}, 0});
-  for (auto [g, b] : body->edges.overlapping(garment.edges))
-    candidates.push_back({PairKind::GarmentEdgeBodyEdge, g, b, {}, 0});
+  std::vector<ContactPair> candidates = cache_.candidates;
 
   // Narrow phase: exact distances and types, in parallel; kept in candidate order.
   const int n = static_cast<int>(candidates.size());

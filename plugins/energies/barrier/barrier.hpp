@@ -112,6 +112,11 @@ class BarrierContact final : public Energy {
     std::shared_ptr<const BodyState> body;
     Eigen::MatrixX3d x;
     std::shared_ptr<const PairSet> pairs;
+    // The broad phase's candidates, found at candidates_x on candidates_body
+    // with the boxes grown by a skin (cached_pairs).
+    std::shared_ptr<const BodyState> candidates_body;
+    Eigen::MatrixX3d candidates_x;
+    std::vector<ContactPair> candidates;
   };
   mutable Cache cache_;
 };
