@@ -5,6 +5,7 @@
 #include <drape/errors.hpp>
 #include <drape/geometry/closed_shapes.hpp>
 #include <drape/geometry/closest_point.hpp>
+#include <drape/geometry/pseudo_normals.hpp>
 
 #include <catch2/catch.hpp>
 
@@ -313,4 +314,34 @@ TEST_CASE("locate_excluding finds the closest point on the faces outside one lab
   }
   CHECK_THROWS_WITH(surface.locate_excluding(points[0], std::vector<int>(3, 0), 0),
                     Catch::Contains("3 face labels given, the body has 320 faces"));
+}
+
+// PseudoNormals signs a closest point found elsewhere from the features it
+// needs alone: it must give locate()'s sign and normal bit for bit, next to
+// vertices and edges too, on a body that has moved since the surface was built.
+TEST_CASE("PseudoNormals signs a closest point exactly as locate does, on a moved body") {
+  Mesh m = bumpy_torus();
+  const drape::geometry::PseudoNormals signs(m.faces);
+  BodySurface surface(m);
+  // Move the body: the pseudo-normals are computed from the vertices given.
+  for (int i = 0; i < m.num_vertices(); ++i) m.vertices.row(i) *= 1.0 + 0.05 * std::cos(3.0 * m.vertices(i, 1));
+  surface.update(m.vertices);
+  std::mt19937 rng(5);
+  const double tolerance = drape::geometry::on_surface_tolerance(m.vertices);
+  int inside = 0, on_features = 0;
+  for (const Eigen::Vector3d& p : hard_points(m, rng, 3000)) {
+    const SurfacePoint expected = surface.locate(p);
+    SurfacePoint unsigned_hit = expected;
+    unsigned_hit.signed_distance = 0;
+    unsigned_hit.normal.setZero();
+    const SurfacePoint got = signs.sign(m.vertices, p, unsigned_hit, tolerance);
+    INFO("p = " << p.transpose());
+    CHECK(got.signed_distance == expected.signed_distance);
+    CHECK(got.normal == expected.normal);
+    inside += expected.signed_distance < 0;
+    on_features += expected.feature != drape::geometry::TriangleFeature::interior;
+  }
+  CHECK(inside > 300);
+  CHECK(on_features > 500);  // next to vertices and edges: a fifth or more of the points
+  CHECK_THROWS_WITH(signs.sign(m.vertices, Eigen::Vector3d::Zero(), SurfacePoint{}, tolerance), Catch::Contains("face -1"));
 }

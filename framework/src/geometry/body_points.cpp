@@ -9,7 +9,11 @@
 namespace drape::geometry {
 
 BodyPoints::BodyPoints(const Mesh& body, std::string who)
-    : who_(std::move(who)), topology_(topology_hash(body.faces)), surface_(body), nearest_(body.vertices, body.faces) {}
+    : who_(std::move(who)),
+      topology_(topology_hash(body.faces)),
+      surface_(body),
+      nearest_(body.vertices, body.faces),
+      signs_(body.faces) {}
 
 BodyPoints::~BodyPoints() = default;
 
@@ -92,10 +96,11 @@ std::shared_ptr<const BodyPoints::Hits> BodyPoints::prediction(const Tensor& bod
 BodyPoints::Hits BodyPoints::signed_prediction(const Tensor& body, const Tensor& pred, const Tensor& target, int b,
                                                const Hits& truth) {
   Hits hits = *prediction(body, pred, target, b, truth);
-  use_body(body, b, true);
+  const Eigen::MatrixX3d vertices = body.mat(b).cast<double>();
+  const double tolerance = on_surface_tolerance(vertices);
   const auto x = pred.mat(b);
   for (std::size_t i = 0; i < hits.size(); ++i)
-    hits[i] = surface_.with_sign(x.row(static_cast<Eigen::Index>(i)).transpose().cast<double>(), hits[i]);
+    hits[i] = signs_.sign(vertices, x.row(static_cast<Eigen::Index>(i)).transpose().cast<double>(), hits[i], tolerance);
   return hits;
 }
 

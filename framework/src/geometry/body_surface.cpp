@@ -4,6 +4,7 @@
 
 #include <drape/errors.hpp>
 #include <drape/geometry/adjacency.hpp>
+#include <drape/geometry/pseudo_normals.hpp>
 
 #include <Eigen/Geometry>
 
@@ -44,21 +45,13 @@ BodySurface::BodySurface(BodySurface&&) noexcept = default;
 BodySurface& BodySurface::operator=(BodySurface&&) noexcept = default;
 
 void BodySurface::compute_normals() {
+  // The pseudo-normals' pieces (pseudo_normals.hpp), for every face at once.
   const int nf = static_cast<int>(faces_.rows());
   face_normals_.resize(nf, 3);
   vertex_normals_ = Eigen::MatrixX3d::Zero(vertices_.rows(), 3);
   for (int f = 0; f < nf; ++f) {
-    Eigen::Vector3d p[3];
-    for (int k = 0; k < 3; ++k) p[k] = vertices_.row(faces_(f, k));
-    const Eigen::Vector3d n = (p[1] - p[0]).cross(p[2] - p[0]);
-    const double length = n.norm();
-    // A degenerate face has no direction: it adds nothing to its neighbours' pseudo-normals.
-    face_normals_.row(f) = length > 0 ? Eigen::Vector3d(n / length) : Eigen::Vector3d::Zero();
-    for (int k = 0; k < 3; ++k) {
-      const Eigen::Vector3d e1 = p[(k + 1) % 3] - p[k], e2 = p[(k + 2) % 3] - p[k];
-      const double angle = std::atan2(e1.cross(e2).norm(), e1.dot(e2));
-      vertex_normals_.row(faces_(f, k)) += angle * face_normals_.row(f);
-    }
+    face_normals_.row(f) = face_normal(vertices_, faces_, f);
+    for (int k = 0; k < 3; ++k) vertex_normals_.row(faces_(f, k)) += corner_angle(vertices_, faces_, f, k) * face_normals_.row(f);
   }
   vertex_normals_.rowwise().normalize();
   edge_normals_.resize(3 * static_cast<Eigen::Index>(nf), 3);
@@ -70,8 +63,7 @@ void BodySurface::compute_normals() {
       if (g >= 0) n += face_normals_.row(g).transpose();
       edge_normals_.row(3 * f + k) = n.normalized();
     }
-  const double diagonal = (vertices_.colwise().maxCoeff() - vertices_.colwise().minCoeff()).norm();
-  on_surface_tolerance_ = 1e-10 * std::max(diagonal, 1e-300);
+  on_surface_tolerance_ = on_surface_tolerance(vertices_);
 }
 
 void BodySurface::update(const Eigen::MatrixX3d& vertices) {
@@ -99,16 +91,7 @@ SurfacePoint BodySurface::finish(const Eigen::Vector3d& p, int face, const Trian
     case F::edge_ca: pseudo = edge_normals_.row(3 * face + 2); break;
     default: pseudo = face_normals_.row(face); break;
   }
-  SurfacePoint r;
-  r.face = face;
-  r.barycentric = hit.barycentric;
-  r.point = hit.point;
-  r.feature = hit.feature;
-  const Eigen::Vector3d offset = p - hit.point;
-  const double distance = offset.norm();
-  r.signed_distance = offset.dot(pseudo) < 0 ? -distance : distance;
-  r.normal = distance > on_surface_tolerance_ ? Eigen::Vector3d(offset / r.signed_distance) : pseudo;
-  return r;
+  return signed_surface_point(p, face, hit, pseudo, on_surface_tolerance_);
 }
 
 SurfacePoint BodySurface::search(const Eigen::Vector3d& p, double max_distance, const int* face_labels,
@@ -118,13 +101,6 @@ SurfacePoint BodySurface::search(const Eigen::Vector3d& p, double max_distance, 
   const int face = bvh_->nearest(p, bound, hit, face_labels, excluded, hint);
   if (face < 0) return {};
   return finish(p, face, hit);
-}
-
-SurfacePoint BodySurface::with_sign(const Eigen::Vector3d& p, const SurfacePoint& closest) const {
-  if (closest.face < 0 || closest.face >= faces_.rows())
-    throw Error("body surface: closest point on face " + std::to_string(closest.face) + " of " +
-                std::to_string(faces_.rows()));
-  return finish(p, closest.face, TrianglePoint{closest.point, closest.barycentric, closest.feature});
 }
 
 SurfacePoint BodySurface::locate(const Eigen::Vector3d& p, double max_distance) const {

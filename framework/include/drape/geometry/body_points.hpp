@@ -19,6 +19,7 @@
 // (bit for bit: of faces at the same distance the lowest-numbered wins, whatever
 // the search started from, so the cache and the warm starts change no result).
 #include <drape/geometry/nearest_triangles.hpp>
+#include <drape/geometry/pseudo_normals.hpp>
 #include <drape/geometry/surface_cache.hpp>
 #include <drape/mesh.hpp>
 #include <drape/tensor.hpp>
@@ -44,7 +45,8 @@ class BodyPoints {
   // truth: ground_truth's points of target sample b.
   std::shared_ptr<const Hits> prediction(const Tensor& body, const Tensor& pred, const Tensor& target, int b,
                                          const Hits& truth);
-  // The same points with their signs and normals (BodySurface::with_sign).
+  // The same points with their signs and normals, as BodySurface::locate
+  // gives them (PseudoNormals: only the features the points lie on).
   Hits signed_prediction(const Tensor& body, const Tensor& pred, const Tensor& target, int b, const Hits& truth);
 
   // The nearby lists hold the faces within the ground truth's distance plus
@@ -64,6 +66,7 @@ class BodyPoints {
   std::uint64_t topology_;
   BodySurface surface_;        // signed queries, for the ground truth when it is not cached
   NearestTriangles nearest_;   // unsigned queries, for the prediction
+  PseudoNormals signs_;        // signs for signed_prediction
   std::vector<float> surface_body_, nearest_body_;  // the body each holds, as it came
   std::vector<int> last_faces_;                  // the last ground truth's faces: hints for the next
   std::shared_ptr<const Hits> last_truth_;       // the last ground truth returned (held: its address stays its own)

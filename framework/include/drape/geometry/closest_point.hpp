@@ -84,9 +84,6 @@ class BodySurface final : public BodyQuery {
   SurfacePoint locate_excluding(const Eigen::Vector3d& p, const std::vector<int>& face_labels, int excluded,
                                 double max_distance = std::numeric_limits<double>::infinity()) const;
   // One query per row of `points`, in parallel (OpenMP).
-  // `closest` (p's closest point on this surface, found elsewhere: face,
-  // point, barycentric and feature) with locate()'s sign and normal.
-  SurfacePoint with_sign(const Eigen::Vector3d& p, const SurfacePoint& closest) const;
   std::vector<SurfacePoint> locate_all(const Eigen::MatrixX3d& points, double max_distance = std::numeric_limits<double>::infinity()) const;
   Eigen::VectorXd signed_distances(const Eigen::MatrixX3d& points) const;
 
