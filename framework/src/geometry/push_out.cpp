@@ -7,6 +7,11 @@
 #include <vector>
 
 namespace drape::geometry {
+namespace {
+
+constexpr double kRounding = 1e-12;  // m
+
+}  // namespace
 
 PushOutReport push_out(const BodySurface& body, Eigen::MatrixX3d& vertices, double margin, int max_passes) {
   if (!(margin >= 0) || !std::isfinite(margin)) throw Error("push_out: the margin must be finite and >= 0");
@@ -21,7 +26,8 @@ PushOutReport push_out(const BodySurface& body, Eigen::MatrixX3d& vertices, doub
     int count = 0;
     for (Eigen::Index i = 0; i < vertices.rows(); ++i) {
       const SurfacePoint& s = near[static_cast<std::size_t>(i)];
-      if (s.face < 0 || s.signed_distance >= margin) continue;
+      // (A vertex a pass put on the level set may come back a rounding error short of it: left alone.)
+      if (s.face < 0 || s.signed_distance >= margin - kRounding) continue;
       // Onto the level set s = margin along the gradient of s: exact while the
       // closest point stays on the same face, edge or vertex.
       const Eigen::Vector3d step = (margin - s.signed_distance) * s.normal;
