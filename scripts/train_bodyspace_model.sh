@@ -11,10 +11,11 @@
 # (the cosine schedule's length, default 600; patience 100 on the validation
 # loss), BUILD_DIR (default build), THREADS (default all cores).
 #
-# Measured (docs/training.md, "A model of the whole body space"): COUNT=360
-# took 1.6 core-hours of drapes (16 s per drape per core on average, 8 s at
-# BMI 10-20, 24 s above 50) and 6 minutes of training on 2 cores (best epoch
-# 360 of 460). 2,000 drapes are about 9 core-hours.
+# Measured: on the reshaped bodies (docs/bodies.md) a drape takes about 500
+# Newton iterations and 20 s per core (10 s at BMI 10-25, 60 s and more above
+# 55), so the 2,000 are about 11 core-hours. Training on the first 285 drapes
+# (225 for training) took 1.5-2.5 s per epoch on one core
+# (docs/training.md, "On the reshaped bodies").
 set -euo pipefail
 cd "$(dirname "${BASH_SOURCE[0]}")/.."
 DRAPE=${BUILD_DIR:-build}/bin/drape
