@@ -54,6 +54,6 @@ echo "the model: $BEST (lower validation ME), copied to $WORK/model.h5"
 # stretched edge among them (a torn mesh shows there); then the same pushed
 # out of the body (drape eval --push-out).
 "$DRAPE" eval --model "$WORK/model.h5" --data "$DATA" --split test --out "$WORK/model-test.csv" \
-  --svg "$WORK/model-errors.svg"
+  --svg "$WORK/model-errors.svg" --worst 10
 "$DRAPE" eval --model "$WORK/model.h5" --data "$DATA" --split test --push-out --out "$WORK/model-test-pushed.csv"
 python3 scripts/figures/predicted_grid.py --drape "$DRAPE" --model "$WORK/model.h5" --out "$WORK/predicted-grid.svg"

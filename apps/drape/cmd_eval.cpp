@@ -101,6 +101,30 @@ void draw_errors(const fs::path& file, Model& model, const DatasetReader& reader
   figure.write(file);
 }
 
+// The n samples with the largest ME, worst first: their metrics and the
+// body statistics the dataset holds (drape generate records bmi, sex, height).
+void print_worst(const DatasetReader& reader, const std::vector<std::size_t>& indices,
+                 const std::vector<GarmentMetrics>& samples, int n) {
+  std::vector<std::size_t> order(samples.size());
+  for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+  std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return samples[a].me_cm > samples[b].me_cm; });
+  order.resize(std::min(order.size(), static_cast<std::size_t>(n)));
+  std::vector<std::string> stats;
+  for (const char* name : {"bmi", "sex", "height"})
+    if (reader.layout().has_stat(name)) stats.emplace_back(name);
+  std::printf("\nthe %zu bodies with the largest ME:\n\n| sample | ME (cm) | p (%%) | most stretched edge (%%) |", order.size());
+  for (const auto& name : stats) std::printf(" %s |", name.c_str());
+  std::printf("\n|---|---|---|---|");
+  for (std::size_t k = 0; k < stats.size(); ++k) std::printf("---|");
+  std::printf("\n");
+  for (std::size_t i : order) {
+    const GarmentMetrics& m = samples[i];
+    std::printf("| %zu | %.3g | %.3g | %.3g |", indices[i], m.me_cm, m.penetration_percent, m.edge_stretch_max);
+    for (const auto& name : stats) std::printf(" %.4g |", reader.stat(name, {indices[i]})[0]);
+    std::printf("\n");
+  }
+}
+
 int run(const std::vector<std::string>& args) {
   po::options_description opts("drape eval");
   opts.add_options()("model", po::value<std::string>(), "model file from drape train")(
@@ -114,6 +138,7 @@ int run(const std::vector<std::string>& args) {
       "push-out", po::value<double>()->implicit_value(geometry::kPushOutMargin),
       "measure the predictions after pushing their vertices out of the body to this clearance in m (TailorNet's "
       "post-processing; default 0.001 when given without a value)")(
+      "worst", po::value<int>(), "also list the N bodies with the largest ME, with their body statistics (BMI, sex, height)")(
       "out", po::value<std::string>(), "also write the table: metrics.csv or metrics.json")(
       "svg", po::value<std::string>(), "also draw the per-vertex error of the thinnest, median and heaviest body of the split (.svg, or .html: a 3D viewer)");
   po::variables_map vm;
@@ -126,6 +151,7 @@ int run(const std::vector<std::string>& args) {
     const std::string ext = fs::path(vm["out"].as<std::string>()).extension().string();
     if (ext != ".csv" && ext != ".json") throw UsageError("--out must end in .csv or .json");
   }
+  if (vm.count("worst") && vm["worst"].as<int>() < 1) throw UsageError("--worst wants a count of at least 1");
   const int batch_size = vm["batch"].as<int>();
   if (batch_size < 1) throw UsageError("--batch must be at least 1");
   const std::string split = vm["split"].as<std::string>();
@@ -176,6 +202,7 @@ int run(const std::vector<std::string>& args) {
                 c.unit.c_str());
   std::printf("\nthe ground truth itself has p = %.3g %%, %.4g surface crossings per sample (%.3g %% of samples with any)\n",
               reference_p, reference_crossings, reference_crossed);
+  if (vm.count("worst")) print_worst(reader, indices, evaluation.samples, vm["worst"].as<int>());
   if (vm.count("out")) {
     write_report(vm["out"].as<std::string>(), model_file, data, split, s, reference_p, reference_crossings, reference_crossed);
     std::printf("wrote %s\n", vm["out"].as<std::string>().c_str());

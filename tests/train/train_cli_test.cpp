@@ -13,6 +13,7 @@
 
 #include <csignal>
 #include <fstream>
+#include <sstream>
 #include <regex>
 #include <thread>
 
@@ -280,6 +281,20 @@ TEST_CASE("drape eval prints every metric and writes them as JSON or CSV", "[tra
                     out) == 0);
   CHECK_THAT(out, Catch::Contains("pushed out of the body to 0.001 m") && Catch::Contains("| p | 0 | 0 | 0 | % |"));
   CHECK(test::run(test::drape_command("eval --model " + t.model.string() + " --data " + t.data.string() + " --push-out 0.5"),
+                  out) == 2);
+  // The worst bodies, worst first: two rows of the table, ME falling.
+  REQUIRE(test::run(test::drape_command("eval --model " + t.model.string() + " --data " + t.data.string() +
+                                        " --split test --worst 2"),
+                    out) == 0);
+  const auto table = out.substr(out.find("the 2 bodies with the largest ME"));
+  std::istringstream rows(table);
+  std::string row;
+  std::vector<double> me;
+  while (std::getline(rows, row))
+    if (row.rfind("| ", 0) == 0 && row.find("sample") == std::string::npos) me.push_back(std::stod(row.substr(row.find('|', 2) + 1)));
+  REQUIRE(me.size() == 2);
+  CHECK(me[0] >= me[1]);
+  CHECK(test::run(test::drape_command("eval --model " + t.model.string() + " --data " + t.data.string() + " --worst 0"),
                   out) == 2);
 }
 
