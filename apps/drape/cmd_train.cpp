@@ -110,7 +110,7 @@ int run(const std::vector<std::string>& given) {
   if (ranks && ranks->rank() != 0) return 0;
   // The bodies it learnt from, so that predict can tell a body outside them
   // (model_domain.hpp); after every run, so an interrupted model has it too.
-  const ModelDomain domain = record_model_domain(registry, o.out, o.data, o.out);
+  const ModelDomain domain = record_model_domain(registry, o.out, o.data, o.out, o.train_fraction);
   std::cout << "recorded the model's domain: " << domain.samples << " training bodies, BMI " << domain.bmi.min << "-"
             << domain.bmi.max << ", height " << domain.height.min << "-" << domain.height.max << " m\n";
   std::cout << "wrote " << o.out.string() << ": best epoch " << r.best_epoch << " (loss " << r.best_loss << ") of "

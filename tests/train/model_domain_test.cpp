@@ -69,6 +69,10 @@ TEST_CASE("model domain: ranges of a dataset's training bodies, and the bodies o
   // Parameter 0 was raised by a = s - 1; the others are the mean shape's.
   CHECK(d.params[0].max - d.params[0].min == Approx(hi - lo).epsilon(1e-4));
   for (int p = 1; p < P; ++p) CHECK(d.params[static_cast<std::size_t>(p)].min == d.params[static_cast<std::size_t>(p)].max);
+  // drape train --fraction 0.5 trains on the first half of them: its domain is theirs.
+  const ModelDomain half = domain_of_dataset(data, "parametric", param_names(P), faces, 0.5);
+  CHECK(half.samples == 4);
+  CHECK(half.height.max - half.height.min < d.height.max - d.height.min);
 
   SECTION("a body between the training bodies is inside") {
     CHECK(domain_violations(d, grown(mean, 0.5 * (lo + hi)), faces, nullptr).empty());

@@ -44,9 +44,11 @@ struct ModelDomain {
 };
 
 // The domain of a dataset's training split (its done samples with split
-// train). ConfigError when it has none.
+// train), or of the part of it drape train --fraction trains on (the first
+// ceil(fraction n) of them, as the trainer takes them). ConfigError when it has none.
 ModelDomain domain_of_dataset(const DatasetReader& data, const std::string& body_model,
-                              const std::vector<std::string>& param_names, const Eigen::MatrixX3i& body_faces);
+                              const std::vector<std::string>& param_names, const Eigen::MatrixX3i& body_faces,
+                              double train_fraction = 1.0);
 
 // The RMS distance (m) of a body to its nearest training body over the
 // descriptor vertices.
@@ -64,7 +66,8 @@ std::vector<std::string> domain_violations(const ModelDomain& domain, const Eige
 // models. Returns what it recorded.
 class Registry;
 ModelDomain record_model_domain(const Registry& registry, const std::filesystem::path& model,
-                                const std::filesystem::path& data, const std::filesystem::path& out);
+                                const std::filesystem::path& data, const std::filesystem::path& out,
+                                double train_fraction = 1.0);
 
 // Written into an open model file / read from one (nullopt: the file records
 // no domain, as models written before 2026-11-25).

@@ -34,7 +34,7 @@ void rewrite_checkpoint(const fs::path& from, const Checkpoint& c, const fs::pat
 }  // namespace
 
 ModelDomain record_model_domain(const Registry& registry, const fs::path& model_file, const fs::path& data_file,
-                                const fs::path& out) {
+                                const fs::path& out, double train_fraction) {
   // Only the body model is needed, not the garment's assets or the graph.
   const Checkpoint checkpoint = read_checkpoint(model_file);
   const auto assets = checkpoint.meta.find("assets");
@@ -46,7 +46,7 @@ ModelDomain record_model_domain(const Registry& registry, const fs::path& model_
   if (data.layout().body_vertices != body->num_vertices())
     throw ConfigError(data_file.string() + ": its bodies have " + std::to_string(data.layout().body_vertices) +
                       " vertices; the model's body model has " + std::to_string(body->num_vertices()));
-  ModelDomain d = domain_of_dataset(data, spec.body_model, body->shape_names(), body->faces());
+  ModelDomain d = domain_of_dataset(data, spec.body_model, body->shape_names(), body->faces(), train_fraction);
   d.source = data_file.filename().string();
   write_atomically(out, [&](const fs::path& tmp) {
     rewrite_checkpoint(model_file, checkpoint, tmp);
