@@ -14,7 +14,6 @@
 #include <cstdint>
 #include <string>
 #include <utility>
-#include <string>
 
 namespace drape::geometry {
 namespace {

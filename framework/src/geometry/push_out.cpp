@@ -35,8 +35,8 @@ PushOutReport push_out(const BodySurface& body, Eigen::MatrixX3d& vertices, doub
       moved[static_cast<std::size_t>(i)] = 1;
       ++count;
     }
+    if (count == 0) break;  // nothing moved: the last search still holds
     near = body.locate_all(vertices);
-    if (count == 0) break;
   }
   if (vertices.rows() > 0) report.largest_move = (vertices - start).rowwise().norm().maxCoeff();
   for (std::size_t i = 0; i < near.size(); ++i) {

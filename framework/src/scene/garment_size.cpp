@@ -75,9 +75,19 @@ Scene with_garment_size(const Scene& scene, const std::string& size) {
   return out;
 }
 
-double body_girth(const Eigen::MatrixX3d& body, const Eigen::MatrixX3i& faces) {
+namespace {
+
+// body_girth's measure, 0 when the body has no torso cross-section to measure.
+double largest_tape(const Eigen::MatrixX3d& body, const Eigen::MatrixX3i& faces) {
   double largest = 0.0;
   for (const geometry::Girth& g : band_girths(body, faces, body)) largest = std::max(largest, g.tape);
+  return largest;
+}
+
+}  // namespace
+
+double body_girth(const Eigen::MatrixX3d& body, const Eigen::MatrixX3i& faces) {
+  const double largest = largest_tape(body, faces);
   if (!(largest > 0.0)) throw ConfigError("the body has no torso cross-section around its vertical axis to measure");
   return largest;
 }
@@ -91,9 +101,7 @@ double garment_girth(const Eigen::MatrixX3d& garment, const Eigen::MatrixX3i& ga
 
 double garment_ease(const Eigen::MatrixX3d& garment, const Eigen::MatrixX3i& garment_faces,
                     const Eigen::MatrixX3d& mean_body, const Eigen::MatrixX3d& body, const Eigen::MatrixX3i& body_faces) {
-  const double loop = garment_girth(garment, garment_faces, mean_body);
-  double around = 0.0;
-  for (const geometry::Girth& g : band_girths(body, body_faces, body)) around = std::max(around, g.tape);
+  const double loop = garment_girth(garment, garment_faces, mean_body), around = largest_tape(body, body_faces);
   if (!std::isfinite(loop) || !(around > 0.0)) return std::numeric_limits<double>::quiet_NaN();
   return loop / around - 1.0;
 }
