@@ -5,7 +5,6 @@
 #include <drape/atomic_file.hpp>
 #include <drape/dataset.hpp>
 #include <drape/evaluation.hpp>
-#include <drape/geometry/push_out.hpp>
 #include <drape/metrics.hpp>
 #include <drape/model.hpp>
 #include <drape/progress.hpp>
@@ -109,18 +108,24 @@ void print_worst(const DatasetReader& reader, const std::vector<std::size_t>& in
   for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
   std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return samples[a].me_cm > samples[b].me_cm; });
   order.resize(std::min(order.size(), static_cast<std::size_t>(n)));
+  std::vector<std::size_t> chosen;
+  for (std::size_t i : order) chosen.push_back(indices[i]);
   std::vector<std::string> stats;
+  std::vector<std::vector<double>> values;  // per statistic, one read for the chosen samples
   for (const char* name : {"bmi", "sex", "height"})
-    if (reader.layout().has_stat(name)) stats.emplace_back(name);
+    if (reader.layout().has_stat(name)) {
+      stats.emplace_back(name);
+      values.push_back(reader.stat(name, chosen));
+    }
   std::printf("\nthe %zu bodies with the largest ME:\n\n| sample | ME (cm) | p (%%) | most stretched edge (%%) |", order.size());
   for (const auto& name : stats) std::printf(" %s |", name.c_str());
   std::printf("\n|---|---|---|---|");
   for (std::size_t k = 0; k < stats.size(); ++k) std::printf("---|");
   std::printf("\n");
-  for (std::size_t i : order) {
-    const GarmentMetrics& m = samples[i];
-    std::printf("| %zu | %.3g | %.3g | %.3g |", indices[i], m.me_cm, m.penetration_percent, m.edge_stretch_max);
-    for (const auto& name : stats) std::printf(" %.4g |", reader.stat(name, {indices[i]})[0]);
+  for (std::size_t r = 0; r < order.size(); ++r) {
+    const GarmentMetrics& m = samples[order[r]];
+    std::printf("| %zu | %.3g | %.3g | %.3g |", chosen[r], m.me_cm, m.penetration_percent, m.edge_stretch_max);
+    for (const auto& column : values) std::printf(" %.4g |", column[r]);
     std::printf("\n");
   }
 }
@@ -135,12 +140,10 @@ int run(const std::vector<std::string>& args) {
                                           "shirts of a dataset of two sizes)")(
       "set", po::value<std::vector<std::string>>(), "node.param=value: change a parameter of the model's graph that leaves "
                                                     "the weights alone, e.g. post.enabled=true (repeatable)")(
-      "push-out", po::value<double>()->implicit_value(geometry::kPushOutMargin),
-      "measure the predictions after pushing their vertices out of the body to this clearance in m (TailorNet's "
-      "post-processing; default 0.001 when given without a value)")(
       "worst", po::value<int>(), "also list the N bodies with the largest ME, with their body statistics (BMI, sex, height)")(
       "out", po::value<std::string>(), "also write the table: metrics.csv or metrics.json")(
       "svg", po::value<std::string>(), "also draw the per-vertex error of the thinnest, median and heaviest body of the split (.svg, or .html: a 3D viewer)");
+  add_push_out_option(opts, "measure the predictions after pushing their vertices out of the body to this clearance in m");
   po::variables_map vm;
   const std::string usage =
       "drape eval --model model.h5 --data data.h5 [--split test] [--out metrics.csv|json] [--svg errors.svg]";
@@ -152,6 +155,7 @@ int run(const std::vector<std::string>& args) {
     if (ext != ".csv" && ext != ".json") throw UsageError("--out must end in .csv or .json");
   }
   if (vm.count("worst") && vm["worst"].as<int>() < 1) throw UsageError("--worst wants a count of at least 1");
+  const double pushed_to = push_out_margin(vm);
   const int batch_size = vm["batch"].as<int>();
   if (batch_size < 1) throw UsageError("--batch must be at least 1");
   const std::string split = vm["split"].as<std::string>();
@@ -181,10 +185,7 @@ int run(const std::vector<std::string>& args) {
   if (indices.empty()) throw ConfigError(data + ": the " + split + " split has no samples" + (vm.count("where") ? " where " + vm["where"].as<std::string>() : std::string()));
 
   ProgressBar bar("eval", indices.size(), std::cerr);
-  const double push_out_margin = vm.count("push-out") ? vm["push-out"].as<double>() : -1.0;
-  if (vm.count("push-out") && !(push_out_margin >= 0 && push_out_margin <= 0.1))
-    throw UsageError("--push-out wants a clearance in m within [0, 0.1]");
-  const SplitEvaluation evaluation = evaluate_model(model, reader, indices, batch_size, &bar, push_out_margin);
+  const SplitEvaluation evaluation = evaluate_model(model, reader, indices, batch_size, &bar, pushed_to);
   bar.finish();
   double reference_p = 0, reference_crossings = 0, reference_crossed = 0;
   for (double r : evaluation.ground_truth_penetration) reference_p += 100.0 * r / double(indices.size());
@@ -195,7 +196,7 @@ int run(const std::vector<std::string>& args) {
   const MetricsSummary s = summarize(evaluation.samples);
 
   std::printf("%s on %s, %s split (%zu samples)%s\n\n", model_file.c_str(), data.c_str(), split.c_str(), s.samples,
-              push_out_margin >= 0 ? format(", every prediction pushed out of the body to %.4g m", push_out_margin).c_str() : "");
+              pushed_to >= 0 ? format(", every prediction pushed out of the body to %.4g m", pushed_to).c_str() : "");
   std::printf("| metric | mean | std | max (worst sample) | unit |\n|---|---|---|---|---|\n");
   for (const auto& c : metric_columns())
     std::printf("| %s | %.4g | %.3g | %.4g | %s |\n", c.name.c_str(), s.mean.*c.field, s.stddev.*c.field, s.max.*c.field,

@@ -27,12 +27,10 @@ int run(const std::vector<std::string>& args) {
       "sex", po::value<double>(), "with --bmi: 0 female ... 1 male (default 1)")(
       "garment-size", po::value<std::string>(),
       ("for a model trained on several sizes: " + garment_size_choices()).c_str())(
-      "push-out", po::value<double>()->implicit_value(geometry::kPushOutMargin),
-      "then push the vertices inside the body out to this clearance in m (TailorNet's post-processing; 0.001 when given "
-      "without a value)")(
       "out", po::value<std::string>(), "garment mesh to write (.obj, .ply, .gltf, .glb): the template's faces and UVs")(
       "body-out", po::value<std::string>(), "also write the body mesh")(
       "svg", po::value<std::string>(), "also draw the drape, the garment coloured by its distance to the body (.svg: front view; .html: a 3D viewer)");
+  add_push_out_option(opts, "then push the vertices inside the body out to this clearance in m");
   po::variables_map vm;
   const std::string usage =
       "drape predict [--model model.h5] (--body body.obj | --bmi 35 [--height 1.75 --sex 1]) --out garment.obj "
@@ -47,6 +45,7 @@ int run(const std::vector<std::string>& args) {
   if (vm.count("body") && (vm.count("height") || vm.count("sex")))
     throw UsageError("--height and --sex go with --bmi; --body gives the body itself");
 
+  const double pushed_to = push_out_margin(vm);
   Registry& registry = Registry::load_default(plugin_path(vm));
   Model model = Model::load(registry, model_file);
   if (model.assets_changed())
@@ -65,10 +64,8 @@ int run(const std::vector<std::string>& args) {
   if (!out.vertices.allFinite()) throw Error("the model predicted a non-finite vertex");
   const geometry::BodySurface surface(body.vertices, body.faces);
   double p = geometry::penetration_ratio(surface, out.vertices);
-  if (vm.count("push-out")) {
-    const double margin = vm["push-out"].as<double>();
-    if (!(margin >= 0 && margin <= 0.1)) throw UsageError("--push-out wants a clearance in m within [0, 0.1]");
-    const geometry::PushOutReport pushed = geometry::push_out(surface, out.vertices, margin);
+  if (pushed_to >= 0) {
+    const geometry::PushOutReport pushed = geometry::push_out(surface, out.vertices, pushed_to);
     std::printf("pushed out: %d vertices moved (at most %.2f cm), from p = %.2f%% of them inside the body\n",
                 pushed.moved, 100.0 * pushed.largest_move, 100.0 * p);
     p = geometry::penetration_ratio(surface, out.vertices);

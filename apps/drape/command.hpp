@@ -41,4 +41,10 @@ std::vector<std::string> plugin_path(const po::variables_map& vm);
 // The --set node.param=value options as Model::load overrides (UsageError for a malformed one).
 std::map<std::string, std::map<std::string, std::string>> parse_param_overrides(const po::variables_map& vm);
 
+// --push-out [m] (predict, eval: TailorNet's post-processing, geometry::push_out),
+// with `help` saying what it pushes; and the clearance given, -1 without the
+// option (UsageError outside [0, 0.1] m).
+void add_push_out_option(po::options_description& options, const std::string& help);
+double push_out_margin(const po::variables_map& vm);
+
 }  // namespace drape::cli

@@ -1,6 +1,7 @@
 #include "command.hpp"
 
 #include <drape/errors.hpp>
+#include <drape/geometry/push_out.hpp>
 #include <drape/nn/gemm.hpp>
 
 #include <algorithm>
@@ -45,6 +46,18 @@ std::map<std::string, std::map<std::string, std::string>> parse_param_overrides(
     out[item.substr(0, dot)][item.substr(dot + 1, eq - dot - 1)] = item.substr(eq + 1);
   }
   return out;
+}
+
+void add_push_out_option(po::options_description& options, const std::string& help) {
+  options.add_options()("push-out", po::value<double>()->implicit_value(geometry::kPushOutMargin),
+                        (help + " (TailorNet's post-processing; 0.001 m when given without a value)").c_str());
+}
+
+double push_out_margin(const po::variables_map& vm) {
+  if (!vm.count("push-out")) return -1.0;
+  const double margin = vm["push-out"].as<double>();
+  if (!(margin >= 0 && margin <= 0.1)) throw UsageError("--push-out wants a clearance in m within [0, 0.1]");
+  return margin;
 }
 
 }  // namespace drape::cli
