@@ -116,6 +116,9 @@ class DatasetReader {
 
   std::vector<std::size_t> indices() const;             // every done sample
   std::vector<std::size_t> indices(Split split) const;  // done samples of one split
+  // What drape train --fraction trains on: the first ceil(fraction n) done
+  // training samples (the model's domain records the same ones).
+  std::vector<std::size_t> training_indices(double fraction = 1.0) const;
   // Done samples of the splits a text names: "test", "train,val" or "all", in
   // file order. ConfigError for an unknown split name.
   std::vector<std::size_t> indices(const std::string& splits) const;

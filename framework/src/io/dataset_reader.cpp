@@ -1,6 +1,8 @@
 // DatasetReader: samples (all, or one split) as float tensors.
 #include "dataset_internal.hpp"
 
+#include <cmath>
+
 namespace fs = std::filesystem;
 
 namespace drape {
@@ -44,6 +46,12 @@ std::vector<std::size_t> DatasetReader::indices(Split split) const {
   std::vector<std::size_t> out;
   for (std::size_t i = 0; i < done_.size(); ++i)
     if (done_[i] && split_[i] == static_cast<std::int8_t>(split)) out.push_back(i);
+  return out;
+}
+
+std::vector<std::size_t> DatasetReader::training_indices(double fraction) const {
+  std::vector<std::size_t> out = indices(Split::Train);
+  out.resize(static_cast<std::size_t>(std::ceil(fraction * static_cast<double>(out.size()))));
   return out;
 }
 

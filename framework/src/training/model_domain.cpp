@@ -75,8 +75,7 @@ std::vector<std::string> split_names(const std::string& joined) {
 ModelDomain domain_of_dataset(const DatasetReader& data, const std::string& body_model,
                               const std::vector<std::string>& param_names, const Eigen::MatrixX3i& body_faces,
                               double train_fraction) {
-  std::vector<std::size_t> train = data.indices(Split::Train);
-  train.resize(static_cast<std::size_t>(std::ceil(train_fraction * static_cast<double>(train.size()))));
+  const std::vector<std::size_t> train = data.training_indices(train_fraction);
   if (train.empty()) throw ConfigError("the dataset has no training samples to take a model's domain from");
   ModelDomain d;
   d.body_model = body_model;

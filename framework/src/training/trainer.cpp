@@ -14,7 +14,6 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <cmath>
 #include <cstdio>
 #include <iostream>
 #include <memory>
@@ -168,9 +167,8 @@ TrainReport train(const Registry& registry, const TrainOptions& given) {
     assets = assets_for_dataset(registry, reader, o.data, o.eigen_k, o.cache_dir, &assets_spec);
   }
   const int ng = assets->garment->mesh.num_vertices(), nb = assets->body.num_vertices();
-  std::vector<std::size_t> train_idx = reader.indices(Split::Train);
+  const std::vector<std::size_t> train_idx = reader.training_indices(o.train_fraction);
   const std::vector<std::size_t> val_idx = reader.indices(Split::Val);
-  train_idx.resize(static_cast<std::size_t>(std::ceil(o.train_fraction * static_cast<double>(train_idx.size()))));
   if (train_idx.empty()) throw ConfigError(o.data.string() + ": no training samples (split 0) are done");
   report.train_samples = static_cast<int>(train_idx.size());
   report.val_samples = static_cast<int>(val_idx.size());
