@@ -1,4 +1,4 @@
-// The v2v and direction losses with their closest points from
+// The v2v, direction and penetration losses with their closest points from
 // geometry::BodyPoints: the target's cached after the first step, the
 // prediction's searched from the target's faces. Checked against a plain
 // BodySurface::locate computation of L_V2V, run twice (the second run from the
@@ -9,6 +9,7 @@
 
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <random>
 
@@ -51,6 +52,18 @@ double v2v_reference(const Mesh& sphere, const Samples& s, int b) {
   for (int i = 0; i < x.rows(); ++i) {
     const Eigen::Vector3d cx = surface.locate(x.row(i).transpose()).point, cy = surface.locate(y.row(i).transpose()).point;
     sum += (cx - cy).lpNorm<1>() + ((x.row(i).transpose() - cx) - (y.row(i).transpose() - cy)).lpNorm<1>();
+  }
+  return sum / double(x.rows());
+}
+
+// L_pen (margin eps) of one sample from BodySurface::locate's signed distances.
+double penetration_reference(const Mesh& sphere, const Samples& s, int b, double eps) {
+  geometry::BodySurface surface(s.body.mat(b).cast<double>(), sphere.faces);
+  const Eigen::MatrixX3d x = s.pred.mat(b).cast<double>();
+  double sum = 0;
+  for (int i = 0; i < x.rows(); ++i) {
+    const double depth = std::max(0.0, eps - surface.locate(x.row(i).transpose()).signed_distance);
+    sum += depth * depth / (eps * eps);
   }
   return sum / double(x.rows());
 }
@@ -119,4 +132,29 @@ TEST_CASE("v2v and direction: pred's gradient alone equals pred's part of the fu
     CHECK(all.at("target").vec().norm() > 0);  // the full backward does reach the data
     CHECK(pred_only.at("loss").vec() == all.at("loss").vec());
   }
+}
+
+// penetration signs BodyPoints' cached and warm-started prediction points with
+// PseudoNormals: the loss must be the plain signed search's, on three bodies,
+// again bit for bit, and after the prediction moves by up to 2 cm.
+TEST_CASE("penetration: cached, warm-started and lazily signed points give the plain search's loss",
+          "[losses][penetration][cache]") {
+  const Mesh sphere = geometry::icosphere(2, 0.5);
+  const auto assets = body_assets(sphere);
+  const Samples s = shell_samples(sphere, 13);
+  const double eps = 0.05;
+  auto node = make_node("penetration", "{margin: 0.05}");
+  const auto first = run_forward(*node, {{"pred", s.pred}, {"target", s.target}, {"body", s.body}}, {"l", 0, assets.get()});
+  Tensor again(3, 1, 1);
+  node->forward({{"pred", &s.pred}, {"target", &s.target}, {"body", &s.body}}, {{"loss", &again}});
+  for (int b = 0; b < 3; ++b) {
+    INFO("sample " << b);
+    CHECK(first.at("loss")(b, 0, 0) == Approx(penetration_reference(sphere, s, b, eps)).epsilon(1e-5));
+    CHECK(first.at("loss")(b, 0, 0) > 0.0f);
+    CHECK(again(b, 0, 0) == first.at("loss")(b, 0, 0));
+  }
+  Samples moved = s;
+  for (std::size_t i = 0; i < moved.pred.size(); ++i) moved.pred.data()[i] += 0.02f * std::sin(float(i));
+  node->forward({{"pred", &moved.pred}, {"target", &moved.target}, {"body", &moved.body}}, {{"loss", &again}});
+  for (int b = 0; b < 3; ++b) CHECK(again(b, 0, 0) == Approx(penetration_reference(sphere, moved, b, eps)).epsilon(1e-5));
 }
