@@ -2,11 +2,17 @@
 // generated in parallel (drape::merge_datasets).
 // `drape dataset info data.h5`: what a dataset file holds (docs/formats.md).
 // `drape dataset potential data.h5 --scene S`: its drapes' energies under a scene.
+// `drape dataset slim data.h5 --out slim.h5` / `drape dataset expand slim*.h5
+// --out data.h5`: without the body vertices, and back (drape::slim_dataset).
 #include "command.hpp"
 #include "dataset_potential.hpp"
 
+#include <drape/body.hpp>
 #include <drape/dataset.hpp>
 #include <drape/errors.hpp>
+#include <drape/h5.hpp>
+#include <drape/registry.hpp>
+#include <drape/scene.hpp>
 
 #include <cmath>
 #include <filesystem>
@@ -21,6 +27,14 @@ namespace fs = std::filesystem;
 
 const char* kMergeUsage = "drape dataset merge --out FILE SHARD... [--allow-incomplete] [--mixed-sizes] [--force]";
 const char* kInfoUsage = "drape dataset info FILE [--scene-lines N]";
+const char* kSlimUsage = "drape dataset slim FILE --out SLIM [--force]";
+const char* kExpandUsage = "drape dataset expand --out FILE SLIM... [--allow-incomplete] [--force]";
+
+void refuse_existing(const fs::path& out, const po::variables_map& vm) {
+  // A finished dataset is never overwritten by accident (as DatasetWriter does).
+  if (fs::exists(out) && !vm.count("force"))
+    throw ConfigError(SourceLocation{out.string(), 0}, "exists; pass --force to replace it");
+}
 
 int merge(const std::vector<std::string>& args) {
   po::options_description opts("drape dataset merge");
@@ -36,12 +50,55 @@ int merge(const std::vector<std::string>& args) {
   const fs::path out = vm["out"].as<std::string>();
   std::vector<fs::path> shards;
   for (const auto& s : vm["shards"].as<std::vector<std::string>>()) shards.emplace_back(s);
-  // A finished dataset is never overwritten by accident (as DatasetWriter does).
-  if (fs::exists(out) && !vm.count("force"))
-    throw ConfigError(SourceLocation{out.string(), 0}, "exists; pass --force to replace it");
+  refuse_existing(out, vm);
   const std::size_t n = merge_datasets(shards, out, !vm.count("allow-incomplete"), vm.count("mixed-sizes") > 0);
   std::cout << "merged " << n << " samples from " << shards.size() << " shard" << (shards.size() == 1 ? "" : "s")
             << " into " << out.string() << "\n";
+  return 0;
+}
+
+int slim(const std::vector<std::string>& args) {
+  po::options_description opts("drape dataset slim");
+  opts.add_options()("file", po::value<std::string>()->required(), "a finished dataset")(
+      "out,o", po::value<std::string>()->required(), "the slim copy to write")("force", "replace --out if it exists");
+  po::positional_options_description positional;
+  positional.add("file", 1);
+  po::variables_map vm;
+  if (!parse(kSlimUsage, args, opts, positional, vm)) return 0;
+  const fs::path in = vm["file"].as<std::string>(), out = vm["out"].as<std::string>();
+  if (!fs::exists(in)) throw ConfigError(SourceLocation{in.string(), 0}, "no such file");
+  refuse_existing(out, vm);
+  const std::size_t n = slim_dataset(in, out);
+  std::cout << "wrote " << out.string() << ": " << n << " samples without body vertices, " << fs::file_size(out) / 1024
+            << " KiB (" << fs::file_size(in) / 1024 << " KiB with them)\n";
+  return 0;
+}
+
+int expand(const std::vector<std::string>& args) {
+  po::options_description opts("drape dataset expand");
+  opts.add_options()("out,o", po::value<std::string>()->required(), "the full dataset to write")(
+      "shards", po::value<std::vector<std::string>>()->required(), "slim (or full) dataset files, joined in this order")(
+      "allow-incomplete", "skip the samples a shard has not finished (default: refuse such a shard)")(
+      "force", "replace --out if it exists");
+  po::positional_options_description positional;
+  positional.add("shards", -1);
+  po::variables_map vm;
+  if (!parse(kExpandUsage, args, opts, positional, vm)) return 0;
+  const fs::path out = vm["out"].as<std::string>();
+  std::vector<fs::path> shards;
+  for (const auto& s : vm["shards"].as<std::vector<std::string>>()) shards.emplace_back(s);
+  refuse_existing(out, vm);
+  // The body model of the first shard's own scene, with its parameters: the
+  // one that generated the bodies (the others must agree, as in a merge).
+  const DatasetLayout layout = DatasetReader(shards.front()).layout();
+  const Scene scene = parse_scene(layout.scene, shards.front().string() + " (its stored scene)");
+  const Registry& registry = Registry::load_default(plugin_path(vm));
+  const PluginDescriptor& descriptor = registry.get(scene.body_model);
+  const auto body_model =
+      registry.create_body(scene.body_model, Params(descriptor.params, scene.body_params, "body '" + scene.body_model + "'"));
+  const std::size_t n = expand_datasets(shards, out, *body_model, !vm.count("allow-incomplete"));
+  std::cout << "wrote " << out.string() << ": " << n << " samples, their bodies rebuilt by body model '" << scene.body_model
+            << "' from the stored shape parameters\n";
   return 0;
 }
 
@@ -81,6 +138,7 @@ int info(const std::vector<std::string>& args) {
   std::cout << path.string() << ": drape dataset, " << (complete ? "complete" : "incomplete") << "\n"
             << "  samples   " << layout.samples << ", done " << done.size() << "\n"
             << "  sizes     body params P = " << layout.body_params << ", body vertices Nb = " << layout.body_vertices
+            << (layout.body_vertices_stored ? "" : " (not stored: a slim dataset)")
             << ", garment vertices Ng = " << layout.garment_vertices << "\n"
             << "  splits    train " << reader.indices(Split::Train).size() << ", val " << reader.indices(Split::Val).size()
             << ", test " << reader.indices(Split::Test).size() << " (done samples)\n"
@@ -106,23 +164,28 @@ int info(const std::vector<std::string>& args) {
 
 int run(const std::vector<std::string>& args) {
   const std::string usage =
-      std::string("usage: ") + kMergeUsage + "\n       " + kInfoUsage + "\n       " + kPotentialUsage;
+      std::string("usage: ") + kMergeUsage + "\n       " + kInfoUsage + "\n       " + kPotentialUsage + "\n       " +
+      kSlimUsage + "\n       " + kExpandUsage;
   if (args.empty()) throw UsageError("merge or info?\n" + usage);
   const std::string& action = args[0];
   const std::vector<std::string> rest(args.begin() + 1, args.end());
   if (action == "merge") return merge(rest);
   if (action == "info") return info(rest);
   if (action == "potential") return dataset_potential(rest);
+  if (action == "slim") return slim(rest);
+  if (action == "expand") return expand(rest);
   if (action == "--help" || action == "-h" || action == "help") {
     std::cout << usage << "\n\n  merge  join shards generated in parallel into one dataset\n"
                           "  info   sizes, splits, stats and scene of a dataset file\n"
-                          "  potential  every effect's energy, L_p and p of the stored drapes under a scene\n";
+                          "  potential  every effect's energy, L_p and p of the stored drapes under a scene\n"
+                          "  slim   a copy without the body vertices (rebuilt from the shape parameters by expand)\n"
+                          "  expand join slim datasets into one full dataset, the bodies rebuilt by the scene's body model\n";
     return 0;
   }
-  throw UsageError("unknown action '" + action + "'" + did_you_mean(action, {"merge", "info", "potential"}) + "\n" + usage);
+  throw UsageError("unknown action '" + action + "'" + did_you_mean(action, {"merge", "info", "potential", "slim", "expand"}) + "\n" + usage);
 }
 
-const RegisterCommand registration{{"dataset", "merge dataset shards, show what a dataset file holds, or its drapes' potential under a scene", run}};
+const RegisterCommand registration{{"dataset", "merge dataset shards, show what a dataset file holds, its drapes' potential under a scene, or slim and expand it", run}};
 
 }  // namespace
 }  // namespace drape::cli

@@ -154,3 +154,36 @@ TEST_CASE("drape dataset potential re-evaluates stored drapes under a scene", "[
   CHECK(run_drape("dataset potential " + data + " --scene " + (dir / "coarse.yaml").string(), out) == 2);
   CHECK_THAT(out, Catch::Contains("but the scene's garment has"));
 }
+
+TEST_CASE("drape dataset slim and expand: the bodies rebuilt by the scene's body model are the simulated ones", "[cli][dataset]") {
+  test::TempDir dir;
+  std::ofstream(dir / "tiny.yaml") << test::tiny_simulation_scene();
+  const std::string data = (dir / "tiny.h5").string(), slim = (dir / "slim.h5").string(),
+                    full = (dir / "full.h5").string();
+  std::string out;
+  REQUIRE(run_drape("generate " + (dir / "tiny.yaml").string() + " --count 3 --bmi 15:40 --seed 4 --out " + data, out) == 0);
+  REQUIRE(run_drape("dataset slim " + data + " --out " + slim, out) == 0);
+  INFO(out);
+  CHECK_THAT(out, Catch::Contains("3 samples without body vertices"));
+  CHECK(fs::file_size(slim) * 3 < fs::file_size(data));
+  REQUIRE(run_drape("dataset info " + slim, out) == 0);
+  CHECK_THAT(out, Catch::Contains("(not stored: a slim dataset)"));
+  // A command that needs the bodies says how to get them back.
+  CHECK(run_drape("dataset potential " + slim + " --scene " + (dir / "tiny.yaml").string(), out) == 2);
+  CHECK_THAT(out, Catch::Contains("a slim dataset") && Catch::Contains("drape dataset expand"));
+  CHECK(run_drape("dataset slim " + data + " --out " + slim, out) == 2);  // never overwritten silently
+  CHECK_THAT(out, Catch::Contains("--force"));
+
+  REQUIRE(run_drape("dataset expand " + slim + " --out " + full, out) == 0);
+  CHECK_THAT(out, Catch::Contains("rebuilt by body model 'parametric'"));
+  const DatasetReader made(data), rebuilt(full);
+  const std::vector<std::size_t> all = made.indices();
+  REQUIRE(rebuilt.indices() == all);
+  const Tensor want = made.body_vertices(all), got = rebuilt.body_vertices(all);
+  REQUIRE(got.size() == want.size());
+  float worst = 0;
+  for (std::size_t k = 0; k < want.size(); ++k) worst = std::max(worst, std::abs(got.data()[k] - want.data()[k]));
+  CHECK(worst < 1e-6f);  // metres: the float parameters' rounding, nothing more
+  const Tensor g0 = made.garment_vertices(all), g1 = rebuilt.garment_vertices(all);
+  CHECK(std::equal(g0.data(), g0.data() + g0.size(), g1.data()));
+}

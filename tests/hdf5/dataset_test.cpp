@@ -4,6 +4,7 @@
 
 #include "test_support.hpp"
 
+#include <drape/body.hpp>
 #include <drape/dataset.hpp>
 #include <drape/h5.hpp>
 
@@ -312,4 +313,80 @@ TEST_CASE("dataset: a shard made before garment_size was recorded merges with it
   }
   CHECK_THROWS_WITH(merge_datasets({dir / "odd.h5", dir / "small.h5"}, dir / "bad.h5", true, true),
                     Catch::Contains("odd.h5") && Catch::Contains("medium"));
+}
+
+namespace {
+
+// A body model whose vertices are a known function of the 4 parameters, so an
+// expanded dataset's bodies can be checked against it.
+class FormulaBody : public BodyModel {
+ public:
+  explicit FormulaBody(int vertices = 7) : faces_(0, 3), vertices_(vertices) {}
+  int num_vertices() const override { return vertices_; }
+  const Eigen::MatrixX3i& faces() const override { return faces_; }
+  std::vector<std::string> shape_names() const override { return {"a", "b", "c", "d"}; }
+  Eigen::VectorXd mean_shape() const override { return Eigen::VectorXd::Zero(4); }
+  Eigen::MatrixX3d vertices(const Eigen::VectorXd& shape) const override {
+    Eigen::MatrixX3d v(vertices_, 3);
+    for (int i = 0; i < vertices_; ++i)
+      for (int c = 0; c < 3; ++c) v(i, c) = shape[(i + c) % 4] * (i + 1) + 0.5 * c;
+    return v;
+  }
+  Eigen::VectorXd solve(const BodyRequest&) const override { return mean_shape(); }
+  std::pair<double, double> bmi_range() const override { return {10, 65}; }
+
+ private:
+  Eigen::MatrixX3i faces_;
+  int vertices_;
+};
+
+// make_sample with the body the formula gives for its parameters.
+DatasetSample formula_sample(const DatasetLayout& l, std::size_t i) {
+  DatasetSample s = make_sample(l, i);
+  s.body_vertices = FormulaBody().vertices(s.body_params.cast<double>()).cast<float>();
+  return s;
+}
+
+}  // namespace
+
+TEST_CASE("dataset: a slim copy leaves the bodies out and expand rebuilds them from the parameters", "[hdf5][dataset]") {
+  TempDir dir;
+  const DatasetLayout l = small_layout(5);
+  {
+    DatasetWriter w(dir / "full.h5", l);
+    for (std::size_t i = 0; i < 5; ++i) w.write(i, formula_sample(l, i));
+    w.finish();
+  }
+  REQUIRE(slim_dataset(dir / "full.h5", dir / "slim.h5") == 5);
+  {
+    const DatasetReader slim(dir / "slim.h5");
+    CHECK_FALSE(slim.layout().body_vertices_stored);
+    CHECK(slim.layout().body_vertices == 7);  // still recorded
+    CHECK_FALSE(h5::File::open(dir / "slim.h5").exists("/bodies/vertices"));
+    const DatasetSample want = formula_sample(l, 3);
+    CHECK(slim.garment_vertices({3}).mat(0) == want.garment_vertices);
+    CHECK(slim.stat("energy", {3})[0] == want.stats.at("energy"));
+    CHECK(slim.splits() == DatasetReader(dir / "full.h5").splits());
+    // Reading bodies names the file and the way back, not zeros.
+    CHECK_THROWS_WITH(slim.body_vertices({0}), Catch::Contains("slim.h5") && Catch::Contains("drape dataset expand"));
+  }
+  CHECK_THROWS_WITH(slim_dataset(dir / "slim.h5", dir / "again.h5"), Catch::Contains("slim dataset already"));
+  // A plain merge does not turn a slim shard into a full dataset without bodies.
+  CHECK_THROWS_WITH(merge_datasets({dir / "slim.h5"}, dir / "bad.h5"), Catch::Contains("drape dataset expand"));
+
+  // Expanded, slim and full shards join; every body equals the formula's.
+  REQUIRE(expand_datasets({dir / "slim.h5", dir / "full.h5"}, dir / "expanded.h5", FormulaBody()) == 10);
+  const DatasetReader expanded(dir / "expanded.h5");
+  CHECK(expanded.layout().body_vertices_stored);
+  for (std::size_t i = 0; i < 10; ++i) {
+    const DatasetSample want = formula_sample(l, i % 5);
+    const DatasetSample got = expanded.sample(i);
+    CHECK(got.body_vertices == want.body_vertices);
+    CHECK(got.garment_vertices == want.garment_vertices);
+    CHECK(got.body_params == want.body_params);
+  }
+  // Another body model (another vertex count) is refused, naming both counts.
+  CHECK_THROWS_WITH(expand_datasets({dir / "slim.h5"}, dir / "bad.h5", FormulaBody(9)),
+                    Catch::Contains("7 vertices") && Catch::Contains("has 9"));
+  CHECK_FALSE(fs::exists(dir / "bad.h5"));
 }

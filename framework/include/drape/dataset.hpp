@@ -30,6 +30,8 @@
 
 namespace drape {
 
+class BodyModel;
+
 enum class Split : std::int8_t { Train = 0, Val = 1, Test = 2 };
 const char* to_string(Split split);  // "train", "val", "test"
 Split parse_split(const std::string& name);  // ConfigError for anything else
@@ -40,6 +42,9 @@ struct DatasetLayout {
   int body_params = 0;       // P
   int body_vertices = 0;     // Nb
   int garment_vertices = 0;  // Ng
+  // False in a slim dataset (slim_dataset): /bodies/vertices is left out and
+  // rebuilt from /bodies/params by expand_datasets; Nb is still recorded.
+  bool body_vertices_stored = true;
   std::vector<std::string> stats;  // names of the per-sample statistics (/stats/<name>)
   std::string scene;               // YAML text of the scene that generated it
   std::string template_hash;
@@ -159,5 +164,21 @@ std::string template_hash(const Mesh& garment, const Eigen::MatrixX3i& body_face
 // that template) and lists every shard's hash in the attribute `templates`.
 std::size_t merge_datasets(const std::vector<std::filesystem::path>& shards, const std::filesystem::path& out,
                            bool require_complete = true, bool mixed_sizes = false);
+
+// A slim copy of a finished dataset: every array and attribute but the body
+// vertices, which the body model rebuilds from the stored shape parameters
+// (a tenth of the size for the coarse shirt on the parametric body; what the
+// repository keeps of long generations, datasets/). ConfigError when `in` has
+// samples not done or is slim already. Returns the number of samples.
+std::size_t slim_dataset(const std::filesystem::path& in, const std::filesystem::path& out);
+
+// merge_datasets for slim shards (full ones are copied as merge does): the
+// body vertices of each sample are rebuilt as body_model.vertices(params),
+// the model that generated them (the scene's body model). ConfigError when the
+// model's vertex or parameter count differs from the shards'. The rebuilt
+// vertices come from the stored float parameters, so they differ from the
+// simulated body by the parameters' rounding (under a micrometre here).
+std::size_t expand_datasets(const std::vector<std::filesystem::path>& shards, const std::filesystem::path& out,
+                            const BodyModel& body_model, bool require_complete = true);
 
 }  // namespace drape

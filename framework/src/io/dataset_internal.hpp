@@ -14,6 +14,8 @@ inline constexpr const char* kGarmentVertices = "/garments/vertices";
 inline constexpr const char* kSplit = "/split";
 inline constexpr const char* kDone = "/done";
 inline constexpr const char* kStats = "/stats";
+// Root attribute of a slim dataset: the body vertex count Nb, as text.
+inline constexpr const char* kBodyVerticesOmitted = "body_vertices_omitted";
 inline constexpr const char* kFormat = "drape dataset 1";  // root attribute `format`
 
 inline std::string stat_path(const std::string& name) { return std::string(kStats) + "/" + name; }

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <ctime>
 #include <set>
+#include <stdexcept>
 
 namespace drape {
 
@@ -32,7 +33,8 @@ namespace dataset_detail {
 namespace {
 
 // Root attributes with a meaning of their own; everything else is an extra.
-const std::set<std::string> kReserved = {"format", "scene", "template_hash", "drape_version", "created"};
+const std::set<std::string> kReserved = {"format", "scene", "template_hash", "drape_version", "created",
+                                         kBodyVerticesOmitted};
 
 std::size_t to_size(int n) { return static_cast<std::size_t>(n); }
 
@@ -59,7 +61,10 @@ void create_layout(h5::File& file, const DatasetLayout& layout) {
   // Big arrays: no fill (sparse on disk until written; `done` says what is valid).
   const h5::CreateOptions arrays{.preallocate = true};
   file.create<float>(kParams, {n, to_size(layout.body_params)}, arrays);
-  file.create<float>(kBodyVertices, {n, to_size(layout.body_vertices), 3}, arrays);
+  if (layout.body_vertices_stored)
+    file.create<float>(kBodyVertices, {n, to_size(layout.body_vertices), 3}, arrays);
+  else
+    file.set_attribute("/", kBodyVerticesOmitted, std::to_string(layout.body_vertices));
   file.create<float>(kGarmentVertices, {n, to_size(layout.garment_vertices), 3}, arrays);
   file.create<std::int8_t>(kSplit, {n}, {.preallocate = true, .fill = 0.0});
   file.create<std::uint8_t>(kDone, {n}, {.preallocate = true, .fill = 0.0});
@@ -91,7 +96,23 @@ DatasetLayout read_layout(const h5::File& file) {
     return static_cast<int>(d[1]);
   };
   layout.body_params = expect(kParams, 2, 0);
-  layout.body_vertices = expect(kBodyVertices, 3, 3);
+  if (file.exists(kBodyVertices)) {
+    layout.body_vertices = expect(kBodyVertices, 3, 3);
+  } else if (const auto omitted = file.string_attribute("/", kBodyVerticesOmitted)) {
+    // A slim dataset: the count alone (slim_dataset).
+    std::size_t used = 0;
+    int count = -1;
+    try {
+      count = std::stoi(*omitted, &used);
+    } catch (const std::exception&) {
+    }
+    if (count < 0 || used != omitted->size())
+      throw ConfigError(name + ": attribute " + kBodyVerticesOmitted + " is '" + *omitted + "', expected a vertex count");
+    layout.body_vertices = count;
+    layout.body_vertices_stored = false;
+  } else {
+    throw ConfigError(name + ": missing dataset " + kBodyVertices);
+  }
   layout.garment_vertices = expect(kGarmentVertices, 3, 3);
   if (file.shape(kDone) != h5::Dims{n})
     throw ConfigError(name + ": " + kDone + " has shape " + h5::to_string(file.shape(kDone)) + ", expected [" + std::to_string(n) + "]");
@@ -123,6 +144,9 @@ std::string layout_difference(const DatasetLayout& have, const DatasetLayout& no
                                number("body_vertices", to_size(have.body_vertices), to_size(now.body_vertices)),
                                number("garment_vertices", to_size(have.garment_vertices), to_size(now.garment_vertices))})
     if (!d.empty()) return d;
+  if (have.body_vertices_stored != now.body_vertices_stored)
+    return std::string("body vertices are ") + (have.body_vertices_stored ? "stored" : "left out (a slim dataset)") +
+           " in the file, " + (now.body_vertices_stored ? "stored" : "left out") + " now";
   auto sorted = [](std::vector<std::string> v) {
     std::sort(v.begin(), v.end());
     return v;

@@ -2,6 +2,7 @@
 #include "dataset_internal.hpp"
 
 #include <drape/atomic_file.hpp>
+#include <drape/body.hpp>
 #include <drape/model.hpp>
 #include <drape/scene.hpp>
 
@@ -35,18 +36,48 @@ void add_garment_size_stat(DatasetLayout& layout) {
   std::sort(layout.stats.begin(), layout.stats.end());
 }
 
+// What the output gets of the body vertices: none (slim), or each shard's
+// own, or, for a slim shard, the body model's rebuild from the parameters.
+struct BodyVertices {
+  bool write = true;
+  const BodyModel* rebuild = nullptr;  // used for shards that left them out
+};
+
+// body_model.vertices(params) of `count` rows of float parameters, as floats.
+std::vector<float> rebuilt_bodies(const BodyModel& body_model, const std::vector<float>& params, std::size_t count,
+                                  std::size_t body_params) {
+  const std::size_t nb = static_cast<std::size_t>(body_model.num_vertices());
+  std::vector<float> out(count * nb * 3);
+  for (std::size_t r = 0; r < count; ++r) {
+    const Eigen::VectorXd shape =
+        Eigen::Map<const Eigen::VectorXf>(params.data() + r * body_params, static_cast<Eigen::Index>(body_params)).cast<double>();
+    const Eigen::MatrixX3d v = body_model.vertices(shape);
+    for (std::size_t i = 0; i < nb; ++i)
+      for (int c = 0; c < 3; ++c) out[(r * nb + i) * 3 + static_cast<std::size_t>(c)] = static_cast<float>(v(static_cast<Eigen::Index>(i), c));
+  }
+  return out;
+}
+
 // Copies `count` rows starting at `from` in `in` to row `to` of `out`, for
 // every array; a shard without the garment_size statistic gets `size_fill`.
-void copy_rows(const h5::File& in, h5::File& out, const DatasetLayout& layout, std::size_t from, std::size_t to,
-               std::size_t count, std::optional<double> size_fill) {
+void copy_rows(const h5::File& in, bool in_has_bodies, h5::File& out, const DatasetLayout& layout, std::size_t from,
+               std::size_t to, std::size_t count, std::optional<double> size_fill, const BodyVertices& bodies) {
   auto copy = [&](const std::string& dataset, std::size_t row_size, auto tag) {
     using T = decltype(tag);
     std::vector<T> rows(count * row_size);
     in.read_rows(dataset, from, count, rows.data());
     out.write_rows(dataset, to, count, rows.data());
   };
-  copy(kParams, static_cast<std::size_t>(layout.body_params), float{});
-  copy(kBodyVertices, static_cast<std::size_t>(layout.body_vertices) * 3, float{});
+  const std::size_t p = static_cast<std::size_t>(layout.body_params);
+  std::vector<float> params(count * p);
+  in.read_rows(kParams, from, count, params.data());
+  out.write_rows(kParams, to, count, params.data());
+  if (bodies.write && in_has_bodies) {
+    copy(kBodyVertices, static_cast<std::size_t>(layout.body_vertices) * 3, float{});
+  } else if (bodies.write) {
+    const std::vector<float> rows = rebuilt_bodies(*bodies.rebuild, params, count, p);
+    out.write_rows(kBodyVertices, to, count, rows.data());
+  }
   copy(kGarmentVertices, static_cast<std::size_t>(layout.garment_vertices) * 3, float{});
   copy(kSplit, 1, std::int8_t{});
   for (const auto& name : layout.stats) {
@@ -61,10 +92,8 @@ void copy_rows(const h5::File& in, h5::File& out, const DatasetLayout& layout, s
   out.write_rows(kDone, to, count, done.data());
 }
 
-}  // namespace
-
-std::size_t merge_datasets(const std::vector<fs::path>& shards, const fs::path& out, bool require_complete,
-                           bool mixed_sizes) {
+std::size_t merge(const std::vector<fs::path>& shards, const fs::path& out, bool require_complete, bool mixed_sizes,
+                  const BodyVertices& bodies) {
   if (shards.empty()) throw ConfigError("merge: no shard files given");
   std::vector<h5::File> files;
   std::vector<std::vector<std::uint8_t>> done;
@@ -72,10 +101,22 @@ std::size_t merge_datasets(const std::vector<fs::path>& shards, const fs::path& 
   std::size_t total = 0;
   std::string templates;
   std::vector<std::optional<double>> size_fill;  // per shard: its flag when it has no garment_size statistic
+  std::vector<bool> has_bodies;                  // per shard: false for a slim one
   for (const auto& shard : shards) {
     if (fs::exists(out) && fs::equivalent(shard, out)) throw ConfigError(shard.string() + ": the output is also a shard");
     files.push_back(h5::File::open(shard));
     DatasetLayout layout = read_layout(files.back());
+    has_bodies.push_back(layout.body_vertices_stored);
+    if (bodies.write && !layout.body_vertices_stored && !bodies.rebuild)
+      throw ConfigError(shard.string() + ": a slim dataset (no body vertices); join slim shards with `drape dataset expand`");
+    if (!layout.body_vertices_stored && bodies.rebuild &&
+        (bodies.rebuild->num_vertices() != layout.body_vertices ||
+         static_cast<int>(bodies.rebuild->mean_shape().size()) != layout.body_params))
+      throw ConfigError(shard.string() + ": its bodies have " + std::to_string(layout.body_vertices) + " vertices and " +
+                        std::to_string(layout.body_params) + " shape parameters; the body model has " +
+                        std::to_string(bodies.rebuild->num_vertices()) + " and " +
+                        std::to_string(bodies.rebuild->mean_shape().size()) + " (not the model that generated them)");
+    layout.body_vertices_stored = bodies.write;  // compared across shards as the output will hold them
     done.push_back(files.back().read<std::uint8_t>(kDone));
     const std::size_t n = static_cast<std::size_t>(std::count(done.back().begin(), done.back().end(), 1));
     size_fill.emplace_back();
@@ -131,7 +172,7 @@ std::size_t merge_datasets(const std::vector<fs::path>& shards, const fs::path& 
         }
         std::size_t run = 1;
         while (i + run < d.size() && d[i + run] && run < kBlock) ++run;
-        copy_rows(files[s], result, merged, i, to, run, size_fill[s]);
+        copy_rows(files[s], has_bodies[s], result, merged, i, to, run, size_fill[s], bodies);
         i += run;
         to += run;
       }
@@ -140,6 +181,26 @@ std::size_t merge_datasets(const std::vector<fs::path>& shards, const fs::path& 
     result.close();
   });
   return total;
+}
+
+}  // namespace
+
+std::size_t merge_datasets(const std::vector<fs::path>& shards, const fs::path& out, bool require_complete,
+                           bool mixed_sizes) {
+  return merge(shards, out, require_complete, mixed_sizes, BodyVertices{});
+}
+
+std::size_t slim_dataset(const fs::path& in, const fs::path& out) {
+  {
+    const h5::File file = h5::File::open(in);
+    if (!read_layout(file).body_vertices_stored) throw ConfigError(in.string() + ": is a slim dataset already");
+  }
+  return merge({in}, out, true, false, BodyVertices{.write = false});
+}
+
+std::size_t expand_datasets(const std::vector<fs::path>& shards, const fs::path& out, const BodyModel& body_model,
+                            bool require_complete) {
+  return merge(shards, out, require_complete, false, BodyVertices{.write = true, .rebuild = &body_model});
 }
 
 }  // namespace drape

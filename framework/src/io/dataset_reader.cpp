@@ -103,6 +103,11 @@ Tensor DatasetReader::body_params(const std::vector<std::size_t>& indices) const
 
 Tensor DatasetReader::body_vertices(const std::vector<std::size_t>& indices) const {
   check_indices(*this, indices, impl_->file.path());
+  if (!layout_.body_vertices_stored) {
+    const std::string name = impl_->file.path().string();
+    throw ConfigError(name + ": a slim dataset (the bodies' shape parameters without their vertices); rebuild the vertices with `drape dataset expand " +
+                      name + " --out FULL.h5` and use that file");
+  }
   Tensor out(static_cast<int>(indices.size()), layout_.body_vertices, 3);
   impl_->gather(kBodyVertices, indices, static_cast<std::size_t>(layout_.body_vertices) * 3, out.data());
   return out;
