@@ -26,10 +26,26 @@ EPOCHS=${EPOCHS:-600}
 DATA="$WORK/bodyspace$COUNT.h5"
 mkdir -p "$WORK"
 
-# Split 80/10/10 % into train, validation and test; every shape parameter of
-# each body is stored in /bodies/params.
-"$DRAPE" generate graphs/scenes/tshirt_coarse.yaml --count "$COUNT" --bmi 10:65 --height 1.5:2.0 --sex 0:1 \
-  --girths 1 --seed 1 --out "$DATA" --threads "$THREADS"
+# The drapes, in 40 shards of COUNT/40 (drape generate --shard K/40: the same
+# bodies as one run of the whole count). The repository keeps each finished
+# shard slim, without its body vertices, in datasets/bodyspace2000/ (for the
+# default COUNT): a shard found there is not simulated again, and a shard made
+# here is slimmed into it, so a generation spread over several sessions or
+# machines adds up. Split 80/10/10 % into train, validation and test; every
+# shape parameter of each body is stored in /bodies/params.
+SHARDS=40
+KEEP=datasets/bodyspace$COUNT
+mkdir -p "$WORK/shards" "$KEEP"
+for ((K = 0; K < SHARDS; K++)); do
+  SLIM=$(printf '%s/shard-%02d-of-%d.h5' "$KEEP" "$K" "$SHARDS")
+  [[ -f "$SLIM" ]] && continue
+  FULL=$(printf '%s/shards/shard-%02d-of-%d.h5' "$WORK" "$K" "$SHARDS")
+  "$DRAPE" generate graphs/scenes/tshirt_coarse.yaml --count "$COUNT" --bmi 10:65 --height 1.5:2.0 --sex 0:1 \
+    --girths 1 --seed 1 --shard "$K/$SHARDS" --out "$FULL" --threads "$THREADS"
+  "$DRAPE" dataset slim "$FULL" --out "$SLIM"
+done
+# One full dataset of them, the bodies rebuilt from their shape parameters.
+[[ -f "$DATA" ]] || "$DRAPE" dataset expand --out "$DATA" $(printf "$KEEP/shard-%02d-of-$SHARDS.h5 " $(seq 0 $((SHARDS - 1))))
 
 # Two graphs on the same drapes: the seed's model, and the same with its
 # template following the body and the penetration loss at 0.1
