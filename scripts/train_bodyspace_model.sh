@@ -9,7 +9,9 @@
 #
 # Environment: COUNT (drapes, default 2000, what issue 21 asks for), EPOCHS
 # (the cosine schedule's length, default 600; patience 100 on the validation
-# loss), BUILD_DIR (default build), THREADS (default all cores).
+# loss), BUILD_DIR (default build), THREADS (default all cores), GENERATE
+# (default 1; 0 simulates nothing and trains an interim model on the N shards
+# already in datasets/, in WORK_DIR/<N>of40/).
 #
 # Measured: on the reshaped bodies (docs/bodies.md) a drape takes about 500
 # Newton iterations and 20 s per core (10 s at BMI 10-25, 60 s and more above
@@ -38,14 +40,24 @@ KEEP=datasets/bodyspace$COUNT
 mkdir -p "$WORK/shards" "$KEEP"
 for ((K = 0; K < SHARDS; K++)); do
   SLIM=$(printf '%s/shard-%02d-of-%d.h5' "$KEEP" "$K" "$SHARDS")
-  [[ -f "$SLIM" ]] && continue
+  [[ -f "$SLIM" || "${GENERATE:-1}" == 0 ]] && continue
   FULL=$(printf '%s/shards/shard-%02d-of-%d.h5' "$WORK" "$K" "$SHARDS")
   "$DRAPE" generate graphs/scenes/tshirt_coarse.yaml --count "$COUNT" --bmi 10:65 --height 1.5:2.0 --sex 0:1 \
     --girths 1 --seed 1 --shard "$K/$SHARDS" --out "$FULL" --threads "$THREADS"
   "$DRAPE" dataset slim "$FULL" --out "$SLIM"
 done
 # One full dataset of them, the bodies rebuilt from their shape parameters.
-[[ -f "$DATA" ]] || "$DRAPE" dataset expand --out "$DATA" $(printf "$KEEP/shard-%02d-of-$SHARDS.h5 " $(seq 0 $((SHARDS - 1))))
+HAVE=("$KEEP"/shard-*-of-$SHARDS.h5)
+[[ -f "${HAVE[0]}" ]] || { echo "no shards in $KEEP" >&2; exit 1; }
+if (( ${#HAVE[@]} < SHARDS )); then
+  # An interim model: data and models in a folder of their own, so that the
+  # training of the whole set never resumes from it.
+  WORK="$WORK/${#HAVE[@]}of$SHARDS"
+  DATA="$WORK/bodyspace$COUNT-${#HAVE[@]}of$SHARDS.h5"
+  mkdir -p "$WORK"
+  echo "training on ${#HAVE[@]} of $SHARDS shards (an interim model) in $WORK"
+fi
+[[ -f "$DATA" ]] || "$DRAPE" dataset expand --out "$DATA" "${HAVE[@]}"
 
 # Two graphs on the same drapes: the seed's model, and the same with its
 # template following the body and the penetration loss at 0.1

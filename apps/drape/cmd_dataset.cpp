@@ -10,7 +10,7 @@
 #include <drape/body.hpp>
 #include <drape/dataset.hpp>
 #include <drape/errors.hpp>
-#include <drape/h5.hpp>
+#include <drape/progress.hpp>
 #include <drape/registry.hpp>
 #include <drape/scene.hpp>
 
@@ -96,7 +96,14 @@ int expand(const std::vector<std::string>& args) {
   const PluginDescriptor& descriptor = registry.get(scene.body_model);
   const auto body_model =
       registry.create_body(scene.body_model, Params(descriptor.params, scene.body_params, "body '" + scene.body_model + "'"));
-  const std::size_t n = expand_datasets(shards, out, *body_model, !vm.count("allow-incomplete"));
+  std::size_t slim_samples = 0;  // the bodies to rebuild, for the progress bar
+  for (const auto& shard : shards) {
+    const DatasetReader reader(shard);
+    if (!reader.layout().body_vertices_stored) slim_samples += reader.indices().size();
+  }
+  ProgressBar bar("expand", slim_samples);
+  const std::size_t n = expand_datasets(shards, out, *body_model, !vm.count("allow-incomplete"), [&] { bar.advance(); });
+  bar.finish();
   std::cout << "wrote " << out.string() << ": " << n << " samples, their bodies rebuilt by body model '" << scene.body_model
             << "' from the stored shape parameters\n";
   return 0;

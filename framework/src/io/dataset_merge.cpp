@@ -41,11 +41,12 @@ void add_garment_size_stat(DatasetLayout& layout) {
 struct BodyVertices {
   bool write = true;
   const BodyModel* rebuild = nullptr;  // used for shards that left them out
+  std::function<void()> rebuilt;       // after each rebuilt body, when set
 };
 
 // body_model.vertices(params) of `count` rows of float parameters, as floats.
 std::vector<float> rebuilt_bodies(const BodyModel& body_model, const std::vector<float>& params, std::size_t count,
-                                  std::size_t body_params) {
+                                  std::size_t body_params, const std::function<void()>& rebuilt) {
   const std::size_t nb = static_cast<std::size_t>(body_model.num_vertices());
   std::vector<float> out(count * nb * 3);
   for (std::size_t r = 0; r < count; ++r) {
@@ -54,6 +55,7 @@ std::vector<float> rebuilt_bodies(const BodyModel& body_model, const std::vector
     const Eigen::MatrixX3d v = body_model.vertices(shape);
     for (std::size_t i = 0; i < nb; ++i)
       for (int c = 0; c < 3; ++c) out[(r * nb + i) * 3 + static_cast<std::size_t>(c)] = static_cast<float>(v(static_cast<Eigen::Index>(i), c));
+    if (rebuilt) rebuilt();
   }
   return out;
 }
@@ -75,7 +77,7 @@ void copy_rows(const h5::File& in, bool in_has_bodies, h5::File& out, const Data
   if (bodies.write && in_has_bodies) {
     copy(kBodyVertices, static_cast<std::size_t>(layout.body_vertices) * 3, float{});
   } else if (bodies.write) {
-    const std::vector<float> rows = rebuilt_bodies(*bodies.rebuild, params, count, p);
+    const std::vector<float> rows = rebuilt_bodies(*bodies.rebuild, params, count, p, bodies.rebuilt);
     out.write_rows(kBodyVertices, to, count, rows.data());
   }
   copy(kGarmentVertices, static_cast<std::size_t>(layout.garment_vertices) * 3, float{});
@@ -199,8 +201,8 @@ std::size_t slim_dataset(const fs::path& in, const fs::path& out) {
 }
 
 std::size_t expand_datasets(const std::vector<fs::path>& shards, const fs::path& out, const BodyModel& body_model,
-                            bool require_complete) {
-  return merge(shards, out, require_complete, false, BodyVertices{.write = true, .rebuild = &body_model});
+                            bool require_complete, const std::function<void()>& rebuilt) {
+  return merge(shards, out, require_complete, false, BodyVertices{.write = true, .rebuild = &body_model, .rebuilt = rebuilt});
 }
 
 }  // namespace drape
