@@ -2,7 +2,8 @@
 // self-contained HTML page with a 3D viewer (drag to turn), or an SVG front
 // view -- with the garment coloured by its distance to the body, its error
 // against the simulated drape, or its strain against the material space.
-// The garment is a model's prediction (default: the shipped model) or a mesh.
+// The garment is a model's prediction (default: the shipped model), a mesh, or a
+// dataset's simulated drape (--data ... --simulated).
 #include "command.hpp"
 
 #include <drape/dataset.hpp>
@@ -53,12 +54,13 @@ int run(const std::vector<std::string>& args) {
       ("for a model trained on several sizes: " + garment_size_choices()).c_str())(
       "data", po::value<std::string>(), "or take body (and the simulated garment, for --colour error) from a dataset")(
       "sample", po::value<std::size_t>()->default_value(0), "with --data: the sample index")(
+      "simulated", "with --data: draw the dataset's simulated garment instead of a prediction")(
       "colour", po::value<std::string>()->default_value("distance"),
       "distance (to the body, cm) | error (to the simulated garment of --data, cm) | strain (edge length change, %)")(
       "out", po::value<std::string>(), "picture to write: .html (3D viewer) or .svg (front view)");
   po::variables_map vm;
   const std::string usage =
-      "drape render [--model model.h5] (--bmi 35 | --body body.obj | --data data.h5 --sample I) [--garment g.obj] "
+      "drape render [--model model.h5] (--bmi 35 | --body body.obj | --data data.h5 --sample I [--simulated]) [--garment g.obj] "
       "[--colour distance|error|strain] --out drape.html";
   if (!parse(usage, args, opts, {}, vm)) return 0;
   if (!vm.count("out")) throw UsageError("--out FILE is required (.html or .svg)");
@@ -71,6 +73,8 @@ int run(const std::vector<std::string>& args) {
     throw UsageError("--colour must be distance, error or strain, got '" + colour + "'");
   if (colour == "error" && !vm.count("data"))
     throw UsageError("--colour error compares with a simulated drape: give --data FILE --sample I");
+  if (vm.count("simulated") && (!vm.count("data") || vm.count("garment")))
+    throw UsageError("--simulated draws a dataset's own drape: give --data FILE --sample I, and no --garment");
   const std::string model_file = model_file_or_default(vm);
 
   Registry& registry = Registry::load_default(plugin_path(vm));
@@ -102,6 +106,9 @@ int run(const std::vector<std::string>& args) {
                         " vertices, but the model's garment template has " + std::to_string(garment.num_vertices()));
     garment.vertices = given.vertices;
     what = vm["garment"].as<std::string>() + " on " + what;
+  } else if (vm.count("simulated")) {
+    garment.vertices = truth.vertices;
+    what = "simulated drape, " + what;
   } else {
     garment.vertices = model.predict(batch).mat(0).cast<double>();
     what = "prediction of " + std::filesystem::path(model_file).filename().string() + " for " + what;

@@ -90,3 +90,22 @@ TEST_CASE("the 3D viewer page draws in headless Chromium and its screenshot is n
   CHECK(png.substr(1, 3) == "PNG");
   CHECK(png.size() > 20000);  // a white page compresses to a few kB; a shaded drape does not
 }
+
+TEST_CASE("render --simulated draws a dataset's own drape: the repository's body-space shard, expanded", "[render][dataset]") {
+  const fs::path shard = test::source_dir() / "datasets/bodyspace2000/shard-00-of-40.h5";
+  REQUIRE(fs::exists(shard));  // part of the repository (datasets/README.md)
+  test::TempDir dir;
+  const std::string drape = test::drape_program().string() + " ";
+  const std::string data = (dir / "full.h5").string();
+  std::string out;
+  REQUIRE(test::run(drape + "dataset expand --out " + data + " " + shard.string(), out) == 0);
+  // Coloured by the error against the simulated drape: zero everywhere when
+  // the stored garment itself is drawn (a prediction would not be).
+  REQUIRE(test::run(drape + "render --data " + data + " --sample 3 --simulated --colour error --out " + (dir / "s.svg").string(), out) == 0);
+  INFO(out);
+  CHECK_THAT(out, Catch::Contains("simulated drape, sample 3 of full.h5") && Catch::Contains("ME 0.00 cm, max 0.00 cm, p = 0.00%"));
+  REQUIRE(test::run(drape + "render --data " + data + " --sample 3 --colour error --out " + (dir / "p.svg").string(), out) == 0);
+  CHECK_THAT(out, Catch::Contains("prediction of") && !Catch::Contains("ME 0.00 cm, max 0.00 cm"));
+  CHECK(test::run(drape + "render --bmi 30 --simulated --out " + (dir / "x.svg").string(), out) == 2);
+  CHECK_THAT(out, Catch::Contains("--simulated draws a dataset's own drape"));
+}
