@@ -10,9 +10,10 @@ The cells are drawn by the program itself; this script only lays them out.
 """
 import argparse
 import pathlib
-import re
 import subprocess
 import tempfile
+
+from svg_grid import read_cell, write_grid
 
 SEXES = [(0, "female"), (1, "male")]
 HEIGHTS = [1.5, 2.0]
@@ -35,34 +36,19 @@ def main():
     ap.add_argument("--drape", default="build/bin/drape", help="the drape program")
     ap.add_argument("--out", required=True, help="SVG to write")
     args = ap.parse_args()
-    cells, width, height = [], 0.0, 0.0
+    cells = []
     with tempfile.TemporaryDirectory() as tmp:
         for row, (sex, sex_name) in enumerate(SEXES):
             for h_index, h in enumerate(HEIGHTS):
                 for col, bmi in enumerate(BMIS):
                     path = pathlib.Path(tmp) / f"cell_{sex}_{h}_{bmi}.svg"
                     outside = render(args.drape, args.model, sex, h, bmi, path)
-                    svg = path.read_text()
-                    w = float(re.search(r'width="([0-9.]+)"', svg).group(1))
-                    hh = float(re.search(r'height="([0-9.]+)"', svg).group(1))
-                    width, height = max(width, w), max(height, hh)
-                    inner = svg[svg.index(">") + 1:svg.rindex("</svg>")]
-                    label = f"{sex_name}, {h:.2f} m, BMI {bmi}"
-                    cells.append((2 * row + h_index, col, inner, label, outside, w, hh))
-    rows, cols = 2 * len(HEIGHTS), len(BMIS)
-    title, label_height, pitch = 30.0, 36.0, width + 16.0
-    out = [f'<svg xmlns="http://www.w3.org/2000/svg" width="{cols * pitch:.0f}" height="{rows * (height + label_height) + title:.0f}" '
-           f'font-family="sans-serif">', '<rect width="100%" height="100%" fill="white"/>',
-           f'<text x="12" y="22" font-size="18">predicted drapes over sex x height x BMI '
-           f'({pathlib.Path(args.model).name if args.model else "the shipped model"})</text>']
-    for r, c, inner, label, outside, w, hh in cells:
-        x, y = c * pitch, title + r * (height + label_height)
-        out.append(f'<text x="{x + 12:.0f}" y="{y + 14:.0f}" font-size="14" font-weight="bold">{label}</text>')
-        if outside:
-            out.append(f'<text x="{x + 12:.0f}" y="{y + 30:.0f}" font-size="12" fill="#b00000">outside the model\'s training domain</text>')
-        out.append(f'<svg x="{x:.0f}" y="{y + label_height:.0f}" width="{w}" height="{hh}" viewBox="0 0 {w} {hh}">{inner}</svg>')
-    out.append("</svg>")
-    pathlib.Path(args.out).write_text("\n".join(out))
+                    inner, w, hh = read_cell(path)
+                    cells.append(dict(row=2 * row + h_index, col=col, inner=inner, w=w, h=hh,
+                                      label=f"{sex_name}, {h:.2f} m, BMI {bmi}",
+                                      note="outside the model's training domain" if outside else ""))
+    write_grid(args.out, "predicted drapes over sex x height x BMI "
+               f"({pathlib.Path(args.model).name if args.model else 'the shipped model'})", cells)
     print(f"wrote {args.out}: {len(cells)} predictions")
 
 
