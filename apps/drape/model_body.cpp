@@ -1,8 +1,10 @@
 #include "model_body.hpp"
 
+#include <drape/garment_size.hpp>
 #include <drape/mesh_io.hpp>
 #include <drape/model_domain.hpp>
 
+#include <cstdio>
 #include <iostream>
 
 namespace drape::cli {
@@ -55,7 +57,23 @@ SampleBatch model_body(const Model& model, const po::variables_map& vm) {
   SampleBatch batch = body_of(model, vm);
   add_garment_size(model, vm, batch);
   check_domain(model, batch, vm.count("strict") > 0);
+  note_fit(model, batch);
   return batch;
+}
+
+void note_fit(const Model& model, const SampleBatch& batch) {
+  if (model.needs_input("garment_size")) return;  // the size is the user's to give
+  const Assets& a = model.assets();
+  const double ease = garment_ease(a.garment->mesh.vertices, a.garment->mesh.faces, a.body.vertices,
+                                   batch.body.mat(0).cast<double>(), a.body.faces);
+  if (!(ease < kMinimumEase)) return;  // fits, or not measurable (NaN)
+  char line[400];
+  std::snprintf(line, sizeof line,
+                "note: the model's garment is %.1f %% smaller around than this body's chest or belly (the tailor's "
+                "rule of docs/garments.md); simulated, a garment that small rides up over the belly or is stretched "
+                "onto the body, and the model predicts it so. A larger size fits (drape simulate with size: auto)\n",
+                -100.0 * ease);
+  std::cerr << line;
 }
 
 void check_domain(const Model& model, const SampleBatch& batch, bool strict) {

@@ -20,6 +20,12 @@ SampleBatch model_body(const Model& model, const po::variables_map& vm);
 // model_body calls it, reading --strict from vm.
 void check_domain(const Model& model, const SampleBatch& batch, bool strict);
 
+// A note on stderr when the model's garment (one size) is smaller around than
+// the body by the tailor's rule (garment_size.hpp): what the model predicts for
+// such a body is that garment riding up or stretched, as it was simulated.
+// model_body calls it.
+void note_fit(const Model& model, const SampleBatch& batch);
+
 // --model, or the shipped pretrained model (default_model_path); UsageError when neither exists.
 std::string model_file_or_default(const po::variables_map& vm);
 

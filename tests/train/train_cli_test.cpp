@@ -357,3 +357,25 @@ TEST_CASE("with the seed's six losses a resumed run (no cached or warm-started c
   CHECK(weights_of(resumed) == weights_of(whole));
   CHECK(read_checkpoint(resumed).history.at("train_loss") == read_checkpoint(whole).history.at("train_loss"));
 }
+
+TEST_CASE("drape predict notes when the model's one garment size is smaller around than the body", "[train][cli][shipped]") {
+  test::TempDir dir;
+  // The shipped model wears the regular shirt: it fits a slim man (no note),
+  // and is smaller around than heavy bodies, the more so the heavier.
+  const auto smaller_by = [&](double bmi) {
+    std::string out;
+    REQUIRE(test::run("env -u DRAPE_MODEL DRAPE_CACHE_DIR=" + dir.path().string() + " " + test::drape_program().string() +
+                          " predict --bmi " + std::to_string(bmi) + " --out " + (dir / "g.obj").string(),
+                      out) == 0);
+    INFO(out);
+    std::smatch m;
+    if (!std::regex_search(out, m, std::regex("note: the model's garment is ([0-9.]+) % smaller around than this body")))
+      return 0.0;
+    CHECK_THAT(out, Catch::Contains("size: auto"));
+    return std::stod(m[1]);
+  };
+  CHECK(smaller_by(22) == 0.0);
+  const double at45 = smaller_by(45), at60 = smaller_by(60);
+  CHECK(at45 > 5.0);
+  CHECK(at60 > at45);
+}
