@@ -389,4 +389,9 @@ TEST_CASE("dataset: a slim copy leaves the bodies out and expand rebuilds them f
   CHECK_THROWS_WITH(expand_datasets({dir / "slim.h5"}, dir / "bad.h5", FormulaBody(9)),
                     Catch::Contains("7 vertices") && Catch::Contains("has 9"));
   CHECK_FALSE(fs::exists(dir / "bad.h5"));
+
+  // A slim file whose recorded vertex count is damaged is refused, naming it.
+  fs::copy_file(dir / "slim.h5", dir / "odd.h5");
+  h5::File::open(dir / "odd.h5", h5::Access::ReadWrite).set_attribute("/", "body_vertices_omitted", "7x");
+  CHECK_THROWS_WITH(DatasetReader(dir / "odd.h5"), Catch::Contains("odd.h5") && Catch::Contains("'7x', expected a vertex count"));
 }
