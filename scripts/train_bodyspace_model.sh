@@ -13,11 +13,11 @@
 # (default 1; 0 simulates nothing and trains an interim model on the N shards
 # already in datasets/, in WORK_DIR/<N>of40/).
 #
-# Measured: on the reshaped bodies (docs/bodies.md) a drape takes about 500
-# Newton iterations and 20 s per core (10 s at BMI 10-25, 60 s and more above
-# 55), so the 2,000 are about 11 core-hours. Training on the first 285 drapes
-# (225 for training) took 1.5-2.5 s per epoch on one core
-# (docs/training.md, "On the reshaped bodies").
+# Measured (2026-11-26, docs/bodies.md and docs/training.md): a drape takes
+# about 500 Newton iterations and 17 s per core (7 s at BMI 10-25, 34 s at
+# 55-65), so a shard of 50 takes 7-8 minutes on two cores and the 2,000 about
+# 10 core-hours. Training on 550 drapes (443 for training) took 2.0-2.4 s an
+# epoch on one core, so an epoch of the 1,600 training drapes is about 8 s.
 set -euo pipefail
 cd "$(dirname "${BASH_SOURCE[0]}")/.."
 DRAPE=${BUILD_DIR:-build}/bin/drape
