@@ -103,6 +103,18 @@ effects: {gravity: {}, stretching: {}, bending: {}, barrier: {}}
 solver: {morph_steps: 10, settle_steps: 80}
 )";
 
+// The deep-start test below, without gravity. Freed by shrinking the start
+// body, the band hangs loose until the body has grown back into it; under
+// gravity, whether it catches on the hips before it has slid past them is a
+// race that round-off decides: on an AMD EPYC (OpenBLAS's Haswell kernels)
+// it slid down the legs and fell, a legitimate frictionless outcome, not what
+// that test is about.
+const char* kSceneWeightless = R"(body: {model: parametric, shape: {bmi: 60, height: 1.75, sex: 1}}
+garment: {template: test_band}
+effects: {stretching: {}, bending: {}, barrier: {}}
+solver: {morph_steps: 10, settle_steps: 80}
+)";
+
 void check_separated(const SimulationResult& r, const Simulation& sim) {
   const geometry::SurfaceCrossings c = geometry::surface_crossings(r.garment, sim.garment().mesh.faces, r.body, sim.body_model().faces());
   CHECK(c.total() == 0);
@@ -133,9 +145,9 @@ TEST_CASE("barrier: a heavy body grows into a band of cloth, which it pushes out
 TEST_CASE("barrier: a band that starts 3 cm inside the body is freed by shrinking the start body, then drapes "
           "without crossings", "[barrier][simulation]") {
   const auto probe = registry_with_band(0.3, 0.0);
-  const Waist waist = mean_waist(Simulation(*probe, parse_scene(kScene)));
+  const Waist waist = mean_waist(Simulation(*probe, parse_scene(kSceneWeightless)));
   const auto reg = registry_with_band(waist.radius, waist.z0);
-  const Simulation sim(*reg, parse_scene(kScene));
+  const Simulation sim(*reg, parse_scene(kSceneWeightless));
   // The start: the band 4 cm tighter than the waist (up to 3 cm deep in it), undressed.
   const Eigen::MatrixX3d inside = BandSource(waist.radius - 0.04, waist.z0).build().mesh.vertices;
   const geometry::BodySurface mean(sim.mean_body(), sim.body_model().faces());
