@@ -10,6 +10,7 @@
 #include <drape/body.hpp>
 #include <drape/dataset.hpp>
 #include <drape/errors.hpp>
+#include <drape/model.hpp>
 #include <drape/progress.hpp>
 #include <drape/registry.hpp>
 #include <drape/scene.hpp>
@@ -92,10 +93,7 @@ int expand(const std::vector<std::string>& args) {
   // one that generated the bodies (the others must agree, as in a merge).
   const DatasetLayout layout = DatasetReader(shards.front()).layout();
   const Scene scene = parse_scene(layout.scene, shards.front().string() + " (its stored scene)");
-  const Registry& registry = Registry::load_default(plugin_path(vm));
-  const PluginDescriptor& descriptor = registry.get(scene.body_model);
-  const auto body_model =
-      registry.create_body(scene.body_model, Params(descriptor.params, scene.body_params, "body '" + scene.body_model + "'"));
+  const auto body_model = make_body_model(Registry::load_default(plugin_path(vm)), assets_spec_for(scene, 0));
   std::size_t slim_samples = 0;  // the bodies to rebuild, for the progress bar
   for (const auto& shard : shards) {
     const DatasetReader reader(shard);
