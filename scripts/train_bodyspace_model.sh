@@ -11,7 +11,8 @@
 # (the cosine schedule's length, default 600; patience 100 on the validation
 # loss), BUILD_DIR (default build), THREADS (default all cores), GENERATE
 # (default 1; 0 simulates nothing and trains an interim model on the N shards
-# already in datasets/, in WORK_DIR/<N>of40/).
+# already in datasets/, in WORK_DIR/<N>of40/), GRAPHS (default both graphs
+# below; one graph trains only that one, and it is the model).
 #
 # Measured (2026-11-26, docs/bodies.md and docs/training.md): a drape takes
 # about 500 Newton iterations and 17 s per core (7 s at BMI 10-25, 34 s at
@@ -63,18 +64,21 @@ fi
 # template following the body and the penetration loss at 0.1
 # (graphs/bodyspace/drape_follow_penetration.yaml, docs/training.md); the one
 # with the lower mean error on the validation split is the model.
-for GRAPH in graphs/drape.yaml graphs/bodyspace/drape_follow_penetration.yaml; do
+GRAPHS=${GRAPHS:-graphs/drape.yaml graphs/bodyspace/drape_follow_penetration.yaml}
+for GRAPH in $GRAPHS; do
   NAME=$(basename "$GRAPH" .yaml)
   "$DRAPE" train "$GRAPH" --data "$DATA" --out "$WORK/$NAME.h5" --epochs "$EPOCHS" --batch 8 --lr 1e-3 \
     --schedule cosine --patience 100 --seed 0 --threads "$THREADS" --resume
   "$DRAPE" eval --model "$WORK/$NAME.h5" --data "$DATA" --split val --out "$WORK/$NAME-val.csv"
 done
 val_me() { awk -F, '$1 == "ME" { print $3 }' "$1"; }
-if awk -v a="$(val_me "$WORK/drape-val.csv")" -v b="$(val_me "$WORK/drape_follow_penetration-val.csv")" 'BEGIN { exit !(b < a) }'; then
-  BEST=drape_follow_penetration
-else
-  BEST=drape
-fi
+BEST=
+for GRAPH in $GRAPHS; do
+  NAME=$(basename "$GRAPH" .yaml)
+  if [[ -z "$BEST" ]] || awk -v a="$(val_me "$WORK/$BEST-val.csv")" -v b="$(val_me "$WORK/$NAME-val.csv")" 'BEGIN { exit !(b < a) }'; then
+    BEST=$NAME
+  fi
+done
 cp "$WORK/$BEST.h5" "$WORK/model.h5"
 echo "the model: $BEST (lower validation ME), copied to $WORK/model.h5"
 

@@ -56,16 +56,24 @@ def test_a_drape_and_a_pushed_in_copy(tmp_path):
 
 
 def test_a_prediction_pushed_out(tmp_path):
-    """drape predict --push-out: the shipped model's shirt on a body it was not trained for (a woman of BMI 40)
-    has vertices inside; pushed out, none is, by the winding number."""
+    """drape predict --push-out: the shipped model's shirt on a body it fits badly has vertices inside; pushed
+    out, none is, by the winding number. Which body that is depends on the model: the first of a few hard ones
+    (a woman of BMI 40, on which the male-only models failed; the heaviest bodies, whose chest or belly the
+    regular shirt is 30-47 % too small for) whose prediction has more than 1 % of its vertices inside."""
     garment, pushed, body = tmp_path / "g.obj", tmp_path / "pushed.obj", tmp_path / "b.obj"
-    run_drape("predict", "--bmi", 40, "--sex", 0, "--out", garment, "--body-out", body)
-    out, _ = run_drape("predict", "--bmi", 40, "--sex", 0, "--push-out", "--out", pushed)
-    assert "pushed out:" in out
     script = str(REFERENCE / "winding_number_meshes.py")
-    before = subprocess.run([sys.executable, script, str(garment), str(body)], capture_output=True, text=True, check=True)
+    candidates = [("--bmi", 40, "--sex", 0), ("--bmi", 65, "--sex", 1, "--height", 2.0),
+                  ("--bmi", 60, "--sex", 0, "--height", 2.0), ("--bmi", 65, "--sex", 0, "--height", 1.5)]
+    for shape in candidates:
+        run_drape("predict", *shape, "--out", garment, "--body-out", body)
+        before = subprocess.run([sys.executable, script, str(garment), str(body)], capture_output=True, text=True, check=True)
+        if float(before.stdout.split("p = ")[1].split(" %")[0]) > 1.0:
+            break
+    else:
+        pytest.fail("the shipped model's prediction is clear of every candidate body: add one it crosses")
+    out, _ = run_drape("predict", *shape, "--push-out", "--out", pushed)
+    assert "pushed out:" in out
     after = subprocess.run([sys.executable, script, str(pushed), str(body)], capture_output=True, text=True, check=True)
-    assert float(before.stdout.split("p = ")[1].split(" %")[0]) > 1.0
     assert "p = 0.000 %" in after.stdout
     # Only the vertices that were inside or within 1 mm moved.
     g, _ = read_obj(str(garment))
