@@ -12,6 +12,8 @@
 #include <drape/trainer.hpp>
 
 #include <algorithm>
+#include <numeric>
+#include <optional>
 #include <cstdio>
 #include <fstream>
 #include <sstream>
@@ -130,6 +132,72 @@ void print_worst(const DatasetReader& reader, const std::vector<std::size_t>& in
   }
 }
 
+// `--by bmi:10,25,45,65`: the split's bodies in bands of one body statistic.
+struct Bands {
+  std::string stat;
+  std::vector<double> edges;
+};
+
+// Read before the evaluation, so that a misspelt --by fails at once.
+Bands parse_bands(const DatasetReader& reader, const std::string& spec) {
+  const auto colon = spec.find(':');
+  Bands bands;
+  try {
+    if (colon == std::string::npos || colon == 0) throw std::invalid_argument("no :");
+    std::stringstream list(spec.substr(colon + 1));
+    for (std::string item; std::getline(list, item, ',');) bands.edges.push_back(std::stod(item));
+  } catch (const std::exception&) {
+    throw UsageError("--by wants STAT:EDGE,EDGE[,...], e.g. bmi:10,25,45,65; got '" + spec + "'");
+  }
+  const auto& e = bands.edges;
+  if (e.size() < 2 || !std::is_sorted(e.begin(), e.end()) || std::adjacent_find(e.begin(), e.end()) != e.end())
+    throw UsageError("--by wants at least two increasing band edges, got '" + spec + "'");
+  bands.stat = spec.substr(0, colon);
+  if (!reader.layout().has_stat(bands.stat)) throw UsageError("--by: the dataset has no statistic '" + bands.stat + "'");
+  return bands;
+}
+
+// Each band's ME (mean, median, worst), p (mean, worst, bodies above 1 %) and
+// most stretched edge: where in the body space the error is.
+void print_by_band(const DatasetReader& reader, const std::vector<std::size_t>& indices,
+                   const std::vector<GarmentMetrics>& samples, const Bands& bands) {
+  const std::string& stat = bands.stat;
+  const std::vector<double>& edges = bands.edges;
+  const std::vector<double> key = reader.stat(stat, indices);
+  std::printf("\nby %s:\n\n| %s | bodies | ME mean (cm) | median | worst | p mean (%%) | worst | above 1 %% | most stretched edge (%%) |\n"
+              "|---|---|---|---|---|---|---|---|---|\n",
+              stat.c_str(), stat.c_str());
+  std::size_t outside = 0;
+  for (double k : key) outside += (k < edges.front() || k > edges.back()) ? 1 : 0;
+  for (std::size_t band = 0; band + 1 < edges.size(); ++band) {
+    std::vector<double> me;
+    double p_sum = 0, p_max = 0, stretch_max = 0;
+    int p_above = 0;
+    for (std::size_t i = 0; i < key.size(); ++i) {
+      // Half-open bands, the last one closed: every body in [first, last] is in exactly one.
+      const bool last = band + 2 == edges.size();
+      if (key[i] < edges[band] || key[i] > edges[band + 1] || (!last && key[i] == edges[band + 1])) continue;
+      const GarmentMetrics& m = samples[i];
+      me.push_back(m.me_cm);
+      p_sum += m.penetration_percent;
+      p_max = std::max(p_max, m.penetration_percent);
+      p_above += m.penetration_percent > 1.0 ? 1 : 0;
+      stretch_max = std::max(stretch_max, m.edge_stretch_max);
+    }
+    std::printf("| %g-%g | %zu |", edges[band], edges[band + 1], me.size());
+    if (me.empty()) {
+      std::printf(" | | | | | | |\n");
+      continue;
+    }
+    const double mean = std::accumulate(me.begin(), me.end(), 0.0) / double(me.size());
+    std::sort(me.begin(), me.end());
+    const double median = me.size() % 2 ? me[me.size() / 2] : 0.5 * (me[me.size() / 2 - 1] + me[me.size() / 2]);
+    std::printf(" %.3g | %.3g | %.3g | %.3g | %.3g | %d | %.3g |\n", mean, median, me.back(), p_sum / double(me.size()), p_max,
+                p_above, stretch_max);
+  }
+  if (outside) std::printf("(%zu bodies outside %g-%g are in no band)\n", outside, edges.front(), edges.back());
+}
+
 int run(const std::vector<std::string>& args) {
   po::options_description opts("drape eval");
   opts.add_options()("model", po::value<std::string>(), "model file from drape train")(
@@ -141,6 +209,8 @@ int run(const std::vector<std::string>& args) {
       "set", po::value<std::vector<std::string>>(), "node.param=value: change a parameter of the model's graph that leaves "
                                                     "the weights alone, e.g. post.enabled=true (repeatable)")(
       "worst", po::value<int>(), "also list the N bodies with the largest ME, with their body statistics (BMI, sex, height)")(
+      "by", po::value<std::string>(), "also break the metrics down by bands of a body statistic, e.g. bmi:10,25,35,45,55,65 "
+                                      "(ME mean, median and worst, p, bodies with p above 1 %, most stretched edge per band)")(
       "out", po::value<std::string>(), "also write the table: metrics.csv or metrics.json")(
       "svg", po::value<std::string>(), "also draw the per-vertex error of the thinnest, median and heaviest body of the split (.svg, or .html: a 3D viewer)");
   add_push_out_option(opts, "measure the predictions after pushing their vertices out of the body to this clearance in m");
@@ -184,6 +254,9 @@ int run(const std::vector<std::string>& args) {
   }
   if (indices.empty()) throw ConfigError(data + ": the " + split + " split has no samples" + (vm.count("where") ? " where " + vm["where"].as<std::string>() : std::string()));
 
+  std::optional<Bands> bands;
+  if (vm.count("by")) bands = parse_bands(reader, vm["by"].as<std::string>());
+
   ProgressBar bar("eval", indices.size(), std::cerr);
   const SplitEvaluation evaluation = evaluate_model(model, reader, indices, batch_size, &bar, pushed_to);
   bar.finish();
@@ -204,6 +277,7 @@ int run(const std::vector<std::string>& args) {
   std::printf("\nthe ground truth itself has p = %.3g %%, %.4g surface crossings per sample (%.3g %% of samples with any)\n",
               reference_p, reference_crossings, reference_crossed);
   if (vm.count("worst")) print_worst(reader, indices, evaluation.samples, vm["worst"].as<int>());
+  if (bands) print_by_band(reader, indices, evaluation.samples, *bands);
   if (vm.count("out")) {
     write_report(vm["out"].as<std::string>(), model_file, data, split, s, reference_p, reference_crossings, reference_crossed);
     std::printf("wrote %s\n", vm["out"].as<std::string>().c_str());

@@ -296,6 +296,21 @@ TEST_CASE("drape eval prints every metric and writes them as JSON or CSV", "[tra
   CHECK(me[0] >= me[1]);
   CHECK(test::run(test::drape_command("eval --model " + t.model.string() + " --data " + t.data.string() + " --worst 0"),
                   out) == 2);
+  // By bands of BMI: each test body in exactly one band, counted from the dataset's own statistic.
+  REQUIRE(test::run(test::drape_command("eval --model " + t.model.string() + " --data " + t.data.string() +
+                                        " --split test --by bmi:20,30,40"),
+                    out) == 0);
+  const DatasetReader reader(t.data);
+  int low = 0, high = 0;
+  for (double bmi : reader.stat("bmi", reader.indices(Split::Test))) (bmi < 30 ? low : high) += 1;
+  REQUIRE(low + high == 3);
+  CHECK_THAT(out, Catch::Contains("| bmi | bodies | ME mean (cm) |") && Catch::Contains("| 20-30 | " + std::to_string(low) + " |") &&
+                      Catch::Contains("| 30-40 | " + std::to_string(high) + " |"));
+  for (const char* bad : {"bmi:20", "bmi:30,20", "bmx:20,30", "bmi"}) {
+    CHECK(test::run(test::drape_command("eval --model " + t.model.string() + " --data " + t.data.string() + " --by " + bad),
+                    out) == 2);
+    CHECK_THAT(out, Catch::Contains("--by"));
+  }
 }
 
 TEST_CASE("drape bench infer and bench train report their figures", "[train][cli]") {

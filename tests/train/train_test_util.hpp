@@ -50,6 +50,7 @@ inline void write_tiny_dataset(const std::filesystem::path& file, int n, int n_t
   layout.garment_vertices = assets->garment->mesh.num_vertices();
   layout.scene = parse_scene(tiny_scene()).yaml();
   layout.template_hash = template_hash(assets->garment->mesh, assets->body.faces);
+  layout.stats = {"bmi"};  // a stand-in that grows with the body, for eval's --by and --svg
   DatasetWriter writer(file, layout);
   Rng rng(seed);
   for (int i = 0; i < n; ++i) {
@@ -62,6 +63,7 @@ inline void write_tiny_dataset(const std::filesystem::path& file, int n, int n_t
     g.col(0).array() += 0.5 * a * a;
     s.garment_vertices = g.cast<float>();
     s.split = i < n_train ? Split::Train : i < n_train + n_val ? Split::Val : Split::Test;
+    s.stats["bmi"] = 20.0 + 100.0 * a;
     writer.write(static_cast<std::size_t>(i), s);
   }
   writer.finish();
