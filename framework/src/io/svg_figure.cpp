@@ -16,7 +16,7 @@ namespace drape {
 
 namespace {
 
-constexpr double kPanelWidth = 300, kPanelHeight = 420, kMargin = 12, kTitleHeight = 34, kBarHeight = 46;
+constexpr double kPanelWidth = 300, kPanelHeight = 420, kMargin = 12, kTitleHeight = 34, kBarHeight = 60;
 
 std::array<double, 3> rgb_of(const std::string& hex) {
   unsigned r = 0, g = 0, b = 0;
@@ -83,7 +83,8 @@ std::string SvgFigure::svg() const {
   if (!(extent > 0)) throw Error("svg: nothing to draw");
   const double scale = 1.0 / extent;
   const double panel_height = tallest * scale + 30;  // the drawing, then the panel's title
-  const double width = kMargin + panels_.size() * (kPanelWidth + kMargin);
+  // Wide enough for the title too (about 8 px a character at 15 px), so a one-panel figure does not cut it.
+  const double width = std::max(kMargin + panels_.size() * (kPanelWidth + kMargin), 2 * kMargin + 8.0 * title_.size());
   const double height = kTitleHeight + panel_height + (scale_ ? kBarHeight : 0) + kMargin;
   std::ostringstream o;
   o.setf(std::ios::fixed);
@@ -146,7 +147,8 @@ std::string SvgFigure::svg() const {
     o << "<text x=\"" << x0 << "\" y=\"" << y + 28 << "\" font-size=\"11\">" << scale_->lo << "</text>\n";
     o << "<text x=\"" << x0 + w << "\" y=\"" << y + 28 << "\" font-size=\"11\" text-anchor=\"end\">&#8805; " << scale_->hi
       << "</text>\n";
-    o << "<text x=\"" << x0 + w / 2 << "\" y=\"" << y + 28 << "\" font-size=\"11\" text-anchor=\"middle\">"
+    // The label on a line of its own: on a one-panel figure the bar is too short for it between the two ends.
+    o << "<text x=\"" << x0 + w / 2 << "\" y=\"" << y + 42 << "\" font-size=\"11\" text-anchor=\"middle\">"
       << xml_escaped(scale_->label) << "</text>\n";
   }
   o << "</svg>\n";
