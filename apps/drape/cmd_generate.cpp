@@ -149,12 +149,19 @@ int run(const std::vector<std::string>& args) {
       const Eigen::VectorXd shape = solve_in_space(sim.body_model(), request);
       const Eigen::MatrixX3d body = sim.body_vertices(shape);
       std::ostringstream who;
-      who << "sample " << global << " (BMI " << request.bmi << ", height " << request.height << " m, sex " << request.sex
-          << "; narrow --bmi or --height)";
+      who << "sample " << global << " (BMI " << request.bmi << ", height " << request.height << " m, sex " << request.sex;
+      for (const auto& [name, value] : request.proportions) who << ", " << name << " " << value;  // drape body --girth
+      who << "; narrow --bmi or --height)";
       SizeChoice choice;
       const Simulation& wearing = simulations.for_body(body, who.str(), &choice);
       const double size_flag = simulations.auto_size() ? garment_size_flag(choice.size) : garment_size;
-      const SimulationResult r = wearing.run(body);
+      const SimulationResult r = [&] {
+        try {
+          return wearing.run(body);
+        } catch (const ConfigError& e) {  // a body the scene refuses: say which sample it is
+          throw ConfigError(who.str() + ": " + e.what());
+        }
+      }();
       DatasetSample s;
       s.body_params = shape.cast<float>();
       s.body_vertices = r.body.cast<float>();

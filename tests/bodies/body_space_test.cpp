@@ -115,6 +115,32 @@ TEST_CASE("body space: every corner is a valid body on target BMI", "[bodies][sp
         }
 }
 
+TEST_CASE("body space: girths that make the body pass through itself are halved until it does not", "[bodies][space]") {
+  // Sample 1018 of the 2,000-drape run (seed 1): a man of BMI 10.2 with broad
+  // arms, whose upper arms cross his torso in the armpits as drawn.
+  BodyRequest r{10.2426, 1.77352, 1.0, {{"arms", 0.110223}, {"belly", 0.0659977}, {"chest", -0.0387222},
+                                       {"hips", 0.125589}, {"thighs", 0.0889141}, {"waist", 0.00915949}}};
+  const Eigen::MatrixX3i& f = parametric().faces();
+  REQUIRE_FALSE(geometry::self_intersections(parametric().vertices(parametric().solve(r)), f, 1).empty());
+  int halvings = -1;
+  const Eigen::MatrixX3d v = parametric().vertices(solve_in_space(parametric(), r, &halvings));
+  CHECK(halvings >= 1);
+  CHECK(geometry::self_intersections(v, f, 10).empty());
+  CHECK(measured_bmi(v, f) == Approx(10.2426).margin(0.5));
+  CHECK(r.proportions.at("arms") < 0.110223);
+  // The mixed corners: broad arms and thighs on the leanest and the heaviest bodies, everything else narrow.
+  for (const double sex : {0.0, 1.0})
+    for (const double height : {1.5, 2.0})
+      for (const double bmi : {10.0, 65.0}) {
+        BodyRequest mixed{bmi, height, sex, {}};
+        for (const auto& g : kGirths) mixed.proportions[g] = (g == "arms" || g == "thighs") ? 0.15 : -0.15;
+        const Eigen::MatrixX3d w = parametric().vertices(solve_in_space(parametric(), mixed));
+        INFO("sex " << sex << ", height " << height << ", BMI " << bmi);
+        CHECK(geometry::self_intersections(w, f, 10).empty());
+        CHECK(measured_bmi(w, f) == Approx(bmi).margin(0.5));
+      }
+}
+
 TEST_CASE("body space: proportions a model lacks or out of range are refused by name", "[bodies][space]") {
   BodyRequest r;
   r.proportions["neck"] = 0.1;

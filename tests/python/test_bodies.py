@@ -83,3 +83,14 @@ def test_heavy_corners_keep_human_proportions(sex, height):
     m = measure(np.asarray(v, dtype=np.float64), np.asarray(f))
     assert m["hip/sh"] <= 1.15, m
     assert 1.35 <= m["ank/wr"] <= 2.0, m
+
+
+def test_a_body_that_passes_through_itself_is_named(tmp_path):
+    """Girths that clash (broad arms on a BMI 10 torso: sample 1018 of the 2,000-drape run) make upper arms
+    that cross the torso in the armpits; drape body writes the body asked for, and says so."""
+    clash = ["--girth", "arms=0.110223", "--girth", "belly=0.0659977", "--girth", "chest=-0.0387222",
+             "--girth", "hips=0.125589", "--girth", "thighs=0.0889141", "--girth", "waist=0.00915949"]
+    _, err = run_drape("body", "--bmi", 10.2426, "--height", 1.77352, "--sex", 1, *clash, "--out", tmp_path / "b.obj")
+    assert "passes through itself" in err and "girths clash" in err
+    _, err = run_drape("body", "--bmi", 10.2426, "--height", 1.77352, "--sex", 1, "--out", tmp_path / "plain.obj")
+    assert "passes through itself" not in err

@@ -30,7 +30,8 @@ BodyRequest draw_body(const BodySpace& space, const BodyModel& model, Rng& rng);
 void draw_proportions(double spread, const BodyModel& model, Rng& rng, BodyRequest& request);
 
 // The shape that reaches the request. Proportions with which the model cannot
-// reach the BMI (a very lean build at BMI 65) are halved towards the mean
+// reach the BMI (a very lean build at BMI 65), or with which the body passes
+// through itself (broad arms on a BMI 10 torso), are halved towards the mean
 // build until it can, at most four times, then dropped; `halvings` tells how
 // many that took (0 for most draws) and `request` holds what was used.
 // ConfigError when not even the mean build reaches it.
