@@ -105,7 +105,7 @@ void draw_errors(const fs::path& file, Model& model, const DatasetReader& reader
 // The n samples with the largest ME, worst first: their metrics and the
 // body statistics the dataset holds (drape generate records bmi, sex, height).
 void print_worst(const DatasetReader& reader, const std::vector<std::size_t>& indices,
-                 const std::vector<GarmentMetrics>& samples, int n) {
+                 const std::vector<GarmentMetrics>& samples, const std::vector<double>& truth_strain, int n) {
   std::vector<std::size_t> order(samples.size());
   for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
   std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return samples[a].me_cm > samples[b].me_cm; });
@@ -119,14 +119,15 @@ void print_worst(const DatasetReader& reader, const std::vector<std::size_t>& in
       stats.emplace_back(name);
       values.push_back(reader.stat(name, chosen));
     }
-  std::printf("\nthe %zu bodies with the largest ME:\n\n| sample | ME (cm) | p (%%) | most stretched edge (%%) |", order.size());
+  std::printf("\nthe %zu bodies with the largest ME:\n\n| sample | ME (cm) | p (%%) | most strained edge (%%) | simulated: most strained edge (%%) |", order.size());
   for (const auto& name : stats) std::printf(" %s |", name.c_str());
-  std::printf("\n|---|---|---|---|");
+  std::printf("\n|---|---|---|---|---|");
   for (std::size_t k = 0; k < stats.size(); ++k) std::printf("---|");
   std::printf("\n");
   for (std::size_t r = 0; r < order.size(); ++r) {
     const GarmentMetrics& m = samples[order[r]];
-    std::printf("| %zu | %.3g | %.3g | %.3g |", chosen[r], m.me_cm, m.penetration_percent, m.edge_stretch_max);
+    std::printf("| %zu | %.3g | %.3g | %.3g | %.3g |", chosen[r], m.me_cm, m.penetration_percent, m.strain_max,
+                100.0 * truth_strain[order[r]]);
     for (const auto& column : values) std::printf(" %.4g |", column[r]);
     std::printf("\n");
   }
@@ -158,20 +159,20 @@ Bands parse_bands(const DatasetReader& reader, const std::string& spec) {
 }
 
 // Each band's ME (mean, median, worst), p (mean, worst, bodies above 1 %) and
-// most stretched edge: where in the body space the error is.
+// most strained edge, predicted and simulated: where in the body space the error is.
 void print_by_band(const DatasetReader& reader, const std::vector<std::size_t>& indices,
-                   const std::vector<GarmentMetrics>& samples, const Bands& bands) {
+                   const std::vector<GarmentMetrics>& samples, const std::vector<double>& truth_strain, const Bands& bands) {
   const std::string& stat = bands.stat;
   const std::vector<double>& edges = bands.edges;
   const std::vector<double> key = reader.stat(stat, indices);
-  std::printf("\nby %s:\n\n| %s | bodies | ME mean (cm) | median | worst | p mean (%%) | worst | above 1 %% | most stretched edge (%%) |\n"
-              "|---|---|---|---|---|---|---|---|---|\n",
+  std::printf("\nby %s:\n\n| %s | bodies | ME mean (cm) | median | worst | p mean (%%) | worst | above 1 %% | most strained edge (%%) | simulated (%%) |\n"
+              "|---|---|---|---|---|---|---|---|---|---|\n",
               stat.c_str(), stat.c_str());
   std::size_t outside = 0;
   for (double k : key) outside += (k < edges.front() || k > edges.back()) ? 1 : 0;
   for (std::size_t band = 0; band + 1 < edges.size(); ++band) {
     std::vector<double> me;
-    double p_sum = 0, p_max = 0, stretch_max = 0;
+    double p_sum = 0, p_max = 0, strain_max = 0, truth_max = 0;
     int p_above = 0;
     for (std::size_t i = 0; i < key.size(); ++i) {
       // Half-open bands, the last one closed: every body in [first, last] is in exactly one.
@@ -182,18 +183,19 @@ void print_by_band(const DatasetReader& reader, const std::vector<std::size_t>& 
       p_sum += m.penetration_percent;
       p_max = std::max(p_max, m.penetration_percent);
       p_above += m.penetration_percent > 1.0 ? 1 : 0;
-      stretch_max = std::max(stretch_max, m.edge_stretch_max);
+      strain_max = std::max(strain_max, m.strain_max);
+      truth_max = std::max(truth_max, 100.0 * truth_strain[i]);
     }
     std::printf("| %g-%g | %zu |", edges[band], edges[band + 1], me.size());
     if (me.empty()) {
-      std::printf(" | | | | | | |\n");
+      std::printf(" | | | | | | | |\n");
       continue;
     }
     const double mean = std::accumulate(me.begin(), me.end(), 0.0) / double(me.size());
     std::sort(me.begin(), me.end());
     const double median = me.size() % 2 ? me[me.size() / 2] : 0.5 * (me[me.size() / 2 - 1] + me[me.size() / 2]);
-    std::printf(" %.3g | %.3g | %.3g | %.3g | %.3g | %d | %.3g |\n", mean, median, me.back(), p_sum / double(me.size()), p_max,
-                p_above, stretch_max);
+    std::printf(" %.3g | %.3g | %.3g | %.3g | %.3g | %d | %.3g | %.3g |\n", mean, median, me.back(), p_sum / double(me.size()),
+                p_max, p_above, strain_max, truth_max);
   }
   if (outside) std::printf("(%zu bodies outside %g-%g are in no band)\n", outside, edges.front(), edges.back());
 }
@@ -210,7 +212,7 @@ int run(const std::vector<std::string>& args) {
                                                     "the weights alone, e.g. post.enabled=true (repeatable)")(
       "worst", po::value<int>(), "also list the N bodies with the largest ME, with their body statistics (BMI, sex, height)")(
       "by", po::value<std::string>(), "also break the metrics down by bands of a body statistic, e.g. bmi:10,25,35,45,55,65 "
-                                      "(ME mean, median and worst, p, bodies with p above 1 %, most stretched edge per band)")(
+                                      "(ME mean, median and worst, p, bodies with p above 1 %, most strained edge per band, predicted and simulated)")(
       "out", po::value<std::string>(), "also write the table: metrics.csv or metrics.json")(
       "svg", po::value<std::string>(), "also draw the per-vertex error of the thinnest, median and heaviest body of the split (.svg, or .html: a 3D viewer)");
   add_push_out_option(opts, "measure the predictions after pushing their vertices out of the body to this clearance in m");
@@ -276,8 +278,12 @@ int run(const std::vector<std::string>& args) {
                 c.unit.c_str());
   std::printf("\nthe ground truth itself has p = %.3g %%, %.4g surface crossings per sample (%.3g %% of samples with any)\n",
               reference_p, reference_crossings, reference_crossed);
-  if (vm.count("worst")) print_worst(reader, indices, evaluation.samples, vm["worst"].as<int>());
-  if (bands) print_by_band(reader, indices, evaluation.samples, *bands);
+  const auto& truth_strain = evaluation.ground_truth_strain_max;
+  std::printf("and its most strained edge (strain_max) is %.3g %% on average, %.3g %% at worst\n",
+              100.0 * std::accumulate(truth_strain.begin(), truth_strain.end(), 0.0) / double(truth_strain.size()),
+              100.0 * *std::max_element(truth_strain.begin(), truth_strain.end()));
+  if (vm.count("worst")) print_worst(reader, indices, evaluation.samples, evaluation.ground_truth_strain_max, vm["worst"].as<int>());
+  if (bands) print_by_band(reader, indices, evaluation.samples, evaluation.ground_truth_strain_max, *bands);
   if (vm.count("out")) {
     write_report(vm["out"].as<std::string>(), model_file, data, split, s, reference_p, reference_crossings, reference_crossed);
     std::printf("wrote %s\n", vm["out"].as<std::string>().c_str());

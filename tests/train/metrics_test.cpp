@@ -41,12 +41,13 @@ TEST_CASE("the ground truth scores zero on every metric but p", "[metrics]") {
   CHECK(m.crossings == crossings);
   CHECK(m.crossed_percent == (crossings > 0 ? 100.0 : 0.0));
   CHECK(m.edge_stretch_max == 0.0);
-  REQUIRE(metric_columns().size() == 9);
+  REQUIRE(metric_columns().size() == 10);
   std::vector<std::string> names;
   for (const auto& c : metric_columns()) names.push_back(c.name);
   // The seed's six, then the surface crossings and the worst edge.
   CHECK(names ==
-        std::vector<std::string>{"ME", "L_l", "L_e", "L_s", "L_d", "p", "crossings", "crossed_samples", "edge_stretch_max"});
+        std::vector<std::string>{"ME", "L_l", "L_e", "L_s", "L_d", "p", "crossings", "crossed_samples", "edge_stretch_max",
+                                 "strain_max"});
 }
 
 TEST_CASE("a translation changes ME and L_s only", "[metrics]") {
@@ -213,4 +214,30 @@ TEST_CASE("edge_stretch_max is the most stretched edge against the ground truth"
     }
   REQUIRE(expected > 100.0);
   CHECK(f.metrics.evaluate(torn, f.garment, f.body).edge_stretch_max == Approx(expected));
+}
+
+TEST_CASE("strain_max is the most strained edge against the material space", "[metrics]") {
+  // Computed here from the template's own UVs: each face's three edges, the
+  // rest length that of the face's UV corners.
+  Fixture f;
+  const Mesh& mesh = f.assets->garment->mesh;
+  const auto by_hand = [&](const Eigen::MatrixX3d& x) {
+    double worst = -1.0;
+    for (Eigen::Index k = 0; k < mesh.faces.rows(); ++k)
+      for (int j = 0; j < 3; ++j) {
+        const double rest = (mesh.uv.row(mesh.uv_faces(k, j)) - mesh.uv.row(mesh.uv_faces(k, (j + 1) % 3))).norm();
+        worst = std::max(worst, (x.row(mesh.faces(k, j)) - x.row(mesh.faces(k, (j + 1) % 3))).norm() / rest - 1.0);
+      }
+    return 100.0 * worst;
+  };
+  const double placed = by_hand(f.garment);
+  CHECK(f.metrics.evaluate(f.garment, f.garment, f.body).strain_max == Approx(placed));
+  // Scaled by 1.5 every edge is 1.5 times as long: 1.5 (1 + s) - 1 = 0.5 + 1.5 s.
+  CHECK(f.metrics.evaluate(1.5 * f.garment, f.garment, f.body).strain_max == Approx(50.0 + 1.5 * placed));
+  Eigen::MatrixX3d torn = f.garment;
+  torn.row(7) += Eigen::RowVector3d(0.0, 0.0, 0.5);
+  const double expected = by_hand(torn);
+  REQUIRE(expected > 100.0);
+  CHECK(f.metrics.evaluate(torn, f.garment, f.body).strain_max == Approx(expected));
+  CHECK(f.metrics.strain_max(torn) == Approx(expected / 100.0));
 }

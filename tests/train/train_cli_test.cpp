@@ -248,7 +248,8 @@ TEST_CASE("drape eval prints every metric and writes them as JSON or CSV", "[tra
   CHECK(picture.find("<path ") != std::string::npos);
   for (const char* metric : {"| ME |", "| L_l |", "| L_e |", "| L_s |", "| L_d |", "| p |"}) CHECK_THAT(out, Catch::Contains(metric));
   CHECK_THAT(out, Catch::Contains("test split (3 samples)") && Catch::Contains("the ground truth itself has p"));
-  CHECK_THAT(out, Catch::Contains("| crossings |") && Catch::Contains("| crossed_samples |") && Catch::Contains("| edge_stretch_max |") &&
+  CHECK_THAT(out, Catch::Contains("| crossings |") && Catch::Contains("| crossed_samples |") && Catch::Contains("| edge_stretch_max |") && Catch::Contains("| strain_max |") &&
+                      Catch::Contains("and its most strained edge (strain_max) is ") &&
                       Catch::Contains("| max (worst sample) |") &&
                       Catch::Contains("surface crossings per sample ("));
   std::ifstream json(t.dir / "m.json");
@@ -266,13 +267,14 @@ TEST_CASE("drape eval prints every metric and writes them as JSON or CSV", "[tra
   std::string line;
   std::vector<std::string> lines;
   while (std::getline(csv, line)) lines.push_back(line);
-  REQUIRE(lines.size() == 10);
+  REQUIRE(lines.size() == 11);
   CHECK(lines[0] == "metric,unit,mean,std,max");
   CHECK(lines[1].rfind("ME,cm,", 0) == 0);
   CHECK(lines[6].rfind("p,%,", 0) == 0);
   CHECK(lines[7].rfind("crossings,edges,", 0) == 0);
   CHECK(lines[8].rfind("crossed_samples,%,", 0) == 0);
   CHECK(lines[9].rfind("edge_stretch_max,%,", 0) == 0);
+  CHECK(lines[10].rfind("strain_max,%,", 0) == 0);
   CHECK(test::run(test::drape_command("eval --model " + t.model.string() + " --data " + t.data.string() + " --out m.txt"),
                   out) == 2);
   // Pushed out of the body (TailorNet's post-processing): no vertex inside, said in the heading.

@@ -17,6 +17,8 @@ struct SplitEvaluation {
   std::vector<double> ground_truth_penetration; // fraction of the simulated garment's vertices inside the body
   // Surface crossings of the simulated garment (MetricsContext::crossings).
   std::vector<int> ground_truth_crossings;
+  // The simulated garment's most strained edge (MetricsContext::strain_max, fraction).
+  std::vector<double> ground_truth_strain_max;
 };
 
 // Milliseconds of one prediction of a one-body batch on one core, as a user

@@ -49,11 +49,17 @@ struct GarmentMetrics {
   // 100 (l_pred / l_true - 1), so that a torn prediction (an edge pulled
   // across the body) shows even where the mean edge error L_e is small.
   double edge_stretch_max = 0;
+  // Not the seed's: the most strained edge against the material space (the
+  // garment's UVs), 100 (l / l_rest - 1): a torn mesh in the cloth's own
+  // terms. edge_stretch_max above is relative to the simulated edge, which
+  // a fold may have compressed to a millimetre, so it can be large where the
+  // cloth is not strained at all; the simulated drape itself has this one too.
+  double strain_max = 0;
 };
 
 // Names, units and values in table order: {"ME", "cm"}, {"L_l", "cm"}, {"L_e", "%"},
 // {"L_s", "m"}, {"L_d", ""}, {"p", "%"}, then {"crossings", "edges"}, {"crossed_samples", "%"},
-// {"edge_stretch_max", "%"}.
+// {"edge_stretch_max", "%"}, {"strain_max", "%"}.
 struct MetricColumn {
   std::string name, unit;
   double GarmentMetrics::*field;
@@ -90,6 +96,7 @@ class MetricsContext {
   double deformation_difference(const Eigen::MatrixX3d& x, const Eigen::MatrixX3d& y) const;
   double penetration(const Eigen::MatrixX3d& x, const Eigen::MatrixX3d& body) const;      // fraction
   int crossings(const Eigen::MatrixX3d& x, const Eigen::MatrixX3d& body) const;           // edges
+  double strain_max(const Eigen::MatrixX3d& x) const;  // fraction, against the material space
 
  private:
   void check(const Eigen::MatrixX3d& m, int rows, const char* what) const;
@@ -98,6 +105,10 @@ class MetricsContext {
   Eigen::MatrixX3i faces_;
   std::vector<Eigen::Matrix2d> material_inverse_;  // per face: [X1-X0, X2-X0]^-1
   std::vector<std::array<int, 2>> edges_;
+  // Every face's three edges and their material-space lengths (an edge on a
+  // UV seam appears once per side, each with its own rest length).
+  std::vector<std::array<int, 2>> face_edges_;
+  std::vector<double> rest_lengths_;
   struct Level {
     Eigen::VectorXi fine_index;  // level vertex -> garment vertex
     Eigen::SparseMatrix<double, Eigen::RowMajor> laplacian;

@@ -29,6 +29,7 @@ SplitEvaluation evaluate_model(Model& model, const DatasetReader& reader, const 
   out.samples.resize(indices.size());
   out.ground_truth_penetration.resize(indices.size());
   out.ground_truth_crossings.resize(indices.size());
+  out.ground_truth_strain_max.resize(indices.size());
   const auto step = static_cast<std::size_t>(batch_size);
   for (std::size_t first = 0; first < indices.size(); first += step) {
     const std::vector<std::size_t> part(indices.begin() + static_cast<long>(first),
@@ -48,6 +49,7 @@ SplitEvaluation evaluate_model(Model& model, const DatasetReader& reader, const 
         out.samples[first + static_cast<std::size_t>(b)] = metrics.evaluate(x, y, body);
         out.ground_truth_penetration[first + static_cast<std::size_t>(b)] = metrics.penetration(y, body);
         out.ground_truth_crossings[first + static_cast<std::size_t>(b)] = metrics.crossings(y, body);
+        out.ground_truth_strain_max[first + static_cast<std::size_t>(b)] = metrics.strain_max(y);
       } catch (const std::exception& e) {
         errors[static_cast<std::size_t>(b)] = e.what();
       }

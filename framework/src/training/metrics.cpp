@@ -19,7 +19,7 @@ const std::vector<MetricColumn>& metric_columns() {
       {"L_e", "%", &GarmentMetrics::edge_percent},    {"L_s", "m", &GarmentMetrics::spectral},
       {"L_d", "", &GarmentMetrics::deformation},      {"p", "%", &GarmentMetrics::penetration_percent},
       {"crossings", "edges", &GarmentMetrics::crossings}, {"crossed_samples", "%", &GarmentMetrics::crossed_percent},
-      {"edge_stretch_max", "%", &GarmentMetrics::edge_stretch_max}};
+      {"edge_stretch_max", "%", &GarmentMetrics::edge_stretch_max}, {"strain_max", "%", &GarmentMetrics::strain_max}};
   return columns;
 }
 
@@ -42,6 +42,10 @@ MetricsContext::MetricsContext(const Assets& assets) {
       throw ConfigError("garment face " + std::to_string(f) + " has a degenerate material-space triangle (area " +
                         std::to_string(det / 2) + " m^2)");
     material_inverse_[static_cast<std::size_t>(f)] = X.inverse();
+    for (int j = 0; j < 3; ++j) {
+      face_edges_.push_back({mesh.faces(f, j), mesh.faces(f, (j + 1) % 3)});
+      rest_lengths_.push_back((mesh.uv.row(mesh.uv_faces(f, (j + 1) % 3)) - mesh.uv.row(mesh.uv_faces(f, j))).norm());
+    }
   }
 
   edges_ = geometry::edge_list(mesh.faces);
@@ -85,6 +89,13 @@ double MetricsContext::laplacian_difference(const Eigen::MatrixX3d& x, const Eig
     sum += ld.cwiseAbs().rowwise().sum().mean();
   }
   return sum;
+}
+
+double MetricsContext::strain_max(const Eigen::MatrixX3d& x) const {
+  double worst = -1.0;  // an edge can only shrink to zero length
+  for (std::size_t e = 0; e < face_edges_.size(); ++e)
+    worst = std::max(worst, (x.row(face_edges_[e][0]) - x.row(face_edges_[e][1])).norm() / rest_lengths_[e] - 1.0);
+  return worst;
 }
 
 MetricsContext::EdgeErrors MetricsContext::edge_errors(const Eigen::MatrixX3d& x, const Eigen::MatrixX3d& y) const {
@@ -149,6 +160,7 @@ GarmentMetrics MetricsContext::evaluate(const Eigen::MatrixX3d& x, const Eigen::
   m.crossings = crossings(x, body);
   m.crossed_percent = m.crossings > 0 ? 100.0 : 0.0;
   m.edge_stretch_max = 100.0 * edges.max_stretch;
+  m.strain_max = 100.0 * strain_max(x);
   return m;
 }
 
