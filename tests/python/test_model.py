@@ -85,15 +85,20 @@ def test_assets(model):
 
 
 def test_optimize_lowers_the_scene_potential(tmp_path):
-    model = drape.Model.load(str(SHIPPED))  # optimize changes the weights: a model of its own
     scene = drape.Scene(CONTACT)
     # A body the shipped prediction is clear of: a prediction that crosses the
     # body is optimised against the body shrunk until clear (start_shrink > 0),
     # and its potential then counts the barrier on that body, not on this one.
-    body = model.body(bmi=26)
-    r = model.optimize(scene, body, iterations=3, learning_rate=1e-4)
+    # Which bodies those are depends on the model: the first clear one of a few.
+    for shape in (dict(bmi=26), dict(bmi=18), dict(bmi=22), dict(bmi=14)):
+        model = drape.Model.load(str(SHIPPED))  # optimize changes the weights: a model of its own
+        body = model.body(**shape)
+        r = model.optimize(scene, body, iterations=3, learning_rate=1e-4)
+        if r["start_shrink"] == 0:
+            break
+    else:
+        pytest.fail("the shipped model's prediction crosses every candidate body: add one it is clear of")
     assert len(r["history"]) == 4 and r["separated"]
-    assert r["start_shrink"] == 0, "the prediction crosses this body: pick one it is clear of"
     # The potential optimize reports is the sum of the scene's energies, computed here through Scene.energies.
     energies = scene.energies(body.astype(np.float64))
     before = sum(e.value(r["before"]) for e in energies.values())
