@@ -5,6 +5,7 @@
 
 #include <drape/atomic_file.hpp>
 #include <drape/body_space.hpp>
+#include <drape/body_overlap.hpp>
 #include <drape/geometry/self_intersection.hpp>
 #include <drape/geometry/index_locality.hpp>
 #include <drape/geometry/volume.hpp>
@@ -42,17 +43,9 @@ Mesh body_mesh(const BodyModel& body, const Eigen::VectorXd& shape) {
 // through itself has no inside there: said, with where, since a scene refuses
 // it under the garment.
 void warn_if_self_intersecting(const Mesh& mesh, bool with_girths) {
-  const auto pairs = geometry::self_intersections(mesh.vertices, mesh.faces, 10000);
-  if (pairs.empty()) return;
-  double lo = 1e9, hi = -1e9;
-  for (const auto& [f, g] : pairs)
-    for (int face : {f, g})
-      for (int k = 0; k < 3; ++k) {
-        lo = std::min(lo, mesh.vertices(mesh.faces(face, k), 1));
-        hi = std::max(hi, mesh.vertices(mesh.faces(face, k), 1));
-      }
-  std::cerr << std::setprecision(3) << "warning: this body passes through itself: " << pairs.size()
-            << " pairs of its faces cross, at heights " << lo << "-" << hi << " m; a scene refuses it where the garment lies"
+  const std::string where = describe_self_intersections(mesh.vertices, mesh.faces);
+  if (where.empty()) return;
+  std::cerr << "warning: this body passes through itself: " << where << "; a scene refuses it where the garment lies"
             << (with_girths ? ". These girths clash (drape generate and --sample halve such girths towards the mean build)" : "")
             << "\n";
 }

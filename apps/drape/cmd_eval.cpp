@@ -104,8 +104,9 @@ void draw_errors(const fs::path& file, Model& model, const DatasetReader& reader
 
 // The n samples with the largest ME, worst first: their metrics and the
 // body statistics the dataset holds (drape generate records bmi, sex, height).
-void print_worst(const DatasetReader& reader, const std::vector<std::size_t>& indices,
-                 const std::vector<GarmentMetrics>& samples, const std::vector<double>& truth_strain, int n) {
+void print_worst(const DatasetReader& reader, const std::vector<std::size_t>& indices, const SplitEvaluation& evaluation,
+                 int n) {
+  const std::vector<GarmentMetrics>& samples = evaluation.samples;
   std::vector<std::size_t> order(samples.size());
   for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
   std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return samples[a].me_cm > samples[b].me_cm; });
@@ -127,7 +128,7 @@ void print_worst(const DatasetReader& reader, const std::vector<std::size_t>& in
   for (std::size_t r = 0; r < order.size(); ++r) {
     const GarmentMetrics& m = samples[order[r]];
     std::printf("| %zu | %.3g | %.3g | %.3g | %.3g |", chosen[r], m.me_cm, m.penetration_percent, m.strain_max,
-                100.0 * truth_strain[order[r]]);
+                100.0 * evaluation.ground_truth_strain_max[order[r]]);
     for (const auto& column : values) std::printf(" %.4g |", column[r]);
     std::printf("\n");
   }
@@ -160,8 +161,8 @@ Bands parse_bands(const DatasetReader& reader, const std::string& spec) {
 
 // Each band's ME (mean, median, worst), p (mean, worst, bodies above 1 %) and
 // most strained edge, predicted and simulated: where in the body space the error is.
-void print_by_band(const DatasetReader& reader, const std::vector<std::size_t>& indices,
-                   const std::vector<GarmentMetrics>& samples, const std::vector<double>& truth_strain, const Bands& bands) {
+void print_by_band(const DatasetReader& reader, const std::vector<std::size_t>& indices, const SplitEvaluation& evaluation,
+                   const Bands& bands) {
   const std::string& stat = bands.stat;
   const std::vector<double>& edges = bands.edges;
   const std::vector<double> key = reader.stat(stat, indices);
@@ -171,20 +172,20 @@ void print_by_band(const DatasetReader& reader, const std::vector<std::size_t>& 
   std::size_t outside = 0;
   for (double k : key) outside += (k < edges.front() || k > edges.back()) ? 1 : 0;
   for (std::size_t band = 0; band + 1 < edges.size(); ++band) {
+    // Half-open bands, the last one closed: every body in [first, last] is in exactly one.
+    const bool last = band + 2 == edges.size();
     std::vector<double> me;
     double p_sum = 0, p_max = 0, strain_max = 0, truth_max = 0;
     int p_above = 0;
     for (std::size_t i = 0; i < key.size(); ++i) {
-      // Half-open bands, the last one closed: every body in [first, last] is in exactly one.
-      const bool last = band + 2 == edges.size();
       if (key[i] < edges[band] || key[i] > edges[band + 1] || (!last && key[i] == edges[band + 1])) continue;
-      const GarmentMetrics& m = samples[i];
+      const GarmentMetrics& m = evaluation.samples[i];
       me.push_back(m.me_cm);
       p_sum += m.penetration_percent;
       p_max = std::max(p_max, m.penetration_percent);
       p_above += m.penetration_percent > 1.0 ? 1 : 0;
       strain_max = std::max(strain_max, m.strain_max);
-      truth_max = std::max(truth_max, 100.0 * truth_strain[i]);
+      truth_max = std::max(truth_max, 100.0 * evaluation.ground_truth_strain_max[i]);
     }
     std::printf("| %g-%g | %zu |", edges[band], edges[band + 1], me.size());
     if (me.empty()) {
@@ -282,8 +283,8 @@ int run(const std::vector<std::string>& args) {
   std::printf("and its most strained edge (strain_max) is %.3g %% on average, %.3g %% at worst\n",
               100.0 * std::accumulate(truth_strain.begin(), truth_strain.end(), 0.0) / double(truth_strain.size()),
               100.0 * *std::max_element(truth_strain.begin(), truth_strain.end()));
-  if (vm.count("worst")) print_worst(reader, indices, evaluation.samples, evaluation.ground_truth_strain_max, vm["worst"].as<int>());
-  if (bands) print_by_band(reader, indices, evaluation.samples, evaluation.ground_truth_strain_max, *bands);
+  if (vm.count("worst")) print_worst(reader, indices, evaluation, vm["worst"].as<int>());
+  if (bands) print_by_band(reader, indices, evaluation, *bands);
   if (vm.count("out")) {
     write_report(vm["out"].as<std::string>(), model_file, data, split, s, reference_p, reference_crossings, reference_crossed);
     std::printf("wrote %s\n", vm["out"].as<std::string>().c_str());

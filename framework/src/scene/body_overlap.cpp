@@ -1,12 +1,34 @@
 // The check of a body mesh for self-intersection under the garment (body_overlap.hpp).
 #include "body_overlap.hpp"
 
+#include <drape/body_overlap.hpp>
+
 #include <drape/geometry/self_intersection.hpp>
 
 #include <algorithm>
 #include <vector>
 
 #include "garment_region.hpp"
+
+namespace drape {
+
+std::string describe_self_intersections(const Eigen::MatrixX3d& body, const Eigen::MatrixX3i& faces,
+                                        const std::vector<char>* considered) {
+  std::size_t pairs = 0;
+  std::vector<int> vertices;
+  for (const auto& [f, g] : geometry::self_intersections(body, faces, 100000))
+    if (!considered || (*considered)[static_cast<std::size_t>(f)] || (*considered)[static_cast<std::size_t>(g)]) {
+      ++pairs;
+      for (int face : {f, g})
+        for (int k = 0; k < 3; ++k) vertices.push_back(faces(face, k));
+    }
+  if (pairs == 0) return {};
+  std::sort(vertices.begin(), vertices.end());
+  vertices.erase(std::unique(vertices.begin(), vertices.end()), vertices.end());
+  return std::to_string(pairs) + " pairs of its faces cross (" + scene_detail::describe_region(body, vertices, "body") + ")";
+}
+
+}  // namespace drape
 
 namespace drape::scene_detail {
 
@@ -28,20 +50,10 @@ std::string body_overlap_near_garment(const geometry::BodySurface& dressed_on, c
           if (n >= 0) grown[static_cast<std::size_t>(n)] = 1;
     under.swap(grown);
   }
-  std::size_t pairs = 0;
-  std::vector<int> vertices;
-  for (const auto& [f, g] : geometry::self_intersections(target, faces, 100000))
-    if (under[static_cast<std::size_t>(f)] || under[static_cast<std::size_t>(g)]) {
-      ++pairs;
-      for (int face : {f, g})
-        for (int k = 0; k < 3; ++k) vertices.push_back(faces(face, k));
-    }
-  if (pairs == 0) return {};
-  std::sort(vertices.begin(), vertices.end());
-  vertices.erase(std::unique(vertices.begin(), vertices.end()), vertices.end());
-  return "the body intersects itself where the garment lies: " + std::to_string(pairs) + " pairs of its faces cross (" +
-         describe_region(target, vertices, "body") + "); its inside is not defined there, so neither the contact nor p "
-         "would be right";
+  const std::string where = describe_self_intersections(target, faces, &under);
+  if (where.empty()) return {};
+  return "the body intersects itself where the garment lies: " + where +
+         "; its inside is not defined there, so neither the contact nor p would be right";
 }
 
 }  // namespace drape::scene_detail
