@@ -100,6 +100,22 @@ TEST_CASE("experiment: every kind of row runs, the table is written, and a secon
   CHECK_THAT(again, !Catch::Contains("$ drape optimize"));
   CHECK_THAT(again, Catch::Contains("reusing"));
   CHECK(read(work / "table.csv") == csv);
+  CHECK_THAT(md, Catch::Contains("shirts = tiny.yaml, 10 bodies, BMI 15:40, seed 2;"));
+
+  // The same dataset given by hand: the heading names the file and its split
+  // (8 / 1 / 1 of 10), not the experiment file's recipe.
+  fs::path generated;
+  for (const auto& entry : fs::directory_iterator(dir / "runs/data"))
+    if (entry.path().extension() == ".h5") generated = entry.path();
+  REQUIRE_FALSE(generated.empty());
+  std::string given;
+  REQUIRE(test::run(command + " --data shirts=" + generated.string(), given) == 0);
+  INFO(given);
+  const std::string given_md = read(work / "table.md");
+  CHECK_THAT(given_md, Catch::Contains("--data shirts=" + generated.filename().string() + "`"));
+  CHECK_THAT(given_md, Catch::Contains("shirts = " + generated.filename().string() +
+                                       " (given), 10 samples: 8 train, 1 val, 1 test;"));
+  CHECK_THAT(given_md, !Catch::Contains("BMI 15:40"));
 }
 
 TEST_CASE("experiment files: errors name the file, the line and the key", "[experiment]") {

@@ -326,11 +326,24 @@ class Runner {
   std::string setup_text() const {
     std::ostringstream s;
     s << "Run: `drape experiment " << spec_.file.string() << (o_.scale != 1 ? " --scale " + exact(o_.scale) : "")
-      << (o_.epochs > 0 ? " --epochs " + std::to_string(o_.epochs) : "") << " --threads " << o_.threads << "` ("
-      << std::thread::hardware_concurrency() << " cores here). Datasets:";
-    for (const auto& d : spec_.datasets)
+      << (o_.epochs > 0 ? " --epochs " + std::to_string(o_.epochs) : "") << " --threads " << o_.threads;
+    for (const auto& [key, file] : o_.data_files) s << " --data " << key << "=" << file.filename().string();
+    s << "` (" << std::thread::hardware_concurrency() << " cores here). Datasets:";
+    for (const auto& d : spec_.datasets) {
+      // A dataset given with --data is what the table was made on, not the
+      // file's recipe: name it and its split, so the heading cannot claim
+      // bodies the run never saw.
+      const auto given = o_.data_files.find(d.key);
+      if (given != o_.data_files.end()) {
+        const DatasetReader r(given->second);
+        s << " " << d.key << " = " << given->second.filename().string() << " (given), " << r.indices().size()
+          << " samples: " << r.indices(Split::Train).size() << " train, " << r.indices(Split::Val).size() << " val, "
+          << r.indices(Split::Test).size() << " test;";
+        continue;
+      }
       s << " " << d.key << " = " << d.scene.filename().string() << ", " << scaled(d.count) << " bodies, BMI " << d.bmi
         << ", seed " << d.seed << ";";
+    }
     const ExperimentTraining& t = spec_.training;
     s << " training: " << (o_.epochs > 0 ? o_.epochs : t.epochs) << " epochs, batch " << t.batch << ", lr " << t.lr << " ("
       << t.schedule << "), patience " << t.patience << ", seed " << t.seed << " (rows may override).";
