@@ -14,11 +14,11 @@
 # already in datasets/, in WORK_DIR/<N>of40/), GRAPHS (default both graphs
 # below; one graph trains only that one, and it is the model).
 #
-# Measured (2026-11-26, docs/bodies.md and docs/training.md): a drape takes
-# about 500 Newton iterations and 17 s per core (7 s at BMI 10-25, 34 s at
-# 55-65), so a shard of 50 takes 7-8 minutes on two cores and the 2,000 about
-# 10 core-hours. Training on 550 drapes (443 for training) took 2.0-2.4 s an
-# epoch on one core, so an epoch of the 1,600 training drapes is about 8 s.
+# Measured (2026-11-27, docs/bodies.md and docs/training.md): a drape takes
+# about 500 Newton iterations and 17 s per core (7 s at BMI 10-25, 32 s at
+# 55-65), so a shard of 50 takes 6-8 minutes on two cores and the 2,000 are
+# 9.6 core-hours. An epoch of the 1,600 training drapes takes 5.2 s on one
+# core of the AMD EPYC (with another job on the other): 600 epochs in 53 min.
 set -euo pipefail
 cd "$(dirname "${BASH_SOURCE[0]}")/.."
 DRAPE=${BUILD_DIR:-build}/bin/drape
@@ -86,6 +86,6 @@ echo "the model: $BEST (lower validation ME), copied to $WORK/model.h5"
 # stretched edge among them (a torn mesh shows there); then the same pushed
 # out of the body (drape eval --push-out).
 "$DRAPE" eval --model "$WORK/model.h5" --data "$DATA" --split test --out "$WORK/model-test.csv" \
-  --svg "$WORK/model-errors.svg" --worst 10
+  --svg "$WORK/model-errors.svg" --worst 10 --by bmi:10,25,35,45,55,65
 "$DRAPE" eval --model "$WORK/model.h5" --data "$DATA" --split test --push-out --out "$WORK/model-test-pushed.csv"
 python3 scripts/figures/predicted_grid.py --drape "$DRAPE" --model "$WORK/model.h5" --out "$WORK/predicted-grid.svg"
