@@ -90,7 +90,7 @@ def test_optimize_lowers_the_scene_potential(tmp_path):
     # body is optimised against the body shrunk until clear (start_shrink > 0),
     # and its potential then counts the barrier on that body, not on this one.
     # Which bodies those are depends on the model: the first clear one of a few.
-    for shape in (dict(bmi=26), dict(bmi=18), dict(bmi=22), dict(bmi=14)):
+    for shape in (dict(bmi=26), dict(bmi=18), dict(bmi=22), dict(bmi=14), dict(bmi=26, sex=0), dict(bmi=18, sex=0, height=1.9)):
         model = drape.Model.load(str(SHIPPED))  # optimize changes the weights: a model of its own
         body = model.body(**shape)
         r = model.optimize(scene, body, iterations=3, learning_rate=1e-4)

@@ -49,7 +49,8 @@ struct PhysicsOptimizationResult {
 // grows back as the barrier pushes the cloth out; only drapes on the true body
 // are returned as results (`separated`).
 //
-// Changes the model's weights in place (Model::load again to undo). Runs on
+// Changes the model's weights in place (Model::load again to undo): they are
+// left at the iterate returned as `after`, so the model then predicts it. Runs on
 // the calling thread alone (OpenMP set to one thread for the call). `body` holds
 // one sample (SampleBatch::body [1, Nb, 3], body_params when the graph takes
 // them). ConfigError when the scene's garment is not the model's template

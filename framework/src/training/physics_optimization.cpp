@@ -125,6 +125,9 @@ PhysicsOptimizationResult optimize_drape(Model& model, const Simulation& scene, 
   bool grown = true;
   double start_gap = 0;  // |true body - shrunk start body|
   double best = INFINITY;
+  // The weights of the best drape: the model is left predicting `after`, not
+  // the last iterate, which can be a little worse (Adam overshoots).
+  Accepted best_weights;
   std::vector<EnergyTerm> terms;  // of the latest drape
   auto evaluate = [&](int it) {
     const double lp = potential(energies, x, gradient, &terms, with_barrier);
@@ -141,6 +144,7 @@ PhysicsOptimizationResult optimize_drape(Model& model, const Simulation& scene, 
       r.energies_after = terms;
       r.potential_after = lp;
       r.best_iteration = it;
+      best_weights.save(adam);
     }
   };
   // The body grows towards its true shape as far as no pair comes too close.
@@ -199,6 +203,7 @@ PhysicsOptimizationResult optimize_drape(Model& model, const Simulation& scene, 
     evaluate(it++);
   }
   r.separated = !bounded || (with_barrier && grown);
+  if (r.separated && r.best_iteration + 1 != static_cast<int>(r.history.size())) best_weights.restore(adam);
   if (!r.separated) {
     // No drape on the true body that is known to be clear of it: return the
     // last one, and say why it is not a result.
