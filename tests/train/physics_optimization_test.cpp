@@ -73,6 +73,26 @@ TEST_CASE("optimize_drape lowers the scene's potential from the network's predic
   CHECK((model.predict(body).mat(0) - predicted.mat(0)).cwiseAbs().maxCoeff() > 0.0f);
 }
 
+TEST_CASE("optimize_drape leaves the model predicting the drape it returns and not its last iterate", "[optimize]") {
+  TinyModel tiny;
+  Model model = tiny.load();
+  const Simulation scene(plugins(), tiny_physics_scene());
+  BodyRequest request;
+  request.bmi = 40;
+  const SampleBatch body = model.body_for(request);
+  // A learning rate large enough that Adam overshoots: the potential falls,
+  // then rises again before the last iteration (its lowest at iteration 10).
+  PhysicsOptimizationOptions o;
+  o.iterations = 25;
+  o.learning_rate = 2.5e-2;
+  const PhysicsOptimizationResult r = optimize_drape(model, scene, body, o);
+  INFO("best iteration " << r.best_iteration << " of " << o.iterations);
+  REQUIRE(r.best_iteration > 0);
+  REQUIRE(r.best_iteration < o.iterations);
+  CHECK(r.history.back() > r.potential_after);
+  CHECK((model.predict(body).mat(0).cast<double>() - r.after).cwiseAbs().maxCoeff() == 0.0);
+}
+
 TEST_CASE("optimize_drape stays finite from a start deep inside the body, with a 100x stiffer cloth", "[optimize][hard]") {
   TinyModel tiny;
   Model model = tiny.load();
