@@ -37,15 +37,26 @@ struct TinyModel {
   Model load() const { return Model::load(plugins(), file, assets_cache()); }
 };
 
+// The tiny model, the scene with every effect and the body it is optimised
+// for: the setting of the tests that follow the potential down.
+struct OptimizeCase {
+  TinyModel tiny;
+  Model model = tiny.load();
+  Simulation scene{plugins(), tiny_physics_scene()};
+  SampleBatch body = body_of_bmi(40);
+  SampleBatch body_of_bmi(double bmi) {
+    BodyRequest request;
+    request.bmi = bmi;
+    return model.body_for(request);
+  }
+};
+
 }  // namespace
 
 TEST_CASE("optimize_drape lowers the scene's potential from the network's prediction", "[optimize]") {
-  TinyModel tiny;
-  Model model = tiny.load();
-  const Simulation scene(plugins(), tiny_physics_scene());
-  BodyRequest request;
-  request.bmi = 40;
-  const SampleBatch body = model.body_for(request);
+  OptimizeCase c;
+  Model& model = c.model;
+  const SampleBatch& body = c.body;
   const Tensor predicted = model.predict(body);
 
   PhysicsOptimizationOptions o;
@@ -53,7 +64,7 @@ TEST_CASE("optimize_drape lowers the scene's potential from the network's predic
   o.learning_rate = 1e-3;
   int calls = 0;
   o.on_iteration = [&](int, double) { ++calls; };
-  const PhysicsOptimizationResult r = optimize_drape(model, scene, body, o);
+  const PhysicsOptimizationResult r = optimize_drape(model, c.scene, body, o);
   CHECK(calls == 26);
   REQUIRE(r.history.size() == 26);
   for (double lp : r.history) CHECK(std::isfinite(lp));
@@ -74,18 +85,15 @@ TEST_CASE("optimize_drape lowers the scene's potential from the network's predic
 }
 
 TEST_CASE("optimize_drape leaves the model predicting the drape it returns and not its last iterate", "[optimize]") {
-  TinyModel tiny;
-  Model model = tiny.load();
-  const Simulation scene(plugins(), tiny_physics_scene());
-  BodyRequest request;
-  request.bmi = 40;
-  const SampleBatch body = model.body_for(request);
+  OptimizeCase c;
+  Model& model = c.model;
+  const SampleBatch& body = c.body;
   // A learning rate large enough that Adam overshoots: the potential falls,
   // then rises again before the last iteration (its lowest at iteration 10).
   PhysicsOptimizationOptions o;
   o.iterations = 25;
   o.learning_rate = 2.5e-2;
-  const PhysicsOptimizationResult r = optimize_drape(model, scene, body, o);
+  const PhysicsOptimizationResult r = optimize_drape(model, c.scene, body, o);
   INFO("best iteration " << r.best_iteration << " of " << o.iterations);
   REQUIRE(r.best_iteration > 0);
   REQUIRE(r.best_iteration < o.iterations);
