@@ -59,6 +59,8 @@ int run(const std::vector<std::string>& given) {
                                                      "rank under mpirun); results depend on it, so give it to reproduce "
                                                      "a run elsewhere")(
       "k", po::value<int>()->default_value(1000), "eigenvectors in the template assets (eigen_k; 1000 as in drape assets, which shares the cache)")(
+      "init", po::value<std::string>(), "start from the weights of this model file (same graph weights: fine-tune a "
+                                        "model, e.g. the shipped one, on new drapes) instead of random ones")(
       "resume", po::bool_switch(), "continue an interrupted training from <out>.state (starts afresh when there is none)")(
       "force", po::bool_switch(), "start over, deleting <out> and <out>.state")(
       "quiet,q", po::bool_switch(), "no progress bar");
@@ -67,7 +69,7 @@ int run(const std::vector<std::string>& given) {
   po::variables_map vm;
   const std::string usage =
       "drape train GRAPH.yaml --data data.h5 --out model.h5 [--epochs N] [--batch B] [--lr X] [--seed S] [--threads T] "
-      "[--resume]" +
+      "[--init model.h5] [--resume]" +
       std::string(built_with_mpi() ? "\n       mpirun -np N drape train ... (built with MPI: N ranks, each on a part of every batch)"
                                    : "\n       (built without MPI: one process)");
   if (!parse(usage, args, opts, pos, vm)) return 0;
@@ -92,6 +94,7 @@ int run(const std::vector<std::string>& given) {
   if (o.threads == 0)
     o.threads = ranks ? 1 : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
   o.eigen_k = vm["k"].as<int>();
+  if (vm.count("init")) o.init = vm["init"].as<std::string>();
   o.resume = vm["resume"].as<bool>();
   o.force = vm["force"].as<bool>();
   o.log = &std::cout;

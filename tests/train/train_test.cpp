@@ -3,6 +3,8 @@
 // early stopping, and the refusals (existing output, other settings, another template).
 #include <catch2/catch.hpp>
 
+#include <algorithm>
+
 #include <drape/checkpoint.hpp>
 #include <drape/h5.hpp>
 
@@ -242,4 +244,46 @@ TEST_CASE("train refuses to overwrite, resumes only with the same settings, and 
   bad.lr = 1e-3;
   bad.schedule = "linear";
   CHECK_THROWS_WITH(train(test::plugins(), bad), Catch::Contains("constant or cosine"));
+}
+
+TEST_CASE("a training starts from a model file's weights (init), refuses another graph's, and resumes only from the same file", "[train]") {
+  TinyData d;
+  auto a = test::tiny_training(d.data, d.dir / "a.h5");
+  train(test::plugins(), a);
+  const auto a_history = history_of(d.dir / "a.h5");
+  const double a_best = *std::min_element(a_history.at("val_loss").begin(), a_history.at("val_loss").end());
+
+  // A learning rate too small to move the weights: the first validation loss
+  // is the one of the weights it started from.
+  auto b = test::tiny_training(d.data, d.dir / "b.h5");
+  b.epochs = 1;
+  b.lr = 1e-12;
+  b.init = d.dir / "a.h5";
+  train(test::plugins(), b);
+  CHECK(history_of(d.dir / "b.h5").at("val_loss").at(0) == Approx(a_best).epsilon(1e-5));
+  auto scratch = b;
+  scratch.init.clear();
+  scratch.out = d.dir / "scratch.h5";
+  train(test::plugins(), scratch);
+  CHECK(history_of(d.dir / "scratch.h5").at("val_loss").at(0) > 1.5 * a_best);
+
+  // A resumed run started from another file (or from none) is refused.
+  auto resumed = b;
+  resumed.epochs = 2;
+  resumed.resume = true;
+  resumed.init = d.dir / "scratch.h5";
+  CHECK_THROWS_WITH(train(test::plugins(), resumed), Catch::Contains("init"));
+  resumed.init = b.init;
+  CHECK(train(test::plugins(), resumed).epochs_done == 2);
+
+  // Another graph's weights (a wider encoder), and a missing file.
+  std::ofstream(d.dir / "wider.yaml")
+      << "base: " << test::baseline_graph().string() << "\n"
+      << "nodes:\n  encoder: { type: cnn1d, in: shape, params: { channels: [16, 32, 96], kernel: 5, stride: 4 } }\n";
+  auto other = test::tiny_training(d.data, d.dir / "other.h5");
+  other.graph = d.dir / "wider.yaml";
+  other.init = d.dir / "a.h5";
+  CHECK_THROWS_WITH(train(test::plugins(), other), Catch::Contains("a.h5") && Catch::Contains("encoder"));
+  other.init = d.dir / "missing.h5";
+  CHECK_THROWS_WITH(train(test::plugins(), other), Catch::Contains("missing.h5: no such file"));
 }

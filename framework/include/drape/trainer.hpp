@@ -40,6 +40,12 @@ struct TrainOptions {
   // file order: the split is a seeded random permutation, so a random subset);
   // the validation split stays whole. The seed's "4k" model is fraction 0.25.
   double train_fraction = 1.0;
+  // Start from the weights of this model file (drape train's --out of the same
+  // graph: every weight by name and shape) instead of seeded random ones: a
+  // shipped model fine-tuned on new drapes, or trained on for a second
+  // schedule. Empty: random weights. Recorded in the state, so a resumed run
+  // must give the same file.
+  std::filesystem::path init;
   bool resume = false;        // continue from <out>.state when it exists
   bool force = false;         // start over even when <out> or <out>.state exists
   long max_epochs_this_run = 0;  // > 0: stop after that many epochs as if killed (tests)

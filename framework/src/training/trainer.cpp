@@ -187,6 +187,13 @@ TrainReport train(const Registry& registry, const TrainOptions& given) {
                                                 [](const NodeSpec& n) { return n.is_loss && n.weight != 0.0; }))
     throw ConfigError(o.graph.string() + ": the graph has no losses to train with");
   const std::string output = garment_output(graph);
+  if (!o.init.empty()) {
+    // Every weight by name and shape, all or nothing (load_weights names the
+    // first that is missing or has another shape: a model of another graph).
+    if (!fs::exists(o.init)) throw ConfigError("--init " + o.init.string() + ": no such file");
+    load_weights(o.init, graph);
+    dp.sync_weights();
+  }
   Adam adam(graph.weights());
   EarlyStopping stopper({o.patience, 0.0});
   LrSchedule schedule;
@@ -211,6 +218,7 @@ TrainReport train(const Registry& registry, const TrainOptions& given) {
       {"schedule", o.schedule},
       {"patience", std::to_string(o.patience)}};
   if (o.schedule == "cosine") settings["epochs"] = std::to_string(o.epochs);
+  if (!o.init.empty()) settings["init"] = o.init.string();
   if (ranks > 1) settings["ranks"] = std::to_string(ranks);  // like threads, they change the sums' rounding
 
   // Start over, or continue.
