@@ -1,5 +1,6 @@
 // `drape eval --model model.h5 --data data.h5 [--split test]`: the seed's
-// metrics (drape/metrics.hpp) and surface crossings of a model's predictions on one split.
+// metrics (drape/metrics.hpp) and surface crossings of a model's predictions on
+// one split, or (--drapes) of garments stored by drape optimize.
 #include "command.hpp"
 
 #include <drape/atomic_file.hpp>
@@ -215,11 +216,15 @@ int run(const std::vector<std::string>& args) {
       "by", po::value<std::string>(), "also break the metrics down by bands of a body statistic, e.g. bmi:10,25,35,45,55,65 "
                                       "(ME mean, median and worst, p, bodies with p above 1 %, most strained edge per band, predicted and simulated)")(
       "out", po::value<std::string>(), "also write the table: metrics.csv or metrics.json")(
+      "drapes", po::value<std::string>(), "measure the garments of this dataset instead of the model's predictions: "
+                                          "drape optimize --data output made from --data (the prediction then the "
+                                          "optimisation, against the simulation); the model gives the template")(
       "svg", po::value<std::string>(), "also draw the per-vertex error of the thinnest, median and heaviest body of the split (.svg, or .html: a 3D viewer)");
   add_push_out_option(opts, "measure the predictions after pushing their vertices out of the body to this clearance in m");
   po::variables_map vm;
   const std::string usage =
-      "drape eval --model model.h5 --data data.h5 [--split test] [--out metrics.csv|json] [--svg errors.svg]";
+      "drape eval --model model.h5 --data data.h5 [--split test] [--out metrics.csv|json] [--svg errors.svg]\n"
+      "       drape eval --model model.h5 --data data.h5 --drapes optimized.h5 [--where separated=1]";
   if (!parse(usage, args, opts, {}, vm)) return 0;
   if (!vm.count("model")) throw UsageError("--model FILE is required (from drape train)");
   if (!vm.count("data")) throw UsageError("--data FILE is required (a dataset from drape generate)");
@@ -234,11 +239,23 @@ int run(const std::vector<std::string>& args) {
   const std::string split = vm["split"].as<std::string>();
   const std::string model_file = vm["model"].as<std::string>(), data = vm["data"].as<std::string>();
 
+  const bool stored = vm.count("drapes") > 0;
+  if (stored && (vm.count("svg") || pushed_to >= 0 || vm.count("set")))
+    throw UsageError("--drapes measures stored garments: --svg, --push-out and --set are for the model's predictions");
+
   Registry& registry = Registry::load_default(plugin_path(vm));
   Model model = Model::load(registry, model_file, parse_param_overrides(vm));
   const DatasetReader reader(data);
   check_dataset_template(reader, data, model.assets());
-  std::vector<std::size_t> indices = reader.indices(split);
+  // With --drapes the split, --where and the samples are the drapes file's; the
+  // metrics, --worst and --by then go through each drape's source sample.
+  std::optional<DatasetReader> drapes;
+  if (stored) {
+    drapes.emplace(vm["drapes"].as<std::string>());
+    check_dataset_template(*drapes, vm["drapes"].as<std::string>(), model.assets());
+  }
+  const DatasetReader& selected = stored ? *drapes : reader;
+  std::vector<std::size_t> indices = selected.indices(split);
   if (vm.count("where")) {
     const std::string where = vm["where"].as<std::string>();
     const auto eq = where.find('=');
@@ -249,19 +266,28 @@ int run(const std::vector<std::string>& args) {
     } catch (const std::exception&) {
       throw UsageError("--where wants STAT=NUMBER, got '" + where + "'");
     }
-    const std::vector<double> values = reader.stat(where.substr(0, eq), indices);
+    const std::vector<double> values = selected.stat(where.substr(0, eq), indices);
     std::vector<std::size_t> kept;
     for (std::size_t i = 0; i < indices.size(); ++i)
       if (values[i] == wanted) kept.push_back(indices[i]);
     indices = kept;
   }
-  if (indices.empty()) throw ConfigError(data + ": the " + split + " split has no samples" + (vm.count("where") ? " where " + vm["where"].as<std::string>() : std::string()));
+  const std::string selected_file = stored ? vm["drapes"].as<std::string>() : data;
+  if (indices.empty()) throw ConfigError(selected_file + ": the " + split + " split has no samples" + (vm.count("where") ? " where " + vm["where"].as<std::string>() : std::string()));
 
   std::optional<Bands> bands;
   if (vm.count("by")) bands = parse_bands(reader, vm["by"].as<std::string>());
 
+  // Drapes that drape optimize did not finish on the true body are not results (docs/optimization.md).
+  std::size_t not_results = 0;
+  if (stored && drapes->layout().has_stat("separated"))
+    for (double v : drapes->stat("separated", indices)) not_results += v == 0.0 ? 1 : 0;
+  const std::vector<std::size_t> drape_rows = indices;
+  if (stored) indices = drape_sources(reader, *drapes, drape_rows);
+
   ProgressBar bar("eval", indices.size(), std::cerr);
-  const SplitEvaluation evaluation = evaluate_model(model, reader, indices, batch_size, &bar, pushed_to);
+  const SplitEvaluation evaluation = stored ? evaluate_drapes(model.assets(), reader, *drapes, drape_rows, &bar)
+                                            : evaluate_model(model, reader, indices, batch_size, &bar, pushed_to);
   bar.finish();
   double reference_p = 0, reference_crossings = 0, reference_crossed = 0;
   for (double r : evaluation.ground_truth_penetration) reference_p += 100.0 * r / double(indices.size());
@@ -271,8 +297,18 @@ int run(const std::vector<std::string>& args) {
   }
   const MetricsSummary s = summarize(evaluation.samples);
 
-  std::printf("%s on %s, %s split (%zu samples)%s\n\n", model_file.c_str(), data.c_str(), split.c_str(), s.samples,
-              pushed_to >= 0 ? format(", every prediction pushed out of the body to %.4g m", pushed_to).c_str() : "");
+  if (stored) {
+    std::printf("the drapes of %s (%s split, %zu samples) against the simulations of %s%s\n", selected_file.c_str(),
+                split.c_str(), s.samples, data.c_str(), vm.count("where") ? (", where " + vm["where"].as<std::string>()).c_str() : "");
+    if (not_results)
+      std::printf("%zu of them are not results: drape optimize could not bring them onto the true body (separated 0); "
+                  "--where separated=1 measures the others alone\n",
+                  not_results);
+    std::printf("\n");
+  } else {
+    std::printf("%s on %s, %s split (%zu samples)%s\n\n", model_file.c_str(), data.c_str(), split.c_str(), s.samples,
+                pushed_to >= 0 ? format(", every prediction pushed out of the body to %.4g m", pushed_to).c_str() : "");
+  }
   std::printf("| metric | mean | std | max (worst sample) | unit |\n|---|---|---|---|---|\n");
   for (const auto& c : metric_columns())
     std::printf("| %s | %.4g | %.3g | %.4g | %s |\n", c.name.c_str(), s.mean.*c.field, s.stddev.*c.field, s.max.*c.field,
@@ -286,7 +322,7 @@ int run(const std::vector<std::string>& args) {
   if (vm.count("worst")) print_worst(reader, indices, evaluation, vm["worst"].as<int>());
   if (bands) print_by_band(reader, indices, evaluation, *bands);
   if (vm.count("out")) {
-    write_report(vm["out"].as<std::string>(), model_file, data, split, s, reference_p, reference_crossings, reference_crossed);
+    write_report(vm["out"].as<std::string>(), stored ? selected_file : model_file, data, split, s, reference_p, reference_crossings, reference_crossed);
     std::printf("wrote %s\n", vm["out"].as<std::string>().c_str());
   }
   if (vm.count("svg")) {

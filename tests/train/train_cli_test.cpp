@@ -315,6 +315,26 @@ TEST_CASE("drape eval prints every metric and writes them as JSON or CSV", "[tra
   }
 }
 
+TEST_CASE("drape eval --drapes measures optimised drapes against their simulations and counts the non-results",
+          "[train][cli]") {
+  Trained t;
+  const DatasetReader truth(t.data);
+  // The three test samples (11-13), moved by 1, 2 and 4 cm; the second is not a result.
+  test::write_shifted_drapes(t.dir / "drapes.h5", truth, {11, 12, 13}, {0.01, 0.02, 0.04}, -1, {1, 0, 1});
+  const std::string eval = "eval --model " + t.model.string() + " --data " + t.data.string() + " --drapes " +
+                           (t.dir / "drapes.h5").string();
+  std::string out;
+  REQUIRE(test::run(test::drape_command(eval + " --worst 1"), out) == 0);
+  INFO(out);
+  CHECK_THAT(out, Catch::Contains("test split, 3 samples") && Catch::Contains("1 of them are not results"));
+  CHECK_THAT(out, Catch::Contains("| ME | 2.333 |"));  // (1 + 2 + 4) / 3
+  CHECK_THAT(out, Catch::Contains("| 13 | 4 |"));      // the worst, by its source sample
+  REQUIRE(test::run(test::drape_command(eval + " --where separated=1"), out) == 0);
+  CHECK_THAT(out, Catch::Contains("| ME | 2.5 |") && !Catch::Contains("not results"));
+  CHECK(test::run(test::drape_command(eval + " --svg x.svg"), out) != 0);
+  CHECK_THAT(out, Catch::Contains("--drapes measures stored garments"));
+}
+
 TEST_CASE("drape bench infer and bench train report their figures", "[train][cli]") {
   Trained t;
   std::string out;

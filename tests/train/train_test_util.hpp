@@ -69,6 +69,28 @@ inline void write_tiny_dataset(const std::filesystem::path& file, int n, int n_t
   writer.finish();
 }
 
+// Drapes as drape optimize --data writes them, made from the samples `sources`
+// of `truth`: each garment the source's moved by shift[i] along x (so its ME is
+// 100 shift[i] cm), its body the source's (the next sample's for row
+// `other_body`), statistics source_index and separated (1 unless given).
+inline void write_shifted_drapes(const std::filesystem::path& file, const DatasetReader& truth,
+                                 const std::vector<std::size_t>& sources, const std::vector<double>& shift,
+                                 int other_body = -1, const std::vector<double>& separated = {}) {
+  DatasetLayout layout = truth.layout();
+  layout.samples = sources.size();
+  layout.created.clear();
+  layout.stats = {"source_index", "separated"};
+  DatasetWriter writer(file, layout);
+  for (std::size_t i = 0; i < sources.size(); ++i) {
+    DatasetSample s = truth.sample(sources[i]);
+    s.garment_vertices.col(0).array() += float(shift[i]);
+    if (int(i) == other_body) s.body_vertices = truth.sample(sources[i] + 1).body_vertices;
+    s.stats = {{"source_index", double(sources[i])}, {"separated", separated.empty() ? 1.0 : separated[i]}};
+    writer.write(i, s);
+  }
+  writer.finish();
+}
+
 inline std::filesystem::path baseline_graph() { return source_dir() / "graphs/examples/mlp_baseline.yaml"; }
 
 inline TrainOptions tiny_training(const std::filesystem::path& data, const std::filesystem::path& out) {

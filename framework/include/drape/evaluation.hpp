@@ -32,4 +32,17 @@ double prediction_ms(Model& model, const SampleBatch& one, int repeats = 20);
 SplitEvaluation evaluate_model(Model& model, const DatasetReader& reader, const std::vector<std::size_t>& indices,
                                int batch_size = 16, ProgressBar* progress = nullptr, double push_out_margin = -1);
 
+// Garments stored in a dataset of their own, measured against the simulated
+// drapes of `truth` on the same metrics: the output of `drape optimize --data`,
+// whose statistic source_index names each sample's row of `truth` (the seed's
+// whole pipeline, prediction then optimisation, against the simulation).
+// `drape_indices` are rows of `drapes`. Error naming the sample when a row has
+// no source, its source is outside `truth`, or its body is not the source's.
+SplitEvaluation evaluate_drapes(const Assets& assets, const DatasetReader& truth, const DatasetReader& drapes,
+                                const std::vector<std::size_t>& drape_indices, ProgressBar* progress = nullptr);
+
+// The rows of `truth` the samples of `drapes` were made from (statistic source_index).
+std::vector<std::size_t> drape_sources(const DatasetReader& truth, const DatasetReader& drapes,
+                                       const std::vector<std::size_t>& drape_indices);
+
 }  // namespace drape
