@@ -279,9 +279,7 @@ int run(const std::vector<std::string>& args) {
   if (vm.count("by")) bands = parse_bands(reader, vm["by"].as<std::string>());
 
   // Drapes that drape optimize did not finish on the true body are not results (docs/optimization.md).
-  std::size_t not_results = 0;
-  if (stored && drapes->layout().has_stat("separated"))
-    for (double v : drapes->stat("separated", indices)) not_results += v == 0.0 ? 1 : 0;
+  const std::size_t not_results = stored ? indices.size() - optimizer_results(*drapes, indices).size() : 0;
   const std::vector<std::size_t> drape_rows = indices;
   if (stored) indices = drape_sources(reader, *drapes, drape_rows);
 

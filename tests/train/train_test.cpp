@@ -4,6 +4,7 @@
 #include <catch2/catch.hpp>
 
 #include <algorithm>
+#include <sstream>
 
 #include <drape/checkpoint.hpp>
 #include <drape/h5.hpp>
@@ -286,4 +287,27 @@ TEST_CASE("a training starts from a model file's weights (init), refuses another
   CHECK_THROWS_WITH(train(test::plugins(), other), Catch::Contains("a.h5") && Catch::Contains("encoder"));
   other.init = d.dir / "missing.h5";
   CHECK_THROWS_WITH(train(test::plugins(), other), Catch::Contains("missing.h5: no such file"));
+}
+
+TEST_CASE("training on optimised drapes leaves out the ones that are not results (separated 0)", "[train]") {
+  TinyData d;  // 12 training and 4 validation samples
+  const DatasetReader truth(d.data);
+  std::vector<std::size_t> all(16);
+  for (std::size_t i = 0; i < all.size(); ++i) all[i] = i;
+  std::vector<double> separated(16, 1.0);
+  separated[0] = separated[3] = separated[13] = 0.0;  // two training drapes, one validation drape
+  test::write_shifted_drapes(d.dir / "optimized.h5", truth, all, std::vector<double>(16, 0.0), -1, separated);
+  auto o = test::tiny_training(d.dir / "optimized.h5", d.dir / "model.h5");
+  o.epochs = 1;
+  std::ostringstream log;
+  o.log = &log;
+  const TrainReport r = train(test::plugins(), o);
+  CHECK(r.train_samples == 10);
+  CHECK(r.val_samples == 3);
+  CHECK_THAT(log.str(), Catch::Contains("left out 2 training and 1 validation drapes"));
+  // The same drapes all marked results are all trained on.
+  test::write_shifted_drapes(d.dir / "all.h5", truth, all, std::vector<double>(16, 0.0));
+  o.data = d.dir / "all.h5";
+  o.out = d.dir / "all-model.h5";
+  CHECK(train(test::plugins(), o).train_samples == 12);
 }

@@ -146,6 +146,12 @@ class DatasetReader {
   std::unique_ptr<Impl> impl_;
 };
 
+// The samples among `indices` that are results: all but those drape optimize
+// --data marked `separated` 0, the drapes it could not bring onto the true
+// body (they lie inside it, so nothing may learn from or average them). A
+// dataset without that statistic: all of them.
+std::vector<std::size_t> optimizer_results(const DatasetReader& reader, const std::vector<std::size_t>& indices);
+
 // The `template_hash` of a dataset (DatasetLayout::template_hash): FNV-1a over
 // the garment template's vertices, faces and UVs and the body model's faces,
 // as 16 hex digits. A dataset is only usable with the template it was made for.

@@ -139,4 +139,13 @@ DatasetSample DatasetReader::sample(std::size_t index) const {
   return s;
 }
 
+std::vector<std::size_t> optimizer_results(const DatasetReader& reader, const std::vector<std::size_t>& indices) {
+  if (!reader.layout().has_stat("separated")) return indices;
+  const std::vector<double> separated = reader.stat("separated", indices);
+  std::vector<std::size_t> out;
+  for (std::size_t i = 0; i < indices.size(); ++i)
+    if (separated[i] != 0.0) out.push_back(indices[i]);
+  return out;
+}
+
 }  // namespace drape

@@ -167,8 +167,13 @@ TrainReport train(const Registry& registry, const TrainOptions& given) {
     assets = assets_for_dataset(registry, reader, o.data, o.eigen_k, o.cache_dir, &assets_spec);
   }
   const int ng = assets->garment->mesh.num_vertices(), nb = assets->body.num_vertices();
-  const std::vector<std::size_t> train_idx = reader.training_indices(o.train_fraction);
-  const std::vector<std::size_t> val_idx = reader.indices(Split::Val);
+  // An optimised dataset's drapes that are not results lie inside the body: left out.
+  const std::vector<std::size_t> train_all = reader.training_indices(o.train_fraction), val_all = reader.indices(Split::Val);
+  const std::vector<std::size_t> train_idx = optimizer_results(reader, train_all);
+  const std::vector<std::size_t> val_idx = optimizer_results(reader, val_all);
+  if (o.log && (train_idx.size() < train_all.size() || val_idx.size() < val_all.size()))
+    *o.log << "left out " << train_all.size() - train_idx.size() << " training and " << val_all.size() - val_idx.size()
+           << " validation drapes that drape optimize could not bring onto the true body (separated 0)\n";
   if (train_idx.empty()) throw ConfigError(o.data.string() + ": no training samples (split 0) are done");
   report.train_samples = static_cast<int>(train_idx.size());
   report.val_samples = static_cast<int>(val_idx.size());
