@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <chrono>
+#include <functional>
 #include <string>
 
 namespace drape {
@@ -24,20 +25,53 @@ double prediction_ms(Model& model, const SampleBatch& one, int repeats) {
 
 namespace {
 
-void resize(SplitEvaluation& out, std::size_t n) {
-  out.samples.resize(n);
-  out.ground_truth_penetration.resize(n);
-  out.ground_truth_crossings.resize(n);
-  out.ground_truth_strain_max.resize(n);
+// One batch of a split to measure, each [n, N, 3]: the garments measured, the
+// simulated garments and the bodies.
+struct MeasuredBatch {
+  Tensor garments, truth, bodies;
+};
+
+// The metrics of `count` samples, loaded `step` at a time by load(first, last)
+// and measured in parallel (OpenMP); push_out_margin >= 0 pushes each garment
+// out of its body first. An error names the sample (name(k)).
+SplitEvaluation measure_in_batches(const Assets& assets, std::size_t count, std::size_t step, ProgressBar* progress,
+                                   const std::function<MeasuredBatch(std::size_t, std::size_t)>& load,
+                                   const std::function<std::string(std::size_t)>& name, double push_out_margin = -1) {
+  const MetricsContext metrics(assets);
+  SplitEvaluation out;
+  out.samples.resize(count);
+  out.ground_truth_penetration.resize(count);
+  out.ground_truth_crossings.resize(count);
+  out.ground_truth_strain_max.resize(count);
+  for (std::size_t first = 0; first < count; first += step) {
+    const std::size_t last = std::min(count, first + step);
+    const MeasuredBatch batch = load(first, last);
+    const int n = static_cast<int>(last - first);
+    std::vector<std::string> errors(last - first);
+#pragma omp parallel for schedule(dynamic)
+    for (int b = 0; b < n; ++b) {
+      try {  // no exception may leave an OpenMP region
+        const std::size_t k = first + static_cast<std::size_t>(b);
+        const Eigen::MatrixX3d y = batch.truth.mat(b).cast<double>(), body = batch.bodies.mat(b).cast<double>();
+        Eigen::MatrixX3d x = batch.garments.mat(b).cast<double>();
+        if (push_out_margin >= 0) geometry::push_out(geometry::BodySurface(body, assets.body.faces), x, push_out_margin);
+        out.samples[k] = metrics.evaluate(x, y, body);
+        out.ground_truth_penetration[k] = metrics.penetration(y, body);
+        out.ground_truth_crossings[k] = metrics.crossings(y, body);
+        out.ground_truth_strain_max[k] = metrics.strain_max(y);
+      } catch (const std::exception& e) {
+        errors[static_cast<std::size_t>(b)] = e.what();
+      }
+    }
+    for (std::size_t b = 0; b < errors.size(); ++b)
+      if (!errors[b].empty()) throw Error(name(first + b) + ": " + errors[b]);
+    if (progress) progress->advance(last - first);
+  }
+  return out;
 }
 
-// Sample k of `out`: the garment x against the simulated y on the body.
-void measure(const MetricsContext& metrics, const Eigen::MatrixX3d& x, const Eigen::MatrixX3d& y,
-             const Eigen::MatrixX3d& body, SplitEvaluation& out, std::size_t k) {
-  out.samples[k] = metrics.evaluate(x, y, body);
-  out.ground_truth_penetration[k] = metrics.penetration(y, body);
-  out.ground_truth_crossings[k] = metrics.crossings(y, body);
-  out.ground_truth_strain_max[k] = metrics.strain_max(y);
+std::vector<std::size_t> slice(const std::vector<std::size_t>& v, std::size_t first, std::size_t last) {
+  return {v.begin() + static_cast<long>(first), v.begin() + static_cast<long>(last)};
 }
 
 }  // namespace
@@ -45,35 +79,14 @@ void measure(const MetricsContext& metrics, const Eigen::MatrixX3d& x, const Eig
 SplitEvaluation evaluate_model(Model& model, const DatasetReader& reader, const std::vector<std::size_t>& indices,
                                int batch_size, ProgressBar* progress, double push_out_margin) {
   if (batch_size < 1) throw ConfigError("evaluate: the batch size must be at least 1");
-  const MetricsContext metrics(model.assets());
-  SplitEvaluation out;
-  resize(out, indices.size());
-  const auto step = static_cast<std::size_t>(batch_size);
-  for (std::size_t first = 0; first < indices.size(); first += step) {
-    const std::vector<std::size_t> part(indices.begin() + static_cast<long>(first),
-                                        indices.begin() + static_cast<long>(std::min(indices.size(), first + step)));
+  const auto load = [&](std::size_t first, std::size_t last) {
+    const std::vector<std::size_t> part = slice(indices, first, last);
     const SampleBatch batch = read_samples(reader, part, model.graph(), false);
-    const Tensor truth = reader.garment_vertices(part);
-    const Tensor predicted = model.predict(batch);
-    const int n = static_cast<int>(part.size());
-    std::vector<std::string> errors(part.size());
-#pragma omp parallel for schedule(dynamic)
-    for (int b = 0; b < n; ++b) {
-      try {  // no exception may leave an OpenMP region
-        const Eigen::MatrixX3d y = truth.mat(b).cast<double>(), body = batch.body.mat(b).cast<double>();
-        Eigen::MatrixX3d x = predicted.mat(b).cast<double>();
-        if (push_out_margin >= 0)
-          geometry::push_out(geometry::BodySurface(body, model.assets().body.faces), x, push_out_margin);
-        measure(metrics, x, y, body, out, first + static_cast<std::size_t>(b));
-      } catch (const std::exception& e) {
-        errors[static_cast<std::size_t>(b)] = e.what();
-      }
-    }
-    for (std::size_t b = 0; b < part.size(); ++b)
-      if (!errors[b].empty()) throw Error("sample " + std::to_string(part[b]) + ": " + errors[b]);
-    if (progress) progress->advance(part.size());
-  }
-  return out;
+    return MeasuredBatch{model.predict(batch), reader.garment_vertices(part), batch.body};
+  };
+  const auto name = [&](std::size_t k) { return "sample " + std::to_string(indices[k]); };
+  return measure_in_batches(model.assets(), indices.size(), static_cast<std::size_t>(batch_size), progress, load, name,
+                            push_out_margin);
 }
 
 std::vector<std::size_t> drape_sources(const DatasetReader& truth, const DatasetReader& drapes,
@@ -94,36 +107,19 @@ std::vector<std::size_t> drape_sources(const DatasetReader& truth, const Dataset
 SplitEvaluation evaluate_drapes(const Assets& assets, const DatasetReader& truth, const DatasetReader& drapes,
                                 const std::vector<std::size_t>& drape_indices, ProgressBar* progress) {
   const std::vector<std::size_t> sources = drape_sources(truth, drapes, drape_indices);
-  const MetricsContext metrics(assets);
-  SplitEvaluation out;
-  resize(out, drape_indices.size());
-  constexpr std::size_t step = 16;
-  for (std::size_t first = 0; first < drape_indices.size(); first += step) {
-    const std::size_t last = std::min(drape_indices.size(), first + step);
-    const std::vector<std::size_t> part(drape_indices.begin() + long(first), drape_indices.begin() + long(last));
-    const std::vector<std::size_t> source(sources.begin() + long(first), sources.begin() + long(last));
-    const Tensor garments = drapes.garment_vertices(part), bodies = drapes.body_vertices(part);
-    const Tensor truth_garments = truth.garment_vertices(source), truth_bodies = truth.body_vertices(source);
-    const int n = static_cast<int>(part.size());
-    std::vector<std::string> errors(part.size());
-#pragma omp parallel for schedule(dynamic)
-    for (int b = 0; b < n; ++b) {
-      try {
-        const Eigen::MatrixX3d body = bodies.mat(b).cast<double>();
-        // The same body (to 0.01 mm, a rebuilt body's round-off): a drape against another body's simulation means nothing.
-        if ((bodies.mat(b) - truth_bodies.mat(b)).cwiseAbs().maxCoeff() > 1e-5f)
-          throw ConfigError("its body is not the body of sample " + std::to_string(source[std::size_t(b)]) + " of the dataset");
-        measure(metrics, garments.mat(b).cast<double>(), truth_garments.mat(b).cast<double>(), body, out,
-                first + static_cast<std::size_t>(b));
-      } catch (const std::exception& e) {
-        errors[static_cast<std::size_t>(b)] = e.what();
-      }
-    }
+  const auto name = [&](std::size_t k) { return "drape sample " + std::to_string(drape_indices[k]); };
+  const auto load = [&](std::size_t first, std::size_t last) {
+    const std::vector<std::size_t> part = slice(drape_indices, first, last), source = slice(sources, first, last);
+    MeasuredBatch batch{drapes.garment_vertices(part), truth.garment_vertices(source), drapes.body_vertices(part)};
+    // The same body (to 0.01 mm, a rebuilt body's round-off): a drape against another body's simulation means nothing.
+    const Tensor truth_bodies = truth.body_vertices(source);
     for (std::size_t b = 0; b < part.size(); ++b)
-      if (!errors[b].empty()) throw Error("drape sample " + std::to_string(part[b]) + ": " + errors[b]);
-    if (progress) progress->advance(part.size());
-  }
-  return out;
+      if ((batch.bodies.mat(int(b)) - truth_bodies.mat(int(b))).cwiseAbs().maxCoeff() > 1e-5f)
+        throw ConfigError(name(first + b) + ": its body is not the body of sample " + std::to_string(source[b]) +
+                          " of the dataset");
+    return batch;
+  };
+  return measure_in_batches(assets, drape_indices.size(), 16, progress, load, name);
 }
 
 }  // namespace drape
