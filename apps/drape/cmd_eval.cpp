@@ -31,8 +31,10 @@ std::string format(const char* f, double v) {
   return b;
 }
 
-void write_report(const fs::path& file, const std::string& model, const std::string& data, const std::string& split,
-                  const MetricsSummary& s, double reference_p, double reference_crossings, double reference_crossed) {
+// `drapes`: the --drapes file measured instead of the model's predictions (empty: none).
+void write_report(const fs::path& file, const std::string& model, const std::string& drapes, const std::string& data,
+                  const std::string& split, const MetricsSummary& s, double reference_p, double reference_crossings,
+                  double reference_crossed) {
   const std::string ext = file.extension().string();
   std::ostringstream o;
   if (ext == ".csv") {
@@ -46,7 +48,8 @@ void write_report(const fs::path& file, const std::string& model, const std::str
       for (char ch : t) q += (ch == '"' || ch == '\\') ? std::string("\\") + ch : std::string(1, ch);
       return q + "\"";
     };
-    o << "{\n  \"model\": " << quoted(model) << ",\n  \"data\": " << quoted(data) << ",\n  \"split\": " << quoted(split)
+    o << "{\n  \"model\": " << quoted(model) << (drapes.empty() ? "" : ",\n  \"drapes\": " + quoted(drapes))
+      << ",\n  \"data\": " << quoted(data) << ",\n  \"split\": " << quoted(split)
       << ",\n  \"samples\": " << s.samples << ",\n  \"ground_truth_p_percent\": " << format("%.9g", reference_p)
       << ",\n  \"ground_truth_crossings\": " << format("%.9g", reference_crossings)
       << ",\n  \"ground_truth_crossed_samples_percent\": " << format("%.9g", reference_crossed)
@@ -320,7 +323,8 @@ int run(const std::vector<std::string>& args) {
   if (vm.count("worst")) print_worst(reader, indices, evaluation, vm["worst"].as<int>());
   if (bands) print_by_band(reader, indices, evaluation, *bands);
   if (vm.count("out")) {
-    write_report(vm["out"].as<std::string>(), stored ? selected_file : model_file, data, split, s, reference_p, reference_crossings, reference_crossed);
+    write_report(vm["out"].as<std::string>(), model_file, stored ? selected_file : std::string(), data, split, s,
+                 reference_p, reference_crossings, reference_crossed);
     std::printf("wrote %s\n", vm["out"].as<std::string>().c_str());
   }
   if (vm.count("svg")) {

@@ -329,8 +329,12 @@ TEST_CASE("drape eval --drapes measures optimised drapes against their simulatio
   CHECK_THAT(out, Catch::Contains("test split, 3 samples") && Catch::Contains("1 of them are not results"));
   CHECK_THAT(out, Catch::Contains("| ME | 2.333 |"));  // (1 + 2 + 4) / 3
   CHECK_THAT(out, Catch::Contains("| 13 | 4 |"));      // the worst, by its source sample
-  REQUIRE(test::run(test::drape_command(eval + " --where separated=1"), out) == 0);
+  REQUIRE(test::run(test::drape_command(eval + " --where separated=1 --out " + (t.dir / "m.json").string()), out) == 0);
   CHECK_THAT(out, Catch::Contains("| ME | 2.5 |") && !Catch::Contains("not results"));
+  std::ifstream json(t.dir / "m.json");
+  const std::string json_text((std::istreambuf_iterator<char>(json)), std::istreambuf_iterator<char>());
+  CHECK_THAT(json_text, Catch::Contains("\"model\": \"" + t.model.string() + "\",\n  \"drapes\": \"" +
+                                        (t.dir / "drapes.h5").string() + "\""));
   CHECK(test::run(test::drape_command(eval + " --svg x.svg"), out) != 0);
   CHECK_THAT(out, Catch::Contains("--drapes measures stored garments"));
 }
