@@ -45,16 +45,28 @@ double allowed_step(const std::vector<NamedEnergy>& energies, const Eigen::Matri
 
 // The weights and the optimiser's state at the last accepted drape, to go
 // back to when a step would cross the body.
-struct Accepted {
+// The network's weights at one iterate.
+struct WeightSnapshot {
   std::vector<Tensor> weights;
-  OptimizerState optimizer;
   void save(const Optimizer& o) {
-    weights.resize(o.weights().size());  // copied into the same buffers at every accepted step
+    weights.resize(o.weights().size());  // copied into the same buffers at every save
     for (std::size_t k = 0; k < weights.size(); ++k) weights[k] = o.weights()[k].second->value;
-    optimizer = o.state();
   }
   void restore(Optimizer& o) const {
     for (std::size_t k = 0; k < weights.size(); ++k) o.weights()[k].second->value = weights[k];
+  }
+};
+
+// The last accepted step, to go back to after a refused one: weights and Adam's moments.
+struct Accepted {
+  WeightSnapshot snapshot;
+  OptimizerState optimizer;
+  void save(const Optimizer& o) {
+    snapshot.save(o);
+    optimizer = o.state();
+  }
+  void restore(Optimizer& o) const {
+    snapshot.restore(o);
     o.set_state(optimizer);
   }
 };
@@ -126,8 +138,10 @@ PhysicsOptimizationResult optimize_drape(Model& model, const Simulation& scene, 
   double start_gap = 0;  // |true body - shrunk start body|
   double best = INFINITY;
   // The weights of the best drape: the model is left predicting `after`, not
-  // the last iterate, which can be a little worse (Adam overshoots).
-  Accepted best_weights;
+  // the last iterate, which can be a little worse (Adam overshoots). The run
+  // ends there, so Adam's moments are not kept with them: one copy of the
+  // weights per better iterate, not three.
+  WeightSnapshot best_weights;
   std::vector<EnergyTerm> terms;  // of the latest drape
   auto evaluate = [&](int it) {
     const double lp = potential(energies, x, gradient, &terms, with_barrier);
