@@ -1,0 +1,171 @@
+#!/usr/bin/env python3
+"""How far the simulated ground truth is a function of the body: the error floor no predictor can beat.
+
+A drape network is scored by ME against one simulated drape per body. If simulating the same body again,
+moved by far less than any body differs from another (by default scaled by 1 + 1e-6 about its soles: a
+micrometre at the head), gives a drape some distance away, the simulation amplifies rounding into a
+different equilibrium (a fold that buckles the other way, a hem that rides up a little further), and that
+distance is noise in the labels. For two such drapes X and Y of one body and any prediction f of it,
+|X - Y| <= |X - f| + |Y - f|, so a predictor that is a function of the body has a mean error of at least half
+the mean pair distance, whatever it is (docs/training.md, "How far the ground truth is a function of the
+body").
+
+    scripts/ground_truth_spread.py --data bodyspace2000.h5 --split test --count 24 \\
+        --scene graphs/scenes/tshirt_coarse.yaml [--model models/tshirt-coarse.h5] [--threads 2]
+
+For each of --count samples of the split (spread evenly over their BMI), it simulates the stored body and
+its scaled copy with the scene, and prints per BMI band: the pair distance (ME between the two new drapes),
+the floor (half of it), each new drape's ME to the stored one (non-zero when the dataset was made by another
+build or thread count), and with --model the model's ME to the stored drapes of the same bodies. --out
+writes the per-body rows as CSV. Needs the drape Python module (build/python on PYTHONPATH) and h5py.
+"""
+import argparse
+import concurrent.futures
+import csv
+import os
+import sys
+import time
+
+import numpy as np
+
+
+def parse_arguments(argv):
+    p = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    p.add_argument("--data", required=True, help="a full drape dataset (drape generate, or drape dataset expand)")
+    p.add_argument("--scene", required=True, help="the scene the dataset was simulated with")
+    p.add_argument("--split", default="test", choices=["train", "val", "test", "all"])
+    p.add_argument("--count", type=int, default=24, help="bodies, spread evenly over the split's BMI")
+    p.add_argument("--epsilon", type=float, default=1e-6, help="relative scale of the second body (0: the same)")
+    p.add_argument("--model", help="also the model's ME on the same bodies, against the stored drapes")
+    p.add_argument("--bands", default="10,25,35,45,55,65", help="BMI band edges")
+    p.add_argument("--threads", type=int, default=os.cpu_count() or 1, help="simulations run at once")
+    p.add_argument("--out", help="per-body rows (.csv)")
+    a = p.parse_args(argv)
+    if a.count < 1:
+        p.error("--count must be at least 1")
+    if not a.epsilon >= 0:
+        p.error("--epsilon must be >= 0")
+    return a
+
+
+SPLITS = {"train": 0, "val": 1, "test": 2}
+
+
+def pick_samples(done, split, bmi, wanted, count):
+    """count sample indices of the split, evenly spaced in BMI order (all of them when there are fewer)."""
+    candidates = np.where(done.astype(bool) & ((split == SPLITS[wanted]) if wanted != "all" else True))[0]
+    if len(candidates) == 0:
+        raise SystemExit(f"no finished sample in split '{wanted}'")
+    by_bmi = candidates[np.argsort(bmi[candidates], kind="stable")]
+    if count >= len(by_bmi):
+        return by_bmi
+    return by_bmi[np.round(np.linspace(0, len(by_bmi) - 1, count)).astype(int)]
+
+
+def scaled_about_soles(body, factor):
+    """The body scaled by factor about the point under its centroid at the height of its soles (Y up); at
+    factor 1 the body itself (c + (b - c) rounds to another body)."""
+    if factor == 1.0:
+        return body.copy()
+    centre = body.mean(axis=0)
+    centre[1] = body[:, 1].min()
+    return centre + (body - centre) * factor
+
+
+def mean_distance_cm(a, b):
+    return 100.0 * float(np.linalg.norm(np.asarray(a, float) - np.asarray(b, float), axis=1).mean())
+
+
+def main(argv):
+    args = parse_arguments(argv)
+    # One simulation per thread at a time: the solver's own threads would only contend.
+    os.environ.setdefault("OMP_NUM_THREADS", "1")
+    import h5py
+    import drape
+
+    with h5py.File(args.data, "r", locking=False) as f:
+        for name in ("bodies/vertices", "garments/vertices", "split", "stats/bmi"):
+            if name not in f:
+                raise SystemExit(f"{args.data}: no '{name}' (a slim shard? expand it with drape dataset expand)")
+        done = f["done"][:] if "done" in f else np.ones(len(f["split"]), np.uint8)
+        bmi = f["stats/bmi"][:]
+        picks = pick_samples(done, f["split"][:], bmi, args.split, args.count)
+        bodies = {int(i): f["bodies/vertices"][i].astype(np.float64) for i in picks}
+        stored = {int(i): f["garments/vertices"][i].astype(np.float64) for i in picks}
+
+    model = drape.Model.load(args.model) if args.model else None
+    scenes = {}
+
+    def simulate(body):
+        import threading
+        key = threading.get_ident()
+        if key not in scenes:  # a Scene per worker thread: simulations share nothing
+            scenes[key] = drape.Scene(args.scene)
+        r = scenes[key].simulate(body)
+        if not r["converged"]:
+            print(f"  (a drape did not settle: {r.get('unsettled', '')})", file=sys.stderr)
+        return r["garment"], bool(r["converged"])
+
+    jobs = [(int(i), which) for i in picks for which in (0, 1)]
+    results = {}
+    start = time.time()
+    with concurrent.futures.ThreadPoolExecutor(max_workers=max(1, args.threads)) as pool:
+        futures = {}
+        for i, which in jobs:
+            body = bodies[i] if which == 0 else scaled_about_soles(bodies[i], 1.0 + args.epsilon)
+            futures[pool.submit(simulate, body)] = (i, which)
+        for n, future in enumerate(concurrent.futures.as_completed(futures), 1):
+            results[futures[future]] = future.result()
+            elapsed = time.time() - start
+            eta = elapsed / n * (len(jobs) - n)
+            bar = "#" * (30 * n // len(jobs))
+            print(f"\r[{bar:<30}] {n}/{len(jobs)} simulations, {elapsed:.0f} s, ETA {eta:.0f} s", end="",
+                  file=sys.stderr, flush=True)
+    print(file=sys.stderr)
+
+    rows = []
+    for i in map(int, picks):
+        (first, settled_first), (second, settled_second) = results[(i, 0)], results[(i, 1)]
+        row = {"sample": i, "bmi": float(bmi[i]), "pair_me_cm": mean_distance_cm(first, second),
+               "rerun_to_stored_cm": mean_distance_cm(first, stored[i]),
+               "settled": int(settled_first and settled_second)}
+        if model is not None:
+            row["model_me_cm"] = mean_distance_cm(model.predict(bodies[i].astype(np.float32)), stored[i])
+        rows.append(row)
+
+    edges = [float(x) for x in args.bands.split(",")]
+    print(f"{len(rows)} bodies of {args.data} ({args.split}), second body scaled by 1 + {args.epsilon:g}, "
+          f"scene {args.scene}")
+    header = "| BMI | bodies | pair ME (cm) | floor = pair / 2 (cm) | new drape to stored (cm) |"
+    header += " model ME (cm) |" if model is not None else ""
+    print(header)
+    print("|---" * (header.count("|") - 1) + "|")
+    def in_band(r, lo, hi):
+        return lo <= r["bmi"] < hi or (hi == edges[-1] and r["bmi"] == hi)
+
+    bands = [(f"{lo:g}-{hi:g}", lo, hi) for lo, hi in zip(edges[:-1], edges[1:])] + [("all", -np.inf, np.inf)]
+    for name, lo, hi in bands:
+        sel = [r for r in rows if in_band(r, lo, hi)]
+        if not sel:
+            continue
+        pair = np.mean([r["pair_me_cm"] for r in sel])
+        line = (f"| {name} | {len(sel)} | {pair:.3f} | {pair / 2:.3f} | "
+                f"{np.mean([r['rerun_to_stored_cm'] for r in sel]):.3f} |")
+        if model is not None:
+            line += f" {np.mean([r['model_me_cm'] for r in sel]):.3f} |"
+        print(line)
+    unsettled = sum(1 - r["settled"] for r in rows)
+    if unsettled:
+        print(f"{unsettled} of {len(rows)} bodies had a drape that did not settle")
+    if args.out:
+        tmp = args.out + ".tmp"
+        with open(tmp, "w", newline="") as out:
+            w = csv.DictWriter(out, fieldnames=list(rows[0]))
+            w.writeheader()
+            w.writerows(rows)
+        os.replace(tmp, args.out)  # atomically: a killed run leaves no half-written table
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main(sys.argv[1:]))

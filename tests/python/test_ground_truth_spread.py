@@ -1,0 +1,104 @@
+"""scripts/ground_truth_spread.py: the simulation's spread under a body change far below any body's, and the
+error floor it implies. Checked on a tiny scene (one settling step, penalty contact) so that it runs in seconds."""
+import csv
+import importlib.util
+import os
+import subprocess
+import sys
+
+import h5py
+import numpy as np
+import pytest
+
+import drape
+from conftest import COARSE, SOURCE, run_drape
+
+PENALTY = SOURCE / "graphs" / "scenes" / "tshirt_coarse_penalty.yaml"
+
+SCRIPT = SOURCE / "scripts" / "ground_truth_spread.py"
+spec = importlib.util.spec_from_file_location("ground_truth_spread", SCRIPT)
+spread = importlib.util.module_from_spec(spec)
+spec.loader.exec_module(spread)
+
+
+@pytest.fixture(scope="module")
+def tiny(tmp_path_factory):
+    tmp = tmp_path_factory.mktemp("spread")
+    scene = tmp / "tiny.yaml"
+    # the penalty contact, so that the body moves the cloth even without a morph
+    scene.write_text(f"base: {PENALTY}\nsolver: {{morph_steps: 0, settle_steps: 1, linear_solver: eigen}}\n")
+    data = tmp / "data.h5"
+    run_drape("generate", scene, "--count", 3, "--bmi", "20:40", "--seed", 5, "--out", data, "--threads", 1)
+    return scene, data
+
+
+def run_script(*args):
+    env = dict(os.environ, PYTHONPATH=os.path.dirname(os.path.dirname(os.path.abspath(drape.__file__))))
+    p = subprocess.run([sys.executable, str(SCRIPT), *map(str, args)], capture_output=True, text=True,
+                       timeout=300, env=env)
+    return p
+
+
+def test_picks_are_spread_evenly_over_bmi():
+    done = np.array([1, 1, 1, 1, 1, 0], np.uint8)
+    split = np.array([2, 2, 0, 2, 2, 2], np.int8)
+    bmi = np.array([40.0, 10.0, 30.0, 20.0, 65.0, 50.0])
+    # the finished test samples in BMI order are 1 (10), 3 (20), 0 (40), 4 (65); sample 5 is not done
+    assert list(spread.pick_samples(done, split, bmi, "test", 2)) == [1, 4]
+    assert list(spread.pick_samples(done, split, bmi, "test", 10)) == [1, 3, 0, 4]
+    assert list(spread.pick_samples(done, split, bmi, "all", 5)) == [1, 3, 2, 0, 4]
+
+
+def test_scaling_about_the_soles_keeps_the_soles_and_scales_heights():
+    body = np.array([[0.0, 0.0, 0.0], [1.0, 2.0, 0.0], [-1.0, 1.0, 3.0]])
+    out = spread.scaled_about_soles(body, 2.0)
+    # centre: (0, 0, 1) -- the centroid's x and z at the soles' height
+    assert np.allclose(out, [[0.0, 0.0, -1.0], [2.0, 4.0, -1.0], [-2.0, 2.0, 5.0]])
+
+
+def test_the_same_body_twice_gives_the_same_drape_and_a_zero_floor(tiny, tmp_path):
+    scene, data = tiny
+    out = tmp_path / "rows.csv"
+    p = run_script("--data", data, "--scene", scene, "--split", "all", "--count", 2, "--epsilon", 0,
+                   "--threads", 2, "--out", out)
+    assert p.returncode == 0, p.stderr
+    rows = list(csv.DictReader(open(out)))
+    assert len(rows) == 2
+    for r in rows:
+        assert float(r["pair_me_cm"]) == 0.0  # the simulation is deterministic: same body, same drape
+        assert np.isfinite(float(r["rerun_to_stored_cm"]))
+    assert "| all | 2 | 0.000 | 0.000 |" in p.stdout, p.stdout
+
+
+def test_a_scaled_body_and_the_model_column(tiny, tmp_path):
+    scene, data = tiny
+    out = tmp_path / "rows.csv"
+    model = SOURCE / "models" / "tshirt-coarse.h5"
+    p = run_script("--data", data, "--scene", scene, "--count", 3, "--split", "all", "--epsilon", 0.05,
+                   "--model", model, "--threads", 1, "--out", out)
+    assert p.returncode == 0, p.stderr
+    rows = list(csv.DictReader(open(out)))
+    with h5py.File(data, "r", locking=False) as f:
+        stored = f["garments/vertices"][:]
+        bodies = f["bodies/vertices"][:]
+    m = drape.Model.load(str(model))
+    for r in rows:
+        i = int(r["sample"])
+        # a body 5 % larger drapes elsewhere; the pair distance and the floor say so
+        assert float(r["pair_me_cm"]) > 0.0
+        expected = 100 * np.linalg.norm(m.predict(bodies[i]) - stored[i], axis=1).mean()
+        assert float(r["model_me_cm"]) == pytest.approx(expected, rel=1e-5)
+    pairs = [float(r["pair_me_cm"]) for r in rows]
+    line = next(l for l in p.stdout.splitlines() if l.startswith("| all |"))
+    cells = [c.strip() for c in line.strip("|").split("|")]
+    assert float(cells[2]) == pytest.approx(np.mean(pairs), abs=1e-3)
+    assert float(cells[3]) == pytest.approx(np.mean(pairs) / 2, abs=1e-3)
+
+
+def test_a_slim_shard_is_refused_with_what_to_do(tmp_path):
+    slim = tmp_path / "slim.h5"
+    with h5py.File(slim, "w") as f:
+        f["split"] = np.zeros(2, np.int8)
+    p = run_script("--data", slim, "--scene", COARSE)
+    assert p.returncode != 0
+    assert "drape dataset expand" in p.stderr
