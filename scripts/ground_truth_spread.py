@@ -13,11 +13,12 @@ body").
     scripts/ground_truth_spread.py --data bodyspace2000.h5 --split test --count 24 \\
         --scene graphs/scenes/tshirt_coarse.yaml [--model models/tshirt-coarse.h5] [--threads 2]
 
-For each of --count samples of the split (spread evenly over their BMI), it simulates the stored body and
-its scaled copy with the scene, and prints per BMI band: the pair distance (ME between the two new drapes),
-the floor (half of it), each new drape's ME to the stored one (non-zero when the dataset was made by another
-build or thread count), and with --model the model's ME to the stored drapes of the same bodies. --out
-writes the per-body rows as CSV. Needs the drape Python module (build/python on PYTHONPATH) and h5py.
+For each of --count samples of the split (spread evenly over their BMI), or of the --samples named, it
+simulates the stored body and its scaled copy with the scene, and prints per BMI band: the pair distance
+(ME between the two new drapes), the floor (half of it), each new drape's ME to the stored one (non-zero
+when the dataset was made by another build or thread count), and with --model the model's ME to the stored
+drapes of the same bodies. --out writes the per-body rows as CSV. Needs the drape Python module
+(build/python on PYTHONPATH) and h5py.
 """
 import argparse
 import concurrent.futures
@@ -35,6 +36,7 @@ def parse_arguments(argv):
     p.add_argument("--scene", required=True, help="the scene the dataset was simulated with")
     p.add_argument("--split", default="test", choices=["train", "val", "test", "all"])
     p.add_argument("--count", type=int, default=24, help="bodies, spread evenly over the split's BMI")
+    p.add_argument("--samples", help="these sample indices (comma-separated) instead of --count of the split")
     p.add_argument("--epsilon", type=float, default=1e-6, help="relative scale of the second body (0: the same)")
     p.add_argument("--model", help="also the model's ME on the same bodies, against the stored drapes")
     p.add_argument("--bands", default="10,25,35,45,55,65", help="BMI band edges")
@@ -89,7 +91,13 @@ def main(argv):
                 raise SystemExit(f"{args.data}: no '{name}' (a slim shard? expand it with drape dataset expand)")
         done = f["done"][:] if "done" in f else np.ones(len(f["split"]), np.uint8)
         bmi = f["stats/bmi"][:]
-        picks = pick_samples(done, f["split"][:], bmi, args.split, args.count)
+        if args.samples:
+            picks = np.array([int(i) for i in args.samples.split(",")])
+            bad = [int(i) for i in picks if not 0 <= i < len(done) or not done[i]]
+            if bad:
+                raise SystemExit(f"{args.data}: no finished sample {bad[0]} (the file has {len(done)})")
+        else:
+            picks = pick_samples(done, f["split"][:], bmi, args.split, args.count)
         bodies = {int(i): f["bodies/vertices"][i].astype(np.float64) for i in picks}
         stored = {int(i): f["garments/vertices"][i].astype(np.float64) for i in picks}
 

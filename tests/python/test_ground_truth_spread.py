@@ -102,3 +102,13 @@ def test_a_slim_shard_is_refused_with_what_to_do(tmp_path):
     p = run_script("--data", slim, "--scene", COARSE)
     assert p.returncode != 0
     assert "drape dataset expand" in p.stderr
+
+
+def test_named_samples_and_a_sample_the_file_does_not_have(tiny, tmp_path):
+    scene, data = tiny
+    out = tmp_path / "rows.csv"
+    p = run_script("--data", data, "--scene", scene, "--samples", "2,0", "--epsilon", 0, "--threads", 1, "--out", out)
+    assert p.returncode == 0, p.stderr
+    assert [int(r["sample"]) for r in csv.DictReader(open(out))] == [2, 0]
+    p = run_script("--data", data, "--scene", scene, "--samples", "0,3")
+    assert p.returncode != 0 and "no finished sample 3 (the file has 3)" in p.stderr, p.stderr
