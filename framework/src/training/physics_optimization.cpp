@@ -74,6 +74,11 @@ struct Accepted {
 // Refused steps in a row (each halving the learning rate) before the drape is
 // taken as stuck against the body: 2^-30 of the step is below float round-off.
 constexpr int kMaxRefusalsInARow = 30;
+// A refused step is retried at this share of the fraction the collision
+// checks allow (IPC's line search starts at 0.8 of its bound too), but never
+// cut by more than this at once.
+constexpr double kAllowedStepShare = 0.8;
+constexpr double kSmallestRetry = 1.0 / 64;
 
 }  // namespace
 
@@ -199,12 +204,18 @@ PhysicsOptimizationResult optimize_drape(Model& model, const Simulation& scene, 
     graph.backward_from_output(model.output(), grad);
     adam.step(options.learning_rate * scale);
     Eigen::MatrixX3d next = predict();
-    if (with_barrier && allowed_step(energies, x, next - x) < 1) {
+    const double allowed = with_barrier ? allowed_step(energies, x, next - x) : 1.0;
+    if (allowed < 1) {
       ++r.refused_steps;
       if (++refused_in_a_row > kMaxRefusalsInARow) break;  // stuck against the body: the best drape stands
       accepted.restore(adam);
       x = predict();  // the accepted drape again, and the activations its backward pass needs
-      scale *= 0.5;
+      // From the restored moments Adam's step is proportional to the learning
+      // rate, so to first order the drape then moves by that fraction of
+      // next - x: retry at a little less than the fraction the collision
+      // checks allow, and at least halve (the network is not linear in its
+      // weights). Halving alone took several refusals per contact-bound step.
+      scale *= std::clamp(kAllowedStepShare * allowed, kSmallestRetry, 0.5);
       continue;
     }
     refused_in_a_row = 0;
