@@ -3,10 +3,13 @@
 
 #include <drape/errors.hpp>
 #include <drape/geometry/surface_crossings.hpp>
+#include <drape/geometry/winding.hpp>
 
 #include "garment_region.hpp"
 
+#include <algorithm>
 #include <array>
+#include <cmath>
 
 namespace drape::scene_detail {
 
@@ -17,13 +20,21 @@ constexpr std::array<double, 7> kShrinkDepths{0.0, 0.005, 0.01, 0.02, 0.03, 0.04
 
 std::string separation_problem(const Eigen::MatrixX3d& x, const geometry::BodySurface& body,
                                const Eigen::MatrixX3i& garment_faces) {
-  const Eigen::VectorXd d = body.signed_distances(x);
+  // Inside by the winding number, not by the sign of the distance: a body
+  // shrunk along its normals turns thin parts inside out, and there the
+  // closest face's pseudo-normal points the wrong way (5-10 cm "inside" for
+  // points the shrunk body does not enclose; drape/geometry/winding.hpp).
+  const std::vector<int> winding = geometry::winding_numbers(x, body.vertices(), body.faces());
   std::vector<int> inside;
-  for (Eigen::Index v = 0; v < d.size(); ++v)
-    if (!(d[v] > 0)) inside.push_back(static_cast<int>(v));
-  if (!inside.empty())
+  for (std::size_t v = 0; v < winding.size(); ++v)
+    if (winding[v] != 0) inside.push_back(static_cast<int>(v));
+  if (!inside.empty()) {
+    const Eigen::VectorXd d = body.signed_distances(x);
+    double deepest = 0;
+    for (int v : inside) deepest = std::max(deepest, std::abs(d[v]));
     return "the garment starts inside the body (" + describe_region(x, inside) + ", deepest " +
-           std::to_string(-d.minCoeff() * 100) + " cm)";
+           std::to_string(deepest * 100) + " cm)";
+  }
   const geometry::SurfaceCrossings crossings = geometry::surface_crossings(x, garment_faces, body.vertices(), body.faces());
   if (crossings.total() > 0)
     return "the garment starts crossing the body surface (" + std::to_string(crossings.garment_edges_through_body) +
