@@ -1,4 +1,5 @@
 // drape::dress: fitting a placed garment to a body without intersections.
+#include "test_support.hpp"
 #include "tshirt_support.hpp"
 
 #include <drape/garment_dressing.hpp>
@@ -13,33 +14,6 @@
 using namespace drape;
 
 namespace {
-
-// A UV sphere, counter-clockwise seen from outside.
-Mesh sphere(double radius, int rings, int segments) {
-  Mesh m;
-  m.vertices.resize(2 + (rings - 1) * segments, 3);
-  m.vertices.row(0) << 0, radius, 0;
-  m.vertices.row(1) << 0, -radius, 0;
-  for (int r = 1; r < rings; ++r)
-    for (int s = 0; s < segments; ++s) {
-      const double th = M_PI * r / rings, ph = 2 * M_PI * s / segments;
-      m.vertices.row(2 + (r - 1) * segments + s) << radius * std::sin(th) * std::cos(ph), radius * std::cos(th),
-          -radius * std::sin(th) * std::sin(ph);
-    }
-  std::vector<Eigen::Vector3i> f;
-  auto id = [&](int r, int s) { return 2 + (r - 1) * segments + (s % segments); };
-  for (int s = 0; s < segments; ++s) {
-    f.emplace_back(0, id(1, s), id(1, s + 1));
-    f.emplace_back(1, id(rings - 1, s + 1), id(rings - 1, s));
-    for (int r = 1; r + 1 < rings; ++r) {
-      f.emplace_back(id(r, s), id(r + 1, s), id(r + 1, s + 1));
-      f.emplace_back(id(r, s), id(r + 1, s + 1), id(r, s + 1));
-    }
-  }
-  m.faces.resize(static_cast<Eigen::Index>(f.size()), 3);
-  for (std::size_t i = 0; i < f.size(); ++i) m.faces.row(static_cast<Eigen::Index>(i)) = f[i].transpose();
-  return m;
-}
 
 // Ray-parity inside test (+x ray), independent of the query's pseudo-normals.
 bool inside_by_parity(const Mesh& body, const Eigen::Vector3d& p) {
@@ -65,7 +39,7 @@ bool inside_by_parity(const Mesh& body, const Eigen::Vector3d& p) {
 }  // namespace
 
 TEST_CASE("dress pushes a garment out of a sphere and keeps it smooth", "[garments][dressing]") {
-  const Mesh ball = sphere(0.3, 30, 60);
+  const Mesh ball = test::uv_sphere(0.3, 30, 60);
   // A flat sheet through the sphere's middle plays the garment.
   Garment g;
   const int n = 30;

@@ -9,6 +9,8 @@
 
 #include <catch2/catch.hpp>
 
+#include "test_support.hpp"
+
 #include <cmath>
 #include <random>
 
@@ -37,31 +39,6 @@ void add_cube(Eigen::MatrixX3d& v, Eigen::MatrixX3i& f, double shift = 0) {
 double box_distance(const Eigen::Vector3d& p) {
   const Eigen::Vector3d q = p.cwiseAbs() - Eigen::Vector3d::Ones();
   return q.cwiseMax(0.0).norm() + std::min(q.maxCoeff(), 0.0);
-}
-
-// A latitude-longitude unit sphere, faces outward.
-void unit_sphere(Eigen::MatrixX3d& v, Eigen::MatrixX3i& f, int rings = 16, int segments = 24) {
-  v.resize(2 + (rings - 1) * segments, 3);
-  v.row(0) << 0, 1, 0;
-  v.row(1) << 0, -1, 0;
-  for (int r = 1; r < rings; ++r)
-    for (int s = 0; s < segments; ++s) {
-      const double theta = M_PI * r / rings, phi = 2 * M_PI * s / segments;
-      v.row(2 + (r - 1) * segments + s) << std::sin(theta) * std::cos(phi), std::cos(theta),
-          -std::sin(theta) * std::sin(phi);
-    }
-  auto at = [&](int r, int s) { return 2 + (r - 1) * segments + (s % segments); };
-  std::vector<Eigen::Vector3i> faces;
-  for (int s = 0; s < segments; ++s) {
-    faces.emplace_back(0, at(1, s), at(1, s + 1));
-    faces.emplace_back(1, at(rings - 1, s + 1), at(rings - 1, s));
-    for (int r = 1; r + 1 < rings; ++r) {
-      faces.emplace_back(at(r, s), at(r + 1, s), at(r + 1, s + 1));
-      faces.emplace_back(at(r, s), at(r + 1, s + 1), at(r, s + 1));
-    }
-  }
-  f.resize(static_cast<Eigen::Index>(faces.size()), 3);
-  for (std::size_t i = 0; i < faces.size(); ++i) f.row(static_cast<Eigen::Index>(i)) = faces[i].transpose();
 }
 
 }  // namespace
@@ -119,9 +96,9 @@ TEST_CASE("winding numbers count overlapping parts, inside-out parts and points 
 }
 
 TEST_CASE("winding numbers on a sphere shrunk past its centre, where the pseudo-normal sign is wrong", "[geometry][winding]") {
-  Eigen::MatrixX3d v;
-  Eigen::MatrixX3i f;
-  unit_sphere(v, f);
+  const Mesh ball = test::uv_sphere(1.0, 16, 24);
+  const Eigen::MatrixX3d& v = ball.vertices;
+  const Eigen::MatrixX3i& f = ball.faces;
   const BodySurface sphere(v, f);
   // Moved 1.5 along the inward normals every vertex lands at half the radius
   // on the far side: a sphere of radius 0.5, inside out.

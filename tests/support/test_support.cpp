@@ -1,6 +1,8 @@
 #include "test_support.hpp"
 
 #include <array>
+#include <cmath>
+#include <vector>
 #include <cstdio>
 #include <random>
 #include <sys/wait.h>
@@ -64,6 +66,32 @@ effects:
   collision: {stiffness: 1.0e8, margin: 0.004}
 solver: {morph_steps: 2, settle_steps: 3}
 )";
+}
+
+Mesh uv_sphere(double radius, int rings, int segments) {
+  Mesh m;
+  m.vertices.resize(2 + (rings - 1) * segments, 3);
+  m.vertices.row(0) << 0, radius, 0;
+  m.vertices.row(1) << 0, -radius, 0;
+  for (int r = 1; r < rings; ++r)
+    for (int s = 0; s < segments; ++s) {
+      const double th = M_PI * r / rings, ph = 2 * M_PI * s / segments;
+      m.vertices.row(2 + (r - 1) * segments + s) << radius * std::sin(th) * std::cos(ph), radius * std::cos(th),
+          -radius * std::sin(th) * std::sin(ph);
+    }
+  std::vector<Eigen::Vector3i> f;
+  auto id = [&](int r, int s) { return 2 + (r - 1) * segments + (s % segments); };
+  for (int s = 0; s < segments; ++s) {
+    f.emplace_back(0, id(1, s), id(1, s + 1));
+    f.emplace_back(1, id(rings - 1, s + 1), id(rings - 1, s));
+    for (int r = 1; r + 1 < rings; ++r) {
+      f.emplace_back(id(r, s), id(r + 1, s), id(r + 1, s + 1));
+      f.emplace_back(id(r, s), id(r + 1, s + 1), id(r, s + 1));
+    }
+  }
+  m.faces.resize(static_cast<Eigen::Index>(f.size()), 3);
+  for (std::size_t i = 0; i < f.size(); ++i) m.faces.row(static_cast<Eigen::Index>(i)) = f[i].transpose();
+  return m;
 }
 
 }  // namespace drape::test

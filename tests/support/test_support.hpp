@@ -1,6 +1,7 @@
 #pragma once
 // Helpers shared by the tests: the build tree's plugins, temporary folders,
 // the optional shared assets, the drape program.
+#include <drape/mesh.hpp>
 #include <drape/registry.hpp>
 
 #include <filesystem>
@@ -36,6 +37,10 @@ std::string message_of(const std::function<void()>& fn);
 // every effect, a few steps -- for tests that need real drapes (generate,
 // experiments, benchmarks), not good ones.
 const char* tiny_simulation_scene();
+
+// A latitude-longitude sphere about the origin (poles on Y),
+// counter-clockwise seen from outside.
+Mesh uv_sphere(double radius, int rings, int segments);
 
 // Runs a shell command, returns its exit code; stdout+stderr go to `output`.
 int run(const std::string& command, std::string& output);
