@@ -3,6 +3,7 @@
 
 #include <drape/errors.hpp>
 #include <drape/geometry/surface_crossings.hpp>
+#include <drape/geometry/topology.hpp>
 #include <drape/geometry/winding.hpp>
 
 #include "garment_region.hpp"
@@ -24,12 +25,20 @@ std::string separation_problem(const Eigen::MatrixX3d& x, const geometry::BodySu
   // shrunk along its normals turns thin parts inside out, and there the
   // closest face's pseudo-normal points the wrong way (5-10 cm "inside" for
   // points the shrunk body does not enclose; drape/geometry/winding.hpp).
-  const std::vector<int> winding = geometry::winding_numbers(x, body.vertices(), body.faces());
+  // The winding number needs a closed, consistently oriented surface (every
+  // shipped body model's); on a body mesh with holes the sign decides.
+  const Eigen::VectorXd d = body.signed_distances(x);
+  const geometry::TopologyReport topology = geometry::check_topology(body.faces(), static_cast<int>(body.vertices().rows()));
   std::vector<int> inside;
-  for (std::size_t v = 0; v < winding.size(); ++v)
-    if (winding[v] != 0) inside.push_back(static_cast<int>(v));
+  if (topology.watertight() && topology.oriented()) {
+    const std::vector<int> winding = geometry::winding_numbers(x, body.vertices(), body.faces());
+    for (std::size_t v = 0; v < winding.size(); ++v)
+      if (winding[v] != 0) inside.push_back(static_cast<int>(v));
+  } else {
+    for (Eigen::Index v = 0; v < d.size(); ++v)
+      if (!(d[v] > 0)) inside.push_back(static_cast<int>(v));
+  }
   if (!inside.empty()) {
-    const Eigen::VectorXd d = body.signed_distances(x);
     double deepest = 0;
     for (int v : inside) deepest = std::max(deepest, std::abs(d[v]));
     return "the garment starts inside the body (" + describe_region(x, inside) + ", deepest " +

@@ -13,8 +13,9 @@
 namespace drape::scene_detail {
 
 // What keeps the garment x from being separated from the body, naming the
-// region (garment_region.hpp): vertices inside, or edges of either surface
-// through the other. Empty when there is nothing.
+// region (garment_region.hpp): vertices inside (by the body's winding number
+// when it is closed and oriented, else by the sign of the distance), or edges
+// of either surface through the other. Empty when there is nothing.
 std::string separation_problem(const Eigen::MatrixX3d& x, const geometry::BodySurface& body,
                                const Eigen::MatrixX3i& garment_faces);
 

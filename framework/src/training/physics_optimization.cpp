@@ -71,8 +71,9 @@ struct Accepted {
   }
 };
 
-// Refused steps in a row (each halving the learning rate) before the drape is
-// taken as stuck against the body: 2^-30 of the step is below float round-off.
+// Refused steps in a row (each at least halving the learning rate) before the
+// drape is taken as stuck against the body: 2^-30 of the step is below float
+// round-off.
 constexpr int kMaxRefusalsInARow = 30;
 // A refused step is retried at this share of the fraction the collision
 // checks allow (IPC's line search starts at 0.8 of its bound too), but never
