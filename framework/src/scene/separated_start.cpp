@@ -17,28 +17,36 @@ namespace drape::scene_detail {
 namespace {
 // How far (m) a start body may be shrunk along its normals, tried in turn.
 constexpr std::array<double, 7> kShrinkDepths{0.0, 0.005, 0.01, 0.02, 0.03, 0.04, 0.06};
-}  // namespace
 
-std::string separation_problem(const Eigen::MatrixX3d& x, const geometry::BodySurface& body,
-                               const Eigen::MatrixX3i& garment_faces) {
+// Whether a body's winding number tells inside from outside: it needs a
+// closed, consistently oriented surface (every shipped body model's). The
+// faces decide, so a body and its shrunk copies share the answer.
+bool encloses(const Eigen::MatrixX3i& faces, Eigen::Index num_vertices) {
+  const geometry::TopologyReport topology = geometry::check_topology(faces, static_cast<int>(num_vertices));
+  return topology.watertight() && topology.oriented();
+}
+
+// separation_problem, told whether the body encloses (encloses()).
+std::string problem_with(const Eigen::MatrixX3d& x, const geometry::BodySurface& body, const Eigen::MatrixX3i& garment_faces,
+                         bool closed) {
   // Inside by the winding number, not by the sign of the distance: a body
   // shrunk along its normals turns thin parts inside out, and there the
   // closest face's pseudo-normal points the wrong way (5-10 cm "inside" for
-  // points the shrunk body does not enclose; drape/geometry/winding.hpp).
-  // The winding number needs a closed, consistently oriented surface (every
-  // shipped body model's); on a body mesh with holes the sign decides.
-  const Eigen::VectorXd d = body.signed_distances(x);
-  const geometry::TopologyReport topology = geometry::check_topology(body.faces(), static_cast<int>(body.vertices().rows()));
+  // points the shrunk body does not enclose; drape/geometry/winding.hpp). On a
+  // body mesh with holes the sign decides.
   std::vector<int> inside;
-  if (topology.watertight() && topology.oriented()) {
+  Eigen::VectorXd d;
+  if (closed) {
     const std::vector<int> winding = geometry::winding_numbers(x, body.vertices(), body.faces());
     for (std::size_t v = 0; v < winding.size(); ++v)
       if (winding[v] != 0) inside.push_back(static_cast<int>(v));
   } else {
+    d = body.signed_distances(x);
     for (Eigen::Index v = 0; v < d.size(); ++v)
       if (!(d[v] > 0)) inside.push_back(static_cast<int>(v));
   }
   if (!inside.empty()) {
+    if (d.size() == 0) d = body.signed_distances(x);  // for the message only
     double deepest = 0;
     for (int v : inside) deepest = std::max(deepest, std::abs(d[v]));
     return "the garment starts inside the body (" + describe_region(x, inside) + ", deepest " +
@@ -50,6 +58,12 @@ std::string separation_problem(const Eigen::MatrixX3d& x, const geometry::BodySu
            " garment edges through body faces, " + std::to_string(crossings.body_edges_through_garment) +
            " body edges through garment faces; " + describe_region(x, crossings.garment_vertices) + ")";
   return "";
+}
+}  // namespace
+
+std::string separation_problem(const Eigen::MatrixX3d& x, const geometry::BodySurface& body,
+                               const Eigen::MatrixX3i& garment_faces) {
+  return problem_with(x, body, garment_faces, encloses(body.faces(), body.vertices().rows()));
 }
 
 void check_separated_start(const Eigen::MatrixX3d& x, const geometry::BodySurface& body, const Eigen::MatrixX3i& garment_faces) {
@@ -66,9 +80,10 @@ Eigen::MatrixX3d separated_start_body(const Eigen::MatrixX3d& x, const Eigen::Ma
                                       const Eigen::MatrixX3i& body_faces, const Eigen::MatrixX3i& garment_faces,
                                       double* shrink) {
   const geometry::BodySurface original(body, body_faces);
+  const bool closed = encloses(body_faces, body.rows());  // once: the shrunk bodies have the same faces
   for (double depth : kShrinkDepths) {
     Eigen::MatrixX3d shrunk = body - depth * original.vertex_normals();
-    if (!separation_problem(x, geometry::BodySurface(shrunk, body_faces), garment_faces).empty()) continue;
+    if (!problem_with(x, geometry::BodySurface(shrunk, body_faces), garment_faces, closed).empty()) continue;
     if (shrink) *shrink = depth;
     return shrunk;
   }
