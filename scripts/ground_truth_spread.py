@@ -25,6 +25,7 @@ import concurrent.futures
 import csv
 import os
 import sys
+import threading
 import time
 
 import numpy as np
@@ -105,7 +106,6 @@ def main(argv):
     scenes = {}
 
     def simulate(body):
-        import threading
         key = threading.get_ident()
         if key not in scenes:  # a Scene per worker thread: simulations share nothing
             scenes[key] = drape.Scene(args.scene)

@@ -68,7 +68,7 @@ std::vector<int> winding_numbers(const Eigen::MatrixX3d& points, const Eigen::Ma
   if (points.rows() == 0 || faces.rows() == 0) return winding;
 
   std::vector<Box> triangles(static_cast<std::size_t>(faces.rows()));
-  Eigen::Vector3d lo = vertices.colwise().minCoeff().transpose(), hi = vertices.colwise().maxCoeff().transpose();
+  const Eigen::Vector3d lo = vertices.colwise().minCoeff().transpose(), hi = vertices.colwise().maxCoeff().transpose();
   for (Eigen::Index f = 0; f < faces.rows(); ++f) {
     Box& box = triangles[static_cast<std::size_t>(f)];
     box.lo = vertices.row(faces(f, 0)).transpose().cwiseMin(vertices.row(faces(f, 1)).transpose()).cwiseMin(

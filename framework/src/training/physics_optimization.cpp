@@ -43,8 +43,6 @@ double allowed_step(const std::vector<NamedEnergy>& energies, const Eigen::Matri
   return alpha;
 }
 
-// The weights and the optimiser's state at the last accepted drape, to go
-// back to when a step would cross the body.
 // The network's weights at one iterate.
 struct WeightSnapshot {
   std::vector<Tensor> weights;
@@ -76,9 +74,9 @@ struct Accepted {
 // round-off.
 constexpr int kMaxRefusalsInARow = 30;
 // A refused step is retried at this share of the fraction the collision
-// checks allow (IPC's line search starts at 0.8 of its bound too), but never
-// cut by more than this at once.
+// checks allow (IPC's line search starts at 0.8 of its bound too)...
 constexpr double kAllowedStepShare = 0.8;
+// ...but its learning rate is never cut to less than this at once.
 constexpr double kSmallestRetry = 1.0 / 64;
 
 }  // namespace
