@@ -107,9 +107,10 @@ int run(const std::vector<std::string>& args) {
               crossings(r.before), crossings(r.after));
   if (r.start_shrink > 0)
     std::printf("barrier: the prediction crosses the body, so the contact started on the body shrunk by %.1f cm, "
-                "grown back as the cloth moved out\n", 100 * r.start_shrink);
+                "grown back as the cloth moved out%s\n", 100 * r.start_shrink,
+                r.grown_iteration > 0 ? (" by iteration " + std::to_string(r.grown_iteration)).c_str() : "");
   if (r.refused_steps > 0)
-    std::printf("%d steps undone because they would have crossed the body (each retried with half the learning rate)\n",
+    std::printf("%d steps undone because they would have crossed the body (each retried shorter)\n",
                 r.refused_steps);
   if (!r.separated) std::printf("NOT separated from the body, so not a result: %s\n", r.unseparated.c_str());
   Mesh body;

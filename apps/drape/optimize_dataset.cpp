@@ -41,7 +41,7 @@ std::size_t optimize_dataset(const Registry& registry, const OptimizeDatasetOpti
   layout.garment_vertices = reader.layout().garment_vertices;
   for (const auto& e : scene.effects) layout.stats.push_back("energy_" + e.name);
   for (const char* s : {"energy_total", "energy_total_before", "penetration", "penetration_before", "best_iteration",
-                        "separated", "refused_steps", "seconds", "source_index"})
+                        "separated", "refused_steps", "grown_iteration", "seconds", "source_index"})
     layout.stats.push_back(s);
   // Statistics of the source sample that still describe the optimised one.
   std::vector<std::string> carried;
@@ -99,6 +99,7 @@ std::size_t optimize_dataset(const Registry& registry, const OptimizeDatasetOpti
       sample.stats["best_iteration"] = r.best_iteration;
       sample.stats["separated"] = r.separated ? 1 : 0;  // 0: still crossing the body (a barrier scene without a penalty to push it out)
       sample.stats["refused_steps"] = r.refused_steps;
+      sample.stats["grown_iteration"] = r.grown_iteration;
       sample.stats["seconds"] = r.seconds;
       sample.stats["source_index"] = static_cast<double>(index);
       {

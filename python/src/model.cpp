@@ -117,6 +117,7 @@ py::dict result_dict(PhysicsOptimizationResult&& r) {
   d["seconds"] = r.seconds;
   d["start_shrink"] = r.start_shrink;
   d["refused_steps"] = r.refused_steps;
+  d["grown_iteration"] = r.grown_iteration;
   d["separated"] = r.separated;
   d["unseparated"] = r.unseparated;
   return d;

@@ -107,6 +107,17 @@ TEST_CASE("barrier: a garment triangle over a face costs kappa d_hat a_v b(d) pe
   Eigen::MatrixX3d far = g.mesh.vertices;
   far.col(2).setConstant(1.2e-3);
   CHECK(e->value(far) == 0.0);
+  // The reach it reports is the scene's d_hat: a hair inside it costs, a hair beyond does not.
+  const auto wide = barrier_on(g, body, "{distance: 0.003}");
+  CHECK(e->activation_distance() == kDhat);
+  CHECK(wide->activation_distance() == 0.003);
+  for (const auto* b : {e.get(), wide.get()}) {
+    Eigen::MatrixX3d at = g.mesh.vertices;
+    at.col(2).setConstant(0.99 * b->activation_distance());
+    CHECK(b->value(at) > 0);
+    at.col(2).setConstant(1.01 * b->activation_distance());
+    CHECK(b->value(at) == 0.0);
+  }
 }
 
 TEST_CASE("barrier: a body vertex under a garment triangle costs kappa d_hat A_v b(d)", "[barrier]") {

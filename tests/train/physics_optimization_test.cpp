@@ -173,6 +173,9 @@ TEST_CASE("optimize_drape with a barrier ends clear of the body whatever the lea
     REQUIRE(r.separated);
     CHECK(clear_of_body(r.after, scene.garment().mesh, body, model));
     CHECK(r.best_iteration > 0);
+    // The body was back before the best drape, which is only taken on it.
+    CHECK(r.grown_iteration > 0);
+    CHECK(r.grown_iteration <= r.best_iteration);
     CHECK(std::find_if(r.energies_after.begin(), r.energies_after.end(),
                        [](const EnergyTerm& t) { return t.name == "barrier"; }) != r.energies_after.end());
     for (double lp : r.history) CHECK(std::isfinite(lp));

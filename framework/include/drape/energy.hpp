@@ -121,6 +121,11 @@ class Energy {
   // simulator then carries the garment with the morphing body and checks
   // every body move, since a state this energy calls infinite must never be entered.
   virtual bool bounds_steps() const { return false; }
+  // For a step-bounding energy: the distance (m) within which a pair costs
+  // anything (a barrier's d_hat); 0 for the others. `drape optimize` grows a
+  // shrunk body back up to this gap from the cloth before it lets the barrier
+  // take over (docs/optimization.md).
+  virtual double activation_distance() const { return 0; }
   virtual void vertex_gradient_samples(const Eigen::MatrixX3d& /*x*/, int /*vertex*/, double /*radius*/,
                                        std::vector<Eigen::Vector3d>& /*samples*/) const {}
 };

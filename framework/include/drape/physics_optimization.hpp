@@ -33,12 +33,14 @@ struct PhysicsOptimizationResult {
   double seconds = 0;
   // With a barrier in the scene: the shrink of the body that separated the
   // prediction from it (m; 0 when it was already clear), the steps undone
-  // because they would have crossed the body (each retried with half the
-  // learning rate), and whether a drape on the fully grown-back body was
+  // because they would have crossed the body (each retried shorter), and whether a drape on the fully grown-back body was
   // reached (`after` is then the best of those, else the last drape, and
   // `unseparated` says why). Always true without a barrier.
   double start_shrink = 0;
   int refused_steps = 0;
+  // The iteration at which the shrunk body was back to its true shape (0 when
+  // it did not start shrunk, -1 when it never was).
+  int grown_iteration = 0;
   bool separated = true;
   std::string unseparated;
 };

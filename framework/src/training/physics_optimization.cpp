@@ -5,6 +5,7 @@
 #include <drape/optimizer.hpp>
 #include <drape/physics_optimization.hpp>
 
+#include "../scene/vertexwise_growth.hpp"
 #include "../scene/separated_start.hpp"
 
 #include <algorithm>
@@ -114,18 +115,26 @@ PhysicsOptimizationResult optimize_drape(Model& model, const Simulation& scene, 
   // crossing one, and a network's prediction usually crosses the body
   // somewhere. So, as the simulation does, the barrier starts on the body
   // shrunk along its normals by the least of 0.5-6 cm that separates the
-  // prediction, and the body grows back to its true shape as far as the
-  // continuous collision checks allow after every step, the barrier pushing
-  // the cloth out ahead of it. Every weight step is checked over the straight
-  // move from the last accepted drape: one that would cross is undone and
-  // retried with half the learning rate. Only drapes on the fully grown body
-  // are results (docs/optimization.md).
+  // prediction, and the body grows back to its true shape, each region as far
+  // as the continuous collision checks allow after every step, the barrier
+  // pushing the cloth out ahead of it. Every weight step is checked over the
+  // straight move from the last accepted drape: one that would cross is undone
+  // and retried shorter. Only drapes on the fully grown body are results
+  // (docs/optimization.md).
   const bool bounded = std::any_of(energies.begin(), energies.end(), [](const NamedEnergy& e) { return e.energy->bounds_steps(); });
+  // Growing each region of the body up to the barrier's reach of the cloth
+  // (not into it) finished 157 of the 4k model's 200 test bodies in 100
+  // iterations, against 121 with the whole body at one pace; up to twice the
+  // reach 145, half of it 150, a quarter 129 (docs/optimization.md).
+  double growth_floor = 0;
+  for (const NamedEnergy& e : energies)
+    if (e.energy->bounds_steps()) growth_floor = std::max(growth_floor, e.energy->activation_distance());
   const Eigen::MatrixX3i& garment_faces = garment.faces;
 
   Graph& graph = model.graph();
   const auto inputs = graph_inputs(graph, body, false);
   Adam adam(graph.weights());
+  const OptimizerState fresh_moments = adam.state();
   PhysicsOptimizationResult r;
   Eigen::MatrixX3d x, gradient;
   Tensor grad(1, garment.num_vertices(), 3);
@@ -165,15 +174,35 @@ PhysicsOptimizationResult optimize_drape(Model& model, const Simulation& scene, 
       best_weights.save(adam);
     }
   };
-  // The body grows towards its true shape as far as no pair comes too close.
-  auto grow_body = [&]() {
+  // The body grows towards its true shape as far as no pair comes too close:
+  // first each vertex as far as its own pairs' collision checks allow, and
+  // no nearer the cloth than the barrier's reach (vertexwise_growth.hpp; the
+  // contact's checks confirm the whole move), then the whole body on by the
+  // fraction of the rest that the checks allow, which brings the closest
+  // pair into the barrier's reach so that it pushes the cloth out.
+  auto body_move_allowed = [&](const Eigen::MatrixX3d& to) {
     const Eigen::MatrixX3d zero = Eigen::MatrixX3d::Zero(x.rows(), 3);
     double alpha = 1;
     for (const NamedEnergy& e : energies)
-      if (e.energy->bounds_steps()) alpha = std::min(alpha, e.energy->max_step(x, zero, &body_now, &body_vertices));
+      if (e.energy->bounds_steps()) alpha = std::min(alpha, e.energy->max_step(x, zero, &body_now, &to));
+    return alpha;
+  };
+  auto grow_body = [&]() {
+    const Eigen::MatrixX3d grown_by_vertex = scene_detail::grow_vertexwise(body_now, body_vertices, body_faces, x, garment_faces, growth_floor);
+    body_now += body_move_allowed(grown_by_vertex) * (grown_by_vertex - body_now);
+    const double alpha = body_move_allowed(body_vertices);
     body_now = alpha >= 1 ? body_vertices : Eigen::MatrixX3d(body_now + alpha * (body_vertices - body_now));
     grown = alpha >= 1;
     barrier_surface.update(body_now);
+    if (grown) {
+      r.grown_iteration = static_cast<int>(r.history.size());
+      // The growth pushed the cloth out through the weights with the
+      // barrier's large, brief gradients; Adam's moments remember them for
+      // hundreds of steps and would damp the minimisation on the true body
+      // that starts now (4k model, 200 test bodies: ME 2.19 -> 2.04 cm with
+      // fresh moments on the bodies finished either way).
+      adam.set_state(fresh_moments);
+    }
   };
 
   x = predict();
@@ -185,6 +214,7 @@ PhysicsOptimizationResult optimize_drape(Model& model, const Simulation& scene, 
     try {
       body_now = scene_detail::separated_start_body(x, body_vertices, body_faces, garment_faces, &r.start_shrink);
       grown = false;
+      r.grown_iteration = -1;
       start_gap = (body_vertices - body_now).norm();
       barrier_surface.update(body_now);
       with_barrier = true;

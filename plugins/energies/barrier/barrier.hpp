@@ -69,6 +69,7 @@ class BarrierContact final : public Energy {
   void bind(const EnergyContext& context) override;
   bool needs_body() const override { return true; }
   bool bounds_steps() const override { return true; }
+  double activation_distance() const override { return settings_.distance; }
   double value(const Eigen::MatrixX3d& x) const override;
   double add_gradient(const Eigen::MatrixX3d& x, Eigen::MatrixX3d& g) const override;
   void add_hessian(const Eigen::MatrixX3d& x, Triplets& h, bool project_psd = true) const override;
