@@ -49,7 +49,7 @@ double sampled_distance(const Eigen::MatrixX3d& body, const Eigen::MatrixX3i& fa
 
 }  // namespace
 
-TEST_CASE("grow_vertexwise brings a shrunk body back where the garment is far and stops at the floor where it is not",
+TEST_CASE("VertexwiseGrowth brings a shrunk body back where the garment is far and stops at the floor where it is not",
           "[barrier][vertexwise_growth]") {
   const Mesh sphere = test::uv_sphere(0.1, 16, 24);
   const Eigen::MatrixX3d target = sphere.vertices;
@@ -66,7 +66,7 @@ TEST_CASE("grow_vertexwise brings a shrunk body back where the garment is far an
   double gap = sampled_distance(now, sphere.faces, tri);
   REQUIRE(gap > 0.02);
   for (int call = 0; call < 40; ++call) {
-    const Eigen::MatrixX3d moved = scene_detail::grow_vertexwise(now, target, sphere.faces, tri, tri_faces, floor);
+    const Eigen::MatrixX3d moved = scene_detail::VertexwiseGrowth(sphere.faces, tri_faces).step(now, target, tri, floor);
     for (Eigen::Index v = 0; v < now.rows(); ++v) {
       const Eigen::RowVector3d way = target.row(v) - now.row(v), step = moved.row(v) - now.row(v);
       // Along its own way back, never past it.
@@ -97,7 +97,7 @@ TEST_CASE("grow_vertexwise brings a shrunk body back where the garment is far an
   REQUIRE(held > 0);
 }
 
-TEST_CASE("grow_vertexwise lets a body whose way ends short of the garment arrive", "[barrier][vertexwise_growth]") {
+TEST_CASE("VertexwiseGrowth lets a body whose way ends short of the garment arrive", "[barrier][vertexwise_growth]") {
   // The triangle 3 mm outside the true sphere, a floor of 4 mm: near the end of
   // its way the floor gives way to the remaining distance, and every vertex
   // arrives at its target exactly.
@@ -109,7 +109,7 @@ TEST_CASE("grow_vertexwise lets a body whose way ends short of the garment arriv
   Eigen::MatrixX3d now = 0.9 * sphere.vertices;
   int calls = 0;
   while (now != sphere.vertices && calls < 200) {
-    now = scene_detail::grow_vertexwise(now, sphere.vertices, sphere.faces, tri, tri_faces, 0.004);
+    now = scene_detail::VertexwiseGrowth(sphere.faces, tri_faces).step(now, sphere.vertices, tri, 0.004);
     ++calls;
   }
   REQUIRE(now == sphere.vertices);

@@ -85,6 +85,24 @@ Grid make_grid(const Eigen::Vector3d& lo, const Eigen::Vector3d& hi, double cell
   return grid;
 }
 
+// The box of the primitive's vertices in x, and in x_end too when given (the
+// box it sweeps over a linear move), grown by `inflate`.
+template <std::size_t K>
+Box primitive_box(const std::array<int, K>& v, const Eigen::MatrixX3d& x, const Eigen::MatrixX3d* x_end, double inflate) {
+  Box box{x.row(v[0]).transpose(), x.row(v[0]).transpose()};
+  for (std::size_t k = 0; k < K; ++k) {
+    box.lo = box.lo.cwiseMin(x.row(v[k]).transpose());
+    box.hi = box.hi.cwiseMax(x.row(v[k]).transpose());
+    if (x_end) {
+      box.lo = box.lo.cwiseMin(x_end->row(v[k]).transpose());
+      box.hi = box.hi.cwiseMax(x_end->row(v[k]).transpose());
+    }
+  }
+  box.lo.array() -= inflate;
+  box.hi.array() += inflate;
+  return box;
+}
+
 }  // namespace
 
 BoxGrid::BoxGrid(std::vector<Box> boxes, double cell_size) : boxes_(std::move(boxes)) {
@@ -189,6 +207,21 @@ std::vector<std::pair<int, int>> overlapping_boxes(const std::vector<Box>& a, co
                                                    double cell_size) {
   if (a.empty()) return {};
   return BoxGrid(b, cell_size).overlapping(a);
+}
+
+MeshBoxes mesh_boxes(const Eigen::MatrixX3d& x, const Eigen::MatrixX3d* x_end, const Eigen::MatrixX3i& faces,
+                     const std::vector<std::array<int, 2>>& edges, double inflate) {
+  MeshBoxes b;
+  b.points.resize(static_cast<std::size_t>(x.rows()));
+  b.faces.resize(static_cast<std::size_t>(faces.rows()));
+  b.edges.resize(edges.size());
+  for (Eigen::Index v = 0; v < x.rows(); ++v)
+    b.points[static_cast<std::size_t>(v)] = primitive_box(std::array<int, 1>{static_cast<int>(v)}, x, x_end, inflate);
+  for (Eigen::Index f = 0; f < faces.rows(); ++f)
+    b.faces[static_cast<std::size_t>(f)] =
+        primitive_box(std::array<int, 3>{faces(f, 0), faces(f, 1), faces(f, 2)}, x, x_end, inflate);
+  for (std::size_t e = 0; e < edges.size(); ++e) b.edges[e] = primitive_box(edges[e], x, x_end, inflate);
+  return b;
 }
 
 }  // namespace drape::geometry

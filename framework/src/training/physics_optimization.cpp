@@ -180,6 +180,7 @@ PhysicsOptimizationResult optimize_drape(Model& model, const Simulation& scene, 
   // contact's checks confirm the whole move), then the whole body on by the
   // fraction of the rest that the checks allow, which brings the closest
   // pair into the barrier's reach so that it pushes the cloth out.
+  const scene_detail::VertexwiseGrowth vertexwise_growth(body_faces, garment_faces);
   auto body_move_allowed = [&](const Eigen::MatrixX3d& to) {
     const Eigen::MatrixX3d zero = Eigen::MatrixX3d::Zero(x.rows(), 3);
     double alpha = 1;
@@ -188,8 +189,7 @@ PhysicsOptimizationResult optimize_drape(Model& model, const Simulation& scene, 
     return alpha;
   };
   auto grow_body = [&]() {
-    const Eigen::MatrixX3d grown_by_vertex =
-        scene_detail::grow_vertexwise(body_now, body_vertices, body_faces, x, garment_faces, growth_floor);
+    const Eigen::MatrixX3d grown_by_vertex = vertexwise_growth.step(body_now, body_vertices, x, growth_floor);
     body_now += body_move_allowed(grown_by_vertex) * (grown_by_vertex - body_now);
     const double alpha = body_move_allowed(body_vertices);
     body_now = alpha >= 1 ? body_vertices : Eigen::MatrixX3d(body_now + alpha * (body_vertices - body_now));

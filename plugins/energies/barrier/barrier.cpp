@@ -23,6 +23,8 @@
 namespace drape::barrier {
 
 using geometry::Box;
+using geometry::MeshBoxes;
+using geometry::mesh_boxes;
 
 // The garment's primitives and their material-space weights, and the body's
 // faces and edges: fixed at bind.
@@ -50,24 +52,6 @@ struct BarrierContact::BodyState {
 
 namespace {
 
-// The box of the primitive's vertices in x, and in x_end too when given (the
-// box it sweeps over a linear move), grown by `inflate`.
-template <std::size_t K>
-Box primitive_box(const std::array<int, K>& v, const Eigen::MatrixX3d& x, const Eigen::MatrixX3d* x_end, double inflate) {
-  Box box{x.row(v[0]).transpose(), x.row(v[0]).transpose()};
-  for (std::size_t k = 0; k < K; ++k) {
-    box.lo = box.lo.cwiseMin(x.row(v[k]).transpose());
-    box.hi = box.hi.cwiseMax(x.row(v[k]).transpose());
-    if (x_end) {
-      box.lo = box.lo.cwiseMin(x_end->row(v[k]).transpose());
-      box.hi = box.hi.cwiseMax(x_end->row(v[k]).transpose());
-    }
-  }
-  box.lo.array() -= inflate;
-  box.hi.array() += inflate;
-  return box;
-}
-
 std::array<int, 3> face(const Eigen::MatrixX3i& faces, int f) { return {faces(f, 0), faces(f, 1), faces(f, 2)}; }
 
 double median(Eigen::VectorXd values) {
@@ -75,25 +59,6 @@ double median(Eigen::VectorXd values) {
   auto middle = values.begin() + values.size() / 2;
   std::nth_element(values.begin(), middle, values.end());
   return *middle;
-}
-
-// The boxes of every vertex, face and edge of a mesh moving from x to x_end
-// (x_end null: standing), grown by `inflate`.
-struct MeshBoxes {
-  std::vector<Box> points, faces, edges;
-};
-MeshBoxes mesh_boxes(const Eigen::MatrixX3d& x, const Eigen::MatrixX3d* x_end, const Eigen::MatrixX3i& faces,
-                     const std::vector<std::array<int, 2>>& edges, double inflate) {
-  MeshBoxes b;
-  b.points.resize(static_cast<std::size_t>(x.rows()));
-  b.faces.resize(static_cast<std::size_t>(faces.rows()));
-  b.edges.resize(edges.size());
-  for (Eigen::Index v = 0; v < x.rows(); ++v)
-    b.points[static_cast<std::size_t>(v)] = primitive_box(std::array<int, 1>{static_cast<int>(v)}, x, x_end, inflate);
-  for (Eigen::Index f = 0; f < faces.rows(); ++f)
-    b.faces[static_cast<std::size_t>(f)] = primitive_box(face(faces, static_cast<int>(f)), x, x_end, inflate);
-  for (std::size_t e = 0; e < edges.size(); ++e) b.edges[e] = primitive_box(edges[e], x, x_end, inflate);
-  return b;
 }
 
 // Which of a pair's 4 points are garment vertices (the variables).

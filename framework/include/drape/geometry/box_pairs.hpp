@@ -28,6 +28,15 @@ struct Box {
 std::vector<std::pair<int, int>> overlapping_boxes(const std::vector<Box>& a, const std::vector<Box>& b,
                                                    double cell_size = 0);
 
+// The boxes of every vertex, face and edge of a mesh moving from x to x_end
+// (x_end null: standing), each grown by `inflate` on every side: the broad
+// phase's input for a contact between two meshes.
+struct MeshBoxes {
+  std::vector<Box> points, faces, edges;
+};
+MeshBoxes mesh_boxes(const Eigen::MatrixX3d& x, const Eigen::MatrixX3d* x_end, const Eigen::MatrixX3i& faces,
+                     const std::vector<std::array<int, 2>>& edges, double inflate);
+
 // The same with b's grid built once and kept: a body that stands still is
 // queried by every line-search trial, and rebuilding its grid each time cost
 // more than the query (a third of a barrier drape's time).
