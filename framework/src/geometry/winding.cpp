@@ -1,9 +1,9 @@
 // Winding numbers by signed ray crossings (drape/geometry/winding.hpp).
 #include <drape/errors.hpp>
-#include <drape/geometry/box_pairs.hpp>
 #include <drape/geometry/winding.hpp>
 
 #include "exact_orientation.hpp"
+#include "triangle_grid.hpp"
 
 #include <array>
 #include <cmath>
@@ -67,56 +67,31 @@ std::vector<int> winding_numbers(const Eigen::MatrixX3d& points, const Eigen::Ma
   std::vector<int> winding(static_cast<std::size_t>(points.rows()), 0);
   if (points.rows() == 0 || faces.rows() == 0) return winding;
 
-  std::vector<Box> triangles(static_cast<std::size_t>(faces.rows()));
+  const TriangleGrid grid(vertices, faces);
   const Eigen::Vector3d lo = vertices.colwise().minCoeff().transpose(), hi = vertices.colwise().maxCoeff().transpose();
-  for (Eigen::Index f = 0; f < faces.rows(); ++f) {
-    Box& box = triangles[static_cast<std::size_t>(f)];
-    box.lo = vertices.row(faces(f, 0)).transpose().cwiseMin(vertices.row(faces(f, 1)).transpose()).cwiseMin(
-        vertices.row(faces(f, 2)).transpose());
-    box.hi = vertices.row(faces(f, 0)).transpose().cwiseMax(vertices.row(faces(f, 1)).transpose()).cwiseMax(
-        vertices.row(faces(f, 2)).transpose());
-  }
-  const BoxGrid grid(triangles);
 
   // Points whose ray is still to be cast; each pass casts them along the next direction.
   std::vector<int> pending(static_cast<std::size_t>(points.rows()));
   for (std::size_t i = 0; i < pending.size(); ++i) pending[i] = static_cast<int>(i);
   for (const Eigen::Vector3d& direction : kDirections) {
     const Eigen::Vector3d unit = direction.normalized();
-    std::vector<Eigen::Vector3d> far(pending.size());
-    std::vector<Box> rays(pending.size());
-    for (std::size_t k = 0; k < pending.size(); ++k) {
-      const Eigen::Vector3d p = points.row(pending[k]).transpose();
-      // Far enough to leave the mesh's box from anywhere: past every corner.
-      const double reach = (hi - lo).norm() + (p - 0.5 * (lo + hi)).norm() + 1e-3;
-      far[k] = p + reach * unit;
-      rays[k] = {p.cwiseMin(far[k]), p.cwiseMax(far[k])};
-    }
-    const auto pairs = grid.overlapping(rays);  // sorted by ray
     std::vector<int> next;
-    std::size_t at = 0;
-    for (std::size_t k = 0; k < pending.size(); ++k) {
-      const Eigen::Vector3d p = points.row(pending[k]).transpose();
+    for (int i : pending) {
+      const Eigen::Vector3d p = points.row(i).transpose();
+      // Far enough to leave the mesh's box from anywhere: past every corner.
+      const Eigen::Vector3d far = p + ((hi - lo).norm() + (p - 0.5 * (lo + hi)).norm() + 1e-3) * unit;
       int count = 0;
-      bool degenerate = false, on_surface = false;
-      for (; at < pairs.size() && pairs[at].first == static_cast<int>(k); ++at) {
-        if (degenerate || on_surface) continue;
-        const Eigen::Index f = pairs[at].second;
-        switch (classify(p, far[k], vertices.row(faces(f, 0)).transpose(), vertices.row(faces(f, 1)).transpose(),
-                         vertices.row(faces(f, 2)).transpose())) {
-          case Crossing::kOut: ++count; break;
-          case Crossing::kIn: --count; break;
-          case Crossing::kDegenerate: degenerate = true; break;
-          case Crossing::kOnSurface: on_surface = true; break;
-          case Crossing::kNone: break;
-        }
-      }
-      if (on_surface)
-        winding[static_cast<std::size_t>(pending[k])] = kOnSurface;
-      else if (degenerate)
-        next.push_back(pending[k]);
-      else
-        winding[static_cast<std::size_t>(pending[k])] = count;
+      Crossing stop = Crossing::kNone;  // a degenerate crossing or p on the surface ends the ray's count
+      grid.find(p.cwiseMin(far), p.cwiseMax(far), [&](int f) {
+        const Crossing c = classify(p, far, vertices.row(faces(f, 0)).transpose(), vertices.row(faces(f, 1)).transpose(),
+                                    vertices.row(faces(f, 2)).transpose());
+        if (c == Crossing::kOut) ++count;
+        if (c == Crossing::kIn) --count;
+        if (c == Crossing::kDegenerate || c == Crossing::kOnSurface) stop = c;
+        return stop != Crossing::kNone;
+      });
+      if (stop == Crossing::kDegenerate) next.push_back(i);
+      else winding[static_cast<std::size_t>(i)] = stop == Crossing::kOnSurface ? kOnSurface : count;
     }
     pending = std::move(next);
     if (pending.empty()) return winding;
