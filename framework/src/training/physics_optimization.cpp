@@ -36,11 +36,13 @@ double potential(std::vector<NamedEnergy>& energies, const Eigen::MatrixX3d& x, 
   return total;
 }
 
-// The largest fraction of the move x -> x + dx that the step-bounding energies allow.
-double allowed_step(const std::vector<NamedEnergy>& energies, const Eigen::MatrixX3d& x, const Eigen::MatrixX3d& dx) {
+// The largest fraction of the move x -> x + dx (with the barrier's body moving
+// from body_from to body_to, when given) that the step-bounding energies allow.
+double allowed_step(const std::vector<NamedEnergy>& energies, const Eigen::MatrixX3d& x, const Eigen::MatrixX3d& dx,
+                    const Eigen::MatrixX3d* body_from = nullptr, const Eigen::MatrixX3d* body_to = nullptr) {
   double alpha = 1;
   for (const NamedEnergy& e : energies)
-    if (e.energy->bounds_steps()) alpha = std::min(alpha, e.energy->max_step(x, dx));
+    if (e.energy->bounds_steps()) alpha = std::min(alpha, e.energy->max_step(x, dx, body_from, body_to));
   return alpha;
 }
 
@@ -181,13 +183,8 @@ PhysicsOptimizationResult optimize_drape(Model& model, const Simulation& scene, 
   // fraction of the rest that the checks allow, which brings the closest
   // pair into the barrier's reach so that it pushes the cloth out.
   const scene_detail::VertexwiseGrowth vertexwise_growth(body_faces, garment_faces);
-  auto body_move_allowed = [&](const Eigen::MatrixX3d& to) {
-    const Eigen::MatrixX3d zero = Eigen::MatrixX3d::Zero(x.rows(), 3);
-    double alpha = 1;
-    for (const NamedEnergy& e : energies)
-      if (e.energy->bounds_steps()) alpha = std::min(alpha, e.energy->max_step(x, zero, &body_now, &to));
-    return alpha;
-  };
+  const Eigen::MatrixX3d cloth_still = Eigen::MatrixX3d::Zero(garment.num_vertices(), 3);
+  auto body_move_allowed = [&](const Eigen::MatrixX3d& to) { return allowed_step(energies, x, cloth_still, &body_now, &to); };
   auto grow_body = [&]() {
     const Eigen::MatrixX3d grown_by_vertex = vertexwise_growth.step(body_now, body_vertices, x, growth_floor);
     body_now += body_move_allowed(grown_by_vertex) * (grown_by_vertex - body_now);
