@@ -11,6 +11,7 @@
 #include <catch2/catch.hpp>
 
 #include <algorithm>
+#include <filesystem>
 #include <random>
 #include <thread>
 
@@ -348,4 +349,38 @@ TEST_CASE("CHOLMOD solvers ordering at the same time in two threads solve bit fo
     differing += (x[0] != alone) + (x[1] != alone);
   }
   CHECK(differing == 0);
+}
+
+namespace {
+
+// Threads of this process now (Linux: one entry per thread in /proc/self/task).
+int process_threads() {
+  int count = 0;
+  std::error_code error;
+  for (auto it = std::filesystem::directory_iterator("/proc/self/task", error);
+       !error && it != std::filesystem::directory_iterator(); it.increment(error))
+    ++count;
+  return error ? -1 : count;
+}
+
+}  // namespace
+
+TEST_CASE("a CHOLMOD factorisation and solve run on the calling thread alone", "[solver]") {
+  // Debian's CHOLMOD asks OpenMP for teams of four whatever OMP_NUM_THREADS
+  // says; woken per supernode, they cost a one-thread drape a third of its
+  // time (sparse_cholesky.cpp). The solver keeps those teams to one thread.
+  if (!physics::cholmod_available()) {
+    SUCCEED("built without CHOLMOD");
+    return;
+  }
+  // ctest runs each case in a fresh process, where no OpenMP team exists yet
+  // (the test main's own threads are counted in `before`).
+  const int before = process_threads();
+  REQUIRE(before > 0);
+  const physics::SparseMatrix lower = cloth_like_matrix(30).triangularView<Eigen::Lower>();
+  const auto solver = physics::make_sparse_cholesky("cholmod", true);
+  for (int k = 0; k < 3; ++k) REQUIRE(solver->factorize(lower));
+  const Eigen::VectorXd b = Eigen::VectorXd::Ones(lower.rows());
+  CHECK(solver->solve(b).allFinite());
+  CHECK(process_threads() == before);
 }

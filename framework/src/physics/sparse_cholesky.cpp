@@ -11,6 +11,9 @@
 #endif
 
 #include <mutex>
+#ifdef _OPENMP
+#include <omp.h>
+#endif
 
 namespace drape::physics {
 
@@ -50,6 +53,26 @@ class EigenBackedCholesky final : public SparseCholesky {
 };
 
 #ifdef DRAPE_HAVE_CHOLMOD
+// Debian's CHOLMOD (SuiteSparse 5) opens OpenMP teams of a fixed size,
+// num_threads(CHOLMOD_OMP_NUM_THREADS) = 4 at its build, around loops that
+// only clear or zero a few hundred entries, once per supernode. That clause
+// overrides OMP_NUM_THREADS, so a one-thread drape woke three helper threads
+// thousands of times per factorisation: on 2 cores, 38 % of a drape's time was
+// spent in the kernel's futex calls and libgomp's spinning (perf, default
+// shirt). The guard makes every parallel region opened inside it (on this
+// thread: the ICV is per thread) run on one thread. The loops only write
+// zeros and markers, so the factor is the same bits.
+class SerialOpenMP {
+ public:
+#ifdef _OPENMP
+  SerialOpenMP() : previous_(omp_get_max_active_levels()) { omp_set_max_active_levels(0); }
+  ~SerialOpenMP() { omp_set_max_active_levels(previous_); }
+
+ private:
+  int previous_;
+#endif
+};
+
 // Eigen keeps CHOLMOD's factor protected; this exposes it read-only.
 class SupernodalLLT final : public Eigen::CholmodSupernodalLLT<SparseMatrix, Eigen::Lower> {
  public:
@@ -76,6 +99,7 @@ class CholmodCholesky final : public SparseCholesky {
     set_blas_threads(1);
   }
   bool factorize(const SparseMatrix& a) override {
+    const SerialOpenMP serial;
     if (!key_.same(a)) {
       // METIS (CHOLMOD's nested dissection) draws from one process-wide random
       // generator: two solvers ordering at the same moment (drape generate's
@@ -104,7 +128,10 @@ class CholmodCholesky final : public SparseCholesky {
     }
     return true;
   }
-  Eigen::VectorXd solve(const Eigen::VectorXd& b) const override { return llt_.solve(b); }
+  Eigen::VectorXd solve(const Eigen::VectorXd& b) const override {
+    const SerialOpenMP serial;
+    return llt_.solve(b);
+  }
   Eigen::VectorXd precondition(const Eigen::VectorXd& r) const override {
     if (!float_preconditioner_) return solve(r);
     Eigen::VectorXd z;
