@@ -113,6 +113,8 @@ int run(const std::vector<std::string>& args) {
     std::printf("%d steps undone because they would have crossed the body (each retried shorter)\n",
                 r.refused_steps);
   if (!r.separated) std::printf("NOT separated from the body, so not a result: %s\n", r.unseparated.c_str());
+  else if (!r.stopped.empty())
+    std::printf("%s; the best drape before it is the result (iteration %d)\n", r.stopped.c_str(), r.best_iteration);
   Mesh body;
   body.vertices = batch.body.mat(0).cast<double>();
   body.faces = model.assets().body.faces;

@@ -8,12 +8,15 @@
 #include <drape/scene.hpp>
 #include <drape/trainer.hpp>
 
+#include <algorithm>
 #include <cstdio>
 #include <iomanip>
 #include <map>
 #include <memory>
 #include <mutex>
 #include <sstream>
+#include <string>
+#include <vector>
 
 namespace drape::cli {
 
@@ -70,6 +73,7 @@ std::size_t optimize_dataset(const Registry& registry, const OptimizeDatasetOpti
   bar_options.start = source.size() - todo.size();
   ProgressBar bar("optimize", source.size(), std::cerr, bar_options);
   std::mutex io;  // the HDF5 files are read and written by one thread at a time
+  std::vector<std::string> stopped;  // samples whose optimisation a failure ended early (under io)
   make_samples_in_parallel(writer, bar, todo, threads, [&]() -> SampleWorker {
     // Each worker fine-tunes its own copy of the network, restored before every sample.
     auto model = std::make_shared<Model>(Model::load(registry, o.model));
@@ -105,6 +109,9 @@ std::size_t optimize_dataset(const Registry& registry, const OptimizeDatasetOpti
       {
         const std::lock_guard<std::mutex> lock(io);
         writer.write(local, sample);
+        if (!r.stopped.empty())
+          stopped.push_back("sample " + std::to_string(index) + (r.separated ? " (a result: its best drape came before)" : "") +
+                            ": " + r.stopped);
       }
       std::ostringstream status;
       status << "last: L_p " << std::setprecision(4) << r.potential_before << " -> " << r.potential_after << " J, "
@@ -113,6 +120,12 @@ std::size_t optimize_dataset(const Registry& registry, const OptimizeDatasetOpti
       bar.advance();
     };
   });
+  if (!stopped.empty()) {
+    std::sort(stopped.begin(), stopped.end());
+    std::fprintf(stderr, "%zu optimisations stopped before their iterations (written; not results unless said):\n",
+                 stopped.size());
+    for (const std::string& line : stopped) std::fprintf(stderr, "  %s\n", line.c_str());
+  }
   return todo.size();
 }
 

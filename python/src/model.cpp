@@ -120,6 +120,7 @@ py::dict result_dict(PhysicsOptimizationResult&& r) {
   d["grown_iteration"] = r.grown_iteration;
   d["separated"] = r.separated;
   d["unseparated"] = r.unseparated;
+  d["stopped"] = r.stopped;
   return d;
 }
 

@@ -99,6 +99,7 @@ def test_optimize_lowers_the_scene_potential(tmp_path):
     else:
         pytest.fail("the shipped model's prediction crosses every candidate body: add one it is clear of")
     assert len(r["history"]) == 4 and r["separated"]
+    assert r["stopped"] == ""  # every iteration ran
     # The potential optimize reports is the sum of the scene's energies, computed here through Scene.energies.
     energies = scene.energies(body.astype(np.float64))
     before = sum(e.value(r["before"]) for e in energies.values())

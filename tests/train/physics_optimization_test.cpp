@@ -183,3 +183,81 @@ TEST_CASE("optimize_drape with a barrier ends clear of the body whatever the lea
     if (lr > 0.5) CHECK(r.refused_steps > 0);
   }
 }
+
+namespace {
+
+// An energy of nothing that fails from its n-th gradient on, as the barrier
+// does when rounding has let a pair reach distance 0: a failure on a drape the
+// collision checks accepted.
+class FailsAfter final : public Energy {
+ public:
+  explicit FailsAfter(int calls) : calls_left_(calls) {}
+  void bind(const EnergyContext&) override {}
+  double value(const Eigen::MatrixX3d&) const override { return 0; }
+  double add_gradient(const Eigen::MatrixX3d&, Eigen::MatrixX3d&) const override {
+    if (calls_left_-- <= 0) throw Error("test: garment vertex 7 touches the body (distance 0)");
+    return 0;
+  }
+  void add_hessian(const Eigen::MatrixX3d&, Triplets&, bool) const override {}
+
+ private:
+  mutable int calls_left_;
+};
+
+// The shipped plugins and `fails_after`.
+Registry& plugins_with_a_failing_energy() {
+  static Registry* r = [] {
+    auto* reg = new Registry;  // kept for the run, as plugins() is
+    reg->load_path({DRAPE_BUILD_PLUGIN_DIR});
+    PluginDescriptor d;
+    d.kind = "energy";
+    d.name = "fails_after";
+    d.doc = "test: throws from the given gradient call on";
+    d.params = {{"calls", ParamType::Int, "1", "gradient calls that succeed", 0.0}};
+    d.create_energy = [](const Params& p) { return std::make_unique<FailsAfter>(static_cast<int>(p.get_int("calls"))); };
+    reg->add(d);
+    return reg;
+  }();
+  return *r;
+}
+
+}  // namespace
+
+TEST_CASE("a failure in the middle of optimize_drape ends that optimisation only and keeps the drapes before it",
+          "[optimize][barrier]") {
+  // drape optimize --data runs hundreds of these: one failure must cost one
+  // sample, not the run (it used to rethrow and stop every worker).
+  TinyModel tiny;
+  const Registry& registry = plugins_with_a_failing_energy();
+  BodyRequest request;
+  request.bmi = 27;  // the prediction starts a little inside: the barrier's body starts shrunk
+  for (const int calls : {2, 90}) {
+    const Simulation scene(registry, tiny_physics_scene("barrier: {}\n  fails_after: {calls: " + std::to_string(calls) + "}"));
+    Model model = Model::load(registry, tiny.file, assets_cache());
+    const SampleBatch body = model.body_for(request);
+    PhysicsOptimizationOptions o;
+    o.iterations = 100;
+    o.learning_rate = 1e-2;
+    PhysicsOptimizationResult r;
+    REQUIRE_NOTHROW(r = optimize_drape(model, scene, body, o));
+    INFO("calls " << calls << ": " << r.stopped << "; grown at " << r.grown_iteration << ", best " << r.best_iteration);
+    CHECK_THAT(r.stopped, Catch::Contains("touches the body"));
+    // One gradient for the prediction, one against the shrunk body, then one per drape.
+    CHECK(static_cast<int>(r.history.size()) == calls - 1);
+    for (double lp : r.history) CHECK(std::isfinite(lp));
+    CHECK(r.after.allFinite());
+    // The model predicts the drape returned, not the step that failed.
+    CHECK((model.predict(body).mat(0).cast<double>() - r.after).cwiseAbs().maxCoeff() == 0.0);
+    if (calls == 2) {
+      // Stopped before the body was back: not a result, and it says why.
+      CHECK_FALSE(r.separated);
+      CHECK_THAT(r.unseparated, Catch::Contains("stopped after iteration 0"));
+    } else {
+      // Stopped after it: the best drape on the true body stands.
+      REQUIRE(r.grown_iteration > 0);
+      CHECK(r.separated);
+      CHECK(r.best_iteration >= r.grown_iteration);
+      CHECK(clear_of_body(r.after, scene.garment().mesh, body, model));
+    }
+  }
+}

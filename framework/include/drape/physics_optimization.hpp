@@ -43,6 +43,11 @@ struct PhysicsOptimizationResult {
   int grown_iteration = 0;
   bool separated = true;
   std::string unseparated;
+  // Empty, or why the optimisation ended before its iterations: an energy or
+  // the network failed on a drape the collision checks had let through (the
+  // barrier's "touches the body" at distance 0). The drapes before it stand:
+  // a best drape on the true body is still a result.
+  std::string stopped;
 };
 
 // A scene with a barrier (an energy that bounds steps): no accepted drape
@@ -56,7 +61,10 @@ struct PhysicsOptimizationResult {
 // the calling thread alone (OpenMP set to one thread for the call). `body` holds
 // one sample (SampleBatch::body [1, Nb, 3], body_params when the graph takes
 // them). ConfigError when the scene's garment is not the model's template
-// (another vertex count or other faces); Error when an energy stops being finite.
+// (another vertex count or other faces); Error when the prediction or an
+// energy is not finite before the first step. A failure after it ends this
+// optimisation only (`stopped`), so that a caller optimising many drapes
+// loses one sample, not the run.
 PhysicsOptimizationResult optimize_drape(Model& model, const Simulation& scene, const SampleBatch& body,
                                          const PhysicsOptimizationOptions& options = {});
 

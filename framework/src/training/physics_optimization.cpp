@@ -159,7 +159,9 @@ PhysicsOptimizationResult optimize_drape(Model& model, const Simulation& scene, 
   WeightSnapshot best_weights;
   std::vector<EnergyTerm> terms;  // of the latest drape
   auto evaluate = [&](int it) {
-    const double lp = potential(energies, x, gradient, &terms, with_barrier);
+    std::vector<EnergyTerm> evaluated_terms;  // kept only once the whole potential is known
+    const double lp = potential(energies, x, gradient, &evaluated_terms, with_barrier);
+    terms = std::move(evaluated_terms);
     r.history.push_back(lp);
     if (options.on_iteration) options.on_iteration(it, lp);
     if (it == 0) {
@@ -225,37 +227,52 @@ PhysicsOptimizationResult optimize_drape(Model& model, const Simulation& scene, 
   if (with_barrier) accepted.save(adam);
   double scale = 1;  // of the learning rate, halved at each refused step
   int refused_in_a_row = 0;
-  for (int it = 1; it <= options.iterations;) {
-    grad.mat(0) = gradient.cast<float>();
-    graph.zero_grad();
-    graph.backward_from_output(model.output(), grad);
-    adam.step(options.learning_rate * scale);
-    Eigen::MatrixX3d next = predict();
-    const double allowed = with_barrier ? allowed_step(energies, x, next - x) : 1.0;
-    if (allowed < 1) {
-      ++r.refused_steps;
-      if (++refused_in_a_row > kMaxRefusalsInARow) break;  // stuck against the body: the best drape stands
-      accepted.restore(adam);
-      x = predict();  // the accepted drape again, and the activations its backward pass needs
-      // From the restored moments Adam's step is proportional to the learning
-      // rate, so to first order the drape then moves by that fraction of
-      // next - x: retry at a little less than the fraction the collision
-      // checks allow, and at least halve (the network is not linear in its
-      // weights). Halving alone took several refusals per contact-bound step.
-      scale *= std::clamp(kAllowedStepShare * allowed, kSmallestRetry, 0.5);
-      continue;
+  Eigen::MatrixX3d evaluated = x;  // the last drape whose potential is known
+  try {
+    for (int it = 1; it <= options.iterations;) {
+      grad.mat(0) = gradient.cast<float>();
+      graph.zero_grad();
+      graph.backward_from_output(model.output(), grad);
+      adam.step(options.learning_rate * scale);
+      Eigen::MatrixX3d next = predict();
+      const double allowed = with_barrier ? allowed_step(energies, x, next - x) : 1.0;
+      if (allowed < 1) {
+        ++r.refused_steps;
+        if (++refused_in_a_row > kMaxRefusalsInARow) break;  // stuck against the body: the best drape stands
+        accepted.restore(adam);
+        x = predict();  // the accepted drape again, and the activations its backward pass needs
+        // From the restored moments Adam's step is proportional to the learning
+        // rate, so to first order the drape then moves by that fraction of
+        // next - x: retry at a little less than the fraction the collision
+        // checks allow, and at least halve (the network is not linear in its
+        // weights). Halving alone took several refusals per contact-bound step.
+        scale *= std::clamp(kAllowedStepShare * allowed, kSmallestRetry, 0.5);
+        continue;
+      }
+      refused_in_a_row = 0;
+      scale = std::min(1.0, 2 * scale);
+      x = std::move(next);
+      if (with_barrier && !grown) grow_body();
+      evaluate(it++);
+      evaluated = x;
+      if (with_barrier) accepted.save(adam);
     }
-    refused_in_a_row = 0;
-    scale = std::min(1.0, 2 * scale);
-    x = std::move(next);
-    if (with_barrier) {
-      if (!grown) grow_body();
-      accepted.save(adam);
-    }
-    evaluate(it++);
+  } catch (const Error& e) {
+    // One sample's failure (a pair at distance 0 that rounding let through
+    // the checks: the barrier cannot be evaluated there) must not end a run
+    // of hundreds. The drapes evaluated before stand; `grown` and the best
+    // drape are only ever set from those.
+    r.stopped = "stopped after iteration " + std::to_string(r.history.size() - 1) + ": " + e.what();
+    x = evaluated;
   }
-  r.separated = !bounded || (with_barrier && grown);
-  if (r.separated && r.best_iteration + 1 != static_cast<int>(r.history.size())) best_weights.restore(adam);
+  // A stop in the growth can leave `grown` set with no drape evaluated on the
+  // true body: only an evaluated best is a result.
+  r.separated = !bounded || (with_barrier && grown && std::isfinite(best));
+  // After a stop the model holds the weights of the step that failed.
+  const bool weights_past_last_drape = !r.stopped.empty();
+  if (r.separated && (weights_past_last_drape || r.best_iteration + 1 != static_cast<int>(r.history.size())))
+    best_weights.restore(adam);
+  if (!r.separated && weights_past_last_drape && with_barrier) accepted.restore(adam);
   if (!r.separated) {
     // No drape on the true body that is known to be clear of it: return the
     // last one, and say why it is not a result.
@@ -272,6 +289,7 @@ PhysicsOptimizationResult optimize_drape(Model& model, const Simulation& scene, 
                     100 * r.start_shrink, 100 * (1 - left), options.iterations);
       r.unseparated = why;
     }
+    if (!r.stopped.empty()) r.unseparated = r.stopped;
   }
   r.penetration_before = geometry::penetration_ratio(surface, r.before);
   r.penetration_after = geometry::penetration_ratio(surface, r.after);
