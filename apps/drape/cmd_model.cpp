@@ -35,6 +35,13 @@ void print_domain(const ModelDomain& d) {
                 d.params[p].min == d.params[p].max ? "  (fixed)" : "");
   std::printf("  a body farther than %.2f cm (RMS over %zu vertices) from every training body is outside\n",
               100 * d.neighbour_limit, d.descriptor_vertices.size());
+  if (d.placement.allFinite())
+    std::printf("  the training bodies stood at x %.4f, z %.4f (mean of the vertices), soles at y %.4f m (each within "
+                "%.1f, %.1f, %.1f mm of that); a body given elsewhere is moved there to be draped\n",
+                d.placement[0], d.placement[2], d.placement[1], 1000 * d.placement_spread[0], 1000 * d.placement_spread[2],
+                1000 * d.placement_spread[1]);
+  else
+    std::printf("  where the training bodies stood is not recorded (drape model domain adds it)\n");
 }
 
 int info(const std::vector<std::string>& args) {

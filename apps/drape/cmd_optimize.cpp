@@ -85,7 +85,8 @@ int run(const std::vector<std::string>& args) {
   Registry& registry = Registry::load_default(plugin_path(vm));
   Model model = Model::load(registry, model_file);
   const Simulation scene(registry, load_scene(vm["scene"].as<std::string>()));
-  const SampleBatch batch = model_body(model, vm);
+  Eigen::RowVector3d moved_by;  // the drape is made where the training bodies stood; written back where the body was
+  const SampleBatch batch = model_body(model, vm, &moved_by);
 
   PhysicsOptimizationOptions o;
   o.iterations = vm["iters"].as<int>();
@@ -116,15 +117,15 @@ int run(const std::vector<std::string>& args) {
   else if (!r.stopped.empty())
     std::printf("%s; the best drape before it is the result (iteration %d)\n", r.stopped.c_str(), r.best_iteration);
   Mesh body;
-  body.vertices = batch.body.mat(0).cast<double>();
+  body.vertices = batch.body.mat(0).cast<double>().rowwise() + moved_by;
   body.faces = model.assets().body.faces;
   Mesh out = scene.garment().mesh;
-  out.vertices = r.after;
+  out.vertices = r.after.rowwise() + moved_by;
   write_mesh(vm["out"].as<std::string>(), out);
   std::printf("wrote %s\n", vm["out"].as<std::string>().c_str());
   if (vm.count("before")) {
     Mesh before = out;
-    before.vertices = r.before;
+    before.vertices = r.before.rowwise() + moved_by;
     write_mesh(vm["before"].as<std::string>(), before);
     std::printf("wrote %s\n", vm["before"].as<std::string>().c_str());
   }

@@ -53,12 +53,33 @@ std::string model_file_or_default(const po::variables_map& vm) {
   return file;
 }
 
-SampleBatch model_body(const Model& model, const po::variables_map& vm) {
+SampleBatch model_body(const Model& model, const po::variables_map& vm, Eigen::RowVector3d* moved_by) {
   SampleBatch batch = body_of(model, vm);
   add_garment_size(model, vm, batch);
+  const Eigen::RowVector3d moved = place_like_training(model, batch);
+  if (moved_by) *moved_by = moved;
   check_domain(model, batch, vm.count("strict") > 0);
   note_fit(model, batch);
   return batch;
+}
+
+Eigen::RowVector3d place_like_training(const Model& model, SampleBatch& batch) {
+  const std::optional<ModelDomain> domain = read_domain(model.file());
+  if (!domain) return Eigen::RowVector3d::Zero();
+  const Eigen::MatrixX3d body = batch.body.mat(0).cast<double>();
+  const std::optional<Eigen::Vector3d> offset = placement_offset(*domain, body);
+  if (!offset) return Eigen::RowVector3d::Zero();
+  // The shape is what the network knows; where the body stands is only a
+  // translation. Draped where the training bodies stood, the garment then
+  // moves back with the body: the same drape as for the body placed right.
+  batch.body.mat(0) = (body.rowwise() - offset->transpose()).cast<float>();
+  char line[400];
+  std::snprintf(line, sizeof line,
+                "note: the body stands (%+.3f, %+.3f, %+.3f) m from where %s's training bodies stood (centred in x "
+                "and z, soles at y = %.3f); it is draped there and the garment moved back with it\n",
+                (*offset)[0], (*offset)[1], (*offset)[2], model.file().filename().string().c_str(), domain->placement[1]);
+  std::cerr << line;
+  return offset->transpose();
 }
 
 void note_fit(const Model& model, const SampleBatch& batch) {

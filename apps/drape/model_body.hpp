@@ -12,7 +12,16 @@ namespace drape::cli {
 // One sample. ConfigError for a mesh of the wrong vertex count, or a mesh
 // given to a graph that takes body parameters. A model trained on several
 // garment sizes also gets --garment-size.
-SampleBatch model_body(const Model& model, const po::variables_map& vm);
+// A body given away from where the model's training bodies stood (lifted,
+// or centred elsewhere: model_domain.hpp's placement) is moved there, with a
+// note; *moved_by (when given) is what to add to the outputs to move them
+// back with the body (zero when it was not moved).
+SampleBatch model_body(const Model& model, const po::variables_map& vm, Eigen::RowVector3d* moved_by = nullptr);
+
+// The move itself: translates batch's one body to the training bodies'
+// placement when the model records it and the body stands outside it;
+// returns what to add to outputs to move them back (zero: not moved).
+Eigen::RowVector3d place_like_training(const Model& model, SampleBatch& batch);
 
 // Warns on stderr, naming the measure and the trained range, when the body
 // lies outside the model's training domain (model_domain.hpp); with strict

@@ -28,6 +28,14 @@ std::pair<double, double> training_growth(int n_train, std::uint64_t seed = 3) {
   return {lo, hi};
 }
 
+// All of them, in order.
+std::vector<double> training_growths(int n_train, std::uint64_t seed = 3) {
+  Rng rng(seed);
+  std::vector<double> s;
+  for (int i = 0; i < n_train; ++i) s.push_back(1.0 + rng.uniform(0.0, 0.2));
+  return s;
+}
+
 Eigen::MatrixX3d grown(const Eigen::MatrixX3d& body, double s) {
   const Eigen::RowVector3d c = body.colwise().mean();
   return c.replicate(body.rows(), 1) + s * (body.rowwise() - c);
@@ -100,6 +108,51 @@ TEST_CASE("model domain: ranges of a dataset's training bodies, and the bodies o
     params(P - 1) += 1.0;
     CHECK(mentions(domain_violations(d, grown(mean, lo), faces, &params), "shape parameter 'p" + std::to_string(P - 1) + "'"));
   }
+  SECTION("where the training bodies stood, and a body standing elsewhere") {
+    // Grown about its centroid, body i keeps the mean body's centroid and
+    // has its soles at cy + s_i (y_min - cy).
+    const Eigen::RowVector3d c = mean.colwise().mean();
+    const double y_min = mean.col(1).minCoeff();
+    double y_mean = 0, y_spread = 0;
+    const std::vector<double> s = training_growths(8);
+    for (double si : s) y_mean += (c[1] + si * (y_min - c[1])) / static_cast<double>(s.size());
+    for (double si : s) y_spread = std::max(y_spread, std::abs(c[1] + si * (y_min - c[1]) - y_mean));
+    CHECK(d.placement[0] == Approx(c[0]).margin(1e-6));
+    CHECK(d.placement[1] == Approx(y_mean).margin(1e-6));
+    CHECK(d.placement[2] == Approx(c[2]).margin(1e-6));
+    CHECK(d.placement_spread[0] == Approx(0).margin(1e-6));
+    CHECK(d.placement_spread[1] == Approx(y_spread).margin(1e-6));
+    CHECK(y_spread > 1e-3);  // the test means something: the soles differ
+
+    const Eigen::MatrixX3d inside = grown(mean, 0.5 * (lo + hi));
+    CHECK_FALSE(placement_offset(d, inside));
+    Eigen::MatrixX3d lifted = inside;
+    lifted.col(1).array() += 5.0;
+    const auto up = placement_offset(d, lifted);
+    REQUIRE(up);
+    // Only the axis outside the spread: x and z are the body's own.
+    CHECK((*up)[0] == 0.0);
+    CHECK((*up)[2] == 0.0);
+    CHECK((*up)[1] == Approx(5.0 + lifted.col(1).minCoeff() - 5.0 - y_mean).margin(1e-9));
+    Eigen::MatrixX3d aside = inside;
+    aside.col(0).array() += 0.3;
+    const auto moved = placement_offset(d, aside);
+    REQUIRE(moved);
+    CHECK((*moved)[0] == Approx(0.3).margin(1e-9));
+    CHECK((*moved)[1] == 0.0);
+    // Inside by shape, the lifted body is not a violation: it is only moved.
+    CHECK(domain_violations(d, lifted, faces, nullptr).empty());
+
+    ModelDomain unrecorded = d;
+    unrecorded.placement.setConstant(std::numeric_limits<double>::quiet_NaN());
+    CHECK_FALSE(placement_offset(unrecorded, lifted));
+  }
+  SECTION("a mesh in millimetres, or lying along z, is named as such") {
+    CHECK(mentions(domain_violations(d, 1000.0 * grown(mean, lo), faces, nullptr), "millimetres"));
+    Eigen::MatrixX3d z_up = grown(mean, lo);
+    z_up.col(1).swap(z_up.col(2));
+    CHECK(mentions(domain_violations(d, z_up, faces, nullptr), "longer along z than along y"));
+  }
   SECTION("written into a file and read back unchanged") {
     {
       h5::File f = h5::File::create(dir / "m.h5");
@@ -114,6 +167,22 @@ TEST_CASE("model domain: ranges of a dataset's training bodies, and the bodies o
     CHECK(back->descriptors == d.descriptors);
     CHECK(back->neighbour_limit == d.neighbour_limit);
     CHECK(back->descriptor_vertices == d.descriptor_vertices);
+    CHECK(back->placement == d.placement);
+    CHECK(back->placement_spread == d.placement_spread);
+  }
+  SECTION("a file from before the placement was recorded reads without it") {
+    ModelDomain old = d;
+    old.placement.setConstant(std::numeric_limits<double>::quiet_NaN());
+    {
+      h5::File f = h5::File::create(dir / "old.h5");
+      write_domain(f, old);
+      f.close();
+    }
+    const auto back = read_domain(dir / "old.h5");
+    REQUIRE(back);
+    CHECK_FALSE(h5::File::open(dir / "old.h5").exists("/domain/placement"));
+    CHECK_FALSE(back->placement.allFinite());
+    CHECK(back->descriptors == d.descriptors);
   }
 }
 
@@ -144,6 +213,35 @@ TEST_CASE("drape model domain records it; predict warns outside it and --strict 
                     out) == 2);
   CHECK_THAT(out, Catch::Contains("--strict: the body is outside the model's training domain"));
   CHECK(!fs::exists(dir / "g2.obj"));
+
+  // A body inside the domain but standing 2 m up (a mesh placed by another
+  // tool) is draped where the training bodies stood and the garment moved
+  // back: the prediction for the body with its soles where theirs were (the
+  // mean of their lowest y), lifted with the body.
+  const auto domain = read_domain(model);
+  REQUIRE(domain);
+  REQUIRE(domain->placement.allFinite());
+  const auto assets = test::tiny_assets();
+  Mesh in_place = assets->body;
+  in_place.vertices = grown(assets->body.vertices, 1.1);
+  in_place.vertices.col(1).array() += domain->placement[1] - in_place.vertices.col(1).minCoeff();
+  Mesh lifted = in_place;
+  lifted.vertices.col(1).array() += 2.0;
+  write_mesh(dir / "in_place.obj", in_place);
+  write_mesh(dir / "lifted.obj", lifted);
+  REQUIRE(test::run(test::drape_command("predict --model " + model.string() + " --body " + (dir / "in_place.obj").string() +
+                                        " --out " + (dir / "g_in_place.obj").string()),
+                    out) == 0);
+  CHECK_THAT(out, !Catch::Contains("stands"));
+  REQUIRE(test::run(test::drape_command("predict --model " + model.string() + " --strict --body " +
+                                        (dir / "lifted.obj").string() + " --out " + (dir / "g_lifted.obj").string()),
+                    out) == 0);
+  CHECK_THAT(out, Catch::Contains("note: the body stands (+0.000, +2.000, +0.000) m from where model.h5's training bodies stood"));
+  const Eigen::MatrixX3d a = read_mesh(dir / "g_in_place.obj").vertices, b = read_mesh(dir / "g_lifted.obj").vertices;
+  REQUIRE(a.rows() == b.rows());
+  CHECK((b.col(1).array() - 2.0 - a.col(1).array()).abs().maxCoeff() < 1e-5);
+  CHECK((b.leftCols(1) - a.leftCols(1)).cwiseAbs().maxCoeff() < 1e-6);
+  CHECK((b.rightCols(1) - a.rightCols(1)).cwiseAbs().maxCoeff() < 1e-6);
 }
 
 TEST_CASE("drape train records the domain of its training split in the model", "[train][domain][cli]") {

@@ -13,11 +13,13 @@
 //   /domain/measure_range   f64 [2, 2]   min, max of height (m) and BMI
 //   /domain/descriptors     f32 [n, 3K]  K body vertices of each training body
 //   /domain/descriptor_vertices i32 [K]  which vertices
+//   /domain/placement       f64 [2, 3]   where the training bodies stood (optional)
 #include <drape/dataset.hpp>
 
 #include <Eigen/Core>
 
 #include <filesystem>
+#include <limits>
 #include <optional>
 #include <string>
 #include <vector>
@@ -41,7 +43,25 @@ struct ModelDomain {
   // nearest other training body, times a margin (model_domain.cpp).
   double neighbour_limit = 0;
   std::size_t samples = 0;
+  // Where the training bodies stood (body_placement): the mean over them, and
+  // the largest distance of one of them from it on each axis. NaN in files
+  // written before 2026-11-27, which do not record it.
+  Eigen::Vector3d placement = Eigen::Vector3d::Constant(std::numeric_limits<double>::quiet_NaN());
+  Eigen::Vector3d placement_spread = Eigen::Vector3d::Constant(std::numeric_limits<double>::quiet_NaN());
 };
+
+// Where a body stands: the mean x and z of its vertices and its lowest y (m).
+// A network sees absolute coordinates, so a body lifted or moved aside from
+// where its training bodies stood is a body it has never seen, although its
+// shape (the descriptor, centred) is inside the domain.
+Eigen::Vector3d body_placement(const Eigen::MatrixX3d& body);
+
+// How far (m, per axis) a body stands from where the training bodies stood,
+// on the axes where it is outside their spread by more than kPlacementSlack
+// (0 on the others); nullopt when inside it on every axis, or when the
+// domain records no placement.
+constexpr double kPlacementSlack = 0.005;
+std::optional<Eigen::Vector3d> placement_offset(const ModelDomain& domain, const Eigen::MatrixX3d& body);
 
 // The domain of a dataset's training split (its done samples with split
 // train), or of the part of it drape train --fraction trains on (the first

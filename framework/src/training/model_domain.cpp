@@ -87,6 +87,8 @@ ModelDomain domain_of_dataset(const DatasetReader& data, const std::string& body
     throw ConfigError("the dataset stores " + std::to_string(P) + " body parameters; the body model '" + body_model +
                       "' has " + std::to_string(param_names.size()));
   d.params.assign(static_cast<std::size_t>(P), {});
+  std::vector<Eigen::Vector3d> placements;
+  placements.reserve(train.size());
   const int nb = data.layout().body_vertices;
   d.descriptor_vertices = descriptor_vertices(nb);
   d.descriptors.resize(static_cast<Eigen::Index>(train.size()), static_cast<Eigen::Index>(3 * d.descriptor_vertices.size()));
@@ -103,8 +105,13 @@ ModelDomain domain_of_dataset(const DatasetReader& data, const std::string& body
       widen(d.bmi, body_bmi(v, body_faces), s == 0);
       for (int p = 0; p < P; ++p) widen(d.params[static_cast<std::size_t>(p)], params(static_cast<int>(s), 0, p), s == 0);
       d.descriptors.row(static_cast<Eigen::Index>(s)) = descriptor(v, d.descriptor_vertices).transpose();
+      placements.push_back(body_placement(v));
     }
   }
+  d.placement.setZero();
+  for (const Eigen::Vector3d& p : placements) d.placement += p / static_cast<double>(placements.size());
+  d.placement_spread.setZero();
+  for (const Eigen::Vector3d& p : placements) d.placement_spread = d.placement_spread.cwiseMax((p - d.placement).cwiseAbs());
   // The largest gap from a training body to its nearest other one.
   double widest = 0;
   for (Eigen::Index i = 0; i < d.descriptors.rows(); ++i) {
@@ -116,6 +123,22 @@ ModelDomain domain_of_dataset(const DatasetReader& data, const std::string& body
   // One training body: allow what a fitted shape differs by (1 cm).
   d.neighbour_limit = std::max(kNeighbourMargin * widest, 0.01);
   return d;
+}
+
+Eigen::Vector3d body_placement(const Eigen::MatrixX3d& body) {
+  const Eigen::RowVector3d mean = body.colwise().mean();
+  return {mean[0], body.col(1).minCoeff(), mean[2]};
+}
+
+std::optional<Eigen::Vector3d> placement_offset(const ModelDomain& domain, const Eigen::MatrixX3d& body) {
+  if (!domain.placement.allFinite() || !domain.placement_spread.allFinite() || body.rows() == 0) return std::nullopt;
+  Eigen::Vector3d offset = body_placement(body) - domain.placement;
+  // Only the axes on which the body stands outside the training bodies'
+  // spread: a body only lifted keeps its own x and z.
+  for (int a = 0; a < 3; ++a)
+    if (std::abs(offset[a]) <= domain.placement_spread[a] + kPlacementSlack) offset[a] = 0;
+  if (offset.isZero()) return std::nullopt;
+  return offset;
 }
 
 double distance_to_training(const ModelDomain& domain, const Eigen::MatrixX3d& body) {
@@ -133,7 +156,18 @@ std::vector<std::string> domain_violations(const ModelDomain& domain, const Eige
   // mesh writer's rounding) must not fall out.
   auto within = [](double v, const ValueRange& r, double slack) { return v >= r.min - slack && v <= r.max + slack; };
   const double h = body_height(body), bmi = body_bmi(body, faces);
-  if (!within(h, domain.height, 0.005)) out.push_back(outside("height", h, domain.height, " m"));
+  if (!within(h, domain.height, 0.005)) {
+    std::string why = outside("height", h, domain.height, " m");
+    // The usual reasons a mesh of the right topology is far off in size.
+    if (h > 50 * domain.height.max) why += " (a mesh in millimetres or centimetres? drape works in metres)";
+    out.push_back(why);
+  }
+  const Eigen::RowVector3d extent = body.colwise().maxCoeff() - body.colwise().minCoeff();
+  // Lying down (Z up, or on its side): longer along z than along y, or much
+  // longer along x (an A-pose's arm span is well under its height).
+  if (extent[2] > extent[1] || extent[0] > 1.3 * extent[1])
+    out.push_back(std::string("the body is longer along ") + (extent[2] > extent[1] ? "z" : "x") +
+                  " than along y (its height): drape's bodies stand along y (Y up, A-pose), as the body model makes them");
   if (!within(bmi, domain.bmi, 0.1)) out.push_back(outside("BMI", bmi, domain.bmi, ""));
   if (params && static_cast<std::size_t>(params->size()) == domain.params.size())
     for (std::size_t p = 0; p < domain.params.size(); ++p) {
@@ -176,6 +210,11 @@ void write_domain(h5::File& file, const ModelDomain& d) {
   file.write("/domain/descriptors", {static_cast<std::size_t>(rows.rows()), static_cast<std::size_t>(rows.cols())}, rows.data());
   const std::vector<std::int32_t> vertices(d.descriptor_vertices.begin(), d.descriptor_vertices.end());
   file.write("/domain/descriptor_vertices", vertices);
+  if (d.placement.allFinite() && d.placement_spread.allFinite()) {
+    const std::vector<double> placement{d.placement[0],        d.placement[1],        d.placement[2],
+                                        d.placement_spread[0], d.placement_spread[1], d.placement_spread[2]};
+    file.write("/domain/placement", {2, 3}, placement.data());
+  }
 }
 
 std::optional<ModelDomain> read_domain(const h5::File& file) {
@@ -204,6 +243,15 @@ std::optional<ModelDomain> read_domain(const h5::File& file) {
                       std::to_string(3 * vertices.size()) + "]");
   d.descriptors = Eigen::Map<const Eigen::Matrix<float, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>>(
       rows.data(), static_cast<Eigen::Index>(shape[0]), static_cast<Eigen::Index>(shape[1]));
+  if (file.exists("/domain/placement")) {
+    const std::vector<double> placement = file.read<double>("/domain/placement", &shape);
+    if (shape.size() != 2 || shape[0] != 2 || shape[1] != 3 ||
+        !std::all_of(placement.begin(), placement.end(), [](double v) { return std::isfinite(v); }))
+      throw ConfigError(file.path().string() + ": /domain/placement has shape " + h5::to_string(shape) +
+                        " or non-finite values, expected [2, 3] finite numbers");
+    d.placement = Eigen::Vector3d(placement[0], placement[1], placement[2]);
+    d.placement_spread = Eigen::Vector3d(placement[3], placement[4], placement[5]);
+  }
   return d;
 }
 
