@@ -105,6 +105,26 @@ TEST_CASE("mesh garment: a tube from an OBJ with a UV pattern drapes on the para
   CHECK(worst < 0.2);
 }
 
+TEST_CASE("mesh garment: a loose tube slides off the legs and the run says it fell off the body", "[garments][mesh]") {
+  // Wider than the legs below the hips: nothing holds it (no friction).
+  test::TempDir dir;
+  write_mesh(dir / "loose.obj", tube(24, 3, 0.45, 0.30, 0.45));
+  const std::string text = "body: {model: parametric}\n"
+                           "garment: {template: mesh, params: {file: " + (dir / "loose.obj").string() + "}}\n"
+                           "effects: {gravity: {}, stretching: {}, bending: {}, barrier: {}}\n"
+                           "solver: {morph_steps: 2, settle_steps: 40}\n";
+  const Simulation sim(test::plugins(), parse_scene(text));
+  BodyRequest r;
+  r.bmi = 28;
+  const Eigen::MatrixX3d body = sim.body_vertices(sim.shape_for(r));
+  const SimulationResult result = sim.run(body);
+  CHECK_FALSE(result.converged);
+  CHECK(result.garment.col(1).maxCoeff() < body.col(1).minCoeff());
+  CHECK_THAT(result.unsettled, Catch::Contains("the garment fell off the body"));
+  // It stopped once it was off, not after the whole budget.
+  CHECK(result.steps < 2 + 40);
+}
+
 TEST_CASE("mesh garment: material space from the rest shape needs no UVs", "[garments][mesh]") {
   test::TempDir dir;
   Mesh plain = tube();

@@ -198,6 +198,7 @@ SimulationResult Simulation::run(const Eigen::MatrixX3d& target_body, const Simu
     result.stationarity = solver.stationarity(x, kink_radius);
     result.at_rest = r.max_displacement <= solver.settings().rest_displacement;
     record(morph_steps_ + k, false, r, result.stationarity);
+    if (scene_detail::fell_off_body(x, target_body)) break;  // falling on: nothing can bring it back
   }
   // At rest counts only near equilibrium: a stall with large unbalanced forces is not a drape.
   result.converged = result.stationarity <= settle_tolerance || (result.at_rest && result.stationarity <= at_rest_limit);
@@ -208,7 +209,7 @@ SimulationResult Simulation::run(const Eigen::MatrixX3d& target_body, const Simu
   if (!result.converged) {
     const double ease = garment_ease(garment_->mesh.vertices, garment_->mesh.faces, mean_body_, target_body, body_model_->faces());
     result.unsettled =
-        scene_detail::why_unsettled(result, x, settle_tolerance, result.steps - morph_steps_, at_rest_limit, ease);
+        scene_detail::why_unsettled(result, x, settle_tolerance, result.steps - morph_steps_, at_rest_limit, ease, target_body);
   }
   result.garment = x;
   result.body = target_body;

@@ -11,8 +11,22 @@
 
 namespace drape::scene_detail {
 
+bool fell_off_body(const Eigen::MatrixX3d& x, const Eigen::MatrixX3d& body) {
+  return x.rows() > 0 && body.rows() > 0 && x.col(1).maxCoeff() < body.col(1).minCoeff();
+}
+
 std::string why_unsettled(const SimulationResult& result, const Eigen::MatrixX3d& x, double tolerance, int settle_steps,
-                          double at_rest_limit, double ease) {
+                          double at_rest_limit, double ease, const Eigen::MatrixX3d& body) {
+  if (fell_off_body(x, body)) {
+    char fell[400];
+    std::snprintf(fell, sizeof fell,
+                  "the garment fell off the body: all of it is below the body's lowest point (its top %.2f m below the "
+                  "soles after %d settling steps). Nothing held it up: the contact has no friction, so a garment stays "
+                  "on only if it hangs from the shoulders or is tight enough to grip the body (a smaller size, or a "
+                  "garment that reaches the shoulders)",
+                  body.col(1).minCoeff() - x.col(1).maxCoeff(), settle_steps);
+    return fell;
+  }
   char head[300];
   if (result.at_rest)
     std::snprintf(head, sizeof head,

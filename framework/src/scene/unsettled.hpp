@@ -3,7 +3,8 @@
 // against the tolerance, the region of the largest unbalanced forces, and
 // whether the steps had stopped moving (line searches finding no decrease),
 // and whether the garment is smaller than the body (`ease`, garment_size.hpp:
-// negative when its girth is below the body's; NaN when not measured).
+// negative when its girth is below the body's; NaN when not measured), or
+// whether it fell off the body.
 #include <drape/simulation.hpp>
 
 #include <string>
@@ -11,6 +12,12 @@
 namespace drape::scene_detail {
 
 std::string why_unsettled(const SimulationResult& result, const Eigen::MatrixX3d& x, double tolerance, int settle_steps,
-                          double at_rest_limit, double ease);
+                          double at_rest_limit, double ease, const Eigen::MatrixX3d& body);
+
+// The garment has fallen off the body: all of it below the body's lowest
+// point (a loose tube slides down over the hips and legs: the contact has no
+// friction, so only a garment that hangs from the shoulders or grips the
+// body stays on it). Nothing can bring it back, so the settling stops.
+bool fell_off_body(const Eigen::MatrixX3d& x, const Eigen::MatrixX3d& body);
 
 }  // namespace drape::scene_detail
