@@ -7,6 +7,11 @@
 #include "../../framework/src/physics/sparse_cholesky.hpp"
 
 #include <dlfcn.h>
+#include <unistd.h>
+
+#include <cstdio>
+#include <fstream>
+#include <iterator>
 
 #include <catch2/catch.hpp>
 
@@ -383,4 +388,38 @@ TEST_CASE("a CHOLMOD factorisation and solve run on the calling thread alone", "
   const Eigen::VectorXd b = Eigen::VectorXd::Ones(lower.rows());
   CHECK(solver->solve(b).allFinite());
   CHECK(process_threads() == before);
+}
+
+TEST_CASE("a matrix that is not positive definite is refused by CHOLMOD without a word on the terminal", "[solver]") {
+  // The solver answers a failed factorisation by shifting the diagonal; the
+  // library's own warning only alarmed users.
+  if (!physics::cholmod_available()) {
+    SUCCEED("built without CHOLMOD");
+    return;
+  }
+  physics::SparseMatrix indefinite = cloth_like_matrix(12).triangularView<Eigen::Lower>();
+  for (int k = 0; k < indefinite.rows(); k += 7) indefinite.coeffRef(k, k) = -1.0;
+  // CHOLMOD prints through printf: both of the terminal's streams are captured.
+  test::TempDir dir;
+  const std::string captured = (dir / "printed.txt").string();
+  std::fflush(stdout);
+  std::fflush(stderr);
+  const int saved_out = dup(1), saved_err = dup(2);
+  FILE* sink = std::fopen(captured.c_str(), "w");
+  REQUIRE(sink);
+  dup2(fileno(sink), 1);
+  dup2(fileno(sink), 2);
+  const auto solver = physics::make_sparse_cholesky("cholmod", true);
+  const bool factored = solver->factorize(indefinite);
+  std::fflush(stdout);
+  std::fflush(stderr);
+  dup2(saved_out, 1);
+  dup2(saved_err, 2);
+  close(saved_out);
+  close(saved_err);
+  std::fclose(sink);
+  CHECK_FALSE(factored);
+  std::ifstream in(captured);
+  const std::string printed((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  CHECK(printed.empty());
 }

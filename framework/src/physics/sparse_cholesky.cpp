@@ -91,6 +91,10 @@ class CholmodCholesky final : public SparseCholesky {
     cholmod_common& common = llt_.cholmod();
     common.nmethods = 1;
     common.method[0].ordering = CHOLMOD_NESDIS;
+    // A matrix that is not positive definite is an answer (factorize returns
+    // false and the solver shifts the diagonal), not an error for the user's
+    // terminal: CHOLMOD printed "warning: matrix not positive definite" there.
+    common.print = 0;
     // One BLAS thread inside CHOLMOD, for every solver: these factorisations
     // are too small to gain from more (measured the same time), OpenBLAS's idle
     // threads spin against one-solver-per-core jobs (drape generate: 13.6 s
