@@ -8,6 +8,7 @@
 #include <drape/errors.hpp>
 #include <drape/graph.hpp>
 #include <drape/model.hpp>
+#include <drape/model_domain.hpp>
 #include <drape/physics_optimization.hpp>
 
 #include <chrono>
@@ -60,6 +61,40 @@ class PyModel {
   }
   std::uint64_t last_forward() const { return forward_id_; }
 
+  // The model file's training domain, read once; none for an untrained model
+  // or a file written before domains were recorded.
+  const std::optional<ModelDomain>& domain() {
+    std::lock_guard lock(mutex_);
+    if (!domain_read_) {
+      domain_read_ = true;
+      if (!model_->file().empty() && fs::exists(model_->file())) domain_ = read_domain(model_->file());
+    }
+    return domain_;
+  }
+
+  // As drape predict does (model_domain.hpp, placement): each body standing
+  // away from where the training bodies stood is moved there, with a Python
+  // warning; returns per sample what to add to its garment to move it back.
+  std::vector<Eigen::RowVector3f> place_like_training(SampleBatch& b) {
+    std::vector<Eigen::RowVector3f> back(static_cast<std::size_t>(b.size()), Eigen::RowVector3f::Zero());
+    const std::optional<ModelDomain>& d = domain();
+    if (!d) return back;
+    for (int i = 0; i < b.size(); ++i) {
+      const Eigen::MatrixX3d body = b.body.mat(i).cast<double>();
+      const std::optional<Eigen::Vector3d> offset = placement_offset(*d, body);
+      if (!offset) continue;
+      b.body.mat(i) = (body.rowwise() - offset->transpose()).cast<float>();
+      back[static_cast<std::size_t>(i)] = offset->transpose().cast<float>();
+      char line[300];
+      std::snprintf(line, sizeof line,
+                    "body %d stands (%+.3f, %+.3f, %+.3f) m from where the model's training bodies stood; it is draped "
+                    "there and the garment moved back with it",
+                    i, (*offset)[0], (*offset)[1], (*offset)[2]);
+      py::module_::import("warnings").attr("warn")(line);
+    }
+    return back;
+  }
+
   // dL/dweights for a gradient of the garment, accumulated into the weights'
   // grad arrays (zeroed first). The graph keeps the state of its last forward;
   // when another forward ran since `forward_id` (a gradient check's
@@ -85,6 +120,8 @@ class PyModel {
   std::unique_ptr<Model> model_;
   std::mutex mutex_;
   std::uint64_t forwards_ = 0, forward_id_ = 0;
+  bool domain_read_ = false;
+  std::optional<ModelDomain> domain_;
 };
 
 Model::ParamOverrides overrides_of(const py::dict& d) {
@@ -203,11 +240,29 @@ void register_model(py::module_& m) {
           "predict",
           [](PyModel& p, const py::handle& body, const py::handle& body_params, const py::handle& garment_size) {
             bool batched = false;
-            const SampleBatch b = p.batch(body, body_params, garment_size, &batched);
-            return to_numpy(p.predict(b), !batched);
+            SampleBatch b = p.batch(body, body_params, garment_size, &batched);
+            const std::vector<Eigen::RowVector3f> back = p.place_like_training(b);
+            Tensor out = p.predict(b);
+            for (int i = 0; i < out.batch(); ++i) out.mat(i).rowwise() += back[static_cast<std::size_t>(i)];
+            return to_numpy(std::move(out), !batched);
           },
           py::arg("body_vertices"), py::arg("body_params") = py::none(), py::arg("garment_size") = py::none(),
-          "float32 garments [Ng, 3] for a body [Nb, 3], or [n, Ng, 3] for a batch [n, Nb, 3]. The GIL is released.")
+          "float32 garments [Ng, 3] for a body [Nb, 3], or [n, Ng, 3] for a batch [n, Nb, 3]. A body standing away from "
+          "where the training bodies stood is draped there and its garment moved back (a warning says so). The GIL is "
+          "released.")
+      .def(
+          "domain_check",
+          [](PyModel& p, const py::handle& body) {
+            bool batched = false;
+            const Tensor t = vertices_batch_arg(body, "body_vertices", p.model().assets().body.num_vertices(), &batched);
+            if (t.batch() != 1) throw py::value_error("body_vertices: domain_check takes one body [Nb, 3]");
+            const std::optional<ModelDomain>& d = p.domain();
+            if (!d) return std::vector<std::string>{"the model records no training domain (drape model domain adds it)"};
+            return domain_violations(*d, t.mat(0).cast<double>(), p.model().assets().body.faces, nullptr);
+          },
+          py::arg("body_vertices"),
+          "[str]: how a body [Nb, 3] lies outside the model's training domain, one line per measure (as drape predict "
+          "warns); empty when inside")
       .def(
           "optimize",
           [](PyModel& p, const PyScene& scene, const py::handle& body, const py::handle& body_params, int iterations,

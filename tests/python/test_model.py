@@ -35,6 +35,32 @@ def test_batched_predict_equals_one_by_one(model):
     np.testing.assert_allclose(model.predict(bodies[0].astype(np.float64)), batch[0], atol=1e-5)
 
 
+def test_a_lifted_body_is_draped_where_the_training_bodies_stood(model, tmp_path):
+    # The network reads absolute coordinates: a body 5 m up is moved down for
+    # the prediction and its garment moved back, as drape predict does.
+    body = model.body(bmi=30)
+    lifted = body + np.array([0.0, 5.0, 0.0], dtype=np.float32)
+    with pytest.warns(UserWarning, match=r"stands \(\+0\.000, \+5\.000, \+0\.000\) m"):
+        garment = model.predict(lifted)
+    np.testing.assert_allclose(garment - np.array([0.0, 5.0, 0.0]), model.predict(body), atol=2e-5)
+    # In a batch, only the sample that stands elsewhere moves.
+    with pytest.warns(UserWarning, match="body 1 stands"):
+        both = model.predict(np.stack([body, lifted]))
+    np.testing.assert_allclose(both[1] - np.array([0.0, 5.0, 0.0]), both[0], atol=2e-5)
+    # The program agrees.
+    drape.write_obj(tmp_path / "lifted.obj", lifted, model.assets.body_faces)
+    run_drape("predict", "--model", SHIPPED, "--body", tmp_path / "lifted.obj", "--out", tmp_path / "g.obj")
+    expected, _ = read_obj(tmp_path / "g.obj")
+    np.testing.assert_allclose(garment, expected, atol=2e-5)
+
+
+def test_domain_check_names_what_lies_outside(model):
+    body = model.body(bmi=30)
+    assert model.domain_check(body) == []
+    assert any("millimetres" in line for line in model.domain_check(1000 * body))
+    assert any("longer along z" in line for line in model.domain_check(body[:, [0, 2, 1]]))
+
+
 def test_weights_are_the_files(model):
     weights = model.weights()
     with h5py.File(SHIPPED, "r") as f:
