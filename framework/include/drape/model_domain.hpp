@@ -62,6 +62,10 @@ Eigen::Vector3d body_placement(const Eigen::MatrixX3d& body);
 // domain records no placement.
 constexpr double kPlacementSlack = 0.005;
 std::optional<Eigen::Vector3d> placement_offset(const ModelDomain& domain, const Eigen::MatrixX3d& body);
+// The same against any reference placement and spread (drape simulate --body
+// against the body model's mean body).
+std::optional<Eigen::Vector3d> placement_offset(const Eigen::Vector3d& reference, const Eigen::Vector3d& spread,
+                                                const Eigen::MatrixX3d& body);
 
 // The domain of a dataset's training split (its done samples with split
 // train), or of the part of it drape train --fraction trains on (the first

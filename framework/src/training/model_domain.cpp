@@ -130,15 +130,20 @@ Eigen::Vector3d body_placement(const Eigen::MatrixX3d& body) {
   return {mean[0], body.col(1).minCoeff(), mean[2]};
 }
 
-std::optional<Eigen::Vector3d> placement_offset(const ModelDomain& domain, const Eigen::MatrixX3d& body) {
-  if (!domain.placement.allFinite() || !domain.placement_spread.allFinite() || body.rows() == 0) return std::nullopt;
-  Eigen::Vector3d offset = body_placement(body) - domain.placement;
-  // Only the axes on which the body stands outside the training bodies'
-  // spread: a body only lifted keeps its own x and z.
+std::optional<Eigen::Vector3d> placement_offset(const Eigen::Vector3d& reference, const Eigen::Vector3d& spread,
+                                                const Eigen::MatrixX3d& body) {
+  if (!reference.allFinite() || !spread.allFinite() || body.rows() == 0) return std::nullopt;
+  Eigen::Vector3d offset = body_placement(body) - reference;
+  // Only the axes on which the body stands outside the spread: a body only
+  // lifted keeps its own x and z.
   for (int a = 0; a < 3; ++a)
-    if (std::abs(offset[a]) <= domain.placement_spread[a] + kPlacementSlack) offset[a] = 0;
+    if (std::abs(offset[a]) <= spread[a] + kPlacementSlack) offset[a] = 0;
   if (offset.isZero()) return std::nullopt;
   return offset;
+}
+
+std::optional<Eigen::Vector3d> placement_offset(const ModelDomain& domain, const Eigen::MatrixX3d& body) {
+  return placement_offset(domain.placement, domain.placement_spread, body);
 }
 
 double distance_to_training(const ModelDomain& domain, const Eigen::MatrixX3d& body) {
