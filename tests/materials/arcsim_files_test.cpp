@@ -214,6 +214,15 @@ TEST_CASE("arcsim files: bad files are rejected naming the file, the line and th
   CHECK_THAT(e, Catch::Contains("m.json:2") && Catch::Contains("`density` must be > 0"));
   e = file_error(dir, "m.json", arcsim_text(13, "    [25e-6, 18e-6, 16e-6, -25e-6, 9e-6],"));
   CHECK_THAT(e, Catch::Contains("m.json:13") && Catch::Contains("`bending[1][3]` must be >= 0 N*m, got -25e-6"));
+  // Values no cloth or sheet has: a typo or a unit mistake, named before anything is simulated.
+  e = file_error(dir, "m.json", arcsim_text(2, "  \"density\": 1e30,"));
+  CHECK_THAT(e, Catch::Contains("m.json:2") && Catch::Contains("`density` is 1e+30 kg/m^2, beyond any cloth"));
+  e = file_error(dir, "m.json", arcsim_text(7, "    [120, 2e9, 360, 40],"));
+  CHECK_THAT(e, Catch::Contains("m.json:7") && Catch::Contains("`stretching[3][1]` is 2e+09 N/m, beyond any cloth"));
+  e = file_error(dir, "m.json", arcsim_text(13, "    [25e-6, 18e-6, 16e-6, 5e3, 9e-6],"));
+  CHECK_THAT(e, Catch::Contains("m.json:13") && Catch::Contains("`bending[1][3]` is 5000 N*m, beyond any cloth"));
+  // A steel sheet is still a material (7.8 kg/m^2, 2e8 N/m).
+  CHECK(file_error(dir, "m.json", arcsim_text(2, "  \"density\": 7.8,")) == "(no exception)");
 
   // The zero-strain row: ArcSim clamps negatives to 0, leaving no stiffness at rest.
   e = file_error(dir, "m.json", arcsim_text(4, "    [-20, -10, 30, 40],"));

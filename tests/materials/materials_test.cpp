@@ -167,6 +167,11 @@ TEST_CASE("materials: bad values name file, line and key", "[materials]") {
   CHECK_THAT(e, Catch::Contains("m.yaml:2") && Catch::Contains("`density` must be > 0"));
   e = load_error(dir, "m.yaml", "a:\n  density: heavy\n" + full);
   CHECK_THAT(e, Catch::Contains("m.yaml:2") && Catch::Contains("`density` must be a number, got 'heavy'"));
+  e = load_error(dir, "m.yaml", "a:\n  density: 187\n" + full);  // g/m^2 written as kg/m^2
+  CHECK_THAT(e, Catch::Contains("m.yaml:2") && Catch::Contains("`density` is 187 kg/m^2, beyond any cloth") &&
+                    Catch::Contains("unit mistake"));
+  e = load_error(dir, "m.yaml", "a:\n  base: gray-interlock-linear\n  stretch: [16, -14, 3.4e10, 36]\n");
+  CHECK_THAT(e, Catch::Contains("m.yaml:3") && Catch::Contains("`stretch[2]` is 3.4e+10 N/m"));
 
   e = load_error(dir, "m.yaml", "a:\n  base: gray-interlock-linear\n\n  stretch: [16, -14, 34]\n");
   CHECK_THAT(e, Catch::Contains("m.yaml:4") && Catch::Contains("`stretch` must be a list of 4 numbers") &&

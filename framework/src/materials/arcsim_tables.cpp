@@ -22,7 +22,8 @@ std::string kind_of(const YAML::Node& n) {
 // The rows of an R x C table of numbers; `shape` ("6x4 ...") goes into every message.
 template <std::size_t R, std::size_t C>
 std::array<std::array<double, C>, R> table(const std::string& file, const YAML::Node& n, const std::string& owner,
-                                           const std::string& key, const std::string& shape) {
+                                           const std::string& key, const std::string& shape, double limit,
+                                           const char* unit) {
   const std::string expected = " (expected " + std::to_string(R) + "x" + std::to_string(C) + ": " + shape + ")";
   if (!n.IsSequence())
     throw ConfigError(at(file, n), owner + ": `" + key + "` must be a list of " + std::to_string(R) + " rows of " +
@@ -39,7 +40,11 @@ std::array<std::array<double, C>, R> table(const std::string& file, const YAML::
     if (row.size() != C)
       throw ConfigError(at(file, row), owner + ": `" + row_key + "` has " + std::to_string(row.size()) + " numbers" +
                                            expected);
-    for (std::size_t c = 0; c < C; ++c) out[r][c] = number(file, row[c], owner, row_key + "[" + std::to_string(c) + "]");
+    for (std::size_t c = 0; c < C; ++c) {
+      const std::string cell = row_key + "[" + std::to_string(c) + "]";
+      out[r][c] = number(file, row[c], owner, cell);
+      check_cloth_range(out[r][c], limit, file, row[c], owner, cell, unit);
+    }
   }
   return out;
 }
@@ -48,7 +53,8 @@ std::array<std::array<double, C>, R> table(const std::string& file, const YAML::
 
 std::array<Eigen::Vector4d, 6> stretching_table(const std::string& file, const YAML::Node& n, const std::string& owner) {
   const auto rows = table<6, 4>(file, n, owner, "stretching",
-                                "[k_uu, k_uv, k_vv, k_shear] in N/m at zero strain, then at 5 stretch directions");
+                                "[k_uu, k_uv, k_vv, k_shear] in N/m at zero strain, then at 5 stretch directions",
+                                kMaxStretch, "N/m");
   std::array<Eigen::Vector4d, 6> out;
   for (std::size_t r = 0; r < 6; ++r) out[r] = Eigen::Vector4d(rows[r][0], rows[r][1], rows[r][2], rows[r][3]);
   check_zero_strain_row(out[0], at(file, n[0]), owner);
@@ -57,7 +63,8 @@ std::array<Eigen::Vector4d, 6> stretching_table(const std::string& file, const Y
 
 std::array<std::array<double, 5>, 3> bending_table(const std::string& file, const YAML::Node& n, const std::string& owner) {
   const auto rows = table<3, 5>(file, n, owner, "bending",
-                                "N*m at 3 edge directions (0, 45, 90 degrees) x 5 curvatures (0 to 40 1/m)");
+                                "N*m at 3 edge directions (0, 45, 90 degrees) x 5 curvatures (0 to 40 1/m)",
+                                kMaxBending, "N*m");
   for (std::size_t r = 0; r < 3; ++r)
     for (std::size_t c = 0; c < 5; ++c)
       if (rows[r][c] < 0) {

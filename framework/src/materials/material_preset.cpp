@@ -54,6 +54,15 @@ double number(const std::string& file, const YAML::Node& n, const std::string& o
   return v;
 }
 
+void check_cloth_range(double v, double limit, const std::string& file, const YAML::Node& n, const std::string& owner,
+                       const std::string& key, const char* unit) {
+  if (std::abs(v) <= limit) return;
+  std::ostringstream s;
+  s << owner << ": `" << key << "` is " << v << " " << unit << ", beyond any cloth or sheet drape simulates (at most "
+    << limit << " " << unit << "; ArcSim's measured materials are far below): a typo or a unit mistake?";
+  throw ConfigError(yaml::at(file, n), s.str());
+}
+
 double positive(const std::string& file, const YAML::Node& n, const std::string& owner, const std::string& key,
                 const char* unit) {
   const double v = number(file, n, owner, key);
@@ -152,6 +161,7 @@ void parse_fields(const YAML::Node& body, const std::string& file, const std::st
       p.base_where = at(file, value);
     } else if (key == "density") {
       p.density = positive(file, value, owner, key, "kg/m^2");
+      check_cloth_range(*p.density, kMaxDensity, file, value, owner, key, "kg/m^2");
     } else if (key == "thickness") {
       p.thickness = positive(file, value, owner, key, "m");
     } else if (key == "bending" && p.model == Material::Model::Arcsim) {
@@ -159,13 +169,17 @@ void parse_fields(const YAML::Node& body, const std::string& file, const std::st
     } else if (key == "bending") {
       const double b = number(file, value, owner, key);
       if (b < 0) throw ConfigError(at(file, value), owner + ": `bending` must be >= 0 N*m, got " + value.Scalar());
+      check_cloth_range(b, kMaxBending, file, value, owner, key, "N*m");
       p.bending = b;
     } else if (key == "stretch") {
       if (!value.IsSequence() || value.size() != 4)
         throw ConfigError(at(file, value), owner + ": `stretch` must be a list of 4 numbers [k_uu, k_uv, k_vv, k_shear] in N/m" +
                                                (value.IsSequence() ? ", got " + std::to_string(value.size()) : std::string()));
       Eigen::Vector4d k;
-      for (int i = 0; i < 4; ++i) k[i] = number(file, value[i], owner, "stretch");
+      for (int i = 0; i < 4; ++i) {
+        k[i] = number(file, value[i], owner, "stretch");
+        check_cloth_range(k[i], kMaxStretch, file, value[i], owner, "stretch[" + std::to_string(i) + "]", "N/m");
+      }
       check_stretch(k, at(file, value), owner);
       p.stretch = k;
     } else if (key == "stretching") {

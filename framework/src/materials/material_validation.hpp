@@ -22,6 +22,17 @@ inline constexpr double kDefaultArcsimThickness = 4.7e-4;  // m
 // "material 'name'" or "inline material".
 std::string owner_of(const std::string& preset_name);
 
+// Beyond these a value is not a cloth's (nor a sheet's) but a typo or a unit
+// mistake, and it would only surface later as a drape that "does not fit":
+// ArcSim's materials span 0.07-0.32 kg/m^2, 170-1.8e6 N/m and up to 4e-4 N*m;
+// a 1 mm steel sheet is 7.8 kg/m^2, 2e8 N/m and 17 N*m.
+inline constexpr double kMaxDensity = 100;     // kg/m^2
+inline constexpr double kMaxStretch = 1e9;     // N/m, any stretching coefficient's magnitude
+inline constexpr double kMaxBending = 1e3;     // N*m
+// ConfigError at n unless |v| <= limit, naming the key, the unit and the limit.
+void check_cloth_range(double v, double limit, const std::string& file, const YAML::Node& n, const std::string& owner,
+                       const std::string& key, const char* unit);
+
 // A finite number ("`key` must be a number, got 'x'" otherwise).
 double number(const std::string& file, const YAML::Node& n, const std::string& owner, const std::string& key);
 // The same, > 0; `unit` is shown in the message.
