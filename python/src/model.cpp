@@ -268,8 +268,10 @@ void register_model(py::module_& m) {
           [](PyModel& p, const PyScene& scene, const py::handle& body, const py::handle& body_params, int iterations,
              double learning_rate) {
             bool batched = false;
-            const SampleBatch b = p.batch(body, body_params, py::none(), &batched);
+            SampleBatch b = p.batch(body, body_params, py::none(), &batched);
             if (b.size() != 1) throw py::value_error("body_vertices: optimize takes one body [Nb, 3], got a batch of " + std::to_string(b.size()));
+            // Optimised where the training bodies stood (as predict), the drapes moved back with the body.
+            const Eigen::RowVector3d back = p.place_like_training(b).front().cast<double>();
             if (iterations < 0) throw py::value_error("iterations: expected >= 0");
             PhysicsOptimizationOptions o;
             o.iterations = iterations;
@@ -280,6 +282,8 @@ void register_model(py::module_& m) {
               std::lock_guard lock(p.mutex());
               r = optimize_drape(p.model(), *scene.simulation, b, o);
             }
+            r.before.rowwise() += back;
+            r.after.rowwise() += back;
             return result_dict(std::move(r));
           },
           py::arg("scene"), py::arg("body_vertices"), py::arg("body_params") = py::none(), py::arg("iterations") = 100,

@@ -54,6 +54,18 @@ def test_a_lifted_body_is_draped_where_the_training_bodies_stood(model, tmp_path
     np.testing.assert_allclose(garment, expected, atol=2e-5)
 
 
+def test_optimize_moves_a_lifted_body_like_predict(tmp_path):
+    # Its own copy: optimize changes the weights in place.
+    m = drape.Model.load(str(SHIPPED))
+    body = m.body(bmi=30)
+    lifted = body + np.array([0.0, 5.0, 0.0], dtype=np.float32)
+    scene = drape.Scene(str(SOURCE / "graphs" / "scenes" / "tshirt_coarse.yaml"))
+    with pytest.warns(UserWarning, match="stands"):
+        r = m.optimize(scene, lifted, iterations=0)
+    np.testing.assert_allclose(r["before"] - np.array([0.0, 5.0, 0.0]), m.predict(body), atol=2e-5)
+    np.testing.assert_allclose(r["after"], r["before"], atol=0)
+
+
 def test_domain_check_names_what_lies_outside(model):
     body = model.body(bmi=30)
     assert model.domain_check(body) == []
