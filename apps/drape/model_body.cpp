@@ -56,15 +56,15 @@ std::string model_file_or_default(const po::variables_map& vm) {
 SampleBatch model_body(const Model& model, const po::variables_map& vm, Eigen::RowVector3d* moved_by) {
   SampleBatch batch = body_of(model, vm);
   add_garment_size(model, vm, batch);
-  const Eigen::RowVector3d moved = place_like_training(model, batch);
+  const std::optional<ModelDomain> domain = read_domain(model.file());
+  const Eigen::RowVector3d moved = place_like_training(model, domain, batch);
   if (moved_by) *moved_by = moved;
-  check_domain(model, batch, vm.count("strict") > 0);
+  check_domain(model, domain, batch, vm.count("strict") > 0);
   note_fit(model, batch);
   return batch;
 }
 
-Eigen::RowVector3d place_like_training(const Model& model, SampleBatch& batch) {
-  const std::optional<ModelDomain> domain = read_domain(model.file());
+Eigen::RowVector3d place_like_training(const Model& model, const std::optional<ModelDomain>& domain, SampleBatch& batch) {
   if (!domain) return Eigen::RowVector3d::Zero();
   const Eigen::MatrixX3d body = batch.body.mat(0).cast<double>();
   const std::optional<Eigen::Vector3d> offset = placement_offset(*domain, body);
@@ -97,8 +97,7 @@ void note_fit(const Model& model, const SampleBatch& batch) {
   std::cerr << line;
 }
 
-void check_domain(const Model& model, const SampleBatch& batch, bool strict) {
-  const std::optional<ModelDomain> domain = read_domain(model.file());
+void check_domain(const Model& model, const std::optional<ModelDomain>& domain, const SampleBatch& batch, bool strict) {
   const std::string name = model.file().filename().string();
   if (!domain) {
     std::cerr << "note: " << name << " records no training domain, so a body outside it cannot be told (drape model "

@@ -6,6 +6,7 @@
 #include "command.hpp"
 
 #include <drape/model.hpp>
+#include <drape/model_domain.hpp>
 
 namespace drape::cli {
 
@@ -19,15 +20,17 @@ namespace drape::cli {
 SampleBatch model_body(const Model& model, const po::variables_map& vm, Eigen::RowVector3d* moved_by = nullptr);
 
 // The move itself: translates batch's one body to the training bodies'
-// placement when the model records it and the body stands outside it;
-// returns what to add to outputs to move them back (zero: not moved).
-Eigen::RowVector3d place_like_training(const Model& model, SampleBatch& batch);
+// placement when the domain (the model's, read_domain) records it and the
+// body stands outside it; returns what to add to outputs to move them back
+// (zero: not moved).
+Eigen::RowVector3d place_like_training(const Model& model, const std::optional<ModelDomain>& domain, SampleBatch& batch);
 
 // Warns on stderr, naming the measure and the trained range, when the body
-// lies outside the model's training domain (model_domain.hpp); with strict
-// (the commands' --strict) a ConfigError instead, so the command exits 2.
+// lies outside the model's training domain (`domain`, read_domain of the
+// model file: model_domain.hpp); with strict (the commands' --strict) a
+// ConfigError instead, so the command exits 2.
 // model_body calls it, reading --strict from vm.
-void check_domain(const Model& model, const SampleBatch& batch, bool strict);
+void check_domain(const Model& model, const std::optional<ModelDomain>& domain, const SampleBatch& batch, bool strict);
 
 // A note on stderr when the model's garment (one size) is smaller around than
 // the body by the tailor's rule (garment_size.hpp): what the model predicts for
