@@ -172,6 +172,8 @@ TEST_CASE("materials: bad values name file, line and key", "[materials]") {
                     Catch::Contains("unit mistake"));
   e = load_error(dir, "m.yaml", "a:\n  base: gray-interlock-linear\n  stretch: [16, -14, 3.4e10, 36]\n");
   CHECK_THAT(e, Catch::Contains("m.yaml:3") && Catch::Contains("`stretch[2]` is 3.4e+10 N/m"));
+  e = load_error(dir, "m.yaml", "a:\n  base: gray-interlock\n  multipliers: {stretch: 1e30}\n");
+  CHECK_THAT(e, Catch::Contains("m.yaml:3") && Catch::Contains("`multipliers.stretch` is 1e+30"));
 
   e = load_error(dir, "m.yaml", "a:\n  base: gray-interlock-linear\n\n  stretch: [16, -14, 34]\n");
   CHECK_THAT(e, Catch::Contains("m.yaml:4") && Catch::Contains("`stretch` must be a list of 4 numbers") &&

@@ -221,6 +221,7 @@ void parse_multipliers(const YAML::Node& body, const std::string& file, const st
   for (const auto& kv : m) {
     const std::string key = kv.first.as<std::string>();
     const double factor = positive(file, kv.second, owner, "multipliers." + key, "(a factor)");
+    check_cloth_range(factor, kMaxMultiplier, file, kv.second, owner, "multipliers." + key, "(a factor)");
     if (body[field_of.at(key)])
       throw ConfigError(at(file, kv.first), owner + ": `multipliers." + key + "` and `" + field_of.at(key) +
                                                 "` both given; set the value or scale the base's, not both");

@@ -29,6 +29,7 @@ std::string owner_of(const std::string& preset_name);
 inline constexpr double kMaxDensity = 100;     // kg/m^2
 inline constexpr double kMaxStretch = 1e9;     // N/m, any stretching coefficient's magnitude
 inline constexpr double kMaxBending = 1e3;     // N*m
+inline constexpr double kMaxMultiplier = 1e6;  // a `multipliers` factor (the shipped print is 100x stiffer)
 // ConfigError at n unless |v| <= limit, naming the key, the unit and the limit.
 void check_cloth_range(double v, double limit, const std::string& file, const YAML::Node& n, const std::string& owner,
                        const std::string& key, const char* unit);
