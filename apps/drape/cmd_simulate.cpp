@@ -78,12 +78,11 @@ int run(const std::vector<std::string>& args) {
     // 6.6 s). It is draped where the body model's bodies stand and the
     // results moved back.
     const Eigen::Vector3d reference = body_placement(sim->mean_body());
-    if (const auto offset = placement_offset(reference, Eigen::Vector3d::Constant(kBodyModelPlacementSpread), target)) {
+    if (const auto offset = move_to_placement(reference, Eigen::Vector3d::Constant(kBodyModelPlacementSpread), target)) {
       moved_by = offset->transpose();
-      target.rowwise() -= moved_by;
-      std::printf("note: the body stands (%+.3f, %+.3f, %+.3f) m from where the body model's bodies stand (soles at "
-                  "y = %.3f, centred in x and z); it is draped there and the results moved back with it\n",
-                  moved_by[0], moved_by[1], moved_by[2], reference[1]);
+      char where[120];
+      std::snprintf(where, sizeof where, "the body model's bodies stand (soles at y = %.3f, centred in x and z)", reference[1]);
+      std::printf("note: the body %s\n", placement_note(*offset, where).c_str());
     }
   } else {
     target = sim->body_vertices(sim->target_shape());

@@ -66,19 +66,17 @@ SampleBatch model_body(const Model& model, const po::variables_map& vm, Eigen::R
 
 Eigen::RowVector3d place_like_training(const Model& model, const std::optional<ModelDomain>& domain, SampleBatch& batch) {
   if (!domain) return Eigen::RowVector3d::Zero();
-  const Eigen::MatrixX3d body = batch.body.mat(0).cast<double>();
-  const std::optional<Eigen::Vector3d> offset = placement_offset(*domain, body);
-  if (!offset) return Eigen::RowVector3d::Zero();
   // The shape is what the network knows; where the body stands is only a
   // translation. Draped where the training bodies stood, the garment then
   // moves back with the body: the same drape as for the body placed right.
-  batch.body.mat(0) = (body.rowwise() - offset->transpose()).cast<float>();
-  char line[400];
-  std::snprintf(line, sizeof line,
-                "note: the body stands (%+.3f, %+.3f, %+.3f) m from where %s's training bodies stood (centred in x "
-                "and z, soles at y = %.3f); it is draped there and the garment moved back with it\n",
-                (*offset)[0], (*offset)[1], (*offset)[2], model.file().filename().string().c_str(), domain->placement[1]);
-  std::cerr << line;
+  Eigen::MatrixX3d body = batch.body.mat(0).cast<double>();
+  const std::optional<Eigen::Vector3d> offset = move_to_placement(*domain, body);
+  if (!offset) return Eigen::RowVector3d::Zero();
+  batch.body.mat(0) = body.cast<float>();
+  char where[160];
+  std::snprintf(where, sizeof where, "%s's training bodies stood (centred in x and z, soles at y = %.3f)",
+                model.file().filename().string().c_str(), domain->placement[1]);
+  std::cerr << "note: the body " << placement_note(*offset, where) << "\n";
   return offset->transpose();
 }
 

@@ -80,17 +80,13 @@ class PyModel {
     const std::optional<ModelDomain>& d = domain();
     if (!d) return back;
     for (int i = 0; i < b.size(); ++i) {
-      const Eigen::MatrixX3d body = b.body.mat(i).cast<double>();
-      const std::optional<Eigen::Vector3d> offset = placement_offset(*d, body);
+      Eigen::MatrixX3d body = b.body.mat(i).cast<double>();
+      const std::optional<Eigen::Vector3d> offset = move_to_placement(*d, body);
       if (!offset) continue;
-      b.body.mat(i) = (body.rowwise() - offset->transpose()).cast<float>();
+      b.body.mat(i) = body.cast<float>();
       back[static_cast<std::size_t>(i)] = offset->transpose().cast<float>();
-      char line[300];
-      std::snprintf(line, sizeof line,
-                    "body %d stands (%+.3f, %+.3f, %+.3f) m from where the model's training bodies stood; it is draped "
-                    "there and the garment moved back with it",
-                    i, (*offset)[0], (*offset)[1], (*offset)[2]);
-      py::module_::import("warnings").attr("warn")(line);
+      py::module_::import("warnings").attr("warn")("body " + std::to_string(i) + " " +
+                                                   placement_note(*offset, "the model's training bodies stood"));
     }
     return back;
   }

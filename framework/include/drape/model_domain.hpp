@@ -67,6 +67,17 @@ std::optional<Eigen::Vector3d> placement_offset(const ModelDomain& domain, const
 std::optional<Eigen::Vector3d> placement_offset(const Eigen::Vector3d& reference, const Eigen::Vector3d& spread,
                                                 const Eigen::MatrixX3d& body);
 
+// Moves `body` by -placement_offset, so that it stands where the reference
+// bodies stood; returns the offset (what to add to a drape made there to move
+// it back with the body), nullopt when it was not moved. What predict,
+// optimize and simulate --body (C++ and Python) do with a body given elsewhere.
+std::optional<Eigen::Vector3d> move_to_placement(const Eigen::Vector3d& reference, const Eigen::Vector3d& spread,
+                                                 Eigen::MatrixX3d& body);
+std::optional<Eigen::Vector3d> move_to_placement(const ModelDomain& domain, Eigen::MatrixX3d& body);
+// "stands (+0.000, +5.000, +0.000) m from where <where>; it is draped there and
+// moved back with it": the one wording of that move for notes and warnings.
+std::string placement_note(const Eigen::Vector3d& offset, const std::string& where);
+
 // The domain of a dataset's training split (its done samples with split
 // train), or of the part of it drape train --fraction trains on (the first
 // ceil(fraction n) of them, as the trainer takes them). ConfigError when it has none.

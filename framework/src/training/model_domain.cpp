@@ -146,6 +146,23 @@ std::optional<Eigen::Vector3d> placement_offset(const ModelDomain& domain, const
   return placement_offset(domain.placement, domain.placement_spread, body);
 }
 
+std::optional<Eigen::Vector3d> move_to_placement(const Eigen::Vector3d& reference, const Eigen::Vector3d& spread,
+                                                 Eigen::MatrixX3d& body) {
+  const std::optional<Eigen::Vector3d> offset = placement_offset(reference, spread, body);
+  if (offset) body.rowwise() -= offset->transpose();
+  return offset;
+}
+
+std::optional<Eigen::Vector3d> move_to_placement(const ModelDomain& domain, Eigen::MatrixX3d& body) {
+  return move_to_placement(domain.placement, domain.placement_spread, body);
+}
+
+std::string placement_note(const Eigen::Vector3d& offset, const std::string& where) {
+  char moved[96];
+  std::snprintf(moved, sizeof moved, "stands (%+.3f, %+.3f, %+.3f) m from where ", offset[0], offset[1], offset[2]);
+  return moved + where + "; it is draped there and moved back with it";
+}
+
 double distance_to_training(const ModelDomain& domain, const Eigen::MatrixX3d& body) {
   const Eigen::VectorXf d = descriptor(body, domain.descriptor_vertices);
   double nearest = std::numeric_limits<double>::infinity();
