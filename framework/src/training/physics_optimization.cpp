@@ -280,7 +280,9 @@ PhysicsOptimizationResult optimize_drape(Model& model, const Simulation& scene, 
     r.energies_after = terms;
     r.potential_after = r.history.back();
     r.best_iteration = static_cast<int>(r.history.size()) - 1;
-    if (with_barrier) {
+    if (!r.stopped.empty()) {
+      r.unseparated = r.stopped;
+    } else if (with_barrier) {
       const double left = (body_vertices - body_now).norm() / std::max(start_gap, 1e-300);
       char why[200];
       std::snprintf(why, sizeof why,
@@ -289,7 +291,6 @@ PhysicsOptimizationResult optimize_drape(Model& model, const Simulation& scene, 
                     100 * r.start_shrink, 100 * (1 - left), options.iterations);
       r.unseparated = why;
     }
-    if (!r.stopped.empty()) r.unseparated = r.stopped;
   }
   r.penetration_before = geometry::penetration_ratio(surface, r.before);
   r.penetration_after = geometry::penetration_ratio(surface, r.after);
