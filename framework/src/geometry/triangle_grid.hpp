@@ -1,8 +1,9 @@
 #pragma once
 // A uniform grid over the triangles of one mesh (internal to the geometry
 // layer): the queries of the measurements, surface_crossings and
-// self_intersections, and the rays of winding_numbers. The contact's broad phase (box_pairs.hpp) is separate
-// on purpose: a count meant to check the contact shares no code with it.
+// self_intersections, and the rays of winding_numbers. The contact's broad
+// phase (box_pairs.hpp) is separate on purpose: a count meant to check the
+// contact shares no code with it.
 #include <Eigen/Core>
 
 #include <algorithm>
