@@ -98,6 +98,36 @@ class DoubleWell final : public Energy {
   double c_, w_;
 };
 
+// Two per-vertex terms along y whose sum is convex although the second is not:
+// E = sum_v [a/2 y^2] + [-b/2 y^2 + c y^4] - f y, exact E'' = a - b + 12 c y^2.
+// Projected term by term (as the solver's energies project element by element)
+// the second term's curvature is clamped at 0 where -b + 12 c y^2 < 0, so the
+// projected Newton matrix is a + max(0, -b + 12 c y^2), about a / (a - b) times
+// the exact one near the minimiser, and Newton converges only linearly.
+class SplitWell final : public Energy {
+ public:
+  SplitWell(double a, double b, double c, double f) : a_(a), b_(b), c_(c), f_(f) {}
+  void bind(const EnergyContext&) override {}
+  double value(const Eigen::MatrixX3d& x) const override {
+    const auto y = x.col(1).array();
+    return (0.5 * (a_ - b_) * y.square() + c_ * y.square().square() - f_ * y).sum();
+  }
+  double add_gradient(const Eigen::MatrixX3d& x, Eigen::MatrixX3d& g) const override {
+    const auto y = x.col(1).array();
+    g.col(1).array() += (a_ - b_) * y + 4 * c_ * y.cube() - f_;
+    return value(x);
+  }
+  void add_hessian(const Eigen::MatrixX3d& x, Triplets& h, bool project) const override {
+    for (int v = 0; v < x.rows(); ++v) {
+      const double y = x(v, 1), second = -b_ + 12 * c_ * y * y;
+      h.emplace_back(3 * v + 1, 3 * v + 1, a_ + (project ? std::max(second, 0.0) : second));
+    }
+  }
+
+ private:
+  double a_, b_, c_, f_;
+};
+
 std::vector<NamedEnergy> one(std::unique_ptr<Energy> e) {
   std::vector<NamedEnergy> v;
   v.push_back({"test", std::move(e)});
@@ -171,7 +201,12 @@ TEST_CASE("backward Euler carries velocity: a free cloth under a constant force 
   }
 }
 
-TEST_CASE("on a non-convex energy the line search keeps Phi decreasing and Newton reaches a well", "[solver]") {
+namespace {
+
+// 30 steps from the hump's shoulder of a double well (y = 0.05, where the
+// exact curvature 10 (12 y^2 - 4 w^2) is negative) into the well at y = 0.2:
+// Phi and E never rise. Returns the solver's counters.
+ClothSolver::Timings descend_double_well(double exact_hessian_below) {
   const Garment g = grid(4, 0.1);
   auto energies = one(std::make_unique<DoubleWell>(10.0, 0.2));
   SolverSettings s;
@@ -179,9 +214,10 @@ TEST_CASE("on a non-convex energy the line search keeps Phi decreasing and Newto
   s.damping = 1;
   s.max_newton_iterations = 50;
   s.tolerance = 1e-8;
+  s.exact_hessian_below = exact_hessian_below;
   ClothSolver cs(g, energies, s);
   Eigen::MatrixX3d x = g.mesh.vertices, v = Eigen::MatrixX3d::Zero(x.rows(), 3);
-  x.col(1).setConstant(0.05);  // on the hump's shoulder, where the true Hessian is negative
+  x.col(1).setConstant(0.05);
   double previous = cs.energy(x) + 1;
   for (int k = 0; k < 30; ++k) {
     const StepReport r = cs.step(x, v);
@@ -191,6 +227,13 @@ TEST_CASE("on a non-convex energy the line search keeps Phi decreasing and Newto
     CHECK(x.allFinite());
   }
   CHECK((x.col(1).array() - 0.2).abs().maxCoeff() < 1e-4);
+  return cs.timings();
+}
+
+}  // namespace
+
+TEST_CASE("on a non-convex energy the line search keeps Phi decreasing and Newton reaches a well", "[solver]") {
+  descend_double_well(0);  // projected matrices only
 }
 
 TEST_CASE("solver settings are checked", "[solver]") {
@@ -422,4 +465,51 @@ TEST_CASE("a matrix that is not positive definite is refused by CHOLMOD without 
   std::ifstream in(captured);
   const std::string printed((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
   CHECK(printed.empty());
+}
+
+TEST_CASE("near a minimum the exact Newton matrix converges quadratically where the projected one crawls", "[solver]") {
+  // y + 4 y^3 = 0.1 (a - b = 1, c = 1): the root by bisection, independent of the solver.
+  double lo = 0, hi = 1;
+  for (int k = 0; k < 200; ++k) {
+    const double mid = 0.5 * (lo + hi);
+    (mid + 4 * mid * mid * mid < 0.1 ? lo : hi) = mid;
+  }
+  const double root = 0.5 * (lo + hi);
+  REQUIRE(-9 + 12 * root * root < 0);  // the second term is concave at the minimiser: projection bites
+
+  const Garment g = grid(3, 0.1);
+  auto run = [&](double exact_below, ClothSolver::Timings& timings) {
+    auto energies = one(std::make_unique<SplitWell>(10.0, 9.0, 1.0, 0.1));
+    SolverSettings s;
+    s.time_step = 1e3;  // inertia ~1e-10 of the stiffness: a static solve
+    s.damping = 1;
+    s.max_newton_iterations = 200;
+    s.tolerance = 1e-8;
+    s.max_displacement = 1.0;  // no cap: every step is Newton's own
+    s.exact_hessian_below = exact_below;
+    ClothSolver cs(g, energies, s);
+    Eigen::MatrixX3d x = g.mesh.vertices, v = Eigen::MatrixX3d::Zero(x.rows(), 3);
+    x.col(1).setConstant(0.2);
+    const StepReport r = cs.step(x, v);
+    timings = cs.timings();
+    if (exact_below > 0) {
+      CHECK(r.converged);
+      CHECK((x.col(1).array() - root).abs().maxCoeff() < 1e-9);
+    }
+    return r.converged ? r.iterations : 1000;
+  };
+  ClothSolver::Timings exact_timings, projected_timings;
+  const int exact = run(1e30, exact_timings);
+  const int projected = run(0, projected_timings);
+  CHECK(exact <= 8);
+  CHECK(projected >= 3 * exact);  // 1000: not even converged within 200 iterations
+  CHECK(exact_timings.exact_steps == exact);
+  CHECK(exact_timings.exact_refused == 0);
+  CHECK(projected_timings.exact_steps == 0);
+}
+
+TEST_CASE("an indefinite exact Newton matrix is refused and the projected one takes the step", "[solver]") {
+  const ClothSolver::Timings t = descend_double_well(1e30);  // the exact matrix tried at every iteration
+  CHECK(t.exact_refused > 0);  // on the shoulder
+  CHECK(t.exact_steps > 0);    // in the well, where it is convex
 }

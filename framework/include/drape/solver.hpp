@@ -51,6 +51,15 @@ struct SolverSettings {
   bool float_preconditioner = true;
   double newton_forcing = 1e-3;
   int max_cg_iterations = 20;
+  // Below this step residual (|grad Phi| / |W|) an iteration first tries the
+  // exact Newton matrix, the energies' Hessians without the per-element PSD
+  // projection, and keeps it when it is positive definite. Near an
+  // equilibrium the sum is usually definite although single elements are not
+  // (a compressed face, a bent hinge under load, a barrier pair near a body
+  // edge), and projecting each element changes the matrix enough that Newton
+  // converges only linearly, ~8 % per iteration (docs/scenes.md). When the
+  // exact matrix is indefinite the projected one is used. 0 turns it off.
+  double exact_hessian_below = 1.0;
 };
 
 // An energy term with the name its scene gave it.
@@ -120,6 +129,8 @@ class ClothSolver {
     double collision_checks = 0;  // s: continuous collision checks (part of line_search; also the morph's body moves)
     int factorizations = 0;
     long cg_iterations = 0;  // PCG iterations of the steps solved with an earlier factor
+    int exact_steps = 0;     // Newton iterations that used the exact (unprojected) matrix
+    int exact_refused = 0;   // iterations whose exact matrix was tried and found indefinite
   };
   const Timings& timings() const { return timings_; }
 

@@ -58,8 +58,10 @@ namespace {
 // an earlier Newton matrix as the preconditioner. Every iterate from 0 is a
 // descent direction of the quadratic model (H and the preconditioner are
 // positive definite), so stopping early still gives a usable Newton step.
-// Returns the iterations taken, or -1 when |H d - b| <= tolerance |b| was not
-// reached within max_iterations.
+// Returns the iterations taken, -1 when |H d - b| <= tolerance |b| was not
+// reached within max_iterations, or kIndefinite when a direction of
+// non-positive curvature (p^T H p <= 0) proved H indefinite.
+constexpr int kIndefinite = -2;
 int preconditioned_cg(const physics::SparseMatrix& h, const physics::SparseCholesky& preconditioner,
                       const Eigen::VectorXd& b, double tolerance, int max_iterations, Eigen::VectorXd& d) {
   // The matrix holds its lower triangle only (sparse_cholesky.hpp).
@@ -71,7 +73,7 @@ int preconditioned_cg(const physics::SparseMatrix& h, const physics::SparseChole
   for (int k = 1; k <= max_iterations; ++k) {
     hp.noalias() = sym * p;
     const double php = p.dot(hp);
-    if (!(php > 0)) return -1;
+    if (!(php > 0)) return kIndefinite;
     const double step = rz / php;
     d += step * p;
     r -= step * hp;
@@ -230,50 +232,82 @@ StepReport ClothSolver::step(Eigen::MatrixX3d& x, Eigen::MatrixX3d& v) {
     if (report.iterations >= settings_.max_newton_iterations) break;
     ++report.iterations;
 
-    // Newton matrix: M / h^2 + sum of projected Hessians, on the fixed pattern.
-    auto t = Clock::now();
-    Triplets& trip = impl_->triplets;
-    trip.clear();
-    for (NamedEnergy& e : energies_) e.energy->add_hessian_lower(x, trip, true);
-    timings_.hessian += since(t);
-    t = Clock::now();
     Eigen::VectorXd diagonal(3 * n);
     for (int i = 0; i < n; ++i) diagonal.segment<3>(3 * i).setConstant(masses_[i] * inv_h2);
-    impl_->pattern.assemble(trip, diagonal, impl_->hessian);
-    timings_.assembly += since(t);
-
+    const Eigen::VectorXd rhs = -interleaved(g);
+    Eigen::VectorXd direction;
+    auto newton_matrix = [&](bool project) {
+      auto t = Clock::now();
+      Triplets& trip = impl_->triplets;
+      trip.clear();
+      for (NamedEnergy& e : energies_) e.energy->add_hessian_lower(x, trip, project);
+      timings_.hessian += since(t);
+      t = Clock::now();
+      impl_->pattern.assemble(trip, diagonal, impl_->hessian);
+      timings_.assembly += since(t);
+    };
     // Factorising dominates an iteration. The matrix changes little from one
     // iteration (and time step) to the next, so an earlier factor is a very
     // good preconditioner: an inexact Newton step by PCG costs a few
     // triangular solves. Only when PCG stalls is the matrix factorised anew.
-    t = Clock::now();
-    const Eigen::VectorXd rhs = -interleaved(g);
-    Eigen::VectorXd direction;
     int cg = -1;
-    if (settings_.reuse_factorization && impl_->have_factor) {
+    auto reuse_factor = [&]() {
+      cg = -1;
+      if (!settings_.reuse_factorization || !impl_->have_factor) return false;
       cg = preconditioned_cg(impl_->hessian, *impl_->cholesky, rhs, settings_.newton_forcing, settings_.max_cg_iterations,
                              direction);
       if (cg > 0) timings_.cg_iterations += cg;
-    }
-    if (cg < 0) {
-      // The inertia term makes the matrix positive definite in exact arithmetic;
-      // a failed factorisation (round-off on a huge stiffness ratio) is retried
-      // with a growing diagonal shift, which keeps the direction a descent one.
-      impl_->have_factor = false;
-      bool factored = impl_->cholesky->factorize(impl_->hessian);
-      ++timings_.factorizations;
-      for (double shift = 1e-8 * impl_->hessian.diagonal().cwiseAbs().maxCoeff(); !factored && shift < 1e30; shift *= 100) {
-        physics::SparseMatrix shifted = impl_->hessian;
-        for (int k = 0; k < shifted.rows(); ++k) shifted.coeffRef(k, k) += shift;
-        factored = impl_->cholesky->factorize(shifted);
+      return cg > 0;
+    };
+
+    // Near equilibrium: the exact matrix, when it is positive definite. CG
+    // preconditioned by the kept factor, or else a Cholesky factorisation,
+    // finds out: both break down on an indefinite matrix (and a breakdown in
+    // CG spares the factorisation, keeping the old factor for the projected
+    // matrix). -H^-1 g is then a descent direction; checked all the same, as
+    // round-off could flip it.
+    bool solved = false;
+    if (settings_.exact_hessian_below > 0 && report.residual < settings_.exact_hessian_below) {
+      newton_matrix(false);
+      auto t = Clock::now();
+      solved = reuse_factor() && direction.dot(rhs) > 0;
+      if (!solved && cg != kIndefinite) {
+        impl_->have_factor = impl_->cholesky->factorize(impl_->hessian);
         ++timings_.factorizations;
+        if (impl_->have_factor) {
+          direction = impl_->cholesky->solve(rhs);
+          solved = direction.allFinite() && direction.dot(rhs) > 0;
+        }
       }
-      if (!factored) throw Error("solver: the Newton matrix could not be factorised even with a diagonal shift");
-      impl_->have_factor = true;
-      direction = impl_->cholesky->solve(rhs);
+      timings_.linear_solves += since(t);
+      if (solved) ++timings_.exact_steps;
+      else ++timings_.exact_refused;
+    }
+
+    if (!solved) {
+      // Newton matrix: M / h^2 + sum of projected Hessians, on the fixed pattern.
+      newton_matrix(true);
+      auto t = Clock::now();
+      if (!reuse_factor()) {
+        // The inertia term makes the matrix positive definite in exact arithmetic;
+        // a failed factorisation (round-off on a huge stiffness ratio) is retried
+        // with a growing diagonal shift, which keeps the direction a descent one.
+        impl_->have_factor = false;
+        bool factored = impl_->cholesky->factorize(impl_->hessian);
+        ++timings_.factorizations;
+        for (double shift = 1e-8 * impl_->hessian.diagonal().cwiseAbs().maxCoeff(); !factored && shift < 1e30; shift *= 100) {
+          physics::SparseMatrix shifted = impl_->hessian;
+          for (int k = 0; k < shifted.rows(); ++k) shifted.coeffRef(k, k) += shift;
+          factored = impl_->cholesky->factorize(shifted);
+          ++timings_.factorizations;
+        }
+        if (!factored) throw Error("solver: the Newton matrix could not be factorised even with a diagonal shift");
+        impl_->have_factor = true;
+        direction = impl_->cholesky->solve(rhs);
+      }
+      timings_.linear_solves += since(t);
     }
     Eigen::MatrixX3d d = per_vertex(direction);
-    timings_.linear_solves += since(t);
     if (!finite(d)) throw Error("solver: the Newton direction is not finite");
 
     cap_longest_move(d, settings_.max_displacement);
@@ -282,7 +316,7 @@ StepReport ClothSolver::step(Eigen::MatrixX3d& x, Eigen::MatrixX3d& v) {
     // switches across a crease) the Newton model can point where Phi does not
     // fall, so a failed search is retried along the Jacobi-preconditioned
     // gradient, which is a descent direction of the non-smooth Phi too.
-    t = Clock::now();
+    auto t = Clock::now();
     auto line_search = [&](const Eigen::MatrixX3d& dir) {
       const double slope = g.cwiseProduct(dir).sum();
       if (!(slope < 0)) return false;

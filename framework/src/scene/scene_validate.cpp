@@ -47,6 +47,9 @@ const std::vector<ParamSpec>& scene_solver_specs() {
        {}, {}, {"float", "double"}},
       {"newton_forcing", ParamType::Float, number(d.newton_forcing), "inexact Newton: CG stops at |H d + g| <= this * |g|", 1e-12, 0.9},
       {"max_cg_iterations", ParamType::Int, number(d.max_cg_iterations), "CG iterations before the Newton matrix is factorised anew", 1, 10000},
+      {"exact_hessian_below", ParamType::Float, number(d.exact_hessian_below),
+       "below this step residual (|grad Phi| / |W|) try the exact, unprojected Newton matrix first and keep it when positive definite; 0: always project",
+       0.0, 1e30},
       {"gravity_direction", ParamType::FloatList, "[0, -1, 0]", "direction of gravity (the magnitude is the gravity effect's g)"},
   };
   return specs;

@@ -77,6 +77,7 @@ SolverSettings Simulation::solver_settings() const {
   s.float_preconditioner = p.get_string("preconditioner") == "float";
   s.newton_forcing = p.get_float("newton_forcing");
   s.max_cg_iterations = static_cast<int>(p.get_int("max_cg_iterations"));
+  s.exact_hessian_below = p.get_float("exact_hessian_below");
   return s;
 }
 
