@@ -56,6 +56,10 @@ double iteration_ms(const Simulation& sim, const Eigen::MatrixX3d& body, const E
   // kept, an iteration's cost would depend on how far the configuration's
   // first PCG solve happens to get, not on the effects it evaluates.
   settings.reuse_factorization = false;
+  // And the projected matrix alone: from a settled drape an iteration would
+  // otherwise first try the exact one (solver.hpp), a second assembly and
+  // factorisation whenever it is indefinite.
+  settings.exact_hessian_below = 0;
   ClothSolver solver(sim.garment(), bound.energies, settings);
   double best = 1e300;
   for (int r = 0; r < repeats + 1; ++r) {  // the first run also analyses the pattern: not counted
