@@ -338,7 +338,9 @@ StepReport ClothSolver::step(Eigen::MatrixX3d& x, Eigen::MatrixX3d& v) {
     };
     bool accepted = line_search(d);
     if (!accepted) {
-      const Eigen::VectorXd diag = impl_->hessian.diagonal();
+      // |diag|: the exact matrix's diagonal may hold a negative entry (a
+      // projected one never does, where this is the diagonal itself).
+      const Eigen::VectorXd diag = impl_->hessian.diagonal().cwiseAbs();
       Eigen::MatrixX3d jacobi = -g.cwiseQuotient(per_vertex(diag));
       cap_longest_move(jacobi, settings_.max_displacement);
       accepted = jacobi.allFinite() && line_search(jacobi);
