@@ -118,7 +118,15 @@ TEST_CASE("a scatter chart places labelled points on a log time axis with decade
   REQUIRE(at.size() == 2);
   CHECK(at[0].first < at[1].first);
   CHECK(at[0].second < at[1].second);
-  chart.points.push_back({0.0, 1.0, "instant"});
+  const std::regex svg_width("<svg [^>]*width=\"([0-9.]+)\"");
+  std::smatch m;
+  REQUIRE(std::regex_search(s, m, svg_width));
+  CHECK(std::stod(m[1]) == 640.0);  // short labels: the plot's own width
+  chart.points.push_back({10.0, 0.2, std::string(150, 'x')});
+  const std::string wide = chart.svg();
+  REQUIRE(std::regex_search(wide, m, svg_width));
+  CHECK(std::stod(m[1]) >= 70 + 6 * 150);  // a 150-character legend line fits
+  chart.points.back() = {0.0, 1.0, "instant"};
   CHECK_THROWS_WITH(chart.svg(), Catch::Contains("log axis"));
   CHECK_THROWS_AS(ScatterChart{}.svg(), Error);
 }

@@ -51,7 +51,12 @@ std::string ScatterChart::svg() const {
   // Points are numbered on the chart and labelled in a list under it: long
   // labels of points at similar heights would otherwise run into each other.
   const double legend_line = 16, height = kHeight + legend_line * static_cast<double>(points.size()) + 8;
-  o << "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" << kWidth << "\" height=\"" << height
+  // The legend's lines can be longer than the plot is wide: the picture grows
+  // to hold them (about 7 px a character at 12 px sans-serif, generous).
+  std::size_t longest = 0;
+  for (const ChartPoint& p : points) longest = std::max(longest, p.label.size() + 4);
+  const double width = std::max(kWidth, kLeft + 7.0 * static_cast<double>(longest) + kRight);
+  o << "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" << width << "\" height=\"" << height
     << "\" font-family=\"sans-serif\" font-size=\"12\">\n<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n";
   o << "<text x=\"" << kLeft << "\" y=\"22\" font-size=\"15\">" << xml_escaped(title) << "</text>\n";
   o << "<path d=\"M" << kLeft << " " << kTop << "V" << kTop + h << "H" << kLeft + w << "\" stroke=\"black\" fill=\"none\"/>\n";
