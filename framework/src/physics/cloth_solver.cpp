@@ -213,6 +213,9 @@ StepReport ClothSolver::step(Eigen::MatrixX3d& x, Eigen::MatrixX3d& v) {
   report.phi_start = phi(x, x_hat);
   double phi_x = report.phi_start;
   Eigen::MatrixX3d g(n, 3);
+  // The inertia's diagonal M / h^2 of every Newton matrix of this step.
+  Eigen::VectorXd diagonal(3 * n);
+  for (int i = 0; i < n; ++i) diagonal.segment<3>(3 * i).setConstant(masses_[i] * inv_h2);
 
   auto gradient = [&](const Eigen::MatrixX3d& at) {
     const auto t = Clock::now();
@@ -232,8 +235,6 @@ StepReport ClothSolver::step(Eigen::MatrixX3d& x, Eigen::MatrixX3d& v) {
     if (report.iterations >= settings_.max_newton_iterations) break;
     ++report.iterations;
 
-    Eigen::VectorXd diagonal(3 * n);
-    for (int i = 0; i < n; ++i) diagonal.segment<3>(3 * i).setConstant(masses_[i] * inv_h2);
     const Eigen::VectorXd rhs = -interleaved(g);
     Eigen::VectorXd direction;
     auto newton_matrix = [&](bool project) {
