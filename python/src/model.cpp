@@ -266,9 +266,9 @@ void register_model(py::module_& m) {
             bool batched = false;
             SampleBatch b = p.batch(body, body_params, py::none(), &batched);
             if (b.size() != 1) throw py::value_error("body_vertices: optimize takes one body [Nb, 3], got a batch of " + std::to_string(b.size()));
+            if (iterations < 0) throw py::value_error("iterations: expected >= 0");
             // Optimised where the training bodies stood (as predict), the drapes moved back with the body.
             const Eigen::RowVector3d back = p.place_like_training(b).front().cast<double>();
-            if (iterations < 0) throw py::value_error("iterations: expected >= 0");
             PhysicsOptimizationOptions o;
             o.iterations = iterations;
             o.learning_rate = learning_rate;
