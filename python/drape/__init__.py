@@ -162,11 +162,13 @@ class Scene:
         native = self._s.energies(body_vertices)
         return {name: Energy(native, name) for name in native.names}
 
-    def simulate(self, body_vertices=None, start_garment=None, measure_penetration=True):
+    def simulate(self, body_vertices=None, start_garment=None, measure_penetration=True, start_body=None):
         """Drapes the garment on the body (default: the scene's own): a dict of garment and body (float64
-        [N, 3]), energies {effect: J}, total_energy, converged, residual, stationarity, penetration (p),
-        crossings, steps, iterations, seconds, and `unsettled` (why, when not converged). The GIL is released."""
-        return self._s.simulate(body_vertices, start_garment, measure_penetration)
+        [N, 3]), energies {effect: J}, total_energy, converged, residual, stationarity, sliding (with friction: the
+        garment still slid over the body in the last step), penetration (p),
+        crossings, steps, iterations, seconds, and `unsettled` (why, when not converged). The morph starts
+        from start_body (default: the scene body model's mean shape). The GIL is released."""
+        return self._s.simulate(body_vertices, start_garment, measure_penetration, start_body)
 
     def __repr__(self):
         return f"<drape.Scene {self._s.file}: {', '.join(self._s.effects)}>"

@@ -116,6 +116,7 @@ py::dict result_dict(SimulationResult&& r) {
   d["stationarity"] = r.stationarity;
   d["converged"] = r.converged;
   d["at_rest"] = r.at_rest;
+  d["sliding"] = r.sliding;
   d["unsettled"] = r.unsettled;
   d["steps"] = r.steps;
   d["iterations"] = r.iterations;
@@ -162,14 +163,19 @@ void register_scene(py::module_& m) {
           "float64 [Nb, 3]: the scene's own target body, or one of this BMI, height and sex")
       .def(
           "simulate",
-          [](const PyScene& s, const py::handle& body, const py::handle& start_garment, bool measure_penetration) {
+          [](const PyScene& s, const py::handle& body, const py::handle& start_garment, bool measure_penetration,
+             const py::handle& start_body) {
             const Eigen::MatrixX3d target = body_or_target(*s.simulation, body);
-            Eigen::MatrixX3d start;
+            Eigen::MatrixX3d start, start_b;
             SimulationOptions o;
             o.measure_penetration = measure_penetration;
             if (!start_garment.is_none()) {
               start = vertices_arg(start_garment, "start_garment", s.simulation->garment().mesh.num_vertices());
               o.start_garment = &start;
+            }
+            if (!start_body.is_none()) {
+              start_b = vertices_arg(start_body, "start_body", static_cast<int>(s.simulation->mean_body().rows()));
+              o.start_body = &start_b;
             }
             SimulationResult r;
             {
@@ -178,7 +184,8 @@ void register_scene(py::module_& m) {
             }
             return result_dict(std::move(r));
           },
-          py::arg("body_vertices") = py::none(), py::arg("start_garment") = py::none(), py::arg("measure_penetration") = true)
+          py::arg("body_vertices") = py::none(), py::arg("start_garment") = py::none(), py::arg("measure_penetration") = true,
+          py::arg("start_body") = py::none())
       .def(
           "energies",
           [](const PyScene& s, const py::handle& body) {

@@ -42,7 +42,7 @@ struct SimulationResult {
   std::optional<geometry::SurfaceCrossings> crossings;
   double residual = 0;         // |grad E| / |weight| at the end
   double stationarity = 0;     // the same with both faces of a body crease counted (ClothSolver::stationarity); settles the drape
-  Eigen::VectorXd vertex_force;  // N: |grad E| per vertex at the end (where the drape is not in equilibrium)
+  Eigen::VectorXd vertex_force;  // N: per vertex, |grad E| less friction's push at the end (where the drape is not in equilibrium)
   Eigen::VectorXd body_distance; // m: signed distance of each garment vertex to the body (when measured)
   // Settled: stationarity <= settle_tolerance, or at rest (no vertex moved
   // more than rest_displacement in the last step) with stationarity <=
@@ -51,6 +51,7 @@ struct SimulationResult {
   // residual cannot fall further; stationarity counts both pushes.
   bool converged = false;
   bool at_rest = false;        // settled by the rest criterion
+  bool sliding = false;        // with friction: some contact still slid in the last step (not settled)
   // When not settled: why, in words (how far from balance, where the largest
   // unbalanced forces are, whether the steps had stopped moving).
   std::string unsettled;

@@ -109,6 +109,10 @@ class ClothSolver {
   // by the sum of both faces' pushes, which no single closest face gives; on
   // smooth parts it equals the plain residual.
   double stationarity(const Eigen::MatrixX3d& x, double radius) const;
+  // With friction: whether some contact still slides at x (Energy::slip_ratio);
+  // stationarity counts friction's push, so a drape has settled only when
+  // its stationarity is small and nothing slides.
+  bool sliding(const Eigen::MatrixX3d& x) const;
 
   // The largest fraction in [0, 1] of the move x -> x + dx (and of the body's
   // from -> to, when given) that every energy allows (Energy::max_step): 1

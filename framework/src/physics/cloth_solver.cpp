@@ -162,6 +162,9 @@ double ClothSolver::stationarity(const Eigen::MatrixX3d& x, double radius) const
   for (const NamedEnergy& e : energies_) {
     const bool kinks = e.energy->has_kinks();
     e.energy->add_gradient(x, kinks ? rough : smooth);
+    // Friction's push (the last step's lagged contacts) balances the cloth
+    // too; ClothSolver::sliding tells whether it held it still.
+    e.energy->add_dissipation_gradient(x, smooth);
     if (kinks) kinked.push_back(e.energy.get());
   }
   double sum = 0;
@@ -169,6 +172,7 @@ double ClothSolver::stationarity(const Eigen::MatrixX3d& x, double radius) const
   for (Eigen::Index v = 0; v < x.rows(); ++v) {
     const Eigen::Vector3d base = smooth.row(v).transpose(), own = rough.row(v).transpose();
     double r = (base + own).norm();
+
     if (!kinked.empty() && own.squaredNorm() > 0 && r > 0) {
       // The hull of the non-smooth gradients at v and around it; with several
       // non-smooth energies, their k-th samples summed (a subset of the
@@ -187,6 +191,12 @@ double ClothSolver::stationarity(const Eigen::MatrixX3d& x, double radius) const
   return std::sqrt(sum) / force_scale_;
 }
 
+bool ClothSolver::sliding(const Eigen::MatrixX3d& x) const {
+  for (const NamedEnergy& e : energies_)
+    if (e.energy->slip_ratio(x) >= 1) return true;
+  return false;
+}
+
 double ClothSolver::max_step(const Eigen::MatrixX3d& x, const Eigen::MatrixX3d& dx, const Eigen::MatrixX3d* body_from,
                              const Eigen::MatrixX3d* body_to) const {
   const auto t = Clock::now();
@@ -199,7 +209,9 @@ double ClothSolver::max_step(const Eigen::MatrixX3d& x, const Eigen::MatrixX3d& 
 double ClothSolver::phi(const Eigen::MatrixX3d& x, const Eigen::MatrixX3d& x_hat) const {
   const double inv_h2 = 1.0 / (settings_.time_step * settings_.time_step);
   const double inertia = 0.5 * inv_h2 * (masses_.asDiagonal() * (x - x_hat)).cwiseProduct(x - x_hat).sum();
-  return inertia + energy(x);
+  double dissipation = 0;
+  for (const NamedEnergy& e : energies_) dissipation += e.energy->dissipation(x);
+  return inertia + energy(x) + dissipation;
 }
 
 StepReport ClothSolver::step(Eigen::MatrixX3d& x, Eigen::MatrixX3d& v) {
@@ -209,6 +221,8 @@ StepReport ClothSolver::step(Eigen::MatrixX3d& x, Eigen::MatrixX3d& v) {
   const double h = settings_.time_step, inv_h2 = 1.0 / (h * h);
   const Eigen::MatrixX3d x_start = x;
   const Eigen::MatrixX3d x_hat = x + h * v;
+  // Friction lags its contacts at the step's start (Energy::begin_step).
+  for (NamedEnergy& e : energies_) e.energy->begin_step(x_start, h);
   StepReport report;
   report.phi_start = phi(x, x_hat);
   double phi_x = report.phi_start;
@@ -220,7 +234,10 @@ StepReport ClothSolver::step(Eigen::MatrixX3d& x, Eigen::MatrixX3d& v) {
   auto gradient = [&](const Eigen::MatrixX3d& at) {
     const auto t = Clock::now();
     g = inv_h2 * (masses_.asDiagonal() * (at - x_hat));
-    for (NamedEnergy& e : energies_) e.energy->add_gradient(at, g);
+    for (NamedEnergy& e : energies_) {
+      e.energy->add_gradient(at, g);
+      e.energy->add_dissipation_gradient(at, g);
+    }
     timings_.gradient += since(t);
     if (!finite(g)) throw Error("solver: the gradient became non-finite (an energy produced NaN or inf)");
   };
@@ -241,7 +258,10 @@ StepReport ClothSolver::step(Eigen::MatrixX3d& x, Eigen::MatrixX3d& v) {
       auto t = Clock::now();
       Triplets& trip = impl_->triplets;
       trip.clear();
-      for (NamedEnergy& e : energies_) e.energy->add_hessian_lower(x, trip, project);
+      for (NamedEnergy& e : energies_) {
+        e.energy->add_hessian_lower(x, trip, project);
+        e.energy->add_dissipation_hessian_lower(x, trip);
+      }
       timings_.hessian += since(t);
       t = Clock::now();
       impl_->pattern.assemble(trip, diagonal, impl_->hessian);

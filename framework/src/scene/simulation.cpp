@@ -189,23 +189,29 @@ SimulationResult Simulation::run(const Eigen::MatrixX3d& target_body, const Simu
   // faces (ClothSolver::stationarity); the plain residual is reported as well.
   const double kink_radius = solver.settings().kink_radius;
   result.stationarity = solver.stationarity(x, kink_radius);
+  bool sliding = solver.sliding(x);  // with friction: some contact still slides
   const double settle_tolerance = solver.settings().settle_tolerance;
   // A step that moves no vertex ends the settling: further steps from a
   // stall change nothing (tried: on a stalled BMI 65 body 54 more steps only
   // found no decrease). Whether that counts as settled is decided below.
   const double at_rest_limit = solver.settings().kink_tolerance;
-  for (int k = 1; k <= settle_steps_ && result.stationarity > settle_tolerance && !result.at_rest; ++k) {
+  for (int k = 1; k <= settle_steps_ && (result.stationarity > settle_tolerance || sliding) && !result.at_rest; ++k) {
     const StepReport r = solver.step(x, v);
     result.stationarity = solver.stationarity(x, kink_radius);
+    sliding = solver.sliding(x);
     result.at_rest = r.max_displacement <= solver.settings().rest_displacement;
     record(morph_steps_ + k, false, r, result.stationarity);
     if (scene_detail::fell_off_body(x, target_body)) break;  // falling on: nothing can bring it back
   }
   // At rest counts only near equilibrium: a stall with large unbalanced forces is not a drape.
-  result.converged = result.stationarity <= settle_tolerance || (result.at_rest && result.stationarity <= at_rest_limit);
+  result.converged = (result.stationarity <= settle_tolerance && !sliding) ||
+                     (result.at_rest && result.stationarity <= at_rest_limit);
+  result.sliding = sliding;
   result.total_energy = solver.energy(x, &result.energies);
-  const Eigen::MatrixX3d gradient = solver.static_gradient(x);
+  Eigen::MatrixX3d gradient = solver.static_gradient(x);
   result.residual = gradient.norm() / solver.force_scale();
+  // Unbalanced: what friction (its push in the last step) leaves of grad E.
+  for (const NamedEnergy& e : energies) e.energy->add_dissipation_gradient(x, gradient);
   result.vertex_force = gradient.rowwise().norm();
   if (!result.converged) {
     const double ease = garment_ease(garment_->mesh.vertices, garment_->mesh.faces, mean_body_, target_body, body_model_->faces());

@@ -21,18 +21,23 @@ std::string why_unsettled(const SimulationResult& result, const Eigen::MatrixX3d
     char fell[400];
     std::snprintf(fell, sizeof fell,
                   "the garment fell off the body: all of it is below the body's lowest point (its top %.2f m below the "
-                  "soles after %d settling steps). Nothing held it up: the contact has no friction, so a garment stays "
-                  "on only if it hangs from the shoulders or is tight enough to grip the body (a smaller size, or a "
-                  "garment that reaches the shoulders)",
+                  "soles after %d settling steps). Nothing held it up: a garment stays on only if it hangs from the "
+                  "shoulders, grips the body tightly enough, or its contact has friction enough (a smaller size, a "
+                  "garment that reaches the shoulders, or the barrier's `friction`, 0 by default)",
                   body.col(1).minCoeff() - x.col(1).maxCoeff(), settle_steps);
     return fell;
   }
-  char head[300];
+  char head[320];
   if (result.at_rest)
     std::snprintf(head, sizeof head,
                   "stopped at rest after %d settling steps (no vertex moved in the last one) with stationarity %.2e of "
                   "the weight, above the tolerance %.2e and the at-rest limit %.2e",
                   settle_steps, result.stationarity, tolerance, at_rest_limit);
+  else if (result.sliding && result.stationarity <= tolerance)
+    std::snprintf(head, sizeof head,
+                  "not settled after %d settling steps: friction balances the forces (stationarity %.2e of the weight) "
+                  "but the garment still slides over the body, faster than the barrier's slip_velocity",
+                  settle_steps, result.stationarity);
   else
     std::snprintf(head, sizeof head, "not settled after %d settling steps: stationarity %.2e of the weight, tolerance %.2e",
                   settle_steps, result.stationarity, tolerance);

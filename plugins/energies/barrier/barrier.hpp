@@ -37,6 +37,7 @@
 
 #include <Eigen/Core>
 
+#include <array>
 #include <cstdint>
 #include <memory>
 #include <mutex>
@@ -48,6 +49,8 @@ struct BarrierSettings {
   double distance = 1e-3;     // d_hat, m
   double stiffness = 1e3;     // kappa, Pa
   double min_separation = 0.1;  // CCD stops a move where a pair is down to this fraction of its distance
+  double friction = 0;        // mu, Coulomb's coefficient between cloth and body (0: frictionless)
+  double slip_velocity = 1e-3;  // eps_v, m/s: below it friction is static (IPC's smoothing)
 };
 
 enum class PairKind : unsigned char { GarmentVertexBodyFace, BodyVertexGarmentFace, GarmentEdgeBodyEdge };
@@ -62,6 +65,9 @@ struct ContactPair {
 
 class BarrierContact final : public Energy {
  public:
+  struct Topology;   // the garment's and body's primitives, fixed at bind (barrier_state.hpp)
+  struct BodyState;  // what depends on the body's current positions (barrier_state.hpp)
+
   explicit BarrierContact(const BarrierSettings& settings);
   ~BarrierContact() override;
 
@@ -77,8 +83,38 @@ class BarrierContact final : public Energy {
   double max_step(const Eigen::MatrixX3d& x, const Eigen::MatrixX3d& dx, const Eigen::MatrixX3d* body_from = nullptr,
                   const Eigen::MatrixX3d* body_to = nullptr) const override;
 
-  struct Topology;   // the garment's and body's primitives, fixed at bind (barrier.cpp)
-  struct BodyState;  // what depends on the body's current positions (barrier.cpp)
+  // Friction (friction.cpp), with settings.friction > 0: IPC's lagged
+  // friction over the same pairs. Each pair within d_hat at a step's start is
+  // a contact with a normal force lambda (the barrier's push there), a tangent
+  // plane T and the closest points' weights on the garment side, all fixed for
+  // the step; the body stands still while a step is solved (a morph moves
+  // the cloth near the body with it first, scene/barrier_morph.cpp), so the
+  // slip u = T^T (garment point's move since the step's start), and
+  //
+  //   D(x) = sum_contacts mu lambda f0(|u|),   f0(y) = y for y >= eps,
+  //          -y^3 / (3 eps^2) + y^2 / eps + eps / 3 below (eps = eps_v h):
+  //
+  // kinetic friction mu lambda against any slip faster than eps_v, and a
+  // stiff, smooth stand-in for static friction below it. D's Hessian is
+  // positive semidefinite as written (no projection).
+  void begin_step(const Eigen::MatrixX3d& x_start, double time_step) override;
+  double dissipation(const Eigen::MatrixX3d& x) const override;
+  void add_dissipation_gradient(const Eigen::MatrixX3d& x, Eigen::MatrixX3d& g) const override;
+  void add_dissipation_hessian_lower(const Eigen::MatrixX3d& x, Triplets& h) const override;
+  double slip_ratio(const Eigen::MatrixX3d& x) const override;
+
+  // A pair's contact at x: its garment vertices and their weights in the
+  // pair's garment point, the unit normal from the body's closest point to
+  // the garment's, and the barrier's push along it (N).
+  struct Contact {
+    std::array<int, 3> vertex{};
+    std::array<double, 3> weight{};
+    int count = 0;
+    Eigen::Vector3d normal = Eigen::Vector3d::Zero();
+    double normal_force = 0;
+  };
+  Contact contact(const ContactPair& pair, const BodyState& body, const Eigen::MatrixX3d& x) const;
+
   // The pairs within d_hat at some x, with the body state they were found on.
   struct PairSet {
     std::shared_ptr<const BodyState> body;
@@ -104,7 +140,22 @@ class BarrierContact final : public Energy {
   D pair_dual(const ContactPair& pair, const BodyState& body, const Eigen::MatrixX3d& x) const;
   void hessian(const Eigen::MatrixX3d& x, Triplets& h, bool project_psd, bool lower) const;
 
+  // A contact's friction, lagged at the step's start.
+  struct FrictionContact {
+    Contact contact;
+    Eigen::Matrix<double, 3, 2> tangent;  // orthonormal basis of the plane normal to contact.normal
+    double limit = 0;                     // mu lambda, N
+  };
+  struct FrictionLag {
+    Eigen::MatrixX3d x_start;
+    double epsilon = 0;  // m: eps_v h
+    std::vector<FrictionContact> contacts;
+  };
+  // The slip u of a contact at x (2-vector in its tangent plane).
+  Eigen::Vector2d slip(const FrictionContact& c, const Eigen::MatrixX3d& x) const;
+
   BarrierSettings settings_;
+  FrictionLag friction_;
   const geometry::BodySurface* body_ = nullptr;
   std::unique_ptr<Topology> topology_;
 

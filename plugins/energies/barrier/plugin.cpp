@@ -22,12 +22,19 @@ PluginList plugins() {
        "kappa in Pa: the contact pressure scale (0.2 kappa at 0.9 d_hat, 4.3 kappa at d_hat / 2, unbounded at 0)", 1e-6},
       {"min_separation", ParamType::Float, "0.1",
        "a move stops where a pair is down to this fraction of its distance (continuous collision check)", 1e-3, 0.9},
+      // ArcSim's default cloth-obstacle coefficient is 0.3 (its `obs_friction`).
+      {"friction", ParamType::Float, "0",
+       "Coulomb's coefficient between cloth and body (IPC's lagged friction; 0: frictionless, ArcSim's default 0.3)", 0, 2},
+      {"slip_velocity", ParamType::Float, "0.001",
+       "eps_v in m/s: slower slip is held as static friction (IPC's smoothing)", 1e-6, 1},
   };
   d.create_energy = [](const Params& p) {
     barrier::BarrierSettings s;
     s.distance = p.get_float("distance");
     s.stiffness = p.get_float("stiffness");
     s.min_separation = p.get_float("min_separation");
+    s.friction = p.get_float("friction");
+    s.slip_velocity = p.get_float("slip_velocity");
     return std::make_unique<barrier::BarrierContact>(s);
   };
   return {d};
