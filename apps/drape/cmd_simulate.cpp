@@ -97,9 +97,10 @@ int run(const std::vector<std::string>& args) {
   SimulationOptions options;
   options.on_step = [&](const SimulationStep& s) {
     if (!verbose) return;
-    std::printf("step %3d/%d %-7s newton %2d  residual %.2e  Phi %.6g -> %.6g%s\n", s.step, s.total_steps,
+    std::printf("step %3d/%d %-7s newton %2d  residual %.2e  Phi %.6g -> %.6g%s%s\n", s.step, s.total_steps,
                 s.morphing ? "morph" : "settle", s.report.iterations, s.report.residual, s.report.phi_start,
-                s.report.phi_end, s.stationarity >= 0 ? ("  stationarity/|W| " + std::to_string(s.stationarity)).c_str() : "");
+                s.report.phi_end, s.stationarity >= 0 ? ("  stationarity/|W| " + std::to_string(s.stationarity)).c_str() : "",
+                s.slip_ratio > 0 ? ("  slip/held " + std::to_string(s.slip_ratio)).c_str() : "");
   };
   std::printf("simulating %s: garment %d vertices, body %d vertices, effects:", sim->scene().file.c_str(),
               sim->garment().mesh.num_vertices(), static_cast<int>(target.rows()));

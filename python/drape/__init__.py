@@ -164,8 +164,9 @@ class Scene:
 
     def simulate(self, body_vertices=None, start_garment=None, measure_penetration=True, start_body=None):
         """Drapes the garment on the body (default: the scene's own): a dict of garment and body (float64
-        [N, 3]), energies {effect: J}, total_energy, converged, residual, stationarity, sliding (with friction: the
-        garment still slid over the body in the last step), penetration (p),
+        [N, 3]), energies {effect: J}, total_energy, converged, residual, stationarity, sliding and slip_ratio (with
+        friction: whether the garment still slid over the body in the last step, and its fastest contact's slip
+        relative to the slip friction holds), penetration (p),
         crossings, steps, iterations, seconds, and `unsettled` (why, when not converged). The morph starts
         from start_body (default: the scene body model's mean shape). The GIL is released."""
         return self._s.simulate(body_vertices, start_garment, measure_penetration, start_body)

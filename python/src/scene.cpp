@@ -117,6 +117,7 @@ py::dict result_dict(SimulationResult&& r) {
   d["converged"] = r.converged;
   d["at_rest"] = r.at_rest;
   d["sliding"] = r.sliding;
+  d["slip_ratio"] = r.slip_ratio;
   d["unsettled"] = r.unsettled;
   d["steps"] = r.steps;
   d["iterations"] = r.iterations;

@@ -28,6 +28,7 @@ struct SimulationStep {
   bool morphing = false;
   StepReport report;
   double stationarity = -1;    // settling steps: stationarity / |weight| after the step (ClothSolver::stationarity); -1 while morphing
+  double slip_ratio = 0;       // settling steps with friction: the fastest contact's slip / the slip friction holds (ClothSolver::slip_ratio)
 };
 
 struct SimulationResult {
@@ -52,6 +53,7 @@ struct SimulationResult {
   bool converged = false;
   bool at_rest = false;        // settled by the rest criterion
   bool sliding = false;        // with friction: some contact still slid in the last step (not settled)
+  double slip_ratio = 0;       // with friction: the fastest contact's slip in the last step / the slip friction holds
   // When not settled: why, in words (how far from balance, where the largest
   // unbalanced forces are, whether the steps had stopped moving).
   std::string unsettled;

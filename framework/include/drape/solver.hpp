@@ -112,7 +112,10 @@ class ClothSolver {
   // With friction: whether some contact still slides at x (Energy::slip_ratio);
   // stationarity counts friction's push, so a drape has settled only when
   // its stationarity is small and nothing slides.
-  bool sliding(const Eigen::MatrixX3d& x) const;
+  bool sliding(const Eigen::MatrixX3d& x) const { return slip_ratio(x) >= 1; }
+  // The fastest contact's slip in the last step relative to the slip friction
+  // holds (Energy::slip_ratio); 0 without friction.
+  double slip_ratio(const Eigen::MatrixX3d& x) const;
 
   // The largest fraction in [0, 1] of the move x -> x + dx (and of the body's
   // from -> to, when given) that every energy allows (Energy::max_step): 1

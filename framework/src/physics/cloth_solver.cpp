@@ -191,10 +191,10 @@ double ClothSolver::stationarity(const Eigen::MatrixX3d& x, double radius) const
   return std::sqrt(sum) / force_scale_;
 }
 
-bool ClothSolver::sliding(const Eigen::MatrixX3d& x) const {
-  for (const NamedEnergy& e : energies_)
-    if (e.energy->slip_ratio(x) >= 1) return true;
-  return false;
+double ClothSolver::slip_ratio(const Eigen::MatrixX3d& x) const {
+  double largest = 0;
+  for (const NamedEnergy& e : energies_) largest = std::max(largest, e.energy->slip_ratio(x));
+  return largest;
 }
 
 double ClothSolver::max_step(const Eigen::MatrixX3d& x, const Eigen::MatrixX3d& dx, const Eigen::MatrixX3d* body_from,

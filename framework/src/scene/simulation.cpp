@@ -138,11 +138,11 @@ SimulationResult Simulation::run(const Eigen::MatrixX3d& target_body, const Simu
   Eigen::MatrixX3d x = garment_start;
   Eigen::MatrixX3d v = Eigen::MatrixX3d::Zero(x.rows(), 3);
   const int total = morph_steps_ + settle_steps_;
-  auto record = [&](int k, bool morphing, const StepReport& r, double stationarity) {
+  auto record = [&](int k, bool morphing, const StepReport& r, double stationarity, double slip_ratio = 0) {
     ++result.steps;
     result.iterations += r.iterations;
     result.line_search_failures += r.line_search_failures;
-    if (options.on_step) options.on_step({k, total, morphing, r, stationarity});
+    if (options.on_step) options.on_step({k, total, morphing, r, stationarity, slip_ratio});
   };
   // While the body morphs each step only has to follow it approximately; the
   // settling steps get the full Newton budget.
@@ -189,24 +189,24 @@ SimulationResult Simulation::run(const Eigen::MatrixX3d& target_body, const Simu
   // faces (ClothSolver::stationarity); the plain residual is reported as well.
   const double kink_radius = solver.settings().kink_radius;
   result.stationarity = solver.stationarity(x, kink_radius);
-  bool sliding = solver.sliding(x);  // with friction: some contact still slides
+  result.slip_ratio = solver.slip_ratio(x);  // with friction: 1 or more while some contact slides
   const double settle_tolerance = solver.settings().settle_tolerance;
   // A step that moves no vertex ends the settling: further steps from a
   // stall change nothing (tried: on a stalled BMI 65 body 54 more steps only
   // found no decrease). Whether that counts as settled is decided below.
   const double at_rest_limit = solver.settings().kink_tolerance;
-  for (int k = 1; k <= settle_steps_ && (result.stationarity > settle_tolerance || sliding) && !result.at_rest; ++k) {
+  for (int k = 1; k <= settle_steps_ && (result.stationarity > settle_tolerance || result.slip_ratio >= 1) && !result.at_rest; ++k) {
     const StepReport r = solver.step(x, v);
     result.stationarity = solver.stationarity(x, kink_radius);
-    sliding = solver.sliding(x);
+    result.slip_ratio = solver.slip_ratio(x);
     result.at_rest = r.max_displacement <= solver.settings().rest_displacement;
-    record(morph_steps_ + k, false, r, result.stationarity);
+    record(morph_steps_ + k, false, r, result.stationarity, result.slip_ratio);
     if (scene_detail::fell_off_body(x, target_body)) break;  // falling on: nothing can bring it back
   }
   // At rest counts only near equilibrium: a stall with large unbalanced forces is not a drape.
-  result.converged = (result.stationarity <= settle_tolerance && !sliding) ||
+  result.sliding = result.slip_ratio >= 1;
+  result.converged = (result.stationarity <= settle_tolerance && !result.sliding) ||
                      (result.at_rest && result.stationarity <= at_rest_limit);
-  result.sliding = sliding;
   result.total_energy = solver.energy(x, &result.energies);
   Eigen::MatrixX3d gradient = solver.static_gradient(x);
   result.residual = gradient.norm() / solver.force_scale();

@@ -36,8 +36,9 @@ std::string why_unsettled(const SimulationResult& result, const Eigen::MatrixX3d
   else if (result.sliding && result.stationarity <= tolerance)
     std::snprintf(head, sizeof head,
                   "not settled after %d settling steps: friction balances the forces (stationarity %.2e of the weight) "
-                  "but the garment still slides over the body, faster than the barrier's slip_velocity",
-                  settle_steps, result.stationarity);
+                  "but the garment still slides over the body (its fastest contact at %.3g times the barrier's "
+                  "slip_velocity)",
+                  settle_steps, result.stationarity, result.slip_ratio);
   else
     std::snprintf(head, sizeof head, "not settled after %d settling steps: stationarity %.2e of the weight, tolerance %.2e",
                   settle_steps, result.stationarity, tolerance);
