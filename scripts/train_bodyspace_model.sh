@@ -12,7 +12,15 @@
 # loss), BUILD_DIR (default build), THREADS (default all cores), GENERATE
 # (default 1; 0 simulates nothing and trains an interim model on the N shards
 # already in datasets/, in WORK_DIR/<N>of40/), GRAPHS (default both graphs
-# below; one graph trains only that one, and it is the model).
+# below; one graph trains only that one, and it is the model), SCENE (default
+# graphs/scenes/tshirt_coarse.yaml, the frictionless ground truth) and KEEP
+# (where finished shards are kept, default datasets/bodyspace<COUNT>).
+#
+# The same bodies with friction between cloth and body (docs/scenes.md,
+# "Friction"), their shards kept apart:
+#
+#   SCENE=graphs/scenes/tshirt_coarse_friction.yaml KEEP=datasets/bodyspace2000-friction \
+#     bash scripts/train_bodyspace_model.sh work-friction/
 #
 # Measured (2026-11-27, docs/bodies.md and docs/training.md): a drape takes
 # about 500 Newton iterations and 17 s per core (7 s at BMI 10-25, 32 s at
@@ -37,13 +45,14 @@ mkdir -p "$WORK"
 # machines adds up. Split 80/10/10 % into train, validation and test; every
 # shape parameter of each body is stored in /bodies/params.
 SHARDS=40
-KEEP=datasets/bodyspace$COUNT
+SCENE=${SCENE:-graphs/scenes/tshirt_coarse.yaml}
+KEEP=${KEEP:-datasets/bodyspace$COUNT}
 mkdir -p "$WORK/shards" "$KEEP"
 for ((K = 0; K < SHARDS; K++)); do
   SLIM=$(printf '%s/shard-%02d-of-%d.h5' "$KEEP" "$K" "$SHARDS")
   [[ -f "$SLIM" || "${GENERATE:-1}" == 0 ]] && continue
   FULL=$(printf '%s/shards/shard-%02d-of-%d.h5' "$WORK" "$K" "$SHARDS")
-  "$DRAPE" generate graphs/scenes/tshirt_coarse.yaml --count "$COUNT" --bmi 10:65 --height 1.5:2.0 --sex 0:1 \
+  "$DRAPE" generate "$SCENE" --count "$COUNT" --bmi 10:65 --height 1.5:2.0 --sex 0:1 \
     --girths 1 --seed 1 --shard "$K/$SHARDS" --out "$FULL" --threads "$THREADS"
   "$DRAPE" dataset slim "$FULL" --out "$SLIM"
 done

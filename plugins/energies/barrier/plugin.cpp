@@ -25,8 +25,8 @@ PluginList plugins() {
       // ArcSim's default cloth-obstacle coefficient is 0.3 (its `obs_friction`).
       {"friction", ParamType::Float, "0",
        "Coulomb's coefficient between cloth and body (IPC's lagged friction; 0: frictionless, ArcSim's default 0.3)", 0, 2},
-      {"slip_velocity", ParamType::Float, "0.001",
-       "eps_v in m/s: slower slip is held as static friction (IPC's smoothing)", 1e-6, 1},
+      {"slip_velocity", ParamType::Float, "0.01",
+       "eps_v in m/s: slower slip is held as static friction (IPC's smoothing; a step of h s creeps up to eps_v h)", 1e-6, 1},
   };
   d.create_energy = [](const Params& p) {
     barrier::BarrierSettings s;
