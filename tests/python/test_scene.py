@@ -101,3 +101,21 @@ def test_the_gil_is_released_while_drape_simulates(tiny_scene):
         ticks += 1  # runs only while the simulating thread does not hold the GIL
     worker.join()
     assert ticks > 10000
+
+
+def test_the_morph_starts_from_start_body(tmp_path):
+    """start_body: the mean body by default (the same drape to the bit when given it); the target itself makes
+    the morph stand still, and a body of the wrong size is refused naming the size it must have."""
+    from conftest import COARSE
+    path = tmp_path / "short.yaml"
+    path.write_text(f"base: {COARSE}\nsolver: {{morph_steps: 2, settle_steps: 0, linear_solver: eigen}}\n")
+    scene = drape.Scene(str(path))
+    target = scene.body(bmi=30)
+    default = scene.simulate(target, measure_penetration=False)
+    given_mean = scene.simulate(target, measure_penetration=False, start_body=np.array(scene.mean_body))
+    np.testing.assert_array_equal(default["garment"], given_mean["garment"])
+    from_target = scene.simulate(target, measure_penetration=False, start_body=target)
+    assert np.isfinite(from_target["garment"]).all()
+    assert np.abs(from_target["garment"] - default["garment"]).max() > 1e-3
+    with pytest.raises(ValueError, match=f"start_body.*N = {len(target)}"):
+        scene.simulate(target, start_body=target[:-1])
