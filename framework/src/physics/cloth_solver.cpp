@@ -172,7 +172,6 @@ double ClothSolver::stationarity(const Eigen::MatrixX3d& x, double radius) const
   for (Eigen::Index v = 0; v < x.rows(); ++v) {
     const Eigen::Vector3d base = smooth.row(v).transpose(), own = rough.row(v).transpose();
     double r = (base + own).norm();
-
     if (!kinked.empty() && own.squaredNorm() > 0 && r > 0) {
       // The hull of the non-smooth gradients at v and around it; with several
       // non-smooth energies, their k-th samples summed (a subset of the

@@ -189,7 +189,9 @@ SimulationResult Simulation::run(const Eigen::MatrixX3d& target_body, const Simu
   // faces (ClothSolver::stationarity); the plain residual is reported as well.
   const double kink_radius = solver.settings().kink_radius;
   result.stationarity = solver.stationarity(x, kink_radius);
-  result.slip_ratio = solver.slip_ratio(x);  // with friction: 1 or more while some contact slides
+  // With friction, a drape whose forces friction balances may still slide:
+  // it has settled only when no contact slips faster than friction holds.
+  result.slip_ratio = solver.slip_ratio(x);
   const double settle_tolerance = solver.settings().settle_tolerance;
   // A step that moves no vertex ends the settling: further steps from a
   // stall change nothing (tried: on a stalled BMI 65 body 54 more steps only
