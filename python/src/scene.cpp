@@ -116,7 +116,7 @@ py::dict result_dict(SimulationResult&& r) {
   d["stationarity"] = r.stationarity;
   d["converged"] = r.converged;
   d["at_rest"] = r.at_rest;
-  d["sliding"] = r.sliding;
+  d["sliding"] = r.sliding();
   d["slip_ratio"] = r.slip_ratio;
   d["unsettled"] = r.unsettled;
   d["steps"] = r.steps;

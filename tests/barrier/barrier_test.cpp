@@ -62,6 +62,8 @@ TEST_CASE("barrier: bad parameters, a missing body and a wrong vertex count are 
   CHECK_THROWS_WITH(params_for("barrier", "{distance: 0}"), Catch::Contains("'distance'"));
   CHECK_THROWS_WITH(params_for("barrier", "{stiffness: -1}"), Catch::Contains("'stiffness'"));
   CHECK_THROWS_WITH(params_for("barrier", "{min_separation: 1}"), Catch::Contains("'min_separation'"));
+  CHECK_THROWS_WITH(params_for("barrier", "{friction: -0.1}"), Catch::Contains("'friction'"));
+  CHECK_THROWS_WITH(params_for("barrier", "{slip_velocity: 0}"), Catch::Contains("'slip_velocity'"));
   CHECK_THROWS_AS(params_for("barrier", "{distanse: 0.001}"), ConfigError);
   const geometry::BodySurface body(box(-1, 1, 0, 2, -2, 0));
   const Garment g = one_triangle({-0.5, 0.5, 1e-3}, {-0.49, 0.5, 1e-3}, {-0.5, 0.51, 1e-3});

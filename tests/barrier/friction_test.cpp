@@ -15,6 +15,10 @@
 #include <cmath>
 #include <numbers>
 
+#ifdef _OPENMP
+#include <omp.h>
+#endif
+
 #include "barrier_test_util.hpp"
 
 using namespace drape;
@@ -127,6 +131,45 @@ TEST_CASE("friction: derivatives match finite differences over a box corner, sta
     const Eigen::VectorXd eig = Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(hess).eigenvalues();
     CHECK(eig.minCoeff() >= -1e-10 * eig.maxCoeff());
   }
+}
+
+TEST_CASE("friction: the same dissipation, gradient and Hessian with 1 and 2 threads", "[barrier][friction]") {
+#ifndef _OPENMP
+  WARN("built without OpenMP: nothing to compare");
+#else
+  // 4,900 vertices 4 mm apart over a box top: past the candidate count from
+  // which the barrier's pair search runs in parallel.
+  const geometry::BodySurface body(box(-1, 1, -1, 1, -0.5, 0));
+  auto g = grid_garment(70, 0.004);
+  Eigen::MatrixX3d& v = g->mesh.vertices;
+  for (Eigen::Index i = 0; i < v.rows(); ++i) v(i, 1) -= 1.0, v(i, 2) = 0.5e-3;
+  const Eigen::MatrixX3d start = perturbed(v, 2e-4, 3), x = perturbed(start, 3e-4, 4);
+  struct Result {
+    double value;
+    Eigen::MatrixX3d gradient;
+    Triplets hessian;
+  };
+  auto evaluate = [&](int threads) {
+    const int before = omp_get_max_threads();
+    omp_set_num_threads(threads);
+    const auto e = barrier_on(*g, body, "{friction: 0.3}");
+    e->begin_step(start, kStep);
+    Result r{e->dissipation(x), dissipation_gradient(*e, x), {}};
+    e->add_dissipation_hessian_lower(x, r.hessian);
+    omp_set_num_threads(before);
+    return r;
+  };
+  const Result one = evaluate(1), two = evaluate(2);
+  REQUIRE(one.value > 0);
+  CHECK(one.value == two.value);
+  CHECK(one.gradient == two.gradient);
+  REQUIRE(one.hessian.size() == two.hessian.size());
+  bool same = true;
+  for (std::size_t i = 0; i < one.hessian.size(); ++i)
+    same = same && one.hessian[i].row() == two.hessian[i].row() && one.hessian[i].col() == two.hessian[i].col() &&
+           one.hessian[i].value() == two.hessian[i].value();
+  CHECK(same);
+#endif
 }
 
 namespace {

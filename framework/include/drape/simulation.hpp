@@ -52,8 +52,8 @@ struct SimulationResult {
   // residual cannot fall further; stationarity counts both pushes.
   bool converged = false;
   bool at_rest = false;        // settled by the rest criterion
-  bool sliding = false;        // with friction: some contact still slid in the last step (not settled)
   double slip_ratio = 0;       // with friction: the fastest contact's slip in the last step / the slip friction holds
+  bool sliding() const { return slip_ratio >= 1; }  // with friction: some contact still slid (not settled)
   // When not settled: why, in words (how far from balance, where the largest
   // unbalanced forces are, whether the steps had stopped moving).
   std::string unsettled;

@@ -197,7 +197,7 @@ SimulationResult Simulation::run(const Eigen::MatrixX3d& target_body, const Simu
   // stall change nothing (tried: on a stalled BMI 65 body 54 more steps only
   // found no decrease). Whether that counts as settled is decided below.
   const double at_rest_limit = solver.settings().kink_tolerance;
-  for (int k = 1; k <= settle_steps_ && (result.stationarity > settle_tolerance || result.slip_ratio >= 1) && !result.at_rest; ++k) {
+  for (int k = 1; k <= settle_steps_ && (result.stationarity > settle_tolerance || result.sliding()) && !result.at_rest; ++k) {
     const StepReport r = solver.step(x, v);
     result.stationarity = solver.stationarity(x, kink_radius);
     result.slip_ratio = solver.slip_ratio(x);
@@ -206,8 +206,7 @@ SimulationResult Simulation::run(const Eigen::MatrixX3d& target_body, const Simu
     if (scene_detail::fell_off_body(x, target_body)) break;  // falling on: nothing can bring it back
   }
   // At rest counts only near equilibrium: a stall with large unbalanced forces is not a drape.
-  result.sliding = result.slip_ratio >= 1;
-  result.converged = (result.stationarity <= settle_tolerance && !result.sliding) ||
+  result.converged = (result.stationarity <= settle_tolerance && !result.sliding()) ||
                      (result.at_rest && result.stationarity <= at_rest_limit);
   result.total_energy = solver.energy(x, &result.energies);
   Eigen::MatrixX3d gradient = solver.static_gradient(x);

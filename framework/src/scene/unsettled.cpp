@@ -33,7 +33,7 @@ std::string why_unsettled(const SimulationResult& result, const Eigen::MatrixX3d
                   "stopped at rest after %d settling steps (no vertex moved in the last one) with stationarity %.2e of "
                   "the weight, above the tolerance %.2e and the at-rest limit %.2e",
                   settle_steps, result.stationarity, tolerance, at_rest_limit);
-  else if (result.sliding && result.stationarity <= tolerance)
+  else if (result.sliding() && result.stationarity <= tolerance)
     std::snprintf(head, sizeof head,
                   "not settled after %d settling steps: friction balances the forces (stationarity %.2e of the weight) "
                   "but the garment still slides over the body (its fastest contact at %.3g times the barrier's "

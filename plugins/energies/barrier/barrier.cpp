@@ -75,6 +75,10 @@ BarrierContact::BarrierContact(const BarrierSettings& settings) : settings_(sett
     throw ConfigError("barrier: stiffness must be > 0, got " + std::to_string(settings_.stiffness));
   if (!(settings_.min_separation > 0 && settings_.min_separation < 1))
     throw ConfigError("barrier: min_separation must be in (0, 1)");
+  if (!(settings_.friction >= 0) || !std::isfinite(settings_.friction))
+    throw ConfigError("barrier: friction must be >= 0, got " + std::to_string(settings_.friction));
+  if (!(settings_.slip_velocity > 0) || !std::isfinite(settings_.slip_velocity))
+    throw ConfigError("barrier: slip_velocity must be a positive speed, got " + std::to_string(settings_.slip_velocity));
 }
 
 BarrierContact::~BarrierContact() = default;
@@ -157,20 +161,22 @@ S BarrierContact::pair_energy(const ContactPair& pair, const BodyState& body, co
   const S s = typed_distance2(pair.type, q);
   const BarrierValue bv = log_barrier(primal(s) / dhat2);
   S e = chain(s, bv.b, bv.db / dhat2, bv.d2b / (dhat2 * dhat2));
-  double weight = 0;
-  switch (pair.kind) {
-    case PairKind::GarmentVertexBodyFace: weight = t.garment_vertex_area[pair.garment]; break;
-    case PairKind::BodyVertexGarmentFace: weight = body.vertex_area[pair.body]; break;
-    case PairKind::GarmentEdgeBodyEdge: {
-      weight = t.garment_edge_area[pair.garment];
-      const Vec3<S> n = cross(q[1] - q[0], q[3] - q[2]);
-      const S c = dot(n, n);
-      const MollifierValue mv = edge_mollifier(primal(c), 1e-3 * t.garment_edge_rest2[pair.garment] * body.edge_length2[pair.body]);
-      if (mv.m != 1) e = chain(c, mv.m, mv.dm, mv.d2m) * e;
-      break;
-    }
+  if (pair.kind == PairKind::GarmentEdgeBodyEdge) {
+    const Vec3<S> n = cross(q[1] - q[0], q[3] - q[2]);
+    const S c = dot(n, n);
+    const MollifierValue mv = edge_mollifier(primal(c), 1e-3 * t.garment_edge_rest2[pair.garment] * body.edge_length2[pair.body]);
+    if (mv.m != 1) e = chain(c, mv.m, mv.dm, mv.d2m) * e;
   }
-  return (settings_.stiffness * settings_.distance * weight) * e;
+  return (settings_.stiffness * settings_.distance * pair_area(pair, body)) * e;
+}
+
+double BarrierContact::pair_area(const ContactPair& pair, const BodyState& body) const {
+  switch (pair.kind) {
+    case PairKind::GarmentVertexBodyFace: return topology_->garment_vertex_area[pair.garment];
+    case PairKind::BodyVertexGarmentFace: return body.vertex_area[pair.body];
+    case PairKind::GarmentEdgeBodyEdge: break;
+  }
+  return topology_->garment_edge_area[pair.garment];
 }
 
 template <class D>

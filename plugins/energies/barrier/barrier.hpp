@@ -106,17 +106,6 @@ class BarrierContact final : public Energy {
   void add_dissipation_hessian_lower(const Eigen::MatrixX3d& x, Triplets& h) const override;
   double slip_ratio(const Eigen::MatrixX3d& x) const override;
 
-  // A pair's contact at x: its garment vertices and their weights in the
-  // pair's garment point, the unit normal from the body's closest point to
-  // the garment's, and the barrier's push along it (N).
-  struct Contact {
-    std::array<int, 3> vertex{};
-    std::array<double, 3> weight{};
-    int count = 0;
-    Eigen::Vector3d normal = Eigen::Vector3d::Zero();
-    double normal_force = 0;
-  };
-  Contact contact(const ContactPair& pair, const BodyState& body, const Eigen::MatrixX3d& x) const;
 
   // The pairs within d_hat at some x, with the body state they were found on.
   struct PairSet {
@@ -143,6 +132,20 @@ class BarrierContact final : public Energy {
   D pair_dual(const ContactPair& pair, const BodyState& body, const Eigen::MatrixX3d& x) const;
   void hessian(const Eigen::MatrixX3d& x, Triplets& h, bool project_psd, bool lower) const;
 
+  // A pair's contact at x: its garment vertices and their weights in the
+  // pair's garment point, the unit normal from the body's closest point to
+  // the garment's, and the barrier's push along it (N).
+  struct Contact {
+    std::array<int, 3> vertex{};
+    std::array<double, 3> weight{};
+    int count = 0;
+    Eigen::Vector3d normal = Eigen::Vector3d::Zero();
+    double normal_force = 0;
+  };
+  Contact contact(const ContactPair& pair, const BodyState& body, const Eigen::MatrixX3d& x) const;
+  // The area that weights a pair (barrier.hpp): the garment vertex's, the
+  // body vertex's, or the garment edge's third of its faces'.
+  double pair_area(const ContactPair& pair, const BodyState& body) const;
   // A contact's friction, lagged at the step's start.
   struct FrictionContact {
     Contact contact;

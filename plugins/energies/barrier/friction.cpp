@@ -50,13 +50,12 @@ BarrierContact::Contact BarrierContact::contact(const ContactPair& pair, const B
   Contact c;
   c.count = pair_vertices(pair, c.vertex);
   Eigen::Vector3d on_garment, on_body;
-  double weight = 0, mollifier = 1;
+  double mollifier = 1;
   switch (pair.kind) {
     case PairKind::GarmentVertexBodyFace: {
       c.weight = {1.0, 0.0, 0.0};
       on_garment = p[0];
       on_body = geometry::closest_point_on_triangle(p[0], p[1], p[2], p[3]).point;
-      weight = t.garment_vertex_area[pair.garment];
       break;
     }
     case PairKind::BodyVertexGarmentFace: {
@@ -64,7 +63,6 @@ BarrierContact::Contact BarrierContact::contact(const ContactPair& pair, const B
       c.weight = {hit.barycentric[0], hit.barycentric[1], hit.barycentric[2]};
       on_garment = hit.point;
       on_body = p[0];
-      weight = body.vertex_area[pair.body];
       break;
     }
     case PairKind::GarmentEdgeBodyEdge: {
@@ -72,7 +70,6 @@ BarrierContact::Contact BarrierContact::contact(const ContactPair& pair, const B
       c.weight = {1.0 - hit.s, hit.s, 0.0};
       on_garment = hit.on_a;
       on_body = hit.on_b;
-      weight = t.garment_edge_area[pair.garment];
       const double cross2 = (p[1] - p[0]).cross(p[3] - p[2]).squaredNorm();
       mollifier = edge_mollifier(cross2, 1e-3 * t.garment_edge_rest2[pair.garment] * body.edge_length2[pair.body]).m;
       break;
@@ -85,7 +82,7 @@ BarrierContact::Contact BarrierContact::contact(const ContactPair& pair, const B
   // E_pair = kappa d_hat w m b(d^2 / d_hat^2): its push |dE/dd|.
   const double dhat2 = settings_.distance * settings_.distance;
   const double db = log_barrier(d * d / dhat2).db;
-  c.normal_force = std::abs(settings_.stiffness * settings_.distance * weight * mollifier * db * 2 * d / dhat2);
+  c.normal_force = std::abs(settings_.stiffness * settings_.distance * pair_area(pair, body) * mollifier * db * 2 * d / dhat2);
   return c;
 }
 
