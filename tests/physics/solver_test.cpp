@@ -158,6 +158,8 @@ TEST_CASE("a quasi-static step with a long time step lands on the minimiser of a
     const StepReport r = cs.step(x, v);
     CHECK(r.converged);
     CHECK(r.iterations <= 2);
+    // A quadratic model is exact: every Newton step passes at its first trial.
+    CHECK(cs.timings().line_search_trials == r.iterations);
     const Eigen::MatrixX3d expected = g.mesh.vertices.rowwise() + (f / 50.0).transpose();
     CHECK((x - expected).cwiseAbs().maxCoeff() < 1e-9);
     CHECK(v.cwiseAbs().maxCoeff() == 0.0);  // damping 1: no velocity carried

@@ -138,6 +138,7 @@ class ClothSolver {
     long cg_iterations = 0;  // PCG iterations of the steps solved with an earlier factor
     int exact_steps = 0;     // Newton iterations that used the exact (unprojected) matrix
     int exact_refused = 0;   // iterations whose exact matrix was tried and found indefinite
+    long line_search_trials = 0;  // energy evaluations of the line search (1 per iteration when full steps pass)
   };
   const Timings& timings() const { return timings_; }
 

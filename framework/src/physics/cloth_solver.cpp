@@ -348,6 +348,7 @@ StepReport ClothSolver::step(Eigen::MatrixX3d& x, Eigen::MatrixX3d& v) {
       for (int k = 0; k < settings_.max_line_search; ++k, alpha *= 0.5) {
         const Eigen::MatrixX3d trial = x + alpha * dir;
         const double phi_trial = phi(trial, x_hat);
+        ++timings_.line_search_trials;
         if (std::isfinite(phi_trial) && phi_trial <= phi_x + settings_.armijo * alpha * slope) {
           x = trial;
           phi_x = phi_trial;
