@@ -121,8 +121,10 @@ int run(const std::vector<std::string>& args) {
   std::printf("residual |grad E|/|weight| = %.2e (stationarity %.2e), penetration p = %.3f%% of garment vertices, %s, time %.2f s\n",
               r.residual, r.stationarity,
               100.0 * r.penetration, crossings_summary(r).c_str(), r.seconds);
+  // The collision checks run inside the line search and while the morph moves the body.
   std::printf("time split: gradient %.2f s, hessian %.2f s, assembly %.2f s, linear solves %.2f s (%d factorisations, "
-              "%ld PCG iterations; %d Newton steps on the exact matrix, %d found it indefinite), line search %.2f s (%ld trials; collision checks %.2f s)\n",
+              "%ld PCG iterations; %d Newton steps on the exact matrix, %d found it indefinite), line search %.2f s "
+              "(%ld trials), collision checks %.2f s\n",
               r.timings.gradient, r.timings.hessian, r.timings.assembly, r.timings.linear_solves, r.timings.factorizations,
               r.timings.cg_iterations, r.timings.exact_steps, r.timings.exact_refused, r.timings.line_search,
               r.timings.line_search_trials, r.timings.collision_checks);

@@ -106,7 +106,6 @@ class BarrierContact final : public Energy {
   void add_dissipation_hessian_lower(const Eigen::MatrixX3d& x, Triplets& h) const override;
   double slip_ratio(const Eigen::MatrixX3d& x) const override;
 
-
   // The pairs within d_hat at some x, with the body state they were found on.
   struct PairSet {
     std::shared_ptr<const BodyState> body;
@@ -143,8 +142,8 @@ class BarrierContact final : public Energy {
     double normal_force = 0;
   };
   Contact contact(const ContactPair& pair, const BodyState& body, const Eigen::MatrixX3d& x) const;
-  // The area that weights a pair (barrier.hpp): the garment vertex's, the
-  // body vertex's, or the garment edge's third of its faces'.
+  // The area that weights a pair's energy and its friction: the garment
+  // vertex's, the body vertex's, or the garment edge's third of its faces'.
   double pair_area(const ContactPair& pair, const BodyState& body) const;
   // A contact's friction, lagged at the step's start.
   struct FrictionContact {
