@@ -54,7 +54,7 @@ int info(const std::vector<std::string>& args) {
   const fs::path file = vm["model"].as<std::string>();
   const Checkpoint c = read_checkpoint(file);
   std::printf("%s\n", file.string().c_str());
-  for (const char* key : {"kind", "status", "epoch", "best_epoch", "best_loss", "dataset", "train_samples", "drape_version"})
+  for (const char* key : {"kind", "status", "epoch", "best_epoch", "best_loss", "dataset", "ground_truth", "train_samples", "drape_version"})
     if (auto it = c.meta.find(key); it != c.meta.end()) std::printf("  %-14s %s\n", key, it->second.c_str());
   if (auto domain = read_domain(file)) print_domain(*domain);
   else

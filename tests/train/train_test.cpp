@@ -63,6 +63,8 @@ TEST_CASE("training mlp_baseline reduces the loss and writes a loadable model", 
   CHECK(c.history.count("val_loss_edge"));
   CHECK(c.meta.at("kind") == "drape model");
   CHECK(c.meta.at("status") == "finished");
+  // Which simulation it learnt: the description of the scene that made the data.
+  CHECK(c.meta.at("ground_truth") == "tiny training scene");
   CHECK(std::stol(c.meta.at("best_epoch")) == r.best_epoch);
   // The best epoch is the one with the lowest validation loss.
   const auto best = std::min_element(val_loss.begin(), val_loss.end());

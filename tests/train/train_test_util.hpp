@@ -18,7 +18,8 @@
 namespace drape::test {
 
 inline const char* tiny_scene() {
-  return "body: {model: parametric}\n"
+  return "description: tiny training scene\n"
+         "body: {model: parametric}\n"
          "garment: {template: tshirt, params: {resolution: 300}}\n"
          "effects: [gravity, stretching, bending]\n";
 }

@@ -109,6 +109,19 @@ std::string terms_text(const LossValues& l) {
   return s + "]";
 }
 
+// What the drapes are a simulation of: the description of the scene that made
+// the dataset (with or without friction, which garment), so that a model says
+// which ground truth it learnt. Empty when the dataset's scene does not parse:
+// with assets given by the caller the scene is not needed to train.
+std::string ground_truth_of(const DatasetLayout& layout, const fs::path& data) {
+  if (layout.scene.empty()) return "";
+  try {
+    return parse_scene(layout.scene, data.string() + " (scene attribute)").description;
+  } catch (const ConfigError&) {
+    return "";
+  }
+}
+
 }  // namespace
 
 fs::path training_state_path(const fs::path& out) { return fs::path(out.string() + ".state"); }
@@ -166,6 +179,7 @@ TrainReport train(const Registry& registry, const TrainOptions& given) {
   } else {
     assets = assets_for_dataset(registry, reader, o.data, o.eigen_k, o.cache_dir, &assets_spec);
   }
+  const std::string ground_truth = ground_truth_of(layout, o.data);
   const int ng = assets->garment->mesh.num_vertices(), nb = assets->body.num_vertices();
   // An optimised dataset's drapes that are not results lie inside the body: left out.
   const std::vector<std::size_t> train_all = reader.training_indices(o.train_fraction), val_all = reader.indices(Split::Val);
@@ -287,6 +301,7 @@ TrainReport train(const Registry& registry, const TrainOptions& given) {
     meta["assets_hash"] = assets->hash;
     meta["output"] = output;
     meta["dataset"] = fs::absolute(o.data).string();
+    if (!ground_truth.empty()) meta["ground_truth"] = ground_truth;
     meta["epochs"] = std::to_string(o.epochs);
     meta["epoch"] = std::to_string(epochs_done);
     meta["best_epoch"] = std::to_string(report.best_epoch);
