@@ -13,19 +13,23 @@
 # (default 1; 0 simulates nothing and trains an interim model on the N shards
 # already in datasets/, in WORK_DIR/<N>of40/), GRAPHS (default both graphs
 # below; one graph trains only that one, and it is the model), SCENE (default
-# graphs/scenes/tshirt_coarse.yaml, the frictionless ground truth) and KEEP
-# (where finished shards are kept, default datasets/bodyspace<COUNT>).
+# graphs/scenes/tshirt_coarse_friction.yaml: the ground truth has friction
+# 0.3 between cloth and body, docs/scenes.md "Friction") and KEEP (where
+# finished shards are kept, default datasets/bodyspace<COUNT>-friction).
 #
-# The same bodies with friction between cloth and body (docs/scenes.md,
-# "Friction"), their shards kept apart:
+# The same bodies without friction, the ground truth until 2026-11-27 (the
+# shipped model of 2,000 frictionless drapes was made so), their shards kept
+# apart:
 #
-#   SCENE=graphs/scenes/tshirt_coarse_friction.yaml KEEP=datasets/bodyspace2000-friction \
-#     bash scripts/train_bodyspace_model.sh work-friction/
+#   SCENE=graphs/scenes/tshirt_coarse.yaml KEEP=datasets/bodyspace2000 \
+#     bash scripts/train_bodyspace_model.sh work-frictionless/
 #
-# Measured (2026-11-27, docs/bodies.md and docs/training.md): a drape takes
-# about 500 Newton iterations and 17 s per core (7 s at BMI 10-25, 32 s at
-# 55-65), so a shard of 50 takes 6-8 minutes on two cores and the 2,000 are
-# 9.6 core-hours. An epoch of the 1,600 training drapes takes 5.2 s on one
+# Measured (2026-11-27, docs/bodies.md and docs/training.md): with friction a
+# drape takes about 615 Newton iterations (310 at BMI 10-25, 1,250 at 55-65);
+# two at a time on the 2-core AMD EPYC, a shard of 50 takes about 10 minutes
+# (17 with a training beside it), so the 2,000 are about 7 hours of the
+# machine. Without friction: 500 iterations, 17 s per core, 9.6 core-hours
+# for the 2,000. An epoch of the 1,600 training drapes takes 5.2 s on one
 # core of the AMD EPYC (with another job on the other): 600 epochs in 53 min.
 set -euo pipefail
 cd "$(dirname "${BASH_SOURCE[0]}")/.."
@@ -39,14 +43,14 @@ mkdir -p "$WORK"
 
 # The drapes, in 40 shards of COUNT/40 (drape generate --shard K/40: the same
 # bodies as one run of the whole count). The repository keeps each finished
-# shard slim, without its body vertices, in datasets/bodyspace2000/ (for the
+# shard slim, without its body vertices, in datasets/bodyspace2000-friction/ (for the
 # default COUNT): a shard found there is not simulated again, and a shard made
 # here is slimmed into it, so a generation spread over several sessions or
 # machines adds up. Split 80/10/10 % into train, validation and test; every
 # shape parameter of each body is stored in /bodies/params.
 SHARDS=40
-SCENE=${SCENE:-graphs/scenes/tshirt_coarse.yaml}
-KEEP=${KEEP:-datasets/bodyspace$COUNT}
+SCENE=${SCENE:-graphs/scenes/tshirt_coarse_friction.yaml}
+KEEP=${KEEP:-datasets/bodyspace$COUNT-friction}
 mkdir -p "$WORK/shards" "$KEEP"
 for ((K = 0; K < SHARDS; K++)); do
   SLIM=$(printf '%s/shard-%02d-of-%d.h5' "$KEEP" "$K" "$SHARDS")
