@@ -111,15 +111,11 @@ std::string terms_text(const LossValues& l) {
 
 // What the drapes are a simulation of: the description of the scene that made
 // the dataset (with or without friction, which garment), so that a model says
-// which ground truth it learnt. Empty when the dataset's scene does not parse:
-// with assets given by the caller the scene is not needed to train.
+// which ground truth it learnt. A stored scene that does not parse is a
+// damaged dataset, reported like everywhere else that reads it.
 std::string ground_truth_of(const DatasetLayout& layout, const fs::path& data) {
   if (layout.scene.empty()) return "";
-  try {
-    return parse_scene(layout.scene, data.string() + " (scene attribute)").description;
-  } catch (const ConfigError&) {
-    return "";
-  }
+  return parse_scene(layout.scene, data.string() + " (scene attribute)").description;
 }
 
 }  // namespace
