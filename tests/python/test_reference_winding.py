@@ -59,11 +59,13 @@ def test_a_prediction_pushed_out(tmp_path):
     """drape predict --push-out: the shipped model's shirt on a body it fits badly has vertices inside; pushed
     out, none is, by the winding number. Which body that is depends on the model: the first of a few hard ones
     (a woman of BMI 40, on which the male-only models failed; the heaviest bodies, whose chest or belly the
-    regular shirt is 30-47 % too small for) whose prediction has more than 1 % of its vertices inside."""
+    regular shirt is 30-47 % too small for; last, a man of 2.10 m, taller than any body the body-space models
+    were trained on) whose prediction has more than 1 % of its vertices inside."""
     garment, pushed, body = tmp_path / "g.obj", tmp_path / "pushed.obj", tmp_path / "b.obj"
     script = str(REFERENCE / "winding_number_meshes.py")
     candidates = [("--bmi", 40, "--sex", 0), ("--bmi", 65, "--sex", 1, "--height", 2.0),
-                  ("--bmi", 60, "--sex", 0, "--height", 2.0), ("--bmi", 65, "--sex", 0, "--height", 1.5)]
+                  ("--bmi", 60, "--sex", 0, "--height", 2.0), ("--bmi", 65, "--sex", 0, "--height", 1.5),
+                  ("--bmi", 65, "--sex", 1, "--height", 2.1)]
     for shape in candidates:
         run_drape("predict", *shape, "--out", garment, "--body-out", body)
         before = subprocess.run([sys.executable, script, str(garment), str(body)], capture_output=True, text=True, check=True)
