@@ -15,8 +15,11 @@
 # model's graph below; several are each trained and the one with the lower
 # validation ME is the model), SCENE (default
 # graphs/scenes/tshirt_coarse_friction.yaml: the ground truth has friction
-# 0.3 between cloth and body, docs/scenes.md "Friction") and KEEP (where
-# finished shards are kept, default datasets/bodyspace<COUNT>-friction).
+# 0.3 between cloth and body, docs/scenes.md "Friction"), KEEP (where
+# finished shards are kept, default datasets/bodyspace<COUNT>-friction), and
+# to fine-tune a model, INIT (the model file whose weights training starts
+# from instead of random ones), LR (Adam's peak learning rate, default 1e-3)
+# and PATIENCE (default 100 epochs).
 #
 # The same bodies without friction, the ground truth until 2026-11-27 (the
 # shipped model of 2,000 frictionless drapes was made so), their shards kept
@@ -84,8 +87,8 @@ fi
 GRAPHS=${GRAPHS:-graphs/bodyspace/drape_follow_penetration_weight3.yaml}
 for GRAPH in $GRAPHS; do
   NAME=$(basename "$GRAPH" .yaml)
-  "$DRAPE" train "$GRAPH" --data "$DATA" --out "$WORK/$NAME.h5" --epochs "$EPOCHS" --batch 8 --lr 1e-3 \
-    --schedule cosine --patience 100 --seed 0 --threads "$THREADS" --resume
+  "$DRAPE" train "$GRAPH" --data "$DATA" --out "$WORK/$NAME.h5" --epochs "$EPOCHS" --batch 8 --lr "${LR:-1e-3}" \
+    --schedule cosine --patience "${PATIENCE:-100}" --seed 0 --threads "$THREADS" --resume ${INIT:+--init "$INIT"}
   "$DRAPE" eval --model "$WORK/$NAME.h5" --data "$DATA" --split val --out "$WORK/$NAME-val.csv"
 done
 val_me() { awk -F, '$1 == "ME" { print $3 }' "$1"; }
