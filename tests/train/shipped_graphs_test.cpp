@@ -56,6 +56,8 @@ const Row kRows[] = {
      {"v2v", "direction", "edge", "deformation", "laplacian", "spectral_loss", "penetration"}, 1.0},
     {"bodyspace/drape_follow_penetration_weight3.yaml", "cnn1d", "msgcn", true,
      {"v2v", "direction", "edge", "deformation", "laplacian", "spectral_loss", "penetration"}, 3.0},
+    {"bodyspace/drape_follow_penetration_weight10.yaml", "cnn1d", "msgcn", true,
+     {"v2v", "direction", "edge", "deformation", "laplacian", "spectral_loss", "penetration"}, 10.0},
     // Not the seed's: its full model plus the penetration loss.
     {"ablations/losses/l6_penetration.yaml", "cnn1d", "msgcn", true,
      {"v2v", "direction", "edge", "deformation", "laplacian", "spectral_loss", "penetration"}},
