@@ -18,6 +18,21 @@ sys.path.insert(0, str(REFERENCE))
 from obj_file import read_obj  # noqa: E402,F401  (an OBJ reader independent of drape's, for the tests)
 
 
+# A model small enough to check weight by weight (test_torch), or to save as a model file without training
+# one (test_reference_winding): tanh keeps it smooth, so central differences never straddle a ReLU kink, and
+# its untrained weights predict little more than the template, the shirt of the mean body.
+TINY_GRAPH = """
+inputs:
+  body: [body_vertices, 3]
+nodes:
+  shape: { type: subtract_mean_body, in: body }
+  encoder: { type: cnn1d, in: shape, params: { channels: [4], kernel: 5, stride: 8, activation: tanh } }
+  decoder: { type: mlp, in: encoder.global, params: { widths: [8], rows: 0, activation: tanh } }
+  garment: { type: add_template, in: decoder }
+outputs: { garment: garment }
+"""
+
+
 def run_drape(*args, expect=0):
     """Runs the drape program; returns (stdout, stderr). Fails the test on another exit code."""
     p = subprocess.run([str(DRAPE), *map(str, args)], capture_output=True, text=True, timeout=120)

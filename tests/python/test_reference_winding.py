@@ -7,7 +7,7 @@ import sys
 import numpy as np
 import pytest
 
-from conftest import COARSE, REFERENCE, read_obj, run_drape
+from conftest import COARSE, REFERENCE, TINY_GRAPH, read_obj, run_drape
 from winding_number import winding_numbers
 
 
@@ -55,27 +55,13 @@ def test_a_drape_and_a_pushed_in_copy(tmp_path):
     assert p == pytest.approx(expected, abs=100.0 * 30 / len(g))  # the body's centre is in its torso; a few may miss
 
 
-# A graph whose untrained weights predict little more than the template, the shirt of the mean body: on a
-# heavy body a large part of it is inside, whatever the shipped model has learnt.
-UNTRAINED_GRAPH = """
-inputs:
-  body: [body_vertices, 3]
-nodes:
-  shape: { type: subtract_mean_body, in: body }
-  encoder: { type: cnn1d, in: shape, params: { channels: [4], kernel: 5, stride: 8, activation: tanh } }
-  decoder: { type: mlp, in: encoder.global, params: { widths: [8], rows: 0, activation: tanh } }
-  garment: { type: add_template, in: decoder }
-outputs: { garment: garment }
-"""
-
-
 def test_a_prediction_pushed_out(tmp_path, drape_module):
     """drape predict --push-out: a prediction with many vertices inside the body (an untrained model's, so that
     the test does not depend on how well the shipped model fits) has none inside once pushed out, by the
     winding number."""
     garment, pushed, body = tmp_path / "g.obj", tmp_path / "pushed.obj", tmp_path / "b.obj"
     model = tmp_path / "untrained.h5"
-    drape_module.Model.untrained(UNTRAINED_GRAPH, {"resolution": "coarse"}, seed=1).save(str(model), {})
+    drape_module.Model.untrained(TINY_GRAPH, {"resolution": "coarse"}, seed=1).save(str(model), {})
     script = str(REFERENCE / "winding_number_meshes.py")
     shape = ("--model", model, "--bmi", 40, "--sex", 1)
     run_drape("predict", *shape, "--out", garment, "--body-out", body)

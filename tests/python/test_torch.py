@@ -7,20 +7,7 @@ torch = pytest.importorskip("torch", reason="PyTorch is not installed (Debian: p
 
 import drape  # noqa: E402
 import drape.torch_bridge as dt  # noqa: E402
-from conftest import CONTACT  # noqa: E402
-
-# A model small enough to check weight by weight; tanh keeps it smooth, so central differences
-# never straddle a ReLU kink.
-TINY_GRAPH = """
-inputs:
-  body: [body_vertices, 3]
-nodes:
-  shape: { type: subtract_mean_body, in: body }
-  encoder: { type: cnn1d, in: shape, params: { channels: [4], kernel: 5, stride: 8, activation: tanh } }
-  decoder: { type: mlp, in: encoder.global, params: { widths: [8], rows: 0, activation: tanh } }
-  garment: { type: add_template, in: decoder }
-outputs: { garment: garment }
-"""
+from conftest import CONTACT, TINY_GRAPH  # noqa: E402
 
 
 @pytest.fixture(scope="module")
