@@ -83,7 +83,7 @@ fi
 # weight 1's p for 3 % more ME). The shipped model is that model fine-tuned on
 # all 2,000 with the loss at 10:
 #   git show 2caa63d:models/tshirt-coarse.h5 > start.h5
-#   INIT=start.h5 LR=2e-4 EPOCHS=100 PATIENCE=50 GENERATE=0 \
+#   INIT=start.h5 LR=2e-4 EPOCHS=100 PATIENCE=50 THREADS=1 GENERATE=0 \
 #     GRAPHS=graphs/bodyspace/drape_follow_penetration_weight10.yaml bash scripts/train_bodyspace_model.sh WORK
 # (docs/training.md, "The shipped model on friction drapes: all 2,000
 # drapes"). Given several (e.g. GRAPHS="graphs/drape.yaml graphs/bodyspace/drape_follow_penetration.yaml",
