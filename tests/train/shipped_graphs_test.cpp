@@ -24,6 +24,7 @@ struct Row {
   bool spectral;        // the spectral residual branch is there
   std::set<std::string> losses;
   double penetration_weight = 1.0;  // the penetration loss's weight, where there is one
+  double penetration_margin = 0.0;  // its margin in m where the file sets one (0: the plugin's default)
 };
 
 const std::set<std::string> kSeedLosses = {"v2v", "direction", "edge", "deformation", "laplacian", "spectral_loss"};
@@ -58,6 +59,8 @@ const Row kRows[] = {
      {"v2v", "direction", "edge", "deformation", "laplacian", "spectral_loss", "penetration"}, 3.0},
     {"bodyspace/drape_follow_penetration_weight10.yaml", "cnn1d", "msgcn", true,
      {"v2v", "direction", "edge", "deformation", "laplacian", "spectral_loss", "penetration"}, 10.0},
+    {"bodyspace/drape_follow_penetration_weight100_margin6mm.yaml", "cnn1d", "msgcn", true,
+     {"v2v", "direction", "edge", "deformation", "laplacian", "spectral_loss", "penetration"}, 100.0, 0.006},
     // Not the seed's: its full model plus the penetration loss.
     {"ablations/losses/l6_penetration.yaml", "cnn1d", "msgcn", true,
      {"v2v", "direction", "edge", "deformation", "laplacian", "spectral_loss", "penetration"}},
@@ -96,6 +99,11 @@ TEST_CASE("every shipped model graph is its table row, builds on the T-shirt and
     for (const auto& n : spec.nodes)
       if (n.is_loss) {
         losses.insert(n.type);
+        if (n.type == "penetration") {
+          const auto margin = n.params.find("margin");
+          CHECK((margin != n.params.end()) == (row.penetration_margin > 0));
+          if (margin != n.params.end()) CHECK(margin->second.node.as<double>() == row.penetration_margin);
+        }
         CHECK(n.weight == (n.type == "v2v" || n.type == "edge" ? 10.0
                            : n.type == "penetration"                ? row.penetration_weight
                                                                     : 1.0));
