@@ -8,6 +8,7 @@
 
 #include <cmath>
 #include <fstream>
+#include <optional>
 #include <set>
 
 #include "train_test_util.hpp"
@@ -24,7 +25,7 @@ struct Row {
   bool spectral;        // the spectral residual branch is there
   std::set<std::string> losses;
   double penetration_weight = 1.0;  // the penetration loss's weight, where there is one
-  double penetration_margin = 0.0;  // its margin in m where the file sets one (0: the plugin's default)
+  std::optional<double> penetration_margin{};  // its margin in m, where the file sets one
 };
 
 const std::set<std::string> kSeedLosses = {"v2v", "direction", "edge", "deformation", "laplacian", "spectral_loss"};
@@ -101,8 +102,9 @@ TEST_CASE("every shipped model graph is its table row, builds on the T-shirt and
         losses.insert(n.type);
         if (n.type == "penetration") {
           const auto margin = n.params.find("margin");
-          CHECK((margin != n.params.end()) == (row.penetration_margin > 0));
-          if (margin != n.params.end()) CHECK(margin->second.node.as<double>() == row.penetration_margin);
+          CHECK((margin != n.params.end()) == row.penetration_margin.has_value());
+          if (margin != n.params.end() && row.penetration_margin)
+            CHECK(margin->second.node.as<double>() == *row.penetration_margin);
         }
         CHECK(n.weight == (n.type == "v2v" || n.type == "edge" ? 10.0
                            : n.type == "penetration"                ? row.penetration_weight
