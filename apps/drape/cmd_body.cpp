@@ -57,9 +57,6 @@ int run(const std::vector<std::string>& args) {
       "height", po::value<std::string>(), "height in m, or a range (default 1.75; 1.5:2.0 with --sample)")(
       "sex", po::value<double>(), "0 female ... 1 male (default 1; random 0/1 with --sample)")(
       "out", po::value<std::string>(), "mesh file to write (.obj, .ply, .gltf, .glb)")(
-      "girth", po::value<std::vector<std::string>>()->composing(),
-      "a proportion held while BMI is reached, name=value (repeatable; parametric: chest, waist, belly, hips, arms, "
-      "thighs in [-0.15, 0.15], log factors)")(
       "sample", po::value<int>(), "draw this many bodies: BMI uniform in the --bmi range, sex, height and girths independently")(
       "girths", po::value<double>()->default_value(1.0),
       "with --sample: the spread of the girths, as a fraction of the model's range (0: the mean build)")(
@@ -68,6 +65,7 @@ int run(const std::vector<std::string>& args) {
       "svg", po::value<std::string>(), "with --sample: also draw the first 16 bodies side by side (.svg, or .html: a 3D viewer)")(
       "param", po::value<std::vector<std::string>>()->composing(),
       "a parameter of the body plugin, name=value (repeatable), e.g. file=smpl.h5 for --model smpl");
+  add_girth_option(opts, "");
   po::variables_map vm;
   const std::string usage =
       "drape body --bmi 38 --height 1.80 [--sex 1] [--out body.obj]\n"
@@ -97,17 +95,7 @@ int run(const std::vector<std::string>& args) {
     if (height.lo != height.hi) throw UsageError("--height: a range needs --sample");
     const double sex = vm.count("sex") ? vm["sex"].as<double>() : 1.0;
     const auto t1 = std::chrono::steady_clock::now();
-    BodyRequest request{bmi.lo, height.lo, sex, {}};
-    if (vm.count("girth"))
-      for (const auto& item : vm["girth"].as<std::vector<std::string>>()) {
-        const auto eq = item.find('=');
-        if (eq == std::string::npos || eq == 0) throw UsageError("--girth wants name=value, got '" + item + "'");
-        try {
-          request.proportions[item.substr(0, eq)] = std::stod(item.substr(eq + 1));
-        } catch (const std::exception&) {
-          throw UsageError("--girth " + item + ": the value is not a number");
-        }
-      }
+    const BodyRequest request{bmi.lo, height.lo, sex, parse_girths(vm)};
     const Eigen::VectorXd shape = body->solve(request);
     const double solve_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t1).count();
     const Mesh mesh = body_mesh(*body, shape);

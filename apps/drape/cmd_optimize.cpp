@@ -69,6 +69,7 @@ int run(const std::vector<std::string>& args) {
       "threads", po::value<int>()->default_value(0), "with --data: samples at once (0: all cores)")(
       "shard", po::value<std::string>()->default_value("0/1"), "with --data: only part i of N of the split (a job array's task; join with drape dataset merge)")(
       "verbose,v", po::bool_switch(), "print L_p at every iteration");
+  add_girth_option(opts, "with --bmi: ");
   po::variables_map vm;
   const std::string usage =
       "drape optimize [--model model.h5] --scene scene.yaml (--body body.obj | --bmi 35) [--iters 100] [--lr 1e-4] "

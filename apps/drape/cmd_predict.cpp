@@ -30,10 +30,11 @@ int run(const std::vector<std::string>& args) {
       "out", po::value<std::string>(), "garment mesh to write (.obj, .ply, .gltf, .glb): the template's faces and UVs")(
       "body-out", po::value<std::string>(), "also write the body mesh")(
       "svg", po::value<std::string>(), "also draw the drape, the garment coloured by its distance to the body (.svg: front view; .html: a 3D viewer)");
+  add_girth_option(opts, "with --bmi: ");
   add_push_out_option(opts, "then push the vertices inside the body out to this clearance in m");
   po::variables_map vm;
   const std::string usage =
-      "drape predict [--model model.h5] (--body body.obj | --bmi 35 [--height 1.75 --sex 1]) --out garment.obj "
+      "drape predict [--model model.h5] (--body body.obj | --bmi 35 [--height 1.75 --sex 1 --girth belly=0.1]) --out garment.obj "
       "[--body-out body.obj]";
   if (!parse(usage, args, opts, {}, vm)) return 0;
   const std::string model_file = model_file_or_default(vm);
@@ -42,8 +43,6 @@ int run(const std::vector<std::string>& args) {
   if (!vm.count("out")) throw UsageError("--out FILE is required (the garment mesh to write)");
   if (vm.count("body") == vm.count("bmi"))
     throw UsageError("give the body either as a mesh (--body FILE) or by its BMI (--bmi X), exactly one");
-  if (vm.count("body") && (vm.count("height") || vm.count("sex")))
-    throw UsageError("--height and --sex go with --bmi; --body gives the body itself");
 
   const double pushed_to = push_out_margin(vm);
   Registry& registry = Registry::load_default(plugin_path(vm));

@@ -4,6 +4,8 @@
 
 #include <drape/mesh_io.hpp>
 #include <drape/model_domain.hpp>
+#include <drape/params.hpp>
+#include <drape/scene.hpp>
 #include <drape/garment_size.hpp>
 #include <drape/registry.hpp>
 #include <drape/simulation.hpp>
@@ -46,14 +48,16 @@ int run(const std::vector<std::string>& args) {
       "bmi", po::value<double>(), "override the scene's target BMI")("height", po::value<double>(), "override the height, m")(
       "sex", po::value<double>(), "override the sex (0 female ... 1 male)")(
       "verbose,v", po::bool_switch(), "print every solver step");
+  add_girth_option(opts, "of the scene's target body: ");
   po::positional_options_description pos;
   pos.add("scene", 1);
   po::variables_map vm;
-  const std::string usage = "drape simulate SCENE.yaml [--out garment.obj] [--body body.obj | --bmi 35] [--verbose]";
+  const std::string usage =
+      "drape simulate SCENE.yaml [--out garment.obj] [--body body.obj | --bmi 35 [--girth belly=0.1]] [--verbose]";
   if (!parse(usage, args, opts, pos, vm)) return 0;
   if (!vm.count("scene")) throw UsageError("a scene file is required, e.g. graphs/scenes/tshirt.yaml");
-  if (vm.count("body") && (vm.count("bmi") || vm.count("height") || vm.count("sex")))
-    throw UsageError("--body gives the body itself: drop --bmi/--height/--sex");
+  if (vm.count("body") && (vm.count("bmi") || vm.count("height") || vm.count("sex") || vm.count("girth")))
+    throw UsageError("--body gives the body itself: drop --bmi/--height/--sex/--girth");
 
   Registry& registry = Registry::load_default(plugin_path(vm));
   Scene scene = load_scene(vm["scene"].as<std::string>());
@@ -84,6 +88,10 @@ int run(const std::vector<std::string>& args) {
       std::snprintf(where, sizeof where, "the body model's bodies stand (soles at y = %.3f, centred in x and z)", reference[1]);
       std::printf("note: the body %s\n", placement_note(*offset, where).c_str());
     }
+  } else if (vm.count("girth")) {
+    const Params shape(scene_shape_specs(), scene.shape, "body shape");
+    const BodyRequest request{shape.get_float("bmi"), shape.get_float("height"), shape.get_float("sex"), parse_girths(vm)};
+    target = sim->body_vertices(sim->shape_for(request));
   } else {
     target = sim->body_vertices(sim->target_shape());
   }

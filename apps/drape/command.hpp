@@ -47,4 +47,14 @@ std::map<std::string, std::map<std::string, std::string>> parse_param_overrides(
 void add_push_out_option(po::options_description& options, const std::string& help);
 double push_out_margin(const po::variables_map& vm);
 
+// --girth name=value (repeatable): a proportion the body model holds while it
+// reaches the BMI and height (BodyRequest::proportions; the parametric body's
+// chest, waist, belly, hips, arms, thighs). body, simulate, predict and
+// optimize take it, so a body of the body space is named the same way by
+// each; `with` says which option it goes with.
+void add_girth_option(po::options_description& options, const std::string& with);
+// The --girth items by name (UsageError for one that is not name=number, or
+// a name given twice); empty without the option.
+std::map<std::string, double> parse_girths(const po::variables_map& vm);
+
 }  // namespace drape::cli

@@ -5,6 +5,7 @@
 #include <drape/nn/gemm.hpp>
 
 #include <algorithm>
+#include <cmath>
 #include <iostream>
 
 namespace drape::cli {
@@ -58,6 +59,34 @@ double push_out_margin(const po::variables_map& vm) {
   const double margin = vm["push-out"].as<double>();
   if (!(margin >= 0 && margin <= 0.1)) throw UsageError("--push-out wants a clearance in m within [0, 0.1]");
   return margin;
+}
+
+void add_girth_option(po::options_description& options, const std::string& with) {
+  options.add_options()("girth", po::value<std::vector<std::string>>()->composing(),
+                        (with + "a proportion held while BMI is reached, name=value (repeatable; parametric: chest, waist, "
+                                "belly, hips, arms, thighs in [-0.15, 0.15], log factors)")
+                            .c_str());
+}
+
+std::map<std::string, double> parse_girths(const po::variables_map& vm) {
+  std::map<std::string, double> out;
+  if (!vm.count("girth")) return out;
+  for (const auto& item : vm["girth"].as<std::vector<std::string>>()) {
+    const auto eq = item.find('=');
+    if (eq == std::string::npos || eq == 0) throw UsageError("--girth wants name=value, got '" + item + "'");
+    const std::string name = item.substr(0, eq), value = item.substr(eq + 1);
+    std::size_t used = 0;
+    double number = 0;
+    try {
+      number = std::stod(value, &used);
+    } catch (const std::exception&) {
+      used = 0;
+    }
+    if (used == 0 || used != value.size() || !std::isfinite(number))
+      throw UsageError("--girth " + item + ": the value is not a number");
+    if (!out.emplace(name, number).second) throw UsageError("--girth " + name + " is given twice");
+  }
+  return out;
 }
 
 }  // namespace drape::cli

@@ -23,6 +23,8 @@ void add_garment_size(const Model& model, const po::variables_map& vm, SampleBat
 
 SampleBatch body_of(const Model& model, const po::variables_map& vm) {
   SampleBatch batch;
+  if (vm.count("body") && (vm.count("height") || vm.count("sex") || vm.count("girth")))
+    throw UsageError("--height, --sex and --girth go with --bmi; --body gives the body itself");
   if (vm.count("body")) {
     const std::string file = vm["body"].as<std::string>();
     const Mesh given = read_mesh(file);
@@ -39,6 +41,7 @@ SampleBatch body_of(const Model& model, const po::variables_map& vm) {
   request.bmi = vm["bmi"].as<double>();
   if (vm.count("height")) request.height = vm["height"].as<double>();
   if (vm.count("sex")) request.sex = vm["sex"].as<double>();
+  request.proportions = parse_girths(vm);
   return model.body_for(request);
 }
 
