@@ -185,6 +185,26 @@ TEST_CASE("mesh garment: bad garments are refused naming the file and the elemen
     CHECK_THAT(build_error(dir / "skirt.obj", ", material_space: sideways"), Catch::Contains("material_space") && Catch::Contains("uv"));
     CHECK_THAT(build_error(dir / "skirt.obj", ", uv_scale: 0"), Catch::Contains("uv_scale"));
   }
+  SECTION("a garment in other units, or modelled away from the body") {
+    // The tube in centimetres and in millimetres: the error says the scale that would fit.
+    for (const auto& [factor, scale] : {std::pair{100.0, "scaled by 0.01"}, std::pair{1000.0, "scaled by 0.001"}}) {
+      Mesh big = tube();
+      big.vertices *= factor;
+      write_mesh(dir / "big.obj", big);
+      CHECK_THAT(build_error(dir / "big.obj"), Catch::Contains("big.obj)") && Catch::Contains("drape reads metres") &&
+                                                   Catch::Contains(scale));
+    }
+    // Two metres to the side, and Z up (lying at the body's feet): not around the body.
+    Mesh aside = tube();
+    aside.vertices.col(0).array() += 2.0;
+    write_mesh(dir / "aside.obj", aside);
+    CHECK_THAT(build_error(dir / "aside.obj"), Catch::Contains("away from the body") && Catch::Contains("Y up, metres"));
+    Mesh z_up = tube();
+    z_up.vertices.col(1).swap(z_up.vertices.col(2));
+    z_up.vertices.col(1) *= -1.0;
+    write_mesh(dir / "zup.obj", z_up);
+    CHECK_THAT(build_error(dir / "zup.obj"), Catch::Contains("away from the body"));
+  }
   SECTION("a missing file, and none given") {
     CHECK_THAT(build_error(dir / "nowhere.obj"), Catch::Contains("nowhere.obj': no such file"));
     CHECK_THAT(test::message_of([&] {

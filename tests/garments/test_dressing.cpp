@@ -106,3 +106,30 @@ TEST_CASE("tshirt dressed on the mean parametric body: outside, and close around
   CHECK(far == 0);
   CHECK(outward_fraction > 0.9);
 }
+
+TEST_CASE("check_garment_around_body refuses a garment in other units or apart from the body and passes a long gown",
+          "[garments][dressing]") {
+  // A body 1.0 m across (a sphere of radius 0.5), garments around it.
+  const Mesh body = test::uv_sphere(0.5, 12, 16);
+  Mesh garment = test::uv_sphere(0.55, 8, 12);
+  CHECK_NOTHROW(check_garment_around_body(garment, body, "shell"));
+  // A gown twice the body's size, hanging far below it, is still a garment of this body.
+  Mesh gown = garment;
+  gown.vertices.col(1) *= 2.0;
+  gown.vertices.col(1).array() -= 0.5;
+  CHECK_NOTHROW(check_garment_around_body(gown, body, "gown"));
+  // The same shell in centimetres: 110 m across against 1 m, and the factor that fits it.
+  Mesh cm = garment;
+  cm.vertices *= 100.0;
+  const std::string message = test::message_of([&] { check_garment_around_body(cm, body, "garment 'x' (shell.obj)"); });
+  CHECK_THAT(message, Catch::Contains("garment 'x' (shell.obj) is 110 m across, the body 1 m") &&
+                          Catch::Contains("scaled by 0.01 it would be 1.1 m"));
+  // Moved 0.2 m clear of the body's box: refused, with both boxes; 5 cm is within the slack.
+  Mesh apart = garment;
+  apart.vertices.col(0).array() += 1.3;
+  CHECK_THAT(test::message_of([&] { check_garment_around_body(apart, body, "shell"); }),
+             Catch::Contains("shell lies 0.25 m away from the body") && Catch::Contains("x 0.750..1.850"));
+  Mesh near = garment;
+  near.vertices.col(0).array() += 1.1;
+  CHECK_NOTHROW(check_garment_around_body(near, body, "shell"));
+}

@@ -12,6 +12,8 @@
 #include <drape/energy.hpp>
 #include <drape/mesh.hpp>
 
+#include <string>
+
 namespace drape {
 
 struct DressOptions {
@@ -27,6 +29,15 @@ struct DressReport {
   double deepest_before = 0;      // m, largest penetration before dressing (>= 0)
   double min_distance_after = 0;  // m, smallest signed distance after dressing
 };
+
+// A garment is modelled around the body it is dressed on (a template's
+// canonical torso, a mesh file around the body model's mean shape). One that
+// is far larger than the body, or lies apart from it, is in other units or
+// placed elsewhere: dressing and draping it would run for minutes and hand
+// back nonsense (a shirt in centimetres, 120 m tall, "settles" nowhere).
+// Throws ConfigError naming `what` (e.g. "garment 'mesh' (shirt.obj)"), the
+// sizes, and the likely scale. Checked by Simulation and the assets build.
+void check_garment_around_body(const Mesh& garment, const Mesh& body, const std::string& what);
 
 // Fits `garment.mesh.vertices` to the body; `body` answers closest-point queries.
 DressReport dress(Garment& garment, const BodyQuery& body, const DressOptions& options = {});

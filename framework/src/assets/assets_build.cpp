@@ -90,6 +90,7 @@ std::shared_ptr<const Assets> build_assets(const Registry& registry, const Asset
                         .create_garment(spec.garment, Params(gd.params, values_of(spec.garment_params, "assets garment"),
                                                              "garment '" + spec.garment + "'"))
                         ->build();
+  check_garment_around_body(garment.mesh, a->body, "the assets' garment '" + spec.garment + "'");
   dress(garment, a->body);
   a->garment = std::make_shared<const Garment>(std::move(garment));
   t.garment = since(start);

@@ -39,6 +39,10 @@ Simulation::Simulation(const Registry& registry, Scene scene) : registry_(regist
   Mesh mean;
   mean.vertices = mean_body_;
   mean.faces = body_model_->faces();
+  std::string what = "garment '" + scene_.garment + "'";
+  if (const auto file = scene_.garment_params.find("file"); file != scene_.garment_params.end() && file->second.node.IsScalar())
+    what += " (" + file->second.node.as<std::string>() + ")";
+  check_garment_around_body(garment.mesh, mean, what + " of " + scene_.file);
   dress(garment, mean);
   scene_detail::apply_scene_materials(garment, scene_);
   garment_ = std::make_shared<Garment>(std::move(garment));
