@@ -1,9 +1,9 @@
 #pragma once
 // The model and the body a model-driven command works on: `--model FILE` or
 // the shipped model, and `--body FILE` (a mesh in the model's body topology)
-// or `--bmi X [--height H --sex S --girth name=value ...]` (made by the model's
-// body plugin). Shared
-// by predict, optimize, render and the benchmarks.
+// or `--bmi X [--height H --sex S --girth name=value ...]` (made by the
+// model's body plugin). Shared by predict, optimize, render and the
+// benchmarks.
 #include "command.hpp"
 
 #include <drape/model.hpp>

@@ -13,8 +13,9 @@
 namespace drape {
 
 namespace {
-// A garment this many times the body's height is in other units: the longest
-// real garment (a gown, a cape) stays within about 1.2 body heights.
+// A garment this many times the body's size (its largest extent, the height
+// in A-pose) is in other units: the longest real garment (a gown, a cape)
+// stays within about 1.2 body heights.
 constexpr double kLargestGarmentToBody = 3.0;
 // A typical garment is about half the body's size across (a shirt 0.8 m on a
 // 1.75 m body, a skirt 0.5 m): the suggested unit scale brings it nearest.
@@ -26,27 +27,28 @@ void check_garment_around_body(const Mesh& garment, const Mesh& body, const std:
   const Eigen::RowVector3d glo = garment.vertices.colwise().minCoeff(), ghi = garment.vertices.colwise().maxCoeff();
   const Eigen::RowVector3d blo = body.vertices.colwise().minCoeff(), bhi = body.vertices.colwise().maxCoeff();
   const double garment_size = (ghi - glo).maxCoeff(), body_size = (bhi - blo).maxCoeff();
-  char line[512];
+  // Room for the numbers beside `what`, which names a file of any length.
+  std::vector<char> line(what.size() + 512);
   if (garment_size > kLargestGarmentToBody * body_size) {
     // The power of ten that brings it nearest a typical garment's size: 0.01
     // for centimetres, 0.001 for millimetres.
     const double scale = std::pow(10.0, -std::round(std::log10(garment_size / (kTypicalGarmentToBody * body_size))));
-    std::snprintf(line, sizeof line,
+    std::snprintf(line.data(), line.size(),
                   "%s is %.3g m across, the body %.3g m: drape reads metres, so the garment is likely in other units "
                   "(scaled by %g it would be %.3g m); it must be modelled around the body in metres",
                   what.c_str(), garment_size, body_size, scale, scale * garment_size);
-    throw ConfigError(line);
+    throw ConfigError(line.data());
   }
   // Apart from the body: the gap between the two boxes, 0 where they overlap.
   const Eigen::RowVector3d gap = (blo - ghi).cwiseMax(glo - bhi).cwiseMax(0.0);
   if (gap.norm() > 0.1 * body_size) {
-    std::snprintf(line, sizeof line,
+    std::snprintf(line.data(), line.size(),
                   "%s lies %.3g m away from the body (its box spans x %.3f..%.3f, y %.3f..%.3f, z %.3f..%.3f; the "
                   "body's x %.3f..%.3f, y %.3f..%.3f, z %.3f..%.3f): it must be modelled around the body it is "
                   "dressed on, in the body model's frame (Y up, metres)",
                   what.c_str(), gap.norm(), glo.x(), ghi.x(), glo.y(), ghi.y(), glo.z(), ghi.z(), blo.x(), bhi.x(), blo.y(),
                   bhi.y(), blo.z(), bhi.z());
-    throw ConfigError(line);
+    throw ConfigError(line.data());
   }
 }
 
