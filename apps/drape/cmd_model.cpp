@@ -44,6 +44,31 @@ void print_domain(const ModelDomain& d) {
     std::printf("  where the training bodies stood is not recorded (drape model domain adds it)\n");
 }
 
+// The settings `drape train` was given (what it takes to train the model
+// again, beside the dataset and graph printed above), and the model it
+// started from (--init) by the path it had then.
+void print_training_settings(const std::map<std::string, std::string>& meta) {
+  const auto get = [&](const char* key) -> std::string {
+    const auto it = meta.find(key);
+    return it == meta.end() ? std::string() : it->second;
+  };
+  std::string line;
+  const auto add = [&](const std::string& part) { line += (line.empty() ? "" : ", ") + part; };
+  for (const char* key : {"seed", "batch", "threads"})
+    if (!get(key).empty()) add(std::string(key) + " " + get(key));
+  if (const std::string lr = get("lr"); !lr.empty()) {
+    char number[32];
+    std::snprintf(number, sizeof number, "%g", std::stod(lr));
+    add(std::string("lr ") + number + (get("schedule").empty() ? "" : " " + get("schedule")) +
+        (get("epochs").empty() ? "" : " over " + get("epochs") + " epochs"));
+  }
+  if (!get("patience").empty()) add("patience " + get("patience"));
+  if (!get("ranks").empty()) add("MPI ranks " + get("ranks"));
+  if (!line.empty()) std::printf("  %-14s %s\n", "training", line.c_str());
+  if (!get("init").empty())
+    std::printf("  %-14s %s (the model it started from, by its path at the time)\n", "init", get("init").c_str());
+}
+
 int info(const std::vector<std::string>& args) {
   po::options_description opts("drape model info");
   opts.add_options()("model", po::value<std::string>()->required(), "model file");
@@ -56,6 +81,7 @@ int info(const std::vector<std::string>& args) {
   std::printf("%s\n", file.string().c_str());
   for (const char* key : {"kind", "status", "epoch", "best_epoch", "best_loss", "dataset", "ground_truth", "train_samples", "drape_version"})
     if (auto it = c.meta.find(key); it != c.meta.end()) std::printf("  %-14s %s\n", key, it->second.c_str());
+  print_training_settings(c.meta);
   if (auto domain = read_domain(file)) print_domain(*domain);
   else
     std::printf("domain: not recorded (a model written before drape recorded it): predict cannot tell a body outside "

@@ -264,6 +264,14 @@ TEST_CASE("a training starts from a model file's weights (init), refuses another
   b.init = d.dir / "a.h5";
   train(test::plugins(), b);
   CHECK(history_of(d.dir / "b.h5").at("val_loss").at(0) == Approx(a_best).epsilon(1e-5));
+  // drape model info names the start model and the settings to train it again.
+  std::string info;
+  REQUIRE(test::run(test::drape_command("model info " + (d.dir / "b.h5").string()), info) == 0);
+  CHECK_THAT(info, Catch::Contains("init           " + (d.dir / "a.h5").string() + " (the model it started from"));
+  CHECK_THAT(info, Catch::Contains("training       seed " + std::to_string(b.seed) + ", batch " + std::to_string(b.batch)) &&
+                       Catch::Contains("lr 1e-12") && Catch::Contains("patience " + std::to_string(b.patience)));
+  REQUIRE(test::run(test::drape_command("model info " + (d.dir / "a.h5").string()), info) == 0);
+  CHECK(info.find("init ") == std::string::npos);
   auto scratch = b;
   scratch.init.clear();
   scratch.out = d.dir / "scratch.h5";
