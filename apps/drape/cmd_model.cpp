@@ -14,6 +14,7 @@
 #include <drape/model_domain.hpp>
 
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <iostream>
 
@@ -57,8 +58,13 @@ void print_training_settings(const std::map<std::string, std::string>& meta) {
   for (const char* key : {"seed", "batch", "threads"})
     if (!get(key).empty()) add(std::string(key) + " " + get(key));
   if (const std::string lr = get("lr"); !lr.empty()) {
+    // Stored exactly (17 digits); shown short. A value that is not a number
+    // (a file written by hand) is shown as it is.
     char number[32];
-    std::snprintf(number, sizeof number, "%g", std::stod(lr));
+    char* end = nullptr;
+    const double value = std::strtod(lr.c_str(), &end);
+    if (end != lr.c_str() && *end == '\0') std::snprintf(number, sizeof number, "%g", value);
+    else std::snprintf(number, sizeof number, "%.30s", lr.c_str());
     add(std::string("lr ") + number + (get("schedule").empty() ? "" : " " + get("schedule")) +
         (get("epochs").empty() ? "" : " over " + get("epochs") + " epochs"));
   }
