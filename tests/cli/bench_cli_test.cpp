@@ -10,40 +10,36 @@
 
 using namespace drape;
 
-namespace {
-int run_drape(const std::string& args, std::string& out) { return test::run(test::drape_program().string() + " " + args, out); }
-}  // namespace
-
 TEST_CASE("drape bench lists its benchmarks and refuses unknown ones", "[cli][bench]") {
   std::string out;
-  REQUIRE(run_drape("bench list", out) == 0);
+  REQUIRE(test::run_drape("bench list", out) == 0);
   CHECK_THAT(out, Catch::Contains("geometry") && Catch::Contains("mesh-io") && Catch::Contains("usage: drape bench <name>"));
-  REQUIRE(run_drape("bench --help", out) == 0);
+  REQUIRE(test::run_drape("bench --help", out) == 0);
   CHECK_THAT(out, Catch::Contains("geometry") && Catch::Contains("mesh-io"));
-  CHECK(run_drape("bench", out) == 2);
+  CHECK(test::run_drape("bench", out) == 2);
   CHECK_THAT(out, Catch::Contains("which benchmark") && Catch::Contains("mesh-io"));
-  CHECK(run_drape("bench geomtry", out) == 2);
+  CHECK(test::run_drape("bench geomtry", out) == 2);
   CHECK_THAT(out, Catch::Contains("unknown benchmark 'geomtry'") && Catch::Contains("did you mean 'geometry'"));
   // The old command names are gone; the error points to the new one.
-  CHECK(run_drape("bench-geometry", out) == 2);
+  CHECK(test::run_drape("bench-geometry", out) == 2);
   CHECK_THAT(out, Catch::Contains("did you mean 'bench'"));
-  REQUIRE(run_drape("bench geometry --help", out) == 0);
+  REQUIRE(test::run_drape("bench geometry --help", out) == 0);
   CHECK_THAT(out, Catch::Contains("usage: drape bench geometry"));
-  CHECK(run_drape("bench geometry --ring 2", out) == 2);
+  CHECK(test::run_drape("bench geometry --ring 2", out) == 2);
 }
 
 TEST_CASE("drape bench geometry and mesh-io run on tiny inputs", "[cli][bench]") {
   std::string out;
-  REQUIRE(run_drape("bench geometry --ring 8 --tube 6 --queries 40 --check 40 --repeats 1", out) == 0);
+  REQUIRE(test::run_drape("bench geometry --ring 8 --tube 6 --queries 40 --check 40 --repeats 1", out) == 0);
   CHECK_THAT(out, Catch::Contains("48 vertices") && Catch::Contains("drape BodySurface") && Catch::Contains("max error"));
 
   test::TempDir dir;
   std::ofstream(dir / "quad.obj") << "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3\nf 1 3 4\n";
-  REQUIRE(run_drape("bench mesh-io " + (dir / "quad.obj").string() + " --repeats 1", out) == 0);
+  REQUIRE(test::run_drape("bench mesh-io " + (dir / "quad.obj").string() + " --repeats 1", out) == 0);
   CHECK_THAT(out, Catch::Contains("4 vertices, 2 triangles") && Catch::Contains(".ply") &&
                       Catch::Contains("order and count kept"));
   CHECK(out.find("CHANGED") == std::string::npos);
-  CHECK(run_drape("bench mesh-io " + (dir / "absent.obj").string(), out) == 2);
+  CHECK(test::run_drape("bench mesh-io " + (dir / "absent.obj").string(), out) == 2);
 }
 
 TEST_CASE("bench simulate reports whole drapes (best and median of repeated runs) and one iteration per effect",
@@ -51,7 +47,7 @@ TEST_CASE("bench simulate reports whole drapes (best and median of repeated runs
   test::TempDir dir;
   std::ofstream(dir / "tiny.yaml") << test::tiny_simulation_scene();
   std::string out;
-  REQUIRE(run_drape("bench simulate --scene " + (dir / "tiny.yaml").string() +
+  REQUIRE(test::run_drape("bench simulate --scene " + (dir / "tiny.yaml").string() +
                         " --coarse-scene '' --repeats 1 --drape-repeats 2 --out " + (dir / "bench.md").string(),
                     out) == 0);
   INFO(out);
@@ -78,7 +74,7 @@ TEST_CASE("bench simulate reports whole drapes (best and median of repeated runs
 
   // A scene of one effect has nothing to remove: both tables keep their "all effects" row only.
   std::ofstream(dir / "gravity.yaml") << "base: tiny.yaml\neffects: [gravity]\n";
-  REQUIRE(run_drape("bench simulate --scene " + (dir / "gravity.yaml").string() +
+  REQUIRE(test::run_drape("bench simulate --scene " + (dir / "gravity.yaml").string() +
                         " --coarse-scene '' --repeats 1 --drape-repeats 1",
                     out) == 0);
   CHECK_THAT(out, Catch::Contains("| all effects |") && Catch::Contains("ms to evaluate"));
@@ -88,7 +84,7 @@ TEST_CASE("bench simulate reports whole drapes (best and median of repeated runs
 TEST_CASE("drape bench contact times both contacts on a small shell, and the barrier's bound stops short of the body",
           "[cli][bench][barrier]") {
   std::string out;
-  REQUIRE(run_drape("bench contact --garment-level 2 --body-level 3 --repeats 1", out) == 0);
+  REQUIRE(test::run_drape("bench contact --garment-level 2 --body-level 3 --repeats 1", out) == 0);
   CHECK_THAT(out, Catch::Contains("garment 162 vertices, 320 faces; body 642 vertices, 1280 faces"));
   // The shell moves 95 % of the way to the body: the barrier's CCD bound is
   // below 1 (and positive), the penalty's is 1 (it bounds nothing).
@@ -97,5 +93,5 @@ TEST_CASE("drape bench contact times both contacts on a small shell, and the bar
   CHECK(std::stod(m[1]) > 0.0);
   CHECK(std::stod(m[1]) < 1.0);
   CHECK(std::regex_search(out, std::regex("\\| collision \\|.*alpha 1\\.000 \\|")));
-  CHECK(run_drape("bench contact --gap 0", out) == 2);
+  CHECK(test::run_drape("bench contact --gap 0", out) == 2);
 }

@@ -7,24 +7,20 @@
 
 using namespace drape;
 
-namespace {
-int run_drape(const std::string& args, std::string& out) { return test::run(test::drape_program().string() + " " + args, out); }
-}  // namespace
-
 TEST_CASE("drape plugins lists plugins with kind, ports and parameters", "[cli]") {
   std::string out;
-  REQUIRE(run_drape("plugins", out) == 0);
+  REQUIRE(test::run_drape("plugins", out) == 0);
   CHECK_THAT(out, Catch::Contains("loss l2") && Catch::Contains("in   pred") && Catch::Contains("param factor"));
-  REQUIRE(run_drape("plugins --kind op --brief", out) == 0);
+  REQUIRE(test::run_drape("plugins --kind op --brief", out) == 0);
   CHECK_THAT(out, Catch::Contains("op add"));
   CHECK(out.find("loss l2") == std::string::npos);
-  CHECK(run_drape("plugins --kind nosuchkind", out) == 2);
+  CHECK(test::run_drape("plugins --kind nosuchkind", out) == 2);
 }
 
 TEST_CASE("drape graph check validates a shipped graph", "[cli]") {
   std::string out;
   const auto graph = (test::source_dir() / "graphs/examples/residual.yaml").string();
-  REQUIRE(run_drape("graph check " + graph + " --no-assets --dim garment_vertices=10", out) == 0);
+  REQUIRE(test::run_drape("graph check " + graph + " --no-assets --dim garment_vertices=10", out) == 0);
   CHECK_THAT(out, Catch::Contains(": ok") && Catch::Contains("[10, 3]"));
 }
 
@@ -32,27 +28,27 @@ TEST_CASE("configuration errors exit 2 with file, line and close matches", "[cli
   test::TempDir dir;
   std::string out;
   std::ofstream(dir / "broken.yaml") << "inputs: { x: [4, 3] }\nnodes:\n  a: { type: scale, in: [x }\n";
-  CHECK(run_drape("graph check --no-assets " + (dir / "broken.yaml").string(), out) == 2);
+  CHECK(test::run_drape("graph check --no-assets " + (dir / "broken.yaml").string(), out) == 2);
   CHECK_THAT(out, Catch::Contains("broken.yaml:3") && Catch::Contains("malformed YAML"));
 
   std::ofstream(dir / "typo.yaml") << "inputs: { x: [4, 3] }\nnodes:\n  a: { type: scal, in: x }\noutputs: [a]\n";
-  CHECK(run_drape("graph check --no-assets " + (dir / "typo.yaml").string(), out) == 2);
+  CHECK(test::run_drape("graph check --no-assets " + (dir / "typo.yaml").string(), out) == 2);
   CHECK_THAT(out, Catch::Contains("typo.yaml:3") && Catch::Contains("unknown plugin type 'scal'") &&
                       Catch::Contains("did you mean 'scale'"));
 
-  CHECK(run_drape("graph check --no-assets " + (dir / "missing.yaml").string(), out) == 2);
+  CHECK(test::run_drape("graph check --no-assets " + (dir / "missing.yaml").string(), out) == 2);
   CHECK_THAT(out, Catch::Contains("missing.yaml"));
 }
 
 TEST_CASE("usage errors exit 2, help exits 0", "[cli]") {
   std::string out;
-  CHECK(run_drape("plugnis", out) == 2);
+  CHECK(test::run_drape("plugnis", out) == 2);
   CHECK_THAT(out, Catch::Contains("did you mean 'plugins'"));
-  CHECK(run_drape("plugins --no-such-flag", out) == 2);
-  CHECK(run_drape("graph", out) == 2);
-  CHECK(run_drape("graph check --help", out) == 0);
+  CHECK(test::run_drape("plugins --no-such-flag", out) == 2);
+  CHECK(test::run_drape("graph", out) == 2);
+  CHECK(test::run_drape("graph check --help", out) == 0);
   CHECK_THAT(out, Catch::Contains("usage: drape graph check"));
-  CHECK(run_drape("--help", out) == 0);
+  CHECK(test::run_drape("--help", out) == 0);
   CHECK_THAT(out, Catch::Contains("plugins") && Catch::Contains("graph"));
 }
 
@@ -65,6 +61,6 @@ TEST_CASE("drape graph check takes sizes and the garment from the template's ass
   REQUIRE(test::run(cmd, out) == 0);
   CHECK_THAT(out, Catch::Contains("input  body [6490, 3]") && Catch::Contains("out out [") && Catch::Contains("loss   edge"));
   // Without a template the symbolic sizes are unknown: a configuration error.
-  CHECK(run_drape("graph check " + graph + " --no-assets", out) == 2);
+  CHECK(test::run_drape("graph check " + graph + " --no-assets", out) == 2);
   CHECK_THAT(out, Catch::Contains("unknown size 'body_vertices'"));
 }

@@ -13,8 +13,6 @@ namespace fs = std::filesystem;
 
 namespace {
 
-int run_drape(const std::string& args, std::string& out) { return test::run(test::drape_program().string() + " " + args, out); }
-
 DatasetLayout layout(std::size_t samples, int garment_vertices = 4) {
   DatasetLayout l;
   l.samples = samples;
@@ -54,7 +52,7 @@ TEST_CASE("drape dataset merge joins shards in order", "[cli][dataset]") {
   write_shard(dir / "b.h5", 1, 2, 2);
   const std::string a = (dir / "a.h5").string(), b = (dir / "b.h5").string(), all = (dir / "all.h5").string();
   std::string out;
-  REQUIRE(run_drape("dataset merge --out " + all + " " + a + " " + b, out) == 0);
+  REQUIRE(test::run_drape("dataset merge --out " + all + " " + a + " " + b, out) == 0);
   CHECK_THAT(out, Catch::Contains("merged 5 samples from 2 shards"));
   {
     const DatasetReader merged(all);
@@ -65,9 +63,9 @@ TEST_CASE("drape dataset merge joins shards in order", "[cli][dataset]") {
     CHECK(merged.layout().attributes.at("merged_from") == "a.h5\nb.h5");
   }
   // A finished dataset is not overwritten without --force.
-  CHECK(run_drape("dataset merge --out " + all + " " + b, out) == 2);
+  CHECK(test::run_drape("dataset merge --out " + all + " " + b, out) == 2);
   CHECK_THAT(out, Catch::Contains("all.h5") && Catch::Contains("--force"));
-  REQUIRE(run_drape("dataset merge --force -o " + all + " " + b, out) == 0);
+  REQUIRE(test::run_drape("dataset merge --force -o " + all + " " + b, out) == 0);
   CHECK(DatasetReader(all).size() == 2);
 }
 
@@ -78,18 +76,18 @@ TEST_CASE("drape dataset merge refuses unfinished or mismatched shards", "[cli][
   write_shard(dir / "d.h5", 3, 2, 2, 5);
   const std::string a = (dir / "a.h5").string(), c = (dir / "c.h5.partial").string(), d = (dir / "d.h5").string();
   std::string out;
-  CHECK(run_drape("dataset merge --out " + (dir / "x.h5").string() + " " + a + " " + c, out) == 2);
+  CHECK(test::run_drape("dataset merge --out " + (dir / "x.h5").string() + " " + a + " " + c, out) == 2);
   CHECK_THAT(out, Catch::Contains("c.h5.partial") && Catch::Contains("only 1 of 3 samples are done"));
   CHECK(!fs::exists(dir / "x.h5"));
-  REQUIRE(run_drape("dataset merge --allow-incomplete --out " + (dir / "x.h5").string() + " " + a + " " + c, out) == 0);
+  REQUIRE(test::run_drape("dataset merge --allow-incomplete --out " + (dir / "x.h5").string() + " " + a + " " + c, out) == 0);
   CHECK_THAT(out, Catch::Contains("merged 4 samples"));
   CHECK(DatasetReader(dir / "x.h5").sample(3).body_params[0] == 200.0f);
 
-  CHECK(run_drape("dataset merge --out " + (dir / "y.h5").string() + " " + a + " " + d, out) == 2);
+  CHECK(test::run_drape("dataset merge --out " + (dir / "y.h5").string() + " " + a + " " + d, out) == 2);
   CHECK_THAT(out, Catch::Contains("d.h5") && Catch::Contains("garment_vertices"));
-  CHECK(run_drape("dataset merge --out " + (dir / "y.h5").string() + " " + (dir / "absent.h5").string(), out) == 2);
+  CHECK(test::run_drape("dataset merge --out " + (dir / "y.h5").string() + " " + (dir / "absent.h5").string(), out) == 2);
   CHECK_THAT(out, Catch::Contains("absent.h5"));
-  CHECK(run_drape("dataset merge " + a, out) == 2);  // no --out
+  CHECK(test::run_drape("dataset merge " + a, out) == 2);  // no --out
   CHECK_THAT(out, Catch::Contains("out"));
 }
 
@@ -98,7 +96,7 @@ TEST_CASE("drape dataset info shows layout, splits, stats and the scene", "[cli]
   write_shard(dir / "a.h5", 0, 3, 3);
   write_shard(dir / "b.h5", 1, 4, 2);
   std::string out;
-  REQUIRE(run_drape("dataset info " + (dir / "a.h5").string(), out) == 0);
+  REQUIRE(test::run_drape("dataset info " + (dir / "a.h5").string(), out) == 0);
   CHECK_THAT(out, Catch::Contains("drape dataset, complete") && Catch::Contains("samples   3, done 3") &&
                       Catch::Contains("P = 2") && Catch::Contains("Nb = 3") && Catch::Contains("Ng = 4") &&
                       Catch::Contains("train 1, val 1, test 1") && Catch::Contains("stats     2 per sample") && Catch::Contains("energy: 3 of 3 recorded, mean 2, min 1, max 3") &&
@@ -106,22 +104,22 @@ TEST_CASE("drape dataset info shows layout, splits, stats and the scene", "[cli]
                       Catch::Contains("scene     4 lines") && Catch::Contains("| # tiny test scene") &&
                       Catch::Contains("| effects: [gravity]"));
 
-  REQUIRE(run_drape("dataset info --scene-lines 1 " + (dir / "b.h5.partial").string(), out) == 0);
+  REQUIRE(test::run_drape("dataset info --scene-lines 1 " + (dir / "b.h5.partial").string(), out) == 0);
   CHECK_THAT(out, Catch::Contains("drape dataset, incomplete") && Catch::Contains("samples   4, done 2") &&
                       Catch::Contains("train 1, val 1, test 0") && Catch::Contains("| # tiny test scene") &&
                       Catch::Contains("(3 more)"));
 
-  REQUIRE(run_drape("dataset merge --out " + (dir / "all.h5").string() + " " + (dir / "a.h5").string() + " " +
+  REQUIRE(test::run_drape("dataset merge --out " + (dir / "all.h5").string() + " " + (dir / "a.h5").string() + " " +
                         (dir / "a.h5").string(), out) == 0);
-  REQUIRE(run_drape("dataset info " + (dir / "all.h5").string(), out) == 0);
+  REQUIRE(test::run_drape("dataset info " + (dir / "all.h5").string(), out) == 0);
   CHECK_THAT(out, Catch::Contains("samples   6, done 6") && Catch::Contains("merged_from: a.h5, a.h5"));
 
-  CHECK(run_drape("dataset info " + (dir / "absent.h5").string(), out) == 2);
+  CHECK(test::run_drape("dataset info " + (dir / "absent.h5").string(), out) == 2);
   CHECK_THAT(out, Catch::Contains("absent.h5"));
-  CHECK(run_drape("dataset", out) == 2);
-  CHECK(run_drape("dataset mrege", out) == 2);
+  CHECK(test::run_drape("dataset", out) == 2);
+  CHECK(test::run_drape("dataset mrege", out) == 2);
   CHECK_THAT(out, Catch::Contains("did you mean 'merge'"));
-  REQUIRE(run_drape("dataset --help", out) == 0);
+  REQUIRE(test::run_drape("dataset --help", out) == 0);
   CHECK_THAT(out, Catch::Contains("drape dataset merge") && Catch::Contains("drape dataset info"));
 }
 
@@ -130,8 +128,8 @@ TEST_CASE("drape dataset potential re-evaluates stored drapes under a scene", "[
   std::ofstream(dir / "tiny.yaml") << test::tiny_simulation_scene();
   const std::string data = (dir / "tiny.h5").string(), scene = (dir / "tiny.yaml").string();
   std::string out;
-  REQUIRE(run_drape("generate " + scene + " --count 4 --bmi 15:40 --seed 2 --out " + data, out) == 0);
-  REQUIRE(run_drape("dataset potential " + data + " --scene " + scene + " --split train,val,test", out) == 0);
+  REQUIRE(test::run_drape("generate " + scene + " --count 4 --bmi 15:40 --seed 2 --out " + data, out) == 0);
+  REQUIRE(test::run_drape("dataset potential " + data + " --scene " + scene + " --split train,val,test", out) == 0);
   INFO(out);
   // Under the scene that made them, the energies are the ones the simulation
   // recorded (up to the float32 storage of the vertices).
@@ -151,7 +149,7 @@ TEST_CASE("drape dataset potential re-evaluates stored drapes under a scene", "[
 
   // Another resolution of the garment is refused with both sizes named.
   std::ofstream(dir / "coarse.yaml") << "base: tiny.yaml\ngarment: {template: tshirt, params: {resolution: coarse}}\n";
-  CHECK(run_drape("dataset potential " + data + " --scene " + (dir / "coarse.yaml").string(), out) == 2);
+  CHECK(test::run_drape("dataset potential " + data + " --scene " + (dir / "coarse.yaml").string(), out) == 2);
   CHECK_THAT(out, Catch::Contains("but the scene's garment has"));
 }
 
@@ -161,20 +159,20 @@ TEST_CASE("drape dataset slim and expand: the bodies rebuilt by the scene's body
   const std::string data = (dir / "tiny.h5").string(), slim = (dir / "slim.h5").string(),
                     full = (dir / "full.h5").string();
   std::string out;
-  REQUIRE(run_drape("generate " + (dir / "tiny.yaml").string() + " --count 3 --bmi 15:40 --seed 4 --out " + data, out) == 0);
-  REQUIRE(run_drape("dataset slim " + data + " --out " + slim, out) == 0);
+  REQUIRE(test::run_drape("generate " + (dir / "tiny.yaml").string() + " --count 3 --bmi 15:40 --seed 4 --out " + data, out) == 0);
+  REQUIRE(test::run_drape("dataset slim " + data + " --out " + slim, out) == 0);
   INFO(out);
   CHECK_THAT(out, Catch::Contains("3 samples without body vertices"));
   CHECK(fs::file_size(slim) * 3 < fs::file_size(data));
-  REQUIRE(run_drape("dataset info " + slim, out) == 0);
+  REQUIRE(test::run_drape("dataset info " + slim, out) == 0);
   CHECK_THAT(out, Catch::Contains("(not stored: a slim dataset)"));
   // A command that needs the bodies says how to get them back.
-  CHECK(run_drape("dataset potential " + slim + " --scene " + (dir / "tiny.yaml").string(), out) == 2);
+  CHECK(test::run_drape("dataset potential " + slim + " --scene " + (dir / "tiny.yaml").string(), out) == 2);
   CHECK_THAT(out, Catch::Contains("a slim dataset") && Catch::Contains("drape dataset expand"));
-  CHECK(run_drape("dataset slim " + data + " --out " + slim, out) == 2);  // never overwritten silently
+  CHECK(test::run_drape("dataset slim " + data + " --out " + slim, out) == 2);  // never overwritten silently
   CHECK_THAT(out, Catch::Contains("--force"));
 
-  REQUIRE(run_drape("dataset expand " + slim + " --out " + full, out) == 0);
+  REQUIRE(test::run_drape("dataset expand " + slim + " --out " + full, out) == 0);
   CHECK_THAT(out, Catch::Contains("rebuilt by body model 'parametric'"));
   const DatasetReader made(data), rebuilt(full);
   const std::vector<std::size_t> all = made.indices();

@@ -13,8 +13,6 @@ using namespace drape;
 
 namespace {
 
-int run_drape(const std::string& args, std::string& out) { return test::run(test::drape_program().string() + " " + args, out); }
-
 // A woman of 1.65 m at BMI 40 with a wider belly and a narrower chest than
 // the body model's mean build at that BMI.
 const std::string kBody = "--bmi 40 --sex 0 --height 1.65";
@@ -30,8 +28,8 @@ double largest_difference(const Mesh& a, const Mesh& b) {
 TEST_CASE("predict and simulate --girth make the body that drape body --girth makes", "[cli][girth]") {
   test::TempDir dir;
   std::string out;
-  REQUIRE(run_drape("body " + kBody + kGirths + " --out " + (dir / "made.obj").string(), out) == 0);
-  REQUIRE(run_drape("body " + kBody + " --out " + (dir / "plain.obj").string(), out) == 0);
+  REQUIRE(test::run_drape("body " + kBody + kGirths + " --out " + (dir / "made.obj").string(), out) == 0);
+  REQUIRE(test::run_drape("body " + kBody + " --out " + (dir / "plain.obj").string(), out) == 0);
   const Mesh made = read_mesh(dir / "made.obj"), plain = read_mesh(dir / "plain.obj");
   // The girths change the body by centimetres (else the checks below could not tell).
   REQUIRE(largest_difference(made, plain) > 0.01);
@@ -48,7 +46,7 @@ TEST_CASE("predict and simulate --girth make the body that drape body --girth ma
 
   // simulate: the scene's target body (its BMI, height and sex overridden) with the girths.
   std::ofstream(dir / "tiny.yaml") << test::tiny_simulation_scene();
-  const int code = run_drape("simulate " + (dir / "tiny.yaml").string() + " " + kBody + kGirths + " --body-out " +
+  const int code = test::run_drape("simulate " + (dir / "tiny.yaml").string() + " " + kBody + kGirths + " --body-out " +
                                  (dir / "b_sim.obj").string(),
                              out);
   CHECK((code == 0 || code == 1));  // 1: not settled within the tiny scene's few steps; the body is written either way
@@ -59,31 +57,31 @@ TEST_CASE("a --girth that cannot be used is refused with the reason", "[cli][gir
   test::TempDir dir;
   std::string out;
   const std::string garment = " --out " + (dir / "g.obj").string();
-  CHECK(run_drape("predict --bmi 40 --girth belly" + garment, out) == 2);
+  CHECK(test::run_drape("predict --bmi 40 --girth belly" + garment, out) == 2);
   CHECK_THAT(out, Catch::Contains("--girth wants name=value, got 'belly'"));
-  CHECK(run_drape("predict --bmi 40 --girth belly=wide" + garment, out) == 2);
+  CHECK(test::run_drape("predict --bmi 40 --girth belly=wide" + garment, out) == 2);
   CHECK_THAT(out, Catch::Contains("--girth belly=wide: the value is not a number"));
-  CHECK(run_drape("predict --bmi 40 --girth belly=0.1x" + garment, out) == 2);
+  CHECK(test::run_drape("predict --bmi 40 --girth belly=0.1x" + garment, out) == 2);
   CHECK_THAT(out, Catch::Contains("the value is not a number"));
-  CHECK(run_drape("predict --bmi 40 --girth belly=0.1 --girth belly=0.05" + garment, out) == 2);
+  CHECK(test::run_drape("predict --bmi 40 --girth belly=0.1 --girth belly=0.05" + garment, out) == 2);
   CHECK_THAT(out, Catch::Contains("--girth belly is given twice"));
   // The body model's own checks: the name and the range it holds.
-  CHECK(run_drape("predict --bmi 40 --girth nose=0.1" + garment, out) == 2);
+  CHECK(test::run_drape("predict --bmi 40 --girth nose=0.1" + garment, out) == 2);
   CHECK_THAT(out, Catch::Contains("no proportion 'nose'") && Catch::Contains("belly"));
-  CHECK(run_drape("predict --bmi 40 --girth belly=0.9" + garment, out) == 2);
+  CHECK(test::run_drape("predict --bmi 40 --girth belly=0.9" + garment, out) == 2);
   CHECK_THAT(out, Catch::Contains("'belly' = 0.9 is outside [-0.15, 0.15]"));
   CHECK_FALSE(std::filesystem::exists(dir / "g.obj"));
 
   // A mesh is the body itself: a girth beside it is refused, by every command.
-  REQUIRE(run_drape("body --bmi 30 --out " + (dir / "b.obj").string(), out) == 0);
+  REQUIRE(test::run_drape("body --bmi 30 --out " + (dir / "b.obj").string(), out) == 0);
   const std::string mesh = " --body " + (dir / "b.obj").string() + " --girth belly=0.1";
-  CHECK(run_drape("predict" + mesh + garment, out) == 2);
+  CHECK(test::run_drape("predict" + mesh + garment, out) == 2);
   CHECK_THAT(out, Catch::Contains("--girth go with --bmi"));
-  CHECK(run_drape("optimize --scene " + (test::source_dir() / "graphs/scenes/tshirt_coarse.yaml").string() + mesh + garment,
+  CHECK(test::run_drape("optimize --scene " + (test::source_dir() / "graphs/scenes/tshirt_coarse.yaml").string() + mesh + garment,
                   out) == 2);
   CHECK_THAT(out, Catch::Contains("--girth go with --bmi"));
   std::ofstream(dir / "tiny.yaml") << test::tiny_simulation_scene();
-  CHECK(run_drape("simulate " + (dir / "tiny.yaml").string() + mesh + garment, out) == 2);
+  CHECK(test::run_drape("simulate " + (dir / "tiny.yaml").string() + mesh + garment, out) == 2);
   CHECK_THAT(out, Catch::Contains("drop --bmi/--height/--sex/--girth"));
   CHECK_FALSE(std::filesystem::exists(dir / "g.obj"));
 }

@@ -46,6 +46,8 @@ std::string message_of(const std::function<void()>& fn) {
   return "(no exception)";
 }
 
+int run_drape(const std::string& args, std::string& output) { return run(drape_program().string() + " " + args, output); }
+
 int run(const std::string& command, std::string& output) {
   output.clear();
   FILE* pipe = popen((command + " 2>&1").c_str(), "r");

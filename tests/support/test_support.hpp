@@ -44,5 +44,7 @@ Mesh uv_sphere(double radius, int rings, int segments);
 
 // Runs a shell command, returns its exit code; stdout+stderr go to `output`.
 int run(const std::string& command, std::string& output);
+// run() on the drape program with these arguments.
+int run_drape(const std::string& args, std::string& output);
 
 }  // namespace drape::test
