@@ -53,12 +53,6 @@ int run(const std::vector<std::string>& args) {
   po::options_description opts("drape optimize");
   opts.add_options()("model", po::value<std::string>(), "model file from drape train (default: the shipped model)")(
       "scene", po::value<std::string>(), "scene whose effects and materials make the potential (graphs/scenes/*.yaml)")(
-      "body", po::value<std::string>(), "body mesh in the model's body topology")(
-      "strict", "refuse (exit 2) a body outside the model's training domain instead of warning")(
-      "bmi", po::value<double>(), "or make the body with the model's body plugin: target BMI")(
-      "height", po::value<double>(), "with --bmi: height in m")("sex", po::value<double>(), "with --bmi: 0 female ... 1 male")(
-      "garment-size", po::value<std::string>(),
-      ("for a model trained on several sizes: " + garment_size_choices()).c_str())(
       "iters", po::value<int>()->default_value(100), "Adam iterations on the network's weights")(
       "lr", po::value<double>()->default_value(1e-4), "Adam's learning rate")(
       "out", po::value<std::string>(), "optimised garment mesh to write")(
@@ -69,7 +63,7 @@ int run(const std::vector<std::string>& args) {
       "threads", po::value<int>()->default_value(0), "with --data: samples at once (0: all cores)")(
       "shard", po::value<std::string>()->default_value("0/1"), "with --data: only part i of N of the split (a job array's task; join with drape dataset merge)")(
       "verbose,v", po::bool_switch(), "print L_p at every iteration");
-  add_girth_option(opts, "with --bmi: ");
+  add_model_body_options(opts, "body mesh in the model's body topology");
   po::variables_map vm;
   const std::string usage =
       "drape optimize [--model model.h5] --scene scene.yaml (--body body.obj | --bmi 35) [--iters 100] [--lr 1e-4] "

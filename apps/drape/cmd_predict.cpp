@@ -20,17 +20,10 @@ int run(const std::vector<std::string>& args) {
   po::options_description opts("drape predict");
   opts.add_options()("model", po::value<std::string>(),
                      "model file from drape train (default: the shipped pretrained model, models/tshirt-coarse.h5)")(
-      "body", po::value<std::string>(), "body mesh (.obj, .ply, .gltf, .glb, ...) in the model's body topology")(
-      "strict", "refuse (exit 2) a body outside the model's training domain instead of warning")(
-      "bmi", po::value<double>(), "make the body with the model's body plugin instead: target BMI")(
-      "height", po::value<double>(), "with --bmi: height in m (default 1.75)")(
-      "sex", po::value<double>(), "with --bmi: 0 female ... 1 male (default 1)")(
-      "garment-size", po::value<std::string>(),
-      ("for a model trained on several sizes: " + garment_size_choices()).c_str())(
       "out", po::value<std::string>(), "garment mesh to write (.obj, .ply, .gltf, .glb): the template's faces and UVs")(
       "body-out", po::value<std::string>(), "also write the body mesh")(
       "svg", po::value<std::string>(), "also draw the drape, the garment coloured by its distance to the body (.svg: front view; .html: a 3D viewer)");
-  add_girth_option(opts, "with --bmi: ");
+  add_model_body_options(opts, "body mesh (.obj, .ply, .gltf, .glb, ...) in the model's body topology");
   add_push_out_option(opts, "then push the vertices inside the body out to this clearance in m");
   po::variables_map vm;
   const std::string usage =

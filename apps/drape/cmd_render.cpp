@@ -45,19 +45,13 @@ int run(const std::vector<std::string>& args) {
   po::options_description opts("drape render");
   opts.add_options()("model", po::value<std::string>(), "model file (default: the shipped model); its template gives the faces")(
       "garment", po::value<std::string>(), "draw this garment mesh (the model's template topology) instead of a prediction")(
-      "body", po::value<std::string>(), "body mesh in the model's body topology")(
-      "strict", "refuse (exit 2) a body outside the model's training domain instead of warning")(
-      "bmi", po::value<double>(), "or make the body: target BMI")(
-      "height", po::value<double>(), "with --bmi: height in m (default 1.75)")(
-      "sex", po::value<double>(), "with --bmi: 0 female ... 1 male (default 1)")(
-      "garment-size", po::value<std::string>(),
-      ("for a model trained on several sizes: " + garment_size_choices()).c_str())(
       "data", po::value<std::string>(), "or take body (and the simulated garment, for --colour error) from a dataset")(
       "sample", po::value<std::size_t>()->default_value(0), "with --data: the sample index")(
       "simulated", "with --data: draw the dataset's simulated garment instead of a prediction")(
       "colour", po::value<std::string>()->default_value("distance"),
       "distance (to the body, cm) | error (to the simulated garment of --data, cm) | strain (edge length change, %)")(
       "out", po::value<std::string>(), "picture to write: .html (3D viewer) or .svg (front view)");
+  add_model_body_options(opts, "body mesh in the model's body topology");
   po::variables_map vm;
   const std::string usage =
       "drape render [--model model.h5] (--bmi 35 | --body body.obj | --data data.h5 --sample I [--simulated]) [--garment g.obj] "

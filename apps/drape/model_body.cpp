@@ -47,6 +47,16 @@ SampleBatch body_of(const Model& model, const po::variables_map& vm) {
 
 }  // namespace
 
+void add_model_body_options(po::options_description& options, const std::string& body_help) {
+  options.add_options()("body", po::value<std::string>(), body_help.c_str())(
+      "strict", "refuse (exit 2) a body outside the model's training domain instead of warning")(
+      "bmi", po::value<double>(), "or make the body with the model's body plugin: target BMI")(
+      "height", po::value<double>(), "with --bmi: height in m (default 1.75)")(
+      "sex", po::value<double>(), "with --bmi: 0 female ... 1 male (default 1)")(
+      "garment-size", po::value<std::string>(), ("for a model trained on several sizes: " + garment_size_choices()).c_str());
+  add_girth_option(options, "with --bmi: ");
+}
+
 std::string model_file_or_default(const po::variables_map& vm) {
   if (vm.count("model")) return vm["model"].as<std::string>();
   const std::string file = default_model_path().string();

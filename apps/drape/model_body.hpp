@@ -11,6 +11,11 @@
 
 namespace drape::cli {
 
+// Declares the options model_body reads: --body, --bmi, --height, --sex,
+// --girth, --strict and --garment-size (`body_help` says what --body is in
+// this command), so every model-driven command takes the same body options.
+void add_model_body_options(po::options_description& options, const std::string& body_help);
+
 // One sample. ConfigError for a mesh of the wrong vertex count, or a mesh
 // given to a graph that takes body parameters. A model trained on several
 // garment sizes also gets --garment-size.

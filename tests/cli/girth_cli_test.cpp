@@ -1,6 +1,6 @@
 // --girth: a body of the body space named by its proportions is the same
-// body whichever command makes it (drape body, predict, optimize, simulate),
-// and a girth that cannot be used is refused before anything runs.
+// body whichever command makes it (drape body, predict, optimize, render,
+// simulate), and a girth that cannot be used is refused before anything runs.
 #include <catch2/catch.hpp>
 
 #include <drape/mesh_io.hpp>
@@ -79,6 +79,8 @@ TEST_CASE("a --girth that cannot be used is refused with the reason", "[cli][gir
   CHECK_THAT(out, Catch::Contains("--girth go with --bmi"));
   CHECK(test::run_drape("optimize --scene " + (test::source_dir() / "graphs/scenes/tshirt_coarse.yaml").string() + mesh + garment,
                   out) == 2);
+  CHECK_THAT(out, Catch::Contains("--girth go with --bmi"));
+  CHECK(test::run_drape("render" + mesh + " --out " + (dir / "g.html").string(), out) == 2);
   CHECK_THAT(out, Catch::Contains("--girth go with --bmi"));
   std::ofstream(dir / "tiny.yaml") << test::tiny_simulation_scene();
   CHECK(test::run_drape("simulate " + (dir / "tiny.yaml").string() + mesh + garment, out) == 2);
