@@ -4,8 +4,6 @@
 
 #include <drape/mesh_io.hpp>
 #include <drape/model_domain.hpp>
-#include <drape/params.hpp>
-#include <drape/scene.hpp>
 #include <drape/garment_size.hpp>
 #include <drape/registry.hpp>
 #include <drape/simulation.hpp>
@@ -88,12 +86,10 @@ int run(const std::vector<std::string>& args) {
       std::snprintf(where, sizeof where, "the body model's bodies stand (soles at y = %.3f, centred in x and z)", reference[1]);
       std::printf("note: the body %s\n", placement_note(*offset, where).c_str());
     }
-  } else if (vm.count("girth")) {
-    const Params shape(scene_shape_specs(), scene.shape, "body shape");
-    const BodyRequest request{shape.get_float("bmi"), shape.get_float("height"), shape.get_float("sex"), parse_girths(vm)};
-    target = sim->body_vertices(sim->shape_for(request));
   } else {
-    target = sim->body_vertices(sim->target_shape());
+    BodyRequest request = sim->target_request();
+    request.proportions = parse_girths(vm);
+    target = sim->body_vertices(sim->shape_for(request));
   }
   if (simulations.auto_size()) {
     SizeChoice choice;

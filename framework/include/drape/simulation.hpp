@@ -87,6 +87,9 @@ class Simulation {
   const BodyModel& body_model() const { return *body_model_; }
   const Garment& garment() const { return *garment_; }
   const Eigen::MatrixX3d& mean_body() const { return mean_body_; }
+  // The scene's target body as a request (its shape: BMI, height, sex), to
+  // change before solving (a command line's --girth adds proportions).
+  BodyRequest target_request() const;
   // Shape parameters and vertices of the scene's target body, or of another request.
   Eigen::VectorXd target_shape() const;
   Eigen::VectorXd shape_for(const BodyRequest& request) const;

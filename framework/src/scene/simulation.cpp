@@ -87,14 +87,16 @@ SolverSettings Simulation::solver_settings() const {
 
 Eigen::VectorXd Simulation::shape_for(const BodyRequest& request) const { return body_model_->solve(request); }
 
-Eigen::VectorXd Simulation::target_shape() const {
+BodyRequest Simulation::target_request() const {
   const Params p(scene_shape_specs(), scene_.shape, "body shape");
   BodyRequest r;
   r.bmi = p.get_float("bmi");
   r.height = p.get_float("height");
   r.sex = p.get_float("sex");
-  return shape_for(r);
+  return r;
 }
+
+Eigen::VectorXd Simulation::target_shape() const { return shape_for(target_request()); }
 
 Eigen::MatrixX3d Simulation::body_vertices(const Eigen::VectorXd& shape) const { return body_model_->vertices(shape); }
 
