@@ -244,7 +244,7 @@ TEST_CASE("refitting after moving the vertices answers like a rebuild") {
   CHECK(refitted.vertex_normals().isApprox(rebuilt.vertex_normals()));
 }
 
-TEST_CASE("batch queries equal single queries; max_distance limits the search") {
+TEST_CASE("batch queries equal single queries: max_distance limits the search") {
   const Mesh m = drape::geometry::icosphere(3);
   const BodySurface surface(m);
   std::mt19937 rng(23);

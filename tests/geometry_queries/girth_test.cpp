@@ -70,7 +70,7 @@ TEST_CASE("girth: the tape spans a star's hollows, the fabric follows them", "[g
   CHECK(g.length > g.tape);
 }
 
-TEST_CASE("girth: the loop around the centre is measured, not an arm beside it; a plane through a vertex still cuts", "[geometry][girth]") {
+TEST_CASE("girth: the loop around the centre is measured, not an arm beside it: a plane through a vertex still cuts", "[geometry][girth]") {
   Mesh torso = prism(24, 0.2, 0.2);
   Mesh arm = prism(16, 0.05, 0.05);
   arm.vertices.col(0).array() += 0.4;  // beside the torso

@@ -8,7 +8,7 @@
 using namespace drape;
 using namespace drape::test;
 
-TEST_CASE("gather loads as an op; indices are checked against the input", "[gather]") {
+TEST_CASE("gather loads as an op: indices are checked against the input", "[gather]") {
   const PluginDescriptor& d = plugins().get("gather");
   CHECK(d.kind == "op");
   CHECK(d.file.find("libdrape_plugin_gather") != std::string::npos);

@@ -7,7 +7,7 @@
 using namespace drape;
 using namespace drape::test;
 
-TEST_CASE("mlp loads as a decoder; rows default to the input's rows", "[mlp]") {
+TEST_CASE("mlp loads as a decoder: rows default to the input's rows", "[mlp]") {
   const PluginDescriptor& d = plugins().get("mlp");
   CHECK(d.kind == "decoder");
   CHECK(d.file.find("libdrape_plugin_mlp") != std::string::npos);

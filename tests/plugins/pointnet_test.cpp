@@ -7,7 +7,7 @@
 using namespace drape;
 using namespace drape::test;
 
-TEST_CASE("pointnet loads as an encoder; defaults give 128 channels, concatenated per vertex", "[pointnet]") {
+TEST_CASE("pointnet loads as an encoder: defaults give 128 channels, concatenated per vertex", "[pointnet]") {
   const PluginDescriptor& d = plugins().get("pointnet");
   CHECK(d.kind == "encoder");
   CHECK(d.file.find("libdrape_plugin_pointnet") != std::string::npos);

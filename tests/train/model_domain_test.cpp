@@ -186,7 +186,7 @@ TEST_CASE("model domain: ranges of a dataset's training bodies, and the bodies o
   }
 }
 
-TEST_CASE("drape model domain records it; predict warns outside it and --strict refuses", "[train][domain][cli]") {
+TEST_CASE("drape model domain records it: predict warns outside it and --strict refuses", "[train][domain][cli]") {
   test::TempDir dir;
   const fs::path data = dir / "data.h5", model = dir / "model.h5";
   test::write_tiny_dataset(data, 14, 8, 3);
