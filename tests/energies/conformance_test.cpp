@@ -10,6 +10,8 @@
 
 #include <catch2/catch.hpp>
 
+#include <limits>
+
 #ifdef _OPENMP
 #include <omp.h>
 #endif
@@ -159,4 +161,85 @@ TEST_CASE("every registered energy gives bit-identical results with 1 and 2 thre
     CHECK(identical(one.lower, two.lower));
   }
 #endif
+}
+
+TEST_CASE("every registered energy refuses a non-finite position with one line naming the vertex", "[conformance]") {
+  // A NaN coordinate once reached ArcSim's stiffness lookup as a grid index
+  // and crashed the process (issue 58). Every entry point that takes
+  // positions refuses them first, whatever the energy.
+  const Scene s = scene(6, 0.04, 0.002);
+  const Eigen::Index bad_vertex = 17;
+  for (const std::string& name : energy_names()) {
+    const auto e = bound(name, s);
+    for (const double bad : {std::numeric_limits<double>::quiet_NaN(), std::numeric_limits<double>::infinity(),
+                             -std::numeric_limits<double>::infinity()}) {
+      for (int axis = 0; axis < 3; ++axis) {
+        Eigen::MatrixX3d x = s.x;
+        x(bad_vertex, axis) = bad;
+        INFO(name << ", coordinate " << axis << " = " << bad);
+        Eigen::MatrixX3d g = Eigen::MatrixX3d::Zero(x.rows(), 3);
+        Triplets h;
+        const Eigen::MatrixX3d no_move = Eigen::MatrixX3d::Zero(x.rows(), 3);
+        const std::string expected = name + ": garment vertex 17 has a non-finite coordinate";
+        CHECK_THROWS_WITH(e->value(x), Catch::Contains(expected));
+        CHECK_THROWS_WITH(e->add_gradient(x, g), Catch::Contains(expected));
+        CHECK_THROWS_WITH(e->add_hessian(x, h, true), Catch::Contains(expected));
+        CHECK_THROWS_WITH(e->add_hessian(x, h, false), Catch::Contains(expected));
+        CHECK_THROWS_WITH(e->add_hessian_lower(x, h, true), Catch::Contains(expected));
+        CHECK_THROWS_AS(e->value(x), ConfigError);  // the caller's input: exit 2, Python's ValueError
+        if (e->bounds_steps()) {
+          CHECK_THROWS_WITH(e->max_step(x, no_move), Catch::Contains(expected));
+          // ... and a non-finite move from a finite state.
+          Eigen::MatrixX3d move = no_move;
+          move(bad_vertex, axis) = bad;
+          CHECK_THROWS_WITH(e->max_step(s.x, move), Catch::Contains("non-finite"));
+        }
+        if (!e->has_kinks()) continue;
+        std::vector<Eigen::Vector3d> samples;
+        CHECK_THROWS_WITH(e->vertex_gradient_samples(x, static_cast<int>(bad_vertex), 1e-3, samples),
+                          Catch::Contains("not finite"));
+      }
+    }
+    // Friction's lagged terms take positions too.
+    auto with_friction = plugins().create_energy(name, params_for(name, name == "barrier" ? "{friction: 0.3}" : "{}"));
+    EnergyContext ctx;
+    ctx.garment = s.garment.get();
+    if (with_friction->needs_body()) ctx.body = &s.body;
+    with_friction->bind(ctx);
+    with_friction->begin_step(s.x, 0.1);
+    Eigen::MatrixX3d x = s.x;
+    x(bad_vertex, 1) = std::numeric_limits<double>::quiet_NaN();
+    INFO(name << " with friction");
+    if (name == "barrier") {
+      CHECK_THROWS_WITH(with_friction->begin_step(x, 0.1), Catch::Contains("non-finite"));
+      Eigen::MatrixX3d g = Eigen::MatrixX3d::Zero(x.rows(), 3);
+      Triplets h;
+      CHECK_THROWS_WITH(with_friction->dissipation(x), Catch::Contains("non-finite"));
+      CHECK_THROWS_WITH(with_friction->add_dissipation_gradient(x, g), Catch::Contains("non-finite"));
+      CHECK_THROWS_WITH(with_friction->add_dissipation_hessian_lower(x, h), Catch::Contains("non-finite"));
+      CHECK_THROWS_WITH(with_friction->slip_ratio(x), Catch::Contains("non-finite"));
+    }
+  }
+}
+
+TEST_CASE("every registered energy stays finite or refuses at a coordinate of 1e308, without crashing", "[conformance]") {
+  // Finite but absurd: an energy may overflow to inf (a barrier pair would
+  // then be far apart), but must not crash or hang on it.
+  const Scene s = scene(6, 0.04, 0.002);
+  for (const std::string& name : energy_names()) {
+    const auto e = bound(name, s);
+    Eigen::MatrixX3d x = s.x;
+    x(17, 0) = 1e308;
+    INFO(name);
+    Eigen::MatrixX3d g = Eigen::MatrixX3d::Zero(x.rows(), 3);
+    Triplets h;
+    try {
+      (void)e->value(x);
+      e->add_gradient(x, g);
+      e->add_hessian_lower(x, h, true);
+      SUCCEED("evaluated");
+    } catch (const Error& error) {
+      SUCCEED(std::string("refused: ") + error.what());
+    }
+  }
 }

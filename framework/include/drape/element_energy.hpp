@@ -15,6 +15,7 @@
 //
 // Results do not depend on the number of threads (element_assembly.hpp).
 #include <drape/element_assembly.hpp>
+#include <drape/energy_input.hpp>
 #include <drape/errors.hpp>
 
 #include <array>
@@ -101,11 +102,7 @@ class ElementEnergy : public Energy {
     }
   }
 
-  void check(const Eigen::MatrixX3d& x) const {
-    if (x.rows() != vertices_)
-      throw Error(name_ + ": " + std::to_string(x.rows()) + " vertices given, the bound garment has " +
-                  std::to_string(vertices_) + (vertices_ == 0 ? " (bind() was not called)" : ""));
-  }
+  void check(const Eigen::MatrixX3d& x) const { check_energy_input(name_, x, vertices_); }
 
   std::string name_;
   int vertices_ = 0;

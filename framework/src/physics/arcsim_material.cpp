@@ -354,6 +354,14 @@ BendingStiffness bending_stiffness(const BendingCurve& curve, double curvature) 
   // each column (kBendingCornerBand) where the corner is rounded.
   const double a = 0.1 * std::abs(curvature);
   const auto& k = curve.samples;
+  // Past the last column's rounded corner the curve is flat. Said first, so
+  // that a curvature of 1e300 (or NaN) never reaches the rounding to a column
+  // index below (std::lround of it is undefined: it indexed k far out of range).
+  if (!(a < 4.0 + kBendingCornerBand)) {
+    BendingStiffness flat;
+    if (k[4] > 0.0) flat.k = k[4];
+    return flat;
+  }
   // slope(j): dk/da on segment j (j = -1 mirrors segment 0: k depends on |a|; j = 4: flat past the table).
   auto slope = [&](int j) { return j < 0 ? -(k[1] - k[0]) : j >= 4 ? 0.0 : k[static_cast<std::size_t>(j + 1)] - k[static_cast<std::size_t>(j)]; };
   const int knot = std::min(static_cast<int>(std::lround(a)), 4);

@@ -11,6 +11,7 @@
 #include <drape/geometry/box_pairs.hpp>
 #include <drape/geometry/ccd.hpp>
 #include <drape/geometry/vertex_areas.hpp>
+#include <drape/energy_input.hpp>
 #include <drape/psd_projection.hpp>
 
 #include <Eigen/Geometry>
@@ -118,9 +119,7 @@ void BarrierContact::bind(const EnergyContext& context) {
 
 void BarrierContact::check(const Eigen::MatrixX3d& x) const {
   if (!body_) throw Error("barrier: bind() was not called");
-  if (x.rows() != topology_->garment_vertices)
-    throw Error("barrier: " + std::to_string(x.rows()) + " vertices given, the bound garment has " +
-                std::to_string(topology_->garment_vertices));
+  check_energy_input("barrier", x, topology_->garment_vertices);
 }
 
 std::array<Eigen::Vector3d, 4> BarrierContact::pair_points(const ContactPair& pair, const Eigen::MatrixX3d& x) const {
@@ -359,11 +358,13 @@ double BarrierContact::max_step(const Eigen::MatrixX3d& x, const Eigen::MatrixX3
                                 const Eigen::MatrixX3d* body_to) const {
   check(x);
   if (dx.rows() != x.rows()) throw Error("barrier: max_step's move has the wrong vertex count");
+  if (!dx.allFinite()) throw ConfigError("barrier: max_step's move has a non-finite coordinate");
   const Topology& t = *topology_;
   const Eigen::MatrixX3d& b0 = body_from ? *body_from : body_->vertices();
   const Eigen::MatrixX3d& b1 = body_to ? *body_to : b0;
   if (b0.rows() != body_->vertices().rows() || b1.rows() != b0.rows())
     throw Error("barrier: max_step's body motion has the wrong vertex count");
+  if (!b0.allFinite() || !b1.allFinite()) throw ConfigError("barrier: max_step's body motion has a non-finite coordinate");
   const Eigen::MatrixX3d x1 = x + dx;
   const Eigen::MatrixX3d db = b1 - b0;
 

@@ -112,6 +112,7 @@ Eigen::Vector2d BarrierContact::slip(const FrictionContact& f, const Eigen::Matr
 }
 
 double BarrierContact::dissipation(const Eigen::MatrixX3d& x) const {
+  check(x);
   double total = 0;
   for (const FrictionContact& f : friction_.contacts)
     total += f.limit * slip_function(slip(f, x).norm(), friction_.epsilon).f0;
@@ -119,6 +120,7 @@ double BarrierContact::dissipation(const Eigen::MatrixX3d& x) const {
 }
 
 void BarrierContact::add_dissipation_gradient(const Eigen::MatrixX3d& x, Eigen::MatrixX3d& g) const {
+  check(x);
   for (const FrictionContact& f : friction_.contacts) {
     const Eigen::Vector2d u = slip(f, x);
     const Eigen::Vector3d force = f.limit * slip_function(u.norm(), friction_.epsilon).f1_over_y * (f.tangent * u);
@@ -128,6 +130,7 @@ void BarrierContact::add_dissipation_gradient(const Eigen::MatrixX3d& x, Eigen::
 }
 
 void BarrierContact::add_dissipation_hessian_lower(const Eigen::MatrixX3d& x, Triplets& h) const {
+  check(x);
   for (const FrictionContact& f : friction_.contacts) {
     const Eigen::Vector2d u = slip(f, x);
     const SlipFunction s = slip_function(u.norm(), friction_.epsilon);
@@ -155,6 +158,7 @@ void BarrierContact::add_dissipation_hessian_lower(const Eigen::MatrixX3d& x, Tr
 }
 
 double BarrierContact::slip_ratio(const Eigen::MatrixX3d& x) const {
+  check(x);
   double largest = 0;
   for (const FrictionContact& f : friction_.contacts) largest = std::max(largest, slip(f, x).norm() / friction_.epsilon);
   return largest;

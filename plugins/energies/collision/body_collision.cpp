@@ -4,6 +4,7 @@
 #include "normal_groups.hpp"
 #include "smooth_distance.hpp"
 
+#include <drape/energy_input.hpp>
 #include <drape/errors.hpp>
 #include <drape/geometry/closest_point.hpp>
 #include <drape/geometry/vertex_areas.hpp>
@@ -162,11 +163,7 @@ Eigen::Vector3d BodyCollision::push_gradient(Eigen::Index v, double delta, const
 
 void BodyCollision::check(const Eigen::MatrixX3d& x) const {
   if (!body_) throw Error("collision: bind() was not called");
-  if (x.rows() != area_.size())
-    throw Error("collision: " + std::to_string(x.rows()) + " vertices given, the bound garment has " +
-                std::to_string(area_.size()));
-  for (Eigen::Index v = 0; v < x.rows(); ++v)
-    if (!x.row(v).allFinite()) throw Error("collision: garment vertex " + std::to_string(v) + " is not finite");
+  check_energy_input("collision", x, area_.size());
 }
 
 double BodyCollision::value(const Eigen::MatrixX3d& x) const {

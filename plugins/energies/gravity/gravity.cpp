@@ -5,6 +5,7 @@
 // material's density, a third to each corner. E is linear in x: the gradient is
 // constant and the Hessian is zero (add_hessian appends nothing).
 #include <drape/geometry/vertex_areas.hpp>
+#include <drape/energy_input.hpp>
 #include <drape/plugin.hpp>
 
 namespace {
@@ -43,16 +44,12 @@ class Gravity final : public Energy {
     return value(x);
   }
 
-  void add_hessian(const Eigen::MatrixX3d&, Triplets&, bool) const override {}
+  void add_hessian(const Eigen::MatrixX3d& x, Triplets&, bool) const override { check(x); }
 
   const Eigen::VectorXd& masses() const { return mass_; }
 
  private:
-  void check(const Eigen::MatrixX3d& x) const {
-    if (x.rows() != mass_.size())
-      throw Error("gravity: " + std::to_string(x.rows()) + " vertices given, the bound garment has " +
-                  std::to_string(mass_.size()) + (mass_.size() == 0 ? " (bind() was not called)" : ""));
-  }
+  void check(const Eigen::MatrixX3d& x) const { check_energy_input("gravity", x, mass_.size()); }
   double g_;
   Eigen::Vector3d force_per_kg_ = Eigen::Vector3d::Zero();
   Eigen::VectorXd mass_;
