@@ -3,6 +3,7 @@
 #include "command.hpp"
 
 #include <drape/mesh_io.hpp>
+#include <drape/body_units.hpp>
 #include <drape/model_domain.hpp>
 #include <drape/garment_size.hpp>
 #include <drape/registry.hpp>
@@ -72,6 +73,7 @@ int run(const std::vector<std::string>& args) {
     const Mesh body = read_mesh(file);
     require_vertex_count(body, static_cast<int>(sim->mean_body().rows()), file,
                          "the scene's body model '" + sim->scene().body_model + "' has that many");
+    check_body_units(body.vertices, "body " + file);
     target = body.vertices;
     // The body morphs from the body model's mean shape, which stands where
     // all its bodies stand: a mesh placed elsewhere (lifted, or centred by

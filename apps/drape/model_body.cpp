@@ -1,5 +1,6 @@
 #include "model_body.hpp"
 
+#include <drape/body_units.hpp>
 #include <drape/garment_size.hpp>
 #include <drape/mesh_io.hpp>
 #include <drape/model_domain.hpp>
@@ -30,6 +31,7 @@ SampleBatch body_of(const Model& model, const po::variables_map& vm) {
     const Mesh given = read_mesh(file);
     require_vertex_count(given, model.assets().body.num_vertices(), file,
                          "the model's body model '" + model.assets_spec().body_model + "' has that many");
+    check_body_units(given.vertices, "body " + file);
     if (model.needs_body_params())
       throw ConfigError("this model's graph takes the body parameters (input body_params), which a mesh does not "
                         "give: use --bmi");

@@ -4,6 +4,7 @@
 // the predicted garment to the weights.
 #include "common.hpp"
 
+#include <drape/body_units.hpp>
 #include <drape/checkpoint.hpp>
 #include <drape/errors.hpp>
 #include <drape/graph.hpp>
@@ -31,6 +32,8 @@ class PyModel {
   SampleBatch batch(const py::handle& body, const py::handle& body_params, const py::handle& garment_size, bool* batched) {
     SampleBatch b;
     b.body = vertices_batch_arg(body, "body_vertices", model_->assets().body.num_vertices(), batched);
+    for (int i = 0; i < b.body.batch(); ++i)
+      check_body_units(b.body.mat(i).cast<double>(), "body_vertices" + (batched && *batched ? "[" + std::to_string(i) + "]" : std::string()));
     const int n = b.body.batch();
     if (model_->needs_body_params()) {
       const int p = model_->graph().input_shape("body_params").cols;
@@ -44,10 +47,15 @@ class PyModel {
       b.body_params = Tensor(n, 1, p);
       for (int i = 0; i < n; ++i) std::copy(f.data() + (a.ndim() == 2 ? i * p : 0), f.data() + (a.ndim() == 2 ? i * p : 0) + p, &b.body_params(i, 0, 0));
     }
+    if (!model_->needs_body_params() && !body_params.is_none())
+      throw py::value_error("body_params: this model's graph takes no body parameters (it reads the body's vertices); "
+                            "leave body_params out");
     if (model_->needs_input("garment_size")) {
       if (garment_size.is_none())
         throw py::value_error("garment_size: this model was trained on several garment sizes, give one of " + garment_size_choices());
       b.garment_size = Tensor(n, 1, 1, garment_size_flag(garment_size.cast<std::string>()));
+    } else if (!garment_size.is_none()) {
+      throw py::value_error("garment_size: this model was trained on one garment size and takes none; leave garment_size out");
     }
     return b;
   }

@@ -180,3 +180,21 @@ def test_openblas_kernels_follow_the_variable_set_before_python_starts():
     out = subprocess.run([sys.executable, "-c", "import drape; print(drape.blas_corename(), drape.better_blas_coretype())"],
                          env=env, capture_output=True, text=True, check=True).stdout.split()
     assert out == [better, "None"]
+
+
+def test_predict_refuses_a_body_in_other_units_and_arguments_that_would_do_nothing(model):
+    body = model.body(bmi=30)
+    with pytest.raises(ValueError, match=r"body_vertices is 1\d\d m tall.*scaled by 0.01"):
+        model.predict(body * 100)
+    bad = np.stack([body, body]).astype(np.float64)
+    bad[1, 3, 0] = 1e30  # finite in float32, absurd in metres
+    with pytest.raises(ValueError, match=r"body_vertices\[1\]: body vertex 3 has x = 1e\+30, over 100 km"):
+        model.predict(bad)
+    bad[1, 3, 0] = np.nan
+    with pytest.raises(ValueError, match=r"body_vertices: non-finite"):
+        model.predict(bad)
+    assert not model.needs_body_params
+    with pytest.raises(ValueError, match="body_params: this model's graph takes no body parameters"):
+        model.predict(body, body_params=np.zeros(3, dtype=np.float32))
+    with pytest.raises(ValueError, match="garment_size: this model was trained on one garment size"):
+        model.predict(body, garment_size="xlarge")

@@ -119,3 +119,24 @@ def test_the_morph_starts_from_start_body(tmp_path):
     assert np.abs(from_target["garment"] - default["garment"]).max() > 1e-3
     with pytest.raises(ValueError, match=f"start_body.*N = {len(target)}"):
         scene.simulate(target, start_body=target[:-1])
+
+
+@pytest.mark.parametrize("bad", [np.nan, np.inf, -np.inf])
+def test_every_energy_refuses_a_non_finite_position_with_value_error(contact_energies, bad):
+    # A NaN coordinate used to crash the interpreter inside the bending lookup (issue 58).
+    energies, x = contact_energies
+    y = x.copy()
+    y[17, 1] = bad
+    for name, e in energies.items():
+        for call in (e.value, e.gradient, e.hessian, e.value_and_gradient):
+            with pytest.raises(ValueError, match=f"{name}: garment vertex 17 has a non-finite coordinate"):
+                call(y)
+
+
+def test_simulate_refuses_a_body_in_centimetres_or_z_up(tiny_scene):
+    scene = drape.Scene(str(tiny_scene))
+    body = np.array(scene.body(bmi=30))
+    with pytest.raises(ValueError, match=r"scaled by 0.01 it would be"):
+        drape.simulate(str(tiny_scene), body * 100)
+    with pytest.raises(ValueError, match=r"longer along z"):
+        drape.simulate(str(tiny_scene), body[:, [0, 2, 1]])

@@ -1,4 +1,5 @@
 // Scene -> energies, body and garment; the morph-then-settle run (simulation.hpp).
+#include <drape/body_units.hpp>
 #include <drape/garment_dressing.hpp>
 #include <drape/garment_size.hpp>
 #include <drape/geometry/closest_point.hpp>
@@ -122,7 +123,8 @@ SimulationResult Simulation::run(const Eigen::MatrixX3d& target_body, const Simu
   if (target_body.rows() != mean_body_.rows())
     throw ConfigError("the target body has " + std::to_string(target_body.rows()) + " vertices; the scene's body model '" +
                       scene_.body_model + "' has " + std::to_string(mean_body_.rows()));
-  if (!target_body.allFinite()) throw ConfigError("the target body has non-finite vertices");
+  check_body_units(target_body, "the target body");
+  if (options.start_body) check_body_units(*options.start_body, "the start body");
   const Eigen::MatrixX3d& body_start = options.start_body ? *options.start_body : mean_body_;
   const Eigen::MatrixX3d& garment_start = options.start_garment ? *options.start_garment : garment_->mesh.vertices;
   if (body_start.rows() != mean_body_.rows() || garment_start.rows() != garment_->mesh.vertices.rows())
