@@ -129,10 +129,12 @@ int run(const std::vector<std::string>& args) {
               100.0 * r.penetration, crossings_summary(r).c_str(), r.seconds);
   // The collision checks run inside the line search and while the morph moves the body.
   std::printf("time split: gradient %.2f s, hessian %.2f s, assembly %.2f s, linear solves %.2f s (%d factorisations, "
-              "%ld PCG iterations; %d Newton steps on the exact matrix, %d found it indefinite), line search %.2f s "
-              "(%ld trials), collision checks %.2f s\n",
+              "%ld PCG iterations in %d solves, %d of them stopped at the cap, %d skipped after failures; "
+              "%d Newton steps on the exact matrix, %d found it indefinite, %d not tried after a refusal), "
+              "line search %.2f s (%ld trials), collision checks %.2f s\n",
               r.timings.gradient, r.timings.hessian, r.timings.assembly, r.timings.linear_solves, r.timings.factorizations,
-              r.timings.cg_iterations, r.timings.exact_steps, r.timings.exact_refused, r.timings.line_search,
+              r.timings.cg_iterations, r.timings.cg_attempts, r.timings.cg_failures, r.timings.cg_skipped,
+              r.timings.exact_steps, r.timings.exact_refused, r.timings.exact_skipped, r.timings.line_search,
               r.timings.line_search_trials, r.timings.collision_checks);
   if (verbose) {
     // Where the drape is out of balance: the vertices with the largest unbalanced forces.

@@ -515,3 +515,63 @@ TEST_CASE("an indefinite exact Newton matrix is refused and the projected one ta
   CHECK(t.exact_refused > 0);  // on the shoulder
   CHECK(t.exact_steps > 0);    // in the well, where it is convex
 }
+
+TEST_CASE("a step given a settle tolerance ends at the iteration where the static forces balance", "[solver]") {
+  // Springs to anchors under a load, short time steps: each step's Phi has
+  // its minimiser short of the static one; the drape balances within a step.
+  const Garment g = grid(4, 0.1);
+  const Eigen::Vector3d f(0.0, -0.02, 0.0);
+  auto run = [&](double settled_below, int& steps, int& iterations) {
+    auto energies = one(std::make_unique<AnchorSprings>(g.mesh.vertices, 5.0, f));
+    SolverSettings s;
+    s.time_step = 0.5;
+    s.damping = 1;
+    s.tolerance = 1e-12;
+    s.max_newton_iterations = 30;
+    ClothSolver cs(g, energies, s);
+    Eigen::MatrixX3d x = g.mesh.vertices, v = Eigen::MatrixX3d::Zero(x.rows(), 3);
+    steps = iterations = 0;
+    for (; steps < 200 && cs.static_residual(x) > 1e-3; ++steps) {
+      const StepReport r = cs.step(x, v, settled_below);
+      iterations += r.iterations;
+      if (settled_below > 0 && r.settled) CHECK(cs.static_residual(x) <= settled_below);
+    }
+    return cs.static_residual(x);
+  };
+  int steps_each = 0, iterations_each = 0, steps_end = 0, iterations_end = 0;
+  CHECK(run(1e-3, steps_each, iterations_each) <= 1e-3);
+  CHECK(run(0, steps_end, iterations_end) <= 1e-3);
+  CHECK(steps_each <= steps_end);
+  CHECK(iterations_each < iterations_end);  // the last step stops early
+}
+
+TEST_CASE("PCG with the kept factor is tried less after it stalls, and the step lands on the same minimiser", "[solver]") {
+  // One CG iteration to a 1e-12 forcing: every PCG attempt on a changed
+  // matrix stalls. With adaptive tries the solver stops paying for them.
+  const Garment g = grid(5, 0.1);
+  auto run = [&](bool adaptive, ClothSolver::Timings& t) {
+    auto energies = one(std::make_unique<DoubleWell>(10.0, 0.2));
+    SolverSettings s;
+    s.time_step = 1.0;
+    s.damping = 1;
+    s.max_newton_iterations = 60;
+    s.tolerance = 1e-9;
+    s.newton_forcing = 1e-12;
+    s.max_cg_iterations = 1;
+    s.adaptive_tries = adaptive;
+    ClothSolver cs(g, energies, s);
+    Eigen::MatrixX3d x = g.mesh.vertices, v = Eigen::MatrixX3d::Zero(x.rows(), 3);
+    for (int k = 0; k < x.rows(); ++k) x(k, 1) = 0.3 + 0.01 * k;
+    for (int k = 0; k < 5; ++k) cs.step(x, v);
+    t = cs.timings();
+    return x;
+  };
+  ClothSolver::Timings adaptive, every;
+  const Eigen::MatrixX3d a = run(true, adaptive), b = run(false, every);
+  CHECK((a.col(1).array() - 0.2).abs().maxCoeff() < 1e-6);
+  CHECK((b.col(1).array() - 0.2).abs().maxCoeff() < 1e-6);
+  REQUIRE(every.cg_failures > 4);
+  CHECK(every.cg_skipped == 0);
+  CHECK(adaptive.cg_skipped > 0);
+  CHECK(adaptive.cg_attempts < every.cg_attempts);
+}

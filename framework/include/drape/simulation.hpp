@@ -118,6 +118,7 @@ class Simulation {
   std::vector<Params> effect_params_;
   bool needs_body_ = false;
   int morph_steps_ = 0, settle_steps_ = 0, morph_newton_ = 3;
+  std::string settle_check_ = "iteration";  // solver settle_check: when settledness is checked
   Eigen::Vector3d gravity_direction_{0, -1, 0};
 };
 

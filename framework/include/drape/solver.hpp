@@ -60,6 +60,11 @@ struct SolverSettings {
   // converges only linearly, ~8 % per iteration (docs/scenes.md). When the
   // exact matrix is indefinite the projected one is used. 0 turns it off.
   double exact_hessian_below = 1.0;
+  // Try PCG with the kept factor and the exact matrix by what they have been
+  // saving: after a PCG attempt that stopped at max_cg_iterations, or an
+  // exact matrix found indefinite, skip the next tries for a while (ClothSolver::Impl).
+  // false: try them at every iteration, the solver of 2026-11-28 (docs/scenes.md).
+  bool adaptive_tries = true;
 };
 
 // An energy term with the name its scene gave it.
@@ -80,6 +85,7 @@ struct StepReport {
   double phi_start = 0, phi_end = 0;
   double max_displacement = 0;    // m, the farthest any vertex moved in the step
   bool converged = false;
+  bool settled = false;           // ended early: the static forces balanced (step's settled_below)
 };
 
 class ClothSolver {
@@ -91,8 +97,12 @@ class ClothSolver {
   ClothSolver(const ClothSolver&) = delete;
   ClothSolver& operator=(const ClothSolver&) = delete;
 
-  // One backward-Euler step: updates x and v in place.
-  StepReport step(Eigen::MatrixX3d& x, Eigen::MatrixX3d& v);
+  // One backward-Euler step: updates x and v in place. With settled_below > 0
+  // the step also ends, at any Newton iteration, as soon as the static forces
+  // balance to that tolerance (|grad E + friction's push| / |W|, an upper
+  // bound of stationarity()): a settling drape stops where it settles
+  // instead of finishing a step it no longer needs.
+  StepReport step(Eigen::MatrixX3d& x, Eigen::MatrixX3d& v, double settled_below = 0);
 
   // Static energy sum_i E_i(x), its gradient's relative norm |grad E| / |W|, and the terms.
   double energy(const Eigen::MatrixX3d& x, std::vector<EnergyTerm>* terms = nullptr) const;
@@ -138,6 +148,9 @@ class ClothSolver {
     long cg_iterations = 0;  // PCG iterations of the steps solved with an earlier factor
     int exact_steps = 0;     // Newton iterations that used the exact (unprojected) matrix
     int exact_refused = 0;   // iterations whose exact matrix was tried and found indefinite
+    int exact_skipped = 0;   // iterations below exact_hessian_below that did not try it, as it was refused just before
+    int cg_attempts = 0, cg_failures = 0;  // PCG solves with the kept factor, and those that reached max_cg_iterations
+    int cg_skipped = 0;      // iterations that factorised without trying PCG, as the last attempts had failed
     long line_search_trials = 0;  // energy evaluations of the line search (1 per iteration when full steps pass)
   };
   const Timings& timings() const { return timings_; }

@@ -48,6 +48,18 @@ struct ClothSolver::Impl {
   physics::HessianPattern pattern;
   std::unique_ptr<physics::SparseCholesky> cholesky;
   bool have_factor = false;  // the factor of an earlier Newton matrix, kept across iterations and steps
+  // What reusing the kept factor has been saving. A PCG attempt that reaches
+  // max_cg_iterations costs more than the factorisation that follows it
+  // (docs/scenes.md), and on a sliding drape most attempts do; so after a
+  // failed attempt the next 1, 2, 4, ... 16 iterations factorise without
+  // trying, and a success starts trusting the factor again.
+  int cg_failures_in_row = 0, cg_skip = 0;
+  // Likewise the exact matrix: refused (indefinite) at some step residual, it
+  // is not tried again until the residual has halved or 1, 2, 4, ... 32
+  // iterations have passed, since far from equilibrium it is refused again
+  // and again (an assembly and a failed solve each time).
+  int exact_refusals_in_row = 0, exact_wait = 0;
+  double exact_refused_residual = std::numeric_limits<double>::infinity();
   Triplets triplets;
   physics::SparseMatrix hessian;
 };
@@ -213,7 +225,7 @@ double ClothSolver::phi(const Eigen::MatrixX3d& x, const Eigen::MatrixX3d& x_hat
   return inertia + energy(x) + dissipation;
 }
 
-StepReport ClothSolver::step(Eigen::MatrixX3d& x, Eigen::MatrixX3d& v) {
+StepReport ClothSolver::step(Eigen::MatrixX3d& x, Eigen::MatrixX3d& v, double settled_below) {
   const int n = static_cast<int>(x.rows());
   if (n != masses_.size() || v.rows() != n)
     throw Error("solver: state has " + std::to_string(n) + " vertices, the garment " + std::to_string(masses_.size()));
@@ -248,6 +260,14 @@ StepReport ClothSolver::step(Eigen::MatrixX3d& x, Eigen::MatrixX3d& v) {
       report.converged = true;
       break;
     }
+    if (settled_below > 0) {
+      // The static forces without the inertia: the drape's own balance.
+      const double balance = (g - inv_h2 * (masses_.asDiagonal() * (x - x_hat))).norm() / force_scale_;
+      if (balance <= settled_below) {
+        report.settled = true;
+        break;
+      }
+    }
     if (report.iterations >= settings_.max_newton_iterations) break;
     ++report.iterations;
 
@@ -271,12 +291,25 @@ StepReport ClothSolver::step(Eigen::MatrixX3d& x, Eigen::MatrixX3d& v) {
     // good preconditioner: an inexact Newton step by PCG costs a few
     // triangular solves. Only when PCG stalls is the matrix factorised anew.
     int cg = -1;
+    Impl& m = *impl_;
+    bool try_cg = settings_.reuse_factorization && m.have_factor;
+    if (try_cg && m.cg_skip > 0) {
+      --m.cg_skip;
+      try_cg = false;
+      ++timings_.cg_skipped;
+    }
     auto reuse_factor = [&]() {
       cg = -1;
-      if (!settings_.reuse_factorization || !impl_->have_factor) return false;
-      cg = preconditioned_cg(impl_->hessian, *impl_->cholesky, rhs, settings_.newton_forcing, settings_.max_cg_iterations,
-                             direction);
-      if (cg > 0) timings_.cg_iterations += cg;
+      if (!try_cg || !m.have_factor) return false;
+      ++timings_.cg_attempts;
+      cg = preconditioned_cg(m.hessian, *m.cholesky, rhs, settings_.newton_forcing, settings_.max_cg_iterations, direction);
+      if (cg > 0) {
+        timings_.cg_iterations += cg;
+        m.cg_failures_in_row = 0;
+      } else if (cg == -1) {
+        ++timings_.cg_failures;
+        if (settings_.adaptive_tries) m.cg_skip = 1 << std::min(m.cg_failures_in_row++, 4);
+      }
       return cg > 0;
     };
 
@@ -287,7 +320,13 @@ StepReport ClothSolver::step(Eigen::MatrixX3d& x, Eigen::MatrixX3d& v) {
     // matrix). -H^-1 g is then a descent direction; checked all the same, as
     // round-off could flip it.
     bool solved = false;
-    if (settings_.exact_hessian_below > 0 && report.residual < settings_.exact_hessian_below) {
+    bool try_exact = settings_.exact_hessian_below > 0 && report.residual < settings_.exact_hessian_below;
+    if (try_exact && m.exact_wait > 0 && !(report.residual < 0.5 * m.exact_refused_residual)) {
+      --m.exact_wait;
+      try_exact = false;
+      ++timings_.exact_skipped;
+    }
+    if (try_exact) {
       newton_matrix(false);
       auto t = Clock::now();
       solved = reuse_factor() && direction.dot(rhs) > 0;
@@ -300,8 +339,15 @@ StepReport ClothSolver::step(Eigen::MatrixX3d& x, Eigen::MatrixX3d& v) {
         }
       }
       timings_.linear_solves += since(t);
-      if (solved) ++timings_.exact_steps;
-      else ++timings_.exact_refused;
+      if (solved) {
+        ++timings_.exact_steps;
+        m.exact_refusals_in_row = 0;
+        m.exact_wait = 0;
+      } else {
+        ++timings_.exact_refused;
+        m.exact_refused_residual = report.residual;
+        if (settings_.adaptive_tries) m.exact_wait = 1 << std::min(m.exact_refusals_in_row++, 5);
+      }
     }
 
     if (!solved) {

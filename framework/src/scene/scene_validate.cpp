@@ -50,6 +50,11 @@ const std::vector<ParamSpec>& scene_solver_specs() {
       {"exact_hessian_below", ParamType::Float, number(d.exact_hessian_below),
        "below this step residual (|grad Phi| / |W|) try the exact, unprojected Newton matrix first and keep it when positive definite; 0: always project",
        0.0, 1e30},
+      {"adaptive_tries", ParamType::Bool, number(d.adaptive_tries),
+       "after a PCG solve that stalls or an exact matrix found indefinite, factorise / project without trying them for a while; false: try at every iteration"},
+      {"settle_check", ParamType::String, "iteration",
+       "when a settling drape checks that it has settled: every Newton iteration, or only at the end of a time step (the solver of 2026-11-28)",
+       {}, {}, {"iteration", "step"}},
       {"gravity_direction", ParamType::FloatList, "[0, -1, 0]", "direction of gravity (the magnitude is the gravity effect's g)"},
   };
   return specs;

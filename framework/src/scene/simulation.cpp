@@ -57,6 +57,7 @@ Simulation::Simulation(const Registry& registry, Scene scene) : registry_(regist
   morph_steps_ = static_cast<int>(solver.get_int("morph_steps"));
   settle_steps_ = static_cast<int>(solver.get_int("settle_steps"));
   morph_newton_ = static_cast<int>(solver.get_int("morph_newton_iterations"));
+  settle_check_ = solver.get_string("settle_check");
   const auto g = solver.get_float_list("gravity_direction");
   gravity_direction_ = Eigen::Vector3d(g[0], g[1], g[2]);
   if (!(gravity_direction_.norm() > 0)) throw ConfigError({scene_.file, 0}, "solver: gravity_direction must not be zero");
@@ -83,6 +84,7 @@ SolverSettings Simulation::solver_settings() const {
   s.newton_forcing = p.get_float("newton_forcing");
   s.max_cg_iterations = static_cast<int>(p.get_int("max_cg_iterations"));
   s.exact_hessian_below = p.get_float("exact_hessian_below");
+  s.adaptive_tries = p.get_bool("adaptive_tries");
   return s;
 }
 
@@ -201,12 +203,15 @@ SimulationResult Simulation::run(const Eigen::MatrixX3d& target_body, const Simu
   // it has settled only when no contact slips faster than friction holds.
   result.slip_ratio = solver.slip_ratio(x);
   const double settle_tolerance = solver.settings().settle_tolerance;
+  const bool settle_every_iteration = settle_check_ == "iteration";
   // A step that moves no vertex ends the settling: further steps from a
   // stall change nothing (tried: on a stalled BMI 65 body 54 more steps only
   // found no decrease). Whether that counts as settled is decided below.
   const double at_rest_limit = solver.settings().kink_tolerance;
   for (int k = 1; k <= settle_steps_ && (result.stationarity > settle_tolerance || result.sliding()) && !result.at_rest; ++k) {
-    const StepReport r = solver.step(x, v);
+    // The step ends at the Newton iteration where the drape balances, not at
+    // the end of the step (stationarity <= the step's balance, see solver.hpp).
+    const StepReport r = solver.step(x, v, settle_every_iteration ? settle_tolerance : 0.0);
     result.stationarity = solver.stationarity(x, kink_radius);
     result.slip_ratio = solver.slip_ratio(x);
     result.at_rest = r.max_displacement <= solver.settings().rest_displacement;
