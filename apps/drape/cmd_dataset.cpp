@@ -7,6 +7,7 @@
 #include "command.hpp"
 #include "dataset_potential.hpp"
 
+#include <drape/output_lock.hpp>
 #include <drape/body.hpp>
 #include <drape/dataset.hpp>
 #include <drape/errors.hpp>
@@ -49,6 +50,7 @@ int merge(const std::vector<std::string>& args) {
   po::variables_map vm;
   if (!parse(kMergeUsage, args, opts, positional, vm)) return 0;
   const fs::path out = vm["out"].as<std::string>();
+  const OutputLock lock(out, "drape dataset merge");  // before anything looks at it (output_lock.hpp)
   std::vector<fs::path> shards;
   for (const auto& s : vm["shards"].as<std::vector<std::string>>()) shards.emplace_back(s);
   refuse_existing(out, vm);
@@ -67,6 +69,7 @@ int slim(const std::vector<std::string>& args) {
   po::variables_map vm;
   if (!parse(kSlimUsage, args, opts, positional, vm)) return 0;
   const fs::path in = vm["file"].as<std::string>(), out = vm["out"].as<std::string>();
+  const OutputLock lock(out, "drape dataset slim");  // before anything looks at it (output_lock.hpp)
   if (!fs::exists(in)) throw ConfigError(SourceLocation{in.string(), 0}, "no such file");
   refuse_existing(out, vm);
   const std::size_t n = slim_dataset(in, out);
@@ -86,6 +89,7 @@ int expand(const std::vector<std::string>& args) {
   po::variables_map vm;
   if (!parse(kExpandUsage, args, opts, positional, vm)) return 0;
   const fs::path out = vm["out"].as<std::string>();
+  const OutputLock lock(out, "drape dataset expand");  // before anything looks at it (output_lock.hpp)
   std::vector<fs::path> shards;
   for (const auto& s : vm["shards"].as<std::vector<std::string>>()) shards.emplace_back(s);
   refuse_existing(out, vm);

@@ -11,6 +11,7 @@
 #include <drape/dataset.hpp>
 #include <drape/garment_size.hpp>
 #include <drape/model.hpp>
+#include <drape/output_lock.hpp>
 #include <drape/progress.hpp>
 #include <drape/registry.hpp>
 #include <drape/rng.hpp>
@@ -63,6 +64,8 @@ int run(const std::vector<std::string>& args) {
   if (!parse(usage, args, opts, pos, vm)) return 0;
   if (!vm.count("count") || vm["count"].as<std::size_t>() == 0) throw UsageError("--count N (N >= 1) is required");
   if (!vm.count("out")) throw UsageError("--out FILE is required");
+  // Before anything looks at the output (output_lock.hpp).
+  const OutputLock lock(vm["out"].as<std::string>(), "drape generate");
   const std::size_t total = vm["count"].as<std::size_t>();
   const Shard shard = parse_shard(vm["shard"].as<std::string>());
   const Range bmi = parse_range("bmi", vm["bmi"].as<std::string>());

@@ -7,6 +7,7 @@
 #include "model_body.hpp"
 #include "optimize_dataset.hpp"
 
+#include <drape/output_lock.hpp>
 #include <drape/dataset.hpp>
 #include <drape/geometry/surface_crossings.hpp>
 #include <drape/mesh_io.hpp>
@@ -70,8 +71,11 @@ int run(const std::vector<std::string>& args) {
       "--out garment.obj\n       drape optimize [--model model.h5] --scene scene.yaml --data data.h5 [--split train] "
       "--out optimized.h5 [--threads T] [--shard i/N]";
   if (!parse(usage, args, opts, {}, vm)) return 0;
+  if (!vm.count("data")) check_mesh_outputs(vm, {"out"});  // with --data, --out is a dataset
   if (!vm.count("scene")) throw UsageError("--scene FILE is required (its effects and materials make the potential)");
   if (!vm.count("out")) throw UsageError("--out FILE is required (the optimised garment, or dataset with --data)");
+  // Before anything looks at the output (output_lock.hpp).
+  const OutputLock lock(vm["out"].as<std::string>(), "drape optimize");
   if (vm.count("data")) return run_on_dataset(vm);
   if (vm.count("body") == vm.count("bmi"))
     throw UsageError("give the body either as a mesh (--body FILE) or by its BMI (--bmi X), exactly one");

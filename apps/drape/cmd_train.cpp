@@ -4,6 +4,7 @@
 #include "mpi_ranks.hpp"
 
 #include <drape/model_domain.hpp>
+#include <drape/output_lock.hpp>
 
 #include <drape/errors.hpp>
 #include <drape/trainer.hpp>
@@ -90,6 +91,10 @@ int run(const std::vector<std::string>& given) {
   // Under mpirun the ranks share the cores (mpirun binds each to its own).
   const std::unique_ptr<Ranks> ranks = mpi_ranks_if_launched();
   o.ranks = ranks.get();
+  // Rank 0 writes the model and its state: it alone holds the output, before
+  // the trainer looks at it (output_lock.hpp).
+  std::unique_ptr<OutputLock> lock;
+  if (!ranks || ranks->rank() == 0) lock = std::make_unique<OutputLock>(o.out, "drape train");
   o.threads = vm["threads"].as<int>();
   if (o.threads == 0)
     o.threads = ranks ? 1 : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));

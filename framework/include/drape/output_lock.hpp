@@ -1,0 +1,31 @@
+#pragma once
+// One writer per output. A long job (generate, train, optimize, dataset merge)
+// holds an exclusive lock on <output>.lock for as long as it runs, taken
+// before it looks at the output at all, so that a second job on the same
+// output is refused whatever its flags (--resume or --force would otherwise
+// rewrite a file another process is writing). The kernel drops the lock when
+// the process ends, killed or not; the lock file itself is removed on a
+// normal end.
+#include <filesystem>
+#include <string>
+
+namespace drape {
+
+class OutputLock {
+ public:
+  // Throws ConfigError naming the process that holds the lock (its pid and
+  // command) when another process writes `output`; `command` is recorded in
+  // the lock file for that message.
+  OutputLock(const std::filesystem::path& output, const std::string& command);
+  ~OutputLock();
+  OutputLock(const OutputLock&) = delete;
+  OutputLock& operator=(const OutputLock&) = delete;
+
+  static std::filesystem::path lock_file(const std::filesystem::path& output);
+
+ private:
+  std::filesystem::path path_;
+  int fd_ = -1;
+};
+
+}  // namespace drape

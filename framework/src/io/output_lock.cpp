@@ -1,0 +1,63 @@
+// OutputLock (output_lock.hpp).
+#include <drape/errors.hpp>
+#include <drape/output_lock.hpp>
+#include <drape/write_failure.hpp>
+
+#include <fcntl.h>
+#include <sys/file.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <cstring>
+
+namespace fs = std::filesystem;
+
+namespace drape {
+
+fs::path OutputLock::lock_file(const fs::path& output) { return fs::path(output.string() + ".lock"); }
+
+OutputLock::OutputLock(const fs::path& output, const std::string& command) : path_(lock_file(output)) {
+  if (const std::string cause = write_failure_cause(output); !cause.empty())
+    throw ConfigError("cannot write '" + output.string() + "': " + cause);
+  for (;;) {
+    const int fd = ::open(path_.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
+    if (fd < 0) throw ConfigError("cannot create the lock file '" + path_.string() + "': " + std::strerror(errno));
+    if (::flock(fd, LOCK_EX | LOCK_NB) != 0) {
+      const int error = errno;
+      char holder[512] = {};
+      const ssize_t n = ::pread(fd, holder, sizeof holder - 1, 0);
+      ::close(fd);
+      if (error != EWOULDBLOCK) throw ConfigError("cannot lock '" + path_.string() + "': " + std::strerror(error));
+      std::string who = n > 0 ? std::string(holder, static_cast<std::size_t>(n)) : std::string("another process");
+      while (!who.empty() && (who.back() == '\n' || who.back() == ' ')) who.pop_back();
+      throw ConfigError(output.string() + " is in use: another drape process is writing it (" + who +
+                        "); wait until it ends or stop it, then run this again. A second writer is refused whatever "
+                        "its flags (--resume and --force included): the two would overwrite each other");
+    }
+    // The holder before us may have removed the lock file between our open
+    // and our lock: then we hold a lock on a file no one else can see, so
+    // start again on whatever the path names now.
+    struct stat held {}, named {};
+    if (::fstat(fd, &held) == 0 && ::stat(path_.c_str(), &named) == 0 && held.st_ino == named.st_ino &&
+        held.st_dev == named.st_dev) {
+      const std::string me = "pid " + std::to_string(::getpid()) + ", " + command + "\n";
+      if (::ftruncate(fd, 0) != 0 || ::pwrite(fd, me.data(), me.size(), 0) < 0) {
+        // The lock holds without its note; the message then says "another process".
+      }
+      fd_ = fd;
+      return;
+    }
+    ::close(fd);
+  }
+}
+
+OutputLock::~OutputLock() {
+  if (fd_ < 0) return;
+  // Removed while still held: a process that opened it just now finds, once
+  // it gets the lock, that the path no longer names it, and starts again.
+  ::unlink(path_.c_str());
+  ::close(fd_);
+}
+
+}  // namespace drape

@@ -1,0 +1,43 @@
+// OutputLock: one writer per output, refused with the holder named; released
+// when the holder ends.
+#include <drape/errors.hpp>
+#include <drape/output_lock.hpp>
+
+#include <catch2/catch.hpp>
+
+#include <unistd.h>
+
+#include <filesystem>
+#include <memory>
+
+#include "test_support.hpp"
+
+using namespace drape;
+namespace fs = std::filesystem;
+
+TEST_CASE("a second writer of an output is refused, naming the first; the lock goes with its holder", "[io][lock]") {
+  test::TempDir dir;
+  const fs::path out = dir / "model.h5";
+  auto first = std::make_unique<OutputLock>(out, "drape train");
+  CHECK(fs::exists(OutputLock::lock_file(out)));
+  // A separate open file description: as another process would hold it.
+  try {
+    OutputLock second(out, "drape train --force");
+    FAIL("the second lock was granted");
+  } catch (const ConfigError& e) {
+    const std::string what = e.what();
+    CHECK_THAT(what, Catch::Contains("model.h5 is in use") &&
+                         Catch::Contains("pid " + std::to_string(::getpid()) + ", drape train)") &&
+                         Catch::Contains("--force included"));
+  }
+  first.reset();
+  CHECK_FALSE(fs::exists(OutputLock::lock_file(out)));
+  const OutputLock again(out, "drape train");
+  CHECK(fs::exists(OutputLock::lock_file(out)));
+}
+
+TEST_CASE("an output in a missing folder is refused before the lock is taken", "[io][lock]") {
+  test::TempDir dir;
+  CHECK_THROWS_WITH(OutputLock(dir / "missing" / "m.h5", "drape train"), Catch::Contains("folder") && Catch::Contains("does not exist"));
+  CHECK_FALSE(fs::exists(dir / "missing"));
+}
