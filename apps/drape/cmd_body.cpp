@@ -71,6 +71,7 @@ int run(const std::vector<std::string>& args) {
       "drape body --bmi 38 --height 1.80 [--sex 1] [--out body.obj]\n"
       "       drape body --sample N --bmi 10:65 [--height 1.5:2.0] [--girths 1] [--seed S] --out-dir DIR";
   if (!parse(usage, args, opts, {}, vm)) return 0;
+  check_mesh_outputs(vm, {"out"});
 
   const Registry& reg = Registry::load_default(plugin_path(vm));
   const std::string model = vm["model"].as<std::string>();

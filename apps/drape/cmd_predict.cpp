@@ -30,6 +30,7 @@ int run(const std::vector<std::string>& args) {
       "drape predict [--model model.h5] (--body body.obj | --bmi 35 [--height 1.75 --sex 1 --girth belly=0.1]) --out garment.obj "
       "[--body-out body.obj]";
   if (!parse(usage, args, opts, {}, vm)) return 0;
+  check_mesh_outputs(vm, {"out", "body-out"});
   const std::string model_file = model_file_or_default(vm);
   if (!vm.count("model"))
     std::printf("model: %s (the shipped pretrained model; --model chooses another)\n", model_file.c_str());

@@ -54,6 +54,7 @@ int run(const std::vector<std::string>& args) {
   const std::string usage =
       "drape simulate SCENE.yaml [--out garment.obj] [--body body.obj | --bmi 35 [--girth belly=0.1]] [--verbose]";
   if (!parse(usage, args, opts, pos, vm)) return 0;
+  check_mesh_outputs(vm, {"out", "body-out"});
   if (!vm.count("scene")) throw UsageError("a scene file is required, e.g. graphs/scenes/tshirt.yaml");
   if (vm.count("body") && (vm.count("bmi") || vm.count("height") || vm.count("sex") || vm.count("girth")))
     throw UsageError("--body gives the body itself: drop --bmi/--height/--sex/--girth");

@@ -5,6 +5,7 @@
 #include <boost/program_options.hpp>
 
 #include <functional>
+#include <initializer_list>
 #include <map>
 #include <string>
 #include <vector>
@@ -34,6 +35,11 @@ struct UsageError : std::runtime_error {
 // the positional names. Returns false when --help was printed.
 bool parse(const std::string& usage, const std::vector<std::string>& args, po::options_description& options,
            const po::positional_options_description& positional, po::variables_map& vm);
+
+// Before any work: each of these options that was given names a mesh file
+// drape can write (format and folder; check_mesh_output). parse() has checked
+// every output's folder already; this adds the mesh format.
+void check_mesh_outputs(const po::variables_map& vm, std::initializer_list<const char*> options);
 
 // The plugin search directories given with --plugin-path.
 std::vector<std::string> plugin_path(const po::variables_map& vm);

@@ -2,7 +2,11 @@
 
 #include <drape/errors.hpp>
 #include <drape/geometry/push_out.hpp>
+#include <drape/mesh_io.hpp>
 #include <drape/nn/gemm.hpp>
+#include <drape/write_failure.hpp>
+
+#include <filesystem>
 
 #include <algorithm>
 #include <cmath>
@@ -30,7 +34,21 @@ bool parse(const std::string& usage, const std::vector<std::string>& args, po::o
   } catch (const po::error& e) {
     throw UsageError(std::string(e.what()) + "\nusage: " + usage);
   }
+  // Outputs are checked before any work: a drape simulated for a minute must
+  // not be lost to a missing or read-only folder. A value without an
+  // extension is a folder to write into (hierarchy --out), made by its command.
+  for (const char* option : {"out", "body-out", "svg", "csv"}) {
+    if (!vm.count(option)) continue;
+    const boost::any& value = vm[option].value();
+    const std::string* file = boost::any_cast<std::string>(&value);
+    if (file && std::filesystem::path(*file).has_extension()) check_writable_output(*file, std::string("--") + option);
+  }
   return true;
+}
+
+void check_mesh_outputs(const po::variables_map& vm, std::initializer_list<const char*> options) {
+  for (const char* option : options)
+    if (vm.count(option)) check_mesh_output(vm[option].as<std::string>());
 }
 
 std::vector<std::string> plugin_path(const po::variables_map& vm) {

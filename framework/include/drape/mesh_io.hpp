@@ -39,6 +39,9 @@ MaterialMesh read_mesh_with_materials(const std::filesystem::path& file);
 // mesh (index out of range, non-finite value) is an Error. Nothing is left
 // behind when writing fails.
 void write_mesh(const std::filesystem::path& file, const Mesh& mesh);
+// What write_mesh checks of `file` before writing (its format, its folder),
+// for a command to call before it computes the mesh: ConfigError when it fails.
+void check_mesh_output(const std::filesystem::path& file);
 
 // An OBJ file as written: polygons with their corners in file order, and the
 // group (`g` or `o`, the later one wins) of every face.

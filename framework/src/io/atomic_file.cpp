@@ -1,5 +1,6 @@
 #include <drape/atomic_file.hpp>
 #include <drape/errors.hpp>
+#include <drape/write_failure.hpp>
 
 #include <unistd.h>
 
@@ -15,12 +16,25 @@ void write_atomically(const fs::path& target, const std::function<void(const fs:
   static std::atomic<unsigned> counter{0};
   const fs::path dir = target.has_parent_path() ? target.parent_path() : fs::path(".");
   std::error_code ec;
-  if (!fs::is_directory(dir, ec)) throw Error("cannot write '" + target.string() + "': folder '" + dir.string() + "' does not exist");
+  // A missing or read-only folder is the user's to fix: ConfigError (exit 2).
+  if (const std::string cause = write_failure_cause(target); !cause.empty())
+    throw ConfigError("cannot write '" + target.string() + "': " + cause);
   // Keep the extension last: some writers (assimp) pick the format from it.
   const fs::path tmp = dir / ("." + target.stem().string() + ".tmp" + std::to_string(::getpid()) + "-" +
                               std::to_string(counter++) + target.extension().string());
   try {
     write(tmp);
+  } catch (const Error& e) {
+    // The writer's message names the temporary file and at best the library
+    // call that failed: name the user's file, and the cause when it is known
+    // (asked before the partial file is removed, which frees its space).
+    const std::string cause = write_failure_cause(target);
+    fs::remove(tmp, ec);
+    std::string message = e.what();
+    for (std::size_t at; (at = message.find(tmp.string())) != std::string::npos;)
+      message.replace(at, tmp.string().size(), target.string());
+    if (cause.empty()) throw Error(message);
+    throw Error("cannot write '" + target.string() + "': " + cause + " (" + message + ")");
   } catch (...) {
     fs::remove(tmp, ec);
     throw;

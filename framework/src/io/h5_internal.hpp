@@ -3,6 +3,7 @@
 // translation of HDF5 exceptions into drape errors.
 #include <drape/errors.hpp>
 #include <drape/h5.hpp>
+#include <drape/write_failure.hpp>
 
 #include <H5Cpp.h>
 
@@ -60,7 +61,9 @@ auto guarded(const File::Impl& impl, bool user_file, const std::string& what, F&
     if (detail.empty()) detail = e.getDetailMsg();
     const std::string message = impl.name() + ": " + what + (detail.empty() ? "" : " (" + detail + ")");
     if (user_file) throw ConfigError(message);
-    throw Error(message);
+    // A write that failed: a full disk or a read-only folder says so.
+    const std::string cause = write_failure_cause(impl.path);
+    throw Error(cause.empty() ? message : cause + ": " + message);
   }
 }
 

@@ -3,6 +3,7 @@
 #include <drape/atomic_file.hpp>
 #include <drape/errors.hpp>
 #include <drape/mesh_io.hpp>
+#include <drape/write_failure.hpp>
 
 #include "mesh_io_internal.hpp"
 
@@ -105,20 +106,32 @@ MaterialMesh read_mesh_with_materials(const fs::path& file) {
   return out;
 }
 
-void write_mesh(const fs::path& file, const Mesh& mesh) {
+namespace {
+
+// assimp's exporter for a writable extension ("" for OBJ, drape's own writer);
+// ConfigError for any other.
+std::string writer_format(const fs::path& file) {
   const std::string ext = mesh_io::lower_extension(file);
-  const std::string what = "'" + file.string() + "'";
-  std::string assimp_format;
-  if (ext == ".ply") {
-    assimp_format = "plyb";  // binary: compact, and exact floats
-  } else if (ext == ".gltf") {
-    assimp_format = "gltf2";
-  } else if (ext == ".glb") {
-    assimp_format = "glb2";
-  } else if (ext != ".obj") {
-    throw ConfigError("cannot write " + what + ": unknown mesh format '" + ext + "'; use " + kWritable +
+  if (ext == ".ply") return "plyb";  // binary: compact, and exact floats
+  if (ext == ".gltf") return "gltf2";
+  if (ext == ".glb") return "glb2";
+  if (ext != ".obj")
+    throw ConfigError("cannot write '" + file.string() + "': unknown mesh format '" + ext + "'; use " + kWritable +
                       did_you_mean(ext, {".obj", ".ply", ".gltf", ".glb"}));
-  }
+  return {};
+}
+
+}  // namespace
+
+void check_mesh_output(const fs::path& file) {
+  writer_format(file);
+  if (const std::string cause = write_failure_cause(file); !cause.empty())
+    throw ConfigError("cannot write '" + file.string() + "': " + cause);
+}
+
+void write_mesh(const fs::path& file, const Mesh& mesh) {
+  const std::string what = "'" + file.string() + "'";
+  const std::string assimp_format = writer_format(file);
   const fs::path folder = file.has_parent_path() ? file.parent_path() : fs::path(".");
   std::error_code ec;
   if (!fs::is_directory(folder, ec))

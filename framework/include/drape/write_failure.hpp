@@ -1,0 +1,20 @@
+#pragma once
+// Why a file cannot be written, in the user's words: a full disk, a read-only
+// folder, a missing one. HDF5 and assimp report only that a write failed
+// ("H5Dwrite failed", naming a temporary file); the outputs' writers add the
+// cause this finds, naming the user's file and its folder.
+#include <filesystem>
+#include <string>
+
+namespace drape {
+
+// "no space left on <folder>", "cannot write in <folder> (read-only file
+// system)", "cannot write in <folder> (permission denied)" or "folder <folder>
+// does not exist" for the folder `file` is written in; "" when none holds.
+std::string write_failure_cause(const std::filesystem::path& file);
+
+// Before any work: throws ConfigError (exit 2) with write_failure_cause when
+// `file` cannot be written; `option` names where it was given (e.g. "--out").
+void check_writable_output(const std::filesystem::path& file, const std::string& option);
+
+}  // namespace drape

@@ -1,0 +1,41 @@
+// write_failure_cause, check_writable_output (write_failure.hpp).
+#include <drape/errors.hpp>
+#include <drape/write_failure.hpp>
+
+#include <sys/statvfs.h>
+#include <unistd.h>
+
+namespace fs = std::filesystem;
+
+namespace drape {
+
+namespace {
+// Below this much free space a failed write is put down to a full disk:
+// HDF5 and assimp extend a file by up to a few hundred kilobytes at a time.
+constexpr unsigned long long kNearlyFull = 1ull << 20;
+
+fs::path folder_of(const fs::path& file) { return file.has_parent_path() ? file.parent_path() : fs::path("."); }
+}  // namespace
+
+std::string write_failure_cause(const fs::path& file) {
+  const fs::path folder = folder_of(file);
+  std::error_code ec;
+  if (!fs::is_directory(folder, ec)) return "folder '" + folder.string() + "' does not exist";
+  struct statvfs info {};
+  if (::statvfs(folder.c_str(), &info) == 0) {
+    if (info.f_flag & ST_RDONLY) return "cannot write in '" + folder.string() + "' (read-only file system)";
+    if (static_cast<unsigned long long>(info.f_bavail) * info.f_frsize < kNearlyFull)
+      return "no space left on '" + folder.string() + "'";
+  }
+  if (::access(folder.c_str(), W_OK) != 0) return "cannot write in '" + folder.string() + "' (permission denied)";
+  return {};
+}
+
+void check_writable_output(const fs::path& file, const std::string& option) {
+  std::error_code ec;
+  if (fs::is_directory(file, ec)) throw ConfigError(option + " " + file.string() + ": is a folder; give a file name");
+  const std::string cause = write_failure_cause(file);
+  if (!cause.empty()) throw ConfigError(option + " " + file.string() + ": " + cause);
+}
+
+}  // namespace drape

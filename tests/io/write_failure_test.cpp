@@ -1,0 +1,73 @@
+// A full disk and a read-only folder are named as such, with the user's file
+// (issue 58: "H5Dwrite failed" named a temporary file). Needs root to mount a
+// 4 MiB tmpfs; skipped with a message elsewhere.
+#include <drape/atomic_file.hpp>
+#include <drape/errors.hpp>
+#include <drape/write_failure.hpp>
+
+#include <catch2/catch.hpp>
+
+#include <sys/mount.h>
+#include <unistd.h>
+
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include "test_support.hpp"
+
+using namespace drape;
+namespace fs = std::filesystem;
+
+TEST_CASE("a full disk and a read-only file system are named, with the user's file", "[io][write-failure]") {
+  test::TempDir dir;
+  const fs::path mnt = dir / "small";
+  fs::create_directories(mnt);
+  if (::getuid() != 0 || ::mount("tmpfs", mnt.c_str(), "tmpfs", 0, "size=4m") != 0) {
+    WARN("skipped: mounting a 4 MiB tmpfs needs root and a kernel that lets it (the checks of write_failure_cause are untested here)");
+    return;
+  }
+  struct Unmount {
+    fs::path at;
+    ~Unmount() { ::umount(at.c_str()); }
+  } unmount{mnt};
+  CHECK(write_failure_cause(mnt / "a.txt") == "");
+  {
+    std::ofstream fill(mnt / "fill");
+    const std::string block(4096, 'x');
+    for (int k = 0; k < 1024 && fill; ++k) fill << block << std::flush;  // until the 4 MiB are full
+  }
+  const std::string cause = write_failure_cause(mnt / "model.h5");
+  CHECK_THAT(cause, Catch::Contains("no space left on '" + mnt.string() + "'"));
+  CHECK_THROWS_WITH(check_writable_output(mnt / "model.h5", "--out"),
+                    Catch::Contains("--out " + (mnt / "model.h5").string() + ": no space left on"));
+  // Refused before writing on a full disk...
+  CHECK_THROWS_WITH(write_text_atomically(mnt / "report.txt", "x"), Catch::Contains("report.txt': no space left on"));
+  // ... and a disk that fills during the write: the user's file named, not the temporary one.
+  fs::resize_file(mnt / "fill", 2u << 20);  // 2 MiB of 4 left free
+  try {
+    write_atomically(mnt / "report.bin", [](const fs::path& tmp) {
+      std::ofstream f(tmp, std::ios::binary);
+      const std::string block(1 << 16, 'y');
+      for (int k = 0; k < 64 && f; ++k) f << block << std::flush;  // 4 MiB
+      if (!f) throw Error("writing " + tmp.string() + " failed");
+    });
+    FAIL("4 MiB written in 2 MiB");
+  } catch (const Error& e) {
+    const std::string what = e.what();
+    INFO(what);
+    CHECK_THAT(what, Catch::Contains("report.bin': no space left on") && !Catch::Contains(".tmp"));
+  }
+  CHECK_FALSE(fs::exists(mnt / "report.bin"));
+  fs::remove(mnt / "fill");
+  REQUIRE(::mount("tmpfs", mnt.c_str(), "tmpfs", MS_REMOUNT | MS_RDONLY, "size=4m") == 0);
+  CHECK_THAT(write_failure_cause(mnt / "g.obj"), Catch::Contains("cannot write in '" + mnt.string() + "' (read-only file system)"));
+  CHECK_THROWS_AS(check_writable_output(mnt / "g.obj", "--out"), ConfigError);
+}
+
+TEST_CASE("a missing folder is a usage error naming the folder", "[io][write-failure]") {
+  test::TempDir dir;
+  CHECK_THAT(write_failure_cause(dir / "nope" / "x.h5"), Catch::Contains("folder '" + (dir / "nope").string() + "' does not exist"));
+  CHECK_THROWS_AS(write_text_atomically(dir / "nope" / "x.txt", "a"), ConfigError);
+  CHECK_THROWS_WITH(check_writable_output(dir.path(), "--out"), Catch::Contains("is a folder"));
+}
