@@ -7,6 +7,7 @@
 // The force -dE/dx = a(v) w is the same everywhere on the cloth per unit of
 // material area, so stretching the garment does not change the total load.
 // E is linear in x: the gradient is constant and the Hessian is zero.
+#include <drape/energy_input.hpp>
 #include <drape/plugin.hpp>
 
 #include <cmath>
@@ -51,11 +52,8 @@ class WindEnergy final : public Energy {
   void add_hessian(const Eigen::MatrixX3d& x, Triplets&, bool) const override { check(x); }
 
  private:
-  void check(const Eigen::MatrixX3d& x) const {
-    if (x.rows() != load_.size())
-      throw Error("wind: state has " + std::to_string(x.rows()) + " vertices but the bound garment has " +
-                  std::to_string(load_.size()) + " (call bind() first)");
-  }
+  // The vertex count bind() saw, and every coordinate finite (energy_input.hpp).
+  void check(const Eigen::MatrixX3d& x) const { check_energy_input("wind", x, load_.size()); }
 
   Eigen::Vector3d direction_;  // unit
   double pressure_;            // Pa = N / m^2
