@@ -15,7 +15,7 @@
 using namespace drape;
 namespace fs = std::filesystem;
 
-TEST_CASE("a second writer of an output is refused, naming the first; the lock goes with its holder", "[io][lock]") {
+TEST_CASE("a second writer of an output is refused, naming the first, and the lock goes with its holder", "[io][lock]") {
   test::TempDir dir;
   const fs::path out = dir / "model.h5";
   auto first = std::make_unique<OutputLock>(out, "drape train");

@@ -33,7 +33,11 @@ void write_atomically(const fs::path& target, const std::function<void(const fs:
     std::string message = e.what();
     for (std::size_t at; (at = message.find(tmp.string())) != std::string::npos;)
       message.replace(at, tmp.string().size(), target.string());
-    if (cause.empty()) throw Error(message);
+    if (cause.empty()) {
+      if (message == e.what()) throw;
+      if (dynamic_cast<const ConfigError*>(&e)) throw ConfigError(message);  // the kind of error is kept
+      throw Error(message);
+    }
     throw Error("cannot write '" + target.string() + "': " + cause + " (" + message + ")");
   } catch (...) {
     fs::remove(tmp, ec);
