@@ -54,6 +54,11 @@ int dataset_potential(const std::vector<std::string>& args) {
   for (std::size_t index : samples) {
     const DatasetSample s = reader.sample(index);
     const Eigen::MatrixX3d b = s.body_vertices.cast<double>(), x = s.garment_vertices.cast<double>();
+    // A file edited by hand or written by a killed job may hold one: said
+    // here with the sample, before an energy refuses it without one.
+    if (!x.allFinite() || !b.allFinite())
+      throw ConfigError(path.string() + ": sample " + std::to_string(index) + " has a non-finite " +
+                        (x.allFinite() ? "body" : "garment") + " coordinate; its energies are not defined");
     const geometry::BodySurface surface(b, sim.body_model().faces());
     const std::vector<NamedEnergy> energies = sim.make_energies(&surface);
     if (names.empty()) {

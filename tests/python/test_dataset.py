@@ -58,3 +58,19 @@ def test_bad_indices_and_files(dataset, tmp_path):
         d.indices("tset")
     with pytest.raises(drape.Error, match="missing.h5"):
         drape.Dataset(str(tmp_path / "missing.h5"))
+
+
+def test_dataset_potential_refuses_a_nan_garment_naming_the_sample(tiny_scene, tmp_path):
+    # A NaN in a file whose checksum was zeroed (an h5py edit) crashed `dataset potential` (issue 58).
+    data = tmp_path / "d.h5"
+    run_drape("generate", tiny_scene, "--count", 2, "--bmi", "20:30", "--seed", 1, "--threads", 1, "--out", data)
+    with h5py.File(data, "r+") as f:
+        g = f["garments/vertices"]
+        sample = g[1]
+        sample[5, 1] = np.nan
+        g[1] = sample
+    raw = bytearray(data.read_bytes())
+    raw[:512] = bytes(512)  # unsealed, as h5py leaves a file it wrote
+    data.write_bytes(bytes(raw))
+    _, err = run_drape("dataset", "potential", data, "--scene", tiny_scene, "--split", "all", expect=2)
+    assert "sample 1 has a non-finite garment coordinate" in err and len(err.strip().splitlines()) == 1

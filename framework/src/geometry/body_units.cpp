@@ -11,7 +11,7 @@ namespace drape {
 namespace {
 // Farther than this from the origin a vertex is no part of a body placed in
 // the model's frame (the checks below would only print huge numbers).
-constexpr double kFarthest = 1e5;  // m: a body in millimetres (1,750 m tall) still gets the units hint
+constexpr double kFarthest = 1e9;  // m: a body in micrometres (1,750 km tall) still gets the units hint
 // A typical adult height: the suggested power of ten brings the body nearest it.
 constexpr double kTypicalHeight = 1.7;  // m
 }  // namespace
@@ -25,7 +25,7 @@ std::string body_units_problem(const Eigen::MatrixX3d& body, const std::string& 
       if (!std::isfinite(c) || std::abs(c) > kFarthest) {
         std::snprintf(line.data(), line.size(), "%s: body vertex %ld has %c = %.4g, %s", what.c_str(), static_cast<long>(v),
                       "xyz"[axis], c,
-                      std::isfinite(c) ? "over 100 km from the origin: drape reads metres, in the body model's frame"
+                      std::isfinite(c) ? "over 1e9 m from the origin, far beyond any body: drape reads metres, in the body model's frame"
                                        : "not a number: every coordinate of a body must be finite");
         return line.data();
       }
