@@ -31,6 +31,16 @@ bool parse(const std::string& usage, const std::vector<std::string>& args, po::o
       return false;
     }
     po::notify(vm);
+  } catch (const po::unknown_option& e) {
+    // A mistyped flag gets the command's closest ones, as a mistyped scene key does.
+    std::string name = e.get_option_name();
+    while (!name.empty() && name.front() == '-') name.erase(name.begin());
+    std::vector<std::string> known;
+    for (const auto& option : options.options()) known.push_back(option->long_name());
+    std::string hint;
+    for (const std::string& match : closest_matches(name, known)) hint += (hint.empty() ? "; did you mean " : ", ") + ("--" + match);
+    if (!hint.empty()) hint += "?";
+    throw UsageError(std::string(e.what()) + hint + "\nusage: " + usage);
   } catch (const po::error& e) {
     throw UsageError(std::string(e.what()) + "\nusage: " + usage);
   }

@@ -64,3 +64,13 @@ TEST_CASE("drape graph check takes sizes and the garment from the template's ass
   CHECK(test::run_drape("graph check " + graph + " --no-assets", out) == 2);
   CHECK_THAT(out, Catch::Contains("unknown size 'body_vertices'"));
 }
+
+TEST_CASE("a mistyped flag is refused with the command's closest flags", "[cli]") {
+  std::string out;
+  CHECK(test::run_drape("predict --bmii 30 --out g.obj", out) == 2);
+  CHECK_THAT(out, Catch::Contains("unrecognised option '--bmii'") && Catch::Contains("did you mean --bmi?"));
+  CHECK(test::run_drape("generate --count 2 --threds 2 --out d.h5", out) == 2);
+  CHECK_THAT(out, Catch::Contains("did you mean --threads?"));
+  CHECK(test::run_drape("predict --zzzzzz 1", out) == 2);
+  CHECK_THAT(out, !Catch::Contains("did you mean"));  // nothing close: no guess
+}
