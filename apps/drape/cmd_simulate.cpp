@@ -2,9 +2,14 @@
 // its body (or on --body FILE), the body morphing from the mean shape.
 #include "command.hpp"
 
+#ifdef _OPENMP
+#include <omp.h>
+#endif
+
 #include <drape/mesh_io.hpp>
 #include <drape/body_units.hpp>
 #include <drape/model_domain.hpp>
+#include <drape/progress.hpp>
 #include <drape/garment_size.hpp>
 #include <drape/registry.hpp>
 #include <drape/simulation.hpp>
@@ -13,6 +18,7 @@
 #include <algorithm>
 #include <cstdio>
 #include <iostream>
+#include <memory>
 #include <numeric>
 
 namespace drape::cli {
@@ -46,14 +52,20 @@ int run(const std::vector<std::string>& args) {
       "svg", po::value<std::string>(), "also draw the drape, the garment coloured by its distance to the body (.svg: front view; .html: a 3D viewer)")(
       "bmi", po::value<double>(), "override the scene's target BMI")("height", po::value<double>(), "override the height, m")(
       "sex", po::value<double>(), "override the sex (0 female ... 1 male)")(
-      "verbose,v", po::bool_switch(), "print every solver step");
+      "verbose,v", po::bool_switch(), "print every solver step")(
+      "threads", po::value<int>()->default_value(0), "threads for the energies (0: OpenMP's default, all cores)");
   add_girth_option(opts, "of the scene's target body: ");
   po::positional_options_description pos;
   pos.add("scene", 1);
   po::variables_map vm;
   const std::string usage =
-      "drape simulate SCENE.yaml [--out garment.obj] [--body body.obj | --bmi 35 [--girth belly=0.1]] [--verbose]";
+      "drape simulate SCENE.yaml [--out garment.obj] [--body body.obj | --bmi 35 [--girth belly=0.1]] [--threads T] [--verbose]";
   if (!parse(usage, args, opts, pos, vm)) return 0;
+  const int threads = vm["threads"].as<int>();
+  if (threads < 0) throw UsageError("--threads: expected 0 (all cores) or a count");
+#ifdef _OPENMP
+  if (threads > 0) omp_set_num_threads(threads);
+#endif
   check_mesh_outputs(vm, {"out", "body-out"});
   if (!vm.count("scene")) throw UsageError("a scene file is required, e.g. graphs/scenes/tshirt.yaml");
   if (vm.count("body") && (vm.count("bmi") || vm.count("height") || vm.count("sex") || vm.count("girth")))
@@ -102,8 +114,21 @@ int run(const std::vector<std::string>& args) {
 
   const bool verbose = vm["verbose"].as<bool>();
   SimulationOptions options;
+  // Without --verbose a bar over the steps (at most morph + settle; the
+  // settling ends early when the drape has settled) with the latest step's
+  // Newton iterations and balance, redrawn on a terminal.
+  std::unique_ptr<ProgressBar> bar;
   options.on_step = [&](const SimulationStep& s) {
-    if (!verbose) return;
+    if (!verbose) {
+      if (!bar) bar = std::make_unique<ProgressBar>("simulate", static_cast<std::size_t>(s.total_steps));
+      char status[128];
+      std::snprintf(status, sizeof status, "%s, %d Newton iterations%s", s.morphing ? "morphing" : "settling",
+                    s.report.iterations,
+                    s.stationarity >= 0 ? (", stationarity " + std::to_string(s.stationarity).substr(0, 8)).c_str() : "");
+      bar->set_status(status);
+      bar->advance();
+      return;
+    }
     std::printf("step %3d/%d %-7s newton %2d  residual %.2e  Phi %.6g -> %.6g%s%s\n", s.step, s.total_steps,
                 s.morphing ? "morph" : "settle", s.report.iterations, s.report.residual, s.report.phi_start,
                 s.report.phi_end, s.stationarity >= 0 ? ("  stationarity/|W| " + std::to_string(s.stationarity)).c_str() : "",
@@ -114,6 +139,7 @@ int run(const std::vector<std::string>& args) {
   for (const auto& e : sim->scene().effects) std::printf(" %s", e.name.c_str());
   std::printf("\n");
   const SimulationResult r = sim->run(target, options);
+  if (bar) bar->finish();
 
   std::printf("%s after %d steps, %d Newton iterations (%d line-search stops), %s Cholesky\n",
               r.converged ? (r.at_rest ? "settled (at rest)" : "settled") : "NOT settled", r.steps, r.iterations, r.line_search_failures,

@@ -77,3 +77,14 @@ TEST_CASE("drape simulate --body drapes a body standing elsewhere where the body
   CHECK(garment.col(1).maxCoeff() < body.vertices.col(1).maxCoeff());
   CHECK_THAT(out, Catch::Contains("penetration p = 0.000%"));
 }
+
+TEST_CASE("simulate takes --threads and shows its progress without --verbose", "[cli][simulate]") {
+  test::TempDir dir;
+  std::ofstream(dir / "tiny.yaml") << test::tiny_simulation_scene();
+  std::string out;
+  const int code = test::run_drape("simulate " + (dir / "tiny.yaml").string() + " --bmi 25 --threads 1", out);
+  INFO(out);
+  CHECK((code == 0 || code == 1));  // 1: the tiny scene's few steps need not settle
+  CHECK_THAT(out, Catch::Contains("simulate [") && Catch::Contains("Newton iterations"));
+  CHECK(test::run_drape("simulate " + (dir / "tiny.yaml").string() + " --threads -1", out) == 2);
+}
