@@ -121,3 +121,17 @@ def test_loaders_refuse_damaged_files(tmp_path):
     for text in ("effects: [", "effects: {gravity: {g: nan}}", "base: s.yaml", "\x00\x01", "solver: {time_step: 1e308}"):
         bad_scene.write_text(text)
         assert refused(drape.Scene, str(bad_scene)) is not None or "time_step" in text, text
+
+
+def test_module_functions_and_the_torch_bridge_refuse_bad_input():
+    for bmi in (np.nan, np.inf, -5.0, 1e308):
+        assert refused(drape.body, bmi=bmi) is not None, bmi
+    for resolution in ("huge", -1, np.nan):
+        assert refused(drape.assets, resolution=resolution) is not None, resolution
+    torch = pytest.importorskip("torch", reason="PyTorch is not installed (Debian: python3-torch)")
+    import drape.torch_bridge as dt
+    physics = dt.SceneEnergy(str(COARSE))
+    x = torch.tensor(np.array(physics.scene.garment_vertices), dtype=torch.float64)
+    x[5, 2] = float("nan")
+    e = refused(physics, x)
+    assert isinstance(e, ValueError) and "non-finite coordinate" in str(e)
