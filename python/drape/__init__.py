@@ -12,6 +12,7 @@ drape program) and drape.Error (a RuntimeError: anything else), with the
 program's one-line messages. The PyTorch bridge is drape.torch_bridge.
 """
 import json as _json
+import operator as _operator
 import os as _os
 import tempfile as _tempfile
 
@@ -194,6 +195,26 @@ def _optimize(self, scene, body_vertices, body_params=None, iterations=100, lear
 
 _optimize.__doc__ = _Model_optimize.__doc__
 Model.optimize = _optimize
+
+
+def _dataset_getitem(self, i):
+    """The i-th done sample in file order (negative i counts from the end): a dict of body float32 [Nb, 3],
+    garment float32 [Ng, 3], body_params float32 [P], split (0 train, 1 val, 2 test) and index (the sample's
+    row in the file). A slice gives a list of them."""
+    done = self.indices()
+    if isinstance(i, slice):
+        return [self[k] for k in range(*i.indices(len(done)))]
+    k = _operator.index(i)
+    if k < 0:
+        k += len(done)
+    if not 0 <= k < len(done):
+        raise IndexError(f"sample {i} of a dataset of {len(done)} done samples")
+    batch = self.read([int(done[k])])
+    return {"body": batch["body"][0], "garment": batch["garment"][0], "body_params": batch["body_params"][0],
+            "split": int(batch["split"][0]), "index": int(batch["indices"][0])}
+
+
+Dataset.__getitem__ = _dataset_getitem
 
 
 def write_obj(path, vertices, faces):

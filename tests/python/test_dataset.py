@@ -74,3 +74,22 @@ def test_dataset_potential_refuses_a_nan_garment_naming_the_sample(tiny_scene, t
     data.write_bytes(bytes(raw))
     _, err = run_drape("dataset", "potential", data, "--scene", tiny_scene, "--split", "all", expect=2)
     assert "sample 1 has a non-finite garment coordinate" in err and len(err.strip().splitlines()) == 1
+
+
+def test_a_dataset_is_indexed_like_a_sequence(tiny_scene, tmp_path):
+    data = tmp_path / "d.h5"
+    run_drape("generate", tiny_scene, "--count", 3, "--bmi", "20:30", "--seed", 2, "--threads", 1, "--out", data)
+    d = drape.Dataset(str(data))
+    assert len(d) == 3
+    batch = d.read(d.indices())
+    for k in range(3):
+        s = d[k]
+        np.testing.assert_array_equal(s["garment"], batch["garment"][k])
+        np.testing.assert_array_equal(s["body"], batch["body"][k])
+        assert s["index"] == k and s["split"] == batch["split"][k]
+    np.testing.assert_array_equal(d[-1]["garment"], batch["garment"][2])
+    assert [s["index"] for s in d[1:]] == [1, 2]
+    with pytest.raises(IndexError):
+        d[3]
+    with pytest.raises(TypeError):
+        d["0"]
