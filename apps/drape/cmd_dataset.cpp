@@ -7,11 +7,11 @@
 #include "command.hpp"
 #include "dataset_potential.hpp"
 
-#include <drape/output_lock.hpp>
 #include <drape/body.hpp>
 #include <drape/dataset.hpp>
 #include <drape/errors.hpp>
 #include <drape/model.hpp>
+#include <drape/output_lock.hpp>
 #include <drape/progress.hpp>
 #include <drape/registry.hpp>
 #include <drape/scene.hpp>

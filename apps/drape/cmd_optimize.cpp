@@ -7,11 +7,11 @@
 #include "model_body.hpp"
 #include "optimize_dataset.hpp"
 
-#include <drape/output_lock.hpp>
 #include <drape/dataset.hpp>
 #include <drape/geometry/surface_crossings.hpp>
 #include <drape/mesh_io.hpp>
 #include <drape/model.hpp>
+#include <drape/output_lock.hpp>
 #include <drape/physics_optimization.hpp>
 #include <drape/registry.hpp>
 #include <drape/scene.hpp>

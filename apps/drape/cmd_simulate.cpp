@@ -6,11 +6,11 @@
 #include <omp.h>
 #endif
 
-#include <drape/mesh_io.hpp>
 #include <drape/body_units.hpp>
+#include <drape/garment_size.hpp>
+#include <drape/mesh_io.hpp>
 #include <drape/model_domain.hpp>
 #include <drape/progress.hpp>
-#include <drape/garment_size.hpp>
 #include <drape/registry.hpp>
 #include <drape/simulation.hpp>
 #include <drape/svg_figure.hpp>
@@ -121,10 +121,11 @@ int run(const std::vector<std::string>& args) {
   options.on_step = [&](const SimulationStep& s) {
     if (!verbose) {
       if (!bar) bar = std::make_unique<ProgressBar>("simulate", static_cast<std::size_t>(s.total_steps));
-      char status[128];
-      std::snprintf(status, sizeof status, "%s, %d Newton iterations%s", s.morphing ? "morphing" : "settling",
-                    s.report.iterations,
-                    s.stationarity >= 0 ? (", stationarity " + std::to_string(s.stationarity).substr(0, 8)).c_str() : "");
+      char status[96];
+      if (s.stationarity >= 0)
+        std::snprintf(status, sizeof status, "settling, %d Newton iterations, stationarity %.2e", s.report.iterations, s.stationarity);
+      else
+        std::snprintf(status, sizeof status, "morphing, %d Newton iterations", s.report.iterations);
       bar->set_status(status);
       bar->advance();
       return;

@@ -6,10 +6,9 @@
 #include <drape/nn/gemm.hpp>
 #include <drape/write_failure.hpp>
 
-#include <filesystem>
-
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
 #include <iostream>
 
 namespace drape::cli {

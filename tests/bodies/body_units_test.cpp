@@ -43,7 +43,7 @@ TEST_CASE("a body in centimetres or millimetres is refused with the scale that w
 TEST_CASE("a body lying along z or x is refused", "[bodies][units]") {
   Eigen::MatrixX3d z_up = standing_box();
   z_up.col(1).swap(z_up.col(2));
-  CHECK_THAT(body_units_problem(z_up, "body"), Catch::Contains("longer along z (1.75 m) than along y (0.3 m)"));
+  CHECK_THAT(body_units_problem(z_up, "body"), Catch::Contains("longer along z than along y (1.75 m against 0.3 m)"));
   Eigen::MatrixX3d on_side = standing_box();
   on_side.col(0).swap(on_side.col(1));
   CHECK_THAT(body_units_problem(on_side, "body"), Catch::Contains("longer along x"));

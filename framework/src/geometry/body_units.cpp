@@ -35,16 +35,18 @@ std::string body_units_problem(const Eigen::MatrixX3d& body, const std::string& 
   const double size = extent.maxCoeff(&longest);
   if (size > HeightRange::max || size < HeightRange::min) {
     const double scale = std::pow(10.0, std::round(std::log10(kTypicalHeight / size)));
+    const char* unit = scale == 0.1 ? "decimetres" : scale == 0.01 ? "centimetres" : scale == 0.001 ? "millimetres"
+                     : scale == 1e-6 ? "micrometres" : "other units";
     std::snprintf(line.data(), line.size(),
                   "%s is %.4g m tall (its longest extent): drape reads metres and takes bodies of %.1f-%.1f m, so the "
-                  "body is likely in other units (scaled by %g it would be %.3g m)",
-                  what.c_str(), size, HeightRange::min, HeightRange::max, scale, scale * size);
+                  "body is likely in %s (scaled by %g it would be %.3g m)",
+                  what.c_str(), size, HeightRange::min, HeightRange::max, unit, scale, scale * size);
     return line.data();
   }
   if (longest != 1 && extent[longest] > 1.3 * extent[1]) {
     std::snprintf(line.data(), line.size(),
-                  "%s is longer along %c (%.3g m) than along y (%.3g m): drape's bodies stand along y (Y up, A-pose); "
-                  "export it Y up",
+                  "%s is longer along %c than along y (%.3g m against %.3g m): drape's bodies stand along y (Y up, "
+                  "A-pose), as the body model makes them; export it Y up",
                   what.c_str(), "xyz"[longest], extent[longest], extent[1]);
     return line.data();
   }

@@ -132,11 +132,7 @@ void check_mesh_output(const fs::path& file) {
 void write_mesh(const fs::path& file, const Mesh& mesh) {
   const std::string what = "'" + file.string() + "'";
   const std::string assimp_format = writer_format(file);
-  const fs::path folder = file.has_parent_path() ? file.parent_path() : fs::path(".");
-  std::error_code ec;
-  if (!fs::is_directory(folder, ec))
-    throw ConfigError("cannot write " + what + ": folder '" + folder.string() + "' does not exist");
-  check_mesh(mesh, what);
+  check_mesh(mesh, what);  // the folder is write_atomically's to check (write_failure_cause)
   write_atomically(file, [&](const fs::path& tmp) {
     if (assimp_format.empty()) {
       mesh_io::write_obj(tmp, mesh);

@@ -1,5 +1,6 @@
 // A model's training domain: ranges, body descriptors and the check of a
 // body against them (model_domain.hpp).
+#include <drape/body_units.hpp>
 #include <drape/errors.hpp>
 #include <drape/geometry/volume.hpp>
 #include <drape/h5.hpp>
@@ -178,18 +179,10 @@ std::vector<std::string> domain_violations(const ModelDomain& domain, const Eige
   // mesh writer's rounding) must not fall out.
   auto within = [](double v, const ValueRange& r, double slack) { return v >= r.min - slack && v <= r.max + slack; };
   const double h = body_height(body), bmi = body_bmi(body, faces);
-  if (!within(h, domain.height, 0.005)) {
-    std::string why = outside("height", h, domain.height, " m");
-    // The usual reasons a mesh of the right topology is far off in size.
-    if (h > 50 * domain.height.max) why += " (a mesh in millimetres or centimetres? drape works in metres)";
-    out.push_back(why);
-  }
-  const Eigen::RowVector3d extent = body.colwise().maxCoeff() - body.colwise().minCoeff();
-  // Lying down (Z up, or on its side): longer along z than along y, or much
-  // longer along x (an A-pose's arm span is well under its height).
-  if (extent[2] > extent[1] || extent[0] > 1.3 * extent[1])
-    out.push_back(std::string("the body is longer along ") + (extent[2] > extent[1] ? "z" : "x") +
-                  " than along y (its height): drape's bodies stand along y (Y up, A-pose), as the body model makes them");
+  if (!within(h, domain.height, 0.005)) out.push_back(outside("height", h, domain.height, " m"));
+  // The usual reasons a mesh of the right topology is far off: other units,
+  // lying down (Z up, or on its side), an absurd coordinate (body_units.hpp).
+  if (std::string why = body_units_problem(body, "the body"); !why.empty()) out.push_back(std::move(why));
   if (!within(bmi, domain.bmi, 0.1)) out.push_back(outside("BMI", bmi, domain.bmi, ""));
   if (params && static_cast<std::size_t>(params->size()) == domain.params.size())
     for (std::size_t p = 0; p < domain.params.size(); ++p) {
