@@ -6,13 +6,10 @@
 #include <omp.h>
 #endif
 
-#include <drape/body_units.hpp>
-#include <drape/garment_size.hpp>
 #include <drape/mesh_io.hpp>
-#include <drape/model_domain.hpp>
 #include <drape/progress.hpp>
 #include <drape/registry.hpp>
-#include <drape/simulation.hpp>
+#include <drape/services/scene_body.hpp>
 #include <drape/svg_figure.hpp>
 
 #include <algorithm>
@@ -23,11 +20,6 @@
 
 namespace drape::cli {
 namespace {
-
-// m: how far from the mean body's placement (mean x and z of the vertices,
-// lowest y) a body of the body model may stand (the shipped model's 1,600
-// training bodies: within 4.2 mm in z, exactly in x and y).
-constexpr double kBodyModelPlacementSpread = 0.01;
 
 // Overrides of the scene's target shape from the command line.
 void override_shape(Scene& scene, const po::variables_map& vm) {
@@ -77,40 +69,18 @@ int run(const std::vector<std::string>& args) {
   // size: auto -- every size is built once (SizeChart); the body comes from
   // the design size's, then runs in the size its girth needs (garment_size.hpp).
   const SceneSimulations simulations(registry, scene);
-  const Simulation* sim = &simulations.design();
-
-  Eigen::MatrixX3d target;
-  Eigen::RowVector3d moved_by = Eigen::RowVector3d::Zero();  // added to what is written, to move it back with the body
-  if (vm.count("body")) {
-    const std::string file = vm["body"].as<std::string>();
-    const Mesh body = read_mesh(file);
-    require_vertex_count(body, static_cast<int>(sim->mean_body().rows()), file,
-                         "the scene's body model '" + sim->scene().body_model + "' has that many");
-    check_body_units(body.vertices, "body " + file);
-    target = body.vertices;
-    // The body morphs from the body model's mean shape, which stands where
-    // all its bodies stand: a mesh placed elsewhere (lifted, or centred by
-    // another tool) would drag the garment there through the air (a body 5 m
-    // up, coarse shirt: 10,238 Newton iterations and 292 s instead of 234 and
-    // 6.6 s). It is draped where the body model's bodies stand and the
-    // results moved back.
-    const Eigen::Vector3d reference = body_placement(sim->mean_body());
-    if (const auto offset = move_to_placement(reference, Eigen::Vector3d::Constant(kBodyModelPlacementSpread), target)) {
-      moved_by = offset->transpose();
-      char where[120];
-      std::snprintf(where, sizeof where, "the body model's bodies stand (soles at y = %.3f, centred in x and z)", reference[1]);
-      std::printf("note: the body %s\n", placement_note(*offset, where).c_str());
+  const SceneBody target = [&] {
+    if (vm.count("body")) {
+      const std::string file = vm["body"].as<std::string>();
+      return scene_body(simulations, read_mesh(file).vertices, file);
     }
-  } else {
-    BodyRequest request = sim->target_request();
+    BodyRequest request = simulations.design().target_request();
     request.proportions = parse_girths(vm);
-    target = sim->body_vertices(sim->shape_for(request));
-  }
-  if (simulations.auto_size()) {
-    SizeChoice choice;
-    sim = &simulations.for_body(target, scene.file, &choice);
-    std::printf("size auto: %s\n", choice.summary().c_str());
-  }
+    return scene_body(simulations, request, scene.file);
+  }();
+  for (const std::string& note : target.notes) std::printf("note: %s\n", note.c_str());
+  if (target.size) std::printf("size auto: %s\n", target.size->summary().c_str());
+  const Simulation* sim = target.simulation;
 
   const bool verbose = vm["verbose"].as<bool>();
   SimulationOptions options;
@@ -136,10 +106,10 @@ int run(const std::vector<std::string>& args) {
                 s.slip_ratio > 0 ? ("  slip/held " + std::to_string(s.slip_ratio)).c_str() : "");
   };
   std::printf("simulating %s: garment %d vertices, body %d vertices, effects:", sim->scene().file.c_str(),
-              sim->garment().mesh.num_vertices(), static_cast<int>(target.rows()));
+              sim->garment().mesh.num_vertices(), static_cast<int>(target.vertices.rows()));
   for (const auto& e : sim->scene().effects) std::printf(" %s", e.name.c_str());
   std::printf("\n");
-  const SimulationResult r = sim->run(target, options);
+  const SimulationResult r = drape_scene_body(target, options);  // moved back where the given body stood
   if (bar) bar->finish();
 
   std::printf("%s after %d steps, %d Newton iterations (%d line-search stops), %s Cholesky\n",
@@ -187,12 +157,12 @@ int run(const std::vector<std::string>& args) {
   }
   if (vm.count("out")) {
     Mesh out = sim->garment().mesh;
-    out.vertices = r.garment.rowwise() + moved_by;
+    out.vertices = r.garment;
     write_mesh(vm["out"].as<std::string>(), out);
     std::printf("wrote %s\n", vm["out"].as<std::string>().c_str());
   }
   Mesh body;
-  body.vertices = r.body.rowwise() + moved_by;
+  body.vertices = r.body;
   body.faces = sim->body_model().faces();
   if (vm.count("body-out")) {
     write_mesh(vm["body-out"].as<std::string>(), body);
@@ -200,7 +170,7 @@ int run(const std::vector<std::string>& args) {
   }
   if (vm.count("svg")) {
     Mesh garment = sim->garment().mesh;
-    garment.vertices = r.garment.rowwise() + moved_by;
+    garment.vertices = r.garment;
     char caption[160];
     std::snprintf(caption, sizeof caption, "%s, %d iterations, %.1f s, p = %.2f%%, %d surface crossings",
                   r.converged ? "settled" : "NOT settled", r.iterations, r.seconds, 100.0 * r.penetration,

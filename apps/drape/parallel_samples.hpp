@@ -1,23 +1,8 @@
 #pragma once
-// The worker pool of the commands that fill a dataset one sample at a time
-// (drape generate, drape optimize --data): samples are handed out in turn to
-// `threads` workers; the first error stops the others after the sample they
-// are on, and the dataset is then left as a partial file to resume, with a
-// message, before the error is rethrown. Without an error it is finished.
-#include <drape/dataset.hpp>
-#include <drape/progress.hpp>
-
-#include <functional>
-#include <vector>
+// The dataset-filling worker pool lives in the framework (drape/parallel_samples.hpp).
+#include <drape/parallel_samples.hpp>
 
 namespace drape::cli {
-
-// Each worker thread calls make_worker() once (its own state: a network
-// copy, OpenMP settings) and then the returned function for every index of
-// `todo` it is handed. Workers write their samples themselves (the writer is
-// not thread-safe: guard it).
-using SampleWorker = std::function<void(std::size_t index)>;
-void make_samples_in_parallel(DatasetWriter& writer, ProgressBar& bar, const std::vector<std::size_t>& todo,
-                              int threads, const std::function<SampleWorker()>& make_worker);
-
+using drape::make_samples_in_parallel;
+using drape::SampleWorker;
 }  // namespace drape::cli

@@ -37,7 +37,7 @@ from . import _drape
 __all__ = [
     "Assets", "BodyModel", "ConfigError", "Dataset", "Energy", "Error", "Model", "Scene", "assets",
     "better_blas_coretype", "blas_corename", "body",
-    "load_plugins", "plugin_search_path", "plugins", "simulate", "sparse",
+    "generate", "load_plugins", "plugin_search_path", "plugins", "simulate", "sparse",
 ]
 
 
@@ -180,6 +180,18 @@ def simulate(scene, body_vertices=None, **options):
     """drape.simulate(scene path or dict or Scene, body_vertices) -> the garment and per-effect energies
     (Scene.simulate)."""
     return Scene(scene).simulate(body_vertices, **options)
+
+
+def generate(scene, out, count, bmi=(10, 65), height=1.75, sex=1.0, girths=0.0, seed=0, shard=(0, 1), threads=0,
+             progress=True):
+    """Generates (or resumes) a dataset of simulated drapes into `out`, as `drape generate` does and with the same
+    bytes for the same arguments (one service behind both): `count` bodies drawn uniformly in bmi, height and sex
+    (a number, or a (lo, hi) range; sex draws one of its two ends), girths spread as a fraction of the body model's
+    range, the 8:1:1 split from `seed`; shard=(i, N) makes part i of N. Returns a dict of what was done:
+    samples, not_settled, penetrating, crossing, resumed_with (done by an earlier run), threads, ranges.
+    The GIL is released while it runs; a progress bar goes to stderr unless progress=False."""
+    return _drape._generate(_native_scene(scene), _os.fspath(out), int(count), bmi, height, sex, float(girths),
+                            int(seed), tuple(shard), int(threads), bool(progress))
 
 
 def _native_scene(scene):

@@ -1,7 +1,11 @@
-// Datasets of drape generate: open, list samples by split, read a batch.
+// Datasets of drape generate: make one (the same service as drape generate),
+// open, list samples by split, read a batch.
 #include "common.hpp"
 
 #include <drape/dataset.hpp>
+#include <drape/services/dataset_generation.hpp>
+
+#include <iostream>
 
 namespace drape::python {
 namespace {
@@ -28,9 +32,64 @@ py::array_t<long long> index_array(const std::vector<std::size_t>& v) {
   return to_numpy(std::move(out));
 }
 
+SampleRange range_arg(const py::handle& value, const std::string& name) {
+  const std::string expected = "a number or a (lo, hi) pair with lo <= hi";
+  try {
+    if (py::isinstance<py::tuple>(value) || py::isinstance<py::list>(value)) {
+      const auto pair = value.cast<std::vector<double>>();
+      if (pair.size() == 2 && pair[0] <= pair[1]) return {pair[0], pair[1]};
+    } else {
+      const double v = value.cast<double>();
+      if (v == v) return {v, v};
+    }
+  } catch (const py::cast_error&) {
+  }
+  throw py::value_error(name + ": expected " + expected + ", got " + py::repr(value).cast<std::string>());
+}
+
+py::dict generate(const PyScene& scene, const std::string& out, std::size_t count, const py::handle& bmi,
+                  const py::handle& height, const py::handle& sex, double girths, std::uint64_t seed,
+                  const std::pair<std::size_t, std::size_t>& shard, int threads, bool progress) {
+  GenerateRequest request;
+  if (count == 0) throw py::value_error("count: expected at least 1 sample");
+  request.count = count;
+  request.bmi = range_arg(bmi, "bmi");
+  request.height = range_arg(height, "height");
+  request.sex = range_arg(sex, "sex");
+  if (!(girths >= 0 && girths <= 1)) throw py::value_error("girths: expected a fraction in [0, 1]");
+  request.girths = girths;
+  request.seed = seed;
+  if (shard.second == 0 || shard.first >= shard.second) throw py::value_error("shard: expected (i, N) with 0 <= i < N");
+  request.shard = Shard{shard.first, shard.second};
+  if (threads < 0) throw py::value_error("threads: expected 0 (all cores) or a count");
+  request.threads = threads;
+  GenerateObserver observer;
+  if (progress) observer.progress = &std::cerr;
+  GeneratePlan plan;
+  observer.on_start = [&](const GeneratePlan& p) { plan = p; };
+  GenerateSummary done;
+  {
+    py::gil_scoped_release release;
+    done = generate_dataset(registry(), scene.simulation->scene(), request, out, observer);
+  }
+  py::dict d;
+  d["out"] = out;
+  d["samples"] = done.samples;
+  d["first"] = plan.first;
+  d["resumed_with"] = plan.already;
+  d["threads"] = plan.threads;
+  d["not_settled"] = done.not_settled;
+  d["penetrating"] = done.penetrating;
+  d["crossing"] = done.crossing;
+  d["ranges"] = plan.ranges;
+  return d;
+}
+
 }  // namespace
 
 void register_dataset(py::module_& m) {
+  m.def("_generate", &generate, py::arg("scene"), py::arg("out"), py::arg("count"), py::arg("bmi"), py::arg("height"),
+        py::arg("sex"), py::arg("girths"), py::arg("seed"), py::arg("shard"), py::arg("threads"), py::arg("progress"));
   py::class_<DatasetReader>(m, "Dataset", "A dataset file of drape generate (or a .partial one: its done samples).")
       .def(py::init([](const std::string& path) {
              py::gil_scoped_release release;

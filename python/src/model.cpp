@@ -11,6 +11,7 @@
 #include <drape/model.hpp>
 #include <drape/model_domain.hpp>
 #include <drape/physics_optimization.hpp>
+#include <drape/services/model_body.hpp>
 
 #include <chrono>
 #include <filesystem>
@@ -80,23 +81,19 @@ class PyModel {
     return domain_;
   }
 
-  // As drape predict does (model_domain.hpp, placement): each body standing
-  // away from where the training bodies stood is moved there, with a Python
-  // warning; returns per sample what to add to its garment to move it back.
-  std::vector<Eigen::RowVector3f> place_like_training(SampleBatch& b) {
-    std::vector<Eigen::RowVector3f> back(static_cast<std::size_t>(b.size()), Eigen::RowVector3f::Zero());
+  // As drape predict does (services/model_body.hpp): each body standing
+  // away from where the training bodies stood is moved there, the domain is
+  // checked (strict: ValueError outside it) and a garment too small around is
+  // noted, each notice a Python warning; returns per sample what to add to
+  // its garment to move it back.
+  std::vector<Eigen::RowVector3d> prepare(SampleBatch& b, bool strict) {
     const std::optional<ModelDomain>& d = domain();
-    if (!d) return back;
-    for (int i = 0; i < b.size(); ++i) {
-      Eigen::MatrixX3d body = b.body.mat(i).cast<double>();
-      const std::optional<Eigen::Vector3d> offset = move_to_placement(*d, body);
-      if (!offset) continue;
-      b.body.mat(i) = body.cast<float>();
-      back[static_cast<std::size_t>(i)] = offset->transpose().cast<float>();
-      py::module_::import("warnings").attr("warn")("body " + std::to_string(i) + " " +
-                                                   placement_note(*offset, "the model's training bodies stood"));
-    }
-    return back;
+    PreparedBodies prepared = [&] {
+      py::gil_scoped_release release;
+      return prepare_bodies(*model_, d, b, strict, "strict=True");
+    }();
+    for (const Notice& n : prepared.notices) py::module_::import("warnings").attr("warn")(n.text);
+    return std::move(prepared.moved_by);
   }
 
   // dL/dweights for a gradient of the garment, accumulated into the weights'
@@ -242,18 +239,23 @@ void register_model(py::module_& m) {
           "float32 [P]: the body plugin's shape parameters of that body (for graphs that take body_params)")
       .def(
           "predict",
-          [](PyModel& p, const py::handle& body, const py::handle& body_params, const py::handle& garment_size) {
+          [](PyModel& p, const py::handle& body, const py::handle& body_params, const py::handle& garment_size, bool strict) {
             bool batched = false;
             SampleBatch b = p.batch(body, body_params, garment_size, &batched);
-            const std::vector<Eigen::RowVector3f> back = p.place_like_training(b);
+            const std::vector<Eigen::RowVector3d> back = p.prepare(b, strict);
             Tensor out = p.predict(b);
-            for (int i = 0; i < out.batch(); ++i) out.mat(i).rowwise() += back[static_cast<std::size_t>(i)];
+            // Moved back as drape predict writes it (in double), then float32 like every prediction.
+            for (int i = 0; i < out.batch(); ++i)
+              if (!back[static_cast<std::size_t>(i)].isZero(0.0))
+                out.mat(i) = (out.mat(i).cast<double>().rowwise() + back[static_cast<std::size_t>(i)]).cast<float>();
             return to_numpy(std::move(out), !batched);
           },
           py::arg("body_vertices"), py::arg("body_params") = py::none(), py::arg("garment_size") = py::none(),
-          "float32 garments [Ng, 3] for a body [Nb, 3], or [n, Ng, 3] for a batch [n, Nb, 3]. A body standing away from "
-          "where the training bodies stood is draped there and its garment moved back (a warning says so). The GIL is "
-          "released.")
+          py::arg("strict") = false,
+          "float32 garments [Ng, 3] for a body [Nb, 3], or [n, Ng, 3] for a batch [n, Nb, 3], as drape predict makes "
+          "them: a body standing away from where the training bodies stood is draped there and its garment moved back, "
+          "a body outside the training domain and a garment too small around for it are warned about (each a Python "
+          "warning; strict=True: a body outside the domain raises ValueError). The GIL is released.")
       .def(
           "domain_check",
           [](PyModel& p, const py::handle& body) {
@@ -276,7 +278,7 @@ void register_model(py::module_& m) {
             if (b.size() != 1) throw py::value_error("body_vertices: optimize takes one body [Nb, 3], got a batch of " + std::to_string(b.size()));
             if (iterations < 0) throw py::value_error("iterations: expected >= 0");
             // Optimised where the training bodies stood (as predict), the drapes moved back with the body.
-            const Eigen::RowVector3d back = p.place_like_training(b).front().cast<double>();
+            const Eigen::RowVector3d back = p.prepare(b, false).front();
             PhysicsOptimizationOptions o;
             o.iterations = iterations;
             o.learning_rate = learning_rate;

@@ -1,4 +1,4 @@
-#include "parallel_samples.hpp"
+#include <drape/parallel_samples.hpp>
 
 #include <atomic>
 #include <cstdio>
@@ -6,7 +6,7 @@
 #include <mutex>
 #include <thread>
 
-namespace drape::cli {
+namespace drape {
 
 void make_samples_in_parallel(DatasetWriter& writer, ProgressBar& bar, const std::vector<std::size_t>& todo,
                               int threads, const std::function<SampleWorker()>& make_worker) {
@@ -36,4 +36,4 @@ void make_samples_in_parallel(DatasetWriter& writer, ProgressBar& bar, const std
   writer.finish();
 }
 
-}  // namespace drape::cli
+}  // namespace drape

@@ -1,0 +1,51 @@
+#pragma once
+// The body a scene drapes, made ready for Simulation::run: the service behind
+// `drape simulate` and `drape.simulate`, so both drape the same body the same
+// way. It checks a given body (vertex count, units), places it where the body
+// model's bodies stand (a body morphs from the mean shape, which stands there:
+// a body lifted or centred by another tool would drag the garment through the
+// air), and with `size: auto` picks the size the body's girth needs
+// (garment_size.hpp). drape_scene_body runs it and moves the drape back.
+#include <drape/garment_size.hpp>
+#include <drape/simulation.hpp>
+
+#include <Eigen/Core>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace drape {
+
+// m: how far from the mean body's placement (mean x and z of the vertices,
+// lowest y) a body of the body model may stand (the shipped model's 1,600
+// training bodies: within 4.2 mm in z, exactly in x and y).
+inline constexpr double kBodyModelPlacementSpread = 0.01;
+
+struct SceneBody {
+  const Simulation* simulation = nullptr;  // what drapes it: with size: auto, the size it wears
+  Eigen::MatrixX3d vertices;               // the target body, standing where the body model's bodies stand
+  // Added to the drape (garment and body) to move it back where the given
+  // body stood; zero when it was not moved.
+  Eigen::RowVector3d moved_by = Eigen::RowVector3d::Zero();
+  std::optional<SizeChoice> size;  // with size: auto, the choice and its measurements
+  // For the user, one sentence each without a prefix: "the body stands ... m
+  // from where ...; draped there and ...". The CLI prints them as "note: ...",
+  // Python as warnings.
+  std::vector<std::string> notes;
+};
+
+// A given body's vertices (`name` names it in messages: a file, or an
+// argument). ConfigError for the wrong vertex count (saying the expected one),
+// non-finite coordinates, other units or a body lying down (body_units.hpp),
+// and, with size: auto, a body no size fits.
+SceneBody scene_body(const SceneSimulations& simulations, const Eigen::MatrixX3d& given, const std::string& name);
+// A body of the scene's body model: the scene's target request, changed by
+// the caller (a BMI, girths).
+SceneBody scene_body(const SceneSimulations& simulations, const BodyRequest& request, const std::string& name);
+
+// Simulation::run on the prepared body; the result's garment and body are
+// moved back by moved_by (where the given body stood). Options'
+// start_garment and start_body are in the given body's frame too.
+SimulationResult drape_scene_body(const SceneBody& body, SimulationOptions options = {});
+
+}  // namespace drape

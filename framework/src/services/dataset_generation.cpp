@@ -1,0 +1,222 @@
+// generate_dataset (services/dataset_generation.hpp).
+#include <drape/body_space.hpp>
+#include <drape/dataset.hpp>
+#include <drape/errors.hpp>
+#include <drape/garment_size.hpp>
+#include <drape/model.hpp>
+#include <drape/output_lock.hpp>
+#include <drape/parallel_samples.hpp>
+#include <drape/progress.hpp>
+#include <drape/rng.hpp>
+#include <drape/services/dataset_generation.hpp>
+#include <drape/simulation.hpp>
+
+#ifdef _OPENMP
+#include <omp.h>
+#endif
+
+#include <algorithm>
+#include <atomic>
+#include <fstream>
+#include <iomanip>
+#include <mutex>
+#include <sstream>
+#include <thread>
+
+namespace drape {
+namespace {
+
+// The 8:1:1 split of the whole set (all shards): a seeded permutation, the
+// first 80% train, the next 10% validation, the rest test.
+std::vector<Split> splits(std::size_t total, std::uint64_t seed) {
+  const auto order = Rng(Rng::derive(seed, "split")).permutation(total);
+  std::vector<Split> out(total);
+  for (std::size_t k = 0; k < total; ++k)
+    out[order[k]] = k < total * 8 / 10 ? Split::Train : (k < total * 9 / 10 ? Split::Val : Split::Test);
+  return out;
+}
+
+void check_request(const GenerateRequest& r, const Simulation& sim, const Scene& scene) {
+  if (r.count == 0) throw ConfigError("generate: count must be at least 1");
+  if (r.shard.count == 0 || r.shard.index >= r.shard.count)
+    throw ConfigError("generate: shard " + std::to_string(r.shard.index) + "/" + std::to_string(r.shard.count) +
+                      ": expected i/N with 0 <= i < N");
+  if (!(r.girths >= 0 && r.girths <= 1)) throw ConfigError("generate: girths: expected a fraction in [0, 1]");
+  for (const auto& [name, range] : {std::pair{"bmi", r.bmi}, std::pair{"height", r.height}, std::pair{"sex", r.sex}})
+    if (!(range.lo <= range.hi)) throw ConfigError(std::string("generate: ") + name + " range: expected lo <= hi");
+  const auto [bmi_lo, bmi_hi] = sim.body_model().bmi_range();
+  if (r.bmi.lo < bmi_lo - 1e-9 || r.bmi.hi > bmi_hi + 1e-9) {
+    std::ostringstream o;
+    o << "--bmi " << r.bmi.lo << ":" << r.bmi.hi << " is outside what body model '" << scene.body_model << "' reaches ("
+      << bmi_lo << ":" << bmi_hi << ")";
+    throw ConfigError(o.str());
+  }
+}
+
+std::string ranges_text(const GenerateRequest& r) {
+  std::ostringstream o;
+  o << "bmi " << r.bmi.lo << ":" << r.bmi.hi << ", height " << r.height.lo << ":" << r.height.hi << ", sex " << r.sex.lo
+    << ":" << r.sex.hi << ", girths " << r.girths << ", seed " << r.seed << ", count " << r.count << ", shard "
+    << r.shard.index << "/" << r.shard.count;
+  return o.str();
+}
+
+DatasetLayout layout_of(const Scene& scene, const SceneSimulations& simulations, const GenerateRequest& request) {
+  const Simulation& sim = simulations.design();
+  DatasetLayout layout;
+  layout.samples = request.shard.last(request.count) - request.shard.first(request.count);
+  layout.body_params = static_cast<int>(sim.body_model().mean_shape().size());
+  layout.body_vertices = static_cast<int>(sim.mean_body().rows());
+  layout.garment_vertices = sim.garment().mesh.num_vertices();
+  layout.stats = generated_statistics(scene);
+  layout.scene = scene.yaml();
+  if (simulations.auto_size())
+    layout.attributes["garment_sizes"] = "auto: each sample's size in its garment_size statistic (docs/garments.md)";
+  layout.template_hash = template_hash(sim.garment().mesh, sim.body_model().faces());
+  layout.attributes["generator"] = "drape generate: " + ranges_text(request);
+  layout.attributes["body_model"] = scene.body_model;
+  std::string names;
+  for (const auto& n : sim.body_model().shape_names()) names += (names.empty() ? "" : ",") + n;
+  layout.attributes["body_param_names"] = names;
+  return layout;
+}
+
+// The body of global sample `global`: its own seeded stream, so a sample is
+// the same whatever the shard, thread or resumption that makes it.
+BodyRequest draw_body(const GenerateRequest& r, const BodyModel& model, std::size_t global) {
+  Rng rng(Rng::derive(r.seed, "sample-" + std::to_string(global)));
+  BodyRequest request;
+  request.bmi = rng.uniform(r.bmi.lo, r.bmi.hi);
+  request.height = r.height.lo == r.height.hi ? r.height.lo : rng.uniform(r.height.lo, r.height.hi);
+  request.sex = r.sex.lo == r.sex.hi ? r.sex.lo : (rng.uniform() < 0.5 ? r.sex.lo : r.sex.hi);
+  // Drawn after the rest, and only with a spread, so a seed without girths
+  // draws the bodies it always drew.
+  if (r.girths > 0) draw_proportions(r.girths, model, rng, request);
+  return request;
+}
+
+std::string sample_name(std::size_t global, const BodyRequest& request) {
+  std::ostringstream who;
+  who << "sample " << global << " (BMI " << request.bmi << ", height " << request.height << " m, sex " << request.sex;
+  for (const auto& [name, value] : request.proportions) who << ", " << name << " " << value;  // drape body --girth
+  who << "; narrow --bmi or --height)";
+  return who.str();
+}
+
+DatasetSample sample_of(const SimulationResult& r, const Eigen::VectorXd& shape, const BodyRequest& request,
+                        std::size_t global, Split split, double size_flag) {
+  namespace st = sample_stat;
+  DatasetSample s;
+  s.body_params = shape.cast<float>();
+  s.body_vertices = r.body.cast<float>();
+  s.garment_vertices = r.garment.cast<float>();
+  s.split = split;
+  for (const auto& t : r.energies) s.stats["energy_" + t.name] = t.value;
+  s.stats[st::energy_total] = r.total_energy;
+  s.stats[st::penetration] = r.penetration;
+  s.stats[st::crossings] = r.crossings ? r.crossings->total() : 0;
+  s.stats[st::residual] = r.residual;
+  s.stats[st::stationarity] = r.stationarity;
+  s.stats[st::converged] = r.converged ? 1 : 0;
+  s.stats[st::iterations] = r.iterations;
+  s.stats[st::steps] = r.steps;
+  s.stats[st::seconds] = r.seconds;
+  s.stats[st::bmi] = request.bmi;
+  s.stats[st::height] = request.height;
+  s.stats[st::sex] = request.sex;
+  s.stats[st::global_index] = static_cast<double>(global);
+  s.stats[st::garment_size] = size_flag;
+  return s;
+}
+
+}  // namespace
+
+std::vector<std::string> generated_statistics(const Scene& scene) {
+  namespace st = sample_stat;
+  std::vector<std::string> names;
+  for (const auto& e : scene.effects) names.push_back("energy_" + e.name);
+  for (const char* s : {st::energy_total, st::penetration, st::crossings, st::residual, st::stationarity, st::converged,
+                        st::iterations, st::steps, st::seconds, st::bmi, st::height, st::sex, st::global_index,
+                        st::garment_size})
+    names.push_back(s);
+  return names;
+}
+
+GenerateSummary generate_dataset(const Registry& registry, const Scene& scene, const GenerateRequest& request,
+                                 const std::string& out, const GenerateObserver& observer) {
+  // Before anything looks at the output (output_lock.hpp).
+  const OutputLock lock(out, "drape generate");
+  // size: auto -- each body wears the size its girth needs (garment_size.hpp,
+  // every size built once); the dataset's template is the design size's (the
+  // sizes share its topology), each sample records its size in garment_size.
+  const SceneSimulations simulations(registry, scene);
+  const Simulation& sim = simulations.design();
+  check_request(request, sim, scene);
+  // The size flag of a graph trained on several sizes (garment_size_flag).
+  const double design_size = garment_size_flag(sim.scene());
+  const std::size_t first = request.shard.first(request.count);
+  const std::vector<Split> split = splits(request.count, request.seed);
+
+  DatasetLayout layout = layout_of(scene, simulations, request);
+  DatasetWriter writer(out, layout);
+  const std::vector<std::size_t> todo = writer.missing();
+  GeneratePlan plan;
+  plan.out = out;
+  plan.total = request.count;
+  plan.first = first;
+  plan.last = request.shard.last(request.count);
+  plan.samples = layout.samples;
+  plan.already = layout.samples - todo.size();
+  plan.resumed = writer.resumed();
+  int threads = request.threads;
+  if (threads <= 0) threads = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+  plan.threads = static_cast<int>(std::min<std::size_t>(static_cast<std::size_t>(threads), std::max<std::size_t>(todo.size(), 1)));
+  plan.ranges = ranges_text(request);
+  if (observer.on_start) observer.on_start(plan);
+
+  ProgressBar::Options bar_options;
+  bar_options.start = plan.already;  // a resumed job: the ETA counts this run's rate only
+  std::ofstream discard;             // no bar: a stream that writes nothing
+  discard.setstate(std::ios::badbit);
+  ProgressBar bar("generate", layout.samples, observer.progress ? *observer.progress : discard, bar_options);
+  std::mutex write_mutex;
+  std::atomic<int> not_settled{0}, penetrating{0}, crossing{0};
+  make_samples_in_parallel(writer, bar, todo, plan.threads, [&]() -> SampleWorker {
+#ifdef _OPENMP
+    omp_set_num_threads(1);  // parallel over samples, not inside one
+#endif
+    return [&](std::size_t local) {
+      const std::size_t global = first + local;
+      BodyRequest body_request = draw_body(request, sim.body_model(), global);
+      const Eigen::VectorXd shape = solve_in_space(sim.body_model(), body_request);
+      const Eigen::MatrixX3d body = sim.body_vertices(shape);
+      const std::string who = sample_name(global, body_request);
+      SizeChoice choice;
+      const Simulation& wearing = simulations.for_body(body, who, &choice);
+      const double size_flag = simulations.auto_size() ? garment_size_flag(choice.size) : design_size;
+      const SimulationResult r = [&] {
+        try {
+          return wearing.run(body);
+        } catch (const ConfigError& e) {  // a body the scene refuses: say which sample it is
+          throw ConfigError(who + ": " + e.what());
+        }
+      }();
+      const DatasetSample s = sample_of(r, shape, body_request, global, split[global], size_flag);
+      if (!r.converged) ++not_settled;
+      if (r.penetration > 0) ++penetrating;
+      if (r.crossings && r.crossings->total() > 0) ++crossing;
+      {
+        const std::lock_guard<std::mutex> guard(write_mutex);
+        writer.write(local, s);
+      }
+      std::ostringstream status;
+      status << "last: BMI " << std::fixed << std::setprecision(1) << body_request.bmi << ", " << r.iterations << " it, "
+             << std::setprecision(2) << r.seconds << " s";
+      bar.set_status(status.str());
+      bar.advance();
+    };
+  });
+  return GenerateSummary{layout.samples, not_settled.load(), penetrating.load(), crossing.load()};
+}
+
+}  // namespace drape
