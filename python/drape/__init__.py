@@ -168,8 +168,11 @@ class Scene:
         [N, 3]), energies {effect: J}, total_energy, converged, residual, stationarity, sliding and slip_ratio (with
         friction: whether the garment still slid over the body in the last step, and its fastest contact's slip
         relative to the slip friction holds), penetration (p),
-        crossings, steps, iterations, seconds, and `unsettled` (why, when not converged). The morph starts
-        from start_body (default: the scene body model's mean shape). The GIL is released."""
+        crossings, steps, iterations, seconds, and `unsettled` (why, when not converged). As drape simulate
+        does: a body standing away from where the body model's bodies stand is draped there and the results moved
+        back (a warning says so); with `size: auto` the body wears the size its girth needs (`size`: the choice
+        and its measurements, `garment_size`: the size). The morph starts from start_body (default: the scene
+        body model's mean shape). The GIL is released."""
         return self._s.simulate(body_vertices, start_garment, measure_penetration, start_body)
 
     def __repr__(self):

@@ -3,6 +3,7 @@
 // checks that name the argument and the shape it wants, and NumPy arrays that
 // own drape's memory instead of copying it.
 #include <drape/assets.hpp>
+#include <drape/garment_size.hpp>
 #include <drape/registry.hpp>
 #include <drape/simulation.hpp>
 #include <drape/tensor.hpp>
@@ -53,9 +54,11 @@ py::array_t<T> to_numpy(std::vector<T>&& v) {
   return py::array_t<T>({static_cast<py::ssize_t>(owned->size())}, owned->data(), free_it);
 }
 
-// A scene made runnable (scene.cpp); Model.optimize takes one.
+// A scene made runnable (scene.cpp); Model.optimize takes one. With size:
+// auto, `simulations` holds every size and `simulation` is the design size's.
 struct PyScene {
-  std::shared_ptr<const Simulation> simulation;
+  std::shared_ptr<const SceneSimulations> simulations;
+  std::shared_ptr<const Simulation> simulation;  // aliases simulations->design()
 };
 
 py::object wrap_assets(std::shared_ptr<const Assets> assets);  // drape._Assets (assets.cpp)

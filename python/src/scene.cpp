@@ -6,6 +6,7 @@
 #include <drape/errors.hpp>
 #include <drape/geometry/closest_point.hpp>
 #include <drape/scene.hpp>
+#include <drape/services/scene_body.hpp>
 #include <drape/simulation.hpp>
 
 #include <memory>
@@ -86,12 +87,30 @@ class PyEnergies {
 
 PyScene make_scene(Scene scene) {
   py::gil_scoped_release release;
-  return PyScene{std::make_shared<const Simulation>(registry(), std::move(scene))};
+  auto simulations = std::make_shared<const SceneSimulations>(registry(), scene);
+  std::shared_ptr<const Simulation> design(simulations, &simulations->design());
+  return PyScene{std::move(simulations), std::move(design)};
+}
+
+// What drape simulate drapes (services/scene_body.hpp): a given body checked
+// and placed where the body model's bodies stand, the size it wears with
+// size: auto; the scene's own target body without one.
+SceneBody scene_body_arg(const PyScene& s, const py::handle& body) {
+  if (body.is_none()) return scene_body(*s.simulations, s.simulation->target_request(), s.simulation->scene().file);
+  const Eigen::MatrixX3d given = vertices_arg(body, "body_vertices", static_cast<int>(s.simulation->mean_body().rows()));
+  py::gil_scoped_release release;
+  return scene_body(*s.simulations, given, "body_vertices");
 }
 
 Eigen::MatrixX3d body_or_target(const Simulation& sim, const py::handle& body) {
   if (body.is_none()) return sim.body_vertices(sim.target_shape());
   return vertices_arg(body, "body_vertices", static_cast<int>(sim.mean_body().rows()));
+}
+
+// The simulation whose energies act on `body`: with size: auto the size it wears.
+std::shared_ptr<const Simulation> simulation_for(const PyScene& s, const Eigen::MatrixX3d& body) {
+  if (!s.simulations->auto_size()) return s.simulation;
+  return std::shared_ptr<const Simulation>(s.simulations, &s.simulations->for_body(body, "body_vertices"));
 }
 
 py::dict result_dict(SimulationResult&& r) {
@@ -166,7 +185,8 @@ void register_scene(py::module_& m) {
           "simulate",
           [](const PyScene& s, const py::handle& body, const py::handle& start_garment, bool measure_penetration,
              const py::handle& start_body) {
-            const Eigen::MatrixX3d target = body_or_target(*s.simulation, body);
+            const SceneBody target = scene_body_arg(s, body);
+            for (const std::string& note : target.notes) py::module_::import("warnings").attr("warn")(note);
             Eigen::MatrixX3d start, start_b;
             SimulationOptions o;
             o.measure_penetration = measure_penetration;
@@ -181,9 +201,12 @@ void register_scene(py::module_& m) {
             SimulationResult r;
             {
               py::gil_scoped_release release;
-              r = s.simulation->run(target, o);
+              r = drape_scene_body(target, o);
             }
-            return result_dict(std::move(r));
+            py::dict d = result_dict(std::move(r));
+            d["size"] = target.size ? py::cast(target.size->summary()) : py::none();
+            d["garment_size"] = target.size ? py::cast(target.size->size) : py::none();
+            return d;
           },
           py::arg("body_vertices") = py::none(), py::arg("start_garment") = py::none(), py::arg("measure_penetration") = true,
           py::arg("start_body") = py::none())
@@ -192,7 +215,7 @@ void register_scene(py::module_& m) {
           [](const PyScene& s, const py::handle& body) {
             const Eigen::MatrixX3d b = body_or_target(*s.simulation, body);
             py::gil_scoped_release release;
-            return std::make_unique<PyEnergies>(s.simulation, b);
+            return std::make_unique<PyEnergies>(simulation_for(s, b), b);
           },
           py::arg("body_vertices") = py::none());
 
