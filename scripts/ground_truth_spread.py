@@ -7,7 +7,7 @@ micrometre at the head), gives a drape some distance away, the simulation amplif
 different equilibrium (a fold that buckles the other way, a hem that rides up a little further), and that
 distance is noise in the labels. For two such drapes X and Y of one body and any prediction f of it,
 |X - Y| <= |X - f| + |Y - f|, so a predictor that is a function of the body has a mean error of at least half
-the mean pair distance, whatever it is (docs/training.md, "How far the ground truth is a function of the
+the mean pair distance, whatever it is (docs/findings.md, "How far the ground truth is a function of the
 body").
 
     scripts/ground_truth_spread.py --data bodyspace2000.h5 --split test --count 24 \\

@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 """Measures a multilevel start: the coarse shirt is draped first, carried to
-the default shirt, and the default shirt settles from there (docs/scenes.md,
+the default shirt, and the default shirt settles from there (docs/findings.md,
 "Tried for speed and convergence, not kept").
 
 Each default-shirt vertex is placed at the barycentric point of its closest

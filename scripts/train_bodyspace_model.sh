@@ -88,7 +88,7 @@ fi
 #   cp WORK/model.h5 weight10.h5     (the model at commit 7a29f7d)
 #   INIT=weight10.h5 LR=2e-4 EPOCHS=100 PATIENCE=50 THREADS=1 GENERATE=0 \
 #     GRAPHS=graphs/bodyspace/drape_follow_penetration_weight100_margin6mm.yaml bash scripts/train_bodyspace_model.sh WORK
-# (docs/training.md, "The shipped model: no held-out body above 1 %"). Given several (e.g. GRAPHS="graphs/drape.yaml graphs/bodyspace/drape_follow_penetration.yaml",
+# (docs/findings.md, "The shipped model: no held-out body above 1 %"). Given several (e.g. GRAPHS="graphs/drape.yaml graphs/bodyspace/drape_follow_penetration.yaml",
 # the pair the frictionless model was chosen from), each is trained on the
 # same drapes and the one with the lower mean error on the validation split
 # is the model.

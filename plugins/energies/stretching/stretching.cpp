@@ -25,7 +25,7 @@
 // magnitudes instead of clamped (absolute eigenvalue filtering): ArcSim's
 // table makes the density non-convex over much of the strain space, and with
 // clamping Newton's model predicted no curvature where the energy curves up
-// (measured in docs/scenes.md, "What settles the heavy drapes"). Linear faces
+// (measured in docs/findings.md, "What settles the heavy drapes"). Linear faces
 // keep the nearest PSD matrix, as before.
 #include <drape/arcsim_material.hpp>
 #include <drape/element_energy.hpp>

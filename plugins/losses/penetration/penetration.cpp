@@ -10,7 +10,7 @@
 // minimises (eq. 6.15). drape offers it to training as well (as learned
 // garment models since Santesteban et al. 2019 do) for models over the whole
 // body space, where the seed's losses alone leave p far above the seed's
-// (docs/training.md, "A model of the whole body space").
+// (docs/findings.md, "A model of the whole body space").
 //
 // Gradient: ds/dx = n, the unit outward normal at the closest point (the
 // gradient of the signed distance; SurfacePoint::normal), so
