@@ -4,7 +4,7 @@
 #include "mpi_ranks.hpp"
 
 #include <drape/model_domain.hpp>
-#include <drape/output_lock.hpp>
+#include <drape/services/model_training.hpp>
 
 #include <drape/errors.hpp>
 #include <drape/trainer.hpp>
@@ -91,10 +91,6 @@ int run(const std::vector<std::string>& given) {
   // Under mpirun the ranks share the cores (mpirun binds each to its own).
   const std::unique_ptr<Ranks> ranks = mpi_ranks_if_launched();
   o.ranks = ranks.get();
-  // Rank 0 writes the model and its state: it alone holds the output, before
-  // the trainer looks at it (output_lock.hpp).
-  std::unique_ptr<OutputLock> lock;
-  if (!ranks || ranks->rank() == 0) lock = std::make_unique<OutputLock>(o.out, "drape train");
   o.threads = vm["threads"].as<int>();
   if (o.threads == 0)
     o.threads = ranks ? 1 : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
@@ -106,9 +102,9 @@ int run(const std::vector<std::string>& given) {
   if (!vm["quiet"].as<bool>()) o.progress = &std::cerr;
 
   Registry& registry = Registry::load_default(plugin_path(vm));
-  TrainReport r;
+  TrainedModel trained;  // rank 0 takes the output's lock, trains, records the domain (services/model_training.hpp)
   try {
-    r = train(registry, o);
+    trained = train_model(registry, o);
   } catch (const std::exception& e) {
     if (!ranks || ranks->size() == 1) throw;
     // The other ranks may be waiting for this one in a collective: end them all.
@@ -116,9 +112,8 @@ int run(const std::vector<std::string>& given) {
     abort_all_ranks(dynamic_cast<const ConfigError*>(&e) || dynamic_cast<const UsageError*>(&e) ? 2 : 1);
   }
   if (ranks && ranks->rank() != 0) return 0;
-  // The bodies it learnt from, so that predict can tell a body outside them
-  // (model_domain.hpp); after every run, so an interrupted model has it too.
-  const ModelDomain domain = record_model_domain(registry, o.out, o.data, o.out, o.train_fraction);
+  const TrainReport& r = trained.report;
+  const ModelDomain& domain = *trained.domain;  // the bodies it learnt from (model_domain.hpp)
   std::cout << "recorded the model's domain: " << domain.samples << " training bodies, BMI " << domain.bmi.min << "-"
             << domain.bmi.max << ", height " << domain.height.min << "-" << domain.height.max << " m\n";
   std::cout << "wrote " << o.out.string() << ": best epoch " << r.best_epoch << " (loss " << r.best_loss << ") of "

@@ -1,6 +1,7 @@
 #include "experiment_runner.hpp"
 
 #include "../command.hpp"
+#include "../sample_ranges.hpp"
 
 #include <drape/checkpoint.hpp>
 #include <drape/graph.hpp>
@@ -9,7 +10,10 @@
 #include <drape/model.hpp>
 #include <drape/registry.hpp>
 #include <drape/rng.hpp>
+#include <drape/output_lock.hpp>
 #include <drape/scene.hpp>
+#include <drape/services/dataset_generation.hpp>
+#include <drape/services/model_training.hpp>
 
 #include <yaml-cpp/yaml.h>
 
@@ -111,19 +115,46 @@ class Runner {
   }
 
  private:
-  // Runs `drape <args>` in this process, printed first so that it can be repeated by hand.
-  void drape(const std::vector<std::string>& args) {
+  // Prints the `drape <args>` that does a step, so that it can be repeated by
+  // hand; false on a dry run (then nothing runs).
+  bool announce(const std::vector<std::string>& args) const {
     std::string line = "$ drape";
     for (const auto& a : args) line += " " + a;
     std::printf("%s\n", line.c_str());
     std::fflush(stdout);
-    if (o_.dry_run) return;
+    return !o_.dry_run;
+  }
+
+  // Runs `drape <args>` in this process, announced first (the steps that have
+  // no framework service yet: eval and optimize over a dataset).
+  void drape(const std::vector<std::string>& args) {
+    if (!announce(args)) return;
+    std::string line = "drape";
+    for (const auto& a : args) line += " " + a;
     const auto& all = commands();
     const auto it = std::find_if(all.begin(), all.end(), [&](const Command& c) { return c.name == args.front(); });
     if (it == all.end()) throw Error("drape experiment: no command '" + args.front() + "'");
     const int code = it->run(std::vector<std::string>(args.begin() + 1, args.end()));
-    if (code != 0) throw Error("drape experiment: '" + line.substr(2) + "' exited with " + std::to_string(code));
+    if (code != 0) throw Error("drape experiment: '" + line + "' exited with " + std::to_string(code));
   }
+
+  // A dataset of the experiment file, made by the generator's service.
+  void generate(const ExperimentDataset& d, long count, const fs::path& file) {
+    if (!announce({"generate", d.scene.string(), "--count", std::to_string(count), "--bmi", d.bmi, "--seed",
+                   std::to_string(d.seed), "--threads", threads(), "--out", file.string()}))
+      return;
+    GenerateRequest request;
+    request.count = static_cast<std::size_t>(count);
+    request.bmi = parse_range("bmi", d.bmi);
+    request.seed = d.seed;
+    request.threads = o_.threads;
+    GenerateObserver observer;
+    observer.progress = &std::cerr;
+    const GenerateSummary done = generate_dataset(registry(), load_scene(d.scene), request, file.string(), observer);
+    std::printf("wrote %s: %zu samples; %d not settled\n", file.c_str(), done.samples, done.not_settled);
+  }
+
+  static const Registry& registry() { return Registry::load_default({}); }
 
   long scaled(long count) const { return std::max(10L, std::lround(double(count) * o_.scale)); }
   std::string threads() const { return std::to_string(o_.threads); }
@@ -151,7 +182,11 @@ class Runner {
       } else {
         args.push_back(file.string());
         args.insert(args.end(), parts.begin(), parts.end());
-        drape(args);
+        if (announce(args)) {
+          std::vector<fs::path> shards(parts.begin(), parts.end());
+          const OutputLock lock(file, "drape dataset merge");
+          merge_datasets(shards, file, /*require_complete=*/true, /*mixed_sizes=*/true);
+        }
       }
       return datasets_[key] = file;
     }
@@ -162,8 +197,7 @@ class Runner {
     if (fs::exists(file))
       std::printf("dataset '%s': reusing %s\n", key.c_str(), file.c_str());
     else
-      drape({"generate", d.scene.string(), "--count", std::to_string(count), "--bmi", d.bmi, "--seed",
-             std::to_string(d.seed), "--threads", threads(), "--out", file.string()});
+      generate(d, count, file);
     return datasets_[key] = file;
   }
 
@@ -182,10 +216,27 @@ class Runner {
       trained_.insert(row.name);
       return model;
     }
-    drape({"train", row.graph.string(), "--data", data.string(), "--out", model.string(), "--epochs",
-           std::to_string(epochs), "--batch", std::to_string(t.batch), "--lr", exact(t.lr),
-           "--schedule", t.schedule, "--patience", std::to_string(t.patience), "--seed", std::to_string(t.seed),
-           "--fraction", exact(row.fraction), "--threads", threads(), "--resume"});
+    if (announce({"train", row.graph.string(), "--data", data.string(), "--out", model.string(), "--epochs",
+                  std::to_string(epochs), "--batch", std::to_string(t.batch), "--lr", exact(t.lr), "--schedule",
+                  t.schedule, "--patience", std::to_string(t.patience), "--seed", std::to_string(t.seed),
+                  "--fraction", exact(row.fraction), "--threads", threads(), "--resume"})) {
+      TrainOptions o;
+      o.graph = row.graph;
+      o.data = data;
+      o.out = model;
+      o.epochs = epochs;
+      o.batch = t.batch;
+      o.lr = t.lr;
+      o.schedule = t.schedule;
+      o.patience = t.patience;
+      o.seed = t.seed;
+      o.train_fraction = row.fraction;
+      o.threads = o_.threads;
+      o.resume = true;
+      o.log = &std::cout;
+      o.progress = &std::cerr;
+      train_model(registry(), o);
+    }
     trained_.insert(row.name);
     return model;
   }

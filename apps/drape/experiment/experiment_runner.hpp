@@ -1,7 +1,9 @@
 #pragma once
 // `drape experiment`: runs an experiment file (drape/experiment.hpp) as a chain
-// of drape commands, each printed before it runs so that any step can be
-// repeated by hand:
+// of steps, each printed as the drape command that does it so that any step can
+// be repeated by hand; generate, train and merge are calls of the framework
+// services behind those commands (services/), eval and optimize still run the
+// commands in this process:
 //   datasets   drape generate  -> <data-dir>/<key>-<count>-<hash>.h5, shared by
 //                                 every experiment that asks for the same scene,
 //                                 count, BMI range and seed
