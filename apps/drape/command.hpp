@@ -2,6 +2,8 @@
 // Subcommands of the `drape` program. Each lives in its own cmd_*.cpp and
 // registers itself; main.cpp dispatches and maps errors to exit codes
 // (0 success, 2 usage/configuration, 1 runtime failure).
+#include <drape/errors.hpp>
+
 #include <boost/program_options.hpp>
 
 #include <functional>
@@ -26,10 +28,8 @@ struct RegisterCommand {
   explicit RegisterCommand(Command c) { commands().push_back(std::move(c)); }
 };
 
-// Thrown for bad command lines; main prints it with the command's usage hint.
-struct UsageError : std::runtime_error {
-  using std::runtime_error::runtime_error;
-};
+// Thrown for bad command lines (drape/errors.hpp, a ConfigError); main prints it with the command's usage hint.
+using drape::UsageError;
 
 // Parses `args` against `options` (+ --help and --plugin-path, added here) and
 // the positional names. Returns false when --help was printed.

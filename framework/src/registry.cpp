@@ -1,5 +1,6 @@
 #include <drape/energy_node.hpp>
 #include <drape/registry.hpp>
+#include <drape/warnings.hpp>
 
 #include <boost/dll/runtime_symbol_info.hpp>
 #include <boost/dll/shared_library.hpp>
@@ -81,7 +82,7 @@ void Registry::load_path(const std::vector<fs::path>& dirs) {
     std::error_code ec;
     if (!fs::is_directory(dir, ec)) {
       if (fs::exists(dir, ec) && is_plugin_file(dir)) load_file(dir);
-      else std::cerr << "drape: warning: plugin path entry '" << dir.string() << "' is not a directory\n";
+      else warn("plugin path entry '" + dir.string() + "' is not a directory");
       continue;
     }
     const fs::path canonical = fs::canonical(dir, ec);
@@ -109,12 +110,12 @@ void Registry::load_file(const fs::path& file) {
     lib->handle.load(canonical.string(), boost::dll::load_mode::rtld_now | boost::dll::load_mode::rtld_local);
   } catch (const std::exception& e) {
     refused_.push_back(canonical.string() + ": cannot be loaded (" + e.what() + ")");
-    std::cerr << "drape: warning: plugin " << refused_.back() << "\n";
+    warn("plugin " + refused_.back());
     return;
   }
   if (!lib->handle.has("drape_plugin_abi_version") || !lib->handle.has("drape_plugin_factory")) {
     refused_.push_back(canonical.string() + ": not a drape plugin (missing drape_plugin_abi_version/factory)");
-    std::cerr << "drape: warning: plugin " << refused_.back() << "\n";
+    warn("plugin " + refused_.back());
     return;
   }
   // Checked before calling anything else: the factory's return type is only
@@ -123,7 +124,7 @@ void Registry::load_file(const fs::path& file) {
   if (abi != kAbiVersion) {
     refused_.push_back(canonical.string() + ": built for drape plugin ABI " + std::to_string(abi) +
                        ", but this drape uses ABI " + std::to_string(kAbiVersion) + "; rebuild the plugin");
-    std::cerr << "drape: warning: refused plugin " << refused_.back() << "\n";
+    warn("refused plugin " + refused_.back());
     return;
   }
   auto factory = lib->handle.get_alias<PluginFactory>("drape_plugin_factory");

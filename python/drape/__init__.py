@@ -22,6 +22,7 @@ from ._drape import (  # noqa: F401  (re-exported)
     BodyModel,
     ConfigError,
     Dataset,
+    DrapeWarning,
     Error,
     Model,
     __version__,
@@ -35,7 +36,7 @@ from ._drape import (  # noqa: F401  (re-exported)
 from . import _drape
 
 __all__ = [
-    "Assets", "BodyModel", "ConfigError", "Dataset", "Energy", "Error", "Model", "Scene", "assets",
+    "Assets", "BodyModel", "ConfigError", "Dataset", "DrapeWarning", "Energy", "Error", "Model", "Scene", "assets",
     "better_blas_coretype", "blas_corename", "body",
     "generate", "load_plugins", "plugin_search_path", "plugins", "simulate", "sparse",
 ]

@@ -4,6 +4,8 @@
 // carry the same one-line message the drape program prints.
 #include "common.hpp"
 
+#include <drape/warnings.hpp>
+
 #include <drape/errors.hpp>
 
 #include <Python.h>
@@ -108,6 +110,15 @@ py::dict energy_dict(const std::vector<std::pair<std::string, double>>& terms) {
   return d;
 }
 
+namespace {
+PyObject* drape_warning = nullptr;
+}  // namespace
+
+void warn_python(const std::string& text) {
+  if (PyErr_WarnEx(drape_warning ? drape_warning : PyExc_UserWarning, text.c_str(), 1) != 0)
+    throw py::error_already_set();  // warnings filtered as errors raise
+}
+
 void register_errors(py::module_& m) {
   // Created with the C API so that ConfigError can derive from both drape.Error and ValueError.
   static PyObject* error = PyErr_NewExceptionWithDoc(
@@ -119,6 +130,16 @@ void register_errors(py::module_& m) {
       config_bases, nullptr);
   m.attr("Error") = py::handle(error);
   m.attr("ConfigError") = py::handle(config_error);
+  // drape::warn's channel (drape/warnings.hpp) as Python warnings of their own category.
+  static PyObject* warning = PyErr_NewExceptionWithDoc(
+      "drape.DrapeWarning", "A warning of drape's C++ core or its plugins (a UserWarning).", PyExc_UserWarning, nullptr);
+  m.attr("DrapeWarning") = py::handle(warning);
+  drape_warning = warning;
+  set_warning_handler([](const std::string& text) {
+    if (!Py_IsInitialized()) return;
+    py::gil_scoped_acquire gil;
+    warn_python(text);
+  });
   py::register_exception_translator([](std::exception_ptr p) {
     try {
       if (p) std::rethrow_exception(p);

@@ -63,6 +63,10 @@ struct PyScene {
 
 py::object wrap_assets(std::shared_ptr<const Assets> assets);  // drape._Assets (assets.cpp)
 
+// A Python warning of category drape.DrapeWarning (a UserWarning): what
+// drape::warn and the services' notices become in Python.
+void warn_python(const std::string& text);
+
 // dict {name: value} of scene energies.
 py::dict energy_dict(const std::vector<std::pair<std::string, double>>& terms);
 

@@ -92,7 +92,7 @@ class PyModel {
       py::gil_scoped_release release;
       return prepare_bodies(*model_, d, b, strict, "strict=True");
     }();
-    for (const Notice& n : prepared.notices) py::module_::import("warnings").attr("warn")(n.text);
+    for (const Notice& n : prepared.notices) warn_python(n.text);
     return std::move(prepared.moved_by);
   }
 

@@ -186,7 +186,7 @@ void register_scene(py::module_& m) {
           [](const PyScene& s, const py::handle& body, const py::handle& start_garment, bool measure_penetration,
              const py::handle& start_body) {
             const SceneBody target = scene_body_arg(s, body);
-            for (const std::string& note : target.notes) py::module_::import("warnings").attr("warn")(note);
+            for (const std::string& note : target.notes) warn_python(note);
             Eigen::MatrixX3d start, start_b;
             SimulationOptions o;
             o.measure_penetration = measure_penetration;

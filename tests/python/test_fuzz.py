@@ -135,3 +135,16 @@ def test_module_functions_and_the_torch_bridge_refuse_bad_input():
     x[5, 2] = float("nan")
     e = refused(physics, x)
     assert isinstance(e, ValueError) and "non-finite coordinate" in str(e)
+
+
+def test_core_warnings_are_python_warnings(tmp_path):
+    # drape::warn's channel (drape/warnings.hpp) becomes drape.DrapeWarning, a UserWarning that filters see.
+    import drape
+    assert issubclass(drape.DrapeWarning, UserWarning)
+    with pytest.warns(drape.DrapeWarning, match="is not a directory"):
+        drape.load_plugins(str(tmp_path / "no-such-folder"))
+    import warnings
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", drape.DrapeWarning)
+        with pytest.raises(drape.DrapeWarning):
+            drape.load_plugins(str(tmp_path / "no-such-folder"))

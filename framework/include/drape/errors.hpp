@@ -1,6 +1,8 @@
 #pragma once
-// Error types. The CLI maps ConfigError to exit code 2 (usage or configuration
-// problems the user can fix in their files) and any other Error to exit code 1.
+// Error types: one tree under Error. The CLI maps ConfigError (and its
+// UsageError) to exit code 2 (usage or configuration problems the user can fix
+// in their files or command line) and any other Error to exit code 1; Python
+// raises drape.ConfigError (a ValueError) and drape.Error (a RuntimeError).
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -24,6 +26,14 @@ class ConfigError : public Error {
  public:
   using Error::Error;
   ConfigError(const SourceLocation& where, const std::string& what);
+};
+
+// A bad command line or call: an option missing, malformed or given with
+// another it excludes. A ConfigError (exit code 2; Python's ValueError) that
+// the drape program prints with the command's usage instead of "error:".
+class UsageError : public ConfigError {
+ public:
+  using ConfigError::ConfigError;
 };
 
 // Up to `max_count` candidates closest to `name` by edit distance (case-insensitive),

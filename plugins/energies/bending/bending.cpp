@@ -43,10 +43,10 @@
 #include <drape/element_energy.hpp>
 #include <drape/plugin.hpp>
 #include <drape/psd_projection.hpp>
+#include <drape/warnings.hpp>
 
 #include <algorithm>
 #include <cmath>
-#include <iostream>
 #include <limits>
 #include <numbers>
 
@@ -196,8 +196,8 @@ class Bending final : public ElementEnergy<4> {
       elements.push_back(v);
     }
     if (skipped > 0)
-      std::cerr << "drape: warning: bending: skipped " << skipped << " of " << topology.size()
-                << " hinges whose faces have (nearly) zero material-space (UV) area\n";
+      warn("bending: skipped " + std::to_string(skipped) + " of " + std::to_string(topology.size()) +
+           " hinges whose faces have (nearly) zero material-space (UV) area");
     set_elements(mesh.num_vertices(), std::move(elements));
   }
 

@@ -5,6 +5,7 @@
 // material's density, a third to each corner. E is linear in x: the gradient is
 // constant and the Hessian is zero (add_hessian appends nothing).
 #include <drape/geometry/vertex_areas.hpp>
+#include <drape/element_energy.hpp>
 #include <drape/energy_input.hpp>
 #include <drape/plugin.hpp>
 
@@ -17,11 +18,8 @@ class Gravity final : public Energy {
   explicit Gravity(double g) : g_(g) {}
 
   void bind(const EnergyContext& context) override {
-    if (!context.garment) throw ConfigError("gravity: no garment is bound");
-    const Garment& garment = *context.garment;
-    if (!garment.mesh.has_uv())
-      throw ConfigError("gravity: the garment has no material-space UVs (uv and uv_faces), so its masses are unknown");
-    if (garment.materials.empty()) throw ConfigError("gravity: the garment has no materials");
+    // The checks every garment energy makes (UVs, materials, indices), written once.
+    const Garment& garment = checked_garment(context, "gravity");
     const double norm = context.gravity.norm();
     if (!(norm > 0.0)) throw ConfigError("gravity: the scene's gravity direction is zero");
     // The direction comes from the scene, the magnitude from the parameter `g`.

@@ -30,9 +30,9 @@
 #include <drape/arcsim_material.hpp>
 #include <drape/element_energy.hpp>
 #include <drape/plugin.hpp>
+#include <drape/warnings.hpp>
 
 #include <cmath>
-#include <iostream>
 #include <memory>
 
 #include "membrane.hpp"
@@ -105,8 +105,8 @@ class Stretching final : public ElementEnergy<3> {
       elements.push_back({mesh.faces(f, 0), mesh.faces(f, 1), mesh.faces(f, 2)});
     }
     if (skipped > 0)
-      std::cerr << "drape: warning: stretching: skipped " << skipped << " of " << nf
-                << " faces whose material-space (UV) area is (nearly) zero\n";
+      warn("stretching: skipped " + std::to_string(skipped) + " of " + std::to_string(nf) +
+           " faces whose material-space (UV) area is (nearly) zero");
     set_elements(mesh.num_vertices(), std::move(elements));
   }
 
