@@ -68,6 +68,158 @@ Scene with_budget(Scene scene, int morph_steps, int settle_steps) {
   return scene;
 }
 
+// "2:4,5:10" -> {{2, 4}, {5, 10}}: the simulator's morph_steps:settle_steps budgets.
+std::vector<std::pair<int, int>> simulator_budgets(const po::variables_map& vm) {
+  std::vector<std::pair<int, int>> budgets;
+  for (std::stringstream s(vm["budgets"].as<std::string>()); s.good();) {
+    std::string item;
+    std::getline(s, item, ',');
+    int m = 0, n = 0;
+    if (std::sscanf(item.c_str(), "%d:%d", &m, &n) != 2 || m < 0 || n < 1)
+      throw UsageError("--budgets: '" + item + "' is not morph_steps:settle_steps");
+    budgets.push_back({m, n});
+  }
+  return budgets;
+}
+
+// The spectral branch (if any) at fewer eigenvectors than it was trained with:
+// (node, k) for every k of spectral_k below the node's.
+std::vector<std::pair<std::string, int>> spectral_cuts_of(const Registry& registry, const std::string& model_file,
+                                                          const DatasetReader& reader, const std::string& data,
+                                                          const std::vector<int>& spectral_k) {
+  std::vector<std::pair<std::string, int>> spectral_cuts;
+  Model probe = Model::load(registry, model_file);
+  check_dataset_template(reader, data, probe.assets());
+  for (const auto& node : probe.graph().describe())
+    if (node.type == "spectral")
+      for (const auto& [port, shape] : node.outputs)
+        if (port == "coefficients")  // [k, 3]
+          for (int k : spectral_k)
+            if (k > 0 && k < shape.rows) spectral_cuts.push_back({node.name, k});
+  return spectral_cuts;
+}
+
+// The methods no other method beats on both time and ME.
+void mark_pareto_front(std::vector<Method>& methods) {
+  for (Method& m : methods) {
+    m.pareto = true;
+    for (const Method& o : methods)
+      if (&o != &m && o.seconds <= m.seconds && o.me_cm <= m.me_cm && (o.seconds < m.seconds || o.me_cm < m.me_cm))
+        m.pareto = false;
+  }
+}
+
+// The converged reference simulations, for the table's heading.
+struct Reference {
+  int morph = 0, settle = 0;
+  int converged = 0;
+  double seconds = 0;  // per body
+};
+
+void print_table(const std::vector<Method>& methods, std::size_t bodies, const std::string& data, const Reference& ref) {
+  std::ostringstream table;
+  table << "## What accuracy costs in time: " << bodies << " test bodies of " << data << ", one core\n\n"
+        << "Reference: the scene simulated with " << ref.morph << " morph and " << ref.settle
+        << " settling steps (" << ref.converged << " of " << bodies << " settled; " << ref.seconds
+        << " s per body).\n\n| method | s per body | ME to converged (cm) | L_p (J) | p (%) | Pareto |\n|---|---|---|---|---|---|\n";
+  for (const Method& m : methods) {
+    char line[256];
+    std::snprintf(line, sizeof line, "| %s | %.3g | %.3f | %.5g | %.2f | %s |\n", m.name.c_str(), m.seconds, m.me_cm,
+                  m.potential, m.p_percent, m.pareto ? "yes" : "");
+    table << line;
+  }
+  std::printf("%s", table.str().c_str());
+}
+
+void write_csv(const std::vector<Method>& methods, const std::string& file) {
+  std::ostringstream csv;
+  csv << "method,seconds_per_body,me_cm,potential_j,p_percent,pareto\n";
+  for (const Method& m : methods)
+    csv << "\"" << m.name << "\"," << m.seconds << "," << m.me_cm << "," << m.potential << "," << m.p_percent << ","
+        << (m.pareto ? 1 : 0) << "\n";
+  write_text_atomically(file, csv.str());
+  std::printf("wrote %s\n", file.c_str());
+}
+
+// ME against time, the Pareto front starred.
+void write_chart(const std::vector<Method>& methods, std::size_t bodies, const std::string& file) {
+  ScatterChart chart;
+  chart.title = "What accuracy costs in time (" + std::to_string(bodies) + " test bodies, one core); * = Pareto front";
+  chart.x_label = "seconds per body on one core";
+  chart.y_label = "ME to the converged simulation (cm)";
+  for (const Method& m : methods) {
+    char label[200];
+    std::snprintf(label, sizeof label, "%s%s: %.3g s, ME %.2f cm, L_p %.4g J, p %.2f%%", m.pareto ? "* " : "",
+                  m.name.c_str(), m.seconds, m.me_cm, m.potential, m.p_percent);
+    chart.points.push_back({m.seconds, m.me_cm, label});
+  }
+  chart.write(file);
+  std::printf("wrote %s\n", file.c_str());
+}
+
+// The test bodies draped by one method after another, each drape measured
+// against the body's converged reference drape.
+struct Bench {
+  const Registry& registry;
+  const std::string& model_file;
+  const DatasetReader& reader;
+  const std::vector<std::size_t>& bodies;
+  const Tensor& body_tensor;
+  const std::vector<Eigen::MatrixX3d>& reference;
+  ProgressBar& bar;
+
+  // The simulator at m morph and s settling steps.
+  Method simulator(const Scene& scene, int m, int s) const {
+    const std::size_t n = bodies.size();
+    const Simulation sim(registry, with_budget(scene, m, s));
+    Method row{"simulation " + std::to_string(m) + "+" + std::to_string(s) + " steps"};
+    for (std::size_t b = 0; b < n; ++b) {
+      const SimulationResult r = sim.run(body_tensor.mat(static_cast<int>(b)).cast<double>());
+      row.add(r.seconds, r.garment, reference[b], r.total_energy, r.penetration, n);
+      bar.advance();
+    }
+    return row;
+  }
+
+  // The network's prediction (with the graph's parameters overridden).
+  Method network(const Simulation& sim, const std::string& name, const Model::ParamOverrides& overrides) const {
+    const std::size_t n = bodies.size();
+    Method row{name};
+    Model model = Model::load(registry, model_file, overrides);
+    PhysicsOptimizationOptions none;
+    none.iterations = 0;
+    for (std::size_t b = 0; b < n; ++b) {
+      const SampleBatch one = read_samples(reader, {bodies[b]}, model.graph(), false);
+      const double seconds = 1e-3 * prediction_ms(model, one, 5);
+      const PhysicsOptimizationResult r = optimize_drape(model, sim, one, none);
+      row.add(seconds, r.before, reference[b], r.potential_before, r.penetration_before, n);
+      bar.advance();
+    }
+    return row;
+  }
+
+  // The prediction optimised for `its` iterations.
+  Method optimised(const Simulation& sim, int its) const {
+    const std::size_t n = bodies.size();
+    Method row{"network + " + std::to_string(its) + " optimisation iterations"};
+    PhysicsOptimizationOptions o;
+    o.iterations = its;
+    int unseparated = 0;
+    for (std::size_t b = 0; b < n; ++b) {
+      Model model = Model::load(registry, model_file);  // the optimisation changes the weights
+      const PhysicsOptimizationResult r =
+          optimize_drape(model, sim, read_samples(reader, {bodies[b]}, model.graph(), false), o);
+      row.add(r.seconds, r.after, reference[b], r.potential_after, r.penetration_after, n);
+      unseparated += r.separated ? 0 : 1;
+      bar.advance();
+    }
+    // With a barrier, a drape whose body has not grown back yet is not a result (docs/optimization.md).
+    if (unseparated > 0)
+      row.name += " (" + std::to_string(unseparated) + " of " + std::to_string(n) + " not yet clear of the body)";
+    return row;
+  }
+};
+
 int run(const std::vector<std::string>& args) {
   po::options_description opts("drape bench accuracy-time");
   opts.add_options()("data", po::value<std::string>(), "dataset whose test bodies are draped (its scene is the simulator's)")(
@@ -87,15 +239,7 @@ int run(const std::vector<std::string>& args) {
   if (!vm.count("data")) throw UsageError("--data FILE is required (its test bodies are the held-out bodies)");
   const std::string data = vm["data"].as<std::string>();
   const std::string model_file = model_file_or_default(vm);
-  std::vector<std::pair<int, int>> budgets;
-  for (std::stringstream s(vm["budgets"].as<std::string>()); s.good();) {
-    std::string item;
-    std::getline(s, item, ',');
-    int m = 0, n = 0;
-    if (std::sscanf(item.c_str(), "%d:%d", &m, &n) != 2 || m < 0 || n < 1)
-      throw UsageError("--budgets: '" + item + "' is not morph_steps:settle_steps");
-    budgets.push_back({m, n});
-  }
+  const std::vector<std::pair<int, int>> budgets = simulator_budgets(vm);
   const std::vector<int> iterations = int_list(vm, "iterations"), spectral_k = int_list(vm, "spectral-k");
   Registry& registry = Registry::load_default(plugin_path(vm));
   const DatasetReader reader(data);
@@ -105,130 +249,44 @@ int run(const std::vector<std::string>& args) {
   const Scene scene = parse_scene(reader.layout().scene);
   const Tensor body_tensor = reader.body_vertices(bodies);
   // The spectral branch (if any) at fewer eigenvectors than it was trained with.
-  std::vector<std::pair<std::string, int>> spectral_cuts;
-  {
-    Model probe = Model::load(registry, model_file);
-    check_dataset_template(reader, data, probe.assets());
-    for (const auto& node : probe.graph().describe())
-      if (node.type == "spectral")
-        for (const auto& [port, shape] : node.outputs)
-          if (port == "coefficients")  // [k, 3]
-            for (int k : spectral_k)
-              if (k > 0 && k < shape.rows) spectral_cuts.push_back({node.name, k});
-  }
+  const std::vector<std::pair<std::string, int>> spectral_cuts =
+      spectral_cuts_of(registry, model_file, reader, data, spectral_k);
   const OmpThreadsScope one_core(1);
   const int steps =
       static_cast<int>(bodies.size()) * (2 + static_cast<int>(budgets.size() + iterations.size() + spectral_cuts.size()));
   ProgressBar bar("accuracy-time", static_cast<std::size_t>(steps), std::cerr);
 
   // The converged reference of every body.
-  const int morph = static_cast<int>(Params(scene_solver_specs(), scene.solver, "solver").get_int("morph_steps"));
-  const Simulation reference_sim(registry, with_budget(scene, morph, vm["reference-settle"].as<int>()));
+  Reference ref;
+  ref.morph = static_cast<int>(Params(scene_solver_specs(), scene.solver, "solver").get_int("morph_steps"));
+  ref.settle = vm["reference-settle"].as<int>();
+  const Simulation reference_sim(registry, with_budget(scene, ref.morph, ref.settle));
   std::vector<Eigen::MatrixX3d> reference;
-  int converged = 0;
-  double reference_seconds = 0;
   for (std::size_t b = 0; b < bodies.size(); ++b) {
     const SimulationResult r = reference_sim.run(body_tensor.mat(static_cast<int>(b)).cast<double>());
     reference.push_back(r.garment);
-    converged += r.converged ? 1 : 0;
-    reference_seconds += r.seconds / double(bodies.size());
+    ref.converged += r.converged ? 1 : 0;
+    ref.seconds += r.seconds / double(bodies.size());
     bar.advance();
   }
 
   std::vector<Method> methods;
-  const std::size_t n = bodies.size();
-  for (const auto& [m, s] : budgets) {
-    const Simulation sim(registry, with_budget(scene, m, s));
-    Method row{"simulation " + std::to_string(m) + "+" + std::to_string(s) + " steps"};
-    for (std::size_t b = 0; b < n; ++b) {
-      const SimulationResult r = sim.run(body_tensor.mat(static_cast<int>(b)).cast<double>());
-      row.add(r.seconds, r.garment, reference[b], r.total_energy, r.penetration, n);
-      bar.advance();
-    }
-    methods.push_back(row);
-  }
+  const Bench bench{registry, model_file, reader, bodies, body_tensor, reference, bar};
+  for (const auto& [m, s] : budgets) methods.push_back(bench.simulator(scene, m, s));
   // The network alone (its potential and p from a zero-iteration optimisation,
   // which leaves the weights alone), with its spectral branch cut to fewer
   // eigenvectors, then optimised (from the loaded weights for every body).
   const Simulation sim(registry, scene);
-  auto measure_network = [&](const std::string& name, const Model::ParamOverrides& overrides) {
-    Method row{name};
-    Model model = Model::load(registry, model_file, overrides);
-    PhysicsOptimizationOptions none;
-    none.iterations = 0;
-    for (std::size_t b = 0; b < n; ++b) {
-      const SampleBatch one = read_samples(reader, {bodies[b]}, model.graph(), false);
-      const double seconds = 1e-3 * prediction_ms(model, one, 5);
-      const PhysicsOptimizationResult r = optimize_drape(model, sim, one, none);
-      row.add(seconds, r.before, reference[b], r.potential_before, r.penetration_before, n);
-      bar.advance();
-    }
-    methods.push_back(row);
-  };
-  measure_network("network", {});
+  methods.push_back(bench.network(sim, "network", {}));
   for (const auto& [node, k] : spectral_cuts)
-    measure_network("network, spectral branch k = " + std::to_string(k), {{node, {{"use_k", std::to_string(k)}}}});
-  for (int its : iterations) {
-    Method row{"network + " + std::to_string(its) + " optimisation iterations"};
-    PhysicsOptimizationOptions o;
-    o.iterations = its;
-    int unseparated = 0;
-    for (std::size_t b = 0; b < n; ++b) {
-      Model model = Model::load(registry, model_file);  // the optimisation changes the weights
-      const PhysicsOptimizationResult r =
-          optimize_drape(model, sim, read_samples(reader, {bodies[b]}, model.graph(), false), o);
-      row.add(r.seconds, r.after, reference[b], r.potential_after, r.penetration_after, n);
-      unseparated += r.separated ? 0 : 1;
-      bar.advance();
-    }
-    // With a barrier, a drape whose body has not grown back yet is not a result (docs/optimization.md).
-    if (unseparated > 0)
-      row.name += " (" + std::to_string(unseparated) + " of " + std::to_string(n) + " not yet clear of the body)";
-    methods.push_back(row);
-  }
+    methods.push_back(
+        bench.network(sim, "network, spectral branch k = " + std::to_string(k), {{node, {{"use_k", std::to_string(k)}}}}));
+  for (int its : iterations) methods.push_back(bench.optimised(sim, its));
   bar.finish();
-  for (Method& m : methods) {
-    m.pareto = true;
-    for (const Method& o : methods)
-      if (&o != &m && o.seconds <= m.seconds && o.me_cm <= m.me_cm && (o.seconds < m.seconds || o.me_cm < m.me_cm))
-        m.pareto = false;
-  }
-
-  std::ostringstream table;
-  table << "## What accuracy costs in time: " << bodies.size() << " test bodies of " << data << ", one core\n\n"
-        << "Reference: the scene simulated with " << morph << " morph and " << vm["reference-settle"].as<int>()
-        << " settling steps (" << converged << " of " << bodies.size() << " settled; " << reference_seconds
-        << " s per body).\n\n| method | s per body | ME to converged (cm) | L_p (J) | p (%) | Pareto |\n|---|---|---|---|---|---|\n";
-  for (const Method& m : methods) {
-    char line[256];
-    std::snprintf(line, sizeof line, "| %s | %.3g | %.3f | %.5g | %.2f | %s |\n", m.name.c_str(), m.seconds, m.me_cm,
-                  m.potential, m.p_percent, m.pareto ? "yes" : "");
-    table << line;
-  }
-  std::printf("%s", table.str().c_str());
-  if (vm.count("csv")) {
-    std::ostringstream csv;
-    csv << "method,seconds_per_body,me_cm,potential_j,p_percent,pareto\n";
-    for (const Method& m : methods)
-      csv << "\"" << m.name << "\"," << m.seconds << "," << m.me_cm << "," << m.potential << "," << m.p_percent << ","
-          << (m.pareto ? 1 : 0) << "\n";
-    write_text_atomically(vm["csv"].as<std::string>(), csv.str());
-    std::printf("wrote %s\n", vm["csv"].as<std::string>().c_str());
-  }
-  if (vm.count("svg")) {
-    ScatterChart chart;
-    chart.title = "What accuracy costs in time (" + std::to_string(bodies.size()) + " test bodies, one core); * = Pareto front";
-    chart.x_label = "seconds per body on one core";
-    chart.y_label = "ME to the converged simulation (cm)";
-    for (const Method& m : methods) {
-      char label[200];
-      std::snprintf(label, sizeof label, "%s%s: %.3g s, ME %.2f cm, L_p %.4g J, p %.2f%%", m.pareto ? "* " : "",
-                    m.name.c_str(), m.seconds, m.me_cm, m.potential, m.p_percent);
-      chart.points.push_back({m.seconds, m.me_cm, label});
-    }
-    chart.write(vm["svg"].as<std::string>());
-    std::printf("wrote %s\n", vm["svg"].as<std::string>().c_str());
-  }
+  mark_pareto_front(methods);
+  print_table(methods, bodies.size(), data, ref);
+  if (vm.count("csv")) write_csv(methods, vm["csv"].as<std::string>());
+  if (vm.count("svg")) write_chart(methods, bodies.size(), vm["svg"].as<std::string>());
   return 0;
 }
 

@@ -42,6 +42,121 @@ double peak_memory_mib() {
   return -1;
 }
 
+// A batch of the dataset's samples, as training reads it.
+struct BatchReader {
+  const DatasetReader& reader;
+  bool params;  // the graph takes body_params
+  SampleBatch operator()(const std::vector<std::size_t>& indices) const {
+    SampleBatch batch;
+    batch.body = reader.body_vertices(indices);
+    batch.target = reader.garment_vertices(indices);
+    if (params) batch.body_params = reader.body_params(indices);
+    return batch;
+  }
+};
+
+// Every sample of the file, the training split first: a benchmark has no
+// use for the splits, and a pool smaller than the batch would repeat samples
+// within a batch, whose closest points the losses then find in the batch's
+// own cache (a faster step than training ever takes).
+std::vector<std::size_t> sample_pool(const DatasetReader& reader, const std::string& data, int keep, int batch_size) {
+  std::vector<std::size_t> pool = reader.indices(Split::Train);
+  for (const Split other : {Split::Val, Split::Test})
+    for (const std::size_t i : reader.indices(other)) pool.push_back(i);
+  if (pool.empty()) pool = reader.indices();
+  if (pool.empty()) throw ConfigError(data + ": no samples");
+  if (keep > 0 && static_cast<std::size_t>(keep) < pool.size()) pool.resize(keep);
+  if (pool.size() < static_cast<std::size_t>(batch_size))
+    std::fprintf(stderr, "warning: %zu samples for batches of %d: batches repeat samples, and the repeats' closest "
+                 "points are not computed again (give --data a file with at least --batch samples)\n",
+                 pool.size(), batch_size);
+  return pool;
+}
+
+// Where the timed steps' time went.
+struct StepTimes {
+  // Per node (replica 0's share of the batch): forward and backward ms summed over the timed steps.
+  std::vector<Graph::NodeTime> node_sums;
+  // Seconds in each part of a step: reading, forward+backward+reduction, Adam, copying the weights.
+  double read = 0, grad = 0, step = 0, sync = 0;
+
+  void add_node_times(const std::vector<Graph::NodeTime>& times) {
+    if (node_sums.empty()) {
+      node_sums = times;
+      for (auto& n : node_sums) n.ms = n.backward_ms = 0.0;
+    }
+    for (std::size_t n = 0; n < times.size() && n < node_sums.size(); ++n) {
+      node_sums[n].ms += times[n].ms;
+      node_sums[n].backward_ms += times[n].backward_ms;
+    }
+  }
+};
+
+// One untimed step, then `steps` timed ones: read the batch, forward,
+// backward and reduction, Adam, the weight copies.
+StepTimes time_steps(DataParallelGraph& dp, Adam& adam, const BatchReader& read_batch, const std::vector<std::size_t>& pool,
+                     int batch_size, int steps, int threads) {
+  Rng rng(1);
+  StepTimes times;
+  auto lap = [](Clock::time_point& t) {
+    const auto now = Clock::now();
+    const double s = std::chrono::duration<double>(now - t).count();
+    t = now;
+    return s;
+  };
+  // Batches as training draws them: shuffled epochs over the pool, no sample
+  // twice in a batch. (Drawing with replacement repeated samples within a
+  // batch, and the second copy's closest points came from the first's: with a
+  // pool of 8 at batch 8, a third of v2v's work was never timed.)
+  std::vector<std::size_t> order;
+  std::size_t next = 0;
+  for (int s = 0; s <= steps; ++s) {
+    std::vector<std::size_t> indices;
+    for (int k = 0; k < batch_size; ++k) {
+      if (next == order.size()) order = rng.permutation(pool.size()), next = 0;
+      indices.push_back(pool[order[next++]]);
+    }
+    const bool timed = s > 0;  // the first step allocates
+    auto t = Clock::now();
+    const SampleBatch batch = read_batch(indices);
+    times.read += timed * lap(t);
+    dp.gradients(batch);
+    times.grad += timed * lap(t);
+    if (timed) times.add_node_times(dp.graph().last_step_times());
+    {
+      const OmpThreadsScope all(threads);
+      adam.step(1e-4);
+    }
+    times.step += timed * lap(t);
+    dp.sync_weights();
+    times.sync += timed * lap(t);
+  }
+  return times;
+}
+
+// Where forward+backward goes, node by node: the network's nodes, then the losses.
+void print_node_table(const StepTimes& times, int batch_size, int steps, int threads) {
+  const int share = threads > 1 ? (batch_size + threads - 1) / threads : batch_size;
+  std::printf("\nPer node, ms per step (replica 0: %d of the %d samples%s):\n\n", share, batch_size,
+              threads > 1 ? "; the other replicas run theirs at the same time" : "");
+  std::printf("| node | type | forward | backward | total | share of forward+backward |\n|---|---|---|---|---|---|\n");
+  double network[2] = {0, 0}, losses[2] = {0, 0};
+  const double all_ms = 1e3 * times.grad / steps;
+  for (const bool loss : {false, true})
+    for (const auto& n : times.node_sums) {
+      if (n.is_loss != loss) continue;
+      const double f = n.ms / steps, b = n.backward_ms / steps;
+      (loss ? losses : network)[0] += f;
+      (loss ? losses : network)[1] += b;
+      std::printf("| %s%s | %s | %.2f | %.2f | %.2f | %.1f %% |\n", loss ? "loss " : "", n.name.c_str(), n.type.c_str(), f,
+                  b, f + b, 100.0 * (f + b) / all_ms);
+    }
+  std::printf("| **network** | | %.2f | %.2f | %.2f | %.1f %% |\n", network[0], network[1], network[0] + network[1],
+              100.0 * (network[0] + network[1]) / all_ms);
+  std::printf("| **losses** | | %.2f | %.2f | %.2f | %.1f %% |\n", losses[0], losses[1], losses[0] + losses[1],
+              100.0 * (losses[0] + losses[1]) / all_ms);
+}
+
 int run(const std::vector<std::string>& args) {
   po::options_description opts("drape bench train");
   opts.add_options()("model", po::value<std::string>(), "model file (its graph and assets are used, weights too)")(
@@ -93,29 +208,9 @@ int run(const std::vector<std::string>& args) {
   const auto inputs = dp.graph().input_names();
   const bool params = std::find(inputs.begin(), inputs.end(), "body_params") != inputs.end();
 
-  // Every sample of the file, the training split first: a benchmark has no
-  // use for the splits, and a pool smaller than the batch would repeat samples
-  // within a batch, whose closest points the losses then find in the batch's
-  // own cache (a faster step than training ever takes).
-  std::vector<std::size_t> pool = reader.indices(Split::Train);
-  for (const Split other : {Split::Val, Split::Test})
-    for (const std::size_t i : reader.indices(other)) pool.push_back(i);
-  if (pool.empty()) pool = reader.indices();
-  if (pool.empty()) throw ConfigError(data + ": no samples");
-  if (const int keep = vm["pool"].as<int>(); keep > 0 && static_cast<std::size_t>(keep) < pool.size()) pool.resize(keep);
-  if (pool.size() < static_cast<std::size_t>(batch_size))
-    std::fprintf(stderr, "warning: %zu samples for batches of %d: batches repeat samples, and the repeats' closest "
-                 "points are not computed again (give --data a file with at least --batch samples)\n",
-                 pool.size(), batch_size);
-  Rng rng(1);
+  const std::vector<std::size_t> pool = sample_pool(reader, data, vm["pool"].as<int>(), batch_size);
   const OmpThreadsScope one(1);
-  auto read_batch = [&](const std::vector<std::size_t>& indices) {
-    SampleBatch batch;
-    batch.body = reader.body_vertices(indices);
-    batch.target = reader.garment_vertices(indices);
-    if (params) batch.body_params = reader.body_params(indices);
-    return batch;
-  };
+  const BatchReader read_batch{reader, params};
   // The first epoch, untimed: training sees every sample before it sees one again.
   if (!vm["cold"].as<bool>())
     for (std::size_t first = 0; first < pool.size(); first += batch_size) {
@@ -123,53 +218,8 @@ int run(const std::vector<std::string>& args) {
                                              pool.begin() + std::min(pool.size(), first + batch_size));
       dp.losses(read_batch(indices));
     }
-  // Per node (replica 0's share of the batch): forward and backward ms summed over the timed steps.
-  std::vector<Graph::NodeTime> node_sums;
-  // Seconds in each part of a step: reading, forward+backward+reduction, Adam, copying the weights.
-  double read = 0, grad = 0, step = 0, sync = 0;
-  auto lap = [](Clock::time_point& t) {
-    const auto now = Clock::now();
-    const double s = std::chrono::duration<double>(now - t).count();
-    t = now;
-    return s;
-  };
-  // Batches as training draws them: shuffled epochs over the pool, no sample
-  // twice in a batch. (Drawing with replacement repeated samples within a
-  // batch, and the second copy's closest points came from the first's: with a
-  // pool of 8 at batch 8, a third of v2v's work was never timed.)
-  std::vector<std::size_t> order;
-  std::size_t next = 0;
-  for (int s = 0; s <= steps; ++s) {
-    std::vector<std::size_t> indices;
-    for (int k = 0; k < batch_size; ++k) {
-      if (next == order.size()) order = rng.permutation(pool.size()), next = 0;
-      indices.push_back(pool[order[next++]]);
-    }
-    const bool timed = s > 0;  // the first step allocates
-    auto t = Clock::now();
-    const SampleBatch batch = read_batch(indices);
-    read += timed * lap(t);
-    dp.gradients(batch);
-    grad += timed * lap(t);
-    if (timed) {
-      const auto times = dp.graph().last_step_times();
-      if (node_sums.empty()) {
-        node_sums = times;
-        for (auto& n : node_sums) n.ms = n.backward_ms = 0.0;
-      }
-      for (std::size_t n = 0; n < times.size() && n < node_sums.size(); ++n) {
-        node_sums[n].ms += times[n].ms;
-        node_sums[n].backward_ms += times[n].backward_ms;
-      }
-    }
-    {
-      const OmpThreadsScope all(threads);
-      adam.step(1e-4);
-    }
-    step += timed * lap(t);
-    dp.sync_weights();
-    sync += timed * lap(t);
-  }
+  const StepTimes times = time_steps(dp, adam, read_batch, pool, batch_size, steps, threads);
+  const double read = times.read, grad = times.grad, step = times.step, sync = times.sync;
   const double seconds = read + grad + step + sync;
   const double rate = double(steps) * batch_size / seconds;
   std::printf("## Training throughput: %s on %s\n\n", model ? vm["model"].as<std::string>().c_str()
@@ -182,26 +232,7 @@ int run(const std::vector<std::string>& args) {
   std::printf("| %.2f | %.2f | %.1f | %.1f | %.1f | %.1f | %.1f | %.0f |\n", rate, rate / threads, 1e3 * seconds / steps,
               1e3 * read / steps, 1e3 * grad / steps, 1e3 * step / steps, 1e3 * sync / steps, peak_memory_mib());
 
-  // Where forward+backward goes, node by node: the network's nodes, then the losses.
-  const int share = threads > 1 ? (batch_size + threads - 1) / threads : batch_size;
-  std::printf("\nPer node, ms per step (replica 0: %d of the %d samples%s):\n\n", share, batch_size,
-              threads > 1 ? "; the other replicas run theirs at the same time" : "");
-  std::printf("| node | type | forward | backward | total | share of forward+backward |\n|---|---|---|---|---|---|\n");
-  double network[2] = {0, 0}, losses[2] = {0, 0};
-  const double all_ms = 1e3 * grad / steps;
-  for (const bool loss : {false, true})
-    for (const auto& n : node_sums) {
-      if (n.is_loss != loss) continue;
-      const double f = n.ms / steps, b = n.backward_ms / steps;
-      (loss ? losses : network)[0] += f;
-      (loss ? losses : network)[1] += b;
-      std::printf("| %s%s | %s | %.2f | %.2f | %.2f | %.1f %% |\n", loss ? "loss " : "", n.name.c_str(), n.type.c_str(), f,
-                  b, f + b, 100.0 * (f + b) / all_ms);
-    }
-  std::printf("| **network** | | %.2f | %.2f | %.2f | %.1f %% |\n", network[0], network[1], network[0] + network[1],
-              100.0 * (network[0] + network[1]) / all_ms);
-  std::printf("| **losses** | | %.2f | %.2f | %.2f | %.1f %% |\n", losses[0], losses[1], losses[0] + losses[1],
-              100.0 * (losses[0] + losses[1]) / all_ms);
+  print_node_table(times, batch_size, steps, threads);
   const auto& cache = geometry::SurfaceCache::shared();
   if (cache.entries() > 0)
     std::printf("\nground-truth closest points cached: %zu samples, %.1f MiB of the %.0f MiB budget ($DRAPE_SURFACE_CACHE_MIB)\n",

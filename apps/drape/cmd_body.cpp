@@ -50,6 +50,139 @@ void warn_if_self_intersecting(const Mesh& mesh, bool with_girths) {
             << "\n";
 }
 
+// --param name=value ... for the body plugin.
+ParamValues plugin_params(const po::variables_map& vm) {
+  ParamValues values;
+  if (vm.count("param"))
+    for (const auto& item : vm["param"].as<std::vector<std::string>>()) {
+      const auto eq = item.find('=');
+      if (eq == std::string::npos || eq == 0) throw UsageError("--param wants name=value, got '" + item + "'");
+      values[item.substr(0, eq)] = {YAML::Load(item.substr(eq + 1)), {"--param", 0}};
+    }
+  return values;
+}
+
+// The body plugin, loaded (and how long that took).
+struct LoadedBody {
+  std::string model;
+  std::unique_ptr<BodyModel> body;
+  double load_s;
+};
+
+// One body, solved for --bmi, --height and --sex: its shape and measurements
+// printed, its mesh written to --out.
+int solve_one(const po::variables_map& vm, const LoadedBody& loaded, const Range& bmi) {
+  const BodyModel& body = *loaded.body;
+  const auto names = body.shape_names();
+  if (bmi.lo != bmi.hi) throw UsageError("--bmi: a range needs --sample");
+  const Range height = vm.count("height") ? parse_range("height", vm["height"].as<std::string>()) : Range{1.75, 1.75};
+  if (height.lo != height.hi) throw UsageError("--height: a range needs --sample");
+  const double sex = vm.count("sex") ? vm["sex"].as<double>() : 1.0;
+  const auto t1 = std::chrono::steady_clock::now();
+  const BodyRequest request{bmi.lo, height.lo, sex, parse_girths(vm)};
+  const Eigen::VectorXd shape = body.solve(request);
+  const double solve_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t1).count();
+  const Mesh mesh = body_mesh(body, shape);
+  const Measured got = measure(mesh.vertices, mesh.faces);
+  const auto loc = geometry::index_locality(mesh.faces, mesh.num_vertices());
+  std::cout << std::setprecision(6) << "body " << loaded.model << " (load " << loaded.load_s << " s, solve " << solve_s
+            << " s)\n";
+  for (std::size_t i = 0; i < names.size(); ++i) std::cout << "  " << names[i] << " = " << shape[static_cast<Eigen::Index>(i)] << "\n";
+  std::cout << "measured BMI " << got.bmi << " (requested " << bmi.lo << "), height " << got.height << " m (requested "
+            << height.lo << ")\n"
+            << "vertices " << mesh.num_vertices() << ", faces " << mesh.num_faces() << "\n"
+            << "consecutive indices that are mesh neighbours: " << 100 * loc.one_hop << "%, within two hops "
+            << 100 * loc.two_hop << "%\n";
+  warn_if_self_intersecting(mesh, !request.proportions.empty());
+  if (vm.count("out")) {
+    write_mesh(vm["out"].as<std::string>(), mesh);
+    std::cout << "wrote " << vm["out"].as<std::string>() << "\n";
+  }
+  return 0;
+}
+
+// The body space --sample draws from: --bmi, --height, --sex and --girths.
+BodySpace sample_space(const po::variables_map& vm, const Range& bmi, const Range& height) {
+  BodySpace space;
+  space.bmi_lo = bmi.lo;
+  space.bmi_hi = bmi.hi;
+  space.height_lo = height.lo;
+  space.height_hi = height.hi;
+  if (vm.count("sex")) space.sex_lo = space.sex_hi = vm["sex"].as<double>();
+  space.proportion_spread = vm["girths"].as<double>();
+  if (!(space.proportion_spread >= 0 && space.proportion_spread <= 1)) throw UsageError("--girths: expected a fraction in [0, 1]");
+  if (vm.count("girth")) throw UsageError("--girth holds one body's proportions; --sample draws them (--girths sets their spread)");
+  return space;
+}
+
+SvgLayer skin_of(const Mesh& mesh) {
+  SvgLayer skin;
+  skin.vertices = mesh.vertices;
+  skin.faces = mesh.faces;
+  skin.colour = "#d9a384";
+  skin.cull_back_faces = true;
+  return skin;
+}
+
+// --sample N: bodies drawn from the space, written to --out-dir with
+// bodies.csv (and the first 16 drawn side by side into --svg).
+int sample_many(const po::variables_map& vm, const LoadedBody& loaded, const Range& bmi) {
+  const BodyModel& body = *loaded.body;
+  const auto names = body.shape_names();
+  const int count = vm["sample"].as<int>();
+  if (count < 1) throw UsageError("--sample " + std::to_string(count) + ": expected at least 1");
+  if (!vm.count("out-dir")) throw UsageError("--sample needs --out-dir");
+  const std::filesystem::path dir = vm["out-dir"].as<std::string>();
+  std::filesystem::create_directories(dir);
+  const Range height = vm.count("height") ? parse_range("height", vm["height"].as<std::string>()) : Range{1.5, 2.0};
+  const BodySpace space = sample_space(vm, bmi, height);
+  Rng rng(vm["seed"].as<unsigned>());
+  std::ostringstream csv;
+  csv << std::setprecision(10) << "index,file,requested_bmi,requested_height,sex";
+  for (const auto& n : names) csv << ",shape_" << n;
+  csv << ",girth_halvings,measured_bmi,measured_height,self_intersections\n";
+  double worst = 0;
+  int intersecting = 0, halved = 0;
+  SvgFigure figure("drape body --sample: BMI " + std::to_string(bmi.lo).substr(0, 4) + "-" + std::to_string(bmi.hi).substr(0, 4) +
+                   ", height " + std::to_string(height.lo).substr(0, 4) + "-" + std::to_string(height.hi).substr(0, 4) +
+                   " m, girth spread " + std::to_string(space.proportion_spread).substr(0, 4));
+  constexpr int kDrawn = 16;
+  for (int i = 0; i < count; ++i) {
+    BodyRequest request = draw_body(space, body, rng);
+    int halvings = 0;
+    const Eigen::VectorXd shape = solve_in_space(body, request, &halvings);
+    const Mesh mesh = body_mesh(body, shape);
+    const Measured got = measure(mesh.vertices, mesh.faces);
+    const std::size_t crossing = geometry::self_intersections(mesh.vertices, mesh.faces, 10).size();
+    char file[32];
+    std::snprintf(file, sizeof file, "body_%05d.obj", i);
+    write_mesh(dir / file, mesh);
+    csv << i << "," << file << "," << request.bmi << "," << request.height << "," << request.sex;
+    for (Eigen::Index k = 0; k < shape.size(); ++k) csv << "," << shape[k];
+    csv << "," << halvings << "," << got.bmi << "," << got.height << "," << crossing << "\n";
+    worst = std::max(worst, std::abs(got.bmi - request.bmi));
+    intersecting += crossing > 0;
+    halved += halvings > 0;
+    if (vm.count("svg") && i < kDrawn) {
+      char caption[96];
+      std::snprintf(caption, sizeof caption, "%s, %.2f m, BMI %.1f", request.sex < 0.5 ? "F" : "M", got.height, got.bmi);
+      figure.add_panel({caption, {skin_of(mesh)}});
+    }
+  }
+  if (vm.count("svg")) {
+    figure.write(vm["svg"].as<std::string>());
+    std::cout << "wrote " << vm["svg"].as<std::string>() << "\n";
+  }
+  write_atomically(dir / "bodies.csv", [&](const std::filesystem::path& tmp) {
+    std::ofstream out(tmp);
+    out << csv.str();
+    if (!out) throw Error("cannot write " + tmp.string());
+  });
+  std::cout << "wrote " << count << " bodies and bodies.csv to " << dir.string() << " (worst |BMI error| " << worst << "; "
+            << intersecting << " self-intersecting; " << halved << " with girths halved to reach their BMI)\n";
+  return 0;
+}
+
 int run(const std::vector<std::string>& args) {
   po::options_description opts("drape body");
   opts.add_options()("model", po::value<std::string>()->default_value("parametric"), "body plugin")(
@@ -74,114 +207,17 @@ int run(const std::vector<std::string>& args) {
   check_mesh_outputs(vm, {"out"});
 
   const Registry& reg = Registry::load_default(plugin_path(vm));
-  const std::string model = vm["model"].as<std::string>();
-  const PluginDescriptor& desc = reg.get(model);
-  if (!desc.create_body) throw ConfigError("drape body: plugin '" + model + "' is a " + desc.kind + ", not a body model");
+  LoadedBody loaded;
+  loaded.model = vm["model"].as<std::string>();
+  const PluginDescriptor& desc = reg.get(loaded.model);
+  if (!desc.create_body)
+    throw ConfigError("drape body: plugin '" + loaded.model + "' is a " + desc.kind + ", not a body model");
   const auto t0 = std::chrono::steady_clock::now();
-  ParamValues values;
-  if (vm.count("param"))
-    for (const auto& item : vm["param"].as<std::vector<std::string>>()) {
-      const auto eq = item.find('=');
-      if (eq == std::string::npos || eq == 0) throw UsageError("--param wants name=value, got '" + item + "'");
-      values[item.substr(0, eq)] = {YAML::Load(item.substr(eq + 1)), {"--param", 0}};
-    }
-  const auto body = reg.create_body(model, Params(desc.params, values, "body " + model));
-  const double load_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  const auto names = body->shape_names();
+  const ParamValues values = plugin_params(vm);
+  loaded.body = reg.create_body(loaded.model, Params(desc.params, values, "body " + loaded.model));
+  loaded.load_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   const Range bmi = parse_range("bmi", vm["bmi"].as<std::string>());
-
-  if (!vm.count("sample")) {
-    if (bmi.lo != bmi.hi) throw UsageError("--bmi: a range needs --sample");
-    const Range height = vm.count("height") ? parse_range("height", vm["height"].as<std::string>()) : Range{1.75, 1.75};
-    if (height.lo != height.hi) throw UsageError("--height: a range needs --sample");
-    const double sex = vm.count("sex") ? vm["sex"].as<double>() : 1.0;
-    const auto t1 = std::chrono::steady_clock::now();
-    const BodyRequest request{bmi.lo, height.lo, sex, parse_girths(vm)};
-    const Eigen::VectorXd shape = body->solve(request);
-    const double solve_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t1).count();
-    const Mesh mesh = body_mesh(*body, shape);
-    const Measured got = measure(mesh.vertices, mesh.faces);
-    const auto loc = geometry::index_locality(mesh.faces, mesh.num_vertices());
-    std::cout << std::setprecision(6) << "body " << model << " (load " << load_s << " s, solve " << solve_s << " s)\n";
-    for (std::size_t i = 0; i < names.size(); ++i) std::cout << "  " << names[i] << " = " << shape[static_cast<Eigen::Index>(i)] << "\n";
-    std::cout << "measured BMI " << got.bmi << " (requested " << bmi.lo << "), height " << got.height << " m (requested "
-              << height.lo << ")\n"
-              << "vertices " << mesh.num_vertices() << ", faces " << mesh.num_faces() << "\n"
-              << "consecutive indices that are mesh neighbours: " << 100 * loc.one_hop << "%, within two hops "
-              << 100 * loc.two_hop << "%\n";
-    warn_if_self_intersecting(mesh, !request.proportions.empty());
-    if (vm.count("out")) {
-      write_mesh(vm["out"].as<std::string>(), mesh);
-      std::cout << "wrote " << vm["out"].as<std::string>() << "\n";
-    }
-    return 0;
-  }
-
-  const int count = vm["sample"].as<int>();
-  if (count < 1) throw UsageError("--sample " + std::to_string(count) + ": expected at least 1");
-  if (!vm.count("out-dir")) throw UsageError("--sample needs --out-dir");
-  const std::filesystem::path dir = vm["out-dir"].as<std::string>();
-  std::filesystem::create_directories(dir);
-  const Range height = vm.count("height") ? parse_range("height", vm["height"].as<std::string>()) : Range{1.5, 2.0};
-  BodySpace space;
-  space.bmi_lo = bmi.lo;
-  space.bmi_hi = bmi.hi;
-  space.height_lo = height.lo;
-  space.height_hi = height.hi;
-  if (vm.count("sex")) space.sex_lo = space.sex_hi = vm["sex"].as<double>();
-  space.proportion_spread = vm["girths"].as<double>();
-  if (!(space.proportion_spread >= 0 && space.proportion_spread <= 1)) throw UsageError("--girths: expected a fraction in [0, 1]");
-  if (vm.count("girth")) throw UsageError("--girth holds one body's proportions; --sample draws them (--girths sets their spread)");
-  Rng rng(vm["seed"].as<unsigned>());
-  std::ostringstream csv;
-  csv << std::setprecision(10) << "index,file,requested_bmi,requested_height,sex";
-  for (const auto& n : names) csv << ",shape_" << n;
-  csv << ",girth_halvings,measured_bmi,measured_height,self_intersections\n";
-  double worst = 0;
-  int intersecting = 0, halved = 0;
-  SvgFigure figure("drape body --sample: BMI " + std::to_string(bmi.lo).substr(0, 4) + "-" + std::to_string(bmi.hi).substr(0, 4) +
-                   ", height " + std::to_string(height.lo).substr(0, 4) + "-" + std::to_string(height.hi).substr(0, 4) +
-                   " m, girth spread " + std::to_string(space.proportion_spread).substr(0, 4));
-  constexpr int kDrawn = 16;
-  for (int i = 0; i < count; ++i) {
-    BodyRequest request = draw_body(space, *body, rng);
-    int halvings = 0;
-    const Eigen::VectorXd shape = solve_in_space(*body, request, &halvings);
-    const Mesh mesh = body_mesh(*body, shape);
-    const Measured got = measure(mesh.vertices, mesh.faces);
-    const std::size_t crossing = geometry::self_intersections(mesh.vertices, mesh.faces, 10).size();
-    char file[32];
-    std::snprintf(file, sizeof file, "body_%05d.obj", i);
-    write_mesh(dir / file, mesh);
-    csv << i << "," << file << "," << request.bmi << "," << request.height << "," << request.sex;
-    for (Eigen::Index k = 0; k < shape.size(); ++k) csv << "," << shape[k];
-    csv << "," << halvings << "," << got.bmi << "," << got.height << "," << crossing << "\n";
-    worst = std::max(worst, std::abs(got.bmi - request.bmi));
-    intersecting += crossing > 0;
-    halved += halvings > 0;
-    if (vm.count("svg") && i < kDrawn) {
-      char caption[96];
-      std::snprintf(caption, sizeof caption, "%s, %.2f m, BMI %.1f", request.sex < 0.5 ? "F" : "M", got.height, got.bmi);
-      SvgLayer skin;
-      skin.vertices = mesh.vertices;
-      skin.faces = mesh.faces;
-      skin.colour = "#d9a384";
-      skin.cull_back_faces = true;
-      figure.add_panel({caption, {skin}});
-    }
-  }
-  if (vm.count("svg")) {
-    figure.write(vm["svg"].as<std::string>());
-    std::cout << "wrote " << vm["svg"].as<std::string>() << "\n";
-  }
-  write_atomically(dir / "bodies.csv", [&](const std::filesystem::path& tmp) {
-    std::ofstream out(tmp);
-    out << csv.str();
-    if (!out) throw Error("cannot write " + tmp.string());
-  });
-  std::cout << "wrote " << count << " bodies and bodies.csv to " << dir.string() << " (worst |BMI error| " << worst << "; "
-            << intersecting << " self-intersecting; " << halved << " with girths halved to reach their BMI)\n";
-  return 0;
+  return vm.count("sample") ? sample_many(vm, loaded, bmi) : solve_one(vm, loaded, bmi);
 }
 
 const RegisterCommand registration{{"body", "solve a body for BMI and height, or sample many bodies", run}};

@@ -205,6 +205,65 @@ void print_by_band(const DatasetReader& reader, const std::vector<std::size_t>& 
   if (outside) std::printf("(%zu bodies outside %g-%g are in no band)\n", outside, edges.front(), edges.back());
 }
 
+// --where STAT=NUMBER: the samples whose statistic has that value.
+std::vector<std::size_t> samples_where(const DatasetReader& selected, const std::vector<std::size_t>& indices,
+                                       const std::string& where) {
+  const auto eq = where.find('=');
+  double wanted = 0;
+  try {
+    if (eq == std::string::npos || eq == 0) throw std::invalid_argument("no =");
+    wanted = std::stod(where.substr(eq + 1));
+  } catch (const std::exception&) {
+    throw UsageError("--where wants STAT=NUMBER, got '" + where + "'");
+  }
+  const std::vector<double> values = selected.stat(where.substr(0, eq), indices);
+  std::vector<std::size_t> kept;
+  for (std::size_t i = 0; i < indices.size(); ++i)
+    if (values[i] == wanted) kept.push_back(indices[i]);
+  return kept;
+}
+
+// The ground truth's own p and surface crossings, over the samples.
+struct GroundTruthReference {
+  double p = 0, crossings = 0, crossed = 0;  // %, per sample, % of samples with any
+};
+
+GroundTruthReference ground_truth_reference(const SplitEvaluation& evaluation, std::size_t samples) {
+  GroundTruthReference ref;
+  for (double r : evaluation.ground_truth_penetration) ref.p += 100.0 * r / double(samples);
+  for (int c : evaluation.ground_truth_crossings) {
+    ref.crossings += c / double(samples);
+    ref.crossed += (c > 0 ? 100.0 : 0.0) / double(samples);
+  }
+  return ref;
+}
+
+// What --drapes measured against what, and how many of them are not results.
+void print_drapes_heading(const po::variables_map& vm, const std::string& drapes_file, const std::string& data,
+                          const std::string& split, std::size_t samples, std::size_t not_results) {
+  std::printf("the drapes of %s (%s split, %zu samples) against the simulations of %s%s\n", drapes_file.c_str(),
+              split.c_str(), samples, data.c_str(), vm.count("where") ? (", where " + vm["where"].as<std::string>()).c_str() : "");
+  if (not_results)
+    std::printf("%zu of them are not results: drape optimize could not bring them onto the true body (separated 0); "
+                "--where separated=1 measures the others alone\n",
+                not_results);
+  std::printf("\n");
+}
+
+// The metrics' table, and the ground truth's own p, crossings and strain.
+void print_metrics(const MetricsSummary& s, const GroundTruthReference& ref, const SplitEvaluation& evaluation) {
+  std::printf("| metric | mean | std | max (worst sample) | unit |\n|---|---|---|---|---|\n");
+  for (const auto& c : metric_columns())
+    std::printf("| %s | %.4g | %.3g | %.4g | %s |\n", c.name.c_str(), s.mean.*c.field, s.stddev.*c.field, s.max.*c.field,
+                c.unit.c_str());
+  std::printf("\nthe ground truth itself has p = %.3g %%, %.4g surface crossings per sample (%.3g %% of samples with any)\n",
+              ref.p, ref.crossings, ref.crossed);
+  const auto& truth_strain = evaluation.ground_truth_strain_max;
+  std::printf("and its most strained edge (strain_max) is %.3g %% on average, %.3g %% at worst\n",
+              100.0 * std::accumulate(truth_strain.begin(), truth_strain.end(), 0.0) / double(truth_strain.size()),
+              100.0 * *std::max_element(truth_strain.begin(), truth_strain.end()));
+}
+
 int run(const std::vector<std::string>& args) {
   po::options_description opts("drape eval");
   opts.add_options()("model", po::value<std::string>(), "model file from drape train")(
@@ -259,22 +318,7 @@ int run(const std::vector<std::string>& args) {
   }
   const DatasetReader& selected = stored ? *drapes : reader;
   std::vector<std::size_t> indices = selected.indices(split);
-  if (vm.count("where")) {
-    const std::string where = vm["where"].as<std::string>();
-    const auto eq = where.find('=');
-    double wanted = 0;
-    try {
-      if (eq == std::string::npos || eq == 0) throw std::invalid_argument("no =");
-      wanted = std::stod(where.substr(eq + 1));
-    } catch (const std::exception&) {
-      throw UsageError("--where wants STAT=NUMBER, got '" + where + "'");
-    }
-    const std::vector<double> values = selected.stat(where.substr(0, eq), indices);
-    std::vector<std::size_t> kept;
-    for (std::size_t i = 0; i < indices.size(); ++i)
-      if (values[i] == wanted) kept.push_back(indices[i]);
-    indices = kept;
-  }
+  if (vm.count("where")) indices = samples_where(selected, indices, vm["where"].as<std::string>());
   const std::string selected_file = stored ? vm["drapes"].as<std::string>() : data;
   if (indices.empty()) throw ConfigError(selected_file + ": the " + split + " split has no samples" + (vm.count("where") ? " where " + vm["where"].as<std::string>() : std::string()));
 
@@ -290,41 +334,20 @@ int run(const std::vector<std::string>& args) {
   const SplitEvaluation evaluation = stored ? evaluate_drapes(model.assets(), reader, *drapes, drape_rows, &bar)
                                             : evaluate_model(model, reader, indices, batch_size, &bar, pushed_to);
   bar.finish();
-  double reference_p = 0, reference_crossings = 0, reference_crossed = 0;
-  for (double r : evaluation.ground_truth_penetration) reference_p += 100.0 * r / double(indices.size());
-  for (int c : evaluation.ground_truth_crossings) {
-    reference_crossings += c / double(indices.size());
-    reference_crossed += (c > 0 ? 100.0 : 0.0) / double(indices.size());
-  }
+  const GroundTruthReference ref = ground_truth_reference(evaluation, indices.size());
   const MetricsSummary s = summarize(evaluation.samples);
 
-  if (stored) {
-    std::printf("the drapes of %s (%s split, %zu samples) against the simulations of %s%s\n", selected_file.c_str(),
-                split.c_str(), s.samples, data.c_str(), vm.count("where") ? (", where " + vm["where"].as<std::string>()).c_str() : "");
-    if (not_results)
-      std::printf("%zu of them are not results: drape optimize could not bring them onto the true body (separated 0); "
-                  "--where separated=1 measures the others alone\n",
-                  not_results);
-    std::printf("\n");
-  } else {
+  if (stored)
+    print_drapes_heading(vm, selected_file, data, split, s.samples, not_results);
+  else
     std::printf("%s on %s, %s split (%zu samples)%s\n\n", model_file.c_str(), data.c_str(), split.c_str(), s.samples,
                 pushed_to >= 0 ? format(", every prediction pushed out of the body to %.4g m", pushed_to).c_str() : "");
-  }
-  std::printf("| metric | mean | std | max (worst sample) | unit |\n|---|---|---|---|---|\n");
-  for (const auto& c : metric_columns())
-    std::printf("| %s | %.4g | %.3g | %.4g | %s |\n", c.name.c_str(), s.mean.*c.field, s.stddev.*c.field, s.max.*c.field,
-                c.unit.c_str());
-  std::printf("\nthe ground truth itself has p = %.3g %%, %.4g surface crossings per sample (%.3g %% of samples with any)\n",
-              reference_p, reference_crossings, reference_crossed);
-  const auto& truth_strain = evaluation.ground_truth_strain_max;
-  std::printf("and its most strained edge (strain_max) is %.3g %% on average, %.3g %% at worst\n",
-              100.0 * std::accumulate(truth_strain.begin(), truth_strain.end(), 0.0) / double(truth_strain.size()),
-              100.0 * *std::max_element(truth_strain.begin(), truth_strain.end()));
+  print_metrics(s, ref, evaluation);
   if (vm.count("worst")) print_worst(reader, indices, evaluation, vm["worst"].as<int>());
   if (bands) print_by_band(reader, indices, evaluation, *bands);
   if (vm.count("out")) {
     write_report(vm["out"].as<std::string>(), model_file, stored ? selected_file : std::string(), data, split, s,
-                 reference_p, reference_crossings, reference_crossed);
+                 ref.p, ref.crossings, ref.crossed);
     std::printf("wrote %s\n", vm["out"].as<std::string>().c_str());
   }
   if (vm.count("svg")) {

@@ -20,8 +20,10 @@
 
 namespace drape::cli {
 
-std::size_t optimize_dataset(const Registry& registry, const OptimizeDatasetOptions& o) {
-  const DatasetReader reader(o.data);
+namespace {
+
+// This shard's part of the split's samples.
+std::vector<std::size_t> shard_samples(const DatasetReader& reader, const OptimizeDatasetOptions& o) {
   const std::vector<std::size_t> whole = reader.indices(o.split);
   if (whole.empty()) throw ConfigError(o.data.string() + ": the " + o.split + " split has no samples");
   const std::vector<std::size_t> source(whole.begin() + static_cast<long>(o.shard.first(whole.size())),
@@ -30,15 +32,23 @@ std::size_t optimize_dataset(const Registry& registry, const OptimizeDatasetOpti
     throw ConfigError("--shard " + std::to_string(o.shard.index) + "/" + std::to_string(o.shard.count) + ": the " + o.split +
                       " split of " + o.data.string() + " has only " + std::to_string(whole.size()) +
                       " samples, none for this shard (use fewer shards)");
-  const Scene scene = load_scene(o.scene_file);
-  const Simulation simulation(registry, scene);
-  {
-    const Model probe = Model::load(registry, o.model);
-    check_dataset_template(reader, o.data, probe.assets());
-  }
+  return source;
+}
 
+// Statistics of the source sample that still describe the optimised one.
+std::vector<std::string> carried_stats(const DatasetReader& reader) {
+  std::vector<std::string> carried;
+  for (const char* s : {"bmi", "garment_size"})
+    if (reader.layout().has_stat(s)) carried.push_back(s);
+  return carried;
+}
+
+// The optimised dataset: the source's sizes and template, the optimisation's
+// statistics, the scene whose energy was minimised, and how it was made.
+DatasetLayout optimized_layout(const DatasetReader& reader, const Scene& scene, const OptimizeDatasetOptions& o,
+                               std::size_t samples, const std::vector<std::string>& carried) {
   DatasetLayout layout;
-  layout.samples = source.size();
+  layout.samples = samples;
   layout.body_params = reader.layout().body_params;
   layout.body_vertices = reader.layout().body_vertices;
   layout.garment_vertices = reader.layout().garment_vertices;
@@ -46,10 +56,6 @@ std::size_t optimize_dataset(const Registry& registry, const OptimizeDatasetOpti
   for (const char* s : {"energy_total", "energy_total_before", "penetration", "penetration_before", "best_iteration",
                         "separated", "refused_steps", "grown_iteration", "seconds", "source_index"})
     layout.stats.push_back(s);
-  // Statistics of the source sample that still describe the optimised one.
-  std::vector<std::string> carried;
-  for (const char* s : {"bmi", "garment_size"})
-    if (reader.layout().has_stat(s)) carried.push_back(s);
   layout.stats.insert(layout.stats.end(), carried.begin(), carried.end());
   layout.scene = scene.yaml();
   layout.template_hash = reader.layout().template_hash;
@@ -59,7 +65,50 @@ std::size_t optimize_dataset(const Registry& registry, const OptimizeDatasetOpti
        << o.split << (o.shard.count > 1 ? ", shard " + std::to_string(o.shard.index) + "/" + std::to_string(o.shard.count) : "")
        << "), " << o.optimization.iterations << " iterations, lr " << o.optimization.learning_rate;
   layout.attributes["generator"] = what.str();
+  return layout;
+}
 
+// The optimised drape and its statistics in place of the source sample's.
+void store_result(DatasetSample& sample, const PhysicsOptimizationResult& r, const std::vector<std::string>& carried,
+                  std::size_t index) {
+  sample.garment_vertices = r.after.cast<float>();
+  std::map<std::string, double> stats;
+  for (const auto& name : carried) stats[name] = sample.stats.at(name);
+  sample.stats = std::move(stats);
+  for (const auto& t : r.energies_after) sample.stats["energy_" + t.name] = t.value;
+  sample.stats["energy_total"] = r.potential_after;
+  sample.stats["energy_total_before"] = r.potential_before;
+  sample.stats["penetration"] = r.penetration_after;
+  sample.stats["penetration_before"] = r.penetration_before;
+  sample.stats["best_iteration"] = r.best_iteration;
+  sample.stats["separated"] = r.separated ? 1 : 0;  // 0: still crossing the body (a barrier scene without a penalty to push it out)
+  sample.stats["refused_steps"] = r.refused_steps;
+  sample.stats["grown_iteration"] = r.grown_iteration;
+  sample.stats["seconds"] = r.seconds;
+  sample.stats["source_index"] = static_cast<double>(index);
+}
+
+void report_stopped(std::vector<std::string>& stopped) {
+  if (stopped.empty()) return;
+  std::sort(stopped.begin(), stopped.end());
+  std::fprintf(stderr, "%zu optimisations stopped before their iterations (written; not results unless said):\n",
+               stopped.size());
+  for (const std::string& line : stopped) std::fprintf(stderr, "  %s\n", line.c_str());
+}
+
+}  // namespace
+
+std::size_t optimize_dataset(const Registry& registry, const OptimizeDatasetOptions& o) {
+  const DatasetReader reader(o.data);
+  const std::vector<std::size_t> source = shard_samples(reader, o);
+  const Scene scene = load_scene(o.scene_file);
+  const Simulation simulation(registry, scene);
+  {
+    const Model probe = Model::load(registry, o.model);
+    check_dataset_template(reader, o.data, probe.assets());
+  }
+  const std::vector<std::string> carried = carried_stats(reader);
+  const DatasetLayout layout = optimized_layout(reader, scene, o, source.size(), carried);
   DatasetWriter writer(o.out, layout);
   const std::vector<std::size_t> todo = writer.missing();
   const int threads = std::max(1, std::min(o.threads, static_cast<int>(todo.size())));
@@ -91,21 +140,7 @@ std::size_t optimize_dataset(const Registry& registry, const OptimizeDatasetOpti
       // The sample already holds the body: the network's input comes from it, not from a second read.
       const SampleBatch batch = sample_batch(sample, reader.layout(), model->graph());
       const PhysicsOptimizationResult r = optimize_drape(*model, simulation, batch, o.optimization);
-      sample.garment_vertices = r.after.cast<float>();
-      std::map<std::string, double> stats;
-      for (const auto& name : carried) stats[name] = sample.stats.at(name);
-      sample.stats = std::move(stats);
-      for (const auto& t : r.energies_after) sample.stats["energy_" + t.name] = t.value;
-      sample.stats["energy_total"] = r.potential_after;
-      sample.stats["energy_total_before"] = r.potential_before;
-      sample.stats["penetration"] = r.penetration_after;
-      sample.stats["penetration_before"] = r.penetration_before;
-      sample.stats["best_iteration"] = r.best_iteration;
-      sample.stats["separated"] = r.separated ? 1 : 0;  // 0: still crossing the body (a barrier scene without a penalty to push it out)
-      sample.stats["refused_steps"] = r.refused_steps;
-      sample.stats["grown_iteration"] = r.grown_iteration;
-      sample.stats["seconds"] = r.seconds;
-      sample.stats["source_index"] = static_cast<double>(index);
+      store_result(sample, r, carried, index);
       {
         const std::lock_guard<std::mutex> lock(io);
         writer.write(local, sample);
@@ -120,12 +155,7 @@ std::size_t optimize_dataset(const Registry& registry, const OptimizeDatasetOpti
       bar.advance();
     };
   });
-  if (!stopped.empty()) {
-    std::sort(stopped.begin(), stopped.end());
-    std::fprintf(stderr, "%zu optimisations stopped before their iterations (written; not results unless said):\n",
-                 stopped.size());
-    for (const std::string& line : stopped) std::fprintf(stderr, "  %s\n", line.c_str());
-  }
+  report_stopped(stopped);
   return todo.size();
 }
 

@@ -73,6 +73,20 @@ struct Graph::Impl {
   const Tensor& value_of(const Source& s) const {
     return s.node >= 0 ? nodes[s.node].outputs[s.port] : inputs[s.input].value;
   }
+
+  // Building, in the constructor's order.
+  void add_inputs(const GraphSpec& spec, const GraphOptions& options);
+  void build_nodes(const GraphSpec& spec, const Registry& registry);
+  void wire_inputs(const GraphSpec& spec);
+  void sort_topologically();
+  void set_up_shapes(const GraphOptions& options);
+  void mark_needed_nodes();
+
+  int node_index(const std::string& name) const;
+  int input_index(const std::string& name) const;
+  std::vector<std::string> all_names() const;
+  Source resolve(const GraphSpec& spec, const PortRef& r, const std::string& who, int depth) const;
+  void wire_node(const GraphSpec& spec, Built& b) const;
 };
 
 Graph::~Graph() = default;
@@ -82,8 +96,16 @@ Graph::Graph(const GraphSpec& spec, const Registry& registry, const GraphOptions
     : spec_(spec), impl_(std::make_unique<Impl>()) {
   Impl& g = *impl_;
   g.poison_gradient_buffers = options.poison_gradient_buffers;
+  g.add_inputs(spec, options);
+  g.build_nodes(spec, registry);
+  g.wire_inputs(spec);
+  g.sort_topologically();
+  g.set_up_shapes(options);
+  g.mark_needed_nodes();
+}
 
-  // Graph inputs and their shapes (symbolic dimensions come from options.dims).
+// Graph inputs and their shapes (symbolic dimensions come from options.dims).
+void Graph::Impl::add_inputs(const GraphSpec& spec, const GraphOptions& options) {
   for (const auto& [name, dims] : spec.inputs) {
     int size[2];
     for (int i = 0; i < 2; ++i) {
@@ -104,13 +126,15 @@ Graph::Graph(const GraphSpec& spec, const Registry& registry, const GraphOptions
       }
       if (size[i] <= 0) throw ConfigError(dims.second, "input '" + name + "': sizes must be positive");
     }
-    g.inputs.push_back({name, {size[0], size[1]}, dims.second, {}});
+    inputs.push_back({name, {size[0], size[1]}, dims.second, {}});
   }
+}
 
-  // Build every node: type lookup and parameter validation.
+// Build every node: type lookup and parameter validation.
+void Graph::Impl::build_nodes(const GraphSpec& spec, const Registry& registry) {
   for (const auto& ns : spec.nodes) {
     if (ns.is_loss && ns.weight == 0.0) continue;  // a disabled loss is not built
-    Impl::Built b;
+    Built b;
     b.spec = ns;
     const PluginDescriptor* d = registry.find(ns.type);
     if (!d) {
@@ -129,97 +153,106 @@ Graph::Graph(const GraphSpec& spec, const Registry& registry, const GraphOptions
     const Params params(d->params, ns.params, b.label());
     b.node = registry.create_node(ns.type, params);
     for (const auto& p : d->outputs) b.out_ports.push_back(p.name);
-    g.nodes.push_back(std::move(b));
+    nodes.push_back(std::move(b));
   }
+}
 
-  auto node_index = [&](const std::string& name) {
-    for (std::size_t i = 0; i < g.nodes.size(); ++i)
-      if (g.nodes[i].spec.name == name) return static_cast<int>(i);
-    return -1;
-  };
-  auto input_index = [&](const std::string& name) {
-    for (std::size_t i = 0; i < g.inputs.size(); ++i)
-      if (g.inputs[i].name == name) return static_cast<int>(i);
-    return -1;
-  };
-  auto all_names = [&] {
-    std::vector<std::string> v;
-    for (const auto& n : g.nodes) v.push_back(n.spec.name);
-    for (const auto& i : g.inputs) v.push_back(i.name);
-    return v;
-  };
-  // Resolves a reference to a node output or a graph input (not to output aliases).
-  std::function<Source(const PortRef&, const std::string&, int)> resolve = [&](const PortRef& r, const std::string& who,
-                                                                                int depth) -> Source {
-    if (const int n = node_index(r.node); n >= 0) {
-      const auto& ports = g.nodes[n].out_ports;
-      if (r.port.empty()) return {n, 0, -1};
-      auto it = std::find(ports.begin(), ports.end(), r.port);
-      if (it == ports.end())
-        throw ConfigError(r.where, who + ": " + g.nodes[n].label() + " has no output '" + r.port + "'" +
-                                       did_you_mean(r.port, ports) + " (outputs: " + join(ports) + ")");
-      return {n, static_cast<int>(it - ports.begin()), -1};
-    }
-    if (const int i = input_index(r.node); i >= 0) {
-      if (!r.port.empty()) throw ConfigError(r.where, who + ": graph input '" + r.node + "' has no ports");
-      return {-1, 0, i};
-    }
-    for (const auto& [name, ref] : spec.outputs)
-      if (name == r.node && depth == 0 && r.port.empty()) return resolve(ref, who, 1);
-    const bool disabled = std::any_of(spec.nodes.begin(), spec.nodes.end(),
-                                      [&](const NodeSpec& n) { return n.name == r.node; });
-    throw ConfigError(r.where, who + ": unknown input '" + r.str() + "'" +
-                                   (disabled ? " (it is a loss with weight 0)" : did_you_mean(r.node, all_names())));
-  };
+int Graph::Impl::node_index(const std::string& name) const {
+  for (std::size_t i = 0; i < nodes.size(); ++i)
+    if (nodes[i].spec.name == name) return static_cast<int>(i);
+  return -1;
+}
 
-  // Wire inputs: positional, named, and (for losses) bound by port name.
-  for (auto& b : g.nodes) {
-    const auto& declared = b.desc->inputs;
-    std::vector<std::string> names;
-    for (const auto& p : declared) names.push_back(p.name);
-    std::vector<bool> connected(declared.size(), false);
-    std::size_t positional = 0;
-    for (const auto& [port, ref] : b.spec.inputs) {
-      std::size_t k = 0;
-      if (port.empty()) {
-        if (positional >= declared.size())
-          throw ConfigError(ref.where, b.label() + ": too many inputs; it takes " + std::to_string(declared.size()) +
-                                           " (" + join(names) + ")");
-        k = positional++;
-      } else {
-        auto it = std::find(names.begin(), names.end(), port);
-        if (it == names.end())
-          throw ConfigError(ref.where, b.label() + ": no input port '" + port + "'" + did_you_mean(port, names) +
-                                           " (ports: " + join(names) + ")");
-        k = static_cast<std::size_t>(it - names.begin());
-      }
-      if (connected[k]) throw ConfigError(ref.where, b.label() + ": input '" + names[k] + "' is connected twice");
-      connected[k] = true;
-      b.in_ports.push_back(names[k]);
-      b.sources.push_back(resolve(ref, b.label(), 0));
-    }
-    for (std::size_t k = 0; k < declared.size(); ++k) {
-      if (connected[k]) continue;
-      if (b.spec.is_loss) {
-        PortRef implicit{names[k], "", b.spec.where};
-        if (names[k] == "pred" || names[k] == "x") {
-          if (spec.outputs.empty()) throw ConfigError(b.spec.where, b.label() + ": the graph has no outputs to bind 'pred' to");
-          implicit = spec.outputs.front().second;
-        }
-        if (names[k] == "pred" || names[k] == "x" || input_index(names[k]) >= 0) {
-          b.in_ports.push_back(names[k]);
-          b.sources.push_back(resolve(implicit, b.label(), 0));
-          continue;
-        }
-      }
-      if (!declared[k].optional)
-        throw ConfigError(b.spec.where, b.label() + ": input '" + names[k] + "' is not connected (" + declared[k].doc + ")");
-    }
+int Graph::Impl::input_index(const std::string& name) const {
+  for (std::size_t i = 0; i < inputs.size(); ++i)
+    if (inputs[i].name == name) return static_cast<int>(i);
+  return -1;
+}
+
+std::vector<std::string> Graph::Impl::all_names() const {
+  std::vector<std::string> v;
+  for (const auto& n : nodes) v.push_back(n.spec.name);
+  for (const auto& i : inputs) v.push_back(i.name);
+  return v;
+}
+
+// Resolves a reference to a node output or a graph input (not to output aliases).
+Source Graph::Impl::resolve(const GraphSpec& spec, const PortRef& r, const std::string& who, int depth) const {
+  if (const int n = node_index(r.node); n >= 0) {
+    const auto& ports = nodes[n].out_ports;
+    if (r.port.empty()) return {n, 0, -1};
+    auto it = std::find(ports.begin(), ports.end(), r.port);
+    if (it == ports.end())
+      throw ConfigError(r.where, who + ": " + nodes[n].label() + " has no output '" + r.port + "'" +
+                                     did_you_mean(r.port, ports) + " (outputs: " + join(ports) + ")");
+    return {n, static_cast<int>(it - ports.begin()), -1};
   }
-  for (const auto& [name, ref] : spec.outputs) g.outputs.emplace_back(name, resolve(ref, "output '" + name + "'", 0));
+  if (const int i = input_index(r.node); i >= 0) {
+    if (!r.port.empty()) throw ConfigError(r.where, who + ": graph input '" + r.node + "' has no ports");
+    return {-1, 0, i};
+  }
+  for (const auto& [name, ref] : spec.outputs)
+    if (name == r.node && depth == 0 && r.port.empty()) return resolve(spec, ref, who, 1);
+  const bool disabled = std::any_of(spec.nodes.begin(), spec.nodes.end(),
+                                    [&](const NodeSpec& n) { return n.name == r.node; });
+  throw ConfigError(r.where, who + ": unknown input '" + r.str() + "'" +
+                                 (disabled ? " (it is a loss with weight 0)" : did_you_mean(r.node, all_names())));
+}
 
-  // Topological order (depth-first), reporting a cycle as a path.
-  const int count = static_cast<int>(g.nodes.size());
+// One node's inputs: positional, named, and (for losses) bound by port name.
+void Graph::Impl::wire_node(const GraphSpec& spec, Built& b) const {
+  const auto& declared = b.desc->inputs;
+  std::vector<std::string> names;
+  for (const auto& p : declared) names.push_back(p.name);
+  std::vector<bool> connected(declared.size(), false);
+  std::size_t positional = 0;
+  for (const auto& [port, ref] : b.spec.inputs) {
+    std::size_t k = 0;
+    if (port.empty()) {
+      if (positional >= declared.size())
+        throw ConfigError(ref.where, b.label() + ": too many inputs; it takes " + std::to_string(declared.size()) +
+                                         " (" + join(names) + ")");
+      k = positional++;
+    } else {
+      auto it = std::find(names.begin(), names.end(), port);
+      if (it == names.end())
+        throw ConfigError(ref.where, b.label() + ": no input port '" + port + "'" + did_you_mean(port, names) +
+                                         " (ports: " + join(names) + ")");
+      k = static_cast<std::size_t>(it - names.begin());
+    }
+    if (connected[k]) throw ConfigError(ref.where, b.label() + ": input '" + names[k] + "' is connected twice");
+    connected[k] = true;
+    b.in_ports.push_back(names[k]);
+    b.sources.push_back(resolve(spec, ref, b.label(), 0));
+  }
+  for (std::size_t k = 0; k < declared.size(); ++k) {
+    if (connected[k]) continue;
+    if (b.spec.is_loss) {
+      PortRef implicit{names[k], "", b.spec.where};
+      if (names[k] == "pred" || names[k] == "x") {
+        if (spec.outputs.empty()) throw ConfigError(b.spec.where, b.label() + ": the graph has no outputs to bind 'pred' to");
+        implicit = spec.outputs.front().second;
+      }
+      if (names[k] == "pred" || names[k] == "x" || input_index(names[k]) >= 0) {
+        b.in_ports.push_back(names[k]);
+        b.sources.push_back(resolve(spec, implicit, b.label(), 0));
+        continue;
+      }
+    }
+    if (!declared[k].optional)
+      throw ConfigError(b.spec.where, b.label() + ": input '" + names[k] + "' is not connected (" + declared[k].doc + ")");
+  }
+}
+
+// Wire inputs: positional, named, and (for losses) bound by port name.
+void Graph::Impl::wire_inputs(const GraphSpec& spec) {
+  for (auto& b : nodes) wire_node(spec, b);
+  for (const auto& [name, ref] : spec.outputs) outputs.emplace_back(name, resolve(spec, ref, "output '" + name + "'", 0));
+}
+
+// Topological order (depth-first), reporting a cycle as a path.
+void Graph::Impl::sort_topologically() {
+  const int count = static_cast<int>(nodes.size());
   std::vector<int> state(count, 0), order;
   std::vector<int> stack;
   std::function<void(int)> visit = [&](int n) {
@@ -227,12 +260,12 @@ Graph::Graph(const GraphSpec& spec, const Registry& registry, const GraphOptions
     if (state[n] == 1) {
       std::string path;
       auto start = std::find(stack.begin(), stack.end(), n);
-      for (auto it = start; it != stack.end(); ++it) path += g.nodes[*it].spec.name + " -> ";
-      throw ConfigError(g.nodes[n].spec.where, "the graph has a cycle: " + path + g.nodes[n].spec.name);
+      for (auto it = start; it != stack.end(); ++it) path += nodes[*it].spec.name + " -> ";
+      throw ConfigError(nodes[n].spec.where, "the graph has a cycle: " + path + nodes[n].spec.name);
     }
     state[n] = 1;
     stack.push_back(n);
-    for (const auto& s : g.nodes[n].sources)
+    for (const auto& s : nodes[n].sources)
       if (s.node >= 0) visit(s.node);
     stack.pop_back();
     state[n] = 2;
@@ -241,20 +274,22 @@ Graph::Graph(const GraphSpec& spec, const Registry& registry, const GraphOptions
   for (int n = 0; n < count; ++n) visit(n);
   std::vector<int> position(count);
   for (int i = 0; i < count; ++i) position[order[i]] = i;
-  std::vector<Impl::Built> sorted;
+  std::vector<Built> sorted;
   for (int n : order) {
-    sorted.push_back(std::move(g.nodes[n]));
+    sorted.push_back(std::move(nodes[n]));
     for (auto& s : sorted.back().sources)
       if (s.node >= 0) s.node = position[s.node];
   }
-  g.nodes = std::move(sorted);
-  for (auto& [name, s] : g.outputs)
+  nodes = std::move(sorted);
+  for (auto& [name, s] : outputs)
     if (s.node >= 0) s.node = position[s.node];
+}
 
-  // Shapes, in order; setup creates the weights.
-  for (auto& b : g.nodes) {
+// Shapes, in order; setup creates the weights.
+void Graph::Impl::set_up_shapes(const GraphOptions& options) {
+  for (auto& b : nodes) {
     ShapeMap in;
-    for (std::size_t k = 0; k < b.in_ports.size(); ++k) in[b.in_ports[k]] = g.shape_of(b.sources[k]);
+    for (std::size_t k = 0; k < b.in_ports.size(); ++k) in[b.in_ports[k]] = shape_of(b.sources[k]);
     NodeContext ctx{b.spec.name, fnv1a(b.spec.name, options.seed * 0x9E3779B97F4A7C15ull + 1), options.assets};
     ShapeMap out;
     try {
@@ -273,21 +308,23 @@ Graph::Graph(const GraphSpec& spec, const Registry& registry, const GraphOptions
       throw ConfigError(b.spec.where, b.label() + ": a loss must have one output of shape [1, 1]");
     b.requires_grad = !b.node->weights().empty();
     for (const auto& s : b.sources)
-      if (s.node >= 0 && g.nodes[s.node].requires_grad) b.requires_grad = true;
+      if (s.node >= 0 && nodes[s.node].requires_grad) b.requires_grad = true;
   }
+}
 
-  // Which nodes each kind of run needs.
+// Which nodes each kind of run needs.
+void Graph::Impl::mark_needed_nodes() {
   std::function<void(int, bool)> mark = [&](int n, bool loss) {
-    bool& flag = loss ? g.nodes[n].for_losses : g.nodes[n].for_outputs;
+    bool& flag = loss ? nodes[n].for_losses : nodes[n].for_outputs;
     if (flag) return;
     flag = true;
-    for (const auto& s : g.nodes[n].sources)
+    for (const auto& s : nodes[n].sources)
       if (s.node >= 0) mark(s.node, loss);
   };
-  for (const auto& [name, s] : g.outputs)
+  for (const auto& [name, s] : outputs)
     if (s.node >= 0) mark(s.node, false);
-  for (int n = 0; n < count; ++n)
-    if (g.nodes[n].spec.is_loss) mark(n, true);
+  for (int n = 0; n < static_cast<int>(nodes.size()); ++n)
+    if (nodes[n].spec.is_loss) mark(n, true);
 }
 
 std::vector<Graph::NodeInfo> Graph::describe() const {

@@ -114,30 +114,53 @@ void check_column(const Reader& r, const YAML::Node& n, const std::string& name,
                                    " (known: " + yaml::joined(names) + ")");
 }
 
-ExperimentRow parse_row(const Reader& r, const YAML::Node& n, const ExperimentSpec& spec) {
-  ExperimentRow row;
-  row.where = r.at(n);
-  yaml::check_keys(r.file, n,
-                   {"name", "train", "optimize", "simulation", "evaluate", "set", "data", "test", "where", "fraction",
-                    "on_optimized", "physics", "scene", "iterations", "training", "seed"},
-                   "row");
-  if (!n["name"]) throw ConfigError(r.at(n), "row: 'name' is required");
-  row.name = r.text(n["name"], "row name");
-  const std::string owner = "row '" + row.name + "'";
-  for (const auto& other : spec.rows)
-    if (other.name == row.name) throw ConfigError(r.at(n["name"]), owner + " is defined twice");
-  const int kinds = (n["train"] ? 1 : 0) + (n["optimize"] ? 1 : 0) + (n["simulation"] ? 1 : 0) + (n["evaluate"] ? 1 : 0);
-  if (kinds != 1)
-    throw ConfigError(r.at(n), owner + ": give exactly one of train (a graph), optimize (a row), evaluate (a row) and "
-                                       "simulation (a dataset)");
-  if (n["set"] && !n["evaluate"]) throw ConfigError(r.at(n["set"]), owner + ": 'set' goes with evaluate");
-  if (n["where"]) {
-    if (n["optimize"] || n["simulation"]) throw ConfigError(r.at(n["where"]), owner + ": 'where' goes with train and evaluate");
-    row.test_where = r.text(n["where"], owner + ".where");
-    if (row.test_where.find('=') == std::string::npos) throw ConfigError(r.at(n["where"]), owner + ".where must be STAT=VALUE");
+// One row of the experiment file: its name and kind, then what its kind
+// takes (train, optimize, evaluate or simulation), then what all rows may give.
+class RowParser {
+ public:
+  RowParser(const Reader& reader, const YAML::Node& node, const ExperimentSpec& spec_so_far)
+      : r(reader), n(node), spec(spec_so_far) {}
+
+  ExperimentRow parse() {
+    row.where = r.at(n);
+    yaml::check_keys(r.file, n,
+                     {"name", "train", "optimize", "simulation", "evaluate", "set", "data", "test", "where", "fraction",
+                      "on_optimized", "physics", "scene", "iterations", "training", "seed"},
+                     "row");
+    name_and_kind();
+    if (n["train"]) {
+      train_row();
+    } else if (n["optimize"]) {
+      optimize_row();
+    } else if (n["evaluate"]) {
+      evaluate_row();
+    } else {
+      simulation_row();
+    }
+    common_settings();
+    return row;
   }
 
-  auto dataset_key = [&](const char* key) {
+ private:
+  void name_and_kind() {
+    if (!n["name"]) throw ConfigError(r.at(n), "row: 'name' is required");
+    row.name = r.text(n["name"], "row name");
+    owner = "row '" + row.name + "'";
+    for (const auto& other : spec.rows)
+      if (other.name == row.name) throw ConfigError(r.at(n["name"]), owner + " is defined twice");
+    const int kinds = (n["train"] ? 1 : 0) + (n["optimize"] ? 1 : 0) + (n["simulation"] ? 1 : 0) + (n["evaluate"] ? 1 : 0);
+    if (kinds != 1)
+      throw ConfigError(r.at(n), owner + ": give exactly one of train (a graph), optimize (a row), evaluate (a row) and "
+                                         "simulation (a dataset)");
+    if (n["set"] && !n["evaluate"]) throw ConfigError(r.at(n["set"]), owner + ": 'set' goes with evaluate");
+    if (n["where"]) {
+      if (n["optimize"] || n["simulation"]) throw ConfigError(r.at(n["where"]), owner + ": 'where' goes with train and evaluate");
+      row.test_where = r.text(n["where"], owner + ".where");
+      if (row.test_where.find('=') == std::string::npos) throw ConfigError(r.at(n["where"]), owner + ".where must be STAT=VALUE");
+    }
+  }
+
+  std::string dataset_key(const char* key) const {
     const std::string k = r.text(n[key], owner + "." + key);
     std::vector<std::string> keys;
     for (const auto& d : spec.datasets) keys.push_back(d.key);
@@ -145,8 +168,9 @@ ExperimentRow parse_row(const Reader& r, const YAML::Node& n, const ExperimentSp
       throw ConfigError(r.at(n[key]), owner + "." + key + ": no dataset '" + k + "'" + did_you_mean(k, keys) +
                                            " (datasets: " + yaml::joined(keys) + ")");
     return k;
-  };
-  auto earlier_train_row = [&](const char* key) {
+  }
+
+  std::string earlier_train_row(const char* key) const {
     const std::string k = r.text(n[key], owner + "." + key);
     std::vector<std::string> names;
     for (const auto& other : spec.rows)
@@ -155,13 +179,17 @@ ExperimentRow parse_row(const Reader& r, const YAML::Node& n, const ExperimentSp
       throw ConfigError(r.at(n[key]), owner + "." + key + ": no earlier training row '" + k + "'" + did_you_mean(k, names) +
                                            (names.empty() ? "" : " (training rows so far: " + yaml::joined(names) + ")"));
     return k;
-  };
-  const std::string first_dataset = spec.datasets.front().key;
+  }
 
-  if (n["train"]) {
+  void refuse(std::initializer_list<const char*> keys, const char* kind) const {
+    for (const char* k : keys)
+      if (n[k]) throw ConfigError(r.at(n[k]), owner + ": '" + k + "' does not apply to " + kind);
+  }
+
+  void train_row() {
     row.kind = ExperimentRowKind::Train;
     row.graph = r.path(n["train"], owner + ".train");
-    row.data = n["data"] ? dataset_key("data") : first_dataset;
+    row.data = n["data"] ? dataset_key("data") : spec.datasets.front().key;
     row.test = n["test"] ? dataset_key("test") : row.data;
     if (n["fraction"]) {
       row.fraction = r.number<double>(n["fraction"], owner + ".fraction");
@@ -175,14 +203,17 @@ ExperimentRow parse_row(const Reader& r, const YAML::Node& n, const ExperimentSp
       if (!n["test"]) row.test = row.data;
     }
     if (n["physics"]) row.physics = r.path(n["physics"], owner + ".physics");
-  } else if (n["optimize"]) {
+  }
+
+  void optimize_row() {
     row.kind = ExperimentRowKind::Optimize;
     row.source = earlier_train_row("optimize");
     if (!n["scene"]) throw ConfigError(r.at(n), owner + ": optimize needs the scene whose energy is minimised (scene:)");
     row.test = spec.row(row.source).test;
-    for (const char* k : {"data", "fraction", "physics", "training"})
-      if (n[k]) throw ConfigError(r.at(n[k]), owner + ": '" + k + "' does not apply to an optimize row");
-  } else if (n["evaluate"]) {
+    refuse({"data", "fraction", "physics", "training"}, "an optimize row");
+  }
+
+  void evaluate_row() {
     row.kind = ExperimentRowKind::Evaluate;
     row.source = earlier_train_row("evaluate");
     row.test = n["test"] ? dataset_key("test") : spec.row(row.source).test;
@@ -198,34 +229,47 @@ ExperimentRow parse_row(const Reader& r, const YAML::Node& n, const ExperimentSp
         throw ConfigError(r.at(kv.first), owner + ".set: '" + key + "' is not node.param");
       row.set[key] = r.text(kv.second, owner + ".set." + key);
     }
-    for (const char* k : {"data", "fraction", "physics", "training", "scene", "iterations", "on_optimized"})
-      if (n[k]) throw ConfigError(r.at(n[k]), owner + ": '" + k + "' does not apply to an evaluate row");
-  } else {
+    refuse({"data", "fraction", "physics", "training", "scene", "iterations", "on_optimized"}, "an evaluate row");
+  }
+
+  void simulation_row() {
     row.kind = ExperimentRowKind::Simulation;
     row.data = dataset_key("simulation");
     row.test = row.data;
-    for (const char* k : {"data", "test", "fraction", "physics", "training", "scene", "iterations", "on_optimized"})
-      if (n[k]) throw ConfigError(r.at(n[k]), owner + ": '" + k + "' does not apply to a simulation row");
+    refuse({"data", "test", "fraction", "physics", "training", "scene", "iterations", "on_optimized"}, "a simulation row");
   }
-  if (n["scene"]) {
-    if (row.kind == ExperimentRowKind::Train && row.on_optimized.empty())
-      throw ConfigError(r.at(n["scene"]), owner + ": 'scene' is for optimize and on_optimized rows (use physics: to measure energies)");
-    row.scene = r.path(n["scene"], owner + ".scene");
-  }
-  if (n["iterations"]) {
-    row.iterations = r.number<int>(n["iterations"], owner + ".iterations");
-    if (row.iterations < 0) throw ConfigError(r.at(n["iterations"]), owner + ".iterations must be >= 0");
-  }
-  row.training = n["training"] ? r.training(n["training"], spec.training, owner + ".training") : spec.training;
-  if (n["seed"]) {
-    if (!n["seed"].IsMap()) throw ConfigError(r.at(n["seed"]), owner + ".seed must map columns to the seed's numbers");
-    for (const auto& kv : n["seed"]) {
-      const std::string column = kv.first.as<std::string>();
-      check_column(r, kv.first, column, owner + ".seed");
-      row.seed_values[column] = r.number<double>(kv.second, owner + ".seed." + column);
+
+  // scene, iterations, training and the seed's numbers.
+  void common_settings() {
+    if (n["scene"]) {
+      if (row.kind == ExperimentRowKind::Train && row.on_optimized.empty())
+        throw ConfigError(r.at(n["scene"]), owner + ": 'scene' is for optimize and on_optimized rows (use physics: to measure energies)");
+      row.scene = r.path(n["scene"], owner + ".scene");
+    }
+    if (n["iterations"]) {
+      row.iterations = r.number<int>(n["iterations"], owner + ".iterations");
+      if (row.iterations < 0) throw ConfigError(r.at(n["iterations"]), owner + ".iterations must be >= 0");
+    }
+    row.training = n["training"] ? r.training(n["training"], spec.training, owner + ".training") : spec.training;
+    if (n["seed"]) {
+      if (!n["seed"].IsMap()) throw ConfigError(r.at(n["seed"]), owner + ".seed must map columns to the seed's numbers");
+      for (const auto& kv : n["seed"]) {
+        const std::string column = kv.first.as<std::string>();
+        check_column(r, kv.first, column, owner + ".seed");
+        row.seed_values[column] = r.number<double>(kv.second, owner + ".seed." + column);
+      }
     }
   }
-  return row;
+
+  const Reader& r;
+  const YAML::Node& n;
+  const ExperimentSpec& spec;
+  ExperimentRow row;
+  std::string owner;  // "row 'NAME'", for messages
+};
+
+ExperimentRow parse_row(const Reader& r, const YAML::Node& n, const ExperimentSpec& spec) {
+  return RowParser(r, n, spec).parse();
 }
 
 }  // namespace

@@ -62,6 +62,8 @@ struct ClothSolver::Impl {
   double exact_refused_residual = std::numeric_limits<double>::infinity();
   Triplets triplets;
   physics::SparseMatrix hessian;
+
+  class NewtonIterations;  // one ClothSolver::step
 };
 
 namespace {
@@ -225,200 +227,276 @@ double ClothSolver::phi(const Eigen::MatrixX3d& x, const Eigen::MatrixX3d& x_hat
   return inertia + energy(x) + dissipation;
 }
 
+// The Newton iterations of one backward-Euler step (ClothSolver::step): each
+// takes the gradient of Phi, a Newton direction (by PCG with a kept factor, or
+// a factorisation; the exact matrix near equilibrium) and a line search along
+// it. A member of ClothSolver::Impl, so it sees the solver's settings,
+// energies and timings.
+class ClothSolver::Impl::NewtonIterations {
+ public:
+  NewtonIterations(ClothSolver& solver, Eigen::MatrixX3d& x, const Eigen::MatrixX3d& x_hat, StepReport& report)
+      : s_(solver), m_(*solver.impl_), x_(x), x_hat_(x_hat), report_(report) {}
+
+  // Iterates until converged, settled, out of iterations or without a
+  // decrease; returns Phi at the end.
+  double run(double settled_below) {
+    report_.phi_start = s_.phi(x_, x_hat_);
+    phi_x_ = report_.phi_start;
+    g_.resize(n_, 3);
+    // The inertia's diagonal M / h^2 of every Newton matrix of this step.
+    diagonal_.resize(3 * n_);
+    for (int i = 0; i < n_; ++i) diagonal_.segment<3>(3 * i).setConstant(s_.masses_[i] * inv_h2_);
+    for (;;) {
+      if (balanced(settled_below)) break;
+      if (report_.iterations >= s_.settings_.max_newton_iterations) break;
+      ++report_.iterations;
+      Eigen::MatrixX3d d = per_vertex(newton_direction());
+      if (!finite(d)) throw Error("solver: the Newton direction is not finite");
+      cap_longest_move(d, s_.settings_.max_displacement);
+      if (!move_downhill(d)) {
+        ++report_.line_search_failures;
+        break;  // no decrease along either direction: the step is as good as it gets
+      }
+    }
+    return phi_x_;
+  }
+
+ private:
+  // One Newton matrix's linear solve: the right-hand side -g, the direction
+  // found, and how PCG with the kept factor went.
+  struct LinearSolve {
+    Eigen::VectorXd rhs, direction;
+    bool try_cg = false;
+    int cg = -1;
+  };
+
+  void gradient(const Eigen::MatrixX3d& at);
+  bool balanced(double settled_below);
+  Eigen::VectorXd newton_direction();
+  bool should_try_cg();
+  bool should_try_exact();
+  void newton_matrix(bool project);
+  bool reuse_factor(LinearSolve& solve);
+  bool solve_exact(LinearSolve& solve);
+  void solve_projected(LinearSolve& solve);
+  bool move_downhill(const Eigen::MatrixX3d& d);
+  bool line_search(const Eigen::MatrixX3d& dir);
+
+  ClothSolver& s_;
+  Impl& m_;
+  Eigen::MatrixX3d& x_;
+  const Eigen::MatrixX3d& x_hat_;
+  StepReport& report_;
+  const int n_ = static_cast<int>(x_.rows());
+  const double h_ = s_.settings_.time_step, inv_h2_ = 1.0 / (h_ * h_);
+  double phi_x_ = 0;
+  Eigen::MatrixX3d g_;
+  Eigen::VectorXd diagonal_;
+};
+
+void ClothSolver::Impl::NewtonIterations::gradient(const Eigen::MatrixX3d& at) {
+  const auto t = Clock::now();
+  g_ = inv_h2_ * (s_.masses_.asDiagonal() * (at - x_hat_));
+  for (NamedEnergy& e : s_.energies_) {
+    e.energy->add_gradient(at, g_);
+    e.energy->add_dissipation_gradient(at, g_);
+  }
+  s_.timings_.gradient += since(t);
+  if (!finite(g_)) throw Error("solver: the gradient became non-finite (an energy produced NaN or inf)");
+}
+
+// The gradient at x, and whether it is small enough to stop: converged, or
+// (settled_below > 0) the drape balances without the inertia.
+bool ClothSolver::Impl::NewtonIterations::balanced(double settled_below) {
+  gradient(x_);
+  report_.residual = g_.norm() / s_.force_scale_;
+  if (report_.residual <= s_.settings_.tolerance) {
+    report_.converged = true;
+    return true;
+  }
+  if (settled_below > 0) {
+    // The static forces without the inertia: the drape's own balance.
+    const double balance = (g_ - inv_h2_ * (s_.masses_.asDiagonal() * (x_ - x_hat_))).norm() / s_.force_scale_;
+    if (balance <= settled_below) {
+      report_.settled = true;
+      return true;
+    }
+  }
+  return false;
+}
+
+void ClothSolver::Impl::NewtonIterations::newton_matrix(bool project) {
+  auto t = Clock::now();
+  Triplets& trip = m_.triplets;
+  trip.clear();
+  for (NamedEnergy& e : s_.energies_) {
+    e.energy->add_hessian_lower(x_, trip, project);
+    e.energy->add_dissipation_hessian_lower(x_, trip);
+  }
+  s_.timings_.hessian += since(t);
+  t = Clock::now();
+  m_.pattern.assemble(trip, diagonal_, m_.hessian);
+  s_.timings_.assembly += since(t);
+}
+
+// Factorising dominates an iteration. The matrix changes little from one
+// iteration (and time step) to the next, so an earlier factor is a very
+// good preconditioner: an inexact Newton step by PCG costs a few
+// triangular solves. Only when PCG stalls is the matrix factorised anew.
+bool ClothSolver::Impl::NewtonIterations::should_try_cg() {
+  bool try_cg = s_.settings_.reuse_factorization && m_.have_factor;
+  if (try_cg && m_.cg_skip > 0) {
+    --m_.cg_skip;
+    try_cg = false;
+    ++s_.timings_.cg_skipped;
+  }
+  return try_cg;
+}
+
+bool ClothSolver::Impl::NewtonIterations::reuse_factor(LinearSolve& solve) {
+  solve.cg = -1;
+  if (!solve.try_cg || !m_.have_factor) return false;
+  ++s_.timings_.cg_attempts;
+  solve.cg = preconditioned_cg(m_.hessian, *m_.cholesky, solve.rhs, s_.settings_.newton_forcing,
+                               s_.settings_.max_cg_iterations, solve.direction);
+  if (solve.cg > 0) {
+    s_.timings_.cg_iterations += solve.cg;
+    m_.cg_failures_in_row = 0;
+  } else if (solve.cg == -1) {
+    ++s_.timings_.cg_failures;
+    if (s_.settings_.adaptive_tries) m_.cg_skip = 1 << std::min(m_.cg_failures_in_row++, 4);
+  }
+  return solve.cg > 0;
+}
+
+// Near equilibrium: the exact matrix, when it is positive definite. CG
+// preconditioned by the kept factor, or else a Cholesky factorisation,
+// finds out: both break down on an indefinite matrix (and a breakdown in
+// CG spares the factorisation, keeping the old factor for the projected
+// matrix). -H^-1 g is then a descent direction; checked all the same, as
+// round-off could flip it.
+bool ClothSolver::Impl::NewtonIterations::should_try_exact() {
+  bool try_exact = s_.settings_.exact_hessian_below > 0 && report_.residual < s_.settings_.exact_hessian_below;
+  if (try_exact && m_.exact_wait > 0 && !(report_.residual < 0.5 * m_.exact_refused_residual)) {
+    --m_.exact_wait;
+    try_exact = false;
+    ++s_.timings_.exact_skipped;
+  }
+  return try_exact;
+}
+
+bool ClothSolver::Impl::NewtonIterations::solve_exact(LinearSolve& solve) {
+  newton_matrix(false);
+  auto t = Clock::now();
+  bool solved = reuse_factor(solve) && solve.direction.dot(solve.rhs) > 0;
+  if (!solved && solve.cg != kIndefinite) {
+    m_.have_factor = m_.cholesky->factorize(m_.hessian);
+    ++s_.timings_.factorizations;
+    if (m_.have_factor) {
+      solve.direction = m_.cholesky->solve(solve.rhs);
+      solved = solve.direction.allFinite() && solve.direction.dot(solve.rhs) > 0;
+    }
+  }
+  s_.timings_.linear_solves += since(t);
+  if (solved) {
+    ++s_.timings_.exact_steps;
+    m_.exact_refusals_in_row = 0;
+    m_.exact_wait = 0;
+  } else {
+    ++s_.timings_.exact_refused;
+    m_.exact_refused_residual = report_.residual;
+    if (s_.settings_.adaptive_tries) m_.exact_wait = 1 << std::min(m_.exact_refusals_in_row++, 5);
+  }
+  return solved;
+}
+
+// Newton matrix: M / h^2 + sum of projected Hessians, on the fixed pattern.
+void ClothSolver::Impl::NewtonIterations::solve_projected(LinearSolve& solve) {
+  newton_matrix(true);
+  auto t = Clock::now();
+  if (!reuse_factor(solve)) {
+    // The inertia term makes the matrix positive definite in exact arithmetic;
+    // a failed factorisation (round-off on a huge stiffness ratio) is retried
+    // with a growing diagonal shift, which keeps the direction a descent one.
+    m_.have_factor = false;
+    bool factored = m_.cholesky->factorize(m_.hessian);
+    ++s_.timings_.factorizations;
+    for (double shift = 1e-8 * m_.hessian.diagonal().cwiseAbs().maxCoeff(); !factored && shift < 1e30; shift *= 100) {
+      physics::SparseMatrix shifted = m_.hessian;
+      for (int k = 0; k < shifted.rows(); ++k) shifted.coeffRef(k, k) += shift;
+      factored = m_.cholesky->factorize(shifted);
+      ++s_.timings_.factorizations;
+    }
+    if (!factored) throw Error("solver: the Newton matrix could not be factorised even with a diagonal shift");
+    m_.have_factor = true;
+    solve.direction = m_.cholesky->solve(solve.rhs);
+  }
+  s_.timings_.linear_solves += since(t);
+}
+
+// The Newton direction at x (interleaved, see interleaved()).
+Eigen::VectorXd ClothSolver::Impl::NewtonIterations::newton_direction() {
+  LinearSolve solve;
+  solve.rhs = -interleaved(g_);
+  solve.try_cg = should_try_cg();
+  bool solved = false;
+  if (should_try_exact()) solved = solve_exact(solve);
+  if (!solved) solve_projected(solve);
+  return std::move(solve.direction);
+}
+
+// Armijo backtracking along d; at a contact kink (the closest body face
+// switches across a crease) the Newton model can point where Phi does not
+// fall, so a failed search is retried along the Jacobi-preconditioned
+// gradient, which is a descent direction of the non-smooth Phi too.
+bool ClothSolver::Impl::NewtonIterations::move_downhill(const Eigen::MatrixX3d& d) {
+  auto t = Clock::now();
+  bool accepted = line_search(d);
+  if (!accepted) {
+    // |diag|: the exact matrix's diagonal may hold a negative entry (a
+    // projected one never does, where this is the diagonal itself).
+    const Eigen::VectorXd diag = m_.hessian.diagonal().cwiseAbs();
+    Eigen::MatrixX3d jacobi = -g_.cwiseQuotient(per_vertex(diag));
+    cap_longest_move(jacobi, s_.settings_.max_displacement);
+    accepted = jacobi.allFinite() && line_search(jacobi);
+  }
+  s_.timings_.line_search += since(t);
+  return accepted;
+}
+
+bool ClothSolver::Impl::NewtonIterations::line_search(const Eigen::MatrixX3d& dir) {
+  const double slope = g_.cwiseProduct(dir).sum();
+  if (!(slope < 0)) return false;
+  // A barrier contact bounds the step where its closest pair would come
+  // too close (continuous collision detection): searching only below that
+  // bound, no accepted state has crossed the body.
+  double alpha = s_.max_step(x_, dir);
+  if (!(alpha > 0)) return false;
+  for (int k = 0; k < s_.settings_.max_line_search; ++k, alpha *= 0.5) {
+    const Eigen::MatrixX3d trial = x_ + alpha * dir;
+    const double phi_trial = s_.phi(trial, x_hat_);
+    ++s_.timings_.line_search_trials;
+    if (std::isfinite(phi_trial) && phi_trial <= phi_x_ + s_.settings_.armijo * alpha * slope) {
+      x_ = trial;
+      phi_x_ = phi_trial;
+      return true;
+    }
+  }
+  return false;
+}
+
 StepReport ClothSolver::step(Eigen::MatrixX3d& x, Eigen::MatrixX3d& v, double settled_below) {
   const int n = static_cast<int>(x.rows());
   if (n != masses_.size() || v.rows() != n)
     throw Error("solver: state has " + std::to_string(n) + " vertices, the garment " + std::to_string(masses_.size()));
-  const double h = settings_.time_step, inv_h2 = 1.0 / (h * h);
+  const double h = settings_.time_step;
   const Eigen::MatrixX3d x_start = x;
   const Eigen::MatrixX3d x_hat = x + h * v;
   // Friction lags its contacts at the step's start (Energy::begin_step).
   for (NamedEnergy& e : energies_) e.energy->begin_step(x_start, h);
   StepReport report;
-  report.phi_start = phi(x, x_hat);
-  double phi_x = report.phi_start;
-  Eigen::MatrixX3d g(n, 3);
-  // The inertia's diagonal M / h^2 of every Newton matrix of this step.
-  Eigen::VectorXd diagonal(3 * n);
-  for (int i = 0; i < n; ++i) diagonal.segment<3>(3 * i).setConstant(masses_[i] * inv_h2);
-
-  auto gradient = [&](const Eigen::MatrixX3d& at) {
-    const auto t = Clock::now();
-    g = inv_h2 * (masses_.asDiagonal() * (at - x_hat));
-    for (NamedEnergy& e : energies_) {
-      e.energy->add_gradient(at, g);
-      e.energy->add_dissipation_gradient(at, g);
-    }
-    timings_.gradient += since(t);
-    if (!finite(g)) throw Error("solver: the gradient became non-finite (an energy produced NaN or inf)");
-  };
-
-  for (;;) {
-    gradient(x);
-    report.residual = g.norm() / force_scale_;
-    if (report.residual <= settings_.tolerance) {
-      report.converged = true;
-      break;
-    }
-    if (settled_below > 0) {
-      // The static forces without the inertia: the drape's own balance.
-      const double balance = (g - inv_h2 * (masses_.asDiagonal() * (x - x_hat))).norm() / force_scale_;
-      if (balance <= settled_below) {
-        report.settled = true;
-        break;
-      }
-    }
-    if (report.iterations >= settings_.max_newton_iterations) break;
-    ++report.iterations;
-
-    const Eigen::VectorXd rhs = -interleaved(g);
-    Eigen::VectorXd direction;
-    auto newton_matrix = [&](bool project) {
-      auto t = Clock::now();
-      Triplets& trip = impl_->triplets;
-      trip.clear();
-      for (NamedEnergy& e : energies_) {
-        e.energy->add_hessian_lower(x, trip, project);
-        e.energy->add_dissipation_hessian_lower(x, trip);
-      }
-      timings_.hessian += since(t);
-      t = Clock::now();
-      impl_->pattern.assemble(trip, diagonal, impl_->hessian);
-      timings_.assembly += since(t);
-    };
-    // Factorising dominates an iteration. The matrix changes little from one
-    // iteration (and time step) to the next, so an earlier factor is a very
-    // good preconditioner: an inexact Newton step by PCG costs a few
-    // triangular solves. Only when PCG stalls is the matrix factorised anew.
-    int cg = -1;
-    Impl& m = *impl_;
-    bool try_cg = settings_.reuse_factorization && m.have_factor;
-    if (try_cg && m.cg_skip > 0) {
-      --m.cg_skip;
-      try_cg = false;
-      ++timings_.cg_skipped;
-    }
-    auto reuse_factor = [&]() {
-      cg = -1;
-      if (!try_cg || !m.have_factor) return false;
-      ++timings_.cg_attempts;
-      cg = preconditioned_cg(m.hessian, *m.cholesky, rhs, settings_.newton_forcing, settings_.max_cg_iterations, direction);
-      if (cg > 0) {
-        timings_.cg_iterations += cg;
-        m.cg_failures_in_row = 0;
-      } else if (cg == -1) {
-        ++timings_.cg_failures;
-        if (settings_.adaptive_tries) m.cg_skip = 1 << std::min(m.cg_failures_in_row++, 4);
-      }
-      return cg > 0;
-    };
-
-    // Near equilibrium: the exact matrix, when it is positive definite. CG
-    // preconditioned by the kept factor, or else a Cholesky factorisation,
-    // finds out: both break down on an indefinite matrix (and a breakdown in
-    // CG spares the factorisation, keeping the old factor for the projected
-    // matrix). -H^-1 g is then a descent direction; checked all the same, as
-    // round-off could flip it.
-    bool solved = false;
-    bool try_exact = settings_.exact_hessian_below > 0 && report.residual < settings_.exact_hessian_below;
-    if (try_exact && m.exact_wait > 0 && !(report.residual < 0.5 * m.exact_refused_residual)) {
-      --m.exact_wait;
-      try_exact = false;
-      ++timings_.exact_skipped;
-    }
-    if (try_exact) {
-      newton_matrix(false);
-      auto t = Clock::now();
-      solved = reuse_factor() && direction.dot(rhs) > 0;
-      if (!solved && cg != kIndefinite) {
-        impl_->have_factor = impl_->cholesky->factorize(impl_->hessian);
-        ++timings_.factorizations;
-        if (impl_->have_factor) {
-          direction = impl_->cholesky->solve(rhs);
-          solved = direction.allFinite() && direction.dot(rhs) > 0;
-        }
-      }
-      timings_.linear_solves += since(t);
-      if (solved) {
-        ++timings_.exact_steps;
-        m.exact_refusals_in_row = 0;
-        m.exact_wait = 0;
-      } else {
-        ++timings_.exact_refused;
-        m.exact_refused_residual = report.residual;
-        if (settings_.adaptive_tries) m.exact_wait = 1 << std::min(m.exact_refusals_in_row++, 5);
-      }
-    }
-
-    if (!solved) {
-      // Newton matrix: M / h^2 + sum of projected Hessians, on the fixed pattern.
-      newton_matrix(true);
-      auto t = Clock::now();
-      if (!reuse_factor()) {
-        // The inertia term makes the matrix positive definite in exact arithmetic;
-        // a failed factorisation (round-off on a huge stiffness ratio) is retried
-        // with a growing diagonal shift, which keeps the direction a descent one.
-        impl_->have_factor = false;
-        bool factored = impl_->cholesky->factorize(impl_->hessian);
-        ++timings_.factorizations;
-        for (double shift = 1e-8 * impl_->hessian.diagonal().cwiseAbs().maxCoeff(); !factored && shift < 1e30; shift *= 100) {
-          physics::SparseMatrix shifted = impl_->hessian;
-          for (int k = 0; k < shifted.rows(); ++k) shifted.coeffRef(k, k) += shift;
-          factored = impl_->cholesky->factorize(shifted);
-          ++timings_.factorizations;
-        }
-        if (!factored) throw Error("solver: the Newton matrix could not be factorised even with a diagonal shift");
-        impl_->have_factor = true;
-        direction = impl_->cholesky->solve(rhs);
-      }
-      timings_.linear_solves += since(t);
-    }
-    Eigen::MatrixX3d d = per_vertex(direction);
-    if (!finite(d)) throw Error("solver: the Newton direction is not finite");
-
-    cap_longest_move(d, settings_.max_displacement);
-
-    // Armijo backtracking along d; at a contact kink (the closest body face
-    // switches across a crease) the Newton model can point where Phi does not
-    // fall, so a failed search is retried along the Jacobi-preconditioned
-    // gradient, which is a descent direction of the non-smooth Phi too.
-    auto t = Clock::now();
-    auto line_search = [&](const Eigen::MatrixX3d& dir) {
-      const double slope = g.cwiseProduct(dir).sum();
-      if (!(slope < 0)) return false;
-      // A barrier contact bounds the step where its closest pair would come
-      // too close (continuous collision detection): searching only below that
-      // bound, no accepted state has crossed the body.
-      double alpha = max_step(x, dir);
-      if (!(alpha > 0)) return false;
-      for (int k = 0; k < settings_.max_line_search; ++k, alpha *= 0.5) {
-        const Eigen::MatrixX3d trial = x + alpha * dir;
-        const double phi_trial = phi(trial, x_hat);
-        ++timings_.line_search_trials;
-        if (std::isfinite(phi_trial) && phi_trial <= phi_x + settings_.armijo * alpha * slope) {
-          x = trial;
-          phi_x = phi_trial;
-          return true;
-        }
-      }
-      return false;
-    };
-    bool accepted = line_search(d);
-    if (!accepted) {
-      // |diag|: the exact matrix's diagonal may hold a negative entry (a
-      // projected one never does, where this is the diagonal itself).
-      const Eigen::VectorXd diag = impl_->hessian.diagonal().cwiseAbs();
-      Eigen::MatrixX3d jacobi = -g.cwiseQuotient(per_vertex(diag));
-      cap_longest_move(jacobi, settings_.max_displacement);
-      accepted = jacobi.allFinite() && line_search(jacobi);
-    }
-    timings_.line_search += since(t);
-    if (!accepted) {
-      ++report.line_search_failures;
-      break;  // no decrease along either direction: the step is as good as it gets
-    }
-  }
-  report.phi_end = phi_x;
+  Impl::NewtonIterations newton(*this, x, x_hat, report);
+  report.phi_end = newton.run(settled_below);
   report.max_displacement = (x - x_start).rowwise().norm().maxCoeff();
   v = (x - x_start) / h * (1.0 - settings_.damping);
   return report;

@@ -25,6 +25,86 @@ constexpr double kGarmentReach = 0.05;
 
 using Clock = std::chrono::steady_clock;
 double since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
+
+// Counts every step's work into the result and reports it (SimulationOptions::on_step).
+struct StepRecorder {
+  SimulationResult& result;
+  const SimulationOptions& options;
+  int total;
+  void operator()(int k, bool morphing, const StepReport& r, double stationarity, double slip_ratio = 0) const {
+    ++result.steps;
+    result.iterations += r.iterations;
+    result.line_search_failures += r.line_search_failures;
+    if (options.on_step) options.on_step({k, total, morphing, r, stationarity, slip_ratio});
+  }
+};
+
+// The settling steps on the target body, until the drape is stationary and
+// nothing slides, it comes to rest, or it falls off the body; then whether it
+// converged.
+void settle(ClothSolver& solver, Eigen::MatrixX3d& x, Eigen::MatrixX3d& v, const Eigen::MatrixX3d& target_body,
+            int morph_steps, int settle_steps, bool settle_every_iteration, const StepRecorder& record,
+            SimulationResult& result) {
+  result.initial_energy = solver.energy(x);
+  // Settled by stationarity, which at a body crease counts the pushes of both
+  // faces (ClothSolver::stationarity); the plain residual is reported as well.
+  const double kink_radius = solver.settings().kink_radius;
+  result.stationarity = solver.stationarity(x, kink_radius);
+  // With friction, a drape whose forces friction balances may still slide:
+  // it has settled only when no contact slips faster than friction holds.
+  result.slip_ratio = solver.slip_ratio(x);
+  const double settle_tolerance = solver.settings().settle_tolerance;
+  // A step that moves no vertex ends the settling: further steps from a
+  // stall change nothing (tried: on a stalled BMI 65 body 54 more steps only
+  // found no decrease). Whether that counts as settled is decided below.
+  const double at_rest_limit = solver.settings().kink_tolerance;
+  for (int k = 1; k <= settle_steps && (result.stationarity > settle_tolerance || result.sliding()) && !result.at_rest; ++k) {
+    // The step ends at the Newton iteration where the drape balances, not at
+    // the end of the step (stationarity <= the step's balance, see solver.hpp).
+    const StepReport r = solver.step(x, v, settle_every_iteration ? settle_tolerance : 0.0);
+    result.stationarity = solver.stationarity(x, kink_radius);
+    result.slip_ratio = solver.slip_ratio(x);
+    result.at_rest = r.max_displacement <= solver.settings().rest_displacement;
+    record(morph_steps + k, false, r, result.stationarity, result.slip_ratio);
+    if (scene_detail::fell_off_body(x, target_body)) break;  // falling on: nothing can bring it back
+  }
+  // At rest counts only near equilibrium: a stall with large unbalanced forces is not a drape.
+  result.converged = (result.stationarity <= settle_tolerance && !result.sliding()) ||
+                     (result.at_rest && result.stationarity <= at_rest_limit);
+}
+
+// The settled drape's energies and forces, why it did not settle (when it did
+// not), and how far it is inside the body.
+void measure_drape(const ClothSolver& solver, std::vector<NamedEnergy>& energies, const Eigen::MatrixX3d& x,
+                   const Eigen::MatrixX3d& target_body, const Mesh& garment, const Eigen::MatrixX3d& mean_body,
+                   const Eigen::MatrixX3i& body_faces, int morph_steps, const SimulationOptions& options,
+                   std::unique_ptr<geometry::BodySurface>& surface, SimulationResult& result) {
+  const double settle_tolerance = solver.settings().settle_tolerance;
+  const double at_rest_limit = solver.settings().kink_tolerance;
+  result.total_energy = solver.energy(x, &result.energies);
+  Eigen::MatrixX3d gradient = solver.static_gradient(x);
+  result.residual = gradient.norm() / solver.force_scale();
+  // Unbalanced: what friction (its push in the last step) leaves of grad E.
+  for (const NamedEnergy& e : energies) e.energy->add_dissipation_gradient(x, gradient);
+  result.vertex_force = gradient.rowwise().norm();
+  if (!result.converged) {
+    const double ease = garment_ease(garment.vertices, garment.faces, mean_body, target_body, body_faces);
+    result.unsettled =
+        scene_detail::why_unsettled(result, x, settle_tolerance, result.steps - morph_steps, at_rest_limit, ease, target_body);
+  }
+  result.garment = x;
+  result.body = target_body;
+  result.linear_solver = solver.linear_solver();
+  result.timings = solver.timings();
+  if (options.measure_penetration) {
+    if (!surface) surface = std::make_unique<geometry::BodySurface>(target_body, body_faces);
+    result.body_distance = surface->signed_distances(x);
+    const Eigen::VectorXd& d = result.body_distance;
+    result.penetration = static_cast<double>((d.array() < 0).count()) / static_cast<double>(d.size());
+    result.crossings = geometry::surface_crossings(x, garment.faces, target_body, body_faces);
+  }
+}
+
 }  // namespace
 
 Simulation::Simulation(const Registry& registry, Scene scene) : registry_(registry), scene_(std::move(scene)) {
@@ -147,13 +227,7 @@ SimulationResult Simulation::run(const Eigen::MatrixX3d& target_body, const Simu
   SimulationResult result;
   Eigen::MatrixX3d x = garment_start;
   Eigen::MatrixX3d v = Eigen::MatrixX3d::Zero(x.rows(), 3);
-  const int total = morph_steps_ + settle_steps_;
-  auto record = [&](int k, bool morphing, const StepReport& r, double stationarity, double slip_ratio = 0) {
-    ++result.steps;
-    result.iterations += r.iterations;
-    result.line_search_failures += r.line_search_failures;
-    if (options.on_step) options.on_step({k, total, morphing, r, stationarity, slip_ratio});
-  };
+  const StepRecorder record{result, options, morph_steps_ + settle_steps_};
   // While the body morphs each step only has to follow it approximately; the
   // settling steps get the full Newton budget.
   const int settle_newton = solver.settings().max_newton_iterations;
@@ -194,55 +268,9 @@ SimulationResult Simulation::run(const Eigen::MatrixX3d& target_body, const Simu
     surface->rebuild();  // the hierarchy was built on the start shape
   }
   solver.set_max_newton_iterations(settle_newton);
-  result.initial_energy = solver.energy(x);
-  // Settled by stationarity, which at a body crease counts the pushes of both
-  // faces (ClothSolver::stationarity); the plain residual is reported as well.
-  const double kink_radius = solver.settings().kink_radius;
-  result.stationarity = solver.stationarity(x, kink_radius);
-  // With friction, a drape whose forces friction balances may still slide:
-  // it has settled only when no contact slips faster than friction holds.
-  result.slip_ratio = solver.slip_ratio(x);
-  const double settle_tolerance = solver.settings().settle_tolerance;
-  const bool settle_every_iteration = settle_check_ == "iteration";
-  // A step that moves no vertex ends the settling: further steps from a
-  // stall change nothing (tried: on a stalled BMI 65 body 54 more steps only
-  // found no decrease). Whether that counts as settled is decided below.
-  const double at_rest_limit = solver.settings().kink_tolerance;
-  for (int k = 1; k <= settle_steps_ && (result.stationarity > settle_tolerance || result.sliding()) && !result.at_rest; ++k) {
-    // The step ends at the Newton iteration where the drape balances, not at
-    // the end of the step (stationarity <= the step's balance, see solver.hpp).
-    const StepReport r = solver.step(x, v, settle_every_iteration ? settle_tolerance : 0.0);
-    result.stationarity = solver.stationarity(x, kink_radius);
-    result.slip_ratio = solver.slip_ratio(x);
-    result.at_rest = r.max_displacement <= solver.settings().rest_displacement;
-    record(morph_steps_ + k, false, r, result.stationarity, result.slip_ratio);
-    if (scene_detail::fell_off_body(x, target_body)) break;  // falling on: nothing can bring it back
-  }
-  // At rest counts only near equilibrium: a stall with large unbalanced forces is not a drape.
-  result.converged = (result.stationarity <= settle_tolerance && !result.sliding()) ||
-                     (result.at_rest && result.stationarity <= at_rest_limit);
-  result.total_energy = solver.energy(x, &result.energies);
-  Eigen::MatrixX3d gradient = solver.static_gradient(x);
-  result.residual = gradient.norm() / solver.force_scale();
-  // Unbalanced: what friction (its push in the last step) leaves of grad E.
-  for (const NamedEnergy& e : energies) e.energy->add_dissipation_gradient(x, gradient);
-  result.vertex_force = gradient.rowwise().norm();
-  if (!result.converged) {
-    const double ease = garment_ease(garment_->mesh.vertices, garment_->mesh.faces, mean_body_, target_body, body_model_->faces());
-    result.unsettled =
-        scene_detail::why_unsettled(result, x, settle_tolerance, result.steps - morph_steps_, at_rest_limit, ease, target_body);
-  }
-  result.garment = x;
-  result.body = target_body;
-  result.linear_solver = solver.linear_solver();
-  result.timings = solver.timings();
-  if (options.measure_penetration) {
-    if (!surface) surface = std::make_unique<geometry::BodySurface>(target_body, body_model_->faces());
-    result.body_distance = surface->signed_distances(x);
-    const Eigen::VectorXd& d = result.body_distance;
-    result.penetration = static_cast<double>((d.array() < 0).count()) / static_cast<double>(d.size());
-    result.crossings = geometry::surface_crossings(x, garment_->mesh.faces, target_body, body_model_->faces());
-  }
+  settle(solver, x, v, target_body, morph_steps_, settle_steps_, settle_check_ == "iteration", record, result);
+  measure_drape(solver, energies, x, target_body, garment_->mesh, mean_body_, body_model_->faces(), morph_steps_, options,
+                surface, result);
   result.seconds = since(start);
   return result;
 }

@@ -118,6 +118,377 @@ std::string ground_truth_of(const DatasetLayout& layout, const fs::path& data) {
   return parse_scene(layout.scene, data.string() + " (scene attribute)").description;
 }
 
+
+// An output or a state from an earlier run is continued (--resume) or
+// replaced (--force), never overwritten by accident.
+void check_earlier_run(const TrainOptions& o, const fs::path& state_path) {
+  if (!o.force && !o.resume && (fs::exists(o.out) || fs::exists(state_path)))
+    throw ConfigError(o.out.string() + " exists (from an earlier or interrupted training): pass --resume to continue "
+                      "it, or --force to start over");
+  if (!o.force && o.resume && fs::exists(o.out) && !fs::exists(state_path))
+    throw ConfigError(o.out.string() + " exists, but there is no " + state_path.filename().string() +
+                      " to resume it from: --force to start over");
+}
+
+// The dataset's template (its assets) and the samples to train and validate on.
+struct TrainingData {
+  AssetsSpec assets_spec;
+  std::shared_ptr<const Assets> assets;
+  std::string ground_truth;
+  std::vector<std::size_t> train_idx, val_idx;
+};
+
+TrainingData load_training_data(const Registry& registry, const DatasetReader& reader, const TrainOptions& o) {
+  const DatasetLayout& layout = reader.layout();
+  TrainingData data;
+  if (o.assets) {
+    data.assets = o.assets;
+    data.assets_spec = parse_assets_spec(data.assets->spec_text, "TrainOptions::assets");
+    check_dataset_template(reader, o.data, *data.assets);
+  } else {
+    data.assets = assets_for_dataset(registry, reader, o.data, o.eigen_k, o.cache_dir, &data.assets_spec);
+  }
+  data.ground_truth = ground_truth_of(layout, o.data);
+  // An optimised dataset's drapes that are not results lie inside the body: left out.
+  const std::vector<std::size_t> train_all = reader.training_indices(o.train_fraction), val_all = reader.indices(Split::Val);
+  data.train_idx = optimizer_results(reader, train_all);
+  data.val_idx = optimizer_results(reader, val_all);
+  if (o.log && (data.train_idx.size() < train_all.size() || data.val_idx.size() < val_all.size()))
+    *o.log << "left out " << train_all.size() - data.train_idx.size() << " training and "
+           << val_all.size() - data.val_idx.size()
+           << " validation drapes that drape optimize could not bring onto the true body (separated 0)\n";
+  if (data.train_idx.empty()) throw ConfigError(o.data.string() + ": no training samples (split 0) are done");
+  return data;
+}
+
+void check_trainable(Graph& graph, const fs::path& graph_file) {
+  if (graph.weights().empty()) throw ConfigError(graph_file.string() + ": the graph has no learnable weights");
+  if (graph.spec().nodes.end() == std::find_if(graph.spec().nodes.begin(), graph.spec().nodes.end(),
+                                                [](const NodeSpec& n) { return n.is_loss && n.weight != 0.0; }))
+    throw ConfigError(graph_file.string() + ": the graph has no losses to train with");
+}
+
+// Every weight by name and shape, all or nothing (load_weights names the
+// first that is missing or has another shape: a model of another graph).
+void load_init_weights(const fs::path& init, DataParallelGraph& dp) {
+  if (!fs::exists(init)) throw ConfigError("--init " + init.string() + ": no such file");
+  load_weights(init, dp.graph());
+  dp.sync_weights();
+}
+
+LrSchedule lr_schedule(const TrainOptions& o) {
+  LrSchedule schedule;
+  schedule.base = o.lr;
+  if (o.schedule == "cosine") {
+    schedule.kind = LrSchedule::Kind::Cosine;
+    schedule.total = o.epochs;
+  }
+  return schedule;
+}
+
+// What learns: the optimiser, the stopping rule, the best weights so far and
+// the per-epoch history.
+struct Learner {
+  Adam adam;
+  EarlyStopping stopper;
+  LrSchedule schedule;
+  WeightCopy best;
+  History history;
+};
+
+// What a resumed run must share with the interrupted one.
+std::map<std::string, std::string> resume_settings(const TrainOptions& o, const TrainingData& data,
+                                                   const DatasetLayout& layout, int ranks) {
+  std::map<std::string, std::string> settings{
+      {"assets", data.assets_spec.yaml()},
+      {"dataset_template_hash", layout.template_hash},
+      {"train_samples", std::to_string(data.train_idx.size())},
+      {"val_samples", std::to_string(data.val_idx.size())},
+      {"seed", std::to_string(o.seed)},
+      {"batch", std::to_string(o.batch)},
+      {"threads", std::to_string(o.threads)},
+      {"lr", exact(o.lr)},
+      {"schedule", o.schedule},
+      {"patience", std::to_string(o.patience)}};
+  if (o.schedule == "cosine") settings["epochs"] = std::to_string(o.epochs);
+  if (!o.init.empty()) settings["init"] = o.init.string();
+  if (ranks > 1) settings["ranks"] = std::to_string(ranks);  // like threads, they change the sums' rounding
+  return settings;
+}
+
+// --force: the earlier run's files go.
+void start_over(const TrainOptions& o, const fs::path& state_path, int rank, int ranks) {
+  if (ranks > 1) o.ranks->barrier();  // every rank has looked at the files before rank 0 removes them
+  if (rank == 0) {
+    fs::remove(state_path);
+    fs::remove(o.out);
+  }
+  if (ranks > 1) o.ranks->barrier();
+}
+
+// Where the epochs stand: read back when resuming, written after every epoch.
+struct Progress {
+  long epochs_done = 0;
+  std::string status = "training";
+  double seconds_before = 0;
+};
+
+// A state file resumes only the run it was written by: the same settings,
+// ranks and graph.
+void check_resumable(const Checkpoint& st, const fs::path& state_path, const std::map<std::string, std::string>& settings,
+                     int ranks, const GraphSpec& graph_spec, const fs::path& graph_file) {
+  if (st.meta.count("kind") == 0 || st.meta.at("kind") != kStateKind)
+    throw ConfigError(state_path.string() + ": not a drape training state");
+  for (const auto& [key, value] : settings) {
+    const auto it = st.meta.find(key);
+    const std::string was = it == st.meta.end() ? "(none)" : it->second;
+    if (was != value)
+      throw ConfigError(state_path.string() + ": cannot resume: the interrupted run had " + key + " " + was +
+                        ", this one has " + key + " " + value + " (rerun with the same settings, or --force to start over)");
+  }
+  // Settings only multi-rank runs record (absent: one process).
+  const auto had_ranks = st.meta.find("ranks");
+  const std::string was_ranks = had_ranks == st.meta.end() ? "1" : had_ranks->second;
+  if (was_ranks != std::to_string(ranks))
+    throw ConfigError(state_path.string() + ": cannot resume: the interrupted run had ranks " + was_ranks +
+                      ", this one has ranks " + std::to_string(ranks) +
+                      " (rerun with the same mpirun -np, or --force to start over)");
+  if (st.graph != graph_spec.text)
+    throw ConfigError(state_path.string() + ": cannot resume: the interrupted run trained another graph than " +
+                      graph_file.string() + " (or --force to start over)");
+}
+
+// Continues the interrupted run of the state file: its weights (current and
+// best), Adam's moments, the stopping rule, the history and the epoch count.
+void resume(const fs::path& state_path, const std::map<std::string, std::string>& settings, int ranks,
+            const GraphSpec& graph_spec, const TrainOptions& o, DataParallelGraph& dp, Learner& learner,
+            Progress& progress, TrainReport& report) {
+  const Checkpoint st = read_checkpoint(state_path);
+  check_resumable(st, state_path, settings, ranks, graph_spec, o.graph);
+  NamedWeights all = prefixed(dp.graph().weights(), "current/");
+  for (const auto& w : learner.best.named("best/")) all.push_back(w);
+  load_weights(state_path, all);
+  if (!st.optimizer) throw ConfigError(state_path.string() + ": no optimiser state");
+  learner.adam.set_state(*st.optimizer);
+  std::map<std::string, double> es;
+  for (const auto& [key, value] : st.meta)
+    if (key.rfind("early_stopping.", 0) == 0) es[key.substr(15)] = meta_number(st, key, state_path);
+  learner.stopper.set_state(es);
+  learner.history.series = st.history;
+  progress.epochs_done = static_cast<long>(meta_number(st, "epoch", state_path));
+  report.best_epoch = static_cast<long>(meta_number(st, "best_epoch", state_path));
+  report.best_loss = meta_number(st, "best_loss", state_path);
+  progress.seconds_before = meta_number(st, "seconds", state_path);
+  progress.status = st.meta.count("status") ? st.meta.at("status") : "training";
+  if (progress.status == "finished" && progress.epochs_done < o.epochs) progress.status = "training";  // more epochs than before
+  dp.sync_weights();
+  report.resumed = true;
+}
+
+// Everything one training run works with once it is set up: what the epochs,
+// the files written after each and the log lines read.
+struct Run {
+  const TrainOptions& o;
+  int rank, ranks;
+  Clock::time_point run_start;
+  fs::path state_path;
+  const DatasetReader& reader;
+  const TrainingData& data;
+  const GraphSpec& graph_spec;
+  const std::string& output;
+  const std::map<std::string, std::string>& settings;
+  DataParallelGraph& dp;
+  Learner& learner;
+  Progress& progress;
+  TrainReport& report;
+};
+
+// The model (the best weights) and the state to resume from, after every epoch.
+void save(const Run& run) {
+  const TrainOptions& o = run.o;
+  if (run.rank != 0) return;  // every rank holds the same weights and state
+  std::map<std::string, std::string> meta = run.settings;
+  meta["assets_hash"] = run.data.assets->hash;
+  meta["output"] = run.output;
+  meta["dataset"] = fs::absolute(o.data).string();
+  if (!run.data.ground_truth.empty()) meta["ground_truth"] = run.data.ground_truth;
+  meta["epochs"] = std::to_string(o.epochs);
+  meta["epoch"] = std::to_string(run.progress.epochs_done);
+  meta["best_epoch"] = std::to_string(run.report.best_epoch);
+  meta["best_loss"] = exact(run.report.best_loss);
+  meta["monitor"] = run.data.val_idx.empty() ? "train_loss" : "val_loss";
+  meta["status"] = run.progress.status;
+  meta["seconds"] = exact(run.progress.seconds_before + since(run.run_start));
+  meta["drape_version"] = "0.1.0";
+  Learner& learner = run.learner;
+  Checkpoint model{run.graph_spec.text, meta, std::nullopt, learner.history.series};
+  model.meta["kind"] = kModelKind;
+  save_checkpoint(o.out, learner.best.named(""), model);
+  Checkpoint state{run.graph_spec.text, meta, learner.adam.state(), learner.history.series};
+  for (const auto& [key, value] : run.settings) state.meta[key] = value;
+  state.meta["kind"] = kStateKind;
+  for (const auto& [key, value] : learner.stopper.state()) state.meta["early_stopping." + key] = exact(value);
+  NamedWeights all = prefixed(run.dp.graph().weights(), "current/");
+  for (const auto& w : learner.best.named("best/")) all.push_back(w);
+  // The model first: a kill between the two writes leaves the state one
+  // epoch behind, and the resumed run redoes that epoch identically.
+  save_checkpoint(run.state_path, all, state);
+}
+
+// The run's first log lines: what trains on what, and whether anything is left to do.
+void announce(const Run& run, bool nothing_to_do) {
+  const TrainOptions& o = run.o;
+  const TrainReport& report = run.report;
+  const long epochs_done = run.progress.epochs_done;
+  const int ng = run.data.assets->garment->mesh.num_vertices(), nb = run.data.assets->body.num_vertices();
+  std::size_t weight_count = 0;
+  for (const auto& [name, w] : run.dp.graph().weights()) weight_count += w->value.size();
+  *o.log << (report.resumed ? "resuming " : "training ") << o.out.string() << ": " << run.graph_spec.file << " on "
+         << o.data.string() << " (" << run.data.train_idx.size() << " train, " << run.data.val_idx.size() << " val samples; "
+         << ng << " garment, " << nb << " body vertices), " << weight_count << " learnable weights, batch "
+         << o.batch << ", " << o.threads << " thread" << (o.threads > 1 ? "s" : "")
+         << (run.ranks > 1 ? (" on each of " + std::to_string(run.ranks) + " ranks") : std::string()) << ", lr "
+         << brief(o.lr) << " (" << o.schedule << "), seed " << o.seed;
+  if (report.resumed) *o.log << ", " << epochs_done << " epochs done";
+  *o.log << "\n";
+  if (run.data.val_idx.empty()) *o.log << "no validation samples: the training loss picks the best epoch and stops early\n";
+  if (nothing_to_do)
+    *o.log << "nothing to do: " << (report.early_stopped ? "training stopped early" : "all epochs are done") << " at epoch "
+           << epochs_done << " (best epoch " << report.best_epoch << ")\n";
+  o.log->flush();
+}
+
+// One epoch's Adam steps over the shuffled training samples, batch by batch.
+LossValues train_epoch(const Run& run, DistributedGraph& distributed, ProgressBar* bar, long e, double lr) {
+  const TrainOptions& o = run.o;
+  const std::vector<std::size_t>& train_idx = run.data.train_idx;
+  const std::size_t batch = static_cast<std::size_t>(o.batch);
+  const auto order = Rng(Rng::derive(o.seed, "epoch-" + std::to_string(e))).permutation(train_idx.size());
+  LossValues train_loss;
+  for (std::size_t first = 0; first < order.size(); first += batch) {
+    std::vector<std::size_t> indices;
+    for (std::size_t k = first; k < std::min(order.size(), first + batch); ++k) indices.push_back(train_idx[order[k]]);
+    const LossValues l = distributed.gradients(indices);
+    if (!std::isfinite(l.total))
+      throw Error("the training loss is " + brief(l.total) + " in epoch " + std::to_string(e + 1) +
+                  " (try a smaller --lr); " + o.out.string() + " keeps the last finished epoch");
+    {
+      const OmpThreadsScope all(o.threads);  // Adam is element-wise: threads do not change its result
+      run.learner.adam.step(lr);
+    }
+    run.dp.sync_weights();
+    train_loss.merge(l);
+    if (bar) {
+      bar->set_status("epoch " + std::to_string(e + 1) + "/" + std::to_string(o.epochs) + " loss " + brief(train_loss.total) +
+                      (run.report.best_epoch ? ", best val " + brief(run.report.best_loss) : ""));
+      bar->advance();
+    }
+  }
+  return train_loss;
+}
+
+LossValues validate(const Run& run, DistributedGraph& distributed) {
+  const std::vector<std::size_t>& val_idx = run.data.val_idx;
+  const std::size_t batch = static_cast<std::size_t>(run.o.batch);
+  LossValues val_loss;
+  for (std::size_t first = 0; first < val_idx.size(); first += batch) {
+    const std::vector<std::size_t> indices(val_idx.begin() + static_cast<long>(first),
+                                           val_idx.begin() + static_cast<long>(std::min(val_idx.size(), first + batch)));
+    val_loss.merge(distributed.losses(indices));
+  }
+  return val_loss;
+}
+
+// The losses of one finished epoch.
+struct EpochResult {
+  double lr;
+  LossValues train_loss, val_loss;
+  double seconds;
+  bool stop;
+};
+
+void record_history(const Run& run, const EpochResult& r) {
+  History& history = run.learner.history;
+  history.add("epoch", double(run.progress.epochs_done));
+  history.add("train_loss", r.train_loss.total);
+  history.add("val_loss", run.data.val_idx.empty() ? NAN : r.val_loss.total);
+  history.add("lr", r.lr);
+  history.add("seconds", r.seconds);
+  for (const auto& [name, v] : r.train_loss.terms) history.add("train_loss_" + name, v);
+  for (const auto& [name, v] : r.val_loss.terms) history.add("val_loss_" + name, v);
+}
+
+void log_epoch(const Run& run, const EpochResult& r, bool bar_on_terminal) {
+  const TrainOptions& o = run.o;
+  if (bar_on_terminal) *o.progress << "\r\033[K" << std::flush;
+  *o.log << "epoch " << run.progress.epochs_done << "/" << o.epochs << "  train " << brief(r.train_loss.total)
+         << terms_text(r.train_loss);
+  if (!run.data.val_idx.empty()) *o.log << "  val " << brief(r.val_loss.total) << terms_text(r.val_loss);
+  *o.log << "  lr " << brief(r.lr) << "  " << ProgressBar::format_duration(r.seconds)
+         << (run.learner.stopper.improved() ? "  (best)" : "") << (r.stop ? "  -- stopping early" : "") << "\n";
+  o.log->flush();
+}
+
+// One epoch: train, validate, keep the best weights, decide whether to stop,
+// then record, save and log it.
+void run_epoch(Run& run, DistributedGraph& distributed, ProgressBar* bar, bool bar_on_terminal) {
+  const TrainOptions& o = run.o;
+  Progress& progress = run.progress;
+  TrainReport& report = run.report;
+  const auto epoch_start = Clock::now();
+  const long e = progress.epochs_done;
+  EpochResult r;
+  r.lr = run.learner.schedule.at(e);
+  r.train_loss = train_epoch(run, distributed, bar, e, r.lr);
+  r.val_loss = validate(run, distributed);
+  // Each rank computed the data-only closest points of the samples it met;
+  // from now on every rank has them all.
+  if (run.ranks > 1) share_surface_cache(*o.ranks);
+  const double monitored = run.data.val_idx.empty() ? r.train_loss.total : r.val_loss.total;
+  if (!std::isfinite(monitored))
+    throw Error("the validation loss is " + brief(monitored) + " after epoch " + std::to_string(e + 1));
+  r.stop = run.learner.stopper.update(monitored);
+  if (run.learner.stopper.improved()) {
+    run.learner.best.assign(run.dp.graph().weights());
+    report.best_epoch = e + 1;
+    report.best_loss = monitored;
+  }
+  ++progress.epochs_done;
+  ++report.epochs_this_run;
+  progress.status = r.stop ? "early stopped" : progress.epochs_done >= o.epochs ? "finished" : "training";
+  r.seconds = since(epoch_start);
+  record_history(run, r);
+  save(run);
+  if (o.log) log_epoch(run, r, bar_on_terminal);
+}
+
+// The epochs left: until all are done, training stops early,
+// or this run's share of them (max_epochs_this_run) is used up.
+void run_epochs(Run& run) {
+  const TrainOptions& o = run.o;
+  const std::size_t steps_per_epoch =
+      (run.data.train_idx.size() + static_cast<std::size_t>(o.batch) - 1) / static_cast<std::size_t>(o.batch);
+  std::unique_ptr<ProgressBar> bar;
+  ProgressBar::Options bar_options;
+  bar_options.start = static_cast<std::size_t>(run.progress.epochs_done) * steps_per_epoch;
+  if (o.progress)
+    bar = std::make_unique<ProgressBar>("train", static_cast<std::size_t>(o.epochs) * steps_per_epoch, *o.progress,
+                                        bar_options);
+  const bool bar_on_terminal = o.progress == &std::cerr && ::isatty(STDERR_FILENO) == 1;
+
+  const DatasetReader& reader = run.reader;
+  Graph& graph = run.dp.graph();
+  DistributedGraph distributed(run.dp, o.ranks, [&](const std::vector<std::size_t>& indices) {
+    return read_samples(reader, indices, graph, true);
+  });
+  const OmpThreadsScope one_thread(1);  // the parallelism is over samples (DataParallelGraph)
+  while (run.progress.epochs_done < o.epochs && run.progress.status == "training") {
+    if (o.max_epochs_this_run > 0 && run.report.epochs_this_run >= o.max_epochs_this_run) break;
+    run_epoch(run, distributed, bar.get(), bar_on_terminal);
+  }
+  if (bar) bar->finish();
+}
+
 }  // namespace
 
 fs::path training_state_path(const fs::path& out) { return fs::path(out.string() + ".state"); }
@@ -156,277 +527,50 @@ TrainReport train(const Registry& registry, const TrainOptions& given) {
   const auto run_start = Clock::now();
   TrainReport report;
   const fs::path state_path = training_state_path(o.out);
-  if (!o.force && !o.resume && (fs::exists(o.out) || fs::exists(state_path)))
-    throw ConfigError(o.out.string() + " exists (from an earlier or interrupted training): pass --resume to continue "
-                      "it, or --force to start over");
-  if (!o.force && o.resume && fs::exists(o.out) && !fs::exists(state_path))
-    throw ConfigError(o.out.string() + " exists, but there is no " + state_path.filename().string() +
-                      " to resume it from: --force to start over");
+  check_earlier_run(o, state_path);
 
   // The dataset and the template it was made for.
   const DatasetReader reader(o.data);
-  const DatasetLayout& layout = reader.layout();
-  AssetsSpec assets_spec;
-  std::shared_ptr<const Assets> assets;
-  if (o.assets) {
-    assets = o.assets;
-    assets_spec = parse_assets_spec(assets->spec_text, "TrainOptions::assets");
-    check_dataset_template(reader, o.data, *assets);
-  } else {
-    assets = assets_for_dataset(registry, reader, o.data, o.eigen_k, o.cache_dir, &assets_spec);
-  }
-  const std::string ground_truth = ground_truth_of(layout, o.data);
-  const int ng = assets->garment->mesh.num_vertices(), nb = assets->body.num_vertices();
-  // An optimised dataset's drapes that are not results lie inside the body: left out.
-  const std::vector<std::size_t> train_all = reader.training_indices(o.train_fraction), val_all = reader.indices(Split::Val);
-  const std::vector<std::size_t> train_idx = optimizer_results(reader, train_all);
-  const std::vector<std::size_t> val_idx = optimizer_results(reader, val_all);
-  if (o.log && (train_idx.size() < train_all.size() || val_idx.size() < val_all.size()))
-    *o.log << "left out " << train_all.size() - train_idx.size() << " training and " << val_all.size() - val_idx.size()
-           << " validation drapes that drape optimize could not bring onto the true body (separated 0)\n";
-  if (train_idx.empty()) throw ConfigError(o.data.string() + ": no training samples (split 0) are done");
-  report.train_samples = static_cast<int>(train_idx.size());
-  report.val_samples = static_cast<int>(val_idx.size());
+  const TrainingData data = load_training_data(registry, reader, o);
+  report.train_samples = static_cast<int>(data.train_idx.size());
+  report.val_samples = static_cast<int>(data.val_idx.size());
 
   // The graph, its replicas and the optimiser.
   const GraphSpec graph_spec = parse_graph_file(o.graph);
   check_graph_inputs(graph_spec);
   GraphOptions graph_options;
-  graph_options.dims = graph_dims(*assets, layout.body_params);
-  graph_options.assets = assets.get();
+  graph_options.dims = graph_dims(*data.assets, reader.layout().body_params);
+  graph_options.assets = data.assets.get();
   graph_options.seed = o.seed;
   DataParallelGraph dp(graph_spec, registry, graph_options, o.threads);
   Graph& graph = dp.graph();
-  if (graph.weights().empty()) throw ConfigError(o.graph.string() + ": the graph has no learnable weights");
-  if (graph.spec().nodes.end() == std::find_if(graph.spec().nodes.begin(), graph.spec().nodes.end(),
-                                                [](const NodeSpec& n) { return n.is_loss && n.weight != 0.0; }))
-    throw ConfigError(o.graph.string() + ": the graph has no losses to train with");
+  check_trainable(graph, o.graph);
   const std::string output = garment_output(graph);
-  if (!o.init.empty()) {
-    // Every weight by name and shape, all or nothing (load_weights names the
-    // first that is missing or has another shape: a model of another graph).
-    if (!fs::exists(o.init)) throw ConfigError("--init " + o.init.string() + ": no such file");
-    load_weights(o.init, graph);
-    dp.sync_weights();
-  }
-  Adam adam(graph.weights());
-  EarlyStopping stopper({o.patience, 0.0});
-  LrSchedule schedule;
-  schedule.base = o.lr;
-  if (o.schedule == "cosine") {
-    schedule.kind = LrSchedule::Kind::Cosine;
-    schedule.total = o.epochs;
-  }
-  WeightCopy best(graph.weights());
-  History history;
-
-  // What a resumed run must share with the interrupted one.
-  std::map<std::string, std::string> settings{
-      {"assets", assets_spec.yaml()},
-      {"dataset_template_hash", layout.template_hash},
-      {"train_samples", std::to_string(train_idx.size())},
-      {"val_samples", std::to_string(val_idx.size())},
-      {"seed", std::to_string(o.seed)},
-      {"batch", std::to_string(o.batch)},
-      {"threads", std::to_string(o.threads)},
-      {"lr", exact(o.lr)},
-      {"schedule", o.schedule},
-      {"patience", std::to_string(o.patience)}};
-  if (o.schedule == "cosine") settings["epochs"] = std::to_string(o.epochs);
-  if (!o.init.empty()) settings["init"] = o.init.string();
-  if (ranks > 1) settings["ranks"] = std::to_string(ranks);  // like threads, they change the sums' rounding
+  if (!o.init.empty()) load_init_weights(o.init, dp);
+  Learner learner{Adam(graph.weights()), EarlyStopping({o.patience, 0.0}), lr_schedule(o), WeightCopy(graph.weights()),
+                  History()};
+  const std::map<std::string, std::string> settings = resume_settings(o, data, reader.layout(), ranks);
 
   // Start over, or continue.
-  if (o.force) {
-    if (ranks > 1) o.ranks->barrier();  // every rank has looked at the files before rank 0 removes them
-    if (rank == 0) {
-      fs::remove(state_path);
-      fs::remove(o.out);
-    }
-    if (ranks > 1) o.ranks->barrier();
-  }
-  long epochs_done = 0;
-  std::string status = "training";
-  double seconds_before = 0;
-  if (o.resume && fs::exists(state_path)) {
-    const Checkpoint st = read_checkpoint(state_path);
-    if (st.meta.count("kind") == 0 || st.meta.at("kind") != kStateKind)
-      throw ConfigError(state_path.string() + ": not a drape training state");
-    for (const auto& [key, value] : settings) {
-      const auto it = st.meta.find(key);
-      const std::string was = it == st.meta.end() ? "(none)" : it->second;
-      if (was != value)
-        throw ConfigError(state_path.string() + ": cannot resume: the interrupted run had " + key + " " + was +
-                          ", this one has " + key + " " + value + " (rerun with the same settings, or --force to start over)");
-    }
-    // Settings only multi-rank runs record (absent: one process).
-    const auto had_ranks = st.meta.find("ranks");
-    const std::string was_ranks = had_ranks == st.meta.end() ? "1" : had_ranks->second;
-    if (was_ranks != std::to_string(ranks))
-      throw ConfigError(state_path.string() + ": cannot resume: the interrupted run had ranks " + was_ranks +
-                        ", this one has ranks " + std::to_string(ranks) +
-                        " (rerun with the same mpirun -np, or --force to start over)");
-    if (st.graph != graph_spec.text)
-      throw ConfigError(state_path.string() + ": cannot resume: the interrupted run trained another graph than " +
-                        o.graph.string() + " (or --force to start over)");
-    NamedWeights all = prefixed(graph.weights(), "current/");
-    for (const auto& w : best.named("best/")) all.push_back(w);
-    load_weights(state_path, all);
-    if (!st.optimizer) throw ConfigError(state_path.string() + ": no optimiser state");
-    adam.set_state(*st.optimizer);
-    std::map<std::string, double> es;
-    for (const auto& [key, value] : st.meta)
-      if (key.rfind("early_stopping.", 0) == 0) es[key.substr(15)] = meta_number(st, key, state_path);
-    stopper.set_state(es);
-    history.series = st.history;
-    epochs_done = static_cast<long>(meta_number(st, "epoch", state_path));
-    report.best_epoch = static_cast<long>(meta_number(st, "best_epoch", state_path));
-    report.best_loss = meta_number(st, "best_loss", state_path);
-    seconds_before = meta_number(st, "seconds", state_path);
-    status = st.meta.count("status") ? st.meta.at("status") : "training";
-    if (status == "finished" && epochs_done < o.epochs) status = "training";  // more epochs than before
-    dp.sync_weights();
-    report.resumed = true;
-  }
-  report.epochs_done = epochs_done;
-  report.early_stopped = status == "early stopped";
+  if (o.force) start_over(o, state_path, rank, ranks);
+  Progress progress;
+  if (o.resume && fs::exists(state_path))
+    resume(state_path, settings, ranks, graph_spec, o, dp, learner, progress, report);
+  report.epochs_done = progress.epochs_done;
+  report.early_stopped = progress.status == "early stopped";
 
-  auto save = [&] {
-    if (rank != 0) return;  // every rank holds the same weights and state
-    std::map<std::string, std::string> meta = settings;
-    meta["assets_hash"] = assets->hash;
-    meta["output"] = output;
-    meta["dataset"] = fs::absolute(o.data).string();
-    if (!ground_truth.empty()) meta["ground_truth"] = ground_truth;
-    meta["epochs"] = std::to_string(o.epochs);
-    meta["epoch"] = std::to_string(epochs_done);
-    meta["best_epoch"] = std::to_string(report.best_epoch);
-    meta["best_loss"] = exact(report.best_loss);
-    meta["monitor"] = val_idx.empty() ? "train_loss" : "val_loss";
-    meta["status"] = status;
-    meta["seconds"] = exact(seconds_before + since(run_start));
-    meta["drape_version"] = "0.1.0";
-    Checkpoint model{graph_spec.text, meta, std::nullopt, history.series};
-    model.meta["kind"] = kModelKind;
-    save_checkpoint(o.out, best.named(""), model);
-    Checkpoint state{graph_spec.text, meta, adam.state(), history.series};
-    for (const auto& [key, value] : settings) state.meta[key] = value;
-    state.meta["kind"] = kStateKind;
-    for (const auto& [key, value] : stopper.state()) state.meta["early_stopping." + key] = exact(value);
-    NamedWeights all = prefixed(graph.weights(), "current/");
-    for (const auto& w : best.named("best/")) all.push_back(w);
-    // The model first: a kill between the two writes leaves the state one
-    // epoch behind, and the resumed run redoes that epoch identically.
-    save_checkpoint(state_path, all, state);
-  };
-
-  const std::size_t steps_per_epoch = (train_idx.size() + static_cast<std::size_t>(o.batch) - 1) / static_cast<std::size_t>(o.batch);
-  std::size_t weight_count = 0;
-  for (const auto& [name, w] : graph.weights()) weight_count += w->value.size();
-  const bool nothing_to_do = report.early_stopped || epochs_done >= o.epochs;
-  if (o.log) {
-    *o.log << (report.resumed ? "resuming " : "training ") << o.out.string() << ": " << graph_spec.file << " on "
-           << o.data.string() << " (" << train_idx.size() << " train, " << val_idx.size() << " val samples; "
-           << ng << " garment, " << nb << " body vertices), " << weight_count << " learnable weights, batch "
-           << o.batch << ", " << o.threads << " thread" << (o.threads > 1 ? "s" : "")
-           << (ranks > 1 ? (" on each of " + std::to_string(ranks) + " ranks") : std::string()) << ", lr " << brief(o.lr) << " ("
-           << o.schedule << "), seed " << o.seed;
-    if (report.resumed) *o.log << ", " << epochs_done << " epochs done";
-    *o.log << "\n";
-    if (val_idx.empty()) *o.log << "no validation samples: the training loss picks the best epoch and stops early\n";
-    if (nothing_to_do)
-      *o.log << "nothing to do: " << (report.early_stopped ? "training stopped early" : "all epochs are done") << " at epoch "
-             << epochs_done << " (best epoch " << report.best_epoch << ")\n";
-    o.log->flush();
-  }
+  Run run{o, rank, ranks, run_start, state_path, reader, data, graph_spec, output, settings, dp, learner, progress, report};
+  const bool nothing_to_do = report.early_stopped || progress.epochs_done >= o.epochs;
+  if (o.log) announce(run, nothing_to_do);
   if (nothing_to_do) {
     report.finished = true;
     report.seconds = since(run_start);
     return report;
   }
-
-  std::unique_ptr<ProgressBar> bar;
-  ProgressBar::Options bar_options;
-  bar_options.start = static_cast<std::size_t>(epochs_done) * steps_per_epoch;
-  if (o.progress)
-    bar = std::make_unique<ProgressBar>("train", static_cast<std::size_t>(o.epochs) * steps_per_epoch, *o.progress,
-                                        bar_options);
-  const bool bar_on_terminal = o.progress == &std::cerr && ::isatty(STDERR_FILENO) == 1;
-
-  DistributedGraph distributed(dp, o.ranks, [&](const std::vector<std::size_t>& indices) {
-    return read_samples(reader, indices, graph, true);
-  });
-  const OmpThreadsScope one_thread(1);  // the parallelism is over samples (DataParallelGraph)
-  const std::size_t batch = static_cast<std::size_t>(o.batch);
-  while (epochs_done < o.epochs && status == "training") {
-    if (o.max_epochs_this_run > 0 && report.epochs_this_run >= o.max_epochs_this_run) break;
-    const auto epoch_start = Clock::now();
-    const long e = epochs_done;
-    const auto order = Rng(Rng::derive(o.seed, "epoch-" + std::to_string(e))).permutation(train_idx.size());
-    const double lr = schedule.at(e);
-    LossValues train_loss;
-    for (std::size_t first = 0; first < order.size(); first += batch) {
-      std::vector<std::size_t> indices;
-      for (std::size_t k = first; k < std::min(order.size(), first + batch); ++k) indices.push_back(train_idx[order[k]]);
-      const LossValues l = distributed.gradients(indices);
-      if (!std::isfinite(l.total))
-        throw Error("the training loss is " + brief(l.total) + " in epoch " + std::to_string(e + 1) +
-                    " (try a smaller --lr); " + o.out.string() + " keeps the last finished epoch");
-      {
-        const OmpThreadsScope all(o.threads);  // Adam is element-wise: threads do not change its result
-        adam.step(lr);
-      }
-      dp.sync_weights();
-      train_loss.merge(l);
-      if (bar) {
-        bar->set_status("epoch " + std::to_string(e + 1) + "/" + std::to_string(o.epochs) + " loss " + brief(train_loss.total) +
-                        (report.best_epoch ? ", best val " + brief(report.best_loss) : ""));
-        bar->advance();
-      }
-    }
-    LossValues val_loss;
-    for (std::size_t first = 0; first < val_idx.size(); first += batch) {
-      const std::vector<std::size_t> indices(val_idx.begin() + static_cast<long>(first),
-                                             val_idx.begin() + static_cast<long>(std::min(val_idx.size(), first + batch)));
-      val_loss.merge(distributed.losses(indices));
-    }
-    // Each rank computed the data-only closest points of the samples it met;
-    // from now on every rank has them all.
-    if (ranks > 1) share_surface_cache(*o.ranks);
-    const double monitored = val_idx.empty() ? train_loss.total : val_loss.total;
-    if (!std::isfinite(monitored))
-      throw Error("the validation loss is " + brief(monitored) + " after epoch " + std::to_string(e + 1));
-    const bool stop = stopper.update(monitored);
-    if (stopper.improved()) {
-      best.assign(graph.weights());
-      report.best_epoch = e + 1;
-      report.best_loss = monitored;
-    }
-    ++epochs_done;
-    ++report.epochs_this_run;
-    status = stop ? "early stopped" : epochs_done >= o.epochs ? "finished" : "training";
-    const double seconds = since(epoch_start);
-    history.add("epoch", double(epochs_done));
-    history.add("train_loss", train_loss.total);
-    history.add("val_loss", val_idx.empty() ? NAN : val_loss.total);
-    history.add("lr", lr);
-    history.add("seconds", seconds);
-    for (const auto& [name, v] : train_loss.terms) history.add("train_loss_" + name, v);
-    for (const auto& [name, v] : val_loss.terms) history.add("val_loss_" + name, v);
-    save();
-    if (o.log) {
-      if (bar_on_terminal) *o.progress << "\r\033[K" << std::flush;
-      *o.log << "epoch " << epochs_done << "/" << o.epochs << "  train " << brief(train_loss.total) << terms_text(train_loss);
-      if (!val_idx.empty()) *o.log << "  val " << brief(val_loss.total) << terms_text(val_loss);
-      *o.log << "  lr " << brief(lr) << "  " << ProgressBar::format_duration(seconds)
-             << (stopper.improved() ? "  (best)" : "") << (stop ? "  -- stopping early" : "") << "\n";
-      o.log->flush();
-    }
-  }
-  if (bar) bar->finish();
-  report.epochs_done = epochs_done;
-  report.early_stopped = status == "early stopped";
-  report.finished = status != "training";
+  run_epochs(run);
+  report.epochs_done = progress.epochs_done;
+  report.early_stopped = progress.status == "early stopped";
+  report.finished = progress.status != "training";
   report.seconds = since(run_start);
   return report;
 }
