@@ -13,6 +13,7 @@
 #include <drape/svg_figure.hpp>
 
 #include <algorithm>
+#include <functional>
 #include <cstdio>
 #include <iostream>
 #include <memory>
@@ -35,7 +36,8 @@ std::string crossings_summary(const SimulationResult& r) {
          std::to_string(r.crossings->body_edges_through_garment) + " body edges";
 }
 
-int run(const std::vector<std::string>& args) {
+// The command line: every option, parsed into vm; false after --help.
+bool parse_simulate(const std::vector<std::string>& args, po::variables_map& vm) {
   po::options_description opts("drape simulate");
   opts.add_options()("scene", po::value<std::string>(), "scene file (graphs/scenes/*.yaml)")(
       "out", po::value<std::string>(), "draped garment mesh to write (.obj, .ply, .gltf, .glb)")(
@@ -49,47 +51,29 @@ int run(const std::vector<std::string>& args) {
   add_girth_option(opts, "of the scene's target body: ");
   po::positional_options_description pos;
   pos.add("scene", 1);
-  po::variables_map vm;
   const std::string usage =
       "drape simulate SCENE.yaml [--out garment.obj] [--body body.obj | --bmi 35 [--girth belly=0.1]] [--threads T] [--verbose]";
-  if (!parse(usage, args, opts, pos, vm)) return 0;
-  const int threads = vm["threads"].as<int>();
-  if (threads < 0) throw UsageError("--threads: expected 0 (all cores) or a count");
-#ifdef _OPENMP
-  if (threads > 0) omp_set_num_threads(threads);
-#endif
-  check_mesh_outputs(vm, {"out", "body-out"});
-  if (!vm.count("scene")) throw UsageError("a scene file is required, e.g. graphs/scenes/tshirt.yaml");
-  if (vm.count("body") && (vm.count("bmi") || vm.count("height") || vm.count("sex") || vm.count("girth")))
-    throw UsageError("--body gives the body itself: drop --bmi/--height/--sex/--girth");
+  return parse(usage, args, opts, pos, vm);
+}
 
-  Registry& registry = Registry::load_default(plugin_path(vm));
-  Scene scene = load_scene(vm["scene"].as<std::string>());
-  override_shape(scene, vm);
-  // size: auto -- every size is built once (SizeChart); the body comes from
-  // the design size's, then runs in the size its girth needs (garment_size.hpp).
-  const SceneSimulations simulations(registry, scene);
-  const SceneBody target = [&] {
-    if (vm.count("body")) {
-      const std::string file = vm["body"].as<std::string>();
-      return scene_body(simulations, read_mesh(file).vertices, file);
-    }
-    BodyRequest request = simulations.design().target_request();
-    request.proportions = parse_girths(vm);
-    return scene_body(simulations, request, scene.file);
-  }();
-  for (const std::string& note : target.notes) std::printf("note: %s\n", note.c_str());
-  if (target.size) std::printf("size auto: %s\n", target.size->summary().c_str());
-  const Simulation* sim = target.simulation;
+// The body asked for: --body FILE, or the scene's target body changed by
+// --bmi/--height/--sex/--girth (services/scene_body.hpp).
+SceneBody target_body(const SceneSimulations& simulations, const Scene& scene, const po::variables_map& vm) {
+  if (vm.count("body")) {
+    const std::string file = vm["body"].as<std::string>();
+    return scene_body(simulations, read_mesh(file).vertices, file);
+  }
+  BodyRequest request = simulations.design().target_request();
+  request.proportions = parse_girths(vm);
+  return scene_body(simulations, request, scene.file);
+}
 
-  const bool verbose = vm["verbose"].as<bool>();
-  SimulationOptions options;
-  // Without --verbose a bar over the steps (at most morph + settle; the
-  // settling ends early when the drape has settled) with the latest step's
-  // Newton iterations and balance, redrawn on a terminal.
-  std::unique_ptr<ProgressBar> bar;
-  options.on_step = [&](const SimulationStep& s) {
-    if (!verbose) {
+// Without --verbose a bar over the steps (at most morph + settle; the
+// settling ends early when the drape has settled) with the latest step's
+// Newton iterations and balance, redrawn on a terminal; with it, a line per step.
+std::function<void(const SimulationStep&)> step_printer(bool verbose, std::unique_ptr<ProgressBar>& bar) {
+  if (!verbose)
+    return [&bar](const SimulationStep& s) {
       if (!bar) bar = std::make_unique<ProgressBar>("simulate", static_cast<std::size_t>(s.total_steps));
       char status[96];
       if (s.stationarity >= 0)
@@ -98,20 +82,17 @@ int run(const std::vector<std::string>& args) {
         std::snprintf(status, sizeof status, "morphing, %d Newton iterations", s.report.iterations);
       bar->set_status(status);
       bar->advance();
-      return;
-    }
+    };
+  return [](const SimulationStep& s) {
     std::printf("step %3d/%d %-7s newton %2d  residual %.2e  Phi %.6g -> %.6g%s%s\n", s.step, s.total_steps,
                 s.morphing ? "morph" : "settle", s.report.iterations, s.report.residual, s.report.phi_start,
                 s.report.phi_end, s.stationarity >= 0 ? ("  stationarity/|W| " + std::to_string(s.stationarity)).c_str() : "",
                 s.slip_ratio > 0 ? ("  slip/held " + std::to_string(s.slip_ratio)).c_str() : "");
   };
-  std::printf("simulating %s: garment %d vertices, body %d vertices, effects:", sim->scene().file.c_str(),
-              sim->garment().mesh.num_vertices(), static_cast<int>(target.vertices.rows()));
-  for (const auto& e : sim->scene().effects) std::printf(" %s", e.name.c_str());
-  std::printf("\n");
-  const SimulationResult r = drape_scene_body(target, options);  // moved back where the given body stood
-  if (bar) bar->finish();
+}
 
+// Whether it settled, its energies, balance, contact and where the time went.
+void print_result(const SimulationResult& r) {
   std::printf("%s after %d steps, %d Newton iterations (%d line-search stops), %s Cholesky\n",
               r.converged ? (r.at_rest ? "settled (at rest)" : "settled") : "NOT settled", r.steps, r.iterations, r.line_search_failures,
               r.linear_solver.c_str());
@@ -134,43 +115,47 @@ int run(const std::vector<std::string>& args) {
               r.timings.cg_iterations, r.timings.cg_attempts, r.timings.cg_failures, r.timings.cg_skipped,
               r.timings.exact_steps, r.timings.exact_refused, r.timings.exact_skipped, r.timings.line_search,
               r.timings.line_search_trials, r.timings.collision_checks);
-  if (verbose) {
-    // Where the drape is out of balance: the vertices with the largest unbalanced forces.
-    std::vector<int> order(r.vertex_force.size());
-    std::iota(order.begin(), order.end(), 0);
-    const int shown = std::min<int>(8, static_cast<int>(order.size()));
-    std::partial_sort(order.begin(), order.begin() + shown, order.end(),
-                      [&](int a, int b) { return r.vertex_force[a] > r.vertex_force[b]; });
-    std::printf("largest unbalanced forces (vertex, N, position m, distance to the body m):\n");
-    for (int k = 0; k < shown; ++k) {
-      const int i = order[k];
-      std::printf("  %5d  %.3e  (%+.3f %+.3f %+.3f)  %s\n", i, r.vertex_force[i], r.garment(i, 0), r.garment(i, 1),
-                  r.garment(i, 2), r.body_distance.size() ? std::to_string(r.body_distance[i]).c_str() : "-");
-    }
-    if (r.crossings && !r.crossings->garment_vertices.empty()) {
-      // Where the surfaces cross: a few of the garment vertices there, to look up in the mesh.
-      const std::vector<int>& at = r.crossings->garment_vertices;
-      std::printf("garment vertices at surface crossings: %zu (", at.size());
-      for (std::size_t k = 0; k < std::min<std::size_t>(12, at.size()); ++k) std::printf("%s%d", k ? " " : "", at[k]);
-      std::printf("%s)\n", at.size() > 12 ? " ..." : "");
-    }
+}
+
+// --verbose: where the drape is out of balance (the vertices with the largest
+// unbalanced forces) and where the surfaces cross.
+void print_imbalance(const SimulationResult& r) {
+  std::vector<int> order(r.vertex_force.size());
+  std::iota(order.begin(), order.end(), 0);
+  const int shown = std::min<int>(8, static_cast<int>(order.size()));
+  std::partial_sort(order.begin(), order.begin() + shown, order.end(),
+                    [&](int a, int b) { return r.vertex_force[a] > r.vertex_force[b]; });
+  std::printf("largest unbalanced forces (vertex, N, position m, distance to the body m):\n");
+  for (int k = 0; k < shown; ++k) {
+    const int i = order[k];
+    std::printf("  %5d  %.3e  (%+.3f %+.3f %+.3f)  %s\n", i, r.vertex_force[i], r.garment(i, 0), r.garment(i, 1),
+                r.garment(i, 2), r.body_distance.size() ? std::to_string(r.body_distance[i]).c_str() : "-");
   }
+  if (r.crossings && !r.crossings->garment_vertices.empty()) {
+    // A few of the garment vertices there, to look up in the mesh.
+    const std::vector<int>& at = r.crossings->garment_vertices;
+    std::printf("garment vertices at surface crossings: %zu (", at.size());
+    for (std::size_t k = 0; k < std::min<std::size_t>(12, at.size()); ++k) std::printf("%s%d", k ? " " : "", at[k]);
+    std::printf("%s)\n", at.size() > 12 ? " ..." : "");
+  }
+}
+
+// --out, --body-out and --svg, where the given body stood.
+void write_outputs(const po::variables_map& vm, const Simulation& sim, const SimulationResult& r) {
+  Mesh garment = sim.garment().mesh;
+  garment.vertices = r.garment;
   if (vm.count("out")) {
-    Mesh out = sim->garment().mesh;
-    out.vertices = r.garment;
-    write_mesh(vm["out"].as<std::string>(), out);
+    write_mesh(vm["out"].as<std::string>(), garment);
     std::printf("wrote %s\n", vm["out"].as<std::string>().c_str());
   }
   Mesh body;
   body.vertices = r.body;
-  body.faces = sim->body_model().faces();
+  body.faces = sim.body_model().faces();
   if (vm.count("body-out")) {
     write_mesh(vm["body-out"].as<std::string>(), body);
     std::printf("wrote %s\n", vm["body-out"].as<std::string>().c_str());
   }
   if (vm.count("svg")) {
-    Mesh garment = sim->garment().mesh;
-    garment.vertices = r.garment;
     char caption[160];
     std::snprintf(caption, sizeof caption, "%s, %d iterations, %.1f s, p = %.2f%%, %d surface crossings",
                   r.converged ? "settled" : "NOT settled", r.iterations, r.seconds, 100.0 * r.penetration,
@@ -178,6 +163,45 @@ int run(const std::vector<std::string>& args) {
     drape_figure("drape simulate: " + vm["scene"].as<std::string>(), caption, body, garment).write(vm["svg"].as<std::string>());
     std::printf("wrote %s\n", vm["svg"].as<std::string>().c_str());
   }
+}
+
+int run(const std::vector<std::string>& args) {
+  po::variables_map vm;
+  if (!parse_simulate(args, vm)) return 0;
+  const int threads = vm["threads"].as<int>();
+  if (threads < 0) throw UsageError("--threads: expected 0 (all cores) or a count");
+#ifdef _OPENMP
+  if (threads > 0) omp_set_num_threads(threads);
+#endif
+  check_mesh_outputs(vm, {"out", "body-out"});
+  if (!vm.count("scene")) throw UsageError("a scene file is required, e.g. graphs/scenes/tshirt.yaml");
+  if (vm.count("body") && (vm.count("bmi") || vm.count("height") || vm.count("sex") || vm.count("girth")))
+    throw UsageError("--body gives the body itself: drop --bmi/--height/--sex/--girth");
+
+  Registry& registry = Registry::load_default(plugin_path(vm));
+  Scene scene = load_scene(vm["scene"].as<std::string>());
+  override_shape(scene, vm);
+  // size: auto -- every size is built once (SizeChart); the body comes from
+  // the design size's, then runs in the size its girth needs (garment_size.hpp).
+  const SceneSimulations simulations(registry, scene);
+  const SceneBody target = target_body(simulations, scene, vm);
+  for (const std::string& note : target.notes) std::printf("note: %s\n", note.c_str());
+  if (target.size) std::printf("size auto: %s\n", target.size->summary().c_str());
+  const Simulation& sim = *target.simulation;
+
+  const bool verbose = vm["verbose"].as<bool>();
+  SimulationOptions options;
+  std::unique_ptr<ProgressBar> bar;
+  options.on_step = step_printer(verbose, bar);
+  std::printf("simulating %s: garment %d vertices, body %d vertices, effects:", sim.scene().file.c_str(),
+              sim.garment().mesh.num_vertices(), static_cast<int>(target.vertices.rows()));
+  for (const auto& e : sim.scene().effects) std::printf(" %s", e.name.c_str());
+  std::printf("\n");
+  const SimulationResult r = drape_scene_body(target, options);  // moved back where the given body stood
+  if (bar) bar->finish();
+  print_result(r);
+  if (verbose) print_imbalance(r);
+  write_outputs(vm, sim, r);
   return r.converged ? 0 : 1;
 }
 
