@@ -10,18 +10,18 @@
 #include "bench.hpp"
 #include "model_body.hpp"
 
-#include <drape/atomic_file.hpp>
-#include <drape/data_parallel.hpp>
-#include <drape/dataset.hpp>
-#include <drape/evaluation.hpp>
-#include <drape/model.hpp>
-#include <drape/physics_optimization.hpp>
+#include <drape/assets/dataset_assets.hpp>
+#include <drape/io/atomic_file.hpp>
+#include <drape/training/data_parallel.hpp>
+#include <drape/io/dataset.hpp>
+#include <drape/training/evaluation.hpp>
+#include <drape/training/model.hpp>
+#include <drape/training/physics_optimization.hpp>
 #include <drape/progress.hpp>
 #include <drape/registry.hpp>
-#include <drape/scene.hpp>
-#include <drape/simulation.hpp>
-#include <drape/svg_chart.hpp>
-#include <drape/trainer.hpp>
+#include <drape/scene/scene.hpp>
+#include <drape/scene/simulation.hpp>
+#include <drape/io/svg_chart.hpp>
 
 #include <algorithm>
 #include <cstdio>

@@ -8,6 +8,7 @@
 // the cloth in contact range, the barrier's worst case per vertex.
 #include "bench.hpp"
 
+#include <drape/energy.hpp>
 #include <drape/geometry/closed_shapes.hpp>
 #include <drape/geometry/closest_point.hpp>
 #include <drape/geometry/surface_crossings.hpp>

@@ -7,7 +7,7 @@
 
 #include <drape/geometry/closed_shapes.hpp>
 #include <drape/geometry/closest_point.hpp>
-#include <drape/mesh_io.hpp>
+#include <drape/io/mesh_io.hpp>
 
 #include <nanoflann.hpp>
 

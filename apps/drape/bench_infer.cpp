@@ -3,8 +3,8 @@
 // graph's multiply-adds per sample (Node::flops_per_sample) and the rate.
 #include "bench.hpp"
 
-#include <drape/data_parallel.hpp>
-#include <drape/model.hpp>
+#include <drape/training/data_parallel.hpp>
+#include <drape/training/model.hpp>
 #include <drape/nn/basis_products.hpp>
 #include <drape/nn/dot_rows.hpp>
 #include <drape/registry.hpp>

@@ -3,7 +3,7 @@
 // check that each round trip kept vertex count and faces.
 #include "bench.hpp"
 
-#include <drape/mesh_io.hpp>
+#include <drape/io/mesh_io.hpp>
 
 #include <chrono>
 #include <cstdio>

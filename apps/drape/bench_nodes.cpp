@@ -5,7 +5,7 @@
 // Best of several runs, wall time; set OMP_NUM_THREADS=1 for one core.
 #include "bench.hpp"
 
-#include <drape/assets.hpp>
+#include <drape/assets/assets.hpp>
 #include <drape/registry.hpp>
 
 #include <chrono>

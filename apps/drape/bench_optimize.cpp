@@ -7,11 +7,11 @@
 // Several runs from the same weights: the best and the median are shown.
 #include "bench.hpp"
 
-#include <drape/model.hpp>
-#include <drape/physics_optimization.hpp>
+#include <drape/training/model.hpp>
+#include <drape/training/physics_optimization.hpp>
 #include <drape/registry.hpp>
-#include <drape/scene.hpp>
-#include <drape/simulation.hpp>
+#include <drape/scene/scene.hpp>
+#include <drape/scene/simulation.hpp>
 
 #include <algorithm>
 #include <cstdio>

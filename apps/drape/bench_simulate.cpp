@@ -7,7 +7,7 @@
 
 #include <drape/geometry/closest_point.hpp>
 #include <drape/registry.hpp>
-#include <drape/simulation.hpp>
+#include <drape/scene/simulation.hpp>
 
 #ifdef _OPENMP
 #include <omp.h>

@@ -5,12 +5,12 @@
 // a chart of error against time.
 #include "bench.hpp"
 
-#include <drape/dataset.hpp>
-#include <drape/evaluation.hpp>
-#include <drape/model.hpp>
+#include <drape/assets/dataset_assets.hpp>
+#include <drape/io/dataset.hpp>
+#include <drape/training/evaluation.hpp>
+#include <drape/training/model.hpp>
 #include <drape/registry.hpp>
-#include <drape/svg_chart.hpp>
-#include <drape/trainer.hpp>
+#include <drape/io/svg_chart.hpp>
 
 #include <algorithm>
 #include <cstdio>

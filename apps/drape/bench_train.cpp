@@ -12,14 +12,14 @@
 // train split) comes first, unless --cold.
 #include "bench.hpp"
 
-#include <drape/data_parallel.hpp>
-#include <drape/dataset.hpp>
+#include <drape/assets/dataset_assets.hpp>
+#include <drape/training/data_parallel.hpp>
+#include <drape/io/dataset.hpp>
 #include <drape/geometry/surface_cache.hpp>
-#include <drape/model.hpp>
-#include <drape/optimizer.hpp>
+#include <drape/training/model.hpp>
+#include <drape/training/optimizer.hpp>
 #include <drape/registry.hpp>
-#include <drape/rng.hpp>
-#include <drape/trainer.hpp>
+#include <drape/training/rng.hpp>
 
 #include <algorithm>
 #include <chrono>

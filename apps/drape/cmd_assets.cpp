@@ -2,9 +2,10 @@
 // garment template and prints its sizes and what each part cost.
 #include "command.hpp"
 
-#include <drape/assets.hpp>
+#include <drape/energy.hpp>
+#include <drape/assets/assets.hpp>
 #include <drape/garment_dressing.hpp>
-#include <drape/mesh_io.hpp>
+#include <drape/io/mesh_io.hpp>
 #include <drape/geometry/index_locality.hpp>
 #include <drape/registry.hpp>
 

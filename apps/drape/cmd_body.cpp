@@ -3,16 +3,17 @@
 #include "command.hpp"
 #include "sample_ranges.hpp"
 
-#include <drape/atomic_file.hpp>
-#include <drape/body_space.hpp>
-#include <drape/body_overlap.hpp>
+#include <drape/bodies/body.hpp>
+#include <drape/io/atomic_file.hpp>
+#include <drape/bodies/body_space.hpp>
+#include <drape/scene/body_overlap.hpp>
 #include <drape/geometry/self_intersection.hpp>
 #include <drape/geometry/index_locality.hpp>
 #include <drape/geometry/volume.hpp>
-#include <drape/mesh_io.hpp>
+#include <drape/io/mesh_io.hpp>
 #include <drape/registry.hpp>
-#include <drape/rng.hpp>
-#include <drape/svg_figure.hpp>
+#include <drape/training/rng.hpp>
+#include <drape/io/svg_figure.hpp>
 
 #include <chrono>
 #include <cstdio>

@@ -7,14 +7,14 @@
 #include "command.hpp"
 #include "dataset_potential.hpp"
 
-#include <drape/body.hpp>
-#include <drape/dataset.hpp>
+#include <drape/bodies/body.hpp>
+#include <drape/io/dataset.hpp>
 #include <drape/errors.hpp>
-#include <drape/model.hpp>
-#include <drape/output_lock.hpp>
+#include <drape/training/model.hpp>
+#include <drape/io/output_lock.hpp>
 #include <drape/progress.hpp>
 #include <drape/registry.hpp>
-#include <drape/scene.hpp>
+#include <drape/scene/scene.hpp>
 
 #include <cmath>
 #include <filesystem>

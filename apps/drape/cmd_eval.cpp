@@ -1,16 +1,16 @@
 // `drape eval --model model.h5 --data data.h5 [--split test]`: the seed's
-// metrics (drape/metrics.hpp) and surface crossings of a model's predictions on
+// metrics (drape/training/metrics.hpp) and surface crossings of a model's predictions on
 // one split, or (--drapes) of garments stored by drape optimize.
 #include "command.hpp"
 
-#include <drape/atomic_file.hpp>
-#include <drape/dataset.hpp>
-#include <drape/evaluation.hpp>
-#include <drape/metrics.hpp>
-#include <drape/model.hpp>
+#include <drape/assets/dataset_assets.hpp>
+#include <drape/io/atomic_file.hpp>
+#include <drape/io/dataset.hpp>
+#include <drape/training/evaluation.hpp>
+#include <drape/training/metrics.hpp>
+#include <drape/training/model.hpp>
 #include <drape/progress.hpp>
-#include <drape/svg_figure.hpp>
-#include <drape/trainer.hpp>
+#include <drape/io/svg_figure.hpp>
 
 #include <algorithm>
 #include <numeric>

@@ -1,7 +1,7 @@
 // `drape graph check FILE`: validates a graph as a whole and prints its nodes and shapes.
 #include "command.hpp"
 
-#include <drape/assets.hpp>
+#include <drape/assets/assets.hpp>
 #include <drape/graph.hpp>
 
 #include <iomanip>

@@ -4,7 +4,7 @@
 
 #include <drape/errors.hpp>
 #include <drape/geometry/hierarchy.hpp>
-#include <drape/mesh_io.hpp>
+#include <drape/io/mesh_io.hpp>
 
 #include <Eigen/Geometry>
 

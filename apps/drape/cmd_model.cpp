@@ -5,13 +5,13 @@
 // format (sealed: docs/formats.md).
 #include "command.hpp"
 
-#include <drape/atomic_file.hpp>
-#include <drape/checkpoint.hpp>
-#include <drape/dataset.hpp>
+#include <drape/io/atomic_file.hpp>
+#include <drape/io/checkpoint.hpp>
+#include <drape/io/dataset.hpp>
 #include <drape/errors.hpp>
-#include <drape/h5.hpp>
-#include <drape/model.hpp>
-#include <drape/model_domain.hpp>
+#include <drape/io/h5.hpp>
+#include <drape/training/model.hpp>
+#include <drape/training/model_domain.hpp>
 
 #include <cstdio>
 #include <cstdlib>

@@ -1,22 +1,22 @@
 // `drape optimize --model model.h5 --scene scene.yaml (--body body.obj | --bmi 35)
 // --iters 100 --out garment.obj`: the seed's physics-enforced optimisation of
-// one drape (drape/physics_optimization.hpp) -- the network's weights
+// one drape (drape/training/physics_optimization.hpp) -- the network's weights
 // fine-tuned for this body to minimise the scene's potential energy.
 #include "command.hpp"
 
 #include "model_body.hpp"
 #include "optimize_dataset.hpp"
 
-#include <drape/dataset.hpp>
+#include <drape/io/dataset.hpp>
 #include <drape/geometry/surface_crossings.hpp>
-#include <drape/mesh_io.hpp>
-#include <drape/model.hpp>
-#include <drape/output_lock.hpp>
-#include <drape/physics_optimization.hpp>
+#include <drape/io/mesh_io.hpp>
+#include <drape/training/model.hpp>
+#include <drape/io/output_lock.hpp>
+#include <drape/training/physics_optimization.hpp>
 #include <drape/registry.hpp>
-#include <drape/scene.hpp>
-#include <drape/simulation.hpp>
-#include <drape/svg_figure.hpp>
+#include <drape/scene/scene.hpp>
+#include <drape/scene/simulation.hpp>
+#include <drape/io/svg_figure.hpp>
 
 #include <cstdio>
 #include <filesystem>

@@ -5,9 +5,9 @@
 
 #include <drape/geometry/penetration.hpp>
 #include <drape/geometry/push_out.hpp>
-#include <drape/mesh_io.hpp>
-#include <drape/model.hpp>
-#include <drape/svg_figure.hpp>
+#include <drape/io/mesh_io.hpp>
+#include <drape/training/model.hpp>
+#include <drape/io/svg_figure.hpp>
 
 #include <chrono>
 #include <cstdio>

@@ -6,14 +6,14 @@
 // dataset's simulated drape (--data ... --simulated).
 #include "command.hpp"
 
-#include <drape/dataset.hpp>
+#include <drape/assets/dataset_assets.hpp>
+#include <drape/io/dataset.hpp>
 #include <drape/geometry/closest_point.hpp>
 #include <drape/geometry/penetration.hpp>
-#include <drape/mesh_io.hpp>
-#include <drape/model.hpp>
+#include <drape/io/mesh_io.hpp>
+#include <drape/training/model.hpp>
 #include <drape/registry.hpp>
-#include <drape/svg_figure.hpp>
-#include <drape/trainer.hpp>
+#include <drape/io/svg_figure.hpp>
 
 #include "model_body.hpp"
 

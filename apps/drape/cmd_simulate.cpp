@@ -6,11 +6,11 @@
 #include <omp.h>
 #endif
 
-#include <drape/mesh_io.hpp>
+#include <drape/io/mesh_io.hpp>
 #include <drape/progress.hpp>
 #include <drape/registry.hpp>
 #include <drape/services/scene_body.hpp>
-#include <drape/svg_figure.hpp>
+#include <drape/io/svg_figure.hpp>
 
 #include <algorithm>
 #include <functional>

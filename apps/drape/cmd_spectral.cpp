@@ -3,8 +3,8 @@
 #include "command.hpp"
 
 #include <drape/errors.hpp>
-#include <drape/mesh_io.hpp>
-#include <drape/spectral.hpp>
+#include <drape/io/mesh_io.hpp>
+#include <drape/spectral/spectral.hpp>
 
 #include <algorithm>
 #include <cstdio>

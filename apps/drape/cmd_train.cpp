@@ -1,13 +1,13 @@
 // `drape train GRAPH.yaml --data data.h5 --out model.h5`: train a graph on a
-// dataset (drape/trainer.hpp), resumable with --resume after a kill.
+// dataset (drape/training/trainer.hpp), resumable with --resume after a kill.
 #include "command.hpp"
 #include "mpi_ranks.hpp"
 
-#include <drape/model_domain.hpp>
+#include <drape/training/model_domain.hpp>
 #include <drape/services/model_training.hpp>
 
 #include <drape/errors.hpp>
-#include <drape/trainer.hpp>
+#include <drape/training/trainer.hpp>
 
 #include <exception>
 #include <iostream>

@@ -7,13 +7,13 @@
 
 #include "command.hpp"
 
-#include <drape/dataset.hpp>
+#include <drape/io/dataset.hpp>
 #include <drape/errors.hpp>
 #include <drape/geometry/closest_point.hpp>
 #include <drape/geometry/penetration.hpp>
 #include <drape/registry.hpp>
-#include <drape/scene.hpp>
-#include <drape/simulation.hpp>
+#include <drape/scene/scene.hpp>
+#include <drape/scene/simulation.hpp>
 
 #include <algorithm>
 #include <cmath>

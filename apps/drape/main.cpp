@@ -2,9 +2,9 @@
 
 #include <drape/errors.hpp>
 #include <drape/geometry/push_out.hpp>
-#include <drape/mesh_io.hpp>
+#include <drape/io/mesh_io.hpp>
 #include <drape/nn/gemm.hpp>
-#include <drape/write_failure.hpp>
+#include <drape/io/write_failure.hpp>
 
 #include <algorithm>
 #include <cmath>

@@ -1,7 +1,7 @@
 #include "model_body.hpp"
 
-#include <drape/garment_size.hpp>
-#include <drape/mesh_io.hpp>
+#include <drape/scene/garment_size.hpp>
+#include <drape/io/mesh_io.hpp>
 #include <drape/services/model_body.hpp>
 
 #include <iostream>

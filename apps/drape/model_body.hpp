@@ -6,8 +6,8 @@
 // benchmarks.
 #include "command.hpp"
 
-#include <drape/model.hpp>
-#include <drape/model_domain.hpp>
+#include <drape/training/model.hpp>
+#include <drape/training/model_domain.hpp>
 
 namespace drape::cli {
 

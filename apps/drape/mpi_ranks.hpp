@@ -1,6 +1,6 @@
 #pragma once
-// The ranks of `mpirun -np N drape train ...` (drape/ranks.hpp over MPI).
-#include <drape/ranks.hpp>
+// The ranks of `mpirun -np N drape train ...` (drape/training/ranks.hpp over MPI).
+#include <drape/training/ranks.hpp>
 
 #include <memory>
 

@@ -2,11 +2,11 @@
 
 #include "parallel_samples.hpp"
 
-#include <drape/dataset.hpp>
+#include <drape/assets/dataset_assets.hpp>
+#include <drape/io/dataset.hpp>
 #include <drape/progress.hpp>
 #include <drape/registry.hpp>
-#include <drape/scene.hpp>
-#include <drape/trainer.hpp>
+#include <drape/scene/scene.hpp>
 
 #include <algorithm>
 #include <cstdio>

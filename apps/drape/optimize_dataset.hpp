@@ -6,7 +6,7 @@
 // the seed's self-correcting loop.
 #include "sample_ranges.hpp"
 
-#include <drape/physics_optimization.hpp>
+#include <drape/training/physics_optimization.hpp>
 
 #include <filesystem>
 #include <string>

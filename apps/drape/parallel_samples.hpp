@@ -1,6 +1,6 @@
 #pragma once
-// The dataset-filling worker pool lives in the framework (drape/parallel_samples.hpp).
-#include <drape/parallel_samples.hpp>
+// The dataset-filling worker pool lives in the framework (drape/io/parallel_samples.hpp).
+#include <drape/io/parallel_samples.hpp>
 
 namespace drape::cli {
 using drape::make_samples_in_parallel;

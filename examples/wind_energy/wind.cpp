@@ -7,6 +7,7 @@
 // The force -dE/dx = a(v) w is the same everywhere on the cloth per unit of
 // material area, so stretching the garment does not change the total load.
 // E is linear in x: the gradient is constant and the Hessian is zero.
+#include <drape/energy.hpp>
 #include <drape/energy_input.hpp>
 #include <drape/plugin.hpp>
 

@@ -1,4 +1,4 @@
-#include <drape/assets.hpp>
+#include <drape/assets/assets.hpp>
 #include <drape/energy_node.hpp>
 #include <drape/errors.hpp>
 

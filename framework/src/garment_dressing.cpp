@@ -1,3 +1,4 @@
+#include <drape/energy.hpp>
 #include <drape/garment_dressing.hpp>
 
 #include <drape/errors.hpp>

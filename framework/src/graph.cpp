@@ -1,4 +1,5 @@
 // Building, validating and running graphs.
+#include <drape/energy.hpp>
 #include <drape/graph.hpp>
 
 #include <chrono>

@@ -1,3 +1,4 @@
+#include <drape/bodies/body.hpp>
 #include <drape/energy_node.hpp>
 #include <drape/registry.hpp>
 #include <drape/warnings.hpp>

@@ -3,7 +3,8 @@
 // sparse matrices come as COO arrays, turned into SciPy's by drape/__init__.py.
 #include "common.hpp"
 
-#include <drape/assets.hpp>
+#include <drape/energy.hpp>
+#include <drape/assets/assets.hpp>
 
 namespace drape::python {
 

@@ -2,7 +2,7 @@
 // drape.BodyModel (any body plugin by name), drape.plugins(), drape.load_plugins().
 #include "common.hpp"
 
-#include <drape/body.hpp>
+#include <drape/bodies/body.hpp>
 #include <drape/errors.hpp>
 #include <drape/nn/gemm.hpp>
 #include <drape/params.hpp>

@@ -2,10 +2,10 @@
 // What every area of the Python module shares: the plugin registry, argument
 // checks that name the argument and the shape it wants, and NumPy arrays that
 // own drape's memory instead of copying it.
-#include <drape/assets.hpp>
-#include <drape/garment_size.hpp>
+#include <drape/assets/assets.hpp>
+#include <drape/scene/garment_size.hpp>
 #include <drape/registry.hpp>
-#include <drape/simulation.hpp>
+#include <drape/scene/simulation.hpp>
 #include <drape/tensor.hpp>
 
 #include <Eigen/Core>

@@ -2,7 +2,7 @@
 // open, list samples by split, read a batch.
 #include "common.hpp"
 
-#include <drape/dataset.hpp>
+#include <drape/io/dataset.hpp>
 #include <drape/services/dataset_generation.hpp>
 
 #include <iostream>

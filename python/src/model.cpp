@@ -4,13 +4,13 @@
 // the predicted garment to the weights.
 #include "common.hpp"
 
-#include <drape/body_units.hpp>
-#include <drape/checkpoint.hpp>
+#include <drape/geometry/body_units.hpp>
+#include <drape/io/checkpoint.hpp>
 #include <drape/errors.hpp>
 #include <drape/graph.hpp>
-#include <drape/model.hpp>
-#include <drape/model_domain.hpp>
-#include <drape/physics_optimization.hpp>
+#include <drape/training/model.hpp>
+#include <drape/training/model_domain.hpp>
+#include <drape/training/physics_optimization.hpp>
 #include <drape/services/model_body.hpp>
 
 #include <chrono>

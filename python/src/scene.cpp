@@ -5,9 +5,9 @@
 
 #include <drape/errors.hpp>
 #include <drape/geometry/closest_point.hpp>
-#include <drape/scene.hpp>
+#include <drape/scene/scene.hpp>
 #include <drape/services/scene_body.hpp>
-#include <drape/simulation.hpp>
+#include <drape/scene/simulation.hpp>
 
 #include <memory>
 

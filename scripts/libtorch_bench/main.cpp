@@ -12,18 +12,18 @@
 // batched matmul with the eigenvectors. Every size, the hierarchy, the
 // correspondences and the eigenbasis come from drape's assets for the dataset,
 // and the program refuses to run when the two networks' weight counts differ.
-#include <drape/assets.hpp>
-#include <drape/data_parallel.hpp>
-#include <drape/dataset.hpp>
+#include <drape/assets/assets.hpp>
+#include <drape/training/data_parallel.hpp>
+#include <drape/io/dataset.hpp>
 #include <drape/errors.hpp>
 #include <drape/geometry/adjacency.hpp>
 #include <drape/graph.hpp>
-#include <drape/model.hpp>
+#include <drape/training/model.hpp>
 #include <drape/nn/gemm.hpp>
 #include <drape/nn/mesh_graph.hpp>
-#include <drape/optimizer.hpp>
+#include <drape/training/optimizer.hpp>
 #include <drape/registry.hpp>
-#include <drape/trainer.hpp>
+#include <drape/training/trainer.hpp>
 
 #include <torch/torch.h>
 

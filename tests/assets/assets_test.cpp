@@ -1,6 +1,6 @@
 // The assets cache: everything precomputed for a template, built once, cached
 // in HDF5 by a hash of the template and settings, identical when reloaded.
-#include <drape/assets.hpp>
+#include <drape/assets/assets.hpp>
 
 #include <catch2/catch.hpp>
 

@@ -5,12 +5,12 @@
 // where it must end (pushed out past the waist it started on) is known.
 // What is checked does not share code with the contact: the crossing count
 // and the signed distances of the final drape.
-#include <drape/body.hpp>
+#include <drape/bodies/body.hpp>
 #include <drape/geometry/closest_point.hpp>
 #include <drape/geometry/surface_crossings.hpp>
 #include <drape/registry.hpp>
-#include <drape/scene.hpp>
-#include <drape/simulation.hpp>
+#include <drape/scene/scene.hpp>
+#include <drape/scene/simulation.hpp>
 
 #include <catch2/catch.hpp>
 

@@ -4,11 +4,12 @@
 // continuous collision bound, and a sheet falling onto the corner that is
 // never inside or through the body at any step (checked by the independent
 // crossing count and signed distances, which share no code with the contact).
+#include <drape/energy.hpp>
 #include <drape/geometry/ccd.hpp>
 #include <drape/geometry/closest_point.hpp>
 #include <drape/geometry/surface_crossings.hpp>
 #include <drape/gradcheck.hpp>
-#include <drape/solver.hpp>
+#include <drape/physics/solver.hpp>
 
 #include <catch2/catch.hpp>
 

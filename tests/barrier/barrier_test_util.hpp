@@ -1,6 +1,7 @@
 #pragma once
 // What the barrier contact's tests share: a closed box for a body, and the
 // barrier bound to a garment on it.
+#include <drape/energy.hpp>
 #include <drape/geometry/closest_point.hpp>
 
 #include "../energies/energy_test_util.hpp"

@@ -5,8 +5,8 @@
 #include <drape/errors.hpp>
 #include <drape/geometry/self_intersection.hpp>
 #include <drape/registry.hpp>
-#include <drape/scene.hpp>
-#include <drape/simulation.hpp>
+#include <drape/scene/scene.hpp>
+#include <drape/scene/simulation.hpp>
 
 #include <catch2/catch.hpp>
 

@@ -3,9 +3,10 @@
 // computed by hand, its gradient and Hessian against finite differences (every
 // pair kind, static and kinetic slip), and Coulomb's law on a tilted table: a
 // sheet is held when mu > tan(theta) and slides when mu < tan(theta).
+#include <drape/energy.hpp>
 #include <drape/geometry/closest_point.hpp>
 #include <drape/geometry/surface_crossings.hpp>
-#include <drape/solver.hpp>
+#include <drape/physics/solver.hpp>
 
 #include <catch2/catch.hpp>
 

@@ -7,8 +7,8 @@
 // body shrunk 1 cm along its own vertex normals, computed here.
 #include <drape/geometry/surface_crossings.hpp>
 #include <drape/registry.hpp>
-#include <drape/scene.hpp>
-#include <drape/simulation.hpp>
+#include <drape/scene/scene.hpp>
+#include <drape/scene/simulation.hpp>
 
 #include <catch2/catch.hpp>
 

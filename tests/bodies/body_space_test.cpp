@@ -3,7 +3,8 @@
 // body on target BMI; requests with proportions a model lacks refused.
 #include <catch2/catch.hpp>
 
-#include <drape/body_space.hpp>
+#include <drape/bodies/body.hpp>
+#include <drape/bodies/body_space.hpp>
 #include <drape/errors.hpp>
 #include <drape/geometry/self_intersection.hpp>
 #include <drape/geometry/topology.hpp>

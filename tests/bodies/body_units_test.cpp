@@ -1,6 +1,6 @@
 // check_body_units: a body in other units, lying down or with an absurd
 // coordinate is refused with the cause, before any work (issue 58).
-#include <drape/body_units.hpp>
+#include <drape/geometry/body_units.hpp>
 #include <drape/errors.hpp>
 
 #include <catch2/catch.hpp>

@@ -2,6 +2,7 @@
 // range, mesh validity at the extremes, index locality, determinism, errors.
 #include <catch2/catch.hpp>
 
+#include <drape/bodies/body.hpp>
 #include <drape/geometry/face_quality.hpp>
 #include <drape/geometry/index_locality.hpp>
 #include <drape/geometry/self_intersection.hpp>

@@ -3,7 +3,7 @@
 // simulate for 13 minutes and predict exited 0 with 19.7 % inside).
 #include <catch2/catch.hpp>
 
-#include <drape/mesh_io.hpp>
+#include <drape/io/mesh_io.hpp>
 
 #include <chrono>
 #include <fstream>

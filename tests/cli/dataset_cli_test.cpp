@@ -1,7 +1,7 @@
 // `drape dataset merge`, `info` and `potential` on tiny datasets written here.
 #include <catch2/catch.hpp>
 
-#include <drape/dataset.hpp>
+#include <drape/io/dataset.hpp>
 
 #include <fstream>
 #include <regex>

@@ -3,8 +3,8 @@
 // its datasets and outputs when run again, and refuses bad files clearly.
 #include <catch2/catch.hpp>
 
-#include <drape/dataset.hpp>
-#include <drape/experiment.hpp>
+#include <drape/io/dataset.hpp>
+#include <drape/experiment/experiment.hpp>
 
 #include <fstream>
 #include <sstream>

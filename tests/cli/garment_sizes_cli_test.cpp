@@ -4,12 +4,12 @@
 // and optimize feed the flag.
 #include <catch2/catch.hpp>
 
-#include <drape/dataset.hpp>
-#include <drape/garment_size.hpp>
-#include <drape/mesh_io.hpp>
-#include <drape/model.hpp>
-#include <drape/scene.hpp>
-#include <drape/simulation.hpp>
+#include <drape/io/dataset.hpp>
+#include <drape/scene/garment_size.hpp>
+#include <drape/io/mesh_io.hpp>
+#include <drape/training/model.hpp>
+#include <drape/scene/scene.hpp>
+#include <drape/scene/simulation.hpp>
 
 #include <cstdio>
 #include <fstream>

@@ -2,7 +2,7 @@
 // every shape parameter stored; without girths a seed draws the bodies it did.
 #include <catch2/catch.hpp>
 
-#include <drape/dataset.hpp>
+#include <drape/io/dataset.hpp>
 
 #include <fstream>
 

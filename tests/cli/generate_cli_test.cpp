@@ -3,7 +3,7 @@
 // without losing or duplicating a sample.
 #include <catch2/catch.hpp>
 
-#include <drape/dataset.hpp>
+#include <drape/io/dataset.hpp>
 
 #include <chrono>
 #include <cstdio>

@@ -3,7 +3,7 @@
 // simulate), and a girth that cannot be used is refused before anything runs.
 #include <catch2/catch.hpp>
 
-#include <drape/mesh_io.hpp>
+#include <drape/io/mesh_io.hpp>
 
 #include <fstream>
 

@@ -2,7 +2,7 @@
 // tiny scene's drape, so only the format is checked, not the values).
 #include <catch2/catch.hpp>
 
-#include <drape/mesh_io.hpp>
+#include <drape/io/mesh_io.hpp>
 
 #include <fstream>
 #include <iterator>

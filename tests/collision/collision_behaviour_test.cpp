@@ -3,6 +3,7 @@
 // at the next call; any BodyQuery works, not only a BodySurface.
 #include "collision_test_util.hpp"
 
+#include <drape/energy.hpp>
 #include <drape/geometry/penetration.hpp>
 
 #include <Eigen/SparseCholesky>

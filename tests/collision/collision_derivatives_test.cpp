@@ -5,7 +5,8 @@
 
 #include <catch2/catch.hpp>
 
-#include <drape/solver.hpp>
+#include <drape/energy.hpp>
+#include <drape/physics/solver.hpp>
 
 #include <Eigen/Eigenvalues>
 

@@ -4,6 +4,7 @@
 // signed distances from a body.
 #include "../plugins/plugin_test_util.hpp"
 
+#include <drape/energy.hpp>
 #include <drape/geometry/closed_shapes.hpp>
 #include <drape/geometry/closest_point.hpp>
 

@@ -3,6 +3,7 @@
 // vertex_areas (lumped material-space areas).
 #include "collision_test_util.hpp"
 
+#include <drape/energy.hpp>
 #include <drape/geometry/penetration.hpp>
 #include <drape/geometry/vertex_areas.hpp>
 

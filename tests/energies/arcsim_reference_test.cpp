@@ -3,7 +3,8 @@
 // Python re-implementation of ArcSim's dde.cpp and physics.cpp that shares no
 // code with drape; the material data is ArcSim's gray-interlock.json, typed
 // here from that file.
-#include <drape/arcsim_material.hpp>
+#include <drape/energy.hpp>
+#include <drape/physics/arcsim_material.hpp>
 #include <drape/gradcheck.hpp>
 
 #include <catch2/catch.hpp>

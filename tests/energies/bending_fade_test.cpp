@@ -1,6 +1,7 @@
 // Bending of a hinge whose wing collapses: the energy is faded out below 10 %
 // of the wing's rest height (plugins/energies/bending/wing_fade.hpp) with exact
 // derivatives, and stays bounded where theta's own derivatives grow like 1/h.
+#include <drape/energy.hpp>
 #include <drape/gradcheck.hpp>
 
 #include <catch2/catch.hpp>

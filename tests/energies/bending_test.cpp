@@ -1,3 +1,4 @@
+#include <drape/energy.hpp>
 #include <drape/gradcheck.hpp>
 
 #include <catch2/catch.hpp>

@@ -4,9 +4,10 @@
 // (check_energy_derivatives), and value, gradient and both Hessians are
 // bit-identical with 1 and 2 threads. A new energy plugin is checked here
 // without being named; its own test file adds what is particular to it.
+#include <drape/energy.hpp>
 #include <drape/element_assembly.hpp>
 #include <drape/gradcheck.hpp>
-#include <drape/materials.hpp>
+#include <drape/materials/materials.hpp>
 
 #include <catch2/catch.hpp>
 

@@ -3,6 +3,7 @@
 // registry and bound to a garment, garments of one or two triangles with
 // hand-placed UVs, deterministic perturbations and rotations, the dense
 // Hessian, and capturing what a plugin prints to std::cerr.
+#include <drape/energy.hpp>
 #include <Eigen/Geometry>
 #include <Eigen/SparseCore>
 

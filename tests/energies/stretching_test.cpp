@@ -1,5 +1,6 @@
+#include <drape/energy.hpp>
 #include <drape/gradcheck.hpp>
-#include <drape/materials.hpp>
+#include <drape/materials/materials.hpp>
 
 #include <catch2/catch.hpp>
 

@@ -2,6 +2,7 @@
 // degenerate material space), hinges run across the side and shoulder seams
 // (where the front and back UV charts meet), and the dressed state gives finite
 // energies and derivatives.
+#include <drape/energy.hpp>
 #include <catch2/catch.hpp>
 
 #include <map>

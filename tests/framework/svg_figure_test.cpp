@@ -1,8 +1,8 @@
 // Pictures: the SVG figure draws every visible triangle once, back to front,
 // coloured by value through the colour map, and is written atomically.
 #include <drape/errors.hpp>
-#include <drape/svg_chart.hpp>
-#include <drape/svg_figure.hpp>
+#include <drape/io/svg_chart.hpp>
+#include <drape/io/svg_figure.hpp>
 
 #include <catch2/catch.hpp>
 

@@ -3,9 +3,9 @@
 // every kind of bad garment refused with one line naming the file and element.
 #include <catch2/catch.hpp>
 
-#include <drape/mesh_io.hpp>
-#include <drape/scene.hpp>
-#include <drape/simulation.hpp>
+#include <drape/io/mesh_io.hpp>
+#include <drape/scene/scene.hpp>
+#include <drape/scene/simulation.hpp>
 
 #include <cmath>
 #include <algorithm>

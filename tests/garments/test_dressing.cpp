@@ -2,6 +2,8 @@
 #include "test_support.hpp"
 #include "tshirt_support.hpp"
 
+#include <drape/energy.hpp>
+#include <drape/bodies/body.hpp>
 #include <drape/garment_dressing.hpp>
 #include <drape/geometry/closest_point.hpp>
 

@@ -2,6 +2,7 @@
 // print materials.
 #include "tshirt_support.hpp"
 
+#include <drape/energy.hpp>
 #include <drape/errors.hpp>
 #include <drape/geometry/index_locality.hpp>
 #include <drape/geometry/polygon2d.hpp>

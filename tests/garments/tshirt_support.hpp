@@ -1,7 +1,8 @@
 #pragma once
 // Shared by the T-shirt tests: building the template through the registry and
 // reading its two UV charts back.
-#include <drape/body.hpp>
+#include <drape/energy.hpp>
+#include <drape/bodies/body.hpp>
 #include <drape/params.hpp>
 
 #include <test_support.hpp>

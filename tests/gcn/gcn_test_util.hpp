@@ -4,7 +4,8 @@
 // indices are neighbours, like the body models' order), and an orthonormal
 // stand-in for the eigenbasis. Plus dense reference matrices built straight
 // from the definitions, independent of the sparse code under test.
-#include <drape/assets.hpp>
+#include <drape/energy.hpp>
+#include <drape/assets/assets.hpp>
 #include <drape/geometry/adjacency.hpp>
 #include <drape/geometry/hierarchy.hpp>
 

@@ -1,6 +1,7 @@
 // The graph-convolution plugins together, as the seed's model (Fig. 6.2) in
 // miniature: encoder -> 1-layer MLP -> gather to garment vertices -> msgcn,
 // plus the spectral residual, trained with L2; and the encoders swap in place.
+#include <drape/energy.hpp>
 #include <drape/graph.hpp>
 
 #include <catch2/catch.hpp>

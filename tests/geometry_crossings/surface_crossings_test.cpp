@@ -1,6 +1,7 @@
 // Surface crossings: the segment-triangle test on hand-made cases (through,
 // beside, touching, in the plane, parallel), a sheet through a box with counts
 // worked out by hand, the grid against a brute-force count, and bad input.
+#include <drape/energy.hpp>
 #include <drape/errors.hpp>
 #include <drape/geometry/adjacency.hpp>
 #include <drape/geometry/surface_crossings.hpp>

@@ -4,10 +4,10 @@
 
 #include "test_support.hpp"
 
-#include <drape/checkpoint.hpp>
+#include <drape/io/checkpoint.hpp>
 #include <drape/graph.hpp>
-#include <drape/h5.hpp>
-#include <drape/init.hpp>
+#include <drape/io/h5.hpp>
+#include <drape/training/init.hpp>
 #include <drape/plugin.hpp>
 
 #include <fstream>

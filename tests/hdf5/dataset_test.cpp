@@ -4,9 +4,9 @@
 
 #include "test_support.hpp"
 
-#include <drape/body.hpp>
-#include <drape/dataset.hpp>
-#include <drape/h5.hpp>
+#include <drape/bodies/body.hpp>
+#include <drape/io/dataset.hpp>
+#include <drape/io/h5.hpp>
 
 #include <csignal>
 #include <cmath>

@@ -4,7 +4,7 @@
 
 #include "test_support.hpp"
 
-#include <drape/h5.hpp>
+#include <drape/io/h5.hpp>
 
 #include <cmath>
 #include <fstream>

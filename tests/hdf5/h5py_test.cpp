@@ -4,8 +4,8 @@
 
 #include "test_support.hpp"
 
-#include <drape/checkpoint.hpp>
-#include <drape/dataset.hpp>
+#include <drape/io/checkpoint.hpp>
+#include <drape/io/dataset.hpp>
 
 #include <fstream>
 

@@ -8,8 +8,8 @@
 
 #include "test_support.hpp"
 
-#include <drape/checkpoint.hpp>
-#include <drape/h5.hpp>
+#include <drape/io/checkpoint.hpp>
+#include <drape/io/h5.hpp>
 
 #include <sys/wait.h>
 #include <unistd.h>

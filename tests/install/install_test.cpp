@@ -3,6 +3,7 @@
 // list it with the installed program, and load it and check its derivatives.
 #include <catch2/catch.hpp>
 
+#include <drape/energy.hpp>
 #include <drape/gradcheck.hpp>
 #include <drape/registry.hpp>
 

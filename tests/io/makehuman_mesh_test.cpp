@@ -1,6 +1,6 @@
 // The real assets: MakeHuman's base mesh (quads, 139 groups) and a T-shirt
 // outfit with UVs. Skipped with a warning where /work/shared/assets is absent.
-#include <drape/mesh_io.hpp>
+#include <drape/io/mesh_io.hpp>
 
 #include "test_support.hpp"
 

@@ -1,7 +1,7 @@
 // Bad input files give one ConfigError line naming the file (and the line for
 // OBJ); a failed write leaves nothing behind.
 #include <drape/errors.hpp>
-#include <drape/mesh_io.hpp>
+#include <drape/io/mesh_io.hpp>
 
 #include "mesh_test_util.hpp"
 #include "test_support.hpp"

@@ -2,7 +2,7 @@
 // format must give them back unchanged. The shuffled grid makes any reordering
 // by assimp (measured: none for PLY and glTF when reading with no
 // post-processing) show up here.
-#include <drape/mesh_io.hpp>
+#include <drape/io/mesh_io.hpp>
 
 #include "mesh_test_util.hpp"
 #include "test_support.hpp"

@@ -1,7 +1,7 @@
 // OutputLock: one writer per output, refused with the holder named; released
 // when the holder ends.
 #include <drape/errors.hpp>
-#include <drape/output_lock.hpp>
+#include <drape/io/output_lock.hpp>
 
 #include <catch2/catch.hpp>
 

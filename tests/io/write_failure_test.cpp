@@ -1,9 +1,9 @@
 // A full disk and a read-only folder are named as such, with the user's file
 // (issue 58: "H5Dwrite failed" named a temporary file). Needs root to mount a
 // 4 MiB tmpfs; skipped with a message elsewhere.
-#include <drape/atomic_file.hpp>
+#include <drape/io/atomic_file.hpp>
 #include <drape/errors.hpp>
-#include <drape/write_failure.hpp>
+#include <drape/io/write_failure.hpp>
 
 #include <catch2/catch.hpp>
 

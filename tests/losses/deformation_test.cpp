@@ -1,5 +1,6 @@
 // deformation (the seed's L_d, eqs. 6.10-6.11): deformation gradients by hand
 // on one triangle and a grid, finite differences, errors.
+#include <drape/energy.hpp>
 #include <drape/gradcheck.hpp>
 
 #include <catch2/catch.hpp>

@@ -2,6 +2,7 @@
 // departure: a ground-truth edge collapsed below 1 % of its template length
 // is measured against 1 % of that length, so one collapsed edge in a drape
 // cannot make the loss unbounded.
+#include <drape/energy.hpp>
 #include <drape/gradcheck.hpp>
 
 #include <catch2/catch.hpp>

@@ -1,11 +1,13 @@
 #pragma once
 // Helpers of the loss and decoder tests: tensors from Eigen matrices, a cube
 // body (closest points by hand), and the coarse T-shirt's template data.
-#include <drape/assets.hpp>
+#include <drape/energy.hpp>
+#include <drape/bodies/body.hpp>
+#include <drape/assets/assets.hpp>
 #include <drape/geometry/closed_shapes.hpp>
 #include <drape/geometry/hierarchy.hpp>
 #include <drape/geometry/laplacian.hpp>
-#include <drape/spectral.hpp>
+#include <drape/spectral/spectral.hpp>
 #include <drape/tensor.hpp>
 
 #include <memory>

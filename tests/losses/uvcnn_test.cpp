@@ -1,6 +1,7 @@
 // uvcnn: the UV image round trip (rasterise then sample) with identity
 // convolutions, charts kept apart in their tiles, a convolution by hand,
 // finite differences through rasterisation, convolutions and sampling, errors.
+#include <drape/energy.hpp>
 #include <drape/gradcheck.hpp>
 
 #include <catch2/catch.hpp>

@@ -7,7 +7,7 @@
 
 #include "test_support.hpp"
 
-#include <drape/dataset.hpp>
+#include <drape/io/dataset.hpp>
 
 #include <fstream>
 

@@ -1,9 +1,11 @@
 // The MakeHuman plugins on the CC0 data in ../shared/assets/makehuman; every
 // test skips with a message when that folder is absent.
+#include <drape/energy.hpp>
+#include <drape/bodies/body.hpp>
 #include <drape/geometry/closest_point.hpp>
 #include <drape/geometry/topology.hpp>
 #include <drape/geometry/volume.hpp>
-#include <drape/mesh_io.hpp>
+#include <drape/io/mesh_io.hpp>
 
 #include <catch2/catch.hpp>
 

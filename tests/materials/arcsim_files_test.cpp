@@ -2,8 +2,8 @@
 // the shipped files against ArcSim's numbers, the presets that inline them,
 // the model and file keys, multipliers over the tables, scenes naming files,
 // and every way a file can be rejected (file, line and field in the message).
-#include <drape/materials.hpp>
-#include <drape/scene.hpp>
+#include <drape/materials/materials.hpp>
+#include <drape/scene/scene.hpp>
 
 #include <catch2/catch.hpp>
 

@@ -1,6 +1,6 @@
 // Material presets: the shipped table, bases and multipliers, inline specs, and
 // every configuration error with its file, line and key.
-#include <drape/materials.hpp>
+#include <drape/materials/materials.hpp>
 
 #include <catch2/catch.hpp>
 

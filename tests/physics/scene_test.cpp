@@ -1,5 +1,5 @@
 // Scene files: base chains, overrides, removal, and errors that name file:line.
-#include <drape/scene.hpp>
+#include <drape/scene/scene.hpp>
 
 #include <catch2/catch.hpp>
 

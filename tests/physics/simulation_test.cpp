@@ -2,7 +2,7 @@
 // Every run must end finite, with Phi falling through every step's line
 // search, and (with collision on) with the garment out of the body.
 #include <drape/geometry/closest_point.hpp>
-#include <drape/simulation.hpp>
+#include <drape/scene/simulation.hpp>
 
 #include <catch2/catch.hpp>
 

@@ -1,7 +1,9 @@
 // The backward-Euler Newton solver on energies with known minimisers, and the
 // fixed-pattern Hessian assembly against Eigen's own triplet assembly.
+#include <drape/energy.hpp>
 #include <drape/geometry/vertex_areas.hpp>
-#include <drape/solver.hpp>
+#include <drape/nn/blas_threads.hpp>
+#include <drape/physics/solver.hpp>
 
 #include "../../framework/src/physics/hessian_pattern.hpp"
 #include "../../framework/src/physics/sparse_cholesky.hpp"

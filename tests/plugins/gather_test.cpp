@@ -1,4 +1,4 @@
-#include <drape/assets.hpp>
+#include <drape/assets/assets.hpp>
 #include <drape/gradcheck.hpp>
 
 #include <catch2/catch.hpp>

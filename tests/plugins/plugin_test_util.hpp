@@ -2,7 +2,8 @@
 // Helpers for the plugin tests: nodes built by name through the build tree's
 // registry (so the plugin libraries themselves are exercised), deterministic
 // random tensors, a small garment with material-space UVs, and a one-shot forward.
-#include <drape/assets.hpp>
+#include <drape/energy.hpp>
+#include <drape/assets/assets.hpp>
 #include <drape/gradcheck.hpp>
 #include <drape/plugin.hpp>
 

@@ -1,6 +1,7 @@
 // The SMPL body plugin on a small synthetic model file written by the test.
+#include <drape/bodies/body.hpp>
 #include <drape/geometry/volume.hpp>
-#include <drape/h5.hpp>
+#include <drape/io/h5.hpp>
 
 #include <catch2/catch.hpp>
 

@@ -1,7 +1,7 @@
 // `drape spectral` and `drape hierarchy` on a small written garment, and their usage errors.
 #include "../hierarchy/sewn_tube.hpp"
 
-#include <drape/mesh_io.hpp>
+#include <drape/io/mesh_io.hpp>
 
 #include <catch2/catch.hpp>
 #include <test_support.hpp>

@@ -4,7 +4,7 @@
 
 #include <drape/errors.hpp>
 #include <drape/geometry/laplacian.hpp>
-#include <drape/spectral.hpp>
+#include <drape/spectral/spectral.hpp>
 
 #include <catch2/catch.hpp>
 

@@ -4,7 +4,7 @@
 // run against a stand-in sbatch that records what it was asked to queue.
 #include <catch2/catch.hpp>
 
-#include <drape/dataset.hpp>
+#include <drape/io/dataset.hpp>
 
 #include <fstream>
 #include <sstream>

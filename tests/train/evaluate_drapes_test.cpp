@@ -3,7 +3,7 @@
 // their source_index names; values worked out by hand for translated copies.
 #include <catch2/catch.hpp>
 
-#include <drape/evaluation.hpp>
+#include <drape/training/evaluation.hpp>
 
 #include "train_test_util.hpp"
 

@@ -1,11 +1,11 @@
-// The seed's metrics (drape/metrics.hpp) on the 300-vertex T-shirt: zero for
+// The seed's metrics (drape/training/metrics.hpp) on the 300-vertex T-shirt: zero for
 // the ground truth itself, and values worked out by hand for translations,
 // scalings and a one-vertex bump.
 #include <catch2/catch.hpp>
 
 #include <drape/geometry/penetration.hpp>
 #include <drape/geometry/surface_crossings.hpp>
-#include <drape/metrics.hpp>
+#include <drape/training/metrics.hpp>
 #include <drape/plugin.hpp>
 
 #include <set>

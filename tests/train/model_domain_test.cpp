@@ -7,9 +7,9 @@
 #include "train_test_util.hpp"
 
 #include <drape/geometry/volume.hpp>
-#include <drape/h5.hpp>
-#include <drape/mesh_io.hpp>
-#include <drape/model_domain.hpp>
+#include <drape/io/h5.hpp>
+#include <drape/io/mesh_io.hpp>
+#include <drape/training/model_domain.hpp>
 
 using namespace drape;
 namespace fs = std::filesystem;

@@ -6,8 +6,8 @@
 // absent.
 #include <catch2/catch.hpp>
 
-#include <drape/checkpoint.hpp>
-#include <drape/h5.hpp>
+#include <drape/io/checkpoint.hpp>
+#include <drape/io/h5.hpp>
 
 #include <algorithm>
 #include <cmath>

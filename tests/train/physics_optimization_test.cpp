@@ -1,12 +1,13 @@
-// The physics-enforced optimisation (drape/physics_optimization.hpp) on the
+// The physics-enforced optimisation (drape/training/physics_optimization.hpp) on the
 // tiny T-shirt: the potential falls from the network's prediction, the best
 // iterate is returned, the weights change in place, hard starts stay finite,
 // a scene of another template is refused, and with a barrier no result
 // crosses the body.
+#include <drape/energy.hpp>
 #include <drape/geometry/closest_point.hpp>
 #include <drape/geometry/penetration.hpp>
 #include <drape/geometry/surface_crossings.hpp>
-#include <drape/physics_optimization.hpp>
+#include <drape/training/physics_optimization.hpp>
 
 #include <catch2/catch.hpp>
 

@@ -5,11 +5,11 @@
 // model (most of its second), so each case runs only a few.
 #include <catch2/catch.hpp>
 
-#include <drape/checkpoint.hpp>
-#include <drape/dataset.hpp>
-#include <drape/h5.hpp>
+#include <drape/io/checkpoint.hpp>
+#include <drape/io/dataset.hpp>
+#include <drape/io/h5.hpp>
 #include <drape/geometry/penetration.hpp>
-#include <drape/mesh_io.hpp>
+#include <drape/io/mesh_io.hpp>
 
 #include <csignal>
 #include <fstream>

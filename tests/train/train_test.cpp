@@ -6,8 +6,8 @@
 #include <algorithm>
 #include <sstream>
 
-#include <drape/checkpoint.hpp>
-#include <drape/h5.hpp>
+#include <drape/io/checkpoint.hpp>
+#include <drape/io/h5.hpp>
 
 #include "train_test_util.hpp"
 

@@ -4,11 +4,11 @@
 // body is the mean body grown by a_i about its centroid and its garment the
 // template grown by 1.2 a_i about the same point plus a sideways sway of
 // 0.5 a_i^2 -- a smooth function of the body that a network can learn.
-#include <drape/assets.hpp>
-#include <drape/dataset.hpp>
-#include <drape/model.hpp>
-#include <drape/rng.hpp>
-#include <drape/trainer.hpp>
+#include <drape/assets/assets.hpp>
+#include <drape/io/dataset.hpp>
+#include <drape/training/model.hpp>
+#include <drape/training/rng.hpp>
+#include <drape/training/trainer.hpp>
 
 #include <fstream>
 #include <string>

@@ -1,7 +1,7 @@
 // Adam and SGD minimise known functions, and their updates match the formulas.
 #include <catch2/catch.hpp>
 
-#include <drape/optimizer.hpp>
+#include <drape/training/optimizer.hpp>
 
 #include <cmath>
 

@@ -2,8 +2,8 @@
 #include <catch2/catch.hpp>
 
 #include <drape/errors.hpp>
-#include <drape/init.hpp>
-#include <drape/rng.hpp>
+#include <drape/training/init.hpp>
+#include <drape/training/rng.hpp>
 
 #include <algorithm>
 #include <cmath>

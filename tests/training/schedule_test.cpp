@@ -2,7 +2,7 @@
 // stopping helpers react to validation losses as documented and resume exactly.
 #include <catch2/catch.hpp>
 
-#include <drape/schedule.hpp>
+#include <drape/training/schedule.hpp>
 
 #include <cmath>
 

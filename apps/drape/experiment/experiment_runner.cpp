@@ -3,15 +3,15 @@
 #include "../command.hpp"
 #include "../sample_ranges.hpp"
 
-#include <drape/checkpoint.hpp>
+#include <drape/io/checkpoint.hpp>
 #include <drape/graph.hpp>
-#include <drape/dataset.hpp>
-#include <drape/evaluation.hpp>
-#include <drape/model.hpp>
+#include <drape/io/dataset.hpp>
+#include <drape/training/evaluation.hpp>
+#include <drape/training/model.hpp>
 #include <drape/registry.hpp>
-#include <drape/rng.hpp>
-#include <drape/output_lock.hpp>
-#include <drape/scene.hpp>
+#include <drape/training/rng.hpp>
+#include <drape/io/output_lock.hpp>
+#include <drape/scene/scene.hpp>
 #include <drape/services/dataset_generation.hpp>
 #include <drape/services/model_training.hpp>
 

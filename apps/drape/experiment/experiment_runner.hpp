@@ -1,5 +1,5 @@
 #pragma once
-// `drape experiment`: runs an experiment file (drape/experiment.hpp) as a chain
+// `drape experiment`: runs an experiment file (drape/experiment/experiment.hpp) as a chain
 // of steps, each printed as the drape command that does it so that any step can
 // be repeated by hand; generate, train and merge are calls of the framework
 // services behind those commands (services/), eval and optimize still run the
@@ -15,7 +15,7 @@
 // partial outputs, so a killed experiment continues with the same command.
 #include "experiment_table.hpp"
 
-#include <drape/experiment.hpp>
+#include <drape/experiment/experiment.hpp>
 
 #include <filesystem>
 #include <map>

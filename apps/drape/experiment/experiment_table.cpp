@@ -1,6 +1,6 @@
 #include "experiment_table.hpp"
 
-#include <drape/atomic_file.hpp>
+#include <drape/io/atomic_file.hpp>
 
 #include <cmath>
 #include <cstdio>

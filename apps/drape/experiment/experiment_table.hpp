@@ -1,7 +1,7 @@
 #pragma once
 // The result of an experiment: one row per entry of the file, our value and the
 // seed's for each column, written as Markdown (for docs/results.md) and CSV.
-#include <drape/experiment.hpp>
+#include <drape/experiment/experiment.hpp>
 
 #include <filesystem>
 #include <map>

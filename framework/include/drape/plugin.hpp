@@ -4,8 +4,6 @@
 //   drape_plugin_abi_version   (extern "C" int(), checked before anything else)
 //   drape_plugin_factory       (Boost.DLL alias, returns the descriptors)
 // Use DRAPE_PLUGIN_EXPORT(fn) once per library to define both.
-#include <drape/body.hpp>
-#include <drape/energy.hpp>
 #include <drape/node.hpp>
 #include <drape/params.hpp>
 
@@ -23,6 +21,13 @@
 namespace drape {
 
 inline constexpr int kAbiVersion = DRAPE_ABI_VERSION;
+
+// What the factories make, declared only: a plugin includes the header of its
+// own kind (energy.hpp, bodies/body.hpp), so a network node does not pull in
+// the physics' types.
+class Energy;
+class BodyModel;
+class GarmentSource;
 
 struct PortSpec {
   std::string name;

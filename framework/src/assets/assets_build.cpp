@@ -1,11 +1,13 @@
 #include "assets_cache.hpp"
 
-#include <drape/assets.hpp>
+#include <drape/energy.hpp>
+#include <drape/bodies/body.hpp>
+#include <drape/assets/assets.hpp>
 #include <drape/garment_dressing.hpp>
 #include <drape/geometry/body_correspondence.hpp>
 #include <drape/geometry/laplacian.hpp>
 #include <drape/registry.hpp>
-#include <drape/spectral.hpp>
+#include <drape/spectral/spectral.hpp>
 
 #include <chrono>
 #include <cstdlib>

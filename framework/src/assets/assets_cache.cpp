@@ -1,8 +1,8 @@
 #include "assets_cache.hpp"
 
-#include <drape/atomic_file.hpp>
+#include <drape/io/atomic_file.hpp>
 #include <drape/errors.hpp>
-#include <drape/h5.hpp>
+#include <drape/io/h5.hpp>
 
 namespace drape::assets_cache {
 namespace {

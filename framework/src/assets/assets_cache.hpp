@@ -1,6 +1,6 @@
 #pragma once
 // The HDF5 file behind the assets cache (layout in docs/formats.md).
-#include <drape/assets.hpp>
+#include <drape/assets/assets.hpp>
 
 namespace drape::assets_cache {
 

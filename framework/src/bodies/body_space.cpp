@@ -1,5 +1,6 @@
 // Sampling the body space (body_space.hpp).
-#include <drape/body_space.hpp>
+#include <drape/bodies/body.hpp>
+#include <drape/bodies/body_space.hpp>
 #include <drape/errors.hpp>
 #include <drape/geometry/self_intersection.hpp>
 

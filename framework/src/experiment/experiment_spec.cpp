@@ -1,4 +1,4 @@
-#include <drape/experiment.hpp>
+#include <drape/experiment/experiment.hpp>
 
 #include "../yaml_util.hpp"
 

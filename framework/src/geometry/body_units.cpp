@@ -1,5 +1,5 @@
 // body_units_problem / check_body_units (body_units.hpp).
-#include <drape/body_units.hpp>
+#include <drape/geometry/body_units.hpp>
 #include <drape/errors.hpp>
 
 #include <cmath>

@@ -2,6 +2,7 @@
 // triangles. Each mesh's triangles are listed in a uniform grid over their
 // bounding boxes; each edge of the other mesh tests only the triangles whose
 // boxes overlap its own, with exact orientation signs (exact_orientation.hpp).
+#include <drape/energy.hpp>
 #include <drape/errors.hpp>
 #include <drape/geometry/adjacency.hpp>
 #include <drape/geometry/surface_crossings.hpp>

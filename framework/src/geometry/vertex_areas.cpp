@@ -1,3 +1,4 @@
+#include <drape/energy.hpp>
 #include <drape/geometry/vertex_areas.hpp>
 
 #include <drape/errors.hpp>

@@ -1,6 +1,6 @@
-#include <drape/atomic_file.hpp>
+#include <drape/io/atomic_file.hpp>
 #include <drape/errors.hpp>
-#include <drape/write_failure.hpp>
+#include <drape/io/write_failure.hpp>
 
 #include <unistd.h>
 

@@ -1,8 +1,8 @@
 // Checkpoints: weights, graph YAML, metadata and optimiser state in one HDF5 file.
-#include <drape/atomic_file.hpp>
-#include <drape/checkpoint.hpp>
+#include <drape/io/atomic_file.hpp>
+#include <drape/io/checkpoint.hpp>
 #include <drape/graph.hpp>
-#include <drape/h5.hpp>
+#include <drape/io/h5.hpp>
 
 #include <set>
 

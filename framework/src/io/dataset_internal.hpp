@@ -1,8 +1,8 @@
 #pragma once
 // Private to the dataset files: dataset names, creating the empty layout,
 // reading it back and comparing two layouts.
-#include <drape/dataset.hpp>
-#include <drape/h5.hpp>
+#include <drape/io/dataset.hpp>
+#include <drape/io/h5.hpp>
 
 #include <string>
 

@@ -1,10 +1,10 @@
 // merge_datasets: shard files concatenated into one finished dataset.
 #include "dataset_internal.hpp"
 
-#include <drape/atomic_file.hpp>
-#include <drape/body.hpp>
-#include <drape/model.hpp>
-#include <drape/scene.hpp>
+#include <drape/io/atomic_file.hpp>
+#include <drape/bodies/body.hpp>
+#include <drape/training/model.hpp>
+#include <drape/scene/scene.hpp>
 
 #include <algorithm>
 #include <optional>

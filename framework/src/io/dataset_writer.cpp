@@ -1,7 +1,7 @@
 // DatasetWriter: one sample at a time into `<out>.partial`, resumable after a kill.
 #include "dataset_internal.hpp"
 
-#include <drape/atomic_file.hpp>
+#include <drape/io/atomic_file.hpp>
 
 #include <cmath>
 

@@ -1,6 +1,6 @@
 #include <drape/geometry/closest_point.hpp>
 #include <drape/mesh.hpp>
-#include <drape/svg_figure.hpp>
+#include <drape/io/svg_figure.hpp>
 
 namespace drape {
 

@@ -7,7 +7,7 @@
 // differ from the background, so a test in a headless browser can tell that
 // it really drew.
 #include <drape/errors.hpp>
-#include <drape/svg_figure.hpp>
+#include <drape/io/svg_figure.hpp>
 
 #include "xml_escape.hpp"
 

@@ -2,8 +2,8 @@
 // Private to the HDF5 layer: the handles behind drape::h5::File and the
 // translation of HDF5 exceptions into drape errors.
 #include <drape/errors.hpp>
-#include <drape/h5.hpp>
-#include <drape/write_failure.hpp>
+#include <drape/io/h5.hpp>
+#include <drape/io/write_failure.hpp>
 
 #include <H5Cpp.h>
 

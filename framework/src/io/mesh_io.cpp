@@ -1,9 +1,9 @@
 // read_mesh / write_mesh: pick the reader or writer by extension, check the
 // mesh, write atomically.
-#include <drape/atomic_file.hpp>
+#include <drape/io/atomic_file.hpp>
 #include <drape/errors.hpp>
-#include <drape/mesh_io.hpp>
-#include <drape/write_failure.hpp>
+#include <drape/io/mesh_io.hpp>
+#include <drape/io/write_failure.hpp>
 
 #include "mesh_io_internal.hpp"
 

@@ -1,7 +1,7 @@
 #pragma once
 // Shared between the mesh readers and writers; not part of the public API.
 #include <drape/mesh.hpp>
-#include <drape/mesh_io.hpp>
+#include <drape/io/mesh_io.hpp>
 
 #include <filesystem>
 #include <string>

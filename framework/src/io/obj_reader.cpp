@@ -3,7 +3,7 @@
 // in memory with std::from_chars (iostream per token is ~10x slower on the
 // 19k-vertex MakeHuman base mesh).
 #include <drape/errors.hpp>
-#include <drape/mesh_io.hpp>
+#include <drape/io/mesh_io.hpp>
 
 #include "mesh_io_internal.hpp"
 

@@ -1,7 +1,7 @@
 // OutputLock (output_lock.hpp).
 #include <drape/errors.hpp>
-#include <drape/output_lock.hpp>
-#include <drape/write_failure.hpp>
+#include <drape/io/output_lock.hpp>
+#include <drape/io/write_failure.hpp>
 
 #include <fcntl.h>
 #include <sys/file.h>

@@ -1,4 +1,4 @@
-#include <drape/parallel_samples.hpp>
+#include <drape/io/parallel_samples.hpp>
 
 #include <atomic>
 #include <cstdio>

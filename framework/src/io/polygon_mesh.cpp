@@ -1,6 +1,6 @@
 // From the polygons of an OBJ file to the triangle mesh the rest of drape uses.
 #include <drape/errors.hpp>
-#include <drape/mesh_io.hpp>
+#include <drape/io/mesh_io.hpp>
 
 #include <algorithm>
 

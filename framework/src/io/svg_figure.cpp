@@ -1,6 +1,6 @@
-#include <drape/atomic_file.hpp>
+#include <drape/io/atomic_file.hpp>
 #include <drape/errors.hpp>
-#include <drape/svg_figure.hpp>
+#include <drape/io/svg_figure.hpp>
 
 #include "xml_escape.hpp"
 

@@ -1,5 +1,5 @@
 // The template hash that ties a dataset to its garment template and body topology.
-#include <drape/dataset.hpp>
+#include <drape/io/dataset.hpp>
 
 #include <iomanip>
 #include <sstream>

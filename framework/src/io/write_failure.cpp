@@ -1,6 +1,6 @@
 // write_failure_cause, check_writable_output (write_failure.hpp).
 #include <drape/errors.hpp>
-#include <drape/write_failure.hpp>
+#include <drape/io/write_failure.hpp>
 
 #include <sys/statvfs.h>
 #include <unistd.h>

@@ -1,6 +1,6 @@
 // ArcSim material files (materials/*.json): reading one as a preset, loading
 // one as a material, and writing a scene's file references out as data.
-#include <drape/materials.hpp>
+#include <drape/materials/materials.hpp>
 
 #include "json_comments.hpp"
 #include "material_validation.hpp"

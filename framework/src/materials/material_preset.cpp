@@ -2,7 +2,7 @@
 // error at the file:line of the key or value at fault. The preset's `file:`
 // (an ArcSim material file) is read here too, so that a bad file fails when
 // the preset is parsed.
-#include <drape/materials.hpp>
+#include <drape/materials/materials.hpp>
 
 #include "material_validation.hpp"
 #include "../yaml_util.hpp"

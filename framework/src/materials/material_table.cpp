@@ -1,6 +1,6 @@
 // MaterialTable: preset files, merging, and resolving presets through their
 // `base:` chains (multipliers on the base's values, then the preset's own fields).
-#include <drape/materials.hpp>
+#include <drape/materials/materials.hpp>
 
 #include "material_validation.hpp"
 #include "../yaml_util.hpp"

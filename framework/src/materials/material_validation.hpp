@@ -3,7 +3,7 @@
 // and resolving a preset (framework-internal). Every error is a ConfigError at
 // the file:line of the value at fault, naming the field.
 #include <drape/errors.hpp>
-#include <drape/materials.hpp>
+#include <drape/materials/materials.hpp>
 
 #include <yaml-cpp/yaml.h>
 

@@ -1,6 +1,6 @@
-#include <drape/body_loss_inputs.hpp>
+#include <drape/nn/body_loss_inputs.hpp>
 
-#include <drape/assets.hpp>
+#include <drape/assets/assets.hpp>
 #include <drape/errors.hpp>
 
 namespace drape {

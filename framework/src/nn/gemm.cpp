@@ -1,6 +1,6 @@
 #include <drape/errors.hpp>
 #include <drape/nn/gemm.hpp>
-#include <drape/solver.hpp>
+#include <drape/nn/blas_threads.hpp>
 
 #include <drape/nn/skinny_gemm.hpp>
 

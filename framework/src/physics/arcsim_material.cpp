@@ -1,7 +1,7 @@
 // ArcSim's data-driven stiffness (dde.cpp's evaluate_stretching_sample,
 // stretching_stiffness and bending_stiffness, re-derived from their
 // definitions) with the derivatives drape's Newton solver needs.
-#include <drape/arcsim_material.hpp>
+#include <drape/physics/arcsim_material.hpp>
 
 #include <boost/math/quadrature/gauss.hpp>
 

@@ -1,8 +1,9 @@
 // Newton on the backward-Euler incremental potential (see solver.hpp).
+#include <drape/energy.hpp>
 #include <drape/errors.hpp>
 #include <drape/geometry/closest_point.hpp>
 #include <drape/geometry/vertex_areas.hpp>
-#include <drape/solver.hpp>
+#include <drape/physics/solver.hpp>
 
 #include <Eigen/LU>
 

@@ -3,7 +3,8 @@
 #include "supernodal_solve.hpp"
 
 #include <drape/errors.hpp>
-#include <drape/solver.hpp>
+#include <drape/nn/blas_threads.hpp>
+#include <drape/physics/solver.hpp>
 
 #include <Eigen/SparseCholesky>
 #ifdef DRAPE_HAVE_CHOLMOD

@@ -14,8 +14,8 @@
 // at that body with the settling Newton budget, and the rest of the move
 // follows, at most `max_cuts` times.
 #include <drape/geometry/closest_point.hpp>
-#include <drape/simulation.hpp>
-#include <drape/solver.hpp>
+#include <drape/scene/simulation.hpp>
+#include <drape/physics/solver.hpp>
 
 #include <Eigen/Core>
 

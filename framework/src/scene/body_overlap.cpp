@@ -1,7 +1,7 @@
 // The check of a body mesh for self-intersection under the garment (body_overlap.hpp).
 #include "body_overlap.hpp"
 
-#include <drape/body_overlap.hpp>
+#include <drape/scene/body_overlap.hpp>
 
 #include <drape/geometry/self_intersection.hpp>
 

@@ -1,4 +1,4 @@
-#include <drape/garment_size.hpp>
+#include <drape/scene/garment_size.hpp>
 
 #include <drape/errors.hpp>
 #include <drape/geometry/girth.hpp>

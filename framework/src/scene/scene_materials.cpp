@@ -1,6 +1,7 @@
 #include "scene_materials.hpp"
 
-#include <drape/materials.hpp>
+#include <drape/energy.hpp>
+#include <drape/materials/materials.hpp>
 
 #include <algorithm>
 

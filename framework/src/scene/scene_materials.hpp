@@ -1,7 +1,7 @@
 #pragma once
 // Materials of a scene's garment regions (internal to the simulation driver).
 #include <drape/energy.hpp>
-#include <drape/scene.hpp>
+#include <drape/scene/scene.hpp>
 
 namespace drape::scene_detail {
 

@@ -1,7 +1,7 @@
 // Reading scene files (see scene.hpp): YAML -> Scene, following `base:` chains.
-#include <drape/materials.hpp>
+#include <drape/materials/materials.hpp>
 #include <drape/registry.hpp>
-#include <drape/scene.hpp>
+#include <drape/scene/scene.hpp>
 
 #include "../yaml_util.hpp"
 

@@ -1,7 +1,7 @@
 // Scene settings' specs and the check of a scene's names against the registry.
 #include <drape/registry.hpp>
-#include <drape/scene.hpp>
-#include <drape/solver.hpp>
+#include <drape/scene/scene.hpp>
+#include <drape/physics/solver.hpp>
 
 #include <cstdio>
 #include <string>

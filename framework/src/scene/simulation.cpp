@@ -1,10 +1,11 @@
 // Scene -> energies, body and garment; the morph-then-settle run (simulation.hpp).
-#include <drape/body_units.hpp>
+#include <drape/bodies/body.hpp>
+#include <drape/geometry/body_units.hpp>
 #include <drape/garment_dressing.hpp>
-#include <drape/garment_size.hpp>
+#include <drape/scene/garment_size.hpp>
 #include <drape/geometry/closest_point.hpp>
 #include <drape/registry.hpp>
-#include <drape/simulation.hpp>
+#include <drape/scene/simulation.hpp>
 
 #include "barrier_morph.hpp"
 #include "body_overlap.hpp"

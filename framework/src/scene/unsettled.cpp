@@ -3,7 +3,7 @@
 
 #include "garment_region.hpp"
 
-#include <drape/garment_size.hpp>
+#include <drape/scene/garment_size.hpp>
 
 #include <algorithm>
 #include <cstdio>

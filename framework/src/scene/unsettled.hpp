@@ -5,7 +5,7 @@
 // and whether the garment is smaller than the body (`ease`, garment_size.hpp:
 // negative when its girth is below the body's; NaN when not measured), or
 // whether it fell off the body.
-#include <drape/simulation.hpp>
+#include <drape/scene/simulation.hpp>
 
 #include <string>
 

@@ -8,6 +8,7 @@
 // collision checks of the pairs it belongs to allow: far from the cloth the
 // body is back at once, and every close region grows at the pace of its own
 // gap, so the barrier pushes the cloth out everywhere at the same time.
+#include <drape/energy.hpp>
 #include <Eigen/Core>
 
 #include <array>

@@ -1,15 +1,16 @@
 // generate_dataset (services/dataset_generation.hpp).
-#include <drape/body_space.hpp>
-#include <drape/dataset.hpp>
+#include <drape/bodies/body.hpp>
+#include <drape/bodies/body_space.hpp>
+#include <drape/io/dataset.hpp>
 #include <drape/errors.hpp>
-#include <drape/garment_size.hpp>
-#include <drape/model.hpp>
-#include <drape/output_lock.hpp>
-#include <drape/parallel_samples.hpp>
+#include <drape/scene/garment_size.hpp>
+#include <drape/training/model.hpp>
+#include <drape/io/output_lock.hpp>
+#include <drape/io/parallel_samples.hpp>
 #include <drape/progress.hpp>
-#include <drape/rng.hpp>
+#include <drape/training/rng.hpp>
 #include <drape/services/dataset_generation.hpp>
-#include <drape/simulation.hpp>
+#include <drape/scene/simulation.hpp>
 
 #ifdef _OPENMP
 #include <omp.h>

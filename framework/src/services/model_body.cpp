@@ -1,8 +1,8 @@
 // model_body_batch and prepare_bodies (services/model_body.hpp).
-#include <drape/body_units.hpp>
+#include <drape/geometry/body_units.hpp>
 #include <drape/errors.hpp>
-#include <drape/garment_size.hpp>
-#include <drape/mesh_io.hpp>
+#include <drape/scene/garment_size.hpp>
+#include <drape/io/mesh_io.hpp>
 #include <drape/services/model_body.hpp>
 
 #include <cstdio>

@@ -1,6 +1,6 @@
 // train_model (services/model_training.hpp).
-#include <drape/distributed.hpp>
-#include <drape/output_lock.hpp>
+#include <drape/training/distributed.hpp>
+#include <drape/io/output_lock.hpp>
 #include <drape/services/model_training.hpp>
 
 #include <memory>

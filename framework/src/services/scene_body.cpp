@@ -1,7 +1,8 @@
 // scene_body and drape_scene_body (services/scene_body.hpp).
-#include <drape/body_units.hpp>
-#include <drape/mesh_io.hpp>
-#include <drape/model_domain.hpp>
+#include <drape/bodies/body.hpp>
+#include <drape/geometry/body_units.hpp>
+#include <drape/io/mesh_io.hpp>
+#include <drape/training/model_domain.hpp>
 #include <drape/services/scene_body.hpp>
 
 #include <cstdio>

@@ -1,7 +1,7 @@
 // compute_eigenbasis: operator, solver choice, sorting and sign convention.
 #include <drape/errors.hpp>
 #include <drape/geometry/laplacian.hpp>
-#include <drape/spectral.hpp>
+#include <drape/spectral/spectral.hpp>
 
 #include "eigensolvers.hpp"
 

@@ -1,5 +1,5 @@
 #include <drape/errors.hpp>
-#include <drape/spectral.hpp>
+#include <drape/spectral/spectral.hpp>
 
 #include <algorithm>
 #include <numeric>

@@ -1,6 +1,6 @@
 // Adam (Kingma & Ba 2015) with optional bias correction and weight decay,
 // decoupled as in AdamW (Loshchilov & Hutter 2019) or as an L2 gradient term.
-#include <drape/optimizer.hpp>
+#include <drape/training/optimizer.hpp>
 
 #include <cmath>
 

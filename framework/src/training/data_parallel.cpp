@@ -1,5 +1,5 @@
 // Data-parallel forward/backward over graph replicas, one thread each.
-#include <drape/data_parallel.hpp>
+#include <drape/training/data_parallel.hpp>
 
 #ifdef _OPENMP
 #include <omp.h>

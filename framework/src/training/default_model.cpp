@@ -1,7 +1,7 @@
 // Where the shipped pretrained model is: an installed drape keeps it under
 // share/ next to lib/, a build tree reads it from the source tree (the path is
 // compiled in as DRAPE_SOURCE_MODEL, see framework/CMakeLists.txt).
-#include <drape/model.hpp>
+#include <drape/training/model.hpp>
 
 #include <boost/dll/runtime_symbol_info.hpp>
 

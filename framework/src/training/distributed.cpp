@@ -1,6 +1,6 @@
 // Data-parallel training over ranks: each rank runs its part of a global
 // batch, the parts' gradients are gathered and combined in rank order.
-#include <drape/distributed.hpp>
+#include <drape/training/distributed.hpp>
 #include <drape/errors.hpp>
 #include <drape/geometry/surface_cache.hpp>
 

@@ -1,6 +1,6 @@
-#include <drape/data_parallel.hpp>
+#include <drape/training/data_parallel.hpp>
 #include <drape/errors.hpp>
-#include <drape/evaluation.hpp>
+#include <drape/training/evaluation.hpp>
 #include <drape/geometry/push_out.hpp>
 
 #include <algorithm>

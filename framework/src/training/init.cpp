@@ -1,5 +1,5 @@
 #include <drape/errors.hpp>
-#include <drape/init.hpp>
+#include <drape/training/init.hpp>
 
 #include <cmath>
 #include <string>

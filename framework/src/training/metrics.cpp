@@ -4,7 +4,7 @@
 #include <drape/geometry/laplacian.hpp>
 #include <drape/geometry/penetration.hpp>
 #include <drape/geometry/surface_crossings.hpp>
-#include <drape/metrics.hpp>
+#include <drape/training/metrics.hpp>
 
 #include <Eigen/LU>
 

@@ -1,6 +1,7 @@
 // Trained models: the assets spec as text, graph inputs by name, loading and prediction.
-#include <drape/dataset.hpp>
-#include <drape/model.hpp>
+#include <drape/bodies/body.hpp>
+#include <drape/io/dataset.hpp>
+#include <drape/training/model.hpp>
 #include <drape/registry.hpp>
 
 #include <yaml-cpp/yaml.h>

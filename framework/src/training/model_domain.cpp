@@ -1,10 +1,10 @@
 // A model's training domain: ranges, body descriptors and the check of a
 // body against them (model_domain.hpp).
-#include <drape/body_units.hpp>
+#include <drape/geometry/body_units.hpp>
 #include <drape/errors.hpp>
 #include <drape/geometry/volume.hpp>
-#include <drape/h5.hpp>
-#include <drape/model_domain.hpp>
+#include <drape/io/h5.hpp>
+#include <drape/training/model_domain.hpp>
 
 #include <algorithm>
 #include <cmath>

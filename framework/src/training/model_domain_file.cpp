@@ -1,11 +1,12 @@
 // Recording a model's domain in its file (model_domain.hpp).
-#include <drape/atomic_file.hpp>
-#include <drape/checkpoint.hpp>
+#include <drape/bodies/body.hpp>
+#include <drape/io/atomic_file.hpp>
+#include <drape/io/checkpoint.hpp>
 #include <drape/errors.hpp>
-#include <drape/h5.hpp>
-#include <drape/model.hpp>
-#include <drape/model_domain.hpp>
-#include <drape/optimizer.hpp>
+#include <drape/io/h5.hpp>
+#include <drape/training/model.hpp>
+#include <drape/training/model_domain.hpp>
+#include <drape/training/optimizer.hpp>
 
 namespace fs = std::filesystem;
 

@@ -1,6 +1,6 @@
 // The optimiser base: slots shaped like the weights and their (re)storing.
 #include <drape/errors.hpp>
-#include <drape/optimizer.hpp>
+#include <drape/training/optimizer.hpp>
 
 #include <cmath>
 

@@ -1,9 +1,10 @@
-#include <drape/data_parallel.hpp>
+#include <drape/energy.hpp>
+#include <drape/training/data_parallel.hpp>
 #include <drape/errors.hpp>
 #include <drape/geometry/closest_point.hpp>
 #include <drape/geometry/penetration.hpp>
-#include <drape/optimizer.hpp>
-#include <drape/physics_optimization.hpp>
+#include <drape/training/optimizer.hpp>
+#include <drape/training/physics_optimization.hpp>
 
 #include "../scene/vertexwise_growth.hpp"
 #include "../scene/separated_start.hpp"

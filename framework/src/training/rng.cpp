@@ -1,4 +1,4 @@
-#include <drape/rng.hpp>
+#include <drape/training/rng.hpp>
 
 #include <cmath>
 #include <limits>

@@ -1,6 +1,6 @@
 #include <drape/errors.hpp>
 #include <drape/params.hpp>
-#include <drape/schedule.hpp>
+#include <drape/training/schedule.hpp>
 
 #include <algorithm>
 #include <cmath>

@@ -1,6 +1,6 @@
 // Stochastic gradient descent with (Nesterov) momentum, PyTorch's convention:
 // v = mu v + g; w -= lr v (or lr (g + mu v) with Nesterov).
-#include <drape/optimizer.hpp>
+#include <drape/training/optimizer.hpp>
 
 namespace drape {
 

@@ -1,13 +1,14 @@
 // `drape train`: epochs of Adam over shuffled mini-batches, validation, the best
 // weights, early stopping, and atomic model and state files after every epoch.
-#include <drape/data_parallel.hpp>
-#include <drape/distributed.hpp>
-#include <drape/dataset.hpp>
-#include <drape/optimizer.hpp>
+#include <drape/training/data_parallel.hpp>
+#include <drape/training/distributed.hpp>
+#include <drape/io/dataset.hpp>
+#include <drape/training/optimizer.hpp>
 #include <drape/progress.hpp>
-#include <drape/rng.hpp>
-#include <drape/schedule.hpp>
-#include <drape/trainer.hpp>
+#include <drape/training/rng.hpp>
+#include <drape/training/schedule.hpp>
+#include <drape/assets/dataset_assets.hpp>
+#include <drape/training/trainer.hpp>
 
 #include <unistd.h>
 
@@ -492,31 +493,6 @@ void run_epochs(Run& run) {
 }  // namespace
 
 fs::path training_state_path(const fs::path& out) { return fs::path(out.string() + ".state"); }
-
-std::shared_ptr<const Assets> assets_for_dataset(const Registry& registry, const DatasetReader& reader,
-                                                 const fs::path& data, int eigen_k, const fs::path& cache_dir,
-                                                 AssetsSpec* spec) {
-  const DatasetLayout& layout = reader.layout();
-  const Scene scene = parse_scene(layout.scene, data.string() + " (scene attribute)");
-  const AssetsSpec assets_spec = assets_spec_for(scene, eigen_k);
-  auto assets = build_assets(registry, assets_spec, cache_dir);
-  check_dataset_template(reader, data, *assets);
-  if (spec) *spec = assets_spec;
-  return assets;
-}
-
-void check_dataset_template(const DatasetReader& reader, const fs::path& data, const Assets& assets) {
-  const DatasetLayout& layout = reader.layout();
-  const int ng = assets.garment->mesh.num_vertices(), nb = assets.body.num_vertices();
-  if (layout.garment_vertices != ng || layout.body_vertices != nb)
-    throw ConfigError(data.string() + " has " + std::to_string(layout.garment_vertices) + " garment and " +
-                      std::to_string(layout.body_vertices) + " body vertices per sample, but the template has " +
-                      std::to_string(ng) + " and " + std::to_string(nb));
-  const std::string hash = template_hash(assets.garment->mesh, assets.body.faces);
-  if (!layout.template_hash.empty() && layout.template_hash != hash)
-    throw ConfigError(data.string() + ": made for template " + layout.template_hash + ", but the template here is " +
-                      hash + " (another garment, size or resolution, or the plugin changed: regenerate the dataset)");
-}
 
 TrainReport train(const Registry& registry, const TrainOptions& given) {
   // Ranks of an MPI run: every rank trains, rank 0 alone talks and writes files.

@@ -1,6 +1,6 @@
 #include "body_model.hpp"
 
-#include <drape/body_space.hpp>
+#include <drape/bodies/body_space.hpp>
 #include <drape/errors.hpp>
 #include <drape/geometry/volume.hpp>
 

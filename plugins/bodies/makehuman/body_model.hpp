@@ -3,7 +3,7 @@
 // BMI/height request is met by searching the weight/muscle and height sliders.
 #include "model.hpp"
 
-#include <drape/body.hpp>
+#include <drape/bodies/body.hpp>
 
 #include <memory>
 

@@ -1,7 +1,7 @@
 #include "clothes.hpp"
 
 #include <drape/errors.hpp>
-#include <drape/mesh_io.hpp>
+#include <drape/io/mesh_io.hpp>
 
 #include <Eigen/Geometry>
 

@@ -5,6 +5,7 @@
 #include "body_model.hpp"
 #include "clothes.hpp"
 
+#include <drape/bodies/body.hpp>
 #include <drape/plugin.hpp>
 
 #include <cstdlib>

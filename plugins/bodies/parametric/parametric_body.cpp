@@ -3,8 +3,9 @@
 #include "body_template.hpp"
 #include "shape_fit.hpp"
 
-#include <drape/body_space.hpp>
+#include <drape/bodies/body_space.hpp>
 #include <drape/geometry/volume.hpp>
+#include <drape/bodies/body.hpp>
 #include <drape/plugin.hpp>
 
 #include <algorithm>

@@ -1,6 +1,7 @@
 // body `smpl`: an SMPL model converted to HDF5 (see docs/smpl.md).
 #include "smpl_model.hpp"
 
+#include <drape/bodies/body.hpp>
 #include <drape/plugin.hpp>
 
 namespace {

@@ -1,9 +1,9 @@
 #include "smpl_model.hpp"
 
-#include <drape/body_space.hpp>
+#include <drape/bodies/body_space.hpp>
 #include <drape/errors.hpp>
 #include <drape/geometry/volume.hpp>
-#include <drape/h5.hpp>
+#include <drape/io/h5.hpp>
 
 #include <sstream>
 

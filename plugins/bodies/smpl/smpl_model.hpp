@@ -5,7 +5,7 @@
 //   /shapedirs  [N, 3, B]           shape blend shapes (B = 10 or 300)
 //   /f          [F, 3] i32 or i64   triangles
 // Only shape is applied (no pose): the project drapes A-pose bodies.
-#include <drape/body.hpp>
+#include <drape/bodies/body.hpp>
 
 #include <filesystem>
 

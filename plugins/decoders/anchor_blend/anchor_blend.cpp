@@ -11,7 +11,7 @@
 // bodies from the data; here they move to where the data wants them). The
 // weights are computed as a softmax of -(p/2) log d_k, stable for a body on an
 // anchor. A starts at zero: an untrained blend adds nothing.
-#include <drape/assets.hpp>
+#include <drape/assets/assets.hpp>
 #include <drape/nn/init.hpp>
 #include <drape/plugin.hpp>
 

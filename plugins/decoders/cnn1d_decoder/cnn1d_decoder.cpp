@@ -6,7 +6,7 @@
 // why this decoder is a weak baseline. Stride 1 and "same" padding keep one
 // output row per vertex: hidden layers with `channels`, then a linear
 // convolution to 3 coordinates.
-#include <drape/assets.hpp>
+#include <drape/assets/assets.hpp>
 #include <drape/nn/conv1d.hpp>
 #include <drape/nn/init.hpp>
 #include <drape/plugin.hpp>

@@ -3,7 +3,7 @@
 // isotropic A = D^-1/2 (A_garment + I) D^-1/2 of the garment mesh's vertex
 // graph (Assets::garment), all at the garment's resolution, then a dense head
 // to 3 coordinates per vertex (no activation).
-#include <drape/assets.hpp>
+#include <drape/assets/assets.hpp>
 #include <drape/geometry/adjacency.hpp>
 #include <drape/nn/dense_stack.hpp>
 #include <drape/nn/graph_conv.hpp>

@@ -2,7 +2,7 @@
 // mapped by dense layers to `rows` x 3 coordinates. It is the seed's MLP decoder
 // ablation (Table 6.2) and TailorNet's low-frequency MLP. Every output vertex
 // depends on every input entry, so the parameter count grows with R*C*width.
-#include <drape/assets.hpp>
+#include <drape/assets/assets.hpp>
 #include <drape/nn/dense_stack.hpp>
 #include <drape/plugin.hpp>
 

@@ -16,7 +16,7 @@
 // Each level: `layers` graph convolutions to that level's `channels`
 // (y = f(A_theta x W + b)); between levels x <- U x. After the garment level a
 // dense head maps every vertex's features to 3 coordinates (no activation).
-#include <drape/assets.hpp>
+#include <drape/assets/assets.hpp>
 #include <drape/geometry/adjacency.hpp>
 #include <drape/nn/dense_stack.hpp>
 #include <drape/nn/graph_conv.hpp>

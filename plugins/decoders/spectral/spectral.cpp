@@ -15,7 +15,7 @@
 // for training and inference alike, so every batch size and both directions use
 // the same V and the gradients stay exact for it. Both products read the 16-bit
 // V in place (nn::basis_times, nn::basis_transpose_times), at any batch size.
-#include <drape/assets.hpp>
+#include <drape/assets/assets.hpp>
 #include <drape/nn/dense_stack.hpp>
 #include <drape/nn/basis_products.hpp>
 #include <drape/plugin.hpp>

@@ -9,7 +9,7 @@
 #include "conv2d.hpp"
 #include "uv_raster.hpp"
 
-#include <drape/assets.hpp>
+#include <drape/assets/assets.hpp>
 #include <drape/nn/init.hpp>
 #include <drape/plugin.hpp>
 

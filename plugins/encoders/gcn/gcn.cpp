@@ -4,7 +4,7 @@
 // mesh's vertex graph (Assets::body). No downsampling: every layer runs on all
 // body vertices. Outputs follow cnn1d's convention so the encoders swap in a
 // graph: `features` one row per body vertex, `global` the mean over vertices.
-#include <drape/assets.hpp>
+#include <drape/assets/assets.hpp>
 #include <drape/geometry/adjacency.hpp>
 #include <drape/nn/graph_conv.hpp>
 #include <drape/nn/init.hpp>

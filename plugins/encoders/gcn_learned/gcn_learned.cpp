@@ -12,7 +12,7 @@
 // rows. Outputs follow cnn1d's convention (swappable in a graph): `features`
 // gives every body vertex the row of the block that contains it, `global` is
 // the mean of the last map over its rows.
-#include <drape/assets.hpp>
+#include <drape/assets/assets.hpp>
 #include <drape/geometry/adjacency.hpp>
 #include <drape/nn/graph_conv.hpp>
 #include <drape/nn/init.hpp>

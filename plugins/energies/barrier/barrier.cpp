@@ -12,7 +12,7 @@
 #include <drape/geometry/ccd.hpp>
 #include <drape/geometry/vertex_areas.hpp>
 #include <drape/energy_input.hpp>
-#include <drape/psd_projection.hpp>
+#include <drape/physics/psd_projection.hpp>
 
 #include <Eigen/Geometry>
 

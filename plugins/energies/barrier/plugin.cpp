@@ -1,6 +1,7 @@
 // The `barrier` energy plugin: IPC-style barrier contact with the body (barrier.hpp).
 #include "barrier.hpp"
 
+#include <drape/energy.hpp>
 #include <drape/plugin.hpp>
 
 namespace {

@@ -10,7 +10,7 @@
 //
 // k_b, the smaller of the two faces' materials' stiffness:
 //  * model arcsim: ArcSim's table at the edge's UV direction and the curvature
-//    |theta| l / (A0 + A1) (drape/arcsim_material.hpp), so k_b depends on
+//    |theta| l / (A0 + A1) (drape/physics/arcsim_material.hpp), so k_b depends on
 //    theta; E is differentiated exactly, dk_b/dtheta included;
 //  * model linear: the material's constant `bending`.
 // ArcSim measures l in world space at each step; drape uses the rest (UV)
@@ -39,10 +39,10 @@
 // A wing of (near) zero area in the current 3D state has no normal: its hinge
 // contributes nothing (w = 0), or, for a wing below 1e-10 of the edge length
 // but not at 0, a tiny energy w E whose dtheta terms are dropped (dihedral_angle.hpp).
-#include <drape/arcsim_material.hpp>
+#include <drape/physics/arcsim_material.hpp>
 #include <drape/element_energy.hpp>
 #include <drape/plugin.hpp>
-#include <drape/psd_projection.hpp>
+#include <drape/physics/psd_projection.hpp>
 #include <drape/warnings.hpp>
 
 #include <algorithm>

@@ -8,7 +8,7 @@
 #include <drape/errors.hpp>
 #include <drape/geometry/closest_point.hpp>
 #include <drape/geometry/vertex_areas.hpp>
-#include <drape/psd_projection.hpp>
+#include <drape/physics/psd_projection.hpp>
 
 #include <algorithm>
 #include <string>

@@ -1,6 +1,7 @@
 // The `collision` energy plugin: body collision penalty (body_collision.hpp).
 #include "body_collision.hpp"
 
+#include <drape/energy.hpp>
 #include <drape/plugin.hpp>
 
 namespace {

@@ -2,7 +2,7 @@
 // The kinematics of a membrane (in-plane stretching) energy of one triangle
 // whose density psi(g) depends on the Green strain g = (G00, G11, G01): its
 // gradient and (projected) Hessian in the positions, for any psi
-// (drape/arcsim_material.hpp gives ArcSim's and the linear one).
+// (drape/physics/arcsim_material.hpp gives ArcSim's and the linear one).
 //
 // With material-space (UV) edge matrix Dm = [u1 - u0, u2 - u0] and world
 // positions x0, x1, x2, the deformation gradient is

@@ -1,9 +1,9 @@
 // The membrane (stretching) energy summed over the garment's faces: per face
 // A psi(g) of the Green strain g against the material-space (UV) rest shape,
-// psi from the face's material (drape/arcsim_material.hpp):
+// psi from the face's material (drape/physics/arcsim_material.hpp):
 //  * model arcsim: ArcSim's data-driven stiffness, k(g) from its sample table,
 //    psi(g) the work of ArcSim's stress along the straight strain path
-//    (drape/arcsim_material.hpp);
+//    (drape/physics/arcsim_material.hpp);
 //  * model linear: constant k, psi = (k_uu g0^2 + k_vv g1^2 + 2 k_uv g0 g1 + k_shear g2^2) / 2
 //    (drape's model before ArcSim's tables, kept to reproduce old results).
 //
@@ -27,7 +27,7 @@
 // clamping Newton's model predicted no curvature where the energy curves up
 // (measured in docs/findings.md, "What settles the heavy drapes"). Linear faces
 // keep the nearest PSD matrix, as before.
-#include <drape/arcsim_material.hpp>
+#include <drape/physics/arcsim_material.hpp>
 #include <drape/element_energy.hpp>
 #include <drape/plugin.hpp>
 #include <drape/warnings.hpp>

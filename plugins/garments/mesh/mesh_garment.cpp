@@ -14,8 +14,9 @@
 // Bad input is refused with one line naming the file and the element.
 #include <drape/errors.hpp>
 #include <drape/geometry/topology.hpp>
-#include <drape/materials.hpp>
-#include <drape/mesh_io.hpp>
+#include <drape/materials/materials.hpp>
+#include <drape/io/mesh_io.hpp>
+#include <drape/bodies/body.hpp>
 #include <drape/plugin.hpp>
 
 #include <Eigen/Geometry>

@@ -4,7 +4,7 @@
 // names "knit" and "print" stay the T-shirt's own (Material::name is the region
 // name here). Index = material id in Garment::face_material.
 #include <drape/energy.hpp>
-#include <drape/materials.hpp>
+#include <drape/materials/materials.hpp>
 
 #include <string>
 

@@ -5,6 +5,7 @@
 #include "tshirt_mesh.hpp"
 
 #include <drape/errors.hpp>
+#include <drape/bodies/body.hpp>
 #include <drape/plugin.hpp>
 
 #include <cctype>

@@ -8,7 +8,7 @@
 // 3x2 difference; `reduction: sum` gives the seed's plain sum over faces.
 // F is linear in the positions, so F_x - F_y = (x - y)(f) X^-1 and the
 // gradients for pred and target are opposite.
-#include <drape/assets.hpp>
+#include <drape/assets/assets.hpp>
 #include <drape/errors.hpp>
 #include <drape/plugin.hpp>
 

@@ -14,8 +14,8 @@
 // points and n (geometry/closest_point_gradient.hpp), those of the three the
 // graph wants (training: pred only). Computed in double; the closest points come
 // from geometry::BodyPoints (the target's cached, shared with v2v).
-#include <drape/assets.hpp>
-#include <drape/body_loss_inputs.hpp>
+#include <drape/assets/assets.hpp>
+#include <drape/nn/body_loss_inputs.hpp>
 #include <drape/geometry/body_points.hpp>
 #include <drape/geometry/closest_point_gradient.hpp>
 #include <drape/plugin.hpp>

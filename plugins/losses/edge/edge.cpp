@@ -9,7 +9,7 @@
 // edge of 5e-10 m, rest 6e-4 m) is measured against 1 % of its template
 // length. Unfloored, that one edge made the loss 10^5 times its usual size and
 // training diverged; every edge compressed less than 100x is the seed's term.
-#include <drape/assets.hpp>
+#include <drape/assets/assets.hpp>
 #include <drape/geometry/adjacency.hpp>
 #include <drape/plugin.hpp>
 

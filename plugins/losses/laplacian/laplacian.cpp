@@ -8,7 +8,7 @@
 // so restriction picks those rows. Level 0 is the garment itself.
 // |.|_1 sums the three coordinates; each level is averaged over its vertices
 // (`reduction: sum` gives the seed's plain sums).
-#include <drape/assets.hpp>
+#include <drape/assets/assets.hpp>
 #include <drape/plugin.hpp>
 
 #include <algorithm>

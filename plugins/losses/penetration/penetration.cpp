@@ -17,8 +17,8 @@
 // dL/dx_i = -2 R(eps - s_i) n_i / (eps^2 N). The closest points depend on the
 // body too, but only pred's gradient is given: this is a training loss, and
 // the graph asks for no other (setup refuses a body or target gradient).
-#include <drape/assets.hpp>
-#include <drape/body_loss_inputs.hpp>
+#include <drape/assets/assets.hpp>
+#include <drape/nn/body_loss_inputs.hpp>
 #include <drape/errors.hpp>
 #include <drape/geometry/body_points.hpp>
 #include <drape/plugin.hpp>

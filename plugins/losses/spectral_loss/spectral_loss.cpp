@@ -8,7 +8,7 @@
 // seed's plain sum).
 // Reading V (N x k floats, 14 MB at the default resolution) is the cost here:
 // once per batch forward, once backward.
-#include <drape/assets.hpp>
+#include <drape/assets/assets.hpp>
 #include <drape/nn/basis_products.hpp>
 #include <drape/plugin.hpp>
 

@@ -11,8 +11,8 @@
 // wants (training: pred only). Closest points in double, found by
 // geometry::BodyPoints: the target's computed once per sample and cached, the
 // prediction's among the faces listed near the target's vertex.
-#include <drape/assets.hpp>
-#include <drape/body_loss_inputs.hpp>
+#include <drape/assets/assets.hpp>
+#include <drape/nn/body_loss_inputs.hpp>
 #include <drape/geometry/body_points.hpp>
 #include <drape/geometry/closest_point_gradient.hpp>
 #include <drape/plugin.hpp>

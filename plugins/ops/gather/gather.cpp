@@ -5,7 +5,7 @@
 // Assets::correspondence); the `indices` parameter overrides them for graphs
 // that pick rows of something else. Backward scatter-adds, so a row picked
 // twice receives both gradients.
-#include <drape/assets.hpp>
+#include <drape/assets/assets.hpp>
 #include <drape/plugin.hpp>
 
 namespace {

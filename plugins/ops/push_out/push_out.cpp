@@ -6,7 +6,7 @@
 // passes the gradient straight through, so a graph may keep it in place while
 // training, and `enabled: false` turns it off without changing the weights
 // (drape eval --set post.enabled=true measures a model with and without it).
-#include <drape/assets.hpp>
+#include <drape/assets/assets.hpp>
 #include <drape/geometry/push_out.hpp>
 #include <drape/plugin.hpp>
 

@@ -4,7 +4,7 @@
 // an MLP regresses with L2 and the high-frequency rest: here it makes the
 // low-frequency target of the TailorNet-style baseline
 // (graphs/baselines/tailornet_*.yaml). Linear, so its backward is itself.
-#include <drape/assets.hpp>
+#include <drape/assets/assets.hpp>
 #include <drape/plugin.hpp>
 
 #include <algorithm>

@@ -8,7 +8,7 @@
 //                       seed's "garment = template + displacement" view).
 // Both are constant shifts, so the gradient passes through unchanged, and the
 // losses still see absolute positions (edge lengths, the body surface).
-#include <drape/assets.hpp>
+#include <drape/assets/assets.hpp>
 #include <drape/plugin.hpp>
 
 namespace {

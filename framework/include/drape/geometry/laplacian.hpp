@@ -11,7 +11,7 @@
 //    so its eigenvectors are orthonormal; valence-weighted, hence not a length.
 //  * cotangent_stiffness K (with lumped_mass M): the discretised Dirichlet
 //    energy, geometry-aware; symmetric PSD with constants in its kernel. The
-//    spectral basis (drape/spectral.hpp) uses K by default: see there why.
+//    spectral basis (drape/spectral/spectral.hpp) uses K by default: see there why.
 #include <Eigen/Core>
 #include <Eigen/SparseCore>
 

@@ -7,7 +7,7 @@
 // faces parse their arguments into a GenerateRequest and print; everything
 // that decides what is in the file is here, so they write the same bytes.
 #include <drape/registry.hpp>
-#include <drape/scene.hpp>
+#include <drape/scene/scene.hpp>
 
 #include <cstddef>
 #include <cstdint>

@@ -11,8 +11,8 @@
 //    (garment_size.hpp's tailor's rule). What it has to say comes back as
 //    notices, for the face to print (CLI: "note: ..." on stderr) or warn
 //    (Python warnings).
-#include <drape/model.hpp>
-#include <drape/model_domain.hpp>
+#include <drape/training/model.hpp>
+#include <drape/training/model_domain.hpp>
 
 #include <Eigen/Core>
 #include <optional>

@@ -4,8 +4,8 @@
 // alone writes; output_lock.hpp), train() (trainer.hpp), then the training
 // bodies' domain recorded in the model file (model_domain.hpp), after every
 // run, so an interrupted model has it too.
-#include <drape/model_domain.hpp>
-#include <drape/trainer.hpp>
+#include <drape/training/model_domain.hpp>
+#include <drape/training/trainer.hpp>
 
 #include <optional>
 

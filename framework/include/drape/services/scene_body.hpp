@@ -6,8 +6,8 @@
 // a body lifted or centred by another tool would drag the garment through the
 // air), and with `size: auto` picks the size the body's girth needs
 // (garment_size.hpp). drape_scene_body runs it and moves the drape back.
-#include <drape/garment_size.hpp>
-#include <drape/simulation.hpp>
+#include <drape/scene/garment_size.hpp>
+#include <drape/scene/simulation.hpp>
 
 #include <Eigen/Core>
 #include <optional>

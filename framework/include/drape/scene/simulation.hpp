@@ -8,10 +8,10 @@
 // Only what the scene names is built: an energy per effect, the body's
 // closest-point hierarchy only when an effect needs the body, the per-face
 // material map only when the garment's faces differ in material.
-#include <drape/body.hpp>
+#include <drape/bodies/body.hpp>
 #include <drape/geometry/surface_crossings.hpp>
-#include <drape/scene.hpp>
-#include <drape/solver.hpp>
+#include <drape/scene/scene.hpp>
+#include <drape/physics/solver.hpp>
 
 #include <functional>
 #include <memory>

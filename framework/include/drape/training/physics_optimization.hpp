@@ -7,8 +7,8 @@
 // weights with Adam. This fixes residual penetrations and stretch of the
 // prediction and adapts it to materials never seen in training (a scene with a
 // print).
-#include <drape/model.hpp>
-#include <drape/simulation.hpp>
+#include <drape/training/model.hpp>
+#include <drape/scene/simulation.hpp>
 
 #include <functional>
 #include <string>

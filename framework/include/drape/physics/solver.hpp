@@ -168,9 +168,4 @@ class ClothSolver {
   std::unique_ptr<Impl> impl_;
 };
 
-// Threads the BLAS may use, for the whole process (OpenBLAS, BLIS). Creating a
-// CHOLMOD solver sets it to 1 (sparse_cholesky.cpp says why). Returns false
-// when the BLAS linked offers no such control.
-bool set_blas_threads(int threads);
-
 }  // namespace drape

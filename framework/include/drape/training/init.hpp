@@ -3,7 +3,7 @@
 // Fans are explicit: with drape's row-major features x [vertices, in] and
 // y = x W, a dense weight W is [in, out], so fan_in = rows, fan_out = cols; a
 // convolution's fans also count its kernel taps.
-#include <drape/rng.hpp>
+#include <drape/training/rng.hpp>
 #include <drape/tensor.hpp>
 
 namespace drape {

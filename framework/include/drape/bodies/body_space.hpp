@@ -3,8 +3,8 @@
 // BMI uniform over its range and, independently, sex, height and every
 // proportion the body model offers (girths), so that bodies of one BMI differ
 // in build as people do. docs/bodies.md shows the distribution.
-#include <drape/body.hpp>
-#include <drape/rng.hpp>
+#include <drape/bodies/body.hpp>
+#include <drape/training/rng.hpp>
 
 #include <string>
 

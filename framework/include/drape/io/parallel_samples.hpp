@@ -4,7 +4,7 @@
 // `threads` workers; the first error stops the others after the sample they
 // are on, and the dataset is then left as a partial file to resume, with a
 // message, before the error is rethrown. Without an error it is finished.
-#include <drape/dataset.hpp>
+#include <drape/io/dataset.hpp>
 #include <drape/progress.hpp>
 
 #include <functional>

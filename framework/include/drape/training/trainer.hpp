@@ -13,8 +13,8 @@
 // in is run again from the state after the last finished epoch, and the result
 // is identical to an uninterrupted run. The shuffle of epoch e is drawn from
 // Rng::derive(seed, "epoch-e"), so the random state is (seed, epoch).
-#include <drape/assets.hpp>
-#include <drape/ranks.hpp>
+#include <drape/assets/assets.hpp>
+#include <drape/training/ranks.hpp>
 #include <drape/registry.hpp>
 
 #include <cstdint>
@@ -55,7 +55,7 @@ struct TrainOptions {
   // several trainings in one process; null: built from the dataset's scene.
   std::shared_ptr<const Assets> assets;
   std::ostream* log = nullptr;       // one line per epoch; null: quiet
-  // The processes training together (mpirun, drape/distributed.hpp): each
+  // The processes training together (mpirun, drape/training/distributed.hpp): each
   // runs its part of every batch and validation batch; rank 0 alone logs,
   // shows the progress and writes <out> and <out>.state. null: this one alone.
   const Ranks* ranks = nullptr;
@@ -81,15 +81,5 @@ TrainReport train(const Registry& registry, const TrainOptions& options);
 
 // "<out>.state"
 std::filesystem::path training_state_path(const std::filesystem::path& out);
-
-class DatasetReader;
-// The assets of the template a dataset was generated for (its scene's body
-// model and garment, with eigen_k eigenvectors), checked against the
-// dataset's sizes and template hash (ConfigError when they differ).
-std::shared_ptr<const Assets> assets_for_dataset(const Registry& registry, const DatasetReader& reader,
-                                                 const std::filesystem::path& data, int eigen_k,
-                                                 const std::filesystem::path& cache_dir, AssetsSpec* spec = nullptr);
-// The same check for assets from elsewhere (a model's).
-void check_dataset_template(const DatasetReader& reader, const std::filesystem::path& data, const Assets& assets);
 
 }  // namespace drape

@@ -1,6 +1,6 @@
 #pragma once
-// Data-parallel training over processes (drape/ranks.hpp) on top of each
-// process's threads (drape/data_parallel.hpp). A global batch is cut into
+// Data-parallel training over processes (drape/training/ranks.hpp) on top of each
+// process's threads (drape/training/data_parallel.hpp). A global batch is cut into
 // min(ranks, samples) contiguous parts exactly as DataParallelGraph cuts a
 // batch among its threads; each rank reads and runs only its part, the parts'
 // mean gradients are gathered on every rank and combined in rank order with
@@ -8,8 +8,8 @@
 // the same gradient bits, runs the same Adam step and keeps the same weights
 // without a broadcast, and N ranks of one thread each give bit for bit what one
 // process with N threads gives (and one thread up to float round-off).
-#include <drape/data_parallel.hpp>
-#include <drape/ranks.hpp>
+#include <drape/training/data_parallel.hpp>
+#include <drape/training/ranks.hpp>
 
 #include <cstddef>
 #include <functional>

@@ -14,7 +14,7 @@
 //   /domain/descriptors     f32 [n, 3K]  K body vertices of each training body
 //   /domain/descriptor_vertices i32 [K]  which vertices
 //   /domain/placement       f64 [2, 3]   where the training bodies stood (optional)
-#include <drape/dataset.hpp>
+#include <drape/io/dataset.hpp>
 
 #include <Eigen/Core>
 

@@ -7,7 +7,7 @@
 // given thread count (and equal to one full-batch pass up to float rounding).
 // Each worker runs with one OpenMP thread: the parallelism is over samples.
 #include <drape/graph.hpp>
-#include <drape/model.hpp>
+#include <drape/training/model.hpp>
 
 #include <map>
 #include <memory>

@@ -3,9 +3,9 @@
 // metrics (metrics.hpp): what drape eval prints and drape bench tradeoff
 // plots. Bodies are predicted in batches; the metrics of a batch run in
 // parallel (OpenMP).
-#include <drape/dataset.hpp>
-#include <drape/metrics.hpp>
-#include <drape/model.hpp>
+#include <drape/io/dataset.hpp>
+#include <drape/training/metrics.hpp>
+#include <drape/training/model.hpp>
 #include <drape/progress.hpp>
 
 #include <vector>

@@ -9,7 +9,7 @@
 //   /history/<name>               f64 [n]            optional series (per-epoch losses, ...)
 // Written atomically (temporary file + rename): a save that fails or is killed
 // leaves the previous checkpoint untouched.
-#include <drape/optimizer.hpp>
+#include <drape/training/optimizer.hpp>
 
 #include <filesystem>
 #include <map>

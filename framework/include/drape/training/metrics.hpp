@@ -20,7 +20,7 @@
 // resolution. They are the values of the loss plugins edge, laplacian,
 // spectral_loss and deformation with their default `reduction: mean`
 // (docs/losses.md). Everything is computed in double.
-#include <drape/assets.hpp>
+#include <drape/assets/assets.hpp>
 
 #include <Eigen/Core>
 #include <Eigen/SparseCore>

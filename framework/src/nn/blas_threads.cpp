@@ -1,9 +1,11 @@
 // The BLAS's thread count, looked up at run time so that drape builds and runs
 // against any BLAS: OpenBLAS exports openblas_set_num_threads, BLIS
 // bli_thread_set_num_threads; the reference BLAS has no threads to limit.
-#include <drape/solver.hpp>
+#include <drape/nn/blas_threads.hpp>
 
 #include <dlfcn.h>
+
+#include <initializer_list>
 
 namespace drape {
 

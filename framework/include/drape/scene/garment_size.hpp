@@ -18,8 +18,8 @@
 //   and simulating it would hand back a drape stretched over the body and
 //   unsettled: the caller says so instead.
 #include <drape/registry.hpp>
-#include <drape/scene.hpp>
-#include <drape/simulation.hpp>
+#include <drape/scene/scene.hpp>
+#include <drape/scene/simulation.hpp>
 
 #include <Eigen/Core>
 

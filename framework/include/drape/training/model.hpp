@@ -12,11 +12,11 @@
 //   target       [garment_vertices, 3] the ground-truth garment (losses only)
 // A graph input of any other name is refused when the graph is loaded. The
 // predicted garment is the output named `garment`, else the graph's first output.
-#include <drape/assets.hpp>
-#include <drape/body.hpp>
-#include <drape/checkpoint.hpp>
+#include <drape/assets/assets.hpp>
+#include <drape/bodies/body.hpp>
+#include <drape/io/checkpoint.hpp>
 #include <drape/graph.hpp>
-#include <drape/scene.hpp>
+#include <drape/scene/scene.hpp>
 
 #include <cstdint>
 #include <filesystem>

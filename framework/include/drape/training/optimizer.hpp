@@ -10,7 +10,7 @@
 //
 // state()/set_state() expose the moments so a checkpoint resumes exactly.
 #include <drape/node.hpp>
-#include <drape/schedule.hpp>
+#include <drape/training/schedule.hpp>
 
 #include <map>
 #include <string>
