@@ -7,6 +7,7 @@
 #include <drape/energy.hpp>
 #include <drape/element_assembly.hpp>
 #include <drape/gradcheck.hpp>
+#include <drape/physics/dissipation.hpp>
 #include <drape/materials/materials.hpp>
 
 #include <catch2/catch.hpp>
@@ -207,18 +208,20 @@ TEST_CASE("every registered energy refuses a non-finite position with one line n
     ctx.garment = s.garment.get();
     if (with_friction->needs_body()) ctx.body = &s.body;
     with_friction->bind(ctx);
-    with_friction->begin_step(s.x, 0.1);
+    Dissipation* friction = with_friction->dissipation();
+    CHECK((friction != nullptr) == (name == "barrier"));  // only the barrier carries friction
     Eigen::MatrixX3d x = s.x;
     x(bad_vertex, 1) = std::numeric_limits<double>::quiet_NaN();
     INFO(name << " with friction");
-    if (name == "barrier") {
-      CHECK_THROWS_WITH(with_friction->begin_step(x, 0.1), Catch::Contains("non-finite"));
+    if (friction) {
+      friction->begin_step(s.x, 0.1);
+      CHECK_THROWS_WITH(friction->begin_step(x, 0.1), Catch::Contains("non-finite"));
       Eigen::MatrixX3d g = Eigen::MatrixX3d::Zero(x.rows(), 3);
       Triplets h;
-      CHECK_THROWS_WITH(with_friction->dissipation(x), Catch::Contains("non-finite"));
-      CHECK_THROWS_WITH(with_friction->add_dissipation_gradient(x, g), Catch::Contains("non-finite"));
-      CHECK_THROWS_WITH(with_friction->add_dissipation_hessian_lower(x, h), Catch::Contains("non-finite"));
-      CHECK_THROWS_WITH(with_friction->slip_ratio(x), Catch::Contains("non-finite"));
+      CHECK_THROWS_WITH(friction->value(x), Catch::Contains("non-finite"));
+      CHECK_THROWS_WITH(friction->add_gradient(x, g), Catch::Contains("non-finite"));
+      CHECK_THROWS_WITH(friction->add_hessian_lower(x, h), Catch::Contains("non-finite"));
+      CHECK_THROWS_WITH(friction->slip_ratio(x), Catch::Contains("non-finite"));
     }
   }
 }

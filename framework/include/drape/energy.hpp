@@ -16,6 +16,8 @@
 
 namespace drape {
 
+class Dissipation;  // physics/dissipation.hpp
+
 // Closest-point queries against a body surface (implemented by the geometry layer).
 class BodyQuery {
  public:
@@ -101,25 +103,11 @@ class Energy {
   virtual void vertex_gradient_samples(const Eigen::MatrixX3d& /*x*/, int /*vertex*/, double /*radius*/,
                                        std::vector<Eigen::Vector3d>& /*samples*/) const {}
 
-  // Friction, for an energy that models it (the barrier contact with a
-  // friction coefficient): a dissipative potential D after IPC's lagged
-  // friction (Li et al. 2020, section 5). begin_step fixes what D lags at the
-  // start of each time step (the contacts at x_start, their normal forces,
-  // tangent planes and closest points); D(x) is then a smooth convex function
-  // of the step's move that the solver adds to the step's incremental
-  // potential. It is no part of the stored energy: value(), add_gradient()
-  // and the drape's energies do not include it. Before the first begin_step
-  // (and in `drape optimize`, which takes no time steps) D is 0.
-  virtual void begin_step(const Eigen::MatrixX3d& /*x_start*/, double /*time_step*/) {}
-  virtual double dissipation(const Eigen::MatrixX3d& /*x*/) const { return 0; }
-  virtual void add_dissipation_gradient(const Eigen::MatrixX3d& /*x*/, Eigen::MatrixX3d& /*g*/) const {}
-  // Its Hessian's entries with row >= column (positive semidefinite by construction).
-  virtual void add_dissipation_hessian_lower(const Eigen::MatrixX3d& /*x*/, Triplets& /*h*/) const {}
-  // The largest slip of the lagged contacts at x, relative to the slip that
-  // friction still holds (the static regime): 1 or more while some contact
-  // slides (kinetic friction), below 1 when friction holds every contact.
-  // A drape with friction has settled only when nothing slides.
-  virtual double slip_ratio(const Eigen::MatrixX3d& /*x*/) const { return 0; }
+  // The dissipative potential that goes with this energy's contacts
+  // (friction, physics/dissipation.hpp: its own potential, lagged per time
+  // step), owned by the energy; null for every other energy and for a contact
+  // without friction. The solver adds it to each step's incremental potential.
+  virtual Dissipation* dissipation() { return nullptr; }
 };
 
 }  // namespace drape

@@ -3,6 +3,7 @@
 #include <drape/errors.hpp>
 #include <drape/geometry/closest_point.hpp>
 #include <drape/geometry/vertex_areas.hpp>
+#include <drape/physics/dissipation.hpp>
 #include <drape/physics/solver.hpp>
 
 #include <Eigen/LU>
@@ -179,7 +180,7 @@ double ClothSolver::stationarity(const Eigen::MatrixX3d& x, double radius) const
     e.energy->add_gradient(x, kinks ? rough : smooth);
     // Friction's push (the last step's lagged contacts) balances the cloth
     // too; ClothSolver::sliding tells whether it held it still.
-    e.energy->add_dissipation_gradient(x, smooth);
+    if (const Dissipation* d = e.energy->dissipation()) d->add_gradient(x, smooth);
     if (kinks) kinked.push_back(e.energy.get());
   }
   double sum = 0;
@@ -207,7 +208,8 @@ double ClothSolver::stationarity(const Eigen::MatrixX3d& x, double radius) const
 
 double ClothSolver::slip_ratio(const Eigen::MatrixX3d& x) const {
   double largest = 0;
-  for (const NamedEnergy& e : energies_) largest = std::max(largest, e.energy->slip_ratio(x));
+  for (const NamedEnergy& e : energies_)
+    if (const Dissipation* d = e.energy->dissipation()) largest = std::max(largest, d->slip_ratio(x));
   return largest;
 }
 
@@ -224,7 +226,8 @@ double ClothSolver::phi(const Eigen::MatrixX3d& x, const Eigen::MatrixX3d& x_hat
   const double inv_h2 = 1.0 / (settings_.time_step * settings_.time_step);
   const double inertia = 0.5 * inv_h2 * (masses_.asDiagonal() * (x - x_hat)).cwiseProduct(x - x_hat).sum();
   double dissipation = 0;
-  for (const NamedEnergy& e : energies_) dissipation += e.energy->dissipation(x);
+  for (const NamedEnergy& e : energies_)
+    if (const Dissipation* d = e.energy->dissipation()) dissipation += d->value(x);
   return inertia + energy(x) + dissipation;
 }
 
@@ -300,7 +303,7 @@ void ClothSolver::Impl::NewtonIterations::gradient(const Eigen::MatrixX3d& at) {
   g_ = inv_h2_ * (s_.masses_.asDiagonal() * (at - x_hat_));
   for (NamedEnergy& e : s_.energies_) {
     e.energy->add_gradient(at, g_);
-    e.energy->add_dissipation_gradient(at, g_);
+    if (const Dissipation* d = e.energy->dissipation()) d->add_gradient(at, g_);
   }
   s_.timings_.gradient += since(t);
   if (!finite(g_)) throw Error("solver: the gradient became non-finite (an energy produced NaN or inf)");
@@ -332,7 +335,7 @@ void ClothSolver::Impl::NewtonIterations::newton_matrix(bool project) {
   trip.clear();
   for (NamedEnergy& e : s_.energies_) {
     e.energy->add_hessian_lower(x_, trip, project);
-    e.energy->add_dissipation_hessian_lower(x_, trip);
+    if (const Dissipation* d = e.energy->dissipation()) d->add_hessian_lower(x_, trip);
   }
   s_.timings_.hessian += since(t);
   t = Clock::now();
@@ -493,8 +496,9 @@ StepReport ClothSolver::step(Eigen::MatrixX3d& x, Eigen::MatrixX3d& v, double se
   const double h = settings_.time_step;
   const Eigen::MatrixX3d x_start = x;
   const Eigen::MatrixX3d x_hat = x + h * v;
-  // Friction lags its contacts at the step's start (Energy::begin_step).
-  for (NamedEnergy& e : energies_) e.energy->begin_step(x_start, h);
+  // Friction lags its contacts at the step's start (Dissipation::begin_step).
+  for (NamedEnergy& e : energies_)
+    if (Dissipation* d = e.energy->dissipation()) d->begin_step(x_start, h);
   StepReport report;
   Impl::NewtonIterations newton(*this, x, x_hat, report);
   report.phi_end = newton.run(settled_below);

@@ -1,4 +1,5 @@
 // Scene -> energies, body and garment; the morph-then-settle run (simulation.hpp).
+#include <drape/physics/dissipation.hpp>
 #include <drape/bodies/body.hpp>
 #include <drape/geometry/body_units.hpp>
 #include <drape/garment_dressing.hpp>
@@ -86,7 +87,8 @@ void measure_drape(const ClothSolver& solver, std::vector<NamedEnergy>& energies
   Eigen::MatrixX3d gradient = solver.static_gradient(x);
   result.residual = gradient.norm() / solver.force_scale();
   // Unbalanced: what friction (its push in the last step) leaves of grad E.
-  for (const NamedEnergy& e : energies) e.energy->add_dissipation_gradient(x, gradient);
+  for (const NamedEnergy& e : energies)
+    if (const Dissipation* d = e.energy->dissipation()) d->add_gradient(x, gradient);
   result.vertex_force = gradient.rowwise().norm();
   if (!result.converged) {
     const double ease = garment_ease(garment.vertices, garment.faces, mean_body, target_body, body_faces);

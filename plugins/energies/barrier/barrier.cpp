@@ -1,5 +1,6 @@
 // Barrier contact: pairs, value, gradient, Hessian (barrier.hpp).
 #include "barrier.hpp"
+#include "friction.hpp"
 
 #include "barrier_function.hpp"
 #include "barrier_state.hpp"
@@ -80,6 +81,7 @@ BarrierContact::BarrierContact(const BarrierSettings& settings) : settings_(sett
     throw ConfigError("barrier: friction must be >= 0, got " + std::to_string(settings_.friction));
   if (!(settings_.slip_velocity > 0) || !std::isfinite(settings_.slip_velocity))
     throw ConfigError("barrier: slip_velocity must be a positive speed, got " + std::to_string(settings_.slip_velocity));
+  if (settings_.friction > 0) friction_ = std::make_unique<Friction>(*this);
 }
 
 BarrierContact::~BarrierContact() = default;

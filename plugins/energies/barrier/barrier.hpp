@@ -33,6 +33,7 @@
 
 #include <drape/dual.hpp>
 #include <drape/energy.hpp>
+#include <drape/physics/dissipation.hpp>
 #include <drape/geometry/closest_point.hpp>
 
 #include <Eigen/Core>
@@ -100,11 +101,8 @@ class BarrierContact final : public Energy {
   // kinetic friction mu lambda against any slip faster than eps_v, and a
   // stiff, smooth stand-in for static friction below it. D's Hessian is
   // positive semidefinite as written (no projection).
-  void begin_step(const Eigen::MatrixX3d& x_start, double time_step) override;
-  double dissipation(const Eigen::MatrixX3d& x) const override;
-  void add_dissipation_gradient(const Eigen::MatrixX3d& x, Eigen::MatrixX3d& g) const override;
-  void add_dissipation_hessian_lower(const Eigen::MatrixX3d& x, Triplets& h) const override;
-  double slip_ratio(const Eigen::MatrixX3d& x) const override;
+  // That friction as its own potential (Friction, friction.cpp); null without friction.
+  Dissipation* dissipation() override;
 
   // The pairs within d_hat at some x, with the body state they were found on.
   struct PairSet {
@@ -145,22 +143,13 @@ class BarrierContact final : public Energy {
   // The area that weights a pair's energy and its friction: the garment
   // vertex's, the body vertex's, or the garment edge's third of its faces'.
   double pair_area(const ContactPair& pair, const BodyState& body) const;
-  // A contact's friction, lagged at the step's start.
-  struct FrictionContact {
-    Contact contact;
-    Eigen::Matrix<double, 3, 2> tangent;  // orthonormal basis of the plane normal to contact.normal
-    double limit = 0;                     // mu lambda, N
-  };
-  struct FrictionLag {
-    Eigen::MatrixX3d x_start;
-    double epsilon = 0;  // m: eps_v h
-    std::vector<FrictionContact> contacts;
-  };
-  // The slip u of a contact at x (2-vector in its tangent plane).
-  Eigen::Vector2d slip(const FrictionContact& c, const Eigen::MatrixX3d& x) const;
+  // The friction over this barrier's pairs (friction.cpp): a nested class,
+  // so it reads the pairs, contacts and settings without widening the
+  // barrier's interface.
+  class Friction;
 
   BarrierSettings settings_;
-  FrictionLag friction_;
+  std::unique_ptr<Friction> friction_;  // with settings.friction > 0
   const geometry::BodySurface* body_ = nullptr;
   std::unique_ptr<Topology> topology_;
 

@@ -1,5 +1,6 @@
-// The barrier contact's friction: IPC's lagged friction (barrier.hpp).
-#include "barrier.hpp"
+// The barrier contact's friction: IPC's lagged friction (barrier.hpp), its own
+// potential (friction.hpp).
+#include "friction.hpp"
 
 #include "barrier_function.hpp"
 #include "barrier_state.hpp"
@@ -86,54 +87,54 @@ BarrierContact::Contact BarrierContact::contact(const ContactPair& pair, const B
   return c;
 }
 
-void BarrierContact::begin_step(const Eigen::MatrixX3d& x_start, double time_step) {
-  friction_.contacts.clear();
-  if (!(settings_.friction > 0)) return;
-  friction_.x_start = x_start;
-  friction_.epsilon = settings_.slip_velocity * time_step;
-  const auto set = cached_pairs(x_start);
+Dissipation* BarrierContact::dissipation() { return friction_.get(); }
+
+void BarrierContact::Friction::begin_step(const Eigen::MatrixX3d& x_start, double time_step) {
+  contacts_.clear();
+  x_start_ = x_start;
+  epsilon_ = barrier_.settings_.slip_velocity * time_step;
+  const auto set = barrier_.cached_pairs(x_start);
   for (const ContactPair& pair : set->pairs) {
-    FrictionContact f;
-    f.contact = contact(pair, *set->body, x_start);
-    f.limit = settings_.friction * f.contact.normal_force;
+    LaggedContact f;
+    f.contact = barrier_.contact(pair, *set->body, x_start);
+    f.limit = barrier_.settings_.friction * f.contact.normal_force;
     if (!(f.limit > 0)) continue;
     f.tangent = tangent_basis(f.contact.normal);
-    friction_.contacts.push_back(f);
+    contacts_.push_back(f);
   }
 }
 
-Eigen::Vector2d BarrierContact::slip(const FrictionContact& f, const Eigen::MatrixX3d& x) const {
+Eigen::Vector2d BarrierContact::Friction::slip(const LaggedContact& f, const Eigen::MatrixX3d& x) const {
   Eigen::Vector3d move = Eigen::Vector3d::Zero();
   for (int k = 0; k < f.contact.count; ++k) {
     const int v = f.contact.vertex[static_cast<std::size_t>(k)];
-    move += f.contact.weight[static_cast<std::size_t>(k)] * (x.row(v) - friction_.x_start.row(v)).transpose();
+    move += f.contact.weight[static_cast<std::size_t>(k)] * (x.row(v) - x_start_.row(v)).transpose();
   }
   return f.tangent.transpose() * move;
 }
 
-double BarrierContact::dissipation(const Eigen::MatrixX3d& x) const {
-  check(x);
+double BarrierContact::Friction::value(const Eigen::MatrixX3d& x) const {
+  barrier_.check(x);
   double total = 0;
-  for (const FrictionContact& f : friction_.contacts)
-    total += f.limit * slip_function(slip(f, x).norm(), friction_.epsilon).f0;
+  for (const LaggedContact& f : contacts_) total += f.limit * slip_function(slip(f, x).norm(), epsilon_).f0;
   return total;
 }
 
-void BarrierContact::add_dissipation_gradient(const Eigen::MatrixX3d& x, Eigen::MatrixX3d& g) const {
-  check(x);
-  for (const FrictionContact& f : friction_.contacts) {
+void BarrierContact::Friction::add_gradient(const Eigen::MatrixX3d& x, Eigen::MatrixX3d& g) const {
+  barrier_.check(x);
+  for (const LaggedContact& f : contacts_) {
     const Eigen::Vector2d u = slip(f, x);
-    const Eigen::Vector3d force = f.limit * slip_function(u.norm(), friction_.epsilon).f1_over_y * (f.tangent * u);
+    const Eigen::Vector3d force = f.limit * slip_function(u.norm(), epsilon_).f1_over_y * (f.tangent * u);
     for (int k = 0; k < f.contact.count; ++k)
       g.row(f.contact.vertex[static_cast<std::size_t>(k)]) += f.contact.weight[static_cast<std::size_t>(k)] * force.transpose();
   }
 }
 
-void BarrierContact::add_dissipation_hessian_lower(const Eigen::MatrixX3d& x, Triplets& h) const {
-  check(x);
-  for (const FrictionContact& f : friction_.contacts) {
+void BarrierContact::Friction::add_hessian_lower(const Eigen::MatrixX3d& x, Triplets& h) const {
+  barrier_.check(x);
+  for (const LaggedContact& f : contacts_) {
     const Eigen::Vector2d u = slip(f, x);
-    const SlipFunction s = slip_function(u.norm(), friction_.epsilon);
+    const SlipFunction s = slip_function(u.norm(), epsilon_);
     // d2 f0(|u|) / du2 = f1/y I + (f1' y - f1) / y^3 u u^T: positive semidefinite
     // for this f0 (eigenvalues f1/y and f1', both >= 0).
     const Eigen::Matrix2d m = s.f1_over_y * Eigen::Matrix2d::Identity() + s.curvature * u * u.transpose();
@@ -157,10 +158,10 @@ void BarrierContact::add_dissipation_hessian_lower(const Eigen::MatrixX3d& x, Tr
   }
 }
 
-double BarrierContact::slip_ratio(const Eigen::MatrixX3d& x) const {
-  check(x);
+double BarrierContact::Friction::slip_ratio(const Eigen::MatrixX3d& x) const {
+  barrier_.check(x);
   double largest = 0;
-  for (const FrictionContact& f : friction_.contacts) largest = std::max(largest, slip(f, x).norm() / friction_.epsilon);
+  for (const LaggedContact& f : contacts_) largest = std::max(largest, slip(f, x).norm() / epsilon_);
   return largest;
 }
 

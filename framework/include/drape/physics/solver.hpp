@@ -119,12 +119,12 @@ class ClothSolver {
   // by the sum of both faces' pushes, which no single closest face gives; on
   // smooth parts it equals the plain residual.
   double stationarity(const Eigen::MatrixX3d& x, double radius) const;
-  // With friction: whether some contact still slides at x (Energy::slip_ratio);
+  // With friction: whether some contact still slides at x (Dissipation::slip_ratio);
   // stationarity counts friction's push, so a drape has settled only when
   // its stationarity is small and nothing slides.
   bool sliding(const Eigen::MatrixX3d& x) const { return slip_ratio(x) >= 1; }
   // The fastest contact's slip in the last step relative to the slip friction
-  // holds (Energy::slip_ratio); 0 without friction.
+  // holds (Dissipation::slip_ratio); 0 without friction.
   double slip_ratio(const Eigen::MatrixX3d& x) const;
 
   // The largest fraction in [0, 1] of the move x -> x + dx (and of the body's
