@@ -8,7 +8,7 @@
 // convolution to 3 coordinates.
 #include <drape/assets/assets.hpp>
 #include <drape/nn/conv1d.hpp>
-#include <drape/nn/init.hpp>
+#include <drape/nn/layer_stack.hpp>
 #include <drape/plugin.hpp>
 
 #include <string>
@@ -37,40 +37,24 @@ class Cnn1dDecoder final : public Node {
       in_channels = static_cast<int>(c);
     }
     layers_.emplace_back(nn::Conv1dGeometry{rows_, in_channels, kernel_, 1}, 3, nn::Activation{});
-    for (std::size_t l = 0; l < layers_.size(); ++l)
-      layers_[l].create_weights(*this, "conv" + std::to_string(l) + "_", nn::mix_seed(context.seed, l));
+    nn::create_stack_weights(*this, layers_, "conv", context.seed);
     return {{"out", {rows_, 3}}};
   }
 
   void forward(const TensorIn& in, const TensorOut& out) override {
     const Tensor& x = *in.at("x");
-    const MatrixRM* h = nullptr;
-    for (std::size_t l = 0; l < layers_.size(); ++l)
-      h = &layers_[l].forward(l == 0 ? nn::ConstMatRef(x.flat()) : nn::ConstMatRef(*h), x.batch());
-    out.at("out")->flat() = *h;
+    out.at("out")->flat() = nn::forward_stack(layers_, x.flat(), x.batch());
   }
 
   void backward(const TensorIn& in, const TensorIn&, const TensorIn& gout, const TensorOut& gin) override {
     const int batch = in.at("x")->batch();
     MatrixRM g = gout.at("out")->flat();
     const auto gx = gin.find("x");
-    for (int l = static_cast<int>(layers_.size()) - 1; l >= 0; --l) {
-      if (l == 0 && gx == gin.end()) {
-        layers_[0].backward(g, batch, nullptr);
-        return;
-      }
-      MatrixRM gprev;
-      layers_[l].backward(g, batch, &gprev);
-      g.swap(gprev);
-    }
-    gx->second->flat() = g;
+    nn::backward_stack(layers_, g, batch, gx != gin.end());
+    if (gx != gin.end()) gx->second->flat() = g;
   }
 
-  double flops_per_sample() const override {
-    double f = 0.0;
-    for (const auto& l : layers_) f += l.flops_per_sample();
-    return f;
-  }
+  double flops_per_sample() const override { return nn::stack_flops(layers_); }
 
  private:
   std::vector<long> channels_;

@@ -4,11 +4,10 @@
 // graph (Assets::garment), all at the garment's resolution, then a dense head
 // to 3 coordinates per vertex (no activation).
 #include <drape/assets/assets.hpp>
-#include <drape/geometry/adjacency.hpp>
 #include <drape/nn/dense_stack.hpp>
-#include <drape/nn/graph_conv.hpp>
+#include <drape/nn/graph_conv_stack.hpp>
 #include <drape/nn/init.hpp>
-#include <drape/nn/mesh_graph.hpp>
+#include <drape/nn/layer_stack.hpp>
 #include <drape/plugin.hpp>
 
 namespace {
@@ -29,52 +28,32 @@ class GcnDecoder final : public Node {
       throw ConfigError("input 'x' must be [garment vertices = " + std::to_string(mesh.num_vertices()) + ", C], got " +
                         x.str());
     vertices_ = x.rows;
-    const auto propagation = std::make_shared<const nn::SparseOperator>(
-        nn::kipf_adjacency(geometry::vertex_neighbours(mesh.faces, mesh.num_vertices())));
-    layers_.clear();
-    int width_in = x.cols;
-    for (std::size_t l = 0; l < channels_.size(); ++l) {
-      layers_.emplace_back(propagation, width_in, static_cast<int>(channels_[l]), activation_);
-      width_in = static_cast<int>(channels_[l]);
-    }
-    for (std::size_t l = 0; l < layers_.size(); ++l)
-      layers_[l].create_weights(*this, "conv" + std::to_string(l) + "_", nn::mix_seed(context.seed, l));
-    head_ = nn::DenseStack({width_in, 3}, nn::Activation{}, nn::Activation{});
+    layers_ = nn::kipf_stack(mesh, x.cols, channels_, activation_);
+    nn::create_stack_weights(*this, layers_, "conv", context.seed);
+    head_ = nn::DenseStack({layers_.back().out(), 3}, nn::Activation{}, nn::Activation{});
     head_.create_weights(*this, "out_", nn::mix_seed(context.seed, 999));
     return {{"out", {vertices_, 3}}};
   }
 
   void forward(const TensorIn& in, const TensorOut& out) override {
     const Tensor& x = *in.at("x");
-    for (std::size_t l = 0; l < layers_.size(); ++l) layers_[l].forward(input_of(l, x), x.batch());
-    out.at("out")->flat() = head_.forward(layers_.back().output());
+    out.at("out")->flat() = head_.forward(nn::forward_graph_stack(layers_, x.flat(), x.batch()));
   }
 
   void backward(const TensorIn& in, const TensorIn&, const TensorIn& gout, const TensorOut& gin) override {
     const Tensor& x = *in.at("x");
     const auto gx_port = gin.find("x");
-    MatrixRM g, gx;
+    MatrixRM g;
     head_.backward(layers_.back().output(), gout.at("out")->flat(), &g);
-    for (std::size_t l = layers_.size(); l-- > 0;) {
-      layers_[l].backward(input_of(l, x), g, x.batch(), l == 0 && gx_port == gin.end() ? nullptr : &gx);
-      g.swap(gx);
-    }
+    nn::backward_graph_stack(layers_, x.flat(), g, x.batch(), gx_port != gin.end());
     if (gx_port != gin.end()) gx_port->second->flat() = g;
   }
 
   double flops_per_sample() const override {
-    double f = double(vertices_) * head_.flops_per_row();
-    for (const auto& l : layers_) f += l.flops_per_sample();
-    return f;
+    return nn::stack_flops(layers_, double(vertices_) * head_.flops_per_row());
   }
 
  private:
-  ConstMatrixMap input_of(std::size_t l, const Tensor& x) const {
-    if (l == 0) return x.flat();
-    const MatrixRM& m = layers_[l - 1].output();
-    return {m.data(), m.rows(), m.cols()};
-  }
-
   std::vector<long> channels_;
   nn::Activation activation_;
   std::vector<nn::GraphConvLayer> layers_;

@@ -10,7 +10,7 @@
 #include "uv_raster.hpp"
 
 #include <drape/assets/assets.hpp>
-#include <drape/nn/init.hpp>
+#include <drape/nn/layer_stack.hpp>
 #include <drape/plugin.hpp>
 
 #include <string>
@@ -46,8 +46,7 @@ class UvCnn final : public Node {
       c = static_cast<int>(out);
     }
     layers_.emplace_back(Conv2dGeometry{resolution_, c, kernel_}, 3, nn::Activation{});
-    for (std::size_t l = 0; l < layers_.size(); ++l)
-      layers_[l].create_weights(*this, "conv" + std::to_string(l) + "_", nn::mix_seed(context.seed, l));
+    nn::create_stack_weights(*this, layers_, "conv", context.seed);
     return {{"out", {vertices_, 3}}};
   }
 
@@ -58,8 +57,7 @@ class UvCnn final : public Node {
     MatrixRM image(batch * pixels, in_channels_);
 #pragma omp parallel for schedule(static) if (batch > 1)
     for (int b = 0; b < batch; ++b) image.middleRows(b * pixels, pixels).noalias() = raster_.rasterise * x.mat(b);
-    const MatrixRM* h = &image;
-    for (auto& layer : layers_) h = &layer.forward(*h, batch);
+    const MatrixRM* h = &nn::forward_stack(layers_, image, batch);
     Tensor& y = *out.at("out");
 #pragma omp parallel for schedule(static) if (batch > 1)
     for (int b = 0; b < batch; ++b) y.mat(b).noalias() = raster_.sample * h->middleRows(b * pixels, pixels);
@@ -73,24 +71,16 @@ class UvCnn final : public Node {
 #pragma omp parallel for schedule(static) if (batch > 1)
     for (int b = 0; b < batch; ++b) g.middleRows(b * pixels, pixels).noalias() = sample_t_ * gy.mat(b);
     const auto gx = gin.find("x");
-    for (int l = static_cast<int>(layers_.size()) - 1; l >= 0; --l) {
-      if (l == 0 && gx == gin.end()) {
-        layers_[0].backward(g, batch, nullptr);
-        return;
-      }
-      MatrixRM gprev;
-      layers_[l].backward(g, batch, &gprev);
-      g.swap(gprev);
-    }
+    nn::backward_stack(layers_, g, batch, gx != gin.end());
+    if (gx == gin.end()) return;
     Tensor& gxt = *gx->second;
 #pragma omp parallel for schedule(static) if (batch > 1)
     for (int b = 0; b < batch; ++b) gxt.mat(b).noalias() = raster_t_ * g.middleRows(b * pixels, pixels);
   }
 
   double flops_per_sample() const override {
-    double f = double(raster_.rasterise.nonZeros()) * in_channels_ + double(raster_.sample.nonZeros()) * 3.0;
-    for (const auto& l : layers_) f += l.flops_per_sample();
-    return f;
+    return nn::stack_flops(layers_,
+                           double(raster_.rasterise.nonZeros()) * in_channels_ + double(raster_.sample.nonZeros()) * 3.0);
   }
 
  private:

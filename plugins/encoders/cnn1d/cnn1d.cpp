@@ -5,7 +5,7 @@
 // strided row) so that later nodes can gather it by body vertex index;
 // `global` is the mean of the last map over its rows.
 #include <drape/nn/conv1d.hpp>
-#include <drape/nn/init.hpp>
+#include <drape/nn/layer_stack.hpp>
 #include <drape/plugin.hpp>
 
 #include <algorithm>
@@ -30,8 +30,7 @@ class Cnn1d final : public Node {
       layers_.emplace_back(g, static_cast<int>(channels_[l]), activation_);
       g = {g.out_rows(), static_cast<int>(channels_[l]), kernel_, stride_};
     }
-    for (std::size_t l = 0; l < layers_.size(); ++l)
-      layers_[l].create_weights(*this, "conv" + std::to_string(l) + "_", nn::mix_seed(context.seed, l));
+    nn::create_stack_weights(*this, layers_, "conv", context.seed);
     last_rows_ = g.in_rows;
     // Output row o of the last map is centred on body vertex o * stride^layers.
     const double span = std::pow(double(stride_), double(layers_.size()));
@@ -45,9 +44,7 @@ class Cnn1d final : public Node {
   void forward(const TensorIn& in, const TensorOut& out) override {
     const Tensor& body = *in.at("body");
     const int batch = body.batch();
-    const MatrixRM* x = nullptr;
-    for (std::size_t l = 0; l < layers_.size(); ++l)
-      x = &layers_[l].forward(l == 0 ? nn::ConstMatRef(body.flat()) : nn::ConstMatRef(*x), batch);
+    const MatrixRM* x = &nn::forward_stack(layers_, body.flat(), batch);
     Tensor& features = *out.at("features");
     Tensor& global = *out.at("global");
 #pragma omp parallel for schedule(static) if (batch > 1)
@@ -72,23 +69,11 @@ class Cnn1d final : public Node {
       last.rowwise() += gg.mat(b).row(0) / float(last_rows_);
     }
     const auto gbody = gin.find("body");
-    for (int l = static_cast<int>(layers_.size()) - 1; l >= 0; --l) {
-      if (l == 0 && gbody == gin.end()) {
-        layers_[0].backward(g, batch, nullptr);
-        break;
-      }
-      MatrixRM gx;
-      layers_[l].backward(g, batch, &gx);
-      g.swap(gx);
-    }
+    nn::backward_stack(layers_, g, batch, gbody != gin.end());
     if (gbody != gin.end()) gbody->second->flat() = g;
   }
 
-  double flops_per_sample() const override {
-    double f = 0.0;
-    for (const auto& l : layers_) f += l.flops_per_sample();
-    return f;
-  }
+  double flops_per_sample() const override { return nn::stack_flops(layers_); }
 
  private:
   std::vector<long> channels_;

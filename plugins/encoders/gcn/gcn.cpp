@@ -4,11 +4,9 @@
 // mesh's vertex graph (Assets::body). No downsampling: every layer runs on all
 // body vertices. Outputs follow cnn1d's convention so the encoders swap in a
 // graph: `features` one row per body vertex, `global` the mean over vertices.
-#include <drape/assets/assets.hpp>
-#include <drape/geometry/adjacency.hpp>
-#include <drape/nn/graph_conv.hpp>
-#include <drape/nn/init.hpp>
-#include <drape/nn/mesh_graph.hpp>
+#include <drape/nn/body_graph_input.hpp>
+#include <drape/nn/graph_conv_stack.hpp>
+#include <drape/nn/layer_stack.hpp>
 #include <drape/plugin.hpp>
 
 namespace {
@@ -21,34 +19,18 @@ class GcnEncoder final : public Node {
       : channels_(std::move(channels)), activation_(activation) {}
 
   ShapeMap setup(const ShapeMap& in, const NodeContext& context) override {
-    const Shape body = in.at("body");
-    if (body.cols != 3) throw ConfigError("input 'body' must be [vertices, 3], got " + body.str());
-    if (!context.assets || context.assets->body.num_vertices() == 0)
-      throw ConfigError("gcn needs the template's assets (the body mesh's graph); none are bound");
-    const Mesh& mesh = context.assets->body;
-    if (body.rows != mesh.num_vertices())
-      throw ConfigError("input 'body' has " + std::to_string(body.rows) + " vertices but the assets' body has " +
-                        std::to_string(mesh.num_vertices()));
-    vertices_ = body.rows;
-    const auto propagation = std::make_shared<const nn::SparseOperator>(
-        nn::kipf_adjacency(geometry::vertex_neighbours(mesh.faces, mesh.num_vertices())));
-    layers_.clear();
-    int width_in = 3;
-    for (std::size_t l = 0; l < channels_.size(); ++l) {
-      layers_.emplace_back(propagation, width_in, static_cast<int>(channels_[l]), activation_);
-      width_in = static_cast<int>(channels_[l]);
-    }
-    for (std::size_t l = 0; l < layers_.size(); ++l)
-      layers_[l].create_weights(*this, "conv" + std::to_string(l) + "_", nn::mix_seed(context.seed, l));
-    return {{"features", {vertices_, width_in}}, {"global", {1, width_in}}};
+    const Mesh& mesh = nn::check_body_graph_input(in, context, "gcn");
+    vertices_ = mesh.num_vertices();
+    layers_ = nn::kipf_stack(mesh, 3, channels_, activation_);
+    nn::create_stack_weights(*this, layers_, "conv", context.seed);
+    const int width = layers_.back().out();
+    return {{"features", {vertices_, width}}, {"global", {1, width}}};
   }
 
   void forward(const TensorIn& in, const TensorOut& out) override {
     const Tensor& body = *in.at("body");
     const int batch = body.batch();
-    for (std::size_t l = 0; l < layers_.size(); ++l)
-      layers_[l].forward(l == 0 ? nn::ConstMatRef(body.flat()) : nn::ConstMatRef(layers_[l - 1].output()), batch);
-    const MatrixRM& last = layers_.back().output();
+    const MatrixRM& last = nn::forward_graph_stack(layers_, body.flat(), batch);
     out.at("features")->flat() = last;
     Tensor& global = *out.at("global");
     for (int b = 0; b < batch; ++b) global.mat(b) = last.middleRows(Eigen::Index(b) * vertices_, vertices_).colwise().mean();
@@ -63,20 +45,11 @@ class GcnEncoder final : public Node {
     for (int b = 0; b < batch; ++b)
       g.middleRows(Eigen::Index(b) * vertices_, vertices_).rowwise() += gg.mat(b).row(0) / float(vertices_);
     const auto gbody = gin.find("body");
-    MatrixRM gx;
-    for (std::size_t l = layers_.size(); l-- > 0;) {
-      const nn::ConstMatRef input = l == 0 ? nn::ConstMatRef(body.flat()) : nn::ConstMatRef(layers_[l - 1].output());
-      layers_[l].backward(input, g, batch, l == 0 && gbody == gin.end() ? nullptr : &gx);
-      g.swap(gx);
-    }
+    nn::backward_graph_stack(layers_, body.flat(), g, batch, gbody != gin.end());
     if (gbody != gin.end()) gbody->second->flat() = g;
   }
 
-  double flops_per_sample() const override {
-    double f = 0.0;
-    for (const auto& l : layers_) f += l.flops_per_sample();
-    return f;
-  }
+  double flops_per_sample() const override { return nn::stack_flops(layers_); }
 
  private:
   std::vector<long> channels_;

@@ -12,10 +12,10 @@
 // rows. Outputs follow cnn1d's convention (swappable in a graph): `features`
 // gives every body vertex the row of the block that contains it, `global` is
 // the mean of the last map over its rows.
-#include <drape/assets/assets.hpp>
 #include <drape/geometry/adjacency.hpp>
+#include <drape/nn/body_graph_input.hpp>
 #include <drape/nn/graph_conv.hpp>
-#include <drape/nn/init.hpp>
+#include <drape/nn/layer_stack.hpp>
 #include <drape/nn/mesh_graph.hpp>
 #include <drape/plugin.hpp>
 
@@ -29,15 +29,8 @@ class LearnedGcnEncoder final : public Node {
       : channels_(std::move(channels)), stride_(stride), activation_(activation) {}
 
   ShapeMap setup(const ShapeMap& in, const NodeContext& context) override {
-    const Shape body = in.at("body");
-    if (body.cols != 3) throw ConfigError("input 'body' must be [vertices, 3], got " + body.str());
-    if (!context.assets || context.assets->body.num_vertices() == 0)
-      throw ConfigError("gcn_learned needs the template's assets (the body mesh's graph); none are bound");
-    const Mesh& mesh = context.assets->body;
-    if (body.rows != mesh.num_vertices())
-      throw ConfigError("input 'body' has " + std::to_string(body.rows) + " vertices but the assets' body has " +
-                        std::to_string(mesh.num_vertices()));
-    vertices_ = body.rows;
+    const Mesh& mesh = nn::check_body_graph_input(in, context, "gcn_learned");
+    vertices_ = mesh.num_vertices();
     nn::Neighbours graph = geometry::vertex_neighbours(mesh.faces, mesh.num_vertices());
     layers_.clear();
     pools_.assign(channels_.size(), nn::SparseOperator());
@@ -53,8 +46,7 @@ class LearnedGcnEncoder final : public Node {
       layers_.emplace_back(nn::ring_mean(graph), width_in, static_cast<int>(channels_[l]), activation_);
       width_in = static_cast<int>(channels_[l]);
     }
-    for (std::size_t l = 0; l < layers_.size(); ++l)
-      layers_[l].create_weights(*this, "conv" + std::to_string(l) + "_", nn::mix_seed(context.seed, l));
+    nn::create_stack_weights(*this, layers_, "conv", context.seed);
     // Block of the last scale that holds each body vertex: floor(v / stride^(L-1)).
     block_.resize(static_cast<std::size_t>(vertices_));
     for (int v = 0; v < vertices_; ++v) {

@@ -30,13 +30,13 @@ PluginList plugins() {
        "eps_v in m/s: slower slip is held as static friction (IPC's smoothing; a step of h s creeps up to eps_v h)", 1e-6, 1},
   };
   d.create_energy = [](const Params& p) {
-    barrier::BarrierSettings s;
-    s.distance = p.get_float("distance");
-    s.stiffness = p.get_float("stiffness");
-    s.min_separation = p.get_float("min_separation");
-    s.friction = p.get_float("friction");
-    s.slip_velocity = p.get_float("slip_velocity");
-    return std::make_unique<barrier::BarrierContact>(s);
+    return std::make_unique<barrier::BarrierContact>(barrier::BarrierSettings{
+        .distance = p.get_float("distance"),
+        .stiffness = p.get_float("stiffness"),
+        .min_separation = p.get_float("min_separation"),
+        .friction = p.get_float("friction"),
+        .slip_velocity = p.get_float("slip_velocity"),
+    });
   };
   return {d};
 }

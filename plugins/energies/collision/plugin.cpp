@@ -32,13 +32,13 @@ PluginList plugins() {
        "squeezed into it has a smooth equilibrium; needs smoothing 0"},
   };
   d.create_energy = [](const Params& p) {
-    collision::CollisionSettings s;
-    s.stiffness = p.get_float("stiffness");
-    s.margin = p.get_float("margin");
-    s.max_depth = p.get_float("max_depth");
-    s.smoothing = p.get_float("smoothing");
-    s.creases = p.get_bool("creases");
-    return std::make_unique<collision::BodyCollision>(s);
+    return std::make_unique<collision::BodyCollision>(collision::CollisionSettings{
+        .stiffness = p.get_float("stiffness"),
+        .margin = p.get_float("margin"),
+        .max_depth = p.get_float("max_depth"),
+        .smoothing = p.get_float("smoothing"),
+        .creases = p.get_bool("creases"),
+    });
   };
   return {d};
 }

@@ -8,8 +8,8 @@
 // 3x2 difference; `reduction: sum` gives the seed's plain sum over faces.
 // F is linear in the positions, so F_x - F_y = (x - y)(f) X^-1 and the
 // gradients for pred and target are opposite.
-#include <drape/assets/assets.hpp>
 #include <drape/errors.hpp>
+#include <drape/nn/loss_inputs.hpp>
 #include <drape/plugin.hpp>
 
 #include <Eigen/LU>
@@ -29,15 +29,8 @@ class DeformationLoss final : public Node {
   explicit DeformationLoss(bool mean) : mean_(mean) {}
 
   ShapeMap setup(const ShapeMap& in, const NodeContext& context) override {
-    if (!context.assets || !context.assets->garment)
-      throw ConfigError("the deformation loss needs the garment's material space, but no garment template is bound to "
-                        "this graph (set `assets:` in the graph or pass a garment)");
-    const Shape pred = in.at("pred"), target = in.at("target");
-    if (!(pred == target)) throw ConfigError("pred " + pred.str() + " and target " + target.str() + " differ in shape");
-    const Mesh& mesh = context.assets->garment->mesh;
-    if (pred.cols != 3 || pred.rows != mesh.num_vertices())
-      throw ConfigError("pred must be [" + std::to_string(mesh.num_vertices()) + ", 3] (the garment's vertices), got " +
-                        pred.str());
+    const Mesh& mesh = bound_garment_mesh(context, "deformation", "the garment's material space");
+    check_garment_pred_target(in, mesh.num_vertices());
     if (!mesh.has_uv()) throw ConfigError("the garment template has no material-space (UV) coordinates");
     if (mesh.num_faces() == 0) throw ConfigError("the garment template has no faces");
     faces_ = mesh.faces;

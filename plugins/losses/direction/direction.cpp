@@ -13,17 +13,12 @@
 // passes no gradient. Gradients reach pred, target and body through the closest
 // points and n (geometry/closest_point_gradient.hpp), those of the three the
 // graph wants (training: pred only). Computed in double; the closest points come
-// from geometry::BodyPoints (the target's cached, shared with v2v).
-#include <drape/assets/assets.hpp>
-#include <drape/nn/body_loss_inputs.hpp>
-#include <drape/geometry/body_points.hpp>
-#include <drape/geometry/closest_point_gradient.hpp>
+// from geometry::BodyPoints (the target's cached, shared with v2v), found and
+// differentiated through by nn::ClosestPointLoss.
+#include <drape/nn/closest_point_loss.hpp>
 #include <drape/plugin.hpp>
 
 #include <cmath>
-#include <memory>
-#include <string>
-#include <vector>
 
 namespace {
 
@@ -33,80 +28,30 @@ using geometry::SurfacePoint;
 // Shorter vectors have no direction (float positions carry ~1e-7 m of rounding).
 constexpr double kNoDirection = 1e-9;
 
-Eigen::MatrixX3d to_double(const Tensor& t, int b) { return t.mat(b).cast<double>(); }
-
-class DirectionLoss final : public Node {
+class DirectionLoss final : public nn::ClosestPointLoss {
  public:
   DirectionLoss(bool mean, double outside_weight, double offset_weight)
-      : mean_(mean), outside_weight_(outside_weight), offset_weight_(offset_weight) {}
-
-  ShapeMap setup(const ShapeMap& in, const NodeContext& context) override {
-    rows_ = check_body_loss_inputs(in, context, "direction");
-    const Mesh& mean_body = context.assets->body;
-    faces_ = mean_body.faces;
-    points_ = std::make_unique<geometry::BodyPoints>(mean_body, "direction");
-    return {{"loss", {1, 1}}};
-  }
-
-  void forward(const TensorIn& in, const TensorOut& out) override {
-    const Tensor &x = *in.at("pred"), &y = *in.at("target"), &body = *in.at("body");
-    const int batch = x.batch();
-    hits_x_.assign(batch, {});
-    hits_y_.assign(batch, {});
-    for (int b = 0; b < batch; ++b) {
-      hits_y_[b] = points_->ground_truth(body, y, b);
-      hits_x_[b] = points_->prediction(body, x, y, b, *hits_y_[b]);
-      const auto xb = x.mat(b), yb = y.mat(b);
-      const auto &hx = *hits_x_[b], &hy = *hits_y_[b];
-      double sum = 0.0;
-      for (int i = 0; i < rows_; ++i)
-        sum += vertex_term(xb.row(i).transpose().cast<double>(), yb.row(i).transpose().cast<double>(), hx[i], hy[i], nullptr);
-      (*out.at("loss"))(b, 0, 0) = static_cast<float>(mean_ ? sum / rows_ : sum);
-    }
-  }
-
-  void backward(const TensorIn& in, const TensorIn&, const TensorIn& gout, const TensorOut& gin) override {
-    const Tensor &x = *in.at("pred"), &y = *in.at("target"), &body = *in.at("body");
-    const int batch = x.batch();
-    if (static_cast<int>(hits_x_.size()) != batch) throw Error("direction: backward without a matching forward");
-    const auto gpred = gin.find("pred"), gtarget = gin.find("target"), gbody_port = gin.find("body");
-    const bool want_y = gtarget != gin.end() || gbody_port != gin.end();  // the target's closest points move with both
-    if (gpred == gin.end() && !want_y) return;
-    for (int b = 0; b < batch; ++b) {
-      const double scale = (*gout.at("loss"))(b, 0, 0) / (mean_ ? double(rows_) : 1.0);
-      const Eigen::MatrixX3d xb = to_double(x, b), yb = to_double(y, b), vb = to_double(body, b);
-      const auto &hx = *hits_x_[b], &hy = *hits_y_[b];
-      Eigen::MatrixX3d gx(rows_, 3), gy(rows_, 3), gcx(rows_, 3), gcy(rows_, 3);
-      for (int i = 0; i < rows_; ++i) {
-        Grad g;
-        vertex_term(xb.row(i).transpose(), yb.row(i).transpose(), hx[i], hy[i], &g);
-        gx.row(i) = scale * g.x;
-        gy.row(i) = scale * g.y;
-        gcx.row(i) = scale * g.cx;
-        gcy.row(i) = scale * g.cy;
-      }
-      Eigen::MatrixX3d gbody = Eigen::MatrixX3d::Zero(vb.rows(), 3);
-      geometry::closest_points_backward(vb, faces_, xb, hx, gcx, gx, gbody);
-      if (want_y) geometry::closest_points_backward(vb, faces_, yb, hy, gcy, gy, gbody);
-      if (gpred != gin.end()) gpred->second->mat(b) = gx.cast<float>();
-      if (gtarget != gin.end()) gtarget->second->mat(b) = gy.cast<float>();
-      if (gbody_port != gin.end()) gbody_port->second->mat(b) = gbody.cast<float>();
-    }
-  }
+      : ClosestPointLoss("direction", mean), outside_weight_(outside_weight), offset_weight_(offset_weight) {}
 
   // An estimate: two closest-point queries (~40 box and triangle tests of ~30 flops) and the terms per vertex.
-  double flops_per_sample() const override { return 2.0 * 40.0 * 30.0 * rows_ + 40.0 * rows_; }
+  double flops_per_sample() const override { return 2.0 * 40.0 * 30.0 * rows() + 40.0 * rows(); }
 
  private:
-  // dTerm/d(x, y, c_x, c_y), n's dependence on y and c_y folded in.
-  struct Grad {
-    Eigen::Vector3d x = Eigen::Vector3d::Zero(), y = Eigen::Vector3d::Zero();
-    Eigen::Vector3d cx = Eigen::Vector3d::Zero(), cy = Eigen::Vector3d::Zero();
-  };
+  double vertex_loss(const Eigen::Vector3d& x, const Eigen::Vector3d& y, const SurfacePoint& hx,
+                     const SurfacePoint& hy) const override {
+    return vertex_term(x, y, hx, hy, nullptr);
+  }
+  // n's dependence on y and c_y folded in.
+  VertexGradient vertex_gradient(const Eigen::Vector3d& x, const Eigen::Vector3d& y, const SurfacePoint& hx,
+                                 const SurfacePoint& hy) const override {
+    VertexGradient g;
+    vertex_term(x, y, hx, hy, &g);
+    return g;
+  }
 
   // One vertex's two terms; fills g when given.
   double vertex_term(const Eigen::Vector3d& x, const Eigen::Vector3d& y, const SurfacePoint& hx, const SurfacePoint& hy,
-                     Grad* g) const {
+                     VertexGradient* g) const {
     const Eigen::Vector3d& n = hy.normal;
     double value = 0.0;
     Eigen::Vector3d gn = Eigen::Vector3d::Zero();  // dTerm/dn
@@ -150,12 +95,7 @@ class DirectionLoss final : public Node {
     return value;
   }
 
-  bool mean_;
   double outside_weight_, offset_weight_;
-  int rows_ = 0;
-  Eigen::MatrixX3i faces_;
-  std::unique_ptr<geometry::BodyPoints> points_;
-  std::vector<std::shared_ptr<const geometry::BodyPoints::Hits>> hits_x_, hits_y_;  // of the last forward, per sample
 };
 
 PluginList plugins() {

@@ -9,8 +9,8 @@
 // edge of 5e-10 m, rest 6e-4 m) is measured against 1 % of its template
 // length. Unfloored, that one edge made the loss 10^5 times its usual size and
 // training diverged; every edge compressed less than 100x is the seed's term.
-#include <drape/assets/assets.hpp>
 #include <drape/geometry/adjacency.hpp>
+#include <drape/nn/loss_inputs.hpp>
 #include <drape/plugin.hpp>
 
 #include <algorithm>
@@ -29,15 +29,8 @@ constexpr double kFloor = 0.01;
 class EdgeLoss final : public Node {
  public:
   ShapeMap setup(const ShapeMap& in, const NodeContext& context) override {
-    if (!context.assets || !context.assets->garment)
-      throw ConfigError("the edge loss needs the garment's edges, but no garment template is bound to this graph "
-                        "(set `assets:` in the graph or pass a garment)");
-    const Shape pred = in.at("pred"), target = in.at("target");
-    if (!(pred == target)) throw ConfigError("pred " + pred.str() + " and target " + target.str() + " differ in shape");
-    const Mesh& mesh = context.assets->garment->mesh;
-    if (pred.cols != 3 || pred.rows != mesh.num_vertices())
-      throw ConfigError("pred must be [" + std::to_string(mesh.num_vertices()) + ", 3] (the garment's vertices), got " +
-                        pred.str());
+    const Mesh& mesh = bound_garment_mesh(context, "edge", "the garment's edges");
+    check_garment_pred_target(in, mesh.num_vertices());
     edges_ = geometry::edge_list(mesh.faces);
     if (edges_.empty()) throw ConfigError("the garment template has no edges");
     floor_.resize(edges_.size());

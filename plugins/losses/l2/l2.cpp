@@ -1,5 +1,6 @@
 // The per-vertex L2 loss (the baseline of the seed's Table 6.3):
 // mean over vertices of the squared Euclidean distance to the ground truth.
+#include <drape/nn/loss_inputs.hpp>
 #include <drape/plugin.hpp>
 
 namespace {
@@ -9,9 +10,7 @@ using namespace drape;
 class L2Loss final : public Node {
  public:
   ShapeMap setup(const ShapeMap& in, const NodeContext&) override {
-    if (!(in.at("pred") == in.at("target")))
-      throw ConfigError("pred " + in.at("pred").str() + " and target " + in.at("target").str() + " differ in shape");
-    rows_ = in.at("pred").rows;
+    rows_ = check_pred_target(in).rows;
     return {{"loss", {1, 1}}};
   }
   void forward(const TensorIn& in, const TensorOut& out) override {

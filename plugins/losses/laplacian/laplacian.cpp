@@ -9,6 +9,7 @@
 // |.|_1 sums the three coordinates; each level is averaged over its vertices
 // (`reduction: sum` gives the seed's plain sums).
 #include <drape/assets/assets.hpp>
+#include <drape/nn/loss_inputs.hpp>
 #include <drape/plugin.hpp>
 
 #include <algorithm>
@@ -30,11 +31,8 @@ class LaplacianLoss final : public Node {
     if (!context.assets || !context.assets->garment)
       throw ConfigError("the laplacian loss needs the garment's hierarchy, but no assets are bound to this graph");
     const Assets& assets = *context.assets;
-    const Shape pred = in.at("pred"), target = in.at("target");
-    if (!(pred == target)) throw ConfigError("pred " + pred.str() + " and target " + target.str() + " differ in shape");
     const int ng = assets.garment->mesh.num_vertices();
-    if (pred.cols != 3 || pred.rows != ng)
-      throw ConfigError("pred must be [" + std::to_string(ng) + ", 3] (the garment's vertices), got " + pred.str());
+    check_garment_pred_target(in, ng);
     const int available = std::min<int>(assets.hierarchy.num_levels(), static_cast<int>(assets.laplacians.size()));
     if (levels_ > available)
       throw ConfigError("levels is " + std::to_string(levels_) + " but the assets have " + std::to_string(available) +

@@ -10,6 +10,7 @@
 // once per batch forward, once backward.
 #include <drape/assets/assets.hpp>
 #include <drape/nn/basis_products.hpp>
+#include <drape/nn/loss_inputs.hpp>
 #include <drape/plugin.hpp>
 
 #include <string>
@@ -27,10 +28,7 @@ class SpectralLoss final : public Node {
       throw ConfigError("the spectral loss needs the garment's eigenvectors, but no assets with an eigenbasis are bound "
                         "to this graph");
     const MatrixRM& V = context.assets->eigenvectors;
-    const Shape pred = in.at("pred"), target = in.at("target");
-    if (!(pred == target)) throw ConfigError("pred " + pred.str() + " and target " + target.str() + " differ in shape");
-    if (pred.cols != 3 || pred.rows != V.rows())
-      throw ConfigError("pred must be [" + std::to_string(V.rows()) + ", 3] (the garment's vertices), got " + pred.str());
+    check_garment_pred_target(in, static_cast<int>(V.rows()));
     if (k_ > V.cols())
       throw ConfigError("k is " + std::to_string(k_) + " but the assets hold " + std::to_string(V.cols()) + " eigenvectors");
     const int k = k_ > 0 ? k_ : static_cast<int>(V.cols());
