@@ -52,7 +52,7 @@ std::string model_file_or_default(const po::variables_map& vm) {
 
 SampleBatch model_body(const Model& model, const po::variables_map& vm, Eigen::RowVector3d* moved_by) {
   SampleBatch batch = model_body_batch(model, body_input(vm));
-  const PreparedBodies prepared = prepare_bodies(model, read_domain(model.file()), batch, vm.count("strict") > 0);
+  const PreparedBodies prepared = BodyPreparation(model, read_domain(model.file())).prepare(batch, vm.count("strict") > 0);
   for (const Notice& n : prepared.notices) std::cerr << (n.level == Notice::Level::note ? "note: " : "warning: ") << n.text << "\n";
   if (moved_by) *moved_by = prepared.moved_by.front();
   return batch;

@@ -50,18 +50,14 @@ SampleRange range_arg(const py::handle& value, const std::string& name) {
 py::dict generate(const PyScene& scene, const std::string& out, std::size_t count, const py::handle& bmi,
                   const py::handle& height, const py::handle& sex, double girths, std::uint64_t seed,
                   const std::pair<std::size_t, std::size_t>& shard, int threads, bool progress) {
-  GenerateRequest request;
-  if (count == 0) throw py::value_error("count: expected at least 1 sample");
+  GenerateRequest request;  // generate_dataset checks it (ConfigError: ValueError)
   request.count = count;
   request.bmi = range_arg(bmi, "bmi");
   request.height = range_arg(height, "height");
   request.sex = range_arg(sex, "sex");
-  if (!(girths >= 0 && girths <= 1)) throw py::value_error("girths: expected a fraction in [0, 1]");
   request.girths = girths;
   request.seed = seed;
-  if (shard.second == 0 || shard.first >= shard.second) throw py::value_error("shard: expected (i, N) with 0 <= i < N");
   request.shard = Shard{shard.first, shard.second};
-  if (threads < 0) throw py::value_error("threads: expected 0 (all cores) or a count");
   request.threads = threads;
   GenerateObserver observer;
   if (progress) observer.progress = &std::cerr;

@@ -70,27 +70,30 @@ class PyModel {
   }
   std::uint64_t last_forward() const { return forward_id_; }
 
-  // The model file's training domain, read once; none for an untrained model
-  // or a file written before domains were recorded.
-  const std::optional<ModelDomain>& domain() {
+  // What makes bodies ready for this model (services/model_body.hpp), built
+  // once: the file's training domain (none for an untrained model or a file
+  // written before domains were recorded) and the garment's loop.
+  const BodyPreparation& preparation() {
     std::lock_guard lock(mutex_);
-    if (!domain_read_) {
-      domain_read_ = true;
-      if (!model_->file().empty() && fs::exists(model_->file())) domain_ = read_domain(model_->file());
+    if (!preparation_) {
+      std::optional<ModelDomain> domain;
+      if (!model_->file().empty() && fs::exists(model_->file())) domain = read_domain(model_->file());
+      preparation_.emplace(*model_, std::move(domain));
     }
-    return domain_;
+    return *preparation_;
   }
+  const std::optional<ModelDomain>& domain() { return preparation().domain(); }
 
-  // As drape predict does (services/model_body.hpp): each body standing
-  // away from where the training bodies stood is moved there, the domain is
-  // checked (strict: ValueError outside it) and a garment too small around is
-  // noted, each notice a Python warning; returns per sample what to add to
-  // its garment to move it back.
-  std::vector<Eigen::RowVector3d> prepare(SampleBatch& b, bool strict) {
-    const std::optional<ModelDomain>& d = domain();
+  // As drape predict does: each body standing away from where the training
+  // bodies stood is moved there, the domain is checked (strict: ValueError
+  // outside it) and a garment too small around is noted, each notice a Python
+  // warning; returns per sample what to add to its garment to move it back.
+  std::vector<Eigen::RowVector3d> prepare(SampleBatch& b, bool strict, bool check = true) {
+    if (strict && !check) throw py::value_error("strict=True needs check=True: the domain is checked by measuring the body");
+    const BodyPreparation& preparation = this->preparation();
     PreparedBodies prepared = [&] {
       py::gil_scoped_release release;
-      return prepare_bodies(*model_, d, b, strict, "strict=True");
+      return preparation.prepare(b, strict, "strict=True", check);
     }();
     for (const Notice& n : prepared.notices) warn_python(n.text);
     return std::move(prepared.moved_by);
@@ -121,8 +124,7 @@ class PyModel {
   std::unique_ptr<Model> model_;
   std::mutex mutex_;
   std::uint64_t forwards_ = 0, forward_id_ = 0;
-  bool domain_read_ = false;
-  std::optional<ModelDomain> domain_;
+  std::optional<BodyPreparation> preparation_;
 };
 
 Model::ParamOverrides overrides_of(const py::dict& d) {
@@ -239,10 +241,11 @@ void register_model(py::module_& m) {
           "float32 [P]: the body plugin's shape parameters of that body (for graphs that take body_params)")
       .def(
           "predict",
-          [](PyModel& p, const py::handle& body, const py::handle& body_params, const py::handle& garment_size, bool strict) {
+          [](PyModel& p, const py::handle& body, const py::handle& body_params, const py::handle& garment_size, bool strict,
+             bool check) {
             bool batched = false;
             SampleBatch b = p.batch(body, body_params, garment_size, &batched);
-            const std::vector<Eigen::RowVector3d> back = p.prepare(b, strict);
+            const std::vector<Eigen::RowVector3d> back = p.prepare(b, strict, check);
             Tensor out = p.predict(b);
             // Moved back as drape predict writes it (in double), then float32 like every prediction.
             for (int i = 0; i < out.batch(); ++i)
@@ -251,11 +254,13 @@ void register_model(py::module_& m) {
             return to_numpy(std::move(out), !batched);
           },
           py::arg("body_vertices"), py::arg("body_params") = py::none(), py::arg("garment_size") = py::none(),
-          py::arg("strict") = false,
+          py::arg("strict") = false, py::arg("check") = true,
           "float32 garments [Ng, 3] for a body [Nb, 3], or [n, Ng, 3] for a batch [n, Nb, 3], as drape predict makes "
           "them: a body standing away from where the training bodies stood is draped there and its garment moved back, "
           "a body outside the training domain and a garment too small around for it are warned about (each a Python "
-          "warning; strict=True: a body outside the domain raises ValueError). The GIL is released.")
+          "warning; strict=True: a body outside the domain raises ValueError). check=False skips those two "
+          "measurements of the body (about 5 ms each call for the parametric body, several times the coarse "
+          "network's forward), keeping the placement. The GIL is released.")
       .def(
           "domain_check",
           [](PyModel& p, const py::handle& body) {

@@ -198,3 +198,20 @@ def test_predict_refuses_a_body_in_other_units_and_arguments_that_would_do_nothi
         model.predict(body, body_params=np.zeros(3, dtype=np.float32))
     with pytest.raises(ValueError, match="garment_size: this model was trained on one garment size"):
         model.predict(body, garment_size="xlarge")
+
+
+def test_predict_without_checks_skips_the_measurements_but_keeps_the_placement(model):
+    import warnings
+    body = model.body(bmi=64)  # outside the shipped model's domain? its note says so either way
+    lifted = body + np.array([0.0, 1.0, 0.0], dtype=np.float32)
+    with warnings.catch_warnings(record=True) as checked:
+        warnings.simplefilter("always")
+        full = model.predict(lifted)
+    with warnings.catch_warnings(record=True) as unchecked:
+        warnings.simplefilter("always")
+        bare = model.predict(lifted, check=False)
+    np.testing.assert_array_equal(full, bare)  # the checks only speak; the drape is the same
+    assert [str(w.message) for w in unchecked] == [str(w.message) for w in checked if "stands" in str(w.message)]
+    assert any("stands" in str(w.message) for w in unchecked)
+    with pytest.raises(ValueError, match="strict=True needs check=True"):
+        model.predict(body, strict=True, check=False)

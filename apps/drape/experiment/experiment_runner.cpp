@@ -118,19 +118,21 @@ class Runner {
   // Prints the `drape <args>` that does a step, so that it can be repeated by
   // hand; false on a dry run (then nothing runs).
   bool announce(const std::vector<std::string>& args) const {
-    std::string line = "$ drape";
-    for (const auto& a : args) line += " " + a;
-    std::printf("%s\n", line.c_str());
+    std::printf("$ %s\n", command_line(args).c_str());
     std::fflush(stdout);
     return !o_.dry_run;
+  }
+  static std::string command_line(const std::vector<std::string>& args) {
+    std::string line = "drape";
+    for (const auto& a : args) line += " " + a;
+    return line;
   }
 
   // Runs `drape <args>` in this process, announced first (the steps that have
   // no framework service yet: eval and optimize over a dataset).
   void drape(const std::vector<std::string>& args) {
     if (!announce(args)) return;
-    std::string line = "drape";
-    for (const auto& a : args) line += " " + a;
+    const std::string line = command_line(args);
     const auto& all = commands();
     const auto it = std::find_if(all.begin(), all.end(), [&](const Command& c) { return c.name == args.front(); });
     if (it == all.end()) throw Error("drape experiment: no command '" + args.front() + "'");

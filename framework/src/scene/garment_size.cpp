@@ -101,9 +101,13 @@ double garment_girth(const Eigen::MatrixX3d& garment, const Eigen::MatrixX3i& ga
 
 double garment_ease(const Eigen::MatrixX3d& garment, const Eigen::MatrixX3i& garment_faces,
                     const Eigen::MatrixX3d& mean_body, const Eigen::MatrixX3d& body, const Eigen::MatrixX3i& body_faces) {
-  const double loop = garment_girth(garment, garment_faces, mean_body), around = largest_tape(body, body_faces);
-  if (!std::isfinite(loop) || !(around > 0.0)) return std::numeric_limits<double>::quiet_NaN();
-  return loop / around - 1.0;
+  return garment_ease(garment_girth(garment, garment_faces, mean_body), body, body_faces);
+}
+
+double garment_ease(double garment_loop, const Eigen::MatrixX3d& body, const Eigen::MatrixX3i& body_faces) {
+  const double around = largest_tape(body, body_faces);
+  if (!std::isfinite(garment_loop) || !(around > 0.0)) return std::numeric_limits<double>::quiet_NaN();
+  return garment_loop / around - 1.0;
 }
 
 SizeChart::SizeChart(const Registry& registry, const Scene& scene) {

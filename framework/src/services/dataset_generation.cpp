@@ -37,18 +37,24 @@ std::vector<Split> splits(std::size_t total, std::uint64_t seed) {
   return out;
 }
 
-void check_request(const GenerateRequest& r, const Simulation& sim, const Scene& scene) {
-  if (r.count == 0) throw ConfigError("generate: count must be at least 1");
+// The request on its own, before any work (the same checks for every face).
+void check_request(const GenerateRequest& r) {
+  if (r.count == 0) throw ConfigError("count: expected at least 1 sample");
   if (r.shard.count == 0 || r.shard.index >= r.shard.count)
-    throw ConfigError("generate: shard " + std::to_string(r.shard.index) + "/" + std::to_string(r.shard.count) +
+    throw ConfigError("shard " + std::to_string(r.shard.index) + "/" + std::to_string(r.shard.count) +
                       ": expected i/N with 0 <= i < N");
-  if (!(r.girths >= 0 && r.girths <= 1)) throw ConfigError("generate: girths: expected a fraction in [0, 1]");
+  if (!(r.girths >= 0 && r.girths <= 1)) throw ConfigError("girths: expected a fraction in [0, 1]");
   for (const auto& [name, range] : {std::pair{"bmi", r.bmi}, std::pair{"height", r.height}, std::pair{"sex", r.sex}})
-    if (!(range.lo <= range.hi)) throw ConfigError(std::string("generate: ") + name + " range: expected lo <= hi");
+    if (!(range.lo <= range.hi)) throw ConfigError(std::string(name) + " range: expected lo <= hi");
+  if (r.threads < 0) throw ConfigError("threads: expected 0 (all cores) or a count");
+}
+
+// The BMI range against what the scene's body model reaches.
+void check_bmi_range(const GenerateRequest& r, const Simulation& sim, const Scene& scene) {
   const auto [bmi_lo, bmi_hi] = sim.body_model().bmi_range();
   if (r.bmi.lo < bmi_lo - 1e-9 || r.bmi.hi > bmi_hi + 1e-9) {
     std::ostringstream o;
-    o << "--bmi " << r.bmi.lo << ":" << r.bmi.hi << " is outside what body model '" << scene.body_model << "' reaches ("
+    o << "bmi " << r.bmi.lo << ":" << r.bmi.hi << " is outside what body model '" << scene.body_model << "' reaches ("
       << bmi_lo << ":" << bmi_hi << ")";
     throw ConfigError(o.str());
   }
@@ -145,6 +151,7 @@ std::vector<std::string> generated_statistics(const Scene& scene) {
 
 GenerateSummary generate_dataset(const Registry& registry, const Scene& scene, const GenerateRequest& request,
                                  const std::string& out, const GenerateObserver& observer) {
+  check_request(request);
   // Before anything looks at the output (output_lock.hpp).
   const OutputLock lock(out, "drape generate");
   // size: auto -- each body wears the size its girth needs (garment_size.hpp,
@@ -152,7 +159,7 @@ GenerateSummary generate_dataset(const Registry& registry, const Scene& scene, c
   // sizes share its topology), each sample records its size in garment_size.
   const SceneSimulations simulations(registry, scene);
   const Simulation& sim = simulations.design();
-  check_request(request, sim, scene);
+  check_bmi_range(request, sim, scene);
   // The size flag of a graph trained on several sizes (garment_size_flag).
   const double design_size = garment_size_flag(sim.scene());
   const std::size_t first = request.shard.first(request.count);

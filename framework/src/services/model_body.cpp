@@ -5,7 +5,9 @@
 #include <drape/io/mesh_io.hpp>
 #include <drape/services/model_body.hpp>
 
+#include <cmath>
 #include <cstdio>
+#include <limits>
 
 namespace drape {
 namespace {
@@ -50,11 +52,8 @@ void check_domain(const Model& model, const ModelDomain& domain, const SampleBat
                                                  strict_option + " refuses such a body)"});
 }
 
-void note_fit(const Model& model, const SampleBatch& batch, int i, std::vector<Notice>& notices) {
-  if (model.needs_input("garment_size")) return;  // the size is the user's to give
-  const Assets& a = model.assets();
-  const double ease = garment_ease(a.garment->mesh.vertices, a.garment->mesh.faces, a.body.vertices,
-                                   batch.body.mat(i).cast<double>(), a.body.faces);
+void note_fit(const Model& model, double garment_loop, const SampleBatch& batch, int i, std::vector<Notice>& notices) {
+  const double ease = garment_ease(garment_loop, batch.body.mat(i).cast<double>(), model.assets().body.faces);
   if (!(ease < kMinimumEase)) return;  // fits, or not measurable (NaN)
   char line[400];
   std::snprintf(line, sizeof line,
@@ -96,23 +95,32 @@ SampleBatch model_body_batch(const Model& model, const ModelBodyInput& input) {
   return batch;
 }
 
-PreparedBodies prepare_bodies(const Model& model, const std::optional<ModelDomain>& domain, SampleBatch& batch,
-                              bool strict, const std::string& strict_option) {
+BodyPreparation::BodyPreparation(const Model& model, std::optional<ModelDomain> domain)
+    : model_(model), domain_(std::move(domain)), garment_loop_(std::numeric_limits<double>::quiet_NaN()) {
+  // A model of several sizes takes the size from its user: no fit to note.
+  if (!model.needs_input("garment_size")) {
+    const Assets& a = model.assets();
+    garment_loop_ = garment_girth(a.garment->mesh.vertices, a.garment->mesh.faces, a.body.vertices);
+  }
+}
+
+PreparedBodies BodyPreparation::prepare(SampleBatch& batch, bool strict, const std::string& strict_option,
+                                        bool measure) const {
   PreparedBodies out;
   out.moved_by.assign(static_cast<std::size_t>(batch.size()), Eigen::RowVector3d::Zero());
-  if (!domain && !model.file().empty()) {  // an untrained model in memory has no file to record one in
-    const std::string name = model.file().filename().string();
+  if (measure && !domain_ && !model_.file().empty()) {  // an untrained model in memory has no file to record one in
+    const std::string name = model_.file().filename().string();
     if (strict)
-      throw ConfigError(strict_option + ": " + model.file().string() + " records no training domain to check the body against");
+      throw ConfigError(strict_option + ": " + model_.file().string() + " records no training domain to check the body against");
     out.notices.push_back({Notice::Level::note, name + " records no training domain, so a body outside it cannot be "
                                                        "told (drape model domain adds it)"});
   }
   for (int i = 0; i < batch.size(); ++i) {
-    if (domain) {
-      out.moved_by[static_cast<std::size_t>(i)] = place(model, *domain, batch, i, out.notices);
-      check_domain(model, *domain, batch, i, strict, strict_option, out.notices);
+    if (domain_) {
+      out.moved_by[static_cast<std::size_t>(i)] = place(model_, *domain_, batch, i, out.notices);
+      if (measure) check_domain(model_, *domain_, batch, i, strict, strict_option, out.notices);
     }
-    note_fit(model, batch, i, out.notices);
+    if (measure && std::isfinite(garment_loop_)) note_fit(model_, garment_loop_, batch, i, out.notices);
   }
   return out;
 }

@@ -61,6 +61,9 @@ double garment_girth(const Eigen::MatrixX3d& garment, const Eigen::MatrixX3i& ga
 // garment is smaller than the body). NaN when either cannot be measured.
 double garment_ease(const Eigen::MatrixX3d& garment, const Eigen::MatrixX3i& garment_faces,
                     const Eigen::MatrixX3d& mean_body, const Eigen::MatrixX3d& body, const Eigen::MatrixX3i& body_faces);
+// The same with the garment's loop measured already (garment_girth): what a
+// caller checking many bodies against one garment measures once.
+double garment_ease(double garment_loop, const Eigen::MatrixX3d& body, const Eigen::MatrixX3i& body_faces);
 // The sizes of a scene's garment, each built as a Simulation once, with their
 // girths and the design ease; then a choice per body. ConfigError when the
 // scene's garment has no size parameter with choices. choose() and

@@ -5,7 +5,7 @@
 //  - model_body_batch: one body from a mesh (vertex count, units, a graph that
 //    needs body parameters) or from the model's body plugin (a BodyRequest),
 //    with the garment size of a model trained on several.
-//  - prepare_bodies: per body of a batch, moves a body standing away from
+//  - BodyPreparation::prepare: per body of a batch, moves a body standing away from
 //    where the training bodies stood there (model_domain.hpp, placement),
 //    checks the training domain, and notes a garment too small around for it
 //    (garment_size.hpp's tailor's rule). What it has to say comes back as
@@ -46,10 +46,27 @@ struct PreparedBodies {
   std::vector<Notice> notices;
 };
 
-// `domain`: the model file's (read_domain), none for a model that records
-// none. With strict, a body outside the domain (or a model without one) is a
-// ConfigError starting "<strict_option>: " instead of a warning.
-PreparedBodies prepare_bodies(const Model& model, const std::optional<ModelDomain>& domain, SampleBatch& batch,
-                              bool strict, const std::string& strict_option = "--strict");
+// Makes batches ready for one model: built once per model (what does not
+// depend on the body -- the training domain, the garment's loop on the mean
+// body -- is read or measured here), then prepare() per batch. `domain`: the
+// model file's (read_domain), none for a model that records none.
+class BodyPreparation {
+ public:
+  BodyPreparation(const Model& model, std::optional<ModelDomain> domain);
+  // With strict, a body outside the domain (or a model without one) is a
+  // ConfigError starting "<strict_option>: " instead of a warning. Without
+  // measure, only the placement: the domain check and the fit note measure
+  // the body (its volume, its girths over the chest band, its distance to
+  // every training body: about 5 ms for the parametric body), several times
+  // the coarse model's forward pass.
+  PreparedBodies prepare(SampleBatch& batch, bool strict, const std::string& strict_option = "--strict",
+                         bool measure = true) const;
+  const std::optional<ModelDomain>& domain() const { return domain_; }
+
+ private:
+  const Model& model_;
+  std::optional<ModelDomain> domain_;
+  double garment_loop_;  // m, the model garment's narrowest loop on the mean body (NaN: none, or a sized model)
+};
 
 }  // namespace drape
