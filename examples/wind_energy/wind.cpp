@@ -22,10 +22,10 @@ class WindEnergy final : public Energy {
   WindEnergy(const Eigen::Vector3d& direction, double pressure) : direction_(direction), pressure_(pressure) {}
 
   void bind(const EnergyContext& context) override {
-    if (!context.garment) throw Error("wind: bind() needs a garment");
+    if (!context.garment) throw ConfigError("bind() needs a garment");
     const Mesh& mesh = context.garment->mesh;
     if (!mesh.has_uv())
-      throw ConfigError("wind: the garment has no material-space UV layout (uv and uv_faces), which gives the cloth area");
+      throw ConfigError("the garment has no material-space UV layout (uv and uv_faces), which gives the cloth area");
     load_.setZero(mesh.num_vertices());
     for (int f = 0; f < mesh.num_faces(); ++f) {
       const Eigen::Vector2d a = mesh.uv.row(mesh.uv_faces(f, 0));
@@ -54,7 +54,7 @@ class WindEnergy final : public Energy {
 
  private:
   // The vertex count bind() saw, and every coordinate finite (energy_input.hpp).
-  void check(const Eigen::MatrixX3d& x) const { check_energy_input("wind", x, load_.size()); }
+  void check(const Eigen::MatrixX3d& x) const { check_energy_input(x, load_.size()); }
 
   Eigen::Vector3d direction_;  // unit
   double pressure_;            // Pa = N / m^2
@@ -64,10 +64,10 @@ class WindEnergy final : public Energy {
 std::unique_ptr<Energy> create(const Params& params) {
   const std::vector<double> d = params.get_float_list("direction");
   if (d.size() != 3)
-    throw ConfigError("wind: parameter 'direction' needs 3 numbers [x, y, z], got " + std::to_string(d.size()));
+    throw ConfigError("parameter 'direction' needs 3 numbers [x, y, z], got " + std::to_string(d.size()));
   const Eigen::Vector3d w(d[0], d[1], d[2]);
   if (!(w.norm() > 0.0) || !std::isfinite(w.norm()))
-    throw ConfigError("wind: parameter 'direction' must be a finite non-zero vector");
+    throw ConfigError("parameter 'direction' must be a finite non-zero vector");
   return std::make_unique<WindEnergy>(w.normalized(), params.get_float("pressure"));
 }
 

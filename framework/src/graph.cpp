@@ -1,4 +1,5 @@
 // Building, validating and running graphs.
+#include <drape/error_context.hpp>
 #include <drape/energy.hpp>
 #include <drape/graph.hpp>
 
@@ -389,7 +390,7 @@ void Graph::forward(const std::map<std::string, Tensor>& inputs, bool with_losse
       out[b.out_ports[k]] = &b.outputs[k];
     }
     const auto start = std::chrono::steady_clock::now();
-    b.node->forward(in, out);
+    in_context(b.spec.type, [&] { b.node->forward(in, out); });  // errors name the node's plugin
     b.forward_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   }
   g.ran_losses = with_losses;
@@ -481,7 +482,7 @@ void run_backward(Graph::Impl& g) {
       if (g.poison_gradient_buffers) gin[k].vec().setConstant(std::numeric_limits<float>::quiet_NaN());
       gin_map[b.in_ports[k]] = &gin[k];
     }
-    b.node->backward(in, out, gout, gin_map);
+    in_context(b.spec.type, [&] { b.node->backward(in, out, gout, gin_map); });
     for (std::size_t k = 0; k < b.in_ports.size(); ++k) {
       const auto& s = b.sources[k];
       if (s.node < 0 || !g.nodes[s.node].requires_grad) continue;

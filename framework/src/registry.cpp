@@ -1,5 +1,8 @@
 #include <drape/bodies/body.hpp>
+#include "plugin_energy.hpp"
+
 #include <drape/energy_node.hpp>
+#include <drape/error_context.hpp>
 #include <drape/registry.hpp>
 #include <drape/warnings.hpp>
 
@@ -189,29 +192,50 @@ std::vector<const PluginDescriptor*> Registry::all() const {
   return out;
 }
 
+// The factories run in the plugin's name (error_context.hpp): a plugin's
+// errors come out as "<name>: ..." without the plugin writing its name.
 std::unique_ptr<Node> Registry::create_node(const std::string& name, const Params& params) const {
   const PluginDescriptor& d = get(name);
-  if (d.create_node) return d.create_node(params);
-  if (d.create_energy) return std::make_unique<EnergyNode>(d.create_energy(params));
+  if (d.create_node) return in_context(name, [&] { return d.create_node(params); });
+  if (d.create_energy) return std::make_unique<EnergyNode>(create_energy(name, params));
   throw ConfigError("'" + name + "' is a " + d.kind + "; it cannot be a node of a graph");
 }
 
 std::unique_ptr<BodyModel> Registry::create_body(const std::string& name, const Params& params) const {
   const PluginDescriptor& d = get(name);
   if (!d.create_body) throw ConfigError("'" + name + "' is a " + d.kind + ", not a body model");
-  return d.create_body(params);
+  return in_context(name, [&] { return d.create_body(params); });
 }
+
+namespace {
+
+// A garment template whose build() names its plugin in its errors.
+class PluginGarment final : public GarmentSource {
+ public:
+  PluginGarment(std::string name, std::unique_ptr<GarmentSource> source)
+      : name_(std::move(name)), source_(std::move(source)) {}
+  Garment build() const override {
+    return in_context(name_, [&] { return source_->build(); });
+  }
+
+ private:
+  std::string name_;
+  std::unique_ptr<GarmentSource> source_;
+};
+
+}  // namespace
 
 std::unique_ptr<GarmentSource> Registry::create_garment(const std::string& name, const Params& params) const {
   const PluginDescriptor& d = get(name);
   if (!d.create_garment) throw ConfigError("'" + name + "' is a " + d.kind + ", not a garment template");
-  return d.create_garment(params);
+  return std::make_unique<PluginGarment>(name, in_context(name, [&] { return d.create_garment(params); }));
 }
 
+// Every call into the energy names the plugin in its errors (plugin_energy.hpp).
 std::unique_ptr<Energy> Registry::create_energy(const std::string& name, const Params& params) const {
   const PluginDescriptor& d = get(name);
   if (!d.create_energy) throw ConfigError("'" + name + "' is a " + d.kind + ", not an energy");
-  return d.create_energy(params);
+  return std::make_unique<PluginEnergy>(name, in_context(name, [&] { return d.create_energy(params); }));
 }
 
 }  // namespace drape

@@ -1,4 +1,5 @@
 // warn and set_warning_handler (warnings.hpp).
+#include <drape/error_context.hpp>
 #include <drape/warnings.hpp>
 
 #include <iostream>
@@ -19,7 +20,10 @@ WarningHandler& current_handler() {
 
 }  // namespace
 
-void warn(const std::string& text) {
+void warn(const std::string& plain_text) {
+  // A plugin's warning names the plugin (error_context.hpp).
+  const std::string* context = current_context();
+  const std::string text = context ? with_context(*context, plain_text) : plain_text;
   WarningHandler handler;
   {
     // Called outside the lock: a handler may wait for something (Python's

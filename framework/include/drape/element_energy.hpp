@@ -62,7 +62,7 @@ class ElementEnergy : public Energy {
   const Element& element(int e) const { return elements_[static_cast<std::size_t>(e)]; }
 
  protected:
-  explicit ElementEnergy(std::string name) : name_(std::move(name)) {}
+  ElementEnergy() = default;
 
   // Called by bind() once the elements are known: their vertices and the
   // number of vertices of the positions every call will be given.
@@ -71,7 +71,6 @@ class ElementEnergy : public Energy {
     elements_ = std::move(elements);
     gather_.build(vertices_, num_elements(), N, [&](int e, int k) { return elements_[static_cast<std::size_t>(e)][static_cast<std::size_t>(k)]; });
   }
-  const std::string& energy_name() const { return name_; }
 
   virtual double element_value(int e, const Stencil& x) const = 0;
   // Sets g = dE_e/dx over the stencil (3 N, vertex by vertex) and returns E_e.
@@ -102,19 +101,21 @@ class ElementEnergy : public Energy {
     }
   }
 
-  void check(const Eigen::MatrixX3d& x) const { check_energy_input(name_, x, vertices_); }
+  void check(const Eigen::MatrixX3d& x) const { check_energy_input(x, vertices_); }
 
-  std::string name_;
   int vertices_ = 0;
   std::vector<Element> elements_;
   CornerGather gather_;
 };
 
-// The checks every energy over a garment's faces makes in bind(), with
-// ConfigErrors prefixed by `energy`: a garment is bound, it has finite
+// The checks every energy over a garment's faces makes in bind() (as
+// ConfigErrors; the framework names the energy, error_context.hpp): a garment is bound, it has finite
 // material-space UVs (uv, uv_faces) with indices in range, at least one
 // material, a face-material map of the right size naming existing materials,
 // and face vertex indices in range.
+const Garment& checked_garment(const EnergyContext& context);
+// The same checks with the messages prefixed by `energy` (for code called
+// outside the registry's plugin calls).
 const Garment& checked_garment(const EnergyContext& context, const std::string& energy);
 
 }  // namespace drape

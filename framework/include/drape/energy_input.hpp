@@ -12,8 +12,12 @@
 
 namespace drape {
 
-// Throws drape::ConfigError (the caller's input) naming `energy` when x has not `expected_vertices` rows
-// (0: bind() was not called) or holds a non-finite coordinate.
+// Throws drape::ConfigError (the caller's input) when x has not
+// `expected_vertices` rows (0: bind() was not called) or holds a non-finite
+// coordinate. The framework puts the energy's name in front (error_context.hpp).
+void check_energy_input(const Eigen::MatrixX3d& x, Eigen::Index expected_vertices);
+// The same, with the messages prefixed by `energy` (for code called outside
+// the registry's plugin calls).
 void check_energy_input(const std::string& energy, const Eigen::MatrixX3d& x, Eigen::Index expected_vertices);
 
 }  // namespace drape

@@ -11,8 +11,9 @@ namespace drape {
 
 using WarningHandler = std::function<void(const std::string& text)>;
 
-// `text` is one sentence without a "warning: " prefix, naming what it is about
-// ("bending: skipped 3 of 5,000 hinges ...").
+// `text` is one sentence without a "warning: " prefix. Given inside a call the
+// framework makes into a plugin, it gets the plugin's name in front
+// ("bending: skipped 3 of 5,000 hinges ...", error_context.hpp).
 void warn(const std::string& text);
 
 // Replaces the handler (empty: the default, stderr) and returns the previous one.

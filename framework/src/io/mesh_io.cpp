@@ -1,5 +1,6 @@
 // read_mesh / write_mesh: pick the reader or writer by extension, check the
 // mesh, write atomically.
+#include <drape/vertex_count.hpp>
 #include <drape/io/atomic_file.hpp>
 #include <drape/errors.hpp>
 #include <drape/io/mesh_io.hpp>
@@ -143,9 +144,7 @@ void write_mesh(const fs::path& file, const Mesh& mesh) {
 }
 
 void require_vertex_count(const Mesh& mesh, int expected, const std::string& what_file, const std::string& why) {
-  if (mesh.num_vertices() == expected) return;
-  throw ConfigError(what_file + " has " + std::to_string(mesh.num_vertices()) + " vertices, expected " +
-                    std::to_string(expected) + (why.empty() ? "" : " (" + why + ")"));
+  require_vertex_count(mesh.num_vertices(), expected, what_file, why);
 }
 
 void require_vertex_count(const Mesh& mesh, int expected, const std::string& what) {

@@ -1,3 +1,4 @@
+#include <drape/vertex_count.hpp>
 #include <drape/nn/body_graph_input.hpp>
 
 #include <drape/assets/assets.hpp>
@@ -11,9 +12,7 @@ const Mesh& check_body_graph_input(const ShapeMap& in, const NodeContext& contex
   if (!context.assets || context.assets->body.num_vertices() == 0)
     throw ConfigError(who + " needs the template's assets (the body mesh's graph); none are bound");
   const Mesh& mesh = context.assets->body;
-  if (body.rows != mesh.num_vertices())
-    throw ConfigError("input 'body' has " + std::to_string(body.rows) + " vertices but the assets' body has " +
-                      std::to_string(mesh.num_vertices()));
+  require_vertex_count(body.rows, mesh.num_vertices(), "input 'body'", "the assets' body mesh");
   return mesh;
 }
 

@@ -1,3 +1,4 @@
+#include <drape/vertex_count.hpp>
 #include <drape/scene/garment_size.hpp>
 
 #include <drape/errors.hpp>
@@ -141,9 +142,8 @@ const Simulation& SizeChart::simulation(const std::string& size) const {
 
 SizeChoice SizeChart::choose(const Eigen::MatrixX3d& body) const {
   const Simulation& d = design();
-  if (body.rows() != d.mean_body().rows())
-    throw ConfigError("the body has " + std::to_string(body.rows()) + " vertices; the scene's body model has " +
-                      std::to_string(d.mean_body().rows()));
+  require_vertex_count(body.rows(), d.mean_body().rows(), "the body",
+                       "the scene's body model '" + d.scene().body_model + "'");
   SizeChoice choice;
   choice.girth = girth_;
   choice.design_ease = design_ease_;

@@ -1,4 +1,5 @@
 // Scene -> energies, body and garment; the morph-then-settle run (simulation.hpp).
+#include <drape/vertex_count.hpp>
 #include <drape/physics/dissipation.hpp>
 #include <drape/bodies/body.hpp>
 #include <drape/geometry/body_units.hpp>
@@ -205,9 +206,8 @@ std::vector<NamedEnergy> Simulation::make_energies(const BodyQuery* body, const 
 
 SimulationResult Simulation::run(const Eigen::MatrixX3d& target_body, const SimulationOptions& options) const {
   const auto start = Clock::now();
-  if (target_body.rows() != mean_body_.rows())
-    throw ConfigError("the target body has " + std::to_string(target_body.rows()) + " vertices; the scene's body model '" +
-                      scene_.body_model + "' has " + std::to_string(mean_body_.rows()));
+  require_vertex_count(target_body.rows(), mean_body_.rows(), "the target body",
+                       "the scene's body model '" + scene_.body_model + "'");
   check_body_units(target_body, "the target body");
   if (options.start_body) check_body_units(*options.start_body, "the start body");
   const Eigen::MatrixX3d& body_start = options.start_body ? *options.start_body : mean_body_;

@@ -1,4 +1,5 @@
 // Trained models: the assets spec as text, graph inputs by name, loading and prediction.
+#include <drape/vertex_count.hpp>
 #include <drape/bodies/body.hpp>
 #include <drape/io/dataset.hpp>
 #include <drape/training/model.hpp>
@@ -272,10 +273,8 @@ bool Model::needs_body_params() const { return needs_input("body_params"); }
 
 Tensor Model::predict(const SampleBatch& batch) {
   if (batch.size() <= 0) throw Error("predict: no bodies");
-  if (batch.body.rows() != assets_->body.num_vertices())
-    throw ConfigError("the body has " + std::to_string(batch.body.rows()) + " vertices, expected " +
-                      std::to_string(assets_->body.num_vertices()) + " (the model's body model '" + assets_spec_.body_model +
-                      "')");
+  require_vertex_count(batch.body.rows(), assets_->body.num_vertices(), "the body",
+                       "the model's body model '" + assets_spec_.body_model + "'");
   graph_->forward(graph_inputs(*graph_, batch, false), false);
   return graph_->output(output_);
 }

@@ -73,7 +73,7 @@ PluginList plugins() {
               nn::negative_slope_param()};
   d.create_node = [](const Params& p) {
     auto channels = p.get_int_list("channels");
-    if (channels.empty()) throw ConfigError("gcn_decoder: parameter 'channels' needs at least one layer");
+    if (channels.empty()) throw ConfigError("parameter 'channels' needs at least one layer");
     return std::make_unique<GcnDecoder>(std::move(channels), nn::activation_from(p));
   };
   return {d};

@@ -178,8 +178,8 @@ PluginList plugins() {
   d.create_node = [](const Params& p) {
     auto channels = p.get_int_list("channels");
     auto layers = p.get_int_list("layers");
-    if (channels.empty()) throw ConfigError("msgcn: parameter 'channels' needs at least one level");
-    if (layers.empty()) throw ConfigError("msgcn: parameter 'layers' needs at least one entry");
+    if (channels.empty()) throw ConfigError("parameter 'channels' needs at least one level");
+    if (layers.empty()) throw ConfigError("parameter 'layers' needs at least one entry");
     return std::make_unique<MultiScaleGcn>(std::move(channels), std::move(layers), nn::activation_from(p));
   };
   return {d};

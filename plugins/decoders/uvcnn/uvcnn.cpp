@@ -109,7 +109,7 @@ PluginList plugins() {
               nn::negative_slope_param()};
   d.create_node = [](const Params& p) {
     const long kernel = p.get_int("kernel");
-    if (kernel % 2 == 0) throw ConfigError("uvcnn: parameter 'kernel' must be odd, got " + std::to_string(kernel));
+    if (kernel % 2 == 0) throw ConfigError("parameter 'kernel' must be odd, got " + std::to_string(kernel));
     return std::make_unique<UvCnn>(static_cast<int>(p.get_int("resolution")), p.get_int_list("channels"),
                                    static_cast<int>(kernel), nn::activation_from(p));
   };

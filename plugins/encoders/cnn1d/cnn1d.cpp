@@ -99,7 +99,7 @@ PluginList plugins() {
               nn::negative_slope_param()};
   d.create_node = [](const Params& p) {
     const auto channels = p.get_int_list("channels");
-    if (channels.empty()) throw ConfigError("cnn1d: parameter 'channels' needs at least one layer");
+    if (channels.empty()) throw ConfigError("parameter 'channels' needs at least one layer");
     return std::make_unique<Cnn1d>(channels, static_cast<int>(p.get_int("kernel")),
                                    static_cast<int>(p.get_int("stride")), nn::activation_from(p));
   };

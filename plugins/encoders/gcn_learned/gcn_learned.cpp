@@ -151,7 +151,7 @@ PluginList plugins() {
               nn::negative_slope_param()};
   d.create_node = [](const Params& p) {
     auto channels = p.get_int_list("channels");
-    if (channels.empty()) throw ConfigError("gcn_learned: parameter 'channels' needs at least one layer");
+    if (channels.empty()) throw ConfigError("parameter 'channels' needs at least one layer");
     return std::make_unique<LearnedGcnEncoder>(std::move(channels), static_cast<int>(p.get_int("stride")),
                                                nn::activation_from(p));
   };

@@ -99,7 +99,7 @@ PluginList plugins() {
               {"concat_global", ParamType::Bool, "true", "append the global feature to every vertex's feature"}};
   d.create_node = [](const Params& p) {
     const auto widths = p.get_int_list("widths");
-    if (widths.empty()) throw ConfigError("pointnet: parameter 'widths' needs at least one layer");
+    if (widths.empty()) throw ConfigError("parameter 'widths' needs at least one layer");
     return std::make_unique<PointNet>(widths, nn::activation_from(p), p.get_bool("concat_global"));
   };
   return {d};

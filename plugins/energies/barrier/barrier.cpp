@@ -62,7 +62,7 @@ void with_stencil_size(PairKind kind, F&& f) {
 }
 
 [[noreturn]] void touching(const ContactPair& p) {
-  throw Error("barrier: garment " +
+  throw Error("garment " +
               std::string(p.kind == PairKind::GarmentVertexBodyFace   ? "vertex " :
                           p.kind == PairKind::BodyVertexGarmentFace ? "face " : "edge ") +
               std::to_string(p.garment) + " touches the body (distance 0): the state is not separated from the body");
@@ -72,24 +72,24 @@ void with_stencil_size(PairKind kind, F&& f) {
 
 BarrierContact::BarrierContact(const BarrierSettings& settings) : settings_(settings), topology_(std::make_unique<Topology>()) {
   if (!(settings_.distance > 0) || !std::isfinite(settings_.distance))
-    throw ConfigError("barrier: distance (d_hat) must be a positive length, got " + std::to_string(settings_.distance));
+    throw ConfigError("distance (d_hat) must be a positive length, got " + std::to_string(settings_.distance));
   if (!(settings_.stiffness > 0) || !std::isfinite(settings_.stiffness))
-    throw ConfigError("barrier: stiffness must be > 0, got " + std::to_string(settings_.stiffness));
+    throw ConfigError("stiffness must be > 0, got " + std::to_string(settings_.stiffness));
   if (!(settings_.min_separation > 0 && settings_.min_separation < 1))
-    throw ConfigError("barrier: min_separation must be in (0, 1)");
+    throw ConfigError("min_separation must be in (0, 1)");
   if (!(settings_.friction >= 0) || !std::isfinite(settings_.friction))
-    throw ConfigError("barrier: friction must be >= 0, got " + std::to_string(settings_.friction));
+    throw ConfigError("friction must be >= 0, got " + std::to_string(settings_.friction));
   if (!(settings_.slip_velocity > 0) || !std::isfinite(settings_.slip_velocity))
-    throw ConfigError("barrier: slip_velocity must be a positive speed, got " + std::to_string(settings_.slip_velocity));
+    throw ConfigError("slip_velocity must be a positive speed, got " + std::to_string(settings_.slip_velocity));
   if (settings_.friction > 0) friction_ = std::make_unique<Friction>(*this);
 }
 
 BarrierContact::~BarrierContact() = default;
 
 void BarrierContact::bind(const EnergyContext& context) {
-  const Garment& garment = checked_garment(context, "barrier");
+  const Garment& garment = checked_garment(context);
   body_ = dynamic_cast<const geometry::BodySurface*>(context.body);
-  if (!body_) throw ConfigError("barrier: needs the body as a triangle mesh (a BodySurface); none was given");
+  if (!body_) throw ConfigError("needs the body as a triangle mesh (a BodySurface); none was given");
   Topology& t = *topology_;
   t.garment_faces = garment.mesh.faces;
   t.garment_vertices = garment.mesh.num_vertices();
@@ -120,8 +120,8 @@ void BarrierContact::bind(const EnergyContext& context) {
 }
 
 void BarrierContact::check(const Eigen::MatrixX3d& x) const {
-  if (!body_) throw Error("barrier: bind() was not called");
-  check_energy_input("barrier", x, topology_->garment_vertices);
+  if (!body_) throw Error("bind() was not called");
+  check_energy_input(x, topology_->garment_vertices);
 }
 
 std::array<Eigen::Vector3d, 4> BarrierContact::pair_points(const ContactPair& pair, const Eigen::MatrixX3d& x) const {
@@ -359,14 +359,14 @@ void BarrierContact::add_hessian_lower(const Eigen::MatrixX3d& x, Triplets& h, b
 double BarrierContact::max_step(const Eigen::MatrixX3d& x, const Eigen::MatrixX3d& dx, const Eigen::MatrixX3d* body_from,
                                 const Eigen::MatrixX3d* body_to) const {
   check(x);
-  if (dx.rows() != x.rows()) throw Error("barrier: max_step's move has the wrong vertex count");
-  if (!dx.allFinite()) throw ConfigError("barrier: max_step's move has a non-finite coordinate");
+  if (dx.rows() != x.rows()) throw Error("max_step's move has the wrong vertex count");
+  if (!dx.allFinite()) throw ConfigError("max_step's move has a non-finite coordinate");
   const Topology& t = *topology_;
   const Eigen::MatrixX3d& b0 = body_from ? *body_from : body_->vertices();
   const Eigen::MatrixX3d& b1 = body_to ? *body_to : b0;
   if (b0.rows() != body_->vertices().rows() || b1.rows() != b0.rows())
-    throw Error("barrier: max_step's body motion has the wrong vertex count");
-  if (!b0.allFinite() || !b1.allFinite()) throw ConfigError("barrier: max_step's body motion has a non-finite coordinate");
+    throw Error("max_step's body motion has the wrong vertex count");
+  if (!b0.allFinite() || !b1.allFinite()) throw ConfigError("max_step's body motion has a non-finite coordinate");
   const Eigen::MatrixX3d x1 = x + dx;
   const Eigen::MatrixX3d db = b1 - b0;
 

@@ -137,13 +137,13 @@ struct AngleEnergy {
 class Bending final : public ElementEnergy<4> {
  public:
   Bending(double stiffness_scale, bool initial_rest, Projection projection)
-      : ElementEnergy<4>("bending"), scale_(stiffness_scale), initial_rest_(initial_rest), projection_(projection) {}
+      : scale_(stiffness_scale), initial_rest_(initial_rest), projection_(projection) {}
 
   void bind(const EnergyContext& context) override {
-    const Garment& garment = checked_garment(context, "bending");
+    const Garment& garment = checked_garment(context);
     const Mesh& mesh = garment.mesh;
     if (initial_rest_ && !mesh.vertices.allFinite())
-      throw ConfigError("bending: rest: initial needs finite rest positions, the garment's are not");
+      throw ConfigError("rest: initial needs finite rest positions, the garment's are not");
     const auto topology = bending::find_hinges(mesh);
     const int nf = mesh.num_faces();
     double mean_area = 0.0;
@@ -196,7 +196,7 @@ class Bending final : public ElementEnergy<4> {
       elements.push_back(v);
     }
     if (skipped > 0)
-      warn("bending: skipped " + std::to_string(skipped) + " of " + std::to_string(topology.size()) +
+      warn("skipped " + std::to_string(skipped) + " of " + std::to_string(topology.size()) +
            " hinges whose faces have (nearly) zero material-space (UV) area");
     set_elements(mesh.num_vertices(), std::move(elements));
   }

@@ -20,8 +20,8 @@ std::vector<HingeTopology> find_hinges(const Mesh& mesh) {
   for (int f = 0; f < nf; ++f) {
     for (int k = 0; k < 3; ++k) {
       const int a = mesh.faces(f, k), b = mesh.faces(f, (k + 1) % 3);
-      if (a < 0 || a >= nv) throw ConfigError("bending: face " + std::to_string(f) + " has a vertex index out of range");
-      if (a == b) throw ConfigError("bending: face " + std::to_string(f) + " repeats vertex " + std::to_string(a));
+      if (a < 0 || a >= nv) throw ConfigError("face " + std::to_string(f) + " has a vertex index out of range");
+      if (a == b) throw ConfigError("face " + std::to_string(f) + " repeats vertex " + std::to_string(a));
       const auto lo = static_cast<std::uint64_t>(std::min(a, b)), hi = static_cast<std::uint64_t>(std::max(a, b));
       half.push_back({lo << 32 | hi, f, k});
     }
@@ -35,7 +35,7 @@ std::vector<HingeTopology> find_hinges(const Mesh& mesh) {
     std::size_t j = i;
     while (j < half.size() && half[j].key == half[i].key) ++j;
     if (j - i > 2)
-      throw ConfigError("bending: the edge between vertices " + std::to_string(half[i].key >> 32) + " and " +
+      throw ConfigError("the edge between vertices " + std::to_string(half[i].key >> 32) + " and " +
                         std::to_string(half[i].key & 0xffffffffu) + " is shared by " + std::to_string(j - i) +
                         " faces; the garment must be a manifold surface");
     if (j - i == 2) {

@@ -17,24 +17,20 @@ namespace drape::collision {
 
 BodyCollision::BodyCollision(const CollisionSettings& settings) : settings_(settings) {
   if (settings.smoothing > 0 && settings.smoothing <= settings.margin)
-    throw ConfigError("collision: smoothing (" + std::to_string(settings.smoothing) + " m) must exceed the margin (" +
+    throw ConfigError("smoothing (" + std::to_string(settings.smoothing) + " m) must exceed the margin (" +
                       std::to_string(settings.margin) + " m), or be 0 for the exact distance");
   penalty_.margin = settings.margin;
   if (settings.max_depth > 0) penalty_.delta_max = settings.margin + settings.max_depth;
 }
 
 void BodyCollision::bind(const EnergyContext& context) {
-  if (!context.garment) throw ConfigError("collision: no garment is bound");
+  if (!context.garment) throw ConfigError("no garment is bound");
   if (!context.body)
     throw ConfigError(
-        "collision: no body is bound; the collision energy keeps the garment outside a body, so the scene or "
+        "no body is bound; the collision energy keeps the garment outside a body, so the scene or "
         "solver must provide one (EnergyContext::body, e.g. a geometry::BodySurface)");
-  if (context.garment->mesh.num_vertices() == 0) throw ConfigError("collision: the garment has no vertices");
-  try {
-    area_ = geometry::vertex_areas(*context.garment);
-  } catch (const ConfigError& e) {
-    throw ConfigError(std::string("collision: ") + e.what());
-  }
+  if (context.garment->mesh.num_vertices() == 0) throw ConfigError("the garment has no vertices");
+  area_ = geometry::vertex_areas(*context.garment);
   body_ = context.body;
   surface_ = dynamic_cast<const geometry::BodySurface*>(body_);
   {
@@ -45,7 +41,7 @@ void BodyCollision::bind(const EnergyContext& context) {
   face_group_.clear();
   if (settings_.creases && !(settings_.smoothing > 0) && surface_) face_group_ = normal_groups(*surface_);
   if (settings_.smoothing > 0 && !surface_)
-    throw ConfigError("collision: smoothing needs the body's vertices and normals (a geometry::BodySurface); this body "
+    throw ConfigError("smoothing needs the body's vertices and normals (a geometry::BodySurface); this body "
                       "only answers closest-point queries: set smoothing to 0");
 }
 
@@ -162,8 +158,8 @@ Eigen::Vector3d BodyCollision::push_gradient(Eigen::Index v, double delta, const
 }
 
 void BodyCollision::check(const Eigen::MatrixX3d& x) const {
-  if (!body_) throw Error("collision: bind() was not called");
-  check_energy_input("collision", x, area_.size());
+  if (!body_) throw Error("bind() was not called");
+  check_energy_input(x, area_.size());
 }
 
 double BodyCollision::value(const Eigen::MatrixX3d& x) const {
@@ -181,7 +177,7 @@ double BodyCollision::value(const Eigen::MatrixX3d& x) const {
 
 double BodyCollision::add_gradient(const Eigen::MatrixX3d& x, Eigen::MatrixX3d& g) const {
   check(x);
-  if (g.rows() != x.rows()) throw Error("collision: the gradient has " + std::to_string(g.rows()) + " rows, x has " +
+  if (g.rows() != x.rows()) throw Error("the gradient has " + std::to_string(g.rows()) + " rows, x has " +
                                         std::to_string(x.rows()));
   const auto cached = cached_contacts(x);
   const std::vector<Contact>& contacts = *cached;
@@ -245,11 +241,11 @@ void BodyCollision::vertex_gradient_samples(const Eigen::MatrixX3d& x, int verte
                                             std::vector<Eigen::Vector3d>& samples) const {
   if (!has_kinks()) return;
   // One vertex's check, not check(x): the solver asks once per contact vertex.
-  if (!body_) throw Error("collision: bind() was not called");
+  if (!body_) throw Error("bind() was not called");
   if (x.rows() != area_.size() || vertex < 0 || vertex >= x.rows())
-    throw Error("collision: vertex " + std::to_string(vertex) + " of " + std::to_string(x.rows()) +
+    throw Error("vertex " + std::to_string(vertex) + " of " + std::to_string(x.rows()) +
                 " given, the bound garment has " + std::to_string(area_.size()));
-  if (!x.row(vertex).allFinite()) throw Error("collision: garment vertex " + std::to_string(vertex) + " is not finite");
+  if (!x.row(vertex).allFinite()) throw Error("garment vertex " + std::to_string(vertex) + " is not finite");
   for (int axis = 0; axis < 3; ++axis)
     for (const double sign : {-1.0, 1.0}) {
       Eigen::Vector3d p = x.row(vertex).transpose();

@@ -19,16 +19,12 @@ class Gravity final : public Energy {
 
   void bind(const EnergyContext& context) override {
     // The checks every garment energy makes (UVs, materials, indices), written once.
-    const Garment& garment = checked_garment(context, "gravity");
+    const Garment& garment = checked_garment(context);
     const double norm = context.gravity.norm();
-    if (!(norm > 0.0)) throw ConfigError("gravity: the scene's gravity direction is zero");
+    if (!(norm > 0.0)) throw ConfigError("the scene's gravity direction is zero");
     // The direction comes from the scene, the magnitude from the parameter `g`.
     force_per_kg_ = context.gravity / norm * g_;
-    try {
-      mass_ = geometry::vertex_masses(garment);
-    } catch (const ConfigError& e) {
-      throw ConfigError(std::string("gravity: ") + e.what());
-    }
+    mass_ = geometry::vertex_masses(garment);
   }
 
   double value(const Eigen::MatrixX3d& x) const override {
@@ -47,7 +43,7 @@ class Gravity final : public Energy {
   const Eigen::VectorXd& masses() const { return mass_; }
 
  private:
-  void check(const Eigen::MatrixX3d& x) const { check_energy_input("gravity", x, mass_.size()); }
+  void check(const Eigen::MatrixX3d& x) const { check_energy_input(x, mass_.size()); }
   double g_;
   Eigen::Vector3d force_per_kg_ = Eigen::Vector3d::Zero();
   Eigen::VectorXd mass_;

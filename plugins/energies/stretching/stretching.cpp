@@ -55,10 +55,10 @@ struct Face {
 
 class Stretching final : public ElementEnergy<3> {
  public:
-  explicit Stretching(double stiffness_scale) : ElementEnergy<3>("stretching"), scale_(stiffness_scale) {}
+  explicit Stretching(double stiffness_scale) : scale_(stiffness_scale) {}
 
   void bind(const EnergyContext& context) override {
-    const Garment& garment = checked_garment(context, "stretching");
+    const Garment& garment = checked_garment(context);
     const Mesh& mesh = garment.mesh;
     materials_ = garment.materials;
     tables_.assign(materials_.size(), nullptr);
@@ -105,7 +105,7 @@ class Stretching final : public ElementEnergy<3> {
       elements.push_back({mesh.faces(f, 0), mesh.faces(f, 1), mesh.faces(f, 2)});
     }
     if (skipped > 0)
-      warn("stretching: skipped " + std::to_string(skipped) + " of " + std::to_string(nf) +
+      warn("skipped " + std::to_string(skipped) + " of " + std::to_string(nf) +
            " faces whose material-space (UV) area is (nearly) zero");
     set_elements(mesh.num_vertices(), std::move(elements));
   }

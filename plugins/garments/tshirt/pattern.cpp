@@ -43,7 +43,7 @@ double size_grade(const std::string& size) {
     if (size == g.name) return g.scale;
     known += (known.empty() ? "" : ", ") + std::string(g.name);
   }
-  throw ConfigError("tshirt: unknown size '" + size + "'; known: " + known);
+  throw ConfigError("unknown size '" + size + "'; known: " + known);
 }
 
 PatternPoints pattern_points(const PatternSpec& spec) {
@@ -62,7 +62,7 @@ PatternPoints pattern_points(const PatternSpec& spec) {
   p.hem = {spec.half_width, 0.0};
   if (!(p.armpit_s > 0 && p.armpit_s < spec.sleeve_length && p.armpit.y() > 0.2 * spec.length &&
         spec.neck_half_width < spec.shoulder_half_width && spec.shoulder_half_width < spec.half_width))
-    throw ConfigError("tshirt: inconsistent pattern (the sleeve must leave the body above the hem and below the shoulder)");
+    throw ConfigError("inconsistent pattern (the sleeve must leave the body above the hem and below the shoulder)");
   return p;
 }
 

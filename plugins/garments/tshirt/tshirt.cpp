@@ -26,7 +26,7 @@ int parse_resolution(const std::string& text) {
   } catch (const std::exception&) {
   }
   if (used != text.size() || count < 300 || count > 50000)
-    throw ConfigError("tshirt: resolution '" + text +
+    throw ConfigError("resolution '" + text +
                       "' is neither 'default', 'coarse' nor a vertex count between 300 and 50000");
   return static_cast<int>(count);
 }
@@ -77,12 +77,12 @@ PluginList plugins() {
   d.create_garment = [](const Params& p) -> std::unique_ptr<GarmentSource> {
     tshirt::TshirtOptions o;
     if (p.get_string("size") == "auto")
-      throw ConfigError("tshirt: size auto is chosen for each body from its girth by drape simulate and drape generate (docs/garments.md, "
+      throw ConfigError("size auto is chosen for each body from its girth by drape simulate and drape generate (docs/garments.md, "
                         "\"Which size fits which body\"); here give a size: small, regular, large, xlarge or 2xlarge-6xlarge");
     o.size_scale = tshirt::size_grade(p.get_string("size"));
     o.target_vertices = parse_resolution(p.get_string("resolution"));
     o.print = p.get_bool("print");
-    o.print_polygon = geometry::polygon_from_flat(p.get_float_list("print_polygon"), "tshirt: print_polygon");
+    o.print_polygon = geometry::polygon_from_flat(p.get_float_list("print_polygon"), "print_polygon");
     o.torso.half_width = p.get_float("torso_half_width");
     o.torso.half_depth = p.get_float("torso_half_depth");
     o.torso.centre_z = p.get_float("torso_centre_z");

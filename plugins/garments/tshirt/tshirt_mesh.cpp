@@ -70,7 +70,7 @@ TshirtResult build_tshirt(const TshirtOptions& options) {
   for (int i : row_order(back.mesh.points, spacing)) {
     if (back.on_seam[i]) {
       const auto it = front_seam.find({back.mesh.points[i].x(), back.mesh.points[i].y()});
-      if (it == front_seam.end()) throw Error("tshirt: a back seam point has no front partner");
+      if (it == front_seam.end()) throw Error("a back seam point has no front partner");
       back_vertex[i] = it->second;
     } else {
       back_vertex[i] = next++;

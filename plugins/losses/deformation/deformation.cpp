@@ -71,7 +71,7 @@ class DeformationLoss final : public Node {
     const Tensor& x = *in.at("pred");
     const int faces = static_cast<int>(faces_.rows());
     if (signs_.size() != static_cast<std::size_t>(x.batch()) * faces)
-      throw Error("deformation: backward without a matching forward");
+      throw Error("backward without a matching forward");
     for (int b = 0; b < x.batch(); ++b) {
       const double scale = (*gout.at("loss"))(b, 0, 0) / (mean_ ? double(faces) : 1.0);
       const Signs* signs = signs_.data() + static_cast<std::size_t>(b) * faces;

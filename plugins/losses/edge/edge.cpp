@@ -69,7 +69,7 @@ class EdgeLoss final : public Node {
     const Tensor &x = *in.at("pred"), &y = *in.at("target");
     const std::size_t edges = edges_.size();
     if (pred_factor_.size() != static_cast<std::size_t>(x.batch()) * edges)
-      throw Error("edge: backward without a matching forward");
+      throw Error("backward without a matching forward");
     Tensor* gx = gin.count("pred") ? gin.at("pred") : nullptr;
     Tensor* gy = gin.count("target") ? gin.at("target") : nullptr;
     if (gx) gx->set_zero();

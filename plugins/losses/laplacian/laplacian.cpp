@@ -96,7 +96,7 @@ class LaplacianLoss final : public Node {
     std::size_t per_sample = 0;
     for (const Level& l : level_) per_sample += 3 * static_cast<std::size_t>(l.rows());
     if (residual_.size() != static_cast<std::size_t>(batch) * per_sample)
-      throw Error("laplacian: backward without a matching forward");
+      throw Error("backward without a matching forward");
     const auto gpred = gin.find("pred"), gtarget = gin.find("target");
     if (gpred == gin.end() && gtarget == gin.end()) return;
     g_.resize(3 * static_cast<std::size_t>(n));

@@ -66,11 +66,11 @@ class PenetrationLoss final : public Node {
 
   void backward(const TensorIn& in, const TensorIn&, const TensorIn& gout, const TensorOut& gin) override {
     if (gin.count("body") || gin.count("target"))
-      throw Error("penetration: gradients reach pred only (a training loss); the graph asked for body or target");
+      throw Error("gradients reach pred only (a training loss); the graph asked for body or target");
     const auto gpred = gin.find("pred");
     if (gpred == gin.end()) return;
     const int batch = in.at("pred")->batch();
-    if (static_cast<int>(depth_.size()) != batch) throw Error("penetration: backward without a matching forward");
+    if (static_cast<int>(depth_.size()) != batch) throw Error("backward without a matching forward");
     for (int b = 0; b < batch; ++b) {
       const double scale = -2.0 * (*gout.at("loss"))(b, 0, 0) / (margin_ * margin_ * rows_);
       const auto& depth = depth_[static_cast<std::size_t>(b)];

@@ -55,7 +55,7 @@ class SpectralLoss final : public Node {
   void backward(const TensorIn& in, const TensorIn&, const TensorIn& gout, const TensorOut& gin) override {
     const Tensor& x = *in.at("pred");
     const int batch = x.batch();
-    if (coefficients_.rows() != 3 * batch) throw Error("spectral_loss: backward without a matching forward");
+    if (coefficients_.rows() != 3 * batch) throw Error("backward without a matching forward");
     // dL/dx = V sign(V' (x - y)), all samples in one product: [N, k] x [k, 3B]
     // (the signs held as rows, [3B, k], as basis_times takes them).
     MatrixRM signs(3 * batch, basis_.cols());

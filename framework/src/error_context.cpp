@@ -1,0 +1,37 @@
+// with_context, rethrow_with_context, ContextScope (error_context.hpp).
+#include <drape/error_context.hpp>
+#include <drape/errors.hpp>
+
+namespace drape {
+namespace {
+
+thread_local const std::string* innermost_context = nullptr;
+
+}  // namespace
+
+ContextScope::ContextScope(const std::string& name) : previous_(innermost_context) { innermost_context = &name; }
+
+ContextScope::~ContextScope() { innermost_context = previous_; }
+
+const std::string* current_context() { return innermost_context; }
+
+std::string with_context(const std::string& name, const std::string& message) {
+  // "barrier: ..." and "barrier needs ..." already say who.
+  const bool named = message.compare(0, name.size(), name) == 0 &&
+                     (message.size() == name.size() || message[name.size()] == ':' || message[name.size()] == ' ');
+  return named ? message : name + ": " + message;
+}
+
+void rethrow_with_context(const std::string& name) {
+  try {
+    throw;
+  } catch (const UsageError& e) {
+    throw UsageError(with_context(name, e.what()));
+  } catch (const ConfigError& e) {
+    throw ConfigError(with_context(name, e.what()));
+  } catch (const Error& e) {
+    throw Error(with_context(name, e.what()));
+  }
+}
+
+}  // namespace drape
