@@ -77,8 +77,10 @@ PluginList plugins() {
   d.name = "wind";
   d.doc = "Uniform wind load: E = -sum_v pressure * uv_area(v) * w.x(v) (example out-of-tree plugin).";
   d.params = {
-      {"direction", ParamType::FloatList, "[0, 0, 1]", "wind direction [x, y, z] (normalised; Y is up)"},
-      {"pressure", ParamType::Float, "1.0", "force per material area in Pa (N/m^2)", 0.0},
+      {.name = "direction", .type = ParamType::FloatList, .default_value = "[0, 0, 1]",
+       .doc = "wind direction [x, y, z] (normalised; Y is up)"},
+      {.name = "pressure", .type = ParamType::Float, .default_value = "1.0",
+       .doc = "force per material area in Pa (N/m^2)", .min = 0.0},
   };
   d.create_energy = create;
   return {d};

@@ -28,13 +28,15 @@ const char* to_string(ActivationKind kind) {
 }
 
 ParamSpec activation_param(const std::string& default_name) {
-  return {"activation", ParamType::String, default_name, "point-wise activation", {}, {}, activation_names()};
+  return {.name = "activation", .type = ParamType::String, .default_value = default_name,
+          .doc = "point-wise activation", .choices = activation_names()};
 }
 
 ParamSpec negative_slope_param() {
   // The upper bound keeps leaky_relu monotonic with a sign-preserving output,
   // which activation_backward relies on.
-  return {"negative_slope", ParamType::Float, "0.2", "slope of leaky_relu for negative inputs", 0.0, 0.99};
+  return {.name = "negative_slope", .type = ParamType::Float, .default_value = "0.2",
+          .doc = "slope of leaky_relu for negative inputs", .min = 0.0, .max = 0.99};
 }
 
 Activation activation_from(const Params& params) {

@@ -35,13 +35,20 @@ double LrSchedule::at(long epoch) const {
 
 LrSchedule LrSchedule::from_yaml(const YAML::Node& node, const std::string& file) {
   const std::vector<ParamSpec> specs = {
-      {"type", ParamType::String, "constant", "schedule", {}, {}, {"constant", "step", "cosine", "exponential"}},
-      {"lr", ParamType::Float, "1.0e-3", "base learning rate", 0.0, {}},
-      {"gamma", ParamType::Float, "0.1", "decay factor (step: per step_size epochs, exponential: per epoch)", 0.0, 1.0},
-      {"step_size", ParamType::Int, "10", "epochs between step decays", 1.0, {}},
-      {"total", ParamType::Int, "100", "cosine: epochs from lr to min_lr", 1.0, {}},
-      {"min_lr", ParamType::Float, "0.0", "cosine: final learning rate", 0.0, {}},
-      {"warmup", ParamType::Int, "0", "epochs of linear warm-up", 0.0, {}},
+      {.name = "type", .type = ParamType::String, .default_value = "constant",
+       .doc = "schedule", .choices = {"constant", "step", "cosine", "exponential"}},
+      {.name = "lr", .type = ParamType::Float, .default_value = "1.0e-3",
+       .doc = "base learning rate", .min = 0.0},
+      {.name = "gamma", .type = ParamType::Float, .default_value = "0.1",
+       .doc = "decay factor (step: per step_size epochs, exponential: per epoch)", .min = 0.0, .max = 1.0},
+      {.name = "step_size", .type = ParamType::Int, .default_value = "10",
+       .doc = "epochs between step decays", .min = 1.0},
+      {.name = "total", .type = ParamType::Int, .default_value = "100",
+       .doc = "cosine: epochs from lr to min_lr", .min = 1.0},
+      {.name = "min_lr", .type = ParamType::Float, .default_value = "0.0",
+       .doc = "cosine: final learning rate", .min = 0.0},
+      {.name = "warmup", .type = ParamType::Int, .default_value = "0",
+       .doc = "epochs of linear warm-up", .min = 0.0},
   };
   const Params p(specs, param_values_from_yaml(node, file), "learning-rate schedule");
   LrSchedule s;

@@ -39,11 +39,16 @@ std::shared_ptr<const Model> model_for(const std::string& given) {
 const char* kDefaultPath = "\"\"";
 
 std::vector<ParamSpec> slider_params() {
-  return {{"gender", ParamType::Float, "1.0", "0 female, 1 male", 0.0, 1.0},
-          {"muscle", ParamType::Float, "0.5", "muscle slider", 0.0, 1.0},
-          {"weight", ParamType::Float, "0.5", "weight slider", 0.0, 1.0},
-          {"height", ParamType::Float, "0.5", "height slider", 0.0, 1.0},
-          {"proportions", ParamType::Float, "0.5", "body proportions slider", 0.0, 1.0}};
+  return {{.name = "gender", .type = ParamType::Float, .default_value = "1.0",
+           .doc = "0 female, 1 male", .min = 0.0, .max = 1.0},
+          {.name = "muscle", .type = ParamType::Float, .default_value = "0.5",
+           .doc = "muscle slider", .min = 0.0, .max = 1.0},
+          {.name = "weight", .type = ParamType::Float, .default_value = "0.5",
+           .doc = "weight slider", .min = 0.0, .max = 1.0},
+          {.name = "height", .type = ParamType::Float, .default_value = "0.5",
+           .doc = "height slider", .min = 0.0, .max = 1.0},
+          {.name = "proportions", .type = ParamType::Float, .default_value = "0.5",
+           .doc = "body proportions slider", .min = 0.0, .max = 1.0}};
 }
 
 class ClothesSource final : public GarmentSource {
@@ -77,8 +82,10 @@ PluginList plugins() {
   body.kind = "body";
   body.name = "makehuman";
   body.doc = "MakeHuman hm08 body (CC0 data folder): macro sliders, helpers removed, meters; BMI search over weight/muscle.";
-  body.params = {{"path", ParamType::String, kDefaultPath, "MakeHuman data folder (base/base.obj, targets/macrodetails/); empty: $DRAPE_MAKEHUMAN_DIR or ../shared/assets/makehuman"},
-                 {"muscle", ParamType::Float, "-1", "fixed muscle slider for the BMI search; -1 moves it with weight", -1.0, 1.0}};
+  body.params = {{.name = "path", .type = ParamType::String, .default_value = kDefaultPath,
+                  .doc = "MakeHuman data folder (base/base.obj, targets/macrodetails/); empty: $DRAPE_MAKEHUMAN_DIR or ../shared/assets/makehuman"},
+                 {.name = "muscle", .type = ParamType::Float, .default_value = "-1",
+                  .doc = "fixed muscle slider for the BMI search; -1 moves it with weight", .min = -1.0, .max = 1.0}};
   body.create_body = [](const Params& p) {
     return std::make_unique<MakeHumanBody>(model_for(p.get_string("path")), p.get_float("muscle"));
   };
@@ -87,8 +94,10 @@ PluginList plugins() {
   shirt.kind = "garment";
   shirt.name = "makehuman_tshirt";
   shirt.doc = "The T-shirt of a MakeHuman outfit (first piece of its .obj), fitted to a MakeHuman body by its .mhclo.";
-  shirt.params = {{"path", ParamType::String, kDefaultPath, "MakeHuman data folder"},
-                  {"outfit", ParamType::String, "male_casualsuit04", "outfit folder under clothes/"}};
+  shirt.params = {{.name = "path", .type = ParamType::String, .default_value = kDefaultPath,
+                   .doc = "MakeHuman data folder"},
+                  {.name = "outfit", .type = ParamType::String, .default_value = "male_casualsuit04",
+                   .doc = "outfit folder under clothes/"}};
   for (auto& s : slider_params()) shirt.params.push_back(s);
   shirt.create_garment = [](const Params& p) { return clothes_source(p, "0"); };
 
@@ -96,9 +105,9 @@ PluginList plugins() {
   clothes.name = "makehuman_clothes";
   clothes.doc = "Any piece of a MakeHuman outfit (by connected-piece index or OBJ group name), fitted to a MakeHuman body "
                 "by the outfit's .mhclo so that it follows the body's shape.";
-  clothes.params.push_back({"piece", ParamType::String, "0",
-                            "the piece: its index among the outfit .obj's connected pieces (numbered by first vertex: 0 "
-                            "the shirt, 1 the trousers in MakeHuman's suits) or the name of an OBJ group"});
+  clothes.params.push_back({.name = "piece", .type = ParamType::String, .default_value = "0",
+                            .doc = "the piece: its index among the outfit .obj's connected pieces (numbered by first vertex: 0 "
+                                   "the shirt, 1 the trousers in MakeHuman's suits) or the name of an OBJ group"});
   clothes.create_garment = [](const Params& p) { return clothes_source(p, p.get_string("piece")); };
   return {body, shirt, clothes};
 }

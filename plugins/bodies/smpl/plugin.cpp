@@ -12,8 +12,10 @@ drape::PluginList plugins() {
   d.kind = "body";
   d.name = "smpl";
   d.doc = "SMPL body (licence required) from an HDF5 conversion: v_template, shapedirs, f; shape only, BMI along the volume direction.";
-  d.params = {{"file", ParamType::String, "smpl_neutral.h5", "the converted model (docs/smpl.md)"},
-              {"betas", ParamType::Int, "10", "how many shape coefficients to use", 1.0, 300.0}};
+  d.params = {{.name = "file", .type = ParamType::String, .default_value = "smpl_neutral.h5",
+               .doc = "the converted model (docs/smpl.md)"},
+              {.name = "betas", .type = ParamType::Int, .default_value = "10",
+               .doc = "how many shape coefficients to use", .min = 1.0, .max = 300.0}};
   d.create_body = [](const Params& p) {
     return std::make_unique<smpl::SmplBody>(smpl::read_smpl_h5(p.get_string("file")), static_cast<int>(p.get_int("betas")));
   };

@@ -104,9 +104,12 @@ PluginList plugins() {
           "K learnt anchor codes.";
   d.inputs = {{"x", "the encoded body [R, C], flattened per sample (e.g. an encoder's global [1, C])"}};
   d.outputs = {{"out", "the blended displacement [Ng, 3]"}, {"weights", "each anchor's blend weight [1, K]"}};
-  d.params = {{"anchors", ParamType::Int, "8", "anchors K", 1, 4096},
-              {"power", ParamType::Float, "2", "p of the inverse distance d^-p", 0.1, 16.0},
-              {"code_scale", ParamType::Float, "1.0", "std of the anchor codes' initial values", 0.0, 100.0}};
+  d.params = {{.name = "anchors", .type = ParamType::Int, .default_value = "8",
+               .doc = "anchors K", .min = 1, .max = 4096},
+              {.name = "power", .type = ParamType::Float, .default_value = "2",
+               .doc = "p of the inverse distance d^-p", .min = 0.1, .max = 16.0},
+              {.name = "code_scale", .type = ParamType::Float, .default_value = "1.0",
+               .doc = "std of the anchor codes' initial values", .min = 0.0, .max = 100.0}};
   d.create_node = [](const Params& p) {
     return std::make_unique<AnchorBlend>(static_cast<int>(p.get_int("anchors")), p.get_float("power"), p.get_float("code_scale"));
   };

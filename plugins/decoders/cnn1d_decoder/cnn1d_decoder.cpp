@@ -71,8 +71,10 @@ PluginList plugins() {
   d.doc = "1D CNN along the garment's vertex order (the seed's 1D CNN decoder ablation): stride 1, one output row per vertex.";
   d.inputs = {{"x", "per-garment-vertex features [Ng, C] (e.g. body features gathered through the correspondences)"}};
   d.outputs = {{"out", "garment vertices or offsets [Ng, 3]"}};
-  d.params = {{"channels", ParamType::IntList, "[32, 32]", "output channels of the hidden layers (may be empty: [])", 1, 4096},
-              {"kernel", ParamType::Int, "5", "kernel size along the vertex order (odd keeps it centred)", 1, 101},
+  d.params = {{.name = "channels", .type = ParamType::IntList, .default_value = "[32, 32]",
+               .doc = "output channels of the hidden layers (may be empty: [])", .min = 1, .max = 4096},
+              {.name = "kernel", .type = ParamType::Int, .default_value = "5",
+               .doc = "kernel size along the vertex order (odd keeps it centred)", .min = 1, .max = 101},
               nn::activation_param("leaky_relu"),
               nn::negative_slope_param()};
   d.create_node = [](const Params& p) {

@@ -68,7 +68,8 @@ PluginList plugins() {
   d.doc = "The original GCN (Kipf & Welling) on the garment mesh, then a dense head to [Ng, 3].";
   d.inputs = {{"x", "garment features [Ng, C] (gathered from the body)"}};
   d.outputs = {{"out", "per garment vertex [Ng, 3] (a displacement or positions, as the graph uses it)"}};
-  d.params = {{"channels", ParamType::IntList, "[64, 64, 32, 32]", "output channels of each graph convolution", 1, 4096},
+  d.params = {{.name = "channels", .type = ParamType::IntList, .default_value = "[64, 64, 32, 32]",
+               .doc = "output channels of each graph convolution", .min = 1, .max = 4096},
               nn::activation_param("leaky_relu"),
               nn::negative_slope_param()};
   d.create_node = [](const Params& p) {

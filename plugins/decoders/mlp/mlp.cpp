@@ -68,8 +68,11 @@ PluginList plugins() {
   d.doc = "Dense decoder from a flattened [R, C] input to [rows, 3] vertices (the seed's MLP ablation, TailorNet's LF net).";
   d.inputs = {{"x", "features [R, C], flattened per sample (e.g. an encoder's global [1, C])"}};
   d.outputs = {{"out", "vertices [rows, 3]"}};
-  d.params = {{"widths", ParamType::IntList, "[256, 256]", "hidden layer widths (may be empty: [])", 1, 65536},
-              {"rows", ParamType::Int, "0", "output vertices; 0: the garment's vertex count (assets bound) or the input's row count", 0, 10000000},
+  d.params = {{.name = "widths", .type = ParamType::IntList, .default_value = "[256, 256]",
+               .doc = "hidden layer widths (may be empty: [])", .min = 1, .max = 65536},
+              {.name = "rows", .type = ParamType::Int, .default_value = "0",
+               .doc = "output vertices; 0: the garment's vertex count (assets bound) or the input's row count",
+               .min = 0, .max = 10000000},
               nn::activation_param("relu"),
               nn::negative_slope_param()};
   d.create_node = [](const Params& p) {

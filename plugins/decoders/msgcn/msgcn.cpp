@@ -170,9 +170,11 @@ PluginList plugins() {
           "coarsest first, UV-barycentric up-sampling between levels.";
   d.inputs = {{"x", "garment features [Ng, C] (gathered from the body), pooled to the coarsest level"}};
   d.outputs = {{"out", "per garment vertex [Ng, 3] (a displacement or positions, as the graph uses it)"}};
-  d.params = {{"channels", ParamType::IntList, "[64, 64, 32, 32]",
-               "channels of each level, coarsest first; its length is the number of levels used (at most the hierarchy's)", 1, 4096},
-              {"layers", ParamType::IntList, "[2]", "graph convolutions per level: one entry for all levels or one per level", 1, 16},
+  d.params = {{.name = "channels", .type = ParamType::IntList, .default_value = "[64, 64, 32, 32]",
+               .doc = "channels of each level, coarsest first; its length is the number of levels used (at most the hierarchy's)",
+               .min = 1, .max = 4096},
+              {.name = "layers", .type = ParamType::IntList, .default_value = "[2]",
+               .doc = "graph convolutions per level: one entry for all levels or one per level", .min = 1, .max = 16},
               nn::activation_param("leaky_relu"),
               nn::negative_slope_param()};
   d.create_node = [](const Params& p) {

@@ -135,12 +135,15 @@ PluginList plugins() {
   d.inputs = {{"x", "the encoded body [R, C], flattened per sample (e.g. an encoder's global [1, C])"}};
   d.outputs = {{"out", "the residual Delta x = V Delta c [Ng, 3]"},
                {"coefficients", "the predicted spectral coefficients Delta c [k, 3]"}};
-  d.params = {{"widths", ParamType::IntList, "[256]", "hidden layer widths of the MLP (may be empty: [])", 1, 65536},
-              {"k", ParamType::Int, "0", "eigenvectors used; 0 or more than the assets hold: all of them", 0, 100000},
-              {"use_k", ParamType::Int, "0",
-               "eigenvectors applied to Delta x (0: all k): fewer trade accuracy for time at inference, same weights",
-               0, 100000},
-              {"init_scale", ParamType::Float, "0.01", "factor on the last layer's initial weights (a small initial residual)", 0.0, 1.0},
+  d.params = {{.name = "widths", .type = ParamType::IntList, .default_value = "[256]",
+               .doc = "hidden layer widths of the MLP (may be empty: [])", .min = 1, .max = 65536},
+              {.name = "k", .type = ParamType::Int, .default_value = "0",
+               .doc = "eigenvectors used; 0 or more than the assets hold: all of them", .min = 0, .max = 100000},
+              {.name = "use_k", .type = ParamType::Int, .default_value = "0",
+               .doc = "eigenvectors applied to Delta x (0: all k): fewer trade accuracy for time at inference, same weights",
+               .min = 0, .max = 100000},
+              {.name = "init_scale", .type = ParamType::Float, .default_value = "0.01",
+               .doc = "factor on the last layer's initial weights (a small initial residual)", .min = 0.0, .max = 1.0},
               nn::activation_param("relu"),
               nn::negative_slope_param()};
   d.create_node = [](const Params& p) {

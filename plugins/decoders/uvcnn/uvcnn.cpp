@@ -102,9 +102,12 @@ PluginList plugins() {
           "convolved, sampled back at the vertices.";
   d.inputs = {{"x", "per-garment-vertex features [Ng, C]"}};
   d.outputs = {{"out", "garment vertices or offsets [Ng, 3]"}};
-  d.params = {{"resolution", ParamType::Int, "64", "side of the square UV image in pixels", 8, 1024},
-              {"channels", ParamType::IntList, "[16, 16]", "output channels of the hidden convolutions (may be empty: [])", 1, 4096},
-              {"kernel", ParamType::Int, "3", "odd kernel size", 1, 15},
+  d.params = {{.name = "resolution", .type = ParamType::Int, .default_value = "64",
+               .doc = "side of the square UV image in pixels", .min = 8, .max = 1024},
+              {.name = "channels", .type = ParamType::IntList, .default_value = "[16, 16]",
+               .doc = "output channels of the hidden convolutions (may be empty: [])", .min = 1, .max = 4096},
+              {.name = "kernel", .type = ParamType::Int, .default_value = "3",
+               .doc = "odd kernel size", .min = 1, .max = 15},
               nn::activation_param("leaky_relu"),
               nn::negative_slope_param()};
   d.create_node = [](const Params& p) {

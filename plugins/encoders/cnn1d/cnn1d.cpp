@@ -92,9 +92,12 @@ PluginList plugins() {
   d.inputs = {{"body", "body vertices [Nb, 3]"}};
   d.outputs = {{"features", "per-vertex features [Nb, C_last] (last map, nearest row per vertex)"},
                {"global", "mean of the last map over its rows [1, C_last]"}};
-  d.params = {{"channels", ParamType::IntList, "[32, 64, 128]", "output channels of each layer", 1, 4096},
-              {"kernel", ParamType::Int, "5", "kernel size along the vertex order", 1, 101},
-              {"stride", ParamType::Int, "2", "downsampling factor of each layer", 1, 16},
+  d.params = {{.name = "channels", .type = ParamType::IntList, .default_value = "[32, 64, 128]",
+               .doc = "output channels of each layer", .min = 1, .max = 4096},
+              {.name = "kernel", .type = ParamType::Int, .default_value = "5",
+               .doc = "kernel size along the vertex order", .min = 1, .max = 101},
+              {.name = "stride", .type = ParamType::Int, .default_value = "2",
+               .doc = "downsampling factor of each layer", .min = 1, .max = 16},
               nn::activation_param("leaky_relu"),
               nn::negative_slope_param()};
   d.create_node = [](const Params& p) {

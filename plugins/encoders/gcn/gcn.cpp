@@ -66,7 +66,8 @@ PluginList plugins() {
   d.inputs = {{"body", "body vertices [Nb, 3] (the assets' body topology)"}};
   d.outputs = {{"features", "per-vertex features of the last layer [Nb, C_last]"},
                {"global", "mean of the last layer over the vertices [1, C_last]"}};
-  d.params = {{"channels", ParamType::IntList, "[32, 64, 128]", "output channels of each layer", 1, 4096},
+  d.params = {{.name = "channels", .type = ParamType::IntList, .default_value = "[32, 64, 128]",
+               .doc = "output channels of each layer", .min = 1, .max = 4096},
               nn::activation_param("leaky_relu"),
               nn::negative_slope_param()};
   d.create_node = [](const Params& p) {

@@ -145,8 +145,10 @@ PluginList plugins() {
   d.inputs = {{"body", "body vertices [Nb, 3] (the assets' body topology)"}};
   d.outputs = {{"features", "per-vertex features [Nb, C_last] (the last map's row of the block holding the vertex)"},
                {"global", "mean of the last map over its rows [1, C_last]"}};
-  d.params = {{"channels", ParamType::IntList, "[32, 64, 128]", "output channels of each layer (one scale each)", 1, 4096},
-              {"stride", ParamType::Int, "2", "consecutive vertices pooled into one between layers", 1, 64},
+  d.params = {{.name = "channels", .type = ParamType::IntList, .default_value = "[32, 64, 128]",
+               .doc = "output channels of each layer (one scale each)", .min = 1, .max = 4096},
+              {.name = "stride", .type = ParamType::Int, .default_value = "2",
+               .doc = "consecutive vertices pooled into one between layers", .min = 1, .max = 64},
               nn::activation_param("leaky_relu"),
               nn::negative_slope_param()};
   d.create_node = [](const Params& p) {

@@ -93,10 +93,12 @@ PluginList plugins() {
   d.inputs = {{"body", "body vertices [Nb, 3]"}};
   d.outputs = {{"features", "per-vertex features [Nb, C], or [Nb, 2C] = [own, global] with concat_global"},
                {"global", "max over vertices of the per-vertex features [1, C]"}};
-  d.params = {{"widths", ParamType::IntList, "[64, 128]", "widths of the shared MLP's layers (C is the last)", 1, 4096},
+  d.params = {{.name = "widths", .type = ParamType::IntList, .default_value = "[64, 128]",
+               .doc = "widths of the shared MLP's layers (C is the last)", .min = 1, .max = 4096},
               nn::activation_param("relu"),
               nn::negative_slope_param(),
-              {"concat_global", ParamType::Bool, "true", "append the global feature to every vertex's feature"}};
+              {.name = "concat_global", .type = ParamType::Bool, .default_value = "true",
+               .doc = "append the global feature to every vertex's feature"}};
   d.create_node = [](const Params& p) {
     const auto widths = p.get_int_list("widths");
     if (widths.empty()) throw ConfigError("parameter 'widths' needs at least one layer");

@@ -312,12 +312,14 @@ PluginList plugins() {
           "edge direction (model arcsim) or constant (model linear); faded out smoothly on a wing crushed below 10 % of "
           "its rest height.";
   d.params = {
-      {"stiffness_scale", ParamType::Float, "1.0", "multiplies every material's bending stiffness (N*m)", 0.0, 1e6},
-      {"rest", ParamType::String, "flat", "rest dihedral angles: flat (0, panels cut flat) or initial (the garment's rest positions)",
-       std::nullopt, std::nullopt, {"flat", "initial"}},
-      {"projection", ParamType::String, "gauss_newton",
-       "PSD Hessian for Newton: gauss_newton (2c dtheta dtheta^T, cheap) or eigen (exact block with negative eigenvalues clamped)",
-       std::nullopt, std::nullopt, {"gauss_newton", "eigen"}}};
+      {.name = "stiffness_scale", .type = ParamType::Float, .default_value = "1.0",
+       .doc = "multiplies every material's bending stiffness (N*m)", .min = 0.0, .max = 1e6},
+      {.name = "rest", .type = ParamType::String, .default_value = "flat",
+       .doc = "rest dihedral angles: flat (0, panels cut flat) or initial (the garment's rest positions)",
+       .choices = {"flat", "initial"}},
+      {.name = "projection", .type = ParamType::String, .default_value = "gauss_newton",
+       .doc = "PSD Hessian for Newton: gauss_newton (2c dtheta dtheta^T, cheap) or eigen (exact block with negative eigenvalues clamped)",
+       .choices = {"gauss_newton", "eigen"}}};
   d.create_energy = [](const Params& p) {
     return std::make_unique<Bending>(p.get_float("stiffness_scale"), p.get_string("rest") == "initial",
                                      p.get_string("projection") == "eigen" ? Projection::Eigen : Projection::GaussNewton);

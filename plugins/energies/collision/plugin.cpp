@@ -16,20 +16,21 @@ PluginList plugins() {
           "distance d to the body (PBNS/SNUG); needs a body.";
   d.params = {
       // 30 Pa (a shirt's tension over the torso) at 1.7 mm into the margin, 100 Pa at 3.2 mm.
-      {"stiffness", ParamType::Float, "1e7",
-       "k in N/m^4: contact pressure k * (margin - d)^2 Pa; the default holds 30 Pa 1.3 mm off the skin", 0.0},
-      {"margin", ParamType::Float, "0.003", "m: wanted clearance between the cloth's mid-surface and the body", 0.0,
-       0.1},
-      {"max_depth", ParamType::Float, "0",
-       "m: beyond this depth inside the body the penalty grows linearly (push capped, still outward); 0 = no cap",
-       0.0, 10.0},
-      {"smoothing", ParamType::Float, "0",
-       "m: distance to a smooth surface blended from the body's vertex planes within this radius (rounds concave "
-       "creases, where the exact distance kinks); 0 = exact closest point; must exceed the margin",
-       0.0, 1.0},
-      {"creases", ParamType::Bool, "true",
-       "also push off the far side of a concave crease of the body (the armpit of a heavy body), so that cloth "
-       "squeezed into it has a smooth equilibrium; needs smoothing 0"},
+      {.name = "stiffness", .type = ParamType::Float, .default_value = "1e7",
+       .doc = "k in N/m^4: contact pressure k * (margin - d)^2 Pa; the default holds 30 Pa 1.3 mm off the skin",
+       .min = 0.0},
+      {.name = "margin", .type = ParamType::Float, .default_value = "0.003",
+       .doc = "m: wanted clearance between the cloth's mid-surface and the body", .min = 0.0, .max = 0.1},
+      {.name = "max_depth", .type = ParamType::Float, .default_value = "0",
+       .doc = "m: beyond this depth inside the body the penalty grows linearly (push capped, still outward); 0 = no cap",
+       .min = 0.0, .max = 10.0},
+      {.name = "smoothing", .type = ParamType::Float, .default_value = "0",
+       .doc = "m: distance to a smooth surface blended from the body's vertex planes within this radius (rounds concave "
+              "creases, where the exact distance kinks); 0 = exact closest point; must exceed the margin",
+       .min = 0.0, .max = 1.0},
+      {.name = "creases", .type = ParamType::Bool, .default_value = "true",
+       .doc = "also push off the far side of a concave crease of the body (the armpit of a heavy body), so that cloth "
+              "squeezed into it has a smooth equilibrium; needs smoothing 0"},
   };
   d.create_energy = [](const Params& p) {
     return std::make_unique<collision::BodyCollision>(collision::CollisionSettings{

@@ -54,7 +54,8 @@ PluginList plugins() {
   d.kind = "energy";
   d.name = "gravity";
   d.doc = "Gravitational potential energy sum_v m(v) g y(v), lumped masses from material-space areas and densities.";
-  d.params = {{"g", ParamType::Float, "9.81", "gravitational acceleration in m/s^2 (direction from the scene, -Y)", 0.0, 1000.0}};
+  d.params = {{.name = "g", .type = ParamType::Float, .default_value = "9.81",
+               .doc = "gravitational acceleration in m/s^2 (direction from the scene, -Y)", .min = 0.0, .max = 1000.0}};
   d.create_energy = [](const Params& p) { return std::make_unique<Gravity>(p.get_float("g")); };
   return {d};
 }

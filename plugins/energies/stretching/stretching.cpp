@@ -171,8 +171,8 @@ PluginList plugins() {
   d.doc = "Membrane energy of the Green strain G against the material-space (UV) rest shape, per face A psi(G): "
           "ArcSim's data-driven stiffness for model arcsim materials (docs/materials.md), constant "
           "[k_uu, k_uv, k_vv, k_shear] for model linear.";
-  d.params = {{"stiffness_scale", ParamType::Float, "1.0",
-               "multiplies every material's stretch stiffness (N/m)", 0.0, 1e6}};
+  d.params = {{.name = "stiffness_scale", .type = ParamType::Float, .default_value = "1.0",
+               .doc = "multiplies every material's stretch stiffness (N/m)", .min = 0.0, .max = 1e6}};
   d.create_energy = [](const Params& p) { return std::make_unique<Stretching>(p.get_float("stiffness_scale")); };
   return {d};
 }

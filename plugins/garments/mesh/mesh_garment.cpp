@@ -190,11 +190,15 @@ PluginList plugins() {
           "from its UVs (a sewing pattern, uv_scale metres per unit) or its rest shape; material regions from an OBJ's "
           "usemtl groups or a glTF's materials, else one region 'cloth' (docs/garments.md).";
   d.params = {
-      {"file", ParamType::String, "none", "the garment mesh (required; relative to the working folder); its vertex order is kept"},
-      {"material_space", ParamType::String, "uv", "uv: the file's UVs are a sewing pattern; rest: the rest 3D shape",
-       {}, {}, {"uv", "rest"}},
-      {"uv_scale", ParamType::Float, "1.0", "metres per UV unit (material_space: uv)", 1e-6, 1e6},
-      {"weld", ParamType::Bool, "false", "merge vertices that duplicate an earlier one (seams exported split)"},
+      {.name = "file", .type = ParamType::String, .default_value = "none",
+       .doc = "the garment mesh (required; relative to the working folder); its vertex order is kept"},
+      {.name = "material_space", .type = ParamType::String, .default_value = "uv",
+       .doc = "uv: the file's UVs are a sewing pattern; rest: the rest 3D shape",
+       .choices = {"uv", "rest"}},
+      {.name = "uv_scale", .type = ParamType::Float, .default_value = "1.0",
+       .doc = "metres per UV unit (material_space: uv)", .min = 1e-6, .max = 1e6},
+      {.name = "weld", .type = ParamType::Bool, .default_value = "false",
+       .doc = "merge vertices that duplicate an earlier one (seams exported split)"},
   };
   d.create_garment = [](const Params& p) -> std::unique_ptr<GarmentSource> {
     MeshGarmentOptions o;

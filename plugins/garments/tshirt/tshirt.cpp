@@ -54,25 +54,27 @@ PluginList plugins() {
   d.name = "tshirt";
   d.doc = "Procedural T-shirt: two sewn T-shaped panels with half-sleeves, UV in meters, optional front print.";
   d.params = {
-      {"size", ParamType::String, "regular",
-       "pattern size: the regular pattern graded in width and length by small 0.9, large 1.12, xlarge 1.25, 2xlarge "
-       "1.4, 3xlarge 1.55, 4xlarge 1.7, 5xlarge 1.85, 6xlarge 2.0 (same topology); auto: drape simulate and generate pick the size for each body "
-       "(docs/garments.md)",
-       {}, {}, size_choices()},
-      {"resolution", ParamType::String, "default", "default (~3.5k vertices), coarse (~1k) or a vertex count"},
-      {"print", ParamType::Bool, "false", "front print region with its own material (id 1)"},
-      {"print_polygon", ParamType::FloatList, "[0.35, 0.5, 0.65, 0.5, 0.65, 0.78, 0.35, 0.78]",
-       "print outline x0, y0, x1, y1, ... in the front panel's normalised [0,1]^2 coordinates", 0.0, 1.0},
-      {"torso_half_width", ParamType::Float, std::to_string(torso.half_width), "canonical torso: chest half-width, m",
-       0.05, 1.0},
-      {"torso_half_depth", ParamType::Float, std::to_string(torso.half_depth), "canonical torso: chest half-depth, m",
-       0.05, 1.0},
-      {"torso_centre_z", ParamType::Float, std::to_string(torso.centre_z), "canonical torso: chest centre z, m", -1.0,
-       1.0},
-      {"neck_height", ParamType::Float, std::to_string(torso.neck_height), "canonical torso: y of the neck points, m",
-       0.5, 2.5},
-      {"arm_angle", ParamType::Float, std::to_string(torso.arm_angle_deg), "canonical torso: arms below horizontal, deg",
-       0.0, 90.0},
+      {.name = "size", .type = ParamType::String, .default_value = "regular",
+       .doc = "pattern size: the regular pattern graded in width and length by small 0.9, large 1.12, xlarge 1.25, 2xlarge "
+              "1.4, 3xlarge 1.55, 4xlarge 1.7, 5xlarge 1.85, 6xlarge 2.0 (same topology); auto: drape simulate and generate pick the size for each body "
+              "(docs/garments.md)", .choices = size_choices()},
+      {.name = "resolution", .type = ParamType::String, .default_value = "default",
+       .doc = "default (~3.5k vertices), coarse (~1k) or a vertex count"},
+      {.name = "print", .type = ParamType::Bool, .default_value = "false",
+       .doc = "front print region with its own material (id 1)"},
+      {.name = "print_polygon", .type = ParamType::FloatList, .default_value = "[0.35, 0.5, 0.65, 0.5, 0.65, 0.78, 0.35, 0.78]",
+       .doc = "print outline x0, y0, x1, y1, ... in the front panel's normalised [0,1]^2 coordinates",
+       .min = 0.0, .max = 1.0},
+      {.name = "torso_half_width", .type = ParamType::Float, .default_value = std::to_string(torso.half_width),
+       .doc = "canonical torso: chest half-width, m", .min = 0.05, .max = 1.0},
+      {.name = "torso_half_depth", .type = ParamType::Float, .default_value = std::to_string(torso.half_depth),
+       .doc = "canonical torso: chest half-depth, m", .min = 0.05, .max = 1.0},
+      {.name = "torso_centre_z", .type = ParamType::Float, .default_value = std::to_string(torso.centre_z),
+       .doc = "canonical torso: chest centre z, m", .min = -1.0, .max = 1.0},
+      {.name = "neck_height", .type = ParamType::Float, .default_value = std::to_string(torso.neck_height),
+       .doc = "canonical torso: y of the neck points, m", .min = 0.5, .max = 2.5},
+      {.name = "arm_angle", .type = ParamType::Float, .default_value = std::to_string(torso.arm_angle_deg),
+       .doc = "canonical torso: arms below horizontal, deg", .min = 0.0, .max = 90.0},
   };
   d.create_garment = [](const Params& p) -> std::unique_ptr<GarmentSource> {
     tshirt::TshirtOptions o;

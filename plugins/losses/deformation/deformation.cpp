@@ -118,7 +118,8 @@ PluginList plugins() {
           "UV), prediction vs ground truth.";
   d.inputs = {{"pred", "predicted garment vertices [N, 3]"}, {"target", "ground-truth garment vertices [N, 3]"}};
   d.outputs = {{"loss", "per-sample loss [1, 1]"}};
-  d.params = {{"reduction", ParamType::String, "mean", "mean over faces, or the seed's plain sum", {}, {}, {"mean", "sum"}}};
+  d.params = {{.name = "reduction", .type = ParamType::String, .default_value = "mean",
+               .doc = "mean over faces, or the seed's plain sum", .choices = {"mean", "sum"}}};
   d.create_node = [](const Params& p) { return std::make_unique<DeformationLoss>(p.get_string("reduction") == "mean"); };
   return {d};
 }

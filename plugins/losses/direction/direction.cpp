@@ -108,9 +108,12 @@ PluginList plugins() {
               {"target", "ground-truth garment vertices [N, 3]"},
               {"body", "this sample's body vertices [Nb, 3] (the assets' body topology)"}};
   d.outputs = {{"loss", "per-sample loss [1, 1]"}};
-  d.params = {{"reduction", ParamType::String, "mean", "mean over vertices, or the seed's plain sum", {}, {}, {"mean", "sum"}},
-              {"outside_weight", ParamType::Float, "1", "weight of term (1), the ReLU on the correspondence", 0.0, {}},
-              {"offset_weight", ParamType::Float, "1", "weight of term (2), the offset direction", 0.0, {}}};
+  d.params = {{.name = "reduction", .type = ParamType::String, .default_value = "mean",
+               .doc = "mean over vertices, or the seed's plain sum", .choices = {"mean", "sum"}},
+              {.name = "outside_weight", .type = ParamType::Float, .default_value = "1",
+               .doc = "weight of term (1), the ReLU on the correspondence", .min = 0.0},
+              {.name = "offset_weight", .type = ParamType::Float, .default_value = "1",
+               .doc = "weight of term (2), the offset direction", .min = 0.0}};
   d.create_node = [](const Params& p) {
     return std::make_unique<DirectionLoss>(p.get_string("reduction") == "mean", p.get_float("outside_weight"),
                                            p.get_float("offset_weight"));

@@ -171,8 +171,11 @@ PluginList plugins() {
   d.doc = "The seed's L_l (eq. 6.12): L1 of the random-walk Laplacian of pred - ground truth on each hierarchy level.";
   d.inputs = {{"pred", "predicted garment vertices [N, 3]"}, {"target", "ground-truth garment vertices [N, 3]"}};
   d.outputs = {{"loss", "per-sample loss [1, 1]"}};
-  d.params = {{"reduction", ParamType::String, "mean", "mean over each level's vertices, or the seed's plain sum", {}, {}, {"mean", "sum"}},
-              {"levels", ParamType::Int, "4", "resolutions summed, finest first (the seed uses 4)", 1, 16}};
+  d.params = {{.name = "reduction", .type = ParamType::String, .default_value = "mean",
+               .doc = "mean over each level's vertices, or the seed's plain sum",
+               .choices = {"mean", "sum"}},
+              {.name = "levels", .type = ParamType::Int, .default_value = "4",
+               .doc = "resolutions summed, finest first (the seed uses 4)", .min = 1, .max = 16}};
   d.create_node = [](const Params& p) {
     return std::make_unique<LaplacianLoss>(p.get_string("reduction") == "mean", static_cast<int>(p.get_int("levels")));
   };

@@ -100,7 +100,8 @@ PluginList plugins() {
               {"target", "ground-truth garment vertices [N, 3] (where the body search starts)"},
               {"body", "this sample's body vertices [Nb, 3] (the assets' body topology)"}};
   d.outputs = {{"loss", "per-sample loss [1, 1]"}};
-  d.params = {{"margin", ParamType::Float, "0.003", "eps, m: vertices nearer the body than this (or inside) cost", 1e-5, 0.1}};
+  d.params = {{.name = "margin", .type = ParamType::Float, .default_value = "0.003",
+               .doc = "eps, m: vertices nearer the body than this (or inside) cost", .min = 1e-5, .max = 0.1}};
   d.create_node = [](const Params& p) { return std::make_unique<PenetrationLoss>(p.get_float("margin")); };
   return {d};
 }

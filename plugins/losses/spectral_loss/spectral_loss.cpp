@@ -91,8 +91,11 @@ PluginList plugins() {
   d.doc = "The seed's L_s (eq. 6.13): L1 of the spectral coefficients V'(pred - ground truth) on the garment's eigenbasis.";
   d.inputs = {{"pred", "predicted garment vertices [N, 3]"}, {"target", "ground-truth garment vertices [N, 3]"}};
   d.outputs = {{"loss", "per-sample loss [1, 1]"}};
-  d.params = {{"reduction", ParamType::String, "mean", "mean over the k coefficients, or the seed's plain sum", {}, {}, {"mean", "sum"}},
-              {"k", ParamType::Int, "0", "eigenvectors used, smallest eigenvalues first; 0: all the assets hold", 0, 100000}};
+  d.params = {{.name = "reduction", .type = ParamType::String, .default_value = "mean",
+               .doc = "mean over the k coefficients, or the seed's plain sum",
+               .choices = {"mean", "sum"}},
+              {.name = "k", .type = ParamType::Int, .default_value = "0",
+               .doc = "eigenvectors used, smallest eigenvalues first; 0: all the assets hold", .min = 0, .max = 100000}};
   d.create_node = [](const Params& p) {
     return std::make_unique<SpectralLoss>(p.get_string("reduction") == "mean", static_cast<int>(p.get_int("k")));
   };

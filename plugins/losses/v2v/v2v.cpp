@@ -59,7 +59,8 @@ PluginList plugins() {
               {"target", "ground-truth garment vertices [N, 3]"},
               {"body", "this sample's body vertices [Nb, 3] (the assets' body topology)"}};
   d.outputs = {{"loss", "per-sample loss [1, 1]"}};
-  d.params = {{"reduction", ParamType::String, "mean", "mean over vertices, or the seed's plain sum", {}, {}, {"mean", "sum"}}};
+  d.params = {{.name = "reduction", .type = ParamType::String, .default_value = "mean",
+               .doc = "mean over vertices, or the seed's plain sum", .choices = {"mean", "sum"}}};
   d.create_node = [](const Params& p) { return std::make_unique<V2vLoss>(p.get_string("reduction") == "mean"); };
   return {d};
 }

@@ -53,7 +53,8 @@ PluginList plugins() {
   scale.doc = "Multiplies a tensor by a constant.";
   scale.inputs = {{"x", "input"}};
   scale.outputs = {{"out", "factor * x"}};
-  scale.params = {{"factor", ParamType::Float, "1.0", "the constant"}};
+  scale.params = {{.name = "factor", .type = ParamType::Float, .default_value = "1.0",
+                   .doc = "the constant"}};
   scale.create_node = [](const Params& p) { return std::make_unique<Scale>(p.get_float("factor")); };
   return {add, scale};
 }

@@ -77,8 +77,9 @@ PluginList plugins() {
   d.doc = "Rows of the input picked by index (body-to-garment correspondences); backward scatter-adds.";
   d.inputs = {{"x", "features [R, C] (body features [Nb, C] for the correspondences)"}};
   d.outputs = {{"out", "the picked rows [len(indices), C] (garment vertices [Ng, C] for the correspondences)"}};
-  d.params = {{"indices", ParamType::IntList, "[]",
-                "row of x for each output row (0-based); empty: the assets' body->garment correspondences", 0, {}}};
+  d.params = {{.name = "indices", .type = ParamType::IntList, .default_value = "[]",
+               .doc = "row of x for each output row (0-based); empty: the assets' body->garment correspondences",
+               .min = 0}};
   d.create_node = [](const Params& p) { return std::make_unique<Gather>(p.get_int_list("indices")); };
   return {d};
 }

@@ -50,7 +50,8 @@ PluginList plugins() {
   d.doc = "Per-row dense layer [R, Cin] -> [R, width] with an optional activation (the seed's 1-layer MLP transfer).";
   d.inputs = {{"x", "features [R, Cin]"}};
   d.outputs = {{"out", "features [R, width]"}};
-  d.params = {{"width", ParamType::Int, "64", "output channels", 1, 65536},
+  d.params = {{.name = "width", .type = ParamType::Int, .default_value = "64",
+               .doc = "output channels", .min = 1, .max = 65536},
               nn::activation_param("none"),
               nn::negative_slope_param()};
   d.create_node = [](const Params& p) {

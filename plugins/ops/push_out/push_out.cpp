@@ -58,8 +58,10 @@ PluginList plugins() {
   d.doc = "TailorNet's post-processing: garment vertices inside the body (or within epsilon) moved to epsilon outside.";
   d.inputs = {{"x", "garment vertices [Ng, 3]"}, {"body", "body vertices [Nb, 3] of the bound template's topology"}};
   d.outputs = {{"out", "the garment with no vertex inside the body [Ng, 3]"}};
-  d.params = {{"epsilon", ParamType::Float, "0.002", "clearance in m a pushed vertex gets", 0.0, 0.1},
-              {"enabled", ParamType::Bool, "true", "false: pass the garment through unchanged"}};
+  d.params = {{.name = "epsilon", .type = ParamType::Float, .default_value = "0.002",
+               .doc = "clearance in m a pushed vertex gets", .min = 0.0, .max = 0.1},
+              {.name = "enabled", .type = ParamType::Bool, .default_value = "true",
+               .doc = "false: pass the garment through unchanged"}};
   d.create_node = [](const Params& p) { return std::make_unique<PushOut>(p.get_float("epsilon"), p.get_bool("enabled")); };
   return {d};
 }

@@ -56,7 +56,8 @@ PluginList plugins() {
   d.doc = "The low frequencies of a garment, V_k V_k^T x over the template's first k Laplacian eigenvectors.";
   d.inputs = {{"x", "garment vertices or displacements [Ng, 3]"}};
   d.outputs = {{"out", "their projection on the first k eigenvectors [Ng, 3]"}};
-  d.params = {{"k", ParamType::Int, "64", "eigenvectors kept (clamped to what the assets hold)", 1, 100000}};
+  d.params = {{.name = "k", .type = ParamType::Int, .default_value = "64",
+               .doc = "eigenvectors kept (clamped to what the assets hold)", .min = 1, .max = 100000}};
   d.create_node = [](const Params& p) { return std::make_unique<SpectralLowpass>(static_cast<int>(p.get_int("k"))); };
   return {d};
 }
