@@ -59,7 +59,7 @@ TEST_CASE("gcn encoder rejects bad parameters, inputs and missing assets", "[gcn
   CHECK_THROWS_AS(make_node("gcn", "{stride: 2}"), ConfigError);  // no such parameter
   CHECK_THROWS_WITH(make_node("gcn")->setup({{"body", {nb, 2}}}, {"enc", 1, assets.get()}), Catch::Contains("[vertices, 3]"));
   CHECK_THROWS_WITH(make_node("gcn")->setup({{"body", {nb - 1, 3}}}, {"enc", 1, assets.get()}),
-                    Catch::Contains("assets' body has " + std::to_string(nb)));
+                    Catch::Contains("expected " + std::to_string(nb) + " (the assets' body"));
   CHECK_THROWS_WITH(make_node("gcn")->setup({{"body", {nb, 3}}}, {}), Catch::Contains("assets"));
 }
 
