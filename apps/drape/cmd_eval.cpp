@@ -6,6 +6,7 @@
 #include <drape/assets/dataset_assets.hpp>
 #include <drape/io/atomic_file.hpp>
 #include <drape/io/dataset.hpp>
+#include <drape/services/model_evaluation.hpp>
 #include <drape/training/evaluation.hpp>
 #include <drape/training/metrics.hpp>
 #include <drape/training/model.hpp>
@@ -29,39 +30,6 @@ std::string format(const char* f, double v) {
   char b[64];
   std::snprintf(b, sizeof b, f, v);
   return b;
-}
-
-// `drapes`: the --drapes file measured instead of the model's predictions (empty: none).
-void write_report(const fs::path& file, const std::string& model, const std::string& drapes, const std::string& data,
-                  const std::string& split, const MetricsSummary& s, double reference_p, double reference_crossings,
-                  double reference_crossed) {
-  const std::string ext = file.extension().string();
-  std::ostringstream o;
-  if (ext == ".csv") {
-    o << "metric,unit,mean,std,max\n";
-    for (const auto& c : metric_columns())
-      o << c.name << "," << c.unit << "," << format("%.9g", s.mean.*c.field) << "," << format("%.9g", s.stddev.*c.field) << ","
-        << format("%.9g", s.max.*c.field) << "\n";
-  } else {
-    auto quoted = [](const std::string& t) {
-      std::string q = "\"";
-      for (char ch : t) q += (ch == '"' || ch == '\\') ? std::string("\\") + ch : std::string(1, ch);
-      return q + "\"";
-    };
-    o << "{\n  \"model\": " << quoted(model) << (drapes.empty() ? "" : ",\n  \"drapes\": " + quoted(drapes))
-      << ",\n  \"data\": " << quoted(data) << ",\n  \"split\": " << quoted(split)
-      << ",\n  \"samples\": " << s.samples << ",\n  \"ground_truth_p_percent\": " << format("%.9g", reference_p)
-      << ",\n  \"ground_truth_crossings\": " << format("%.9g", reference_crossings)
-      << ",\n  \"ground_truth_crossed_samples_percent\": " << format("%.9g", reference_crossed)
-      << ",\n  \"metrics\": {\n";
-    const auto& columns = metric_columns();
-    for (std::size_t i = 0; i < columns.size(); ++i)
-      o << "    " << quoted(columns[i].name) << ": {\"unit\": " << quoted(columns[i].unit)
-        << ", \"mean\": " << format("%.9g", s.mean.*columns[i].field) << ", \"std\": " << format("%.9g", s.stddev.*columns[i].field)
-        << ", \"max\": " << format("%.9g", s.max.*columns[i].field) << "}" << (i + 1 < columns.size() ? "," : "") << "\n";
-    o << "  }\n}\n";
-  }
-  write_text_atomically(file, o.str());
 }
 
 // Three panels: the bodies of the split with the lowest, median and highest
@@ -205,39 +173,6 @@ void print_by_band(const DatasetReader& reader, const std::vector<std::size_t>& 
   if (outside) std::printf("(%zu bodies outside %g-%g are in no band)\n", outside, edges.front(), edges.back());
 }
 
-// --where STAT=NUMBER: the samples whose statistic has that value.
-std::vector<std::size_t> samples_where(const DatasetReader& selected, const std::vector<std::size_t>& indices,
-                                       const std::string& where) {
-  const auto eq = where.find('=');
-  double wanted = 0;
-  try {
-    if (eq == std::string::npos || eq == 0) throw std::invalid_argument("no =");
-    wanted = std::stod(where.substr(eq + 1));
-  } catch (const std::exception&) {
-    throw UsageError("--where wants STAT=NUMBER, got '" + where + "'");
-  }
-  const std::vector<double> values = selected.stat(where.substr(0, eq), indices);
-  std::vector<std::size_t> kept;
-  for (std::size_t i = 0; i < indices.size(); ++i)
-    if (values[i] == wanted) kept.push_back(indices[i]);
-  return kept;
-}
-
-// The ground truth's own p and surface crossings, over the samples.
-struct GroundTruthReference {
-  double p = 0, crossings = 0, crossed = 0;  // %, per sample, % of samples with any
-};
-
-GroundTruthReference ground_truth_reference(const SplitEvaluation& evaluation, std::size_t samples) {
-  GroundTruthReference ref;
-  for (double r : evaluation.ground_truth_penetration) ref.p += 100.0 * r / double(samples);
-  for (int c : evaluation.ground_truth_crossings) {
-    ref.crossings += c / double(samples);
-    ref.crossed += (c > 0 ? 100.0 : 0.0) / double(samples);
-  }
-  return ref;
-}
-
 // What --drapes measured against what, and how many of them are not results.
 void print_drapes_heading(const po::variables_map& vm, const std::string& drapes_file, const std::string& data,
                           const std::string& split, std::size_t samples, std::size_t not_results) {
@@ -308,50 +243,37 @@ int run(const std::vector<std::string>& args) {
   Registry& registry = Registry::load_default(plugin_path(vm));
   Model model = Model::load(registry, model_file, parse_param_overrides(vm));
   const DatasetReader reader(data);
-  check_dataset_template(reader, data, model.assets());
-  // With --drapes the split, --where and the samples are the drapes file's; the
-  // metrics, --worst and --by then go through each drape's source sample.
   std::optional<DatasetReader> drapes;
-  if (stored) {
-    drapes.emplace(vm["drapes"].as<std::string>());
-    check_dataset_template(*drapes, vm["drapes"].as<std::string>(), model.assets());
-  }
-  const DatasetReader& selected = stored ? *drapes : reader;
-  std::vector<std::size_t> indices = selected.indices(split);
-  if (vm.count("where")) indices = samples_where(selected, indices, vm["where"].as<std::string>());
-  const std::string selected_file = stored ? vm["drapes"].as<std::string>() : data;
-  if (indices.empty()) throw ConfigError(selected_file + ": the " + split + " split has no samples" + (vm.count("where") ? " where " + vm["where"].as<std::string>() : std::string()));
-
+  if (stored) drapes.emplace(vm["drapes"].as<std::string>());
+  EvaluationRequest request;
+  request.data_file = data;
+  if (stored) request.drapes_file = vm["drapes"].as<std::string>();
+  request.split = split;
+  if (vm.count("where")) request.where = vm["where"].as<std::string>();
+  request.batch = batch_size;
+  request.pushed_to = pushed_to;
   std::optional<Bands> bands;
   if (vm.count("by")) bands = parse_bands(reader, vm["by"].as<std::string>());
 
-  // Drapes that drape optimize did not finish on the true body are not results (docs/optimization.md).
-  const std::size_t not_results = stored ? indices.size() - optimizer_results(*drapes, indices).size() : 0;
-  const std::vector<std::size_t> drape_rows = indices;
-  if (stored) indices = drape_sources(reader, *drapes, drape_rows);
-
-  ProgressBar bar("eval", indices.size(), std::cerr);
-  const SplitEvaluation evaluation = stored ? evaluate_drapes(model.assets(), reader, *drapes, drape_rows, &bar)
-                                            : evaluate_model(model, reader, indices, batch_size, &bar, pushed_to);
+  ProgressBar bar("eval", selected_samples(reader, stored ? &*drapes : nullptr, request).size(), std::cerr);
+  const ModelEvaluation result = evaluate_on_dataset(model, reader, stored ? &*drapes : nullptr, request, &bar);
   bar.finish();
-  const GroundTruthReference ref = ground_truth_reference(evaluation, indices.size());
-  const MetricsSummary s = summarize(evaluation.samples);
-
+  const MetricsSummary& s = result.summary;
   if (stored)
-    print_drapes_heading(vm, selected_file, data, split, s.samples, not_results);
+    print_drapes_heading(vm, request.drapes_file.string(), data, split, s.samples, result.not_results);
   else
     std::printf("%s on %s, %s split (%zu samples)%s\n\n", model_file.c_str(), data.c_str(), split.c_str(), s.samples,
                 pushed_to >= 0 ? format(", every prediction pushed out of the body to %.4g m", pushed_to).c_str() : "");
-  print_metrics(s, ref, evaluation);
-  if (vm.count("worst")) print_worst(reader, indices, evaluation, vm["worst"].as<int>());
-  if (bands) print_by_band(reader, indices, evaluation, *bands);
+  print_metrics(s, result.reference, result.evaluation);
+  if (vm.count("worst")) print_worst(reader, result.samples, result.evaluation, vm["worst"].as<int>());
+  if (bands) print_by_band(reader, result.samples, result.evaluation, *bands);
   if (vm.count("out")) {
-    write_report(vm["out"].as<std::string>(), model_file, stored ? selected_file : std::string(), data, split, s,
-                 ref.p, ref.crossings, ref.crossed);
+    write_evaluation_report(vm["out"].as<std::string>(), model_file, stored ? request.drapes_file.string() : std::string(),
+                            data, split, result);
     std::printf("wrote %s\n", vm["out"].as<std::string>().c_str());
   }
   if (vm.count("svg")) {
-    draw_errors(vm["svg"].as<std::string>(), model, reader, indices, split);
+    draw_errors(vm["svg"].as<std::string>(), model, reader, result.samples, split);
     std::printf("wrote %s\n", vm["svg"].as<std::string>().c_str());
   }
   return 0;

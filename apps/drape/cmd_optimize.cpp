@@ -5,7 +5,9 @@
 #include "command.hpp"
 
 #include "model_body.hpp"
-#include "optimize_dataset.hpp"
+#include "sample_ranges.hpp"
+
+#include <drape/services/dataset_optimization.hpp>
 
 #include <drape/io/dataset.hpp>
 #include <drape/geometry/surface_crossings.hpp>

@@ -13,6 +13,9 @@
 #include <drape/io/output_lock.hpp>
 #include <drape/scene/scene.hpp>
 #include <drape/services/dataset_generation.hpp>
+#include <drape/services/dataset_optimization.hpp>
+#include <drape/services/model_evaluation.hpp>
+#include <drape/progress.hpp>
 #include <drape/services/model_training.hpp>
 
 #include <yaml-cpp/yaml.h>
@@ -126,18 +129,6 @@ class Runner {
     std::string line = "drape";
     for (const auto& a : args) line += " " + a;
     return line;
-  }
-
-  // Runs `drape <args>` in this process, announced first (the steps that have
-  // no framework service yet: eval and optimize over a dataset).
-  void drape(const std::vector<std::string>& args) {
-    if (!announce(args)) return;
-    const std::string line = command_line(args);
-    const auto& all = commands();
-    const auto it = std::find_if(all.begin(), all.end(), [&](const Command& c) { return c.name == args.front(); });
-    if (it == all.end()) throw Error("drape experiment: no command '" + args.front() + "'");
-    const int code = it->run(std::vector<std::string>(args.begin() + 1, args.end()));
-    if (code != 0) throw Error("drape experiment: '" + line + "' exited with " + std::to_string(code));
   }
 
   // A dataset of the experiment file, made by the generator's service.
@@ -268,8 +259,39 @@ class Runner {
                 int iterations, const fs::path& out) {
     if (up_to_date(out, {model, data})) return;
     if (!o_.dry_run && fs::exists(out)) fs::remove(out);  // made from an older model
-    drape({"optimize", "--model", model.string(), "--scene", scene.string(), "--data", data.string(), "--split", split,
-           "--iters", std::to_string(iterations), "--threads", threads(), "--out", out.string()});
+    if (!announce({"optimize", "--model", model.string(), "--scene", scene.string(), "--data", data.string(), "--split",
+                   split, "--iters", std::to_string(iterations), "--threads", threads(), "--out", out.string()}))
+      return;
+    OptimizeDatasetOptions o;
+    o.model = model;
+    o.data = data;
+    o.out = out;
+    o.scene_file = scene;
+    o.split = split;
+    o.threads = o_.threads;
+    o.optimization.iterations = iterations;
+    const std::size_t n = optimize_dataset(registry(), o);
+    std::printf("wrote %s: %zu samples optimised in this run\n", out.c_str(), n);
+  }
+
+  // The model's metrics on the test split, written to `report` by the evaluation service.
+  void evaluate(const ExperimentRow& row, const fs::path& model, const fs::path& test, const Model::ParamOverrides& overrides,
+                const fs::path& report) {
+    std::vector<std::string> args = {"eval", "--model", model.string(), "--data", test.string(), "--split", "test"};
+    for (const auto& [key, value] : row.set) args.insert(args.end(), {"--set", key + "=" + value});
+    if (!row.test_where.empty()) args.insert(args.end(), {"--where", row.test_where});
+    args.insert(args.end(), {"--out", report.string()});
+    if (!announce(args)) return;
+    Model m = Model::load(registry(), model, overrides);
+    const DatasetReader data(test);
+    EvaluationRequest request;
+    request.data_file = test;
+    request.where = row.test_where;
+    ProgressBar bar("eval", selected_samples(data, nullptr, request).size(), std::cerr);
+    const ModelEvaluation result = evaluate_on_dataset(m, data, nullptr, request, &bar);
+    bar.finish();
+    write_evaluation_report(report, model.string(), "", test.string(), request.split, result);
+    std::printf("wrote %s\n", report.c_str());
   }
 
   // Core-hours behind a trained model: the simulations it learnt from, its
@@ -352,15 +374,11 @@ class Runner {
     const fs::path eval = work_ / (slug(row.name) + ".eval.json");
     out.provenance = model.string();
     Model::ParamOverrides overrides;
-    std::vector<std::string> eval_args = {"eval", "--model", model.string(), "--data", test.string(), "--split", "test"};
     for (const auto& [key, value] : row.set) {
       overrides[key.substr(0, key.find('.'))][key.substr(key.find('.') + 1)] = value;
-      eval_args.insert(eval_args.end(), {"--set", key + "=" + value});
       out.provenance += " with " + key + "=" + value;
     }
-    if (!row.test_where.empty()) eval_args.insert(eval_args.end(), {"--where", row.test_where});
-    eval_args.insert(eval_args.end(), {"--out", eval.string()});
-    if (!up_to_date(eval, {model, test})) drape(eval_args);
+    if (!up_to_date(eval, {model, test})) evaluate(row, model, test, overrides, eval);
     fs::path physics;
     if (!row.physics.empty() && row.kind == ExperimentRowKind::Train) {
       physics = work_ / (slug(row.name) + ".physics.h5");

@@ -1,17 +1,18 @@
 #pragma once
-// `drape optimize --data data.h5 --split S --out optimized.h5`: the
+// The service behind `drape optimize --data data.h5 --split S --out
+// optimized.h5` and the experiment runner's optimize steps: the
 // physics-enforced optimisation of every sample of a dataset split, parallel
 // over samples, resumable (the output is a dataset written like drape
 // generate's), with a progress bar. Its garments can train the network again:
 // the seed's self-correcting loop.
-#include "sample_ranges.hpp"
+#include <drape/services/dataset_generation.hpp>  // Shard
 
 #include <drape/training/physics_optimization.hpp>
 
 #include <filesystem>
 #include <string>
 
-namespace drape::cli {
+namespace drape {
 
 struct OptimizeDatasetOptions {
   std::filesystem::path model, data, out, scene_file;
@@ -24,4 +25,4 @@ struct OptimizeDatasetOptions {
 // Returns the number of samples optimised in this run.
 std::size_t optimize_dataset(const Registry& registry, const OptimizeDatasetOptions& options);
 
-}  // namespace drape::cli
+}  // namespace drape

@@ -1,6 +1,6 @@
-#include "optimize_dataset.hpp"
+#include <drape/services/dataset_optimization.hpp>
 
-#include "parallel_samples.hpp"
+#include <drape/io/parallel_samples.hpp>
 
 #include <drape/assets/dataset_assets.hpp>
 #include <drape/io/dataset.hpp>
@@ -18,7 +18,7 @@
 #include <string>
 #include <vector>
 
-namespace drape::cli {
+namespace drape {
 
 namespace {
 
@@ -159,4 +159,4 @@ std::size_t optimize_dataset(const Registry& registry, const OptimizeDatasetOpti
   return todo.size();
 }
 
-}  // namespace drape::cli
+}  // namespace drape
