@@ -73,6 +73,7 @@ int run(const std::vector<std::string>& args) {
 
   Registry& registry = Registry::load_default(plugin_path(vm));
   Model model = Model::load(registry, model_file);
+  std::vector<std::string> notes;  // what model_body printed, shown on the page too
   SampleBatch batch;
   Mesh truth;
   std::string what;
@@ -86,7 +87,7 @@ int run(const std::vector<std::string>& args) {
     truth.vertices = reader.garment_vertices({i}).mat(0).cast<double>();
     what = "sample " + std::to_string(i) + " of " + std::filesystem::path(vm["data"].as<std::string>()).filename().string();
   } else {
-    batch = model_body(model, vm);
+    batch = model_body(model, vm, nullptr, &notes);
     what = vm.count("bmi") ? "BMI " + std::to_string(vm["bmi"].as<double>()).substr(0, 4) : vm["body"].as<std::string>();
   }
   Mesh body;
@@ -109,6 +110,7 @@ int run(const std::vector<std::string>& args) {
   }
 
   SvgFigure figure("drape render: " + what);
+  for (const std::string& note : notes) figure.add_note(note);
   const geometry::BodySurface surface(body.vertices, body.faces);
   const double p = geometry::penetration_ratio(surface, garment.vertices);
   Eigen::VectorXd values;

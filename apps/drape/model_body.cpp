@@ -50,10 +50,15 @@ std::string model_file_or_default(const po::variables_map& vm) {
   return file;
 }
 
-SampleBatch model_body(const Model& model, const po::variables_map& vm, Eigen::RowVector3d* moved_by) {
+SampleBatch model_body(const Model& model, const po::variables_map& vm, Eigen::RowVector3d* moved_by,
+                       std::vector<std::string>* printed) {
   SampleBatch batch = model_body_batch(model, body_input(vm));
   const PreparedBodies prepared = BodyPreparation(model, read_domain(model.file())).prepare(batch, vm.count("strict") > 0);
-  for (const Notice& n : prepared.notices) std::cerr << (n.level == Notice::Level::note ? "note: " : "warning: ") << n.text << "\n";
+  for (const Notice& n : prepared.notices) {
+    const std::string line = (n.level == Notice::Level::note ? "note: " : "warning: ") + n.text;
+    std::cerr << line << "\n";
+    if (printed) printed->push_back(line);
+  }
   if (moved_by) *moved_by = prepared.moved_by.front();
   return batch;
 }

@@ -21,8 +21,10 @@ void add_model_body_options(po::options_description& options, const std::string&
 // where the model's training bodies stood is moved there, with a note;
 // *moved_by (when given) is what to add to the outputs to move them back with
 // the body (zero when it was not moved). Its notes and warnings go to stderr;
-// --strict makes a body outside the training domain exit 2.
-SampleBatch model_body(const Model& model, const po::variables_map& vm, Eigen::RowVector3d* moved_by = nullptr);
+// --strict makes a body outside the training domain exit 2. `printed` (when
+// given) receives the lines printed, for a picture to show them too.
+SampleBatch model_body(const Model& model, const po::variables_map& vm, Eigen::RowVector3d* moved_by = nullptr,
+                       std::vector<std::string>* printed = nullptr);
 
 // --model, or the shipped pretrained model (default_model_path); UsageError when neither exists.
 std::string model_file_or_default(const po::variables_map& vm);

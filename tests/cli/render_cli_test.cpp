@@ -109,3 +109,22 @@ TEST_CASE("render --simulated draws a dataset's own drape: the repository's body
   CHECK(test::run(drape + "render --bmi 30 --simulated --out " + (dir / "x.svg").string(), out) == 2);
   CHECK_THAT(out, Catch::Contains("--simulated draws a dataset's own drape"));
 }
+
+TEST_CASE("the render page and SVG show the notes the command printed", "[render]") {
+  // BMI 35 is within the shipped model's domain but larger than its one shirt:
+  // predict's fit note is printed, and the picture must carry the same line.
+  test::TempDir dir;
+  const std::string drape = test::drape_program().string() + " render --bmi 35 --out ";
+  std::string out;
+  REQUIRE(test::run(drape + (dir / "d.html").string(), out) == 0);
+  const auto printed = out.find("note: the model's garment is");
+  REQUIRE(printed != std::string::npos);
+  const std::string line = out.substr(printed, out.find('\n', printed) - printed);
+  CHECK_THAT(read(dir / "d.html"), Catch::Contains("<p class=\"note\">" + line.substr(0, 60)));
+  REQUIRE(test::run(drape + (dir / "d.svg").string(), out) == 0);
+  CHECK_THAT(read(dir / "d.svg"), Catch::Contains(line.substr(0, 60)));
+  // A body that needs no note gets none.
+  REQUIRE(test::run(test::drape_program().string() + " render --bmi 22 --out " + (dir / "q.html").string(), out) == 0);
+  CHECK(out.find("note:") == std::string::npos);
+  CHECK(read(dir / "q.html").find("<p class=\"note\">") == std::string::npos);
+}

@@ -17,6 +17,7 @@ namespace drape {
 namespace {
 
 constexpr double kPanelWidth = 300, kPanelHeight = 420, kMargin = 12, kTitleHeight = 34, kBarHeight = 60;
+constexpr double kNoteHeight = 18;  // one line of notes under the title
 
 std::array<double, 3> rgb_of(const std::string& hex) {
   unsigned r = 0, g = 0, b = 0;
@@ -85,7 +86,8 @@ std::string SvgFigure::svg() const {
   const double panel_height = tallest * scale + 30;  // the drawing, then the panel's title
   // Wide enough for the title too (about 8 px a character at 15 px), so a one-panel figure does not cut it.
   const double width = std::max(kMargin + panels_.size() * (kPanelWidth + kMargin), 2 * kMargin + 8.0 * title_.size());
-  const double height = kTitleHeight + panel_height + (scale_ ? kBarHeight : 0) + kMargin;
+  const double notes_height = kNoteHeight * static_cast<double>(notes_.size());
+  const double height = kTitleHeight + notes_height + panel_height + (scale_ ? kBarHeight : 0) + kMargin;
   std::ostringstream o;
   o.setf(std::ios::fixed);
   o.precision(1);
@@ -93,12 +95,16 @@ std::string SvgFigure::svg() const {
     << width << " " << height << "\" font-family=\"sans-serif\">\n";
   o << "<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n";
   o << "<text x=\"" << kMargin << "\" y=\"20\" font-size=\"15\">" << xml_escaped(title_) << "</text>\n";
+  for (std::size_t i = 0; i < notes_.size(); ++i)
+    o << "<text x=\"" << kMargin << "\" y=\"" << kTitleHeight + kNoteHeight * (static_cast<double>(i) + 0.5)
+      << "\" font-size=\"12\" fill=\"" << (notes_[i].rfind("warning:", 0) == 0 ? "#b00020" : "#444") << "\">"
+      << xml_escaped(notes_[i]) << "</text>\n";
 
   const Eigen::Vector3d light = Eigen::Vector3d(0.3, 0.4, 1.0).normalized();
 
   for (std::size_t pi = 0; pi < panels_.size(); ++pi) {
     const SvgPanel& panel = panels_[pi];
-    const double left = kMargin + pi * (kPanelWidth + kMargin), top = kTitleHeight;
+    const double left = kMargin + pi * (kPanelWidth + kMargin), top = kTitleHeight + notes_height;
     // Centre the panel's content horizontally, its top a little below the title.
     Eigen::RowVector3d lo = Eigen::RowVector3d::Constant(1e30), hi = Eigen::RowVector3d::Constant(-1e30);
     for (const SvgLayer& l : panel.layers)
@@ -138,7 +144,7 @@ std::string SvgFigure::svg() const {
     o << "</g>\n";
   }
   if (scale_) {
-    const double y = kTitleHeight + panel_height + 8, x0 = kMargin, w = std::min(360.0, width - 2 * kMargin);
+    const double y = kTitleHeight + notes_height + panel_height + 8, x0 = kMargin, w = std::min(360.0, width - 2 * kMargin);
     o << "<defs><linearGradient id=\"cmap\">";
     for (int i = 0; i <= 8; ++i) o << "<stop offset=\"" << i / 8.0 << "\" stop-color=\"" << colour_map(i / 8.0) << "\"/>";
     o << "</linearGradient></defs>\n";

@@ -41,6 +41,11 @@ class SvgFigure {
   explicit SvgFigure(std::string title) : title_(std::move(title)) {}
   void add_panel(SvgPanel panel) { panels_.push_back(std::move(panel)); }
   const std::vector<SvgPanel>& panels() const { return panels_; }
+  // A line under the title: what the command printed about its input ("note:
+  // the body was moved ...", "warning: outside the model's training domain"),
+  // so the picture says it too. Lines starting "warning:" are drawn in red.
+  void add_note(std::string note) { notes_.push_back(std::move(note)); }
+  const std::vector<std::string>& notes() const { return notes_; }
   // The range of the `values` of every layer (values outside are clamped).
   void set_colour_scale(SvgColourScale scale) { scale_ = std::move(scale); }
   const std::string& title() const { return title_; }
@@ -59,6 +64,7 @@ class SvgFigure {
  private:
   std::string title_;
   std::vector<SvgPanel> panels_;
+  std::vector<std::string> notes_;
   std::optional<SvgColourScale> scale_;
 };
 
