@@ -1,4 +1,5 @@
 // Reading scene files (see scene.hpp): YAML -> Scene, following `base:` chains.
+#include <drape/garment_grading.hpp>
 #include <drape/materials/materials.hpp>
 #include <drape/registry.hpp>
 #include <drape/scene/scene.hpp>
@@ -25,6 +26,20 @@ void merge_values(ParamValues& into, const std::string& file, const YAML::Node& 
     else
       into[key] = ParamValue{kv.second, yaml::at(file, kv.first)};
   }
+}
+
+// `garment: {grade: g}`: a number within the grading range, named with its file and line otherwise.
+double parse_grade(const std::string& file, const YAML::Node& node) {
+  double grade = 0;
+  try {
+    grade = node.as<double>();
+  } catch (const YAML::Exception&) {
+    throw ConfigError(yaml::at(file, node), "garment `grade` must be a number (1: the garment as designed)");
+  }
+  if (!(grade >= kMinGrade && grade <= kMaxGrade))
+    throw ConfigError(yaml::at(file, node), "garment `grade` " + yaml::scalar(file, node, "grade") + " is outside " +
+                                                "0.5 to 2 (a tailor's grade scales girths and lengths by this factor)");
+  return grade;
 }
 
 void set_effect(Scene& s, const std::string& name, ParamValues params, const SourceLocation& where) {
@@ -94,13 +109,14 @@ void apply(Scene& s, const fs::path& path, const std::string& file, const YAML::
     merge_values(s.shape, file, body["shape"], "body `shape`");
   }
   if (const YAML::Node garment = root["garment"]) {
-    yaml::check_keys(file, garment, {"template", "params"}, "garment");
+    yaml::check_keys(file, garment, {"template", "params", "grade"}, "garment");
     if (garment["template"]) {
       const std::string t = yaml::scalar(file, garment["template"], "garment `template`");
       if (t != s.garment) s.garment_params.clear();
       s.garment = t;
     }
     merge_values(s.garment_params, file, garment["params"], "garment `params`");
+    if (garment["grade"]) s.garment_grade = parse_grade(file, garment["grade"]);
   }
   if (const YAML::Node materials = root["materials"]) {
     if (!materials.IsMap()) throw ConfigError(yaml::at(file, materials), "`materials` must be a map region: preset");
@@ -142,7 +158,10 @@ std::string Scene::yaml() const {
       << YAML::Key << "params" << YAML::Value << YAML::Flow << values_yaml(body_params) << YAML::Key << "shape"
       << YAML::Value << YAML::Flow << values_yaml(shape) << YAML::EndMap;
   out << YAML::Key << "garment" << YAML::Value << YAML::BeginMap << YAML::Key << "template" << YAML::Value << garment
-      << YAML::Key << "params" << YAML::Value << YAML::Flow << values_yaml(garment_params) << YAML::EndMap;
+      << YAML::Key << "params" << YAML::Value << YAML::Flow << values_yaml(garment_params);
+  // Written only when graded, so the scene text of an ungraded garment is what it always was.
+  if (garment_grade != 1.0) out << YAML::Key << "grade" << YAML::Value << garment_grade;
+  out << YAML::EndMap;
   out << YAML::Key << "materials" << YAML::Value << YAML::BeginMap;
   // A material file is named relative to its scene; the text goes elsewhere
   // (datasets), so it carries the file's data instead of the path.

@@ -4,6 +4,7 @@
 #include <drape/bodies/body.hpp>
 #include <drape/geometry/body_units.hpp>
 #include <drape/garment_dressing.hpp>
+#include <drape/garment_grading.hpp>
 #include <drape/scene/garment_size.hpp>
 #include <drape/geometry/closest_point.hpp>
 #include <drape/registry.hpp>
@@ -121,6 +122,7 @@ Simulation::Simulation(const Registry& registry, Scene scene) : registry_(regist
   Garment garment =
       registry_.create_garment(scene_.garment, Params(gd.params, scene_.garment_params, "garment '" + scene_.garment + "'"))
           ->build();
+  grade_garment(garment, scene_.garment_grade);  // before dressing: the graded garment is what goes around the body
   Mesh mean;
   mean.vertices = mean_body_;
   mean.faces = body_model_->faces();

@@ -79,6 +79,12 @@ AssetsSpec parse_assets_spec(const std::string& yaml, const std::string& what) {
 }
 
 AssetsSpec assets_spec_for(const Scene& scene, int eigen_k, int levels) {
+  // A model's template is the garment its plugin builds; a graded garment's
+  // drapes would be learnt against the wrong rest shape, so they are refused.
+  if (scene.garment_grade != 1.0)
+    throw ConfigError("the scene's garment is graded (grade " + std::to_string(scene.garment_grade) +
+                      "); a model's garment template is ungraded, so a model cannot be made from its drapes yet "
+                      "(grade the template's own sizes instead, e.g. the tshirt's size parameter)");
   AssetsSpec spec;
   spec.body_model = scene.body_model;
   spec.body_params = params_text(scene.body_params);

@@ -39,16 +39,21 @@ std::shared_ptr<const Model> model_for(const std::string& given) {
 const char* kDefaultPath = "\"\"";
 
 std::vector<ParamSpec> slider_params() {
+  // The sliders of the MakeHuman body the .mhclo fits the garment to. A
+  // simulation starts on the body model's mean shape (these defaults) and
+  // morphs to the target, so the garment must be fitted to that body: keep
+  // the defaults, for a women's outfit too (docs/garments.md).
+  const std::string why = "; keep the default: the garment is fitted to the body a drape starts from, the mean shape";
   return {{.name = "gender", .type = ParamType::Float, .default_value = "1.0",
-           .doc = "0 female, 1 male", .min = 0.0, .max = 1.0},
+           .doc = "gender slider of the body the garment is fitted to (0 female, 1 male)" + why, .min = 0.0, .max = 1.0},
           {.name = "muscle", .type = ParamType::Float, .default_value = "0.5",
-           .doc = "muscle slider", .min = 0.0, .max = 1.0},
+           .doc = "muscle slider of that body" + why, .min = 0.0, .max = 1.0},
           {.name = "weight", .type = ParamType::Float, .default_value = "0.5",
-           .doc = "weight slider", .min = 0.0, .max = 1.0},
+           .doc = "weight slider of that body" + why, .min = 0.0, .max = 1.0},
           {.name = "height", .type = ParamType::Float, .default_value = "0.5",
-           .doc = "height slider", .min = 0.0, .max = 1.0},
+           .doc = "height slider of that body" + why, .min = 0.0, .max = 1.0},
           {.name = "proportions", .type = ParamType::Float, .default_value = "0.5",
-           .doc = "body proportions slider", .min = 0.0, .max = 1.0}};
+           .doc = "proportions slider of that body" + why, .min = 0.0, .max = 1.0}};
 }
 
 class ClothesSource final : public GarmentSource {

@@ -46,6 +46,7 @@ struct Scene {
   ParamValues shape;        // bmi, height, sex: the body the garment is draped on
   std::string garment = "tshirt";
   ParamValues garment_params;
+  double garment_grade = 1.0;  // the garment graded by this factor (garment_grading.hpp; `garment: {grade: g}`)
   std::vector<SceneMaterial> materials;
   std::vector<SceneEffect> effects;
   ParamValues solver;
