@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <fstream>
+#include <map>
 #include <sstream>
 
 namespace drape::yaml {
@@ -30,12 +31,40 @@ void check_keys(const std::string& file, const YAML::Node& map, const std::vecto
   }
 }
 
+namespace {
+
+// yaml-cpp keeps one of two equal keys of a map without a word, so a scene
+// with two `garment:` entries would lose one silently; every map of a
+// document is checked once, as it is loaded.
+void refuse_repeated_keys(const YAML::Node& node, const std::string& file) {
+  if (node.IsSequence())
+    for (const auto& item : node) refuse_repeated_keys(item, file);
+  if (!node.IsMap()) return;
+  std::map<std::string, int> seen;  // key -> 1-based line
+  for (const auto& kv : node) {
+    if (kv.first.IsScalar()) {
+      const std::string key = kv.first.Scalar();
+      const int line = kv.first.Mark().line + 1;
+      const auto [it, fresh] = seen.emplace(key, line);
+      if (!fresh)
+        throw ConfigError({file, line}, "key '" + key + "' is given twice in one map (first at line " +
+                                            std::to_string(it->second) + "); merge the two into one");
+    }
+    refuse_repeated_keys(kv.second, file);
+  }
+}
+
+}  // namespace
+
 YAML::Node load_text(const std::string& text, const std::string& name_for_errors) {
+  YAML::Node root;
   try {
-    return YAML::Load(text);
+    root = YAML::Load(text);
   } catch (const YAML::Exception& e) {
     throw ConfigError({name_for_errors, e.mark.line + 1}, "malformed YAML: " + e.msg);
   }
+  refuse_repeated_keys(root, name_for_errors);
+  return root;
 }
 
 YAML::Node load_file(const std::filesystem::path& path) {

@@ -26,8 +26,9 @@ std::string scalar(const std::string& file, const YAML::Node& n, const std::stri
 void check_keys(const std::string& file, const YAML::Node& map, const std::vector<std::string>& allowed,
                 const std::string& owner);
 
-// Parse YAML; ConfigError "malformed YAML" at file:line on a syntax error, and
-// for load_file also when the file cannot be read.
+// Parse YAML; ConfigError "malformed YAML" at file:line on a syntax error, at
+// the second's line for a key given twice in one map (yaml-cpp would keep one
+// silently), and for load_file also when the file cannot be read.
 YAML::Node load_text(const std::string& text, const std::string& name_for_errors);
 YAML::Node load_file(const std::filesystem::path& path);
 

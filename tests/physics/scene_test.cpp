@@ -92,6 +92,11 @@ TEST_CASE("scene errors name the file, the line and the key", "[scene]") {
   CHECK_THAT(message_of([] { parse_scene("effects: [gravity\n", "s.yaml"); }),
              Catch::Contains("s.yaml") && Catch::Contains("malformed YAML"));
   CHECK_THAT(message_of([] { parse_scene("effects: 3\n", "s.yaml"); }), Catch::Contains("s.yaml:1"));
+  // yaml-cpp alone keeps one of two equal keys: the second garment would be lost without a word.
+  CHECK_THAT(message_of([] { parse_scene("garment: {template: tshirt}\nbody: {}\ngarment: {grade: 1.2}\n", "s.yaml"); }),
+             Catch::Contains("s.yaml:3") && Catch::Contains("'garment' is given twice") && Catch::Contains("line 1"));
+  CHECK_THAT(message_of([] { parse_scene("solver:\n  time_step: 0.1\n  time_step: 0.2\n", "s.yaml"); }),
+             Catch::Contains("s.yaml:3") && Catch::Contains("'time_step'"));
   TempDir dir;
   write(dir / "a.yaml", "base: b.yaml\n");
   write(dir / "b.yaml", "base: a.yaml\n");
