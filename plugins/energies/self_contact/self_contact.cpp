@@ -6,7 +6,6 @@
 #include <drape/element_energy.hpp>
 #include <drape/energy_input.hpp>
 #include <drape/errors.hpp>
-#include <drape/geometry/self_intersection.hpp>
 #include <drape/physics/barrier_function.hpp>
 #include <drape/physics/psd_projection.hpp>
 
@@ -44,13 +43,6 @@ SelfContact::~SelfContact() = default;
 
 void SelfContact::bind(const EnergyContext& context) {
   const Garment& garment = checked_garment(context, "self_contact");
-  // A barrier keeps apart what is apart; it cannot undo a crossing it starts
-  // from (the crossing pairs' distances are positive and the energy finite).
-  const auto crossing = geometry::self_intersections(garment.mesh.vertices, garment.mesh.faces, 1);
-  if (!crossing.empty())
-    throw ConfigError("self_contact: the garment's rest mesh passes through itself (faces " +
-                      std::to_string(crossing[0].first) + " and " + std::to_string(crossing[0].second) +
-                      " meet); a self contact can only keep apart a cloth that starts apart");
   auto topology = std::make_unique<SelfTopology>(make_topology(garment, settings_.rest_exclusion * settings_.distance));
   std::lock_guard<std::mutex> lock(cache_.mutex);
   topology_ = std::move(topology);

@@ -23,13 +23,21 @@
 //    fight the cloth's own shape. Pairs far apart in the fabric (a sleeve
 //    against the torso) are never excluded, however close at rest.
 //
+//  - pairs inside a tangle of the rest mesh: where the garment as dressed
+//    already passes through itself (geometry::self_intersections of the rest
+//    mesh: the larger and the small default T-shirts do), the faces that meet
+//    and one ring around them are a tangle, and a pair both of whose
+//    primitives touch it is left out. A barrier cannot undo a crossing it
+//    starts from (every pair of it is at a positive distance, so the energy is
+//    finite and the crossing is kept); left out, the cloth's own forces may
+//    pull it apart, and the rest of the garment keeps its protection.
+//
 // E is infinite when a pair touches, and max_step() is the continuous
 // collision check (additive CCD, drape/geometry/ccd.hpp) over the same pairs:
 // the largest fraction of a move along which no pair comes closer than
 // min_separation of its starting distance. A solver that starts its line
-// search there never lets the cloth pass through itself at an accepted state.
-// A barrier cannot see a crossing that is already there, so bind() refuses a
-// rest mesh that passes through itself.
+// search there never lets the cloth pass through itself at an accepted state
+// (outside the tangles).
 //
 // Pairs are found through box overlaps (geometry::overlapping_boxes), with the
 // candidates kept while no vertex has moved more than a skin (a Verlet list),
@@ -74,11 +82,14 @@ struct SelfTopology {
   Eigen::VectorXd edge_rest2;              // m^2: squared material-space length (the mollifier's scale)
   std::vector<std::vector<int>> neighbours;  // sorted, per vertex
   std::vector<std::uint64_t> excluded;     // pair_key of the fabric neighbours close at rest, sorted
+  std::vector<char> tangled;               // per vertex: in a tangle of the rest mesh (or a ring around one)
+  int tangled_faces = 0;                   // faces of the rest mesh that meet another (self_intersections)
   int vertices = 0;
 
   // The pair's 4 vertices: the vertex then the face's corners, or both edges' ends.
   std::array<int, 4> vertices_of(PairKind kind, int a, int b) const;
-  // True for a pair that never counts: sharing a vertex, or in `excluded`.
+  // True for a pair that never counts: sharing a vertex, both primitives in a
+  // tangle, or in `excluded`.
   bool skipped(PairKind kind, int a, int b) const;
 };
 

@@ -4,6 +4,7 @@
 #include <drape/geometry/adjacency.hpp>
 #include <drape/geometry/box_pairs.hpp>
 #include <drape/geometry/ccd.hpp>
+#include <drape/geometry/self_intersection.hpp>
 #include <drape/geometry/vertex_areas.hpp>
 
 #include <algorithm>
@@ -63,8 +64,36 @@ bool SelfTopology::skipped(PairKind kind, int a, int b) const {
   for (int i = 0; i < na; ++i)
     for (int j = na; j < 4; ++j)
       if (v[i] == v[j]) return true;
+  if (tangled_faces > 0) {
+    bool first = false, second = false;
+    for (int i = 0; i < 4; ++i) (i < na ? first : second) |= tangled[static_cast<std::size_t>(v[i])] != 0;
+    if (first && second) return true;
+  }
   return std::binary_search(excluded.begin(), excluded.end(), pair_key(kind, a, b));
 }
+
+namespace {
+
+// Marks the vertices of the rest mesh's faces that meet another face (a
+// crossing or a touch the barrier cannot start from) and one ring around them.
+void mark_tangles(const Mesh& mesh, SelfTopology& t) {
+  const auto meeting = geometry::self_intersections(mesh.vertices, mesh.faces, static_cast<std::size_t>(mesh.num_faces()) * 4);
+  std::vector<char> face_met(static_cast<std::size_t>(mesh.num_faces()), 0);
+  for (auto [f, g] : meeting) face_met[static_cast<std::size_t>(f)] = face_met[static_cast<std::size_t>(g)] = 1;
+  t.tangled.assign(static_cast<std::size_t>(t.vertices), 0);
+  t.tangled_faces = static_cast<int>(std::count(face_met.begin(), face_met.end(), 1));
+  std::vector<char> core(t.tangled.size(), 0);
+  for (int f = 0; f < mesh.num_faces(); ++f)
+    if (face_met[static_cast<std::size_t>(f)])
+      for (int k = 0; k < 3; ++k) core[static_cast<std::size_t>(mesh.faces(f, k))] = 1;
+  for (std::size_t v = 0; v < core.size(); ++v)
+    if (core[v]) {
+      t.tangled[v] = 1;
+      for (int w : t.neighbours[v]) t.tangled[static_cast<std::size_t>(w)] = 1;
+    }
+}
+
+}  // namespace
 
 SelfTopology make_topology(const Garment& garment, double exclusion) {
   SelfTopology t;
@@ -77,6 +106,7 @@ SelfTopology make_topology(const Garment& garment, double exclusion) {
   geometry::EdgeWeights edges = geometry::edge_weights(garment, t.edges);
   t.edge_area = std::move(edges.area);
   t.edge_rest2 = std::move(edges.length2);
+  mark_tangles(mesh, t);
   // Excluded: fabric neighbours closer than `exclusion` in the rest mesh.
   // Boxes grown by half of it overlap for every pair that close (and more).
   for (const SelfPair& c : candidate_pairs(t, mesh.vertices, nullptr, 0.5 * exclusion)) {
