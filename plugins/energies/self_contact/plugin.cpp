@@ -13,11 +13,11 @@ PluginList plugins() {
   d.kind = "energy";
   d.name = "self_contact";
   d.doc = "Cloth that never passes through itself: IPC's log barrier over every garment vertex-triangle and "
-          "edge-edge pair within `distance` (less pairs sharing a vertex and fabric neighbours close at rest), with "
-          "continuous collision checks on every move.";
+          "edge-edge pair within `distance` (less pairs sharing a vertex, fabric neighbours close at rest, and pairs "
+          "inside a place where the rest mesh already crosses itself), with continuous collision checks on every move.";
   d.params = {
-      // 1 mm: about a knit's thickness (ArcSim's gray interlock is ~1 mm), so
-      // two layers of a fold rest about two thicknesses apart at most.
+      // 1 mm: about two of the knit's thicknesses (4.7e-4 m, docs/materials.md);
+      // layers pressed together rest between d_hat / 2 and d_hat apart.
       {"distance", ParamType::Float, "0.001", "d_hat in m: garment pairs closer than this push apart", 1e-6, 0.1},
       {"stiffness", ParamType::Float, "1000",
        "kappa in Pa: the contact pressure scale (0.2 kappa at 0.9 d_hat, 4.3 kappa at d_hat / 2, unbounded at 0)", 1e-6},
