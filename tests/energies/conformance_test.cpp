@@ -116,7 +116,7 @@ bool identical(const Triplets& a, const Triplets& b) {
 
 TEST_CASE("the registry has the shipped energies", "[conformance]") {
   const auto names = energy_names();
-  for (const char* shipped : {"gravity", "stretching", "bending", "collision", "barrier"})
+  for (const char* shipped : {"gravity", "stretching", "bending", "collision", "barrier", "self_contact"})
     CHECK(std::find(names.begin(), names.end(), shipped) != names.end());
 }
 

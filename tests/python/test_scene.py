@@ -21,7 +21,7 @@ def test_simulate_matches_the_program(tiny_scene, tmp_path):
     assert r["garment"].shape == expected.shape and not r["converged"] and "not settled" in r["unsettled"]
     np.testing.assert_allclose(r["garment"], expected, atol=2e-6)
     np.testing.assert_array_equal(faces, scene.garment_faces)
-    assert set(r["energies"]) == {"gravity", "stretching", "bending"}
+    assert set(r["energies"]) == {"gravity", "stretching", "bending", "self_contact"}
     assert r["total_energy"] == pytest.approx(sum(r["energies"].values()), rel=1e-12)
     # The per-effect energies of the result are the scene's energies at the drape.
     energies = scene.energies()
@@ -51,7 +51,7 @@ def contact_energies():
 
 def test_gradients_and_hessians_match_finite_differences(contact_energies):
     energies, x = contact_energies
-    assert list(energies) == ["gravity", "stretching", "bending", "barrier", "collision"]
+    assert list(energies) == ["gravity", "stretching", "bending", "barrier", "self_contact", "collision"]
     rng = np.random.default_rng(2)
     h = 1e-6
     for name, e in energies.items():

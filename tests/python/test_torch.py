@@ -24,7 +24,7 @@ def state(scene):
 
 def test_every_energy_passes_gradcheck(scene, state):
     energies = scene.energies(np.array(scene.mean_body))
-    assert list(energies) == ["gravity", "stretching", "bending", "barrier", "collision"]
+    assert list(energies) == ["gravity", "stretching", "bending", "barrier", "self_contact", "collision"]
     rng = np.random.default_rng(1)
     for name, e in energies.items():
         x = state.clone().requires_grad_(True)

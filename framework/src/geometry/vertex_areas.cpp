@@ -3,6 +3,7 @@
 
 #include <drape/errors.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 
@@ -53,6 +54,31 @@ Eigen::VectorXd vertex_masses(const Garment& garment) {
                         std::to_string(materials));
     return garment.materials[static_cast<std::size_t>(m)].density;
   });
+}
+
+EdgeWeights edge_weights(const Garment& garment, const std::vector<std::array<int, 2>>& edges) {
+  const Mesh& mesh = garment.mesh;
+  if (!mesh.has_uv())
+    throw ConfigError("edge weights: the garment has no material-space UVs (uv and uv_faces, one UV face per face)");
+  EdgeWeights w;
+  w.area = Eigen::VectorXd::Zero(static_cast<Eigen::Index>(edges.size()));
+  w.length2 = Eigen::VectorXd::Zero(w.area.size());
+  for (int f = 0; f < mesh.num_faces(); ++f) {
+    const Eigen::Vector2d uv[3] = {mesh.uv.row(mesh.uv_faces(f, 0)), mesh.uv.row(mesh.uv_faces(f, 1)),
+                                   mesh.uv.row(mesh.uv_faces(f, 2))};
+    const Eigen::Vector2d e1 = uv[1] - uv[0], e2 = uv[2] - uv[0];
+    const double third = std::abs(e1.x() * e2.y() - e1.y() * e2.x()) / 6.0;
+    for (int k = 0; k < 3; ++k) {
+      const int a = mesh.faces(f, k), b = mesh.faces(f, (k + 1) % 3);
+      const std::array<int, 2> key{std::min(a, b), std::max(a, b)};
+      const auto e = std::lower_bound(edges.begin(), edges.end(), key);
+      if (e == edges.end() || *e != key)
+        throw Error("edge weights: face " + std::to_string(f) + "'s edge is not in the edge list");
+      w.area[e - edges.begin()] += third;
+      w.length2[e - edges.begin()] = (uv[(k + 1) % 3] - uv[k]).squaredNorm();
+    }
+  }
+  return w;
 }
 
 }  // namespace drape::geometry

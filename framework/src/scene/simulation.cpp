@@ -237,7 +237,12 @@ SimulationResult Simulation::run(const Eigen::MatrixX3d& target_body, const Simu
   // settling steps get the full Newton budget.
   const int settle_newton = solver.settings().max_newton_iterations;
   solver.set_max_newton_iterations(std::min(settle_newton, morph_newton_));
-  const bool barrier = std::any_of(energies.begin(), energies.end(), [](const NamedEnergy& e) { return e.energy->bounds_steps(); });
+  // A body barrier: a step-bounding energy on the body (self_contact bounds
+  // steps too, but of the cloth against itself: the solver's line search
+  // checks it, and it needs no separated start body).
+  const bool barrier = std::any_of(energies.begin(), energies.end(), [](const NamedEnergy& e) {
+    return e.energy->bounds_steps() && e.energy->needs_body();
+  });
   // The morph starts from a body the garment is separated from (shrunk when
   // the dressed start cuts through it); without morph steps the target itself
   // must be separated.

@@ -2,7 +2,6 @@
 #include "barrier.hpp"
 #include "friction.hpp"
 
-#include "barrier_function.hpp"
 #include "barrier_state.hpp"
 
 #include <drape/element_assembly.hpp>
@@ -11,8 +10,10 @@
 #include <drape/geometry/adjacency.hpp>
 #include <drape/geometry/box_pairs.hpp>
 #include <drape/geometry/ccd.hpp>
+#include <drape/geometry/pair_distance.hpp>
 #include <drape/geometry/vertex_areas.hpp>
 #include <drape/energy_input.hpp>
+#include <drape/physics/barrier_function.hpp>
 #include <drape/physics/psd_projection.hpp>
 
 #include <Eigen/Geometry>
@@ -28,6 +29,9 @@ namespace drape::barrier {
 using geometry::Box;
 using geometry::MeshBoxes;
 using geometry::mesh_boxes;
+using geometry::edge_edge_type;
+using geometry::point_triangle_type;
+using geometry::typed_distance2;
 
 namespace {
 
@@ -95,23 +99,9 @@ void BarrierContact::bind(const EnergyContext& context) {
   t.garment_vertices = garment.mesh.num_vertices();
   t.garment_edges = geometry::edge_list(t.garment_faces);
   t.garment_vertex_area = geometry::vertex_areas(garment);
-  // Each face's material area, a third to each of its edges.
-  t.garment_edge_area = Eigen::VectorXd::Zero(static_cast<Eigen::Index>(t.garment_edges.size()));
-  t.garment_edge_rest2 = Eigen::VectorXd::Zero(t.garment_edge_area.size());
-  const Mesh& mesh = garment.mesh;
-  for (int f = 0; f < mesh.num_faces(); ++f) {
-    const Eigen::Vector2d uv[3] = {mesh.uv.row(mesh.uv_faces(f, 0)), mesh.uv.row(mesh.uv_faces(f, 1)),
-                                   mesh.uv.row(mesh.uv_faces(f, 2))};
-    const Eigen::Vector2d e1 = uv[1] - uv[0], e2 = uv[2] - uv[0];
-    const double third = std::abs(e1.x() * e2.y() - e1.y() * e2.x()) / 6.0;
-    for (int k = 0; k < 3; ++k) {
-      const int a = mesh.faces(f, k), b = mesh.faces(f, (k + 1) % 3);
-      const std::array<int, 2> key{std::min(a, b), std::max(a, b)};
-      const auto e = std::lower_bound(t.garment_edges.begin(), t.garment_edges.end(), key) - t.garment_edges.begin();
-      t.garment_edge_area[e] += third;
-      t.garment_edge_rest2[e] = (uv[(k + 1) % 3] - uv[k]).squaredNorm();
-    }
-  }
+  geometry::EdgeWeights edges = geometry::edge_weights(garment, t.garment_edges);
+  t.garment_edge_area = std::move(edges.area);
+  t.garment_edge_rest2 = std::move(edges.length2);
   t.body_faces = body_->faces();
   t.body_edges = geometry::edge_list(t.body_faces);
   std::lock_guard<std::mutex> lock(cache_.mutex);

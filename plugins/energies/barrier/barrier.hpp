@@ -9,8 +9,8 @@
 // vertex and a garment triangle, a garment edge and a body edge (vertices
 // alone are not enough: the body is finer than the cloth, so its edges and
 // vertices poke through cloth triangles whose corners are all outside).
-// b is the log barrier (barrier_function.hpp), d the pair's distance by its
-// distance type (pair_distance.hpp), m IPC's mollifier on edge-edge pairs (1
+// b is the log barrier (drape/physics/barrier_function.hpp), d the pair's distance by its
+// distance type (drape/geometry/pair_distance.hpp), m IPC's mollifier on edge-edge pairs (1
 // for the others), w an area that makes kappa a pressure: the garment
 // vertex's material-space area, the body vertex's area, or the garment
 // edge's third of its faces' areas. Units: kappa in Pa, d_hat in m, E in J;
@@ -29,7 +29,7 @@
 // found through box overlaps (geometry::overlapping_boxes) and kept for the
 // last x and body revision, as a Newton iteration asks for value, gradient and
 // Hessian at the same x.
-#include "pair_distance.hpp"
+#include <drape/geometry/pair_distance.hpp>
 
 #include <drape/dual.hpp>
 #include <drape/energy.hpp>
@@ -63,7 +63,7 @@ struct ContactPair {
   PairKind kind;
   int garment = 0;  // garment vertex, face or edge
   int body = 0;     // body face, vertex or edge
-  DistanceType type;
+  geometry::DistanceType type;
   double distance2 = 0;
 };
 

@@ -2,12 +2,12 @@
 // potential (friction.hpp).
 #include "friction.hpp"
 
-#include "barrier_function.hpp"
 #include "barrier_state.hpp"
 
 #include <drape/element_assembly.hpp>
 #include <drape/geometry/ccd.hpp>
 #include <drape/geometry/closest_point.hpp>
+#include <drape/physics/barrier_function.hpp>
 
 #include <Eigen/Geometry>
 

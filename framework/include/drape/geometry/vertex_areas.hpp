@@ -4,6 +4,9 @@
 
 #include <Eigen/Core>
 
+#include <array>
+#include <vector>
+
 namespace drape::geometry {
 
 // Lumped (barycentric) material-space area of each garment vertex: a third of
@@ -19,5 +22,14 @@ Eigen::VectorXd vertex_areas(const Garment& garment);
 // density. What gravity and the solver's inertia use. ConfigError also when a
 // face names a material the garment does not have.
 Eigen::VectorXd vertex_masses(const Garment& garment);
+
+// Per edge of `edges` (geometry::edge_list of the garment's faces: sorted),
+// its material-space weights: a third of the UV area of each face it borders
+// (m^2; what weights an edge's contact pressure, as vertex_areas a vertex's)
+// and its squared UV length (m^2; the scale of IPC's edge-edge mollifier).
+struct EdgeWeights {
+  Eigen::VectorXd area, length2;
+};
+EdgeWeights edge_weights(const Garment& garment, const std::vector<std::array<int, 2>>& edges);
 
 }  // namespace drape::geometry

@@ -1,5 +1,5 @@
-// Picking the distance type of a contact pair (pair_distance.hpp).
-#include "pair_distance.hpp"
+// Picking the distance type of a contact pair (drape/geometry/pair_distance.hpp).
+#include <drape/geometry/pair_distance.hpp>
 
 #include <drape/geometry/ccd.hpp>
 #include <drape/geometry/closest_point.hpp>
@@ -9,11 +9,10 @@
 #include <algorithm>
 #include <limits>
 
-namespace drape::barrier {
+namespace drape::geometry {
 
 namespace {
 
-using geometry::TriangleFeature;
 using Kind = DistanceType::Kind;
 
 DistanceType make(Kind kind, unsigned char p0, unsigned char p1, unsigned char p2 = 0, unsigned char p3 = 0) {
@@ -46,7 +45,7 @@ double point_segment(const std::array<Eigen::Vector3d, 4>& x, unsigned char poin
 
 DistanceType point_triangle_type(const Eigen::Vector3d& p, const Eigen::Vector3d& a, const Eigen::Vector3d& b,
                                  const Eigen::Vector3d& c) {
-  const geometry::TrianglePoint hit = geometry::closest_point_on_triangle(p, a, b, c);
+  const TrianglePoint hit = closest_point_on_triangle(p, a, b, c);
   switch (hit.feature) {
     case TriangleFeature::vertex_a: return make(Kind::PointPoint, 0, 1);
     case TriangleFeature::vertex_b: return make(Kind::PointPoint, 0, 2);
@@ -76,11 +75,11 @@ DistanceType edge_edge_type(const Eigen::Vector3d& a0, const Eigen::Vector3d& a1
   // The lines' formula is used only off parallel (sin^2 of the angle above
   // 1e-6): near parallel it divides by a vanishing |d1 x d2|^2, and there the
   // endpoint types give the distance anyway (the closest points can be taken at
-  // an endpoint). The edge-edge mollifier (barrier.hpp) fades these pairs out
+  // an endpoint). The edge-edge mollifier (physics/barrier_function.hpp) fades these pairs out
   // before the switch matters.
   const Eigen::Vector3d d1 = a1 - a0, d2 = b1 - b0;
   if (d1.cross(d2).squaredNorm() > 1e-6 * d1.squaredNorm() * d2.squaredNorm()) {
-    const geometry::SegmentPoints q = geometry::closest_points_on_segments(a0, a1, b0, b1);
+    const SegmentPoints q = closest_points_on_segments(a0, a1, b0, b1);
     if (q.s > 0 && q.s < 1 && q.t > 0 && q.t < 1) return make(Kind::LineLine, 0, 1, 2, 3);
   }
   const std::array<Eigen::Vector3d, 4> x{a0, a1, b0, b1};
@@ -94,4 +93,4 @@ DistanceType edge_edge_type(const Eigen::Vector3d& a0, const Eigen::Vector3d& a1
   return best;
 }
 
-}  // namespace drape::barrier
+}  // namespace drape::geometry

@@ -7,10 +7,11 @@
 // b, b' and b'' vanish at r = 1 (the barrier switches on C2-smoothly as a
 // pair comes within d_hat) and b -> infinity as r -> 0, so a state whose
 // energy is finite has no touching pair, and a line search that never crosses
-// (continuous collision detection) keeps it so.
+// (continuous collision detection) keeps it so. Shared by the energies
+// barrier (cloth-body) and self_contact (cloth-cloth).
 #include <cmath>
 
-namespace drape::barrier {
+namespace drape {
 
 struct BarrierValue {
   double b = 0, db = 0, d2b = 0;  // b(r), b'(r), b''(r)
@@ -37,4 +38,4 @@ inline MollifierValue edge_mollifier(double c, double eps) {
   return {(2 - u) * u, (2 - 2 * u) / eps, -2 / (eps * eps)};
 }
 
-}  // namespace drape::barrier
+}  // namespace drape

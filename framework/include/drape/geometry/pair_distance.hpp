@@ -1,6 +1,7 @@
 #pragma once
-// Squared distances of the contact pairs, each as one smooth formula per
-// "distance type" (IPC, Li et al. 2020, section 4.2): the distance of a point
+// Squared distances of contact pairs (of the energies barrier and
+// self_contact), each as one smooth formula per "distance type" (IPC, Li et
+// al. 2020, section 4.2): the distance of a point
 // to a triangle is the distance to its plane, to the line of one of its
 // edges, or to one of its corners, whichever feature the closest point lies
 // on; that of two segments is the distance of their lines, or of an endpoint
@@ -15,7 +16,7 @@
 
 #include <array>
 
-namespace drape::barrier {
+namespace drape::geometry {
 
 template <class S>
 S point_point_distance2(const Vec3<S>& p, const Vec3<S>& q) {
@@ -75,4 +76,4 @@ S typed_distance2(const DistanceType& type, const std::array<Vec3<S>, 4>& p) {
   return line_line_distance2(p[i[0]], p[i[1]], p[i[2]], p[i[3]]);
 }
 
-}  // namespace drape::barrier
+}  // namespace drape::geometry
