@@ -47,8 +47,8 @@ void refuse_repeated_keys(const YAML::Node& node, const std::string& file) {
       const int line = kv.first.Mark().line + 1;
       const auto [it, fresh] = seen.emplace(key, line);
       if (!fresh)
-        throw ConfigError({file, line}, "key '" + key + "' is given twice in one map (first at line " +
-                                            std::to_string(it->second) + "); merge the two into one");
+        throw ConfigError({file, line}, "'" + key + "' is defined twice (first at line " + std::to_string(it->second) +
+                                            "); one map keeps one key once: merge the two");
     }
     refuse_repeated_keys(kv.second, file);
   }

@@ -94,7 +94,7 @@ TEST_CASE("scene errors name the file, the line and the key", "[scene]") {
   CHECK_THAT(message_of([] { parse_scene("effects: 3\n", "s.yaml"); }), Catch::Contains("s.yaml:1"));
   // yaml-cpp alone keeps one of two equal keys: the second garment would be lost without a word.
   CHECK_THAT(message_of([] { parse_scene("garment: {template: tshirt}\nbody: {}\ngarment: {grade: 1.2}\n", "s.yaml"); }),
-             Catch::Contains("s.yaml:3") && Catch::Contains("'garment' is given twice") && Catch::Contains("line 1"));
+             Catch::Contains("s.yaml:3") && Catch::Contains("'garment' is defined twice") && Catch::Contains("line 1"));
   CHECK_THAT(message_of([] { parse_scene("solver:\n  time_step: 0.1\n  time_step: 0.2\n", "s.yaml"); }),
              Catch::Contains("s.yaml:3") && Catch::Contains("'time_step'"));
   TempDir dir;

@@ -12,8 +12,8 @@ namespace drape::self_contact {
 double SelfContact::max_step(const Eigen::MatrixX3d& x, const Eigen::MatrixX3d& dx, const Eigen::MatrixX3d* /*body_from*/,
                              const Eigen::MatrixX3d* /*body_to*/) const {
   check(x);
-  if (dx.rows() != x.rows()) throw Error("self_contact: max_step's move has the wrong vertex count");
-  if (!dx.allFinite()) throw ConfigError("self_contact: max_step's move has a non-finite coordinate");
+  if (dx.rows() != x.rows()) throw Error("max_step's move has the wrong vertex count");
+  if (!dx.allFinite()) throw ConfigError("max_step's move has a non-finite coordinate");
   const SelfTopology& t = *topology_;
   const Eigen::MatrixX3d x1 = x + dx;
   // Candidates: the pairs whose swept boxes overlap (boxes that never meet

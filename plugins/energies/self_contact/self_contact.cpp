@@ -23,26 +23,26 @@ std::string describe(const SelfPair& p) {
 }
 
 [[noreturn]] void touching(const SelfPair& p) {
-  throw Error("self_contact: garment " + describe(p) + " touch (distance 0): the cloth is not separated from itself");
+  throw Error("garment " + describe(p) + " touch (distance 0): the cloth is not separated from itself");
 }
 
 }  // namespace
 
 SelfContact::SelfContact(const SelfContactSettings& settings) : settings_(settings), topology_(std::make_unique<SelfTopology>()) {
   if (!(settings_.distance > 0) || !std::isfinite(settings_.distance))
-    throw ConfigError("self_contact: distance (d_hat) must be a positive length, got " + std::to_string(settings_.distance));
+    throw ConfigError("distance (d_hat) must be a positive length, got " + std::to_string(settings_.distance));
   if (!(settings_.stiffness > 0) || !std::isfinite(settings_.stiffness))
-    throw ConfigError("self_contact: stiffness must be > 0, got " + std::to_string(settings_.stiffness));
+    throw ConfigError("stiffness must be > 0, got " + std::to_string(settings_.stiffness));
   if (!(settings_.min_separation > 0 && settings_.min_separation < 1))
-    throw ConfigError("self_contact: min_separation must be in (0, 1)");
+    throw ConfigError("min_separation must be in (0, 1)");
   if (!(settings_.rest_exclusion >= 0) || !std::isfinite(settings_.rest_exclusion))
-    throw ConfigError("self_contact: rest_exclusion must be >= 0");
+    throw ConfigError("rest_exclusion must be >= 0");
 }
 
 SelfContact::~SelfContact() = default;
 
 void SelfContact::bind(const EnergyContext& context) {
-  const Garment& garment = checked_garment(context, "self_contact");
+  const Garment& garment = checked_garment(context);
   auto topology = std::make_unique<SelfTopology>(make_topology(garment, settings_.rest_exclusion * settings_.distance));
   std::lock_guard<std::mutex> lock(cache_.mutex);
   topology_ = std::move(topology);
@@ -51,8 +51,8 @@ void SelfContact::bind(const EnergyContext& context) {
 }
 
 void SelfContact::check(const Eigen::MatrixX3d& x) const {
-  if (topology_->vertices == 0) throw Error("self_contact: bind() was not called");
-  check_energy_input("self_contact", x, topology_->vertices);
+  if (topology_->vertices == 0) throw Error("bind() was not called");
+  check_energy_input(x, topology_->vertices);
 }
 
 std::shared_ptr<const std::vector<SelfPair>> SelfContact::cached_pairs(const Eigen::MatrixX3d& x) const {
