@@ -44,6 +44,14 @@ __all__ = [
 ]
 
 
+def __getattr__(name):
+    # drape.TorchDataset without importing PyTorch with the package (it takes seconds, and is optional).
+    if name == "TorchDataset":
+        from .torch_data import DrapeDataset
+        return DrapeDataset
+    raise AttributeError(f"module 'drape' has no attribute '{name}'")
+
+
 def sparse(coo):
     """A (rows, cols, values, shape) COO tuple as a SciPy CSR matrix (duplicates summed), or the tuple itself
     when SciPy is not installed."""
