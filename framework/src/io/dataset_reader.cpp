@@ -43,7 +43,7 @@ struct DatasetReader::Impl {
   std::vector<fs::path> files;
   std::vector<Part> parts;
   std::string name;  // the path or pattern given, for messages
-  // Bodies rebuilt for slim parts, by dataset row; made once each (~20 ms), kept.
+  // Bodies rebuilt for slim parts, by dataset row; made once each (20-90 ms), kept. The mutex guards both.
   mutable std::mutex rebuild_mutex;
   mutable std::unique_ptr<BodyModel> body_model;
   mutable std::unordered_map<std::size_t, std::vector<float>> rebuilt;
@@ -67,18 +67,31 @@ struct DatasetReader::Impl {
     }
   }
 
-  const std::vector<float>& rebuilt_body(std::size_t row, const DatasetLayout& layout) const;
+  // Rebuilds the bodies of `rows` (slim rows) not rebuilt yet, in parallel; then rebuilt.at(row) holds each.
+  void rebuild(const std::vector<std::size_t>& rows, const DatasetLayout& layout) const;
 };
 
-const std::vector<float>& DatasetReader::Impl::rebuilt_body(std::size_t row, const DatasetLayout& layout) const {
-  const std::lock_guard<std::mutex> lock(rebuild_mutex);
-  if (auto it = rebuilt.find(row); it != rebuilt.end()) return it->second;
-  const Part& part = parts[part_of(row)];
-  if (!body_model) body_model = dataset_body_model(nullptr, layout, part.file.path().string());
+void DatasetReader::Impl::rebuild(const std::vector<std::size_t>& rows, const DatasetLayout& layout) const {
+  std::vector<std::size_t> todo;
+  for (std::size_t row : rows)
+    if (!rebuilt.count(row) && std::find(todo.begin(), todo.end(), row) == todo.end()) todo.push_back(row);
+  if (todo.empty()) return;
+  if (!body_model) body_model = dataset_body_model(nullptr, layout, parts[part_of(todo.front())].file.path().string());
   const std::size_t p = static_cast<std::size_t>(layout.body_params);
-  std::vector<float> params(p);
-  part.file.read_rows(kParams, row - part.first, 1, params.data());
-  return rebuilt[row] = rebuilt_bodies(*body_model, params, 1, p);
+  std::vector<float> params(todo.size() * p);
+  for (std::size_t k = 0; k < todo.size(); ++k) {  // HDF5 reads stay on this thread
+    const Part& part = parts[part_of(todo[k])];
+    part.file.read_rows(kParams, todo[k] - part.first, 1, params.data() + k * p);
+  }
+  // A body is ~20-90 ms of the body model's solve and the model is const: one body per thread.
+  std::vector<std::vector<float>> bodies(todo.size());
+  const auto n = static_cast<std::ptrdiff_t>(todo.size());
+#pragma omp parallel for schedule(dynamic)
+  for (std::ptrdiff_t k = 0; k < n; ++k) {
+    const std::vector<float> one(params.begin() + k * static_cast<std::ptrdiff_t>(p), params.begin() + (k + 1) * static_cast<std::ptrdiff_t>(p));
+    bodies[static_cast<std::size_t>(k)] = rebuilt_bodies(*body_model, one, 1, p);
+  }
+  for (std::size_t k = 0; k < todo.size(); ++k) rebuilt[todo[k]] = std::move(bodies[k]);
 }
 
 std::vector<fs::path> dataset_files(const fs::path& path_or_pattern) {
@@ -206,11 +219,16 @@ Tensor DatasetReader::body_vertices(const std::vector<std::size_t>& indices) con
     return out;
   }
   // Some file is slim: stored rows read as they are, the others rebuilt (once each).
+  std::vector<std::size_t> slim;
+  for (std::size_t row : indices)
+    if (!impl_->parts[impl_->part_of(row)].bodies) slim.push_back(row);
+  const std::lock_guard<std::mutex> lock(impl_->rebuild_mutex);
+  impl_->rebuild(slim, layout_);
   for (std::size_t k = 0; k < indices.size(); ++k) {
     if (impl_->parts[impl_->part_of(indices[k])].bodies) {
       impl_->gather(kBodyVertices, {indices[k]}, row_size, out.data() + k * row_size);
     } else {
-      const std::vector<float>& body = impl_->rebuilt_body(indices[k], layout_);
+      const std::vector<float>& body = impl_->rebuilt.at(indices[k]);
       std::copy(body.begin(), body.end(), out.data() + k * row_size);
     }
   }
