@@ -38,6 +38,13 @@ def test_simulate_a_scene_of_the_data_dir(tmp_path):
     assert (work / "g.obj").stat().st_size > 0 and "wrote g.obj" in out
 
 
+def test_simulate_finds_the_shipped_scene(tmp_path):
+    # Simulating the shipped scene takes ~20 s: a body file that is not there stops drape once the scene is
+    # found and built, which is what this checks (the refusal names the body, not the scene).
+    _, err = drape_in(tmp_path, "simulate", "graphs/scenes/tshirt_coarse.yaml", "--body", "absent.obj", expect=2)
+    assert "absent.obj" in err and "tshirt_coarse.yaml" not in err
+
+
 def test_a_missing_file_names_where_it_looked(tmp_path):
     _, err = drape_in(tmp_path, "simulate", "graphs/scenes/nope.yaml", env={"DRAPE_DATA_DIR": str(tmp_path)},
                       expect=2)
