@@ -138,17 +138,19 @@ int info(const std::vector<std::string>& args) {
   po::variables_map vm;
   if (!parse(kInfoUsage, args, opts, positional, vm)) return 0;
   const fs::path path = vm["file"].as<std::string>();
-  if (!fs::exists(path)) throw ConfigError(SourceLocation{path.string(), 0}, "no such file");
-
-  const DatasetReader reader(path);
+  const DatasetReader reader(path);  // a file or a glob pattern ("no such file" / "no dataset file matches")
   const DatasetLayout& layout = reader.layout();
   const std::vector<std::size_t> done = reader.indices();
   const bool complete = done.size() == layout.samples;
+  if (reader.files().size() > 1)
+    std::cout << path.string() << ": " << reader.files().size() << " files read as one, " << reader.files().front().string()
+              << " ... " << reader.files().back().string() << "\n";
   std::cout << path.string() << ": drape dataset, " << (complete ? "complete" : "incomplete") << "\n"
             << "  samples   " << layout.samples << ", done " << done.size() << "\n"
             << "  sizes     body params P = " << layout.body_params << ", body vertices Nb = " << layout.body_vertices
-            << (layout.body_vertices_stored ? "" : " (not stored: a slim dataset)")
-            << ", garment vertices Ng = " << layout.garment_vertices << "\n"
+            << (layout.body_vertices_stored ? "" : " (not stored: a slim dataset, rebuilt as they are read)")
+            << ", garment vertices Ng = " << layout.garment_vertices << ", faces "
+            << (layout.garment_faces.rows() ? std::to_string(layout.garment_faces.rows()) : "not stored") << "\n"
             << "  splits    train " << reader.indices(Split::Train).size() << ", val " << reader.indices(Split::Val).size()
             << ", test " << reader.indices(Split::Test).size() << " (done samples)\n"
             << "  stats     " << layout.stats.size() << " per sample" << (layout.stats.empty() ? "" : ", over the done samples:")

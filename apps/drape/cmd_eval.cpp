@@ -3,6 +3,7 @@
 // one split, or (--drapes) of garments stored by drape optimize.
 #include "command.hpp"
 
+#include <drape/io/shipped_files.hpp>
 #include <drape/assets/dataset_assets.hpp>
 #include <drape/io/atomic_file.hpp>
 #include <drape/io/dataset.hpp>
@@ -234,7 +235,7 @@ int run(const std::vector<std::string>& args) {
   const int batch_size = vm["batch"].as<int>();
   if (batch_size < 1) throw UsageError("--batch must be at least 1");
   const std::string split = vm["split"].as<std::string>();
-  const std::string model_file = vm["model"].as<std::string>(), data = vm["data"].as<std::string>();
+  const std::string model_file = find_input_file(vm["model"].as<std::string>()).string(), data = vm["data"].as<std::string>();
 
   const bool stored = vm.count("drapes") > 0;
   if (stored && (vm.count("svg") || pushed_to >= 0 || vm.count("set")))

@@ -5,6 +5,7 @@
 #include "command.hpp"
 #include "sample_ranges.hpp"
 
+#include <drape/io/shipped_files.hpp>
 #include <drape/registry.hpp>
 #include <drape/services/dataset_generation.hpp>
 
@@ -56,7 +57,7 @@ int run(const std::vector<std::string>& args) {
                 p.threads, p.ranges.c_str());
     std::fflush(stdout);
   };
-  const GenerateSummary done = generate_dataset(registry, load_scene(vm["scene"].as<std::string>()), request, out, observer);
+  const GenerateSummary done = generate_dataset(registry, load_scene(find_input_file(vm["scene"].as<std::string>())), request, out, observer);
   std::printf("wrote %s: %zu samples; %d not settled, %d with a vertex inside the body, %d with crossing surfaces (this run)\n",
               out.c_str(), done.samples, done.not_settled, done.penetrating, done.crossing);
   return 0;

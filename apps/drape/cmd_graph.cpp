@@ -3,6 +3,7 @@
 
 #include <drape/assets/assets.hpp>
 #include <drape/graph.hpp>
+#include <drape/io/shipped_files.hpp>
 
 #include <iomanip>
 #include <iostream>
@@ -42,7 +43,7 @@ int run(const std::vector<std::string>& args) {
   const Registry& reg = Registry::load_default(plugin_path(vm));
   GraphOptions options;
   if (vm.count("dim")) options.dims = parse_dims(vm["dim"].as<std::vector<std::string>>());
-  const GraphSpec spec = parse_graph_file(vm["file"].as<std::string>());
+  const GraphSpec spec = parse_graph_file(find_input_file(vm["file"].as<std::string>()));
   // Sizes such as garment_vertices and the garment itself come from the
   // template's assets (cached after the first build); --dim overrides.
   std::shared_ptr<const Assets> assets;

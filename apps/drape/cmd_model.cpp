@@ -5,6 +5,7 @@
 // format (sealed: docs/formats.md).
 #include "command.hpp"
 
+#include <drape/io/shipped_files.hpp>
 #include <drape/io/atomic_file.hpp>
 #include <drape/io/checkpoint.hpp>
 #include <drape/io/dataset.hpp>
@@ -82,7 +83,7 @@ int info(const std::vector<std::string>& args) {
   positional.add("model", 1);
   po::variables_map vm;
   if (!parse(kInfoUsage, args, opts, positional, vm)) return 0;
-  const fs::path file = vm["model"].as<std::string>();
+  const fs::path file = find_input_file(vm["model"].as<std::string>());  // models/... from anywhere
   const Checkpoint c = read_checkpoint(file);
   std::printf("%s\n", file.string().c_str());
   for (const char* key : {"kind", "status", "epoch", "best_epoch", "best_loss", "dataset", "ground_truth", "train_samples", "drape_version"})
@@ -105,7 +106,7 @@ int domain(const std::vector<std::string>& args) {
   positional.add("model", 1);
   po::variables_map vm;
   if (!parse(kDomainUsage, args, opts, positional, vm)) return 0;
-  const fs::path file = vm["model"].as<std::string>();
+  const fs::path file = find_input_file(vm["model"].as<std::string>());
   const fs::path out = vm.count("out") ? fs::path(vm["out"].as<std::string>()) : file;
   Registry& registry = Registry::load_default(plugin_path(vm));
   const ModelDomain d = record_model_domain(registry, file, vm["data"].as<std::string>(), out);

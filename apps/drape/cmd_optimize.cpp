@@ -9,6 +9,7 @@
 
 #include <drape/services/dataset_optimization.hpp>
 
+#include <drape/io/shipped_files.hpp>
 #include <drape/io/dataset.hpp>
 #include <drape/geometry/surface_crossings.hpp>
 #include <drape/io/mesh_io.hpp>
@@ -39,7 +40,7 @@ int run_on_dataset(const po::variables_map& vm) {
   o.model = model_file_or_default(vm);
   o.data = vm["data"].as<std::string>();
   o.out = vm["out"].as<std::string>();
-  o.scene_file = vm["scene"].as<std::string>();
+  o.scene_file = find_input_file(vm["scene"].as<std::string>());
   o.split = vm["split"].as<std::string>();
   o.shard = parse_shard(vm["shard"].as<std::string>());
   DatasetReader::check_splits(o.split);  // a misspelt split fails before any work
@@ -85,7 +86,7 @@ int run(const std::vector<std::string>& args) {
 
   Registry& registry = Registry::load_default(plugin_path(vm));
   Model model = Model::load(registry, model_file);
-  const Simulation scene(registry, load_scene(vm["scene"].as<std::string>()));
+  const Simulation scene(registry, load_scene(find_input_file(vm["scene"].as<std::string>())));
   Eigen::RowVector3d moved_by;  // the drape is made where the training bodies stood; written back where the body was
   const SampleBatch batch = model_body(model, vm, &moved_by);
 

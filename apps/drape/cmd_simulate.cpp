@@ -6,6 +6,7 @@
 #include <omp.h>
 #endif
 
+#include <drape/io/shipped_files.hpp>
 #include <drape/io/mesh_io.hpp>
 #include <drape/progress.hpp>
 #include <drape/registry.hpp>
@@ -179,7 +180,7 @@ int run(const std::vector<std::string>& args) {
     throw UsageError("--body gives the body itself: drop --bmi/--height/--sex/--girth");
 
   Registry& registry = Registry::load_default(plugin_path(vm));
-  Scene scene = load_scene(vm["scene"].as<std::string>());
+  Scene scene = load_scene(find_input_file(vm["scene"].as<std::string>()));  // graphs/scenes/... from anywhere
   override_shape(scene, vm);
   // size: auto -- every size is built once (SizeChart); the body comes from
   // the design size's, then runs in the size its girth needs (garment_size.hpp).

@@ -3,6 +3,7 @@
 #include "command.hpp"
 #include "mpi_ranks.hpp"
 
+#include <drape/io/shipped_files.hpp>
 #include <drape/training/model_domain.hpp>
 #include <drape/services/model_training.hpp>
 
@@ -78,7 +79,7 @@ int run(const std::vector<std::string>& given) {
   if (!vm.count("data")) throw UsageError("--data FILE is required (a dataset from drape generate)");
   if (!vm.count("out")) throw UsageError("--out FILE is required (the model file to write)");
   if (vm["resume"].as<bool>() && vm["force"].as<bool>()) throw UsageError("--resume and --force exclude each other");
-  o.graph = vm["graph"].as<std::string>();
+  o.graph = find_input_file(vm["graph"].as<std::string>());  // graphs/... from anywhere
   o.data = vm["data"].as<std::string>();
   o.out = vm["out"].as<std::string>();
   o.epochs = vm["epochs"].as<long>();
@@ -95,7 +96,7 @@ int run(const std::vector<std::string>& given) {
   if (o.threads == 0)
     o.threads = ranks ? 1 : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
   o.eigen_k = vm["k"].as<int>();
-  if (vm.count("init")) o.init = vm["init"].as<std::string>();
+  if (vm.count("init")) o.init = find_input_file(vm["init"].as<std::string>());
   o.resume = vm["resume"].as<bool>();
   o.force = vm["force"].as<bool>();
   o.log = &std::cout;

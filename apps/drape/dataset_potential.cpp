@@ -7,6 +7,7 @@
 
 #include "command.hpp"
 
+#include <drape/io/shipped_files.hpp>
 #include <drape/io/dataset.hpp>
 #include <drape/errors.hpp>
 #include <drape/geometry/closest_point.hpp>
@@ -34,9 +35,9 @@ int dataset_potential(const std::vector<std::string>& args) {
   po::variables_map vm;
   if (!parse(kPotentialUsage, args, opts, positional, vm)) return 0;
   const std::filesystem::path path = vm["file"].as<std::string>();
-  if (!std::filesystem::exists(path)) throw ConfigError(SourceLocation{path.string(), 0}, "no such file");
+  // A file or a glob pattern of files; DatasetReader says "no such file" or "no dataset file matches".
   Registry& registry = Registry::load_default(plugin_path(vm));
-  const Simulation sim(registry, load_scene(vm["scene"].as<std::string>()));
+  const Simulation sim(registry, load_scene(find_input_file(vm["scene"].as<std::string>())));
   const DatasetReader reader(path);
   const int garment = sim.garment().mesh.num_vertices(), body = sim.body_model().num_vertices();
   if (static_cast<int>(reader.layout().garment_vertices) != garment || static_cast<int>(reader.layout().body_vertices) != body)

@@ -1,5 +1,6 @@
 #include "model_body.hpp"
 
+#include <drape/io/shipped_files.hpp>
 #include <drape/scene/garment_size.hpp>
 #include <drape/io/mesh_io.hpp>
 #include <drape/services/model_body.hpp>
@@ -42,7 +43,7 @@ void add_model_body_options(po::options_description& options, const std::string&
 }
 
 std::string model_file_or_default(const po::variables_map& vm) {
-  if (vm.count("model")) return vm["model"].as<std::string>();
+  if (vm.count("model")) return find_input_file(vm["model"].as<std::string>()).string();  // models/... from anywhere
   const std::string file = default_model_path().string();
   if (file.empty())
     throw UsageError("no --model given and the shipped model (models/tshirt-coarse.h5) was not found: give "

@@ -29,6 +29,8 @@ from ._drape import (  # noqa: F401  (re-exported)
     better_blas_coretype,
     blas_corename,
     body,
+    data_dirs,
+    find_file,
     load_plugins,
     plugin_search_path,
     plugins,
@@ -38,8 +40,16 @@ from . import _drape
 __all__ = [
     "Assets", "BodyModel", "ConfigError", "Dataset", "DrapeWarning", "Energy", "Error", "Model", "Scene", "assets",
     "better_blas_coretype", "blas_corename", "body",
-    "generate", "load_plugins", "plugin_search_path", "plugins", "simulate", "sparse",
+    "data_dirs", "find_file", "generate", "load_plugins", "plugin_search_path", "plugins", "simulate", "sparse",
 ]
+
+
+def __getattr__(name):
+    # drape.TorchDataset without importing PyTorch with the package (it takes seconds, and is optional).
+    if name == "TorchDataset":
+        from .torch_data import DrapeDataset
+        return DrapeDataset
+    raise AttributeError(f"module 'drape' has no attribute '{name}'")
 
 
 def sparse(coo):
@@ -145,7 +155,11 @@ class Scene:
                 self._s = _drape._Scene.from_text(_json.dumps(scene), "<dict>")  # JSON is YAML
             else:
                 # drape follows `base:` only from a file: the dict goes through one (JSON is YAML).
-                scene["base"] = _os.path.abspath(_os.path.join(base_dir or _os.getcwd(), _os.fspath(base)))
+                # A relative base: against base_dir, else the current folder, else a shipped scene by name.
+                path = _os.path.join(base_dir or _os.getcwd(), _os.fspath(base))
+                if not (base_dir or _os.path.isabs(path) and _os.path.exists(path)):
+                    path = find_file(_os.fspath(base))
+                scene["base"] = _os.path.abspath(path)
                 with _tempfile.TemporaryDirectory(prefix="drape-scene-") as tmp:
                     path = _os.path.join(tmp, "scene.yaml")
                     with open(path, "w") as f:

@@ -4,6 +4,7 @@
 
 #include <drape/bodies/body.hpp>
 #include <drape/errors.hpp>
+#include <drape/io/shipped_files.hpp>
 #include <drape/nn/gemm.hpp>
 #include <drape/params.hpp>
 
@@ -145,6 +146,20 @@ void register_bodies(py::module_& m) {
         return out;
       },
       "Where plugins are looked for: $DRAPE_PLUGIN_PATH, then the plugins shipped next to the framework library.");
+  m.def(
+      "find_file", [](const std::string& name) { return find_input_file(name).string(); }, py::arg("name"),
+      "A shipped file by its name in the source tree ('graphs/scenes/tshirt.yaml', 'models/tshirt-coarse.h5'): the "
+      "name itself when it exists from the current folder, else the first of data_dirs() that holds it "
+      "(ConfigError naming where it looked). Scene, Model.load and Dataset look paths up so.");
+  m.def(
+      "data_dirs",
+      []() {
+        std::vector<std::string> out;
+        for (const auto& p : shipped_data_dirs()) out.push_back(p.string());
+        return out;
+      },
+      "Where shipped files are looked for: $DRAPE_DATA_DIR, the installed share/drape (inside the package when "
+      "pip-installed), the source tree of a build.");
 }
 
 }  // namespace drape::python

@@ -86,7 +86,9 @@ py::dict generate(const PyScene& scene, const std::string& out, std::size_t coun
 void register_dataset(py::module_& m) {
   m.def("_generate", &generate, py::arg("scene"), py::arg("out"), py::arg("count"), py::arg("bmi"), py::arg("height"),
         py::arg("sex"), py::arg("girths"), py::arg("seed"), py::arg("shard"), py::arg("threads"), py::arg("progress"));
-  py::class_<DatasetReader>(m, "Dataset", "A dataset file of drape generate (or a .partial one: its done samples).")
+  py::class_<DatasetReader>(m, "Dataset",
+                            "A dataset file of drape generate (or a .partial one: its done samples), or a glob pattern "
+                            "of shard files read as one; slim files' bodies are rebuilt from their shape parameters.")
       .def(py::init([](const std::string& path) {
              py::gil_scoped_release release;
              return std::make_unique<DatasetReader>(path);
@@ -107,8 +109,26 @@ void register_dataset(py::module_& m) {
         d["drape_version"] = l.drape_version;
         d["created"] = l.created;
         d["attributes"] = l.attributes;
+        d["body_vertices_stored"] = l.body_vertices_stored;
         return d;
       })
+      .def_property_readonly(
+          "files",
+          [](const DatasetReader& r) {
+            std::vector<std::string> out;
+            for (const auto& f : r.files()) out.push_back(f.string());
+            return out;
+          },
+          "the file, or the files the pattern matched, in the order their samples are numbered")
+      .def_property_readonly(
+          "faces",
+          [](const DatasetReader& r) -> py::object {
+            Eigen::MatrixX3i faces = r.layout().garment_faces;
+            if (faces.rows() == 0) return py::none();
+            return to_numpy(std::move(faces));
+          },
+          "the garment template's triangles, int32 [F, 3] (/garments/faces), or None for a file written before "
+          "datasets carried them")
       .def("indices", [](const DatasetReader& r, const std::string& splits) { return index_array(r.indices(splits)); },
            py::arg("split") = "all", "done samples of 'train', 'val', 'test', 'train,val' or 'all', in file order")
       .def(

@@ -4,6 +4,7 @@
 // the predicted garment to the weights.
 #include "common.hpp"
 
+#include <drape/io/shipped_files.hpp>
 #include <drape/geometry/body_units.hpp>
 #include <drape/io/checkpoint.hpp>
 #include <drape/errors.hpp>
@@ -176,7 +177,7 @@ void register_model(py::module_& m) {
       .def_static(
           "load",
           [](const std::optional<std::string>& path, const py::dict& overrides, const std::optional<std::string>& cache_dir) {
-            fs::path file = path ? fs::path(*path) : default_model_path();
+            fs::path file = path ? find_input_file(*path) : default_model_path();  // models/... from anywhere
             if (file.empty())
               throw ConfigError("no model given and the shipped model (models/tshirt-coarse.h5) was not found: give a file from drape train, or set DRAPE_MODEL");
             py::gil_scoped_release release;

@@ -3,6 +3,7 @@
 // turns into an autograd Function. Physics in double, as in the simulator.
 #include "common.hpp"
 
+#include <drape/io/shipped_files.hpp>
 #include <drape/errors.hpp>
 #include <drape/geometry/closest_point.hpp>
 #include <drape/scene/scene.hpp>
@@ -149,7 +150,7 @@ py::dict result_dict(SimulationResult&& r) {
 
 void register_scene(py::module_& m) {
   py::class_<PyScene>(m, "_Scene")
-      .def_static("from_file", [](const std::string& path) { return make_scene(load_scene(path)); }, py::arg("path"))
+      .def_static("from_file", [](const std::string& path) { return make_scene(load_scene(find_input_file(path))); }, py::arg("path"))
       .def_static("from_text", [](const std::string& text, const std::string& name) { return make_scene(parse_scene(text, name)); },
                   py::arg("text"), py::arg("name"))
       .def_property_readonly("file", [](const PyScene& s) { return s.simulation->scene().file; })

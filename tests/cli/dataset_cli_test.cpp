@@ -165,10 +165,9 @@ TEST_CASE("drape dataset slim and expand: the bodies rebuilt by the scene's body
   CHECK_THAT(out, Catch::Contains("3 samples without body vertices"));
   CHECK(fs::file_size(slim) * 3 < fs::file_size(data));
   REQUIRE(test::run_drape("dataset info " + slim, out) == 0);
-  CHECK_THAT(out, Catch::Contains("(not stored: a slim dataset)"));
-  // A command that needs the bodies says how to get them back.
-  CHECK(test::run_drape("dataset potential " + slim + " --scene " + (dir / "tiny.yaml").string(), out) == 2);
-  CHECK_THAT(out, Catch::Contains("a slim dataset") && Catch::Contains("drape dataset expand"));
+  CHECK_THAT(out, Catch::Contains("(not stored: a slim dataset, rebuilt as they are read)"));
+  // A command that needs the bodies reads the slim file as it is: they are rebuilt as it reads.
+  CHECK(test::run_drape("dataset potential " + slim + " --scene " + (dir / "tiny.yaml").string(), out) == 0);
   CHECK(test::run_drape("dataset slim " + data + " --out " + slim, out) == 2);  // never overwritten silently
   CHECK_THAT(out, Catch::Contains("--force"));
 

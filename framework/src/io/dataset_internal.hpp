@@ -4,13 +4,17 @@
 #include <drape/io/dataset.hpp>
 #include <drape/io/h5.hpp>
 
+#include <functional>
+#include <memory>
 #include <string>
+#include <vector>
 
 namespace drape::dataset_detail {
 
 inline constexpr const char* kParams = "/bodies/params";
 inline constexpr const char* kBodyVertices = "/bodies/vertices";
 inline constexpr const char* kGarmentVertices = "/garments/vertices";
+inline constexpr const char* kGarmentFaces = "/garments/faces";  // int32 [F, 3]; absent in files before 2026-11-29
 inline constexpr const char* kSplit = "/split";
 inline constexpr const char* kDone = "/done";
 inline constexpr const char* kStats = "/stats";
@@ -37,5 +41,15 @@ std::string layout_difference(const DatasetLayout& have, const DatasetLayout& no
 
 // Checks a sample's sizes against the layout (Error naming the array).
 void check_sample(const DatasetLayout& layout, const DatasetSample& sample, const std::string& where);
+
+// body_model.vertices(params) of `count` rows of float parameters, as floats
+// (the bodies a slim dataset left out); `rebuilt` is called after each body.
+std::vector<float> rebuilt_bodies(const BodyModel& body_model, const std::vector<float>& params, std::size_t count,
+                                  std::size_t body_params, const std::function<void()>& rebuilt = {});
+
+// The body model of a dataset's stored scene, checked against its vertex and
+// parameter counts: the one that generated its bodies (ConfigError naming
+// `file` when it is not).
+std::unique_ptr<BodyModel> dataset_body_model(const BodyModel* given, const DatasetLayout& layout, const std::string& file);
 
 }  // namespace drape::dataset_detail

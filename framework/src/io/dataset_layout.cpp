@@ -38,6 +38,23 @@ const std::set<std::string> kReserved = {"format", "scene", "template_hash", "dr
 
 std::size_t to_size(int n) { return static_cast<std::size_t>(n); }
 
+// /garments/faces, checked: [F, 3] indices of the Ng garment vertices.
+Eigen::MatrixX3i read_faces(const h5::File& file, int garment_vertices) {
+  h5::Dims d;
+  const std::vector<std::int32_t> data = file.read<std::int32_t>(kGarmentFaces, &d);
+  const std::string name = file.path().string();
+  if (d.size() != 2 || d[1] != 3)
+    throw ConfigError(name + ": " + kGarmentFaces + " has shape " + h5::to_string(d) + ", expected [F, 3]");
+  for (std::int32_t v : data)
+    if (v < 0 || v >= garment_vertices)
+      throw ConfigError(name + ": " + kGarmentFaces + " holds vertex " + std::to_string(v) + ", not one of the " +
+                        std::to_string(garment_vertices) + " garment vertices");
+  Eigen::MatrixX3i faces(static_cast<Eigen::Index>(d[0]), 3);
+  for (Eigen::Index f = 0; f < faces.rows(); ++f)
+    for (int c = 0; c < 3; ++c) faces(f, c) = data[static_cast<std::size_t>(f * 3 + c)];
+  return faces;
+}
+
 }  // namespace
 
 std::string now_utc() {
@@ -66,6 +83,11 @@ void create_layout(h5::File& file, const DatasetLayout& layout) {
   else
     file.set_attribute("/", kBodyVerticesOmitted, std::to_string(layout.body_vertices));
   file.create<float>(kGarmentVertices, {n, to_size(layout.garment_vertices), 3}, arrays);
+  if (layout.garment_faces.rows() > 0) {
+    // Row-major, as h5py and NumPy read it (Eigen's matrix is column-major).
+    const Eigen::Matrix<int, Eigen::Dynamic, 3, Eigen::RowMajor> faces = layout.garment_faces;
+    file.write<std::int32_t>(kGarmentFaces, {to_size(static_cast<int>(faces.rows())), 3}, faces.data());
+  }
   file.create<std::int8_t>(kSplit, {n}, {.preallocate = true, .fill = 0.0});
   file.create<std::uint8_t>(kDone, {n}, {.preallocate = true, .fill = 0.0});
   file.create_group(kStats);
@@ -114,6 +136,7 @@ DatasetLayout read_layout(const h5::File& file) {
     throw ConfigError(name + ": missing dataset " + kBodyVertices);
   }
   layout.garment_vertices = expect(kGarmentVertices, 3, 3);
+  if (file.exists(kGarmentFaces)) layout.garment_faces = read_faces(file, layout.garment_vertices);
   if (file.shape(kDone) != h5::Dims{n})
     throw ConfigError(name + ": " + kDone + " has shape " + h5::to_string(file.shape(kDone)) + ", expected [" + std::to_string(n) + "]");
   if (file.is_group(kStats)) {

@@ -44,22 +44,6 @@ struct BodyVertices {
   std::function<void()> rebuilt;       // after each rebuilt body, when set
 };
 
-// body_model.vertices(params) of `count` rows of float parameters, as floats.
-std::vector<float> rebuilt_bodies(const BodyModel& body_model, const std::vector<float>& params, std::size_t count,
-                                  std::size_t body_params, const std::function<void()>& rebuilt) {
-  const std::size_t nb = static_cast<std::size_t>(body_model.num_vertices());
-  std::vector<float> out(count * nb * 3);
-  for (std::size_t r = 0; r < count; ++r) {
-    const Eigen::VectorXd shape =
-        Eigen::Map<const Eigen::VectorXf>(params.data() + r * body_params, static_cast<Eigen::Index>(body_params)).cast<double>();
-    const Eigen::MatrixX3d v = body_model.vertices(shape);
-    for (std::size_t i = 0; i < nb; ++i)
-      for (int c = 0; c < 3; ++c) out[(r * nb + i) * 3 + static_cast<std::size_t>(c)] = static_cast<float>(v(static_cast<Eigen::Index>(i), c));
-    if (rebuilt) rebuilt();
-  }
-  return out;
-}
-
 // Copies `count` rows starting at `from` in `in` to row `to` of `out`, for
 // every array; a shard without the garment_size statistic gets `size_fill`.
 void copy_rows(const h5::File& in, bool in_has_bodies, h5::File& out, const DatasetLayout& layout, std::size_t from,
@@ -111,13 +95,7 @@ std::size_t merge(const std::vector<fs::path>& shards, const fs::path& out, bool
     has_bodies.push_back(layout.body_vertices_stored);
     if (bodies.write && !layout.body_vertices_stored && !bodies.rebuild)
       throw ConfigError(shard.string() + ": a slim dataset (no body vertices); join slim shards with `drape dataset expand`");
-    if (!layout.body_vertices_stored && bodies.rebuild &&
-        (bodies.rebuild->num_vertices() != layout.body_vertices ||
-         static_cast<int>(bodies.rebuild->mean_shape().size()) != layout.body_params))
-      throw ConfigError(shard.string() + ": its bodies have " + std::to_string(layout.body_vertices) + " vertices and " +
-                        std::to_string(layout.body_params) + " shape parameters; the body model has " +
-                        std::to_string(bodies.rebuild->num_vertices()) + " and " +
-                        std::to_string(bodies.rebuild->mean_shape().size()) + " (not the model that generated them)");
+    if (!layout.body_vertices_stored && bodies.rebuild) dataset_body_model(bodies.rebuild, layout, shard.string());
     layout.body_vertices_stored = bodies.write;  // compared across shards as the output will hold them
     done.push_back(files.back().read<std::uint8_t>(kDone));
     const std::size_t n = static_cast<std::size_t>(std::count(done.back().begin(), done.back().end(), 1));

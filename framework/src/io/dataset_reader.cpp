@@ -1,7 +1,16 @@
-// DatasetReader: samples (all, or one split) as float tensors.
+// DatasetReader: samples (all, or one split) as float tensors, from one file
+// or the files of a glob pattern read as one; slim files' bodies rebuilt.
 #include "dataset_internal.hpp"
 
+#include <drape/bodies/body.hpp>
+#include <drape/io/shipped_files.hpp>
+
+#include <glob.h>
+
+#include <algorithm>
 #include <cmath>
+#include <mutex>
+#include <unordered_map>
 
 namespace fs = std::filesystem;
 
@@ -9,31 +18,131 @@ namespace drape {
 
 using namespace dataset_detail;
 
-struct DatasetReader::Impl {
+namespace {
+
+// One file of the dataset: its rows are the dataset's first .. first + rows - 1.
+struct Part {
   h5::File file;
+  std::size_t first = 0, rows = 0;
+  bool bodies = true;  // false: a slim file, bodies rebuilt
+};
+
+// The files matching a glob pattern, sorted by name (glob sorts).
+std::vector<fs::path> glob_files(const std::string& pattern) {
+  glob_t g{};
+  std::vector<fs::path> out;
+  if (glob(pattern.c_str(), 0, nullptr, &g) == 0)
+    for (std::size_t i = 0; i < g.gl_pathc; ++i) out.emplace_back(g.gl_pathv[i]);
+  globfree(&g);
+  return out;
+}
+
+}  // namespace
+
+struct DatasetReader::Impl {
+  std::vector<fs::path> files;
+  std::vector<Part> parts;
+  std::string name;  // the path or pattern given, for messages
+  // Bodies rebuilt for slim parts, by dataset row; made once each (20-90 ms), kept. The mutex guards both.
+  mutable std::mutex rebuild_mutex;
+  mutable std::unique_ptr<BodyModel> body_model;
+  mutable std::unordered_map<std::size_t, std::vector<float>> rebuilt;
+
+  std::size_t part_of(std::size_t row) const {
+    auto it = std::upper_bound(parts.begin(), parts.end(), row, [](std::size_t r, const Part& p) { return r < p.first; });
+    return static_cast<std::size_t>(it - parts.begin()) - 1;
+  }
 
   // Rows `indices` of `dataset` stacked in that order into `out` (row_size
-  // floats each). Consecutive indices are read with one call.
+  // values each). Consecutive indices within one file are read with one call.
   template <class T>
   void gather(const char* dataset, const std::vector<std::size_t>& indices, std::size_t row_size, T* out) const {
     std::size_t k = 0;
     while (k < indices.size()) {
+      const Part& part = parts[part_of(indices[k])];
       std::size_t run = 1;
-      while (k + run < indices.size() && indices[k + run] == indices[k] + run) ++run;
-      file.read_rows(dataset, indices[k], run, out + k * row_size);
+      while (k + run < indices.size() && indices[k + run] == indices[k] + run && indices[k + run] < part.first + part.rows) ++run;
+      part.file.read_rows(dataset, indices[k] - part.first, run, out + k * row_size);
       k += run;
     }
   }
+
+  // Rebuilds the bodies of `rows` (slim rows) not rebuilt yet, in parallel; then rebuilt.at(row) holds each.
+  void rebuild(const std::vector<std::size_t>& rows, const DatasetLayout& layout) const;
 };
 
-DatasetReader::DatasetReader(const fs::path& path) : impl_(std::make_unique<Impl>(Impl{h5::File::open(path)})) {
-  layout_ = read_layout(impl_->file);
-  split_ = impl_->file.read<std::int8_t>(kSplit);
-  done_ = impl_->file.read<std::uint8_t>(kDone);
+void DatasetReader::Impl::rebuild(const std::vector<std::size_t>& rows, const DatasetLayout& layout) const {
+  std::vector<std::size_t> todo;
+  for (std::size_t row : rows)
+    if (!rebuilt.count(row) && std::find(todo.begin(), todo.end(), row) == todo.end()) todo.push_back(row);
+  if (todo.empty()) return;
+  if (!body_model) body_model = dataset_body_model(nullptr, layout, parts[part_of(todo.front())].file.path().string());
+  const std::size_t p = static_cast<std::size_t>(layout.body_params);
+  std::vector<float> params(todo.size() * p);
+  for (std::size_t k = 0; k < todo.size(); ++k) {  // HDF5 reads stay on this thread
+    const Part& part = parts[part_of(todo[k])];
+    part.file.read_rows(kParams, todo[k] - part.first, 1, params.data() + k * p);
+  }
+  // A body is ~20-90 ms of the body model's solve and the model is const: one body per thread.
+  std::vector<std::vector<float>> bodies(todo.size());
+  const auto n = static_cast<std::ptrdiff_t>(todo.size());
+#pragma omp parallel for schedule(dynamic)
+  for (std::ptrdiff_t k = 0; k < n; ++k) {
+    const std::vector<float> one(params.begin() + k * static_cast<std::ptrdiff_t>(p), params.begin() + (k + 1) * static_cast<std::ptrdiff_t>(p));
+    bodies[static_cast<std::size_t>(k)] = rebuilt_bodies(*body_model, one, 1, p);
+  }
+  for (std::size_t k = 0; k < todo.size(); ++k) rebuilt[todo[k]] = std::move(bodies[k]);
+}
+
+std::vector<fs::path> dataset_files(const fs::path& path_or_pattern) {
+  std::error_code ec;
+  const std::string text = path_or_pattern.string();
+  if (fs::exists(path_or_pattern, ec)) return {path_or_pattern};
+  if (text.find_first_of("*?[") == std::string::npos) {
+    const fs::path shipped = locate_shipped_file(path_or_pattern);  // datasets/... from a build tree
+    return {shipped.empty() ? path_or_pattern : shipped};           // else h5's "no such file"
+  }
+  std::vector<fs::path> files = glob_files(text);
+  if (files.empty())
+    for (const auto& dir : shipped_data_dirs())
+      if (!path_or_pattern.is_absolute() && (files = glob_files((dir / path_or_pattern).string()), !files.empty())) break;
+  if (files.empty()) throw ConfigError(text + ": no dataset file matches this pattern");
+  return files;
+}
+
+DatasetReader::DatasetReader(const fs::path& path) : impl_(std::make_unique<Impl>()) {
+  impl_->name = path.string();
+  impl_->files = dataset_files(path);
+  for (const auto& file : impl_->files) {
+    Part part{h5::File::open(file)};
+    DatasetLayout layout = read_layout(part.file);
+    part.first = layout_.samples;
+    part.rows = layout.samples;
+    part.bodies = layout.body_vertices_stored;
+    if (impl_->parts.empty()) {
+      layout_ = layout;
+    } else {
+      // Files read as one must agree as a merge requires (sizes, stats, scene, template).
+      DatasetLayout same = layout;
+      same.samples = layout_.samples;
+      same.body_vertices_stored = layout_.body_vertices_stored;
+      if (const std::string d = layout_difference(layout_, same); !d.empty())
+        throw ConfigError(file.string() + ": cannot be read as one dataset with " + impl_->files.front().string() + ": " + d);
+      layout_.samples += layout.samples;
+      layout_.body_vertices_stored = layout_.body_vertices_stored && layout.body_vertices_stored;
+    }
+    const std::vector<std::int8_t> split = part.file.read<std::int8_t>(kSplit);
+    const std::vector<std::uint8_t> done = part.file.read<std::uint8_t>(kDone);
+    split_.insert(split_.end(), split.begin(), split.end());
+    done_.insert(done_.end(), done.begin(), done.end());
+    impl_->parts.push_back(std::move(part));
+  }
 }
 
 DatasetReader::~DatasetReader() = default;
 DatasetReader::DatasetReader(DatasetReader&&) noexcept = default;
+
+const std::vector<fs::path>& DatasetReader::files() const { return impl_->files; }
 
 std::vector<std::size_t> DatasetReader::indices() const {
   std::vector<std::size_t> out;
@@ -95,26 +204,39 @@ void check_indices(const DatasetReader& reader, const std::vector<std::size_t>& 
 }  // namespace
 
 Tensor DatasetReader::body_params(const std::vector<std::size_t>& indices) const {
-  check_indices(*this, indices, impl_->file.path());
+  check_indices(*this, indices, fs::path(impl_->name));
   Tensor out(static_cast<int>(indices.size()), 1, layout_.body_params);
   impl_->gather(kParams, indices, static_cast<std::size_t>(layout_.body_params), out.data());
   return out;
 }
 
 Tensor DatasetReader::body_vertices(const std::vector<std::size_t>& indices) const {
-  check_indices(*this, indices, impl_->file.path());
-  if (!layout_.body_vertices_stored) {
-    const std::string name = impl_->file.path().string();
-    throw ConfigError(name + ": a slim dataset (the bodies' shape parameters without their vertices); rebuild the vertices with `drape dataset expand " +
-                      name + " --out FULL.h5` and use that file");
-  }
+  check_indices(*this, indices, impl_->name);
+  const std::size_t row_size = static_cast<std::size_t>(layout_.body_vertices) * 3;
   Tensor out(static_cast<int>(indices.size()), layout_.body_vertices, 3);
-  impl_->gather(kBodyVertices, indices, static_cast<std::size_t>(layout_.body_vertices) * 3, out.data());
+  if (layout_.body_vertices_stored) {
+    impl_->gather(kBodyVertices, indices, row_size, out.data());
+    return out;
+  }
+  // Some file is slim: stored rows read as they are, the others rebuilt (once each).
+  std::vector<std::size_t> slim;
+  for (std::size_t row : indices)
+    if (!impl_->parts[impl_->part_of(row)].bodies) slim.push_back(row);
+  const std::lock_guard<std::mutex> lock(impl_->rebuild_mutex);
+  impl_->rebuild(slim, layout_);
+  for (std::size_t k = 0; k < indices.size(); ++k) {
+    if (impl_->parts[impl_->part_of(indices[k])].bodies) {
+      impl_->gather(kBodyVertices, {indices[k]}, row_size, out.data() + k * row_size);
+    } else {
+      const std::vector<float>& body = impl_->rebuilt.at(indices[k]);
+      std::copy(body.begin(), body.end(), out.data() + k * row_size);
+    }
+  }
   return out;
 }
 
 Tensor DatasetReader::garment_vertices(const std::vector<std::size_t>& indices) const {
-  check_indices(*this, indices, impl_->file.path());
+  check_indices(*this, indices, fs::path(impl_->name));
   Tensor out(static_cast<int>(indices.size()), layout_.garment_vertices, 3);
   impl_->gather(kGarmentVertices, indices, static_cast<std::size_t>(layout_.garment_vertices) * 3, out.data());
   return out;
@@ -122,8 +244,8 @@ Tensor DatasetReader::garment_vertices(const std::vector<std::size_t>& indices) 
 
 std::vector<double> DatasetReader::stat(const std::string& name, const std::vector<std::size_t>& indices) const {
   if (std::find(layout_.stats.begin(), layout_.stats.end(), name) == layout_.stats.end())
-    throw ConfigError(impl_->file.path().string() + ": no statistic '" + name + "'" + did_you_mean(name, layout_.stats));
-  check_indices(*this, indices, impl_->file.path());
+    throw ConfigError(fs::path(impl_->name).string() + ": no statistic '" + name + "'" + did_you_mean(name, layout_.stats));
+  check_indices(*this, indices, fs::path(impl_->name));
   std::vector<double> out(indices.size());
   impl_->gather(stat_path(name).c_str(), indices, 1, out.data());
   return out;

@@ -80,6 +80,7 @@ DatasetLayout layout_of(const Scene& scene, const SceneSimulations& simulations,
   if (simulations.auto_size())
     layout.attributes["garment_sizes"] = "auto: each sample's size in its garment_size statistic (docs/garments.md)";
   layout.template_hash = template_hash(sim.garment().mesh, sim.body_model().faces());
+  layout.garment_faces = sim.garment().mesh.faces;  // for readers without drape's assets (h5py, torch)
   layout.attributes["generator"] = "drape generate: " + ranges_text(request);
   layout.attributes["body_model"] = scene.body_model;
   std::string names;

@@ -59,6 +59,7 @@ DatasetLayout optimized_layout(const DatasetReader& reader, const Scene& scene, 
   layout.stats.insert(layout.stats.end(), carried.begin(), carried.end());
   layout.scene = scene.yaml();
   layout.template_hash = reader.layout().template_hash;
+  layout.garment_faces = reader.layout().garment_faces;  // the same template (empty for a source without them)
   layout.attributes = reader.layout().attributes;
   std::ostringstream what;
   what << "drape optimize: model " << o.model.filename().string() << ", data " << o.data.filename().string() << " ("

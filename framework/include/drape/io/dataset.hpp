@@ -47,6 +47,10 @@ struct DatasetLayout {
   // rebuilt from /bodies/params by expand_datasets; Nb is still recorded.
   bool body_vertices_stored = true;
   std::vector<std::string> stats;  // names of the per-sample statistics (/stats/<name>)
+  // The garment template's triangles (/garments/faces, int32 [F, 3]), so that a
+  // reader without drape (h5py) can draw or measure the drapes. Empty: not
+  // stored (files written before 2026-11-29, which still load).
+  Eigen::MatrixX3i garment_faces;
   std::string scene;               // YAML text of the scene that generated it
   std::string template_hash;
   std::string drape_version = "0.1.0";
@@ -109,6 +113,14 @@ class DatasetWriter {
 };
 
 // Reads a dataset file (finished, or a `.partial` one: then only done samples count).
+//
+// `path` may also be a glob pattern ('shards/shard-*-of-40.h5', quoted so that
+// the shell leaves it alone): its files, in name order, read as one dataset
+// (they must agree as `drape dataset merge` requires; sample i of the second
+// file is row size(first) + i). Slim files (no body vertices) read as whole
+// ones: body_vertices() rebuilds each body from its shape parameters with the
+// stored scene's body model, once (about 20 ms a body on the parametric model;
+// kept for the reader's lifetime), loading the default plugins when it must.
 class DatasetReader {
  public:
   explicit DatasetReader(const std::filesystem::path& path);
@@ -117,6 +129,7 @@ class DatasetReader {
 
   const DatasetLayout& layout() const { return layout_; }
   std::size_t size() const { return layout_.samples; }
+  const std::vector<std::filesystem::path>& files() const;  // the file, or the pattern's files in order
   const std::vector<std::int8_t>& splits() const { return split_; }
   const std::vector<std::uint8_t>& done() const { return done_; }
 
@@ -145,6 +158,11 @@ class DatasetReader {
   std::vector<std::uint8_t> done_;
   std::unique_ptr<Impl> impl_;
 };
+
+// The files a dataset argument names: the path itself when it exists (or has
+// no glob characters), else the files matching it as a glob pattern, sorted.
+// ConfigError when a pattern matches nothing.
+std::vector<std::filesystem::path> dataset_files(const std::filesystem::path& path_or_pattern);
 
 // The samples among `indices` that are results: all but those drape optimize
 // --data marked `separated` 0, the drapes it could not bring onto the true

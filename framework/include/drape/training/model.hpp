@@ -141,9 +141,11 @@ class Model {
 
 // The pretrained model shipped with drape (models/tshirt-coarse.h5 of the
 // source tree, trained as docs/training.md describes), which `drape predict`
-// uses when no --model is given. Looked up in order: $DRAPE_MODEL;
-// <prefix>/share/drape/models next to an installed framework library; the
-// source tree this build came from. Empty when none of them exists.
+// uses when no --model is given. Looked up in order: $DRAPE_MODEL; then
+// models/tshirt-coarse.h5 in the shipped files' folders (shipped_data_dirs():
+// $DRAPE_DATA_DIR, <prefix>/share/drape next to an installed framework
+// library, the source tree this build came from), never the current folder.
+// Empty when none of them has it.
 std::filesystem::path default_model_path();
 
 }  // namespace drape
