@@ -13,6 +13,8 @@
 
 #include <catch2/catch.hpp>
 
+#include <drape/warnings.hpp>
+
 #include <cmath>
 
 #include "../barrier/barrier_test_util.hpp"
@@ -93,7 +95,13 @@ TEST_CASE("self_contact leaves a tangled start out and guards the rest", "[self_
   REQUIRE_FALSE(geometry::self_intersections(v, g->mesh.faces, 1).empty());
   add_sheet(*g, 5, 0.01, 0.0, {1.0, 0, 0});
   add_sheet(*g, 4, 0.01, 0.3, {1.0013, 0.0007, 0.5e-3});
+  std::vector<std::string> warnings;
+  const WarningHandler previous = set_warning_handler([&](const std::string& w) { warnings.push_back(w); });
   const auto e = self_contact_on(*g);
+  self_contact_on(*g);  // the same garment bound again (a dataset's next sample): said once
+  set_warning_handler(previous);
+  REQUIRE(warnings.size() == 1);  // the user is told which part goes unguarded
+  CHECK_THAT(warnings[0], Catch::StartsWith("self_contact: the rest garment") && Catch::Contains("passes through itself"));
   const Eigen::MatrixX3d x = g->mesh.vertices;
   const double value = e->value(x);
   CHECK(std::isfinite(value));

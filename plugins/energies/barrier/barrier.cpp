@@ -75,12 +75,7 @@ void with_stencil_size(PairKind kind, F&& f) {
 }  // namespace
 
 BarrierContact::BarrierContact(const BarrierSettings& settings) : settings_(settings), topology_(std::make_unique<Topology>()) {
-  if (!(settings_.distance > 0) || !std::isfinite(settings_.distance))
-    throw ConfigError("distance (d_hat) must be a positive length, got " + std::to_string(settings_.distance));
-  if (!(settings_.stiffness > 0) || !std::isfinite(settings_.stiffness))
-    throw ConfigError("stiffness must be > 0, got " + std::to_string(settings_.stiffness));
-  if (!(settings_.min_separation > 0 && settings_.min_separation < 1))
-    throw ConfigError("min_separation must be in (0, 1)");
+  check_barrier_settings(settings_.distance, settings_.stiffness, settings_.min_separation);
   if (!(settings_.friction >= 0) || !std::isfinite(settings_.friction))
     throw ConfigError("friction must be >= 0, got " + std::to_string(settings_.friction));
   if (!(settings_.slip_velocity > 0) || !std::isfinite(settings_.slip_velocity))

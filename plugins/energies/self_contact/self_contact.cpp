@@ -8,10 +8,14 @@
 #include <drape/errors.hpp>
 #include <drape/physics/barrier_function.hpp>
 #include <drape/physics/psd_projection.hpp>
+#include <drape/warnings.hpp>
 
 #include <cmath>
 #include <limits>
+#include <mutex>
+#include <set>
 #include <string>
+#include <utility>
 
 namespace drape::self_contact {
 
@@ -26,15 +30,26 @@ std::string describe(const SelfPair& p) {
   throw Error("garment " + describe(p) + " touch (distance 0): the cloth is not separated from itself");
 }
 
+// A rest garment that already crosses itself (some of the larger tshirt
+// sizes, as dressed on the mean body) cannot be unwound by a barrier; those
+// places are left out (self_pairs.cpp). Said once per garment and process:
+// a dataset binds the same garment for every sample.
+void warn_tangle_once(int vertices, int faces) {
+  static std::mutex mutex;
+  static std::set<std::pair<int, int>> told;
+  {
+    const std::lock_guard<std::mutex> lock(mutex);
+    if (!told.insert({vertices, faces}).second) return;
+  }
+  warn("the rest garment (" + std::to_string(vertices) + " vertices) already passes through itself at " +
+       std::to_string(faces) + " faces, as its template dressed it; those places and one ring around them are left "
+       "out of the self-contact, which guards the rest (docs/scenes.md, \"Cloth that never crosses itself\")");
+}
+
 }  // namespace
 
 SelfContact::SelfContact(const SelfContactSettings& settings) : settings_(settings), topology_(std::make_unique<SelfTopology>()) {
-  if (!(settings_.distance > 0) || !std::isfinite(settings_.distance))
-    throw ConfigError("distance (d_hat) must be a positive length, got " + std::to_string(settings_.distance));
-  if (!(settings_.stiffness > 0) || !std::isfinite(settings_.stiffness))
-    throw ConfigError("stiffness must be > 0, got " + std::to_string(settings_.stiffness));
-  if (!(settings_.min_separation > 0 && settings_.min_separation < 1))
-    throw ConfigError("min_separation must be in (0, 1)");
+  check_barrier_settings(settings_.distance, settings_.stiffness, settings_.min_separation);
   if (!(settings_.rest_exclusion >= 0) || !std::isfinite(settings_.rest_exclusion))
     throw ConfigError("rest_exclusion must be >= 0");
 }
@@ -44,6 +59,7 @@ SelfContact::~SelfContact() = default;
 void SelfContact::bind(const EnergyContext& context) {
   const Garment& garment = checked_garment(context);
   auto topology = std::make_unique<SelfTopology>(make_topology(garment, settings_.rest_exclusion * settings_.distance));
+  if (topology->tangled_faces > 0) warn_tangle_once(garment.mesh.num_vertices(), topology->tangled_faces);
   std::lock_guard<std::mutex> lock(cache_.mutex);
   topology_ = std::move(topology);
   cache_.pairs.reset();

@@ -9,9 +9,24 @@
 // energy is finite has no touching pair, and a line search that never crosses
 // (continuous collision detection) keeps it so. Shared by the energies
 // barrier (cloth-body) and self_contact (cloth-cloth).
+#include <drape/errors.hpp>
+
 #include <cmath>
+#include <string>
 
 namespace drape {
+
+// The three settings every barrier contact takes, checked once for both
+// (a registry-made energy has them range-checked already; this also covers
+// an energy built directly): d_hat a positive length, kappa > 0, and the
+// continuous collision check's stopping fraction in (0, 1). ConfigError.
+inline void check_barrier_settings(double distance, double stiffness, double min_separation) {
+  if (!(distance > 0) || !std::isfinite(distance))
+    throw ConfigError("distance (d_hat) must be a positive length, got " + std::to_string(distance));
+  if (!(stiffness > 0) || !std::isfinite(stiffness))
+    throw ConfigError("stiffness must be > 0, got " + std::to_string(stiffness));
+  if (!(min_separation > 0 && min_separation < 1)) throw ConfigError("min_separation must be in (0, 1)");
+}
 
 struct BarrierValue {
   double b = 0, db = 0, d2b = 0;  // b(r), b'(r), b''(r)
