@@ -9,5 +9,8 @@ function(drape_add_plugin target)
     LIBRARY_OUTPUT_DIRECTORY ${DRAPE_BUILD_PLUGIN_DIR}
     CXX_VISIBILITY_PRESET hidden)
   install(TARGETS ${target} LIBRARY DESTINATION ${DRAPE_PLUGIN_INSTALL_DIR})
+  if(TARGET drape_plugin_pch)  # plugins/CMakeLists.txt: the shared precompiled header
+    target_precompile_headers(${target} REUSE_FROM drape_plugin_pch)
+  endif()
   set_property(GLOBAL APPEND PROPERTY DRAPE_PLUGIN_TARGETS ${target})
 endfunction()

@@ -66,8 +66,11 @@ void print_training_settings(const std::map<std::string, std::string>& meta) {
     const double value = std::strtod(lr.c_str(), &end);
     if (end != lr.c_str() && *end == '\0') std::snprintf(number, sizeof number, "%g", value);
     else std::snprintf(number, sizeof number, "%.30s", lr.c_str());
-    add(std::string("lr ") + number + (get("schedule").empty() ? "" : " " + get("schedule")) +
-        (get("epochs").empty() ? "" : " over " + get("epochs") + " epochs"));
+    std::string line = std::string("lr ") + number;
+    // Appended piece by piece: GCC 12 warns falsely (-Wstringop-overflow) on " " + string here.
+    if (!get("schedule").empty()) line.append(" ").append(get("schedule"));
+    if (!get("epochs").empty()) line.append(" over ").append(get("epochs")).append(" epochs");
+    add(line);
   }
   if (!get("patience").empty()) add("patience " + get("patience"));
   if (!get("ranks").empty()) add("MPI ranks " + get("ranks"));

@@ -132,7 +132,10 @@ std::size_t merge(const std::vector<fs::path>& shards, const fs::path& out, bool
   merged.samples = total;
   merged.created = now_utc();
   std::string names;
-  for (const auto& shard : shards) names += (names.empty() ? "" : "\n") + shard.filename().string();
+  for (const auto& shard : shards) {
+    if (!names.empty()) names += '\n';
+    names += shard.filename().string();
+  }
   merged.attributes["merged_from"] = names;
   if (mixed_sizes) merged.attributes["templates"] = templates;
 
@@ -175,7 +178,7 @@ std::size_t slim_dataset(const fs::path& in, const fs::path& out) {
     const h5::File file = h5::File::open(in);
     if (!read_layout(file).body_vertices_stored) throw ConfigError(in.string() + ": is a slim dataset already");
   }
-  return merge({in}, out, true, false, BodyVertices{.write = false});
+  return merge({in}, out, true, false, BodyVertices{.write = false, .rebuild = nullptr, .rebuilt = {}});
 }
 
 std::size_t expand_datasets(const std::vector<fs::path>& shards, const fs::path& out, const BodyModel& body_model,
