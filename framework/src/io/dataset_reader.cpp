@@ -74,7 +74,9 @@ struct DatasetReader::Impl {
 void DatasetReader::Impl::rebuild(const std::vector<std::size_t>& rows, const DatasetLayout& layout) const {
   std::vector<std::size_t> todo;
   for (std::size_t row : rows)
-    if (!rebuilt.count(row) && std::find(todo.begin(), todo.end(), row) == todo.end()) todo.push_back(row);
+    if (!rebuilt.count(row)) todo.push_back(row);
+  std::sort(todo.begin(), todo.end());  // a batch may name a row twice: rebuilt once
+  todo.erase(std::unique(todo.begin(), todo.end()), todo.end());
   if (todo.empty()) return;
   if (!body_model) body_model = dataset_body_model(nullptr, layout, parts[part_of(todo.front())].file.path().string());
   const std::size_t p = static_cast<std::size_t>(layout.body_params);

@@ -2,6 +2,7 @@
 #include "barrier.hpp"
 
 #include <drape/energy.hpp>
+#include <drape/physics/barrier_function.hpp>
 #include <drape/plugin.hpp>
 
 namespace {
@@ -15,17 +16,8 @@ PluginList plugins() {
   d.doc = "Body contact that never lets the surfaces cross: IPC's log barrier over every garment vertex-body "
           "triangle, body vertex-garment triangle and edge-edge pair within `distance`, with continuous collision "
           "checks on every move; needs a body.";
-  d.params = {
-      {.name = "distance", .type = ParamType::Float, .default_value = "0.001",
-       .doc = "d_hat in m: pairs closer than this push apart (the cloth's clearance off the skin)",
-       .min = 1e-6, .max = 0.1},
-      // 0.2 kappa at 0.9 d_hat: 200 Pa, a shirt's pressure over the shoulders.
-      {.name = "stiffness", .type = ParamType::Float, .default_value = "1000",
-       .doc = "kappa in Pa: the contact pressure scale (0.2 kappa at 0.9 d_hat, 4.3 kappa at d_hat / 2, unbounded at 0)",
-       .min = 1e-6},
-      {.name = "min_separation", .type = ParamType::Float, .default_value = "0.1",
-       .doc = "a move stops where a pair is down to this fraction of its distance (continuous collision check)",
-       .min = 1e-3, .max = 0.9},
+  d.params = barrier_param_specs("pairs closer than this push apart (the cloth's clearance off the skin)");
+  d.params.insert(d.params.end(), {
       // ArcSim's default cloth-obstacle coefficient is 0.3 (its `obs_friction`).
       {.name = "friction", .type = ParamType::Float, .default_value = "0",
        .doc = "Coulomb's coefficient between cloth and body (IPC's lagged friction; 0: frictionless, ArcSim's default 0.3)",
@@ -33,7 +25,7 @@ PluginList plugins() {
       {.name = "slip_velocity", .type = ParamType::Float, .default_value = "0.01",
        .doc = "eps_v in m/s: slower slip is held as static friction (IPC's smoothing; a step of h s creeps up to eps_v h)",
        .min = 1e-6, .max = 1},
-  };
+   });
   d.create_energy = [](const Params& p) {
     return std::make_unique<barrier::BarrierContact>(barrier::BarrierSettings{
         .distance = p.get_float("distance"),

@@ -10,11 +10,27 @@
 // (continuous collision detection) keeps it so. Shared by the energies
 // barrier (cloth-body) and self_contact (cloth-cloth).
 #include <drape/errors.hpp>
+#include <drape/params.hpp>
 
 #include <cmath>
 #include <string>
+#include <vector>
 
 namespace drape {
+
+// The parameter specs of those three settings, written once for both
+// contacts; `distance_doc` says which pairs push apart.
+inline std::vector<ParamSpec> barrier_param_specs(const std::string& distance_doc) {
+  return {{.name = "distance", .type = ParamType::Float, .default_value = "0.001",
+           .doc = "d_hat in m: " + distance_doc, .min = 1e-6, .max = 0.1},
+          // 0.2 kappa at 0.9 d_hat: 200 Pa, a shirt's pressure over the shoulders.
+          {.name = "stiffness", .type = ParamType::Float, .default_value = "1000",
+           .doc = "kappa in Pa: the contact pressure scale (0.2 kappa at 0.9 d_hat, 4.3 kappa at d_hat / 2, unbounded at 0)",
+           .min = 1e-6},
+          {.name = "min_separation", .type = ParamType::Float, .default_value = "0.1",
+           .doc = "a move stops where a pair is down to this fraction of its distance (continuous collision check)",
+           .min = 1e-3, .max = 0.9}};
+}
 
 // The three settings every barrier contact takes, checked once for both
 // (a registry-made energy has them range-checked already; this also covers
