@@ -30,7 +30,7 @@ namespace fs = std::filesystem;
 const char* kMergeUsage = "drape dataset merge --out FILE SHARD... [--allow-incomplete] [--mixed-sizes] [--force]";
 const char* kInfoUsage = "drape dataset info FILE [--scene-lines N]";
 const char* kSlimUsage = "drape dataset slim FILE --out SLIM [--force]";
-const char* kExpandUsage = "drape dataset expand --out FILE SLIM... [--allow-incomplete] [--force]";
+const char* kExpandUsage = "drape dataset expand --out FILE SLIM... [--allow-incomplete] [--mixed-sizes] [--force]";
 
 void refuse_existing(const fs::path& out, const po::variables_map& vm) {
   // A finished dataset is never overwritten by accident (as DatasetWriter does).
@@ -43,7 +43,9 @@ int merge(const std::vector<std::string>& args) {
   opts.add_options()("out,o", po::value<std::string>()->required(), "the merged dataset to write")(
       "shards", po::value<std::vector<std::string>>()->required(), "shard files, joined in this order")(
       "allow-incomplete", "skip the samples a shard has not finished (default: refuse such a shard)")(
-      "mixed-sizes", "the shards wear different sizes of one garment (their garment_size statistic tells them apart)")(
+      "mixed-sizes", "the shards wear different sizes of one garment (their garment_size and garment_grade statistics "
+                     "tell them apart; a statistic a shard lacks is filled: its size and grade from its scene, NaN "
+                     "for the rest)")(
       "force", "replace --out if it exists");
   po::positional_options_description positional;
   positional.add("shards", -1);
@@ -83,6 +85,7 @@ int expand(const std::vector<std::string>& args) {
   opts.add_options()("out,o", po::value<std::string>()->required(), "the full dataset to write")(
       "shards", po::value<std::vector<std::string>>()->required(), "slim (or full) dataset files, joined in this order")(
       "allow-incomplete", "skip the samples a shard has not finished (default: refuse such a shard)")(
+      "mixed-sizes", "the shards wear different sizes of one garment, as for merge")(
       "force", "replace --out if it exists");
   po::positional_options_description positional;
   positional.add("shards", -1);
@@ -104,7 +107,8 @@ int expand(const std::vector<std::string>& args) {
     if (!reader.layout().body_vertices_stored) slim_samples += reader.indices().size();
   }
   ProgressBar bar("expand", slim_samples);
-  const std::size_t n = expand_datasets(shards, out, *body_model, !vm.count("allow-incomplete"), [&] { bar.advance(); });
+  const std::size_t n = expand_datasets(shards, out, *body_model, !vm.count("allow-incomplete"), [&] { bar.advance(); },
+                                        vm.count("mixed-sizes") > 0);
   bar.finish();
   std::cout << "wrote " << out.string() << ": " << n << " samples, their bodies rebuilt by body model '" << scene.body_model
             << "' from the stored shape parameters\n";

@@ -13,6 +13,7 @@
 #include <drape/io/h5.hpp>
 #include <drape/training/model.hpp>
 #include <drape/training/model_domain.hpp>
+#include <drape/scene/size_table.hpp>
 
 #include <cstdio>
 #include <cstdlib>
@@ -32,9 +33,11 @@ void print_domain(const ModelDomain& d) {
               d.source.empty() ? "(unknown)" : d.source.c_str());
   std::printf("  %-10s %8.3f .. %-8.3f m\n", "height", d.height.min, d.height.max);
   std::printf("  %-10s %8.2f .. %-8.2f\n", "BMI", d.bmi.min, d.bmi.max);
-  for (std::size_t p = 0; p < d.params.size(); ++p)
+  for (std::size_t p = 0; p < d.params.size(); ++p) {
+    if (d.param_names[p] == "height") continue;  // printed above, with its unit
     std::printf("  %-10s %8.3f .. %-8.3f%s\n", d.param_names[p].c_str(), d.params[p].min, d.params[p].max,
                 d.params[p].min == d.params[p].max ? "  (fixed)" : "");
+  }
   std::printf("  a body farther than %.2f cm (RMS over %zu vertices) from every training body is outside\n",
               100 * d.neighbour_limit, d.descriptor_vertices.size());
   if (d.placement.allFinite())
@@ -44,6 +47,15 @@ void print_domain(const ModelDomain& d) {
                 1000 * d.placement_spread[1]);
   else
     std::printf("  where the training bodies stood is not recorded (drape model domain adds it)\n");
+}
+
+// The sizes a model of drapes in each body's own size chooses from.
+void print_size_chart(const std::string& text) {
+  const SizeTable t = SizeTable::parse(text, "size_chart");
+  std::printf("sizes: chosen for each body by the tailor's rule (design size %s, %+.1f %% ease on the mean body)\n",
+              t.design.c_str(), 100.0 * t.design_ease);
+  for (const auto& [name, girth] : t.girth)
+    std::printf("  %-10s %.3f m around (grade %.3f)\n", name.c_str(), girth, t.grade(name));
 }
 
 // The settings `drape train` was given (what it takes to train the model
@@ -89,9 +101,16 @@ int info(const std::vector<std::string>& args) {
   const fs::path file = find_input_file(vm["model"].as<std::string>());  // models/... from anywhere
   const Checkpoint c = read_checkpoint(file);
   std::printf("%s\n", file.string().c_str());
-  for (const char* key : {"kind", "status", "epoch", "best_epoch", "best_loss", "dataset", "ground_truth", "train_samples", "drape_version"})
-    if (auto it = c.meta.find(key); it != c.meta.end()) std::printf("  %-14s %s\n", key, it->second.c_str());
+  for (const char* key : {"kind", "status", "epoch", "best_epoch", "best_loss", "dataset", "ground_truth", "train_samples", "drape_version"}) {
+    const auto it = c.meta.find(key);
+    if (it == c.meta.end()) continue;
+    // A model trained before 2026-11-29 stored the dataset's absolute path:
+    // its file name is what says which data it was.
+    const std::string value = std::string(key) == "dataset" ? fs::path(it->second).filename().string() : it->second;
+    std::printf("  %-14s %s\n", key, value.c_str());
+  }
   print_training_settings(c.meta);
+  if (auto chart = c.meta.find("size_chart"); chart != c.meta.end()) print_size_chart(chart->second);
   if (auto domain = read_domain(file)) print_domain(*domain);
   else
     std::printf("domain: not recorded (a model written before drape recorded it): predict cannot tell a body outside "

@@ -27,6 +27,7 @@ ModelBodyInput body_input(const po::variables_map& vm) {
     input.request = request;
   }
   if (vm.count("garment-size")) input.garment_size = vm["garment-size"].as<std::string>();
+  if (vm.count("garment-grade")) input.garment_grade = vm["garment-grade"].as<double>();
   return input;
 }
 
@@ -38,7 +39,13 @@ void add_model_body_options(po::options_description& options, const std::string&
       "bmi", po::value<double>(), "or make the body with the model's body plugin: target BMI")(
       "height", po::value<double>(), "with --bmi: height in m (default 1.75)")(
       "sex", po::value<double>(), "with --bmi: 0 female ... 1 male (default 1)")(
-      "garment-size", po::value<std::string>(), ("for a model trained on several sizes: " + garment_size_choices()).c_str());
+      "garment-size", po::value<std::string>(),
+      ("the garment's size: for a model of drapes in each body's own size, one of its sizes (drape model info lists "
+       "them) or auto, the default: the size the tailor's rule gives the body (docs/garments.md); for a model trained "
+       "on a few sizes: " + garment_size_choices()).c_str())(
+      "garment-grade", po::value<double>(),
+      "for a model of drapes in each body's own size: the garment's grade as a number (its girth over the design size's) "
+      "instead of a size");
   add_girth_option(options, "with --bmi: ");
 }
 

@@ -56,6 +56,22 @@ class PyModel {
       if (garment_size.is_none())
         throw py::value_error("garment_size: this model was trained on several garment sizes, give one of " + garment_size_choices());
       b.garment_size = Tensor(n, 1, 1, garment_size_flag(garment_size.cast<std::string>()));
+    } else if (model_->needs_input("garment_grade")) {
+      // A size name of the model's chart, "auto"/None (chosen per body by
+      // BodyPreparation::prepare) or a grade as a number.
+      std::optional<std::string> size;
+      std::optional<double> grade;
+      if (py::isinstance<py::str>(garment_size)) size = garment_size.cast<std::string>();
+      else if (py::isinstance<py::float_>(garment_size) || py::isinstance<py::int_>(garment_size))
+        grade = garment_size.cast<double>();
+      else if (!garment_size.is_none())
+        throw py::value_error("garment_size: a size name, \"auto\" or a grade (a number), got " +
+                              py::repr(garment_size).cast<std::string>());
+      try {
+        if (const auto g = requested_garment_grade(*model_, size, grade)) b.garment_grade = Tensor(n, 1, 1, static_cast<float>(*g));
+      } catch (const ConfigError& e) {
+        throw py::value_error(std::string("garment_size: ") + e.what());
+      }
     } else if (!garment_size.is_none()) {
       throw py::value_error("garment_size: this model was trained on one garment size and takes none; leave garment_size out");
     }

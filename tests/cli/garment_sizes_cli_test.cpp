@@ -200,3 +200,89 @@ TEST_CASE("size auto: drape generate dresses each body in its size and records i
   }
   CHECK(seen.size() >= 3);  // BMI 12-64: several sizes
 }
+
+// A model of drapes in each body's own size (issue 54, item 2): drape
+// generate with size: auto records each sample's grade and the size chart; a
+// graph with the input garment_grade trains on them (beside regular drapes
+// merged with --mixed-sizes), keeps the chart, and predict chooses the size
+// the tailor's rule gives the body unless told another.
+TEST_CASE("size auto: a model takes the grade and predict chooses the body's size", "[sizes]") {
+  test::TempDir dir;
+  const std::string text = "body: {model: parametric}\ngarment: {template: tshirt, params: {resolution: 300, size: auto}}\n"
+                           "effects: [gravity, stretching, bending, collision]\nsolver: {morph_steps: 2, settle_steps: 2}\n";
+  std::ofstream(dir / "auto.yaml") << text;
+  std::ofstream(dir / "regular.yaml") << tiny_scene("regular");
+  const std::string drape = test::drape_program().string() + " ";
+  std::string out;
+  REQUIRE(test::run(drape + "generate " + (dir / "auto.yaml").string() + " --count 8 --bmi 12:64 --seed 4 --threads 2 --out " +
+                        (dir / "auto.h5").string(),
+                    out) <= 1);  // 1: two settling steps leave drapes unsettled
+  REQUIRE(test::run(drape + "generate " + (dir / "regular.yaml").string() + " --count 4 --bmi 20:30 --seed 4 --out " +
+                        (dir / "regular.h5").string(),
+                    out) <= 1);
+  const SizeChart chart(test::plugins(), parse_scene(text));
+  const DatasetReader sized(dir / "auto.h5");
+  // The chart as the scene measures it, and each sample's grade: its size's
+  // girth over the regular's.
+  // The stored scene is the one run, size: auto (building the sizes once wrote
+  // the last of them, 6xlarge, into it: a yaml-cpp node assigned through a copy).
+  CHECK_THAT(sized.layout().scene, Catch::Contains("size: auto"));
+  const SizeTable stored = SizeTable::parse(sized.layout().attributes.at("size_chart"), "auto.h5");
+  CHECK(stored.design == "regular");
+  REQUIRE(stored.girth.size() == chart.table().girth.size());
+  for (std::size_t i = 0; i < stored.girth.size(); ++i) {
+    CHECK(stored.girth[i].first == chart.table().girth[i].first);
+    CHECK(stored.girth[i].second == Approx(chart.table().girth[i].second).epsilon(1e-12));
+  }
+  const std::vector<std::size_t> all{0, 1, 2, 3, 4, 5, 6, 7};
+  const std::vector<double> grades = sized.stat("garment_grade", all);
+  for (std::size_t i = 0; i < all.size(); ++i) {
+    const SizeChoice choice = chart.choose(sized.sample(i).body_vertices.cast<double>());
+    CHECK(grades[i] == Approx(choice.garment_girth(choice.size) / choice.garment_girth("regular")));
+  }
+  CHECK(DatasetReader(dir / "regular.h5").stat("garment_grade", {0})[0] == 1.0);
+
+  // Merged with regular drapes; trained; the model keeps the chart.
+  REQUIRE(test::run(drape + "dataset merge --mixed-sizes --out " + (dir / "both.h5").string() + " " +
+                        (dir / "auto.h5").string() + " " + (dir / "regular.h5").string(),
+                    out) == 0);
+  CHECK(DatasetReader(dir / "both.h5").layout().attributes.at("size_chart") == sized.layout().attributes.at("size_chart"));
+  const std::string graph = (test::source_dir() / "graphs/sizes/drape_grade.yaml").string();
+  const std::string model = (dir / "m.h5").string();
+  REQUIRE(test::run(drape + "train " + graph + " --data " + (dir / "both.h5").string() + " --out " + model +
+                        " --epochs 1 --k 16 -q",
+                    out) == 0);
+  REQUIRE(test::run(drape + "model info " + model, out) == 0);
+  CHECK_THAT(out, Catch::Contains("sizes: chosen for each body by the tailor's rule") && Catch::Contains("6xlarge"));
+  REQUIRE(test::run(drape + "eval --model " + model + " --data " + (dir / "both.h5").string() + " --split all", out) == 0);
+
+  // predict at BMI 55 wears the size the scene's own chart gives that body.
+  BodyRequest heavy;
+  heavy.bmi = 55;
+  const Simulation& design = chart.design();
+  const SizeChoice expected = chart.choose(design.body_vertices(design.shape_for(heavy)));
+  REQUIRE(expected.size != "regular");
+  REQUIRE(test::run(drape + "predict --model " + model + " --bmi 55 --out " + (dir / "auto.obj").string(), out) == 0);
+  CHECK_THAT(out, Catch::Contains("size " + expected.size + " by the tailor's rule"));
+  REQUIRE(test::run(drape + "predict --model " + model + " --bmi 55 --garment-size " + expected.size + " --out " +
+                        (dir / "named.obj").string(),
+                    out) == 0);
+  REQUIRE(test::run(drape + "predict --model " + model + " --bmi 55 --garment-size regular --out " +
+                        (dir / "regular.obj").string(),
+                    out) == 0);
+  REQUIRE(test::run(drape + "predict --model " + model + " --bmi 55 --garment-grade 1 --out " + (dir / "one.obj").string(),
+                    out) == 0);
+  const auto text_of = [&](const char* name) {
+    std::ifstream f(dir / name);
+    return std::string((std::istreambuf_iterator<char>(f)), {});
+  };
+  CHECK(text_of("auto.obj") == text_of("named.obj"));
+  CHECK(text_of("regular.obj") == text_of("one.obj"));
+  CHECK(text_of("auto.obj") != text_of("regular.obj"));
+  // A size the chart does not know, a grade out of range, and both at once.
+  CHECK(test::run(drape + "predict --model " + model + " --bmi 30 --garment-size huge --out x.obj", out) == 2);
+  CHECK_THAT(out, Catch::Contains("small, regular, large"));
+  CHECK(test::run(drape + "predict --model " + model + " --bmi 30 --garment-grade 7 --out x.obj", out) == 2);
+  CHECK_THAT(out, Catch::Contains("outside"));
+  CHECK(test::run(drape + "predict --model " + model + " --bmi 30 --garment-grade 1 --garment-size small --out x.obj", out) == 2);
+}

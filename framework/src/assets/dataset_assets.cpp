@@ -2,6 +2,7 @@
 #include <drape/assets/dataset_assets.hpp>
 #include <drape/errors.hpp>
 #include <drape/io/dataset.hpp>
+#include <drape/scene/garment_size.hpp>
 #include <drape/scene/scene.hpp>
 #include <drape/training/model.hpp>
 
@@ -13,7 +14,9 @@ std::shared_ptr<const Assets> assets_for_dataset(const Registry& registry, const
                                                  const fs::path& data, int eigen_k, const fs::path& cache_dir,
                                                  AssetsSpec* spec) {
   const DatasetLayout& layout = reader.layout();
-  const Scene scene = parse_scene(layout.scene, data.string() + " (scene attribute)");
+  Scene scene = parse_scene(layout.scene, data.string() + " (scene attribute)");
+  // Drapes in each body's own size share the design size's template.
+  if (garment_size_is_auto(scene)) scene = with_garment_size(scene, default_garment_size(registry, scene));
   const AssetsSpec assets_spec = assets_spec_for(scene, eigen_k);
   auto assets = build_assets(registry, assets_spec, cache_dir);
   check_dataset_template(reader, data, *assets);

@@ -7,6 +7,8 @@
 #include <drape/scene/scene.hpp>
 
 #include <algorithm>
+#include <limits>
+#include <map>
 #include <optional>
 
 namespace fs = std::filesystem;
@@ -30,10 +32,36 @@ double garment_size_from_scene(const fs::path& shard, const std::string& scene_t
   }
 }
 
-void add_garment_size_stat(DatasetLayout& layout) {
-  if (layout.has_stat(kGarmentSize)) return;
-  layout.stats.push_back(kGarmentSize);
-  std::sort(layout.stats.begin(), layout.stats.end());
+constexpr const char* kGarmentGrade = "garment_grade";
+
+// The garment_grade of a shard made before drape generate recorded it: its
+// scene's grade, when every sample wears the design size (size flag 0).
+double garment_grade_from_scene(const fs::path& shard, const h5::File& file, const DatasetLayout& layout) {
+  const bool design = layout.has_stat(kGarmentSize) ? [&] {
+    for (double f : file.read<double>(stat_path(kGarmentSize)))
+      if (f != 0.0) return false;
+    return true;
+  }() : garment_size_from_scene(shard, layout.scene) == 0.0;
+  if (!design)
+    throw ConfigError(shard.string() + ": has no garment_grade statistic and its samples wear another size than the "
+                      "design size (made before drape generate recorded it): generate it again");
+  return parse_scene(layout.scene, shard.string() + " (its stored scene)").garment_grade;
+}
+
+// With --mixed-sizes, what a shard lacks of the other shards' statistics, as
+// a value for all its rows: its size flag and grade from its scene, and NaN
+// ("not measured") for the rest, e.g. the energy of an effect its scene did
+// not have.
+std::map<std::string, double> missing_stat_fills(const fs::path& shard, const h5::File& file, const DatasetLayout& layout,
+                                                 const std::vector<std::string>& all_stats) {
+  std::map<std::string, double> fills;
+  for (const std::string& name : all_stats) {
+    if (layout.has_stat(name)) continue;
+    fills[name] = name == kGarmentSize    ? garment_size_from_scene(shard, layout.scene)
+                  : name == kGarmentGrade ? garment_grade_from_scene(shard, file, layout)
+                                          : std::numeric_limits<double>::quiet_NaN();
+  }
+  return fills;
 }
 
 // What the output gets of the body vertices: none (slim), or each shard's
@@ -45,9 +73,9 @@ struct BodyVertices {
 };
 
 // Copies `count` rows starting at `from` in `in` to row `to` of `out`, for
-// every array; a shard without the garment_size statistic gets `size_fill`.
+// every array; a statistic the shard lacks gets its value in `fills`.
 void copy_rows(const h5::File& in, bool in_has_bodies, h5::File& out, const DatasetLayout& layout, std::size_t from,
-               std::size_t to, std::size_t count, std::optional<double> size_fill, const BodyVertices& bodies) {
+               std::size_t to, std::size_t count, const std::map<std::string, double>& fills, const BodyVertices& bodies) {
   auto copy = [&](const std::string& dataset, std::size_t row_size, auto tag) {
     using T = decltype(tag);
     std::vector<T> rows(count * row_size);
@@ -67,8 +95,8 @@ void copy_rows(const h5::File& in, bool in_has_bodies, h5::File& out, const Data
   copy(kGarmentVertices, static_cast<std::size_t>(layout.garment_vertices) * 3, float{});
   copy(kSplit, 1, std::int8_t{});
   for (const auto& name : layout.stats) {
-    if (name == kGarmentSize && size_fill) {
-      const std::vector<double> fill(count, *size_fill);
+    if (const auto f = fills.find(name); f != fills.end()) {
+      const std::vector<double> fill(count, f->second);
       out.write_rows(stat_path(name), to, count, fill.data());
     } else {
       copy(stat_path(name), 1, double{});
@@ -86,30 +114,48 @@ std::size_t merge(const std::vector<fs::path>& shards, const fs::path& out, bool
   DatasetLayout merged;
   std::size_t total = 0;
   std::string templates;
-  std::vector<std::optional<double>> size_fill;  // per shard: its flag when it has no garment_size statistic
-  std::vector<bool> has_bodies;                  // per shard: false for a slim one
+  std::vector<std::map<std::string, double>> fills;  // per shard: the statistics it lacks (--mixed-sizes)
+  std::vector<bool> has_bodies;                       // per shard: false for a slim one
+  std::vector<DatasetLayout> layouts;
+  std::vector<std::string> all_stats;  // with --mixed-sizes: every shard's, and the size flag and grade
   for (const auto& shard : shards) {
     if (fs::exists(out) && fs::equivalent(shard, out)) throw ConfigError(shard.string() + ": the output is also a shard");
     files.push_back(h5::File::open(shard));
-    DatasetLayout layout = read_layout(files.back());
+    layouts.push_back(read_layout(files.back()));
+    for (const std::string& name : layouts.back().stats) all_stats.push_back(name);
+  }
+  if (mixed_sizes) {
+    all_stats.push_back(kGarmentSize);
+    all_stats.push_back(kGarmentGrade);
+    std::sort(all_stats.begin(), all_stats.end());
+    all_stats.erase(std::unique(all_stats.begin(), all_stats.end()), all_stats.end());
+  }
+  std::string size_chart;  // a size_chart attribute every shard that has one agrees on
+  for (std::size_t k = 0; k < shards.size(); ++k) {
+    const fs::path& shard = shards[k];
+    DatasetLayout layout = layouts[k];
     has_bodies.push_back(layout.body_vertices_stored);
     if (bodies.write && !layout.body_vertices_stored && !bodies.rebuild)
       throw ConfigError(shard.string() + ": a slim dataset (no body vertices); join slim shards with `drape dataset expand`");
     if (!layout.body_vertices_stored && bodies.rebuild) dataset_body_model(bodies.rebuild, layout, shard.string());
     layout.body_vertices_stored = bodies.write;  // compared across shards as the output will hold them
-    done.push_back(files.back().read<std::uint8_t>(kDone));
+    done.push_back(files[k].read<std::uint8_t>(kDone));
     const std::size_t n = static_cast<std::size_t>(std::count(done.back().begin(), done.back().end(), 1));
-    size_fill.emplace_back();
-    if (mixed_sizes && !layout.has_stat(kGarmentSize)) {
-      // Made before the statistic existed: every sample has its scene's size.
-      size_fill.back() = garment_size_from_scene(shard, layout.scene);
-      add_garment_size_stat(layout);
+    fills.emplace_back();
+    if (mixed_sizes) {
+      fills.back() = missing_stat_fills(shard, files[k], layout, all_stats);
+      layout.stats = all_stats;
+      if (const auto chart = layout.attributes.find("size_chart"); chart != layout.attributes.end()) {
+        if (!size_chart.empty() && size_chart != chart->second)
+          throw ConfigError(shard.string() + ": its size chart differs from another shard's (another garment?)");
+        size_chart = chart->second;
+      }
     }
     templates += (templates.empty() ? "" : ",") + layout.template_hash;
     if (require_complete && n != layout.samples)
       throw ConfigError(shard.string() + ": only " + std::to_string(n) + " of " + std::to_string(layout.samples) +
                         " samples are done; finish generating it first");
-    if (files.size() == 1) {
+    if (k == 0) {
       merged = layout;
     } else {
       DatasetLayout same = layout;
@@ -138,6 +184,7 @@ std::size_t merge(const std::vector<fs::path>& shards, const fs::path& out, bool
   }
   merged.attributes["merged_from"] = names;
   if (mixed_sizes) merged.attributes["templates"] = templates;
+  if (!size_chart.empty()) merged.attributes["size_chart"] = size_chart;
 
   write_atomically(out, [&](const fs::path& tmp) {
     h5::File result = h5::File::create(tmp);
@@ -155,7 +202,7 @@ std::size_t merge(const std::vector<fs::path>& shards, const fs::path& out, bool
         }
         std::size_t run = 1;
         while (i + run < d.size() && d[i + run] && run < kBlock) ++run;
-        copy_rows(files[s], has_bodies[s], result, merged, i, to, run, size_fill[s], bodies);
+        copy_rows(files[s], has_bodies[s], result, merged, i, to, run, fills[s], bodies);
         i += run;
         to += run;
       }
@@ -182,8 +229,8 @@ std::size_t slim_dataset(const fs::path& in, const fs::path& out) {
 }
 
 std::size_t expand_datasets(const std::vector<fs::path>& shards, const fs::path& out, const BodyModel& body_model,
-                            bool require_complete, const std::function<void()>& rebuilt) {
-  return merge(shards, out, require_complete, false, BodyVertices{.write = true, .rebuild = &body_model, .rebuilt = rebuilt});
+                            bool require_complete, const std::function<void()>& rebuilt, bool mixed_sizes) {
+  return merge(shards, out, require_complete, mixed_sizes, BodyVertices{.write = true, .rebuild = &body_model, .rebuilt = rebuilt});
 }
 
 }  // namespace drape

@@ -38,26 +38,6 @@ std::vector<geometry::Girth> band_girths(const Eigen::MatrixX3d& vertices, const
 
 }  // namespace
 
-double SizeChoice::garment_girth(const std::string& s) const {
-  for (const auto& [name, g] : girth)
-    if (name == s) return g;
-  return 0.0;
-}
-
-std::string SizeChoice::summary() const {
-  char head[160];
-  std::snprintf(head, sizeof head, "body girth %.3f m (chest or belly); design ease %.1f %%; ease by size:", body_girth,
-                100.0 * design_ease);
-  std::string out = head;
-  for (const auto& [name, g] : girth) {
-    char item[64];
-    std::snprintf(item, sizeof item, " %s %+.1f %%", name.c_str(), 100.0 * ease(name));
-    out += item;
-  }
-  if (size.empty()) return out + ": no size is as large as the body, the garment does not fit it";
-  return out + ": size " + size;
-}
-
 std::string default_garment_size(const Registry& registry, const Scene& scene) {
   const ParamSpec* spec = size_spec(registry, scene);
   if (!spec) throw ConfigError("garment '" + scene.garment + "' has no sizes to choose from (size: auto)");
@@ -72,7 +52,12 @@ bool garment_size_is_auto(const Scene& scene) {
 Scene with_garment_size(const Scene& scene, const std::string& size) {
   Scene out = scene;
   const auto it = scene.garment_params.find("size");
-  out.garment_params["size"] = ParamValue{YAML::Node(size), it != scene.garment_params.end() ? it->second.where : SourceLocation{}};
+  const SourceLocation where = it != scene.garment_params.end() ? it->second.where : SourceLocation{};
+  // Erased and inserted, not assigned: a yaml-cpp node assigned to rebinds
+  // the node it shares with `scene` (and every copy of it), so assigning
+  // here wrote the last size built into the scene a dataset stores.
+  out.garment_params.erase("size");
+  out.garment_params.emplace("size", ParamValue{YAML::Node(size), where});
   return out;
 }
 
@@ -125,11 +110,12 @@ SizeChart::SizeChart(const Registry& registry, const Scene& scene) {
       throw ConfigError("size " + s + " of garment '" + scene.garment + "': no loop of it goes around the body to measure");
     if (s == design_size_) design_girth = narrowest;
     sizes_.push_back(s);
-    girth_.emplace_back(s, narrowest);
+    table_.girth.emplace_back(s, narrowest);
     simulations_.push_back(std::move(sim));
   }
   const Simulation& d = design();
-  design_ease_ = design_girth / body_girth(d.mean_body(), d.body_model().faces()) - 1.0;
+  table_.design = design_size_;
+  table_.design_ease = design_girth / body_girth(d.mean_body(), d.body_model().faces()) - 1.0;
 }
 
 SizeChart::~SizeChart() = default;
@@ -144,19 +130,7 @@ SizeChoice SizeChart::choose(const Eigen::MatrixX3d& body) const {
   const Simulation& d = design();
   require_vertex_count(body.rows(), d.mean_body().rows(), "the body",
                        "the scene's body model '" + d.scene().body_model + "'");
-  SizeChoice choice;
-  choice.girth = girth_;
-  choice.design_ease = design_ease_;
-  choice.body_girth = body_girth(body, d.body_model().faces());
-  double best = std::numeric_limits<double>::infinity();
-  for (const std::string& s : sizes_) {
-    const double ease = choice.ease(s);
-    if (ease >= kMinimumEase && std::abs(ease - design_ease_) < best) {
-      best = std::abs(ease - design_ease_);
-      choice.size = s;
-    }
-  }
-  return choice;
+  return table_.choose(body_girth(body, d.body_model().faces()));
 }
 
 SceneSimulations::SceneSimulations(const Registry& registry, const Scene& scene) : garment_(scene.garment) {

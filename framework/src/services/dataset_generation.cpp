@@ -60,6 +60,18 @@ void check_bmi_range(const GenerateRequest& r, const Simulation& sim, const Scen
   }
 }
 
+// The garment_grade of every sample of a scene without size: auto: the
+// scene's grade, times its size's grade when the garment has sizes and the
+// scene names one other than the design size (measured on the size chart).
+double fixed_garment_grade(const Registry& registry, const Scene& scene, const SceneSimulations& simulations) {
+  if (simulations.auto_size()) return 0.0;  // per sample
+  const auto size = scene.garment_params.find("size");
+  if (size == scene.garment_params.end() || !size->second.node.IsScalar()) return scene.garment_grade;
+  const std::string name = size->second.node.as<std::string>();
+  if (name == default_garment_size(registry, scene)) return scene.garment_grade;
+  return scene.garment_grade * SizeChart(registry, scene).table().grade(name);
+}
+
 std::string ranges_text(const GenerateRequest& r) {
   std::ostringstream o;
   o << "bmi " << r.bmi.lo << ":" << r.bmi.hi << ", height " << r.height.lo << ":" << r.height.hi << ", sex " << r.sex.lo
@@ -77,8 +89,12 @@ DatasetLayout layout_of(const Scene& scene, const SceneSimulations& simulations,
   layout.garment_vertices = sim.garment().mesh.num_vertices();
   layout.stats = generated_statistics(scene);
   layout.scene = scene.yaml();
-  if (simulations.auto_size())
+  if (simulations.auto_size()) {
     layout.attributes["garment_sizes"] = "auto: each sample's size in its garment_size statistic (docs/garments.md)";
+    // The tailor's rule in numbers, for a model trained on these drapes to
+    // choose a body's size by (drape predict --garment-size auto).
+    layout.attributes["size_chart"] = simulations.chart()->table().to_text();
+  }
   layout.template_hash = template_hash(sim.garment().mesh, sim.body_model().faces());
   layout.garment_faces = sim.garment().mesh.faces;  // for readers without drape's assets (h5py, torch)
   layout.attributes["generator"] = "drape generate: " + ranges_text(request);
@@ -112,7 +128,7 @@ std::string sample_name(std::size_t global, const BodyRequest& request) {
 }
 
 DatasetSample sample_of(const SimulationResult& r, const Eigen::VectorXd& shape, const BodyRequest& request,
-                        std::size_t global, Split split, double size_flag) {
+                        std::size_t global, Split split, double size_flag, double grade) {
   namespace st = sample_stat;
   DatasetSample s;
   s.body_params = shape.cast<float>();
@@ -134,6 +150,7 @@ DatasetSample sample_of(const SimulationResult& r, const Eigen::VectorXd& shape,
   s.stats[st::sex] = request.sex;
   s.stats[st::global_index] = static_cast<double>(global);
   s.stats[st::garment_size] = size_flag;
+  s.stats[st::garment_grade] = grade;
   return s;
 }
 
@@ -145,7 +162,7 @@ std::vector<std::string> generated_statistics(const Scene& scene) {
   for (const auto& e : scene.effects) names.push_back("energy_" + e.name);
   for (const char* s : {st::energy_total, st::penetration, st::crossings, st::residual, st::stationarity, st::converged,
                         st::iterations, st::steps, st::seconds, st::bmi, st::height, st::sex, st::global_index,
-                        st::garment_size})
+                        st::garment_size, st::garment_grade})
     names.push_back(s);
   return names;
 }
@@ -163,6 +180,7 @@ GenerateSummary generate_dataset(const Registry& registry, const Scene& scene, c
   check_bmi_range(request, sim, scene);
   // The size flag of a graph trained on several sizes (garment_size_flag).
   const double design_size = garment_size_flag(sim.scene());
+  const double design_grade = fixed_garment_grade(registry, scene, simulations);
   const std::size_t first = request.shard.first(request.count);
   const std::vector<Split> split = splits(request.count, request.seed);
 
@@ -203,6 +221,8 @@ GenerateSummary generate_dataset(const Registry& registry, const Scene& scene, c
       SizeChoice choice;
       const Simulation& wearing = simulations.for_body(body, who, &choice);
       const double size_flag = simulations.auto_size() ? garment_size_flag(choice.size) : design_size;
+      const double grade =
+          simulations.auto_size() ? scene.garment_grade * simulations.chart()->table().grade(choice.size) : design_grade;
       const SimulationResult r = [&] {
         try {
           return wearing.run(body);
@@ -210,7 +230,7 @@ GenerateSummary generate_dataset(const Registry& registry, const Scene& scene, c
           throw ConfigError(who + ": " + e.what());
         }
       }();
-      const DatasetSample s = sample_of(r, shape, body_request, global, split[global], size_flag);
+      const DatasetSample s = sample_of(r, shape, body_request, global, split[global], size_flag, grade);
       if (!r.converged) ++not_settled;
       if (r.penetration > 0) ++penetrating;
       if (r.crossings && r.crossings->total() > 0) ++crossing;

@@ -66,6 +66,49 @@ void note_fit(const Model& model, double garment_loop, const SampleBatch& batch,
 
 }  // namespace
 
+std::optional<double> requested_garment_grade(const Model& model, const std::optional<std::string>& size,
+                                              const std::optional<double>& grade) {
+  if (grade && size) throw ConfigError("give the garment's size or its grade, not both");
+  if (grade) {
+    const double g = *grade;
+    if (!(g >= kModelMinGrade && g <= kModelMaxGrade))
+      throw ConfigError("garment grade " + std::to_string(g) + " is outside " + std::to_string(kModelMinGrade).substr(0, 3) +
+                        "-" + std::to_string(kModelMaxGrade).substr(0, 3) + " (the garment's girth over its design size's)");
+    return g;
+  }
+  if (!size || *size == "auto") return std::nullopt;
+  const std::optional<SizeTable> chart = model_size_chart(model);
+  if (!chart)
+    throw ConfigError("this model records no size chart to name sizes by: give the garment's grade as a number");
+  return chart->grade(*size);
+}
+
+namespace {
+
+// The size the tailor's rule gives each body of a batch that has no grade yet.
+void choose_sizes(const SizeTable& chart, const Model& model, SampleBatch& batch, bool strict,
+                  const std::string& strict_option, std::vector<Notice>& notices) {
+  const int n = batch.size();
+  batch.garment_grade = Tensor(n, 1, 1);
+  for (int i = 0; i < n; ++i) {
+    SizeChoice choice = chart.choose(body_girth(batch.body.mat(i).cast<double>(), model.assets().body.faces));
+    if (choice.size.empty()) {
+      const std::string why = about(batch, i) + "no size of the garment fits this body (" + choice.summary() + ")";
+      if (strict) throw ConfigError(strict_option + ": " + why);
+      choice.size = chart.girth.back().first;
+      notices.push_back({Notice::Level::warning, why + "; predicted in the largest, " + choice.size});
+    } else {
+      char line[200];
+      std::snprintf(line, sizeof line, "size %s by the tailor's rule (body girth %.2f m, ease %+.1f %%; --garment-size "
+                                       "names another)", choice.size.c_str(), choice.body_girth, 100.0 * choice.ease(choice.size));
+      notices.push_back({Notice::Level::note, about(batch, i) + line});
+    }
+    batch.garment_grade(i, 0, 0) = static_cast<float>(chart.grade(choice.size));
+  }
+}
+
+}  // namespace
+
 SampleBatch model_body_batch(const Model& model, const ModelBodyInput& input) {
   if (input.vertices.has_value() == input.request.has_value())
     throw ConfigError("a body: give either its vertices or a request for the model's body plugin");
@@ -92,13 +135,27 @@ SampleBatch model_body_batch(const Model& model, const ModelBodyInput& input) {
     batch.garment_size = Tensor(1, 1, 1);
     batch.garment_size(0, 0, 0) = garment_size_flag(*input.garment_size);
   }
+  if (model.needs_input("garment_grade")) {
+    const std::optional<double> grade = requested_garment_grade(model, input.garment_size, input.garment_grade);
+    if (grade) batch.garment_grade = Tensor(1, 1, 1, static_cast<float>(*grade));  // else prepare() chooses
+  } else if (input.garment_grade || (input.garment_size && !model.needs_input("garment_size"))) {
+    throw ConfigError("this model was trained on one garment size and takes none; leave the garment size out");
+  }
   return batch;
+}
+
+std::optional<SizeTable> model_size_chart(const Model& model) {
+  const auto& meta = model.checkpoint().meta;
+  const auto chart = meta.find("size_chart");
+  if (chart == meta.end()) return std::nullopt;
+  return SizeTable::parse(chart->second, model.file().filename().string() + "'s size_chart");
 }
 
 BodyPreparation::BodyPreparation(const Model& model, std::optional<ModelDomain> domain)
     : model_(model), domain_(std::move(domain)), garment_loop_(std::numeric_limits<double>::quiet_NaN()) {
-  // A model of several sizes takes the size from its user: no fit to note.
-  if (!model.needs_input("garment_size")) {
+  if (model.needs_input("garment_grade")) size_chart_ = model_size_chart(model);
+  // A model of several sizes takes the size from its user or chooses it: no fit to note.
+  if (!model.needs_input("garment_size") && !model.needs_input("garment_grade")) {
     const Assets& a = model.assets();
     garment_loop_ = garment_girth(a.garment->mesh.vertices, a.garment->mesh.faces, a.body.vertices);
   }
@@ -108,6 +165,11 @@ PreparedBodies BodyPreparation::prepare(SampleBatch& batch, bool strict, const s
                                         bool measure) const {
   PreparedBodies out;
   out.moved_by.assign(static_cast<std::size_t>(batch.size()), Eigen::RowVector3d::Zero());
+  if (model_.needs_input("garment_grade") && batch.garment_grade.empty()) {
+    if (!size_chart_)
+      throw ConfigError("this model takes the garment's grade and records no size chart to choose one by: give the grade");
+    choose_sizes(*size_chart_, model_, batch, strict, strict_option, out.notices);
+  }
   if (measure && !domain_ && !model_.file().empty()) {  // an untrained model in memory has no file to record one in
     const std::string name = model_.file().filename().string();
     if (strict)

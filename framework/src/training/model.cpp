@@ -15,7 +15,7 @@ namespace fs = std::filesystem;
 namespace drape {
 namespace {
 
-const std::vector<std::string> kKnownInputs{"body", "body_params", "target", "garment_size"};
+const std::vector<std::string> kKnownInputs{"body", "body_params", "target", "garment_size", "garment_grade"};
 
 // A parameter value as one line of flow YAML, as AssetsSpec::yaml() writes it.
 std::string flow(const YAML::Node& node) {
@@ -97,7 +97,7 @@ AssetsSpec assets_spec_for(const Scene& scene, int eigen_k, int levels) {
 
 SampleBatch SampleBatch::slice(int first, int count) const {
   return {slice_tensor(body, first, count), slice_tensor(body_params, first, count), slice_tensor(target, first, count),
-          slice_tensor(garment_size, first, count)};
+          slice_tensor(garment_size, first, count), slice_tensor(garment_grade, first, count)};
 }
 
 std::map<std::string, int> graph_dims(const Assets& assets, int body_params) {
@@ -111,7 +111,7 @@ void check_graph_inputs(const GraphSpec& spec) {
     if (std::find(kKnownInputs.begin(), kKnownInputs.end(), name) == kKnownInputs.end())
       throw ConfigError(shape.second, "graph input '" + name + "' is not one drape feeds" + did_you_mean(name, kKnownInputs) +
                                           " (inputs: body [body_vertices, 3], body_params [1, body_params], target "
-                                          "[garment_vertices, 3], garment_size [1, 1])");
+                                          "[garment_vertices, 3], garment_size [1, 1], garment_grade [1, 1])");
 }
 
 std::map<std::string, Tensor> graph_inputs(const Graph& graph, const SampleBatch& batch, bool with_target) {
@@ -120,7 +120,8 @@ std::map<std::string, Tensor> graph_inputs(const Graph& graph, const SampleBatch
     const Tensor* t = name == "body"          ? &batch.body
                       : name == "body_params"  ? &batch.body_params
                       : name == "garment_size" ? &batch.garment_size
-                                               : &batch.target;
+                      : name == "garment_grade" ? &batch.garment_grade
+                                                : &batch.target;
     if (name == "target" && !with_target) continue;
     if (t->empty()) throw ConfigError("the graph takes input '" + name + "', which is not available here");
     in[name] = *t;
@@ -242,7 +243,30 @@ void require_garment_size(const DatasetLayout& layout) {
                       "by drape generate since it records one)");
 }
 
+Tensor column(const std::vector<double>& values) {
+  Tensor t(static_cast<int>(values.size()), 1, 1);
+  for (std::size_t i = 0; i < values.size(); ++i) t(static_cast<int>(i), 0, 0) = static_cast<float>(values[i]);
+  return t;
+}
+
 }  // namespace
+
+std::vector<double> garment_grades(const DatasetReader& reader, const std::vector<std::size_t>& indices) {
+  const DatasetLayout& layout = reader.layout();
+  if (layout.has_stat("garment_grade")) return reader.stat("garment_grade", indices);
+  // Made before the statistic: every sample wears its scene's garment, which
+  // is the design size when the size flag says regular (0) or is absent.
+  const bool design_size = !layout.has_stat("garment_size") || [&] {
+    for (double f : reader.stat("garment_size", indices))
+      if (f != 0.0) return false;
+    return true;
+  }();
+  if (!design_size)
+    throw ConfigError("the graph takes garment_grade, but the dataset has no garment_grade statistic and its samples wear "
+                      "other sizes than the design size (made before drape generate recorded it): generate it again");
+  const Scene scene = parse_scene(layout.scene, "the dataset's stored scene");
+  return std::vector<double>(indices.size(), scene.garment_grade);
+}
 
 SampleBatch read_samples(const DatasetReader& reader, const std::vector<std::size_t>& indices, const Graph& graph,
                          bool with_target) {
@@ -256,6 +280,7 @@ SampleBatch read_samples(const DatasetReader& reader, const std::vector<std::siz
     b.garment_size = Tensor(static_cast<int>(indices.size()), 1, 1);
     for (std::size_t i = 0; i < size.size(); ++i) b.garment_size(static_cast<int>(i), 0, 0) = static_cast<float>(size[i]);
   }
+  if (takes(graph, "garment_grade")) b.garment_grade = column(garment_grades(reader, indices));
   return b;
 }
 
@@ -271,6 +296,12 @@ SampleBatch sample_batch(const DatasetSample& sample, const DatasetLayout& layou
     require_garment_size(layout);
     b.garment_size = Tensor(1, 1, 1);
     b.garment_size(0, 0, 0) = static_cast<float>(sample.stats.at("garment_size"));
+  }
+  if (takes(graph, "garment_grade")) {
+    const auto grade = sample.stats.find("garment_grade");
+    if (grade == sample.stats.end())
+      throw ConfigError("the graph takes garment_grade, but the sample has no garment_grade statistic");
+    b.garment_grade = column({grade->second});
   }
   return b;
 }

@@ -136,6 +136,7 @@ struct TrainingData {
   AssetsSpec assets_spec;
   std::shared_ptr<const Assets> assets;
   std::string ground_truth;
+  std::string size_chart;  // the dataset's, when its drapes wear each body's own size (size_table.hpp)
   std::vector<std::size_t> train_idx, val_idx;
 };
 
@@ -150,6 +151,8 @@ TrainingData load_training_data(const Registry& registry, const DatasetReader& r
     data.assets = assets_for_dataset(registry, reader, o.data, o.eigen_k, o.cache_dir, &data.assets_spec);
   }
   data.ground_truth = ground_truth_of(layout, o.data);
+  if (const auto chart = layout.attributes.find("size_chart"); chart != layout.attributes.end())
+    data.size_chart = chart->second;
   // An optimised dataset's drapes that are not results lie inside the body: left out.
   const std::vector<std::size_t> train_all = reader.training_indices(o.train_fraction), val_all = reader.indices(Split::Val);
   data.train_idx = optimizer_results(reader, train_all);
@@ -311,8 +314,12 @@ void save(const Run& run) {
   std::map<std::string, std::string> meta = run.settings;
   meta["assets_hash"] = run.data.assets->hash;
   meta["output"] = run.output;
-  meta["dataset"] = fs::absolute(o.data).string();
+  // Its file name only: a folder is where one person kept it, and a shipped
+  // model would print an author's home to everyone (`drape model info`).
+  meta["dataset"] = fs::path(o.data).filename().string();
   if (!run.data.ground_truth.empty()) meta["ground_truth"] = run.data.ground_truth;
+  // What predict chooses a body's size by (--garment-size auto).
+  if (!run.data.size_chart.empty()) meta["size_chart"] = run.data.size_chart;
   meta["epochs"] = std::to_string(o.epochs);
   meta["epoch"] = std::to_string(run.progress.epochs_done);
   meta["best_epoch"] = std::to_string(run.report.best_epoch);

@@ -207,6 +207,6 @@ std::size_t slim_dataset(const std::filesystem::path& in, const std::filesystem:
 // about 20 ms a body on the parametric model).
 std::size_t expand_datasets(const std::vector<std::filesystem::path>& shards, const std::filesystem::path& out,
                             const BodyModel& body_model, bool require_complete = true,
-                            const std::function<void()>& rebuilt = {});
+                            const std::function<void()>& rebuilt = {}, bool mixed_sizes = false);
 
 }  // namespace drape

@@ -20,6 +20,7 @@
 #include <drape/registry.hpp>
 #include <drape/scene/scene.hpp>
 #include <drape/scene/simulation.hpp>
+#include <drape/scene/size_table.hpp>
 
 #include <Eigen/Core>
 
@@ -30,18 +31,6 @@
 
 namespace drape {
 
-struct SizeChoice {
-  std::string size;                                   // empty when no size fits
-  double body_girth = 0.0;                            // m
-  double design_ease = 0.0;                           // the default size's ease on the mean body
-  std::vector<std::pair<std::string, double>> girth;  // every size's girth, m, smallest size first
-  double garment_girth(const std::string& s) const;   // m, of size s (0 when unknown)
-  double ease(const std::string& s) const { return garment_girth(s) / body_girth - 1.0; }
-  // One line: the measurements and the choice, or why nothing fits.
-  std::string summary() const;
-};
-
-inline constexpr double kMinimumEase = 0.0;
 inline constexpr double kGirthBandLow = 0.58, kGirthBandHigh = 0.72;  // fractions of the height
 
 // True when the scene's garment has a `size` parameter set to "auto".
@@ -75,6 +64,8 @@ class SizeChart {
   // The size for `body` (the scene body model's topology).
   SizeChoice choose(const Eigen::MatrixX3d& body) const;
   const std::vector<std::string>& sizes() const { return sizes_; }
+  // The sizes' girths, design size and ease: what a dataset and a model keep.
+  const SizeTable& table() const { return table_; }
   // The scene with that size (one of sizes()), ready to run; the default
   // size's gives the scene's body model and bodies.
   const Simulation& simulation(const std::string& size) const;
@@ -84,8 +75,7 @@ class SizeChart {
   std::vector<std::string> sizes_;
   std::string design_size_;
   std::vector<std::unique_ptr<Simulation>> simulations_;  // one per size, in the order of sizes_
-  std::vector<std::pair<std::string, double>> girth_;
-  double design_ease_ = 0.0;
+  SizeTable table_;
 };
 
 // What a command runs a scene with: its one Simulation, or with size: auto
@@ -98,6 +88,7 @@ class SceneSimulations {
   // the bodies and the dataset template come from it).
   const Simulation& design() const;
   bool auto_size() const { return chart_ != nullptr; }
+  const SizeChart* chart() const { return chart_.get(); }  // with size: auto
   // The simulation `body` is draped with: design() without size: auto, else
   // the size the chart chooses (into *choice when given). ConfigError
   // "<what>: garment ... does not fit this body: <summary>" when none fits.

@@ -62,6 +62,10 @@ inline constexpr const char* height = "height";
 inline constexpr const char* sex = "sex";
 inline constexpr const char* global_index = "global_index";
 inline constexpr const char* garment_size = "garment_size";
+// The grade of the garment the sample wears: its size's girth over the design
+// size's (size_table.hpp), times the scene's `garment: {grade}`; 1 for the
+// design size. What a graph with the input garment_grade reads.
+inline constexpr const char* garment_grade = "garment_grade";
 }  // namespace sample_stat
 // The statistic names of a scene's samples, in file order: energy_<effect>
 // per effect, then the sample_stat names above.

@@ -8,11 +8,13 @@
 //  - BodyPreparation::prepare: per body of a batch, moves a body standing away from
 //    where the training bodies stood there (model_domain.hpp, placement),
 //    checks the training domain, and notes a garment too small around for it
-//    (garment_size.hpp's tailor's rule). What it has to say comes back as
+//    (garment_size.hpp's tailor's rule); for a model of drapes in each body's
+//    own size, chooses the size by that rule unless the caller named one. What it has to say comes back as
 //    notices, for the face to print (CLI: "note: ..." on stderr) or warn
 //    (Python warnings).
 #include <drape/training/model.hpp>
 #include <drape/training/model_domain.hpp>
+#include <drape/scene/size_table.hpp>
 
 #include <Eigen/Core>
 #include <optional>
@@ -31,8 +33,17 @@ struct ModelBodyInput {
   std::optional<Eigen::MatrixX3d> vertices;  // a body mesh in the model's body topology, or
   std::optional<BodyRequest> request;        // a body of the model's own body plugin
   std::string name = "body";                 // names a given mesh in messages (its file)
-  std::optional<std::string> garment_size;   // for a model trained on several sizes
+  // For a model trained on several sizes (input garment_size: a size name),
+  // or on drapes in each body's own size (input garment_grade: a size name of
+  // its size chart, or "auto", the default: BodyPreparation::prepare chooses
+  // by the tailor's rule).
+  std::optional<std::string> garment_size;
+  std::optional<double> garment_grade;  // input garment_grade: a grade given as a number instead
 };
+
+// The grades a model taking garment_grade accepts (a grade is the garment's
+// girth over its design size's).
+inline constexpr double kModelMinGrade = 0.5, kModelMaxGrade = 2.5;
 
 // A batch of one. ConfigError for a mesh of the wrong vertex count (saying the
 // expected one), in other units, given to a graph that takes body parameters,
@@ -67,6 +78,18 @@ class BodyPreparation {
   const Model& model_;
   std::optional<ModelDomain> domain_;
   double garment_loop_;  // m, the model garment's narrowest loop on the mean body (NaN: none, or a sized model)
+  std::optional<SizeTable> size_chart_;  // a model taking garment_grade: its training data's size chart
 };
+
+// For a model taking garment_grade: the grade a caller asked for, a number
+// (checked against kModelMinGrade..kModelMaxGrade) or a size of the model's
+// size chart; none for "auto" or nothing (prepare() chooses per body).
+// ConfigError for both, an unknown size or a grade out of range.
+std::optional<double> requested_garment_grade(const Model& model, const std::optional<std::string>& size,
+                                              const std::optional<double>& grade);
+
+// The size chart a model taking garment_grade was trained with (its metadata
+// size_chart), none when it records none.
+std::optional<SizeTable> model_size_chart(const Model& model);
 
 }  // namespace drape

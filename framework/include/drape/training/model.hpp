@@ -41,6 +41,10 @@ struct SampleBatch {
   // [n, 1, 1]: which garment size each sample wears, the dataset statistic
   // garment_size (0 regular, 1 small), for graphs trained on several sizes.
   Tensor garment_size;
+  // [n, 1, 1]: the grade of the garment each sample wears (the dataset
+  // statistic garment_grade: its size's girth over the design size's), for
+  // graphs trained on drapes in each body's own size.
+  Tensor garment_grade;
   int size() const { return body.batch(); }
   // Samples first .. first+count-1 of every tensor that is present.
   SampleBatch slice(int first, int count) const;
@@ -82,6 +86,10 @@ float garment_size_flag(const std::string& size);
 float garment_size_flag(const Scene& scene);
 // "regular (0), small (1), large (2) or xlarge (3)": the sizes the flag knows, for messages.
 std::string garment_size_choices();
+// The garment_grade of dataset samples: the statistic, or for a dataset made
+// before drape recorded it whose samples all wear the design size, the
+// stored scene's grade. ConfigError otherwise.
+std::vector<double> garment_grades(const DatasetReader& reader, const std::vector<std::size_t>& indices);
 
 class Model {
  public:
