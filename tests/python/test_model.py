@@ -215,3 +215,32 @@ def test_predict_without_checks_skips_the_measurements_but_keeps_the_placement(m
     assert any("stands" in str(w.message) for w in unchecked)
     with pytest.raises(ValueError, match="strict=True needs check=True"):
         model.predict(body, strict=True, check=False)
+
+
+def test_a_model_of_every_size_chooses_the_size_like_the_program(tmp_path):
+    # A tiny model of drapes in each body's own size (graphs/sizes/drape_grade.yaml):
+    # Model.predict chooses the size as drape predict does, takes a size name or a
+    # grade, and refuses anything else by name.
+    (tmp_path / "auto.yaml").write_text(
+        "body: {model: parametric}\ngarment: {template: tshirt, params: {resolution: 300, size: auto}}\n"
+        "effects: [gravity, stretching, bending, collision]\nsolver: {morph_steps: 2, settle_steps: 2}\n")
+    run_drape("generate", tmp_path / "auto.yaml", "--count", "4", "--bmi", "15:60", "--seed", "2", "--out",
+              tmp_path / "d.h5", expect=(0, 1))  # 1: two settling steps leave drapes unsettled
+    run_drape("train", SOURCE / "graphs" / "sizes" / "drape_grade.yaml", "--data", tmp_path / "d.h5", "--out",
+              tmp_path / "m.h5", "--epochs", "1", "--k", "16", "-q")
+    sized = drape.Model.load(str(tmp_path / "m.h5"))
+    body = sized.body(bmi=50)
+    drape.write_obj(tmp_path / "body.obj", body, sized.assets.body_faces)
+    _, printed = run_drape("predict", "--model", tmp_path / "m.h5", "--body", tmp_path / "body.obj", "--out", tmp_path / "g.obj")
+    expected, _ = read_obj(tmp_path / "g.obj")
+    with pytest.warns(drape.DrapeWarning, match="by the tailor's rule") as notes:
+        chosen = sized.predict(body)
+    np.testing.assert_allclose(chosen, expected, atol=2e-5)
+    size = str(notes[0].message).split("size ")[1].split(" ")[0]
+    assert "size " + size + " by the tailor's rule" in printed
+    np.testing.assert_array_equal(sized.predict(body, garment_size=size), chosen)
+    np.testing.assert_array_equal(sized.predict(body, garment_size="regular"), sized.predict(body, garment_size=1.0))
+    assert not np.array_equal(sized.predict(body, garment_size="regular"), chosen)
+    for bad, match in (("huge", "small, regular"), (float("nan"), "outside"), (7, "outside"), ([1], "a size name")):
+        with pytest.raises(ValueError, match=match):
+            sized.predict(body, garment_size=bad)
