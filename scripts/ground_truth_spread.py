@@ -17,8 +17,9 @@ For each of --count samples of the split (spread evenly over their BMI), or of t
 simulates the stored body and its scaled copy with the scene, and prints per BMI band: the pair distance
 (ME between the two new drapes), the floor (half of it), each new drape's ME to the stored one (non-zero
 when the dataset was made by another build or thread count), and with --model the model's ME to the stored
-drapes of the same bodies. --out writes the per-body rows as CSV. Needs the drape Python module
-(build/python on PYTHONPATH) and h5py.
+drapes of the same bodies. --out writes the per-body rows as CSV. --data takes slim shards and globs as they
+are (drape.Dataset), e.g. --data 'datasets/bodyspace2000-friction/shard-*-of-40.h5'. Needs the drape Python
+module (build/python on PYTHONPATH).
 """
 import argparse
 import concurrent.futures
@@ -33,7 +34,7 @@ import numpy as np
 
 def parse_arguments(argv):
     p = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    p.add_argument("--data", required=True, help="a full drape dataset (drape generate, or drape dataset expand)")
+    p.add_argument("--data", required=True, help="a drape dataset: full or slim, one file or a quoted glob of shards")
     p.add_argument("--scene", required=True, help="the scene the dataset was simulated with")
     p.add_argument("--split", default="test", choices=["train", "val", "test", "all"])
     p.add_argument("--count", type=int, default=24, help="bodies, spread evenly over the split's BMI")
@@ -83,24 +84,28 @@ def main(argv):
     args = parse_arguments(argv)
     # One simulation per thread at a time: the solver's own threads would only contend.
     os.environ.setdefault("OMP_NUM_THREADS", "1")
-    import h5py
     import drape
 
-    with h5py.File(args.data, "r", locking=False) as f:
-        for name in ("bodies/vertices", "garments/vertices", "split", "stats/bmi"):
-            if name not in f:
-                raise SystemExit(f"{args.data}: no '{name}' (a slim shard? expand it with drape dataset expand)")
-        done = f["done"][:] if "done" in f else np.ones(len(f["split"]), np.uint8)
-        bmi = f["stats/bmi"][:]
-        if args.samples:
-            picks = np.array([int(i) for i in args.samples.split(",")])
-            bad = [int(i) for i in picks if not 0 <= i < len(done) or not done[i]]
-            if bad:
-                raise SystemExit(f"{args.data}: no finished sample {bad[0]} (the file has {len(done)})")
-        else:
-            picks = pick_samples(done, f["split"][:], bmi, args.split, args.count)
-        bodies = {int(i): f["bodies/vertices"][i].astype(np.float64) for i in picks}
-        stored = {int(i): f["garments/vertices"][i].astype(np.float64) for i in picks}
+    # drape.Dataset reads full and slim files (a slim shard's bodies are rebuilt
+    # from their shape parameters) and globs of several, as one.
+    data = drape.Dataset(args.data)
+    n = len(data)
+    if n == 0:
+        raise SystemExit(f"{args.data}: no finished samples")
+    split = np.full(n, -1, np.int8)
+    for name, code in SPLITS.items():
+        split[data.indices(name)] = code
+    bmi = data.stat("bmi", np.arange(n))
+    if args.samples:
+        picks = np.array([int(i) for i in args.samples.split(",")])
+        bad = [int(i) for i in picks if not 0 <= i < n]
+        if bad:
+            raise SystemExit(f"{args.data}: no finished sample {bad[0]} (the data has {n})")
+    else:
+        picks = pick_samples(np.ones(n, np.uint8), split, bmi, args.split, args.count)
+    batch = data.read(picks)
+    bodies = {int(i): batch["body"][k].astype(np.float64) for k, i in enumerate(picks)}
+    stored = {int(i): batch["garment"][k].astype(np.float64) for k, i in enumerate(picks)}
 
     model = drape.Model.load(args.model) if args.model else None
     scenes = {}
