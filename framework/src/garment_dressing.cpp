@@ -1,7 +1,9 @@
 #include <drape/energy.hpp>
 #include <drape/garment_dressing.hpp>
+#include <drape/garment_layers.hpp>
 
 #include <drape/errors.hpp>
+#include <drape/warnings.hpp>
 #include <drape/geometry/closest_point.hpp>
 
 #include <Eigen/Geometry>
@@ -102,6 +104,13 @@ DressReport dress(Garment& garment, const BodyQuery& body, const DressOptions& o
   // A final push so that the result never ends inside, whatever the smoothing did.
   push(false);
   report.pushed = static_cast<int>(std::count(moved.begin(), moved.end(), 1));
+  // A garment of several pieces: each outside the one under it (garment_layers.hpp).
+  if (options.lay_pieces) report.layers = separate_layers(garment, body);
+  if (report.layers.crossings > 0)
+    warn("the garment's " + std::to_string(report.layers.pieces) + " pieces still pass through each other at " +
+         std::to_string(report.layers.crossings) + " edge-face pairs after " + std::to_string(report.layers.moved) +
+         " vertices were moved out of the piece under them (garment_layers.hpp); the cloth's self-contact leaves "
+         "those places out");
   report.min_distance_after = INFINITY;
   for (int v = 0; v < nv; ++v)
     report.min_distance_after = std::min(report.min_distance_after, body.closest(x.row(v).transpose()).signed_distance);

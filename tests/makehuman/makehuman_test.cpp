@@ -5,6 +5,10 @@
 #include <drape/geometry/closest_point.hpp>
 #include <drape/geometry/topology.hpp>
 #include <drape/geometry/volume.hpp>
+#include <drape/geometry/surface_crossings.hpp>
+#include <drape/scene/scene.hpp>
+#include <drape/scene/simulation.hpp>
+#include <drape/garment_dressing.hpp>
 #include <drape/io/mesh_io.hpp>
 
 #include <catch2/catch.hpp>
@@ -211,4 +215,53 @@ TEST_CASE("MakeHuman clothes: any piece of an outfit binds to the body through i
   ParamValues other{{"path", {YAML::Node((dir / "mh").string()), {}}}};
   CHECK_THROWS_WITH(build(other), Catch::Contains("male_casualsuit04.mhclo") && Catch::Contains("base vertex 99999") &&
                                       Catch::Contains("another base mesh"));
+}
+
+// A whole outfit in one scene (issue 54, item 5): piece "0,1" is the T-shirt
+// and the jeans as one garment, each piece a material region of its own
+// fabric; dressing lays the shirt's hem outside the jeans' waistband, which
+// it would otherwise push through it.
+TEST_CASE("MakeHuman clothes: a two-piece outfit drapes as one garment, each piece its own fabric", "[makehuman]") {
+  if (!assets_present()) {
+    SUCCEED("skipped");
+    return;
+  }
+  const auto& d = test::plugins().get("makehuman_clothes");
+  ParamValues values = path_param();
+  values["piece"] = {YAML::Node("0, 1"), {}};
+  const Garment suit = test::plugins().create_garment("makehuman_clothes", Params(d.params, values, "suit"))->build();
+  CHECK(suit.mesh.num_vertices() == 810 + 886);
+  REQUIRE(suit.materials.size() == 2);
+  CHECK(suit.materials[0].name == "piece0");
+  CHECK(suit.materials[1].name == "piece1");
+  CHECK((suit.face_material.head(1528).array() == 0).all());  // the shirt's 1,528 triangles first
+  CHECK((suit.face_material.tail(suit.mesh.num_faces() - 1528).array() == 1).all());
+  // As fitted, the pieces are apart; dressed piece by piece on the body, the
+  // jeans' waistband goes through the shirt.
+  const Eigen::MatrixX3i shirt = suit.mesh.faces.topRows(1528), jeans = suit.mesh.faces.bottomRows(suit.mesh.num_faces() - 1528);
+  CHECK(geometry::surface_crossings(suit.mesh.vertices, shirt, suit.mesh.vertices, jeans).total() == 0);
+  const auto body = makehuman_body();
+  Mesh mean;
+  mean.vertices = body->vertices(body->mean_shape());
+  mean.faces = body->faces();
+  Garment unlaid = suit;
+  DressOptions no_layers;
+  no_layers.lay_pieces = false;
+  dress(unlaid, mean, no_layers);
+  CHECK(geometry::surface_crossings(unlaid.mesh.vertices, shirt, unlaid.mesh.vertices, jeans).total() > 0);
+
+  // The shipped scene: denim for the jeans, dressed into layers.
+  const Scene scene = load_scene(test::source_dir() / "graphs/scenes/makehuman_suit.yaml");
+  Scene with_path = scene;
+  with_path.garment_params["path"] = {YAML::Node((test::shared_assets() / "makehuman").string()), {}};
+  const Simulation sim(test::plugins(), with_path);
+  const Garment& g = sim.garment();
+  CHECK(geometry::surface_crossings(g.mesh.vertices, shirt, g.mesh.vertices, jeans).total() == 0);
+  REQUIRE(g.materials.size() == 2);
+  CHECK(g.materials[1].name == "piece1");
+  CHECK(g.materials[1].density > 1.5 * g.materials[0].density);  // 11 oz denim against the interlock knit
+  // A vertex in two named pieces is refused.
+  values["piece"] = {YAML::Node("0,0"), {}};
+  CHECK_THROWS_WITH(test::plugins().create_garment("makehuman_clothes", Params(d.params, values, "suit"))->build(),
+                    Catch::Contains("share vertex"));
 }

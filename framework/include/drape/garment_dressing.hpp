@@ -10,6 +10,7 @@
 // correction over the neighbouring vertices so the surface stays smooth. The
 // material space (UVs) is untouched: only the 3D rest/start state changes.
 #include <drape/energy.hpp>
+#include <drape/garment_layers.hpp>
 #include <drape/mesh.hpp>
 
 #include <string>
@@ -20,6 +21,7 @@ struct DressOptions {
   double margin = 0.01;     // m: wanted clearance between garment vertices and body
   int max_iterations = 30;  // push + smooth rounds
   int smoothing_steps = 3;  // displacement-averaging steps per round
+  bool lay_pieces = true;   // a garment of several pieces: each laid outside the one under it (garment_layers.hpp)
 };
 
 struct DressReport {
@@ -28,6 +30,7 @@ struct DressReport {
   int iterations = 0;
   double deepest_before = 0;      // m, largest penetration before dressing (>= 0)
   double min_distance_after = 0;  // m, smallest signed distance after dressing
+  LayerReport layers;             // a garment of several pieces: how they were laid in layers (garment_layers.hpp)
 };
 
 // A garment is modelled around the body it is dressed on (a template's

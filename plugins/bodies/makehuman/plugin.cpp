@@ -112,7 +112,9 @@ PluginList plugins() {
                 "by the outfit's .mhclo so that it follows the body's shape.";
   clothes.params.push_back({.name = "piece", .type = ParamType::String, .default_value = "0",
                             .doc = "the piece: its index among the outfit .obj's connected pieces (numbered by first vertex: 0 "
-                                   "the shirt, 1 the trousers in MakeHuman's suits) or the name of an OBJ group"});
+                                   "the shirt, 1 the trousers in MakeHuman's suits) or the name of an OBJ group; several, "
+                                   "comma-separated (\"0,1\": the whole suit), drape as one garment with a material "
+                                   "region per piece (piece0, piece1, or the group's name) for the scene's materials"});
   clothes.create_garment = [](const Params& p) { return clothes_source(p, p.get_string("piece")); };
   return {body, shirt, clothes};
 }
