@@ -115,3 +115,25 @@ TEST_CASE("simulate's fit note names the grade that gives a body the design ease
   // The mean body needs no note.
   CHECK(scene_body(simulations, simulations.design().target_request(), "mean").notes.empty());
 }
+
+// A garment smaller around than the mean body it is put on cannot be put on:
+// the contact refuses the start before the first step, and the refusal says
+// how much smaller, with the loop, the body's girth and the grade that fits.
+TEST_CASE("a garment graded smaller than the mean body is refused at the start and told the grade that fits", "[garments][grade]") {
+  const SceneSimulations tight(test::plugins(),
+                               parse_scene("garment: {template: tshirt, params: {resolution: coarse}, grade: 0.6}\n"
+                                           "effects: {gravity: {}, stretching: {}, barrier: {}}\n",
+                                           "tight.yaml"));
+  const Simulation& d = tight.design();
+  // The hint measures the garment as graded (its loop 0.6 times the template's), not as dressing pushed it out.
+  CHECK(d.placed_loop() == Approx(0.6 * d.design_loop()).epsilon(0.02));
+  const std::string hint = start_fit_hint(d);
+  CHECK_THAT(hint, Catch::Contains("smaller around than the mean body") && Catch::Contains("garment: {grade: 1.00}"));
+  BodyRequest request = d.target_request();
+  request.bmi = 40;
+  const SceneBody body = scene_body(tight, request, "bmi 40");
+  CHECK_THROWS_WITH(drape_scene_body(body), Catch::Contains("starts crossing the body") && Catch::Contains(hint));
+  // The regular shirt fits the mean body: nothing to add.
+  const SceneSimulations regular(test::plugins(), parse_scene(kCoarse, "plain.yaml"));
+  CHECK(start_fit_hint(regular.design()).empty());
+}

@@ -122,7 +122,9 @@ Simulation::Simulation(const Registry& registry, Scene scene) : registry_(regist
   Garment garment =
       registry_.create_garment(scene_.garment, Params(gd.params, scene_.garment_params, "garment '" + scene_.garment + "'"))
           ->build();
+  design_loop_ = garment_girth(garment.mesh.vertices, garment.mesh.faces, mean_body_);
   grade_garment(garment, scene_.garment_grade);  // before dressing: the graded garment is what goes around the body
+  placed_loop_ = scene_.garment_grade == 1.0 ? design_loop_ : garment_girth(garment.mesh.vertices, garment.mesh.faces, mean_body_);
   Mesh mean;
   mean.vertices = mean_body_;
   mean.faces = body_model_->faces();

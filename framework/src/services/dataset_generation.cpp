@@ -4,6 +4,7 @@
 #include <drape/io/dataset.hpp>
 #include <drape/errors.hpp>
 #include <drape/scene/garment_size.hpp>
+#include <drape/services/scene_body.hpp>
 #include <drape/training/model.hpp>
 #include <drape/io/output_lock.hpp>
 #include <drape/io/parallel_samples.hpp>
@@ -227,7 +228,8 @@ GenerateSummary generate_dataset(const Registry& registry, const Scene& scene, c
         try {
           return wearing.run(body);
         } catch (const ConfigError& e) {  // a body the scene refuses: say which sample it is
-          throw ConfigError(who + ": " + e.what());
+          const std::string hint = start_fit_hint(wearing);
+          throw ConfigError(who + ": " + e.what() + (hint.empty() ? "" : "; " + hint));
         }
       }();
       const DatasetSample s = sample_of(r, shape, body_request, global, split[global], size_flag, grade);

@@ -5,9 +5,12 @@
 #include <drape/io/mesh_io.hpp>
 #include <drape/training/model_domain.hpp>
 #include <drape/services/scene_body.hpp>
+#include <drape/scene/garment_size.hpp>
+#include <drape/errors.hpp>
 
 #include <cmath>
 #include <cstdio>
+#include <string>
 
 namespace drape {
 namespace {
@@ -18,28 +21,43 @@ namespace {
 // made for, and the grade that would give it that ease here. Nothing is said
 // of a garment within 5 points of its design ease, or one that does not go
 // around the torso band (trousers, a skirt).
+// The ungraded garment's narrowest loop on the mean body (its design): as
+// dressed for a garment of grade 1 (what the notes always measured), else as
+// its template built it (Simulation::design_loop: dressing pushes a graded
+// garment smaller than the body out onto it, and grading a dressed one back
+// would not undo that).
+double design_loop(const Simulation& design) {
+  const Mesh& garment = design.garment().mesh;
+  if (design.scene().garment_grade == 1.0) return garment_girth(garment.vertices, garment.faces, design.mean_body());
+  return design.design_loop();
+}
+
+// The grade of the template whose loop gives a body of girth `around` the design ease.
+std::string grade_text(double design_loop, double design_ease, double around) {
+  const double grade = (1.0 + design_ease) * around / design_loop;
+  if (!(grade >= kMinGrade && grade <= kMaxGrade)) return "no grade within 0.5-2 gives it its design ease";
+  char text[80];
+  std::snprintf(text, sizeof text, "garment: {grade: %.2f} gives it its design ease", grade);
+  return text;
+}
+
 void note_fit(const Simulation& design, SceneBody& out) {
   const Mesh& garment = design.garment().mesh;
   const Eigen::MatrixX3i& body_faces = design.body_model().faces();
-  const double loop = garment_girth(garment.vertices, garment.faces, design.mean_body());
+  // A graded garment as graded, before dressing pushed it about (design_loop).
+  const double loop = design.scene().garment_grade == 1.0 ? garment_girth(garment.vertices, garment.faces, design.mean_body())
+                                                         : design.placed_loop();
   const double ease = garment_ease(loop, out.vertices, body_faces);
-  // The ease the garment was made with: its ungraded loop on the mean body.
-  const double scene_grade = design.scene().garment_grade;
-  const double design_ease = garment_ease(loop / scene_grade, design.mean_body(), body_faces);
+  const double loop0 = design_loop(design);
+  const double design_ease = garment_ease(loop0, design.mean_body(), body_faces);
   if (!std::isfinite(ease) || !std::isfinite(design_ease) || std::abs(ease - design_ease) <= 0.05) return;
-  // The grade of the template that gives this body that ease: loop * grade /
-  // scene_grade = (1 + design_ease) * body girth.
-  const double grade = scene_grade * (1.0 + design_ease) / (1.0 + ease);
   char text[400];
   std::snprintf(text, sizeof text,
                 "the garment is %.1f %% %s around than this body's chest or belly (it has %+.1f %% ease here, %+.1f %% on "
                 "the mean body it was made for; the tailor's rule of docs/garments.md)%s; %s",
                 100.0 * std::abs(ease), ease < 0 ? "smaller" : "larger", 100.0 * ease, 100.0 * design_ease,
                 ease < 0 ? ", so it is stretched onto the body or rides up over it" : "",
-                grade < kMinGrade || grade > kMaxGrade ? "no grade within 0.5-2 gives it its design ease"
-                                                       : ("garment: {grade: " + std::to_string(grade).substr(0, 4) +
-                                                          "} gives it its design ease")
-                                                             .c_str());
+                grade_text(loop0, design_ease, loop / (1.0 + ease)).c_str());
   std::string note = text;
   if (design.scene().garment_params.count("size")) note += " (or size: auto, which picks one of its sizes)";
   out.notes.push_back(note);
@@ -87,6 +105,21 @@ SceneBody scene_body(const SceneSimulations& simulations, const BodyRequest& req
   return out;
 }
 
+std::string start_fit_hint(const Simulation& design) {
+  const Eigen::MatrixX3i& body_faces = design.body_model().faces();
+  const double loop = design.placed_loop();  // before dressing pushed it out onto the body
+  const double ease = garment_ease(loop, design.mean_body(), body_faces);
+  if (!(ease < 0)) return "";  // fits the body it is dressed on, or does not go around the torso
+  const double loop0 = design_loop(design);
+  const double design_ease = garment_ease(loop0, design.mean_body(), body_faces);
+  char text[300];
+  std::snprintf(text, sizeof text,
+                "the garment is %.1f %% smaller around than the mean body it is put on before the body morphs (its "
+                "narrowest loop over the chest band %.3f m, the body's chest or belly %.3f m), so it cannot be put on; ",
+                -100.0 * ease, loop, loop / (1.0 + ease));
+  return text + (std::isfinite(design_ease) ? grade_text(loop0, design_ease, loop / (1.0 + ease)) : std::string("grade it up"));
+}
+
 SimulationResult drape_scene_body(const SceneBody& body, SimulationOptions options) {
   // The caller's start states are in the given body's frame; the simulation
   // runs in the placed one.
@@ -99,7 +132,15 @@ SimulationResult drape_scene_body(const SceneBody& body, SimulationOptions optio
     start_body = options.start_body->rowwise() - body.moved_by;
     options.start_body = &start_body;
   }
-  SimulationResult r = body.simulation->run(body.vertices, options);
+  SimulationResult r = [&] {
+    try {
+      return body.simulation->run(body.vertices, options);
+    } catch (const ConfigError& e) {  // a start the contact refuses: say when the garment is too small to put on
+      const std::string hint = start_fit_hint(*body.simulation);
+      if (hint.empty()) throw;
+      throw ConfigError(std::string(e.what()) + "; " + hint);
+    }
+  }();
   if (!body.moved_by.isZero(0.0)) {
     r.garment.rowwise() += body.moved_by;
     r.body.rowwise() += body.moved_by;

@@ -87,6 +87,13 @@ class Simulation {
   const BodyModel& body_model() const { return *body_model_; }
   const Garment& garment() const { return *garment_; }
   const Eigen::MatrixX3d& mean_body() const { return mean_body_; }
+  // The garment's narrowest loop over the mean body's chest band
+  // (garment_size.hpp's garment_girth) before dressing moved it: as its
+  // template built it, and graded by the scene's grade; infinity when it does
+  // not go around the torso. What a fit is told by: dressing pushes a garment
+  // smaller than the body out onto it.
+  double design_loop() const { return design_loop_; }
+  double placed_loop() const { return placed_loop_; }
   // The scene's target body as a request (its shape: BMI, height, sex), to
   // change before solving (a command line's --girth adds proportions).
   BodyRequest target_request() const;
@@ -115,6 +122,7 @@ class Simulation {
   std::unique_ptr<BodyModel> body_model_;
   std::shared_ptr<Garment> garment_;
   Eigen::MatrixX3d mean_body_;
+  double design_loop_ = 0.0, placed_loop_ = 0.0;
   std::vector<Params> effect_params_;
   bool needs_body_ = false;
   int morph_steps_ = 0, settle_steps_ = 0, morph_newton_ = 3;

@@ -46,6 +46,13 @@ SceneBody scene_body(const SceneSimulations& simulations, const BodyRequest& req
 // Simulation::run on the prepared body; the result's garment and body are
 // moved back by moved_by (where the given body stood). Options'
 // start_garment and start_body are in the given body's frame too.
+// When the scene's garment is smaller around than the mean body it is
+// dressed on (a negative ease there): one clause saying so, with the loop,
+// the body's girth and the grade that gives it its design ease; empty
+// otherwise. drape_scene_body adds it to the contact's refusal of such a
+// start, which comes before the first step.
+std::string start_fit_hint(const Simulation& design);
+
 SimulationResult drape_scene_body(const SceneBody& body, SimulationOptions options = {});
 
 }  // namespace drape
