@@ -137,3 +137,27 @@ TEST_CASE("a garment graded smaller than the mean body is refused at the start a
   const SceneSimulations regular(test::plugins(), parse_scene(kCoarse, "plain.yaml"));
   CHECK(start_fit_hint(regular.design()).empty());
 }
+
+// The other measure of the tailor's rule: how far down a top reaches. The
+// parametric body keeps its proportions with height, so the torso's length
+// scales with it, and the grade that gives a shirt its design length is the
+// height ratio (worked by hand, not by the code's slicing).
+TEST_CASE("simulate's length note names the grade that gives a tall or short body the design length", "[garments][grade]") {
+  const SceneSimulations simulations(test::plugins(), parse_scene(kCoarse, "plain.yaml"));
+  const Simulation& d = simulations.design();
+  const double mean_height = d.mean_body().col(1).maxCoeff() - d.mean_body().col(1).minCoeff();
+  const auto length_note = [&](double height) {
+    BodyRequest r = d.target_request();
+    r.height = height;
+    for (const std::string& n : scene_body(simulations, r, "body").notes)
+      if (n.find("of the way from its neckline") != std::string::npos) return n;
+    return std::string();
+  };
+  const std::string tall = length_note(2.0), short_one = length_note(1.5);
+  CHECK_THAT(tall, Catch::Contains("ends higher"));
+  CHECK_THAT(short_one, Catch::Contains("ends lower"));
+  const auto grade = [](const std::string& note) { return std::stod(note.substr(note.find("grade: ") + 7)); };
+  CHECK(grade(tall) == Approx(2.0 / mean_height).margin(0.03));
+  CHECK(grade(short_one) == Approx(1.5 / mean_height).margin(0.03));
+  CHECK(length_note(mean_height).empty());
+}

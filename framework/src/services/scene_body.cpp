@@ -2,6 +2,7 @@
 #include <drape/bodies/body.hpp>
 #include <drape/garment_grading.hpp>
 #include <drape/geometry/body_units.hpp>
+#include <drape/geometry/girth.hpp>
 #include <drape/io/mesh_io.hpp>
 #include <drape/training/model_domain.hpp>
 #include <drape/services/scene_body.hpp>
@@ -10,6 +11,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <string>
 
 namespace drape {
@@ -41,6 +43,47 @@ std::string grade_text(double design_loop, double design_ease, double around) {
   return text;
 }
 
+// Height of the crotch above the soles: the lowest horizontal cut, going up
+// from a quarter of the height, whose loop goes around the body's vertical
+// centre line (below it, the cut passes between the legs). NaN when none does.
+double crotch_height(const Eigen::MatrixX3d& body, const Eigen::MatrixX3i& faces) {
+  const double y0 = body.col(1).minCoeff(), h = body.col(1).maxCoeff() - y0;
+  const Eigen::Vector2d centre(0.5 * (body.col(0).minCoeff() + body.col(0).maxCoeff()), body.col(2).mean());
+  for (double f = 0.25; f <= 0.65; f += 0.0025)
+    if (geometry::horizontal_girth(body, faces, y0 + f * h, centre).found) return f * h;
+  return std::numeric_limits<double>::quiet_NaN();
+}
+
+// How far down a top reaches on this body against the mean body it was made
+// for (the tailor's rule's other measure): its length from its neckline as
+// a share of the torso from there to the crotch. The neckline rides at the
+// same share of the body's height, the garment's length does not change, so
+// on a taller body a shirt ends higher. Noted when the share moves by more
+// than 10 points, with the grade whose length gives the design share (the
+// length scales with the grade). Nothing for a garment that reaches below
+// the crotch on the mean body (trousers, a dress) or a body without one.
+void note_length(const Simulation& design, SceneBody& out) {
+  const Mesh& garment = design.garment().mesh;
+  const Eigen::MatrixX3i& faces = design.body_model().faces();
+  const Eigen::MatrixX3d& mean = design.mean_body();
+  const double soles0 = mean.col(1).minCoeff(), height0 = mean.col(1).maxCoeff() - soles0;
+  const double top = garment.vertices.col(1).maxCoeff() - soles0, hem = garment.vertices.col(1).minCoeff() - soles0;
+  const double crotch0 = crotch_height(mean, faces), crotch = crotch_height(out.vertices, faces);
+  if (!std::isfinite(crotch0) || !std::isfinite(crotch) || hem <= crotch0 || top <= crotch0) return;
+  const double height = out.vertices.col(1).maxCoeff() - out.vertices.col(1).minCoeff();
+  const double length = top - hem, top_here = top * height / height0;
+  const double share0 = length / (top - crotch0), share = length / (top_here - crotch);
+  if (!(top_here > crotch) || std::abs(share - share0) <= 0.10) return;
+  char text[400];
+  std::snprintf(text, sizeof text,
+                "the garment reaches %.0f %% of the way from its neckline to this body's crotch, against %.0f %% on the mean "
+                "body it was made for (%.2f m tall; this one %.2f m): it ends %s, as %s; garment: {grade: %.2f} gives it "
+                "its design length",
+                100.0 * share, 100.0 * share0, height0, height, share < share0 ? "higher" : "lower",
+                share < share0 ? "a shorter shirt would" : "a longer shirt would", design.scene().garment_grade * share0 / share);
+  out.notes.push_back(text);
+}
+
 void note_fit(const Simulation& design, SceneBody& out) {
   const Mesh& garment = design.garment().mesh;
   const Eigen::MatrixX3i& body_faces = design.body_model().faces();
@@ -68,6 +111,7 @@ void choose_size(const SceneSimulations& simulations, const std::string& name, S
   if (!simulations.auto_size()) {
     out.simulation = &simulations.design();
     note_fit(simulations.design(), out);
+    note_length(simulations.design(), out);
     return;
   }
   SizeChoice choice;
