@@ -335,8 +335,8 @@ TEST_CASE("bending of a sheet bent to a cylinder converges under refinement to k
   // bending, and the same at half the mesh size (docs/materials.md, "Folds
   // at the scale of knit"). With the lattice's rows along the axis the tube is
   // a prism, bent at the rows' edges alone (exact); with the rows around it
-  // every edge bends, the diagonals against the curvature (their angles are
-  // -2/3 and the rows' +1/3 of kappa h), and the sum is the same to 0.2 %.
+  // every edge bends, the rows and the diagonals with opposite signs (1/3 and
+  // -2/3 of kappa h), and the sum is the same to 0.2 %.
   // The ends of a tube lack hinges, so the energy per area is taken from two
   // lengths of tube: (E(long) - E(short)) / the area added.
   const double radius = 0.10;

@@ -5,14 +5,14 @@
 //
 // A knit resists stretching but hardly resists compression: its yarns and the
 // sheet itself buckle at scales far below a drape's triangles (ArcSim's knit
-// bends so easily that its folds under gravity are about 1.4 cm wide, the
-// default shirt's triangle height). ArcSim's measured tables are tensile
+// bends so easily that its bending length under its own weight is 1.0-1.7 cm,
+// the default shirt's triangle height). ArcSim's measured tables are tensile
 // tests; ArcSim applies their zero-strain row to compression as well, so a
 // compressed triangle pushes back as hard as a stretched one, and a mesh whose
 // triangles cannot shrink must shorten by folding at its own scale: the
 // one-triangle crinkles of issue 54. With this map a compressed face shortens
-// at a fraction s of ArcSim's stiffness (the energy of the sheet's unresolved
-// wrinkles), and tension is ArcSim's exactly.
+// at a fraction s of ArcSim's stiffness (standing for wrinkles narrower than
+// the mesh can show), and tension is ArcSim's exactly.
 //
 // With G's eigenvalues l (principal Green strains) and eigenvectors v,
 // G~ = sum f(l) v v^T, f(l) = l for l >= 0, f(l) = c l - (1 - c) delta / 2 for
