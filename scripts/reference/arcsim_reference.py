@@ -14,7 +14,9 @@ s(G) = A(k(G)) G, A = [[k_uu, k_uv, 0], [k_uv, k_vv, 0], [0, 0, 2 k_shear]]
 depends on G no energy has that stress as its gradient; drape's energy is the
 work it does along the straight strain path from rest, printed as W (computed
 here by a 20,000-interval midpoint rule, independently of drape's quadrature)
-together with the stress itself (s) for stretches along u and v. E is
+together with the stress itself (s) for stretches along u and v. Likewise
+for bending: ArcSim's force freezes k_b(theta), and W is its work from the
+flat rest (the same midpoint rule), dW/dtheta the force. E is
 stretching_energy at G with the force's shear (2 k_shear G_uv^2), drape's
 energy before 2026-11-26; E_energy_fn is stretching_energy as written
 (k_shear G_uv^2). Bending takes |theta| for the curvature (ArcSim's signed
@@ -165,6 +167,22 @@ def hinge_energy(theta, l, a0, a1, du):
     return ke * shape * theta * theta / 4, ke_signed * shape * theta * theta / 4, ke
 
 
+def hinge_force(theta, l, a0, a1, du):
+    """The magnitude dW/dtheta of ArcSim's bending force (physics.cpp, bending_force: coeff (theta - theta0)
+    dtheta / 2 with coeff = bending_coeff, k_b frozen at theta), flat rest, |theta| for the curvature."""
+    area = a0 + a1
+    return bending_stiffness(abs(theta), l, area, du) * l * l / (2 * area) * theta / 2
+
+
+def hinge_work(theta, l, a0, a1, du, intervals=20000):
+    """The work of ArcSim's bending force from the flat rest to theta, by the midpoint rule."""
+    total = 0.0
+    for i in range(intervals):
+        t = (i + 0.5) / intervals * theta
+        total += hinge_force(t, l, a0, a1, du)
+    return total * theta / intervals
+
+
 if __name__ == "__main__":
     area = 0.5 * 0.01 * 0.01  # UV right triangle with 1 cm legs
     print("# triangle, UV legs 1 cm along u and v; E = ArcSim energy with the force's shear")
@@ -185,4 +203,6 @@ if __name__ == "__main__":
     for du, name in (((1.0, 0.0), "along u"), ((1.0, 1.0), "45 deg"), ((0.0, 1.0), "along v"), ((1.0, 0.3), "16.7 deg")):
         for theta in (0.05, 0.3, 1.2, -0.05, -0.3, -1.2):
             E, E_signed, ke = hinge_energy(theta, l, a, a, du)
-            print(f"edge {name:8s} theta {theta:+.2f}: E = {E:.12e}  E_signed = {E_signed:.12e}  k_b = {ke:.9e}")
+            W, M = hinge_work(theta, l, a, a, du), hinge_force(theta, l, a, a, du)
+            print(f"edge {name:8s} theta {theta:+.2f}: W = {W:.12e}  dW/dtheta = {M:.12e}  E = {E:.12e}  "
+                  f"E_signed = {E_signed:.12e}  k_b = {ke:.9e}")

@@ -348,6 +348,37 @@ BendingCurve bending_curve(const ArcsimData& data, const Eigen::Vector2d& du) {
   return curve;
 }
 
+namespace {
+
+// dk/da on segment j of a bending curve (j = -1 mirrors segment 0: k depends
+// on |a|; j = 4: flat past the table).
+double bending_slope(const std::array<double, 5>& k, int j) {
+  return j < 0 ? -(k[1] - k[0]) : j >= 4 ? 0.0 : k[static_cast<std::size_t>(j + 1)] - k[static_cast<std::size_t>(j)];
+}
+
+// The half-width (in columns) of column `knot`'s rounded corner.
+double bending_corner_band(const std::array<double, 5>& k, int knot) {
+  const double jump = bending_slope(k, knot) - bending_slope(k, knot - 1);
+  return std::min(kBendingCornerBand, kBendingCornerDeviation * 4.0 * std::abs(k[static_cast<std::size_t>(knot)]) /
+                                          std::max(std::abs(jump), 1e-300));
+}
+
+}  // namespace
+
+std::array<double, 10> bending_breakpoints(const BendingCurve& curve) {
+  std::array<double, 10> out{};
+  out[0] = 10.0 * bending_corner_band(curve.samples, 0);
+  for (int j = 1; j <= 4; ++j) {
+    const double band = bending_corner_band(curve.samples, j);
+    out[static_cast<std::size_t>(2 * j - 1)] = 10.0 * (j - band);
+    out[static_cast<std::size_t>(2 * j)] = 10.0 * (j + band);
+  }
+  // The last band: k is flat on either side of 4 + band (bending_stiffness
+  // switches to its flat branch at 4 + kBendingCornerBand, with the same value).
+  out[9] = 10.0 * (4.0 + kBendingCornerBand);
+  return out;
+}
+
 BendingStiffness bending_stiffness(const BendingCurve& curve, double curvature) {
   // Columns every 10 1/m (ArcSim: "samples are per 0.05 cm^-1" of half the
   // curvature), interpolated linearly with ArcSim, except within a band of
@@ -362,12 +393,9 @@ BendingStiffness bending_stiffness(const BendingCurve& curve, double curvature) 
     if (k[4] > 0.0) flat.k = k[4];
     return flat;
   }
-  // slope(j): dk/da on segment j (j = -1 mirrors segment 0: k depends on |a|; j = 4: flat past the table).
-  auto slope = [&](int j) { return j < 0 ? -(k[1] - k[0]) : j >= 4 ? 0.0 : k[static_cast<std::size_t>(j + 1)] - k[static_cast<std::size_t>(j)]; };
   const int knot = std::min(static_cast<int>(std::lround(a)), 4);
-  const double u = a - knot, before = slope(knot - 1), jump = slope(knot) - before;
-  const double band = std::min(kBendingCornerBand, kBendingCornerDeviation * 4.0 * std::abs(k[static_cast<std::size_t>(knot)]) /
-                                                       std::max(std::abs(jump), 1e-300));
+  const double u = a - knot, before = bending_slope(k, knot - 1), jump = bending_slope(k, knot) - before;
+  const double band = bending_corner_band(k, knot);
   double value = 0.0, dk_da = 0.0, d2k_da2 = 0.0;
   if (std::abs(u) < band) {
     // A quadratic that meets both lines with their slopes at u = -band and u = +band (C1).

@@ -17,10 +17,25 @@
 // length, so that bending does not also resist stretching (the same on an
 // unstretched hinge; docs/materials.md).
 //
+// Potential (`potential`, model arcsim hinges): ArcSim's bending_force is
+// k_b(theta) l^2 / (4 (A0 + A1)) (theta - rest) dtheta with k_b frozen at the
+// current angle, which no energy has as its gradient once k_b varies with
+// curvature (as for stretching, docs/materials.md). `product` is the energy
+// above, ArcSim's bending_energy as written; its moment c (2 k_b d + k_b' d^2)
+// departs from ArcSim's force wherever the table slopes, and where k_b falls
+// (columns 3-4 of the knit's 0 and 45 degree rows) the moment turns negative
+// and a hinge has a second rest angle at 40 1/m. `work` is the work of
+// ArcSim's force along the fold from rest,
+//   W = 2 c int_rest^{rest + d} k_b(|t| l / A) (t - rest) dt,  c = l^2 / (8 A),
+// integrated exactly (a cubic on each polynomial piece of the rounded lookup,
+// arcsim::bending_breakpoints, by 3-point Gauss); W' = 2 c k_b d is ArcSim's
+// force and W'' = 2 c (k_b + k_b' d). The two agree where k_b is constant.
+//
 // Rest angle (`rest`): `flat` (0, panels cut flat) or `initial` (the angles of
 // the garment's rest positions mesh.vertices at bind time).
 //
-// Hessian: exact, E'' dtheta dtheta^T + E' d2theta with E' = dE/dtheta.
+// Hessian: exact, E'' dtheta dtheta^T + E' d2theta with E' = dE/dtheta (E the
+// potential chosen).
 // Projected (`projection`): `gauss_newton` keeps max(E'', 0) dtheta dtheta^T,
 // rank one and PSD by construction (ArcSim's choice), dropping the curvature
 // term; `eigen` clamps the negative eigenvalues of the exact 12x12 block, the
@@ -46,6 +61,7 @@
 #include <drape/warnings.hpp>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <numbers>
@@ -129,6 +145,15 @@ double uv_area(const Mesh& mesh, int face) {
 
 enum class Projection { GaussNewton, Eigen };
 
+// What a tabulated hinge's energy is (module comment): the work of ArcSim's
+// bending force, or k_b(theta) l^2 / (8 (A0 + A1)) (theta - rest)^2.
+enum class Potential { Work, Product };
+
+// Gauss-Legendre, 3 points on [-1, 1]: exact for the cubic that the work
+// integrand k(|s|) (s - from) is on each polynomial piece of the lookup.
+constexpr double kGaussNode = 0.77459666924148337704;
+constexpr double kGaussOuter = 5.0 / 9.0, kGaussCentre = 8.0 / 9.0;
+
 // E(theta) and its first two derivatives in theta.
 struct AngleEnergy {
   double e, de, d2e;
@@ -136,8 +161,8 @@ struct AngleEnergy {
 
 class Bending final : public ElementEnergy<4> {
  public:
-  Bending(double stiffness_scale, bool initial_rest, Projection projection)
-      : scale_(stiffness_scale), initial_rest_(initial_rest), projection_(projection) {}
+  Bending(double stiffness_scale, bool initial_rest, Projection projection, Potential potential)
+      : scale_(stiffness_scale), initial_rest_(initial_rest), projection_(projection), potential_(potential) {}
 
   void bind(const EnergyContext& context) override {
     const Garment& garment = checked_garment(context);
@@ -202,17 +227,63 @@ class Bending final : public ElementEnergy<4> {
   }
 
  private:
+  // The softer side's stiffness at a (signed) curvature: ArcSim's min over the two faces.
+  static arcsim::BendingStiffness stiffness_at(const HingeElement& h, double curvature) {
+    return h.softer >= 0 ? arcsim::bending_stiffness(h.side[h.softer], curvature)
+                         : softer_side(arcsim::bending_stiffness(h.side[0], curvature),
+                                       arcsim::bending_stiffness(h.side[1], curvature));
+  }
+
+  // int_from^to k(|s|) (s - from) ds over curvature s (1/m): the work of the
+  // moment k s per unit of the hinge's area / 4. Split where the lookup
+  // changes polynomial (either side's breakpoints, mirrored, and 0), each
+  // piece by 3-point Gauss: exact on one side's curve (a cubic per piece), and
+  // to rounding on the smooth rounded min of two curves that cross.
+  static double moment_work(const HingeElement& h, double from, double to) {
+    if (from == to) return 0.0;
+    const double lo = std::min(from, to), hi = std::max(from, to);
+    std::array<double, 44> cut{};
+    std::size_t n = 0;
+    cut[n++] = lo;
+    auto add = [&](double c) {
+      if (c > lo && c < hi) cut[n++] = c;
+    };
+    add(0.0);
+    for (int s = 0; s < 2; ++s) {
+      if (h.softer >= 0 && s != h.softer) continue;
+      for (double b : arcsim::bending_breakpoints(h.side[s])) {
+        add(b);
+        add(-b);
+      }
+    }
+    std::sort(cut.begin() + 1, cut.begin() + static_cast<std::ptrdiff_t>(n));
+    cut[n++] = hi;
+    double sum = 0.0;
+    for (std::size_t i = 0; i + 1 < n; ++i) {
+      const double mid = 0.5 * (cut[i] + cut[i + 1]), half = 0.5 * (cut[i + 1] - cut[i]);
+      if (!(half > 0.0)) continue;
+      auto f = [&](double s) { return stiffness_at(h, s).k * (s - from); };
+      sum += half * (kGaussOuter * (f(mid - kGaussNode * half) + f(mid + kGaussNode * half)) + kGaussCentre * f(mid));
+    }
+    return to >= from ? sum : -sum;
+  }
+
   AngleEnergy angle_energy(const HingeElement& h, double theta) const {
     const double d = angle_offset(theta, h.rest_angle);
     // Linear: drape's constant model, in its old order of operations.
     if (!h.tabulated) return {h.c_linear * d * d, 2.0 * h.c_linear * d, 2.0 * h.c_linear};
+    if (potential_ == Potential::Work) {
+      // W = 2 shape int_rest^{rest + d} k(|t| c) (t - rest) dt, c = h.curvature:
+      // W' = 2 shape k d (ArcSim's bending force), W'' = 2 shape (k + dk/dtheta d).
+      const double c = h.curvature, end = (h.rest_angle + d) * c;
+      const arcsim::BendingStiffness s = stiffness_at(h, end);
+      const double work = 2.0 * h.shape / (c * c) * moment_work(h, h.rest_angle * c, end);
+      return {work, 2.0 * h.shape * s.k * d, 2.0 * h.shape * (s.k + s.dk_dcurvature * c * d)};
+    }
     double k = 0.0, dk = 0.0, d2k = 0.0;
     {
-      // The softer side at this curvature (ArcSim's min over the two faces).
       const double curvature = theta * h.curvature;
-      const arcsim::BendingStiffness s =
-          h.softer >= 0 ? arcsim::bending_stiffness(h.side[h.softer], curvature)
-                        : softer_side(arcsim::bending_stiffness(h.side[0], curvature), arcsim::bending_stiffness(h.side[1], curvature));
+      const arcsim::BendingStiffness s = stiffness_at(h, curvature);
       k = s.k;
       dk = s.dk_dcurvature * h.curvature;
       d2k = s.d2k_dcurvature2 * h.curvature * h.curvature;
@@ -300,6 +371,7 @@ class Bending final : public ElementEnergy<4> {
   double scale_;
   bool initial_rest_;
   Projection projection_;
+  Potential potential_;
   std::vector<HingeElement> hinges_;
 };
 
@@ -319,10 +391,16 @@ PluginList plugins() {
        .choices = {"flat", "initial"}},
       {.name = "projection", .type = ParamType::String, .default_value = "gauss_newton",
        .doc = "PSD Hessian for Newton: gauss_newton (2c dtheta dtheta^T, cheap) or eigen (exact block with negative eigenvalues clamped)",
-       .choices = {"gauss_newton", "eigen"}}};
+       .choices = {"gauss_newton", "eigen"}},
+      {.name = "potential", .type = ParamType::String, .default_value = "product",
+       .doc = "a tabulated (model arcsim) hinge's energy: work (the work of ArcSim's bending force k_b(theta) l^2 / (4 (A0 + A1)) "
+              "(theta - rest) along the fold from rest, whose gradient is that force) or product (k_b(theta) l^2 / (8 (A0 + A1)) "
+              "(theta - rest)^2, ArcSim's bending_energy as written)",
+       .choices = {"work", "product"}}};
   d.create_energy = [](const Params& p) {
     return std::make_unique<Bending>(p.get_float("stiffness_scale"), p.get_string("rest") == "initial",
-                                     p.get_string("projection") == "eigen" ? Projection::Eigen : Projection::GaussNewton);
+                                     p.get_string("projection") == "eigen" ? Projection::Eigen : Projection::GaussNewton,
+                                     p.get_string("potential") == "work" ? Potential::Work : Potential::Product);
   };
   return {d};
 }

@@ -27,6 +27,14 @@
 // clamping Newton's model predicted no curvature where the energy curves up
 // (measured in docs/findings.md, "What settles the heavy drapes"). Linear faces
 // keep the nearest PSD matrix, as before.
+//
+// Compression (`compressive_stiffness` s, default 1: ArcSim's tables as they
+// are): psi is evaluated at G~, G with its compressive principal values
+// scaled by sqrt(s) (compression.hpp), so a face shortens at s times the
+// stiffness it stretches with; a face with no compressive principal strain is
+// computed exactly as before. The derivatives of G~(G) come from Dual<3>
+// (value, gradient, Hessian of the map), composed with psi's: dpsi~ = J^T dpsi,
+// d2psi~ = J^T d2psi J + sum_k dpsi_k d2G~_k.
 #include <drape/physics/arcsim_material.hpp>
 #include <drape/element_energy.hpp>
 #include <drape/plugin.hpp>
@@ -35,6 +43,7 @@
 #include <cmath>
 #include <memory>
 
+#include "compression.hpp"
 #include "membrane.hpp"
 
 namespace {
@@ -55,7 +64,8 @@ struct Face {
 
 class Stretching final : public ElementEnergy<3> {
  public:
-  explicit Stretching(double stiffness_scale) : scale_(stiffness_scale) {}
+  Stretching(double stiffness_scale, double compressive_stiffness)
+      : scale_(stiffness_scale), compression_(compressive_stiffness) {}
 
   void bind(const EnergyContext& context) override {
     const Garment& garment = checked_garment(context);
@@ -115,6 +125,29 @@ class Stretching final : public ElementEnergy<3> {
   // linear model scales its stiffness first, as drape did before the ArcSim
   // model, so that old drapes are reproduced bit for bit.
   arcsim::MembraneDensity density(const Face& f, const Eigen::Vector3d& g, bool hessian = true) const {
+    if (!compression_.compressed(g)) return material_density(f, g, hessian);
+    return hessian ? compressed_density<Dual<3, 2>>(f, g) : compressed_density<Dual<3, 1>>(f, g);
+  }
+
+  // psi at G~(g) with its derivatives in g (module comment).
+  template <class D>
+  arcsim::MembraneDensity compressed_density(const Face& f, const Eigen::Vector3d& g) const {
+    const std::array<D, 3> out = compression_.apply(std::array<D, 3>{D::variable(g[0], 0), D::variable(g[1], 1), D::variable(g[2], 2)});
+    Eigen::Matrix3d j;
+    for (int k = 0; k < 3; ++k) j.row(k) = out[static_cast<std::size_t>(k)].g.transpose();
+    constexpr bool kHessian = D::kHessianSize == 3;
+    const arcsim::MembraneDensity d = material_density(f, Eigen::Vector3d(out[0].v, out[1].v, out[2].v), kHessian);
+    arcsim::MembraneDensity r;
+    r.psi = d.psi;
+    r.dpsi = j.transpose() * d.dpsi;
+    if constexpr (kHessian) {
+      r.d2psi = j.transpose() * d.d2psi * j;
+      for (int k = 0; k < 3; ++k) r.d2psi += d.dpsi[k] * out[static_cast<std::size_t>(k)].h;
+    }
+    return r;
+  }
+
+  arcsim::MembraneDensity material_density(const Face& f, const Eigen::Vector3d& g, bool hessian) const {
     const std::size_t m = static_cast<std::size_t>(f.material);
     if (!tables_[m]) return arcsim::linear_membrane_density(f.area * materials_[m].stretch, g);
     arcsim::MembraneDensity d = tables_[m]->density(g, hessian);
@@ -126,9 +159,14 @@ class Stretching final : public ElementEnergy<3> {
 
   // psi alone (what energy values and the line search need): the ArcSim
   // lookup without its derivatives.
-  double energy(const Face& f, const Eigen::Vector3d& g) const {
+  double energy(const Face& f, const Eigen::Vector3d& g_in) const {
+    Eigen::Vector3d g = g_in;
+    if (compression_.compressed(g_in)) {
+      const std::array<double, 3> out = compression_.apply(std::array<double, 3>{g_in[0], g_in[1], g_in[2]});
+      g = Eigen::Vector3d(out[0], out[1], out[2]);
+    }
     const std::size_t m = static_cast<std::size_t>(f.material);
-    return tables_[m] ? f.area * tables_[m]->energy_density(g) : density(f, g).psi;
+    return tables_[m] ? f.area * tables_[m]->energy_density(g) : material_density(f, g, false).psi;
   }
 
   double element_value(int e, const Stencil& x) const override {
@@ -159,6 +197,7 @@ class Stretching final : public ElementEnergy<3> {
   }
 
   double scale_;
+  mb::CompressionMap compression_;
   std::vector<Material> materials_;
   std::vector<std::shared_ptr<const arcsim::StretchingTable>> tables_;  // per material; null for linear
   std::vector<Face> faces_;
@@ -172,8 +211,15 @@ PluginList plugins() {
           "ArcSim's data-driven stiffness for model arcsim materials (docs/materials.md), constant "
           "[k_uu, k_uv, k_vv, k_shear] for model linear.";
   d.params = {{.name = "stiffness_scale", .type = ParamType::Float, .default_value = "1.0",
-               .doc = "multiplies every material's stretch stiffness (N/m)", .min = 0.0, .max = 1e6}};
-  d.create_energy = [](const Params& p) { return std::make_unique<Stretching>(p.get_float("stiffness_scale")); };
+               .doc = "multiplies every material's stretch stiffness (N/m)", .min = 0.0, .max = 1e6},
+              {.name = "compressive_stiffness", .type = ParamType::Float, .default_value = "1.0",
+               .doc = "the fraction of the material's stiffness left to compression: the Green strain's compressive "
+                      "principal values are scaled by its square root before the material sees them (1: the "
+                      "material as measured; docs/materials.md, \"Folds at the scale of knit\")",
+               .min = 1e-4, .max = 1.0}};
+  d.create_energy = [](const Params& p) {
+    return std::make_unique<Stretching>(p.get_float("stiffness_scale"), p.get_float("compressive_stiffness"));
+  };
   return {d};
 }
 

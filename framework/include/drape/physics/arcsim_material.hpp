@@ -160,6 +160,14 @@ struct BendingStiffness {
 };
 BendingStiffness bending_stiffness(const BendingCurve& curve, double curvature);
 
+// The curvatures (1/m, ascending, >= 0) where bending_stiffness passes from
+// one polynomial in |curvature| to the next: each column's rounded corner's
+// two ends (the first column's only end is its band; a band of 0 gives the
+// column twice). Between two of them, and beyond the last, k is a polynomial
+// of degree at most 2 in |curvature|, so the work of the bending moment
+// k(|s|) s over each piece is a cubic (the bending energy's work potential).
+std::array<double, 10> bending_breakpoints(const BendingCurve& curve);
+
 // ArcSim interpolates the bending table linearly, so dk/dcurvature jumps at
 // every column, and the bending force with it: a fold angle sitting on a
 // column is a kink of the energy, and Newton's iterates gather on such kinks
