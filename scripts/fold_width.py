@@ -44,7 +44,7 @@ The target of issue 54 (item 3) is no fold narrower than two triangles: crinkled
 Only numpy (and scripts/reference/obj_file.py for reading OBJ); nothing from drape. --self-test checks it on
 synthetic sheets of an equilateral triangle lattice: a zig-zag is 100 % crinkled in the interior (w 1.08); sine
 folds of half-wavelength 2, 3 and 5 triangle heights, across the lattice's rows, along them and at 17 degrees,
-give widths within 0.5 of W / h and none below 2; a cylinder gives no crinkle and its curvature. About 30 s
+give widths within 0.5 of W / h and none below 2; a cylinder gives no crinkle and its curvature. About 10 s
 of one core for a 3,505-vertex drape.
 """
 import argparse
