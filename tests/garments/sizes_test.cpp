@@ -77,7 +77,7 @@ TEST_CASE("sizes: a size's girth on the mean body's band is its grade times the 
 TEST_CASE("dress untangles a garment its pushes folded through itself", "[garments][dressing][sizes]") {
   // The small shirt's armpits sit in the creases of its fit body's: pushed
   // out vertex by vertex, neighbours land on the arm and on the torso and the
-  // cloth folds through itself (25 face pairs at the default resolution).
+  // cloth folds through itself (27 face pairs at the default resolution).
   const auto model = parametric();
   const Garment placed = test::build_tshirt("{size: small}");
   const FitBody body = fit_body(*model, placed.fit_grade);
