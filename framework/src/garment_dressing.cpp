@@ -5,6 +5,7 @@
 #include <drape/errors.hpp>
 #include <drape/warnings.hpp>
 #include <drape/geometry/closest_point.hpp>
+#include <drape/geometry/self_intersection.hpp>
 
 #include <Eigen/Geometry>
 
@@ -103,6 +104,43 @@ DressReport dress(Garment& garment, const BodyQuery& body, const DressOptions& o
   }
   // A final push so that the result never ends inside, whatever the smoothing did.
   push(false);
+
+  // Neighbours pushed onto different sides of a crease (an armpit, between
+  // the arm and the torso) can fold the cloth through itself, and the
+  // simulation cannot undo that (its self-contact leaves such a rest state
+  // unguarded). Then the pushed vertices are let go too: every displacement
+  // is smoothed and the vertices inside pushed out again, round after round,
+  // and the round with the fewest faces through each other is kept (the
+  // dressing above when none has fewer: a garment that came through it
+  // untangled is left exactly as it was).
+  if (options.untangle_rounds > 0) {
+    constexpr std::size_t kCountAtMost = 100000;
+    std::size_t tangled = geometry::self_intersections(x, garment.mesh.faces, kCountAtMost).size();
+    report.tangled_before = static_cast<int>(tangled);
+    if (tangled > 0) {
+      Eigen::MatrixX3d best = x;
+      for (int round = 1; round <= options.untangle_rounds && tangled > 0; ++round) {
+        Eigen::MatrixX3d d = x - start;
+        for (int s = 0; s < options.smoothing_steps; ++s) {
+          Eigen::MatrixX3d next = d;
+          for (int v = 0; v < nv; ++v) {
+            if (nb[v].empty()) continue;
+            Eigen::RowVector3d mean = Eigen::RowVector3d::Zero();
+            for (int w : nb[v]) mean += d.row(w);
+            next.row(v) = 0.5 * d.row(v) + 0.5 * mean / static_cast<double>(nb[v].size());
+          }
+          d.swap(next);
+        }
+        x = start + d;
+        for (int k = 0; k < options.max_iterations && push(false) > 0; ++k) {
+        }  // until no vertex needs a push (at a crease one push can land close to the other side)
+        const std::size_t now = geometry::self_intersections(x, garment.mesh.faces, kCountAtMost).size();
+        if (now < tangled) best = x, tangled = now, report.untangle_rounds = round;
+      }
+      x = best;
+    }
+    report.tangled_after = static_cast<int>(tangled);
+  }
   report.pushed = static_cast<int>(std::count(moved.begin(), moved.end(), 1));
   // A garment of several pieces: each outside the one under it (garment_layers.hpp).
   if (options.lay_pieces) report.layers = separate_layers(garment, body);

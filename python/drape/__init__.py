@@ -186,8 +186,9 @@ class Scene:
         crossings, steps, iterations, seconds, and `unsettled` (why, when not converged). As drape simulate
         does: a body standing away from where the body model's bodies stand is draped there and the results moved
         back (a warning says so); with `size: auto` the body wears the size its girth needs (`size`: the choice
-        and its measurements, `garment_size`: the size). The morph starts from start_body (default: the scene
-        body model's mean shape). The GIL is released."""
+        and its measurements, `garment_size`: the size). The morph starts from start_body (default: the body
+        the garment is dressed on, `fit_body`: the scene body model's mean shape for the regular size, the body of
+        its girth for a larger one). The GIL is released."""
         return self._s.simulate(body_vertices, start_garment, measure_penetration, start_body)
 
     def __repr__(self):

@@ -161,9 +161,12 @@ void register_scene(py::module_& m) {
         return out;
       })
       .def_property_readonly("garment_vertices", [](py::object self) { return view(self.cast<PyScene&>().simulation->garment().mesh.vertices, self); },
-                             "float64 [Ng, 3]: the garment dressed on the mean body (the start state)")
+                             "float64 [Ng, 3]: the garment dressed on its fit body (the start state; the mean body for the regular size)")
       .def_property_readonly("garment_faces", [](py::object self) { return view(self.cast<PyScene&>().simulation->garment().mesh.faces, self); })
       .def_property_readonly("mean_body", [](py::object self) { return view(self.cast<PyScene&>().simulation->mean_body(), self); })
+      .def_property_readonly("fit_body", [](py::object self) { return view(self.cast<PyScene&>().simulation->fit_body(), self); },
+                             "float64 [Nb, 3]: the body the garment is dressed on and every simulation starts from: the mean "
+                             "body, or a larger size's body of its girth (docs/garments.md, \"Sizes\")")
       .def_property_readonly("body_faces", [](py::object self) { return view(self.cast<PyScene&>().simulation->body_model().faces(), self); })
       .def(
           "body",

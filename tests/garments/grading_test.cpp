@@ -36,32 +36,96 @@ Eigen::VectorXd uv_edge_lengths(const Mesh& m) {
 
 }  // namespace
 
-TEST_CASE("grading scales girths, lengths and the pattern by g about the top", "[garments][grade]") {
+TEST_CASE("grading scales girths by g, lengths by 1 + 0.3 (g - 1), about the top", "[garments][grade]") {
   const Simulation plain(test::plugins(), parse_scene(kCoarse, "plain.yaml"));
   Garment g = plain.garment();
   const Garment before = g;
   grade_garment(g, 1.25);
-  // The pattern's every edge is 1.25 times longer: the cloth's rest lengths grew.
-  CHECK(uv_edge_lengths(g.mesh).isApprox(1.25 * uv_edge_lengths(before.mesh), 1e-12));
-  // The top (neckline height) stays; the hem drops by a quarter of the length.
+  const double l = 1 + 0.3 * 0.25;
+  CHECK(grade_length(1.25) == l);
+  CHECK(g.fit_grade == 1.25);  // a scene dresses it on the body of 1.25 times the mean girth
+  // The top (neckline height) stays; the hem drops by 7.5 % of the length.
   const auto& x0 = before.mesh.vertices;
   const auto& x1 = g.mesh.vertices;
   CHECK(x1.col(1).maxCoeff() == Approx(x0.col(1).maxCoeff()).margin(1e-12));
   const double length0 = x0.col(1).maxCoeff() - x0.col(1).minCoeff();
-  CHECK(x1.col(1).maxCoeff() - x1.col(1).minCoeff() == Approx(1.25 * length0).epsilon(1e-12));
+  CHECK(x1.col(1).maxCoeff() - x1.col(1).minCoeff() == Approx(l * length0).epsilon(1e-12));
+  CHECK(x1.col(0).maxCoeff() - x1.col(0).minCoeff() == Approx(1.25 * (x0.col(0).maxCoeff() - x0.col(0).minCoeff())).epsilon(1e-12));
   // Any horizontal loop through the graded shirt is 1.25 times the loop at the matching height.
   const double top = x0.col(1).maxCoeff(), y = top - 0.4 * length0;
   const Eigen::Vector2d centre(x0.col(0).mean(), x0.col(2).mean());
   const geometry::Girth loop0 = geometry::horizontal_girth(x0, before.mesh.faces, y, centre);
-  const geometry::Girth loop1 = geometry::horizontal_girth(x1, g.mesh.faces, top - 1.25 * (top - y), centre);
+  const geometry::Girth loop1 = geometry::horizontal_girth(x1, g.mesh.faces, top - l * (top - y), centre);
   REQUIRE(loop0.found);
   REQUIRE(loop1.found);
   CHECK(loop1.length == Approx(1.25 * loop0.length).epsilon(1e-6));
+  // The pattern: the shirt's panels rise along v, so across (u) by 1.25 and
+  // along (v) by between the length's 1.075 and 1.25 (by the slope its
+  // heights fit over the chart: the shoulders and sleeves rise slower).
+  const Eigen::Vector2d span0 = before.mesh.uv.colwise().maxCoeff() - before.mesh.uv.colwise().minCoeff();
+  const Eigen::Vector2d span1 = g.mesh.uv.colwise().maxCoeff() - g.mesh.uv.colwise().minCoeff();
+  CHECK(span1.x() / span0.x() == Approx(1.25).epsilon(0.01));
+  CHECK(span1.y() / span0.y() > l - 1e-9);
+  CHECK(span1.y() / span0.y() < 1.2);
 
   Garment again = before;
   CHECK_THROWS_AS(grade_garment(again, 2.5), ConfigError);
   grade_garment(again, 1.0);
   CHECK(again.mesh.vertices == before.mesh.vertices);
+  CHECK(again.mesh.uv == before.mesh.uv);
+  CHECK(again.fit_grade == 1.0);
+}
+
+TEST_CASE("grading a pattern chart by chart: across its rise by g, along it by the slope's mix", "[garments][grade]") {
+  // A vertical tube (radius 0.2, 0.5 m high) whose one chart is its unrolled
+  // pattern, and beside it a flat horizontal square of its own chart: the
+  // tube's pattern grows 1.5 around and 1.15 up, the square 1.5 both ways.
+  Garment g;
+  const int around = 24, rows = 6;
+  Mesh& m = g.mesh;
+  m.vertices.resize(around * rows + 4, 3);
+  m.uv.resize((around + 1) * rows + 4, 2);
+  for (int j = 0; j < rows; ++j) {
+    for (int i = 0; i < around; ++i) {
+      const double a = 2 * M_PI * i / around;
+      m.vertices.row(j * around + i) << 0.2 * std::cos(a), 1.0 + 0.1 * j, 0.2 * std::sin(a);
+    }
+    for (int i = 0; i <= around; ++i) m.uv.row(j * (around + 1) + i) << 0.2 * 2 * M_PI * i / around, 0.1 * j;
+  }
+  std::vector<Eigen::Vector3i> faces, uv_faces;
+  for (int j = 0; j + 1 < rows; ++j)
+    for (int i = 0; i < around; ++i) {
+      const int a = j * around + i, b = j * around + (i + 1) % around, c = a + around, d = b + around;
+      const int ua = j * (around + 1) + i, ub = ua + 1, uc = ua + around + 1, ud = ub + around + 1;
+      faces.emplace_back(a, b, d), uv_faces.emplace_back(ua, ub, ud);
+      faces.emplace_back(a, d, c), uv_faces.emplace_back(ua, ud, uc);
+    }
+  const int q = around * rows, uq = (around + 1) * rows;  // the square, at the tube's top, inside it
+  m.vertices.bottomRows(4) << -0.1, 1.5, -0.1, 0.1, 1.5, -0.1, 0.1, 1.5, 0.1, -0.1, 1.5, 0.1;
+  m.uv.bottomRows(4) << 2.0, 0.0, 2.2, 0.0, 2.2, 0.2, 2.0, 0.2;
+  faces.emplace_back(q, q + 2, q + 1), uv_faces.emplace_back(uq, uq + 2, uq + 1);
+  faces.emplace_back(q, q + 3, q + 2), uv_faces.emplace_back(uq, uq + 3, uq + 2);
+  m.faces.resize(static_cast<Eigen::Index>(faces.size()), 3);
+  m.uv_faces.resize(static_cast<Eigen::Index>(faces.size()), 3);
+  for (std::size_t f = 0; f < faces.size(); ++f)
+    m.faces.row(static_cast<Eigen::Index>(f)) = faces[f].transpose(), m.uv_faces.row(static_cast<Eigen::Index>(f)) = uv_faces[f].transpose();
+  const Mesh before = m;
+  grade_garment(g, 1.5);
+  const double l = 1.15;
+  // The tube's chart: the rows' lengths (around) by 1.5, the columns' (up) by 1.15.
+  for (int j = 0; j < rows; ++j)
+    for (int i = 0; i < around; ++i) {
+      const int u = j * (around + 1) + i;
+      CHECK((m.uv.row(u + 1) - m.uv.row(u)).norm() == Approx(1.5 * (before.uv.row(u + 1) - before.uv.row(u)).norm()).epsilon(1e-9));
+      if (j + 1 < rows)
+        CHECK((m.uv.row(u + around + 1) - m.uv.row(u)).norm() == Approx(l * 0.1).epsilon(1e-9));
+    }
+  // The square lies flat: all of it goes around the body, 1.5 both ways.
+  for (int k = 1; k < 4; ++k)
+    CHECK((m.uv.row(uq + k) - m.uv.row(uq)).norm() == Approx(1.5 * (before.uv.row(uq + k) - before.uv.row(uq)).norm()).epsilon(1e-9));
+  // In 3D: 1.5 around, 1.15 down from the top.
+  CHECK(m.vertices(0, 0) == Approx(0.3));
+  CHECK(m.vertices(0, 1) == Approx(1.5 - l * 0.5));
 }
 
 TEST_CASE("a scene's grade is parsed, checked, recorded and applied before dressing", "[garments][grade]") {
@@ -81,8 +145,13 @@ TEST_CASE("a scene's grade is parsed, checked, recorded and applied before dress
   const auto loop = [](const Simulation& s) {
     return garment_girth(s.garment().mesh.vertices, s.garment().mesh.faces, s.mean_body());
   };
-  // Dressed on the mean body, the graded shirt is about 1.2 times as wide around (dressing moves it by millimetres).
+  // Dressed on its fit body (1.2 times the mean girth), the graded shirt is about 1.2 times as wide around
+  // (dressing moves it by millimetres), and every run starts from that body.
   CHECK(loop(big) / loop(plain) == Approx(1.2).epsilon(0.02));
+  CHECK(big.garment().fit_grade == 1.2);
+  CHECK(body_girth(big.fit_body(), big.body_model().faces()) / body_girth(big.mean_body(), big.body_model().faces()) ==
+        Approx(1.2).epsilon(2e-3));
+  CHECK(plain.fit_body() == plain.mean_body());
   // A model's template is ungraded: its drapes are refused for training.
   CHECK_THROWS_WITH(assets_spec_for(graded, 16, 4), Catch::Contains("graded"));
 }
@@ -128,7 +197,7 @@ TEST_CASE("a garment graded smaller than the mean body is refused at the start a
   // The hint measures the garment as graded (its loop 0.6 times the template's), not as dressing pushed it out.
   CHECK(d.placed_loop() == Approx(0.6 * d.design_loop()).epsilon(0.02));
   const std::string hint = start_fit_hint(d);
-  CHECK_THAT(hint, Catch::Contains("smaller around than the mean body") && Catch::Contains("garment: {grade: 1.00}"));
+  CHECK_THAT(hint, Catch::Contains("smaller around than the body it is put on") && Catch::Contains("garment: {grade: 1.00}"));
   BodyRequest request = d.target_request();
   request.bmi = 40;
   const SceneBody body = scene_body(tight, request, "bmi 40");

@@ -25,17 +25,37 @@ double uv_twice_area(const Mesh& m, int f) {
   return (b - a).x() * (c - a).y() - (b - a).y() * (c - a).x();
 }
 
-// The regular pattern's area from its documented measurements (docs/garments.md),
-// independent of the plugin's code: the T outline minus the neckline's half ellipse.
-double pattern_area(double neck_depth) {
-  const double W = 0.27, L = 0.70, nw = 0.085, su = 0.22, slope = 18 * M_PI / 180, alpha = 20 * M_PI / 180,
-               sl = 0.22, so = 0.19;
-  const Eigen::Vector2d d(std::cos(alpha), -std::sin(alpha)), n(-std::sin(alpha), -std::cos(alpha));
-  const Eigen::Vector2d S(su, L - (su - nw) * std::tan(slope));
-  const double t = (W - su + so * std::sin(alpha)) / std::cos(alpha);
-  const geometry::Polygon2 right{{0, 0}, {W, 0}, S + so * n + t * d, S + sl * d + so * n, S + sl * d, S, {nw, L}, {0, L}};
-  return 2 * geometry::signed_area(right) - M_PI / 2 * nw * neck_depth;
+// The pattern's measurements as docs/garments.md gives them: the regular's,
+// or a size's, graded by its chest factor g (girths by g, lengths by 1 + 0.3
+// (g - 1), the neck's width by 1 + 0.8 (g - 1); the sleeve's top seam long
+// enough to pass the armpit by the regular's 0.098 m of free sleeve graded as
+// a length), written out here apart from the plugin's code.
+struct Measures {
+  double W = 0.27, L = 0.70, nw = 0.085, su = 0.22, sl = 0.22, so = 0.19, front = 0.10, back = 0.025;
+};
+const double kSlope = 18 * M_PI / 180, kAlpha = 20 * M_PI / 180;
+double armpit_distance(const Measures& m) { return (m.W - m.su + m.so * std::sin(kAlpha)) / std::cos(kAlpha); }
+Measures measures_of(double g) {
+  const Measures r;
+  const double l = 1 + 0.3 * (g - 1);
+  Measures m;
+  m.W = g * r.W, m.su = g * r.su, m.so = (1 + 0.5 * (g - 1)) * r.so;
+  m.L = l * r.L, m.front = l * r.front, m.back = l * r.back;
+  m.nw = (1 + 0.8 * (g - 1)) * r.nw;
+  m.sl = armpit_distance(m) + l * (r.sl - armpit_distance(r));
+  return m;
 }
+
+// The pattern's area from those measurements: the T outline minus the
+// neckline's half ellipse.
+double pattern_area(const Measures& m, bool front) {
+  const Eigen::Vector2d d(std::cos(kAlpha), -std::sin(kAlpha)), n(-std::sin(kAlpha), -std::cos(kAlpha));
+  const Eigen::Vector2d S(m.su, m.L - (m.su - m.nw) * std::tan(kSlope));
+  const double t = armpit_distance(m);
+  const geometry::Polygon2 right{{0, 0}, {m.W, 0}, S + m.so * n + t * d, S + m.sl * d + m.so * n, S + m.sl * d, S, {m.nw, m.L}, {0, m.L}};
+  return 2 * geometry::signed_area(right) - M_PI / 2 * m.nw * (front ? m.front : m.back);
+}
+double pattern_area(double neck_depth) { return pattern_area(Measures{}, neck_depth == Measures{}.front); }
 
 }  // namespace
 
@@ -72,22 +92,44 @@ TEST_CASE("tshirt: one manifold surface with collar, two sleeve and hem openings
   }
 }
 
-TEST_CASE("tshirt: every graded size is the same topology on a scaled pattern", "[garments][tshirt]") {
+TEST_CASE("tshirt: every graded size is the same mesh on its graded pattern", "[garments][tshirt]") {
   const Garment regular = build_tshirt();
-  double area_regular = 0;
-  for (int f = 0; f < regular.mesh.num_faces(); ++f) area_regular += uv_twice_area(regular.mesh, f) / 2;
   const double height_regular = regular.mesh.uv.col(1).maxCoeff() - regular.mesh.uv.col(1).minCoeff();
-  for (const auto& [size, grade] : {std::pair<std::string, double>{"small", 0.9}, {"large", 1.12}, {"xlarge", 1.25}, {"3xlarge", 1.55}, {"5xlarge", 1.85}}) {
+  for (const auto& [size, grade] : {std::pair<std::string, double>{"small", 0.9}, {"large", 1.12}, {"xlarge", 1.25},
+                                    {"3xlarge", 1.55}, {"5xlarge", 1.85}, {"6xlarge", 2.0}}) {
     INFO(size);
     const Garment graded = build_tshirt("{size: " + size + "}");
     REQUIRE(regular.mesh.num_vertices() == graded.mesh.num_vertices());
     CHECK(regular.mesh.faces == graded.mesh.faces);
     CHECK(regular.mesh.uv_faces == graded.mesh.uv_faces);
-    double area = 0;
-    for (int f = 0; f < graded.mesh.num_faces(); ++f) area += uv_twice_area(graded.mesh, f) / 2;
-    CHECK(area / area_regular == Approx(grade * grade).epsilon(1e-6));
+    CHECK(graded.fit_grade == grade);  // dressed on the body of that girth (fit_body.hpp)
+    // Each chart covers its graded pattern, with no triangle turned over or crushed.
+    const std::vector<int> chart = uv_chart_of_faces(graded.mesh);
+    double area[2] = {0, 0}, min_angle = 180;
+    for (int f = 0; f < graded.mesh.num_faces(); ++f) {
+      const double twice = uv_twice_area(graded.mesh, f);
+      REQUIRE(twice > 0);
+      area[chart[f]] += twice / 2;
+      for (int k = 0; k < 3; ++k) {
+        const Eigen::Vector2d u = graded.mesh.uv.row(graded.mesh.uv_faces(f, (k + 1) % 3)) - graded.mesh.uv.row(graded.mesh.uv_faces(f, k));
+        const Eigen::Vector2d w = graded.mesh.uv.row(graded.mesh.uv_faces(f, (k + 2) % 3)) - graded.mesh.uv.row(graded.mesh.uv_faces(f, k));
+        min_angle = std::min(min_angle, std::atan2(std::abs(u.x() * w.y() - u.y() * w.x()), u.dot(w)) * 180 / M_PI);
+      }
+    }
+    CHECK(area[0] == Approx(pattern_area(measures_of(grade), true)).epsilon(0.005));
+    CHECK(area[1] == Approx(pattern_area(measures_of(grade), false)).epsilon(0.005));
+    CHECK(min_angle > 15);
+    // Lengths grow 0.3 times as fast as the chest: a 6xlarge is 30 % longer, not twice.
     const double height = graded.mesh.uv.col(1).maxCoeff() - graded.mesh.uv.col(1).minCoeff();
-    CHECK(height / height_regular == Approx(grade));
+    CHECK(height / height_regular == Approx(1 + 0.3 * (grade - 1)).epsilon(1e-9));
+    // The hem (v = 0 on the front chart) is the chest's width: g times the regular's 0.54 m.
+    double hem_lo = INFINITY, hem_hi = -INFINITY;
+    for (int f = 0; f < graded.mesh.num_faces(); ++f)
+      for (int k = 0; k < 3; ++k)
+        if (chart[f] == 0 && std::abs(graded.mesh.uv(graded.mesh.uv_faces(f, k), 1)) < 1e-12)
+          hem_lo = std::min(hem_lo, graded.mesh.uv(graded.mesh.uv_faces(f, k), 0)),
+          hem_hi = std::max(hem_hi, graded.mesh.uv(graded.mesh.uv_faces(f, k), 0));
+    CHECK(hem_hi - hem_lo == Approx(grade * 0.54).epsilon(1e-9));
   }
 }
 

@@ -35,6 +35,12 @@ struct Garment {
   Mesh mesh;                          // rest (dressed) state + material-space uv per corner
   std::vector<Material> materials;    // at least one
   Eigen::VectorXi face_material;      // [F] index into materials; empty = all 0
+  // The girth of the body the garment is cut for, as a multiple of the body
+  // model's mean body's (1: the mean body). A template's larger sizes set it
+  // to their grade and grade_garment multiplies it; a scene dresses the
+  // garment on the body of that girth and starts its morph there (fit_body,
+  // drape/bodies/fit_body.hpp).
+  double fit_grade = 1.0;
   int material_of(int face) const { return face_material.size() ? face_material[face] : 0; }
 };
 

@@ -7,8 +7,10 @@
 // templates never depend on a body plugin. dress() then fits that placement to
 // an actual body mesh: it pushes every vertex that lies inside the body or
 // closer than `margin` to it out along the body normal, and spreads the
-// correction over the neighbouring vertices so the surface stays smooth. The
-// material space (UVs) is untouched: only the 3D rest/start state changes.
+// correction over the neighbouring vertices so the surface stays smooth; if
+// that folded the cloth through itself, it smooths and pushes again until it
+// does not (DressOptions::untangle_rounds). The material space (UVs) is
+// untouched: only the 3D rest/start state changes.
 #include <drape/energy.hpp>
 #include <drape/garment_layers.hpp>
 #include <drape/mesh.hpp>
@@ -22,6 +24,10 @@ struct DressOptions {
   int max_iterations = 30;  // push + smooth rounds
   int smoothing_steps = 3;  // displacement-averaging steps per round
   bool lay_pieces = true;   // a garment of several pieces: each laid outside the one under it (garment_layers.hpp)
+  // When the pushed garment passes through itself (neighbours pushed onto
+  // both sides of a crease): up to this many rounds that smooth every
+  // displacement and push again, keeping the least tangled (0: none).
+  int untangle_rounds = 20;
 };
 
 struct DressReport {
@@ -31,6 +37,10 @@ struct DressReport {
   double deepest_before = 0;      // m, largest penetration before dressing (>= 0)
   double min_distance_after = 0;  // m, smallest signed distance after dressing
   LayerReport layers;             // a garment of several pieces: how they were laid in layers (garment_layers.hpp)
+  // Face pairs through each other (geometry::self_intersections, touching
+  // included) after the pushes, and in the result; the untangling round kept
+  // (0: the pushes' result).
+  int tangled_before = 0, tangled_after = 0, untangle_rounds = 0;
 };
 
 // A garment is modelled around the body it is dressed on (a template's

@@ -1,19 +1,32 @@
 #pragma once
 // Grading a garment to another size, as a tailor grades a pattern: every
-// girth and every length scaled by one factor. The rest garment (as its
-// template built it, before dressing) is scaled about the centre of its top
-// (mean x and z of its vertices, its highest y), so a shirt keeps its neckline
-// at the neck while it grows around and down; its material space (UVs, the
-// flat pattern) is scaled by the same factor, so the cloth's rest lengths
-// grow with it. A scene asks for it with `garment: {grade: g}` (any
-// template), and datasets record it in their scene text.
+// girth (width) scaled by the grade g, every length by grade_length(g) =
+// 1 + 0.3 (g - 1), as ready-to-wear size charts grow a tee's chest by about
+// 5 cm a size and its body length by about 2.5 cm (a 6xlarge of twice the
+// chest is 30 % longer, not twice as long).
+//
+// The rest garment (as its template built it, before dressing) is scaled
+// about the centre of its top (mean x and z of its vertices, its highest y):
+// x and z by g, y by grade_length(g), so a shirt keeps its neckline at the
+// neck while it grows around and a little down. Its material space (the
+// pattern's UVs) is graded with it, chart by chart: along the direction in
+// which the chart rises in 3D (the least-squares gradient of the vertices'
+// height over its UVs) by the 3D factor of that slope, across it by g. Its
+// fit_grade is multiplied by g, so that a scene dresses it on a body of
+// that girth (drape/bodies/fit_body.hpp). A scene asks for it with
+// `garment: {grade: g}` (any template), and datasets record it in their
+// scene text.
 #include <drape/energy.hpp>  // Garment
 
 namespace drape {
 
 inline constexpr double kMinGrade = 0.5, kMaxGrade = 2.0;
 
-// Scales `garment` in place by `grade` (ConfigError outside [kMinGrade, kMaxGrade]).
+// How much a grade of girth g grows lengths: 1 + 0.3 (g - 1).
+inline constexpr double kLengthPerGirth = 0.3;
+inline double grade_length(double g) { return 1.0 + kLengthPerGirth * (g - 1.0); }
+
+// Grades `garment` in place by `grade` (ConfigError outside [kMinGrade, kMaxGrade]).
 void grade_garment(Garment& garment, double grade);
 
 }  // namespace drape

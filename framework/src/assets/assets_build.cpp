@@ -3,6 +3,7 @@
 #include <drape/energy.hpp>
 #include <drape/bodies/body.hpp>
 #include <drape/assets/assets.hpp>
+#include <drape/bodies/fit_body.hpp>
 #include <drape/garment_dressing.hpp>
 #include <drape/geometry/body_correspondence.hpp>
 #include <drape/geometry/laplacian.hpp>
@@ -92,8 +93,9 @@ std::shared_ptr<const Assets> build_assets(const Registry& registry, const Asset
                         .create_garment(spec.garment, Params(gd.params, values_of(spec.garment_params, "assets garment"),
                                                              "garment '" + spec.garment + "'"))
                         ->build();
-  check_garment_around_body(garment.mesh, a->body, "the assets' garment '" + spec.garment + "'");
-  dress(garment, a->body);
+  // Dressed as a scene dresses it: on the body it is cut for (fit_body.hpp),
+  // the mean body a->body for the regular size.
+  dress_on_fit_body(*body_model, garment, "the assets' garment '" + spec.garment + "'");
   a->garment = std::make_shared<const Garment>(std::move(garment));
   t.garment = since(start);
 

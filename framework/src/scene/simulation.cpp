@@ -2,6 +2,7 @@
 #include <drape/vertex_count.hpp>
 #include <drape/physics/dissipation.hpp>
 #include <drape/bodies/body.hpp>
+#include <drape/bodies/fit_body.hpp>
 #include <drape/geometry/body_units.hpp>
 #include <drape/garment_dressing.hpp>
 #include <drape/garment_grading.hpp>
@@ -125,14 +126,14 @@ Simulation::Simulation(const Registry& registry, Scene scene) : registry_(regist
   design_loop_ = garment_girth(garment.mesh.vertices, garment.mesh.faces, mean_body_);
   grade_garment(garment, scene_.garment_grade);  // before dressing: the graded garment is what goes around the body
   placed_loop_ = scene_.garment_grade == 1.0 ? design_loop_ : garment_girth(garment.mesh.vertices, garment.mesh.faces, mean_body_);
-  Mesh mean;
-  mean.vertices = mean_body_;
-  mean.faces = body_model_->faces();
   std::string what = "garment '" + scene_.garment + "'";
   if (const auto file = scene_.garment_params.find("file"); file != scene_.garment_params.end() && file->second.node.IsScalar())
     what += " (" + file->second.node.as<std::string>() + ")";
-  check_garment_around_body(garment.mesh, mean, what + " of " + scene_.file);
-  dress(garment, mean);
+  // Dressed on the body it is cut for: the mean body, or a larger size's fit
+  // body (fit_body.hpp), where every run's morph then starts.
+  FitBody fit = dress_on_fit_body(*body_model_, garment, what + " of " + scene_.file);
+  fit_body_ = std::move(fit.vertices);
+  fit_request_ = fit.request;
   scene_detail::apply_scene_materials(garment, scene_);
   garment_ = std::make_shared<Garment>(std::move(garment));
 
@@ -214,7 +215,7 @@ SimulationResult Simulation::run(const Eigen::MatrixX3d& target_body, const Simu
                        "the scene's body model '" + scene_.body_model + "'");
   check_body_units(target_body, "the target body");
   if (options.start_body) check_body_units(*options.start_body, "the start body");
-  const Eigen::MatrixX3d& body_start = options.start_body ? *options.start_body : mean_body_;
+  const Eigen::MatrixX3d& body_start = options.start_body ? *options.start_body : fit_body_;
   const Eigen::MatrixX3d& garment_start = options.start_garment ? *options.start_garment : garment_->mesh.vertices;
   if (body_start.rows() != mean_body_.rows() || garment_start.rows() != garment_->mesh.vertices.rows())
     throw ConfigError("simulation start state has the wrong vertex count");

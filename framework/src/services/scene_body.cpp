@@ -152,13 +152,14 @@ SceneBody scene_body(const SceneSimulations& simulations, const BodyRequest& req
 std::string start_fit_hint(const Simulation& design) {
   const Eigen::MatrixX3i& body_faces = design.body_model().faces();
   const double loop = design.placed_loop();  // before dressing pushed it out onto the body
-  const double ease = garment_ease(loop, design.mean_body(), body_faces);
+  // Put on the body it is cut for: the mean body, or its size's fit body (fit_body.hpp).
+  const double ease = garment_ease(loop, design.fit_body(), body_faces);
   if (!(ease < 0)) return "";  // fits the body it is dressed on, or does not go around the torso
   const double loop0 = design_loop(design);
   const double design_ease = garment_ease(loop0, design.mean_body(), body_faces);
   char text[300];
   std::snprintf(text, sizeof text,
-                "the garment is %.1f %% smaller around than the mean body it is put on before the body morphs (its "
+                "the garment is %.1f %% smaller around than the body it is put on before the body morphs (its "
                 "narrowest loop over the chest band %.3f m, the body's chest or belly %.3f m), so it cannot be put on; ",
                 -100.0 * ease, loop, loop / (1.0 + ease));
   return text + (std::isfinite(design_ease) ? grade_text(loop0, design_ease, loop / (1.0 + ease)) : std::string("grade it up"));

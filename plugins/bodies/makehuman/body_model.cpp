@@ -42,6 +42,15 @@ MakeHumanBody::MakeHumanBody(std::shared_ptr<const Model> model, double muscle) 
 
 Eigen::VectorXd MakeHumanBody::mean_shape() const { return to_shape(Sliders{}); }
 
+BodyRequest MakeHumanBody::mean_request() const {
+  const BodyMeasure m = measure(model_->body(Sliders{}));
+  BodyRequest r;
+  r.bmi = m.bmi;
+  r.height = m.height;
+  r.sex = Sliders{}.gender;
+  return r;
+}
+
 Eigen::MatrixX3d MakeHumanBody::vertices(const Eigen::VectorXd& shape) const { return model_->body(to_sliders(shape)).vertices; }
 
 // The path through (muscle, weight) used by the BMI search. With free muscle it

@@ -33,6 +33,8 @@ class MakeHumanBody final : public BodyModel {
   Eigen::MatrixX3d vertices(const Eigen::VectorXd& shape) const override;
   Eigen::VectorXd solve(const BodyRequest& request) const override;
   std::pair<double, double> bmi_range() const override;
+  // The default sliders' BMI and height, and their gender (1: the mean body is a man's).
+  BodyRequest mean_request() const override;
   // The range for one sex and height (what solve() can reach for that request).
   std::pair<double, double> bmi_range(double sex, double height) const;
 

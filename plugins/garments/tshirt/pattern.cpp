@@ -1,6 +1,7 @@
 #include "pattern.hpp"
 
 #include <drape/errors.hpp>
+#include <drape/garment_grading.hpp>
 
 #include <cmath>
 
@@ -11,24 +12,60 @@ double rad(double deg) { return deg * M_PI / 180; }
 
 Eigen::Vector2d mirror(const Eigen::Vector2d& p) { return {-p.x(), p.y()}; }
 
-// Appends a straight piece from a to b (a included, b left to the next piece).
-// Its end points are corners; panel_outline marks those shared with a seam.
-void add_segment(Outline& out, const Eigen::Vector2d& a, const Eigen::Vector2d& b, bool seam, double spacing) {
+// The straight pieces of the outline, counter-clockwise from the left hem
+// corner (the neckline's curve lies between pieces 5 and 6): start and end.
+constexpr int kPieces = 11;
+std::pair<Eigen::Vector2d, Eigen::Vector2d> piece_ends(const PatternPoints& p, int piece) {
+  switch (piece) {
+    case 0: return {mirror(p.hem), p.hem};
+    case 1: return {p.hem, p.armpit};
+    case 2: return {p.armpit, p.sleeve_bottom};
+    case 3: return {p.sleeve_bottom, p.sleeve_top};
+    case 4: return {p.sleeve_top, p.shoulder};
+    case 5: return {p.shoulder, p.neck};
+    case 6: return {mirror(p.neck), mirror(p.shoulder)};
+    case 7: return {mirror(p.shoulder), mirror(p.sleeve_top)};
+    case 8: return {mirror(p.sleeve_top), mirror(p.sleeve_bottom)};
+    case 9: return {mirror(p.sleeve_bottom), mirror(p.armpit)};
+    case 10: return {mirror(p.armpit), mirror(p.hem)};
+    default: throw Error("tshirt: no outline piece " + std::to_string(piece));
+  }
+}
+
+// Appends straight piece `piece` (its start included, its end left to the
+// next piece). Its end points are corners; panel_outline marks those shared
+// with a seam.
+void add_segment(Outline& out, const PatternPoints& p, int piece, bool seam, double spacing) {
+  const auto [a, b] = piece_ends(p, piece);
   const int n = std::max(1, static_cast<int>(std::ceil((b - a).norm() / spacing - 1e-9)));
   for (int k = 0; k < n; ++k) {
-    out.loop.push_back(a + (b - a) * (static_cast<double>(k) / n));
+    const double t = static_cast<double>(k) / n;
+    out.loop.push_back(a + (b - a) * t);
     out.on_seam.push_back(seam);
+    out.piece.push_back(piece);
+    out.along.push_back(t);
   }
+}
+
+// The armpit's distance along the sleeve from the shoulder point (pattern_points).
+double armpit_along_sleeve(const PatternSpec& s) {
+  const double alpha = rad(s.sleeve_angle_deg);
+  return (s.half_width - s.shoulder_half_width + s.sleeve_opening * std::sin(alpha)) / std::cos(alpha);
 }
 
 }  // namespace
 
-PatternSpec PatternSpec::scaled(double s) const {
-  PatternSpec g = *this;
-  for (double* x : {&g.half_width, &g.length, &g.neck_half_width, &g.front_neck_depth, &g.back_neck_depth,
-                    &g.shoulder_half_width, &g.sleeve_length, &g.sleeve_opening})
-    *x *= s;
-  return g;
+PatternSpec PatternSpec::graded(double g) const {
+  if (g == 1.0) return *this;
+  const double length_factor = grade_length(g), neck_factor = 1.0 + 0.8 * (g - 1.0),
+               half_factor = 1.0 + 0.5 * (g - 1.0);
+  PatternSpec out = *this;
+  for (double* x : {&out.half_width, &out.shoulder_half_width}) *x *= g;
+  for (double* x : {&out.length, &out.front_neck_depth, &out.back_neck_depth}) *x *= length_factor;
+  out.neck_half_width *= neck_factor;
+  out.sleeve_opening *= half_factor;
+  out.sleeve_length = armpit_along_sleeve(out) + length_factor * (sleeve_length - armpit_along_sleeve(*this));
+  return out;
 }
 
 std::vector<std::string> size_names() {
@@ -80,12 +117,12 @@ Outline panel_outline(const PatternSpec& spec, bool front, double spacing) {
   Outline out;
   // Counter-clockwise from the left hem corner: hem, right side, right sleeve,
   // right shoulder, neckline, left shoulder, left sleeve, left side.
-  add_segment(out, mirror(p.hem), p.hem, false, spacing);
-  add_segment(out, p.hem, p.armpit, true, spacing);
-  add_segment(out, p.armpit, p.sleeve_bottom, true, spacing);
-  add_segment(out, p.sleeve_bottom, p.sleeve_top, false, spacing);
-  add_segment(out, p.sleeve_top, p.shoulder, true, spacing);
-  add_segment(out, p.shoulder, p.neck, true, spacing);
+  add_segment(out, p, 0, false, spacing);  // hem
+  add_segment(out, p, 1, true, spacing);   // right side
+  add_segment(out, p, 2, true, spacing);   // underarm
+  add_segment(out, p, 3, false, spacing);  // sleeve end
+  add_segment(out, p, 4, true, spacing);   // top of the sleeve
+  add_segment(out, p, 5, true, spacing);   // shoulder
 
   // Neckline: half an ellipse through both neck points, resampled by arc length.
   const double depth = front ? spec.front_neck_depth : spec.back_neck_depth;
@@ -99,12 +136,14 @@ Outline panel_outline(const PatternSpec& spec, bool front, double spacing) {
   for (std::size_t k = 0; k + 1 < neck.size(); ++k) {
     out.loop.push_back(neck[k]);
     out.on_seam.push_back(0);
+    out.piece.push_back(k == 0 ? 5 : kNeckline);  // the neck point ends the shoulder
+    out.along.push_back(k == 0 ? 1.0 : 0.0);
   }
-  add_segment(out, mirror(p.neck), mirror(p.shoulder), true, spacing);
-  add_segment(out, mirror(p.shoulder), mirror(p.sleeve_top), true, spacing);
-  add_segment(out, mirror(p.sleeve_top), mirror(p.sleeve_bottom), false, spacing);
-  add_segment(out, mirror(p.sleeve_bottom), mirror(p.armpit), true, spacing);
-  add_segment(out, mirror(p.armpit), mirror(p.hem), true, spacing);
+  add_segment(out, p, 6, true, spacing);
+  add_segment(out, p, 7, true, spacing);
+  add_segment(out, p, 8, false, spacing);
+  add_segment(out, p, 9, true, spacing);
+  add_segment(out, p, 10, true, spacing);
   // Corners where an open piece meets a seam belong to the seam.
   for (std::size_t i = 0; i < out.loop.size(); ++i) {
     const Eigen::Vector2d& q = out.loop[i];
@@ -112,6 +151,16 @@ Outline panel_outline(const PatternSpec& spec, bool front, double spacing) {
       if ((q - c).norm() < 1e-12 || (q - mirror(c)).norm() < 1e-12) out.on_seam[i] = 1;
   }
   return out;
+}
+
+Eigen::Vector2d outline_point_on(const PatternSpec& from, const PatternSpec& to, int piece, double along,
+                                 const Eigen::Vector2d& p) {
+  if (piece == kNeckline)  // the same neckline ellipses (the front's and the back's depths grade alike)
+    return {p.x() * (to.neck_half_width / from.neck_half_width),
+            to.length - (from.length - p.y()) * (to.front_neck_depth / from.front_neck_depth)};
+  if (piece < 0 || piece >= kPieces) throw Error("tshirt: no outline piece " + std::to_string(piece));
+  const auto [a, b] = piece_ends(pattern_points(to), piece);
+  return a + (b - a) * along;
 }
 
 Box2 front_box(const PatternSpec& spec) {

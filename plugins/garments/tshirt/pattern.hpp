@@ -24,19 +24,25 @@ struct PatternSpec {
   double sleeve_length = 0.22;       // along the top seam from the shoulder point
   double sleeve_opening = 0.19;      // flat width of the sleeve end (half its circumference)
 
-  // The same pattern graded by `s` in width and length (sizes share topology).
-  PatternSpec scaled(double s) const;
+  // The pattern of a size whose chest is `g` times this one's, graded as
+  // ready-to-wear tees are (docs/garments.md, "Sizes"): the girths (chest,
+  // shoulder points, sleeve opening) by g; the lengths (body length, neck
+  // depths, the sleeve past the armpit) by drape::grade_length(g) = 1 + 0.3
+  // (g - 1); the neck's width halfway, by 1 + 0.5 (g - 1). The sleeve's top
+  // seam runs from the graded shoulder point past the graded armpit by the
+  // graded free sleeve. Angles stay. g = 1 gives this pattern unchanged.
+  PatternSpec graded(double g) const;
 };
 
-// Graded sizes: the regular pattern scaled in width and length; every size has
-// the same mesh (faces identical, only UVs and positions scale), which is what
-// lets one network serve several. The steps follow a common tee grading of
-// 4-6 cm of chest per size: regular 1.08 m around, large 1.21, xlarge 1.35.
-// The plus sizes continue by ~15 % of the regular's girth a step, up to 2.16 m
-// around (6xlarge), for the heaviest bodies of the seed's range, whose chest
-// or belly girth reaches 1.6-2.1 m (docs/garments.md, "size: auto"). Their
-// length grows with the width (one scale, as for the other grades), so they
-// are long shirts.
+// Graded sizes: the regular pattern graded by the chest (PatternSpec::graded);
+// every size has the same mesh (faces identical, only UVs and positions move),
+// which is what lets one network serve several. The steps follow a common tee
+// grading of 4-6 cm of chest per size: regular 1.08 m around, large 1.21,
+// xlarge 1.35. The plus sizes continue by ~15 % of the regular's girth a
+// step, up to 2.16 m around (6xlarge), for the heaviest bodies of the seed's
+// range, whose chest or belly girth reaches 1.6-2.1 m (docs/garments.md,
+// "size: auto"). Lengths grow 0.3 times as fast as the chest, so a 6xlarge
+// is 30 % longer than the regular, as on real size charts.
 struct SizeGrade {
   const char* name;
   double scale;
@@ -62,11 +68,25 @@ double top_seam_v(const PatternSpec& spec, double u);
 struct Outline {
   Polygon2 loop;              // counter-clockwise
   std::vector<char> on_seam;  // per point: lies on a seam (shared with the other panel)
+  // Per point: the straight piece of the outline it lies on (0-10, from the
+  // left hem corner counter-clockwise; kNeckline for the neck's curve) and
+  // how far along it (0 at its start).
+  std::vector<int> piece;
+  std::vector<double> along;
 };
+inline constexpr int kNeckline = -1;
 
 // The panel's boundary sampled about `spacing` apart; seam pieces give
 // bit-identical points for front and back.
 Outline panel_outline(const PatternSpec& spec, bool front, double spacing);
+
+// Where a point of `from`'s outline (its piece and how far along, as
+// panel_outline gives them; p itself for the neckline) lies on `to`'s: the
+// same fraction of the same piece, and on the neckline the point scaled by the
+// two necklines' widths and depths. A function of the point alone, so the
+// points both panels share stay shared.
+Eigen::Vector2d outline_point_on(const PatternSpec& from, const PatternSpec& to, int piece, double along,
+                                 const Eigen::Vector2d& p);
 
 // The front panel's bounding box (normalised print coordinates refer to it).
 struct Box2 {

@@ -31,7 +31,26 @@ struct TorsoFrame {
   // The neck's section above its base (measured at y = 1.50-1.54).
   double neck_half_width = 0.056, neck_half_depth = 0.057, neck_centre_z = -0.013;
   double neck_base_height = 1.46;
+  // How a panel's point on the other panel's side of the neck's centre is
+  // cleared of the neck (placement.cpp, clear_neck): false, flipped to its own
+  // side (the regular size, kept as it was: the shipped model's template);
+  // true, moved out sideways (every other size: fit_torso).
+  bool neck_sideways = false;
+  // The collar's clearance around the neck. A size cut larger keeps more
+  // (fit_torso): its neckline's points lie farther apart around a thicker
+  // neck, and the chords between them cut in deeper.
+  double neck_margin = 0.015;
 };
+
+// The canonical torso of a size's fit body (drape/bodies/fit_body.hpp: the
+// parametric body of the mean height and sex whose girth is `grade` times the
+// mean body's, on which a scene dresses that size): `mean` moved by what
+// differs between that body and the mean body, measured on both (chest width,
+// depth and centre, neck section, the arm's axis and angle, the shoulders'
+// depth; the neck points stay at their height). Between the measured grades
+// linear; beyond them the nearest (the fit bodies stop there too: BMI 10 and
+// 65). `mean` itself at grade 1.
+TorsoFrame fit_torso(const TorsoFrame& mean, double grade);
 
 // 3D position of pattern point `p` (front frame) on the front (side = +1) or back (-1) panel.
 Eigen::Vector3d place(const PatternSpec& spec, const TorsoFrame& torso, const Eigen::Vector2d& p, double side);

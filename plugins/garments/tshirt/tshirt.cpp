@@ -81,7 +81,7 @@ PluginList plugins() {
     if (p.get_string("size") == "auto")
       throw ConfigError("size auto is chosen for each body from its girth by drape simulate and drape generate (docs/garments.md, "
                         "\"Which size fits which body\"); here give a size: small, regular, large, xlarge or 2xlarge-6xlarge");
-    o.size_scale = tshirt::size_grade(p.get_string("size"));
+    o.grade = tshirt::size_grade(p.get_string("size"));
     o.target_vertices = parse_resolution(p.get_string("resolution"));
     o.print = p.get_bool("print");
     o.print_polygon = geometry::polygon_from_flat(p.get_float_list("print_polygon"), "print_polygon");

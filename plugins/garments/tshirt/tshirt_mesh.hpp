@@ -1,7 +1,7 @@
 #pragma once
 // Builds the T-shirt garment: meshes both panels, sews them along the seams
 // (seam vertices shared, two UVs each), places the result around the canonical
-// torso and assigns materials.
+// torso (of the size's fit body: fit_torso) and assigns materials.
 #include "pattern.hpp"
 #include "placement.hpp"
 
@@ -10,7 +10,7 @@
 namespace drape::tshirt {
 
 struct TshirtOptions {
-  double size_scale = 1.0;       // 1 regular; small grades the pattern down (same topology)
+  double grade = 1.0;            // the size's chest over the regular's (PatternSpec::graded; same topology)
   int target_vertices = 3500;
   TorsoFrame torso;
   bool print = false;

@@ -44,6 +44,11 @@ class BodyModel {
     double min = 0, max = 0;
   };
   virtual std::vector<Proportion> proportions() const { return {}; }
+  // The request whose solve() gives (about) the mean shape: its BMI, height
+  // and sex. A garment cut for a larger body is dressed on this request with
+  // another BMI (fit_body, drape/bodies/fit_body.hpp). By default the BMI and
+  // height are measured on the mean body's mesh and the sex is 0.5.
+  virtual BodyRequest mean_request() const;
 };
 
 // Garment templates (kind "garment"): the rest garment dressed on the mean body,

@@ -1,9 +1,10 @@
 #pragma once
-// A scene, made runnable: the body model, the garment dressed on the mean body
-// with its regions' materials, and a run that morphs the body from the mean
-// shape to a target while the garment follows (backward Euler, solver.hpp),
-// then lets it settle -- the seed's ground-truth protocol (ArcSim: 2 s of
-// morphing, 2 s of settling).
+// A scene, made runnable: the body model, the garment dressed on the body it
+// is cut for (the mean body; a larger size's fit body, fit_body.hpp) with its
+// regions' materials, and a run that morphs the body from that shape to a
+// target while the garment follows (backward Euler, solver.hpp), then lets it
+// settle -- the seed's ground-truth protocol (ArcSim: 2 s of morphing, 2 s of
+// settling).
 //
 // Only what the scene names is built: an energy per effect, the body's
 // closest-point hierarchy only when an effect needs the body, the per-face
@@ -72,9 +73,10 @@ struct SimulationResult {
 struct SimulationOptions {
   bool measure_penetration = true;  // p and the surface crossings at the end (measurements: one closest-point pass, one crossing count)
   std::function<void(const SimulationStep&)> on_step;
-  // Overrides the start state (default: the garment dressed on the mean body).
+  // Overrides the start state (default: the garment dressed on the body it
+  // is cut for, Simulation::fit_body(): the mean body for the regular size).
   const Eigen::MatrixX3d* start_garment = nullptr;
-  const Eigen::MatrixX3d* start_body = nullptr;  // default: the mean body
+  const Eigen::MatrixX3d* start_body = nullptr;  // default: Simulation::fit_body()
 };
 
 class Simulation {
@@ -94,6 +96,11 @@ class Simulation {
   // smaller than the body out onto it.
   double design_loop() const { return design_loop_; }
   double placed_loop() const { return placed_loop_; }
+  // The body the garment is dressed on and every run starts from: the mean
+  // body, or for a garment cut larger (Garment::fit_grade) the body of its
+  // girth with the mean proportions (drape/bodies/fit_body.hpp).
+  const Eigen::MatrixX3d& fit_body() const { return fit_body_; }
+  const BodyRequest& fit_request() const { return fit_request_; }
   // The scene's target body as a request (its shape: BMI, height, sex), to
   // change before solving (a command line's --girth adds proportions).
   BodyRequest target_request() const;
@@ -123,6 +130,8 @@ class Simulation {
   std::shared_ptr<Garment> garment_;
   Eigen::MatrixX3d mean_body_;
   double design_loop_ = 0.0, placed_loop_ = 0.0;
+  Eigen::MatrixX3d fit_body_;
+  BodyRequest fit_request_;
   std::vector<Params> effect_params_;
   bool needs_body_ = false;
   int morph_steps_ = 0, settle_steps_ = 0, morph_newton_ = 3;
