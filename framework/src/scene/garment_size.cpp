@@ -72,7 +72,12 @@ bool garment_size_is_auto(const Scene& scene) {
 Scene with_garment_size(const Scene& scene, const std::string& size) {
   Scene out = scene;
   const auto it = scene.garment_params.find("size");
-  out.garment_params["size"] = ParamValue{YAML::Node(size), it != scene.garment_params.end() ? it->second.where : SourceLocation{}};
+  const SourceLocation where = it != scene.garment_params.end() ? it->second.where : SourceLocation{};
+  // A new entry, not an assignment to the old one: a copied YAML::Node shares
+  // its node, and assigning to it rewrote `scene`'s size too (a size-auto
+  // dataset then stored the last size built, 6xlarge, as its scene's).
+  out.garment_params.erase("size");
+  out.garment_params.emplace("size", ParamValue{YAML::Node(size), where});
   return out;
 }
 
