@@ -4,6 +4,7 @@
 // and optimize feed the flag.
 #include <catch2/catch.hpp>
 
+#include <drape/assets/dataset_assets.hpp>
 #include <drape/io/dataset.hpp>
 #include <drape/scene/garment_size.hpp>
 #include <drape/io/mesh_io.hpp>
@@ -199,6 +200,15 @@ TEST_CASE("size auto: drape generate dresses each body in its size and records i
     seen.insert(flags[i]);
   }
   CHECK(seen.size() >= 3);  // BMI 12-64: several sizes
+  // The stored scene says size: auto (building the sizes used to rewrite the
+  // scene's shared YAML node to the last size, 6xlarge), and a model's
+  // assets of it are the design size's, the template the dataset was made
+  // for: a size-auto dataset can be trained on.
+  const Scene stored = parse_scene(data.layout().scene, "stored");
+  CHECK(garment_size_is_auto(stored));
+  CHECK(assets_spec_for(stored, 16).garment_params.count("size") == 0);
+  CHECK_NOTHROW(assets_for_dataset(test::plugins(), data, dir / "d.h5", 16, fs::path()));
+  CHECK(garment_size_is_auto(scene));  // the chart built every size from it and left it as it was
 }
 
 // A model of drapes in each body's own size (issue 54, item 2): drape

@@ -25,8 +25,9 @@ struct DressOptions {
   int smoothing_steps = 3;  // displacement-averaging steps per round
   bool lay_pieces = true;   // a garment of several pieces: each laid outside the one under it (garment_layers.hpp)
   // When the pushed garment passes through itself (neighbours pushed onto
-  // both sides of a crease): up to this many rounds that smooth every
-  // displacement and push again, keeping the least tangled (0: none).
+  // both sides of a crease; geometry::self_edge_crossings): up to this many
+  // rounds that smooth every displacement and push again, keeping the least
+  // tangled (0: none).
   int untangle_rounds = 20;
 };
 
@@ -37,9 +38,9 @@ struct DressReport {
   double deepest_before = 0;      // m, largest penetration before dressing (>= 0)
   double min_distance_after = 0;  // m, smallest signed distance after dressing
   LayerReport layers;             // a garment of several pieces: how they were laid in layers (garment_layers.hpp)
-  // Face pairs through each other (geometry::self_intersections, touching
-  // included) after the pushes, and in the result; the untangling round kept
-  // (0: the pushes' result).
+  // Edges through faces of the garment (geometry::self_edge_crossings,
+  // touching included) after the pushes, and in the result; the untangling
+  // round kept (0: the pushes' result).
   int tangled_before = 0, tangled_after = 0, untangle_rounds = 0;
 };
 

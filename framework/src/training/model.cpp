@@ -3,6 +3,7 @@
 #include <drape/bodies/body.hpp>
 #include <drape/io/dataset.hpp>
 #include <drape/training/model.hpp>
+#include <drape/scene/garment_size.hpp>
 #include <drape/registry.hpp>
 
 #include <yaml-cpp/yaml.h>
@@ -90,6 +91,9 @@ AssetsSpec assets_spec_for(const Scene& scene, int eigen_k, int levels) {
   spec.body_params = params_text(scene.body_params);
   spec.garment = scene.garment;
   spec.garment_params = params_text(scene.garment_params);
+  // size: auto (a dataset of each body in its own size): the sizes share the
+  // design size's mesh, and its garment is the template (the plugin's default size).
+  if (garment_size_is_auto(scene)) spec.garment_params.erase("size");
   spec.eigen_k = eigen_k;
   spec.levels = levels;
   return spec;

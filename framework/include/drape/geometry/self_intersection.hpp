@@ -18,4 +18,15 @@ bool triangles_intersect(const Eigen::Vector3d& a0, const Eigen::Vector3d& a1, c
 std::vector<std::pair<int, int>> self_intersections(const Eigen::MatrixX3d& vertices, const Eigen::MatrixX3i& faces,
                                                     std::size_t max_pairs = 100);
 
+// (edge, face) pairs where an edge of the mesh (its two vertex indices, each
+// undirected edge once) passes through one of its faces that shares no vertex
+// with the edge (segment_pierces_triangle, surface_crossings.hpp: touching
+// counts). Unlike self_intersections this sees a fold of one edge's size: an
+// edge through a face that shares a vertex with the edge's own faces. The
+// count scripts/count_self_crossings.py makes (it leaves touching out).
+// Stops after `max_pairs` pairs.
+std::vector<std::pair<std::pair<int, int>, int>> self_edge_crossings(const Eigen::MatrixX3d& vertices,
+                                                                     const Eigen::MatrixX3i& faces,
+                                                                     std::size_t max_pairs = 100);
+
 }  // namespace drape::geometry
