@@ -53,15 +53,9 @@ Scene with_garment_size(const Scene& scene, const std::string& size) {
   Scene out = scene;
   const auto it = scene.garment_params.find("size");
   const SourceLocation where = it != scene.garment_params.end() ? it->second.where : SourceLocation{};
-<<<<<<< HEAD
   // Erased and inserted, not assigned: a yaml-cpp node assigned to rebinds
   // the node it shares with `scene` (and every copy of it), so assigning
   // here wrote the last size built into the scene a dataset stores.
-=======
-  // A new entry, not an assignment to the old one: a copied YAML::Node shares
-  // its node, and assigning to it rewrote `scene`'s size too (a size-auto
-  // dataset then stored the last size built, 6xlarge, as its scene's).
->>>>>>> sizes
   out.garment_params.erase("size");
   out.garment_params.emplace("size", ParamValue{YAML::Node(size), where});
   return out;
