@@ -88,7 +88,10 @@ def main(argv):
 
     # drape.Dataset reads full and slim files (a slim shard's bodies are rebuilt
     # from their shape parameters) and globs of several, as one.
-    data = drape.Dataset(args.data)
+    try:
+        data = drape.Dataset(args.data)
+    except (drape.ConfigError, drape.Error) as e:
+        raise SystemExit(f"ground_truth_spread.py: {e}")
     n = len(data)
     if n == 0:
         raise SystemExit(f"{args.data}: no finished samples")
