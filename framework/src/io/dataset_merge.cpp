@@ -125,8 +125,11 @@ std::size_t merge(const std::vector<fs::path>& shards, const fs::path& out, bool
     for (const std::string& name : layouts.back().stats) all_stats.push_back(name);
   }
   if (mixed_sizes) {
+    // The size flag always; the grade when a shard has it (shards made before
+    // it existed merge among themselves as before).
+    const bool any_grade = std::find(all_stats.begin(), all_stats.end(), kGarmentGrade) != all_stats.end();
     all_stats.push_back(kGarmentSize);
-    all_stats.push_back(kGarmentGrade);
+    if (any_grade) all_stats.push_back(kGarmentGrade);
     std::sort(all_stats.begin(), all_stats.end());
     all_stats.erase(std::unique(all_stats.begin(), all_stats.end()), all_stats.end());
   }
