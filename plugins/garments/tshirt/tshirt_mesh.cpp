@@ -36,6 +36,8 @@ Panel mesh_panel(const PatternSpec& spec, bool front, double spacing) {
 Polygon2 graded_points(const Panel& panel, const PatternSpec& from, const PatternSpec& to) {
   const Polygon2& p = panel.mesh.points;
   const int n = static_cast<int>(p.size()), nb = panel.mesh.num_boundary;
+  if (static_cast<std::size_t>(nb) != panel.outline.piece.size())
+    throw Error("tshirt: the panel's mesh does not keep its outline's points");
   Eigen::MatrixX3d flat = Eigen::MatrixX3d::Zero(n, 3);
   for (int i = 0; i < n; ++i) flat.row(i).head<2>() = p[static_cast<std::size_t>(i)].transpose();
   Eigen::MatrixX3i faces(static_cast<Eigen::Index>(panel.mesh.triangles.size()), 3);
