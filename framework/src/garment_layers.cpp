@@ -1,13 +1,11 @@
 #include <drape/garment_layers.hpp>
 
-#include <drape/geometry/closest_point.hpp>
+#include <drape/geometry/nearest_triangles.hpp>
 #include <drape/geometry/surface_crossings.hpp>
 
 #include <algorithm>
-#include <array>
 #include <cmath>
 #include <limits>
-#include <map>
 #include <numeric>
 #include <set>
 
@@ -30,52 +28,13 @@ std::vector<int> vertices_of(const Eigen::MatrixX3i& faces) {
   return v;
 }
 
-struct Near {
-  int face = -1;
-  Eigen::Vector3d point;
-};
-
-// The faces of one piece in a uniform grid of cells `reach` wide, so that the
-// faces near a point are found in its cell and the 26 around it.
-class FaceGrid {
- public:
-  FaceGrid(const Eigen::MatrixX3d& x, const Eigen::MatrixX3i& faces, double reach) : x_(x), faces_(faces), cell_(reach) {
-    for (int f = 0; f < faces.rows(); ++f) {
-      Eigen::Vector3d lo = x.row(faces(f, 0)), hi = lo;
-      for (int k = 1; k < 3; ++k) lo = lo.cwiseMin(x.row(faces(f, k)).transpose()), hi = hi.cwiseMax(x.row(faces(f, k)).transpose());
-      const Eigen::Vector3i a = key(lo), b = key(hi);
-      for (int i = a.x(); i <= b.x(); ++i)
-        for (int j = a.y(); j <= b.y(); ++j)
-          for (int k = a.z(); k <= b.z(); ++k) cells_[{i, j, k}].push_back(f);
-    }
-  }
-  // The closest point of the faces to p within the reach (face -1: none).
-  Near nearest(const Eigen::Vector3d& p) const {
-    Near out;
-    double best = cell_ * cell_;
-    const Eigen::Vector3i c = key(p);
-    for (int i = c.x() - 1; i <= c.x() + 1; ++i)
-      for (int j = c.y() - 1; j <= c.y() + 1; ++j)
-        for (int k = c.z() - 1; k <= c.z() + 1; ++k) {
-          const auto it = cells_.find({i, j, k});
-          if (it == cells_.end()) continue;
-          for (int f : it->second) {
-            const geometry::TrianglePoint t =
-                geometry::closest_point_on_triangle(p, x_.row(faces_(f, 0)), x_.row(faces_(f, 1)), x_.row(faces_(f, 2)));
-            const double d2 = (p - t.point).squaredNorm();
-            if (d2 < best) best = d2, out.face = f, out.point = t.point;
-          }
-        }
-    return out;
-  }
-
- private:
-  Eigen::Vector3i key(const Eigen::Vector3d& p) const { return (p / cell_).array().floor().cast<int>(); }
-  const Eigen::MatrixX3d& x_;
-  const Eigen::MatrixX3i& faces_;
-  double cell_;
-  std::map<std::array<int, 3>, std::vector<int>> cells_;
-};
+// The closest point of the inner faces to p within `reach` (face -1: none);
+// NearestTriangles is the BVH closest-point query without the inside sign.
+geometry::SurfacePoint within(const geometry::NearestTriangles& faces, const Eigen::Vector3d& p, double reach) {
+  geometry::SurfacePoint hit = faces.nearest(p);
+  if (!(hit.signed_distance <= reach)) hit.face = -1;
+  return hit;
+}
 
 // The mean signed body distance of the vertices of `piece` within `reach` of
 // `other` (NaN when none is): the closer piece where two overlap is inside.
@@ -83,9 +42,9 @@ double overlap_depth(const std::vector<int>& piece, const Eigen::MatrixX3i& othe
                      const BodyQuery& body, double reach) {
   double sum = 0;
   int n = 0;
-  const FaceGrid grid(x, other, reach);
+  const geometry::NearestTriangles near(x, other);
   for (int v : piece)
-    if (grid.nearest(x.row(v).transpose()).face >= 0) sum += body.closest(x.row(v).transpose()).signed_distance, ++n;
+    if (within(near, x.row(v).transpose(), reach).face >= 0) sum += body.closest(x.row(v).transpose()).signed_distance, ++n;
   return n ? sum / n : std::numeric_limits<double>::quiet_NaN();
 }
 
@@ -101,13 +60,13 @@ std::set<int> lay_outside(Eigen::MatrixX3d& x, const Eigen::MatrixX3i& outer, co
     }
   const std::vector<int> own = vertices_of(outer);
   std::set<int> moved;
+  const geometry::NearestTriangles near(x, inner);  // built once: the inner piece does not move
   for (int round = 0; round < o.rounds; ++round) {
     Eigen::MatrixX3d move = Eigen::MatrixX3d::Zero(x.rows(), 3);
     bool any = false;
-    const FaceGrid grid(x, inner, o.reach);  // the inner piece does not move
     for (int v : own) {
       const Eigen::Vector3d p = x.row(v).transpose();
-      const Near n = grid.nearest(p);
+      const geometry::SurfacePoint n = within(near, p, o.reach);
       if (n.face < 0) continue;
       const Eigen::Vector3d a = x.row(inner(n.face, 0)), b = x.row(inner(n.face, 1)), c = x.row(inner(n.face, 2));
       Eigen::Vector3d normal = (b - a).cross(c - a);

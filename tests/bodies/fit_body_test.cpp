@@ -13,17 +13,8 @@
 
 using namespace drape;
 
-namespace {
-
-std::unique_ptr<BodyModel> parametric() {
-  const PluginDescriptor& d = test::plugins().get("parametric");
-  return test::plugins().create_body("parametric", Params(d.params, {}, "body parametric"));
-}
-
-}  // namespace
-
 TEST_CASE("fit body: the mean request solves back to the mean body", "[bodies][sizes]") {
-  const auto model = parametric();
+  const auto model = test::parametric_body();
   const BodyRequest r = model->mean_request();
   const Eigen::MatrixX3d mean = model->vertices(model->mean_shape());
   CHECK(r.height == Approx(1.75).margin(1e-9));
@@ -35,7 +26,7 @@ TEST_CASE("fit body: the mean request solves back to the mean body", "[bodies][s
 }
 
 TEST_CASE("fit body: the girth a grade asks for, the mean body at 1, the largest reached beyond", "[bodies][sizes]") {
-  const auto model = parametric();
+  const auto model = test::parametric_body();
   const Eigen::MatrixX3i& faces = model->faces();
   const Eigen::MatrixX3d mean = model->vertices(model->mean_shape());
   const double mean_girth = body_girth(mean, faces);

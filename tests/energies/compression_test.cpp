@@ -18,12 +18,6 @@ using namespace drape::test;
 
 namespace {
 
-Material knit() {
-  Material m = MaterialTable::builtin().get("gray-interlock");
-  m.name = "knit";
-  return m;
-}
-
 // The unit grid turned by `degrees` in its plane and scaled by (a, b) along
 // the turned axes: a principal strain along a direction that is neither u nor v.
 Eigen::MatrixX3d scaled_along(const Eigen::MatrixX3d& x, double degrees, double a, double b) {
@@ -84,7 +78,7 @@ TEST_CASE("the compression map: identity in tension, a scaled compression, smoot
 TEST_CASE("stretching with compressive_stiffness: tension as before, compression at s times the stiffness",
           "[stretching][arcsim]") {
   auto garment = grid_garment(4, 0.1);
-  garment->materials[0] = knit();
+  garment->materials[0] = arcsim_knit();
   const auto plain = bound_energy("stretching", "{}", *garment);
   const auto soft = bound_energy("stretching", "{compressive_stiffness: 0.04}", *garment);
   CHECK(params_for("stretching", "{}").get_float("compressive_stiffness") == 1.0);
@@ -104,7 +98,7 @@ TEST_CASE("stretching with compressive_stiffness: tension as before, compression
 TEST_CASE("stretching's derivatives with compressive_stiffness match finite differences", "[stretching][gradcheck]") {
   for (bool arcsim : {false, true}) {
     const auto garment = two_material_grid(5, 0.1);
-    if (arcsim) garment->materials[0] = knit();
+    if (arcsim) garment->materials[0] = arcsim_knit();
     const auto e = bound_energy("stretching", "{compressive_stiffness: 0.05}", *garment);
     Eigen::MatrixX3d x = garment->mesh.vertices;
     x.col(0) *= 0.985;  // compressed 1.5 % along u: every face in or near the blend

@@ -26,13 +26,8 @@ using namespace drape::test;
 
 namespace {
 
-// ArcSim's gray-interlock knit (materials/gray-interlock.json) and a linear
-// print: both stiffness models in one garment.
-Material arcsim_knit() {
-  Material m = MaterialTable::builtin().get("gray-interlock");
-  m.name = "knit";
-  return m;
-}
+// (ArcSim's knit, arcsim_knit(), and a linear print below: both stiffness
+// models in one garment.)
 
 // A box whose top face, z = top, spans [x0, x1] x [y0, y1]; counter-clockwise from outside.
 Mesh box(double x0, double x1, double y0, double y1, double top) {

@@ -4,6 +4,7 @@
 // hand-placed UVs, deterministic perturbations and rotations, the dense
 // Hessian, and capturing what a plugin prints to std::cerr.
 #include <drape/energy.hpp>
+#include <drape/materials/materials.hpp>
 #include <Eigen/Geometry>
 #include <Eigen/SparseCore>
 
@@ -14,6 +15,13 @@
 #include "../plugins/plugin_test_util.hpp"
 
 namespace drape::test {
+
+// ArcSim's gray-interlock knit (materials/gray-interlock.json) as the region "knit".
+inline Material arcsim_knit() {
+  Material m = MaterialTable::builtin().get("gray-interlock");
+  m.name = "knit";
+  return m;
+}
 
 inline std::unique_ptr<Energy> bound_energy(const std::string& name, const std::string& yaml, const Garment& garment) {
   auto e = plugins().create_energy(name, params_for(name, yaml));

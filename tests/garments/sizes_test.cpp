@@ -21,18 +21,9 @@
 
 using namespace drape;
 
-namespace {
-
-std::unique_ptr<BodyModel> parametric() {
-  const PluginDescriptor& d = test::plugins().get("parametric");
-  return test::plugins().create_body("parametric", Params(d.params, {}, "parametric"));
-}
-
-}  // namespace
-
 TEST_CASE("sizes: every size, coarse and default, dressed on its fit body without passing through itself",
           "[garments][tshirt][sizes]") {
-  const auto model = parametric();
+  const auto model = test::parametric_body();
   std::string summary;
   for (const char* resolution : {"coarse", "default"})
     for (const char* size : {"small", "regular", "large", "xlarge", "2xlarge", "3xlarge", "4xlarge", "5xlarge", "6xlarge"}) {
@@ -60,7 +51,7 @@ TEST_CASE("sizes: every size, coarse and default, dressed on its fit body withou
 }
 
 TEST_CASE("sizes: a size's girth on the mean body's band is its grade times the regular's", "[garments][tshirt][sizes]") {
-  const auto model = parametric();
+  const auto model = test::parametric_body();
   const Eigen::MatrixX3d mean = model->vertices(model->mean_shape());
   auto girth = [&](const std::string& size) {
     Garment g = test::build_tshirt("{size: " + size + ", resolution: coarse}");
@@ -78,7 +69,7 @@ TEST_CASE("dress untangles a garment its pushes folded through itself", "[garmen
   // The small shirt's armpits sit in the creases of its fit body's: pushed
   // out vertex by vertex, neighbours land on the arm and on the torso and the
   // cloth folds through itself (34 edges through faces at the default resolution).
-  const auto model = parametric();
+  const auto model = test::parametric_body();
   const Garment placed = test::build_tshirt("{size: small}");
   const FitBody body = fit_body(*model, placed.fit_grade);
   const Mesh mesh{body.vertices, model->faces(), {}, {}};

@@ -20,6 +20,11 @@ const Registry& plugins() {
   return *r;
 }
 
+std::unique_ptr<BodyModel> parametric_body() {
+  const PluginDescriptor& d = plugins().get("parametric");
+  return plugins().create_body("parametric", Params(d.params, {}, "body parametric"));
+}
+
 TempDir::TempDir() {
   std::random_device rd;
   path_ = fs::temp_directory_path() / ("drape-test-" + std::to_string(rd()) + std::to_string(rd()));

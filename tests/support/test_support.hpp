@@ -1,17 +1,21 @@
 #pragma once
 // Helpers shared by the tests: the build tree's plugins, temporary folders,
 // the optional shared assets, the drape program.
+#include <drape/bodies/body.hpp>
 #include <drape/mesh.hpp>
 #include <drape/registry.hpp>
 
 #include <filesystem>
 #include <functional>
+#include <memory>
 #include <string>
 
 namespace drape::test {
 
 // A registry holding every plugin of the build tree (loaded once).
 const Registry& plugins();
+// The parametric body model with its default parameters.
+std::unique_ptr<BodyModel> parametric_body();
 
 // A fresh empty directory under the system temp dir, removed at exit of the scope.
 class TempDir {
