@@ -188,6 +188,7 @@ int run(const std::vector<std::string>& args) {
   const SceneBody target = target_body(simulations, scene, vm);
   for (const std::string& note : target.notes) std::printf("note: %s\n", note.c_str());
   if (target.size) std::printf("size auto: %s\n", target.size->summary().c_str());
+  if (target.grade) std::printf("grade auto: %s\n", target.grade->summary().c_str());
   const Simulation& sim = *target.simulation;
 
   const bool verbose = vm["verbose"].as<bool>();

@@ -134,7 +134,9 @@ SizeChoice SizeChart::choose(const Eigen::MatrixX3d& body) const {
 }
 
 SceneSimulations::SceneSimulations(const Registry& registry, const Scene& scene) : garment_(scene.garment) {
-  if (garment_size_is_auto(scene))
+  if (scene.garment_grade_auto)
+    grades_ = std::make_unique<AutoGrade>(registry, scene);
+  else if (garment_size_is_auto(scene))
     chart_ = std::make_unique<SizeChart>(registry, scene);
   else
     own_ = std::make_unique<Simulation>(registry, scene);
@@ -142,10 +144,17 @@ SceneSimulations::SceneSimulations(const Registry& registry, const Scene& scene)
 
 SceneSimulations::~SceneSimulations() = default;
 
-const Simulation& SceneSimulations::design() const { return chart_ ? chart_->design() : *own_; }
+const Simulation& SceneSimulations::design() const {
+  return chart_ ? chart_->design() : grades_ ? grades_->design() : *own_;
+}
 
-const Simulation& SceneSimulations::for_body(const Eigen::MatrixX3d& body, const std::string& what,
-                                             SizeChoice* choice) const {
+const Simulation& SceneSimulations::for_body(const Eigen::MatrixX3d& body, const std::string& what, SizeChoice* choice,
+                                             GradeChoice* grade_choice) const {
+  if (grades_) {
+    const GradeChoice chosen = grades_->choose(body, what);
+    if (grade_choice) *grade_choice = chosen;
+    return grades_->simulation(chosen.grade);
+  }
   if (!chart_) return *own_;
   const SizeChoice chosen = chart_->choose(body);
   if (chosen.size.empty())

@@ -34,7 +34,8 @@ double parse_grade(const std::string& file, const YAML::Node& node) {
   try {
     grade = node.as<double>();
   } catch (const YAML::Exception&) {
-    throw ConfigError(yaml::at(file, node), "garment `grade` must be a number (1: the garment as designed)");
+    throw ConfigError(yaml::at(file, node),
+                      "garment `grade` must be a number (1: the garment as designed) or auto (each body's own grade)");
   }
   if (!(grade >= kMinGrade && grade <= kMaxGrade))
     throw ConfigError(yaml::at(file, node), "garment `grade` " + yaml::scalar(file, node, "grade") + " is outside " +
@@ -116,7 +117,10 @@ void apply(Scene& s, const fs::path& path, const std::string& file, const YAML::
       s.garment = t;
     }
     merge_values(s.garment_params, file, garment["params"], "garment `params`");
-    if (garment["grade"]) s.garment_grade = parse_grade(file, garment["grade"]);
+    if (const YAML::Node grade = garment["grade"]) {
+      s.garment_grade_auto = grade.IsScalar() && grade.Scalar() == "auto";
+      s.garment_grade = s.garment_grade_auto ? 1.0 : parse_grade(file, grade);
+    }
   }
   if (const YAML::Node materials = root["materials"]) {
     if (!materials.IsMap()) throw ConfigError(yaml::at(file, materials), "`materials` must be a map region: preset");
@@ -160,7 +164,10 @@ std::string Scene::yaml() const {
   out << YAML::Key << "garment" << YAML::Value << YAML::BeginMap << YAML::Key << "template" << YAML::Value << garment
       << YAML::Key << "params" << YAML::Value << YAML::Flow << values_yaml(garment_params);
   // Written only when graded, so the scene text of an ungraded garment is what it always was.
-  if (garment_grade != 1.0) out << YAML::Key << "grade" << YAML::Value << garment_grade;
+  if (garment_grade_auto)
+    out << YAML::Key << "grade" << YAML::Value << "auto";
+  else if (garment_grade != 1.0)
+    out << YAML::Key << "grade" << YAML::Value << garment_grade;
   out << YAML::EndMap;
   out << YAML::Key << "materials" << YAML::Value << YAML::BeginMap;
   // A material file is named relative to its scene; the text goes elsewhere

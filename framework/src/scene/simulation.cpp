@@ -115,6 +115,10 @@ void measure_drape(const ClothSolver& solver, std::vector<NamedEnergy>& energies
 
 Simulation::Simulation(const Registry& registry, Scene scene) : registry_(registry), scene_(std::move(scene)) {
   validate_scene(scene_, registry_);
+  // One Simulation is one garment; grade: auto builds one per grade (SceneSimulations).
+  if (scene_.garment_grade_auto)
+    throw ConfigError({scene_.file, 0}, "garment `grade: auto` is chosen per body; a Simulation takes one grade "
+                                        "(drape simulate, drape generate and Python's drape.Scene choose it)");
   const PluginDescriptor& bd = registry_.get(scene_.body_model);
   body_model_ = registry_.create_body(scene_.body_model, Params(bd.params, scene_.body_params, "body '" + scene_.body_model + "'"));
   mean_body_ = body_model_->vertices(body_model_->mean_shape());

@@ -65,7 +65,7 @@ void check_bmi_range(const GenerateRequest& r, const Simulation& sim, const Scen
 // scene's grade, times its size's grade when the garment has sizes and the
 // scene names one other than the design size (measured on the size chart).
 double fixed_garment_grade(const Registry& registry, const Scene& scene, const SceneSimulations& simulations) {
-  if (simulations.auto_size()) return 0.0;  // per sample
+  if (simulations.auto_size() || simulations.auto_grade()) return 0.0;  // per sample
   const auto size = scene.garment_params.find("size");
   if (size == scene.garment_params.end() || !size->second.node.IsScalar()) return scene.garment_grade;
   const std::string name = size->second.node.as<std::string>();
@@ -220,10 +220,12 @@ GenerateSummary generate_dataset(const Registry& registry, const Scene& scene, c
       const Eigen::MatrixX3d body = sim.body_vertices(shape);
       const std::string who = sample_name(global, body_request);
       SizeChoice choice;
-      const Simulation& wearing = simulations.for_body(body, who, &choice);
+      GradeChoice grade_choice;
+      const Simulation& wearing = simulations.for_body(body, who, &choice, &grade_choice);
       const double size_flag = simulations.auto_size() ? garment_size_flag(choice.size) : design_size;
-      const double grade =
-          simulations.auto_size() ? scene.garment_grade * simulations.chart()->table().grade(choice.size) : design_grade;
+      const double grade = simulations.auto_size()    ? scene.garment_grade * simulations.chart()->table().grade(choice.size)
+                           : simulations.auto_grade() ? grade_choice.grade
+                                                      : design_grade;
       const SimulationResult r = [&] {
         try {
           return wearing.run(body);

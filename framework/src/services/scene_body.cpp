@@ -108,6 +108,12 @@ void note_fit(const Simulation& design, SceneBody& out) {
 
 // The size a body wears with size: auto (the design size's simulation otherwise).
 void choose_size(const SceneSimulations& simulations, const std::string& name, SceneBody& out) {
+  if (simulations.auto_grade()) {  // graded to this body's girth; lengths grow by the grading rule
+    GradeChoice choice;
+    out.simulation = &simulations.for_body(out.vertices, name, nullptr, &choice);
+    out.grade = choice;
+    return;
+  }
   if (!simulations.auto_size()) {
     out.simulation = &simulations.design();
     note_fit(simulations.design(), out);

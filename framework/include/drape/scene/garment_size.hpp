@@ -18,6 +18,7 @@
 //   and simulating it would hand back a drape stretched over the body and
 //   unsettled: the caller says so instead.
 #include <drape/registry.hpp>
+#include <drape/scene/auto_grade.hpp>
 #include <drape/scene/scene.hpp>
 #include <drape/scene/simulation.hpp>
 #include <drape/scene/size_table.hpp>
@@ -78,25 +79,32 @@ class SizeChart {
   SizeTable table_;
 };
 
-// What a command runs a scene with: its one Simulation, or with size: auto
-// the SizeChart of every size (garment_size_is_auto).
+// What a command runs a scene with: its one Simulation, with size: auto the
+// SizeChart of every size (garment_size_is_auto), or with grade: auto the
+// garment graded per body (auto_grade.hpp).
 class SceneSimulations {
  public:
   SceneSimulations(const Registry& registry, const Scene& scene);
   ~SceneSimulations();
-  // The scene's simulation; with size: auto the design size's (the body model,
-  // the bodies and the dataset template come from it).
+  // The scene's simulation; with size: auto the design size's, with grade:
+  // auto the ungraded garment's (the body model, the bodies and the dataset
+  // template come from it).
   const Simulation& design() const;
   bool auto_size() const { return chart_ != nullptr; }
-  const SizeChart* chart() const { return chart_.get(); }  // with size: auto
-  // The simulation `body` is draped with: design() without size: auto, else
-  // the size the chart chooses (into *choice when given). ConfigError
-  // "<what>: garment ... does not fit this body: <summary>" when none fits.
-  const Simulation& for_body(const Eigen::MatrixX3d& body, const std::string& what, SizeChoice* choice = nullptr) const;
+  bool auto_grade() const { return grades_ != nullptr; }
+  const SizeChart* chart() const { return chart_.get(); }      // with size: auto
+  const AutoGrade* grades() const { return grades_.get(); }    // with grade: auto
+  // The simulation `body` is draped with: design() without size: auto or
+  // grade: auto, else the size the chart chooses (into *choice when given) or
+  // the grade the body needs (into *grade_choice). ConfigError "<what>:
+  // garment ... does not fit this body: <summary>" when none fits.
+  const Simulation& for_body(const Eigen::MatrixX3d& body, const std::string& what, SizeChoice* choice = nullptr,
+                             GradeChoice* grade_choice = nullptr) const;
 
  private:
   std::string garment_;
   std::unique_ptr<SizeChart> chart_;
+  std::unique_ptr<AutoGrade> grades_;
   std::unique_ptr<Simulation> own_;
 };
 

@@ -47,6 +47,9 @@ struct Scene {
   std::string garment = "tshirt";
   ParamValues garment_params;
   double garment_grade = 1.0;  // the garment graded by this factor (garment_grading.hpp; `garment: {grade: g}`)
+  // `garment: {grade: auto}`: each body gets the grade that gives it the
+  // garment's design ease (drape/scene/auto_grade.hpp); garment_grade is then 1.
+  bool garment_grade_auto = false;
   std::vector<SceneMaterial> materials;
   std::vector<SceneEffect> effects;
   ParamValues solver;

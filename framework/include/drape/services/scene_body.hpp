@@ -28,6 +28,7 @@ struct SceneBody {
   // body stood; zero when it was not moved.
   Eigen::RowVector3d moved_by = Eigen::RowVector3d::Zero();
   std::optional<SizeChoice> size;  // with size: auto, the choice and its measurements
+  std::optional<GradeChoice> grade;  // with grade: auto, the grade and its measure
   // For the user, one sentence each without a prefix: "the body stands ... m
   // from where ...; draped there and ...". The CLI prints them as "note: ...",
   // Python as warnings.

@@ -1,0 +1,63 @@
+#pragma once
+// `garment: {grade: auto}`: any garment that goes around the torso (a mesh
+// file, a MakeHuman piece, the tshirt) graded for each body as a tailor
+// grades a pattern to a customer: by the grade that gives this body the ease
+// the garment has on the mean body it was made for (its design ease), by the
+// tailor's rule of garment_size.hpp (the body's chest or belly against the
+// garment's narrowest loop over the same band). The size chart of a garment
+// without sizes, made continuous.
+//
+// Grades are rounded to kAutoGradeStep, so that bodies of about one girth
+// share one graded garment (each is graded, dressed on its fit body and
+// built once): a step of 0.05 leaves the ease within 2.5 points of the design
+// ease, inside the 5 points the fit note lets pass. A body that needs a grade
+// outside 0.5-2 is refused before anything is simulated, with its measure and
+// the grade it would need: the garment cannot fit it.
+#include <drape/registry.hpp>
+#include <drape/scene/scene.hpp>
+#include <drape/scene/simulation.hpp>
+
+#include <Eigen/Core>
+
+#include <map>
+#include <memory>
+#include <mutex>
+#include <string>
+
+namespace drape {
+
+inline constexpr double kAutoGradeStep = 0.05;
+
+struct GradeChoice {
+  double body_girth = 0;   // m, the body's chest or belly
+  double exact = 1;        // the grade that gives the design ease exactly
+  double grade = 1;        // exact, rounded to kAutoGradeStep: what the body wears
+  std::string summary() const;  // one line: the measure and the grade
+};
+
+class AutoGrade {
+ public:
+  // `scene` has garment_grade_auto; its design garment (grade 1) is built
+  // here. ConfigError when the garment does not go around the torso band
+  // (trousers, a skirt: no girth to grade by) or also says size: auto.
+  AutoGrade(const Registry& registry, const Scene& scene);
+  ~AutoGrade();
+  const Simulation& design() const { return *design_; }
+  double design_ease() const { return design_ease_; }
+  // The grade `body` wears; ConfigError "<what>: ... cannot fit this body"
+  // naming the girths and the grade when it is outside 0.5-2.
+  GradeChoice choose(const Eigen::MatrixX3d& body, const std::string& what) const;
+  // The scene graded by `grade` (a GradeChoice::grade), built on first use;
+  // safe to call from threads.
+  const Simulation& simulation(double grade) const;
+
+ private:
+  const Registry& registry_;
+  Scene scene_;  // grade 1, garment_grade_auto off: what each grade is built from
+  std::unique_ptr<Simulation> design_;
+  double design_loop_ = 0, design_ease_ = 0;
+  mutable std::mutex mutex_;
+  mutable std::map<long, std::unique_ptr<Simulation>> graded_;  // by grade / kAutoGradeStep
+};
+
+}  // namespace drape

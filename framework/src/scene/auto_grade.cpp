@@ -1,0 +1,79 @@
+// grade: auto (scene/auto_grade.hpp).
+#include <drape/scene/auto_grade.hpp>
+
+#include <drape/errors.hpp>
+#include <drape/garment_grading.hpp>
+#include <drape/scene/garment_size.hpp>
+#include <drape/vertex_count.hpp>
+
+#include <cmath>
+#include <cstdio>
+
+namespace drape {
+namespace {
+
+long grade_key(double grade) { return std::lround(grade / kAutoGradeStep); }
+
+}  // namespace
+
+std::string GradeChoice::summary() const {
+  char text[200];
+  std::snprintf(text, sizeof text, "the body's chest or belly %.3f m; grade %.3f gives the design ease, %.2f worn",
+                body_girth, exact, grade);
+  return text;
+}
+
+AutoGrade::AutoGrade(const Registry& registry, const Scene& scene) : registry_(registry), scene_(scene) {
+  scene_.garment_grade_auto = false;
+  scene_.garment_grade = 1.0;
+  if (garment_size_is_auto(scene_))
+    throw ConfigError({scene.file, 0}, "garment `size: auto` and `grade: auto` choose the same thing twice: keep one "
+                                       "(size: auto among the garment's sizes, grade: auto any grade within 0.5-2)");
+  design_ = std::make_unique<Simulation>(registry_, scene_);
+  const Mesh& garment = design_->garment().mesh;
+  const Eigen::MatrixX3i& body_faces = design_->body_model().faces();
+  design_loop_ = garment_girth(garment.vertices, garment.faces, design_->mean_body());
+  design_ease_ = garment_ease(design_loop_, design_->mean_body(), body_faces);
+  if (!std::isfinite(design_loop_) || !std::isfinite(design_ease_))
+    throw ConfigError({scene.file, 0}, "garment `grade: auto` grades by the tailor's rule, which measures a garment "
+                                       "that goes around the torso between 58 and 72 % of the body's height; garment '" +
+                                           scene.garment + "' does not (trousers, a skirt): give it a grade");
+}
+
+AutoGrade::~AutoGrade() = default;
+
+GradeChoice AutoGrade::choose(const Eigen::MatrixX3d& body, const std::string& what) const {
+  const Simulation& d = design();
+  require_vertex_count(body.rows(), d.mean_body().rows(), "the body",
+                       "the scene's body model '" + d.scene().body_model + "'");
+  GradeChoice choice;
+  choice.body_girth = body_girth(body, d.body_model().faces());
+  // The garment's loop grows with the grade; the ease is loop / girth - 1.
+  choice.exact = (1.0 + design_ease_) * choice.body_girth / design_loop_;
+  choice.grade = kAutoGradeStep * static_cast<double>(grade_key(choice.exact));
+  if (!(choice.grade >= kMinGrade - 1e-9 && choice.grade <= kMaxGrade + 1e-9)) {
+    char text[400];
+    std::snprintf(text, sizeof text,
+                  "%s: garment '%s' with grade: auto cannot fit this body: its chest or belly is %.3f m, the garment's "
+                  "narrowest loop %.3f m on the mean body with %+.1f %% ease there, so this body needs grade %.2f, "
+                  "outside the 0.5-2 a grade may take",
+                  what.c_str(), scene_.garment.c_str(), choice.body_girth, design_loop_, 100.0 * design_ease_, choice.exact);
+    throw ConfigError(text);
+  }
+  return choice;
+}
+
+const Simulation& AutoGrade::simulation(double grade) const {
+  const long key = grade_key(grade);
+  if (key == grade_key(1.0)) return *design_;
+  std::lock_guard<std::mutex> guard(mutex_);  // built under the lock: threads wanting one grade build it once
+  auto it = graded_.find(key);
+  if (it == graded_.end()) {
+    Scene graded = scene_;
+    graded.garment_grade = kAutoGradeStep * static_cast<double>(key);
+    it = graded_.emplace(key, std::make_unique<Simulation>(registry_, graded)).first;
+  }
+  return *it->second;
+}
+
+}  // namespace drape
