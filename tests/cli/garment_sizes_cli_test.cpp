@@ -296,3 +296,60 @@ TEST_CASE("size auto: a model takes the grade and predict chooses the body's siz
   CHECK_THAT(out, Catch::Contains("outside"));
   CHECK(test::run(drape + "predict --model " + model + " --bmi 30 --garment-grade 1 --garment-size small --out x.obj", out) == 2);
 }
+
+TEST_CASE("grade auto: generate grades each body and a model predicts in the body's grade", "[sizes][grade]") {
+  test::TempDir dir;
+  const std::string text = "body: {model: parametric}\ngarment: {template: tshirt, params: {resolution: 300}, grade: auto}\n"
+                           "effects: [gravity, stretching, bending, collision]\nsolver: {morph_steps: 2, settle_steps: 2}\n";
+  std::ofstream(dir / "graded.yaml") << text;
+  const std::string drape = test::drape_program().string() + " ";
+  std::string out;
+  REQUIRE(test::run(drape + "generate " + (dir / "graded.yaml").string() + " --count 6 --bmi 14:60 --seed 4 --threads 2 --out " +
+                        (dir / "graded.h5").string(),
+                    out) <= 1);  // 1: two settling steps leave drapes unsettled
+  const SceneSimulations sims(test::plugins(), parse_scene(text));
+  REQUIRE(sims.auto_grade());
+  const DatasetReader graded(dir / "graded.h5");
+  CHECK_THAT(graded.layout().scene, Catch::Contains("grade: auto"));
+  const SizeTable stored = SizeTable::parse(graded.layout().attributes.at("size_chart"), "graded.h5");
+  CHECK(stored.design == "g1.00");
+  CHECK(stored.girth.size() == 31);  // 0.50, 0.55, ..., 2.00
+  // Each sample's grade is the one the scene gives its body, and the
+  // graded garment goes around that body with (about) the design ease.
+  const std::vector<std::size_t> all{0, 1, 2, 3, 4, 5};
+  const std::vector<double> grades = graded.stat("garment_grade", all);
+  std::set<double> distinct;
+  for (std::size_t i = 0; i < all.size(); ++i) {
+    const Eigen::MatrixX3d body = graded.sample(i).body_vertices.cast<double>();
+    const GradeChoice choice = sims.grades()->choose(body, "sample");
+    CHECK(grades[i] == Approx(choice.grade));
+    CHECK(grades[i] == Approx(stored.grade(stored.choose(choice.body_girth).size)));
+    distinct.insert(grades[i]);
+  }
+  CHECK(distinct.size() >= 3);  // BMI 14-60 needs several grades
+
+  // A model of them keeps the grades as its chart; predict chooses the grade.
+  const std::string graph = (test::source_dir() / "graphs/sizes/drape_grade.yaml").string();
+  const std::string model = (dir / "m.h5").string();
+  REQUIRE(test::run(drape + "train " + graph + " --data " + (dir / "graded.h5").string() + " --out " + model +
+                        " --epochs 1 --k 16 -q",
+                    out) == 0);
+  BodyRequest heavy;
+  heavy.bmi = 50;
+  const Simulation& design = sims.design();
+  const GradeChoice expected = sims.grades()->choose(design.body_vertices(design.shape_for(heavy)), "BMI 50");
+  char name[16];
+  std::snprintf(name, sizeof name, "g%.2f", expected.grade);
+  REQUIRE(test::run(drape + "predict --model " + model + " --bmi 50 --out " + (dir / "auto.obj").string(), out) == 0);
+  CHECK_THAT(out, Catch::Contains(std::string("size ") + name + " by the tailor's rule"));
+  char grade[16];
+  std::snprintf(grade, sizeof grade, "%.2f", expected.grade);
+  REQUIRE(test::run(drape + "predict --model " + model + " --bmi 50 --garment-grade " + grade + " --out " +
+                        (dir / "named.obj").string(),
+                    out) == 0);
+  const auto text_of = [&](const char* file) {
+    std::ifstream f(dir / file);
+    return std::string((std::istreambuf_iterator<char>(f)), {});
+  };
+  CHECK(text_of("auto.obj") == text_of("named.obj"));
+}

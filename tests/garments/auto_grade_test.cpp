@@ -101,3 +101,27 @@ TEST_CASE("grade auto gives each body the design ease and refuses a body beyond 
   CHECK(sb.grade->grade == choice.grade);
   CHECK(sb.simulation == &graded);
 }
+
+TEST_CASE("grade auto's steps are a size chart that chooses as it does", "[garments][grade]") {
+  const SceneSimulations sims(test::plugins(), parse_scene(kAuto, "auto.yaml"));
+  const SizeTable& t = sims.grades()->table();
+  REQUIRE(t.girth.size() == 31);
+  CHECK(t.girth.front().first == "g0.50");
+  CHECK(t.girth.back().first == "g2.00");
+  CHECK(t.design == "g1.00");
+  CHECK(t.grade("g1.35") == Approx(1.35).epsilon(1e-12));
+  // Text round trip: what a dataset and a model keep.
+  const SizeTable back = SizeTable::parse(t.to_text(), "chart");
+  CHECK(back.grade("g0.75") == Approx(0.75).epsilon(1e-12));
+  // Over the body space's girths the chart's choice is the grade chosen.
+  const Simulation& design = sims.design();
+  for (double bmi : {12.0, 20.0, 30.0, 40.0, 50.0, 64.0}) {
+    BodyRequest r = design.body_model().mean_request();
+    r.bmi = bmi;
+    const Eigen::MatrixX3d body = design.body_vertices(design.shape_for(r));
+    const GradeChoice c = sims.grades()->choose(body, "body");
+    INFO("BMI " << bmi << ": " << c.summary());
+    CHECK(c.grade == Approx(t.grade(t.choose(c.body_girth).size)));
+    CHECK(std::abs(c.grade - c.exact) <= kAutoGradeStep / 2 + 1e-9);
+  }
+}

@@ -14,6 +14,12 @@ namespace {
 
 long grade_key(double grade) { return std::lround(grade / kAutoGradeStep); }
 
+std::string step_name(long key) {
+  char name[16];
+  std::snprintf(name, sizeof name, "g%.2f", kAutoGradeStep * static_cast<double>(key));
+  return name;
+}
+
 }  // namespace
 
 std::string GradeChoice::summary() const {
@@ -38,6 +44,10 @@ AutoGrade::AutoGrade(const Registry& registry, const Scene& scene) : registry_(r
     throw ConfigError({scene.file, 0}, "garment `grade: auto` grades by the tailor's rule, which measures a garment "
                                        "that goes around the torso between 58 and 72 % of the body's height; garment '" +
                                            scene.garment + "' does not (trousers, a skirt): give it a grade");
+  table_.design = step_name(grade_key(1.0));
+  table_.design_ease = design_ease_;
+  for (long key = grade_key(kMinGrade); key <= grade_key(kMaxGrade); ++key)
+    table_.girth.emplace_back(step_name(key), design_loop_ * kAutoGradeStep * static_cast<double>(key));
 }
 
 AutoGrade::~AutoGrade() = default;
@@ -50,8 +60,9 @@ GradeChoice AutoGrade::choose(const Eigen::MatrixX3d& body, const std::string& w
   choice.body_girth = body_girth(body, d.body_model().faces());
   // The garment's loop grows with the grade; the ease is loop / girth - 1.
   choice.exact = (1.0 + design_ease_) * choice.body_girth / design_loop_;
-  choice.grade = kAutoGradeStep * static_cast<double>(grade_key(choice.exact));
-  if (!(choice.grade >= kMinGrade - 1e-9 && choice.grade <= kMaxGrade + 1e-9)) {
+  const SizeChoice step = table_.choose(choice.body_girth);
+  // Too large for grade 2, or so small that even grade 0.5 hangs off it.
+  if (step.size.empty() || choice.exact < kMinGrade - kAutoGradeStep / 2) {
     char text[400];
     std::snprintf(text, sizeof text,
                   "%s: garment '%s' with grade: auto cannot fit this body: its chest or belly is %.3f m, the garment's "
@@ -60,6 +71,7 @@ GradeChoice AutoGrade::choose(const Eigen::MatrixX3d& body, const std::string& w
                   what.c_str(), scene_.garment.c_str(), choice.body_girth, design_loop_, 100.0 * design_ease_, choice.exact);
     throw ConfigError(text);
   }
+  choice.grade = kAutoGradeStep * static_cast<double>(grade_key(table_.grade(step.size)));
   return choice;
 }
 

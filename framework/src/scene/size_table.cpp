@@ -2,6 +2,7 @@
 
 #include <drape/errors.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <limits>
@@ -35,9 +36,13 @@ SizeChoice SizeTable::choose(double body_girth) const {
   choice.design_ease = design_ease;
   choice.body_girth = body_girth;
   double best = std::numeric_limits<double>::infinity();
+  // A garment made tight (less ease on its design body than kMinimumEase:
+  // MakeHuman's T-shirt has -3.4 % on MakeHuman's mean body) is worn as tight
+  // as it was designed; otherwise no size smaller than the body.
+  const double floor = std::min(kMinimumEase, design_ease);
   for (const auto& [name, g] : girth) {
     const double ease = choice.ease(name);
-    if (ease >= kMinimumEase && std::abs(ease - design_ease) < best) {
+    if (ease >= floor && std::abs(ease - design_ease) < best) {
       best = std::abs(ease - design_ease);
       choice.size = name;
     }

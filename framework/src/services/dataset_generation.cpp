@@ -95,6 +95,9 @@ DatasetLayout layout_of(const Scene& scene, const SceneSimulations& simulations,
     // The tailor's rule in numbers, for a model trained on these drapes to
     // choose a body's size by (drape predict --garment-size auto).
     layout.attributes["size_chart"] = simulations.chart()->table().to_text();
+  } else if (simulations.auto_grade()) {
+    layout.attributes["garment_sizes"] = "grade auto: each sample's grade in its garment_grade statistic (docs/garments.md)";
+    layout.attributes["size_chart"] = simulations.grades()->table().to_text();  // the grades as steps g0.50 ... g2.00
   }
   layout.template_hash = template_hash(sim.garment().mesh, sim.body_model().faces());
   layout.garment_faces = sim.garment().mesh.faces;  // for readers without drape's assets (h5py, torch)

@@ -7,15 +7,23 @@
 // garment's narrowest loop over the same band). The size chart of a garment
 // without sizes, made continuous.
 //
-// Grades are rounded to kAutoGradeStep, so that bodies of about one girth
+// Grades are steps of kAutoGradeStep, so that bodies of about one girth
 // share one graded garment (each is graded, dressed on its fit body and
 // built once): a step of 0.05 leaves the ease within 2.5 points of the design
 // ease, inside the 5 points the fit note lets pass. A body that needs a grade
 // outside 0.5-2 is refused before anything is simulated, with its measure and
 // the grade it would need: the garment cannot fit it.
+//
+// The steps are a size chart (size_table.hpp) of 31 sizes named g0.50 ...
+// g2.00, each of the design loop times its grade, chosen by the chart's own
+// rule (nearest the design ease among those not smaller than the body): a
+// dataset keeps it as its size_chart, so that a model trained on the drapes
+// chooses each body's grade by the same rule (drape predict, --garment-size
+// g1.35 or --garment-grade).
 #include <drape/registry.hpp>
 #include <drape/scene/scene.hpp>
 #include <drape/scene/simulation.hpp>
+#include <drape/scene/size_table.hpp>
 
 #include <Eigen/Core>
 
@@ -31,7 +39,7 @@ inline constexpr double kAutoGradeStep = 0.05;
 struct GradeChoice {
   double body_girth = 0;   // m, the body's chest or belly
   double exact = 1;        // the grade that gives the design ease exactly
-  double grade = 1;        // exact, rounded to kAutoGradeStep: what the body wears
+  double grade = 1;        // the chart's step nearest the design ease: what the body wears
   std::string summary() const;  // one line: the measure and the grade
 };
 
@@ -44,6 +52,8 @@ class AutoGrade {
   ~AutoGrade();
   const Simulation& design() const { return *design_; }
   double design_ease() const { return design_ease_; }
+  // The steps as a size chart (design size g1.00).
+  const SizeTable& table() const { return table_; }
   // The grade `body` wears; ConfigError "<what>: ... cannot fit this body"
   // naming the girths and the grade when it is outside 0.5-2.
   GradeChoice choose(const Eigen::MatrixX3d& body, const std::string& what) const;
@@ -56,6 +66,7 @@ class AutoGrade {
   Scene scene_;  // grade 1, garment_grade_auto off: what each grade is built from
   std::unique_ptr<Simulation> design_;
   double design_loop_ = 0, design_ease_ = 0;
+  SizeTable table_;
   mutable std::mutex mutex_;
   mutable std::map<long, std::unique_ptr<Simulation>> graded_;  // by grade / kAutoGradeStep
 };

@@ -33,7 +33,7 @@ struct SizeTable {
 
   bool empty() const { return girth.empty(); }
   // The size whose ease on a body of this girth is nearest the design ease
-  // among those with ease >= kMinimumEase (a garment smaller than the body
+  // among those with ease >= min(kMinimumEase, design_ease) (a garment smaller than the body
   // would be stretched onto it); SizeChoice::size is empty when none is.
   SizeChoice choose(double body_girth) const;
   // A size's grade: its girth over the design size's (1 for the design size).
