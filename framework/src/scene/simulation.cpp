@@ -111,20 +111,6 @@ void measure_drape(const ClothSolver& solver, std::vector<NamedEnergy>& energies
   }
 }
 
-// A graded garment made tight (less ease on the mean body than
-// kDressingEase: MakeHuman's T-shirt has -3.4 % on MakeHuman's mean body)
-// cannot be put on the body of its grade's girth: the mean body's fit of it
-// came from its .mhclo binding, which the graded garment no longer has, and
-// dressing by pushing leaves it through that body. It is dressed instead on
-// the body it goes around with kDressingEase, and the morph grows the body
-// into it from there. A garment with more ease keeps its fit body.
-constexpr double kDressingEase = 0.02;
-void clear_fit_body(Garment& garment, double placed_loop, const Eigen::MatrixX3d& mean_body, const Eigen::MatrixX3i& faces) {
-  if (garment.fit_grade == 1.0 || !std::isfinite(placed_loop)) return;
-  const double clear = placed_loop / (1.0 + kDressingEase) / body_girth(mean_body, faces);
-  if (clear < garment.fit_grade) garment.fit_grade = clear;
-}
-
 }  // namespace
 
 Simulation::Simulation(const Registry& registry, Scene scene) : registry_(registry), scene_(std::move(scene)) {
@@ -149,7 +135,6 @@ Simulation::Simulation(const Registry& registry, Scene scene) : registry_(regist
     what += " (" + file->second.node.as<std::string>() + ")";
   // Dressed on the body it is cut for: the mean body, or a larger size's fit
   // body (fit_body.hpp), where every run's morph then starts.
-  clear_fit_body(garment, placed_loop_, mean_body_, body_model_->faces());
   FitBody fit = dress_on_fit_body(*body_model_, garment, what + " of " + scene_.file);
   fit_body_ = std::move(fit.vertices);
   fit_request_ = fit.request;

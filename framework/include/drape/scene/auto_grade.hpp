@@ -10,7 +10,8 @@
 // Grades are steps of kAutoGradeStep, so that bodies of about one girth
 // share one graded garment (each is graded, dressed on its fit body and
 // built once): a step of 0.05 leaves the ease within 2.5 points of the design
-// ease, inside the 5 points the fit note lets pass. A body that needs a grade
+// ease (5 for a garment made tight, which never goes tighter than designed),
+// inside the 5 points the fit note lets pass. A body that needs a grade
 // outside 0.5-2 is refused before anything is simulated, with its measure and
 // the grade it would need: the garment cannot fit it.
 //
