@@ -33,7 +33,7 @@ struct Skeleton {
 
 // Diffusion steps that smooth the skinning weights (each: half the vertex's
 // own weights, half its neighbours' mean): the width of the blend at a joint.
-constexpr int kSkinningSmoothing = 12;
+constexpr int kSkinningSmoothing = 16;
 
 Skeleton build_skeleton(const BodyTemplate& tpl);
 
