@@ -160,7 +160,14 @@ std::vector<PoseAngle> human_pose_angles() {
   // motion (AAOS, "Joint Motion: Method of Measuring and Recording", 1965), as
   // tabulated by Norkin & White, "Measurement of Joint Motion: A Guide to
   // Goniometry" (5th ed., 2016), appendix. Sampling ranges: a person standing
-  // in a T-shirt, not the extremes (docs/poses.md).
+  // in a T-shirt, not the extremes, and within what the parametric body's
+  // linear blend skinning keeps free of self-intersection over the whole body
+  // space (scripts/pose_limits.py: elbows to 73, knees to 68, hips to 52
+  // degrees of flexion, arms down to 18 degrees of abduction at worst), so
+  // that few draws are rejected and poses stay about independent of shape
+  // (docs/poses.md). The hips' are narrower still: a thigh both raised and
+  // turned out presses into a heavy belly (BMI 55: flexion 30 with abduction
+  // 15), and a T-shirt ends above the thighs.
   struct Row {
     const char* name;
     bool sided;
@@ -174,13 +181,13 @@ std::vector<PoseAngle> human_pose_angles() {
       {"neck_flexion", false, -45, 45, -20, 30, "bends the head forward (negative: backward); AAOS cervical flexion 45, extension 45"},
       {"neck_bend", false, -45, 45, -20, 20, "tilts the head towards the body's left; AAOS cervical lateral flexion 45"},
       {"neck_twist", false, -60, 60, -45, 45, "turns the head to the body's left; AAOS cervical rotation 60"},
-      {"shoulder_abduction", true, 0, 180, 20, 100, "raises the arm sideways from hanging (0) to overhead (180); AAOS abduction 180"},
+      {"shoulder_abduction", true, 0, 180, 25, 100, "raises the arm sideways from hanging (0) to overhead (180); AAOS abduction 180"},
       {"shoulder_flexion", true, -60, 180, -20, 60, "raises the arm forward (negative: backward); AAOS flexion 180, extension 60"},
       {"shoulder_rotation", true, -90, 70, -30, 30, "turns the arm about its axis inwards (negative: outwards); AAOS medial 70, lateral 90"},
-      {"elbow_flexion", true, 0, 150, 0, 100, "bends the forearm forward from straight (0); AAOS flexion 150"},
-      {"hip_flexion", true, -30, 120, -10, 40, "raises the thigh forward (negative: backward); AAOS flexion 120, extension 30"},
-      {"hip_abduction", true, -30, 45, -5, 20, "moves the thigh sideways out (negative: across); AAOS abduction 45, adduction 30"},
-      {"hip_rotation", true, -45, 45, -15, 15, "turns the thigh inwards (negative: outwards); AAOS medial 45, lateral 45"},
+      {"elbow_flexion", true, 0, 150, 0, 70, "bends the forearm forward from straight (0); AAOS flexion 150"},
+      {"hip_flexion", true, -30, 120, -5, 25, "raises the thigh forward (negative: backward); AAOS flexion 120, extension 30"},
+      {"hip_abduction", true, -30, 45, 0, 10, "moves the thigh sideways out (negative: across); AAOS abduction 45, adduction 30"},
+      {"hip_rotation", true, -45, 45, -10, 10, "turns the thigh inwards (negative: outwards); AAOS medial 45, lateral 45"},
       {"knee_flexion", true, 0, 135, 0, 60, "bends the shin backward from straight (0); AAOS flexion 135"},
   };
   std::vector<PoseAngle> out;
