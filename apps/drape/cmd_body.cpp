@@ -185,7 +185,8 @@ int sample_many(const po::variables_map& vm, const LoadedBody& loaded, const Ran
   int intersecting = 0, halved = 0;
   SvgFigure figure("drape body --sample: BMI " + std::to_string(bmi.lo).substr(0, 4) + "-" + std::to_string(bmi.hi).substr(0, 4) +
                    ", height " + std::to_string(height.lo).substr(0, 4) + "-" + std::to_string(height.hi).substr(0, 4) +
-                   " m, girth spread " + std::to_string(space.proportion_spread).substr(0, 4));
+                   " m, girth spread " + std::to_string(space.proportion_spread).substr(0, 4) +
+                   (vm.count("poses") ? ", poses drawn (docs/poses.md)" : ""));
   constexpr int kDrawn = 16;
   for (int i = 0; i < count; ++i) {
     BodyRequest request = draw_body(space, body, rng);
