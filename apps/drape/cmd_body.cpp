@@ -6,6 +6,8 @@
 #include <drape/bodies/body.hpp>
 #include <drape/io/atomic_file.hpp>
 #include <drape/bodies/body_space.hpp>
+#include <drape/bodies/pose.hpp>
+#include <drape/bodies/posed_body.hpp>
 #include <drape/scene/body_overlap.hpp>
 #include <drape/geometry/self_intersection.hpp>
 #include <drape/geometry/index_locality.hpp>
@@ -26,6 +28,9 @@
 
 namespace drape::cli {
 namespace {
+
+// Poses drawn for one body before --sample gives up on it.
+constexpr int kMaxPoseRedraws = 50;
 
 struct Measured {
   double bmi, height;
@@ -70,8 +75,23 @@ struct LoadedBody {
   double load_s;
 };
 
-// One body, solved for --bmi, --height and --sex: its shape and measurements
-// printed, its mesh written to --out.
+// Any pose option on a model without a skeleton: refused, naming the model.
+void require_poseable(const po::variables_map& vm, const LoadedBody& loaded) {
+  if ((vm.count("pose") || vm.count("pose-file") || vm.count("poses")) && !loaded.body->poseable())
+    throw ConfigError("body " + loaded.model + " has no skeleton, so it cannot be posed (--pose, --pose-file, --poses); "
+                      "docs/poses.md says which models can");
+}
+
+// --pose name=degrees,... or --pose-file FILE (not both); empty without either.
+Pose requested_pose(const po::variables_map& vm, const BodyModel& body) {
+  if (vm.count("pose") && vm.count("pose-file")) throw UsageError("--pose and --pose-file: give one");
+  if (vm.count("pose")) return parse_pose(vm["pose"].as<std::string>(), body.pose_angles(), "--pose");
+  if (vm.count("pose-file")) return read_pose_file(vm["pose-file"].as<std::string>(), body.pose_angles());
+  return {};
+}
+
+// One body, solved for --bmi, --height and --sex (and posed by --pose): its
+// shape and measurements printed, its mesh written to --out.
 int solve_one(const po::variables_map& vm, const LoadedBody& loaded, const Range& bmi) {
   const BodyModel& body = *loaded.body;
   const auto names = body.shape_names();
@@ -81,9 +101,10 @@ int solve_one(const po::variables_map& vm, const LoadedBody& loaded, const Range
   const double sex = vm.count("sex") ? vm["sex"].as<double>() : 1.0;
   const auto t1 = std::chrono::steady_clock::now();
   const BodyRequest request{bmi.lo, height.lo, sex, parse_girths(vm)};
+  const Pose pose = requested_pose(vm, body);
   const Eigen::VectorXd shape = body.solve(request);
   const double solve_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t1).count();
-  const Mesh mesh = body_mesh(body, shape);
+  Mesh mesh = body_mesh(body, shape);
   const Measured got = measure(mesh.vertices, mesh.faces);
   const auto loc = geometry::index_locality(mesh.faces, mesh.num_vertices());
   std::cout << std::setprecision(6) << "body " << loaded.model << " (load " << loaded.load_s << " s, solve " << solve_s
@@ -95,6 +116,16 @@ int solve_one(const po::variables_map& vm, const LoadedBody& loaded, const Range
             << "consecutive indices that are mesh neighbours: " << 100 * loc.one_hop << "%, within two hops "
             << 100 * loc.two_hop << "%\n";
   warn_if_self_intersecting(mesh, !request.proportions.empty());
+  if (!pose.empty()) {
+    mesh.vertices = pose_body(body, loaded.model, shape, pose);
+    // The rest pose's angles that are not 0 (the A-pose's shoulder abduction)
+    // tell what an angle left out means.
+    Pose rest_nonzero;
+    for (const auto& [name, degrees] : body.rest_pose(shape).angles)
+      if (degrees != 0 && !pose.angles.count(name)) rest_nonzero.angles[name] = degrees;
+    std::cout << "posed: " << format_pose(pose) << "; every other angle at rest"
+              << (rest_nonzero.empty() ? "" : " (" + format_pose(rest_nonzero) + ")") << "\n";
+  }
   if (vm.count("out")) {
     write_mesh(vm["out"].as<std::string>(), mesh);
     std::cout << "wrote " << vm["out"].as<std::string>() << "\n";
@@ -138,29 +169,59 @@ int sample_many(const po::variables_map& vm, const LoadedBody& loaded, const Ran
   const Range height = vm.count("height") ? parse_range("height", vm["height"].as<std::string>()) : Range{1.5, 2.0};
   const BodySpace space = sample_space(vm, bmi, height);
   Rng rng(vm["seed"].as<unsigned>());
+  // Poses come from their own stream, so the shapes of a seed are the same
+  // with --poses as without.
+  const bool poses = vm.count("poses") > 0;
+  Rng pose_rng(Rng::derive(vm["seed"].as<unsigned>(), "poses"));
+  const std::vector<PoseAngle> angles = poses ? body.pose_angles() : std::vector<PoseAngle>{};
   std::ostringstream csv;
   csv << std::setprecision(10) << "index,file,requested_bmi,requested_height,sex";
   for (const auto& n : names) csv << ",shape_" << n;
-  csv << ",girth_halvings,measured_bmi,measured_height,self_intersections\n";
+  csv << ",girth_halvings,measured_bmi,measured_height,self_intersections";
+  for (const auto& a : angles) csv << ",pose_" << a.name;
+  csv << (poses ? ",pose_redraws\n" : "\n");
+  int redrawn_total = 0;
   double worst = 0;
   int intersecting = 0, halved = 0;
   SvgFigure figure("drape body --sample: BMI " + std::to_string(bmi.lo).substr(0, 4) + "-" + std::to_string(bmi.hi).substr(0, 4) +
                    ", height " + std::to_string(height.lo).substr(0, 4) + "-" + std::to_string(height.hi).substr(0, 4) +
-                   " m, girth spread " + std::to_string(space.proportion_spread).substr(0, 4));
+                   " m, girth spread " + std::to_string(space.proportion_spread).substr(0, 4) +
+                   (vm.count("poses") ? ", poses drawn (docs/poses.md)" : ""));
   constexpr int kDrawn = 16;
   for (int i = 0; i < count; ++i) {
     BodyRequest request = draw_body(space, body, rng);
     int halvings = 0;
     const Eigen::VectorXd shape = solve_in_space(body, request, &halvings);
-    const Mesh mesh = body_mesh(body, shape);
+    Mesh mesh = body_mesh(body, shape);
     const Measured got = measure(mesh.vertices, mesh.faces);
     const std::size_t crossing = geometry::self_intersections(mesh.vertices, mesh.faces, 10).size();
+    Pose pose;
+    int redraws = 0;
+    if (poses) {
+      // By rejection: a pose that makes this body pass through itself is
+      // drawn again (docs/poses.md gives the rate).
+      for (;; ++redraws) {
+        if (redraws == kMaxPoseRedraws)
+          throw Error("drape body --sample: body " + std::to_string(i) + " passes through itself in " +
+                      std::to_string(kMaxPoseRedraws) + " poses drawn in a row");
+        pose = draw_pose(angles, pose_rng);
+        const Eigen::MatrixX3d posed = body.posed(shape, pose);
+        if (describe_pose_crossings(body, shape, pose, posed).empty()) {
+          mesh.vertices = posed;
+          break;
+        }
+      }
+      redrawn_total += redraws;
+    }
     char file[32];
     std::snprintf(file, sizeof file, "body_%05d.obj", i);
     write_mesh(dir / file, mesh);
     csv << i << "," << file << "," << request.bmi << "," << request.height << "," << request.sex;
     for (Eigen::Index k = 0; k < shape.size(); ++k) csv << "," << shape[k];
-    csv << "," << halvings << "," << got.bmi << "," << got.height << "," << crossing << "\n";
+    csv << "," << halvings << "," << got.bmi << "," << got.height << "," << crossing;
+    for (const auto& a : angles) csv << "," << pose.angles.at(a.name);
+    if (poses) csv << "," << redraws;
+    csv << "\n";
     worst = std::max(worst, std::abs(got.bmi - request.bmi));
     intersecting += crossing > 0;
     halved += halvings > 0;
@@ -180,7 +241,9 @@ int sample_many(const po::variables_map& vm, const LoadedBody& loaded, const Ran
     if (!out) throw Error("cannot write " + tmp.string());
   });
   std::cout << "wrote " << count << " bodies and bodies.csv to " << dir.string() << " (worst |BMI error| " << worst << "; "
-            << intersecting << " self-intersecting; " << halved << " with girths halved to reach their BMI)\n";
+            << intersecting << " self-intersecting; " << halved << " with girths halved to reach their BMI";
+  if (poses) std::cout << "; posed, " << redrawn_total << " poses drawn again because the body passed through itself";
+  std::cout << ")\n";
   return 0;
 }
 
@@ -196,6 +259,10 @@ int run(const std::vector<std::string>& args) {
       "with --sample: the spread of the girths, as a fraction of the model's range (0: the mean build)")(
       "seed", po::value<unsigned>()->default_value(0), "random seed for --sample")(
       "out-dir", po::value<std::string>(), "folder for --sample: body_00000.obj ... and bodies.csv")(
+      "pose", po::value<std::string>(),
+      "joint angles in degrees, name=value,... (shoulder_abduction=90,left_elbow_flexion=30; docs/poses.md)")(
+      "pose-file", po::value<std::string>(), "joint angles from a YAML map of name: degrees")(
+      "poses", "with --sample: also draw a pose for each body, independently of its shape (docs/poses.md)")(
       "svg", po::value<std::string>(), "with --sample: also draw the first 16 bodies side by side (.svg, or .html: a 3D viewer)")(
       "param", po::value<std::vector<std::string>>()->composing(),
       "a parameter of the body plugin, name=value (repeatable), e.g. file=smpl.h5 for --model smpl");
@@ -203,7 +270,8 @@ int run(const std::vector<std::string>& args) {
   po::variables_map vm;
   const std::string usage =
       "drape body --bmi 38 --height 1.80 [--sex 1] [--out body.obj]\n"
-      "       drape body --sample N --bmi 10:65 [--height 1.5:2.0] [--girths 1] [--seed S] --out-dir DIR";
+      "       drape body --sample N --bmi 10:65 [--height 1.5:2.0] [--girths 1] [--seed S] [--poses] --out-dir DIR\n"
+      "       drape body --bmi 30 --pose shoulder_abduction=90,elbow_flexion=45 --out posed.obj";
   if (!parse(usage, args, opts, {}, vm)) return 0;
   check_mesh_outputs(vm, {"out"});
 
@@ -218,6 +286,10 @@ int run(const std::vector<std::string>& args) {
   loaded.body = reg.create_body(loaded.model, Params(desc.params, values, "body " + loaded.model));
   loaded.load_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   const Range bmi = parse_range("bmi", vm["bmi"].as<std::string>());
+  require_poseable(vm, loaded);
+  if (vm.count("sample") && (vm.count("pose") || vm.count("pose-file")))
+    throw UsageError("--pose and --pose-file pose one body; --sample draws poses with --poses");
+  if (vm.count("poses") && !vm.count("sample")) throw UsageError("--poses needs --sample");
   return vm.count("sample") ? sample_many(vm, loaded, bmi) : solve_one(vm, loaded, bmi);
 }
 

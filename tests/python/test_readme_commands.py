@@ -14,6 +14,7 @@ RUN = [
     "--help",
     "body --bmi 38",
     "body --sample 8",
+    "body --bmi 30 --pose",
     "predict --bmi 35",
     "render --bmi 35",
     "bench list",
@@ -78,5 +79,5 @@ def test_every_readme_command_is_run_or_says_why_not(tmp_path):
         ran.append(rest)
     assert len(ran) == len(RUN), f"some commands this test runs are no longer in the README: {RUN} vs {ran}"
     # What they wrote is where the README says, in the folder they ran from.
-    for out in ["body.obj", "bodies.svg", "garment.obj", "drape.html"]:
+    for out in ["body.obj", "bodies.svg", "posed.obj", "garment.obj", "drape.html"]:
         assert (tmp_path / out).stat().st_size > 0, out

@@ -1,7 +1,9 @@
 // The built-in parametric body: the default body model everywhere.
 #include "body_plan.hpp"
 #include "body_template.hpp"
+#include "posing.hpp"
 #include "shape_fit.hpp"
+#include "skeleton.hpp"
 
 #include <drape/bodies/body_space.hpp>
 #include <drape/geometry/volume.hpp>
@@ -36,9 +38,30 @@ const BodyTemplate& shared_template() {
   return tpl;
 }
 
+// Computed once per topology, from the template (skeleton.hpp).
+const Skeleton& shared_skeleton() {
+  static const Skeleton skeleton = build_skeleton(shared_template());
+  return skeleton;
+}
+
 class ParametricBody final : public BodyModel {
  public:
   ParametricBody() : tpl_(shared_template()) {}
+
+  bool poseable() const override { return true; }
+  std::vector<PoseAngle> pose_angles() const override { return human_pose_angles(); }
+  std::vector<Joint> joints() const override { return shared_skeleton().joints; }
+  Eigen::MatrixX3d joint_positions(const Eigen::VectorXd& shape) const override {
+    return regress_joints(shared_skeleton(), vertices(shape));
+  }
+  Eigen::MatrixXd skinning_weights() const override { return shared_skeleton().weights; }
+  Pose rest_pose(const Eigen::VectorXd& shape) const override { return rest_angles(joint_positions(shape)); }
+  Eigen::MatrixX3d posed(const Eigen::VectorXd& shape, const Pose& pose) const override {
+    check_pose(pose, pose_angles(), "body parametric pose");
+    const Eigen::MatrixX3d v = vertices(shape);
+    if (pose.empty()) return v;
+    return skin(shared_skeleton(), v, regress_joints(shared_skeleton(), v), pose);
+  }
 
   int num_vertices() const override { return static_cast<int>(tpl_.vertices.rows()); }
   const Eigen::MatrixX3i& faces() const override { return tpl_.faces; }

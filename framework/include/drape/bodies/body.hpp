@@ -1,6 +1,7 @@
 #pragma once
 // Body models: a fixed-topology, watertight mesh in A-pose (meters, Y up) driven
 // by a few shape parameters. Plugins of kind "body" provide them.
+#include <drape/bodies/pose.hpp>
 #include <drape/energy.hpp>
 #include <drape/mesh.hpp>
 
@@ -49,6 +50,29 @@ class BodyModel {
   // another BMI (fit_body, drape/bodies/fit_body.hpp). By default the BMI and
   // height are measured on the mean body's mesh and the sex is 0.5.
   virtual BodyRequest mean_request() const;
+
+  // Posing (docs/poses.md). A poseable model has a skeleton: bones, each
+  // turning about its joint, the first the root (parent -1), parents before
+  // children.
+  struct Joint {
+    std::string name;  // the bone that turns about it: "left_forearm" turns at the elbow
+    int parent = -1;
+    std::vector<std::string> angles;  // the pose angles that turn it there ("left_elbow_flexion")
+  };
+  virtual bool poseable() const { return false; }
+  // The angles posed() takes, with their limits; none by default.
+  virtual std::vector<PoseAngle> pose_angles() const { return {}; }
+  virtual std::vector<Joint> joints() const { return {}; }
+  // Joint centres of the unposed body of `shape`, one row per joints() entry.
+  virtual Eigen::MatrixX3d joint_positions(const Eigen::VectorXd& shape) const;
+  // Skinning weights: one row per vertex, one column per joint, rows summing to 1.
+  virtual Eigen::MatrixXd skinning_weights() const;
+  // The angles of the unposed body of `shape` (the A-pose), every angle of
+  // pose_angles() set.
+  virtual Pose rest_pose(const Eigen::VectorXd& shape) const;
+  // The body of `shape` in `pose` (angles it does not set stay at rest).
+  // The empty pose gives vertices(shape) bit for bit. Not poseable: ConfigError.
+  virtual Eigen::MatrixX3d posed(const Eigen::VectorXd& shape, const Pose& pose) const;
 };
 
 // Garment templates (kind "garment"): the rest garment dressed on the mean body,

@@ -1,0 +1,57 @@
+#pragma once
+// Poses: joint angles by name, in degrees, over a body model's pose space
+// (BodyModel::pose_angles). Angles are anatomical: each is 0 in the neutral
+// stance (arms hanging, legs straight, trunk upright) except where the body
+// model's rest pose differs (the A-pose's shoulder abduction: rest_pose()).
+// An angle a Pose does not hold stays at the rest pose, so the empty Pose is
+// the unposed body itself. docs/poses.md lists the angles, their limits and
+// where the limits come from.
+#include <drape/training/rng.hpp>
+
+#include <map>
+#include <string>
+#include <vector>
+
+namespace drape {
+
+// One degree of freedom of a pose space. Sided angles are named
+// "left_shoulder_abduction", "right_shoulder_abduction"; a pose may name
+// both at once without the prefix.
+struct PoseAngle {
+  std::string name;
+  double min = 0, max = 0;            // the range of motion accepted, degrees
+  double sample_lo = 0, sample_hi = 0;  // what draw_pose draws from, uniform
+  std::string meaning;                // "raises the arm sideways; AAOS 0-180"
+};
+
+struct Pose {
+  std::map<std::string, double> angles;  // full (sided) names, degrees
+  bool empty() const { return angles.empty(); }
+  // The angle, or `rest` when the pose does not set it.
+  double get(const std::string& name, double rest) const;
+};
+
+// The human pose space of drape's body models: spine (flexion, bend, twist),
+// neck (the same), shoulders (abduction, flexion, rotation), elbows (flexion),
+// hips (flexion, abduction, rotation) and knees (flexion), left and right;
+// limits from the published ranges of motion (docs/poses.md).
+std::vector<PoseAngle> human_pose_angles();
+
+// "shoulder_abduction=40,left_elbow_flexion=30": comma-separated name=value
+// in degrees; a name without left_/right_ sets both sides. ConfigError (one
+// line, prefixed by `what`) for an unknown name (with the closest names), a
+// value that is not a number, NaN, out of its range (with the range), or an
+// angle set twice.
+Pose parse_pose(const std::string& text, const std::vector<PoseAngle>& space, const std::string& what);
+// A YAML map of the same names to degrees ({shoulder_abduction: 40, ...}).
+Pose read_pose_file(const std::string& path, const std::vector<PoseAngle>& space);
+// The checks of parse_pose on a pose built in code.
+void check_pose(const Pose& pose, const std::vector<PoseAngle>& space, const std::string& what);
+// "left_elbow_flexion=30,..." in the order of the map; parse_pose reads it back.
+std::string format_pose(const Pose& pose);
+
+// Every angle of the space drawn independently, uniform over its sampling
+// range (a fixed number of draws, one per angle in the space's order).
+Pose draw_pose(const std::vector<PoseAngle>& space, Rng& rng);
+
+}  // namespace drape

@@ -1,0 +1,24 @@
+#pragma once
+// A posed body as a scene or `drape body` takes it: refused, naming the bones
+// and the joint angles, when the pose makes the body pass through itself (an
+// arm into the trunk, thighs into each other). The test is independent of
+// the posing: triangle-triangle intersection of non-adjacent faces of the
+// posed mesh (geometry::self_intersections).
+#include <drape/bodies/body.hpp>
+
+#include <string>
+
+namespace drape {
+
+// "" when the posed mesh has no crossing face pairs beyond those of the
+// unposed body; else "left_forearm into spine_upper (4 face pairs at heights
+// 1.02-1.08 m; left_elbow_flexion=140, left_shoulder_abduction=10)".
+std::string describe_pose_crossings(const BodyModel& model, const Eigen::VectorXd& shape, const Pose& pose,
+                                    const Eigen::MatrixX3d& posed);
+
+// model.posed(shape, pose) after check_pose; ConfigError naming `model_name`
+// when the model is not poseable or the posed body passes through itself.
+Eigen::MatrixX3d pose_body(const BodyModel& model, const std::string& model_name, const Eigen::VectorXd& shape,
+                           const Pose& pose);
+
+}  // namespace drape

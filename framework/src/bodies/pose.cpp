@@ -1,0 +1,216 @@
+// Poses by name (pose.hpp) and the default, unposeable BodyModel.
+#include <drape/bodies/body.hpp>
+#include <drape/bodies/pose.hpp>
+#include <drape/errors.hpp>
+
+#include <yaml-cpp/yaml.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <set>
+#include <sstream>
+
+namespace drape {
+namespace {
+
+constexpr const char* kSides[] = {"left_", "right_"};
+
+std::string range_text(const PoseAngle& a) {
+  std::ostringstream s;
+  s << "[" << a.min << ", " << a.max << "] degrees";
+  return s.str();
+}
+
+// The sided names an entry sets: itself, or both sides of an unsided name.
+std::vector<const PoseAngle*> targets(const std::string& name, const std::vector<PoseAngle>& space) {
+  std::vector<const PoseAngle*> out;
+  for (const PoseAngle& a : space)
+    if (a.name == name) return {&a};
+  for (const char* side : kSides)
+    for (const PoseAngle& a : space)
+      if (a.name == side + name) out.push_back(&a);
+  return out;
+}
+
+std::vector<std::string> accepted_names(const std::vector<PoseAngle>& space) {
+  std::set<std::string> names;
+  for (const PoseAngle& a : space) {
+    names.insert(a.name);
+    for (const char* side : kSides)
+      if (a.name.rfind(side, 0) == 0) names.insert(a.name.substr(std::string(side).size()));
+  }
+  return {names.begin(), names.end()};
+}
+
+void check_value(const PoseAngle& a, double degrees, const std::string& what) {
+  std::ostringstream m;
+  if (std::isnan(degrees))
+    m << what << ": " << a.name << " is NaN; expected degrees in " << range_text(a);
+  else if (!(degrees >= a.min && degrees <= a.max))
+    m << what << ": " << a.name << " = " << degrees << " is outside its range of motion " << range_text(a) << " ("
+      << a.meaning << ")";
+  else
+    return;
+  throw ConfigError(m.str());
+}
+
+// Sets `name` (sided or both sides) to `degrees`, checking all of it.
+void set_angle(Pose& pose, const std::string& name, double degrees, const std::vector<PoseAngle>& space,
+               const std::string& what) {
+  const auto set = targets(name, space);
+  if (set.empty()) {
+    std::string msg = what + ": no joint angle '" + name + "'" + did_you_mean(name, accepted_names(space));
+    if (msg.find("did you mean") == std::string::npos) {
+      msg += "; the angles are";
+      for (const std::string& n : accepted_names(space)) msg += " " + n;
+      msg += " (left_/right_ prefix for one side)";
+    }
+    throw ConfigError(msg);
+  }
+  for (const PoseAngle* a : set) {
+    check_value(*a, degrees, what);
+    if (!pose.angles.emplace(a->name, degrees).second)
+      throw ConfigError(what + ": " + a->name + " is set twice (by '" + name + "' and before)");
+  }
+}
+
+double parse_degrees(const std::string& name, const std::string& text, const std::string& what) {
+  const char* begin = text.c_str();
+  char* end = nullptr;
+  const double v = std::strtod(begin, &end);
+  if (text.empty() || end == begin || *end != '\0')
+    throw ConfigError(what + ": " + name + " = '" + text + "' is not a number of degrees");
+  return v;
+}
+
+std::string trim(const std::string& s) {
+  const auto b = s.find_first_not_of(" \t"), e = s.find_last_not_of(" \t");
+  return b == std::string::npos ? "" : s.substr(b, e - b + 1);
+}
+
+}  // namespace
+
+double Pose::get(const std::string& name, double rest) const {
+  const auto it = angles.find(name);
+  return it == angles.end() ? rest : it->second;
+}
+
+Pose parse_pose(const std::string& text, const std::vector<PoseAngle>& space, const std::string& what) {
+  Pose pose;
+  std::stringstream items(text);
+  std::string item;
+  while (std::getline(items, item, ',')) {
+    item = trim(item);
+    if (item.empty()) continue;
+    const auto eq = item.find('=');
+    if (eq == std::string::npos || eq == 0)
+      throw ConfigError(what + ": expected name=degrees, got '" + item + "'");
+    const std::string name = trim(item.substr(0, eq));
+    set_angle(pose, name, parse_degrees(name, trim(item.substr(eq + 1)), what), space, what);
+  }
+  return pose;
+}
+
+Pose read_pose_file(const std::string& path, const std::vector<PoseAngle>& space) {
+  YAML::Node root;
+  try {
+    root = YAML::LoadFile(path);
+  } catch (const YAML::Exception& e) {
+    throw ConfigError("pose file " + path + ": " + e.what());
+  }
+  if (!root.IsMap()) throw ConfigError("pose file " + path + ": expected a map of joint angle names to degrees");
+  Pose pose;
+  const std::string what = "pose file " + path;
+  for (const auto& kv : root) {
+    const std::string name = kv.first.as<std::string>();
+    if (!kv.second.IsScalar())
+      throw ConfigError(what + ":" + std::to_string(kv.second.Mark().line + 1) + ": " + name + " wants one number of degrees");
+    set_angle(pose, name, parse_degrees(name, kv.second.Scalar() == ".nan" ? "nan" : kv.second.Scalar(),
+                                        what + ":" + std::to_string(kv.second.Mark().line + 1)),
+              space, what + ":" + std::to_string(kv.second.Mark().line + 1));
+  }
+  return pose;
+}
+
+void check_pose(const Pose& pose, const std::vector<PoseAngle>& space, const std::string& what) {
+  for (const auto& [name, degrees] : pose.angles) {
+    const PoseAngle* found = nullptr;
+    for (const PoseAngle& a : space)
+      if (a.name == name) found = &a;
+    if (!found) throw ConfigError(what + ": no joint angle '" + name + "'" + did_you_mean(name, accepted_names(space)));
+    check_value(*found, degrees, what);
+  }
+}
+
+std::string format_pose(const Pose& pose) {
+  std::ostringstream s;
+  s.precision(10);
+  for (const auto& [name, degrees] : pose.angles) s << (s.tellp() > 0 ? "," : "") << name << "=" << degrees;
+  return s.str();
+}
+
+Pose draw_pose(const std::vector<PoseAngle>& space, Rng& rng) {
+  Pose pose;
+  for (const PoseAngle& a : space) pose.angles[a.name] = a.sample_lo + (a.sample_hi - a.sample_lo) * rng.uniform();
+  return pose;
+}
+
+std::vector<PoseAngle> human_pose_angles() {
+  // Limits: the American Academy of Orthopaedic Surgeons' average ranges of
+  // motion (AAOS, "Joint Motion: Method of Measuring and Recording", 1965), as
+  // tabulated by Norkin & White, "Measurement of Joint Motion: A Guide to
+  // Goniometry" (5th ed., 2016), appendix. Sampling ranges: a person standing
+  // in a T-shirt, not the extremes, and within what the parametric body's
+  // linear blend skinning keeps free of self-intersection over the whole body
+  // space (scripts/pose_limits.py: elbows to 73, knees to 68, hips to 52
+  // degrees of flexion, arms down to 18 degrees of abduction at worst), so
+  // that few draws are rejected and poses stay about independent of shape
+  // (docs/poses.md). The hips' are narrower still: a thigh both raised and
+  // turned out presses into a heavy belly (BMI 55: flexion 30 with abduction
+  // 15), and a T-shirt ends above the thighs.
+  struct Row {
+    const char* name;
+    bool sided;
+    double min, max, lo, hi;
+    const char* meaning;
+  };
+  static const Row rows[] = {
+      {"spine_flexion", false, -25, 80, -10, 20, "bends the trunk forward (negative: backward); AAOS thoracolumbar flexion 80, extension 25"},
+      {"spine_bend", false, -35, 35, -15, 15, "bends the trunk towards the body's left (negative: right); AAOS lateral flexion 35"},
+      {"spine_twist", false, -45, 45, -30, 30, "turns the shoulders to the body's left (negative: right); AAOS rotation 45"},
+      {"neck_flexion", false, -45, 45, -20, 30, "bends the head forward (negative: backward); AAOS cervical flexion 45, extension 45"},
+      {"neck_bend", false, -45, 45, -20, 20, "tilts the head towards the body's left; AAOS cervical lateral flexion 45"},
+      {"neck_twist", false, -60, 60, -45, 45, "turns the head to the body's left; AAOS cervical rotation 60"},
+      {"shoulder_abduction", true, 0, 180, 25, 100, "raises the arm sideways from hanging (0) to overhead (180); AAOS abduction 180"},
+      {"shoulder_flexion", true, -60, 180, -20, 60, "raises the arm forward (negative: backward); AAOS flexion 180, extension 60"},
+      {"shoulder_rotation", true, -90, 70, -30, 30, "turns the arm about its axis inwards (negative: outwards); AAOS medial 70, lateral 90"},
+      {"elbow_flexion", true, 0, 150, 0, 70, "bends the forearm forward from straight (0); AAOS flexion 150"},
+      {"hip_flexion", true, -30, 120, -5, 25, "raises the thigh forward (negative: backward); AAOS flexion 120, extension 30"},
+      {"hip_abduction", true, -30, 45, 0, 10, "moves the thigh sideways out (negative: across); AAOS abduction 45, adduction 30"},
+      {"hip_rotation", true, -45, 45, -10, 10, "turns the thigh inwards (negative: outwards); AAOS medial 45, lateral 45"},
+      {"knee_flexion", true, 0, 135, 0, 60, "bends the shin backward from straight (0); AAOS flexion 135"},
+  };
+  std::vector<PoseAngle> out;
+  for (const Row& r : rows) {
+    if (!r.sided) {
+      out.push_back({r.name, r.min, r.max, r.lo, r.hi, r.meaning});
+      continue;
+    }
+    for (const char* side : kSides) out.push_back({std::string(side) + r.name, r.min, r.max, r.lo, r.hi, r.meaning});
+  }
+  return out;
+}
+
+Eigen::MatrixX3d BodyModel::joint_positions(const Eigen::VectorXd&) const {
+  throw ConfigError("this body model has no skeleton (it makes unposed bodies only; docs/poses.md)");
+}
+Eigen::MatrixXd BodyModel::skinning_weights() const {
+  throw ConfigError("this body model has no skeleton (it makes unposed bodies only; docs/poses.md)");
+}
+Pose BodyModel::rest_pose(const Eigen::VectorXd&) const { return {}; }
+Eigen::MatrixX3d BodyModel::posed(const Eigen::VectorXd& shape, const Pose& pose) const {
+  if (pose.empty()) return vertices(shape);
+  throw ConfigError("this body model has no skeleton, so it cannot be posed (it makes unposed bodies only; docs/poses.md)");
+}
+
+}  // namespace drape

@@ -1,0 +1,117 @@
+// Refusing a pose in which the body passes through itself (posed_body.hpp).
+#include <drape/bodies/posed_body.hpp>
+#include <drape/errors.hpp>
+#include <drape/geometry/self_intersection.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <set>
+#include <sstream>
+
+namespace drape {
+namespace {
+
+// The bone each face follows most (its three vertices' skinning weights summed).
+std::vector<int> face_bones(const Eigen::MatrixXd& weights, const Eigen::MatrixX3i& faces) {
+  std::vector<int> out(static_cast<std::size_t>(faces.rows()));
+  for (Eigen::Index f = 0; f < faces.rows(); ++f) {
+    const Eigen::RowVectorXd w = weights.row(faces(f, 0)) + weights.row(faces(f, 1)) + weights.row(faces(f, 2));
+    Eigen::Index best = 0;
+    w.maxCoeff(&best);
+    out[static_cast<std::size_t>(f)] = static_cast<int>(best);
+  }
+  return out;
+}
+
+std::vector<int> chain(const std::vector<BodyModel::Joint>& joints, int bone) {
+  std::vector<int> out;
+  for (; bone >= 0; bone = joints[static_cast<std::size_t>(bone)].parent) out.push_back(bone);
+  return out;
+}
+
+}  // namespace
+
+std::string describe_pose_crossings(const BodyModel& model, const Eigen::VectorXd& shape, const Pose& pose,
+                                    const Eigen::MatrixX3d& posed) {
+  constexpr std::size_t kMaxPairs = 2000;
+  const Eigen::MatrixX3i& faces = model.faces();
+  auto pairs = geometry::self_intersections(posed, faces, kMaxPairs);
+  if (pairs.empty()) return "";
+  // Crossings the unposed body already has are the shape's, not the pose's.
+  const auto rest = geometry::self_intersections(model.vertices(shape), faces, kMaxPairs);
+  const std::set<std::pair<int, int>> at_rest(rest.begin(), rest.end());
+  pairs.erase(std::remove_if(pairs.begin(), pairs.end(), [&](const auto& p) { return at_rest.count(p) > 0; }), pairs.end());
+  if (pairs.empty()) return "";
+
+  const auto joints = model.joints();
+  const auto bone_of = face_bones(model.skinning_weights(), faces);
+  struct Region {
+    int count = 0;
+    double y_lo = 1e300, y_hi = -1e300;
+  };
+  std::map<std::pair<int, int>, Region> regions;
+  for (const auto& [fa, fb] : pairs) {
+    int a = bone_of[static_cast<std::size_t>(fa)], b = bone_of[static_cast<std::size_t>(fb)];
+    if (a > b) std::swap(a, b);
+    Region& r = regions[{a, b}];
+    ++r.count;
+    for (int f : {fa, fb})
+      for (int c = 0; c < 3; ++c) {
+        r.y_lo = std::min(r.y_lo, posed(faces(f, c), 1));
+        r.y_hi = std::max(r.y_hi, posed(faces(f, c), 1));
+      }
+  }
+  std::ostringstream s;
+  s.precision(3);
+  bool first = true;
+  for (const auto& [bones, r] : regions) {
+    // The angles that moved either bone relative to the other: those of the
+    // joints on both chains below their common ancestor.
+    auto ca = chain(joints, bones.first), cb = chain(joints, bones.second);
+    std::set<int> common(ca.begin(), ca.end());
+    std::set<int> moved;
+    for (int j : cb)
+      if (!common.count(j)) moved.insert(j);
+    const std::set<int> in_b(cb.begin(), cb.end());
+    for (int j : ca)
+      if (!in_b.count(j)) moved.insert(j);
+    if (bones.first == bones.second) moved.insert(bones.first);  // folded at its own joint
+    std::vector<std::string> angles;
+    for (int j : moved)
+      for (const std::string& a : joints[static_cast<std::size_t>(j)].angles)
+        if (pose.angles.count(a)) {
+          std::ostringstream angle;
+          angle << a << "=" << pose.angles.at(a);
+          angles.push_back(angle.str());
+        }
+    // The bone further down the skeleton first: it is the one that moved in.
+    s << (first ? "" : "; ") << joints[static_cast<std::size_t>(bones.second)].name;
+    s << (bones.first == bones.second ? " into itself" : " into " + joints[static_cast<std::size_t>(bones.first)].name);
+    s << " (" << r.count << (r.count >= static_cast<int>(kMaxPairs) ? "+" : "") << " face pairs at heights " << r.y_lo
+      << "-" << r.y_hi << " m";
+    if (!angles.empty()) {
+      s << "; joints:";
+      for (const auto& a : angles) s << " " << a;
+    }
+    s << ")";
+    first = false;
+  }
+  return s.str();
+}
+
+Eigen::MatrixX3d pose_body(const BodyModel& model, const std::string& model_name, const Eigen::VectorXd& shape,
+                           const Pose& pose) {
+  if (!model.poseable()) {
+    if (pose.empty()) return model.vertices(shape);
+    throw ConfigError("body " + model_name + " has no skeleton, so it cannot be posed (docs/poses.md says which models can)");
+  }
+  check_pose(pose, model.pose_angles(), "body " + model_name + " pose");
+  Eigen::MatrixX3d posed = model.posed(shape, pose);
+  const std::string where = describe_pose_crossings(model, shape, pose, posed);
+  if (!where.empty())
+    throw ConfigError("body " + model_name + ": this pose makes the body pass through itself: " + where);
+  return posed;
+}
+
+}  // namespace drape
