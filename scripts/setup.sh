@@ -11,7 +11,15 @@ cd "$(dirname "${BASH_SOURCE[0]}")/.."
 BUILD_DIR=${BUILD_DIR:-build}
 JOBS=${JOBS:-$(nproc)}
 
-step() { printf '\n==> [%s] %s\n' "$(date +%T)" "$*"; }  # the time: where a set-up's minutes go
+# The time and the CPU time (user + system) its commands have used so far: where
+# a set-up's minutes go, even on a busy machine (scripts/ci_timing.sh reads them).
+step() {
+  local t="${TMPDIR:-/tmp}/drape-setup-times.$$" cpu
+  times >"$t"  # in this shell: its children's CPU time is the second line
+  cpu=$(awk 'NR == 2 { split($1, u, /[ms]/); split($2, s, /[ms]/); printf "%.1f", 60 * (u[1] + s[1]) + u[2] + s[2] }' "$t")
+  rm -f "$t"
+  printf '\n==> [%s, %s s CPU] %s\n' "$(date +%T)" "$cpu" "$*"
+}
 fail() { printf 'setup.sh: error: %s\n' "$*" >&2; exit 1; }
 
 PACKAGES=(
