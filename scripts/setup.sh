@@ -50,8 +50,12 @@ install_dependencies() {
 }
 
 build() {
-  step "Configuring (Release) into $BUILD_DIR"
-  cmake -S . -B "$BUILD_DIR" -DCMAKE_BUILD_TYPE=Release
+  step "Configuring (Release, unity build) into $BUILD_DIR"
+  # Unity build: each target's sources compiled in batches of 8, which parse and
+  # instantiate their shared Eigen/yaml-cpp/HDF5 code once per batch instead of
+  # once per file (a clean build's CPU time about a third less, docs/ci.md). An edit then
+  # recompiles its batch; -DCMAKE_UNITY_BUILD=OFF on the folder for file by file.
+  cmake -S . -B "$BUILD_DIR" -DCMAKE_BUILD_TYPE=Release -DCMAKE_UNITY_BUILD=ON
   step "Building with $JOBS jobs"
   cmake --build "$BUILD_DIR" -j "$JOBS"
 }
