@@ -10,7 +10,7 @@
 #     --apt    run apt-get as setup.sh does (needs root or sudo); default SKIP_APT=1
 #     --keep   keep the clone (default: removed at the end)
 #     --costs  also print every test of 1.5 s or more in tests/test_costs.tsv's format
-# Environment: CI_TIMING_DIR (the clone; default a new folder under /tmp), JOBS
+# Environment: CI_TIMING_DIR (the clone; default a new folder beside this one), JOBS
 # (setup.sh's build jobs, default nproc), TU_TIME_LOG (a file: every compile
 # and link's CPU time, through scripts/tu_time.sh as the compiler launcher).
 set -euo pipefail
@@ -28,8 +28,9 @@ for a in "$@"; do
   esac
 done
 
-DIR=${CI_TIMING_DIR:-$(mktemp -d /tmp/drape-ci-timing.XXXXXX)}
-[[ $KEEP == 1 ]] || trap 'rm -rf "$DIR"' EXIT
+# Beside this checkout, so that ../shared/assets (the MakeHuman data a test uses) is found as from here.
+DIR=${CI_TIMING_DIR:-$(mktemp -d "$(dirname "$SRC")/drape-ci-timing.XXXXXX")}
+[[ $KEEP == 1 ]] || trap 'rm -rf "$DIR" "$DIR.time"' EXIT
 LOG=$DIR.log
 echo "ci_timing: $(date -u '+%F %T') UTC, $(nproc) cores, load $(cut -d' ' -f1-3 /proc/loadavg), commit $(git rev-parse --short HEAD)"
 echo "ci_timing: cloning into $DIR (log: $LOG)"
@@ -48,32 +49,34 @@ skip_apt=1
 start=$(date +%s.%N)
 "${launcher[@]}" env SKIP_APT=$skip_apt BUILD_DIR=build bash scripts/setup.sh </dev/null >"$LOG" 2>&1 ||
   { tail -n 30 "$LOG"; echo "ci_timing: setup.sh failed (log: $LOG)" >&2; exit 1; }
-setup_end=$(date +%s.%N)
-tests_time=$( { /usr/bin/time -f '%e %U %S' ctest --test-dir build --output-on-failure --no-tests=error -j2 --timeout 900 \
-  >>"$LOG" 2>&1; } 2>&1 | tail -n 1) || true
+/usr/bin/time -o "$DIR.time" -f '%e %U %S' ctest --test-dir build --output-on-failure --no-tests=error -j2 --timeout 900 \
+  >>"$LOG" 2>&1 || true
+tests_time=$(tail -n 1 "$DIR.time")
 tests_ok=$(grep -Eo '[0-9]+% tests passed, [0-9]+ tests failed out of [0-9]+' "$LOG" | tail -n 1)
 end=$(date +%s.%N)
 
-# setup.sh's steps: "==> [HH:MM:SS, <cpu> s CPU] <what>", CPU cumulative.
-awk -v end_wall="$setup_end" -v start_wall="$start" '
-  /^==> \[[0-9:]+, [0-9.]+ s CPU\]/ {
-    split(substr($2, 2), hms, /[:,]/); t = hms[1] * 3600 + hms[2] * 60 + hms[3]
-    cpu = $3; what = $0; sub(/^==> \[[^]]*\] /, "", what)
-    phase = what ~ /^(Installing|Skipping apt)/ ? "apt-get" : what ~ /^Configuring/ ? "configure" :
-            what ~ /^Building/ ? "build" : what ~ /^Done/ ? "done" : "main job"
-    if (n == 0 || phase != name[n]) { n++; name[n] = phase; t0[n] = t; c0[n] = cpu }
-    last_t = t; last_c = cpu
-  }
-  END {
-    for (i = 1; i < n; i++) { wall[name[i]] += t0[i + 1] - t0[i]; cpu[name[i]] += c0[i + 1] - c0[i] }
-    split("apt-get configure build main job", order, " ")
-    order[4] = "main job"; delete order[5]
-    for (i = 1; i <= 4; i++) printf "%-10s %7.0f s wall %7.0f s CPU\n", order[i], wall[order[i]], cpu[order[i]]
-  }' "$LOG"
+# setup.sh's steps: "==> [HH:MM:SS, <cpu> s CPU] <what>", the CPU time cumulative.
+/usr/bin/python3 - "$LOG" <<'PY'
+import re, sys
+steps = []
+for line in open(sys.argv[1], errors="replace"):
+    m = re.match(r"==> \[(\d+):(\d+):(\d+), ([\d.]+) s CPU\] (.*)", line)
+    if m:
+        h, mi, se, cpu, what = m.groups()
+        phase = ("apt-get" if re.match(r"Installing|Skipping apt", what) else "configure" if what.startswith("Configuring")
+                 else "build" if what.startswith("Building") else "done" if what.startswith("Done") else "main job")
+        steps.append((phase, int(h) * 3600 + int(mi) * 60 + int(se), float(cpu)))
+wall, cpu = {}, {}
+for (phase, t, c), (_, t1, c1) in zip(steps, steps[1:]):
+    wall[phase] = wall.get(phase, 0) + (t1 - t) % 86400
+    cpu[phase] = cpu.get(phase, 0) + c1 - c
+for phase in ("apt-get", "configure", "build", "main job"):
+    print("%-10s %7.0f s wall %7.0f s CPU" % (phase, wall.get(phase, 0), cpu.get(phase, 0)))
+PY
 read -r tw tu ts <<<"$tests_time"
-printf '%-10s %7.0f s wall %7.0f s CPU   (%s)\n' tests "$tw" "$(echo "$tu + $ts" | bc)" "$tests_ok"
-printf '%-10s %7.0f s wall               (clone to passing tests; load now %s)\n' total "$(echo "$end - $start" | bc)" \
-  "$(cut -d' ' -f1-3 /proc/loadavg)"
+printf '%-10s %7.0f s wall %7.0f s CPU   (%s)\n' tests "$tw" "$(awk -v u="$tu" -v s="$ts" 'BEGIN { print u + s }')" "$tests_ok"
+printf '%-10s %7.0f s wall               (clone to passing tests; load now %s)\n' total \
+  "$(awk -v a="$start" -v b="$end" 'BEGIN { print b - a }')" "$(cut -d' ' -f1-3 /proc/loadavg)"
 
 # The slowest tests (ctest's own log of this run).
 echo "slowest tests (s, under ctest -j2):"
