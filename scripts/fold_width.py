@@ -156,7 +156,8 @@ class Curvature:
         """Curvature along the unit tangent d3 at barycentric point `bary` of face f."""
         hg = self.hinges
         t = np.einsum("k,kij->ij", bary, self.tensor[hg.faces[f]])
-        b = np.cross(hg.normal[f], d3)
+        n = hg.normal[f]
+        b = np.array([n[1] * d3[2] - n[2] * d3[1], n[2] * d3[0] - n[0] * d3[2], n[0] * d3[1] - n[1] * d3[0]])  # n x d3
         return float(b @ t @ b)
 
 
@@ -172,8 +173,15 @@ def _face_frame(x, faces, f):
 def _to_3d(x, faces, f, q):
     """The linear map from face f's 2D layout q to 3D (3x2)."""
     xs = x[faces[f]]
-    a = np.column_stack([q[1] - q[0], q[2] - q[0]])
-    return np.column_stack([xs[1] - xs[0], xs[2] - xs[0]]) @ np.linalg.inv(a)
+    return np.column_stack([xs[1] - xs[0], xs[2] - xs[0]]) @ _inv2(q[1] - q[0], q[2] - q[0])
+
+
+def _inv2(c0, c1):
+    """The inverse of the 2x2 matrix of columns c0, c1 in closed form: np.linalg.inv costs a LAPACK call
+    per face and per step of a walk (OpenBLAS's threads hand it over; 0.1-1.4 ms a call on a busy machine,
+    most of --self-test's time)."""
+    det = c0[0] * c1[1] - c1[0] * c0[1]
+    return np.array([[c1[1], -c1[0]], [-c0[1], c0[0]]]) / det
 
 
 def _bary(q, p):
@@ -202,7 +210,7 @@ def _walk(cv, f, q, p, d, sign, limit, k0):
         travelled += t
         m = _to_3d(x, faces, f, q)
         d3 = m @ d
-        d3 /= np.linalg.norm(d3)
+        d3 /= math.sqrt(d3 @ d3)  # = np.linalg.norm, without its overhead per step
         bary = np.zeros(3)
         bary[ke], bary[(ke + 1) % 3] = 1 - s, s
         k = cv.normal_curvature(f, bary, d3) * sign
@@ -220,9 +228,10 @@ def _walk(cv, f, q, p, d, sign, limit, k0):
         # face f2 runs the edge the other way (v -> u): unfold its apex across the edge
         i2c = faces[f2, (k2 + 2) % 3]
         iu, iv = faces[f, ke], faces[f, (ke + 1) % 3]
-        luc, lvc = np.linalg.norm(x[i2c] - x[iu]), np.linalg.norm(x[i2c] - x[iv])
+        cu, cv_ = x[i2c] - x[iu], x[i2c] - x[iv]
+        luc, lvc = math.sqrt(cu @ cu), math.sqrt(cv_ @ cv_)
         ev = v - u
-        luv = np.linalg.norm(ev)
+        luv = math.sqrt(ev @ ev)
         ev = ev / luv
         along = (luc * luc - lvc * lvc + luv * luv) / (2 * luv)
         off = math.sqrt(max(luc * luc - along * along, 0.0))

@@ -29,7 +29,7 @@
 #include <sstream>
 
 namespace drape::cli {
-namespace {
+namespace DRAPE_UNITY_ID {  // the anonymous namespace, or a unique one in a unity build (command.hpp)
 
 struct Method {
   std::string name;

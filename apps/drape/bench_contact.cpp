@@ -21,7 +21,7 @@
 #include <vector>
 
 namespace drape::cli {
-namespace {
+namespace DRAPE_UNITY_ID {  // the anonymous namespace, or a unique one in a unity build (command.hpp)
 
 using Clock = std::chrono::steady_clock;
 

@@ -19,7 +19,7 @@
 #include <random>
 
 namespace drape::cli {
-namespace {
+namespace DRAPE_UNITY_ID {  // the anonymous namespace, or a unique one in a unity build (command.hpp)
 
 using bench::best_ms;
 using bench::Problem;

@@ -16,7 +16,7 @@
 #include <sstream>
 
 namespace drape::cli {
-namespace {
+namespace DRAPE_UNITY_ID {  // the anonymous namespace, or a unique one in a unity build (command.hpp)
 
 double best_ms(int repeats, const std::function<void()>& action) {
   double best = 1e300;

@@ -17,7 +17,7 @@
 #include <filesystem>
 
 namespace drape::cli {
-namespace {
+namespace DRAPE_UNITY_ID {  // the anonymous namespace, or a unique one in a unity build (command.hpp)
 
 struct Row {
   std::string name;

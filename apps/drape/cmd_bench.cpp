@@ -23,7 +23,7 @@ void require_model_or_graph(const po::variables_map& vm) {
   if (vm.count("model") == vm.count("graph")) throw UsageError("give exactly one of --model FILE and --graph FILE");
 }
 
-namespace {
+namespace DRAPE_UNITY_ID {  // the anonymous namespace, or a unique one in a unity build (command.hpp)
 
 const char* kUsage = "drape bench <name> [options]   (drape bench <name> --help for its options)";
 

@@ -27,7 +27,7 @@
 #include <sstream>
 
 namespace drape::cli {
-namespace {
+namespace DRAPE_UNITY_ID {  // the anonymous namespace, or a unique one in a unity build (command.hpp)
 
 // Poses drawn for one body before --sample gives up on it.
 constexpr int kMaxPoseRedraws = 50;

@@ -23,7 +23,7 @@
 #include <iostream>
 
 namespace drape::cli {
-namespace {
+namespace DRAPE_UNITY_ID {  // the anonymous namespace, or a unique one in a unity build (command.hpp)
 
 namespace fs = std::filesystem;
 

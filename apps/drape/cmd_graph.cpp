@@ -9,7 +9,7 @@
 #include <iostream>
 
 namespace drape::cli {
-namespace {
+namespace DRAPE_UNITY_ID {  // the anonymous namespace, or a unique one in a unity build (command.hpp)
 
 std::map<std::string, int> parse_dims(const std::vector<std::string>& items) {
   std::map<std::string, int> dims;

@@ -14,7 +14,7 @@
 #include <set>
 
 namespace drape::cli {
-namespace {
+namespace DRAPE_UNITY_ID {  // the anonymous namespace, or a unique one in a unity build (command.hpp)
 
 struct Quality {
   double mean_edge = 0, min = 1, mean = 0;

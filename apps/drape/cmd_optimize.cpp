@@ -26,7 +26,7 @@
 #include <thread>
 
 namespace drape::cli {
-namespace {
+namespace DRAPE_UNITY_ID {  // the anonymous namespace, or a unique one in a unity build (command.hpp)
 
 void print_terms(const char* when, const std::vector<EnergyTerm>& terms, double total, double p) {
   std::printf("%-7s", when);

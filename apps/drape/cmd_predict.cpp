@@ -14,7 +14,7 @@
 #include <iostream>
 
 namespace drape::cli {
-namespace {
+namespace DRAPE_UNITY_ID {  // the anonymous namespace, or a unique one in a unity build (command.hpp)
 
 int run(const std::vector<std::string>& args) {
   po::options_description opts("drape predict");

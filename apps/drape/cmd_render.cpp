@@ -21,7 +21,7 @@
 #include <filesystem>
 
 namespace drape::cli {
-namespace {
+namespace DRAPE_UNITY_ID {  // the anonymous namespace, or a unique one in a unity build (command.hpp)
 
 // Per vertex: the mean relative length change (%) of its edges against their
 // lengths in the material space (the template's UVs, in metres).

@@ -21,7 +21,7 @@
 #include <numeric>
 
 namespace drape::cli {
-namespace {
+namespace DRAPE_UNITY_ID {  // the anonymous namespace, or a unique one in a unity build (command.hpp)
 
 // Overrides of the scene's target shape from the command line.
 void override_shape(Scene& scene, const po::variables_map& vm) {

@@ -12,7 +12,7 @@
 #include <sstream>
 
 namespace drape::cli {
-namespace {
+namespace DRAPE_UNITY_ID {  // the anonymous namespace, or a unique one in a unity build (command.hpp)
 
 // "16,64,all": 'all' stands for every vertex.
 std::vector<int> parse_k_list(const std::string& text, int n) {

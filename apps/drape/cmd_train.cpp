@@ -15,7 +15,7 @@
 #include <thread>
 
 namespace drape::cli {
-namespace {
+namespace DRAPE_UNITY_ID {  // the anonymous namespace, or a unique one in a unity build (command.hpp)
 
 // A test hook kept out of --help: stop after N epochs as a kill would, so
 // tests can resume deterministically. Removed from the arguments here.

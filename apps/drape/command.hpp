@@ -2,6 +2,16 @@
 // Subcommands of the `drape` program. Each lives in its own cmd_*.cpp and
 // registers itself; main.cpp dispatches and maps errors to exit codes
 // (0 success, 2 usage/configuration, 1 runtime failure).
+
+// Each command file's own names (run, registration, helpers) live in namespace
+// DRAPE_UNITY_ID: the anonymous namespace, or in a unity build (scripts/setup.sh
+// builds with CMAKE_UNITY_BUILD) a name CMake makes unique per file
+// (UNITY_BUILD_UNIQUE_ID, apps/CMakeLists.txt), since several files are then
+// compiled as one.
+#ifndef DRAPE_UNITY_ID
+#define DRAPE_UNITY_ID
+#endif
+
 #include <drape/errors.hpp>
 
 #include <boost/program_options.hpp>

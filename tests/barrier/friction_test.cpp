@@ -28,7 +28,7 @@ using namespace drape::test;
 
 namespace {
 
-constexpr double kDhat = 1e-3, kKappa = 1e3, kStep = 0.1, kSlipVelocity = 1e-3;
+constexpr double kFrictionDhat = 1e-3, kFrictionKappa = 1e3, kStep = 0.1, kSlipVelocity = 1e-3;
 constexpr double kEpsilon = kSlipVelocity * kStep;  // IPC's eps_v h: static below this slip
 
 // IPC's smoothed friction magnitude f0 (Li et al. 2020, eq. 16), by its definition.
@@ -39,9 +39,9 @@ double ipc_f0(double y) {
 // The push of IPC's barrier on a pair at distance d with weight w, |dE/dd| of
 // E = kappa d_hat w b(d^2 / d_hat^2), b(r) = -(r - 1)^2 ln r.
 double ipc_push(double d, double w) {
-  const double r = d * d / (kDhat * kDhat);
+  const double r = d * d / (kFrictionDhat * kFrictionDhat);
   const double db = -2 * (r - 1) * std::log(r) - (r - 1) * (r - 1) / r;
-  return std::abs(kKappa * kDhat * w * db * 2 * d / (kDhat * kDhat));
+  return std::abs(kFrictionKappa * kFrictionDhat * w * db * 2 * d / (kFrictionDhat * kFrictionDhat));
 }
 
 Eigen::MatrixXd dense_dissipation_hessian(const Dissipation& d, const Eigen::MatrixX3d& x) {

@@ -68,13 +68,13 @@ struct TriangleCase {
 
 // Hinge of edge 1 cm with wings 1 cm high (A0 = A1 = 0.5 cm^2), its UV layout
 // turned by `uv_degrees` from u; the second wing folded about the edge by phi.
-Eigen::MatrixX3d hinge_positions(double phi) {
+Eigen::MatrixX3d arcsim_hinge_positions(double phi) {
   Eigen::MatrixX3d x(4, 3);
   x << 0, 0, 0, 0.01, 0, 0, 0.005, 0.01, 0, 0.005, -0.01 * std::cos(phi), 0.01 * std::sin(phi);
   return x;
 }
 
-Garment hinge_garment(double uv_degrees) {
+Garment arcsim_hinge_garment(double uv_degrees) {
   const double a = uv_degrees * std::numbers::pi / 180.0;
   Eigen::Matrix2d r;
   r << std::cos(a), -std::sin(a), std::sin(a), std::cos(a);
@@ -83,7 +83,7 @@ Garment hinge_garment(double uv_degrees) {
   uv = (uv * r.transpose()).eval();
   Eigen::MatrixX3i f(2, 3);
   f << 0, 1, 2, 1, 0, 3;
-  Garment g = small_garment(hinge_positions(0.0), f, uv);
+  Garment g = small_garment(arcsim_hinge_positions(0.0), f, uv);
   g.materials[0] = gray_interlock();
   return g;
 }
@@ -197,23 +197,23 @@ TEST_CASE("bending of one hinge equals ArcSim's energy, folded either way", "[ar
                              {90, 0.05, 3.331332812500e-09}, {90, 0.3, 2.774826787500e-07},
                              {90, 1.2, 3.489070680000e-06}};
   for (const HingeCase& c : cases) {
-    const Garment g = hinge_garment(c.uv_degrees);
+    const Garment g = arcsim_hinge_garment(c.uv_degrees);
     const auto e = bound_energy("bending", "{}", g);
     INFO("edge at " << c.uv_degrees << " degrees from u, fold " << c.theta);
     const double tolerance = c.theta == 0.3 ? 1e-2 : 1e-6;
-    CHECK(e->value(hinge_positions(c.theta)) == Approx(c.energy).epsilon(tolerance));
-    CHECK(e->value(hinge_positions(-c.theta)) == Approx(c.energy).epsilon(tolerance));
+    CHECK(e->value(arcsim_hinge_positions(c.theta)) == Approx(c.energy).epsilon(tolerance));
+    CHECK(e->value(arcsim_hinge_positions(-c.theta)) == Approx(c.energy).epsilon(tolerance));
   }
   // An edge at atan(0.3) = 16.7 degrees interpolates between the 0 and 45 degree rows.
-  const Garment g = hinge_garment(std::atan(0.3) * 180.0 / std::numbers::pi);
+  const Garment g = arcsim_hinge_garment(std::atan(0.3) * 180.0 / std::numbers::pi);
   const auto e = bound_energy("bending", "{}", g);
-  CHECK(e->value(hinge_positions(0.3)) == Approx(3.808045787317e-07).epsilon(1e-2));
-  CHECK(e->value(hinge_positions(-1.2)) == Approx(3.238834300013e-06).epsilon(1e-6));
+  CHECK(e->value(arcsim_hinge_positions(0.3)) == Approx(3.808045787317e-07).epsilon(1e-2));
+  CHECK(e->value(arcsim_hinge_positions(-1.2)) == Approx(3.238834300013e-06).epsilon(1e-6));
   // Off the columns, exactly ArcSim's interpolation: theta = 0.25 is curvature
   // value 2.5, halfway between 34.406498e-6 and 39.014420e-6 on the 0 degree row.
-  const auto warp = bound_energy("bending", "{}", hinge_garment(0));
+  const auto warp = bound_energy("bending", "{}", arcsim_hinge_garment(0));
   const double k = 0.5 * (34.406498e-6 + 39.014420e-6);
-  CHECK(warp->value(hinge_positions(0.25)) == Approx(k * 1e-4 / 2e-4 * 0.25 * 0.25 / 4).epsilon(1e-6));
+  CHECK(warp->value(arcsim_hinge_positions(0.25)) == Approx(k * 1e-4 / 2e-4 * 0.25 * 0.25 / 4).epsilon(1e-6));
 }
 
 TEST_CASE("bending's work potential is the work of ArcSim's bending force, and its derivative that force",
@@ -231,30 +231,30 @@ TEST_CASE("bending's work potential is the work of ArcSim's bending force, and i
                             {90, 0.05, 3.707099375470e-09, 1.332533125000e-07}, {90, 0.3, 1.783699682219e-07, 1.849884525000e-06},
                             {90, 1.2, 3.471379565891e-06, 5.815117800000e-06}};
   for (const WorkCase& c : cases) {
-    const Garment g = hinge_garment(c.uv_degrees);
+    const Garment g = arcsim_hinge_garment(c.uv_degrees);
     const auto e = bound_energy("bending", "{potential: work}", g);
     INFO("edge at " << c.uv_degrees << " degrees from u, fold " << c.theta);
     for (double sign : {1.0, -1.0}) {
       // The table's corners are rounded within 0.5 % over 0.1 column: the work
       // moves by far less; on a column (theta = 0.3) the force by up to 0.5 %.
-      CHECK(e->value(hinge_positions(sign * c.theta)) == Approx(c.work).epsilon(1e-4));
-      const double h = 1e-6, slope = (e->value(hinge_positions(sign * c.theta + h)) - e->value(hinge_positions(sign * c.theta - h))) / (2 * h);
+      CHECK(e->value(arcsim_hinge_positions(sign * c.theta)) == Approx(c.work).epsilon(1e-4));
+      const double h = 1e-6, slope = (e->value(arcsim_hinge_positions(sign * c.theta + h)) - e->value(arcsim_hinge_positions(sign * c.theta - h))) / (2 * h);
       CHECK(slope == Approx(sign * c.force).epsilon(c.theta == 0.3 ? 6e-3 : 1e-6));
     }
   }
   // Where k_b is constant (a flat table) the work is the energy ArcSim writes down.
-  Garment flat = hinge_garment(0);
+  Garment flat = arcsim_hinge_garment(0);
   for (auto& r : flat.materials[0].arcsim.bending) r = {30e-6, 30e-6, 30e-6, 30e-6, 30e-6};
   const double c = 1e-4 / 2e-4 / 4;
-  CHECK(bound_energy("bending", "{potential: work}", flat)->value(hinge_positions(0.7)) == Approx(30e-6 * c * 0.49).epsilon(1e-12));
+  CHECK(bound_energy("bending", "{potential: work}", flat)->value(arcsim_hinge_positions(0.7)) == Approx(30e-6 * c * 0.49).epsilon(1e-12));
   // Where k_b falls with curvature (columns 3-4 along u: 39.0e-6 to 23.4e-6),
   // ArcSim's energy k_b(theta) c theta^2 (drape's potential: product) has a
   // second rest angle at column 4 (theta = 0.4 here): its slope turns negative
   // before the column. The work's slope is ArcSim's force, positive throughout.
-  const auto product = bound_energy("bending", "{potential: product}", hinge_garment(0));
-  const auto work = bound_energy("bending", "{potential: work}", hinge_garment(0));
+  const auto product = bound_energy("bending", "{potential: product}", arcsim_hinge_garment(0));
+  const auto work = bound_energy("bending", "{potential: work}", arcsim_hinge_garment(0));
   auto slope = [](const Energy& e, double theta) {
-    return (e.value(hinge_positions(theta + 1e-6)) - e.value(hinge_positions(theta - 1e-6))) / 2e-6;
+    return (e.value(arcsim_hinge_positions(theta + 1e-6)) - e.value(arcsim_hinge_positions(theta - 1e-6))) / 2e-6;
   };
   CHECK(slope(*product, 0.38) < 0.0);
   CHECK(slope(*work, 0.38) > 0.0);
@@ -337,7 +337,7 @@ TEST_CASE("a hinge between two materials bends with the softer side's stiffness,
   // (curvature 100 theta 1/m). Away from the crossing the hinge takes the
   // smaller, as ArcSim does; across it the force is continuous (ArcSim's plain
   // min jumps there by k' theta / 2k = 11 % of it).
-  Garment g = hinge_garment(0);
+  Garment g = arcsim_hinge_garment(0);
   g.materials.push_back(gray_interlock());
   g.materials[1].name = "flat";
   for (auto& r : g.materials[1].arcsim.bending) r = {30e-6, 30e-6, 30e-6, 30e-6, 30e-6};
@@ -345,18 +345,18 @@ TEST_CASE("a hinge between two materials bends with the softer side's stiffness,
   g.face_material << 0, 1;
   const auto e = bound_energy("bending", "{}", g);
   const double c = 1e-4 / 2e-4 / 4;  // l^2 / (2 (A0 + A1)) / 4 with l = 1 cm, A0 + A1 = 1 cm^2
-  CHECK(e->value(hinge_positions(0.05)) == Approx(0.5 * (23.191698e-6 + 32.932217e-6) * c * 0.05 * 0.05).epsilon(1e-6));
-  CHECK(e->value(hinge_positions(0.2)) == Approx(30e-6 * c * 0.2 * 0.2).epsilon(1e-6));
+  CHECK(e->value(arcsim_hinge_positions(0.05)) == Approx(0.5 * (23.191698e-6 + 32.932217e-6) * c * 0.05 * 0.05).epsilon(1e-6));
+  CHECK(e->value(arcsim_hinge_positions(0.2)) == Approx(30e-6 * c * 0.2 * 0.2).epsilon(1e-6));
   const double crossing = 0.1 * (30.0 - 23.191698) / (32.932217 - 23.191698);
   auto force = [&](double theta) {
     Eigen::MatrixX3d grad = Eigen::MatrixX3d::Zero(4, 3);
-    e->add_gradient(hinge_positions(theta), grad);
+    e->add_gradient(arcsim_hinge_positions(theta), grad);
     return grad;
   };
   const Eigen::MatrixX3d below = force(crossing - 1e-7), above = force(crossing + 1e-7);
   CHECK((above - below).norm() <= 1e-4 * below.norm());
   for (double theta : {crossing - 2e-4, crossing, crossing + 1e-4}) {
-    const GradCheckReport r = check_energy_derivatives(*e, hinge_positions(theta), {1e-8, 64, 7});
+    const GradCheckReport r = check_energy_derivatives(*e, arcsim_hinge_positions(theta), {1e-8, 64, 7});
     INFO("theta " << theta << "\n" << r.str());
     CHECK(r.ok(1e-5));
   }

@@ -18,29 +18,29 @@ namespace dh = drape::dihedral;
 
 namespace {
 
-constexpr double kKnitBending = 1e-5;
+constexpr double kFadeKnitBending = 1e-5;
 constexpr double kFadeHeight = 0.1;  // 10 % of the unit rest heights below
 
 // Edge x0 = (0,0,0) -> x1 = (1,0,0); wing 0's tip at height f0 over it, off the
 // edge's midpoint and tilted by 0.2 rad; wing 1's tip at height f1, folded by
 // 0.7 rad. Rest (UV) heights are 1, l = 1 and A0 + A1 = 1: E = k theta^2 / 8.
-Eigen::MatrixX3d hinge_positions(double f0, double f1 = 1.0) {
+Eigen::MatrixX3d fade_hinge_positions(double f0, double f1 = 1.0) {
   Eigen::MatrixX3d x(4, 3);
   x << 0, 0, 0, 1, 0, 0, 0.3, f0 * std::cos(0.2), f0 * std::sin(0.2), 0.6, -f1 * std::cos(0.7), f1 * std::sin(0.7);
   return x;
 }
 
-Garment hinge_garment() {
+Garment fade_hinge_garment() {
   Eigen::MatrixX3i f(2, 3);
   f << 0, 1, 2, 1, 0, 3;
   Eigen::MatrixX2d uv(4, 2);
   uv << 0, 0, 1, 0, 0.5, 1, 0.5, -1;
-  return small_garment(hinge_positions(1.0), f, uv);
+  return small_garment(fade_hinge_positions(1.0), f, uv);
 }
 
 // The same hinge with an ArcSim table: k_b depends on theta.
 Garment tabulated_hinge_garment() {
-  Garment g = hinge_garment();
+  Garment g = fade_hinge_garment();
   g.materials[0].model = Material::Model::Arcsim;
   g.materials[0].arcsim.bending = {{{2e-5, 3e-5, 3.5e-5, 4e-5, 2.5e-5},
                                     {2.5e-5, 1.9e-5, 1.6e-5, 2.5e-5, 0.9e-5},
@@ -71,16 +71,16 @@ double smootherstep(double r) { return r >= 1.0 ? 1.0 : 10 * std::pow(r, 3) - 15
 }  // namespace
 
 TEST_CASE("bending fades out a collapsing wing with exact derivatives", "[bending][gradcheck]") {
-  const Garment linear = hinge_garment(), tabulated = tabulated_hinge_garment();
+  const Garment linear = fade_hinge_garment(), tabulated = tabulated_hinge_garment();
   for (const Garment* g : {&linear, &tabulated}) {
     for (const std::string projection : {"gauss_newton", "eigen"}) {
       const auto e = bound_energy("bending", "{projection: " + projection + "}", *g);
       // One wing at 5 % and 1 % of its rest height, and both wings inside the fade.
-      for (const Eigen::MatrixX3d& x : {hinge_positions(0.05), hinge_positions(0.01), hinge_positions(0.03, 0.06)}) {
+      for (const Eigen::MatrixX3d& x : {fade_hinge_positions(0.05), fade_hinge_positions(0.01), fade_hinge_positions(0.03, 0.06)}) {
         if (g == &linear) {
           const double theta = hinge_of(x).angle(), r0 = x(2, 1) / std::cos(0.2) / kFadeHeight;
           const double r1 = std::hypot(x(3, 1), x(3, 2)) / kFadeHeight;
-          CHECK(e->value(x) == Approx(smootherstep(r0) * smootherstep(r1) * kKnitBending * theta * theta / 8).epsilon(1e-12));
+          CHECK(e->value(x) == Approx(smootherstep(r0) * smootherstep(r1) * kFadeKnitBending * theta * theta / 8).epsilon(1e-12));
         }
         const GradCheckReport r = check_energy_derivatives(*e, x);
         INFO((g == &linear ? "linear" : "tabulated") << ", " << projection << ", wing 0 at " << x(2, 1) << "\n" << r.str());
@@ -91,11 +91,11 @@ TEST_CASE("bending fades out a collapsing wing with exact derivatives", "[bendin
 }
 
 TEST_CASE("bending of a wing at half its rest height is the unfaded energy, bit for bit", "[bending]") {
-  const Garment g = hinge_garment();
+  const Garment g = fade_hinge_garment();
   const auto e = bound_energy("bending", "{}", g);
-  const Eigen::MatrixX3d x = hinge_positions(0.5);
+  const Eigen::MatrixX3d x = fade_hinge_positions(0.5);
   // The plugin's linear path: c d^2 with c = k l^2 / (8 (A0 + A1)), all exact here.
-  const double c = kKnitBending * 1.0 * 1.0 / (8.0 * 1.0), d = std::remainder(hinge_of(x).angle(), 2.0 * std::numbers::pi);
+  const double c = kFadeKnitBending * 1.0 * 1.0 / (8.0 * 1.0), d = std::remainder(hinge_of(x).angle(), 2.0 * std::numbers::pi);
   CHECK(e->value(x) == c * d * d);
   const dh::Vec12 dtheta = angle_gradient(x);
   CHECK(flat(gradient_of(*e, x)) == (2.0 * c * d) * dtheta);
@@ -106,28 +106,28 @@ TEST_CASE("bending of a wing at half its rest height is the unfaded energy, bit 
   CHECK(r.ok(1e-5));
 
   // The fade joins the unfaded energy continuously, with a continuous gradient (C1).
-  const Eigen::MatrixX3d below = hinge_positions(kFadeHeight * (1 - 1e-7)), above = hinge_positions(kFadeHeight * (1 + 1e-7));
+  const Eigen::MatrixX3d below = fade_hinge_positions(kFadeHeight * (1 - 1e-7)), above = fade_hinge_positions(kFadeHeight * (1 + 1e-7));
   CHECK(e->value(below) == Approx(e->value(above)).epsilon(1e-6));
   CHECK((gradient_of(*e, below) - gradient_of(*e, above)).norm() < 1e-5 * gradient_of(*e, above).norm());
 }
 
 TEST_CASE("bending of a wing collapsing to zero height stays bounded where theta's derivatives blow up", "[bending]") {
-  const Garment g = hinge_garment();
+  const Garment g = fade_hinge_garment();
   const auto gn = bound_energy("bending", "{}", g);
   const auto eigen = bound_energy("bending", "{projection: eigen}", g);
   // The scale of an unfaded hinge's derivatives: wing 0 at the edge of the fade.
-  const Eigen::MatrixX3d edge_of_fade = hinge_positions(kFadeHeight);
+  const Eigen::MatrixX3d edge_of_fade = fade_hinge_positions(kFadeHeight);
   const double gradient_scale = gradient_of(*gn, edge_of_fade).norm();
   const double hessian_scale = dense_hessian(*eigen, edge_of_fade, false).cwiseAbs().maxCoeff();
   REQUIRE(gradient_scale > 0.0);
   for (double f : {1e-6, 1e-9, 0.0}) {
-    const Eigen::MatrixX3d x = hinge_positions(f);
+    const Eigen::MatrixX3d x = fade_hinge_positions(f);
     const double theta = hinge_of(x).angle();
     INFO("wing 0 at " << f << " of its rest height, theta " << theta);
     const double value = gn->value(x);
     const Eigen::MatrixX3d grad = gradient_of(*gn, x);
     CHECK(std::isfinite(value));
-    CHECK(value <= 3.0 * (f / kFadeHeight) * (f / kFadeHeight) * kKnitBending * theta * theta / 8);
+    CHECK(value <= 3.0 * (f / kFadeHeight) * (f / kFadeHeight) * kFadeKnitBending * theta * theta / 8);
     CHECK(grad.allFinite());
     CHECK(grad.norm() <= gradient_scale);
     for (const auto* e : {gn.get(), eigen.get()})
@@ -143,7 +143,7 @@ TEST_CASE("bending of a wing collapsing to zero height stays bounded where theta
     }
     // Unfaded, the force would be E' dtheta with |dtheta| ~ 1/h: a million
     // times the scale at 1e-6 of the height, so this test can fail.
-    const double unfaded = kKnitBending * std::abs(theta) / 4 * angle_gradient(x).norm();
+    const double unfaded = kFadeKnitBending * std::abs(theta) / 4 * angle_gradient(x).norm();
     INFO("faded gradient " << grad.norm() << ", unfaded " << unfaded << ", scale " << gradient_scale);
     CHECK(unfaded > 1e3 * gradient_scale);
   }

@@ -22,7 +22,7 @@ BodySurface unit_cube() {
 }
 
 // The exact signed distance to the box [-1, 1]^3 (Quilez's sdBox).
-double box_distance(const Eigen::Vector3d& p) {
+double pushed_box_distance(const Eigen::Vector3d& p) {
   const Eigen::Vector3d q = p.cwiseAbs() - Eigen::Vector3d::Ones();
   return q.cwiseMax(0.0).norm() + std::min(q.maxCoeff(), 0.0);
 }
@@ -41,7 +41,7 @@ TEST_CASE("push_out moves the vertices inside or within the margin to the margin
   const PushOutReport report = push_out(cube, x, margin);
   int inside_before = 0, moved = 0;
   for (Eigen::Index i = 0; i < x.rows(); ++i) {
-    const double d0 = box_distance(before.row(i).transpose()), d1 = box_distance(x.row(i).transpose());
+    const double d0 = pushed_box_distance(before.row(i).transpose()), d1 = pushed_box_distance(x.row(i).transpose());
     inside_before += d0 < 0;
     INFO("vertex " << i << " from distance " << d0);
     if (d0 >= margin) {

@@ -68,7 +68,7 @@ void check_same(const Material& a, const Material& b) {
   CHECK(a.arcsim.bending == b.arcsim.bending);
 }
 
-YAML::Node yaml(const std::string& text) { return YAML::Load(text); }
+YAML::Node yaml_node(const std::string& text) { return YAML::Load(text); }
 
 }  // namespace
 
@@ -170,7 +170,7 @@ TEST_CASE("arcsim files: comments are blanked and lines still point at the file'
   const Material m = table.resolve(YAML::Node((dir / "ok.json").string()), "scene.yaml");
   CHECK(m.density == 0.2);
   CHECK(m.arcsim.stretching[5] == Eigen::Vector4d(130, 80, 400, 30));
-  CHECK(MaterialTable().resolve(yaml("{file: " + (dir / "ok.json").string() + "}"), "s.yaml").name == "ok");
+  CHECK(MaterialTable().resolve(yaml_node("{file: " + (dir / "ok.json").string() + "}"), "s.yaml").name == "ok");
 }
 
 TEST_CASE("arcsim files: bad files are rejected naming the file, the line and the field", "[materials][arcsim]") {
@@ -249,10 +249,10 @@ TEST_CASE("arcsim files: bad files are rejected naming the file, the line and th
   CHECK_THAT(e, Catch::Contains("m.json:2") && Catch::Contains("unknown key 'stretch'; did you mean 'stretching'"));
 
   // Unreadable: where it is named, with the path.
-  e = test::message_of([&] { MaterialTable().resolve(yaml("{file: absent.json}"), (dir / "scene.yaml").string()); });
+  e = test::message_of([&] { MaterialTable().resolve(yaml_node("{file: absent.json}"), (dir / "scene.yaml").string()); });
   CHECK_THAT(e, Catch::Contains("scene.yaml:1") && Catch::Contains("cannot read ArcSim material file") &&
                     Catch::Contains((dir / "absent.json").string()) && Catch::Contains("No such file"));
-  e = test::message_of([&] { MaterialTable().resolve(yaml("\n\nabsent.json"), (dir / "scene.yaml").string()); });
+  e = test::message_of([&] { MaterialTable().resolve(yaml_node("\n\nabsent.json"), (dir / "scene.yaml").string()); });
   CHECK_THAT(e, Catch::Contains("scene.yaml:3") && Catch::Contains((dir / "absent.json").string()));
   fs::create_directories(dir / "dir.json");
   e = test::message_of([&] { load_arcsim_material(dir / "dir.json"); });
@@ -279,22 +279,22 @@ TEST_CASE("arcsim files: the model key, and an ArcSim map as a preset", "[materi
   CHECK(mine.preset("thick").model == Material::Model::Arcsim);
   CHECK(builtin.get("snug-knit").model == Material::Model::Linear);  // no model key, no stretching: linear
 
-  std::string e = test::message_of([&] { builtin.resolve(yaml("{model: arcsm}"), "s.yaml"); });
+  std::string e = test::message_of([&] { builtin.resolve(yaml_node("{model: arcsm}"), "s.yaml"); });
   CHECK_THAT(e, Catch::Contains("s.yaml:1") && Catch::Contains("`model` must be linear or arcsim") &&
                     Catch::Contains("did you mean 'arcsim'"));
   e = test::message_of([&] {
-    builtin.resolve(yaml("model: linear\ndensity: 0.2\nstretching: [[1, 0, 1, 1]]\n"), "s.yaml");
+    builtin.resolve(yaml_node("model: linear\ndensity: 0.2\nstretching: [[1, 0, 1, 1]]\n"), "s.yaml");
   });
   CHECK_THAT(e, Catch::Contains("s.yaml:3") && Catch::Contains("`stretching` is a field of model arcsim"));
-  e = test::message_of([&] { builtin.resolve(yaml("model: arcsim\ndensity: 0.2\nbending: 1e-5\n"), "s.yaml"); });
+  e = test::message_of([&] { builtin.resolve(yaml_node("model: arcsim\ndensity: 0.2\nbending: 1e-5\n"), "s.yaml"); });
   CHECK_THAT(e, Catch::Contains("s.yaml:3") && Catch::Contains("`bending` must be a list of 3 rows of 5 numbers") &&
                     Catch::Contains("expected 3x5"));
-  e = test::message_of([&] { builtin.resolve(yaml("model: arcsim\ndensity: 0.2\n"), "s.yaml"); });
+  e = test::message_of([&] { builtin.resolve(yaml_node("model: arcsim\ndensity: 0.2\n"), "s.yaml"); });
   CHECK_THAT(e, Catch::Contains("s.yaml:1") && Catch::Contains("missing: stretching, bending"));
   // A preset keeps its base's model.
-  e = test::message_of([&] { builtin.resolve(yaml("base: gray-interlock\n\nbending: 2e-5\n"), "s.yaml"); });
+  e = test::message_of([&] { builtin.resolve(yaml_node("base: gray-interlock\n\nbending: 2e-5\n"), "s.yaml"); });
   CHECK_THAT(e, Catch::Contains("s.yaml:3") && Catch::Contains("is model linear but its base 'gray-interlock' is model arcsim"));
-  e = test::message_of([&] { builtin.resolve(yaml("base: gray-interlock-linear\nmodel: arcsim\n"), "s.yaml"); });
+  e = test::message_of([&] { builtin.resolve(yaml_node("base: gray-interlock-linear\nmodel: arcsim\n"), "s.yaml"); });
   CHECK_THAT(e, Catch::Contains("s.yaml:2") && Catch::Contains("is model arcsim but its base"));
 }
 
@@ -303,7 +303,7 @@ TEST_CASE("arcsim files: multipliers scale every sample of the tables", "[materi
   const MaterialTable table = MaterialTable::builtin();
   const Material knit = table.get("gray-interlock");
   const Material m =
-      table.resolve(yaml("{base: gray-interlock, multipliers: {stretch: 2, bend: 3, density: 0.5, thickness: 4}}"), "s.yaml");
+      table.resolve(yaml_node("{base: gray-interlock, multipliers: {stretch: 2, bend: 3, density: 0.5, thickness: 4}}"), "s.yaml");
   CHECK(m.name == "gray-interlock");
   CHECK(m.model == Material::Model::Arcsim);
   CHECK(m.density == 0.5 * knit.density);
@@ -313,13 +313,13 @@ TEST_CASE("arcsim files: multipliers scale every sample of the tables", "[materi
     for (std::size_t j = 0; j < 5; ++j) CHECK(m.arcsim.bending[b][j] == 3 * knit.arcsim.bending[b][j]);
 
   // A table set over a base replaces it; multipliers scale what is not set.
-  const Material own = table.resolve(yaml("base: gray-interlock\nmultipliers: {stretch: 2}\n"
+  const Material own = table.resolve(yaml_node("base: gray-interlock\nmultipliers: {stretch: 2}\n"
                                           "bending: [[1e-5, 1e-5, 1e-5, 1e-5, 1e-5], [0, 0, 0, 0, 0], [2e-5, 2e-5, 2e-5, 2e-5, 2e-5]]\n"),
                                      "s.yaml");
   CHECK(own.arcsim.bending[2][0] == 2e-5);
   CHECK(own.arcsim.stretching[3] == 2 * knit.arcsim.stretching[3]);
   std::string e = test::message_of([&] {
-    table.resolve(yaml("base: gray-interlock\nmultipliers: {stretch: 2}\nstretching: []\n"), "s.yaml");
+    table.resolve(yaml_node("base: gray-interlock\nmultipliers: {stretch: 2}\nstretching: []\n"), "s.yaml");
   });
   CHECK_THAT(e, Catch::Contains("s.yaml:3") && Catch::Contains("expected 6x4"));
 

@@ -22,7 +22,7 @@ namespace {
 
 using Weights = std::map<std::string, std::vector<float>>;
 
-Weights weights_of(const fs::path& file) {
+Weights mpi_weights_of(const fs::path& file) {
   const h5::File f = h5::File::open(file);
   Weights w;
   for (const auto& name : f.datasets_below("/weights")) w[name] = f.read<float>("/weights/" + name);
@@ -42,7 +42,7 @@ double max_difference(const Weights& a, const Weights& b) {
 
 // Batch 5 over 11 training samples: parts of 3 and 2 samples (unequal shares),
 // and a last batch of 1 sample that rank 1 sits out.
-std::string train_args(const fs::path& data, const fs::path& out, const std::string& more, int batch = 5) {
+std::string mpi_train_args(const fs::path& data, const fs::path& out, const std::string& more, int batch = 5) {
   return "train " + test::baseline_graph().string() + " --data " + data.string() + " --out " + out.string() +
          " --epochs 3 --batch " + std::to_string(batch) + " --lr 3e-3 --seed 5 --quiet --k " + std::to_string(test::kTinyK) + " " + more;
 }
@@ -79,19 +79,19 @@ TEST_CASE("mpirun -np 2 drape train: the weights of one process on the same glob
   const fs::path data = dir / "data.h5";
   test::write_tiny_dataset(data, 14, 11, 3);
   std::string out;
-  REQUIRE(test::run(mpirun(train_args(data, dir / "mpi.h5", "--threads 1")), out) == 0);
+  REQUIRE(test::run(mpirun(mpi_train_args(data, dir / "mpi.h5", "--threads 1")), out) == 0);
   INFO(out);
   // Rank 0 alone talks: every epoch's line once, and the ranks named.
   CHECK_THAT(out, Catch::Contains("1 thread on each of 2 ranks"));
   const std::regex epoch_line("epoch 3/3");
   CHECK(std::distance(std::sregex_iterator(out.begin(), out.end(), epoch_line), std::sregex_iterator()) == 1);
-  REQUIRE(test::run(test::drape_command(train_args(data, dir / "threads2.h5", "--threads 2")), out) == 0);
-  REQUIRE(test::run(test::drape_command(train_args(data, dir / "threads1.h5", "--threads 1")), out) == 0);
+  REQUIRE(test::run(test::drape_command(mpi_train_args(data, dir / "threads2.h5", "--threads 2")), out) == 0);
+  REQUIRE(test::run(test::drape_command(mpi_train_args(data, dir / "threads1.h5", "--threads 1")), out) == 0);
 
-  const Weights mpi = weights_of(dir / "mpi.h5");
+  const Weights mpi = mpi_weights_of(dir / "mpi.h5");
   // Two ranks of one thread add the same float terms in the same order as two threads.
-  CHECK(mpi == weights_of(dir / "threads2.h5"));
-  CHECK(weights_of(training_state_path(dir / "mpi.h5")) == weights_of(training_state_path(dir / "threads2.h5")));
+  CHECK(mpi == mpi_weights_of(dir / "threads2.h5"));
+  CHECK(mpi_weights_of(training_state_path(dir / "mpi.h5")) == mpi_weights_of(training_state_path(dir / "threads2.h5")));
   CHECK(read_checkpoint(dir / "mpi.h5").history.at("train_loss") == read_checkpoint(dir / "threads2.h5").history.at("train_loss"));
   CHECK(read_checkpoint(dir / "mpi.h5").history.at("val_loss") == read_checkpoint(dir / "threads2.h5").history.at("val_loss"));
 
@@ -103,10 +103,10 @@ TEST_CASE("mpirun -np 2 drape train: the weights of one process on the same glob
   // batches does, which moves weights by far more -- checked below. (A uniform
   // scale of every part would not show here, Adam normalises it away; the
   // bit-for-bit comparison with 2 threads above catches it.)
-  const Weights one = weights_of(dir / "threads1.h5");
+  const Weights one = mpi_weights_of(dir / "threads1.h5");
   CHECK(max_difference(mpi, one) < 1e-5);
-  REQUIRE(test::run(test::drape_command(train_args(data, dir / "batch4.h5", "--threads 1", 4)), out) == 0);
-  CHECK(max_difference(weights_of(dir / "batch4.h5"), one) > 1e-4);
+  REQUIRE(test::run(test::drape_command(mpi_train_args(data, dir / "batch4.h5", "--threads 1", 4)), out) == 0);
+  CHECK(max_difference(mpi_weights_of(dir / "batch4.h5"), one) > 1e-4);
 }
 
 TEST_CASE("mpirun -np 2 drape train resumes to the uninterrupted result and refuses another rank count", "[train][mpi]") {
@@ -115,17 +115,17 @@ TEST_CASE("mpirun -np 2 drape train resumes to the uninterrupted result and refu
   const fs::path data = dir / "data.h5", model = dir / "model.h5";
   test::write_tiny_dataset(data, 10, 8, 2);
   std::string out;
-  REQUIRE(test::run(mpirun(train_args(data, dir / "whole.h5", "--threads 1")), out) == 0);
-  REQUIRE(test::run(mpirun(train_args(data, model, "--threads 1 --max-epochs-this-run 1")), out) == 0);
+  REQUIRE(test::run(mpirun(mpi_train_args(data, dir / "whole.h5", "--threads 1")), out) == 0);
+  REQUIRE(test::run(mpirun(mpi_train_args(data, model, "--threads 1 --max-epochs-this-run 1")), out) == 0);
   CHECK(std::stol(read_checkpoint(training_state_path(model)).meta.at("epoch")) == 1);
   // One process cannot continue what two ranks started: its sums round differently.
-  CHECK(test::run(test::drape_command(train_args(data, model, "--threads 1 --resume")), out) == 2);
+  CHECK(test::run(test::drape_command(mpi_train_args(data, model, "--threads 1 --resume")), out) == 2);
   CHECK_THAT(out, Catch::Contains("ranks"));
-  REQUIRE(test::run(mpirun(train_args(data, model, "--threads 1 --resume")), out) == 0);
+  REQUIRE(test::run(mpirun(mpi_train_args(data, model, "--threads 1 --resume")), out) == 0);
   INFO(out);
   CHECK_THAT(out, Catch::Contains("resuming"));
-  CHECK(weights_of(model) == weights_of(dir / "whole.h5"));
-  CHECK(weights_of(training_state_path(model)) == weights_of(training_state_path(dir / "whole.h5")));
+  CHECK(mpi_weights_of(model) == mpi_weights_of(dir / "whole.h5"));
+  CHECK(mpi_weights_of(training_state_path(model)) == mpi_weights_of(training_state_path(dir / "whole.h5")));
 }
 
 // With the seed's six losses, v2v and direction keep the ground truth's
@@ -147,7 +147,7 @@ TEST_CASE("mpirun -np 2 drape train with the six losses shares closest points an
   REQUIRE(test::run(mpirun(args(dir / "mpi.h5", "--threads 1")), out) == 0);
   INFO(out);
   REQUIRE(test::run(test::drape_command(args(dir / "threads2.h5", "--threads 2")), out) == 0);
-  CHECK(weights_of(dir / "mpi.h5") == weights_of(dir / "threads2.h5"));
+  CHECK(mpi_weights_of(dir / "mpi.h5") == mpi_weights_of(dir / "threads2.h5"));
   CHECK(read_checkpoint(dir / "mpi.h5").history.at("train_loss") == read_checkpoint(dir / "threads2.h5").history.at("train_loss"));
   CHECK(read_checkpoint(dir / "mpi.h5").history.at("val_loss") == read_checkpoint(dir / "threads2.h5").history.at("val_loss"));
 }

@@ -17,11 +17,11 @@ namespace {
 
 // n / d clamped to [0, 1]; 0 when d vanishes (a zero-length segment), where
 // every parameter names the same point, so degenerate input never gives NaN.
-double ratio(double n, double d) { return d > 0 ? std::clamp(n / d, 0.0, 1.0) : 0.0; }
+double clamped_ratio(double n, double d) { return d > 0 ? std::clamp(n / d, 0.0, 1.0) : 0.0; }
 
 // The parameter of the point of segment [from, from + e] closest to p.
 double project_on_segment(const Eigen::Vector3d& p, const Eigen::Vector3d& from, const Eigen::Vector3d& e) {
-  return ratio(e.dot(p - from), e.squaredNorm());
+  return clamped_ratio(e.dot(p - from), e.squaredNorm());
 }
 
 }  // namespace

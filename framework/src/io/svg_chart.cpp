@@ -14,7 +14,7 @@ namespace {
 
 constexpr double kWidth = 640, kHeight = 420, kLeft = 70, kRight = 30, kTop = 40, kBottom = 56;
 
-std::string number(double v) {
+std::string svg_number(double v) {
   std::ostringstream o;
   o << v;
   return o.str();
@@ -25,7 +25,7 @@ std::string number(double v) {
 std::string ScatterChart::svg() const {
   if (points.empty()) throw Error("chart: no points");
   auto tx = [&](double x) {
-    if (log_x && !(x > 0)) throw Error("chart: x = " + number(x) + " on a log axis");
+    if (log_x && !(x > 0)) throw Error("chart: x = " + svg_number(x) + " on a log axis");
     return log_x ? std::log10(x) : x;
   };
   double x0 = 1e300, x1 = -1e300, y1 = 0;
@@ -67,13 +67,13 @@ std::string ScatterChart::svg() const {
     const double value = log_x ? std::pow(10.0, t) : t;
     const double x = kLeft + (t - x0) / (x1 - x0) * w;
     o << "<path d=\"M" << x << " " << kTop + h << "v5\" stroke=\"black\"/><text x=\"" << x << "\" y=\"" << kTop + h + 18
-      << "\" text-anchor=\"middle\">" << number(value) << "</text>\n";
+      << "\" text-anchor=\"middle\">" << svg_number(value) << "</text>\n";
     if (i > 0) o << "<path d=\"M" << x << " " << kTop << "V" << kTop + h << "\" stroke=\"#e4e4e4\"/>\n";
   }
   for (int i = 0; i <= 4; ++i) {
     const double value = y1 * i / 4, y = py(value);
     o << "<path d=\"M" << kLeft - 5 << " " << y << "h5\" stroke=\"black\"/><text x=\"" << kLeft - 8 << "\" y=\"" << y + 4
-      << "\" text-anchor=\"end\">" << number(std::round(value * 100) / 100) << "</text>\n";
+      << "\" text-anchor=\"end\">" << svg_number(std::round(value * 100) / 100) << "</text>\n";
   }
   o << "<text x=\"" << kLeft + w / 2 << "\" y=\"" << kHeight - 14 << "\" text-anchor=\"middle\">" << xml_escaped(x_label)
     << (log_x ? " (log scale)" : "") << "</text>\n";
