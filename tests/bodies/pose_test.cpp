@@ -24,22 +24,22 @@ namespace {
 
 using namespace drape;
 
-const BodyModel& body() {
+const BodyModel& posed_model() {
   static const std::unique_ptr<BodyModel> model = test::parametric_body();
   return *model;
 }
 
 int joint_index(const std::string& name) {
-  const auto joints = body().joints();
+  const auto joints = posed_model().joints();
   for (std::size_t i = 0; i < joints.size(); ++i)
     if (joints[i].name == name) return static_cast<int>(i);
   FAIL("no joint " << name);
   return -1;
 }
 
-Eigen::VectorXd shape_of(double bmi, double height, double sex) { return body().solve({bmi, height, sex, {}}); }
+Eigen::VectorXd shape_of(double bmi, double height, double sex) { return posed_model().solve({bmi, height, sex, {}}); }
 
-Pose pose_of(const std::string& text) { return parse_pose(text, body().pose_angles(), "test"); }
+Pose pose_of(const std::string& text) { return parse_pose(text, posed_model().pose_angles(), "test"); }
 
 // A ring of the unposed body around the segment a-b at fraction t of its
 // length: the vertices within 1 cm of that cross-section's plane and 12 cm
@@ -89,18 +89,18 @@ double angle_between_degrees(Eigen::Vector3d a, Eigen::Vector3d b) {
 }  // namespace
 
 TEST_CASE("the zero pose gives the unposed body bit for bit", "[bodies][pose]") {
-  REQUIRE(body().poseable());
-  for (const auto& shape : {body().mean_shape(), shape_of(10, 1.5, 0), shape_of(65, 2.0, 1), shape_of(30, 1.75, 0.5)}) {
-    const Eigen::MatrixX3d rest = body().vertices(shape);
-    CHECK((body().posed(shape, Pose{}).array() == rest.array()).all());
+  REQUIRE(posed_model().poseable());
+  for (const auto& shape : {posed_model().mean_shape(), shape_of(10, 1.5, 0), shape_of(65, 2.0, 1), shape_of(30, 1.75, 0.5)}) {
+    const Eigen::MatrixX3d rest = posed_model().vertices(shape);
+    CHECK((posed_model().posed(shape, Pose{}).array() == rest.array()).all());
     // Through the skinning itself: every angle set to its rest value.
-    const Pose at_rest = body().rest_pose(shape);
-    REQUIRE(at_rest.angles.size() == body().pose_angles().size());
-    CHECK((body().posed(shape, at_rest).array() == rest.array()).all());
+    const Pose at_rest = posed_model().rest_pose(shape);
+    REQUIRE(at_rest.angles.size() == posed_model().pose_angles().size());
+    CHECK((posed_model().posed(shape, at_rest).array() == rest.array()).all());
     // A pose that moves only the elbows leaves the legs where they were, exactly.
-    const Eigen::MatrixX3d bent = body().posed(shape, pose_of("elbow_flexion=30"));
+    const Eigen::MatrixX3d bent = posed_model().posed(shape, pose_of("elbow_flexion=30"));
     const int shin = joint_index("left_shin");
-    const Eigen::MatrixXd w = body().skinning_weights();
+    const Eigen::MatrixXd w = posed_model().skinning_weights();
     int exact = 0;
     for (Eigen::Index v = 0; v < rest.rows(); ++v)
       if (w(v, shin) > 0.99) exact += (bent.row(v).array() == rest.row(v).array()).all();
@@ -111,13 +111,13 @@ TEST_CASE("the zero pose gives the unposed body bit for bit", "[bodies][pose]") 
 TEST_CASE("joints follow the body's height and build", "[bodies][pose]") {
   const int knee = joint_index("left_shin"), hip_l = joint_index("left_thigh"), hip_r = joint_index("right_thigh");
   const int elbow = joint_index("left_forearm"), shoulder = joint_index("left_upper_arm");
-  const Eigen::MatrixX3d short_j = body().joint_positions(shape_of(25, 1.6, 1));
-  const Eigen::MatrixX3d tall_j = body().joint_positions(shape_of(25, 1.9, 1));
+  const Eigen::MatrixX3d short_j = posed_model().joint_positions(shape_of(25, 1.6, 1));
+  const Eigen::MatrixX3d tall_j = posed_model().joint_positions(shape_of(25, 1.9, 1));
   CHECK(tall_j(knee, 1) > short_j(knee, 1) + 0.05);
   // About at knee height: 0.27-0.30 of the height (anthropometric tables).
   CHECK(short_j(knee, 1) / 1.6 == Approx(0.285).margin(0.03));
-  const Eigen::MatrixX3d lean_j = body().joint_positions(shape_of(20, 1.75, 0));
-  const Eigen::MatrixX3d heavy_j = body().joint_positions(shape_of(50, 1.75, 0));
+  const Eigen::MatrixX3d lean_j = posed_model().joint_positions(shape_of(20, 1.75, 0));
+  const Eigen::MatrixX3d heavy_j = posed_model().joint_positions(shape_of(50, 1.75, 0));
   CHECK(heavy_j(hip_l, 0) - heavy_j(hip_r, 0) > lean_j(hip_l, 0) - lean_j(hip_r, 0) + 0.02);
   // Joints sit in the limbs: left ones at +x, the elbow below the shoulder, the
   // hips below the spine.
@@ -130,15 +130,15 @@ TEST_CASE("joints follow the body's height and build", "[bodies][pose]") {
 }
 
 TEST_CASE("skinning weights sum to 1 and change smoothly between neighbours", "[bodies][pose]") {
-  const Eigen::MatrixXd w = body().skinning_weights();
-  REQUIRE(w.rows() == body().num_vertices());
-  REQUIRE(w.cols() == static_cast<Eigen::Index>(body().joints().size()));
+  const Eigen::MatrixXd w = posed_model().skinning_weights();
+  REQUIRE(w.rows() == posed_model().num_vertices());
+  REQUIRE(w.cols() == static_cast<Eigen::Index>(posed_model().joints().size()));
   CHECK(w.minCoeff() >= 0);
   CHECK((w.rowwise().sum().array() - 1).abs().maxCoeff() < 1e-12);
   double worst = 0;
   Eigen::Vector3d where = Eigen::Vector3d::Zero();
-  const Eigen::MatrixX3d mean = body().vertices(body().mean_shape());
-  const auto nb = geometry::vertex_neighbours(body().faces(), body().num_vertices());
+  const Eigen::MatrixX3d mean = posed_model().vertices(posed_model().mean_shape());
+  const auto nb = geometry::vertex_neighbours(posed_model().faces(), posed_model().num_vertices());
   for (Eigen::Index v = 0; v < w.rows(); ++v)
     for (int u : nb[static_cast<std::size_t>(v)])
       if ((w.row(v) - w.row(u)).cwiseAbs().maxCoeff() > worst) {
@@ -152,21 +152,21 @@ TEST_CASE("skinning weights sum to 1 and change smoothly between neighbours", "[
 }
 
 TEST_CASE("a 90 degree elbow flexion bends the forearm by 90 degrees on the mesh", "[bodies][pose]") {
-  for (const auto& shape : {body().mean_shape(), shape_of(45, 1.6, 0)}) {
-    const Eigen::MatrixX3d rest = body().vertices(shape);
-    const Eigen::MatrixX3d j = body().joint_positions(shape);
+  for (const auto& shape : {posed_model().mean_shape(), shape_of(45, 1.6, 0)}) {
+    const Eigen::MatrixX3d rest = posed_model().vertices(shape);
+    const Eigen::MatrixX3d j = posed_model().joint_positions(shape);
     const Eigen::Vector3d s = j.row(joint_index("left_upper_arm")).transpose();
     const Eigen::Vector3d e = j.row(joint_index("left_forearm")).transpose();
     const Eigen::Vector3d w = e + (e - s).normalized() * 0.24;  // towards the wrist
     // Two rings on each bone, away from the blends at shoulder and elbow.
-    const auto u0 = ring_at(rest, body().faces(), s, e, 0.4), u1 = ring_at(rest, body().faces(), s, e, 0.7);
-    const auto f0 = ring_at(rest, body().faces(), e, w, 0.4), f1 = ring_at(rest, body().faces(), e, w, 0.8);
+    const auto u0 = ring_at(rest, posed_model().faces(), s, e, 0.4), u1 = ring_at(rest, posed_model().faces(), s, e, 0.7);
+    const auto f0 = ring_at(rest, posed_model().faces(), e, w, 0.4), f1 = ring_at(rest, posed_model().faces(), e, w, 0.8);
     for (const auto* r : {&u0, &u1, &f0, &f1}) REQUIRE(r->size() >= 8);
     auto axis = [](const Eigen::MatrixX3d& v, const std::vector<int>& a, const std::vector<int>& b) {
       return Eigen::Vector3d(centroid(v, b) - centroid(v, a));
     };
     for (double flexion : {45.0, 90.0}) {
-      const Eigen::MatrixX3d bent = body().posed(shape, pose_of("left_elbow_flexion=" + std::to_string(flexion)));
+      const Eigen::MatrixX3d bent = posed_model().posed(shape, pose_of("left_elbow_flexion=" + std::to_string(flexion)));
       // The upper arm stays; the forearm turns by the flexion.
       const double upper_turn = angle_between_degrees(axis(rest, u0, u1), axis(bent, u0, u1));
       const double fore_turn = angle_between_degrees(axis(rest, f0, f1), axis(bent, f0, f1));
@@ -186,24 +186,24 @@ TEST_CASE("posed bodies over shape and pose draws are watertight and uncrossed",
   int redraws = 0;
   constexpr int kBodies = 6;
   for (int i = 0; i < kBodies; ++i) {
-    BodyRequest request = draw_body(space, body(), shapes);
-    const Eigen::VectorXd shape = solve_in_space(body(), request);
+    BodyRequest request = draw_body(space, posed_model(), shapes);
+    const Eigen::VectorXd shape = solve_in_space(posed_model(), request);
     for (int tries = 0;; ++tries) {
       REQUIRE(tries < 50);
-      const Pose pose = draw_pose(body().pose_angles(), poses);
-      const Eigen::MatrixX3d posed = body().posed(shape, pose);
-      if (!describe_pose_crossings(body(), shape, pose, posed).empty()) {
+      const Pose pose = draw_pose(posed_model().pose_angles(), poses);
+      const Eigen::MatrixX3d posed = posed_model().posed(shape, pose);
+      if (!describe_pose_crossings(posed_model(), shape, pose, posed).empty()) {
         ++redraws;
         continue;
       }
       INFO("body " << i << " pose " << format_pose(pose));
-      const auto topo = geometry::check_topology(body().faces(), body().num_vertices());
+      const auto topo = geometry::check_topology(posed_model().faces(), posed_model().num_vertices());
       CHECK(topo.closed_manifold());
       // Volume is kept within 8 % (skinning loses some at bent joints) and no
       // edge passes through a face (a test other than the face pairs').
-      const double v0 = geometry::mesh_volume(body().vertices(shape), body().faces());
-      CHECK(geometry::mesh_volume(posed, body().faces()) == Approx(v0).epsilon(0.08));
-      CHECK(geometry::self_edge_crossings(posed, body().faces(), 1).empty());
+      const double v0 = geometry::mesh_volume(posed_model().vertices(shape), posed_model().faces());
+      CHECK(geometry::mesh_volume(posed, posed_model().faces()) == Approx(v0).epsilon(0.08));
+      CHECK(geometry::self_edge_crossings(posed, posed_model().faces(), 1).empty());
       break;
     }
   }
@@ -213,20 +213,20 @@ TEST_CASE("posed bodies over shape and pose draws are watertight and uncrossed",
 
 TEST_CASE("a pose that makes the body cross itself is refused naming the joints", "[bodies][pose]") {
   const Eigen::VectorXd shape = shape_of(35, 1.75, 1);
-  const std::string arms = test::message_of([&] { pose_body(body(), "parametric", shape, pose_of("left_shoulder_abduction=0")); });
+  const std::string arms = test::message_of([&] { pose_body(posed_model(), "parametric", shape, pose_of("left_shoulder_abduction=0")); });
   INFO(arms);
   CHECK(arms.find("pass through itself") != std::string::npos);
   CHECK(arms.find("left_upper_arm") != std::string::npos);
   CHECK(arms.find("left_shoulder_abduction=0") != std::string::npos);
-  const std::string legs = test::message_of([&] { pose_body(body(), "parametric", shape, pose_of("hip_abduction=-25")); });
+  const std::string legs = test::message_of([&] { pose_body(posed_model(), "parametric", shape, pose_of("hip_abduction=-25")); });
   INFO(legs);
   CHECK(legs.find("right_thigh into left_thigh") != std::string::npos);
   // A pose well inside the space is not refused.
-  CHECK_NOTHROW(pose_body(body(), "parametric", shape, pose_of("shoulder_abduction=70,elbow_flexion=40,spine_twist=20")));
+  CHECK_NOTHROW(pose_body(posed_model(), "parametric", shape, pose_of("shoulder_abduction=70,elbow_flexion=40,spine_twist=20")));
 }
 
 TEST_CASE("bad joint angles are refused in one line", "[bodies][pose]") {
-  const auto angles = body().pose_angles();
+  const auto angles = posed_model().pose_angles();
   auto message = [&](const std::string& text) { return test::message_of([&] { parse_pose(text, angles, "--pose"); }); };
   CHECK(message("sholder_abduction=40") ==
         "--pose: no joint angle 'sholder_abduction'; did you mean 'shoulder_abduction', 'left_shoulder_abduction', "
@@ -254,11 +254,11 @@ TEST_CASE("a pose file is read and checked like --pose", "[bodies][pose]") {
     std::ofstream(dir / "bad.yaml") << "shoulder_abduction: 80\nknee_flexion: 200\n";
     std::ofstream(dir / "list.yaml") << "[1, 2, 3]\n";
   }
-  const Pose p = read_pose_file((dir / "pose.yaml").string(), body().pose_angles());
+  const Pose p = read_pose_file((dir / "pose.yaml").string(), posed_model().pose_angles());
   CHECK(p.angles.size() == 3);
-  CHECK(test::message_of([&] { read_pose_file((dir / "bad.yaml").string(), body().pose_angles()); })
+  CHECK(test::message_of([&] { read_pose_file((dir / "bad.yaml").string(), posed_model().pose_angles()); })
             .find("bad.yaml:2: left_knee_flexion = 200 is outside its range of motion [0, 135]") != std::string::npos);
-  CHECK(test::message_of([&] { read_pose_file((dir / "list.yaml").string(), body().pose_angles()); })
+  CHECK(test::message_of([&] { read_pose_file((dir / "list.yaml").string(), posed_model().pose_angles()); })
             .find("expected a map of joint angle names to degrees") != std::string::npos);
 }
 

@@ -1,4 +1,5 @@
 #include <drape/errors.hpp>
+#include "matrix_dims.hpp"
 #include <drape/nn/gemm.hpp>
 #include <drape/nn/blas_threads.hpp>
 
@@ -42,7 +43,6 @@ bool use_blas(long m, long n, long k) {
 #endif
 }
 
-std::string dims(Eigen::Index r, Eigen::Index c) { return "[" + std::to_string(r) + ", " + std::to_string(c) + "]"; }
 
 }  // namespace
 

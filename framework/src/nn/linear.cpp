@@ -1,14 +1,11 @@
 #include <drape/errors.hpp>
+#include "matrix_dims.hpp"
 #include <drape/nn/gemm.hpp>
 #include <drape/nn/linear.hpp>
 
 #include <string>
 
 namespace drape::nn {
-
-namespace {
-std::string dims(Eigen::Index r, Eigen::Index c) { return "[" + std::to_string(r) + ", " + std::to_string(c) + "]"; }
-}  // namespace
 
 void linear_forward(ConstMatRef x, ConstMatRef w, ConstMatRef b, MatRef y) {
   if (x.cols() != w.rows() || b.rows() != 1 || b.cols() != w.cols() || y.rows() != x.rows() || y.cols() != w.cols())

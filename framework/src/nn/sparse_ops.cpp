@@ -1,4 +1,5 @@
 #include <drape/errors.hpp>
+#include "matrix_dims.hpp"
 #include <drape/nn/sparse_ops.hpp>
 
 #include <string>
@@ -7,7 +8,6 @@ namespace drape::nn {
 
 namespace {
 
-std::string dims(Eigen::Index r, Eigen::Index c) { return "[" + std::to_string(r) + ", " + std::to_string(c) + "]"; }
 
 void check_batch(const char* what, Eigen::Index in_rows, Eigen::Index in_cols, Eigen::Index out_rows,
                  Eigen::Index out_cols, int batch, Eigen::Index a_rows, Eigen::Index a_cols) {
