@@ -104,22 +104,19 @@ Skeleton build_skeleton(const BodyTemplate& t) {
   s.regressor[kSpineUpper] = averaged(ring(t, {0, 1.22, 0}, up, kHalf, kFar, on_trunk, 0));
   const Primitive& neck = parts[kNeckPart];
   s.regressor[kNeck] = averaged(ring(t, neck.a + 0.5 * (neck.b - neck.a), (neck.b - neck.a).normalized(), kHalf, 2 * neck.ra, on_neck, 0));
+  // A limb's two bones: the upper one's joint extrapolated back from rings at
+  // its middle and its far end (the joint itself sits where no clean ring
+  // is), the lower one's at that far end's ring.
+  const auto limb = [&](const Primitive& upper, const auto& on_limb, int side, int first_bone) {
+    const V3 axis = (upper.b - upper.a).normalized();
+    const auto end = ring(t, upper.b, axis, kHalf, 2 * upper.ra, on_limb, side);
+    const auto mid = ring(t, upper.a + 0.45 * (upper.b - upper.a), axis, kHalf, 2 * upper.ra, on_limb, side);
+    s.regressor[static_cast<std::size_t>(first_bone)] = extrapolated(t, mid, end, upper.a);
+    s.regressor[static_cast<std::size_t>(first_bone + 1)] = averaged(end);
+  };
   for (int side : {1, -1}) {
-    const Primitive& upper = parts[static_cast<std::size_t>(arm_part(side, 0))];
-    const V3 arm = (upper.b - upper.a).normalized();
-    const auto elbow = ring(t, upper.b, arm, kHalf, 2 * upper.ra, on_arm, side);
-    const auto mid = ring(t, upper.a + 0.45 * (upper.b - upper.a), arm, kHalf, 2 * upper.ra, on_arm, side);
-    const int u = side > 0 ? kLeftUpperArm : kRightUpperArm;
-    s.regressor[static_cast<std::size_t>(u)] = extrapolated(t, mid, elbow, upper.a);
-    s.regressor[static_cast<std::size_t>(u + 1)] = averaged(elbow);
-
-    const Primitive& thigh = parts[static_cast<std::size_t>(leg_part(side, 0))];
-    const V3 leg = (thigh.b - thigh.a).normalized();
-    const auto knee = ring(t, thigh.b, leg, kHalf, 2 * thigh.ra, on_leg, side);
-    const auto mid_thigh = ring(t, thigh.a + 0.45 * (thigh.b - thigh.a), leg, kHalf, 2 * thigh.ra, on_leg, side);
-    const int h = side > 0 ? kLeftThigh : kRightThigh;
-    s.regressor[static_cast<std::size_t>(h)] = extrapolated(t, mid_thigh, knee, thigh.a);
-    s.regressor[static_cast<std::size_t>(h + 1)] = averaged(knee);
+    limb(parts[static_cast<std::size_t>(arm_part(side, 0))], on_arm, side, side > 0 ? kLeftUpperArm : kRightUpperArm);
+    limb(parts[static_cast<std::size_t>(leg_part(side, 0))], on_leg, side, side > 0 ? kLeftThigh : kRightThigh);
   }
 
   // Hard labels: each vertex to the bone of the part it lies on, limbs split
