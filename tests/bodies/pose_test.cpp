@@ -253,6 +253,7 @@ TEST_CASE("a pose file is read and checked like --pose", "[bodies][pose]") {
     std::ofstream(dir / "pose.yaml") << "shoulder_abduction: 80\nleft_elbow_flexion: 45\n";
     std::ofstream(dir / "bad.yaml") << "shoulder_abduction: 80\nknee_flexion: 200\n";
     std::ofstream(dir / "list.yaml") << "[1, 2, 3]\n";
+    std::ofstream(dir / "twice.yaml") << "left_elbow_flexion: 30\nleft_elbow_flexion: 60\n";
   }
   const Pose p = read_pose_file((dir / "pose.yaml").string(), posed_model().pose_angles());
   CHECK(p.angles.size() == 3);
@@ -260,6 +261,9 @@ TEST_CASE("a pose file is read and checked like --pose", "[bodies][pose]") {
             .find("bad.yaml:2: left_knee_flexion = 200 is outside its range of motion [0, 135]") != std::string::npos);
   CHECK(test::message_of([&] { read_pose_file((dir / "list.yaml").string(), posed_model().pose_angles()); })
             .find("expected a map of joint angle names to degrees") != std::string::npos);
+  // An angle written twice is refused at its second line, not kept once.
+  CHECK(test::message_of([&] { read_pose_file((dir / "twice.yaml").string(), posed_model().pose_angles()); })
+            .find("twice.yaml:2: 'left_elbow_flexion' is defined twice") != std::string::npos);
 }
 
 TEST_CASE("a body model without a skeleton refuses a pose naming itself", "[bodies][pose]") {

@@ -3,6 +3,8 @@
 #include <drape/bodies/pose.hpp>
 #include <drape/errors.hpp>
 
+#include "../yaml_util.hpp"
+
 #include <yaml-cpp/yaml.h>
 
 #include <cmath>
@@ -112,22 +114,17 @@ Pose parse_pose(const std::string& text, const std::vector<PoseAngle>& space, co
 }
 
 Pose read_pose_file(const std::string& path, const std::vector<PoseAngle>& space) {
-  YAML::Node root;
-  try {
-    root = YAML::LoadFile(path);
-  } catch (const YAML::Exception& e) {
-    throw ConfigError("pose file " + path + ": " + e.what());
-  }
+  // The project's loader: malformed YAML at its line, and an angle written
+  // twice refused (yaml-cpp alone keeps one of them silently).
+  const YAML::Node root = yaml::load_file(path);
   if (!root.IsMap()) throw ConfigError("pose file " + path + ": expected a map of joint angle names to degrees");
   Pose pose;
-  const std::string what = "pose file " + path;
   for (const auto& kv : root) {
     const std::string name = kv.first.as<std::string>();
-    if (!kv.second.IsScalar())
-      throw ConfigError(what + ":" + std::to_string(kv.second.Mark().line + 1) + ": " + name + " wants one number of degrees");
-    set_angle(pose, name, parse_degrees(name, kv.second.Scalar() == ".nan" ? "nan" : kv.second.Scalar(),
-                                        what + ":" + std::to_string(kv.second.Mark().line + 1)),
-              space, what + ":" + std::to_string(kv.second.Mark().line + 1));
+    const std::string where = "pose file " + yaml::at(path, kv.second).str();
+    if (!kv.second.IsScalar()) throw ConfigError(where + ": " + name + " wants one number of degrees");
+    const std::string text = kv.second.Scalar() == ".nan" ? "nan" : kv.second.Scalar();
+    set_angle(pose, name, parse_degrees(name, text, where), space, where);
   }
   return pose;
 }
