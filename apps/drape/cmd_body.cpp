@@ -29,9 +29,6 @@
 namespace drape::cli {
 namespace DRAPE_UNITY_ID {  // the anonymous namespace, or a unique one in a unity build (command.hpp)
 
-// Poses drawn for one body before --sample gives up on it.
-constexpr int kMaxPoseRedraws = 50;
-
 struct Measured {
   double bmi, height;
 };
@@ -198,19 +195,16 @@ int sample_many(const po::variables_map& vm, const LoadedBody& loaded, const Ran
     Pose pose;
     int redraws = 0;
     if (poses) {
-      // By rejection: a pose that makes this body pass through itself is
-      // drawn again (docs/poses.md gives the rate).
-      for (;; ++redraws) {
-        if (redraws == kMaxPoseRedraws)
-          throw Error("drape body --sample: body " + std::to_string(i) + " passes through itself in " +
-                      std::to_string(kMaxPoseRedraws) + " poses drawn in a row");
-        pose = draw_pose(angles, pose_rng);
-        const Eigen::MatrixX3d posed = body.posed(shape, pose);
-        if (describe_pose_crossings(body, shape, pose, posed).empty()) {
-          mesh.vertices = posed;
-          break;
+      DrawnPose drawn = [&] {
+        try {
+          return draw_free_pose(body, shape, pose_rng);
+        } catch (const Error& e) {
+          throw Error("drape body --sample: body " + std::to_string(i) + ": " + e.what());
         }
-      }
+      }();
+      pose = std::move(drawn.pose);
+      mesh.vertices = std::move(drawn.vertices);
+      redraws = drawn.redraws;
       redrawn_total += redraws;
     }
     char file[32];

@@ -283,3 +283,17 @@ TEST_CASE("a body model without a skeleton refuses a pose naming itself", "[bodi
         "body rigid has no skeleton, so it cannot be posed (docs/poses.md says which models can)");
   CHECK(pose_body(rigid, "rigid", {}, Pose{}) == rigid.vertices({}));
 }
+
+TEST_CASE("draw_free_pose draws reproducibly and only poses the body stays clear in", "[bodies][pose]") {
+  const Eigen::VectorXd shape = shape_of(30, 1.75, 0);
+  Rng a(7), b(7);
+  const DrawnPose first = draw_free_pose(posed_model(), shape, a);
+  const DrawnPose again = draw_free_pose(posed_model(), shape, b);
+  CHECK(first.pose.angles == again.pose.angles);
+  CHECK(first.vertices == again.vertices);
+  CHECK(first.redraws == again.redraws);
+  CHECK(first.pose.angles.size() == posed_model().pose_angles().size());
+  CHECK(first.vertices == posed_model().posed(shape, first.pose));
+  CHECK(describe_pose_crossings(posed_model(), shape, first.pose, first.vertices).empty());
+  CHECK_THAT(test::message_of([&] { draw_free_pose(posed_model(), shape, a, 0); }), Catch::Contains("0 poses drawn"));
+}

@@ -114,4 +114,15 @@ Eigen::MatrixX3d pose_body(const BodyModel& model, const std::string& model_name
   return posed;
 }
 
+DrawnPose draw_free_pose(const BodyModel& model, const Eigen::VectorXd& shape, Rng& rng, int max_draws) {
+  const std::vector<PoseAngle> angles = model.pose_angles();
+  DrawnPose out;
+  for (; out.redraws < max_draws; ++out.redraws) {
+    out.pose = draw_pose(angles, rng);
+    out.vertices = model.posed(shape, out.pose);
+    if (describe_pose_crossings(model, shape, out.pose, out.vertices).empty()) return out;
+  }
+  throw Error("the body passes through itself in " + std::to_string(max_draws) + " poses drawn in a row");
+}
+
 }  // namespace drape

@@ -5,6 +5,7 @@
 // the posing: triangle-triangle intersection of non-adjacent faces of the
 // posed mesh (geometry::self_intersections).
 #include <drape/bodies/body.hpp>
+#include <drape/training/rng.hpp>
 
 #include <string>
 
@@ -20,5 +21,17 @@ std::string describe_pose_crossings(const BodyModel& model, const Eigen::VectorX
 // when the model is not poseable or the posed body passes through itself.
 Eigen::MatrixX3d pose_body(const BodyModel& model, const std::string& model_name, const Eigen::VectorXd& shape,
                            const Pose& pose);
+
+// A pose for the body of `shape` drawn from the model's pose space
+// (draw_pose over pose_angles()), by rejection: a pose in which the body
+// passes through itself (describe_pose_crossings) is drawn again, at most
+// `max_draws` times in all, then Error. What drape body --sample --poses (and
+// any generator of posed bodies) draws; docs/poses.md gives the rate.
+struct DrawnPose {
+  Pose pose;
+  Eigen::MatrixX3d vertices;  // the posed body
+  int redraws = 0;            // poses drawn and rejected before this one
+};
+DrawnPose draw_free_pose(const BodyModel& model, const Eigen::VectorXd& shape, Rng& rng, int max_draws = 50);
 
 }  // namespace drape
