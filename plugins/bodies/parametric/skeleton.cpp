@@ -137,14 +137,14 @@ Skeleton build_skeleton(const BodyTemplate& t) {
       bone = kNeck;
     else
       for (int side : {1, -1}) {
-        const int u = side > 0 ? kLeftUpperArm : kRightUpperArm, h = side > 0 ? kLeftThigh : kRightThigh;
-        if (is_arm(part, side)) {
-          const V3 axis = (joints.row(u + 1) - joints.row(u)).transpose().normalized();
-          bone = (p - joints.row(u + 1).transpose()).dot(axis) < 0 ? u : u + 1;
-        } else if (is_leg(part, side)) {
-          const V3 axis = (joints.row(h + 1) - joints.row(h)).transpose().normalized();
-          bone = (p - joints.row(h + 1).transpose()).dot(axis) < 0 ? h : h + 1;
-        }
+        // A limb's vertex: its upper bone above the lower joint's plane, its lower bone below.
+        const std::pair<int, bool (*)(int, int)> limbs[] = {{side > 0 ? kLeftUpperArm : kRightUpperArm, is_arm},
+                                                            {side > 0 ? kLeftThigh : kRightThigh, is_leg}};
+        for (const auto& [upper, on_limb] : limbs)
+          if (on_limb(part, side)) {
+            const V3 axis = (joints.row(upper + 1) - joints.row(upper)).transpose().normalized();
+            bone = (p - joints.row(upper + 1).transpose()).dot(axis) < 0 ? upper : upper + 1;
+          }
       }
     w(v, bone) = 1;
   }
@@ -152,7 +152,7 @@ Skeleton build_skeleton(const BodyTemplate& t) {
   for (int it = 0; it < kSkinningSmoothing; ++it) {
     for (Eigen::Index v = 0; v < nv; ++v) {
       const auto& nb = t.neighbours[static_cast<std::size_t>(v)];
-      Eigen::RowVectorXd mean = Eigen::RowVectorXd::Zero(kNumBones);
+      Eigen::Matrix<double, 1, kNumBones> mean = Eigen::Matrix<double, 1, kNumBones>::Zero();  // no allocation per vertex
       for (int u : nb) mean += w.row(u);
       next.row(v) = 0.5 * w.row(v) + (0.5 / static_cast<double>(nb.size())) * mean;
     }
