@@ -6,6 +6,7 @@
 #include <omp.h>
 #endif
 
+#include <drape/bodies/pose.hpp>
 #include <drape/io/shipped_files.hpp>
 #include <drape/io/mesh_io.hpp>
 #include <drape/progress.hpp>
@@ -19,6 +20,7 @@
 #include <iostream>
 #include <memory>
 #include <numeric>
+#include <optional>
 
 namespace drape::cli {
 namespace DRAPE_UNITY_ID {  // the anonymous namespace, or a unique one in a unity build (command.hpp)
@@ -47,26 +49,44 @@ bool parse_simulate(const std::vector<std::string>& args, po::variables_map& vm)
       "svg", po::value<std::string>(), "also draw the drape, the garment coloured by its distance to the body (.svg: front view; .html: a 3D viewer)")(
       "bmi", po::value<double>(), "override the scene's target BMI")("height", po::value<double>(), "override the height, m")(
       "sex", po::value<double>(), "override the sex (0 female ... 1 male)")(
+      "pose", po::value<std::string>(), "pose the target body instead of the scene's pose: name=degrees,... (docs/poses.md)")(
+      "pose-file", po::value<std::string>(), "the same from a YAML map of joint angle names to degrees")(
       "verbose,v", po::bool_switch(), "print every solver step")(
       "threads", po::value<int>()->default_value(0), "threads for the energies (0: OpenMP's default, all cores)");
   add_girth_option(opts, "of the scene's target body: ");
   po::positional_options_description pos;
   pos.add("scene", 1);
   const std::string usage =
-      "drape simulate SCENE.yaml [--out garment.obj] [--body body.obj | --bmi 35 [--girth belly=0.1]] [--threads T] [--verbose]";
+      "drape simulate SCENE.yaml [--out garment.obj] [--body body.obj | --bmi 35 [--girth belly=0.1]] "
+      "[--pose shoulder_abduction=20,elbow_flexion=30] [--threads T] [--verbose]";
   return parse(usage, args, opts, pos, vm);
 }
 
 // The body asked for: --body FILE, or the scene's target body changed by
 // --bmi/--height/--sex/--girth (services/scene_body.hpp).
+// --pose or --pose-file replace the scene's pose (a given body is taken as
+// unposed and posed too); neither: the scene's own (null).
+std::optional<Pose> requested_pose(const po::variables_map& vm, const Simulation& design) {
+  if (vm.count("pose") && vm.count("pose-file")) throw UsageError("--pose and --pose-file: give one");
+  if (!vm.count("pose") && !vm.count("pose-file")) return std::nullopt;
+  const BodyModel& model = design.body_model();
+  if (!model.poseable())
+    throw ConfigError("body " + design.scene().body_model + " has no skeleton, so it cannot be posed (--pose, --pose-file); "
+                      "docs/poses.md says which models can");
+  if (vm.count("pose")) return parse_pose(vm["pose"].as<std::string>(), model.pose_angles(), "--pose");
+  return read_pose_file(vm["pose-file"].as<std::string>(), model.pose_angles());
+}
+
 SceneBody target_body(const SceneSimulations& simulations, const Scene& scene, const po::variables_map& vm) {
+  const std::optional<Pose> pose = requested_pose(vm, simulations.design());
+  const Pose* posed = pose ? &*pose : nullptr;
   if (vm.count("body")) {
     const std::string file = vm["body"].as<std::string>();
-    return scene_body(simulations, read_mesh(file).vertices, file);
+    return scene_body(simulations, read_mesh(file).vertices, file, posed);
   }
   BodyRequest request = simulations.design().target_request();
   request.proportions = parse_girths(vm);
-  return scene_body(simulations, request, scene.file);
+  return scene_body(simulations, request, scene.file, posed);
 }
 
 // Without --verbose a bar over the steps (at most morph + settle; the
@@ -189,6 +209,7 @@ int run(const std::vector<std::string>& args) {
   for (const std::string& note : target.notes) std::printf("note: %s\n", note.c_str());
   if (target.size) std::printf("size auto: %s\n", target.size->summary().c_str());
   if (target.grade) std::printf("grade auto: %s\n", target.grade->summary().c_str());
+  if (!target.pose.empty()) std::printf("posed: %s; every other angle at rest\n", format_pose(target.pose).c_str());
   const Simulation& sim = *target.simulation;
 
   const bool verbose = vm["verbose"].as<bool>();

@@ -178,7 +178,7 @@ class Scene:
         native = self._s.energies(body_vertices)
         return {name: Energy(native, name) for name in native.names}
 
-    def simulate(self, body_vertices=None, start_garment=None, measure_penetration=True, start_body=None):
+    def simulate(self, body_vertices=None, start_garment=None, measure_penetration=True, start_body=None, pose=None):
         """Drapes the garment on the body (default: the scene's own): a dict of garment and body (float64
         [N, 3]), energies {effect: J}, total_energy, converged, residual, stationarity, sliding and slip_ratio (with
         friction: whether the garment still slid over the body in the last step, and its fastest contact's slip
@@ -188,8 +188,10 @@ class Scene:
         back (a warning says so); with `size: auto` the body wears the size its girth needs (`size`: the choice
         and its measurements, `garment_size`: the size). The morph starts from start_body (default: the body
         the garment is dressed on, `fit_body`: the scene body model's mean shape for the regular size, the body of
-        its girth for a larger one). The GIL is released."""
-        return self._s.simulate(body_vertices, start_garment, measure_penetration, start_body)
+        its girth for a larger one). pose: joint angles in degrees, {"shoulder_abduction": 20} or
+        "shoulder_abduction=20,elbow_flexion=30" (docs/poses.md), instead of the scene's own `body: {pose: ...}`; a
+        given body is taken as unposed and posed too; the result's `pose` is the pose draped. The GIL is released."""
+        return self._s.simulate(body_vertices, start_garment, measure_penetration, start_body, pose)
 
     def __repr__(self):
         return f"<drape.Scene {self._s.file}: {', '.join(self._s.effects)}>"

@@ -4,6 +4,7 @@
 #include "common.hpp"
 
 #include <drape/io/shipped_files.hpp>
+#include <drape/bodies/pose.hpp>
 #include <drape/errors.hpp>
 #include <drape/geometry/closest_point.hpp>
 #include <drape/scene/scene.hpp>
@@ -11,6 +12,8 @@
 #include <drape/scene/simulation.hpp>
 
 #include <memory>
+#include <optional>
+#include <sstream>
 
 namespace drape::python {
 namespace {
@@ -96,11 +99,41 @@ PyScene make_scene(Scene scene) {
 // What drape simulate drapes (services/scene_body.hpp): a given body checked
 // and placed where the body model's bodies stand, the size it wears with
 // size: auto; the scene's own target body without one.
-SceneBody scene_body_arg(const PyScene& s, const py::handle& body) {
-  if (body.is_none()) return scene_body(*s.simulations, s.simulation->target_request(), s.simulation->scene().file);
+// pose=None: the scene's own; "name=degrees,..." or {name: degrees}: that
+// pose instead (docs/poses.md), ValueError naming the angle when it is unknown,
+// NaN or out of range, or the body model has no skeleton.
+std::optional<Pose> pose_arg(const PyScene& s, const py::handle& pose) {
+  if (pose.is_none()) return std::nullopt;
+  const BodyModel& model = s.simulation->body_model();
+  if (!model.poseable())
+    throw ConfigError("pose: body " + s.simulation->scene().body_model + " has no skeleton, so it cannot be posed "
+                      "(docs/poses.md says which models can)");
+  if (py::isinstance<py::str>(pose)) return parse_pose(pose.cast<std::string>(), model.pose_angles(), "pose");
+  if (!py::isinstance<py::dict>(pose)) throw ConfigError("pose: expected a dict {name: degrees} or a string 'name=degrees,...'");
+  std::string text;
+  for (const auto& [name, value] : pose.cast<py::dict>()) {
+    if (!py::isinstance<py::str>(name)) throw ConfigError("pose: joint angle names are strings");
+    double degrees = 0;
+    try {
+      degrees = value.cast<double>();
+    } catch (const py::cast_error&) {
+      throw ConfigError("pose: " + name.cast<std::string>() + " wants a number of degrees");
+    }
+    std::ostringstream item;
+    item.precision(17);
+    item << name.cast<std::string>() << "=" << degrees << ",";
+    text += item.str();
+  }
+  return parse_pose(text, model.pose_angles(), "pose");
+}
+
+SceneBody scene_body_arg(const PyScene& s, const py::handle& body, const py::handle& pose_given) {
+  const std::optional<Pose> pose = pose_arg(s, pose_given);
+  const Pose* posed = pose ? &*pose : nullptr;
+  if (body.is_none()) return scene_body(*s.simulations, s.simulation->target_request(), s.simulation->scene().file, posed);
   const Eigen::MatrixX3d given = vertices_arg(body, "body_vertices", static_cast<int>(s.simulation->mean_body().rows()));
   py::gil_scoped_release release;
-  return scene_body(*s.simulations, given, "body_vertices");
+  return scene_body(*s.simulations, given, "body_vertices", posed);
 }
 
 Eigen::MatrixX3d body_or_target(const Simulation& sim, const py::handle& body) {
@@ -188,8 +221,8 @@ void register_scene(py::module_& m) {
       .def(
           "simulate",
           [](const PyScene& s, const py::handle& body, const py::handle& start_garment, bool measure_penetration,
-             const py::handle& start_body) {
-            const SceneBody target = scene_body_arg(s, body);
+             const py::handle& start_body, const py::handle& pose) {
+            const SceneBody target = scene_body_arg(s, body, pose);
             for (const std::string& note : target.notes) warn_python(note);
             Eigen::MatrixX3d start, start_b;
             SimulationOptions o;
@@ -210,10 +243,13 @@ void register_scene(py::module_& m) {
             py::dict d = result_dict(std::move(r));
             d["size"] = target.size ? py::cast(target.size->summary()) : py::none();
             d["garment_size"] = target.size ? py::cast(target.size->size) : py::none();
+            py::dict angles;
+            for (const auto& [name, degrees] : target.pose.angles) angles[py::str(name)] = degrees;
+            d["pose"] = angles;
             return d;
           },
           py::arg("body_vertices") = py::none(), py::arg("start_garment") = py::none(), py::arg("measure_penetration") = true,
-          py::arg("start_body") = py::none())
+          py::arg("start_body") = py::none(), py::arg("pose") = py::none())
       .def(
           "energies",
           [](const PyScene& s, const py::handle& body) {

@@ -179,6 +179,41 @@ TEST_CASE("a 90 degree elbow flexion bends the forearm by 90 degrees on the mesh
   }
 }
 
+TEST_CASE("part of a pose turns each joint by that part of its way from the body's own rest", "[bodies][pose]") {
+  const Eigen::VectorXd thin = shape_of(18, 1.6, 0), heavy = shape_of(45, 1.85, 1);
+  const Pose pose = pose_of("left_elbow_flexion=80,left_shoulder_abduction=90");
+  const Eigen::MatrixX3d rest = posed_model().vertices(heavy);
+  // The ends: nothing at 0 (also on a mesh between two shapes, as a morph
+  // passes through), posed() at 1, bit for bit.
+  const Eigen::MatrixX3d between = 0.5 * (posed_model().vertices(thin) + rest);
+  CHECK(posed_model().posed_vertices(between, pose, 0.0) == between);
+  CHECK(posed_model().posed_vertices(rest, pose, 1.0) == posed_model().posed(heavy, pose));
+  // Halfway: the forearm turns half the flexion about the elbow and the upper
+  // arm half its way from the A-pose's abduction (measured per body) to 90.
+  const Eigen::MatrixX3d j = posed_model().joint_positions(heavy);
+  const Eigen::Vector3d s = j.row(joint_index("left_upper_arm")).transpose();
+  const Eigen::Vector3d e = j.row(joint_index("left_forearm")).transpose();
+  const Eigen::Vector3d w = e + (e - s).normalized() * 0.24;
+  const auto u0 = ring_at(rest, posed_model().faces(), s, e, 0.4), u1 = ring_at(rest, posed_model().faces(), s, e, 0.7);
+  const auto f0 = ring_at(rest, posed_model().faces(), e, w, 0.4), f1 = ring_at(rest, posed_model().faces(), e, w, 0.8);
+  for (const auto* r : {&u0, &u1, &f0, &f1}) REQUIRE(r->size() >= 8);
+  auto axis = [](const Eigen::MatrixX3d& v, const std::vector<int>& a, const std::vector<int>& b) {
+    return Eigen::Vector3d(centroid(v, b) - centroid(v, a));
+  };
+  const double abduction_at_rest = posed_model().rest_pose(heavy).angles.at("left_shoulder_abduction");
+  const Eigen::MatrixX3d half = posed_model().posed_vertices(rest, pose, 0.5);
+  const double upper_turn = angle_between_degrees(axis(rest, u0, u1), axis(half, u0, u1));
+  // The forearm's turn against the same body with only the shoulder turned halfway: the flexion alone.
+  Pose shoulder_only;
+  shoulder_only.angles["left_shoulder_abduction"] = abduction_at_rest + 0.5 * (90 - abduction_at_rest);
+  const Eigen::MatrixX3d arm_only = posed_model().posed(heavy, shoulder_only);
+  const double bend = angle_between_degrees(axis(arm_only, f0, f1), axis(half, f0, f1));
+  INFO("rest abduction " << abduction_at_rest << "; upper arm turned " << upper_turn << ", elbow bent " << bend);
+  CHECK(upper_turn == Approx(0.5 * (90 - abduction_at_rest)).margin(2));
+  CHECK(bend == Approx(40).margin(3));
+  CHECK_THROWS_WITH(posed_model().posed_vertices(rest.topRows(10), pose, 0.5), Catch::Contains("10 vertices"));
+}
+
 TEST_CASE("posed bodies over shape and pose draws are watertight and uncrossed", "[bodies][pose]") {
   // A few draws here; scripts/pose_space_check.sh runs 200 (docs/poses.md).
   BodySpace space;

@@ -119,14 +119,16 @@ Pose read_pose_file(const std::string& path, const std::vector<PoseAngle>& space
   const YAML::Node root = yaml::load_file(path);
   if (!root.IsMap()) throw ConfigError("pose file " + path + ": expected a map of joint angle names to degrees");
   Pose pose;
-  for (const auto& kv : root) {
-    const std::string name = kv.first.as<std::string>();
-    const std::string where = "pose file " + yaml::at(path, kv.second).str();
-    if (!kv.second.IsScalar()) throw ConfigError(where + ": " + name + " wants one number of degrees");
-    const std::string text = kv.second.Scalar() == ".nan" ? "nan" : kv.second.Scalar();
-    set_angle(pose, name, parse_degrees(name, text, where), space, where);
-  }
+  for (const auto& kv : root)
+    add_pose_entry(pose, kv.first.as<std::string>(), kv.second, space, "pose file " + yaml::at(path, kv.second).str());
   return pose;
+}
+
+void add_pose_entry(Pose& pose, const std::string& name, const YAML::Node& value, const std::vector<PoseAngle>& space,
+                    const std::string& what) {
+  if (!value.IsScalar()) throw ConfigError(what + ": " + name + " wants one number of degrees");
+  const std::string text = value.Scalar() == ".nan" ? "nan" : value.Scalar();
+  set_angle(pose, name, parse_degrees(name, text, what), space, what);
 }
 
 void check_pose(const Pose& pose, const std::vector<PoseAngle>& space, const std::string& what) {
@@ -207,6 +209,10 @@ Eigen::MatrixXd BodyModel::skinning_weights() const {
 Pose BodyModel::rest_pose(const Eigen::VectorXd&) const { return {}; }
 Eigen::MatrixX3d BodyModel::posed(const Eigen::VectorXd& shape, const Pose& pose) const {
   if (pose.empty()) return vertices(shape);
+  throw ConfigError("this body model has no skeleton, so it cannot be posed (it makes unposed bodies only; docs/poses.md)");
+}
+Eigen::MatrixX3d BodyModel::posed_vertices(const Eigen::MatrixX3d& unposed, const Pose& pose, double) const {
+  if (pose.empty()) return unposed;
   throw ConfigError("this body model has no skeleton, so it cannot be posed (it makes unposed bodies only; docs/poses.md)");
 }
 

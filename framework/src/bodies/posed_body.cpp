@@ -34,12 +34,17 @@ std::vector<int> chain(const std::vector<BodyModel::Joint>& joints, int bone) {
 
 std::string describe_pose_crossings(const BodyModel& model, const Eigen::VectorXd& shape, const Pose& pose,
                                     const Eigen::MatrixX3d& posed) {
+  return describe_pose_crossings(model, model.vertices(shape), pose, posed);
+}
+
+std::string describe_pose_crossings(const BodyModel& model, const Eigen::MatrixX3d& unposed, const Pose& pose,
+                                    const Eigen::MatrixX3d& posed) {
   constexpr std::size_t kMaxPairs = 2000;
   const Eigen::MatrixX3i& faces = model.faces();
   auto pairs = geometry::self_intersections(posed, faces, kMaxPairs);
   if (pairs.empty()) return "";
   // Crossings the unposed body already has are the shape's, not the pose's.
-  const auto rest = geometry::self_intersections(model.vertices(shape), faces, kMaxPairs);
+  const auto rest = geometry::self_intersections(unposed, faces, kMaxPairs);
   const std::set<std::pair<int, int>> at_rest(rest.begin(), rest.end());
   pairs.erase(std::remove_if(pairs.begin(), pairs.end(), [&](const auto& p) { return at_rest.count(p) > 0; }), pairs.end());
   if (pairs.empty()) return "";
@@ -102,13 +107,20 @@ std::string describe_pose_crossings(const BodyModel& model, const Eigen::VectorX
 
 Eigen::MatrixX3d pose_body(const BodyModel& model, const std::string& model_name, const Eigen::VectorXd& shape,
                            const Pose& pose) {
+  if (!model.poseable() && pose.empty()) return model.vertices(shape);
+  return pose_vertices(model, model_name, model.vertices(shape), pose);
+}
+
+Eigen::MatrixX3d pose_vertices(const BodyModel& model, const std::string& model_name, const Eigen::MatrixX3d& unposed,
+                               const Pose& pose) {
   if (!model.poseable()) {
-    if (pose.empty()) return model.vertices(shape);
+    if (pose.empty()) return unposed;
     throw ConfigError("body " + model_name + " has no skeleton, so it cannot be posed (docs/poses.md says which models can)");
   }
   check_pose(pose, model.pose_angles(), "body " + model_name + " pose");
-  Eigen::MatrixX3d posed = model.posed(shape, pose);
-  const std::string where = describe_pose_crossings(model, shape, pose, posed);
+  if (pose.empty()) return unposed;
+  Eigen::MatrixX3d posed = model.posed_vertices(unposed, pose, 1.0);
+  const std::string where = describe_pose_crossings(model, unposed, pose, posed);
   if (!where.empty())
     throw ConfigError("body " + model_name + ": this pose makes the body pass through itself: " + where);
   return posed;

@@ -100,7 +100,7 @@ void apply(Scene& s, const fs::path& path, const std::string& file, const YAML::
   }
   if (root["description"]) s.description = yaml::scalar(file, root["description"], "`description`");
   if (const YAML::Node body = root["body"]) {
-    yaml::check_keys(file, body, {"model", "params", "shape"}, "body");
+    yaml::check_keys(file, body, {"model", "params", "shape", "pose"}, "body");
     if (body["model"]) {
       const std::string model = yaml::scalar(file, body["model"], "body `model`");
       if (model != s.body_model) s.body_params.clear();  // another model's parameters do not carry over
@@ -108,6 +108,9 @@ void apply(Scene& s, const fs::path& path, const std::string& file, const YAML::
     }
     merge_values(s.body_params, file, body["params"], "body `params`");
     merge_values(s.shape, file, body["shape"], "body `shape`");
+    // Joint angles in degrees by name (docs/poses.md); checked against the
+    // body model's pose space when the scene is built (Simulation).
+    merge_values(s.pose, file, body["pose"], "body `pose`");
   }
   if (const YAML::Node garment = root["garment"]) {
     yaml::check_keys(file, garment, {"template", "params", "grade"}, "garment");
@@ -160,7 +163,10 @@ std::string Scene::yaml() const {
   if (!description.empty()) out << YAML::Key << "description" << YAML::Value << description;
   out << YAML::Key << "body" << YAML::Value << YAML::BeginMap << YAML::Key << "model" << YAML::Value << body_model
       << YAML::Key << "params" << YAML::Value << YAML::Flow << values_yaml(body_params) << YAML::Key << "shape"
-      << YAML::Value << YAML::Flow << values_yaml(shape) << YAML::EndMap;
+      << YAML::Value << YAML::Flow << values_yaml(shape);
+  // Written only when posed, so the text of an A-pose scene is what it always was.
+  if (!pose.empty()) out << YAML::Key << "pose" << YAML::Value << YAML::Flow << values_yaml(pose);
+  out << YAML::EndMap;
   out << YAML::Key << "garment" << YAML::Value << YAML::BeginMap << YAML::Key << "template" << YAML::Value << garment
       << YAML::Key << "params" << YAML::Value << YAML::Flow << values_yaml(garment_params);
   // Written only when graded, so the scene text of an ungraded garment is what it always was.

@@ -70,6 +70,9 @@ const std::vector<ParamSpec>& scene_solver_specs() {
       {.name = "settle_check", .type = ParamType::String, .default_value = "iteration",
        .doc = "when a settling drape checks that it has settled: every Newton iteration, or only at the end of a time step (the solver of 2026-11-28)",
        .choices = {"iteration", "step"}},
+      {.name = "pose_path", .type = ParamType::String, .default_value = "together",
+       .doc = "how a posed body moves from the start: shape morph and joint angles together, the pose first, or the shape first",
+       .choices = {"together", "pose_first", "shape_first"}},
       {.name = "gravity_direction", .type = ParamType::FloatList, .default_value = "[0, -1, 0]",
        .doc = "direction of gravity (the magnitude is the gravity effect's g)"},
   };

@@ -151,6 +151,8 @@ Simulation::Simulation(const Registry& registry, Scene scene) : registry_(regist
   settle_steps_ = static_cast<int>(solver.get_int("settle_steps"));
   morph_newton_ = static_cast<int>(solver.get_int("morph_newton_iterations"));
   settle_check_ = solver.get_string("settle_check");
+  pose_path_ = pose_path_named(solver.get_string("pose_path"));
+  target_pose_ = scene_pose(scene_, *body_model_);
   const auto g = solver.get_float_list("gravity_direction");
   gravity_direction_ = Eigen::Vector3d(g[0], g[1], g[2]);
   if (!(gravity_direction_.norm() > 0)) throw ConfigError({scene_.file, 0}, "solver: gravity_direction must not be zero");
@@ -213,6 +215,30 @@ std::vector<NamedEnergy> Simulation::make_energies(const BodyQuery* body, const 
   return energies;
 }
 
+std::function<Eigen::MatrixX3d(double)> Simulation::body_path(const SimulationOptions& options,
+                                                              const Eigen::MatrixX3d& morph_from,
+                                                              const Eigen::MatrixX3d& target_body) const {
+  if (!options.target_pose || options.target_pose->empty())
+    return [&morph_from, &target_body](double t) -> Eigen::MatrixX3d { return morph_from + t * (target_body - morph_from); };
+  const Eigen::MatrixX3d& unposed = *options.unposed_target;
+  require_vertex_count(unposed.rows(), mean_body_.rows(), "the unposed target body",
+                       "the scene's body model '" + scene_.body_model + "'");
+  // The path must end on the body asked for: the pose of that unposed body.
+  const Eigen::MatrixX3d end = body_model_->posed_vertices(unposed, *options.target_pose, 1.0);
+  const double off = (end - target_body).rowwise().norm().maxCoeff();
+  if (!(off <= 1e-9))
+    throw ConfigError("the posed target body is not the unposed target in its pose (" + std::to_string(off) +
+                      " m apart): pose it with BodyModel::posed_vertices");
+  // The start shape's offset from the body model's rest (a shrunk start,
+  // separated_start.hpp) is part of the shape morph; the joints turn from
+  // the start body's own rest angles (posed_vertices' fraction).
+  const Pose& pose = *options.target_pose;
+  return [this, &morph_from, &unposed, &pose](double t) -> Eigen::MatrixX3d {
+    const MorphFractions f = morph_fractions(pose_path_, t);
+    return body_model_->posed_vertices(morph_from + f.shape * (unposed - morph_from), pose, f.pose);
+  };
+}
+
 SimulationResult Simulation::run(const Eigen::MatrixX3d& target_body, const SimulationOptions& options) const {
   const auto start = Clock::now();
   require_vertex_count(target_body.rows(), mean_body_.rows(), "the target body",
@@ -223,6 +249,8 @@ SimulationResult Simulation::run(const Eigen::MatrixX3d& target_body, const Simu
   const Eigen::MatrixX3d& garment_start = options.start_garment ? *options.start_garment : garment_->mesh.vertices;
   if (body_start.rows() != mean_body_.rows() || garment_start.rows() != garment_->mesh.vertices.rows())
     throw ConfigError("simulation start state has the wrong vertex count");
+  if (!options.target_pose != !options.unposed_target)
+    throw ConfigError("a posed target needs both the pose and the unposed body (SimulationOptions)");
 
   // The body's closest-point structure exists only when an effect needs it.
   std::unique_ptr<geometry::BodySurface> surface;
@@ -266,12 +294,13 @@ SimulationResult Simulation::run(const Eigen::MatrixX3d& target_body, const Simu
     scene_detail::check_separated_start(x, *surface, garment_->mesh.faces);
   }
   const Eigen::MatrixX3d& morph_from = separated_body.rows() ? separated_body : body_start;
+  const std::function<Eigen::MatrixX3d(double)> body_at = body_path(options, morph_from, target_body);
   scene_detail::BarrierMorph barrier_morph;
   barrier_morph.morph_newton = std::min(settle_newton, morph_newton_);
   barrier_morph.settle_newton = settle_newton;
   for (int k = 1; k <= morph_steps_; ++k) {
     const double t = static_cast<double>(k) / morph_steps_;
-    const Eigen::MatrixX3d next = morph_from + t * (target_body - morph_from);
+    const Eigen::MatrixX3d next = body_at(t);
     if (barrier) {
       // The body's move is checked too (barrier_morph.hpp).
       record(k, true, scene_detail::barrier_morph_step(solver, *surface, next, k, barrier_morph, x, v, result), -1);

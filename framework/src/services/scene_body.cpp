@@ -1,5 +1,6 @@
 // scene_body and drape_scene_body (services/scene_body.hpp).
 #include <drape/bodies/body.hpp>
+#include <drape/bodies/posed_body.hpp>
 #include <drape/garment_grading.hpp>
 #include <drape/geometry/body_units.hpp>
 #include <drape/geometry/girth.hpp>
@@ -125,9 +126,20 @@ void choose_size(const SceneSimulations& simulations, const std::string& name, S
   out.size = std::move(choice);
 }
 
+// Poses the chosen body (its size already chosen on the unposed one).
+void pose_chosen(const SceneSimulations& simulations, const Pose* pose, SceneBody& out) {
+  const Simulation& design = simulations.design();
+  const Pose& wanted = pose ? *pose : design.target_pose();
+  if (wanted.empty()) return;
+  out.pose = wanted;
+  out.unposed = out.vertices;
+  out.vertices = pose_vertices(design.body_model(), design.scene().body_model, out.unposed, wanted);
+}
+
 }  // namespace
 
-SceneBody scene_body(const SceneSimulations& simulations, const Eigen::MatrixX3d& given, const std::string& name) {
+SceneBody scene_body(const SceneSimulations& simulations, const Eigen::MatrixX3d& given, const std::string& name,
+                     const Pose* pose) {
   const Simulation& design = simulations.design();
   Mesh mesh;
   mesh.vertices = given;
@@ -144,14 +156,17 @@ SceneBody scene_body(const SceneSimulations& simulations, const Eigen::MatrixX3d
     out.notes.push_back("the body " + placement_note(*offset, where));
   }
   choose_size(simulations, name, out);
+  pose_chosen(simulations, pose, out);
   return out;
 }
 
-SceneBody scene_body(const SceneSimulations& simulations, const BodyRequest& request, const std::string& name) {
+SceneBody scene_body(const SceneSimulations& simulations, const BodyRequest& request, const std::string& name,
+                     const Pose* pose) {
   const Simulation& design = simulations.design();
   SceneBody out;
   out.vertices = design.body_vertices(design.shape_for(request));
   choose_size(simulations, name, out);
+  pose_chosen(simulations, pose, out);
   return out;
 }
 
@@ -182,6 +197,10 @@ SimulationResult drape_scene_body(const SceneBody& body, SimulationOptions optio
   if (options.start_body) {
     start_body = options.start_body->rowwise() - body.moved_by;
     options.start_body = &start_body;
+  }
+  if (!body.pose.empty()) {
+    options.target_pose = &body.pose;
+    options.unposed_target = &body.unposed;
   }
   SimulationResult r = [&] {
     try {

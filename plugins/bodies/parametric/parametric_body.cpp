@@ -62,6 +62,21 @@ class ParametricBody final : public BodyModel {
     if (pose.empty()) return v;
     return skin(shared_skeleton(), v, regress_joints(shared_skeleton(), v), pose);
   }
+  Eigen::MatrixX3d posed_vertices(const Eigen::MatrixX3d& unposed, const Pose& pose, double fraction) const override {
+    check_pose(pose, pose_angles(), "body parametric pose");
+    if (unposed.rows() != num_vertices())
+      throw ConfigError("body parametric: a body to pose has " + std::to_string(unposed.rows()) + " vertices, the model " +
+                        std::to_string(num_vertices()));
+    if (!(fraction >= 0 && fraction <= 1)) throw ConfigError("body parametric: a pose fraction must lie in [0, 1]");
+    if (pose.empty() || fraction == 0) return unposed;
+    const Eigen::MatrixX3d joints = regress_joints(shared_skeleton(), unposed);
+    if (fraction == 1) return skin(shared_skeleton(), unposed, joints, pose);
+    // Part of the way: from this body's own rest angles (its A-pose arms).
+    const Pose rest = rest_angles(joints);
+    Pose part = pose;
+    for (auto& [name, angle] : part.angles) angle = rest.angles.at(name) + fraction * (angle - rest.angles.at(name));
+    return skin(shared_skeleton(), unposed, joints, part);
+  }
 
   int num_vertices() const override { return static_cast<int>(tpl_.vertices.rows()); }
   const Eigen::MatrixX3i& faces() const override { return tpl_.faces; }

@@ -73,6 +73,13 @@ class BodyModel {
   // The body of `shape` in `pose` (angles it does not set stay at rest).
   // The empty pose gives vertices(shape) bit for bit. Not poseable: ConfigError.
   virtual Eigen::MatrixX3d posed(const Eigen::VectorXd& shape, const Pose& pose) const;
+  // The body whose unposed mesh is `unposed` (this model's topology: any
+  // shape, or a body on its way from one shape to another) a `fraction` of
+  // the way from its own rest angles to `pose`: each angle the pose sets at
+  // rest + fraction (angle - rest). Fraction 0 gives `unposed` bit for bit,
+  // fraction 1 gives posed(shape, pose) when `unposed` is vertices(shape).
+  // The path a simulation's body takes into a pose (Simulation::run).
+  virtual Eigen::MatrixX3d posed_vertices(const Eigen::MatrixX3d& unposed, const Pose& pose, double fraction) const;
 };
 
 // Garment templates (kind "garment"): the rest garment dressed on the mean body,

@@ -12,6 +12,10 @@
 #include <string>
 #include <vector>
 
+namespace YAML {
+class Node;
+}
+
 namespace drape {
 
 // One degree of freedom of a pose space. Sided angles are named
@@ -45,6 +49,11 @@ std::vector<PoseAngle> human_pose_angles();
 Pose parse_pose(const std::string& text, const std::vector<PoseAngle>& space, const std::string& what);
 // A YAML map of the same names to degrees ({shoulder_abduction: 40, ...}).
 Pose read_pose_file(const std::string& path, const std::vector<PoseAngle>& space);
+// One `name: degrees` entry of a YAML map (a pose file, a scene's `body:
+// {pose: ...}`) added to `pose` with the checks of parse_pose, and an angle
+// the pose already holds refused; `what` begins the message ("scene.yaml:12").
+void add_pose_entry(Pose& pose, const std::string& name, const YAML::Node& value, const std::vector<PoseAngle>& space,
+                    const std::string& what);
 // The checks of parse_pose on a pose built in code.
 void check_pose(const Pose& pose, const std::vector<PoseAngle>& space, const std::string& what);
 // "left_elbow_flexion=30,..." in the order of the map; parse_pose reads it back.

@@ -16,11 +16,18 @@ namespace drape {
 // 1.02-1.08 m; left_elbow_flexion=140, left_shoulder_abduction=10)".
 std::string describe_pose_crossings(const BodyModel& model, const Eigen::VectorXd& shape, const Pose& pose,
                                     const Eigen::MatrixX3d& posed);
+// The same for a body given by its unposed mesh (any mesh of the model's topology).
+std::string describe_pose_crossings(const BodyModel& model, const Eigen::MatrixX3d& unposed, const Pose& pose,
+                                    const Eigen::MatrixX3d& posed);
 
 // model.posed(shape, pose) after check_pose; ConfigError naming `model_name`
 // when the model is not poseable or the posed body passes through itself.
 Eigen::MatrixX3d pose_body(const BodyModel& model, const std::string& model_name, const Eigen::VectorXd& shape,
                            const Pose& pose);
+// The same for a body given by its unposed mesh (a user's body of the
+// model's topology): BodyModel::posed_vertices with the same checks.
+Eigen::MatrixX3d pose_vertices(const BodyModel& model, const std::string& model_name, const Eigen::MatrixX3d& unposed,
+                               const Pose& pose);
 
 // A pose for the body of `shape` drawn from the model's pose space
 // (draw_pose over pose_angles()), by rejection: a pose in which the body

@@ -5,7 +5,7 @@
 // the energies to build, and nothing else -- and the solver settings.
 //
 //   base: tshirt.yaml          # optional: start from another scene, then override
-//   body:    {model: parametric, params: {}, shape: {bmi: 35, height: 1.75, sex: 1}}
+//   body:    {model: parametric, params: {}, shape: {bmi: 35, height: 1.75, sex: 1}, pose: {elbow_flexion: 30}}
 //   garment: {template: tshirt, params: {resolution: coarse}}
 //   materials: {knit: gray-interlock, print: {base: screen-print, multipliers: {stretch: 100}}}
 //   effects: [gravity, stretching, bending, collision]   # or a map name: {params}
@@ -44,6 +44,9 @@ struct Scene {
   std::string body_model = "parametric";
   ParamValues body_params;  // the body plugin's parameters
   ParamValues shape;        // bmi, height, sex: the body the garment is draped on
+  // Joint angles by name, degrees (`body: {pose: {shoulder_abduction: 20}}`,
+  // docs/poses.md): the target body is posed; empty: the A-pose.
+  ParamValues pose;
   std::string garment = "tshirt";
   ParamValues garment_params;
   double garment_grade = 1.0;  // the garment graded by this factor (garment_grading.hpp; `garment: {grade: g}`)

@@ -12,6 +12,7 @@
 #include <drape/bodies/body.hpp>
 #include <drape/geometry/surface_crossings.hpp>
 #include <drape/scene/scene.hpp>
+#include <drape/scene/scene_pose.hpp>
 #include <drape/physics/solver.hpp>
 
 #include <functional>
@@ -77,6 +78,12 @@ struct SimulationOptions {
   // is cut for, Simulation::fit_body(): the mean body for the regular size).
   const Eigen::MatrixX3d* start_garment = nullptr;
   const Eigen::MatrixX3d* start_body = nullptr;  // default: Simulation::fit_body()
+  // A posed target (docs/poses.md): run()'s target_body is `unposed_target`
+  // in `target_pose` (BodyModel::posed_vertices), and the morph turns the
+  // joints as it changes the shape, along the scene's pose_path, so that the
+  // contact's checks cover the arms' and legs' moves too. Both or neither.
+  const Pose* target_pose = nullptr;
+  const Eigen::MatrixX3d* unposed_target = nullptr;
 };
 
 class Simulation {
@@ -104,6 +111,8 @@ class Simulation {
   // The scene's target body as a request (its shape: BMI, height, sex), to
   // change before solving (a command line's --girth adds proportions).
   BodyRequest target_request() const;
+  // The scene's target pose (`body: {pose: ...}`); empty: the A-pose.
+  const Pose& target_pose() const { return target_pose_; }
   // Shape parameters and vertices of the scene's target body, or of another request.
   Eigen::VectorXd target_shape() const;
   Eigen::VectorXd shape_for(const BodyRequest& request) const;
@@ -123,7 +132,17 @@ class Simulation {
 
   SolverSettings solver_settings() const;
 
+  // The body run() moves at morph time t in [0, 1], from morph_from (t = 0,
+  // bit for bit) to target_body (t = 1): a straight line between the meshes,
+  // or with a posed target (options.target_pose) the shape morph and the
+  // joints' turn along the scene's pose_path. ConfigError when target_body is
+  // not the unposed target in its pose. The function refers to its arguments:
+  // they must outlive it.
+  std::function<Eigen::MatrixX3d(double)> body_path(const SimulationOptions& options, const Eigen::MatrixX3d& morph_from,
+                                                    const Eigen::MatrixX3d& target_body) const;
+
  private:
+
   const Registry& registry_;
   Scene scene_;
   std::unique_ptr<BodyModel> body_model_;
@@ -136,6 +155,8 @@ class Simulation {
   bool needs_body_ = false;
   int morph_steps_ = 0, settle_steps_ = 0, morph_newton_ = 3;
   std::string settle_check_ = "iteration";  // solver settle_check: when settledness is checked
+  Pose target_pose_;
+  PosePath pose_path_ = PosePath::together;
   Eigen::Vector3d gravity_direction_{0, -1, 0};
 };
 

@@ -29,6 +29,10 @@ struct SceneBody {
   Eigen::RowVector3d moved_by = Eigen::RowVector3d::Zero();
   std::optional<SizeChoice> size;  // with size: auto, the choice and its measurements
   std::optional<GradeChoice> grade;  // with grade: auto, the grade and its measure
+  // A posed body (docs/poses.md): `vertices` is `unposed` in `pose`. The
+  // size is chosen on the unposed body (a raised arm is no girth).
+  Pose pose;
+  Eigen::MatrixX3d unposed;
   // For the user, one sentence each without a prefix: "the body stands ... m
   // from where ...; draped there and ...". The CLI prints them as "note: ...",
   // Python as warnings.
@@ -39,10 +43,16 @@ struct SceneBody {
 // argument). ConfigError for the wrong vertex count (saying the expected one),
 // non-finite coordinates, other units or a body lying down (body_units.hpp),
 // and, with size: auto, a body no size fits.
-SceneBody scene_body(const SceneSimulations& simulations, const Eigen::MatrixX3d& given, const std::string& name);
+// The body is posed in `pose`, or in the scene's pose (`body: {pose: ...}`)
+// when null: a given body is taken as unposed (the body model's A-pose);
+// ConfigError when the model has no skeleton or the pose makes the body pass
+// through itself (posed_body.hpp).
+SceneBody scene_body(const SceneSimulations& simulations, const Eigen::MatrixX3d& given, const std::string& name,
+                     const Pose* pose = nullptr);
 // A body of the scene's body model: the scene's target request, changed by
 // the caller (a BMI, girths).
-SceneBody scene_body(const SceneSimulations& simulations, const BodyRequest& request, const std::string& name);
+SceneBody scene_body(const SceneSimulations& simulations, const BodyRequest& request, const std::string& name,
+                     const Pose* pose = nullptr);
 
 // Simulation::run on the prepared body; the result's garment and body are
 // moved back by moved_by (where the given body stood). Options'

@@ -1,0 +1,38 @@
+// A scene's pose and the path into it (scene_pose.hpp).
+#include <drape/errors.hpp>
+#include <drape/scene/scene_pose.hpp>
+
+#include <algorithm>
+
+namespace drape {
+
+Pose scene_pose(const Scene& scene, const BodyModel& model) {
+  Pose pose;
+  if (scene.pose.empty()) return pose;
+  if (!model.poseable())
+    throw ConfigError(scene.pose.begin()->second.where, "body `pose`: body model '" + scene.body_model +
+                                                            "' has no skeleton, so it cannot be posed (docs/poses.md says which models can)");
+  const std::vector<PoseAngle> space = model.pose_angles();
+  for (const auto& [name, value] : scene.pose)
+    add_pose_entry(pose, name, value.node, space, value.where.str() + ": body `pose`");
+  return pose;
+}
+
+PosePath pose_path_named(const std::string& name) {
+  if (name == "together") return PosePath::together;
+  if (name == "pose_first") return PosePath::pose_first;
+  if (name == "shape_first") return PosePath::shape_first;
+  throw ConfigError("solver pose_path: '" + name + "' is not one of together, pose_first, shape_first");
+}
+
+MorphFractions morph_fractions(PosePath path, double t) {
+  const double first = std::clamp(2 * t, 0.0, 1.0), second = std::clamp(2 * t - 1, 0.0, 1.0);
+  switch (path) {
+    case PosePath::pose_first: return {second, first};
+    case PosePath::shape_first: return {first, second};
+    case PosePath::together: break;
+  }
+  return {t, t};
+}
+
+}  // namespace drape
