@@ -9,11 +9,11 @@ N bodies drawn by `drape body --sample N --poses` (shape and pose independent, p
     each alone (scripts/count_self_crossings.py);
   - garment self-crossings: the same count on the garment alone.
 
-With --compare-apose every body is also draped in the A-pose (the same shape), for the cost ratio posed/A-pose
-(Newton iterations and seconds, one run, so the machine's load is shared alike).
+With --compare-apose K the first K bodies are also draped in the A-pose (the same shape), for the cost ratio
+posed/A-pose (Newton iterations and seconds, in one run, so the machine's load is shared alike).
 
     /usr/bin/python3 scripts/posed_drape_check.py N [--seed S] [--scene graphs/scenes/tshirt_coarse_posed.yaml]
-        [--compare-apose] [--bmi 10:65] [--drape build/bin/drape] [--out-dir DIR]
+        [--compare-apose K] [--bmi 10:65] [--drape build/bin/drape] [--out-dir DIR]
 
 Writes DIR/drapes.csv (one line per drape) and prints a summary; exit 1 when any drape is unsettled, inside, or
 crossing. docs/poses.md reports a run.
@@ -85,7 +85,7 @@ def main():
     ap.add_argument("--bmi", default="10:65")
     ap.add_argument("--scene", default=os.path.join(ROOT, "graphs", "scenes", "tshirt_coarse_posed.yaml"))
     ap.add_argument("--drape", default=os.path.join(ROOT, "build", "bin", "drape"))
-    ap.add_argument("--compare-apose", action="store_true")
+    ap.add_argument("--compare-apose", type=int, default=0, metavar="K")
     ap.add_argument("--out-dir", default=None)
     a = ap.parse_args()
     out = a.out_dir or tempfile.mkdtemp(prefix="posed-drapes-")
@@ -97,7 +97,7 @@ def main():
     rows, bad = [], 0
     for i, body in enumerate(bodies):
         pose = ",".join(f"{k[5:]}={float(v):.6f}" for k, v in body.items() if k.startswith("pose_") and k != "pose_redraws")
-        for kind in (("posed", "A-pose") if a.compare_apose else ("posed",)):
+        for kind in (("posed", "A-pose") if i < a.compare_apose else ("posed",)):
             stem = os.path.join(out, f"drape_{i:03d}_{kind}")
             r = simulate(a, stem, body, pose if kind == "posed" else "")
             r.update(index=i, kind=kind, bmi=float(body["requested_bmi"]), sex=body["sex"],

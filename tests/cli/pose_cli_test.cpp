@@ -88,3 +88,22 @@ TEST_CASE("drape body --sample --poses keeps the seed's shapes and stores the an
   for (std::size_t i = 1; i < 4; ++i) CHECK(first_fields(posed[i], 14) == first_fields(plain[i], 14));
   CHECK(read_mesh(dir / "plain" / "body_00001.obj").vertices != read_mesh(dir / "posed" / "body_00001.obj").vertices);
 }
+
+TEST_CASE("drape simulate refuses bad or impossible poses before simulating", "[cli][pose]") {
+  test::TempDir dir;
+  std::string out;
+  const std::string scene = (test::source_dir() / "graphs" / "scenes" / "tshirt_coarse.yaml").string();
+  const std::string obj = " --out " + (dir / "g.obj").string();
+  CHECK(test::run_drape("simulate " + scene + " --pose elbo_flexion=30" + obj, out) == 2);
+  CHECK(out.find("--pose: no joint angle 'elbo_flexion'; did you mean 'elbow_flexion'") != std::string::npos);
+  CHECK(test::run_drape("simulate " + scene + " --pose elbow_flexion=30 --pose-file p.yaml" + obj, out) == 2);
+  CHECK(out.find("--pose and --pose-file: give one") != std::string::npos);
+  CHECK(test::run_drape("simulate " + scene + " --bmi 40 --pose shoulder_abduction=0" + obj, out) == 2);
+  CHECK(out.find("left_upper_arm into spine_upper (") != std::string::npos);
+  // A scene's pose is refused at its line.
+  std::ofstream(dir / "posed.yaml") << "base: " << scene << "\nbody:\n  pose: {knee_flexion: 200}\n";
+  CHECK(test::run_drape("simulate " + (dir / "posed.yaml").string() + obj, out) == 2);
+  INFO(out);
+  CHECK(out.find("posed.yaml:3: body `pose`: left_knee_flexion = 200 is outside its range of motion") != std::string::npos);
+  CHECK(!std::filesystem::exists(dir / "g.obj"));
+}

@@ -1,5 +1,6 @@
 """drape.simulate against the drape program; each energy's gradient and Hessian against finite differences
 (NumPy here; the PyTorch gradcheck is in test_torch.py); the GIL is released while drape works."""
+import re
 import sys
 import threading
 
@@ -140,3 +141,33 @@ def test_simulate_refuses_a_body_in_centimetres_or_z_up(tiny_scene):
         drape.simulate(str(tiny_scene), body * 100)
     with pytest.raises(ValueError, match=r"longer along z"):
         drape.simulate(str(tiny_scene), body[:, [0, 2, 1]])
+
+
+def test_simulate_takes_a_pose_as_the_program(tiny_scene, tmp_path):
+    # The same pose by the program's --pose and Python's pose=: the same posed body, the same drape.
+    run_drape("simulate", tiny_scene, "--bmi", 30, "--pose", "shoulder_abduction=60,elbow_flexion=30",
+              "--out", tmp_path / "g.obj", "--body-out", tmp_path / "b.obj", expect=1)
+    expected, _ = read_obj(tmp_path / "g.obj")
+    body, _ = read_obj(tmp_path / "b.obj")
+    scene = drape.Scene(str(tiny_scene))
+    r = scene.simulate(scene.body(bmi=30), pose={"shoulder_abduction": 60, "elbow_flexion": 30})
+    np.testing.assert_allclose(r["body"], body, atol=2e-6)
+    np.testing.assert_allclose(r["garment"], expected, atol=2e-6)
+    assert r["pose"] == {"left_shoulder_abduction": 60, "right_shoulder_abduction": 60,
+                         "left_elbow_flexion": 30, "right_elbow_flexion": 30}
+    # The arms moved: the posed body is not the A-pose one.
+    assert np.abs(r["body"] - scene.body(bmi=30)).max() > 0.1
+    assert scene.simulate(scene.body(bmi=30), pose="")["pose"] == {}
+
+
+@pytest.mark.parametrize("pose, message", [
+    ({"sholder_abduction": 40}, "no joint angle 'sholder_abduction'; did you mean"),
+    ({"elbow_flexion": 170}, "left_elbow_flexion = 170 is outside its range of motion [0, 150]"),
+    ({"elbow_flexion": float("nan")}, "left_elbow_flexion is NaN"),
+    ({"elbow_flexion": "bent"}, "elbow_flexion wants a number of degrees"),
+    ("elbow_flexion=30,left_elbow_flexion=20", "left_elbow_flexion is set twice"),
+    ([30], "expected a dict {name: degrees} or a string"),
+])
+def test_a_bad_pose_is_refused_before_simulating(tiny_scene, pose, message):
+    with pytest.raises(ValueError, match=re.escape(message)):
+        drape.Scene(str(tiny_scene)).simulate(pose=pose)
