@@ -10,7 +10,8 @@ N bodies drawn by `drape body --sample N --poses` (shape and pose independent, p
   - garment self-crossings: the same count on the garment alone.
 
 With --compare-apose K the first K bodies are also draped in the A-pose (the same shape), for the cost ratio
-posed/A-pose (Newton iterations and seconds, in one run, so the machine's load is shared alike).
+posed/A-pose (Newton iterations and seconds, in one run, so the machine's load is shared alike), in the scene
+--apose-scene (default: the coarse A-pose scene the posed one derives from, tshirt_coarse_sized.yaml).
 
     /usr/bin/python3 scripts/posed_drape_check.py N [--seed S] [--scene graphs/scenes/tshirt_coarse_posed.yaml]
         [--compare-apose K] [--bmi 10:65] [--drape build/bin/drape] [--out-dir DIR]
@@ -40,8 +41,8 @@ from count_self_crossings import crossings  # noqa: E402
 GIRTHS = ("chest", "waist", "belly", "hips", "arms", "thighs")
 
 
-def simulate(a, stem, row, pose):
-    cmd = [a.drape, "simulate", a.scene, "--bmi", row["requested_bmi"], "--height", row["requested_height"], "--sex",
+def simulate(a, stem, row, pose, scene):
+    cmd = [a.drape, "simulate", scene, "--bmi", row["requested_bmi"], "--height", row["requested_height"], "--sex",
            row["sex"], "--threads", "1", "--out", stem + ".obj", "--body-out", stem + "-body.obj", "--pose", pose]
     for g in GIRTHS:
         if "shape_" + g in row:
@@ -86,6 +87,7 @@ def main():
     ap.add_argument("--scene", default=os.path.join(ROOT, "graphs", "scenes", "tshirt_coarse_posed.yaml"))
     ap.add_argument("--drape", default=os.path.join(ROOT, "build", "bin", "drape"))
     ap.add_argument("--compare-apose", type=int, default=0, metavar="K")
+    ap.add_argument("--apose-scene", default=os.path.join(ROOT, "graphs", "scenes", "tshirt_coarse_sized.yaml"))
     ap.add_argument("--out-dir", default=None)
     a = ap.parse_args()
     out = a.out_dir or tempfile.mkdtemp(prefix="posed-drapes-")
@@ -99,7 +101,7 @@ def main():
         pose = ",".join(f"{k[5:]}={float(v):.6f}" for k, v in body.items() if k.startswith("pose_") and k != "pose_redraws")
         for kind in (("posed", "A-pose") if i < a.compare_apose else ("posed",)):
             stem = os.path.join(out, f"drape_{i:03d}_{kind}")
-            r = simulate(a, stem, body, pose if kind == "posed" else "")
+            r = simulate(a, stem, body, pose, a.scene) if kind == "posed" else simulate(a, stem, body, "", a.apose_scene)
             r.update(index=i, kind=kind, bmi=float(body["requested_bmi"]), sex=body["sex"],
                      height=float(body["requested_height"]))
             if "refused" not in r:

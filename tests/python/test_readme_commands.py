@@ -29,6 +29,7 @@ NOT_RUN = {
     "hierarchy --mesh garment.obj": "needs garment.obj from simulate or predict, further down",
     "simulate graphs/scenes/tshirt.yaml": "a default-resolution drape: minutes (tests/cli simulates scenes)",
     "simulate graphs/scenes/tshirt_coarse_friction.yaml": "a BMI 55 drape: minutes (tests/cli simulates scenes)",
+    "simulate graphs/scenes/tshirt_coarse_posed.yaml": "a posed drape: half a minute (tests/physics drapes posed bodies)",
     "generate ": "2,000 drapes: hours (tests/cli generates small datasets)",
     "dataset merge": "needs shard0.h5 and shard1.h5 from generate --shard",
     "dataset info all.h5": "needs all.h5 from dataset merge",
