@@ -302,16 +302,8 @@ TEST_CASE("a pose file is read and checked like --pose", "[bodies][pose]") {
 }
 
 TEST_CASE("a body model without a skeleton refuses a pose naming itself", "[bodies][pose]") {
-  struct Rigid final : BodyModel {
-    Eigen::MatrixX3i f = Eigen::MatrixX3i::Zero(1, 3);
-    int num_vertices() const override { return 3; }
-    const Eigen::MatrixX3i& faces() const override { return f; }
-    std::vector<std::string> shape_names() const override { return {}; }
-    Eigen::VectorXd mean_shape() const override { return {}; }
-    Eigen::MatrixX3d vertices(const Eigen::VectorXd&) const override { return Eigen::MatrixX3d::Identity(3, 3); }
-    Eigen::VectorXd solve(const BodyRequest&) const override { return {}; }
-    std::pair<double, double> bmi_range() const override { return {10, 65}; }
-  } rigid;
+  const auto body = test::skeletonless_body();
+  const BodyModel& rigid = *body;
   Pose p;
   p.angles["left_elbow_flexion"] = 10;
   CHECK(test::message_of([&] { pose_body(rigid, "rigid", {}, p); }) ==

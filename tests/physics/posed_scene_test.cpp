@@ -72,16 +72,8 @@ TEST_CASE("a scene's bad pose is refused at its file and line", "[scene][pose]")
 }
 
 TEST_CASE("a model without a skeleton refuses a scene's pose at its line", "[scene][pose]") {
-  struct Rigid final : BodyModel {
-    Eigen::MatrixX3i f = Eigen::MatrixX3i::Zero(1, 3);
-    int num_vertices() const override { return 3; }
-    const Eigen::MatrixX3i& faces() const override { return f; }
-    std::vector<std::string> shape_names() const override { return {}; }
-    Eigen::VectorXd mean_shape() const override { return {}; }
-    Eigen::MatrixX3d vertices(const Eigen::VectorXd&) const override { return Eigen::MatrixX3d::Identity(3, 3); }
-    Eigen::VectorXd solve(const BodyRequest&) const override { return {}; }
-    std::pair<double, double> bmi_range() const override { return {10, 65}; }
-  } rigid;
+  const auto body = skeletonless_body();
+  const BodyModel& rigid = *body;
   Scene s = parse_scene(kPosed, "posed.yaml");
   s.body_model = "rigid";
   CHECK(message_of([&] { scene_pose(s, rigid); }) ==

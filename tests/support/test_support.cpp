@@ -25,6 +25,20 @@ std::unique_ptr<BodyModel> parametric_body() {
   return plugins().create_body("parametric", Params(d.params, {}, "body parametric"));
 }
 
+std::unique_ptr<BodyModel> skeletonless_body() {
+  struct Rigid final : BodyModel {
+    Eigen::MatrixX3i f = Eigen::MatrixX3i::Zero(1, 3);
+    int num_vertices() const override { return 3; }
+    const Eigen::MatrixX3i& faces() const override { return f; }
+    std::vector<std::string> shape_names() const override { return {}; }
+    Eigen::VectorXd mean_shape() const override { return {}; }
+    Eigen::MatrixX3d vertices(const Eigen::VectorXd&) const override { return Eigen::MatrixX3d::Identity(3, 3); }
+    Eigen::VectorXd solve(const BodyRequest&) const override { return {}; }
+    std::pair<double, double> bmi_range() const override { return {10, 65}; }
+  };
+  return std::make_unique<Rigid>();
+}
+
 TempDir::TempDir() {
   std::random_device rd;
   path_ = fs::temp_directory_path() / ("drape-test-" + std::to_string(rd()) + std::to_string(rd()));

@@ -16,6 +16,9 @@ namespace drape::test {
 const Registry& plugins();
 // The parametric body model with its default parameters.
 std::unique_ptr<BodyModel> parametric_body();
+// A body model without a skeleton (one triangle, no shape parameters): what a
+// pose must be refused by.
+std::unique_ptr<BodyModel> skeletonless_body();
 
 // A fresh empty directory under the system temp dir, removed at exit of the scope.
 class TempDir {
