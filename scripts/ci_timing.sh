@@ -81,7 +81,7 @@ printf '%-10s %7.0f s wall               (clone to passing tests; load now %s)\n
 # The slowest tests (ctest's own log of this run).
 echo "slowest tests (s, under ctest -j2):"
 awk '/^[0-9]+\/[0-9]+ Test: /{ sub(/^[0-9]+\/[0-9]+ Test: /, ""); name = $0 }
-     /^"?Test time = /{ printf "%8.1f  %s\n", $(NF - 1), name }' build/Testing/Temporary/LastTest.log | sort -rn | head -n 15
+     /^"?Test time = /{ printf "%8.1f  %s\n", $(NF - 1), name }' build/Testing/Temporary/LastTest.log | sort -rn | sed -n 1,15p  # sed reads to the end: head would leave sort a SIGPIPE (pipefail) past 64 KB
 if [[ $COSTS == 1 ]]; then
   echo "tests of 1.5 s or more (tests/test_costs.tsv):"
   awk '/^[0-9]+\/[0-9]+ Test: /{ sub(/^[0-9]+\/[0-9]+ Test: /, ""); name = $0 }

@@ -1,4 +1,6 @@
 """drape.Dataset against the same file read with h5py (the layout of docs/formats.md)."""
+import shutil
+
 import h5py
 import numpy as np
 import pytest
@@ -60,10 +62,11 @@ def test_bad_indices_and_files(dataset, tmp_path):
         drape.Dataset(str(tmp_path / "missing.h5"))
 
 
-def test_dataset_potential_refuses_a_nan_garment_naming_the_sample(tiny_scene, tmp_path):
+def test_dataset_potential_refuses_a_nan_garment_naming_the_sample(dataset, module_tiny_scene, tmp_path):
     # A NaN in a file whose checksum was zeroed (an h5py edit) crashed `dataset potential` (issue 58).
+    # A copy of the module's dataset: any finished dataset of the scene will do (it used to generate its own).
     data = tmp_path / "d.h5"
-    run_drape("generate", tiny_scene, "--count", 2, "--bmi", "20:30", "--seed", 1, "--threads", 1, "--out", data)
+    shutil.copyfile(dataset, data)
     with h5py.File(data, "r+") as f:
         g = f["garments/vertices"]
         sample = g[1]
@@ -72,24 +75,23 @@ def test_dataset_potential_refuses_a_nan_garment_naming_the_sample(tiny_scene, t
     raw = bytearray(data.read_bytes())
     raw[:512] = bytes(512)  # unsealed, as h5py leaves a file it wrote
     data.write_bytes(bytes(raw))
-    _, err = run_drape("dataset", "potential", data, "--scene", tiny_scene, "--split", "all", expect=2)
+    _, err = run_drape("dataset", "potential", data, "--scene", module_tiny_scene, "--split", "all", expect=2)
     assert "sample 1 has a non-finite garment coordinate" in err and len(err.strip().splitlines()) == 1
 
 
-def test_a_dataset_is_indexed_like_a_sequence(tiny_scene, tmp_path):
-    data = tmp_path / "d.h5"
-    run_drape("generate", tiny_scene, "--count", 3, "--bmi", "20:30", "--seed", 2, "--threads", 1, "--out", data)
-    d = drape.Dataset(str(data))
-    assert len(d) == 3
+def test_a_dataset_is_indexed_like_a_sequence(dataset):
+    # The module's 4-sample dataset (this test used to generate a 3-sample one of its own: the same checks).
+    d = drape.Dataset(str(dataset))
+    assert len(d) == 4
     batch = d.read(d.indices())
-    for k in range(3):
+    for k in range(4):
         s = d[k]
         np.testing.assert_array_equal(s["garment"], batch["garment"][k])
         np.testing.assert_array_equal(s["body"], batch["body"][k])
         assert s["index"] == k and s["split"] == batch["split"][k]
-    np.testing.assert_array_equal(d[-1]["garment"], batch["garment"][2])
-    assert [s["index"] for s in d[1:]] == [1, 2]
+    np.testing.assert_array_equal(d[-1]["garment"], batch["garment"][3])
+    assert [s["index"] for s in d[1:]] == [1, 2, 3]
     with pytest.raises(IndexError):
-        d[3]
+        d[4]
     with pytest.raises(TypeError):
         d["0"]

@@ -20,7 +20,7 @@ using Model = Material::Model;
 
 std::string owner_of(const MaterialPreset& p) { return materials_detail::owner_of(p.name); }
 
-const char* model_name(Model m) { return m == Model::Arcsim ? "arcsim" : "linear"; }
+const char* table_model_name(Model m) { return m == Model::Arcsim ? "arcsim" : "linear"; }
 
 // Where the preset's fields are checked again after resolution: the field
 // itself when the preset sets it, else the preset.
@@ -149,8 +149,8 @@ Material MaterialTable::resolve_preset(const MaterialPreset& p, std::vector<std:
   chain.pop_back();
   // The preset's fields are of one model; a base of the other has no such fields.
   if (p.model && *p.model != m.model)
-    throw ConfigError(where_of(p, "model"), owner + " is model " + model_name(*p.model) + " but its base '" + p.base +
-                                                "' is model " + model_name(m.model) +
+    throw ConfigError(where_of(p, "model"), owner + " is model " + table_model_name(*p.model) + " but its base '" + p.base +
+                                                "' is model " + table_model_name(m.model) +
                                                 "; a preset keeps its base's model");
   m.density *= p.density_multiplier;
   m.thickness *= p.thickness_multiplier;
