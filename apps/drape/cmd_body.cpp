@@ -8,6 +8,7 @@
 #include <drape/bodies/body_space.hpp>
 #include <drape/bodies/pose.hpp>
 #include <drape/bodies/posed_body.hpp>
+#include <drape/bodies/smpl_theta.hpp>
 #include <drape/scene/body_overlap.hpp>
 #include <drape/geometry/self_intersection.hpp>
 #include <drape/geometry/index_locality.hpp>
@@ -72,18 +73,29 @@ struct LoadedBody {
   double load_s;
 };
 
-// Any pose option on a model without a skeleton: refused, naming the model.
+// Any pose option on a model without a skeleton: refused, naming the model
+// (and the model's own reason when it has one: an SMPL file without its pose
+// datasets).
 void require_poseable(const po::variables_map& vm, const LoadedBody& loaded) {
-  if ((vm.count("pose") || vm.count("pose-file") || vm.count("poses")) && !loaded.body->poseable())
-    throw ConfigError("body " + loaded.model + " has no skeleton, so it cannot be posed (--pose, --pose-file, --poses); "
-                      "docs/poses.md says which models can");
+  if (!(vm.count("pose") || vm.count("pose-file") || vm.count("poses") || vm.count("smpl-theta")) || loaded.body->poseable())
+    return;
+  const std::string reason = unposeable_reason(*loaded.body);
+  if (!reason.empty()) throw ConfigError("body " + loaded.model + ": " + reason);
+  throw ConfigError("body " + loaded.model + " has no skeleton, so it cannot be posed (--pose, --pose-file, --poses, "
+                    "--smpl-theta); docs/poses.md says which models can");
 }
 
-// --pose name=degrees,... or --pose-file FILE (not both); empty without either.
+// --pose name=degrees,..., --pose-file FILE or --smpl-theta FILE (one of
+// them); empty without any.
 Pose requested_pose(const po::variables_map& vm, const BodyModel& body) {
-  if (vm.count("pose") && vm.count("pose-file")) throw UsageError("--pose and --pose-file: give one");
+  if (vm.count("pose") + vm.count("pose-file") + vm.count("smpl-theta") > 1)
+    throw UsageError("--pose, --pose-file and --smpl-theta: give one");
   if (vm.count("pose")) return parse_pose(vm["pose"].as<std::string>(), body.pose_angles(), "--pose");
   if (vm.count("pose-file")) return read_pose_file(vm["pose-file"].as<std::string>(), body.pose_angles());
+  if (vm.count("smpl-theta")) {
+    const std::string file = vm["smpl-theta"].as<std::string>();
+    return pose_from_theta(read_theta_file(file), body, "--smpl-theta " + file);
+  }
   return {};
 }
 
@@ -256,6 +268,8 @@ int run(const std::vector<std::string>& args) {
       "pose", po::value<std::string>(),
       "joint angles in degrees, name=value,... (shoulder_abduction=90,left_elbow_flexion=30; docs/poses.md)")(
       "pose-file", po::value<std::string>(), "joint angles from a YAML map of name: degrees")(
+      "smpl-theta", po::value<std::string>(),
+      "with --model smpl: SMPL's pose theta, 72 (root first, which must be 0) or 69 numbers in radians, text or .npy (docs/smpl.md)")(
       "poses", "with --sample: also draw a pose for each body, independently of its shape (docs/poses.md)")(
       "svg", po::value<std::string>(), "with --sample: also draw the first 16 bodies side by side (.svg, or .html: a 3D viewer)")(
       "param", po::value<std::vector<std::string>>()->composing(),
@@ -265,7 +279,8 @@ int run(const std::vector<std::string>& args) {
   const std::string usage =
       "drape body --bmi 38 --height 1.80 [--sex 1] [--out body.obj]\n"
       "       drape body --sample N --bmi 10:65 [--height 1.5:2.0] [--girths 1] [--seed S] [--poses] --out-dir DIR\n"
-      "       drape body --bmi 30 --pose shoulder_abduction=90,elbow_flexion=45 --out posed.obj";
+      "       drape body --bmi 30 --pose shoulder_abduction=90,elbow_flexion=45 --out posed.obj\n"
+      "       drape body --model smpl --param file=smpl.h5 --bmi 30 --smpl-theta theta.txt --out posed.obj";
   if (!parse(usage, args, opts, {}, vm)) return 0;
   check_mesh_outputs(vm, {"out"});
 
@@ -281,8 +296,8 @@ int run(const std::vector<std::string>& args) {
   loaded.load_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   const Range bmi = parse_range("bmi", vm["bmi"].as<std::string>());
   require_poseable(vm, loaded);
-  if (vm.count("sample") && (vm.count("pose") || vm.count("pose-file")))
-    throw UsageError("--pose and --pose-file pose one body; --sample draws poses with --poses");
+  if (vm.count("sample") && (vm.count("pose") || vm.count("pose-file") || vm.count("smpl-theta")))
+    throw UsageError("--pose, --pose-file and --smpl-theta pose one body; --sample draws poses with --poses");
   if (vm.count("poses") && !vm.count("sample")) throw UsageError("--poses needs --sample");
   return vm.count("sample") ? sample_many(vm, loaded, bmi) : solve_one(vm, loaded, bmi);
 }

@@ -25,6 +25,7 @@ NOT_RUN = {
     "plugins [": "a usage line: [--kind K] [--brief] are placeholders",
     "graph check FILE": "a usage line: FILE is a placeholder",
     "assets [": "a usage line: its options are in brackets",
+    "body --model smpl": "needs smpl.h5, a licensed SMPL model the user converts (tests/smpl poses a synthetic one by a theta file)",
     "spectral --mesh garment.obj": "needs shape.obj, a drape of the user's",
     "hierarchy --mesh garment.obj": "needs garment.obj from simulate or predict, further down",
     "simulate graphs/scenes/tshirt.yaml": "a default-resolution drape: minutes (tests/cli simulates scenes)",

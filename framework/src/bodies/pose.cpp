@@ -4,6 +4,7 @@
 #include <drape/errors.hpp>
 
 #include "../yaml_util.hpp"
+#include "no_skeleton.hpp"
 
 #include <yaml-cpp/yaml.h>
 
@@ -209,11 +210,11 @@ Eigen::MatrixXd BodyModel::skinning_weights() const {
 Pose BodyModel::rest_pose(const Eigen::VectorXd&) const { return {}; }
 Eigen::MatrixX3d BodyModel::posed(const Eigen::VectorXd& shape, const Pose& pose) const {
   if (pose.empty()) return vertices(shape);
-  throw ConfigError("this body model has no skeleton, so it cannot be posed (it makes unposed bodies only; docs/poses.md)");
+  throw ConfigError(kNoSkeletonRefusal);
 }
 Eigen::MatrixX3d BodyModel::posed_vertices(const Eigen::MatrixX3d& unposed, const Pose& pose, double) const {
   if (pose.empty()) return unposed;
-  throw ConfigError("this body model has no skeleton, so it cannot be posed (it makes unposed bodies only; docs/poses.md)");
+  throw ConfigError(kNoSkeletonRefusal);
 }
 
 }  // namespace drape

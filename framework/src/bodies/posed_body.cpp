@@ -3,6 +3,8 @@
 #include <drape/errors.hpp>
 #include <drape/geometry/self_intersection.hpp>
 
+#include "no_skeleton.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <map>
@@ -105,6 +107,18 @@ std::string describe_pose_crossings(const BodyModel& model, const Eigen::MatrixX
   return s.str();
 }
 
+std::string unposeable_reason(const BodyModel& model) {
+  if (model.poseable()) return "";
+  Pose probe;
+  probe.angles["any"] = 0;
+  try {
+    model.posed(model.mean_shape(), probe);
+  } catch (const ConfigError& e) {
+    return e.what() == std::string(kNoSkeletonRefusal) ? "" : e.what();
+  }
+  return "";
+}
+
 Eigen::MatrixX3d pose_body(const BodyModel& model, const std::string& model_name, const Eigen::VectorXd& shape,
                            const Pose& pose) {
   if (!model.poseable() && pose.empty()) return model.vertices(shape);
@@ -115,7 +129,9 @@ Eigen::MatrixX3d pose_vertices(const BodyModel& model, const std::string& model_
                                const Pose& pose) {
   if (!model.poseable()) {
     if (pose.empty()) return unposed;
-    throw ConfigError("body " + model_name + " has no skeleton, so it cannot be posed (docs/poses.md says which models can)");
+    const std::string reason = unposeable_reason(model);
+    throw ConfigError("body " + model_name +
+                      (reason.empty() ? " has no skeleton, so it cannot be posed (docs/poses.md says which models can)" : ": " + reason));
   }
   check_pose(pose, model.pose_angles(), "body " + model_name + " pose");
   if (pose.empty()) return unposed;

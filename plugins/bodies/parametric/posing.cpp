@@ -1,9 +1,12 @@
-// Joint angles to bone transforms and linear blend skinning (posing.hpp).
+// Joint angles to bone rotations (posing.hpp); the framework composes and
+// blends them (drape/bodies/skinning.hpp).
 //
 // Axes: x to the body's left, y up, z forward. Each joint's rotation is
 // written in the rest frame and applied about the joint's rest centre, after
 // its parent's transform: G_child = G_parent * T(J) * R * T(-J).
 #include "posing.hpp"
+
+#include <drape/bodies/skinning.hpp>
 
 #include <Eigen/Geometry>
 
@@ -20,15 +23,6 @@ M3 turn(double degrees, const V3& axis) {
   if (degrees == 0) return M3::Identity();
   return Eigen::AngleAxisd(rad(degrees), axis.normalized()).toRotationMatrix();
 }
-
-struct Rigid {
-  M3 r = M3::Identity();
-  V3 t = V3::Zero();
-  bool identity() const { return r == M3::Identity() && t == V3::Zero(); }
-};
-
-Rigid about(const M3& r, const V3& centre) { return {r, centre - r * centre}; }
-Rigid compose(const Rigid& a, const Rigid& b) { return {a.r * b.r, a.r * b.t + a.t}; }
 
 V3 row(const Eigen::MatrixX3d& m, int i) { return m.row(i).transpose(); }
 
@@ -86,26 +80,11 @@ Eigen::MatrixX3d skin(const Skeleton& skeleton, const Eigen::MatrixX3d& vertices
     local[static_cast<std::size_t>(h + 1)] = turn(angle(p + "knee_flexion"), V3::UnitX());
   }
 
-  std::vector<Rigid> global(kNumBones);
-  for (int b = 0; b < kNumBones; ++b) {
-    const Rigid own = about(local[static_cast<std::size_t>(b)], row(joints, b));
-    const int parent = skeleton.joints[static_cast<std::size_t>(b)].parent;
-    global[static_cast<std::size_t>(b)] = parent < 0 ? own : compose(global[static_cast<std::size_t>(parent)], own);
-  }
-
-  // v' = v + sum_b w_b ((R_b - I) v + t_b): bones at rest add exactly zero.
-  Eigen::MatrixX3d out = vertices;
-  for (int b = 0; b < kNumBones; ++b) {
-    const Rigid& g = global[static_cast<std::size_t>(b)];
-    if (g.identity()) continue;
-    const M3 d = g.r - M3::Identity();
-    for (Eigen::Index v = 0; v < vertices.rows(); ++v) {
-      const double w = skeleton.weights(v, b);
-      if (w == 0) continue;
-      out.row(v) += w * (d * vertices.row(v).transpose() + g.t).transpose();
-    }
-  }
-  return out;
+  // Composed down the skeleton and blended by the framework's skinning: a
+  // bone at rest adds exactly zero, so the rest pose gives `vertices` back.
+  std::vector<int> parents;
+  for (const BodyModel::Joint& j : skeleton.joints) parents.push_back(j.parent);
+  return skinning::blend(vertices, skeleton.weights, skinning::joint_transforms(parents, local, joints));
 }
 
 }  // namespace drape::parametric

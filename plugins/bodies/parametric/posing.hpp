@@ -1,7 +1,8 @@
 #pragma once
-// Linear blend skinning of the parametric body: joint angles -> one rigid
-// transform per bone (composed down the skeleton, each joint turning about
-// its own centre in the rest frame) -> every vertex moved by its bones'
+// Posing the parametric body: its joint angles -> one rotation per bone in
+// the rest frame; the framework's linear blend skinning
+// (drape/bodies/skinning.hpp) composes them down the skeleton, each joint
+// turning about its own centre, and moves every vertex by its bones'
 // transforms blended by its skinning weights.
 #include "skeleton.hpp"
 

@@ -11,7 +11,8 @@ drape::PluginList plugins() {
   PluginDescriptor d;
   d.kind = "body";
   d.name = "smpl";
-  d.doc = "SMPL body (licence required) from an HDF5 conversion: v_template, shapedirs, f; shape only, BMI along the volume direction.";
+  d.doc = "SMPL body (licence required) from an HDF5 conversion: v_template, shapedirs, f, and for poses by SMPL's theta "
+          "J_regressor, weights, kintree_table, posedirs; BMI along the volume direction.";
   d.params = {{.name = "file", .type = ParamType::String, .default_value = "smpl_neutral.h5",
                .doc = "the converted model (docs/smpl.md)"},
               {.name = "betas", .type = ParamType::Int, .default_value = "10",

@@ -5,6 +5,7 @@
 #include <drape/geometry/volume.hpp>
 #include <drape/io/h5.hpp>
 
+#include <cmath>
 #include <sstream>
 
 namespace drape::smpl {
@@ -30,6 +31,8 @@ SmplData read_smpl_h5(const std::filesystem::path& file) {
       throw ConfigError(file.string() + ": /f refers to vertex " + std::to_string(faces[i]) + " of " + std::to_string(n));
     d.faces(static_cast<Eigen::Index>(i / 3), static_cast<Eigen::Index>(i % 3)) = static_cast<int>(faces[i]);
   }
+  d.rig = read_smpl_rig(f, n);
+  d.file = file;
   return d;
 }
 
@@ -55,6 +58,64 @@ SmplBody::SmplBody(SmplData data, int num_betas) : data_(std::move(data)) {
   }
   if (direction_.norm() == 0.0) throw ConfigError("the SMPL shape blend shapes do not change the volume");
   direction_.normalize();
+  if (data_.rig) {
+    const Eigen::Index n = num_vertices();
+    Eigen::MatrixXd basis = Eigen::MatrixXd::Zero(3 * n, betas_ + 4);
+    for (Eigen::Index v = 0; v < n; ++v)
+      for (int axis = 0; axis < 3; ++axis) {
+        basis(3 * v + axis, 0) = data_.v_template(v, axis);
+        basis(3 * v + axis, betas_ + 1 + axis) = 1.0;
+      }
+    basis.middleCols(1, betas_) = data_.shapedirs.leftCols(betas_);
+    scale_fit_.emplace(basis);
+  }
+}
+
+const SmplRig& SmplBody::rig() const {
+  if (!data_.rig)
+    throw ConfigError("the SMPL file " + data_.file.string() +
+                      " has no /J_regressor, /weights, /kintree_table or /posedirs: it makes unposed bodies only; "
+                      "docs/smpl.md shows how to convert them");
+  return *data_.rig;
+}
+
+std::vector<PoseAngle> SmplBody::pose_angles() const { return data_.rig ? smpl_pose_angles(*data_.rig) : std::vector<PoseAngle>{}; }
+std::vector<BodyModel::Joint> SmplBody::joints() const { return data_.rig ? smpl_joints(*data_.rig) : std::vector<Joint>{}; }
+Eigen::MatrixX3d SmplBody::joint_positions(const Eigen::VectorXd& shape) const { return rig().j_regressor * vertices(shape); }
+Eigen::MatrixXd SmplBody::skinning_weights() const { return rig().weights; }
+
+Pose SmplBody::rest_pose(const Eigen::VectorXd&) const {
+  Pose rest;
+  for (const PoseAngle& a : pose_angles()) rest.angles[a.name] = 0;
+  return rest;
+}
+
+Eigen::MatrixX3d SmplBody::posed(const Eigen::VectorXd& shape, const Pose& pose) const {
+  if (pose.empty()) return vertices(shape);
+  rig();  // the file's reason first, before the pose's names are checked against no angles
+  check_pose(pose, pose_angles(), "body smpl pose");
+  const Eigen::MatrixX3d unposed = vertices(shape);  // checks the shape's size before its scale is read
+  return pose_shaped(rig(), unposed, shape[betas_], axis_angles(rig(), pose, 1.0));
+}
+
+Eigen::MatrixX3d SmplBody::posed_vertices(const Eigen::MatrixX3d& unposed, const Pose& pose, double fraction) const {
+  if (pose.empty()) return unposed;
+  rig();
+  check_pose(pose, pose_angles(), "body smpl pose");
+  if (unposed.rows() != num_vertices())
+    throw ConfigError("body smpl: a body to pose has " + std::to_string(unposed.rows()) + " vertices, the model " +
+                      std::to_string(num_vertices()));
+  if (!(fraction >= 0 && fraction <= 1)) throw ConfigError("body smpl: a pose fraction must lie in [0, 1]");
+  if (fraction == 0) return unposed;
+  return pose_shaped(rig(), unposed, scale_of(unposed), axis_angles(rig(), pose, fraction));
+}
+
+double SmplBody::scale_of(const Eigen::MatrixX3d& unposed) const {
+  Eigen::VectorXd flat(3 * unposed.rows());
+  for (Eigen::Index v = 0; v < unposed.rows(); ++v) flat.segment<3>(3 * v) = unposed.row(v).transpose();
+  const double s = scale_fit_->solve(flat)[0];
+  if (!(s > 0 && std::isfinite(s))) throw ConfigError("body smpl: the body to pose is no scaled SMPL body (scale " + std::to_string(s) + ")");
+  return s;
 }
 
 std::vector<std::string> SmplBody::shape_names() const {

@@ -20,6 +20,12 @@ std::string describe_pose_crossings(const BodyModel& model, const Eigen::VectorX
 std::string describe_pose_crossings(const BodyModel& model, const Eigen::MatrixX3d& unposed, const Pose& pose,
                                     const Eigen::MatrixX3d& posed);
 
+// Why `model` cannot be posed, when it says more than that it has no
+// skeleton: its own refusal of a pose (BodyModel::posed), such as an SMPL
+// file without its pose datasets naming the file. "" for a model that keeps
+// the default refusal, or is poseable.
+std::string unposeable_reason(const BodyModel& model);
+
 // model.posed(shape, pose) after check_pose; ConfigError naming `model_name`
 // when the model is not poseable or the posed body passes through itself.
 Eigen::MatrixX3d pose_body(const BodyModel& model, const std::string& model_name, const Eigen::VectorXd& shape,
