@@ -7,6 +7,7 @@
 #endif
 
 #include <drape/bodies/pose.hpp>
+#include <drape/bodies/posed_body.hpp>
 #include <drape/io/shipped_files.hpp>
 #include <drape/io/mesh_io.hpp>
 #include <drape/progress.hpp>
@@ -70,9 +71,13 @@ std::optional<Pose> requested_pose(const po::variables_map& vm, const Simulation
   if (vm.count("pose") && vm.count("pose-file")) throw UsageError("--pose and --pose-file: give one");
   if (!vm.count("pose") && !vm.count("pose-file")) return std::nullopt;
   const BodyModel& model = design.body_model();
-  if (!model.poseable())
-    throw ConfigError("body " + design.scene().body_model + " has no skeleton, so it cannot be posed (--pose, --pose-file); "
-                      "docs/poses.md says which models can");
+  if (!model.poseable()) {
+    const std::string reason = unposeable_reason(model);  // an SMPL file without its pose datasets says so
+    throw ConfigError("body " + design.scene().body_model +
+                      (reason.empty() ? " has no skeleton, so it cannot be posed (--pose, --pose-file); docs/poses.md says "
+                                        "which models can"
+                                      : " cannot be posed (--pose, --pose-file): " + reason));
+  }
   if (vm.count("pose")) return parse_pose(vm["pose"].as<std::string>(), model.pose_angles(), "--pose");
   return read_pose_file(vm["pose-file"].as<std::string>(), model.pose_angles());
 }

@@ -120,7 +120,7 @@ def main():
     with open(a.out, "w") as f:
         f.write(f"""<!doctype html><meta charset=utf-8><title>{html.escape(title)}</title>
 <style>body{{font:13px sans-serif;background:#fff}} td,th{{vertical-align:top;padding:4px;text-align:left}}
-th{{width:120px}} td.refused{{color:#a00;width:{2 * a.size}px}}</style>
+th{{width:120px}} td{{width:{2 * a.size}px}} td.refused{{color:#a00}}</style>
 <h3>{html.escape(title)}</h3><table>{''.join(rows)}</table>""")
     print("wrote", a.out)
     if a.csv:
@@ -131,7 +131,7 @@ th{{width:120px}} td.refused{{color:#a00;width:{2 * a.size}px}}</style>
                 f.write(",".join('"' + str(r.get(k, "")).replace('"', "'") + '"' for k in keys) + "\n")
         print("wrote", a.csv)
     if a.png:
-        width = 140 + len(bmis) * (2 * a.size + 20)
+        width = 360 + len(bmis) * (2 * a.size + 30)
         height = 80 + len(poses) * (a.size * 1.3 + 60)
         subprocess.run(["chromium", "--headless", "--no-sandbox", "--disable-gpu", f"--screenshot={os.path.abspath(a.png)}",
                         f"--window-size={int(width)},{int(height)}", "file://" + os.path.abspath(a.out)],

@@ -1,4 +1,5 @@
 // A scene's pose and the path into it (scene_pose.hpp).
+#include <drape/bodies/posed_body.hpp>
 #include <drape/errors.hpp>
 #include <drape/scene/scene_pose.hpp>
 
@@ -9,9 +10,13 @@ namespace drape {
 Pose scene_pose(const Scene& scene, const BodyModel& model) {
   Pose pose;
   if (scene.pose.empty()) return pose;
-  if (!model.poseable())
-    throw ConfigError(scene.pose.begin()->second.where, "body `pose`: body model '" + scene.body_model +
-                                                            "' has no skeleton, so it cannot be posed (docs/poses.md says which models can)");
+  if (!model.poseable()) {
+    const std::string reason = unposeable_reason(model);  // an SMPL file without its pose datasets says so
+    throw ConfigError(scene.pose.begin()->second.where,
+                      "body `pose`: body model '" + scene.body_model + "' " +
+                          (reason.empty() ? "has no skeleton, so it cannot be posed (docs/poses.md says which models can)"
+                                          : "cannot be posed: " + reason));
+  }
   const std::vector<PoseAngle> space = model.pose_angles();
   for (const auto& [name, value] : scene.pose)
     add_pose_entry(pose, name, value.node, space, value.where.str() + ": body `pose`");
