@@ -5,6 +5,7 @@
 
 #include <drape/io/shipped_files.hpp>
 #include <drape/bodies/pose.hpp>
+#include <drape/bodies/posed_body.hpp>
 #include <drape/errors.hpp>
 #include <drape/geometry/closest_point.hpp>
 #include <drape/scene/scene.hpp>
@@ -137,7 +138,8 @@ SceneBody scene_body_arg(const PyScene& s, const py::handle& body, const py::han
 }
 
 Eigen::MatrixX3d body_or_target(const Simulation& sim, const py::handle& body) {
-  if (body.is_none()) return sim.body_vertices(sim.target_shape());
+  if (body.is_none())  // the scene's own body, in the scene's pose
+    return pose_vertices(sim.body_model(), sim.scene().body_model, sim.body_vertices(sim.target_shape()), sim.target_pose());
   return vertices_arg(body, "body_vertices", static_cast<int>(sim.mean_body().rows()));
 }
 

@@ -174,6 +174,12 @@ std::vector<std::string> generated_statistics(const Scene& scene) {
 GenerateSummary generate_dataset(const Registry& registry, const Scene& scene, const GenerateRequest& request,
                                  const std::string& out, const GenerateObserver& observer) {
   check_request(request);
+  // Samples store the body's shape, not a pose (issue 56 adds it): a posed
+  // scene would be stored as if its drapes were of A-pose bodies.
+  if (!scene.pose.empty())
+    throw ConfigError(scene.pose.begin()->second.where,
+                      "body `pose`: drape generate drapes A-pose bodies only (a dataset stores each body's shape, not a "
+                      "pose, yet); generate from the scene's A-pose base, or drape posed bodies with drape simulate --pose");
   // Before anything looks at the output (output_lock.hpp).
   const OutputLock lock(out, "drape generate");
   // size: auto -- each body wears the size its girth needs (garment_size.hpp,
