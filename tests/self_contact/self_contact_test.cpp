@@ -1,7 +1,9 @@
 // The self contact (plugins/energies/self_contact): its derivatives against
 // finite differences on two layers of one garment within d_hat, its
 // continuous collision bound, the pairs it leaves out (shared vertices,
-// slivers at rest), a near-degenerate triangle, and a sheet falling onto
+// slivers at rest), hand-made trajectories (parallel edges passing through
+// each other edge on edge, a grazing pass beside an edge), a
+// near-degenerate triangle, and a sheet falling onto
 // another part of the same garment, which passes through it without the
 // energy and never with it (checked with geometry::self_intersections, which
 // shares no code with the contact).
@@ -293,4 +295,50 @@ TEST_CASE("self_contact keeps a falling layer on top", "[self_contact][solver]")
   const double upper_bottom = held_x.bottomRows(81).col(2).minCoeff();
   CHECK(upper_bottom > lower_top);
   CHECK(upper_bottom < lower_top + 0.003);  // landed, not hovering
+}
+
+TEST_CASE("self_contact max_step on hand-made trajectories: parallel edges and a grazing pass", "[self_contact]") {
+  // Two 1 cm squares of one garment (one quad each), the upper one 2 mm above
+  // and moved 4 mm down in one step: halfway down it is level with the lower.
+  auto sheets = [](double x_offset) {
+    auto g = empty_garment();
+    add_sheet(*g, 2, 0.01, 0.0, {0, 0, 0});
+    add_sheet(*g, 2, 0.01, 0.0, {x_offset, 0, 0.002});
+    return g;
+  };
+  auto down = [](const Garment& g) {
+    Eigen::MatrixX3d dx = Eigen::MatrixX3d::Zero(g.mesh.vertices.rows(), 3);
+    dx.bottomRows(4).col(2).setConstant(-0.004);
+    return dx;
+  };
+  // Parallel edges: the upper square's left edge right above the lower's
+  // right edge, so the two edges pass through each other edge on edge (no
+  // vertex ever over the other square's inside). The step is cut before
+  // they meet, where the contact is finite.
+  {
+    const auto g = sheets(0.01);
+    const auto e = self_contact_on(*g);
+    const Eigen::MatrixX3d& x = g->mesh.vertices;
+    const Eigen::MatrixX3d dx = down(*g);
+    const double alpha = e->max_step(x, dx);
+    INFO("parallel: alpha " << alpha);
+    CHECK(alpha > 0);
+    CHECK(alpha < 0.5);  // before the edges are level
+    CHECK(std::isfinite(e->value(x + alpha * dx)));
+  }
+  // A grazing pass: the upper square 0.3 mm beside the lower in plan, moved
+  // down past its edge. The edges come no nearer than 0.3 mm: the step may
+  // be shortened (the barrier's reach is 1 mm), but not stopped, and where it
+  // ends the contact is finite.
+  {
+    const auto g = sheets(0.0103);
+    const auto e = self_contact_on(*g);
+    const Eigen::MatrixX3d& x = g->mesh.vertices;
+    const Eigen::MatrixX3d dx = down(*g);
+    const double alpha = e->max_step(x, dx);
+    INFO("grazing: alpha " << alpha);
+    CHECK(alpha > 0.5);  // past level with the lower square
+    CHECK(std::isfinite(e->value(x + alpha * dx)));
+    CHECK(geometry::self_intersections(x + alpha * dx, g->mesh.faces, 1).empty());
+  }
 }
