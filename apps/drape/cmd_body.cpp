@@ -1,6 +1,7 @@
 // `drape body`: solve a body model for a BMI and height and write its mesh, or
 // draw many bodies uniformly in BMI (as the seed's data set does).
 #include "command.hpp"
+#include "pose_options.hpp"
 #include "sample_ranges.hpp"
 
 #include <drape/bodies/body.hpp>
@@ -85,20 +86,6 @@ void require_poseable(const po::variables_map& vm, const LoadedBody& loaded) {
                     "--smpl-theta); docs/poses.md says which models can");
 }
 
-// --pose name=degrees,..., --pose-file FILE or --smpl-theta FILE (one of
-// them); empty without any.
-Pose requested_pose(const po::variables_map& vm, const BodyModel& body) {
-  if (vm.count("pose") + vm.count("pose-file") + vm.count("smpl-theta") > 1)
-    throw UsageError("--pose, --pose-file and --smpl-theta: give one");
-  if (vm.count("pose")) return parse_pose(vm["pose"].as<std::string>(), body.pose_angles(), "--pose");
-  if (vm.count("pose-file")) return read_pose_file(vm["pose-file"].as<std::string>(), body.pose_angles());
-  if (vm.count("smpl-theta")) {
-    const std::string file = vm["smpl-theta"].as<std::string>();
-    return pose_from_theta(read_theta_file(file), body, "--smpl-theta " + file);
-  }
-  return {};
-}
-
 // One body, solved for --bmi, --height and --sex (and posed by --pose): its
 // shape and measurements printed, its mesh written to --out.
 int solve_one(const po::variables_map& vm, const LoadedBody& loaded, const Range& bmi) {
@@ -110,7 +97,7 @@ int solve_one(const po::variables_map& vm, const LoadedBody& loaded, const Range
   const double sex = vm.count("sex") ? vm["sex"].as<double>() : 1.0;
   const auto t1 = std::chrono::steady_clock::now();
   const BodyRequest request{bmi.lo, height.lo, sex, parse_girths(vm)};
-  const Pose pose = requested_pose(vm, body);
+  const Pose pose = pose_options(vm, body, loaded.model).value_or(Pose{});
   const Eigen::VectorXd shape = body.solve(request);
   const double solve_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t1).count();
   Mesh mesh = body_mesh(body, shape);

@@ -1,13 +1,13 @@
 // `drape simulate scene.yaml --out garment.obj`: drape the scene's garment on
 // its body (or on --body FILE), the body morphing from the mean shape.
 #include "command.hpp"
+#include "pose_options.hpp"
 
 #ifdef _OPENMP
 #include <omp.h>
 #endif
 
 #include <drape/bodies/pose.hpp>
-#include <drape/bodies/posed_body.hpp>
 #include <drape/io/shipped_files.hpp>
 #include <drape/io/mesh_io.hpp>
 #include <drape/progress.hpp>
@@ -52,6 +52,7 @@ bool parse_simulate(const std::vector<std::string>& args, po::variables_map& vm)
       "sex", po::value<double>(), "override the sex (0 female ... 1 male)")(
       "pose", po::value<std::string>(), "pose the target body instead of the scene's pose: name=degrees,... (docs/poses.md)")(
       "pose-file", po::value<std::string>(), "the same from a YAML map of joint angle names to degrees")(
+      "smpl-theta", po::value<std::string>(), "the same as SMPL's theta, 72 or 69 radians (text or .npy; docs/smpl.md)")(
       "verbose,v", po::bool_switch(), "print every solver step")(
       "threads", po::value<int>()->default_value(0), "threads for the energies (0: OpenMP's default, all cores)");
   add_girth_option(opts, "of the scene's target body: ");
@@ -65,25 +66,11 @@ bool parse_simulate(const std::vector<std::string>& args, po::variables_map& vm)
 
 // The body asked for: --body FILE, or the scene's target body changed by
 // --bmi/--height/--sex/--girth (services/scene_body.hpp).
-// --pose or --pose-file replace the scene's pose (a given body is taken as
-// unposed and posed too); neither: the scene's own (null).
-std::optional<Pose> requested_pose(const po::variables_map& vm, const Simulation& design) {
-  if (vm.count("pose") && vm.count("pose-file")) throw UsageError("--pose and --pose-file: give one");
-  if (!vm.count("pose") && !vm.count("pose-file")) return std::nullopt;
-  const BodyModel& model = design.body_model();
-  if (!model.poseable()) {
-    const std::string reason = unposeable_reason(model);  // an SMPL file without its pose datasets says so
-    throw ConfigError("body " + design.scene().body_model +
-                      (reason.empty() ? " has no skeleton, so it cannot be posed (--pose, --pose-file); docs/poses.md says "
-                                        "which models can"
-                                      : " cannot be posed (--pose, --pose-file): " + reason));
-  }
-  if (vm.count("pose")) return parse_pose(vm["pose"].as<std::string>(), model.pose_angles(), "--pose");
-  return read_pose_file(vm["pose-file"].as<std::string>(), model.pose_angles());
-}
-
+// --pose, --pose-file or --smpl-theta replace the scene's pose (a given body
+// is taken as unposed and posed too); none: the scene's own (null).
 SceneBody target_body(const SceneSimulations& simulations, const Scene& scene, const po::variables_map& vm) {
-  const std::optional<Pose> pose = requested_pose(vm, simulations.design());
+  const Simulation& design = simulations.design();
+  const std::optional<Pose> pose = pose_options(vm, design.body_model(), design.scene().body_model);
   const Pose* posed = pose ? &*pose : nullptr;
   if (vm.count("body")) {
     const std::string file = vm["body"].as<std::string>();

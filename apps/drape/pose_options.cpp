@@ -1,0 +1,26 @@
+// The pose options of drape body and drape simulate (pose_options.hpp).
+#include "pose_options.hpp"
+
+#include <drape/bodies/pose.hpp>
+#include <drape/bodies/posed_body.hpp>
+#include <drape/bodies/smpl_theta.hpp>
+
+namespace drape::cli {
+
+std::optional<Pose> pose_options(const po::variables_map& vm, const BodyModel& model, const std::string& model_name) {
+  const std::size_t given = vm.count("pose") + vm.count("pose-file") + vm.count("smpl-theta");
+  if (given > 1) throw UsageError("--pose, --pose-file and --smpl-theta: give one");
+  if (given == 0) return std::nullopt;
+  if (!model.poseable()) {
+    const std::string reason = unposeable_reason(model);
+    if (!reason.empty()) throw ConfigError("body " + model_name + ": " + reason);
+    throw ConfigError("body " + model_name + " has no skeleton, so it cannot be posed (--pose, --pose-file, "
+                      "--smpl-theta); docs/poses.md says which models can");
+  }
+  if (vm.count("pose")) return parse_pose(vm["pose"].as<std::string>(), model.pose_angles(), "--pose");
+  if (vm.count("pose-file")) return read_pose_file(vm["pose-file"].as<std::string>(), model.pose_angles());
+  const std::string file = vm["smpl-theta"].as<std::string>();
+  return pose_from_theta(read_theta_file(file), model, "--smpl-theta " + file);
+}
+
+}  // namespace drape::cli
