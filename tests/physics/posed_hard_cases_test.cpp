@@ -16,6 +16,7 @@
 
 #include <catch2/catch.hpp>
 
+#include "posed_scene_text.hpp"
 #include "test_support.hpp"
 
 using namespace drape;
@@ -24,16 +25,7 @@ using namespace drape::test;
 namespace {
 
 std::string posed_scene(double bmi, const std::string& pose) {
-  return "body:\n  model: parametric\n  shape: {bmi: " + std::to_string(bmi) + ", height: 1.75, sex: 1}\n" +
-         (pose.empty() ? "" : "  pose: {" + pose + "}\n") + R"(garment: {template: tshirt, params: {resolution: coarse, size: auto}}
-effects:
-  gravity: {}
-  stretching: {compressive_stiffness: 1.0}
-  bending: {potential: product}
-  barrier: {friction: 0.3}
-  self_contact: {}
-solver: {morph_steps: 20, settle_steps: 60}
-)";
+  return posed_scene_text(bmi, 1.75, 1, pose, "resolution: coarse, size: auto");
 }
 
 struct PosedDrape {

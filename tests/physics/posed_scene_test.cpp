@@ -13,6 +13,7 @@
 
 #include <catch2/catch.hpp>
 
+#include "posed_scene_text.hpp"
 #include "test_support.hpp"
 
 using namespace drape;
@@ -123,20 +124,9 @@ TEST_CASE("a posed drape settles off the body and off itself with the arms lower
   // The arms lowered to 20 degrees from the trunk press the sleeves towards
   // the shirt's sides; the elbows bend 45 degrees; friction and self-contact
   // as in the posed scenes.
-  const Scene scene = parse_scene(R"(body:
-  model: parametric
-  shape: {bmi: 30, height: 1.7, sex: 0}
-  pose: {shoulder_abduction: 20, elbow_flexion: 45, spine_twist: 15}
-garment: {template: tshirt, params: {resolution: 300}}
-effects:
-  gravity: {}
-  stretching: {compressive_stiffness: 1.0}
-  bending: {potential: product}
-  barrier: {friction: 0.3}
-  self_contact: {}
-solver: {morph_steps: 20, settle_steps: 60}
-)",
-                                  "posed.yaml");
+  const Scene scene = parse_scene(
+      posed_scene_text(30, 1.7, 0, "shoulder_abduction: 20, elbow_flexion: 45, spine_twist: 15", "resolution: 300"),
+      "posed.yaml");
   const SceneSimulations simulations(plugins(), scene);
   const SceneBody body = scene_body(simulations, simulations.design().target_request(), "posed.yaml");
   REQUIRE(body.pose.angles.at("right_elbow_flexion") == 45);

@@ -306,39 +306,38 @@ TEST_CASE("self_contact max_step on hand-made trajectories: parallel edges and a
     add_sheet(*g, 2, 0.01, 0.0, {x_offset, 0, 0.002});
     return g;
   };
-  auto down = [](const Garment& g) {
-    Eigen::MatrixX3d dx = Eigen::MatrixX3d::Zero(g.mesh.vertices.rows(), 3);
+  // The step max_step allows for that move, and whether the contact is
+  // finite and the sheets uncrossed where it ends.
+  struct Step {
+    double alpha;
+    bool finite, uncrossed;
+  };
+  auto step_down = [&](double x_offset) {
+    const auto g = sheets(x_offset);
+    const auto e = self_contact_on(*g);
+    const Eigen::MatrixX3d& x = g->mesh.vertices;
+    Eigen::MatrixX3d dx = Eigen::MatrixX3d::Zero(x.rows(), 3);
     dx.bottomRows(4).col(2).setConstant(-0.004);
-    return dx;
+    const double alpha = e->max_step(x, dx);
+    const Eigen::MatrixX3d end = x + alpha * dx;
+    return Step{alpha, std::isfinite(e->value(end)), geometry::self_intersections(end, g->mesh.faces, 1).empty()};
   };
   // Parallel edges: the upper square's left edge right above the lower's
   // right edge, so the two edges pass through each other edge on edge (no
   // vertex ever over the other square's inside). The step is cut before
   // they meet, where the contact is finite.
-  {
-    const auto g = sheets(0.01);
-    const auto e = self_contact_on(*g);
-    const Eigen::MatrixX3d& x = g->mesh.vertices;
-    const Eigen::MatrixX3d dx = down(*g);
-    const double alpha = e->max_step(x, dx);
-    INFO("parallel: alpha " << alpha);
-    CHECK(alpha > 0);
-    CHECK(alpha < 0.5);  // before the edges are level
-    CHECK(std::isfinite(e->value(x + alpha * dx)));
-  }
+  const Step parallel = step_down(0.01);
+  INFO("parallel: alpha " << parallel.alpha);
+  CHECK(parallel.alpha > 0);
+  CHECK(parallel.alpha < 0.5);  // before the edges are level
+  CHECK(parallel.finite);
   // A grazing pass: the upper square 0.3 mm beside the lower in plan, moved
   // down past its edge. The edges come no nearer than 0.3 mm: the step may
   // be shortened (the barrier's reach is 1 mm), but not stopped, and where it
   // ends the contact is finite.
-  {
-    const auto g = sheets(0.0103);
-    const auto e = self_contact_on(*g);
-    const Eigen::MatrixX3d& x = g->mesh.vertices;
-    const Eigen::MatrixX3d dx = down(*g);
-    const double alpha = e->max_step(x, dx);
-    INFO("grazing: alpha " << alpha);
-    CHECK(alpha > 0.5);  // past level with the lower square
-    CHECK(std::isfinite(e->value(x + alpha * dx)));
-    CHECK(geometry::self_intersections(x + alpha * dx, g->mesh.faces, 1).empty());
-  }
+  const Step grazing = step_down(0.0103);
+  INFO("grazing: alpha " << grazing.alpha);
+  CHECK(grazing.alpha > 0.5);  // past level with the lower square
+  CHECK(grazing.finite);
+  CHECK(grazing.uncrossed);
 }
