@@ -57,10 +57,7 @@ class ParametricBody final : public BodyModel {
   Eigen::MatrixXd skinning_weights() const override { return shared_skeleton().weights; }
   Pose rest_pose(const Eigen::VectorXd& shape) const override { return rest_angles(joint_positions(shape)); }
   Eigen::MatrixX3d posed(const Eigen::VectorXd& shape, const Pose& pose) const override {
-    check_pose(pose, pose_angles(), "body parametric pose");
-    const Eigen::MatrixX3d v = vertices(shape);
-    if (pose.empty()) return v;
-    return skin(shared_skeleton(), v, regress_joints(shared_skeleton(), v), pose);
+    return posed_vertices(vertices(shape), pose, 1.0);
   }
   Eigen::MatrixX3d posed_vertices(const Eigen::MatrixX3d& unposed, const Pose& pose, double fraction) const override {
     check_pose(pose, pose_angles(), "body parametric pose");
@@ -69,13 +66,7 @@ class ParametricBody final : public BodyModel {
                         std::to_string(num_vertices()));
     if (!(fraction >= 0 && fraction <= 1)) throw ConfigError("body parametric: a pose fraction must lie in [0, 1]");
     if (pose.empty() || fraction == 0) return unposed;
-    const Eigen::MatrixX3d joints = regress_joints(shared_skeleton(), unposed);
-    if (fraction == 1) return skin(shared_skeleton(), unposed, joints, pose);
-    // Part of the way: from this body's own rest angles (its A-pose arms).
-    const Pose rest = rest_angles(joints);
-    Pose part = pose;
-    for (auto& [name, angle] : part.angles) angle = rest.angles.at(name) + fraction * (angle - rest.angles.at(name));
-    return skin(shared_skeleton(), unposed, joints, part);
+    return skin(shared_skeleton(), unposed, regress_joints(shared_skeleton(), unposed), pose, fraction);
   }
 
   int num_vertices() const override { return static_cast<int>(tpl_.vertices.rows()); }

@@ -49,9 +49,13 @@ Pose rest_angles(const Eigen::MatrixX3d& joints) {
 }
 
 Eigen::MatrixX3d skin(const Skeleton& skeleton, const Eigen::MatrixX3d& vertices, const Eigen::MatrixX3d& joints,
-                      const Pose& pose) {
+                      const Pose& pose, double fraction) {
   const Pose rest = rest_angles(joints);
-  auto angle = [&](const std::string& name) { return pose.get(name, rest.angles.at(name)); };
+  // The angle `fraction` of the way from this body's rest (its A-pose arms) to the pose's.
+  auto angle = [&](const std::string& name) {
+    const double at_rest = rest.angles.at(name), target = pose.get(name, at_rest);
+    return fraction == 1 ? target : at_rest + fraction * (target - at_rest);
+  };
   // Each joint's rotation in the rest frame.
   std::vector<M3> local(kNumBones, M3::Identity());
   // The trunk bends at two joints, half at each, so that it curves.

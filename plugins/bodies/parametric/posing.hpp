@@ -18,7 +18,9 @@ Pose rest_angles(const Eigen::MatrixX3d& joints);
 // The body `vertices` (unposed, joints `joints`) in `pose`. A bone whose
 // transform is the identity adds exactly nothing, so the empty pose gives
 // `vertices` back bit for bit.
+// With `fraction` < 1, each angle the pose sets goes that fraction of the
+// way from the body's own rest angle (BodyModel::posed_vertices).
 Eigen::MatrixX3d skin(const Skeleton& skeleton, const Eigen::MatrixX3d& vertices, const Eigen::MatrixX3d& joints,
-                      const Pose& pose);
+                      const Pose& pose, double fraction = 1.0);
 
 }  // namespace drape::parametric
