@@ -22,7 +22,6 @@ crossing. docs/poses.md reports a run.
 import argparse
 import csv
 import os
-import re
 import subprocess
 import sys
 import tempfile
@@ -37,6 +36,7 @@ sys.path.insert(0, HERE)
 from obj_file import read_obj  # noqa: E402
 from winding_number import winding_numbers  # noqa: E402
 from count_self_crossings import crossings  # noqa: E402
+from simulate_report import parse_simulate_output  # noqa: E402
 
 GIRTHS = ("chest", "waist", "belly", "hips", "arms", "thighs")
 
@@ -55,13 +55,7 @@ def simulate(a, stem, row, pose, scene):
         lines = [ln for ln in text.strip().splitlines() if ln.strip()]
         out["refused"] = lines[-1] if lines else f"exit {run.returncode}"
         return out
-    out["settled"] = bool(re.search(r"^settled", text, re.M))
-    m = re.search(r"after \d+ steps, (\d+) Newton iterations", text)
-    out["iterations"] = int(m.group(1)) if m else -1
-    m = re.search(r", time ([0-9.]+) s", text)
-    out["seconds"] = float(m.group(1)) if m else -1
-    m = re.search(r"size auto: .*: size (\S+)", text)
-    out["size"] = m.group(1) if m else ""
+    out.update(parse_simulate_output(text))
     return out
 
 

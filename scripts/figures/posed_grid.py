@@ -15,7 +15,6 @@ import argparse
 import base64
 import html
 import os
-import re
 import subprocess
 import sys
 import time
@@ -23,6 +22,11 @@ import time
 HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.dirname(os.path.dirname(HERE))
 PYTHON = sys.executable or "/usr/bin/python3"
+sys.path.insert(0, os.path.dirname(HERE))
+sys.path.insert(0, os.path.join(os.path.dirname(HERE), "reference"))
+from count_self_crossings import crossings  # noqa: E402
+from obj_file import read_obj  # noqa: E402
+from simulate_report import parse_simulate_output  # noqa: E402
 
 DEFAULT_POSES = ("A-pose (rest)=;"
                  "arms down 15, elbows 20=shoulder_abduction=15,elbow_flexion=20;"
@@ -41,10 +45,8 @@ def parse_poses(text):
 
 
 def self_crossings(obj):
-    run = subprocess.run([PYTHON, os.path.join(ROOT, "scripts", "count_self_crossings.py"), obj],
-                         capture_output=True, text=True)
-    m = re.search(r"(\d+) edge-face crossings", run.stdout)
-    return int(m.group(1)) if m else None
+    vertices, faces = read_obj(obj)
+    return len(crossings(vertices, faces)[0])
 
 
 def drape(a, scene, stem, bmi, spec):
@@ -61,15 +63,7 @@ def drape(a, scene, stem, bmi, spec):
         lines = [ln for ln in text.strip().splitlines() if ln.strip()]
         row["refused"] = lines[-1] if lines else f"exit {run.returncode}"
         return row
-    row["settled"] = bool(re.search(r"^settled", text, re.M))
-    m = re.search(r"after \d+ steps, (\d+) Newton iterations", text)
-    row["iterations"] = int(m.group(1)) if m else None
-    m = re.search(r"penetration p = ([0-9.]+)%", text)
-    row["p"] = float(m.group(1)) if m else None
-    m = re.search(r"surface crossings (\d+) garment edges / (\d+) body edges", text)
-    row["crossings"] = int(m.group(1)) + int(m.group(2)) if m else None
-    m = re.search(r", time ([0-9.]+) s", text)
-    row["seconds"] = float(m.group(1)) if m else None
+    row.update(parse_simulate_output(text))
     row["self_crossings"] = self_crossings(stem + ".obj")
     return row
 
