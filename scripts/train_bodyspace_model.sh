@@ -19,7 +19,10 @@
 # finished shards are kept, default datasets/bodyspace<COUNT>-friction), and
 # to fine-tune a model, INIT (the model file whose weights training starts
 # from instead of random ones), LR (Adam's peak learning rate, default 1e-3)
-# and PATIENCE (default 100 epochs).
+# and PATIENCE (default 100 epochs). GENERATE_ARGS is added to each drape
+# generate (the shape-and-pose dataset of issue 56:
+# GENERATE_ARGS="--poses draw" SCENE=graphs/scenes/tshirt_coarse_pose_space.yaml
+# KEEP=datasets/posespace2000).
 #
 # The same bodies without friction, the ground truth until 2026-11-27 (the
 # shipped model of 2,000 frictionless drapes was made so), their shards kept
@@ -61,7 +64,7 @@ for ((K = 0; K < SHARDS; K++)); do
   [[ -f "$SLIM" || "${GENERATE:-1}" == 0 ]] && continue
   FULL=$(printf '%s/shards/shard-%02d-of-%d.h5' "$WORK" "$K" "$SHARDS")
   "$DRAPE" generate "$SCENE" --count "$COUNT" --bmi 10:65 --height 1.5:2.0 --sex 0:1 \
-    --girths 1 --seed 1 --shard "$K/$SHARDS" --out "$FULL" --threads "$THREADS"
+    --girths 1 --seed 1 --shard "$K/$SHARDS" --out "$FULL" --threads "$THREADS" ${GENERATE_ARGS:-}
   "$DRAPE" dataset slim "$FULL" --out "$SLIM"
 done
 # One full dataset of them, the bodies rebuilt from their shape parameters.

@@ -25,7 +25,13 @@ int run(const std::vector<std::string>& args) {
       "girths", po::value<double>()->default_value(0.0),
       "spread of the body's girths (chest, waist, belly, hips, arms, thighs) as a fraction of the body model's range, "
       "each drawn uniformly; 0 keeps the mean build (docs/bodies.md)")(
-      "seed", po::value<std::uint64_t>()->default_value(0), "seed of the bodies and the split")(
+      "poses", po::value<std::string>()->default_value("scene"),
+      "scene: every body in the scene's pose (its A-pose when it has none); draw: each body in a pose drawn from the "
+      "body model's pose space, free of self-intersection by rejection (docs/poses.md); the joint angles are stored")(
+      "pose-range", po::value<std::string>()->default_value(""),
+      "with --poses draw: sampling ranges replacing the pose space's, e.g. shoulder_abduction=60:90,spine_twist=30:45 "
+      "(degrees; a name without left_/right_ sets both sides)")(
+      "seed", po::value<std::uint64_t>()->default_value(0), "seed of the bodies, the poses and the split")(
       "out", po::value<std::string>(), "dataset file (HDF5) to write")(
       "shard", po::value<std::string>()->default_value("0/1"), "make only shard i of N (a contiguous part), e.g. 3/16")(
       "threads", po::value<int>()->default_value(0), "samples simulated at once (0: all cores)");
@@ -33,7 +39,7 @@ int run(const std::vector<std::string>& args) {
   pos.add("scene", 1);
   po::variables_map vm;
   const std::string usage =
-      "drape generate [SCENE.yaml] --count N --bmi 10:65 --seed S --out data.h5 [--shard i/N] [--threads T]";
+      "drape generate [SCENE.yaml] --count N --bmi 10:65 --seed S --out data.h5 [--poses draw] [--shard i/N] [--threads T]";
   if (!parse(usage, args, opts, pos, vm)) return 0;
   if (!vm.count("count") || vm["count"].as<std::size_t>() == 0) throw UsageError("--count N (N >= 1) is required");
   if (!vm.count("out")) throw UsageError("--out FILE is required");
@@ -45,6 +51,10 @@ int run(const std::vector<std::string>& args) {
   request.sex = parse_range("sex", vm["sex"].as<std::string>());
   request.girths = vm["girths"].as<double>();  // generate_dataset checks the values
   request.seed = vm["seed"].as<std::uint64_t>();
+  const std::string poses = vm["poses"].as<std::string>();
+  if (poses != "scene" && poses != "draw") throw UsageError("--poses " + poses + ": expected scene or draw");
+  request.draw_poses = poses == "draw";
+  request.pose_ranges = vm["pose-range"].as<std::string>();
   request.threads = vm["threads"].as<int>();
   const std::string out = vm["out"].as<std::string>();
 

@@ -204,15 +204,23 @@ def simulate(scene, body_vertices=None, **options):
 
 
 def generate(scene, out, count, bmi=(10, 65), height=1.75, sex=1.0, girths=0.0, seed=0, shard=(0, 1), threads=0,
-             progress=True):
+             progress=True, poses="scene", pose_ranges=None):
     """Generates (or resumes) a dataset of simulated drapes into `out`, as `drape generate` does and with the same
     bytes for the same arguments (one service behind both): `count` bodies drawn uniformly in bmi, height and sex
     (a number, or a (lo, hi) range; sex draws one of its two ends), girths spread as a fraction of the body model's
     range, the 8:1:1 split from `seed`; shard=(i, N) makes part i of N. Returns a dict of what was done:
     samples, not_settled, penetrating, crossing, resumed_with (done by an earlier run), threads, ranges.
+    poses="scene" drapes every body in the scene's pose (its A-pose when it has none); poses="draw" draws each
+    body's pose from the body model's pose space (docs/poses.md), with pose_ranges ({"shoulder_abduction": (60, 90)}
+    or "shoulder_abduction=60:90") replacing sampling ranges; the joint angles are stored (Dataset.read's "pose").
     The GIL is released while it runs; a progress bar goes to stderr unless progress=False."""
+    if poses not in ("scene", "draw"):
+        raise ValueError(f"poses={poses!r}: expected 'scene' or 'draw'")
+    if isinstance(pose_ranges, dict):
+        pose_ranges = ",".join(f"{k}={lo}:{hi}" for k, (lo, hi) in pose_ranges.items())
     return _drape._generate(_native_scene(scene), _os.fspath(out), int(count), bmi, height, sex, float(girths),
-                            int(seed), tuple(shard), int(threads), bool(progress))
+                            int(seed), tuple(shard), int(threads), bool(progress), poses == "draw",
+                            pose_ranges or "")
 
 
 def _native_scene(scene):
@@ -233,7 +241,8 @@ Model.optimize = _optimize
 def _dataset_getitem(self, i):
     """The i-th done sample in file order (negative i counts from the end): a dict of body float32 [Nb, 3],
     garment float32 [Ng, 3], body_params float32 [P], split (0 train, 1 val, 2 test) and index (the sample's
-    row in the file). A slice gives a list of them."""
+    row in the file), and in a posed dataset pose float32 [A] (degrees, layout["pose_angles"]). A slice gives a
+    list of them."""
     done = self.indices()
     if isinstance(i, slice):
         return [self[k] for k in range(*i.indices(len(done)))]
@@ -243,8 +252,11 @@ def _dataset_getitem(self, i):
     if not 0 <= k < len(done):
         raise IndexError(f"sample {i} of a dataset of {len(done)} done samples")
     batch = self.read([int(done[k])])
-    return {"body": batch["body"][0], "garment": batch["garment"][0], "body_params": batch["body_params"][0],
-            "split": int(batch["split"][0]), "index": int(batch["indices"][0])}
+    sample = {"body": batch["body"][0], "garment": batch["garment"][0], "body_params": batch["body_params"][0],
+              "split": int(batch["split"][0]), "index": int(batch["indices"][0])}
+    if "pose" in batch:
+        sample["pose"] = batch["pose"][0]
+    return sample
 
 
 Dataset.__getitem__ = _dataset_getitem

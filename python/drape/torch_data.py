@@ -13,6 +13,8 @@ A sample is a dict of tensors:
     body_params  float32 [P]      the body model's shape parameters
     split        int64 []         0 train, 1 val, 2 test
     index        int64 []         the sample's row in the dataset (over all the pattern's files)
+    pose         float32 [A]      in a posed dataset only: the joint angles in degrees, in the order of
+                                  drape.Dataset(path).layout["pose_angles"] (the body is posed in them)
 DataLoader's default collate stacks them into a batch. `faces` (int64 [F, 3], or None for files written before
 datasets carried them) is the garment template's triangles. The drape file is opened once per process, so the
 dataset goes to DataLoader workers (fork or spawn) as its path and split.
@@ -66,6 +68,8 @@ class DrapeDataset(torch.utils.data.Dataset):
             "split": torch.tensor(int(batch["split"][0]), dtype=torch.int64),
             "index": torch.tensor(row, dtype=torch.int64),
         }
+        if "pose" in batch:
+            sample["pose"] = torch.from_numpy(batch["pose"][0])
         return self.transform(sample) if self.transform else sample
 
     def __repr__(self):

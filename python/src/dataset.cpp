@@ -49,8 +49,11 @@ SampleRange range_arg(const py::handle& value, const std::string& name) {
 
 py::dict generate(const PyScene& scene, const std::string& out, std::size_t count, const py::handle& bmi,
                   const py::handle& height, const py::handle& sex, double girths, std::uint64_t seed,
-                  const std::pair<std::size_t, std::size_t>& shard, int threads, bool progress) {
+                  const std::pair<std::size_t, std::size_t>& shard, int threads, bool progress, bool draw_poses,
+                  const std::string& pose_ranges) {
   GenerateRequest request;  // generate_dataset checks it (ConfigError: ValueError)
+  request.draw_poses = draw_poses;
+  request.pose_ranges = pose_ranges;
   request.count = count;
   request.bmi = range_arg(bmi, "bmi");
   request.height = range_arg(height, "height");
@@ -85,7 +88,8 @@ py::dict generate(const PyScene& scene, const std::string& out, std::size_t coun
 
 void register_dataset(py::module_& m) {
   m.def("_generate", &generate, py::arg("scene"), py::arg("out"), py::arg("count"), py::arg("bmi"), py::arg("height"),
-        py::arg("sex"), py::arg("girths"), py::arg("seed"), py::arg("shard"), py::arg("threads"), py::arg("progress"));
+        py::arg("sex"), py::arg("girths"), py::arg("seed"), py::arg("shard"), py::arg("threads"), py::arg("progress"),
+        py::arg("draw_poses"), py::arg("pose_ranges"));
   py::class_<DatasetReader>(m, "Dataset",
                             "A dataset file of drape generate (or a .partial one: its done samples), or a glob pattern "
                             "of shard files read as one; slim files' bodies are rebuilt from their shape parameters.")
@@ -110,6 +114,7 @@ void register_dataset(py::module_& m) {
         d["created"] = l.created;
         d["attributes"] = l.attributes;
         d["body_vertices_stored"] = l.body_vertices_stored;
+        d["pose_angles"] = l.pose_angles;  // empty: A-pose bodies
         return d;
       })
       .def_property_readonly(
@@ -135,12 +140,14 @@ void register_dataset(py::module_& m) {
           "read",
           [](const DatasetReader& r, const py::handle& indices) {
             const auto idx = indices_arg(r, indices);
-            Tensor body, garment, params;
+            Tensor body, garment, params, poses;
+            const bool posed = !r.layout().pose_angles.empty();
             {
               py::gil_scoped_release release;
               body = r.body_vertices(idx);
               garment = r.garment_vertices(idx);
               params = r.body_params(idx);
+              if (posed) poses = r.poses(idx);
             }
             std::vector<std::int8_t> splits;
             for (auto i : idx) splits.push_back(r.splits()[i]);
@@ -151,10 +158,15 @@ void register_dataset(py::module_& m) {
             const int n = params.batch(), p = params.cols();
             d["body_params"] = to_numpy(std::move(params), false).reshape({n, p});
             d["split"] = to_numpy(std::move(splits));
+            if (posed) {
+              const int a = poses.cols();
+              d["pose"] = to_numpy(std::move(poses), false).reshape({n, a});
+            }
             return d;
           },
           py::arg("indices"),
-          "A batch: body float32 [n, Nb, 3], garment float32 [n, Ng, 3], body_params float32 [n, P], split int8 [n] (0 train, 1 val, 2 test)")
+          "A batch: body float32 [n, Nb, 3], garment float32 [n, Ng, 3], body_params float32 [n, P], split int8 [n] "
+          "(0 train, 1 val, 2 test), and in a posed dataset pose float32 [n, A] (degrees, layout['pose_angles'] order)")
       .def(
           "stat",
           [](const DatasetReader& r, const std::string& name, const py::handle& indices) {

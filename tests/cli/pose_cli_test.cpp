@@ -107,14 +107,3 @@ TEST_CASE("drape simulate refuses bad or impossible poses before simulating", "[
   CHECK(out.find("posed.yaml:3: body `pose`: left_knee_flexion = 200 is outside its range of motion") != std::string::npos);
   CHECK(!std::filesystem::exists(dir / "g.obj"));
 }
-
-TEST_CASE("drape generate refuses a posed scene before writing anything", "[cli][pose]") {
-  // A dataset stores each body's shape, not a pose: a posed scene's drapes would be stored as A-pose ones.
-  test::TempDir dir;
-  std::string out;
-  const std::string scene = (test::source_dir() / "graphs" / "scenes" / "tshirt_coarse_posed.yaml").string();
-  CHECK(test::run_drape("generate " + scene + " --count 1 --out " + (dir / "d.h5").string(), out) == 2);
-  INFO(out);
-  CHECK(out.find("tshirt_coarse_posed.yaml:11: body `pose`: drape generate drapes A-pose bodies only") != std::string::npos);
-  CHECK(std::filesystem::is_empty(dir.path()));
-}

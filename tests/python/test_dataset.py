@@ -95,3 +95,25 @@ def test_a_dataset_is_indexed_like_a_sequence(dataset):
         d[4]
     with pytest.raises(TypeError):
         d["0"]
+
+
+def test_generate_draws_poses_and_the_dataset_gives_them(module_tiny_scene, tmp_path):
+    # drape.generate(poses="draw") stores each body's joint angles, read back by Dataset and h5py alike.
+    out = tmp_path / "posed.h5"
+    done = drape.generate(str(module_tiny_scene), str(out), 2, bmi=(20, 30), seed=3, threads=1, progress=False,
+                          poses="draw", pose_ranges={"shoulder_abduction": (50, 60)})
+    assert done["samples"] == 2
+    d = drape.Dataset(str(out))
+    names = d.layout["pose_angles"]
+    assert "left_shoulder_abduction" in names and "spine_twist" in names
+    s = d[1]
+    assert s["pose"].shape == (len(names),)
+    with h5py.File(out) as f:
+        np.testing.assert_array_equal(f["bodies/pose"][1], s["pose"])
+        stored = f.attrs["pose_angles"]  # fixed-length strings read as bytes
+        assert (stored.decode() if isinstance(stored, bytes) else stored) == ",".join(names)
+    for side in ("left_", "right_"):
+        assert 50 <= s["pose"][names.index(side + "shoulder_abduction")] <= 60
+    assert d.read([0, 1])["pose"].shape == (2, len(names))
+    with pytest.raises(ValueError, match="expected 'scene' or 'draw'"):
+        drape.generate(str(module_tiny_scene), str(tmp_path / "x.h5"), 1, poses="random")

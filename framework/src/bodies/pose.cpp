@@ -217,4 +217,51 @@ Eigen::MatrixX3d BodyModel::posed_vertices(const Eigen::MatrixX3d& unposed, cons
   throw ConfigError(kNoSkeletonRefusal);
 }
 
+std::vector<PoseAngle> with_sampling_ranges(std::vector<PoseAngle> space, const std::string& text, const std::string& what) {
+  std::stringstream items(text);
+  std::string item;
+  std::set<std::string> seen;
+  while (std::getline(items, item, ',')) {
+    item = trim(item);
+    if (item.empty()) continue;
+    const auto eq = item.find('=');
+    if (eq == std::string::npos || eq == 0) throw ConfigError(what + ": expected name=lo:hi, got '" + item + "'");
+    const std::string name = trim(item.substr(0, eq));
+    const std::string range = trim(item.substr(eq + 1));
+    const auto colon = range.find(':');
+    const double lo = parse_degrees(name, trim(range.substr(0, colon)), what);
+    const double hi = colon == std::string::npos ? lo : parse_degrees(name, trim(range.substr(colon + 1)), what);
+    std::vector<PoseAngle*> set;
+    for (const PoseAngle* a : targets(name, space))
+      for (PoseAngle& b : space)
+        if (&b == a) set.push_back(&b);
+    if (set.empty()) {
+      Pose unused;
+      set_angle(unused, name, 0.0, space, what);  // throws, naming the close matches
+    }
+    for (PoseAngle* a : set) {
+      if (!(lo <= hi)) throw ConfigError(what + ": " + a->name + " range " + range + ": expected lo <= hi");
+      check_value(*a, lo, what);
+      check_value(*a, hi, what);
+      if (!seen.insert(a->name).second) throw ConfigError(what + ": " + a->name + " is given twice");
+      a->sample_lo = lo;
+      a->sample_hi = hi;
+    }
+  }
+  return space;
+}
+
+std::string sampling_ranges_text(const std::vector<PoseAngle>& space, const std::vector<PoseAngle>& reference) {
+  std::ostringstream s;
+  s.precision(6);
+  for (const PoseAngle& a : space) {
+    bool same = false;
+    for (const PoseAngle& r : reference)
+      if (r.name == a.name) same = r.sample_lo == a.sample_lo && r.sample_hi == a.sample_hi;
+    if (same) continue;
+    s << (s.tellp() > 0 ? ", " : "") << a.name << " " << a.sample_lo << ":" << a.sample_hi;
+  }
+  return s.str();
+}
+
 }  // namespace drape

@@ -142,8 +142,9 @@ Eigen::MatrixX3d pose_vertices(const BodyModel& model, const std::string& model_
   return posed;
 }
 
-DrawnPose draw_free_pose(const BodyModel& model, const Eigen::VectorXd& shape, Rng& rng, int max_draws) {
-  const std::vector<PoseAngle> angles = model.pose_angles();
+DrawnPose draw_free_pose(const BodyModel& model, const Eigen::VectorXd& shape, Rng& rng, int max_draws,
+                         const std::vector<PoseAngle>* space) {
+  const std::vector<PoseAngle> angles = space ? *space : model.pose_angles();
   DrawnPose out;
   for (; out.redraws < max_draws; ++out.redraws) {
     out.pose = draw_pose(angles, rng);

@@ -9,14 +9,25 @@
 
 namespace drape::dataset_detail {
 
+Pose pose_of_row(const std::vector<std::string>& angles, const float* row) {
+  Pose pose;
+  for (std::size_t a = 0; a < angles.size(); ++a) pose.angles[angles[a]] = static_cast<double>(row[a]);
+  return pose;
+}
+
 std::vector<float> rebuilt_bodies(const BodyModel& body_model, const std::vector<float>& params, std::size_t count,
-                                  std::size_t body_params, const std::function<void()>& rebuilt) {
+                                  std::size_t body_params, const std::vector<std::string>& angles,
+                                  const std::vector<float>& poses, const std::function<void()>& rebuilt) {
   const std::size_t nb = static_cast<std::size_t>(body_model.num_vertices());
   std::vector<float> out(count * nb * 3);
   for (std::size_t r = 0; r < count; ++r) {
     const Eigen::VectorXd shape =
         Eigen::Map<const Eigen::VectorXf>(params.data() + r * body_params, static_cast<Eigen::Index>(body_params)).cast<double>();
-    const Eigen::MatrixX3d v = body_model.vertices(shape);
+    const Eigen::MatrixX3d unposed = body_model.vertices(shape);
+    // The generator posed the body of these (float) parameters in these
+    // (float) angles: the same call gives the same body.
+    const Eigen::MatrixX3d v =
+        angles.empty() ? unposed : body_model.posed_vertices(unposed, pose_of_row(angles, poses.data() + r * angles.size()), 1.0);
     for (std::size_t i = 0; i < nb; ++i)
       for (int c = 0; c < 3; ++c)
         out[(r * nb + i) * 3 + static_cast<std::size_t>(c)] = static_cast<float>(v(static_cast<Eigen::Index>(i), c));

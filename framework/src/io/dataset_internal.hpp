@@ -1,6 +1,7 @@
 #pragma once
 // Private to the dataset files: dataset names, creating the empty layout,
 // reading it back and comparing two layouts.
+#include <drape/bodies/pose.hpp>
 #include <drape/io/dataset.hpp>
 #include <drape/io/h5.hpp>
 
@@ -13,6 +14,9 @@ namespace drape::dataset_detail {
 
 inline constexpr const char* kParams = "/bodies/params";
 inline constexpr const char* kBodyVertices = "/bodies/vertices";
+inline constexpr const char* kPose = "/bodies/pose";  // float32 [N, A] degrees; only in posed datasets
+// Root attribute of a posed dataset: the angle names of kPose's columns, comma-separated.
+inline constexpr const char* kPoseAngles = "pose_angles";
 inline constexpr const char* kGarmentVertices = "/garments/vertices";
 inline constexpr const char* kGarmentFaces = "/garments/faces";  // int32 [F, 3]; absent in files before 2026-11-29
 inline constexpr const char* kSplit = "/split";
@@ -43,9 +47,15 @@ std::string layout_difference(const DatasetLayout& have, const DatasetLayout& no
 void check_sample(const DatasetLayout& layout, const DatasetSample& sample, const std::string& where);
 
 // body_model.vertices(params) of `count` rows of float parameters, as floats
-// (the bodies a slim dataset left out); `rebuilt` is called after each body.
+// (the bodies a slim dataset left out), each posed in its row of `poses`
+// (count x angles.size() degrees) when `angles` is not empty; `rebuilt` is
+// called after each body.
 std::vector<float> rebuilt_bodies(const BodyModel& body_model, const std::vector<float>& params, std::size_t count,
-                                  std::size_t body_params, const std::function<void()>& rebuilt = {});
+                                  std::size_t body_params, const std::vector<std::string>& angles,
+                                  const std::vector<float>& poses, const std::function<void()>& rebuilt = {});
+
+// The Pose of one stored row of angles (names in column order).
+Pose pose_of_row(const std::vector<std::string>& angles, const float* row);
 
 // The body model of a dataset's stored scene, checked against its vertex and
 // parameter counts: the one that generated its bodies (ConfigError naming

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <ctime>
 #include <set>
+#include <sstream>
 #include <stdexcept>
 
 namespace drape {
@@ -34,7 +35,7 @@ namespace {
 
 // Root attributes with a meaning of their own; everything else is an extra.
 const std::set<std::string> kReserved = {"format", "scene", "template_hash", "drape_version", "created",
-                                         kBodyVerticesOmitted};
+                                         kBodyVerticesOmitted, kPoseAngles};
 
 std::size_t to_size(int n) { return static_cast<std::size_t>(n); }
 
@@ -82,6 +83,15 @@ void create_layout(h5::File& file, const DatasetLayout& layout) {
     file.create<float>(kBodyVertices, {n, to_size(layout.body_vertices), 3}, arrays);
   else
     file.set_attribute("/", kBodyVerticesOmitted, std::to_string(layout.body_vertices));
+  if (!layout.pose_angles.empty()) {
+    std::string names;
+    for (const auto& a : layout.pose_angles) {
+      if (a.empty() || a.find(',') != std::string::npos) throw Error("dataset pose angle '" + a + "': names must be non-empty without ','");
+      names += (names.empty() ? "" : ",") + a;
+    }
+    file.create<float>(kPose, {n, layout.pose_angles.size()}, arrays);
+    file.set_attribute("/", kPoseAngles, names);
+  }
   file.create<float>(kGarmentVertices, {n, to_size(layout.garment_vertices), 3}, arrays);
   if (layout.garment_faces.rows() > 0) {
     // Row-major, as h5py and NumPy read it (Eigen's matrix is column-major).
@@ -135,6 +145,16 @@ DatasetLayout read_layout(const h5::File& file) {
   } else {
     throw ConfigError(name + ": missing dataset " + kBodyVertices);
   }
+  if (file.exists(kPose)) {
+    const auto names = file.string_attribute("/", kPoseAngles);
+    if (!names) throw ConfigError(name + ": " + kPose + " has no root attribute " + kPoseAngles + " naming its columns");
+    std::stringstream items(*names);
+    for (std::string item; std::getline(items, item, ',');) layout.pose_angles.push_back(item);
+    const int columns = expect(kPose, 2, 0);
+    if (static_cast<std::size_t>(columns) != layout.pose_angles.size())
+      throw ConfigError(name + ": " + kPose + " has " + std::to_string(columns) + " columns, its attribute " + kPoseAngles +
+                        " names " + std::to_string(layout.pose_angles.size()));
+  }
   layout.garment_vertices = expect(kGarmentVertices, 3, 3);
   if (file.exists(kGarmentFaces)) layout.garment_faces = read_faces(file, layout.garment_vertices);
   if (file.shape(kDone) != h5::Dims{n})
@@ -170,6 +190,14 @@ std::string layout_difference(const DatasetLayout& have, const DatasetLayout& no
   if (have.body_vertices_stored != now.body_vertices_stored)
     return std::string("body vertices are ") + (have.body_vertices_stored ? "stored" : "left out (a slim dataset)") +
            " in the file, " + (now.body_vertices_stored ? "stored" : "left out") + " now";
+  if (have.pose_angles != now.pose_angles) {
+    auto list = [](const std::vector<std::string>& v) {
+      std::string s;
+      for (const auto& a : v) s += (s.empty() ? "" : ",") + a;
+      return v.empty() ? std::string("none (A-pose bodies)") : "[" + s + "]";
+    };
+    return "pose angles are " + list(have.pose_angles) + " in the file, " + list(now.pose_angles) + " now";
+  }
   auto sorted = [](std::vector<std::string> v) {
     std::sort(v.begin(), v.end());
     return v;
@@ -195,6 +223,7 @@ void check_sample(const DatasetLayout& layout, const DatasetSample& sample, cons
   check("body_params", sample.body_params.size(), 1, layout.body_params, 1);
   check("body_vertices", sample.body_vertices.rows(), sample.body_vertices.cols(), layout.body_vertices, 3);
   check("garment_vertices", sample.garment_vertices.rows(), sample.garment_vertices.cols(), layout.garment_vertices, 3);
+  check("pose", sample.pose.size(), 1, static_cast<int>(layout.pose_angles.size()), 1);
   const int split = static_cast<int>(sample.split);
   if (split < 0 || split > 2) throw Error(where + ": split " + std::to_string(split) + " is not 0, 1 or 2");
   for (const auto& [name, value] : sample.stats)

@@ -83,13 +83,17 @@ void copy_rows(const h5::File& in, bool in_has_bodies, h5::File& out, const Data
     out.write_rows(dataset, to, count, rows.data());
   };
   const std::size_t p = static_cast<std::size_t>(layout.body_params);
-  std::vector<float> params(count * p);
+  std::vector<float> params(count * p), poses(count * layout.pose_angles.size());
   in.read_rows(kParams, from, count, params.data());
   out.write_rows(kParams, to, count, params.data());
+  if (!layout.pose_angles.empty()) {
+    in.read_rows(kPose, from, count, poses.data());
+    out.write_rows(kPose, to, count, poses.data());
+  }
   if (bodies.write && in_has_bodies) {
     copy(kBodyVertices, static_cast<std::size_t>(layout.body_vertices) * 3, float{});
   } else if (bodies.write) {
-    const std::vector<float> rows = rebuilt_bodies(*bodies.rebuild, params, count, p, bodies.rebuilt);
+    const std::vector<float> rows = rebuilt_bodies(*bodies.rebuild, params, count, p, layout.pose_angles, poses, bodies.rebuilt);
     out.write_rows(kBodyVertices, to, count, rows.data());
   }
   copy(kGarmentVertices, static_cast<std::size_t>(layout.garment_vertices) * 3, float{});

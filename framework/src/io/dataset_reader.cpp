@@ -80,10 +80,12 @@ void DatasetReader::Impl::rebuild(const std::vector<std::size_t>& rows, const Da
   if (todo.empty()) return;
   if (!body_model) body_model = dataset_body_model(nullptr, layout, parts[part_of(todo.front())].file.path().string());
   const std::size_t p = static_cast<std::size_t>(layout.body_params);
-  std::vector<float> params(todo.size() * p);
+  const std::size_t a = layout.pose_angles.size();
+  std::vector<float> params(todo.size() * p), poses(todo.size() * a);
   for (std::size_t k = 0; k < todo.size(); ++k) {  // HDF5 reads stay on this thread
     const Part& part = parts[part_of(todo[k])];
     part.file.read_rows(kParams, todo[k] - part.first, 1, params.data() + k * p);
+    if (a) part.file.read_rows(kPose, todo[k] - part.first, 1, poses.data() + k * a);
   }
   // A body is ~20-90 ms of the body model's solve and the model is const: one body per thread.
   std::vector<std::vector<float>> bodies(todo.size());
@@ -91,7 +93,8 @@ void DatasetReader::Impl::rebuild(const std::vector<std::size_t>& rows, const Da
 #pragma omp parallel for schedule(dynamic)
   for (std::ptrdiff_t k = 0; k < n; ++k) {
     const std::vector<float> one(params.begin() + k * static_cast<std::ptrdiff_t>(p), params.begin() + (k + 1) * static_cast<std::ptrdiff_t>(p));
-    bodies[static_cast<std::size_t>(k)] = rebuilt_bodies(*body_model, one, 1, p);
+    const std::vector<float> pose(poses.begin() + k * static_cast<std::ptrdiff_t>(a), poses.begin() + (k + 1) * static_cast<std::ptrdiff_t>(a));
+    bodies[static_cast<std::size_t>(k)] = rebuilt_bodies(*body_model, one, 1, p, layout.pose_angles, pose);
   }
   for (std::size_t k = 0; k < todo.size(); ++k) rebuilt[todo[k]] = std::move(bodies[k]);
 }
@@ -244,6 +247,16 @@ Tensor DatasetReader::garment_vertices(const std::vector<std::size_t>& indices) 
   return out;
 }
 
+Tensor DatasetReader::poses(const std::vector<std::size_t>& indices) const {
+  if (layout_.pose_angles.empty())
+    throw ConfigError(impl_->name + ": holds A-pose bodies, no joint angles (a dataset generated without poses)");
+  check_indices(*this, indices, fs::path(impl_->name));
+  const int a = static_cast<int>(layout_.pose_angles.size());
+  Tensor out(static_cast<int>(indices.size()), 1, a);
+  impl_->gather(kPose, indices, static_cast<std::size_t>(a), out.data());
+  return out;
+}
+
 std::vector<double> DatasetReader::stat(const std::string& name, const std::vector<std::size_t>& indices) const {
   if (std::find(layout_.stats.begin(), layout_.stats.end(), name) == layout_.stats.end())
     throw ConfigError(fs::path(impl_->name).string() + ": no statistic '" + name + "'" + did_you_mean(name, layout_.stats));
@@ -258,6 +271,8 @@ DatasetSample DatasetReader::sample(std::size_t index) const {
   s.body_params = Eigen::Map<const Eigen::VectorXf>(body_params({index}).data(), layout_.body_params);
   s.body_vertices = body_vertices({index}).mat(0);
   s.garment_vertices = garment_vertices({index}).mat(0);
+  if (!layout_.pose_angles.empty())
+    s.pose = Eigen::Map<const Eigen::VectorXf>(poses({index}).data(), static_cast<Eigen::Index>(layout_.pose_angles.size()));
   s.split = static_cast<Split>(split_[index]);
   for (const auto& name : layout_.stats) s.stats[name] = stat(name, {index})[0];
   return s;

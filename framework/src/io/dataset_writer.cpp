@@ -76,6 +76,7 @@ void DatasetWriter::write(std::size_t index, const DatasetSample& sample) {
   }
   file.write_rows(kParams, index, 1, sample.body_params.data());
   file.write_rows(kBodyVertices, index, 1, sample.body_vertices.data());
+  if (!layout_.pose_angles.empty()) file.write_rows(kPose, index, 1, sample.pose.data());
   file.write_rows(kGarmentVertices, index, 1, sample.garment_vertices.data());
   const auto split = static_cast<std::int8_t>(sample.split);
   file.write_rows(kSplit, index, 1, &split);

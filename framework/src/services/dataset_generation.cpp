@@ -1,6 +1,7 @@
 // generate_dataset (services/dataset_generation.hpp).
 #include <drape/bodies/body.hpp>
 #include <drape/bodies/body_space.hpp>
+#include <drape/bodies/posed_body.hpp>
 #include <drape/io/dataset.hpp>
 #include <drape/errors.hpp>
 #include <drape/scene/garment_size.hpp>
@@ -81,7 +82,51 @@ std::string ranges_text(const GenerateRequest& r) {
   return o.str();
 }
 
-DatasetLayout layout_of(const Scene& scene, const SceneSimulations& simulations, const GenerateRequest& request) {
+// Where each sample's pose comes from: none (A-pose), the scene's, or drawn.
+struct PoseSource {
+  bool posed = false;
+  bool drawn = false;
+  Pose scene_pose;                // the scene's (not drawn)
+  std::vector<PoseAngle> space;  // what is drawn from (drawn)
+  std::string text;              // for the generator attribute
+};
+
+PoseSource pose_source(const GenerateRequest& r, const Simulation& sim, const Scene& scene) {
+  PoseSource out;
+  out.scene_pose = sim.target_pose();
+  if (!r.draw_poses && !r.pose_ranges.empty())
+    throw ConfigError("pose ranges (" + r.pose_ranges + ") are what poses are drawn from: draw poses too (--poses draw)");
+  if (r.draw_poses && !out.scene_pose.empty())
+    throw ConfigError(scene.pose.begin()->second.where,
+                      "body `pose`: this scene drapes one pose and poses are to be drawn; draw them from the scene "
+                      "without its pose, or generate in the scene's pose without drawing");
+  out.drawn = r.draw_poses;
+  out.posed = out.drawn || !out.scene_pose.empty();
+  if (!out.posed) return out;
+  const BodyModel& model = sim.body_model();
+  if (!model.poseable()) {
+    const std::string why = unposeable_reason(model);
+    throw ConfigError("body model '" + scene.body_model + "' cannot be posed" + (why.empty() ? " (it has no skeleton)" : ": " + why));
+  }
+  out.space = with_sampling_ranges(model.pose_angles(), r.pose_ranges, "pose range");
+  out.text = out.drawn ? "poses drawn" + std::string(r.pose_ranges.empty() ? "" : " (" + sampling_ranges_text(out.space, model.pose_angles()) + ")")
+                       : "pose " + format_pose(out.scene_pose);
+  return out;
+}
+
+// The pose of a sample as the dataset stores it: every angle of the space
+// (those the pose leaves at rest at the body's rest angle), each rounded to
+// float, so that the stored angles pose the body that was simulated.
+Pose stored_pose(const Pose& pose, const BodyModel& model, const Eigen::VectorXd& shape) {
+  const Pose rest = model.rest_pose(shape);
+  Pose out;
+  for (const PoseAngle& a : model.pose_angles())
+    out.angles[a.name] = static_cast<double>(static_cast<float>(pose.get(a.name, rest.get(a.name, 0.0))));
+  return out;
+}
+
+DatasetLayout layout_of(const Scene& scene, const SceneSimulations& simulations, const GenerateRequest& request,
+                        const PoseSource& poses) {
   const Simulation& sim = simulations.design();
   DatasetLayout layout;
   layout.samples = request.shard.last(request.count) - request.shard.first(request.count);
@@ -101,7 +146,9 @@ DatasetLayout layout_of(const Scene& scene, const SceneSimulations& simulations,
   }
   layout.template_hash = template_hash(sim.garment().mesh, sim.body_model().faces());
   layout.garment_faces = sim.garment().mesh.faces;  // for readers without drape's assets (h5py, torch)
-  layout.attributes["generator"] = "drape generate: " + ranges_text(request);
+  layout.attributes["generator"] = "drape generate: " + ranges_text(request) + (poses.posed ? "; " + poses.text : "");
+  if (poses.posed)
+    for (const PoseAngle& a : sim.body_model().pose_angles()) layout.pose_angles.push_back(a.name);
   layout.attributes["body_model"] = scene.body_model;
   std::string names;
   for (const auto& n : sim.body_model().shape_names()) names += (names.empty() ? "" : ",") + n;
@@ -132,10 +179,13 @@ std::string sample_name(std::size_t global, const BodyRequest& request) {
 }
 
 DatasetSample sample_of(const SimulationResult& r, const Eigen::VectorXd& shape, const BodyRequest& request,
-                        std::size_t global, Split split, double size_flag, double grade) {
+                        std::size_t global, Split split, double size_flag, double grade, const Pose& pose,
+                        const std::vector<std::string>& angles) {
   namespace st = sample_stat;
   DatasetSample s;
   s.body_params = shape.cast<float>();
+  s.pose.resize(static_cast<Eigen::Index>(angles.size()));
+  for (std::size_t a = 0; a < angles.size(); ++a) s.pose[static_cast<Eigen::Index>(a)] = static_cast<float>(pose.angles.at(angles[a]));
   s.body_vertices = r.body.cast<float>();
   s.garment_vertices = r.garment.cast<float>();
   s.split = split;
@@ -174,12 +224,6 @@ std::vector<std::string> generated_statistics(const Scene& scene) {
 GenerateSummary generate_dataset(const Registry& registry, const Scene& scene, const GenerateRequest& request,
                                  const std::string& out, const GenerateObserver& observer) {
   check_request(request);
-  // Samples store the body's shape, not a pose (issue 56 adds it): a posed
-  // scene would be stored as if its drapes were of A-pose bodies.
-  if (!scene.pose.empty())
-    throw ConfigError(scene.pose.begin()->second.where,
-                      "body `pose`: drape generate drapes A-pose bodies only (a dataset stores each body's shape, not a "
-                      "pose, yet); generate from the scene's A-pose base, or drape posed bodies with drape simulate --pose");
   // Before anything looks at the output (output_lock.hpp).
   const OutputLock lock(out, "drape generate");
   // size: auto -- each body wears the size its girth needs (garment_size.hpp,
@@ -188,13 +232,14 @@ GenerateSummary generate_dataset(const Registry& registry, const Scene& scene, c
   const SceneSimulations simulations(registry, scene);
   const Simulation& sim = simulations.design();
   check_bmi_range(request, sim, scene);
+  const PoseSource poses = pose_source(request, sim, scene);
   // The size flag of a graph trained on several sizes (garment_size_flag).
   const double design_size = garment_size_flag(sim.scene());
   const double design_grade = fixed_garment_grade(registry, scene, simulations);
   const std::size_t first = request.shard.first(request.count);
   const std::vector<Split> split = splits(request.count, request.seed);
 
-  DatasetLayout layout = layout_of(scene, simulations, request);
+  DatasetLayout layout = layout_of(scene, simulations, request, poses);
   DatasetWriter writer(out, layout);
   const std::vector<std::size_t> todo = writer.missing();
   GeneratePlan plan;
@@ -228,6 +273,25 @@ GenerateSummary generate_dataset(const Registry& registry, const Scene& scene, c
       const Eigen::VectorXd shape = solve_in_space(sim.body_model(), body_request);
       const Eigen::MatrixX3d body = sim.body_vertices(shape);
       const std::string who = sample_name(global, body_request);
+      // The pose: drawn on its own stream (the shapes stay those of the seed
+      // without poses), or the scene's; the size is chosen on the unposed body.
+      Pose pose;
+      Eigen::MatrixX3d target = body;
+      if (poses.posed) {
+        const BodyModel& model = sim.body_model();
+        if (poses.drawn) {
+          Rng pose_rng(Rng::derive(request.seed, "pose-" + std::to_string(global)));
+          pose = stored_pose(draw_free_pose(model, shape, pose_rng, 50, &poses.space).pose, model, shape);
+          target = model.posed_vertices(body, pose, 1.0);  // free of self-crossing: drawn so
+        } else {
+          pose = stored_pose(poses.scene_pose, model, shape);
+          try {
+            target = pose_vertices(model, scene.body_model, body, pose);
+          } catch (const ConfigError& e) {
+            throw ConfigError(who + ": " + e.what());
+          }
+        }
+      }
       SizeChoice choice;
       GradeChoice grade_choice;
       const Simulation& wearing = simulations.for_body(body, who, &choice, &grade_choice);
@@ -237,13 +301,19 @@ GenerateSummary generate_dataset(const Registry& registry, const Scene& scene, c
                                                       : design_grade;
       const SimulationResult r = [&] {
         try {
-          return wearing.run(body);
+          SimulationOptions options;
+          if (poses.posed) {
+            options.target_pose = &pose;
+            options.unposed_target = &body;
+          }
+          return wearing.run(target, options);
         } catch (const ConfigError& e) {  // a body the scene refuses: say which sample it is
           const std::string hint = start_fit_hint(wearing);
           throw ConfigError(who + ": " + e.what() + (hint.empty() ? "" : "; " + hint));
         }
       }();
-      const DatasetSample s = sample_of(r, shape, body_request, global, split[global], size_flag, grade);
+      const DatasetSample s =
+          sample_of(r, shape, body_request, global, split[global], size_flag, grade, pose, layout.pose_angles);
       if (!r.converged) ++not_settled;
       if (r.penetration > 0) ++penetrating;
       if (r.crossings && r.crossings->total() > 0) ++crossing;

@@ -63,4 +63,17 @@ std::string format_pose(const Pose& pose);
 // range (a fixed number of draws, one per angle in the space's order).
 Pose draw_pose(const std::vector<PoseAngle>& space, Rng& rng);
 
+// `space` with the sampling ranges of some angles replaced, from
+// "shoulder_abduction=60:90,spine_twist=-45:-30" (degrees; a name without
+// left_/right_ sets both sides; one value draws that value). What drape
+// generate --pose-range draws from: a narrower training set, or a held-out
+// set outside it. ConfigError (prefixed by `what`) for an unknown name (with
+// the close names), lo > hi, a bound that is not a number, or a range beyond
+// the angle's range of motion.
+std::vector<PoseAngle> with_sampling_ranges(std::vector<PoseAngle> space, const std::string& text, const std::string& what);
+// "shoulder_abduction 25:100, ..." of the angles whose sampling range differs
+// from `reference`'s (all of them when reference is empty): for messages and
+// a dataset's generator attribute.
+std::string sampling_ranges_text(const std::vector<PoseAngle>& space, const std::vector<PoseAngle>& reference = {});
+
 }  // namespace drape

@@ -45,6 +45,9 @@ struct DrawnPose {
   Eigen::MatrixX3d vertices;  // the posed body
   int redraws = 0;            // poses drawn and rejected before this one
 };
-DrawnPose draw_free_pose(const BodyModel& model, const Eigen::VectorXd& shape, Rng& rng, int max_draws = 50);
+// `space`, when given, replaces the model's pose_angles() (the same angles
+// with other sampling ranges: with_sampling_ranges).
+DrawnPose draw_free_pose(const BodyModel& model, const Eigen::VectorXd& shape, Rng& rng, int max_draws = 50,
+                         const std::vector<PoseAngle>* space = nullptr);
 
 }  // namespace drape

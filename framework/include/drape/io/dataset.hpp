@@ -51,6 +51,12 @@ struct DatasetLayout {
   // reader without drape (h5py) can draw or measure the drapes. Empty: not
   // stored (files written before 2026-11-29, which still load).
   Eigen::MatrixX3i garment_faces;
+  // The joint angles of /bodies/pose (float32 [N, A], degrees), in column
+  // order: every angle of the body model's pose space (BodyModel::
+  // pose_angles), so that body i is the body of its shape in that pose
+  // (BodyModel::posed_vertices at fraction 1). Empty: the bodies are in the
+  // body model's A-pose and no pose is stored (every dataset before poses).
+  std::vector<std::string> pose_angles;
   std::string scene;               // YAML text of the scene that generated it
   std::string template_hash;
   std::string drape_version = "0.1.0";
@@ -64,6 +70,7 @@ struct DatasetSample {
   Eigen::VectorXf body_params;  // [P]
   MatrixRM body_vertices;       // [Nb, 3]
   MatrixRM garment_vertices;    // [Ng, 3]
+  Eigen::VectorXf pose;         // [A] degrees, the layout's pose_angles; empty in an A-pose dataset
   Split split = Split::Train;
   // Values for some or all of the layout's stats; absent ones are stored as NaN.
   std::map<std::string, double> stats;
@@ -147,6 +154,9 @@ class DatasetReader {
   Tensor body_params(const std::vector<std::size_t>& indices) const;       // [n, 1, P]
   Tensor body_vertices(const std::vector<std::size_t>& indices) const;     // [n, Nb, 3]
   Tensor garment_vertices(const std::vector<std::size_t>& indices) const;  // [n, Ng, 3]
+  // The joint angles, degrees, in the layout's pose_angles order; ConfigError
+  // for an A-pose dataset (layout().pose_angles empty).
+  Tensor poses(const std::vector<std::size_t>& indices) const;  // [n, 1, A]
   std::vector<double> stat(const std::string& name, const std::vector<std::size_t>& indices) const;
   DatasetSample sample(std::size_t index) const;
 
@@ -202,7 +212,9 @@ std::size_t slim_dataset(const std::filesystem::path& in, const std::filesystem:
 // the model that generated them (the scene's body model). ConfigError when the
 // model's vertex or parameter count differs from the shards'. The rebuilt
 // vertices come from the stored float parameters, so they differ from the
-// simulated body by the parameters' rounding (under a micrometre here).
+// simulated body by the parameters' rounding (under a micrometre here). A
+// posed dataset's bodies are posed in their stored angles (drape generate
+// rounds the angles it draws to float before it simulates).
 // `rebuilt`, when given, is called after each body is rebuilt (a progress bar:
 // about 20 ms a body on the parametric model).
 std::size_t expand_datasets(const std::vector<std::filesystem::path>& shards, const std::filesystem::path& out,

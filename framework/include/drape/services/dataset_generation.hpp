@@ -39,7 +39,17 @@ struct GenerateRequest {
   // Spread of the body's girths as a fraction of the body model's range
   // (draw_proportions), in [0, 1]; 0 keeps the mean build.
   double girths = 0.0;
-  std::uint64_t seed = 0;  // of the bodies and the split
+  // Poses (docs/poses.md). false: every body in the scene's pose (the A-pose
+  // when the scene has none); true: each body in a pose drawn from the body
+  // model's pose space by rejection (draw_free_pose), on a seeded stream of
+  // its own, so the shapes are those the seed draws without poses. A posed
+  // dataset stores every sample's joint angles (DatasetLayout::pose_angles).
+  bool draw_poses = false;
+  // With draw_poses: sampling ranges replacing the pose space's
+  // ("shoulder_abduction=60:90,spine_twist=30:45", with_sampling_ranges), for
+  // a training set narrower than the space or a held-out set outside it.
+  std::string pose_ranges;
+  std::uint64_t seed = 0;  // of the bodies, the poses and the split
   Shard shard;
   int threads = 0;  // samples simulated at once; 0: all cores
 };

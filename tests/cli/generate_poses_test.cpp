@@ -1,0 +1,134 @@
+// drape generate --poses: each body in a drawn pose (or the scene's), the
+// joint angles stored per sample, the shapes those of the same seed without
+// poses, and a slim posed dataset's bodies rebuilt in their stored poses.
+#include <catch2/catch.hpp>
+
+#include <drape/bodies/body.hpp>
+#include <drape/io/dataset.hpp>
+
+#include <fstream>
+
+#include "test_support.hpp"
+
+using namespace drape;
+namespace fs = std::filesystem;
+
+namespace {
+
+Pose pose_of(const DatasetReader& data, const Tensor& poses, int row) {
+  Pose pose;
+  for (std::size_t a = 0; a < data.layout().pose_angles.size(); ++a)
+    pose.angles[data.layout().pose_angles[a]] = poses(row, 0, static_cast<int>(a));
+  return pose;
+}
+
+}  // namespace
+
+TEST_CASE("drape generate --poses draw stores each body's drawn pose and keeps the seed's shapes", "[cli][generate][pose]") {
+  test::TempDir dir;
+  std::ofstream(dir / "tiny.yaml") << test::tiny_simulation_scene();
+  const std::string generate = "generate " + (dir / "tiny.yaml").string() + " --count 3 --bmi 15:40 --seed 6 --threads 1 ";
+  std::string out;
+  REQUIRE(test::run_drape(generate + "--poses draw --out " + (dir / "posed.h5").string(), out) == 0);
+  INFO(out);
+  REQUIRE(test::run_drape(generate + "--out " + (dir / "plain.h5").string(), out) == 0);
+  REQUIRE(test::run_drape(generate + "--poses draw --pose-range shoulder_abduction=60:70,right_elbow_flexion=45 --out " +
+                              (dir / "narrow.h5").string(), out) == 0);
+  const DatasetReader posed(dir / "posed.h5"), plain(dir / "plain.h5"), narrow(dir / "narrow.h5");
+  CHECK(plain.layout().pose_angles.empty());
+  const auto model = test::parametric_body();
+  std::vector<std::string> names;
+  for (const PoseAngle& a : model->pose_angles()) names.push_back(a.name);
+  REQUIRE(posed.layout().pose_angles == names);
+  CHECK(posed.layout().attributes.at("generator").find("; poses drawn") != std::string::npos);
+  CHECK(narrow.layout().attributes.at("generator").find("left_shoulder_abduction 60:70") != std::string::npos);
+  const auto idx = posed.indices();
+  REQUIRE(idx.size() == 3);
+  const Tensor poses = posed.poses(idx), narrow_poses = narrow.poses(idx);
+  const Tensor shapes = posed.body_params(idx), plain_shapes = plain.body_params(idx);
+  const Tensor bodies = posed.body_vertices(idx), plain_bodies = plain.body_vertices(idx);
+  for (int i = 0; i < 3; ++i) {
+    CHECK(shapes.mat(i) == plain_shapes.mat(i));  // the pose's stream is its own
+    const Pose pose = pose_of(posed, poses, i);
+    for (const PoseAngle& a : model->pose_angles()) {
+      CHECK(pose.angles.at(a.name) >= a.sample_lo);
+      CHECK(pose.angles.at(a.name) <= a.sample_hi);
+    }
+    // The stored body is the body of the stored shape in the stored angles.
+    const Eigen::VectorXd shape = shapes.mat(i).row(0).transpose().cast<double>();
+    const Eigen::MatrixX3d expected = model->posed_vertices(model->vertices(shape), pose, 1.0);
+    CHECK((bodies.mat(i).cast<double>() - expected).cwiseAbs().maxCoeff() < 1e-5);
+    CHECK((bodies.mat(i) - plain_bodies.mat(i)).cwiseAbs().maxCoeff() > 0.01f);  // posed, not the A-pose body
+    const Pose narrowed = pose_of(narrow, narrow_poses, i);
+    for (const char* side : {"left_", "right_"}) {
+      CHECK(narrowed.angles.at(std::string(side) + "shoulder_abduction") >= 60);
+      CHECK(narrowed.angles.at(std::string(side) + "shoulder_abduction") <= 70);
+    }
+    CHECK(narrowed.angles.at("right_elbow_flexion") == 45);
+  }
+  // Slim, the bodies come back posed in their stored angles.
+  REQUIRE(test::run_drape("dataset slim " + (dir / "posed.h5").string() + " --out " + (dir / "slim.h5").string(), out) == 0);
+  const DatasetReader slim(dir / "slim.h5");
+  CHECK(!slim.layout().body_vertices_stored);
+  const Tensor rebuilt = slim.body_vertices(idx);
+  CHECK(slim.poses(idx).mat(1) == poses.mat(1));
+  for (int i = 0; i < 3; ++i) CHECK((rebuilt.mat(i) - bodies.mat(i)).cwiseAbs().maxCoeff() < 1e-5f);
+  REQUIRE(test::run_drape("dataset expand " + (dir / "slim.h5").string() + " --out " + (dir / "whole.h5").string(), out) == 0);
+  const DatasetReader whole(dir / "whole.h5");
+  CHECK(whole.layout().pose_angles == names);
+  CHECK((whole.body_vertices(idx).mat(2) - bodies.mat(2)).cwiseAbs().maxCoeff() < 1e-5f);
+  // A posed and an A-pose dataset do not read as one.
+  fs::copy_file(dir / "plain.h5", dir / "z-plain.h5");
+  fs::copy_file(dir / "posed.h5", dir / "z-posed.h5");
+  CHECK_THROWS_WITH(DatasetReader(dir / "z-*.h5"), Catch::Contains("pose angles are none (A-pose bodies) in the file"));
+}
+
+TEST_CASE("drape generate in a posed scene stores the scene's pose for every body", "[cli][generate][pose]") {
+  test::TempDir dir;
+  {
+    std::ofstream scene(dir / "posed.yaml");
+    std::string text = test::tiny_simulation_scene();
+    text.replace(text.find("body: {model: parametric}"), 25, "body: {model: parametric, pose: {left_elbow_flexion: 40}}");
+    scene << text;
+  }
+  std::string out;
+  REQUIRE(test::run_drape("generate " + (dir / "posed.yaml").string() + " --count 2 --seed 1 --threads 1 --out " +
+                              (dir / "d.h5").string(), out) == 0);
+  INFO(out);
+  const DatasetReader data(dir / "d.h5");
+  const auto model = test::parametric_body();
+  const Tensor poses = data.poses(data.indices()), shapes = data.body_params(data.indices());
+  for (int i = 0; i < 2; ++i) {
+    const Pose pose = pose_of(data, poses, i);
+    CHECK(pose.angles.at("left_elbow_flexion") == 40);
+    // Angles the scene leaves alone are stored at the body's rest angles.
+    const Eigen::VectorXd shape = shapes.mat(i).row(0).transpose().cast<double>();
+    const Pose rest = model->rest_pose(shape);
+    CHECK(pose.angles.at("right_elbow_flexion") == Approx(rest.angles.at("right_elbow_flexion")).margin(1e-5));
+    CHECK(pose.angles.at("left_shoulder_abduction") == Approx(rest.angles.at("left_shoulder_abduction")).margin(1e-5));
+  }
+}
+
+TEST_CASE("drape generate refuses poses it cannot draw before writing anything", "[cli][generate][pose]") {
+  test::TempDir dir;
+  std::ofstream(dir / "tiny.yaml") << test::tiny_simulation_scene();
+  const std::string generate = "generate " + (dir / "tiny.yaml").string() + " --count 1 --out " + (dir / "d.h5").string();
+  std::string out;
+  CHECK(test::run_drape(generate + " --pose-range shoulder_abduction=60:90", out) == 2);
+  CHECK(out.find("draw poses too (--poses draw)") != std::string::npos);
+  CHECK(test::run_drape(generate + " --poses draw --pose-range shoulder_abdution=60:90", out) == 2);
+  CHECK(out.find("pose range: no joint angle 'shoulder_abdution'; did you mean 'shoulder_abduction'") != std::string::npos);
+  CHECK(test::run_drape(generate + " --poses draw --pose-range spine_twist=30:60", out) == 2);
+  CHECK(out.find("spine_twist = 60 is outside its range of motion [-45, 45] degrees") != std::string::npos);
+  CHECK(test::run_drape(generate + " --poses draw --pose-range spine_twist=30:10", out) == 2);
+  CHECK(out.find("spine_twist range 30:10: expected lo <= hi") != std::string::npos);
+  CHECK(test::run_drape(generate + " --poses sometimes", out) == 2);
+  CHECK(out.find("--poses sometimes: expected scene or draw") != std::string::npos);
+  const std::string scene = (test::source_dir() / "graphs" / "scenes" / "tshirt_coarse_posed.yaml").string();
+  CHECK(test::run_drape("generate " + scene + " --poses draw --count 1 --out " + (dir / "d.h5").string(), out) == 2);
+  INFO(out);
+  CHECK(out.find("tshirt_coarse_posed.yaml:9: body `pose`: this scene drapes one pose and poses are to be drawn") !=
+        std::string::npos);
+  CHECK(!fs::exists(dir / "d.h5"));
+  CHECK(!fs::exists(dir / "d.h5.partial"));
+}
