@@ -66,6 +66,27 @@ TEST_CASE("drape generate --poses draw stores each body's drawn pose and keeps t
     }
     CHECK(narrowed.angles.at("right_elbow_flexion") == 45);
   }
+  // What the unposing graphs read: the rest body and the joints' transforms
+  // pose it by the body's own weights into the stored body; the angles in radians.
+  const DatasetReader::Posing posing = posed.posing(idx);
+  REQUIRE(posing.transforms.rows() == static_cast<int>(model->joints().size()));
+  for (int i = 0; i < 3; ++i) {
+    std::vector<skinning::Rigid> transforms(model->joints().size());
+    for (std::size_t b = 0; b < transforms.size(); ++b) {
+      for (int r = 0; r < 3; ++r)
+        for (int c = 0; c < 3; ++c) transforms[b].r(r, c) = posing.transforms(i, static_cast<int>(b), 3 * r + c);
+      for (int c = 0; c < 3; ++c) transforms[b].t[c] = posing.transforms(i, static_cast<int>(b), 9 + c);
+    }
+    const Eigen::MatrixX3d unposed = posing.unposed.mat(i).cast<double>();
+    const Eigen::MatrixX3d skinned = skinning::blend(unposed, model->skinning_weights(), transforms);
+    CHECK((skinned - bodies.mat(i).cast<double>()).cwiseAbs().maxCoeff() < 1e-4);
+    CHECK(posing.angles(i, 0, 2) == Approx(poses(i, 0, 2) * M_PI / 180).epsilon(1e-5));  // spine_twist
+  }
+  // An A-pose dataset's samples are at rest: identity transforms, the body itself.
+  const DatasetReader::Posing at_rest = plain.posing({0});
+  CHECK(at_rest.transforms(0, 3, 0) == 1.0f);
+  CHECK(at_rest.transforms(0, 3, 9) == 0.0f);
+  CHECK((at_rest.unposed.mat(0) - plain_bodies.mat(0)).cwiseAbs().maxCoeff() < 1e-5f);
   // Slim, the bodies come back posed in their stored angles.
   REQUIRE(test::run_drape("dataset slim " + (dir / "posed.h5").string() + " --out " + (dir / "slim.h5").string(), out) == 0);
   const DatasetReader slim(dir / "slim.h5");

@@ -4,6 +4,7 @@
 #include <drape/bodies/body.hpp>
 #include <drape/assets/assets.hpp>
 #include <drape/bodies/fit_body.hpp>
+#include <drape/bodies/garment_skinning.hpp>
 #include <drape/garment_dressing.hpp>
 #include <drape/geometry/body_correspondence.hpp>
 #include <drape/geometry/laplacian.hpp>
@@ -65,6 +66,10 @@ std::map<std::string, int> Assets::dims() const {
                                {"eigen_k", static_cast<int>(eigenvalues.size())}};
   for (int l = 1; l < hierarchy.num_levels(); ++l)
     d["level" + std::to_string(l) + "_vertices"] = hierarchy.levels[static_cast<std::size_t>(l)].mesh.num_vertices();
+  if (!pose_angles.empty()) {
+    d["pose_angles"] = static_cast<int>(pose_angles.size());
+    d["joints"] = static_cast<int>(garment_skinning.cols());
+  }
   return d;
 }
 
@@ -143,6 +148,15 @@ std::shared_ptr<const Assets> build_assets(const Registry& registry, const Asset
     }
   }
   t.from_cache = loaded;
+  if (body_model->poseable()) {
+    try {
+      const Eigen::MatrixXd weights = body_model->skinning_weights();
+      for (const PoseAngle& angle : body_model->pose_angles()) a->pose_angles.push_back(angle.name);
+      a->garment_skinning = garment_skinning_weights(a->body, weights, gm).cast<float>();
+    } catch (const ConfigError&) {
+      a->pose_angles.clear();  // a model file without its rig (SMPL without pose data): unposed models only
+    }
+  }
   for (const auto& level : a->hierarchy.levels)
     a->laplacians.push_back(geometry::graph_laplacian(level.mesh.faces, level.mesh.num_vertices()).cast<float>());
   if (timings) *timings = t;

@@ -208,12 +208,16 @@ Eigen::MatrixXd BodyModel::skinning_weights() const {
   throw ConfigError("this body model has no skeleton (it makes unposed bodies only; docs/poses.md)");
 }
 Pose BodyModel::rest_pose(const Eigen::VectorXd&) const { return {}; }
+Pose BodyModel::rest_pose_of(const Eigen::MatrixX3d&) const { return rest_pose(mean_shape()); }
 Eigen::MatrixX3d BodyModel::posed(const Eigen::VectorXd& shape, const Pose& pose) const {
   if (pose.empty()) return vertices(shape);
   throw ConfigError(kNoSkeletonRefusal);
 }
 Eigen::MatrixX3d BodyModel::posed_vertices(const Eigen::MatrixX3d& unposed, const Pose& pose, double) const {
   if (pose.empty()) return unposed;
+  throw ConfigError(kNoSkeletonRefusal);
+}
+std::vector<skinning::Rigid> BodyModel::joint_transforms(const Eigen::MatrixX3d&, const Pose&) const {
   throw ConfigError(kNoSkeletonRefusal);
 }
 

@@ -3,6 +3,7 @@
 #include "dataset_internal.hpp"
 
 #include <drape/bodies/body.hpp>
+#include <drape/bodies/garment_skinning.hpp>
 #include <drape/io/shipped_files.hpp>
 
 #include <glob.h>
@@ -47,6 +48,11 @@ struct DatasetReader::Impl {
   mutable std::mutex rebuild_mutex;
   mutable std::unique_ptr<BodyModel> body_model;
   mutable std::unordered_map<std::size_t, std::vector<float>> rebuilt;
+  // Posing data by dataset row (posing()), under rebuild_mutex too.
+  struct PosingRow {
+    std::vector<float> unposed, transforms, angles;
+  };
+  mutable std::unordered_map<std::size_t, PosingRow> posing;
 
   std::size_t part_of(std::size_t row) const {
     auto it = std::upper_bound(parts.begin(), parts.end(), row, [](std::size_t r, const Part& p) { return r < p.first; });
@@ -244,6 +250,58 @@ Tensor DatasetReader::garment_vertices(const std::vector<std::size_t>& indices) 
   check_indices(*this, indices, fs::path(impl_->name));
   Tensor out(static_cast<int>(indices.size()), layout_.garment_vertices, 3);
   impl_->gather(kGarmentVertices, indices, static_cast<std::size_t>(layout_.garment_vertices) * 3, out.data());
+  return out;
+}
+
+DatasetReader::Posing DatasetReader::posing(const std::vector<std::size_t>& indices) const {
+  check_indices(*this, indices, impl_->name);
+  const std::lock_guard<std::mutex> lock(impl_->rebuild_mutex);
+  if (!impl_->body_model) impl_->body_model = dataset_body_model(nullptr, layout_, impl_->files.front().string());
+  const BodyModel& model = *impl_->body_model;
+  if (!model.poseable()) throw ConfigError(impl_->name + ": its body model has no skeleton, so it gives no pose inputs");
+  std::vector<std::size_t> todo;
+  for (std::size_t row : indices)
+    if (!impl_->posing.count(row)) todo.push_back(row);
+  std::sort(todo.begin(), todo.end());
+  todo.erase(std::unique(todo.begin(), todo.end()), todo.end());
+  const std::size_t p = static_cast<std::size_t>(layout_.body_params), a = layout_.pose_angles.size();
+  std::vector<float> params(todo.size() * p), stored(todo.size() * a);
+  for (std::size_t k = 0; k < todo.size(); ++k) {  // HDF5 reads stay on this thread
+    const Part& part = impl_->parts[impl_->part_of(todo[k])];
+    part.file.read_rows(kParams, todo[k] - part.first, 1, params.data() + k * p);
+    if (a) part.file.read_rows(kPose, todo[k] - part.first, 1, stored.data() + k * a);
+  }
+  const std::vector<PoseAngle> angles = model.pose_angles();
+  const std::size_t joints = model.joints().size();
+  std::vector<Impl::PosingRow> made(todo.size());
+  const auto n = static_cast<std::ptrdiff_t>(todo.size());
+#pragma omp parallel for schedule(dynamic)
+  for (std::ptrdiff_t k = 0; k < n; ++k) {
+    const auto u = static_cast<std::size_t>(k);
+    const Eigen::VectorXd shape = Eigen::Map<const Eigen::VectorXf>(params.data() + u * p, static_cast<Eigen::Index>(p)).cast<double>();
+    const Eigen::MatrixX3d unposed = model.vertices(shape);
+    const Pose rest = model.rest_pose(shape);
+    const Pose pose = a ? pose_of_row(layout_.pose_angles, stored.data() + u * a) : rest;
+    const MatrixRM transforms =
+        a ? transforms_rows(model.joint_transforms(unposed, pose)) : transforms_rows(std::vector<skinning::Rigid>(joints));
+    Impl::PosingRow& row = made[u];
+    row.unposed.resize(static_cast<std::size_t>(unposed.size()));
+    for (Eigen::Index v = 0; v < unposed.rows(); ++v)
+      for (int c = 0; c < 3; ++c) row.unposed[static_cast<std::size_t>(v * 3 + c)] = static_cast<float>(unposed(v, c));
+    row.transforms.assign(transforms.data(), transforms.data() + transforms.size());
+    for (const PoseAngle& angle : angles)
+      row.angles.push_back(static_cast<float>(pose.get(angle.name, rest.get(angle.name, 0.0)) * M_PI / 180.0));
+  }
+  for (std::size_t k = 0; k < todo.size(); ++k) impl_->posing[todo[k]] = std::move(made[k]);
+  const int count = static_cast<int>(indices.size());
+  Posing out{Tensor(count, layout_.body_vertices, 3), Tensor(count, static_cast<int>(joints), 12),
+             Tensor(count, 1, static_cast<int>(angles.size()))};
+  for (int i = 0; i < count; ++i) {
+    const Impl::PosingRow& row = impl_->posing.at(indices[static_cast<std::size_t>(i)]);
+    std::copy(row.unposed.begin(), row.unposed.end(), out.unposed.data() + static_cast<std::size_t>(i) * row.unposed.size());
+    std::copy(row.transforms.begin(), row.transforms.end(), out.transforms.data() + static_cast<std::size_t>(i) * row.transforms.size());
+    std::copy(row.angles.begin(), row.angles.end(), out.angles.data() + static_cast<std::size_t>(i) * row.angles.size());
+  }
   return out;
 }
 

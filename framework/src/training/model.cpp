@@ -1,6 +1,7 @@
 // Trained models: the assets spec as text, graph inputs by name, loading and prediction.
 #include <drape/vertex_count.hpp>
 #include <drape/bodies/body.hpp>
+#include <drape/bodies/garment_skinning.hpp>
 #include <drape/io/dataset.hpp>
 #include <drape/training/model.hpp>
 #include <drape/scene/garment_size.hpp>
@@ -16,7 +17,8 @@ namespace fs = std::filesystem;
 namespace drape {
 namespace {
 
-const std::vector<std::string> kKnownInputs{"body", "body_params", "target", "garment_size", "garment_grade"};
+const std::vector<std::string> kKnownInputs{"body",          "body_params",      "target", "garment_size",
+                                            "garment_grade", "unposed_body",     "joint_transforms", "pose"};
 
 // A parameter value as one line of flow YAML, as AssetsSpec::yaml() writes it.
 std::string flow(const YAML::Node& node) {
@@ -100,8 +102,16 @@ AssetsSpec assets_spec_for(const Scene& scene, int eigen_k, int levels) {
 }
 
 SampleBatch SampleBatch::slice(int first, int count) const {
-  return {slice_tensor(body, first, count), slice_tensor(body_params, first, count), slice_tensor(target, first, count),
-          slice_tensor(garment_size, first, count), slice_tensor(garment_grade, first, count)};
+  SampleBatch out;
+  out.body = slice_tensor(body, first, count);
+  out.body_params = slice_tensor(body_params, first, count);
+  out.target = slice_tensor(target, first, count);
+  out.garment_size = slice_tensor(garment_size, first, count);
+  out.garment_grade = slice_tensor(garment_grade, first, count);
+  out.unposed_body = slice_tensor(unposed_body, first, count);
+  out.joint_transforms = slice_tensor(joint_transforms, first, count);
+  out.pose = slice_tensor(pose, first, count);
+  return out;
 }
 
 std::map<std::string, int> graph_dims(const Assets& assets, int body_params) {
@@ -115,7 +125,8 @@ void check_graph_inputs(const GraphSpec& spec) {
     if (std::find(kKnownInputs.begin(), kKnownInputs.end(), name) == kKnownInputs.end())
       throw ConfigError(shape.second, "graph input '" + name + "' is not one drape feeds" + did_you_mean(name, kKnownInputs) +
                                           " (inputs: body [body_vertices, 3], body_params [1, body_params], target "
-                                          "[garment_vertices, 3], garment_size [1, 1], garment_grade [1, 1])");
+                                          "[garment_vertices, 3], garment_size [1, 1], garment_grade [1, 1], unposed_body "
+                                          "[body_vertices, 3], joint_transforms [joints, 12], pose [1, pose_angles])");
 }
 
 std::map<std::string, Tensor> graph_inputs(const Graph& graph, const SampleBatch& batch, bool with_target) {
@@ -125,6 +136,9 @@ std::map<std::string, Tensor> graph_inputs(const Graph& graph, const SampleBatch
                       : name == "body_params"  ? &batch.body_params
                       : name == "garment_size" ? &batch.garment_size
                       : name == "garment_grade" ? &batch.garment_grade
+                      : name == "unposed_body" ? &batch.unposed_body
+                      : name == "joint_transforms" ? &batch.joint_transforms
+                      : name == "pose"         ? &batch.pose
                                                 : &batch.target;
     if (name == "target" && !with_target) continue;
     if (t->empty()) throw ConfigError("the graph takes input '" + name + "', which is not available here");
@@ -285,6 +299,12 @@ SampleBatch read_samples(const DatasetReader& reader, const std::vector<std::siz
     for (std::size_t i = 0; i < size.size(); ++i) b.garment_size(static_cast<int>(i), 0, 0) = static_cast<float>(size[i]);
   }
   if (takes(graph, "garment_grade")) b.garment_grade = column(garment_grades(reader, indices));
+  if (takes(graph, "unposed_body") || takes(graph, "joint_transforms") || takes(graph, "pose")) {
+    DatasetReader::Posing posing = reader.posing(indices);
+    b.unposed_body = std::move(posing.unposed);
+    b.joint_transforms = std::move(posing.transforms);
+    b.pose = std::move(posing.angles);
+  }
   return b;
 }
 
@@ -307,6 +327,32 @@ SampleBatch sample_batch(const DatasetSample& sample, const DatasetLayout& layou
       throw ConfigError("the graph takes garment_grade, but the sample has no garment_grade statistic");
     b.garment_grade = column({grade->second});
   }
+  if (takes(graph, "unposed_body") || takes(graph, "joint_transforms") || takes(graph, "pose"))
+    throw ConfigError("the graph takes the posing inputs, which a single sample read on its own does not give yet "
+                      "(read it with read_samples)");
+  return b;
+}
+
+SampleBatch posed_body_batch(const BodyModel& model, const Eigen::MatrixX3d& unposed, const Pose& pose) {
+  if (!model.poseable()) throw ConfigError("this body model has no skeleton: it takes no pose");
+  const Pose rest = model.rest_pose_of(unposed);
+  Pose full;
+  for (const PoseAngle& a : model.pose_angles()) full.angles[a.name] = pose.get(a.name, rest.get(a.name, 0.0));
+  SampleBatch b;
+  const auto to_tensor = [](const Eigen::MatrixXd& m) {
+    Tensor t(1, static_cast<int>(m.rows()), static_cast<int>(m.cols()));
+    t.mat(0) = m.cast<float>();
+    return t;
+  };
+  b.body = to_tensor(model.posed_vertices(unposed, full, 1.0));
+  b.unposed_body = to_tensor(unposed);
+  const MatrixRM transforms = transforms_rows(model.joint_transforms(unposed, full));
+  b.joint_transforms = Tensor(1, static_cast<int>(transforms.rows()), 12);
+  b.joint_transforms.mat(0) = transforms;
+  const auto angles = model.pose_angles();
+  b.pose = Tensor(1, 1, static_cast<int>(angles.size()));
+  for (std::size_t a = 0; a < angles.size(); ++a)
+    b.pose(0, 0, static_cast<int>(a)) = static_cast<float>(full.angles.at(angles[a].name) * M_PI / 180.0);
   return b;
 }
 

@@ -56,6 +56,12 @@ class ParametricBody final : public BodyModel {
   }
   Eigen::MatrixXd skinning_weights() const override { return shared_skeleton().weights; }
   Pose rest_pose(const Eigen::VectorXd& shape) const override { return rest_angles(joint_positions(shape)); }
+  Pose rest_pose_of(const Eigen::MatrixX3d& unposed) const override {
+    if (unposed.rows() != num_vertices())
+      throw ConfigError("body parametric: a body has " + std::to_string(unposed.rows()) + " vertices, the model " +
+                        std::to_string(num_vertices()));
+    return rest_angles(regress_joints(shared_skeleton(), unposed));
+  }
   Eigen::MatrixX3d posed(const Eigen::VectorXd& shape, const Pose& pose) const override {
     return posed_vertices(vertices(shape), pose, 1.0);
   }
@@ -67,6 +73,13 @@ class ParametricBody final : public BodyModel {
     if (!(fraction >= 0 && fraction <= 1)) throw ConfigError("body parametric: a pose fraction must lie in [0, 1]");
     if (pose.empty() || fraction == 0) return unposed;
     return skin(shared_skeleton(), unposed, regress_joints(shared_skeleton(), unposed), pose, fraction);
+  }
+  std::vector<skinning::Rigid> joint_transforms(const Eigen::MatrixX3d& unposed, const Pose& pose) const override {
+    check_pose(pose, pose_angles(), "body parametric pose");
+    if (unposed.rows() != num_vertices())
+      throw ConfigError("body parametric: a body to pose has " + std::to_string(unposed.rows()) + " vertices, the model " +
+                        std::to_string(num_vertices()));
+    return bone_transforms(shared_skeleton(), regress_joints(shared_skeleton(), unposed), pose, 1.0);
   }
 
   int num_vertices() const override { return static_cast<int>(tpl_.vertices.rows()); }

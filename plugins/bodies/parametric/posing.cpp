@@ -50,6 +50,13 @@ Pose rest_angles(const Eigen::MatrixX3d& joints) {
 
 Eigen::MatrixX3d skin(const Skeleton& skeleton, const Eigen::MatrixX3d& vertices, const Eigen::MatrixX3d& joints,
                       const Pose& pose, double fraction) {
+  // Blended by the framework's skinning: a bone at rest adds exactly zero, so
+  // the rest pose gives `vertices` back.
+  return skinning::blend(vertices, skeleton.weights, bone_transforms(skeleton, joints, pose, fraction));
+}
+
+std::vector<skinning::Rigid> bone_transforms(const Skeleton& skeleton, const Eigen::MatrixX3d& joints, const Pose& pose,
+                                             double fraction) {
   const Pose rest = rest_angles(joints);
   // The angle `fraction` of the way from this body's rest (its A-pose arms) to the pose's.
   auto angle = [&](const std::string& name) {
@@ -84,11 +91,10 @@ Eigen::MatrixX3d skin(const Skeleton& skeleton, const Eigen::MatrixX3d& vertices
     local[static_cast<std::size_t>(h + 1)] = turn(angle(p + "knee_flexion"), V3::UnitX());
   }
 
-  // Composed down the skeleton and blended by the framework's skinning: a
-  // bone at rest adds exactly zero, so the rest pose gives `vertices` back.
+  // Composed down the skeleton.
   std::vector<int> parents;
   for (const BodyModel::Joint& j : skeleton.joints) parents.push_back(j.parent);
-  return skinning::blend(vertices, skeleton.weights, skinning::joint_transforms(parents, local, joints));
+  return skinning::joint_transforms(parents, local, joints);
 }
 
 }  // namespace drape::parametric

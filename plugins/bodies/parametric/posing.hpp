@@ -7,6 +7,7 @@
 #include "skeleton.hpp"
 
 #include <drape/bodies/pose.hpp>
+#include <drape/bodies/skinning.hpp>
 
 namespace drape::parametric {
 
@@ -22,5 +23,8 @@ Pose rest_angles(const Eigen::MatrixX3d& joints);
 // way from the body's own rest angle (BodyModel::posed_vertices).
 Eigen::MatrixX3d skin(const Skeleton& skeleton, const Eigen::MatrixX3d& vertices, const Eigen::MatrixX3d& joints,
                       const Pose& pose, double fraction = 1.0);
+// The bones' transforms skin() blends (BodyModel::joint_transforms).
+std::vector<skinning::Rigid> bone_transforms(const Skeleton& skeleton, const Eigen::MatrixX3d& joints, const Pose& pose,
+                                             double fraction = 1.0);
 
 }  // namespace drape::parametric

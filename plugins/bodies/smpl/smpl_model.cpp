@@ -110,6 +110,15 @@ Eigen::MatrixX3d SmplBody::posed_vertices(const Eigen::MatrixX3d& unposed, const
   return pose_shaped(rig(), unposed, scale_of(unposed), axis_angles(rig(), pose, fraction));
 }
 
+std::vector<skinning::Rigid> SmplBody::joint_transforms(const Eigen::MatrixX3d& unposed, const Pose& pose) const {
+  rig();
+  check_pose(pose, pose_angles(), "body smpl pose");
+  if (unposed.rows() != num_vertices())
+    throw ConfigError("body smpl: a body to pose has " + std::to_string(unposed.rows()) + " vertices, the model " +
+                      std::to_string(num_vertices()));
+  return pose_transforms(rig(), unposed, axis_angles(rig(), pose, 1.0));
+}
+
 double SmplBody::scale_of(const Eigen::MatrixX3d& unposed) const {
   Eigen::VectorXd flat(3 * unposed.rows());
   for (Eigen::Index v = 0; v < unposed.rows(); ++v) flat.segment<3>(3 * v) = unposed.row(v).transpose();

@@ -52,6 +52,7 @@ class SmplBody final : public BodyModel {
   Eigen::MatrixX3d posed(const Eigen::VectorXd& shape, const Pose& pose) const override;
   // θ times `fraction` (the rest is θ = 0).
   Eigen::MatrixX3d posed_vertices(const Eigen::MatrixX3d& unposed, const Pose& pose, double fraction) const override;
+  std::vector<skinning::Rigid> joint_transforms(const Eigen::MatrixX3d& unposed, const Pose& pose) const override;
 
  private:
   const SmplRig& rig() const;  // ConfigError naming the file when it has no pose datasets

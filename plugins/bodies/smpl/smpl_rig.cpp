@@ -145,4 +145,11 @@ Eigen::MatrixX3d pose_shaped(const SmplRig& rig, const Eigen::MatrixX3d& shaped,
   return skinning::blend(with_blend_shapes, rig.weights, skinning::joint_transforms(rig.parents, rotation, joints));
 }
 
+std::vector<skinning::Rigid> pose_transforms(const SmplRig& rig, const Eigen::MatrixX3d& shaped,
+                                             const std::vector<Eigen::Vector3d>& theta) {
+  std::vector<Eigen::Matrix3d> rotation(static_cast<std::size_t>(rig.num_joints()), Eigen::Matrix3d::Identity());
+  for (int j = 1; j < rig.num_joints(); ++j) rotation[static_cast<std::size_t>(j)] = skinning::rodrigues(theta[static_cast<std::size_t>(j)]);
+  return skinning::joint_transforms(rig.parents, rotation, rig.j_regressor * shaped);
+}
+
 }  // namespace drape::smpl

@@ -55,5 +55,8 @@ std::vector<Eigen::Vector3d> axis_angles(const SmplRig& rig, const Pose& pose, d
 // `shaped` bit for bit.
 Eigen::MatrixX3d pose_shaped(const SmplRig& rig, const Eigen::MatrixX3d& shaped, double scale,
                              const std::vector<Eigen::Vector3d>& theta);
+// The joints' transforms pose_shaped blends (without the pose blend shapes).
+std::vector<skinning::Rigid> pose_transforms(const SmplRig& rig, const Eigen::MatrixX3d& shaped,
+                                             const std::vector<Eigen::Vector3d>& theta);
 
 }  // namespace drape::smpl

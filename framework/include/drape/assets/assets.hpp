@@ -31,11 +31,19 @@ class Assets {
   std::vector<Eigen::SparseMatrix<float, Eigen::RowMajor>> laplacians;
   Eigen::VectorXd eigenvalues;             // [k] ascending
   MatrixRM eigenvectors;                   // [garment vertices, k] orthonormal columns
+  // Posing (docs/poses.md), when the body model has a skeleton: its pose
+  // angles in the order of the graph input `pose`, and the garment's
+  // skinning weights [garment vertices, joints] from the mean body's
+  // (garment_skinning.hpp), for the skin node. Empty otherwise. Recomputed
+  // at every build (tens of milliseconds), not cached.
+  std::vector<std::string> pose_angles;
+  Eigen::MatrixXf garment_skinning;
   std::string hash;                        // of the template and settings
   std::string spec_text;                   // the settings as YAML
 
   // Sizes graphs use in `inputs:`: body_vertices, garment_vertices,
-  // level1_vertices .. level3_vertices, eigen_k.
+  // level1_vertices .. level3_vertices, eigen_k, and for a poseable body
+  // model pose_angles and joints.
   std::map<std::string, int> dims() const;
 };
 

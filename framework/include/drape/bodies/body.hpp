@@ -2,6 +2,7 @@
 // Body models: a fixed-topology, watertight mesh in A-pose (meters, Y up) driven
 // by a few shape parameters. Plugins of kind "body" provide them.
 #include <drape/bodies/pose.hpp>
+#include <drape/bodies/skinning.hpp>
 #include <drape/energy.hpp>
 #include <drape/mesh.hpp>
 
@@ -70,6 +71,11 @@ class BodyModel {
   // The angles of the unposed body of `shape` (the A-pose), every angle of
   // pose_angles() set.
   virtual Pose rest_pose(const Eigen::VectorXd& shape) const;
+  // The same for a body given by its unposed mesh (any mesh of this model's
+  // topology, e.g. a user's body without shape parameters). By default
+  // rest_pose of the mean shape (right for a model whose rest angles do not
+  // depend on the shape, as SMPL's zeros).
+  virtual Pose rest_pose_of(const Eigen::MatrixX3d& unposed) const;
   // The body of `shape` in `pose` (angles it does not set stay at rest).
   // The empty pose gives vertices(shape) bit for bit. Not poseable: ConfigError.
   virtual Eigen::MatrixX3d posed(const Eigen::VectorXd& shape, const Pose& pose) const;
@@ -80,6 +86,12 @@ class BodyModel {
   // fraction 1 gives posed(shape, pose) when `unposed` is vertices(shape).
   // The path a simulation's body takes into a pose (Simulation::run).
   virtual Eigen::MatrixX3d posed_vertices(const Eigen::MatrixX3d& unposed, const Pose& pose, double fraction) const;
+  // Each joint's rigid transform (one per joints() entry, in its order) that
+  // takes the body whose unposed mesh is `unposed` into `pose`: what
+  // posed_vertices blends by skinning_weights() (for SMPL, after its pose
+  // blend shapes, which these leave out). What poses a garment with the body
+  // (drape/bodies/garment_skinning.hpp). Not poseable: ConfigError.
+  virtual std::vector<skinning::Rigid> joint_transforms(const Eigen::MatrixX3d& unposed, const Pose& pose) const;
 };
 
 // Garment templates (kind "garment"): the rest garment dressed on the mean body,

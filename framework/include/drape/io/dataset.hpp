@@ -157,6 +157,19 @@ class DatasetReader {
   // The joint angles, degrees, in the layout's pose_angles order; ConfigError
   // for an A-pose dataset (layout().pose_angles empty).
   Tensor poses(const std::vector<std::size_t>& indices) const;  // [n, 1, A]
+  // What the unposing graphs take (docs/poses.md), made by the stored scene's
+  // body model once per sample and kept for the reader's lifetime (about
+  // 20-90 ms a sample): the sample's body in its rest pose, the joints'
+  // transforms from it into the sample's pose (garment_skinning.hpp's rows),
+  // and the pose's angles in radians in the body model's pose_angles order.
+  // An A-pose dataset's samples are at rest: identity transforms and each
+  // body's rest angles. ConfigError when the body model has no skeleton.
+  struct Posing {
+    Tensor unposed;     // [n, Nb, 3]
+    Tensor transforms;  // [n, J, 12]
+    Tensor angles;      // [n, 1, A] radians
+  };
+  Posing posing(const std::vector<std::size_t>& indices) const;
   std::vector<double> stat(const std::string& name, const std::vector<std::size_t>& indices) const;
   DatasetSample sample(std::size_t index) const;
 

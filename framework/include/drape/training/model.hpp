@@ -10,6 +10,10 @@
 //   body         [body_vertices, 3]   body vertices (metres, the body model's topology)
 //   body_params  [1, body_params]     the body model's shape parameters
 //   target       [garment_vertices, 3] the ground-truth garment (losses only)
+//   garment_size, garment_grade [1, 1] the size the sample wears (docs/garments.md)
+//   unposed_body [body_vertices, 3]   the body in its rest pose (docs/poses.md)
+//   joint_transforms [joints, 12]     each joint's transform from the rest pose into the sample's (R row by row, t)
+//   pose         [1, pose_angles]     the joint angles in radians, the body model's pose_angles order
 // A graph input of any other name is refused when the graph is loaded. The
 // predicted garment is the output named `garment`, else the graph's first output.
 #include <drape/assets/assets.hpp>
@@ -45,6 +49,12 @@ struct SampleBatch {
   // statistic garment_grade: its size's girth over the design size's), for
   // graphs trained on drapes in each body's own size.
   Tensor garment_grade;
+  // Posing (docs/poses.md; DatasetReader::Posing): the body at rest
+  // [n, Nb, 3], the joints' transforms into the pose [n, J, 12], the angles
+  // in radians [n, 1, A]. `body` is the posed body.
+  Tensor unposed_body;
+  Tensor joint_transforms;
+  Tensor pose;
   int size() const { return body.batch(); }
   // Samples first .. first+count-1 of every tensor that is present.
   SampleBatch slice(int first, int count) const;
@@ -55,6 +65,11 @@ std::unique_ptr<BodyModel> make_body_model(const Registry& registry, const Asset
 // A body of `model` for a request (ConfigError when the model cannot reach
 // it), as `copies` identical samples: vertices and parameters.
 SampleBatch body_batch(const BodyModel& model, const BodyRequest& request, int copies = 1);
+// One body of `model` given by its unposed mesh in `pose` (angles it does not
+// set at the body's rest angles): body (posed), unposed_body,
+// joint_transforms and pose, as a dataset sample of that body would have them.
+// ConfigError when the model has no skeleton.
+SampleBatch posed_body_batch(const BodyModel& model, const Eigen::MatrixX3d& unposed, const Pose& pose);
 
 // Known graph inputs and their sizes (`dims` for GraphOptions): the assets'
 // sizes plus body_params.

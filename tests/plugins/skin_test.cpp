@@ -1,0 +1,80 @@
+// skin: a canonical garment posed by its skinning weights and the sample's
+// joint transforms, checked against the formula worked by hand, its gradients
+// (to the garment and to the transforms) against finite differences, and
+// clear errors without weights or with the wrong sizes.
+#include <drape/gradcheck.hpp>
+
+#include <catch2/catch.hpp>
+
+#include "plugin_test_util.hpp"
+
+using namespace drape;
+using namespace drape::test;
+
+namespace {
+
+// A 2x2 grid garment (4 vertices) and two joints: vertex 0 all joint 0,
+// vertex 1 all joint 1, vertices 2 and 3 a quarter / three quarters.
+Assets skinned_assets() {
+  Assets a = assets_with(grid_garment(2, 0.1));
+  a.garment_skinning.resize(4, 2);
+  a.garment_skinning << 1, 0, 0, 1, 0.25f, 0.75f, 0.75f, 0.25f;
+  return a;
+}
+
+// Joint 0 at rest; joint 1 turned 90 degrees about y (x -> -z, z -> x) and moved by (1, 2, 3).
+Tensor two_transforms(int batch) {
+  Tensor t(batch, 2, 12);
+  const float identity[12] = {1, 0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0};
+  const float turned[12] = {0, 0, 1, 0, 1, 0, -1, 0, 0, 1, 2, 3};
+  for (int s = 0; s < batch; ++s)
+    for (int k = 0; k < 12; ++k) {
+      t(s, 0, k) = identity[k];
+      t(s, 1, k) = turned[k];
+    }
+  return t;
+}
+
+}  // namespace
+
+TEST_CASE("skin poses each vertex by its blended joint transforms", "[skin]") {
+  const Assets a = skinned_assets();
+  const NodeContext context{"skin", 1, &a};
+  auto skin = make_node("skin");
+  Tensor x(1, 4, 3);
+  const float points[4][3] = {{1, 2, 3}, {1, 2, 3}, {2, 0, 0}, {0, 0, 4}};
+  for (int v = 0; v < 4; ++v)
+    for (int c = 0; c < 3; ++c) x(0, v, c) = points[v][c];
+  const Tensor y = run_forward(*skin, {{"x", x}, {"transforms", two_transforms(1)}}, context).at("out");
+  // Worked by hand: R1 (x, y, z) = (z, y, -x), t1 = (1, 2, 3).
+  const float expected[4][3] = {
+      {1, 2, 3},                                      // joint 0 only: unchanged
+      {3 + 1, 2 + 2, -1 + 3},                         // joint 1 only
+      {0.25f * 2 + 0.75f * (0 + 1), 0.75f * 2, 0.75f * (-2 + 3)},    // (2,0,0): R1 -> (0,0,-2)
+      {0.75f * 0 + 0.25f * (4 + 1), 0.25f * 2, 0.75f * 4 + 0.25f * (0 + 3)}};  // (0,0,4): R1 -> (4,0,0)
+  for (int v = 0; v < 4; ++v)
+    for (int c = 0; c < 3; ++c) CHECK(y(0, v, c) == Approx(expected[v][c]).margin(1e-6));
+}
+
+TEST_CASE("skin's gradients match finite differences", "[skin][gradcheck]") {
+  const Assets a = skinned_assets();
+  const NodeContext context{"skin", 1, &a};
+  auto skin = make_node("skin");
+  Tensor transforms = two_transforms(2);
+  const Tensor noise = random_tensor(2, 2, 12, 7, 0.3f);
+  for (std::size_t i = 0; i < transforms.size(); ++i) transforms.data()[i] += noise.data()[i];
+  const GradCheckReport r = check_node_gradients(*skin, {{"x", random_tensor(2, 4, 3, 5)}, {"transforms", transforms}}, context);
+  INFO(r.str());
+  CHECK(r.ok(1e-2));
+}
+
+TEST_CASE("skin needs the garment's weights and the right sizes", "[skin]") {
+  auto skin = make_node("skin");
+  const Assets bare = assets_with(grid_garment(2, 0.1));
+  CHECK_THROWS_WITH(skin->setup({{"x", {4, 3}}, {"transforms", {2, 12}}}, {"skin", 1, &bare}),
+                    Catch::Contains("has none (its body model has no skeleton"));
+  const Assets a = skinned_assets();
+  CHECK_THROWS_WITH(skin->setup({{"x", {5, 3}}, {"transforms", {2, 12}}}, {"skin", 1, &a}), Catch::Contains("must be [4, 3]"));
+  CHECK_THROWS_WITH(skin->setup({{"x", {4, 3}}, {"transforms", {3, 12}}}, {"skin", 1, &a}),
+                    Catch::Contains("'transforms' must be [2, 12]"));
+}
