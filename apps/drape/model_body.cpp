@@ -1,4 +1,5 @@
 #include "model_body.hpp"
+#include "pose_options.hpp"
 
 #include <drape/io/shipped_files.hpp>
 #include <drape/scene/garment_size.hpp>
@@ -47,6 +48,11 @@ void add_model_body_options(po::options_description& options, const std::string&
       "for a model of drapes in each body's own size: the garment's grade as a number (its girth over the design size's) "
       "instead of a size");
   add_girth_option(options, "with --bmi: ");
+  options.add_options()(
+      "pose", po::value<std::string>(),
+      "for a model of posed drapes: the body's pose, name=degrees,... (docs/poses.md); the body given or made is "
+      "taken as unposed")("pose-file", po::value<std::string>(), "the same from a YAML map of joint angle names to degrees")(
+      "smpl-theta", po::value<std::string>(), "the same as SMPL's θ from a text file (SMPL body models)");
 }
 
 std::string model_file_or_default(const po::variables_map& vm) {
@@ -68,6 +74,8 @@ SampleBatch model_body(const Model& model, const po::variables_map& vm, Eigen::R
     if (printed) printed->push_back(line);
   }
   if (moved_by) *moved_by = prepared.moved_by.front();
+  const std::optional<Pose> pose = pose_options(vm, model.body_model(), model.assets_spec().body_model);
+  pose_model_batch(model, batch, pose ? *pose : Pose{});
   return batch;
 }
 

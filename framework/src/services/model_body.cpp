@@ -144,6 +144,39 @@ SampleBatch model_body_batch(const Model& model, const ModelBodyInput& input) {
   return batch;
 }
 
+bool model_takes_pose(const Model& model) {
+  return model.needs_input("unposed_body") || model.needs_input("joint_transforms") || model.needs_input("pose");
+}
+
+void pose_model_batch(const Model& model, SampleBatch& batch, const Pose& pose) {
+  if (!model_takes_pose(model)) {
+    if (pose.empty()) return;
+    throw ConfigError("this model drapes bodies in the A-pose only (its graph takes no pose): a posed body would get a "
+                      "wrong drape; use a model trained on posed drapes (docs/poses.md), or drape simulate --pose");
+  }
+  const BodyModel& body_model = model.body_model();
+  check_pose(pose, body_model.pose_angles(), "pose");
+  const int n = batch.size();
+  SampleBatch posed;
+  for (int i = 0; i < n; ++i) {
+    const SampleBatch one = posed_body_batch(body_model, batch.body.mat(i).cast<double>(), pose);
+    if (i == 0) {
+      posed.body = Tensor(n, one.body.rows(), 3);
+      posed.unposed_body = Tensor(n, one.unposed_body.rows(), 3);
+      posed.joint_transforms = Tensor(n, one.joint_transforms.rows(), 12);
+      posed.pose = Tensor(n, 1, one.pose.cols());
+    }
+    posed.body.mat(i) = one.body.mat(0);
+    posed.unposed_body.mat(i) = one.unposed_body.mat(0);
+    posed.joint_transforms.mat(i) = one.joint_transforms.mat(0);
+    posed.pose.mat(i) = one.pose.mat(0);
+  }
+  batch.body = std::move(posed.body);
+  batch.unposed_body = std::move(posed.unposed_body);
+  batch.joint_transforms = std::move(posed.joint_transforms);
+  batch.pose = std::move(posed.pose);
+}
+
 std::optional<SizeTable> model_size_chart(const Model& model) {
   const auto& meta = model.checkpoint().meta;
   const auto chart = meta.find("size_chart");

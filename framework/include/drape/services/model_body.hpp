@@ -41,6 +41,18 @@ struct ModelBodyInput {
   std::optional<double> garment_grade;  // input garment_grade: a grade given as a number instead
 };
 
+// Poses the (prepared, unposed) bodies of `batch` for a model that drapes
+// posed bodies (its graph takes unposed_body, joint_transforms or pose;
+// docs/poses.md): each body becomes `pose` (angles it does not set at the
+// body's rest angles), its rest mesh unposed_body. Run after
+// BodyPreparation::prepare, which measures and places the unposed body (a
+// raised arm is no girth), and posing commutes with its move. An empty pose
+// leaves an A-pose model's batch alone; a pose for a model of A-pose bodies
+// is a ConfigError (its drapes would be silently wrong).
+void pose_model_batch(const Model& model, SampleBatch& batch, const Pose& pose);
+// True for a model whose graph takes the posing inputs.
+bool model_takes_pose(const Model& model);
+
 // The grades a model taking garment_grade accepts (a grade is the garment's
 // girth over its design size's).
 inline constexpr double kModelMinGrade = 0.5, kModelMaxGrade = 2.5;
