@@ -230,8 +230,8 @@ def _native_scene(scene):
 _Model_optimize = Model.optimize
 
 
-def _optimize(self, scene, body_vertices, body_params=None, iterations=100, learning_rate=1e-4):
-    return _Model_optimize(self, _native_scene(scene), body_vertices, body_params, iterations, learning_rate)
+def _optimize(self, scene, body_vertices, body_params=None, iterations=100, learning_rate=1e-4, pose=None):
+    return _Model_optimize(self, _native_scene(scene), body_vertices, body_params, iterations, learning_rate, pose)
 
 
 _optimize.__doc__ = _Model_optimize.__doc__

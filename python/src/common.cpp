@@ -7,6 +7,7 @@
 #include <drape/warnings.hpp>
 
 #include <drape/errors.hpp>
+#include <drape/bodies/pose.hpp>
 
 #include <Python.h>
 
@@ -163,6 +164,33 @@ BodyRequest body_request(double bmi, double height, double sex, const py::dict& 
     request.proportions[key.cast<std::string>()] = value.cast<double>();
   }
   return request;
+}
+
+// pose=None: none; "name=degrees,..." or {name: degrees}: that pose
+// (docs/poses.md), ValueError naming the angle when it is unknown, NaN or out
+// of range, or the body model has no skeleton.
+std::optional<Pose> pose_arg(const BodyModel& model, const std::string& model_name, const py::handle& pose) {
+  if (pose.is_none()) return std::nullopt;
+  if (!model.poseable())
+    throw ConfigError("pose: body " + model_name + " has no skeleton, so it cannot be posed "
+                      "(docs/poses.md says which models can)");
+  if (py::isinstance<py::str>(pose)) return parse_pose(pose.cast<std::string>(), model.pose_angles(), "pose");
+  if (!py::isinstance<py::dict>(pose)) throw ConfigError("pose: expected a dict {name: degrees} or a string 'name=degrees,...'");
+  std::string text;
+  for (const auto& [name, value] : pose.cast<py::dict>()) {
+    if (!py::isinstance<py::str>(name)) throw ConfigError("pose: joint angle names are strings");
+    double degrees = 0;
+    try {
+      degrees = value.cast<double>();
+    } catch (const py::cast_error&) {
+      throw ConfigError("pose: " + name.cast<std::string>() + " wants a number of degrees");
+    }
+    std::ostringstream item;
+    item.precision(17);
+    item << name.cast<std::string>() << "=" << degrees << ",";
+    text += item.str();
+  }
+  return parse_pose(text, model.pose_angles(), "pose");
 }
 
 }  // namespace drape::python

@@ -3,6 +3,7 @@
 // checks that name the argument and the shape it wants, and NumPy arrays that
 // own drape's memory instead of copying it.
 #include <drape/assets/assets.hpp>
+#include <drape/bodies/body.hpp>
 #include <drape/scene/garment_size.hpp>
 #include <drape/registry.hpp>
 #include <drape/scene/simulation.hpp>
@@ -14,6 +15,7 @@
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -116,5 +118,10 @@ py::tuple coo(const Sparse& s) {
   return py::make_tuple(to_numpy(std::move(rows)), to_numpy(std::move(cols)), to_numpy(std::move(values)),
                         py::make_tuple(s.rows(), s.cols()));
 }
+
+// A pose argument (None, "name=degrees,...", {name: degrees}) checked
+// against `model`'s pose space; None gives nullopt. ConfigError (ValueError)
+// naming the angle, or saying the model has no skeleton.
+std::optional<Pose> pose_arg(const BodyModel& model, const std::string& model_name, const py::handle& pose);
 
 }  // namespace drape::python

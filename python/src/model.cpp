@@ -225,6 +225,10 @@ void register_model(py::module_& m) {
       .def_property_readonly("inputs", [](PyModel& p) { return p.model().graph().input_names(); })
       .def_property_readonly("needs_body_params", [](PyModel& p) { return p.model().needs_body_params(); })
       .def_property_readonly("needs_garment_size", [](PyModel& p) { return p.model().needs_input("garment_size"); })
+      .def_property_readonly("takes_pose", [](PyModel& p) { return model_takes_pose(p.model()); },
+                             "True for a model of posed drapes (predict takes pose=...)")
+      .def_property_readonly("pose_angles", [](PyModel& p) { return p.model().assets().pose_angles; },
+                             "the body model's joint angle names, in the order of the graph input pose")
       .def_property_readonly("assets_changed", [](PyModel& p) { return p.model().assets_changed(); })
       .def_property_readonly("graph", [](PyModel& p) { return p.model().checkpoint().graph; }, "the resolved graph, YAML")
       .def(
@@ -259,10 +263,12 @@ void register_model(py::module_& m) {
       .def(
           "predict",
           [](PyModel& p, const py::handle& body, const py::handle& body_params, const py::handle& garment_size, bool strict,
-             bool check) {
+             bool check, const py::handle& pose) {
             bool batched = false;
+            const std::optional<Pose> posed = pose_arg(p.model().body_model(), p.model().assets_spec().body_model, pose);
             SampleBatch b = p.batch(body, body_params, garment_size, &batched);
             const std::vector<Eigen::RowVector3d> back = p.prepare(b, strict, check);
+            pose_model_batch(p.model(), b, posed ? *posed : Pose{});
             Tensor out = p.predict(b);
             // Moved back as drape predict writes it (in double), then float32 like every prediction.
             for (int i = 0; i < out.batch(); ++i)
@@ -271,9 +277,10 @@ void register_model(py::module_& m) {
             return to_numpy(std::move(out), !batched);
           },
           py::arg("body_vertices"), py::arg("body_params") = py::none(), py::arg("garment_size") = py::none(),
-          py::arg("strict") = false, py::arg("check") = true,
+          py::arg("strict") = false, py::arg("check") = true, py::arg("pose") = py::none(),
           "float32 garments [Ng, 3] for a body [Nb, 3], or [n, Ng, 3] for a batch [n, Nb, 3], as drape predict makes "
-          "them: a body standing away from where the training bodies stood is draped there and its garment moved back, "
+          "them (pose: for a model of posed drapes, joint angles in degrees, {'shoulder_abduction': 60} or "
+          "'shoulder_abduction=60,...'; the body given is unposed and posed with it, docs/poses.md): a body standing away from where the training bodies stood is draped there and its garment moved back, "
           "a body outside the training domain and a garment too small around for it are warned about (each a Python "
           "warning; strict=True: a body outside the domain raises ValueError). check=False skips those two "
           "measurements of the body (about 5 ms each call for the parametric body, several times the coarse "
@@ -294,13 +301,15 @@ void register_model(py::module_& m) {
       .def(
           "optimize",
           [](PyModel& p, const PyScene& scene, const py::handle& body, const py::handle& body_params, int iterations,
-             double learning_rate) {
+             double learning_rate, const py::handle& pose) {
             bool batched = false;
+            const std::optional<Pose> posed = pose_arg(p.model().body_model(), p.model().assets_spec().body_model, pose);
             SampleBatch b = p.batch(body, body_params, py::none(), &batched);
             if (b.size() != 1) throw py::value_error("body_vertices: optimize takes one body [Nb, 3], got a batch of " + std::to_string(b.size()));
             if (iterations < 0) throw py::value_error("iterations: expected >= 0");
             // Optimised where the training bodies stood (as predict), the drapes moved back with the body.
             const Eigen::RowVector3d back = p.prepare(b, false).front();
+            pose_model_batch(p.model(), b, posed ? *posed : Pose{});
             PhysicsOptimizationOptions o;
             o.iterations = iterations;
             o.learning_rate = learning_rate;
@@ -315,7 +324,7 @@ void register_model(py::module_& m) {
             return result_dict(std::move(r));
           },
           py::arg("scene"), py::arg("body_vertices"), py::arg("body_params") = py::none(), py::arg("iterations") = 100,
-          py::arg("learning_rate") = 1e-4,
+          py::arg("learning_rate") = 1e-4, py::arg("pose") = py::none(),
           "The seed's physics-enforced optimisation (as drape optimize): fine-tunes this model's weights in place so that "
           "its drape of one body minimises the scene's potential. Returns before/after garments, energies, p and the "
           "history. The GIL is released.")

@@ -100,36 +100,12 @@ PyScene make_scene(Scene scene) {
 // What drape simulate drapes (services/scene_body.hpp): a given body checked
 // and placed where the body model's bodies stand, the size it wears with
 // size: auto; the scene's own target body without one.
-// pose=None: the scene's own; "name=degrees,..." or {name: degrees}: that
-// pose instead (docs/poses.md), ValueError naming the angle when it is unknown,
-// NaN or out of range, or the body model has no skeleton.
-std::optional<Pose> pose_arg(const PyScene& s, const py::handle& pose) {
-  if (pose.is_none()) return std::nullopt;
-  const BodyModel& model = s.simulation->body_model();
-  if (!model.poseable())
-    throw ConfigError("pose: body " + s.simulation->scene().body_model + " has no skeleton, so it cannot be posed "
-                      "(docs/poses.md says which models can)");
-  if (py::isinstance<py::str>(pose)) return parse_pose(pose.cast<std::string>(), model.pose_angles(), "pose");
-  if (!py::isinstance<py::dict>(pose)) throw ConfigError("pose: expected a dict {name: degrees} or a string 'name=degrees,...'");
-  std::string text;
-  for (const auto& [name, value] : pose.cast<py::dict>()) {
-    if (!py::isinstance<py::str>(name)) throw ConfigError("pose: joint angle names are strings");
-    double degrees = 0;
-    try {
-      degrees = value.cast<double>();
-    } catch (const py::cast_error&) {
-      throw ConfigError("pose: " + name.cast<std::string>() + " wants a number of degrees");
-    }
-    std::ostringstream item;
-    item.precision(17);
-    item << name.cast<std::string>() << "=" << degrees << ",";
-    text += item.str();
-  }
-  return parse_pose(text, model.pose_angles(), "pose");
+std::optional<Pose> scene_pose_arg(const PyScene& s, const py::handle& pose) {
+  return drape::python::pose_arg(s.simulation->body_model(), s.simulation->scene().body_model, pose);
 }
 
 SceneBody scene_body_arg(const PyScene& s, const py::handle& body, const py::handle& pose_given) {
-  const std::optional<Pose> pose = pose_arg(s, pose_given);
+  const std::optional<Pose> pose = scene_pose_arg(s, pose_given);
   const Pose* posed = pose ? &*pose : nullptr;
   if (body.is_none()) return scene_body(*s.simulations, s.simulation->target_request(), s.simulation->scene().file, posed);
   const Eigen::MatrixX3d given = vertices_arg(body, "body_vertices", static_cast<int>(s.simulation->mean_body().rows()));

@@ -244,3 +244,35 @@ def test_a_model_of_every_size_chooses_the_size_like_the_program(tmp_path):
     for bad, match in (("huge", "small, regular"), (float("nan"), "outside"), (7, "outside"), ([1], "a size name")):
         with pytest.raises(ValueError, match=match):
             sized.predict(body, garment_size=bad)
+
+
+# A model of posed drapes without learnt weights: the garment follows the rest body's shape (the template moved
+# with its corresponding body vertices) and the skin node poses it, so what predict(pose=...) does is visible alone.
+SKINNED_GRAPH = """
+inputs: {body: [body_vertices, 3], unposed_body: [body_vertices, 3], joint_transforms: [joints, 12]}
+nodes:
+  shape:     {type: subtract_mean_body, in: unposed_body}
+  follow:    {type: gather, in: shape}
+  canonical: {type: add_template, in: follow}
+  garment:   {type: skin, in: {x: canonical, transforms: joint_transforms}}
+outputs: {garment: garment}
+"""
+
+
+def test_predict_takes_a_pose_for_a_model_of_posed_drapes():
+    m = drape.Model.untrained(SKINNED_GRAPH, garment_params={"resolution": "coarse"})
+    assert m.takes_pose and "left_shoulder_abduction" in m.pose_angles
+    body = m.body(bmi=30)
+    rest = m.predict(body, check=False)
+    raised = m.predict(body, check=False, pose={"shoulder_abduction": 100})
+    moved = np.linalg.norm(raised - rest, axis=1)
+    # The sleeves go up with the arms; the hem, on the pelvis, stays where it was.
+    cuff = np.abs(rest[:, 0]) > np.abs(rest[:, 0]).max() - 0.02
+    assert (raised[cuff, 1] - rest[cuff, 1]).min() > 0.05
+    hem = rest[:, 1] < rest[:, 1].min() + 0.02
+    assert moved[hem].max() < 1e-4
+    assert np.array_equal(m.predict(body, check=False, pose="shoulder_abduction=100"), raised)
+    with pytest.raises(ValueError, match="no joint angle 'shoulder_abdution'"):
+        m.predict(body, pose={"shoulder_abdution": 100})
+    with pytest.raises(ValueError, match="A-pose only"):
+        drape.Model.load(str(SHIPPED)).predict(body, pose={"shoulder_abduction": 100})
