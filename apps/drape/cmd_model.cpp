@@ -47,6 +47,14 @@ void print_domain(const ModelDomain& d) {
                 1000 * d.placement_spread[1]);
   else
     std::printf("  where the training bodies stood is not recorded (drape model domain adds it)\n");
+  if (d.pose_names.empty()) {
+    std::printf("  poses: the A-pose only (predict refuses a pose)\n");
+    return;
+  }
+  std::printf("  poses (degrees; predict --pose warns outside, --strict refuses; measures above on the bodies at rest):\n");
+  for (std::size_t a = 0; a < d.pose_names.size(); ++a)
+    std::printf("    %-26s %8.1f .. %-8.1f%s\n", d.pose_names[a].c_str(), d.pose[a].min, d.pose[a].max,
+                d.pose[a].min == d.pose[a].max ? "  (fixed)" : "");
 }
 
 // The sizes a model of drapes in each body's own size chooses from.

@@ -67,15 +67,18 @@ std::string model_file_or_default(const po::variables_map& vm) {
 SampleBatch model_body(const Model& model, const po::variables_map& vm, Eigen::RowVector3d* moved_by,
                        std::vector<std::string>* printed) {
   SampleBatch batch = model_body_batch(model, body_input(vm));
-  const PreparedBodies prepared = BodyPreparation(model, read_domain(model.file())).prepare(batch, vm.count("strict") > 0);
+  const BodyPreparation preparation(model, read_domain(model.file()));
+  PreparedBodies prepared = preparation.prepare(batch, vm.count("strict") > 0);
+  // Posed after the body is measured and placed at rest (a raised arm is no girth).
+  const std::optional<Pose> pose = pose_options(vm, model.body_model(), model.assets_spec().body_model);
+  for (Notice& n : preparation.pose(batch, pose ? *pose : Pose{}, vm.count("strict") > 0))
+    prepared.notices.push_back(std::move(n));
   for (const Notice& n : prepared.notices) {
     const std::string line = (n.level == Notice::Level::note ? "note: " : "warning: ") + n.text;
     std::cerr << line << "\n";
     if (printed) printed->push_back(line);
   }
   if (moved_by) *moved_by = prepared.moved_by.front();
-  const std::optional<Pose> pose = pose_options(vm, model.body_model(), model.assets_spec().body_model);
-  pose_model_batch(model, batch, pose ? *pose : Pose{});
   return batch;
 }
 

@@ -115,6 +115,11 @@ class PyModel {
     for (const Notice& n : prepared.notices) warn_python(n.text);
     return std::move(prepared.moved_by);
   }
+  // Then the pose (BodyPreparation::pose): warnings for angles outside the training poses (strict: ValueError).
+  void pose(SampleBatch& b, const std::optional<Pose>& pose, bool strict) {
+    const std::vector<Notice> notices = preparation().pose(b, pose ? *pose : Pose{}, strict, "strict=True");
+    for (const Notice& n : notices) warn_python(n.text);
+  }
 
   // dL/dweights for a gradient of the garment, accumulated into the weights'
   // grad arrays (zeroed first). The graph keeps the state of its last forward;
@@ -268,7 +273,7 @@ void register_model(py::module_& m) {
             const std::optional<Pose> posed = pose_arg(p.model().body_model(), p.model().assets_spec().body_model, pose);
             SampleBatch b = p.batch(body, body_params, garment_size, &batched);
             const std::vector<Eigen::RowVector3d> back = p.prepare(b, strict, check);
-            pose_model_batch(p.model(), b, posed ? *posed : Pose{});
+            p.pose(b, posed, strict);
             Tensor out = p.predict(b);
             // Moved back as drape predict writes it (in double), then float32 like every prediction.
             for (int i = 0; i < out.batch(); ++i)
@@ -309,7 +314,7 @@ void register_model(py::module_& m) {
             if (iterations < 0) throw py::value_error("iterations: expected >= 0");
             // Optimised where the training bodies stood (as predict), the drapes moved back with the body.
             const Eigen::RowVector3d back = p.prepare(b, false).front();
-            pose_model_batch(p.model(), b, posed ? *posed : Pose{});
+            p.pose(b, posed, false);
             PhysicsOptimizationOptions o;
             o.iterations = iterations;
             o.learning_rate = learning_rate;

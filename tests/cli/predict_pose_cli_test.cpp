@@ -35,6 +35,17 @@ TEST_CASE("drape predict --pose poses the body and the drape of a posed model", 
   const Mesh g = read_mesh(dir / "g.obj"), g0 = read_mesh(dir / "g0.obj");
   REQUIRE(g.vertices.allFinite());
   CHECK((g.vertices - g0.vertices).rowwise().norm().maxCoeff() > 0.05);
+  // The model knows the poses it was trained on: outside them a warning names
+  // the joint and the range, --strict refuses.
+  REQUIRE(test::run_drape("model info " + (dir / "m.h5").string(), out) == 0);
+  CHECK(out.find("poses (degrees; predict --pose warns outside") != std::string::npos);
+  CHECK(out.find("left_shoulder_abduction") != std::string::npos);
+  REQUIRE(test::run_drape(predict + "--pose shoulder_abduction=170 --out " + (dir / "far.obj").string(), out) == 0);
+  CHECK(out.find("warning: the pose lies outside the model's training poses: joint angle left_shoulder_abduction 170 "
+                 "degrees is outside the trained range") != std::string::npos);
+  CHECK(out.find("elbow") == std::string::npos);  // the rest angles are inside
+  CHECK(test::run_drape(predict + "--strict --pose shoulder_abduction=170 --out " + (dir / "x.obj").string(), out) == 2);
+  CHECK(out.find("--strict: the pose lies outside") != std::string::npos);
   // Bad angles: one line, exit 2, nothing written.
   CHECK(test::run_drape(predict + "--pose elbow_flexion=nan --out " + (dir / "x.obj").string(), out) == 2);
   CHECK(out.find("--pose: left_elbow_flexion is NaN") != std::string::npos);

@@ -177,6 +177,26 @@ void pose_model_batch(const Model& model, SampleBatch& batch, const Pose& pose) 
   batch.pose = std::move(posed.pose);
 }
 
+std::vector<Notice> BodyPreparation::pose(SampleBatch& batch, const Pose& pose, bool strict,
+                                          const std::string& strict_option) const {
+  pose_model_batch(model_, batch, pose);
+  if (!model_takes_pose(model_) || !domain_ || domain_->pose_names.empty()) return {};
+  std::vector<Notice> notices;
+  const std::vector<PoseAngle> angles = model_.body_model().pose_angles();
+  for (int i = 0; i < batch.size(); ++i) {
+    Pose full;  // the angles the body is draped in, those at rest included
+    for (std::size_t a = 0; a < angles.size(); ++a)
+      full.angles[angles[a].name] = static_cast<double>(batch.pose(i, 0, static_cast<int>(a))) * 180.0 / M_PI;
+    std::string lines;
+    for (const std::string& v : pose_violations(*domain_, full)) lines += (lines.empty() ? "" : "; ") + v;
+    if (lines.empty()) continue;
+    const std::string text = "the pose lies outside the model's training poses: " + lines;
+    if (strict) throw ConfigError(strict_option + ": " + text);
+    notices.push_back({Notice::Level::warning, text + " (the drape there is a guess; drape simulate --pose makes it)"});
+  }
+  return notices;
+}
+
 std::optional<SizeTable> model_size_chart(const Model& model) {
   const auto& meta = model.checkpoint().meta;
   const auto chart = meta.find("size_chart");

@@ -88,6 +88,14 @@ ModelDomain domain_of_dataset(const DatasetReader& data, const std::string& body
     throw ConfigError("the dataset stores " + std::to_string(P) + " body parameters; the body model '" + body_model +
                       "' has " + std::to_string(param_names.size()));
   d.params.assign(static_cast<std::size_t>(P), {});
+  const bool posed = !data.layout().pose_angles.empty();
+  if (posed) {
+    d.pose_names = data.layout().pose_angles;
+    d.pose.assign(d.pose_names.size(), {});
+    const Tensor angles = data.poses(train);
+    for (int s = 0; s < angles.batch(); ++s)
+      for (std::size_t a = 0; a < d.pose.size(); ++a) widen(d.pose[a], angles(s, 0, static_cast<int>(a)), s == 0);
+  }
   std::vector<Eigen::Vector3d> placements;
   placements.reserve(train.size());
   const int nb = data.layout().body_vertices;
@@ -98,7 +106,8 @@ ModelDomain domain_of_dataset(const DatasetReader& data, const std::string& body
   for (std::size_t first = 0; first < train.size(); first += kSlice) {
     const std::vector<std::size_t> slice(train.begin() + static_cast<std::ptrdiff_t>(first),
                                          train.begin() + static_cast<std::ptrdiff_t>(std::min(train.size(), first + kSlice)));
-    const Tensor bodies = data.body_vertices(slice);
+    // A posed dataset's bodies measured at rest (what predict measures: BodyPreparation runs before posing).
+    const Tensor bodies = posed ? data.posing(slice).unposed : data.body_vertices(slice);
     for (int i = 0; i < bodies.batch(); ++i) {
       const std::size_t s = first + static_cast<std::size_t>(i);
       const Eigen::MatrixX3d v = bodies.mat(i).cast<double>();
@@ -230,6 +239,14 @@ void write_domain(h5::File& file, const ModelDomain& d) {
                                         d.placement_spread[0], d.placement_spread[1], d.placement_spread[2]};
     file.write("/domain/placement", {2, 3}, placement.data());
   }
+  if (!d.pose_names.empty()) {
+    std::string pose_names;
+    for (std::size_t i = 0; i < d.pose_names.size(); ++i) pose_names += (i ? "," : "") + d.pose_names[i];
+    std::vector<double> pose;
+    for (const ValueRange& r : d.pose) pose.insert(pose.end(), {r.min, r.max});
+    file.write("/domain/pose_range", {d.pose.size(), 2}, pose.data());
+    file.set_attribute("/domain", "pose_names", pose_names);
+  }
 }
 
 std::optional<ModelDomain> read_domain(const h5::File& file) {
@@ -267,7 +284,32 @@ std::optional<ModelDomain> read_domain(const h5::File& file) {
     d.placement = Eigen::Vector3d(placement[0], placement[1], placement[2]);
     d.placement_spread = Eigen::Vector3d(placement[3], placement[4], placement[5]);
   }
+  if (file.exists("/domain/pose_range")) {
+    d.pose_names = split_names(file.require_string_attribute("/domain", "pose_names"));
+    const std::vector<double> pose = file.read<double>("/domain/pose_range", &shape);
+    if (shape.size() != 2 || shape[1] != 2 || shape[0] != d.pose_names.size())
+      throw ConfigError(file.path().string() + ": /domain/pose_range has shape " + h5::to_string(shape) + ", expected [" +
+                        std::to_string(d.pose_names.size()) + ", 2]");
+    for (std::size_t a = 0; a < shape[0]; ++a) d.pose.push_back({pose[2 * a], pose[2 * a + 1]});
+  }
   return d;
+}
+
+std::vector<std::string> pose_violations(const ModelDomain& domain, const Pose& pose) {
+  std::vector<std::string> out;
+  for (std::size_t a = 0; a < domain.pose_names.size(); ++a) {
+    const auto it = pose.angles.find(domain.pose_names[a]);
+    if (it == pose.angles.end()) continue;
+    const ValueRange& r = domain.pose[a];
+    // As for the shape parameters: n angles drawn uniformly fall short of each
+    // end of the drawn range by (max - min) / (n + 1) on average, so an angle
+    // within twice that (and half a degree: a pose written with fewer digits)
+    // lies in what the training poses were drawn from.
+    const double slack = std::max(0.5, 2.0 * (r.max - r.min) / static_cast<double>(domain.samples + 1));
+    if (it->second >= r.min - slack && it->second <= r.max + slack) continue;
+    out.push_back(outside("joint angle " + domain.pose_names[a], it->second, r, " degrees"));
+  }
+  return out;
 }
 
 std::optional<ModelDomain> read_domain(const std::filesystem::path& model_file) {

@@ -84,6 +84,11 @@ class BodyPreparation {
   // the coarse model's forward pass.
   PreparedBodies prepare(SampleBatch& batch, bool strict, const std::string& strict_option = "--strict",
                          bool measure = true) const;
+  // pose_model_batch, then the pose against the domain's trained joint
+  // angles: a warning per angle outside (with strict, a ConfigError starting
+  // "<strict_option>: "). Run after prepare().
+  std::vector<Notice> pose(SampleBatch& batch, const Pose& pose, bool strict,
+                           const std::string& strict_option = "--strict") const;
   const std::optional<ModelDomain>& domain() const { return domain_; }
 
  private:

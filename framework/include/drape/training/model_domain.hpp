@@ -14,6 +14,10 @@
 //   /domain/descriptors     f32 [n, 3K]  K body vertices of each training body
 //   /domain/descriptor_vertices i32 [K]  which vertices
 //   /domain/placement       f64 [2, 3]   where the training bodies stood (optional)
+//   /domain/pose_range      f64 [A, 2]   min, max of each joint angle, degrees, over a
+//                                        posed dataset's training bodies; attribute
+//                                        pose_names (comma-joined). Absent: A-pose bodies
+#include <drape/bodies/pose.hpp>
 #include <drape/io/dataset.hpp>
 
 #include <Eigen/Core>
@@ -48,7 +52,18 @@ struct ModelDomain {
   // written before 2026-11-27, which do not record it.
   Eigen::Vector3d placement = Eigen::Vector3d::Constant(std::numeric_limits<double>::quiet_NaN());
   Eigen::Vector3d placement_spread = Eigen::Vector3d::Constant(std::numeric_limits<double>::quiet_NaN());
+  // The joint angles of a posed dataset's training bodies (degrees), by
+  // name; empty for A-pose bodies. Height, BMI, descriptors and placement
+  // are then measured on the bodies at rest (a raised arm is no height).
+  std::vector<std::string> pose_names;
+  std::vector<ValueRange> pose;
 };
+
+// One line per joint angle of `pose` (degrees, full names) outside the
+// domain's trained range ("joint angle left_shoulder_abduction 120 degrees is
+// outside the trained range 25..100 degrees"); empty when inside or the
+// domain records no poses.
+std::vector<std::string> pose_violations(const ModelDomain& domain, const Pose& pose);
 
 // Where a body stands: the mean x and z of its vertices and its lowest y (m).
 // A network sees absolute coordinates, so a body lifted or moved aside from
