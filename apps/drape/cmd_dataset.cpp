@@ -15,6 +15,7 @@
 #include <drape/progress.hpp>
 #include <drape/registry.hpp>
 #include <drape/scene/scene.hpp>
+#include <drape/services/dataset_unposing.hpp>
 
 #include <cmath>
 #include <filesystem>
@@ -30,6 +31,7 @@ namespace fs = std::filesystem;
 const char* kMergeUsage = "drape dataset merge --out FILE SHARD... [--allow-incomplete] [--mixed-sizes] [--force]";
 const char* kInfoUsage = "drape dataset info FILE [--scene-lines N]";
 const char* kSlimUsage = "drape dataset slim FILE --out SLIM [--force]";
+const char* kUnposeUsage = "drape dataset unpose FILE --out CANONICAL [--force]";
 const char* kExpandUsage = "drape dataset expand --out FILE SLIM... [--allow-incomplete] [--mixed-sizes] [--force]";
 
 void refuse_existing(const fs::path& out, const po::variables_map& vm) {
@@ -115,6 +117,27 @@ int expand(const std::vector<std::string>& args) {
   return 0;
 }
 
+int unpose(const std::vector<std::string>& args) {
+  po::options_description opts("drape dataset unpose");
+  opts.add_options()("file", po::value<std::string>()->required(), "a posed dataset (drape generate --poses draw)")(
+      "out,o", po::value<std::string>()->required(), "the dataset of its drapes in each body's rest pose")(
+      "force", "replace --out if it exists");
+  po::positional_options_description positional;
+  positional.add("file", 1);
+  po::variables_map vm;
+  if (!parse(kUnposeUsage, args, opts, positional, vm)) return 0;
+  const fs::path in = vm["file"].as<std::string>(), out = vm["out"].as<std::string>();
+  const OutputLock lock(out, "drape dataset unpose");
+  refuse_existing(out, vm);
+  if (fs::exists(out)) fs::remove(out);
+  ProgressBar bar("unpose", DatasetReader(in).indices().size());
+  const std::size_t n = unpose_dataset(Registry::load_default(plugin_path(vm)), in, out, [&] { bar.advance(); });
+  bar.finish();
+  std::cout << "wrote " << out.string() << ": " << n << " drapes and bodies in each body's rest pose (joint angles in "
+            << "the statistics pose_<name>)\n";
+  return 0;
+}
+
 // "name: 12 recorded, mean 0.5, min 0, max 1" over the done samples.
 std::string stat_summary(const DatasetReader& reader, const std::string& name, const std::vector<std::size_t>& done) {
   const std::vector<double> values = reader.stat(name, done);
@@ -180,7 +203,7 @@ int info(const std::vector<std::string>& args) {
 int run(const std::vector<std::string>& args) {
   const std::string usage =
       std::string("usage: ") + kMergeUsage + "\n       " + kInfoUsage + "\n       " + kPotentialUsage + "\n       " +
-      kSlimUsage + "\n       " + kExpandUsage;
+      kSlimUsage + "\n       " + kExpandUsage + "\n       " + kUnposeUsage;
   if (args.empty()) throw UsageError("merge or info?\n" + usage);
   const std::string& action = args[0];
   const std::vector<std::string> rest(args.begin() + 1, args.end());
@@ -189,15 +212,17 @@ int run(const std::vector<std::string>& args) {
   if (action == "potential") return dataset_potential(rest);
   if (action == "slim") return slim(rest);
   if (action == "expand") return expand(rest);
+  if (action == "unpose") return unpose(rest);
   if (action == "--help" || action == "-h" || action == "help") {
     std::cout << usage << "\n\n  merge  join shards generated in parallel into one dataset\n"
                           "  info   sizes, splits, stats and scene of a dataset file\n"
                           "  potential  every effect's energy, L_p and p of the stored drapes under a scene\n"
                           "  slim   a copy without the body vertices (rebuilt from the shape parameters by expand)\n"
-                          "  expand join slim datasets into one full dataset, the bodies rebuilt by the scene's body model\n";
+                          "  expand join slim datasets into one full dataset, the bodies rebuilt by the scene's body model\n"
+                          "  unpose a posed dataset's drapes and bodies in each body's rest pose (docs/poses.md)\n";
     return 0;
   }
-  throw UsageError("unknown action '" + action + "'" + did_you_mean(action, {"merge", "info", "potential", "slim", "expand"}) + "\n" + usage);
+  throw UsageError("unknown action '" + action + "'" + did_you_mean(action, {"merge", "info", "potential", "slim", "expand", "unpose"}) + "\n" + usage);
 }
 
 const RegisterCommand registration{{"dataset", "merge dataset shards, show what a dataset file holds, its drapes' potential under a scene, or slim and expand it", run}};

@@ -4,7 +4,11 @@
 #include <catch2/catch.hpp>
 
 #include <drape/bodies/body.hpp>
+#include <drape/assets/assets.hpp>
+#include <drape/bodies/garment_skinning.hpp>
 #include <drape/io/dataset.hpp>
+#include <drape/scene/scene.hpp>
+#include <drape/training/model.hpp>
 
 #include <fstream>
 
@@ -152,4 +156,42 @@ TEST_CASE("drape generate refuses poses it cannot draw before writing anything",
         std::string::npos);
   CHECK(!fs::exists(dir / "d.h5"));
   CHECK(!fs::exists(dir / "d.h5.partial"));
+}
+
+TEST_CASE("drape dataset unpose brings posed drapes back to the rest pose", "[cli][dataset][pose]") {
+  test::TempDir dir;
+  std::ofstream(dir / "tiny.yaml") << test::tiny_simulation_scene();
+  const std::string generate = "generate " + (dir / "tiny.yaml").string() + " --count 4 --bmi 20:35 --seed 3 --threads 1 ";
+  std::string out;
+  REQUIRE(test::run_drape(generate + "--poses draw --out " + (dir / "posed.h5").string(), out) == 0);
+  REQUIRE(test::run_drape(generate + "--out " + (dir / "plain.h5").string(), out) == 0);
+  REQUIRE(test::run_drape("dataset unpose " + (dir / "posed.h5").string() + " --out " + (dir / "rest.h5").string(), out) == 0);
+  INFO(out);
+  CHECK(test::run_drape("dataset unpose " + (dir / "plain.h5").string() + " --out " + (dir / "x.h5").string(), out) == 2);
+  CHECK(out.find("holds A-pose bodies (no /bodies/pose): there is nothing to unpose") != std::string::npos);
+  const DatasetReader posed(dir / "posed.h5"), plain(dir / "plain.h5"), rest(dir / "rest.h5");
+  CHECK(rest.layout().pose_angles.empty());
+  CHECK(rest.layout().has_stat("pose_left_shoulder_abduction"));
+  const auto idx = posed.indices();
+  const Tensor at_rest = rest.garment_vertices(idx), in_pose = posed.garment_vertices(idx);
+  const Tensor rest_bodies = rest.body_vertices(idx), plain_bodies = plain.body_vertices(idx);
+  // The skin node's weights: posing the drapes at rest again gives the simulated ones back.
+  const Scene scene = parse_scene(posed.layout().scene, "posed.h5");
+  const Eigen::MatrixXd weights = build_assets(test::plugins(), assets_spec_for(scene, 1, 1), "")->garment_skinning.cast<double>();
+  const DatasetReader::Posing posing = posed.posing(idx);
+  for (int i = 0; i < 4; ++i) {
+    // The bodies are the A-pose bodies of the same shapes; the angles kept as statistics.
+    CHECK((rest_bodies.mat(i) - plain_bodies.mat(i)).cwiseAbs().maxCoeff() < 1e-5f);
+    CHECK(rest.stat("pose_spine_twist", {idx[static_cast<std::size_t>(i)]})[0] ==
+          Approx(posed.poses({idx[static_cast<std::size_t>(i)]})(0, 0, 2)));
+    std::vector<skinning::Rigid> transforms(static_cast<std::size_t>(posing.transforms.rows()));
+    for (std::size_t b = 0; b < transforms.size(); ++b) {
+      for (int r = 0; r < 3; ++r)
+        for (int c = 0; c < 3; ++c) transforms[b].r(r, c) = posing.transforms(i, static_cast<int>(b), 3 * r + c);
+      for (int c = 0; c < 3; ++c) transforms[b].t[c] = posing.transforms(i, static_cast<int>(b), 9 + c);
+    }
+    const Eigen::MatrixX3d again = pose_garment(at_rest.mat(i).cast<double>(), weights, transforms);
+    CHECK((again - in_pose.mat(i).cast<double>()).cwiseAbs().maxCoeff() < 1e-5);
+    CHECK((at_rest.mat(i) - in_pose.mat(i)).cwiseAbs().maxCoeff() > 0.01f);  // it did move
+  }
 }
