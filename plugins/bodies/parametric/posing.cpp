@@ -10,6 +10,7 @@
 
 #include <Eigen/Geometry>
 
+#include <algorithm>
 #include <cmath>
 
 namespace drape::parametric {
@@ -48,11 +49,65 @@ Pose rest_angles(const Eigen::MatrixX3d& joints) {
   return rest;
 }
 
+namespace {
+
+// How much of the inner-elbow corrective a flexion gets: none up to 60
+// degrees (LBS keeps the crease clear there on every body), all of it from
+// 85 (the first body whose crease crosses, BMI 65, does at 73), smoothly
+// between, so the body is a continuous function of the angle.
+double elbow_press(double flexion) {
+  const double x = std::clamp((flexion - 60.0) / 25.0, 0.0, 1.0);
+  return x * x * (3 - 2 * x);
+}
+
+// The inner side of a bent elbow, pressed flat as flesh pressed on flesh is:
+// LBS averages the crease's vertices into the opposite limb (the forearm
+// through the upper arm from 73-101 degrees, docs/poses.md). Each arm vertex
+// on the crease's side is kept on its own limb's side of the plane that
+// bisects the two limbs at the elbow, `kGap` from it: upper-arm vertices
+// (more upper arm than forearm in their weights) behind it, forearm ones in
+// front. A geometric corrective in the spirit of implicit skinning (Vaillant
+// et al. 2013, which stops the skin where two limbs' surfaces meet), not a
+// learned pose blend shape; the joints' transforms (and so a garment's
+// skinning) are untouched.
+void press_inner_elbows(Eigen::MatrixX3d& posed, const Skeleton& skeleton, const Eigen::MatrixX3d& joints,
+                        const std::vector<skinning::Rigid>& transforms, double left_flexion, double right_flexion) {
+  constexpr double kGap = 0.002;  // m each side of the plane: the two sides never touch
+  for (int side : {1, -1}) {
+    const double s = elbow_press(side > 0 ? left_flexion : right_flexion);
+    if (s == 0) continue;
+    const int upper = side > 0 ? kLeftUpperArm : kRightUpperArm, fore = upper + 1;
+    const V3 rest_arm = (row(joints, fore) - row(joints, upper)).normalized();
+    const skinning::Rigid& tu = transforms[static_cast<std::size_t>(upper)];
+    const skinning::Rigid& tf = transforms[static_cast<std::size_t>(fore)];
+    const V3 elbow = tu.r * row(joints, fore) + tu.t;
+    const V3 u = tu.r * rest_arm, f = tf.r * rest_arm;  // along the upper arm and the forearm, away from the shoulder
+    const V3 normal = (u + f).normalized();              // the bisecting plane's, towards the hand
+    const V3 inner = (f - u).normalized();               // towards the crease
+    for (Eigen::Index i = 0; i < posed.rows(); ++i) {
+      const double wu = skeleton.weights(i, upper), wf = skeleton.weights(i, fore);
+      if (wu + wf < 0.5) continue;  // the trunk's, not the arm's
+      const V3 x = posed.row(i).transpose();
+      if (inner.dot(x - elbow) <= 0) continue;  // the outer side: the point of the elbow stays
+      const double h = normal.dot(x - elbow);
+      const double push = wu >= wf ? -std::max(0.0, h + kGap) : std::max(0.0, kGap - h);
+      if (push != 0) posed.row(i) += (s * push * normal).transpose();
+    }
+  }
+}
+
+}  // namespace
+
 Eigen::MatrixX3d skin(const Skeleton& skeleton, const Eigen::MatrixX3d& vertices, const Eigen::MatrixX3d& joints,
                       const Pose& pose, double fraction) {
   // Blended by the framework's skinning: a bone at rest adds exactly zero, so
   // the rest pose gives `vertices` back.
-  return skinning::blend(vertices, skeleton.weights, bone_transforms(skeleton, joints, pose, fraction));
+  const std::vector<skinning::Rigid> transforms = bone_transforms(skeleton, joints, pose, fraction);
+  Eigen::MatrixX3d posed = skinning::blend(vertices, skeleton.weights, transforms);
+  // The elbows' rest angle is 0 (straight), so `fraction` of the way is fraction * angle.
+  press_inner_elbows(posed, skeleton, joints, transforms, fraction * pose.get("left_elbow_flexion", 0.0),
+                     fraction * pose.get("right_elbow_flexion", 0.0));
+  return posed;
 }
 
 std::vector<skinning::Rigid> bone_transforms(const Skeleton& skeleton, const Eigen::MatrixX3d& joints, const Pose& pose,
