@@ -51,12 +51,13 @@ Pose rest_angles(const Eigen::MatrixX3d& joints) {
 
 namespace {
 
-// How much of the inner-elbow corrective a flexion gets: none up to 60
-// degrees (LBS keeps the crease clear there on every body), all of it from
-// 85 (the first body whose crease crosses, BMI 65, does at 73), smoothly
-// between, so the body is a continuous function of the angle.
+// How much of the inner-elbow corrective a flexion gets: none up to 70
+// degrees, the top of the sampled range (so every drawn pose, and every
+// posed dataset, is plain LBS), all of it from 90 (the first body whose
+// crease crosses under LBS, BMI 65, does at 73), smoothly between, so the
+// body is a continuous function of the angle.
 double elbow_press(double flexion) {
-  const double x = std::clamp((flexion - 60.0) / 25.0, 0.0, 1.0);
+  const double x = std::clamp((flexion - 70.0) / 20.0, 0.0, 1.0);
   return x * x * (3 - 2 * x);
 }
 
