@@ -32,6 +32,8 @@ NOT_RUN = {
     "simulate graphs/scenes/tshirt_coarse_friction.yaml": "a BMI 55 drape: minutes (tests/cli simulates scenes)",
     "simulate graphs/scenes/tshirt_coarse_posed.yaml": "a posed drape: half a minute (tests/physics drapes posed bodies)",
     "generate ": "2,000 drapes: hours (tests/cli generates small datasets)",
+    "dataset unpose posed.h5": "needs posed.h5 from generate --poses draw",
+    "predict --model posed_model.h5": "needs a model of posed drapes from train (tests/cli/predict_pose_cli_test.cpp trains one)",
     "dataset merge": "needs shard0.h5 and shard1.h5 from generate --shard",
     "dataset info all.h5": "needs all.h5 from dataset merge",
     "dataset slim all.h5": "needs all.h5 from dataset merge",
