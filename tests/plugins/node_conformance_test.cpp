@@ -64,6 +64,7 @@ const std::map<std::string, std::string>& checked_elsewhere() {
       {"spectral_lowpass", "tests/gcn/tailornet_parts_test.cpp"},
       {"subtract_mean_body", "tests/plugins/template_offset_test.cpp"},
       {"add_template", "tests/plugins/template_offset_test.cpp"},
+      {"skin", "tests/plugins/skin_test.cpp"},
   };
   return files;
 }
