@@ -75,12 +75,7 @@ TEST_CASE("drape generate --poses draw stores each body's drawn pose and keeps t
   const DatasetReader::Posing posing = posed.posing(idx);
   REQUIRE(posing.transforms.rows() == static_cast<int>(model->joints().size()));
   for (int i = 0; i < 3; ++i) {
-    std::vector<skinning::Rigid> transforms(model->joints().size());
-    for (std::size_t b = 0; b < transforms.size(); ++b) {
-      for (int r = 0; r < 3; ++r)
-        for (int c = 0; c < 3; ++c) transforms[b].r(r, c) = posing.transforms(i, static_cast<int>(b), 3 * r + c);
-      for (int c = 0; c < 3; ++c) transforms[b].t[c] = posing.transforms(i, static_cast<int>(b), 9 + c);
-    }
+    const std::vector<skinning::Rigid> transforms = transforms_of_rows(posing.transforms, i);
     const Eigen::MatrixX3d unposed = posing.unposed.mat(i).cast<double>();
     const Eigen::MatrixX3d skinned = skinning::blend(unposed, model->skinning_weights(), transforms);
     CHECK((skinned - bodies.mat(i).cast<double>()).cwiseAbs().maxCoeff() < 1e-4);
@@ -184,12 +179,7 @@ TEST_CASE("drape dataset unpose brings posed drapes back to the rest pose", "[cl
     CHECK((rest_bodies.mat(i) - plain_bodies.mat(i)).cwiseAbs().maxCoeff() < 1e-5f);
     CHECK(rest.stat("pose_spine_twist", {idx[static_cast<std::size_t>(i)]})[0] ==
           Approx(posed.poses({idx[static_cast<std::size_t>(i)]})(0, 0, 2)));
-    std::vector<skinning::Rigid> transforms(static_cast<std::size_t>(posing.transforms.rows()));
-    for (std::size_t b = 0; b < transforms.size(); ++b) {
-      for (int r = 0; r < 3; ++r)
-        for (int c = 0; c < 3; ++c) transforms[b].r(r, c) = posing.transforms(i, static_cast<int>(b), 3 * r + c);
-      for (int c = 0; c < 3; ++c) transforms[b].t[c] = posing.transforms(i, static_cast<int>(b), 9 + c);
-    }
+    const std::vector<skinning::Rigid> transforms = transforms_of_rows(posing.transforms, i);
     const Eigen::MatrixX3d again = pose_garment(at_rest.mat(i).cast<double>(), weights, transforms);
     CHECK((again - in_pose.mat(i).cast<double>()).cwiseAbs().maxCoeff() < 1e-5);
     CHECK((at_rest.mat(i) - in_pose.mat(i)).cwiseAbs().maxCoeff() > 0.01f);  // it did move

@@ -84,4 +84,16 @@ MatrixRM transforms_rows(const std::vector<skinning::Rigid>& transforms) {
   return out;
 }
 
+std::vector<skinning::Rigid> transforms_of_rows(const Tensor& rows, int sample) {
+  if (rows.cols() != 12) throw Error("transforms_of_rows: rows of " + std::to_string(rows.cols()) + " values, expected 12");
+  std::vector<skinning::Rigid> out(static_cast<std::size_t>(rows.rows()));
+  for (std::size_t b = 0; b < out.size(); ++b) {
+    const int row = static_cast<int>(b);
+    for (int r = 0; r < 3; ++r)
+      for (int c = 0; c < 3; ++c) out[b].r(r, c) = rows(sample, row, 3 * r + c);
+    for (int c = 0; c < 3; ++c) out[b].t[c] = rows(sample, row, 9 + c);
+  }
+  return out;
+}
+
 }  // namespace drape

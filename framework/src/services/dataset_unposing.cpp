@@ -42,13 +42,8 @@ std::size_t unpose_dataset(const Registry& registry, const std::filesystem::path
     for (std::size_t k = 0; k < slice.size(); ++k) {
       DatasetSample s = reader.sample(slice[k]);
       const int i = static_cast<int>(k);
-      std::vector<skinning::Rigid> transforms(static_cast<std::size_t>(posing.transforms.rows()));
-      for (std::size_t b = 0; b < transforms.size(); ++b) {
-        for (int r = 0; r < 3; ++r)
-          for (int c = 0; c < 3; ++c) transforms[b].r(r, c) = posing.transforms(i, static_cast<int>(b), 3 * r + c);
-        for (int c = 0; c < 3; ++c) transforms[b].t[c] = posing.transforms(i, static_cast<int>(b), 9 + c);
-      }
-      s.garment_vertices = unpose_garment(s.garment_vertices.cast<double>(), weights, transforms).cast<float>();
+      s.garment_vertices =
+          unpose_garment(s.garment_vertices.cast<double>(), weights, transforms_of_rows(posing.transforms, i)).cast<float>();
       s.body_vertices = posing.unposed.mat(i);
       for (std::size_t a = 0; a < have.pose_angles.size(); ++a)
         s.stats["pose_" + have.pose_angles[a]] = static_cast<double>(s.pose[static_cast<Eigen::Index>(a)]);

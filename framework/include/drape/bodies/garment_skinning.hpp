@@ -40,5 +40,7 @@ Eigen::MatrixX3d unpose_garment(const Eigen::MatrixX3d& posed, const Eigen::Matr
 // The transforms as a network input, [joints, 12] floats per row: R row by
 // row, then t (the graph input `joint_transforms`, the skin node's data).
 MatrixRM transforms_rows(const std::vector<skinning::Rigid>& transforms);
+// Its inverse for sample `sample` of a [n, joints, 12] tensor of them.
+std::vector<skinning::Rigid> transforms_of_rows(const Tensor& rows, int sample);
 
 }  // namespace drape

@@ -1,0 +1,100 @@
+#!/usr/bin/env python3
+"""Predicted against simulated drapes on posed bodies (issue 56, item 5): for test samples of a posed dataset
+spread over BMI, the simulated drape beside each model's prediction for the same body in the same pose (front and
+left views by scripts/figures/shaded_views.py, with the body), each prediction's mean vertex error (ME) against
+the simulation in its caption; one HTML page, and a PNG of it through headless Chromium with --png.
+
+    PYTHONPATH=build/python /usr/bin/python3 scripts/figures/posed_predicted.py --data posed.h5
+        --model unposed=work/drape_unposed.h5 [--model world=work/drape_world.h5] [--count 4] [--split test]
+        [--drape build/bin/drape] [--work DIR] --out grid.html [--png grid.png]
+
+A model is fed the body at rest (from `drape dataset unpose`, run here) and the sample's joint angles, as `drape
+predict --pose` feeds it.
+"""
+import argparse
+import base64
+import html
+import os
+import subprocess
+import sys
+
+import numpy as np
+
+import drape
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+ROOT = os.path.dirname(os.path.dirname(HERE))
+PYTHON = sys.executable or "/usr/bin/python3"
+
+
+def picture(garment, body, faces, body_faces, stem, label, size):
+    drape.write_obj(stem + ".obj", garment, faces)
+    drape.write_obj(stem + "-body.obj", body, body_faces)
+    subprocess.run([PYTHON, os.path.join(HERE, "shaded_views.py"), stem + ".obj", "--body", stem + "-body.obj",
+                    "--views", "front,left", "--size", str(size), "--label", label, "--out", stem + ".png"],
+                   check=True, capture_output=True)
+    with open(stem + ".png", "rb") as f:
+        return base64.b64encode(f.read()).decode()
+
+
+def main():
+    ap = argparse.ArgumentParser()
+    ap.add_argument("--data", required=True, help="a posed dataset (drape generate --poses draw)")
+    ap.add_argument("--model", action="append", required=True, help="NAME=model.h5 (repeatable)")
+    ap.add_argument("--count", type=int, default=4)
+    ap.add_argument("--split", default="test")
+    ap.add_argument("--drape", default=os.path.join(ROOT, "build", "bin", "drape"))
+    ap.add_argument("--work", default="posed-predicted")
+    ap.add_argument("--size", type=int, default=220)
+    ap.add_argument("--out", required=True)
+    ap.add_argument("--png")
+    a = ap.parse_args()
+    os.makedirs(a.work, exist_ok=True)
+    rest_file = os.path.join(a.work, "rest.h5")
+    if not os.path.exists(rest_file):
+        subprocess.run([a.drape, "dataset", "unpose", a.data, "--out", rest_file], check=True, capture_output=True)
+    posed, rest = drape.Dataset(a.data), drape.Dataset(rest_file)
+    names = posed.layout["pose_angles"]
+    done = list(posed.indices("all"))
+    wanted = list(posed.indices(a.split))
+    bmis = posed.stat("bmi", wanted)
+    picks = [wanted[k] for k in np.argsort(bmis)[np.linspace(0, len(wanted) - 1, min(a.count, len(wanted))).astype(int)]]
+    models = [(m.split("=", 1)[0], drape.Model.load(m.split("=", 1)[1])) for m in a.model]
+    faces = posed.faces
+    body_faces = drape.BodyModel("parametric").faces  # the posed datasets' body model (tshirt_coarse_pose_space.yaml)
+    rows = []
+    for row in picks:
+        s, r = posed.read([int(row)]), rest.read([done.index(row)])
+        pose = {n: float(v) for n, v in zip(names, s["pose"][0])}
+        bmi = float(posed.stat("bmi", [int(row)])[0])
+        body, simulated = s["body"][0], s["garment"][0]
+        stem = os.path.join(a.work, f"sample{row}")
+        label = f"BMI {bmi:.0f}"
+        cells = [f"<td><img src='data:image/png;base64,{picture(simulated, body, faces, body_faces, stem + '-sim', label, a.size)}'>"
+                 f"<br>simulated</td>"]
+        for name, model in models:
+            predicted = model.predict(r["body"][0], pose=pose, check=False)
+            me = 100 * np.linalg.norm(predicted - simulated, axis=1).mean()
+            img = picture(predicted, body, faces, body_faces, f"{stem}-{name}", label, a.size)
+            cells.append(f"<td><img src='data:image/png;base64,{img}'><br>{html.escape(name)}: ME {me:.2f} cm</td>")
+            print(f"sample {row} (BMI {bmi:.1f}): {name} ME {me:.2f} cm", flush=True)
+        spec = ", ".join(f"{k.replace('_shoulder_abduction', ' arm')} {v:.0f}" for k, v in pose.items()
+                         if k in ("left_shoulder_abduction", "right_shoulder_abduction", "spine_twist", "left_elbow_flexion"))
+        rows.append(f"<tr><th>sample {row}<br>BMI {bmi:.1f}<br><small>{html.escape(spec)}</small></th>{''.join(cells)}</tr>")
+    head = "".join(f"<th>{html.escape(n)}</th>" for n in ["", "simulated"] + [n for n, _ in models])
+    with open(a.out, "w") as f:
+        f.write(f"""<!doctype html><meta charset=utf-8><title>posed drapes: predicted against simulated</title>
+<style>body{{font:13px sans-serif;background:#fff}} td,th{{vertical-align:top;padding:4px;text-align:left}}</style>
+<h3>Posed drapes, {a.split} samples of {html.escape(os.path.basename(a.data))}: simulated and predicted (front, left)</h3>
+<table><tr>{head}</tr>{''.join(rows)}</table>""")
+    print("wrote", a.out)
+    if a.png:
+        width = 160 + (1 + len(models)) * (2 * a.size + 20)
+        height = 90 + len(picks) * (a.size * 1.25 + 40)
+        subprocess.run(["chromium", "--headless", "--no-sandbox", "--disable-gpu", f"--screenshot={os.path.abspath(a.png)}",
+                        f"--window-size={int(width)},{int(height)}", "file://" + os.path.abspath(a.out)], capture_output=True)
+        print("wrote", a.png)
+
+
+if __name__ == "__main__":
+    main()
