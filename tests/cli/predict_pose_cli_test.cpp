@@ -4,6 +4,7 @@
 // give a wrong drape; bad angles are one line, exit 2.
 #include <catch2/catch.hpp>
 
+#include <drape/io/dataset.hpp>
 #include <drape/io/mesh_io.hpp>
 
 #include <fstream>
@@ -47,6 +48,20 @@ TEST_CASE("drape predict --pose poses the body and the drape of a posed model", 
       return std::stod(out.substr(j + 4));
     };
     CHECK(lp("after ") < lp("before ") * 0.5);
+  }
+  // ... and over a posed dataset (the self-correcting loop's step): the angles kept, every potential lower.
+  REQUIRE(test::run_drape("optimize --model " + (dir / "m.h5").string() + " --scene " + (dir / "tiny.yaml").string() +
+                              " --data " + (dir / "d.h5").string() + " --split all --iters 10 --threads 1 --out " +
+                              (dir / "od.h5").string(), out) == 0);
+  {
+    const DatasetReader source(dir / "d.h5"), optimized(dir / "od.h5");
+    REQUIRE(optimized.layout().pose_angles == source.layout().pose_angles);
+    const auto idx = optimized.indices();
+    REQUIRE(idx.size() == 6);
+    const std::vector<double> before = optimized.stat("energy_total_before", idx), after = optimized.stat("energy_total", idx);
+    for (std::size_t i = 0; i < idx.size(); ++i) CHECK(after[i] < before[i]);
+    const std::vector<double> from = optimized.stat("source_index", idx);
+    CHECK(optimized.poses({idx[0]}).mat(0) == source.poses({static_cast<std::size_t>(from[0])}).mat(0));
   }
   // The model knows the poses it was trained on: outside them a warning names
   // the joint and the range, --strict refuses.

@@ -60,6 +60,7 @@ DatasetLayout optimized_layout(const DatasetReader& reader, const Scene& scene, 
   layout.scene = scene.yaml();
   layout.template_hash = reader.layout().template_hash;
   layout.garment_faces = reader.layout().garment_faces;  // the same template (empty for a source without them)
+  layout.pose_angles = reader.layout().pose_angles;      // posed bodies keep their angles
   layout.attributes = reader.layout().attributes;
   std::ostringstream what;
   what << "drape optimize: model " << o.model.filename().string() << ", data " << o.data.filename().string() << " ("
@@ -139,7 +140,7 @@ std::size_t optimize_dataset(const Registry& registry, const OptimizeDatasetOpti
         sample = reader.sample(index);
       }
       // The sample already holds the body: the network's input comes from it, not from a second read.
-      const SampleBatch batch = sample_batch(sample, reader.layout(), model->graph());
+      const SampleBatch batch = sample_batch(sample, reader.layout(), model->graph(), &model->body_model());
       const PhysicsOptimizationResult r = optimize_drape(*model, simulation, batch, o.optimization);
       store_result(sample, r, carried, index);
       {

@@ -308,7 +308,8 @@ SampleBatch read_samples(const DatasetReader& reader, const std::vector<std::siz
   return b;
 }
 
-SampleBatch sample_batch(const DatasetSample& sample, const DatasetLayout& layout, const Graph& graph) {
+SampleBatch sample_batch(const DatasetSample& sample, const DatasetLayout& layout, const Graph& graph,
+                         const BodyModel* body_model) {
   SampleBatch b;
   b.body = Tensor(1, static_cast<int>(sample.body_vertices.rows()), 3);
   b.body.mat(0) = sample.body_vertices;
@@ -327,9 +328,17 @@ SampleBatch sample_batch(const DatasetSample& sample, const DatasetLayout& layou
       throw ConfigError("the graph takes garment_grade, but the sample has no garment_grade statistic");
     b.garment_grade = column({grade->second});
   }
-  if (takes(graph, "unposed_body") || takes(graph, "joint_transforms") || takes(graph, "pose"))
-    throw ConfigError("the graph takes the posing inputs, which a single sample read on its own does not give yet "
-                      "(read it with read_samples)");
+  if (takes(graph, "unposed_body") || takes(graph, "joint_transforms") || takes(graph, "pose")) {
+    if (!body_model) throw Error("sample_batch: a graph that takes a pose needs the dataset's body model");
+    Pose pose;
+    for (std::size_t a = 0; a < layout.pose_angles.size(); ++a)
+      pose.angles[layout.pose_angles[a]] = static_cast<double>(sample.pose[static_cast<Eigen::Index>(a)]);
+    const SampleBatch posed =
+        posed_body_batch(*body_model, body_model->vertices(sample.body_params.cast<double>()), pose);
+    b.unposed_body = posed.unposed_body;
+    b.joint_transforms = posed.joint_transforms;
+    b.pose = posed.pose;  // b.body stays the stored one: the body the drape was simulated on
+  }
   return b;
 }
 

@@ -91,8 +91,12 @@ struct DatasetLayout;
 struct DatasetSample;
 SampleBatch read_samples(const DatasetReader& reader, const std::vector<std::size_t>& indices, const Graph& graph,
                          bool with_target);
-// The same for one sample already read (DatasetReader::sample), without the target.
-SampleBatch sample_batch(const DatasetSample& sample, const DatasetLayout& layout, const Graph& graph);
+// The same for one sample already read (DatasetReader::sample), without the
+// target. A graph that takes the posing inputs needs `body_model` (the
+// dataset's): the sample's body at rest is rebuilt from its shape parameters
+// and posed in its stored angles (at rest in an A-pose dataset).
+SampleBatch sample_batch(const DatasetSample& sample, const DatasetLayout& layout, const Graph& graph,
+                         const BodyModel* body_model = nullptr);
 
 // The garment_size input of a size name: 0 regular, 1 small (the seed's flag),
 // then 2 large, 3 xlarge; ConfigError for another name.
