@@ -12,7 +12,6 @@ A model is fed the body at rest (from `drape dataset unpose`, run here) and the 
 predict --pose` feeds it.
 """
 import argparse
-import base64
 import html
 import os
 import subprocess
@@ -24,17 +23,15 @@ import drape
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.dirname(os.path.dirname(HERE))
-PYTHON = sys.executable or "/usr/bin/python3"
+sys.path.insert(0, HERE)
+from posed_grid import picture as shaded_picture  # noqa: E402
 
 
 def picture(garment, body, faces, body_faces, stem, label, size):
+    """Front and left views of the garment on the body, base64 PNG (posed_grid.py's drawing)."""
     drape.write_obj(stem + ".obj", garment, faces)
     drape.write_obj(stem + "-body.obj", body, body_faces)
-    subprocess.run([PYTHON, os.path.join(HERE, "shaded_views.py"), stem + ".obj", "--body", stem + "-body.obj",
-                    "--views", "front,left", "--size", str(size), "--label", label, "--out", stem + ".png"],
-                   check=True, capture_output=True)
-    with open(stem + ".png", "rb") as f:
-        return base64.b64encode(f.read()).decode()
+    return shaded_picture(stem, label, size)
 
 
 def main():
