@@ -168,6 +168,27 @@ void register_dataset(py::module_& m) {
           "A batch: body float32 [n, Nb, 3], garment float32 [n, Ng, 3], body_params float32 [n, P], split int8 [n] "
           "(0 train, 1 val, 2 test), and in a posed dataset pose float32 [n, A] (degrees, layout['pose_angles'] order)")
       .def(
+          "posing",
+          [](const DatasetReader& r, const py::handle& indices) {
+            const auto idx = indices_arg(r, indices);
+            DatasetReader::Posing posing;
+            {
+              py::gil_scoped_release release;
+              posing = r.posing(idx);
+            }
+            py::dict d;
+            const int n = posing.angles.batch(), a = posing.angles.cols();
+            d["unposed"] = to_numpy(std::move(posing.unposed), false);
+            d["transforms"] = to_numpy(std::move(posing.transforms), false);
+            d["angles"] = to_numpy(std::move(posing.angles), false).reshape({n, a});
+            return d;
+          },
+          py::arg("indices"),
+          "What a posed model's graph reads (docs/poses.md): unposed float32 [n, Nb, 3] (each body at rest), transforms "
+          "float32 [n, J, 12] (each joint's rigid transform into the sample's pose: R row by row, then t) and angles "
+          "float32 [n, A] (radians, the body model's pose_angles order); an A-pose dataset's samples are at rest. Made "
+          "by the stored scene's body model once per sample (20-90 ms each) and kept.")
+      .def(
           "stat",
           [](const DatasetReader& r, const std::string& name, const py::handle& indices) {
             return to_numpy(r.stat(name, indices_arg(r, indices)));

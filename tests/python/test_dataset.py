@@ -117,3 +117,19 @@ def test_generate_draws_poses_and_the_dataset_gives_them(module_tiny_scene, tmp_
     assert d.read([0, 1])["pose"].shape == (2, len(names))
     with pytest.raises(ValueError, match="expected 'scene' or 'draw'"):
         drape.generate(str(module_tiny_scene), str(tmp_path / "x.h5"), 1, poses="random")
+
+
+def test_posing_gives_what_a_posed_graph_reads(module_tiny_scene, tmp_path):
+    # Dataset.posing: each body at rest, its joints' transforms into the stored pose, the angles in radians.
+    out = tmp_path / "posed.h5"
+    drape.generate(str(module_tiny_scene), str(out), 2, bmi=(20, 30), seed=4, threads=1, progress=False, poses="draw")
+    d = drape.Dataset(str(out))
+    p = d.posing([0, 1])
+    body = d.read([0, 1])["body"]
+    assert p["unposed"].shape == body.shape and p["transforms"].shape[2] == 12
+    np.testing.assert_allclose(p["angles"], np.radians(d.read([0, 1])["pose"]), rtol=1e-5)
+    # Every joint's transform is rigid (a rotation: R R^T = I, det R = 1), and the pose moved the body.
+    r = p["transforms"][..., :9].reshape(2, -1, 3, 3).astype(np.float64)
+    np.testing.assert_allclose(r @ np.swapaxes(r, -1, -2), np.broadcast_to(np.eye(3), r.shape), atol=1e-5)
+    np.testing.assert_allclose(np.linalg.det(r), 1.0, atol=1e-5)
+    assert np.abs(p["unposed"] - body).max() > 0.01
