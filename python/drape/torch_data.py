@@ -15,6 +15,10 @@ A sample is a dict of tensors:
     index        int64 []         the sample's row in the dataset (over all the pattern's files)
     pose         float32 [A]      in a posed dataset only: the joint angles in degrees, in the order of
                                   drape.Dataset(path).layout["pose_angles"] (the body is posed in them)
+With posing=True, also what a model of posed drapes reads (docs/poses.md, drape.Dataset.posing):
+    unposed      float32 [Nb, 3]  the body at rest
+    transforms   float32 [J, 12]  each joint's rigid transform into the pose (R row by row, then t)
+    angles       float32 [A]      the pose's angles in radians (an A-pose dataset: each body's rest angles)
 DataLoader's default collate stacks them into a batch. `faces` (int64 [F, 3], or None for files written before
 datasets carried them) is the garment template's triangles. The drape file is opened once per process, so the
 dataset goes to DataLoader workers (fork or spawn) as its path and split.
@@ -33,10 +37,11 @@ class DrapeDataset(torch.utils.data.Dataset):
     ('train', 'val', 'test', 'train,val' or 'all'), in file order. transform, when given, maps each sample
     dict to whatever the loader should get."""
 
-    def __init__(self, path, split="all", transform=None):
+    def __init__(self, path, split="all", transform=None, posing=False):
         self.path = os.fspath(path)
         self.split = split
         self.transform = transform
+        self.posing = posing
         reader = self._reader()
         self.indices = reader.indices(split)
         faces = reader.faces
@@ -70,6 +75,10 @@ class DrapeDataset(torch.utils.data.Dataset):
         }
         if "pose" in batch:
             sample["pose"] = torch.from_numpy(batch["pose"][0])
+        if self.posing:
+            p = self._reader().posing([row])
+            for key in ("unposed", "transforms", "angles"):
+                sample[key] = torch.from_numpy(p[key][0])
         return self.transform(sample) if self.transform else sample
 
     def __repr__(self):

@@ -133,3 +133,17 @@ def test_posing_gives_what_a_posed_graph_reads(module_tiny_scene, tmp_path):
     np.testing.assert_allclose(r @ np.swapaxes(r, -1, -2), np.broadcast_to(np.eye(3), r.shape), atol=1e-5)
     np.testing.assert_allclose(np.linalg.det(r), 1.0, atol=1e-5)
     assert np.abs(p["unposed"] - body).max() > 0.01
+
+
+def test_the_torch_dataset_gives_pose_and_posing(module_tiny_scene, tmp_path):
+    torch = pytest.importorskip("torch")
+    import drape.torch_data as td
+    out = tmp_path / "posed.h5"
+    drape.generate(str(module_tiny_scene), str(out), 2, bmi=(20, 30), seed=5, threads=1, progress=False, poses="draw")
+    native = drape.Dataset(str(out))
+    s = td.DrapeDataset(out, posing=True)[1]
+    assert set(s) == {"body", "garment", "body_params", "split", "index", "pose", "unposed", "transforms", "angles"}
+    np.testing.assert_array_equal(s["pose"].numpy(), native[1]["pose"])
+    np.testing.assert_array_equal(s["transforms"].numpy(), native.posing([1])["transforms"][0])
+    assert s["unposed"].dtype == torch.float32 and s["angles"].shape == (len(native.layout["pose_angles"]),)
+    assert "unposed" not in td.DrapeDataset(out)[1]
