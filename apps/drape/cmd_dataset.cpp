@@ -178,6 +178,11 @@ int info(const std::vector<std::string>& args) {
             << (layout.body_vertices_stored ? "" : " (not stored: a slim dataset, rebuilt as they are read)")
             << ", garment vertices Ng = " << layout.garment_vertices << ", faces "
             << (layout.garment_faces.rows() ? std::to_string(layout.garment_faces.rows()) : "not stored") << "\n"
+            << "  poses     "
+            << (layout.pose_angles.empty() ? std::string("none: the bodies are in the body model's A-pose")
+                                           : std::to_string(layout.pose_angles.size()) +
+                                                 " joint angles per body, degrees (/bodies/pose; docs/poses.md)")
+            << "\n"
             << "  splits    train " << reader.indices(Split::Train).size() << ", val " << reader.indices(Split::Val).size()
             << ", test " << reader.indices(Split::Test).size() << " (done samples)\n"
             << "  stats     " << layout.stats.size() << " per sample" << (layout.stats.empty() ? "" : ", over the done samples:")

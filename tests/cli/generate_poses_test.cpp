@@ -86,6 +86,10 @@ TEST_CASE("drape generate --poses draw stores each body's drawn pose and keeps t
   CHECK(at_rest.transforms(0, 3, 0) == 1.0f);
   CHECK(at_rest.transforms(0, 3, 9) == 0.0f);
   CHECK((at_rest.unposed.mat(0) - plain_bodies.mat(0)).cwiseAbs().maxCoeff() < 1e-5f);
+  REQUIRE(test::run_drape("dataset info " + (dir / "posed.h5").string(), out) == 0);
+  CHECK(out.find("poses     22 joint angles per body, degrees") != std::string::npos);
+  REQUIRE(test::run_drape("dataset info " + (dir / "plain.h5").string(), out) == 0);
+  CHECK(out.find("poses     none: the bodies are in the body model's A-pose") != std::string::npos);
   // Slim, the bodies come back posed in their stored angles.
   REQUIRE(test::run_drape("dataset slim " + (dir / "posed.h5").string() + " --out " + (dir / "slim.h5").string(), out) == 0);
   const DatasetReader slim(dir / "slim.h5");
