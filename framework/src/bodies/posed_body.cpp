@@ -142,6 +142,13 @@ Eigen::MatrixX3d pose_vertices(const BodyModel& model, const std::string& model_
   return posed;
 }
 
+Pose full_pose(const BodyModel& model, const Pose& pose, const Eigen::MatrixX3d& unposed) {
+  const Pose rest = model.rest_pose_of(unposed);
+  Pose out;
+  for (const PoseAngle& a : model.pose_angles()) out.angles[a.name] = pose.get(a.name, rest.get(a.name, 0.0));
+  return out;
+}
+
 DrawnPose draw_free_pose(const BodyModel& model, const Eigen::VectorXd& shape, Rng& rng, int max_draws,
                          const std::vector<PoseAngle>* space) {
   const std::vector<PoseAngle> angles = space ? *space : model.pose_angles();

@@ -4,6 +4,7 @@
 
 #include <drape/bodies/body.hpp>
 #include <drape/bodies/garment_skinning.hpp>
+#include <drape/bodies/posed_body.hpp>
 #include <drape/io/shipped_files.hpp>
 
 #include <glob.h>
@@ -280,8 +281,7 @@ DatasetReader::Posing DatasetReader::posing(const std::vector<std::size_t>& indi
     const auto u = static_cast<std::size_t>(k);
     const Eigen::VectorXd shape = Eigen::Map<const Eigen::VectorXf>(params.data() + u * p, static_cast<Eigen::Index>(p)).cast<double>();
     const Eigen::MatrixX3d unposed = model.vertices(shape);
-    const Pose rest = model.rest_pose(shape);
-    const Pose pose = a ? pose_of_row(layout_.pose_angles, stored.data() + u * a) : rest;
+    const Pose pose = full_pose(model, a ? pose_of_row(layout_.pose_angles, stored.data() + u * a) : Pose{}, unposed);
     const MatrixRM transforms =
         a ? transforms_rows(model.joint_transforms(unposed, pose)) : transforms_rows(std::vector<skinning::Rigid>(joints));
     Impl::PosingRow& row = made[u];
@@ -290,7 +290,7 @@ DatasetReader::Posing DatasetReader::posing(const std::vector<std::size_t>& indi
       for (int c = 0; c < 3; ++c) row.unposed[static_cast<std::size_t>(v * 3 + c)] = static_cast<float>(unposed(v, c));
     row.transforms.assign(transforms.data(), transforms.data() + transforms.size());
     for (const PoseAngle& angle : angles)
-      row.angles.push_back(static_cast<float>(pose.get(angle.name, rest.get(angle.name, 0.0)) * M_PI / 180.0));
+      row.angles.push_back(static_cast<float>(pose.angles.at(angle.name) * M_PI / 180.0));
   }
   for (std::size_t k = 0; k < todo.size(); ++k) impl_->posing[todo[k]] = std::move(made[k]);
   const int count = static_cast<int>(indices.size());

@@ -114,14 +114,11 @@ PoseSource pose_source(const GenerateRequest& r, const Simulation& sim, const Sc
   return out;
 }
 
-// The pose of a sample as the dataset stores it: every angle of the space
-// (those the pose leaves at rest at the body's rest angle), each rounded to
-// float, so that the stored angles pose the body that was simulated.
-Pose stored_pose(const Pose& pose, const BodyModel& model, const Eigen::VectorXd& shape) {
-  const Pose rest = model.rest_pose(shape);
-  Pose out;
-  for (const PoseAngle& a : model.pose_angles())
-    out.angles[a.name] = static_cast<double>(static_cast<float>(pose.get(a.name, rest.get(a.name, 0.0))));
+// The pose of a sample as the dataset stores it: full_pose, each angle
+// rounded to float, so that the stored angles pose the body that was simulated.
+Pose stored_pose(const Pose& pose, const BodyModel& model, const Eigen::MatrixX3d& unposed) {
+  Pose out = full_pose(model, pose, unposed);
+  for (auto& [name, degrees] : out.angles) degrees = static_cast<double>(static_cast<float>(degrees));
   return out;
 }
 
@@ -281,10 +278,10 @@ GenerateSummary generate_dataset(const Registry& registry, const Scene& scene, c
         const BodyModel& model = sim.body_model();
         if (poses.drawn) {
           Rng pose_rng(Rng::derive(request.seed, "pose-" + std::to_string(global)));
-          pose = stored_pose(draw_free_pose(model, shape, pose_rng, 50, &poses.space).pose, model, shape);
+          pose = stored_pose(draw_free_pose(model, shape, pose_rng, 50, &poses.space).pose, model, body);
           target = model.posed_vertices(body, pose, 1.0);  // free of self-crossing: drawn so
         } else {
-          pose = stored_pose(poses.scene_pose, model, shape);
+          pose = stored_pose(poses.scene_pose, model, body);
           try {
             target = pose_vertices(model, scene.body_model, body, pose);
           } catch (const ConfigError& e) {

@@ -7,6 +7,10 @@
 #include <drape/services/dataset_unposing.hpp>
 #include <drape/training/model.hpp>
 
+#include <map>
+#include <string>
+#include <vector>
+
 namespace drape {
 
 std::size_t unpose_dataset(const Registry& registry, const std::filesystem::path& in, const std::filesystem::path& out,
@@ -38,16 +42,24 @@ std::size_t unpose_dataset(const Registry& registry, const std::filesystem::path
   for (std::size_t first = 0; first < rows.size(); first += kSlice) {
     const std::vector<std::size_t> slice(rows.begin() + static_cast<std::ptrdiff_t>(first),
                                          rows.begin() + static_cast<std::ptrdiff_t>(std::min(rows.size(), first + kSlice)));
+    // The slice's arrays and statistics in one read each (DatasetReader::sample
+    // would read every statistic per sample, and rebuild a slim file's posed
+    // body only to have it replaced by the rest one).
     const DatasetReader::Posing posing = reader.posing(slice);
+    const Tensor garments = reader.garment_vertices(slice), params = reader.body_params(slice), angles = reader.poses(slice);
+    std::map<std::string, std::vector<double>> stats;
+    for (const std::string& name : have.stats) stats[name] = reader.stat(name, slice);
     for (std::size_t k = 0; k < slice.size(); ++k) {
-      DatasetSample s = reader.sample(slice[k]);
       const int i = static_cast<int>(k);
-      s.garment_vertices =
-          unpose_garment(s.garment_vertices.cast<double>(), weights, transforms_of_rows(posing.transforms, i)).cast<float>();
+      DatasetSample s;
+      s.body_params = params.mat(i).row(0).transpose();
       s.body_vertices = posing.unposed.mat(i);
+      s.garment_vertices =
+          unpose_garment(garments.mat(i).cast<double>(), weights, transforms_of_rows(posing.transforms, i)).cast<float>();
+      s.split = static_cast<Split>(reader.splits()[slice[k]]);
+      for (const auto& [name, values] : stats) s.stats[name] = values[k];
       for (std::size_t a = 0; a < have.pose_angles.size(); ++a)
-        s.stats["pose_" + have.pose_angles[a]] = static_cast<double>(s.pose[static_cast<Eigen::Index>(a)]);
-      s.pose.resize(0);
+        s.stats["pose_" + have.pose_angles[a]] = static_cast<double>(angles(i, 0, static_cast<int>(a)));
       writer.write(first + k, s);
       if (done) done();
     }

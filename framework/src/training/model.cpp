@@ -2,6 +2,7 @@
 #include <drape/vertex_count.hpp>
 #include <drape/bodies/body.hpp>
 #include <drape/bodies/garment_skinning.hpp>
+#include <drape/bodies/posed_body.hpp>
 #include <drape/io/dataset.hpp>
 #include <drape/training/model.hpp>
 #include <drape/scene/garment_size.hpp>
@@ -344,9 +345,7 @@ SampleBatch sample_batch(const DatasetSample& sample, const DatasetLayout& layou
 
 SampleBatch posed_body_batch(const BodyModel& model, const Eigen::MatrixX3d& unposed, const Pose& pose) {
   if (!model.poseable()) throw ConfigError("this body model has no skeleton: it takes no pose");
-  const Pose rest = model.rest_pose_of(unposed);
-  Pose full;
-  for (const PoseAngle& a : model.pose_angles()) full.angles[a.name] = pose.get(a.name, rest.get(a.name, 0.0));
+  const Pose full = full_pose(model, pose, unposed);
   SampleBatch b;
   const auto to_tensor = [](const Eigen::MatrixXd& m) {
     Tensor t(1, static_cast<int>(m.rows()), static_cast<int>(m.cols()));

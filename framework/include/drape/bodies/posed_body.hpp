@@ -20,6 +20,12 @@ std::string describe_pose_crossings(const BodyModel& model, const Eigen::VectorX
 std::string describe_pose_crossings(const BodyModel& model, const Eigen::MatrixX3d& unposed, const Pose& pose,
                                     const Eigen::MatrixX3d& posed);
 
+// `pose` with every angle of the model's pose space set: the angles it leaves
+// alone at the rest angles of the body whose rest mesh is `unposed`
+// (BodyModel::rest_pose_of, no second solve of the shape). What a posed
+// dataset stores and a posed graph reads.
+Pose full_pose(const BodyModel& model, const Pose& pose, const Eigen::MatrixX3d& unposed);
+
 // Why `model` cannot be posed, when it says more than that it has no
 // skeleton: its own refusal of a pose (BodyModel::posed), such as an SMPL
 // file without its pose datasets naming the file. "" for a model that keeps
