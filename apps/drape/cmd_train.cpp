@@ -63,6 +63,10 @@ int run(const std::vector<std::string>& given) {
       "k", po::value<int>()->default_value(1000), "eigenvectors in the template assets (eigen_k; 1000 as in drape assets, which shares the cache)")(
       "init", po::value<std::string>(), "start from the weights of this model file (same graph weights: fine-tune a "
                                         "model, e.g. the shipped one, on new drapes) instead of random ones")(
+      "init-widen", po::bool_switch(), "with --init, a graph that appends input features (a concat after the old "
+                                       "ones, e.g. graphs/sizes/drape_grade.yaml's grade): weights with more input rows "
+                                       "keep the file's rows and start the new ones at zero, so training starts from "
+                                       "that model")(
       "resume", po::bool_switch(), "continue an interrupted training from <out>.state (starts afresh when there is none)")(
       "force", po::bool_switch(), "start over, deleting <out> and <out>.state")(
       "quiet,q", po::bool_switch(), "no progress bar");
@@ -71,7 +75,7 @@ int run(const std::vector<std::string>& given) {
   po::variables_map vm;
   const std::string usage =
       "drape train GRAPH.yaml --data data.h5 --out model.h5 [--epochs N] [--batch B] [--lr X] [--seed S] [--threads T] "
-      "[--init model.h5] [--resume]" +
+      "[--init model.h5 [--init-widen]] [--resume]" +
       std::string(built_with_mpi() ? "\n       mpirun -np N drape train ... (built with MPI: N ranks, each on a part of every batch)"
                                    : "\n       (built without MPI: one process)");
   if (!parse(usage, args, opts, pos, vm)) return 0;
@@ -97,6 +101,7 @@ int run(const std::vector<std::string>& given) {
     o.threads = ranks ? 1 : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
   o.eigen_k = vm["k"].as<int>();
   if (vm.count("init")) o.init = find_input_file(vm["init"].as<std::string>());
+  o.init_widen = vm["init-widen"].as<bool>();
   o.resume = vm["resume"].as<bool>();
   o.force = vm["force"].as<bool>();
   o.log = &std::cout;

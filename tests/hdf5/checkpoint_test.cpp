@@ -223,3 +223,64 @@ outputs: { y: encoder }
     CHECK_THROWS_WITH(adam.set_state(s), Catch::Contains("missing 'v/decoder/b'"));
   }
 }
+
+TEST_CASE("checkpoint: a graph that appends inputs starts as the saved model (load_weights_widening)",
+          "[hdf5][checkpoint]") {
+  TempDir dir;
+  const fs::path path = dir / "model.h5";
+  Graph saved = make_graph(7);
+  save_checkpoint(path, saved, {});
+  // The same graph with a fourth input channel after the three it had (what a
+  // concat of the old features and a new one, such as the garment's grade, gives).
+  const char* appended = R"(
+inputs: { x: [5, 4] }
+nodes:
+  encoder: { type: ckpt_dense, in: x, params: { width: 6 } }
+  decoder: { type: ckpt_dense, in: encoder, params: { width: 2 } }
+outputs: { y: decoder }
+)";
+  Graph widened = make_graph(8, appended);
+  const auto grown = load_weights_widening(path, widened.weights());
+  REQUIRE(grown.size() == 1);
+  CHECK(grown[0].name == "encoder/w");
+  CHECK(grown[0].from.str() == "[3, 6]");
+  CHECK(grown[0].to.str() == "[4, 6]");
+  // Any value of the new channel: the output of the saved model, exactly.
+  Tensor x(2, 5, 3), x4(2, 5, 4);
+  for (int b = 0; b < 2; ++b)
+    for (int r = 0; r < 5; ++r) {
+      for (int c = 0; c < 3; ++c) x4.mat(b)(r, c) = x.mat(b)(r, c) = 0.1f * static_cast<float>(b + 2 * r - c);
+      x4.mat(b)(r, 3) = 3.0f + static_cast<float>(r);
+    }
+  saved.forward({{"x", x}}, false);
+  widened.forward({{"x", x4}}, false);
+  CHECK(widened.output("y").vec() == saved.output("y").vec());
+  // The new channel learns: its gradient is not zero.
+  widened.zero_grad();
+  widened.backward_from_output("y", Tensor(2, 5, 2, 1.0f));
+  for (const auto& [name, w] : widened.weights())
+    if (name == "encoder/w") CHECK(w->grad.mat(0).row(3).norm() > 0.0f);
+
+  SECTION("outputs (columns) may not change, nor rows shrink, and the file's weights must all be used") {
+    const char* wider_out = R"(
+inputs: { x: [5, 4] }
+nodes:
+  encoder: { type: ckpt_dense, in: x, params: { width: 7 } }
+  decoder: { type: ckpt_dense, in: encoder, params: { width: 2 } }
+outputs: { y: decoder }
+)";
+    Graph h = make_graph(9, wider_out);
+    const auto before = values(h);
+    CHECK_THROWS_WITH(load_weights_widening(path, h.weights()), Catch::Contains("only rows, the inputs, may be added"));
+    CHECK(values(h) == before);  // all or nothing
+    const char* fewer = R"(
+inputs: { x: [5, 2] }
+nodes:
+  encoder: { type: ckpt_dense, in: x, params: { width: 6 } }
+  decoder: { type: ckpt_dense, in: encoder, params: { width: 2 } }
+outputs: { y: decoder }
+)";
+    Graph f = make_graph(9, fewer);
+    CHECK_THROWS_WITH(load_weights_widening(path, f.weights()), Catch::Contains("weight encoder/w is [3, 6] in the file"));
+  }
+}

@@ -174,9 +174,17 @@ void check_trainable(Graph& graph, const fs::path& graph_file) {
 
 // Every weight by name and shape, all or nothing (load_weights names the
 // first that is missing or has another shape: a model of another graph).
-void load_init_weights(const fs::path& init, DataParallelGraph& dp) {
-  if (!fs::exists(init)) throw ConfigError("--init " + init.string() + ": no such file");
-  load_weights(init, dp.graph());
+void load_init_weights(const TrainOptions& o, DataParallelGraph& dp) {
+  if (!fs::exists(o.init)) throw ConfigError("--init " + o.init.string() + ": no such file");
+  if (!o.init_widen) {
+    load_weights(o.init, dp.graph());
+  } else {
+    const auto widened = load_weights_widening(o.init, dp.graph().weights());
+    if (o.progress)
+      for (const auto& w : widened)
+        *o.progress << "init: weight " << w.name << " widened from " << w.from.str() << " to " << w.to.str()
+                    << " (the new input rows start at zero)\n";
+  }
   dp.sync_weights();
 }
 
@@ -216,6 +224,7 @@ std::map<std::string, std::string> resume_settings(const TrainOptions& o, const 
       {"patience", std::to_string(o.patience)}};
   if (o.schedule == "cosine") settings["epochs"] = std::to_string(o.epochs);
   if (!o.init.empty()) settings["init"] = o.init.string();
+  if (o.init_widen) settings["init_widen"] = "1";
   if (ranks > 1) settings["ranks"] = std::to_string(ranks);  // like threads, they change the sums' rounding
   return settings;
 }
@@ -529,7 +538,8 @@ TrainReport train(const Registry& registry, const TrainOptions& given) {
   Graph& graph = dp.graph();
   check_trainable(graph, o.graph);
   const std::string output = garment_output(graph);
-  if (!o.init.empty()) load_init_weights(o.init, dp);
+  if (o.init_widen && o.init.empty()) throw ConfigError("--init-widen needs --init (the model to start from)");
+  if (!o.init.empty()) load_init_weights(o, dp);
   Learner learner{Adam(graph.weights()), EarlyStopping({o.patience, 0.0}), lr_schedule(o), WeightCopy(graph.weights()),
                   History()};
   const std::map<std::string, std::string> settings = resume_settings(o, data, reader.layout(), ranks);

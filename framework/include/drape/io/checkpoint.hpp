@@ -42,4 +42,17 @@ Checkpoint read_checkpoint(const std::filesystem::path& path);
 void load_weights(const std::filesystem::path& path, const NamedWeights& weights, bool allow_extra = false);
 void load_weights(const std::filesystem::path& path, Graph& graph, bool allow_extra = false);
 
+// A weight of the file given more rows (inputs) by the graph.
+struct WidenedWeight {
+  std::string name;
+  Shape from, to;
+};
+// As load_weights, but a graph weight [r + k, c] takes the file's [r, c] as its
+// first r rows and zeros after them: a graph that appends k input features
+// (a concat after the old ones, such as the garment's grade on the encoded
+// features) starts as exactly the model in the file, the new inputs with no
+// effect until training gives them one. Columns (outputs) must match. Returns
+// the weights so widened; all or nothing.
+std::vector<WidenedWeight> load_weights_widening(const std::filesystem::path& path, const NamedWeights& weights);
+
 }  // namespace drape

@@ -46,6 +46,11 @@ struct TrainOptions {
   // schedule. Empty: random weights. Recorded in the state, so a resumed run
   // must give the same file.
   std::filesystem::path init;
+  // With init: a weight the graph gives more input rows than the file's (a
+  // graph that appends features, such as graphs/sizes/drape_grade.yaml's
+  // grade) keeps the file's rows and starts the new ones at zero
+  // (load_weights_widening), so training starts from the model in the file.
+  bool init_widen = false;
   bool resume = false;        // continue from <out>.state when it exists
   bool force = false;         // start over even when <out> or <out>.state exists
   long max_epochs_this_run = 0;  // > 0: stop after that many epochs as if killed (tests)
