@@ -38,9 +38,30 @@ class MakeHumanBody final : public BodyModel {
   // The range for one sex and height (what solve() can reach for that request).
   std::pair<double, double> bmi_range(double sex, double height) const;
 
+  // Posing by MakeHuman's own rig (rig.hpp, rig_pose.hpp) when the data
+  // folder has it (rigs/default.mhskel, rigs/default_weights.mhw); without
+  // it every pose is refused naming the missing files.
+  bool poseable() const override { return model_->rig_missing().empty(); }
+  std::vector<PoseAngle> pose_angles() const override;
+  std::vector<Joint> joints() const override { return poseable() ? model_->rig().joints : BodyModel::joints(); }
+  // Regressed from the skin (rig.hpp): MakeHuman's joint positions within a
+  // few millimetres, and the same for any mesh of this topology.
+  Eigen::MatrixX3d joint_positions(const Eigen::VectorXd& shape) const override;
+  Eigen::MatrixXd skinning_weights() const override {
+    return poseable() ? model_->rig().weights : BodyModel::skinning_weights();
+  }
+  // MakeHuman's own stance: arms abducted and the elbows bent (rig_pose.hpp).
+  Pose rest_pose(const Eigen::VectorXd& shape) const override;
+  Pose rest_pose_of(const Eigen::MatrixX3d& unposed) const override;
+  Eigen::MatrixX3d posed(const Eigen::VectorXd& shape, const Pose& pose) const override;
+  Eigen::MatrixX3d posed_vertices(const Eigen::MatrixX3d& unposed, const Pose& pose, double fraction) const override;
+  std::vector<skinning::Rigid> joint_transforms(const Eigen::MatrixX3d& unposed, const Pose& pose) const override;
+
  private:
   Sliders along_path(Sliders s, double t) const;  // t in [0, 1]: thinnest .. heaviest
   Sliders fit_height(Sliders s, double height) const;
+  // The bone heads of a body of this topology, after checking its size.
+  Eigen::MatrixX3d joints_of(const Eigen::MatrixX3d& unposed) const;
   std::shared_ptr<const Model> model_;
   double muscle_;
 };

@@ -1,4 +1,5 @@
 #include "model.hpp"
+#include "rig_pose.hpp"
 
 #include <drape/errors.hpp>
 #include <drape/io/mesh_io.hpp>
@@ -35,6 +36,17 @@ Model::Model(const fs::path& root) : root_(root) {
   body_faces_.resize(static_cast<Eigen::Index>(tris.size()), 3);
   for (std::size_t i = 0; i < tris.size(); ++i) body_faces_.row(static_cast<Eigen::Index>(i)) = tris[i].transpose();
   targets_ = load_macro_targets(root);
+  rig_missing_ = missing_rig_files(root);
+}
+
+const Rig& Model::rig() const {
+  if (!rig_missing_.empty()) throw ConfigError(rig_missing_);
+  // Reading the weights and fitting the joints costs about a second: only a
+  // posed body pays it, once per folder.
+  std::call_once(rig_once_, [&] {
+    rig_ = build_rig(read_rig_files(root_, static_cast<int>(base_.rows())), base_, body_vertices_, targets_, angles_of_bone);
+  });
+  return *rig_;
 }
 
 Eigen::MatrixX3d Model::morph(const Sliders& sliders) const { return apply_targets(base_, targets_, sliders); }

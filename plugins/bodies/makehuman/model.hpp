@@ -3,11 +3,15 @@
 // ../shared/assets/makehuman, or the user's own): base mesh hm08 + macro targets.
 // Helper geometry (eyes, teeth, tights, joints, ...) is morphed along with the body
 // (clothes bind to the tights helper) but only the `body` group is the body mesh.
+#include "rig.hpp"
 #include "targets.hpp"
 
 #include <drape/mesh.hpp>
 
 #include <filesystem>
+#include <memory>
+#include <mutex>
+#include <optional>
 
 namespace drape::makehuman {
 
@@ -25,6 +29,13 @@ class Model {
   // Same units and placement as body(): positions of a morphed base (raw dm) in meters.
   Eigen::MatrixX3d to_body_frame(const Eigen::MatrixX3d& raw_points, const Eigen::MatrixX3d& morphed_base) const;
 
+  // MakeHuman's rig (rigs/default.mhskel and its weights, rig.hpp), read and
+  // fitted on first use; ConfigError naming the missing files when the
+  // folder has none (rig_missing() says so beforehand), or what is wrong
+  // with them.
+  const Rig& rig() const;
+  const std::string& rig_missing() const { return rig_missing_; }
+
   int body_vertex_count() const { return body_vertices_; }
   const Eigen::MatrixX3i& body_faces() const { return body_faces_; }
 
@@ -34,6 +45,9 @@ class Model {
   Eigen::MatrixX3i body_faces_;
   int body_vertices_ = 0;
   std::vector<Target> targets_;
+  std::string rig_missing_;  // "" when the rig files are there
+  mutable std::once_flag rig_once_;
+  mutable std::optional<Rig> rig_;
 };
 
 }  // namespace drape::makehuman
