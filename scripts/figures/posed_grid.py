@@ -76,6 +76,23 @@ def picture(stem, label, size):
         return base64.b64encode(f.read()).decode()
 
 
+def write_page(path, title, rows, size, header_css="width:120px"):
+    """One HTML page: the title over a table of the rows (`<tr>` strings), cells two views of `size` pixels wide."""
+    with open(path, "w") as f:
+        f.write(f"""<!doctype html><meta charset=utf-8><title>{html.escape(title)}</title>
+<style>body{{font:13px sans-serif;background:#fff}} td,th{{vertical-align:top;padding:4px;text-align:left}}
+th{{{header_css}}} td{{width:{2 * size}px}} td.refused{{color:#a00}}</style>
+<h3>{html.escape(title)}</h3><table>{''.join(rows)}</table>""")
+    print("wrote", path)
+
+
+def screenshot(page, png, width, height):
+    """The HTML page `page` as a PNG of width x height pixels, through headless Chromium."""
+    subprocess.run(["chromium", "--headless", "--no-sandbox", "--disable-gpu", f"--screenshot={os.path.abspath(png)}",
+                    f"--window-size={int(width)},{int(height)}", "file://" + os.path.abspath(page)], capture_output=True)
+    print("wrote", png)
+
+
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("--drape", default=os.path.join(ROOT, "build", "bin", "drape"))
@@ -111,12 +128,7 @@ def main():
             cells.append(f"<td><img src='data:image/png;base64,{img}'><br>BMI {bmi:g}: {html.escape(note)}</td>")
         rows.append(f"<tr><th>{html.escape(name)}<br><small>{html.escape(spec or 'rest')}</small></th>{''.join(cells)}</tr>")
     title = a.title or f"Posed drapes: {os.path.basename(a.scene)}, poses x BMI (front and left views)"
-    with open(a.out, "w") as f:
-        f.write(f"""<!doctype html><meta charset=utf-8><title>{html.escape(title)}</title>
-<style>body{{font:13px sans-serif;background:#fff}} td,th{{vertical-align:top;padding:4px;text-align:left}}
-th{{width:120px}} td{{width:{2 * a.size}px}} td.refused{{color:#a00}}</style>
-<h3>{html.escape(title)}</h3><table>{''.join(rows)}</table>""")
-    print("wrote", a.out)
+    write_page(a.out, title, rows, a.size)
     if a.csv:
         keys = ["pose", "spec", "bmi", "settled", "p", "crossings", "self_crossings", "iterations", "seconds", "wall", "refused"]
         with open(a.csv, "w") as f:
@@ -127,10 +139,7 @@ th{{width:120px}} td{{width:{2 * a.size}px}} td.refused{{color:#a00}}</style>
     if a.png:
         width = 360 + len(bmis) * (2 * a.size + 30)
         height = 80 + len(poses) * (a.size * 1.3 + 60)
-        subprocess.run(["chromium", "--headless", "--no-sandbox", "--disable-gpu", f"--screenshot={os.path.abspath(a.png)}",
-                        f"--window-size={int(width)},{int(height)}", "file://" + os.path.abspath(a.out)],
-                       capture_output=True)
-        print("wrote", a.png)
+        screenshot(a.out, a.png, width, height)
 
 
 if __name__ == "__main__":

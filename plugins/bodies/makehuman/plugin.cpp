@@ -1,5 +1,5 @@
 // Plugins over MakeHuman data (a folder laid out like ../shared/assets/makehuman):
-//   body `makehuman`          sliders -> body mesh, BMI search over weight/muscle
+//   body `makehuman`          sliders -> body mesh, BMI search over weight/muscle, posed by MakeHuman's rig
 //   garment `makehuman_tshirt` the T-shirt of an outfit, dressed through its .mhclo
 //   garment `makehuman_clothes` any piece of an outfit (index or group), the same way
 #include "body_model.hpp"
@@ -86,9 +86,10 @@ PluginList plugins() {
   PluginDescriptor body;
   body.kind = "body";
   body.name = "makehuman";
-  body.doc = "MakeHuman hm08 body (CC0 data folder): macro sliders, helpers removed, meters; BMI search over weight/muscle.";
+  body.doc = "MakeHuman hm08 body (CC0 data folder): macro sliders, helpers removed, meters; BMI search over weight/muscle; "
+             "posed by MakeHuman's own rig when the folder has rigs/default.mhskel and rigs/default_weights.mhw.";
   body.params = {{.name = "path", .type = ParamType::String, .default_value = kDefaultPath,
-                  .doc = "MakeHuman data folder (base/base.obj, targets/macrodetails/); empty: $DRAPE_MAKEHUMAN_DIR or ../shared/assets/makehuman"},
+                  .doc = "MakeHuman data folder (base/base.obj, targets/macrodetails/, for poses rigs/); empty: $DRAPE_MAKEHUMAN_DIR or ../shared/assets/makehuman"},
                  {.name = "muscle", .type = ParamType::Float, .default_value = "-1",
                   .doc = "fixed muscle slider for the BMI search; -1 moves it with weight", .min = -1.0, .max = 1.0}};
   body.create_body = [](const Params& p) {
