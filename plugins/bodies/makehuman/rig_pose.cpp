@@ -71,7 +71,7 @@ Limb arm(const std::string& s) { return {"upperarm01" + s, "lowerarm01" + s, "wr
 Limb leg(const std::string& s) { return {"upperleg01" + s, "lowerleg01" + s, "foot" + s}; }
 
 // The elbow's hinge: across the plane of the rest upper arm and forearm
-// (MakeHuman's elbows rest bent by about 47 degrees), so that flexion
+// (MakeHuman's elbows rest bent by 39-47 degrees), so that flexion
 // moves the forearm in the plane it is bent in; across the arm in the
 // frontal plane, as the parametric body's, if the arm were straight.
 V3 elbow_hinge(const V3& upper, const V3& fore) {
