@@ -160,6 +160,7 @@ int sample_many(const po::variables_map& vm, const LoadedBody& loaded, const Ran
   const int count = vm["sample"].as<int>();
   if (count < 1) throw UsageError("--sample " + std::to_string(count) + ": expected at least 1");
   if (!vm.count("out-dir")) throw UsageError("--sample needs --out-dir");
+  if (vm.count("poses")) check_drawable(body.pose_angles(), loaded.model);  // before anything is written
   const std::filesystem::path dir = vm["out-dir"].as<std::string>();
   std::filesystem::create_directories(dir);
   const Range height = vm.count("height") ? parse_range("height", vm["height"].as<std::string>()) : Range{1.5, 2.0};

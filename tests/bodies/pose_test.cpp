@@ -324,3 +324,11 @@ TEST_CASE("draw_free_pose draws reproducibly and only poses the body stays clear
   CHECK(describe_pose_crossings(posed_model(), shape, first.pose, first.vertices).empty());
   CHECK_THAT(test::message_of([&] { draw_free_pose(posed_model(), shape, a, 0); }), Catch::Contains("0 poses drawn"));
 }
+
+TEST_CASE("poses are drawn only from a space with a sampling range", "[bodies][pose]") {
+  std::vector<PoseAngle> space = {{"a", -180, 180, 0, 0, ""}, {"b", -180, 180, 5, 5, ""}};
+  CHECK_THROWS_WITH(check_drawable(space, "smpl"), Catch::Contains("body model 'smpl' has no pose distribution"));
+  space[1].sample_hi = 6;
+  CHECK_NOTHROW(check_drawable(space, "smpl"));
+  CHECK_NOTHROW(check_drawable(human_pose_angles(), "parametric"));
+}

@@ -465,6 +465,13 @@ TEST_CASE("drape body poses an SMPL body by a theta file", "[smpl][pose][cli]") 
   refused("body --model smpl --param file=" + (dir / "shape_only.h5").string() + " --bmi " + std::to_string(bmi) +
               " --smpl-theta " + (dir / "theta.txt").string(),
           "has no /J_regressor, /weights, /kintree_table or /posedirs: it makes unposed bodies only");
+  // SMPL ships no pose distribution: drawing poses is refused, not a θ = 0 for every body.
+  const auto drawn_dir = dir / "drawn";
+  CHECK(test::run_drape(smpl + std::to_string(bmi) + ":" + std::to_string(bmi + 1) + " --sample 2 --poses --out-dir " +
+                            drawn_dir.string(),
+                        out) == 2);
+  CHECK(out.find("body model 'smpl' has no pose distribution to draw from") != std::string::npos);
+  CHECK_FALSE(std::filesystem::exists(drawn_dir));
   refused("body --model smpl --param file=" + (dir / "shape_only.h5").string() + " --bmi " + std::to_string(bmi) +
               " --pose left_elbow_x=10",
           "docs/smpl.md shows how to convert them");

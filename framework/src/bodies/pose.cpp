@@ -149,6 +149,14 @@ std::string format_pose(const Pose& pose) {
   return s.str();
 }
 
+void check_drawable(const std::vector<PoseAngle>& space, const std::string& model) {
+  for (const PoseAngle& a : space)
+    if (a.sample_hi > a.sample_lo) return;
+  throw ConfigError("body model '" + model +
+                    "' has no pose distribution to draw from (no angle has a sampling range): give one with "
+                    "--pose-range name=lo:hi,... (degrees), or pose the bodies explicitly");
+}
+
 Pose draw_pose(const std::vector<PoseAngle>& space, Rng& rng) {
   Pose pose;
   for (const PoseAngle& a : space) pose.angles[a.name] = a.sample_lo + (a.sample_hi - a.sample_lo) * rng.uniform();

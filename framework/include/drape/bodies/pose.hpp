@@ -70,6 +70,10 @@ Pose draw_pose(const std::vector<PoseAngle>& space, Rng& rng);
 // set outside it. ConfigError (prefixed by `what`) for an unknown name (with
 // the close names), lo > hi, a bound that is not a number, or a range beyond
 // the angle's range of motion.
+// ConfigError unless some angle of `space` has a sampling range to draw from:
+// a model that ships no pose distribution (SMPL) would otherwise draw its
+// rest pose for every body, silently. `model` names it in the message.
+void check_drawable(const std::vector<PoseAngle>& space, const std::string& model);
 std::vector<PoseAngle> with_sampling_ranges(std::vector<PoseAngle> space, const std::string& text, const std::string& what);
 // "shoulder_abduction 25:100, ..." of the angles whose sampling range differs
 // from `reference`'s (all of them when reference is empty): for messages and
