@@ -12,6 +12,7 @@
 #include <drape/training/model.hpp>
 #include <drape/training/model_domain.hpp>
 #include <drape/training/physics_optimization.hpp>
+#include <drape/services/graded_scene.hpp>
 #include <drape/services/model_body.hpp>
 
 #include <chrono>
@@ -315,6 +316,8 @@ void register_model(py::module_& m) {
             // Optimised where the training bodies stood (as predict), the drapes moved back with the body.
             const Eigen::RowVector3d back = p.prepare(b, false).front();
             p.pose(b, posed, false);
+            // A model of several sizes: against the garment the scene dresses this body in, fed that grade.
+            const Simulation& simulation = graded_simulation(registry(), *scene.simulations, p.model(), b, false, "optimize");
             PhysicsOptimizationOptions o;
             o.iterations = iterations;
             o.learning_rate = learning_rate;
@@ -322,7 +325,7 @@ void register_model(py::module_& m) {
             {
               py::gil_scoped_release release;
               std::lock_guard lock(p.mutex());
-              r = optimize_drape(p.model(), *scene.simulation, b, o);
+              r = optimize_drape(p.model(), simulation, b, o);
             }
             r.before.rowwise() += back;
             r.after.rowwise() += back;

@@ -295,6 +295,26 @@ TEST_CASE("size auto: a model takes the grade and predict chooses the body's siz
   CHECK(test::run(drape + "predict --model " + model + " --bmi 30 --garment-grade 7 --out x.obj", out) == 2);
   CHECK_THAT(out, Catch::Contains("outside"));
   CHECK(test::run(drape + "predict --model " + model + " --bmi 30 --garment-grade 1 --garment-size small --out x.obj", out) == 2);
+
+  // optimize: against the garment the scene dresses the body in, the network
+  // fed that garment's grade. The size: auto scene gives the heavy body the
+  // size predict chose; the regular scene its one shirt, whatever the model's
+  // rule says; another size than the scene's, asked for, is refused.
+  const auto vertices_of = [&](const std::string& name) { return read_mesh((dir / name).string()).vertices; };
+  const auto optimize = [&](const char* scene, const std::string& name, const std::string& extra) {
+    return test::run(drape + "optimize --model " + model + " --scene " + (dir / scene).string() + " --bmi 55 --iters 0" +
+                         extra + " --before " + (dir / name).string() + " --out " + (dir / ("after_" + name)).string(),
+                     out);
+  };
+  REQUIRE(optimize("auto.yaml", "opt_auto.obj", "") == 0);
+  CHECK_THAT(out, !Catch::Contains("the scene dresses this body"));
+  CHECK((vertices_of("opt_auto.obj") - vertices_of("auto.obj")).cwiseAbs().maxCoeff() < 1e-5);
+  REQUIRE(optimize("regular.yaml", "opt_regular.obj", "") == 0);
+  CHECK_THAT(out, Catch::Contains("the scene dresses this body in grade 1.000"));
+  CHECK((vertices_of("opt_regular.obj") - vertices_of("regular.obj")).cwiseAbs().maxCoeff() < 1e-5);
+  CHECK(optimize("regular.yaml", "refused.obj", " --garment-size " + expected.size) == 2);
+  CHECK_THAT(out, Catch::Contains("but the scene dresses this body in grade 1.000"));
+  CHECK_FALSE(std::filesystem::exists(dir / "refused.obj"));
 }
 
 TEST_CASE("grade auto: generate grades each body and a model predicts in the body's grade", "[sizes][grade]") {

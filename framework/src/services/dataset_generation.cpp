@@ -12,6 +12,7 @@
 #include <drape/progress.hpp>
 #include <drape/training/rng.hpp>
 #include <drape/services/dataset_generation.hpp>
+#include <drape/services/graded_scene.hpp>
 #include <drape/scene/simulation.hpp>
 
 #ifdef _OPENMP
@@ -67,11 +68,7 @@ void check_bmi_range(const GenerateRequest& r, const Simulation& sim, const Scen
 // scene names one other than the design size (measured on the size chart).
 double fixed_garment_grade(const Registry& registry, const Scene& scene, const SceneSimulations& simulations) {
   if (simulations.auto_size() || simulations.auto_grade()) return 0.0;  // per sample
-  const auto size = scene.garment_params.find("size");
-  if (size == scene.garment_params.end() || !size->second.node.IsScalar()) return scene.garment_grade;
-  const std::string name = size->second.node.as<std::string>();
-  if (name == default_garment_size(registry, scene)) return scene.garment_grade;
-  return scene.garment_grade * SizeChart(registry, scene).table().grade(name);
+  return scene_garment_grade(registry, simulations, {}, "");
 }
 
 std::string ranges_text(const GenerateRequest& r) {
@@ -109,6 +106,7 @@ PoseSource pose_source(const GenerateRequest& r, const Simulation& sim, const Sc
     throw ConfigError("body model '" + scene.body_model + "' cannot be posed" + (why.empty() ? " (it has no skeleton)" : ": " + why));
   }
   out.space = with_sampling_ranges(model.pose_angles(), r.pose_ranges, "pose range");
+  if (out.drawn) check_drawable(out.space, scene.body_model);
   out.text = out.drawn ? "poses drawn" + std::string(r.pose_ranges.empty() ? "" : " (" + sampling_ranges_text(out.space, model.pose_angles()) + ")")
                        : "pose " + format_pose(out.scene_pose);
   return out;

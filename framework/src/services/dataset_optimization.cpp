@@ -6,7 +6,9 @@
 #include <drape/io/dataset.hpp>
 #include <drape/progress.hpp>
 #include <drape/registry.hpp>
+#include <drape/scene/garment_size.hpp>
 #include <drape/scene/scene.hpp>
+#include <drape/services/graded_scene.hpp>
 
 #include <algorithm>
 #include <cstdio>
@@ -104,7 +106,7 @@ std::size_t optimize_dataset(const Registry& registry, const OptimizeDatasetOpti
   const DatasetReader reader(o.data);
   const std::vector<std::size_t> source = shard_samples(reader, o);
   const Scene scene = load_scene(o.scene_file);
-  const Simulation simulation(registry, scene);
+  const SceneSimulations simulations(registry, scene);
   {
     const Model probe = Model::load(registry, o.model);
     check_dataset_template(reader, o.data, probe.assets());
@@ -140,7 +142,10 @@ std::size_t optimize_dataset(const Registry& registry, const OptimizeDatasetOpti
         sample = reader.sample(index);
       }
       // The sample already holds the body: the network's input comes from it, not from a second read.
-      const SampleBatch batch = sample_batch(sample, reader.layout(), model->graph(), &model->body_model());
+      SampleBatch batch = sample_batch(sample, reader.layout(), model->graph(), &model->body_model());
+      // A model of several sizes: each sample against the garment it wears, which must be the scene's for its body.
+      const Simulation& simulation = graded_simulation(registry, simulations, *model, batch, true,
+                                                       o.data.string() + " sample " + std::to_string(index));
       const PhysicsOptimizationResult r = optimize_drape(*model, simulation, batch, o.optimization);
       store_result(sample, r, carried, index);
       {
