@@ -91,7 +91,14 @@ void choose_sizes(const SizeTable& chart, const Model& model, SampleBatch& batch
   const int n = batch.size();
   batch.garment_grade = Tensor(n, 1, 1);
   for (int i = 0; i < n; ++i) {
-    SizeChoice choice = chart.choose(body_girth(batch.body.mat(i).cast<double>(), model.assets().body.faces));
+    // Measured where bodies stand in a scene (soles at y = 0, centred in x and
+    // z): the tape follows bands at heights above the soles, and a body given
+    // standing elsewhere is the same body.
+    Eigen::MatrixX3d body = batch.body.mat(i).cast<double>();
+    Eigen::RowVector3d stand = body.colwise().mean();
+    stand.y() = body.col(1).minCoeff();
+    body.rowwise() -= stand;
+    SizeChoice choice = chart.choose(body_girth(body, model.assets().body.faces));
     if (choice.size.empty()) {
       const std::string why = about(batch, i) + "no size of the garment fits this body (" + choice.summary() + ")";
       if (strict) throw ConfigError(strict_option + ": " + why);
