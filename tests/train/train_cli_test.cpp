@@ -10,7 +10,11 @@
 #include <drape/io/h5.hpp>
 #include <drape/geometry/penetration.hpp>
 #include <drape/io/mesh_io.hpp>
+#include <drape/scene/garment_size.hpp>
+#include <drape/scene/scene.hpp>
+#include <drape/scene/simulation.hpp>
 
+#include <algorithm>
 #include <csignal>
 #include <fstream>
 #include <sstream>
@@ -405,12 +409,15 @@ TEST_CASE("with the seed's six losses a resumed run (no cached or warm-started c
 
 TEST_CASE("drape predict notes when the model's one garment size is smaller around than the body", "[train][cli][shipped]") {
   test::TempDir dir;
-  // The shipped model wears the regular shirt: it fits a slim man (no note),
-  // and is smaller around than heavy bodies, the more so the heavier.
+  // The one-size model shipped beside the sized one wears the regular shirt:
+  // it fits a slim man (no note), and is smaller around than heavy bodies,
+  // the more so the heavier.
+  const std::string regular = (test::source_dir() / "models/tshirt-coarse-regular.h5").string();
   const auto smaller_by = [&](double bmi) {
     std::string out;
     REQUIRE(test::run("env -u DRAPE_MODEL DRAPE_CACHE_DIR=" + dir.path().string() + " " + test::drape_program().string() +
-                          " predict --bmi " + std::to_string(bmi) + " --out " + (dir / "g.obj").string(),
+                          " predict --model " + regular + " --bmi " + std::to_string(bmi) + " --out " +
+                          (dir / "g.obj").string(),
                       out) == 0);
     INFO(out);
     std::smatch m;
@@ -423,4 +430,31 @@ TEST_CASE("drape predict notes when the model's one garment size is smaller arou
   const double at45 = smaller_by(45), at60 = smaller_by(60);
   CHECK(at45 > 5.0);
   CHECK(at60 > at45);
+}
+
+TEST_CASE("the shipped model dresses each body in the size the tailor's rule gives it", "[train][cli][shipped]") {
+  test::TempDir dir;
+  // No "smaller around" note: the size follows the body. The sizes are those
+  // the scene's own chart chooses for the same bodies (a simulation's rule,
+  // not the model's constants), and a heavier body wears a larger one.
+  const SizeChart chart(test::plugins(), load_scene(test::source_dir() / "graphs/scenes/tshirt_coarse_sized.yaml"));
+  const Simulation& design = chart.design();
+  std::vector<std::string> sizes;
+  for (const double bmi : {16.0, 35.0, 60.0}) {
+    std::string out;
+    REQUIRE(test::run("env -u DRAPE_MODEL DRAPE_CACHE_DIR=" + dir.path().string() + " " + test::drape_program().string() +
+                          " predict --bmi " + std::to_string(bmi) + " --out " + (dir / "g.obj").string(),
+                      out) == 0);
+    INFO(out);
+    CHECK_THAT(out, !Catch::Contains("smaller around"));
+    BodyRequest request;
+    request.bmi = bmi;
+    const SizeChoice expected = chart.choose(design.body_vertices(design.shape_for(request)));
+    CHECK_THAT(out, Catch::Contains("note: size " + expected.size + " by the tailor's rule"));
+    sizes.push_back(expected.size);
+  }
+  const auto& names = chart.sizes();
+  const auto rank = [&](const std::string& s) { return std::find(names.begin(), names.end(), s) - names.begin(); };
+  CHECK(rank(sizes[0]) < rank(sizes[1]));
+  CHECK(rank(sizes[1]) < rank(sizes[2]));
 }
