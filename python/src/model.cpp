@@ -375,7 +375,8 @@ void register_model(py::module_& m) {
           "_forward",
           [](PyModel& p, const py::handle& body, const py::handle& body_params, const py::handle& garment_size) {
             bool batched = false;
-            const SampleBatch b = p.batch(body, body_params, garment_size, &batched);
+            SampleBatch b = p.batch(body, body_params, garment_size, &batched);
+            choose_garment_sizes(p.model(), b);  // a model of sizes: the tailor's rule, as predict (no notes here)
             py::array out = to_numpy(p.predict(b), !batched);
             return py::make_tuple(out, p.last_forward());
           },
@@ -386,7 +387,8 @@ void register_model(py::module_& m) {
           [](PyModel& p, const py::handle& grad, std::uint64_t forward_id, const py::handle& body, const py::handle& body_params,
              const py::handle& garment_size) {
             bool batched = false;
-            const SampleBatch b = p.batch(body, body_params, garment_size, &batched);
+            SampleBatch b = p.batch(body, body_params, garment_size, &batched);
+            choose_garment_sizes(p.model(), b);  // the forward's choice: the same bodies, the same sizes
             p.backward(b, grad, forward_id);
           },
           py::arg("grad_garment"), py::arg("forward_id"), py::arg("body_vertices"), py::arg("body_params") = py::none(),
@@ -396,7 +398,8 @@ void register_model(py::module_& m) {
           [](PyModel& p, const py::handle& body, int repeats) {
             // The C++ side of the overhead benchmark: Model::predict timed in C++, no Python in the loop.
             bool batched = false;
-            const SampleBatch b = p.batch(body, py::none(), py::none(), &batched);
+            SampleBatch b = p.batch(body, py::none(), py::none(), &batched);
+            choose_garment_sizes(p.model(), b);
             std::vector<double> seconds;
             py::gil_scoped_release release;
             std::lock_guard lock(p.mutex());

@@ -116,6 +116,14 @@ void choose_sizes(const SizeTable& chart, const Model& model, SampleBatch& batch
 
 }  // namespace
 
+void choose_garment_sizes(const Model& model, SampleBatch& batch, std::vector<Notice>* notices) {
+  if (!model.needs_input("garment_grade") || !batch.garment_grade.empty()) return;
+  const std::optional<SizeTable> chart = model_size_chart(model);
+  if (!chart) throw ConfigError("this model takes the garment's grade and records no size chart to choose one by: give the grade");
+  std::vector<Notice> own;
+  choose_sizes(*chart, model, batch, false, "", notices ? *notices : own);
+}
+
 SampleBatch model_body_batch(const Model& model, const ModelBodyInput& input) {
   if (input.vertices.has_value() == input.request.has_value())
     throw ConfigError("a body: give either its vertices or a request for the model's body plugin");

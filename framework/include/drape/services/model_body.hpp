@@ -108,5 +108,11 @@ std::optional<double> requested_garment_grade(const Model& model, const std::opt
 // The size chart a model taking garment_grade was trained with (its metadata
 // size_chart), none when it records none.
 std::optional<SizeTable> model_size_chart(const Model& model);
+// For a model that takes the garment's grade: each body of `batch` in the
+// size the tailor's rule gives it (as BodyPreparation::prepare chooses when
+// none is given), its note appended to *notices; the bodies are measured
+// where they stand in a scene, wherever they are given. ConfigError when the
+// model records no chart. Nothing for other models or a batch with grades.
+void choose_garment_sizes(const Model& model, SampleBatch& batch, std::vector<Notice>* notices = nullptr);
 
 }  // namespace drape
