@@ -26,6 +26,8 @@ struct Row {
   std::set<std::string> losses;
   double penetration_weight = 1.0;  // the penetration loss's weight, where there is one
   std::optional<double> penetration_margin{};  // its margin in m, where the file sets one
+  double v2v_weight = 10.0;  // graphs/drape.yaml's, unless the row reweights it
+  double l2_weight = 1.0;
 };
 
 const std::set<std::string> kSeedLosses = {"v2v", "direction", "edge", "deformation", "laplacian", "spectral_loss"};
@@ -50,6 +52,12 @@ const Row kRows[] = {
     {"ablations/losses/l3_edge.yaml", "cnn1d", "msgcn", true, {"v2v", "direction", "laplacian", "edge"}},
     {"ablations/losses/l4_spectral.yaml", "cnn1d", "msgcn", true,
      {"v2v", "direction", "laplacian", "edge", "spectral_loss"}},
+    // The ME gap to the baseline (graphs/experiments/me_gap.yaml): V2V reweighted, and L2 in its place.
+    {"ablations/losses/v2v_weight30.yaml", "cnn1d", "msgcn", true, kSeedLosses, 1.0, {}, 30.0},
+    {"ablations/losses/v2v_weight100.yaml", "cnn1d", "msgcn", true, kSeedLosses, 1.0, {}, 100.0},
+    {"ablations/losses/v2v_weight300.yaml", "cnn1d", "msgcn", true, kSeedLosses, 1.0, {}, 300.0},
+    {"ablations/losses/l2_with_physics.yaml", "cnn1d", "msgcn", true,
+     {"direction", "edge", "deformation", "laplacian", "spectral_loss", "l2"}, 1.0, {}, 10.0, 500.0},
     // Not the seed's: its full model with the template following the body.
     {"bodyspace/drape_follow.yaml", "cnn1d", "msgcn", true, kSeedLosses},
     {"bodyspace/drape_follow_penetration.yaml", "cnn1d", "msgcn", true,
@@ -96,7 +104,7 @@ TEST_CASE("every shipped model graph is its table row, builds on the T-shirt and
     CHECK(node_named(spec, "decoder")->type == row.decoder);
     CHECK((node_named(spec, "spectral") != nullptr) == row.spectral);
     std::set<std::string> losses;
-    // The weights of graphs/drape.yaml (L_V2V and L_e 10, the rest 1), kept by every row.
+    // The weights of graphs/drape.yaml (L_V2V and L_e 10, the rest 1), kept by every row but where it says.
     for (const auto& n : spec.nodes)
       if (n.is_loss) {
         losses.insert(n.type);
@@ -106,9 +114,11 @@ TEST_CASE("every shipped model graph is its table row, builds on the T-shirt and
           if (margin != n.params.end() && row.penetration_margin)
             CHECK(margin->second.node.as<double>() == *row.penetration_margin);
         }
-        CHECK(n.weight == (n.type == "v2v" || n.type == "edge" ? 10.0
-                           : n.type == "penetration"                ? row.penetration_weight
-                                                                    : 1.0));
+        CHECK(n.weight == (n.type == "v2v"           ? row.v2v_weight
+                           : n.type == "edge"          ? 10.0
+                           : n.type == "penetration"   ? row.penetration_weight
+                           : n.type == "l2"            ? row.l2_weight
+                                                       : 1.0));
       }
     CHECK(losses == row.losses);
 
