@@ -12,7 +12,8 @@
 #
 #   bash scripts/train_sized_model.sh [WORK_DIR]     (default: work-sized-model/)
 #
-# Environment: BUILD_DIR (default build), THREADS (default 1), EPOCHS (the
+# Environment: BUILD_DIR (default build), GRAPH (default
+# graphs/sizes/drape_grade.yaml), THREADS (default 1), EPOCHS (the
 # cosine schedule, default 100), LR (default 2e-4), PATIENCE (default 50),
 # INIT (default models/tshirt-coarse-regular.h5, the one-size model).
 # The shipped models/tshirt-coarse.h5 is this script's model.h5 (trained
@@ -36,7 +37,7 @@ if [[ ! -f "$ONLY_SIZED" || $(cat "$WORK/sized-shards" 2>/dev/null) != "${#SIZED
   echo "${#SIZED[@]}" >"$WORK/sized-shards"
 fi
 
-"$DRAPE" train graphs/sizes/drape_grade.yaml --data "$MIXED" --out "$WORK/model.h5" --init "$INIT" --init-widen \
+"$DRAPE" train "${GRAPH:-graphs/sizes/drape_grade.yaml}" --data "$MIXED" --out "$WORK/model.h5" --init "$INIT" --init-widen \
   --epochs "${EPOCHS:-100}" --schedule cosine --lr "${LR:-2e-4}" --patience "${PATIENCE:-50}" --batch 8 --seed 0 \
   --threads "${THREADS:-1}" --resume
 
