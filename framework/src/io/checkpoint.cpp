@@ -94,16 +94,30 @@ Checkpoint read_checkpoint(const fs::path& path) {
   return c;
 }
 
-void load_weights(const fs::path& path, const NamedWeights& weights, bool allow_extra) {
+namespace {
+
+// load_weights and load_weights_widening: every weight by name, all or
+// nothing. `widened` null: shapes must match; else a graph weight with more
+// rows takes the file's rows first and zero rows after them, listed there.
+void load_named_weights(const fs::path& path, const NamedWeights& weights, bool allow_extra,
+                        std::vector<WidenedWeight>* widened) {
   const h5::File file = h5::File::open(path);
   check_format(file);
   std::vector<Tensor> loaded;
   std::set<std::string> wanted;
   for (const auto& [name, w] : weights) {
     Tensor t = read_matrix(file, "/weights/" + name);
-    if (t.shape() != w->value.shape())
-      throw ConfigError(path.string() + ": weight " + name + " is " + t.shape().str() + " in the file, the graph has " +
-                        w->value.shape().str());
+    const Shape from = t.shape(), to = w->value.shape();
+    const bool grows = widened && from.cols == to.cols && from.rows < to.rows;
+    if (from != to && !grows)
+      throw ConfigError(path.string() + ": weight " + name + " is " + from.str() + " in the file, the graph has " + to.str() +
+                        (widened && from.cols != to.cols ? " (only rows, the inputs, may be added)" : ""));
+    if (grows) {
+      Tensor grown(1, to.rows, to.cols, 0.0f);
+      grown.mat(0).topRows(from.rows) = t.mat(0);
+      widened->push_back({name, from, to});
+      t = std::move(grown);
+    }
     loaded.push_back(std::move(t));
     wanted.insert(name);
   }
@@ -115,35 +129,17 @@ void load_weights(const fs::path& path, const NamedWeights& weights, bool allow_
   for (std::size_t i = 0; i < weights.size(); ++i) weights[i].second->value.vec() = loaded[i].vec();
 }
 
+}  // namespace
+
+void load_weights(const fs::path& path, const NamedWeights& weights, bool allow_extra) {
+  load_named_weights(path, weights, allow_extra, nullptr);
+}
+
 void load_weights(const fs::path& path, Graph& graph, bool allow_extra) { load_weights(path, graph.weights(), allow_extra); }
 
 std::vector<WidenedWeight> load_weights_widening(const fs::path& path, const NamedWeights& weights) {
-  const h5::File file = h5::File::open(path);
-  check_format(file);
-  std::vector<Tensor> loaded;
   std::vector<WidenedWeight> widened;
-  std::set<std::string> wanted;
-  for (const auto& [name, w] : weights) {
-    Tensor t = read_matrix(file, "/weights/" + name);
-    const Shape from = t.shape(), to = w->value.shape();
-    if (from.cols != to.cols || from.rows > to.rows)
-      throw ConfigError(path.string() + ": weight " + name + " is " + t.shape().str() + " in the file, the graph has " +
-                        to.str() + (from.cols != to.cols ? " (only rows, the inputs, may be added)" : ""));
-    if (from.rows < to.rows) {
-      // The file's rows first, zero rows for the inputs the graph appends.
-      Tensor grown(1, to.rows, to.cols, 0.0f);
-      grown.mat(0).topRows(from.rows) = t.mat(0);
-      widened.push_back({name, from, to});
-      t = std::move(grown);
-    }
-    loaded.push_back(std::move(t));
-    wanted.insert(name);
-  }
-  if (file.is_group("/weights"))
-    for (const auto& name : file.datasets_below("/weights"))
-      if (!wanted.count(name))
-        throw ConfigError(path.string() + ": weight " + name + " in the file is not in the graph (was it saved from another graph?)");
-  for (std::size_t i = 0; i < weights.size(); ++i) weights[i].second->value.vec() = loaded[i].vec();
+  load_named_weights(path, weights, false, &widened);
   return widened;
 }
 
