@@ -17,13 +17,13 @@
 #include <drape/io/output_lock.hpp>
 #include <drape/training/physics_optimization.hpp>
 #include <drape/registry.hpp>
-#include <cmath>
 #include <drape/scene/scene.hpp>
 #include <drape/scene/garment_size.hpp>
 #include <drape/scene/simulation.hpp>
 #include <drape/services/graded_scene.hpp>
 #include <drape/io/svg_figure.hpp>
 
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <thread>
@@ -94,8 +94,8 @@ int run(const std::vector<std::string>& args) {
   SampleBatch batch = model_body(model, vm, &moved_by);
   // A model of several sizes is optimised against the garment the scene dresses this body in.
   const float chosen = batch.garment_grade.empty() ? 0.0f : batch.garment_grade(0, 0, 0);
-  const Simulation& scene = graded_simulation(registry, simulations, model, batch,
-                                              vm.count("garment-size") || vm.count("garment-grade"), "drape optimize");
+  const Simulation& scene = GradedScene(registry, simulations)
+                                .for_model(model, batch, vm.count("garment-size") || vm.count("garment-grade"), "drape optimize");
   if (!batch.garment_grade.empty() && std::abs(batch.garment_grade(0, 0, 0) - chosen) > 1e-3f)
     std::printf("note: the scene dresses this body in grade %.3f (its garment), so the model predicts and is optimised "
                 "in that garment instead\n",

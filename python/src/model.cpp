@@ -317,7 +317,7 @@ void register_model(py::module_& m) {
             const Eigen::RowVector3d back = p.prepare(b, false).front();
             p.pose(b, posed, false);
             // A model of several sizes: against the garment the scene dresses this body in, fed that grade.
-            const Simulation& simulation = graded_simulation(registry(), *scene.simulations, p.model(), b, false, "optimize");
+            const Simulation& simulation = GradedScene(registry(), *scene.simulations).for_model(p.model(), b, false, "optimize");
             PhysicsOptimizationOptions o;
             o.iterations = iterations;
             o.learning_rate = learning_rate;

@@ -63,14 +63,6 @@ void check_bmi_range(const GenerateRequest& r, const Simulation& sim, const Scen
   }
 }
 
-// The garment_grade of every sample of a scene without size: auto: the
-// scene's grade, times its size's grade when the garment has sizes and the
-// scene names one other than the design size (measured on the size chart).
-double fixed_garment_grade(const Registry& registry, const Scene& scene, const SceneSimulations& simulations) {
-  if (simulations.auto_size() || simulations.auto_grade()) return 0.0;  // per sample
-  return scene_garment_grade(registry, simulations, {}, "");
-}
-
 std::string ranges_text(const GenerateRequest& r) {
   std::ostringstream o;
   o << "bmi " << r.bmi.lo << ":" << r.bmi.hi << ", height " << r.height.lo << ":" << r.height.hi << ", sex " << r.sex.lo
@@ -230,7 +222,8 @@ GenerateSummary generate_dataset(const Registry& registry, const Scene& scene, c
   const PoseSource poses = pose_source(request, sim, scene);
   // The size flag of a graph trained on several sizes (garment_size_flag).
   const double design_size = garment_size_flag(sim.scene());
-  const double design_grade = fixed_garment_grade(registry, scene, simulations);
+  // The garment_grade of every sample of a scene without size: auto or grade: auto.
+  const double design_grade = GradedScene(registry, simulations).fixed_grade();
   const std::size_t first = request.shard.first(request.count);
   const std::vector<Split> split = splits(request.count, request.seed);
 

@@ -107,6 +107,7 @@ std::size_t optimize_dataset(const Registry& registry, const OptimizeDatasetOpti
   const std::vector<std::size_t> source = shard_samples(reader, o);
   const Scene scene = load_scene(o.scene_file);
   const SceneSimulations simulations(registry, scene);
+  const GradedScene graded(registry, simulations);
   {
     const Model probe = Model::load(registry, o.model);
     check_dataset_template(reader, o.data, probe.assets());
@@ -144,8 +145,7 @@ std::size_t optimize_dataset(const Registry& registry, const OptimizeDatasetOpti
       // The sample already holds the body: the network's input comes from it, not from a second read.
       SampleBatch batch = sample_batch(sample, reader.layout(), model->graph(), &model->body_model());
       // A model of several sizes: each sample against the garment it wears, which must be the scene's for its body.
-      const Simulation& simulation = graded_simulation(registry, simulations, *model, batch, true,
-                                                       o.data.string() + " sample " + std::to_string(index));
+      const Simulation& simulation = graded.for_model(*model, batch, true, o.data.string() + " sample " + std::to_string(index));
       const PhysicsOptimizationResult r = optimize_drape(*model, simulation, batch, o.optimization);
       store_result(sample, r, carried, index);
       {

@@ -10,36 +10,40 @@
 
 namespace drape {
 
-double scene_garment_grade(const Registry& registry, const SceneSimulations& simulations, const Eigen::MatrixX3d& body,
-                           const std::string& what, const Simulation** simulation) {
+GradedScene::GradedScene(const Registry& registry, const SceneSimulations& simulations) : simulations_(simulations) {
+  if (simulations.auto_size() || simulations.auto_grade()) return;  // per body
   const Scene& scene = simulations.design().scene();
-  if (simulations.auto_size()) {
+  fixed_grade_ = scene.garment_grade;
+  const auto size = scene.garment_params.find("size");
+  if (size == scene.garment_params.end() || !size->second.node.IsScalar()) return;
+  const std::string name = size->second.node.as<std::string>();
+  if (name != default_garment_size(registry, scene)) fixed_grade_ *= SizeChart(registry, scene).table().grade(name);
+}
+
+double GradedScene::grade_for(const Eigen::MatrixX3d& body, const std::string& what, const Simulation** simulation) const {
+  if (simulations_.auto_size()) {
     SizeChoice choice;
-    const Simulation& s = simulations.for_body(body, what, &choice);
+    const Simulation& s = simulations_.for_body(body, what, &choice);
     if (simulation) *simulation = &s;
-    return scene.garment_grade * simulations.chart()->table().grade(choice.size);
+    return simulations_.design().scene().garment_grade * simulations_.chart()->table().grade(choice.size);
   }
-  if (simulations.auto_grade()) {
+  if (simulations_.auto_grade()) {
     GradeChoice choice;
-    const Simulation& s = simulations.for_body(body, what, nullptr, &choice);
+    const Simulation& s = simulations_.for_body(body, what, nullptr, &choice);
     if (simulation) *simulation = &s;
     return choice.grade;
   }
-  if (simulation) *simulation = &simulations.design();
-  // One garment: its grade, times its size's when the scene names a size other than the design size.
-  const auto size = scene.garment_params.find("size");
-  if (size == scene.garment_params.end() || !size->second.node.IsScalar()) return scene.garment_grade;
-  const std::string name = size->second.node.as<std::string>();
-  if (name == default_garment_size(registry, scene)) return scene.garment_grade;
-  return scene.garment_grade * SizeChart(registry, scene).table().grade(name);
+  if (simulation) *simulation = &simulations_.design();
+  return fixed_grade_;
 }
 
-const Simulation& graded_simulation(const Registry& registry, const SceneSimulations& simulations, const Model& model, SampleBatch& batch, bool grade_given, const std::string& what) {
-  if (!model.needs_input("garment_grade")) return simulations.design();
+const Simulation& GradedScene::for_model(const Model& model, SampleBatch& batch, bool grade_given,
+                                         const std::string& what) const {
+  if (!model.needs_input("garment_grade")) return simulations_.design();
   // The size is chosen on the body at rest, as a posed scene chooses it.
   const Tensor& rest = batch.unposed_body.empty() ? batch.body : batch.unposed_body;
   const Simulation* simulation = nullptr;
-  const double grade = scene_garment_grade(registry, simulations, rest.mat(0).cast<double>(), what, &simulation);
+  const double grade = grade_for(rest.mat(0).cast<double>(), what, &simulation);
   if (grade_given && !batch.garment_grade.empty() && std::abs(batch.garment_grade(0, 0, 0) - grade) > 1e-3) {
     char text[320];
     std::snprintf(text, sizeof text,

@@ -14,20 +14,31 @@
 
 namespace drape {
 
-class Model;
+// The garment grades of a scene's simulations, measured once per command
+// (the one garment's grade may need its size chart built).
+class GradedScene {
+ public:
+  GradedScene(const Registry& registry, const SceneSimulations& simulations);
 
-// The garment grade the scene dresses `body` in: its size's grade times the
-// scene's `grade` (size: auto), the body's grade (grade: auto), or the one
-// garment's (measured on its size chart when the scene names another size
-// than the design size). *simulation: the simulation of that garment.
-double scene_garment_grade(const Registry& registry, const SceneSimulations& simulations, const Eigen::MatrixX3d& body, const std::string& what, const Simulation** simulation = nullptr);
+  // The one garment's grade: its `grade`, times its size's when the scene
+  // names a size other than the design size (measured on the size chart);
+  // 0 with size: auto or grade: auto, where the grade is per body.
+  double fixed_grade() const { return fixed_grade_; }
+  // The grade the scene dresses `body` in: its size's grade times the
+  // scene's `grade` (size: auto), the body's grade (grade: auto), or
+  // fixed_grade(). *simulation: the simulation of that garment.
+  double grade_for(const Eigen::MatrixX3d& body, const std::string& what, const Simulation** simulation = nullptr) const;
+  // The simulation a model's prediction for the one body of `batch` is
+  // optimised against. For a model that takes the grade: the scene's garment
+  // for that body, its grade written into batch.garment_grade; when
+  // `grade_given` (the user's --garment-size/--garment-grade, a dataset
+  // sample's own) and it differs from the scene's, ConfigError "<what>: ...".
+  // Other models: the scene's design simulation, the batch untouched.
+  const Simulation& for_model(const Model& model, SampleBatch& batch, bool grade_given, const std::string& what) const;
 
-// The simulation a model's prediction for the one body of `batch` is
-// optimised against. For a model that takes the grade: the scene's garment
-// for that body, its grade written into batch.garment_grade; when
-// `grade_given` (the user's --garment-size/--garment-grade, a dataset
-// sample's own) and it differs from the scene's, ConfigError "<what>: ...".
-// Other models: the scene's design simulation, the batch untouched.
-const Simulation& graded_simulation(const Registry& registry, const SceneSimulations& simulations, const Model& model, SampleBatch& batch, bool grade_given, const std::string& what);
+ private:
+  const SceneSimulations& simulations_;
+  double fixed_grade_ = 0.0;
+};
 
 }  // namespace drape
