@@ -126,16 +126,18 @@ class PyModel {
   // grad arrays (zeroed first). The graph keeps the state of its last forward;
   // when another forward ran since `forward_id` (a gradient check's
   // perturbations), this batch's forward is run again first.
-  void backward(const SampleBatch& b, const py::handle& grad, std::uint64_t forward_id) {
+  void backward(SampleBatch& b, const py::handle& grad, std::uint64_t forward_id) {
     const int ng = model_->assets().garment->mesh.num_vertices();
     bool batched = false;
     const Tensor g = vertices_batch_arg(grad, "grad_garment", ng, &batched);
     if (g.batch() != b.body.batch())
       throw py::value_error("grad_garment: expected " + std::to_string(b.body.batch()) + " samples like the forward, got " +
                             std::to_string(g.batch()));
+    const BodyPreparation& preparation = this->preparation();  // before the lock, which it takes
     py::gil_scoped_release release;
     std::lock_guard lock(mutex_);
     if (forward_id != forward_id_) {
+      preparation.choose_sizes(b);  // the forward's sizes: the same bodies, the same rule
       model_->predict(b);
       forward_id_ = ++forwards_;
     }
@@ -376,7 +378,7 @@ void register_model(py::module_& m) {
           [](PyModel& p, const py::handle& body, const py::handle& body_params, const py::handle& garment_size) {
             bool batched = false;
             SampleBatch b = p.batch(body, body_params, garment_size, &batched);
-            choose_garment_sizes(p.model(), b);  // a model of sizes: the tailor's rule, as predict (no notes here)
+            p.preparation().choose_sizes(b);  // a model of sizes: the tailor's rule, as predict (no notes here)
             py::array out = to_numpy(p.predict(b), !batched);
             return py::make_tuple(out, p.last_forward());
           },
@@ -388,7 +390,6 @@ void register_model(py::module_& m) {
              const py::handle& garment_size) {
             bool batched = false;
             SampleBatch b = p.batch(body, body_params, garment_size, &batched);
-            choose_garment_sizes(p.model(), b);  // the forward's choice: the same bodies, the same sizes
             p.backward(b, grad, forward_id);
           },
           py::arg("grad_garment"), py::arg("forward_id"), py::arg("body_vertices"), py::arg("body_params") = py::none(),
@@ -399,7 +400,7 @@ void register_model(py::module_& m) {
             // The C++ side of the overhead benchmark: Model::predict timed in C++, no Python in the loop.
             bool batched = false;
             SampleBatch b = p.batch(body, py::none(), py::none(), &batched);
-            choose_garment_sizes(p.model(), b);
+            p.preparation().choose_sizes(b);
             std::vector<double> seconds;
             py::gil_scoped_release release;
             std::lock_guard lock(p.mutex());

@@ -86,7 +86,7 @@ std::optional<double> requested_garment_grade(const Model& model, const std::opt
 namespace {
 
 // The size the tailor's rule gives each body of a batch that has no grade yet.
-void choose_sizes(const SizeTable& chart, const Model& model, SampleBatch& batch, bool strict,
+void choose_sizes_by_chart(const SizeTable& chart, const Model& model, SampleBatch& batch, bool strict,
                   const std::string& strict_option, std::vector<Notice>& notices) {
   const int n = batch.size();
   batch.garment_grade = Tensor(n, 1, 1);
@@ -115,14 +115,6 @@ void choose_sizes(const SizeTable& chart, const Model& model, SampleBatch& batch
 }
 
 }  // namespace
-
-void choose_garment_sizes(const Model& model, SampleBatch& batch, std::vector<Notice>* notices) {
-  if (!model.needs_input("garment_grade") || !batch.garment_grade.empty()) return;
-  const std::optional<SizeTable> chart = model_size_chart(model);
-  if (!chart) throw ConfigError("this model takes the garment's grade and records no size chart to choose one by: give the grade");
-  std::vector<Notice> own;
-  choose_sizes(*chart, model, batch, false, "", notices ? *notices : own);
-}
 
 SampleBatch model_body_batch(const Model& model, const ModelBodyInput& input) {
   if (input.vertices.has_value() == input.request.has_value())
@@ -229,15 +221,25 @@ BodyPreparation::BodyPreparation(const Model& model, std::optional<ModelDomain> 
   }
 }
 
+void BodyPreparation::choose_sizes(SampleBatch& batch, bool strict, const std::string& strict_option,
+                                   std::vector<Notice>& notices) const {
+  if (!model_.needs_input("garment_grade") || !batch.garment_grade.empty()) return;
+  if (!size_chart_)
+    throw ConfigError("this model takes the garment's grade and records no size chart to choose one by: give the grade");
+  choose_sizes_by_chart(*size_chart_, model_, batch, strict, strict_option, notices);
+}
+
+std::vector<Notice> BodyPreparation::choose_sizes(SampleBatch& batch) const {
+  std::vector<Notice> notices;
+  choose_sizes(batch, false, "", notices);
+  return notices;
+}
+
 PreparedBodies BodyPreparation::prepare(SampleBatch& batch, bool strict, const std::string& strict_option,
                                         bool measure) const {
   PreparedBodies out;
   out.moved_by.assign(static_cast<std::size_t>(batch.size()), Eigen::RowVector3d::Zero());
-  if (model_.needs_input("garment_grade") && batch.garment_grade.empty()) {
-    if (!size_chart_)
-      throw ConfigError("this model takes the garment's grade and records no size chart to choose one by: give the grade");
-    choose_sizes(*size_chart_, model_, batch, strict, strict_option, out.notices);
-  }
+  choose_sizes(batch, strict, strict_option, out.notices);
   if (measure && !domain_ && !model_.file().empty()) {  // an untrained model in memory has no file to record one in
     const std::string name = model_.file().filename().string();
     if (strict)

@@ -87,6 +87,11 @@ class BodyPreparation {
   // pose_model_batch, then the pose against the domain's trained joint
   // angles: a warning per angle outside (with strict, a ConfigError starting
   // "<strict_option>: "). Run after prepare().
+  // For a model that takes the garment's grade: each body of a batch that
+  // has no grades in the size the tailor's rule gives it (what prepare()
+  // chooses), measured where bodies stand in a scene wherever it is given;
+  // the notes naming each size. Nothing for other models or given grades.
+  std::vector<Notice> choose_sizes(SampleBatch& batch) const;
   std::vector<Notice> pose(SampleBatch& batch, const Pose& pose, bool strict,
                            const std::string& strict_option = "--strict") const;
   const std::optional<ModelDomain>& domain() const { return domain_; }
@@ -95,6 +100,7 @@ class BodyPreparation {
   const Model& model_;
   std::optional<ModelDomain> domain_;
   double garment_loop_;  // m, the model garment's narrowest loop on the mean body (NaN: none, or a sized model)
+  void choose_sizes(SampleBatch& batch, bool strict, const std::string& strict_option, std::vector<Notice>& notices) const;
   std::optional<SizeTable> size_chart_;  // a model taking garment_grade: its training data's size chart
 };
 
@@ -108,11 +114,6 @@ std::optional<double> requested_garment_grade(const Model& model, const std::opt
 // The size chart a model taking garment_grade was trained with (its metadata
 // size_chart), none when it records none.
 std::optional<SizeTable> model_size_chart(const Model& model);
-// For a model that takes the garment's grade: each body of `batch` in the
-// size the tailor's rule gives it (as BodyPreparation::prepare chooses when
-// none is given), its note appended to *notices; the bodies are measured
-// where they stand in a scene, wherever they are given. ConfigError when the
-// model records no chart. Nothing for other models or a batch with grades.
-void choose_garment_sizes(const Model& model, SampleBatch& batch, std::vector<Notice>* notices = nullptr);
+
 
 }  // namespace drape
