@@ -217,9 +217,12 @@ Eigen::MatrixXd BodyModel::skinning_weights() const {
 }
 Pose BodyModel::rest_pose(const Eigen::VectorXd&) const { return {}; }
 Pose BodyModel::rest_pose_of(const Eigen::MatrixX3d&) const { return rest_pose(mean_shape()); }
+// The shape's body posed all the way: one definition for every model whose
+// pose does not depend on the shape beyond its mesh (posed_vertices refuses
+// for a model without a skeleton).
 Eigen::MatrixX3d BodyModel::posed(const Eigen::VectorXd& shape, const Pose& pose) const {
   if (pose.empty()) return vertices(shape);
-  throw ConfigError(kNoSkeletonRefusal);
+  return posed_vertices(vertices(shape), pose, 1.0);
 }
 Eigen::MatrixX3d BodyModel::posed_vertices(const Eigen::MatrixX3d& unposed, const Pose& pose, double) const {
   if (pose.empty()) return unposed;

@@ -53,7 +53,6 @@ class MakeHumanBody final : public BodyModel {
   // MakeHuman's own stance: arms abducted and the elbows bent (rig_pose.hpp).
   Pose rest_pose(const Eigen::VectorXd& shape) const override;
   Pose rest_pose_of(const Eigen::MatrixX3d& unposed) const override;
-  Eigen::MatrixX3d posed(const Eigen::VectorXd& shape, const Pose& pose) const override;
   Eigen::MatrixX3d posed_vertices(const Eigen::MatrixX3d& unposed, const Pose& pose, double fraction) const override;
   std::vector<skinning::Rigid> joint_transforms(const Eigen::MatrixX3d& unposed, const Pose& pose) const override;
 

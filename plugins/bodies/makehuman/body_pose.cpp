@@ -34,11 +34,6 @@ Pose MakeHumanBody::rest_pose_of(const Eigen::MatrixX3d& unposed) const {
   return poseable() ? rest_angles(model_->rig(), joints_of(unposed)) : Pose{};
 }
 
-Eigen::MatrixX3d MakeHumanBody::posed(const Eigen::VectorXd& shape, const Pose& pose) const {
-  if (pose.empty()) return vertices(shape);
-  return posed_vertices(vertices(shape), pose, 1.0);
-}
-
 Eigen::MatrixX3d MakeHumanBody::posed_vertices(const Eigen::MatrixX3d& unposed, const Pose& pose, double fraction) const {
   if (!poseable() && pose.empty()) return unposed;
   const Eigen::MatrixX3d joints = joints_of(unposed);

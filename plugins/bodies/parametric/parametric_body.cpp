@@ -62,9 +62,6 @@ class ParametricBody final : public BodyModel {
                         std::to_string(num_vertices()));
     return rest_angles(regress_joints(shared_skeleton(), unposed));
   }
-  Eigen::MatrixX3d posed(const Eigen::VectorXd& shape, const Pose& pose) const override {
-    return posed_vertices(vertices(shape), pose, 1.0);
-  }
   Eigen::MatrixX3d posed_vertices(const Eigen::MatrixX3d& unposed, const Pose& pose, double fraction) const override {
     check_pose(pose, pose_angles(), "body parametric pose");
     if (unposed.rows() != num_vertices())
