@@ -14,13 +14,17 @@ posed/A-pose (Newton iterations and seconds, in one run, so the machine's load i
 --apose-scene (default: the coarse A-pose scene the posed one derives from, tshirt_coarse_sized.yaml).
 
     /usr/bin/python3 scripts/posed_drape_check.py N [--seed S] [--scene graphs/scenes/tshirt_coarse_posed.yaml]
-        [--compare-apose K] [--bmi 10:65] [--drape build/bin/drape] [--out-dir DIR]
+        [--compare-apose K] [--bmi 10:65] [--drape build/bin/drape] [--out-dir DIR] [--part K/M]
 
 Writes DIR/drapes.csv (one line per drape) and prints a summary; exit 1 when any drape is unsettled, inside, or
-crossing. docs/poses.md reports a run.
+crossing. docs/poses.md reports a run. Each drape's result is also kept as DIR/drape_NNN_KIND.json, so a run
+started again on the same DIR resumes where it was killed, and --part K/M drapes only the bodies i with
+i % M == K (one process per core on one DIR; the bodies are drawn once, by the first; the summary covers every
+drape of DIR that is done).
 """
 import argparse
 import csv
+import json
 import os
 import subprocess
 import sys
@@ -83,23 +87,39 @@ def main():
     ap.add_argument("--compare-apose", type=int, default=0, metavar="K")
     ap.add_argument("--apose-scene", default=os.path.join(ROOT, "graphs", "scenes", "tshirt_coarse_sized.yaml"))
     ap.add_argument("--out-dir", default=None)
+    ap.add_argument("--part", default="0/1", metavar="K/M")
     a = ap.parse_args()
+    part, parts = (int(x) for x in a.part.split("/"))
     out = a.out_dir or tempfile.mkdtemp(prefix="posed-drapes-")
     os.makedirs(out, exist_ok=True)
-    subprocess.run([a.drape, "body", "--sample", str(a.n), "--poses", "--bmi", a.bmi, "--seed", str(a.seed), "--out-dir",
-                    os.path.join(out, "bodies")], check=True, capture_output=True)
-    with open(os.path.join(out, "bodies", "bodies.csv")) as f:
+    bodies_csv = os.path.join(out, "bodies", "bodies.csv")
+    if not os.path.exists(bodies_csv):
+        subprocess.run([a.drape, "body", "--sample", str(a.n), "--poses", "--bmi", a.bmi, "--seed", str(a.seed), "--out-dir",
+                        os.path.join(out, "bodies")], check=True, capture_output=True)
+    with open(bodies_csv) as f:
         bodies = list(csv.DictReader(f))
+    if len(bodies) != a.n:
+        sys.exit(f"{bodies_csv} holds {len(bodies)} bodies, not {a.n}: another run's folder")
     rows, bad = [], 0
     for i, body in enumerate(bodies):
         pose = ",".join(f"{k[5:]}={float(v):.6f}" for k, v in body.items() if k.startswith("pose_") and k != "pose_redraws")
         for kind in (("posed", "A-pose") if i < a.compare_apose else ("posed",)):
             stem = os.path.join(out, f"drape_{i:03d}_{kind}")
-            r = simulate(a, stem, body, pose, a.scene) if kind == "posed" else simulate(a, stem, body, "", a.apose_scene)
-            r.update(index=i, kind=kind, bmi=float(body["requested_bmi"]), sex=body["sex"],
-                     height=float(body["requested_height"]))
+            if os.path.exists(stem + ".json"):
+                with open(stem + ".json") as f:
+                    r = json.load(f)
+            elif i % parts != part:
+                continue
+            else:
+                r = simulate(a, stem, body, pose, a.scene) if kind == "posed" else simulate(a, stem, body, "", a.apose_scene)
+                r.update(index=i, kind=kind, bmi=float(body["requested_bmi"]), sex=body["sex"],
+                         height=float(body["requested_height"]))
+                if "refused" not in r:
+                    r.update(independent_checks(stem))
+                with open(stem + ".json.partial", "w") as f:
+                    json.dump(r, f)
+                os.replace(stem + ".json.partial", stem + ".json")  # written whole: a killed run redoes the drape
             if "refused" not in r:
-                r.update(independent_checks(stem))
                 ok = r["settled"] and r["p_winding"] == 0 and r["garment_body_crossings"] == 0 and r["self_crossings"] == 0
             else:
                 ok = False
@@ -116,7 +136,7 @@ def main():
         w.writeheader()
         w.writerows(rows)
     posed = [r for r in rows if r["kind"] == "posed" and "refused" not in r]
-    print(f"{len(posed)} posed drapes of {len(bodies)} bodies: {sum(r['settled'] for r in posed)} settled, "
+    print(f"{len(posed)} posed drapes (done in {out}) of {len(bodies)} bodies: {sum(r['settled'] for r in posed)} settled, "
           f"{sum(r['p_winding'] > 0 for r in posed)} with a vertex inside, "
           f"{sum(r['garment_body_crossings'] > 0 for r in posed)} crossing the body, "
           f"{sum(r['self_crossings'] > 0 for r in posed)} crossing themselves; "
