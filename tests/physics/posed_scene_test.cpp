@@ -72,6 +72,22 @@ TEST_CASE("a scene's bad pose is refused at its file and line", "[scene][pose]")
   CHECK(scene_error("  pose: [30]").find("posed.yaml:4: body `pose` must be a map of name: value") != std::string::npos);
 }
 
+TEST_CASE("a scene's morph_carry takes two distances, inner below outer", "[scene][pose]") {
+  const auto error = [](const std::string& carry) {
+    std::string text = kPosed;
+    text.replace(text.find("settle_steps: 2}"), std::string("settle_steps: 2}").size(),
+                 "settle_steps: 2, morph_carry: " + carry + "}");
+    return message_of([&] { Simulation(plugins(), parse_scene(text, "posed.yaml")); });
+  };
+  CHECK(error("[0.02, 0.06]") == "(no exception)");
+  for (const std::string bad : {"[0.06, 0.02]", "[0.02]", "[-0.01, 0.02]", "[0.02, 0.9]"}) {
+    INFO(bad << ": " << error(bad));
+    CHECK(error(bad).find("morph_carry must be two distances [inner, outer] in m with 0 <= inner < outer <= 0.5") !=
+          std::string::npos);
+  }
+  CHECK(error("[0.02, .nan]").find("posed.yaml:7: solver: parameter 'morph_carry'") != std::string::npos);
+}
+
 TEST_CASE("a model without a skeleton refuses a scene's pose at its line", "[scene][pose]") {
   const auto body = skeletonless_body();
   const BodyModel& rigid = *body;

@@ -70,6 +70,8 @@ const std::vector<ParamSpec>& scene_solver_specs() {
       {.name = "settle_check", .type = ParamType::String, .default_value = "iteration",
        .doc = "when a settling drape checks that it has settled: every Newton iteration, or only at the end of a time step (the solver of 2026-11-28)",
        .choices = {"iteration", "step"}},
+      {.name = "morph_carry", .type = ParamType::FloatList, .default_value = "[0.005, 0.02]",
+       .doc = "m: under a barrier, cloth within the first distance of the skin moves with it during the morph, fading to not at all at the second (larger carries loose sleeves with a raising arm: docs/poses.md)"},
       {.name = "pose_path", .type = ParamType::String, .default_value = "together",
        .doc = "how a posed body moves from the start: shape morph and joint angles together, the pose first, or the shape first",
        .choices = {"together", "pose_first", "shape_first"}},

@@ -19,10 +19,20 @@
 
 #include <algorithm>
 #include <chrono>
+#include <tuple>
+#include <utility>
 
 namespace drape {
 
 namespace {
+
+// The solver's morph_carry, [inner, outer] m (scene_solver_specs).
+std::pair<double, double> morph_carry(const Params& solver, const std::string& file) {
+  const auto carry = solver.get_float_list("morph_carry");
+  if (carry.size() != 2 || !(carry[0] >= 0 && carry[1] > carry[0] && carry[1] <= 0.5))
+    throw ConfigError({file, 0}, "solver: morph_carry must be two distances [inner, outer] in m with 0 <= inner < outer <= 0.5");
+  return {carry[0], carry[1]};
+}
 
 // m: body faces this close to the dressed garment lie under it (a shirt is
 // worn within a few centimetres of the skin; sleeves hang farther).
@@ -150,6 +160,7 @@ Simulation::Simulation(const Registry& registry, Scene scene) : registry_(regist
   morph_steps_ = static_cast<int>(solver.get_int("morph_steps"));
   settle_steps_ = static_cast<int>(solver.get_int("settle_steps"));
   morph_newton_ = static_cast<int>(solver.get_int("morph_newton_iterations"));
+  morph_carry(solver, scene_.file);  // checked here, before anything is simulated
   settle_check_ = solver.get_string("settle_check");
   pose_path_ = pose_path_named(solver.get_string("pose_path"));
   target_pose_ = scene_pose(scene_, *body_model_);
@@ -298,6 +309,8 @@ SimulationResult Simulation::run(const Eigen::MatrixX3d& target_body, const Simu
   scene_detail::BarrierMorph barrier_morph;
   barrier_morph.morph_newton = std::min(settle_newton, morph_newton_);
   barrier_morph.settle_newton = settle_newton;
+  std::tie(barrier_morph.carry_inner, barrier_morph.carry_outer) =
+      morph_carry(Params(scene_solver_specs(), scene_.solver, "solver"), scene_.file);
   for (int k = 1; k <= morph_steps_; ++k) {
     const double t = static_cast<double>(k) / morph_steps_;
     const Eigen::MatrixX3d next = body_at(t);
