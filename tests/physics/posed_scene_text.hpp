@@ -1,7 +1,8 @@
 #pragma once
 // The posed drape tests' scene: the coarse posed scenes' effects (friction
-// against the body, the cloth kept off itself) on a body of this shape, pose
-// and garment, as YAML text.
+// against the body, the cloth kept off itself) and their morph (the cloth
+// within 2-6 cm carried with the skin, docs/poses.md) on a body of this
+// shape, pose and garment, as YAML text.
 #include <string>
 
 namespace drape::test {
@@ -16,7 +17,7 @@ inline std::string posed_scene_text(double bmi, double height, double sex, const
   bending: {potential: product}
   barrier: {friction: 0.3}
   self_contact: {}
-solver: {morph_steps: 20, settle_steps: 60}
+solver: {morph_steps: 20, settle_steps: 60, morph_carry: [0.02, 0.06]}
 )";
 }
 
