@@ -80,12 +80,16 @@ TEST_CASE("a scene's morph_carry takes two distances, inner below outer", "[scen
     return message_of([&] { Simulation(plugins(), parse_scene(text, "posed.yaml")); });
   };
   CHECK(error("[0.02, 0.06]") == "(no exception)");
-  for (const std::string bad : {"[0.06, 0.02]", "[0.02]", "[-0.01, 0.02]", "[0.02, 0.9]"}) {
+  for (const std::string bad : {"[0.06, 0.02]", "[0.02]", "[0.02, 0.04, 0.06]"}) {
     INFO(bad << ": " << error(bad));
-    CHECK(error(bad).find("morph_carry must be two distances [inner, outer] in m with 0 <= inner < outer <= 0.5") !=
-          std::string::npos);
+    CHECK(error(bad).find("posed.yaml:7: solver: morph_carry must be two distances [inner, outer] in m with 0 <= inner "
+                          "< outer <= 0.5") != std::string::npos);
   }
-  CHECK(error("[0.02, .nan]").find("posed.yaml:7: solver: parameter 'morph_carry'") != std::string::npos);
+  // Each distance's bounds, and a number at all, are the parameter check's (scene_solver_specs).
+  for (const std::string bad : {"[-0.01, 0.02]", "[0.02, 0.9]", "[0.02, .nan]"}) {
+    INFO(bad << ": " << error(bad));
+    CHECK(error(bad).find("posed.yaml:7: solver: parameter 'morph_carry'") != std::string::npos);
+  }
 }
 
 TEST_CASE("a model without a skeleton refuses a scene's pose at its line", "[scene][pose]") {

@@ -3,6 +3,8 @@
 #include <drape/scene/scene.hpp>
 #include <drape/physics/solver.hpp>
 
+#include "barrier_morph.hpp"
+
 #include <cstdio>
 #include <string>
 
@@ -10,8 +12,8 @@ namespace drape {
 
 namespace {
 
-// The solver's own defaults (SolverSettings) written as scene defaults, so
-// that the two cannot drift apart.
+// The solver's own defaults (SolverSettings, BarrierMorph) written as scene
+// defaults, so that the two cannot drift apart.
 std::string number(double v) {
   char s[32];
   std::snprintf(s, sizeof s, "%.6g", v);
@@ -19,11 +21,17 @@ std::string number(double v) {
 }
 std::string number(int v) { return std::to_string(v); }
 std::string number(bool v) { return v ? "true" : "false"; }
+std::string list_of_two(double a, double b) {
+  char text[64];
+  std::snprintf(text, sizeof text, "[%.6g, %.6g]", a, b);  // as number()
+  return text;
+}
 
 }  // namespace
 
 const std::vector<ParamSpec>& scene_solver_specs() {
   static const SolverSettings d;
+  static const scene_detail::BarrierMorph carry;  // its carry distances are morph_carry's default
   static const std::vector<ParamSpec> specs = {
       {.name = "time_step", .type = ParamType::Float, .default_value = number(d.time_step),
        .doc = "backward-Euler time step, s", .min = 1e-5, .max = 10.0},
@@ -70,8 +78,10 @@ const std::vector<ParamSpec>& scene_solver_specs() {
       {.name = "settle_check", .type = ParamType::String, .default_value = "iteration",
        .doc = "when a settling drape checks that it has settled: every Newton iteration, or only at the end of a time step (the solver of 2026-11-28)",
        .choices = {"iteration", "step"}},
-      {.name = "morph_carry", .type = ParamType::FloatList, .default_value = "[0.005, 0.02]",
-       .doc = "m: under a barrier, cloth within the first distance of the skin moves with it during the morph, fading to not at all at the second (larger carries loose sleeves with a raising arm: docs/poses.md)"},
+      {.name = "morph_carry", .type = ParamType::FloatList,
+       .default_value = list_of_two(carry.carry_inner, carry.carry_outer),
+       .doc = "m: under a barrier, cloth within the first distance of the skin moves with it during the morph, fading to not at all at the second (larger carries loose sleeves with a raising arm: docs/poses.md)",
+       .min = 0.0, .max = 0.5},
       {.name = "pose_path", .type = ParamType::String, .default_value = "together",
        .doc = "how a posed body moves from the start: shape morph and joint angles together, the pose first, or the shape first",
        .choices = {"together", "pose_first", "shape_first"}},

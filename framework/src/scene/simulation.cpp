@@ -26,11 +26,16 @@ namespace drape {
 
 namespace {
 
-// The solver's morph_carry, [inner, outer] m (scene_solver_specs).
-std::pair<double, double> morph_carry(const Params& solver, const std::string& file) {
+// The solver's morph_carry, [inner, outer] m (scene_solver_specs, whose
+// bounds Params checks per element), refused at its line unless two, inner
+// below outer.
+std::pair<double, double> morph_carry(const Params& solver, const Scene& scene) {
   const auto carry = solver.get_float_list("morph_carry");
-  if (carry.size() != 2 || !(carry[0] >= 0 && carry[1] > carry[0] && carry[1] <= 0.5))
-    throw ConfigError({file, 0}, "solver: morph_carry must be two distances [inner, outer] in m with 0 <= inner < outer <= 0.5");
+  if (carry.size() != 2 || !(carry[1] > carry[0])) {
+    const auto key = scene.solver.find("morph_carry");
+    throw ConfigError(key == scene.solver.end() ? SourceLocation{scene.file, 0} : key->second.where,
+                      "solver: morph_carry must be two distances [inner, outer] in m with 0 <= inner < outer <= 0.5");
+  }
   return {carry[0], carry[1]};
 }
 
@@ -160,7 +165,7 @@ Simulation::Simulation(const Registry& registry, Scene scene) : registry_(regist
   morph_steps_ = static_cast<int>(solver.get_int("morph_steps"));
   settle_steps_ = static_cast<int>(solver.get_int("settle_steps"));
   morph_newton_ = static_cast<int>(solver.get_int("morph_newton_iterations"));
-  morph_carry(solver, scene_.file);  // checked here, before anything is simulated
+  morph_carry(solver, scene_);  // checked here, before anything is simulated
   settle_check_ = solver.get_string("settle_check");
   pose_path_ = pose_path_named(solver.get_string("pose_path"));
   target_pose_ = scene_pose(scene_, *body_model_);
@@ -310,7 +315,7 @@ SimulationResult Simulation::run(const Eigen::MatrixX3d& target_body, const Simu
   barrier_morph.morph_newton = std::min(settle_newton, morph_newton_);
   barrier_morph.settle_newton = settle_newton;
   std::tie(barrier_morph.carry_inner, barrier_morph.carry_outer) =
-      morph_carry(Params(scene_solver_specs(), scene_.solver, "solver"), scene_.file);
+      morph_carry(Params(scene_solver_specs(), scene_.solver, "solver"), scene_);
   for (int k = 1; k <= morph_steps_; ++k) {
     const double t = static_cast<double>(k) / morph_steps_;
     const Eigen::MatrixX3d next = body_at(t);
