@@ -20,12 +20,13 @@ Writes DIR/drapes.csv (one line per drape) and prints a summary; exit 1 when any
 crossing. docs/poses.md reports a run. Each drape's result is also kept as DIR/drape_NNN_KIND.json, so a run
 started again on the same DIR resumes where it was killed, and --part K/M drapes only the bodies i with
 i % M == K (one process per core on one DIR; the bodies are drawn once, by the first; the summary covers every
-drape of DIR that is done).
+drape of DIR that is done; parts started together draw the bodies once).
 """
 import argparse
 import csv
 import json
 import os
+import shutil
 import subprocess
 import sys
 import tempfile
@@ -94,8 +95,15 @@ def main():
     os.makedirs(out, exist_ok=True)
     bodies_csv = os.path.join(out, "bodies", "bodies.csv")
     if not os.path.exists(bodies_csv):
+        # Drawn into a folder of this process's own, then renamed into place: of two parts started together
+        # one rename wins and the other's draw (the same bodies, by the seed) is dropped.
+        drawn = os.path.join(out, f"bodies.{os.getpid()}")
         subprocess.run([a.drape, "body", "--sample", str(a.n), "--poses", "--bmi", a.bmi, "--seed", str(a.seed), "--out-dir",
-                        os.path.join(out, "bodies")], check=True, capture_output=True)
+                        drawn], check=True, capture_output=True)
+        try:
+            os.rename(drawn, os.path.join(out, "bodies"))
+        except OSError:  # another part's draw is in place
+            shutil.rmtree(drawn)
     with open(bodies_csv) as f:
         bodies = list(csv.DictReader(f))
     if len(bodies) != a.n:
@@ -116,9 +124,10 @@ def main():
                          height=float(body["requested_height"]))
                 if "refused" not in r:
                     r.update(independent_checks(stem))
-                with open(stem + ".json.partial", "w") as f:
-                    json.dump(r, f)
-                os.replace(stem + ".json.partial", stem + ".json")  # written whole: a killed run redoes the drape
+                if r["exit"] >= 0:  # a drape whose simulate was killed (a signal) is done again on the next run
+                    with open(stem + ".json.partial", "w") as f:
+                        json.dump(r, f)
+                    os.replace(stem + ".json.partial", stem + ".json")  # written whole: a killed run redoes the drape
             if "refused" not in r:
                 ok = r["settled"] and r["p_winding"] == 0 and r["garment_body_crossings"] == 0 and r["self_crossings"] == 0
             else:
