@@ -246,6 +246,39 @@ TEST_CASE("posed bodies over shape and pose draws are watertight and uncrossed",
   CHECK(redraws < 3 * kBodies);
 }
 
+TEST_CASE("elbows and knees bent past plain LBS's reach stay uncrossed (the hinge corrective)", "[bodies][pose]") {
+  // Plain LBS folds the forearm into the upper arm from 73-101 degrees and the
+  // calf into the thigh from 68-105 (docs/poses.md); the corrective presses
+  // each crease flat against the plane between the two bones. A BMI 10 man
+  // and a BMI 65 woman, the ends of the body space.
+  for (const auto& shape : {shape_of(10, 1.75, 1), shape_of(65, 1.6, 0)}) {
+    for (const char* text : {"knee_flexion=100", "knee_flexion=115", "elbow_flexion=130", "elbow_flexion=150"}) {
+      const Pose pose = pose_of(text);
+      const Eigen::MatrixX3d posed = posed_model().posed(shape, pose);
+      INFO(text);
+      CHECK(describe_pose_crossings(posed_model(), shape, pose, posed).empty());
+      CHECK(geometry::self_edge_crossings(posed, posed_model().faces(), 1).empty());
+    }
+  }
+  // Inside the sampled ranges (knees to 60, elbows to 70) it adds nothing:
+  // the 60-degree knee's shin is the rigid turn of the rest shin about the
+  // knee wherever the shin's weight is whole.
+  const Eigen::VectorXd shape = shape_of(30, 1.75, 1);
+  const Eigen::MatrixX3d rest = posed_model().vertices(shape), j = posed_model().joint_positions(shape);
+  const Eigen::MatrixX3d bent = posed_model().posed(shape, pose_of("left_knee_flexion=60"));
+  const Eigen::Vector3d knee = j.row(joint_index("left_shin")).transpose();
+  const Eigen::Matrix3d turn = Eigen::AngleAxisd(60 * M_PI / 180, Eigen::Vector3d::UnitX()).toRotationMatrix();
+  const Eigen::MatrixXd weights = posed_model().skinning_weights();
+  int whole = 0;
+  for (Eigen::Index i = 0; i < rest.rows(); ++i) {
+    if (weights(i, joint_index("left_shin")) < 1 - 1e-12) continue;
+    ++whole;
+    const Eigen::Vector3d expected = knee + turn * (rest.row(i).transpose() - knee);
+    CHECK((bent.row(i).transpose() - expected).norm() < 1e-9);
+  }
+  CHECK(whole > 100);
+}
+
 TEST_CASE("a pose that makes the body cross itself is refused naming the joints", "[bodies][pose]") {
   const Eigen::VectorXd shape = shape_of(35, 1.75, 1);
   const std::string arms = test::message_of([&] { pose_body(posed_model(), "parametric", shape, pose_of("left_shoulder_abduction=0")); });

@@ -108,13 +108,13 @@ TEST_CASE("posed drape: elbows bent 120 degrees", "[pose][solver][hard]") {
 }
 
 TEST_CASE("posed drape: poses through the body are refused before simulating", "[pose][hard]") {
-  // Beyond the corrective's reach (140-150 degrees on most bodies) the
-  // forearm's own crease folds through itself: refused, naming the joints.
-  const SceneSimulations simulations(plugins(), parse_scene(posed_scene(45, "elbow_flexion: 150"), "hard.yaml"));
-  const std::string elbow =
+  // Beyond the hinge corrective's reach (knees past 120-126 degrees) the
+  // calf goes through the thigh: refused, naming the joints.
+  const SceneSimulations simulations(plugins(), parse_scene(posed_scene(45, "knee_flexion: 135"), "hard.yaml"));
+  const std::string knee =
       message_of([&] { scene_body(simulations, simulations.design().target_request(), "hard.yaml"); });
-  CHECK(elbow.find("this pose makes the body pass through itself: left_forearm into") != std::string::npos);
-  CHECK(elbow.find("left_elbow_flexion=150") != std::string::npos);
+  CHECK(knee.find("this pose makes the body pass through itself: left_shin into left_thigh") != std::string::npos);
+  CHECK(knee.find("left_knee_flexion=135") != std::string::npos);
   // The arm into the trunk.
   const SceneSimulations arms(plugins(), parse_scene(posed_scene(45, "shoulder_abduction: 0"), "hard.yaml"));
   CHECK(message_of([&] { scene_body(arms, arms.design().target_request(), "hard.yaml"); })

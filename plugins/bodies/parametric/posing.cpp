@@ -51,49 +51,66 @@ Pose rest_angles(const Eigen::MatrixX3d& joints) {
 
 namespace {
 
-// How much of the inner-elbow corrective a flexion gets: none up to 70
-// degrees, the top of the sampled range (so every drawn pose, and every
-// posed dataset, is plain LBS), all of it from 90 (the first body whose
-// crease crosses under LBS, BMI 65, does at 73), smoothly between, so the
-// body is a continuous function of the angle.
-double elbow_press(double flexion) {
-  const double x = std::clamp((flexion - 70.0) / 20.0, 0.0, 1.0);
+// A hinge joint's corrective (press_inner_hinge): the bone before the joint
+// (the one after is the next), the flexion angle, and where the corrective
+// fades in. None up to the top of the sampled range (so every drawn pose,
+// and every posed dataset, is plain LBS); all of it by `full`, smoothly
+// between, so the body is a continuous function of the angle. Elbows: from
+// 70 to 90 degrees (the first body whose crease crosses under LBS, BMI 65,
+// does at 73); knees: from 60 to 80 (BMI 65 crosses at 68).
+struct Hinge {
+  int bone;
+  const char* flexion;
+  double start, full;
+};
+constexpr Hinge kHinges[] = {
+    {kLeftUpperArm, "left_elbow_flexion", 70, 90}, {kRightUpperArm, "right_elbow_flexion", 70, 90},
+    {kLeftThigh, "left_knee_flexion", 60, 68},     {kRightThigh, "right_knee_flexion", 60, 68},
+};
+
+double press_share(const Hinge& hinge, double flexion) {
+  const double x = std::clamp((flexion - hinge.start) / (hinge.full - hinge.start), 0.0, 1.0);
   return x * x * (3 - 2 * x);
 }
 
-// The inner side of a bent elbow, pressed flat as flesh pressed on flesh is:
-// LBS averages the crease's vertices into the opposite limb (the forearm
-// through the upper arm from 73-101 degrees, docs/poses.md). Each arm vertex
-// on the crease's side is kept on its own limb's side of the plane that
-// bisects the two limbs at the elbow, `kGap` from it: upper-arm vertices
-// (more upper arm than forearm in their weights) behind it, forearm ones in
-// front. A geometric corrective in the spirit of implicit skinning (Vaillant
-// et al. 2013, which stops the skin where two limbs' surfaces meet), not a
-// learned pose blend shape; the joints' transforms (and so a garment's
-// skinning) are untouched.
-void press_inner_elbows(Eigen::MatrixX3d& posed, const Skeleton& skeleton, const Eigen::MatrixX3d& joints,
-                        const std::vector<skinning::Rigid>& transforms, double left_flexion, double right_flexion) {
-  constexpr double kGap = 0.002;  // m each side of the plane: the two sides never touch
-  for (int side : {1, -1}) {
-    const double s = elbow_press(side > 0 ? left_flexion : right_flexion);
-    if (s == 0) continue;
-    const int upper = side > 0 ? kLeftUpperArm : kRightUpperArm, fore = upper + 1;
-    const V3 rest_arm = (row(joints, fore) - row(joints, upper)).normalized();
-    const skinning::Rigid& tu = transforms[static_cast<std::size_t>(upper)];
-    const skinning::Rigid& tf = transforms[static_cast<std::size_t>(fore)];
-    const V3 elbow = tu.r * row(joints, fore) + tu.t;
-    const V3 u = tu.r * rest_arm, f = tf.r * rest_arm;  // along the upper arm and the forearm, away from the shoulder
-    const V3 normal = (u + f).normalized();              // the bisecting plane's, towards the hand
-    const V3 inner = (f - u).normalized();               // towards the crease
-    for (Eigen::Index i = 0; i < posed.rows(); ++i) {
-      const double wu = skeleton.weights(i, upper), wf = skeleton.weights(i, fore);
-      if (wu + wf < 0.5) continue;  // the trunk's, not the arm's
-      const V3 x = posed.row(i).transpose();
-      if (inner.dot(x - elbow) <= 0) continue;  // the outer side: the point of the elbow stays
-      const double h = normal.dot(x - elbow);
-      const double push = wu >= wf ? -std::max(0.0, h + kGap) : std::max(0.0, kGap - h);
-      if (push != 0) posed.row(i) += (s * push * normal).transpose();
-    }
+// The inner side of a bent elbow or knee, pressed flat as flesh pressed on
+// flesh is: LBS averages the crease's vertices into the opposite limb (the
+// forearm through the upper arm from 73-101 degrees, the calf through the
+// thigh from 68-105, docs/poses.md). Each limb vertex on the crease's side
+// is kept on its own limb's side of the plane that bisects the two limbs at
+// the joint, more than `kGap` from it: vertices of the bone before the joint (more of
+// its weight than the next bone's) behind it, the next bone's in front. A
+// geometric corrective in the spirit of implicit skinning (Vaillant et al.
+// 2013, which stops the skin where two limbs' surfaces meet), not a learned
+// pose blend shape; the joints' transforms (and so a garment's skinning) are
+// untouched.
+void press_inner_hinge(Eigen::MatrixX3d& posed, const Skeleton& skeleton, const Eigen::MatrixX3d& joints,
+                       const std::vector<skinning::Rigid>& transforms, int upper, double share) {
+  constexpr double kGap = 0.002;   // m each side of the plane: the two sides never touch
+  constexpr double kBand = 0.01;   // m: how far from the plane the skin begins to give
+  const int fore = upper + 1;
+  const V3 rest_limb = (row(joints, fore) - row(joints, upper)).normalized();
+  const skinning::Rigid& tu = transforms[static_cast<std::size_t>(upper)];
+  const skinning::Rigid& tf = transforms[static_cast<std::size_t>(fore)];
+  const V3 hinge = tu.r * row(joints, fore) + tu.t;
+  const V3 u = tu.r * rest_limb, f = tf.r * rest_limb;  // along the two bones, away from the trunk
+  const V3 normal = (u + f).normalized();              // the bisecting plane's, towards the hand or foot
+  const V3 inner = (f - u).normalized();               // towards the crease
+  for (Eigen::Index i = 0; i < posed.rows(); ++i) {
+    const double wu = skeleton.weights(i, upper), wf = skeleton.weights(i, fore);
+    if (wu + wf < 0.5) continue;  // the trunk's, not the limb's
+    const V3 x = posed.row(i).transpose();
+    if (inner.dot(x - hinge) <= 0) continue;  // the outer side: the point of the elbow, the kneecap stay
+    const double h = normal.dot(x - hinge);
+    // Signed distance on the vertex's own side of the plane; below kBand it
+    // is squeezed towards kGap by a monotone map (no two vertices swap order
+    // along the normal, so the pressed skin cannot fold through itself, as a
+    // projection onto the plane did from about 86 degrees at the knee).
+    const double own = wu >= wf ? -h : h;
+    if (own >= kGap + kBand) continue;
+    const double pressed = kGap + kBand * std::exp((own - kGap) / kBand - 1);
+    const double push = pressed - own;  // >= 0: e^(t-1) >= t
+    posed.row(i) += (share * (wu >= wf ? -push : push) * normal).transpose();
   }
 }
 
@@ -105,9 +122,10 @@ Eigen::MatrixX3d skin(const Skeleton& skeleton, const Eigen::MatrixX3d& vertices
   // the rest pose gives `vertices` back.
   const std::vector<skinning::Rigid> transforms = bone_transforms(skeleton, joints, pose, fraction);
   Eigen::MatrixX3d posed = skinning::blend(vertices, skeleton.weights, transforms);
-  // The elbows' rest angle is 0 (straight), so `fraction` of the way is fraction * angle.
-  press_inner_elbows(posed, skeleton, joints, transforms, fraction * pose.get("left_elbow_flexion", 0.0),
-                     fraction * pose.get("right_elbow_flexion", 0.0));
+  // Elbows and knees rest straight (0), so `fraction` of the way is fraction * angle.
+  for (const Hinge& hinge : kHinges)
+    if (const double share = press_share(hinge, fraction * pose.get(hinge.flexion, 0.0)); share > 0)
+      press_inner_hinge(posed, skeleton, joints, transforms, hinge.bone, share);
   return posed;
 }
 
