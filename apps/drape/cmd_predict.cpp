@@ -19,7 +19,8 @@ namespace DRAPE_UNITY_ID {  // the anonymous namespace, or a unique one in a uni
 int run(const std::vector<std::string>& args) {
   po::options_description opts("drape predict");
   opts.add_options()("model", po::value<std::string>(),
-                     "model file from drape train (default: the shipped pretrained model, models/tshirt-coarse.h5)")(
+                     "model file from drape train (default: the shipped pretrained model, models/tshirt-coarse.h5; with a pose, "
+                     "models/tshirt-coarse-posed.h5)")(
       "out", po::value<std::string>(), "garment mesh to write (.obj, .ply, .gltf, .glb): the template's faces and UVs")(
       "body-out", po::value<std::string>(), "also write the body mesh")(
       "svg", po::value<std::string>(), "also draw the drape, the garment coloured by its distance to the body (.svg: front view; .html: a 3D viewer)");
@@ -33,7 +34,8 @@ int run(const std::vector<std::string>& args) {
   check_mesh_outputs(vm, {"out", "body-out"});
   const std::string model_file = model_file_or_default(vm);
   if (!vm.count("model"))
-    std::printf("model: %s (the shipped pretrained model; --model chooses another)\n", model_file.c_str());
+    std::printf("model: %s (the shipped pretrained model%s; --model chooses another)\n", model_file.c_str(),
+                model_file.ends_with(posed_model_name) ? " of posed drapes" : "");
   if (!vm.count("out")) throw UsageError("--out FILE is required (the garment mesh to write)");
   if (vm.count("body") == vm.count("bmi"))
     throw UsageError("give the body either as a mesh (--body FILE) or by its BMI (--bmi X), exactly one");

@@ -6,9 +6,13 @@
 #include <drape/io/mesh_io.hpp>
 #include <drape/services/model_body.hpp>
 
+#include <cstdlib>
+#include <filesystem>
 #include <iostream>
 
 namespace drape::cli {
+
+namespace fs = std::filesystem;
 
 namespace {
 
@@ -55,8 +59,20 @@ void add_model_body_options(po::options_description& options, const std::string&
       "smpl-theta", po::value<std::string>(), "the same as SMPL's θ from a text file (SMPL body models)");
 }
 
+bool pose_given(const po::variables_map& vm) {
+  return vm.count("pose") + vm.count("pose-file") + vm.count("smpl-theta") > 0;
+}
+
 std::string model_file_or_default(const po::variables_map& vm) {
   if (vm.count("model")) return find_input_file(vm["model"].as<std::string>()).string();  // models/... from anywhere
+  // A posed body goes to the shipped model of posed drapes (the A-pose model
+  // refuses a pose); DRAPE_MODEL, when set, names the one model for both.
+  const char* env = std::getenv("DRAPE_MODEL");
+  if (pose_given(vm) && !(env && *env)) {
+    std::error_code ec;
+    for (const auto& dir : shipped_data_dirs())
+      if (const fs::path file = dir / "models" / posed_model_name; fs::is_regular_file(file, ec)) return file.string();
+  }
   const std::string file = default_model_path().string();
   if (file.empty())
     throw UsageError("no --model given and the shipped model (models/tshirt-coarse.h5) was not found: give "

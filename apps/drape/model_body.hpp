@@ -26,7 +26,15 @@ void add_model_body_options(po::options_description& options, const std::string&
 SampleBatch model_body(const Model& model, const po::variables_map& vm, Eigen::RowVector3d* moved_by = nullptr,
                        std::vector<std::string>* printed = nullptr);
 
-// --model, or the shipped pretrained model (default_model_path); UsageError when neither exists.
+// The shipped model of posed drapes, beside the A-pose one in models/.
+inline constexpr const char* posed_model_name = "tshirt-coarse-posed.h5";
+
+// Whether --pose, --pose-file or --smpl-theta is given.
+bool pose_given(const po::variables_map& vm);
+
+// --model, or the shipped pretrained model: for a posed body (pose_given) the
+// model of posed drapes (posed_model_name) when it is shipped and DRAPE_MODEL
+// is not set, else default_model_path's; UsageError when none exists.
 std::string model_file_or_default(const po::variables_map& vm);
 
 }  // namespace drape::cli

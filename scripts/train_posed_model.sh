@@ -1,0 +1,31 @@
+#!/usr/bin/env bash
+# The shipped model of posed drapes, models/tshirt-coarse-posed.h5 (issue 56,
+# docs/poses.md "The shipped model of posed drapes"): the shipped sized
+# A-pose model's graph taken to poses by unposing
+# (graphs/poses/drape_posed_sized.yaml: encoder on the body at rest, the
+# pose's angles appended after the grade, the skin node to the pose),
+# started from models/tshirt-coarse.h5 (--init-widen: the angles' weights at
+# zero, so it begins as the A-pose drape posed by the garment's skinning) and
+# trained on the shape x pose drapes of datasets/posespace2000, then
+# evaluated on their test split and on the held-out poses. Resumable (drape
+# train --resume).
+#
+#   bash scripts/train_posed_model.sh [WORK_DIR]      (default: work-posed-model/)
+#
+# Environment: BUILD_DIR (default build), DATA (default every shard of
+# datasets/posespace2000), HELDOUT (default
+# datasets/posespace-heldout/heldout-30.h5), THREADS (default 1), EPOCHS
+# (the cosine schedule, default 100), LR (default 1e-3), PATIENCE (default 30).
+# The shipped model is this script's model.h5, copied.
+set -euo pipefail
+cd "$(dirname "${BASH_SOURCE[0]}")/.."
+DRAPE=${BUILD_DIR:-build}/bin/drape
+WORK=${1:-work-posed-model}
+DATA=${DATA:-datasets/posespace2000/shard-*-of-40.h5}
+HELDOUT=${HELDOUT:-datasets/posespace-heldout/heldout-30.h5}
+mkdir -p "$WORK"
+"$DRAPE" train graphs/poses/drape_posed_sized.yaml --data "$DATA" --out "$WORK/model.h5" \
+  --init models/tshirt-coarse.h5 --init-widen --epochs "${EPOCHS:-100}" --lr "${LR:-1e-3}" --schedule cosine \
+  --patience "${PATIENCE:-30}" --batch 8 --seed 0 --threads "${THREADS:-1}" --resume
+"$DRAPE" eval --model "$WORK/model.h5" --data "$DATA" --split test --out "$WORK/test.csv"
+"$DRAPE" eval --model "$WORK/model.h5" --data "$HELDOUT" --split all --out "$WORK/heldout.csv"
