@@ -70,6 +70,12 @@ TEST_CASE("drape train stops at the hidden epoch limit, refuses to overwrite and
   CHECK(read_checkpoint(model).history.at("train_loss").size() == 3);
   CHECK(test::run(test::drape_command("train --help"), out) == 0);
   CHECK_THAT(out, !Catch::Contains("max-epochs-this-run") && Catch::Contains("--resume"));
+  // A state left without its model (the model deleted) is what the refusal names.
+  const fs::path other = dir / "other.h5";
+  REQUIRE(test::run(test::drape_command(train_args(data, other, "--max-epochs-this-run 1")), out) == 0);
+  fs::remove(other);
+  CHECK(test::run(test::drape_command(train_args(data, other)), out) == 2);
+  CHECK_THAT(out, Catch::Contains(training_state_path(other).string() + " exists"));
 }
 
 TEST_CASE("a training killed with SIGKILL continues with --resume to the uninterrupted result", "[train][cli]") {

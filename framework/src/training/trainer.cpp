@@ -123,9 +123,11 @@ std::string ground_truth_of(const DatasetLayout& layout, const fs::path& data) {
 // An output or a state from an earlier run is continued (--resume) or
 // replaced (--force), never overwritten by accident.
 void check_earlier_run(const TrainOptions& o, const fs::path& state_path) {
+  // Named by the file that is there: after a model was deleted its state may be left.
   if (!o.force && !o.resume && (fs::exists(o.out) || fs::exists(state_path)))
-    throw ConfigError(o.out.string() + " exists (from an earlier or interrupted training): pass --resume to continue "
-                      "it, or --force to start over");
+    throw ConfigError((fs::exists(o.out) ? o.out : state_path).string() +
+                      " exists (from an earlier or interrupted training): pass --resume to continue it, or --force to "
+                      "start over");
   if (!o.force && o.resume && fs::exists(o.out) && !fs::exists(state_path))
     throw ConfigError(o.out.string() + " exists, but there is no " + state_path.filename().string() +
                       " to resume it from: --force to start over");
