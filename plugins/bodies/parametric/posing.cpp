@@ -57,7 +57,8 @@ namespace {
 // and every posed dataset, is plain LBS); all of it by `full`, smoothly
 // between, so the body is a continuous function of the angle. Elbows: from
 // 70 to 90 degrees (the first body whose crease crosses under LBS, BMI 65,
-// does at 73); knees: from 60 to 80 (BMI 65 crosses at 68).
+// does at 73); knees: from 60 to 68 (a BMI 65 woman's calf enters her thigh
+// at 64-66 under LBS, so the fade is short).
 struct Hinge {
   int bone;
   const char* flexion;
