@@ -165,7 +165,7 @@ Simulation::Simulation(const Registry& registry, Scene scene) : registry_(regist
   morph_steps_ = static_cast<int>(solver.get_int("morph_steps"));
   settle_steps_ = static_cast<int>(solver.get_int("settle_steps"));
   morph_newton_ = static_cast<int>(solver.get_int("morph_newton_iterations"));
-  morph_carry(solver, scene_);  // checked here, before anything is simulated
+  morph_carry_ = morph_carry(solver, scene_);  // checked here, before anything is simulated
   settle_check_ = solver.get_string("settle_check");
   pose_path_ = pose_path_named(solver.get_string("pose_path"));
   target_pose_ = scene_pose(scene_, *body_model_);
@@ -314,8 +314,7 @@ SimulationResult Simulation::run(const Eigen::MatrixX3d& target_body, const Simu
   scene_detail::BarrierMorph barrier_morph;
   barrier_morph.morph_newton = std::min(settle_newton, morph_newton_);
   barrier_morph.settle_newton = settle_newton;
-  std::tie(barrier_morph.carry_inner, barrier_morph.carry_outer) =
-      morph_carry(Params(scene_solver_specs(), scene_.solver, "solver"), scene_);
+  std::tie(barrier_morph.carry_inner, barrier_morph.carry_outer) = morph_carry_;
   for (int k = 1; k <= morph_steps_; ++k) {
     const double t = static_cast<double>(k) / morph_steps_;
     const Eigen::MatrixX3d next = body_at(t);

@@ -19,6 +19,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace drape {
@@ -154,6 +155,7 @@ class Simulation {
   std::vector<Params> effect_params_;
   bool needs_body_ = false;
   int morph_steps_ = 0, settle_steps_ = 0, morph_newton_ = 3;
+  std::pair<double, double> morph_carry_;  // solver morph_carry: [inner, outer] m
   std::string settle_check_ = "iteration";  // solver settle_check: when settledness is checked
   Pose target_pose_;
   PosePath pose_path_ = PosePath::together;
