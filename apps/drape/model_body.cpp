@@ -68,11 +68,8 @@ std::string model_file_or_default(const po::variables_map& vm) {
   // A posed body goes to the shipped model of posed drapes (the A-pose model
   // refuses a pose); DRAPE_MODEL, when set, names the one model for both.
   const char* env = std::getenv("DRAPE_MODEL");
-  if (pose_given(vm) && !(env && *env)) {
-    std::error_code ec;
-    for (const auto& dir : shipped_data_dirs())
-      if (const fs::path file = dir / "models" / posed_model_name; fs::is_regular_file(file, ec)) return file.string();
-  }
+  if (pose_given(vm) && !(env && *env))
+    if (const fs::path file = shipped_model_path(posed_model_name); !file.empty()) return file.string();
   const std::string file = default_model_path().string();
   if (file.empty())
     throw UsageError("no --model given and the shipped model (models/tshirt-coarse.h5) was not found: give "

@@ -11,12 +11,16 @@ namespace drape {
 
 namespace fs = std::filesystem;
 
-fs::path default_model_path() {
-  if (const char* env = std::getenv("DRAPE_MODEL"); env && *env) return env;
+fs::path shipped_model_path(const std::string& file_name) {
   std::error_code ec;
   for (const auto& dir : shipped_data_dirs())
-    if (const fs::path file = dir / "models" / "tshirt-coarse.h5"; fs::is_regular_file(file, ec)) return file;
+    if (const fs::path file = dir / "models" / file_name; fs::is_regular_file(file, ec)) return file;
   return {};
+}
+
+fs::path default_model_path() {
+  if (const char* env = std::getenv("DRAPE_MODEL"); env && *env) return env;
+  return shipped_model_path("tshirt-coarse.h5");
 }
 
 }  // namespace drape

@@ -175,4 +175,8 @@ class Model {
 // Empty when none of them has it.
 std::filesystem::path default_model_path();
 
+// models/<file_name> among the shipped files' folders, as default_model_path
+// looks (without $DRAPE_MODEL); empty when none has it.
+std::filesystem::path shipped_model_path(const std::string& file_name);
+
 }  // namespace drape
