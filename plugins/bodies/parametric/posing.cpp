@@ -107,11 +107,12 @@ void press_inner_hinge(Eigen::MatrixX3d& posed, const Skeleton& skeleton, const 
     // is squeezed towards kGap by a monotone map (no two vertices swap order
     // along the normal, so the pressed skin cannot fold through itself, as a
     // projection onto the plane did from about 86 degrees at the knee).
-    const double own = wu >= wf ? -h : h;
+    const double side = wu >= wf ? -1.0 : 1.0;  // the bone before the joint behind the plane, the next in front
+    const double own = side * h;
     if (own >= kGap + kBand) continue;
     const double pressed = kGap + kBand * std::exp((own - kGap) / kBand - 1);
     const double push = pressed - own;  // >= 0: e^(t-1) >= t
-    posed.row(i) += (share * (wu >= wf ? -push : push) * normal).transpose();
+    posed.row(i) += (share * side * push * normal).transpose();
   }
 }
 
