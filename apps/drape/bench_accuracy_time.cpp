@@ -7,6 +7,10 @@
 // 10/30/100 iterations of physics-enforced optimisation. Writes a Markdown
 // table, optionally CSV, and an SVG chart of ME against time with the Pareto
 // front (the methods no other method beats on both axes) named.
+// The dataset's scene decides how each body is draped, as drape generate
+// draped it: the body's own size with size: auto (chosen on the body at
+// rest), and a posed dataset's body reached along the scene's pose path
+// from its rest shape, so posed data is benched like A-pose data.
 #include "bench.hpp"
 #include "model_body.hpp"
 
@@ -19,8 +23,10 @@
 #include <drape/training/physics_optimization.hpp>
 #include <drape/progress.hpp>
 #include <drape/registry.hpp>
+#include <drape/scene/garment_size.hpp>
 #include <drape/scene/scene.hpp>
 #include <drape/scene/simulation.hpp>
+#include <drape/services/graded_scene.hpp>
 #include <drape/io/svg_chart.hpp>
 
 #include <algorithm>
@@ -82,6 +88,50 @@ std::vector<std::pair<int, int>> simulator_budgets(const po::variables_map& vm) 
   return budgets;
 }
 
+// A test body as the dataset's generation draped it: the body (posed in a
+// posed dataset), and with a pose the same body at rest and the pose, which
+// the simulation morphs towards together. A posed target is the rest body
+// posed again in double precision (the stored one is float, and the
+// simulation's pose path must end exactly on its target).
+struct TestBody {
+  std::string name;  // "<data> sample i", for messages
+  Eigen::MatrixX3d target;
+  Eigen::MatrixX3d unposed;  // = target in an A-pose dataset
+  Pose pose;                 // empty in an A-pose dataset
+};
+
+std::vector<TestBody> test_bodies(const DatasetReader& reader, const std::string& data,
+                                  const std::vector<std::size_t>& indices, const BodyModel& body_model) {
+  const Tensor bodies = reader.body_vertices(indices);
+  const std::vector<std::string>& angles = reader.layout().pose_angles;
+  Tensor unposed, degrees;
+  if (!angles.empty()) {
+    unposed = reader.posing(indices).unposed;
+    degrees = reader.poses(indices);
+  }
+  std::vector<TestBody> out;
+  for (std::size_t b = 0; b < indices.size(); ++b) {
+    const int i = static_cast<int>(b);
+    TestBody t{data + " sample " + std::to_string(indices[b]), bodies.mat(i).cast<double>(), {}, {}};
+    t.unposed = angles.empty() ? t.target : Eigen::MatrixX3d(unposed.mat(i).cast<double>());
+    for (std::size_t a = 0; a < angles.size(); ++a) t.pose.angles[angles[a]] = degrees(i, 0, static_cast<int>(a));
+    if (!t.pose.empty()) t.target = body_model.posed_vertices(t.unposed, t.pose, 1.0);
+    out.push_back(std::move(t));
+  }
+  return out;
+}
+
+// One test body draped by a scene's simulations: in the size they choose
+// for it (at rest), towards its pose.
+SimulationResult drape_test_body(const SceneSimulations& simulations, const TestBody& body) {
+  SimulationOptions options;
+  if (!body.pose.empty()) {
+    options.target_pose = &body.pose;
+    options.unposed_target = &body.unposed;
+  }
+  return simulations.for_body(body.unposed, body.name).run(body.target, options);
+}
+
 // The spectral branch (if any) at fewer eigenvectors than it was trained with:
 // (node, k) for every k of spectral_k below the node's.
 std::vector<std::pair<std::string, int>> spectral_cuts_of(const Registry& registry, const std::string& model_file,
@@ -116,9 +166,11 @@ struct Reference {
   double seconds = 0;  // per body
 };
 
-void print_table(const std::vector<Method>& methods, std::size_t bodies, const std::string& data, const Reference& ref) {
+void print_table(const std::vector<Method>& methods, std::size_t bodies, const std::string& data, bool posed,
+                 const Reference& ref) {
   std::ostringstream table;
-  table << "## What accuracy costs in time: " << bodies << " test bodies of " << data << ", one core\n\n"
+  table << "## What accuracy costs in time: " << bodies << (posed ? " posed" : "") << " test bodies of " << data
+        << ", one core\n\n"
         << "Reference: the scene simulated with " << ref.morph << " morph and " << ref.settle
         << " settling steps (" << ref.converged << " of " << bodies << " settled; " << ref.seconds
         << " s per body).\n\n| method | s per body | ME to converged (cm) | L_p (J) | p (%) | Pareto |\n|---|---|---|---|---|---|\n";
@@ -142,9 +194,10 @@ void write_csv(const std::vector<Method>& methods, const std::string& file) {
 }
 
 // ME against time, the Pareto front starred.
-void write_chart(const std::vector<Method>& methods, std::size_t bodies, const std::string& file) {
+void write_chart(const std::vector<Method>& methods, std::size_t bodies, bool posed, const std::string& file) {
   ScatterChart chart;
-  chart.title = "What accuracy costs in time (" + std::to_string(bodies) + " test bodies, one core); * = Pareto front";
+  chart.title = "What accuracy costs in time (" + std::to_string(bodies) + (posed ? " posed" : "") +
+                " test bodies, one core); * = Pareto front";
   chart.x_label = "seconds per body on one core";
   chart.y_label = "ME to the converged simulation (cm)";
   for (const Method& m : methods) {
@@ -164,32 +217,35 @@ struct Bench {
   const std::string& model_file;
   const DatasetReader& reader;
   const std::vector<std::size_t>& bodies;
-  const Tensor& body_tensor;
+  const std::vector<TestBody>& test_bodies;
   const std::vector<Eigen::MatrixX3d>& reference;
   ProgressBar& bar;
 
   // The simulator at m morph and s settling steps.
   Method simulator(const Scene& scene, int m, int s) const {
     const std::size_t n = bodies.size();
-    const Simulation sim(registry, with_budget(scene, m, s));
+    const SceneSimulations simulations(registry, with_budget(scene, m, s));
     Method row{"simulation " + std::to_string(m) + "+" + std::to_string(s) + " steps"};
     for (std::size_t b = 0; b < n; ++b) {
-      const SimulationResult r = sim.run(body_tensor.mat(static_cast<int>(b)).cast<double>());
+      const SimulationResult r = drape_test_body(simulations, test_bodies[b]);
       row.add(r.seconds, r.garment, reference[b], r.total_energy, r.penetration, n);
       bar.advance();
     }
     return row;
   }
 
-  // The network's prediction (with the graph's parameters overridden).
-  Method network(const Simulation& sim, const std::string& name, const Model::ParamOverrides& overrides) const {
+  // The network's prediction (with the graph's parameters overridden), its
+  // potential under the scene's garment for the body (a model of several
+  // sizes: the one the scene chooses, which is the sample's own).
+  Method network(const GradedScene& graded, const std::string& name, const Model::ParamOverrides& overrides) const {
     const std::size_t n = bodies.size();
     Method row{name};
     Model model = Model::load(registry, model_file, overrides);
     PhysicsOptimizationOptions none;
     none.iterations = 0;
     for (std::size_t b = 0; b < n; ++b) {
-      const SampleBatch one = read_samples(reader, {bodies[b]}, model.graph(), false);
+      SampleBatch one = read_samples(reader, {bodies[b]}, model.graph(), false);
+      const Simulation& sim = graded.for_model(model, one, true, test_bodies[b].name);
       const double seconds = 1e-3 * prediction_ms(model, one, 5);
       const PhysicsOptimizationResult r = optimize_drape(model, sim, one, none);
       row.add(seconds, r.before, reference[b], r.potential_before, r.penetration_before, n);
@@ -199,7 +255,7 @@ struct Bench {
   }
 
   // The prediction optimised for `its` iterations.
-  Method optimised(const Simulation& sim, int its) const {
+  Method optimised(const GradedScene& graded, int its) const {
     const std::size_t n = bodies.size();
     Method row{"network + " + std::to_string(its) + " optimisation iterations"};
     PhysicsOptimizationOptions o;
@@ -207,8 +263,9 @@ struct Bench {
     int unseparated = 0;
     for (std::size_t b = 0; b < n; ++b) {
       Model model = Model::load(registry, model_file);  // the optimisation changes the weights
-      const PhysicsOptimizationResult r =
-          optimize_drape(model, sim, read_samples(reader, {bodies[b]}, model.graph(), false), o);
+      SampleBatch one = read_samples(reader, {bodies[b]}, model.graph(), false);
+      const Simulation& sim = graded.for_model(model, one, true, test_bodies[b].name);
+      const PhysicsOptimizationResult r = optimize_drape(model, sim, one, o);
       row.add(r.seconds, r.after, reference[b], r.potential_after, r.penetration_after, n);
       unseparated += r.separated ? 0 : 1;
       bar.advance();
@@ -247,7 +304,9 @@ int run(const std::vector<std::string>& args) {
   bodies.resize(std::min<std::size_t>(bodies.size(), static_cast<std::size_t>(std::max(1, vm["bodies"].as<int>()))));
   if (bodies.empty()) throw ConfigError(data + ": the test split is empty");
   const Scene scene = parse_scene(reader.layout().scene);
-  const Tensor body_tensor = reader.body_vertices(bodies);
+  const SceneSimulations simulations(registry, scene);
+  const std::vector<TestBody> test = test_bodies(reader, data, bodies, simulations.design().body_model());
+  const bool posed = !reader.layout().pose_angles.empty();
   // The spectral branch (if any) at fewer eigenvectors than it was trained with.
   const std::vector<std::pair<std::string, int>> spectral_cuts =
       spectral_cuts_of(registry, model_file, reader, data, spectral_k);
@@ -260,10 +319,10 @@ int run(const std::vector<std::string>& args) {
   Reference ref;
   ref.morph = static_cast<int>(Params(scene_solver_specs(), scene.solver, "solver").get_int("morph_steps"));
   ref.settle = vm["reference-settle"].as<int>();
-  const Simulation reference_sim(registry, with_budget(scene, ref.morph, ref.settle));
+  const SceneSimulations reference_sims(registry, with_budget(scene, ref.morph, ref.settle));
   std::vector<Eigen::MatrixX3d> reference;
   for (std::size_t b = 0; b < bodies.size(); ++b) {
-    const SimulationResult r = reference_sim.run(body_tensor.mat(static_cast<int>(b)).cast<double>());
+    const SimulationResult r = drape_test_body(reference_sims, test[b]);
     reference.push_back(r.garment);
     ref.converged += r.converged ? 1 : 0;
     ref.seconds += r.seconds / double(bodies.size());
@@ -271,22 +330,22 @@ int run(const std::vector<std::string>& args) {
   }
 
   std::vector<Method> methods;
-  const Bench bench{registry, model_file, reader, bodies, body_tensor, reference, bar};
+  const Bench bench{registry, model_file, reader, bodies, test, reference, bar};
   for (const auto& [m, s] : budgets) methods.push_back(bench.simulator(scene, m, s));
   // The network alone (its potential and p from a zero-iteration optimisation,
   // which leaves the weights alone), with its spectral branch cut to fewer
   // eigenvectors, then optimised (from the loaded weights for every body).
-  const Simulation sim(registry, scene);
-  methods.push_back(bench.network(sim, "network", {}));
+  const GradedScene graded(registry, simulations);
+  methods.push_back(bench.network(graded, "network", {}));
   for (const auto& [node, k] : spectral_cuts)
-    methods.push_back(
-        bench.network(sim, "network, spectral branch k = " + std::to_string(k), {{node, {{"use_k", std::to_string(k)}}}}));
-  for (int its : iterations) methods.push_back(bench.optimised(sim, its));
+    methods.push_back(bench.network(graded, "network, spectral branch k = " + std::to_string(k),
+                                    {{node, {{"use_k", std::to_string(k)}}}}));
+  for (int its : iterations) methods.push_back(bench.optimised(graded, its));
   bar.finish();
   mark_pareto_front(methods);
-  print_table(methods, bodies.size(), data, ref);
+  print_table(methods, bodies.size(), data, posed, ref);
   if (vm.count("csv")) write_csv(methods, vm["csv"].as<std::string>());
-  if (vm.count("svg")) write_chart(methods, bodies.size(), vm["svg"].as<std::string>());
+  if (vm.count("svg")) write_chart(methods, bodies.size(), posed, vm["svg"].as<std::string>());
   return 0;
 }
 
