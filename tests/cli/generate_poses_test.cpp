@@ -101,10 +101,47 @@ TEST_CASE("drape generate --poses draw stores each body's drawn pose and keeps t
   const DatasetReader whole(dir / "whole.h5");
   CHECK(whole.layout().pose_angles == names);
   CHECK((whole.body_vertices(idx).mat(2) - bodies.mat(2)).cwiseAbs().maxCoeff() < 1e-5f);
-  // A posed and an A-pose dataset do not read as one.
-  fs::copy_file(dir / "plain.h5", dir / "z-plain.h5");
-  fs::copy_file(dir / "posed.h5", dir / "z-posed.h5");
-  CHECK_THROWS_WITH(DatasetReader(dir / "z-*.h5"), Catch::Contains("pose angles are none (A-pose bodies) in the file"));
+  // An A-pose dataset of the same scene, up to its solver (the posed scenes
+  // carry the cloth with a rising arm), reads as one with the posed one: the
+  // A-pose bodies as they are, at their rest angles, and posing() at rest.
+  std::string other_solver = test::tiny_simulation_scene();
+  other_solver.replace(other_solver.find("settle_steps: 3"), 15, "settle_steps: 4");
+  std::ofstream(dir / "solver.yaml") << other_solver;
+  REQUIRE(test::run_drape("generate " + (dir / "solver.yaml").string() + " --count 2 --bmi 15:40 --seed 7 --threads 1 --out " +
+                              (dir / "a-pose.h5").string(), out) == 0);
+  const DatasetReader a_pose(dir / "a-pose.h5");
+  const Tensor a_bodies = a_pose.body_vertices({0, 1});
+  // One pattern names both files ({a,b} alternatives, in their order).
+  const DatasetReader mixed((dir / "{slim,a-pose}.h5").string());
+  CHECK(mixed.mixed_poses());
+  REQUIRE(mixed.size() == 5);
+  CHECK(mixed.layout().pose_angles == names);
+  CHECK(mixed.layout().scene == slim.layout().scene);
+  const Tensor mixed_bodies = mixed.body_vertices({0, 1, 2, 3, 4}), mixed_poses = mixed.poses({0, 3, 4});
+  for (int i = 0; i < 3; ++i) CHECK((mixed_bodies.mat(i) - bodies.mat(i)).cwiseAbs().maxCoeff() < 1e-5f);
+  CHECK(mixed_poses.mat(0) == poses.mat(0));
+  for (int i = 0; i < 2; ++i) {
+    CHECK(mixed_bodies.mat(3 + i) == a_bodies.mat(i));
+    // Its angles are the rest pose: they pose the A-pose body into itself,
+    // and they are the body model's A-pose (arms down and out), not zeros.
+    const Pose rest = pose_of(mixed, mixed_poses, 1 + i);
+    const Eigen::MatrixX3d a = a_bodies.mat(i).cast<double>();
+    CHECK((model->posed_vertices(a, rest, 1.0) - a).cwiseAbs().maxCoeff() < 1e-5);
+    CHECK(rest.angles.at("left_shoulder_abduction") > 20);
+  }
+  const DatasetReader::Posing mixed_rest = mixed.posing({4});
+  CHECK(mixed_rest.transforms(0, 3, 0) == 1.0f);
+  CHECK(mixed_rest.transforms(0, 3, 9) == 0.0f);
+  CHECK((mixed_rest.unposed.mat(0) - a_bodies.mat(1)).cwiseAbs().maxCoeff() < 1e-5f);
+  // A scene that drapes something else does not mix (here the contact's margin).
+  std::string other_scene = test::tiny_simulation_scene();
+  other_scene.replace(other_scene.find("margin: 0.004"), 13, "margin: 0.005");
+  std::ofstream(dir / "other.yaml") << other_scene;
+  REQUIRE(test::run_drape("generate " + (dir / "other.yaml").string() + " --count 1 --bmi 15:40 --seed 7 --threads 1 --out " +
+                              (dir / "other.h5").string(), out) == 0);
+  CHECK_THROWS_WITH(DatasetReader((dir / "{posed,other}.h5").string()),
+                    Catch::Contains("in the file, none (A-pose bodies) now (an A-pose file is read with posed ones when only their "
+                                                    "solvers differ; here the scene YAML differs)"));
 }
 
 TEST_CASE("drape generate in a posed scene stores the scene's pose for every body", "[cli][generate][pose]") {

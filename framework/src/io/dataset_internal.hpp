@@ -42,6 +42,14 @@ DatasetLayout read_layout(const h5::File& file);
 // "" when `now` may continue / be merged with `have`, else the first difference
 // ("body_vertices is 100 in the file, 120 now").
 std::string layout_difference(const DatasetLayout& have, const DatasetLayout& now);
+// Empty when two layouts are A-pose and posed drapes of one scene, which
+// DatasetReader reads as one (the A-pose bodies at their rest angles): one
+// has pose angles and the other none, their scenes differ at most in the
+// description and the solver (how the body got there: a posed scene carries
+// the cloth with a rising arm), and all else agrees as layout_difference
+// requires; else what differs (layout_difference's for two A-pose or two
+// posed layouts).
+std::string rest_pose_mix_difference(const DatasetLayout& a, const DatasetLayout& b);
 
 // Checks a sample's sizes against the layout (Error naming the array).
 void check_sample(const DatasetLayout& layout, const DatasetSample& sample, const std::string& where);

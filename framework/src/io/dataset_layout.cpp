@@ -8,6 +8,8 @@
 #include <sstream>
 #include <stdexcept>
 
+#include <yaml-cpp/yaml.h>
+
 namespace drape {
 
 bool DatasetLayout::has_stat(const std::string& name) const {
@@ -212,6 +214,29 @@ std::string layout_difference(const DatasetLayout& have, const DatasetLayout& no
   if (have.template_hash != now.template_hash)
     return "template_hash is '" + have.template_hash + "' in the file, '" + now.template_hash + "' now";
   return "";
+}
+
+std::string rest_pose_mix_difference(const DatasetLayout& a, const DatasetLayout& b) {
+  if (a.pose_angles.empty() == b.pose_angles.empty()) return layout_difference(a, b);
+  // The scene without what only says how the body got where it is.
+  auto what_is_draped = [](const std::string& yaml) {
+    YAML::Node scene = YAML::Load(yaml);
+    scene.remove("description");
+    scene.remove("solver");
+    YAML::Emitter out;
+    out << scene;
+    return std::string(out.c_str());
+  };
+  DatasetLayout x = a, y = b;
+  x.pose_angles.clear();
+  y.pose_angles.clear();
+  try {
+    x.scene = what_is_draped(a.scene);
+    y.scene = what_is_draped(b.scene);
+  } catch (const YAML::Exception&) {
+    return "a stored scene is not YAML";
+  }
+  return layout_difference(x, y);
 }
 
 void check_sample(const DatasetLayout& layout, const DatasetSample& sample, const std::string& where) {

@@ -1,5 +1,6 @@
 // DatasetReader: samples (all, or one split) as float tensors, from one file
-// or the files of a glob pattern read as one; slim files' bodies rebuilt.
+// or the files of a glob pattern read as one; slim files' bodies rebuilt;
+// A-pose files read with posed ones at each body's rest angles.
 #include "dataset_internal.hpp"
 
 #include <drape/bodies/body.hpp>
@@ -8,6 +9,7 @@
 #include <drape/io/shipped_files.hpp>
 
 #include <glob.h>
+#include <yaml-cpp/yaml.h>
 
 #include <algorithm>
 #include <cmath>
@@ -27,13 +29,15 @@ struct Part {
   h5::File file;
   std::size_t first = 0, rows = 0;
   bool bodies = true;  // false: a slim file, bodies rebuilt
+  bool posed = true;   // false: an A-pose file read with posed ones (its bodies at their rest angles)
 };
 
-// The files matching a glob pattern, sorted by name (glob sorts).
+// The files matching a glob pattern, sorted by name (glob sorts); {a,b}
+// alternatives expand in their order, so one pattern names several folders.
 std::vector<fs::path> glob_files(const std::string& pattern) {
   glob_t g{};
   std::vector<fs::path> out;
-  if (glob(pattern.c_str(), 0, nullptr, &g) == 0)
+  if (glob(pattern.c_str(), GLOB_BRACE, nullptr, &g) == 0)
     for (std::size_t i = 0; i < g.gl_pathc; ++i) out.emplace_back(g.gl_pathv[i]);
   globfree(&g);
   return out;
@@ -89,11 +93,14 @@ void DatasetReader::Impl::rebuild(const std::vector<std::size_t>& rows, const Da
   const std::size_t p = static_cast<std::size_t>(layout.body_params);
   const std::size_t a = layout.pose_angles.size();
   std::vector<float> params(todo.size() * p), poses(todo.size() * a);
+  std::vector<bool> posed(todo.size());
   for (std::size_t k = 0; k < todo.size(); ++k) {  // HDF5 reads stay on this thread
     const Part& part = parts[part_of(todo[k])];
     part.file.read_rows(kParams, todo[k] - part.first, 1, params.data() + k * p);
-    if (a) part.file.read_rows(kPose, todo[k] - part.first, 1, poses.data() + k * a);
+    posed[k] = a && part.posed;
+    if (posed[k]) part.file.read_rows(kPose, todo[k] - part.first, 1, poses.data() + k * a);
   }
+  const std::vector<std::string> at_rest;  // an A-pose file's row: its body as stored, unposed
   // A body is ~20-90 ms of the body model's solve and the model is const: one body per thread.
   std::vector<std::vector<float>> bodies(todo.size());
   const auto n = static_cast<std::ptrdiff_t>(todo.size());
@@ -101,7 +108,8 @@ void DatasetReader::Impl::rebuild(const std::vector<std::size_t>& rows, const Da
   for (std::ptrdiff_t k = 0; k < n; ++k) {
     const std::vector<float> one(params.begin() + k * static_cast<std::ptrdiff_t>(p), params.begin() + (k + 1) * static_cast<std::ptrdiff_t>(p));
     const std::vector<float> pose(poses.begin() + k * static_cast<std::ptrdiff_t>(a), poses.begin() + (k + 1) * static_cast<std::ptrdiff_t>(a));
-    bodies[static_cast<std::size_t>(k)] = rebuilt_bodies(*body_model, one, 1, p, layout.pose_angles, pose);
+    bodies[static_cast<std::size_t>(k)] =
+        rebuilt_bodies(*body_model, one, 1, p, posed[static_cast<std::size_t>(k)] ? layout.pose_angles : at_rest, pose);
   }
   for (std::size_t k = 0; k < todo.size(); ++k) rebuilt[todo[k]] = std::move(bodies[k]);
 }
@@ -110,7 +118,7 @@ std::vector<fs::path> dataset_files(const fs::path& path_or_pattern) {
   std::error_code ec;
   const std::string text = path_or_pattern.string();
   if (fs::exists(path_or_pattern, ec)) return {path_or_pattern};
-  if (text.find_first_of("*?[") == std::string::npos) {
+  if (text.find_first_of("*?[{") == std::string::npos) {
     const fs::path shipped = locate_shipped_file(path_or_pattern);  // datasets/... from a build tree
     return {shipped.empty() ? path_or_pattern : shipped};           // else h5's "no such file"
   }
@@ -131,15 +139,26 @@ DatasetReader::DatasetReader(const fs::path& path) : impl_(std::make_unique<Impl
     part.first = layout_.samples;
     part.rows = layout.samples;
     part.bodies = layout.body_vertices_stored;
+    part.posed = !layout.pose_angles.empty();
     if (impl_->parts.empty()) {
       layout_ = layout;
     } else {
-      // Files read as one must agree as a merge requires (sizes, stats, scene, template).
+      // Files read as one must agree as a merge requires (sizes, stats, scene,
+      // template), or be A-pose and posed drapes of one scene (rest_pose_mix).
       DatasetLayout same = layout;
       same.samples = layout_.samples;
       same.body_vertices_stored = layout_.body_vertices_stored;
-      if (const std::string d = layout_difference(layout_, same); !d.empty())
-        throw ConfigError(file.string() + ": cannot be read as one dataset with " + impl_->files.front().string() + ": " + d);
+      if (const std::string d = layout_difference(layout_, same); !d.empty()) {
+        if (const std::string m = rest_pose_mix_difference(layout_, same); !m.empty())
+          throw ConfigError(file.string() + ": cannot be read as one dataset with " + impl_->files.front().string() + ": " + d +
+                            (m == d ? "" : " (an A-pose file is read with posed ones when only their solvers differ; "
+                                           "here " + m + ")"));
+        mixed_poses_ = true;
+        if (layout_.pose_angles.empty()) {  // the posed files' angles and scene describe the whole
+          layout_.pose_angles = layout.pose_angles;
+          layout_.scene = layout.scene;
+        }
+      }
       layout_.samples += layout.samples;
       layout_.body_vertices_stored = layout_.body_vertices_stored && layout.body_vertices_stored;
     }
@@ -267,10 +286,12 @@ DatasetReader::Posing DatasetReader::posing(const std::vector<std::size_t>& indi
   todo.erase(std::unique(todo.begin(), todo.end()), todo.end());
   const std::size_t p = static_cast<std::size_t>(layout_.body_params), a = layout_.pose_angles.size();
   std::vector<float> params(todo.size() * p), stored(todo.size() * a);
+  std::vector<bool> posed(todo.size());
   for (std::size_t k = 0; k < todo.size(); ++k) {  // HDF5 reads stay on this thread
     const Part& part = impl_->parts[impl_->part_of(todo[k])];
     part.file.read_rows(kParams, todo[k] - part.first, 1, params.data() + k * p);
-    if (a) part.file.read_rows(kPose, todo[k] - part.first, 1, stored.data() + k * a);
+    posed[k] = a && part.posed;
+    if (posed[k]) part.file.read_rows(kPose, todo[k] - part.first, 1, stored.data() + k * a);
   }
   const std::vector<PoseAngle> angles = model.pose_angles();
   const std::size_t joints = model.joints().size();
@@ -281,9 +302,9 @@ DatasetReader::Posing DatasetReader::posing(const std::vector<std::size_t>& indi
     const auto u = static_cast<std::size_t>(k);
     const Eigen::VectorXd shape = Eigen::Map<const Eigen::VectorXf>(params.data() + u * p, static_cast<Eigen::Index>(p)).cast<double>();
     const Eigen::MatrixX3d unposed = model.vertices(shape);
-    const Pose pose = full_pose(model, a ? pose_of_row(layout_.pose_angles, stored.data() + u * a) : Pose{}, unposed);
-    const MatrixRM transforms =
-        a ? transforms_rows(model.joint_transforms(unposed, pose)) : transforms_rows(std::vector<skinning::Rigid>(joints));
+    const Pose pose = full_pose(model, posed[u] ? pose_of_row(layout_.pose_angles, stored.data() + u * a) : Pose{}, unposed);
+    const MatrixRM transforms = posed[u] ? transforms_rows(model.joint_transforms(unposed, pose))
+                                         : transforms_rows(std::vector<skinning::Rigid>(joints));
     Impl::PosingRow& row = made[u];
     row.unposed.resize(static_cast<std::size_t>(unposed.size()));
     for (Eigen::Index v = 0; v < unposed.rows(); ++v)
@@ -311,7 +332,27 @@ Tensor DatasetReader::poses(const std::vector<std::size_t>& indices) const {
   check_indices(*this, indices, fs::path(impl_->name));
   const int a = static_cast<int>(layout_.pose_angles.size());
   Tensor out(static_cast<int>(indices.size()), 1, a);
-  impl_->gather(kPose, indices, static_cast<std::size_t>(a), out.data());
+  if (!mixed_poses_) {
+    impl_->gather(kPose, indices, static_cast<std::size_t>(a), out.data());
+    return out;
+  }
+  // Mixed: a posed file's row as stored; an A-pose file's row at its body's
+  // rest angles (what posing() makes, radians in the body model's order).
+  for (std::size_t k = 0; k < indices.size(); ++k) {
+    const Part& part = impl_->parts[impl_->part_of(indices[k])];
+    float* row = out.data() + k * static_cast<std::size_t>(a);
+    if (part.posed) {
+      part.file.read_rows(kPose, indices[k] - part.first, 1, row);
+      continue;
+    }
+    const Posing rest = posing({indices[k]});
+    const std::vector<PoseAngle> angles = impl_->body_model->pose_angles();
+    for (std::size_t j = 0; j < angles.size(); ++j) {
+      const auto column = std::find(layout_.pose_angles.begin(), layout_.pose_angles.end(), angles[j].name);
+      if (column != layout_.pose_angles.end())
+        row[column - layout_.pose_angles.begin()] = static_cast<float>(rest.angles(0, 0, static_cast<int>(j)) * 180.0 / M_PI);
+    }
+  }
   return out;
 }
 

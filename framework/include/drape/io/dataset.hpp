@@ -130,6 +130,13 @@ class DatasetWriter {
 // kept for the reader's lifetime), loading the default plugins when it must.
 class DatasetReader {
  public:
+  // One file, or the files of a glob pattern ({a,b} alternatives too) read
+  // as one. They must agree as merge_datasets requires, except that A-pose
+  // files may be read with posed files of the same scene (rest_pose_mix_difference in
+  // dataset_internal.hpp: the scenes may differ in the solver): layout()
+  // then has the posed files' angles and scene, and an A-pose file's body
+  // is its body at its rest angles (poses() gives those angles, posing()
+  // identity transforms), so a graph of posed drapes learns from both.
   explicit DatasetReader(const std::filesystem::path& path);
   ~DatasetReader();
   DatasetReader(DatasetReader&&) noexcept;
@@ -139,6 +146,7 @@ class DatasetReader {
   const std::vector<std::filesystem::path>& files() const;  // the file, or the pattern's files in order
   const std::vector<std::int8_t>& splits() const { return split_; }
   const std::vector<std::uint8_t>& done() const { return done_; }
+  bool mixed_poses() const { return mixed_poses_; }  // A-pose files read with posed ones
 
   std::vector<std::size_t> indices() const;             // every done sample
   std::vector<std::size_t> indices(Split split) const;  // done samples of one split
@@ -179,6 +187,7 @@ class DatasetReader {
   DatasetLayout layout_;
   std::vector<std::int8_t> split_;
   std::vector<std::uint8_t> done_;
+  bool mixed_poses_ = false;
   std::unique_ptr<Impl> impl_;
 };
 
