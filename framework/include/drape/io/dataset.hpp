@@ -132,11 +132,11 @@ class DatasetReader {
  public:
   // One file, or the files of a glob pattern ({a,b} alternatives too) read
   // as one. They must agree as merge_datasets requires, except that A-pose
-  // files may be read with posed files of the same scene (rest_pose_mix_difference in
-  // dataset_internal.hpp: the scenes may differ in the solver): layout()
-  // then has the posed files' angles and scene, and an A-pose file's body
-  // is its body at its rest angles (poses() gives those angles, posing()
-  // identity transforms), so a graph of posed drapes learns from both.
+  // files may be read with posed files of the same scene, whose solvers may
+  // differ (rest_pose_mix_difference in dataset_internal.hpp): layout() then
+  // has the posed files' angles and scene, and an A-pose file's body is its
+  // body at its rest angles (poses() gives those angles, posing() identity
+  // transforms), so a graph of posed drapes learns from both.
   explicit DatasetReader(const std::filesystem::path& path);
   ~DatasetReader();
   DatasetReader(DatasetReader&&) noexcept;
