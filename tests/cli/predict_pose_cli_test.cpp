@@ -25,9 +25,11 @@ TEST_CASE("drape predict --pose poses the body and the drape of a posed model", 
   REQUIRE(test::run_drape("train " + graph + " --data " + (dir / "d.h5").string() + " --epochs 1 --batch 2 --threads 1 --out " +
                               (dir / "m.h5").string(), out) == 0);
   // The other graphs of posed drapes train on the same data: the world-space
-  // ablation, the shipped posed model's graph and the unposed TailorNet-style
-  // baseline (table 6.6 on posed data), each an epoch to a finite loss.
-  for (const char* other : {"poses/drape_world.yaml", "poses/drape_posed_sized.yaml", "baselines/tailornet_posed.yaml"}) {
+  // ablation, the shipped posed model's graph, the unposed TailorNet-style
+  // baseline (table 6.6 on posed data) and ours with V2V weighted 100 (the
+  // ME gap), each an epoch to a finite loss.
+  for (const char* other : {"poses/drape_world.yaml", "poses/drape_posed_sized.yaml", "baselines/tailornet_posed.yaml",
+                            "poses/drape_unposed_v2v100.yaml"}) {
     INFO(other);
     REQUIRE(test::run_drape("train " + (test::source_dir() / "graphs" / other).string() + " --data " +
                                 (dir / "d.h5").string() + " --epochs 1 --batch 2 --threads 1 --out " +
@@ -36,6 +38,13 @@ TEST_CASE("drape predict --pose poses the body and the drape of a posed model", 
     const auto at = out.find("(loss ");
     REQUIRE(at != std::string::npos);
     CHECK(std::isfinite(std::stod(out.substr(at + 6))));
+  }
+  // The ME-gap row differs from drape_unposed.yaml in the V2V loss's weight.
+  for (const auto& [graph, weight] : {std::pair{"drape_unposed.yaml", "(weight 10)"}, std::pair{"drape_unposed_v2v100.yaml", "(weight 100)"}}) {
+    REQUIRE(test::run_drape("graph check " + (test::source_dir() / "graphs" / "poses" / graph).string(), out) == 0);
+    const auto v2v = out.find("  loss   v2v ");
+    REQUIRE(v2v != std::string::npos);
+    CHECK(out.substr(v2v, out.find('\n', v2v) - v2v).find(weight) != std::string::npos);
   }
   const std::string predict = "predict --model " + (dir / "m.h5").string() + " --bmi 25 --garment-grade 1 ";
   const std::string pose = "shoulder_abduction=80,left_elbow_flexion=40";
