@@ -181,7 +181,9 @@ int info(const std::vector<std::string>& args) {
             << "  poses     "
             << (layout.pose_angles.empty() ? std::string("none: the bodies are in the body model's A-pose")
                                            : std::to_string(layout.pose_angles.size()) +
-                                                 " joint angles per body, degrees (/bodies/pose; docs/poses.md)")
+                                                 " joint angles per body, degrees (/bodies/pose; docs/poses.md)" +
+                                                 (reader.mixed_poses() ? "; the A-pose files' bodies at their rest angles"
+                                                                       : ""))
             << "\n"
             << "  splits    train " << reader.indices(Split::Train).size() << ", val " << reader.indices(Split::Val).size()
             << ", test " << reader.indices(Split::Test).size() << " (done samples)\n"

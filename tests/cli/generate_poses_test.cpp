@@ -129,6 +129,10 @@ TEST_CASE("drape generate --poses draw stores each body's drawn pose and keeps t
     CHECK((model->posed_vertices(a, rest, 1.0) - a).cwiseAbs().maxCoeff() < 1e-5);
     CHECK(rest.angles.at("left_shoulder_abduction") > 20);
   }
+  REQUIRE(test::run_drape("dataset info '" + (dir / "{slim,a-pose}.h5").string() + "'", out) == 0);
+  CHECK(out.find("2 files read as one") != std::string::npos);
+  CHECK(out.find("22 joint angles per body, degrees (/bodies/pose; docs/poses.md); the A-pose files' bodies at their "
+                 "rest angles") != std::string::npos);
   const DatasetReader::Posing mixed_rest = mixed.posing({4});
   CHECK(mixed_rest.transforms(0, 3, 0) == 1.0f);
   CHECK(mixed_rest.transforms(0, 3, 9) == 0.0f);
