@@ -9,7 +9,6 @@
 #include <drape/io/shipped_files.hpp>
 
 #include <glob.h>
-#include <yaml-cpp/yaml.h>
 
 #include <algorithm>
 #include <cmath>
@@ -97,7 +96,7 @@ void DatasetReader::Impl::rebuild(const std::vector<std::size_t>& rows, const Da
   for (std::size_t k = 0; k < todo.size(); ++k) {  // HDF5 reads stay on this thread
     const Part& part = parts[part_of(todo[k])];
     part.file.read_rows(kParams, todo[k] - part.first, 1, params.data() + k * p);
-    posed[k] = a && part.posed;
+    posed[k] = part.posed;  // every part is A-pose when the layout has no angles
     if (posed[k]) part.file.read_rows(kPose, todo[k] - part.first, 1, poses.data() + k * a);
   }
   const std::vector<std::string> at_rest;  // an A-pose file's row: its body as stored, unposed
@@ -290,7 +289,7 @@ DatasetReader::Posing DatasetReader::posing(const std::vector<std::size_t>& indi
   for (std::size_t k = 0; k < todo.size(); ++k) {  // HDF5 reads stay on this thread
     const Part& part = impl_->parts[impl_->part_of(todo[k])];
     part.file.read_rows(kParams, todo[k] - part.first, 1, params.data() + k * p);
-    posed[k] = a && part.posed;
+    posed[k] = part.posed;
     if (posed[k]) part.file.read_rows(kPose, todo[k] - part.first, 1, stored.data() + k * a);
   }
   const std::vector<PoseAngle> angles = model.pose_angles();
@@ -336,22 +335,28 @@ Tensor DatasetReader::poses(const std::vector<std::size_t>& indices) const {
     impl_->gather(kPose, indices, static_cast<std::size_t>(a), out.data());
     return out;
   }
-  // Mixed: a posed file's row as stored; an A-pose file's row at its body's
-  // rest angles (what posing() makes, radians in the body model's order).
+  // Mixed: a posed file's rows as stored; an A-pose file's rows at their
+  // bodies' rest angles, which posing() makes for all of them at once
+  // (radians, in the body model's order: mapped to the layout's columns).
+  std::vector<std::size_t> rest_rows, rest_at;
   for (std::size_t k = 0; k < indices.size(); ++k) {
     const Part& part = impl_->parts[impl_->part_of(indices[k])];
-    float* row = out.data() + k * static_cast<std::size_t>(a);
     if (part.posed) {
-      part.file.read_rows(kPose, indices[k] - part.first, 1, row);
-      continue;
+      part.file.read_rows(kPose, indices[k] - part.first, 1, out.data() + k * static_cast<std::size_t>(a));
+    } else {
+      rest_rows.push_back(indices[k]);
+      rest_at.push_back(k);
     }
-    const Posing rest = posing({indices[k]});
-    const std::vector<PoseAngle> angles = impl_->body_model->pose_angles();
-    for (std::size_t j = 0; j < angles.size(); ++j) {
-      const auto column = std::find(layout_.pose_angles.begin(), layout_.pose_angles.end(), angles[j].name);
-      if (column != layout_.pose_angles.end())
-        row[column - layout_.pose_angles.begin()] = static_cast<float>(rest.angles(0, 0, static_cast<int>(j)) * 180.0 / M_PI);
-    }
+  }
+  if (rest_rows.empty()) return out;
+  const Posing rest = posing(rest_rows);
+  const std::vector<PoseAngle> angles = impl_->body_model->pose_angles();
+  for (std::size_t j = 0; j < angles.size(); ++j) {
+    const auto column = std::find(layout_.pose_angles.begin(), layout_.pose_angles.end(), angles[j].name);
+    if (column == layout_.pose_angles.end()) continue;
+    for (std::size_t r = 0; r < rest_rows.size(); ++r)
+      out(static_cast<int>(rest_at[r]), 0, static_cast<int>(column - layout_.pose_angles.begin())) =
+          static_cast<float>(rest.angles(static_cast<int>(r), 0, static_cast<int>(j)) * 180.0 / M_PI);
   }
   return out;
 }
