@@ -27,6 +27,7 @@
 #include <drape/scene/scene.hpp>
 #include <drape/scene/simulation.hpp>
 #include <drape/services/graded_scene.hpp>
+#include <drape/services/scene_body.hpp>
 #include <drape/io/svg_chart.hpp>
 
 #include <algorithm>
@@ -88,48 +89,34 @@ std::vector<std::pair<int, int>> simulator_budgets(const po::variables_map& vm) 
   return budgets;
 }
 
-// A test body as the dataset's generation draped it: the body (posed in a
-// posed dataset), and with a pose the same body at rest and the pose, which
-// the simulation morphs towards together. A posed target is the rest body
-// posed again in double precision (the stored one is float, and the
-// simulation's pose path must end exactly on its target).
+// A test body as the dataset's generation draped it: the body at rest and,
+// in a posed dataset, its stored pose, which scene_body (services/
+// scene_body.hpp) poses and draws the size for, as drape simulate does.
 struct TestBody {
   std::string name;  // "<data> sample i", for messages
-  Eigen::MatrixX3d target;
-  Eigen::MatrixX3d unposed;  // = target in an A-pose dataset
-  Pose pose;                 // empty in an A-pose dataset
+  Eigen::MatrixX3d unposed;
+  Pose pose;  // empty in an A-pose dataset
 };
 
 std::vector<TestBody> test_bodies(const DatasetReader& reader, const std::string& data,
-                                  const std::vector<std::size_t>& indices, const BodyModel& body_model) {
-  const Tensor bodies = reader.body_vertices(indices);
+                                  const std::vector<std::size_t>& indices) {
   const std::vector<std::string>& angles = reader.layout().pose_angles;
-  Tensor unposed, degrees;
-  if (!angles.empty()) {
-    unposed = reader.posing(indices).unposed;
-    degrees = reader.poses(indices);
-  }
+  const Tensor rest = angles.empty() ? reader.body_vertices(indices) : reader.posing(indices).unposed;
+  const Tensor degrees = angles.empty() ? Tensor() : reader.poses(indices);
   std::vector<TestBody> out;
   for (std::size_t b = 0; b < indices.size(); ++b) {
     const int i = static_cast<int>(b);
-    TestBody t{data + " sample " + std::to_string(indices[b]), bodies.mat(i).cast<double>(), {}, {}};
-    t.unposed = angles.empty() ? t.target : Eigen::MatrixX3d(unposed.mat(i).cast<double>());
+    TestBody t{data + " sample " + std::to_string(indices[b]), rest.mat(i).cast<double>(), {}};
     for (std::size_t a = 0; a < angles.size(); ++a) t.pose.angles[angles[a]] = degrees(i, 0, static_cast<int>(a));
-    if (!t.pose.empty()) t.target = body_model.posed_vertices(t.unposed, t.pose, 1.0);
     out.push_back(std::move(t));
   }
   return out;
 }
 
 // One test body draped by a scene's simulations: in the size they choose
-// for it (at rest), towards its pose.
+// for it at rest, towards its pose.
 SimulationResult drape_test_body(const SceneSimulations& simulations, const TestBody& body) {
-  SimulationOptions options;
-  if (!body.pose.empty()) {
-    options.target_pose = &body.pose;
-    options.unposed_target = &body.unposed;
-  }
-  return simulations.for_body(body.unposed, body.name).run(body.target, options);
+  return drape_scene_body(scene_body(simulations, body.unposed, body.name, body.pose.empty() ? nullptr : &body.pose));
 }
 
 // The spectral branch (if any) at fewer eigenvectors than it was trained with:
@@ -304,8 +291,7 @@ int run(const std::vector<std::string>& args) {
   bodies.resize(std::min<std::size_t>(bodies.size(), static_cast<std::size_t>(std::max(1, vm["bodies"].as<int>()))));
   if (bodies.empty()) throw ConfigError(data + ": the test split is empty");
   const Scene scene = parse_scene(reader.layout().scene);
-  const SceneSimulations simulations(registry, scene);
-  const std::vector<TestBody> test = test_bodies(reader, data, bodies, simulations.design().body_model());
+  const std::vector<TestBody> test = test_bodies(reader, data, bodies);
   const bool posed = !reader.layout().pose_angles.empty();
   // The spectral branch (if any) at fewer eigenvectors than it was trained with.
   const std::vector<std::pair<std::string, int>> spectral_cuts =
@@ -335,6 +321,7 @@ int run(const std::vector<std::string>& args) {
   // The network alone (its potential and p from a zero-iteration optimisation,
   // which leaves the weights alone), with its spectral branch cut to fewer
   // eigenvectors, then optimised (from the loaded weights for every body).
+  const SceneSimulations simulations(registry, scene);
   const GradedScene graded(registry, simulations);
   methods.push_back(bench.network(graded, "network", {}));
   for (const auto& [node, k] : spectral_cuts)
