@@ -11,6 +11,7 @@
 // never merge into the trunk or each other: the body keeps the topology of a
 // sphere over the whole range.
 #include "body_plan.hpp"
+#include "growth.hpp"
 
 #include <drape/errors.hpp>
 
@@ -24,21 +25,6 @@ namespace drape::parametric {
 namespace {
 
 using V3 = Eigen::Vector3d;
-
-// The mean adiposity. The template, and the shipped model's assets, were built
-// from the mean body, so it must stay bit-identical: the growth rates for heavy
-// bodies apply only above it, and every body up to it keeps its first shape.
-constexpr double kMeanWeight = 0.2;
-// Adiposity above the mean, eased in over kEase (about BMI 25 to 31) so that a
-// girth's growth rate changes without a kink; exactly 0 up to the mean.
-constexpr double kEase = 0.2;
-double heavy_excess(double w) {
-  const double d = w - kMeanWeight;
-  if (d <= 0) return 0;
-  return d < kEase ? d * d / (2 * kEase) : d - 0.5 * kEase;
-}
-
-double lerp(double a, double b, double t) { return a + (b - a) * t; }
 
 }  // namespace
 
@@ -78,19 +64,21 @@ void check_shape(const Eigen::VectorXd& shape) {
   }
 }
 
-ImplicitBody plan_body(const Eigen::VectorXd& shape) {
+ImplicitBody plan_body(const Eigen::VectorXd& shape, Rig rig) {
+  return rig == Rig::Human ? plan_human_body(shape) : plan_mannequin_body(shape);
+}
+
+ImplicitBody plan_mannequin_body(const Eigen::VectorXd& shape) {
   const double sy = shape[kHeight] / 1.75, sr = std::sqrt(sy);
   const double m = shape[kSex], w = shape[kWeight];
   // A girth factor: exp(rate * w + girth) up to the mean adiposity (the rates
   // the body was first built with), growing at `heavy_rate` above it.
   const double excess = heavy_excess(w);
-  auto grow = [&](double rate, double heavy_rate, double girth) {
-    return std::exp(rate * w + (heavy_rate - rate) * excess + girth);
-  };
+  auto grow = [&](double rate, double heavy_rate, double girth) { return growth(rate, heavy_rate, girth, w, excess); };
 
   ImplicitBody body;
   auto& parts = body.parts;
-  auto ellipsoid = [&](V3 c, V3 s, double k) { parts.push_back(Primitive::ellipsoid(c, s, k)); };
+  auto ellipsoid = [&](V3 c, V3 s, double k) -> Primitive& { return parts.emplace_back(Primitive::ellipsoid(c, s, k)); };
 
   // Trunk: hips, belly, waist, chest, shoulders; x = width, z = depth. A heavy
   // woman's trunk grows in depth more than in width (belly, buttocks), and
@@ -138,10 +126,10 @@ ImplicitBody plan_body(const Eigen::VectorXd& shape) {
 
   // Neck and head (the nose marks the front, +Z). Heavy necks thicken; heads barely.
   const double neck_r = lerp(0.052, 0.060, m) * sr * grow(0.35, 0.65, 0);
-  parts.push_back(Primitive::cone({0, 1.40 * sy, -0.025 * sy}, neck_r, {0, 1.56 * sy, -0.008 * sy}, neck_r * 0.92, 0.035));
+  parts.push_back(Primitive::cone({0, 1.40 * sy, -0.025 * sy}, neck_r, {0, 1.56 * sy, -0.008 * sy}, neck_r * 0.92, 0.035).in(Region::Neck));
   const double head_g = grow(0.06, 0.10, 0);
-  ellipsoid({0, 1.635 * sy, 0.008 * sy}, V3(0.076 * sr * head_g, 0.106 * sy, 0.096 * sr * head_g), 0.025);
-  ellipsoid({0, 1.625 * sy, 0.008 * sy + 0.096 * sr * head_g}, V3(0.014, 0.024, 0.022) * sr, 0.012);
+  ellipsoid({0, 1.635 * sy, 0.008 * sy}, V3(0.076 * sr * head_g, 0.106 * sy, 0.096 * sr * head_g), 0.025).in(Region::Head);
+  ellipsoid({0, 1.625 * sy, 0.008 * sy + 0.096 * sr * head_g}, V3(0.014, 0.024, 0.022) * sr, 0.012).in(Region::Head);
 
   // Arms in A-pose, about 47 degrees below horizontal (45 for heavy bodies,
   // whose arms stand further out; 50 for thin ones). Wrists and hands stay slim.
@@ -154,9 +142,10 @@ ImplicitBody plan_body(const Eigen::VectorXd& shape) {
     const V3 dir(side * std::cos(angle), -std::sin(angle), 0);
     const V3 shoulder(side * shoulder_x, 1.415 * sy, -0.015 * sy);
     const V3 elbow = shoulder + 0.295 * sy * dir, wrist = elbow + 0.255 * sy * dir;
-    parts.push_back(Primitive::cone(shoulder, upper_r, elbow, lerp(0.036, 0.040, m) * sr * arm_g, 0.05));
+    parts.push_back(Primitive::cone(shoulder, upper_r, elbow, lerp(0.036, 0.040, m) * sr * arm_g, 0.05).in(Region::UpperArm, side));
     parts.push_back(Primitive::cone(elbow, lerp(0.036, 0.040, m) * sr * fore_g, wrist,
-                                    lerp(0.025, 0.028, m) * sr * grow(0.25, 0.15, 0.4 * shape[kArms]), 0.02));
+                                    lerp(0.025, 0.028, m) * sr * grow(0.25, 0.15, 0.4 * shape[kArms]), 0.02)
+                        .in(Region::Forearm, side));
     // Hand: flat side towards the thigh; axes along the arm, across (front), palm normal.
     Eigen::Matrix3d frame;
     frame.col(0) = dir;
@@ -164,7 +153,8 @@ ImplicitBody plan_body(const Eigen::VectorXd& shape) {
     frame.col(2) = dir.cross(V3::UnitZ());
     const double hand_g = grow(0.12, 0.12, 0);
     parts.push_back(Primitive::ellipsoid(wrist + 0.085 * sy * dir,
-                                         V3(0.092 * sy, 0.046 * sr * hand_g, 0.025 * sr * hand_g), 0.018, frame));
+                                         V3(0.092 * sy, 0.046 * sr * hand_g, 0.025 * sr * hand_g), 0.018, frame)
+                        .in(Region::Hand, side));
   }
 
   // Legs: the thighs start far enough apart that their inner sides never touch.
@@ -179,12 +169,13 @@ ImplicitBody plan_body(const Eigen::VectorXd& shape) {
     const V3 hip(side * hip_x, 0.90 * sy, -0.005 * sy);
     const V3 knee(side * (hip_x + 0.022 * sr), 0.49 * sy, 0.004 * sy);
     const V3 ankle(side * (hip_x + 0.030 * sr), 0.085 * sy, -0.012 * sy);
-    parts.push_back(Primitive::cone(hip, thigh_r, knee, knee_r, 0.04));
+    parts.push_back(Primitive::cone(hip, thigh_r, knee, knee_r, 0.04).in(Region::Thigh, side));
     const double calf_g = grow(0.45, 0.65, 0.3 * shape[kThighs]);
-    parts.push_back(Primitive::cone(knee, knee_r * 0.95, ankle, 0.032 * sr * grow(0.2, 0.55, 0), 0.02));
-    ellipsoid(knee + 0.33 * (ankle - knee) + V3(0, 0, -0.018 * sr), V3(0.048 * calf_g, 0.10, 0.050 * calf_g) * sr, 0.03);
+    parts.push_back(Primitive::cone(knee, knee_r * 0.95, ankle, 0.032 * sr * grow(0.2, 0.55, 0), 0.02).in(Region::Shin, side));
+    ellipsoid(knee + 0.33 * (ankle - knee) + V3(0, 0, -0.018 * sr), V3(0.048 * calf_g, 0.10, 0.050 * calf_g) * sr, 0.03)
+        .in(Region::Calf, side);
     const double foot_g = grow(0.08, 0.12, 0);
-    ellipsoid({ankle.x(), 0.040 * sy, 0.050 * sy}, V3(0.045 * sr * foot_g, 0.040 * sy, 0.128 * sy), 0.025);
+    ellipsoid({ankle.x(), 0.040 * sy, 0.050 * sy}, V3(0.045 * sr * foot_g, 0.040 * sy, 0.128 * sy), 0.025).in(Region::Foot, side);
   }
   return body;
 }

@@ -26,7 +26,14 @@ Eigen::VectorXd mean_shape_vector();
 // Throws ConfigError naming the entry when `shape` has the wrong size or an entry out of range.
 void check_shape(const Eigen::VectorXd& shape);
 
+// Two rigs share the shape vector: the mannequin (every dataset and shipped
+// model so far) and the human one (issue 54: a head with a face, shoulders
+// that slope, hands with a thumb, feet with heel and toes; human_plan.cpp).
+enum class Rig { Mannequin, Human };
+
 // The implicit body of `shape`, before the final exact height normalisation.
-ImplicitBody plan_body(const Eigen::VectorXd& shape);
+ImplicitBody plan_body(const Eigen::VectorXd& shape, Rig rig = Rig::Mannequin);
+ImplicitBody plan_mannequin_body(const Eigen::VectorXd& shape);
+ImplicitBody plan_human_body(const Eigen::VectorXd& shape);
 
 }  // namespace drape::parametric

@@ -12,6 +12,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cmath>
+#include <map>
 #include <numeric>
 
 namespace drape::parametric {
@@ -28,7 +29,8 @@ void bind_to_parts(BodyTemplate& t) {
   std::vector<std::pair<double, int>> dist(t.mean.parts.size());
   for (std::size_t v = 0; v < nv; ++v) {
     const Eigen::Vector3d p = t.vertices.row(static_cast<Eigen::Index>(v));
-    for (std::size_t i = 0; i < dist.size(); ++i) dist[i] = {t.mean.parts[i].eval(p, nullptr), static_cast<int>(i)};
+    for (std::size_t i = 0; i < dist.size(); ++i)
+      dist[i] = {t.mean.parts[i].carries ? t.mean.parts[i].eval(p, nullptr) : INFINITY, static_cast<int>(i)};
     std::partial_sort(dist.begin(), dist.begin() + BodyTemplate::kBind, dist.end());
     double total = 0;
     for (int k = 0; k < BodyTemplate::kBind; ++k) {
@@ -57,6 +59,15 @@ void relax_on_surface(const ImplicitBody& body, const std::vector<std::vector<in
       body.eval(p, &g);
       const Eigen::Vector3d n = g.normalized();
       Eigen::Vector3d d = mean - p;
+      if (!body.magnifiers.empty()) {
+        // The neighbours' mean in the warped space, where the mesh is uniform:
+        // relaxing keeps the finer triangles where the template put them.
+        Eigen::Vector3d warped_mean = Eigen::Vector3d::Zero();
+        for (int u : nb) warped_mean += warp(body.magnifiers, vertices.row(u).transpose());
+        warped_mean /= static_cast<double>(nb.size());
+        const Eigen::Vector3d wp = warp(body.magnifiers, p);
+        d = (unwarp(body.magnifiers, wp + step * (warped_mean - wp)) - p) / step;
+      }
       d -= d.dot(n) * n;
       next.row(v) = body.project(p + step * d, 4);
     }
@@ -64,29 +75,44 @@ void relax_on_surface(const ImplicitBody& body, const std::vector<std::vector<in
   }
 }
 
-BodyTemplate build_template(int target_vertices) {
+BodyTemplate build_template(int target_vertices, Rig rig) {
   BodyTemplate t;
-  t.mean = plan_body(mean_shape_vector());
+  t.mean = plan_body(mean_shape_vector(), rig);
   // Surface nets give about area / cell^2 vertices: one correction of the cell
   // size lands close to the target.
+  // The cell is set without the magnifiers, so that the target is the count of
+  // a uniform mesh and the magnified places come on top of it.
+  ImplicitBody uniform = t.mean;
+  uniform.magnifiers.clear();
   double cell = 0.019;
-  RawMesh raw = surface_nets(t.mean, cell);
+  RawMesh raw = surface_nets(uniform, cell);
   cell *= std::sqrt(static_cast<double>(raw.vertices.rows()) / target_vertices);
   // Where a limb runs diagonally through the grid, surface nets can join two
   // sheets in one cell (an edge with four faces). Such samplings are rejected:
   // the grid is shifted by a fixed sequence of offsets until the mesh is a
   // closed manifold sphere (deterministic; usually within a few tries).
-  // kKnownGoodAttempt caches the search's answer for the current rig; a changed
-  // rig still finds its own (just more slowly at load time).
-  constexpr int kKnownGoodAttempt = 19, kAttempts = 40;
+  // The first attempt caches the search's answer for each rig; a changed rig
+  // still finds its own (just more slowly at load time).
+  constexpr int kAttempts = 120;
+  const int known_good_attempt = rig == Rig::Human ? 20 : 19;
   for (int tries = 0;; ++tries) {
-    const int attempt = (kKnownGoodAttempt + tries) % kAttempts;
+    const int attempt = (known_good_attempt + tries) % kAttempts;
     const Eigen::Vector2d offset(std::fmod(0.37 * attempt, 1.0), std::fmod(0.61 * attempt, 1.0));
     raw = surface_nets(t.mean, cell, offset);
     const auto topo = geometry::check_topology(raw.faces, static_cast<int>(raw.vertices.rows()));
     if (topo.closed_manifold() && topo.euler_characteristic == 2) {
       if (std::getenv("DRAPE_BODY_DEBUG")) std::fprintf(stderr, "template: attempt %d, cell %g\n", attempt, cell);
       break;
+    }
+    if (std::getenv("DRAPE_BODY_DEBUG")) {
+      std::map<std::pair<int, int>, int> uses;
+      for (Eigen::Index f = 0; f < raw.faces.rows(); ++f)
+        for (int c = 0; c < 3; ++c) {
+          const int u = raw.faces(f, c), w = raw.faces(f, (c + 1) % 3);
+          ++uses[{std::min(u, w), std::max(u, w)}];
+        }
+      for (const auto& [e, n] : uses)
+        if (n > 2) std::fprintf(stderr, "attempt %d: edge at %.3f %.3f %.3f used %d times\n", attempt, raw.vertices(e.first, 0), raw.vertices(e.first, 1), raw.vertices(e.first, 2), n);
     }
     if (tries + 1 == kAttempts) throw Error("body parametric: cannot mesh the mean body into a closed manifold: " + topo.str());
   }

@@ -1,6 +1,7 @@
 #pragma once
 // The fixed topology: the mean body meshed once, regularised, put in
 // locality order and bound to the parts of the rig.
+#include "body_plan.hpp"
 #include "implicit_body.hpp"
 
 #include <Eigen/Core>
@@ -23,7 +24,7 @@ struct BodyTemplate {
 };
 
 // Builds the template (deterministic; a fraction of a second).
-BodyTemplate build_template(int target_vertices = 6000);
+BodyTemplate build_template(int target_vertices = 6000, Rig rig = Rig::Mannequin);
 
 // Moves every vertex along the surface of `body` towards the mean of its
 // neighbours, then back onto the surface: evens out triangle shapes.

@@ -2,15 +2,27 @@
 // A body as an implicit surface: rounded cones (limbs) and ellipsoids (torso,
 // head, hands, feet) joined one after another by a polynomial smooth minimum.
 // Negative inside, zero on the skin; the gradient is exact (analytic).
+#include "sampling_warp.hpp"
+
 #include <Eigen/Core>
 
 #include <vector>
 
 namespace drape::parametric {
 
+// What a part belongs to, for the skeleton (skeleton.cpp): its rings and
+// hard skinning labels are found by region, so a rig may add parts freely.
+enum class Region { Trunk, Neck, Head, UpperArm, Forearm, Hand, Thigh, Shin, Calf, Foot };
+
 struct Primitive {
   enum class Kind { Ellipsoid, Cone };
   Kind kind = Kind::Ellipsoid;
+  Region region = Region::Trunk;
+  int side = 0;  // +1 left (x > 0), -1 right, 0 on the midline
+  // Whether template vertices bind to this part (body_template.cpp): not a
+  // part that lies inside the body for some shapes (a man's breasts), whose
+  // vertices would be carried inside and folded by the projection back out.
+  bool carries = true;
   // Ellipsoid: centre `a`, local axes (columns of `frame`), semi-axes `semi`.
   // Cone: from `a` (radius ra) to `b` (radius rb); frame columns are the axis
   // and two perpendiculars, so that a deformation can carry the offsets along.
@@ -33,6 +45,12 @@ struct Primitive {
 
   // Approximate signed distance and its gradient.
   double eval(const Eigen::Vector3d& p, Eigen::Vector3d* gradient) const;
+  Primitive& in(Region r, int s = 0) {
+    region = r;
+    side = s;
+    return *this;
+  }
+
   // Maps a point near this primitive to the same place near `to` (same kind):
   // along the axis by length, across it by radius. Used to carry a template
   // vertex to a new shape.
@@ -42,6 +60,8 @@ struct Primitive {
 class ImplicitBody {
  public:
   std::vector<Primitive> parts;
+  // Where the template is meshed finer (sampling_warp.hpp); none: uniform.
+  Magnifiers magnifiers;
 
   double eval(const Eigen::Vector3d& p, Eigen::Vector3d* gradient = nullptr) const;
   // Moves `p` onto the zero level set with Newton steps along the gradient.

@@ -32,35 +32,43 @@ int index_of(const std::string& name) {
   throw ConfigError("body parametric: no shape parameter '" + name + "'");
 }
 
-// Built once per process (about a tenth of a second) and shared by every instance.
-const BodyTemplate& shared_template() {
-  static const BodyTemplate tpl = build_template(6500);
-  return tpl;
+// Built once per process and rig (about a tenth of a second) and shared by every instance.
+const BodyTemplate& shared_template(Rig rig) {
+  if (rig == Rig::Human) {
+    static const BodyTemplate human = build_template(6500, Rig::Human);
+    return human;
+  }
+  static const BodyTemplate mannequin = build_template(6500, Rig::Mannequin);
+  return mannequin;
 }
 
 // Computed once per topology, from the template (skeleton.hpp).
-const Skeleton& shared_skeleton() {
-  static const Skeleton skeleton = build_skeleton(shared_template());
-  return skeleton;
+const Skeleton& shared_skeleton(Rig rig) {
+  if (rig == Rig::Human) {
+    static const Skeleton human = build_skeleton(shared_template(Rig::Human));
+    return human;
+  }
+  static const Skeleton mannequin = build_skeleton(shared_template(Rig::Mannequin));
+  return mannequin;
 }
 
 class ParametricBody final : public BodyModel {
  public:
-  ParametricBody() : tpl_(shared_template()) {}
+  explicit ParametricBody(Rig rig) : rig_(rig), tpl_(shared_template(rig)) {}
 
   bool poseable() const override { return true; }
   std::vector<PoseAngle> pose_angles() const override { return human_pose_angles(); }
-  std::vector<Joint> joints() const override { return shared_skeleton().joints; }
+  std::vector<Joint> joints() const override { return skeleton().joints; }
   Eigen::MatrixX3d joint_positions(const Eigen::VectorXd& shape) const override {
-    return regress_joints(shared_skeleton(), vertices(shape));
+    return regress_joints(skeleton(), vertices(shape));
   }
-  Eigen::MatrixXd skinning_weights() const override { return shared_skeleton().weights; }
+  Eigen::MatrixXd skinning_weights() const override { return skeleton().weights; }
   Pose rest_pose(const Eigen::VectorXd& shape) const override { return rest_angles(joint_positions(shape)); }
   Pose rest_pose_of(const Eigen::MatrixX3d& unposed) const override {
     if (unposed.rows() != num_vertices())
       throw ConfigError("body parametric: a body has " + std::to_string(unposed.rows()) + " vertices, the model " +
                         std::to_string(num_vertices()));
-    return rest_angles(regress_joints(shared_skeleton(), unposed));
+    return rest_angles(regress_joints(skeleton(), unposed));
   }
   Eigen::MatrixX3d posed_vertices(const Eigen::MatrixX3d& unposed, const Pose& pose, double fraction) const override {
     check_pose(pose, pose_angles(), "body parametric pose");
@@ -69,14 +77,14 @@ class ParametricBody final : public BodyModel {
                         std::to_string(num_vertices()));
     if (!(fraction >= 0 && fraction <= 1)) throw ConfigError("body parametric: a pose fraction must lie in [0, 1]");
     if (pose.empty() || fraction == 0) return unposed;
-    return skin(shared_skeleton(), unposed, regress_joints(shared_skeleton(), unposed), pose, fraction);
+    return skin(skeleton(), unposed, regress_joints(skeleton(), unposed), pose, fraction);
   }
   std::vector<skinning::Rigid> joint_transforms(const Eigen::MatrixX3d& unposed, const Pose& pose) const override {
     check_pose(pose, pose_angles(), "body parametric pose");
     if (unposed.rows() != num_vertices())
       throw ConfigError("body parametric: a body to pose has " + std::to_string(unposed.rows()) + " vertices, the model " +
                         std::to_string(num_vertices()));
-    return bone_transforms(shared_skeleton(), regress_joints(shared_skeleton(), unposed), pose, 1.0);
+    return bone_transforms(skeleton(), regress_joints(skeleton(), unposed), pose, 1.0);
   }
 
   int num_vertices() const override { return static_cast<int>(tpl_.vertices.rows()); }
@@ -90,7 +98,7 @@ class ParametricBody final : public BodyModel {
 
   Eigen::MatrixX3d vertices(const Eigen::VectorXd& shape) const override {
     check_shape(shape);
-    Eigen::MatrixX3d v = fit_template(tpl_, plan_body(shape));
+    Eigen::MatrixX3d v = fit_template(tpl_, plan_body(shape, rig_));
     normalise_height(v, shape[kHeight]);
     return v;
   }
@@ -155,6 +163,10 @@ class ParametricBody final : public BodyModel {
   }
 
  private:
+  // Built on first use: most bodies are never posed.
+  const Skeleton& skeleton() const { return shared_skeleton(rig_); }
+
+  Rig rig_;
   const BodyTemplate& tpl_;
 };
 
@@ -165,7 +177,13 @@ PluginList plugins() {
   d.doc = "Built-in parametric body: smooth implicit primitives meshed once into a fixed watertight topology "
           "(~6k vertices, A-pose, Y up, feet at y=0, facing +Z); shape = height, sex, weight and six girths; "
           "solve() reaches BMI 10-65.";
-  d.create_body = [](const Params&) { return std::make_unique<ParametricBody>(); };
+  d.params = {{.name = "rig", .type = ParamType::String, .default_value = "mannequin",
+               .doc = "mannequin: the rig of every shipped dataset and model; human: a face, sloping shoulders, hands with "
+                      "a thumb, feet with heel and toes, buttocks (its own topology; docs/bodies.md)",
+               .choices = {"mannequin", "human"}}};
+  d.create_body = [](const Params& p) {
+    return std::make_unique<ParametricBody>(p.get_string("rig") == "human" ? Rig::Human : Rig::Mannequin);
+  };
   return {d};
 }
 

@@ -11,25 +11,32 @@ namespace {
 
 using V3 = Eigen::Vector3d;
 
-// The rig's parts in plan_body's order (body_plan.cpp): trunk 0-6, neck 7,
-// head 8-9, then per side (right, x < 0, first) upper arm, forearm, hand, and
-// thigh, shin, calf, foot.
-constexpr int kNumParts = 24;
-constexpr int kTrunkLast = 6, kNeckPart = 7, kHeadLast = 9;
-int arm_part(int side, int k) { return 10 + (side > 0 ? 3 : 0) + k; }  // k: 0 upper, 1 fore, 2 hand
-int leg_part(int side, int k) { return 16 + (side > 0 ? 4 : 0) + k; }  // k: 0 thigh, 1 shin, 2 calf, 3 foot
+// The rig's parts by region (implicit_body.hpp), whatever their order: a
+// limb is its region's parts on one side.
+bool is_arm(const Primitive& p, int side) {
+  return p.side == side && (p.region == Region::UpperArm || p.region == Region::Forearm || p.region == Region::Hand);
+}
+bool is_leg(const Primitive& p, int side) {
+  return p.side == side &&
+         (p.region == Region::Thigh || p.region == Region::Shin || p.region == Region::Calf || p.region == Region::Foot);
+}
 
-bool is_arm(int part, int side) { return part >= arm_part(side, 0) && part <= arm_part(side, 2); }
-bool is_leg(int part, int side) { return part >= leg_part(side, 0) && part <= leg_part(side, 3); }
+// The first part of a region (and side): the trunk's first is the hips, a
+// limb's first its upper cone, whose axis the joint rings are laid across.
+const Primitive& first_part(const ImplicitBody& body, Region region, int side = 0) {
+  for (const Primitive& p : body.parts)
+    if (p.region == region && p.side == side) return p;
+  throw Error("body parametric: the rig has no part of the region the skeleton needs");
+}
 
 // A ring: the template vertices on the given parts whose position along the
 // axis `dir` lies within `half` of `centre` and which are within `reach` of
 // the axis. Its centroid is the axis point for a limb or trunk cross-section.
 std::vector<int> ring(const BodyTemplate& t, const V3& centre, const V3& dir, double half, double reach,
-                      bool (*on_part)(int part, int side), int side) {
+                      bool (*on_part)(const Primitive& part, int side), int side) {
   std::vector<int> out;
   for (Eigen::Index v = 0; v < t.vertices.rows(); ++v) {
-    if (!on_part(t.bind_part[static_cast<std::size_t>(v)][0], side)) continue;
+    if (!on_part(t.mean.parts[static_cast<std::size_t>(t.bind_part[static_cast<std::size_t>(v)][0])], side)) continue;
     const V3 d = t.vertices.row(v).transpose() - centre;
     const double along = d.dot(dir);
     if (std::abs(along) <= half && (d - along * dir).norm() <= reach) out.push_back(static_cast<int>(v));
@@ -64,16 +71,12 @@ std::vector<std::pair<int, double>> averaged(const std::vector<int>& ids) {
   return out;
 }
 
-bool on_trunk(int part, int) { return part <= kTrunkLast; }
-bool on_neck(int part, int) { return part == kNeckPart; }
-bool on_arm(int part, int side) { return is_arm(part, side); }
-bool on_leg(int part, int side) { return is_leg(part, side); }
+bool on_trunk(const Primitive& part, int) { return part.region == Region::Trunk; }
+bool on_neck(const Primitive& part, int) { return part.region == Region::Neck; }
 
 }  // namespace
 
 Skeleton build_skeleton(const BodyTemplate& t) {
-  const auto& parts = t.mean.parts;
-  if (parts.size() != kNumParts) throw Error("body parametric: the skeleton expects 24 rig parts, the rig has " + std::to_string(parts.size()));
   Skeleton s;
   auto joint = [&](const char* name, int parent, std::vector<std::string> angles) {
     s.joints.push_back({name, parent, std::move(angles)});
@@ -98,11 +101,11 @@ Skeleton build_skeleton(const BodyTemplate& t) {
   constexpr double kHalf = 0.012, kFar = std::numeric_limits<double>::infinity();
   const V3 up = V3::UnitY();
   s.regressor.resize(kNumBones);
-  const double hips_y = parts[0].a.y();  // ellipsoid centre
+  const double hips_y = first_part(t.mean, Region::Trunk).a.y();  // the hips ellipsoid's centre
   s.regressor[kPelvis] = averaged(ring(t, {0, hips_y, 0}, up, kHalf, kFar, on_trunk, 0));
   s.regressor[kSpineLower] = averaged(ring(t, {0, 1.06, 0}, up, kHalf, kFar, on_trunk, 0));
   s.regressor[kSpineUpper] = averaged(ring(t, {0, 1.22, 0}, up, kHalf, kFar, on_trunk, 0));
-  const Primitive& neck = parts[kNeckPart];
+  const Primitive& neck = first_part(t.mean, Region::Neck);
   s.regressor[kNeck] = averaged(ring(t, neck.a + 0.5 * (neck.b - neck.a), (neck.b - neck.a).normalized(), kHalf, 2 * neck.ra, on_neck, 0));
   // A limb's two bones: the upper one's joint extrapolated back from rings at
   // its middle and its far end (the joint itself sits where no clean ring
@@ -115,8 +118,8 @@ Skeleton build_skeleton(const BodyTemplate& t) {
     s.regressor[static_cast<std::size_t>(first_bone + 1)] = averaged(end);
   };
   for (int side : {1, -1}) {
-    limb(parts[static_cast<std::size_t>(arm_part(side, 0))], on_arm, side, side > 0 ? kLeftUpperArm : kRightUpperArm);
-    limb(parts[static_cast<std::size_t>(leg_part(side, 0))], on_leg, side, side > 0 ? kLeftThigh : kRightThigh);
+    limb(first_part(t.mean, Region::UpperArm, side), is_arm, side, side > 0 ? kLeftUpperArm : kRightUpperArm);
+    limb(first_part(t.mean, Region::Thigh, side), is_leg, side, side > 0 ? kLeftThigh : kRightThigh);
   }
 
   // Hard labels: each vertex to the bone of the part it lies on, limbs split
@@ -126,19 +129,19 @@ Skeleton build_skeleton(const BodyTemplate& t) {
   const auto nv = t.vertices.rows();
   Eigen::MatrixXd w = Eigen::MatrixXd::Zero(nv, kNumBones);
   for (Eigen::Index v = 0; v < nv; ++v) {
-    const int part = t.bind_part[static_cast<std::size_t>(v)][0];
+    const Primitive& part = t.mean.parts[static_cast<std::size_t>(t.bind_part[static_cast<std::size_t>(v)][0])];
     const V3 p = t.vertices.row(v).transpose();
     int bone = kNeck;
-    if (part <= kTrunkLast)
+    if (part.region == Region::Trunk)
       bone = p.y() < joints(kSpineLower, 1) ? kPelvis : p.y() < joints(kSpineUpper, 1) ? kSpineLower : kSpineUpper;
-    else if (part == kNeckPart)  // the neck below its joint stays with the shoulders
+    else if (part.region == Region::Neck)  // the neck below its joint stays with the shoulders
       bone = (p - joints.row(kNeck).transpose()).dot((neck.b - neck.a).normalized()) < 0 ? kSpineUpper : kNeck;
-    else if (part <= kHeadLast)
+    else if (part.region == Region::Head)
       bone = kNeck;
     else
       for (int side : {1, -1}) {
         // A limb's vertex: its upper bone above the lower joint's plane, its lower bone below.
-        const std::pair<int, bool (*)(int, int)> limbs[] = {{side > 0 ? kLeftUpperArm : kRightUpperArm, is_arm},
+        const std::pair<int, bool (*)(const Primitive&, int)> limbs[] = {{side > 0 ? kLeftUpperArm : kRightUpperArm, is_arm},
                                                             {side > 0 ? kLeftThigh : kRightThigh, is_leg}};
         for (const auto& [upper, on_limb] : limbs)
           if (on_limb(part, side)) {

@@ -26,8 +26,12 @@ void body_bounds(const ImplicitBody& body, Eigen::Vector3d& lo, Eigen::Vector3d&
 }  // namespace
 
 RawMesh surface_nets(const ImplicitBody& body, double cell, const Eigen::Vector2d& offset) {
+  // With magnifiers the grid is uniform in the warped space (sampling_warp.hpp):
+  // nodes are unwarped to evaluate the body, vertices to place them on it.
+  const Magnifiers& warped = body.magnifiers;
   Eigen::Vector3d lo, hi;
   body_bounds(body, lo, hi);
+  check_magnifiers(warped);  // each maps a ball onto itself: the bounds stay
   // Symmetric in x about 0 (nodes at +-(i + 1/2) cell), so the mesh is mirror-symmetric.
   const double half_x = std::max(std::abs(lo.x()), std::abs(hi.x())) + 2 * cell;
   const int nx = 2 * static_cast<int>(std::ceil(half_x / cell)) + 1;
@@ -43,7 +47,7 @@ RawMesh surface_nets(const ImplicitBody& body, double cell, const Eigen::Vector2
     for (int j = 0; j < ny; ++j)
       for (int i = 0; i < nx; ++i) {
         // Nodes surely more than three cells outside only need their sign.
-        const Eigen::Vector3d p = pos(i, j, k);
+        const Eigen::Vector3d p = warped.empty() ? pos(i, j, k) : unwarp(warped, pos(i, j, k));
         double bound = INFINITY;
         for (const Primitive& part : body.parts) bound = std::min(bound, part.lower_bound(p));
         value[node(i, j, k)] = bound > 3 * cell ? bound : body.eval(p);
@@ -106,7 +110,8 @@ RawMesh surface_nets(const ImplicitBody& body, double cell, const Eigen::Vector2
 
   RawMesh mesh;
   mesh.vertices.resize(static_cast<Eigen::Index>(verts.size()), 3);
-  for (std::size_t i = 0; i < verts.size(); ++i) mesh.vertices.row(static_cast<Eigen::Index>(i)) = verts[i];
+  for (std::size_t i = 0; i < verts.size(); ++i)
+    mesh.vertices.row(static_cast<Eigen::Index>(i)) = warped.empty() ? verts[i] : unwarp(warped, verts[i]);
   mesh.faces.resize(static_cast<Eigen::Index>(tris.size()), 3);
   for (std::size_t i = 0; i < tris.size(); ++i)
     for (int c = 0; c < 3; ++c) mesh.faces(static_cast<Eigen::Index>(i), c) = tris[i][static_cast<std::size_t>(c)];
