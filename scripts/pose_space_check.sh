@@ -6,6 +6,7 @@
 # two faces). docs/poses.md reports a run.
 #
 #   bash scripts/pose_space_check.sh [N] [SEED] [OUT_DIR]
+#   BODY_ARGS="--param rig=human" bash scripts/pose_space_check.sh   # another rig or model
 set -euo pipefail
 cd "$(dirname "$0")/.."
 N=${1:-200}
@@ -13,7 +14,8 @@ SEED=${2:-1}
 OUT=${3:-$(mktemp -d)}
 DRAPE=${DRAPE:-build/bin/drape}
 start=$(date +%s)
-nice "$DRAPE" body --sample "$N" --poses --bmi 10:65 --seed "$SEED" --out-dir "$OUT"
+# shellcheck disable=SC2086  # BODY_ARGS is a list of options
+nice "$DRAPE" body ${BODY_ARGS:-} --sample "$N" --poses --bmi 10:65 --seed "$SEED" --out-dir "$OUT"
 echo "sampled in $(( $(date +%s) - start )) s"
 /usr/bin/python3 - "$OUT" <<'PY'
 import glob, os, subprocess, sys

@@ -196,14 +196,24 @@ def print_table(rows):
         print(f"| {name} | " + " | ".join(f"{m[k]:.2f}" if "/H" not in k else f"{m[k]:.3f}" for k in keys) + " |")
 
 
+def body_model_args(spec):
+    """`drape body` options for a model spec: a plugin name, then its parameters after a colon
+    ("parametric:rig=human" is `--model parametric --param rig=human`)."""
+    model, _, params = spec.partition(":")
+    out = ["--model", model]
+    for p in filter(None, params.split(",")):
+        out += ["--param", p]
+    return out
+
+
 def generate(args, folder):
     for model in args.models.split(","):
         for sex in args.sex.split(","):
             for height in args.height.split(","):
                 for bmi in args.bmi.split(","):
                     name = f"{model} {'FM'[int(float(sex))]} {height} m BMI {bmi}"
-                    out = pathlib.Path(folder) / (name.replace(" ", "_") + ".obj")
-                    cmd = [args.drape, "body", "--model", model, "--sex", sex, "--height", height, "--bmi", bmi,
+                    out = pathlib.Path(folder) / (name.replace(" ", "_").replace(":", "_") + ".obj")
+                    cmd = [args.drape, "body", *body_model_args(model), "--sex", sex, "--height", height, "--bmi", bmi,
                            "--out", str(out)]
                     run = subprocess.run(cmd, capture_output=True, text=True)
                     if run.returncode != 0:
@@ -217,7 +227,8 @@ def main():
     ap.add_argument("obj", nargs="*", help="body meshes (OBJ)")
     ap.add_argument("--generate", action="store_true", help="make the bodies with drape body first")
     ap.add_argument("--drape", default="build/bin/drape", help="the drape program")
-    ap.add_argument("--models", default="parametric,makehuman", help="body models, comma-separated")
+    ap.add_argument("--models", default="parametric,makehuman",
+                    help="body models, comma-separated; parameters after a colon, e.g. parametric:rig=human")
     ap.add_argument("--sex", default="0,1", help="sexes, comma-separated")
     ap.add_argument("--height", default="1.75,1.6", help="heights in m, comma-separated")
     ap.add_argument("--bmi", default="20,30,39", help="BMIs, comma-separated")

@@ -23,7 +23,7 @@ import numpy as np
 
 sys.path.insert(0, str(pathlib.Path(__file__).resolve().parent))
 sys.path.insert(0, str(pathlib.Path(__file__).resolve().parent.parent / "reference"))
-from body_proportions import Slicer, hull_perimeter  # noqa: E402
+from body_proportions import Slicer, body_model_args, hull_perimeter  # noqa: E402
 from obj_file import read_obj  # noqa: E402
 
 COLOURS = ("#1f77b4", "#ff7f0e")
@@ -31,8 +31,8 @@ SCALE = 150.0  # pixels per metre
 
 
 def make_body(drape, model, sex, height, bmi, folder):
-    out = pathlib.Path(folder) / f"{model}_{sex}_{height}_{bmi}.obj"
-    cmd = [drape, "body", "--model", model, "--sex", sex, "--height", height, "--bmi", bmi, "--out", str(out)]
+    out = pathlib.Path(folder) / f"{model.replace(':', '_')}_{sex}_{height}_{bmi}.obj"
+    cmd = [drape, "body", *body_model_args(model), "--sex", sex, "--height", height, "--bmi", bmi, "--out", str(out)]
     run = subprocess.run(cmd, capture_output=True, text=True)
     if run.returncode != 0:
         print(f"skipped {model} sex {sex} BMI {bmi}: {run.stderr.strip().splitlines()[-1]}", file=sys.stderr)
@@ -101,7 +101,7 @@ def main():
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     ap.add_argument("--out", required=True, help="the figure (.svg)")
     ap.add_argument("--drape", default="build/bin/drape")
-    ap.add_argument("--models", default="parametric,makehuman")
+    ap.add_argument("--models", default="parametric,makehuman", help="two body models; parameters after a colon, e.g. parametric:rig=human")
     ap.add_argument("--bmi", default="20,30,39")
     ap.add_argument("--sex", default="0,1")
     ap.add_argument("--height", default="1.62,1.75", help="one height per sex, in the order of --sex")

@@ -13,6 +13,7 @@ from conftest import DRAPE, SOURCE
 RUN = [
     "--help",
     "body --bmi 38",
+    "body --param rig=human",
     "body --sample 8",
     "body --bmi 30 --pose",
     "predict --bmi 35",

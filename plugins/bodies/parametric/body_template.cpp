@@ -94,7 +94,7 @@ BodyTemplate build_template(int target_vertices, Rig rig) {
   // The first attempt caches the search's answer for each rig; a changed rig
   // still finds its own (just more slowly at load time).
   constexpr int kAttempts = 120;
-  const int known_good_attempt = rig == Rig::Human ? 20 : 19;
+  const int known_good_attempt = rig == Rig::Human ? 25 : 19;
   for (int tries = 0;; ++tries) {
     const int attempt = (known_good_attempt + tries) % kAttempts;
     const Eigen::Vector2d offset(std::fmod(0.37 * attempt, 1.0), std::fmod(0.61 * attempt, 1.0));

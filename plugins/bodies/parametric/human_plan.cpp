@@ -125,7 +125,7 @@ ImplicitBody plan_human_body(const Eigen::VectorXd& shape) {
     // arm, on its outer side only (on the armpit's side it stays inside the
     // arm, which a thin body's arm holds close to the chest).
     const V3 lateral = -side * dir.cross(V3::UnitZ());
-    add(Primitive::ellipsoid(upper.a + 0.035 * sy * dir + 0.30 * upper.ra * lateral, V3(0.075 * sy, 0.95 * upper.ra, 0.95 * upper.ra),
+    add(Primitive::ellipsoid(upper.a + 0.035 * sy * dir + 0.10 * upper.ra * lateral, V3(0.070 * sy, 0.92 * upper.ra, 0.92 * upper.ra),
                              0.04, frame_along(dir, V3::UnitZ())),
         Region::UpperArm, side);
     // Forearm muscles: thickest a third of the way down, flattened front to back.
