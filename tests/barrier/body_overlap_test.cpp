@@ -11,6 +11,7 @@
 #include <catch2/catch.hpp>
 
 #include "../../framework/src/scene/body_overlap.hpp"
+#include <drape/scene/body_overlap.hpp>
 #include "test_support.hpp"
 
 using namespace drape;
@@ -80,4 +81,32 @@ TEST_CASE("a body that crosses itself only far below the shirt passes the check"
   REQUIRE_FALSE(geometry::self_intersections(body, sim.body_model().faces(), 1).empty());
   const geometry::BodySurface dressed_on(mean, sim.body_model().faces());
   CHECK(scene_detail::body_overlap_near_garment(dressed_on, body, sim.garment().mesh.vertices, 0.05).empty());
+}
+
+TEST_CASE("crossings in two places are named each, not by a centre between them", "[barrier][bodies]") {
+  // A patch of the top of each foot pushed down through its sole: two places
+  // a foot apart. Their common centre is on the midline, where the body is not.
+  const auto model = test::parametric_body();
+  const Eigen::MatrixX3d mean = model->vertices(model->mean_shape());
+  const Eigen::RowVector3d lo = mean.colwise().minCoeff(), hi = mean.colwise().maxCoeff();
+  const double height = hi.y() - lo.y();
+  int left = 0, right = 0;
+  const Eigen::RowVector3d down(0, -0.06, 0);
+  Eigen::MatrixX3d body = moved(mean, Eigen::RowVector3d(0.0, lo.y() + 0.03 * height, 0.04),
+                                Eigen::RowVector3d(hi.x(), lo.y() + 0.045 * height, hi.z()), down, &left);
+  body = moved(body, Eigen::RowVector3d(lo.x(), lo.y() + 0.03 * height, 0.04), Eigen::RowVector3d(0.0, lo.y() + 0.045 * height, hi.z()),
+               down, &right);
+  REQUIRE(left >= 3);
+  REQUIRE(right >= 3);
+  const std::string where = describe_self_intersections(body, model->faces());
+  INFO(where);
+  REQUIRE_FALSE(where.empty());
+  CHECK_THAT(where, Catch::Contains(" more around ("));
+  // The first place's centre is on one foot, about 0.1 m off the midline, the other on the other.
+  const std::size_t open = where.find("around (");
+  const double first_x = std::stod(where.substr(open + 8));
+  const std::size_t more = where.find("more around (");
+  const double second_x = std::stod(where.substr(more + 13));
+  CHECK(std::abs(first_x) > 0.05);
+  CHECK(first_x * second_x < 0);
 }
