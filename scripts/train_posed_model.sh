@@ -17,7 +17,7 @@
 # datasets/posespace-heldout/heldout-30.h5), THREADS (default 1), EPOCHS
 # (the cosine schedule, default 100), LR (default 1e-3), PATIENCE (default 30).
 # The shipped model is this script's model.h5 with
-# DATA='datasets/posespace2000/shard-{0[0-9],10}-of-40.h5' (shards 0-10), copied.
+# DATA='datasets/posespace2000/shard-{0[0-9],1[0-6]}-of-40.h5' (shards 0-16), copied.
 set -euo pipefail
 cd "$(dirname "${BASH_SOURCE[0]}")/.."
 DRAPE=${BUILD_DIR:-build}/bin/drape
