@@ -1,6 +1,7 @@
 // grade_garment (garment_grading.hpp).
 #include <drape/errors.hpp>
 #include <drape/garment_grading.hpp>
+#include <drape/geometry/closest_point.hpp>
 
 #include <Eigen/Dense>
 
@@ -93,6 +94,47 @@ void grade_garment(Garment& garment, double grade) {
   const Eigen::RowVector3d top(x.col(0).mean(), x.col(1).maxCoeff(), x.col(2).mean());
   x = (x.rowwise() - top) * Eigen::Vector3d(grade, length, grade).asDiagonal();
   x.rowwise() += top;
+}
+
+void place_graded_garment(Garment& garment, const Eigen::MatrixX3d& ungraded, const Eigen::MatrixX3d& mean_body,
+                          const Eigen::MatrixX3d& fit_body, const Eigen::MatrixX3i& body_faces, double grade) {
+  if (ungraded.rows() != garment.mesh.vertices.rows() || mean_body.rows() != fit_body.rows())
+    throw Error("place_graded_garment: the garment or the bodies do not match in size");
+  if (ungraded.rows() == 0) return;
+  const geometry::BodySurface mean(mean_body, body_faces);
+  const std::vector<geometry::SurfacePoint> on_mean = mean.locate_all(ungraded);
+  const double length = grade_length(grade), top = ungraded.col(1).maxCoeff();
+  Eigen::MatrixX3d moved(ungraded.rows(), 3);
+  for (Eigen::Index v = 0; v < ungraded.rows(); ++v) {
+    const geometry::SurfacePoint& s = on_mean[static_cast<std::size_t>(v)];
+    Eigen::Vector3d carried = Eigen::Vector3d::Zero();
+    for (int k = 0; k < 3; ++k) carried += s.barycentric[k] * fit_body.row(body_faces(s.face, k)).transpose();
+    Eigen::Vector3d p = carried + grade * (ungraded.row(v).transpose() - s.point);
+    p.y() += (length - 1.0) * (ungraded(v, 1) - top);  // the length grade, as grade_garment's
+    moved.row(v) = p.transpose() - ungraded.row(v);
+  }
+  // Neighbours nearest different parts of the body (an armpit's cloth, between
+  // arm and torso) move apart: the displacements are smoothed over the
+  // garment, so that the cloth there does not fold through itself. Dressing
+  // then pushes out whatever the smoothing left inside.
+  std::vector<std::vector<int>> neighbours(static_cast<std::size_t>(ungraded.rows()));
+  const Eigen::MatrixX3i& f = garment.mesh.faces;
+  for (Eigen::Index t = 0; t < f.rows(); ++t)
+    for (int k = 0; k < 3; ++k) neighbours[static_cast<std::size_t>(f(t, k))].push_back(f(t, (k + 1) % 3)),
+                                neighbours[static_cast<std::size_t>(f(t, (k + 1) % 3))].push_back(f(t, k));
+  constexpr int kSmoothing = 10;
+  for (int it = 0; it < kSmoothing; ++it) {
+    Eigen::MatrixX3d next = moved;
+    for (Eigen::Index v = 0; v < moved.rows(); ++v) {
+      const auto& nb = neighbours[static_cast<std::size_t>(v)];
+      if (nb.empty()) continue;
+      Eigen::RowVector3d mean = Eigen::RowVector3d::Zero();
+      for (int w : nb) mean += moved.row(w);
+      next.row(v) = 0.5 * moved.row(v) + 0.5 * mean / static_cast<double>(nb.size());
+    }
+    moved.swap(next);
+  }
+  garment.mesh.vertices = ungraded + moved;
 }
 
 }  // namespace drape

@@ -29,4 +29,19 @@ inline double grade_length(double g) { return 1.0 + kLengthPerGirth * (g - 1.0);
 // Grades `garment` in place by `grade` (ConfigError outside [kMinGrade, kMaxGrade]).
 void grade_garment(Garment& garment, double grade);
 
+// Places a garment graded by `grade` on the body it is cut for by that body's
+// own growth, instead of the uniform scale about its top: each vertex of the
+// ungraded garment (`ungraded`, around `mean_body`) keeps the point of the
+// mean body nearest it (face and barycentric coordinates), follows that point
+// to `fit_body` (the same topology) and keeps its offset from it scaled by the
+// grade, its height below the garment's top by grade_length (the moves then
+// smoothed over the garment, so that cloth between two parts of the body, an
+// armpit's, does not fold through itself). A uniform scale
+// leaves a larger size crossing a fit body that grew unevenly: MakeHuman's
+// shirt graded to 1.35 started through its fit body's chest (docs/garments.md,
+// "A user's MakeHuman top over BMI 15-32"). The material space is
+// grade_garment's, untouched.
+void place_graded_garment(Garment& garment, const Eigen::MatrixX3d& ungraded, const Eigen::MatrixX3d& mean_body,
+                          const Eigen::MatrixX3d& fit_body, const Eigen::MatrixX3i& body_faces, double grade);
+
 }  // namespace drape

@@ -83,10 +83,14 @@ FitBody fit_body(const BodyModel& model, double fit_grade) {
 
 FitBody dress_on_fit_body(const BodyModel& model, Garment& garment, const std::string& what) {
   FitBody body = fit_body(model, garment.fit_grade);
+  dress_on(body, model, garment, what);
+  return body;
+}
+
+DressReport dress_on(const FitBody& body, const BodyModel& model, Garment& garment, const std::string& what) {
   const Mesh mesh{body.vertices, model.faces(), {}, {}};
   check_garment_around_body(garment.mesh, mesh, what);
-  dress(garment, mesh);
-  return body;
+  return dress(garment, mesh);
 }
 
 }  // namespace drape

@@ -143,6 +143,7 @@ Simulation::Simulation(const Registry& registry, Scene scene) : registry_(regist
       registry_.create_garment(scene_.garment, Params(gd.params, scene_.garment_params, "garment '" + scene_.garment + "'"))
           ->build();
   design_loop_ = garment_girth(garment.mesh.vertices, garment.mesh.faces, mean_body_);
+  const Eigen::MatrixX3d ungraded = garment.mesh.vertices;
   grade_garment(garment, scene_.garment_grade);  // before dressing: the graded garment is what goes around the body
   placed_loop_ = scene_.garment_grade == 1.0 ? design_loop_ : garment_girth(garment.mesh.vertices, garment.mesh.faces, mean_body_);
   std::string what = "garment '" + scene_.garment + "'";
@@ -150,7 +151,34 @@ Simulation::Simulation(const Registry& registry, Scene scene) : registry_(regist
     what += " (" + file->second.node.as<std::string>() + ")";
   // Dressed on the body it is cut for: the mean body, or a larger size's fit
   // body (fit_body.hpp), where every run's morph then starts.
-  FitBody fit = dress_on_fit_body(*body_model_, garment, what + " of " + scene_.file);
+  // A graded garment that the uniform scale leaves through its fit body (a
+  // body that grew unevenly: MakeHuman's shirt at grade 1.35 through its fit
+  // body's chest), so that no start body shrunk by up to 6 cm is clear of it
+  // (separated_start_body), is placed on it by the body's growth from the
+  // mean body instead (place_graded_garment). Where the scale can start it is
+  // kept: it is what every graded drape so far started from. One graded
+  // smaller than the thinnest body the model reaches (its fit body clamped at
+  // a larger girth) keeps the scale either way, so that its start is refused
+  // with the grade that fits (start_fit_hint) instead of beginning stretched
+  // around a body it cannot go around.
+  FitBody fit = drape::fit_body(*body_model_, garment.fit_grade);
+  const std::string dressed_what = what + " of " + scene_.file;
+  const bool below_every_body = fit.clamped && fit.girth_ratio > garment.fit_grade;
+  const Garment undressed = garment;
+  dress_on(fit, *body_model_, garment, dressed_what);
+  if (scene_.garment_grade != 1.0 && !below_every_body) {
+    bool scaled_starts = true;
+    try {
+      scene_detail::separated_start_body(garment.mesh.vertices, fit.vertices, body_model_->faces(), garment.mesh.faces);
+    } catch (const ConfigError&) {
+      scaled_starts = false;
+    }
+    if (!scaled_starts) {
+      garment = undressed;
+      place_graded_garment(garment, ungraded, mean_body_, fit.vertices, body_model_->faces(), scene_.garment_grade);
+      dress_on(fit, *body_model_, garment, dressed_what);
+    }
+  }
   fit_body_ = std::move(fit.vertices);
   fit_request_ = fit.request;
   scene_detail::apply_scene_materials(garment, scene_);
