@@ -2,7 +2,10 @@
 // and length scaled by g about the centre of its top, its material space with
 // it; and the fit note that names the grade a body needs.
 #include <drape/errors.hpp>
+#include <drape/bodies/fit_body.hpp>
 #include <drape/garment_grading.hpp>
+#include <drape/garment_dressing.hpp>
+#include <drape/geometry/closest_point.hpp>
 #include <drape/geometry/girth.hpp>
 #include <drape/registry.hpp>
 #include <drape/scene/garment_size.hpp>
@@ -15,6 +18,7 @@
 
 #include <cmath>
 
+#include "../../framework/src/scene/separated_start.hpp"
 #include "test_support.hpp"
 
 using namespace drape;
@@ -232,4 +236,43 @@ TEST_CASE("simulate's length note names the grade that gives a tall or short bod
   CHECK(grade(tall) == Approx(2.0 / mean_height).margin(0.03));
   CHECK(grade(short_one) == Approx(1.5 / mean_height).margin(0.03));
   CHECK(length_note(mean_height).empty());
+}
+
+TEST_CASE("place_graded_garment carries a garment with its body's growth, outside the fit body", "[garments][grade]") {
+  // The regular coarse shirt, dressed on the mean body, carried to the body of
+  // 1.3 times its girth: every vertex keeps its place on the body and its
+  // offset grows with the grade, so the shirt stays around the larger body.
+  const Simulation plain(test::plugins(), parse_scene(kCoarse, "plain.yaml"));
+  const BodyModel& model = plain.body_model();
+  const FitBody fit = fit_body(model, 1.3);
+  REQUIRE_FALSE(fit.clamped);
+  Garment garment = plain.garment();
+  const Eigen::MatrixX3d ungraded = garment.mesh.vertices;
+  place_graded_garment(garment, ungraded, plain.mean_body(), fit.vertices, model.faces(), 1.3);
+  const Eigen::VectorXd before = geometry::BodySurface(plain.mean_body(), model.faces()).signed_distances(ungraded);
+  const Eigen::VectorXd placed = geometry::BodySurface(fit.vertices, model.faces()).signed_distances(garment.mesh.vertices);
+  // About 1.3 times as far from the fit body on average as from the mean
+  // body, most of it outside (the smoothing pulls some vertices of the sleeves,
+  // bound to arm and torso, in: 52 of 991), and wholly outside once dressed
+  // on it, as Simulation does, with no surface through the other.
+  INFO("mean distance " << before.mean() << " m on the mean body, " << placed.mean() << " m on the fit body; inside "
+                        << (placed.array() < 0).count());
+  CHECK(placed.mean() / before.mean() == Approx(1.3).epsilon(0.25));
+  CHECK((placed.array() < 0).count() <= placed.size() / 10);
+  dress(garment, Mesh{fit.vertices, model.faces(), {}, {}});
+  const Eigen::VectorXd after = geometry::BodySurface(fit.vertices, model.faces()).signed_distances(garment.mesh.vertices);
+  CHECK((after.array() < 0).count() == 0);
+  // A start the barrier accepts: clear of the fit body, or of it shrunk by a
+  // few centimetres (the coarse shirt's armholes cross the arms as designed:
+  // 14 body edges through its faces on the mean body, 17 here).
+  double shrink = -1;
+  CHECK_NOTHROW(scene_detail::separated_start_body(garment.mesh.vertices, fit.vertices, model.faces(), garment.mesh.faces, &shrink));
+  CHECK(shrink <= 0.03);
+  // Around it: its girth at the body's widest grows with the body's.
+  CHECK(garment_girth(garment.mesh.vertices, garment.mesh.faces, fit.vertices) /
+            garment_girth(ungraded, garment.mesh.faces, plain.mean_body()) ==
+        Approx(1.3).epsilon(0.05));
+  // Vertices and bodies that do not match are refused.
+  Garment other = plain.garment();
+  CHECK_THROWS(place_graded_garment(other, ungraded.topRows(10), plain.mean_body(), fit.vertices, model.faces(), 1.3));
 }
