@@ -251,13 +251,14 @@ TEST_CASE("place_graded_garment carries a garment with its body's growth, outsid
   place_graded_garment(garment, ungraded, plain.mean_body(), fit.vertices, model.faces(), 1.3);
   const Eigen::VectorXd before = geometry::BodySurface(plain.mean_body(), model.faces()).signed_distances(ungraded);
   const Eigen::VectorXd placed = geometry::BodySurface(fit.vertices, model.faces()).signed_distances(garment.mesh.vertices);
-  // About 1.3 times as far from the fit body on average as from the mean
-  // body, most of it outside (the smoothing pulls some vertices of the sleeves,
-  // bound to arm and torso, in: 52 of 991), and wholly outside once dressed
-  // on it, as Simulation does, with no surface through the other.
+  // Further from the fit body on average than from the mean body (1.11
+  // times: the offsets grow by 1.3, and the smoothing pulls some vertices of
+  // the sleeves, bound to arm and torso, in: 52 of 991 inside), and wholly
+  // outside once dressed on it, as Simulation does.
   INFO("mean distance " << before.mean() << " m on the mean body, " << placed.mean() << " m on the fit body; inside "
                         << (placed.array() < 0).count());
-  CHECK(placed.mean() / before.mean() == Approx(1.3).epsilon(0.25));
+  CHECK(placed.mean() / before.mean() > 1.05);
+  CHECK(placed.mean() / before.mean() < 1.5);
   CHECK((placed.array() < 0).count() <= placed.size() / 10);
   dress(garment, Mesh{fit.vertices, model.faces(), {}, {}});
   const Eigen::VectorXd after = geometry::BodySurface(fit.vertices, model.faces()).signed_distances(garment.mesh.vertices);
