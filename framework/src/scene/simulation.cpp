@@ -143,7 +143,8 @@ Simulation::Simulation(const Registry& registry, Scene scene) : registry_(regist
       registry_.create_garment(scene_.garment, Params(gd.params, scene_.garment_params, "garment '" + scene_.garment + "'"))
           ->build();
   design_loop_ = garment_girth(garment.mesh.vertices, garment.mesh.faces, mean_body_);
-  const Eigen::MatrixX3d ungraded = garment.mesh.vertices;
+  const bool graded = scene_.garment_grade != 1.0;
+  const Eigen::MatrixX3d ungraded = graded ? garment.mesh.vertices : Eigen::MatrixX3d();  // for place_graded_garment
   grade_garment(garment, scene_.garment_grade);  // before dressing: the graded garment is what goes around the body
   placed_loop_ = scene_.garment_grade == 1.0 ? design_loop_ : garment_girth(garment.mesh.vertices, garment.mesh.faces, mean_body_);
   std::string what = "garment '" + scene_.garment + "'";
@@ -164,9 +165,10 @@ Simulation::Simulation(const Registry& registry, Scene scene) : registry_(regist
   FitBody fit = drape::fit_body(*body_model_, garment.fit_grade);
   const std::string dressed_what = what + " of " + scene_.file;
   const bool below_every_body = fit.clamped && fit.girth_ratio > garment.fit_grade;
-  const Garment undressed = garment;
+  const bool may_grow = graded && !below_every_body;
+  const Garment undressed = may_grow ? garment : Garment{};
   dress_on(fit, *body_model_, garment, dressed_what);
-  if (scene_.garment_grade != 1.0 && !below_every_body) {
+  if (may_grow) {
     bool scaled_starts = true;
     try {
       scene_detail::separated_start_body(garment.mesh.vertices, fit.vertices, body_model_->faces(), garment.mesh.faces);
