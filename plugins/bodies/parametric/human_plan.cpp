@@ -64,7 +64,7 @@ ImplicitBody plan_human_body(const Eigen::VectorXd& shape) {
       Region::Trunk);
 
   // Proportions measured against MakeHuman bodies of the same sex, height and
-  // BMI (scripts/body_girths.py, docs/bodies.md "The human rig"): the
+  // BMI (scripts/figures/body_proportions.py, docs/bodies.md "The human rig"): the
   // mannequin's hips are 5-14 % wider around, its calves 5-10 % and its heavy
   // ankles and necks 10-25 % narrower. The hips give some of their volume back
   // (the BMI solve puts it elsewhere); calves, ankles and neck grow more, the
