@@ -22,6 +22,21 @@ namespace {
 // than the nearest one get e^-1 of its weight.
 constexpr double kBindWidth = 0.012;
 
+// Where a rejected sampling joined sheets: each edge used by more than two
+// faces, for whoever reshapes a rig (DRAPE_BODY_DEBUG=1).
+void print_shared_edges(const RawMesh& raw, int attempt) {
+  std::map<std::pair<int, int>, int> uses;
+  for (Eigen::Index f = 0; f < raw.faces.rows(); ++f)
+    for (int c = 0; c < 3; ++c) {
+      const int u = raw.faces(f, c), w = raw.faces(f, (c + 1) % 3);
+      ++uses[{std::min(u, w), std::max(u, w)}];
+    }
+  for (const auto& [edge, count] : uses)
+    if (count > 2)
+      std::fprintf(stderr, "attempt %d: edge at (%.3f, %.3f, %.3f) m in %d faces\n", attempt, raw.vertices(edge.first, 0),
+                   raw.vertices(edge.first, 1), raw.vertices(edge.first, 2), count);
+}
+
 void bind_to_parts(BodyTemplate& t) {
   const auto nv = static_cast<std::size_t>(t.vertices.rows());
   t.bind_part.assign(nv, {});
@@ -104,16 +119,7 @@ BodyTemplate build_template(int target_vertices, Rig rig) {
       if (std::getenv("DRAPE_BODY_DEBUG")) std::fprintf(stderr, "template: attempt %d, cell %g\n", attempt, cell);
       break;
     }
-    if (std::getenv("DRAPE_BODY_DEBUG")) {
-      std::map<std::pair<int, int>, int> uses;
-      for (Eigen::Index f = 0; f < raw.faces.rows(); ++f)
-        for (int c = 0; c < 3; ++c) {
-          const int u = raw.faces(f, c), w = raw.faces(f, (c + 1) % 3);
-          ++uses[{std::min(u, w), std::max(u, w)}];
-        }
-      for (const auto& [e, n] : uses)
-        if (n > 2) std::fprintf(stderr, "attempt %d: edge at %.3f %.3f %.3f used %d times\n", attempt, raw.vertices(e.first, 0), raw.vertices(e.first, 1), raw.vertices(e.first, 2), n);
-    }
+    if (std::getenv("DRAPE_BODY_DEBUG")) print_shared_edges(raw, attempt);
     if (tries + 1 == kAttempts) throw Error("body parametric: cannot mesh the mean body into a closed manifold: " + topo.str());
   }
 
