@@ -43,13 +43,18 @@ Eigen::MatrixX3d pose_vertices(const BodyModel& model, const std::string& model_
 
 // A pose for the body of `shape` drawn from the model's pose space
 // (draw_pose over pose_angles()), by rejection: a pose in which the body
-// passes through itself (describe_pose_crossings) is drawn again, at most
-// `max_draws` times in all, then Error. What drape body --sample --poses (and
+// passes through itself (describe_pose_crossings) is drawn again. After
+// `max_draws` rejections (a body no pose of the space leaves clear: a short
+// woman near BMI 60, whose arms meet her trunk wherever the space puts them),
+// each draw is pulled towards the body's own rest pose, halfway further every
+// max_draws / 5 rejections, down to the rest pose itself; Error only when the
+// body passes through itself at rest. What drape body --sample --poses (and
 // any generator of posed bodies) draws; docs/poses.md gives the rate.
 struct DrawnPose {
   Pose pose;
   Eigen::MatrixX3d vertices;  // the posed body
   int redraws = 0;            // poses drawn and rejected before this one
+  double pull = 1.0;          // 1: drawn from the space; less: its offset from the rest pose scaled so
 };
 // `space`, when given, replaces the model's pose_angles() (the same angles
 // with other sampling ranges: with_sampling_ranges).
