@@ -1,6 +1,7 @@
 // grade_garment (garment_grading.hpp).
 #include <drape/errors.hpp>
 #include <drape/garment_grading.hpp>
+#include <drape/geometry/adjacency.hpp>
 #include <drape/geometry/closest_point.hpp>
 
 #include <Eigen/Dense>
@@ -117,11 +118,7 @@ void place_graded_garment(Garment& garment, const Eigen::MatrixX3d& ungraded, co
   // arm and torso) move apart: the displacements are smoothed over the
   // garment, so that the cloth there does not fold through itself. Dressing
   // then pushes out whatever the smoothing left inside.
-  std::vector<std::vector<int>> neighbours(static_cast<std::size_t>(ungraded.rows()));
-  const Eigen::MatrixX3i& f = garment.mesh.faces;
-  for (Eigen::Index t = 0; t < f.rows(); ++t)
-    for (int k = 0; k < 3; ++k) neighbours[static_cast<std::size_t>(f(t, k))].push_back(f(t, (k + 1) % 3)),
-                                neighbours[static_cast<std::size_t>(f(t, (k + 1) % 3))].push_back(f(t, k));
+  const auto neighbours = geometry::vertex_neighbours(garment.mesh.faces, static_cast<int>(ungraded.rows()));
   constexpr int kSmoothing = 10;
   for (int it = 0; it < kSmoothing; ++it) {
     Eigen::MatrixX3d next = moved;
