@@ -158,12 +158,13 @@ DrawnPose draw_free_pose(const BodyModel& model, const Eigen::VectorXd& shape, R
     out.vertices = model.posed(shape, out.pose);
     if (describe_pose_crossings(model, shape, out.pose, out.vertices).empty()) return out;
   }
-  // Pulled towards the rest pose, which the body (checked at rest when drawn)
-  // keeps clear: a first draw's body is unchanged, and the loop ends.
+  // Pulled towards the rest pose, halfway further every per_pull draws, then
+  // the rest pose itself (pull 0), which the body, checked at rest when drawn,
+  // keeps clear.
   const Pose rest = model.rest_pose(shape);
   const int per_pull = std::max(1, max_draws / 5);
-  for (double pull = 0.5; pull > 1e-3; pull *= 0.5)
-    for (int k = 0; k < per_pull; ++k, ++out.redraws) {
+  for (double pull = 0.5;; pull = pull > 1e-3 ? 0.5 * pull : 0.0) {
+    for (int k = 0; k < (pull > 0 ? per_pull : 1); ++k, ++out.redraws) {
       const Pose drawn = draw_pose(angles, rng);
       out.pose = Pose{};
       for (const PoseAngle& a : angles) {
@@ -174,11 +175,8 @@ DrawnPose draw_free_pose(const BodyModel& model, const Eigen::VectorXd& shape, R
       out.vertices = model.posed(shape, out.pose);
       if (describe_pose_crossings(model, shape, out.pose, out.vertices).empty()) return out;
     }
-  out.pose = Pose{};
-  for (const PoseAngle& a : angles) out.pose.angles[a.name] = rest.get(a.name, 0.0);
-  out.pull = 0.0;
-  out.vertices = model.posed(shape, out.pose);
-  if (describe_pose_crossings(model, shape, out.pose, out.vertices).empty()) return out;
+    if (pull == 0) break;
+  }
   throw Error("the body passes through itself in its rest pose (and in " + std::to_string(out.redraws) +
               " poses drawn and pulled towards it)");
 }
