@@ -62,9 +62,14 @@ void bind_to_parts(BodyTemplate& t) {
 
 void relax_on_surface(const ImplicitBody& body, const std::vector<std::vector<int>>& neighbours,
                       Eigen::MatrixX3d& vertices, int iterations, double step) {
-  Eigen::MatrixX3d next(vertices.rows(), 3);
+  Eigen::MatrixX3d next(vertices.rows(), 3), warped;
   Eigen::Vector3d g;
   for (int it = 0; it < iterations; ++it) {
+    // Each vertex warped once per iteration, not once per neighbour.
+    if (!body.magnifiers.empty()) {
+      warped.resize(vertices.rows(), 3);
+      for (Eigen::Index v = 0; v < vertices.rows(); ++v) warped.row(v) = warp(body.magnifiers, vertices.row(v).transpose()).transpose();
+    }
     for (Eigen::Index v = 0; v < vertices.rows(); ++v) {
       const auto& nb = neighbours[static_cast<std::size_t>(v)];
       Eigen::Vector3d mean = Eigen::Vector3d::Zero();
@@ -78,9 +83,9 @@ void relax_on_surface(const ImplicitBody& body, const std::vector<std::vector<in
         // The neighbours' mean in the warped space, where the mesh is uniform:
         // relaxing keeps the finer triangles where the template put them.
         Eigen::Vector3d warped_mean = Eigen::Vector3d::Zero();
-        for (int u : nb) warped_mean += warp(body.magnifiers, vertices.row(u).transpose());
+        for (int u : nb) warped_mean += warped.row(u).transpose();
         warped_mean /= static_cast<double>(nb.size());
-        const Eigen::Vector3d wp = warp(body.magnifiers, p);
+        const Eigen::Vector3d wp = warped.row(v).transpose();
         d = (unwarp(body.magnifiers, wp + step * (warped_mean - wp)) - p) / step;
       }
       d -= d.dot(n) * n;
