@@ -13,7 +13,6 @@
 // into it (docs/garments.md, "Sizes").
 #include <drape/bodies/body.hpp>
 #include <drape/energy.hpp>
-#include <drape/garment_dressing.hpp>
 
 #include <Eigen/Core>
 
@@ -40,7 +39,6 @@ FitBody fit_body(const BodyModel& model, double fit_grade);
 FitBody dress_on_fit_body(const BodyModel& model, Garment& garment, const std::string& what);
 // The same on a fit body already found (fit_body), for a caller that places
 // the garment on it first (place_graded_garment, drape/garment_grading.hpp).
-// Returns dress()'s report.
-DressReport dress_on(const FitBody& body, const BodyModel& model, Garment& garment, const std::string& what);
+void dress_on(const FitBody& body, const BodyModel& model, Garment& garment, const std::string& what);
 
 }  // namespace drape
