@@ -131,5 +131,8 @@ TEST_CASE("human rig: the mannequin rig is the default and is unchanged by it", 
   const Eigen::VectorXd shape = plain->solve({33, 1.68, 0.3, {}});
   CHECK((plain->vertices(shape) - mannequin->vertices(shape)).cwiseAbs().maxCoeff() == 0.0);
   CHECK(human().num_vertices() != plain->num_vertices());
+  // The human rig is as deterministic: the same shape, the same bits.
+  const Eigen::VectorXd heavy = human().solve({48, 1.62, 0, {}});
+  CHECK((human().vertices(heavy) - human().vertices(heavy)).cwiseAbs().maxCoeff() == 0.0);
   CHECK_THROWS_WITH(parametric_with("{rig: humann}"), Catch::Contains("human"));
 }
