@@ -2,14 +2,16 @@
 # Where a clean clone's CI time goes (issue 57, item 7). Clones this checkout's
 # HEAD into a fresh folder and runs there what .ci/run runs -- scripts/setup.sh
 # (apt-get, configure, build, the main job) and the README's test command --
-# without a compiler cache, then prints each phase's wall time and CPU time
+# without a compiler cache (--warm: with this machine's ccache as it is), then prints each phase's wall time and CPU time
 # (user + system of everything it ran). On a shared machine the wall times
 # grow with the other jobs' load; the CPU times do not, nearly: compare those.
 #
-#   bash scripts/ci_timing.sh [--apt] [--keep] [--costs]
+#   bash scripts/ci_timing.sh [--apt] [--keep] [--costs] [--warm]
 #     --apt    run apt-get as setup.sh does (needs root or sudo); default SKIP_APT=1
 #     --keep   keep the clone (default: removed at the end)
 #     --costs  also print every test of 1.5 s or more in tests/test_costs.tsv's format
+#     --warm   compile through ccache with its cache as it is (CI's second run on a machine);
+#              run it twice on one commit for the warm figure (the first fills the cache)
 # Environment: CI_TIMING_DIR (the clone; default a new folder beside this one), JOBS
 # (setup.sh's build jobs, default nproc), TU_TIME_LOG (a file: every compile
 # and link's CPU time, through scripts/tu_time.sh as the compiler launcher).
@@ -17,13 +19,14 @@ set -euo pipefail
 cd "$(dirname "${BASH_SOURCE[0]}")/.."
 SRC=$PWD
 
-APT=0 KEEP=0 COSTS=0
+APT=0 KEEP=0 COSTS=0 WARM=0
 for a in "$@"; do
   case $a in
     --apt) APT=1 ;;
     --keep) KEEP=1 ;;
     --costs) COSTS=1 ;;
-    -h|--help) sed -n '2,17p' "$0"; exit 0 ;;
+    --warm) WARM=1 ;;
+    -h|--help) sed -n '2,19p' "$0"; exit 0 ;;
     *) echo "ci_timing.sh: unknown argument '$a' (see --help)" >&2; exit 2 ;;
   esac
 done
@@ -37,7 +40,7 @@ echo "ci_timing: cloning into $DIR (log: $LOG)"
 rm -rf "$DIR"
 git clone -q --no-hardlinks "$SRC" "$DIR"
 
-export CCACHE_DISABLE=1  # a clean machine has no compiler cache (setup.sh uses none anyway)
+[[ $WARM == 1 ]] || export CCACHE_DISABLE=1  # a fresh machine's compiler cache is empty: compile everything
 launcher=()
 if [[ -n ${TU_TIME_LOG:-} ]]; then
   export TU_TIME_ROOT=$DIR

@@ -24,6 +24,7 @@ fail() { printf 'setup.sh: error: %s\n' "$*" >&2; exit 1; }
 
 PACKAGES=(
   build-essential cmake pkg-config
+  ccache  # a rebuild of what this machine compiled before takes seconds (cmake/DrapeCompilerCache.cmake)
   libeigen3-dev libspectra-dev libyaml-cpp-dev libhdf5-dev zlib1g-dev libassimp-dev
   libboost-dev libboost-program-options-dev libboost-filesystem-dev
   catch2 libnanoflann-dev libopenblas-dev libsuitesparse-dev
@@ -55,6 +56,8 @@ build() {
   # instantiate their shared Eigen/yaml-cpp/HDF5 code once per batch instead of
   # once per file (a clean build's CPU time about a third less, docs/ci.md). An edit then
   # recompiles its batch; -DCMAKE_UNITY_BUILD=OFF on the folder for file by file.
+  # With ccache installed every compile goes through it (CMakeLists.txt), so a
+  # second clone, a deleted build folder or CI's next run reuses the objects.
   cmake -S . -B "$BUILD_DIR" -DCMAKE_BUILD_TYPE=Release -DCMAKE_UNITY_BUILD=ON
   step "Building with $JOBS jobs"
   cmake --build "$BUILD_DIR" -j "$JOBS"
