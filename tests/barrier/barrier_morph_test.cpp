@@ -86,7 +86,7 @@ Waist mean_waist(const Simulation& sim) {
 
 std::unique_ptr<Registry> registry_with_band(double radius, double z0) {
   auto r = std::make_unique<Registry>();
-  r->load_path({DRAPE_BUILD_PLUGIN_DIR});
+  r->load_path({test::plugin_dir().string()});
   PluginDescriptor d;
   d.kind = "garment";
   d.name = "test_band";

@@ -210,7 +210,7 @@ TEST_CASE("backward asks a node only for the input gradients that reach a weight
     }
   };
   Registry reg;
-  reg.load_path({DRAPE_BUILD_PLUGIN_DIR});
+  reg.load_path({test::plugin_dir().string()});
   reg.add(test::affine_descriptor());
   PluginDescriptor d;
   d.kind = "op";

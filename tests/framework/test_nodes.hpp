@@ -54,7 +54,7 @@ inline PluginDescriptor affine_descriptor() {
 inline const Registry& registry_with_test_nodes() {
   static Registry* r = [] {
     auto* reg = new Registry;
-    reg->load_path({DRAPE_BUILD_PLUGIN_DIR});
+    reg->load_path({test::plugin_dir().string()});
     reg->add(affine_descriptor());
     return reg;
   }();

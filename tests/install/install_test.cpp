@@ -63,7 +63,7 @@ TEST_CASE("an installed drape builds, lists and loads an out-of-tree energy plug
 
   // 1. Install.
   INFO("cmake --install");
-  const int installed = test::run(cmake + " --install " + quote(DRAPE_BINARY_DIR) + " --prefix " + quote(prefix), out);
+  const int installed = test::run(cmake + " --install " + quote(test::binary_dir().string()) + " --prefix " + quote(prefix), out);
   INFO(out);
   REQUIRE(installed == 0);
   const fs::path libdir = prefix / DRAPE_INSTALL_LIBDIR;
@@ -95,7 +95,7 @@ TEST_CASE("an installed drape builds, lists and loads an out-of-tree energy plug
                       Catch::Contains("param pressure") && Catch::Contains("param direction"));
   CHECK_THAT(out, Catch::Contains("loss l2\n") &&
                       Catch::Contains("file: " + fs::canonical(libdir / "drape" / "plugins" / "libdrape_plugin_l2.so").string()));
-  CHECK(out.find(DRAPE_BUILD_PLUGIN_DIR) == std::string::npos);
+  CHECK(out.find(test::plugin_dir().string()) == std::string::npos);
   REQUIRE(test::run(drape + " plugins --kind energy --brief --plugin-path " + quote(example_build), out) == 0);
   out = "\n" + out;  // other energies (gravity) may sort before wind
   CHECK_THAT(out, Catch::Contains("\nenergy wind - "));

@@ -14,7 +14,7 @@ namespace drape::test {
 const Registry& plugins() {
   static Registry* r = [] {
     auto* reg = new Registry;  // kept for the whole run: plugin code must stay loaded
-    reg->load_path({DRAPE_BUILD_PLUGIN_DIR});
+    reg->load_path({plugin_dir().string()});
     return reg;
   }();
   return *r;
@@ -50,11 +50,10 @@ TempDir::~TempDir() {
 }
 
 fs::path shared_assets() {
-  const fs::path p = DRAPE_SHARED_ASSETS_DIR;
+  const fs::path p = shared_assets_candidate();
   return fs::is_directory(p) ? fs::canonical(p) : fs::path();
 }
-fs::path source_dir() { return DRAPE_SOURCE_DIR; }
-fs::path drape_program() { return fs::path(DRAPE_BINARY_DIR) / "bin" / "drape"; }
+fs::path drape_program() { return binary_dir() / "bin" / "drape"; }
 
 std::string message_of(const std::function<void()>& fn) {
   try {

@@ -34,7 +34,12 @@ class TempDir {
 
 // ../shared/assets next to the source tree, or empty when absent.
 std::filesystem::path shared_assets();
+// The build's folders (test_paths.cpp, generated): the source tree, the build
+// tree, the build tree's plugin folder, and where ../shared/assets would be.
 std::filesystem::path source_dir();
+std::filesystem::path binary_dir();
+std::filesystem::path plugin_dir();
+std::filesystem::path shared_assets_candidate();
 std::filesystem::path drape_program();
 
 // The message of the exception fn throws, or "(no exception)".

@@ -209,7 +209,7 @@ class FailsAfter final : public Energy {
 Registry& plugins_with_a_failing_energy() {
   static Registry* r = [] {
     auto* reg = new Registry;  // kept for the run, as plugins() is
-    reg->load_path({DRAPE_BUILD_PLUGIN_DIR});
+    reg->load_path({test::plugin_dir().string()});
     PluginDescriptor d;
     d.kind = "energy";
     d.name = "fails_after";
