@@ -55,11 +55,18 @@ race() {
   for ((r = 0; r < ROUNDS; r++)); do
     local out="$WORK/$name$r.$ext" go="$WORK/go-$name$r"
     local cmd=("${@//OUT/$out}")
-    (while [[ ! -e $go ]]; do :; done; "${cmd[@]}" >"$WORK/a.log" 2>&1; echo $? >"$WORK/a.rc") &
-    (while [[ ! -e $go ]]; do :; done; "${cmd[@]}" >"$WORK/b.log" 2>&1; echo $? >"$WORK/b.rc") &
+    # The starting gun: both jobs wait in read(2) on a FIFO this shell holds
+    # open (O_RDWR: no open blocks, and the data stays until both have read),
+    # then both lines are written at once. Blocked, not spinning: a busy wait
+    # here took a core from the jobs it was timing.
+    mkfifo "$go"
+    exec 7<>"$go"
+    (exec 7>&-; read -r _ <"$go"; "${cmd[@]}" >"$WORK/a.log" 2>&1; echo $? >"$WORK/a.rc") &
+    (exec 7>&-; read -r _ <"$go"; "${cmd[@]}" >"$WORK/b.log" 2>&1; echo $? >"$WORK/b.rc") &
     sleep 0.2
-    touch "$go"
+    printf 'go\ngo\n' >&7
     wait
+    exec 7>&-
     local a b
     a=$(cat "$WORK/a.rc") b=$(cat "$WORK/b.rc")
     if [[ $a$b == 02 || $a$b == 20 ]]; then
