@@ -26,7 +26,7 @@ def tiny(tmp_path_factory):
     tmp = tmp_path_factory.mktemp("spread")
     scene = tmp / "tiny.yaml"
     # the penalty contact, so that the body moves the cloth even without a morph
-    scene.write_text(f"base: {PENALTY}\nsolver: {{morph_steps: 0, settle_steps: 1, linear_solver: eigen}}\n")
+    scene.write_text(f"base: {PENALTY}\nsolver: {{morph_steps: 0, settle_steps: 1, max_newton_iterations: 8, linear_solver: eigen}}\n")
     data = tmp / "data.h5"
     run_drape("generate", scene, "--count", 3, "--bmi", "20:40", "--seed", 5, "--out", data, "--threads", 1)
     return scene, data
