@@ -23,7 +23,7 @@ def module_tiny_scene(tmp_path_factory):
     from conftest import COARSE
     path = tmp_path_factory.mktemp("scene") / "tiny.yaml"
     path.write_text(f"base: {COARSE}\neffects: {{barrier: null}}\n"
-                    "solver: {morph_steps: 0, settle_steps: 1, linear_solver: eigen}\n")
+                    "solver: {morph_steps: 0, settle_steps: 1, max_newton_iterations: 8, linear_solver: eigen}\n")
     return path
 
 

@@ -57,7 +57,7 @@ def auto_size_scene(tmp_path):
     see tiny_scene)."""
     path = tmp_path / "auto.yaml"
     path.write_text(f"base: {COARSE}\ngarment: {{params: {{size: auto}}}}\neffects: {{barrier: null}}\n"
-                    "solver: {morph_steps: 2, settle_steps: 2, linear_solver: eigen}\n")
+                    "solver: {morph_steps: 2, settle_steps: 2, max_newton_iterations: 8, linear_solver: eigen}\n")
     return path
 
 

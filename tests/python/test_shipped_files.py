@@ -28,7 +28,7 @@ def test_simulate_a_scene_of_the_data_dir(tmp_path):
     data = tmp_path / "data"
     (data / "graphs" / "scenes").mkdir(parents=True)
     (data / "graphs" / "scenes" / "tiny.yaml").write_text(
-        f"base: {COARSE}\neffects: {{barrier: null}}\nsolver: {{morph_steps: 0, settle_steps: 1, linear_solver: eigen}}\n")
+        f"base: {COARSE}\neffects: {{barrier: null}}\nsolver: {{morph_steps: 0, settle_steps: 1, max_newton_iterations: 8, linear_solver: eigen}}\n")
     work = tmp_path / "work"
     work.mkdir()
     # One step does not settle it: exit 1 with the drape written all the same.

@@ -16,7 +16,7 @@ def shards(tmp_path_factory):
     tmp = tmp_path_factory.mktemp("slim")
     scene = tmp / "tiny.yaml"
     scene.write_text(f"base: {COARSE}\neffects: {{barrier: null}}\n"
-                     "solver: {morph_steps: 0, settle_steps: 1, linear_solver: eigen}\n")
+                     "solver: {morph_steps: 0, settle_steps: 1, max_newton_iterations: 8, linear_solver: eigen}\n")
     full = []
     for i in range(2):
         out = tmp / f"full-{i}.h5"
