@@ -24,6 +24,10 @@ set(_drape_ccache_env
   "CCACHE_BASEDIR=${CMAKE_SOURCE_DIR}"
   "CCACHE_NOHASHDIR=1"
   "CCACHE_SLOPPINESS=pch_defines,time_macros,include_file_mtime,include_file_ctime")
+# __FILE__ relative to the source tree: a unity batch includes its sources by
+# absolute path, and Catch2 writes __FILE__ into every test, so without this
+# every test compile of a clone at another path missed (measured: 40 of 41).
+add_compile_options(-fmacro-prefix-map=${CMAKE_SOURCE_DIR}/=)
 set(CMAKE_CXX_COMPILER_LAUNCHER ${CMAKE_COMMAND} -E env ${_drape_ccache_env} ${DRAPE_CCACHE_PROGRAM})
 set(CMAKE_C_COMPILER_LAUNCHER ${CMAKE_COMMAND} -E env ${_drape_ccache_env} ${DRAPE_CCACHE_PROGRAM})
 message(STATUS "drape: compiling through ${DRAPE_CCACHE_PROGRAM} (-DDRAPE_CCACHE=OFF to not)")
