@@ -15,8 +15,9 @@ if(NOT DRAPE_CCACHE_PROGRAM)
 endif()
 # Settings that make hits possible here, passed per call so that any shell's
 # build gets them:
-# - base_dir: paths under the source and build folders are hashed relative to
-#   them, so a clone elsewhere hits the same entries;
+# - base_dir: paths under the source tree (and a build folder inside it, as
+#   setup.sh's) are hashed relative to it, so a clone elsewhere hits the same
+#   entries;
 # - the sloppiness ccache's manual asks for with precompiled headers (every
 #   target here has one): their #defines and __TIME__ are not in the hash, and
 #   a header (the .gch) newer than the compile start is still cached.
