@@ -153,29 +153,31 @@ DrawnPose draw_free_pose(const BodyModel& model, const Eigen::VectorXd& shape, R
                          const std::vector<PoseAngle>* space) {
   const std::vector<PoseAngle> angles = space ? *space : model.pose_angles();
   DrawnPose out;
+  auto clear = [&] {
+    out.vertices = model.posed(shape, out.pose);
+    return describe_pose_crossings(model, shape, out.pose, out.vertices).empty();
+  };
   for (; out.redraws < max_draws; ++out.redraws) {
     out.pose = draw_pose(angles, rng);
-    out.vertices = model.posed(shape, out.pose);
-    if (describe_pose_crossings(model, shape, out.pose, out.vertices).empty()) return out;
+    if (clear()) return out;
   }
-  // Pulled towards the rest pose, halfway further every per_pull draws, then
-  // the rest pose itself (pull 0), which the body, checked at rest when drawn,
-  // keeps clear.
+  // Pulled towards the rest pose: 1/2, 1/4, ... 1/1024 of each drawn offset,
+  // per_pull draws each, then the rest pose itself (pull 0), which the body,
+  // checked at rest when drawn, keeps clear.
   const Pose rest = model.rest_pose(shape);
   const int per_pull = std::max(1, max_draws / 5);
-  for (double pull = 0.5;; pull = pull > 1e-3 ? 0.5 * pull : 0.0) {
-    for (int k = 0; k < (pull > 0 ? per_pull : 1); ++k, ++out.redraws) {
+  constexpr int kHalvings = 10;
+  for (int halvings = 1; halvings <= kHalvings + 1; ++halvings) {
+    out.pull = halvings <= kHalvings ? std::ldexp(1.0, -halvings) : 0.0;
+    for (int k = 0; k < (out.pull > 0 ? per_pull : 1); ++k, ++out.redraws) {
       const Pose drawn = draw_pose(angles, rng);
       out.pose = Pose{};
       for (const PoseAngle& a : angles) {
         const double at_rest = rest.get(a.name, 0.0);
-        out.pose.angles[a.name] = at_rest + pull * (drawn.get(a.name, at_rest) - at_rest);
+        out.pose.angles[a.name] = at_rest + out.pull * (drawn.get(a.name, at_rest) - at_rest);
       }
-      out.pull = pull;
-      out.vertices = model.posed(shape, out.pose);
-      if (describe_pose_crossings(model, shape, out.pose, out.vertices).empty()) return out;
+      if (clear()) return out;
     }
-    if (pull == 0) break;
   }
   throw Error("the body passes through itself in its rest pose (and in " + std::to_string(out.redraws) +
               " poses drawn and pulled towards it)");

@@ -54,7 +54,7 @@ struct DrawnPose {
   Pose pose;
   Eigen::MatrixX3d vertices;  // the posed body
   int redraws = 0;            // poses drawn and rejected before this one
-  double pull = 1.0;          // 1: drawn from the space; less: its offset from the rest pose scaled so
+  double pull = 1.0;          // 1: drawn from the space; less: each angle's offset from the rest pose times this
 };
 // `space`, when given, replaces the model's pose_angles() (the same angles
 // with other sampling ranges: with_sampling_ranges).
