@@ -147,17 +147,27 @@ TEST_CASE("parametric body: vertex order keeps mesh neighbours close in index") 
 }
 
 TEST_CASE("parametric body: the same parameters give bit-identical meshes") {
+  // The model keeps its last bodies (by exact shape vector): asked again, it
+  // must give each its own body, as a model that never made it would.
   const BodyModel& b = body();
   const Eigen::VectorXd s = b.solve({33, 1.68, 0.4});
   REQUIRE(b.solve({33, 1.68, 0.4}) == s);
   const Eigen::MatrixX3d v1 = b.vertices(s);
-  b.vertices(b.solve({60, 1.9, 1}));  // something in between must not leave state behind
+  const Eigen::VectorXd s2 = b.solve({60, 1.9, 1});  // something in between must not leave state behind
+  const Eigen::MatrixX3d v2 = b.vertices(s2);
   REQUIRE(b.vertices(s) == v1);
+  REQUIRE(b.vertices(s2) == v2);
   // A second model instance (same template) agrees too.
   const PluginDescriptor& d = test::plugins().get("parametric");
   const auto other = test::plugins().create_body("parametric", Params(d.params, {}, "body parametric"));
   REQUIRE(other->faces() == b.faces());
+  REQUIRE(other->vertices(s2) == v2);
   REQUIRE(other->vertices(s) == v1);
+  CHECK(v2 != v1);
+  // A shape one bit away is another body.
+  Eigen::VectorXd s3 = s;
+  s3[2] = std::nextafter(s3[2], 1.0);
+  CHECK(b.vertices(s3) != v1);
 }
 
 TEST_CASE("parametric body: unreachable requests and bad shapes are ConfigErrors naming the range") {

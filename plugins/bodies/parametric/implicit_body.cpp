@@ -8,6 +8,11 @@
 namespace drape::parametric {
 namespace {
 
+// Lower bounds are lowered by this much (m) so that rounding can never make
+// one exceed the value it bounds: a part is skipped only when it is surely
+// further than its blend radius, so skipping never changes a bit of the union.
+constexpr double kBoundMargin = 1e-12;
+
 // A unit vector perpendicular to u, as close to +Z (the body's front) as possible,
 // so that cone frames are stable as limbs change direction.
 Eigen::Vector3d front_perpendicular(const Eigen::Vector3d& u) {
@@ -27,7 +32,7 @@ Primitive Primitive::ellipsoid(const Eigen::Vector3d& centre, const Eigen::Vecto
   p.blend = blend;
   p.bound_centre = centre;
   p.bound_radius = semi.maxCoeff();
-  p.bound_slope = std::pow(semi.minCoeff() / semi.maxCoeff(), 2);
+  p.bound_slope = semi.minCoeff() / semi.maxCoeff();
   return p;
 }
 
@@ -48,16 +53,25 @@ Primitive Primitive::cone(const Eigen::Vector3d& a, double ra, const Eigen::Vect
 double Primitive::lower_bound(const Eigen::Vector3d& p) const {
   const double gap = (p - bound_centre).norm() - bound_radius;
   if (kind == Kind::Cone) return gap;  // d - r >= |p - mid| - length / 2 - max radius
-  // With D = |q| > s_max: k0 >= D / s_max and k1 <= D / s_min^2, so
-  // k0 (k0 - 1) / k1 >= (D - s_max) s_min^2 / s_max^2. Inside the sphere: no bound.
-  return gap > 0 ? gap * bound_slope : -INFINITY;
+  // k1 = |q / s^2| <= |q / s| / s_min = k0 / s_min, so k0 (k0 - 1) / k1 >=
+  // (k0 - 1) s_min once k0 >= 1; and k0 >= |q| / s_max = D / s_max (the frame
+  // is a rotation), so with D > s_max: eval >= (D - s_max) s_min / s_max.
+  // Inside the sphere: no bound here (see eval_unless_beyond).
+  return gap > 0 ? gap * bound_slope - kBoundMargin : -INFINITY;
 }
 
 double Primitive::eval(const Eigen::Vector3d& p, Eigen::Vector3d* gradient) const {
+  return eval_unless_beyond(p, INFINITY, gradient);
+}
+
+double Primitive::eval_unless_beyond(const Eigen::Vector3d& p, double limit, Eigen::Vector3d* gradient) const {
   if (kind == Kind::Ellipsoid) {
     // Quilez's ellipsoid bound k0 (k0 - 1) / k1: close to the true distance near
     // the surface even for elongated ellipsoids, which keeps blends even.
     const Eigen::Vector3d q = frame.transpose() * (p - a);
+    // The bound of lower_bound() in the ellipsoid's own frame, (k0 - 1) s_min,
+    // from k0 alone: most parts a point is tested against end here.
+    if (std::isfinite(limit) && (q.cwiseQuotient(semi).norm() - 1) * semi.minCoeff() - kBoundMargin >= limit) return INFINITY;
     const Eigen::Vector3d s2 = semi.cwiseProduct(semi);
     const Eigen::Vector3d q1 = q.cwiseQuotient(semi), q2 = q.cwiseQuotient(s2);
     const double k0 = std::max(q1.norm(), 1e-12), k1 = std::max(q2.norm(), 1e-12);
@@ -102,7 +116,8 @@ double ImplicitBody::eval(const Eigen::Vector3d& p, Eigen::Vector3d* gradient) c
     const Primitive& prim = parts[i];
     // Parts that are surely further than the blend radius cannot change the value.
     if (prim.lower_bound(p) >= f + prim.blend) continue;
-    const double fi = prim.eval(p, gradient ? &gi : nullptr);
+    const double fi = prim.eval_unless_beyond(p, f + prim.blend, gradient ? &gi : nullptr);
+    if (fi == INFINITY) continue;
     const double k = prim.blend;
     if (k <= 0 || std::abs(fi - f) >= k) {
       if (fi < f) {

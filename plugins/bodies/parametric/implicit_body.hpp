@@ -36,7 +36,7 @@ struct Primitive {
   // skip parts that cannot change its value: see lower_bound().
   Eigen::Vector3d bound_centre = Eigen::Vector3d::Zero();
   double bound_radius = 0;
-  double bound_slope = 1;  // (smallest / largest semi-axis)^2 for ellipsoids
+  double bound_slope = 1;  // smallest / largest semi-axis for ellipsoids
   double lower_bound(const Eigen::Vector3d& p) const;
 
   static Primitive ellipsoid(const Eigen::Vector3d& centre, const Eigen::Vector3d& semi, double blend,
@@ -45,6 +45,9 @@ struct Primitive {
 
   // Approximate signed distance and its gradient.
   double eval(const Eigen::Vector3d& p, Eigen::Vector3d* gradient) const;
+  // eval(), or +infinity (gradient untouched) when a cheap bound shows that
+  // the value is at least `limit`: the union skips such a part.
+  double eval_unless_beyond(const Eigen::Vector3d& p, double limit, Eigen::Vector3d* gradient) const;
   Primitive& in(Region r, int s = 0) {
     region = r;
     side = s;

@@ -1,4 +1,5 @@
 // The built-in parametric body: the default body model everywhere.
+#include "body_memo.hpp"
 #include "body_plan.hpp"
 #include "body_template.hpp"
 #include "posing.hpp"
@@ -98,8 +99,10 @@ class ParametricBody final : public BodyModel {
 
   Eigen::MatrixX3d vertices(const Eigen::VectorXd& shape) const override {
     check_shape(shape);
+    if (auto known = memo_.find(shape)) return std::move(*known);
     Eigen::MatrixX3d v = fit_template(tpl_, plan_body(shape, rig_));
     normalise_height(v, shape[kHeight]);
+    memo_.add(shape, v);
     return v;
   }
 
@@ -168,6 +171,10 @@ class ParametricBody final : public BodyModel {
 
   Rig rig_;
   const BodyTemplate& tpl_;
+  // Up to 128 bodies (20 MB at most): a size chart's fits make about 80
+  // distinct ones, and a second chart in the same process (each size: auto
+  // scene has one) asks for the same again.
+  BodyMemo memo_{128};
 };
 
 PluginList plugins() {
