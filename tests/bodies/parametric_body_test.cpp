@@ -147,8 +147,8 @@ TEST_CASE("parametric body: vertex order keeps mesh neighbours close in index") 
 }
 
 TEST_CASE("parametric body: the same parameters give bit-identical meshes") {
-  // The model keeps its last bodies (by exact shape vector): asked again, it
-  // must give each its own body, as a model that never made it would.
+  // The rig keeps its last bodies (by exact shape vector, shared by its
+  // instances): asked again, it must give each shape its own body.
   const BodyModel& b = body();
   const Eigen::VectorXd s = b.solve({33, 1.68, 0.4});
   REQUIRE(b.solve({33, 1.68, 0.4}) == s);

@@ -1,5 +1,5 @@
 #pragma once
-// The last few bodies made, by their exact shape vector. A process asks for
+// The last bodies made, by their exact shape vector. A process asks for
 // the same body again and again (the BMI solve evaluates the shape it then
 // returns, and the caller makes that body; the mean body serves every size's
 // fit, the size chart and the assets), and each costs a template fit onto the

@@ -53,6 +53,19 @@ const Skeleton& shared_skeleton(Rig rig) {
   return mannequin;
 }
 
+// The last bodies made, shared by every instance of a rig as the template is:
+// each scene, size of a size chart and assets build makes its own model
+// instance, and they ask for the same bodies (the mean body, every size's fit
+// body). Up to 128 bodies (20 MB at most); a size chart's fits make about 80.
+BodyMemo& shared_memo(Rig rig) {
+  if (rig == Rig::Human) {
+    static BodyMemo human{128};
+    return human;
+  }
+  static BodyMemo mannequin{128};
+  return mannequin;
+}
+
 class ParametricBody final : public BodyModel {
  public:
   explicit ParametricBody(Rig rig) : rig_(rig), tpl_(shared_template(rig)) {}
@@ -99,10 +112,11 @@ class ParametricBody final : public BodyModel {
 
   Eigen::MatrixX3d vertices(const Eigen::VectorXd& shape) const override {
     check_shape(shape);
-    if (auto known = memo_.find(shape)) return std::move(*known);
+    BodyMemo& memo = shared_memo(rig_);
+    if (auto known = memo.find(shape)) return std::move(*known);
     Eigen::MatrixX3d v = fit_template(tpl_, plan_body(shape, rig_));
     normalise_height(v, shape[kHeight]);
-    memo_.add(shape, v);
+    memo.add(shape, v);
     return v;
   }
 
@@ -171,10 +185,6 @@ class ParametricBody final : public BodyModel {
 
   Rig rig_;
   const BodyTemplate& tpl_;
-  // Up to 128 bodies (20 MB at most): a size chart's fits make about 80
-  // distinct ones, and a second chart in the same process (each size: auto
-  // scene has one) asks for the same again.
-  BodyMemo memo_{128};
 };
 
 PluginList plugins() {
