@@ -114,7 +114,7 @@ def test_the_morph_starts_from_start_body(tmp_path):
     path = tmp_path / "short.yaml"
     # CHOLMOD, the scene's own solver: the drapes compared here are one process's (Eigen's Cholesky, which the
     # program-against-Python tests need, took this test 19 s instead of 10).
-    path.write_text(f"base: {COARSE}\nsolver: {{morph_steps: 2, settle_steps: 0}}\n")
+    path.write_text(f"base: {COARSE}\nsolver: {{morph_steps: 2, settle_steps: 0, max_newton_iterations: 8}}\n")
     scene = drape.Scene(str(path))
     target = scene.body(bmi=26)  # near the mean body: the barrier cuts the morph less (BMI 30: twice the time)
     default = scene.simulate(target, measure_penetration=False)
