@@ -143,13 +143,15 @@ TEST_CASE("a 2-thread generate job killed mid-run resumes to the bits of an unin
   std::ofstream(dir / "barrier.yaml") << "body: {model: parametric}\n"
                                          "garment: {template: tshirt, params: {resolution: 300}}\n"
                                          "effects: {gravity: {}, stretching: {}, bending: {}, barrier: {}}\n"
-                                         "solver: {morph_steps: 2, settle_steps: 3}\n";
+                                         "solver: {morph_steps: 2, settle_steps: 3, max_newton_iterations: 8}\n";
   const fs::path file = dir / "k.h5", partial = dir / "k.h5.partial";
   // Light bodies: two morph steps are too few for the barrier to dress a heavy one.
   const auto job = [&](const std::string& args) {
     return test::drape_program().string() + " generate " + (dir / "barrier.yaml").string() + " --bmi 10:25 --seed 3 " + args;
   };
-  // 8 samples: after the first 2, enough left (~3 s) for the second job and the reader to find it busy.
+  // 8 samples (about a second each, the steps cut at 8 Newton iterations: the
+  // resume is what is tested, not the drapes): after the first 2, enough left
+  // (~3 s) for the second job and the reader to find it busy.
   const std::string cmd = job("--count 8 --threads 2 --out " + file.string());
   std::string out;
   REQUIRE(test::run("(" + cmd + " > " + (dir / "log").string() + " 2>&1 & echo $! > " + (dir / "pid").string() + ")", out) == 0);
