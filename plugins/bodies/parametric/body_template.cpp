@@ -97,7 +97,15 @@ void relax_on_surface(const ImplicitBody& body, const std::vector<std::vector<in
 
 BodyTemplate build_template(int target_vertices, Rig rig) {
   BodyTemplate t;
+  t.rig = rig;
   t.mean = plan_body(mean_shape_vector(), rig);
+  mesh_template(t, target_vertices);
+  finish_template(t);
+  return t;
+}
+
+void mesh_template(BodyTemplate& t, int target_vertices) {
+  const Rig rig = t.rig;
   // Surface nets give about area / cell^2 vertices: one correction of the cell
   // size lands close to the target.
   // The cell is set without the magnifiers, so that the target is the count of
@@ -141,9 +149,11 @@ BodyTemplate build_template(int target_vertices, Rig rig) {
   t.faces = raw.faces;
   for (Eigen::Index f = 0; f < t.faces.rows(); ++f)
     for (int c = 0; c < 3; ++c) t.faces(f, c) = new_index[static_cast<std::size_t>(t.faces(f, c))];
-  t.neighbours = geometry::vertex_neighbours(t.faces, nv);
+}
+
+void finish_template(BodyTemplate& t) {
+  t.neighbours = geometry::vertex_neighbours(t.faces, static_cast<int>(t.vertices.rows()));
   bind_to_parts(t);
-  return t;
 }
 
 }  // namespace drape::parametric

@@ -12,6 +12,7 @@
 namespace drape::parametric {
 
 struct BodyTemplate {
+  Rig rig = Rig::Mannequin;
   ImplicitBody mean;            // the implicit body it was meshed from
   Eigen::MatrixX3d vertices;    // on the mean body's surface
   Eigen::MatrixX3i faces;
@@ -23,8 +24,13 @@ struct BodyTemplate {
   std::vector<std::array<double, kBind>> bind_weight;
 };
 
-// Builds the template (deterministic; a fraction of a second).
+// Builds the template (deterministic; a fraction of a second):
+// mesh_template, then finish_template.
 BodyTemplate build_template(int target_vertices = 6000, Rig rig = Rig::Mannequin);
+// The costly part: meshes t.mean (of t.rig) into t.vertices and t.faces.
+void mesh_template(BodyTemplate& t, int target_vertices);
+// What follows from the mesh: neighbours and the binding to the parts.
+void finish_template(BodyTemplate& t);
 
 // Moves every vertex along the surface of `body` towards the mean of its
 // neighbours, then back onto the surface: evens out triangle shapes.

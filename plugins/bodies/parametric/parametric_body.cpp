@@ -5,6 +5,7 @@
 #include "posing.hpp"
 #include "shape_fit.hpp"
 #include "skeleton.hpp"
+#include "template_cache.hpp"
 
 #include <drape/bodies/body_space.hpp>
 #include <drape/geometry/volume.hpp>
@@ -33,13 +34,14 @@ int index_of(const std::string& name) {
   throw ConfigError("body parametric: no shape parameter '" + name + "'");
 }
 
-// Built once per process and rig (about a tenth of a second) and shared by every instance.
+// Made once per process and rig and shared by every instance: read from the
+// template cache, or meshed (about 0.15 s) and cached (template_cache.hpp).
 const BodyTemplate& shared_template(Rig rig) {
   if (rig == Rig::Human) {
-    static const BodyTemplate human = build_template(6500, Rig::Human);
+    static const BodyTemplate human = cached_template(6500, Rig::Human);
     return human;
   }
-  static const BodyTemplate mannequin = build_template(6500, Rig::Mannequin);
+  static const BodyTemplate mannequin = cached_template(6500, Rig::Mannequin);
   return mannequin;
 }
 
