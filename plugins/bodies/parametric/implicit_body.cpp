@@ -2,8 +2,14 @@
 
 #include <Eigen/Geometry>
 
+#include <drape/errors.hpp>
+
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <string>
 
 namespace drape::parametric {
 namespace {
@@ -70,8 +76,13 @@ double Primitive::eval_unless_beyond(const Eigen::Vector3d& p, double limit, Eig
     // the surface even for elongated ellipsoids, which keeps blends even.
     const Eigen::Vector3d q = frame.transpose() * (p - a);
     // The bound of lower_bound() in the ellipsoid's own frame, (k0 - 1) s_min,
-    // from k0 alone: most parts a point is tested against end here.
-    if (std::isfinite(limit) && (q.cwiseQuotient(semi).norm() - 1) * semi.minCoeff() - kBoundMargin >= limit) return INFINITY;
+    // from k0 alone: most parts a point is tested against end here. Outside
+    // only (k0 >= 1): inside, the value lies between (k0 - 1) s_max and
+    // (k0 - 1) s_min, so the same expression is no lower bound there.
+    if (std::isfinite(limit)) {
+      const double k0 = q.cwiseQuotient(semi).norm();
+      if (k0 >= 1 && (k0 - 1) * semi.minCoeff() - kBoundMargin >= limit) return INFINITY;
+    }
     const Eigen::Vector3d s2 = semi.cwiseProduct(semi);
     const Eigen::Vector3d q1 = q.cwiseQuotient(semi), q2 = q.cwiseQuotient(s2);
     const double k0 = std::max(q1.norm(), 1e-12), k1 = std::max(q2.norm(), 1e-12);
@@ -109,14 +120,17 @@ Eigen::Vector3d Primitive::carry(const Eigen::Vector3d& p, const Primitive& to) 
   return to.a + t * (to.b - to.a) + to.frame * local * (r_to / r);
 }
 
-double ImplicitBody::eval(const Eigen::Vector3d& p, Eigen::Vector3d* gradient) const {
+namespace {
+
+// The union of parts from the first, each blended in turn; `skip` decides
+// which parts may be left out (the value is the same either way when it is right).
+template <class Skip>
+double blended_union(const std::vector<Primitive>& parts, const Eigen::Vector3d& p, Eigen::Vector3d* gradient, Skip skip) {
   Eigen::Vector3d g, gi;
   double f = parts.front().eval(p, gradient ? &g : nullptr);
   for (std::size_t i = 1; i < parts.size(); ++i) {
     const Primitive& prim = parts[i];
-    // Parts that are surely further than the blend radius cannot change the value.
-    if (prim.lower_bound(p) >= f + prim.blend) continue;
-    const double fi = prim.eval_unless_beyond(p, f + prim.blend, gradient ? &gi : nullptr);
+    const double fi = skip(prim, f, gradient ? &gi : nullptr);
     if (fi == INFINITY) continue;
     const double k = prim.blend;
     if (k <= 0 || std::abs(fi - f) >= k) {
@@ -132,6 +146,33 @@ double ImplicitBody::eval(const Eigen::Vector3d& p, Eigen::Vector3d* gradient) c
     if (gradient) g = g * h + gi * (1 - h);
   }
   if (gradient) *gradient = g;
+  return f;
+}
+
+// DRAPE_BODY_CHECK_CULLING=1: every evaluation is made again without
+// skipping any part, and a difference in any bit is an error (the tests'
+// check that the bounds are bounds; about twice the time).
+const bool kCheckCulling = std::getenv("DRAPE_BODY_CHECK_CULLING") != nullptr;
+
+}  // namespace
+
+double ImplicitBody::eval(const Eigen::Vector3d& p, Eigen::Vector3d* gradient) const {
+  // Parts that are surely further than the blend radius cannot change the value.
+  const double f = blended_union(parts, p, gradient, [&](const Primitive& prim, double f_so_far, Eigen::Vector3d* gi) -> double {
+    if (prim.lower_bound(p) >= f_so_far + prim.blend) return INFINITY;
+    return prim.eval_unless_beyond(p, f_so_far + prim.blend, gi);
+  });
+  if (kCheckCulling) {
+    Eigen::Vector3d g_all;
+    const double f_all = blended_union(parts, p, gradient ? &g_all : nullptr,
+                                       [&](const Primitive& prim, double, Eigen::Vector3d* gi) -> double { return prim.eval(p, gi); });
+    if (std::memcmp(&f, &f_all, sizeof f) != 0 || (gradient && *gradient != g_all)) {
+      char at[200];
+      std::snprintf(at, sizeof at, "(%.17g, %.17g, %.17g): %.17g with parts skipped, %.17g with every part", p.x(), p.y(),
+                    p.z(), f, f_all);
+      throw Error(std::string("body parametric: skipping parts changed the implicit surface at ") + at);
+    }
+  }
   return f;
 }
 
