@@ -1,6 +1,7 @@
 // Building, validating and running graphs.
 #include <drape/error_context.hpp>
 #include <drape/energy.hpp>
+#include <drape/fnv1a.hpp>
 #include <drape/graph.hpp>
 
 #include <chrono>
@@ -18,11 +19,6 @@ struct Source {
   int port = 0;
   int input = -1;  // index into Impl::inputs, or -1
 };
-
-std::uint64_t fnv1a(const std::string& s, std::uint64_t h = 1469598103934665603ull) {
-  for (unsigned char c : s) h = (h ^ c) * 1099511628211ull;
-  return h;
-}
 
 std::string join(const std::vector<std::string>& v) {
   std::string s;
@@ -292,7 +288,7 @@ void Graph::Impl::set_up_shapes(const GraphOptions& options) {
   for (auto& b : nodes) {
     ShapeMap in;
     for (std::size_t k = 0; k < b.in_ports.size(); ++k) in[b.in_ports[k]] = shape_of(b.sources[k]);
-    NodeContext ctx{b.spec.name, fnv1a(b.spec.name, options.seed * 0x9E3779B97F4A7C15ull + 1), options.assets};
+    NodeContext ctx{b.spec.name, Fnv1a(options.seed * 0x9E3779B97F4A7C15ull + 1).text(b.spec.name).value(), options.assets};
     ShapeMap out;
     try {
       out = b.node->setup(in, ctx);

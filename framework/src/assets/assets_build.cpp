@@ -1,5 +1,6 @@
 #include "assets_cache.hpp"
 
+#include <drape/fnv1a.hpp>
 #include <drape/energy.hpp>
 #include <drape/bodies/body.hpp>
 #include <drape/assets/assets.hpp>
@@ -13,7 +14,6 @@
 
 #include <chrono>
 #include <cstdlib>
-#include <iomanip>
 #include <sstream>
 
 namespace fs = std::filesystem;
@@ -23,24 +23,6 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 double since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
-
-// FNV-1a over bytes: stable across runs and machines (std::hash is not promised to be).
-struct Hasher {
-  std::uint64_t h = 1469598103934665603ull;
-  void bytes(const void* data, std::size_t n) {
-    const auto* p = static_cast<const unsigned char*>(data);
-    for (std::size_t i = 0; i < n; ++i) h = (h ^ p[i]) * 1099511628211ull;
-  }
-  template <class M>
-  void matrix(const M& m) {
-    bytes(m.data(), static_cast<std::size_t>(m.size()) * sizeof(typename M::Scalar));
-  }
-  std::string hex() const {
-    std::ostringstream o;
-    o << std::hex << std::setw(16) << std::setfill('0') << h;
-    return o.str();
-  }
-};
 
 ParamValues values_of(const std::map<std::string, std::string>& given, const std::string& what) {
   ParamValues out;
@@ -104,7 +86,7 @@ std::shared_ptr<const Assets> build_assets(const Registry& registry, const Asset
   a->garment = std::make_shared<const Garment>(std::move(garment));
   t.garment = since(start);
 
-  Hasher h;
+  Fnv1a h;
   h.bytes(a->spec_text.data(), a->spec_text.size());
   h.matrix(a->body.vertices);
   h.matrix(a->body.faces);

@@ -1,5 +1,7 @@
 #include <drape/training/rng.hpp>
 
+#include <drape/fnv1a.hpp>
+
 #include <cmath>
 #include <limits>
 #include <numeric>
@@ -19,9 +21,7 @@ std::uint64_t mix(std::uint64_t x) {
 }  // namespace
 
 std::uint64_t Rng::derive(std::uint64_t seed, std::string_view name) {
-  std::uint64_t h = 1469598103934665603ull;  // FNV-1a of the name
-  for (unsigned char c : name) h = (h ^ c) * 1099511628211ull;
-  return mix(mix(seed) ^ h);
+  return mix(mix(seed) ^ Fnv1a().text(name).value());
 }
 
 double Rng::uniform() { return static_cast<double>(engine_() >> 11) * 0x1.0p-53; }

@@ -2,6 +2,7 @@
 
 #include <drape/assets/assets.hpp>
 #include <drape/errors.hpp>
+#include <drape/fnv1a.hpp>
 #include <drape/io/atomic_file.hpp>
 #include <drape/io/h5.hpp>
 
@@ -40,15 +41,6 @@ LibraryStamp library_stamp(const void* address) {
   std::ostringstream o;
   o << path.string() << " " << size << " " << time.time_since_epoch().count();
   return {path.string(), o.str()};
-}
-
-// FNV-1a: a short, stable file name for the key.
-std::string hex_hash(const std::string& text) {
-  std::uint64_t h = 1469598103934665603ull;
-  for (unsigned char c : text) h = (h ^ c) * 1099511628211ull;
-  char out[17];
-  std::snprintf(out, sizeof out, "%016llx", static_cast<unsigned long long>(h));
-  return out;
 }
 
 bool debug() { return std::getenv("DRAPE_BODY_DEBUG") != nullptr; }
@@ -101,7 +93,7 @@ TemplateCacheKey template_cache_key(int target_vertices, Rig rig) {
   which << "parametric body template 1; rig " << static_cast<int>(rig) << "; target " << target_vertices;
   // One file per build and rig (a rebuild rewrites it rather than adding one).
   TemplateCacheKey out;
-  out.file_name = "parametric-template-" + hex_hash(which.str() + "; " + plugin.path + "; " + framework.path) + ".h5";
+  out.file_name = "parametric-template-" + Fnv1a().text(which.str() + "; " + plugin.path + "; " + framework.path).hex() + ".h5";
   key << which.str() << "; plugin " << plugin.stamp << "; framework " << framework.stamp;
   out.key = key.str();
   return out;
