@@ -9,7 +9,6 @@
 
 #include <filesystem>
 #include <fstream>
-#include <sstream>
 #include <string>
 
 #include "test_support.hpp"
@@ -19,20 +18,13 @@ using namespace drape;
 
 namespace {
 
-std::string file_text(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream o;
-  o << in.rdbuf();
-  return o.str();
-}
-
 // `drape body` of one shape with the given cache folder; the OBJ's text (17 digits: every bit).
 std::string body_with_cache(const fs::path& cache, const fs::path& out) {
   std::string log;
   REQUIRE(test::run("env DRAPE_CACHE_DIR=" + cache.string() + " " + test::drape_program().string() +
                         " body --bmi 37 --height 1.62 --sex 0.2 --out " + out.string(),
                     log) == 0);
-  return file_text(out);
+  return test::read_file(out);
 }
 
 std::vector<fs::path> template_files(const fs::path& cache) {

@@ -4,6 +4,8 @@
 #include <cmath>
 #include <vector>
 #include <cstdio>
+#include <fstream>
+#include <sstream>
 #include <random>
 #include <sys/wait.h>
 
@@ -74,6 +76,13 @@ int run(const std::string& command, std::string& output) {
   while (fgets(buffer.data(), buffer.size(), pipe)) output += buffer.data();
   const int status = pclose(pipe);
   return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+
+std::string read_file(const std::filesystem::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::ostringstream o;
+  o << in.rdbuf();
+  return o.str();
 }
 
 const char* tiny_simulation_scene() {

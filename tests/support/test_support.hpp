@@ -42,6 +42,9 @@ std::filesystem::path plugin_dir();
 std::filesystem::path shared_assets_candidate();
 std::filesystem::path drape_program();
 
+// A file's bytes ("" when it cannot be read).
+std::string read_file(const std::filesystem::path& path);
+
 // The message of the exception fn throws, or "(no exception)".
 std::string message_of(const std::function<void()>& fn);
 

@@ -74,18 +74,16 @@ double Primitive::eval_unless_beyond(const Eigen::Vector3d& p, double limit, Eig
   if (kind == Kind::Ellipsoid) {
     // Quilez's ellipsoid bound k0 (k0 - 1) / k1: close to the true distance near
     // the surface even for elongated ellipsoids, which keeps blends even.
-    const Eigen::Vector3d q = frame.transpose() * (p - a);
+    const Eigen::Vector3d q = frame.transpose() * (p - a), q1 = q.cwiseQuotient(semi);
+    const double q1_norm = q1.norm();
     // The bound of lower_bound() in the ellipsoid's own frame, (k0 - 1) s_min,
     // from k0 alone: most parts a point is tested against end here. Outside
     // only (k0 >= 1): inside, the value lies between (k0 - 1) s_max and
     // (k0 - 1) s_min, so the same expression is no lower bound there.
-    if (std::isfinite(limit)) {
-      const double k0 = q.cwiseQuotient(semi).norm();
-      if (k0 >= 1 && (k0 - 1) * semi.minCoeff() - kBoundMargin >= limit) return INFINITY;
-    }
+    if (std::isfinite(limit) && q1_norm >= 1 && (q1_norm - 1) * semi.minCoeff() - kBoundMargin >= limit) return INFINITY;
     const Eigen::Vector3d s2 = semi.cwiseProduct(semi);
-    const Eigen::Vector3d q1 = q.cwiseQuotient(semi), q2 = q.cwiseQuotient(s2);
-    const double k0 = std::max(q1.norm(), 1e-12), k1 = std::max(q2.norm(), 1e-12);
+    const Eigen::Vector3d q2 = q.cwiseQuotient(s2);
+    const double k0 = std::max(q1_norm, 1e-12), k1 = std::max(q2.norm(), 1e-12);
     const double f = k0 * (k0 - 1) / k1;
     if (gradient) {
       const Eigen::Vector3d g0 = q2 / k0;                                 // d k0 / dq
