@@ -12,7 +12,8 @@
 #
 #   bash scripts/train_posed_model.sh [WORK_DIR]      (default: work-posed-model/)
 #
-# Environment: BUILD_DIR (default build), DATA (default every shard of
+# Environment: BUILD_DIR (default build), GRAPH (default
+# graphs/poses/drape_posed_sized.yaml), DATA (default every shard of
 # datasets/posespace2000), HELDOUT (default
 # datasets/posespace-heldout/heldout-30.h5), THREADS (default 1), EPOCHS
 # (the cosine schedule, default 100), LR (default 1e-3), PATIENCE (default 30).
@@ -25,7 +26,7 @@ WORK=${1:-work-posed-model}
 DATA=${DATA:-datasets/posespace2000/shard-*-of-40.h5}
 HELDOUT=${HELDOUT:-datasets/posespace-heldout/heldout-30.h5}
 mkdir -p "$WORK"
-"$DRAPE" train graphs/poses/drape_posed_sized.yaml --data "$DATA" --out "$WORK/model.h5" \
+"$DRAPE" train "${GRAPH:-graphs/poses/drape_posed_sized.yaml}" --data "$DATA" --out "$WORK/model.h5" \
   --init models/tshirt-coarse.h5 --init-widen --epochs "${EPOCHS:-100}" --lr "${LR:-1e-3}" --schedule cosine \
   --patience "${PATIENCE:-30}" --batch 8 --seed 0 --threads "${THREADS:-1}" --resume
 "$DRAPE" eval --model "$WORK/model.h5" --data "$DATA" --split test --out "$WORK/test.csv"

@@ -106,4 +106,14 @@ inline Assets assets_with(std::shared_ptr<const Garment> garment) {
   return a;
 }
 
+// The skinning nodes' garment: a 2x2 grid (4 vertices) on two joints, vertex
+// 0 all joint 0, vertex 1 all joint 1, vertices 2 and 3 a quarter / three
+// quarters on joint 1.
+inline Assets two_joint_skinned_assets() {
+  Assets a = assets_with(grid_garment(2, 0.1));
+  a.garment_skinning.resize(4, 2);
+  a.garment_skinning << 1, 0, 0, 1, 0.25f, 0.75f, 0.75f, 0.25f;
+  return a;
+}
+
 }  // namespace drape::test

@@ -13,15 +13,6 @@ using namespace drape::test;
 
 namespace {
 
-// A 2x2 grid garment (4 vertices) and two joints: vertex 0 all joint 0,
-// vertex 1 all joint 1, vertices 2 and 3 a quarter / three quarters.
-Assets skinned_assets() {
-  Assets a = assets_with(grid_garment(2, 0.1));
-  a.garment_skinning.resize(4, 2);
-  a.garment_skinning << 1, 0, 0, 1, 0.25f, 0.75f, 0.75f, 0.25f;
-  return a;
-}
-
 // Joint 0 at rest; joint 1 turned 90 degrees about y (x -> -z, z -> x) and moved by (1, 2, 3).
 Tensor two_transforms(int batch) {
   Tensor t(batch, 2, 12);
@@ -38,7 +29,7 @@ Tensor two_transforms(int batch) {
 }  // namespace
 
 TEST_CASE("skin poses each vertex by its blended joint transforms", "[skin]") {
-  const Assets a = skinned_assets();
+  const Assets a = two_joint_skinned_assets();
   const NodeContext context{"skin", 1, &a};
   auto skin = make_node("skin");
   Tensor x(1, 4, 3);
@@ -57,7 +48,7 @@ TEST_CASE("skin poses each vertex by its blended joint transforms", "[skin]") {
 }
 
 TEST_CASE("skin's gradients match finite differences", "[skin][gradcheck]") {
-  const Assets a = skinned_assets();
+  const Assets a = two_joint_skinned_assets();
   const NodeContext context{"skin", 1, &a};
   auto skin = make_node("skin");
   Tensor transforms = two_transforms(2);
@@ -73,7 +64,7 @@ TEST_CASE("skin needs the garment's weights and the right sizes", "[skin]") {
   const Assets bare = assets_with(grid_garment(2, 0.1));
   CHECK_THROWS_WITH(skin->setup({{"x", {4, 3}}, {"transforms", {2, 12}}}, {"skin", 1, &bare}),
                     Catch::Contains("has none (its body model has no skeleton"));
-  const Assets a = skinned_assets();
+  const Assets a = two_joint_skinned_assets();
   CHECK_THROWS_WITH(skin->setup({{"x", {5, 3}}, {"transforms", {2, 12}}}, {"skin", 1, &a}), Catch::Contains("must be [4, 3]"));
   CHECK_THROWS_WITH(skin->setup({{"x", {4, 3}}, {"transforms", {3, 12}}}, {"skin", 1, &a}),
                     Catch::Contains("'transforms' must be [2, 12]"));

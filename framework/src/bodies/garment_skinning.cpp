@@ -96,4 +96,12 @@ std::vector<skinning::Rigid> transforms_of_rows(const Tensor& rows, int sample) 
   return out;
 }
 
+std::vector<std::vector<int>> weighted_joints(const Eigen::MatrixXf& weights) {
+  std::vector<std::vector<int>> joints(static_cast<std::size_t>(weights.rows()));
+  for (Eigen::Index i = 0; i < weights.rows(); ++i)
+    for (Eigen::Index b = 0; b < weights.cols(); ++b)
+      if (weights(i, b) != 0.0f) joints[static_cast<std::size_t>(i)].push_back(static_cast<int>(b));
+  return joints;
+}
+
 }  // namespace drape

@@ -8,6 +8,7 @@
 // gradient goes back to the canonical prediction through each vertex's
 // blended rotation, and to the transforms as well (so a graph may learn them).
 #include <drape/assets/assets.hpp>
+#include <drape/bodies/garment_skinning.hpp>
 #include <drape/plugin.hpp>
 
 namespace {
@@ -27,11 +28,7 @@ class Skin final : public Node {
     if (t.cols != 12 || t.rows != weights_.cols())
       throw ConfigError("input 'transforms' must be [" + std::to_string(weights_.cols()) +
                         ", 12] (one rigid transform per joint: R row by row, then t), got " + t.str());
-    // Each vertex's joints: the weights are dense but mostly zero far from a joint.
-    joints_.assign(static_cast<std::size_t>(weights_.rows()), {});
-    for (Eigen::Index i = 0; i < weights_.rows(); ++i)
-      for (Eigen::Index b = 0; b < weights_.cols(); ++b)
-        if (weights_(i, b) != 0.0f) joints_[static_cast<std::size_t>(i)].push_back(static_cast<int>(b));
+    joints_ = weighted_joints(weights_);
     return {{"out", x}};
   }
 
@@ -83,17 +80,8 @@ class Skin final : public Node {
   }
 
  private:
-  // sum_b w_ib [R_b | t_b] of sample s's transforms.
   Eigen::Matrix<float, 3, 4> blended(const Tensor& t, int s, int i) const {
-    Eigen::Matrix<float, 3, 4> m = Eigen::Matrix<float, 3, 4>::Zero();
-    for (int b : joints_[static_cast<std::size_t>(i)]) {
-      const float w = weights_(i, b);
-      for (int r = 0; r < 3; ++r) {
-        for (int c = 0; c < 3; ++c) m(r, c) += w * t(s, b, 3 * r + c);
-        m(r, 3) += w * t(s, b, 9 + r);
-      }
-    }
-    return m;
+    return blended_transform(weights_, joints_[static_cast<std::size_t>(i)], t, s, i);
   }
 
   Eigen::MatrixXf weights_;              // [garment vertices, joints]
