@@ -20,6 +20,10 @@ when the dataset was made by another build or thread count), and with --model th
 drapes of the same bodies. --out writes the per-body rows as CSV. --data takes slim shards and globs as they
 are (drape.Dataset), e.g. --data 'datasets/bodyspace2000-friction/shard-*-of-40.h5'. Needs the drape Python
 module (build/python on PYTHONPATH).
+
+A posed dataset (made with poses="draw", docs/poses.md) is simulated as it was made: each body at rest (the
+scaled copy scaled at rest) taken to its stored joint angles by the scene's pose path, and the model, if
+given, predicts from the body at rest and the same angles.
 """
 import argparse
 import concurrent.futures
@@ -108,16 +112,24 @@ def main(argv):
         picks = pick_samples(np.ones(n, np.uint8), split, bmi, args.split, args.count)
     batch = data.read(picks)
     bodies = {int(i): batch["body"][k].astype(np.float64) for k, i in enumerate(picks)}
+    # A posed sample is simulated from its body at rest and its angles, as drape generate made it.
+    poses = {}
+    if "pose" in batch:
+        unposed = data.posing([int(i) for i in picks])["unposed"]
+        names = list(data.layout["pose_angles"])
+        for k, i in enumerate(picks):
+            bodies[int(i)] = unposed[k].astype(np.float64)
+            poses[int(i)] = {name: float(a) for name, a in zip(names, batch["pose"][k])}
     stored = {int(i): batch["garment"][k].astype(np.float64) for k, i in enumerate(picks)}
 
     model = drape.Model.load(args.model) if args.model else None
     scenes = {}
 
-    def simulate(body):
+    def simulate(body, pose):
         key = threading.get_ident()
         if key not in scenes:  # a Scene per worker thread: simulations share nothing
             scenes[key] = drape.Scene(args.scene)
-        r = scenes[key].simulate(body)
+        r = scenes[key].simulate(body, pose=pose)
         if not r["converged"]:
             print(f"  (a drape did not settle: {r.get('unsettled', '')})", file=sys.stderr)
         return r["garment"], bool(r["converged"])
@@ -129,7 +141,7 @@ def main(argv):
         futures = {}
         for i, which in jobs:
             body = bodies[i] if which == 0 else scaled_about_soles(bodies[i], 1.0 + args.epsilon)
-            futures[pool.submit(simulate, body)] = (i, which)
+            futures[pool.submit(simulate, body, poses.get(i))] = (i, which)
         for n, future in enumerate(concurrent.futures.as_completed(futures), 1):
             results[futures[future]] = future.result()
             elapsed = time.time() - start
@@ -146,7 +158,8 @@ def main(argv):
                "rerun_to_stored_cm": mean_distance_cm(first, stored[i]),
                "settled": int(settled_first and settled_second)}
         if model is not None:
-            row["model_me_cm"] = mean_distance_cm(model.predict(bodies[i].astype(np.float32)), stored[i])
+            pose = {"pose": poses[i]} if i in poses else {}
+            row["model_me_cm"] = mean_distance_cm(model.predict(bodies[i].astype(np.float32), **pose), stored[i])
         rows.append(row)
 
     edges = [float(x) for x in args.bands.split(",")]
