@@ -23,6 +23,7 @@ namespace {
 
 using V3 = Eigen::Vector3d;
 
+
 // The mannequin's n-th part of a region and side (its order in body_plan.cpp).
 Primitive& part_of(ImplicitBody& body, Region region, int side, int nth = 0) {
   for (Primitive& p : body.parts)
@@ -38,6 +39,20 @@ Eigen::Matrix3d frame_along(const V3& along, const V3& towards) {
   f.col(1) = (towards - towards.dot(f.col(0)) * f.col(0)).normalized();
   f.col(2) = f.col(0).cross(f.col(1));
   return f;
+}
+
+// The same part moved by d (its bounds made again by its factory).
+Primitive moved(const Primitive& p, const V3& d) {
+  Primitive q = p.kind == Primitive::Kind::Cone ? Primitive::cone(p.a + d, p.ra, p.b + d, p.rb, p.blend)
+                                                : Primitive::ellipsoid(p.a + d, p.semi, p.blend, p.frame);
+  q.carries = p.carries;
+  return q.in(p.region, p.side);
+}
+
+// Where the mannequin puts the left shoulder joint (x) for this shape.
+double mannequin_shoulder_x(const Eigen::VectorXd& shape) {
+  ImplicitBody body = plan_mannequin_body(shape);
+  return part_of(body, Region::UpperArm, 1).a.x();
 }
 
 }  // namespace
@@ -88,6 +103,26 @@ ImplicitBody plan_human_body(const Eigen::VectorXd& shape) {
     const V3 c(side * 0.42 * hips.semi.x(), hips.a.y() - 0.045 * sy, hips.a.z() - lerp(0.46, 0.40, m) * hips.semi.z());
     add(Primitive::ellipsoid(c, V3(0.47 * hips.semi.x(), 0.090 * sy, lerp(0.64, 0.58, m) * hips.semi.z()), 0.05),
         Region::Trunk, side);
+  }
+
+  // Heavy shoulders: the mannequin pushes the arms out with the upper arm's and
+  // the chest's growth (body_plan.cpp, shoulder_x) so that they never merge
+  // into the trunk, which widened the human rig's shoulders with BMI far
+  // faster than MakeHuman's (0.375 against 0.268 of the height for a man of
+  // BMI 39; docs/bodies.md, "The human rig"). The human rig takes back the
+  // push gained above the mean adiposity, each arm moved in as a whole, up to
+  // 4 cm (at 1.75 m): the mean body, the template and every leaner body stay
+  // as they were, and the heaviest arms keep clear of the trunk (5 cm still
+  // left every corner of the space uncrossed, 6 cm crossed a 1.50 m woman of
+  // BMI 65 at the armpit; tests/bodies/human_rig_test.cpp).
+  if (w > kMeanWeight) {
+    Eigen::VectorXd at_mean = shape;
+    at_mean[kWeight] = kMeanWeight;
+    const double gained = part_of(body, Region::UpperArm, 1).a.x() - mannequin_shoulder_x(at_mean);
+    const double inward = std::min(std::max(0.0, gained), 0.04 * sr);
+    for (Primitive& p : body.parts)
+      if (p.region == Region::UpperArm || p.region == Region::Forearm || p.region == Region::Hand)
+        p = moved(p, V3(-p.side * inward, 0, 0));
   }
 
   // The shoulder line: a capsule per side from the side of the neck down to the
