@@ -26,7 +26,7 @@ TEST_CASE("simulate, predict, optimize and render refuse a body in centimetres o
   std::ofstream(dir / "tiny.yaml") << test::tiny_simulation_scene();
   const std::string env = "env -u DRAPE_MODEL DRAPE_CACHE_DIR=" + dir.path().string() + " " + test::drape_program().string();
   const std::string garment = " --out " + (dir / "g.obj").string();
-  for (const std::string command :
+  for (const std::string& command :
        {"simulate " + (dir / "tiny.yaml").string() + garment, "predict" + garment, "render --out " + (dir / "r.html").string(),
         "optimize --scene graphs/scenes/tshirt_coarse.yaml --iters 5" + garment}) {
     for (const char* file : {"cm.obj", "z.obj"}) {

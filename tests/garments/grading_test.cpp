@@ -29,15 +29,6 @@ namespace {
 const char* kCoarse = "garment: {template: tshirt, params: {resolution: coarse}}\n"
                       "effects: {gravity: {}, stretching: {}}\n";
 
-// The rest garment's edge lengths in the material space.
-Eigen::VectorXd uv_edge_lengths(const Mesh& m) {
-  Eigen::VectorXd out(3 * m.num_faces());
-  for (int f = 0; f < m.num_faces(); ++f)
-    for (int k = 0; k < 3; ++k)
-      out(3 * f + k) = (m.uv.row(m.uv_faces(f, (k + 1) % 3)) - m.uv.row(m.uv_faces(f, k))).norm();
-  return out;
-}
-
 }  // namespace
 
 TEST_CASE("grading scales girths by g, lengths by 1 + 0.3 (g - 1), about the top", "[garments][grade]") {
