@@ -261,6 +261,31 @@ outputs: { y: decoder }
   for (const auto& [name, w] : widened.weights())
     if (name == "encoder/w") CHECK(w->grad.mat(0).row(3).norm() > 0.0f);
 
+  SECTION("a node the file lacks keeps its own initialisation, and is listed as new") {
+    const char* branched = R"(
+inputs: { x: [5, 3] }
+nodes:
+  encoder: { type: ckpt_dense, in: x, params: { width: 6 } }
+  decoder: { type: ckpt_dense, in: encoder, params: { width: 2 } }
+  branch:  { type: ckpt_dense, in: encoder, params: { width: 2 } }
+outputs: { y: decoder, z: branch }
+)";
+    Graph b = make_graph(10, branched);
+    std::map<std::string, std::vector<float>> own;
+    for (const auto& [name, w] : b.weights()) own[name] = std::vector<float>(w->value.data(), w->value.data() + w->value.size());
+    const auto listed = load_weights_widening(path, b.weights());
+    REQUIRE(listed.size() == 2);  // branch/b and branch/w
+    for (const auto& l : listed) {
+      CHECK(l.name.rfind("branch/", 0) == 0);
+      CHECK(l.from.rows == 0);
+    }
+    for (const auto& [name, w] : b.weights()) {
+      const std::vector<float> now(w->value.data(), w->value.data() + w->value.size());
+      if (name.rfind("branch/", 0) == 0) CHECK(now == own[name]);
+    }
+    b.forward({{"x", x}}, false);
+    CHECK(b.output("y").vec() == saved.output("y").vec());  // the file's weights, loaded
+  }
   SECTION("outputs (columns) may not change, nor rows shrink, and the file's weights must all be used") {
     const char* wider_out = R"(
 inputs: { x: [5, 4] }

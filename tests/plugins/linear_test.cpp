@@ -55,3 +55,15 @@ TEST_CASE("linear backward matches finite differences", "[linear][gradcheck]") {
     CHECK(r.ok(1e-2));
   }
 }
+
+TEST_CASE("linear with init: zero starts as nothing and still learns", "[linear]") {
+  auto node = make_node("linear", "{width: 3, init: zero}");
+  const Tensor x = random_tensor(2, 4, 5, 3);
+  const Tensor y = run_forward(*node, {{"x", x}}, {}).at("out");
+  for (std::size_t i = 0; i < y.size(); ++i) CHECK(y.data()[i] == 0.0f);
+  // Its gradient reaches the weights (x^T g for w, the sum of g for b).
+  const GradCheckReport r = check_node_gradients(*node, {{"x", x}}, {"t", 5});
+  INFO(r.str());
+  CHECK(r.ok(1e-2));
+  CHECK_THROWS_AS(make_node("linear", "{init: ones}"), ConfigError);
+}

@@ -98,14 +98,25 @@ namespace {
 
 // load_weights and load_weights_widening: every weight by name, all or
 // nothing. `widened` null: shapes must match; else a graph weight with more
-// rows takes the file's rows first and zero rows after them, listed there.
+// rows takes the file's rows first and zero rows after them, and a graph
+// weight the file lacks keeps its initialisation, both listed there.
 void load_named_weights(const fs::path& path, const NamedWeights& weights, bool allow_extra,
                         std::vector<WidenedWeight>* widened) {
   const h5::File file = h5::File::open(path);
   check_format(file);
+  std::set<std::string> in_file;
+  if (widened && file.is_group("/weights"))
+    for (const auto& name : file.datasets_below("/weights")) in_file.insert(name);
   std::vector<Tensor> loaded;
   std::set<std::string> wanted;
   for (const auto& [name, w] : weights) {
+    if (widened && !in_file.count(name)) {
+      // A node the file's graph did not have (a branch added to it): it keeps
+      // its own initialisation (a linear node with init: zero starts as nothing).
+      widened->push_back({name, Shape{0, 0}, w->value.shape()});
+      loaded.push_back(w->value);
+      continue;
+    }
     Tensor t = read_matrix(file, "/weights/" + name);
     const Shape from = t.shape(), to = w->value.shape();
     const bool grows = widened && from.cols == to.cols && from.rows < to.rows;

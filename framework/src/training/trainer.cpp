@@ -184,8 +184,12 @@ void load_init_weights(const TrainOptions& o, DataParallelGraph& dp) {
     const auto widened = load_weights_widening(o.init, dp.graph().weights());
     if (o.progress)
       for (const auto& w : widened)
-        *o.progress << "init: weight " << w.name << " widened from " << w.from.str() << " to " << w.to.str()
-                    << " (the new input rows start at zero)\n";
+        if (w.from.rows == 0)
+          *o.progress << "init: weight " << w.name << " " << w.to.str()
+                      << " is new (not in the file): it keeps its initialisation\n";
+        else
+          *o.progress << "init: weight " << w.name << " widened from " << w.from.str() << " to " << w.to.str()
+                      << " (the new input rows start at zero)\n";
   }
   dp.sync_weights();
 }

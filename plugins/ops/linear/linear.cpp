@@ -10,7 +10,7 @@ using namespace drape;
 
 class Linear final : public Node {
  public:
-  Linear(int width, nn::Activation activation) : width_(width), activation_(activation) {}
+  Linear(int width, nn::Activation activation, bool zero) : width_(width), activation_(activation), zero_(zero) {}
 
   ShapeMap setup(const ShapeMap& in, const NodeContext& context) override {
     const Shape x = in.at("x");
@@ -18,6 +18,10 @@ class Linear final : public Node {
     rows_ = x.rows;
     layer_ = nn::DenseStack({x.cols, width_}, activation_, activation_);
     layer_.create_weights(*this, "", context.seed);
+    // A branch added to a trained model (drape train --init-widen) starts as
+    // nothing: its last layer at zero, so the first prediction is the model's.
+    if (zero_)
+      for (auto& [name, w] : weights()) w.value.vec().setZero();
     return {{"out", {x.rows, width_}}};
   }
 
@@ -39,6 +43,7 @@ class Linear final : public Node {
  private:
   int width_;
   nn::Activation activation_;
+  bool zero_;
   nn::DenseStack layer_;
   int rows_ = 0;
 };
@@ -53,9 +58,13 @@ PluginList plugins() {
   d.params = {{.name = "width", .type = ParamType::Int, .default_value = "64",
                .doc = "output channels", .min = 1, .max = 65536},
               nn::activation_param("none"),
-              nn::negative_slope_param()};
+              nn::negative_slope_param(),
+              {.name = "init", .type = ParamType::String, .default_value = "random",
+               .doc = "random: He-initialised weights, zero bias; zero: every weight zero (a branch added to a trained "
+                      "model that starts as nothing, its gradient still reaching the weights)",
+               .choices = {"random", "zero"}}};
   d.create_node = [](const Params& p) {
-    return std::make_unique<Linear>(static_cast<int>(p.get_int("width")), nn::activation_from(p));
+    return std::make_unique<Linear>(static_cast<int>(p.get_int("width")), nn::activation_from(p), p.get_string("init") == "zero");
   };
   return {d};
 }

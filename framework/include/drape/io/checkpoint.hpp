@@ -42,7 +42,8 @@ Checkpoint read_checkpoint(const std::filesystem::path& path);
 void load_weights(const std::filesystem::path& path, const NamedWeights& weights, bool allow_extra = false);
 void load_weights(const std::filesystem::path& path, Graph& graph, bool allow_extra = false);
 
-// A weight of the file given more rows (inputs) by the graph.
+// A weight of the file given more rows (inputs) by the graph, or (from
+// [0, 0]) a weight the file lacks.
 struct WidenedWeight {
   std::string name;
   Shape from, to;
@@ -51,8 +52,11 @@ struct WidenedWeight {
 // first r rows and zeros after them: a graph that appends k input features
 // (a concat after the old ones, such as the garment's grade on the encoded
 // features) starts as exactly the model in the file, the new inputs with no
-// effect until training gives them one. Columns (outputs) must match. Returns
-// the weights so widened; all or nothing.
+// effect until training gives them one. Columns (outputs) must match. A graph
+// weight the file lacks (a node added to the graph, such as a branch whose
+// last layer starts at zero: linear's init: zero) keeps the value the graph
+// gave it. Returns the weights so widened or new; all or nothing, and a
+// weight in the file that the graph lacks is still an error.
 std::vector<WidenedWeight> load_weights_widening(const std::filesystem::path& path, const NamedWeights& weights);
 
 }  // namespace drape
