@@ -1,0 +1,80 @@
+#!/usr/bin/env python3
+"""Where a model's error lies on a dataset: by region of the garment, how much of it is a shift or a turn of the
+whole garment, and what it follows in the body (docs/poses.md, "What holds the posed model's error").
+
+    PYTHONPATH=build/python python3 scripts/model_error_breakdown.py --data 'datasets/posespace2000/shard-*-of-40.h5' \\
+        --model models/tshirt-coarse-posed.h5 [--split test|train|val|all]
+
+Prints the ME (mean vertex distance, cm) over the split's bodies, and:
+- by region of the template garment (dressed on the mean body): the sleeves (|x| > 0.19 m), the lower 35 % of the
+  rest (the hem) and the upper torso, each with its share of the total error;
+- the mean offset of each predicted garment from the simulated one (a shift of the whole garment), and the ME left
+  after removing it, then after the best rigid fit (Kabsch) of each prediction onto its drape;
+- the correlation over bodies of each body's ME with its BMI and, for a posed dataset, with the size of each angle.
+Running it on the training split beside the test split tells underfitting (both high) from overfitting.
+A posed sample is predicted from its body at rest and its stored angles, as drape eval does.
+"""
+import argparse
+import sys
+
+import numpy as np
+
+
+def rigid_fit(a, b):
+    """a moved by the rotation and translation that bring it closest to b (least squares, no reflection)."""
+    ca, cb = a.mean(0), b.mean(0)
+    u, _, vt = np.linalg.svd((a - ca).T @ (b - cb))
+    d = np.sign(np.linalg.det(u @ vt))
+    r = u @ np.diag([1.0, 1.0, d]) @ vt
+    return (a - ca) @ r + cb
+
+
+def main(argv):
+    p = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    p.add_argument("--data", required=True, help="a dataset file or a quoted glob of shards")
+    p.add_argument("--model", required=True)
+    p.add_argument("--split", default="test", choices=["train", "val", "test", "all"])
+    args = p.parse_args(argv)
+    import drape
+
+    data = drape.Dataset(args.data)
+    idx = [int(i) for i in (data.indices() if args.split == "all" else data.indices(args.split))]
+    if not idx:
+        raise SystemExit(f"{args.data}: no done samples in the {args.split} split")
+    model = drape.Model.load(args.model)
+    batch = data.read(idx)
+    posed = "pose" in batch
+    names = list(data.layout["pose_angles"]) if posed else []
+    bodies = data.posing(idx)["unposed"] if posed else batch["body"]
+    predicted = []
+    for k in range(len(idx)):
+        pose = {"pose": {n: float(a) for n, a in zip(names, batch["pose"][k])}} if posed else {}
+        predicted.append(model.predict(bodies[k], check=False, **pose))
+    P = np.asarray(predicted, np.float64)
+    G = batch["garment"].astype(np.float64)
+    E = np.linalg.norm(P - G, axis=2) * 100  # cm, [bodies, vertices]
+
+    t = np.asarray(drape.assets(resolution="coarse" if P.shape[1] < 2000 else "default").garment_vertices)
+    sleeves = np.abs(t[:, 0]) > 0.19
+    low = t[:, 1].min() + 0.35 * (t[:, 1].max() - t[:, 1].min())
+    hem = ~sleeves & (t[:, 1] < low)
+    upper = ~sleeves & ~hem
+    print(f"{len(idx)} bodies ({args.split}) of {args.data}, model {args.model}: ME {E.mean():.3f} cm")
+    for name, m in (("sleeves", sleeves), ("hem (lower 35 %)", hem), ("upper torso", upper)):
+        print(f"  {name:<17} {m.sum():5d} vertices  ME {E[:, m].mean():.3f} cm  {100 * E[:, m].sum() / E.sum():.0f} % of the error")
+    shift = (P - G).mean(1)
+    print(f"  the whole garment's shift: mean {np.linalg.norm(shift, axis=1).mean() * 100:.3f} cm; "
+          f"ME without it {np.linalg.norm(P - shift[:, None] - G, axis=2).mean() * 100:.3f} cm, "
+          f"after the best rigid fit {np.mean([np.linalg.norm(rigid_fit(P[k], G[k]) - G[k], axis=1).mean() for k in range(len(P))]) * 100:.3f} cm")
+    per_body = E.mean(1)
+    bmi = data.stat("bmi", idx)
+    print(f"  correlation of a body's ME with its BMI {np.corrcoef(bmi, per_body)[0, 1]:+.2f}")
+    for j, name in enumerate(names):
+        a = np.abs(batch["pose"][:, j])
+        if a.std() > 0:
+            print(f"    with |{name}| {np.corrcoef(a, per_body)[0, 1]:+.2f}")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main(sys.argv[1:]))
