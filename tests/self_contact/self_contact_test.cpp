@@ -217,6 +217,40 @@ TEST_CASE("self_contact skips slivers at rest but not far fabric", "[self_contac
   CHECK(self_contact_on(*layers, "{rest_exclusion: 100}")->value(layers->mesh.vertices) > 0);
 }
 
+TEST_CASE("self_contact with thin_rest_neighbours keeps close fabric neighbours, each by half its rest distance",
+          "[self_contact]") {
+  // The sliver strip above: the apex (vertex 2) 0.1 mm from the edge it
+  // stands on, which bounds the opposite triangle (0, 3, 1), two mesh edges
+  // away. Left out by default; kept thin, its own d_hat is 0.05 mm.
+  Eigen::MatrixX3d v(5, 3);
+  v << 0, 0, 0, 0.01, 0, 0, 0.005, 1e-4, 0, 0.005, -0.01, 0, 0.005, 0.01, 0;
+  Eigen::MatrixX3i f(3, 3);
+  f << 0, 1, 2, 0, 3, 1, 2, 1, 4;
+  Eigen::MatrixX2d uv = v.leftCols<2>();
+  const Garment g = small_garment(v, f, uv);
+  const auto excluded = self_contact_on(g);
+  const auto thin = self_contact_on(g, "{thin_rest_neighbours: true}");
+  CHECK(thin->value(v) == 0.0);  // nothing pushed at rest
+  // The apex pressed to 0.03 mm above the plane of the opposite triangle's
+  // edge (and lifted a little out of the strip's plane): within its 0.05 mm.
+  Eigen::MatrixX3d pressed = v;
+  pressed.row(2) << 0.005, 3e-5, 1e-5;
+  CHECK(excluded->value(pressed) == 0.0);
+  const double e = thin->value(pressed);
+  CHECK(e > 0);
+  CHECK(std::isfinite(e));
+  const GradCheckReport r = check_energy_derivatives(*thin, pressed, {1e-10, 200, 3});
+  INFO(r.str());
+  CHECK(r.ok(1e-4));
+  // Folded through the edge: the excluded pair lets it pass, the thin one stops it first.
+  Eigen::MatrixX3d through = Eigen::MatrixX3d::Zero(5, 3);
+  through(2, 1) = -2e-4;
+  CHECK(excluded->max_step(v, through) == 1.0);
+  const double alpha = thin->max_step(v, through);
+  CHECK(alpha < 0.5);  // before the apex reaches the edge, at half the move
+  CHECK(std::isfinite(thin->value(v + alpha * through)));
+}
+
 TEST_CASE("self_contact stays finite near a degenerate triangle", "[self_contact]") {
   // A needle triangle (height 1e-9 m) 0.5 mm over a layer: its plane is
   // undefined, so its pairs must take edge and corner distances.

@@ -58,7 +58,8 @@ SelfContact::~SelfContact() = default;
 
 void SelfContact::bind(const EnergyContext& context) {
   const Garment& garment = checked_garment(context);
-  auto topology = std::make_unique<SelfTopology>(make_topology(garment, settings_.rest_exclusion * settings_.distance));
+  auto topology = std::make_unique<SelfTopology>(make_topology(garment, settings_.rest_exclusion * settings_.distance,
+                                                                settings_.thin_rest_neighbours ? settings_.distance : 0.0));
   if (topology->tangled_faces > 0) warn_tangle_once(garment.mesh.num_vertices(), topology->tangled_faces);
   std::lock_guard<std::mutex> lock(cache_.mutex);
   topology_ = std::move(topology);
@@ -94,7 +95,7 @@ std::shared_ptr<const std::vector<SelfPair>> SelfContact::cached_pairs(const Eig
 template <class S>
 S SelfContact::pair_energy(const SelfPair& pair, const std::array<Vec3<S>, 4>& q) const {
   const SelfTopology& t = *topology_;
-  const double dhat2 = settings_.distance * settings_.distance;
+  const double dhat = pair.dhat > 0 ? pair.dhat : settings_.distance, dhat2 = dhat * dhat;
   const S s = geometry::typed_distance2(pair.type, q);
   const BarrierValue bv = log_barrier(primal(s) / dhat2);
   S e = chain(s, bv.b, bv.db / dhat2, bv.d2b / (dhat2 * dhat2));
@@ -106,6 +107,8 @@ S SelfContact::pair_energy(const SelfPair& pair, const std::array<Vec3<S>, 4>& q
     if (mv.m != 1) e = chain(c, mv.m, mv.dm, mv.d2m) * e;
     area = 0.5 * (t.edge_area[pair.a] + t.edge_area[pair.b]);  // symmetric in the two edges
   }
+  // A thin pair keeps the scale of the others (kappa d_hat): its barrier, as
+  // thin as its rest distance allows, pushes harder where it acts.
   return (settings_.stiffness * settings_.distance * area) * e;
 }
 

@@ -22,6 +22,13 @@
 //    its neighbour in the unfolded cloth, and a barrier there would only
 //    fight the cloth's own shape. Pairs far apart in the fabric (a sleeve
 //    against the torso) are never excluded, however close at rest.
+//    With `thin_rest_neighbours` they are not left out but kept thin: each
+//    pair's own d_hat is half its rest distance (at most d_hat), so it pushes
+//    nothing at rest and still may not cross (a crowded armpit seam that
+//    folds one triangle wide: docs/garments.md, "A user's MakeHuman top").
+//    Its barrier keeps the others' scale, kappa d_hat (so it pushes harder
+//    where it acts: a thin barrier that pushed as little as its width held no
+//    fold, and the solver stalled on it).
 //
 //  - pairs inside a tangle of the rest mesh: where the garment as dressed
 //    already passes through itself (geometry::self_intersections of the rest
@@ -61,6 +68,7 @@ struct SelfContactSettings {
   double stiffness = 1e3;       // kappa, Pa
   double min_separation = 0.1;  // CCD stops a move where a pair is down to this fraction of its distance
   double rest_exclusion = 3;    // in d_hat: fabric neighbours closer than this at rest are not pairs
+  bool thin_rest_neighbours = false;  // ... or are, each with half its rest distance as its d_hat
 };
 
 // A vertex and a face (a = vertex, b = face), or two edges (a < b).
@@ -71,6 +79,7 @@ struct SelfPair {
   int a = 0, b = 0;
   geometry::DistanceType type;
   double distance2 = 0;
+  double dhat = 0;  // the pair's own d_hat (a thin rest neighbour); 0: the settings' distance
 };
 
 // The garment's primitives, fixed at bind (self_pairs.cpp).
@@ -82,6 +91,7 @@ struct SelfTopology {
   Eigen::VectorXd edge_rest2;              // m^2: squared material-space length (the mollifier's scale)
   std::vector<std::vector<int>> neighbours;  // sorted, per vertex
   std::vector<std::uint64_t> excluded;     // pair_key of the fabric neighbours close at rest, sorted
+  std::vector<std::pair<std::uint64_t, double>> thin;  // or, kept thin: pair_key and own d_hat, sorted
   std::vector<char> tangled;               // per vertex: in a tangle of the rest mesh (or a ring around one)
   int tangled_faces = 0;                   // faces of the rest mesh that meet another (self_intersections)
   int vertices = 0;
@@ -91,6 +101,8 @@ struct SelfTopology {
   // True for a pair that never counts: sharing a vertex, both primitives in a
   // tangle, or in `excluded`.
   bool skipped(PairKind kind, int a, int b) const;
+  // The pair's own d_hat when it is a thin rest neighbour, else 0.
+  double thin_dhat(PairKind kind, int a, int b) const;
 };
 
 std::uint64_t pair_key(PairKind kind, int a, int b);

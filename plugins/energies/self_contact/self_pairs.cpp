@@ -72,6 +72,13 @@ bool SelfTopology::skipped(PairKind kind, int a, int b) const {
   return std::binary_search(excluded.begin(), excluded.end(), pair_key(kind, a, b));
 }
 
+double SelfTopology::thin_dhat(PairKind kind, int a, int b) const {
+  if (thin.empty()) return 0;
+  const std::uint64_t key = pair_key(kind, a, b);
+  const auto it = std::lower_bound(thin.begin(), thin.end(), key, [](const auto& e, std::uint64_t k) { return e.first < k; });
+  return it != thin.end() && it->first == key ? it->second : 0;
+}
+
 namespace {
 
 // Marks the vertices of the rest mesh's faces that meet another face (a
@@ -95,7 +102,7 @@ void mark_tangles(const Mesh& mesh, SelfTopology& t) {
 
 }  // namespace
 
-SelfTopology make_topology(const Garment& garment, double exclusion) {
+SelfTopology make_topology(const Garment& garment, double exclusion, double thin_limit) {
   SelfTopology t;
   const Mesh& mesh = garment.mesh;
   t.faces = mesh.faces;
@@ -111,11 +118,19 @@ SelfTopology make_topology(const Garment& garment, double exclusion) {
   // Boxes grown by half of it overlap for every pair that close (and more).
   for (const SelfPair& c : candidate_pairs(t, mesh.vertices, nullptr, 0.5 * exclusion)) {
     const std::array<int, 4> v = t.vertices_of(c.kind, c.a, c.b);
-    if (fabric_neighbours(t, v, c.kind == PairKind::VertexFace ? 1 : 2) &&
-        pair_distance2(c.kind, points(mesh.vertices, v)) < exclusion * exclusion)
+    if (!fabric_neighbours(t, v, c.kind == PairKind::VertexFace ? 1 : 2)) continue;
+    const double d2 = pair_distance2(c.kind, points(mesh.vertices, v));
+    if (!(d2 < exclusion * exclusion)) continue;
+    // A pair touching at rest (a nanometre) cannot be kept off itself: left out.
+    // One at least twice the usual d_hat apart keeps the usual barrier (which
+    // does not reach it at rest): no pair's barrier changes with distance.
+    if (thin_limit > 0 && d2 > 1e-18)
+      t.thin.emplace_back(pair_key(c.kind, c.a, c.b), std::min(thin_limit, 0.5 * std::sqrt(d2)));
+    else
       t.excluded.push_back(pair_key(c.kind, c.a, c.b));
   }
   std::sort(t.excluded.begin(), t.excluded.end());
+  std::sort(t.thin.begin(), t.thin.end());
   return t;
 }
 
@@ -139,10 +154,12 @@ std::vector<SelfPair> close_pairs(const SelfTopology& t, const Eigen::MatrixX3d&
     SelfPair& c = candidates[static_cast<std::size_t>(i)];
     const std::array<Eigen::Vector3d, 4> p = points(x, t.vertices_of(c.kind, c.a, c.b));
     c.distance2 = pair_distance2(c.kind, p);
-    if (c.distance2 < below2)
+    c.dhat = t.thin_dhat(c.kind, c.a, c.b);
+    const double limit2 = c.dhat > 0 ? std::min(below2, c.dhat * c.dhat) : below2;
+    if (c.distance2 < limit2)
       c.type = c.kind == PairKind::EdgeEdge ? geometry::edge_edge_type(p[0], p[1], p[2], p[3])
                                             : geometry::point_triangle_type(p[0], p[1], p[2], p[3]);
-    keep[static_cast<std::size_t>(i)] = c.distance2 < below2;
+    keep[static_cast<std::size_t>(i)] = c.distance2 < limit2;
   }
   std::vector<SelfPair> out;
   for (int i = 0; i < n; ++i)
