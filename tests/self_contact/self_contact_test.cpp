@@ -71,6 +71,17 @@ std::shared_ptr<Garment> two_layers(int n, double s, double gap) {
   return g;
 }
 
+// A strip whose middle triangle is a sliver 0.1 mm high: its apex (vertex 2)
+// is within d_hat of the opposite triangle's edge, two mesh edges away.
+Garment sliver_strip() {
+  Eigen::MatrixX3d v(5, 3);
+  v << 0, 0, 0, 0.01, 0, 0, 0.005, 1e-4, 0, 0.005, -0.01, 0, 0.005, 0.01, 0;
+  Eigen::MatrixX3i f(3, 3);
+  f << 0, 1, 2, 0, 3, 1, 2, 1, 4;
+  Eigen::MatrixX2d uv = v.leftCols<2>();
+  return small_garment(v, f, uv);
+}
+
 std::unique_ptr<Energy> self_contact_on(const Garment& g, const std::string& yaml = "{}") {
   return bound_energy("self_contact", yaml, g);
 }
@@ -198,15 +209,10 @@ TEST_CASE("self_contact max_step stops before the layers cross", "[self_contact]
 }
 
 TEST_CASE("self_contact skips slivers at rest but not far fabric", "[self_contact]") {
-  // A strip whose middle triangle is a sliver 0.1 mm high: its apex is within
-  // d_hat of the opposite triangle's edge, two mesh edges away. That pair is
-  // left out at rest by default and counted with rest_exclusion 0.
-  Eigen::MatrixX3d v(5, 3);
-  v << 0, 0, 0, 0.01, 0, 0, 0.005, 1e-4, 0, 0.005, -0.01, 0, 0.005, 0.01, 0;
-  Eigen::MatrixX3i f(3, 3);
-  f << 0, 1, 2, 0, 3, 1, 2, 1, 4;
-  Eigen::MatrixX2d uv = v.leftCols<2>();
-  const Garment g = small_garment(v, f, uv);
+  // The sliver strip's apex-to-edge pair is left out at rest by default and
+  // counted with rest_exclusion 0.
+  const Garment g = sliver_strip();
+  const Eigen::MatrixX3d& v = g.mesh.vertices;
   CHECK(self_contact_on(g)->value(v) == 0.0);
   const auto strict = self_contact_on(g, "{rest_exclusion: 0}");
   const double value = strict->value(v);
@@ -219,15 +225,11 @@ TEST_CASE("self_contact skips slivers at rest but not far fabric", "[self_contac
 
 TEST_CASE("self_contact with thin_rest_neighbours keeps close fabric neighbours, each by half its rest distance",
           "[self_contact]") {
-  // The sliver strip above: the apex (vertex 2) 0.1 mm from the edge it
-  // stands on, which bounds the opposite triangle (0, 3, 1), two mesh edges
-  // away. Left out by default; kept thin, its own d_hat is 0.05 mm.
-  Eigen::MatrixX3d v(5, 3);
-  v << 0, 0, 0, 0.01, 0, 0, 0.005, 1e-4, 0, 0.005, -0.01, 0, 0.005, 0.01, 0;
-  Eigen::MatrixX3i f(3, 3);
-  f << 0, 1, 2, 0, 3, 1, 2, 1, 4;
-  Eigen::MatrixX2d uv = v.leftCols<2>();
-  const Garment g = small_garment(v, f, uv);
+  // The sliver strip: the apex (vertex 2) 0.1 mm from the edge it stands on,
+  // which bounds the opposite triangle (0, 3, 1). Left out by default; kept
+  // thin, its own d_hat is 0.05 mm.
+  const Garment g = sliver_strip();
+  const Eigen::MatrixX3d& v = g.mesh.vertices;
   const auto excluded = self_contact_on(g);
   const auto thin = self_contact_on(g, "{thin_rest_neighbours: true}");
   CHECK(thin->value(v) == 0.0);  // nothing pushed at rest
