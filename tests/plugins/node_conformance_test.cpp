@@ -65,6 +65,7 @@ const std::map<std::string, std::string>& checked_elsewhere() {
       {"subtract_mean_body", "tests/plugins/template_offset_test.cpp"},
       {"add_template", "tests/plugins/template_offset_test.cpp"},
       {"skin", "tests/plugins/skin_test.cpp"},
+      {"skin_rotation", "tests/plugins/skin_rotation_test.cpp"},
   };
   return files;
 }
