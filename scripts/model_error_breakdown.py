@@ -54,7 +54,15 @@ def main(argv):
     G = batch["garment"].astype(np.float64)
     E = np.linalg.norm(P - G, axis=2) * 100  # cm, [bodies, vertices]
 
-    t = np.asarray(drape.assets(resolution="coarse" if P.shape[1] < 2000 else "default").garment_vertices)
+    # The regions are cut on the template dressed on the mean body: the coarse
+    # T-shirt's, or the default one's, whichever has the dataset's vertex count.
+    t = None
+    for resolution in ("coarse", "default"):
+        t = np.asarray(drape.assets(resolution=resolution).garment_vertices)
+        if len(t) == P.shape[1]:
+            break
+    if len(t) != P.shape[1]:
+        raise SystemExit(f"{args.data}: garments of {P.shape[1]} vertices are neither T-shirt template's")
     sleeves = np.abs(t[:, 0]) > 0.19
     low = t[:, 1].min() + 0.35 * (t[:, 1].max() - t[:, 1].min())
     hem = ~sleeves & (t[:, 1] < low)

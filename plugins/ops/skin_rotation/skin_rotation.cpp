@@ -1,5 +1,5 @@
 // `skin_rotation`: the pose as each garment vertex feels it, a local feature
-// for a posed model's decoder (docs/poses.md, "Where the pose enters"):
+// for a posed model's decoder (docs/poses.md, "What holds the posed model's error"):
 //   f_i = sum_b w_ib R_b - I, row by row [garment vertices, 9]
 // with the garment's skinning weights w and the sample's joint rotations R
 // (the graph input joint_transforms). The joint angles alone are global: the
