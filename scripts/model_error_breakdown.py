@@ -46,10 +46,18 @@ def main(argv):
     posed = "pose" in batch
     names = list(data.layout["pose_angles"]) if posed else []
     bodies = data.posing(idx)["unposed"] if posed else batch["body"]
+    # Each body in the garment it was simulated in (drape eval feeds the same
+    # grade): a model of sizes would otherwise choose its size by the tailor's rule.
+    try:
+        grades = data.stat("garment_grade", idx)
+    except (drape.ConfigError, drape.Error, KeyError, ValueError):
+        grades = None
     predicted = []
     for k in range(len(idx)):
-        pose = {"pose": {n: float(a) for n, a in zip(names, batch["pose"][k])}} if posed else {}
-        predicted.append(model.predict(bodies[k], check=False, **pose))
+        options = {"pose": {n: float(a) for n, a in zip(names, batch["pose"][k])}} if posed else {}
+        if grades is not None and "garment_grade" in model.inputs:
+            options["garment_size"] = float(grades[k])
+        predicted.append(model.predict(bodies[k], check=False, **options))
     P = np.asarray(predicted, np.float64)
     G = batch["garment"].astype(np.float64)
     E = np.linalg.norm(P - G, axis=2) * 100  # cm, [bodies, vertices]

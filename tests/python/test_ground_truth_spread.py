@@ -122,3 +122,34 @@ def test_named_samples_and_a_sample_the_file_does_not_have(tiny, tmp_path):
     assert [int(r["sample"]) for r in csv.DictReader(open(out))] == [2, 0]
     p = run_script("--data", data, "--scene", scene, "--samples", "0,3")
     assert p.returncode != 0 and "no finished sample 3 (the data has 3)" in p.stderr, p.stderr
+
+
+@pytest.fixture(scope="module")
+def tiny_posed(tmp_path_factory):
+    tmp = tmp_path_factory.mktemp("spread_posed")
+    scene = tmp / "tiny.yaml"
+    scene.write_text(f"base: {PENALTY}\nsolver: {{morph_steps: 2, settle_steps: 1, max_newton_iterations: 8, linear_solver: eigen}}\n")
+    data = tmp / "posed.h5"
+    run_drape("generate", scene, "--count", 2, "--bmi", "20:30", "--seed", 3, "--poses", "draw", "--out", data,
+              "--threads", 1)
+    return scene, data
+
+
+def test_a_posed_dataset_is_simulated_in_its_stored_poses(tiny_posed, tmp_path):
+    # Each sample is draped again from its body at rest and its stored angles, as drape generate made it:
+    # the new drape lands on the stored one (to the float rounding of the stored body and angles), where a
+    # drape of the posed body taken as a rest body, or of the rest body unposed, would be centimetres away.
+    scene, data = tiny_posed
+    out = tmp_path / "rows.csv"
+    p = run_script("--data", data, "--scene", scene, "--split", "all", "--count", 2, "--epsilon", 0,
+                   "--threads", 1, "--out", out)
+    assert p.returncode == 0, p.stderr
+    rows = list(csv.DictReader(open(out)))
+    assert len(rows) == 2
+    d = drape.Dataset(str(data))
+    for r in rows:
+        assert float(r["pair_me_cm"]) == 0.0
+        assert float(r["rerun_to_stored_cm"]) < 0.2, r
+        # the stored drape is posed: far from the same body's drape at rest
+        i = int(r["sample"])
+        assert np.abs(d[i]["pose"]).max() > 5.0  # degrees: the draw moved some joint
