@@ -17,7 +17,7 @@
 # datasets/posespace2000), HELDOUT (default
 # datasets/posespace-heldout/heldout-30.h5), THREADS (default 1), EPOCHS
 # (the cosine schedule, default 100), LR (default 1e-3), PATIENCE (default 30),
-# CYCLES (default 2: cosine cycles, each from the last; the first from the
+# CYCLES (default 3: cosine cycles, each from the last; the first from the
 # A-pose model).
 # The shipped model is this script's model.h5 with
 # DATA='datasets/posespace2000/shard-{0[0-9],1[0-6]}-of-40.h5' (shards 0-16), copied.
@@ -28,7 +28,7 @@ WORK=${1:-work-posed-model}
 DATA=${DATA:-datasets/posespace2000/shard-*-of-40.h5}
 HELDOUT=${HELDOUT:-datasets/posespace-heldout/heldout-30.h5}
 GRAPH=${GRAPH:-graphs/poses/drape_posed_sized.yaml}
-CYCLES=${CYCLES:-2}
+CYCLES=${CYCLES:-3}
 mkdir -p "$WORK"
 # Cycle 1 starts from the A-pose model (the angles' rows at zero); each later
 # cycle from the one before, the learning rate back at LR (a warm restart:
