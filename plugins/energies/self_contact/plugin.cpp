@@ -24,8 +24,8 @@ PluginList plugins() {
        .doc = "in units of distance: pairs joined by at most two mesh edges and closer than this in the rest mesh are "
               "not checked (slivers and short hem edges would fight the cloth's own shape)", .min = 0, .max = 100},
       {.name = "thin_rest_neighbours", .type = ParamType::Bool, .default_value = "false",
-       .doc = "keep those pairs instead, each with half its rest distance as its own distance: nothing pushed at rest, "
-              "and no fold between fabric neighbours passes through the cloth (a crowded seam)"},
+       .doc = "keep those pairs instead, each with half its rest distance (at most `distance`) as its own distance: "
+              "nothing pushed at rest, and no fold between fabric neighbours passes through the cloth (a crowded seam)"},
    });
   d.create_energy = [](const Params& p) {
     return std::make_unique<self_contact::SelfContact>(self_contact::SelfContactSettings{

@@ -139,9 +139,11 @@ std::vector<SelfPair> candidate_pairs(const SelfTopology& t, const Eigen::Matrix
   const geometry::MeshBoxes boxes = geometry::mesh_boxes(x, x_end, t.faces, t.edges, inflate);
   std::vector<SelfPair> out;
   for (auto [v, f] : geometry::overlapping_boxes(boxes.points, boxes.faces))
-    if (!t.skipped(PairKind::VertexFace, v, f)) out.push_back({PairKind::VertexFace, v, f, {}, 0});
+    if (!t.skipped(PairKind::VertexFace, v, f))
+      out.push_back({PairKind::VertexFace, v, f, {}, 0, t.thin_dhat(PairKind::VertexFace, v, f)});
   for (auto [a, b] : geometry::overlapping_boxes(boxes.edges, boxes.edges))
-    if (a < b && !t.skipped(PairKind::EdgeEdge, a, b)) out.push_back({PairKind::EdgeEdge, a, b, {}, 0});
+    if (a < b && !t.skipped(PairKind::EdgeEdge, a, b))
+      out.push_back({PairKind::EdgeEdge, a, b, {}, 0, t.thin_dhat(PairKind::EdgeEdge, a, b)});
   return out;
 }
 
@@ -154,7 +156,6 @@ std::vector<SelfPair> close_pairs(const SelfTopology& t, const Eigen::MatrixX3d&
     SelfPair& c = candidates[static_cast<std::size_t>(i)];
     const std::array<Eigen::Vector3d, 4> p = points(x, t.vertices_of(c.kind, c.a, c.b));
     c.distance2 = pair_distance2(c.kind, p);
-    c.dhat = t.thin_dhat(c.kind, c.a, c.b);
     const double limit2 = c.dhat > 0 ? std::min(below2, c.dhat * c.dhat) : below2;
     if (c.distance2 < limit2)
       c.type = c.kind == PairKind::EdgeEdge ? geometry::edge_edge_type(p[0], p[1], p[2], p[3])

@@ -16,17 +16,18 @@ namespace drape::self_contact {
 // of fabric neighbours closer than `exclusion` (m) in its rest mesh:
 // excluded, or with `thin_limit` > 0 kept with half their rest distance (at
 // most thin_limit, the usual d_hat) as their own d_hat.
-SelfTopology make_topology(const Garment& garment, double exclusion, double thin_limit = 0);
+SelfTopology make_topology(const Garment& garment, double exclusion, double thin_limit);
 
 // Every vertex-face and edge-edge pair (not skipped) whose boxes overlap, the
 // mesh moving from x to x_end (null: standing), each box grown by `inflate`;
-// distances not yet set. In (kind, a, b) order.
+// distances not yet set, a thin rest neighbour's own d_hat set (found here,
+// once per candidate list, not at every evaluation). In (kind, a, b) order.
 std::vector<SelfPair> candidate_pairs(const SelfTopology& t, const Eigen::MatrixX3d& x, const Eigen::MatrixX3d* x_end,
                                       double inflate);
 
 // The candidates closer than sqrt(below2) at x (a thin rest neighbour: than
-// its own d_hat), with their squared distances, distance types and own d_hat,
-// in candidate order.
+// its own d_hat), with their squared distances and distance types, in
+// candidate order.
 std::vector<SelfPair> close_pairs(const SelfTopology& t, const Eigen::MatrixX3d& x, std::vector<SelfPair> candidates,
                                   double below2);
 
