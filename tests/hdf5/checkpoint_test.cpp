@@ -285,6 +285,15 @@ outputs: { y: decoder, z: branch }
     }
     b.forward({{"x", x}}, false);
     CHECK(b.output("y").vec() == saved.output("y").vec());  // the file's weights, loaded
+    // A graph that shares no weight with the file is another graph, not an added branch.
+    const char* unrelated = R"(
+inputs: { x: [5, 3] }
+nodes:
+  other: { type: ckpt_dense, in: x, params: { width: 2 } }
+outputs: { y: other }
+)";
+    Graph u = make_graph(11, unrelated);
+    CHECK_THROWS_WITH(load_weights_widening(path, u.weights()), Catch::Contains("none of the graph's weights is in the file"));
   }
   SECTION("outputs (columns) may not change, nor rows shrink, and the file's weights must all be used") {
     const char* wider_out = R"(

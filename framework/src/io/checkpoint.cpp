@@ -4,6 +4,7 @@
 #include <drape/graph.hpp>
 #include <drape/io/h5.hpp>
 
+#include <algorithm>
 #include <set>
 
 namespace fs = std::filesystem;
@@ -107,6 +108,11 @@ void load_named_weights(const fs::path& path, const NamedWeights& weights, bool 
   std::set<std::string> in_file;
   if (widened && file.is_group("/weights"))
     for (const auto& name : file.datasets_below("/weights")) in_file.insert(name);
+  // New weights are for a graph that adds to the file's, not one that shares
+  // nothing with it (another graph's file would otherwise start a training
+  // from scratch without a word).
+  if (widened && std::none_of(weights.begin(), weights.end(), [&](const auto& w) { return in_file.count(w.first) > 0; }))
+    throw ConfigError(path.string() + ": none of the graph's weights is in the file (was it saved from another graph?)");
   std::vector<Tensor> loaded;
   std::set<std::string> wanted;
   for (const auto& [name, w] : weights) {
