@@ -96,12 +96,18 @@ std::vector<skinning::Rigid> transforms_of_rows(const Tensor& rows, int sample) 
   return out;
 }
 
-std::vector<std::vector<int>> weighted_joints(const Eigen::MatrixXf& weights) {
-  std::vector<std::vector<int>> joints(static_cast<std::size_t>(weights.rows()));
+NodeSkinning::NodeSkinning(const Eigen::MatrixXf& garment_skinning, const Shape& transforms, const std::string& node)
+    : weights(garment_skinning) {
+  if (weights.size() == 0)
+    throw ConfigError(node + " needs the garment's skinning weights, and the bound template has none (its body model "
+                             "has no skeleton, or no template assets are bound)");
+  if (transforms.cols != 12 || transforms.rows != weights.cols())
+    throw ConfigError("input 'transforms' must be [" + std::to_string(weights.cols()) +
+                      ", 12] (one rigid transform per joint: R row by row, then t), got " + transforms.str());
+  joints.resize(static_cast<std::size_t>(weights.rows()));
   for (Eigen::Index i = 0; i < weights.rows(); ++i)
     for (Eigen::Index b = 0; b < weights.cols(); ++b)
       if (weights(i, b) != 0.0f) joints[static_cast<std::size_t>(i)].push_back(static_cast<int>(b));
-  return joints;
 }
 
 }  // namespace drape

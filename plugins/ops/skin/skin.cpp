@@ -18,17 +18,10 @@ using namespace drape;
 class Skin final : public Node {
  public:
   ShapeMap setup(const ShapeMap& in, const NodeContext& context) override {
-    if (!context.assets || context.assets->garment_skinning.size() == 0)
-      throw ConfigError("skin needs the garment's skinning weights, and the bound template has none (its body model "
-                        "has no skeleton, or no template assets are bound)");
-    weights_ = context.assets->garment_skinning;
-    const Shape x = in.at("x"), t = in.at("transforms");
-    if (x.cols != 3 || x.rows != weights_.rows())
-      throw ConfigError("input 'x' must be [" + std::to_string(weights_.rows()) + ", 3] (the garment's vertices), got " + x.str());
-    if (t.cols != 12 || t.rows != weights_.cols())
-      throw ConfigError("input 'transforms' must be [" + std::to_string(weights_.cols()) +
-                        ", 12] (one rigid transform per joint: R row by row, then t), got " + t.str());
-    joints_ = weighted_joints(weights_);
+    const Shape x = in.at("x");
+    skinning_ = NodeSkinning(context.assets ? context.assets->garment_skinning : Eigen::MatrixXf(), in.at("transforms"), "skin");
+    if (x.cols != 3 || x.rows != skinning_.weights.rows())
+      throw ConfigError("input 'x' must be [" + std::to_string(skinning_.weights.rows()) + ", 3] (the garment's vertices), got " + x.str());
     return {{"out", x}};
   }
 
@@ -38,7 +31,7 @@ class Skin final : public Node {
     Tensor& y = *out.at("out");
     for (int s = 0; s < x.batch(); ++s)
       for (int i = 0; i < x.rows(); ++i) {
-        const Eigen::Matrix<float, 3, 4> m = blended(t, s, i);
+        const Eigen::Matrix<float, 3, 4> m = skinning_.blended(t, s, i);
         const Eigen::Vector3f p(x(s, i, 0), x(s, i, 1), x(s, i, 2));
         const Eigen::Vector3f q = m.leftCols<3>() * p + m.col(3);
         for (int c = 0; c < 3; ++c) y(s, i, c) = q[c];
@@ -56,14 +49,14 @@ class Skin final : public Node {
       for (int i = 0; i < x.rows(); ++i) {
         const Eigen::Vector3f gi(g(s, i, 0), g(s, i, 1), g(s, i, 2));
         if (gx) {
-          const Eigen::Matrix3f r = blended(t, s, i).leftCols<3>();
+          const Eigen::Matrix3f r = skinning_.blended(t, s, i).leftCols<3>();
           const Eigen::Vector3f back = r.transpose() * gi;
           for (int c = 0; c < 3; ++c) (*gx)(s, i, c) = back[c];
         }
         if (gt) {
           const Eigen::Vector3f p(x(s, i, 0), x(s, i, 1), x(s, i, 2));
-          for (int b : joints_[static_cast<std::size_t>(i)]) {
-            const float w = weights_(i, b);
+          for (int b : skinning_.joints[static_cast<std::size_t>(i)]) {
+            const float w = skinning_.weights(i, b);
             for (int r = 0; r < 3; ++r) {
               for (int c = 0; c < 3; ++c) (*gt)(s, b, 3 * r + c) += w * gi[r] * p[c];
               (*gt)(s, b, 9 + r) += w * gi[r];
@@ -75,17 +68,12 @@ class Skin final : public Node {
 
   double flops_per_sample() const override {
     double n = 0;
-    for (const auto& j : joints_) n += 24.0 * static_cast<double>(j.size()) + 18.0;
+    for (const auto& j : skinning_.joints) n += 24.0 * static_cast<double>(j.size()) + 18.0;
     return n;
   }
 
  private:
-  Eigen::Matrix<float, 3, 4> blended(const Tensor& t, int s, int i) const {
-    return blended_transform(weights_, joints_[static_cast<std::size_t>(i)], t, s, i);
-  }
-
-  Eigen::MatrixXf weights_;              // [garment vertices, joints]
-  std::vector<std::vector<int>> joints_;  // per vertex, the joints with a weight
+  NodeSkinning skinning_;
 };
 
 PluginList plugins() {

@@ -20,16 +20,9 @@ using namespace drape;
 class SkinRotation final : public Node {
  public:
   ShapeMap setup(const ShapeMap& in, const NodeContext& context) override {
-    if (!context.assets || context.assets->garment_skinning.size() == 0)
-      throw ConfigError("skin_rotation needs the garment's skinning weights, and the bound template has none (its body "
-                        "model has no skeleton, or no template assets are bound)");
-    weights_ = context.assets->garment_skinning;
-    const Shape t = in.at("transforms");
-    if (t.cols != 12 || t.rows != weights_.cols())
-      throw ConfigError("input 'transforms' must be [" + std::to_string(weights_.cols()) +
-                        ", 12] (one rigid transform per joint: R row by row, then t), got " + t.str());
-    joints_ = weighted_joints(weights_);
-    return {{"out", Shape{static_cast<int>(weights_.rows()), 9}}};
+    skinning_ = NodeSkinning(context.assets ? context.assets->garment_skinning : Eigen::MatrixXf(), in.at("transforms"),
+                             "skin_rotation");
+    return {{"out", Shape{static_cast<int>(skinning_.weights.rows()), 9}}};
   }
 
   void forward(const TensorIn& in, const TensorOut& out) override {
@@ -37,7 +30,7 @@ class SkinRotation final : public Node {
     Tensor& f = *out.at("out");
     for (int s = 0; s < t.batch(); ++s)
       for (int i = 0; i < f.rows(); ++i) {
-        const Eigen::Matrix<float, 3, 4> m = blended_transform(weights_, joints_[static_cast<std::size_t>(i)], t, s, i);
+        const Eigen::Matrix<float, 3, 4> m = skinning_.blended(t, s, i);
         for (int r = 0; r < 3; ++r)
           for (int c = 0; c < 3; ++c) f(s, i, 3 * r + c) = m(r, c) - (r == c ? 1.0f : 0.0f);
       }
@@ -51,21 +44,20 @@ class SkinRotation final : public Node {
     gt.vec().setZero();
     for (int s = 0; s < g.batch(); ++s)
       for (int i = 0; i < g.rows(); ++i)
-        for (int b : joints_[static_cast<std::size_t>(i)]) {
-          const float w = weights_(i, b);
+        for (int b : skinning_.joints[static_cast<std::size_t>(i)]) {
+          const float w = skinning_.weights(i, b);
           for (int k = 0; k < 9; ++k) gt(s, b, k) += w * g(s, i, k);
         }
   }
 
   double flops_per_sample() const override {
     double n = 0;
-    for (const auto& j : joints_) n += 18.0 * static_cast<double>(j.size()) + 9.0;
+    for (const auto& j : skinning_.joints) n += 18.0 * static_cast<double>(j.size()) + 9.0;
     return n;
   }
 
  private:
-  Eigen::MatrixXf weights_;              // [garment vertices, joints]
-  std::vector<std::vector<int>> joints_;  // per vertex, the joints with a weight
+  NodeSkinning skinning_;
 };
 
 PluginList plugins() {

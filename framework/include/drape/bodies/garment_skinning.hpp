@@ -11,6 +11,7 @@
 
 #include <Eigen/Core>
 
+#include <string>
 #include <vector>
 
 namespace drape {
@@ -43,22 +44,30 @@ MatrixRM transforms_rows(const std::vector<skinning::Rigid>& transforms);
 // Its inverse for sample `sample` of a [n, joints, 12] tensor of them.
 std::vector<skinning::Rigid> transforms_of_rows(const Tensor& rows, int sample);
 
-// In float, as the network nodes use them (`skin`, `skin_rotation`): each
-// vertex's joints with a weight (the weights are dense but mostly zero far
-// from a joint), and vertex i's blend sum_b w_ib [R_b | t_b] of sample s's
-// transform rows.
-std::vector<std::vector<int>> weighted_joints(const Eigen::MatrixXf& weights);
-inline Eigen::Matrix<float, 3, 4> blended_transform(const Eigen::MatrixXf& weights, const std::vector<int>& joints,
-                                                    const Tensor& rows, int s, int i) {
-  Eigen::Matrix<float, 3, 4> m = Eigen::Matrix<float, 3, 4>::Zero();
-  for (int b : joints) {
-    const float w = weights(i, b);
-    for (int r = 0; r < 3; ++r) {
-      for (int c = 0; c < 3; ++c) m(r, c) += w * rows(s, b, 3 * r + c);
-      m(r, 3) += w * rows(s, b, 9 + r);
+// The garment's skinning as the network nodes hold it (`skin`,
+// `skin_rotation`), in float: bound at setup and checked there once for
+// both. ConfigError naming `node` when the template has no weights (an empty
+// matrix: its body model has no skeleton, or no assets are bound) or
+// `transforms` is not [joints, 12].
+struct NodeSkinning {
+  Eigen::MatrixXf weights;               // [garment vertices, joints]
+  std::vector<std::vector<int>> joints;  // per vertex, the joints with a weight (dense but mostly zero)
+
+  NodeSkinning() = default;
+  NodeSkinning(const Eigen::MatrixXf& garment_skinning, const Shape& transforms, const std::string& node);
+
+  // Vertex i's blend sum_b w_ib [R_b | t_b] of sample s's transform rows.
+  Eigen::Matrix<float, 3, 4> blended(const Tensor& rows, int s, int i) const {
+    Eigen::Matrix<float, 3, 4> m = Eigen::Matrix<float, 3, 4>::Zero();
+    for (int b : joints[static_cast<std::size_t>(i)]) {
+      const float w = weights(i, b);
+      for (int r = 0; r < 3; ++r) {
+        for (int c = 0; c < 3; ++c) m(r, c) += w * rows(s, b, 3 * r + c);
+        m(r, 3) += w * rows(s, b, 9 + r);
+      }
     }
+    return m;
   }
-  return m;
-}
+};
 
 }  // namespace drape
