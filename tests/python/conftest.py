@@ -42,6 +42,22 @@ def run_drape(*args, expect=0):
     return p.stdout, p.stderr
 
 
+def run_script(script, *args, timeout=300):
+    """Runs a script of scripts/ with this build's drape module on its path; returns the CompletedProcess."""
+    import drape
+    env = dict(os.environ, PYTHONPATH=os.path.dirname(os.path.dirname(os.path.abspath(drape.__file__))))
+    return subprocess.run([sys.executable, str(script), *map(str, args)], capture_output=True, text=True,
+                          timeout=timeout, env=env)
+
+
+def penalty_scene(path, morph_steps=0):
+    """A scene of seconds for the scripts' tests: the coarse T-shirt with the penalty contact (so that the body
+    moves the cloth even without a morph), one settling step cut at 8 Newton iterations, Eigen's Cholesky."""
+    path.write_text(f"base: {SOURCE / 'graphs' / 'scenes' / 'tshirt_coarse_penalty.yaml'}\n"
+                    f"solver: {{morph_steps: {morph_steps}, settle_steps: 1, max_newton_iterations: 8, linear_solver: eigen}}\n")
+    return path
+
+
 @pytest.fixture(scope="session")
 def drape_module():
     import drape

@@ -2,18 +2,14 @@
 error floor it implies. Checked on a tiny scene (one settling step, penalty contact) so that it runs in seconds."""
 import csv
 import importlib.util
-import os
-import subprocess
-import sys
 
 import h5py
 import numpy as np
 import pytest
 
 import drape
-from conftest import COARSE, SOURCE, run_drape
-
-PENALTY = SOURCE / "graphs" / "scenes" / "tshirt_coarse_penalty.yaml"
+from conftest import COARSE, SOURCE, penalty_scene, run_drape
+from conftest import run_script as run_any_script
 
 SCRIPT = SOURCE / "scripts" / "ground_truth_spread.py"
 spec = importlib.util.spec_from_file_location("ground_truth_spread", SCRIPT)
@@ -24,19 +20,14 @@ spec.loader.exec_module(spread)
 @pytest.fixture(scope="module")
 def tiny(tmp_path_factory):
     tmp = tmp_path_factory.mktemp("spread")
-    scene = tmp / "tiny.yaml"
-    # the penalty contact, so that the body moves the cloth even without a morph
-    scene.write_text(f"base: {PENALTY}\nsolver: {{morph_steps: 0, settle_steps: 1, max_newton_iterations: 8, linear_solver: eigen}}\n")
+    scene = penalty_scene(tmp / "tiny.yaml")
     data = tmp / "data.h5"
     run_drape("generate", scene, "--count", 3, "--bmi", "20:40", "--seed", 5, "--out", data, "--threads", 1)
     return scene, data
 
 
 def run_script(*args):
-    env = dict(os.environ, PYTHONPATH=os.path.dirname(os.path.dirname(os.path.abspath(drape.__file__))))
-    p = subprocess.run([sys.executable, str(SCRIPT), *map(str, args)], capture_output=True, text=True,
-                       timeout=300, env=env)
-    return p
+    return run_any_script(SCRIPT, *args)
 
 
 def test_picks_are_spread_evenly_over_bmi():
@@ -127,8 +118,7 @@ def test_named_samples_and_a_sample_the_file_does_not_have(tiny, tmp_path):
 @pytest.fixture(scope="module")
 def tiny_posed(tmp_path_factory):
     tmp = tmp_path_factory.mktemp("spread_posed")
-    scene = tmp / "tiny.yaml"
-    scene.write_text(f"base: {PENALTY}\nsolver: {{morph_steps: 2, settle_steps: 1, max_newton_iterations: 8, linear_solver: eigen}}\n")
+    scene = penalty_scene(tmp / "tiny.yaml", morph_steps=2)
     data = tmp / "posed.h5"
     run_drape("generate", scene, "--count", 2, "--bmi", "20:30", "--seed", 3, "--poses", "draw", "--out", data,
               "--threads", 1)

@@ -1,31 +1,22 @@
 """scripts/model_error_breakdown.py: a model's error split by garment region, the garment's shift and a rigid fit,
 checked against drape eval's ME (another code path) and against the split's own definitions."""
-import os
 import re
-import subprocess
-import sys
 
-import numpy as np
 import pytest
-
-import drape
-from conftest import SOURCE, run_drape
+from conftest import SOURCE, penalty_scene, run_drape
+from conftest import run_script as run_any_script
 
 SCRIPT = SOURCE / "scripts" / "model_error_breakdown.py"
-PENALTY = SOURCE / "graphs" / "scenes" / "tshirt_coarse_penalty.yaml"
 
 
 def run_script(*args):
-    env = dict(os.environ, PYTHONPATH=os.path.dirname(os.path.dirname(os.path.abspath(drape.__file__))))
-    return subprocess.run([sys.executable, str(SCRIPT), *map(str, args)], capture_output=True, text=True, timeout=300,
-                          env=env)
+    return run_any_script(SCRIPT, *args)
 
 
 @pytest.fixture(scope="module")
 def tiny(tmp_path_factory):
     tmp = tmp_path_factory.mktemp("breakdown")
-    scene = tmp / "tiny.yaml"
-    scene.write_text(f"base: {PENALTY}\nsolver: {{morph_steps: 0, settle_steps: 1, max_newton_iterations: 8, linear_solver: eigen}}\n")
+    scene = penalty_scene(tmp / "tiny.yaml")
     data = tmp / "data.h5"
     run_drape("generate", scene, "--count", 4, "--bmi", "20:40", "--seed", 5, "--out", data, "--threads", 1)
     return data
