@@ -116,4 +116,20 @@ inline Assets two_joint_skinned_assets() {
   return a;
 }
 
+// Their transforms [batch, 2, 12]: joint 0 unturned, moved by `first_moved`;
+// joint 1 turned 90 degrees about y (x -> -z, z -> x) and moved by (1, 2, 3),
+// or (`second_turned` false) at rest like joint 0.
+inline Tensor two_joint_transforms(int batch, Eigen::Vector3f first_moved = Eigen::Vector3f::Zero(),
+                                   bool second_turned = true) {
+  Tensor t(batch, 2, 12);
+  const float rest[12] = {1, 0, 0, 0, 1, 0, 0, 0, 1, first_moved.x(), first_moved.y(), first_moved.z()};
+  const float turned[12] = {0, 0, 1, 0, 1, 0, -1, 0, 0, 1, 2, 3};
+  for (int s = 0; s < batch; ++s)
+    for (int k = 0; k < 12; ++k) {
+      t(s, 0, k) = rest[k];
+      t(s, 1, k) = second_turned ? turned[k] : rest[k];
+    }
+  return t;
+}
+
 }  // namespace drape::test

@@ -11,29 +11,12 @@
 using namespace drape;
 using namespace drape::test;
 
-namespace {
-
-// Joint 0 at rest (moved by (5, 6, 7), which must not show); joint 1 turned
-// 90 degrees about y: rows (0 0 1), (0 1 0), (-1 0 0).
-Tensor rest_and_turned_joint(int batch, bool turned) {
-  Tensor t(batch, 2, 12);
-  const float rest[12] = {1, 0, 0, 0, 1, 0, 0, 0, 1, 5, 6, 7};
-  const float quarter[12] = {0, 0, 1, 0, 1, 0, -1, 0, 0, 1, 2, 3};
-  for (int s = 0; s < batch; ++s)
-    for (int k = 0; k < 12; ++k) {
-      t(s, 0, k) = rest[k];
-      t(s, 1, k) = turned ? quarter[k] : rest[k];
-    }
-  return t;
-}
-
-}  // namespace
-
 TEST_CASE("skin_rotation gives each vertex its blended rotation minus the identity", "[skin_rotation]") {
   const Assets a = two_joint_skinned_assets();
   const NodeContext context{"skin_rotation", 1, &a};
   auto node = make_node("skin_rotation");
-  const Tensor f = run_forward(*node, {{"transforms", rest_and_turned_joint(1, true)}}, context).at("out");
+  // Joint 0 moved by (5, 6, 7), which must not show: the translations are left out.
+  const Tensor f = run_forward(*node, {{"transforms", two_joint_transforms(1, {5, 6, 7})}}, context).at("out");
   REQUIRE(f.rows() == 4);
   REQUIRE(f.cols() == 9);
   // Worked by hand: R1 - I = rows (-1 0 1), (0 0 0), (-1 0 -1); a vertex with
@@ -43,7 +26,7 @@ TEST_CASE("skin_rotation gives each vertex its blended rotation minus the identi
   for (int v = 0; v < 4; ++v)
     for (int k = 0; k < 9; ++k) CHECK(f(0, v, k) == Approx(w1[v] * turned_minus_identity[k]).margin(1e-6));
 
-  const Tensor rest = run_forward(*node, {{"transforms", rest_and_turned_joint(1, false)}}, context).at("out");
+  const Tensor rest = run_forward(*node, {{"transforms", two_joint_transforms(1, {5, 6, 7}, false)}}, context).at("out");
   for (std::size_t k = 0; k < rest.size(); ++k) CHECK(rest.data()[k] == 0.0f);
 }
 
@@ -51,7 +34,7 @@ TEST_CASE("skin_rotation's gradient matches finite differences", "[skin_rotation
   const Assets a = two_joint_skinned_assets();
   const NodeContext context{"skin_rotation", 1, &a};
   auto node = make_node("skin_rotation");
-  Tensor transforms = rest_and_turned_joint(2, true);
+  Tensor transforms = two_joint_transforms(2, {5, 6, 7});
   const Tensor noise = random_tensor(2, 2, 12, 7, 0.3f);
   for (std::size_t i = 0; i < transforms.size(); ++i) transforms.data()[i] += noise.data()[i];
   const GradCheckReport r = check_node_gradients(*node, {{"transforms", transforms}}, context);

@@ -11,23 +11,6 @@
 using namespace drape;
 using namespace drape::test;
 
-namespace {
-
-// Joint 0 at rest; joint 1 turned 90 degrees about y (x -> -z, z -> x) and moved by (1, 2, 3).
-Tensor two_transforms(int batch) {
-  Tensor t(batch, 2, 12);
-  const float identity[12] = {1, 0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0};
-  const float turned[12] = {0, 0, 1, 0, 1, 0, -1, 0, 0, 1, 2, 3};
-  for (int s = 0; s < batch; ++s)
-    for (int k = 0; k < 12; ++k) {
-      t(s, 0, k) = identity[k];
-      t(s, 1, k) = turned[k];
-    }
-  return t;
-}
-
-}  // namespace
-
 TEST_CASE("skin poses each vertex by its blended joint transforms", "[skin]") {
   const Assets a = two_joint_skinned_assets();
   const NodeContext context{"skin", 1, &a};
@@ -36,7 +19,7 @@ TEST_CASE("skin poses each vertex by its blended joint transforms", "[skin]") {
   const float points[4][3] = {{1, 2, 3}, {1, 2, 3}, {2, 0, 0}, {0, 0, 4}};
   for (int v = 0; v < 4; ++v)
     for (int c = 0; c < 3; ++c) x(0, v, c) = points[v][c];
-  const Tensor y = run_forward(*skin, {{"x", x}, {"transforms", two_transforms(1)}}, context).at("out");
+  const Tensor y = run_forward(*skin, {{"x", x}, {"transforms", two_joint_transforms(1)}}, context).at("out");
   // Worked by hand: R1 (x, y, z) = (z, y, -x), t1 = (1, 2, 3).
   const float expected[4][3] = {
       {1, 2, 3},                                      // joint 0 only: unchanged
@@ -51,7 +34,7 @@ TEST_CASE("skin's gradients match finite differences", "[skin][gradcheck]") {
   const Assets a = two_joint_skinned_assets();
   const NodeContext context{"skin", 1, &a};
   auto skin = make_node("skin");
-  Tensor transforms = two_transforms(2);
+  Tensor transforms = two_joint_transforms(2);
   const Tensor noise = random_tensor(2, 2, 12, 7, 0.3f);
   for (std::size_t i = 0; i < transforms.size(); ++i) transforms.data()[i] += noise.data()[i];
   const GradCheckReport r = check_node_gradients(*skin, {{"x", random_tensor(2, 4, 3, 5)}, {"transforms", transforms}}, context);
