@@ -19,7 +19,7 @@ import sys
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, HERE)
-from svg_grid import read_cell, write_grid  # noqa: E402
+from svg_grid import read_cell, simulated_cell, write_grid  # noqa: E402
 
 ROOT = os.path.dirname(os.path.dirname(HERE))
 
@@ -39,7 +39,7 @@ def main():
     a = ap.parse_args()
     os.makedirs(a.work, exist_ok=True)
     scene = os.path.join(ROOT, "graphs", "scenes", "makehuman_tshirt_graded.yaml")
-    cells, blank = [], None
+    cells = []
     bmis = [float(b) for b in a.bmis.split(",")]
     for row, sex in enumerate((0, 1)):
         name = "woman" if sex == 0 else "man"
@@ -51,31 +51,15 @@ def main():
             size = re.search(r"size (\w+) by the tailor's rule", text)
             if code == 0:
                 inner, w, h = read_cell(stem + "-predicted.svg")
-                blank = blank or (w, h)
                 cells.append(dict(row=k, col=2 * row, inner=inner, w=w, h=h,
                                   label=f"{name}, BMI {bmi:g}: parametric", note=f"predicted, size {size.group(1)}" if size else "predicted"))
             else:
                 cells.append(dict(row=k, col=2 * row, inner="", w=None, h=None, label=f"{name}, BMI {bmi:g}: parametric",
                                   note=text.strip().splitlines()[-1][:60]))
             # The MakeHuman body: MakeHuman's T-shirt graded to it, simulated.
-            code, text = run([a.drape, "simulate", scene, *body, "--threads", "1", "--out", stem + "-makehuman.obj",
-                              "--svg", stem + "-makehuman.svg"])
-            label = f"{name}, BMI {bmi:g}: MakeHuman"
-            if code == 0 and os.path.exists(stem + "-makehuman.svg"):
-                inner, w, h = read_cell(stem + "-makehuman.svg")
-                settled = "settled" if re.search(r"\bsettled after", text) and "NOT settled" not in text else "NOT settled"
-                grade = re.search(r"grade auto: .*?, ([0-9.]+) worn", text)
-                p = re.search(r"p = ([0-9.]+)%", text)
-                note = f"simulated, grade {grade.group(1) if grade else '?'}, {settled}" + (f", p = {p.group(1)} %" if p else "")
-                cells.append(dict(row=k, col=2 * row + 1, inner=inner, w=w, h=h, label=label, note=note))
-            else:
-                cells.append(dict(row=k, col=2 * row + 1, inner="", w=None, h=None, label=label,
-                                  note=text.strip().splitlines()[-1][:60] if text.strip() else f"exit {code}"))
+            cells.append(simulated_cell(a.drape, scene, body, stem + "-makehuman", k, 2 * row + 1,
+                                        f"{name}, BMI {bmi:g}: MakeHuman", prefix="simulated, "))
             print(f"{name} BMI {bmi:g} done", flush=True)
-    w, h = blank or (300.0, 400.0)
-    for c in cells:
-        if c["w"] is None:
-            c["w"], c["h"] = w, h
     write_grid(a.out, f"the shipped model on parametric bodies beside MakeHuman's T-shirt simulated on MakeHuman bodies, "
                       f"{a.height:g} m", cells)
     print(f"wrote {a.out}")

@@ -10,13 +10,11 @@ be put on gets a cell with the reason instead of a picture.
 """
 import argparse
 import os
-import re
-import subprocess
 import sys
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, HERE)
-from svg_grid import read_cell, write_grid  # noqa: E402
+from svg_grid import simulated_cell, write_grid  # noqa: E402
 
 ROOT = os.path.dirname(os.path.dirname(HERE))
 
@@ -30,31 +28,13 @@ def main():
     a = ap.parse_args()
     os.makedirs(a.work, exist_ok=True)
     scene = os.path.join(ROOT, "graphs", "scenes", "makehuman_tshirt_graded.yaml")
-    cells, blank = [], None
+    cells = []
     for row, sex in enumerate((0, 1)):
         for col, bmi in enumerate(float(b) for b in a.bmis.split(",")):
-            stem = os.path.join(a.work, f"sex{sex}_bmi{bmi:g}")
-            run = subprocess.run([a.drape, "simulate", scene, "--bmi", str(bmi), "--sex", str(sex), "--threads", "1",
-                                  "--out", stem + ".obj", "--svg", stem + ".svg"], capture_output=True, text=True)
-            text = run.stdout + run.stderr
-            grade = re.search(r"grade auto: .*?, ([0-9.]+) worn", text)
-            label = f"{'F' if sex == 0 else 'M'}, BMI {bmi:g}" + (f", grade {grade.group(1)}" if grade else "")
-            print(label, "->", "ok" if run.returncode == 0 else f"exit {run.returncode}", flush=True)
-            if run.returncode == 0 and os.path.exists(stem + ".svg"):
-                inner, w, h = read_cell(stem + ".svg")
-                settled = "settled" if re.search(r"\bsettled after", text) and "NOT settled" not in text else "NOT settled"
-                p = re.search(r"p = ([0-9.]+)%", text)
-                note = f"{settled}, p = {p.group(1)} %" if p else settled
-                cells.append(dict(row=row, col=col, inner=inner, w=w, h=h, label=label, note=note))
-                blank = blank or (w, h)
-            else:
-                reason = "refused: " + ("garment through the body at the start" if "starts crossing" in text else
-                                        text.strip().splitlines()[-1][:60])
-                cells.append(dict(row=row, col=col, inner="", w=None, h=None, label=label, note=reason))
-    w, h = blank or (300.0, 400.0)
-    for c in cells:
-        if c["w"] is None:
-            c["w"], c["h"] = w, h
+            label = f"{'F' if sex == 0 else 'M'}, BMI {bmi:g}"
+            cells.append(simulated_cell(a.drape, scene, ["--bmi", bmi, "--sex", sex], os.path.join(a.work, f"sex{sex}_bmi{bmi:g}"),
+                                        row, col, label))
+            print(label, "->", cells[-1]["note"], flush=True)
     write_grid(a.out, "MakeHuman's T-shirt, grade: auto (each body's own grade), MakeHuman bodies", cells)
 
 

@@ -23,7 +23,6 @@ namespace {
 
 using V3 = Eigen::Vector3d;
 
-
 // The mannequin's n-th part of a region and side (its order in body_plan.cpp).
 Primitive& part_of(ImplicitBody& body, Region region, int side, int nth = 0) {
   for (Primitive& p : body.parts)
