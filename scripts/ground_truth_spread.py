@@ -24,6 +24,12 @@ module (build/python on PYTHONPATH).
 A posed dataset (made with poses="draw", docs/poses.md) is simulated as it was made: each body at rest (the
 scaled copy scaled at rest) taken to its stored joint angles by the scene's pose path, and the model, if
 given, predicts from the body at rest and the same angles.
+
+--pose-step DEG (posed data) asks how smooth the labels are over a finite change of pose rather than an
+infinitesimal one: each body is draped at its angles and at its angles moved by +DEG and -DEG (every angle, its
+sign drawn per body), and the table gives the two stepped drapes' distance (how fast the drape follows the
+pose) and the drape at the angles against the mean of the two (what is left after the change linear in the
+angles: a fold or hem that jumps between neighbouring poses, which no smooth predictor follows).
 """
 import argparse
 import concurrent.futures
@@ -44,6 +50,10 @@ def parse_arguments(argv):
     p.add_argument("--count", type=int, default=24, help="bodies, spread evenly over the split's BMI")
     p.add_argument("--samples", help="these sample indices (comma-separated) instead of --count of the split")
     p.add_argument("--epsilon", type=float, default=1e-6, help="relative scale of the second body (0: the same)")
+    p.add_argument("--pose-step", type=float, default=0.0,
+                   help="posed data: instead of the scaled copy, drape each body at its angles moved by +DEG and -DEG "
+                        "(each angle, signs drawn per body) and report how far the drape at the angles lies from the "
+                        "mean of those two (0: off)")
     p.add_argument("--model", help="also the model's ME on the same bodies, against the stored drapes")
     p.add_argument("--bands", default="10,25,35,45,55,65", help="BMI band edges")
     p.add_argument("--threads", type=int, default=os.cpu_count() or 1, help="simulations run at once")
@@ -53,6 +63,8 @@ def parse_arguments(argv):
         p.error("--count must be at least 1")
     if not a.epsilon >= 0:
         p.error("--epsilon must be >= 0")
+    if not 0 <= a.pose_step <= 10:
+        p.error("--pose-step must be in [0, 10] degrees")
     return a
 
 
@@ -82,6 +94,20 @@ def scaled_about_soles(body, factor):
 
 def mean_distance_cm(a, b):
     return 100.0 * float(np.linalg.norm(np.asarray(a, float) - np.asarray(b, float), axis=1).mean())
+
+
+def stepped_angles(angles, step, seed):
+    """The angles moved by +step and by -step degrees, each along a sign drawn from seed (the same each run)."""
+    signs = np.random.default_rng(seed).choice([-1.0, 1.0], size=len(angles))
+    plus = {name: a + step * sign for (name, a), sign in zip(angles.items(), signs)}
+    minus = {name: a - step * sign for (name, a), sign in zip(angles.items(), signs)}
+    return plus, minus
+
+
+def off_neighbours_mean_cm(at, plus, minus):
+    """ME (cm) of the drape at a point from the mean of its drapes a step either side: what is left of the
+    change after its part linear in the step (a second difference, half of it)."""
+    return mean_distance_cm(at, (np.asarray(plus, float) + np.asarray(minus, float)) / 2)
 
 
 def main(argv):
@@ -134,16 +160,35 @@ def main(argv):
             print(f"  (a drape did not settle: {r.get('unsettled', '')})", file=sys.stderr)
         return r["garment"], bool(r["converged"])
 
-    jobs = [(int(i), which) for i in picks for which in (0, 1)]
+    # The second drape: the body scaled by 1 + epsilon, or (--pose-step) two drapes at the angles moved by
+    # +-step along a direction of signs drawn per body (seeded by the sample index: a re-run drapes the same).
+    stepped = args.pose_step > 0
+    if stepped and not poses:
+        raise SystemExit(f"{args.data}: --pose-step needs a posed dataset (its samples store no angles)")
+    steps = {int(i): stepped_angles(poses[int(i)], args.pose_step, int(i)) for i in picks} if stepped else {}
+
+    def job_input(i, which):
+        if which == 0:
+            return bodies[i], poses.get(i)
+        if not stepped:
+            return scaled_about_soles(bodies[i], 1.0 + args.epsilon), poses.get(i)
+        return bodies[i], steps[i][which - 1]
+
+    jobs = [(int(i), which) for i in picks for which in ((0, 1, 2) if stepped else (0, 1))]
     results = {}
     start = time.time()
     with concurrent.futures.ThreadPoolExecutor(max_workers=max(1, args.threads)) as pool:
         futures = {}
         for i, which in jobs:
-            body = bodies[i] if which == 0 else scaled_about_soles(bodies[i], 1.0 + args.epsilon)
-            futures[pool.submit(simulate, body, poses.get(i))] = (i, which)
+            futures[pool.submit(simulate, *job_input(i, which))] = (i, which)
         for n, future in enumerate(concurrent.futures.as_completed(futures), 1):
-            results[futures[future]] = future.result()
+            try:
+                results[futures[future]] = future.result()
+            except Exception as e:  # a stepped pose the body model refuses (a limit passed, the body crossing itself)
+                if not stepped or futures[future][1] == 0:
+                    raise
+                results[futures[future]] = (None, False)
+                print(f"\n  sample {futures[future][0]}: stepped pose refused: {e}", file=sys.stderr)
             elapsed = time.time() - start
             eta = elapsed / n * (len(jobs) - n)
             bar = "#" * (30 * n // len(jobs))
@@ -154,18 +199,32 @@ def main(argv):
     rows = []
     for i in map(int, picks):
         (first, settled_first), (second, settled_second) = results[(i, 0)], results[(i, 1)]
-        row = {"sample": i, "bmi": float(bmi[i]), "pair_me_cm": mean_distance_cm(first, second),
-               "rerun_to_stored_cm": mean_distance_cm(first, stored[i]),
-               "settled": int(settled_first and settled_second)}
+        if stepped:
+            third, settled_third = results[(i, 2)]
+            if second is None or third is None:
+                continue
+            # The pair spans 2 steps; the drape at the angles against the mean of its two neighbours is what is
+            # left after the part of the change that is linear in the angles (a smooth predictor's).
+            row = {"sample": i, "bmi": float(bmi[i]), "pair_me_cm": mean_distance_cm(second, third),
+                   "off_neighbours_mean_cm": off_neighbours_mean_cm(first, second, third)}
+            settled_second = settled_second and settled_third
+        else:
+            row = {"sample": i, "bmi": float(bmi[i]), "pair_me_cm": mean_distance_cm(first, second)}
+        row.update({"rerun_to_stored_cm": mean_distance_cm(first, stored[i]),
+                    "settled": int(settled_first and settled_second)})
         if model is not None:
             pose = {"pose": poses[i]} if i in poses else {}
             row["model_me_cm"] = mean_distance_cm(model.predict(bodies[i].astype(np.float32), **pose), stored[i])
         rows.append(row)
 
     edges = [float(x) for x in args.bands.split(",")]
-    print(f"{len(rows)} bodies of {args.data} ({args.split}), second body scaled by 1 + {args.epsilon:g}, "
-          f"scene {args.scene}")
-    header = "| BMI | bodies | pair ME (cm) | floor = pair / 2 (cm) | new drape to stored (cm) |"
+    if not rows:
+        raise SystemExit("no body had both stepped poses draped")
+    second = (f"drapes at the angles +-{args.pose_step:g} degrees" if stepped
+              else f"second body scaled by 1 + {args.epsilon:g}")
+    print(f"{len(rows)} bodies of {args.data} ({args.split}), {second}, scene {args.scene}")
+    header = ("| BMI | bodies | pair +- step (cm) | drape off its neighbours' mean (cm) | new drape to stored (cm) |"
+              if stepped else "| BMI | bodies | pair ME (cm) | floor = pair / 2 (cm) | new drape to stored (cm) |")
     header += " model ME (cm) |" if model is not None else ""
     print(header)
     print("|---" * (header.count("|") - 1) + "|")
@@ -178,7 +237,8 @@ def main(argv):
         if not sel:
             continue
         pair = np.mean([r["pair_me_cm"] for r in sel])
-        line = (f"| {name} | {len(sel)} | {pair:.3f} | {pair / 2:.3f} | "
+        second_column = np.mean([r["off_neighbours_mean_cm"] for r in sel]) if stepped else pair / 2
+        line = (f"| {name} | {len(sel)} | {pair:.3f} | {second_column:.3f} | "
                 f"{np.mean([r['rerun_to_stored_cm'] for r in sel]):.3f} |")
         if model is not None:
             line += f" {np.mean([r['model_me_cm'] for r in sel]):.3f} |"

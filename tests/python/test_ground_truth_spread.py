@@ -143,3 +143,48 @@ def test_a_posed_dataset_is_simulated_in_its_stored_poses(tiny_posed, tmp_path):
         # the stored drape is posed: far from the same body's drape at rest
         i = int(r["sample"])
         assert np.abs(d[i]["pose"]).max() > 5.0  # degrees: the draw moved some joint
+
+
+def test_stepped_angles_move_every_angle_by_the_step_both_ways_the_same_each_run():
+    angles = {"a": 10.0, "b": -5.0, "c": 0.0}
+    plus, minus = spread.stepped_angles(angles, 2.0, seed=7)
+    for name, a in angles.items():
+        assert abs(plus[name] - a) == 2.0 and minus[name] - a == -(plus[name] - a)
+    assert spread.stepped_angles(angles, 2.0, seed=7) == (plus, minus)
+    signs = [np.sign(spread.stepped_angles(angles, 1.0, seed=s)[0]["a"] - 10.0) for s in range(20)]
+    assert 0 < signs.count(1.0) < 20  # the signs are drawn, not all one way
+
+
+def test_off_neighbours_mean_is_zero_for_a_linear_change_and_the_offset_otherwise():
+    at = np.zeros((4, 3))
+    shift = np.tile([0.03, 0.0, 0.04], (4, 1))  # 5 cm
+    assert spread.off_neighbours_mean_cm(at, at + shift, at - shift) == 0.0
+    assert np.isclose(spread.off_neighbours_mean_cm(at, at + shift, at + shift), 5.0)
+    assert np.isclose(spread.off_neighbours_mean_cm(at, at + 2 * shift, at), 5.0)
+
+
+def test_pose_steps_drape_each_body_either_side_of_its_angles(tiny_posed, tmp_path):
+    scene, data = tiny_posed
+    out = tmp_path / "rows.csv"
+    p = run_script("--data", data, "--scene", scene, "--split", "all", "--count", 2, "--pose-step", 2,
+                   "--threads", 1, "--out", out)
+    assert p.returncode == 0, p.stderr
+    assert "drapes at the angles +-2 degrees" in p.stdout
+    rows = list(csv.DictReader(open(out)))
+    assert len(rows) == 2
+    for r in rows:
+        assert float(r["pair_me_cm"]) > 0.01, r  # 4 degrees apart in every angle: the drape follows the pose
+        assert float(r["off_neighbours_mean_cm"]) > 0.0, r
+        assert float(r["rerun_to_stored_cm"]) < 0.2, r  # the drape at the angles is the stored one
+    again = tmp_path / "again.csv"
+    p = run_script("--data", data, "--scene", scene, "--split", "all", "--count", 2, "--pose-step", 2,
+                   "--threads", 1, "--out", again)
+    assert p.returncode == 0 and list(csv.DictReader(open(again))) == rows  # the same steps each run
+
+
+def test_pose_steps_need_a_posed_dataset_and_a_small_step(tiny, tmp_path):
+    scene, data = tiny
+    p = run_script("--data", data, "--scene", scene, "--count", 1, "--pose-step", 1)
+    assert p.returncode != 0 and "--pose-step needs a posed dataset" in p.stderr, p.stderr
+    p = run_script("--data", data, "--scene", scene, "--pose-step", 20)
+    assert p.returncode != 0 and "--pose-step must be in [0, 10] degrees" in p.stderr, p.stderr
