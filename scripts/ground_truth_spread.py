@@ -184,7 +184,7 @@ def main(argv):
         for n, future in enumerate(concurrent.futures.as_completed(futures), 1):
             try:
                 results[futures[future]] = future.result()
-            except Exception as e:  # a stepped pose the body model refuses (a limit passed, the body crossing itself)
+            except drape.ConfigError as e:  # a stepped pose refused (a limit passed, the body crossing itself)
                 if not stepped or futures[future][1] == 0:
                     raise
                 results[futures[future]] = (None, False)
