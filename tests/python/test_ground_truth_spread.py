@@ -30,6 +30,13 @@ def run_script(*args):
     return run_any_script(SCRIPT, *args)
 
 
+def run_for_rows(out, *args):
+    """The script run with --out out, which must succeed: its output and the per-body rows it wrote."""
+    p = run_script(*args, "--out", out)
+    assert p.returncode == 0, p.stderr
+    return p, list(csv.DictReader(open(out)))
+
+
 def test_picks_are_spread_evenly_over_bmi():
     done = np.array([1, 1, 1, 1, 1, 0], np.uint8)
     split = np.array([2, 2, 0, 2, 2, 2], np.int8)
@@ -49,11 +56,8 @@ def test_scaling_about_the_soles_keeps_the_soles_and_scales_heights():
 
 def test_the_same_body_twice_gives_the_same_drape_and_a_zero_floor(tiny, tmp_path):
     scene, data = tiny
-    out = tmp_path / "rows.csv"
-    p = run_script("--data", data, "--scene", scene, "--split", "all", "--count", 2, "--epsilon", 0,
-                   "--threads", 2, "--out", out)
-    assert p.returncode == 0, p.stderr
-    rows = list(csv.DictReader(open(out)))
+    p, rows = run_for_rows(tmp_path / "rows.csv", "--data", data, "--scene", scene, "--split", "all", "--count", 2,
+                           "--epsilon", 0, "--threads", 2)
     assert len(rows) == 2
     for r in rows:
         assert float(r["pair_me_cm"]) == 0.0  # the simulation is deterministic: same body, same drape
@@ -63,12 +67,9 @@ def test_the_same_body_twice_gives_the_same_drape_and_a_zero_floor(tiny, tmp_pat
 
 def test_a_scaled_body_and_the_model_column(tiny, tmp_path):
     scene, data = tiny
-    out = tmp_path / "rows.csv"
     model = SOURCE / "models" / "tshirt-coarse.h5"
-    p = run_script("--data", data, "--scene", scene, "--count", 3, "--split", "all", "--epsilon", 0.05,
-                   "--model", model, "--threads", 1, "--out", out)
-    assert p.returncode == 0, p.stderr
-    rows = list(csv.DictReader(open(out)))
+    p, rows = run_for_rows(tmp_path / "rows.csv", "--data", data, "--scene", scene, "--count", 3, "--split", "all",
+                           "--epsilon", 0.05, "--model", model, "--threads", 1)
     with h5py.File(data, "r", locking=False) as f:
         stored = f["garments/vertices"][:]
         bodies = f["bodies/vertices"][:]
@@ -130,11 +131,8 @@ def test_a_posed_dataset_is_simulated_in_its_stored_poses(tiny_posed, tmp_path):
     # the new drape lands on the stored one (to the float rounding of the stored body and angles), where a
     # drape of the posed body taken as a rest body, or of the rest body unposed, would be centimetres away.
     scene, data = tiny_posed
-    out = tmp_path / "rows.csv"
-    p = run_script("--data", data, "--scene", scene, "--split", "all", "--count", 2, "--epsilon", 0,
-                   "--threads", 1, "--out", out)
-    assert p.returncode == 0, p.stderr
-    rows = list(csv.DictReader(open(out)))
+    p, rows = run_for_rows(tmp_path / "rows.csv", "--data", data, "--scene", scene, "--split", "all", "--count", 2,
+                           "--epsilon", 0, "--threads", 1)
     assert len(rows) == 2
     d = drape.Dataset(str(data))
     for r in rows:
@@ -165,21 +163,17 @@ def test_off_neighbours_mean_is_zero_for_a_linear_change_and_the_offset_otherwis
 
 def test_pose_steps_drape_each_body_either_side_of_its_angles(tiny_posed, tmp_path):
     scene, data = tiny_posed
-    out = tmp_path / "rows.csv"
-    p = run_script("--data", data, "--scene", scene, "--split", "all", "--count", 2, "--pose-step", 2,
-                   "--threads", 1, "--out", out)
-    assert p.returncode == 0, p.stderr
+    p, rows = run_for_rows(tmp_path / "rows.csv", "--data", data, "--scene", scene, "--split", "all", "--count", 2,
+                           "--pose-step", 2, "--threads", 1)
     assert "drapes at the angles +-2 degrees" in p.stdout
-    rows = list(csv.DictReader(open(out)))
     assert len(rows) == 2
     for r in rows:
         assert float(r["pair_me_cm"]) > 0.01, r  # 4 degrees apart in every angle: the drape follows the pose
         assert float(r["off_neighbours_mean_cm"]) > 0.0, r
         assert float(r["rerun_to_stored_cm"]) < 0.2, r  # the drape at the angles is the stored one
-    again = tmp_path / "again.csv"
-    p = run_script("--data", data, "--scene", scene, "--split", "all", "--count", 2, "--pose-step", 2,
-                   "--threads", 1, "--out", again)
-    assert p.returncode == 0 and list(csv.DictReader(open(again))) == rows  # the same steps each run
+    _, again = run_for_rows(tmp_path / "again.csv", "--data", data, "--scene", scene, "--split", "all", "--count", 2,
+                            "--pose-step", 2, "--threads", 1)
+    assert again == rows  # the same steps each run
 
 
 def test_pose_steps_need_a_posed_dataset_and_a_small_step(tiny, tmp_path):
