@@ -27,7 +27,9 @@
 # INIT: the first cycle's start (default models/tshirt-coarse.h5, the A-pose
 #   model, widened; a posed model continues as it is).
 # The shipped model is two runs of this script: shards 0-16 with
-#   SCHEDULE="posed posed posed", then INIT=<that model.h5> with
+#   SCHEDULE="posed posed posed" and INIT the A-pose model of 450 sized drapes
+#   (`git show 54d1804^:models/tshirt-coarse.h5`, shipped until the seventh
+#   session of 2026-11-30), then INIT=<that model.h5> with
 #   SCHEDULE="posed v2v100 posed" on shards 0-27 (docs/poses.md).
 set -euo pipefail
 cd "$(dirname "${BASH_SOURCE[0]}")/.."
