@@ -16,10 +16,13 @@
 # graphs/sizes/drape_grade.yaml), THREADS (default 1), EPOCHS (the
 # cosine schedule, default 100), LR (default 2e-4), PATIENCE (default 50),
 # INIT (default models/tshirt-coarse-regular.h5, the one-size model).
-# The shipped models/tshirt-coarse.h5 is this script's model.h5 (trained
-# from a copy of the one-size model; its init and ground_truth texts were
-# then written by Python's Model.save and its domain recorded again by
-# drape model domain, which leave the weights as they are).
+# The shipped models/tshirt-coarse.h5 is three runs of this script on sized
+# shards 0-14: the defaults (from a copy of the one-size model), then
+# GRAPH=graphs/sizes/drape_grade_v2v100.yaml INIT=<that model.h5> THREADS=2
+# EPOCHS=60 PATIENCE=30, then INIT=<that model.h5> THREADS=2 EPOCHS=60
+# PATIENCE=30 (docs/garments.md); its ground_truth text was then written by
+# Python's Model.save and its domain recorded again by drape model domain,
+# which leave the weights as they are.
 set -euo pipefail
 cd "$(dirname "${BASH_SOURCE[0]}")/.."
 DRAPE=${BUILD_DIR:-build}/bin/drape
