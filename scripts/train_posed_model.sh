@@ -38,7 +38,8 @@ WORK=${1:-work-posed-model}
 DATA=${DATA:-datasets/posespace2000/shard-*-of-40.h5}
 HELDOUT=${HELDOUT:-datasets/posespace-heldout/heldout-30.h5}
 if [ -n "${CYCLES:-}" ]; then
-  SCHEDULE=$(printf 'posed %.0s' $(seq "$CYCLES"))
+  [[ "$CYCLES" =~ ^[1-9][0-9]*$ ]] || { echo "train_posed_model.sh: CYCLES must be a count of cycles, got '$CYCLES'" >&2; exit 2; }
+  SCHEDULE=$(for ((k = 0; k < CYCLES; k++)); do printf 'posed '; done)
 fi
 read -r -a cycles <<< "${SCHEDULE:-posed posed posed v2v100 posed}"
 [ "${#cycles[@]}" -gt 0 ] || { echo "train_posed_model.sh: SCHEDULE names no cycle" >&2; exit 2; }

@@ -25,6 +25,15 @@ def test_an_unknown_cycle_is_refused_before_any_training(tmp_path):
     assert not work.exists()  # nothing trained, nothing written
 
 
+def test_a_schedule_of_no_cycle_is_refused(tmp_path):
+    # CYCLES=0 once made one cycle (printf repeats its format once without arguments); a blank SCHEDULE none.
+    for env, message in (({"CYCLES": "0"}, "CYCLES must be a count of cycles, got '0'"),
+                         ({"SCHEDULE": "  "}, "SCHEDULE names no cycle")):
+        p = run(tmp_path / "work", **env)
+        assert p.returncode == 2 and message in p.stderr, p.stderr
+        assert not (tmp_path / "work").exists()
+
+
 def test_each_cycle_trains_its_graph_from_the_one_before(tmp_path):
     work = tmp_path / "work"
     p = run(work, SCHEDULE="posed v2v100", EPOCHS="1")
