@@ -37,7 +37,7 @@ Eigen::MatrixX3d vertex_normals(const Eigen::MatrixX3d& v, const Eigen::MatrixX3
 
 TEST_CASE("tshirt: every size starts clear of its start body shrunk by 1 cm, so a barrier run can begin",
           "[barrier][garments][tshirt]") {
-  const auto size = GENERATE(as<std::string>{}, "small", "regular", "large", "xlarge", "2xlarge", "3xlarge", "4xlarge",
+  const auto size = GENERATE(as<std::string>{}, "3xsmall", "2xsmall", "xsmall", "small", "regular", "large", "xlarge", "2xlarge", "3xlarge", "4xlarge",
                              "5xlarge", "6xlarge");
   const Scene scene = parse_scene("body: {model: parametric}\ngarment: {template: tshirt, params: {size: " + size +
                                   ", resolution: coarse}}\neffects: {gravity: {}, barrier: {}}\n");
@@ -48,7 +48,9 @@ TEST_CASE("tshirt: every size starts clear of its start body shrunk by 1 cm, so 
   shrunk.vertices = sim.fit_body() - 0.01 * vertex_normals(sim.fit_body(), body_faces);
   shrunk.faces = body_faces;
   INFO("size " << size << ": " << garment.rows() << " garment vertices");
-  REQUIRE(test::signed_volume(shrunk) > 0.03);  // a closed, outward body of a person's volume
+  // A closed, outward body of a person's volume: the 3xsmall's fit body is
+  // the mean body's height at BMI 10.7 (31 kg, about 0.03 m^3), 1 cm thinner.
+  REQUIRE(test::signed_volume(shrunk) > 0.015);
 
   const geometry::SurfaceCrossings c = geometry::surface_crossings(garment, sim.garment().mesh.faces, shrunk.vertices, body_faces);
   CHECK(c.garment_edges_through_body == 0);

@@ -62,3 +62,26 @@ TEST_CASE("size table: its text reads back exactly, and other text is refused by
   CHECK_THROWS_WITH(SizeTable::parse("design=m; design_ease=0.1; m", "x"), Catch::Contains("NAME=GIRTH"));
   CHECK_THROWS_AS(SizeTable::parse("design=m; design_ease=nan; m=1", "x"), ConfigError);
 }
+
+TEST_CASE("size table: one garment's charts made before and after a size was added join into one", "[sizes]") {
+  const SizeTable before = three_sizes();
+  SizeTable after = three_sizes();
+  after.girth.insert(after.girth.begin(), {"xsmall", 0.8});  // a size below the old smallest
+  const SizeTable joined = SizeTable::join(before, after);
+  REQUIRE(joined.girth.size() == 4);
+  CHECK(joined.names() == "xsmall, small, regular, large");  // smallest first, whichever chart had it
+  CHECK(SizeTable::join(after, before).names() == "xsmall, small, regular, large");
+  CHECK(joined.grade("xsmall") == Approx(0.8));
+  CHECK(joined.design == "regular");
+  // A body of 0.75 m: the old chart gives small (+20 %), the joined one xsmall (+6.7 %, nearer the design's 10 %).
+  CHECK(before.choose(0.75).size == "small");
+  CHECK(joined.choose(0.75).size == "xsmall");
+
+  SizeTable other = after;
+  REQUIRE(other.girth[1].first == "small");
+  other.girth[1].second = 0.91;  // small measured otherwise: another garment
+  CHECK_THROWS_WITH(SizeTable::join(before, other), Catch::Contains("size small") && Catch::Contains("0.910000"));
+  other = after;
+  other.design_ease = 0.2;
+  CHECK_THROWS_WITH(SizeTable::join(before, other), Catch::Contains("design size"));
+}

@@ -26,7 +26,7 @@ TEST_CASE("sizes: every size, coarse and default, dressed on its fit body withou
   const auto model = test::parametric_body();
   std::string summary;
   for (const char* resolution : {"coarse", "default"})
-    for (const char* size : {"small", "regular", "large", "xlarge", "2xlarge", "3xlarge", "4xlarge", "5xlarge", "6xlarge"}) {
+    for (const char* size : {"3xsmall", "2xsmall", "xsmall", "small", "regular", "large", "xlarge", "2xlarge", "3xlarge", "4xlarge", "5xlarge", "6xlarge"}) {
       INFO(size << ", " << resolution);
       Garment g = test::build_tshirt(std::string("{size: ") + size + ", resolution: " + resolution + "}");
       const FitBody body = dress_on_fit_body(*model, g, size);
@@ -59,7 +59,7 @@ TEST_CASE("sizes: a size's girth on the mean body's band is its grade times the 
     return garment_girth(g.mesh.vertices, g.mesh.faces, mean);
   };
   const double regular = girth("regular");
-  for (const auto& [size, grade] : {std::pair<std::string, double>{"small", 0.9}, {"xlarge", 1.25}, {"4xlarge", 1.7}, {"6xlarge", 2.0}}) {
+  for (const auto& [size, grade] : {std::pair<std::string, double>{"3xsmall", 0.6}, {"xsmall", 0.8}, {"small", 0.9}, {"xlarge", 1.25}, {"4xlarge", 1.7}, {"6xlarge", 2.0}}) {
     INFO(size);
     CHECK(girth(size) / regular == Approx(grade).epsilon(0.02));
   }

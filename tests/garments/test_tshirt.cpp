@@ -95,7 +95,7 @@ TEST_CASE("tshirt: one manifold surface with collar, two sleeve and hem openings
 TEST_CASE("tshirt: every graded size is the same mesh on its graded pattern", "[garments][tshirt]") {
   const Garment regular = build_tshirt();
   const double height_regular = regular.mesh.uv.col(1).maxCoeff() - regular.mesh.uv.col(1).minCoeff();
-  for (const auto& [size, grade] : {std::pair<std::string, double>{"small", 0.9}, {"large", 1.12}, {"xlarge", 1.25},
+  for (const auto& [size, grade] : {std::pair<std::string, double>{"3xsmall", 0.6}, {"2xsmall", 0.7}, {"xsmall", 0.8}, {"small", 0.9}, {"large", 1.12}, {"xlarge", 1.25},
                                     {"3xlarge", 1.55}, {"5xlarge", 1.85}, {"6xlarge", 2.0}}) {
     INFO(size);
     const Garment graded = build_tshirt("{size: " + size + "}");

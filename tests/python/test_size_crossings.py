@@ -12,7 +12,7 @@ from conftest import SOURCE
 sys.path.insert(0, str(SOURCE / "scripts"))
 import count_self_crossings  # noqa: E402
 
-SIZES = ["small", "regular", "large", "xlarge", "2xlarge", "3xlarge", "4xlarge", "5xlarge", "6xlarge"]
+SIZES = ["3xsmall", "2xsmall", "xsmall", "small", "regular", "large", "xlarge", "2xlarge", "3xlarge", "4xlarge", "5xlarge", "6xlarge"]
 
 
 @pytest.mark.parametrize("resolution", ["coarse", "default"])

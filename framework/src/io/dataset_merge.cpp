@@ -5,6 +5,7 @@
 #include <drape/bodies/body.hpp>
 #include <drape/training/model.hpp>
 #include <drape/scene/scene.hpp>
+#include <drape/scene/size_table.hpp>
 
 #include <algorithm>
 #include <limits>
@@ -137,7 +138,7 @@ std::size_t merge(const std::vector<fs::path>& shards, const fs::path& out, bool
     std::sort(all_stats.begin(), all_stats.end());
     all_stats.erase(std::unique(all_stats.begin(), all_stats.end()), all_stats.end());
   }
-  std::string size_chart;  // a size_chart attribute every shard that has one agrees on
+  std::optional<SizeTable> size_chart;  // the size charts of the shards that have one, joined
   for (std::size_t k = 0; k < shards.size(); ++k) {
     const fs::path& shard = shards[k];
     DatasetLayout layout = layouts[k];
@@ -153,9 +154,12 @@ std::size_t merge(const std::vector<fs::path>& shards, const fs::path& out, bool
       fills.back() = missing_stat_fills(shard, files[k], layout, all_stats);
       layout.stats = all_stats;
       if (const auto chart = layout.attributes.find("size_chart"); chart != layout.attributes.end()) {
-        if (!size_chart.empty() && size_chart != chart->second)
-          throw ConfigError(shard.string() + ": its size chart differs from another shard's (another garment?)");
-        size_chart = chart->second;
+        const SizeTable read = SizeTable::parse(chart->second, shard.string() + "'s size_chart");
+        try {
+          size_chart = size_chart ? SizeTable::join(*size_chart, read) : read;
+        } catch (const ConfigError& e) {
+          throw ConfigError(shard.string() + ": " + e.what() + " from another shard's (another garment?)");
+        }
       }
     }
     templates += (templates.empty() ? "" : ",") + layout.template_hash;
@@ -191,7 +195,7 @@ std::size_t merge(const std::vector<fs::path>& shards, const fs::path& out, bool
   }
   merged.attributes["merged_from"] = names;
   if (mixed_sizes) merged.attributes["templates"] = templates;
-  if (!size_chart.empty()) merged.attributes["size_chart"] = size_chart;
+  if (size_chart) merged.attributes["size_chart"] = size_chart->to_text();
 
   write_atomically(out, [&](const fs::path& tmp) {
     h5::File result = h5::File::create(tmp);

@@ -67,6 +67,29 @@ double SizeTable::grade(const std::string& size) const {
   return of_size / of_design;
 }
 
+SizeTable SizeTable::join(const SizeTable& a, const SizeTable& b) {
+  // Both are read from the same text form (to_text's 17 digits), so a chart
+  // measured again from the same meshes reads back equal to the last bit.
+  if (a.design != b.design || a.design_ease != b.design_ease)
+    throw ConfigError("the size charts differ in their design size (" + a.design + " with ease " +
+                      std::to_string(a.design_ease) + " against " + b.design + " with ease " +
+                      std::to_string(b.design_ease) + ")");
+  SizeTable joined = a;
+  for (const auto& [name, g] : b.girth) {
+    const auto same = std::find_if(a.girth.begin(), a.girth.end(), [&](const auto& s) { return s.first == name; });
+    if (same == a.girth.end()) {
+      joined.girth.emplace_back(name, g);
+    } else if (same->second != g) {
+      char why[200];
+      std::snprintf(why, sizeof why, "the size charts differ in size %s (%.6f m around against %.6f m)", name.c_str(),
+                    same->second, g);
+      throw ConfigError(why);
+    }
+  }
+  std::stable_sort(joined.girth.begin(), joined.girth.end(), [](const auto& x, const auto& y) { return x.second < y.second; });
+  return joined;
+}
+
 std::string SizeTable::to_text() const {
   std::ostringstream o;
   o.precision(17);

@@ -223,14 +223,16 @@ bool Model::needs_input(const std::string& name) const { return takes(*graph_, n
 
 namespace {
 
-// The flag of each size: the seed's 0 regular, 1 small, then the larger grades.
+// The flag of each size: the seed's 0 regular, 1 small, then the larger grades,
+// then the sizes below small (added after the larger ones, so that the flags of
+// datasets made before keep their meaning).
 struct SizeFlag {
   const char* name;
   float flag;
 };
 constexpr SizeFlag kSizeFlags[] = {{"regular", 0.0f}, {"small", 1.0f},   {"large", 2.0f},   {"xlarge", 3.0f},
                                    {"2xlarge", 4.0f}, {"3xlarge", 5.0f}, {"4xlarge", 6.0f}, {"5xlarge", 7.0f},
-                                   {"6xlarge", 8.0f}};
+                                   {"6xlarge", 8.0f}, {"xsmall", 9.0f},  {"2xsmall", 10.0f}, {"3xsmall", 11.0f}};
 
 }  // namespace
 

@@ -42,14 +42,18 @@ struct PatternSpec {
 // step, up to 2.16 m around (6xlarge), for the heaviest bodies of the seed's
 // range, whose chest or belly girth reaches 1.6-2.1 m (docs/garments.md,
 // "size: auto"). Lengths grow 0.3 times as fast as the chest, so a 6xlarge
-// is 30 % longer than the regular, as on real size charts.
+// is 30 % longer than the regular, as on real size charts. Below small, three
+// sizes of 10 % of the regular's girth a step (xsmall 0.86 m around, 2xsmall
+// 0.76, 3xsmall 0.65) dress the thin half of the range, whose chest or belly
+// is 0.57-0.86 m around at BMI 10-20: in the small they stood in a box of
+// 30-70 % ease (docs/garments.md, "Sizes below small").
 struct SizeGrade {
   const char* name;
   double scale;
 };
-inline constexpr SizeGrade kSizeGrades[] = {{"small", 0.9},    {"regular", 1.0},  {"large", 1.12},   {"xlarge", 1.25},
-                                            {"2xlarge", 1.4},  {"3xlarge", 1.55}, {"4xlarge", 1.7},  {"5xlarge", 1.85},
-                                            {"6xlarge", 2.0}};
+inline constexpr SizeGrade kSizeGrades[] = {{"3xsmall", 0.6}, {"2xsmall", 0.7}, {"xsmall", 0.8},   {"small", 0.9},
+                                            {"regular", 1.0},  {"large", 1.12},  {"xlarge", 1.25},  {"2xlarge", 1.4},
+                                            {"3xlarge", 1.55}, {"4xlarge", 1.7}, {"5xlarge", 1.85}, {"6xlarge", 2.0}};
 std::vector<std::string> size_names();
 double size_grade(const std::string& size);  // ConfigError naming the known sizes
 

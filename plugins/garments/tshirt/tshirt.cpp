@@ -55,7 +55,7 @@ PluginList plugins() {
   d.doc = "Procedural T-shirt: two sewn T-shaped panels with half-sleeves, UV in meters, optional front print.";
   d.params = {
       {.name = "size", .type = ParamType::String, .default_value = "regular",
-       .doc = "pattern size: the regular pattern graded in width and length by small 0.9, large 1.12, xlarge 1.25, 2xlarge "
+       .doc = "pattern size: the regular pattern graded in width and length by 3xsmall 0.6, 2xsmall 0.7, xsmall 0.8, small 0.9, large 1.12, xlarge 1.25, 2xlarge "
               "1.4, 3xlarge 1.55, 4xlarge 1.7, 5xlarge 1.85, 6xlarge 2.0 (same topology); auto: drape simulate and generate pick the size for each body "
               "(docs/garments.md)", .choices = size_choices()},
       {.name = "resolution", .type = ParamType::String, .default_value = "default",
@@ -80,7 +80,7 @@ PluginList plugins() {
     tshirt::TshirtOptions o;
     if (p.get_string("size") == "auto")
       throw ConfigError("size auto is chosen for each body from its girth by drape simulate and drape generate (docs/garments.md, "
-                        "\"Which size fits which body\"); here give a size: small, regular, large, xlarge or 2xlarge-6xlarge");
+                        "\"Which size fits which body\"); here give a size: 3xsmall-xsmall, small, regular, large, xlarge or 2xlarge-6xlarge");
     o.grade = tshirt::size_grade(p.get_string("size"));
     o.target_vertices = parse_resolution(p.get_string("resolution"));
     o.print = p.get_bool("print");

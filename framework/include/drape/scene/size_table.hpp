@@ -39,13 +39,19 @@ struct SizeTable {
   // A size's grade: its girth over the design size's (1 for the design size).
   // ConfigError naming the sizes for an unknown one.
   double grade(const std::string& size) const;
-  std::string names() const;  // "small, regular, ..., 6xlarge"
+  std::string names() const;  // "3xsmall, 2xsmall, ..., 6xlarge"
 
   // As text, one line (a dataset attribute, a model's metadata):
   // "design=regular; design_ease=0.14; small=0.972, regular=1.08, ...".
   std::string to_text() const;
   // The text back; ConfigError naming `what` when it is not a size chart.
   static SizeTable parse(const std::string& text, const std::string& what);
+
+  // The chart of both, when they are one garment's chart made at two times
+  // (a dataset made before a size was added joins one made after): the same
+  // design size and ease, and the same girth for every size both name; the
+  // sizes of either, smallest first. ConfigError saying what differs, else.
+  static SizeTable join(const SizeTable& a, const SizeTable& b);
 };
 
 }  // namespace drape

@@ -1,0 +1,66 @@
+"""Shards of one garment made before and after sizes were added to its chart merge into one chart (the sizes
+of either, smallest first); shards whose charts disagree on a size they share are refused, naming the size.
+The charts are rewritten with h5py, as a shard made by an older drape would carry them."""
+import shutil
+
+import h5py
+
+from conftest import penalty_scene, run_drape
+
+
+def size_auto_shard(tmp_path):
+    scene = penalty_scene(tmp_path / "penalty.yaml")
+    auto = tmp_path / "auto.yaml"
+    auto.write_text(f"base: {scene}\ngarment: {{params: {{size: auto}}}}\n")
+    out = tmp_path / "new.h5"
+    run_drape("generate", auto, "--count", 2, "--bmi", "12:40", "--seed", 3, "--threads", 1, "--out", out, expect=(0, 1))
+    return out
+
+
+def chart_of(path):
+    with h5py.File(path, "r") as f:
+        return f.attrs["size_chart"].decode() if isinstance(f.attrs["size_chart"], bytes) else f.attrs["size_chart"]
+
+
+def set_chart(path, text):
+    with h5py.File(path, "r+") as f:
+        f.attrs["size_chart"] = text.encode()
+    raw = bytearray(path.read_bytes())
+    raw[:512] = bytes(512)  # unsealed, as h5py leaves a file it wrote (drape reads such a file unchecked)
+    path.write_bytes(bytes(raw))
+
+
+def sizes_of(text):
+    return [item.split("=")[0].strip() for item in text.split(";")[2].split(",")]
+
+
+def test_a_chart_without_the_small_sizes_joins_the_full_one(tmp_path):
+    new = size_auto_shard(tmp_path)
+    full = chart_of(new)
+    assert sizes_of(full)[:4] == ["3xsmall", "2xsmall", "xsmall", "small"]
+    # The same garment's chart as it was before the sizes below small: the same text without them.
+    head, design_ease, sizes = full.split(";")
+    kept = [s for s in sizes.split(",") if s.split("=")[0].strip() not in ("3xsmall", "2xsmall", "xsmall")]
+    old = tmp_path / "old.h5"
+    shutil.copy(new, old)
+    set_chart(old, ";".join([head, design_ease, ",".join(kept)]))
+    merged = tmp_path / "merged.h5"
+    run_drape("dataset", "merge", "--mixed-sizes", "--out", merged, old, new)
+    assert chart_of(merged) == full
+    run_drape("dataset", "merge", "--mixed-sizes", "--force", "--out", merged, new, old)
+    assert chart_of(merged) == full
+
+
+def test_charts_that_differ_on_a_shared_size_are_refused(tmp_path):
+    new = size_auto_shard(tmp_path)
+    full = chart_of(new)
+    other = tmp_path / "other.h5"
+    shutil.copy(new, other)
+    head, design_ease, sizes = full.split(";")
+    items = [s.strip().split("=") for s in sizes.split(",")]
+    moved = [f"{name}={float(girth) + 0.01 if name == 'large' else girth}" for name, girth in items]
+    set_chart(other, ";".join([head, design_ease, " " + ", ".join(moved)]))  # large 1 cm wider
+    merged = tmp_path / "merged.h5"
+    _, err = run_drape("dataset", "merge", "--mixed-sizes", "--out", merged, new, other, expect=2)
+    assert "size charts differ in size large" in err
+    assert not merged.exists()
