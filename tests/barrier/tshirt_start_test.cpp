@@ -49,7 +49,7 @@ TEST_CASE("tshirt: every size starts clear of its start body shrunk by 1 cm, so 
   shrunk.faces = body_faces;
   INFO("size " << size << ": " << garment.rows() << " garment vertices");
   // A closed, outward body of a person's volume: the 3xsmall's fit body is
-  // the mean body's height at BMI 10.7 (31 kg, about 0.03 m^3), 1 cm thinner.
+  // the mean body's height at BMI 11.1 (34 kg, about 0.033 m^3), 1 cm thinner.
   REQUIRE(test::signed_volume(shrunk) > 0.015);
 
   const geometry::SurfaceCrossings c = geometry::surface_crossings(garment, sim.garment().mesh.faces, shrunk.vertices, body_faces);
