@@ -268,8 +268,8 @@ TEST_CASE("drape train records the domain of its training split in the model", "
 TEST_CASE("model domain: a parameter at the edge of the range its bodies were drawn from is inside", "[train][domain]") {
   // 288 heights drawn over 1.50-2.00 m span 1.5022-1.9988 (the shipped body
   // space's first model): the ends fall short of the drawn range by about
-  // 0.5 / 289 = 1.7 mm each, so 1.50 and 2.00 m are inside (within twice
-  // that), 1.49 m is not.
+  // 0.5 / 289 = 1.7 mm each, so 1.50 and 2.00 m are inside (within five
+  // times that, 8.7 mm), 1.49 m is not.
   const auto assets = test::tiny_assets();
   ModelDomain d;
   d.samples = 288;
@@ -288,4 +288,13 @@ TEST_CASE("model domain: a parameter at the edge of the range its bodies were dr
   REQUIRE(low.size() == 1);
   // The range printed to four digits, so that the reader sees why 1.49 is out.
   CHECK_THAT(low.front(), Catch::Contains("shape parameter 'height' 1.49 is outside the trained range 1.502..1.999"));
+
+  // The A-pose model of 2,289 bodies: its tallest is 1.99956 m, 0.44 mm
+  // short of 2.00, twice the mean shortfall 0.5 / 2290 = 0.22 mm (as likely
+  // as exp(-2) = 13.5 %). 2.00 m is inside; 2.002 m (9 mean shortfalls) is not.
+  d.samples = 2289;
+  d.params = {ValueRange{1.50005, 1.99956}};
+  CHECK(violations(2.00).empty());
+  CHECK(violations(1.50).empty());
+  CHECK(violations(2.002).size() == 1);
 }

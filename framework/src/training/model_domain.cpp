@@ -198,11 +198,15 @@ std::vector<std::string> domain_violations(const ModelDomain& domain, const Eige
       const double v = (*params)(static_cast<Eigen::Index>(p));
       const ValueRange& r = domain.params[p];
       // n bodies drawn uniformly over [a, b] fall short of each end by
-      // (b - a) / (n + 1) on average: a parameter within twice that of the
-      // sampled range is inside the range the data were drawn from (the
-      // heights 1.50 and 2.00 m of a model sampled over 1.50-2.00 m).
+      // g = (b - a) / (n + 1) on average, and by more than k g with
+      // probability about exp(-k): a parameter within 5 g of the sampled
+      // range is inside the range the data were drawn from (the heights 1.50
+      // and 2.00 m of a model sampled over 1.50-2.00 m), missed at an end
+      // with probability 0.7 %. (With 2 g, 13.5 %: the A-pose model of 2,289
+      // bodies, whose tallest is 1.99956 m, 2.03 g short, called 2.00 m
+      // outside.)
       const double gap = (r.max - r.min) / static_cast<double>(domain.samples + 1);
-      if (!within(v, r, std::max(2.0 * gap, 1e-6 * std::max(1.0, r.max - r.min))))
+      if (!within(v, r, std::max(5.0 * gap, 1e-6 * std::max(1.0, r.max - r.min))))
         out.push_back(outside("shape parameter '" + domain.param_names[p] + "'", v, r, ""));
     }
   if (!domain.descriptor_vertices.empty() && domain.descriptors.rows() > 0 &&
