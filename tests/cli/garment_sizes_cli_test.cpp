@@ -301,6 +301,29 @@ TEST_CASE("size auto: a model takes the grade and predict chooses the body's siz
   CHECK(text_of("auto.obj") == text_of("named.obj"));
   CHECK(text_of("regular.obj") == text_of("one.obj"));
   CHECK(text_of("auto.obj") != text_of("regular.obj"));
+  // The model learnt each body in its own size and in the regular: those are
+  // predicted without a warning (the regular, smaller than this body, with
+  // the note that says so); another size is outside what it was trained on,
+  // said, and refused by --strict with nothing written.
+  REQUIRE(test::run(drape + "predict --model " + model + " --bmi 55 --garment-size " + expected.size + " --out " +
+                        (dir / "own.obj").string(),
+                    out) == 0);
+  CHECK_THAT(out, !Catch::Contains("warning") && !Catch::Contains("smaller around"));
+  REQUIRE(test::run(drape + "predict --model " + model + " --bmi 55 --garment-size regular --out " +
+                        (dir / "regular2.obj").string(),
+                    out) == 0);
+  CHECK_THAT(out, !Catch::Contains("warning") && Catch::Contains("smaller around than this body") &&
+                      Catch::Contains("gives it " + expected.size));
+  REQUIRE(test::run(drape + "predict --model " + model + " --bmi 55 --garment-size small --out " +
+                        (dir / "small.obj").string(),
+                    out) == 0);
+  CHECK_THAT(out, Catch::Contains("warning: small (grade 0.9") && Catch::Contains("is not a size m.h5 learnt on this body") &&
+                      Catch::Contains("here " + expected.size));
+  CHECK(test::run(drape + "predict --model " + model + " --bmi 55 --garment-size small --strict --out " +
+                      (dir / "strict.obj").string(),
+                  out) == 2);
+  CHECK_THAT(out, Catch::Contains("--strict: small (grade 0.9"));
+  CHECK_FALSE(std::filesystem::exists(dir / "strict.obj"));
   // A size the chart does not know, a grade out of range, and both at once.
   CHECK(test::run(drape + "predict --model " + model + " --bmi 30 --garment-size huge --out x.obj", out) == 2);
   CHECK_THAT(out, Catch::Contains("small, regular, large"));

@@ -85,20 +85,24 @@ std::optional<double> requested_garment_grade(const Model& model, const std::opt
 
 namespace {
 
+// The tailor's rule on body i of a batch, measured where bodies stand in a
+// scene (soles at y = 0, centred in x and z): the tape follows bands at
+// heights above the soles, and a body given standing elsewhere is the same body.
+SizeChoice rule_for(const SizeTable& chart, const Model& model, const SampleBatch& batch, int i) {
+  Eigen::MatrixX3d body = batch.body.mat(i).cast<double>();
+  Eigen::RowVector3d stand = body.colwise().mean();
+  stand.y() = body.col(1).minCoeff();
+  body.rowwise() -= stand;
+  return chart.choose(body_girth(body, model.assets().body.faces));
+}
+
 // The size the tailor's rule gives each body of a batch that has no grade yet.
 void choose_sizes_by_chart(const SizeTable& chart, const Model& model, SampleBatch& batch, bool strict,
                   const std::string& strict_option, std::vector<Notice>& notices) {
   const int n = batch.size();
   batch.garment_grade = Tensor(n, 1, 1);
   for (int i = 0; i < n; ++i) {
-    // Measured where bodies stand in a scene (soles at y = 0, centred in x and
-    // z): the tape follows bands at heights above the soles, and a body given
-    // standing elsewhere is the same body.
-    Eigen::MatrixX3d body = batch.body.mat(i).cast<double>();
-    Eigen::RowVector3d stand = body.colwise().mean();
-    stand.y() = body.col(1).minCoeff();
-    body.rowwise() -= stand;
-    SizeChoice choice = chart.choose(body_girth(body, model.assets().body.faces));
+    SizeChoice choice = rule_for(chart, model, batch, i);
     if (choice.size.empty()) {
       const std::string why = about(batch, i) + "no size of the garment fits this body (" + choice.summary() + ")";
       if (strict) throw ConfigError(strict_option + ": " + why);
@@ -211,6 +215,55 @@ std::optional<SizeTable> model_size_chart(const Model& model) {
   return SizeTable::parse(chart->second, model.file().filename().string() + "'s size_chart");
 }
 
+namespace {
+
+// A size (or grade) the user named, on body i. A model of sizes learnt each
+// body in the size the tailor's rule gives it and in the design size (the
+// datasets: docs/garments.md, "A model that knows the sizes"); another size
+// on this body is outside what it was trained on, as a body outside its
+// domain is (a 3xsmall asked for on a BMI 40 body came out 19 % inside the
+// body, without a word). A garment smaller around than the body is noted as
+// for a one-size model.
+void check_requested_size(const SizeTable& chart, const Model& model, const SampleBatch& batch, int i, bool strict,
+                          const std::string& strict_option, std::vector<Notice>& notices) {
+  const double grade = batch.garment_grade(batch.garment_grade.batch() == 1 ? 0 : i, 0, 0);
+  const SizeChoice rule = rule_for(chart, model, batch, i);
+  auto same = [](double a, double b) { return std::abs(a - b) < 1e-3; };  // grades 0.1 apart, stored as floats
+  if (!rule.size.empty() && same(grade, chart.grade(rule.size))) return;
+  std::string named;
+  for (const auto& [size, girth] : chart.girth)
+    if (same(grade, chart.grade(size))) named = size;
+  char what[80];
+  if (named.empty())
+    std::snprintf(what, sizeof what, "grade %.3f", grade);
+  else
+    std::snprintf(what, sizeof what, "%s (grade %.3f)", named.c_str(), grade);
+  const double ease = grade * rule.garment_girth(chart.design) / rule.body_girth - 1.0;
+  if (!same(grade, 1.0)) {
+    char line[600];
+    std::snprintf(line, sizeof line,
+                  "%s is not a size %s learnt on this body: it learnt each body in the size the tailor's rule gives "
+                  "it (here %s, ease %+.1f %%) and in the %s; its ease here is %+.1f %%, and the prediction may be "
+                  "wrong without showing it",
+                  what, model.file().filename().string().c_str(), rule.size.empty() ? "none fits" : rule.size.c_str(),
+                  rule.size.empty() ? 0.0 : 100.0 * rule.ease(rule.size), chart.design.c_str(), 100.0 * ease);
+    if (strict) throw ConfigError(strict_option + ": " + about(batch, i) + line);
+    notices.push_back({Notice::Level::warning, about(batch, i) + line + " (" + strict_option + " refuses it)"});
+    return;
+  }
+  if (ease < kMinimumEase) {
+    char line[400];
+    std::snprintf(line, sizeof line,
+                  "in %s the garment is %.1f %% smaller around than this body's chest or belly (the tailor's rule "
+                  "of docs/garments.md gives it %s); simulated, a garment that small rides up over the belly or is "
+                  "stretched onto the body, and the model predicts it so",
+                  what, -100.0 * ease, rule.size.empty() ? "no size" : rule.size.c_str());
+    notices.push_back({Notice::Level::note, about(batch, i) + line});
+  }
+}
+
+}  // namespace
+
 BodyPreparation::BodyPreparation(const Model& model, std::optional<ModelDomain> domain)
     : model_(model), domain_(std::move(domain)), garment_loop_(std::numeric_limits<double>::quiet_NaN()) {
   if (model.needs_input("garment_grade")) size_chart_ = model_size_chart(model);
@@ -239,6 +292,8 @@ PreparedBodies BodyPreparation::prepare(SampleBatch& batch, bool strict, const s
                                         bool measure) const {
   PreparedBodies out;
   out.moved_by.assign(static_cast<std::size_t>(batch.size()), Eigen::RowVector3d::Zero());
+  // A grade already in the batch was asked for (choose_sizes fills the others by the rule).
+  const bool size_asked_for = size_chart_ && !batch.garment_grade.empty();
   choose_sizes(batch, strict, strict_option, out.notices);
   if (measure && !domain_ && !model_.file().empty()) {  // an untrained model in memory has no file to record one in
     const std::string name = model_.file().filename().string();
@@ -253,6 +308,7 @@ PreparedBodies BodyPreparation::prepare(SampleBatch& batch, bool strict, const s
       if (measure) check_domain(model_, *domain_, batch, i, strict, strict_option, out.notices);
     }
     if (measure && std::isfinite(garment_loop_)) note_fit(model_, garment_loop_, batch, i, out.notices);
+    if (measure && size_asked_for) check_requested_size(*size_chart_, model_, batch, i, strict, strict_option, out.notices);
   }
   return out;
 }
