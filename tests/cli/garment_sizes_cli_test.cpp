@@ -308,7 +308,14 @@ TEST_CASE("size auto: a model takes the grade and predict chooses the body's siz
   REQUIRE(test::run(drape + "predict --model " + model + " --bmi 55 --garment-size " + expected.size + " --out " +
                         (dir / "own.obj").string(),
                     out) == 0);
-  CHECK_THAT(out, !Catch::Contains("warning") && !Catch::Contains("smaller around"));
+  CHECK_THAT(out, !Catch::Contains("warning") && !Catch::Contains("smaller around") && !Catch::Contains("smallest size"));
+  // The thinnest corner (a man of 1.50 m at BMI 10, girth 0.51 m) is thinner
+  // than the smallest size is cut for (3xsmall, +28 % ease): said.
+  REQUIRE(test::run(drape + "predict --model " + model + " --bmi 10 --height 1.5 --sex 1 --out " +
+                        (dir / "thinnest.obj").string(),
+                    out) == 0);
+  CHECK_THAT(out, Catch::Contains("size 3xsmall by the tailor's rule") &&
+                      Catch::Contains("3xsmall is the smallest size m.h5 knows, and this body is thinner than it is cut for"));
   REQUIRE(test::run(drape + "predict --model " + model + " --bmi 55 --garment-size regular --out " +
                         (dir / "regular2.obj").string(),
                     out) == 0);

@@ -96,6 +96,10 @@ SizeChoice rule_for(const SizeTable& chart, const Model& model, const SampleBatc
   return chart.choose(body_girth(body, model.assets().body.faces));
 }
 
+// A size chosen by the rule is a size step from the design ease at most
+// (about 10 points); more than this is a body outside the chart.
+constexpr double kLooseEase = 0.15;
+
 // The size the tailor's rule gives each body of a batch that has no grade yet.
 void choose_sizes_by_chart(const SizeTable& chart, const Model& model, SampleBatch& batch, bool strict,
                   const std::string& strict_option, std::vector<Notice>& notices) {
@@ -113,6 +117,17 @@ void choose_sizes_by_chart(const SizeTable& chart, const Model& model, SampleBat
       std::snprintf(line, sizeof line, "size %s by the tailor's rule (body girth %.2f m, ease %+.1f %%; --garment-size "
                                        "names another)", choice.size.c_str(), choice.body_girth, 100.0 * choice.ease(choice.size));
       notices.push_back({Notice::Level::note, about(batch, i) + line});
+      // The smallest size of the chart, much looser than designed: a body
+      // thinner than the chart reaches (the posed model's chart starts at
+      // small; a BMI 11 body stands in it with +50 % ease, a box).
+      const double loose = choice.ease(choice.size) - choice.design_ease;
+      if (choice.size == chart.girth.front().first && loose > kLooseEase) {
+        std::snprintf(line, sizeof line, "%s is the smallest size %s knows, and this body is thinner than it is cut "
+                                         "for: %.0f points more ease than designed (%+.1f %%), so it stands off the body",
+                      choice.size.c_str(), model.file().filename().string().c_str(), 100.0 * loose,
+                      100.0 * choice.design_ease);
+        notices.push_back({Notice::Level::note, about(batch, i) + line});
+      }
     }
     batch.garment_grade(i, 0, 0) = static_cast<float>(chart.grade(choice.size));
   }
