@@ -1,11 +1,12 @@
 """Shards of one garment made before and after sizes were added to its chart merge into one chart (the sizes
-of either, smallest first); shards whose charts disagree on a size they share are refused, naming the size.
-The charts are rewritten with h5py, as a shard made by an older drape would carry them."""
+of either, smallest first), and so do they when read as one dataset (a glob pattern) for training; shards whose
+charts disagree on a size they share are refused, naming the size. The charts are rewritten with h5py, as a
+shard made by an older drape would carry them."""
 import shutil
 
 import h5py
 
-from conftest import penalty_scene, run_drape
+from conftest import SOURCE, penalty_scene, run_drape
 
 
 def size_auto_shard(tmp_path):
@@ -13,7 +14,7 @@ def size_auto_shard(tmp_path):
     auto = tmp_path / "auto.yaml"
     auto.write_text(f"base: {scene}\ngarment: {{params: {{size: auto}}}}\n")
     out = tmp_path / "new.h5"
-    run_drape("generate", auto, "--count", 2, "--bmi", "12:40", "--seed", 3, "--threads", 1, "--out", out, expect=(0, 1))
+    run_drape("generate", auto, "--count", 4, "--bmi", "12:40", "--seed", 3, "--threads", 1, "--out", out, expect=(0, 1))
     return out
 
 
@@ -34,21 +35,36 @@ def sizes_of(text):
     return [item.split("=")[0].strip() for item in text.split(";")[2].split(",")]
 
 
+def without_small_sizes(new, old):
+    """`old`: a copy of shard `new` whose chart is the same without the sizes below small."""
+    head, design_ease, sizes = chart_of(new).split(";")
+    kept = [s for s in sizes.split(",") if s.split("=")[0].strip() not in ("3xsmall", "2xsmall", "xsmall")]
+    shutil.copy(new, old)
+    set_chart(old, ";".join([head, design_ease, ",".join(kept)]))
+
+
 def test_a_chart_without_the_small_sizes_joins_the_full_one(tmp_path):
     new = size_auto_shard(tmp_path)
     full = chart_of(new)
     assert sizes_of(full)[:4] == ["3xsmall", "2xsmall", "xsmall", "small"]
-    # The same garment's chart as it was before the sizes below small: the same text without them.
-    head, design_ease, sizes = full.split(";")
-    kept = [s for s in sizes.split(",") if s.split("=")[0].strip() not in ("3xsmall", "2xsmall", "xsmall")]
     old = tmp_path / "old.h5"
-    shutil.copy(new, old)
-    set_chart(old, ";".join([head, design_ease, ",".join(kept)]))
+    without_small_sizes(new, old)  # the same garment's chart as it was before the sizes below small
     merged = tmp_path / "merged.h5"
     run_drape("dataset", "merge", "--mixed-sizes", "--out", merged, old, new)
     assert chart_of(merged) == full
     run_drape("dataset", "merge", "--mixed-sizes", "--force", "--out", merged, new, old)
     assert chart_of(merged) == full
+
+
+def test_a_model_trained_on_both_as_one_pattern_knows_every_size(tmp_path):
+    new = size_auto_shard(tmp_path)
+    without_small_sizes(new, tmp_path / "a-old.h5")
+    model = tmp_path / "m.h5"
+    # The old shard first: the chart the model keeps used to be the first file's.
+    run_drape("train", SOURCE / "graphs" / "sizes" / "drape_grade.yaml", "--data", str(tmp_path / "{a-old,new}.h5"),
+              "--out", model, "--epochs", 1, "--k", 16, "-q")
+    info, _ = run_drape("model", "info", model)
+    assert "3xsmall" in info and "6xlarge" in info, info
 
 
 def test_charts_that_differ_on_a_shared_size_are_refused(tmp_path):

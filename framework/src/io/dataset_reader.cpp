@@ -7,6 +7,7 @@
 #include <drape/bodies/garment_skinning.hpp>
 #include <drape/bodies/posed_body.hpp>
 #include <drape/io/shipped_files.hpp>
+#include <drape/scene/size_table.hpp>
 
 #include <glob.h>
 
@@ -160,6 +161,23 @@ DatasetReader::DatasetReader(const fs::path& path) : impl_(std::make_unique<Impl
       }
       layout_.samples += layout.samples;
       layout_.body_vertices_stored = layout_.body_vertices_stored && layout.body_vertices_stored;
+      // The size charts of the files that have one, joined as a merge joins
+      // them (a file made before sizes were added to the chart, read with one
+      // made after): a model trained on them knows every size.
+      if (const auto chart = layout.attributes.find("size_chart"); chart != layout.attributes.end()) {
+        const SizeTable read = SizeTable::parse(chart->second, file.string() + "'s size_chart");
+        const auto have = layout_.attributes.find("size_chart");
+        try {
+          layout_.attributes["size_chart"] =
+              have == layout_.attributes.end()
+                  ? read.to_text()
+                  : SizeTable::join(SizeTable::parse(have->second, impl_->files.front().string() + "'s size_chart"), read)
+                        .to_text();
+        } catch (const ConfigError& e) {
+          throw ConfigError(file.string() + ": cannot be read as one dataset with " + impl_->files.front().string() + ": " +
+                            e.what());
+        }
+      }
     }
     const std::vector<std::int8_t> split = part.file.read<std::int8_t>(kSplit);
     const std::vector<std::uint8_t> done = part.file.read<std::uint8_t>(kDone);
