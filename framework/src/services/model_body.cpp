@@ -118,8 +118,9 @@ void choose_sizes_by_chart(const SizeTable& chart, const Model& model, SampleBat
                                        "names another)", choice.size.c_str(), choice.body_girth, 100.0 * choice.ease(choice.size));
       notices.push_back({Notice::Level::note, about(batch, i) + line});
       // The smallest size of the chart, much looser than designed: a body
-      // thinner than the chart reaches (the posed model's chart starts at
-      // small; a BMI 11 body stands in it with +50 % ease, a box).
+      // thinner than the chart reaches (in a chart that starts at small a
+      // BMI 11 body stood at +64 % ease, a box; the 3xsmall leaves the
+      // thinnest corner of the body space at +28 %).
       const double loose = choice.ease(choice.size) - choice.design_ease;
       if (choice.size == chart.girth.front().first && loose > kLooseEase) {
         std::snprintf(line, sizeof line, "%s is the smallest size %s knows, and this body is thinner than it is cut "
