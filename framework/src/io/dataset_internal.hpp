@@ -4,9 +4,11 @@
 #include <drape/bodies/pose.hpp>
 #include <drape/io/dataset.hpp>
 #include <drape/io/h5.hpp>
+#include <drape/scene/size_table.hpp>
 
 #include <functional>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -50,6 +52,13 @@ std::string layout_difference(const DatasetLayout& have, const DatasetLayout& no
 // requires; else what differs (layout_difference's for two A-pose or two
 // posed layouts).
 std::string rest_pose_mix_difference(const DatasetLayout& a, const DatasetLayout& b);
+
+// Joins the size_chart attribute of `layout` (the file `file`), when it has
+// one, into `chart`: files of one garment made before and after sizes were
+// added to its chart are one chart (SizeTable::join), as `dataset merge` and
+// a pattern read as one dataset both need. ConfigError naming `file` when the
+// charts disagree on a size they share (another garment).
+void join_size_chart(std::optional<SizeTable>& chart, const DatasetLayout& layout, const std::string& file);
 
 // Checks a sample's sizes against the layout (Error naming the array).
 void check_sample(const DatasetLayout& layout, const DatasetSample& sample, const std::string& where);

@@ -239,6 +239,17 @@ std::string rest_pose_mix_difference(const DatasetLayout& a, const DatasetLayout
   return layout_difference(x, y);
 }
 
+void join_size_chart(std::optional<SizeTable>& chart, const DatasetLayout& layout, const std::string& file) {
+  const auto text = layout.attributes.find("size_chart");
+  if (text == layout.attributes.end()) return;
+  const SizeTable read = SizeTable::parse(text->second, file + "'s size_chart");
+  try {
+    chart = chart ? SizeTable::join(*chart, read) : read;
+  } catch (const ConfigError& e) {
+    throw ConfigError(file + ": " + e.what() + " from another file's (another garment?)");
+  }
+}
+
 void check_sample(const DatasetLayout& layout, const DatasetSample& sample, const std::string& where) {
   auto check = [&](const char* what, Eigen::Index rows, Eigen::Index cols, int want_rows, int want_cols) {
     if (rows != want_rows || cols != want_cols)

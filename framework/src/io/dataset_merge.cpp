@@ -5,7 +5,6 @@
 #include <drape/bodies/body.hpp>
 #include <drape/training/model.hpp>
 #include <drape/scene/scene.hpp>
-#include <drape/scene/size_table.hpp>
 
 #include <algorithm>
 #include <limits>
@@ -153,14 +152,7 @@ std::size_t merge(const std::vector<fs::path>& shards, const fs::path& out, bool
     if (mixed_sizes) {
       fills.back() = missing_stat_fills(shard, files[k], layout, all_stats);
       layout.stats = all_stats;
-      if (const auto chart = layout.attributes.find("size_chart"); chart != layout.attributes.end()) {
-        const SizeTable read = SizeTable::parse(chart->second, shard.string() + "'s size_chart");
-        try {
-          size_chart = size_chart ? SizeTable::join(*size_chart, read) : read;
-        } catch (const ConfigError& e) {
-          throw ConfigError(shard.string() + ": " + e.what() + " from another shard's (another garment?)");
-        }
-      }
+      join_size_chart(size_chart, layout, shard.string());
     }
     templates += (templates.empty() ? "" : ",") + layout.template_hash;
     if (require_complete && n != layout.samples)

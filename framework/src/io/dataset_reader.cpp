@@ -7,7 +7,6 @@
 #include <drape/bodies/garment_skinning.hpp>
 #include <drape/bodies/posed_body.hpp>
 #include <drape/io/shipped_files.hpp>
-#include <drape/scene/size_table.hpp>
 
 #include <glob.h>
 
@@ -133,6 +132,10 @@ std::vector<fs::path> dataset_files(const fs::path& path_or_pattern) {
 DatasetReader::DatasetReader(const fs::path& path) : impl_(std::make_unique<Impl>()) {
   impl_->name = path.string();
   impl_->files = dataset_files(path);
+  // The size charts of the files that have one, joined as a merge joins them
+  // (a file made before sizes were added to the chart, read with one made
+  // after): a model trained on them knows every size.
+  std::optional<SizeTable> size_chart;
   for (const auto& file : impl_->files) {
     Part part{h5::File::open(file)};
     DatasetLayout layout = read_layout(part.file);
@@ -161,30 +164,15 @@ DatasetReader::DatasetReader(const fs::path& path) : impl_(std::make_unique<Impl
       }
       layout_.samples += layout.samples;
       layout_.body_vertices_stored = layout_.body_vertices_stored && layout.body_vertices_stored;
-      // The size charts of the files that have one, joined as a merge joins
-      // them (a file made before sizes were added to the chart, read with one
-      // made after): a model trained on them knows every size.
-      if (const auto chart = layout.attributes.find("size_chart"); chart != layout.attributes.end()) {
-        const SizeTable read = SizeTable::parse(chart->second, file.string() + "'s size_chart");
-        const auto have = layout_.attributes.find("size_chart");
-        try {
-          layout_.attributes["size_chart"] =
-              have == layout_.attributes.end()
-                  ? read.to_text()
-                  : SizeTable::join(SizeTable::parse(have->second, impl_->files.front().string() + "'s size_chart"), read)
-                        .to_text();
-        } catch (const ConfigError& e) {
-          throw ConfigError(file.string() + ": cannot be read as one dataset with " + impl_->files.front().string() + ": " +
-                            e.what());
-        }
-      }
     }
+    join_size_chart(size_chart, layout, file.string());
     const std::vector<std::int8_t> split = part.file.read<std::int8_t>(kSplit);
     const std::vector<std::uint8_t> done = part.file.read<std::uint8_t>(kDone);
     split_.insert(split_.end(), split.begin(), split.end());
     done_.insert(done_.end(), done.begin(), done.end());
     impl_->parts.push_back(std::move(part));
   }
+  if (size_chart) layout_.attributes["size_chart"] = size_chart->to_text();
 }
 
 DatasetReader::~DatasetReader() = default;
