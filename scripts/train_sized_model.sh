@@ -35,8 +35,9 @@ INIT=${INIT:-models/tshirt-coarse-regular.h5}
 # docs/garments.md "Sizes below small"), when there: the 2,000-body set's thin
 # bodies were made in the small, before those sizes existed.
 shopt -s nullglob
-SIZED=(datasets/bodyspace2000-sized/shard-*-of-40.h5 datasets/bodyspace-thin-sized/shard-*-of-*.h5)
+THIN=(datasets/bodyspace-thin-sized/shard-*-of-*.h5)
 shopt -u nullglob
+SIZED=(datasets/bodyspace2000-sized/shard-*-of-40.h5 "${THIN[@]}")
 MIXED="$WORK/regular-and-sized.h5"
 ONLY_SIZED="$WORK/sized.h5"
 # Rebuilt when the sized shards grew since.
@@ -56,9 +57,12 @@ for MODEL in "$INIT" "$WORK/model.h5"; do
   NAME=$(basename "$MODEL" .h5)
   "$DRAPE" eval --model "$MODEL" --data "$ONLY_SIZED" --split test --out "$WORK/$NAME-test-sized.csv" --by bmi:10,25,40,55,65
   "$DRAPE" eval --model "$MODEL" --data "$MIXED" --split test --where garment_grade=1 --out "$WORK/$NAME-test-regular.csv" --by bmi:10,25,40,55,65
-  # The sizes below small (their flags 9-11), on the thin set's test bodies.
-  for FLAG in 9 10 11; do
-    "$DRAPE" eval --model "$MODEL" --data "$ONLY_SIZED" --split test --where garment_size=$FLAG \
-      --out "$WORK/$NAME-test-size$FLAG.csv" || true  # no such test body yet
-  done
+  # The sizes below small (their flags 9-11), on the thin set's test bodies
+  # (each size has some there).
+  if [ "${#THIN[@]}" -gt 0 ]; then
+    for FLAG in 9 10 11; do
+      "$DRAPE" eval --model "$MODEL" --data "$ONLY_SIZED" --split test --where garment_size=$FLAG \
+        --out "$WORK/$NAME-test-size$FLAG.csv"
+    done
+  fi
 done
