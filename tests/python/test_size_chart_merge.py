@@ -56,6 +56,26 @@ def test_a_chart_without_the_small_sizes_joins_the_full_one(tmp_path):
     assert chart_of(merged) == full
 
 
+def test_shards_of_one_auto_scene_merge_and_expand_to_the_joined_chart(tmp_path):
+    # Shards of one `size: auto` scene need no --mixed-sizes; their charts are joined all the same (the
+    # first one's used to be kept), and so are they when slim shards are expanded.
+    new = size_auto_shard(tmp_path)
+    full = chart_of(new)
+    old = tmp_path / "old.h5"
+    without_small_sizes(new, old)
+    merged = tmp_path / "merged.h5"
+    run_drape("dataset", "merge", "--out", merged, old, new)
+    assert chart_of(merged) == full
+    slims = []
+    for shard in (old, new):
+        slims.append(tmp_path / ("slim-" + shard.name))
+        run_drape("dataset", "slim", shard, "--out", slims[-1])
+    assert sizes_of(chart_of(slims[0]))[0] == "small"
+    expanded = tmp_path / "expanded.h5"
+    run_drape("dataset", "expand", "--out", expanded, *slims)
+    assert chart_of(expanded) == full
+
+
 def test_a_model_trained_on_both_as_one_pattern_knows_every_size(tmp_path):
     new = size_auto_shard(tmp_path)
     without_small_sizes(new, tmp_path / "a-old.h5")

@@ -152,8 +152,12 @@ std::size_t merge(const std::vector<fs::path>& shards, const fs::path& out, bool
     if (mixed_sizes) {
       fills.back() = missing_stat_fills(shard, files[k], layout, all_stats);
       layout.stats = all_stats;
-      join_size_chart(size_chart, layout, shard.string());
     }
+    // Every path joins the charts, not only --mixed-sizes: shards of one
+    // `size: auto` scene made before and after sizes were added differ in
+    // their chart alone, and the first shard's would leave the later sizes out
+    // of the merged (or expanded) file.
+    join_size_chart(size_chart, layout, shard.string());
     templates += (templates.empty() ? "" : ",") + layout.template_hash;
     if (require_complete && n != layout.samples)
       throw ConfigError(shard.string() + ": only " + std::to_string(n) + " of " + std::to_string(layout.samples) +
