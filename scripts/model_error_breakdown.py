@@ -10,6 +10,14 @@ Prints the ME (mean vertex distance, cm) over the split's bodies, and:
   rest (the hem) and the upper torso, each with its share of the total error;
 - the mean offset of each predicted garment from the simulated one (a shift of the whole garment), and the ME left
   after removing it, then after the best rigid fit (Kabsch) of each prediction onto its drape;
+- by frequency over the garment's mesh (--modes K,...): each error split into its smooth part, spanned by the K
+  smoothest eigenvectors of the garment's graph Laplacian (its vertex adjacency; the same topology in every
+  sample), and the rest; beside it, how far each simulated drape lies from its own smooth part, which is as close
+  as a predictor that got only the K smoothest modes right could come (the folds it would leave out);
+- how far the prediction stands off the body: the error along each simulated drape's outward vertex normal (mean,
+  signed: negative where the prediction lies outside the drape), and for the simulated vertices by their distance
+  from the body (nearest body vertex, bands in cm) how much farther from the body the predicted ones lie; a model
+  that trades distance for a drape kept outside the body shows it here;
 - the correlation over bodies of each body's ME with its BMI and, for a posed dataset, with the size of each angle.
 Running it on the training split beside the test split tells underfitting (both high) from overfitting.
 A posed sample is predicted from its body at rest and its stored angles, as drape eval does.
@@ -29,11 +37,55 @@ def rigid_fit(a, b):
     return (a - ca) @ r + cb
 
 
+def smoothest_modes(faces, n, k):
+    """The k eigenvectors of smallest eigenvalue of the mesh's graph Laplacian (degree minus adjacency), as
+    orthonormal columns [n, k]: the mesh's smoothest vertex signals, the constant first."""
+    faces = np.asarray(faces)
+    adjacency = np.zeros((n, n))
+    for a, b in ((0, 1), (1, 2), (2, 0)):
+        adjacency[faces[:, a], faces[:, b]] = 1.0
+        adjacency[faces[:, b], faces[:, a]] = 1.0
+    laplacian = np.diag(adjacency.sum(1)) - adjacency
+    _, vectors = np.linalg.eigh(laplacian)
+    return vectors[:, :min(k, n)]
+
+
+def vertex_normals(x, faces):
+    """Area-weighted vertex normals of the mesh x [n, 3] (outward for drape's garments, faces counter-clockwise)."""
+    n = np.zeros_like(x)
+    f = np.cross(x[faces[:, 1]] - x[faces[:, 0]], x[faces[:, 2]] - x[faces[:, 0]])
+    for c in range(3):
+        np.add.at(n, faces[:, c], f)
+    return n / np.maximum(np.linalg.norm(n, axis=1, keepdims=True), 1e-12)
+
+
+def stand_off(P, G, bodies, faces, bands=(0, 0.5, 1, 2, 4, 1000)):
+    """Prints the signed error along the simulated drape's normals and, by the simulated vertex's distance from the
+    body, how much farther from the body the predicted vertex lies (both in cm, means over bodies and vertices)."""
+    from scipy.spatial import cKDTree
+    along, sim_d, pred_d = [], [], []
+    for k in range(len(P)):
+        n = vertex_normals(G[k], faces)
+        along.append(((P[k] - G[k]) * n).sum(1))
+        tree = cKDTree(bodies[k])
+        sim_d.append(tree.query(G[k])[0])
+        pred_d.append(tree.query(P[k])[0])
+    along, sim_d, pred_d = (np.concatenate(a) * 100 for a in (along, sim_d, pred_d))
+    print(f"  the error along the simulated drape's outward normal: mean {along.mean():+.3f} cm "
+          f"(positive: the prediction stands outside the drape), mean |.| {np.abs(along).mean():.3f} cm")
+    for lo, hi in zip(bands[:-1], bands[1:]):
+        m = (sim_d >= lo) & (sim_d < hi)
+        if m.any():
+            print(f"    simulated vertices {lo:g}-{hi:g} cm from the body ({100 * m.mean():.0f} %): the predicted ones "
+                  f"{(pred_d[m] - sim_d[m]).mean():+.3f} cm farther, along the normal {along[m].mean():+.3f} cm")
+
+
 def main(argv):
     p = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     p.add_argument("--data", required=True, help="a dataset file or a quoted glob of shards")
     p.add_argument("--model", required=True)
     p.add_argument("--split", default="test", choices=["train", "val", "test", "all"])
+    p.add_argument("--modes", default="25,100,300", help="comma-separated counts of smoothest Laplacian modes")
     args = p.parse_args(argv)
     import drape
 
@@ -82,6 +134,16 @@ def main(argv):
     print(f"  the whole garment's shift: mean {np.linalg.norm(shift, axis=1).mean() * 100:.3f} cm; "
           f"ME without it {np.linalg.norm(P - shift[:, None] - G, axis=2).mean() * 100:.3f} cm, "
           f"after the best rigid fit {np.mean([np.linalg.norm(rigid_fit(P[k], G[k]) - G[k], axis=1).mean() for k in range(len(P))]) * 100:.3f} cm")
+    basis = smoothest_modes(data.faces, P.shape[1], max(int(k) for k in args.modes.split(",")))
+    for k in sorted(int(m) for m in args.modes.split(",")):
+        U = basis[:, :k]
+        smooth = lambda X: np.einsum("vk,nkc->nvc", U, np.einsum("vk,nvc->nkc", U, X))  # noqa: E731
+        err_smooth = smooth(P - G)
+        folds = G - smooth(G)
+        print(f"  {k:4d} smoothest modes: the error's smooth part {np.linalg.norm(err_smooth, axis=2).mean() * 100:.3f} cm, "
+              f"the rest {np.linalg.norm(P - G - err_smooth, axis=2).mean() * 100:.3f} cm; "
+              f"the drapes beyond them (a predictor right in them only) {np.linalg.norm(folds, axis=2).mean() * 100:.3f} cm")
+    stand_off(P, G, np.asarray(batch["body"], np.float64), np.asarray(data.faces))
     per_body = E.mean(1)
     bmi = data.stat("bmi", idx)
     print(f"  correlation of a body's ME with its BMI {np.corrcoef(bmi, per_body)[0, 1]:+.2f}")
