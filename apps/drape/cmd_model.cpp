@@ -3,6 +3,9 @@
 // domain of DATA's training split in the model (for models trained before
 // drape train recorded it), atomically, rewriting the file in the current
 // format (sealed: docs/formats.md).
+// `drape model set MODEL --set node.param=value... [--out FILE]`: stores graph
+// parameters that leave the weights alone (e.g. post.enabled=true, the
+// push-out after the network) in the model, as --set does for one run.
 #include "command.hpp"
 
 #include <drape/io/shipped_files.hpp>
@@ -13,6 +16,7 @@
 #include <drape/io/h5.hpp>
 #include <drape/training/model.hpp>
 #include <drape/training/model_domain.hpp>
+#include <drape/training/model_params.hpp>
 #include <drape/scene/size_table.hpp>
 
 #include <cstdio>
@@ -27,6 +31,7 @@ namespace fs = std::filesystem;
 
 const char* kInfoUsage = "drape model info MODEL";
 const char* kDomainUsage = "drape model domain MODEL --data DATA [--out FILE]";
+const char* kSetUsage = "drape model set MODEL --set node.param=value [--set ...] [--out FILE]";
 
 void print_domain(const ModelDomain& d) {
   std::printf("domain: body model '%s', %zu training bodies from %s\n", d.body_model.c_str(), d.samples,
@@ -145,22 +150,44 @@ int domain(const std::vector<std::string>& args) {
   return 0;
 }
 
+int set(const std::vector<std::string>& args) {
+  po::options_description opts("drape model set");
+  opts.add_options()("model", po::value<std::string>()->required(), "model file")(
+      "set", po::value<std::vector<std::string>>(), "node.param=value: a parameter of the model's graph that leaves the "
+                                                    "weights alone, e.g. post.enabled=true (repeatable)")(
+      "out", po::value<std::string>(), "write here instead of replacing MODEL");
+  po::positional_options_description positional;
+  positional.add("model", 1);
+  po::variables_map vm;
+  if (!parse(kSetUsage, args, opts, positional, vm)) return 0;
+  if (!vm.count("set")) throw UsageError("--set node.param=value is required\nusage: " + std::string(kSetUsage));
+  const fs::path file = find_input_file(vm["model"].as<std::string>());
+  const fs::path out = vm.count("out") ? fs::path(vm["out"].as<std::string>()) : file;
+  Registry& registry = Registry::load_default(plugin_path(vm));
+  for (const std::string& change : set_model_params(registry, file, parse_param_overrides(vm), out))
+    std::printf("  %s\n", change.c_str());
+  std::printf("wrote %s\n", out.string().c_str());
+  return 0;
+}
+
 int run(const std::vector<std::string>& args) {
-  const std::string usage = std::string("usage: ") + kInfoUsage + "\n       " + kDomainUsage;
-  if (args.empty()) throw UsageError("info or domain?\n" + usage);
+  const std::string usage = std::string("usage: ") + kInfoUsage + "\n       " + kDomainUsage + "\n       " + kSetUsage;
+  if (args.empty()) throw UsageError("info, domain or set?\n" + usage);
   const std::string& action = args[0];
   const std::vector<std::string> rest(args.begin() + 1, args.end());
   if (action == "info") return info(rest);
   if (action == "domain") return domain(rest);
+  if (action == "set") return set(rest);
   if (action == "--help" || action == "-h" || action == "help") {
     std::cout << usage << "\n\n  info    what a model file holds and the body domain it was trained on\n"
-                          "  domain  record the domain of a dataset's training split in a model\n";
+                          "  domain  record the domain of a dataset's training split in a model\n"
+                          "  set     store graph parameters that leave the weights alone (e.g. post.enabled=true)\n";
     return 0;
   }
-  throw UsageError("unknown action '" + action + "'" + did_you_mean(action, {"info", "domain"}) + "\n" + usage);
+  throw UsageError("unknown action '" + action + "'" + did_you_mean(action, {"info", "domain", "set"}) + "\n" + usage);
 }
 
-const RegisterCommand registration{{"model", "what a model file holds, and the body domain it knows (info, domain)", run}};
+const RegisterCommand registration{{"model", "what a model file holds, and the body domain it knows (info, domain, set)", run}};
 
 }  // namespace
 }  // namespace drape::cli

@@ -171,7 +171,11 @@ Model Model::load(const Registry& registry, const fs::path& file, const ParamOve
   GraphSpec spec = parse_graph_text(checkpoint.graph, file.string() + " (graph)");
   for (const auto& [node, params] : overrides) {
     auto it = std::find_if(spec.nodes.begin(), spec.nodes.end(), [&](const NodeSpec& n) { return n.name == node; });
-    if (it == spec.nodes.end()) throw ConfigError(file.string() + ": the model's graph has no node '" + node + "' to change");
+    if (it == spec.nodes.end()) {
+      std::vector<std::string> names;
+      for (const NodeSpec& n : spec.nodes) names.push_back(n.name);
+      throw ConfigError(file.string() + ": the model's graph has no node '" + node + "' to change" + did_you_mean(node, names));
+    }
     for (const auto& [key, value] : params) it->params[key] = ParamValue{YAML::Load(value), {file.string() + " (override)", 0}};
   }
   Model m = build(registry, spec, parse_assets_spec(assets->second, file.string() + ": /meta assets"), 0, cache_dir);

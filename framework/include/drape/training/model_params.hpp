@@ -1,0 +1,25 @@
+// Changing a stored model's graph parameters that leave its weights alone
+// (`drape model set`): what `--set node.param=value` does for one run of
+// predict or eval, written into the model file so that every later use
+// (predict, eval, optimize, Python) has it.
+#pragma once
+
+#include <drape/training/model.hpp>
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+namespace drape {
+
+// Writes `out` (atomically; it may be `model_file`) as `model_file` with each
+// override set in its stored graph's node parameters, its weights, metadata,
+// history and domain unchanged. The changed graph is first built and given
+// the weights (Model::load with the overrides), so a parameter that changes a
+// weight's shape, an unknown node or a value the node refuses is a
+// ConfigError and nothing is written. Returns one line per change, "node.param:
+// old -> new" (old "(unset)" when the graph did not name it).
+std::vector<std::string> set_model_params(const Registry& registry, const std::filesystem::path& model_file,
+                                          const Model::ParamOverrides& overrides, const std::filesystem::path& out);
+
+}  // namespace drape
