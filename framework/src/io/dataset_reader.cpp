@@ -129,6 +129,14 @@ std::vector<fs::path> dataset_files(const fs::path& path_or_pattern) {
   return files;
 }
 
+std::string dataset_name(const fs::path& path_or_pattern) {
+  const std::string text = path_or_pattern.string();
+  std::error_code ec;
+  if (fs::exists(path_or_pattern, ec) || text.find_first_of("*?[{") == std::string::npos)
+    return path_or_pattern.filename().string();
+  return text;
+}
+
 DatasetReader::DatasetReader(const fs::path& path) : impl_(std::make_unique<Impl>()) {
   impl_->name = path.string();
   impl_->files = dataset_files(path);

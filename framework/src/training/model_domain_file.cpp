@@ -27,7 +27,7 @@ ModelDomain record_model_domain(const Registry& registry, const fs::path& model_
     throw ConfigError(data_file.string() + ": its bodies have " + std::to_string(data.layout().body_vertices) +
                       " vertices; the model's body model has " + std::to_string(body->num_vertices()));
   ModelDomain d = domain_of_dataset(data, spec.body_model, body->shape_names(), body->faces(), train_fraction);
-  d.source = data_file.filename().string();
+  d.source = dataset_name(data_file);
   write_atomically(out, [&](const fs::path& tmp) {
     rewrite_checkpoint(model_file, checkpoint, tmp);
     h5::File f = h5::File::open(tmp, h5::Access::ReadWrite);

@@ -331,7 +331,7 @@ void save(const Run& run) {
   meta["output"] = run.output;
   // Its file name only: a folder is where one person kept it, and a shipped
   // model would print an author's home to everyone (`drape model info`).
-  meta["dataset"] = fs::path(o.data).filename().string();
+  meta["dataset"] = dataset_name(o.data);
   if (!run.data.ground_truth.empty()) meta["ground_truth"] = run.data.ground_truth;
   // What predict chooses a body's size by (--garment-size auto).
   if (!run.data.size_chart.empty()) meta["size_chart"] = run.data.size_chart;

@@ -195,6 +195,10 @@ class DatasetReader {
 // no glob characters), else the files matching it as a glob pattern, sorted.
 // ConfigError when a pattern matches nothing.
 std::vector<std::filesystem::path> dataset_files(const std::filesystem::path& path_or_pattern);
+// What a model records as the data it was trained on: a file's name, or a
+// glob pattern whole (its last component alone would cut a {a,b} alternative
+// in half: "shard-*-of-2.h5}").
+std::string dataset_name(const std::filesystem::path& path_or_pattern);
 
 // The samples among `indices` that are results: all but those drape optimize
 // --data marked `separated` 0, the drapes it could not bring onto the true
