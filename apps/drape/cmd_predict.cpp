@@ -26,6 +26,9 @@ int run(const std::vector<std::string>& args) {
       "svg", po::value<std::string>(), "also draw the drape, the garment coloured by its distance to the body (.svg: front view; .html: a 3D viewer)");
   add_model_body_options(opts, "body mesh (.obj, .ply, .gltf, .glb, ...) in the model's body topology");
   add_push_out_option(opts, "then push the vertices inside the body out to this clearance in m");
+  opts.add_options()("set", po::value<std::vector<std::string>>(),
+                     "node.param=value: change a parameter of the model's graph that leaves the weights alone, e.g. "
+                     "post.enabled=false (the network's drape without the shipped models' push-out; repeatable)");
   po::variables_map vm;
   const std::string usage =
       "drape predict [--model model.h5] (--body body.obj | --bmi 35 [--height 1.75 --sex 1 --girth belly=0.1]) --out garment.obj "
@@ -42,7 +45,7 @@ int run(const std::vector<std::string>& args) {
 
   const double pushed_to = push_out_margin(vm);
   Registry& registry = Registry::load_default(plugin_path(vm));
-  Model model = Model::load(registry, model_file);
+  Model model = Model::load(registry, model_file, parse_param_overrides(vm));
   if (model.assets_changed())
     std::cerr << "warning: the template assets differ from the ones " << model_file
               << " was trained with (a plugin changed since?)\n";

@@ -67,3 +67,15 @@ def test_what_cannot_be_set_is_refused_and_nothing_is_written(trained, tmp_path)
     copy.write_bytes(model.read_bytes())
     run_drape("model", "set", copy, "--set", "transfer.width=32", expect=2)
     assert filecmp.cmp(copy, model, shallow=False)  # in place: left as it was
+
+
+def test_predict_set_turns_a_stored_setting_off_for_one_run(trained, tmp_path):
+    _, model = trained
+    on = tmp_path / "on.h5"
+    run_drape("model", "set", model, "--set", "post.enabled=true", "--out", on)
+    plain, off, pushed = tmp_path / "plain.obj", tmp_path / "off.obj", tmp_path / "pushed.obj"
+    run_drape("predict", "--model", model, "--bmi", 30, "--out", plain)
+    run_drape("predict", "--model", on, "--bmi", 30, "--set", "post.enabled=false", "--out", off)
+    run_drape("predict", "--model", on, "--bmi", 30, "--out", pushed)
+    assert filecmp.cmp(plain, off, shallow=False)
+    assert not filecmp.cmp(plain, pushed, shallow=False)
