@@ -30,7 +30,12 @@
 #   SCHEDULE="posed posed posed" and INIT the A-pose model of 450 sized drapes
 #   (`git show 54d1804^:models/tshirt-coarse.h5`, shipped until the seventh
 #   session of 2026-11-30), then INIT=<that model.h5> with
-#   SCHEDULE="posed v2v100 posed" on shards 0-27 (docs/poses.md).
+#   SCHEDULE="posed v2v100 posed" on shards 0-27, then SCHEDULE=posed EPOCHS=60
+#   on shards 0-31 and the thin set, then one cycle of
+#   graphs/poses/drape_posed_sized_v2v100_post.yaml on shards 0-33 and the
+#   thin set and `drape model set ... --set post.enabled=true --set
+#   post.epsilon=0.001` (the push-out on; docs/poses.md, "Since the ninth
+#   session", gives the commands).
 set -euo pipefail
 cd "$(dirname "${BASH_SOURCE[0]}")/.."
 DRAPE=${BUILD_DIR:-build}/bin/drape
