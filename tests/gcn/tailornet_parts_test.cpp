@@ -2,6 +2,7 @@
 // spectral_lowpass (the low-frequency target), anchor_blend (the anchors'
 // high frequencies) and push_out (its post-processing).
 #include <drape/geometry/closest_point.hpp>
+#include <drape/geometry/push_out.hpp>
 #include <drape/gradcheck.hpp>
 
 #include <catch2/catch.hpp>
@@ -107,6 +108,32 @@ TEST_CASE("push_out moves vertices inside the body to epsilon outside and leaves
   Tensor gx(1, 4, 3);
   node->backward({{"x", &x}, {"body", &body}}, {}, {{"out", &g}}, {{"x", &gx}});
   CHECK(gx.vec() == g.vec());
+}
+
+TEST_CASE("push_out answers every body of a batch and of later calls by that body alone", "[gcn][tailornet]") {
+  // The node keeps one closest-point surface and refits it to each body: a
+  // second body (the cube moved and grown) and a later call on the first must
+  // come out as each body's own push-out (geometry::push_out on a surface
+  // built for it), not the first body's.
+  const auto assets = cube_body_assets();
+  Tensor body(2, 8, 3);
+  body.mat(0) = assets->body.vertices.cast<float>();
+  body.mat(1) = ((assets->body.vertices * 1.6).rowwise() + Eigen::RowVector3d(0.2, -0.1, 0.3)).cast<float>();
+  Tensor x(2, 3, 3);
+  x.mat(0) << 0.0f, 0.0f, 0.4f, 0.7f, 0.0f, 0.0f, 0.0f, 0.3f, 0.1f;
+  x.mat(1) = x.mat(0);
+  auto node = make_node("push_out", "{epsilon: 0.01}");
+  const auto expected = [&](int b) {
+    const geometry::BodySurface own(body.mat(b).cast<double>(), assets->body.faces);
+    Eigen::MatrixX3d p = x.mat(b).cast<double>();
+    geometry::push_out(own, p, 0.01);
+    return DenseF(p.cast<float>());
+  };
+  for (int call = 0; call < 2; ++call) {
+    const auto out = run_forward(*node, {{"x", x}, {"body", body}}, {"post", 2, assets.get()});
+    for (int b = 0; b < 2; ++b) CHECK((dense_of(out.at("out"), b) - expected(b)).cwiseAbs().maxCoeff() < 1e-6f);
+  }
+  CHECK((expected(0) - expected(1)).cwiseAbs().maxCoeff() > 0.05f);  // the two bodies push differently
 }
 
 TEST_CASE("concat puts a one-row flag beside every row, and its gradient checks", "[gcn][sizes]") {

@@ -10,6 +10,8 @@
 #include <drape/geometry/push_out.hpp>
 #include <drape/plugin.hpp>
 
+#include <optional>
+
 namespace {
 
 using namespace drape;
@@ -34,9 +36,15 @@ class PushOut final : public Node {
     y.vec() = x.vec();
     if (!enabled_) return;
     for (int b = 0; b < x.batch(); ++b) {
-      const geometry::BodySurface body(in.at("body")->mat(b).cast<double>(), faces_);
+      // One surface for every body: building it (the face adjacency, the
+      // hierarchy) cost three quarters of a push-out; a body of the same
+      // topology only moves its vertices, so the normals are recomputed and
+      // the hierarchy's boxes refitted (exact closest points either way).
+      const Eigen::MatrixX3d body = in.at("body")->mat(b).cast<double>();
+      if (surface_) surface_->update(body);
+      else surface_.emplace(body, faces_);
       Eigen::MatrixX3d points = x.mat(b).cast<double>();
-      geometry::push_out(body, points, epsilon_);
+      geometry::push_out(*surface_, points, epsilon_);
       y.mat(b) = points.cast<float>();
     }
   }
@@ -49,6 +57,7 @@ class PushOut final : public Node {
   double epsilon_;
   bool enabled_;
   Eigen::MatrixX3i faces_;
+  std::optional<geometry::BodySurface> surface_;  // the last body's, refitted to the next
 };
 
 PluginList plugins() {
