@@ -34,7 +34,7 @@
 #   on shards 0-31 and the thin set, then one cycle of
 #   graphs/poses/drape_posed_sized_v2v100_post.yaml on shards 0-33 and the
 #   thin set and `drape model set ... --set post.enabled=true --set
-#   post.epsilon=0.001` (the push-out on; docs/poses.md, "Since the ninth
+#   post.epsilon=0.006` (the push-out on; docs/poses.md, "Since the ninth
 #   session", gives the commands).
 set -euo pipefail
 cd "$(dirname "${BASH_SOURCE[0]}")/.."

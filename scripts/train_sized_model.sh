@@ -26,7 +26,7 @@
 # which leave the weights as they are. Since the ninth session it is that
 # model with one more run, GRAPH=graphs/sizes/drape_grade_v2v100_post.yaml
 # INIT=<that model> EPOCHS=60 PATIENCE=30, then `drape model set MODEL --set
-# post.enabled=true --set post.epsilon=0.001` (the push-out on; the same
+# post.enabled=true --set post.epsilon=0.006` (the push-out on; the same
 # ground_truth text and domain written again; docs/garments.md, "No
 # stand-off, and the push-out").
 set -euo pipefail

@@ -21,9 +21,10 @@ PushOutReport push_out(const BodySurface& body, Eigen::MatrixX3d& vertices, doub
   const Eigen::MatrixX3d start = vertices;
   std::vector<char> moved(static_cast<std::size_t>(vertices.rows()), 0);
   std::vector<SurfacePoint> near = body.locate_all(vertices);
+  std::vector<Eigen::Index> stepped;  // the vertices the pass moved: only their closest points change
   for (int pass = 0; pass < max_passes; ++pass) {
     ++report.passes;
-    int count = 0;
+    stepped.clear();
     for (Eigen::Index i = 0; i < vertices.rows(); ++i) {
       const SurfacePoint& s = near[static_cast<std::size_t>(i)];
       // (A vertex a pass put on the level set may come back a rounding error short of it: left alone.)
@@ -33,10 +34,15 @@ PushOutReport push_out(const BodySurface& body, Eigen::MatrixX3d& vertices, doub
       const Eigen::Vector3d step = (margin - s.signed_distance) * s.normal;
       vertices.row(i) += step.transpose();
       moved[static_cast<std::size_t>(i)] = 1;
-      ++count;
+      stepped.push_back(i);
     }
-    if (count == 0) break;  // nothing moved: the last search still holds
-    near = body.locate_all(vertices);
+    if (stepped.empty()) break;  // nothing moved: the last search still holds
+    const auto count = static_cast<std::ptrdiff_t>(stepped.size());
+#pragma omp parallel for schedule(static, 16)
+    for (std::ptrdiff_t k = 0; k < count; ++k) {
+      const Eigen::Index i = stepped[static_cast<std::size_t>(k)];
+      near[static_cast<std::size_t>(i)] = body.locate(vertices.row(i).transpose());
+    }
   }
   if (vertices.rows() > 0) report.largest_move = (vertices - start).rowwise().norm().maxCoeff();
   for (std::size_t i = 0; i < near.size(); ++i) {
