@@ -19,6 +19,8 @@
 #include <drape/training/model_params.hpp>
 #include <drape/scene/size_table.hpp>
 
+#include <yaml-cpp/yaml.h>
+
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -104,6 +106,26 @@ void print_training_settings(const std::map<std::string, std::string>& meta) {
     std::printf("  %-14s %s (the model it started from, by its path at the time)\n", "init", get("init").c_str());
 }
 
+// A push-out (TailorNet's post-processing) the model's graph applies after
+// the network: what predict's drapes went through, and how to go without it.
+void print_post_processing(const std::string& graph_text) {
+  const YAML::Node graph = YAML::Load(graph_text);
+  for (const auto& node : graph["nodes"]) {
+    const YAML::Node spec = node.second;
+    if (!spec["type"] || spec["type"].as<std::string>() != "push_out") continue;
+    const YAML::Node params = spec["params"];
+    const bool enabled = !(params && params["enabled"]) || params["enabled"].as<bool>();
+    const double epsilon = params && params["epsilon"] ? params["epsilon"].as<double>() : 0.002;
+    const std::string name = node.first.as<std::string>();
+    if (enabled)
+      std::printf("  %-14s %s: vertices inside the body or within %.1f mm pushed out to %.1f mm (the network alone: "
+                  "--set %s.enabled=false)\n", "push-out", name.c_str(), 1000 * epsilon, 1000 * epsilon, name.c_str());
+    else
+      std::printf("  %-14s %s: off (--set %s.enabled=true, or drape model set, turns it on)\n", "push-out", name.c_str(),
+                  name.c_str());
+  }
+}
+
 int info(const std::vector<std::string>& args) {
   po::options_description opts("drape model info");
   opts.add_options()("model", po::value<std::string>()->required(), "model file");
@@ -123,6 +145,7 @@ int info(const std::vector<std::string>& args) {
     std::printf("  %-14s %s\n", key, value.c_str());
   }
   print_training_settings(c.meta);
+  print_post_processing(c.graph);
   if (auto chart = c.meta.find("size_chart"); chart != c.meta.end()) print_size_chart(chart->second);
   if (auto domain = read_domain(file)) print_domain(*domain);
   else
