@@ -115,11 +115,13 @@ void print_post_processing(const std::string& graph_text) {
     if (!spec["type"] || spec["type"].as<std::string>() != "push_out") continue;
     const YAML::Node params = spec["params"];
     const bool enabled = !(params && params["enabled"]) || params["enabled"].as<bool>();
-    const double epsilon = params && params["epsilon"] ? params["epsilon"].as<double>() : 0.002;
+    // The clearance as the graph gives it (unset: the plugin's default, which `drape plugins` lists).
+    char clearance[64] = "the push_out plugin's default clearance";
+    if (params && params["epsilon"]) std::snprintf(clearance, sizeof clearance, "%.1f mm", 1000 * params["epsilon"].as<double>());
     const std::string name = node.first.as<std::string>();
     if (enabled)
-      std::printf("  %-14s %s: vertices inside the body or within %.1f mm pushed out to %.1f mm (the network alone: "
-                  "--set %s.enabled=false)\n", "push-out", name.c_str(), 1000 * epsilon, 1000 * epsilon, name.c_str());
+      std::printf("  %-14s %s: vertices inside the body or within %s pushed out to it (the network alone: "
+                  "--set %s.enabled=false)\n", "push-out", name.c_str(), clearance, name.c_str());
     else
       std::printf("  %-14s %s: off (--set %s.enabled=true, or drape model set, turns it on)\n", "push-out", name.c_str(),
                   name.c_str());

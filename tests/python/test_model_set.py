@@ -52,7 +52,7 @@ def test_a_stored_setting_is_what_set_does_and_leaves_the_weights(trained, tmp_p
     info_after, _ = run_drape("model", "info", on)
     assert info_before.split("domain:")[1] == info_after.split("domain:")[1]
     assert "push-out       post: off" in info_before
-    assert "push-out       post: vertices inside the body or within 1.0 mm pushed out to 1.0 mm" in info_after
+    assert "push-out       post: vertices inside the body or within 1.0 mm pushed out to it" in info_after
 
 
 def test_what_cannot_be_set_is_refused_and_nothing_is_written(trained, tmp_path):
