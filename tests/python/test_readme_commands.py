@@ -41,6 +41,7 @@ NOT_RUN = {
     "dataset potential all.h5": "needs all.h5 from dataset merge",
     "train ": "needs data.h5 from generate; 100 epochs",
     "model info model.h5": "needs model.h5 from train",
+    "model set model.h5": "needs model.h5 from train; tests/python/test_model_set.py runs it on a trained model",
     "eval ": "needs model.h5 and data.h5",
     "optimize --scene graphs/scenes/tshirt_coarse_contact.yaml --bmi 35": "100 Adam iterations through the potential: a minute",
     "optimize --scene graphs/scenes/tshirt_coarse.yaml --data": "needs data.h5",
