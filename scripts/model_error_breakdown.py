@@ -11,8 +11,8 @@ Prints the ME (mean vertex distance, cm) over the split's bodies, and:
 - the mean offset of each predicted garment from the simulated one (a shift of the whole garment), and the ME left
   after removing it, then after the best rigid fit (Kabsch) of each prediction onto its drape;
 - by frequency over the garment's mesh (--modes K,...): each error split into its smooth part, spanned by the K
-  smoothest eigenvectors of the garment's graph Laplacian (its vertex adjacency; the same topology in every
-  sample), and the rest; beside it, how far each simulated drape lies from its own smooth part, which is as close
+  smoothest eigenvectors of the garment's Laplacian (the template assets' spectral basis, the one the network's
+  spectral branch uses: orthonormal, ascending, the constant first), and the rest; beside it, how far each simulated drape lies from its own smooth part, which is as close
   as a predictor that got only the K smoothest modes right could come (the folds it would leave out);
 - how far the prediction stands off the body: the error along each simulated drape's outward vertex normal (mean,
   signed: negative where the prediction lies outside the drape), and for the simulated vertices by their distance
@@ -35,19 +35,6 @@ def rigid_fit(a, b):
     d = np.sign(np.linalg.det(u @ vt))
     r = u @ np.diag([1.0, 1.0, d]) @ vt
     return (a - ca) @ r + cb
-
-
-def smoothest_modes(faces, n, k):
-    """The k eigenvectors of smallest eigenvalue of the mesh's graph Laplacian (degree minus adjacency), as
-    orthonormal columns [n, k]: the mesh's smoothest vertex signals, the constant first."""
-    faces = np.asarray(faces)
-    adjacency = np.zeros((n, n))
-    for a, b in ((0, 1), (1, 2), (2, 0)):
-        adjacency[faces[:, a], faces[:, b]] = 1.0
-        adjacency[faces[:, b], faces[:, a]] = 1.0
-    laplacian = np.diag(adjacency.sum(1)) - adjacency
-    _, vectors = np.linalg.eigh(laplacian)
-    return vectors[:, :min(k, n)]
 
 
 def vertex_normals(x, faces):
@@ -116,9 +103,10 @@ def main(argv):
 
     # The regions are cut on the template dressed on the mean body: the coarse
     # T-shirt's, or the default one's, whichever has the dataset's vertex count.
-    t = None
+    t = assets = None
     for resolution in ("coarse", "default"):
-        t = np.asarray(drape.assets(resolution=resolution).garment_vertices)
+        assets = drape.assets(resolution=resolution)
+        t = np.asarray(assets.garment_vertices)
         if len(t) == P.shape[1]:
             break
     if len(t) != P.shape[1]:
@@ -134,8 +122,11 @@ def main(argv):
     print(f"  the whole garment's shift: mean {np.linalg.norm(shift, axis=1).mean() * 100:.3f} cm; "
           f"ME without it {np.linalg.norm(P - shift[:, None] - G, axis=2).mean() * 100:.3f} cm, "
           f"after the best rigid fit {np.mean([np.linalg.norm(rigid_fit(P[k], G[k]) - G[k], axis=1).mean() for k in range(len(P))]) * 100:.3f} cm")
-    basis = smoothest_modes(data.faces, P.shape[1], max(int(k) for k in args.modes.split(",")))
+    basis = np.asarray(assets.eigenvectors, np.float64)
     for k in sorted(int(m) for m in args.modes.split(",")):
+        if k > basis.shape[1]:
+            print(f"  {k:4d} smoothest modes: the assets hold {basis.shape[1]}; left out")
+            continue
         U = basis[:, :k]
         smooth = lambda X: np.einsum("vk,nkc->nvc", U, np.einsum("vk,nvc->nkc", U, X))  # noqa: E731
         err_smooth = smooth(P - G)
