@@ -75,21 +75,6 @@ void save_checkpoint(const fs::path& path, Graph& graph, const std::map<std::str
   save_checkpoint(path, graph.weights(), c);
 }
 
-void rewrite_checkpoint(const fs::path& from, const Checkpoint& c, const fs::path& to) {
-  const h5::File source = h5::File::open(from);
-  const std::vector<std::string> names = source.datasets_below("/weights");
-  std::vector<Weight> weights(names.size());
-  NamedWeights named;
-  for (std::size_t i = 0; i < names.size(); ++i) {
-    const h5::Dims shape = source.shape("/weights/" + names[i]);
-    if (shape.size() != 2) throw ConfigError(from.string() + ": weight " + names[i] + " is not a matrix");
-    weights[i].value = Tensor(1, static_cast<int>(shape[0]), static_cast<int>(shape[1]));
-    source.read("/weights/" + names[i], shape, weights[i].value.data());
-    named.emplace_back(names[i], &weights[i]);
-  }
-  save_checkpoint(to, named, c);
-}
-
 Checkpoint read_checkpoint(const fs::path& path) {
   const h5::File file = h5::File::open(path);
   check_format(file);

@@ -12,6 +12,27 @@ namespace fs = std::filesystem;
 
 namespace drape {
 
+namespace {
+
+// The checkpoint `from` (its non-weight part `c` already read) written anew
+// to `to` in the current format (sealed, fixed-length strings), whatever
+// format it was written in.
+void rewrite_checkpoint(const fs::path& from, const Checkpoint& c, const fs::path& to) {
+  const h5::File source = h5::File::open(from);
+  const std::vector<std::string> names = source.datasets_below("/weights");
+  std::vector<Weight> weights(names.size());
+  NamedWeights named;
+  for (std::size_t i = 0; i < names.size(); ++i) {
+    const h5::Dims shape = source.shape("/weights/" + names[i]);
+    if (shape.size() != 2) throw ConfigError(from.string() + ": weight " + names[i] + " is not a matrix");
+    weights[i].value = Tensor(1, static_cast<int>(shape[0]), static_cast<int>(shape[1]));
+    source.read("/weights/" + names[i], shape, weights[i].value.data());
+    named.emplace_back(names[i], &weights[i]);
+  }
+  save_checkpoint(to, named, c);
+}
+
+}  // namespace
 
 ModelDomain record_model_domain(const Registry& registry, const fs::path& model_file, const fs::path& data_file,
                                 const fs::path& out, double train_fraction) {

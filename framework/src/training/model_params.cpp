@@ -18,9 +18,10 @@ std::vector<std::string> set_model_params(const Registry& registry, const fs::pa
   if (overrides.empty()) throw ConfigError("nothing to set: give node.param=value");
   // Built and loaded with the overrides first: every check the graph and its
   // nodes make (the node exists, the value is one it takes, the weights still
-  // fit) happens before anything is written.
-  { Model::load(registry, model_file, overrides); }
-  Checkpoint c = read_checkpoint(model_file);
+  // fit) happens before anything is written. Its weights are the file's (all
+  // or nothing) and are what is written back.
+  Model model = Model::load(registry, model_file, overrides);
+  Checkpoint c = model.checkpoint();
   YAML::Node graph = YAML::Load(c.graph);
   std::vector<std::string> changes;
   for (const auto& [node, params] : overrides) {
@@ -36,7 +37,7 @@ std::vector<std::string> set_model_params(const Registry& registry, const fs::pa
   c.graph = std::string(text.c_str()) + "\n";
   const std::optional<ModelDomain> domain = read_domain(model_file);
   write_atomically(out, [&](const fs::path& tmp) {
-    rewrite_checkpoint(model_file, c, tmp);
+    save_checkpoint(tmp, model.graph().weights(), c);
     if (domain) {
       h5::File f = h5::File::open(tmp, h5::Access::ReadWrite);
       write_domain(f, *domain);

@@ -35,11 +35,6 @@ void save_checkpoint(const std::filesystem::path& path, Graph& graph, const std:
 
 // Everything but the weights.
 Checkpoint read_checkpoint(const std::filesystem::path& path);
-// The checkpoint file `from` written anew to `to` with its weights and the
-// non-weight part `c` (read from it, then changed or not), in the current
-// format (sealed, fixed-length strings) whatever format `from` was written
-// in. `to` is written in place: callers wrap it in write_atomically.
-void rewrite_checkpoint(const std::filesystem::path& from, const Checkpoint& c, const std::filesystem::path& to);
 
 // Fills every weight from the file, all or nothing. ConfigError naming the
 // weight that is missing ("model.h5: missing dataset /weights/encoder/w"), has
