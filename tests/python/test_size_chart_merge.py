@@ -85,6 +85,9 @@ def test_a_model_trained_on_both_as_one_pattern_knows_every_size(tmp_path):
               "--out", model, "--epochs", 1, "--k", 16, "-q")
     info, _ = run_drape("model", "info", model)
     assert "3xsmall" in info and "6xlarge" in info, info
+    # The pattern is what the model records as its data, whole (its last component alone was "new}.h5").
+    assert "{a-old,new}.h5" in info.split("dataset", 1)[1].splitlines()[0], info
+    assert "training bodies from " + str(tmp_path / "{a-old,new}.h5") in info, info
 
 
 def test_charts_that_differ_on_a_shared_size_are_refused(tmp_path):

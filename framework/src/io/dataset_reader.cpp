@@ -113,11 +113,21 @@ void DatasetReader::Impl::rebuild(const std::vector<std::size_t>& rows, const Da
   for (std::size_t k = 0; k < todo.size(); ++k) rebuilt[todo[k]] = std::move(bodies[k]);
 }
 
+namespace {
+
+// A glob pattern, not a file: no file of that name, and glob characters in it.
+bool is_pattern(const fs::path& path_or_pattern) {
+  std::error_code ec;
+  return !fs::exists(path_or_pattern, ec) && path_or_pattern.string().find_first_of("*?[{") != std::string::npos;
+}
+
+}  // namespace
+
 std::vector<fs::path> dataset_files(const fs::path& path_or_pattern) {
   std::error_code ec;
   const std::string text = path_or_pattern.string();
   if (fs::exists(path_or_pattern, ec)) return {path_or_pattern};
-  if (text.find_first_of("*?[{") == std::string::npos) {
+  if (!is_pattern(path_or_pattern)) {
     const fs::path shipped = locate_shipped_file(path_or_pattern);  // datasets/... from a build tree
     return {shipped.empty() ? path_or_pattern : shipped};           // else h5's "no such file"
   }
@@ -130,11 +140,7 @@ std::vector<fs::path> dataset_files(const fs::path& path_or_pattern) {
 }
 
 std::string dataset_name(const fs::path& path_or_pattern) {
-  const std::string text = path_or_pattern.string();
-  std::error_code ec;
-  if (fs::exists(path_or_pattern, ec) || text.find_first_of("*?[{") == std::string::npos)
-    return path_or_pattern.filename().string();
-  return text;
+  return is_pattern(path_or_pattern) ? path_or_pattern.string() : path_or_pattern.filename().string();
 }
 
 DatasetReader::DatasetReader(const fs::path& path) : impl_(std::make_unique<Impl>()) {
