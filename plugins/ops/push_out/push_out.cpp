@@ -23,6 +23,7 @@ class PushOut final : public Node {
   ShapeMap setup(const ShapeMap& in, const NodeContext& context) override {
     if (!context.assets) throw ConfigError("push_out needs the body's faces: no template assets are bound");
     faces_ = context.assets->body.faces;
+    surface_.reset();  // built again for these faces at the next forward
     const Shape body = in.at("body");
     if (body.rows != context.assets->body.num_vertices() || body.cols != 3)
       throw ConfigError("input 'body' must be [" + std::to_string(context.assets->body.num_vertices()) + ", 3], got " + body.str());
