@@ -68,9 +68,9 @@ def drape(a, scene, stem, bmi, spec):
     return row
 
 
-def picture(stem, label, size):
+def picture(stem, label, size, views="front,left"):
     subprocess.run([PYTHON, os.path.join(HERE, "shaded_views.py"), stem + ".obj", "--body", stem + "-body.obj",
-                    "--views", "front,left", "--size", str(size), "--label", label, "--out", stem + ".png"],
+                    "--views", views, "--size", str(size), "--label", label, "--out", stem + ".png"],
                    check=True, capture_output=True)
     with open(stem + ".png", "rb") as f:
         return base64.b64encode(f.read()).decode()

@@ -17,7 +17,6 @@ A model is fed the body at rest (from `drape dataset unpose`, run here) and the 
 predict --pose` feeds it.
 """
 import argparse
-import base64
 import html
 import os
 import subprocess
@@ -33,36 +32,27 @@ sys.path.insert(0, HERE)
 from posed_grid import picture as shaded_picture  # noqa: E402
 
 
-def picture(garment, body, faces, body_faces, stem, label, size):
-    """Front and left views of the garment on the body, base64 PNG (posed_grid.py's drawing)."""
+def picture(garment, body, faces, body_faces, stem, label, size, views="front,left"):
+    """Views of the garment on the body, base64 PNG (posed_grid.py's drawing)."""
     drape.write_obj(stem + ".obj", garment, faces)
     drape.write_obj(stem + "-body.obj", body, body_faces)
-    return shaded_picture(stem, label, size)
+    return shaded_picture(stem, label, size, views)
 
 
 POSE_CLASSES = [("arms low (abduction < 45)", 0, 45), ("arms mid (45-75)", 45, 75), ("arms raised (> 75)", 75, 180)]
 BMI_BANDS = [(10, 20), (20, 30), (30, 45), (45, 65)]
 
 
-def simulated_grade(posed, row):
-    """The garment grade the sample was simulated in (None for a one-size dataset): the model is fed that grade, as
-    `drape eval` feeds it, not the size the tailor's rule would choose today (shards made before the sizes below
-    small dressed thin bodies in the small)."""
+def simulated_grade(posed, row, model):
+    """The garment grade the sample was simulated in, for a model that takes one (else None, as for a one-size
+    dataset): the model is fed that grade, as `drape eval` feeds it, not the size the tailor's rule would choose
+    today (shards made before the sizes below small dressed thin bodies in the small)."""
+    if "garment_grade" not in model.inputs:
+        return None
     try:
         return float(posed.stat("garment_grade", [row])[0])
-    except (KeyError, ValueError):
+    except drape.ConfigError:  # a dataset of one garment has no grade statistic
         return None
-
-
-def front_picture(garment, body, faces, body_faces, stem, label, size):
-    """The garment on the body from the front, base64 PNG (scripts/figures/shaded_views.py)."""
-    drape.write_obj(stem + ".obj", garment, faces)
-    drape.write_obj(stem + "-body.obj", body, body_faces)
-    subprocess.run([sys.executable, os.path.join(HERE, "shaded_views.py"), stem + ".obj", "--body", stem + "-body.obj",
-                    "--views", "front", "--size", str(size), "--label", label, "--out", stem + ".png"],
-                   check=True, capture_output=True)
-    with open(stem + ".png", "rb") as f:
-        return base64.b64encode(f.read()).decode()
 
 
 def grid_picks(posed, wanted):
@@ -70,7 +60,7 @@ def grid_picks(posed, wanted):
     names = posed.layout["pose_angles"]
     arms = [names.index("left_shoulder_abduction"), names.index("right_shoulder_abduction")]
     bmis = posed.stat("bmi", wanted)
-    abduction = np.array([posed.read([int(r)])["pose"][0][arms].mean() for r in wanted])
+    abduction = posed.read([int(r) for r in wanted])["pose"][:, arms].mean(1)
     picks = {}
     for c, (_, lo, hi) in enumerate(POSE_CLASSES):
         for b, (blo, bhi) in enumerate(BMI_BANDS):
@@ -97,12 +87,12 @@ def grid(a, posed, rest, done, wanted, name, model, faces, body_faces):
             pose = {n: float(v) for n, v in zip(names, s["pose"][0])}
             bmi = float(posed.stat("bmi", [row])[0])
             body, simulated = s["body"][0], s["garment"][0]
-            predicted = model.predict(r["body"][0], pose=pose, garment_size=simulated_grade(posed, row), check=False)
+            predicted = model.predict(r["body"][0], pose=pose, garment_size=simulated_grade(posed, row, model), check=False)
             me = 100 * np.linalg.norm(predicted - simulated, axis=1).mean()
             errors.append(me)
             stem = os.path.join(a.work, f"grid{row}")
-            sim = front_picture(simulated, body, faces, body_faces, stem + "-sim", "simulated", a.size)
-            pred = front_picture(predicted, body, faces, body_faces, stem + "-pred", "predicted", a.size)
+            sim = picture(simulated, body, faces, body_faces, stem + "-sim", "simulated", a.size, "front")
+            pred = picture(predicted, body, faces, body_faces, stem + "-pred", "predicted", a.size, "front")
             arms = (pose["left_shoulder_abduction"], pose["right_shoulder_abduction"])
             cells.append(f"<td><img src='data:image/png;base64,{sim}'><img src='data:image/png;base64,{pred}'><br>"
                          f"sample {row}, BMI {bmi:.1f}, arms {arms[0]:.0f}/{arms[1]:.0f},<br>twist {pose['spine_twist']:.0f}: "
@@ -166,7 +156,7 @@ def main():
         cells = [f"<td><img src='data:image/png;base64,{picture(simulated, body, faces, body_faces, stem + '-sim', label, a.size)}'>"
                  f"<br>simulated</td>"]
         for name, model in models:
-            predicted = model.predict(r["body"][0], pose=pose, garment_size=simulated_grade(posed, int(row)), check=False)
+            predicted = model.predict(r["body"][0], pose=pose, garment_size=simulated_grade(posed, int(row), model), check=False)
             me = 100 * np.linalg.norm(predicted - simulated, axis=1).mean()
             img = picture(predicted, body, faces, body_faces, f"{stem}-{name}", label, a.size)
             cells.append(f"<td><img src='data:image/png;base64,{img}'><br>{html.escape(name)}: ME {me:.2f} cm</td>")
