@@ -13,13 +13,14 @@
 #include <drape/io/checkpoint.hpp>
 #include <drape/io/dataset.hpp>
 #include <drape/errors.hpp>
+#include <drape/graph.hpp>
 #include <drape/io/h5.hpp>
+#include <drape/params.hpp>
+#include <drape/registry.hpp>
 #include <drape/training/model.hpp>
 #include <drape/training/model_domain.hpp>
 #include <drape/training/model_params.hpp>
 #include <drape/scene/size_table.hpp>
-
-#include <yaml-cpp/yaml.h>
 
 #include <cstdio>
 #include <cstdlib>
@@ -108,23 +109,18 @@ void print_training_settings(const std::map<std::string, std::string>& meta) {
 
 // A push-out (TailorNet's post-processing) the model's graph applies after
 // the network: what predict's drapes went through, and how to go without it.
-void print_post_processing(const std::string& graph_text) {
-  const YAML::Node graph = YAML::Load(graph_text);
-  for (const auto& node : graph["nodes"]) {
-    const YAML::Node spec = node.second;
-    if (!spec["type"] || spec["type"].as<std::string>() != "push_out") continue;
-    const YAML::Node params = spec["params"];
-    const bool enabled = !(params && params["enabled"]) || params["enabled"].as<bool>();
-    // The clearance as the graph gives it (unset: the plugin's default, which `drape plugins` lists).
-    char clearance[64] = "the push_out plugin's default clearance";
-    if (params && params["epsilon"]) std::snprintf(clearance, sizeof clearance, "%.1f mm", 1000 * params["epsilon"].as<double>());
-    const std::string name = node.first.as<std::string>();
-    if (enabled)
-      std::printf("  %-14s %s: vertices inside the body or within %s pushed out to it (the network alone: "
-                  "--set %s.enabled=false)\n", "push-out", name.c_str(), clearance, name.c_str());
+// The node's parameters as the plugin reads them, its defaults filled in.
+void print_post_processing(const Registry& registry, const std::string& graph_text, const std::string& where) {
+  for (const NodeSpec& node : parse_graph_text(graph_text, where).nodes) {
+    if (node.type != "push_out") continue;
+    const Params params(registry.get(node.type).params, node.params, node.name);
+    if (params.get_bool("enabled"))
+      std::printf("  %-14s %s: vertices inside the body or within %.1f mm pushed out to it (the network alone: "
+                  "--set %s.enabled=false)\n", "push-out", node.name.c_str(), 1000 * params.get_float("epsilon"),
+                  node.name.c_str());
     else
-      std::printf("  %-14s %s: off (--set %s.enabled=true, or drape model set, turns it on)\n", "push-out", name.c_str(),
-                  name.c_str());
+      std::printf("  %-14s %s: off (--set %s.enabled=true, or drape model set, turns it on)\n", "push-out",
+                  node.name.c_str(), node.name.c_str());
   }
 }
 
@@ -147,7 +143,7 @@ int info(const std::vector<std::string>& args) {
     std::printf("  %-14s %s\n", key, value.c_str());
   }
   print_training_settings(c.meta);
-  print_post_processing(c.graph);
+  print_post_processing(Registry::load_default(plugin_path(vm)), c.graph, file.string() + " (graph)");
   if (auto chart = c.meta.find("size_chart"); chart != c.meta.end()) print_size_chart(chart->second);
   if (auto domain = read_domain(file)) print_domain(*domain);
   else
