@@ -244,6 +244,37 @@ TEST_CASE("refitting after moving the vertices answers like a rebuild") {
   CHECK(refitted.vertex_normals().isApprox(rebuilt.vertex_normals()));
 }
 
+// Normals left to the queries: each query's pseudo-normal computed from the
+// features it lands on gives the same bits as the whole body's normals
+// (vertices, edges and faces hit: the hard points sit on all three), and the
+// whole-body accessors refuse until an update computes them again.
+TEST_CASE("an update that leaves normals to the queries answers with the same bits") {
+  const Mesh m = bumpy_torus();
+  Mesh moved = m;
+  for (int i = 0; i < moved.num_vertices(); ++i) moved.vertices.row(i) *= 1.0 + 0.1 * std::sin(3.0 * m.vertices(i, 0));
+  BodySurface all(m), on_demand(m);
+  all.update(moved.vertices);
+  on_demand.update(moved.vertices, BodySurface::Normals::on_demand);
+  std::mt19937 rng(29);
+  const std::vector<Eigen::Vector3d> points = hard_points(moved, rng, 1500);
+  int on_vertex = 0, on_edge = 0;
+  for (const Eigen::Vector3d& p : points) {
+    const SurfacePoint a = all.locate(p), b = on_demand.locate(p);
+    INFO("p = " << p.transpose());
+    CHECK(a.face == b.face);
+    CHECK(a.signed_distance == b.signed_distance);
+    CHECK(a.normal == b.normal);
+    on_vertex += b.feature <= drape::geometry::TriangleFeature::vertex_c;
+    on_edge += b.feature >= drape::geometry::TriangleFeature::edge_ab && b.feature <= drape::geometry::TriangleFeature::edge_ca;
+  }
+  CHECK(on_vertex > 10);
+  CHECK(on_edge > 10);
+  CHECK_THROWS_WITH(on_demand.vertex_normals(), Catch::Contains("left to the queries"));
+  CHECK_THROWS_WITH(on_demand.face_normals(), Catch::Contains("left to the queries"));
+  on_demand.update(moved.vertices);
+  CHECK(on_demand.vertex_normals() == all.vertex_normals());
+}
+
 TEST_CASE("batch queries equal single queries: max_distance limits the search") {
   const Mesh m = drape::geometry::icosphere(3);
   const BodySurface surface(m);

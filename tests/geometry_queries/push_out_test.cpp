@@ -87,3 +87,39 @@ TEST_CASE("push_out: a vertex under a tent's ridge goes out through the nearer r
   CHECK(x(0, 0) - x(0, 1) == Approx(0.05 - 0.9).margin(1e-12));  // moved along the normal only
   CHECK(x(0, 2) == 0.0);
 }
+
+// A garment pushed out of body after body: the closest faces of the last body
+// start the next body's searches (hints right, stale, wrong or of the wrong
+// count) and the normals are left to the queries; the vertices end on the
+// same bits as a push-out from a fresh surface without hints.
+TEST_CASE("push_out with the last body's faces as hints moves the vertices to the same bits", "[geometry][push_out]") {
+  const BodySurface fresh = unit_cube();
+  BodySurface kept = unit_cube();
+  Eigen::MatrixX3d stretched = fresh.vertices();
+  stretched.col(1) *= 1.2;
+  kept.update(stretched);  // another body first, so the hints are stale
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> coordinate(-1.3, 1.3);
+  Eigen::MatrixX3d x(300, 3);
+  for (Eigen::Index i = 0; i < x.rows(); ++i)
+    for (int k = 0; k < 3; ++k) x(i, k) = coordinate(rng);
+  std::vector<int> hints;
+  Eigen::MatrixX3d first = x;
+  push_out(kept, first, 0.01, 4, &hints);  // the stretched body's faces
+  REQUIRE(hints.size() == 300);
+  kept.update(fresh.vertices(), BodySurface::Normals::on_demand);
+  Eigen::MatrixX3d expected = x;
+  const PushOutReport plain = push_out(fresh, expected, 0.01);
+  std::uniform_int_distribution<int> any_face(-1, 11);
+  std::vector<int> wrong(300);
+  for (int& f : wrong) f = any_face(rng);
+  for (std::vector<int> given : {hints, wrong, std::vector<int>(7, 3)}) {
+    Eigen::MatrixX3d y = x;
+    const PushOutReport r = push_out(kept, y, 0.01, 4, &given);
+    CHECK(y == expected);
+    CHECK(r.moved == plain.moved);
+    CHECK(r.passes == plain.passes);
+    REQUIRE(given.size() == 300);
+    for (Eigen::Index i = 0; i < y.rows(); ++i) CHECK(given[static_cast<std::size_t>(i)] == fresh.locate(y.row(i).transpose()).face);
+  }
+}

@@ -65,21 +65,40 @@ void BodySurface::compute_normals() {
   on_surface_tolerance_ = on_surface_tolerance(vertices_);
 }
 
-void BodySurface::update(const Eigen::MatrixX3d& vertices) {
+void BodySurface::update(const Eigen::MatrixX3d& vertices, Normals normals) {
   if (vertices.rows() != vertices_.rows())
     throw Error("body surface update: " + std::to_string(vertices.rows()) + " vertices given, the body has " +
                 std::to_string(vertices_.rows()));
   if (!vertices.allFinite()) throw Error("body surface update: the vertices are not all finite");
   vertices_ = vertices;
-  compute_normals();
+  if (normals == Normals::all) {
+    compute_normals();
+    normals_current_ = true;
+  } else {
+    if (!on_demand_) on_demand_ = std::make_unique<PseudoNormals>(faces_);
+    on_surface_tolerance_ = on_surface_tolerance(vertices_);
+    normals_current_ = false;
+  }
   bvh_->refit(vertices_);
   ++revision_;
+}
+
+const Eigen::MatrixX3d& BodySurface::vertex_normals() const {
+  if (!normals_current_) throw Error("body surface: the vertex normals were left to the queries (update with Normals::all)");
+  return vertex_normals_;
+}
+
+const Eigen::MatrixX3d& BodySurface::face_normals() const {
+  if (!normals_current_) throw Error("body surface: the face normals were left to the queries (update with Normals::all)");
+  return face_normals_;
 }
 
 void BodySurface::rebuild() { bvh_ = std::make_unique<TriangleBvh>(vertices_, faces_); }
 
 SurfacePoint BodySurface::finish(const Eigen::Vector3d& p, int face, const TrianglePoint& hit) const {
   using F = TriangleFeature;
+  if (!normals_current_)
+    return signed_surface_point(p, face, hit, on_demand_->at(vertices_, face, hit.feature), on_surface_tolerance_);
   Eigen::Vector3d pseudo;
   switch (hit.feature) {
     case F::vertex_a: pseudo = vertex_normals_.row(faces_(face, 0)); break;

@@ -13,14 +13,24 @@ constexpr double kRounding = 1e-12;  // m
 
 }  // namespace
 
-PushOutReport push_out(const BodySurface& body, Eigen::MatrixX3d& vertices, double margin, int max_passes) {
+PushOutReport push_out(const BodySurface& body, Eigen::MatrixX3d& vertices, double margin, int max_passes,
+                       std::vector<int>* closest_faces) {
   if (!(margin >= 0) || !std::isfinite(margin)) throw Error("push_out: the margin must be finite and >= 0");
   if (max_passes < 1) throw Error("push_out: at least one pass");
   if (!vertices.allFinite()) throw Error("push_out: the garment has a non-finite vertex");
   PushOutReport report;
   const Eigen::MatrixX3d start = vertices;
   std::vector<char> moved(static_cast<std::size_t>(vertices.rows()), 0);
-  std::vector<SurfacePoint> near = body.locate_all(vertices);
+  std::vector<SurfacePoint> near;
+  if (closest_faces && closest_faces->size() == static_cast<std::size_t>(vertices.rows())) {
+    near.resize(closest_faces->size());
+    const auto n = static_cast<std::ptrdiff_t>(near.size());
+#pragma omp parallel for schedule(static, 64)
+    for (std::ptrdiff_t i = 0; i < n; ++i)
+      near[static_cast<std::size_t>(i)] = body.locate_near(vertices.row(i).transpose(), (*closest_faces)[static_cast<std::size_t>(i)]);
+  } else {
+    near = body.locate_all(vertices);
+  }
   std::vector<Eigen::Index> stepped;  // the vertices the pass moved: only their closest points change
   for (int pass = 0; pass < max_passes; ++pass) {
     ++report.passes;
@@ -43,6 +53,10 @@ PushOutReport push_out(const BodySurface& body, Eigen::MatrixX3d& vertices, doub
       const Eigen::Index i = stepped[static_cast<std::size_t>(k)];
       near[static_cast<std::size_t>(i)] = body.locate(vertices.row(i).transpose());
     }
+  }
+  if (closest_faces) {
+    closest_faces->resize(near.size());
+    for (std::size_t i = 0; i < near.size(); ++i) (*closest_faces)[i] = near[i].face;
   }
   if (vertices.rows() > 0) report.largest_move = (vertices - start).rowwise().norm().maxCoeff();
   for (std::size_t i = 0; i < near.size(); ++i) {

@@ -4,6 +4,9 @@
 // graphs/sizes/drape_size_flag.yaml).
 #include <drape/plugin.hpp>
 
+#include <algorithm>
+#include <cstddef>
+
 namespace {
 
 using namespace drape;
@@ -23,12 +26,20 @@ class Concat final : public Node {
     const Tensor& a = *in.at("a");
     const Tensor& b = *in.at("b");
     Tensor& y = *out.at("out");
+    // Row by row with plain copies: a copy of contiguous rows is memory-bound,
+    // and Eigen's strided block assignment (and replicate) ran at a third of
+    // that on the encoder's 6,490 x 65 features.
+    const int ca = a_.cols, cb = b_.cols, cy = ca + cb;
     for (int s = 0; s < a.batch(); ++s) {
-      y.mat(s).leftCols(a_.cols) = a.mat(s);
-      if (b_.rows == a_.rows)
-        y.mat(s).rightCols(b_.cols) = b.mat(s);
-      else
-        y.mat(s).rightCols(b_.cols) = b.mat(s).row(0).replicate(a_.rows, 1);
+      const float* pa = a.mat(s).data();
+      const float* pb = b.mat(s).data();
+      float* py = y.mat(s).data();
+      const bool repeated = b_.rows != a_.rows;
+      for (int r = 0; r < a_.rows; ++r) {
+        float* row = py + static_cast<std::ptrdiff_t>(r) * cy;
+        std::copy_n(pa + static_cast<std::ptrdiff_t>(r) * ca, ca, row);
+        std::copy_n(pb + (repeated ? 0 : static_cast<std::ptrdiff_t>(r) * cb), cb, row + ca);
+      }
     }
   }
 

@@ -11,6 +11,7 @@
 #include <drape/plugin.hpp>
 
 #include <optional>
+#include <vector>
 
 namespace {
 
@@ -24,6 +25,7 @@ class PushOut final : public Node {
     if (!context.assets) throw ConfigError("push_out needs the body's faces: no template assets are bound");
     faces_ = context.assets->body.faces;
     surface_.reset();  // built again for these faces at the next forward
+    closest_faces_.clear();
     const Shape body = in.at("body");
     if (body.rows != context.assets->body.num_vertices() || body.cols != 3)
       throw ConfigError("input 'body' must be [" + std::to_string(context.assets->body.num_vertices()) + ", 3], got " + body.str());
@@ -39,13 +41,16 @@ class PushOut final : public Node {
     for (int b = 0; b < x.batch(); ++b) {
       // One surface for every body: building it (the face adjacency, the
       // hierarchy) cost three quarters of a push-out; a body of the same
-      // topology only moves its vertices, so the normals are recomputed and
-      // the hierarchy's boxes refitted (exact closest points either way).
+      // topology only moves its vertices, so the hierarchy's boxes are
+      // refitted and only the normals the closest points land on computed
+      // (all of them cost as much as the searches); each search starts at
+      // the face the last body's search ended on. Exact closest points and
+      // the same bits either way (tests/geometry_queries/push_out_test.cpp).
       const Eigen::MatrixX3d body = in.at("body")->mat(b).cast<double>();
-      if (surface_) surface_->update(body);
+      if (surface_) surface_->update(body, geometry::BodySurface::Normals::on_demand);
       else surface_.emplace(body, faces_);
       Eigen::MatrixX3d points = x.mat(b).cast<double>();
-      geometry::push_out(*surface_, points, epsilon_);
+      geometry::push_out(*surface_, points, epsilon_, 4, &closest_faces_);
       y.mat(b) = points.cast<float>();
     }
   }
@@ -59,6 +64,7 @@ class PushOut final : public Node {
   bool enabled_;
   Eigen::MatrixX3i faces_;
   std::optional<geometry::BodySurface> surface_;  // the last body's, refitted to the next
+  std::vector<int> closest_faces_;                // the last body's closest face of each garment vertex
 };
 
 PluginList plugins() {

@@ -55,6 +55,7 @@ struct SurfacePoint {
 };
 
 class TriangleBvh;  // internal acceleration structure
+class PseudoNormals;  // pseudo_normals.hpp
 
 // A body surface for closest-point queries. The sign is meaningful for a
 // closed, consistently oriented (counter-clockwise seen from outside) manifold;
@@ -87,11 +88,19 @@ class BodySurface final : public BodyQuery {
   std::vector<SurfacePoint> locate_all(const Eigen::MatrixX3d& points, double max_distance = std::numeric_limits<double>::infinity()) const;
   Eigen::VectorXd signed_distances(const Eigen::MatrixX3d& points) const;
 
+  // What update() recomputes besides the hierarchy's boxes. all: every
+  // normal, for the accessors below. on_demand: none; each query computes
+  // the pseudo-normal of the feature its closest point lies on
+  // (PseudoNormals, the same bits). A push-out of a thousand garment
+  // vertices needs a few thousand of a body's normals; all of them, with
+  // three angles per face, cost more than the queries.
+  enum class Normals { all, on_demand };
   // New vertex positions for the same faces (a morphing or moving body): the
-  // normals are recomputed and the hierarchy's boxes refitted in O(V + F).
-  // Query speed degrades only if the body deforms far from the shape it was
-  // built on; then rebuild() restores it. Throws Error on a wrong vertex count.
-  void update(const Eigen::MatrixX3d& vertices);
+  // normals recomputed (or left to the queries) and the hierarchy's boxes
+  // refitted in O(V + F). Query speed degrades only if the body deforms far
+  // from the shape it was built on; then rebuild() restores it. Throws Error
+  // on a wrong vertex count.
+  void update(const Eigen::MatrixX3d& vertices, Normals normals = Normals::all);
   void rebuild();
   // Counts update() calls: a caller that keeps answers for some points knows
   // they still hold while the revision is the same.
@@ -99,10 +108,12 @@ class BodySurface final : public BodyQuery {
 
   const Eigen::MatrixX3d& vertices() const { return vertices_; }
   const Eigen::MatrixX3i& faces() const { return faces_; }
-  // Unit angle-weighted pseudo-normals of the vertices (outward on a closed mesh).
-  const Eigen::MatrixX3d& vertex_normals() const { return vertex_normals_; }
-  // Unit face normals (zero for a degenerate face), current with update().
-  const Eigen::MatrixX3d& face_normals() const { return face_normals_; }
+  // Unit angle-weighted pseudo-normals of the vertices (outward on a closed
+  // mesh). Throws Error after an update() that left normals to the queries.
+  const Eigen::MatrixX3d& vertex_normals() const;
+  // Unit face normals (zero for a degenerate face), current with update();
+  // the same Error as vertex_normals().
+  const Eigen::MatrixX3d& face_normals() const;
   // The face across each edge of each face (geometry::face_neighbours).
   const std::vector<std::array<int, 3>>& face_neighbours() const { return face_neighbours_; }
 
@@ -122,6 +133,10 @@ class BodySurface final : public BodyQuery {
   double on_surface_tolerance_ = 0;  // below this distance the normal is the pseudo-normal
   std::uint64_t revision_ = 0;
   std::unique_ptr<TriangleBvh> bvh_;
+  // Set by update(..., Normals::on_demand): the normals above are stale and
+  // each query's pseudo-normal comes from here.
+  std::unique_ptr<PseudoNormals> on_demand_;
+  bool normals_current_ = true;
 };
 
 }  // namespace drape::geometry

@@ -12,6 +12,8 @@
 
 #include <Eigen/Core>
 
+#include <vector>
+
 namespace drape::geometry {
 
 struct PushOutReport {
@@ -26,7 +28,12 @@ struct PushOutReport {
 inline constexpr double kPushOutMargin = 1e-3;
 
 // Moves `vertices` in place. margin >= 0, max_passes >= 1.
+// closest_faces (optional): in, a face near each vertex's closest point (the
+// last body's answer, for a garment pushed out of body after body of one
+// topology; -1 or a wrong size: none), where each search starts; out, the
+// faces of this body. The result is the same with or without them (the
+// searches return the same closest point); the search is shorter.
 PushOutReport push_out(const BodySurface& body, Eigen::MatrixX3d& vertices, double margin = kPushOutMargin,
-                       int max_passes = 4);
+                       int max_passes = 4, std::vector<int>* closest_faces = nullptr);
 
 }  // namespace drape::geometry
