@@ -5,6 +5,7 @@
 #include "bench.hpp"
 #include "bench_geometry.hpp"
 
+#include <drape/errors.hpp>
 #include <drape/geometry/closed_shapes.hpp>
 #include <drape/geometry/closest_point.hpp>
 #include <drape/io/mesh_io.hpp>
@@ -56,7 +57,15 @@ double exhaustive_distance(const Eigen::MatrixX3d& v, const Eigen::MatrixX3i& f,
   return std::sqrt(best);
 }
 
-Row bench_bvh(const Problem& pb, double& batch_us, double& tree_only_ms) {
+// BodySurface's other ways to meet a moved body: its batch query, a tree
+// built without normals, an update that leaves the normals to the queries,
+// and queries started from the face each point was closest to before the
+// body moved (what a push-out of one garment over many bodies does).
+struct BvhExtras {
+  double batch_us = 0, tree_only_ms = 0, on_demand_update_ms = 0, on_demand_query_us = 0, hinted_query_us = 0;
+};
+
+Row bench_bvh(const Problem& pb, BvhExtras& extras) {
   Row row;
   row.method = "drape BodySurface (BVH, median split, refit)";
   row.update_kind = "refit";
@@ -66,13 +75,34 @@ Row bench_bvh(const Problem& pb, double& batch_us, double& tree_only_ms) {
   int flip = 0;
   row.update_ms = best_ms(pb.repeats, [&] { surface.update(++flip % 2 ? pb.vertices : pb.moved); });
   surface.update(pb.moved);
-  tree_only_ms = best_ms(pb.repeats, [&] { surface.rebuild(); });
+  extras.tree_only_ms = best_ms(pb.repeats, [&] { surface.rebuild(); });
+  const double per_query = 1e3 / static_cast<double>(pb.queries.rows());
   std::vector<geometry::SurfacePoint> hits(pb.queries.rows());
   const double ms = best_ms(pb.repeats, [&] {
     for (Eigen::Index i = 0; i < pb.queries.rows(); ++i) hits[i] = surface.locate(pb.queries.row(i).transpose());
   });
-  row.query_us = 1e3 * ms / static_cast<double>(pb.queries.rows());
-  batch_us = 1e3 * best_ms(pb.repeats, [&] { hits = surface.locate_all(pb.queries); }) / static_cast<double>(pb.queries.rows());
+  row.query_us = per_query * ms;
+  extras.batch_us = per_query * best_ms(pb.repeats, [&] { hits = surface.locate_all(pb.queries); });
+
+  geometry::BodySurface on_demand(pb.vertices, pb.faces);
+  std::vector<int> before(static_cast<std::size_t>(pb.queries.rows()));  // each point's closest face before the morph
+  for (Eigen::Index i = 0; i < pb.queries.rows(); ++i)
+    before[static_cast<std::size_t>(i)] = on_demand.locate(pb.queries.row(i).transpose()).face;
+  extras.on_demand_update_ms = best_ms(pb.repeats, [&] {
+    on_demand.update(++flip % 2 ? pb.vertices : pb.moved, geometry::BodySurface::Normals::on_demand);
+  });
+  on_demand.update(pb.moved, geometry::BodySurface::Normals::on_demand);
+  std::vector<geometry::SurfacePoint> same(pb.queries.rows());
+  extras.on_demand_query_us = per_query * best_ms(pb.repeats, [&] {
+    for (Eigen::Index i = 0; i < pb.queries.rows(); ++i) same[i] = on_demand.locate(pb.queries.row(i).transpose());
+  });
+  extras.hinted_query_us = per_query * best_ms(pb.repeats, [&] {
+    for (Eigen::Index i = 0; i < pb.queries.rows(); ++i)
+      same[i] = on_demand.locate_near(pb.queries.row(i).transpose(), before[static_cast<std::size_t>(i)]);
+  });
+  for (Eigen::Index i = 0; i < pb.queries.rows(); ++i)  // the same answers, or the rows above time another question
+    if (same[i].signed_distance != hits[i].signed_distance)
+      throw Error("bench geometry: a query with normals on demand and a hint answered differently at point " + std::to_string(i));
   for (int i = 0; i < pb.checked; ++i)
     row.max_error = std::max(row.max_error, std::abs(std::abs(hits[i].signed_distance) - pb.reference[i]));
   return row;
@@ -183,8 +213,8 @@ int run(const std::vector<std::string>& args) {
 
   std::cout << "body: " << (vm.count("body") ? vm["body"].as<std::string>() : "closed bumpy tube") << ", " << body.num_vertices() << " vertices, " << body.num_faces() << " triangles; "
             << nq << " queries within " << band << " m of the morphed surface; best of " << pb.repeats << " runs\n\n";
-  double batch_us = 0, tree_only_ms = 0;
-  std::vector<Row> rows = {bench_bvh(pb, batch_us, tree_only_ms), bench_kdtree(pb)};
+  BvhExtras extras;
+  std::vector<Row> rows = {bench_bvh(pb, extras), bench_kdtree(pb)};
   if (auto cgal = bench::bench_cgal(pb)) rows.push_back(*cgal);
   std::cout << std::left << std::setw(52) << "method" << std::right << std::setw(11) << "build ms" << std::setw(11)
             << "update ms" << std::setw(9) << "update" << std::setw(12) << "query us/pt" << std::setw(11) << "max error\n";
@@ -195,9 +225,12 @@ int run(const std::vector<std::string>& args) {
               << r.max_error << std::defaultfloat << "\n";
   if (rows.size() < 3) std::cout << "(CGAL not found at build time: install libcgal-dev for its row)\n";
   std::cout << "\nBodySurface rows include the inside/outside sign and normal; the others give the closest point only.\n"
-            << "BodySurface::locate_all (OpenMP, all cores): " << std::fixed << std::setprecision(3) << batch_us
+            << "BodySurface::locate_all (OpenMP, all cores): " << std::fixed << std::setprecision(3) << extras.batch_us
             << " us per point\n"
-            << "BodySurface build without normals and edge pairing (BodySurface::rebuild): " << tree_only_ms << " ms\n";
+            << "BodySurface build without normals and edge pairing (BodySurface::rebuild): " << extras.tree_only_ms << " ms\n"
+            << "BodySurface update leaving the normals to the queries (Normals::on_demand): " << extras.on_demand_update_ms
+            << " ms; its queries " << std::setprecision(3) << extras.on_demand_query_us << " us per point, "
+            << extras.hinted_query_us << " started at each point's closest face before the morph (locate_near)\n";
   return 0;
 }
 

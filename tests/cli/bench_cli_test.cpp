@@ -32,6 +32,7 @@ TEST_CASE("drape bench geometry and mesh-io run on tiny inputs", "[cli][bench]")
   std::string out;
   REQUIRE(test::run_drape("bench geometry --ring 8 --tube 6 --queries 40 --check 40 --repeats 1", out) == 0);
   CHECK_THAT(out, Catch::Contains("48 vertices") && Catch::Contains("drape BodySurface") && Catch::Contains("max error"));
+  CHECK_THAT(out, Catch::Contains("Normals::on_demand") && Catch::Contains("(locate_near)"));
 
   test::TempDir dir;
   std::ofstream(dir / "quad.obj") << "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3\nf 1 3 4\n";
