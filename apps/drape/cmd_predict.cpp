@@ -64,7 +64,11 @@ int run(const std::vector<std::string>& args) {
   const geometry::BodySurface surface(body.vertices, body.faces);
   double p = geometry::penetration_ratio(surface, out.vertices);
   if (pushed_to >= 0) {
-    const geometry::PushOutReport pushed = geometry::push_out(surface, out.vertices, pushed_to);
+    const std::vector<std::array<int, 2>> edges = geometry::undirected_edges(out.faces);
+    geometry::PushOutOptions options;
+    options.margin = pushed_to;
+    options.edges = &edges;  // the garment's edges lifted too, as the push_out node does
+    const geometry::PushOutReport pushed = geometry::push_out(surface, out.vertices, options);
     std::printf("pushed out: %d vertices moved (at most %.2f cm), from p = %.2f%% of them inside the body\n",
                 pushed.moved, 100.0 * pushed.largest_move, 100.0 * p);
     p = geometry::penetration_ratio(surface, out.vertices);

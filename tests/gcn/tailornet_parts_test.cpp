@@ -90,7 +90,7 @@ TEST_CASE("push_out moves vertices inside the body to epsilon outside and leaves
       0.3f, 0.0f, 0.0f,           // inside, nearest the x = 0.5 face
       0.0f, 0.0f, 0.501f,         // outside but closer than epsilon
       0.0f, 0.9f, 0.0f;           // well outside
-  auto node = make_node("push_out", "{epsilon: 0.01}");
+  auto node = make_node("push_out", "{epsilon: 0.01, edges: false}");  // four loose vertices, not the garment
   const auto out = run_forward(*node, {{"x", x}, {"body", body}}, {"post", 1, assets.get()});
   const DenseF y = dense_of(out.at("out"), 0);
   CHECK((y.row(0) - Eigen::RowVector3f(0, 0, 0.51f)).norm() < 1e-5f);
@@ -100,7 +100,7 @@ TEST_CASE("push_out moves vertices inside the body to epsilon outside and leaves
   const geometry::BodySurface surface(assets->body.vertices, assets->body.faces);
   CHECK(surface.signed_distances(y.cast<double>()).minCoeff() >= 0.01 - 1e-6);
 
-  auto off = make_node("push_out", "{epsilon: 0.01, enabled: false}");
+  auto off = make_node("push_out", "{epsilon: 0.01, enabled: false, edges: false}");
   CHECK(dense_of(run_forward(*off, {{"x", x}, {"body", body}}, {"post", 1, assets.get()}).at("out"), 0) == DenseF(x.mat(0)));
   // Straight-through backward for the garment.
   Tensor g(1, 4, 3);
@@ -122,7 +122,7 @@ TEST_CASE("push_out answers every body of a batch and of later calls by that bod
   Tensor x(2, 3, 3);
   x.mat(0) << 0.0f, 0.0f, 0.4f, 0.7f, 0.0f, 0.0f, 0.0f, 0.3f, 0.1f;
   x.mat(1) = x.mat(0);
-  auto node = make_node("push_out", "{epsilon: 0.01}");
+  auto node = make_node("push_out", "{epsilon: 0.01, edges: false}");
   const auto expected = [&](int b) {
     const geometry::BodySurface own(body.mat(b).cast<double>(), assets->body.faces);
     Eigen::MatrixX3d p = x.mat(b).cast<double>();
@@ -134,6 +134,34 @@ TEST_CASE("push_out answers every body of a batch and of later calls by that bod
     for (int b = 0; b < 2; ++b) CHECK((dense_of(out.at("out"), b) - expected(b)).cwiseAbs().maxCoeff() < 1e-6f);
   }
   CHECK((expected(0) - expected(1)).cwiseAbs().maxCoeff() > 0.05f);  // the two bodies push differently
+}
+
+TEST_CASE("push_out with edges (the default) lifts the bound garment's edges as geometry::push_out does", "[gcn][tailornet]") {
+  // The garment of the test assets shrunk onto the unit cube's surface, so
+  // vertices fall inside and edges run through it; the node's answer is the
+  // geometry's with the garment's own edges, and it refuses a mesh of
+  // another size.
+  const auto assets = cube_body_assets();
+  const Mesh& garment = assets->garment->mesh;
+  const Eigen::RowVector3d centre = garment.vertices.colwise().mean();
+  Eigen::MatrixX3d start = garment.vertices.rowwise() - centre;
+  start *= 0.55 / start.rowwise().norm().maxCoeff();
+  Tensor body(1, 8, 3), x(1, garment.num_vertices(), 3);
+  body.mat(0) = assets->body.vertices.cast<float>();
+  x.mat(0) = start.cast<float>();
+  auto node = make_node("push_out", "{epsilon: 0.01}");
+  const DenseF y = dense_of(run_forward(*node, {{"x", x}, {"body", body}}, {"post", 1, assets.get()}).at("out"), 0);
+  const geometry::BodySurface cube(assets->body.vertices, assets->body.faces);
+  const std::vector<std::array<int, 2>> edges = geometry::undirected_edges(garment.faces);
+  geometry::PushOutOptions options;
+  options.margin = 0.01;
+  options.edges = &edges;
+  Eigen::MatrixX3d expected = x.mat(0).cast<double>();
+  const geometry::PushOutReport report = geometry::push_out(cube, expected, options);
+  CHECK(report.edges_searched > 0);
+  CHECK((y - DenseF(expected.cast<float>())).cwiseAbs().maxCoeff() < 1e-6f);
+  CHECK_THROWS_WITH(make_node("push_out", "{epsilon: 0.01}")->setup({{"x", {4, 3}}, {"body", {8, 3}}}, {"post", 1, assets.get()}),
+                    Catch::Contains("edges: false"));
 }
 
 TEST_CASE("concat puts a one-row flag beside every row, and its gradient checks", "[gcn][sizes]") {

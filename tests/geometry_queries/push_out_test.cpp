@@ -2,6 +2,9 @@
 // checked with the box's signed distance written out by hand (no BodySurface).
 #include <drape/geometry/push_out.hpp>
 
+#include <drape/geometry/closed_shapes.hpp>
+#include <drape/geometry/surface_crossings.hpp>
+
 #include <catch2/catch.hpp>
 
 #include <cmath>
@@ -122,4 +125,100 @@ TEST_CASE("push_out with the last body's faces as hints moves the vertices to th
     REQUIRE(given.size() == 300);
     for (Eigen::Index i = 0; i < y.rows(); ++i) CHECK(given[static_cast<std::size_t>(i)] == fresh.locate(y.row(i).transpose()).face);
   }
+}
+
+namespace {
+
+// Garment edges through body triangles, by exact orientation tests
+// (surface_crossings.hpp, which shares no code with push_out).
+int edges_through(const BodySurface& body, const Eigen::MatrixX3d& x, const std::vector<std::array<int, 2>>& edges) {
+  int count = 0;
+  for (const auto& [a, b] : edges)
+    for (Eigen::Index f = 0; f < body.faces().rows(); ++f)
+      if (segment_pierces_triangle(x.row(a), x.row(b), body.vertices().row(body.faces()(f, 0)),
+                                   body.vertices().row(body.faces()(f, 1)), body.vertices().row(body.faces()(f, 2)))) {
+        ++count;
+        break;
+      }
+  return count;
+}
+
+}  // namespace
+
+// A chord across a ball of radius 10 cm: both ends 12 mm out (beyond the
+// 10 mm margin, so no vertex moves), its middle 3 mm inside. With the edges
+// given it is lifted along the ball's normal until its midpoint is 5 mm out,
+// and no longer passes through the ball's triangles.
+TEST_CASE("push_out with edges lifts an edge whose middle lies in the body", "[geometry][push_out]") {
+  const BodySurface ball(icosphere(4, 0.1));
+  const double angle = 30.0 * M_PI / 180.0, out = 0.112;
+  Eigen::MatrixX3d x(2, 3);
+  x << -out * std::sin(angle), out * std::cos(angle), 0.0, out * std::sin(angle), out * std::cos(angle), 0.0;
+  const std::vector<std::array<int, 2>> edges = {{0, 1}};
+  Eigen::MatrixX3d plain = x;
+  const PushOutReport without = push_out(ball, plain, 0.01);
+  CHECK(plain == x);  // both vertices beyond the margin
+  CHECK(without.moved == 0);
+  CHECK(edges_through(ball, plain, edges) == 1);
+
+  PushOutOptions options;
+  options.margin = 0.01;
+  options.edges = &edges;
+  const PushOutReport with = push_out(ball, x, options);
+  CHECK(with.edges_lifted == 1);
+  CHECK(with.moved == 2);
+  CHECK(edges_through(ball, x, edges) == 0);
+  const Eigen::Vector3d mid = 0.5 * (x.row(0) + x.row(1)).transpose();
+  CHECK(ball.locate(mid).signed_distance == Approx(0.005).margin(1e-9));  // margin / 2 out
+  CHECK(x(0, 0) - x(1, 0) == Approx(-2 * out * std::sin(angle)).margin(1e-12));  // lifted, not stretched
+
+  // An edge far from the ball is not searched (its ends are beyond 1.5 margins).
+  Eigen::MatrixX3d far(2, 3);
+  far << 0.3, 0.0, 0.0, 0.3, 0.05, 0.0;
+  const PushOutReport skipped = push_out(ball, far, options);
+  CHECK(skipped.edges_searched == 0);
+
+  const std::vector<std::array<int, 2>> bad = {{0, 2}};
+  options.edges = &bad;
+  CHECK_THROWS_WITH(push_out(ball, x, options), Catch::Contains("edge (0, 2)"));
+}
+
+// A sheet pressed onto a knob (a ball of 1.5 cm radius, a ridge's
+// curvature) 5 mm through its top: a grid of 2.5 cm squares, the coarse
+// shirt's edge length. The vertices alone, pushed out to the margin, leave
+// the knob through the sheet between them; with the edges, no edge passes
+// through it and no knob edge through the sheet (surface_crossings, exact
+// orientation tests that share no code with push_out), every vertex at
+// least the margin out.
+TEST_CASE("push_out with edges leaves a sheet pressed onto a knob uncrossed", "[geometry][push_out]") {
+  const BodySurface knob(icosphere(4, 0.015));
+  const int n = 7;
+  Eigen::MatrixX3d sheet(n * n, 3);
+  Eigen::MatrixX3i faces(2 * (n - 1) * (n - 1), 3);
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < n; ++j) sheet.row(i * n + j) << 0.025 * (i - n / 2) + 0.004, 0.010, 0.025 * (j - n / 2) + 0.007;
+  int f = 0;
+  for (int i = 0; i + 1 < n; ++i)
+    for (int j = 0; j + 1 < n; ++j) {
+      const int a = i * n + j;
+      faces.row(f++) << a, a + 1, a + n + 1;
+      faces.row(f++) << a, a + n + 1, a + n;
+    }
+  const std::vector<std::array<int, 2>> edges = undirected_edges(faces);
+  CHECK(edges.size() == static_cast<std::size_t>(2 * n * (n - 1) + (n - 1) * (n - 1)));
+  auto crossings = [&](const Eigen::MatrixX3d& x) { return surface_crossings(x, faces, knob.vertices(), knob.faces()).total(); };
+  REQUIRE(crossings(sheet) > 0);
+  Eigen::MatrixX3d vertices_only = sheet;
+  push_out(knob, vertices_only, 0.006);
+  const int left = crossings(vertices_only);
+  CHECK(left > 0);
+  PushOutOptions options;
+  options.margin = 0.006;
+  options.edges = &edges;
+  Eigen::MatrixX3d with_edges = sheet;
+  const PushOutReport r = push_out(knob, with_edges, options);
+  INFO(left << " crossings with the vertices alone; " << r.edges_lifted << " lifts, " << r.passes << " passes");
+  CHECK(r.edges_lifted > 0);
+  CHECK(crossings(with_edges) == 0);
+  CHECK(knob.signed_distances(with_edges).minCoeff() >= 0.006 - 1e-9);
 }

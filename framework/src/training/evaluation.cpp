@@ -4,6 +4,7 @@
 #include <drape/geometry/push_out.hpp>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <chrono>
 #include <functional>
@@ -38,6 +39,9 @@ SplitEvaluation measure_in_batches(const Assets& assets, std::size_t count, std:
                                    const std::function<MeasuredBatch(std::size_t, std::size_t)>& load,
                                    const std::function<std::string(std::size_t)>& name, double push_out_margin = -1) {
   const MetricsContext metrics(assets);
+  // The push-out lifts the garment's edges as the push_out node does by default.
+  const std::vector<std::array<int, 2>> edges =
+      push_out_margin >= 0 ? geometry::undirected_edges(assets.garment->mesh.faces) : std::vector<std::array<int, 2>>{};
   SplitEvaluation out;
   out.samples.resize(count);
   out.ground_truth_penetration.resize(count);
@@ -54,7 +58,12 @@ SplitEvaluation measure_in_batches(const Assets& assets, std::size_t count, std:
         const std::size_t k = first + static_cast<std::size_t>(b);
         const Eigen::MatrixX3d y = batch.truth.mat(b).cast<double>(), body = batch.bodies.mat(b).cast<double>();
         Eigen::MatrixX3d x = batch.garments.mat(b).cast<double>();
-        if (push_out_margin >= 0) geometry::push_out(geometry::BodySurface(body, assets.body.faces), x, push_out_margin);
+        if (push_out_margin >= 0) {
+          geometry::PushOutOptions options;
+          options.margin = push_out_margin;
+          options.edges = &edges;
+          geometry::push_out(geometry::BodySurface(body, assets.body.faces), x, options);
+        }
         out.samples[k] = metrics.evaluate(x, y, body);
         out.ground_truth_penetration[k] = metrics.penetration(y, body);
         out.ground_truth_crossings[k] = metrics.crossings(y, body);

@@ -2,7 +2,10 @@
 // body, or closer to it than `epsilon`, is moved along the body's normal to
 // `epsilon` outside (geometry::push_out: exact closest points on the body mesh
 // of the bound template's faces and the sample's vertices, searched again
-// where a move brought a vertex near another part of the body). Not a learnt layer: its backward
+// where a move brought a vertex near another part of the body), and with
+// `edges` (the default) each garment edge whose midpoint lies within
+// epsilon / 2 of the body lifted off it, so the body's ridges do not poke
+// through the cloth between two cleared vertices. Not a learnt layer: its backward
 // passes the gradient straight through, so a graph may keep it in place while
 // training, and `enabled: false` turns it off without changing the weights
 // (drape eval --set post.enabled=true measures a model with and without it).
@@ -10,6 +13,7 @@
 #include <drape/geometry/push_out.hpp>
 #include <drape/plugin.hpp>
 
+#include <array>
 #include <optional>
 #include <vector>
 
@@ -19,11 +23,21 @@ using namespace drape;
 
 class PushOut final : public Node {
  public:
-  PushOut(double epsilon, bool enabled) : epsilon_(epsilon), enabled_(enabled) {}
+  PushOut(double epsilon, bool enabled, bool edges) : epsilon_(epsilon), enabled_(enabled), lift_edges_(edges) {}
 
   ShapeMap setup(const ShapeMap& in, const NodeContext& context) override {
     if (!context.assets) throw ConfigError("push_out needs the body's faces: no template assets are bound");
     faces_ = context.assets->body.faces;
+    edges_.clear();
+    if (lift_edges_) {
+      if (!context.assets->garment) throw ConfigError("push_out with edges: true needs the garment's faces: no garment is bound");
+      const int garment_vertices = context.assets->garment->mesh.num_vertices();
+      if (in.at("x").rows != garment_vertices)
+        throw ConfigError("push_out with edges: true: input 'x' has " + std::to_string(in.at("x").rows) +
+                          " rows, the bound garment " + std::to_string(garment_vertices) +
+                          " vertices (edges: false pushes out the vertices of any mesh)");
+      edges_ = geometry::undirected_edges(context.assets->garment->mesh.faces);
+    }
     surface_.reset();  // built again for these faces at the next forward
     closest_faces_.clear();
     const Shape body = in.at("body");
@@ -50,7 +64,11 @@ class PushOut final : public Node {
       if (surface_) surface_->update(body, geometry::BodySurface::Normals::on_demand);
       else surface_.emplace(body, faces_);
       Eigen::MatrixX3d points = x.mat(b).cast<double>();
-      geometry::push_out(*surface_, points, epsilon_, 4, &closest_faces_);
+      geometry::PushOutOptions options;
+      options.margin = epsilon_;
+      options.closest_faces = &closest_faces_;
+      if (lift_edges_) options.edges = &edges_;
+      geometry::push_out(*surface_, points, options);
       y.mat(b) = points.cast<float>();
     }
   }
@@ -62,7 +80,9 @@ class PushOut final : public Node {
  private:
   double epsilon_;
   bool enabled_;
+  bool lift_edges_;
   Eigen::MatrixX3i faces_;
+  std::vector<std::array<int, 2>> edges_;  // the garment's, when lift_edges_
   std::optional<geometry::BodySurface> surface_;  // the last body's, refitted to the next
   std::vector<int> closest_faces_;                // the last body's closest face of each garment vertex
 };
@@ -77,8 +97,13 @@ PluginList plugins() {
   d.params = {{.name = "epsilon", .type = ParamType::Float, .default_value = "0.002",
                .doc = "clearance in m a pushed vertex gets", .min = 0.0, .max = 0.1},
               {.name = "enabled", .type = ParamType::Bool, .default_value = "true",
-               .doc = "false: pass the garment through unchanged"}};
-  d.create_node = [](const Params& p) { return std::make_unique<PushOut>(p.get_float("epsilon"), p.get_bool("enabled")); };
+               .doc = "false: pass the garment through unchanged"},
+              {.name = "edges", .type = ParamType::Bool, .default_value = "true",
+               .doc = "also lift each garment edge whose midpoint lies within epsilon / 2 of the body (the body's ridges "
+                      "through the cloth between two cleared vertices)"}};
+  d.create_node = [](const Params& p) {
+    return std::make_unique<PushOut>(p.get_float("epsilon"), p.get_bool("enabled"), p.get_bool("edges"));
+  };
   return {d};
 }
 

@@ -12,6 +12,7 @@
 
 #include <Eigen/Core>
 
+#include <array>
 #include <vector>
 
 namespace drape::geometry {
@@ -21,11 +22,34 @@ struct PushOutReport {
   double largest_move = 0;   // m
   int passes = 0;            // searches run (at most max_passes)
   int still_within = 0;      // vertices still nearer than margin / 2 after the last pass
+  int edges_lifted = 0;      // edge lifts (an edge lifted in two passes counts twice)
+  int edges_searched = 0;    // edge midpoints searched, over all passes
 };
 
 // The clearance drape eval --push-out and drape predict --push-out give: about
 // the barrier's activation distance, where the simulated cloth rests.
 inline constexpr double kPushOutMargin = 1e-3;
+
+// The garment's undirected edges, each once (sorted pairs, in order).
+std::vector<std::array<int, 2>> undirected_edges(const Eigen::MatrixX3i& faces);
+
+struct PushOutOptions {
+  double margin = kPushOutMargin;
+  int max_passes = 4;
+  // As closest_faces below.
+  std::vector<int>* closest_faces = nullptr;
+  // The garment's edges (undirected_edges). Given, each pass also lifts every
+  // edge whose midpoint lies nearer the body than margin / 2 (both its ends
+  // moved along the body's normal at the midpoint until it is margin / 2
+  // out): two vertices outside do not keep the body's ridges (a shoulder
+  // blade, a hip, a bent elbow) from poking through the edge between them.
+  // Only edges the signed distance's Lipschitz bound cannot clear are
+  // searched (max of the ends' distances - half the edge < margin / 2), and
+  // of those only edges with an end within 1.5 margins. The last pass moves
+  // vertices only, so every vertex keeps the margin's promise; an edge may
+  // be left crossing where the passes ran out.
+  const std::vector<std::array<int, 2>>* edges = nullptr;
+};
 
 // Moves `vertices` in place. margin >= 0, max_passes >= 1.
 // closest_faces (optional): in, a face near each vertex's closest point (the
@@ -35,5 +59,6 @@ inline constexpr double kPushOutMargin = 1e-3;
 // searches return the same closest point); the search is shorter.
 PushOutReport push_out(const BodySurface& body, Eigen::MatrixX3d& vertices, double margin = kPushOutMargin,
                        int max_passes = 4, std::vector<int>* closest_faces = nullptr);
+PushOutReport push_out(const BodySurface& body, Eigen::MatrixX3d& vertices, const PushOutOptions& options);
 
 }  // namespace drape::geometry
