@@ -4,6 +4,7 @@
 #include "model_body.hpp"
 
 #include <drape/geometry/penetration.hpp>
+#include <drape/geometry/adjacency.hpp>
 #include <drape/geometry/push_out.hpp>
 #include <drape/io/mesh_io.hpp>
 #include <drape/training/model.hpp>
@@ -64,7 +65,7 @@ int run(const std::vector<std::string>& args) {
   const geometry::BodySurface surface(body.vertices, body.faces);
   double p = geometry::penetration_ratio(surface, out.vertices);
   if (pushed_to >= 0) {
-    const std::vector<std::array<int, 2>> edges = geometry::undirected_edges(out.faces);
+    const std::vector<std::array<int, 2>> edges = geometry::edge_list(out.faces);
     geometry::PushOutOptions options;
     options.margin = pushed_to;
     options.edges = &edges;  // the garment's edges lifted too, as the push_out node does

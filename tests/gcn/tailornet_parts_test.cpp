@@ -2,6 +2,7 @@
 // spectral_lowpass (the low-frequency target), anchor_blend (the anchors'
 // high frequencies) and push_out (its post-processing).
 #include <drape/geometry/closest_point.hpp>
+#include <drape/geometry/adjacency.hpp>
 #include <drape/geometry/push_out.hpp>
 #include <drape/gradcheck.hpp>
 
@@ -152,7 +153,7 @@ TEST_CASE("push_out with edges (the default) lifts the bound garment's edges as 
   auto node = make_node("push_out", "{epsilon: 0.01}");
   const DenseF y = dense_of(run_forward(*node, {{"x", x}, {"body", body}}, {"post", 1, assets.get()}).at("out"), 0);
   const geometry::BodySurface cube(assets->body.vertices, assets->body.faces);
-  const std::vector<std::array<int, 2>> edges = geometry::undirected_edges(garment.faces);
+  const std::vector<std::array<int, 2>> edges = geometry::edge_list(garment.faces);
   geometry::PushOutOptions options;
   options.margin = 0.01;
   options.edges = &edges;

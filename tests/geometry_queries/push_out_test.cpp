@@ -1,5 +1,6 @@
 // push_out: vertices inside or too near a body end `margin` outside it,
 // checked with the box's signed distance written out by hand (no BodySurface).
+#include <drape/geometry/adjacency.hpp>
 #include <drape/geometry/push_out.hpp>
 
 #include <drape/geometry/closed_shapes.hpp>
@@ -204,7 +205,7 @@ TEST_CASE("push_out with edges leaves a sheet pressed onto a knob uncrossed", "[
       faces.row(f++) << a, a + 1, a + n + 1;
       faces.row(f++) << a, a + n + 1, a + n;
     }
-  const std::vector<std::array<int, 2>> edges = undirected_edges(faces);
+  const std::vector<std::array<int, 2>> edges = edge_list(faces);
   CHECK(edges.size() == static_cast<std::size_t>(2 * n * (n - 1) + (n - 1) * (n - 1)));
   auto crossings = [&](const Eigen::MatrixX3d& x) { return surface_crossings(x, faces, knob.vertices(), knob.faces()).total(); };
   REQUIRE(crossings(sheet) > 0);

@@ -25,19 +25,6 @@ constexpr double kEdgeReach = 1.5;
 
 }  // namespace
 
-std::vector<std::array<int, 2>> undirected_edges(const Eigen::MatrixX3i& faces) {
-  std::vector<std::array<int, 2>> edges;
-  edges.reserve(3 * static_cast<std::size_t>(faces.rows()));
-  for (Eigen::Index f = 0; f < faces.rows(); ++f)
-    for (int k = 0; k < 3; ++k) {
-      const int a = faces(f, k), b = faces(f, (k + 1) % 3);
-      edges.push_back({std::min(a, b), std::max(a, b)});
-    }
-  std::sort(edges.begin(), edges.end());
-  edges.erase(std::unique(edges.begin(), edges.end()), edges.end());
-  return edges;
-}
-
 PushOutReport push_out(const BodySurface& body, Eigen::MatrixX3d& vertices, double margin, int max_passes,
                        std::vector<int>* closest_faces) {
   PushOutOptions options;

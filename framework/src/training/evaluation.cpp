@@ -1,6 +1,7 @@
 #include <drape/training/data_parallel.hpp>
 #include <drape/errors.hpp>
 #include <drape/training/evaluation.hpp>
+#include <drape/geometry/adjacency.hpp>
 #include <drape/geometry/push_out.hpp>
 
 #include <algorithm>
@@ -41,7 +42,7 @@ SplitEvaluation measure_in_batches(const Assets& assets, std::size_t count, std:
   const MetricsContext metrics(assets);
   // The push-out lifts the garment's edges as the push_out node does by default.
   const std::vector<std::array<int, 2>> edges =
-      push_out_margin >= 0 ? geometry::undirected_edges(assets.garment->mesh.faces) : std::vector<std::array<int, 2>>{};
+      push_out_margin >= 0 ? geometry::edge_list(assets.garment->mesh.faces) : std::vector<std::array<int, 2>>{};
   SplitEvaluation out;
   out.samples.resize(count);
   out.ground_truth_penetration.resize(count);

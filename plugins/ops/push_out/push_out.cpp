@@ -10,6 +10,7 @@
 // training, and `enabled: false` turns it off without changing the weights
 // (drape eval --set post.enabled=true measures a model with and without it).
 #include <drape/assets/assets.hpp>
+#include <drape/geometry/adjacency.hpp>
 #include <drape/geometry/push_out.hpp>
 #include <drape/plugin.hpp>
 
@@ -36,7 +37,7 @@ class PushOut final : public Node {
         throw ConfigError("push_out with edges: true: input 'x' has " + std::to_string(in.at("x").rows) +
                           " rows, the bound garment " + std::to_string(garment_vertices) +
                           " vertices (edges: false pushes out the vertices of any mesh)");
-      edges_ = geometry::undirected_edges(context.assets->garment->mesh.faces);
+      edges_ = geometry::edge_list(context.assets->garment->mesh.faces);
     }
     surface_.reset();  // built again for these faces at the next forward
     closest_faces_.clear();

@@ -30,15 +30,12 @@ struct PushOutReport {
 // the barrier's activation distance, where the simulated cloth rests.
 inline constexpr double kPushOutMargin = 1e-3;
 
-// The garment's undirected edges, each once (sorted pairs, in order).
-std::vector<std::array<int, 2>> undirected_edges(const Eigen::MatrixX3i& faces);
-
 struct PushOutOptions {
   double margin = kPushOutMargin;
   int max_passes = 4;
   // As closest_faces below.
   std::vector<int>* closest_faces = nullptr;
-  // The garment's edges (undirected_edges). Given, each pass also lifts every
+  // The garment's edges (geometry::edge_list of its faces). Given, each pass also lifts every
   // edge whose midpoint lies nearer the body than margin / 2 (both its ends
   // moved along the body's normal at the midpoint until it is margin / 2
   // out): two vertices outside do not keep the body's ridges (a shoulder
