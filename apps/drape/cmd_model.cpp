@@ -115,8 +115,9 @@ void print_post_processing(const Registry& registry, const std::string& graph_te
     if (node.type != "push_out") continue;
     const Params params(registry.get(node.type).params, node.params, node.name);
     if (params.get_bool("enabled"))
-      std::printf("  %-14s %s: vertices inside the body or within %.1f mm pushed out to it (the network alone: "
+      std::printf("  %-14s %s: vertices inside the body or within %.1f mm pushed out to it%s (the network alone: "
                   "--set %s.enabled=false)\n", "push-out", node.name.c_str(), 1000 * params.get_float("epsilon"),
+                  params.get_bool("edges") ? ", edges with their midpoint within half that lifted off it" : "",
                   node.name.c_str());
     else
       std::printf("  %-14s %s: off (--set %s.enabled=true, or drape model set, turns it on)\n", "push-out",
