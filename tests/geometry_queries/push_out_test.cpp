@@ -173,7 +173,7 @@ TEST_CASE("push_out with edges lifts an edge whose middle lies in the body", "[g
   CHECK(ball.locate(mid).signed_distance == Approx(0.005).margin(1e-9));  // margin / 2 out
   CHECK(x(0, 0) - x(1, 0) == Approx(-2 * out * std::sin(angle)).margin(1e-12));  // lifted, not stretched
 
-  // An edge far from the ball is not searched (its ends are beyond 1.5 margins).
+  // An edge far from the ball is not searched (the Lipschitz bound clears it).
   Eigen::MatrixX3d far(2, 3);
   far << 0.3, 0.0, 0.0, 0.3, 0.05, 0.0;
   const PushOutReport skipped = push_out(ball, far, options);

@@ -42,7 +42,9 @@ struct PushOutOptions {
   // blade, a hip, a bent elbow) from poking through the edge between them.
   // Only edges the signed distance's Lipschitz bound cannot clear are
   // searched (max of the ends' distances - half the edge < margin / 2), and
-  // of those only edges with an end within 1.5 margins. The last pass moves
+  // of those only edges whose nearer end, less twice the sagitta of the arc
+  // the body's normal turns through between the ends' closest points, is
+  // within margin / 2 (a ridge sharper than those normals show is missed). The last pass moves
   // vertices only, so every vertex keeps the margin's promise; an edge may
   // be left crossing where the passes ran out.
   const std::vector<std::array<int, 2>>* edges = nullptr;
