@@ -139,8 +139,9 @@ int info(const std::vector<std::string>& args) {
     const auto it = c.meta.find(key);
     if (it == c.meta.end()) continue;
     // A model trained before 2026-11-29 stored the dataset's absolute path:
-    // its file name is what says which data it was.
-    const std::string value = std::string(key) == "dataset" ? fs::path(it->second).filename().string() : it->second;
+    // its file name is what says which data it was (a glob pattern is shown
+    // whole: its last component would cut a {a,b} alternative in half).
+    const std::string value = std::string(key) == "dataset" ? dataset_name(it->second) : it->second;
     std::printf("  %-14s %s\n", key, value.c_str());
   }
   print_training_settings(c.meta);

@@ -78,16 +78,20 @@ def test_shards_of_one_auto_scene_merge_and_expand_to_the_joined_chart(tmp_path)
 
 def test_a_model_trained_on_both_as_one_pattern_knows_every_size(tmp_path):
     new = size_auto_shard(tmp_path)
-    without_small_sizes(new, tmp_path / "a-old.h5")
+    (tmp_path / "old").mkdir()
+    without_small_sizes(new, tmp_path / "old" / "a.h5")
     model = tmp_path / "m.h5"
     # The old shard first: the chart the model keeps used to be the first file's.
-    run_drape("train", SOURCE / "graphs" / "sizes" / "drape_grade.yaml", "--data", str(tmp_path / "{a-old,new}.h5"),
+    pattern = str(tmp_path / "{old/a,new}.h5")
+    run_drape("train", SOURCE / "graphs" / "sizes" / "drape_grade.yaml", "--data", pattern,
               "--out", model, "--epochs", 1, "--k", 16, "-q")
     info, _ = run_drape("model", "info", model)
     assert "3xsmall" in info and "6xlarge" in info, info
-    # The pattern is what the model records as its data, whole (its last component alone was "new}.h5").
-    assert "{a-old,new}.h5" in info.split("dataset", 1)[1].splitlines()[0], info
-    assert "training bodies from " + str(tmp_path / "{a-old,new}.h5") in info, info
+    # The pattern is what the model records as its data, and what model info
+    # shows, whole: its last component alone was "new}.h5", its file name
+    # (an alternative with a folder in it) "a,new}.h5".
+    assert "{old/a,new}.h5" in info.split("dataset", 1)[1].splitlines()[0], info
+    assert "training bodies from " + pattern in info, info
 
 
 def test_charts_that_differ_on_a_shared_size_are_refused(tmp_path):
