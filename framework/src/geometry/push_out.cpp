@@ -74,7 +74,8 @@ PushOutReport push_out(const BodySurface& body, Eigen::MatrixX3d& vertices, cons
 #pragma omp parallel for schedule(static, 16)
     for (std::ptrdiff_t k = 0; k < count; ++k) {
       const Eigen::Index i = changed[static_cast<std::size_t>(k)];
-      near[static_cast<std::size_t>(i)] = body.locate(vertices.row(i).transpose());
+      // From the face it was nearest before the move: the same answer, a shorter search.
+      near[static_cast<std::size_t>(i)] = body.locate_near(vertices.row(i).transpose(), near[static_cast<std::size_t>(i)].face);
     }
   };
   std::vector<Eigen::Index> stepped, lifted;
