@@ -35,7 +35,10 @@
 #   graphs/poses/drape_posed_sized_v2v100_post.yaml on shards 0-33 and the
 #   thin set and `drape model set ... --set post.enabled=true --set
 #   post.epsilon=0.006` (the push-out on; docs/poses.md, "Since the ninth
-#   session", gives the commands).
+#   session", gives the commands), then one 40-epoch cycle of
+#   graphs/poses/drape_posed_sized_v2v1000_post.yaml on all 40 shards and
+#   the thin set, the push-out set on again (docs/poses.md, "Since the tenth
+#   session").
 set -euo pipefail
 cd "$(dirname "${BASH_SOURCE[0]}")/.."
 DRAPE=${BUILD_DIR:-build}/bin/drape
