@@ -22,7 +22,7 @@ constexpr double kRounding = 1e-12;  // m
 // 325 searches per body (1,362 with a reach of 1.5 margins instead, and no
 // estimate of the rise), every lift those found (9.5 and 17.0 per body), no
 // crossing edge left; at the sagitta itself (0.25) 44 and 68 searches
-// missed a third of the lifts.
+// missed a fifth to a third of the lifts.
 constexpr double kEdgeBend = 0.5;
 
 }  // namespace
