@@ -107,3 +107,28 @@ def test_charts_that_differ_on_a_shared_size_are_refused(tmp_path):
     _, err = run_drape("dataset", "merge", "--mixed-sizes", "--out", merged, new, other, expect=2)
     assert "size charts differ in size large" in err
     assert not merged.exists()
+
+
+def test_bench_accuracy_time_drapes_a_body_of_an_older_chart_in_todays_size(tmp_path):
+    """A test body simulated in another size than the scene's tailor's rule gives it today (a thin body of the
+    shards made before the sizes below small was stored in the small): the bench simulates its references
+    today, so every method drapes it in today's size and says so; it used to stop at that body with "the
+    garment's grade is ... but the scene dresses this body in ..."."""
+    data = size_auto_shard(tmp_path)
+    with h5py.File(data, "r") as f:
+        test = [i for i, s in enumerate(f["split"][:]) if s == 2]
+    assert test, "the tiny shard has no test body"
+    with h5py.File(data, "r+") as f:
+        grades = f["stats"]["garment_grade"][:]
+        grades[test[0]] += 0.1  # another size than the rule's
+        f["stats"]["garment_grade"][:] = grades
+    raw = bytearray(data.read_bytes())
+    raw[:512] = bytes(512)  # unsealed, as h5py leaves a file it wrote
+    data.write_bytes(bytes(raw))
+    model = tmp_path / "m.h5"
+    run_drape("train", SOURCE / "graphs" / "sizes" / "drape_grade.yaml", "--data", data, "--out", model,
+              "--epochs", 1, "--k", 16, "-q")
+    out, _ = run_drape("bench", "accuracy-time", "--data", data, "--model", model, "--bodies", 1, "--budgets", "1:1",
+                       "--iterations", 1, "--spectral-k", 0, "--reference-settle", 1)
+    assert "1 of 1 test bodies were simulated in another size than the scene chooses today" in out, out
+    assert "| network |" in out and "| network + 1 optimisation iterations |" in out, out
