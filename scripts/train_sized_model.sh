@@ -28,7 +28,10 @@
 # INIT=<that model> EPOCHS=60 PATIENCE=30, then `drape model set MODEL --set
 # post.enabled=true --set post.epsilon=0.006` (the push-out on; the same
 # ground_truth text and domain written again; docs/garments.md, "No
-# stand-off, and the push-out").
+# stand-off, and the push-out"), and since the tenth one more,
+# GRAPH=graphs/sizes/drape_grade_v2v1000_post.yaml INIT=<that model>
+# EPOCHS=40 PATIENCE=30 on sized shards 0-16, the push-out set on again
+# (docs/garments.md, "Since the tenth session").
 set -euo pipefail
 cd "$(dirname "${BASH_SOURCE[0]}")/.."
 DRAPE=${BUILD_DIR:-build}/bin/drape
