@@ -27,7 +27,8 @@ int run(const std::vector<std::string>& args) {
       "graph", po::value<std::string>(), "or a graph YAML, timed with freshly initialised weights")(
       "resolution", po::value<std::string>()->default_value("default"), "with --graph: garment resolution")(
       "k", po::value<int>()->default_value(1000), "with --graph: eigenvectors in the assets")(
-      "bmi", po::value<double>()->default_value(35), "BMI of the body fed to the model")(
+      "bmi", po::value<double>()->default_value(35),
+      "BMI of the body fed to the model, in turn with one 10 BMI away (so a node that keeps state meets a new body)")(
       "batch", po::value<int>()->default_value(1), "bodies per forward pass (figures are per body)")(
       "repeats", po::value<int>()->default_value(20), "timed passes (the best is reported)")(
       "pose", po::value<std::string>()->default_value("shoulder_abduction=45,elbow_flexion=30,spine_twist=10"),
