@@ -25,6 +25,121 @@ constexpr double kRounding = 1e-12;  // m
 // missed a fifth to a third of the lifts.
 constexpr double kEdgeBend = 0.5;
 
+// One push-out in progress: the garment's vertices, the closest body point
+// of each (current after every move), and which vertices moved.
+class PushOutRun {
+ public:
+  PushOutRun(const BodySurface& body, Eigen::MatrixX3d& vertices, const PushOutOptions& options)
+      : body_(body), x_(vertices), options_(options), margin_(options.margin), half_(0.5 * options.margin),
+        moved_(static_cast<std::size_t>(vertices.rows()), 0), unchecked_(moved_.size(), 1), in_lifted_(moved_.size(), 0) {
+    const std::vector<int>* hints = options.closest_faces;
+    if (hints && hints->size() == moved_.size()) {
+      near_.resize(moved_.size());
+      const auto n = static_cast<std::ptrdiff_t>(moved_.size());
+#pragma omp parallel for schedule(static, 64)
+      for (std::ptrdiff_t i = 0; i < n; ++i)
+        near_[static_cast<std::size_t>(i)] = body.locate_near(x_.row(i).transpose(), (*hints)[static_cast<std::size_t>(i)]);
+    } else {
+      near_ = body.locate_all(x_);
+    }
+  }
+
+  // Every vertex nearer the body than the margin (or inside it) onto the
+  // level set s = margin; the vertices moved.
+  const std::vector<Eigen::Index>& step_vertices() {
+    stepped_.clear();
+    for (Eigen::Index i = 0; i < x_.rows(); ++i) {
+      const SurfacePoint& s = near_[static_cast<std::size_t>(i)];
+      // (A vertex a pass put on the level set may come back a rounding error short of it: left alone.)
+      if (s.face < 0 || s.signed_distance >= margin_ - kRounding) continue;
+      // Along the gradient of s: exact while the closest point stays on the same face, edge or vertex.
+      move(i, (margin_ - s.signed_distance) * s.normal);
+      unchecked_[static_cast<std::size_t>(i)] = 1;
+      stepped_.push_back(i);
+    }
+    search_again(stepped_);
+    return stepped_;
+  }
+
+  // Every edge whose midpoint lies nearer the body than half the margin
+  // moved out along the body's normal there until it does not, in order, one
+  // edge after another (edges share vertices: the result does not depend on
+  // the threads); only edges with an end moved since they were last checked.
+  // The vertices moved.
+  const std::vector<Eigen::Index>& lift_edges(PushOutReport& report) {
+    lifted_.clear();
+    for (const auto& [a, b] : *options_.edges) {
+      const auto ua = static_cast<std::size_t>(a), ub = static_cast<std::size_t>(b);
+      if (!unchecked_[ua] && !unchecked_[ub]) continue;
+      if (cleared_without_search(ua, ub)) continue;
+      const Eigen::Vector3d mid = 0.5 * (x_.row(a) + x_.row(b)).transpose();
+      const SurfacePoint s = body_.locate_near(mid, near_[ua].face);
+      ++report.edges_searched;
+      if (s.face < 0 || s.signed_distance >= half_ - kRounding) continue;
+      const Eigen::Vector3d step = (half_ - s.signed_distance) * s.normal;
+      for (const int v : {a, b}) {
+        move(v, step);
+        if (!in_lifted_[static_cast<std::size_t>(v)]) in_lifted_[static_cast<std::size_t>(v)] = 1, lifted_.push_back(v);
+      }
+      ++report.edges_lifted;
+    }
+    std::fill(unchecked_.begin(), unchecked_.end(), 0);
+    for (const Eigen::Index v : lifted_) unchecked_[static_cast<std::size_t>(v)] = 1, in_lifted_[static_cast<std::size_t>(v)] = 0;
+    search_again(lifted_);
+    return lifted_;
+  }
+
+  void report(const Eigen::MatrixX3d& start, PushOutReport& report) const {
+    if (options_.closest_faces) {
+      options_.closest_faces->resize(near_.size());
+      for (std::size_t i = 0; i < near_.size(); ++i) (*options_.closest_faces)[i] = near_[i].face;
+    }
+    if (x_.rows() > 0) report.largest_move = (x_ - start).rowwise().norm().maxCoeff();
+    for (std::size_t i = 0; i < near_.size(); ++i) {
+      report.moved += moved_[i];
+      report.still_within += near_[i].face >= 0 && near_[i].signed_distance < half_;
+    }
+  }
+
+ private:
+  void move(Eigen::Index i, const Eigen::Vector3d& step) {
+    x_.row(i) += step.transpose();
+    moved_[static_cast<std::size_t>(i)] = 1;
+  }
+
+  // An edge whose midpoint is surely half the margin out: by the signed
+  // distance's Lipschitz bound, or its nearer end less the body's possible
+  // rise above the chord (kEdgeBend).
+  bool cleared_without_search(std::size_t a, std::size_t b) const {
+    if (near_[a].face < 0 || near_[b].face < 0) return false;
+    const double half_edge = 0.5 * (x_.row(static_cast<Eigen::Index>(a)) - x_.row(static_cast<Eigen::Index>(b))).norm();
+    if (std::max(near_[a].signed_distance, near_[b].signed_distance) - half_edge >= half_) return true;
+    const double turn = std::acos(std::clamp(near_[a].normal.dot(near_[b].normal), -1.0, 1.0));
+    return std::min(near_[a].signed_distance, near_[b].signed_distance) - kEdgeBend * half_edge * turn >= half_;
+  }
+
+  // Searched again where a vertex moved (only their closest points change),
+  // from the face it was nearest before: the same answer, a shorter search.
+  void search_again(const std::vector<Eigen::Index>& changed) {
+    const auto count = static_cast<std::ptrdiff_t>(changed.size());
+#pragma omp parallel for schedule(static, 16)
+    for (std::ptrdiff_t k = 0; k < count; ++k) {
+      const auto i = static_cast<std::size_t>(changed[static_cast<std::size_t>(k)]);
+      near_[i] = body_.locate_near(x_.row(static_cast<Eigen::Index>(i)).transpose(), near_[i].face);
+    }
+  }
+
+  const BodySurface& body_;
+  Eigen::MatrixX3d& x_;
+  const PushOutOptions& options_;
+  const double margin_, half_;
+  std::vector<SurfacePoint> near_;
+  std::vector<char> moved_;
+  std::vector<char> unchecked_;  // moved since its edges were last checked
+  std::vector<char> in_lifted_;
+  std::vector<Eigen::Index> stepped_, lifted_;
+};
+
 }  // namespace
 
 PushOutReport push_out(const BodySurface& body, Eigen::MatrixX3d& vertices, double margin, int max_passes,
@@ -37,9 +152,7 @@ PushOutReport push_out(const BodySurface& body, Eigen::MatrixX3d& vertices, doub
 }
 
 PushOutReport push_out(const BodySurface& body, Eigen::MatrixX3d& vertices, const PushOutOptions& options) {
-  const double margin = options.margin, half = 0.5 * options.margin;
-  std::vector<int>* closest_faces = options.closest_faces;
-  if (!(margin >= 0) || !std::isfinite(margin)) throw Error("push_out: the margin must be finite and >= 0");
+  if (!(options.margin >= 0) || !std::isfinite(options.margin)) throw Error("push_out: the margin must be finite and >= 0");
   if (options.max_passes < 1) throw Error("push_out: at least one pass");
   if (!vertices.allFinite()) throw Error("push_out: the garment has a non-finite vertex");
   if (options.edges)
@@ -49,97 +162,17 @@ PushOutReport push_out(const BodySurface& body, Eigen::MatrixX3d& vertices, cons
                     std::to_string(vertices.rows()) + " vertices");
   PushOutReport report;
   const Eigen::MatrixX3d start = vertices;
-  const auto nv = static_cast<std::size_t>(vertices.rows());
-  std::vector<char> moved(nv, 0);
-  std::vector<SurfacePoint> near;
-  if (closest_faces && closest_faces->size() == nv) {
-    near.resize(nv);
-    const auto n = static_cast<std::ptrdiff_t>(nv);
-#pragma omp parallel for schedule(static, 64)
-    for (std::ptrdiff_t i = 0; i < n; ++i)
-      near[static_cast<std::size_t>(i)] = body.locate_near(vertices.row(i).transpose(), (*closest_faces)[static_cast<std::size_t>(i)]);
-  } else {
-    near = body.locate_all(vertices);
-  }
-  // How far the body may rise above the chord between two garment vertices:
-  // twice the sagitta of a circular arc turning through the angle between
-  // their closest points' normals (theta), L / 2 * theta / 4 (see kEdgeBend).
-  auto rise = [&](std::size_t a, std::size_t b, double half_edge) {
-    const double c = std::clamp(near[a].normal.dot(near[b].normal), -1.0, 1.0);
-    return kEdgeBend * half_edge * std::acos(c);
-  };
-  // Searched again where a vertex moved: only their closest points change.
-  auto search_again = [&](const std::vector<Eigen::Index>& changed) {
-    const auto count = static_cast<std::ptrdiff_t>(changed.size());
-#pragma omp parallel for schedule(static, 16)
-    for (std::ptrdiff_t k = 0; k < count; ++k) {
-      const Eigen::Index i = changed[static_cast<std::size_t>(k)];
-      // From the face it was nearest before the move: the same answer, a shorter search.
-      near[static_cast<std::size_t>(i)] = body.locate_near(vertices.row(i).transpose(), near[static_cast<std::size_t>(i)].face);
-    }
-  };
-  std::vector<Eigen::Index> stepped, lifted;
-  std::vector<char> unchecked(nv, 1);  // moved since its edges were last checked
-  std::vector<char> in_lifted(nv, 0);
+  PushOutRun run(body, vertices, options);
   for (int pass = 0; pass < options.max_passes; ++pass) {
     ++report.passes;
-    stepped.clear();
-    for (Eigen::Index i = 0; i < vertices.rows(); ++i) {
-      const SurfacePoint& s = near[static_cast<std::size_t>(i)];
-      // (A vertex a pass put on the level set may come back a rounding error short of it: left alone.)
-      if (s.face < 0 || s.signed_distance >= margin - kRounding) continue;
-      // Onto the level set s = margin along the gradient of s: exact while the
-      // closest point stays on the same face, edge or vertex.
-      const Eigen::Vector3d step = (margin - s.signed_distance) * s.normal;
-      vertices.row(i) += step.transpose();
-      moved[static_cast<std::size_t>(i)] = 1;
-      unchecked[static_cast<std::size_t>(i)] = 1;
-      stepped.push_back(i);
-    }
-    search_again(stepped);
-    lifted.clear();
-    // Not in the last pass: a lift can move a vertex into another part of the
-    // body (a crease), and the vertices' clearance is the promise (p = 0);
-    // the edges' is the best the passes before it reached.
-    if (options.edges && pass + 1 < options.max_passes) {
-      // In order, one edge after another (edges share vertices): the result
-      // does not depend on the threads.
-      for (const auto& [a, b] : *options.edges) {
-        const auto ua = static_cast<std::size_t>(a), ub = static_cast<std::size_t>(b);
-        if (!unchecked[ua] && !unchecked[ub]) continue;  // checked, and neither end has moved since
-        // The signed distance is 1-Lipschitz: the midpoint is at least this far out.
-        const double half_edge = 0.5 * (vertices.row(a) - vertices.row(b)).norm();
-        if (near[ua].face >= 0 && near[ub].face >= 0 &&
-            (std::max(near[ua].signed_distance, near[ub].signed_distance) - half_edge >= half ||
-             std::min(near[ua].signed_distance, near[ub].signed_distance) - rise(ua, ub, half_edge) >= half))
-          continue;
-        const Eigen::Vector3d mid = 0.5 * (vertices.row(a) + vertices.row(b)).transpose();
-        const SurfacePoint s = body.locate_near(mid, near[ua].face);
-        ++report.edges_searched;
-        if (s.face < 0 || s.signed_distance >= half - kRounding) continue;
-        const Eigen::Vector3d step = (half - s.signed_distance) * s.normal;
-        for (const int v : {a, b}) {
-          vertices.row(v) += step.transpose();
-          moved[static_cast<std::size_t>(v)] = 1;
-          if (!in_lifted[static_cast<std::size_t>(v)]) in_lifted[static_cast<std::size_t>(v)] = 1, lifted.push_back(v);
-        }
-        ++report.edges_lifted;
-      }
-      std::fill(unchecked.begin(), unchecked.end(), 0);
-      for (const Eigen::Index v : lifted) unchecked[static_cast<std::size_t>(v)] = 1, in_lifted[static_cast<std::size_t>(v)] = 0;
-      search_again(lifted);
-    }
-    if (stepped.empty() && lifted.empty()) break;  // nothing moved: the last search still holds
+    const bool stepped = !run.step_vertices().empty();
+    // Edges not in the last pass: a lift can move a vertex into another part
+    // of the body (a crease), and the vertices' clearance is the promise
+    // (p = 0); the edges' is the best the passes before it reached.
+    const bool lifted = options.edges && pass + 1 < options.max_passes && !run.lift_edges(report).empty();
+    if (!stepped && !lifted) break;  // nothing moved: the last search still holds
   }
-  if (closest_faces) {
-    closest_faces->resize(nv);
-    for (std::size_t i = 0; i < nv; ++i) (*closest_faces)[i] = near[i].face;
-  }
-  if (vertices.rows() > 0) report.largest_move = (vertices - start).rowwise().norm().maxCoeff();
-  for (std::size_t i = 0; i < nv; ++i) {
-    report.moved += moved[i];
-    report.still_within += near[i].face >= 0 && near[i].signed_distance < 0.5 * margin;
-  }
+  run.report(start, report);
   return report;
 }
 
