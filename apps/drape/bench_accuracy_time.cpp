@@ -17,8 +17,7 @@
 #include <drape/assets/dataset_assets.hpp>
 #include <drape/io/atomic_file.hpp>
 #include <drape/io/checkpoint.hpp>
-#include <drape/graph.hpp>
-#include <drape/params.hpp>
+#include <drape/training/model_params.hpp>
 #include <drape/training/data_parallel.hpp>
 #include <drape/io/dataset.hpp>
 #include <drape/training/evaluation.hpp>
@@ -161,9 +160,8 @@ void report_regraded(const GradedScene& graded, const DatasetReader& reader, con
 // clearance costs and what it buys.
 std::vector<std::string> enabled_push_outs(const Registry& registry, const std::string& model_file) {
   std::vector<std::string> names;
-  for (const NodeSpec& node : parse_graph_text(read_checkpoint(model_file).graph, model_file + " (graph)").nodes)
-    if (node.type == "push_out" && Params(registry.get(node.type).params, node.params, node.name).get_bool("enabled"))
-      names.push_back(node.name);
+  for (const PushOutSetting& p : push_out_settings(registry, read_checkpoint(model_file).graph, model_file + " (graph)"))
+    if (p.enabled) names.push_back(p.node);
   return names;
 }
 

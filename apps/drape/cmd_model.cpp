@@ -13,9 +13,7 @@
 #include <drape/io/checkpoint.hpp>
 #include <drape/io/dataset.hpp>
 #include <drape/errors.hpp>
-#include <drape/graph.hpp>
 #include <drape/io/h5.hpp>
-#include <drape/params.hpp>
 #include <drape/registry.hpp>
 #include <drape/training/model.hpp>
 #include <drape/training/model_domain.hpp>
@@ -109,19 +107,15 @@ void print_training_settings(const std::map<std::string, std::string>& meta) {
 
 // A push-out (TailorNet's post-processing) the model's graph applies after
 // the network: what predict's drapes went through, and how to go without it.
-// The node's parameters as the plugin reads them, its defaults filled in.
 void print_post_processing(const Registry& registry, const std::string& graph_text, const std::string& where) {
-  for (const NodeSpec& node : parse_graph_text(graph_text, where).nodes) {
-    if (node.type != "push_out") continue;
-    const Params params(registry.get(node.type).params, node.params, node.name);
-    if (params.get_bool("enabled"))
+  for (const PushOutSetting& p : push_out_settings(registry, graph_text, where)) {
+    if (p.enabled)
       std::printf("  %-14s %s: vertices inside the body or within %.1f mm pushed out to it%s (the network alone: "
-                  "--set %s.enabled=false)\n", "push-out", node.name.c_str(), 1000 * params.get_float("epsilon"),
-                  params.get_bool("edges") ? ", edges with their midpoint within half that lifted off it" : "",
-                  node.name.c_str());
+                  "--set %s.enabled=false)\n", "push-out", p.node.c_str(), 1000 * p.epsilon,
+                  p.edges ? ", edges with their midpoint within half that lifted off it" : "", p.node.c_str());
     else
       std::printf("  %-14s %s: off (--set %s.enabled=true, or drape model set, turns it on)\n", "push-out",
-                  node.name.c_str(), node.name.c_str());
+                  p.node.c_str(), p.node.c_str());
   }
 }
 

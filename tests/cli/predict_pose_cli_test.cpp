@@ -39,12 +39,22 @@ TEST_CASE("drape predict --pose poses the body and the drape of a posed model", 
     REQUIRE(at != std::string::npos);
     CHECK(std::isfinite(std::stod(out.substr(at + 6))));
   }
-  // The ME-gap row differs from drape_unposed.yaml in the V2V loss's weight.
-  for (const auto& [graph, weight] : {std::pair{"drape_unposed.yaml", "(weight 10)"}, std::pair{"drape_unposed_v2v100.yaml", "(weight 100)"}}) {
-    REQUIRE(test::run_drape("graph check " + (test::source_dir() / "graphs" / "poses" / graph).string(), out) == 0);
+  // The ME-gap row differs from drape_unposed.yaml in the V2V loss's weight;
+  // the shipped models' last cycles (the *_post graphs) weight it 100 or 1000
+  // and end in the push-out node `post`.
+  for (const auto& [graph, weight] : {std::pair{"poses/drape_unposed.yaml", "(weight 10)"},
+                                      std::pair{"poses/drape_unposed_v2v100.yaml", "(weight 100)"},
+                                      std::pair{"poses/drape_posed_sized_v2v100_post.yaml", "(weight 100)"},
+                                      std::pair{"poses/drape_posed_sized_v2v1000_post.yaml", "(weight 1000)"},
+                                      std::pair{"sizes/drape_grade_v2v100_post.yaml", "(weight 100)"},
+                                      std::pair{"sizes/drape_grade_v2v1000_post.yaml", "(weight 1000)"}}) {
+    INFO(graph);
+    REQUIRE(test::run_drape("graph check " + (test::source_dir() / "graphs" / graph).string(), out) == 0);
     const auto v2v = out.find("  loss   v2v ");
     REQUIRE(v2v != std::string::npos);
     CHECK(out.substr(v2v, out.find('\n', v2v) - v2v).find(weight) != std::string::npos);
+    CHECK((out.find("  node   post            push_out") != std::string::npos) ==
+          (std::string(graph).find("_post") != std::string::npos));
   }
   const std::string predict = "predict --model " + (dir / "m.h5").string() + " --bmi 25 --garment-grade 1 ";
   const std::string pose = "shoulder_abduction=80,left_elbow_flexion=40";

@@ -53,6 +53,12 @@ def test_a_stored_setting_is_what_set_does_and_leaves_the_weights(trained, tmp_p
     assert info_before.split("domain:")[1] == info_after.split("domain:")[1]
     assert "push-out       post: off" in info_before
     assert "push-out       post: vertices inside the body or within 1.0 mm pushed out to it" in info_after
+    # The node's edges parameter (unset: its default, on) is read as the plugin reads it.
+    assert "edges with their midpoint within half that lifted off it" in info_after
+    vertices_only = tmp_path / "vertices-only.h5"
+    run_drape("model", "set", on, "--set", "post.edges=false", "--out", vertices_only)
+    info_vertices, _ = run_drape("model", "info", vertices_only)
+    assert "pushed out to it (the network alone" in info_vertices and "edges with" not in info_vertices, info_vertices
 
 
 def test_what_cannot_be_set_is_refused_and_nothing_is_written(trained, tmp_path):

@@ -2,6 +2,9 @@
 #include <drape/training/model_params.hpp>
 
 #include <drape/errors.hpp>
+#include <drape/graph.hpp>
+#include <drape/params.hpp>
+#include <drape/registry.hpp>
 #include <drape/io/atomic_file.hpp>
 #include <drape/io/checkpoint.hpp>
 #include <drape/io/h5.hpp>
@@ -45,6 +48,17 @@ std::vector<std::string> set_model_params(const Registry& registry, const fs::pa
     }
   });
   return changes;
+}
+
+std::vector<PushOutSetting> push_out_settings(const Registry& registry, const std::string& graph_text,
+                                              const std::string& name_for_errors) {
+  std::vector<PushOutSetting> settings;
+  for (const NodeSpec& node : parse_graph_text(graph_text, name_for_errors).nodes) {
+    if (node.type != "push_out") continue;
+    const Params params(registry.get(node.type).params, node.params, node.name);
+    settings.push_back({node.name, params.get_bool("enabled"), params.get_float("epsilon"), params.get_bool("edges")});
+  }
+  return settings;
 }
 
 }  // namespace drape

@@ -22,4 +22,17 @@ namespace drape {
 std::vector<std::string> set_model_params(const Registry& registry, const std::filesystem::path& model_file,
                                           const Model::ParamOverrides& overrides, const std::filesystem::path& out);
 
+// The push-out (TailorNet's post-processing, the push_out node) a stored
+// graph applies after the network, as the plugin reads its parameters
+// (defaults filled in): what `drape model info` reports and what `drape
+// bench accuracy-time` times with and without.
+struct PushOutSetting {
+  std::string node;
+  bool enabled = false;
+  double epsilon = 0;  // m
+  bool edges = false;
+};
+std::vector<PushOutSetting> push_out_settings(const Registry& registry, const std::string& graph_text,
+                                              const std::string& name_for_errors);
+
 }  // namespace drape
