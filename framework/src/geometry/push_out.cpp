@@ -31,17 +31,17 @@ class PushOutRun {
  public:
   PushOutRun(const BodySurface& body, Eigen::MatrixX3d& vertices, const PushOutOptions& options)
       : body_(body), x_(vertices), options_(options), margin_(options.margin), half_(0.5 * options.margin),
-        moved_(static_cast<std::size_t>(vertices.rows()), 0), unchecked_(moved_.size(), 1), in_lifted_(moved_.size(), 0) {
+        near_(static_cast<std::size_t>(vertices.rows())), moved_(near_.size(), 0), unchecked_(near_.size(), 1),
+        in_lifted_(near_.size(), 0) {
+    // Each search from the face given for its vertex (locate_near: the same
+    // answer as locate, -1 for none).
     const std::vector<int>* hints = options.closest_faces;
-    if (hints && hints->size() == moved_.size()) {
-      near_.resize(moved_.size());
-      const auto n = static_cast<std::ptrdiff_t>(moved_.size());
+    const bool hinted = hints && hints->size() == near_.size();
+    const auto n = static_cast<std::ptrdiff_t>(near_.size());
 #pragma omp parallel for schedule(static, 64)
-      for (std::ptrdiff_t i = 0; i < n; ++i)
-        near_[static_cast<std::size_t>(i)] = body.locate_near(x_.row(i).transpose(), (*hints)[static_cast<std::size_t>(i)]);
-    } else {
-      near_ = body.locate_all(x_);
-    }
+    for (std::ptrdiff_t i = 0; i < n; ++i)
+      near_[static_cast<std::size_t>(i)] =
+          body.locate_near(x_.row(i).transpose(), hinted ? (*hints)[static_cast<std::size_t>(i)] : -1);
   }
 
   // Every vertex nearer the body than the margin (or inside it) onto the
@@ -89,7 +89,8 @@ class PushOutRun {
     return lifted_;
   }
 
-  void report(const Eigen::MatrixX3d& start, PushOutReport& report) const {
+  // The run's figures, and each vertex's closest face for the next body.
+  void finish(const Eigen::MatrixX3d& start, PushOutReport& report) const {
     if (options_.closest_faces) {
       options_.closest_faces->resize(near_.size());
       for (std::size_t i = 0; i < near_.size(); ++i) (*options_.closest_faces)[i] = near_[i].face;
@@ -172,7 +173,7 @@ PushOutReport push_out(const BodySurface& body, Eigen::MatrixX3d& vertices, cons
     const bool lifted = options.edges && pass + 1 < options.max_passes && !run.lift_edges(report).empty();
     if (!stepped && !lifted) break;  // nothing moved: the last search still holds
   }
-  run.report(start, report);
+  run.finish(start, report);
   return report;
 }
 
