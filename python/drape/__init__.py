@@ -30,6 +30,7 @@ from ._drape import (  # noqa: F401  (re-exported)
     blas_corename,
     body,
     data_dirs,
+    dataset_name,
     find_file,
     load_plugins,
     plugin_search_path,
@@ -40,7 +41,7 @@ from . import _drape
 __all__ = [
     "Assets", "BodyModel", "ConfigError", "Dataset", "DrapeWarning", "Energy", "Error", "Model", "Scene", "assets",
     "better_blas_coretype", "blas_corename", "body",
-    "data_dirs", "find_file", "generate", "load_plugins", "plugin_search_path", "plugins", "simulate", "sparse",
+    "data_dirs", "dataset_name", "find_file", "generate", "load_plugins", "plugin_search_path", "plugins", "simulate", "sparse",
 ]
 
 

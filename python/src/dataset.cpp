@@ -90,6 +90,10 @@ void register_dataset(py::module_& m) {
   m.def("_generate", &generate, py::arg("scene"), py::arg("out"), py::arg("count"), py::arg("bmi"), py::arg("height"),
         py::arg("sex"), py::arg("girths"), py::arg("seed"), py::arg("shard"), py::arg("threads"), py::arg("progress"),
         py::arg("draw_poses"), py::arg("pose_ranges"));
+  m.def(
+      "dataset_name", [](const std::string& path) { return dataset_name(path); }, py::arg("path"),
+      "What a model records as the data it was trained on: a file's name, or a glob pattern whole (as drape model "
+      "info shows it).");
   py::class_<DatasetReader>(m, "Dataset",
                             "A dataset file of drape generate (or a .partial one: its done samples), or a glob pattern "
                             "of shard files read as one; slim files' bodies are rebuilt from their shape parameters.")

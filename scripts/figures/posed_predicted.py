@@ -32,12 +32,6 @@ sys.path.insert(0, HERE)
 from posed_grid import picture as shaded_picture  # noqa: E402
 
 
-def data_name(data):
-    """The data as a caption names it: a file by its name, a glob pattern whole (its last component would cut
-    a {a,b} alternative with a folder in it in half), as drape model info does."""
-    return data if any(c in data for c in "*?[{") else os.path.basename(data)
-
-
 def picture(garment, body, faces, body_faces, stem, label, size, views="front,left"):
     """Views of the garment on the body, base64 PNG (posed_grid.py's drawing)."""
     drape.write_obj(stem + ".obj", garment, faces)
@@ -109,7 +103,7 @@ def grid(a, posed, rest, done, wanted, name, model, faces, body_faces):
     with open(a.out, "w") as f:
         f.write(f"""<!doctype html><meta charset=utf-8><title>posed drapes over poses x BMI: predicted against simulated</title>
 <style>body{{font:13px sans-serif;background:#fff}} td,th{{vertical-align:top;padding:4px;text-align:left}} th{{width:110px}} td{{white-space:nowrap}}</style>
-<h3>{html.escape(name)} on {a.split} bodies of {html.escape(data_name(a.data))} over poses x BMI: each cell simulated (left)
+<h3>{html.escape(name)} on {a.split} bodies of {html.escape(drape.dataset_name(a.data))} over poses x BMI: each cell simulated (left)
 and predicted (right), front; mean ME of the {len(errors)} cells {np.mean(errors):.2f} cm</h3>
 <table><tr><th></th>{head}</tr>{''.join(rows)}</table>""")
     print("wrote", a.out)
@@ -174,7 +168,7 @@ def main():
     with open(a.out, "w") as f:
         f.write(f"""<!doctype html><meta charset=utf-8><title>posed drapes: predicted against simulated</title>
 <style>body{{font:13px sans-serif;background:#fff}} td,th{{vertical-align:top;padding:4px;text-align:left}}</style>
-<h3>Posed drapes, {a.split} samples of {html.escape(data_name(a.data))}: simulated and predicted (front, left)</h3>
+<h3>Posed drapes, {a.split} samples of {html.escape(drape.dataset_name(a.data))}: simulated and predicted (front, left)</h3>
 <table><tr>{head}</tr>{''.join(rows)}</table>""")
     print("wrote", a.out)
     if a.png:

@@ -4,6 +4,7 @@ charts disagree on a size they share are refused, naming the size. The charts ar
 shard made by an older drape would carry them."""
 import shutil
 
+import drape
 import h5py
 
 from conftest import SOURCE, penalty_scene, run_drape
@@ -92,6 +93,7 @@ def test_a_model_trained_on_both_as_one_pattern_knows_every_size(tmp_path):
     # (an alternative with a folder in it) "a,new}.h5".
     assert "{old/a,new}.h5" in info.split("dataset", 1)[1].splitlines()[0], info
     assert "training bodies from " + pattern in info, info
+    assert drape.dataset_name(pattern) == pattern and drape.dataset_name(str(new)) == "new.h5"
 
 
 def test_charts_that_differ_on_a_shared_size_are_refused(tmp_path):
