@@ -139,28 +139,43 @@ TEST_CASE("push_out answers every body of a batch and of later calls by that bod
 
 TEST_CASE("push_out with edges (the default) lifts the bound garment's edges as geometry::push_out does", "[gcn][tailornet]") {
   // The garment of the test assets shrunk onto the unit cube's surface, so
-  // vertices fall inside and edges run through it; the node's answer is the
-  // geometry's with the garment's own edges, and it refuses a mesh of
+  // vertices fall inside and edges run through it, on two bodies (the cube,
+  // and the cube moved and grown) in one batch, twice: the node keeps the
+  // last body's surface (normals left to the queries) and closest faces, and
+  // every answer must still be that body's own push-out with the garment's
+  // edges, on a surface built for it with no hints. It refuses a mesh of
   // another size.
   const auto assets = cube_body_assets();
   const Mesh& garment = assets->garment->mesh;
   const Eigen::RowVector3d centre = garment.vertices.colwise().mean();
   Eigen::MatrixX3d start = garment.vertices.rowwise() - centre;
   start *= 0.55 / start.rowwise().norm().maxCoeff();
-  Tensor body(1, 8, 3), x(1, garment.num_vertices(), 3);
+  Tensor body(2, 8, 3), x(2, garment.num_vertices(), 3);
   body.mat(0) = assets->body.vertices.cast<float>();
+  body.mat(1) = ((assets->body.vertices * 1.3).rowwise() + Eigen::RowVector3d(0.05, -0.02, 0.03)).cast<float>();
   x.mat(0) = start.cast<float>();
-  auto node = make_node("push_out", "{epsilon: 0.01}");
-  const DenseF y = dense_of(run_forward(*node, {{"x", x}, {"body", body}}, {"post", 1, assets.get()}).at("out"), 0);
-  const geometry::BodySurface cube(assets->body.vertices, assets->body.faces);
+  x.mat(1) = x.mat(0);
   const std::vector<std::array<int, 2>> edges = geometry::edge_list(garment.faces);
   geometry::PushOutOptions options;
   options.margin = 0.01;
   options.edges = &edges;
-  Eigen::MatrixX3d expected = x.mat(0).cast<double>();
-  const geometry::PushOutReport report = geometry::push_out(cube, expected, options);
-  CHECK(report.edges_searched > 0);
-  CHECK((y - DenseF(expected.cast<float>())).cwiseAbs().maxCoeff() < 1e-6f);
+  std::vector<DenseF> expected;
+  for (int b = 0; b < 2; ++b) {
+    const geometry::BodySurface own(body.mat(b).cast<double>(), assets->body.faces);
+    Eigen::MatrixX3d p = x.mat(b).cast<double>();
+    const geometry::PushOutReport report = geometry::push_out(own, p, options);
+    CHECK(report.edges_searched > 0);
+    expected.push_back(p.cast<float>());
+  }
+  CHECK((expected[0] - expected[1]).cwiseAbs().maxCoeff() > 0.01f);  // the two bodies push differently
+  auto node = make_node("push_out", "{epsilon: 0.01}");
+  for (int call = 0; call < 2; ++call) {
+    const auto out = run_forward(*node, {{"x", x}, {"body", body}}, {"post", 2, assets.get()});
+    for (int b = 0; b < 2; ++b) {
+      INFO("call " << call << ", body " << b);
+      CHECK((dense_of(out.at("out"), b) - expected[static_cast<std::size_t>(b)]).cwiseAbs().maxCoeff() < 1e-6f);
+    }
+  }
   CHECK_THROWS_WITH(make_node("push_out", "{epsilon: 0.01}")->setup({{"x", {4, 3}}, {"body", {8, 3}}}, {"post", 1, assets.get()}),
                     Catch::Contains("edges: false"));
 }
