@@ -31,8 +31,8 @@ class PushOutRun {
  public:
   PushOutRun(const BodySurface& body, Eigen::MatrixX3d& vertices, const PushOutOptions& options)
       : body_(body), x_(vertices), options_(options), margin_(options.margin), half_(0.5 * options.margin),
-        near_(static_cast<std::size_t>(vertices.rows())), moved_(near_.size(), 0), unchecked_(near_.size(), 1),
-        in_lifted_(near_.size(), 0) {
+        near_(static_cast<std::size_t>(vertices.rows())), moved_(near_.size(), 0), drift_(near_.size(), 0.0),
+        unchecked_(near_.size(), 1), in_lifted_(near_.size(), 0) {
     // Each search from the face given for its vertex (locate_near: the same
     // answer as locate, -1 for none).
     const std::vector<int>* hints = options.closest_faces;
@@ -106,17 +106,21 @@ class PushOutRun {
   void move(Eigen::Index i, const Eigen::Vector3d& step) {
     x_.row(i) += step.transpose();
     moved_[static_cast<std::size_t>(i)] = 1;
+    drift_[static_cast<std::size_t>(i)] += step.norm();
   }
 
   // An edge whose midpoint is surely half the margin out: by the signed
   // distance's Lipschitz bound, or its nearer end less the body's possible
-  // rise above the chord (kEdgeBend).
+  // rise above the chord (kEdgeBend). Each end's distance is a lower bound:
+  // its last search's less how far it moved since (an earlier lift of this
+  // pass may have moved it, in any direction).
   bool cleared_without_search(std::size_t a, std::size_t b) const {
     if (near_[a].face < 0 || near_[b].face < 0) return false;
+    const double sa = near_[a].signed_distance - drift_[a], sb = near_[b].signed_distance - drift_[b];
     const double half_edge = 0.5 * (x_.row(static_cast<Eigen::Index>(a)) - x_.row(static_cast<Eigen::Index>(b))).norm();
-    if (std::max(near_[a].signed_distance, near_[b].signed_distance) - half_edge >= half_) return true;
+    if (std::max(sa, sb) - half_edge >= half_) return true;
     const double turn = std::acos(std::clamp(near_[a].normal.dot(near_[b].normal), -1.0, 1.0));
-    return std::min(near_[a].signed_distance, near_[b].signed_distance) - kEdgeBend * half_edge * turn >= half_;
+    return std::min(sa, sb) - kEdgeBend * half_edge * turn >= half_;
   }
 
   // Searched again where a vertex moved (only their closest points change),
@@ -127,6 +131,7 @@ class PushOutRun {
     for (std::ptrdiff_t k = 0; k < count; ++k) {
       const auto i = static_cast<std::size_t>(changed[static_cast<std::size_t>(k)]);
       near_[i] = body_.locate_near(x_.row(static_cast<Eigen::Index>(i)).transpose(), near_[i].face);
+      drift_[i] = 0;
     }
   }
 
@@ -136,6 +141,7 @@ class PushOutRun {
   const double margin_, half_;
   std::vector<SurfacePoint> near_;
   std::vector<char> moved_;
+  std::vector<double> drift_;    // how far each vertex moved since near_ was found for it
   std::vector<char> unchecked_;  // moved since its edges were last checked
   std::vector<char> in_lifted_;
   std::vector<Eigen::Index> stepped_, lifted_;
