@@ -4,6 +4,8 @@
 #include <drape/fnv1a.hpp>
 #include <drape/graph.hpp>
 
+#include "graph_rewrite.hpp"
+
 #include <chrono>
 #include <limits>
 
@@ -72,7 +74,8 @@ struct Graph::Impl {
     return s.node >= 0 ? nodes[s.node].outputs[s.port] : inputs[s.input].value;
   }
 
-  // Building, in the constructor's order.
+  // Building, in this order.
+  void build(const GraphSpec& spec, const Registry& registry, const GraphOptions& options);
   void add_inputs(const GraphSpec& spec, const GraphOptions& options);
   void build_nodes(const GraphSpec& spec, const Registry& registry);
   void wire_inputs(const GraphSpec& spec);
@@ -92,14 +95,28 @@ Graph::Graph(Graph&&) noexcept = default;
 
 Graph::Graph(const GraphSpec& spec, const Registry& registry, const GraphOptions& options)
     : spec_(spec), impl_(std::make_unique<Impl>()) {
-  Impl& g = *impl_;
-  g.poison_gradient_buffers = options.poison_gradient_buffers;
-  g.add_inputs(spec, options);
-  g.build_nodes(spec, registry);
-  g.wire_inputs(spec);
-  g.sort_topologically();
-  g.set_up_shapes(options);
-  g.mark_needed_nodes();
+  // The graph runs rewritten where that is cheaper (graph_rewrite.hpp). A
+  // graph with a mistake is built again as written, so that the error names
+  // its nodes as the user wrote them.
+  if (const auto rewritten = detail::gather_before_repeated_concat(spec)) {
+    try {
+      impl_->build(*rewritten, registry, options);
+      return;
+    } catch (const ConfigError&) {
+      impl_ = std::make_unique<Impl>();
+    }
+  }
+  impl_->build(spec, registry, options);
+}
+
+void Graph::Impl::build(const GraphSpec& spec, const Registry& registry, const GraphOptions& options) {
+  poison_gradient_buffers = options.poison_gradient_buffers;
+  add_inputs(spec, options);
+  build_nodes(spec, registry);
+  wire_inputs(spec);
+  sort_topologically();
+  set_up_shapes(options);
+  mark_needed_nodes();
 }
 
 // Graph inputs and their shapes (symbolic dimensions come from options.dims).
