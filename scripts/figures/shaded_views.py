@@ -119,8 +119,10 @@ def main():
     ap.add_argument("--widths", action="store_true", help="colour faces of folds narrower than 2 (red) / 3 (yellow) triangles")
     ap.add_argument("--label", default="")
     ap.add_argument("--size", type=int, default=420, help="pixels per view, across")
-    ap.add_argument("--out", required=True)
+    ap.add_argument("--out", required=True, help="the picture, a PNG (.png)")
     args = ap.parse_args()
+    if not args.out.lower().endswith(".png"):
+        ap.error(f"--out {args.out}: the picture is written as a PNG; name it .png")
     x, f = read_obj(args.mesh)
     colours = np.tile([200.0, 205.0, 225.0], (len(f), 1))
     if args.widths:
