@@ -6,9 +6,13 @@ coloured by its distance to the body, p in its caption) and labelled with
 the body's sex, height and BMI. To look at what a model is trained on.
 
     python3 scripts/figures/dataset_drapes.py --data data.h5 [--bmi 12,25,40,60] [--drape build/bin/drape] --out drapes.svg
+        [--beside other.h5 --names "mannequin,human rig"]
 
-The dataset must hold its body vertices (expand a slim one first: drape
-dataset expand). Reads the statistics with h5py.
+With --beside, each drape is drawn above the drape of the same body (the
+same global sample index: two sets made with one seed, shard for shard)
+from the other dataset, e.g. the same bodies on the mannequin and on the
+human rig. The datasets must hold their body vertices (expand a slim one
+first: drape dataset expand). Reads the statistics with h5py.
 """
 import argparse
 import pathlib
@@ -39,26 +43,76 @@ def pick(data, bmis):
     return chosen
 
 
+def same_bodies(data, beside):
+    """{sample index in data: sample index in beside} for the done samples of both with one global index; refuses
+    two sets whose bodies of one global index differ (another seed or body space)."""
+    with h5py.File(data, "r") as a, h5py.File(beside, "r") as b:
+        ga, gb = a["stats/global_index"][:].astype(int), b["stats/global_index"][:].astype(int)
+        da, db = a["done"][:].astype(bool), b["done"][:].astype(bool)
+        where = {g: i for i, g in enumerate(gb) if db[i]}
+        pairs = {i: where[g] for i, g in enumerate(ga) if da[i] and g in where}
+        for i, j in pairs.items():
+            for key in ("bmi", "height", "sex"):
+                if abs(float(a["stats/" + key][i]) - float(b["stats/" + key][j])) > 1e-6:
+                    raise SystemExit(f"{data} sample {i} and {beside} sample {j} share global index {ga[i]} but not "
+                                     f"the body ({key} {a['stats/' + key][i]:.4g} against {b['stats/' + key][j]:.4g})")
+    if not pairs:
+        raise SystemExit(f"{data} and {beside} have no done sample of one global index")
+    return pairs
+
+
+def render_cell(drape, data, i, path):
+    run = subprocess.run([drape, "render", "--data", data, "--sample", str(i), "--simulated", "--out", str(path)],
+                         capture_output=True, text=True)
+    if run.returncode != 0:
+        raise SystemExit(f"drape render failed for {data} sample {i}:\n{run.stderr}")
+    return read_cell(path)
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--data", required=True, help="a dataset with body vertices")
     ap.add_argument("--bmi", default="12,25,40,60", help="target BMIs, comma-separated (the columns)")
     ap.add_argument("--drape", default="build/bin/drape", help="the drape program")
     ap.add_argument("--out", required=True, help="SVG to write")
+    ap.add_argument("--beside", help="a second dataset of the same bodies: each drape drawn above its own")
+    ap.add_argument("--names", default="", help="with --beside: the two datasets' names for the labels, comma-separated")
     args = ap.parse_args()
     bmis = [float(b) for b in args.bmi.split(",")]
+    names = [n.strip() for n in args.names.split(",")] if args.names else [pathlib.Path(args.data).stem,
+                                                                            pathlib.Path(args.beside or "").stem]
+    pairs = same_bodies(args.data, args.beside) if args.beside else None
     cells = []
     with tempfile.TemporaryDirectory() as tmp:
-        for (s, target), (i, bmi, height) in pick(args.data, bmis).items():
-            path = pathlib.Path(tmp) / f"sample_{i}.svg"
-            run = subprocess.run([args.drape, "render", "--data", args.data, "--sample", str(i), "--simulated",
-                                  "--out", str(path)], capture_output=True, text=True)
-            if run.returncode != 0:
-                raise SystemExit(f"drape render failed for sample {i}:\n{run.stderr}")
-            inner, w, h = read_cell(path)
-            cells.append(dict(row=s, col=bmis.index(target), inner=inner, w=w, h=h,
-                              label=f"{dict(SEXES)[s]}, {height:.2f} m, BMI {bmi:.1f} (sample {i})"))
-    write_grid(args.out, f"simulated drapes of {pathlib.Path(args.data).name} over sex x BMI", cells)
+        chosen = pick(args.data, bmis)
+        if pairs is not None:  # only bodies both sets have
+            with h5py.File(args.data, "r") as f:
+                done = f["done"][:].astype(bool)
+                for i in range(len(done)):
+                    done[i] &= i in pairs
+                bmi, sex, height = (f["stats/" + k][:] for k in ("bmi", "sex", "height"))
+            chosen = {}
+            for s_, _ in SEXES:
+                pool = np.flatnonzero(done & (np.round(sex) == s_))
+                for target in bmis:
+                    if pool.size:
+                        i = int(pool[np.argmin(np.abs(bmi[pool] - target))])
+                        chosen[(s_, target)] = (i, bmi[i], height[i])
+        rows_per_sex = 2 if pairs is not None else 1
+        for (s_, target), (i, bmi, height) in chosen.items():
+            body = f"{dict(SEXES)[s_]}, {height:.2f} m, BMI {bmi:.1f}"
+            inner, w, h = render_cell(args.drape, args.data, i, pathlib.Path(tmp) / f"a_{i}.svg")
+            label = f"{names[0]}: {body}" if pairs is not None else f"{body} (sample {i})"
+            cells.append(dict(row=rows_per_sex * s_, col=bmis.index(target), inner=inner, w=w, h=h, label=label))
+            if pairs is not None:
+                j = pairs[i]
+                inner, w, h = render_cell(args.drape, args.beside, j, pathlib.Path(tmp) / f"b_{j}.svg")
+                cells.append(dict(row=rows_per_sex * s_ + 1, col=bmis.index(target), inner=inner, w=w, h=h,
+                                  label=f"{names[1]}: the same body"))
+    title = f"simulated drapes of {pathlib.Path(args.data).name} over sex x BMI"
+    if pairs is not None:
+        title += f", each above the same body's in {pathlib.Path(args.beside).name}"
+    write_grid(args.out, title, cells)
     print(f"wrote {args.out}: {len(cells)} drapes")
 
 
