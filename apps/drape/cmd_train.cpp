@@ -67,6 +67,9 @@ int run(const std::vector<std::string>& given) {
                                        "ones, e.g. graphs/sizes/drape_grade.yaml's grade): weights with more input rows "
                                        "keep the file's rows and start the new ones at zero, so training starts from "
                                        "that model")(
+      "init-partial", po::bool_switch(), "with --init, as --init-widen, and a weight of another shape in the file keeps "
+                                         "its initialisation (listed): a model of the same garment on another body "
+                                         "model's template, e.g. the mannequin's model to start the human rig's")(
       "resume", po::bool_switch(), "continue an interrupted training from <out>.state (starts afresh when there is none)")(
       "force", po::bool_switch(), "start over, deleting <out> and <out>.state")(
       "quiet,q", po::bool_switch(), "no progress bar");
@@ -75,7 +78,7 @@ int run(const std::vector<std::string>& given) {
   po::variables_map vm;
   const std::string usage =
       "drape train GRAPH.yaml --data data.h5 --out model.h5 [--epochs N] [--batch B] [--lr X] [--seed S] [--threads T] "
-      "[--init model.h5 [--init-widen]] [--resume]" +
+      "[--init model.h5 [--init-widen | --init-partial]] [--resume]" +
       std::string(built_with_mpi() ? "\n       mpirun -np N drape train ... (built with MPI: N ranks, each on a part of every batch)"
                                    : "\n       (built without MPI: one process)");
   if (!parse(usage, args, opts, pos, vm)) return 0;
@@ -102,6 +105,7 @@ int run(const std::vector<std::string>& given) {
   o.eigen_k = vm["k"].as<int>();
   if (vm.count("init")) o.init = find_input_file(vm["init"].as<std::string>());
   o.init_widen = vm["init-widen"].as<bool>();
+  o.init_partial = vm["init-partial"].as<bool>();
   o.resume = vm["resume"].as<bool>();
   o.force = vm["force"].as<bool>();
   o.log = &std::cout;

@@ -11,6 +11,7 @@
 #include <drape/plugin.hpp>
 
 #include <fstream>
+#include <set>
 
 using namespace drape;
 using drape::test::TempDir;
@@ -317,4 +318,55 @@ outputs: { y: decoder }
     Graph f = make_graph(9, fewer);
     CHECK_THROWS_WITH(load_weights_widening(path, f.weights()), Catch::Contains("weight encoder/w is [3, 6] in the file"));
   }
+}
+
+TEST_CASE("checkpoint: load_weights_partial keeps the initialisation of a weight of another shape, loads the rest",
+          "[hdf5][checkpoint]") {
+  TempDir dir;
+  const fs::path path = dir / "model.h5";
+  Graph saved = make_graph(7);
+  save_checkpoint(path, saved, {});
+  // The encoder gives 7 channels instead of 6 (another template's level, say):
+  // encoder/w and encoder/b change columns, so they keep their initialisation;
+  // decoder/w gains a row, which is widened as --init-widen does; decoder/b loads.
+  const char* other = R"(
+inputs: { x: [5, 3] }
+nodes:
+  encoder: { type: ckpt_dense, in: x, params: { width: 7 } }
+  decoder: { type: ckpt_dense, in: encoder, params: { width: 2 } }
+outputs: { y: decoder }
+)";
+  Graph g = make_graph(12, other);
+  std::map<std::string, std::vector<float>> own;
+  for (const auto& [name, w] : g.weights()) own[name] = std::vector<float>(w->value.data(), w->value.data() + w->value.size());
+  // All or nothing without it.
+  CHECK_THROWS_WITH(load_weights_widening(path, g.weights()), Catch::Contains("only rows, the inputs, may be added"));
+  const auto changed = load_weights_partial(path, g.weights());
+  std::set<std::string> kept, widened;
+  for (const auto& c : changed) (c.kept ? kept : widened).insert(c.name);
+  CHECK(kept == std::set<std::string>{"encoder/b", "encoder/w"});
+  CHECK(widened == std::set<std::string>{"decoder/w"});
+  std::map<std::string, Tensor> file;
+  for (const auto& [name, w] : saved.weights()) file.emplace(name, w->value);
+  for (const auto& [name, w] : g.weights()) {
+    INFO(name);
+    const std::vector<float> now(w->value.data(), w->value.data() + w->value.size());
+    if (kept.count(name)) {
+      CHECK(now == own[name]);
+    } else if (name == "decoder/w") {
+      CHECK(w->value.mat(0).topRows(6) == file.at(name).mat(0));
+      CHECK(w->value.mat(0).row(6).norm() == 0.0f);
+    } else {
+      CHECK(w->value.vec() == file.at(name).vec());
+    }
+  }
+  // A weight in the file the graph lacks is still an error.
+  const char* fewer_nodes = R"(
+inputs: { x: [5, 3] }
+nodes:
+  encoder: { type: ckpt_dense, in: x, params: { width: 7 } }
+outputs: { y: encoder }
+)";
+  Graph f = make_graph(13, fewer_nodes);
+  CHECK_THROWS_WITH(load_weights_partial(path, f.weights()), Catch::Contains("is not in the graph"));
 }

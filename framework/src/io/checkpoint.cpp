@@ -102,7 +102,7 @@ namespace {
 // rows takes the file's rows first and zero rows after them, and a graph
 // weight the file lacks keeps its initialisation, both listed there.
 void load_named_weights(const fs::path& path, const NamedWeights& weights, bool allow_extra,
-                        std::vector<WidenedWeight>* widened) {
+                        std::vector<WidenedWeight>* widened, bool keep_other_shapes = false) {
   const h5::File file = h5::File::open(path);
   check_format(file);
   std::set<std::string> in_file;
@@ -126,6 +126,12 @@ void load_named_weights(const fs::path& path, const NamedWeights& weights, bool 
     Tensor t = read_matrix(file, "/weights/" + name);
     const Shape from = t.shape(), to = w->value.shape();
     const bool grows = widened && from.cols == to.cols && from.rows < to.rows;
+    if (from != to && !grows && keep_other_shapes) {
+      widened->push_back({name, from, to, true});
+      loaded.push_back(w->value);
+      wanted.insert(name);
+      continue;
+    }
     if (from != to && !grows)
       throw ConfigError(path.string() + ": weight " + name + " is " + from.str() + " in the file, the graph has " + to.str() +
                         (widened && from.cols != to.cols ? " (only rows, the inputs, may be added)" : ""));
@@ -158,6 +164,12 @@ std::vector<WidenedWeight> load_weights_widening(const fs::path& path, const Nam
   std::vector<WidenedWeight> widened;
   load_named_weights(path, weights, false, &widened);
   return widened;
+}
+
+std::vector<WidenedWeight> load_weights_partial(const fs::path& path, const NamedWeights& weights) {
+  std::vector<WidenedWeight> changed;
+  load_named_weights(path, weights, false, &changed, true);
+  return changed;
 }
 
 }  // namespace drape

@@ -178,13 +178,17 @@ void check_trainable(Graph& graph, const fs::path& graph_file) {
 // first that is missing or has another shape: a model of another graph).
 void load_init_weights(const TrainOptions& o, DataParallelGraph& dp) {
   if (!fs::exists(o.init)) throw ConfigError("--init " + o.init.string() + ": no such file");
-  if (!o.init_widen) {
+  if (!o.init_widen && !o.init_partial) {
     load_weights(o.init, dp.graph());
   } else {
-    const auto widened = load_weights_widening(o.init, dp.graph().weights());
+    const auto widened = o.init_partial ? load_weights_partial(o.init, dp.graph().weights())
+                                        : load_weights_widening(o.init, dp.graph().weights());
     if (o.progress)
       for (const auto& w : widened)
-        if (w.from.rows == 0)
+        if (w.kept)
+          *o.progress << "init: weight " << w.name << " is " << w.from.str() << " in the file, " << w.to.str()
+                      << " in the graph: it keeps its initialisation\n";
+        else if (w.from.rows == 0)
           *o.progress << "init: weight " << w.name << " " << w.to.str()
                       << " is new (not in the file): it keeps its initialisation\n";
         else
@@ -231,6 +235,7 @@ std::map<std::string, std::string> resume_settings(const TrainOptions& o, const 
   if (o.schedule == "cosine") settings["epochs"] = std::to_string(o.epochs);
   if (!o.init.empty()) settings["init"] = o.init.string();
   if (o.init_widen) settings["init_widen"] = "1";
+  if (o.init_partial) settings["init_partial"] = "1";
   if (ranks > 1) settings["ranks"] = std::to_string(ranks);  // like threads, they change the sums' rounding
   return settings;
 }
@@ -545,6 +550,7 @@ TrainReport train(const Registry& registry, const TrainOptions& given) {
   check_trainable(graph, o.graph);
   const std::string output = garment_output(graph);
   if (o.init_widen && o.init.empty()) throw ConfigError("--init-widen needs --init (the model to start from)");
+  if (o.init_partial && o.init.empty()) throw ConfigError("--init-partial needs --init (the model to start from)");
   if (!o.init.empty()) load_init_weights(o, dp);
   Learner learner{Adam(graph.weights()), EarlyStopping({o.patience, 0.0}), lr_schedule(o), WeightCopy(graph.weights()),
                   History()};

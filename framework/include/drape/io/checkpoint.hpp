@@ -43,10 +43,12 @@ void load_weights(const std::filesystem::path& path, const NamedWeights& weights
 void load_weights(const std::filesystem::path& path, Graph& graph, bool allow_extra = false);
 
 // A weight of the file given more rows (inputs) by the graph, or (from
-// [0, 0]) a weight the file lacks.
+// [0, 0]) a weight the file lacks, or (kept) one of another shape left at
+// the graph's initialisation (load_weights_partial).
 struct WidenedWeight {
   std::string name;
   Shape from, to;
+  bool kept = false;
 };
 // As load_weights, but a graph weight [r + k, c] takes the file's [r, c] as its
 // first r rows and zeros after them: a graph that appends k input features
@@ -58,5 +60,14 @@ struct WidenedWeight {
 // gave it. Returns the weights so widened or new; all or nothing, and a
 // weight in the file that the graph lacks is still an error.
 std::vector<WidenedWeight> load_weights_widening(const std::filesystem::path& path, const NamedWeights& weights);
+// As load_weights_widening, and a weight whose shape in the file is neither
+// the graph's nor fewer rows of it keeps the graph's initialisation (kept):
+// a model of one template moved to another of the same garment, whose
+// hierarchy levels have a few edges more or fewer (the human rig's template
+// against the mannequin's: 4 of 35 weights, 4,088 of 842,301 values, the
+// multi-scale decoder's per-edge aggregation at levels 1 and 2). A weight
+// of the same shape is taken as it is, though on another template's
+// hierarchy it weighs other edges: a start for training, not a model.
+std::vector<WidenedWeight> load_weights_partial(const std::filesystem::path& path, const NamedWeights& weights);
 
 }  // namespace drape

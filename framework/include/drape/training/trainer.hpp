@@ -51,6 +51,10 @@ struct TrainOptions {
   // grade) keeps the file's rows and starts the new ones at zero
   // (load_weights_widening), so training starts from the model in the file.
   bool init_widen = false;
+  // With init: as init_widen, and a weight of another shape in the file
+  // keeps its initialisation (load_weights_partial): a model moved to
+  // another template of the garment (the human rig's; docs/bodies.md).
+  bool init_partial = false;
   bool resume = false;        // continue from <out>.state when it exists
   bool force = false;         // start over even when <out> or <out>.state exists
   long max_epochs_this_run = 0;  // > 0: stop after that many epochs as if killed (tests)
