@@ -8,7 +8,8 @@ slim one) and its garment faces.
     /usr/bin/python3 scripts/check_dataset_drapes.py data.h5 [--body-faces body.obj] [--csv out.csv]
 
 The body's faces come from --body-faces (any mesh of the body model's topology, e.g. `drape body --out`), else
-from `drape body` run here.
+from `drape body` run here with the body model and parameters of the scene the dataset records (the human rig's
+drapes get the human rig's faces). Faces of another topology than the dataset's bodies are refused.
 """
 import argparse
 import os
@@ -27,6 +28,23 @@ from obj_file import read_obj  # noqa: E402
 from winding_number import winding_numbers  # noqa: E402
 
 
+def scene_body_args(data):
+    """`drape body` arguments for the body model (and its parameters, e.g. rig: human) of the scene a dataset
+    records; none for a dataset without one."""
+    with h5py.File(data, "r") as f:
+        text = f.attrs.get("scene", b"")
+    text = text.decode() if isinstance(text, bytes) else str(text)
+    if not text:
+        return []
+    import yaml  # python3-yaml: only needed here
+
+    body = (yaml.safe_load(text) or {}).get("body") or {}
+    args = ["--model", str(body["model"])] if "model" in body else []
+    for name, value in (body.get("params") or {}).items():
+        args += ["--param", f"{name}={value}"]
+    return args
+
+
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("data")
@@ -38,10 +56,15 @@ def main():
         _, bf = read_obj(a.body_faces)
     else:
         with tempfile.TemporaryDirectory() as tmp:
-            subprocess.run([a.drape, "body", "--out", os.path.join(tmp, "b.obj")], check=True, capture_output=True)
+            subprocess.run([a.drape, "body", *scene_body_args(a.data), "--out", os.path.join(tmp, "b.obj")],
+                           check=True, capture_output=True)
             _, bf = read_obj(os.path.join(tmp, "b.obj"))
     with h5py.File(a.data) as f:
         gf = f["garments/faces"][:]
+        body_vertices = f["bodies/vertices"].shape[1]
+        if bf.max() + 1 != body_vertices:
+            sys.exit(f"{a.data}: its bodies have {body_vertices} vertices, the body faces index {bf.max() + 1} "
+                     "(another body model or rig): give --body-faces a mesh of the dataset's body topology")
         done = np.flatnonzero(f["done"][:])
         bodies, garments = f["bodies/vertices"], f["garments/vertices"]
         converged = f["stats/converged"][:]
