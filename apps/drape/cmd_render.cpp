@@ -41,6 +41,57 @@ Eigen::VectorXd edge_strain_percent(const Mesh& garment, const Mesh& material) {
   return sum.cwiseQuotient(count.cwiseMax(1.0));
 }
 
+// The page or picture: the garment on the body, coloured by its distance to
+// the body, its error against `truth`, or its strain against the template's
+// material space.
+void draw(const po::variables_map& vm, const std::string& colour, const std::string& what,
+          const std::vector<std::string>& notes, const Mesh& body, const Mesh& garment, const Mesh& truth,
+          const Mesh& material) {
+  SvgFigure figure("drape render: " + what);
+  for (const std::string& note : notes) figure.add_note(note);
+  const geometry::BodySurface surface(body.vertices, body.faces);
+  const double p = geometry::penetration_ratio(surface, garment.vertices);
+  Eigen::VectorXd values;
+  SvgColourScale scale;
+  char caption[160];
+  if (colour == "distance") {
+    values = (100.0 * surface.signed_distances(garment.vertices)).cwiseMax(0.0);
+    scale = {"distance of the garment to the body (cm)", 0.0, 5.0};
+    std::snprintf(caption, sizeof caption, "p = %.2f%% of the vertices inside the body", 100.0 * p);
+  } else if (colour == "error") {
+    values = 100.0 * (garment.vertices - truth.vertices).rowwise().norm();
+    scale = {"distance to the simulated garment (cm)", 0.0, 2.0};
+    std::snprintf(caption, sizeof caption, "ME %.2f cm, max %.2f cm, p = %.2f%%", values.mean(), values.maxCoeff(), 100.0 * p);
+  } else {
+    if (!material.has_uv()) throw ConfigError("--colour strain needs the template's material space (UVs); it has none");
+    values = edge_strain_percent(garment, material);
+    scale = {"edge length change against the material space (%)", 0.0, 10.0};
+    std::snprintf(caption, sizeof caption, "mean strain %.2f%%, max %.2f%%, p = %.2f%%", values.mean(), values.maxCoeff(), 100.0 * p);
+  }
+  figure.add_panel(drape_panel(caption, body, garment, std::move(values)));
+  figure.set_colour_scale(scale);
+  figure.write(vm["out"].as<std::string>());
+  std::printf("wrote %s (%s; %s)\n", vm["out"].as<std::string>().c_str(), what.c_str(), caption);
+}
+
+// --data FILE --sample I --simulated: the dataset's drape on its body, on the
+// template of the scene the dataset records.
+int render_simulated(Registry& registry, const po::variables_map& vm, const std::string& colour) {
+  const std::string data = vm["data"].as<std::string>();
+  const DatasetReader reader(data);
+  const std::size_t i = vm["sample"].as<std::size_t>();
+  if (i >= reader.size()) throw UsageError("--sample " + std::to_string(i) + ": the dataset has " + std::to_string(reader.size()) + " samples");
+  const auto assets = assets_for_dataset(registry, reader, data, 1000, default_cache_dir());
+  Mesh body;
+  body.faces = assets->body.faces;
+  body.vertices = reader.body_vertices({i}).mat(0).cast<double>();
+  Mesh garment = assets->garment->mesh;
+  garment.vertices = reader.garment_vertices({i}).mat(0).cast<double>();
+  const std::string what = "simulated drape, sample " + std::to_string(i) + " of " + std::filesystem::path(data).filename().string();
+  draw(vm, colour, what, {}, body, garment, garment, assets->garment->mesh);
+  return 0;
+}
+
 int run(const std::vector<std::string>& args) {
   po::options_description opts("drape render");
   opts.add_options()("model", po::value<std::string>(), "model file (default: the shipped model); its template gives the faces")(
@@ -69,9 +120,11 @@ int run(const std::vector<std::string>& args) {
     throw UsageError("--colour error compares with a simulated drape: give --data FILE --sample I");
   if (vm.count("simulated") && (!vm.count("data") || vm.count("garment")))
     throw UsageError("--simulated draws a dataset's own drape: give --data FILE --sample I, and no --garment");
-  const std::string model_file = model_file_or_default(vm);
-
   Registry& registry = Registry::load_default(plugin_path(vm));
+  // A dataset's own drape is drawn on its own template (the scene it
+  // records: the human rig's drapes on the human rig's body), no model needed.
+  if (vm.count("simulated")) return render_simulated(registry, vm, colour);
+  const std::string model_file = model_file_or_default(vm);
   Model model = Model::load(registry, model_file);
   std::vector<std::string> notes;  // what model_body printed, shown on the page too
   SampleBatch batch;
@@ -101,40 +154,12 @@ int run(const std::vector<std::string>& args) {
                         " vertices, but the model's garment template has " + std::to_string(garment.num_vertices()));
     garment.vertices = given.vertices;
     what = vm["garment"].as<std::string>() + " on " + what;
-  } else if (vm.count("simulated")) {
-    garment.vertices = truth.vertices;
-    what = "simulated drape, " + what;
   } else {
     garment.vertices = model.predict(batch).mat(0).cast<double>();
     what = "prediction of " + std::filesystem::path(model_file).filename().string() + " for " + what;
   }
 
-  SvgFigure figure("drape render: " + what);
-  for (const std::string& note : notes) figure.add_note(note);
-  const geometry::BodySurface surface(body.vertices, body.faces);
-  const double p = geometry::penetration_ratio(surface, garment.vertices);
-  Eigen::VectorXd values;
-  SvgColourScale scale;
-  char caption[160];
-  if (colour == "distance") {
-    values = (100.0 * surface.signed_distances(garment.vertices)).cwiseMax(0.0);
-    scale = {"distance of the garment to the body (cm)", 0.0, 5.0};
-    std::snprintf(caption, sizeof caption, "p = %.2f%% of the vertices inside the body", 100.0 * p);
-  } else if (colour == "error") {
-    values = 100.0 * (garment.vertices - truth.vertices).rowwise().norm();
-    scale = {"distance to the simulated garment (cm)", 0.0, 2.0};
-    std::snprintf(caption, sizeof caption, "ME %.2f cm, max %.2f cm, p = %.2f%%", values.mean(), values.maxCoeff(), 100.0 * p);
-  } else {
-    const Mesh& material = model.assets().garment->mesh;
-    if (!material.has_uv()) throw ConfigError("--colour strain needs the template's material space (UVs); it has none");
-    values = edge_strain_percent(garment, material);
-    scale = {"edge length change against the material space (%)", 0.0, 10.0};
-    std::snprintf(caption, sizeof caption, "mean strain %.2f%%, max %.2f%%, p = %.2f%%", values.mean(), values.maxCoeff(), 100.0 * p);
-  }
-  figure.add_panel(drape_panel(caption, body, garment, std::move(values)));
-  figure.set_colour_scale(scale);
-  figure.write(vm["out"].as<std::string>());
-  std::printf("wrote %s (%s; %s)\n", vm["out"].as<std::string>().c_str(), what.c_str(), caption);
+  draw(vm, colour, what, notes, body, garment, truth, model.assets().garment->mesh);
   return 0;
 }
 

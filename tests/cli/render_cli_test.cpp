@@ -105,6 +105,25 @@ TEST_CASE("render --simulated draws a dataset's own drape: the repository's body
   CHECK_THAT(out, Catch::Contains("--simulated draws a dataset's own drape"));
 }
 
+TEST_CASE("render --simulated draws a human-rig drape on the human rig's body (the scene its dataset records)",
+          "[render][dataset]") {
+  const fs::path shard = test::source_dir() / "datasets/bodyspace2000-human/shard-00-of-40.h5";
+  REQUIRE(fs::exists(shard));  // part of the repository (datasets/README.md)
+  test::TempDir dir;
+  const std::string drape = test::drape_program().string() + " ";
+  const std::string data = (dir / "human.h5").string();
+  std::string out;
+  REQUIRE(test::run(drape + "dataset expand --out " + data + " " + shard.string(), out) == 0);
+  // It drew on the shipped model's mannequin template, and refused: "has 991
+  // garment and 6904 body vertices per sample, but the template has 991 and 6490".
+  REQUIRE(test::run(drape + "render --data " + data + " --sample 5 --simulated --out " + (dir / "h.svg").string(), out) == 0);
+  INFO(out);
+  CHECK_THAT(out, Catch::Contains("simulated drape, sample 5 of human.h5") && Catch::Contains("p = 0.00%"));
+  // A prediction still needs a model of the human rig: the shipped one refuses.
+  CHECK(test::run(drape + "render --data " + data + " --sample 5 --out " + (dir / "p.svg").string(), out) != 0);
+  CHECK_THAT(out, Catch::Contains("6904 body vertices per sample, but the template has 991 and 6490"));
+}
+
 TEST_CASE("the render page and SVG show the notes the command printed", "[render]") {
   // At BMI 35 the shipped model of sizes notes the size it chose, and the
   // one-size model that its one shirt is smaller around than the body: the
