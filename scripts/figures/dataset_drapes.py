@@ -27,10 +27,13 @@ from svg_grid import read_cell, write_grid
 SEXES = [(0, "female"), (1, "male")]
 
 
-def pick(data, bmis):
-    """{(sex, bmi): sample index}: the done sample of that sex nearest each BMI."""
+def pick(data, bmis, among=None):
+    """{(sex, bmi): sample index}: the done sample of that sex nearest each BMI (of the samples `among`, when
+    given)."""
     with h5py.File(data, "r") as f:
         done = f["done"][:].astype(bool)
+        if among is not None:
+            done &= np.isin(np.arange(len(done)), list(among))
         bmi, sex, height = (f["stats/" + k][:] for k in ("bmi", "sex", "height"))
     chosen = {}
     for s, _ in SEXES:
@@ -84,30 +87,17 @@ def main():
     pairs = same_bodies(args.data, args.beside) if args.beside else None
     cells = []
     with tempfile.TemporaryDirectory() as tmp:
-        chosen = pick(args.data, bmis)
-        if pairs is not None:  # only bodies both sets have
-            with h5py.File(args.data, "r") as f:
-                done = f["done"][:].astype(bool)
-                for i in range(len(done)):
-                    done[i] &= i in pairs
-                bmi, sex, height = (f["stats/" + k][:] for k in ("bmi", "sex", "height"))
-            chosen = {}
-            for s_, _ in SEXES:
-                pool = np.flatnonzero(done & (np.round(sex) == s_))
-                for target in bmis:
-                    if pool.size:
-                        i = int(pool[np.argmin(np.abs(bmi[pool] - target))])
-                        chosen[(s_, target)] = (i, bmi[i], height[i])
+        chosen = pick(args.data, bmis, among=pairs)  # with --beside, only bodies both sets have
         rows_per_sex = 2 if pairs is not None else 1
-        for (s_, target), (i, bmi, height) in chosen.items():
-            body = f"{dict(SEXES)[s_]}, {height:.2f} m, BMI {bmi:.1f}"
+        for (sex, target), (i, bmi, height) in chosen.items():
+            body = f"{dict(SEXES)[sex]}, {height:.2f} m, BMI {bmi:.1f}"
             inner, w, h = render_cell(args.drape, args.data, i, pathlib.Path(tmp) / f"a_{i}.svg")
             label = f"{names[0]}: {body}" if pairs is not None else f"{body} (sample {i})"
-            cells.append(dict(row=rows_per_sex * s_, col=bmis.index(target), inner=inner, w=w, h=h, label=label))
+            cells.append(dict(row=rows_per_sex * sex, col=bmis.index(target), inner=inner, w=w, h=h, label=label))
             if pairs is not None:
                 j = pairs[i]
                 inner, w, h = render_cell(args.drape, args.beside, j, pathlib.Path(tmp) / f"b_{j}.svg")
-                cells.append(dict(row=rows_per_sex * s_ + 1, col=bmis.index(target), inner=inner, w=w, h=h,
+                cells.append(dict(row=rows_per_sex * sex + 1, col=bmis.index(target), inner=inner, w=w, h=h,
                                   label=f"{names[1]}: the same body"))
     title = f"simulated drapes of {pathlib.Path(args.data).name} over sex x BMI"
     if pairs is not None:
