@@ -94,7 +94,7 @@ int render_simulated(Registry& registry, const po::variables_map& vm, const std:
 
 int run(const std::vector<std::string>& args) {
   po::options_description opts("drape render");
-  opts.add_options()("model", po::value<std::string>(), "model file (default: the shipped model); its template gives the faces")(
+  opts.add_options()("model", po::value<std::string>(), "model file (default: the shipped model); its template gives the faces (--simulated draws on the dataset's own template, no model)")(
       "garment", po::value<std::string>(), "draw this garment mesh (the model's template topology) instead of a prediction")(
       "data", po::value<std::string>(), "or take body (and the simulated garment, for --colour error) from a dataset")(
       "sample", po::value<std::size_t>()->default_value(0), "with --data: the sample index")(

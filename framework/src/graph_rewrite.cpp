@@ -55,7 +55,7 @@ std::optional<GraphSpec> gather_before_repeated_concat(const GraphSpec& spec) {
     if (c == out.nodes.end() || c->is_loss || c->type != "concat" || c->inputs.size() != 2) continue;
     const PortRef* a = input_on(*c, "a", 0);
     const PortRef* b = input_on(*c, "b", 1);
-    if (!a || !b || a == b || !b->port.empty() || !declared_one_row(spec, b->node)) continue;
+    if (!a || !b || !b->port.empty() || !declared_one_row(spec, b->node)) continue;
     if (uses_of(out, c->name) != 1) continue;  // the concat's rows are read elsewhere too
     const std::string rows = gather.name + "_rows";
     if (name_taken(out, rows)) continue;

@@ -97,48 +97,54 @@ Checkpoint read_checkpoint(const fs::path& path) {
 
 namespace {
 
-// load_weights and load_weights_widening: every weight by name, all or
-// nothing. `widened` null: shapes must match; else a graph weight with more
-// rows takes the file's rows first and zero rows after them, and a graph
-// weight the file lacks keeps its initialisation, both listed there.
-void load_named_weights(const fs::path& path, const NamedWeights& weights, bool allow_extra,
-                        std::vector<WidenedWeight>* widened, bool keep_other_shapes = false) {
+// How a weight whose shape differs from the file's is loaded.
+enum class OtherShape {
+  refused,       // load_weights: shapes must match
+  rows_added,    // load_weights_widening: more rows take the file's first, zeros after; a weight the file lacks keeps its initialisation
+  kept_initial,  // load_weights_partial: as rows_added, and any other shape keeps its initialisation
+};
+
+// load_weights, load_weights_widening and load_weights_partial: every weight
+// by name, all or nothing; what was not loaded as it is listed in `changed`.
+void load_named_weights(const fs::path& path, const NamedWeights& weights, bool allow_extra, OtherShape rule,
+                        std::vector<WidenedWeight>& changed) {
+  const bool widening = rule != OtherShape::refused;
   const h5::File file = h5::File::open(path);
   check_format(file);
   std::set<std::string> in_file;
-  if (widened && file.is_group("/weights"))
+  if (widening && file.is_group("/weights"))
     for (const auto& name : file.datasets_below("/weights")) in_file.insert(name);
   // New weights are for a graph that adds to the file's, not one that shares
   // nothing with it (another graph's file would otherwise start a training
   // from scratch without a word).
-  if (widened && std::none_of(weights.begin(), weights.end(), [&](const auto& w) { return in_file.count(w.first) > 0; }))
+  if (widening && std::none_of(weights.begin(), weights.end(), [&](const auto& w) { return in_file.count(w.first) > 0; }))
     throw ConfigError(path.string() + ": none of the graph's weights is in the file (was it saved from another graph?)");
   std::vector<Tensor> loaded;
   std::set<std::string> wanted;
   for (const auto& [name, w] : weights) {
-    if (widened && !in_file.count(name)) {
+    if (widening && !in_file.count(name)) {
       // A node the file's graph did not have (a branch added to it): it keeps
       // its own initialisation (a linear node with init: zero starts as nothing).
-      widened->push_back({name, Shape{0, 0}, w->value.shape()});
+      changed.push_back({name, Shape{0, 0}, w->value.shape()});
       loaded.push_back(w->value);
       continue;
     }
     Tensor t = read_matrix(file, "/weights/" + name);
     const Shape from = t.shape(), to = w->value.shape();
-    const bool grows = widened && from.cols == to.cols && from.rows < to.rows;
-    if (from != to && !grows && keep_other_shapes) {
-      widened->push_back({name, from, to, true});
+    const bool grows = widening && from.cols == to.cols && from.rows < to.rows;
+    if (from != to && !grows && rule == OtherShape::kept_initial) {
+      changed.push_back({name, from, to, true});
       loaded.push_back(w->value);
       wanted.insert(name);
       continue;
     }
     if (from != to && !grows)
       throw ConfigError(path.string() + ": weight " + name + " is " + from.str() + " in the file, the graph has " + to.str() +
-                        (widened && from.cols != to.cols ? " (only rows, the inputs, may be added)" : ""));
+                        (widening && from.cols != to.cols ? " (only rows, the inputs, may be added)" : ""));
     if (grows) {
       Tensor grown(1, to.rows, to.cols, 0.0f);
       grown.mat(0).topRows(from.rows) = t.mat(0);
-      widened->push_back({name, from, to});
+      changed.push_back({name, from, to});
       t = std::move(grown);
     }
     loaded.push_back(std::move(t));
@@ -155,20 +161,21 @@ void load_named_weights(const fs::path& path, const NamedWeights& weights, bool 
 }  // namespace
 
 void load_weights(const fs::path& path, const NamedWeights& weights, bool allow_extra) {
-  load_named_weights(path, weights, allow_extra, nullptr);
+  std::vector<WidenedWeight> none;  // nothing differs: a difference is refused
+  load_named_weights(path, weights, allow_extra, OtherShape::refused, none);
 }
 
 void load_weights(const fs::path& path, Graph& graph, bool allow_extra) { load_weights(path, graph.weights(), allow_extra); }
 
 std::vector<WidenedWeight> load_weights_widening(const fs::path& path, const NamedWeights& weights) {
   std::vector<WidenedWeight> widened;
-  load_named_weights(path, weights, false, &widened);
+  load_named_weights(path, weights, false, OtherShape::rows_added, widened);
   return widened;
 }
 
 std::vector<WidenedWeight> load_weights_partial(const fs::path& path, const NamedWeights& weights) {
   std::vector<WidenedWeight> changed;
-  load_named_weights(path, weights, false, &changed, true);
+  load_named_weights(path, weights, false, OtherShape::kept_initial, changed);
   return changed;
 }
 

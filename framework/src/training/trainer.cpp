@@ -549,8 +549,8 @@ TrainReport train(const Registry& registry, const TrainOptions& given) {
   Graph& graph = dp.graph();
   check_trainable(graph, o.graph);
   const std::string output = garment_output(graph);
-  if (o.init_widen && o.init.empty()) throw ConfigError("--init-widen needs --init (the model to start from)");
-  if (o.init_partial && o.init.empty()) throw ConfigError("--init-partial needs --init (the model to start from)");
+  if ((o.init_widen || o.init_partial) && o.init.empty())
+    throw ConfigError(std::string(o.init_partial ? "--init-partial" : "--init-widen") + " needs --init (the model to start from)");
   if (!o.init.empty()) load_init_weights(o, dp);
   Learner learner{Adam(graph.weights()), EarlyStopping({o.patience, 0.0}), lr_schedule(o), WeightCopy(graph.weights()),
                   History()};
