@@ -66,6 +66,31 @@ double shoulder_width(const Eigen::MatrixX3d& v) {
   return 2 * half;
 }
 
+// Girth of the body's middle (|x| < 0.2 m: head and neck, not the arms) in a
+// band of heights (fractions of the height), as the ellipse through the band's
+// extents across and front to back; the narrowest or the widest band of
+// `bands` between `lo` and `hi`.
+double centre_girth(const Eigen::MatrixX3d& v, double lo, double hi, bool narrowest) {
+  const double bottom = v.col(1).minCoeff(), h = v.col(1).maxCoeff() - bottom;
+  const int bands = 8;
+  double best = narrowest ? 1e9 : 0;
+  for (int b = 0; b < bands; ++b) {
+    const double y0 = lo + (hi - lo) * b / bands, y1 = lo + (hi - lo) * (b + 1) / bands;
+    Eigen::Vector3d mn = Eigen::Vector3d::Constant(1e9), mx = -mn;
+    for (Eigen::Index i = 0; i < v.rows(); ++i) {
+      const double y = (v(i, 1) - bottom) / h;
+      if (y < y0 || y >= y1 || std::abs(v(i, 0)) > 0.2) continue;
+      mn = mn.cwiseMin(v.row(i).transpose());
+      mx = mx.cwiseMax(v.row(i).transpose());
+    }
+    REQUIRE(mx.x() > mn.x());
+    const double a = 0.5 * (mx.x() - mn.x()), c = 0.5 * (mx.z() - mn.z());
+    const double girth = M_PI * (3 * (a + c) - std::sqrt((3 * a + c) * (a + 3 * c)));  // Ramanujan
+    best = narrowest ? std::min(best, girth) : std::max(best, girth);
+  }
+  return best;
+}
+
 }  // namespace
 
 TEST_CASE("human rig: heavy shoulders widen with the arms' fat, not with their push away from the trunk", "[bodies][human]") {
@@ -88,6 +113,26 @@ TEST_CASE("human rig: heavy shoulders widen with the arms' fat, not with their p
   CHECK(human_39 - human_25 > 0.0);  // still wider: the arms' and the deltoids' own fat
   const double human_20 = width_at(human(), 20), mannequin_20 = width_at(*mannequin, 20);
   CHECK(std::abs(human_20 - mannequin_20) < 0.02);  // lean: the arms where the mannequin has them
+}
+
+TEST_CASE("human rig: a heavy neck stays a neck under a head", "[bodies][human]") {
+  // The human rig's neck grew as exp(0.6 x the adiposity above the mean) on
+  // top of the mannequin's own growth: at BMI 58 it was as wide around as the
+  // head (81 cm for a man of 1.80 m) and the head tapered above it into a
+  // cone. Clinical series of severe obesity measure necks of about 45-55 cm
+  // (men) and 40-50 cm (women); the head hardly grows. At the heavy corners the
+  // neck's narrowest girth (86-90 % of the height) stays well under the head's
+  // widest (91-96 %, ears included) and under 60 cm.
+  for (const double sex : {0.0, 1.0})
+    for (const double height : {1.5, 1.8, 2.0})
+      for (const double bmi : {58.0, 65.0}) {
+        BodyRequest r{bmi, height, sex, {}};
+        const Eigen::MatrixX3d v = human().vertices(solve_in_space(human(), r));
+        const double neck = centre_girth(v, 0.86, 0.90, true), head = centre_girth(v, 0.91, 0.96, false);
+        INFO("sex " << sex << ", height " << height << ", BMI " << bmi << ": neck " << neck << " m, head " << head << " m");
+        CHECK(neck < 0.92 * head);
+        CHECK(neck < 0.60);
+      }
 }
 
 TEST_CASE("human rig: every corner of the body space is a closed uncrossed body on its BMI and height", "[bodies][human]") {
