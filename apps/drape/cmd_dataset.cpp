@@ -9,6 +9,7 @@
 
 #include <drape/bodies/body.hpp>
 #include <drape/io/dataset.hpp>
+#include <drape/io/h5.hpp>
 #include <drape/errors.hpp>
 #include <drape/training/model.hpp>
 #include <drape/io/output_lock.hpp>
@@ -169,13 +170,24 @@ int info(const std::vector<std::string>& args) {
   const DatasetLayout& layout = reader.layout();
   const std::vector<std::size_t> done = reader.indices();
   const bool complete = done.size() == layout.samples;
+  std::string slim_note;  // how the bodies a slim file left out are rebuilt, and whether checked
+  if (!layout.body_vertices_stored) {
+    std::size_t witnessed = 0;
+    for (const fs::path& file : reader.files()) witnessed += h5::File::open(file).exists("/bodies/witness");
+    slim_note = " (not stored: a slim dataset, rebuilt as they are read" +
+                std::string(witnessed == reader.files().size() ? ", each checked against the witness of the simulated body"
+                            : witnessed == 0 ? "; no witness of the simulated bodies (slimmed before 2026-12-01): unchecked"
+                                             : "; " + std::to_string(witnessed) + " of " + std::to_string(reader.files().size()) +
+                                                   " files keep a witness of the simulated bodies, the others are unchecked") +
+                ")";
+  }
   if (reader.files().size() > 1)
     std::cout << path.string() << ": " << reader.files().size() << " files read as one, " << reader.files().front().string()
               << " ... " << reader.files().back().string() << "\n";
   std::cout << path.string() << ": drape dataset, " << (complete ? "complete" : "incomplete") << "\n"
             << "  samples   " << layout.samples << ", done " << done.size() << "\n"
             << "  sizes     body params P = " << layout.body_params << ", body vertices Nb = " << layout.body_vertices
-            << (layout.body_vertices_stored ? "" : " (not stored: a slim dataset, rebuilt as they are read)")
+            << slim_note
             << ", garment vertices Ng = " << layout.garment_vertices << ", faces "
             << (layout.garment_faces.rows() ? std::to_string(layout.garment_faces.rows()) : "not stored") << "\n"
             << "  poses     "

@@ -2,6 +2,7 @@
 #include <catch2/catch.hpp>
 
 #include <drape/io/dataset.hpp>
+#include <drape/io/h5.hpp>
 
 #include <fstream>
 #include <regex>
@@ -165,7 +166,7 @@ TEST_CASE("drape dataset slim and expand: the bodies rebuilt by the scene's body
   CHECK_THAT(out, Catch::Contains("3 samples without body vertices"));
   CHECK(fs::file_size(slim) * 3 < fs::file_size(data));
   REQUIRE(test::run_drape("dataset info " + slim, out) == 0);
-  CHECK_THAT(out, Catch::Contains("(not stored: a slim dataset, rebuilt as they are read)"));
+  CHECK_THAT(out, Catch::Contains("(not stored: a slim dataset, rebuilt as they are read, each checked against the witness of the simulated body)"));
   // A command that needs the bodies reads the slim file as it is: they are rebuilt as it reads.
   CHECK(test::run_drape("dataset potential " + slim + " --scene " + (dir / "tiny.yaml").string(), out) == 0);
   CHECK(test::run_drape("dataset slim " + data + " --out " + slim, out) == 2);  // never overwritten silently
@@ -183,4 +184,29 @@ TEST_CASE("drape dataset slim and expand: the bodies rebuilt by the scene's body
   CHECK(worst < 1e-6f);  // metres: the float parameters' rounding, nothing more
   const Tensor g0 = made.garment_vertices(all), g1 = rebuilt.garment_vertices(all);
   CHECK(std::equal(g0.data(), g0.data() + g0.size(), g1.data()));
+
+  // A body model that no longer builds the simulated bodies (here every
+  // sample's hips girth moved 0.02 towards the mean, as a changed body model
+  // would move its body) is refused by every reader of the slim file, naming
+  // the file and the sample, not paired silently with the stored drape.
+  const std::string changed = (dir / "changed.h5").string();
+  fs::copy_file(slim, changed);
+  {
+    h5::File file = h5::File::open(changed, h5::Access::ReadWrite);
+    std::vector<float> params = file.read<float>("/bodies/params");
+    const std::size_t p = params.size() / 3, hips = 6;  // the parametric body's shape: height, sex, weight, chest, waist, belly, hips
+    for (std::size_t row = 0; row < 3; ++row) {
+      float& girth = params[row * p + hips];
+      girth += girth > 0 ? -0.02f : 0.02f;
+    }
+    file.write_rows("/bodies/params", 0, 3, params.data());
+  }
+  for (const std::string& command : {"dataset expand " + changed + " --out " + (dir / "bad.h5").string(),
+                                     "dataset potential " + changed + " --scene " + (dir / "tiny.yaml").string()}) {
+    INFO(command);
+    CHECK(test::run_drape(command, out) == 2);
+    CHECK_THAT(out, Catch::Contains("changed.h5: sample ") && Catch::Contains("'s body, rebuilt from its parameters") &&
+                        Catch::Contains("not the body its drape was simulated on"));
+  }
+  CHECK_FALSE(fs::exists(dir / "bad.h5"));
 }

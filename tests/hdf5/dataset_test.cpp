@@ -321,7 +321,10 @@ namespace {
 // expanded dataset's bodies can be checked against it.
 class FormulaBody : public BodyModel {
  public:
-  explicit FormulaBody(int vertices = 7) : faces_(0, 3), vertices_(vertices) {}
+  // nudge: vertex `nudged` moved that far in x, as a body model changed
+  // after a dataset was made would move it.
+  explicit FormulaBody(int vertices = 7, double nudge = 0, int nudged = 0)
+      : faces_(0, 3), vertices_(vertices), nudge_(nudge), nudged_(nudged) {}
   int num_vertices() const override { return vertices_; }
   const Eigen::MatrixX3i& faces() const override { return faces_; }
   std::vector<std::string> shape_names() const override { return {"a", "b", "c", "d"}; }
@@ -330,6 +333,7 @@ class FormulaBody : public BodyModel {
     Eigen::MatrixX3d v(vertices_, 3);
     for (int i = 0; i < vertices_; ++i)
       for (int c = 0; c < 3; ++c) v(i, c) = shape[(i + c) % 4] * (i + 1) + 0.5 * c;
+    v(nudged_, 0) += nudge_;
     return v;
   }
   Eigen::VectorXd solve(const BodyRequest&) const override { return mean_shape(); }
@@ -338,6 +342,8 @@ class FormulaBody : public BodyModel {
  private:
   Eigen::MatrixX3i faces_;
   int vertices_;
+  double nudge_;
+  int nudged_;
 };
 
 // make_sample with the body the formula gives for its parameters.
@@ -390,6 +396,25 @@ TEST_CASE("dataset: a slim copy leaves the bodies out and expand rebuilds them f
   CHECK_THROWS_WITH(expand_datasets({dir / "slim.h5"}, dir / "bad.h5", FormulaBody(9)),
                     Catch::Contains("7 vertices") && Catch::Contains("has 9"));
   CHECK_FALSE(fs::exists(dir / "bad.h5"));
+
+  // The slim file keeps a witness of each body left out (here 7 blocks of one
+  // vertex: the vertex itself, spread 0), and a body model that no longer
+  // builds those bodies is refused as it rebuilds them, naming the sample;
+  // within the float rounding it is the same body.
+  {
+    const h5::File slim = h5::File::open(dir / "slim.h5");
+    h5::Dims dims;
+    const std::vector<double> witness = slim.read<double>("/bodies/witness", &dims);
+    REQUIRE(dims == h5::Dims{5, 7, 4});
+    const DatasetSample three = formula_sample(l, 3);
+    for (int c = 0; c < 3; ++c) CHECK(witness[(3 * 7 + 2) * 4 + c] == Approx(three.body_vertices(2, c)));
+    CHECK(witness[(3 * 7 + 2) * 4 + 3] == 0.0);
+  }
+  CHECK_THROWS_WITH(expand_datasets({dir / "slim.h5"}, dir / "bad.h5", FormulaBody(7, 0.002, 4)),
+                    Catch::Contains("slim.h5") && Catch::Contains("sample 0's body") &&
+                        Catch::Contains("not the body its drape was simulated on") && Catch::Contains("vertices 4-4 moved 2.00 mm"));
+  CHECK_FALSE(fs::exists(dir / "bad.h5"));
+  CHECK(expand_datasets({dir / "slim.h5"}, dir / "close.h5", FormulaBody(7, 1e-5, 4)) == 5);
 
   // A slim file whose recorded vertex count is damaged is refused, naming it.
   fs::copy_file(dir / "slim.h5", dir / "odd.h5");

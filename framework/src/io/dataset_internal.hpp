@@ -24,6 +24,27 @@ inline constexpr const char* kGarmentFaces = "/garments/faces";  // int32 [F, 3]
 inline constexpr const char* kSplit = "/split";
 inline constexpr const char* kDone = "/done";
 inline constexpr const char* kStats = "/stats";
+// A slim dataset's witness of the bodies it left out (float64 [N, B, 4], B =
+// witness_blocks(Nb); slim files made before 2026-12-01 have none): for each
+// of B blocks of consecutive body vertices, their mean x, y, z and the RMS
+// distance from that mean, of the body the drape was simulated on. A body
+// rebuilt from the parameters must match within kWitnessTolerance, or the
+// body model changed since the dataset was made.
+inline constexpr const char* kBodyWitness = "/bodies/witness";
+inline constexpr std::size_t kWitnessBlocks = 64;
+// 0.1 mm: a hundred times the float parameters' rounding in a rebuilt body
+// (tests/cli/dataset_cli_test.cpp), a tenth of the barrier's 1 mm.
+inline constexpr double kWitnessTolerance = 1e-4;
+std::size_t witness_blocks(int body_vertices);
+// The witness of one body (float [Nb, 3], row-major): B x 4 values.
+std::vector<double> body_witness(const float* body, int body_vertices);
+// "" when `rebuilt` matches the stored witness (B x 4 values), else what moved.
+std::string witness_mismatch(const float* rebuilt, int body_vertices, const double* stored);
+
+// The message for sample `row` (of its file) whose rebuilt body is not its
+// simulated one (`moved`: witness_mismatch's answer).
+std::string rebuilt_body_differs(std::size_t row, const std::string& moved);
+
 // Root attribute of a slim dataset: the body vertex count Nb, as text.
 inline constexpr const char* kBodyVerticesOmitted = "body_vertices_omitted";
 inline constexpr const char* kFormat = "drape dataset 1";  // root attribute `format`

@@ -90,11 +90,30 @@ void copy_rows(const h5::File& in, bool in_has_bodies, h5::File& out, const Data
     in.read_rows(kPose, from, count, poses.data());
     out.write_rows(kPose, to, count, poses.data());
   }
+  const std::size_t body_size = static_cast<std::size_t>(layout.body_vertices) * 3;
+  const std::size_t witness_size = witness_blocks(layout.body_vertices) * 4;
   if (bodies.write && in_has_bodies) {
-    copy(kBodyVertices, static_cast<std::size_t>(layout.body_vertices) * 3, float{});
+    copy(kBodyVertices, body_size, float{});
   } else if (bodies.write) {
     const std::vector<float> rows = rebuilt_bodies(*bodies.rebuild, params, count, p, layout.pose_angles, poses, bodies.rebuilt);
+    if (in.exists(kBodyWitness)) {  // the rebuilt bodies must be the simulated ones
+      std::vector<double> witness(count * witness_size);
+      in.read_rows(kBodyWitness, from, count, witness.data());
+      for (std::size_t r = 0; r < count; ++r)
+        if (const std::string moved = witness_mismatch(rows.data() + r * body_size, layout.body_vertices, witness.data() + r * witness_size);
+            !moved.empty())
+          throw ConfigError(in.path().string() + ": " + rebuilt_body_differs(from + r, moved));
+    }
     out.write_rows(kBodyVertices, to, count, rows.data());
+  } else if (in_has_bodies) {  // slim: the witness of the bodies left out
+    std::vector<float> rows(count * body_size);
+    in.read_rows(kBodyVertices, from, count, rows.data());
+    std::vector<double> witness;
+    for (std::size_t r = 0; r < count; ++r) {
+      const std::vector<double> w = body_witness(rows.data() + r * body_size, layout.body_vertices);
+      witness.insert(witness.end(), w.begin(), w.end());
+    }
+    out.write_rows(kBodyWitness, to, count, witness.data());
   }
   copy(kGarmentVertices, static_cast<std::size_t>(layout.garment_vertices) * 3, float{});
   copy(kSplit, 1, std::int8_t{});
@@ -196,6 +215,8 @@ std::size_t merge(const std::vector<fs::path>& shards, const fs::path& out, bool
   write_atomically(out, [&](const fs::path& tmp) {
     h5::File result = h5::File::create(tmp);
     create_layout(result, merged);
+    if (!bodies.write)
+      result.create<double>(kBodyWitness, {total, witness_blocks(merged.body_vertices), 4}, {.preallocate = true});
     std::size_t to = 0;
     for (std::size_t s = 0; s < files.size(); ++s) {
       const auto& d = done[s];

@@ -28,6 +28,7 @@ struct Part {
   h5::File file;
   std::size_t first = 0, rows = 0;
   bool bodies = true;  // false: a slim file, bodies rebuilt
+  bool witness = false;  // a slim file with the witness of its bodies (checked as they are rebuilt)
   bool posed = true;   // false: an A-pose file read with posed ones (its bodies at their rest angles)
 };
 
@@ -110,6 +111,16 @@ void DatasetReader::Impl::rebuild(const std::vector<std::size_t>& rows, const Da
     bodies[static_cast<std::size_t>(k)] =
         rebuilt_bodies(*body_model, one, 1, p, posed[static_cast<std::size_t>(k)] ? layout.pose_angles : at_rest, pose);
   }
+  // Each body checked against the witness of the one its drape was simulated on.
+  const std::size_t witness_size = witness_blocks(layout.body_vertices) * 4;
+  std::vector<double> witness(witness_size);
+  for (std::size_t k = 0; k < todo.size(); ++k) {
+    const Part& part = parts[part_of(todo[k])];
+    if (!part.witness) continue;
+    part.file.read_rows(kBodyWitness, todo[k] - part.first, 1, witness.data());
+    if (const std::string moved = witness_mismatch(bodies[k].data(), layout.body_vertices, witness.data()); !moved.empty())
+      throw ConfigError(part.file.path().string() + ": " + rebuilt_body_differs(todo[k] - part.first, moved));
+  }
   for (std::size_t k = 0; k < todo.size(); ++k) rebuilt[todo[k]] = std::move(bodies[k]);
 }
 
@@ -156,6 +167,7 @@ DatasetReader::DatasetReader(const fs::path& path) : impl_(std::make_unique<Impl
     part.first = layout_.samples;
     part.rows = layout.samples;
     part.bodies = layout.body_vertices_stored;
+    part.witness = !part.bodies && part.file.exists(kBodyWitness);
     part.posed = !layout.pose_angles.empty();
     if (impl_->parts.empty()) {
       layout_ = layout;
@@ -315,12 +327,28 @@ DatasetReader::Posing DatasetReader::posing(const std::vector<std::size_t>& indi
   const std::vector<PoseAngle> angles = model.pose_angles();
   const std::size_t joints = model.joints().size();
   std::vector<Impl::PosingRow> made(todo.size());
+  std::vector<std::string> moved(todo.size());  // a slim row's body that is not its witness's: what moved
+  const std::size_t witness_size = witness_blocks(layout_.body_vertices) * 4;
+  std::vector<double> witnesses;
+  std::vector<bool> witnessed(todo.size());
+  for (std::size_t k = 0; k < todo.size(); ++k) {
+    const Part& part = impl_->parts[impl_->part_of(todo[k])];
+    witnessed[k] = part.witness;
+    witnesses.resize((k + 1) * witness_size);
+    if (part.witness) part.file.read_rows(kBodyWitness, todo[k] - part.first, 1, witnesses.data() + k * witness_size);
+  }
   const auto n = static_cast<std::ptrdiff_t>(todo.size());
 #pragma omp parallel for schedule(dynamic)
   for (std::ptrdiff_t k = 0; k < n; ++k) {
     const auto u = static_cast<std::size_t>(k);
     const Eigen::VectorXd shape = Eigen::Map<const Eigen::VectorXf>(params.data() + u * p, static_cast<Eigen::Index>(p)).cast<double>();
     const Eigen::MatrixX3d unposed = model.vertices(shape);
+    if (witnessed[u]) {  // the body as the generator posed it (rebuilt_bodies), against the witness
+      const Eigen::MatrixX3d body =
+          posed[u] ? model.posed_vertices(unposed, pose_of_row(layout_.pose_angles, stored.data() + u * a), 1.0) : unposed;
+      const MatrixRM rows = body.cast<float>();
+      moved[u] = witness_mismatch(rows.data(), layout_.body_vertices, witnesses.data() + u * witness_size);
+    }
     const Pose pose = full_pose(model, posed[u] ? pose_of_row(layout_.pose_angles, stored.data() + u * a) : Pose{}, unposed);
     const MatrixRM transforms = posed[u] ? transforms_rows(model.joint_transforms(unposed, pose))
                                          : transforms_rows(std::vector<skinning::Rigid>(joints));
@@ -332,6 +360,11 @@ DatasetReader::Posing DatasetReader::posing(const std::vector<std::size_t>& indi
     for (const PoseAngle& angle : angles)
       row.angles.push_back(static_cast<float>(pose.angles.at(angle.name) * M_PI / 180.0));
   }
+  for (std::size_t k = 0; k < todo.size(); ++k)
+    if (!moved[k].empty()) {
+      const Part& part = impl_->parts[impl_->part_of(todo[k])];
+      throw ConfigError(part.file.path().string() + ": " + rebuilt_body_differs(todo[k] - part.first, moved[k]));
+    }
   for (std::size_t k = 0; k < todo.size(); ++k) impl_->posing[todo[k]] = std::move(made[k]);
   const int count = static_cast<int>(indices.size());
   Posing out{Tensor(count, layout_.body_vertices, 3), Tensor(count, static_cast<int>(joints), 12),
