@@ -44,6 +44,34 @@ def test_a_slim_glob_reads_as_the_merged_file(shards):
     np.testing.assert_array_equal(slim[-1]["body"], a["body"][0])  # rebuilt once, read again from the cache
 
 
+def test_the_witness_is_the_simulated_bodies_and_a_damaged_one_is_named(shards, tmp_path):
+    """/bodies/witness (docs/formats.md): per block of consecutive body vertices, their mean and RMS spread, computed
+    here from the full file's stored bodies by its definition; a witness of the wrong shape is refused by name."""
+    import shutil
+    with h5py.File(shards / "full-0.h5", "r") as f:
+        bodies = np.asarray(f["bodies/vertices"], dtype=np.float64)
+    with h5py.File(shards / "slim-0.h5", "r") as f:
+        witness = np.asarray(f["bodies/witness"])
+    n, nb, _ = bodies.shape
+    blocks = min(64, nb)
+    assert witness.shape == (n, blocks, 4)
+    for b in (0, 17, blocks - 1):
+        part = bodies[:, b * nb // blocks:(b + 1) * nb // blocks]
+        mean = part.mean(axis=1)
+        spread = np.sqrt(((part - mean[:, None]) ** 2).sum(axis=2).mean(axis=1))
+        np.testing.assert_allclose(witness[:, b, :3], mean, atol=1e-12)
+        np.testing.assert_allclose(witness[:, b, 3], spread, atol=1e-12)
+    damaged = tmp_path / "damaged.h5"
+    shutil.copy(shards / "slim-0.h5", damaged)
+    with h5py.File(damaged, "r+") as f:
+        del f["bodies/witness"]
+        f["bodies/witness"] = np.zeros((n, blocks, 3))
+    with open(damaged, "r+b") as fh:  # drape's seal (a CRC in the user block) zeroed: the file opens unchecked
+        fh.write(bytes(512))
+    _, err = run_drape("dataset", "expand", damaged, "--out", tmp_path / "out.h5", expect=2)
+    assert "damaged.h5: /bodies/witness has shape [%d, %d, 3], expected [%d, %d, 4]" % (n, blocks, n, blocks) in err
+
+
 def test_faces_are_stored_and_old_files_load(shards, tmp_path):
     d = drape.Dataset(str(shards / "merged.h5"))
     with h5py.File(shards / "merged.h5", "r") as f:

@@ -38,6 +38,8 @@ inline constexpr double kWitnessTolerance = 1e-4;
 std::size_t witness_blocks(int body_vertices);
 // The witness of one body (float [Nb, 3], row-major): B x 4 values.
 std::vector<double> body_witness(const float* body, int body_vertices);
+// ConfigError naming the file when its witness is not [N, B, 4] for its layout.
+void check_witness_shape(const h5::File& file, const DatasetLayout& layout);
 // "" when `rebuilt` matches the stored witness (B x 4 values), else what moved.
 std::string witness_mismatch(const float* rebuilt, int body_vertices, const double* stored);
 

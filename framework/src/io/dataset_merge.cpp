@@ -164,6 +164,7 @@ std::size_t merge(const std::vector<fs::path>& shards, const fs::path& out, bool
     if (bodies.write && !layout.body_vertices_stored && !bodies.rebuild)
       throw ConfigError(shard.string() + ": a slim dataset (no body vertices); join slim shards with `drape dataset expand`");
     if (!layout.body_vertices_stored && bodies.rebuild) dataset_body_model(bodies.rebuild, layout, shard.string());
+    if (!layout.body_vertices_stored && files[k].exists(kBodyWitness)) check_witness_shape(files[k], layout);
     layout.body_vertices_stored = bodies.write;  // compared across shards as the output will hold them
     done.push_back(files[k].read<std::uint8_t>(kDone));
     const std::size_t n = static_cast<std::size_t>(std::count(done.back().begin(), done.back().end(), 1));

@@ -168,6 +168,7 @@ DatasetReader::DatasetReader(const fs::path& path) : impl_(std::make_unique<Impl
     part.rows = layout.samples;
     part.bodies = layout.body_vertices_stored;
     part.witness = !part.bodies && part.file.exists(kBodyWitness);
+    if (part.witness) check_witness_shape(part.file, layout);
     part.posed = !layout.pose_angles.empty();
     if (impl_->parts.empty()) {
       layout_ = layout;

@@ -4,6 +4,8 @@
 // slimmer) would silently pair every stored drape with another body.
 #include "dataset_internal.hpp"
 
+#include <drape/errors.hpp>
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -60,6 +62,15 @@ std::string witness_mismatch(const float* rebuilt, int body_vertices, const doub
   std::snprintf(text, sizeof text, "its vertices %zu-%zu moved %.2f mm on average or in their spread", first, last - 1,
                 1e3 * worst);
   return text;
+}
+
+void check_witness_shape(const h5::File& file, const DatasetLayout& layout) {
+  const h5::Dims want{layout.samples, witness_blocks(layout.body_vertices), 4};
+  const h5::Dims have = file.shape(kBodyWitness);
+  if (have != want)
+    throw ConfigError(file.path().string() + ": " + kBodyWitness + " has shape " + h5::to_string(have) + ", expected " +
+                      h5::to_string(want) + " (the witness of its " + std::to_string(layout.samples) + " bodies of " +
+                      std::to_string(layout.body_vertices) + " vertices)");
 }
 
 std::string rebuilt_body_differs(std::size_t row, const std::string& moved) {
