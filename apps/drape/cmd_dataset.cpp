@@ -9,7 +9,6 @@
 
 #include <drape/bodies/body.hpp>
 #include <drape/io/dataset.hpp>
-#include <drape/io/h5.hpp>
 #include <drape/errors.hpp>
 #include <drape/training/model.hpp>
 #include <drape/io/output_lock.hpp>
@@ -172,8 +171,7 @@ int info(const std::vector<std::string>& args) {
   const bool complete = done.size() == layout.samples;
   std::string slim_note;  // how the bodies a slim file left out are rebuilt, and whether checked
   if (!layout.body_vertices_stored) {
-    std::size_t witnessed = 0;
-    for (const fs::path& file : reader.files()) witnessed += h5::File::open(file).exists("/bodies/witness");
+    const std::size_t witnessed = reader.witnessed_files();
     slim_note = " (not stored: a slim dataset, rebuilt as they are read" +
                 std::string(witnessed == reader.files().size() ? ", each checked against the witness of the simulated body"
                             : witnessed == 0 ? "; no witness of the simulated bodies (slimmed before 2026-12-01): unchecked"

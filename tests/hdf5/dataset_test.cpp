@@ -410,6 +410,8 @@ TEST_CASE("dataset: a slim copy leaves the bodies out and expand rebuilds them f
     for (int c = 0; c < 3; ++c) CHECK(witness[(3 * 7 + 2) * 4 + c] == Approx(three.body_vertices(2, c)));
     CHECK(witness[(3 * 7 + 2) * 4 + 3] == 0.0);
   }
+  CHECK(DatasetReader(dir / "slim.h5").witnessed_files() == 1);
+  CHECK(DatasetReader(dir / "full.h5").witnessed_files() == 0);  // its bodies are stored: nothing to check
   CHECK_THROWS_WITH(expand_datasets({dir / "slim.h5"}, dir / "bad.h5", FormulaBody(7, 0.002, 4)),
                     Catch::Contains("slim.h5") && Catch::Contains("sample 0's body") &&
                         Catch::Contains("not the body its drape was simulated on") && Catch::Contains("vertices 4-4 moved 2.00 mm"));

@@ -36,16 +36,15 @@ inline constexpr std::size_t kWitnessBlocks = 64;
 // (tests/cli/dataset_cli_test.cpp), a tenth of the barrier's 1 mm.
 inline constexpr double kWitnessTolerance = 1e-4;
 std::size_t witness_blocks(int body_vertices);
-// The witness of one body (float [Nb, 3], row-major): B x 4 values.
-std::vector<double> body_witness(const float* body, int body_vertices);
+// The witness of one body (float [Nb, 3], row-major) into `out` (B x 4 values).
+void body_witness(const float* body, int body_vertices, double* out);
+// "" when `rebuilt`, the body of sample `row` of `file` rebuilt from its
+// parameters, matches the sample's stored witness (B x 4 values); else the
+// message a reader refuses it with (file, sample, the vertices that moved).
+std::string not_the_simulated_body(const std::string& file, std::size_t row, const float* rebuilt, int body_vertices,
+                                   const double* stored);
 // ConfigError naming the file when its witness is not [N, B, 4] for its layout.
 void check_witness_shape(const h5::File& file, const DatasetLayout& layout);
-// "" when `rebuilt` matches the stored witness (B x 4 values), else what moved.
-std::string witness_mismatch(const float* rebuilt, int body_vertices, const double* stored);
-
-// The message for sample `row` (of its file) whose rebuilt body is not its
-// simulated one (`moved`: witness_mismatch's answer).
-std::string rebuilt_body_differs(std::size_t row, const std::string& moved);
 
 // Root attribute of a slim dataset: the body vertex count Nb, as text.
 inline constexpr const char* kBodyVerticesOmitted = "body_vertices_omitted";

@@ -74,7 +74,7 @@ struct BodyVertices {
 
 // Copies `count` rows starting at `from` in `in` to row `to` of `out`, for
 // every array; a statistic the shard lacks gets its value in `fills`.
-void copy_rows(const h5::File& in, bool in_has_bodies, h5::File& out, const DatasetLayout& layout, std::size_t from,
+void copy_rows(const h5::File& in, bool in_has_bodies, bool in_has_witness, h5::File& out, const DatasetLayout& layout, std::size_t from,
                std::size_t to, std::size_t count, const std::map<std::string, double>& fills, const BodyVertices& bodies) {
   auto copy = [&](const std::string& dataset, std::size_t row_size, auto tag) {
     using T = decltype(tag);
@@ -96,23 +96,22 @@ void copy_rows(const h5::File& in, bool in_has_bodies, h5::File& out, const Data
     copy(kBodyVertices, body_size, float{});
   } else if (bodies.write) {
     const std::vector<float> rows = rebuilt_bodies(*bodies.rebuild, params, count, p, layout.pose_angles, poses, bodies.rebuilt);
-    if (in.exists(kBodyWitness)) {  // the rebuilt bodies must be the simulated ones
+    if (in_has_witness) {  // the rebuilt bodies must be the simulated ones
       std::vector<double> witness(count * witness_size);
       in.read_rows(kBodyWitness, from, count, witness.data());
       for (std::size_t r = 0; r < count; ++r)
-        if (const std::string moved = witness_mismatch(rows.data() + r * body_size, layout.body_vertices, witness.data() + r * witness_size);
-            !moved.empty())
-          throw ConfigError(in.path().string() + ": " + rebuilt_body_differs(from + r, moved));
+        if (const std::string refused = not_the_simulated_body(in.path().string(), from + r, rows.data() + r * body_size,
+                                                               layout.body_vertices, witness.data() + r * witness_size);
+            !refused.empty())
+          throw ConfigError(refused);
     }
     out.write_rows(kBodyVertices, to, count, rows.data());
   } else if (in_has_bodies) {  // slim: the witness of the bodies left out
     std::vector<float> rows(count * body_size);
     in.read_rows(kBodyVertices, from, count, rows.data());
-    std::vector<double> witness;
-    for (std::size_t r = 0; r < count; ++r) {
-      const std::vector<double> w = body_witness(rows.data() + r * body_size, layout.body_vertices);
-      witness.insert(witness.end(), w.begin(), w.end());
-    }
+    std::vector<double> witness(count * witness_size);
+    for (std::size_t r = 0; r < count; ++r)
+      body_witness(rows.data() + r * body_size, layout.body_vertices, witness.data() + r * witness_size);
     out.write_rows(kBodyWitness, to, count, witness.data());
   }
   copy(kGarmentVertices, static_cast<std::size_t>(layout.garment_vertices) * 3, float{});
@@ -139,6 +138,7 @@ std::size_t merge(const std::vector<fs::path>& shards, const fs::path& out, bool
   std::string templates;
   std::vector<std::map<std::string, double>> fills;  // per shard: the statistics it lacks (--mixed-sizes)
   std::vector<bool> has_bodies;                       // per shard: false for a slim one
+  std::vector<bool> has_witness;                      // per shard: a slim one that keeps the witness of its bodies
   std::vector<DatasetLayout> layouts;
   std::vector<std::string> all_stats;  // with --mixed-sizes: every shard's, and the size flag and grade
   for (const auto& shard : shards) {
@@ -164,7 +164,8 @@ std::size_t merge(const std::vector<fs::path>& shards, const fs::path& out, bool
     if (bodies.write && !layout.body_vertices_stored && !bodies.rebuild)
       throw ConfigError(shard.string() + ": a slim dataset (no body vertices); join slim shards with `drape dataset expand`");
     if (!layout.body_vertices_stored && bodies.rebuild) dataset_body_model(bodies.rebuild, layout, shard.string());
-    if (!layout.body_vertices_stored && files[k].exists(kBodyWitness)) check_witness_shape(files[k], layout);
+    has_witness.push_back(!layout.body_vertices_stored && files[k].exists(kBodyWitness));
+    if (has_witness.back()) check_witness_shape(files[k], layout);
     layout.body_vertices_stored = bodies.write;  // compared across shards as the output will hold them
     done.push_back(files[k].read<std::uint8_t>(kDone));
     const std::size_t n = static_cast<std::size_t>(std::count(done.back().begin(), done.back().end(), 1));
@@ -231,7 +232,7 @@ std::size_t merge(const std::vector<fs::path>& shards, const fs::path& out, bool
         }
         std::size_t run = 1;
         while (i + run < d.size() && d[i + run] && run < kBlock) ++run;
-        copy_rows(files[s], has_bodies[s], result, merged, i, to, run, fills[s], bodies);
+        copy_rows(files[s], has_bodies[s], has_witness[s], result, merged, i, to, run, fills[s], bodies);
         i += run;
         to += run;
       }

@@ -80,6 +80,21 @@ struct DatasetReader::Impl {
 
   // Rebuilds the bodies of `rows` (slim rows) not rebuilt yet, in parallel; then rebuilt.at(row) holds each.
   void rebuild(const std::vector<std::size_t>& rows, const DatasetLayout& layout) const;
+
+  // The stored witnesses of those of `rows` whose file keeps one, read in
+  // runs (gather): witness_size values each; at[k] is row k's offset in
+  // them, -1 for a row without.
+  std::vector<double> witnesses(const std::vector<std::size_t>& rows, std::size_t witness_size,
+                                std::vector<std::ptrdiff_t>& at) const {
+    std::vector<std::size_t> kept;
+    at.assign(rows.size(), -1);
+    for (std::size_t k = 0; k < rows.size(); ++k)
+      if (parts[part_of(rows[k])].witness) at[k] = static_cast<std::ptrdiff_t>(kept.size() * witness_size), kept.push_back(rows[k]);
+    std::vector<double> out(kept.size() * witness_size);
+    gather(kBodyWitness, kept, witness_size, out.data());
+    return out;
+  }
+
 };
 
 void DatasetReader::Impl::rebuild(const std::vector<std::size_t>& rows, const DatasetLayout& layout) const {
@@ -112,14 +127,15 @@ void DatasetReader::Impl::rebuild(const std::vector<std::size_t>& rows, const Da
         rebuilt_bodies(*body_model, one, 1, p, posed[static_cast<std::size_t>(k)] ? layout.pose_angles : at_rest, pose);
   }
   // Each body checked against the witness of the one its drape was simulated on.
-  const std::size_t witness_size = witness_blocks(layout.body_vertices) * 4;
-  std::vector<double> witness(witness_size);
+  std::vector<std::ptrdiff_t> at;
+  const std::vector<double> stored = witnesses(todo, witness_blocks(layout.body_vertices) * 4, at);
   for (std::size_t k = 0; k < todo.size(); ++k) {
+    if (at[k] < 0) continue;
     const Part& part = parts[part_of(todo[k])];
-    if (!part.witness) continue;
-    part.file.read_rows(kBodyWitness, todo[k] - part.first, 1, witness.data());
-    if (const std::string moved = witness_mismatch(bodies[k].data(), layout.body_vertices, witness.data()); !moved.empty())
-      throw ConfigError(part.file.path().string() + ": " + rebuilt_body_differs(todo[k] - part.first, moved));
+    if (const std::string refused = not_the_simulated_body(part.file.path().string(), todo[k] - part.first, bodies[k].data(),
+                                                           layout.body_vertices, stored.data() + at[k]);
+        !refused.empty())
+      throw ConfigError(refused);
   }
   for (std::size_t k = 0; k < todo.size(); ++k) rebuilt[todo[k]] = std::move(bodies[k]);
 }
@@ -206,6 +222,10 @@ DatasetReader::~DatasetReader() = default;
 DatasetReader::DatasetReader(DatasetReader&&) noexcept = default;
 
 const std::vector<fs::path>& DatasetReader::files() const { return impl_->files; }
+
+std::size_t DatasetReader::witnessed_files() const {
+  return static_cast<std::size_t>(std::count_if(impl_->parts.begin(), impl_->parts.end(), [](const Part& p) { return p.witness; }));
+}
 
 std::vector<std::size_t> DatasetReader::indices() const {
   std::vector<std::size_t> out;
@@ -328,27 +348,25 @@ DatasetReader::Posing DatasetReader::posing(const std::vector<std::size_t>& indi
   const std::vector<PoseAngle> angles = model.pose_angles();
   const std::size_t joints = model.joints().size();
   std::vector<Impl::PosingRow> made(todo.size());
-  std::vector<std::string> moved(todo.size());  // a slim row's body that is not its witness's: what moved
-  const std::size_t witness_size = witness_blocks(layout_.body_vertices) * 4;
-  std::vector<double> witnesses;
-  std::vector<bool> witnessed(todo.size());
-  for (std::size_t k = 0; k < todo.size(); ++k) {
-    const Part& part = impl_->parts[impl_->part_of(todo[k])];
-    witnessed[k] = part.witness;
-    witnesses.resize((k + 1) * witness_size);
-    if (part.witness) part.file.read_rows(kBodyWitness, todo[k] - part.first, 1, witnesses.data() + k * witness_size);
-  }
+  // A slim row whose file keeps a witness: its body as the generator posed it
+  // (rebuilt_bodies) checked against it; refused[k] says why not (HDF5 reads
+  // and the throw stay on this thread).
+  std::vector<std::ptrdiff_t> at;
+  const std::vector<double> stored_witness = impl_->witnesses(todo, witness_blocks(layout_.body_vertices) * 4, at);
+  std::vector<std::string> refused(todo.size());
   const auto n = static_cast<std::ptrdiff_t>(todo.size());
 #pragma omp parallel for schedule(dynamic)
   for (std::ptrdiff_t k = 0; k < n; ++k) {
     const auto u = static_cast<std::size_t>(k);
     const Eigen::VectorXd shape = Eigen::Map<const Eigen::VectorXf>(params.data() + u * p, static_cast<Eigen::Index>(p)).cast<double>();
     const Eigen::MatrixX3d unposed = model.vertices(shape);
-    if (witnessed[u]) {  // the body as the generator posed it (rebuilt_bodies), against the witness
-      const Eigen::MatrixX3d body =
-          posed[u] ? model.posed_vertices(unposed, pose_of_row(layout_.pose_angles, stored.data() + u * a), 1.0) : unposed;
-      const MatrixRM rows = body.cast<float>();
-      moved[u] = witness_mismatch(rows.data(), layout_.body_vertices, witnesses.data() + u * witness_size);
+    if (at[u] >= 0) {
+      const Part& part = impl_->parts[impl_->part_of(todo[u])];
+      const MatrixRM body =
+          (posed[u] ? model.posed_vertices(unposed, pose_of_row(layout_.pose_angles, stored.data() + u * a), 1.0) : unposed)
+              .cast<float>();
+      refused[u] = not_the_simulated_body(part.file.path().string(), todo[u] - part.first, body.data(), layout_.body_vertices,
+                                          stored_witness.data() + at[u]);
     }
     const Pose pose = full_pose(model, posed[u] ? pose_of_row(layout_.pose_angles, stored.data() + u * a) : Pose{}, unposed);
     const MatrixRM transforms = posed[u] ? transforms_rows(model.joint_transforms(unposed, pose))
@@ -361,11 +379,8 @@ DatasetReader::Posing DatasetReader::posing(const std::vector<std::size_t>& indi
     for (const PoseAngle& angle : angles)
       row.angles.push_back(static_cast<float>(pose.angles.at(angle.name) * M_PI / 180.0));
   }
-  for (std::size_t k = 0; k < todo.size(); ++k)
-    if (!moved[k].empty()) {
-      const Part& part = impl_->parts[impl_->part_of(todo[k])];
-      throw ConfigError(part.file.path().string() + ": " + rebuilt_body_differs(todo[k] - part.first, moved[k]));
-    }
+  for (const std::string& why : refused)
+    if (!why.empty()) throw ConfigError(why);
   for (std::size_t k = 0; k < todo.size(); ++k) impl_->posing[todo[k]] = std::move(made[k]);
   const int count = static_cast<int>(indices.size());
   Posing out{Tensor(count, layout_.body_vertices, 3), Tensor(count, static_cast<int>(joints), 12),

@@ -144,6 +144,9 @@ class DatasetReader {
   const DatasetLayout& layout() const { return layout_; }
   std::size_t size() const { return layout_.samples; }
   const std::vector<std::filesystem::path>& files() const;  // the file, or the pattern's files in order
+  // Of files(), the slim ones that keep the witness of their simulated bodies
+  // (/bodies/witness, docs/formats.md): their rebuilt bodies are checked.
+  std::size_t witnessed_files() const;
   const std::vector<std::int8_t>& splits() const { return split_; }
   const std::vector<std::uint8_t>& done() const { return done_; }
   bool mixed_poses() const { return mixed_poses_; }  // A-pose files read with posed ones
