@@ -96,7 +96,7 @@ ImplicitBody plan_human_body(const Eigen::VectorXd& shape) {
     calf = Primitive::ellipsoid(calf.a, calf.semi.cwiseProduct(V3(1.08, 1.0, 1.08)), calf.blend).in(Region::Calf, side);
   }
   Primitive& neck_part = part_of(body, Region::Neck, 0);
-  const double neck_g = 1.03 * std::exp(-0.2 * excess);
+  const double neck_g = 1.03 * grow(0.0, -0.2, 0.0);  // on top of the mannequin's: as it is up to the mean, slower above
   neck_part = Primitive::cone(neck_part.a, neck_part.ra * neck_g, neck_part.b, neck_part.rb * neck_g, neck_part.blend).in(Region::Neck);
 
   // Buttocks: behind the hips ellipsoid and below its centre, in proportion to
