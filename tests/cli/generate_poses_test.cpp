@@ -7,6 +7,7 @@
 #include <drape/assets/assets.hpp>
 #include <drape/bodies/garment_skinning.hpp>
 #include <drape/io/dataset.hpp>
+#include <drape/io/h5.hpp>
 #include <drape/scene/scene.hpp>
 #include <drape/training/model.hpp>
 
@@ -97,6 +98,19 @@ TEST_CASE("drape generate --poses draw stores each body's drawn pose and keeps t
   const Tensor rebuilt = slim.body_vertices(idx);
   CHECK(slim.poses(idx).mat(1) == poses.mat(1));
   for (int i = 0; i < 3; ++i) CHECK((rebuilt.mat(i) - bodies.mat(i)).cwiseAbs().maxCoeff() < 1e-5f);
+  CHECK_NOTHROW(DatasetReader(dir / "slim.h5").posing(idx));  // each posed body checked against its witness, and passing
+  // A stored pose the generator did not simulate (the first angle of sample 1
+  // moved 10 degrees): posing() poses that body to check it against the
+  // witness of the simulated one, and refuses it by file and sample.
+  fs::copy_file(dir / "slim.h5", dir / "moved.h5");
+  {
+    h5::File file = h5::File::open(dir / "moved.h5", h5::Access::ReadWrite);
+    std::vector<float> angles = file.read<float>("/bodies/pose");
+    angles[names.size()] += 10.0f;
+    file.write_rows("/bodies/pose", 0, 3, angles.data());
+  }
+  CHECK_THROWS_WITH(DatasetReader(dir / "moved.h5").posing({1}),
+                    Catch::Contains("moved.h5: sample 1's body") && Catch::Contains("not the body its drape was simulated on"));
   REQUIRE(test::run_drape("dataset expand " + (dir / "slim.h5").string() + " --out " + (dir / "whole.h5").string(), out) == 0);
   const DatasetReader whole(dir / "whole.h5");
   CHECK(whole.layout().pose_angles == names);

@@ -353,6 +353,8 @@ DatasetReader::Posing DatasetReader::posing(const std::vector<std::size_t>& indi
   // and the throw stay on this thread).
   std::vector<std::ptrdiff_t> at;
   const std::vector<double> stored_witness = impl_->witnesses(todo, witness_blocks(layout_.body_vertices) * 4, at);
+  for (std::size_t k = 0; k < todo.size(); ++k)
+    if (impl_->rebuilt.count(todo[k])) at[k] = -1;  // checked when body_vertices rebuilt it: not posed again
   std::vector<std::string> refused(todo.size());
   const auto n = static_cast<std::ptrdiff_t>(todo.size());
 #pragma omp parallel for schedule(dynamic)
