@@ -3,6 +3,7 @@
 #include <drape/bodies/garment_skinning.hpp>
 #include <drape/errors.hpp>
 #include <drape/io/dataset.hpp>
+#include <drape/io/dataset_copy.hpp>
 #include <drape/scene/scene.hpp>
 #include <drape/services/dataset_unposing.hpp>
 #include <drape/training/model.hpp>
@@ -38,32 +39,24 @@ std::size_t unpose_dataset(const Registry& registry, const std::filesystem::path
       ": garments and bodies in each body's rest pose (the skin node's weights inverted); the sample's joint angles "
       "are the statistics pose_<name>, degrees";
   DatasetWriter writer(out, layout);
-  constexpr std::size_t kSlice = 64;  // bounded memory; the reader keeps each body's posing once
-  for (std::size_t first = 0; first < rows.size(); first += kSlice) {
-    const std::vector<std::size_t> slice(rows.begin() + static_cast<std::ptrdiff_t>(first),
-                                         rows.begin() + static_cast<std::ptrdiff_t>(std::min(rows.size(), first + kSlice)));
-    // The slice's arrays and statistics in one read each (DatasetReader::sample
-    // would read every statistic per sample, and rebuild a slim file's posed
-    // body only to have it replaced by the rest one).
-    const DatasetReader::Posing posing = reader.posing(slice);
-    const Tensor garments = reader.garment_vertices(slice), params = reader.body_params(slice), angles = reader.poses(slice);
-    std::map<std::string, std::vector<double>> stats;
-    for (const std::string& name : have.stats) stats[name] = reader.stat(name, slice);
-    for (std::size_t k = 0; k < slice.size(); ++k) {
-      const int i = static_cast<int>(k);
-      DatasetSample s;
-      s.body_params = params.mat(i).row(0).transpose();
-      s.body_vertices = posing.unposed.mat(i);
-      s.garment_vertices =
-          unpose_garment(garments.mat(i).cast<double>(), weights, transforms_of_rows(posing.transforms, i)).cast<float>();
-      s.split = static_cast<Split>(reader.splits()[slice[k]]);
-      for (const auto& [name, values] : stats) s.stats[name] = values[k];
-      for (std::size_t a = 0; a < have.pose_angles.size(); ++a)
-        s.stats["pose_" + have.pose_angles[a]] = static_cast<double>(angles(i, 0, static_cast<int>(a)));
-      writer.write(first + k, s);
-      if (done) done();
-    }
-  }
+  copy_done_samples(
+      reader, writer,
+      [&](const std::vector<std::size_t>& slice, std::vector<DatasetSample>& samples) {
+        // The rest bodies and transforms once per slice (the reader keeps each body's posing once).
+        const DatasetReader::Posing posing = reader.posing(slice);
+        const Tensor angles = reader.poses(slice);
+        for (std::size_t k = 0; k < slice.size(); ++k) {
+          const int i = static_cast<int>(k);
+          DatasetSample& s = samples[k];
+          s.body_vertices = posing.unposed.mat(i);
+          s.garment_vertices =
+              unpose_garment(s.garment_vertices.cast<double>(), weights, transforms_of_rows(posing.transforms, i))
+                  .cast<float>();
+          for (std::size_t a = 0; a < have.pose_angles.size(); ++a)
+            s.stats["pose_" + have.pose_angles[a]] = static_cast<double>(angles(i, 0, static_cast<int>(a)));
+        }
+      },
+      done);
   writer.finish();
   return rows.size();
 }
