@@ -15,6 +15,7 @@
 #include <drape/progress.hpp>
 #include <drape/registry.hpp>
 #include <drape/scene/scene.hpp>
+#include <drape/services/dataset_resampling.hpp>
 #include <drape/services/dataset_unposing.hpp>
 
 #include <cmath>
@@ -32,6 +33,7 @@ const char* kMergeUsage = "drape dataset merge --out FILE SHARD... [--allow-inco
 const char* kInfoUsage = "drape dataset info FILE [--scene-lines N]";
 const char* kSlimUsage = "drape dataset slim FILE --out SLIM [--force]";
 const char* kUnposeUsage = "drape dataset unpose FILE --out CANONICAL [--force]";
+const char* kResampleUsage = "drape dataset resample FILE --onto SCENE --out RESAMPLED [--force]";
 const char* kExpandUsage = "drape dataset expand --out FILE SLIM... [--allow-incomplete] [--mixed-sizes] [--force]";
 
 void refuse_existing(const fs::path& out, const po::variables_map& vm) {
@@ -138,6 +140,32 @@ int unpose(const std::vector<std::string>& args) {
   return 0;
 }
 
+int resample(const std::vector<std::string>& args) {
+  po::options_description opts("drape dataset resample");
+  opts.add_options()("file", po::value<std::string>()->required(), "an A-pose dataset (slim or full), or a glob pattern of shards")(
+      "onto", po::value<std::string>()->required(),
+      "a scene whose template body the bodies are carried onto (the same garment), e.g. the mannequin's "
+      "graphs/scenes/tshirt_coarse_sized.yaml for the human rig's drapes")(
+      "out,o", po::value<std::string>()->required(), "the dataset of the resampled bodies (full)")(
+      "force", "replace --out if it exists");
+  po::positional_options_description positional;
+  positional.add("file", 1);
+  po::variables_map vm;
+  if (!parse(kResampleUsage, args, opts, positional, vm)) return 0;
+  const fs::path in = vm["file"].as<std::string>(), onto = vm["onto"].as<std::string>(), out = vm["out"].as<std::string>();
+  const OutputLock lock(out, "drape dataset resample");
+  refuse_existing(out, vm);
+  if (fs::exists(out)) fs::remove(out);
+  ProgressBar bar("resample", DatasetReader(in).indices().size());
+  const ResampleSummary s = resample_dataset(Registry::load_default(plugin_path(vm)), in, onto, out, [&] { bar.advance(); });
+  bar.finish();
+  std::cout << "wrote " << out.string() << ": " << s.samples << " drapes, each body of " << s.source_vertices
+            << " vertices read at the " << s.target_vertices << " vertices of " << onto.filename().string()
+            << "'s template body (those lie " << s.median_distance * 1000 << " mm from the source template's surface at "
+            << "the median, " << s.p90_distance * 1000 << " mm at 90 %, " << s.max_distance * 1000 << " mm at most)\n";
+  return 0;
+}
+
 // "name: 12 recorded, mean 0.5, min 0, max 1" over the done samples.
 std::string stat_summary(const DatasetReader& reader, const std::string& name, const std::vector<std::size_t>& done) {
   const std::vector<double> values = reader.stat(name, done);
@@ -220,7 +248,7 @@ int info(const std::vector<std::string>& args) {
 int run(const std::vector<std::string>& args) {
   const std::string usage =
       std::string("usage: ") + kMergeUsage + "\n       " + kInfoUsage + "\n       " + kPotentialUsage + "\n       " +
-      kSlimUsage + "\n       " + kExpandUsage + "\n       " + kUnposeUsage;
+      kSlimUsage + "\n       " + kExpandUsage + "\n       " + kUnposeUsage + "\n       " + kResampleUsage;
   if (args.empty()) throw UsageError("merge or info?\n" + usage);
   const std::string& action = args[0];
   const std::vector<std::string> rest(args.begin() + 1, args.end());
@@ -230,16 +258,18 @@ int run(const std::vector<std::string>& args) {
   if (action == "slim") return slim(rest);
   if (action == "expand") return expand(rest);
   if (action == "unpose") return unpose(rest);
+  if (action == "resample") return resample(rest);
   if (action == "--help" || action == "-h" || action == "help") {
     std::cout << usage << "\n\n  merge  join shards generated in parallel into one dataset\n"
                           "  info   sizes, splits, stats and scene of a dataset file\n"
                           "  potential  every effect's energy, L_p and p of the stored drapes under a scene\n"
                           "  slim   a copy without the body vertices (rebuilt from the shape parameters by expand)\n"
                           "  expand join slim datasets into one full dataset, the bodies rebuilt by the scene's body model\n"
-                          "  unpose a posed dataset's drapes and bodies in each body's rest pose (docs/poses.md)\n";
+                          "  unpose a posed dataset's drapes and bodies in each body's rest pose (docs/poses.md)\n"
+                          "  resample  the bodies carried onto another body model's template vertices (docs/bodies.md)\n";
     return 0;
   }
-  throw UsageError("unknown action '" + action + "'" + did_you_mean(action, {"merge", "info", "potential", "slim", "expand", "unpose"}) + "\n" + usage);
+  throw UsageError("unknown action '" + action + "'" + did_you_mean(action, {"merge", "info", "potential", "slim", "expand", "unpose", "resample"}) + "\n" + usage);
 }
 
 const RegisterCommand registration{{"dataset", "merge dataset shards, show what a dataset file holds, its drapes' potential under a scene, or slim and expand it", run}};

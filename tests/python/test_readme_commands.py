@@ -35,6 +35,7 @@ NOT_RUN = {
     "simulate graphs/scenes/tshirt_coarse_posed.yaml": "a posed drape: half a minute (tests/physics drapes posed bodies)",
     "generate ": "2,000 drapes: hours (tests/cli generates small datasets)",
     "dataset unpose posed.h5": "needs posed.h5 from generate --poses draw",
+    "dataset resample": "half a minute over the human rig's shards; tests/python/test_dataset_resample.py runs it on shard 0",
     "dataset merge": "needs shard0.h5 and shard1.h5 from generate --shard",
     "dataset info all.h5": "needs all.h5 from dataset merge",
     "dataset slim all.h5": "needs all.h5 from dataset merge",
