@@ -1,18 +1,19 @@
 #!/usr/bin/env bash
 # A model of the human rig (issue 54, item 1): the shipped A-pose model's
-# graph (graphs/sizes/drape_grade_v2v1000_post.yaml: the garment's grade on
-# the encoded features, V2V at 1000, TailorNet's push-out as the node `post`)
-# trained on the human rig's drapes in each body's own size
-# (datasets/bodyspace2000-human, every shard there is), starting from the
-# shipped mannequin model: --init-partial loads every weight of the same
-# shape (31 of 35) and leaves the 4 that differ on the human rig's template
-# at their initialisation (docs/training.md). Resumable (drape train --resume);
-# the push-out is set on after training, as for the shipped model.
+# graph with its encoder reading the body resampled onto the mannequin's
+# vertices (graphs/human/drape_grade_v2v1000_post_resampled.yaml: the
+# garment's grade on the encoded features, V2V at 1000, TailorNet's push-out
+# as the node `post`, and `shape` a resample_body node; drape train
+# --encoder-body parametric), trained on the human rig's drapes in each body's
+# own size (datasets/bodyspace2000-human, every shard there is), starting from
+# every weight of the shipped mannequin model (docs/bodies.md, "One encoder
+# for both rigs"). Resumable (drape train --resume); the push-out is set on
+# after training, as for the shipped model.
 #
 #   bash scripts/train_human_model.sh [WORK_DIR]     (default: work-human-model/)
 #
 # Environment: BUILD_DIR (default build), GRAPH (default
-# graphs/sizes/drape_grade_v2v1000_post.yaml), INIT (default
+# graphs/human/drape_grade_v2v1000_post_resampled.yaml), INIT (default
 # models/tshirt-coarse.h5), THREADS (default 1), EPOCHS (the cosine
 # schedule, default 60), LR (default 1e-3), PATIENCE (default 30).
 set -euo pipefail
@@ -30,8 +31,8 @@ if [[ ! -f "$DATA" || $(cat "$WORK/shards" 2>/dev/null) != "${#SHARDS[@]}" ]]; t
   echo "${#SHARDS[@]}" >"$WORK/shards"
 fi
 
-"$DRAPE" train "${GRAPH:-graphs/sizes/drape_grade_v2v1000_post.yaml}" --data "$DATA" --out "$WORK/model.h5" \
-  --init "${INIT:-models/tshirt-coarse.h5}" --init-partial --epochs "${EPOCHS:-60}" --schedule cosine --lr "${LR:-1e-3}" \
+"$DRAPE" train "${GRAPH:-graphs/human/drape_grade_v2v1000_post_resampled.yaml}" --data "$DATA" --out "$WORK/model.h5" \
+  --encoder-body parametric --init "${INIT:-models/tshirt-coarse.h5}" --epochs "${EPOCHS:-60}" --schedule cosine --lr "${LR:-1e-3}" \
   --patience "${PATIENCE:-30}" --batch 8 --seed 0 --threads "${THREADS:-1}" --resume
 "$DRAPE" model set "$WORK/model.h5" --set post.enabled=true --set post.epsilon=0.006
 

@@ -70,6 +70,11 @@ int run(const std::vector<std::string>& given) {
       "init-partial", po::bool_switch(), "with --init, as --init-widen, and a weight of another shape in the file keeps "
                                          "its initialisation (listed): a model of the same garment on another body "
                                          "model's template, e.g. the mannequin's model to start the human rig's")(
+      "encoder-body", po::value<std::string>(),
+      "a body model whose vertices the encoder reads (the graph's resample_body node carries the dataset's bodies onto "
+      "its mean body's vertices), e.g. parametric for the human rig's drapes, so that the mannequin's model starts it "
+      "with its encoder as it was (docs/bodies.md, \"One encoder for both rigs\"); its template vertices' count "
+      "replaces the body's for the encoder")(
       "resume", po::bool_switch(), "continue an interrupted training from <out>.state (starts afresh when there is none)")(
       "force", po::bool_switch(), "start over, deleting <out> and <out>.state")(
       "quiet,q", po::bool_switch(), "no progress bar");
@@ -106,6 +111,7 @@ int run(const std::vector<std::string>& given) {
   if (vm.count("init")) o.init = find_input_file(vm["init"].as<std::string>());
   o.init_widen = vm["init-widen"].as<bool>();
   o.init_partial = vm["init-partial"].as<bool>();
+  if (vm.count("encoder-body")) o.encoder_body = vm["encoder-body"].as<std::string>();
   o.resume = vm["resume"].as<bool>();
   o.force = vm["force"].as<bool>();
   o.log = &std::cout;

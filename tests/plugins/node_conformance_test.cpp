@@ -63,6 +63,7 @@ const std::map<std::string, std::string>& checked_elsewhere() {
       {"push_out", "tests/gcn/tailornet_parts_test.cpp"},
       {"spectral_lowpass", "tests/gcn/tailornet_parts_test.cpp"},
       {"subtract_mean_body", "tests/plugins/template_offset_test.cpp"},
+      {"resample_body", "tests/plugins/resample_body_test.cpp"},
       {"add_template", "tests/plugins/template_offset_test.cpp"},
       {"skin", "tests/plugins/skin_test.cpp"},
       {"skin_rotation", "tests/plugins/skin_rotation_test.cpp"},

@@ -39,6 +39,12 @@ std::string AssetsSpec::yaml() const {
   o << " } }\ngarment: { template: " << garment << ", params: {";
   for (const auto& [k, v] : garment_params) o << " " << k << ": " << v << ",";
   o << " } }\nlevels: " << levels << "\neigen_k: " << eigen_k << "\n";
+  // Only when set, so that every spec before it keeps its text and its cache.
+  if (!encoder_body.empty()) {
+    o << "encoder_body: { model: " << encoder_body << ", params: {";
+    for (const auto& [k, v] : encoder_body_params) o << " " << k << ": " << v << ",";
+    o << " } }\n";
+  }
   return o.str();
 }
 
@@ -97,6 +103,16 @@ std::shared_ptr<const Assets> build_assets(const Registry& registry, const Asset
   h.matrix(gm.uv_faces);
   a->hash = h.hex();
 
+  std::unique_ptr<BodyModel> encoder_body;
+  if (!spec.encoder_body.empty()) {
+    const PluginDescriptor& ed = registry.get(spec.encoder_body);
+    encoder_body =
+        registry.create_body(spec.encoder_body, Params(ed.params, values_of(spec.encoder_body_params, "assets encoder body"),
+                                                       "encoder body '" + spec.encoder_body + "'"));
+    a->encoder_resampling = geometry::attach_to_surface(a->body, encoder_body->vertices(encoder_body->mean_shape()));
+    a->encoder_template = geometry::attached_points(a->body.vertices, a->body.faces, a->encoder_resampling);
+  }
+
   const fs::path cache_file = cache_dir.empty() ? fs::path() : cache_dir / ("assets-" + a->hash + ".h5");
   t.cache_file = cache_file;
   bool loaded = false;
@@ -112,12 +128,29 @@ std::shared_ptr<const Assets> build_assets(const Registry& registry, const Asset
   }
   if (!loaded) {
     start = Clock::now();
-    a->correspondence = geometry::body_to_garment_correspondence(a->body, gm);
+    a->correspondence = spec.encoder_body.empty()
+                            ? geometry::body_to_garment_correspondence(a->body, gm)
+                            : geometry::body_to_garment_correspondence(a->body, gm, a->encoder_template);
     t.correspondence = since(start);
     start = Clock::now();
     geometry::HierarchyOptions ho;
     ho.levels = spec.levels;
-    a->hierarchy = geometry::build_hierarchy(gm, ho);
+    if (encoder_body) {
+      // The hierarchy of the garment dressed on the encoder body, as that body
+      // model's own assets build it: the same coarse levels, so every decoder
+      // weight of a model of that body model fits (the levels' clusters
+      // depend on the dressed shape, and the per-edge weights on the
+      // clusters). Its levels' positions are that garment's.
+      Garment on_encoder_body =
+          registry
+              .create_garment(spec.garment, Params(gd.params, values_of(spec.garment_params, "assets garment"),
+                                                   "garment '" + spec.garment + "'"))
+              ->build();
+      dress_on_fit_body(*encoder_body, on_encoder_body, "the assets' garment '" + spec.garment + "' on the encoder body");
+      a->hierarchy = geometry::build_hierarchy(on_encoder_body.mesh, ho);
+    } else {
+      a->hierarchy = geometry::build_hierarchy(gm, ho);
+    }
     t.hierarchy = since(start);
     start = Clock::now();
     const Eigenbasis basis = compute_eigenbasis(gm, std::min(spec.eigen_k, gm.num_vertices()));

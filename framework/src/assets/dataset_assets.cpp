@@ -12,12 +12,13 @@ namespace drape {
 
 std::shared_ptr<const Assets> assets_for_dataset(const Registry& registry, const DatasetReader& reader,
                                                  const fs::path& data, int eigen_k, const fs::path& cache_dir,
-                                                 AssetsSpec* spec) {
+                                                 AssetsSpec* spec, const std::string& encoder_body) {
   const DatasetLayout& layout = reader.layout();
   Scene scene = parse_scene(layout.scene, data.string() + " (scene attribute)");
   // Drapes in each body's own size share the design size's template.
   if (garment_size_is_auto(scene)) scene = with_garment_size(scene, default_garment_size(registry, scene));
-  const AssetsSpec assets_spec = assets_spec_for(scene, eigen_k);
+  AssetsSpec assets_spec = assets_spec_for(scene, eigen_k);
+  assets_spec.encoder_body = encoder_body;
   auto assets = build_assets(registry, assets_spec, cache_dir);
   check_dataset_template(reader, data, *assets);
   if (spec) *spec = assets_spec;

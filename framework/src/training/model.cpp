@@ -65,7 +65,7 @@ AssetsSpec parse_assets_spec(const std::string& yaml, const std::string& what) {
     };
     for (const auto& kv : root) {
       const auto key = kv.first.as<std::string>();
-      if (key != "body" && key != "garment" && key != "levels" && key != "eigen_k")
+      if (key != "body" && key != "garment" && key != "levels" && key != "eigen_k" && key != "encoder_body")
         throw ConfigError(what + ": unknown assets key '" + key + "'");
     }
     if (!root["body"] || !root["body"]["model"] || !root["garment"] || !root["garment"]["template"])
@@ -76,6 +76,11 @@ AssetsSpec parse_assets_spec(const std::string& yaml, const std::string& what) {
     spec.garment_params = text_map(root["garment"], "params");
     if (root["levels"]) spec.levels = root["levels"].as<int>();
     if (root["eigen_k"]) spec.eigen_k = root["eigen_k"].as<int>();
+    if (root["encoder_body"]) {
+      if (!root["encoder_body"]["model"]) throw ConfigError(what + ": assets `encoder_body` must name its model");
+      spec.encoder_body = root["encoder_body"]["model"].as<std::string>();
+      spec.encoder_body_params = text_map(root["encoder_body"], "params");
+    }
   } catch (const YAML::Exception& e) {
     throw ConfigError(what + ": bad assets spec: " + e.what());
   }

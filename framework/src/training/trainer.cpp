@@ -150,7 +150,7 @@ TrainingData load_training_data(const Registry& registry, const DatasetReader& r
     data.assets_spec = parse_assets_spec(data.assets->spec_text, "TrainOptions::assets");
     check_dataset_template(reader, o.data, *data.assets);
   } else {
-    data.assets = assets_for_dataset(registry, reader, o.data, o.eigen_k, o.cache_dir, &data.assets_spec);
+    data.assets = assets_for_dataset(registry, reader, o.data, o.eigen_k, o.cache_dir, &data.assets_spec, o.encoder_body);
   }
   data.ground_truth = ground_truth_of(layout, o.data);
   if (const auto chart = layout.attributes.find("size_chart"); chart != layout.attributes.end())

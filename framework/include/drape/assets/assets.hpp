@@ -6,6 +6,7 @@
 // build_assets() computes all of it once and caches it in HDF5, keyed by a hash
 // of the template and the settings (docs/formats.md, "Assets cache").
 #include <drape/energy.hpp>
+#include <drape/geometry/body_correspondence.hpp>
 #include <drape/geometry/hierarchy.hpp>
 #include <drape/tensor.hpp>
 
@@ -38,6 +39,18 @@ class Assets {
   // at every build (tens of milliseconds), not cached.
   std::vector<std::string> pose_angles;
   Eigen::MatrixXf garment_skinning;
+  // The encoder's body (AssetsSpec::encoder_body; docs/bodies.md, "One
+  // encoder for both rigs"), when the spec names one: each vertex of that body
+  // model's mean body attached to its closest point on `body` (a face of
+  // `body` and barycentric weights), and `body` read at those points [Ne, 3].
+  // The `resample_body` node carries every input body onto these points, and
+  // `correspondence` then indexes them (each garment vertex reads the one
+  // nearest its closest point on `body`), and the hierarchy is that of the
+  // garment dressed on the encoder body (so that a model of that body model
+  // fits weight for weight). Empty otherwise; recomputed at every build
+  // (milliseconds), the correspondence and hierarchy cached under the spec's hash.
+  geometry::SurfaceAttachment encoder_resampling;
+  Eigen::MatrixX3d encoder_template;
   std::string hash;                        // of the template and settings
   std::string spec_text;                   // the settings as YAML
 
@@ -55,6 +68,13 @@ struct AssetsSpec {
   std::map<std::string, std::string> garment_params;  // e.g. size: small, resolution: coarse
   int levels = 4;
   int eigen_k = 1000;  // clamped to the garment's vertex count
+  // A body model whose vertices the encoder reads instead of body_model's
+  // (its mean body resampled on this one's surface: Assets::
+  // encoder_resampling), so that a model trained on one body model's
+  // topology (the mannequin's) starts a model of another (the human rig).
+  // Empty: the encoder reads body_model's own vertices.
+  std::string encoder_body;
+  std::map<std::string, std::string> encoder_body_params;
   std::string yaml() const;  // canonical text: the cache key's source
 };
 

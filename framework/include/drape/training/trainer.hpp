@@ -59,6 +59,10 @@ struct TrainOptions {
   bool force = false;         // start over even when <out> or <out>.state exists
   long max_epochs_this_run = 0;  // > 0: stop after that many epochs as if killed (tests)
   int eigen_k = 1000;         // eigenvectors in the assets (eigen_k; L_s of drape eval uses them)
+  // A body model whose vertices the encoder reads (AssetsSpec::encoder_body:
+  // the graph's resample_body node carries the dataset's bodies onto them);
+  // empty: none.
+  std::string encoder_body;
   std::filesystem::path cache_dir = default_cache_dir();  // of the assets (build_assets)
   // Prebuilt assets of the dataset's template (checked against it), e.g. for
   // several trainings in one process; null: built from the dataset's scene.

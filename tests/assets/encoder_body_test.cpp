@@ -1,0 +1,86 @@
+// Assets with an encoder body (AssetsSpec::encoder_body; docs/bodies.md, "One
+// encoder for both rigs"): the human rig's template with the mannequin's
+// vertices for the encoder.
+#include <drape/assets/assets.hpp>
+#include <drape/training/model.hpp>
+
+#include <catch2/catch.hpp>
+
+#include "test_support.hpp"
+
+#include <algorithm>
+#include <vector>
+
+using namespace drape;
+
+namespace {
+
+AssetsSpec human_spec(const std::string& encoder_body) {
+  AssetsSpec s;
+  s.body_params["rig"] = "human";
+  s.garment_params["resolution"] = "coarse";
+  s.eigen_k = 8;
+  s.levels = 2;
+  s.encoder_body = encoder_body;
+  return s;
+}
+
+}  // namespace
+
+TEST_CASE("an assets spec without an encoder body keeps its text, one with it reads back", "[assets]") {
+  AssetsSpec plain = human_spec("");
+  // The text every cache key and model file before the encoder body was made from, unchanged.
+  CHECK(plain.yaml() ==
+        "body: { model: parametric, params: { rig: human, } }\ngarment: { template: tshirt, params: { resolution: coarse, "
+        "} }\nlevels: 2\neigen_k: 8\n");
+  const AssetsSpec with = human_spec("parametric");
+  CHECK(with.yaml() == plain.yaml() + "encoder_body: { model: parametric, params: { } }\n");
+  const AssetsSpec back = parse_assets_spec(with.yaml(), "test");
+  CHECK(back.encoder_body == "parametric");
+  CHECK(back.yaml() == with.yaml());
+  CHECK(parse_assets_spec(plain.yaml(), "test").encoder_body.empty());
+}
+
+TEST_CASE("the human rig's assets read at the mannequin's vertices for the encoder", "[assets]") {
+  test::TempDir dir;
+  const auto human = build_assets(test::plugins(), human_spec("parametric"), dir.path());
+  AssetsSpec mannequin_spec = human_spec("");
+  mannequin_spec.body_params.clear();
+  const auto mannequin = build_assets(test::plugins(), mannequin_spec, dir.path());
+  const int ne = mannequin->body.num_vertices(), nb = human->body.num_vertices();
+  REQUIRE(ne != nb);  // two topologies: 6,490 and 6,904 vertices
+  REQUIRE(human->encoder_resampling.size() == ne);
+  REQUIRE(human->encoder_template.rows() == ne);
+  // Each encoder point is the human template at a face's barycentric point ...
+  for (int i = 0; i < ne; i += 97) {
+    const int f = human->encoder_resampling.face[i];
+    REQUIRE(f >= 0);
+    REQUIRE(f < human->body.faces.rows());
+    const Eigen::Vector3d w = human->encoder_resampling.barycentric.row(i).transpose();
+    CHECK(w.minCoeff() >= -1e-12);
+    CHECK(w.sum() == Approx(1.0));
+    Eigen::RowVector3d p = Eigen::RowVector3d::Zero();
+    for (int k = 0; k < 3; ++k) p += w[k] * human->body.vertices.row(human->body.faces(f, k));
+    CHECK((p - human->encoder_template.row(i)).norm() < 1e-12);
+  }
+  // ... near the mannequin's template vertex of the same index (the two mean bodies differ by millimetres on the
+  // torso, up to centimetres at the head, hands and feet).
+  std::vector<double> gap(static_cast<std::size_t>(ne));
+  for (int i = 0; i < ne; ++i) gap[static_cast<std::size_t>(i)] = (human->encoder_template.row(i) - mannequin->body.vertices.row(i)).norm();
+  std::nth_element(gap.begin(), gap.begin() + ne / 2, gap.end());
+  CHECK(gap[static_cast<std::size_t>(ne / 2)] < 0.003);
+  CHECK(*std::max_element(gap.begin(), gap.end()) < 0.05);
+  // The correspondences index the encoder's points: each garment vertex reads one within a few centimetres.
+  REQUIRE(human->correspondence.size() == static_cast<std::size_t>(human->garment->mesh.num_vertices()));
+  for (std::size_t g = 0; g < human->correspondence.size(); ++g) {
+    const int c = human->correspondence[g];
+    REQUIRE(c >= 0);
+    REQUIRE(c < ne);
+    CHECK((human->encoder_template.row(c) - human->garment->mesh.vertices.row(static_cast<Eigen::Index>(g))).norm() < 0.12);
+  }
+  // Without the encoder body the same template has no resampling and its own vertices' correspondences.
+  AssetsSpec own = human_spec("");
+  const auto plain = build_assets(test::plugins(), own, dir.path());
+  CHECK(plain->encoder_resampling.size() == 0);
+  CHECK(plain->hash != human->hash);
+}

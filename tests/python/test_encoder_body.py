@@ -1,0 +1,71 @@
+"""drape train --encoder-body (docs/bodies.md, "One encoder for both rigs"): a model of the human rig whose encoder
+reads the body resampled onto the mannequin's vertices (the resample_body node), trained, saved, loaded and used on
+human-rig bodies; the losses and the push-out keep the real body."""
+import numpy as np
+import pytest
+
+import drape
+from conftest import SOURCE, run_drape
+
+HUMAN_SHARD = SOURCE / "datasets" / "bodyspace2000-human" / "shard-00-of-40.h5"
+
+GRAPH = """
+inputs:
+  body: [body_vertices, 3]
+  target: [garment_vertices, 3]
+nodes:
+  shape: { type: resample_body, in: body }
+  encoder: { type: cnn1d, in: shape, params: { channels: [4], kernel: 5, stride: 8, activation: tanh } }
+  gathered: { type: gather, in: encoder.features }
+  decoder: { type: mlp, in: gathered, params: { widths: [8], activation: tanh } }
+  garment: { type: add_template, in: decoder }
+outputs: { garment: garment }
+losses:
+  v2v: 1.0
+"""
+
+
+@pytest.fixture(scope="module")
+def model(tmp_path_factory):
+    tmp = tmp_path_factory.mktemp("encoder_body")
+    graph = tmp / "g.yaml"
+    graph.write_text(GRAPH)
+    out = tmp / "m.h5"
+    run_drape("train", graph, "--data", HUMAN_SHARD, "--out", out, "--epochs", 1, "--k", 8, "--threads", 1,
+              "--encoder-body", "parametric", "--quiet")
+    return out
+
+
+def test_the_model_reads_human_bodies_through_the_mannequins_vertices(model):
+    m = drape.Model.load(str(model))
+    human, _ = drape.body(30, 1.7, 0, params={"rig": "human"})
+    mannequin, _ = drape.body(30, 1.7, 0)
+    assert np.asarray(m.assets.body_vertices).shape == human.shape  # the real body: losses, push-out
+    corr = np.asarray(m.assets.correspondence)
+    assert corr.max() < len(mannequin) < len(human)  # the garment reads the encoder's (mannequin's) rows
+    g = m.predict(human.astype(np.float32), check=False)
+    assert g.shape == (991, 3) and np.isfinite(g).all()
+    with pytest.raises(Exception, match=str(len(human))):
+        m.predict(mannequin.astype(np.float32), check=False)
+
+
+def test_the_shipped_human_graph_trains_from_every_weight_of_the_mannequin_model(tmp_path):
+    """graphs/human/drape_grade_v2v1000_post_resampled.yaml from models/tshirt-coarse.h5 with plain --init: every
+    weight has its shape (the mannequin's hierarchy, the full eigenbasis), one epoch on a tenth of a shard."""
+    out = tmp_path / "h.h5"
+    stdout, err = run_drape("train", SOURCE / "graphs" / "human" / "drape_grade_v2v1000_post_resampled.yaml", "--data",
+                            HUMAN_SHARD, "--out", out, "--epochs", 1, "--fraction", 0.1, "--threads", 1,
+                            "--encoder-body", "parametric", "--init", SOURCE / "models" / "tshirt-coarse.h5", "--quiet")
+    assert "keeps its initialisation" not in stdout + err
+    m = drape.Model.load(str(out))
+    human, _ = drape.body(45, 1.8, 1, params={"rig": "human"})
+    g = m.predict(human.astype(np.float32), garment_size=1.5, check=False)
+    assert g.shape == (991, 3) and np.isfinite(g).all()
+
+
+def test_without_the_encoder_body_the_graph_is_refused(tmp_path):
+    graph = tmp_path / "g.yaml"
+    graph.write_text(GRAPH)
+    _, err = run_drape("train", graph, "--data", HUMAN_SHARD, "--out", tmp_path / "m.h5", "--epochs", 1, "--k", 8,
+                       "--threads", 1, "--quiet", expect=2)
+    assert "--encoder-body" in err
