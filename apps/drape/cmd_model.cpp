@@ -139,6 +139,13 @@ int info(const std::vector<std::string>& args) {
     std::printf("  %-14s %s\n", key, value.c_str());
   }
   print_training_settings(c.meta);
+  if (const auto assets = c.meta.find("assets"); assets != c.meta.end()) {
+    const AssetsSpec spec = parse_assets_spec(assets->second, file.string() + " meta 'assets'");
+    if (!spec.encoder_body.empty())
+      std::printf("  %-14s %s: the encoder reads the body resampled onto that body model's template vertices "
+                  "(drape train --encoder-body; docs/bodies.md, \"One encoder for both rigs\")\n",
+                  "encoder body", spec.encoder_body.c_str());
+  }
   print_post_processing(Registry::load_default(plugin_path(vm)), c.graph, file.string() + " (graph)");
   if (auto chart = c.meta.find("size_chart"); chart != c.meta.end()) print_size_chart(chart->second);
   if (auto domain = read_domain(file)) print_domain(*domain);

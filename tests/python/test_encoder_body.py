@@ -47,6 +47,8 @@ def test_the_model_reads_human_bodies_through_the_mannequins_vertices(model):
     assert g.shape == (991, 3) and np.isfinite(g).all()
     with pytest.raises(Exception, match=str(len(human))):
         m.predict(mannequin.astype(np.float32), check=False)
+    info, _ = run_drape("model", "info", model)
+    assert "encoder body   parametric" in info
 
 
 def test_the_shipped_human_graph_trains_from_every_weight_of_the_mannequin_model(tmp_path):
