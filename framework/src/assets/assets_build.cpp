@@ -82,26 +82,18 @@ std::shared_ptr<const Assets> build_assets(const Registry& registry, const Asset
   a->body.vertices = body_model->vertices(body_model->mean_shape());
   a->body.faces = body_model->faces();
   const PluginDescriptor& gd = registry.get(spec.garment);
-  Garment garment = registry
-                        .create_garment(spec.garment, Params(gd.params, values_of(spec.garment_params, "assets garment"),
-                                                             "garment '" + spec.garment + "'"))
-                        ->build();
+  const auto build_garment = [&] {
+    return registry
+        .create_garment(spec.garment,
+                        Params(gd.params, values_of(spec.garment_params, "assets garment"), "garment '" + spec.garment + "'"))
+        ->build();
+  };
+  Garment garment = build_garment();
   // Dressed as a scene dresses it: on the body it is cut for (fit_body.hpp),
   // the mean body a->body for the regular size.
   dress_on_fit_body(*body_model, garment, "the assets' garment '" + spec.garment + "'");
   a->garment = std::make_shared<const Garment>(std::move(garment));
   t.garment = since(start);
-
-  Fnv1a h;
-  h.bytes(a->spec_text.data(), a->spec_text.size());
-  h.matrix(a->body.vertices);
-  h.matrix(a->body.faces);
-  const Mesh& gm = a->garment->mesh;
-  h.matrix(gm.vertices);
-  h.matrix(gm.faces);
-  h.matrix(gm.uv);
-  h.matrix(gm.uv_faces);
-  a->hash = h.hex();
 
   std::unique_ptr<BodyModel> encoder_body;
   if (!spec.encoder_body.empty()) {
@@ -112,6 +104,19 @@ std::shared_ptr<const Assets> build_assets(const Registry& registry, const Asset
     a->encoder_resampling = geometry::attach_to_surface(a->body, encoder_body->vertices(encoder_body->mean_shape()));
     a->encoder_template = geometry::attached_points(a->body.vertices, a->body.faces, a->encoder_resampling);
   }
+
+  Fnv1a h;
+  h.bytes(a->spec_text.data(), a->spec_text.size());
+  h.matrix(a->body.vertices);
+  h.matrix(a->body.faces);
+  const Mesh& gm = a->garment->mesh;
+  h.matrix(gm.vertices);
+  h.matrix(gm.faces);
+  h.matrix(gm.uv);
+  h.matrix(gm.uv_faces);
+  // The cached correspondences and hierarchy depend on the encoder body too.
+  if (encoder_body) h.matrix(a->encoder_template);
+  a->hash = h.hex();
 
   const fs::path cache_file = cache_dir.empty() ? fs::path() : cache_dir / ("assets-" + a->hash + ".h5");
   t.cache_file = cache_file;
@@ -141,11 +146,7 @@ std::shared_ptr<const Assets> build_assets(const Registry& registry, const Asset
       // weight of a model of that body model fits (the levels' clusters
       // depend on the dressed shape, and the per-edge weights on the
       // clusters). Its levels' positions are that garment's.
-      Garment on_encoder_body =
-          registry
-              .create_garment(spec.garment, Params(gd.params, values_of(spec.garment_params, "assets garment"),
-                                                   "garment '" + spec.garment + "'"))
-              ->build();
+      Garment on_encoder_body = build_garment();
       dress_on_fit_body(*encoder_body, on_encoder_body, "the assets' garment '" + spec.garment + "' on the encoder body");
       a->hierarchy = geometry::build_hierarchy(on_encoder_body.mesh, ho);
     } else {
