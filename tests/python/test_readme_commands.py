@@ -40,6 +40,7 @@ NOT_RUN = {
     "dataset info all.h5": "needs all.h5 from dataset merge",
     "dataset slim all.h5": "needs all.h5 from dataset merge",
     "dataset potential all.h5": "needs all.h5 from dataset merge",
+    "train graphs/human": "trains on 500-odd drapes for minutes; tests/python/test_encoder_body.py trains its graph for an epoch",
     "train ": "needs data.h5 from generate; 100 epochs",
     "model info model.h5": "needs model.h5 from train",
     "model set model.h5": "needs model.h5 from train; tests/python/test_model_set.py runs it on a trained model",
