@@ -78,3 +78,13 @@ TEST_CASE("resample_body needs assets with an encoder body and the body's vertex
   const Assets a = square_assets();
   CHECK_THROWS_WITH(node->setup({{"x", {5, 3}}}, {"n", 1, &a}), Catch::Contains("must be [4, 3]"));
 }
+
+TEST_CASE("with an encoder body, gather refuses the body's own rows for the correspondences", "[resample_body][gather]") {
+  Assets a = square_assets();
+  a.correspondence = {0, 2, 1, 0};  // indices of the three encoder points
+  auto gather = make_node("gather");
+  CHECK_THROWS_WITH(gather->setup({{"x", {4, 3}}}, {"n", 1, &a}),
+                    Catch::Contains("encoder body's 3 points") && Catch::Contains("resample_body"));
+  auto ok = make_node("gather");
+  CHECK(ok->setup({{"x", {3, 8}}}, {"n", 1, &a}).at("out").rows == 4);
+}
