@@ -50,23 +50,23 @@ TEST_CASE("the human rig's assets read at the mannequin's vertices for the encod
   const int ne = mannequin->body.num_vertices(), nb = human->body.num_vertices();
   REQUIRE(ne != nb);  // two topologies: 6,490 and 6,904 vertices
   REQUIRE(human->encoder_resampling.size() == ne);
-  REQUIRE(human->encoder_template.rows() == ne);
+  REQUIRE(human->encoder_resampling.resampled_template.rows() == ne);
   // Each encoder point is the human template at a face's barycentric point ...
   for (int i = 0; i < ne; i += 97) {
-    const int f = human->encoder_resampling.face[i];
+    const int f = human->encoder_resampling.attachment.face[i];
     REQUIRE(f >= 0);
     REQUIRE(f < human->body.faces.rows());
-    const Eigen::Vector3d w = human->encoder_resampling.barycentric.row(i).transpose();
+    const Eigen::Vector3d w = human->encoder_resampling.attachment.barycentric.row(i).transpose();
     CHECK(w.minCoeff() >= -1e-12);
     CHECK(w.sum() == Approx(1.0));
     Eigen::RowVector3d p = Eigen::RowVector3d::Zero();
     for (int k = 0; k < 3; ++k) p += w[k] * human->body.vertices.row(human->body.faces(f, k));
-    CHECK((p - human->encoder_template.row(i)).norm() < 1e-12);
+    CHECK((p - human->encoder_resampling.resampled_template.row(i)).norm() < 1e-12);
   }
   // ... near the mannequin's template vertex of the same index (the two mean bodies differ by millimetres on the
   // torso, up to centimetres at the head, hands and feet).
   std::vector<double> gap(static_cast<std::size_t>(ne));
-  for (int i = 0; i < ne; ++i) gap[static_cast<std::size_t>(i)] = (human->encoder_template.row(i) - mannequin->body.vertices.row(i)).norm();
+  for (int i = 0; i < ne; ++i) gap[static_cast<std::size_t>(i)] = (human->encoder_resampling.resampled_template.row(i) - mannequin->body.vertices.row(i)).norm();
   std::nth_element(gap.begin(), gap.begin() + ne / 2, gap.end());
   CHECK(gap[static_cast<std::size_t>(ne / 2)] < 0.003);
   CHECK(*std::max_element(gap.begin(), gap.end()) < 0.05);
@@ -76,7 +76,7 @@ TEST_CASE("the human rig's assets read at the mannequin's vertices for the encod
     const int c = human->correspondence[g];
     REQUIRE(c >= 0);
     REQUIRE(c < ne);
-    CHECK((human->encoder_template.row(c) - human->garment->mesh.vertices.row(static_cast<Eigen::Index>(g))).norm() < 0.12);
+    CHECK((human->encoder_resampling.resampled_template.row(c) - human->garment->mesh.vertices.row(static_cast<Eigen::Index>(g))).norm() < 0.12);
   }
   // Without the encoder body the same template has no resampling and its own vertices' correspondences.
   AssetsSpec own = human_spec("");

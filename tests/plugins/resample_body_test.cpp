@@ -5,6 +5,8 @@
 
 #include <catch2/catch.hpp>
 
+#include <omp.h>
+
 #include "plugin_test_util.hpp"
 
 using namespace drape;
@@ -20,13 +22,16 @@ Assets square_assets() {
   a.body.vertices << 0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0;
   a.body.faces.resize(2, 3);
   a.body.faces << 0, 1, 2, 0, 2, 3;
-  a.encoder_resampling.face.resize(3);
-  a.encoder_resampling.face << 0, 1, 1;
-  a.encoder_resampling.barycentric.resize(3, 3);
-  a.encoder_resampling.barycentric << 0.2, 0.3, 0.5, 1.0, 0.0, 0.0, 0.25, 0.25, 0.5;
+  geometry::BodyResampling& r = a.encoder_resampling;
+  r.attachment.face.resize(3);
+  r.attachment.face << 0, 1, 1;
+  r.attachment.barycentric.resize(3, 3);
+  r.attachment.barycentric << 0.2, 0.3, 0.5, 1.0, 0.0, 0.0, 0.25, 0.25, 0.5;
+  r.source_faces = a.body.faces;
+  r.source_vertices = 4;
   // The mean body at those points, by hand: 0.2 (0,0) + 0.3 (1,0) + 0.5 (1,1); (0,0); 0.25 (0,0) + 0.25 (1,1) + 0.5 (0,1).
-  a.encoder_template.resize(3, 3);
-  a.encoder_template << 0.8, 0.5, 0.0, 0.0, 0.0, 0.0, 0.25, 0.75, 0.0;
+  r.resampled_template.resize(3, 3);
+  r.resampled_template << 0.8, 0.5, 0.0, 0.0, 0.0, 0.0, 0.25, 0.75, 0.0;
   return a;
 }
 
@@ -67,6 +72,26 @@ TEST_CASE("resample_body's backward matches finite differences", "[resample_body
   INFO(r.str());
   CHECK_FALSE(r.entries.empty());
   CHECK(r.ok(1e-2));
+}
+
+TEST_CASE("resample_body gives the same bits on one thread and two", "[resample_body]") {
+  const Assets a = square_assets();
+  const NodeContext context{"n", 1, &a};
+  const Tensor x = random_tensor(6, 4, 3, 8), g = random_tensor(6, 3, 3, 9);
+  auto run = [&](int threads) {
+    const int before = omp_get_max_threads();
+    omp_set_num_threads(threads);
+    auto node = make_node("resample_body");
+    auto out = run_forward(*node, {{"x", x}}, context);
+    Tensor gx(6, 4, 3);
+    node->backward({{"x", &x}}, {{"out", &out.at("out")}}, {{"out", &g}}, {{"x", &gx}});
+    omp_set_num_threads(before);
+    return std::make_pair(out.at("out"), gx);
+  };
+  const auto one = run(1), two = run(2);
+  CHECK(one.first.vec() == two.first.vec());
+  CHECK(one.second.vec() == two.second.vec());
+  CHECK(one.second.vec().cwiseAbs().maxCoeff() > 0);
 }
 
 TEST_CASE("resample_body needs assets with an encoder body and the body's vertex count", "[resample_body]") {

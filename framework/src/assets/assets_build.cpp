@@ -101,8 +101,7 @@ std::shared_ptr<const Assets> build_assets(const Registry& registry, const Asset
     encoder_body =
         registry.create_body(spec.encoder_body, Params(ed.params, values_of(spec.encoder_body_params, "assets encoder body"),
                                                        "encoder body '" + spec.encoder_body + "'"));
-    a->encoder_resampling = geometry::attach_to_surface(a->body, encoder_body->vertices(encoder_body->mean_shape()));
-    a->encoder_template = geometry::attached_points(a->body.vertices, a->body.faces, a->encoder_resampling);
+    a->encoder_resampling = geometry::body_resampling(a->body, encoder_body->vertices(encoder_body->mean_shape()));
   }
 
   Fnv1a h;
@@ -115,7 +114,7 @@ std::shared_ptr<const Assets> build_assets(const Registry& registry, const Asset
   h.matrix(gm.uv);
   h.matrix(gm.uv_faces);
   // The cached correspondences and hierarchy depend on the encoder body too.
-  if (encoder_body) h.matrix(a->encoder_template);
+  if (encoder_body) h.matrix(a->encoder_resampling.resampled_template);
   a->hash = h.hex();
 
   const fs::path cache_file = cache_dir.empty() ? fs::path() : cache_dir / ("assets-" + a->hash + ".h5");
@@ -135,7 +134,7 @@ std::shared_ptr<const Assets> build_assets(const Registry& registry, const Asset
     start = Clock::now();
     a->correspondence = spec.encoder_body.empty()
                             ? geometry::body_to_garment_correspondence(a->body, gm)
-                            : geometry::body_to_garment_correspondence(a->body, gm, a->encoder_template);
+                            : geometry::body_to_garment_correspondence(a->body, gm, a->encoder_resampling.resampled_template);
     t.correspondence = since(start);
     start = Clock::now();
     geometry::HierarchyOptions ho;

@@ -1,6 +1,7 @@
 // resample_dataset (services/dataset_resampling.hpp).
 #include <drape/assets/assets.hpp>
 #include <drape/errors.hpp>
+#include <drape/geometry/body_resampling.hpp>
 #include <drape/io/dataset.hpp>
 #include <drape/io/dataset_copy.hpp>
 #include <drape/scene/scene.hpp>
@@ -13,22 +14,6 @@
 #include <vector>
 
 namespace drape {
-
-Eigen::MatrixX3d BodyResampling::apply(const Eigen::MatrixX3d& source_body, const std::string& what) const {
-  if (source_body.rows() != source_vertices)
-    throw ConfigError(what + ": has " + std::to_string(source_body.rows()) + " vertices; the resampling reads bodies of " +
-                      std::to_string(source_vertices));
-  return geometry::attached_points(source_body, source_faces, attachment);
-}
-
-BodyResampling body_resampling(const Mesh& source_template, const Eigen::MatrixX3d& target_template) {
-  BodyResampling r;
-  r.attachment = geometry::attach_to_surface(source_template, target_template);
-  r.source_faces = source_template.faces;
-  r.source_vertices = static_cast<int>(source_template.vertices.rows());
-  r.template_distance = (r.apply(source_template.vertices, "the source template") - target_template).rowwise().norm();
-  return r;
-}
 
 namespace {
 
@@ -66,14 +51,15 @@ ResampleSummary resample_dataset(const Registry& registry, const std::filesystem
   if (source->body.vertices.rows() != have.body_vertices)
     throw ConfigError(in.string() + ": its bodies have " + std::to_string(have.body_vertices) +
                       " vertices, the template of its stored scene " + std::to_string(source->body.vertices.rows()));
-  const BodyResampling map = body_resampling(source->body, target->body.vertices);
+  const geometry::BodyResampling map = geometry::body_resampling(source->body, target->body.vertices);
+  const Eigen::VectorXd gap = (map.resampled_template - target->body.vertices).rowwise().norm();
 
   ResampleSummary summary;
   summary.source_vertices = map.source_vertices;
   summary.target_vertices = static_cast<int>(target->body.vertices.rows());
-  summary.median_distance = quantile(map.template_distance, 0.5);
-  summary.p90_distance = quantile(map.template_distance, 0.9);
-  summary.max_distance = map.template_distance.maxCoeff();
+  summary.median_distance = quantile(gap, 0.5);
+  summary.p90_distance = quantile(gap, 0.9);
+  summary.max_distance = gap.maxCoeff();
 
   const std::vector<std::size_t> rows = reader.indices();
   DatasetLayout layout = have;

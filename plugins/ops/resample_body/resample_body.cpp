@@ -12,6 +12,7 @@
 // own vertex order. Everything else of the graph (losses, the push-out) keeps
 // the real body. Linear: backward scatters the weights.
 #include <drape/assets/assets.hpp>
+#include <drape/nn/sparse_ops.hpp>
 #include <drape/plugin.hpp>
 
 namespace {
@@ -22,58 +23,38 @@ class ResampleBody final : public Node {
  public:
   ShapeMap setup(const ShapeMap& in, const NodeContext& context) override {
     if (!context.assets) throw ConfigError("needs the template assets (their encoder body), but none are bound");
-    const Assets& a = *context.assets;
-    if (a.encoder_resampling.size() == 0)
+    const geometry::BodyResampling& r = context.assets->encoder_resampling;
+    if (r.size() == 0)
       throw ConfigError("the template assets name no encoder body: train with --encoder-body (e.g. parametric) so "
                         "that the assets resample the body onto that body model's vertices");
     const Shape x = in.at("x");
-    if (x.cols != 3 || x.rows != a.body.num_vertices())
-      throw ConfigError("input 'x' must be [" + std::to_string(a.body.num_vertices()) + ", 3] (the body's vertices), got " +
+    if (x.cols != 3 || x.rows != r.source_vertices)
+      throw ConfigError("input 'x' must be [" + std::to_string(r.source_vertices) + ", 3] (the body's vertices), got " +
                         x.str());
-    const int n = a.encoder_resampling.size();
-    corners_.resize(n, 3);
-    weights_.resize(n, 3);
-    for (int i = 0; i < n; ++i)
-      for (int k = 0; k < 3; ++k) {
-        corners_(i, k) = a.body.faces(a.encoder_resampling.face[i], k);
-        weights_(i, k) = static_cast<float>(a.encoder_resampling.barycentric(i, k));
-      }
-    mean_ = a.encoder_template.cast<float>();
-    return {{"out", {n, 3}}};
+    map_ = nn::SparseOperator(r.matrix().cast<float>());
+    mean_ = r.resampled_template.cast<float>();
+    return {{"out", {r.size(), 3}}};
   }
 
   void forward(const TensorIn& in, const TensorOut& out) override {
     const Tensor& x = *in.at("x");
     Tensor& y = *out.at("out");
-    for (int b = 0; b < x.batch(); ++b) {
-      const auto xb = x.mat(b);
-      auto yb = y.mat(b);
-      for (Eigen::Index i = 0; i < corners_.rows(); ++i)
-        yb.row(i) = weights_(i, 0) * xb.row(corners_(i, 0)) + weights_(i, 1) * xb.row(corners_(i, 1)) +
-                    weights_(i, 2) * xb.row(corners_(i, 2)) - mean_.row(i);
-    }
+    map_.apply(x.flat(), x.batch(), y.flat());
+    for (int b = 0; b < y.batch(); ++b) y.mat(b) -= mean_;
   }
 
   void backward(const TensorIn&, const TensorIn&, const TensorIn& gout, const TensorOut& gin) override {
     const auto gx = gin.find("x");
     if (gx == gin.end()) return;
     const Tensor& gy = *gout.at("out");
-    Tensor& g = *gx->second;
-    g.set_zero();
-    for (int b = 0; b < g.batch(); ++b) {
-      auto gb = g.mat(b);
-      const auto gyb = gy.mat(b);
-      for (Eigen::Index i = 0; i < corners_.rows(); ++i)
-        for (int k = 0; k < 3; ++k) gb.row(corners_(i, k)) += weights_(i, k) * gyb.row(i);
-    }
+    map_.apply_transpose(gy.flat(), gy.batch(), gx->second->flat());
   }
 
-  double flops_per_sample() const override { return 9.0 * static_cast<double>(corners_.rows()); }
+  double flops_per_sample() const override { return 3.0 * static_cast<double>(map_.nonzeros() + mean_.rows()); }
 
  private:
-  Eigen::Matrix<int, Eigen::Dynamic, 3, Eigen::RowMajor> corners_;  // [Ne, 3] body vertices of each point's face
-  Eigen::Matrix<float, Eigen::Dynamic, 3, Eigen::RowMajor> weights_;  // [Ne, 3] their barycentric weights
-  MatrixRM mean_;  // [Ne, 3] the mean body read at the points, subtracted
+  nn::SparseOperator map_;  // R [encoder points, body vertices]: three barycentric weights a row
+  MatrixRM mean_;           // [encoder points, 3] the mean body read at the points, subtracted
 };
 
 PluginList plugins() {

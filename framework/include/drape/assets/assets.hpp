@@ -6,7 +6,7 @@
 // build_assets() computes all of it once and caches it in HDF5, keyed by a hash
 // of the template and the settings (docs/formats.md, "Assets cache").
 #include <drape/energy.hpp>
-#include <drape/geometry/body_correspondence.hpp>
+#include <drape/geometry/body_resampling.hpp>
 #include <drape/geometry/hierarchy.hpp>
 #include <drape/tensor.hpp>
 
@@ -42,15 +42,15 @@ class Assets {
   // The encoder's body (AssetsSpec::encoder_body; docs/bodies.md, "One
   // encoder for both rigs"), when the spec names one: each vertex of that body
   // model's mean body attached to its closest point on `body` (a face of
-  // `body` and barycentric weights), and `body` read at those points [Ne, 3].
+  // `body` and barycentric weights; its resampled_template is `body` read at
+  // those points [Ne, 3]).
   // The `resample_body` node carries every input body onto these points, and
   // `correspondence` then indexes them (each garment vertex reads the one
   // nearest its closest point on `body`), and the hierarchy is that of the
   // garment dressed on the encoder body (so that a model of that body model
   // fits weight for weight). Empty otherwise; recomputed at every build
   // (milliseconds), the correspondence and hierarchy cached under the spec's hash.
-  geometry::SurfaceAttachment encoder_resampling;
-  Eigen::MatrixX3d encoder_template;
+  geometry::BodyResampling encoder_resampling;
   std::string hash;                        // of the template and settings
   std::string spec_text;                   // the settings as YAML
 

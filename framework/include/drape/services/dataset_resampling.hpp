@@ -8,11 +8,7 @@
 // (the shipped mannequin model: every weight, its encoder reading vertices in
 // index order included) can then be trained on drapes simulated on the source
 // (the human rig), whose own vertex order it has never seen.
-#include <drape/geometry/body_correspondence.hpp>
-#include <drape/mesh.hpp>
 #include <drape/registry.hpp>
-
-#include <Eigen/Core>
 
 #include <cstddef>
 #include <filesystem>
@@ -21,25 +17,11 @@
 
 namespace drape {
 
-// The fixed map from a source body topology onto a target's vertices.
-struct BodyResampling {
-  geometry::SurfaceAttachment attachment;  // per target vertex: source face and barycentric weights
-  Eigen::MatrixX3i source_faces;           // the source template's triangles (the faces indexed above)
-  int source_vertices = 0;
-  Eigen::VectorXd template_distance;       // per target vertex: how far its template vertex lies from the source template's surface (m)
-
-  // The target-topology body of one source body [source_vertices, 3].
-  // ConfigError naming `what` for another vertex count.
-  Eigen::MatrixX3d apply(const Eigen::MatrixX3d& source_body, const std::string& what) const;
-};
-
-// Target template vertices attached to the source template's surface.
-BodyResampling body_resampling(const Mesh& source_template, const Eigen::MatrixX3d& target_template);
-
 struct ResampleSummary {
   std::size_t samples = 0;
   int source_vertices = 0, target_vertices = 0;
-  double median_distance = 0, p90_distance = 0, max_distance = 0;  // template_distance, m
+  // How far the target template's vertices lie from the source template's surface (m).
+  double median_distance = 0, p90_distance = 0, max_distance = 0;
 };
 
 // Writes `out` (atomically, through DatasetWriter's partial file): `in`'s done
