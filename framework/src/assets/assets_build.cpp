@@ -61,6 +61,10 @@ std::map<std::string, int> Assets::dims() const {
   return d;
 }
 
+int Assets::correspondence_rows() const {
+  return encoder_resampling.size() > 0 ? encoder_resampling.size() : body.num_vertices();
+}
+
 fs::path default_cache_dir() {
   if (const char* d = std::getenv("DRAPE_CACHE_DIR"); d && *d) return d;
   if (const char* x = std::getenv("XDG_CACHE_HOME"); x && *x) return fs::path(x) / "drape";

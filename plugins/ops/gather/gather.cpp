@@ -26,13 +26,19 @@ class Gather final : public Node {
       const auto& c = context.assets->correspondence;
       if (c.empty()) throw ConfigError("the template assets hold no body->garment correspondences");
       indices_.assign(c.begin(), c.end());
-      // With an encoder body the correspondences index its points, not the
-      // body's own vertices: rows of the real body would be read silently wrong.
-      const int points = context.assets->encoder_resampling.size();
-      if (points > 0 && x.rows != points && x.rows == context.assets->body.num_vertices())
-        throw ConfigError("the assets' correspondences index the encoder body's " + std::to_string(points) +
-                          " points (drape train --encoder-body), but input 'x' has the body's own " +
-                          std::to_string(x.rows) + " rows: gather rows of resample_body's output or the encoder's");
+      // The correspondences index the body's vertices, or the encoder body's
+      // points when the assets have one: rows of anything else would be read
+      // silently wrong wherever its indices happen to fall inside. (Assets
+      // made by hand without a body say nothing: only the indices are checked.)
+      const int rows = context.assets->correspondence_rows();
+      if (rows > 0 && x.rows != rows)
+        throw ConfigError("the assets' correspondences index " +
+                          (context.assets->encoder_resampling.size() > 0
+                               ? "the encoder body's " + std::to_string(rows) +
+                                     " points (drape train --encoder-body: gather rows of resample_body's output or the "
+                                     "encoder's)"
+                               : "the body's " + std::to_string(rows) + " vertices") +
+                          ", but input 'x' has " + std::to_string(x.rows) + " rows");
     }
     for (std::size_t i = 0; i < indices_.size(); ++i)
       if (indices_[i] >= x.rows)

@@ -54,6 +54,10 @@ class Assets {
   std::string hash;                        // of the template and settings
   std::string spec_text;                   // the settings as YAML
 
+  // The rows `correspondence` indexes: the encoder body's points when there
+  // is one, else the body's vertices.
+  int correspondence_rows() const;
+
   // Sizes graphs use in `inputs:`: body_vertices, garment_vertices,
   // level1_vertices .. level3_vertices, eigen_k, and for a poseable body
   // model pose_angles and joints.
