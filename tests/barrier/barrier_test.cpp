@@ -220,6 +220,35 @@ TEST_CASE("barrier: kept candidates give a fresh search's energy, gradient and H
   CHECK(barrier_on(*g, body)->value(x) > 0);
 }
 
+// max_step takes its pairs from the kept candidates when the move stays
+// within their reach (the drift since they were found plus the step, at most
+// d_hat + skin = 2 mm on every coordinate): the bound must be, bit for bit,
+// the one a contact that has seen nothing before finds through its grids,
+// for steps that stop at the corner and steps that do not, and past the reach.
+TEST_CASE("barrier: kept candidates bound a step as a fresh search does", "[barrier]") {
+  const geometry::BodySurface body(box(-0.5, 0, -0.5, 0, -0.5, 0));
+  auto g = sheet_over_corner(7, 0.004, 0.5e-3);
+  const auto kept = barrier_on(*g, body);
+  const Eigen::MatrixX3d x0 = perturbed(g->mesh.vertices, 2e-4, 11);
+  REQUIRE(kept->value(x0) > 0);  // the candidates are found here
+  int seed = 40, stopped = 0;
+  for (const double drift : {0.0, 3e-4, 8e-4}) {
+    Eigen::MatrixX3d x = x0 + perturbed(Eigen::MatrixX3d::Zero(x0.rows(), 3), 0.5 * drift, seed++);
+    x.col(2).array() += drift;  // up, so that x stays clear of the body
+    for (const double step : {2e-4, 9e-4, 1.5e-3, 3e-3}) {
+      for (const double sign : {-1.0, 1.0}) {
+        Eigen::MatrixX3d dx = perturbed(Eigen::MatrixX3d::Zero(x0.rows(), 3), 0.3 * step, seed++);
+        dx.col(2).array() += sign * step;
+        INFO("drift " << drift << " m, step " << sign * step << " m");
+        const double alpha = kept->max_step(x, dx);
+        CHECK(alpha == barrier_on(*g, body)->max_step(x, dx));
+        stopped += alpha < 1.0;
+      }
+    }
+  }
+  CHECK(stopped >= 4);  // downward steps that reach the corner were bounded
+}
+
 TEST_CASE("barrier: the step bound stops a move before the surfaces touch", "[barrier]") {
   const geometry::BodySurface body(box(-1, 1, 0, 2, -2, 0));
   const double h = 0.5e-3;

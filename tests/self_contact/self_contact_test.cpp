@@ -187,6 +187,32 @@ TEST_CASE("self_contact kept candidates equal a fresh search", "[self_contact]")
   CHECK(self_contact_on(*g)->value(x) > 0);  // the last state has pairs within d_hat
 }
 
+// max_step takes its pairs from the kept candidates when the move stays
+// within their reach (drift plus step at most d_hat / 2 + skin = 1.5 mm on
+// every coordinate): bit for bit the bound of a contact that has seen nothing.
+TEST_CASE("self_contact kept candidates bound a step as a fresh search does", "[self_contact]") {
+  auto g = two_layers(6, 0.004, 0.6e-3);
+  const auto kept = self_contact_on(*g);
+  const Eigen::MatrixX3d x0 = perturbed(g->mesh.vertices, 1e-4, 11);
+  REQUIRE(kept->value(x0) > 0);  // the candidates are found here
+  int seed = 40, stopped = 0;
+  for (const double drift : {0.0, 2e-4, 6e-4}) {
+    Eigen::MatrixX3d x = x0 + perturbed(Eigen::MatrixX3d::Zero(x0.rows(), 3), 0.2 * drift, seed++);
+    x.bottomRows(x0.rows() - 36).col(2).array() += drift;  // the upper layer up, clear of the lower
+    for (const double step : {2e-4, 8e-4, 1.2e-3, 3e-3}) {
+      for (const double sign : {-1.0, 1.0}) {
+        Eigen::MatrixX3d dx = perturbed(Eigen::MatrixX3d::Zero(x0.rows(), 3), 0.2 * step, seed++);
+        dx.bottomRows(x0.rows() - 36).col(2).array() += sign * step;
+        INFO("drift " << drift << " m, step " << sign * step << " m");
+        const double alpha = kept->max_step(x, dx);
+        CHECK(alpha == self_contact_on(*g)->max_step(x, dx));
+        stopped += alpha < 1.0;
+      }
+    }
+  }
+  CHECK(stopped >= 4);  // the upper layer stepping down through the lower was bounded
+}
+
 TEST_CASE("self_contact max_step stops before the layers cross", "[self_contact]") {
   auto g = two_layers(4, 0.01, 0.5e-3);
   const auto e = self_contact_on(*g);

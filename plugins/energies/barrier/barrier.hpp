@@ -116,6 +116,10 @@ class BarrierContact final : public Energy {
   std::shared_ptr<const BodyState> body_state_locked() const;
   std::shared_ptr<const BodyState> body_state() const;
   std::shared_ptr<const PairSet> cached_pairs(const Eigen::MatrixX3d& x) const;
+  // How far the garment may move before the Verlet list of candidates is
+  // found again (its boxes are grown by d_hat and this): the line search's
+  // trials and the next iterations mostly move less.
+  double candidate_skin() const { return settings_.distance; }
   // The pair's 4 points: garment and body vertices as its kind orders them.
   std::array<Eigen::Vector3d, 4> pair_points(const ContactPair& pair, const Eigen::MatrixX3d& x) const;
   // The pair's garment vertices (its variables), and how many.

@@ -3,6 +3,7 @@
 #include "self_pairs.hpp"
 
 #include <drape/errors.hpp>
+#include <drape/geometry/box_pairs.hpp>
 #include <drape/geometry/ccd.hpp>
 
 #include <algorithm>
@@ -18,7 +19,20 @@ double SelfContact::max_step(const Eigen::MatrixX3d& x, const Eigen::MatrixX3d& 
   const Eigen::MatrixX3d x1 = x + dx;
   // Candidates: the pairs whose swept boxes overlap (boxes that never meet
   // hold primitives that cannot touch), less those that never count.
-  const std::vector<SelfPair> pairs = candidate_pairs(t, x, &x1, 0.0);
+  // Within the Verlet list's reach its candidates, filtered by the same box
+  // test, are those pairs (in the same order): no grid to build.
+  std::vector<SelfPair> pairs;
+  if (std::optional<std::vector<SelfPair>> listed = candidates_covering(x, dx)) {
+    const geometry::MeshBoxes boxes = geometry::mesh_boxes(x, &x1, t.faces, t.edges, 0.0);
+    for (const SelfPair& p : *listed) {
+      const auto a = static_cast<std::size_t>(p.a), b = static_cast<std::size_t>(p.b);
+      if (p.kind == PairKind::VertexFace ? geometry::boxes_overlap(boxes.points[a], boxes.faces[b])
+                                         : geometry::boxes_overlap(boxes.edges[a], boxes.edges[b]))
+        pairs.push_back(p);
+    }
+  } else {
+    pairs = candidate_pairs(t, x, &x1, 0.0);
+  }
   const double s = settings_.min_separation;
   auto p0 = [&](int v) -> Eigen::Vector3d { return x.row(v).transpose(); };
   auto pd = [&](int v) -> Eigen::Vector3d { return dx.row(v).transpose(); };

@@ -6,6 +6,7 @@
 #include <drape/element_energy.hpp>
 #include <drape/energy_input.hpp>
 #include <drape/errors.hpp>
+#include <drape/geometry/box_pairs.hpp>
 #include <drape/physics/barrier_function.hpp>
 #include <drape/physics/psd_projection.hpp>
 #include <drape/warnings.hpp>
@@ -81,7 +82,7 @@ std::shared_ptr<const std::vector<SelfPair>> SelfContact::cached_pairs(const Eig
   // moved by more than the skin since (a Verlet list), as then every pair
   // within d_hat now was a candidate. Line-search trials and the next Newton
   // iterations move the cloth by less than that.
-  const double skin = settings_.distance;
+  const double skin = candidate_skin();
   if (!(cache_.candidates_x.rows() == x.rows() && (x - cache_.candidates_x).cwiseAbs().maxCoeff() <= skin)) {
     cache_.candidates = candidate_pairs(*topology_, x, nullptr, 0.5 * settings_.distance + skin);
     cache_.candidates_x = x;
@@ -90,6 +91,15 @@ std::shared_ptr<const std::vector<SelfPair>> SelfContact::cached_pairs(const Eig
       close_pairs(*topology_, x, cache_.candidates, settings_.distance * settings_.distance));
   cache_.x = x;
   return cache_.pairs;
+}
+
+std::optional<std::vector<SelfPair>> SelfContact::candidates_covering(const Eigen::MatrixX3d& x,
+                                                                       const Eigen::MatrixX3d& dx) const {
+  std::lock_guard<std::mutex> lock(cache_.mutex);
+  // Both primitives' swept boxes lie inside their boxes at candidates_x grown
+  // by d_hat / 2 + skin, which overlapped for every candidate.
+  if (!geometry::sweep_within(cache_.candidates_x, x, dx, 0.5 * settings_.distance + candidate_skin())) return std::nullopt;
+  return cache_.candidates;
 }
 
 template <class S>

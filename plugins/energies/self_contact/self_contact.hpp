@@ -59,6 +59,7 @@
 #include <cstdint>
 #include <memory>
 #include <mutex>
+#include <optional>
 #include <vector>
 
 namespace drape::self_contact {
@@ -135,6 +136,13 @@ class SelfContact final : public Energy {
   template <class D>
   D pair_dual(const SelfPair& pair, const Eigen::MatrixX3d& x) const;
   void hessian(const Eigen::MatrixX3d& x, Triplets& h, bool project_psd, bool lower) const;
+
+  // How far the cloth may move before the candidates are found again (their
+  // boxes are grown by d_hat / 2 and this).
+  double candidate_skin() const { return settings_.distance; }
+  // The candidates when a move from x by dx stays within their reach (every
+  // pair whose swept boxes overlap is one of them), else none.
+  std::optional<std::vector<SelfPair>> candidates_covering(const Eigen::MatrixX3d& x, const Eigen::MatrixX3d& dx) const;
 
   SelfContactSettings settings_;
   std::unique_ptr<SelfTopology> topology_;

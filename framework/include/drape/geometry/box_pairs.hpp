@@ -37,6 +37,18 @@ struct MeshBoxes {
 MeshBoxes mesh_boxes(const Eigen::MatrixX3d& x, const Eigen::MatrixX3d* x_end, const Eigen::MatrixX3i& faces,
                      const std::vector<std::array<int, 2>>& edges, double inflate);
 
+// The test overlapping_boxes reports a pair by: both boxes valid (finite,
+// lo <= hi) and overlapping as closed boxes.
+bool boxes_overlap(const Box& a, const Box& b);
+
+// A Verlet list's promise for a move: true when every primitive's box swept
+// from x to x + dx (mesh_boxes with x_end and no growth) lies inside its box
+// at x0 grown by `inflate`, so that every pair whose swept boxes overlap was
+// already a pair of the list found at x0 with boxes grown that much. Holds
+// when max |x - x0| + max |dx| <= inflate over every coordinate; a nanometre
+// and the coordinates' rounding are kept in hand.
+bool sweep_within(const Eigen::MatrixX3d& x0, const Eigen::MatrixX3d& x, const Eigen::MatrixX3d& dx, double inflate);
+
 // The same with b's grid built once and kept: a body that stands still is
 // queried by every line-search trial, and rebuilding its grid each time cost
 // more than the query (a third of a barrier drape's time).
