@@ -542,6 +542,28 @@ TEST_CASE("a box grid built once answers many queries as a fresh search would") 
   CHECK(BoxGrid(std::vector<Box>{}).overlapping(random_boxes(rng, 30)).empty());
 }
 
+// What max_step relies on to take its pairs from a Verlet list: the box test
+// the grid reports by, and the reach of a list found with grown boxes.
+TEST_CASE("boxes_overlap and sweep_within: the box test and a Verlet list's reach") {
+  const Box unit{V(0, 0, 0), V(1, 1, 1)};
+  CHECK(boxes_overlap(unit, {V(1, 1, 1), V(2, 2, 2)}));               // a shared corner counts
+  CHECK_FALSE(boxes_overlap(unit, {V(1 + 1e-12, 0, 0), V(2, 1, 1)}));  // just apart
+  CHECK_FALSE(boxes_overlap(unit, {V(0.5, 0, 0), V(0.4, 1, 1)}));      // lo > hi: no box
+  CHECK_FALSE(boxes_overlap(unit, {V(NAN, 0, 0), V(0.5, 1, 1)}));
+  // Drift 0.4 mm on one coordinate, step 0.5 mm on another: 0.9 mm of a 1 mm growth.
+  Eigen::MatrixX3d x0 = Eigen::MatrixX3d::Random(20, 3), x = x0, dx = Eigen::MatrixX3d::Zero(20, 3);
+  x(3, 1) += 4e-4;
+  dx(7, 2) = -5e-4;
+  CHECK(sweep_within(x0, x, dx, 1e-3));
+  CHECK_FALSE(sweep_within(x0, x, dx, 0.9e-3));  // exactly at the reach: the nanometre in hand refuses
+  CHECK(sweep_within(x0, x, dx, 0.9e-3 + 2e-9));
+  dx(7, 2) = -6.1e-4;
+  CHECK_FALSE(sweep_within(x0, x, dx, 1e-3));
+  dx(7, 2) = NAN;
+  CHECK_FALSE(sweep_within(x0, x, dx, 1e-3));
+  CHECK_FALSE(sweep_within(Eigen::MatrixX3d(19, 3), x, Eigen::MatrixX3d::Zero(20, 3), 1.0));  // another mesh
+}
+
 TEST_CASE("overlapping boxes: touching counts, points and degenerate grids") {
   const Box unit{V(0, 0, 0), V(1, 1, 1)};
   // Sharing a face, an edge, a corner; a point on the surface and inside; just apart.

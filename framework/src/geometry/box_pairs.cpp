@@ -208,11 +208,12 @@ bool boxes_overlap(const Box& a, const Box& b) { return valid(a) && valid(b) && 
 
 bool sweep_within(const Eigen::MatrixX3d& x0, const Eigen::MatrixX3d& x, const Eigen::MatrixX3d& dx, double inflate) {
   if (x0.rows() != x.rows() || dx.rows() != x.rows() || x.rows() == 0) return false;
+  if (!x0.allFinite() || !x.allFinite() || !dx.allFinite()) return false;  // (Eigen's maxCoeff may pass over a NaN)
   const double drift = (x - x0).cwiseAbs().maxCoeff(), step = dx.cwiseAbs().maxCoeff();
   // The boxes' corners are rounded sums (x0 - inflate, x + dx): a few ulps of
   // the largest coordinate each, far below the nanometre kept in hand.
   const double rounding = 8 * std::numeric_limits<double>::epsilon() * (x0.cwiseAbs().maxCoeff() + x.cwiseAbs().maxCoeff() + step);
-  return drift + step <= inflate - 1e-9 - rounding;  // false for NaN
+  return drift + step <= inflate - 1e-9 - rounding;
 }
 
 std::vector<std::pair<int, int>> overlapping_boxes(const std::vector<Box>& a, const std::vector<Box>& b,
