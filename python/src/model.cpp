@@ -204,8 +204,11 @@ void register_model(py::module_& m) {
             fs::path file = path ? find_input_file(*path) : default_model_path();  // models/... from anywhere
             if (file.empty())
               throw ConfigError("no model given and the shipped model (models/tshirt-coarse.h5) was not found: give a file from drape train, or set DRAPE_MODEL");
+            // Read from the Python objects before the lock is let go (py::str
+            // without it crashed every load with overrides).
+            const Model::ParamOverrides set = overrides_of(overrides);
             py::gil_scoped_release release;
-            return std::make_unique<PyModel>(Model::load(registry(), file, overrides_of(overrides), cache_dir_of(cache_dir)));
+            return std::make_unique<PyModel>(Model::load(registry(), file, set, cache_dir_of(cache_dir)));
           },
           py::arg("path") = py::none(), py::arg("overrides") = py::dict(), py::arg("cache_dir") = py::none(),
           "Reads a model file (default: the shipped models/tshirt-coarse.h5). overrides: {node: {param: value}} for knobs "

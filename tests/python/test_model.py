@@ -25,6 +25,24 @@ def test_predict_matches_the_program(model, tmp_path):
     np.testing.assert_array_equal(faces, model.assets.garment_faces)
 
 
+def test_overrides_at_load_match_the_programs_set(model, tmp_path):
+    # Model.load(overrides=...) is drape predict --set: here the push-out
+    # after the network turned off, on a heavy body where it moves vertices.
+    network_alone = drape.Model.load(str(SHIPPED), overrides={"post": {"enabled": False}})
+    body = model.body(bmi=55, height=1.6, sex=0)
+    drape.write_obj(tmp_path / "body.obj", body, model.assets.body_faces)
+    run_drape("predict", "--model", SHIPPED, "--body", tmp_path / "body.obj", "--set", "post.enabled=false",
+              "--out", tmp_path / "g.obj")
+    expected, _ = read_obj(tmp_path / "g.obj")
+    garment = network_alone.predict(body, check=False)
+    np.testing.assert_allclose(garment, expected, atol=2e-5)
+    pushed = model.predict(body, check=False)
+    moved = np.linalg.norm(pushed - garment, axis=1)
+    assert 0 < np.count_nonzero(moved > 1e-6) < len(moved)  # the push-out moves some vertices, not all
+    with pytest.raises(Exception, match="no_such_node"):
+        drape.Model.load(str(SHIPPED), overrides={"no_such_node": {"enabled": False}})
+
+
 def test_batched_predict_equals_one_by_one(model):
     bodies = np.stack([model.body(bmi=b) for b in (20, 35, 50)])
     batch = model.predict(bodies)
