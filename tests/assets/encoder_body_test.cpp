@@ -78,6 +78,19 @@ TEST_CASE("the human rig's assets read at the mannequin's vertices for the encod
     REQUIRE(c < ne);
     CHECK((human->encoder_resampling.resampled_template.row(c) - human->garment->mesh.vertices.row(static_cast<Eigen::Index>(g))).norm() < 0.12);
   }
+  // Everything a network's weights are tied to is the encoder body's own assets', bit for bit: the
+  // correspondences (into its vertices, which the encoder's points resample), the hierarchy and the
+  // eigenbasis (on the garment dressed on the human rig the eigenvectors differ past the first few).
+  CHECK(human->correspondence == mannequin->correspondence);
+  REQUIRE(human->hierarchy.levels.size() == mannequin->hierarchy.levels.size());
+  for (std::size_t l = 0; l < human->hierarchy.levels.size(); ++l) {
+    CHECK(human->hierarchy.levels[l].mesh.faces == mannequin->hierarchy.levels[l].mesh.faces);
+    CHECK(human->hierarchy.levels[l].mesh.vertices == mannequin->hierarchy.levels[l].mesh.vertices);
+  }
+  CHECK(human->eigenvalues == mannequin->eigenvalues);
+  CHECK(human->eigenvectors == mannequin->eigenvectors);
+  // The garment itself (its template, the losses' rest shape) is the one dressed on the human rig.
+  CHECK((human->garment->mesh.vertices - mannequin->garment->mesh.vertices).norm() > 1e-3);
   // Without the encoder body the same template has no resampling and its own vertices' correspondences.
   AssetsSpec own = human_spec("");
   const auto plain = build_assets(test::plugins(), own, dir.path());

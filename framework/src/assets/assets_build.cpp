@@ -117,8 +117,14 @@ std::shared_ptr<const Assets> build_assets(const Registry& registry, const Asset
   h.matrix(gm.faces);
   h.matrix(gm.uv);
   h.matrix(gm.uv_faces);
-  // The cached correspondences and hierarchy depend on the encoder body too.
-  if (encoder_body) h.matrix(a->encoder_resampling.resampled_template);
+  // The cached correspondences, hierarchy and eigenbasis depend on the
+  // encoder body too. (The marker keeps caches written before they all came
+  // from the garment on the encoder body, 2026-12-01, from being read.)
+  if (encoder_body) {
+    h.matrix(a->encoder_resampling.resampled_template);
+    const std::string version = "encoder body's garment for correspondences, hierarchy and eigenbasis";
+    h.bytes(version.data(), version.size());
+  }
   a->hash = h.hex();
 
   const fs::path cache_file = cache_dir.empty() ? fs::path() : cache_dir / ("assets-" + a->hash + ".h5");
@@ -135,29 +141,37 @@ std::shared_ptr<const Assets> build_assets(const Registry& registry, const Asset
     t.load = since(start);
   }
   if (!loaded) {
+    // With an encoder body, everything a network's weights are tied to comes
+    // from the garment dressed on that body, exactly as that body model's own
+    // assets build it, so that every weight of a model of that body model
+    // means what it meant there: the correspondences (the encoder's points
+    // are that body's vertices, resampled), the hierarchy (its clusters and
+    // per-edge weights depend on the dressed shape) and the eigenbasis (the
+    // spectral branch's coefficients are per eigenvector; on the garment
+    // dressed on the human rig the vectors past the first few dozen are
+    // others, or flipped, and a model started from the mannequin's weights
+    // kept a spike at the underarm seam). Losses, templates and skinning keep
+    // the garment on this body (gm).
+    Garment on_encoder_body;
+    Mesh encoder_template;
+    if (encoder_body) {
+      on_encoder_body = build_garment();
+      dress_on_fit_body(*encoder_body, on_encoder_body, "the assets' garment '" + spec.garment + "' on the encoder body");
+      encoder_template.vertices = encoder_body->vertices(encoder_body->mean_shape());
+      encoder_template.faces = encoder_body->faces();
+    }
+    const Mesh& weights_garment = encoder_body ? on_encoder_body.mesh : gm;
     start = Clock::now();
-    a->correspondence = spec.encoder_body.empty()
-                            ? geometry::body_to_garment_correspondence(a->body, gm)
-                            : geometry::body_to_garment_correspondence(a->body, gm, a->encoder_resampling.resampled_template);
+    a->correspondence = encoder_body ? geometry::body_to_garment_correspondence(encoder_template, weights_garment)
+                                     : geometry::body_to_garment_correspondence(a->body, gm);
     t.correspondence = since(start);
     start = Clock::now();
     geometry::HierarchyOptions ho;
     ho.levels = spec.levels;
-    if (encoder_body) {
-      // The hierarchy of the garment dressed on the encoder body, as that body
-      // model's own assets build it: the same coarse levels, so every decoder
-      // weight of a model of that body model fits (the levels' clusters
-      // depend on the dressed shape, and the per-edge weights on the
-      // clusters). Its levels' positions are that garment's.
-      Garment on_encoder_body = build_garment();
-      dress_on_fit_body(*encoder_body, on_encoder_body, "the assets' garment '" + spec.garment + "' on the encoder body");
-      a->hierarchy = geometry::build_hierarchy(on_encoder_body.mesh, ho);
-    } else {
-      a->hierarchy = geometry::build_hierarchy(gm, ho);
-    }
+    a->hierarchy = geometry::build_hierarchy(weights_garment, ho);
     t.hierarchy = since(start);
     start = Clock::now();
-    const Eigenbasis basis = compute_eigenbasis(gm, std::min(spec.eigen_k, gm.num_vertices()));
+    const Eigenbasis basis = compute_eigenbasis(weights_garment, std::min(spec.eigen_k, weights_garment.num_vertices()));
     a->eigenvalues = basis.values;
     a->eigenvectors = basis.vectors.cast<float>();
     t.eigenbasis = since(start);
