@@ -2,6 +2,7 @@
 // encoder for both rigs"): the human rig's template with the mannequin's
 // vertices for the encoder.
 #include <drape/assets/assets.hpp>
+#include <drape/assets/weight_ties.hpp>
 #include <drape/training/model.hpp>
 
 #include <catch2/catch.hpp>
@@ -96,4 +97,35 @@ TEST_CASE("the human rig's assets read at the mannequin's vertices for the encod
   const auto plain = build_assets(test::plugins(), own, dir.path());
   CHECK(plain->encoder_resampling.size() == 0);
   CHECK(plain->hash != human->hash);
+
+  // What drape train --init compares (weight_ties.hpp): nothing differs between the mannequin's assets
+  // and the human rig's with the mannequin as encoder body; the human rig's own assets differ first in
+  // what the correspondences index. (These 8 eigenvectors, the lowest modes, are alike on both
+  // garments; the shipped graph's 1000 are not: tests/python/test_encoder_body.py.)
+  CHECK(weight_ties_differ(*mannequin, *human).empty());
+  const std::vector<std::string> differ = weight_ties_differ(*mannequin, *plain);
+  REQUIRE_FALSE(differ.empty());
+  CHECK(differ[0] == "the correspondences index " + std::to_string(ne) + " body points there and " +
+                         std::to_string(nb) + " here");
+}
+
+// weight_ties_differ on assets changed by hand: one correspondence, one eigenvector flipped (the same
+// vector: not counted) and one turned into another, a hierarchy level's faces.
+TEST_CASE("weight ties: each difference named and counted", "[assets]") {
+  test::TempDir dir;
+  AssetsSpec spec = human_spec("");
+  spec.body_params.clear();
+  const auto a = build_assets(test::plugins(), spec, dir.path());
+  Assets b = *a;
+  CHECK(weight_ties_differ(*a, b).empty());
+  b.eigenvectors.col(3) *= -1.0f;  // a flipped sign is the same eigenvector
+  CHECK(weight_ties_differ(*a, b).empty());
+  b.correspondence[17] = b.correspondence[17] + 1;
+  b.eigenvectors.col(5).swap(b.eigenvectors.col(6));  // two others (orthogonal to what they replace)
+  std::swap(b.hierarchy.levels[1].mesh.faces(0, 0), b.hierarchy.levels[1].mesh.faces(0, 1));
+  const std::vector<std::string> differ = weight_ties_differ(*a, b);
+  REQUIRE(differ.size() == 3);
+  CHECK(differ[0] == "1 of " + std::to_string(a->correspondence.size()) + " garment vertices read another body point");
+  CHECK(differ[1] == "the hierarchy's level 1 clusters the garment otherwise");
+  CHECK(differ[2].rfind("2 of 8 eigenvectors are others (|cos| below 0.9, the first at 5)", 0) == 0);
 }

@@ -59,6 +59,8 @@ def test_the_shipped_human_graph_trains_from_every_weight_of_the_mannequin_model
                             HUMAN_SHARD, "--out", out, "--epochs", 1, "--fraction", 0.1, "--threads", 1,
                             "--encoder-body", "parametric", "--init", SOURCE / "models" / "tshirt-coarse.h5", "--quiet")
     assert "keeps its initialisation" not in stdout + err
+    # ... and what they are tied to is the mannequin model's: its correspondences, hierarchy and eigenvectors.
+    assert "was trained on other assets" not in stdout + err
     m = drape.Model.load(str(out))
     human, _ = drape.body(45, 1.8, 1, params={"rig": "human"})
     g = m.predict(human.astype(np.float32), garment_size=1.5, check=False)
@@ -71,3 +73,14 @@ def test_without_the_encoder_body_the_graph_is_refused(tmp_path):
     _, err = run_drape("train", graph, "--data", HUMAN_SHARD, "--out", tmp_path / "m.h5", "--epochs", 1, "--k", 8,
                        "--threads", 1, "--quiet", expect=2)
     assert "--encoder-body" in err
+
+
+def test_a_start_on_other_assets_is_said(tmp_path):
+    """The mannequin model started on the human rig's own assets (--init-partial, no encoder body): the weights
+    load where their shapes allow, and the warning says what they are tied to that differs."""
+    _, err = run_drape("train", SOURCE / "graphs" / "sizes" / "drape_grade_v2v1000_post.yaml", "--data", HUMAN_SHARD,
+                       "--out", tmp_path / "p.h5", "--epochs", 1, "--fraction", 0.1, "--threads", 1, "--init-partial",
+                       "--init", SOURCE / "models" / "tshirt-coarse.h5", "--quiet")
+    assert "was trained on other assets" in err
+    assert "the correspondences index 6490 body points there and 6904 here" in err
+    assert "eigenvectors are others" in err

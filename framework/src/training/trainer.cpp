@@ -8,6 +8,10 @@
 #include <drape/training/rng.hpp>
 #include <drape/training/schedule.hpp>
 #include <drape/assets/dataset_assets.hpp>
+#include <drape/assets/weight_ties.hpp>
+#include <drape/io/checkpoint.hpp>
+#include <drape/training/model.hpp>
+#include <drape/warnings.hpp>
 #include <drape/training/trainer.hpp>
 
 #include <unistd.h>
@@ -174,6 +178,23 @@ void check_trainable(Graph& graph, const fs::path& graph_file) {
     throw ConfigError(graph_file.string() + ": the graph has no losses to train with");
 }
 
+// A model started on other assets than its own: the shapes may all fit
+// while the weights tied to the assets mean other things (weight_ties.hpp).
+// Said, not refused: fine-tuning can relearn them, and a user may mean it.
+void warn_of_other_assets(const Registry& registry, const TrainOptions& o, const TrainingData& data) {
+  const Checkpoint init = read_checkpoint(o.init);
+  const auto spec = init.meta.find("assets");
+  if (spec == init.meta.end()) return;  // a plain checkpoint: nothing to compare with
+  const AssetsSpec from = parse_assets_spec(spec->second, o.init.string() + ": /meta assets");
+  if (from.yaml() == data.assets_spec.yaml()) return;
+  const auto from_assets = build_assets(registry, from, o.cache_dir);
+  const std::vector<std::string> differ = weight_ties_differ(*from_assets, *data.assets);
+  if (differ.empty()) return;
+  std::string text = "--init " + o.init.string() + " was trained on other assets, and what its weights are tied to differs here: ";
+  for (std::size_t i = 0; i < differ.size(); ++i) text += (i ? "; " : "") + differ[i];
+  warn(text + " (docs/training.md, \"From a model's weights\")");
+}
+
 // Every weight by name and shape, all or nothing (load_weights names the
 // first that is missing or has another shape: a model of another graph).
 void load_init_weights(const TrainOptions& o, DataParallelGraph& dp) {
@@ -183,8 +204,8 @@ void load_init_weights(const TrainOptions& o, DataParallelGraph& dp) {
   } else {
     const auto widened = o.init_partial ? load_weights_partial(o.init, dp.graph().weights())
                                         : load_weights_widening(o.init, dp.graph().weights());
-    if (o.progress)
-      for (const auto& w : widened)
+    if (o.progress) {
+      for (const auto& w : widened) {
         if (w.kept)
           *o.progress << "init: weight " << w.name << " is " << w.from.str() << " in the file, " << w.to.str()
                       << " in the graph: it keeps its initialisation\n";
@@ -194,6 +215,8 @@ void load_init_weights(const TrainOptions& o, DataParallelGraph& dp) {
         else
           *o.progress << "init: weight " << w.name << " widened from " << w.from.str() << " to " << w.to.str()
                       << " (the new input rows start at zero)\n";
+      }
+    }
   }
   dp.sync_weights();
 }
@@ -551,7 +574,10 @@ TrainReport train(const Registry& registry, const TrainOptions& given) {
   const std::string output = garment_output(graph);
   if ((o.init_widen || o.init_partial) && o.init.empty())
     throw ConfigError(std::string(o.init_partial ? "--init-partial" : "--init-widen") + " needs --init (the model to start from)");
-  if (!o.init.empty()) load_init_weights(o, dp);
+  if (!o.init.empty()) {
+    load_init_weights(o, dp);
+    if (rank == 0) warn_of_other_assets(registry, o, data);
+  }
   Learner learner{Adam(graph.weights()), EarlyStopping({o.patience, 0.0}), lr_schedule(o), WeightCopy(graph.weights()),
                   History()};
   const std::map<std::string, std::string> settings = resume_settings(o, data, reader.layout(), ranks);
