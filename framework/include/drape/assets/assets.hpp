@@ -45,11 +45,12 @@ class Assets {
   // `body` and barycentric weights; its resampled_template is `body` read at
   // those points [Ne, 3]).
   // The `resample_body` node carries every input body onto these points, and
-  // `correspondence` then indexes them (each garment vertex reads the one
-  // nearest its closest point on `body`), and the hierarchy is that of the
-  // garment dressed on the encoder body (so that a model of that body model
-  // fits weight for weight). Empty otherwise; recomputed at every build
-  // (milliseconds), the correspondence and hierarchy cached under the spec's hash.
+  // `correspondence` then indexes them. The correspondences, the hierarchy
+  // and the eigenbasis are those of the garment dressed on the encoder body,
+  // exactly as that body model's own assets have them, so that every weight
+  // of a model of that body model means what it meant there
+  // (weight_ties.hpp). Empty otherwise; recomputed at every build
+  // (milliseconds), the rest cached under the spec's hash.
   geometry::BodyResampling encoder_resampling;
   std::string hash;                        // of the template and settings
   std::string spec_text;                   // the settings as YAML
