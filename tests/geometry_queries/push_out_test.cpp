@@ -223,3 +223,46 @@ TEST_CASE("push_out with edges leaves a sheet pressed onto a knob uncrossed", "[
   CHECK(crossings(with_edges) == 0);
   CHECK(knob.signed_distances(with_edges).minCoeff() >= 0.006 - 1e-9);
 }
+
+// A ridge that crosses an edge a quarter of the way along (the human rig's
+// thinnest shoulders): a prism whose cross-section rises along a slope of
+// 0.62 to a ridge 0.5 mm above the edge and drops by a vertical wall. The
+// edge's ends are 6.7 and 10.8 mm out (beyond the 6 mm margin: no vertex
+// moves) and its middle 3.4 mm out, beyond half the margin: only the quarter
+// point, 0.3 mm inside, shows the crossing.
+TEST_CASE("push_out with edges lifts an edge that a ridge crosses off its middle", "[geometry][push_out]") {
+  // Cross-section (x, z) in metres: ridge top, foot of the slope, two bottom corners; extruded along y.
+  const double top = 0.0005, slope = 0.62;
+  const double xs[4] = {0.0, 0.05, 0.05, 0.0}, zs[4] = {top, top - slope * 0.05, -0.05, -0.05};
+  Eigen::MatrixX3d v(8, 3);
+  for (int k = 0; k < 4; ++k) {
+    v.row(k) << xs[k], -0.05, zs[k];
+    v.row(4 + k) << xs[k], 0.05, zs[k];
+  }
+  Eigen::MatrixX3i f(12, 3);
+  // Sides (k -> k+1 around the section), then the two caps.
+  f << 0, 4, 5, 0, 5, 1, 1, 5, 6, 1, 6, 2, 2, 6, 7, 2, 7, 3, 3, 7, 4, 3, 4, 0, 0, 1, 2, 0, 2, 3, 4, 7, 6, 4, 6, 5;
+  f.col(1).swap(f.col(2));  // listed inward above: turned outward
+  const BodySurface ridge(v, f);
+  Eigen::MatrixX3d x(2, 3);
+  x << -0.0067, 0.0, 0.0, 0.0213, 0.0, 0.0;  // the quarter point under the ridge top
+  const Eigen::Vector3d quarter = (0.75 * x.row(0) + 0.25 * x.row(1)).transpose();
+  REQUIRE(ridge.locate(quarter).signed_distance < -0.0002);  // the edge crosses the prism there
+  REQUIRE(ridge.locate(x.row(0).transpose()).signed_distance > 0.006);
+  REQUIRE(ridge.locate(x.row(1).transpose()).signed_distance > 0.006);
+  const double middle = ridge.locate((0.5 * (x.row(0) + x.row(1))).transpose()).signed_distance;
+  REQUIRE(middle > 0.003);   // beyond half the margin: the middle alone sees nothing
+  REQUIRE(middle < 0.0036);  // within the band whose quarter points are searched
+  const std::vector<std::array<int, 2>> edges = {{0, 1}};
+  REQUIRE(edges_through(ridge, x, edges) == 1);
+  PushOutOptions options;
+  options.margin = 0.006;
+  options.edges = &edges;
+  Eigen::MatrixX3d y = x;
+  const PushOutReport r = push_out(ridge, y, options);
+  CHECK(r.edges_lifted >= 1);
+  CHECK(edges_through(ridge, y, edges) == 0);
+  // Lifted along the normal at its closest point to half the margin out, about: past the ridge's
+  // corner the closest point moves as it rises (2.95 mm).
+  CHECK(ridge.locate(Eigen::Vector3d(0.75 * y.row(0) + 0.25 * y.row(1))).signed_distance > 0.0025);
+}

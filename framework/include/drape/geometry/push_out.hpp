@@ -44,7 +44,10 @@ struct PushOutOptions {
   // searched (max of the ends' distances - half the edge < margin / 2), and
   // of those only edges whose nearer end, less twice the sagitta of the arc
   // the body's normal turns through between the ends' closest points, is
-  // within margin / 2 (a ridge sharper than those normals show is missed). The last pass moves
+  // within margin / 2 (a ridge sharper than those normals show is missed).
+  // An edge whose midpoint is within 0.6 margin has its quarter points
+  // searched too, and is lifted by the lowest of the three (a ridge can
+  // cross an edge off its middle). The last pass moves
   // vertices only, so every vertex keeps the margin's promise; an edge may
   // be left crossing where the passes ran out.
   const std::vector<std::array<int, 2>>* edges = nullptr;
