@@ -86,98 +86,92 @@ std::shared_ptr<const Assets> build_assets(const Registry& registry, const Asset
   a->body.vertices = body_model->vertices(body_model->mean_shape());
   a->body.faces = body_model->faces();
   const PluginDescriptor& gd = registry.get(spec.garment);
-  const auto build_garment = [&] {
-    return registry
-        .create_garment(spec.garment,
-                        Params(gd.params, values_of(spec.garment_params, "assets garment"), "garment '" + spec.garment + "'"))
-        ->build();
-  };
-  Garment garment = build_garment();
+  Garment garment = registry
+                        .create_garment(spec.garment, Params(gd.params, values_of(spec.garment_params, "assets garment"),
+                                                             "garment '" + spec.garment + "'"))
+                        ->build();
   // Dressed as a scene dresses it: on the body it is cut for (fit_body.hpp),
   // the mean body a->body for the regular size.
   dress_on_fit_body(*body_model, garment, "the assets' garment '" + spec.garment + "'");
   a->garment = std::make_shared<const Garment>(std::move(garment));
   t.garment = since(start);
+  const Mesh& gm = a->garment->mesh;
 
-  std::unique_ptr<BodyModel> encoder_body;
+  // With an encoder body, everything a network's weights are tied to is that
+  // body model's own assets': the correspondences (the encoder's points are
+  // its vertices, resampled on this body), the hierarchy (its clusters and
+  // per-edge weights follow the garment dressed on it) and the eigenbasis
+  // (the spectral branch's coefficients are per eigenvector; on the garment
+  // dressed on the human rig the vectors past the first few dozen are others,
+  // or flipped, and a model started from the mannequin's weights kept a spike
+  // at the underarm seam). So they are taken from those assets (built, or
+  // read from their own cache), and every weight of a model of that body
+  // model means here what it meant there (weight_ties.hpp). Losses,
+  // templates and skinning keep the garment on this body (gm).
+  std::shared_ptr<const Assets> encoder_assets;
   if (!spec.encoder_body.empty()) {
-    const PluginDescriptor& ed = registry.get(spec.encoder_body);
-    encoder_body =
-        registry.create_body(spec.encoder_body, Params(ed.params, values_of(spec.encoder_body_params, "assets encoder body"),
-                                                       "encoder body '" + spec.encoder_body + "'"));
-    a->encoder_resampling = geometry::body_resampling(a->body, encoder_body->vertices(encoder_body->mean_shape()));
+    AssetsSpec own = spec;
+    own.body_model = spec.encoder_body;
+    own.body_params = spec.encoder_body_params;
+    own.encoder_body.clear();
+    own.encoder_body_params.clear();
+    AssetsTimings own_timings;
+    encoder_assets = build_assets(registry, own, cache_dir, &own_timings);
+    const double garment_time = t.garment;
+    t = own_timings;  // its cache file, its load or its computation
+    t.garment += garment_time;
+    a->encoder_resampling = geometry::body_resampling(a->body, encoder_assets->body.vertices);
   }
 
   Fnv1a h;
   h.bytes(a->spec_text.data(), a->spec_text.size());
   h.matrix(a->body.vertices);
   h.matrix(a->body.faces);
-  const Mesh& gm = a->garment->mesh;
   h.matrix(gm.vertices);
   h.matrix(gm.faces);
   h.matrix(gm.uv);
   h.matrix(gm.uv_faces);
-  // The cached correspondences, hierarchy and eigenbasis depend on the
-  // encoder body too. (The marker keeps caches written before they all came
-  // from the garment on the encoder body, 2026-12-01, from being read.)
-  if (encoder_body) {
-    h.matrix(a->encoder_resampling.resampled_template);
-    const std::string version = "encoder body's garment for correspondences, hierarchy and eigenbasis";
-    h.bytes(version.data(), version.size());
-  }
+  if (encoder_assets) h.bytes(encoder_assets->hash.data(), encoder_assets->hash.size());
   a->hash = h.hex();
 
-  const fs::path cache_file = cache_dir.empty() ? fs::path() : cache_dir / ("assets-" + a->hash + ".h5");
-  t.cache_file = cache_file;
   bool loaded = false;
-  if (!cache_file.empty() && fs::exists(cache_file)) {
-    start = Clock::now();
-    try {
-      assets_cache::load(cache_file, *a);
-      loaded = true;
-    } catch (const Error&) {
-      loaded = false;  // unreadable or stale: rebuild and overwrite below
+  if (encoder_assets) {
+    a->correspondence = encoder_assets->correspondence;
+    a->hierarchy = encoder_assets->hierarchy;
+    a->eigenvalues = encoder_assets->eigenvalues;
+    a->eigenvectors = encoder_assets->eigenvectors;
+    loaded = t.from_cache;
+  } else {
+    const fs::path cache_file = cache_dir.empty() ? fs::path() : cache_dir / ("assets-" + a->hash + ".h5");
+    t.cache_file = cache_file;
+    if (!cache_file.empty() && fs::exists(cache_file)) {
+      start = Clock::now();
+      try {
+        assets_cache::load(cache_file, *a);
+        loaded = true;
+      } catch (const Error&) {
+        loaded = false;  // unreadable or stale: rebuild and overwrite below
+      }
+      t.load = since(start);
     }
-    t.load = since(start);
-  }
-  if (!loaded) {
-    // With an encoder body, everything a network's weights are tied to comes
-    // from the garment dressed on that body, exactly as that body model's own
-    // assets build it, so that every weight of a model of that body model
-    // means what it meant there: the correspondences (the encoder's points
-    // are that body's vertices, resampled), the hierarchy (its clusters and
-    // per-edge weights depend on the dressed shape) and the eigenbasis (the
-    // spectral branch's coefficients are per eigenvector; on the garment
-    // dressed on the human rig the vectors past the first few dozen are
-    // others, or flipped, and a model started from the mannequin's weights
-    // kept a spike at the underarm seam). Losses, templates and skinning keep
-    // the garment on this body (gm).
-    Garment on_encoder_body;
-    Mesh encoder_template;
-    if (encoder_body) {
-      on_encoder_body = build_garment();
-      dress_on_fit_body(*encoder_body, on_encoder_body, "the assets' garment '" + spec.garment + "' on the encoder body");
-      encoder_template.vertices = encoder_body->vertices(encoder_body->mean_shape());
-      encoder_template.faces = encoder_body->faces();
-    }
-    const Mesh& weights_garment = encoder_body ? on_encoder_body.mesh : gm;
-    start = Clock::now();
-    a->correspondence = encoder_body ? geometry::body_to_garment_correspondence(encoder_template, weights_garment)
-                                     : geometry::body_to_garment_correspondence(a->body, gm);
-    t.correspondence = since(start);
-    start = Clock::now();
-    geometry::HierarchyOptions ho;
-    ho.levels = spec.levels;
-    a->hierarchy = geometry::build_hierarchy(weights_garment, ho);
-    t.hierarchy = since(start);
-    start = Clock::now();
-    const Eigenbasis basis = compute_eigenbasis(weights_garment, std::min(spec.eigen_k, weights_garment.num_vertices()));
-    a->eigenvalues = basis.values;
-    a->eigenvectors = basis.vectors.cast<float>();
-    t.eigenbasis = since(start);
-    if (!cache_file.empty()) {
-      fs::create_directories(cache_dir);
-      assets_cache::save(cache_file, *a);
+    if (!loaded) {
+      start = Clock::now();
+      a->correspondence = geometry::body_to_garment_correspondence(a->body, gm);
+      t.correspondence = since(start);
+      start = Clock::now();
+      geometry::HierarchyOptions ho;
+      ho.levels = spec.levels;
+      a->hierarchy = geometry::build_hierarchy(gm, ho);
+      t.hierarchy = since(start);
+      start = Clock::now();
+      const Eigenbasis basis = compute_eigenbasis(gm, std::min(spec.eigen_k, gm.num_vertices()));
+      a->eigenvalues = basis.values;
+      a->eigenvectors = basis.vectors.cast<float>();
+      t.eigenbasis = since(start);
+      if (!cache_file.empty()) {
+        fs::create_directories(cache_dir);
+        assets_cache::save(cache_file, *a);
+      }
     }
   }
   t.from_cache = loaded;

@@ -40,16 +40,12 @@ Eigen::MatrixX3d attached_points(const Eigen::MatrixX3d& body_vertices, const Ei
 }
 
 std::vector<int> body_to_garment_correspondence(const Mesh& body, const Mesh& garment) {
-  return body_to_garment_correspondence(body, garment, body.vertices);
-}
-
-std::vector<int> body_to_garment_correspondence(const Mesh& body, const Mesh& garment, const Eigen::MatrixX3d& points) {
   if (garment.vertices.rows() == 0) throw Error("body-to-garment correspondence: the garment has no vertices");
   const BodySurface surface(body);
   const std::vector<SurfacePoint> hits = surface.locate_all(garment.vertices);
   // Nearest vertices are point queries: nanoflann's kd-tree is the right tool.
   using KdTree = nanoflann::KDTreeEigenMatrixAdaptor<Eigen::MatrixX3d, 3>;
-  const KdTree tree(3, std::cref(points), 10);
+  const KdTree tree(3, std::cref(body.vertices), 10);
   std::vector<int> out(hits.size());
   const Eigen::Index n = garment.vertices.rows();
 #pragma omp parallel for schedule(static, 64)

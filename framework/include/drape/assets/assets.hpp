@@ -46,11 +46,10 @@ class Assets {
   // those points [Ne, 3]).
   // The `resample_body` node carries every input body onto these points, and
   // `correspondence` then indexes them. The correspondences, the hierarchy
-  // and the eigenbasis are those of the garment dressed on the encoder body,
-  // exactly as that body model's own assets have them, so that every weight
-  // of a model of that body model means what it meant there
-  // (weight_ties.hpp). Empty otherwise; recomputed at every build
-  // (milliseconds), the rest cached under the spec's hash.
+  // and the eigenbasis are the encoder body model's own assets' (built or
+  // read from their own cache), so that every weight of a model of that body
+  // model means what it meant there (weight_ties.hpp). Empty otherwise;
+  // recomputed at every build (milliseconds).
   geometry::BodyResampling encoder_resampling;
   std::string hash;                        // of the template and settings
   std::string spec_text;                   // the settings as YAML

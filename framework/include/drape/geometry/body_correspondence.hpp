@@ -35,9 +35,5 @@ Eigen::MatrixX3d attached_points(const Eigen::MatrixX3d& body_vertices, const Ei
 // corners of that face: on obtuse faces a neighbour's vertex can be nearer).
 // Both meshes in the same space, normally the garment dressed on the mean body.
 std::vector<int> body_to_garment_correspondence(const Mesh& body, const Mesh& garment);
-// The same with the nearest of other points on the body's surface (`points`,
-// e.g. another body model's vertices resampled onto it: Assets::
-// encoder_resampling.resampled_template) instead of the body's own vertices: indices into `points`.
-std::vector<int> body_to_garment_correspondence(const Mesh& body, const Mesh& garment, const Eigen::MatrixX3d& points);
 
 }  // namespace drape::geometry
