@@ -31,6 +31,19 @@ double pushed_box_distance(const Eigen::Vector3d& p) {
   return q.cwiseMax(0.0).norm() + std::min(q.maxCoeff(), 0.0);
 }
 
+// The triangles of an n x n grid of vertices numbered row by row.
+Eigen::MatrixX3i grid_faces(int n) {
+  Eigen::MatrixX3i faces(2 * (n - 1) * (n - 1), 3);
+  int f = 0;
+  for (int i = 0; i + 1 < n; ++i)
+    for (int j = 0; j + 1 < n; ++j) {
+      const int a = i * n + j;
+      faces.row(f++) << a, a + 1, a + n + 1;
+      faces.row(f++) << a, a + n + 1, a + n;
+    }
+  return faces;
+}
+
 }  // namespace
 
 TEST_CASE("push_out moves the vertices inside or within the margin to the margin, and no other", "[geometry][push_out]") {
@@ -195,16 +208,9 @@ TEST_CASE("push_out with edges leaves a sheet pressed onto a knob uncrossed", "[
   const BodySurface knob(icosphere(4, 0.015));
   const int n = 7;
   Eigen::MatrixX3d sheet(n * n, 3);
-  Eigen::MatrixX3i faces(2 * (n - 1) * (n - 1), 3);
   for (int i = 0; i < n; ++i)
     for (int j = 0; j < n; ++j) sheet.row(i * n + j) << 0.025 * (i - n / 2) + 0.004, 0.010, 0.025 * (j - n / 2) + 0.007;
-  int f = 0;
-  for (int i = 0; i + 1 < n; ++i)
-    for (int j = 0; j + 1 < n; ++j) {
-      const int a = i * n + j;
-      faces.row(f++) << a, a + 1, a + n + 1;
-      faces.row(f++) << a, a + n + 1, a + n;
-    }
+  const Eigen::MatrixX3i faces = grid_faces(n);
   const std::vector<std::array<int, 2>> edges = edge_list(faces);
   CHECK(edges.size() == static_cast<std::size_t>(2 * n * (n - 1) + (n - 1) * (n - 1)));
   auto crossings = [&](const Eigen::MatrixX3d& x) { return surface_crossings(x, faces, knob.vertices(), knob.faces()).total(); };
@@ -265,4 +271,62 @@ TEST_CASE("push_out with edges lifts an edge that a ridge crosses off its middle
   // Lifted along the normal at its closest point to half the margin out, about: past the ridge's
   // corner the closest point moves as it rises (2.95 mm).
   CHECK(ridge.locate(Eigen::Vector3d(0.75 * y.row(0) + 0.25 * y.row(1))).signed_distance > 0.0025);
+}
+
+// The first searches cut at each vertex's reach (PushOutOptions::cut_at_reach)
+// give the same bits as searches in full, on sheets of 1.2 cm triangles laid
+// through a ball (10 cm radius) at random heights and tilts: parts far
+// outside (never searched in full), parts near the surface (stepped, lifted)
+// and parts deep inside, beyond their reach (their side from their
+// neighbours, or, for a patch wholly inside, from a search in full).
+TEST_CASE("push_out cut at each vertex's reach gives the bits of searches in full", "[geometry][push_out]") {
+  const BodySurface ball(icosphere(4, 0.1));
+  const int n = 30;
+  const Eigen::MatrixX3i faces = grid_faces(n);
+  const std::vector<std::array<int, 2>> edges = edge_list(faces);
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> height(-0.11, 0.11), tilt(-0.4, 0.4), jitter(-0.002, 0.002);
+  int beyond = 0, inside_far = 0;
+  for (int trial = 0; trial < 12; ++trial) {
+    const double y0 = height(rng), tx = tilt(rng), tz = tilt(rng);
+    Eigen::MatrixX3d sheet(n * n, 3);
+    for (int i = 0; i < n; ++i)
+      for (int j = 0; j < n; ++j) {
+        const double x = 0.012 * (i - n / 2) + jitter(rng), z = 0.012 * (j - n / 2) + jitter(rng);
+        sheet.row(i * n + j) << x, y0 + tx * x + tz * z + jitter(rng), z;
+      }
+    for (Eigen::Index i = 0; i < sheet.rows(); ++i) inside_far += ball.locate(sheet.row(i).transpose()).signed_distance < -0.02;
+    PushOutOptions options;
+    options.margin = 0.006;
+    options.edges = &edges;
+    Eigen::MatrixX3d cut = sheet, full = sheet;
+    const PushOutReport rc = push_out(ball, cut, options);
+    options.cut_at_reach = false;
+    const PushOutReport rf = push_out(ball, full, options);
+    INFO("trial " << trial << " at height " << y0);
+    CHECK(cut == full);
+    CHECK(rc.moved == rf.moved);
+    CHECK(rc.edges_searched == rf.edges_searched);
+    CHECK(rc.edges_lifted == rf.edges_lifted);
+    CHECK(rc.passes == rf.passes);
+    CHECK(rf.beyond_reach == 0);
+    CHECK(rc.moved > 0);
+    CHECK(ball.signed_distances(cut).minCoeff() >= 0.006 - 1e-9);
+    beyond += rc.beyond_reach;
+  }
+  CHECK(beyond > 1000);     // most of each sheet lies outside the ball, beyond its reach
+  CHECK(inside_far > 500);  // and the sheets through the ball leave vertices 2 cm deep
+
+  // A patch wholly inside, every vertex beyond its reach: no neighbour knows
+  // its side; searched in full, it is pushed out like a patch without edges.
+  Eigen::MatrixX3d patch(4, 3);
+  patch << 0, 0, 0, 0.01, 0, 0, 0, 0, 0.01, 0.01, 0, 0.01;
+  const std::vector<std::array<int, 2>> patch_edges = {{0, 1}, {0, 2}, {1, 3}, {2, 3}, {1, 2}};
+  PushOutOptions options;
+  options.margin = 0.006;
+  options.edges = &patch_edges;
+  const PushOutReport r = push_out(ball, patch, options);
+  CHECK(r.beyond_reach == 0);
+  CHECK(r.moved == 4);
+  CHECK(ball.signed_distances(patch).minCoeff() >= 0.006 - 1e-9);
 }

@@ -126,7 +126,11 @@ SurfacePoint BodySurface::locate(const Eigen::Vector3d& p, double max_distance) 
 }
 
 SurfacePoint BodySurface::locate_near(const Eigen::Vector3d& p, int hint) const {
-  return search(p, std::numeric_limits<double>::infinity(), nullptr, 0, hint < faces_.rows() ? hint : -1);
+  return locate_near(p, hint, std::numeric_limits<double>::infinity());
+}
+
+SurfacePoint BodySurface::locate_near(const Eigen::Vector3d& p, int hint, double max_distance) const {
+  return search(p, max_distance, nullptr, 0, hint < faces_.rows() ? hint : -1);
 }
 
 SurfacePoint BodySurface::locate_excluding(const Eigen::Vector3d& p, const std::vector<int>& face_labels, int excluded,

@@ -78,6 +78,9 @@ class BodySurface final : public BodyQuery {
   // (its distance bounds the search; the answer is locate()'s: of faces at the
   // same distance the lowest-numbered wins, with or without a hint).
   SurfacePoint locate_near(const Eigen::Vector3d& p, int hint) const;
+  // The same within max_distance (face = -1 when the surface is farther):
+  // a far point's search is cut short, and a nearer one's answer is unchanged.
+  SurfacePoint locate_near(const Eigen::Vector3d& p, int hint, double max_distance) const;
   // The closest point on the faces not labelled `excluded` (face_labels: one
   // label per face), signed like locate()'s: by the face normal, or the whole
   // surface's pseudo-normal at an edge or vertex. (Near the label's border that

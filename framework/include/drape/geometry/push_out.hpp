@@ -24,6 +24,7 @@ struct PushOutReport {
   int still_within = 0;      // vertices still nearer than margin / 2 after the last pass
   int edges_lifted = 0;      // edge lifts (an edge lifted in two passes counts twice)
   int edges_searched = 0;    // edge midpoints searched, over all passes
+  int beyond_reach = 0;      // with edges: vertices found outside and beyond their reach, never searched in full
 };
 
 // The clearance drape eval --push-out and drape predict --push-out give: about
@@ -51,6 +52,12 @@ struct PushOutOptions {
   // vertices only, so every vertex keeps the margin's promise; an edge may
   // be left crossing where the passes ran out.
   const std::vector<std::array<int, 2>>* edges = nullptr;
+  // With edges, each vertex's first search stops at its reach (the margin, or
+  // half its longest edge plus half the margin): beyond it a vertex is
+  // neither moved nor needed by an edge's bound, and its side comes from its
+  // neighbours (push_out.cpp). The result is the same bits either way; false
+  // searches every vertex in full (to check that).
+  bool cut_at_reach = true;
 };
 
 // Moves `vertices` in place. margin >= 0, max_passes >= 1.
