@@ -72,7 +72,7 @@ std::string model_file_or_default(const po::variables_map& vm) {
     if (const fs::path file = shipped_model_path(posed_model_name); !file.empty()) return file.string();
   const std::string file = default_model_path().string();
   if (file.empty())
-    throw UsageError("no --model given and the shipped model (models/tshirt-coarse.h5) was not found: give "
+    throw UsageError(std::string("no --model given and the shipped model (models/") + kDefaultModelFile + ") was not found: give "
                      "--model FILE from drape train, or set DRAPE_MODEL");
   return file;
 }

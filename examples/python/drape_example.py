@@ -20,15 +20,18 @@ import torch
 import drape
 import drape.torch_bridge as dt
 
-# The scene, inline so that nothing but drape itself is needed: the shipped model's T-shirt (coarse,
-# regular size) in ArcSim's gray interlock knit, and a smooth penalty contact -- its energy stays finite
+# The scene, inline so that nothing but drape itself is needed: the model's body (the shipped model's is the
+# human rig) of the requested shape, the coarse T-shirt in the body's own size by the tailor's rule (as the
+# model dresses it) in ArcSim's gray interlock knit, and a smooth penalty contact -- its energy stays finite
 # when a step crosses the body, which a plain gradient loop cannot rule out (the barrier cannot).
-SCENE = {
-    "garment": {"template": "tshirt", "params": {"resolution": "coarse", "size": "regular"}},
-    "materials": {"knit": "gray-interlock"},
-    "effects": {"gravity": {}, "stretching": {}, "bending": {},
-                "collision": {"stiffness": 1.0e10, "margin": 0.004, "smoothing": 0.02}},
-}
+def scene(model, bmi, height):
+    return {
+        "body": {**model.body_spec, "shape": {"bmi": bmi, "height": height, "sex": 1}},
+        "garment": {"template": "tshirt", "params": {"resolution": "coarse", "size": "auto"}},
+        "materials": {"knit": "gray-interlock"},
+        "effects": {"gravity": {}, "stretching": {}, "bending": {},
+                    "collision": {"stiffness": 1.0e10, "margin": 0.004, "smoothing": 0.02}},
+    }
 
 
 def main():
@@ -37,18 +40,18 @@ def main():
     ap.add_argument("--height", type=float, default=1.75)
     ap.add_argument("--iterations", type=int, default=30, help="Adam steps on the model's weights")
     ap.add_argument("--lr", type=float, default=1e-4, help="Adam's learning rate")
-    ap.add_argument("--model", default=None, help="model file (default: the shipped models/tshirt-coarse.h5)")
+    ap.add_argument("--model", default=None, help="model file (default: the shipped models/tshirt-coarse-human.h5)")
     ap.add_argument("--out", default="garment.obj", help="the optimised T-shirt (OBJ)")
     ap.add_argument("--body-out", default=None, help="also write the body (OBJ)")
     args = ap.parse_args()
 
     model = drape.Model.load(args.model)
-    body = model.body(bmi=args.bmi, height=args.height)  # float32 [6490, 3]
+    body = model.body(bmi=args.bmi, height=args.height)  # float32 [6904, 3] on the human rig
     start = time.perf_counter()
     predicted = model.predict(body)  # float32 [991, 3]
     print(f"predicted {len(predicted)} garment vertices in {1e3 * (time.perf_counter() - start):.1f} ms")
 
-    physics = dt.SceneEnergy(drape.Scene(SCENE), body.astype(np.float64))
+    physics = dt.SceneEnergy(drape.Scene(scene(model, args.bmi, args.height)), body.astype(np.float64))
     net = dt.DrapeModel(model)  # its parameters are the model's own weights
     opt = torch.optim.Adam(net.parameters(), lr=args.lr)
     body_t = torch.from_numpy(body)

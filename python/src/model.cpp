@@ -203,7 +203,7 @@ void register_model(py::module_& m) {
           [](const std::optional<std::string>& path, const py::dict& overrides, const std::optional<std::string>& cache_dir) {
             fs::path file = path ? find_input_file(*path) : default_model_path();  // models/... from anywhere
             if (file.empty())
-              throw ConfigError("no model given and the shipped model (models/tshirt-coarse.h5) was not found: give a file from drape train, or set DRAPE_MODEL");
+              throw ConfigError(std::string("no model given and the shipped model (models/") + kDefaultModelFile + ") was not found: give a file from drape train, or set DRAPE_MODEL");
             // Read from the Python objects before the lock is let go (py::str
             // without it crashed every load with overrides).
             const Model::ParamOverrides set = overrides_of(overrides);
@@ -211,7 +211,7 @@ void register_model(py::module_& m) {
             return std::make_unique<PyModel>(Model::load(registry(), file, set, cache_dir_of(cache_dir)));
           },
           py::arg("path") = py::none(), py::arg("overrides") = py::dict(), py::arg("cache_dir") = py::none(),
-          "Reads a model file (default: the shipped models/tshirt-coarse.h5). overrides: {node: {param: value}} for knobs "
+          "Reads a model file (default: the shipped models/tshirt-coarse-human.h5, the coarse T-shirt on the human rig; models/tshirt-coarse.h5 is the mannequin's). overrides: {node: {param: value}} for knobs "
           "that leave the weights' shapes alone.")
       .def_static(
           "untrained",
@@ -232,6 +232,18 @@ void register_model(py::module_& m) {
       .def_property_readonly("file", [](PyModel& p) { return p.model().file().string(); })
       .def_property_readonly("assets", [](PyModel& p) { return wrap_assets(p.model().shared_assets()); })
       .def_property_readonly("body_vertex_count", [](PyModel& p) { return p.model().assets().body.num_vertices(); })
+      .def_property_readonly(
+          "body_spec",
+          [](PyModel& p) {
+            py::dict params;
+            for (const auto& [key, value] : p.model().assets_spec().body_params) params[py::str(key)] = value;
+            py::dict body;
+            body["model"] = p.model().assets_spec().body_model;
+            body["params"] = params;
+            return body;
+          },
+          "the model's body as a scene's `body:` names it, {'model': ..., 'params': {...}} (the human rig's "
+          "{'rig': 'human'}): a drape.Scene dict with it drapes the bodies this model takes")
       .def_property_readonly("garment_vertex_count", [](PyModel& p) { return p.model().assets().garment->mesh.num_vertices(); })
       .def_property_readonly("inputs", [](PyModel& p) { return p.model().graph().input_names(); })
       .def_property_readonly("needs_body_params", [](PyModel& p) { return p.model().needs_body_params(); })

@@ -99,8 +99,12 @@ TEST_CASE("render --simulated draws a dataset's own drape: the repository's body
   REQUIRE(test::run(drape + "render --data " + data + " --sample 3 --simulated --colour error --out " + (dir / "s.svg").string(), out) == 0);
   INFO(out);
   CHECK_THAT(out, Catch::Contains("simulated drape, sample 3 of full.h5") && Catch::Contains("ME 0.00 cm, max 0.00 cm, p = 0.00%"));
-  REQUIRE(test::run(drape + "render --data " + data + " --sample 3 --colour error --out " + (dir / "p.svg").string(), out) == 0);
+  // The prediction of the mannequin's model (the default, on the human rig, refuses these bodies).
+  const std::string mannequin = " --model " + (test::source_dir() / "models/tshirt-coarse.h5").string();
+  REQUIRE(test::run(drape + "render --data " + data + mannequin + " --sample 3 --colour error --out " + (dir / "p.svg").string(), out) == 0);
   CHECK_THAT(out, Catch::Contains("prediction of") && !Catch::Contains("ME 0.00 cm, max 0.00 cm"));
+  CHECK(test::run(drape + "render --data " + data + " --sample 3 --out " + (dir / "d.svg").string(), out) != 0);
+  CHECK_THAT(out, Catch::Contains("6490 body vertices per sample, but the template has 991 and 6904"));
   CHECK(test::run(drape + "render --bmi 30 --simulated --out " + (dir / "x.svg").string(), out) == 2);
   CHECK_THAT(out, Catch::Contains("--simulated draws a dataset's own drape"));
 }
@@ -119,8 +123,11 @@ TEST_CASE("render --simulated draws a human-rig drape on the human rig's body (t
   REQUIRE(test::run(drape + "render --data " + data + " --sample 5 --simulated --out " + (dir / "h.svg").string(), out) == 0);
   INFO(out);
   CHECK_THAT(out, Catch::Contains("simulated drape, sample 5 of human.h5") && Catch::Contains("p = 0.00%"));
-  // A prediction still needs a model of the human rig: the shipped one refuses.
-  CHECK(test::run(drape + "render --data " + data + " --sample 5 --out " + (dir / "p.svg").string(), out) != 0);
+  // A prediction needs a model of the human rig: the default is one; the mannequin's refuses.
+  REQUIRE(test::run(drape + "render --data " + data + " --sample 5 --colour error --out " + (dir / "p.svg").string(), out) == 0);
+  CHECK_THAT(out, Catch::Contains("prediction of tshirt-coarse-human.h5") && !Catch::Contains("ME 0.00 cm, max 0.00 cm"));
+  const std::string mannequin = " --model " + (test::source_dir() / "models/tshirt-coarse.h5").string();
+  CHECK(test::run(drape + "render --data " + data + mannequin + " --sample 5 --out " + (dir / "m.svg").string(), out) != 0);
   CHECK_THAT(out, Catch::Contains("6904 body vertices per sample, but the template has 991 and 6490"));
 }
 

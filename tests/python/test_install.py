@@ -29,6 +29,6 @@ def test_installed_package_imports_from_the_prefix(tmp_path):
     r = json.loads(out.splitlines()[-1])
     real_prefix = pathlib.Path(os.path.realpath(prefix))
     assert pathlib.Path(r["package"]).resolve().is_relative_to(real_prefix)
-    assert pathlib.Path(r["model"]).resolve() == real_prefix / "share" / "drape" / "models" / "tshirt-coarse.h5"
+    assert pathlib.Path(r["model"]).resolve() == real_prefix / "share" / "drape" / "models" / "tshirt-coarse-human.h5"
     assert r["garment"] == [991, 3]
     assert r["plugins"] and all(pathlib.Path(f).resolve().is_relative_to(real_prefix) for f in r["plugins"])

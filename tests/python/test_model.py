@@ -300,3 +300,22 @@ def test_predict_takes_a_pose_for_a_model_of_posed_drapes():
         m.predict(body, pose={"shoulder_abdution": 100})
     with pytest.raises(ValueError, match="A-pose only"):
         drape.Model.load(str(SHIPPED)).predict(body, pose={"shoulder_abduction": 100})
+
+
+def test_the_default_model_drapes_the_human_rig_and_names_its_body():
+    # Since the fifteenth session the shipped default is the human rig's model; the mannequin's stays by name.
+    default = drape.Model.load()
+    assert default.file.endswith("models/tshirt-coarse-human.h5")
+    assert default.body_spec == {"model": "parametric", "params": {"rig": "human"}}
+    vertices, _ = drape.body(bmi=30, params={"rig": "human"})
+    assert default.body_vertex_count == len(vertices) == 6904
+    assert drape.Model.load(str(SHIPPED)).body_spec == {"model": "parametric", "params": {}}
+    # The spec makes a scene of the model's own body, whose energies take its bodies; a scene without it
+    # (the mannequin) refuses them by their count.
+    body = default.body(bmi=30, height=1.75).astype(np.float64)
+    garment = {"template": "tshirt", "params": {"resolution": "coarse", "size": "auto"}}
+    energies = drape.Scene({"body": {**default.body_spec, "shape": {"bmi": 30}}, "garment": garment,
+                            "effects": {"gravity": {}, "collision": {}}}).energies(body)
+    assert np.isfinite(sum(e.value(default.predict(body)) for e in energies.values()))
+    with pytest.raises(Exception, match="6490"):
+        drape.Scene({"garment": garment, "effects": {"collision": {}}}).energies(body)

@@ -57,7 +57,7 @@ def test_pip_install_reusing_the_build_tree(tmp_path):
     assert site.is_relative_to(venv.resolve()) and site.name == "site-packages", r["package"]
     assert not pathlib.Path(r["package"]).resolve().is_relative_to(BINARY.resolve())
     inside = site / "drape" / "share" / "drape"
-    assert pathlib.Path(r["model"]).resolve() == inside / "models" / "tshirt-coarse.h5"
+    assert pathlib.Path(r["model"]).resolve() == inside / "models" / "tshirt-coarse-human.h5"
     assert pathlib.Path(r["scene"]).resolve() == inside / "graphs" / "scenes" / "tshirt_coarse.yaml"
     assert r["garment"] == [991, 3]
     assert r["plugins"] and all(pathlib.Path(f).resolve().is_relative_to(site / "drape" / "lib") for f in r["plugins"])

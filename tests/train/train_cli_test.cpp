@@ -157,8 +157,8 @@ TEST_CASE("drape predict without --model uses DRAPE_MODEL, else the shipped mode
 }
 
 TEST_CASE("the shipped pretrained model drapes a T-shirt on a BMI 35 body out of the box", "[train][cli][shipped]") {
-  const fs::path shipped = test::source_dir() / "models/tshirt-coarse.h5";
-  REQUIRE(fs::exists(shipped));  // part of the repository (docs/training.md says how it was made)
+  const fs::path shipped = test::source_dir() / "models/tshirt-coarse-human.h5";
+  REQUIRE(fs::exists(shipped));  // part of the repository (docs/bodies.md says how it was made)
   test::TempDir dir;
   std::string out;
   // A cache of its own: the shipped model's template (coarse T-shirt, k = 1000) builds in seconds.
@@ -166,9 +166,10 @@ TEST_CASE("the shipped pretrained model drapes a T-shirt on a BMI 35 body out of
                         (dir / "g.obj").string() + " --body-out " + (dir / "b.obj").string(),
                     out) == 0);
   INFO(out);
-  CHECK_THAT(out, Catch::Contains("tshirt-coarse.h5 (the shipped pretrained model"));
+  CHECK_THAT(out, Catch::Contains("tshirt-coarse-human.h5 (the shipped pretrained model"));
   const Mesh g = read_mesh(dir / "g.obj");
   const Mesh b = read_mesh(dir / "b.obj");
+  CHECK(b.num_vertices() == 6904);  // the human rig's body
   REQUIRE(g.vertices.allFinite());
   // A drape, not the template: the garment hangs around the body's torso.
   const Eigen::RowVector3d lo = b.vertices.colwise().minCoeff(), hi = b.vertices.colwise().maxCoeff();

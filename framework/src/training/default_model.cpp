@@ -20,7 +20,7 @@ fs::path shipped_model_path(const std::string& file_name) {
 
 fs::path default_model_path() {
   if (const char* env = std::getenv("DRAPE_MODEL"); env && *env) return env;
-  return shipped_model_path("tshirt-coarse.h5");
+  return shipped_model_path(kDefaultModelFile);
 }
 
 }  // namespace drape

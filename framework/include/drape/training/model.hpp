@@ -166,14 +166,19 @@ class Model {
   bool assets_changed_ = false;
 };
 
-// The pretrained model shipped with drape (models/tshirt-coarse.h5 of the
-// source tree, trained as docs/training.md describes), which `drape predict`
+// The pretrained model shipped with drape (models/tshirt-coarse-human.h5 of
+// the source tree, trained by scripts/train_human_model.sh), which `drape predict`
 // uses when no --model is given. Looked up in order: $DRAPE_MODEL; then
-// models/tshirt-coarse.h5 in the shipped files' folders (shipped_data_dirs():
+// models/<kDefaultModelFile> in the shipped files' folders (shipped_data_dirs():
 // $DRAPE_DATA_DIR, <prefix>/share/drape next to an installed framework
 // library, the source tree this build came from), never the current folder.
 // Empty when none of them has it.
 std::filesystem::path default_model_path();
+
+// The default: the coarse T-shirt in each body's size on the parametric
+// body's human rig (docs/bodies.md, "The human rig, the default"). The
+// mannequin's model of the same shirt stays as models/tshirt-coarse.h5.
+inline constexpr const char* kDefaultModelFile = "tshirt-coarse-human.h5";
 
 // models/<file_name> among the shipped files' folders, as default_model_path
 // looks (without $DRAPE_MODEL); empty when none has it.
