@@ -77,6 +77,28 @@ TEST_CASE("topology of a closed box, an open box and a non-manifold pair") {
   CHECK(t.first_nonmanifold_edge == std::array<int, 2>{-1, -1});
 }
 
+TEST_CASE("vertex adjacency of an edge list: a box's neighbours by hand, and vertex_neighbours' lists") {
+  Eigen::MatrixX3d v;
+  Eigen::MatrixX3i f;
+  box(1, 1, 1, v, f);
+  const int n = static_cast<int>(v.rows());
+  const VertexAdjacency adjacency = vertex_adjacency(edge_list(f), n);
+  REQUIRE(adjacency.start.size() == static_cast<std::size_t>(n) + 1);
+  CHECK(adjacency.start.back() == 2 * 18);  // 12 box edges and 6 face diagonals
+  const auto lists = vertex_neighbours(f, n);
+  for (int i = 0; i < n; ++i) {
+    std::vector<int> mine(adjacency.neighbours.begin() + adjacency.start[i], adjacency.neighbours.begin() + adjacency.start[i + 1]);
+    std::sort(mine.begin(), mine.end());
+    CHECK(mine == lists[static_cast<std::size_t>(i)]);
+  }
+  // A corner of a triangulated cube meets its 3 edges and 0 to 3 diagonals: 3 to 6 neighbours.
+  for (int i = 0; i < n; ++i) CHECK((adjacency.start[i + 1] - adjacency.start[i] >= 3 && adjacency.start[i + 1] - adjacency.start[i] <= 6));
+  // A vertex no edge touches has none.
+  const VertexAdjacency lone = vertex_adjacency({{0, 1}}, 3);
+  CHECK(lone.start == std::vector<int>{0, 1, 2, 2});
+  CHECK(lone.neighbours == std::vector<int>{1, 0});
+}
+
 TEST_CASE("face neighbours across each edge") {
   Eigen::MatrixX3d v;
   Eigen::MatrixX3i f;

@@ -175,9 +175,7 @@ TEST_CASE("push_out with edges lifts an edge whose middle lies in the body", "[g
   CHECK(without.moved == 0);
   CHECK(edges_through(ball, plain, edges) == 1);
 
-  PushOutOptions options;
-  options.margin = 0.01;
-  options.edges = &edges;
+  PushOutOptions options{.margin = 0.01, .edges = &edges};
   const PushOutReport with = push_out(ball, x, options);
   CHECK(with.edges_lifted == 1);
   CHECK(with.moved == 2);
@@ -219,9 +217,7 @@ TEST_CASE("push_out with edges leaves a sheet pressed onto a knob uncrossed", "[
   push_out(knob, vertices_only, 0.006);
   const int left = crossings(vertices_only);
   CHECK(left > 0);
-  PushOutOptions options;
-  options.margin = 0.006;
-  options.edges = &edges;
+  PushOutOptions options{.margin = 0.006, .edges = &edges};
   Eigen::MatrixX3d with_edges = sheet;
   const PushOutReport r = push_out(knob, with_edges, options);
   INFO(left << " crossings with the vertices alone; " << r.edges_lifted << " lifts, " << r.passes << " passes");
@@ -261,9 +257,7 @@ TEST_CASE("push_out with edges lifts an edge that a ridge crosses off its middle
   REQUIRE(middle < 0.0036);  // within the band whose quarter points are searched
   const std::vector<std::array<int, 2>> edges = {{0, 1}};
   REQUIRE(edges_through(ridge, x, edges) == 1);
-  PushOutOptions options;
-  options.margin = 0.006;
-  options.edges = &edges;
+  PushOutOptions options{.margin = 0.006, .edges = &edges};
   Eigen::MatrixX3d y = x;
   const PushOutReport r = push_out(ridge, y, options);
   CHECK(r.edges_lifted >= 1);
@@ -296,9 +290,7 @@ TEST_CASE("push_out cut at each vertex's reach gives the bits of searches in ful
         sheet.row(i * n + j) << x, y0 + tx * x + tz * z + jitter(rng), z;
       }
     for (Eigen::Index i = 0; i < sheet.rows(); ++i) inside_far += ball.locate(sheet.row(i).transpose()).signed_distance < -0.02;
-    PushOutOptions options;
-    options.margin = 0.006;
-    options.edges = &edges;
+    PushOutOptions options{.margin = 0.006, .edges = &edges};
     Eigen::MatrixX3d cut = sheet, full = sheet;
     const PushOutReport rc = push_out(ball, cut, options);
     options.cut_at_reach = false;
@@ -322,9 +314,7 @@ TEST_CASE("push_out cut at each vertex's reach gives the bits of searches in ful
   Eigen::MatrixX3d patch(4, 3);
   patch << 0, 0, 0, 0.01, 0, 0, 0, 0, 0.01, 0.01, 0, 0.01;
   const std::vector<std::array<int, 2>> patch_edges = {{0, 1}, {0, 2}, {1, 3}, {2, 3}, {1, 2}};
-  PushOutOptions options;
-  options.margin = 0.006;
-  options.edges = &patch_edges;
+  PushOutOptions options{.margin = 0.006, .edges = &patch_edges};
   const PushOutReport r = push_out(ball, patch, options);
   CHECK(r.beyond_reach == 0);
   CHECK(r.moved == 4);

@@ -27,6 +27,20 @@ std::vector<std::vector<int>> vertex_neighbours(const Eigen::MatrixX3i& faces, i
   return nbrs;
 }
 
+VertexAdjacency vertex_adjacency(const std::vector<std::array<int, 2>>& edges, int num_vertices) {
+  VertexAdjacency adjacency;
+  adjacency.start.assign(static_cast<std::size_t>(num_vertices) + 1, 0);
+  for (const auto& [a, b] : edges) ++adjacency.start[static_cast<std::size_t>(a) + 1], ++adjacency.start[static_cast<std::size_t>(b) + 1];
+  for (std::size_t v = 0; v + 1 < adjacency.start.size(); ++v) adjacency.start[v + 1] += adjacency.start[v];
+  adjacency.neighbours.resize(2 * edges.size());
+  std::vector<int> next(adjacency.start.begin(), adjacency.start.end() - 1);
+  for (const auto& [a, b] : edges) {
+    adjacency.neighbours[static_cast<std::size_t>(next[static_cast<std::size_t>(a)]++)] = b;
+    adjacency.neighbours[static_cast<std::size_t>(next[static_cast<std::size_t>(b)]++)] = a;
+  }
+  return adjacency;
+}
+
 std::vector<std::array<int, 3>> face_neighbours(const Eigen::MatrixX3i& faces) {
   // (smaller vertex, larger vertex, face, slot) for every face's edge, sorted so
   // the sides of one edge are adjacent.

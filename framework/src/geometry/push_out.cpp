@@ -1,6 +1,7 @@
 #include <drape/geometry/push_out.hpp>
 
 #include <drape/errors.hpp>
+#include <drape/geometry/adjacency.hpp>
 
 #include <algorithm>
 #include <array>
@@ -43,11 +44,10 @@ class PushOutRun {
       : body_(body), x_(vertices), options_(options), margin_(options.margin), half_(0.5 * options.margin),
         near_(static_cast<std::size_t>(vertices.rows())), moved_(near_.size(), 0), drift_(near_.size(), 0.0),
         unchecked_(near_.size(), 1), in_lifted_(near_.size(), 0), far_(near_.size(), 0),
-        hint_(near_.size(), -1) {
-    // Each search from the face given for its vertex (locate_near: the same
-    // answer as locate, -1 for none).
-    const std::vector<int>* hints = options.closest_faces;
-    if (hints && hints->size() == near_.size()) hint_ = *hints;
+        // Each search from the face given for its vertex (locate_near: the
+        // same answer as locate), when there is one for every vertex.
+        hints_(options.closest_faces && options.closest_faces->size() == near_.size() ? options.closest_faces->data()
+                                                                                      : nullptr) {
     if (options.edges && options.cut_at_reach) {
       search_within_reach();
       return;
@@ -115,7 +115,8 @@ class PushOutRun {
   void finish(const Eigen::MatrixX3d& start, PushOutReport& report) const {
     if (options_.closest_faces) {
       options_.closest_faces->resize(near_.size());
-      for (std::size_t i = 0; i < near_.size(); ++i) (*options_.closest_faces)[i] = far_[i] ? hint_[i] : near_[i].face;
+      // (In place: a far vertex's entry is its hint, read before this write.)
+      for (std::size_t i = 0; i < near_.size(); ++i) (*options_.closest_faces)[i] = far_[i] ? hint(i) : near_[i].face;
     }
     if (x_.rows() > 0) report.largest_move = (x_ - start).rowwise().norm().maxCoeff();
     for (std::size_t i = 0; i < near_.size(); ++i) {
@@ -155,9 +156,11 @@ class PushOutRun {
     return std::min(sa, sb) - kEdgeBend * half_edge * turn >= half_;
   }
 
+  int hint(std::size_t i) const { return hints_ ? hints_[i] : -1; }
+
   // The closest body point of vertex i, searched in full from its hint.
   SurfacePoint exact(std::size_t i) const {
-    return body_.locate_near(x_.row(static_cast<Eigen::Index>(i)).transpose(), hint_[i]);
+    return body_.locate_near(x_.row(static_cast<Eigen::Index>(i)).transpose(), hint(i));
   }
 
   // With edges, the first searches go only as far as each vertex's reach:
@@ -176,18 +179,11 @@ class PushOutRun {
   // deep in the body, or all beyond reach) is searched in full.
   void search_within_reach() {
     const std::size_t n = near_.size();
-    std::vector<int> start(n + 1, 0), neighbours(2 * options_.edges->size());
     reach_.assign(n, margin_);
     for (const auto& [a, b] : *options_.edges) {
-      ++start[static_cast<std::size_t>(a) + 1], ++start[static_cast<std::size_t>(b) + 1];
       const double r = half_ + 0.5 * (x_.row(a) - x_.row(b)).norm();
       for (const int v : {a, b}) reach_[static_cast<std::size_t>(v)] = std::max(reach_[static_cast<std::size_t>(v)], r);
     }
-    for (std::size_t i = 0; i < n; ++i) start[i + 1] += start[i];
-    std::vector<int> fill(start.begin(), start.end() - 1);
-    for (const auto& [a, b] : *options_.edges)
-      neighbours[static_cast<std::size_t>(fill[static_cast<std::size_t>(a)]++)] = b,
-      neighbours[static_cast<std::size_t>(fill[static_cast<std::size_t>(b)]++)] = a;
     // A little more than the reach, so that rounding cannot put a face the
     // bound needs beyond the search.
     for (double& r : reach_) r = r * (1 + 1e-6) + 1e-9;
@@ -196,32 +192,31 @@ class PushOutRun {
 #pragma omp parallel for schedule(static, 64)
     for (std::ptrdiff_t i = 0; i < count; ++i) {
       const auto k = static_cast<std::size_t>(i);
-      near_[k] = body_.locate_near(x_.row(i).transpose(), hint_[k], reach_[k]);
+      near_[k] = body_.locate_near(x_.row(i).transpose(), hint(k), reach_[k]);
     }
-    // 0: searched (signed distance known), 1: beyond reach outside, 2: beyond reach, side unknown.
-    std::vector<char> side(n, 0);
+    // Beyond reach, side not yet known: nothing found within the reach and
+    // not yet far_ (outside) nor searched in full.
+    const auto unknown = [&](std::size_t v) { return near_[v].face < 0 && !far_[v]; };
+    const VertexAdjacency adjacency = vertex_adjacency(*options_.edges, static_cast<int>(n));
     std::vector<std::size_t> queue;
     queue.reserve(n);
-    for (std::size_t i = 0; i < n; ++i) {
-      if (near_[i].face < 0) side[i] = 2;
-      else queue.push_back(i);
-    }
+    for (std::size_t i = 0; i < n; ++i)
+      if (!unknown(i)) queue.push_back(i);
     std::size_t head = 0, next_unknown = 0;
     for (;;) {
       while (head < queue.size()) {
         const std::size_t v = queue[head++];
-        const double lower = side[v] == 1 ? reach_[v] : near_[v].signed_distance;
-        for (int k = start[v]; k < start[v + 1]; ++k) {
-          const auto u = static_cast<std::size_t>(neighbours[static_cast<std::size_t>(k)]);
-          if (side[u] != 2) continue;
+        const double lower = far_[v] ? reach_[v] : near_[v].signed_distance;
+        for (int k = adjacency.start[v]; k < adjacency.start[v + 1]; ++k) {
+          const auto u = static_cast<std::size_t>(adjacency.neighbours[static_cast<std::size_t>(k)]);
+          if (!unknown(u)) continue;
           const double length = (x_.row(static_cast<Eigen::Index>(u)) - x_.row(static_cast<Eigen::Index>(v))).norm();
-          if (lower - length > -reach_[u]) side[u] = 1, far_[u] = 1, queue.push_back(u);
+          if (lower - length > -reach_[u]) far_[u] = 1, queue.push_back(u);
         }
       }
-      while (next_unknown < n && side[next_unknown] != 2) ++next_unknown;
+      while (next_unknown < n && !unknown(next_unknown)) ++next_unknown;
       if (next_unknown == n) break;
       near_[next_unknown] = exact(next_unknown);
-      side[next_unknown] = 0;
       queue.push_back(next_unknown);
     }
   }
@@ -233,7 +228,7 @@ class PushOutRun {
 #pragma omp parallel for schedule(static, 16)
     for (std::ptrdiff_t k = 0; k < count; ++k) {
       const auto i = static_cast<std::size_t>(changed[static_cast<std::size_t>(k)]);
-      near_[i] = body_.locate_near(x_.row(static_cast<Eigen::Index>(i)).transpose(), far_[i] ? hint_[i] : near_[i].face);
+      near_[i] = body_.locate_near(x_.row(static_cast<Eigen::Index>(i)).transpose(), far_[i] ? hint(i) : near_[i].face);
       drift_[i] = 0;
       far_[i] = 0;
     }
@@ -250,7 +245,7 @@ class PushOutRun {
   std::vector<char> in_lifted_;
   std::vector<char> far_;        // beyond its reach and outside: no closest point searched
   std::vector<double> reach_;    // with edges: how far each vertex's first search went
-  std::vector<int> hint_;        // the face each vertex's search starts from (-1: none)
+  const int* hints_;             // the face each vertex's search starts from (null: none)
   std::vector<Eigen::Index> stepped_, lifted_;
 };
 
