@@ -20,9 +20,11 @@ namespace DRAPE_UNITY_ID {  // the anonymous namespace, or a unique one in a uni
 int run(const std::vector<std::string>& args) {
   po::options_description opts("drape predict");
   opts.add_options()("model", po::value<std::string>(),
-                     "model file from drape train (default: the shipped pretrained model, models/tshirt-coarse-human.h5, "
-                     "on the human rig; models/tshirt-coarse.h5 is the mannequin's; with a pose, models/tshirt-coarse-posed.h5, "
-                     "the mannequin's)")(
+                     (std::string("model file from drape train (default: the shipped pretrained model, models/") +
+                      kDefaultModelFile +
+                      ", on the human rig; models/tshirt-coarse.h5 is the mannequin's; with a pose, models/" +
+                      posed_model_name + ", the mannequin's)")
+                         .c_str())(
       "out", po::value<std::string>(), "garment mesh to write (.obj, .ply, .gltf, .glb): the template's faces and UVs")(
       "body-out", po::value<std::string>(), "also write the body mesh")(
       "svg", po::value<std::string>(), "also draw the drape, the garment coloured by its distance to the body (.svg: front view; .html: a 3D viewer)");

@@ -235,12 +235,8 @@ void register_model(py::module_& m) {
       .def_property_readonly(
           "body_spec",
           [](PyModel& p) {
-            py::dict params;
-            for (const auto& [key, value] : p.model().assets_spec().body_params) params[py::str(key)] = value;
-            py::dict body;
-            body["model"] = p.model().assets_spec().body_model;
-            body["params"] = params;
-            return body;
+            const AssetsSpec& spec = p.model().assets_spec();
+            return py::dict(py::arg("model") = spec.body_model, py::arg("params") = spec.body_params);
           },
           "the model's body as a scene's `body:` names it, {'model': ..., 'params': {...}} (the human rig's "
           "{'rig': 'human'}): a drape.Scene dict with it drapes the bodies this model takes")
