@@ -252,6 +252,29 @@ void TriangleBvh::within(const Eigen::Vector3d& p, double max_squared_distance,
   }
 }
 
+void TriangleBvh::overlapping(const Eigen::Vector3d& lo, const Eigen::Vector3d& hi, std::vector<int>& out) const {
+  if (nodes_.empty() || !lo.allFinite() || !hi.allFinite()) return;
+  Lanes query_lo[3], query_hi[3];
+  for (int k = 0; k < 3; ++k) {
+    const float l = round_down(lo[k]), h = round_up(hi[k]);
+    query_lo[k] = Lanes{l, l, l, l};
+    query_hi[k] = Lanes{h, h, h, h};
+  }
+  int stack[(kWidth - 1) * kMaxDepth + kWidth];
+  int top = 0;
+  stack[top++] = 0;
+  while (top > 0) {
+    const Node& n = nodes_[static_cast<std::size_t>(stack[--top])];
+    auto meets = (n.lo[0] <= query_hi[0]) & (n.hi[0] >= query_lo[0]);  // lanes of -1 (true) and 0
+    for (int k = 1; k < 3; ++k) meets &= (n.lo[k] <= query_hi[k]) & (n.hi[k] >= query_lo[k]);
+    for (int s = 0; s < n.count; ++s) {
+      if (!meets[s]) continue;
+      if (n.leaf) out.push_back(face_of_[static_cast<std::size_t>(n.child[s])]);
+      else stack[top++] = n.child[s];
+    }
+  }
+}
+
 TrianglePoint TriangleBvh::face_point(const Eigen::Vector3d& p, int face) const {
   const int t = slot_of_face_.at(static_cast<std::size_t>(face));
   return closest_point_on_triangle(p, corners_[3 * t], corners_[3 * t + 1], corners_[3 * t + 2]);

@@ -49,6 +49,11 @@ class TriangleBvh {
   // the distances are the bits nearest() computes for the same faces.
   void within(const Eigen::Vector3d& p, double max_squared_distance, std::vector<std::pair<double, int>>& out) const;
 
+  // Appends to `out` every face whose box overlaps the closed box [lo, hi],
+  // and a few whose box only touches it within float rounding (the boxes are
+  // rounded outwards): the broad phase of an exact test that follows.
+  void overlapping(const Eigen::Vector3d& lo, const Eigen::Vector3d& hi, std::vector<int>& out) const;
+
   // The closest point of one face to p, computed as nearest() computes it.
   TrianglePoint face_point(const Eigen::Vector3d& p, int face) const;
 
@@ -77,6 +82,7 @@ class TriangleBvh {
   struct Box {
     Eigen::Vector3d lo, hi;
   };
+
 
   int build(std::vector<int>& order, const std::vector<Eigen::Vector3d>& centroids, int begin, int end, int depth);
   void gather_corners(const Eigen::MatrixX3d& vertices);

@@ -9,35 +9,59 @@
 // passes the gradient straight through, so a graph may keep it in place while
 // training, and `enabled: false` turns it off without changing the weights
 // (drape eval --set post.enabled=true measures a model with and without it).
+// With `untangle` (the default) the garment's crossings of itself are then
+// undone (geometry::Untangler: the patch each closed intersection curve cuts
+// off moved back through the cloth it went through, an open curve's edge and
+// face pulled apart) and each round's moves pushed off the body again: the
+// push-out keeps the cloth off the body, not off itself, and a heavy body's
+// sleeve predicted through the shirt's side is what it leaves.
 #include <drape/assets/assets.hpp>
 #include <drape/geometry/adjacency.hpp>
 #include <drape/geometry/push_out.hpp>
+#include <drape/geometry/untangle.hpp>
 #include <drape/plugin.hpp>
 
 #include <array>
 #include <optional>
+#include <string>
 #include <vector>
 
 namespace {
 
 using namespace drape;
 
+// The cloth's thickness in the shipped scenes' self-contact: the gap an
+// untangled patch is given beyond the cloth it went through.
+constexpr double kSelfGap = 1e-3;
+// Rounds of the untangle at most, each followed by the push-out of what it
+// moved (an open curve at a sleeve's cuff took three on the human rig's
+// heavy test bodies, a closed one one: docs/bodies.md).
+constexpr int kRounds = 6;
+
 class PushOut final : public Node {
  public:
-  PushOut(double epsilon, bool enabled, bool edges) : epsilon_(epsilon), enabled_(enabled), lift_edges_(edges) {}
+  PushOut(double epsilon, bool enabled, bool edges, bool untangle)
+      : epsilon_(epsilon), enabled_(enabled), lift_edges_(edges), untangle_(untangle) {}
 
   ShapeMap setup(const ShapeMap& in, const NodeContext& context) override {
     if (!context.assets) throw ConfigError("push_out needs the body's faces: no template assets are bound");
     faces_ = context.assets->body.faces;
     edges_.clear();
-    if (lift_edges_) {
-      if (!context.assets->garment) throw ConfigError("push_out with edges: true needs the garment's faces: no garment is bound");
+    untangler_.reset();
+    if (lift_edges_ || untangle_) {
+      const std::string which = lift_edges_ ? "edges: true" : "untangle: true";
+      if (!context.assets->garment) throw ConfigError("push_out with " + which + " needs the garment's faces: no garment is bound");
       const int garment_vertices = context.assets->garment->mesh.num_vertices();
       if (in.at("x").rows != garment_vertices)
-        throw ConfigError("push_out with edges: true: input 'x' has " + std::to_string(in.at("x").rows) +
+        throw ConfigError("push_out with " + which + ": input 'x' has " + std::to_string(in.at("x").rows) +
                           " rows, the bound garment " + std::to_string(garment_vertices) +
-                          " vertices (edges: false pushes out the vertices of any mesh)");
-      edges_ = geometry::edge_list(context.assets->garment->mesh.faces);
+                          " vertices (edges: false and untangle: false push out the vertices of any mesh)");
+      if (lift_edges_) edges_ = geometry::edge_list(context.assets->garment->mesh.faces);
+      if (untangle_) {
+        untangler_.emplace(context.assets->garment->mesh.faces, garment_vertices);
+        garment_edges_ = geometry::edge_list(context.assets->garment->mesh.faces);
+        adjacency_ = geometry::vertex_adjacency(garment_edges_, garment_vertices);
+      }
     }
     surface_.reset();  // built again for these faces at the next forward
     closest_faces_.clear();
@@ -70,7 +94,54 @@ class PushOut final : public Node {
       options.closest_faces = &closest_faces_;
       if (lift_edges_) options.edges = &edges_;
       geometry::push_out(*surface_, points, options);
+      if (untangle_) {
+        geometry::UntangleOptions untangling{.gap = kSelfGap, .max_rounds = kRounds};
+        // After each round, the patches it moved kept off the body.
+        untangling.after_round = [this](const Eigen::MatrixX3d& before, Eigen::MatrixX3d& now, std::vector<char>& moved) {
+          push_out_moved(before, now, moved);
+        };
+        untangler_->run(points, untangling);
+      }
       y.mat(b) = points.cast<float>();
+    }
+  }
+
+  // The push-out again on the vertices an untangle round moved and their
+  // neighbours only (with the edges among them): the rest did not move since
+  // the push-out cleared them, and a few dozen searches cost a hundredth of
+  // a whole push-out. Flags in `moved` the vertices it moves.
+  void push_out_moved(const Eigen::MatrixX3d& before, Eigen::MatrixX3d& points, std::vector<char>& moved) {
+    const auto n = static_cast<int>(points.rows());
+    std::vector<int> local(static_cast<std::size_t>(n), -1), chosen;
+    const auto take = [&](int v) {
+      if (local[static_cast<std::size_t>(v)] < 0) local[static_cast<std::size_t>(v)] = static_cast<int>(chosen.size()), chosen.push_back(v);
+    };
+    for (int v = 0; v < n; ++v)
+      if (points.row(v) != before.row(v)) {
+        take(v);
+        for (int k = adjacency_.start[static_cast<std::size_t>(v)]; k < adjacency_.start[static_cast<std::size_t>(v) + 1]; ++k)
+          take(adjacency_.neighbours[static_cast<std::size_t>(k)]);
+      }
+    Eigen::MatrixX3d part(static_cast<Eigen::Index>(chosen.size()), 3);
+    std::vector<int> hints(chosen.size());
+    for (std::size_t i = 0; i < chosen.size(); ++i) {
+      part.row(static_cast<Eigen::Index>(i)) = points.row(chosen[i]);
+      hints[i] = closest_faces_.size() == static_cast<std::size_t>(n) ? closest_faces_[static_cast<std::size_t>(chosen[i])] : -1;
+    }
+    std::vector<std::array<int, 2>> part_edges;
+    for (const auto& [a, b] : garment_edges_)
+      if (local[static_cast<std::size_t>(a)] >= 0 && local[static_cast<std::size_t>(b)] >= 0)
+        part_edges.push_back({local[static_cast<std::size_t>(a)], local[static_cast<std::size_t>(b)]});
+    geometry::PushOutOptions options;
+    options.margin = epsilon_;
+    options.closest_faces = &hints;
+    if (lift_edges_) options.edges = &part_edges;
+    geometry::push_out(*surface_, part, options);
+    for (std::size_t i = 0; i < chosen.size(); ++i) {
+      const auto row = static_cast<Eigen::Index>(i);
+      if (part.row(row) == points.row(chosen[i])) continue;
+      points.row(chosen[i]) = part.row(row);
+      moved[static_cast<std::size_t>(chosen[i])] = 1;
     }
   }
 
@@ -82,7 +153,11 @@ class PushOut final : public Node {
   double epsilon_;
   bool enabled_;
   bool lift_edges_;
+  bool untangle_;
   Eigen::MatrixX3i faces_;
+  std::optional<geometry::Untangler> untangler_;  // the garment's, when untangle_
+  std::vector<std::array<int, 2>> garment_edges_;  // when untangle_
+  geometry::VertexAdjacency adjacency_;             // of garment_edges_
   std::vector<std::array<int, 2>> edges_;  // the garment's, when lift_edges_
   std::optional<geometry::BodySurface> surface_;  // the last body's, refitted to the next
   std::vector<int> closest_faces_;                // the last body's closest face of each garment vertex
@@ -101,9 +176,13 @@ PluginList plugins() {
                .doc = "false: pass the garment through unchanged"},
               {.name = "edges", .type = ParamType::Bool, .default_value = "true",
                .doc = "also lift each garment edge whose midpoint lies within epsilon / 2 of the body (the body's ridges "
-                      "through the cloth between two cleared vertices)"}};
+                      "through the cloth between two cleared vertices)"},
+              {.name = "untangle", .type = ParamType::Bool, .default_value = "true",
+               .doc = "then undo the garment's crossings of itself (each patch a closed intersection curve cuts off moved "
+                      "back through the cloth it went through, 1 mm beyond) each round's moves pushed out again, 6 rounds at most"}};
   d.create_node = [](const Params& p) {
-    return std::make_unique<PushOut>(p.get_float("epsilon"), p.get_bool("enabled"), p.get_bool("edges"));
+    return std::make_unique<PushOut>(p.get_float("epsilon"), p.get_bool("enabled"), p.get_bool("edges"),
+                                     p.get_bool("untangle"));
   };
   return {d};
 }

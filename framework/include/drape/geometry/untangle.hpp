@@ -1,0 +1,70 @@
+#pragma once
+// A garment's self-crossings undone without knowing how they came about (a
+// network's prediction has no history to roll back, unlike a simulation's
+// step): the global intersection analysis of Baraff, Witkin and Kass,
+// "Untangling cloth" (SIGGRAPH 2003), on the mesh's vertex graph.
+//
+// Where the cloth passes through itself the two sheets meet along closed
+// curves. Every edge the curve crosses pierces a face of the other sheet, so
+// with those edges cut the vertex graph falls apart into the piece of each
+// sheet inside the curve (a patch) and the rest. A patch is on the wrong
+// side of the sheet it went through: it is moved back across the faces its
+// cut edges pierce, to the side the rest of its sheet is on, plus a gap. Two
+// patches of one curve (the sleeve's through the side, the side's through
+// the sleeve) each move half the way. Where a curve is open (it ends on the
+// garment's border, so the cut separates nothing) the pierced edge and the
+// face are pulled apart along the face's normal instead, half the way each.
+// Rounds repeat while crossings are left, and the state with the fewest is
+// returned: a pinch (two edges through each other's faces) can be handed on
+// from edge to edge rather than undone, and is then left as it was.
+#include <Eigen/Core>
+
+#include <functional>
+#include <memory>
+#include <vector>
+
+namespace drape::geometry {
+
+struct UntangleOptions {
+  double gap = 1e-3;            // m beyond the pierced face's plane a moved vertex gets
+  int max_rounds = 4;           // searches for crossings, each followed by one set of moves
+  double largest_patch = 0.25;  // share of its connected piece a patch may hold (more: the curve is not closed)
+  // Rounds in a row that may leave as many crossings as the fewest seen
+  // before the run gives up (a pinch it only hands on).
+  int patience = 2;
+  // Called after each round's moves with the vertices before them; it may
+  // move vertices too (a push-out off the body: the patches moved must not
+  // end inside it) and flags in `moved` each vertex it moved. The crossings
+  // are then searched again where anything moved.
+  std::function<void(const Eigen::MatrixX3d& before, Eigen::MatrixX3d& vertices, std::vector<char>& moved)> after_round;
+};
+
+struct UntangleReport {
+  int crossings_before = 0;  // (edge, face) pairs at the start (self_edge_crossings)
+  int crossings_after = 0;   // left after the last round (searched again)
+  int rounds = 0;            // rounds that moved something, up to the state returned
+  int patches_moved = 0;     // over those rounds
+  int vertices_moved = 0;    // distinct vertices moved at least once
+  double largest_move = 0;   // m, over all rounds, of one vertex
+};
+
+// Moves `vertices` in place; vertices not in a crossing's patch or edge stay
+// bit for bit. Faces index vertices (checked); vertices must be finite.
+UntangleReport untangle(Eigen::MatrixX3d& vertices, const Eigen::MatrixX3i& faces, const UntangleOptions& options = {});
+
+// The same for garment after garment of one topology (a network's
+// predictions): the edges, pieces and the faces' hierarchy are made once and
+// the hierarchy refitted to each garment, which is most of the cost when
+// nothing crosses (docs/bodies.md).
+class Untangler {
+ public:
+  Untangler(const Eigen::MatrixX3i& faces, int num_vertices);
+  ~Untangler();
+  UntangleReport run(Eigen::MatrixX3d& vertices, const UntangleOptions& options = {});
+
+ private:
+  struct Topology;
+  std::unique_ptr<Topology> topology_;
+};
+
+}  // namespace drape::geometry

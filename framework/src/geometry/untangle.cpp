@@ -1,0 +1,326 @@
+#include <drape/geometry/untangle.hpp>
+
+#include <drape/errors.hpp>
+#include <drape/geometry/adjacency.hpp>
+#include <drape/geometry/surface_crossings.hpp>
+
+#include "triangle_bvh.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace drape::geometry {
+namespace {
+
+// (edge, face) pairs as self_edge_crossings (self_intersection.hpp) lists them.
+using Crossings = std::vector<std::pair<std::pair<int, int>, int>>;
+
+// The garment's edges through its own faces that share no vertex with them
+// (touching counts), sorted: the pairs self_edge_crossings finds, through the
+// garment's own hierarchy of faces refitted to x, one descent an edge.
+// Measured on the coarse shirt (one core): self_edge_crossings's grid 2.8 ms
+// (28,711 edge-face box pairs, all but 323 an edge and a face of its own
+// ring), this 0.7 ms; the hierarchy against itself (face pairs) 1.3 ms and
+// one descent a face 1.8 ms, as each face's box meets more faces.
+Crossings find_crossings(TriangleBvh& faces_tree, const Eigen::MatrixX3d& x, const Eigen::MatrixX3i& faces,
+                         const std::vector<std::array<int, 2>>& edges) {
+  faces_tree.refit(x);
+  Crossings hits;
+  std::vector<int> near;
+  for (const auto& [a, b] : edges) {
+    const Eigen::Vector3d p = x.row(a), q = x.row(b);
+    near.clear();
+    faces_tree.overlapping(p.cwiseMin(q), p.cwiseMax(q), near);
+    for (const int f : near) {
+      const auto ring = faces.row(f).array();
+      if ((ring == a).any() || (ring == b).any()) continue;
+      if (segment_pierces_triangle(p, q, x.row(faces(f, 0)), x.row(faces(f, 1)), x.row(faces(f, 2))))
+        hits.push_back({{a, b}, f});
+    }
+  }
+  std::sort(hits.begin(), hits.end());
+  return hits;
+}
+// A patch whose cut edges ask for directions more than about 75 degrees off
+// its mean direction still moves along the mean, but no further than four
+// times the largest depth (the mean of opposed pulls is short).
+constexpr double kLeastAlignment = 0.25;
+
+// The components of the vertex graph (each vertex's root) with the edges in
+// `cut` (sorted) left out.
+std::vector<int> components(const std::vector<std::array<int, 2>>& edges, int n, const std::vector<std::array<int, 2>>& cut) {
+  std::vector<int> parent(static_cast<std::size_t>(n));
+  for (int v = 0; v < n; ++v) parent[static_cast<std::size_t>(v)] = v;
+  const auto root = [&](int v) {
+    while (parent[static_cast<std::size_t>(v)] != v) {
+      parent[static_cast<std::size_t>(v)] = parent[static_cast<std::size_t>(parent[static_cast<std::size_t>(v)])];
+      v = parent[static_cast<std::size_t>(v)];
+    }
+    return v;
+  };
+  for (const auto& e : edges) {
+    if (std::binary_search(cut.begin(), cut.end(), e)) continue;
+    const int ra = root(e[0]), rb = root(e[1]);
+    if (ra != rb) parent[static_cast<std::size_t>(std::max(ra, rb))] = std::min(ra, rb);
+  }
+  for (int v = 0; v < n; ++v) parent[static_cast<std::size_t>(v)] = root(v);
+  return parent;
+}
+
+// The crossings again after a round that moved only the vertices flagged in
+// `moved`: a pair whose edge and face kept their vertices stays as it was;
+// the edges at a moved vertex are searched again, and so is each face with
+// a moved vertex against the edges of the faces near it. A round moves a
+// few dozen vertices, so this costs a fraction of a full search.
+void update_crossings(TriangleBvh& faces_tree, const Eigen::MatrixX3d& x, const Eigen::MatrixX3i& faces,
+                      const std::vector<std::array<int, 2>>& edges, const std::vector<std::vector<int>>& vertex_edges,
+                      const std::vector<std::vector<int>>& vertex_faces, const std::vector<char>& moved, Crossings& hits) {
+  faces_tree.refit(x);
+  const auto face_moved = [&](int f) { return moved[faces(f, 0)] || moved[faces(f, 1)] || moved[faces(f, 2)]; };
+  std::erase_if(hits, [&](const auto& hit) { return moved[hit.first.first] || moved[hit.first.second] || face_moved(hit.second); });
+  const auto test = [&](int a, int b, int f) {
+    const auto ring = faces.row(f).array();
+    if ((ring == a).any() || (ring == b).any()) return;
+    if (segment_pierces_triangle(x.row(a), x.row(b), x.row(faces(f, 0)), x.row(faces(f, 1)), x.row(faces(f, 2))))
+      hits.push_back({{a, b}, f});
+  };
+  std::vector<char> edge_done(edges.size(), 0), face_done(static_cast<std::size_t>(faces.rows()), 0);
+  std::vector<int> near;
+  for (std::size_t v = 0; v < moved.size(); ++v) {
+    if (!moved[v]) continue;
+    for (const int e : vertex_edges[v]) {  // a moved edge against every face near it
+      if (edge_done[static_cast<std::size_t>(e)]) continue;
+      edge_done[static_cast<std::size_t>(e)] = 1;
+      const auto [a, b] = edges[static_cast<std::size_t>(e)];
+      const Eigen::Vector3d p = x.row(a), q = x.row(b);
+      near.clear();
+      faces_tree.overlapping(p.cwiseMin(q), p.cwiseMax(q), near);
+      for (const int f : near) test(a, b, f);
+    }
+    for (const int f : vertex_faces[v]) {  // a moved face against the unmoved edges near it
+      if (face_done[static_cast<std::size_t>(f)]) continue;
+      face_done[static_cast<std::size_t>(f)] = 1;
+      const Eigen::Vector3d p0 = x.row(faces(f, 0)), p1 = x.row(faces(f, 1)), p2 = x.row(faces(f, 2));
+      near.clear();
+      faces_tree.overlapping(p0.cwiseMin(p1).cwiseMin(p2), p0.cwiseMax(p1).cwiseMax(p2), near);
+      for (const int g : near)
+        for (int k = 0; k < 3; ++k) {
+          const int a = std::min(faces(g, k), faces(g, (k + 1) % 3)), b = std::max(faces(g, k), faces(g, (k + 1) % 3));
+          if (!moved[a] && !moved[b]) test(a, b, f);
+        }
+    }
+  }
+  std::sort(hits.begin(), hits.end());
+  hits.erase(std::unique(hits.begin(), hits.end()), hits.end());  // an unmoved edge of two faces near a moved one
+}
+
+// Where one vertex of a crossing edge must go: along `direction` by `amount`.
+struct Pull {
+  Eigen::Vector3d direction;
+  double amount;
+};
+
+// Vertex v of a crossing edge (v, u) back across face f's plane, to the side
+// its edge's other end u is on (the side of the rest of its sheet), `gap`
+// beyond it. False when neither end is off the plane (no side to go to) or
+// the face has no plane.
+bool pull_across(const Eigen::MatrixX3d& x, const Eigen::MatrixX3i& faces, int f, int v, int u, double gap, Pull& pull) {
+  const Eigen::Vector3d p0 = x.row(faces(f, 0)), p1 = x.row(faces(f, 1)), p2 = x.row(faces(f, 2));
+  const Eigen::Vector3d normal = (p1 - p0).cross(p2 - p0);
+  if (!(normal.norm() > 0)) return false;
+  const Eigen::Vector3d n = normal.normalized();
+  const double sv = n.dot(x.row(v).transpose() - p0), su = n.dot(x.row(u).transpose() - p0);
+  const double target = su > 0 ? 1.0 : su < 0 ? -1.0 : sv > 0 ? -1.0 : sv < 0 ? 1.0 : 0.0;
+  if (target == 0) return false;
+  pull.direction = target * n;
+  pull.amount = std::max(0.0, gap - target * sv);
+  return true;
+}
+
+// Vertex v's height over face f's plane (along its unit normal); 0 for a face without a plane.
+double signed_height(const Eigen::MatrixX3d& x, const Eigen::MatrixX3i& faces, int f, int v) {
+  const Eigen::Vector3d p0 = x.row(faces(f, 0)), p1 = x.row(faces(f, 1)), p2 = x.row(faces(f, 2));
+  const Eigen::Vector3d normal = (p1 - p0).cross(p2 - p0);
+  if (!(normal.norm() > 0)) return 0;
+  return normal.normalized().dot(x.row(v).transpose() - p0);
+}
+
+}  // namespace
+
+// What a garment's topology fixes: its edges, its connected pieces, and the
+// hierarchy of its faces (built at the first run, refitted after).
+struct Untangler::Topology {
+  Eigen::MatrixX3i faces;
+  int num_vertices;
+  std::vector<std::array<int, 2>> edges;
+  std::vector<int> piece, piece_size;
+  std::vector<std::vector<int>> vertex_edges, vertex_faces;  // the edges and faces at each vertex
+  std::optional<TriangleBvh> faces_tree;
+};
+
+Untangler::Untangler(const Eigen::MatrixX3i& faces, int num_vertices) : topology_(std::make_unique<Topology>()) {
+  if (faces.size() > 0 && (faces.minCoeff() < 0 || faces.maxCoeff() >= num_vertices))
+    throw Error("untangle: a face indexes a vertex outside the garment's " + std::to_string(num_vertices));
+  Topology& t = *topology_;
+  t.faces = faces;
+  t.num_vertices = num_vertices;
+  t.edges = edge_list(faces);
+  t.piece = components(t.edges, num_vertices, {});
+  t.piece_size.assign(static_cast<std::size_t>(num_vertices), 0);
+  for (const int r : t.piece) ++t.piece_size[static_cast<std::size_t>(r)];
+  t.vertex_edges.resize(static_cast<std::size_t>(num_vertices));
+  t.vertex_faces.resize(static_cast<std::size_t>(num_vertices));
+  for (std::size_t e = 0; e < t.edges.size(); ++e)
+    for (const int v : t.edges[e]) t.vertex_edges[static_cast<std::size_t>(v)].push_back(static_cast<int>(e));
+  for (Eigen::Index f = 0; f < faces.rows(); ++f)
+    for (int k = 0; k < 3; ++k) t.vertex_faces[static_cast<std::size_t>(faces(f, k))].push_back(static_cast<int>(f));
+}
+
+Untangler::~Untangler() = default;
+
+UntangleReport untangle(Eigen::MatrixX3d& vertices, const Eigen::MatrixX3i& faces, const UntangleOptions& options) {
+  return Untangler(faces, static_cast<int>(vertices.rows())).run(vertices, options);
+}
+
+UntangleReport Untangler::run(Eigen::MatrixX3d& vertices, const UntangleOptions& options) {
+  Topology& topology = *topology_;
+  const int n = topology.num_vertices;
+  if (vertices.rows() != n)
+    throw Error("untangle: the garment has " + std::to_string(vertices.rows()) + " vertices, its faces " + std::to_string(n));
+  if (!(options.gap >= 0) || !std::isfinite(options.gap)) throw Error("untangle: the gap must be finite and >= 0");
+  if (options.max_rounds < 1) throw Error("untangle: at least one round");
+  if (options.patience < 1) throw Error("untangle: a patience of at least one round");
+  if (!vertices.allFinite()) throw Error("untangle: the garment has a non-finite vertex");
+
+  UntangleReport report;
+  const Eigen::MatrixX3d start = vertices;
+  const Eigen::MatrixX3i& faces = topology.faces;
+  const std::vector<std::array<int, 2>>& edges = topology.edges;
+  const std::vector<int>& piece = topology.piece;
+  const std::vector<int>& piece_size = topology.piece_size;
+  if (!topology.faces_tree) topology.faces_tree.emplace(vertices, faces);
+  TriangleBvh& faces_tree = *topology.faces_tree;
+  Crossings hits = find_crossings(faces_tree, vertices, faces, edges);
+  report.crossings_before = static_cast<int>(hits.size());
+  // The moves of an open curve can hand a crossing on instead of undoing it
+  // (two edges through each other's faces, a pinch): the fewest crossings
+  // seen are what is returned, so a round never leaves the cloth worse.
+  Eigen::MatrixX3d best = vertices;
+  std::size_t fewest = hits.size();
+  int rounds_to_best = 0, patches_to_best = 0, idle = 0;
+  for (int round = 0; round < options.max_rounds && !hits.empty() && idle < options.patience; ++round) {
+    const Eigen::MatrixX3d before_round = vertices;
+    std::vector<std::array<int, 2>> cut;
+    for (const auto& [edge, face] : hits) cut.push_back({edge.first, edge.second});
+    cut.erase(std::unique(cut.begin(), cut.end()), cut.end());  // (hits are sorted by edge)
+    const std::vector<int> region = components(edges, n, cut);
+    std::vector<int> region_size(static_cast<std::size_t>(n), 0), largest(static_cast<std::size_t>(n), -1);
+    for (const int r : region) ++region_size[static_cast<std::size_t>(r)];
+    for (int v = 0; v < n; ++v) {
+      const int r = region[static_cast<std::size_t>(v)], p = piece[static_cast<std::size_t>(v)];
+      int& l = largest[static_cast<std::size_t>(p)];
+      if (l < 0 || region_size[static_cast<std::size_t>(r)] > region_size[static_cast<std::size_t>(l)]) l = r;
+    }
+    // A patch: a region split off its piece by the cut, not the piece's
+    // largest, and small enough that the curve round it is a closed one.
+    const auto is_patch = [&](int v) {
+      const int r = region[static_cast<std::size_t>(v)], p = piece[static_cast<std::size_t>(v)];
+      return r != largest[static_cast<std::size_t>(p)] &&
+             region_size[static_cast<std::size_t>(r)] <= options.largest_patch * piece_size[static_cast<std::size_t>(p)];
+    };
+
+    std::vector<std::vector<Pull>> patch_pulls(static_cast<std::size_t>(n));  // by region root
+    std::vector<char> partner_moves(static_cast<std::size_t>(n), 0);
+    std::vector<Pull> vertex_pull(static_cast<std::size_t>(n), Pull{Eigen::Vector3d::Zero(), 0.0});
+    for (const auto& [edge, f] : hits) {
+      const int a = edge.first, b = edge.second;
+      bool in_patch = false;
+      for (const auto& [v, u] : {std::pair{a, b}, std::pair{b, a}}) {
+        const int rv = region[static_cast<std::size_t>(v)];
+        if (!is_patch(v) || rv == region[static_cast<std::size_t>(u)]) continue;
+        in_patch = true;
+        Pull pull;
+        if (!pull_across(vertices, faces, f, v, u, options.gap, pull)) continue;
+        patch_pulls[static_cast<std::size_t>(rv)].push_back(pull);
+        for (int k = 0; k < 3; ++k) {
+          const int w = faces(f, k);
+          if (is_patch(w) && region[static_cast<std::size_t>(w)] != rv) partner_moves[static_cast<std::size_t>(rv)] = 1;
+        }
+      }
+      // A face a patch goes back through is left to the patch's move.
+      for (int k = 0; k < 3; ++k) in_patch = in_patch || is_patch(faces(f, k));
+      if (in_patch) continue;
+      // An open curve (the cut separates nothing here): the edge and the
+      // face pulled apart along the face's normal, half the way each, until
+      // the edge's nearer end is on its farther end's side (moving that end
+      // alone only hands the crossing on to its next edge).
+      Pull pull;
+      const bool a_nearer = std::abs(signed_height(vertices, faces, f, a)) <= std::abs(signed_height(vertices, faces, f, b));
+      if (!pull_across(vertices, faces, f, a_nearer ? a : b, a_nearer ? b : a, options.gap, pull)) continue;
+      const auto ask = [&](int v, const Eigen::Vector3d& direction) {
+        Pull& slot = vertex_pull[static_cast<std::size_t>(v)];
+        if (0.5 * pull.amount > slot.amount) slot = Pull{direction, 0.5 * pull.amount};
+      };
+      ask(a, pull.direction);
+      ask(b, pull.direction);
+      for (int k = 0; k < 3; ++k) ask(faces(f, k), -pull.direction);
+    }
+
+    // Each patch moved as one, along the mean of its pulls, far enough for
+    // the deepest (half as far when the other sheet's patch moves too).
+    std::vector<Eigen::Vector3d> patch_step(static_cast<std::size_t>(n), Eigen::Vector3d::Zero());
+    bool moved = false;
+    for (int r = 0; r < n; ++r) {
+      const auto& pulls = patch_pulls[static_cast<std::size_t>(r)];
+      if (pulls.empty()) continue;
+      Eigen::Vector3d mean = Eigen::Vector3d::Zero();
+      for (const Pull& p : pulls) mean += p.direction;
+      if (!(mean.norm() > 1e-9)) continue;
+      const Eigen::Vector3d d = mean.normalized();
+      double t = 0;
+      for (const Pull& p : pulls) t = std::max(t, p.amount / std::max(d.dot(p.direction), kLeastAlignment));
+      if (partner_moves[static_cast<std::size_t>(r)]) t *= 0.5;
+      if (!(t > 0)) continue;
+      patch_step[static_cast<std::size_t>(r)] = t * d;
+      ++report.patches_moved;
+      moved = true;
+    }
+    std::vector<char> moved_now(static_cast<std::size_t>(n), 0);
+    for (int v = 0; v < n; ++v) {
+      const Eigen::Vector3d& step = patch_step[static_cast<std::size_t>(region[static_cast<std::size_t>(v)])];
+      if (step.squaredNorm() > 0) vertices.row(v) += step.transpose(), moved_now[static_cast<std::size_t>(v)] = 1;
+      const Pull& pull = vertex_pull[static_cast<std::size_t>(v)];
+      if (pull.amount > 0)
+        vertices.row(v) += pull.amount * pull.direction.transpose(), moved = true, moved_now[static_cast<std::size_t>(v)] = 1;
+    }
+    if (!moved) break;
+    ++report.rounds;
+    if (options.after_round) options.after_round(before_round, vertices, moved_now);
+    update_crossings(faces_tree, vertices, faces, edges, topology.vertex_edges, topology.vertex_faces, moved_now, hits);
+    if (hits.size() < fewest) {
+      best = vertices, fewest = hits.size(), rounds_to_best = report.rounds, patches_to_best = report.patches_moved, idle = 0;
+    } else {
+      ++idle;
+    }
+  }
+  if (hits.size() > fewest || (hits.size() == fewest && rounds_to_best < report.rounds)) {
+    vertices = best;
+    report.rounds = rounds_to_best;
+    report.patches_moved = patches_to_best;
+  }
+  report.crossings_after = static_cast<int>(fewest);
+  if (n > 0) {
+    const Eigen::VectorXd moves = (vertices - start).rowwise().norm();
+    report.largest_move = moves.maxCoeff();
+    report.vertices_moved = static_cast<int>((moves.array() > 0).count());
+  }
+  return report;
+}
+
+}  // namespace drape::geometry

@@ -1,0 +1,94 @@
+#!/usr/bin/env python3
+"""A model's predictions on a dataset's bodies checked by code that shares nothing with drape's contact, as
+scripts/check_dataset_drapes.py checks simulated drapes: p by the generalized winding number of the garment's
+vertices in the body, garment-body edge-face crossings and the garment's crossings of itself
+(scripts/count_self_crossings.py). The predictions come from drape's Python module (`Model.predict`, each body in
+the size the model's tailor's rule gives); only the checks are independent of it.
+
+    PYTHONPATH=build/python /usr/bin/python3 scripts/check_predictions.py --model M.h5 --data data.h5 \\
+        [--split test] [--set post.untangle=false] [--csv out.csv]
+
+The dataset must hold its body vertices (`drape dataset expand` of slim shards). --set changes a parameter of the
+model's graph that leaves the weights alone (as drape eval --set), through a copy made by `drape model set`.
+"""
+import argparse
+import os
+import subprocess
+import sys
+import tempfile
+
+import warnings
+
+import h5py
+import numpy as np
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+sys.path.insert(0, HERE)
+sys.path.insert(0, os.path.join(HERE, "reference"))
+from count_self_crossings import crossings  # noqa: E402
+from winding_number import winding_numbers  # noqa: E402
+
+SPLITS = {"train": 0, "val": 1, "test": 2}
+
+
+def main():
+    ap = argparse.ArgumentParser()
+    ap.add_argument("--model", required=True)
+    ap.add_argument("--data", required=True)
+    ap.add_argument("--split", default="test", choices=[*SPLITS, "all"])
+    ap.add_argument("--set", action="append", default=[], help="node.param=value (repeatable)")
+    ap.add_argument("--drape", default=os.path.join(os.path.dirname(HERE), "build", "bin", "drape"))
+    ap.add_argument("--csv")
+    a = ap.parse_args()
+    import drape  # the module under test: predictions only
+
+    warnings.filterwarnings("ignore", message="size .* by the tailor")  # one per body
+
+    with tempfile.TemporaryDirectory() as tmp:
+        model_file = a.model
+        if a.set:
+            model_file = os.path.join(tmp, "model.h5")
+            args = [x for s in a.set for x in ("--set", s)]
+            subprocess.run([a.drape, "model", "set", a.model, "--out", model_file, *args], check=True,
+                           capture_output=True)
+        model = drape.Model.load(model_file)
+        with h5py.File(a.data) as f:
+            done = f["done"][:].astype(bool)
+            chosen = done if a.split == "all" else done & (f["split"][:] == SPLITS[a.split])
+            rows = []
+            for i in np.flatnonzero(chosen):
+                body = f["bodies/vertices"][i].astype(np.float32)
+                garment = np.asarray(model.predict(body, check=False), dtype=np.float64)
+                rows.append((int(i), float(f["stats/bmi"][i]), body.astype(np.float64), garment))
+        gf = np.array(model.assets.garment_faces)
+        bf = np.array(model.assets.body_faces)
+    if rows and bf.max() + 1 != len(rows[0][2]):
+        sys.exit(f"{a.data}: its bodies have {len(rows[0][2])} vertices, the model's body faces index {bf.max() + 1}")
+    out, totals = [], dict(inside=0, garment_body=0, self_crossings=0)
+    crossing_self = 0
+    for i, bmi, bv, gv in rows:
+        inside = int((winding_numbers(bv, bf, gv) > 0.5).sum())
+        self_pairs, _ = crossings(gv, gf)
+        body_pairs, _ = crossings(bv, bf)
+        both, _ = crossings(np.vstack([gv, bv]), np.vstack([gf, bf + len(gv)]))
+        r = dict(index=i, bmi=bmi, p=100.0 * inside / len(gv), garment_body=len(both) - len(self_pairs) - len(body_pairs),
+                 self_crossings=len(self_pairs))
+        out.append(r)
+        totals["inside"] += inside > 0
+        totals["garment_body"] += r["garment_body"] > 0
+        totals["self_crossings"] += r["self_crossings"]
+        crossing_self += r["self_crossings"] > 0
+        print(f"sample {i} (BMI {bmi:.1f}): p {r['p']:.2f} %, {r['garment_body']} garment-body crossings, "
+              f"{r['self_crossings']} self-crossings", flush=True)
+    print(f"{len(out)} predictions: {totals['inside']} with a vertex inside the body, {totals['garment_body']} crossing "
+          f"the body, {crossing_self} crossing themselves ({totals['self_crossings']} edges)")
+    if a.csv:
+        with open(a.csv, "w") as f:
+            f.write(",".join(out[0]) + "\n")
+            for r in out:
+                f.write(",".join(str(v) for v in r.values()) + "\n")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,233 @@
+// Untangling a garment's self-crossings: a strip folded over itself with a
+// bump of the upper layer pushed through the lower one (a closed curve: two
+// patches), the same bump at the strip's free end (an open curve), two
+// separate sheets, a mesh without crossings, and bad input. Crossings are
+// counted here by a brute-force segment-triangle test of this file's own
+// (Moller-Trumbore), not by the code under test.
+#include <drape/errors.hpp>
+#include <drape/geometry/adjacency.hpp>
+#include <drape/geometry/untangle.hpp>
+
+#include <catch2/catch.hpp>
+
+#include <cmath>
+#include <limits>
+#include <vector>
+
+using drape::geometry::untangle;
+using drape::geometry::UntangleOptions;
+using V = Eigen::Vector3d;
+
+namespace {
+
+// Edges (each once, geometry::edge_list) through faces that share no vertex with them, every pair tried.
+int brute_force_crossings(const Eigen::MatrixX3d& x, const Eigen::MatrixX3i& faces) {
+  int count = 0;
+  for (const auto& [a, b] : drape::geometry::edge_list(faces))
+    for (Eigen::Index f = 0; f < faces.rows(); ++f) {
+      if ((faces.row(f).array() == a).any() || (faces.row(f).array() == b).any()) continue;
+      const V p = x.row(a), q = x.row(b), v0 = x.row(faces(f, 0)), v1 = x.row(faces(f, 1)), v2 = x.row(faces(f, 2));
+      // Moller-Trumbore on the segment p + t (q - p), t in [0, 1].
+      const V d = q - p, e1 = v1 - v0, e2 = v2 - v0, h = d.cross(e2);
+      const double det = e1.dot(h);
+      if (std::abs(det) < 1e-14) continue;
+      const V s = p - v0;
+      const double u = s.dot(h) / det;
+      const V qv = s.cross(e1);
+      const double v = d.dot(qv) / det, t = e2.dot(qv) / det;
+      if (u >= 0 && v >= 0 && u + v <= 1 && t >= 0 && t <= 1) ++count;
+    }
+  return count;
+}
+
+// A strip of cols x rows vertices, parameter u in [0, 2] along its length:
+// the lower layer (u <= 1) at z = 0 from x = 0 to 1, folded at x = 1 into
+// the upper layer (u > 1) at z = height running back to x = upper_end, shifted
+// 1.37 mm along y. Vertex (i, j)
+// is i + cols * j.
+struct Strip {
+  Eigen::MatrixX3d x;
+  Eigen::MatrixX3i faces;
+  int cols, rows;
+  int at(int i, int j) const { return i + cols * j; }
+};
+
+Strip folded_strip(int cols, int rows, double height, double upper_end = 0.0) {
+  Strip s{Eigen::MatrixX3d(cols * rows, 3), Eigen::MatrixX3i(2 * (cols - 1) * (rows - 1), 3), cols, rows};
+  for (int j = 0; j < rows; ++j)
+    for (int i = 0; i < cols; ++i) {
+      const double u = 2.0 * i / (cols - 1), y = static_cast<double>(j) / (rows - 1);
+      // (The upper layer a little off the lower one's grid lines, so that no
+      // edge passes exactly through another's: a touch each count may read its own way.)
+      const double x = u <= 1 ? u : 1 - (u - 1) * (1 - upper_end);
+      s.x.row(s.at(i, j)) << x, (u <= 1 ? y : y + 0.0137), (u <= 1 ? 0.0 : height);
+    }
+  int f = 0;
+  for (int j = 0; j + 1 < rows; ++j)
+    for (int i = 0; i + 1 < cols; ++i) {
+      s.faces.row(f++) << s.at(i, j), s.at(i + 1, j), s.at(i + 1, j + 1);
+      s.faces.row(f++) << s.at(i, j), s.at(i + 1, j + 1), s.at(i, j + 1);
+    }
+  return s;
+}
+
+// The upper layer pushed down round (cx, cy) to `depth` below z = 0 within
+// radius r, easing back to its height over another r.
+void push_bump(Strip& s, double cx, double cy, double r, double depth, double height) {
+  for (int v = 0; v < s.x.rows(); ++v) {
+    if (s.x(v, 2) <= 0) continue;  // the lower layer
+    const double d = std::hypot(s.x(v, 0) - cx, s.x(v, 1) - cy);
+    const double w = d <= r ? 1.0 : d >= 2 * r ? 0.0 : 0.5 * (1 + std::cos(M_PI * (d - r) / r));
+    s.x(v, 2) = height - w * (height + depth);
+  }
+}
+
+}  // namespace
+
+TEST_CASE("untangle: a bump pushed through the fold below goes back, the rest of the strip stays") {
+  const double height = 0.02, depth = 0.006;
+  Strip s = folded_strip(41, 21, height);
+  REQUIRE(brute_force_crossings(s.x, s.faces) == 0);
+  push_bump(s, 0.503, 0.497, 0.1, depth, height);  // off the grid: no edge just touches a face
+  const Eigen::MatrixX3d before = s.x;
+  const int crossings = brute_force_crossings(s.x, s.faces);
+  REQUIRE(crossings > 10);
+
+  UntangleOptions options;
+  options.gap = 1e-3;
+  const auto report = untangle(s.x, s.faces, options);
+  CHECK(report.crossings_before == crossings);
+  CHECK(report.crossings_after == 0);
+  CHECK(brute_force_crossings(s.x, s.faces) == 0);
+  CHECK(report.patches_moved >= 2);  // the bump's tip and the lower layer's disc inside it
+  // The right side: the bump's lowest vertex above the lower layer's vertex under it.
+  const int tip = s.at(30, 10), under = s.at(10, 10);  // u = 1.5 -> x = 0.5; u = 0.5 -> x = 0.5
+  REQUIRE(before(tip, 0) == Approx(0.5));
+  REQUIRE(before(under, 0) == Approx(0.5));
+  CHECK(s.x(tip, 2) > s.x(under, 2));
+  // Moved by about the depth, not more than the depth and the gap twice over.
+  CHECK(report.largest_move <= 2 * (depth + options.gap));
+  CHECK(report.largest_move > 0.5 * depth);
+  // Far from the bump every vertex keeps its bits.
+  int far = 0;
+  for (int v = 0; v < s.x.rows(); ++v)
+    if (std::hypot(before(v, 0) - 0.503, before(v, 1) - 0.497) > 0.25) {
+      ++far;
+      CHECK(s.x.row(v) == before.row(v));
+    }
+  CHECK(far > 500);
+}
+
+TEST_CASE("untangle: two separate sheets, one poked through the other, each piece keeps its largest part") {
+  // The two layers of the strip cut apart at the fold: two pieces.
+  const double height = 0.02, depth = 0.004;
+  Strip s = folded_strip(41, 21, height);
+  push_bump(s, 0.403, 0.597, 0.08, depth, height);
+  std::vector<Eigen::RowVector3i> kept;
+  for (Eigen::Index f = 0; f < s.faces.rows(); ++f) {
+    bool lower = false, upper = false;
+    for (int k = 0; k < 3; ++k) (s.faces(f, k) % s.cols <= 20 ? lower : upper) = true;
+    if (!(lower && upper)) kept.push_back(s.faces.row(f));
+  }
+  Eigen::MatrixX3i faces(static_cast<Eigen::Index>(kept.size()), 3);
+  for (std::size_t f = 0; f < kept.size(); ++f) faces.row(static_cast<Eigen::Index>(f)) = kept[f];
+  REQUIRE(brute_force_crossings(s.x, faces) > 0);
+  const auto report = untangle(s.x, faces);
+  CHECK(report.crossings_after == 0);
+  CHECK(brute_force_crossings(s.x, faces) == 0);
+  const int tip = s.at(32, 12), under = s.at(8, 12);  // x = 0.4, y = 0.6 on both layers
+  REQUIRE(s.x(tip, 0) == Approx(0.4));
+  CHECK(s.x(tip, 2) > s.x(under, 2));
+}
+
+TEST_CASE("untangle: the upper layer's free end bent through the lower one (a curve open on one sheet)") {
+  // The upper layer ends at x = 0.3, over the lower one; its end is bent
+  // down through it. On the upper layer the curve runs border to border and
+  // cuts off the end (a patch); on the lower layer it ends where the upper
+  // layer's border pierces it, so the cut separates nothing there and its
+  // pierced edges are moved one end at a time.
+  const double height = 0.02, depth = 0.005;
+  Strip s = folded_strip(41, 21, height, 0.3);
+  push_bump(s, 0.3, 0.503, 0.08, depth, height);
+  const int crossings = brute_force_crossings(s.x, s.faces);
+  REQUIRE(crossings > 0);
+  UntangleOptions options;
+  options.max_rounds = 8;
+  const auto report = untangle(s.x, s.faces, options);
+  CHECK(report.crossings_before == crossings);
+  CHECK(report.crossings_after == brute_force_crossings(s.x, s.faces));
+  CHECK(report.crossings_after == 0);
+  CHECK(report.patches_moved >= 1);
+  CHECK(report.largest_move <= 2 * (depth + options.gap));
+  // The end back above the lower layer.
+  const int end = s.at(40, 10), under = s.at(6, 10);  // u = 2 -> x = 0.3; u = 0.3
+  REQUIRE(s.x(under, 0) == Approx(0.3));
+  CHECK(s.x(end, 2) > s.x(under, 2));
+}
+
+TEST_CASE("untangle: a mesh that does not cross itself is left bit for bit") {
+  Strip s = folded_strip(21, 11, 0.02);
+  const Eigen::MatrixX3d before = s.x;
+  const auto report = untangle(s.x, s.faces);
+  CHECK(report.crossings_before == 0);
+  CHECK(report.crossings_after == 0);
+  CHECK(report.rounds == 0);
+  CHECK(report.vertices_moved == 0);
+  CHECK(s.x == before);
+}
+
+TEST_CASE("untangle: bad input is refused") {
+  Strip s = folded_strip(5, 3, 0.02);
+  Eigen::MatrixX3i faces = s.faces;
+  faces(0, 1) = 99;
+  CHECK_THROWS_WITH(untangle(s.x, faces), Catch::Contains("outside the garment's 15"));
+  Eigen::MatrixX3d x = s.x;
+  x(3, 1) = std::numeric_limits<double>::quiet_NaN();
+  CHECK_THROWS_WITH(untangle(x, s.faces), Catch::Contains("non-finite"));
+  UntangleOptions options;
+  options.gap = -1;
+  CHECK_THROWS_WITH(untangle(s.x, s.faces, options), Catch::Contains("gap"));
+}
+
+TEST_CASE("untangle: two cards slotted into each other (a curve open on both) are left as they were") {
+  // Card A in the plane z = 0 over [0, 1] x [0, 1]; card B in the plane
+  // x = 0.503 over y in [0.6, 1.4], z in [-0.2, 0.2]. They cross along
+  // x = 0.503, z = 0 from B's border (y = 0.6) to A's (y = 1): the cut
+  // separates neither card, and pulling each pierced edge off its face only
+  // hands the crossing on to the next edge (one card would have to leave
+  // the other whole). The fewest crossings seen are the start's: the cards
+  // come back bit for bit, and the report says the crossings are left.
+  const int n = 21;
+  Eigen::MatrixX3d x(2 * n * n, 3);
+  Eigen::MatrixX3i faces(4 * (n - 1) * (n - 1), 3);
+  int f = 0;
+  for (int card = 0; card < 2; ++card) {
+    const int base = card * n * n;
+    for (int j = 0; j < n; ++j)
+      for (int i = 0; i < n; ++i) {
+        const double s = static_cast<double>(i) / (n - 1), t = static_cast<double>(j) / (n - 1);
+        if (card == 0) x.row(base + i + n * j) << s, t + 0.0071, 0.0;
+        else x.row(base + i + n * j) << 0.503, 0.6 + 0.8 * s, -0.2 + 0.4 * t + 0.0033;
+      }
+    for (int j = 0; j + 1 < n; ++j)
+      for (int i = 0; i + 1 < n; ++i) {
+        const int v = base + i + n * j;
+        faces.row(f++) << v, v + 1, v + 1 + n;
+        faces.row(f++) << v, v + 1 + n, v + n;
+      }
+  }
+  const int crossings = brute_force_crossings(x, faces);
+  REQUIRE(crossings > 5);
+  const Eigen::MatrixX3d before = x;
+  UntangleOptions options;
+  options.max_rounds = 8;
+  const auto report = untangle(x, faces, options);
+  CHECK(report.patches_moved == 0);
+  CHECK(report.crossings_after == brute_force_crossings(x, faces));
+  CHECK(report.crossings_after > 0);
+  CHECK(report.crossings_after <= report.crossings_before);
+  if (report.crossings_after == report.crossings_before) {
+    CHECK(report.rounds == 0);
+    CHECK(x == before);
+  }
+}
