@@ -2,6 +2,7 @@
 // Every run must end finite, with Phi falling through every step's line
 // search, and (with collision on) with the garment out of the body.
 #include <drape/geometry/closest_point.hpp>
+#include <drape/scene/garment_size.hpp>
 #include <drape/scene/simulation.hpp>
 
 #include <catch2/catch.hpp>
@@ -118,9 +119,13 @@ TEST_CASE("hard case: the extreme bodies, BMI 10 and 65", "[simulation][hard]") 
   // from BMI 60 on it is too small (docs/garments.md), and whether a drape of
   // it comes to a balance is a matter of the path (2026-11-24: with the double
   // preconditioner 2 of BMI 60, 62, 63, 64, 64.5, 65 settled, with the float
-  // one 0), so there it must stay sound and keep Phi falling. The xlarge shirt
-  // must settle across the top of the range (both preconditioners measured:
-  // float 7 of 7, double 4 of 7 at BMI 10, 60-65).
+  // one 0), so there it must stay sound and keep Phi falling. The shirt of
+  // the tailor's rule (size: auto) must settle at both ends of the range.
+  // (Until 2026-12-01 this was the xlarge shirt at BMI 62-65, which is 27 %
+  // smaller round than the body there: built on an AMD EPYC instead of an
+  // Intel Xeon, its BMI 62 drape stalled at rest at a contact kink,
+  // stationarity 0.076 of the weight, the path-dependence above.) The xlarge
+  // shirt must still settle on the thinnest body, which it stands off.
   const Simulation regular(plugins(), small_scene());
   {
     INFO("regular shirt, BMI 10");
@@ -133,9 +138,19 @@ TEST_CASE("hard case: the extreme bodies, BMI 10 and 65", "[simulation][hard]") 
     require_sound(simulate(regular, body_of(regular, 65)));
   }
   const Simulation xlarge(plugins(), small_scene("garment: {params: {size: xlarge}}\n"));
+  {
+    INFO("xlarge shirt, BMI 10");
+    const Checked c = simulate(xlarge, body_of(xlarge, 10));
+    require_sound(c);
+    check_settled_outside(c);
+  }
+  const SizeChart chart(plugins(), small_scene("garment: {params: {size: auto}}\n"));
   for (const double bmi : {10.0, 62.0, 64.0, 65.0}) {
-    INFO("xlarge shirt, BMI " << bmi);
-    const Checked c = simulate(xlarge, body_of(xlarge, bmi));
+    const Eigen::MatrixX3d body = body_of(chart.design(), bmi);
+    const SizeChoice choice = chart.choose(body);
+    INFO("the tailor's size, BMI " << bmi << ": " << choice.summary());
+    REQUIRE_FALSE(choice.size.empty());
+    const Checked c = simulate(chart.simulation(choice.size), body);
     require_sound(c);
     INFO("residual " << c.result.residual << " at rest " << c.result.at_rest << " steps " << c.result.steps << " p " << c.result.penetration);
     check_settled_outside(c);
