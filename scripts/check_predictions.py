@@ -6,9 +6,11 @@ vertices in the body, garment-body edge-face crossings and the garment's crossin
 the size the model's tailor's rule gives); only the checks are independent of it.
 
     PYTHONPATH=build/python /usr/bin/python3 scripts/check_predictions.py --model M.h5 --data data.h5 \\
-        [--split test] [--set post.untangle=false] [--csv out.csv]
+        [--split test] [--samples 6,31] [--set post.untangle=false] [--csv out.csv]
 
-The dataset must hold its body vertices (`drape dataset expand` of slim shards). --set changes a parameter of the
+The dataset is read through drape.Dataset (slim shards rebuild their bodies; a glob pattern reads several). For a
+model of posed drapes each body's rest shape and joint angles are given to predict and the posed body is checked.
+--set changes a parameter of the
 model's graph that leaves the weights alone (as drape eval --set), through a copy made by `drape model set`.
 """
 import argparse
@@ -38,6 +40,7 @@ def main():
     ap.add_argument("--split", default="test", choices=[*SPLITS, "all"])
     ap.add_argument("--set", action="append", default=[], help="node.param=value (repeatable)")
     ap.add_argument("--drape", default=os.path.join(os.path.dirname(HERE), "build", "bin", "drape"))
+    ap.add_argument("--samples", help="only these sample indices of the dataset, e.g. 6,31 (in the split chosen)")
     ap.add_argument("--csv")
     a = ap.parse_args()
     import drape  # the module under test: predictions only
@@ -52,14 +55,28 @@ def main():
             subprocess.run([a.drape, "model", "set", a.model, "--out", model_file, *args], check=True,
                            capture_output=True)
         model = drape.Model.load(model_file)
-        with h5py.File(a.data) as f:
-            done = f["done"][:].astype(bool)
-            chosen = done if a.split == "all" else done & (f["split"][:] == SPLITS[a.split])
-            rows = []
-            for i in np.flatnonzero(chosen):
-                body = f["bodies/vertices"][i].astype(np.float32)
-                garment = np.asarray(model.predict(body, check=False), dtype=np.float64)
-                rows.append((int(i), float(f["stats/bmi"][i]), body.astype(np.float64), garment))
+        data = drape.Dataset(a.data)  # slim shards too: each body rebuilt from its parameters
+        chosen = list(range(len(data)) if a.split == "all" else data.indices(a.split))
+        if a.samples:
+            wanted = {int(x) for x in a.samples.split(",")}
+            chosen = [i for i in chosen if int(i) in wanted]
+        names = data.layout.get("pose_angles") if model.takes_pose else None
+        bmis = {}
+        if os.path.isfile(a.data):
+            with h5py.File(a.data) as f:
+                bmis = dict(enumerate(f["stats/bmi"][:].tolist()))
+        rows = []
+        for i in chosen:
+            sample = data[int(i)]
+            body = np.asarray(sample["body"], dtype=np.float32)
+            if names:  # a model of posed drapes: the rest body and the sample's joint angles (degrees)
+                rest = data.posing([int(i)])["unposed"][0]
+                pose = {n: float(v) for n, v in zip(names, sample["pose"])}
+                garment = model.predict(rest, pose=pose, check=False)
+            else:
+                garment = model.predict(body, check=False)
+            rows.append((int(sample["index"]), bmis.get(int(sample["index"]), float("nan")), body.astype(np.float64),
+                         np.asarray(garment, dtype=np.float64)))
         gf = np.array(model.assets.garment_faces)
         bf = np.array(model.assets.body_faces)
     if rows and bf.max() + 1 != len(rows[0][2]):
