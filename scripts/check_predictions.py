@@ -21,7 +21,6 @@ import tempfile
 
 import warnings
 
-import h5py
 import numpy as np
 
 HERE = os.path.dirname(os.path.abspath(__file__))
@@ -61,10 +60,6 @@ def main():
             wanted = {int(x) for x in a.samples.split(",")}
             chosen = [i for i in chosen if int(i) in wanted]
         names = data.layout.get("pose_angles") if model.takes_pose else None
-        bmis = {}
-        if os.path.isfile(a.data):
-            with h5py.File(a.data) as f:
-                bmis = dict(enumerate(f["stats/bmi"][:].tolist()))
         rows = []
         for i in chosen:
             sample = data[int(i)]
@@ -75,8 +70,8 @@ def main():
                 garment = model.predict(rest, pose=pose, check=False)
             else:
                 garment = model.predict(body, check=False)
-            rows.append((int(sample["index"]), bmis.get(int(sample["index"]), float("nan")), body.astype(np.float64),
-                         np.asarray(garment, dtype=np.float64)))
+            bmi = float(data.stat("bmi", [int(i)])[0])
+            rows.append((int(sample["index"]), bmi, body.astype(np.float64), np.asarray(garment, dtype=np.float64)))
         gf = np.array(model.assets.garment_faces)
         bf = np.array(model.assets.body_faces)
     if rows and bf.max() + 1 != len(rows[0][2]):
