@@ -18,7 +18,6 @@ import os
 import subprocess
 import sys
 import tempfile
-
 import warnings
 
 import numpy as np
