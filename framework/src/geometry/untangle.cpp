@@ -21,6 +21,24 @@ namespace {
 // (edge, face) pairs as self_edge_crossings (self_intersection.hpp) lists them.
 using Crossings = std::vector<std::pair<std::pair<int, int>, int>>;
 
+// Edge (a, b) against face f: recorded in `hits` when it passes through the
+// face (touching counts) and shares no vertex with it.
+void test_edge(const Eigen::MatrixX3d& x, const Eigen::MatrixX3i& faces, int a, int b, int f, Crossings& hits) {
+  const auto ring = faces.row(f).array();
+  if ((ring == a).any() || (ring == b).any()) return;
+  if (segment_pierces_triangle(x.row(a), x.row(b), x.row(faces(f, 0)), x.row(faces(f, 1)), x.row(faces(f, 2))))
+    hits.push_back({{a, b}, f});
+}
+
+// Edge (a, b) against every face whose box meets its box.
+void search_edge(const TriangleBvh& faces_tree, const Eigen::MatrixX3d& x, const Eigen::MatrixX3i& faces, int a, int b,
+                 std::vector<int>& near, Crossings& hits) {
+  const Eigen::Vector3d p = x.row(a), q = x.row(b);
+  near.clear();
+  faces_tree.overlapping(p.cwiseMin(q), p.cwiseMax(q), near);
+  for (const int f : near) test_edge(x, faces, a, b, f, hits);
+}
+
 // The garment's edges through its own faces that share no vertex with them
 // (touching counts), sorted: the pairs self_edge_crossings finds, through the
 // garment's own hierarchy of faces refitted to x, one descent an edge.
@@ -33,20 +51,11 @@ Crossings find_crossings(TriangleBvh& faces_tree, const Eigen::MatrixX3d& x, con
   faces_tree.refit(x);
   Crossings hits;
   std::vector<int> near;
-  for (const auto& [a, b] : edges) {
-    const Eigen::Vector3d p = x.row(a), q = x.row(b);
-    near.clear();
-    faces_tree.overlapping(p.cwiseMin(q), p.cwiseMax(q), near);
-    for (const int f : near) {
-      const auto ring = faces.row(f).array();
-      if ((ring == a).any() || (ring == b).any()) continue;
-      if (segment_pierces_triangle(p, q, x.row(faces(f, 0)), x.row(faces(f, 1)), x.row(faces(f, 2))))
-        hits.push_back({{a, b}, f});
-    }
-  }
+  for (const auto& [a, b] : edges) search_edge(faces_tree, x, faces, a, b, near, hits);
   std::sort(hits.begin(), hits.end());
   return hits;
 }
+
 // A patch whose cut edges ask for directions more than about 75 degrees off
 // its mean direction still moves along the mean, but no further than four
 // times the largest depth (the mean of opposed pulls is short).
@@ -84,12 +93,6 @@ void update_crossings(TriangleBvh& faces_tree, const Eigen::MatrixX3d& x, const 
   faces_tree.refit(x);
   const auto face_moved = [&](int f) { return moved[faces(f, 0)] || moved[faces(f, 1)] || moved[faces(f, 2)]; };
   std::erase_if(hits, [&](const auto& hit) { return moved[hit.first.first] || moved[hit.first.second] || face_moved(hit.second); });
-  const auto test = [&](int a, int b, int f) {
-    const auto ring = faces.row(f).array();
-    if ((ring == a).any() || (ring == b).any()) return;
-    if (segment_pierces_triangle(x.row(a), x.row(b), x.row(faces(f, 0)), x.row(faces(f, 1)), x.row(faces(f, 2))))
-      hits.push_back({{a, b}, f});
-  };
   std::vector<char> edge_done(edges.size(), 0), face_done(static_cast<std::size_t>(faces.rows()), 0);
   std::vector<int> near;
   for (std::size_t v = 0; v < moved.size(); ++v) {
@@ -98,10 +101,7 @@ void update_crossings(TriangleBvh& faces_tree, const Eigen::MatrixX3d& x, const 
       if (edge_done[static_cast<std::size_t>(e)]) continue;
       edge_done[static_cast<std::size_t>(e)] = 1;
       const auto [a, b] = edges[static_cast<std::size_t>(e)];
-      const Eigen::Vector3d p = x.row(a), q = x.row(b);
-      near.clear();
-      faces_tree.overlapping(p.cwiseMin(q), p.cwiseMax(q), near);
-      for (const int f : near) test(a, b, f);
+      search_edge(faces_tree, x, faces, a, b, near, hits);
     }
     for (const int f : vertex_faces[v]) {  // a moved face against the unmoved edges near it
       if (face_done[static_cast<std::size_t>(f)]) continue;
@@ -112,7 +112,7 @@ void update_crossings(TriangleBvh& faces_tree, const Eigen::MatrixX3d& x, const 
       for (const int g : near)
         for (int k = 0; k < 3; ++k) {
           const int a = std::min(faces(g, k), faces(g, (k + 1) % 3)), b = std::max(faces(g, k), faces(g, (k + 1) % 3));
-          if (!moved[a] && !moved[b]) test(a, b, f);
+          if (!moved[a] && !moved[b]) test_edge(x, faces, a, b, f, hits);
         }
     }
   }
@@ -126,29 +126,34 @@ struct Pull {
   double amount;
 };
 
+// Face f's unit normal and a corner; false for a face without a plane.
+bool face_plane(const Eigen::MatrixX3d& x, const Eigen::MatrixX3i& faces, int f, Eigen::Vector3d& normal, Eigen::Vector3d& corner) {
+  corner = x.row(faces(f, 0));
+  normal = (x.row(faces(f, 1)).transpose() - corner).cross(x.row(faces(f, 2)).transpose() - corner);
+  if (!(normal.norm() > 0)) return false;
+  normal.normalize();
+  return true;
+}
+
+// Vertex v's height over face f's plane; 0 for a face without a plane.
+double signed_height(const Eigen::MatrixX3d& x, const Eigen::MatrixX3i& faces, int f, int v) {
+  Eigen::Vector3d n, p0;
+  return face_plane(x, faces, f, n, p0) ? n.dot(x.row(v).transpose() - p0) : 0.0;
+}
+
 // Vertex v of a crossing edge (v, u) back across face f's plane, to the side
 // its edge's other end u is on (the side of the rest of its sheet), `gap`
 // beyond it. False when neither end is off the plane (no side to go to) or
 // the face has no plane.
 bool pull_across(const Eigen::MatrixX3d& x, const Eigen::MatrixX3i& faces, int f, int v, int u, double gap, Pull& pull) {
-  const Eigen::Vector3d p0 = x.row(faces(f, 0)), p1 = x.row(faces(f, 1)), p2 = x.row(faces(f, 2));
-  const Eigen::Vector3d normal = (p1 - p0).cross(p2 - p0);
-  if (!(normal.norm() > 0)) return false;
-  const Eigen::Vector3d n = normal.normalized();
+  Eigen::Vector3d n, p0;
+  if (!face_plane(x, faces, f, n, p0)) return false;
   const double sv = n.dot(x.row(v).transpose() - p0), su = n.dot(x.row(u).transpose() - p0);
   const double target = su > 0 ? 1.0 : su < 0 ? -1.0 : sv > 0 ? -1.0 : sv < 0 ? 1.0 : 0.0;
   if (target == 0) return false;
   pull.direction = target * n;
   pull.amount = std::max(0.0, gap - target * sv);
   return true;
-}
-
-// Vertex v's height over face f's plane (along its unit normal); 0 for a face without a plane.
-double signed_height(const Eigen::MatrixX3d& x, const Eigen::MatrixX3i& faces, int f, int v) {
-  const Eigen::Vector3d p0 = x.row(faces(f, 0)), p1 = x.row(faces(f, 1)), p2 = x.row(faces(f, 2));
-  const Eigen::Vector3d normal = (p1 - p0).cross(p2 - p0);
-  if (!(normal.norm() > 0)) return 0;
-  return normal.normalized().dot(x.row(v).transpose() - p0);
 }
 
 }  // namespace
@@ -199,7 +204,6 @@ UntangleReport Untangler::run(Eigen::MatrixX3d& vertices, const UntangleOptions&
   if (!vertices.allFinite()) throw Error("untangle: the garment has a non-finite vertex");
 
   UntangleReport report;
-  const Eigen::MatrixX3d start = vertices;
   const Eigen::MatrixX3i& faces = topology.faces;
   const std::vector<std::array<int, 2>>& edges = topology.edges;
   const std::vector<int>& piece = topology.piece;
@@ -208,6 +212,8 @@ UntangleReport Untangler::run(Eigen::MatrixX3d& vertices, const UntangleOptions&
   TriangleBvh& faces_tree = *topology.faces_tree;
   Crossings hits = find_crossings(faces_tree, vertices, faces, edges);
   report.crossings_before = static_cast<int>(hits.size());
+  if (hits.empty()) return report;  // the usual case: one search, nothing copied
+  const Eigen::MatrixX3d start = vertices;
   // The moves of an open curve can hand a crossing on instead of undoing it
   // (two edges through each other's faces, a pinch): the fewest crossings
   // seen are what is returned, so a round never leaves the cloth worse.
@@ -215,7 +221,6 @@ UntangleReport Untangler::run(Eigen::MatrixX3d& vertices, const UntangleOptions&
   std::size_t fewest = hits.size();
   int rounds_to_best = 0, patches_to_best = 0, idle = 0;
   for (int round = 0; round < options.max_rounds && !hits.empty() && idle < options.patience; ++round) {
-    const Eigen::MatrixX3d before_round = vertices;
     std::vector<std::array<int, 2>> cut;
     for (const auto& [edge, face] : hits) cut.push_back({edge.first, edge.second});
     cut.erase(std::unique(cut.begin(), cut.end()), cut.end());  // (hits are sorted by edge)
@@ -301,7 +306,7 @@ UntangleReport Untangler::run(Eigen::MatrixX3d& vertices, const UntangleOptions&
     }
     if (!moved) break;
     ++report.rounds;
-    if (options.after_round) options.after_round(before_round, vertices, moved_now);
+    if (options.after_round) options.after_round(vertices, moved_now);
     update_crossings(faces_tree, vertices, faces, edges, topology.vertex_edges, topology.vertex_faces, moved_now, hits);
     if (hits.size() < fewest) {
       best = vertices, fewest = hits.size(), rounds_to_best = report.rounds, patches_to_best = report.patches_moved, idle = 0;
@@ -315,11 +320,9 @@ UntangleReport Untangler::run(Eigen::MatrixX3d& vertices, const UntangleOptions&
     report.patches_moved = patches_to_best;
   }
   report.crossings_after = static_cast<int>(fewest);
-  if (n > 0) {
-    const Eigen::VectorXd moves = (vertices - start).rowwise().norm();
-    report.largest_move = moves.maxCoeff();
-    report.vertices_moved = static_cast<int>((moves.array() > 0).count());
-  }
+  const Eigen::VectorXd moves = (vertices - start).rowwise().norm();  // (n > 0: there were crossings)
+  report.largest_move = moves.maxCoeff();
+  report.vertices_moved = static_cast<int>((moves.array() > 0).count());
   return report;
 }
 

@@ -56,11 +56,10 @@ class PushOut final : public Node {
         throw ConfigError("push_out with " + which + ": input 'x' has " + std::to_string(in.at("x").rows) +
                           " rows, the bound garment " + std::to_string(garment_vertices) +
                           " vertices (edges: false and untangle: false push out the vertices of any mesh)");
-      if (lift_edges_) edges_ = geometry::edge_list(context.assets->garment->mesh.faces);
+      edges_ = geometry::edge_list(context.assets->garment->mesh.faces);
       if (untangle_) {
         untangler_.emplace(context.assets->garment->mesh.faces, garment_vertices);
-        garment_edges_ = geometry::edge_list(context.assets->garment->mesh.faces);
-        adjacency_ = geometry::vertex_adjacency(garment_edges_, garment_vertices);
+        adjacency_ = geometry::vertex_adjacency(edges_, garment_vertices);
       }
     }
     surface_.reset();  // built again for these faces at the next forward
@@ -97,9 +96,7 @@ class PushOut final : public Node {
       if (untangle_) {
         geometry::UntangleOptions untangling{.gap = kSelfGap, .max_rounds = kRounds};
         // After each round, the patches it moved kept off the body.
-        untangling.after_round = [this](const Eigen::MatrixX3d& before, Eigen::MatrixX3d& now, std::vector<char>& moved) {
-          push_out_moved(before, now, moved);
-        };
+        untangling.after_round = [this](Eigen::MatrixX3d& now, std::vector<char>& moved) { push_out_moved(now, moved); };
         untangler_->run(points, untangling);
       }
       y.mat(b) = points.cast<float>();
@@ -109,15 +106,16 @@ class PushOut final : public Node {
   // The push-out again on the vertices an untangle round moved and their
   // neighbours only (with the edges among them): the rest did not move since
   // the push-out cleared them, and a few dozen searches cost a hundredth of
-  // a whole push-out. Flags in `moved` the vertices it moves.
-  void push_out_moved(const Eigen::MatrixX3d& before, Eigen::MatrixX3d& points, std::vector<char>& moved) {
+  // a whole push-out. `moved` flags the round's vertices; those this moves
+  // are flagged too.
+  void push_out_moved(Eigen::MatrixX3d& points, std::vector<char>& moved) {
     const auto n = static_cast<int>(points.rows());
     std::vector<int> local(static_cast<std::size_t>(n), -1), chosen;
     const auto take = [&](int v) {
       if (local[static_cast<std::size_t>(v)] < 0) local[static_cast<std::size_t>(v)] = static_cast<int>(chosen.size()), chosen.push_back(v);
     };
     for (int v = 0; v < n; ++v)
-      if (points.row(v) != before.row(v)) {
+      if (moved[static_cast<std::size_t>(v)]) {
         take(v);
         for (int k = adjacency_.start[static_cast<std::size_t>(v)]; k < adjacency_.start[static_cast<std::size_t>(v) + 1]; ++k)
           take(adjacency_.neighbours[static_cast<std::size_t>(k)]);
@@ -126,12 +124,13 @@ class PushOut final : public Node {
     std::vector<int> hints(chosen.size());
     for (std::size_t i = 0; i < chosen.size(); ++i) {
       part.row(static_cast<Eigen::Index>(i)) = points.row(chosen[i]);
-      hints[i] = closest_faces_.size() == static_cast<std::size_t>(n) ? closest_faces_[static_cast<std::size_t>(chosen[i])] : -1;
+      hints[i] = closest_faces_[static_cast<std::size_t>(chosen[i])];  // (the whole push-out just set every vertex's)
     }
     std::vector<std::array<int, 2>> part_edges;
-    for (const auto& [a, b] : garment_edges_)
-      if (local[static_cast<std::size_t>(a)] >= 0 && local[static_cast<std::size_t>(b)] >= 0)
-        part_edges.push_back({local[static_cast<std::size_t>(a)], local[static_cast<std::size_t>(b)]});
+    if (lift_edges_)
+      for (const auto& [a, b] : edges_)
+        if (local[static_cast<std::size_t>(a)] >= 0 && local[static_cast<std::size_t>(b)] >= 0)
+          part_edges.push_back({local[static_cast<std::size_t>(a)], local[static_cast<std::size_t>(b)]});
     geometry::PushOutOptions options;
     options.margin = epsilon_;
     options.closest_faces = &hints;
@@ -156,9 +155,8 @@ class PushOut final : public Node {
   bool untangle_;
   Eigen::MatrixX3i faces_;
   std::optional<geometry::Untangler> untangler_;  // the garment's, when untangle_
-  std::vector<std::array<int, 2>> garment_edges_;  // when untangle_
-  geometry::VertexAdjacency adjacency_;             // of garment_edges_
-  std::vector<std::array<int, 2>> edges_;  // the garment's, when lift_edges_
+  geometry::VertexAdjacency adjacency_;           // of edges_, when untangle_
+  std::vector<std::array<int, 2>> edges_;  // the garment's, when lift_edges_ or untangle_
   std::optional<geometry::BodySurface> surface_;  // the last body's, refitted to the next
   std::vector<int> closest_faces_;                // the last body's closest face of each garment vertex
 };

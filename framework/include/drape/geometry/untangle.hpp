@@ -32,15 +32,15 @@ struct UntangleOptions {
   // Rounds in a row that may leave as many crossings as the fewest seen
   // before the run gives up (a pinch it only hands on).
   int patience = 2;
-  // Called after each round's moves with the vertices before them; it may
-  // move vertices too (a push-out off the body: the patches moved must not
-  // end inside it) and flags in `moved` each vertex it moved. The crossings
-  // are then searched again where anything moved.
-  std::function<void(const Eigen::MatrixX3d& before, Eigen::MatrixX3d& vertices, std::vector<char>& moved)> after_round;
+  // Called after each round's moves, with `moved` flagging the vertices the
+  // round moved; it may move vertices too (a push-out off the body: the
+  // patches moved must not end inside it), flagging each in `moved`. The
+  // crossings are then searched again where anything moved.
+  std::function<void(Eigen::MatrixX3d& vertices, std::vector<char>& moved)> after_round;
 };
 
 struct UntangleReport {
-  int crossings_before = 0;  // (edge, face) pairs at the start (self_edge_crossings)
+  int crossings_before = 0;  // (edge, face) pairs at the start (the pairs self_edge_crossings lists)
   int crossings_after = 0;   // left after the last round (searched again)
   int rounds = 0;            // rounds that moved something, up to the state returned
   int patches_moved = 0;     // over those rounds
