@@ -45,6 +45,25 @@ def scene_body_args(data):
     return args
 
 
+def drape_checks(garment, garment_faces, body, body_faces):
+    """One drape: p (% of the garment's vertices inside the body by winding numbers), garment-body edge-face
+    crossings, and the garment's crossings of itself."""
+    gv, bv = np.asarray(garment, dtype=np.float64), np.asarray(body, dtype=np.float64)
+    inside = int((winding_numbers(bv, body_faces, gv) > 0.5).sum())
+    self_pairs, _ = crossings(gv, garment_faces)
+    body_pairs, _ = crossings(bv, body_faces)
+    both, _ = crossings(np.vstack([gv, bv]), np.vstack([garment_faces, body_faces + len(gv)]))
+    return dict(p=100.0 * inside / len(gv), garment_body=len(both) - len(self_pairs) - len(body_pairs),
+                self_crossings=len(self_pairs))
+
+
+def write_csv(path, rows):
+    with open(path, "w") as f:
+        f.write(",".join(rows[0]) + "\n")
+        for r in rows:
+            f.write(",".join(str(v) for v in r.values()) + "\n")
+
+
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("data")
@@ -71,14 +90,9 @@ def main():
         bmi = f["stats/bmi"][:]
         rows, bad = [], 0
         for i in done:
-            gv, bv = garments[i].astype(np.float64), bodies[i].astype(np.float64)
-            inside = int((winding_numbers(bv, bf, gv) > 0.5).sum())
-            self_pairs, _ = crossings(gv, gf)
-            body_pairs, _ = crossings(bv, bf)
-            both, _ = crossings(np.vstack([gv, bv]), np.vstack([gf, bf + len(gv)]))
-            r = dict(index=int(i), bmi=float(bmi[i]), converged=int(converged[i]), p=100.0 * inside / len(gv),
-                     garment_body=len(both) - len(self_pairs) - len(body_pairs), self_crossings=len(self_pairs))
-            clean = r["converged"] == 1 and inside == 0 and r["garment_body"] == 0 and r["self_crossings"] == 0
+            checks = drape_checks(garments[i], gf, bodies[i], bf)
+            r = dict(index=int(i), bmi=float(bmi[i]), converged=int(converged[i]), **checks)
+            clean = r["converged"] == 1 and r["p"] == 0 and r["garment_body"] == 0 and r["self_crossings"] == 0
             bad += not clean
             rows.append(r)
             print(f"sample {i} (BMI {r['bmi']:.1f}): {'clean' if clean else 'NOT CLEAN'}: converged {r['converged']}, "
@@ -87,10 +101,7 @@ def main():
     print(f"{len(rows) - bad} of {len(rows)} drapes clean (settled, p = 0 by winding numbers, no crossing, no "
           "self-crossing)")
     if a.csv:
-        with open(a.csv, "w") as f:
-            f.write(",".join(rows[0]) + "\n")
-            for r in rows:
-                f.write(",".join(str(v) for v in r.values()) + "\n")
+        write_csv(a.csv, rows)
     return 1 if bad else 0
 
 

@@ -24,9 +24,7 @@ import numpy as np
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, HERE)
-sys.path.insert(0, os.path.join(HERE, "reference"))
-from count_self_crossings import crossings  # noqa: E402
-from winding_number import winding_numbers  # noqa: E402
+from check_dataset_drapes import drape_checks, write_csv  # noqa: E402
 
 SPLITS = {"train": 0, "val": 1, "test": 2}
 
@@ -59,6 +57,11 @@ def main():
             wanted = {int(x) for x in a.samples.split(",")}
             chosen = [i for i in chosen if int(i) in wanted]
         names = data.layout.get("pose_angles") if model.takes_pose else None
+        gf = np.array(model.assets.garment_faces)
+        bf = np.array(model.assets.body_faces)
+        if chosen and bf.max() + 1 != len(data[int(chosen[0])]["body"]):
+            sys.exit(f"{a.data}: its bodies have {len(data[int(chosen[0])]['body'])} vertices, the model's body faces "
+                     f"index {bf.max() + 1}")
         rows = []
         for i in chosen:
             sample = data[int(i)]
@@ -69,35 +72,18 @@ def main():
                 garment = model.predict(rest, pose=pose, check=False)
             else:
                 garment = model.predict(body, check=False)
-            bmi = float(data.stat("bmi", [int(i)])[0])
-            rows.append((int(sample["index"]), bmi, body.astype(np.float64), np.asarray(garment, dtype=np.float64)))
-        gf = np.array(model.assets.garment_faces)
-        bf = np.array(model.assets.body_faces)
-    if rows and bf.max() + 1 != len(rows[0][2]):
-        sys.exit(f"{a.data}: its bodies have {len(rows[0][2])} vertices, the model's body faces index {bf.max() + 1}")
-    out, totals = [], dict(inside=0, garment_body=0, self_crossings=0)
-    crossing_self = 0
-    for i, bmi, bv, gv in rows:
-        inside = int((winding_numbers(bv, bf, gv) > 0.5).sum())
-        self_pairs, _ = crossings(gv, gf)
-        body_pairs, _ = crossings(bv, bf)
-        both, _ = crossings(np.vstack([gv, bv]), np.vstack([gf, bf + len(gv)]))
-        r = dict(index=i, bmi=bmi, p=100.0 * inside / len(gv), garment_body=len(both) - len(self_pairs) - len(body_pairs),
-                 self_crossings=len(self_pairs))
-        out.append(r)
-        totals["inside"] += inside > 0
-        totals["garment_body"] += r["garment_body"] > 0
-        totals["self_crossings"] += r["self_crossings"]
-        crossing_self += r["self_crossings"] > 0
-        print(f"sample {i} (BMI {bmi:.1f}): p {r['p']:.2f} %, {r['garment_body']} garment-body crossings, "
-              f"{r['self_crossings']} self-crossings", flush=True)
-    print(f"{len(out)} predictions: {totals['inside']} with a vertex inside the body, {totals['garment_body']} crossing "
-          f"the body, {crossing_self} crossing themselves ({totals['self_crossings']} edges)")
-    if a.csv:
-        with open(a.csv, "w") as f:
-            f.write(",".join(out[0]) + "\n")
-            for r in out:
-                f.write(",".join(str(v) for v in r.values()) + "\n")
+            r = dict(index=int(sample["index"]), bmi=float(data.stat("bmi", [int(i)])[0]),
+                     **drape_checks(garment, gf, body, bf))
+            rows.append(r)
+            print(f"sample {r['index']} (BMI {r['bmi']:.1f}): p {r['p']:.2f} %, {r['garment_body']} garment-body "
+                  f"crossings, {r['self_crossings']} self-crossings", flush=True)
+    inside = sum(r["p"] > 0 for r in rows)
+    through_body = sum(r["garment_body"] > 0 for r in rows)
+    crossing_self = sum(r["self_crossings"] > 0 for r in rows)
+    print(f"{len(rows)} predictions: {inside} with a vertex inside the body, {through_body} crossing the body, "
+          f"{crossing_self} crossing themselves ({sum(r['self_crossings'] for r in rows)} edges)")
+    if a.csv and rows:
+        write_csv(a.csv, rows)
     return 0
 
 
