@@ -1,5 +1,5 @@
-"""The push-out's untangle on the shipped human-rig model's predictions: two heavy test bodies whose predicted
-shirts crossed themselves at the sleeves (shards 3 and 14 of datasets/bodyspace2000-human) come out with no
+"""The push-out's untangle on the shipped human-rig model's predictions: three heavy test bodies whose predicted
+shirts crossed themselves at the sleeves and the underarm (shards 1, 3 and 14 of datasets/bodyspace2000-human) come out with no
 crossing of the garment through itself, counted by scripts/count_self_crossings.py (numpy only, no drape code),
 while `post.untangle=false` gives the crossings back; the shirt moves by millimetres, and no vertex ends inside the
 body (winding numbers)."""
@@ -18,8 +18,9 @@ from winding_number import winding_numbers  # noqa: E402
 
 drape = pytest.importorskip("drape")
 MODEL = SOURCE / "models" / "tshirt-coarse-human.h5"
-# (shard, sample in it): BMI 60.9 (14 self-crossing edges without untangle) and BMI 50.6 (7).
-BODIES = [(3, 6), (14, 31)]
+# (shard, sample in it): BMI 60.9 (14 self-crossing edges without untangle), BMI 50.6 (7), and BMI 64.6 (2: a
+# crumple at the underarm, which the pulls alone handed on and left).
+BODIES = [(3, 6), (14, 31), (1, 18)]
 
 
 def test_untangle_undoes_the_heavy_predictions_self_crossings(tmp_path):
@@ -38,7 +39,7 @@ def test_untangle_undoes_the_heavy_predictions_self_crossings(tmp_path):
             g_off = np.asarray(off.predict(body, check=False), dtype=np.float64)
         before, _ = crossings(g_off, gf)
         after, _ = crossings(g_on, gf)
-        assert len(before) >= 5, (shard, sample, len(before))
+        assert len(before) >= 2, (shard, sample, len(before))
         assert len(after) == 0, (shard, sample, len(after))
         moves = np.linalg.norm(g_on - g_off, axis=1)
         assert 0 < moves.max() < 0.02, moves.max()

@@ -94,7 +94,9 @@ class PushOut final : public Node {
       if (lift_edges_) options.edges = &edges_;
       geometry::push_out(*surface_, points, options);
       if (untangle_) {
-        geometry::UntangleOptions untangling{.gap = kSelfGap, .max_rounds = kRounds};
+        geometry::UntangleOptions untangling;
+        untangling.gap = kSelfGap;
+        untangling.max_rounds = kRounds;
         // After each round, the patches it moved kept off the body.
         untangling.after_round = [this](Eigen::MatrixX3d& now, std::vector<char>& moved) { push_out_moved(now, moved); };
         untangler_->run(points, untangling);

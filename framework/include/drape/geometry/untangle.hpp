@@ -14,6 +14,10 @@
 // the sleeve) each move half the way. Where a curve is open (it ends on the
 // garment's border, so the cut separates nothing) the pierced edge and the
 // face are pulled apart along the face's normal instead, half the way each.
+// A crumple (an edge through a face within three rings of it: a fold
+// narrower than the mesh can hold, the underarm's and the cuffs' in a heavy
+// body's prediction) is neither cut nor pulled, which only hands it on from
+// edge to edge: its vertices are smoothed towards their neighbours' mean.
 // Rounds repeat while crossings are left, and the state with the fewest is
 // returned: a pinch (two edges through each other's faces) can be handed on
 // from edge to edge rather than undone, and is then left as it was.
