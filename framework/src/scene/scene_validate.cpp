@@ -39,7 +39,7 @@ const std::vector<ParamSpec>& scene_solver_specs() {
        .doc = "fraction of the velocity dropped per step (1 = quasi-static)", .min = 0.0, .max = 1.0},
       {.name = "morph_steps", .type = ParamType::Int, .default_value = "20",
        .doc = "steps over which the body morphs from the mean shape to the target", .min = 0.0, .max = 1e6},
-      {.name = "settle_steps", .type = ParamType::Int, .default_value = "60",
+      {.name = "settle_steps", .type = ParamType::Int, .default_value = "120",
        .doc = "at most this many steps on the target body to settle", .min = 0.0, .max = 1e6},
       {.name = "max_newton_iterations", .type = ParamType::Int, .default_value = number(d.max_newton_iterations),
        .doc = "Newton iterations per settling step at most", .min = 1.0, .max = 1e4},
