@@ -101,6 +101,7 @@ TEST_CASE("untangle: a bump pushed through the fold below goes back, the rest of
   CHECK(report.crossings_after == 0);
   CHECK(brute_force_crossings(s.x, s.faces) == 0);
   CHECK(report.patches_moved >= 2);  // the bump's tip and the lower layer's disc inside it
+  CHECK(report.crumples_smoothed == 0);  // the layers meet many rings from the fold: no crumple
   // The right side: the bump's lowest vertex above the lower layer's vertex under it.
   const int tip = s.at(30, 10), under = s.at(10, 10);  // u = 1.5 -> x = 0.5; u = 0.5 -> x = 0.5
   REQUIRE(before(tip, 0) == Approx(0.5));
@@ -262,6 +263,8 @@ TEST_CASE("untangle: a Z-shaped crumple (the sheet folded back under itself and 
   CHECK(report.crossings_before == crossings);
   CHECK(report.crossings_after == 0);
   CHECK(brute_force_crossings(x, faces) == 0);
+  CHECK(report.crumples_smoothed > 0);
+  CHECK(report.patches_moved == 0);
   CHECK(report.largest_move < 0.5);  // half an edge: the fold is 0.3 deep
   // Rows two rings or more from the crumple keep their bits.
   for (const int j : {0, rows - 2, rows - 1})

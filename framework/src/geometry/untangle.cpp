@@ -275,7 +275,7 @@ UntangleReport Untangler::run(Eigen::MatrixX3d& vertices, const UntangleOptions&
   // seen are what is returned, so a round never leaves the cloth worse.
   Eigen::MatrixX3d best = vertices;
   std::size_t fewest = hits.size();
-  int rounds_to_best = 0, patches_to_best = 0, idle = 0;
+  int rounds_to_best = 0, patches_to_best = 0, crumples_to_best = 0, idle = 0;
   for (int round = 0; round < options.max_rounds && !hits.empty() && idle < options.patience; ++round) {
     std::vector<std::array<int, 2>> cut;
     std::vector<char> smooth(static_cast<std::size_t>(n), 0), crumple(hits.size(), 0);
@@ -283,6 +283,7 @@ UntangleReport Untangler::run(Eigen::MatrixX3d& vertices, const UntangleOptions&
       const auto& [edge, f] = hits[h];
       crumple[h] = next_to(edge.first, f) || next_to(edge.second, f);
       if (crumple[h]) {  // smoothed, not cut
+        ++report.crumples_smoothed;
         for (const int v : {edge.first, edge.second, faces(f, 0), faces(f, 1), faces(f, 2)}) smooth[static_cast<std::size_t>(v)] = 1;
         continue;
       }
@@ -387,7 +388,8 @@ UntangleReport Untangler::run(Eigen::MatrixX3d& vertices, const UntangleOptions&
     if (options.after_round) options.after_round(vertices, moved_now);
     update_crossings(faces_tree, vertices, faces, edges, topology.vertex_edges, topology.vertex_faces, moved_now, hits);
     if (hits.size() < fewest) {
-      best = vertices, fewest = hits.size(), rounds_to_best = report.rounds, patches_to_best = report.patches_moved, idle = 0;
+      best = vertices, fewest = hits.size(), rounds_to_best = report.rounds, patches_to_best = report.patches_moved,
+      crumples_to_best = report.crumples_smoothed, idle = 0;
     } else {
       ++idle;
     }
@@ -396,6 +398,7 @@ UntangleReport Untangler::run(Eigen::MatrixX3d& vertices, const UntangleOptions&
     vertices = best;
     report.rounds = rounds_to_best;
     report.patches_moved = patches_to_best;
+    report.crumples_smoothed = crumples_to_best;
   }
   report.crossings_after = static_cast<int>(fewest);
   const Eigen::VectorXd moves = (vertices - start).rowwise().norm();  // (n > 0: there were crossings)

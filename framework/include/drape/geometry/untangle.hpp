@@ -48,6 +48,7 @@ struct UntangleReport {
   int crossings_after = 0;   // left after the last round (searched again)
   int rounds = 0;            // rounds that moved something, up to the state returned
   int patches_moved = 0;     // over those rounds
+  int crumples_smoothed = 0; // (edge, face) pairs smoothed as crumples over those rounds
   int vertices_moved = 0;    // distinct vertices moved at least once
   double largest_move = 0;   // m, over all rounds, of one vertex
 };
