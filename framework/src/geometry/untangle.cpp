@@ -185,7 +185,8 @@ struct Untangler::Topology {
   std::vector<std::vector<int>> vertex_edges, vertex_faces;  // the edges and faces at each vertex
   // Each vertex's neighbours for the crumples' smoothing: along the border
   // for a border vertex (the mean of all its neighbours would pull a hem or
-  // a cuff in), all of them otherwise.
+  // a cuff in; an edge of more than two faces counts as border, as
+  // face_neighbours has it), all of them otherwise.
   std::vector<std::vector<int>> smoothing_neighbours;
   std::optional<TriangleBvh> faces_tree;
 };
@@ -206,21 +207,20 @@ Untangler::Untangler(const Eigen::MatrixX3i& faces, int num_vertices) : topology
     for (const int v : t.edges[e]) t.vertex_edges[static_cast<std::size_t>(v)].push_back(static_cast<int>(e));
   for (Eigen::Index f = 0; f < faces.rows(); ++f)
     for (int k = 0; k < 3; ++k) t.vertex_faces[static_cast<std::size_t>(faces(f, k))].push_back(static_cast<int>(f));
-  std::vector<int> edge_faces(t.edges.size(), 0);
+  // A vertex on the border (an edge with no face across it) keeps only its
+  // border neighbours.
+  t.smoothing_neighbours = vertex_neighbours(faces, num_vertices);
+  std::vector<std::vector<int>> along_border(static_cast<std::size_t>(num_vertices));
+  const std::vector<std::array<int, 3>> across = face_neighbours(faces);
   for (Eigen::Index f = 0; f < faces.rows(); ++f)
-    for (int k = 0; k < 3; ++k) {
-      const std::array<int, 2> e{std::min(faces(f, k), faces(f, (k + 1) % 3)), std::max(faces(f, k), faces(f, (k + 1) % 3))};
-      ++edge_faces[static_cast<std::size_t>(std::lower_bound(t.edges.begin(), t.edges.end(), e) - t.edges.begin())];
-    }
-  std::vector<std::vector<int>> all(static_cast<std::size_t>(num_vertices)), along_border(all.size());
-  for (std::size_t e = 0; e < t.edges.size(); ++e)
-    for (const auto& [v, u] : {std::pair{t.edges[e][0], t.edges[e][1]}, std::pair{t.edges[e][1], t.edges[e][0]}}) {
-      all[static_cast<std::size_t>(v)].push_back(u);
-      if (edge_faces[e] == 1) along_border[static_cast<std::size_t>(v)].push_back(u);
-    }
-  for (std::size_t v = 0; v < all.size(); ++v)
-    if (!along_border[v].empty()) all[v] = std::move(along_border[v]);
-  t.smoothing_neighbours = std::move(all);
+    for (int k = 0; k < 3; ++k)
+      if (across[static_cast<std::size_t>(f)][static_cast<std::size_t>(k)] < 0) {
+        const int a = faces(f, k), b = faces(f, (k + 1) % 3);
+        along_border[static_cast<std::size_t>(a)].push_back(b);
+        along_border[static_cast<std::size_t>(b)].push_back(a);
+      }
+  for (std::size_t v = 0; v < along_border.size(); ++v)
+    if (!along_border[v].empty()) t.smoothing_neighbours[v] = std::move(along_border[v]);
 }
 
 Untangler::~Untangler() = default;
@@ -249,13 +249,14 @@ UntangleReport Untangler::run(Eigen::MatrixX3d& vertices, const UntangleOptions&
   Crossings hits = find_crossings(faces_tree, vertices, faces, edges);
   report.crossings_before = static_cast<int>(hits.size());
   if (hits.empty()) return report;  // the usual case: one search, nothing copied
-  // Whether vertex v is within kCrumpleRings edges of a corner of face f.
+  // Whether edge (a, b) is within kCrumpleRings edges of a corner of face f:
+  // one breadth-first search from both its ends.
   std::vector<int> ring_mark(static_cast<std::size_t>(n), -1), frontier, next;
   int ring_query = 0;
-  const auto next_to = [&](int v, int f) {
+  const auto is_crumple = [&](int a, int b, int f) {
     ++ring_query;
-    frontier.assign(1, v);
-    ring_mark[static_cast<std::size_t>(v)] = ring_query;
+    frontier = {a, b};
+    ring_mark[static_cast<std::size_t>(a)] = ring_mark[static_cast<std::size_t>(b)] = ring_query;
     for (int ring = 0; ring < kCrumpleRings; ++ring) {
       next.clear();
       for (const int w : frontier)
@@ -281,7 +282,7 @@ UntangleReport Untangler::run(Eigen::MatrixX3d& vertices, const UntangleOptions&
     std::vector<char> smooth(static_cast<std::size_t>(n), 0), crumple(hits.size(), 0);
     for (std::size_t h = 0; h < hits.size(); ++h) {
       const auto& [edge, f] = hits[h];
-      crumple[h] = next_to(edge.first, f) || next_to(edge.second, f);
+      crumple[h] = is_crumple(edge.first, edge.second, f);
       if (crumple[h]) {  // smoothed, not cut
         ++report.crumples_smoothed;
         for (const int v : {edge.first, edge.second, faces(f, 0), faces(f, 1), faces(f, 2)}) smooth[static_cast<std::size_t>(v)] = 1;

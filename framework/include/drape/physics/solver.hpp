@@ -33,8 +33,8 @@ struct SolverSettings {
   // Per time step. A settling step need not be solved to its own tolerance:
   // friction's lagged normal forces and the body's contacts change at the
   // next step anyway. Measured 2026-12-02 (docs/scenes.md, "A settling
-  // step's Newton budget"): 15 instead of 30 took 17-20 % fewer Newton
-  // iterations over 24 coarse drapes with friction (posed and A-pose),
+  // step's Newton budget"): 15 instead of 30 took 14 % (posed) and 20 %
+  // (A-pose) fewer Newton iterations over 24 coarse drapes with friction,
   // 27 % on the six costliest A-pose drapes, 14-17 % on the default shirt
   // at BMI 35 and 45, every drape settled; 10 no cheaper than 15 and
   // closer to the settling step limit.
