@@ -12,7 +12,9 @@
 
 #include <array>
 #include <cmath>
+#include <functional>
 #include <limits>
+#include <random>
 #include <vector>
 
 using drape::geometry::untangle;
@@ -53,6 +55,16 @@ struct Strip {
   int at(int i, int j) const { return i + cols * j; }
 };
 
+// Two triangles a grid cell, turning to +z where the grid runs along +x and +y.
+void grid_faces(Strip& s) {
+  int f = 0;
+  for (int j = 0; j + 1 < s.rows; ++j)
+    for (int i = 0; i + 1 < s.cols; ++i) {
+      s.faces.row(f++) << s.at(i, j), s.at(i + 1, j), s.at(i + 1, j + 1);
+      s.faces.row(f++) << s.at(i, j), s.at(i + 1, j + 1), s.at(i, j + 1);
+    }
+}
+
 Strip folded_strip(int cols, int rows, double height, double upper_end = 0.0) {
   Strip s{Eigen::MatrixX3d(cols * rows, 3), Eigen::MatrixX3i(2 * (cols - 1) * (rows - 1), 3), cols, rows};
   for (int j = 0; j < rows; ++j)
@@ -63,12 +75,7 @@ Strip folded_strip(int cols, int rows, double height, double upper_end = 0.0) {
       const double x = u <= 1 ? u : 1 - (u - 1) * (1 - upper_end);
       s.x.row(s.at(i, j)) << x, (u <= 1 ? y : y + 0.0137), (u <= 1 ? 0.0 : height);
     }
-  int f = 0;
-  for (int j = 0; j + 1 < rows; ++j)
-    for (int i = 0; i + 1 < cols; ++i) {
-      s.faces.row(f++) << s.at(i, j), s.at(i + 1, j), s.at(i + 1, j + 1);
-      s.faces.row(f++) << s.at(i, j), s.at(i + 1, j + 1), s.at(i, j + 1);
-    }
+  grid_faces(s);
   return s;
 }
 
@@ -269,4 +276,81 @@ TEST_CASE("untangle: a Z-shaped crumple (the sheet folded back under itself and 
   // Rows two rings or more from the crumple keep their bits.
   for (const int j : {0, rows - 2, rows - 1})
     for (int i = 0; i < cols; ++i) CHECK(x.row(i + cols * j) == before.row(i + cols * j));
+}
+
+// The search for crossings passes over the parts of the cloth that are
+// height fields along a coordinate axis with a simple outline
+// (UntangleReport::edges_culled). It must find what the brute force finds.
+
+// A grid sheet over [0, 1] x [0, 1], faces turning to +z, its heights from `height`.
+Strip grid_sheet(int n, const std::function<double(double, double)>& height) {
+  Strip s{Eigen::MatrixX3d(n * n, 3), Eigen::MatrixX3i(2 * (n - 1) * (n - 1), 3), n, n};
+  for (int j = 0; j < n; ++j)
+    for (int i = 0; i < n; ++i) {
+      const double x = static_cast<double>(i) / (n - 1), y = static_cast<double>(j) / (n - 1);
+      s.x.row(s.at(i, j)) << x, y, height(x, y);
+    }
+  grid_faces(s);
+  return s;
+}
+
+TEST_CASE("untangle: a gently waved sheet is one height field, and no edge's search looks into it") {
+  Strip s = grid_sheet(17, [](double x, double y) { return 0.05 * std::sin(5 * x) * std::cos(4 * y); });
+  const auto report = untangle(s.x, s.faces);
+  CHECK(report.crossings_before == 0);
+  CHECK(report.edges_culled == static_cast<int>(drape::geometry::edge_list(s.faces).size()));
+}
+
+TEST_CASE("untangle: a ramp wound one and a quarter turns through itself is found, though every face turns up") {
+  // An annulus r in [1, 2] wound over 2.5 pi, tilted across its width by a
+  // slope that turns from +0.2 to -0.2 along it: the last quarter turn lies
+  // over the first and crosses it along r = 1.5. Seen from above every face
+  // turns counter-clockwise and the boundary is one loop, so only the test
+  // of the outline (which overlaps itself) tells that the ramp is no height
+  // field. (47 steps of angle: the layers' vertices do not line up.)
+  const int around = 48, across = 6;
+  // (Columns across, rows around: grid_faces then turns them up.)
+  Strip s{Eigen::MatrixX3d(around * across, 3), Eigen::MatrixX3i(2 * (around - 1) * (across - 1), 3), across, around};
+  const double turn = 2.5 * M_PI;
+  for (int j = 0; j < around; ++j)
+    for (int i = 0; i < across; ++i) {
+      const double theta = turn * j / (around - 1), r = 1.0 + static_cast<double>(i) / (across - 1);
+      const double slope = 0.2 - 0.4 * theta / turn;
+      s.x.row(s.at(i, j)) << r * std::cos(theta), r * std::sin(theta), slope * (r - 1.5);
+    }
+  grid_faces(s);
+  const int crossings = brute_force_crossings(s.x, s.faces);
+  REQUIRE(crossings > 0);
+  UntangleOptions options;
+  options.max_rounds = 1;
+  const auto report = untangle(s.x, s.faces, options);
+  CHECK(report.crossings_before == crossings);
+  CHECK(report.edges_culled > 0);  // the ramp's parts that do not overlap are height fields
+}
+
+TEST_CASE("untangle: on crumpled sheets the search that passes over height fields finds every crossing") {
+  // Sheets with random heights: smooth ones (every edge culled), rough ones
+  // crossing themselves in many places, and the cases between, where some
+  // parts are height fields and others cross.
+  std::mt19937 random(7);
+  int culled = 0, crossed = 0;
+  for (const double roughness : {0.005, 0.02, 0.05, 0.1, 0.3})
+    for (int trial = 0; trial < 4; ++trial) {
+      std::uniform_real_distribution<double> noise(-roughness, roughness);
+      Strip s = grid_sheet(13, [&](double, double) { return noise(random); });
+      // Bumps folded over: shift some vertices sideways by more than an edge.
+      for (int v = 0; v < s.x.rows(); ++v)
+        if (noise(random) > 0.8 * roughness) s.x(v, 0) += 4 * noise(random), s.x(v, 1) -= 4 * noise(random);
+      const int expected = brute_force_crossings(s.x, s.faces);
+      UntangleOptions options;
+      options.max_rounds = 1;
+      Eigen::MatrixX3d x = s.x;
+      const auto report = untangle(x, s.faces, options);
+      INFO("roughness " << roughness << ", trial " << trial);
+      CHECK(report.crossings_before == expected);
+      culled += report.edges_culled > 0 && expected > 0;
+      crossed += expected > 0;
+    }
+  CHECK(crossed >= 8);
+  CHECK(culled == crossed);  // (14 of 14 when written) each crossing sheet is a height field somewhere
 }

@@ -3,6 +3,7 @@
 // Fast Robust Geometric Predicates", 1997) when the filter cannot decide.
 #include "exact_orientation.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <vector>
 
@@ -143,6 +144,24 @@ int orient2d(const Eigen::Vector2d& a, const Eigen::Vector2d& b, const Eigen::Ve
   if (det > bound) return 1;
   if (-det > bound) return -1;
   return orient2d_exact(a, b, c);
+}
+
+namespace {
+
+// r inside the bounding box of (p, q): on the closed segment when the three are collinear.
+bool in_box(const Eigen::Vector2d& p, const Eigen::Vector2d& q, const Eigen::Vector2d& r) {
+  return std::min(p.x(), q.x()) <= r.x() && r.x() <= std::max(p.x(), q.x()) && std::min(p.y(), q.y()) <= r.y() &&
+         r.y() <= std::max(p.y(), q.y());
+}
+
+}  // namespace
+
+bool segments_meet_2d(const Eigen::Vector2d& p, const Eigen::Vector2d& q, const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
+  const int o1 = orient2d(p, q, a), o2 = orient2d(p, q, b);
+  const int o3 = orient2d(a, b, p), o4 = orient2d(a, b, q);
+  if (o1 * o2 < 0 && o3 * o4 < 0) return true;
+  return (o1 == 0 && in_box(p, q, a)) || (o2 == 0 && in_box(p, q, b)) || (o3 == 0 && in_box(a, b, p)) ||
+         (o4 == 0 && in_box(a, b, q));
 }
 
 }  // namespace drape::geometry::exact

@@ -1,6 +1,7 @@
 #pragma once
-// Exact signs of the 2D and 3D orientation determinants (internal to the
-// geometry layer; used by surface_crossings.cpp).
+// Exact signs of the 2D and 3D orientation determinants, and the 2D segment
+// test built on them (internal to the geometry layer; used by
+// surface_crossings.cpp and height_field_nodes.cpp).
 //
 // A sign computed in plain double can be wrong when the points are nearly
 // coplanar, and two triangles sharing an edge can then disagree about which
@@ -20,5 +21,9 @@ int orient3d(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Ve
 
 // Sign of det[b - a, c - a]: +1 when a, b, c turn counter-clockwise, 0 when collinear.
 int orient2d(const Eigen::Vector2d& a, const Eigen::Vector2d& b, const Eigen::Vector2d& c);
+
+// Closed 2D segments (p, q) and (a, b) share a point (a proper crossing, or
+// an endpoint of one on the other; collinear overlaps are endpoints on the other).
+bool segments_meet_2d(const Eigen::Vector2d& p, const Eigen::Vector2d& q, const Eigen::Vector2d& a, const Eigen::Vector2d& b);
 
 }  // namespace drape::geometry::exact

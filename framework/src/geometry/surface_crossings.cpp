@@ -25,22 +25,6 @@ using Vec3 = Eigen::Vector3d;
 // The projection along `axis`: the other two coordinates.
 Vec2 dropping(const Vec3& p, int axis) { return {p[(axis + 1) % 3], p[(axis + 2) % 3]}; }
 
-// r inside the bounding box of (p, q): on the closed segment when the three are collinear.
-bool in_box(const Vec2& p, const Vec2& q, const Vec2& r) {
-  return std::min(p.x(), q.x()) <= r.x() && r.x() <= std::max(p.x(), q.x()) && std::min(p.y(), q.y()) <= r.y() &&
-         r.y() <= std::max(p.y(), q.y());
-}
-
-// Closed 2D segments (p, q) and (a, b) share a point (proper crossing, or an
-// endpoint of one on the other; collinear overlaps are endpoints on the other).
-bool segments_meet_2d(const Vec2& p, const Vec2& q, const Vec2& a, const Vec2& b) {
-  const int o1 = exact::orient2d(p, q, a), o2 = exact::orient2d(p, q, b);
-  const int o3 = exact::orient2d(a, b, p), o4 = exact::orient2d(a, b, q);
-  if (o1 * o2 < 0 && o3 * o4 < 0) return true;
-  return (o1 == 0 && in_box(p, q, a)) || (o2 == 0 && in_box(p, q, b)) || (o3 == 0 && in_box(a, b, p)) ||
-         (o4 == 0 && in_box(a, b, q));
-}
-
 // p in the closed counter-clockwise triangle (a, b, c).
 bool in_triangle_2d(const Vec2& p, const Vec2& a, const Vec2& b, const Vec2& c) {
   return exact::orient2d(a, b, p) >= 0 && exact::orient2d(b, c, p) >= 0 && exact::orient2d(c, a, p) >= 0;
@@ -57,8 +41,8 @@ bool coplanar_segment_meets_triangle(const Vec3& p, const Vec3& q, const Vec3& a
     if (turn < 0) std::swap(b2, c2);
     const Vec2 p2 = dropping(p, axis), q2 = dropping(q, axis);
     // A segment meeting a convex region either ends in it or crosses its boundary.
-    return in_triangle_2d(p2, a2, b2, c2) || in_triangle_2d(q2, a2, b2, c2) || segments_meet_2d(p2, q2, a2, b2) ||
-           segments_meet_2d(p2, q2, b2, c2) || segments_meet_2d(p2, q2, c2, a2);
+    return in_triangle_2d(p2, a2, b2, c2) || in_triangle_2d(q2, a2, b2, c2) || exact::segments_meet_2d(p2, q2, a2, b2) ||
+           exact::segments_meet_2d(p2, q2, b2, c2) || exact::segments_meet_2d(p2, q2, c2, a2);
   }
   return false;
 }

@@ -55,7 +55,8 @@ TriangleBvh::TriangleBvh(const Eigen::MatrixX3d& vertices, const Eigen::MatrixX3
   std::vector<int> order(nf);
   for (int f = 0; f < nf; ++f) order[f] = f;
   nodes_.reserve(static_cast<std::size_t>(nf / 2 + 1));
-  if (nf > 0) build(order, centroids, 0, nf, 0);
+  spans_.reserve(static_cast<std::size_t>(nf / 2 + 1));
+  if (nf > 0) build(order, centroids, 0, nf, 0, -1);
   face_of_ = std::move(order);
   slot_of_face_.assign(nf, -1);
   for (int t = 0; t < nf; ++t) slot_of_face_[face_of_[t]] = t;
@@ -63,10 +64,11 @@ TriangleBvh::TriangleBvh(const Eigen::MatrixX3d& vertices, const Eigen::MatrixX3
 }
 
 int TriangleBvh::build(std::vector<int>& order, const std::vector<Eigen::Vector3d>& centroids, int begin, int end,
-                       int depth) {
+                       int depth, int parent) {
   assert(depth < kMaxDepth);
   const int index = static_cast<int>(nodes_.size());
   nodes_.emplace_back();
+  spans_.push_back({begin, end, parent});
   if (end - begin <= kWidth) {
     Node& leaf = nodes_[index];
     leaf.leaf = true;
@@ -89,7 +91,7 @@ int TriangleBvh::build(std::vector<int>& order, const std::vector<Eigen::Vector3
   const int mid = split(begin, end);
   const int bounds[kWidth + 1] = {begin, split(begin, mid), mid, split(mid, end), end};
   for (int s = 0; s < kWidth; ++s) {
-    const int child = build(order, centroids, bounds[s], bounds[s + 1], depth + 1);
+    const int child = build(order, centroids, bounds[s], bounds[s + 1], depth + 1, index);
     nodes_[index].child[s] = child;  // by index: building the child may have moved the vector
   }
   nodes_[index].count = kWidth;
@@ -252,8 +254,9 @@ void TriangleBvh::within(const Eigen::Vector3d& p, double max_squared_distance,
   }
 }
 
-void TriangleBvh::overlapping(const Eigen::Vector3d& lo, const Eigen::Vector3d& hi, std::vector<int>& out) const {
-  if (nodes_.empty() || !lo.allFinite() || !hi.allFinite()) return;
+void TriangleBvh::overlapping(const Eigen::Vector3d& lo, const Eigen::Vector3d& hi, std::vector<int>& out,
+                              int skip_node) const {
+  if (nodes_.empty() || skip_node == 0 || !lo.allFinite() || !hi.allFinite()) return;
   Lanes query_lo[3], query_hi[3];
   for (int k = 0; k < 3; ++k) {
     const float l = round_down(lo[k]), h = round_up(hi[k]);
@@ -270,7 +273,7 @@ void TriangleBvh::overlapping(const Eigen::Vector3d& lo, const Eigen::Vector3d& 
     for (int s = 0; s < n.count; ++s) {
       if (!meets[s]) continue;
       if (n.leaf) out.push_back(face_of_[static_cast<std::size_t>(n.child[s])]);
-      else stack[top++] = n.child[s];
+      else if (n.child[s] != skip_node) stack[top++] = n.child[s];
     }
   }
 }

@@ -52,12 +52,25 @@ class TriangleBvh {
   // Appends to `out` every face whose box overlaps the closed box [lo, hi],
   // and a few whose box only touches it within float rounding (the boxes are
   // rounded outwards): the broad phase of an exact test that follows.
-  void overlapping(const Eigen::Vector3d& lo, const Eigen::Vector3d& hi, std::vector<int>& out) const;
+  // With skip_node, that node's subtree is passed over (a part of the mesh
+  // known to hold nothing the caller looks for: height_field_nodes.hpp).
+  void overlapping(const Eigen::Vector3d& lo, const Eigen::Vector3d& hi, std::vector<int>& out, int skip_node = -1) const;
 
   // The closest point of one face to p, computed as nearest() computes it.
   TrianglePoint face_point(const Eigen::Vector3d& p, int face) const;
 
   int num_nodes() const { return static_cast<int>(nodes_.size()); }
+
+  // The hierarchy's shape, for a pass over its nodes: node 0 is the root,
+  // children come after their parent, and the triangles under a node are the
+  // leaf-order slots [first, last), face_at(slot) the face in each.
+  struct Span {
+    int first, last, parent;  // parent -1 at the root
+  };
+  const Span& span(int node) const { return spans_[static_cast<std::size_t>(node)]; }
+  bool is_leaf(int node) const { return nodes_[static_cast<std::size_t>(node)].leaf; }
+  int face_at(int slot) const { return face_of_[static_cast<std::size_t>(slot)]; }
+  int slot_of(int face) const { return slot_of_face_[static_cast<std::size_t>(face)]; }
 
  private:
   static constexpr int kWidth = 4;
@@ -84,12 +97,13 @@ class TriangleBvh {
   };
 
 
-  int build(std::vector<int>& order, const std::vector<Eigen::Vector3d>& centroids, int begin, int end, int depth);
+  int build(std::vector<int>& order, const std::vector<Eigen::Vector3d>& centroids, int begin, int end, int depth, int parent);
   void gather_corners(const Eigen::MatrixX3d& vertices);
   Box triangle_box(int t) const;
 
   Eigen::MatrixX3i faces_;
   std::vector<Node> nodes_;
+  std::vector<Span> spans_;                 // each node's slots and parent
   std::vector<Box> node_box_;               // each node's own box in double, its parent's slot at refit
   std::vector<int> face_of_;                // face id of each triangle in leaf order
   std::vector<int> slot_of_face_;           // its inverse: the leaf-order slot of each face

@@ -4,6 +4,7 @@
 #include <drape/geometry/adjacency.hpp>
 #include <drape/geometry/surface_crossings.hpp>
 
+#include "height_field_nodes.hpp"
 #include "triangle_bvh.hpp"
 
 #include <algorithm>
@@ -30,12 +31,13 @@ void test_edge(const Eigen::MatrixX3d& x, const Eigen::MatrixX3i& faces, int a, 
     hits.push_back({{a, b}, f});
 }
 
-// Edge (a, b) against every face whose box meets its box.
+// Edge (a, b) against every face whose box meets its box, but those under
+// node `skip` of the tree (-1: none).
 void search_edge(const TriangleBvh& faces_tree, const Eigen::MatrixX3d& x, const Eigen::MatrixX3i& faces, int a, int b,
-                 std::vector<int>& near, Crossings& hits) {
+                 int skip, std::vector<int>& near, Crossings& hits) {
   const Eigen::Vector3d p = x.row(a), q = x.row(b);
   near.clear();
-  faces_tree.overlapping(p.cwiseMin(q), p.cwiseMax(q), near);
+  faces_tree.overlapping(p.cwiseMin(q), p.cwiseMax(q), near, skip);
   for (const int f : near) test_edge(x, faces, a, b, f, hits);
 }
 
@@ -44,14 +46,22 @@ void search_edge(const TriangleBvh& faces_tree, const Eigen::MatrixX3d& x, const
 // garment's own hierarchy of faces refitted to x, one descent an edge.
 // Measured on the coarse shirt (one core): self_edge_crossings's grid 2.8 ms
 // (28,711 edge-face box pairs, all but 323 an edge and a face of its own
-// ring), this 0.7 ms; the hierarchy against itself (face pairs) 1.3 ms and
-// one descent a face 1.8 ms, as each face's box meets more faces.
-Crossings find_crossings(TriangleBvh& faces_tree, const Eigen::MatrixX3d& x, const Eigen::MatrixX3i& faces,
-                         const std::vector<std::array<int, 2>>& edges) {
+// ring), one descent an edge 0.7 ms; the hierarchy against itself (face pairs)
+// 1.3 ms and one descent a face 1.8 ms, as each face's box meets more faces.
+// Most of an edge's descent is into the cloth around it, which cannot cross
+// it where it is a height field (height_field_nodes.hpp): each edge's
+// descent passes over the largest such node holding its faces.
+Crossings find_crossings(TriangleBvh& faces_tree, HeightFieldNodes& height_fields, const Eigen::MatrixX3d& x,
+                         const Eigen::MatrixX3i& faces, const std::vector<std::array<int, 2>>& edges, int* culled) {
   faces_tree.refit(x);
+  height_fields.certify(x);
   Crossings hits;
   std::vector<int> near;
-  for (const auto& [a, b] : edges) search_edge(faces_tree, x, faces, a, b, near, hits);
+  for (std::size_t e = 0; e < edges.size(); ++e) {
+    const int skip = height_fields.cover(static_cast<int>(e));
+    if (culled && skip >= 0) ++*culled;
+    search_edge(faces_tree, x, faces, edges[e][0], edges[e][1], skip, near, hits);
+  }
   std::sort(hits.begin(), hits.end());
   return hits;
 }
@@ -104,10 +114,12 @@ std::vector<int> components(const std::vector<std::array<int, 2>>& edges, int n,
 // the edges at a moved vertex are searched again, and so is each face with
 // a moved vertex against the edges of the faces near it. A round moves a
 // few dozen vertices, so this costs a fraction of a full search.
-void update_crossings(TriangleBvh& faces_tree, const Eigen::MatrixX3d& x, const Eigen::MatrixX3i& faces,
-                      const std::vector<std::array<int, 2>>& edges, const std::vector<std::vector<int>>& vertex_edges,
-                      const std::vector<std::vector<int>>& vertex_faces, const std::vector<char>& moved, Crossings& hits) {
+void update_crossings(TriangleBvh& faces_tree, HeightFieldNodes& height_fields, const Eigen::MatrixX3d& x,
+                      const Eigen::MatrixX3i& faces, const std::vector<std::array<int, 2>>& edges,
+                      const std::vector<std::vector<int>>& vertex_edges, const std::vector<std::vector<int>>& vertex_faces,
+                      const std::vector<char>& moved, Crossings& hits) {
   faces_tree.refit(x);
+  height_fields.certify(x);
   const auto face_moved = [&](int f) { return moved[faces(f, 0)] || moved[faces(f, 1)] || moved[faces(f, 2)]; };
   std::erase_if(hits, [&](const auto& hit) { return moved[hit.first.first] || moved[hit.first.second] || face_moved(hit.second); });
   std::vector<char> edge_done(edges.size(), 0), face_done(static_cast<std::size_t>(faces.rows()), 0);
@@ -118,7 +130,7 @@ void update_crossings(TriangleBvh& faces_tree, const Eigen::MatrixX3d& x, const 
       if (edge_done[static_cast<std::size_t>(e)]) continue;
       edge_done[static_cast<std::size_t>(e)] = 1;
       const auto [a, b] = edges[static_cast<std::size_t>(e)];
-      search_edge(faces_tree, x, faces, a, b, near, hits);
+      search_edge(faces_tree, x, faces, a, b, height_fields.cover(e), near, hits);
     }
     for (const int f : vertex_faces[v]) {  // a moved face against the unmoved edges near it
       if (face_done[static_cast<std::size_t>(f)]) continue;
@@ -189,6 +201,7 @@ struct Untangler::Topology {
   // face_neighbours has it), all of them otherwise.
   std::vector<std::vector<int>> smoothing_neighbours;
   std::optional<TriangleBvh> faces_tree;
+  std::optional<HeightFieldNodes> height_fields;  // of faces_tree's nodes
 };
 
 Untangler::Untangler(const Eigen::MatrixX3i& faces, int num_vertices) : topology_(std::make_unique<Topology>()) {
@@ -244,9 +257,13 @@ UntangleReport Untangler::run(Eigen::MatrixX3d& vertices, const UntangleOptions&
   const std::vector<std::array<int, 2>>& edges = topology.edges;
   const std::vector<int>& piece = topology.piece;
   const std::vector<int>& piece_size = topology.piece_size;
-  if (!topology.faces_tree) topology.faces_tree.emplace(vertices, faces);
+  if (!topology.faces_tree) {
+    topology.faces_tree.emplace(vertices, faces);
+    topology.height_fields.emplace(*topology.faces_tree, faces, edges);
+  }
   TriangleBvh& faces_tree = *topology.faces_tree;
-  Crossings hits = find_crossings(faces_tree, vertices, faces, edges);
+  HeightFieldNodes& height_fields = *topology.height_fields;
+  Crossings hits = find_crossings(faces_tree, height_fields, vertices, faces, edges, &report.edges_culled);
   report.crossings_before = static_cast<int>(hits.size());
   if (hits.empty()) return report;  // the usual case: one search, nothing copied
   // Whether edge (a, b) is within kCrumpleRings edges of a corner of face f:
@@ -387,7 +404,7 @@ UntangleReport Untangler::run(Eigen::MatrixX3d& vertices, const UntangleOptions&
     if (!moved) break;
     ++report.rounds;
     if (options.after_round) options.after_round(vertices, moved_now);
-    update_crossings(faces_tree, vertices, faces, edges, topology.vertex_edges, topology.vertex_faces, moved_now, hits);
+    update_crossings(faces_tree, height_fields, vertices, faces, edges, topology.vertex_edges, topology.vertex_faces, moved_now, hits);
     if (hits.size() < fewest) {
       best = vertices, fewest = hits.size(), rounds_to_best = report.rounds, patches_to_best = report.patches_moved,
       crumples_to_best = report.crumples_smoothed, idle = 0;

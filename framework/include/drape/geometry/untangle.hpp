@@ -45,6 +45,10 @@ struct UntangleOptions {
 
 struct UntangleReport {
   int crossings_before = 0;  // (edge, face) pairs at the start (the pairs self_edge_crossings lists)
+  // Edges whose first search passed over the cloth around them: a part of
+  // the garment that, seen along a coordinate axis, is a height field with a
+  // simple outline, and so cannot cross itself (normal-cone culling, exact).
+  int edges_culled = 0;
   int crossings_after = 0;   // left after the last round (searched again)
   int rounds = 0;            // rounds that moved something, up to the state returned
   int patches_moved = 0;     // over those rounds
