@@ -408,9 +408,12 @@ UntangleReport Untangler::run(Eigen::MatrixX3d& vertices, const UntangleOptions&
     if (hits.size() < fewest) {
       best = vertices, fewest = hits.size(), rounds_to_best = report.rounds, patches_to_best = report.patches_moved,
       crumples_to_best = report.crumples_smoothed, idle = 0;
-    } else {
-      ++idle;
+    } else if (!cut.empty()) {
+      ++idle;  // pulls or cuts that left as many: a pinch handed on
     }
+    // (A round of crumples only is not idle: the smoothing flattens the
+    // fold a share at a time, and the count may hold for a few rounds before
+    // it falls; max_rounds bounds it.)
   }
   if (hits.size() > fewest || (hits.size() == fewest && rounds_to_best < report.rounds)) {
     vertices = best;

@@ -34,7 +34,8 @@ struct UntangleOptions {
   int max_rounds = 4;           // searches for crossings, each followed by one set of moves
   double largest_patch = 0.25;  // share of its connected piece a patch may hold (more: the curve is not closed)
   // Rounds in a row that may leave as many crossings as the fewest seen
-  // before the run gives up (a pinch it only hands on).
+  // before the run gives up (a pinch it only hands on). A round that only
+  // smooths crumples does not count: the fold flattens a share at a time.
   int patience = 2;
   // Called after each round's moves, with `moved` flagging the vertices the
   // round moved; it may move vertices too (a push-out off the body: the
