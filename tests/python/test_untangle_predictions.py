@@ -18,8 +18,8 @@ from winding_number import winding_numbers  # noqa: E402
 
 drape = pytest.importorskip("drape")
 MODEL = SOURCE / "models" / "tshirt-coarse-human.h5"
-# (shard, sample in it): BMI 60.9 (14 self-crossing edges without untangle), BMI 50.6 (7), and BMI 64.6 (2: a
-# crumple at the underarm, which the pulls alone handed on and left).
+# (shard, sample in it): BMI 60.9 (14 self-crossing edges without untangle), BMI 50.6 (7), and BMI 64.6 (4: a
+# crumple at the underarm; with the model of before, 2, which the pulls alone handed on and left).
 BODIES = [(3, 6), (14, 31), (1, 18)]
 
 
