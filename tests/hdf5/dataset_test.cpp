@@ -8,6 +8,7 @@
 #include <drape/io/dataset.hpp>
 #include <drape/io/h5.hpp>
 
+#include <algorithm>
 #include <csignal>
 #include <cmath>
 #include <fstream>
@@ -185,6 +186,14 @@ TEST_CASE("dataset: resuming with another layout or a damaged partial file is re
   other = layout;
   other.scene += "# changed\n";
   CHECK_THROWS_WITH(DatasetWriter(out, other), Catch::Contains("the scene YAML differs"));
+  // The message names the first line that differs, as each side has it.
+  const auto scene_lines = std::count(layout.scene.begin(), layout.scene.end(), '\n');
+  CHECK_THROWS_WITH(DatasetWriter(out, other),
+                    Catch::Contains("line " + std::to_string(scene_lines + 1) + " is '(the end)' in the file, '# changed' now"));
+  other = layout;
+  other.scene.insert(0, "solver: {settle_steps: 120}\n");
+  CHECK_THROWS_WITH(DatasetWriter(out, other), Catch::Contains("line 1 is '"));
+  CHECK_THROWS_WITH(DatasetWriter(out, other), Catch::Contains("' in the file, 'solver: {settle_steps: 120}' now"));
 
   // A sample of the wrong size is the caller's bug: Error naming the array.
   DatasetWriter writer(out, layout);

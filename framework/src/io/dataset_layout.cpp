@@ -58,6 +58,24 @@ Eigen::MatrixX3i read_faces(const h5::File& file, int garment_vertices) {
   return faces;
 }
 
+// The first line where two scene texts part, quoted from each (cut at 120
+// characters): "the scene YAML differs" alone left a user to diff the
+// files (a scene read from a working tree that changed between two shards).
+std::string first_scene_difference(const std::string& have, const std::string& now) {
+  std::istringstream a(have), b(now);
+  std::string la, lb;
+  for (int line = 1;; ++line) {
+    const bool more_a = static_cast<bool>(std::getline(a, la)), more_b = static_cast<bool>(std::getline(b, lb));
+    if (!more_a && !more_b) return "";
+    if (!more_a) la = "(the end)";
+    if (!more_b) lb = "(the end)";
+    if (la != lb || !more_a || !more_b) {
+      const auto cut = [](std::string s) { return s.size() > 120 ? s.substr(0, 117) + "..." : s; };
+      return ": line " + std::to_string(line) + " is '" + cut(la) + "' in the file, '" + cut(lb) + "' now";
+    }
+  }
+}
+
 }  // namespace
 
 std::string now_utc() {
@@ -210,7 +228,7 @@ std::string layout_difference(const DatasetLayout& have, const DatasetLayout& no
     for (const auto& s : sorted(now.stats)) b += (b.empty() ? "" : ", ") + s;
     return "stats are [" + a + "] in the file, [" + b + "] now";
   }
-  if (have.scene != now.scene) return "the scene YAML differs";
+  if (have.scene != now.scene) return "the scene YAML differs" + first_scene_difference(have.scene, now.scene);
   if (have.template_hash != now.template_hash)
     return "template_hash is '" + have.template_hash + "' in the file, '" + now.template_hash + "' now";
   return "";
