@@ -320,3 +320,44 @@ TEST_CASE("push_out cut at each vertex's reach gives the bits of searches in ful
   CHECK(r.moved == 4);
   CHECK(ball.signed_distances(patch).minCoeff() >= 0.006 - 1e-9);
 }
+
+TEST_CASE("push_out with edges moves an edge off a thin fold of the body it passes through", "[geometry][push_out]") {
+  // A fin pointing down -y (a thin man's underarm fold, in small): a prism
+  // whose section is a wedge of 30 degrees half-angle with its tip at
+  // y = -4 cm, extruded along z. An edge 6 cm long crosses it 1 cm above
+  // the tip, both ends 1.1 cm out. Lifting along one side's normal moves
+  // the edge mostly along itself; with one lift pass it still crosses.
+  // (Its base 10 cm above the tip, so that the way out is past the tip.)
+  const double half_width = 0.1 * std::tan(M_PI / 6);
+  const double xs[3] = {-half_width, half_width, 0.0}, ys[3] = {0.06, 0.06, -0.04};
+  Eigen::MatrixX3d v(6, 3);
+  for (int k = 0; k < 3; ++k) {
+    v.row(k) << xs[k], ys[k], -0.1;
+    v.row(3 + k) << xs[k], ys[k], 0.1;
+  }
+  Eigen::MatrixX3i f(8, 3);
+  f << 0, 1, 4, 0, 4, 3, 1, 2, 5, 1, 5, 4, 2, 0, 3, 2, 3, 5, 0, 2, 1, 3, 4, 5;
+  // Each face turned away from the prism's centre (it is convex).
+  const Eigen::Vector3d centre = v.colwise().mean().transpose();
+  for (Eigen::Index i = 0; i < f.rows(); ++i) {
+    const Eigen::Vector3d a = v.row(f(i, 0)), b = v.row(f(i, 1)), c = v.row(f(i, 2));
+    if ((b - a).cross(c - a).dot((a + b + c) / 3 - centre) < 0) std::swap(f(i, 1), f(i, 2));
+  }
+  const BodySurface fin(v, f);
+  Eigen::MatrixX3d x(2, 3);
+  x << -0.03, -0.01, 0.0, 0.03, -0.01, 0.0;
+  REQUIRE(fin.locate(x.row(0).transpose()).signed_distance > 0.01);
+  REQUIRE(fin.locate(x.row(1).transpose()).signed_distance > 0.01);
+  const std::vector<std::array<int, 2>> edges = {{0, 1}};
+  REQUIRE(edges_through(fin, x, edges) == 1);
+  PushOutOptions options{.margin = 0.006, .max_passes = 2, .edges = &edges};
+  Eigen::MatrixX3d y = x;
+  const PushOutReport r = push_out(fin, y, options);
+  CHECK(r.edges_lifted == 1);
+  CHECK(r.fins_cleared == 1);
+  CHECK(edges_through(fin, y, edges) == 0);
+  // Off the fold's edge: below the tip, each end still a margin out.
+  CHECK(y(0, 1) < -0.03);
+  CHECK(fin.locate(y.row(0).transpose()).signed_distance >= 0.006 - 1e-9);
+  CHECK(fin.locate(y.row(1).transpose()).signed_distance >= 0.006 - 1e-9);
+}

@@ -5,6 +5,7 @@
 #include <drape/errors.hpp>
 #include <drape/geometry/adjacency.hpp>
 #include <drape/geometry/pseudo_normals.hpp>
+#include <drape/geometry/surface_crossings.hpp>
 
 #include <Eigen/Geometry>
 
@@ -123,6 +124,18 @@ SurfacePoint BodySurface::search(const Eigen::Vector3d& p, double max_distance, 
 
 SurfacePoint BodySurface::locate(const Eigen::Vector3d& p, double max_distance) const {
   return search(p, max_distance, nullptr, 0);
+}
+
+void BodySurface::faces_crossed(const Eigen::Vector3d& p, const Eigen::Vector3d& q, std::vector<int>& out) const {
+  const std::size_t first = out.size();
+  bvh_->overlapping(p.cwiseMin(q), p.cwiseMax(q), out);
+  std::size_t kept = first;
+  for (std::size_t i = first; i < out.size(); ++i) {
+    const int f = out[i];
+    if (segment_pierces_triangle(p, q, vertices_.row(faces_(f, 0)), vertices_.row(faces_(f, 1)), vertices_.row(faces_(f, 2))))
+      out[kept++] = f;
+  }
+  out.resize(kept);
 }
 
 SurfacePoint BodySurface::locate_near(const Eigen::Vector3d& p, int hint) const {

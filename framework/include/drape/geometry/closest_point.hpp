@@ -87,6 +87,9 @@ class BodySurface final : public BodyQuery {
   // is the side of the far patch's surface, not inside/outside the body.)
   SurfacePoint locate_excluding(const Eigen::Vector3d& p, const std::vector<int>& face_labels, int excluded,
                                 double max_distance = std::numeric_limits<double>::infinity()) const;
+  // The faces the closed segment (p, q) passes through or touches
+  // (segment_pierces_triangle, exact), appended to `out` in no set order.
+  void faces_crossed(const Eigen::Vector3d& p, const Eigen::Vector3d& q, std::vector<int>& out) const;
   // One query per row of `points`, in parallel (OpenMP).
   std::vector<SurfacePoint> locate_all(const Eigen::MatrixX3d& points, double max_distance = std::numeric_limits<double>::infinity()) const;
   Eigen::VectorXd signed_distances(const Eigen::MatrixX3d& points) const;

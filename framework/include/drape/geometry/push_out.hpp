@@ -25,6 +25,7 @@ struct PushOutReport {
   int edges_lifted = 0;      // edge lifts (an edge lifted in two passes counts twice)
   int edges_searched = 0;    // edge midpoints searched, over all passes
   int beyond_reach = 0;      // with edges: vertices found outside and beyond their reach, never searched in full
+  int fins_cleared = 0;      // with edges: edges moved off a thin fold of the body they passed through (push_out.cpp)
 };
 
 // The clearance drape eval --push-out and drape predict --push-out give: about
