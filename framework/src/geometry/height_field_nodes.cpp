@@ -47,7 +47,8 @@ bool folds_back(const Eigen::Vector2d& u, const Eigen::Vector2d& v, const Eigen:
 }  // namespace
 
 HeightFieldNodes::HeightFieldNodes(const TriangleBvh& tree, const Eigen::MatrixX3i& faces,
-                                   const std::vector<std::array<int, 2>>& edges)
+                                   const std::vector<std::array<int, 2>>& edges,
+                                   const std::vector<std::vector<int>>& vertex_faces)
     : tree_(tree), faces_(faces) {
   const int nodes = tree.num_nodes();
   loop_.resize(static_cast<std::size_t>(nodes));
@@ -104,17 +105,9 @@ HeightFieldNodes::HeightFieldNodes(const TriangleBvh& tree, const Eigen::MatrixX
     }
     return a;
   };
-  std::vector<std::vector<int>> vertex_faces;
-  for (Eigen::Index f = 0; f < faces.rows(); ++f)
-    for (int k = 0; k < 3; ++k) {
-      const auto v = static_cast<std::size_t>(faces(f, k));
-      if (v >= vertex_faces.size()) vertex_faces.resize(v + 1);
-      vertex_faces[v].push_back(static_cast<int>(f));
-    }
   edge_node_.assign(edges.size(), -1);
   for (std::size_t e = 0; e < edges.size(); ++e) {
     const auto [a, b] = edges[e];
-    if (static_cast<std::size_t>(a) >= vertex_faces.size()) continue;
     int node = -1;
     for (const int f : vertex_faces[static_cast<std::size_t>(a)]) {
       if (faces(f, 0) != b && faces(f, 1) != b && faces(f, 2) != b) continue;

@@ -38,8 +38,10 @@ namespace drape::geometry {
 class HeightFieldNodes {
  public:
   // `edges`: the mesh's edges, each (a, b) with a < b (edge_list), indexed as
-  // cover() takes them. The tree must outlive this and keep its shape.
-  HeightFieldNodes(const TriangleBvh& tree, const Eigen::MatrixX3i& faces, const std::vector<std::array<int, 2>>& edges);
+  // cover() takes them; `vertex_faces`: the faces at each vertex (the
+  // untangler's topology has both). The tree must outlive this and keep its shape.
+  HeightFieldNodes(const TriangleBvh& tree, const Eigen::MatrixX3i& faces, const std::vector<std::array<int, 2>>& edges,
+                   const std::vector<std::vector<int>>& vertex_faces);
 
   // Finds the height-field nodes for these positions (largest first: a node
   // under one is not tried).

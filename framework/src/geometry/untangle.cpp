@@ -259,7 +259,7 @@ UntangleReport Untangler::run(Eigen::MatrixX3d& vertices, const UntangleOptions&
   const std::vector<int>& piece_size = topology.piece_size;
   if (!topology.faces_tree) {
     topology.faces_tree.emplace(vertices, faces);
-    topology.height_fields.emplace(*topology.faces_tree, faces, edges);
+    topology.height_fields.emplace(*topology.faces_tree, faces, edges, topology.vertex_faces);
   }
   TriangleBvh& faces_tree = *topology.faces_tree;
   HeightFieldNodes& height_fields = *topology.height_fields;
