@@ -15,13 +15,19 @@
 # Environment: BUILD_DIR (default build), GRAPH (default
 # graphs/human/drape_grade_v2v1000_post_resampled.yaml), INIT (default
 # models/tshirt-coarse.h5), THREADS (default 1), EPOCHS (the cosine
-# schedule, default 60), LR (default 1e-3), PATIENCE (default 30).
+# schedule, default 60), LR (default 1e-3), PATIENCE (default 30), SHARD_DIR
+# (the folder of slim shards, default datasets/bodyspace2000-human).
+#
+# The posed model of the human rig (issues 54 and 56) is the same recipe on
+# the posed shards, from the mannequin's posed model:
+#   SHARD_DIR=datasets/posespace2000-human GRAPH=graphs/human/drape_posed_v2v1000_post_resampled.yaml \
+#     INIT=models/tshirt-coarse-posed.h5 bash scripts/train_human_model.sh work-posed-human
 set -euo pipefail
 cd "$(dirname "${BASH_SOURCE[0]}")/.."
 DRAPE=${BUILD_DIR:-build}/bin/drape
 WORK=${1:-work-human-model}
 mkdir -p "$WORK"
-SHARDS=(datasets/bodyspace2000-human/shard-*-of-40.h5)
+SHARDS=("${SHARD_DIR:-datasets/bodyspace2000-human}"/shard-*-of-40.h5)
 DATA="$WORK/human.h5"
 # Expanded again when shards were added since; a training interrupted before
 # then does not resume on the grown set (drape train --resume compares the

@@ -84,3 +84,28 @@ def test_a_start_on_other_assets_is_said(tmp_path):
     assert "was trained on other assets" in err
     assert "the correspondences index 6490 body points there and 6904 here" in err
     assert "eigenvectors are others" in err
+
+
+POSED_HUMAN_SHARD = SOURCE / "datasets" / "posespace2000-human" / "shard-00-of-40.h5"
+
+
+def test_the_posed_human_graph_trains_from_every_weight_of_the_mannequin_posed_model(tmp_path):
+    """graphs/human/drape_posed_v2v1000_post_resampled.yaml (the shipped posed graph, its encoder reading the rest
+    body resampled) from models/tshirt-coarse-posed.h5 with plain --init, on the human rig's posed drapes: every
+    weight has its shape; the model poses the garment with the human rig's skeleton."""
+    out = tmp_path / "ph.h5"
+    stdout, err = run_drape("train", SOURCE / "graphs" / "human" / "drape_posed_v2v1000_post_resampled.yaml", "--data",
+                            POSED_HUMAN_SHARD, "--out", out, "--epochs", 1, "--fraction", 0.1, "--threads", 1,
+                            "--encoder-body", "parametric", "--init", SOURCE / "models" / "tshirt-coarse-posed.h5",
+                            "--quiet")
+    assert "keeps its initialisation" not in stdout + err
+    assert "was trained on other assets" not in stdout + err
+    m = drape.Model.load(str(out))
+    human, _ = drape.body(30, 1.7, 0, params={"rig": "human"})
+    rest = m.predict(human.astype(np.float32), garment_size=1.2, check=False)
+    raised = m.predict(human.astype(np.float32), garment_size=1.2, check=False, pose={"shoulder_abduction": 90})
+    assert rest.shape == raised.shape == (991, 3) and np.isfinite(raised).all()
+    # The sleeves go up with the arms: their vertices (beyond 19 cm from the middle at rest) rise by centimetres.
+    sleeves = np.abs(rest[:, 0] - rest[:, 0].mean()) > 0.19
+    assert sleeves.sum() > 100
+    assert raised[sleeves, 1].mean() > rest[sleeves, 1].mean() + 0.03
