@@ -23,8 +23,9 @@ namespace {
 // Below this many multiply-adds a BLAS call's fixed cost (dispatch, packing)
 // is a large share of the product and Eigen's inline product is kept. Not
 // tuned: at one sample the layers of graphs/drape.yaml that matter are far
-// above it (the spectral MLP's 1 x 256 x 3000 is 0.77 M multiply-adds, the
-// transfer 3505 x 64 x 16 is 3.6 M); its first layer, 1 x 64 x 256, stays in Eigen.
+// above it (the transfer 3505 x 64 x 16 is 3.6 M); the spectral MLP's layers
+// (1 x 64 x 256, 1 x 256 x 3000) are matrix-vector products, kept in Eigen
+// (below).
 constexpr double kBlasMinimumWork = 32768;
 
 bool use_blas(long m, long n, long k) {
@@ -36,6 +37,13 @@ bool use_blas(long m, long n, long k) {
     set_blas_threads(1);
     return true;
   }();
+  // One row or one column is a matrix-vector product: OpenBLAS's GEMM still
+  // packs the whole other operand first (the spectral MLP's last layer at one
+  // body: 3 MB of weights copied before they are read), where Eigen's product
+  // reads it once in place. Measured on the posed model at one body (one core
+  // of the 2-core EPYC): the spectral node 0.31-0.44 ms through BLAS, 0.12 ms
+  // through Eigen.
+  if (m == 1 || n == 1) return false;
   return allowed && double(m) * double(n) * double(k) >= kBlasMinimumWork;
 #else
   (void)m, (void)n, (void)k;
