@@ -321,6 +321,15 @@ TEST_CASE("push_out cut at each vertex's reach gives the bits of searches in ful
   CHECK(ball.signed_distances(patch).minCoeff() >= 0.006 - 1e-9);
 }
 
+// Each face of a convex solid turned away from its centre.
+void turn_outward(const Eigen::MatrixX3d& v, Eigen::MatrixX3i& f) {
+  const Eigen::Vector3d centre = v.colwise().mean().transpose();
+  for (Eigen::Index i = 0; i < f.rows(); ++i) {
+    const Eigen::Vector3d a = v.row(f(i, 0)), b = v.row(f(i, 1)), c = v.row(f(i, 2));
+    if ((b - a).cross(c - a).dot((a + b + c) / 3 - centre) < 0) std::swap(f(i, 1), f(i, 2));
+  }
+}
+
 TEST_CASE("push_out with edges moves an edge off a thin fold of the body it passes through", "[geometry][push_out]") {
   // A fin pointing down -y (a thin man's underarm fold, in small): a prism
   // whose section is a wedge of 30 degrees half-angle with its tip at
@@ -337,12 +346,7 @@ TEST_CASE("push_out with edges moves an edge off a thin fold of the body it pass
   }
   Eigen::MatrixX3i f(8, 3);
   f << 0, 1, 4, 0, 4, 3, 1, 2, 5, 1, 5, 4, 2, 0, 3, 2, 3, 5, 0, 2, 1, 3, 4, 5;
-  // Each face turned away from the prism's centre (it is convex).
-  const Eigen::Vector3d centre = v.colwise().mean().transpose();
-  for (Eigen::Index i = 0; i < f.rows(); ++i) {
-    const Eigen::Vector3d a = v.row(f(i, 0)), b = v.row(f(i, 1)), c = v.row(f(i, 2));
-    if ((b - a).cross(c - a).dot((a + b + c) / 3 - centre) < 0) std::swap(f(i, 1), f(i, 2));
-  }
+  turn_outward(v, f);  // (the prism is convex)
   const BodySurface fin(v, f);
   Eigen::MatrixX3d x(2, 3);
   x << -0.03, -0.01, 0.0, 0.03, -0.01, 0.0;
@@ -360,4 +364,73 @@ TEST_CASE("push_out with edges moves an edge off a thin fold of the body it pass
   CHECK(y(0, 1) < -0.03);
   CHECK(fin.locate(y.row(0).transpose()).signed_distance >= 0.006 - 1e-9);
   CHECK(fin.locate(y.row(1).transpose()).signed_distance >= 0.006 - 1e-9);
+}
+
+TEST_CASE("push_out with faces lifts a face that a peak of the body rises through", "[geometry][push_out]") {
+  // A double cone drawn with long edges (a heavy woman's breast on the human
+  // rig, in small): tips at y = +-10 cm, a ring of 8 vertices of radius 5 cm
+  // at y = 0. A garment triangle of circumradius 6 cm lies flat at y = 9.5
+  // cm: its corners and edges are centimetres out, but the tip pokes 5 mm
+  // through its middle.
+  Eigen::MatrixX3d v(10, 3);
+  v.row(0) << 0, 0.1, 0;
+  v.row(1) << 0, -0.1, 0;
+  for (int k = 0; k < 8; ++k) v.row(2 + k) << 0.05 * std::cos(k * M_PI / 4), 0, 0.05 * std::sin(k * M_PI / 4);
+  Eigen::MatrixX3i f(16, 3);
+  for (int k = 0; k < 8; ++k) {
+    f.row(k) << 0, 2 + k, 2 + (k + 1) % 8;
+    f.row(8 + k) << 1, 2 + (k + 1) % 8, 2 + k;
+  }
+  turn_outward(v, f);
+  const BodySurface cone(v, f);
+  Eigen::MatrixX3d x(3, 3);
+  for (int k = 0; k < 3; ++k) x.row(k) << 0.06 * std::cos(2 * M_PI * k / 3 + 0.3), 0.095, 0.06 * std::sin(2 * M_PI * k / 3 + 0.3);
+  Eigen::MatrixX3i garment(1, 3);
+  garment << 0, 1, 2;
+  const std::vector<std::array<int, 2>> edges = edge_list(garment);
+  // Body edges through the garment's face (exact), both ways round the count.
+  const auto body_edges_through = [&](const Eigen::MatrixX3d& y) {
+    int n = 0;
+    for (const auto& [a, b] : edge_list(f))
+      n += segment_pierces_triangle(v.row(a).transpose(), v.row(b).transpose(), y.row(0).transpose(), y.row(1).transpose(),
+                                    y.row(2).transpose());
+    return n;
+  };
+  for (int k = 0; k < 3; ++k) REQUIRE(cone.locate(x.row(k).transpose()).signed_distance > 0.02);
+  REQUIRE(edges_through(cone, x, edges) == 0);
+  REQUIRE(body_edges_through(x) == 8);  // the tip's 8 edges
+
+  // Edges alone leave it: nothing of the garment's edges is near the body.
+  Eigen::MatrixX3d y = x;
+  PushOutOptions options{.margin = 0.006, .edges = &edges};
+  PushOutReport r = push_out(cone, y, options);
+  CHECK(r.moved == 0);
+  CHECK(body_edges_through(y) == 8);
+
+  // With the faces the triangle is lifted until the tip is half the margin below it.
+  y = x;
+  options.faces = &garment;
+  r = push_out(cone, y, options);
+  CHECK(r.peaks_cleared == 1);
+  CHECK(body_edges_through(y) == 0);
+  for (int k = 0; k < 3; ++k) CHECK(y(k, 1) == Approx(0.1 + 0.003).margin(1e-9));
+  CHECK((y.col(0) - x.col(0)).cwiseAbs().maxCoeff() < 1e-12);  // straight up, along the face's normal
+
+  // The same triangle turned over (its normal down) is lifted the same way:
+  // the side comes from the body's normals at its corners' closest points.
+  Eigen::MatrixX3i turned(1, 3);
+  turned << 0, 2, 1;
+  y = x;
+  options.faces = &turned;
+  r = push_out(cone, y, options);
+  CHECK(r.peaks_cleared == 1);
+  CHECK(y(0, 1) == Approx(0.103).margin(1e-9));
+
+  // Above the tip already: nothing to do.
+  y = x;
+  y.col(1).setConstant(0.101);
+  options.faces = &garment;
+  r = push_out(cone, y, options);
+  CHECK(r.peaks_cleared == 0);
+  CHECK(r.moved == 0);
 }

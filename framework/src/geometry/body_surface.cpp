@@ -40,6 +40,13 @@ BodySurface::BodySurface(const Eigen::MatrixX3d& vertices, const Eigen::MatrixX3
 }
 
 BodySurface::BodySurface(const Mesh& mesh) : BodySurface(mesh.vertices, mesh.faces) {}
+
+const VertexAdjacency& BodySurface::vertex_adjacency() const {
+  std::call_once(*adjacency_once_, [this] {
+    adjacency_ = std::make_unique<VertexAdjacency>(geometry::vertex_adjacency(edge_list(faces_), static_cast<int>(vertices_.rows())));
+  });
+  return *adjacency_;
+}
 BodySurface::~BodySurface() = default;
 BodySurface::BodySurface(BodySurface&&) noexcept = default;
 BodySurface& BodySurface::operator=(BodySurface&&) noexcept = default;

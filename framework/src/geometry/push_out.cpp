@@ -2,17 +2,24 @@
 
 #include <drape/errors.hpp>
 #include <drape/geometry/adjacency.hpp>
+#include <drape/geometry/surface_crossings.hpp>
 
 #include <algorithm>
 #include <array>
 #include <string>
 #include <cmath>
+#include <limits>
 #include <vector>
 
 namespace drape::geometry {
 namespace {
 
 constexpr double kRounding = 1e-12;  // m
+
+// A peak through a face (clear_peaks) is looked for this many steps from the
+// closest points of the face's corners: the one met, a heavy breast's tip,
+// was one step away.
+constexpr int kClimbSteps = 8;
 // An edge the Lipschitz bound cannot clear is searched only when its nearer
 // end, less the body's possible rise above the chord, is within margin / 2:
 // the rise is estimated from the turn of the body's normal between the ends'
@@ -166,6 +173,100 @@ class PushOutRun {
     return fin_moved_;
   }
 
+  // Each garment face a body vertex rises through from below while the
+  // face's corners and edges are clear: the
+  // tip of a cap the body's mesh draws with long edges (a heavy woman's
+  // breast on the human rig: a vertex 0.3 mm through a 4-5 cm face whose
+  // corners were 12-20 mm out). The highest body point under a face, seen
+  // along its normal, is a vertex (a linear function's maximum over a
+  // mesh); it is found by climbing the body's vertices from the corners of
+  // the faces closest to the face's own corners, always to the highest
+  // neighbour. On a convex cap a vertex no neighbour of which is higher is
+  // the highest; a second bump the climb does not reach, or a peak more than
+  // kClimbSteps vertices from the corners' closest points, is the case this
+  // misses. The climb stays over the face. A face is skipped when a corner
+  // is farther from the body than the face's longest edge (every point of
+  // the face is within that of each corner), or every corner farther than
+  // the longest edge / sqrt(3) (every point is within that of some corner):
+  // then no body point reaches it. A face is lifted only where an edge
+  // at the peak passes through it (exact) and the body's normal at the peak
+  // points the face's way; it moves out along its normal until the peak is
+  // half the margin below it. The vertices moved.
+  const std::vector<Eigen::Index>& clear_peaks(PushOutReport& report) {
+    peak_moved_.clear();
+    const Eigen::MatrixX3i& faces = *options_.faces;
+    const Eigen::MatrixX3d& body = body_.vertices();
+    const Eigen::MatrixX3i& body_faces = body_.faces();
+    const VertexAdjacency& ring = body_.vertex_adjacency();
+    for (Eigen::Index f = 0; f < faces.rows(); ++f) {
+      const std::array<int, 3> corner{faces(f, 0), faces(f, 1), faces(f, 2)};
+      const Eigen::Vector3d a = x_.row(corner[0]), b = x_.row(corner[1]), c = x_.row(corner[2]);
+      const double longest = std::max({(b - a).norm(), (c - b).norm(), (a - c).norm()});
+      Eigen::Vector3d outward = Eigen::Vector3d::Zero();
+      bool clear = false, any = false;
+      double nearest = std::numeric_limits<double>::infinity();
+      for (const int v : corner) {
+        const SurfacePoint& s = near_[static_cast<std::size_t>(v)];
+        if (s.face < 0) continue;
+        any = true;
+        clear = clear || s.signed_distance > longest;
+        nearest = std::min(nearest, s.signed_distance);
+        outward += s.normal;
+      }
+      // (Every point of a triangle is within its longest edge / sqrt(3) of a corner.)
+      if (clear || !any || nearest > longest / std::sqrt(3.0)) continue;
+      Eigen::Vector3d n = (b - a).cross(c - a);
+      if (!(n.norm() > 0)) continue;  // a degenerate face: its edges are its whole surface
+      n.normalize();
+      if (n.dot(outward) < 0) n = -n;
+      const auto height = [&](int v) { return (Eigen::Vector3d(body.row(v)) - a).dot(n); };
+      int top = -1;
+      double top_height = -std::numeric_limits<double>::infinity();
+      for (const int v : corner) {
+        const int bf = near_[static_cast<std::size_t>(v)].face;
+        if (bf < 0) continue;
+        for (int k = 0; k < 3; ++k)
+          if (const double h = height(body_faces(bf, k)); h > top_height) top_height = h, top = body_faces(bf, k);
+      }
+      // The climb stays over the face (its projection within the disc about
+      // the face's centroid that holds the corners), kClimbSteps at most.
+      const Eigen::Vector3d centroid = (a + b + c) / 3;
+      const double reach = std::max({(a - centroid).norm(), (b - centroid).norm(), (c - centroid).norm()});
+      const auto over_face = [&](int u) {
+        const Eigen::Vector3d d = Eigen::Vector3d(body.row(u)) - centroid;
+        return (d - d.dot(n) * n).norm() <= reach;
+      };
+      for (int step = 0; step < kClimbSteps; ++step) {
+        const int from = top;
+        for (int k = ring.start[static_cast<std::size_t>(from)]; k < ring.start[static_cast<std::size_t>(from) + 1]; ++k) {
+          const int u = ring.neighbours[static_cast<std::size_t>(k)];
+          if (const double h = height(u); h > top_height && over_face(u)) top_height = h, top = u;
+        }
+        if (top == from) break;
+      }
+      if (top_height <= 0) continue;  // below the face's plane: nothing of the cap reaches it
+      // A crossing: an edge at the peak passes through the face (exact) ...
+      bool through = false;
+      for (int k = ring.start[static_cast<std::size_t>(top)]; k < ring.start[static_cast<std::size_t>(top) + 1] && !through; ++k)
+        through = segment_pierces_triangle(body.row(top).transpose(), body.row(ring.neighbours[static_cast<std::size_t>(k)]).transpose(), a, b, c);
+      if (!through) continue;
+      // ... from below: the body there faces the way the face does. (A part
+      // of the body beyond the face, the trunk beside a sleeve, comes through
+      // it from above; lifting would push the face into it.)
+      if (body_.locate(body.row(top).transpose()).normal.dot(n) <= 0) continue;
+      const Eigen::Vector3d step = (top_height + half_) * n;
+      for (const int v : corner) {
+        move(v, step);
+        peak_moved_.push_back(v);
+      }
+      ++report.peaks_cleared;
+    }
+    std::sort(peak_moved_.begin(), peak_moved_.end());
+    peak_moved_.erase(std::unique(peak_moved_.begin(), peak_moved_.end()), peak_moved_.end());
+    search_again(peak_moved_);
+    return peak_moved_;
+  }
+
   // The run's figures, and each vertex's closest face for the next body.
   void finish(const Eigen::MatrixX3d& start, PushOutReport& report) const {
     if (options_.closest_faces) {
@@ -310,7 +411,7 @@ class PushOutRun {
   std::vector<char> far_;        // beyond its reach and outside: no closest point searched
   std::vector<double> reach_;    // with edges: how far each vertex's first search went
   const int* hints_;             // the face each vertex's search starts from (null: none)
-  std::vector<Eigen::Index> stepped_, lifted_, fin_moved_;
+  std::vector<Eigen::Index> stepped_, lifted_, fin_moved_, peak_moved_;
   std::vector<std::size_t> lifted_edges_;  // the edges the last lift_edges() lifted
 };
 
@@ -334,6 +435,9 @@ PushOutReport push_out(const BodySurface& body, Eigen::MatrixX3d& vertices, cons
       if (a < 0 || b < 0 || a >= vertices.rows() || b >= vertices.rows())
         throw Error("push_out: edge (" + std::to_string(a) + ", " + std::to_string(b) + ") outside the garment's " +
                     std::to_string(vertices.rows()) + " vertices");
+  if (options.faces && options.faces->size() > 0 &&
+      (options.faces->minCoeff() < 0 || options.faces->maxCoeff() >= vertices.rows()))
+    throw Error("push_out: a face's corner lies outside the garment's " + std::to_string(vertices.rows()) + " vertices");
   PushOutReport report;
   const Eigen::MatrixX3d start = vertices;
   PushOutRun run(body, vertices, options);
@@ -346,8 +450,11 @@ PushOutReport push_out(const BodySurface& body, Eigen::MatrixX3d& vertices, cons
     const bool lifted = options.edges && pass + 1 < options.max_passes && !run.lift_edges(report).empty();
     if (!stepped && !lifted) break;  // nothing moved: the last search still holds
   }
-  // Edges through a thin fold, then the vertices' margin kept once more.
-  if (options.edges && !run.clear_fins(report).empty()) run.step_vertices();
+  // Edges through a thin fold, faces a peak of the body rises through, then
+  // the vertices' margin kept once more.
+  const bool fins = options.edges && !run.clear_fins(report).empty();
+  const bool peaks = options.edges && options.faces && !run.clear_peaks(report).empty();
+  if (fins || peaks) run.step_vertices();
   run.finish(start, report);
   return report;
 }

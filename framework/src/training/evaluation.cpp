@@ -40,7 +40,8 @@ SplitEvaluation measure_in_batches(const Assets& assets, std::size_t count, std:
                                    const std::function<MeasuredBatch(std::size_t, std::size_t)>& load,
                                    const std::function<std::string(std::size_t)>& name, double push_out_margin = -1) {
   const MetricsContext metrics(assets);
-  // The push-out lifts the garment's edges as the push_out node does by default.
+  // The push-out lifts the garment's edges (and faces a peak of the body
+  // rises through) as the push_out node does by default.
   const std::vector<std::array<int, 2>> edges =
       push_out_margin >= 0 ? geometry::edge_list(assets.garment->mesh.faces) : std::vector<std::array<int, 2>>{};
   SplitEvaluation out;
@@ -63,6 +64,7 @@ SplitEvaluation measure_in_batches(const Assets& assets, std::size_t count, std:
           geometry::PushOutOptions options;
           options.margin = push_out_margin;
           options.edges = &edges;
+          options.faces = &assets.garment->mesh.faces;
           geometry::push_out(geometry::BodySurface(body, assets.body.faces), x, options);
         }
         out.samples[k] = metrics.evaluate(x, y, body);

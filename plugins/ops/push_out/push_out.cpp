@@ -57,6 +57,7 @@ class PushOut final : public Node {
                           " rows, the bound garment " + std::to_string(garment_vertices) +
                           " vertices (edges: false and untangle: false push out the vertices of any mesh)");
       edges_ = geometry::edge_list(context.assets->garment->mesh.faces);
+      garment_faces_ = context.assets->garment->mesh.faces;
       if (untangle_) {
         untangler_.emplace(context.assets->garment->mesh.faces, garment_vertices);
         adjacency_ = geometry::vertex_adjacency(edges_, garment_vertices);
@@ -91,7 +92,7 @@ class PushOut final : public Node {
       geometry::PushOutOptions options;
       options.margin = epsilon_;
       options.closest_faces = &closest_faces_;
-      if (lift_edges_) options.edges = &edges_;
+      if (lift_edges_) options.edges = &edges_, options.faces = &garment_faces_;
       geometry::push_out(*surface_, points, options);
       if (untangle_) {
         geometry::UntangleOptions untangling;
@@ -159,6 +160,7 @@ class PushOut final : public Node {
   std::optional<geometry::Untangler> untangler_;  // the garment's, when untangle_
   geometry::VertexAdjacency adjacency_;           // of edges_, when untangle_
   std::vector<std::array<int, 2>> edges_;  // the garment's, when lift_edges_ or untangle_
+  Eigen::MatrixX3i garment_faces_;          // the garment's, when lift_edges_ or untangle_ (peaks through a face)
   std::optional<geometry::BodySurface> surface_;  // the last body's, refitted to the next
   std::vector<int> closest_faces_;                // the last body's closest face of each garment vertex
 };

@@ -14,6 +14,7 @@
 // refitted (not rebuilt) when the body moves; `drape bench geometry` measures it
 // against CGAL's AABB tree, a nanoflann kd-tree over vertices and a uniform grid.
 #include <drape/energy.hpp>
+#include <drape/geometry/adjacency.hpp>
 #include <drape/mesh.hpp>
 
 #include <Eigen/Core>
@@ -22,6 +23,7 @@
 #include <cstdint>
 #include <limits>
 #include <memory>
+#include <mutex>
 #include <vector>
 
 namespace drape::geometry {
@@ -114,6 +116,9 @@ class BodySurface final : public BodyQuery {
 
   const Eigen::MatrixX3d& vertices() const { return vertices_; }
   const Eigen::MatrixX3i& faces() const { return faces_; }
+  // The vertices next to each vertex (the faces' edges), made at the first
+  // call: the faces never change.
+  const VertexAdjacency& vertex_adjacency() const;
   // Unit angle-weighted pseudo-normals of the vertices (outward on a closed
   // mesh). Throws Error after an update() that left normals to the queries.
   const Eigen::MatrixX3d& vertex_normals() const;
@@ -143,6 +148,8 @@ class BodySurface final : public BodyQuery {
   // each query's pseudo-normal comes from here.
   std::unique_ptr<PseudoNormals> on_demand_;
   bool normals_current_ = true;
+  mutable std::unique_ptr<std::once_flag> adjacency_once_ = std::make_unique<std::once_flag>();
+  mutable std::unique_ptr<VertexAdjacency> adjacency_;
 };
 
 }  // namespace drape::geometry

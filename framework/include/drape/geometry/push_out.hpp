@@ -26,6 +26,7 @@ struct PushOutReport {
   int edges_searched = 0;    // edge midpoints searched, over all passes
   int beyond_reach = 0;      // with edges: vertices found outside and beyond their reach, never searched in full
   int fins_cleared = 0;      // with edges: edges moved off a thin fold of the body they passed through (push_out.cpp)
+  int peaks_cleared = 0;     // with faces: faces lifted off a body vertex that rose through them (push_out.cpp)
 };
 
 // The clearance drape eval --push-out and drape predict --push-out give: about
@@ -53,6 +54,13 @@ struct PushOutOptions {
   // vertices only, so every vertex keeps the margin's promise; an edge may
   // be left crossing where the passes ran out.
   const std::vector<std::array<int, 2>>* edges = nullptr;
+  // The garment's faces. Given (with edges), a face whose vertices and edges
+  // are clear but which a peak of the body rises through (the tip of a part
+  // the body's mesh draws with long edges: a heavy woman's breast on the
+  // human rig, its edges 3.4-4.5 cm) is lifted until the peak is margin / 2
+  // below it; the peak is found by climbing the body's vertices from the
+  // closest points of the face's corners (push_out.cpp, clear_peaks).
+  const Eigen::MatrixX3i* faces = nullptr;
   // With edges, each vertex's first search stops at its reach (the margin, or
   // half its longest edge plus half the margin): beyond it a vertex is
   // neither moved nor needed by an edge's bound, and its side comes from its
