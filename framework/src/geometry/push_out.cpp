@@ -2,6 +2,7 @@
 
 #include <drape/errors.hpp>
 #include <drape/geometry/adjacency.hpp>
+#include <drape/geometry/pseudo_normals.hpp>
 #include <drape/geometry/surface_crossings.hpp>
 
 #include <algorithm>
@@ -145,7 +146,7 @@ class PushOutRun {
       body_.faces_crossed(x_.row(a).transpose(), x_.row(b).transpose(), crossed);
       if (crossed.empty()) continue;
       Eigen::Vector3d off_fold = Eigen::Vector3d::Zero();
-      for (const int f : crossed) off_fold += face_unit_normal(f);
+      for (const int f : crossed) off_fold += face_normal(body_.vertices(), body_.faces(), f);
       // (Normals that cancel: a flat sheet met twice, no side to go to.)
       if (!(off_fold.norm() > kFinAgreement)) continue;
       off_fold.normalize();
@@ -313,15 +314,6 @@ class PushOutRun {
   }
 
   int hint(std::size_t i) const { return hints_ ? hints_[i] : -1; }
-
-  Eigen::Vector3d face_unit_normal(int f) const {
-    const Eigen::MatrixX3d& v = body_.vertices();
-    const Eigen::MatrixX3i& faces = body_.faces();
-    const Eigen::Vector3d p0 = v.row(faces(f, 0));
-    const Eigen::Vector3d n = (Eigen::Vector3d(v.row(faces(f, 1))) - p0).cross(Eigen::Vector3d(v.row(faces(f, 2))) - p0);
-    const double length = n.norm();
-    return length > 0 ? Eigen::Vector3d(n / length) : Eigen::Vector3d::Zero();
-  }
 
   // The closest body point of vertex i, searched in full from its hint.
   SurfacePoint exact(std::size_t i) const {

@@ -41,8 +41,8 @@ bool use_blas(long m, long n, long k) {
   // packs the whole other operand first (the spectral MLP's last layer at one
   // body: 3 MB of weights copied before they are read), where Eigen's product
   // reads it once in place. Measured on the posed model at one body (one core
-  // of the 2-core EPYC): the spectral node 0.31-0.44 ms through BLAS, 0.12 ms
-  // through Eigen.
+  // of the 2-core EPYC, the push-out off, best of 1,000): the spectral node
+  // 0.26-0.28 ms through BLAS, 0.15 ms through Eigen.
   if (m == 1 || n == 1) return false;
   return allowed && double(m) * double(n) * double(k) >= kBlasMinimumWork;
 #else
