@@ -12,6 +12,7 @@
 #include <drape/scene/scene.hpp>
 #include <drape/scene/simulation.hpp>
 
+#include <algorithm>
 #include <cstdio>
 #include <fstream>
 #include <set>
@@ -26,6 +27,28 @@ namespace {
 std::string tiny_scene(const char* size) {
   return std::string("body: {model: parametric}\ngarment: {template: tshirt, params: {resolution: 300, size: ") + size +
          "}}\neffects: [gravity, stretching, bending, collision]\nsolver: {morph_steps: 2, settle_steps: 2}\n";
+}
+
+// The most strained edge of a drape x against the pattern of the garment it
+// wore (its UVs), worked out face by face: 100 (l / l_rest - 1).
+double strain_by_hand(const Mesh& wore, const Eigen::MatrixX3d& x) {
+  double worst = -1.0;
+  for (Eigen::Index f = 0; f < wore.faces.rows(); ++f)
+    for (int j = 0; j < 3; ++j) {
+      const double rest = (wore.uv.row(wore.uv_faces(f, j)) - wore.uv.row(wore.uv_faces(f, (j + 1) % 3))).norm();
+      worst = std::max(worst, (x.row(wore.faces(f, j)) - x.row(wore.faces(f, (j + 1) % 3))).norm() / rest - 1.0);
+    }
+  return 100.0 * worst;
+}
+
+// drape eval's line "its most strained edge (strain_max) is M % on average, W % at worst": {M, W}.
+std::pair<double, double> printed_ground_truth_strain(const std::string& out) {
+  const std::string key = "most strained edge (strain_max) is ";
+  const auto at = out.find(key);
+  REQUIRE(at != std::string::npos);
+  double mean = 0, worst = 0;
+  REQUIRE(std::sscanf(out.c_str() + at + key.size(), "%lf %% on average, %lf %% at worst", &mean, &worst) == 2);
+  return {mean, worst};
 }
 
 }  // namespace
@@ -277,6 +300,25 @@ TEST_CASE("size auto: a model takes the grade and predict chooses the body's siz
   REQUIRE(test::run(drape + "model info " + model, out) == 0);
   CHECK_THAT(out, Catch::Contains("sizes: chosen for each body by the tailor's rule") && Catch::Contains("6xlarge"));
   REQUIRE(test::run(drape + "eval --model " + model + " --data " + (dir / "both.h5").string() + " --split all", out) == 0);
+  {
+    // The simulated drapes' strain, against the shirt each body wore (its
+    // size by the chart's own rule; the regular drapes the regular's), not
+    // the template's: a larger size rests longer.
+    const DatasetReader both(dir / "both.h5");
+    REQUIRE(both.size() == 12);
+    double sum = 0, worst = -100, sum_template = 0;
+    for (std::size_t i = 0; i < both.size(); ++i) {
+      const Eigen::MatrixX3d y = both.sample(i).garment_vertices.cast<double>();
+      const std::string size = i < 8 ? chart.choose(both.sample(i).body_vertices.cast<double>()).size : "regular";
+      const double s = strain_by_hand(chart.simulation(size).garment().mesh, y);
+      sum += s / 12, worst = std::max(worst, s);
+      sum_template += strain_by_hand(chart.design().garment().mesh, y) / 12;
+    }
+    REQUIRE(std::abs(sum_template - sum) > 1.0);  // the sizes tell
+    const auto [mean, most] = printed_ground_truth_strain(out);
+    CHECK(mean == Approx(sum).epsilon(0.006));
+    CHECK(most == Approx(worst).epsilon(0.006));
+  }
 
   // predict at BMI 55 wears the size the scene's own chart gives that body.
   BodyRequest heavy;
@@ -414,4 +456,18 @@ TEST_CASE("grade auto: generate grades each body and a model predicts in the bod
     return std::string((std::istreambuf_iterator<char>(f)), {});
   };
   CHECK(text_of("auto.obj") == text_of("named.obj"));
+
+  // eval measures each drape's strain against the garment of its grade.
+  REQUIRE(test::run(drape + "eval --model " + model + " --data " + (dir / "graded.h5").string() + " --split all", out) == 0);
+  double sum = 0, worst = -100, sum_design = 0;
+  for (std::size_t i = 0; i < all.size(); ++i) {
+    const Eigen::MatrixX3d y = graded.sample(i).garment_vertices.cast<double>();
+    const double s = strain_by_hand(sims.grades()->simulation(grades[i]).garment().mesh, y);
+    sum += s / double(all.size()), worst = std::max(worst, s);
+    sum_design += strain_by_hand(sims.design().garment().mesh, y) / double(all.size());
+  }
+  REQUIRE(std::abs(sum_design - sum) > 1.0);
+  const auto [mean, most] = printed_ground_truth_strain(out);
+  CHECK(mean == Approx(sum).epsilon(0.006));
+  CHECK(most == Approx(worst).epsilon(0.006));
 }

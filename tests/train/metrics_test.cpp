@@ -5,6 +5,7 @@
 
 #include <drape/geometry/penetration.hpp>
 #include <drape/geometry/surface_crossings.hpp>
+#include <drape/errors.hpp>
 #include <drape/training/metrics.hpp>
 #include <drape/plugin.hpp>
 
@@ -240,4 +241,30 @@ TEST_CASE("strain_max is the most strained edge against the material space", "[m
   REQUIRE(expected > 100.0);
   CHECK(f.metrics.evaluate(torn, f.garment, f.body).strain_max == Approx(expected));
   CHECK(f.metrics.strain_max(torn) == Approx(expected / 100.0));
+}
+
+TEST_CASE("strain_max against the garment a body wore: its own rest lengths", "[metrics]") {
+  // A garment of the template's topology graded to twice its size (its
+  // material space doubled): a drape twice the template's placed shape is
+  // as strained against it as the placed shape is against the template.
+  Fixture f;
+  Mesh graded = f.assets->garment->mesh;
+  graded.uv *= 2.0;
+  const std::vector<double> rest = face_edge_rest_lengths(graded);
+  REQUIRE(rest.size() == 3 * static_cast<std::size_t>(graded.faces.rows()));
+  const Eigen::Index face = 5;
+  CHECK(rest[3 * face + 1] == Approx(2.0 * (f.assets->garment->mesh.uv.row(f.assets->garment->mesh.uv_faces(face, 2)) -
+                                            f.assets->garment->mesh.uv.row(f.assets->garment->mesh.uv_faces(face, 1)))
+                                               .norm()));
+  const double placed = f.metrics.strain_max(f.garment);
+  CHECK(f.metrics.evaluate(2.0 * f.garment, f.garment, f.body, &rest).strain_max == Approx(100.0 * placed));
+  // The same drape against the template: every edge twice as long, 2 (1 + s) - 1.
+  CHECK(f.metrics.evaluate(2.0 * f.garment, f.garment, f.body).strain_max == Approx(100.0 + 200.0 * placed));
+  // The placed shape itself is at half its graded rest: (1 + s) / 2 - 1.
+  CHECK(f.metrics.strain_max(f.garment, &rest) == Approx((1.0 + placed) / 2.0 - 1.0));
+  const std::vector<double> short_list(rest.begin(), rest.end() - 1);
+  CHECK_THROWS_WITH(f.metrics.strain_max(f.garment, &short_list), Catch::Contains("rest lengths for a garment of"));
+  Mesh no_uv = graded;
+  no_uv.uv.resize(0, 2);
+  CHECK_THROWS_AS(face_edge_rest_lengths(no_uv), ConfigError);
 }

@@ -4,6 +4,8 @@
 #include <drape/assets/dataset_assets.hpp>
 #include <drape/errors.hpp>
 #include <drape/io/atomic_file.hpp>
+#include <drape/registry.hpp>
+#include <drape/services/worn_garments.hpp>
 
 #include <cstdio>
 #include <sstream>
@@ -71,14 +73,15 @@ ModelEvaluation evaluate_on_dataset(Model& model, const DatasetReader& data, con
   if (drapes) check_dataset_template(*drapes, request.drapes_file, model.assets());
   const std::vector<std::size_t> indices = selected_samples(data, drapes, request);
   ModelEvaluation result;
+  // The strain against the garment each body wore (a size: auto dataset's sizes).
+  result.samples = drapes ? drape_sources(data, *drapes, indices) : indices;
+  const WornGarments worn = worn_garments(Registry::load_default(), data, result.samples);
   if (drapes) {
     // Drapes that drape optimize did not finish on the true body are not results (docs/optimization.md).
     result.not_results = indices.size() - optimizer_results(*drapes, indices).size();
-    result.samples = drape_sources(data, *drapes, indices);
-    result.evaluation = evaluate_drapes(model.assets(), data, *drapes, indices, progress);
+    result.evaluation = evaluate_drapes(model.assets(), data, *drapes, indices, progress, &worn);
   } else {
-    result.samples = indices;
-    result.evaluation = evaluate_model(model, data, indices, request.batch, progress, request.pushed_to);
+    result.evaluation = evaluate_model(model, data, indices, request.batch, progress, request.pushed_to, &worn);
   }
   result.reference = ground_truth_reference(result.evaluation, result.samples.size());
   result.summary = summarize(result.evaluation.samples);

@@ -38,7 +38,8 @@ struct MeasuredBatch {
 // out of its body first. An error names the sample (name(k)).
 SplitEvaluation measure_in_batches(const Assets& assets, std::size_t count, std::size_t step, ProgressBar* progress,
                                    const std::function<MeasuredBatch(std::size_t, std::size_t)>& load,
-                                   const std::function<std::string(std::size_t)>& name, double push_out_margin = -1) {
+                                   const std::function<std::string(std::size_t)>& name, double push_out_margin,
+                                   const WornGarments* worn) {
   const MetricsContext metrics(assets);
   // The push-out lifts the garment's edges (and faces a peak of the body
   // rises through) as the push_out node does by default.
@@ -67,10 +68,11 @@ SplitEvaluation measure_in_batches(const Assets& assets, std::size_t count, std:
           options.faces = &assets.garment->mesh.faces;
           geometry::push_out(geometry::BodySurface(body, assets.body.faces), x, options);
         }
-        out.samples[k] = metrics.evaluate(x, y, body);
+        const std::vector<double>* rest = worn ? worn->rest_of(k) : nullptr;
+        out.samples[k] = metrics.evaluate(x, y, body, rest);
         out.ground_truth_penetration[k] = metrics.penetration(y, body);
         out.ground_truth_crossings[k] = metrics.crossings(y, body);
-        out.ground_truth_strain_max[k] = metrics.strain_max(y);
+        out.ground_truth_strain_max[k] = metrics.strain_max(y, rest);
       } catch (const std::exception& e) {
         errors[static_cast<std::size_t>(b)] = e.what();
       }
@@ -89,7 +91,8 @@ std::vector<std::size_t> slice(const std::vector<std::size_t>& v, std::size_t fi
 }  // namespace
 
 SplitEvaluation evaluate_model(Model& model, const DatasetReader& reader, const std::vector<std::size_t>& indices,
-                               int batch_size, ProgressBar* progress, double push_out_margin) {
+                               int batch_size, ProgressBar* progress, double push_out_margin,
+                               const WornGarments* worn) {
   if (batch_size < 1) throw ConfigError("evaluate: the batch size must be at least 1");
   const auto load = [&](std::size_t first, std::size_t last) {
     const std::vector<std::size_t> part = slice(indices, first, last);
@@ -98,7 +101,7 @@ SplitEvaluation evaluate_model(Model& model, const DatasetReader& reader, const 
   };
   const auto name = [&](std::size_t k) { return "sample " + std::to_string(indices[k]); };
   return measure_in_batches(model.assets(), indices.size(), static_cast<std::size_t>(batch_size), progress, load, name,
-                            push_out_margin);
+                            push_out_margin, worn);
 }
 
 std::vector<std::size_t> drape_sources(const DatasetReader& truth, const DatasetReader& drapes,
@@ -117,7 +120,8 @@ std::vector<std::size_t> drape_sources(const DatasetReader& truth, const Dataset
 }
 
 SplitEvaluation evaluate_drapes(const Assets& assets, const DatasetReader& truth, const DatasetReader& drapes,
-                                const std::vector<std::size_t>& drape_indices, ProgressBar* progress) {
+                                const std::vector<std::size_t>& drape_indices, ProgressBar* progress,
+                                const WornGarments* worn) {
   const std::vector<std::size_t> sources = drape_sources(truth, drapes, drape_indices);
   const auto name = [&](std::size_t k) { return "drape sample " + std::to_string(drape_indices[k]); };
   const auto load = [&](std::size_t first, std::size_t last) {
@@ -131,7 +135,7 @@ SplitEvaluation evaluate_drapes(const Assets& assets, const DatasetReader& truth
                           " of the dataset");
     return batch;
   };
-  return measure_in_batches(assets, drape_indices.size(), 16, progress, load, name);
+  return measure_in_batches(assets, drape_indices.size(), 16, progress, load, name, -1, worn);
 }
 
 }  // namespace drape

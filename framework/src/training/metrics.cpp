@@ -42,11 +42,9 @@ MetricsContext::MetricsContext(const Assets& assets) {
       throw ConfigError("garment face " + std::to_string(f) + " has a degenerate material-space triangle (area " +
                         std::to_string(det / 2) + " m^2)");
     material_inverse_[static_cast<std::size_t>(f)] = X.inverse();
-    for (int j = 0; j < 3; ++j) {
-      face_edges_.push_back({mesh.faces(f, j), mesh.faces(f, (j + 1) % 3)});
-      rest_lengths_.push_back((mesh.uv.row(mesh.uv_faces(f, (j + 1) % 3)) - mesh.uv.row(mesh.uv_faces(f, j))).norm());
-    }
+    for (int j = 0; j < 3; ++j) face_edges_.push_back({mesh.faces(f, j), mesh.faces(f, (j + 1) % 3)});
   }
+  rest_lengths_ = face_edge_rest_lengths(mesh);
 
   edges_ = geometry::edge_list(mesh.faces);
 
@@ -91,10 +89,24 @@ double MetricsContext::laplacian_difference(const Eigen::MatrixX3d& x, const Eig
   return sum;
 }
 
-double MetricsContext::strain_max(const Eigen::MatrixX3d& x) const {
+std::vector<double> face_edge_rest_lengths(const Mesh& mesh) {
+  if (!mesh.has_uv()) throw ConfigError("the garment's rest lengths need its material space (UVs), but it has none");
+  std::vector<double> lengths;
+  lengths.reserve(3 * static_cast<std::size_t>(mesh.num_faces()));
+  for (int f = 0; f < mesh.num_faces(); ++f)
+    for (int j = 0; j < 3; ++j)
+      lengths.push_back((mesh.uv.row(mesh.uv_faces(f, (j + 1) % 3)) - mesh.uv.row(mesh.uv_faces(f, j))).norm());
+  return lengths;
+}
+
+double MetricsContext::strain_max(const Eigen::MatrixX3d& x, const std::vector<double>* rest) const {
+  const std::vector<double>& lengths = rest ? *rest : rest_lengths_;
+  if (lengths.size() != rest_lengths_.size())
+    throw Error("strain_max: " + std::to_string(lengths.size()) + " rest lengths for a garment of " +
+                std::to_string(rest_lengths_.size()) + " face edges");
   double worst = -1.0;  // an edge can only shrink to zero length
   for (std::size_t e = 0; e < face_edges_.size(); ++e)
-    worst = std::max(worst, (x.row(face_edges_[e][0]) - x.row(face_edges_[e][1])).norm() / rest_lengths_[e] - 1.0);
+    worst = std::max(worst, (x.row(face_edges_[e][0]) - x.row(face_edges_[e][1])).norm() / lengths[e] - 1.0);
   return worst;
 }
 
@@ -145,7 +157,7 @@ int MetricsContext::crossings(const Eigen::MatrixX3d& x, const Eigen::MatrixX3d&
 }
 
 GarmentMetrics MetricsContext::evaluate(const Eigen::MatrixX3d& x, const Eigen::MatrixX3d& y,
-                                        const Eigen::MatrixX3d& body) const {
+                                        const Eigen::MatrixX3d& body, const std::vector<double>* rest) const {
   check(x, garment_vertices_, "the prediction");
   check(y, garment_vertices_, "the ground truth");
   check(body, body_vertices_, "the body");
@@ -160,7 +172,7 @@ GarmentMetrics MetricsContext::evaluate(const Eigen::MatrixX3d& x, const Eigen::
   m.crossings = crossings(x, body);
   m.crossed_percent = m.crossings > 0 ? 100.0 : 0.0;
   m.edge_stretch_max = 100.0 * edges.max_stretch;
-  m.strain_max = 100.0 * strain_max(x);
+  m.strain_max = 100.0 * strain_max(x, rest);
   return m;
 }
 

@@ -51,7 +51,9 @@ struct GarmentMetrics {
   double edge_stretch_max = 0;
   // Not the seed's: the most strained edge against the material space (the
   // garment's UVs), 100 (l / l_rest - 1): a torn mesh in the cloth's own
-  // terms. edge_stretch_max above is relative to the simulated edge, which
+  // terms. drape eval measures it against the garment each body wore (a
+  // size: auto dataset's sizes, services/worn_garments.hpp), not the
+  // template's design size, whose edges a 5xlarge shirt's exceed by 80-130 %. edge_stretch_max above is relative to the simulated edge, which
   // a fold may have compressed to a millimetre, so it can be large where the
   // cloth is not strained at all; the simulated drape itself has this one too.
   double strain_max = 0;
@@ -65,6 +67,13 @@ struct MetricColumn {
   double GarmentMetrics::*field;
 };
 const std::vector<MetricColumn>& metric_columns();
+
+// The material-space length of each face's three edges of `mesh` (from its
+// UVs; an edge on a UV seam once per side), face by face: the rest lengths
+// strain_max measures against. For a garment of the template's topology
+// graded to another size (its pattern, or its material space, graded: the
+// garment a body of a size: auto dataset wore). ConfigError without UVs.
+std::vector<double> face_edge_rest_lengths(const Mesh& mesh);
 
 // What the metrics need of a garment template, precomputed once.
 class MetricsContext {
@@ -80,8 +89,11 @@ class MetricsContext {
 
   // Every metric of one sample. x, y: [garment vertices, 3]; body: [body
   // vertices, 3] in the assets' body topology. Throws Error on a size mismatch
-  // or a non-finite input.
-  GarmentMetrics evaluate(const Eigen::MatrixX3d& x, const Eigen::MatrixX3d& y, const Eigen::MatrixX3d& body) const;
+  // or a non-finite input. rest (optional): the rest lengths of the garment
+  // the body wore (face_edge_rest_lengths of the template graded to its
+  // size), which strain_max measures against; the template's when null.
+  GarmentMetrics evaluate(const Eigen::MatrixX3d& x, const Eigen::MatrixX3d& y, const Eigen::MatrixX3d& body,
+                          const std::vector<double>* rest = nullptr) const;
 
   // The parts, for tests and for callers that need only some.
   double mean_error(const Eigen::MatrixX3d& x, const Eigen::MatrixX3d& y) const;         // m
@@ -96,7 +108,8 @@ class MetricsContext {
   double deformation_difference(const Eigen::MatrixX3d& x, const Eigen::MatrixX3d& y) const;
   double penetration(const Eigen::MatrixX3d& x, const Eigen::MatrixX3d& body) const;      // fraction
   int crossings(const Eigen::MatrixX3d& x, const Eigen::MatrixX3d& body) const;           // edges
-  double strain_max(const Eigen::MatrixX3d& x) const;  // fraction, against the material space
+  // Fraction, against the material space: the template's, or `rest` (as evaluate's).
+  double strain_max(const Eigen::MatrixX3d& x, const std::vector<double>* rest = nullptr) const;
 
  private:
   void check(const Eigen::MatrixX3d& m, int rows, const char* what) const;
