@@ -116,6 +116,11 @@ void print_post_processing(const Registry& registry, const std::string& graph_te
     else
       std::printf("  %-14s %s: off (--set %s.enabled=true, or drape model set, turns it on)\n", "push-out",
                   p.node.c_str(), p.node.c_str());
+    if (p.enabled && p.strain_limit > 0)
+      std::printf("  %-14s %s: first every edge longer than %.2f times its rest length (%s) shortened to that "
+                  "(--set %s.strain_limit=0: off)\n", "strain limit", p.node.c_str(), 1.0 + p.strain_limit,
+                  p.grade_connected ? "the pattern of the size the body wears" : "the template's pattern, whatever the size",
+                  p.node.c_str());
   }
 }
 

@@ -14,23 +14,29 @@
 #include <drape/training/model.hpp>
 #include <drape/registry.hpp>
 #include <drape/io/svg_figure.hpp>
+#include <drape/services/model_body.hpp>
+#include <drape/services/worn_garments.hpp>
+#include <drape/training/metrics.hpp>
 
 #include "model_body.hpp"
 
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <optional>
+#include <vector>
 
 namespace drape::cli {
 namespace DRAPE_UNITY_ID {  // the anonymous namespace, or a unique one in a unity build (command.hpp)
 
 // Per vertex: the mean relative length change (%) of its edges against their
-// lengths in the material space (the template's UVs, in metres).
-Eigen::VectorXd edge_strain_percent(const Mesh& garment, const Mesh& material) {
+// lengths in the material space (face_edge_rest_lengths: face by face, in metres).
+Eigen::VectorXd edge_strain_percent(const Mesh& garment, const std::vector<double>& rest_lengths) {
   Eigen::VectorXd sum = Eigen::VectorXd::Zero(garment.num_vertices()), count = sum;
   for (int f = 0; f < garment.num_faces(); ++f)
     for (int k = 0; k < 3; ++k) {
       const int a = garment.faces(f, k), b = garment.faces(f, (k + 1) % 3);
-      const double rest = (material.uv.row(material.uv_faces(f, (k + 1) % 3)) - material.uv.row(material.uv_faces(f, k))).norm();
+      const double rest = rest_lengths[static_cast<std::size_t>(3 * f + k)];
       if (!(rest > 0)) continue;
       const double strain = 100.0 * std::abs((garment.vertices.row(b) - garment.vertices.row(a)).norm() / rest - 1.0);
       for (int v : {a, b}) {
@@ -41,12 +47,32 @@ Eigen::VectorXd edge_strain_percent(const Mesh& garment, const Mesh& material) {
   return sum.cwiseQuotient(count.cwiseMax(1.0));
 }
 
+// The rest lengths the strain is measured against (face_edge_rest_lengths):
+// the pattern of the garment the body wears. A sample of a dataset made in
+// each body's own size wore its size (worn_garments); a model of drapes in
+// each body's own size dresses the body in the size of the grade it was fed
+// (its size chart's); else the template's.
+std::vector<double> worn_rest_lengths(const Registry& registry, const Mesh& template_mesh, const DatasetReader* reader,
+                                      std::size_t sample, const Model* model, const SampleBatch* batch) {
+  if (!template_mesh.has_uv()) throw ConfigError("--colour strain needs the template's material space (UVs); it has none");
+  if (reader) {
+    const WornGarments worn = worn_garments(registry, *reader, {sample});
+    if (const std::vector<double>* rest = worn.rest_of(0)) return *rest;
+  } else if (model && batch && !batch->garment_grade.empty()) {
+    if (const std::optional<SizeTable> chart = model_size_chart(*model))
+      for (const auto& [name, girth] : chart->girth)
+        if (std::abs(chart->grade(name) - batch->garment_grade(0, 0, 0)) <= 1e-5 * chart->grade(name))
+          return face_edge_rest_lengths(garment_materials(registry, model->assets_spec(), {{name, chart->grade(name)}}).front().second);
+  }
+  return face_edge_rest_lengths(template_mesh);
+}
+
 // The page or picture: the garment on the body, coloured by its distance to
-// the body, its error against `truth`, or its strain against the template's
-// material space.
+// the body, its error against `truth`, or its strain against the material
+// space of the garment the body wears (worn_rest_lengths).
 void draw(const po::variables_map& vm, const std::string& colour, const std::string& what,
           const std::vector<std::string>& notes, const Mesh& body, const Mesh& garment, const Mesh& truth,
-          const Mesh& material) {
+          const std::vector<double>& rest_lengths) {
   SvgFigure figure("drape render: " + what);
   for (const std::string& note : notes) figure.add_note(note);
   const geometry::BodySurface surface(body.vertices, body.faces);
@@ -63,8 +89,7 @@ void draw(const po::variables_map& vm, const std::string& colour, const std::str
     scale = {"distance to the simulated garment (cm)", 0.0, 2.0};
     std::snprintf(caption, sizeof caption, "ME %.2f cm, max %.2f cm, p = %.2f%%", values.mean(), values.maxCoeff(), 100.0 * p);
   } else {
-    if (!material.has_uv()) throw ConfigError("--colour strain needs the template's material space (UVs); it has none");
-    values = edge_strain_percent(garment, material);
+    values = edge_strain_percent(garment, rest_lengths);
     scale = {"edge length change against the material space (%)", 0.0, 10.0};
     std::snprintf(caption, sizeof caption, "mean strain %.2f%%, max %.2f%%, p = %.2f%%", values.mean(), values.maxCoeff(), 100.0 * p);
   }
@@ -88,7 +113,8 @@ int render_simulated(Registry& registry, const po::variables_map& vm, const std:
   Mesh garment = assets->garment->mesh;
   garment.vertices = reader.garment_vertices({i}).mat(0).cast<double>();
   const std::string what = "simulated drape, sample " + std::to_string(i) + " of " + std::filesystem::path(data).filename().string();
-  draw(vm, colour, what, {}, body, garment, garment, assets->garment->mesh);
+  draw(vm, colour, what, {}, body, garment, garment,
+       colour == "strain" ? worn_rest_lengths(registry, assets->garment->mesh, &reader, i, nullptr, nullptr) : std::vector<double>());
   return 0;
 }
 
@@ -130,8 +156,9 @@ int run(const std::vector<std::string>& args) {
   SampleBatch batch;
   Mesh truth;
   std::string what;
+  std::optional<DatasetReader> data;
   if (vm.count("data")) {
-    const DatasetReader reader(vm["data"].as<std::string>());
+    const DatasetReader& reader = data.emplace(vm["data"].as<std::string>());
     check_dataset_template(reader, vm["data"].as<std::string>(), model.assets());
     const std::size_t i = vm["sample"].as<std::size_t>();
     if (i >= reader.size()) throw UsageError("--sample " + std::to_string(i) + ": the dataset has " + std::to_string(reader.size()) + " samples");
@@ -159,7 +186,10 @@ int run(const std::vector<std::string>& args) {
     what = "prediction of " + std::filesystem::path(model_file).filename().string() + " for " + what;
   }
 
-  draw(vm, colour, what, notes, body, garment, truth, model.assets().garment->mesh);
+  draw(vm, colour, what, notes, body, garment, truth,
+       colour == "strain" ? worn_rest_lengths(registry, model.assets().garment->mesh, data ? &*data : nullptr,
+                                              vm["sample"].as<std::size_t>(), &model, &batch)
+                          : std::vector<double>());
   return 0;
 }
 

@@ -82,6 +82,11 @@ void grade_material_space(Mesh& mesh, double g, double l) {
 
 }  // namespace
 
+void grade_material(Mesh& mesh, double grade) {
+  if (!(grade > 0.0) || !std::isfinite(grade)) throw ConfigError("material grade " + std::to_string(grade) + " is not > 0");
+  if (grade != 1.0 && mesh.has_uv()) grade_material_space(mesh, grade, grade_length(grade));
+}
+
 void grade_garment(Garment& garment, double grade) {
   if (!(grade >= kMinGrade && grade <= kMaxGrade))
     throw ConfigError("garment grade " + std::to_string(grade) + " is outside " + std::to_string(kMinGrade) + " to " +

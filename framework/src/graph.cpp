@@ -305,7 +305,8 @@ void Graph::Impl::set_up_shapes(const GraphOptions& options) {
   for (auto& b : nodes) {
     ShapeMap in;
     for (std::size_t k = 0; k < b.in_ports.size(); ++k) in[b.in_ports[k]] = shape_of(b.sources[k]);
-    NodeContext ctx{b.spec.name, Fnv1a(options.seed * 0x9E3779B97F4A7C15ull + 1).text(b.spec.name).value(), options.assets};
+    NodeContext ctx{b.spec.name, Fnv1a(options.seed * 0x9E3779B97F4A7C15ull + 1).text(b.spec.name).value(), options.assets,
+                    options.garment_sizes};
     ShapeMap out;
     try {
       out = b.node->setup(in, ctx);

@@ -5,6 +5,8 @@
 #include <drape/geometry/adjacency.hpp>
 #include <drape/geometry/push_out.hpp>
 #include <drape/geometry/self_intersection.hpp>
+#include <drape/geometry/strain_limit.hpp>
+#include <drape/garment_grading.hpp>
 #include <drape/gradcheck.hpp>
 
 #include <catch2/catch.hpp>
@@ -202,6 +204,56 @@ TEST_CASE("push_out with edges (the default) lifts the bound garment's edges as 
   }
   CHECK_THROWS_WITH(make_node("push_out", "{epsilon: 0.01}")->setup({{"x", {4, 3}}, {"body", {8, 3}}}, {"post", 1, assets.get()}),
                     Catch::Contains("edges: false"));
+}
+
+TEST_CASE("push_out's strain limit holds each edge to (1 + s) times the rest length of the garment's own grade", "[gcn][tailornet][strain_limit]") {
+  // The test garment far from the cube (the push-out moves nothing) with
+  // one vertex torn half a metre off: the node's answer is limit_strain's
+  // (as the node calls it: slack 0.025) against the rest lengths of the
+  // garment of the input grade: the template's without one; the model's
+  // size of that grade (NodeContext::garment_sizes: here the template's
+  // pattern doubled, a size of grade 2); else the template graded by it.
+  const auto assets = cube_body_assets();
+  const Mesh& garment = assets->garment->mesh;
+  const auto edges = geometry::edge_list(garment.faces);
+  Tensor body(1, 8, 3);
+  body.mat(0) = assets->body.vertices.cast<float>();
+  Eigen::MatrixX3d far = garment.vertices.rowwise() + Eigen::RowVector3d(20.0, 0.0, 0.0);
+  far.row(3) += Eigen::RowVector3d(0.0, 0.0, 0.5);
+  Tensor x(1, garment.num_vertices(), 3);
+  x.mat(0) = far.cast<float>();
+  Mesh doubled = garment;
+  doubled.uv *= 2.0;
+  NodeContext context{"post", 1, assets.get(), [&] { return std::vector<std::pair<double, Mesh>>{{2.0, doubled}}; }};
+  const auto expected = [&](const std::vector<double>& rest) {
+    Eigen::MatrixX3d p = x.mat(0).cast<double>();
+    geometry::limit_strain(p, edges, rest, 0.3, 50, 0.025);
+    return DenseF(p.cast<float>());
+  };
+  const std::vector<double> template_rest = geometry::material_edge_lengths(garment, edges);
+  REQUIRE(geometry::worst_strain(far, edges, template_rest) > 1.0);
+  auto node = make_node("push_out", "{epsilon: 0.01, untangle: false, strain_limit: 0.3}");
+  const auto plain = run_forward(*node, {{"x", x}, {"body", body}}, context);
+  const DenseF limited = dense_of(plain.at("out"), 0);
+  CHECK((limited - expected(template_rest)).cwiseAbs().maxCoeff() < 1e-6f);
+  CHECK(geometry::worst_strain(limited.cast<double>(), edges, template_rest) <= 0.3 + 0.025 + 1e-5);
+  for (const double g : {2.0, 1.3}) {
+    INFO("grade " << g);
+    Tensor grade(1, 1, 1, static_cast<float>(g));
+    auto graded = make_node("push_out", "{epsilon: 0.01, untangle: false, strain_limit: 0.3}");
+    const auto out = run_forward(*graded, {{"x", x}, {"body", body}, {"grade", grade}}, context);
+    Mesh own = garment;
+    if (g == 2.0) own = doubled;
+    else grade_material(own, g);
+    const std::vector<double> rest = geometry::material_edge_lengths(own, edges);
+    CHECK((dense_of(out.at("out"), 0) - expected(rest)).cwiseAbs().maxCoeff() < 1e-6f);
+    CHECK((dense_of(out.at("out"), 0) - limited).cwiseAbs().maxCoeff() > 1e-3f);  // not the template's
+  }
+  // Off (the default): the torn edge stays.
+  auto off = make_node("push_out", "{epsilon: 0.01, untangle: false}");
+  CHECK(dense_of(run_forward(*off, {{"x", x}, {"body", body}}, context).at("out"), 0) == DenseF(x.mat(0)));
+  CHECK_THROWS_WITH(make_node("push_out", "{strain_limit: 0.3}")->setup({{"x", {garment.num_vertices(), 3}}, {"body", {8, 3}}, {"grade", {2, 1}}}, context),
+                    Catch::Contains("input 'grade' must be [1, 1]"));
 }
 
 TEST_CASE("concat puts a one-row flag beside every row, and its gradient checks", "[gcn][sizes]") {

@@ -29,6 +29,12 @@ inline double grade_length(double g) { return 1.0 + kLengthPerGirth * (g - 1.0);
 // Grades `garment` in place by `grade` (ConfigError outside [kMinGrade, kMaxGrade]).
 void grade_garment(Garment& garment, double grade);
 
+// Grades only the material space (UVs) of `mesh` (its vertices at rest, read
+// for the charts' rise) as grade_garment grades a garment's, by any grade
+// > 0 (ConfigError else): a template's sizes beyond 2 (6xlarge's 2.02) rest
+// at lengths that a garment graded there would have. Nothing else changes.
+void grade_material(Mesh& mesh, double grade);
+
 // Places a garment graded by `grade` on the body it is cut for by that body's
 // own growth, instead of the uniform scale about its top: each vertex of the
 // ungraded garment (`ungraded`, around `mean_body`) keeps the point of the

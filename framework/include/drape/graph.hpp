@@ -30,6 +30,8 @@ struct GraphOptions {
   std::map<std::string, int> dims;  // symbolic sizes used in `inputs:` (e.g. body_vertices)
   const Assets* assets = nullptr;
   std::uint64_t seed = 0;           // weight initialisation
+  // Handed to every node's setup (NodeContext::garment_sizes).
+  std::function<std::vector<std::pair<double, Mesh>>()> garment_sizes;
   // For tests: fill every reused gradient buffer with NaN before backward, so
   // that a node which reads a grad_in before writing it (the graph no longer
   // zeroes them) turns the weights' gradients into NaN instead of passing.

@@ -3,13 +3,17 @@
 // learnable weights with gradients, forward and reverse-mode backward.
 // Shaped after Caffe's layers: a node keeps nothing between calls except its
 // weights and the activations it saves in forward for backward.
+#include <drape/mesh.hpp>
 #include <drape/params.hpp>
 #include <drape/tensor.hpp>
 
 #include <cstdint>
+#include <functional>
 #include <map>
 #include <memory>
 #include <string>
+#include <utility>
+#include <vector>
 
 namespace drape {
 
@@ -29,6 +33,12 @@ struct NodeContext {
   std::string name;               // the node's name in the graph
   std::uint64_t seed = 0;         // for weight initialisation; derived from the graph seed and name
   const Assets* assets = nullptr; // may be null when no template is bound
+  // The bound garment's material space in each size of the model's size
+  // chart, as (grade, mesh with UVs), built when called (garment_materials,
+  // assets.hpp): what the cloth of a body's own size rests at (the
+  // push-out's strain limit). Empty (unset) without a chart: an untrained
+  // graph, a model of one size. Call it from setup only.
+  std::function<std::vector<std::pair<double, Mesh>>()> garment_sizes;
 };
 
 class Node {

@@ -7,12 +7,15 @@
 #include <drape/bodies/fit_body.hpp>
 #include <drape/bodies/garment_skinning.hpp>
 #include <drape/garment_dressing.hpp>
+#include <drape/garment_grading.hpp>
 #include <drape/geometry/body_correspondence.hpp>
 #include <drape/geometry/laplacian.hpp>
 #include <drape/registry.hpp>
 #include <drape/spectral/spectral.hpp>
 
+#include <algorithm>
 #include <chrono>
+#include <optional>
 #include <cstdlib>
 #include <sstream>
 
@@ -31,6 +34,34 @@ ParamValues values_of(const std::map<std::string, std::string>& given, const std
 }
 
 }  // namespace
+
+std::vector<std::pair<double, Mesh>> garment_materials(const Registry& registry, const AssetsSpec& spec,
+                                                       const std::vector<std::pair<std::string, double>>& sizes) {
+  const PluginDescriptor& gd = registry.get(spec.garment);
+  const auto size_param = std::find_if(gd.params.begin(), gd.params.end(), [](const ParamSpec& p) { return p.name == "size"; });
+  const auto build = [&](const std::map<std::string, std::string>& params) {
+    return registry.create_garment(spec.garment, Params(gd.params, values_of(params, "garment"), "garment '" + spec.garment + "'"))
+        ->build()
+        .mesh;
+  };
+  std::optional<Mesh> design;
+  std::vector<std::pair<double, Mesh>> out;
+  for (const auto& [name, grade] : sizes) {
+    const bool a_size = size_param != gd.params.end() &&
+                        std::find(size_param->choices.begin(), size_param->choices.end(), name) != size_param->choices.end();
+    if (a_size) {
+      std::map<std::string, std::string> params = spec.garment_params;
+      params["size"] = name;
+      out.emplace_back(grade, build(params));
+      continue;
+    }
+    if (!design) design = build(spec.garment_params);
+    Mesh graded = *design;
+    grade_material(graded, grade);
+    out.emplace_back(grade, std::move(graded));
+  }
+  return out;
+}
 
 std::string AssetsSpec::yaml() const {
   std::ostringstream o;

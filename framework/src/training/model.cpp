@@ -5,6 +5,7 @@
 #include <drape/bodies/posed_body.hpp>
 #include <drape/io/dataset.hpp>
 #include <drape/training/model.hpp>
+#include <drape/training/model_params.hpp>
 #include <drape/scene/garment_size.hpp>
 #include <drape/registry.hpp>
 
@@ -173,17 +174,13 @@ Model Model::load(const Registry& registry, const fs::path& file, const ParamOve
   if (assets == meta.end())
     throw ConfigError(file.string() + ": not a drape model: /meta has no `assets` (a training state or a plain "
                       "checkpoint? drape train writes the model to --out)");
-  GraphSpec spec = parse_graph_text(checkpoint.graph, file.string() + " (graph)");
-  for (const auto& [node, params] : overrides) {
-    auto it = std::find_if(spec.nodes.begin(), spec.nodes.end(), [&](const NodeSpec& n) { return n.name == node; });
-    if (it == spec.nodes.end()) {
-      std::vector<std::string> names;
-      for (const NodeSpec& n : spec.nodes) names.push_back(n.name);
-      throw ConfigError(file.string() + ": the model's graph has no node '" + node + "' to change" + did_you_mean(node, names));
-    }
-    for (const auto& [key, value] : params) it->params[key] = ParamValue{YAML::Load(value), {file.string() + " (override)", 0}};
-  }
-  Model m = build(registry, spec, parse_assets_spec(assets->second, file.string() + ": /meta assets"), 0, cache_dir);
+  // Overrides (node.param=value, node.in.port=ref) go into the graph's text, as drape model set writes them.
+  const GraphSpec spec =
+      parse_graph_text(overrides.empty() ? checkpoint.graph : graph_with_overrides(checkpoint.graph, overrides, file.string()),
+                       file.string() + (overrides.empty() ? " (graph)" : " (graph, with --set)"));
+  const auto chart = meta.find("size_chart");
+  Model m = build(registry, spec, parse_assets_spec(assets->second, file.string() + ": /meta assets"), 0, cache_dir,
+                  chart == meta.end() ? std::string() : chart->second);
   m.file_ = file;
   m.checkpoint_ = std::move(checkpoint);
   const auto& loaded = m.checkpoint_.meta;
@@ -203,7 +200,7 @@ Model Model::untrained(const Registry& registry, const GraphSpec& graph, const A
 }
 
 Model Model::build(const Registry& registry, const GraphSpec& graph, const AssetsSpec& spec, std::uint64_t seed,
-                   const fs::path& cache_dir) {
+                   const fs::path& cache_dir, const std::string& size_chart) {
   Model m;
   m.assets_spec_ = spec;
   m.assets_ = build_assets(registry, spec, cache_dir);
@@ -213,6 +210,13 @@ Model Model::build(const Registry& registry, const GraphSpec& graph, const Asset
   options.dims = graph_dims(*m.assets_, static_cast<int>(m.body_model_->mean_shape().size()));
   options.assets = m.assets_.get();
   options.seed = seed;
+  if (!size_chart.empty())
+    options.garment_sizes = [&registry, &spec, &size_chart] {
+      const SizeTable table = SizeTable::parse(size_chart, "the model's size_chart");
+      std::vector<std::pair<std::string, double>> sizes;
+      for (const auto& [name, girth] : table.girth) sizes.emplace_back(name, table.grade(name));
+      return garment_materials(registry, spec, sizes);
+    };
   m.graph_ = std::make_unique<Graph>(graph, registry, options);
   m.output_ = garment_output(*m.graph_);
   return m;

@@ -12,9 +12,45 @@
 
 #include <yaml-cpp/yaml.h>
 
+#include <algorithm>
+#include <string>
+#include <vector>
+
 namespace fs = std::filesystem;
 
 namespace drape {
+
+std::string graph_with_overrides(const std::string& graph_text, const Model::ParamOverrides& overrides,
+                                 const std::string& where, std::vector<std::string>* changes) {
+  YAML::Node graph = YAML::Load(graph_text);
+  for (const auto& [node, params] : overrides) {
+    YAML::Node spec = graph["nodes"][node];
+    if (!spec) {
+      std::vector<std::string> names;
+      for (const auto& kv : graph["nodes"]) names.push_back(kv.first.as<std::string>());
+      throw ConfigError(where + ": the model's graph has no node '" + node + "' to change" + did_you_mean(node, names));
+    }
+    for (const auto& [key, value] : params) {
+      if (key.rfind("in.", 0) == 0) {
+        const std::string port = key.substr(3);
+        if (port.empty()) throw ConfigError(where + ": " + node + ".in.: name the input port, e.g. " + node + ".in.grade=garment_grade");
+        if (spec["in"] && !spec["in"].IsMap())
+          throw ConfigError(where + ": node '" + node + "' takes its inputs by position, not by port: " + node + "." + key +
+                            " cannot connect one");
+        const std::string before = spec["in"] && spec["in"][port] ? spec["in"][port].as<std::string>() : "(unset)";
+        spec["in"][port] = value;
+        if (changes) changes->push_back(node + "." + key + ": " + before + " -> " + value);
+        continue;
+      }
+      const std::string before = spec["params"] && spec["params"][key] ? YAML::Dump(spec["params"][key]) : "(unset)";
+      spec["params"][key] = YAML::Load(value);
+      if (changes) changes->push_back(node + "." + key + ": " + before + " -> " + YAML::Dump(spec["params"][key]));
+    }
+  }
+  YAML::Emitter text;
+  text << graph;
+  return std::string(text.c_str()) + "\n";
+}
 
 std::vector<std::string> set_model_params(const Registry& registry, const fs::path& model_file,
                                           const Model::ParamOverrides& overrides, const fs::path& out) {
@@ -25,19 +61,8 @@ std::vector<std::string> set_model_params(const Registry& registry, const fs::pa
   // or nothing) and are what is written back.
   Model model = Model::load(registry, model_file, overrides);
   Checkpoint c = model.checkpoint();
-  YAML::Node graph = YAML::Load(c.graph);
   std::vector<std::string> changes;
-  for (const auto& [node, params] : overrides) {
-    YAML::Node spec = graph["nodes"][node];  // present: Model::load found it
-    for (const auto& [key, value] : params) {
-      const std::string before = spec["params"] && spec["params"][key] ? YAML::Dump(spec["params"][key]) : "(unset)";
-      spec["params"][key] = YAML::Load(value);
-      changes.push_back(node + "." + key + ": " + before + " -> " + YAML::Dump(spec["params"][key]));
-    }
-  }
-  YAML::Emitter text;
-  text << graph;
-  c.graph = std::string(text.c_str()) + "\n";
+  c.graph = graph_with_overrides(c.graph, overrides, model_file.string(), &changes);
   const std::optional<ModelDomain> domain = read_domain(model_file);
   write_atomically(out, [&](const fs::path& tmp) {
     save_checkpoint(tmp, model.graph().weights(), c);
@@ -56,7 +81,9 @@ std::vector<PushOutSetting> push_out_settings(const Registry& registry, const st
   for (const NodeSpec& node : parse_graph_text(graph_text, name_for_errors).nodes) {
     if (node.type != "push_out") continue;
     const Params params(registry.get(node.type).params, node.params, node.name);
-    settings.push_back({node.name, params.get_bool("enabled"), params.get_float("epsilon"), params.get_bool("edges")});
+    const bool grade = std::any_of(node.inputs.begin(), node.inputs.end(), [](const auto& in) { return in.first == "grade"; });
+    settings.push_back({node.name, params.get_bool("enabled"), params.get_float("epsilon"), params.get_bool("edges"),
+                        params.get_float("strain_limit"), grade});
   }
   return settings;
 }

@@ -98,4 +98,13 @@ std::shared_ptr<const Assets> build_assets(const Registry& registry, const Asset
                                            const std::filesystem::path& cache_dir = default_cache_dir(),
                                            AssetsTimings* timings = nullptr);
 
+// The material space (the mesh with its UVs, as its template builds it, not
+// dressed) of the spec's garment in each size of `sizes` (names of its
+// template's `size` parameter), with each size's grade: what a garment of
+// that size rests at. A name the template has no size of (grade: auto's
+// steps, g1.05) is the spec's garment's material graded by its grade
+// (grade_material). `sizes` pairs a name with its grade.
+std::vector<std::pair<double, Mesh>> garment_materials(const Registry& registry, const AssetsSpec& spec,
+                                                       const std::vector<std::pair<std::string, double>>& sizes);
+
 }  // namespace drape

@@ -154,8 +154,10 @@ class Model {
  private:
   Model() = default;
   // The assets, body model and graph (fresh weights) shared by load and untrained.
+  // size_chart: the model's (meta size_chart), whose sizes' garments the
+  // nodes may ask for (NodeContext::garment_sizes); empty: none.
   static Model build(const Registry& registry, const GraphSpec& graph, const AssetsSpec& spec, std::uint64_t seed,
-                     const std::filesystem::path& cache_dir);
+                     const std::filesystem::path& cache_dir, const std::string& size_chart = "");
   std::filesystem::path file_;
   Checkpoint checkpoint_;
   AssetsSpec assets_spec_;

@@ -12,6 +12,16 @@
 
 namespace drape {
 
+// A stored graph's YAML text with the overrides applied: node.param=value
+// into the node's parameters, and node.in.port=ref connecting one of its
+// input ports (an optional input the graph left unconnected, e.g.
+// post.in.grade=garment_grade; the node's `in` must then be a map of
+// ports). ConfigError naming `where` for an unknown node (with the close
+// names). *changes (optional) gets one line per change, "node.key: old ->
+// new" (old "(unset)" when the graph did not name it).
+std::string graph_with_overrides(const std::string& graph_text, const Model::ParamOverrides& overrides,
+                                 const std::string& where, std::vector<std::string>* changes = nullptr);
+
 // Writes `out` (atomically; it may be `model_file`) as `model_file` with each
 // override set in its stored graph's node parameters, its weights, metadata,
 // history and domain unchanged. The changed graph is first built and given
@@ -31,6 +41,8 @@ struct PushOutSetting {
   bool enabled = false;
   double epsilon = 0;  // m
   bool edges = false;
+  double strain_limit = 0;      // 0: off
+  bool grade_connected = false; // the input grade connected (the limit then holds each size to its own pattern)
 };
 std::vector<PushOutSetting> push_out_settings(const Registry& registry, const std::string& graph_text,
                                               const std::string& name_for_errors);
