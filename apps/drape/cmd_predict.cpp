@@ -23,7 +23,7 @@ int run(const std::vector<std::string>& args) {
                      (std::string("model file from drape train (default: the shipped pretrained model, models/") +
                       kDefaultModelFile +
                       ", on the human rig; models/tshirt-coarse.h5 is the mannequin's; with a pose, models/" +
-                      posed_model_name + ", the mannequin's)")
+                      posed_model_name + ", the human rig's too; models/tshirt-coarse-posed.h5 is the mannequin's)")
                          .c_str())(
       "out", po::value<std::string>(), "garment mesh to write (.obj, .ply, .gltf, .glb): the template's faces and UVs")(
       "body-out", po::value<std::string>(), "also write the body mesh")(

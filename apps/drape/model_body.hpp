@@ -26,8 +26,10 @@ void add_model_body_options(po::options_description& options, const std::string&
 SampleBatch model_body(const Model& model, const po::variables_map& vm, Eigen::RowVector3d* moved_by = nullptr,
                        std::vector<std::string>* printed = nullptr);
 
-// The shipped model of posed drapes, beside the A-pose one in models/.
-inline constexpr const char* posed_model_name = "tshirt-coarse-posed.h5";
+// The shipped model of posed drapes, beside the A-pose one in models/: the
+// human rig's, as the A-pose default is (since 2026-12-02; the mannequin's
+// is models/tshirt-coarse-posed.h5).
+inline constexpr const char* posed_model_name = "tshirt-coarse-posed-human.h5";
 
 // Whether --pose, --pose-file or --smpl-theta is given.
 bool pose_given(const po::variables_map& vm);

@@ -132,14 +132,14 @@ TEST_CASE("a pose without --model is draped by the shipped model of posed drapes
                               (dir / "b.obj").string(),
                           out) == 0);
   INFO(out);
-  CHECK(out.find("tshirt-coarse-posed.h5 (the shipped pretrained model of posed drapes") != std::string::npos);
+  CHECK(out.find("tshirt-coarse-posed-human.h5 (the shipped pretrained model of posed drapes") != std::string::npos);
   // Without a pose the A-pose model is the default: since the fifteenth
-  // session the human rig's (6,904 body vertices), where the posed model
-  // is still the mannequin's (6,490).
+  // session the human rig's (6,904 body vertices), and since the twentieth
+  // the posed model is the human rig's too.
   REQUIRE(test::run_drape("predict --bmi 30 --out " + (dir / "a.obj").string() + " --body-out " + (dir / "ab.obj").string(), out) == 0);
   CHECK(out.find("tshirt-coarse-human.h5 (the shipped pretrained model;") != std::string::npos);
   CHECK(read_mesh(dir / "ab.obj").num_vertices() == 6904);
-  CHECK(read_mesh(dir / "b.obj").num_vertices() == 6490);
+  CHECK(read_mesh(dir / "b.obj").num_vertices() == 6904);
   // The drape follows the raised arms: every garment vertex near the posed body.
   const Mesh g = read_mesh(dir / "g.obj"), b = read_mesh(dir / "b.obj");
   REQUIRE(g.vertices.allFinite());
