@@ -17,9 +17,11 @@
 namespace drape {
 
 // The garments the samples `indices` of `data` wore (WornGarments, in the
-// order of indices), rebuilt from the dataset's stored scene and each
-// sample's statistics garment_size (its size's flag) and garment_grade (with
-// grade: auto). Empty when every sample wore the template (one size, no
+// order of indices): the stored scene's garment template built in each
+// sample's size (its statistic garment_size, the size's flag), or its
+// pattern graded by the sample's garment_grade (grade: auto), as
+// garment_materials (assets.hpp) builds them; only their material spaces,
+// no simulation. Empty when every sample wore the template (one size, no
 // grade: auto: nothing is built). ConfigError naming the sample when a
 // sample's size is not one of the garment's sizes.
 WornGarments worn_garments(const Registry& registry, const DatasetReader& data, const std::vector<std::size_t>& indices);
