@@ -67,6 +67,22 @@ TEST_CASE("limit_strain shortens a chain's long edge and hands the excess along"
   CHECK(x(3, 0) - x(0, 0) <= 4.5 + 1e-9);
 }
 
+TEST_CASE("limit_strain flags the vertices it moves, and only those", "[strain_limit]") {
+  // Two chains apart: 0-1-2 pulled (the middle edge at 3), 3-4 within its limit.
+  Eigen::MatrixX3d x(5, 3);
+  x << 0, 0, 0, 3, 0, 0, 4, 0, 0, 10, 0, 0, 11, 0, 0;
+  const Eigen::MatrixX3d before = x;
+  std::vector<char> moved(5, 0);
+  limit_strain(x, {{0, 1}, {1, 2}, {3, 4}}, {1, 1, 1}, 0.5, 50, 0.0, &moved);
+  for (int v = 0; v < 5; ++v) {
+    INFO("vertex " << v);
+    CHECK(bool(moved[static_cast<std::size_t>(v)]) == (x.row(v) != before.row(v)));
+  }
+  CHECK(std::vector<char>(moved.begin() + 3, moved.end()) == std::vector<char>{0, 0});
+  std::vector<char> wrong(4, 0);
+  CHECK_THROWS_WITH(limit_strain(x, {{0, 1}}, {1}, 0.5, 50, 0.0, &wrong), Catch::Contains("4 moved flags for 5 vertices"));
+}
+
 TEST_CASE("limit_strain leaves a mesh within the limit as it is", "[strain_limit]") {
   Eigen::MatrixX3d x = limit_sheet_vertices(6);
   x.col(2) = 0.3 * x.col(0).array().sin();  // a wave: edges up to 1.04 long

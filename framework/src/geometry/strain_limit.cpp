@@ -39,12 +39,15 @@ double worst_strain(const Eigen::MatrixX3d& x, const std::vector<std::array<int,
 }
 
 StrainLimitReport limit_strain(Eigen::MatrixX3d& x, const std::vector<std::array<int, 2>>& edges,
-                               const std::vector<double>& rest, double limit, int max_sweeps, double slack) {
+                               const std::vector<double>& rest, double limit, int max_sweeps, double slack,
+                               std::vector<char>* moved) {
   if (rest.size() != edges.size())
     throw Error("limit_strain: " + std::to_string(rest.size()) + " rest lengths for " + std::to_string(edges.size()) + " edges");
   if (!(limit >= 0.0) || max_sweeps < 1 || !(slack >= 0.0))
     throw Error("limit_strain: the limit and the slack must be >= 0 and the sweeps >= 1");
   const auto n = static_cast<int>(x.rows());
+  if (moved && moved->size() != static_cast<std::size_t>(n))
+    throw Error("limit_strain: " + std::to_string(moved->size()) + " moved flags for " + std::to_string(n) + " vertices");
   for (std::size_t e = 0; e < edges.size(); ++e) {
     if (!(rest[e] > 0.0)) throw Error("limit_strain: edge " + std::to_string(e) + " has rest length " + std::to_string(rest[e]));
     for (const int v : edges[e])
@@ -75,6 +78,7 @@ StrainLimitReport limit_strain(Eigen::MatrixX3d& x, const std::vector<std::array
       const Eigen::RowVector3d half = 0.5 * (length - longest) / length * d;
       x.row(a) += half;
       x.row(b) -= half;
+      if (moved) (*moved)[static_cast<std::size_t>(a)] = (*moved)[static_cast<std::size_t>(b)] = 1;
       ++report.shortened;
       // Every edge at either end may now be too long: the next sweep looks.
       for (const int v : {a, b})

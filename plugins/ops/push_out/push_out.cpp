@@ -142,10 +142,9 @@ class PushOut final : public Node {
       // limited again, and what that moved pushed out again (kLimitRounds).
       for (int round = 0; rest && round < kLimitRounds; ++round) {
         if (geometry::worst_strain(points, edges_, *rest) <= strain_limit_ + kLimitSlack) break;
-        const Eigen::MatrixX3d before = points;
-        if (geometry::limit_strain(points, edges_, *rest, strain_limit_, kLimitSweeps, kLimitSlack / 2).shortened == 0) break;
         std::vector<char> moved(static_cast<std::size_t>(points.rows()), 0);
-        for (Eigen::Index v = 0; v < points.rows(); ++v) moved[static_cast<std::size_t>(v)] = points.row(v) != before.row(v);
+        if (geometry::limit_strain(points, edges_, *rest, strain_limit_, kLimitSweeps, kLimitSlack / 2, &moved).shortened == 0)
+          break;
         push_out_moved(points, moved);
       }
       if (untangle_) {

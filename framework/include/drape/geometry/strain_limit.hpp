@@ -31,10 +31,12 @@ struct StrainLimitReport {
 // slack) times their rest are shortened (still to 1 + limit): the chain of
 // shortenings a long edge starts along its neighbours stops sooner (Provot's
 // sweeps converge slowly: 29-47 sweeps of 276-460 shortenings on a heavy
-// posed body without it). Error on a size mismatch, a rest length <= 0 or a
-// negative slack.
+// posed body without it). moved (optional, one flag per vertex): set for
+// each vertex it moves, left alone for the rest. Error on a size mismatch, a
+// rest length <= 0 or a negative slack.
 StrainLimitReport limit_strain(Eigen::MatrixX3d& x, const std::vector<std::array<int, 2>>& edges,
-                               const std::vector<double>& rest, double limit, int max_sweeps = 50, double slack = 0.0);
+                               const std::vector<double>& rest, double limit, int max_sweeps = 50, double slack = 0.0,
+                               std::vector<char>* moved = nullptr);
 
 // The largest l / rest - 1 over the edges (-1 with none).
 double worst_strain(const Eigen::MatrixX3d& x, const std::vector<std::array<int, 2>>& edges, const std::vector<double>& rest);
