@@ -29,18 +29,6 @@ std::string tiny_scene(const char* size) {
          "}}\neffects: [gravity, stretching, bending, collision]\nsolver: {morph_steps: 2, settle_steps: 2}\n";
 }
 
-// The most strained edge of a drape x against the pattern of the garment it
-// wore (its UVs), worked out face by face: 100 (l / l_rest - 1).
-double strain_by_hand(const Mesh& wore, const Eigen::MatrixX3d& x) {
-  double worst = -1.0;
-  for (Eigen::Index f = 0; f < wore.faces.rows(); ++f)
-    for (int j = 0; j < 3; ++j) {
-      const double rest = (wore.uv.row(wore.uv_faces(f, j)) - wore.uv.row(wore.uv_faces(f, (j + 1) % 3))).norm();
-      worst = std::max(worst, (x.row(wore.faces(f, j)) - x.row(wore.faces(f, (j + 1) % 3))).norm() / rest - 1.0);
-    }
-  return 100.0 * worst;
-}
-
 // drape eval's line "its most strained edge (strain_max) is M % on average, W % at worst": {M, W}.
 std::pair<double, double> printed_ground_truth_strain(const std::string& out) {
   const std::string key = "most strained edge (strain_max) is ";
@@ -310,9 +298,9 @@ TEST_CASE("size auto: a model takes the grade and predict chooses the body's siz
     for (std::size_t i = 0; i < both.size(); ++i) {
       const Eigen::MatrixX3d y = both.sample(i).garment_vertices.cast<double>();
       const std::string size = i < 8 ? chart.choose(both.sample(i).body_vertices.cast<double>()).size : "regular";
-      const double s = strain_by_hand(chart.simulation(size).garment().mesh, y);
+      const double s = test::strain_by_hand(chart.simulation(size).garment().mesh, y);
       sum += s / 12, worst = std::max(worst, s);
-      sum_template += strain_by_hand(chart.design().garment().mesh, y) / 12;
+      sum_template += test::strain_by_hand(chart.design().garment().mesh, y) / 12;
     }
     REQUIRE(std::abs(sum_template - sum) > 1.0);  // the sizes tell
     const auto [mean, most] = printed_ground_truth_strain(out);
@@ -462,9 +450,9 @@ TEST_CASE("grade auto: generate grades each body and a model predicts in the bod
   double sum = 0, worst = -100, sum_design = 0;
   for (std::size_t i = 0; i < all.size(); ++i) {
     const Eigen::MatrixX3d y = graded.sample(i).garment_vertices.cast<double>();
-    const double s = strain_by_hand(sims.grades()->simulation(grades[i]).garment().mesh, y);
+    const double s = test::strain_by_hand(sims.grades()->simulation(grades[i]).garment().mesh, y);
     sum += s / double(all.size()), worst = std::max(worst, s);
-    sum_design += strain_by_hand(sims.design().garment().mesh, y) / double(all.size());
+    sum_design += test::strain_by_hand(sims.design().garment().mesh, y) / double(all.size());
   }
   REQUIRE(std::abs(sum_design - sum) > 1.0);
   const auto [mean, most] = printed_ground_truth_strain(out);

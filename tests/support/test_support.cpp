@@ -1,5 +1,6 @@
 #include "test_support.hpp"
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <vector>
@@ -121,6 +122,16 @@ Mesh uv_sphere(double radius, int rings, int segments) {
   m.faces.resize(static_cast<Eigen::Index>(f.size()), 3);
   for (std::size_t i = 0; i < f.size(); ++i) m.faces.row(static_cast<Eigen::Index>(i)) = f[i].transpose();
   return m;
+}
+
+double strain_by_hand(const Mesh& pattern, const Eigen::MatrixX3d& x) {
+  double worst = -1.0;
+  for (Eigen::Index f = 0; f < pattern.faces.rows(); ++f)
+    for (int j = 0; j < 3; ++j) {
+      const double rest = (pattern.uv.row(pattern.uv_faces(f, j)) - pattern.uv.row(pattern.uv_faces(f, (j + 1) % 3))).norm();
+      worst = std::max(worst, (x.row(pattern.faces(f, j)) - x.row(pattern.faces(f, (j + 1) % 3))).norm() / rest - 1.0);
+    }
+  return 100.0 * worst;
 }
 
 }  // namespace drape::test

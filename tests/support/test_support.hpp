@@ -57,6 +57,12 @@ const char* tiny_simulation_scene();
 // counter-clockwise seen from outside.
 Mesh uv_sphere(double radius, int rings, int segments);
 
+// The most strained edge of x (each face's three edges) against the lengths
+// of the same edges in the UVs of `pattern` (a garment of x's topology: the
+// template, or the size a body wore), 100 (l / rest - 1): strain_max's
+// definition written out here, apart from the metric.
+double strain_by_hand(const Mesh& pattern, const Eigen::MatrixX3d& x);
+
 // Runs a shell command, returns its exit code; stdout+stderr go to `output`.
 int run(const std::string& command, std::string& output);
 // run() on the drape program with these arguments.

@@ -221,16 +221,7 @@ TEST_CASE("strain_max is the most strained edge against the material space", "[m
   // Computed here from the template's own UVs: each face's three edges, the
   // rest length that of the face's UV corners.
   Fixture f;
-  const Mesh& mesh = f.assets->garment->mesh;
-  const auto by_hand = [&](const Eigen::MatrixX3d& x) {
-    double worst = -1.0;
-    for (Eigen::Index k = 0; k < mesh.faces.rows(); ++k)
-      for (int j = 0; j < 3; ++j) {
-        const double rest = (mesh.uv.row(mesh.uv_faces(k, j)) - mesh.uv.row(mesh.uv_faces(k, (j + 1) % 3))).norm();
-        worst = std::max(worst, (x.row(mesh.faces(k, j)) - x.row(mesh.faces(k, (j + 1) % 3))).norm() / rest - 1.0);
-      }
-    return 100.0 * worst;
-  };
+  const auto by_hand = [&](const Eigen::MatrixX3d& x) { return test::strain_by_hand(f.assets->garment->mesh, x); };
   const double placed = by_hand(f.garment);
   CHECK(f.metrics.evaluate(f.garment, f.garment, f.body).strain_max == Approx(placed));
   // Scaled by 1.5 every edge is 1.5 times as long: 1.5 (1 + s) - 1 = 0.5 + 1.5 s.
