@@ -69,7 +69,7 @@ NodeTimes time_node(const Registry& reg, const std::string& name, const std::map
   std::map<std::string, Tensor> outputs, ones;
   TensorOut out;
   TensorIn out_in, gout;
-  for (const auto& [port, s] : node->setup(shapes, {name, 1, &assets})) {
+  for (const auto& [port, s] : node->setup(shapes, {name, 1, &assets, {}})) {
     outputs[port] = Tensor(batch, s);
     ones[port] = Tensor(batch, s, 1.0f);
   }
