@@ -49,6 +49,13 @@ constexpr double kQuarterBand = 0.6;
 // crossed faces' normals sum to more than kFinAgreement (they do not cancel).
 constexpr int kFinSteps = 8;
 constexpr double kFinAgreement = 0.5;
+// Searches are shared among threads only from this many on. A coarse
+// shirt's thousand searches take about half a millisecond: on an idle
+// 2-core machine `drape predict --pose` took the same 28 ms with one thread
+// or two, and with the other core busy (a generation beside it) 57-63 ms
+// with one against 164-174 ms with two, the loops' barriers waiting for a
+// thread the busy core had not yet run.
+constexpr std::ptrdiff_t kParallelSearches = 8192;
 
 // One push-out in progress: the garment's vertices, the closest body point
 // of each (current after every move), and which vertices moved.
@@ -67,7 +74,7 @@ class PushOutRun {
       return;
     }
     const auto n = static_cast<std::ptrdiff_t>(near_.size());
-#pragma omp parallel for schedule(static, 64)
+#pragma omp parallel for schedule(static, 64) if (n >= kParallelSearches)
     for (std::ptrdiff_t i = 0; i < n; ++i) near_[static_cast<std::size_t>(i)] = exact(static_cast<std::size_t>(i));
   }
 
@@ -346,7 +353,7 @@ class PushOutRun {
     for (double& r : reach_) r = r * (1 + 1e-6) + 1e-9;
 
     const auto count = static_cast<std::ptrdiff_t>(n);
-#pragma omp parallel for schedule(static, 64)
+#pragma omp parallel for schedule(static, 64) if (count >= kParallelSearches)
     for (std::ptrdiff_t i = 0; i < count; ++i) {
       const auto k = static_cast<std::size_t>(i);
       near_[k] = body_.locate_near(x_.row(i).transpose(), hint(k), reach_[k]);
@@ -382,7 +389,7 @@ class PushOutRun {
   // from the face it was nearest before: the same answer, a shorter search.
   void search_again(const std::vector<Eigen::Index>& changed) {
     const auto count = static_cast<std::ptrdiff_t>(changed.size());
-#pragma omp parallel for schedule(static, 16)
+#pragma omp parallel for schedule(static, 16) if (count >= kParallelSearches)
     for (std::ptrdiff_t k = 0; k < count; ++k) {
       const auto i = static_cast<std::size_t>(changed[static_cast<std::size_t>(k)]);
       near_[i] = body_.locate_near(x_.row(static_cast<Eigen::Index>(i)).transpose(), far_[i] ? hint(i) : near_[i].face);
