@@ -6,10 +6,6 @@
 #include <drape/training/data_parallel.hpp>
 #include <drape/training/model.hpp>
 #include <drape/services/model_body.hpp>
-
-#include <optional>
-#include <string>
-#include <vector>
 #include <drape/nn/basis_products.hpp>
 #include <drape/nn/dot_rows.hpp>
 #include <drape/registry.hpp>
@@ -19,6 +15,9 @@
 #include <map>
 #include <chrono>
 #include <cstdio>
+#include <optional>
+#include <string>
+#include <vector>
 
 namespace drape::cli {
 namespace DRAPE_UNITY_ID {  // the anonymous namespace, or a unique one in a unity build (command.hpp)
@@ -72,8 +71,8 @@ int run(const std::vector<std::string>& args) {
     BodyRequest request;
     request.bmi = body_bmi;
     SampleBatch batch = body_batch(model.body_model(), request, batch_size);
-    // What predict feeds besides the body: the design size, and for a model of
-    // posed drapes the body posed (timed apart: it is the input's making, not the network).
+    // What predict feeds besides the body: the garment's size (above), and for a
+    // model of posed drapes the body posed (timed apart: it is the input's making, not the network).
     if (model.needs_input("garment_grade") && !model_size_chart(model))  // (a graph's fresh weights: no chart)
       batch.garment_grade = Tensor(batch_size, 1, 1, 1.0f);
     else if (model.needs_input("garment_grade"))
