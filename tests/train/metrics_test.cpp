@@ -177,7 +177,7 @@ TEST_CASE("L_e, L_l, L_s and L_d are the values of the loss plugins (reduction: 
   Tensor pred(1, static_cast<int>(x.rows()), 3), target(1, static_cast<int>(x.rows()), 3);
   pred.mat(0) = x.cast<float>();
   target.mat(0) = f.garment.cast<float>();
-  const NodeContext context{"loss", 1, f.assets.get()};
+  const NodeContext context{"loss", 1, f.assets.get(), {}};
   auto loss = [&](const std::string& type) {
     const PluginDescriptor& d = test::plugins().get(type);
     auto node = test::plugins().create_node(type, Params(d.params, {}, type));

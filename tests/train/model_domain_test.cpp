@@ -186,6 +186,27 @@ TEST_CASE("model domain: ranges of a dataset's training bodies, and the bodies o
   }
 }
 
+TEST_CASE("model domain: a body trained on twice (a drape and its mirror image) is not its own nearest neighbour",
+          "[train][domain]") {
+  // The same 8 training bodies, and the same again in a second file: what a
+  // posed dataset with its mirrored drapes holds (scripts/mirror_dataset.py:
+  // a mirrored drape's body is its original's, at rest).
+  test::TempDir dir;
+  fs::create_directories(dir / "once");
+  fs::create_directories(dir / "twice");
+  test::write_tiny_dataset(dir / "once" / "a.h5", 12, 8, 2);
+  test::write_tiny_dataset(dir / "twice" / "a.h5", 12, 8, 2);
+  test::write_tiny_dataset(dir / "twice" / "b.h5", 12, 8, 2);
+  const Eigen::MatrixX3i& faces = test::tiny_assets()->body.faces;
+  const DatasetReader once((dir / "once" / "a.h5").string()), twice((dir / "twice" / "*.h5").string());
+  const int P = once.layout().body_params;
+  const ModelDomain d = domain_of_dataset(once, "parametric", param_names(P), faces);
+  const ModelDomain twins = domain_of_dataset(twice, "parametric", param_names(P), faces);
+  REQUIRE(twins.samples == 2 * d.samples);
+  REQUIRE(d.neighbour_limit > 0.011);  // above the 1 cm floor, so twins counted as neighbours would show
+  CHECK(twins.neighbour_limit == Approx(d.neighbour_limit).epsilon(1e-12));
+}
+
 TEST_CASE("drape model domain records it: predict warns outside it and --strict refuses", "[train][domain][cli]") {
   test::TempDir dir;
   const fs::path data = dir / "data.h5", model = dir / "model.h5";

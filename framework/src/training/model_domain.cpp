@@ -122,12 +122,15 @@ ModelDomain domain_of_dataset(const DatasetReader& data, const std::string& body
   for (const Eigen::Vector3d& p : placements) d.placement += p / static_cast<double>(placements.size());
   d.placement_spread.setZero();
   for (const Eigen::Vector3d& p : placements) d.placement_spread = d.placement_spread.cwiseMax((p - d.placement).cwiseAbs());
-  // The largest gap from a training body to its nearest other one.
+  // The largest gap from a training body to its nearest other one. A body
+  // trained on twice (a posed drape and its mirror image share the body at
+  // rest: scripts/mirror_dataset.py) is not its own neighbour: at distance 0
+  // it would make every gap 0 and the limit the 1 cm floor below.
   double widest = 0;
   for (Eigen::Index i = 0; i < d.descriptors.rows(); ++i) {
     double nearest = std::numeric_limits<double>::infinity();
     for (Eigen::Index j = 0; j < d.descriptors.rows(); ++j)
-      if (j != i) nearest = std::min(nearest, rms_distance(d.descriptors.row(i), d.descriptors.row(j)));
+      if (const double r = rms_distance(d.descriptors.row(i), d.descriptors.row(j)); r > 0) nearest = std::min(nearest, r);
     if (std::isfinite(nearest)) widest = std::max(widest, nearest);
   }
   // One training body: allow what a fitted shape differs by (1 cm).
