@@ -16,12 +16,14 @@
 # graphs/human/drape_grade_v2v1000_post_resampled.yaml), INIT (default
 # models/tshirt-coarse.h5), THREADS (default 1), EPOCHS (the cosine
 # schedule, default 60), LR (default 1e-3), PATIENCE (default 30), SHARD_DIR
-# (the folder of slim shards, default datasets/bodyspace2000-human).
+# (the folder of slim shards, default datasets/bodyspace2000-human), MIRROR
+# (1: the training drapes' mirror images trained on too, scripts/mirror_dataset.py;
+# posed shards only; default 0).
 #
 # The posed model of the human rig (issues 54 and 56) is the same recipe on
 # the posed shards, from the mannequin's posed model:
 #   SHARD_DIR=datasets/posespace2000-human GRAPH=graphs/human/drape_posed_v2v1000_post_resampled.yaml \
-#     INIT=models/tshirt-coarse-posed.h5 bash scripts/train_human_model.sh work-posed-human
+#     INIT=models/tshirt-coarse-posed.h5 LR=3e-4 MIRROR=1 bash scripts/train_human_model.sh work-posed-human
 set -euo pipefail
 cd "$(dirname "${BASH_SOURCE[0]}")/.."
 DRAPE=${BUILD_DIR:-build}/bin/drape
@@ -32,9 +34,16 @@ DATA="$WORK/human.h5"
 # Expanded again when shards were added since; a training interrupted before
 # then does not resume on the grown set (drape train --resume compares the
 # training and validation counts): use another WORK_DIR.
-if [[ ! -f "$DATA" || $(cat "$WORK/shards" 2>/dev/null) != "${#SHARDS[@]}" ]]; then
-  "$DRAPE" dataset expand --force --out "$DATA" "${SHARDS[@]}"
-  echo "${#SHARDS[@]}" >"$WORK/shards"
+if [[ ! -f "$DATA" || $(cat "$WORK/shards" 2>/dev/null) != "${#SHARDS[@]}${MIRROR:+ mirror $MIRROR}" ]]; then
+  PARTS=("${SHARDS[@]}")
+  if [[ "${MIRROR:-0}" == 1 ]]; then
+    # Each training drape's mirror image, in the training split (never a test drape's twin).
+    PYTHONPATH="${BUILD_DIR:-build}/python${PYTHONPATH:+:$PYTHONPATH}" /usr/bin/python3 scripts/mirror_dataset.py "${SHARDS[@]}" \
+      --split train --out "$WORK/mirrored.h5"
+    PARTS+=("$WORK/mirrored.h5")
+  fi
+  "$DRAPE" dataset expand --force --out "$DATA" "${PARTS[@]}"
+  echo "${#SHARDS[@]}${MIRROR:+ mirror $MIRROR}" >"$WORK/shards"
 fi
 
 "$DRAPE" train "${GRAPH:-graphs/human/drape_grade_v2v1000_post_resampled.yaml}" --data "$DATA" --out "$WORK/model.h5" \
