@@ -22,10 +22,11 @@ The mirror of each part:
   - the garment: the T-shirt's mesh is not symmetric (its panels are meshed
     one by one), so each vertex of the mirrored drape is the reflection of
     the drape's point at the vertex's mirror image on the template of the
-    sample's size (the closest point of the reflected vertex on that
-    template's surface, as a face and barycentric weights; the template's
-    own asymmetry, 0.6 mm at the median, 2.8 mm at the 99th percentile for
-    the regular size, is what this adds to the label).
+    sample's size, dressed on the mean body of the dataset's scene (the
+    closest point of the reflected vertex on that template's surface, as a
+    face and barycentric weights; the template's own asymmetry, 0.6 mm at
+    the median and 3.1 mm at the 99th percentile for the regular size on
+    the human rig, is what this adds to the label).
 
 Written without the witness of its bodies (docs/formats.md): the witness
 records the bodies a drape was simulated on, and these were not simulated.
@@ -36,6 +37,7 @@ import sys
 
 import h5py
 import numpy as np
+import yaml
 
 REFLECT = np.array([-1.0, 1.0, 1.0])
 NEGATED = {"spine_bend", "spine_twist", "neck_bend", "neck_twist"}
@@ -83,7 +85,6 @@ def main():
     ap.add_argument("--out", required=True)
     ap.add_argument("--split", default="train", choices=list(SPLITS) + ["all"],
                     help="the samples mirrored (default train: never a test or validation drape's twin)")
-    ap.add_argument("--resolution", default="coarse", help="the garment template's resolution (drape.assets)")
     args = ap.parse_args()
     import drape
 
@@ -94,6 +95,8 @@ def main():
         with h5py.File(path, "r") as f:
             if first is None:
                 first = {k: f.attrs[k] for k in f.attrs}
+                scene = yaml.safe_load(first["scene"].decode() if isinstance(first["scene"], bytes) else first["scene"])
+                body, garment = scene.get("body") or {}, scene.get("garment") or {}
                 faces = f["garments/faces"][()]
                 omitted = f.attrs.get("body_vertices_omitted")
                 body_vertices = int(omitted) if omitted is not None else f["bodies/vertices"].shape[1]
@@ -112,8 +115,12 @@ def main():
             out = np.empty_like(g)
             for s in np.unique(sizes):
                 if s not in maps:
-                    assets = drape.assets(resolution=args.resolution, size=SIZE_NAMES[s])
-                    a = assets._a if hasattr(assets, "_a") else assets
+                    # The template of that size dressed on the scene's mean body (its garment and body
+                    # model's parameters); the eigenbasis is not needed.
+                    a = drape.assets(garment=garment.get("template", "tshirt"),
+                                     garment_params={**garment.get("params", {}), "size": SIZE_NAMES[s]},
+                                     body_model=body.get("model", "parametric"), body_params=body.get("params", {}),
+                                     eigen_k=1, levels=1)
                     tmpl = np.asarray(a.garment_vertices, float)
                     if tmpl.shape[0] != g.shape[1]:
                         sys.exit(f"mirror_dataset: the {SIZE_NAMES[s]} template has {tmpl.shape[0]} vertices, "
