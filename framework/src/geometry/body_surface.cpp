@@ -164,7 +164,7 @@ SurfacePoint BodySurface::locate_excluding(const Eigen::Vector3d& p, const std::
 std::vector<SurfacePoint> BodySurface::locate_all(const Eigen::MatrixX3d& points, double max_distance) const {
   std::vector<SurfacePoint> out(points.rows());
   const Eigen::Index n = points.rows();
-#pragma omp parallel for schedule(static, 64)
+#pragma omp parallel for schedule(static, 64) if (n >= kParallelSearches)
   for (Eigen::Index i = 0; i < n; ++i) out[i] = locate(points.row(i).transpose(), max_distance);
   return out;
 }
@@ -172,7 +172,7 @@ std::vector<SurfacePoint> BodySurface::locate_all(const Eigen::MatrixX3d& points
 Eigen::VectorXd BodySurface::signed_distances(const Eigen::MatrixX3d& points) const {
   Eigen::VectorXd d(points.rows());
   const Eigen::Index n = points.rows();
-#pragma omp parallel for schedule(static, 64)
+#pragma omp parallel for schedule(static, 64) if (n >= kParallelSearches)
   for (Eigen::Index i = 0; i < n; ++i) d[i] = locate(points.row(i).transpose()).signed_distance;
   return d;
 }

@@ -49,13 +49,6 @@ constexpr double kQuarterBand = 0.6;
 // crossed faces' normals sum to more than kFinAgreement (they do not cancel).
 constexpr int kFinSteps = 8;
 constexpr double kFinAgreement = 0.5;
-// Searches are shared among threads only from this many on. A coarse
-// shirt's thousand searches take about half a millisecond: on an idle
-// 2-core machine `drape predict --pose` took the same 28 ms with one thread
-// or two, and with the other core busy (a generation beside it) 57-63 ms
-// with one against 164-174 ms with two, the loops' barriers waiting for a
-// thread the busy core had not yet run.
-constexpr std::ptrdiff_t kParallelSearches = 8192;
 
 // One push-out in progress: the garment's vertices, the closest body point
 // of each (current after every move), and which vertices moved.
