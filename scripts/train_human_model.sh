@@ -34,7 +34,9 @@ DATA="$WORK/human.h5"
 # Expanded again when shards were added since; a training interrupted before
 # then does not resume on the grown set (drape train --resume compares the
 # training and validation counts): use another WORK_DIR.
-if [[ ! -f "$DATA" || $(cat "$WORK/shards" 2>/dev/null) != "${#SHARDS[@]}${MIRROR:+ mirror $MIRROR}" ]]; then
+# What the expanded set was made of: the shard count and the mirror flag.
+MADE_OF="${#SHARDS[@]}${MIRROR:+ mirror $MIRROR}"
+if [[ ! -f "$DATA" || $(cat "$WORK/shards" 2>/dev/null) != "$MADE_OF" ]]; then
   PARTS=("${SHARDS[@]}")
   if [[ "${MIRROR:-0}" == 1 ]]; then
     # Each training drape's mirror image, in the training split (never a test drape's twin).
@@ -43,7 +45,7 @@ if [[ ! -f "$DATA" || $(cat "$WORK/shards" 2>/dev/null) != "${#SHARDS[@]}${MIRRO
     PARTS+=("$WORK/mirrored.h5")
   fi
   "$DRAPE" dataset expand --force --out "$DATA" "${PARTS[@]}"
-  echo "${#SHARDS[@]}${MIRROR:+ mirror $MIRROR}" >"$WORK/shards"
+  echo "$MADE_OF" >"$WORK/shards"
 fi
 
 "$DRAPE" train "${GRAPH:-graphs/human/drape_grade_v2v1000_post_resampled.yaml}" --data "$DATA" --out "$WORK/model.h5" \

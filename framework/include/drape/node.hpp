@@ -38,7 +38,7 @@ struct NodeContext {
   // assets.hpp): what the cloth of a body's own size rests at (the
   // push-out's strain limit). Empty (unset) without a chart: an untrained
   // graph, a model of one size. Call it from setup only.
-  std::function<std::vector<std::pair<double, Mesh>>()> garment_sizes;
+  std::function<std::vector<std::pair<double, Mesh>>()> garment_sizes = {};
 };
 
 class Node {
