@@ -305,7 +305,7 @@ TEST_CASE("bad joint angles are refused in one line", "[bodies][pose]") {
   CHECK(message("elbow_flexion=abc") == "--pose: elbow_flexion = 'abc' is not a number of degrees");
   CHECK(message("elbow_flexion=10,left_elbow_flexion=20").find("left_elbow_flexion is set twice") != std::string::npos);
   CHECK(message("knee").find("expected name=degrees") != std::string::npos);
-  for (const std::string& text : {"sholder_abduction=40", "elbow_flexion=nan", "elbow_flexion=170"})
+  for (const char* text : {"sholder_abduction=40", "elbow_flexion=nan", "elbow_flexion=170"})
     CHECK(message(text).find('\n') == std::string::npos);
   // Unsided names set both sides; sided ones one.
   const Pose both = parse_pose("shoulder_abduction=60, right_knee_flexion=10", angles, "--pose");

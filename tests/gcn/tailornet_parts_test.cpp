@@ -7,6 +7,7 @@
 #include <drape/geometry/self_intersection.hpp>
 #include <drape/geometry/strain_limit.hpp>
 #include <drape/garment_grading.hpp>
+#include <drape/garment_sizes.hpp>
 #include <drape/gradcheck.hpp>
 
 #include <catch2/catch.hpp>
@@ -224,7 +225,9 @@ TEST_CASE("push_out's strain limit holds each edge to (1 + s) times the rest len
   x.mat(0) = far.cast<float>();
   Mesh doubled = garment;
   doubled.uv *= 2.0;
-  NodeContext context{"post", 1, assets.get(), [&] { return std::vector<std::pair<double, Mesh>>{{2.0, doubled}}; }};
+  // The model's sizes are built when a body first wears one: counted here.
+  const auto sizes = std::make_shared<const GarmentSizes>(std::vector<double>{2.0}, [&](std::size_t) { return doubled; });
+  NodeContext context{"post", 1, assets.get(), sizes};
   const auto expected = [&](const std::vector<double>& rest) {
     Eigen::MatrixX3d p = x.mat(0).cast<double>();
     geometry::limit_strain(p, edges, rest, 0.3, 50, 0.025);
@@ -237,6 +240,7 @@ TEST_CASE("push_out's strain limit holds each edge to (1 + s) times the rest len
   const DenseF limited = dense_of(plain.at("out"), 0);
   CHECK((limited - expected(template_rest)).cwiseAbs().maxCoeff() < 1e-6f);
   CHECK(geometry::worst_strain(limited.cast<double>(), edges, template_rest) <= 0.3 + 0.025 + 1e-5);
+  CHECK(sizes->built() == 0);  // no body wore size 2 yet
   for (const double g : {2.0, 1.3}) {
     INFO("grade " << g);
     Tensor grade(1, 1, 1, static_cast<float>(g));
@@ -248,7 +252,9 @@ TEST_CASE("push_out's strain limit holds each edge to (1 + s) times the rest len
     const std::vector<double> rest = geometry::material_edge_lengths(own, edges);
     CHECK((dense_of(out.at("out"), 0) - expected(rest)).cwiseAbs().maxCoeff() < 1e-6f);
     CHECK((dense_of(out.at("out"), 0) - limited).cwiseAbs().maxCoeff() > 1e-3f);  // not the template's
+    CHECK(sizes->built() == 1);  // size 2, once; grade 1.3 is not a size of the model
   }
+  CHECK_THROWS_AS(sizes->material(1), std::out_of_range);
   // Off (the default): the torn edge stays.
   auto off = make_node("push_out", "{epsilon: 0.01, untangle: false}");
   CHECK(dense_of(run_forward(*off, {{"x", x}, {"body", body}}, context).at("out"), 0) == DenseF(x.mat(0)));

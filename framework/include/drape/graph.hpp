@@ -31,7 +31,7 @@ struct GraphOptions {
   const Assets* assets = nullptr;
   std::uint64_t seed = 0;           // weight initialisation
   // Handed to every node's setup (NodeContext::garment_sizes).
-  std::function<std::vector<std::pair<double, Mesh>>()> garment_sizes = {};
+  std::shared_ptr<const GarmentSizes> garment_sizes = {};
   // For tests: fill every reused gradient buffer with NaN before backward, so
   // that a node which reads a grad_in before writing it (the graph no longer
   // zeroes them) turns the weights' gradients into NaN instead of passing.

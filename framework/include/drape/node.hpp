@@ -3,20 +3,18 @@
 // learnable weights with gradients, forward and reverse-mode backward.
 // Shaped after Caffe's layers: a node keeps nothing between calls except its
 // weights and the activations it saves in forward for backward.
-#include <drape/mesh.hpp>
 #include <drape/params.hpp>
 #include <drape/tensor.hpp>
 
 #include <cstdint>
-#include <functional>
 #include <map>
 #include <memory>
 #include <string>
-#include <utility>
 #include <vector>
 
 namespace drape {
 
+class GarmentSizes;  // a model's garment in each size, built lazily (garment_sizes.hpp)
 class Assets;  // precomputed template data (garment, hierarchy, eigenbasis), see assets.hpp
 
 using ShapeMap = std::map<std::string, Shape>;
@@ -34,11 +32,11 @@ struct NodeContext {
   std::uint64_t seed = 0;         // for weight initialisation; derived from the graph seed and name
   const Assets* assets = nullptr; // may be null when no template is bound
   // The bound garment's material space in each size of the model's size
-  // chart, as (grade, mesh with UVs), built when called (garment_materials,
-  // assets.hpp): what the cloth of a body's own size rests at (the
-  // push-out's strain limit). Empty (unset) without a chart: an untrained
-  // graph, a model of one size. Call it from setup only.
-  std::function<std::vector<std::pair<double, Mesh>>()> garment_sizes = {};
+  // chart, each built at its first use (garment_sizes.hpp): what the cloth
+  // of a body's own size rests at (the push-out's strain limit). Null
+  // without a chart: an untrained graph, a model of one size. A node may
+  // keep it and ask for a size in forward.
+  std::shared_ptr<const GarmentSizes> garment_sizes = {};
 };
 
 class Node {

@@ -7,6 +7,7 @@
 #include <drape/training/model.hpp>
 #include <drape/training/model_params.hpp>
 #include <drape/scene/garment_size.hpp>
+#include <drape/garment_sizes.hpp>
 #include <drape/registry.hpp>
 
 #include <yaml-cpp/yaml.h>
@@ -210,13 +211,19 @@ Model Model::build(const Registry& registry, const GraphSpec& graph, const Asset
   options.dims = graph_dims(*m.assets_, static_cast<int>(m.body_model_->mean_shape().size()));
   options.assets = m.assets_.get();
   options.seed = seed;
-  if (!size_chart.empty())
-    options.garment_sizes = [&registry, &spec, &size_chart] {
-      const SizeTable table = SizeTable::parse(size_chart, "the model's size_chart");
-      std::vector<std::pair<std::string, double>> sizes;
-      for (const auto& [name, girth] : table.girth) sizes.emplace_back(name, table.grade(name));
-      return garment_materials(registry, spec, sizes);
-    };
+  if (!size_chart.empty()) {
+    // Each size's pattern is built when a body first wears it (the spec and
+    // the names by value: the node may ask after this returns).
+    const SizeTable table = SizeTable::parse(size_chart, "the model's size_chart");
+    std::vector<std::pair<std::string, double>> sizes;
+    for (const auto& [name, girth] : table.girth) sizes.emplace_back(name, table.grade(name));
+    std::vector<double> grades;
+    for (const auto& size : sizes) grades.push_back(size.second);
+    options.garment_sizes = std::make_shared<const GarmentSizes>(
+        std::move(grades), [&registry, spec, sizes](std::size_t k) {
+          return garment_materials(registry, spec, {sizes.at(k)}).front().second;
+        });
+  }
   m.graph_ = std::make_unique<Graph>(graph, registry, options);
   m.output_ = garment_output(*m.graph_);
   return m;

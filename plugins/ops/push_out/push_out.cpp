@@ -20,7 +20,7 @@
 // the skinning stretches a raised arm's underarm where cloth would not. The
 // rest lengths are those of the garment of the input `grade` (when it is
 // connected): the model's size of that grade (its size chart's pattern,
-// NodeContext::garment_sizes), else the bound template's material space
+// NodeContext::garment_sizes, built when a body first wears it), else the bound template's material space
 // graded by it (grade_material). A model of drapes in each body's own size
 // must connect it (its graph's garment_grade), or a 5xlarge shirt is held to
 // the design size's lengths. The limit must lie above the simulations' own
@@ -29,6 +29,7 @@
 #include <drape/assets/assets.hpp>
 #include <drape/geometry/adjacency.hpp>
 #include <drape/garment_grading.hpp>
+#include <drape/garment_sizes.hpp>
 #include <drape/geometry/push_out.hpp>
 #include <drape/geometry/strain_limit.hpp>
 #include <drape/geometry/untangle.hpp>
@@ -37,6 +38,7 @@
 #include <array>
 #include <cmath>
 #include <map>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -76,6 +78,7 @@ class PushOut final : public Node {
     untangler_.reset();
     rest_lengths_.clear();
     size_rest_lengths_.clear();
+    sizes_.reset();
     template_.reset();
     if (lift_edges_ || untangle_ || strain_limit_ > 0) {
       const std::string which = lift_edges_ ? "edges: true" : untangle_ ? "untangle: true" : "strain_limit";
@@ -91,11 +94,10 @@ class PushOut final : public Node {
       if (untangle_ || strain_limit_ > 0) adjacency_ = geometry::vertex_adjacency(edges_, garment_vertices);
       if (strain_limit_ > 0) {
         template_ = context.assets->garment->mesh;
+        // A model of drapes in each body's own size: each size's own
+        // pattern, built when a body first wears it.
+        sizes_ = context.garment_sizes;
         rest_for(1.0f);  // the template's: a garment without UVs is refused here, not at the first body
-        // A model of drapes in each body's own size: each size's own pattern.
-        if (context.garment_sizes)
-          for (const auto& [grade, mesh] : context.garment_sizes())
-            size_rest_lengths_.emplace_back(grade, geometry::material_edge_lengths(mesh, edges_));
       }
     }
     if (const auto grade = in.find("grade"); grade != in.end() && (grade->second.rows != 1 || grade->second.cols != 1))
@@ -206,8 +208,15 @@ class PushOut final : public Node {
   // on the T-shirt's sizes their edges differ by -33 to +48 % (3xsmall,
   // 6xlarge).
   const std::vector<double>& rest_for(float g) {
-    for (const auto& [grade, lengths] : size_rest_lengths_)
-      if (std::abs(grade - static_cast<double>(g)) <= 1e-5 * grade) return lengths;  // (the graph's grade is a float)
+    if (sizes_)
+      for (std::size_t k = 0; k < sizes_->grades().size(); ++k) {
+        const double grade = sizes_->grades()[k];
+        if (std::abs(grade - static_cast<double>(g)) > 1e-5 * grade) continue;  // (the graph's grade is a float)
+        auto size = size_rest_lengths_.find(k);
+        if (size == size_rest_lengths_.end())
+          size = size_rest_lengths_.emplace(k, geometry::material_edge_lengths(sizes_->material(k), edges_)).first;
+        return size->second;
+      }
     auto it = rest_lengths_.find(g);
     if (it == rest_lengths_.end()) {
       Mesh graded = *template_;
@@ -228,7 +237,8 @@ class PushOut final : public Node {
   bool untangle_;
   double strain_limit_;  // 0: off
   std::optional<Mesh> template_;                       // the bound garment's, when strain_limit_ > 0
-  std::vector<std::pair<double, std::vector<double>>> size_rest_lengths_;  // of edges_, each size's (grade, lengths)
+  std::shared_ptr<const GarmentSizes> sizes_;          // the model's sizes, when strain_limit_ > 0 (may be null)
+  std::map<std::size_t, std::vector<double>> size_rest_lengths_;  // of edges_, by index of the sizes worn so far
   std::map<float, std::vector<double>> rest_lengths_;  // of edges_, the template graded, by grade
   Eigen::MatrixX3i faces_;
   std::optional<geometry::Untangler> untangler_;  // the garment's, when untangle_

@@ -22,7 +22,7 @@ struct BodyRequest {
   // Proportions held while the model reaches BMI and height, by name (the
   // parametric body's girths: chest, waist, belly, hips, arms, thighs); a
   // model refuses a name not in its proportion_names().
-  std::map<std::string, double> proportions;
+  std::map<std::string, double> proportions = {};
 };
 
 class BodyModel {
