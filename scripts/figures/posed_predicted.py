@@ -23,6 +23,7 @@ import subprocess
 import sys
 
 import numpy as np
+import yaml
 
 import drape
 
@@ -30,6 +31,14 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.dirname(os.path.dirname(HERE))
 sys.path.insert(0, HERE)
 from posed_grid import picture as shaded_picture  # noqa: E402
+
+
+def scene_body_faces(dataset):
+    """The triangles of the body model the dataset's own scene names (its body: model and params): a human-rig
+    set's bodies drawn with the mannequin's faces are shards of triangles across the body."""
+    body = (yaml.safe_load(dataset.layout["scene"]) or {}).get("body") or {}
+    params = {k: v for k, v in (body.get("params") or {}).items()}
+    return drape.BodyModel(body.get("model", "parametric"), params).faces
 
 
 def picture(garment, body, faces, body_faces, stem, label, size, views="front,left"):
@@ -142,7 +151,7 @@ def main():
     picks = [wanted[k] for k in np.argsort(bmis)[np.linspace(0, len(wanted) - 1, min(a.count, len(wanted))).astype(int)]]
     models = [(m.split("=", 1)[0], drape.Model.load(m.split("=", 1)[1])) for m in a.model]
     faces = posed.faces
-    body_faces = drape.BodyModel("parametric").faces  # the posed datasets' body model (tshirt_coarse_pose_space.yaml)
+    body_faces = scene_body_faces(posed)
     if a.grid:
         return grid(a, posed, rest, done, wanted, models[0][0], models[0][1], faces, body_faces)
     rows = []
