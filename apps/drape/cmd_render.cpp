@@ -7,6 +7,7 @@
 #include "command.hpp"
 
 #include <drape/assets/dataset_assets.hpp>
+#include <drape/garment_sizes.hpp>
 #include <drape/io/dataset.hpp>
 #include <drape/geometry/closest_point.hpp>
 #include <drape/geometry/penetration.hpp>
@@ -58,11 +59,11 @@ std::vector<double> worn_rest_lengths(const Registry& registry, const Mesh& temp
   if (reader) {
     const WornGarments worn = worn_garments(registry, *reader, {sample});
     if (const std::vector<double>* rest = worn.rest_of(0)) return *rest;
-  } else if (model && batch && !batch->garment_grade.empty()) {
-    if (const std::optional<SizeTable> chart = model_size_chart(*model))
-      for (const auto& [name, girth] : chart->girth)
-        if (std::abs(chart->grade(name) - batch->garment_grade(0, 0, 0)) <= 1e-5 * chart->grade(name))
-          return face_edge_rest_lengths(garment_materials(registry, model->assets_spec(), {{name, chart->grade(name)}}).front().second);
+  } else if (model && batch && !batch->garment_grade.empty() && model->garment_sizes()) {
+    // The size the push-out held the prediction to (built then, or now).
+    const GarmentSizes& sizes = *model->garment_sizes();
+    if (const std::optional<std::size_t> size = sizes.find(batch->garment_grade(0, 0, 0)))
+      return face_edge_rest_lengths(sizes.material(*size));
   }
   return face_edge_rest_lengths(template_mesh);
 }

@@ -1,5 +1,6 @@
 #include <drape/garment_sizes.hpp>
 
+#include <cmath>
 #include <stdexcept>
 #include <string>
 #include <utility>
@@ -8,6 +9,12 @@ namespace drape {
 
 GarmentSizes::GarmentSizes(std::vector<double> grades, Builder build)
     : grades_(std::move(grades)), build_(std::move(build)), materials_(grades_.size()) {}
+
+std::optional<std::size_t> GarmentSizes::find(double g) const {
+  for (std::size_t k = 0; k < grades_.size(); ++k)
+    if (std::abs(grades_[k] - g) <= 1e-5 * grades_[k]) return k;
+  return std::nullopt;
+}
 
 const Mesh& GarmentSizes::material(std::size_t k) const {
   if (k >= grades_.size())

@@ -255,6 +255,15 @@ TEST_CASE("push_out's strain limit holds each edge to (1 + s) times the rest len
     CHECK(sizes->built() == 1);  // size 2, once; grade 1.3 is not a size of the model
   }
   CHECK_THROWS_AS(sizes->material(1), std::out_of_range);
+  // A garment without a material space is refused at setup, before any body.
+  auto bare = cube_body_assets();
+  auto without_uv = std::make_shared<Garment>(*bare->garment);
+  without_uv->mesh.uv.resize(0, 2);
+  bare->garment = without_uv;
+  CHECK_THROWS_WITH(make_node("push_out", "{untangle: false, strain_limit: 0.3}")
+                        ->setup({{"x", {garment.num_vertices(), 3}}, {"body", {8, 3}}}, {"post", 1, bare.get(), sizes}),
+                    Catch::Contains("UVs"));
+  CHECK(sizes->built() == 1);
   // Off (the default): the torn edge stays.
   auto off = make_node("push_out", "{epsilon: 0.01, untangle: false}");
   CHECK(dense_of(run_forward(*off, {{"x", x}, {"body", body}}, context).at("out"), 0) == DenseF(x.mat(0)));

@@ -9,6 +9,7 @@
 #include <functional>
 #include <memory>
 #include <mutex>
+#include <optional>
 #include <vector>
 
 namespace drape {
@@ -24,6 +25,10 @@ class GarmentSizes {
   // Each size's grade (the garment's girth over the design size's), in the
   // chart's order.
   const std::vector<double>& grades() const { return grades_; }
+
+  // The size of grade g, if the chart has one: equal to a relative 1e-5 (a
+  // graph's grade input is a float32).
+  std::optional<std::size_t> find(double g) const;
 
   // The material space of size k, built at the first call; safe to call
   // from several threads. Throws std::out_of_range past the last size.

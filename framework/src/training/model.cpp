@@ -216,13 +216,16 @@ Model Model::build(const Registry& registry, const GraphSpec& graph, const Asset
     // the names by value: the node may ask after this returns).
     const SizeTable table = SizeTable::parse(size_chart, "the model's size_chart");
     std::vector<std::pair<std::string, double>> sizes;
-    for (const auto& [name, girth] : table.girth) sizes.emplace_back(name, table.grade(name));
     std::vector<double> grades;
-    for (const auto& size : sizes) grades.push_back(size.second);
-    options.garment_sizes = std::make_shared<const GarmentSizes>(
+    for (const auto& [name, girth] : table.girth) {
+      sizes.emplace_back(name, table.grade(name));
+      grades.push_back(sizes.back().second);
+    }
+    m.garment_sizes_ = std::make_shared<const GarmentSizes>(
         std::move(grades), [&registry, spec, sizes](std::size_t k) {
           return garment_materials(registry, spec, {sizes.at(k)}).front().second;
         });
+    options.garment_sizes = m.garment_sizes_;
   }
   m.graph_ = std::make_unique<Graph>(graph, registry, options);
   m.output_ = garment_output(*m.graph_);

@@ -36,11 +36,11 @@
 #include <drape/plugin.hpp>
 
 #include <array>
-#include <cmath>
 #include <map>
 #include <memory>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace {
@@ -77,7 +77,6 @@ class PushOut final : public Node {
     edges_.clear();
     untangler_.reset();
     rest_lengths_.clear();
-    size_rest_lengths_.clear();
     sizes_.reset();
     template_.reset();
     if (lift_edges_ || untangle_ || strain_limit_ > 0) {
@@ -94,10 +93,13 @@ class PushOut final : public Node {
       if (untangle_ || strain_limit_ > 0) adjacency_ = geometry::vertex_adjacency(edges_, garment_vertices);
       if (strain_limit_ > 0) {
         template_ = context.assets->garment->mesh;
+        // A garment without UVs is refused here, not at the first body
+        // (without building a size of the model's chart).
+        if (!template_->has_uv())
+          throw ConfigError("push_out with strain_limit needs the garment's material space (UVs); the bound garment has none");
         // A model of drapes in each body's own size: each size's own
         // pattern, built when a body first wears it.
         sizes_ = context.garment_sizes;
-        rest_for(1.0f);  // the template's: a garment without UVs is refused here, not at the first body
       }
     }
     if (const auto grade = in.find("grade"); grade != in.end() && (grade->second.rows != 1 || grade->second.cols != 1))
@@ -208,22 +210,16 @@ class PushOut final : public Node {
   // on the T-shirt's sizes their edges differ by -33 to +48 % (3xsmall,
   // 6xlarge).
   const std::vector<double>& rest_for(float g) {
-    if (sizes_)
-      for (std::size_t k = 0; k < sizes_->grades().size(); ++k) {
-        const double grade = sizes_->grades()[k];
-        if (std::abs(grade - static_cast<double>(g)) > 1e-5 * grade) continue;  // (the graph's grade is a float)
-        auto size = size_rest_lengths_.find(k);
-        if (size == size_rest_lengths_.end())
-          size = size_rest_lengths_.emplace(k, geometry::material_edge_lengths(sizes_->material(k), edges_)).first;
-        return size->second;
-      }
-    auto it = rest_lengths_.find(g);
-    if (it == rest_lengths_.end()) {
+    if (const auto it = rest_lengths_.find(g); it != rest_lengths_.end()) return it->second;
+    std::vector<double> lengths;
+    if (const std::optional<std::size_t> size = sizes_ ? sizes_->find(g) : std::nullopt) {
+      lengths = geometry::material_edge_lengths(sizes_->material(*size), edges_);
+    } else {
       Mesh graded = *template_;
       grade_material(graded, static_cast<double>(g));
-      it = rest_lengths_.emplace(g, geometry::material_edge_lengths(graded, edges_)).first;
+      lengths = geometry::material_edge_lengths(graded, edges_);
     }
-    return it->second;
+    return rest_lengths_.emplace(g, std::move(lengths)).first->second;
   }
 
   void backward(const TensorIn&, const TensorIn&, const TensorIn& gout, const TensorOut& gin) override {
@@ -238,8 +234,7 @@ class PushOut final : public Node {
   double strain_limit_;  // 0: off
   std::optional<Mesh> template_;                       // the bound garment's, when strain_limit_ > 0
   std::shared_ptr<const GarmentSizes> sizes_;          // the model's sizes, when strain_limit_ > 0 (may be null)
-  std::map<std::size_t, std::vector<double>> size_rest_lengths_;  // of edges_, by index of the sizes worn so far
-  std::map<float, std::vector<double>> rest_lengths_;  // of edges_, the template graded, by grade
+  std::map<float, std::vector<double>> rest_lengths_;  // of edges_, by grade: the grades met so far
   Eigen::MatrixX3i faces_;
   std::optional<geometry::Untangler> untangler_;  // the garment's, when untangle_
   geometry::VertexAdjacency adjacency_;           // of edges_, when untangle_ or strain_limit_

@@ -137,6 +137,10 @@ class Model {
   const AssetsSpec& assets_spec() const { return assets_spec_; }
   const Assets& assets() const { return *assets_; }
   std::shared_ptr<const Assets> shared_assets() const { return assets_; }
+  // The garment in each size of the model's size chart, each built at its
+  // first use (garment_sizes.hpp: what the push-out's strain limit holds a
+  // body's size to); null for a model without a chart.
+  const std::shared_ptr<const GarmentSizes>& garment_sizes() const { return garment_sizes_; }
   const BodyModel& body_model() const { return *body_model_; }
   Graph& graph() { return *graph_; }
   const std::string& output() const { return output_; }
@@ -164,6 +168,7 @@ class Model {
   std::shared_ptr<const Assets> assets_;
   std::unique_ptr<BodyModel> body_model_;
   std::unique_ptr<Graph> graph_;
+  std::shared_ptr<const GarmentSizes> garment_sizes_;  // of the size chart; null without one
   std::string output_;
   bool assets_changed_ = false;
 };
