@@ -37,8 +37,7 @@ def scene_body_faces(dataset):
     """The triangles of the body model the dataset's own scene names (its body: model and params): a human-rig
     set's bodies drawn with the mannequin's faces are shards of triangles across the body."""
     body = (yaml.safe_load(dataset.layout["scene"]) or {}).get("body") or {}
-    params = {k: v for k, v in (body.get("params") or {}).items()}
-    return drape.BodyModel(body.get("model", "parametric"), params).faces
+    return drape.BodyModel(body.get("model", "parametric"), dict(body.get("params") or {})).faces
 
 
 def picture(garment, body, faces, body_faces, stem, label, size, views="front,left"):

@@ -20,10 +20,10 @@
 // the skinning stretches a raised arm's underarm where cloth would not. The
 // rest lengths are those of the garment of the input `grade` (when it is
 // connected): the model's size of that grade (its size chart's pattern,
-// NodeContext::garment_sizes, built when a body first wears it), else the bound template's material space
-// graded by it (grade_material). A model of drapes in each body's own size
-// must connect it (its graph's garment_grade), or a 5xlarge shirt is held to
-// the design size's lengths. The limit must lie above the simulations' own
+// NodeContext::garment_sizes, built when a body first wears it), else the
+// bound template's material space graded by it (grade_material). A model
+// of drapes in each body's own size must connect it (its graph's
+// garment_grade), or a 5xlarge shirt is held to the design size's lengths. The limit must lie above the simulations' own
 // strain (the shipped sized data: 44-56 % at worst over 4,700 drapes), or
 // it pulls a tight shirt into the body.
 #include <drape/assets/assets.hpp>
