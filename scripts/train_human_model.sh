@@ -18,7 +18,10 @@
 # schedule, default 60), LR (default 1e-3), PATIENCE (default 30), SHARD_DIR
 # (the folder of slim shards, default datasets/bodyspace2000-human), MIRROR
 # (1: the training drapes' mirror images trained on too, scripts/mirror_dataset.py;
-# posed shards only; default 0).
+# posed shards only; default 0), EXTRA_SHARDS (more slim datasets joined to
+# the shards, space-separated, mirrored with them: e.g. the heavy bodies'
+# training drapes a second time, scripts/subset_dataset.py; docs/poses.md,
+# "Heavy bodies twice").
 #
 # The posed model of the human rig (issues 54 and 56) is the same recipe on
 # the posed shards, from the mannequin's posed model:
@@ -30,12 +33,14 @@ DRAPE=${BUILD_DIR:-build}/bin/drape
 WORK=${1:-work-human-model}
 mkdir -p "$WORK"
 SHARDS=("${SHARD_DIR:-datasets/bodyspace2000-human}"/shard-*-of-40.h5)
+# shellcheck disable=SC2206  # (split on spaces by design: a list of paths)
+if [[ -n "${EXTRA_SHARDS:-}" ]]; then SHARDS+=(${EXTRA_SHARDS}); fi
 DATA="$WORK/human.h5"
 # Expanded again when shards were added since; a training interrupted before
 # then does not resume on the grown set (drape train --resume compares the
 # training and validation counts): use another WORK_DIR.
 # What the expanded set was made of: the shard count and the mirror flag.
-MADE_OF="${#SHARDS[@]}${MIRROR:+ mirror $MIRROR}"
+MADE_OF="${#SHARDS[@]}${MIRROR:+ mirror $MIRROR}${EXTRA_SHARDS:+ extra $EXTRA_SHARDS}"
 if [[ ! -f "$DATA" || $(cat "$WORK/shards" 2>/dev/null) != "$MADE_OF" ]]; then
   PARTS=("${SHARDS[@]}")
   if [[ "${MIRROR:-0}" == 1 ]]; then
