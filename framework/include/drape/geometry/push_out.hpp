@@ -25,6 +25,7 @@ struct PushOutReport {
   int edges_lifted = 0;      // edge lifts (an edge lifted in two passes counts twice)
   int edges_searched = 0;    // edge midpoints searched, over all passes
   int beyond_reach = 0;      // with edges: vertices found outside and beyond their reach, never searched in full
+  int edges_tested_whole = 0;  // with edges: edges tested against the body's faces end to end (lifted, or near it)
   int fins_cleared = 0;      // with edges: edges moved off a thin fold of the body they passed through (push_out.cpp)
   int peaks_cleared = 0;     // with faces: faces lifted off a body vertex that rose through them (push_out.cpp)
 };
