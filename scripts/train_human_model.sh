@@ -21,7 +21,9 @@
 # posed shards only; default 0), EXTRA_SHARDS (more slim datasets joined to
 # the shards, space-separated, mirrored with them: e.g. the heavy bodies'
 # training drapes a second time, scripts/subset_dataset.py; docs/poses.md,
-# "Heavy bodies twice").
+# "Heavy bodies twice"), INIT_WIDEN (1: drape train --init-widen, for a
+# graph that adds inputs to INIT's: the new weights that read them start at
+# zero; docs/poses.md, "More capacity on the human rig").
 #
 # The posed model of the human rig (issues 54 and 56) is the same recipe on
 # the posed shards, from the mannequin's posed model:
@@ -54,7 +56,7 @@ if [[ ! -f "$DATA" || $(cat "$WORK/shards" 2>/dev/null) != "$MADE_OF" ]]; then
 fi
 
 "$DRAPE" train "${GRAPH:-graphs/human/drape_grade_v2v1000_post_resampled.yaml}" --data "$DATA" --out "$WORK/model.h5" \
-  --encoder-body parametric --init "${INIT:-models/tshirt-coarse.h5}" --epochs "${EPOCHS:-60}" --schedule cosine --lr "${LR:-1e-3}" \
+  --encoder-body parametric --init "${INIT:-models/tshirt-coarse.h5}" ${INIT_WIDEN:+--init-widen} --epochs "${EPOCHS:-60}" --schedule cosine --lr "${LR:-1e-3}" \
   --patience "${PATIENCE:-30}" --batch 8 --seed 0 --threads "${THREADS:-1}" --resume
 "$DRAPE" model set "$WORK/model.h5" --set post.enabled=true --set post.epsilon=0.006
 

@@ -109,3 +109,29 @@ def test_the_posed_human_graph_trains_from_every_weight_of_the_mannequin_posed_m
     sleeves = np.abs(rest[:, 0] - rest[:, 0].mean()) > 0.19
     assert sleeves.sum() > 100
     assert raised[sleeves, 1].mean() > rest[sleeves, 1].mean() + 0.03
+
+
+@pytest.mark.parametrize("name", ["transfer48", "fine_encoder"])
+def test_a_widened_posed_graph_starts_as_the_shipped_model(tmp_path, name):
+    """The capacity experiments of docs/poses.md ("More capacity on the human rig"): the shipped posed graph with
+    inputs added (a wider decoder input, a second encoder), started from the shipped model with --init-widen. Every
+    weight that reads the new features starts at zero, so before any step the model predicts the shipped model's
+    drape; training at a learning rate of 1e-30 changes no weight."""
+    shipped = SOURCE / "models" / "tshirt-coarse-posed-human.h5"
+    out = tmp_path / "wide.h5"
+    stdout, err = run_drape("train", SOURCE / "graphs" / "human" / f"drape_posed_v2v1000_post_resampled_{name}.yaml",
+                            "--data", POSED_HUMAN_SHARD, "--out", out, "--epochs", 1, "--fraction", 0.05, "--lr",
+                            1e-30, "--threads", 1, "--encoder-body", "parametric", "--init", shipped, "--init-widen")
+    assert "the new input rows start at zero" in stdout + err
+    # Both without the push-out (off after training): the network's own drapes compared.
+    reference = tmp_path / "shipped.h5"
+    reference.write_bytes(shipped.read_bytes())
+    run_drape("model", "set", reference, "--set", "post.enabled=false")
+    body, _ = drape.body(45, 1.65, 1, params={"rig": "human"})
+    pose = {"shoulder_abduction": 60, "elbow_flexion": 40, "spine_twist": 10}
+    a = drape.Model.load(str(out)).predict(body.astype(np.float32), garment_size=1.4, check=False, pose=pose)
+    b = drape.Model.load(str(reference)).predict(body.astype(np.float32), garment_size=1.4, check=False, pose=pose)
+    assert a.shape == b.shape == (991, 3)
+    assert np.abs(a - b).max() < 1e-5
+    # ...and the new weights are really in the graph (not a graph equal to the shipped one).
+    assert "is new (not in the file)" in stdout + err
