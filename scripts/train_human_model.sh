@@ -29,6 +29,9 @@
 # the posed shards, from the mannequin's posed model:
 #   SHARD_DIR=datasets/posespace2000-human GRAPH=graphs/human/drape_posed_v2v1000_post_resampled.yaml \
 #     INIT=models/tshirt-coarse-posed.h5 LR=3e-4 MIRROR=1 bash scripts/train_human_model.sh work-posed-human
+# and a further cycle of the shipped posed model (whose decoder input is 48 wide):
+#   SHARD_DIR=datasets/posespace2000-human GRAPH=graphs/human/drape_posed_v2v1000_post_resampled_transfer48.yaml \
+#     INIT=models/tshirt-coarse-posed-human.h5 LR=3e-4 MIRROR=1 bash scripts/train_human_model.sh work-posed-human
 set -euo pipefail
 cd "$(dirname "${BASH_SOURCE[0]}")/.."
 DRAPE=${BUILD_DIR:-build}/bin/drape
