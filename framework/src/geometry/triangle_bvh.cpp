@@ -104,29 +104,47 @@ void TriangleBvh::gather_corners(const Eigen::MatrixX3d& vertices) {
     for (int k = 0; k < 3; ++k) corners_[3 * t + k] = vertices.row(faces_(face_of_[t], k)).transpose();
 }
 
-TriangleBvh::Box TriangleBvh::triangle_box(int t) const {
-  const Eigen::Vector3d &a = corners_[3 * t], &b = corners_[3 * t + 1], &c = corners_[3 * t + 2];
-  return {a.cwiseMin(b).cwiseMin(c), a.cwiseMax(b).cwiseMax(c)};
-}
-
 void TriangleBvh::refit(const Eigen::MatrixX3d& vertices) {
   gather_corners(vertices);
-  node_box_.resize(nodes_.size());
+  // Each vertex rounded outwards once: rounding is monotonic, so the float
+  // bounds of a box are the min / max of its corners' rounded coordinates,
+  // the same bits as rounding the box's exact double bounds, and every box
+  // above the leaves is the min / max of its child's four lanes (an empty
+  // lane is +inf / -inf and changes nothing). A vertex is rounded once
+  // instead of once for every box it is a corner of, on all levels.
+  const auto nv = static_cast<std::size_t>(vertices.rows());
+  vertex_lo_.resize(3 * nv);
+  vertex_hi_.resize(3 * nv);
+  for (std::size_t v = 0; v < nv; ++v)
+    for (int k = 0; k < 3; ++k) {
+      const double x = vertices(static_cast<Eigen::Index>(v), k);
+      vertex_lo_[3 * v + static_cast<std::size_t>(k)] = round_down(x);
+      vertex_hi_[3 * v + static_cast<std::size_t>(k)] = round_up(x);
+    }
+  constexpr float kEmpty = std::numeric_limits<float>::infinity();
   // Children come after their parent, so a backward sweep sees them first.
   for (int i = num_nodes() - 1; i >= 0; --i) {
-    Node& n = nodes_[i];
-    Box all{Eigen::Vector3d::Constant(kInfinity), Eigen::Vector3d::Constant(-kInfinity)};
+    Node& n = nodes_[static_cast<std::size_t>(i)];
     for (int s = 0; s < kWidth; ++s) {
-      if (s >= n.count) {  // an empty box: every gap is infinite
-        for (int k = 0; k < 3; ++k) n.lo[k][s] = std::numeric_limits<float>::infinity(), n.hi[k][s] = -n.lo[k][s];
-        continue;
+      float lo[3] = {kEmpty, kEmpty, kEmpty}, hi[3] = {-kEmpty, -kEmpty, -kEmpty};  // an empty box: every gap is infinite
+      if (s < n.count && n.leaf) {
+        const int face = face_of_[static_cast<std::size_t>(n.child[s])];
+        for (int c = 0; c < 3; ++c) {
+          const std::size_t v = 3 * static_cast<std::size_t>(faces_(face, c));
+          for (int k = 0; k < 3; ++k)
+            lo[k] = std::min(lo[k], vertex_lo_[v + static_cast<std::size_t>(k)]),
+            hi[k] = std::max(hi[k], vertex_hi_[v + static_cast<std::size_t>(k)]);
+        }
+      } else if (s < n.count) {
+        const Node& child = nodes_[static_cast<std::size_t>(n.child[s])];
+        for (int k = 0; k < 3; ++k) {
+          const Lanes l = child.lo[k], h = child.hi[k];
+          lo[k] = std::min(std::min(l[0], l[1]), std::min(l[2], l[3]));
+          hi[k] = std::max(std::max(h[0], h[1]), std::max(h[2], h[3]));
+        }
       }
-      const Box b = n.leaf ? triangle_box(n.child[s]) : node_box_[static_cast<std::size_t>(n.child[s])];
-      for (int k = 0; k < 3; ++k) n.lo[k][s] = round_down(b.lo[k]), n.hi[k][s] = round_up(b.hi[k]);
-      all.lo = all.lo.cwiseMin(b.lo);
-      all.hi = all.hi.cwiseMax(b.hi);
+      for (int k = 0; k < 3; ++k) n.lo[k][s] = lo[k], n.hi[k][s] = hi[k];
     }
-    node_box_[static_cast<std::size_t>(i)] = all;
   }
 }
 

@@ -92,19 +92,15 @@ class TriangleBvh {
     Lanes distance2(const Node& n) const;
     Lanes point[3], moved[3];
   };
-  struct Box {
-    Eigen::Vector3d lo, hi;
-  };
 
 
   int build(std::vector<int>& order, const std::vector<Eigen::Vector3d>& centroids, int begin, int end, int depth, int parent);
   void gather_corners(const Eigen::MatrixX3d& vertices);
-  Box triangle_box(int t) const;
 
   Eigen::MatrixX3i faces_;
   std::vector<Node> nodes_;
   std::vector<Span> spans_;                 // each node's slots and parent
-  std::vector<Box> node_box_;               // each node's own box in double, its parent's slot at refit
+  std::vector<float> vertex_lo_, vertex_hi_;  // each vertex's coordinates rounded down / up (refit's scratch)
   std::vector<int> face_of_;                // face id of each triangle in leaf order
   std::vector<int> slot_of_face_;           // its inverse: the leaf-order slot of each face
   std::vector<Eigen::Vector3d> corners_;    // 3 per triangle in leaf order (contiguous for the cache)
