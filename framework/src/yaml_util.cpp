@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <fstream>
 #include <map>
+#include <vector>
 #include <sstream>
 
 namespace drape::yaml {
@@ -36,22 +37,35 @@ namespace {
 // yaml-cpp keeps one of two equal keys of a map without a word, so a scene
 // with two `garment:` entries would lose one silently; every map of a
 // document is checked once, as it is loaded.
-void refuse_repeated_keys(const YAML::Node& node, const std::string& file) {
+// `open` holds the nodes being walked, outermost first: an alias of a node
+// inside that node itself (`a: &x [*x]`) makes the document an endless tree,
+// which every reader after this one would walk until the stack overflows.
+void refuse_repeated_keys(const YAML::Node& node, const std::string& file, std::vector<YAML::Node>& open) {
+  if (!node.IsSequence() && !node.IsMap()) return;
+  for (const YAML::Node& outer : open)
+    if (outer.is(node))
+      throw ConfigError({file, node.Mark().line + 1},
+                        "a recursive alias: this node contains itself (an anchor '&name' used as '*name' inside the node "
+                        "it names); write the repeated part out");
+  open.push_back(node);
   if (node.IsSequence())
-    for (const auto& item : node) refuse_repeated_keys(item, file);
-  if (!node.IsMap()) return;
-  std::map<std::string, int> seen;  // key -> 1-based line
-  for (const auto& kv : node) {
-    if (kv.first.IsScalar()) {
-      const std::string key = kv.first.Scalar();
-      const int line = kv.first.Mark().line + 1;
-      const auto [it, fresh] = seen.emplace(key, line);
-      if (!fresh)
-        throw ConfigError({file, line}, "'" + key + "' is defined twice (first at line " + std::to_string(it->second) +
-                                            "); one map keeps one key once: merge the two");
+    for (const auto& item : node) refuse_repeated_keys(item, file, open);
+  if (node.IsMap()) {
+    std::map<std::string, int> seen;  // key -> 1-based line
+    for (const auto& kv : node) {
+      if (kv.first.IsScalar()) {
+        const std::string key = kv.first.Scalar();
+        const int line = kv.first.Mark().line + 1;
+        const auto [it, fresh] = seen.emplace(key, line);
+        if (!fresh)
+          throw ConfigError({file, line}, "'" + key + "' is defined twice (first at line " + std::to_string(it->second) +
+                                              "); one map keeps one key once: merge the two");
+      }
+      refuse_repeated_keys(kv.first, file, open);
+      refuse_repeated_keys(kv.second, file, open);
     }
-    refuse_repeated_keys(kv.second, file);
   }
+  open.pop_back();
 }
 
 }  // namespace
@@ -63,7 +77,8 @@ YAML::Node load_text(const std::string& text, const std::string& name_for_errors
   } catch (const YAML::Exception& e) {
     throw ConfigError({name_for_errors, e.mark.line + 1}, "malformed YAML: " + e.msg);
   }
-  refuse_repeated_keys(root, name_for_errors);
+  std::vector<YAML::Node> open;
+  refuse_repeated_keys(root, name_for_errors, open);
   return root;
 }
 

@@ -95,6 +95,15 @@ TEST_CASE("scene errors name the file, the line and the key", "[scene]") {
   // yaml-cpp alone keeps one of two equal keys: the second garment would be lost without a word.
   CHECK_THAT(message_of([] { parse_scene("garment: {template: tshirt}\nbody: {}\ngarment: {grade: 1.2}\n", "s.yaml"); }),
              Catch::Contains("s.yaml:3") && Catch::Contains("'garment' is defined twice") && Catch::Contains("line 1"));
+  // An anchor used inside the node it names is an endless tree: every walk of
+  // it (this check first) recursed until the stack overflowed.
+  CHECK_THAT(message_of([] { parse_scene("a: &x [*x]\n", "s.yaml"); }),
+             Catch::Contains("s.yaml:1") && Catch::Contains("recursive alias"));
+  CHECK_THAT(message_of([] { parse_scene("body: {model: parametric}\nsolver: &s {inner: *s}\n", "s.yaml"); }),
+             Catch::Contains("s.yaml:2") && Catch::Contains("recursive alias"));
+  // An alias used twice side by side is no recursion.
+  CHECK_THAT(message_of([] { parse_scene("x: &g [gravity]\neffects: *g\n", "s.yaml"); }),
+             !Catch::Contains("recursive alias"));
   CHECK_THAT(message_of([] { parse_scene("solver:\n  time_step: 0.1\n  time_step: 0.2\n", "s.yaml"); }),
              Catch::Contains("s.yaml:3") && Catch::Contains("'time_step'"));
   TempDir dir;

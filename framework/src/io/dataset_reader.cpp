@@ -12,6 +12,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <exception>
+#include <functional>
 #include <mutex>
 #include <unordered_map>
 
@@ -97,6 +99,25 @@ struct DatasetReader::Impl {
 
 };
 
+namespace {
+
+// An exception may not leave an OpenMP region (it ends the program): each
+// row's failure is kept, and the first one thrown after the loop as bad
+// input (exit 2) naming the file and the sample whose stored shape or pose
+// the body model refused (NaN, a weight outside its range, an unknown angle).
+void rethrow_row_failure(const std::vector<std::exception_ptr>& failures, const std::function<std::string(std::size_t)>& where) {
+  for (std::size_t k = 0; k < failures.size(); ++k) {
+    if (!failures[k]) continue;
+    try {
+      std::rethrow_exception(failures[k]);
+    } catch (const std::exception& e) {
+      throw ConfigError(where(k) + ": its body cannot be made from the stored shape and pose: " + e.what());
+    }
+  }
+}
+
+}  // namespace
+
 void DatasetReader::Impl::rebuild(const std::vector<std::size_t>& rows, const DatasetLayout& layout) const {
   std::vector<std::size_t> todo;
   for (std::size_t row : rows)
@@ -118,14 +139,23 @@ void DatasetReader::Impl::rebuild(const std::vector<std::size_t>& rows, const Da
   const std::vector<std::string> at_rest;  // an A-pose file's row: its body as stored, unposed
   // A body is ~20-90 ms of the body model's solve and the model is const: one body per thread.
   std::vector<std::vector<float>> bodies(todo.size());
+  std::vector<std::exception_ptr> failures(todo.size());
   const auto n = static_cast<std::ptrdiff_t>(todo.size());
 #pragma omp parallel for schedule(dynamic)
   for (std::ptrdiff_t k = 0; k < n; ++k) {
-    const std::vector<float> one(params.begin() + k * static_cast<std::ptrdiff_t>(p), params.begin() + (k + 1) * static_cast<std::ptrdiff_t>(p));
-    const std::vector<float> pose(poses.begin() + k * static_cast<std::ptrdiff_t>(a), poses.begin() + (k + 1) * static_cast<std::ptrdiff_t>(a));
-    bodies[static_cast<std::size_t>(k)] =
-        rebuilt_bodies(*body_model, one, 1, p, posed[static_cast<std::size_t>(k)] ? layout.pose_angles : at_rest, pose);
+    try {
+      const std::vector<float> one(params.begin() + k * static_cast<std::ptrdiff_t>(p), params.begin() + (k + 1) * static_cast<std::ptrdiff_t>(p));
+      const std::vector<float> pose(poses.begin() + k * static_cast<std::ptrdiff_t>(a), poses.begin() + (k + 1) * static_cast<std::ptrdiff_t>(a));
+      bodies[static_cast<std::size_t>(k)] =
+          rebuilt_bodies(*body_model, one, 1, p, posed[static_cast<std::size_t>(k)] ? layout.pose_angles : at_rest, pose);
+    } catch (...) {
+      failures[static_cast<std::size_t>(k)] = std::current_exception();
+    }
   }
+  rethrow_row_failure(failures, [&](std::size_t k) {
+    const Part& part = parts[part_of(todo[k])];
+    return part.file.path().string() + ": sample " + std::to_string(todo[k] - part.first);
+  });
   // Each body checked against the witness of the one its drape was simulated on.
   std::vector<std::ptrdiff_t> at;
   const std::vector<double> stored = witnesses(todo, witness_blocks(layout.body_vertices) * 4, at);
@@ -352,35 +382,63 @@ DatasetReader::Posing DatasetReader::posing(const std::vector<std::size_t>& indi
   // (rebuilt_bodies) checked against it; refused[k] says why not (HDF5 reads
   // and the throw stay on this thread).
   std::vector<std::ptrdiff_t> at;
-  const std::vector<double> stored_witness = impl_->witnesses(todo, witness_blocks(layout_.body_vertices) * 4, at);
+  const std::vector<double> stored_witness =
+      impl_->witnesses(todo, witness_blocks(layout_.body_vertices) * 4, at);
   for (std::size_t k = 0; k < todo.size(); ++k)
-    if (impl_->rebuilt.count(todo[k])) at[k] = -1;  // checked when body_vertices rebuilt it: not posed again
+    if (impl_->rebuilt.count(todo[k]))
+      at[k] = -1; // checked when body_vertices rebuilt it: not posed again
   std::vector<std::string> refused(todo.size());
   const auto n = static_cast<std::ptrdiff_t>(todo.size());
+  std::vector<std::exception_ptr> failures(todo.size());
 #pragma omp parallel for schedule(dynamic)
   for (std::ptrdiff_t k = 0; k < n; ++k) {
     const auto u = static_cast<std::size_t>(k);
-    const Eigen::VectorXd shape = Eigen::Map<const Eigen::VectorXf>(params.data() + u * p, static_cast<Eigen::Index>(p)).cast<double>();
-    const Eigen::MatrixX3d unposed = model.vertices(shape);
-    if (at[u] >= 0) {
-      const Part& part = impl_->parts[impl_->part_of(todo[u])];
-      const MatrixRM body =
-          (posed[u] ? model.posed_vertices(unposed, pose_of_row(layout_.pose_angles, stored.data() + u * a), 1.0) : unposed)
-              .cast<float>();
-      refused[u] = not_the_simulated_body(part.file.path().string(), todo[u] - part.first, body.data(), layout_.body_vertices,
-                                          stored_witness.data() + at[u]);
+    try {
+      const Eigen::VectorXd shape =
+          Eigen::Map<const Eigen::VectorXf>(params.data() + u * p,
+                                            static_cast<Eigen::Index>(p))
+              .cast<double>();
+      const Eigen::MatrixX3d unposed = model.vertices(shape);
+      if (at[u] >= 0) {
+        const Part &part = impl_->parts[impl_->part_of(todo[u])];
+        const MatrixRM body =
+            (posed[u] ? model.posed_vertices(unposed,
+                                             pose_of_row(layout_.pose_angles,
+                                                         stored.data() + u * a),
+                                             1.0)
+                      : unposed)
+                .cast<float>();
+        refused[u] = not_the_simulated_body(
+            part.file.path().string(), todo[u] - part.first, body.data(),
+            layout_.body_vertices, stored_witness.data() + at[u]);
+      }
+      const Pose pose = full_pose(
+          model,
+          posed[u] ? pose_of_row(layout_.pose_angles, stored.data() + u * a)
+                   : Pose{},
+          unposed);
+      const MatrixRM transforms =
+          posed[u] ? transforms_rows(model.joint_transforms(unposed, pose))
+                   : transforms_rows(std::vector<skinning::Rigid>(joints));
+      Impl::PosingRow &row = made[u];
+      row.unposed.resize(static_cast<std::size_t>(unposed.size()));
+      for (Eigen::Index v = 0; v < unposed.rows(); ++v)
+        for (int c = 0; c < 3; ++c)
+          row.unposed[static_cast<std::size_t>(v * 3 + c)] =
+              static_cast<float>(unposed(v, c));
+      row.transforms.assign(transforms.data(),
+                            transforms.data() + transforms.size());
+      for (const PoseAngle &angle : angles)
+        row.angles.push_back(
+            static_cast<float>(pose.angles.at(angle.name) * M_PI / 180.0));
+    } catch (...) {
+      failures[u] = std::current_exception();
     }
-    const Pose pose = full_pose(model, posed[u] ? pose_of_row(layout_.pose_angles, stored.data() + u * a) : Pose{}, unposed);
-    const MatrixRM transforms = posed[u] ? transforms_rows(model.joint_transforms(unposed, pose))
-                                         : transforms_rows(std::vector<skinning::Rigid>(joints));
-    Impl::PosingRow& row = made[u];
-    row.unposed.resize(static_cast<std::size_t>(unposed.size()));
-    for (Eigen::Index v = 0; v < unposed.rows(); ++v)
-      for (int c = 0; c < 3; ++c) row.unposed[static_cast<std::size_t>(v * 3 + c)] = static_cast<float>(unposed(v, c));
-    row.transforms.assign(transforms.data(), transforms.data() + transforms.size());
-    for (const PoseAngle& angle : angles)
-      row.angles.push_back(static_cast<float>(pose.angles.at(angle.name) * M_PI / 180.0));
   }
+  rethrow_row_failure(failures, [&](std::size_t k) {
+    const Part &part = impl_->parts[impl_->part_of(todo[k])];
+    return part.file.path().string() + ": sample " + std::to_string(todo[k] - part.first);
+  });
   for (const std::string& why : refused)
     if (!why.empty()) throw ConfigError(why);
   for (std::size_t k = 0; k < todo.size(); ++k) impl_->posing[todo[k]] = std::move(made[k]);

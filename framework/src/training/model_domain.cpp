@@ -283,12 +283,34 @@ std::optional<ModelDomain> read_domain(const h5::File& file) {
   if (shape.size() != 2 || shape[1] != 2 || shape[0] != d.param_names.size())
     throw ConfigError(file.path().string() + ": /domain/param_range has shape " + h5::to_string(shape) + ", expected [" +
                       std::to_string(d.param_names.size()) + ", 2]");
-  for (std::size_t p = 0; p < shape[0]; ++p) d.params.push_back({ranges[2 * p], ranges[2 * p + 1]});
+  // A range a model records is finite and not upside down: a warning that
+  // says "trained on nan..nan" or "2..1.5" helps nobody (and --strict would
+  // refuse every body by it).
+  const auto check_range = [&](const std::string& what, double lo, double hi) {
+    if (!(std::isfinite(lo) && std::isfinite(hi) && lo <= hi))
+      throw ConfigError(file.path().string() + ": /domain/" + what + " is [" + fmt(lo) + ", " + fmt(hi) +
+                        "], not a range (finite, min <= max): the model file is damaged");
+  };
+  for (std::size_t p = 0; p < shape[0]; ++p) {
+    check_range("param_range of '" + d.param_names[p] + "'", ranges[2 * p], ranges[2 * p + 1]);
+    d.params.push_back({ranges[2 * p], ranges[2 * p + 1]});
+  }
   const std::vector<double> measures = file.read<double>("/domain/measure_range", &shape);
   if (measures.size() != 4) throw ConfigError(file.path().string() + ": /domain/measure_range is not [2, 2]");
+  check_range("measure_range (height)", measures[0], measures[1]);
+  check_range("measure_range (BMI)", measures[2], measures[3]);
   d.height = {measures[0], measures[1]};
   d.bmi = {measures[2], measures[3]};
+  if (!(std::isfinite(d.neighbour_limit) && d.neighbour_limit >= 0))
+    throw ConfigError(file.path().string() + ": /domain's neighbour_limit is " + fmt(d.neighbour_limit) +
+                      ", not a distance: the model file is damaged");
   const std::vector<std::int32_t> vertices = file.read<std::int32_t>("/domain/descriptor_vertices");
+  // Body vertex indices, rising (the test of a body against the training
+  // bodies reads them from it, and checks the body only against the last).
+  for (std::size_t k = 0; k < vertices.size(); ++k)
+    if (vertices[k] < 0 || (k > 0 && vertices[k] <= vertices[k - 1]))
+      throw ConfigError(file.path().string() + ": /domain/descriptor_vertices[" + std::to_string(k) + "] = " +
+                        std::to_string(vertices[k]) + " is not a body vertex index above the one before: the model file is damaged");
   d.descriptor_vertices.assign(vertices.begin(), vertices.end());
   const std::vector<float> rows = file.read<float>("/domain/descriptors", &shape);
   if (shape.size() != 2 || shape[1] != 3 * vertices.size())
@@ -296,6 +318,8 @@ std::optional<ModelDomain> read_domain(const h5::File& file) {
                       std::to_string(3 * vertices.size()) + "]");
   d.descriptors = Eigen::Map<const Eigen::Matrix<float, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>>(
       rows.data(), static_cast<Eigen::Index>(shape[0]), static_cast<Eigen::Index>(shape[1]));
+  if (!d.descriptors.allFinite())
+    throw ConfigError(file.path().string() + ": /domain/descriptors holds a non-finite value: the model file is damaged");
   if (file.exists("/domain/placement")) {
     const std::vector<double> placement = file.read<double>("/domain/placement", &shape);
     if (shape.size() != 2 || shape[0] != 2 || shape[1] != 3 ||
@@ -311,7 +335,10 @@ std::optional<ModelDomain> read_domain(const h5::File& file) {
     if (shape.size() != 2 || shape[1] != 2 || shape[0] != d.pose_names.size())
       throw ConfigError(file.path().string() + ": /domain/pose_range has shape " + h5::to_string(shape) + ", expected [" +
                         std::to_string(d.pose_names.size()) + ", 2]");
-    for (std::size_t a = 0; a < shape[0]; ++a) d.pose.push_back({pose[2 * a], pose[2 * a + 1]});
+    for (std::size_t a = 0; a < shape[0]; ++a) {
+      check_range("pose_range of '" + d.pose_names[a] + "'", pose[2 * a], pose[2 * a + 1]);
+      d.pose.push_back({pose[2 * a], pose[2 * a + 1]});
+    }
   }
   return d;
 }
