@@ -382,11 +382,9 @@ DatasetReader::Posing DatasetReader::posing(const std::vector<std::size_t>& indi
   // (rebuilt_bodies) checked against it; refused[k] says why not (HDF5 reads
   // and the throw stay on this thread).
   std::vector<std::ptrdiff_t> at;
-  const std::vector<double> stored_witness =
-      impl_->witnesses(todo, witness_blocks(layout_.body_vertices) * 4, at);
+  const std::vector<double> stored_witness = impl_->witnesses(todo, witness_blocks(layout_.body_vertices) * 4, at);
   for (std::size_t k = 0; k < todo.size(); ++k)
-    if (impl_->rebuilt.count(todo[k]))
-      at[k] = -1; // checked when body_vertices rebuilt it: not posed again
+    if (impl_->rebuilt.count(todo[k])) at[k] = -1;  // checked when body_vertices rebuilt it: not posed again
   std::vector<std::string> refused(todo.size());
   const auto n = static_cast<std::ptrdiff_t>(todo.size());
   std::vector<std::exception_ptr> failures(todo.size());
@@ -395,48 +393,32 @@ DatasetReader::Posing DatasetReader::posing(const std::vector<std::size_t>& indi
     const auto u = static_cast<std::size_t>(k);
     try {
       const Eigen::VectorXd shape =
-          Eigen::Map<const Eigen::VectorXf>(params.data() + u * p,
-                                            static_cast<Eigen::Index>(p))
-              .cast<double>();
+          Eigen::Map<const Eigen::VectorXf>(params.data() + u * p, static_cast<Eigen::Index>(p)).cast<double>();
       const Eigen::MatrixX3d unposed = model.vertices(shape);
       if (at[u] >= 0) {
-        const Part &part = impl_->parts[impl_->part_of(todo[u])];
+        const Part& part = impl_->parts[impl_->part_of(todo[u])];
         const MatrixRM body =
-            (posed[u] ? model.posed_vertices(unposed,
-                                             pose_of_row(layout_.pose_angles,
-                                                         stored.data() + u * a),
-                                             1.0)
-                      : unposed)
+            (posed[u] ? model.posed_vertices(unposed, pose_of_row(layout_.pose_angles, stored.data() + u * a), 1.0) : unposed)
                 .cast<float>();
-        refused[u] = not_the_simulated_body(
-            part.file.path().string(), todo[u] - part.first, body.data(),
-            layout_.body_vertices, stored_witness.data() + at[u]);
+        refused[u] = not_the_simulated_body(part.file.path().string(), todo[u] - part.first, body.data(), layout_.body_vertices,
+                                            stored_witness.data() + at[u]);
       }
-      const Pose pose = full_pose(
-          model,
-          posed[u] ? pose_of_row(layout_.pose_angles, stored.data() + u * a)
-                   : Pose{},
-          unposed);
-      const MatrixRM transforms =
-          posed[u] ? transforms_rows(model.joint_transforms(unposed, pose))
-                   : transforms_rows(std::vector<skinning::Rigid>(joints));
-      Impl::PosingRow &row = made[u];
+      const Pose pose = full_pose(model, posed[u] ? pose_of_row(layout_.pose_angles, stored.data() + u * a) : Pose{}, unposed);
+      const MatrixRM transforms = posed[u] ? transforms_rows(model.joint_transforms(unposed, pose))
+                                           : transforms_rows(std::vector<skinning::Rigid>(joints));
+      Impl::PosingRow& row = made[u];
       row.unposed.resize(static_cast<std::size_t>(unposed.size()));
       for (Eigen::Index v = 0; v < unposed.rows(); ++v)
-        for (int c = 0; c < 3; ++c)
-          row.unposed[static_cast<std::size_t>(v * 3 + c)] =
-              static_cast<float>(unposed(v, c));
-      row.transforms.assign(transforms.data(),
-                            transforms.data() + transforms.size());
-      for (const PoseAngle &angle : angles)
-        row.angles.push_back(
-            static_cast<float>(pose.angles.at(angle.name) * M_PI / 180.0));
+        for (int c = 0; c < 3; ++c) row.unposed[static_cast<std::size_t>(v * 3 + c)] = static_cast<float>(unposed(v, c));
+      row.transforms.assign(transforms.data(), transforms.data() + transforms.size());
+      for (const PoseAngle& angle : angles)
+        row.angles.push_back(static_cast<float>(pose.angles.at(angle.name) * M_PI / 180.0));
     } catch (...) {
       failures[u] = std::current_exception();
     }
   }
   rethrow_row_failure(failures, [&](std::size_t k) {
-    const Part &part = impl_->parts[impl_->part_of(todo[k])];
+    const Part& part = impl_->parts[impl_->part_of(todo[k])];
     return part.file.path().string() + ": sample " + std::to_string(todo[k] - part.first);
   });
   for (const std::string& why : refused)
