@@ -109,6 +109,35 @@ TEST_CASE("a PLY cut short is a ConfigError, not a smaller mesh", "[io]") {
   CHECK_THAT(config_error([&] { read_mesh(dir / "nan.ply"); }), Catch::Contains("nan.ply") && Catch::Contains("finite"));
 }
 
+// Found by fuzzing the command line: libassimp's PLY reader loops forever on a
+// header cut before end_header, and a count far beyond the file (PLY or OFF)
+// had it reserve gigabytes before failing a minute later. Both are refused
+// before assimp reads the file.
+TEST_CASE("a mesh header cut short or declaring more than the file holds is refused at once", "[io]") {
+  TempDir dir;
+  drape::test::write_text(dir / "header.ply", "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\n");
+  CHECK_THAT(config_error([&] { read_mesh(dir / "header.ply"); }), Catch::Contains("header.ply") && Catch::Contains("end_header"));
+  drape::test::write_text(dir / "magic.ply", "ply\n");
+  CHECK_THAT(config_error([&] { read_mesh(dir / "magic.ply"); }), Catch::Contains("end_header"));
+  write_mesh(dir / "binary.ply", drape::test::shuffled_grid(4, 4, 3));
+  std::string bytes = drape::test::read_file(dir / "binary.ply");
+  const std::string declared = "element vertex 16";
+  REQUIRE(bytes.find(declared) != std::string::npos);
+  bytes.replace(bytes.find(declared), declared.size(), "element vertex 999999999");
+  drape::test::write_text(dir / "huge.ply", bytes);
+  CHECK_THAT(config_error([&] { read_mesh(dir / "huge.ply"); }), Catch::Contains("huge.ply") && Catch::Contains("cut short"));
+
+  const std::string tetrahedron = "OFF\n4 4 6\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n3 0 2 1\n3 0 1 3\n3 0 3 2\n3 1 2 3\n";
+  drape::test::write_text(dir / "whole.off", tetrahedron);
+  const Mesh read = read_mesh(dir / "whole.off");
+  CHECK(read.num_vertices() == 4);
+  CHECK(read.num_faces() == 4);
+  drape::test::write_text(dir / "counts.off", "OFF\n999999999 999999999 0\n0 0 0\n");
+  CHECK_THAT(config_error([&] { read_mesh(dir / "counts.off"); }), Catch::Contains("counts.off") && Catch::Contains("cut short"));
+  drape::test::write_text(dir / "cut.off", tetrahedron.substr(0, tetrahedron.find("3 0 1 3")));
+  CHECK_THAT(config_error([&] { read_mesh(dir / "cut.off"); }), Catch::Contains("cut.off") && Catch::Contains("cut short"));
+}
+
 TEST_CASE("writing into a missing folder throws and creates nothing", "[io]") {
   TempDir dir;
   const Mesh grid = drape::test::shuffled_grid(3, 3, 1);

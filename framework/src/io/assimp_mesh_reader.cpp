@@ -25,6 +25,7 @@
 #include <assimp/scene.h>
 
 #include <algorithm>
+#include <new>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
@@ -67,11 +68,19 @@ Mesh read_with_assimp(const std::filesystem::path& file, MaterialMesh* materials
   Assimp::Importer importer;
   // No post-processing at all: Triangulate may pick the other diagonal of a quad,
   // JoinIdenticalVertices and ImproveCacheLocality reorder vertices.
-  const aiScene* scene = importer.ReadFile(file.string(), 0);
+  // Checked before assimp reads: a PLY header cut short loops its reader
+  // forever, and counts far beyond the file make it reserve gigabytes.
+  if (lower_extension(file) == ".ply") require_complete_ply(file);
+  if (lower_extension(file) == ".off") require_complete_off(file);
+  const aiScene* scene = nullptr;
+  try {
+    scene = importer.ReadFile(file.string(), 0);
+  } catch (const std::bad_alloc&) {
+    throw ConfigError(where, "cannot read this mesh: it asks for more memory than there is (a vertex or face count in "
+                             "it far larger than the file?)");
+  }
   if (!scene) throw ConfigError(where, "cannot read this mesh: " + one_line(importer.GetErrorString()));
   if (scene->mNumMeshes == 0) throw ConfigError(where, "the file holds no mesh");
-
-  if (lower_extension(file) == ".ply") require_complete_ply(file);
 
   bool with_uv = true;
   for (unsigned m = 0; m < scene->mNumMeshes; ++m) with_uv = with_uv && scene->mMeshes[m]->HasTextureCoords(0);

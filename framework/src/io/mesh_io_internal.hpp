@@ -15,6 +15,8 @@ Mesh read_with_assimp(const std::filesystem::path& file, MaterialMesh* materials
 // assimp reads a PLY that is cut short without complaint (it fills in what is
 // missing), so the body's size is checked against the header: ConfigError if short.
 void require_complete_ply(const std::filesystem::path& file);
+// The same for an ASCII OFF file: its counts against the lines that follow.
+void require_complete_off(const std::filesystem::path& file);
 
 // These write straight to `file` (the temporary of write_atomically).
 // `format_id` is assimp's exporter id: "plyb", "gltf2" or "glb2".

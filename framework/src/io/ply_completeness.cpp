@@ -9,6 +9,8 @@
 #include <algorithm>
 #include <map>
 #include <sstream>
+#include <string>
+#include <vector>
 
 namespace drape::mesh_io {
 namespace {
@@ -28,7 +30,13 @@ void require_complete_ply(const std::filesystem::path& file) {
   const std::string bytes = read_file_bytes(file);
   const SourceLocation where{file.string(), 0};
   std::size_t header_end = bytes.find("end_header");
-  if (header_end == std::string::npos) return;  // not a PLY header assimp accepted; nothing to check
+  if (header_end == std::string::npos) {
+    // A header cut before its end sends assimp's PLY reader into an endless
+    // loop (libassimp 5.2); refused before assimp sees it.
+    if (bytes.rfind("ply", 0) == 0)
+      throw ConfigError(where, "the PLY header has no end_header line (is the file cut short?)");
+    return;  // not a PLY file: assimp says what it is
+  }
   header_end = bytes.find('\n', header_end);
   if (header_end == std::string::npos) header_end = bytes.size() - 1;
 
@@ -71,6 +79,42 @@ void require_complete_ply(const std::filesystem::path& file) {
     throw ConfigError(where, "the header declares at least " + std::to_string(min_bytes) + " bytes of data but only " +
                                  std::to_string(body.size()) + " follow (is the file cut short?)");
   }
+}
+
+void require_complete_off(const std::filesystem::path& file) {
+  const std::string bytes = read_file_bytes(file);
+  const SourceLocation where{file.string(), 0};
+  // Lines without comments, blanks skipped: the keyword (OFF, COFF, NOFF, ...,
+  // possibly with the counts after it), then "vertices faces edges", then one
+  // line per vertex and per face. A count larger than the lines that follow
+  // had assimp reserve gigabytes for a file of a few bytes.
+  std::istringstream text(bytes);
+  std::vector<std::string> lines;
+  std::string line;
+  while (std::getline(text, line)) {
+    line = line.substr(0, line.find('#'));
+    if (line.find_first_not_of(" \t\r") != std::string::npos) lines.push_back(line);
+  }
+  if (lines.empty()) return;  // assimp says what is wrong
+  std::istringstream first(lines[0]);
+  std::string keyword;
+  first >> keyword;
+  if (keyword.size() < 3 || keyword.compare(keyword.size() - 3, 3, "OFF") != 0) return;  // not an ASCII OFF file
+  long vertices = -1, faces = -1;
+  std::size_t next = 1;
+  if (!(first >> vertices >> faces)) {
+    if (lines.size() < 2) throw ConfigError(where, "the OFF file has no line of counts (is it cut short?)");
+    std::istringstream counts(lines[1]);
+    if (!(counts >> vertices >> faces)) throw ConfigError(where, "the OFF file's second line is not 'vertices faces edges'");
+    next = 2;
+  }
+  if (vertices < 0 || faces < 0)
+    throw ConfigError(where, "the OFF header declares " + std::to_string(vertices) + " vertices and " + std::to_string(faces) +
+                                 " faces: counts cannot be negative");
+  const long follow = static_cast<long>(lines.size() - next);
+  if (follow < vertices + faces)
+    throw ConfigError(where, "the OFF header declares " + std::to_string(vertices) + " vertices and " + std::to_string(faces) +
+                                 " faces but only " + std::to_string(follow) + " lines follow (is the file cut short?)");
 }
 
 }  // namespace drape::mesh_io
