@@ -21,7 +21,9 @@
 # posed shards only; default 0), EXTRA_SHARDS (more slim datasets joined to
 # the shards, space-separated, mirrored with them: e.g. the heavy bodies'
 # training drapes a second time, scripts/subset_dataset.py; docs/poses.md,
-# "Heavy bodies twice"), INIT_WIDEN (1: drape train --init-widen, for a
+# "Heavy bodies twice"), PUSH_OUT (the push-out's clearance in m stored in
+# the model, default 0.006; the shipped posed model's 0.003: docs/poses.md,
+# "The penetration margin"), INIT_WIDEN (1: drape train --init-widen, for a
 # graph that adds inputs to INIT's: the new weights that read them start at
 # zero; docs/poses.md, "More capacity on the human rig").
 #
@@ -29,9 +31,10 @@
 # the posed shards, from the mannequin's posed model:
 #   SHARD_DIR=datasets/posespace2000-human GRAPH=graphs/human/drape_posed_v2v1000_post_resampled.yaml \
 #     INIT=models/tshirt-coarse-posed.h5 LR=3e-4 MIRROR=1 bash scripts/train_human_model.sh work-posed-human
-# and a further cycle of the shipped posed model (whose decoder input is 48 wide):
-#   SHARD_DIR=datasets/posespace2000-human GRAPH=graphs/human/drape_posed_v2v1000_post_resampled_transfer48.yaml \
-#     INIT=models/tshirt-coarse-posed-human.h5 LR=3e-4 MIRROR=1 bash scripts/train_human_model.sh work-posed-human
+# and a further cycle of the shipped posed model (its decoder input 48 wide,
+# its penetration margin 2 mm, its push-out to 3 mm):
+#   SHARD_DIR=datasets/posespace2000-human GRAPH=graphs/human/drape_posed_v2v1000_post_resampled_transfer48_margin2mm.yaml \
+#     INIT=models/tshirt-coarse-posed-human.h5 LR=3e-4 MIRROR=1 PUSH_OUT=0.003 bash scripts/train_human_model.sh work-posed-human
 set -euo pipefail
 cd "$(dirname "${BASH_SOURCE[0]}")/.."
 DRAPE=${BUILD_DIR:-build}/bin/drape
@@ -61,6 +64,6 @@ fi
 "$DRAPE" train "${GRAPH:-graphs/human/drape_grade_v2v1000_post_resampled.yaml}" --data "$DATA" --out "$WORK/model.h5" \
   --encoder-body parametric --init "${INIT:-models/tshirt-coarse.h5}" ${INIT_WIDEN:+--init-widen} --epochs "${EPOCHS:-60}" --schedule cosine --lr "${LR:-1e-3}" \
   --patience "${PATIENCE:-30}" --batch 8 --seed 0 --threads "${THREADS:-1}" --resume
-"$DRAPE" model set "$WORK/model.h5" --set post.enabled=true --set post.epsilon=0.006
+"$DRAPE" model set "$WORK/model.h5" --set post.enabled=true --set post.epsilon="${PUSH_OUT:-0.006}"
 
 "$DRAPE" eval --model "$WORK/model.h5" --data "$DATA" --split test --out "$WORK/test.csv" --by bmi:10,20,30,45,65
