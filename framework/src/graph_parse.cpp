@@ -1,4 +1,5 @@
 // Reading graph files: YAML -> GraphSpec, following `base:` chains.
+#include <cmath>
 #include <drape/graph.hpp>
 
 #include "yaml_util.hpp"
@@ -39,11 +40,17 @@ std::vector<std::pair<std::string, PortRef>> parse_inputs(const std::string& fil
 }
 
 double parse_weight(const std::string& file, const YAML::Node& n) {
+  double w = 0;
   try {
-    return n.as<double>();
+    w = n.as<double>();
   } catch (const YAML::Exception&) {
     throw ConfigError(yaml::at(file, n), "a loss weight must be a number, got '" + (n.IsScalar() ? n.Scalar() : "?") + "'");
   }
+  // (A negative weight would train the network to make that loss larger; 0
+  // keeps a loss measured and reported without training on it.)
+  if (!std::isfinite(w) || w < 0)
+    throw ConfigError(yaml::at(file, n), "a loss weight must be a finite number >= 0, got '" + n.Scalar() + "'");
+  return w;
 }
 
 NodeSpec* find_node(GraphSpec& spec, const std::string& name) {

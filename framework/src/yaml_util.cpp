@@ -68,6 +68,38 @@ void refuse_repeated_keys(const YAML::Node& node, const std::string& file, std::
   open.pop_back();
 }
 
+// A bare word as the last line, at the indentation of the map entry above
+// it (`morph` at the end of a file cut in the middle of `morph_steps: 20`),
+// is no YAML (a key needs ':'), but yaml-cpp reads it as the key `morph`
+// with no value, which a scene takes for "reset this key": the cut went
+// unnoticed. Refused, naming the line.
+void refuse_dangling_last_line(const std::string& text, const std::string& file) {
+  std::vector<std::string> lines;
+  std::istringstream in(text);
+  for (std::string line; std::getline(in, line);) lines.push_back(line);
+  const auto significant = [&](std::size_t i) {
+    const auto first = lines[i].find_first_not_of(" \t\r");
+    return first != std::string::npos && lines[i][first] != '#';
+  };
+  std::size_t last = lines.size();
+  while (last > 0 && !significant(last - 1)) --last;
+  if (last < 2) return;
+  std::size_t above = last - 1;
+  while (above > 0 && !significant(above - 1)) --above;
+  if (above == 0) return;
+  const std::string &line = lines[last - 1], &entry = lines[above - 1];
+  const auto indent = line.find_first_not_of(" \t\r"), entry_indent = entry.find_first_not_of(" \t\r");
+  if (indent != entry_indent || line.find(':') != std::string::npos ||
+      std::string("-[]{}\"'|>!&*.%@`,").find(line[indent]) != std::string::npos)
+    return;
+  // The line above is a map entry `key: ...` (not a list item).
+  if (entry[entry_indent] == '-' || entry.find(':') == std::string::npos) return;
+  std::string word = line.substr(indent);
+  while (!word.empty() && (word.back() == ' ' || word.back() == '\r' || word.back() == '\t')) word.pop_back();
+  throw ConfigError({file, static_cast<int>(last)},
+                    "'" + word + "' has no value: a key needs ':' (is the file cut short?)");
+}
+
 }  // namespace
 
 YAML::Node load_text(const std::string& text, const std::string& name_for_errors) {
@@ -79,6 +111,7 @@ YAML::Node load_text(const std::string& text, const std::string& name_for_errors
   }
   std::vector<YAML::Node> open;
   refuse_repeated_keys(root, name_for_errors, open);
+  refuse_dangling_last_line(text, name_for_errors);
   return root;
 }
 

@@ -128,6 +128,12 @@ TEST_CASE("graph errors name the file, the line and the node", "[graph]") {
   CHECK_THAT(e, Catch::Contains("g.yaml:7") && Catch::Contains("factor"));
   // A loss whose type is not a loss.
   CHECK_THAT(error_of(std::string(kGraph) + "  scale: 1.0\n"), Catch::Contains("not a loss"));
+  // A loss weight that is not a finite number >= 0 (a negative one would train the loss up).
+  for (const char* weight : {".nan", "-1", ".inf"})
+    CHECK_THAT(error_of(std::string(kGraph).substr(0, std::string(kGraph).rfind("l2:")) + "l2: " + weight + "\n"),
+               Catch::Contains("g.yaml:") && Catch::Contains("finite number >= 0"));
+  // A bare word as the last line (a file cut in the middle of a key): yaml-cpp reads it as a key with no value.
+  CHECK_THAT(error_of(std::string(kGraph) + "  mse\n"), Catch::Contains("'mse' has no value"));
 }
 
 TEST_CASE("malformed YAML names the file and line", "[graph]") {

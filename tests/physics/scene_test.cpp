@@ -101,6 +101,13 @@ TEST_CASE("scene errors name the file, the line and the key", "[scene]") {
              Catch::Contains("s.yaml:1") && Catch::Contains("recursive alias"));
   CHECK_THAT(message_of([] { parse_scene("body: {model: parametric}\nsolver: &s {inner: *s}\n", "s.yaml"); }),
              Catch::Contains("s.yaml:2") && Catch::Contains("recursive alias"));
+  // A file cut in the middle of a key: yaml-cpp reads the bare word as a key
+  // with no value, which a scene takes for "reset it to the base's".
+  CHECK_THAT(message_of([] { parse_scene("body: {model: parametric}\nsolver:\n  time_step: 0.1\n  morph\n", "s.yaml"); }),
+             Catch::Contains("s.yaml:4") && Catch::Contains("'morph' has no value"));
+  // A folded description over two lines is YAML, and kept.
+  CHECK_THAT(message_of([] { parse_scene("description: a long\n  story\nbody: {model: parametric}\n", "s.yaml"); }),
+             !Catch::Contains("has no value"));
   // An alias used twice side by side is no recursion.
   CHECK_THAT(message_of([] { parse_scene("x: &g [gravity]\neffects: *g\n", "s.yaml"); }),
              !Catch::Contains("recursive alias"));
