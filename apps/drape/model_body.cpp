@@ -22,7 +22,9 @@ ModelBodyInput body_input(const po::variables_map& vm) {
   ModelBodyInput input;
   if (vm.count("body")) {
     input.name = vm["body"].as<std::string>();
-    input.vertices = read_mesh(input.name).vertices;
+    const Mesh mesh = read_mesh(input.name);
+    input.vertices = mesh.vertices;
+    input.faces = mesh.faces;
   } else {
     BodyRequest request;
     request.bmi = vm["bmi"].as<double>();

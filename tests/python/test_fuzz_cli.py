@@ -65,3 +65,31 @@ def test_a_recursive_yaml_alias_is_refused_in_every_reader(tmp_path):
                     ["body", "--pose-file", alias, "--out", tmp_path / "b.obj"]):
         _, err = run_drape(*command, expect=2)
         assert f"{alias}:1" in err and "recursive alias" in err, err
+
+
+def test_a_body_mesh_in_another_vertex_order_or_mirrored_is_refused(tmp_path):
+    # Only the vertex count was checked: a body whose vertices a tool re-indexed (the faces say so) was read
+    # vertex by vertex as other parts of the body, and a mirrored one (inside out) was draped with warnings of a
+    # negative BMI.
+    from conftest import read_obj
+    body = tmp_path / "body.obj"
+    run_drape("body", "--bmi", 30, "--param", "rig=human", "--out", body)
+    vertices, faces = read_obj(body)[:2]
+    run_drape("predict", "--body", body, "--out", tmp_path / "x.obj")  # as made: draped
+    order = np.random.default_rng(0).permutation(len(vertices))
+    new_index = np.empty_like(order)
+    new_index[order] = np.arange(len(order))
+    shuffled = tmp_path / "shuffled.obj"
+    write_obj(shuffled, vertices[order], new_index[faces])  # the same surface, re-indexed
+    _, err = run_drape("predict", "--body", shuffled, "--out", tmp_path / "x.obj", expect=2)
+    assert str(shuffled) in err and "not the body model's" in err, err
+    mirrored = tmp_path / "mirrored.obj"
+    write_obj(mirrored, vertices * np.array([-1.0, 1.0, 1.0]), faces)
+    _, err = run_drape("predict", "--body", mirrored, "--out", tmp_path / "x.obj", expect=2)
+    assert str(mirrored) in err and "mirrored or inside out" in err, err
+
+
+def write_obj(path, vertices, faces):
+    with open(path, "w") as f:
+        f.writelines(f"v {x:.9g} {y:.9g} {z:.9g}\n" for x, y, z in vertices)
+        f.writelines(f"f {a + 1} {b + 1} {c + 1}\n" for a, b, c in faces)

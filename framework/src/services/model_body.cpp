@@ -1,11 +1,15 @@
 // model_body_batch and prepare_bodies (services/model_body.hpp).
+#include <drape/geometry/adjacency.hpp>
 #include <drape/geometry/body_units.hpp>
+#include <drape/geometry/volume.hpp>
 #include <drape/errors.hpp>
 #include <drape/scene/garment_size.hpp>
 #include <drape/io/mesh_io.hpp>
 #include <drape/services/model_body.hpp>
 
+#include <array>
 #include <cmath>
+#include <set>
 #include <cstdio>
 #include <limits>
 
@@ -134,6 +138,24 @@ void choose_sizes_by_chart(const SizeTable& chart, const Model& model, SampleBat
   }
 }
 
+// A mesh of the right vertex count whose faces join other vertices than the
+// model's body does: its vertices are in another order (a tool that
+// re-indexed them, another mesh of the same size), and every vertex would be
+// read as another part of the body. A tool may split quads the other way, so
+// nine in ten of its edges being the model's is enough.
+void require_model_topology(const Eigen::MatrixX3i& faces, const Model& model, const std::string& name) {
+  std::set<std::array<int, 2>> model_edges;
+  for (const auto& e : geometry::edge_list(model.assets().body.faces)) model_edges.insert(e);
+  const std::vector<std::array<int, 2>> edges = geometry::edge_list(faces);
+  std::size_t shared = 0;
+  for (const auto& e : edges) shared += model_edges.count(e);
+  const double share = edges.empty() ? 0.0 : static_cast<double>(shared) / static_cast<double>(edges.size());
+  if (share < 0.9)
+    throw ConfigError("body " + name + ": its faces are not the body model's: " + std::to_string(static_cast<int>(100 * share)) +
+                      " % of its edges join vertices the model's body joins (its vertices are in another order, or it is "
+                      "another mesh); give a mesh in the model's vertex order (drape body --out writes one)");
+}
+
 }  // namespace
 
 SampleBatch model_body_batch(const Model& model, const ModelBodyInput& input) {
@@ -145,7 +167,11 @@ SampleBatch model_body_batch(const Model& model, const ModelBodyInput& input) {
     given.vertices = *input.vertices;
     require_vertex_count(given, model.assets().body.num_vertices(), input.name,
                          "the model's body model '" + model.assets_spec().body_model + "' has that many");
+    if (input.faces && input.faces->rows() > 0) require_model_topology(*input.faces, model, input.name);
     check_body_units(given.vertices, "body " + input.name);
+    if (geometry::mesh_volume(given.vertices, model.assets().body.faces) < 0)
+      throw ConfigError("body " + input.name + ": its surface, taken with the model's faces, turns inwards (negative "
+                        "volume): the body is mirrored or inside out; give it as the body model makes it");
     if (model.needs_body_params())
       throw ConfigError("this model's graph takes the body parameters (input body_params), which a mesh does not "
                         "give: use --bmi");

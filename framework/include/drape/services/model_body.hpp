@@ -31,6 +31,7 @@ struct Notice {
 
 struct ModelBodyInput {
   std::optional<Eigen::MatrixX3d> vertices;  // a body mesh in the model's body topology, or
+  std::optional<Eigen::MatrixX3i> faces;     // (with vertices, when the file had them: checked against the model's)
   std::optional<BodyRequest> request;        // a body of the model's own body plugin
   std::string name = "body";                 // names a given mesh in messages (its file)
   // For a model trained on several sizes (input garment_size: a size name),
