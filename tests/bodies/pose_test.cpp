@@ -303,6 +303,8 @@ TEST_CASE("bad joint angles are refused in one line", "[bodies][pose]") {
   CHECK(message("elbow_flexion=170").find("left_elbow_flexion = 170 is outside its range of motion [0, 150] degrees") !=
         std::string::npos);
   CHECK(message("elbow_flexion=abc") == "--pose: elbow_flexion = 'abc' is not a number of degrees");
+  // strtod reads C's hexadecimal numbers: 0x10 was taken for 16 degrees.
+  CHECK(message("elbow_flexion=0x10") == "--pose: elbow_flexion = '0x10' is not a number of degrees");
   CHECK(message("elbow_flexion=10,left_elbow_flexion=20").find("left_elbow_flexion is set twice") != std::string::npos);
   CHECK(message("knee").find("expected name=degrees") != std::string::npos);
   for (const char* text : {"sholder_abduction=40", "elbow_flexion=nan", "elbow_flexion=170"})

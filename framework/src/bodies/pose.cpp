@@ -81,7 +81,8 @@ double parse_degrees(const std::string& name, const std::string& text, const std
   const char* begin = text.c_str();
   char* end = nullptr;
   const double v = std::strtod(begin, &end);
-  if (text.empty() || end == begin || *end != '\0')
+  // (strtod also reads C's hexadecimal numbers: 0x10 would be 16 degrees.)
+  if (text.empty() || end == begin || *end != '\0' || text.find_first_of("xX") != std::string::npos)
     throw ConfigError(what + ": " + name + " = '" + text + "' is not a number of degrees");
   return v;
 }
