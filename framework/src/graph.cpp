@@ -166,7 +166,13 @@ void Graph::Impl::build_nodes(const GraphSpec& spec, const Registry& registry) {
       throw ConfigError(ns.where, "loss '" + ns.name + "' has type '" + ns.type + "', which is a " + d->kind +
                                       ", not a loss or an energy");
     const Params params(d->params, ns.params, b.label());
-    b.node = registry.create_node(ns.type, params);
+    try {
+      b.node = registry.create_node(ns.type, params);
+    } catch (const ConfigError& e) {
+      // A plugin's own check of its parameters (cnn1d's empty `channels`)
+      // knows no file: the node's line is added.
+      throw ConfigError(ns.where, (ns.is_loss ? "loss '" : "node '") + ns.name + "': " + e.what());
+    }
     for (const auto& p : d->outputs) b.out_ports.push_back(p.name);
     nodes.push_back(std::move(b));
   }

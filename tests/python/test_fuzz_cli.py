@@ -93,3 +93,15 @@ def write_obj(path, vertices, faces):
     with open(path, "w") as f:
         f.writelines(f"v {x:.9g} {y:.9g} {z:.9g}\n" for x, y, z in vertices)
         f.writelines(f"f {a + 1} {b + 1} {c + 1}\n" for a, b, c in faces)
+
+
+def test_a_plugins_own_parameter_check_names_the_file_and_line(tmp_path):
+    # The plugin's message knew no file ("cnn1d: parameter 'channels' needs at least one layer").
+    graph = tmp_path / "g.yaml"
+    text = (SOURCE / "graphs" / "drape.yaml").read_text()
+    assert "channels: [32, 64, 64]" in text
+    graph.write_text(text.replace("channels: [32, 64, 64]", "channels: []", 1))
+    line = next(i + 1 for i, l in enumerate(graph.read_text().splitlines()) if "channels: []" in l)
+    _, err = run_drape("graph", "check", graph, "--resolution", "coarse", expect=2)
+    assert "needs at least one layer" in err and f"{graph}:" in err, err
+    assert abs(int(err.split(f"{graph}:")[1].split(":")[0]) - line) <= 3, err  # the node's line, beside the parameter
