@@ -13,7 +13,6 @@
 #include <algorithm>
 #include <cmath>
 #include <exception>
-#include <functional>
 #include <mutex>
 #include <unordered_map>
 
@@ -83,6 +82,23 @@ struct DatasetReader::Impl {
   // Rebuilds the bodies of `rows` (slim rows) not rebuilt yet, in parallel; then rebuilt.at(row) holds each.
   void rebuild(const std::vector<std::size_t>& rows, const DatasetLayout& layout) const;
 
+  // An exception may not leave an OpenMP region (it ends the program): each
+  // row's failure is kept, and the first one thrown after the loop as bad
+  // input (exit 2) naming the file and the sample whose stored shape or pose
+  // the body model refused (NaN, a weight outside its range, an unknown angle).
+  void rethrow_row_failure(const std::vector<std::exception_ptr>& failures, const std::vector<std::size_t>& rows) const {
+    for (std::size_t k = 0; k < failures.size(); ++k) {
+      if (!failures[k]) continue;
+      const Part& part = parts[part_of(rows[k])];
+      try {
+        std::rethrow_exception(failures[k]);
+      } catch (const std::exception& e) {
+        throw ConfigError(part.file.path().string() + ": sample " + std::to_string(rows[k] - part.first) +
+                          ": its body cannot be made from the stored shape and pose: " + e.what());
+      }
+    }
+  }
+
   // The stored witnesses of those of `rows` whose file keeps one, read in
   // runs (gather): witness_size values each; at[k] is row k's offset in
   // them, -1 for a row without.
@@ -98,25 +114,6 @@ struct DatasetReader::Impl {
   }
 
 };
-
-namespace {
-
-// An exception may not leave an OpenMP region (it ends the program): each
-// row's failure is kept, and the first one thrown after the loop as bad
-// input (exit 2) naming the file and the sample whose stored shape or pose
-// the body model refused (NaN, a weight outside its range, an unknown angle).
-void rethrow_row_failure(const std::vector<std::exception_ptr>& failures, const std::function<std::string(std::size_t)>& where) {
-  for (std::size_t k = 0; k < failures.size(); ++k) {
-    if (!failures[k]) continue;
-    try {
-      std::rethrow_exception(failures[k]);
-    } catch (const std::exception& e) {
-      throw ConfigError(where(k) + ": its body cannot be made from the stored shape and pose: " + e.what());
-    }
-  }
-}
-
-}  // namespace
 
 void DatasetReader::Impl::rebuild(const std::vector<std::size_t>& rows, const DatasetLayout& layout) const {
   std::vector<std::size_t> todo;
@@ -152,10 +149,7 @@ void DatasetReader::Impl::rebuild(const std::vector<std::size_t>& rows, const Da
       failures[static_cast<std::size_t>(k)] = std::current_exception();
     }
   }
-  rethrow_row_failure(failures, [&](std::size_t k) {
-    const Part& part = parts[part_of(todo[k])];
-    return part.file.path().string() + ": sample " + std::to_string(todo[k] - part.first);
-  });
+  rethrow_row_failure(failures, todo);
   // Each body checked against the witness of the one its drape was simulated on.
   std::vector<std::ptrdiff_t> at;
   const std::vector<double> stored = witnesses(todo, witness_blocks(layout.body_vertices) * 4, at);
@@ -417,10 +411,7 @@ DatasetReader::Posing DatasetReader::posing(const std::vector<std::size_t>& indi
       failures[u] = std::current_exception();
     }
   }
-  rethrow_row_failure(failures, [&](std::size_t k) {
-    const Part& part = impl_->parts[impl_->part_of(todo[k])];
-    return part.file.path().string() + ": sample " + std::to_string(todo[k] - part.first);
-  });
+  impl_->rethrow_row_failure(failures, todo);
   for (const std::string& why : refused)
     if (!why.empty()) throw ConfigError(why);
   for (std::size_t k = 0; k < todo.size(); ++k) impl_->posing[todo[k]] = std::move(made[k]);

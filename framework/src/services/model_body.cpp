@@ -7,9 +7,10 @@
 #include <drape/io/mesh_io.hpp>
 #include <drape/services/model_body.hpp>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
-#include <set>
+#include <iterator>
 #include <cstdio>
 #include <limits>
 
@@ -144,11 +145,12 @@ void choose_sizes_by_chart(const SizeTable& chart, const Model& model, SampleBat
 // read as another part of the body. A tool may split quads the other way, so
 // nine in ten of its edges being the model's is enough.
 void require_model_topology(const Eigen::MatrixX3i& faces, const Model& model, const std::string& name) {
-  std::set<std::array<int, 2>> model_edges;
-  for (const auto& e : geometry::edge_list(model.assets().body.faces)) model_edges.insert(e);
+  // (edge_list gives each mesh's edges sorted and unique.)
+  const std::vector<std::array<int, 2>> model_edges = geometry::edge_list(model.assets().body.faces);
   const std::vector<std::array<int, 2>> edges = geometry::edge_list(faces);
-  std::size_t shared = 0;
-  for (const auto& e : edges) shared += model_edges.count(e);
+  std::vector<std::array<int, 2>> common;
+  std::set_intersection(edges.begin(), edges.end(), model_edges.begin(), model_edges.end(), std::back_inserter(common));
+  const std::size_t shared = common.size();
   const double share = edges.empty() ? 0.0 : static_cast<double>(shared) / static_cast<double>(edges.size());
   if (share < 0.9)
     throw ConfigError("body " + name + ": its faces are not the body model's: " + std::to_string(static_cast<int>(100 * share)) +
