@@ -56,6 +56,8 @@ int run(const std::vector<std::string>& given) {
       "schedule", po::value<std::string>()->default_value("constant"), "learning rate over epochs: constant | cosine")(
       "fraction", po::value<double>()->default_value(1.0), "train on this fraction of the training split (the seed's 4k model: 0.25)")(
       "patience", po::value<int>()->default_value(20), "stop after this many epochs without a better validation loss")(
+      "monitor", po::value<std::string>(), "a loss of the graph by its name (e.g. v2v): its unweighted validation value, "
+                                           "not the weighted total, chooses the best epoch and stops early")(
       "seed", po::value<std::uint64_t>()->default_value(0), "seed of the initial weights and the shuffles")(
       "threads", po::value<int>()->default_value(0), "threads, each on a part of every batch (0: all cores, or 1 per "
                                                      "rank under mpirun); results depend on it, so give it to reproduce "
@@ -83,7 +85,7 @@ int run(const std::vector<std::string>& given) {
   po::variables_map vm;
   const std::string usage =
       "drape train GRAPH.yaml --data data.h5 --out model.h5 [--epochs N] [--batch B] [--lr X] [--seed S] [--threads T] "
-      "[--init model.h5 [--init-widen | --init-partial]] [--resume]" +
+      "[--init model.h5 [--init-widen | --init-partial]] [--monitor LOSS] [--resume]" +
       std::string(built_with_mpi() ? "\n       mpirun -np N drape train ... (built with MPI: N ranks, each on a part of every batch)"
                                    : "\n       (built without MPI: one process)");
   if (!parse(usage, args, opts, pos, vm)) return 0;
@@ -99,6 +101,7 @@ int run(const std::vector<std::string>& given) {
   o.lr = vm["lr"].as<double>();
   o.schedule = vm["schedule"].as<std::string>();
   o.patience = vm["patience"].as<int>();
+  if (vm.count("monitor")) o.monitor = vm["monitor"].as<std::string>();
   o.train_fraction = vm["fraction"].as<double>();
   o.seed = vm["seed"].as<std::uint64_t>();
   // Under mpirun the ranks share the cores (mpirun binds each to its own).

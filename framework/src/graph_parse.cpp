@@ -47,7 +47,7 @@ double parse_weight(const std::string& file, const YAML::Node& n) {
     throw ConfigError(yaml::at(file, n), "a loss weight must be a number, got '" + (n.IsScalar() ? n.Scalar() : "?") + "'");
   }
   // (A negative weight would train the network to make that loss larger; 0
-  // keeps a loss measured and reported without training on it.)
+  // turns a loss off: Graph does not build it.)
   if (!std::isfinite(w) || w < 0)
     throw ConfigError(yaml::at(file, n), "a loss weight must be a finite number >= 0, got '" + n.Scalar() + "'");
   return w;

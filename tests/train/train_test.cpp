@@ -4,6 +4,7 @@
 #include <catch2/catch.hpp>
 
 #include <algorithm>
+#include <fstream>
 #include <sstream>
 
 #include <drape/io/checkpoint.hpp>
@@ -200,6 +201,66 @@ TEST_CASE("training stops early after `patience` epochs without a better validat
     last_differs = last_differs || state.at("current/" + name) != w;
   }
   CHECK(last_differs);
+}
+
+TEST_CASE("--monitor: one loss by name chooses the best epoch, and a name not among the graph's losses is refused",
+          "[train]") {
+  TinyData d;
+  // The baseline graph with the L2 loss measured but hardly trained on
+  // (weight 1e-9): the total is the edge loss, which does not see where the
+  // garment is, so the L2 loss goes its own way.
+  std::string text = test::read_file(test::baseline_graph());
+  const std::size_t at = text.find("l2: 1.0");
+  REQUIRE(at != std::string::npos);
+  text.replace(at, 7, "l2: 1e-9");
+  const fs::path graph = d.dir / "graph.yaml";
+  std::ofstream(graph) << text;
+  auto o = test::tiny_training(d.data, d.dir / "model.h5");
+  o.graph = graph;
+  o.epochs = 10;
+  o.lr = 0.05;
+  o.monitor = "l2";
+  const TrainReport r = train(test::plugins(), o);
+  const Checkpoint c = read_checkpoint(o.out);
+  const auto& l2 = c.history.at("val_loss_l2");
+  const auto& total = c.history.at("val_loss");
+  REQUIRE(l2.size() == 10);
+  // The best epoch is where the L2 loss is least, not where the total is.
+  const long by_l2 = 1 + static_cast<long>(std::min_element(l2.begin(), l2.end()) - l2.begin());
+  const long by_total = 1 + static_cast<long>(std::min_element(total.begin(), total.end()) - total.begin());
+  INFO("best by l2 " << by_l2 << ", by the total " << by_total);
+  REQUIRE(by_l2 != by_total);  // else this run could not tell them apart
+  CHECK(r.best_epoch == by_l2);
+  CHECK(r.best_loss == l2[static_cast<std::size_t>(by_l2 - 1)]);
+  CHECK(c.meta.at("monitor") == "val_loss_l2");
+  // The model holds that epoch's weights: a second run cut after that epoch
+  // has them as its current ones (a seed reproduces a run bit for bit).
+  auto o2 = test::tiny_training(d.data, d.dir / "model2.h5");
+  o2.graph = graph;
+  o2.epochs = 10;
+  o2.lr = 0.05;
+  o2.max_epochs_this_run = by_l2;
+  train(test::plugins(), o2);
+  const auto cut = weights_of(training_state_path(o2.out));
+  for (const auto& [name, w] : weights_of(o.out)) CHECK(cut.at("current/" + name) == w);
+
+  // A run resumes only with the same monitor.
+  auto o3 = o;
+  o3.epochs = 12;
+  o3.resume = true;
+  o3.monitor = "";
+  CHECK_THROWS_WITH(train(test::plugins(), o3), Catch::Contains("monitor_loss"));
+
+  auto bad = test::tiny_training(d.data, d.dir / "bad.h5");
+  bad.monitor = "edges";
+  CHECK_THROWS_WITH(train(test::plugins(), bad),
+                    Catch::Contains("--monitor edges: not a loss of") && Catch::Contains("its losses: l2, edge") &&
+                        Catch::Contains("did you mean 'edge'"));
+  // A loss of weight 0 is not built, so it cannot be watched.
+  std::ofstream(d.dir / "off.yaml") << text.replace(text.find("l2: 1e-9"), 8, "l2: 0");
+  bad.graph = d.dir / "off.yaml";
+  bad.monitor = "l2";
+  CHECK_THROWS_WITH(train(test::plugins(), bad), Catch::Contains("is 0, which turns it off"));
 }
 
 TEST_CASE("train refuses to overwrite, resumes only with the same settings, and checks the template", "[train]") {

@@ -241,6 +241,24 @@ struct Learner {
   History history;
 };
 
+// --monitor names one of the graph's losses.
+void check_monitor(const GraphSpec& spec, const TrainOptions& o) {
+  if (o.monitor.empty()) return;
+  std::vector<std::string> losses;
+  for (const NodeSpec& node : spec.nodes) {
+    if (!node.is_loss) continue;
+    if (node.name == o.monitor && node.weight == 0.0)
+      throw ConfigError("--monitor " + o.monitor + ": its weight in " + o.graph.string() +
+                        " is 0, which turns it off (a tiny weight keeps it measured)");
+    losses.push_back(node.name);
+  }
+  if (std::find(losses.begin(), losses.end(), o.monitor) != losses.end()) return;
+  std::string list;
+  for (const std::string& name : losses) list += (list.empty() ? "" : ", ") + name;
+  throw ConfigError("--monitor " + o.monitor + ": not a loss of " + o.graph.string() + " (its losses: " + list + ")" +
+                    did_you_mean(o.monitor, losses));
+}
+
 // What a resumed run must share with the interrupted one.
 std::map<std::string, std::string> resume_settings(const TrainOptions& o, const TrainingData& data,
                                                    const DatasetLayout& layout, int ranks) {
@@ -255,6 +273,7 @@ std::map<std::string, std::string> resume_settings(const TrainOptions& o, const 
       {"lr", exact(o.lr)},
       {"schedule", o.schedule},
       {"patience", std::to_string(o.patience)}};
+  if (!o.monitor.empty()) settings["monitor_loss"] = o.monitor;  // absent: the total, as before the option
   if (o.schedule == "cosine") settings["epochs"] = std::to_string(o.epochs);
   if (!o.init.empty()) settings["init"] = o.init.string();
   if (o.init_widen) settings["init_widen"] = "1";
@@ -293,6 +312,12 @@ void check_resumable(const Checkpoint& st, const fs::path& state_path, const std
       throw ConfigError(state_path.string() + ": cannot resume: the interrupted run had " + key + " " + was +
                         ", this one has " + key + " " + value + " (rerun with the same settings, or --force to start over)");
   }
+  // Settings a run records only when given: one the interrupted run had and
+  // this one lacks is a change too.
+  for (const char* key : {"init", "init_widen", "init_partial", "monitor_loss"})
+    if (st.meta.count(key) && !settings.count(key))
+      throw ConfigError(state_path.string() + ": cannot resume: the interrupted run had " + key + " " +
+                        st.meta.at(key) + ", this one has none (rerun with the same settings, or --force to start over)");
   // Settings only multi-rank runs record (absent: one process).
   const auto had_ranks = st.meta.find("ranks");
   const std::string was_ranks = had_ranks == st.meta.end() ? "1" : had_ranks->second;
@@ -367,7 +392,7 @@ void save(const Run& run) {
   meta["epoch"] = std::to_string(run.progress.epochs_done);
   meta["best_epoch"] = std::to_string(run.report.best_epoch);
   meta["best_loss"] = exact(run.report.best_loss);
-  meta["monitor"] = run.data.val_idx.empty() ? "train_loss" : "val_loss";
+  meta["monitor"] = std::string(run.data.val_idx.empty() ? "train_loss" : "val_loss") + (o.monitor.empty() ? "" : "_" + o.monitor);
   meta["status"] = run.progress.status;
   meta["seconds"] = exact(run.progress.seconds_before + since(run.run_start));
   meta["drape_version"] = "0.1.0";
@@ -401,6 +426,7 @@ void announce(const Run& run, bool nothing_to_do) {
          << (run.ranks > 1 ? (" on each of " + std::to_string(run.ranks) + " ranks") : std::string()) << ", lr "
          << brief(o.lr) << " (" << o.schedule << "), seed " << o.seed;
   if (report.resumed) *o.log << ", " << epochs_done << " epochs done";
+  if (!o.monitor.empty()) *o.log << "; the best epoch by its " << o.monitor << " loss";
   *o.log << "\n";
   if (run.data.val_idx.empty()) *o.log << "no validation samples: the training loss picks the best epoch and stops early\n";
   if (nothing_to_do)
@@ -495,9 +521,11 @@ void run_epoch(Run& run, DistributedGraph& distributed, ProgressBar* bar, bool b
   // Each rank computed the data-only closest points of the samples it met;
   // from now on every rank has them all.
   if (run.ranks > 1) share_surface_cache(*o.ranks);
-  const double monitored = run.data.val_idx.empty() ? r.train_loss.total : r.val_loss.total;
+  const LossValues& judged = run.data.val_idx.empty() ? r.train_loss : r.val_loss;
+  const double monitored = o.monitor.empty() ? judged.total : judged.terms.at(o.monitor);
   if (!std::isfinite(monitored))
-    throw Error("the validation loss is " + brief(monitored) + " after epoch " + std::to_string(e + 1));
+    throw Error("the validation loss" + (o.monitor.empty() ? std::string() : " " + o.monitor) + " is " +
+                brief(monitored) + " after epoch " + std::to_string(e + 1));
   r.stop = run.learner.stopper.update(monitored);
   if (run.learner.stopper.improved()) {
     run.learner.best.assign(run.dp.graph().weights());
@@ -564,6 +592,7 @@ TrainReport train(const Registry& registry, const TrainOptions& given) {
   // The graph, its replicas and the optimiser.
   const GraphSpec graph_spec = parse_graph_file(o.graph);
   check_graph_inputs(graph_spec);
+  check_monitor(graph_spec, o);
   GraphOptions graph_options;
   graph_options.dims = graph_dims(*data.assets, reader.layout().body_params);
   graph_options.assets = data.assets.get();

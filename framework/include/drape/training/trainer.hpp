@@ -36,6 +36,11 @@ struct TrainOptions {
   std::uint64_t seed = 0;
   int threads = 1;
   int patience = 20;          // epochs without a better validation loss before stopping
+  // What "better" means for the best epoch and early stopping: empty, the
+  // weighted total of the losses; else one loss of the graph by its name,
+  // unweighted (say v2v: a penetration term with a small margin can grow
+  // while the drape gets closer, and would then choose an early epoch).
+  std::string monitor;
   // Train on this fraction of the training split only (its first samples in
   // file order: the split is a seeded random permutation, so a random subset);
   // the validation split stays whole. The seed's "4k" model is fraction 0.25.
@@ -79,7 +84,7 @@ struct TrainReport {
   long epochs_done = 0;      // in total, over all runs
   long epochs_this_run = 0;
   long best_epoch = 0;       // 1-based; 0 when no epoch finished
-  double best_loss = 0;      // the monitored loss (validation, or training without a validation split)
+  double best_loss = 0;      // the monitored loss (validation, or training without a validation split; monitor)
   bool resumed = false;
   bool early_stopped = false;
   bool finished = false;     // the epochs are done or training stopped early
