@@ -25,7 +25,9 @@
 # the model, default 0.006; the shipped posed model's 0.003: docs/poses.md,
 # "The penetration margin"), INIT_WIDEN (1: drape train --init-widen, for a
 # graph that adds inputs to INIT's: the new weights that read them start at
-# zero; docs/poses.md, "More capacity on the human rig").
+# zero; docs/poses.md, "More capacity on the human rig"), MONITOR (drape train
+# --monitor: a loss of the graph by name, e.g. v2v, chooses the best epoch
+# instead of the weighted total; default the total).
 #
 # The posed model of the human rig (issues 54 and 56) is the same recipe on
 # the posed shards, from the mannequin's posed model:
@@ -63,7 +65,7 @@ fi
 
 "$DRAPE" train "${GRAPH:-graphs/human/drape_grade_v2v1000_post_resampled.yaml}" --data "$DATA" --out "$WORK/model.h5" \
   --encoder-body parametric --init "${INIT:-models/tshirt-coarse.h5}" ${INIT_WIDEN:+--init-widen} --epochs "${EPOCHS:-60}" --schedule cosine --lr "${LR:-1e-3}" \
-  --patience "${PATIENCE:-30}" --batch 8 --seed 0 --threads "${THREADS:-1}" --resume
+  --patience "${PATIENCE:-30}" ${MONITOR:+--monitor "$MONITOR"} --batch 8 --seed 0 --threads "${THREADS:-1}" --resume
 "$DRAPE" model set "$WORK/model.h5" --set post.enabled=true --set post.epsilon="${PUSH_OUT:-0.006}"
 
 "$DRAPE" eval --model "$WORK/model.h5" --data "$DATA" --split test --out "$WORK/test.csv" --by bmi:10,20,30,45,65
