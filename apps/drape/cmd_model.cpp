@@ -64,8 +64,8 @@ void print_domain(const ModelDomain& d) {
 }
 
 // The sizes a model of drapes in each body's own size chooses from.
-void print_size_chart(const std::string& text) {
-  const SizeTable t = SizeTable::parse(text, "size_chart");
+void print_size_chart(const std::string& text, const std::string& file) {
+  const SizeTable t = SizeTable::parse(text, file + ": /meta size_chart");
   std::printf("sizes: chosen for each body by the tailor's rule (design size %s, %+.1f %% ease on the mean body)\n",
               t.design.c_str(), 100.0 * t.design_ease);
   for (const auto& [name, girth] : t.girth)
@@ -152,7 +152,7 @@ int info(const std::vector<std::string>& args) {
                   "encoder body", spec.encoder_body.c_str());
   }
   print_post_processing(Registry::load_default(plugin_path(vm)), c.graph, file.string() + " (graph)");
-  if (auto chart = c.meta.find("size_chart"); chart != c.meta.end()) print_size_chart(chart->second);
+  if (auto chart = c.meta.find("size_chart"); chart != c.meta.end()) print_size_chart(chart->second, file.string());
   if (auto domain = read_domain(file)) print_domain(*domain);
   else
     std::printf("domain: not recorded (a model written before drape recorded it): predict cannot tell a body outside "

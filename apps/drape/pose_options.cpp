@@ -17,7 +17,15 @@ std::optional<Pose> pose_options(const po::variables_map& vm, const BodyModel& m
     throw ConfigError("body " + model_name + " has no skeleton, so it cannot be posed (--pose, --pose-file, "
                       "--smpl-theta); docs/poses.md says which models can");
   }
-  if (vm.count("pose")) return parse_pose(vm["pose"].as<std::string>(), model.pose_angles(), "--pose");
+  if (vm.count("pose")) {
+    // parse_pose reads "" as the rest pose (Python's pose=""), but an empty
+    // --pose on a command line is more likely a shell variable that was not
+    // set than a request for the A-pose.
+    const std::string text = vm["pose"].as<std::string>();
+    if (text.find_first_not_of(" \t") == std::string::npos)
+      throw UsageError("--pose is empty: give name=degrees,... (docs/poses.md), or leave it out for the rest pose");
+    return parse_pose(text, model.pose_angles(), "--pose");
+  }
   if (vm.count("pose-file")) return read_pose_file(vm["pose-file"].as<std::string>(), model.pose_angles());
   const std::string file = vm["smpl-theta"].as<std::string>();
   return pose_from_theta(read_theta_file(file), model, "--smpl-theta " + file);

@@ -8,6 +8,11 @@
 
 #include <catch2/catch.hpp>
 
+#include <cstdint>
+#include <cstring>
+#include <string>
+#include <vector>
+
 using namespace drape;
 using drape::test::TempDir;
 namespace fs = std::filesystem;
@@ -44,6 +49,39 @@ int files_in(const fs::path& dir) {
   int n = 0;
   for ([[maybe_unused]] const auto& entry : fs::directory_iterator(dir)) ++n;
   return n;
+}
+
+
+// Standard base64 (RFC 4648), for a glTF's data URI.
+std::string base64(const std::vector<unsigned char>& bytes) {
+  static const char* abc = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+  std::string out;
+  for (std::size_t i = 0; i < bytes.size(); i += 3) {
+    const unsigned v = (bytes[i] << 16) | ((i + 1 < bytes.size() ? bytes[i + 1] : 0) << 8) |
+                       (i + 2 < bytes.size() ? bytes[i + 2] : 0);
+    out += abc[(v >> 18) & 63];
+    out += abc[(v >> 12) & 63];
+    out += i + 1 < bytes.size() ? abc[(v >> 6) & 63] : '=';
+    out += i + 2 < bytes.size() ? abc[v & 63] : '=';
+  }
+  return out;
+}
+
+// A glTF written by hand (not by drape's writer): a unit square of 4
+// vertices and two triangles with these 6 uint16 indices.
+std::string square_gltf(const std::vector<std::uint16_t>& indices) {
+  const float xyz[12] = {0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0};
+  std::vector<unsigned char> bytes(48 + 2 * indices.size());
+  std::memcpy(bytes.data(), xyz, 48);
+  std::memcpy(bytes.data() + 48, indices.data(), 2 * indices.size());
+  const std::string n = std::to_string(2 * indices.size());
+  return R"({"asset":{"version":"2.0"},"scene":0,"scenes":[{"nodes":[0]}],"nodes":[{"mesh":0}],)"
+         R"("meshes":[{"primitives":[{"attributes":{"POSITION":0},"indices":1}]}],)"
+         R"("buffers":[{"byteLength":)" + std::to_string(bytes.size()) +
+         R"(,"uri":"data:application/octet-stream;base64,)" + base64(bytes) + R"("}],)"
+         R"("bufferViews":[{"buffer":0,"byteOffset":0,"byteLength":48},{"buffer":0,"byteOffset":48,"byteLength":)" + n +
+         R"(}],"accessors":[{"bufferView":0,"componentType":5126,"count":4,"type":"VEC3","min":[0,0,0],"max":[1,1,0]},)"
+         R"({"bufferView":1,"componentType":5123,"count":)" + std::to_string(indices.size()) + R"(,"type":"SCALAR"}]})";
 }
 
 }  // namespace
@@ -89,6 +127,20 @@ TEST_CASE("a PLY face index out of range is a ConfigError naming the file", "[io
                           "property float z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n"
                           "0 0 0\n1 0 0\n0 1 0\n3 0 1 7\n");
   CHECK_THAT(config_error([&] { read_mesh(dir / "range.ply"); }), Catch::Contains("range.ply"));
+}
+
+TEST_CASE("a glTF face index out of range is refused, not a mesh with the face dropped", "[io]") {
+  TempDir dir;
+  drape::test::write_text(dir / "square.gltf", square_gltf({0, 1, 2, 0, 2, 3}));
+  const Mesh square = read_mesh(dir / "square.gltf");
+  CHECK(square.num_vertices() == 4);
+  CHECK(square.num_faces() == 2);
+  // assimp drops the second face with a warning and reads on.
+  drape::test::write_text(dir / "range.gltf", square_gltf({0, 1, 2, 0, 2, 9}));
+  CHECK_THAT(config_error([&] { read_mesh(dir / "range.gltf"); }),
+             Catch::Contains("range.gltf") && Catch::Contains("out-of-range indices"));
+  // The warnings of one file do not follow the next.
+  CHECK(read_mesh(dir / "square.gltf").num_faces() == 2);
 }
 
 TEST_CASE("a PLY cut short is a ConfigError, not a smaller mesh", "[io]") {

@@ -1,5 +1,6 @@
 // Scene files: base chains, overrides, removal, and errors that name file:line.
 #include <drape/scene/scene.hpp>
+#include <drape/scene/simulation.hpp>
 
 #include <catch2/catch.hpp>
 
@@ -139,6 +140,15 @@ TEST_CASE("a misspelt effect is refused with the list of known effects", "[scene
   CHECK_THAT(message_of([&] { validate_scene(parse_scene("effects: [gravity]\nsolver: {preconditioner: half}\n", "s.yaml"), plugins()); }),
              Catch::Contains("'half'") && Catch::Contains("float") && Catch::Contains("double"));
   CHECK_NOTHROW(validate_scene(parse_scene("effects: [gravity]\nsolver: {preconditioner: double}\n", "s.yaml"), plugins()));
+}
+
+TEST_CASE("a garment plugin's own check of its parameters names the scene's file and line", "[scene]") {
+  // The T-shirt checks its resolution when it is made: its message knew no file.
+  const Scene s = parse_scene("body: {model: parametric}\ngarment:\n  template: tshirt\n  params: {resolution: ultra}\n"
+                              "effects: [gravity]\n",
+                              "s.yaml");
+  CHECK_THAT(message_of([&] { Simulation(plugins(), s); }),
+             Catch::Contains("s.yaml:4") && Catch::Contains("resolution 'ultra'"));
 }
 
 TEST_CASE("the shipped scenes are valid", "[scene]") {

@@ -105,3 +105,25 @@ def test_a_plugins_own_parameter_check_names_the_file_and_line(tmp_path):
     _, err = run_drape("graph", "check", graph, "--resolution", "coarse", expect=2)
     assert "needs at least one layer" in err and f"{graph}:" in err, err
     assert abs(int(err.split(f"{graph}:")[1].split(":")[0]) - line) <= 3, err  # the node's line, beside the parameter
+
+
+def test_an_empty_pose_on_the_command_line_is_refused(tmp_path):
+    # --pose "" was read as the rest pose (the library keeps that for Python's pose=""): on a command line it is
+    # more likely a shell variable that was never set, and the user would get an A-pose drape without a word.
+    for command in (["body", "--pose", "", "--out", tmp_path / "b.obj"],
+                    ["body", "--pose", "  ", "--out", tmp_path / "b.obj"],
+                    ["predict", "--bmi", 30, "--pose", "", "--out", tmp_path / "x.obj"]):
+        _, err = run_drape(*command, expect=2)
+        assert "--pose is empty" in err, err
+    assert not (tmp_path / "b.obj").exists() and not (tmp_path / "x.obj").exists()
+
+
+def test_a_damaged_size_chart_names_the_model_file(tmp_path):
+    # "the model's size_chart: not a size chart": which model's, the message did not say.
+    model = unsealed_copy(SOURCE / "models" / "tshirt-coarse-human.h5", tmp_path / "chart.h5")
+    with h5py.File(model, "r+") as f:
+        assert "size_chart" in f["meta"].attrs
+        f["meta"].attrs["size_chart"] = b"design=; x=abc"
+    for command in (["model", "info", model], ["predict", "--model", model, "--bmi", 30, "--out", tmp_path / "x.obj"]):
+        _, err = run_drape(*command, expect=2)
+        assert f"{model}: /meta size_chart: not a size chart" in err, err

@@ -20,12 +20,17 @@
 
 #include "mesh_io_internal.hpp"
 
+#include <assimp/DefaultLogger.hpp>
 #include <assimp/Importer.hpp>
+#include <assimp/LogStream.hpp>
 #include <assimp/material.h>
 #include <assimp/scene.h>
 
 #include <algorithm>
+#include <cctype>
+#include <mutex>
 #include <new>
+#include <string>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
@@ -55,6 +60,46 @@ PositionKey key_of(const aiVector3D& p) {
   return key;
 }
 
+// assimp reports some damage only as a warning and reads on without what it
+// could not use: a glTF face with an index past its vertices is dropped
+// ("Some faces had out-of-range indices. Those faces were dropped."), and
+// other readers skip faces with invalid indices the same way. A garment read
+// so has a hole and a body lost a face, and nothing would say so: the
+// warnings are collected here (per thread: readers may run in parallel) and
+// those of lost data refused.
+thread_local std::vector<std::string> assimp_warnings;
+
+class WarningCollector : public Assimp::LogStream {
+ public:
+  void write(const char* message) override {
+    std::string m = message;  // "Warn,  T0: what", the severity and thread first
+    if (const std::size_t colon = m.find(": "); colon != std::string::npos && colon < 16) m.erase(0, colon + 2);
+    assimp_warnings.push_back(std::move(m));
+  }
+};
+
+// assimp's logger is one per process: created once, with this stream for
+// warnings and errors only (no default stream: assimp prints nothing itself).
+void collect_assimp_warnings() {
+  static std::once_flag once;
+  std::call_once(once, [] {
+    Assimp::DefaultLogger::create("", Assimp::Logger::NORMAL, 0);
+    Assimp::DefaultLogger::get()->attachStream(new WarningCollector, Assimp::Logger::Warn | Assimp::Logger::Err);
+  });
+  assimp_warnings.clear();
+}
+
+// The first warning of data assimp left out, or "".
+std::string warning_of_lost_data() {
+  for (const std::string& w : assimp_warnings) {
+    std::string lower = w;
+    std::transform(lower.begin(), lower.end(), lower.begin(), [](unsigned char c) { return std::tolower(c); });
+    for (const char* sign : {"out-of-range", "out of range", "invalid index", "dropped"})
+      if (lower.find(sign) != std::string::npos) return w;
+  }
+  return "";
+}
+
 std::string one_line(std::string s) {
   std::replace(s.begin(), s.end(), '\n', ' ');
   while (!s.empty() && (s.back() == ' ' || s.back() == '\r')) s.pop_back();
@@ -73,6 +118,7 @@ Mesh read_with_assimp(const std::filesystem::path& file, MaterialMesh* materials
   if (lower_extension(file) == ".ply") require_complete_ply(file);
   if (lower_extension(file) == ".off") require_complete_off(file);
   const aiScene* scene = nullptr;
+  collect_assimp_warnings();
   try {
     scene = importer.ReadFile(file.string(), 0);
   } catch (const std::bad_alloc&) {
@@ -80,6 +126,8 @@ Mesh read_with_assimp(const std::filesystem::path& file, MaterialMesh* materials
                              "it far larger than the file?)");
   }
   if (!scene) throw ConfigError(where, "cannot read this mesh: " + one_line(importer.GetErrorString()));
+  if (const std::string lost = warning_of_lost_data(); !lost.empty())
+    throw ConfigError(where, "the file is damaged: " + one_line(lost) + " (assimp would read on without them)");
   if (scene->mNumMeshes == 0) throw ConfigError(where, "the file holds no mesh");
 
   bool with_uv = true;

@@ -29,6 +29,25 @@ namespace {
 // The solver's morph_carry, [inner, outer] m (scene_solver_specs, whose
 // bounds Params checks per element), refused at its line unless two, inner
 // below outer.
+// The scene's garment template. A plugin's own check of its parameters (the
+// T-shirt's resolution) knows no file: its message gets the scene's line of
+// the parameter it names, else the scene's file.
+std::unique_ptr<GarmentSource> garment_of_scene(const Registry& registry, const Scene& scene,
+                                                const PluginDescriptor& descriptor) {
+  try {
+    return registry.create_garment(scene.garment,
+                                   Params(descriptor.params, scene.garment_params, "garment '" + scene.garment + "'"));
+  } catch (const ConfigError& e) {
+    const std::string message = e.what();
+    if (message.find(scene.file) != std::string::npos) throw;
+    SourceLocation where{scene.file, 0};
+    for (const auto& [name, value] : scene.garment_params)
+      if (message.find(name + " '") != std::string::npos || message.find(name + ":") != std::string::npos) where = value.where;
+    const bool named = message.rfind(scene.garment + ":", 0) == 0;  // "tshirt: ..." (the registry's context)
+    throw ConfigError(where, (named ? "" : "garment '" + scene.garment + "': ") + message);
+  }
+}
+
 std::pair<double, double> morph_carry(const Params& solver, const Scene& scene) {
   const auto carry = solver.get_float_list("morph_carry");
   if (carry.size() != 2 || !(carry[1] > carry[0])) {
@@ -139,9 +158,7 @@ Simulation::Simulation(const Registry& registry, Scene scene) : registry_(regist
   mean_body_ = body_model_->vertices(body_model_->mean_shape());
 
   const PluginDescriptor& gd = registry_.get(scene_.garment);
-  Garment garment =
-      registry_.create_garment(scene_.garment, Params(gd.params, scene_.garment_params, "garment '" + scene_.garment + "'"))
-          ->build();
+  Garment garment = garment_of_scene(registry_, scene_, gd)->build();
   design_loop_ = garment_girth(garment.mesh.vertices, garment.mesh.faces, mean_body_);
   const bool graded = scene_.garment_grade != 1.0;
   const Eigen::MatrixX3d ungraded = graded ? garment.mesh.vertices : Eigen::MatrixX3d();  // for place_graded_garment

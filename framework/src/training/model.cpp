@@ -180,6 +180,7 @@ Model Model::load(const Registry& registry, const fs::path& file, const ParamOve
       parse_graph_text(overrides.empty() ? checkpoint.graph : graph_with_overrides(checkpoint.graph, overrides, file.string()),
                        file.string() + (overrides.empty() ? " (graph)" : " (graph, with --set)"));
   const auto chart = meta.find("size_chart");
+  if (chart != meta.end()) SizeTable::parse(chart->second, file.string() + ": /meta size_chart");  // damaged: say where
   Model m = build(registry, spec, parse_assets_spec(assets->second, file.string() + ": /meta assets"), 0, cache_dir,
                   chart == meta.end() ? std::string() : chart->second);
   m.file_ = file;
