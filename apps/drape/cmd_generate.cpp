@@ -18,7 +18,7 @@ namespace DRAPE_UNITY_ID {  // the anonymous namespace, or a unique one in a uni
 int run(const std::vector<std::string>& args) {
   po::options_description opts("drape generate");
   opts.add_options()("scene", po::value<std::string>()->default_value("graphs/scenes/tshirt.yaml"), "scene file")(
-      "count", po::value<std::size_t>(), "samples in the whole set (all shards)")(
+      "count", po::value<long>(), "samples in the whole set (all shards)")(
       "bmi", po::value<std::string>()->default_value("10:65"), "BMI range lo:hi (uniform) or a value")(
       "height", po::value<std::string>()->default_value("1.75"), "height range lo:hi in m, or a value")(
       "sex", po::value<std::string>()->default_value("1"), "0, 1, or 0:1 for a random one per sample")(
@@ -41,10 +41,11 @@ int run(const std::vector<std::string>& args) {
   const std::string usage =
       "drape generate [SCENE.yaml] --count N --bmi 10:65 --seed S --out data.h5 [--poses draw] [--shard i/N] [--threads T]";
   if (!parse(usage, args, opts, pos, vm)) return 0;
-  if (!vm.count("count") || vm["count"].as<std::size_t>() == 0) throw UsageError("--count N (N >= 1) is required");
+  // (a long, so that -1 is refused instead of wrapping to 2^64 - 1 samples)
+  if (!vm.count("count") || vm["count"].as<long>() < 1) throw UsageError("--count N (N >= 1) is required");
   if (!vm.count("out")) throw UsageError("--out FILE is required");
   GenerateRequest request;
-  request.count = vm["count"].as<std::size_t>();
+  request.count = static_cast<std::size_t>(vm["count"].as<long>());
   request.shard = parse_shard(vm["shard"].as<std::string>());
   request.bmi = parse_range("bmi", vm["bmi"].as<std::string>());
   request.height = parse_range("height", vm["height"].as<std::string>());

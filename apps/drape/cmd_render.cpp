@@ -100,12 +100,19 @@ void draw(const po::variables_map& vm, const std::string& colour, const std::str
   std::printf("wrote %s (%s; %s)\n", vm["out"].as<std::string>().c_str(), what.c_str(), caption);
 }
 
+// --sample as an index (a long, so that -1 is refused instead of wrapping to 2^64 - 1).
+std::size_t sample_index(const po::variables_map& vm) {
+  const long i = vm["sample"].as<long>();
+  if (i < 0) throw UsageError("--sample " + std::to_string(i) + ": a sample index is 0 or more");
+  return static_cast<std::size_t>(i);
+}
+
 // --data FILE --sample I --simulated: the dataset's drape on its body, on the
 // template of the scene the dataset records.
 int render_simulated(Registry& registry, const po::variables_map& vm, const std::string& colour) {
   const std::string data = vm["data"].as<std::string>();
   const DatasetReader reader(data);
-  const std::size_t i = vm["sample"].as<std::size_t>();
+  const std::size_t i = sample_index(vm);
   if (i >= reader.size()) throw UsageError("--sample " + std::to_string(i) + ": the dataset has " + std::to_string(reader.size()) + " samples");
   const auto assets = assets_for_dataset(registry, reader, data, 1000, default_cache_dir());
   Mesh body;
@@ -124,7 +131,7 @@ int run(const std::vector<std::string>& args) {
   opts.add_options()("model", po::value<std::string>(), "model file (default: the shipped model); its template gives the faces (--simulated draws on the dataset's own template, no model)")(
       "garment", po::value<std::string>(), "draw this garment mesh (the model's template topology) instead of a prediction")(
       "data", po::value<std::string>(), "or take body (and the simulated garment, for --colour error) from a dataset")(
-      "sample", po::value<std::size_t>()->default_value(0), "with --data: the sample index")(
+      "sample", po::value<long>()->default_value(0), "with --data: the sample index")(
       "simulated", "with --data: draw the dataset's simulated garment instead of a prediction")(
       "colour", po::value<std::string>()->default_value("distance"),
       "distance (to the body, cm) | error (to the simulated garment of --data, cm) | strain (edge length change, %)")(
@@ -161,7 +168,7 @@ int run(const std::vector<std::string>& args) {
   if (vm.count("data")) {
     const DatasetReader& reader = data.emplace(vm["data"].as<std::string>());
     check_dataset_template(reader, vm["data"].as<std::string>(), model.assets());
-    const std::size_t i = vm["sample"].as<std::size_t>();
+    const std::size_t i = sample_index(vm);
     if (i >= reader.size()) throw UsageError("--sample " + std::to_string(i) + ": the dataset has " + std::to_string(reader.size()) + " samples");
     batch = read_samples(reader, {i}, model.graph(), false);
     truth = model.assets().garment->mesh;
@@ -189,7 +196,7 @@ int run(const std::vector<std::string>& args) {
 
   draw(vm, colour, what, notes, body, garment, truth,
        colour == "strain" ? worn_rest_lengths(registry, model.assets().garment->mesh, data ? &*data : nullptr,
-                                              vm["sample"].as<std::size_t>(), &model, &batch)
+                                              sample_index(vm), &model, &batch)
                           : std::vector<double>());
   return 0;
 }

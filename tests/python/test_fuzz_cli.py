@@ -127,3 +127,14 @@ def test_a_damaged_size_chart_names_the_model_file(tmp_path):
     for command in (["model", "info", model], ["predict", "--model", model, "--bmi", 30, "--out", tmp_path / "x.obj"]):
         _, err = run_drape(*command, expect=2)
         assert f"{model}: /meta size_chart: not a size chart" in err, err
+
+
+def test_a_negative_count_or_sample_is_refused_not_wrapped(tmp_path):
+    # Read as unsigned, -1 became 18446744073709551615: a dataset of that many drapes, a sample past the end.
+    _, err = run_drape("generate", SOURCE / "graphs" / "scenes" / "tshirt_coarse.yaml", "--count", "-1",
+                       "--out", tmp_path / "g.h5", expect=2)
+    assert "--count N (N >= 1)" in err, err
+    assert not (tmp_path / "g.h5").exists()
+    _, err = run_drape("render", "--data", POSED_SHARD, "--sample", "-1", "--simulated", "--out", tmp_path / "r.svg",
+                       expect=2)
+    assert "--sample -1: a sample index is 0 or more" in err, err
