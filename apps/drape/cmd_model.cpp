@@ -99,6 +99,7 @@ void print_training_settings(const std::map<std::string, std::string>& meta) {
     add(line);
   }
   if (!get("patience").empty()) add("patience " + get("patience"));
+  if (!get("monitor_loss").empty()) add("best epoch by the validation " + get("monitor_loss") + " loss");
   if (!get("ranks").empty()) add("MPI ranks " + get("ranks"));
   if (!line.empty()) std::printf("  %-14s %s\n", "training", line.c_str());
   if (!get("init").empty())

@@ -78,6 +78,21 @@ TEST_CASE("drape train stops at the hidden epoch limit, refuses to overwrite and
   CHECK_THAT(out, Catch::Contains(training_state_path(other).string() + " exists"));
 }
 
+TEST_CASE("drape train --monitor: the log, drape model info and a name the graph lacks", "[train][cli]") {
+  test::TempDir dir;
+  const fs::path data = dir / "data.h5", model = dir / "model.h5";
+  test::write_tiny_dataset(data, 10, 6, 2);
+  std::string out;
+  REQUIRE(test::run(test::drape_command(train_args(data, model, "--monitor edge", 2)), out) == 0);
+  INFO(out);
+  CHECK_THAT(out, Catch::Contains("the best epoch by its edge loss"));
+  REQUIRE(test::run(test::drape_command("model info " + model.string()), out) == 0);
+  CHECK_THAT(out, Catch::Contains("best epoch by the validation edge loss"));
+  CHECK(test::run(test::drape_command(train_args(data, dir / "bad.h5", "--monitor v2v", 2)), out) == 2);
+  CHECK_THAT(out, Catch::Contains("--monitor v2v: not a loss of") && Catch::Contains("its losses: l2, edge"));
+  CHECK(!fs::exists(dir / "bad.h5"));
+}
+
 TEST_CASE("a training killed with SIGKILL continues with --resume to the uninterrupted result", "[train][cli]") {
   test::TempDir dir;
   const fs::path data = dir / "data.h5", killed = dir / "killed.h5", whole = dir / "whole.h5";
