@@ -203,7 +203,7 @@ TEST_CASE("training stops early after `patience` epochs without a better validat
   CHECK(last_differs);
 }
 
-TEST_CASE("--monitor: one loss by name chooses the best epoch, and a name not among the graph's losses is refused",
+TEST_CASE("train with a monitor: one loss by name chooses the best epoch, and a name not among the graph's losses is refused",
           "[train]") {
   TinyData d;
   // The baseline graph with the L2 loss measured but hardly trained on
