@@ -23,7 +23,7 @@ std::string tiny_experiment() {
          "title: a miniature of every kind of row\n"
          "datasets:\n"
          "  shirts: {scene: tiny.yaml, count: 10, bmi: \"15:40\", seed: 2}\n"
-         "training: {epochs: 2, batch: 4, lr: 1.0e-3, schedule: constant, patience: 5, seed: 0}\n"
+         "training: {epochs: 2, batch: 4, lr: 1.0e-3, schedule: constant, patience: 5, seed: 0, monitor: l2}\n"
          "columns: [ME, p, L_p, L_st, e2e_h, infer]\n"
          "rows:\n"
          "  - {name: Simulation, simulation: shirts, seed: {L_p: 1.0e-4, p: 0.0}}\n"
@@ -54,6 +54,7 @@ TEST_CASE("experiment: every kind of row runs, the table is written, and a secon
   INFO(out);
   CHECK_THAT(out, Catch::Contains("$ drape generate"));
   CHECK_THAT(out, Catch::Contains("--fraction 0.5"));
+  CHECK_THAT(out, Catch::Contains("--monitor l2"));  // every training row's best epoch by its L2 loss
   CHECK_THAT(out, Catch::Contains("--split train,val --iters 3"));
   const fs::path work = dir / "runs/tiny";
   const std::string md = read(work / "table.md"), csv = read(work / "table.csv");

@@ -209,10 +209,12 @@ class Runner {
       trained_.insert(row.name);
       return model;
     }
-    if (announce({"train", row.graph.string(), "--data", data.string(), "--out", model.string(), "--epochs",
-                  std::to_string(epochs), "--batch", std::to_string(t.batch), "--lr", exact(t.lr), "--schedule",
-                  t.schedule, "--patience", std::to_string(t.patience), "--seed", std::to_string(t.seed),
-                  "--fraction", exact(row.fraction), "--threads", threads(), "--resume"})) {
+    std::vector<std::string> args{"train", row.graph.string(), "--data", data.string(), "--out", model.string(), "--epochs",
+                                  std::to_string(epochs), "--batch", std::to_string(t.batch), "--lr", exact(t.lr), "--schedule",
+                                  t.schedule, "--patience", std::to_string(t.patience), "--seed", std::to_string(t.seed),
+                                  "--fraction", exact(row.fraction), "--threads", threads(), "--resume"};
+    if (!t.monitor.empty()) args.insert(args.end(), {"--monitor", t.monitor});
+    if (announce(args)) {
       TrainOptions o;
       o.graph = row.graph;
       o.data = data;
@@ -222,6 +224,7 @@ class Runner {
       o.lr = t.lr;
       o.schedule = t.schedule;
       o.patience = t.patience;
+      o.monitor = t.monitor;
       o.seed = t.seed;
       o.train_fraction = row.fraction;
       o.threads = o_.threads;
@@ -422,7 +425,8 @@ class Runner {
     }
     const ExperimentTraining& t = spec_.training;
     s << " training: " << (o_.epochs > 0 ? o_.epochs : t.epochs) << " epochs, batch " << t.batch << ", lr " << t.lr << " ("
-      << t.schedule << "), patience " << t.patience << ", seed " << t.seed << " (rows may override).";
+      << t.schedule << "), patience " << t.patience << (t.monitor.empty() ? "" : ", the best epoch by " + t.monitor)
+      << ", seed " << t.seed << " (rows may override).";
     return s.str();
   }
 

@@ -86,13 +86,14 @@ struct Reader {
   }
 
   ExperimentTraining training(const YAML::Node& n, ExperimentTraining t, const std::string& owner) const {
-    yaml::check_keys(file, n, {"epochs", "batch", "lr", "schedule", "patience", "seed"}, owner);
+    yaml::check_keys(file, n, {"epochs", "batch", "lr", "schedule", "patience", "seed", "monitor"}, owner);
     if (n["epochs"]) t.epochs = number<long>(n["epochs"], owner + ".epochs");
     if (n["batch"]) t.batch = number<int>(n["batch"], owner + ".batch");
     if (n["lr"]) t.lr = number<double>(n["lr"], owner + ".lr");
     if (n["schedule"]) t.schedule = text(n["schedule"], owner + ".schedule");
     if (n["patience"]) t.patience = number<int>(n["patience"], owner + ".patience");
     if (n["seed"]) t.seed = number<std::uint64_t>(n["seed"], owner + ".seed");
+    if (n["monitor"]) t.monitor = text(n["monitor"], owner + ".monitor");
     if (t.epochs < 1 || t.batch < 1 || !(t.lr > 0) || t.patience < 1)
       throw ConfigError(at(n), owner + ": epochs, batch, lr and patience must be positive");
     if (t.schedule != "constant" && t.schedule != "cosine")

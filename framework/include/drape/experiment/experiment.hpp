@@ -9,7 +9,7 @@
 //   title: "Self-correcting loop (seed Table 6.4)"
 //   datasets:
 //     regular: {scene: ../scenes/tshirt_coarse.yaml, count: 1000, bmi: "10:65", seed: 1}
-//   training: {epochs: 60, batch: 16, lr: 1.0e-3, schedule: cosine, patience: 20, seed: 0}
+//   training: {epochs: 60, batch: 16, lr: 1.0e-3, schedule: cosine, patience: 20, seed: 0}  (monitor: v2v optional)
 //   columns: [L_p, p, e2e_h, infer]
 //   rows:
 //     - {name: Simulation, simulation: regular, seed: {L_p: 1.0e-4, p: 0.0}}
@@ -47,6 +47,7 @@ struct ExperimentTraining {
   std::string schedule = "cosine";
   int patience = 20;
   std::uint64_t seed = 0;
+  std::string monitor;  // drape train --monitor: a loss of each row's graph that chooses the best epoch; "": the total
 };
 
 enum class ExperimentRowKind {
