@@ -34,10 +34,10 @@
 #   SHARD_DIR=datasets/posespace2000-human GRAPH=graphs/human/drape_posed_v2v1000_post_resampled.yaml \
 #     INIT=models/tshirt-coarse-posed.h5 LR=3e-4 MIRROR=1 bash scripts/train_human_model.sh work-posed-human
 # and a further cycle of the shipped posed model (its decoder input 48 wide,
-# its penetration margin 1 mm with the best epoch by V2V, its push-out to 3
+# its penetration margin 1 mm with the best epoch by V2V, its push-out to 4
 # mm, the 450 drapes of seed 5 beside the 2,000):
 #   SHARD_DIR=datasets/posespace2000-human GRAPH=graphs/human/drape_posed_v2v1000_post_resampled_transfer48_margin1mm.yaml \
-#     INIT=models/tshirt-coarse-posed-human.h5 LR=3e-4 MIRROR=1 PUSH_OUT=0.003 MONITOR=v2v THREADS=2 \
+#     INIT=models/tshirt-coarse-posed-human.h5 LR=3e-4 MIRROR=1 PUSH_OUT=0.004 MONITOR=v2v THREADS=2 \
 #     EXTRA_SHARDS="$(echo datasets/posespace-human-seed5/shard-*)" bash scripts/train_human_model.sh work-posed-human
 set -euo pipefail
 cd "$(dirname "${BASH_SOURCE[0]}")/.."

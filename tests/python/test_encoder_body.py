@@ -149,4 +149,4 @@ def test_the_shipped_posed_model_is_of_the_wide_graph(tmp_path):
     assert "keeps its initialisation" not in stdout + err
     # The shipped model's own graph has the 1 mm margin and its training chose the best epoch by V2V.
     info, _ = run_drape("model", "info", SOURCE / "models" / "tshirt-coarse-posed-human.h5")
-    assert "best epoch by the validation v2v loss" in info and "within 3.0 mm" in info, info
+    assert "best epoch by the validation v2v loss" in info and "within 4.0 mm" in info, info
