@@ -34,4 +34,15 @@ void rethrow_with_context(const std::string& name) {
   }
 }
 
+void rethrow_at(const SourceLocation& where, const std::string& label) {
+  try {
+    throw;
+  } catch (const ConfigError& e) {
+    const std::string message = e.what();
+    if (!where.file.empty() && message.compare(0, where.file.size(), where.file) == 0) throw;  // already placed
+    if (dynamic_cast<const UsageError*>(&e)) throw UsageError(where, with_context(label, message));
+    throw ConfigError(where, with_context(label, message));
+  }
+}
+
 }  // namespace drape

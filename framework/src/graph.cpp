@@ -168,10 +168,9 @@ void Graph::Impl::build_nodes(const GraphSpec& spec, const Registry& registry) {
     const Params params(d->params, ns.params, b.label());
     try {
       b.node = registry.create_node(ns.type, params);
-    } catch (const ConfigError& e) {
-      // A plugin's own check of its parameters (cnn1d's empty `channels`)
-      // knows no file: the node's line is added.
-      throw ConfigError(ns.where, (ns.is_loss ? "loss '" : "node '") + ns.name + "': " + e.what());
+    } catch (...) {
+      // A plugin's own check of its parameters (cnn1d's empty `channels`): at the node's line.
+      rethrow_at(ns.where, (ns.is_loss ? "loss '" : "node '") + ns.name + "'");
     }
     for (const auto& p : d->outputs) b.out_ports.push_back(p.name);
     nodes.push_back(std::move(b));

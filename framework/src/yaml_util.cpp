@@ -40,7 +40,7 @@ namespace {
 // `open` holds the nodes being walked, outermost first: an alias of a node
 // inside that node itself (`a: &x [*x]`) makes the document an endless tree,
 // which every reader after this one would walk until the stack overflows.
-void refuse_repeated_keys(const YAML::Node& node, const std::string& file, std::vector<YAML::Node>& open) {
+void refuse_repeated_keys_and_cycles(const YAML::Node& node, const std::string& file, std::vector<YAML::Node>& open) {
   if (!node.IsSequence() && !node.IsMap()) return;
   for (const YAML::Node& outer : open)
     if (outer.is(node))
@@ -49,7 +49,7 @@ void refuse_repeated_keys(const YAML::Node& node, const std::string& file, std::
                         "it names); write the repeated part out");
   open.push_back(node);
   if (node.IsSequence())
-    for (const auto& item : node) refuse_repeated_keys(item, file, open);
+    for (const auto& item : node) refuse_repeated_keys_and_cycles(item, file, open);
   if (node.IsMap()) {
     std::map<std::string, int> seen;  // key -> 1-based line
     for (const auto& kv : node) {
@@ -61,8 +61,8 @@ void refuse_repeated_keys(const YAML::Node& node, const std::string& file, std::
           throw ConfigError({file, line}, "'" + key + "' is defined twice (first at line " + std::to_string(it->second) +
                                               "); one map keeps one key once: merge the two");
       }
-      refuse_repeated_keys(kv.first, file, open);
-      refuse_repeated_keys(kv.second, file, open);
+      refuse_repeated_keys_and_cycles(kv.first, file, open);
+      refuse_repeated_keys_and_cycles(kv.second, file, open);
     }
   }
   open.pop_back();
@@ -110,7 +110,7 @@ YAML::Node load_text(const std::string& text, const std::string& name_for_errors
     throw ConfigError({name_for_errors, e.mark.line + 1}, "malformed YAML: " + e.msg);
   }
   std::vector<YAML::Node> open;
-  refuse_repeated_keys(root, name_for_errors, open);
+  refuse_repeated_keys_and_cycles(root, name_for_errors, open);
   refuse_dangling_last_line(text, name_for_errors);
   return root;
 }

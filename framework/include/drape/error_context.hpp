@@ -17,6 +17,14 @@ std::string with_context(const std::string& name, const std::string& message);
 // ConfigError or Error); anything else is rethrown unchanged.
 [[noreturn]] void rethrow_with_context(const std::string& name);
 
+// Inside a catch block: a ConfigError (or UsageError) that names no file yet
+// is rethrown at `where` ("file:line: "), with with_context(label, what()):
+// a plugin's own check of its parameters knows no file, the caller that read
+// them (a graph's node, a scene's garment) does. Anything else is rethrown
+// unchanged.
+struct SourceLocation;
+[[noreturn]] void rethrow_at(const SourceLocation& where, const std::string& label);
+
 // While one lives, warn() on this thread puts `name` in front of its text.
 class ContextScope {
  public:

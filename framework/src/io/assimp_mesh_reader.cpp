@@ -115,8 +115,9 @@ Mesh read_with_assimp(const std::filesystem::path& file, MaterialMesh* materials
   // JoinIdenticalVertices and ImproveCacheLocality reorder vertices.
   // Checked before assimp reads: a PLY header cut short loops its reader
   // forever, and counts far beyond the file make it reserve gigabytes.
-  if (lower_extension(file) == ".ply") require_complete_ply(file);
-  if (lower_extension(file) == ".off") require_complete_off(file);
+  const std::string extension = lower_extension(file);
+  if (extension == ".ply") require_complete_ply(file);
+  if (extension == ".off") require_complete_off(file);
   const aiScene* scene = nullptr;
   collect_assimp_warnings();
   try {

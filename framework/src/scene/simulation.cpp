@@ -10,6 +10,7 @@
 #include <drape/geometry/closest_point.hpp>
 #include <drape/registry.hpp>
 #include <drape/scene/simulation.hpp>
+#include <drape/error_context.hpp>
 
 #include "barrier_morph.hpp"
 #include "body_overlap.hpp"
@@ -26,28 +27,25 @@ namespace drape {
 
 namespace {
 
-// The solver's morph_carry, [inner, outer] m (scene_solver_specs, whose
-// bounds Params checks per element), refused at its line unless two, inner
-// below outer.
 // The scene's garment template. A plugin's own check of its parameters (the
-// T-shirt's resolution) knows no file: its message gets the scene's line of
-// the parameter it names, else the scene's file.
+// T-shirt's resolution) knows no file: its error is placed at the garment's
+// parameters (the first written), else at the scene's file.
 std::unique_ptr<GarmentSource> garment_of_scene(const Registry& registry, const Scene& scene,
                                                 const PluginDescriptor& descriptor) {
+  const Params params(descriptor.params, scene.garment_params, "garment '" + scene.garment + "'");  // placed itself
   try {
-    return registry.create_garment(scene.garment,
-                                   Params(descriptor.params, scene.garment_params, "garment '" + scene.garment + "'"));
-  } catch (const ConfigError& e) {
-    const std::string message = e.what();
-    if (message.find(scene.file) != std::string::npos) throw;
+    return registry.create_garment(scene.garment, params);
+  } catch (...) {
     SourceLocation where{scene.file, 0};
     for (const auto& [name, value] : scene.garment_params)
-      if (message.find(name + " '") != std::string::npos || message.find(name + ":") != std::string::npos) where = value.where;
-    const bool named = message.rfind(scene.garment + ":", 0) == 0;  // "tshirt: ..." (the registry's context)
-    throw ConfigError(where, (named ? "" : "garment '" + scene.garment + "': ") + message);
+      if (where.line == 0 || (value.where.file == where.file && value.where.line < where.line)) where = value.where;
+    rethrow_at(where, scene.garment);  // the registry's "tshirt: ..." already names it
   }
 }
 
+// The solver's morph_carry, [inner, outer] m (scene_solver_specs, whose
+// bounds Params checks per element), refused at its line unless two, inner
+// below outer.
 std::pair<double, double> morph_carry(const Params& solver, const Scene& scene) {
   const auto carry = solver.get_float_list("morph_carry");
   if (carry.size() != 2 || !(carry[1] > carry[0])) {

@@ -180,9 +180,8 @@ Model Model::load(const Registry& registry, const fs::path& file, const ParamOve
       parse_graph_text(overrides.empty() ? checkpoint.graph : graph_with_overrides(checkpoint.graph, overrides, file.string()),
                        file.string() + (overrides.empty() ? " (graph)" : " (graph, with --set)"));
   const auto chart = meta.find("size_chart");
-  if (chart != meta.end()) SizeTable::parse(chart->second, file.string() + ": /meta size_chart");  // damaged: say where
   Model m = build(registry, spec, parse_assets_spec(assets->second, file.string() + ": /meta assets"), 0, cache_dir,
-                  chart == meta.end() ? std::string() : chart->second);
+                  chart == meta.end() ? std::string() : chart->second, file.string() + ": /meta size_chart");
   m.file_ = file;
   m.checkpoint_ = std::move(checkpoint);
   const auto& loaded = m.checkpoint_.meta;
@@ -202,7 +201,7 @@ Model Model::untrained(const Registry& registry, const GraphSpec& graph, const A
 }
 
 Model Model::build(const Registry& registry, const GraphSpec& graph, const AssetsSpec& spec, std::uint64_t seed,
-                   const fs::path& cache_dir, const std::string& size_chart) {
+                   const fs::path& cache_dir, const std::string& size_chart, const std::string& chart_source) {
   Model m;
   m.assets_spec_ = spec;
   m.assets_ = build_assets(registry, spec, cache_dir);
@@ -215,7 +214,7 @@ Model Model::build(const Registry& registry, const GraphSpec& graph, const Asset
   if (!size_chart.empty()) {
     // Each size's pattern is built when a body first wears it (the spec and
     // the names by value: the node may ask after this returns).
-    const SizeTable table = SizeTable::parse(size_chart, "the model's size_chart");
+    const SizeTable table = SizeTable::parse(size_chart, chart_source);
     std::vector<std::pair<std::string, double>> sizes;
     std::vector<double> grades;
     for (const auto& [name, girth] : table.girth) {

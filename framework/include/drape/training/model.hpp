@@ -159,9 +159,11 @@ class Model {
   Model() = default;
   // The assets, body model and graph (fresh weights) shared by load and untrained.
   // size_chart: the model's (meta size_chart), whose sizes' garments the
-  // nodes may ask for (NodeContext::garment_sizes); empty: none.
+  // nodes may ask for (NodeContext::garment_sizes); empty: none. chart_source
+  // names it in the error when it is not a size chart (a damaged file).
   static Model build(const Registry& registry, const GraphSpec& graph, const AssetsSpec& spec, std::uint64_t seed,
-                     const std::filesystem::path& cache_dir, const std::string& size_chart = "");
+                     const std::filesystem::path& cache_dir, const std::string& size_chart = "",
+                     const std::string& chart_source = "the model's size_chart");
   std::filesystem::path file_;
   Checkpoint checkpoint_;
   AssetsSpec assets_spec_;
