@@ -35,8 +35,12 @@ class PyModel {
   SampleBatch batch(const py::handle& body, const py::handle& body_params, const py::handle& garment_size, bool* batched) {
     SampleBatch b;
     b.body = vertices_batch_arg(body, "body_vertices", model_->assets().body.num_vertices(), batched);
-    for (int i = 0; i < b.body.batch(); ++i)
-      check_body_units(b.body.mat(i).cast<double>(), "body_vertices" + (batched && *batched ? "[" + std::to_string(i) + "]" : std::string()));
+    for (int i = 0; i < b.body.batch(); ++i) {
+      const std::string name = "body_vertices" + (batched && *batched ? "[" + std::to_string(i) + "]" : std::string());
+      const Eigen::MatrixX3d vertices = b.body.mat(i).cast<double>();
+      check_body_units(vertices, name);
+      require_model_body_vertices(vertices, *model_, name);
+    }
     const int n = b.body.batch();
     if (model_->needs_body_params()) {
       const int p = model_->graph().input_shape("body_params").cols;

@@ -89,6 +89,29 @@ def test_a_body_mesh_in_another_vertex_order_or_mirrored_is_refused(tmp_path):
     assert str(mirrored) in err and "mirrored or inside out" in err, err
 
 
+def test_a_body_with_two_vertices_swapped_or_given_as_shuffled_points_is_refused(tmp_path):
+    # The 9-in-10 edge rule lets two swapped vertices pass (their faces re-indexed with them: the same surface),
+    # and a body given as points has no faces to test: read through the model's faces, both have edges that jump
+    # across the body. The bodies of the model's space stretch an edge of its mean body under 5 times.
+    from conftest import read_obj
+    body = tmp_path / "body.obj"
+    run_drape("body", "--bmi", 30, "--param", "rig=human", "--out", body)
+    vertices, faces = read_obj(body)[:2]
+    swap = np.arange(len(vertices))
+    swap[[100, 5000]] = [5000, 100]  # a vertex of one end of the body and one of the other
+    swapped = tmp_path / "swapped.obj"
+    write_obj(swapped, vertices[swap], swap[faces])  # (swap is its own inverse)
+    _, err = run_drape("predict", "--body", swapped, "--out", tmp_path / "x.obj", expect=2)
+    assert str(swapped) in err and "not in the body model's order" in err, err
+    points = tmp_path / "points.obj"
+    write_obj(points, vertices, [])
+    run_drape("predict", "--body", points, "--out", tmp_path / "x.obj")  # in the model's order: draped
+    shuffled = tmp_path / "shuffled_points.obj"
+    write_obj(shuffled, vertices[np.random.default_rng(0).permutation(len(vertices))], [])
+    _, err = run_drape("predict", "--body", shuffled, "--out", tmp_path / "x.obj", expect=2)
+    assert str(shuffled) in err and "not in the body model's order" in err, err
+
+
 def write_obj(path, vertices, faces):
     with open(path, "w") as f:
         f.writelines(f"v {x:.9g} {y:.9g} {z:.9g}\n" for x, y, z in vertices)

@@ -58,6 +58,12 @@ bool model_takes_pose(const Model& model);
 // girth over its design size's).
 inline constexpr double kModelMinGrade = 0.5, kModelMaxGrade = 2.5;
 
+// A body given by its vertices (a file, an array) read through the model's
+// faces: ConfigError, naming the body, when they are not in the body model's
+// order (an edge of the mean body stretched more than ten times: vertices
+// swapped, shuffled, another mesh) or the surface turns inwards (mirrored).
+void require_model_body_vertices(const Eigen::MatrixX3d& vertices, const Model& model, const std::string& name);
+
 // A batch of one. ConfigError for a mesh of the wrong vertex count (saying the
 // expected one), in other units, given to a graph that takes body parameters,
 // and for a model of several sizes without a garment size.
