@@ -294,6 +294,68 @@ TEST_CASE("untangle: a deeper crumple is smoothed over three rounds, though the 
   CHECK(report.patches_moved == 0);
 }
 
+TEST_CASE("untangle: two layers pinched through each other beside their fold go back to their sides at rest") {
+  // A sleeve's two layers at the underarm, where the seam joins them: the
+  // upper layer pushed down through the lower one a ring or two from the
+  // fold, so every crossing is within the crumples' reach. Smoothing does
+  // not flatten that (the layers are 2 cm apart at rest, not one sheet);
+  // the side each edge has at rest tells which way it goes back.
+  const double height = 0.02, depth = 0.006;
+  const Strip rest = folded_strip(41, 21, height);
+  Strip s = rest;
+  push_bump(s, 0.9583, 0.5117, 0.04, depth, height);  // upper columns 21-22 (x = 0.95, 0.90), a ring or two from the fold
+  const int crossings = brute_force_crossings(s.x, s.faces);
+  REQUIRE(crossings > 0);
+  const Eigen::MatrixX3d pinched = s.x;
+
+  UntangleOptions without;
+  const auto smoothed = untangle(s.x, s.faces, without);
+  CHECK(smoothed.crumples_smoothed > 0);
+  CHECK(smoothed.layers_pulled == 0);
+  CHECK(smoothed.crossings_after >= crossings / 3);  // smoothing alone leaves many of them
+
+  s.x = pinched;
+  UntangleOptions options;
+  options.rest = &rest.x;
+  const auto report = untangle(s.x, s.faces, options);
+  CHECK(report.crossings_before == crossings);
+  CHECK(report.crossings_after == 0);
+  CHECK(brute_force_crossings(s.x, s.faces) == 0);
+  CHECK(report.layers_pulled > 0);  // (the edges from the fold's own vertices, on the lower layer's plane at rest, are smoothed)
+  // The upper layer above the lower one again where it was pushed through.
+  const int tip = s.at(21, 10), under = s.at(19, 10);  // u = 1.05 -> x = 0.95; u = 0.95 -> x = 0.95
+  REQUIRE(pinched(tip, 2) < pinched(under, 2));
+  CHECK(s.x(tip, 2) > s.x(under, 2));
+  CHECK(report.largest_move <= 2 * (depth + options.gap));
+  // A garment at rest of another size is refused.
+  const Eigen::MatrixX3d short_rest = rest.x.topRows(10);
+  options.rest = &short_rest;
+  CHECK_THROWS_WITH(untangle(s.x, s.faces, options), Catch::Contains("at rest must have the garment's 861 vertices"));
+}
+
+TEST_CASE("untangle: where the sides at rest leave crossings, the crumples' smoothing from the same start is kept") {
+  // A rest that puts the crumple's folded rows 2 above the sheet in one
+  // column and 2 below it in the next: the pulls to those sides, in turn up
+  // and down, do not undo it; the run without them (the smoothing) does,
+  // and is what comes back.
+  Strip s = z_crumple(2.2, 0.3, 3.5);
+  Strip rest = z_crumple(2.2, 0.3, 3.5);
+  for (int i = 0; i < rest.cols; ++i)
+    for (const int j : {4, 5}) rest.x(rest.at(i, j), 2) = i % 2 ? 2.0 : -2.0;
+  const int crossings = brute_force_crossings(s.x, s.faces);
+  REQUIRE(crossings > 0);
+  UntangleOptions options;
+  options.rest = &rest.x;
+  drape::geometry::Untangler untangler(s.faces, static_cast<int>(s.x.rows()));
+  const auto report = untangler.run(s.x, options);
+  CHECK(report.crossings_after == 0);
+  CHECK(brute_force_crossings(s.x, s.faces) == 0);
+  // The report is the smoothing's: the run with the sides at rest (which
+  // pulls the edges down a column that has one) left crossings.
+  CHECK(report.layers_pulled == 0);
+  CHECK(report.crumples_smoothed > 0);
+}
+
 // The search for crossings passes over the parts of the cloth that are
 // height fields along a coordinate axis with a simple outline
 // (UntangleReport::edges_culled). It must find what the brute force finds.

@@ -83,6 +83,18 @@ Crossings find_crossings(TriangleBvh& faces_tree, HeightFieldNodes& height_field
 constexpr double kCrumpleSmoothing = 0.15;
 constexpr int kCrumpleRings = 3;
 
+// A crossing within the crumples' reach is two layers when, at rest, both
+// ends of its edge lie this far or more on one side of the face's plane:
+// the sleeve's two layers at the underarm of a BMI 30 body (sample 1962 of
+// the A-pose human model's expanded set; docs/bodies.md) are 18-67 mm
+// apart there, 2-3 rings from each other across the seam; a fold of one
+// sheet, flat at rest, is within a few millimetres of its own plane.
+constexpr double kLayerDepth = 0.01;
+
+// The side (+1 or -1) of face f's plane that both ends of edge (a, b) are
+// on at rest, kLayerDepth or more off it; 0 when they are not.
+int side_at_rest(const Eigen::MatrixX3d& rest, const Eigen::MatrixX3i& faces, int f, int a, int b);
+
 // A patch whose cut edges ask for directions more than about 75 degrees off
 // its mean direction still moves along the mean, but no further than four
 // times the largest depth (the mean of opposed pulls is short).
@@ -185,6 +197,13 @@ bool pull_across(const Eigen::MatrixX3d& x, const Eigen::MatrixX3i& faces, int f
   return true;
 }
 
+int side_at_rest(const Eigen::MatrixX3d& rest, const Eigen::MatrixX3i& faces, int f, int a, int b) {
+  const double ha = signed_height(rest, faces, f, a), hb = signed_height(rest, faces, f, b);
+  if (ha >= kLayerDepth && hb >= kLayerDepth) return 1;
+  if (ha <= -kLayerDepth && hb <= -kLayerDepth) return -1;
+  return 0;
+}
+
 }  // namespace
 
 // What a garment's topology fixes: its edges, its connected pieces, and the
@@ -243,6 +262,27 @@ UntangleReport untangle(Eigen::MatrixX3d& vertices, const Eigen::MatrixX3i& face
 }
 
 UntangleReport Untangler::run(Eigen::MatrixX3d& vertices, const UntangleOptions& options) {
+  if (!options.rest) return run_once(vertices, options);
+  const Eigen::MatrixX3d start = vertices;
+  const UntangleReport layers = run_once(vertices, options);
+  if (layers.crossings_before == 0) return layers;  // the usual case: nothing crossed, nothing moved
+  Eigen::MatrixX3d smoothed = start;
+  UntangleOptions without = options;
+  without.rest = nullptr;
+  const UntangleReport crumples = run_once(smoothed, without);
+  // Fewer crossings left, then the less moved (summed over the vertices:
+  // the two layers a simulation presses flat at the underarm, pulled a
+  // centimetre or more apart, are further from it than the smoothing leaves them).
+  const double moved_layers = (vertices - start).rowwise().norm().sum();
+  const double moved_crumples = (smoothed - start).rowwise().norm().sum();
+  if (layers.crossings_after < crumples.crossings_after ||
+      (layers.crossings_after == crumples.crossings_after && moved_layers <= moved_crumples))
+    return layers;
+  vertices = smoothed;
+  return crumples;
+}
+
+UntangleReport Untangler::run_once(Eigen::MatrixX3d& vertices, const UntangleOptions& options) {
   Topology& topology = *topology_;
   const int n = topology.num_vertices;
   if (vertices.rows() != n)
@@ -251,6 +291,8 @@ UntangleReport Untangler::run(Eigen::MatrixX3d& vertices, const UntangleOptions&
   if (options.max_rounds < 1) throw Error("untangle: at least one round");
   if (options.patience < 1) throw Error("untangle: a patience of at least one round");
   if (!vertices.allFinite()) throw Error("untangle: the garment has a non-finite vertex");
+  if (options.rest && (options.rest->rows() != n || !options.rest->allFinite()))
+    throw Error("untangle: the garment at rest must have the garment's " + std::to_string(n) + " vertices, all finite");
 
   UntangleReport report;
   const Eigen::MatrixX3i& faces = topology.faces;
@@ -293,13 +335,18 @@ UntangleReport Untangler::run(Eigen::MatrixX3d& vertices, const UntangleOptions&
   // seen are what is returned, so a round never leaves the cloth worse.
   Eigen::MatrixX3d best = vertices;
   std::size_t fewest = hits.size();
-  int rounds_to_best = 0, patches_to_best = 0, crumples_to_best = 0, idle = 0;
+  int rounds_to_best = 0, patches_to_best = 0, crumples_to_best = 0, layers_to_best = 0, idle = 0;
   for (int round = 0; round < options.max_rounds && !hits.empty() && idle < options.patience; ++round) {
     std::vector<std::array<int, 2>> cut;
     std::vector<char> smooth(static_cast<std::size_t>(n), 0), crumple(hits.size(), 0);
+    std::vector<char> layered(hits.size(), 0);
     for (std::size_t h = 0; h < hits.size(); ++h) {
       const auto& [edge, f] = hits[h];
       crumple[h] = is_crumple(edge.first, edge.second, f);
+      if (crumple[h] && options.rest && side_at_rest(*options.rest, faces, f, edge.first, edge.second) != 0) {
+        crumple[h] = 0, layered[h] = 1;  // pulled to its side, below
+        continue;
+      }
       if (crumple[h]) {  // smoothed, not cut
         ++report.crumples_smoothed;
         for (const int v : {edge.first, edge.second, faces(f, 0), faces(f, 1), faces(f, 2)}) smooth[static_cast<std::size_t>(v)] = 1;
@@ -327,10 +374,29 @@ UntangleReport Untangler::run(Eigen::MatrixX3d& vertices, const UntangleOptions&
     std::vector<std::vector<Pull>> patch_pulls(static_cast<std::size_t>(n));  // by region root
     std::vector<char> partner_moves(static_cast<std::size_t>(n), 0);
     std::vector<Pull> vertex_pull(static_cast<std::size_t>(n), Pull{Eigen::Vector3d::Zero(), 0.0});
+    const auto ask = [&](int v, const Eigen::Vector3d& direction, double amount) {
+      Pull& slot = vertex_pull[static_cast<std::size_t>(v)];
+      if (amount > slot.amount) slot = Pull{direction, amount};
+    };
     for (std::size_t h = 0; h < hits.size(); ++h) {
       if (crumple[h]) continue;
       const auto& [edge, f] = hits[h];
       const int a = edge.first, b = edge.second;
+      if (layered[h]) {
+        // Two layers: the edge to its side at rest, the face away from it,
+        // half the way each, until the edge's end on the wrong side is `gap` beyond.
+        Eigen::Vector3d normal, corner;
+        if (!face_plane(vertices, faces, f, normal, corner)) continue;
+        const double side = side_at_rest(*options.rest, faces, f, a, b);
+        const double depth = std::max(options.gap - side * normal.dot(vertices.row(a).transpose() - corner),
+                                      options.gap - side * normal.dot(vertices.row(b).transpose() - corner));
+        if (!(depth > 0)) continue;
+        ++report.layers_pulled;
+        ask(a, side * normal, 0.5 * depth);
+        ask(b, side * normal, 0.5 * depth);
+        for (int k = 0; k < 3; ++k) ask(faces(f, k), -side * normal, 0.5 * depth);
+        continue;
+      }
       bool in_patch = false;
       for (const auto& [v, u] : {std::pair{a, b}, std::pair{b, a}}) {
         const int rv = region[static_cast<std::size_t>(v)];
@@ -354,13 +420,9 @@ UntangleReport Untangler::run(Eigen::MatrixX3d& vertices, const UntangleOptions&
       Pull pull;
       const bool a_nearer = std::abs(signed_height(vertices, faces, f, a)) <= std::abs(signed_height(vertices, faces, f, b));
       if (!pull_across(vertices, faces, f, a_nearer ? a : b, a_nearer ? b : a, options.gap, pull)) continue;
-      const auto ask = [&](int v, const Eigen::Vector3d& direction) {
-        Pull& slot = vertex_pull[static_cast<std::size_t>(v)];
-        if (0.5 * pull.amount > slot.amount) slot = Pull{direction, 0.5 * pull.amount};
-      };
-      ask(a, pull.direction);
-      ask(b, pull.direction);
-      for (int k = 0; k < 3; ++k) ask(faces(f, k), -pull.direction);
+      ask(a, pull.direction, 0.5 * pull.amount);
+      ask(b, pull.direction, 0.5 * pull.amount);
+      for (int k = 0; k < 3; ++k) ask(faces(f, k), -pull.direction, 0.5 * pull.amount);
     }
 
     // Each patch moved as one, along the mean of its pulls, far enough for
@@ -407,8 +469,8 @@ UntangleReport Untangler::run(Eigen::MatrixX3d& vertices, const UntangleOptions&
     update_crossings(faces_tree, height_fields, vertices, faces, edges, topology.vertex_edges, topology.vertex_faces, moved_now, hits);
     if (hits.size() < fewest) {
       best = vertices, fewest = hits.size(), rounds_to_best = report.rounds, patches_to_best = report.patches_moved,
-      crumples_to_best = report.crumples_smoothed, idle = 0;
-    } else if (!cut.empty()) {
+      crumples_to_best = report.crumples_smoothed, layers_to_best = report.layers_pulled, idle = 0;
+    } else if (!cut.empty() || std::find(layered.begin(), layered.end(), 1) != layered.end()) {
       ++idle;  // pulls or cuts that left as many: a pinch handed on
     }
     // (A round of crumples only is not idle: the smoothing flattens the
@@ -420,6 +482,7 @@ UntangleReport Untangler::run(Eigen::MatrixX3d& vertices, const UntangleOptions&
     report.rounds = rounds_to_best;
     report.patches_moved = patches_to_best;
     report.crumples_smoothed = crumples_to_best;
+    report.layers_pulled = layers_to_best;
   }
   report.crossings_after = static_cast<int>(fewest);
   const Eigen::VectorXd moves = (vertices - start).rowwise().norm();  // (n > 0: there were crossings)

@@ -89,7 +89,12 @@ class PushOut final : public Node {
                           " vertices (edges: false and untangle: false push out the vertices of any mesh)");
       edges_ = geometry::edge_list(context.assets->garment->mesh.faces);
       garment_faces_ = context.assets->garment->mesh.faces;
-      if (untangle_) untangler_.emplace(context.assets->garment->mesh.faces, garment_vertices);
+      if (untangle_) {
+        untangler_.emplace(context.assets->garment->mesh.faces, garment_vertices);
+        // The template dressed on the mean body: where two layers the network
+        // pinched through each other belong (UntangleOptions::rest).
+        rest_ = context.assets->garment->mesh.vertices;
+      }
       if (untangle_ || strain_limit_ > 0) adjacency_ = geometry::vertex_adjacency(edges_, garment_vertices);
       if (strain_limit_ > 0) {
         template_ = context.assets->garment->mesh;
@@ -155,6 +160,7 @@ class PushOut final : public Node {
         geometry::UntangleOptions untangling;
         untangling.gap = kSelfGap;
         untangling.max_rounds = kRounds;
+        untangling.rest = &rest_;
         // After each round, the patches it moved kept off the body.
         untangling.after_round = [this](Eigen::MatrixX3d& now, std::vector<char>& moved) { push_out_moved(now, moved); };
         untangler_->run(points, untangling);
@@ -237,6 +243,7 @@ class PushOut final : public Node {
   std::map<float, std::vector<double>> rest_lengths_;  // of edges_, by grade: the grades met so far
   Eigen::MatrixX3i faces_;
   std::optional<geometry::Untangler> untangler_;  // the garment's, when untangle_
+  Eigen::MatrixX3d rest_;                         // the bound garment's template, when untangle_
   geometry::VertexAdjacency adjacency_;           // of edges_, when untangle_ or strain_limit_
   std::vector<std::array<int, 2>> edges_;  // the garment's, when lift_edges_ or untangle_
   Eigen::MatrixX3i garment_faces_;          // the garment's, when lift_edges_ or untangle_ (peaks through a face)

@@ -37,6 +37,15 @@ struct UntangleOptions {
   // before the run gives up (a pinch it only hands on). A round that only
   // smooths crumples does not count: the fold flattens a share at a time.
   int patience = 2;
+  // The garment at rest (its template: the same vertices, uncrossed), or
+  // null. Given, a crossing within the crumples' reach whose edge lies
+  // wholly on one side of the face there, both ends at least kLayerDepth
+  // (untangle.cpp) off its plane, is two layers, not a crumple: the side is
+  // known, and the edge and the face are pulled apart to it, half the way
+  // each (a sleeve's two layers pinched through each other at the underarm,
+  // where the seam joins them within three rings, took the crumples'
+  // smoothing six rounds and more without undoing it).
+  const Eigen::MatrixX3d* rest = nullptr;
   // Called after each round's moves, with `moved` flagging the vertices the
   // round moved; it may move vertices too (a push-out off the body: the
   // patches moved must not end inside it), flagging each in `moved`. The
@@ -54,6 +63,7 @@ struct UntangleReport {
   int rounds = 0;            // rounds that moved something, up to the state returned
   int patches_moved = 0;     // over those rounds
   int crumples_smoothed = 0; // (edge, face) pairs smoothed as crumples over those rounds
+  int layers_pulled = 0;     // (edge, face) pairs pulled to their side at rest (UntangleOptions::rest) over those rounds
   int vertices_moved = 0;    // distinct vertices moved at least once
   double largest_move = 0;   // m, over all rounds, of one vertex
 };
@@ -70,9 +80,16 @@ class Untangler {
  public:
   Untangler(const Eigen::MatrixX3i& faces, int num_vertices);
   ~Untangler();
+  // With options.rest, a garment that crosses itself is untangled twice
+  // from the same start, with the sides at rest and with the crumples'
+  // smoothing only, and the result that leaves fewer crossings kept (of
+  // two that leave as many, the one that moved the vertices less in sum):
+  // two layers pulled to their sides can hand a crossing on where the
+  // smoothing undoes it, or undo it by moving them further (docs/bodies.md).
   UntangleReport run(Eigen::MatrixX3d& vertices, const UntangleOptions& options = {});
 
  private:
+  UntangleReport run_once(Eigen::MatrixX3d& vertices, const UntangleOptions& options);
   struct Topology;
   std::unique_ptr<Topology> topology_;
 };
