@@ -1,8 +1,8 @@
 """The push-out's untangle on the shipped human-rig model's predictions: three heavy test bodies whose predicted
-shirts crossed themselves at the sleeves and the underarm (shards 1, 3 and 14 of datasets/bodyspace2000-human) come out with no
-crossing of the garment through itself, counted by scripts/count_self_crossings.py (numpy only, no drape code),
-while `post.untangle=false` gives the crossings back; the shirt moves by millimetres, and no vertex ends inside the
-body (winding numbers)."""
+shirts crossed themselves at the sleeves and the underarm, and one whose sleeve's two layers pinch through each other
+(shards 1, 3, 14 and 39 of datasets/bodyspace2000-human), come out with no crossing of the garment through itself,
+counted by scripts/count_self_crossings.py (numpy only, no drape code), while `post.untangle=false` gives the
+crossings back; the shirt moves by millimetres to centimetres, and no vertex ends inside the body (winding numbers)."""
 import subprocess
 import sys
 import warnings
@@ -18,9 +18,11 @@ from winding_number import winding_numbers  # noqa: E402
 
 drape = pytest.importorskip("drape")
 MODEL = SOURCE / "models" / "tshirt-coarse-human.h5"
-# (shard, sample in it): BMI 60.9 (14 self-crossing edges without untangle), BMI 50.6 (7), and BMI 64.6 (4: a
-# crumple at the underarm; with the model of before, 2, which the pulls alone handed on and left).
-BODIES = [(3, 6), (14, 31), (1, 18)]
+# (shard, sample in it, largest move in m): BMI 60.9 (13-14 self-crossing edges without untangle), BMI 50.6 (7), BMI
+# 64.6 (4: a crumple at the underarm; with an older model, 2, which the pulls alone handed on and left), and BMI 30.0
+# (27-29: the sleeve's two layers pinched through each other beside the underarm seam, within the crumples' reach;
+# the smoothing alone left 7 of the 1 mm model's 29, the template's sides undo them, moving the shirt up to 2.5 cm).
+BODIES = [(3, 6, 0.02), (14, 31, 0.02), (1, 18, 0.02), (39, 12, 0.03)]
 
 
 def test_untangle_undoes_the_heavy_predictions_self_crossings(tmp_path):
@@ -30,7 +32,7 @@ def test_untangle_undoes_the_heavy_predictions_self_crossings(tmp_path):
     on, off = drape.Model.load(str(MODEL)), drape.Model.load(str(off_file))
     gf = np.array(on.assets.garment_faces)
     bf = np.array(on.assets.body_faces)
-    for shard, sample in BODIES:
+    for shard, sample, largest_move in BODIES:
         data = drape.Dataset(str(SOURCE / "datasets" / "bodyspace2000-human" / f"shard-{shard:02d}-of-40.h5"))
         body = data[sample]["body"]
         with warnings.catch_warnings():
@@ -42,6 +44,6 @@ def test_untangle_undoes_the_heavy_predictions_self_crossings(tmp_path):
         assert len(before) >= 2, (shard, sample, len(before))
         assert len(after) == 0, (shard, sample, len(after))
         moves = np.linalg.norm(g_on - g_off, axis=1)
-        assert 0 < moves.max() < 0.02, moves.max()
+        assert 0 < moves.max() < largest_move, (shard, sample, moves.max())
         assert (moves > 0).sum() < 60, (moves > 0).sum()  # a patch at the sleeve, not the shirt
         assert (winding_numbers(body.astype(np.float64), bf, g_on) > 0.5).sum() == 0
