@@ -39,7 +39,8 @@ class PyModel {
       const std::string name = "body_vertices" + (batched && *batched ? "[" + std::to_string(i) + "]" : std::string());
       const Eigen::MatrixX3d vertices = b.body.mat(i).cast<double>();
       check_body_units(vertices, name);
-      require_model_body_vertices(vertices, *model_, name);
+      std::call_once(body_edges_once_, [this] { body_edges_ = model_body_edges(*model_); });
+      require_model_body_vertices(vertices, *model_, name, &body_edges_);
     }
     const int n = b.body.batch();
     if (model_->needs_body_params()) {
@@ -154,6 +155,9 @@ class PyModel {
   std::mutex mutex_;
   std::uint64_t forwards_ = 0, forward_id_ = 0;
   std::optional<BodyPreparation> preparation_;
+  // The mean body's edges for the vertex-order check, made at the first body.
+  std::once_flag body_edges_once_;
+  ModelBodyEdges body_edges_;
 };
 
 Model::ParamOverrides overrides_of(const py::dict& d) {

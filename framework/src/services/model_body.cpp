@@ -169,30 +169,50 @@ void require_model_topology(const Eigen::MatrixX3i& faces, const Model& model, c
 // rings stay under the limit, and change the drape as little.
 constexpr double kLongestEdgeStretch = 10.0;
 
-void require_model_vertex_order(const Eigen::MatrixX3d& vertices, const Model& model, const std::string& name) {
-  const Mesh& mean = model.assets().body;
-  double worst = 0;
-  std::array<int, 2> at{0, 0};
-  for (const auto& [a, b] : geometry::edge_list(mean.faces)) {
-    const double rest = (mean.vertices.row(a) - mean.vertices.row(b)).norm();
-    const double stretch = (vertices.row(a) - vertices.row(b)).norm() / rest;
-    if (rest > 0 && stretch > worst) worst = stretch, at = {a, b};
+void require_model_vertex_order(const Eigen::MatrixX3d& vertices, const ModelBodyEdges& mean, const std::string& name) {
+  // (Squared lengths against the squared limit: no root or division per
+  // edge, as the Python module checks every body of every call.)
+  const double limit2 = kLongestEdgeStretch * kLongestEdgeStretch;
+  bool any = false;
+  for (std::size_t e = 0; e < mean.edges.size() && !any; ++e) {
+    const auto [a, b] = mean.edges[e];
+    any = (vertices.row(a) - vertices.row(b)).squaredNorm() > limit2 * mean.lengths[e] * mean.lengths[e];
   }
-  if (!(worst > kLongestEdgeStretch)) return;
+  if (!any) return;
+  double worst = 0;
+  std::size_t at = 0;
+  for (std::size_t e = 0; e < mean.edges.size(); ++e) {
+    const auto [a, b] = mean.edges[e];
+    const double stretch = (vertices.row(a) - vertices.row(b)).norm() / mean.lengths[e];
+    if (stretch > worst) worst = stretch, at = e;
+  }
+  const auto [a, b] = mean.edges[at];
   char line[480];
   std::snprintf(line, sizeof line,
                 "body %s: its vertices are not in the body model's order: read through the model's faces, the edge "
                 "between vertices %d and %d is %.2f m long, %.0f times the model's mean body's (more than %.0f; the "
-                "bodies of its shape and pose space stretch an edge under 5 times): vertices swapped or re-indexed, or another mesh; give a mesh in the "
-                "model's vertex order (drape body --out writes one)",
-                name.c_str(), at[0], at[1], (vertices.row(at[0]) - vertices.row(at[1])).norm(), worst, kLongestEdgeStretch);
+                "bodies of its shape and pose space stretch an edge under 5 times): vertices swapped or re-indexed, or "
+                "another mesh; give a mesh in the model's vertex order (drape body --out writes one)",
+                name.c_str(), a, b, (vertices.row(a) - vertices.row(b)).norm(), worst, kLongestEdgeStretch);
   throw ConfigError(line);
 }
 
 }  // namespace
 
-void require_model_body_vertices(const Eigen::MatrixX3d& vertices, const Model& model, const std::string& name) {
-  require_model_vertex_order(vertices, model, name);
+ModelBodyEdges model_body_edges(const Model& model) {
+  const Mesh& mean = model.assets().body;
+  ModelBodyEdges out;
+  for (const auto& edge : geometry::edge_list(mean.faces)) {
+    const double length = (mean.vertices.row(edge[0]) - mean.vertices.row(edge[1])).norm();
+    if (length > 0) out.edges.push_back(edge), out.lengths.push_back(length);  // (a stretch of nothing measures nothing)
+  }
+  return out;
+}
+
+void require_model_body_vertices(const Eigen::MatrixX3d& vertices, const Model& model, const std::string& name,
+                                 const ModelBodyEdges* edges) {
+  if (edges) require_model_vertex_order(vertices, *edges, name);
+  else require_model_vertex_order(vertices, model_body_edges(model), name);
   if (geometry::mesh_volume(vertices, model.assets().body.faces) < 0)
     throw ConfigError("body " + name + ": its surface, taken with the model's faces, turns inwards (negative "
                       "volume): the body is mirrored or inside out; give it as the body model makes it");

@@ -17,6 +17,7 @@
 #include <drape/scene/size_table.hpp>
 
 #include <Eigen/Core>
+#include <array>
 #include <optional>
 #include <string>
 #include <vector>
@@ -62,7 +63,15 @@ inline constexpr double kModelMinGrade = 0.5, kModelMaxGrade = 2.5;
 // faces: ConfigError, naming the body, when they are not in the body model's
 // order (an edge of the mean body stretched more than ten times: vertices
 // swapped, shuffled, another mesh) or the surface turns inwards (mirrored).
-void require_model_body_vertices(const Eigen::MatrixX3d& vertices, const Model& model, const std::string& name);
+// `edges`: model_body_edges(model), made once for body after body (the
+// Python module's predict); null makes them for this call.
+struct ModelBodyEdges {
+  std::vector<std::array<int, 2>> edges;  // the mean body's, of nonzero length
+  std::vector<double> lengths;            // their lengths on the mean body
+};
+ModelBodyEdges model_body_edges(const Model& model);
+void require_model_body_vertices(const Eigen::MatrixX3d& vertices, const Model& model, const std::string& name,
+                                 const ModelBodyEdges* edges = nullptr);
 
 // A batch of one. ConfigError for a mesh of the wrong vertex count (saying the
 // expected one), in other units, given to a graph that takes body parameters,
