@@ -40,7 +40,7 @@
 # the posed shards, from the mannequin's posed model:
 #   SHARD_DIR=datasets/posespace2000-human GRAPH=graphs/human/drape_posed_v2v1000_post_resampled.yaml \
 #     INIT=models/tshirt-coarse-posed.h5 LR=3e-4 MIRROR=1 bash scripts/train_human_model.sh work-posed-human
-# and a further cycle of the shipped posed model (its decoder input 48 wide,
+# and a further cycle of the shipped posed model (the last of which made it; its decoder input 48 wide,
 # its penetration margin 1 mm with the best epoch by V2V, its push-out to 4
 # mm, the 450 drapes of seed 5 beside the 2,000):
 #   SHARD_DIR=datasets/posespace2000-human GRAPH=graphs/human/drape_posed_v2v1000_post_resampled_transfer48_margin1mm.yaml \
