@@ -214,9 +214,9 @@ def test_predict_refuses_a_body_in_other_units_and_arguments_that_would_do_nothi
         model.predict(bad)
     swapped = np.stack([body, body])
     swapped[1, [100, 5000]] = body[[5000, 100]]  # two rows of one end of the body and the other exchanged
-    with pytest.raises(ValueError, match=r"body body_vertices\[1\]: its vertices are not in the body model's order"):
+    with pytest.raises(ValueError, match=r"body_vertices\[1\]: its vertices are not in the body model's order"):
         model.predict(swapped)
-    with pytest.raises(ValueError, match="body body_vertices: .*mirrored or inside out"):
+    with pytest.raises(ValueError, match="body_vertices: its surface.*mirrored or inside out"):
         model.predict(body * np.array([-1, 1, 1], dtype=np.float32))
     assert not model.needs_body_params
     with pytest.raises(ValueError, match="body_params: this model's graph takes no body parameters"):

@@ -169,7 +169,7 @@ void require_model_topology(const Eigen::MatrixX3i& faces, const Model& model, c
 // rings stay under the limit, and change the drape as little.
 constexpr double kLongestEdgeStretch = 10.0;
 
-void require_model_vertex_order(const Eigen::MatrixX3d& vertices, const ModelBodyEdges& mean, const std::string& name) {
+void require_model_vertex_order(const Eigen::MatrixX3d& vertices, const ModelBodyEdges& mean, const std::string& what) {
   // (Squared lengths against the squared limit: no root or division per
   // edge, as the Python module checks every body of every call.)
   const double limit2 = kLongestEdgeStretch * kLongestEdgeStretch;
@@ -189,11 +189,11 @@ void require_model_vertex_order(const Eigen::MatrixX3d& vertices, const ModelBod
   const auto [a, b] = mean.edges[at];
   char line[480];
   std::snprintf(line, sizeof line,
-                "body %s: its vertices are not in the body model's order: read through the model's faces, the edge "
+                "%s: its vertices are not in the body model's order: read through the model's faces, the edge "
                 "between vertices %d and %d is %.2f m long, %.0f times the model's mean body's (more than %.0f; the "
                 "bodies of its shape and pose space stretch an edge under 5 times): vertices swapped or re-indexed, or "
                 "another mesh; give a mesh in the model's vertex order (drape body --out writes one)",
-                name.c_str(), a, b, (vertices.row(a) - vertices.row(b)).norm(), worst, kLongestEdgeStretch);
+                what.c_str(), a, b, (vertices.row(a) - vertices.row(b)).norm(), worst, kLongestEdgeStretch);
   throw ConfigError(line);
 }
 
@@ -209,12 +209,12 @@ ModelBodyEdges model_body_edges(const Model& model) {
   return out;
 }
 
-void require_model_body_vertices(const Eigen::MatrixX3d& vertices, const Model& model, const std::string& name,
+void require_model_body_vertices(const Eigen::MatrixX3d& vertices, const Model& model, const std::string& what,
                                  const ModelBodyEdges* edges) {
-  if (edges) require_model_vertex_order(vertices, *edges, name);
-  else require_model_vertex_order(vertices, model_body_edges(model), name);
+  if (edges) require_model_vertex_order(vertices, *edges, what);
+  else require_model_vertex_order(vertices, model_body_edges(model), what);
   if (geometry::mesh_volume(vertices, model.assets().body.faces) < 0)
-    throw ConfigError("body " + name + ": its surface, taken with the model's faces, turns inwards (negative "
+    throw ConfigError(what + ": its surface, taken with the model's faces, turns inwards (negative "
                       "volume): the body is mirrored or inside out; give it as the body model makes it");
 }
 
@@ -229,7 +229,7 @@ SampleBatch model_body_batch(const Model& model, const ModelBodyInput& input) {
                          "the model's body model '" + model.assets_spec().body_model + "' has that many");
     if (input.faces && input.faces->rows() > 0) require_model_topology(*input.faces, model, input.name);
     check_body_units(given.vertices, "body " + input.name);
-    require_model_body_vertices(given.vertices, model, input.name);
+    require_model_body_vertices(given.vertices, model, "body " + input.name);
     if (model.needs_body_params())
       throw ConfigError("this model's graph takes the body parameters (input body_params), which a mesh does not "
                         "give: use --bmi");

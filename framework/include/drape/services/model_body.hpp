@@ -60,9 +60,10 @@ bool model_takes_pose(const Model& model);
 inline constexpr double kModelMinGrade = 0.5, kModelMaxGrade = 2.5;
 
 // A body given by its vertices (a file, an array) read through the model's
-// faces: ConfigError, naming the body, when they are not in the body model's
-// order (an edge of the mean body stretched more than ten times: vertices
-// swapped, shuffled, another mesh) or the surface turns inwards (mirrored).
+// faces: ConfigError, starting with `what` (the body: "body FILE"), when
+// they are not in the body model's order (an edge of the mean body
+// stretched more than ten times: vertices swapped, shuffled, another mesh)
+// or the surface turns inwards (mirrored).
 // `edges`: model_body_edges(model), made once for body after body (the
 // Python module's predict); null makes them for this call.
 struct ModelBodyEdges {
@@ -70,7 +71,7 @@ struct ModelBodyEdges {
   std::vector<double> lengths;            // their lengths on the mean body
 };
 ModelBodyEdges model_body_edges(const Model& model);
-void require_model_body_vertices(const Eigen::MatrixX3d& vertices, const Model& model, const std::string& name,
+void require_model_body_vertices(const Eigen::MatrixX3d& vertices, const Model& model, const std::string& what,
                                  const ModelBodyEdges* edges = nullptr);
 
 // A batch of one. ConfigError for a mesh of the wrong vertex count (saying the
