@@ -35,11 +35,11 @@ class PyModel {
   SampleBatch batch(const py::handle& body, const py::handle& body_params, const py::handle& garment_size, bool* batched) {
     SampleBatch b;
     b.body = vertices_batch_arg(body, "body_vertices", model_->assets().body.num_vertices(), batched);
+    std::call_once(body_edges_once_, [this] { body_edges_ = model_body_edges(*model_); });
     for (int i = 0; i < b.body.batch(); ++i) {
       const std::string name = "body_vertices" + (batched && *batched ? "[" + std::to_string(i) + "]" : std::string());
       const Eigen::MatrixX3d vertices = b.body.mat(i).cast<double>();
       check_body_units(vertices, name);
-      std::call_once(body_edges_once_, [this] { body_edges_ = model_body_edges(*model_); });
       require_model_body_vertices(vertices, *model_, name, &body_edges_);
     }
     const int n = b.body.batch();

@@ -91,10 +91,6 @@ constexpr int kCrumpleRings = 3;
 // sheet, flat at rest, is within a few millimetres of its own plane.
 constexpr double kLayerDepth = 0.01;
 
-// The side (+1 or -1) of face f's plane that both ends of edge (a, b) are
-// on at rest, kLayerDepth or more off it; 0 when they are not.
-int side_at_rest(const Eigen::MatrixX3d& rest, const Eigen::MatrixX3i& faces, int f, int a, int b);
-
 // A patch whose cut edges ask for directions more than about 75 degrees off
 // its mean direction still moves along the mean, but no further than four
 // times the largest depth (the mean of opposed pulls is short).
@@ -197,6 +193,8 @@ bool pull_across(const Eigen::MatrixX3d& x, const Eigen::MatrixX3i& faces, int f
   return true;
 }
 
+// The side (+1 or -1) of face f's plane that both ends of edge (a, b) are
+// on at rest, kLayerDepth or more off it; 0 when they are not.
 int side_at_rest(const Eigen::MatrixX3d& rest, const Eigen::MatrixX3i& faces, int f, int a, int b) {
   const double ha = signed_height(rest, faces, f, a), hb = signed_height(rest, faces, f, b);
   if (ha >= kLayerDepth && hb >= kLayerDepth) return 1;
@@ -339,12 +337,13 @@ UntangleReport Untangler::run_once(Eigen::MatrixX3d& vertices, const UntangleOpt
   for (int round = 0; round < options.max_rounds && !hits.empty() && idle < options.patience; ++round) {
     std::vector<std::array<int, 2>> cut;
     std::vector<char> smooth(static_cast<std::size_t>(n), 0), crumple(hits.size(), 0);
-    std::vector<char> layered(hits.size(), 0);
+    std::vector<signed char> layered(hits.size(), 0);  // per crossing: its edge's side at rest (+1 or -1), 0: none
     for (std::size_t h = 0; h < hits.size(); ++h) {
       const auto& [edge, f] = hits[h];
       crumple[h] = is_crumple(edge.first, edge.second, f);
-      if (crumple[h] && options.rest && side_at_rest(*options.rest, faces, f, edge.first, edge.second) != 0) {
-        crumple[h] = 0, layered[h] = 1;  // pulled to its side, below
+      if (crumple[h] && options.rest) layered[h] = static_cast<signed char>(side_at_rest(*options.rest, faces, f, edge.first, edge.second));
+      if (layered[h] != 0) {
+        crumple[h] = 0;  // pulled to its side, below
         continue;
       }
       if (crumple[h]) {  // smoothed, not cut
@@ -382,12 +381,12 @@ UntangleReport Untangler::run_once(Eigen::MatrixX3d& vertices, const UntangleOpt
       if (crumple[h]) continue;
       const auto& [edge, f] = hits[h];
       const int a = edge.first, b = edge.second;
-      if (layered[h]) {
+      if (layered[h] != 0) {
         // Two layers: the edge to its side at rest, the face away from it,
         // half the way each, until the edge's end on the wrong side is `gap` beyond.
         Eigen::Vector3d normal, corner;
         if (!face_plane(vertices, faces, f, normal, corner)) continue;
-        const double side = side_at_rest(*options.rest, faces, f, a, b);
+        const double side = layered[h];
         const double depth = std::max(options.gap - side * normal.dot(vertices.row(a).transpose() - corner),
                                       options.gap - side * normal.dot(vertices.row(b).transpose() - corner));
         if (!(depth > 0)) continue;
@@ -470,7 +469,7 @@ UntangleReport Untangler::run_once(Eigen::MatrixX3d& vertices, const UntangleOpt
     if (hits.size() < fewest) {
       best = vertices, fewest = hits.size(), rounds_to_best = report.rounds, patches_to_best = report.patches_moved,
       crumples_to_best = report.crumples_smoothed, layers_to_best = report.layers_pulled, idle = 0;
-    } else if (!cut.empty() || std::find(layered.begin(), layered.end(), 1) != layered.end()) {
+    } else if (!cut.empty() || std::any_of(layered.begin(), layered.end(), [](signed char side) { return side != 0; })) {
       ++idle;  // pulls or cuts that left as many: a pinch handed on
     }
     // (A round of crumples only is not idle: the smoothing flattens the

@@ -78,7 +78,7 @@ class PushOut final : public Node {
     untangler_.reset();
     rest_lengths_.clear();
     sizes_.reset();
-    template_.reset();
+    garment_.reset();
     if (lift_edges_ || untangle_ || strain_limit_ > 0) {
       const std::string which = lift_edges_ ? "edges: true" : untangle_ ? "untangle: true" : "strain_limit";
       if (!context.assets->garment) throw ConfigError("push_out with " + which + " needs the garment's faces: no garment is bound");
@@ -87,20 +87,14 @@ class PushOut final : public Node {
         throw ConfigError("push_out with " + which + ": input 'x' has " + std::to_string(in.at("x").rows) +
                           " rows, the bound garment " + std::to_string(garment_vertices) +
                           " vertices (edges: false and untangle: false push out the vertices of any mesh)");
-      edges_ = geometry::edge_list(context.assets->garment->mesh.faces);
-      garment_faces_ = context.assets->garment->mesh.faces;
-      if (untangle_) {
-        untangler_.emplace(context.assets->garment->mesh.faces, garment_vertices);
-        // The template dressed on the mean body: where two layers the network
-        // pinched through each other belong (UntangleOptions::rest).
-        rest_ = context.assets->garment->mesh.vertices;
-      }
+      garment_ = context.assets->garment;
+      edges_ = geometry::edge_list(garment_->mesh.faces);
+      if (untangle_) untangler_.emplace(garment_->mesh.faces, garment_vertices);
       if (untangle_ || strain_limit_ > 0) adjacency_ = geometry::vertex_adjacency(edges_, garment_vertices);
       if (strain_limit_ > 0) {
-        template_ = context.assets->garment->mesh;
         // A garment without UVs is refused here, not at the first body
         // (without building a size of the model's chart).
-        if (!template_->has_uv())
+        if (!garment_->mesh.has_uv())
           throw ConfigError("push_out with strain_limit needs the garment's material space (UVs); the bound garment has none");
         // A model of drapes in each body's own size: each size's own
         // pattern, built when a body first wears it.
@@ -144,7 +138,7 @@ class PushOut final : public Node {
       geometry::PushOutOptions options;
       options.margin = epsilon_;
       options.closest_faces = &closest_faces_;
-      if (lift_edges_) options.edges = &edges_, options.faces = &garment_faces_;
+      if (lift_edges_) options.edges = &edges_, options.faces = &garment_->mesh.faces;
       geometry::push_out(*surface_, points, options);
       // The push-out stretches again the edges whose ends it moved apart (a
       // vertex deep in the body lifted out, its neighbour left where it was):
@@ -160,7 +154,9 @@ class PushOut final : public Node {
         geometry::UntangleOptions untangling;
         untangling.gap = kSelfGap;
         untangling.max_rounds = kRounds;
-        untangling.rest = &rest_;
+        // The template dressed on the mean body: where two layers the network
+        // pinched through each other belong (UntangleOptions::rest).
+        untangling.rest = &garment_->mesh.vertices;
         // After each round, the patches it moved kept off the body.
         untangling.after_round = [this](Eigen::MatrixX3d& now, std::vector<char>& moved) { push_out_moved(now, moved); };
         untangler_->run(points, untangling);
@@ -221,7 +217,7 @@ class PushOut final : public Node {
     if (const std::optional<std::size_t> size = sizes_ ? sizes_->find(g) : std::nullopt) {
       lengths = geometry::material_edge_lengths(sizes_->material(*size), edges_);
     } else {
-      Mesh graded = *template_;
+      Mesh graded = garment_->mesh;
       grade_material(graded, static_cast<double>(g));
       lengths = geometry::material_edge_lengths(graded, edges_);
     }
@@ -238,15 +234,16 @@ class PushOut final : public Node {
   bool lift_edges_;
   bool untangle_;
   double strain_limit_;  // 0: off
-  std::optional<Mesh> template_;                       // the bound garment's, when strain_limit_ > 0
+  // The bound garment (shared with the assets), when edges, untangle or
+  // strain_limit: its faces, its template (the untangle's rest) and its
+  // material space (the strain limit's rest lengths).
+  std::shared_ptr<const Garment> garment_;
   std::shared_ptr<const GarmentSizes> sizes_;          // the model's sizes, when strain_limit_ > 0 (may be null)
   std::map<float, std::vector<double>> rest_lengths_;  // of edges_, by grade: the grades met so far
   Eigen::MatrixX3i faces_;
   std::optional<geometry::Untangler> untangler_;  // the garment's, when untangle_
-  Eigen::MatrixX3d rest_;                         // the bound garment's template, when untangle_
   geometry::VertexAdjacency adjacency_;           // of edges_, when untangle_ or strain_limit_
   std::vector<std::array<int, 2>> edges_;  // the garment's, when lift_edges_ or untangle_
-  Eigen::MatrixX3i garment_faces_;          // the garment's, when lift_edges_ or untangle_ (peaks through a face)
   std::optional<geometry::BodySurface> surface_;  // the last body's, refitted to the next
   std::vector<int> closest_faces_;                // the last body's closest face of each garment vertex
 };
