@@ -83,26 +83,36 @@ int run(const std::vector<std::string>& args) {
       pose_model_batch(model, batch, pose);
       posing_ms = std::chrono::duration<double, std::milli>(Clock::now() - t).count() / batch_size;
     }
-    return graph_inputs(graph, batch, false);
+    return batch;
   };
   const double other_bmi = bmi + (bmi < 40 ? 10.0 : -10.0);
-  const std::array<std::map<std::string, Tensor>, 2> bodies{inputs_for(other_bmi), inputs_for(bmi)};
+  const std::array<SampleBatch, 2> batches{inputs_for(other_bmi), inputs_for(bmi)};
+  const std::array<std::map<std::string, Tensor>, 2> bodies{graph_inputs(graph, batches[0], false),
+                                                             graph_inputs(graph, batches[1], false)};
+  // With the mirror average the pass is Model::predict's: the twin posed
+  // (its body and joints in the mirrored pose), its network pass, the mean,
+  // then the push-out; the node table shows the body's own pass.
+  const bool mirror = !model.mirror_average_node().empty();
+  const auto pass = [&](int r) {
+    if (mirror) model.predict(batches[static_cast<std::size_t>(r % 2)]);
+    else graph.forward(bodies[static_cast<std::size_t>(r % 2)], false);
+  };
 
   const OmpThreadsScope one_core(1);
-  graph.forward(bodies[0], false);  // warm-up: allocations, caches
+  pass(0);  // warm-up: allocations, caches
   std::vector<double> ms;
   std::vector<std::vector<double>> node_ms;  // per node, per repeat
   std::vector<Graph::NodeTime> nodes;
   for (int r = 0; r < repeats; ++r) {
     const auto t = Clock::now();
-    graph.forward(bodies[static_cast<std::size_t>(r % 2)], false);
+    pass(r);
     ms.push_back(std::chrono::duration<double, std::milli>(Clock::now() - t).count() / batch_size);
     nodes = graph.last_forward_times();
     node_ms.resize(nodes.size());
     for (std::size_t n = 0; n < nodes.size(); ++n) node_ms[n].push_back(nodes[n].ms / batch_size);
   }
   const auto [best, median] = best_and_median(ms);
-  const double macs = graph.flops_per_sample();
+  const double macs = (mirror ? 2.0 : 1.0) * graph.flops_per_sample();  // (the twin's pass: every node but the push-out, which has none)
   std::size_t weights = 0;
   for (const auto& [name, w] : graph.weights()) weights += w->value.size();
   std::printf("## Inference on one core: %s\n\n", model.file().string().c_str());
@@ -131,6 +141,11 @@ int run(const std::vector<std::string>& args) {
     std::printf("| %s | %s | %.3f | %.0f%% | %.3g | %.2f |\n", nodes[n].name.c_str(), nodes[n].type.c_str(), node_median[n],
                 100.0 * node_median[n] / std::max(total, 1e-12), nodes[n].flops_per_sample,
                 node_median[n] > 0 ? 2.0 * nodes[n].flops_per_sample / (node_median[n] * 1e-3) / 1e9 : 0.0);
+  if (mirror)
+    std::printf("\nmirror average before '%s': the median pass less the nodes above, %.3f ms per body (the twin "
+                "posed in the mirrored pose, its network pass and the mean; --set %s.mirror_average=false in drape "
+                "model set times the model without it)\n",
+                model.mirror_average_node().c_str(), median - total, model.mirror_average_node().c_str());
   return 0;
 }
 

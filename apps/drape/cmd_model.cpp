@@ -122,6 +122,10 @@ void print_post_processing(const Registry& registry, const std::string& graph_te
                   "(--set %s.strain_limit=0: off)\n", "strain limit", p.node.c_str(), 1.0 + p.strain_limit,
                   p.grade_connected ? "the pattern of the size the body wears" : "the template's pattern, whatever the size",
                   p.node.c_str());
+    if (p.mirror_average)
+      std::printf("  %-14s before %s: the network also drapes the body in its mirrored pose, and the garment is the "
+                  "mean of its own and that twin's reflection (--set %s.mirror_average=false: off, one network pass)\n",
+                  "mirror average", p.node.c_str(), p.node.c_str());
   }
 }
 

@@ -83,7 +83,14 @@ struct Graph::Impl {
   void set_up_shapes(const GraphOptions& options);
   void mark_needed_nodes();
 
+  // Running: the graph inputs checked and taken, then the nodes `runs` picks
+  // (by index, in topological order); fed_by(n): n and the nodes downstream of it.
+  void set_inputs(const std::map<std::string, Tensor>& given, bool with_losses);
+  void run(const std::function<bool(int)>& runs);
+  std::vector<bool> fed_by(int node) const;
+
   int node_index(const std::string& name) const;
+  int existing_node(const std::string& name) const;  // node_index, Error when there is none
   int input_index(const std::string& name) const;
   std::vector<std::string> all_names() const;
   Source resolve(const GraphSpec& spec, const PortRef& r, const std::string& who, int depth) const;
@@ -175,6 +182,12 @@ void Graph::Impl::build_nodes(const GraphSpec& spec, const Registry& registry) {
     for (const auto& p : d->outputs) b.out_ports.push_back(p.name);
     nodes.push_back(std::move(b));
   }
+}
+
+int Graph::Impl::existing_node(const std::string& name) const {
+  const int n = node_index(name);
+  if (n < 0) throw Error("the graph has no node named '" + name + "'");
+  return n;
 }
 
 int Graph::Impl::node_index(const std::string& name) const {
@@ -366,7 +379,58 @@ std::vector<Graph::NodeInfo> Graph::describe() const {
 }
 
 void Graph::forward(const std::map<std::string, Tensor>& inputs, bool with_losses) {
-  Impl& g = *impl_;
+  impl_->set_inputs(inputs, with_losses);
+  impl_->run([&](int n) { return impl_->nodes[n].for_outputs || (with_losses && impl_->nodes[n].for_losses); });
+  impl_->ran_losses = with_losses;
+}
+
+void Graph::forward_until(const std::map<std::string, Tensor>& inputs, const std::string& node) {
+  const std::vector<bool> after = impl_->fed_by(impl_->existing_node(node));
+  impl_->set_inputs(inputs, false);
+  impl_->run([&](int n) { return impl_->nodes[n].for_outputs && !after[n]; });
+  impl_->ran_losses = false;
+}
+
+void Graph::forward_from(const std::string& node) {
+  const std::vector<bool> after = impl_->fed_by(impl_->existing_node(node));
+  impl_->run([&](int n) { return impl_->nodes[n].for_outputs && after[n]; });
+}
+
+bool Graph::input_read_before(const std::string& input, const std::string& node) const {
+  const int i = impl_->input_index(input);
+  if (i < 0) return false;
+  const std::vector<bool> after = impl_->fed_by(impl_->existing_node(node));
+  for (std::size_t n = 0; n < impl_->nodes.size(); ++n)
+    if (impl_->nodes[n].for_outputs && !after[n])
+      for (const Source& s : impl_->nodes[n].sources)
+        if (s.input == i) return true;
+  return false;
+}
+
+Tensor& Graph::fed_into(const std::string& node, const std::string& port) {
+  Impl::Built& b = impl_->nodes[static_cast<std::size_t>(impl_->existing_node(node))];
+  for (std::size_t k = 0; k < b.in_ports.size(); ++k) {
+    if (b.in_ports[k] != port) continue;
+    const Source& s = b.sources[k];
+    if (s.node < 0) throw Error("node '" + node + "' port '" + port + "' reads the graph input '" + impl_->inputs[s.input].name + "'");
+    return impl_->nodes[s.node].outputs[s.port];
+  }
+  throw Error("node '" + node + "' has no connected port '" + port + "'");
+}
+
+std::vector<bool> Graph::Impl::fed_by(int node) const {
+  // Nodes are in topological order: one pass marks every node downstream.
+  std::vector<bool> after(nodes.size(), false);
+  after[node] = true;
+  for (std::size_t n = 0; n < nodes.size(); ++n)
+    for (const Source& s : nodes[n].sources)
+      if (s.node >= 0 && after[s.node]) after[n] = true;
+  return after;
+}
+
+void Graph::Impl::set_inputs(const std::map<std::string, Tensor>& given, bool with_losses) {
+  Impl& g = *this;
+  const auto& inputs = given;
   auto runs = [&](const Impl::Built& b) { return b.for_outputs || (with_losses && b.for_losses); };
   std::vector<bool> needed(g.inputs.size(), false);
   for (const auto& b : g.nodes)
@@ -396,10 +460,14 @@ void Graph::forward(const std::map<std::string, Tensor>& inputs, bool with_losse
     in.value = t;
   }
   if (g.batch <= 0) throw ConfigError("forward needs at least one input with a positive batch size");
+  for (Built& b : g.nodes) b.forward_ms = 0.0;
+}
 
-  for (auto& b : g.nodes) {
-    b.forward_ms = 0.0;
-    if (!runs(b)) continue;
+void Graph::Impl::run(const std::function<bool(int)>& runs) {
+  Impl& g = *this;
+  for (int n = 0; n < static_cast<int>(g.nodes.size()); ++n) {
+    Built& b = g.nodes[static_cast<std::size_t>(n)];
+    if (!runs(n)) continue;  // (forward_from keeps the times of the nodes forward_until ran)
     TensorIn in;
     for (std::size_t k = 0; k < b.in_ports.size(); ++k) in[b.in_ports[k]] = &g.value_of(b.sources[k]);
     b.outputs.resize(b.out_ports.size());
@@ -412,7 +480,6 @@ void Graph::forward(const std::map<std::string, Tensor>& inputs, bool with_losse
     in_context(b.spec.type, [&] { b.node->forward(in, out); });  // errors name the node's plugin
     b.forward_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   }
-  g.ran_losses = with_losses;
 }
 
 std::vector<Graph::NodeTime> Graph::last_forward_times() const {

@@ -258,3 +258,27 @@ losses:
   CHECK(times[3].is_loss);
   CHECK(times[3].backward_ms > 0.0);
 }
+
+TEST_CASE("forward in two parts: what feeds a node changed between them", "[graph]") {
+  Graph g(parse_graph_text(kGraph, "g.yaml"), test::registry_with_test_nodes(), {{{"n", 3}}});
+  const std::map<std::string, Tensor> in{{"rest", random_tensor(2, 3, 3)}};
+  g.forward_until(in, "twice");
+  // lift ran (1.5 x + 0.25); twice and sum, fed by it, did not.
+  Tensor& lifted = g.fed_into("twice", "x");
+  CHECK(lifted(1, 2, 1) == Approx(1.5 * in.at("rest")(1, 2, 1) + 0.25));
+  const auto ran = g.last_forward_times();
+  REQUIRE(ran.size() == 1);
+  CHECK(ran[0].name == "lift");
+  for (std::size_t i = 0; i < lifted.size(); ++i) lifted.data()[i] = 1.0f;
+  g.forward_from("twice");
+  // garment = 2 * 1 + x
+  CHECK(g.output("garment")(1, 2, 1) == Approx(2.0 + in.at("rest")(1, 2, 1)));
+  CHECK(g.output("garment")(0, 0, 0) == Approx(2.0 + in.at("rest")(0, 0, 0)));
+  // A plain forward afterwards is the graph again.
+  g.forward(in, false);
+  CHECK(g.output("garment")(1, 2, 1) == Approx(4.0 * in.at("rest")(1, 2, 1) + 0.5));
+
+  CHECK_THROWS_WITH(g.forward_until(in, "twise"), Catch::Contains("no node named 'twise'"));
+  CHECK_THROWS_WITH(g.fed_into("lift", "x"), Catch::Contains("graph input 'rest'"));
+  CHECK_THROWS_WITH(g.fed_into("twice", "y"), Catch::Contains("no connected port 'y'"));
+}

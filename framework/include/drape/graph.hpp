@@ -89,6 +89,18 @@ class Graph {
   // Runs the nodes needed for the outputs (and the losses when with_losses).
   // Every graph input the run needs must be given, all with one batch size.
   void forward(const std::map<std::string, Tensor>& inputs, bool with_losses = true);
+  // Forward in two parts, for a caller that changes what one node is fed
+  // between them (Model::predict's mirror average: the network's garment
+  // averaged with its mirror twin before the push-out). forward_until runs
+  // what forward (without losses) runs but `node` and every node fed by it;
+  // fed_into is the tensor one of its ports reads (another node's output,
+  // which the caller may change in place: a graph input is refused);
+  // forward_from then runs `node` and the nodes fed by it on what is there.
+  void forward_until(const std::map<std::string, Tensor>& inputs, const std::string& node);
+  Tensor& fed_into(const std::string& node, const std::string& port);
+  void forward_from(const std::string& node);
+  // Whether a node forward_until(..., node) runs reads the graph input.
+  bool input_read_before(const std::string& input, const std::string& node) const;
   // The weighted sum of the batch-mean losses of the last forward.
   double loss() const;
   std::map<std::string, double> loss_terms() const;  // unweighted batch means

@@ -12,6 +12,7 @@
 #include <cstdlib>
 #include <set>
 #include <sstream>
+#include <utility>
 
 namespace drape {
 namespace {
@@ -99,6 +100,31 @@ double Pose::get(const std::string& name, double rest) const {
   return it == angles.end() ? rest : it->second;
 }
 
+Pose mirrored_pose(const Pose& pose, const std::vector<PoseAngle>& space) {
+  const auto find = [&](const std::string& name) -> const PoseAngle* {
+    for (const PoseAngle& a : space)
+      if (a.name == name) return &a;
+    return nullptr;
+  };
+  const auto other_side = [](const std::string& name) -> std::string {
+    for (const auto& [from, to] : {std::pair<std::string, std::string>{"left_", "right_"}, {"right_", "left_"}})
+      if (name.rfind(from, 0) == 0) return to + name.substr(from.size());
+    return name;
+  };
+  Pose out;
+  for (const auto& [name, degrees] : pose.angles) {
+    const PoseAngle* angle = find(name);
+    if (!angle) throw ConfigError("mirroring a pose: '" + name + "' is not an angle of the body model's pose space");
+    if (angle->mirror == PoseAngle::Mirror::unknown)
+      throw ConfigError("mirroring a pose: the body model's pose space does not say how '" + name +
+                        "' mirrors left for right (only drape's human pose space does)");
+    const std::string to = other_side(name);
+    if (!find(to)) throw ConfigError("mirroring a pose: '" + name + "' has no other side '" + to + "' in the pose space");
+    out.angles[to] = angle->mirror == PoseAngle::Mirror::negated ? -degrees : degrees;
+  }
+  return out;
+}
+
 Pose parse_pose(const std::string& text, const std::vector<PoseAngle>& space, const std::string& what) {
   Pose pose;
   std::stringstream items(text);
@@ -179,33 +205,36 @@ std::vector<PoseAngle> human_pose_angles() {
   // 15), and a T-shirt ends above the thighs.
   struct Row {
     const char* name;
-    bool sided;
+    bool sided;    // left_ and right_; a mirror swaps them
+    bool lateral;  // bends or turns towards one side: a mirror negates it
     double min, max, lo, hi;
     const char* meaning;
   };
   static const Row rows[] = {
-      {"spine_flexion", false, -25, 80, -10, 20, "bends the trunk forward (negative: backward); AAOS thoracolumbar flexion 80, extension 25"},
-      {"spine_bend", false, -35, 35, -15, 15, "bends the trunk towards the body's left (negative: right); AAOS lateral flexion 35"},
-      {"spine_twist", false, -45, 45, -30, 30, "turns the shoulders to the body's left (negative: right); AAOS rotation 45"},
-      {"neck_flexion", false, -45, 45, -20, 30, "bends the head forward (negative: backward); AAOS cervical flexion 45, extension 45"},
-      {"neck_bend", false, -45, 45, -20, 20, "tilts the head towards the body's left; AAOS cervical lateral flexion 45"},
-      {"neck_twist", false, -60, 60, -45, 45, "turns the head to the body's left; AAOS cervical rotation 60"},
-      {"shoulder_abduction", true, 0, 180, 25, 100, "raises the arm sideways from hanging (0) to overhead (180); AAOS abduction 180"},
-      {"shoulder_flexion", true, -60, 180, -20, 60, "raises the arm forward (negative: backward); AAOS flexion 180, extension 60"},
-      {"shoulder_rotation", true, -90, 70, -30, 30, "turns the arm about its axis inwards (negative: outwards); AAOS medial 70, lateral 90"},
-      {"elbow_flexion", true, 0, 150, 0, 70, "bends the forearm forward from straight (0); AAOS flexion 150"},
-      {"hip_flexion", true, -30, 120, -5, 25, "raises the thigh forward (negative: backward); AAOS flexion 120, extension 30"},
-      {"hip_abduction", true, -30, 45, 0, 10, "moves the thigh sideways out (negative: across); AAOS abduction 45, adduction 30"},
-      {"hip_rotation", true, -45, 45, -10, 10, "turns the thigh inwards (negative: outwards); AAOS medial 45, lateral 45"},
-      {"knee_flexion", true, 0, 135, 0, 60, "bends the shin backward from straight (0); AAOS flexion 135"},
+      {"spine_flexion", false, false, -25, 80, -10, 20, "bends the trunk forward (negative: backward); AAOS thoracolumbar flexion 80, extension 25"},
+      {"spine_bend", false, true, -35, 35, -15, 15, "bends the trunk towards the body's left (negative: right); AAOS lateral flexion 35"},
+      {"spine_twist", false, true, -45, 45, -30, 30, "turns the shoulders to the body's left (negative: right); AAOS rotation 45"},
+      {"neck_flexion", false, false, -45, 45, -20, 30, "bends the head forward (negative: backward); AAOS cervical flexion 45, extension 45"},
+      {"neck_bend", false, true, -45, 45, -20, 20, "tilts the head towards the body's left; AAOS cervical lateral flexion 45"},
+      {"neck_twist", false, true, -60, 60, -45, 45, "turns the head to the body's left; AAOS cervical rotation 60"},
+      {"shoulder_abduction", true, false, 0, 180, 25, 100, "raises the arm sideways from hanging (0) to overhead (180); AAOS abduction 180"},
+      {"shoulder_flexion", true, false, -60, 180, -20, 60, "raises the arm forward (negative: backward); AAOS flexion 180, extension 60"},
+      {"shoulder_rotation", true, false, -90, 70, -30, 30, "turns the arm about its axis inwards (negative: outwards); AAOS medial 70, lateral 90"},
+      {"elbow_flexion", true, false, 0, 150, 0, 70, "bends the forearm forward from straight (0); AAOS flexion 150"},
+      {"hip_flexion", true, false, -30, 120, -5, 25, "raises the thigh forward (negative: backward); AAOS flexion 120, extension 30"},
+      {"hip_abduction", true, false, -30, 45, 0, 10, "moves the thigh sideways out (negative: across); AAOS abduction 45, adduction 30"},
+      {"hip_rotation", true, false, -45, 45, -10, 10, "turns the thigh inwards (negative: outwards); AAOS medial 45, lateral 45"},
+      {"knee_flexion", true, false, 0, 135, 0, 60, "bends the shin backward from straight (0); AAOS flexion 135"},
   };
   std::vector<PoseAngle> out;
   for (const Row& r : rows) {
     if (!r.sided) {
-      out.push_back({r.name, r.min, r.max, r.lo, r.hi, r.meaning});
+      out.push_back({r.name, r.min, r.max, r.lo, r.hi, r.meaning,
+                     r.lateral ? PoseAngle::Mirror::negated : PoseAngle::Mirror::same});
       continue;
     }
-    for (const char* side : kSides) out.push_back({std::string(side) + r.name, r.min, r.max, r.lo, r.hi, r.meaning});
+    for (const char* side : kSides)
+      out.push_back({std::string(side) + r.name, r.min, r.max, r.lo, r.hi, r.meaning, PoseAngle::Mirror::same});
   }
   return out;
 }

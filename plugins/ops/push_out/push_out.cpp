@@ -26,6 +26,9 @@
 // garment_grade), or a 5xlarge shirt is held to the design size's lengths. The limit must lie above the simulations' own
 // strain (the shipped sized data: 44-56 % at worst over 4,700 drapes), or
 // it pulls a tight shirt into the body.
+// `mirror_average` is the model's (Model::predict), kept among this node's
+// parameters because it changes what this node is fed and nothing else:
+// `drape model set post.mirror_average=true` and `--set` turn it on and off.
 #include <drape/assets/assets.hpp>
 #include <drape/geometry/adjacency.hpp>
 #include <drape/garment_grading.hpp>
@@ -268,6 +271,10 @@ PluginList plugins() {
               {.name = "untangle", .type = ParamType::Bool, .default_value = "true",
                .doc = "then undo the garment's crossings of itself (each patch a closed intersection curve cuts off moved "
                       "back through the cloth it went through, 1 mm beyond) each round's moves pushed out again, 6 rounds at most"},
+              {.name = "mirror_average", .type = ParamType::Bool, .default_value = "false",
+               .doc = "read by the model, not by this node: the network also drapes each body in its mirrored pose, "
+                      "and what this node is fed is the mean of the garment and that twin's reflection (a model of "
+                      "posed drapes on drape's human pose space; one more pass of the network)"},
               {.name = "strain_limit", .type = ParamType::Float, .default_value = "0",
                .doc = "> 0: first shorten every garment edge longer than (1 + strain_limit) times its rest length (the "
                       "template's material space, graded by the input grade) to that length; 0: off",

@@ -26,6 +26,13 @@ struct PoseAngle {
   double min = 0, max = 0;            // the range of motion accepted, degrees
   double sample_lo = 0, sample_hi = 0;  // what draw_pose draws from, uniform
   std::string meaning;                // "raises the arm sideways; AAOS 0-180"
+  // What a left-right mirror (x -> -x, the body's plane of symmetry) makes
+  // of the angle: a sided angle becomes the other side's, an angle that
+  // bends or turns towards one side its negative, and one in the sagittal
+  // plane (a flexion) stays. unknown: the space does not say (SMPL's raw
+  // axes), and nothing mirrors a pose of it.
+  enum class Mirror { unknown, same, negated };
+  Mirror mirror = Mirror::unknown;
 };
 
 struct Pose {
@@ -40,6 +47,13 @@ struct Pose {
 // hips (flexion, abduction, rotation) and knees (flexion), left and right;
 // limits from the published ranges of motion (docs/poses.md).
 std::vector<PoseAngle> human_pose_angles();
+
+// The pose mirrored left for right: each sided angle takes the value of its
+// other side's, each lateral one (PoseAngle::Mirror::negated: the trunk's and
+// the neck's bend and twist) is negated. A body posed so is the reflection
+// of the body in `pose` (for a body symmetric at rest). ConfigError naming
+// the angle when the space does not say how one mirrors or lacks its other side.
+Pose mirrored_pose(const Pose& pose, const std::vector<PoseAngle>& space);
 
 // "shoulder_abduction=40,left_elbow_flexion=30": comma-separated name=value
 // in degrees; a name without left_/right_ sets both sides. ConfigError (one

@@ -18,6 +18,7 @@
 // predicted garment is the output named `garment`, else the graph's first output.
 #include <drape/assets/assets.hpp>
 #include <drape/bodies/body.hpp>
+#include <drape/geometry/mirror_map.hpp>
 #include <drape/io/checkpoint.hpp>
 #include <drape/graph.hpp>
 #include <drape/scene/scene.hpp>
@@ -151,7 +152,18 @@ class Model {
   bool assets_changed() const { return assets_changed_; }
 
   // Garments [n, Ng, 3] for the batch's bodies (and body_params when the graph uses them).
+  // With the mirror average (a push_out node's `mirror_average`), the network
+  // also drapes each body in its mirrored pose, and the garment before the
+  // push-out is the mean of its own and that twin's reflection.
   Tensor predict(const SampleBatch& batch);
+  // The push_out node the mirror average runs before; empty when it is off.
+  const std::string& mirror_average_node() const { return mirror_node_; }
+  // The batch's bodies at rest in their mirrored poses (mirrored_pose): what
+  // the mirror average feeds the network. The joints' transforms and the
+  // angles are the mirrored pose's; the posed body is too when the network
+  // reads it before the push-out (else it stays the batch's, which the
+  // push-out reads).
+  SampleBatch mirrored_batch(const SampleBatch& batch) const;
   // A body of the model's body plugin for a request: vertices and parameters.
   SampleBatch body_for(const BodyRequest& request) const;
 
@@ -171,6 +183,11 @@ class Model {
   std::unique_ptr<BodyModel> body_model_;
   std::unique_ptr<Graph> graph_;
   std::shared_ptr<const GarmentSizes> garment_sizes_;  // of the size chart; null without one
+  // The mirror average: the push_out node it runs before, and the garment
+  // template's mirror map (empty name: off).
+  std::string mirror_node_;
+  std::shared_ptr<const geometry::MirrorMap> garment_mirror_;
+  void set_up_mirror_average(const Registry& registry, const GraphSpec& graph);
   std::string output_;
   bool assets_changed_ = false;
 };
