@@ -27,7 +27,10 @@
 # graph that adds inputs to INIT's: the new weights that read them start at
 # zero; docs/poses.md, "More capacity on the human rig"), MONITOR (drape train
 # --monitor: a loss of the graph by name, e.g. v2v, chooses the best epoch
-# instead of the weighted total; default the total).
+# instead of the weighted total; default the total), MIRROR_AVERAGE (1: the
+# model stored with the push-out's mirror_average on, the network's garment
+# averaged with its twin's in the mirrored pose; posed models; docs/poses.md,
+# "The mirror average").
 #
 # The shipped A-pose model (since 2026-12-04, twenty-ninth session) is one
 # more cycle of the model this makes with the defaults, at the penetration
@@ -46,6 +49,8 @@
 #   SHARD_DIR=datasets/posespace2000-human GRAPH=graphs/human/drape_posed_v2v1000_post_resampled_transfer48_margin1mm.yaml \
 #     INIT=models/tshirt-coarse-posed-human.h5 LR=3e-4 MIRROR=1 PUSH_OUT=0.004 MONITOR=v2v THREADS=2 \
 #     EXTRA_SHARDS="$(echo datasets/posespace-human-seed5/shard-*)" bash scripts/train_human_model.sh work-posed-human
+# and since the thirtieth session it is stored with the mirror average on
+# (MIRROR_AVERAGE=1 above, or drape model set MODEL --set post.mirror_average=true).
 set -euo pipefail
 cd "$(dirname "${BASH_SOURCE[0]}")/.."
 DRAPE=${BUILD_DIR:-build}/bin/drape
@@ -75,6 +80,7 @@ fi
 "$DRAPE" train "${GRAPH:-graphs/human/drape_grade_v2v1000_post_resampled.yaml}" --data "$DATA" --out "$WORK/model.h5" \
   --encoder-body parametric --init "${INIT:-models/tshirt-coarse.h5}" ${INIT_WIDEN:+--init-widen} --epochs "${EPOCHS:-60}" --schedule cosine --lr "${LR:-1e-3}" \
   --patience "${PATIENCE:-30}" ${MONITOR:+--monitor "$MONITOR"} --batch 8 --seed 0 --threads "${THREADS:-1}" --resume
-"$DRAPE" model set "$WORK/model.h5" --set post.enabled=true --set post.epsilon="${PUSH_OUT:-0.006}"
+"$DRAPE" model set "$WORK/model.h5" --set post.enabled=true --set post.epsilon="${PUSH_OUT:-0.006}" \
+  ${MIRROR_AVERAGE:+--set post.mirror_average=true}
 
 "$DRAPE" eval --model "$WORK/model.h5" --data "$DATA" --split test --out "$WORK/test.csv" --by bmi:10,20,30,45,65

@@ -8,7 +8,7 @@ import numpy as np
 import pytest
 
 import drape
-from conftest import SOURCE
+from conftest import SOURCE, run_drape
 
 sys.path.insert(0, str(SOURCE / "scripts" / "reference"))
 from closest_point import closest_points  # numpy, every face  # noqa: E402
@@ -27,8 +27,8 @@ def models():
     if not POSED.exists():
         pytest.skip(f"{POSED} is not in this tree")
     # The push-out off (enabled: false passes the garment through), so that what is compared is what the
-    # average makes; the strain limit is part of the same node.
-    plain = drape.Model.load(str(POSED), overrides={"post": {"enabled": "false"}})
+    # average makes; the strain limit is part of the same node. The shipped model has the average on.
+    plain = drape.Model.load(str(POSED), overrides={"post": {"enabled": "false", "mirror_average": "false"}})
     averaged = drape.Model.load(str(POSED), overrides={"post": {"enabled": "false", "mirror_average": "true"}})
     return plain, averaged
 
@@ -69,6 +69,15 @@ def test_the_averaged_model_answers_a_mirrored_pose_with_the_mirrored_garment(mo
     # on this body, against 7.5 mm for the plain model).
     assert off["averaged"] < 2e-3, off
     assert off["plain"] > 3 * off["averaged"], off
+
+
+def test_the_shipped_posed_model_averages():
+    info = drape.Model.load(str(POSED))
+    plain = drape.Model.load(str(POSED), overrides={"post": {"mirror_average": "false"}})
+    body = info.body(bmi=30)
+    assert np.abs(info.predict(body, pose=POSE, check=False) - plain.predict(body, pose=POSE, check=False)).max() > 1e-3
+    text, _ = run_drape("model", "info", POSED)
+    assert "mirror average" in text and "post.mirror_average=false" in text, text
 
 
 def test_an_a_pose_model_refuses_the_mirror_average():

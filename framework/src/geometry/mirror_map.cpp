@@ -38,4 +38,19 @@ Eigen::MatrixX3d mirrored(const MirrorMap& map, const Eigen::MatrixX3d& x) {
   return out;
 }
 
+Eigen::MatrixX3d mirrored_adjoint(const MirrorMap& map, const Eigen::MatrixX3d& g, Eigen::Index n) {
+  if (g.rows() != map.corners.rows())
+    throw Error("mirrored_adjoint: a gradient of " + std::to_string(g.rows()) + " rows for a map of " +
+                std::to_string(map.corners.rows()));
+  if (map.corners.size() > 0 && map.corners.maxCoeff() >= n)
+    throw Error("mirrored_adjoint: the map indexes " + std::to_string(map.corners.maxCoeff() + 1) + " vertices, asked for " +
+                std::to_string(n));
+  Eigen::MatrixX3d out = Eigen::MatrixX3d::Zero(n, 3);
+  for (Eigen::Index i = 0; i < g.rows(); ++i) {
+    const Eigen::RowVector3d reflected(-g(i, 0), g(i, 1), g(i, 2));
+    for (int k = 0; k < 3; ++k) out.row(map.corners(i, k)) += map.weights(i, k) * reflected;
+  }
+  return out;
+}
+
 }  // namespace drape::geometry

@@ -455,15 +455,22 @@ Tensor Model::predict(const SampleBatch& batch) {
   if (batch.size() <= 0) throw Error("predict: no bodies");
   require_vertex_count(batch.body.rows(), assets_->body.num_vertices(), "the body",
                        "the model's body model '" + assets_spec_.body_model + "'");
+  if (mirror_node_.empty()) return forward(graph_inputs(*graph_, batch, false), nullptr);
+  const auto twin = graph_inputs(*graph_, mirrored_batch(batch), false);
+  return forward(graph_inputs(*graph_, batch, false), &twin);
+}
+
+const Tensor& Model::forward(const std::map<std::string, Tensor>& inputs, const std::map<std::string, Tensor>* twin_inputs) {
   if (mirror_node_.empty()) {
-    graph_->forward(graph_inputs(*graph_, batch, false), false);
+    graph_->forward(inputs, false);
     return graph_->output(output_);
   }
+  if (!twin_inputs) throw Error("Model::forward: the mirror average needs the twin's inputs");
   // The twin first, so that what the push-out then reads (the body, the
   // grade) is the batch's own.
-  graph_->forward_until(graph_inputs(*graph_, mirrored_batch(batch), false), mirror_node_);
+  graph_->forward_until(*twin_inputs, mirror_node_);
   const Tensor twin = graph_->fed_into(mirror_node_, "x");
-  graph_->forward_until(graph_inputs(*graph_, batch, false), mirror_node_);
+  graph_->forward_until(inputs, mirror_node_);
   Tensor& garment = graph_->fed_into(mirror_node_, "x");
   for (int b = 0; b < garment.batch(); ++b) {
     const Eigen::MatrixX3d reflected = geometry::mirrored(*garment_mirror_, twin.mat(b).cast<double>());
@@ -471,6 +478,23 @@ Tensor Model::predict(const SampleBatch& batch) {
   }
   graph_->forward_from(mirror_node_);
   return graph_->output(output_);
+}
+
+void Model::backward(const Tensor& grad, const std::map<std::string, Tensor>* twin_inputs) {
+  if (mirror_node_.empty()) {
+    graph_->backward_from_output(output_, grad);
+    return;
+  }
+  if (!twin_inputs) throw Error("Model::backward: the mirror average needs the twin's inputs");
+  Tensor half = grad;
+  half.vec() *= 0.5f;
+  graph_->backward_from_output(output_, half);
+  // The twin's pass again (the graph holds the batch's), then its share: the
+  // push-out is not run for it, and its backward only passes the gradient on.
+  graph_->forward_until(*twin_inputs, mirror_node_);
+  for (int b = 0; b < grad.batch(); ++b)
+    half.mat(b) = (0.5 * geometry::mirrored_adjoint(*garment_mirror_, grad.mat(b).cast<double>(), grad.rows())).cast<float>();
+  graph_->backward_from_output(output_, half);
 }
 
 SampleBatch Model::body_for(const BodyRequest& request) const { return body_batch(*body_model_, request); }

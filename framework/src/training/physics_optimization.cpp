@@ -144,6 +144,8 @@ class DrapeOptimization {
         garment_faces_(garment_.faces),
         graph_(model.graph()),
         inputs_(graph_inputs(graph_, body, false)),
+        twin_inputs_(model.mirror_average_node().empty() ? std::map<std::string, Tensor>{}
+                                                          : graph_inputs(graph_, model.mirrored_batch(body), false)),
         adam_(graph_.weights()),
         fresh_moments_(adam_.state()),
         grad_(1, garment_.num_vertices(), 3),
@@ -159,6 +161,7 @@ class DrapeOptimization {
 
  private:
   Eigen::MatrixX3d predict();
+  void backward();
   void evaluate(int it);
   double body_move_allowed(const Eigen::MatrixX3d& to) {
     return allowed_step(energies_, x_, cloth_still_, &body_now_, &to);
@@ -185,6 +188,10 @@ class DrapeOptimization {
 
   Graph& graph_;
   const std::map<std::string, Tensor> inputs_;
+  // With the mirror average (Model::forward), the twin's inputs: the drape
+  // optimised is the model's mean, and the gradient reaches the weights
+  // through both passes (backward()).
+  const std::map<std::string, Tensor> twin_inputs_;
   Adam adam_;
   const OptimizerState fresh_moments_;
   PhysicsOptimizationResult r_;
@@ -213,11 +220,19 @@ class DrapeOptimization {
 };
 
 Eigen::MatrixX3d DrapeOptimization::predict() {
-  graph_.forward(inputs_, false);
-  Eigen::MatrixX3d out = graph_.output(model_.output()).mat(0).cast<double>();
+  const Tensor& garment = model_.forward(inputs_, twin_inputs_.empty() ? nullptr : &twin_inputs_);
+  Eigen::MatrixX3d out = garment.mat(0).cast<double>();
   if (!out.allFinite())
     throw Error("optimize: the network predicted a non-finite vertex at iteration " + std::to_string(r_.history.size()));
   return out;
+}
+
+// The gradient of L_p at the last predicted drape into the weights
+// (Model::backward: with the mirror average, through both passes).
+void DrapeOptimization::backward() {
+  graph_.zero_grad();
+  grad_.mat(0) = gradient_.cast<float>();
+  model_.backward(grad_, twin_inputs_.empty() ? nullptr : &twin_inputs_);
 }
 
 void DrapeOptimization::evaluate(int it) {
@@ -291,9 +306,7 @@ void DrapeOptimization::iterate() {
   Eigen::MatrixX3d evaluated = x_;  // the last drape whose potential is known
   try {
     for (int it = 1; it <= options_.iterations;) {
-      grad_.mat(0) = gradient_.cast<float>();
-      graph_.zero_grad();
-      graph_.backward_from_output(model_.output(), grad_);
+      backward();
       adam_.step(options_.learning_rate * scale);
       Eigen::MatrixX3d next = predict();
       const double allowed = with_barrier_ ? allowed_step(energies_, x_, next - x_) : 1.0;

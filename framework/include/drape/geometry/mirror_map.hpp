@@ -24,4 +24,10 @@ MirrorMap mirror_map(const Eigen::MatrixX3d& vertices, const Eigen::MatrixX3i& f
 // through the map: row i is (-1, 1, 1) * sum_k weights(i, k) * x(corners(i, k)).
 Eigen::MatrixX3d mirrored(const MirrorMap& map, const Eigen::MatrixX3d& x);
 
+// The adjoint of mirrored(): for g, a gradient with respect to mirrored(map,
+// x), the gradient with respect to x ([n, 3]): each row g_i, reflected,
+// scattered to the corners of row i by its weights. sum(g .* mirrored(x))
+// equals sum(mirrored_adjoint(g) .* x) for every x.
+Eigen::MatrixX3d mirrored_adjoint(const MirrorMap& map, const Eigen::MatrixX3d& g, Eigen::Index n);
+
 }  // namespace drape::geometry

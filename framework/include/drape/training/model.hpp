@@ -158,6 +158,20 @@ class Model {
   Tensor predict(const SampleBatch& batch);
   // The push_out node the mirror average runs before; empty when it is off.
   const std::string& mirror_average_node() const { return mirror_node_; }
+  // The garment template's mirror map (null when the mirror average is off).
+  const geometry::MirrorMap* garment_mirror() const { return garment_mirror_.get(); }
+  // One pass of the graph on graph inputs as predict runs it: with the mirror
+  // average, the twin's inputs (graph_inputs of mirrored_batch) first, the
+  // nodes before the push-out only; then the batch's, the mean, the rest.
+  // The garment output; the graph holds the batch's own activations.
+  const Tensor& forward(const std::map<std::string, Tensor>& inputs, const std::map<std::string, Tensor>* twin);
+  // After forward(inputs, twin): `grad`, a gradient of the garment output,
+  // into the weights' gradients (added to them; zero_grad first). With the
+  // mirror average half goes back through each pass, the twin's reflected
+  // back by the map's adjoint (geometry::mirrored_adjoint), its pass run
+  // again for its activations: twice the cost of one backward. The push-out
+  // passes the gradient straight through.
+  void backward(const Tensor& grad, const std::map<std::string, Tensor>* twin);
   // The batch's bodies at rest in their mirrored poses (mirrored_pose): what
   // the mirror average feeds the network. The joints' transforms and the
   // angles are the mirrored pose's; the posed body is too when the network
