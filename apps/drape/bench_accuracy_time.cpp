@@ -165,6 +165,15 @@ std::vector<std::string> enabled_push_outs(const Registry& registry, const std::
   return names;
 }
 
+// The push-out nodes before which the model averages with the mirror twin
+// (docs/poses.md, "The mirror average"): timed without it too.
+std::vector<std::string> mirror_averages(const Registry& registry, const std::string& model_file) {
+  std::vector<std::string> names;
+  for (const PushOutSetting& p : push_out_settings(registry, read_checkpoint(model_file).graph, model_file + " (graph)"))
+    if (p.mirror_average) names.push_back(p.node);
+  return names;
+}
+
 // The methods no other method beats on both time and ME.
 void mark_pareto_front(std::vector<Method>& methods) {
   for (Method& m : methods) {
@@ -329,9 +338,11 @@ int run(const std::vector<std::string>& args) {
   const std::vector<std::pair<std::string, int>> spectral_cuts =
       spectral_cuts_of(registry, model_file, reader, data, spectral_k);
   const std::vector<std::string> push_outs = enabled_push_outs(registry, model_file);
+  const std::vector<std::string> mirrors = mirror_averages(registry, model_file);
   const OmpThreadsScope one_core(1);
   const int steps = static_cast<int>(bodies.size()) *
-                    (2 + static_cast<int>(budgets.size() + iterations.size() + spectral_cuts.size() + push_outs.size()));
+                    (2 + static_cast<int>(budgets.size() + iterations.size() + spectral_cuts.size() + push_outs.size() +
+                                          mirrors.size()));
   ProgressBar bar("accuracy-time", static_cast<std::size_t>(steps), std::cerr);
 
   // The converged reference of every body.
@@ -363,6 +374,8 @@ int run(const std::vector<std::string>& args) {
                                     {{node, {{"use_k", std::to_string(k)}}}}));
   for (const std::string& node : push_outs)
     methods.push_back(bench.network(graded, "network, push-out " + node + " off", {{node, {{"enabled", "false"}}}}));
+  for (const std::string& node : mirrors)
+    methods.push_back(bench.network(graded, "network, mirror average off", {{node, {{"mirror_average", "false"}}}}));
   for (int its : iterations) methods.push_back(bench.optimised(graded, its));
   bar.finish();
   mark_pareto_front(methods);
