@@ -112,7 +112,7 @@ int run(const std::vector<std::string>& args) {
     for (std::size_t n = 0; n < nodes.size(); ++n) node_ms[n].push_back(nodes[n].ms / batch_size);
   }
   const auto [best, median] = best_and_median(ms);
-  const double macs = (mirror ? 2.0 : 1.0) * graph.flops_per_sample();  // (the twin's pass: every node but the push-out, which has none)
+  const double macs = graph.flops_per_sample();  // (one pass's: with the mirror average the twin runs part of it again)
   std::size_t weights = 0;
   for (const auto& [name, w] : graph.weights()) weights += w->value.size();
   std::printf("## Inference on one core: %s\n\n", model.file().string().c_str());
@@ -143,8 +143,9 @@ int run(const std::vector<std::string>& args) {
                 node_median[n] > 0 ? 2.0 * nodes[n].flops_per_sample / (node_median[n] * 1e-3) / 1e9 : 0.0);
   if (mirror)
     std::printf("\nmirror average before '%s': the median pass less the nodes above, %.3f ms per body (the twin "
-                "posed in the mirrored pose, its network pass and the mean; --set %s.mirror_average=false in drape "
-                "model set times the model without it)\n",
+                "posed in the mirrored pose, the nodes that read the pose run again for it, and the mean; the rest "
+                "body's, the encoder's, are shared; the multiply-adds above are one pass's; --set "
+                "%s.mirror_average=false in drape model set times the model without it)\n",
                 model.mirror_average_node().c_str(), median - total, model.mirror_average_node().c_str());
   return 0;
 }

@@ -10,6 +10,7 @@
 #include <limits>
 
 #include <algorithm>
+#include <cstring>
 #include <functional>
 
 namespace drape {
@@ -85,7 +86,8 @@ struct Graph::Impl {
 
   // Running: the graph inputs checked and taken, then the nodes `runs` picks
   // (by index, in topological order); fed_by(n): n and the nodes downstream of it.
-  void set_inputs(const std::map<std::string, Tensor>& given, bool with_losses);
+  // compare: each input's value against the last one's (changed[i]: it differs, or was not compared).
+  std::vector<bool> set_inputs(const std::map<std::string, Tensor>& given, bool with_losses, bool compare);
   void run(const std::function<bool(int)>& runs);
   std::vector<bool> fed_by(int node) const;
 
@@ -379,16 +381,30 @@ std::vector<Graph::NodeInfo> Graph::describe() const {
 }
 
 void Graph::forward(const std::map<std::string, Tensor>& inputs, bool with_losses) {
-  impl_->set_inputs(inputs, with_losses);
+  impl_->set_inputs(inputs, with_losses, false);
+  for (Impl::Built& b : impl_->nodes) b.forward_ms = 0.0;
   impl_->run([&](int n) { return impl_->nodes[n].for_outputs || (with_losses && impl_->nodes[n].for_losses); });
   impl_->ran_losses = with_losses;
 }
 
-void Graph::forward_until(const std::map<std::string, Tensor>& inputs, const std::string& node) {
-  const std::vector<bool> after = impl_->fed_by(impl_->existing_node(node));
-  impl_->set_inputs(inputs, false);
-  impl_->run([&](int n) { return impl_->nodes[n].for_outputs && !after[n]; });
-  impl_->ran_losses = false;
+void Graph::forward_until(const std::map<std::string, Tensor>& inputs, const std::string& node, bool reuse_unchanged) {
+  Impl& g = *impl_;
+  const std::vector<bool> after = g.fed_by(g.existing_node(node));
+  const int last_batch = g.batch;
+  const std::vector<bool> changed = g.set_inputs(inputs, false, reuse_unchanged);
+  // Stale: reads a changed input, directly or through a node that does (one
+  // pass in topological order), or has no outputs of this batch yet.
+  std::vector<bool> stale(g.nodes.size(), !reuse_unchanged || g.batch != last_batch);
+  for (std::size_t n = 0; n < g.nodes.size() && reuse_unchanged && g.batch == last_batch; ++n) {
+    const Impl::Built& b = g.nodes[n];
+    stale[n] = b.outputs.size() != b.out_ports.size() ||
+               std::any_of(b.outputs.begin(), b.outputs.end(), [&](const Tensor& t) { return t.batch() != g.batch; });
+    for (const Source& s : b.sources) stale[n] = stale[n] || (s.input >= 0 ? changed[s.input] : stale[s.node]);
+  }
+  for (std::size_t n = 0; n < g.nodes.size(); ++n)
+    if (stale[n]) g.nodes[n].forward_ms = 0.0;  // (a kept node keeps the time of the pass that made its outputs)
+  g.run([&](int n) { return g.nodes[n].for_outputs && !after[n] && stale[n]; });
+  g.ran_losses = false;
 }
 
 void Graph::forward_from(const std::string& node) {
@@ -428,8 +444,9 @@ std::vector<bool> Graph::Impl::fed_by(int node) const {
   return after;
 }
 
-void Graph::Impl::set_inputs(const std::map<std::string, Tensor>& given, bool with_losses) {
+std::vector<bool> Graph::Impl::set_inputs(const std::map<std::string, Tensor>& given, bool with_losses, bool compare) {
   Impl& g = *this;
+  std::vector<bool> changed(g.inputs.size(), true);
   const auto& inputs = given;
   auto runs = [&](const Impl::Built& b) { return b.for_outputs || (with_losses && b.for_losses); };
   std::vector<bool> needed(g.inputs.size(), false);
@@ -457,10 +474,13 @@ void Graph::Impl::set_inputs(const std::map<std::string, Tensor>& given, bool wi
       throw ConfigError("graph inputs disagree on the batch size (" + std::to_string(g.batch) + " vs " +
                         std::to_string(t.batch()) + " for '" + in.name + "')");
     g.batch = t.batch();
-    in.value = t;
+    // (Compared as bits: the same floats make the same outputs.)
+    changed[i] = !compare || in.value.batch() != t.batch() || in.value.shape() != t.shape() ||
+                 std::memcmp(in.value.data(), t.data(), t.size() * sizeof(float)) != 0;
+    if (changed[i]) in.value = t;
   }
   if (g.batch <= 0) throw ConfigError("forward needs at least one input with a positive batch size");
-  for (Built& b : g.nodes) b.forward_ms = 0.0;
+  return changed;
 }
 
 void Graph::Impl::run(const std::function<bool(int)>& runs) {

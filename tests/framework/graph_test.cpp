@@ -282,3 +282,36 @@ TEST_CASE("forward in two parts: what feeds a node changed between them", "[grap
   CHECK_THROWS_WITH(g.fed_into("lift", "x"), Catch::Contains("graph input 'rest'"));
   CHECK_THROWS_WITH(g.fed_into("twice", "y"), Catch::Contains("no connected port 'y'"));
 }
+
+TEST_CASE("forward_until keeps the outputs of nodes whose inputs did not change, when asked", "[graph]") {
+  const char* yaml = R"(
+inputs:
+  rest: [n, 3]
+  shift: [n, 3]
+nodes:
+  lift:  { type: test_affine, in: rest }
+  moved: { type: add, in: [lift.y, shift] }
+  twice: { type: scale, in: moved, params: { factor: 2.0 } }
+outputs: { garment: twice }
+)";
+  Graph g(parse_graph_text(yaml, "g.yaml"), test::registry_with_test_nodes(), {{{"n", 3}}});
+  std::map<std::string, Tensor> in{{"rest", random_tensor(1, 3, 3)}, {"shift", random_tensor(1, 3, 3, 0.1f)}};
+  g.forward_until(in, "twice");
+  const float lifted = g.fed_into("moved", "a")(0, 1, 2);
+  // A weight changed between the passes shows which nodes ran again.
+  for (auto& [name, w] : g.weights()) w->value.vec().array() += 1.0f;
+  in["shift"] = random_tensor(1, 3, 3, 0.3f);
+  g.forward_until(in, "twice", true);
+  CHECK(g.fed_into("moved", "a")(0, 1, 2) == lifted);  // lift kept: its input is the same
+  CHECK(g.fed_into("twice", "x")(0, 1, 2) == Approx(lifted + in["shift"](0, 1, 2)));  // moved ran: shift changed
+  // Without the reuse, or with its input changed, lift runs again.
+  g.forward_until(in, "twice");
+  CHECK(g.fed_into("moved", "a")(0, 1, 2) != lifted);
+  const float relifted = g.fed_into("moved", "a")(0, 1, 2);
+  in["rest"] = random_tensor(1, 3, 3, 2.0f);
+  g.forward_until(in, "twice", true);
+  CHECK(g.fed_into("moved", "a")(0, 1, 2) != relifted);
+  // Another batch size: everything runs.
+  g.forward_until({{"rest", random_tensor(2, 3, 3, 2.0f)}, {"shift", random_tensor(2, 3, 3, 0.3f)}}, "twice", true);
+  CHECK(g.fed_into("moved", "a").batch() == 2);
+}

@@ -96,7 +96,11 @@ class Graph {
   // fed_into is the tensor one of its ports reads (another node's output,
   // which the caller may change in place: a graph input is refused);
   // forward_from then runs `node` and the nodes fed by it on what is there.
-  void forward_until(const std::map<std::string, Tensor>& inputs, const std::string& node);
+  // With reuse_unchanged, a node whose upstream graph inputs hold the same
+  // values as at the last forward keeps its outputs from then instead of
+  // running again (the twin and the body share the rest body: the encoder
+  // runs once). Only for consecutive passes with the same weights.
+  void forward_until(const std::map<std::string, Tensor>& inputs, const std::string& node, bool reuse_unchanged = false);
   Tensor& fed_into(const std::string& node, const std::string& port);
   void forward_from(const std::string& node);
   // Whether a node forward_until(..., node) runs reads the graph input.

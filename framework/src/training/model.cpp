@@ -470,7 +470,9 @@ const Tensor& Model::forward(const std::map<std::string, Tensor>& inputs, const 
   // grade) is the batch's own.
   graph_->forward_until(*twin_inputs, mirror_node_);
   const Tensor twin = graph_->fed_into(mirror_node_, "x");
-  graph_->forward_until(inputs, mirror_node_);
+  // The nodes that read only what the two share (the rest body: the
+  // encoder) keep the twin's outputs.
+  graph_->forward_until(inputs, mirror_node_, true);
   Tensor& garment = graph_->fed_into(mirror_node_, "x");
   for (int b = 0; b < garment.batch(); ++b) {
     const Eigen::MatrixX3d reflected = geometry::mirrored(*garment_mirror_, twin.mat(b).cast<double>());
@@ -491,7 +493,7 @@ void Model::backward(const Tensor& grad, const std::map<std::string, Tensor>* tw
   graph_->backward_from_output(output_, half);
   // The twin's pass again (the graph holds the batch's), then its share: the
   // push-out is not run for it, and its backward only passes the gradient on.
-  graph_->forward_until(*twin_inputs, mirror_node_);
+  graph_->forward_until(*twin_inputs, mirror_node_, true);
   for (int b = 0; b < grad.batch(); ++b)
     half.mat(b) = (0.5 * geometry::mirrored_adjoint(*garment_mirror_, grad.mat(b).cast<double>(), grad.rows())).cast<float>();
   graph_->backward_from_output(output_, half);
