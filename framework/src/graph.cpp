@@ -53,6 +53,7 @@ struct Graph::Impl {
     bool for_losses = false;     // needed to compute the losses
     double forward_ms = 0.0;     // wall time of the last forward (0 when it did not run)
     double backward_ms = 0.0;    // wall time of the last backward (0 when it did not run)
+    bool changed_in_place = false;  // fed_into handed out an output since the node last ran
     std::string label() const { return "node '" + spec.name + "' (" + spec.type + ")"; }
   };
   struct Input {
@@ -87,9 +88,10 @@ struct Graph::Impl {
   // Running: the graph inputs checked and taken, then the nodes `runs` picks
   // (by index, in topological order); fed_by(n): n and the nodes downstream of it.
   // compare: each input's value against the last one's (changed[i]: it differs, or was not compared).
-  std::vector<bool> set_inputs(const std::map<std::string, Tensor>& given, bool with_losses, bool compare);
+  std::vector<bool> set_inputs(const std::map<std::string, Tensor>& inputs, bool with_losses, bool compare);
   void run(const std::function<bool(int)>& runs);
   std::vector<bool> fed_by(int node) const;
+  const Source& feeding(const std::string& node, const std::string& port) const;  // a node's, never a graph input
 
   int node_index(const std::string& name) const;
   int existing_node(const std::string& name) const;  // node_index, Error when there is none
@@ -397,7 +399,7 @@ void Graph::forward_until(const std::map<std::string, Tensor>& inputs, const std
   std::vector<bool> stale(g.nodes.size(), !reuse_unchanged || g.batch != last_batch);
   for (std::size_t n = 0; n < g.nodes.size() && reuse_unchanged && g.batch == last_batch; ++n) {
     const Impl::Built& b = g.nodes[n];
-    stale[n] = b.outputs.size() != b.out_ports.size() ||
+    stale[n] = b.changed_in_place || b.outputs.size() != b.out_ports.size() ||
                std::any_of(b.outputs.begin(), b.outputs.end(), [&](const Tensor& t) { return t.batch() != g.batch; });
     for (const Source& s : b.sources) stale[n] = stale[n] || (s.input >= 0 ? changed[s.input] : stale[s.node]);
   }
@@ -423,15 +425,27 @@ bool Graph::input_read_before(const std::string& input, const std::string& node)
   return false;
 }
 
-Tensor& Graph::fed_into(const std::string& node, const std::string& port) {
-  Impl::Built& b = impl_->nodes[static_cast<std::size_t>(impl_->existing_node(node))];
+const Source& Graph::Impl::feeding(const std::string& node, const std::string& port) const {
+  const Built& b = nodes[static_cast<std::size_t>(existing_node(node))];
   for (std::size_t k = 0; k < b.in_ports.size(); ++k) {
     if (b.in_ports[k] != port) continue;
     const Source& s = b.sources[k];
-    if (s.node < 0) throw Error("node '" + node + "' port '" + port + "' reads the graph input '" + impl_->inputs[s.input].name + "'");
-    return impl_->nodes[s.node].outputs[s.port];
+    if (s.node < 0) throw Error("node '" + node + "' port '" + port + "' reads the graph input '" + inputs[s.input].name + "'");
+    return s;
   }
   throw Error("node '" + node + "' has no connected port '" + port + "'");
+}
+
+Tensor& Graph::fed_into(const std::string& node, const std::string& port) {
+  const Source& s = impl_->feeding(node, port);
+  Impl::Built& source = impl_->nodes[static_cast<std::size_t>(s.node)];
+  source.changed_in_place = true;  // (maybe not the node's own output any more: run again, never kept)
+  return source.outputs[s.port];
+}
+
+const Tensor& Graph::fed_into(const std::string& node, const std::string& port) const {
+  const Source& s = impl_->feeding(node, port);
+  return impl_->nodes[static_cast<std::size_t>(s.node)].outputs[s.port];
 }
 
 std::vector<bool> Graph::Impl::fed_by(int node) const {
@@ -444,10 +458,9 @@ std::vector<bool> Graph::Impl::fed_by(int node) const {
   return after;
 }
 
-std::vector<bool> Graph::Impl::set_inputs(const std::map<std::string, Tensor>& given, bool with_losses, bool compare) {
+std::vector<bool> Graph::Impl::set_inputs(const std::map<std::string, Tensor>& inputs, bool with_losses, bool compare) {
   Impl& g = *this;
   std::vector<bool> changed(g.inputs.size(), true);
-  const auto& inputs = given;
   auto runs = [&](const Impl::Built& b) { return b.for_outputs || (with_losses && b.for_losses); };
   std::vector<bool> needed(g.inputs.size(), false);
   for (const auto& b : g.nodes)
@@ -497,6 +510,7 @@ void Graph::Impl::run(const std::function<bool(int)>& runs) {
       out[b.out_ports[k]] = &b.outputs[k];
     }
     const auto start = std::chrono::steady_clock::now();
+    b.changed_in_place = false;
     in_context(b.spec.type, [&] { b.node->forward(in, out); });  // errors name the node's plugin
     b.forward_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   }

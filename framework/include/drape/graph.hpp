@@ -101,7 +101,10 @@ class Graph {
   // running again (the twin and the body share the rest body: the encoder
   // runs once). Only for consecutive passes with the same weights.
   void forward_until(const std::map<std::string, Tensor>& inputs, const std::string& node, bool reuse_unchanged = false);
+  // (The mutable one marks the tensor changed: its node runs again at the
+  // next forward_until even with reuse_unchanged; the const one only reads.)
   Tensor& fed_into(const std::string& node, const std::string& port);
+  const Tensor& fed_into(const std::string& node, const std::string& port) const;
   void forward_from(const std::string& node);
   // Whether a node forward_until(..., node) runs reads the graph input.
   bool input_read_before(const std::string& input, const std::string& node) const;

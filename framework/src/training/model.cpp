@@ -14,6 +14,7 @@
 
 #include <algorithm>
 #include <iterator>
+#include <utility>
 
 namespace fs = std::filesystem;
 
@@ -238,7 +239,8 @@ Model Model::build(const Registry& registry, const GraphSpec& graph, const Asset
 // exactly equivariant, and its two answers for a body (its own, and the
 // reflection of its answer for the mirrored pose) err apart; their mean is
 // closer to the drape (on the human rig's 200 posed test bodies 1.287
-// against 1.356 cm) for one more pass of the network. Needs the pose space's
+// against 1.356 cm) for one more pass of the network's nodes that read the
+// pose (the twin shares the rest body, so the encoder runs once). Needs the pose space's
 // mirror (mirrored_pose) and a rest body symmetric about x = 0: the twin
 // keeps the body's rest shape and mirrors its pose, as the mirrored training
 // drapes did (scripts/mirror_dataset.py).
@@ -259,7 +261,7 @@ void Model::set_up_mirror_average(const Registry& registry, const GraphSpec& gra
         throw ConfigError(what + "the body model '" + assets_spec_.body_model + "' does not say how its angle '" +
                           angle.name + "' mirrors (only drape's human pose space does)");
     if (!assets_->garment) throw ConfigError(what + "no garment is bound");
-    graph_->fed_into(node.name, "x");  // (throws when x is a graph input: nothing to average)
+    std::as_const(*graph_).fed_into(node.name, "x");  // (throws when x is a graph input: nothing to average)
     mirror_node_ = node.name;
     garment_mirror_ = std::make_shared<const geometry::MirrorMap>(
         geometry::mirror_map(assets_->garment->mesh.vertices, assets_->garment->mesh.faces));
@@ -469,7 +471,7 @@ const Tensor& Model::forward(const std::map<std::string, Tensor>& inputs, const 
   // The twin first, so that what the push-out then reads (the body, the
   // grade) is the batch's own.
   graph_->forward_until(*twin_inputs, mirror_node_);
-  const Tensor twin = graph_->fed_into(mirror_node_, "x");
+  const Tensor twin = std::as_const(*graph_).fed_into(mirror_node_, "x");
   // The nodes that read only what the two share (the rest body: the
   // encoder) keep the twin's outputs.
   graph_->forward_until(inputs, mirror_node_, true);
