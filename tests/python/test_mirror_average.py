@@ -73,6 +73,37 @@ def test_the_averaged_model_answers_a_mirrored_pose_with_the_mirrored_garment(mo
     assert off["plain"] > 3 * off["averaged"], off
 
 
+def body_mirror_map(model):
+    """The mean body's mirror map in numpy (as the model makes it: where each vertex's reflection lies on the body)."""
+    mean = np.asarray(model.assets.body_vertices, float)
+    faces = np.asarray(model.assets.body_faces)
+    face, weights, _ = closest_points(mean, faces, mean * REFLECT)
+    return faces[face], weights
+
+
+def test_an_asymmetric_body_has_its_reflection_for_twin(models):
+    """A body one shoulder of which is wider: its twin must be its reflection, not the same body in the mirrored pose.
+    Then the averaged model answers the reflected body in the mirrored pose with the mirrored garment, as it does
+    a symmetric body; keeping the body for twin (the symmetric bodies' shortcut) would not."""
+    plain, averaged = models
+    corners, weights = mirror_map(plain)
+    body_corners, body_weights = body_mirror_map(plain)
+    body = np.asarray(plain.body(bmi=30, height=1.75, sex=1.0), float)
+    # The left shoulder 3 cm wider, smoothly over a few centimetres (no edge stretched by more than half).
+    body[:, 0] += 0.03 / (1.0 + np.exp(-(body[:, 0] - 0.12) / 0.02))
+    reflected = reflect(body, body_corners, body_weights)
+    assert np.linalg.norm(reflected - body, axis=1).mean() > 5e-3
+    a = averaged.predict(body.astype(np.float32), pose=POSE, check=False).astype(float)
+    b = averaged.predict(reflected.astype(np.float32), pose=MIRRORED, check=False).astype(float)
+    off = np.linalg.norm(reflect(b, corners, weights) - a, axis=1).mean()
+    # The shortcut's answer for the same body: the plain model's own garment and its twin on the unreflected body.
+    own = plain.predict(body.astype(np.float32), pose=POSE, check=False).astype(float)
+    kept = plain.predict(body.astype(np.float32), pose=MIRRORED, check=False).astype(float)
+    shortcut = 0.5 * (own + reflect(kept, corners, weights))
+    assert off < 2e-3, off
+    assert np.linalg.norm(shortcut - a, axis=1).mean() > 2 * off
+
+
 def test_the_shipped_posed_model_averages():
     info = drape.Model.load(str(POSED))
     plain = drape.Model.load(str(POSED), overrides={"post": {"mirror_average": "false"}})

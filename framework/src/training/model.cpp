@@ -240,13 +240,15 @@ Model Model::build(const Registry& registry, const GraphSpec& graph, const Asset
 // reflection of its answer for the mirrored pose) err apart; their mean is
 // closer to the drape (on the human rig's 200 posed test bodies 1.287
 // against 1.356 cm) for one more pass of the network's nodes that read the
-// pose (the twin shares the rest body, so the encoder runs once). Needs the pose space's
-// mirror (mirrored_pose) and a rest body symmetric about x = 0: the twin
-// keeps the body's rest shape and mirrors its pose, as the mirrored training
-// drapes did (scripts/mirror_dataset.py).
+// pose (the twin shares the rest body, so the encoder runs once). Needs the
+// pose space's mirror (mirrored_pose). The twin keeps a symmetric body's rest
+// shape and mirrors its pose, as the mirrored training drapes did
+// (scripts/mirror_dataset.py); an asymmetric body (a user's) is reflected
+// through the mean body's mirror map (mirrored_batch).
 void Model::set_up_mirror_average(const Registry& registry, const GraphSpec& graph) {
   mirror_node_.clear();
   garment_mirror_.reset();
+  body_mirror_.reset();
   for (const NodeSpec& node : graph.nodes) {
     if (node.type != "push_out") continue;
     const Params params(registry.get(node.type).params, node.params, node.name);
@@ -265,6 +267,7 @@ void Model::set_up_mirror_average(const Registry& registry, const GraphSpec& gra
     mirror_node_ = node.name;
     garment_mirror_ = std::make_shared<const geometry::MirrorMap>(
         geometry::mirror_map(assets_->garment->mesh.vertices, assets_->garment->mesh.faces));
+    body_mirror_ = std::make_shared<const geometry::MirrorMap>(geometry::mirror_map(assets_->body.vertices, assets_->body.faces));
   }
 }
 
@@ -284,7 +287,16 @@ SampleBatch Model::mirrored_batch(const SampleBatch& batch) const {
     Pose pose;
     for (std::size_t a = 0; a < angles.size(); ++a)
       pose.angles[angles[a].name] = static_cast<double>(batch.pose(b, 0, static_cast<int>(a))) * 180.0 / M_PI;
-    const Eigen::MatrixX3d unposed = batch.unposed_body.mat(b).cast<double>();
+    Eigen::MatrixX3d unposed = batch.unposed_body.mat(b).cast<double>();
+    if (body_mirror_) {
+      // An asymmetric body's twin is its reflection (a symmetric one keeps
+      // its bits: the nodes that read only the rest body are then shared).
+      Eigen::MatrixX3d reflected = geometry::mirrored(*body_mirror_, unposed);
+      if ((reflected - unposed).rowwise().norm().mean() > kAsymmetricBody) {
+        unposed = std::move(reflected);
+        out.unposed_body.mat(b) = unposed.cast<float>();
+      }
+    }
     const Pose full = full_pose(*body_model_, mirrored_pose(pose, angles), unposed);
     if (posed_body_read) out.body.mat(b) = body_model_->posed_vertices(unposed, full, 1.0).cast<float>();
     out.joint_transforms.mat(b) = transforms_rows(body_model_->joint_transforms(unposed, full)).cast<float>();
