@@ -157,21 +157,18 @@ void report_regraded(const GradedScene& graded, const DatasetReader& reader, con
 
 // The push-out nodes the model's graph applies after the network: the bench
 // also times the network without each, so the table shows what the
-// clearance costs and what it buys.
-std::vector<std::string> enabled_push_outs(const Registry& registry, const std::string& model_file) {
-  std::vector<std::string> names;
-  for (const PushOutSetting& p : push_out_settings(registry, read_checkpoint(model_file).graph, model_file + " (graph)"))
-    if (p.enabled) names.push_back(p.node);
-  return names;
-}
-
-// The push-out nodes before which the model averages with the mirror twin
-// (docs/poses.md, "The mirror average"): timed without it too.
-std::vector<std::string> mirror_averages(const Registry& registry, const std::string& model_file) {
-  std::vector<std::string> names;
-  for (const PushOutSetting& p : push_out_settings(registry, read_checkpoint(model_file).graph, model_file + " (graph)"))
-    if (p.mirror_average) names.push_back(p.node);
-  return names;
+// clearance costs and what it buys; and without the mirror average before
+// one (docs/poses.md, "The mirror average"), what the twin costs and buys.
+struct PostProcessing {
+  std::vector<std::string> push_outs, mirror_averages;  // node names
+};
+PostProcessing post_processing(const Registry& registry, const std::string& model_file) {
+  PostProcessing out;
+  for (const PushOutSetting& p : push_out_settings(registry, read_checkpoint(model_file).graph, model_file + " (graph)")) {
+    if (p.enabled) out.push_outs.push_back(p.node);
+    if (p.mirror_average) out.mirror_averages.push_back(p.node);
+  }
+  return out;
 }
 
 // The methods no other method beats on both time and ME.
@@ -337,12 +334,11 @@ int run(const std::vector<std::string>& args) {
   // The spectral branch (if any) at fewer eigenvectors than it was trained with.
   const std::vector<std::pair<std::string, int>> spectral_cuts =
       spectral_cuts_of(registry, model_file, reader, data, spectral_k);
-  const std::vector<std::string> push_outs = enabled_push_outs(registry, model_file);
-  const std::vector<std::string> mirrors = mirror_averages(registry, model_file);
+  const PostProcessing post = post_processing(registry, model_file);
   const OmpThreadsScope one_core(1);
   const int steps = static_cast<int>(bodies.size()) *
-                    (2 + static_cast<int>(budgets.size() + iterations.size() + spectral_cuts.size() + push_outs.size() +
-                                          mirrors.size()));
+                    (2 + static_cast<int>(budgets.size() + iterations.size() + spectral_cuts.size() +
+                                          post.push_outs.size() + post.mirror_averages.size()));
   ProgressBar bar("accuracy-time", static_cast<std::size_t>(steps), std::cerr);
 
   // The converged reference of every body.
@@ -372,9 +368,9 @@ int run(const std::vector<std::string>& args) {
   for (const auto& [node, k] : spectral_cuts)
     methods.push_back(bench.network(graded, "network, spectral branch k = " + std::to_string(k),
                                     {{node, {{"use_k", std::to_string(k)}}}}));
-  for (const std::string& node : push_outs)
+  for (const std::string& node : post.push_outs)
     methods.push_back(bench.network(graded, "network, push-out " + node + " off", {{node, {{"enabled", "false"}}}}));
-  for (const std::string& node : mirrors)
+  for (const std::string& node : post.mirror_averages)
     methods.push_back(bench.network(graded, "network, mirror average off", {{node, {{"mirror_average", "false"}}}}));
   for (int its : iterations) methods.push_back(bench.optimised(graded, its));
   bar.finish();

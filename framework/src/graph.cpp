@@ -394,15 +394,19 @@ void Graph::forward_until(const std::map<std::string, Tensor>& inputs, const std
   const std::vector<bool> after = g.fed_by(g.existing_node(node));
   const int last_batch = g.batch;
   const std::vector<bool> changed = g.set_inputs(inputs, false, reuse_unchanged);
-  // Stale: reads a changed input, directly or through a node that does (one
-  // pass in topological order), or has no outputs of this batch yet.
-  std::vector<bool> stale(g.nodes.size(), !reuse_unchanged || g.batch != last_batch);
-  for (std::size_t n = 0; n < g.nodes.size() && reuse_unchanged && g.batch == last_batch; ++n) {
-    const Impl::Built& b = g.nodes[n];
-    stale[n] = b.changed_in_place || b.outputs.size() != b.out_ports.size() ||
-               std::any_of(b.outputs.begin(), b.outputs.end(), [&](const Tensor& t) { return t.batch() != g.batch; });
-    for (const Source& s : b.sources) stale[n] = stale[n] || (s.input >= 0 ? changed[s.input] : stale[s.node]);
-  }
+  // Stale (run again): every node, unless the outputs may be kept; then a
+  // node that reads a changed input, directly or through a node that does
+  // (one pass in topological order), whose output was handed out to be
+  // changed, or that has no outputs of this batch.
+  std::vector<bool> stale(g.nodes.size(), true);
+  if (reuse_unchanged && g.batch == last_batch)
+    for (std::size_t n = 0; n < g.nodes.size(); ++n) {
+      const Impl::Built& b = g.nodes[n];
+      bool run = b.changed_in_place || b.outputs.size() != b.out_ports.size() ||
+                 std::any_of(b.outputs.begin(), b.outputs.end(), [&](const Tensor& t) { return t.batch() != g.batch; });
+      for (const Source& s : b.sources) run = run || (s.input >= 0 ? changed[s.input] : stale[s.node]);
+      stale[n] = run;
+    }
   for (std::size_t n = 0; n < g.nodes.size(); ++n)
     if (stale[n]) g.nodes[n].forward_ms = 0.0;  // (a kept node keeps the time of the pass that made its outputs)
   g.run([&](int n) { return g.nodes[n].for_outputs && !after[n] && stale[n]; });

@@ -295,9 +295,7 @@ std::vector<Notice> BodyPreparation::pose(SampleBatch& batch, const Pose& pose, 
   std::vector<Notice> notices;
   const std::vector<PoseAngle> angles = model_.body_model().pose_angles();
   for (int i = 0; i < batch.size(); ++i) {
-    Pose full;  // the angles the body is draped in, those at rest included
-    for (std::size_t a = 0; a < angles.size(); ++a)
-      full.angles[angles[a].name] = static_cast<double>(batch.pose(i, 0, static_cast<int>(a))) * 180.0 / M_PI;
+    const Pose full = batch_pose(batch, i, angles);  // the angles the body is draped in, those at rest included
     std::string lines;
     for (const std::string& v : pose_violations(*domain_, full)) lines += (lines.empty() ? "" : "; ") + v;
     if (lines.empty()) continue;

@@ -249,11 +249,10 @@ void Model::set_up_mirror_average(const Registry& registry, const GraphSpec& gra
   mirror_node_.clear();
   garment_mirror_.reset();
   body_mirror_.reset();
-  for (const NodeSpec& node : graph.nodes) {
-    if (node.type != "push_out") continue;
-    const Params params(registry.get(node.type).params, node.params, node.name);
-    if (!params.get_bool("mirror_average")) continue;
-    const std::string what = "node '" + node.name + "' mirror_average: ";
+  twin_reads_posed_body_ = true;
+  for (const PushOutSetting& post : push_out_settings(registry, graph)) {
+    if (!post.mirror_average) continue;
+    const std::string what = "node '" + post.node + "' mirror_average: ";
     if (!mirror_node_.empty()) throw ConfigError(what + "the mirror average is already done before node '" + mirror_node_ + "'");
     if (!needs_input("pose") || !needs_input("unposed_body"))
       throw ConfigError(what + "the mirror average needs a model of posed drapes (a graph with the inputs pose and "
@@ -263,8 +262,9 @@ void Model::set_up_mirror_average(const Registry& registry, const GraphSpec& gra
         throw ConfigError(what + "the body model '" + assets_spec_.body_model + "' does not say how its angle '" +
                           angle.name + "' mirrors (only drape's human pose space does)");
     if (!assets_->garment) throw ConfigError(what + "no garment is bound");
-    std::as_const(*graph_).fed_into(node.name, "x");  // (throws when x is a graph input: nothing to average)
-    mirror_node_ = node.name;
+    std::as_const(*graph_).fed_into(post.node, "x");  // (throws when x is a graph input: nothing to average)
+    mirror_node_ = post.node;
+    twin_reads_posed_body_ = graph_->input_read_before("body", mirror_node_);
     garment_mirror_ = std::make_shared<const geometry::MirrorMap>(
         geometry::mirror_map(assets_->garment->mesh.vertices, assets_->garment->mesh.faces));
     body_mirror_ = std::make_shared<const geometry::MirrorMap>(geometry::mirror_map(assets_->body.vertices, assets_->body.faces));
@@ -278,30 +278,23 @@ SampleBatch Model::mirrored_batch(const SampleBatch& batch) const {
   if (batch.pose.cols() != static_cast<int>(angles.size()))
     throw ConfigError("the mirror average: the batch's poses have " + std::to_string(batch.pose.cols()) +
                       " angles, the body model " + std::to_string(angles.size()));
-  // The twin's posed body only when the network reads it (a world-space
-  // graph): the push-out, which does, runs on the batch's own. (Posing the
-  // body's vertices is most of a twin's making: 0.15 of 0.2 ms.)
-  const bool posed_body_read = mirror_node_.empty() || graph_->input_read_before("body", mirror_node_);
   SampleBatch out = batch;
   for (int b = 0; b < batch.size(); ++b) {
-    Pose pose;
-    for (std::size_t a = 0; a < angles.size(); ++a)
-      pose.angles[angles[a].name] = static_cast<double>(batch.pose(b, 0, static_cast<int>(a))) * 180.0 / M_PI;
     Eigen::MatrixX3d unposed = batch.unposed_body.mat(b).cast<double>();
     if (body_mirror_) {
       // An asymmetric body's twin is its reflection (a symmetric one keeps
       // its bits: the nodes that read only the rest body are then shared).
       Eigen::MatrixX3d reflected = geometry::mirrored(*body_mirror_, unposed);
-      if ((reflected - unposed).rowwise().norm().mean() > kAsymmetricBody) {
-        unposed = std::move(reflected);
-        out.unposed_body.mat(b) = unposed.cast<float>();
-      }
+      if ((reflected - unposed).rowwise().norm().mean() > kAsymmetricBody) unposed = std::move(reflected);
     }
-    const Pose full = full_pose(*body_model_, mirrored_pose(pose, angles), unposed);
-    if (posed_body_read) out.body.mat(b) = body_model_->posed_vertices(unposed, full, 1.0).cast<float>();
-    out.joint_transforms.mat(b) = transforms_rows(body_model_->joint_transforms(unposed, full)).cast<float>();
-    for (std::size_t a = 0; a < angles.size(); ++a)
-      out.pose(b, 0, static_cast<int>(a)) = static_cast<float>(full.angles.at(angles[a].name) * M_PI / 180.0);
+    // The twin's posed body only when the network reads it (a world-space
+    // graph): the push-out, which does, runs on the batch's own.
+    const SampleBatch twin = posed_body_batch(*body_model_, unposed, mirrored_pose(batch_pose(batch, b, angles), angles),
+                                              twin_reads_posed_body_);
+    if (twin_reads_posed_body_) out.body.mat(b) = twin.body.mat(0);
+    out.unposed_body.mat(b) = twin.unposed_body.mat(0);
+    out.joint_transforms.mat(b) = twin.joint_transforms.mat(0);
+    out.pose.mat(b) = twin.pose.mat(0);
   }
   return out;
 }
@@ -434,7 +427,7 @@ SampleBatch sample_batch(const DatasetSample& sample, const DatasetLayout& layou
     for (std::size_t a = 0; a < layout.pose_angles.size(); ++a)
       pose.angles[layout.pose_angles[a]] = static_cast<double>(sample.pose[static_cast<Eigen::Index>(a)]);
     const SampleBatch posed =
-        posed_body_batch(*body_model, body_model->vertices(sample.body_params.cast<double>()), pose);
+        posed_body_batch(*body_model, body_model->vertices(sample.body_params.cast<double>()), pose, false);
     b.unposed_body = posed.unposed_body;
     b.joint_transforms = posed.joint_transforms;
     b.pose = posed.pose;  // b.body stays the stored one: the body the drape was simulated on
@@ -442,7 +435,15 @@ SampleBatch sample_batch(const DatasetSample& sample, const DatasetLayout& layou
   return b;
 }
 
-SampleBatch posed_body_batch(const BodyModel& model, const Eigen::MatrixX3d& unposed, const Pose& pose) {
+Pose batch_pose(const SampleBatch& batch, int i, const std::vector<PoseAngle>& angles) {
+  Pose pose;
+  for (std::size_t a = 0; a < angles.size(); ++a)
+    pose.angles[angles[a].name] = static_cast<double>(batch.pose(i, 0, static_cast<int>(a))) * 180.0 / M_PI;
+  return pose;
+}
+
+SampleBatch posed_body_batch(const BodyModel& model, const Eigen::MatrixX3d& unposed, const Pose& pose,
+                             bool with_posed_body) {
   if (!model.poseable()) throw ConfigError("this body model has no skeleton: it takes no pose");
   const Pose full = full_pose(model, pose, unposed);
   SampleBatch b;
@@ -451,7 +452,7 @@ SampleBatch posed_body_batch(const BodyModel& model, const Eigen::MatrixX3d& unp
     t.mat(0) = m.cast<float>();
     return t;
   };
-  b.body = to_tensor(model.posed_vertices(unposed, full, 1.0));
+  if (with_posed_body) b.body = to_tensor(model.posed_vertices(unposed, full, 1.0));
   b.unposed_body = to_tensor(unposed);
   const MatrixRM transforms = transforms_rows(model.joint_transforms(unposed, full));
   b.joint_transforms = Tensor(1, static_cast<int>(transforms.rows()), 12);

@@ -77,8 +77,12 @@ std::vector<std::string> set_model_params(const Registry& registry, const fs::pa
 
 std::vector<PushOutSetting> push_out_settings(const Registry& registry, const std::string& graph_text,
                                               const std::string& name_for_errors) {
+  return push_out_settings(registry, parse_graph_text(graph_text, name_for_errors));
+}
+
+std::vector<PushOutSetting> push_out_settings(const Registry& registry, const GraphSpec& graph) {
   std::vector<PushOutSetting> settings;
-  for (const NodeSpec& node : parse_graph_text(graph_text, name_for_errors).nodes) {
+  for (const NodeSpec& node : graph.nodes) {
     if (node.type != "push_out") continue;
     const Params params(registry.get(node.type).params, node.params, node.name);
     const bool grade = std::any_of(node.inputs.begin(), node.inputs.end(), [](const auto& in) { return in.first == "grade"; });

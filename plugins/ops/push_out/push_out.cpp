@@ -274,7 +274,7 @@ PluginList plugins() {
               {.name = "mirror_average", .type = ParamType::Bool, .default_value = "false",
                .doc = "read by the model, not by this node: the network also drapes each body in its mirrored pose, "
                       "and what this node is fed is the mean of the garment and that twin's reflection (a model of "
-                      "posed drapes on drape's human pose space; one more pass of the network)"},
+                      "posed drapes on drape's human pose space; the network's nodes that read the pose run twice)"},
               {.name = "strain_limit", .type = ParamType::Float, .default_value = "0",
                .doc = "> 0: first shorten every garment edge longer than (1 + strain_limit) times its rest length (the "
                       "template's material space, graded by the input grade) to that length; 0: off",

@@ -69,8 +69,14 @@ SampleBatch body_batch(const BodyModel& model, const BodyRequest& request, int c
 // One body of `model` given by its unposed mesh in `pose` (angles it does not
 // set at the body's rest angles): body (posed), unposed_body,
 // joint_transforms and pose, as a dataset sample of that body would have them.
+// Without with_posed_body, `body` is left empty (posing the vertices is most
+// of the cost, and a caller that keeps another body need not pay it).
 // ConfigError when the model has no skeleton.
-SampleBatch posed_body_batch(const BodyModel& model, const Eigen::MatrixX3d& unposed, const Pose& pose);
+SampleBatch posed_body_batch(const BodyModel& model, const Eigen::MatrixX3d& unposed, const Pose& pose,
+                             bool with_posed_body = true);
+// Sample i's pose in a batch (its `pose` tensor, radians, in the order of
+// `angles`) as degrees by name.
+Pose batch_pose(const SampleBatch& batch, int i, const std::vector<PoseAngle>& angles);
 
 // Known graph inputs and their sizes (`dims` for GraphOptions): the assets'
 // sizes plus body_params.
@@ -210,6 +216,7 @@ class Model {
   std::string mirror_node_;
   std::shared_ptr<const geometry::MirrorMap> garment_mirror_;
   std::shared_ptr<const geometry::MirrorMap> body_mirror_;  // of the mean body: a user's asymmetric body reflected
+  bool twin_reads_posed_body_ = true;  // a node before the mirror node reads `body` (else the twin's is not posed)
   void set_up_mirror_average(const Registry& registry, const GraphSpec& graph);
   std::string output_;
   bool assets_changed_ = false;

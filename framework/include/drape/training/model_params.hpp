@@ -47,5 +47,7 @@ struct PushOutSetting {
 };
 std::vector<PushOutSetting> push_out_settings(const Registry& registry, const std::string& graph_text,
                                               const std::string& name_for_errors);
+// The same of a graph already parsed (Model: the mirror average's node).
+std::vector<PushOutSetting> push_out_settings(const Registry& registry, const GraphSpec& graph);
 
 }  // namespace drape
