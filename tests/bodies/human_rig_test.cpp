@@ -14,7 +14,6 @@
 #include <drape/geometry/volume.hpp>
 #include <test_support.hpp>
 
-#include <yaml-cpp/yaml.h>
 
 #include <cmath>
 #include <memory>
@@ -23,13 +22,9 @@ namespace {
 
 using namespace drape;
 
-std::unique_ptr<BodyModel> parametric_with(const std::string& yaml) {
-  const PluginDescriptor& d = test::plugins().get("parametric");
-  return test::plugins().create_body("parametric", Params(d.params, param_values_from_yaml(YAML::Load(yaml), "test"), "body parametric"));
-}
 
 const BodyModel& human() {
-  static const std::unique_ptr<BodyModel> model = parametric_with("{rig: human}");
+  static const std::unique_ptr<BodyModel> model = test::parametric_body("{rig: human}");
   return *model;
 }
 
@@ -102,7 +97,7 @@ TEST_CASE("human rig: heavy shoulders widen with the arms' fat, not with their p
     BodyRequest r{bmi, 1.75, 1.0, {}};
     return shoulder_width(model.vertices(solve_in_space(model, r)));
   };
-  const std::unique_ptr<BodyModel> mannequin = parametric_with("{}");
+  const std::unique_ptr<BodyModel> mannequin = test::parametric_body("{}");
   const double human_25 = width_at(human(), 25), human_39 = width_at(human(), 39);
   const double mannequin_25 = width_at(*mannequin, 25), mannequin_39 = width_at(*mannequin, 39);
   INFO("human rig " << human_25 << " -> " << human_39 << " m, mannequin " << mannequin_25 << " -> " << mannequin_39 << " m");
@@ -207,7 +202,7 @@ TEST_CASE("human rig: the hands are meshed finer than the trunk, and a hand has 
 }
 
 TEST_CASE("human rig: the mannequin rig is the default and is unchanged by it", "[bodies][human]") {
-  const auto plain = test::parametric_body(), mannequin = parametric_with("{rig: mannequin}");
+  const auto plain = test::parametric_body(), mannequin = test::parametric_body("{rig: mannequin}");
   CHECK(plain->num_vertices() == 6490);
   const Eigen::VectorXd shape = plain->solve({33, 1.68, 0.3, {}});
   CHECK((plain->vertices(shape) - mannequin->vertices(shape)).cwiseAbs().maxCoeff() == 0.0);
@@ -215,5 +210,5 @@ TEST_CASE("human rig: the mannequin rig is the default and is unchanged by it", 
   // The human rig is as deterministic: the same shape, the same bits.
   const Eigen::VectorXd heavy = human().solve({48, 1.62, 0, {}});
   CHECK((human().vertices(heavy) - human().vertices(heavy)).cwiseAbs().maxCoeff() == 0.0);
-  CHECK_THROWS_WITH(parametric_with("{rig: humann}"), Catch::Contains("human"));
+  CHECK_THROWS_WITH(test::parametric_body("{rig: humann}"), Catch::Contains("human"));
 }

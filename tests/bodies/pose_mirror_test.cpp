@@ -9,8 +9,6 @@
 #include <drape/geometry/nearest_triangles.hpp>
 #include <test_support.hpp>
 
-#include <yaml-cpp/yaml.h>
-
 #include <algorithm>
 #include <memory>
 #include <vector>
@@ -20,11 +18,7 @@ namespace {
 using namespace drape;
 
 const BodyModel& human() {
-  static const std::unique_ptr<BodyModel> model = [] {
-    const PluginDescriptor& d = test::plugins().get("parametric");
-    return test::plugins().create_body(
-        "parametric", Params(d.params, param_values_from_yaml(YAML::Load("{rig: human}"), "test"), "body parametric"));
-  }();
+  static const std::unique_ptr<BodyModel> model = test::parametric_body("{rig: human}");
   return *model;
 }
 

@@ -10,6 +10,8 @@
 #include <random>
 #include <sys/wait.h>
 
+#include <yaml-cpp/yaml.h>
+
 namespace fs = std::filesystem;
 
 namespace drape::test {
@@ -23,9 +25,10 @@ const Registry& plugins() {
   return *r;
 }
 
-std::unique_ptr<BodyModel> parametric_body() {
+std::unique_ptr<BodyModel> parametric_body(const std::string& params_yaml) {
   const PluginDescriptor& d = plugins().get("parametric");
-  return plugins().create_body("parametric", Params(d.params, {}, "body parametric"));
+  return plugins().create_body("parametric",
+                               Params(d.params, param_values_from_yaml(YAML::Load(params_yaml), "test"), "body parametric"));
 }
 
 std::unique_ptr<BodyModel> skeletonless_body() {

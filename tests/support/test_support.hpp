@@ -14,8 +14,9 @@ namespace drape::test {
 
 // A registry holding every plugin of the build tree (loaded once).
 const Registry& plugins();
-// The parametric body model with its default parameters.
-std::unique_ptr<BodyModel> parametric_body();
+// The parametric body model with its default parameters, or with those of a
+// YAML map ("{rig: human}").
+std::unique_ptr<BodyModel> parametric_body(const std::string& params_yaml = "{}");
 // A body model without a skeleton (one triangle, no shape parameters): what a
 // pose must be refused by.
 std::unique_ptr<BodyModel> skeletonless_body();
