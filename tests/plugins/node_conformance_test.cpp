@@ -59,6 +59,7 @@ const std::map<std::string, std::string>& checked_elsewhere() {
       {"penetration", "tests/losses/penetration_test.cpp"},
       {"spectral_loss", "tests/losses/spectral_loss_test.cpp"},
       {"v2v", "tests/losses/v2v_test.cpp"},
+      {"vertex_distance", "tests/losses/vertex_distance_test.cpp"},
       {"gather", "tests/plugins/gather_test.cpp"},
       {"push_out", "tests/gcn/tailornet_parts_test.cpp"},
       {"spectral_lowpass", "tests/gcn/tailornet_parts_test.cpp"},
