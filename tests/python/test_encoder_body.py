@@ -150,3 +150,21 @@ def test_the_shipped_posed_model_is_of_the_wide_graph(tmp_path):
     # The shipped model's own graph has the 1 mm margin and its training chose the best epoch by V2V.
     info, _ = run_drape("model", "info", SOURCE / "models" / "tshirt-coarse-posed-human.h5")
     assert "best epoch by the validation v2v loss" in info and "within 4.0 mm" in info, info
+
+
+def test_the_posed_graph_trained_on_the_metric(tmp_path):
+    """graphs/human/drape_posed_v2v1000_post_resampled_transfer48_margin1mm_distance.yaml (L_V2V replaced by the mean
+    vertex distance, docs/poses.md, "Training on the metric") starts from the shipped posed model with every weight of
+    its shape, chooses its best epoch by the validation ME, and its loss is the mean distance it reports."""
+    stdout, err = run_drape("train", SOURCE / "graphs" / "human" / "drape_posed_v2v1000_post_resampled_transfer48_margin1mm_distance.yaml",
+                            "--data", POSED_HUMAN_SHARD, "--out", tmp_path / "m.h5", "--epochs", 1, "--fraction", 0.05,
+                            "--threads", 1, "--encoder-body", "parametric", "--init",
+                            SOURCE / "models" / "tshirt-coarse-posed-human.h5", "--monitor", "vertex_distance", "--lr", 1e-6)
+    text = stdout + err
+    assert "keeps its initialisation" not in text
+    assert "the best epoch by its vertex_distance loss" in text, text
+    assert "v2v" not in text.split("epoch 1/1", 1)[1].split("\n", 1)[0], text  # the loss is replaced, not added
+    # At lr 1e-6 the weights barely move: the validation loss is the shipped model's ME on those bodies (in m, the
+    # network alone), a centimetre or two.
+    val = float(text.split("vertex_distance ")[-1].split("]")[0])
+    assert 0.005 < val < 0.03, text
