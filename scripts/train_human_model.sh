@@ -56,7 +56,7 @@
 # "Training on the metric"):
 #   SHARD_DIR=datasets/posespace2000-human GRAPH=graphs/human/drape_posed_v2v1000_post_resampled_transfer48_margin1mm_distance.yaml \
 #     INIT=models/tshirt-coarse-posed-human.h5 LR=3e-4 MIRROR=1 PUSH_OUT=0.004 MONITOR=vertex_distance THREADS=2 MIRROR_AVERAGE=1 \
-#     EXTRA_SHARDS="$(echo datasets/posespace-human-seed5/shard-* datasets/posespace-human-seed6/shard-*)" bash scripts/train_human_model.sh work-posed-human
+#     EXTRA_SHARDS="$(echo datasets/posespace-human-seed5/shard-* datasets/posespace-human-seed6/shard-0[013]-*)" bash scripts/train_human_model.sh work-posed-human
 set -euo pipefail
 cd "$(dirname "${BASH_SOURCE[0]}")/.."
 DRAPE=${BUILD_DIR:-build}/bin/drape
