@@ -1,6 +1,6 @@
 // Every graph node the registry finds has its backward checked against finite
 // differences, whatever its name: the nodes that take plain tensors are
-// checked here on random inputs (add, scale, concat, l2, linear: no template
+// checked here on random inputs (add, scale, concat, l2, vertex_distance, linear: no template
 // assets needed), every other one in its own test file, which the table below
 // names and this test reads (the file must build that node by name and compare
 // it with differences). A new node plugin in neither place fails here, naming
@@ -33,6 +33,7 @@ std::map<std::string, std::vector<Case>> plain_cases() {
       {"scale", {{"{factor: -2.5}", {{"x", a}}}, {"{factor: 0.125}", {{"x", b}}}}},
       {"concat", {{"{}", {{"a", a}, {"b", random_tensor(2, 5, 4, 15)}}}, {"{}", {{"a", a}, {"b", random_tensor(2, 1, 2, 16)}}}}},
       {"l2", {{"{}", {{"pred", a}, {"target", b}}}}},
+      {"vertex_distance", {{"{}", {{"pred", a}, {"target", b}}}}},
       {"linear", {{"{width: 4, activation: tanh}", {{"x", a}}}}},
   };
 }
@@ -59,7 +60,6 @@ const std::map<std::string, std::string>& checked_elsewhere() {
       {"penetration", "tests/losses/penetration_test.cpp"},
       {"spectral_loss", "tests/losses/spectral_loss_test.cpp"},
       {"v2v", "tests/losses/v2v_test.cpp"},
-      {"vertex_distance", "tests/losses/vertex_distance_test.cpp"},
       {"gather", "tests/plugins/gather_test.cpp"},
       {"push_out", "tests/gcn/tailornet_parts_test.cpp"},
       {"spectral_lowpass", "tests/gcn/tailornet_parts_test.cpp"},
