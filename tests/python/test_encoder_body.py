@@ -147,9 +147,10 @@ def test_the_shipped_posed_model_is_of_the_wide_graph(tmp_path):
                             "--threads", 1, "--encoder-body", "parametric", "--init",
                             SOURCE / "models" / "tshirt-coarse-posed-human.h5", "--monitor", "v2v", "--quiet")
     assert "keeps its initialisation" not in stdout + err
-    # The shipped model's own graph has the 1 mm margin and its training chose the best epoch by the validation ME.
+    # The shipped model's own graph has the 1 mm margin, its training chose the best epoch by the validation ME, and
+    # its push-out clears 5 mm since the thirty-second session (docs/poses.md, "All of seed 6").
     info, _ = run_drape("model", "info", SOURCE / "models" / "tshirt-coarse-posed-human.h5")
-    assert "best epoch by the validation vertex_distance loss" in info and "within 4.0 mm" in info, info
+    assert "best epoch by the validation vertex_distance loss" in info and "within 5.0 mm" in info, info
     assert "mirror average" in info, info
 
 
