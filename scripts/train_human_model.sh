@@ -58,11 +58,10 @@
 #     INIT=models/tshirt-coarse-posed-human.h5 LR=3e-4 MIRROR=1 PUSH_OUT=0.004 MONITOR=vertex_distance THREADS=2 MIRROR_AVERAGE=1 \
 #     EXTRA_SHARDS="$(echo datasets/posespace-human-seed5/shard-* datasets/posespace-human-seed6/shard-0[013]-*)" bash scripts/train_human_model.sh work-posed-human
 # Since the thirty-second two more cycles of the same recipe from it, the first
-# with seed 6's shards 0-4, the second with 0-9, then the push-out at 5 mm
-# (docs/poses.md, "All of seed 6"):
-#     EXTRA_SHARDS="$(echo datasets/posespace-human-seed5/shard-* datasets/posespace-human-seed6/shard-0[0-4]-*)" ... (first)
-#     EXTRA_SHARDS="$(echo datasets/posespace-human-seed5/shard-* datasets/posespace-human-seed6/shard-0*)" ... (second)
-#   drape model set work-posed-human/model.h5 --set post.epsilon=0.005
+# with EXTRA_SHARDS="$(echo datasets/posespace-human-seed5/shard-*
+# datasets/posespace-human-seed6/shard-0[0-4]-*)", the second from the first
+# with seed 6's shards 0-9 (shard-0*) and PUSH_OUT=0.005 (docs/poses.md,
+# "All of seed 6").
 set -euo pipefail
 cd "$(dirname "${BASH_SOURCE[0]}")/.."
 DRAPE=${BUILD_DIR:-build}/bin/drape

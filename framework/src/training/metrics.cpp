@@ -73,7 +73,7 @@ void MetricsContext::check(const Eigen::MatrixX3d& m, int rows, const char* what
   if (!m.allFinite()) throw Error(std::string("metrics: ") + what + " has a non-finite coordinate");
 }
 
-double MetricsContext::mean_error(const Eigen::MatrixX3d& x, const Eigen::MatrixX3d& y) const {
+double MetricsContext::mean_error(const Eigen::MatrixX3d& x, const Eigen::MatrixX3d& y) {
   return (x - y).rowwise().norm().mean();
 }
 

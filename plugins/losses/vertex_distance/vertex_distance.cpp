@@ -4,10 +4,12 @@
 // displacement part; its minimiser is a per-axis median, ME's the geometric
 // one, so a model trained on L_V2V alone is not trained on the figure it is
 // judged by. Not in the seed; the shipped posed model trains on it
-// (docs/poses.md, "Training on the metric"). At a vertex that sits exactly on its target the distance has no
-// gradient; the subgradient 0 is taken there.
+// (docs/poses.md, "Training on the metric"). At a vertex that sits exactly
+// on its target the distance has no gradient; the subgradient 0 is taken
+// there.
 #include <drape/nn/loss_inputs.hpp>
 #include <drape/plugin.hpp>
+#include <drape/training/metrics.hpp>
 
 namespace {
 
@@ -22,13 +24,13 @@ class VertexDistanceLoss final : public Node {
     return {{"loss", {1, 1}}};
   }
 
-  // The distances in double, as drape eval's ME (MetricsContext::mean_error)
-  // takes them: a thousand distances of a centimetre summed in float lose the
-  // digits the gradient check sees.
+  // drape eval's ME itself, in double: a thousand distances of a centimetre
+  // summed in float lose the digits the gradient check sees.
   void forward(const TensorIn& in, const TensorOut& out) override {
     const Tensor &x = *in.at("pred"), &y = *in.at("target");
     for (int b = 0; b < x.batch(); ++b)
-      (*out.at("loss"))(b, 0, 0) = static_cast<float>((x.mat(b) - y.mat(b)).cast<double>().rowwise().norm().mean());
+      (*out.at("loss"))(b, 0, 0) =
+          static_cast<float>(MetricsContext::mean_error(x.mat(b).cast<double>(), y.mat(b).cast<double>()));
   }
 
   // d/dx_i = (x_i - y_i) / (|x_i - y_i| N); 0 at a vertex on its target.

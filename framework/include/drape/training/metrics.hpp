@@ -96,7 +96,8 @@ class MetricsContext {
                           const std::vector<double>* rest = nullptr) const;
 
   // The parts, for tests and for callers that need only some.
-  double mean_error(const Eigen::MatrixX3d& x, const Eigen::MatrixX3d& y) const;         // m
+  // ME needs no assets: the loss vertex_distance calls it too, so the two agree by construction.
+  static double mean_error(const Eigen::MatrixX3d& x, const Eigen::MatrixX3d& y);        // m
   double laplacian_difference(const Eigen::MatrixX3d& x, const Eigen::MatrixX3d& y) const;  // m
   double edge_error(const Eigen::MatrixX3d& x, const Eigen::MatrixX3d& y) const;          // fraction
   // L_e and the most stretched edge (both fractions) in one pass over the edges.
