@@ -25,7 +25,8 @@
 # the model, default 0.006; the shipped posed model's 0.003: docs/poses.md,
 # "The penetration margin"), INIT_WIDEN (1: drape train --init-widen, for a
 # graph that adds inputs to INIT's: the new weights that read them start at
-# zero; docs/poses.md, "More capacity on the human rig"), MONITOR (drape train
+# zero; docs/poses.md, "More capacity on the human rig"), WEIGHT_DECAY (drape
+# train --weight-decay, AdamW's; default 0), MONITOR (drape train
 # --monitor: a loss of the graph by name, e.g. v2v, chooses the best epoch
 # instead of the weighted total; default the total), MIRROR_AVERAGE (1: the
 # model stored with the push-out's mirror_average on, the network's garment
@@ -90,7 +91,7 @@ fi
 
 "$DRAPE" train "${GRAPH:-graphs/human/drape_grade_v2v1000_post_resampled.yaml}" --data "$DATA" --out "$WORK/model.h5" \
   --encoder-body parametric --init "${INIT:-models/tshirt-coarse.h5}" ${INIT_WIDEN:+--init-widen} --epochs "${EPOCHS:-60}" --schedule cosine --lr "${LR:-1e-3}" \
-  --patience "${PATIENCE:-30}" ${MONITOR:+--monitor "$MONITOR"} --batch 8 --seed 0 --threads "${THREADS:-1}" --resume
+  --patience "${PATIENCE:-30}" ${MONITOR:+--monitor "$MONITOR"} ${WEIGHT_DECAY:+--weight-decay "$WEIGHT_DECAY"} --batch 8 --seed 0 --threads "${THREADS:-1}" --resume
 "$DRAPE" model set "$WORK/model.h5" --set post.enabled=true --set post.epsilon="${PUSH_OUT:-0.006}" \
   ${MIRROR_AVERAGE:+--set post.mirror_average=true}
 

@@ -53,6 +53,8 @@ int run(const std::vector<std::string>& given) {
       "epochs", po::value<long>()->default_value(100), "epochs (passes over the training split)")(
       "batch", po::value<int>()->default_value(8), "samples per step")(
       "lr", po::value<double>()->default_value(1e-3), "Adam's learning rate")(
+      "weight-decay", po::value<double>()->default_value(0.0),
+      "AdamW's decoupled weight decay: each step scales every weight by (1 - lr * this); 0: plain Adam")(
       "schedule", po::value<std::string>()->default_value("constant"), "learning rate over epochs: constant | cosine")(
       "fraction", po::value<double>()->default_value(1.0), "train on this fraction of the training split (the seed's 4k model: 0.25)")(
       "patience", po::value<int>()->default_value(20), "stop after this many epochs without a better validation loss")(
@@ -84,7 +86,7 @@ int run(const std::vector<std::string>& given) {
   pos.add("graph", 1);
   po::variables_map vm;
   const std::string usage =
-      "drape train GRAPH.yaml --data data.h5 --out model.h5 [--epochs N] [--batch B] [--lr X] [--seed S] [--threads T] "
+      "drape train GRAPH.yaml --data data.h5 --out model.h5 [--epochs N] [--batch B] [--lr X] [--weight-decay W] [--seed S] [--threads T] "
       "[--init model.h5 [--init-widen | --init-partial]] [--monitor LOSS] [--resume]" +
       std::string(built_with_mpi() ? "\n       mpirun -np N drape train ... (built with MPI: N ranks, each on a part of every batch)"
                                    : "\n       (built without MPI: one process)");
@@ -99,6 +101,7 @@ int run(const std::vector<std::string>& given) {
   o.epochs = vm["epochs"].as<long>();
   o.batch = vm["batch"].as<int>();
   o.lr = vm["lr"].as<double>();
+  o.weight_decay = vm["weight-decay"].as<double>();
   o.schedule = vm["schedule"].as<std::string>();
   o.patience = vm["patience"].as<int>();
   if (vm.count("monitor")) o.monitor = vm["monitor"].as<std::string>();

@@ -93,6 +93,20 @@ TEST_CASE("drape train --monitor: the log, drape model info and a name the graph
   CHECK(!fs::exists(dir / "bad.h5"));
 }
 
+TEST_CASE("drape train --weight-decay: the log names it, and a negative or NaN decay is refused in one line", "[train][cli]") {
+  test::TempDir dir;
+  const fs::path data = dir / "data.h5", model = dir / "model.h5";
+  test::write_tiny_dataset(data, 10, 6, 2);
+  std::string out;
+  REQUIRE(test::run(test::drape_command(train_args(data, model, "--weight-decay 0.01", 1)), out) == 0);
+  CHECK_THAT(out, Catch::Contains("weight decay 0.01"));
+  for (const char* bad : {"-0.5", "nan"}) {
+    CHECK(test::run(test::drape_command(train_args(data, dir / "bad.h5", std::string("--weight-decay ") + bad, 1)), out) == 2);
+    CHECK_THAT(out, Catch::Contains("--weight-decay must be a number >= 0"));
+    CHECK(!fs::exists(dir / "bad.h5"));
+  }
+}
+
 TEST_CASE("a training killed with SIGKILL continues with --resume to the uninterrupted result", "[train][cli]") {
   test::TempDir dir;
   const fs::path data = dir / "data.h5", killed = dir / "killed.h5", whole = dir / "whole.h5";

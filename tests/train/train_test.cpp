@@ -4,6 +4,7 @@
 #include <catch2/catch.hpp>
 
 #include <algorithm>
+#include <cmath>
 #include <fstream>
 #include <sstream>
 
@@ -381,4 +382,52 @@ TEST_CASE("training on optimised drapes leaves out the ones that are not results
   o.data = d.dir / "all.h5";
   o.out = d.dir / "all-model.h5";
   CHECK(train(test::plugins(), o).train_samples == 12);
+}
+
+TEST_CASE("train --weight-decay: AdamW's decay reaches the weights, is recorded, and a resume must share it", "[train]") {
+  TinyData d;
+  // With lr * weight_decay = 1 each step first scales every weight to 0
+  // (AdamW: w <- w - lr * wd * w), so what is left is that step's Adam update
+  // alone. By Cauchy-Schwarz on Adam's two moving averages, |m| / sqrt(v) <=
+  // (1 - b1) / sqrt(1 - b2) / sqrt(1 - b1^2 / b2) = 7.27 for b1 0.9, b2
+  // 0.999, and bias correction keeps it below that: every weight of the model
+  // lies within 7.3 lr of zero. Without the decay they do not.
+  auto plain = test::tiny_training(d.data, d.dir / "plain.h5");
+  plain.epochs = 2;
+  train(test::plugins(), plain);
+  auto decayed = plain;
+  decayed.out = d.dir / "decayed.h5";
+  decayed.weight_decay = 1.0 / plain.lr;
+  train(test::plugins(), decayed);
+  const double bound = 7.3 * plain.lr;
+  float plain_max = 0, decayed_max = 0;
+  for (const auto& [name, w] : weights_of(plain.out))
+    for (float x : w) plain_max = std::max(plain_max, std::abs(x));
+  for (const auto& [name, w] : weights_of(decayed.out))
+    for (float x : w) decayed_max = std::max(decayed_max, std::abs(x));
+  INFO("largest |weight| without decay " << plain_max << ", with " << decayed_max << ", bound " << bound);
+  CHECK(decayed_max <= bound);
+  CHECK(plain_max > 10 * bound);  // else the bound would not tell the two apart
+  CHECK(std::stod(read_checkpoint(decayed.out).meta.at("weight_decay")) == decayed.weight_decay);
+  CHECK(read_checkpoint(plain.out).meta.count("weight_decay") == 0);
+
+  // A run resumes only with the same decay.
+  auto resumed = decayed;
+  resumed.epochs = 3;
+  resumed.resume = true;
+  resumed.weight_decay = 0.0;
+  CHECK_THROWS_WITH(train(test::plugins(), resumed), Catch::Contains("had weight_decay 333.3"));
+  resumed.weight_decay = 1.0;
+  CHECK_THROWS_WITH(train(test::plugins(), resumed), Catch::Contains("this one has weight_decay 1"));
+  auto plain_resumed = plain;
+  plain_resumed.epochs = 3;
+  plain_resumed.resume = true;
+  plain_resumed.weight_decay = 0.5;
+  CHECK_THROWS_WITH(train(test::plugins(), plain_resumed), Catch::Contains("had weight_decay (none)"));
+  resumed.weight_decay = decayed.weight_decay;
+  CHECK(train(test::plugins(), resumed).epochs_done == 3);
+
+  auto bad = test::tiny_training(d.data, d.dir / "bad.h5");
+  bad.weight_decay = -0.1;
+  CHECK_THROWS_WITH(train(test::plugins(), bad), Catch::Contains("--weight-decay must be a number >= 0"));
 }

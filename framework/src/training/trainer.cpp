@@ -92,6 +92,8 @@ void check_options(const TrainOptions& o) {
   if (o.epochs < 1) bad("--epochs must be at least 1, got " + std::to_string(o.epochs));
   if (o.batch < 1) bad("--batch must be at least 1, got " + std::to_string(o.batch));
   if (!(o.lr > 0) || !std::isfinite(o.lr)) bad("--lr must be a positive number, got " + exact(o.lr));
+  if (!(o.weight_decay >= 0) || !std::isfinite(o.weight_decay))
+    bad("--weight-decay must be a number >= 0, got " + exact(o.weight_decay));
   if (o.patience < 1) bad("--patience must be at least 1, got " + std::to_string(o.patience));
   if (o.threads < 1) bad("--threads must be at least 1, got " + std::to_string(o.threads));
   if (o.eigen_k < 1) bad("--k must be at least 1, got " + std::to_string(o.eigen_k));
@@ -273,7 +275,8 @@ std::map<std::string, std::string> resume_settings(const TrainOptions& o, const 
       {"lr", exact(o.lr)},
       {"schedule", o.schedule},
       {"patience", std::to_string(o.patience)}};
-  if (!o.monitor.empty()) settings["monitor_loss"] = o.monitor;  // absent: the total, as before the option
+  if (!o.monitor.empty()) settings["monitor_loss"] = o.monitor;
+  if (o.weight_decay != 0.0) settings["weight_decay"] = exact(o.weight_decay);  // absent: 0, as before the option  // absent: the total, as before the option
   if (o.schedule == "cosine") settings["epochs"] = std::to_string(o.epochs);
   if (!o.init.empty()) settings["init"] = o.init.string();
   if (o.init_widen) settings["init_widen"] = "1";
@@ -314,7 +317,7 @@ void check_resumable(const Checkpoint& st, const fs::path& state_path, const std
   }
   // Settings a run records only when given: one the interrupted run had and
   // this one lacks is a change too.
-  for (const char* key : {"init", "init_widen", "init_partial", "monitor_loss"})
+  for (const char* key : {"init", "init_widen", "init_partial", "monitor_loss", "weight_decay"})
     if (st.meta.count(key) && !settings.count(key))
       throw ConfigError(state_path.string() + ": cannot resume: the interrupted run had " + key + " " +
                         st.meta.at(key) + ", this one has none (rerun with the same settings, or --force to start over)");
@@ -424,7 +427,8 @@ void announce(const Run& run, bool nothing_to_do) {
          << ng << " garment, " << nb << " body vertices), " << weight_count << " learnable weights, batch "
          << o.batch << ", " << o.threads << " thread" << (o.threads > 1 ? "s" : "")
          << (run.ranks > 1 ? (" on each of " + std::to_string(run.ranks) + " ranks") : std::string()) << ", lr "
-         << brief(o.lr) << " (" << o.schedule << "), seed " << o.seed;
+         << brief(o.lr) << " (" << o.schedule << ")"
+         << (o.weight_decay != 0.0 ? ", weight decay " + brief(o.weight_decay) : std::string()) << ", seed " << o.seed;
   if (report.resumed) *o.log << ", " << epochs_done << " epochs done";
   if (!o.monitor.empty()) *o.log << "; the best epoch by its " << o.monitor << " loss";
   *o.log << "\n";
@@ -607,7 +611,7 @@ TrainReport train(const Registry& registry, const TrainOptions& given) {
     load_init_weights(o, dp);
     if (rank == 0) warn_of_other_assets(registry, o, data);
   }
-  Learner learner{Adam(graph.weights()), EarlyStopping({o.patience, 0.0}), lr_schedule(o), WeightCopy(graph.weights()),
+  Learner learner{Adam(graph.weights(), AdamOptions{.weight_decay = o.weight_decay}), EarlyStopping({o.patience, 0.0}), lr_schedule(o), WeightCopy(graph.weights()),
                   History()};
   const std::map<std::string, std::string> settings = resume_settings(o, data, reader.layout(), ranks);
 
