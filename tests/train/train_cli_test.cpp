@@ -41,6 +41,13 @@ std::map<std::string, std::vector<float>> weights_of(const fs::path& file) {
   return w;
 }
 
+// A small dataset for a training through the command, and where its model goes.
+struct SmallData {
+  test::TempDir dir;
+  fs::path data = dir / "data.h5", model = dir / "model.h5";
+  SmallData() { test::write_tiny_dataset(data, 10, 6, 2); }
+};
+
 // A dataset and a model trained on it in this process.
 struct Trained {
   test::TempDir dir;
@@ -79,9 +86,9 @@ TEST_CASE("drape train stops at the hidden epoch limit, refuses to overwrite and
 }
 
 TEST_CASE("drape train --monitor: the log, drape model info and a name the graph lacks", "[train][cli]") {
-  test::TempDir dir;
-  const fs::path data = dir / "data.h5", model = dir / "model.h5";
-  test::write_tiny_dataset(data, 10, 6, 2);
+  const SmallData d;
+  const fs::path &data = d.data, &model = d.model;
+  const test::TempDir& dir = d.dir;
   std::string out;
   REQUIRE(test::run(test::drape_command(train_args(data, model, "--monitor edge", 2)), out) == 0);
   INFO(out);
@@ -94,9 +101,9 @@ TEST_CASE("drape train --monitor: the log, drape model info and a name the graph
 }
 
 TEST_CASE("drape train --weight-decay: the log names it, and a negative or NaN decay is refused in one line", "[train][cli]") {
-  test::TempDir dir;
-  const fs::path data = dir / "data.h5", model = dir / "model.h5";
-  test::write_tiny_dataset(data, 10, 6, 2);
+  const SmallData d;
+  const fs::path &data = d.data, &model = d.model;
+  const test::TempDir& dir = d.dir;
   std::string out;
   REQUIRE(test::run(test::drape_command(train_args(data, model, "--weight-decay 0.01", 1)), out) == 0);
   CHECK_THAT(out, Catch::Contains("weight decay 0.01"));

@@ -26,6 +26,14 @@ std::map<std::string, std::vector<float>> weights_of(const fs::path& file) {
   return out;
 }
 
+// The largest |weight| of a checkpoint.
+float largest_weight(const fs::path& file) {
+  float largest = 0;
+  for (const auto& [name, w] : weights_of(file))
+    for (const float x : w) largest = std::max(largest, std::abs(x));
+  return largest;
+}
+
 // The history without the wall-clock column.
 std::map<std::string, std::vector<double>> history_of(const fs::path& file) {
   auto h = read_checkpoint(file).history;
@@ -400,11 +408,7 @@ TEST_CASE("train --weight-decay: AdamW's decay reaches the weights, is recorded,
   decayed.weight_decay = 1.0 / plain.lr;
   train(test::plugins(), decayed);
   const double bound = 7.3 * plain.lr;
-  float plain_max = 0, decayed_max = 0;
-  for (const auto& [name, w] : weights_of(plain.out))
-    for (float x : w) plain_max = std::max(plain_max, std::abs(x));
-  for (const auto& [name, w] : weights_of(decayed.out))
-    for (float x : w) decayed_max = std::max(decayed_max, std::abs(x));
+  const float plain_max = largest_weight(plain.out), decayed_max = largest_weight(decayed.out);
   INFO("largest |weight| without decay " << plain_max << ", with " << decayed_max << ", bound " << bound);
   CHECK(decayed_max <= bound);
   CHECK(plain_max > 10 * bound);  // else the bound would not tell the two apart

@@ -275,8 +275,8 @@ std::map<std::string, std::string> resume_settings(const TrainOptions& o, const 
       {"lr", exact(o.lr)},
       {"schedule", o.schedule},
       {"patience", std::to_string(o.patience)}};
-  if (!o.monitor.empty()) settings["monitor_loss"] = o.monitor;
-  if (o.weight_decay != 0.0) settings["weight_decay"] = exact(o.weight_decay);  // absent: 0, as before the option  // absent: the total, as before the option
+  if (!o.monitor.empty()) settings["monitor_loss"] = o.monitor;  // absent: the total, as before the option
+  if (o.weight_decay != 0.0) settings["weight_decay"] = exact(o.weight_decay);  // absent: 0, as before the option
   if (o.schedule == "cosine") settings["epochs"] = std::to_string(o.epochs);
   if (!o.init.empty()) settings["init"] = o.init.string();
   if (o.init_widen) settings["init_widen"] = "1";
@@ -611,8 +611,8 @@ TrainReport train(const Registry& registry, const TrainOptions& given) {
     load_init_weights(o, dp);
     if (rank == 0) warn_of_other_assets(registry, o, data);
   }
-  Learner learner{Adam(graph.weights(), AdamOptions{.weight_decay = o.weight_decay}), EarlyStopping({o.patience, 0.0}), lr_schedule(o), WeightCopy(graph.weights()),
-                  History()};
+  Learner learner{Adam(graph.weights(), AdamOptions{.weight_decay = o.weight_decay}), EarlyStopping({o.patience, 0.0}),
+                  lr_schedule(o), WeightCopy(graph.weights()), History()};
   const std::map<std::string, std::string> settings = resume_settings(o, data, reader.layout(), ranks);
 
   // Start over, or continue.
