@@ -79,7 +79,13 @@ Crossings find_crossings(TriangleBvh& faces_tree, HeightFieldNodes& height_field
 // 3 of the 12 (a heavy body's underarm and cuffs); within one ring a
 // posed body whose fold spans three was left; with three rings none is
 // left. A share of 0.15 undoes them in at most 4 rounds, moving no vertex
-// more than 16 mm (0.25-0.5: 1-2 rounds, up to 21 mm).
+// more than 16 mm (0.25-0.5: 1-2 rounds, up to 21 mm). A garment the three
+// rings leave crossed is tried again with four (Untangler::run): a closer
+// posed model (docs/poses.md, "The crumples' reach") left two edges of a
+// BMI 64 woman's right underarm interlocked four rings apart, which three
+// rings cut as two sheets and hand on. Four rings for every garment is not
+// better: on a folded strip with a bump pushed through beside the fold it
+// left more crossings than three in two cases of 24, and fewer in one.
 constexpr double kCrumpleSmoothing = 0.15;
 constexpr int kCrumpleRings = 3;
 
@@ -260,14 +266,26 @@ UntangleReport untangle(Eigen::MatrixX3d& vertices, const Eigen::MatrixX3i& face
 }
 
 UntangleReport Untangler::run(Eigen::MatrixX3d& vertices, const UntangleOptions& options) {
-  if (!options.rest) return run_once(vertices, options);
   const Eigen::MatrixX3d start = vertices;
-  const UntangleReport layers = run_once(vertices, options);
+  const UntangleReport narrow = run_with_reach(vertices, options, kCrumpleRings);
+  if (narrow.crossings_after == 0) return narrow;  // (the usual case: also when nothing crossed)
+  Eigen::MatrixX3d widened = start;
+  UntangleReport wide = run_with_reach(widened, options, kCrumpleRings + 1);
+  if (wide.crossings_after >= narrow.crossings_after) return narrow;
+  wide.edges_culled = narrow.edges_culled;  // (the first search's, as for any run)
+  vertices = widened;
+  return wide;
+}
+
+UntangleReport Untangler::run_with_reach(Eigen::MatrixX3d& vertices, const UntangleOptions& options, int crumple_rings) {
+  if (!options.rest) return run_once(vertices, options, crumple_rings);
+  const Eigen::MatrixX3d start = vertices;
+  const UntangleReport layers = run_once(vertices, options, crumple_rings);
   if (layers.crossings_before == 0) return layers;  // the usual case: nothing crossed, nothing moved
   Eigen::MatrixX3d smoothed = start;
   UntangleOptions without = options;
   without.rest = nullptr;
-  const UntangleReport crumples = run_once(smoothed, without);
+  const UntangleReport crumples = run_once(smoothed, without, crumple_rings);
   // Fewer crossings left, then the less moved (summed over the vertices:
   // the two layers a simulation presses flat at the underarm, pulled a
   // centimetre or more apart, are further from it than the smoothing leaves them).
@@ -280,7 +298,7 @@ UntangleReport Untangler::run(Eigen::MatrixX3d& vertices, const UntangleOptions&
   return crumples;
 }
 
-UntangleReport Untangler::run_once(Eigen::MatrixX3d& vertices, const UntangleOptions& options) {
+UntangleReport Untangler::run_once(Eigen::MatrixX3d& vertices, const UntangleOptions& options, int crumple_rings) {
   Topology& topology = *topology_;
   const int n = topology.num_vertices;
   if (vertices.rows() != n)
@@ -306,7 +324,7 @@ UntangleReport Untangler::run_once(Eigen::MatrixX3d& vertices, const UntangleOpt
   Crossings hits = find_crossings(faces_tree, height_fields, vertices, faces, edges, &report.edges_culled);
   report.crossings_before = static_cast<int>(hits.size());
   if (hits.empty()) return report;  // the usual case: one search, nothing copied
-  // Whether edge (a, b) is within kCrumpleRings edges of a corner of face f:
+  // Whether edge (a, b) is within crumple_rings edges of a corner of face f:
   // one breadth-first search from both its ends.
   std::vector<int> ring_mark(static_cast<std::size_t>(n), -1), frontier, next;
   int ring_query = 0;
@@ -314,7 +332,7 @@ UntangleReport Untangler::run_once(Eigen::MatrixX3d& vertices, const UntangleOpt
     ++ring_query;
     frontier = {a, b};
     ring_mark[static_cast<std::size_t>(a)] = ring_mark[static_cast<std::size_t>(b)] = ring_query;
-    for (int ring = 0; ring < kCrumpleRings; ++ring) {
+    for (int ring = 0; ring < crumple_rings; ++ring) {
       next.clear();
       for (const int w : frontier)
         for (const int e : topology.vertex_edges[static_cast<std::size_t>(w)]) {

@@ -86,10 +86,15 @@ class Untangler {
   // two that leave as many, the one that moved the vertices less in sum):
   // two layers pulled to their sides can hand a crossing on where the
   // smoothing undoes it, or undo it by moving them further (docs/bodies.md).
+  // Crossings still left, all of that is tried again from the same start
+  // with the crumples' reach a ring wider, and kept if it leaves fewer (a
+  // fold four rings wide; docs/poses.md, "The crumples' reach"): no garment
+  // comes back with more crossings than the narrower reach leaves.
   UntangleReport run(Eigen::MatrixX3d& vertices, const UntangleOptions& options = {});
 
  private:
-  UntangleReport run_once(Eigen::MatrixX3d& vertices, const UntangleOptions& options);
+  UntangleReport run_with_reach(Eigen::MatrixX3d& vertices, const UntangleOptions& options, int crumple_rings);
+  UntangleReport run_once(Eigen::MatrixX3d& vertices, const UntangleOptions& options, int crumple_rings);
   struct Topology;
   std::unique_ptr<Topology> topology_;
 };
