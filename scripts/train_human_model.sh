@@ -69,6 +69,9 @@
 # (datasets/posespace-human-seed7/shard-0[0-3]-*): closer (ME 1.246 cm) but not
 # shipped, as one hard case keeps edges through the shirt; WEIGHT_DECAY=0.03 in
 # the first's place was worse (docs/poses.md, "Weight decay, and 300 more drapes").
+# The shipped model since the thirty-fourth is those two cycles again, the
+# second with seed 7's shards 0-6 (shard-0[0-6]-*), after the untangle's wider
+# reach cleared the hard case (docs/poses.md, "The crumples' reach").
 set -euo pipefail
 cd "$(dirname "${BASH_SOURCE[0]}")/.."
 DRAPE=${BUILD_DIR:-build}/bin/drape
