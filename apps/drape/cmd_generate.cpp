@@ -69,8 +69,15 @@ int run(const std::vector<std::string>& args) {
     std::fflush(stdout);
   };
   const GenerateSummary done = generate_dataset(registry, load_scene(find_input_file(vm["scene"].as<std::string>())), request, out, observer);
-  std::printf("wrote %s: %zu samples; %d not settled, %d with a vertex inside the body, %d with crossing surfaces (this run)\n",
-              out.c_str(), done.samples, done.not_settled, done.penetrating, done.crossing);
+  std::printf("wrote %s: %zu samples; %d not settled, %d with a vertex inside the body, %d with crossing surfaces, "
+              "%zu crossing themselves (this run)\n",
+              out.c_str(), done.samples, done.not_settled, done.penetrating, done.crossing, done.crossing_itself.size());
+  if (!done.crossing_itself.empty()) {
+    // Named, so that they can be looked at or left out (scripts/check_dataset_drapes.py counts them independently).
+    std::string which;
+    for (const std::size_t i : done.crossing_itself) which += (which.empty() ? "" : ", ") + std::to_string(i);
+    std::printf("garments crossing themselves: sample %s (global index)\n", which.c_str());
+  }
   return 0;
 }
 

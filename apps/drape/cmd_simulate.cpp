@@ -37,7 +37,8 @@ void override_shape(Scene& scene, const po::variables_map& vm) {
 std::string crossings_summary(const SimulationResult& r) {
   if (!r.crossings) return "surface crossings not measured";
   return "surface crossings " + std::to_string(r.crossings->garment_edges_through_body) + " garment edges / " +
-         std::to_string(r.crossings->body_edges_through_garment) + " body edges";
+         std::to_string(r.crossings->body_edges_through_garment) + " body edges" +
+         (r.self_crossings ? ", the garment through itself " + std::to_string(*r.self_crossings) + " edges" : "");
 }
 
 // The command line: every option, parsed into vm; false after --help.

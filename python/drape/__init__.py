@@ -184,7 +184,7 @@ class Scene:
         [N, 3]), energies {effect: J}, total_energy, converged, residual, stationarity, sliding and slip_ratio (with
         friction: whether the garment still slid over the body in the last step, and its fastest contact's slip
         relative to the slip friction holds), penetration (p),
-        crossings, steps, iterations, seconds, and `unsettled` (why, when not converged). As drape simulate
+        crossings, self_crossings (the garment's edges through its own faces), steps, iterations, seconds, and `unsettled` (why, when not converged). As drape simulate
         does: a body standing away from where the body model's bodies stand is draped there and the results moved
         back (a warning says so); with `size: auto` the body wears the size its girth needs (`size`: the choice
         and its measurements, `garment_size`: the size). The morph starts from start_body (default: the body
@@ -210,7 +210,8 @@ def generate(scene, out, count, bmi=(10, 65), height=1.75, sex=1.0, girths=0.0, 
     bytes for the same arguments (one service behind both): `count` bodies drawn uniformly in bmi, height and sex
     (a number, or a (lo, hi) range; sex draws one of its two ends), girths spread as a fraction of the body model's
     range, the 8:1:1 split from `seed`; shard=(i, N) makes part i of N. Returns a dict of what was done:
-    samples, not_settled, penetrating, crossing, resumed_with (done by an earlier run), threads, ranges.
+    samples, not_settled, penetrating, crossing, crossing_itself (the global indices of the drapes whose garment
+    crosses itself), resumed_with (done by an earlier run), threads, ranges.
     poses="scene" drapes every body in the scene's pose (its A-pose when it has none); poses="draw" draws each
     body's pose from the body model's pose space (docs/poses.md), with pose_ranges ({"shoulder_abduction": (60, 90)}
     or "shoulder_abduction=60:90") replacing sampling ranges; the joint angles are stored (Dataset.read's "pose").

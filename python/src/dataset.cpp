@@ -80,6 +80,7 @@ py::dict generate(const PyScene& scene, const std::string& out, std::size_t coun
   d["not_settled"] = done.not_settled;
   d["penetrating"] = done.penetrating;
   d["crossing"] = done.crossing;
+  d["crossing_itself"] = done.crossing_itself;
   d["ranges"] = plan.ranges;
   return d;
 }

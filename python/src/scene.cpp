@@ -143,6 +143,10 @@ py::dict result_dict(SimulationResult&& r) {
   } else {
     d["crossings"] = py::none();
   }
+  if (r.self_crossings)
+    d["self_crossings"] = *r.self_crossings;
+  else
+    d["self_crossings"] = py::none();
   d["residual"] = r.residual;
   d["stationarity"] = r.stationarity;
   d["converged"] = r.converged;

@@ -8,6 +8,7 @@
 #include <drape/garment_grading.hpp>
 #include <drape/scene/garment_size.hpp>
 #include <drape/geometry/closest_point.hpp>
+#include <drape/geometry/self_intersection.hpp>
 #include <drape/registry.hpp>
 #include <drape/scene/simulation.hpp>
 #include <drape/error_context.hpp>
@@ -140,6 +141,7 @@ void measure_drape(const ClothSolver& solver, std::vector<NamedEnergy>& energies
     const Eigen::VectorXd& d = result.body_distance;
     result.penetration = static_cast<double>((d.array() < 0).count()) / static_cast<double>(d.size());
     result.crossings = geometry::surface_crossings(x, garment.faces, target_body, body_faces);
+    result.self_crossings = static_cast<int>(geometry::self_edge_crossings(x, garment.faces, std::size_t{1} << 20).size());
   }
 }
 

@@ -251,6 +251,7 @@ GenerateSummary generate_dataset(const Registry& registry, const Scene& scene, c
   ProgressBar bar("generate", layout.samples, observer.progress ? *observer.progress : discard, bar_options);
   std::mutex write_mutex;
   std::atomic<int> not_settled{0}, penetrating{0}, crossing{0};
+  std::vector<std::size_t> crossing_itself;  // (under write_mutex)
   make_samples_in_parallel(writer, bar, todo, plan.threads, [&]() -> SampleWorker {
 #ifdef _OPENMP
     omp_set_num_threads(1);  // parallel over samples, not inside one
@@ -305,6 +306,10 @@ GenerateSummary generate_dataset(const Registry& registry, const Scene& scene, c
       if (!r.converged) ++not_settled;
       if (r.penetration > 0) ++penetrating;
       if (r.crossings && r.crossings->total() > 0) ++crossing;
+      if (r.self_crossings && *r.self_crossings > 0) {
+        const std::lock_guard<std::mutex> guard(write_mutex);
+        crossing_itself.push_back(global);
+      }
       {
         const std::lock_guard<std::mutex> guard(write_mutex);
         writer.write(local, s);
@@ -316,7 +321,8 @@ GenerateSummary generate_dataset(const Registry& registry, const Scene& scene, c
       bar.advance();
     };
   });
-  return GenerateSummary{layout.samples, not_settled.load(), penetrating.load(), crossing.load()};
+  std::sort(crossing_itself.begin(), crossing_itself.end());
+  return GenerateSummary{layout.samples, not_settled.load(), penetrating.load(), crossing.load(), std::move(crossing_itself)};
 }
 
 }  // namespace drape

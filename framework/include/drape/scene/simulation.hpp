@@ -44,6 +44,10 @@ struct SimulationResult {
   // Garment edges through body triangles and body edges through garment ones
   // at the end: the crossings p misses (no vertex inside). Empty: not measured.
   std::optional<geometry::SurfaceCrossings> crossings;
+  // Garment edges through the garment's own faces at the end
+  // (geometry::self_edge_crossings, all of them): a fold the
+  // self-contact let through, or a scene without it. Empty: not measured.
+  std::optional<int> self_crossings;
   double residual = 0;         // |grad E| / |weight| at the end
   double stationarity = 0;     // the same with both faces of a body crease counted (ClothSolver::stationarity); settles the drape
   Eigen::VectorXd vertex_force;  // N: per vertex, |grad E| less friction's push at the end (where the drape is not in equilibrium)

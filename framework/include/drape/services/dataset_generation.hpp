@@ -97,6 +97,10 @@ struct GeneratePlan {
 struct GenerateSummary {
   std::size_t samples = 0;  // in the file
   int not_settled = 0, penetrating = 0, crossing = 0;
+  // Drapes whose garment crosses itself (SimulationResult::self_crossings),
+  // by their index in the whole set, ascending. Not a statistic of the file:
+  // the shards made before it have none, and the sets merge.
+  std::vector<std::size_t> crossing_itself;
 };
 
 struct GenerateObserver {
