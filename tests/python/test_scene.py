@@ -13,7 +13,8 @@ from conftest import CONTACT, read_obj, run_drape
 
 def test_simulate_matches_the_program(tiny_scene, tmp_path):
     # Three settling steps do not settle the drape: the program writes it and exits 1, saying so.
-    run_drape("simulate", tiny_scene, "--bmi", 30, "--out", tmp_path / "g.obj", "--body-out", tmp_path / "b.obj", expect=1)
+    out, _ = run_drape("simulate", tiny_scene, "--bmi", 30, "--out", tmp_path / "g.obj", "--body-out", tmp_path / "b.obj",
+                       expect=1)
     expected, faces = read_obj(tmp_path / "g.obj")
     body, _ = read_obj(tmp_path / "b.obj")
     scene = drape.Scene(str(tiny_scene))
@@ -22,6 +23,9 @@ def test_simulate_matches_the_program(tiny_scene, tmp_path):
     assert r["garment"].shape == expected.shape and not r["converged"] and "not settled" in r["unsettled"]
     np.testing.assert_allclose(r["garment"], expected, atol=2e-6)
     np.testing.assert_array_equal(faces, scene.garment_faces)
+    # The garment's edges through its own faces, as the program counts them (tests/python/test_self_crossing_report.py
+    # checks the count against an independent one).
+    assert r["self_crossings"] == int(re.search(r"the garment through itself (\d+) edges", out).group(1))
     assert set(r["energies"]) == {"gravity", "stretching", "bending", "self_contact"}
     assert r["total_energy"] == pytest.approx(sum(r["energies"].values()), rel=1e-12)
     # The per-effect energies of the result are the scene's energies at the drape.
