@@ -266,20 +266,19 @@ UntangleReport untangle(Eigen::MatrixX3d& vertices, const Eigen::MatrixX3i& face
 }
 
 UntangleReport Untangler::run(Eigen::MatrixX3d& vertices, const UntangleOptions& options) {
-  const Eigen::MatrixX3d start = vertices;
-  const UntangleReport narrow = run_with_reach(vertices, options, kCrumpleRings);
+  const Eigen::MatrixX3d start = vertices;  // (the one copy: every run below starts from it)
+  const UntangleReport narrow = run_with_reach(start, vertices, options, kCrumpleRings);
   if (narrow.crossings_after == 0) return narrow;  // (the usual case: also when nothing crossed)
   Eigen::MatrixX3d widened = start;
-  UntangleReport wide = run_with_reach(widened, options, kCrumpleRings + 1);
+  const UntangleReport wide = run_with_reach(start, widened, options, kCrumpleRings + 1);
   if (wide.crossings_after >= narrow.crossings_after) return narrow;
-  wide.edges_culled = narrow.edges_culled;  // (the first search's, as for any run)
   vertices = widened;
   return wide;
 }
 
-UntangleReport Untangler::run_with_reach(Eigen::MatrixX3d& vertices, const UntangleOptions& options, int crumple_rings) {
+UntangleReport Untangler::run_with_reach(const Eigen::MatrixX3d& start, Eigen::MatrixX3d& vertices, const UntangleOptions& options,
+                                         int crumple_rings) {
   if (!options.rest) return run_once(vertices, options, crumple_rings);
-  const Eigen::MatrixX3d start = vertices;
   const UntangleReport layers = run_once(vertices, options, crumple_rings);
   if (layers.crossings_before == 0) return layers;  // the usual case: nothing crossed, nothing moved
   Eigen::MatrixX3d smoothed = start;

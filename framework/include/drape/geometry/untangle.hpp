@@ -93,7 +93,9 @@ class Untangler {
   UntangleReport run(Eigen::MatrixX3d& vertices, const UntangleOptions& options = {});
 
  private:
-  UntangleReport run_with_reach(Eigen::MatrixX3d& vertices, const UntangleOptions& options, int crumple_rings);
+  // `vertices` equal to `start` on entry.
+  UntangleReport run_with_reach(const Eigen::MatrixX3d& start, Eigen::MatrixX3d& vertices, const UntangleOptions& options,
+                                int crumple_rings);
   UntangleReport run_once(Eigen::MatrixX3d& vertices, const UntangleOptions& options, int crumple_rings);
   struct Topology;
   std::unique_ptr<Topology> topology_;
