@@ -143,10 +143,7 @@ py::dict result_dict(SimulationResult&& r) {
   } else {
     d["crossings"] = py::none();
   }
-  if (r.self_crossings)
-    d["self_crossings"] = *r.self_crossings;
-  else
-    d["self_crossings"] = py::none();
+  d["self_crossings"] = r.self_crossings ? py::object(py::int_(*r.self_crossings)) : py::object(py::none());
   d["residual"] = r.residual;
   d["stationarity"] = r.stationarity;
   d["converged"] = r.converged;

@@ -306,13 +306,10 @@ GenerateSummary generate_dataset(const Registry& registry, const Scene& scene, c
       if (!r.converged) ++not_settled;
       if (r.penetration > 0) ++penetrating;
       if (r.crossings && r.crossings->total() > 0) ++crossing;
-      if (r.self_crossings && *r.self_crossings > 0) {
-        const std::lock_guard<std::mutex> guard(write_mutex);
-        crossing_itself.push_back(global);
-      }
       {
         const std::lock_guard<std::mutex> guard(write_mutex);
         writer.write(local, s);
+        if (r.self_crossings && *r.self_crossings > 0) crossing_itself.push_back(global);
       }
       std::ostringstream status;
       status << "last: BMI " << std::fixed << std::setprecision(1) << body_request.bmi << ", " << r.iterations << " it, "
