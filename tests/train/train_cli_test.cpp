@@ -85,10 +85,7 @@ TEST_CASE("drape train stops at the hidden epoch limit, refuses to overwrite and
   CHECK_THAT(out, Catch::Contains(training_state_path(other).string() + " exists"));
 }
 
-TEST_CASE("drape train --monitor: the log, drape model info and a name the graph lacks", "[train][cli]") {
-  const SmallData d;
-  const fs::path &data = d.data, &model = d.model;
-  const test::TempDir& dir = d.dir;
+TEST_CASE_METHOD(SmallData, "drape train --monitor: the log, drape model info and a name the graph lacks", "[train][cli]") {
   std::string out;
   REQUIRE(test::run(test::drape_command(train_args(data, model, "--monitor edge", 2)), out) == 0);
   INFO(out);
@@ -100,10 +97,8 @@ TEST_CASE("drape train --monitor: the log, drape model info and a name the graph
   CHECK(!fs::exists(dir / "bad.h5"));
 }
 
-TEST_CASE("drape train --weight-decay: the log names it, and a negative or NaN decay is refused in one line", "[train][cli]") {
-  const SmallData d;
-  const fs::path &data = d.data, &model = d.model;
-  const test::TempDir& dir = d.dir;
+TEST_CASE_METHOD(SmallData, "drape train --weight-decay: the log names it, and a negative or NaN decay is refused in one line",
+                 "[train][cli]") {
   std::string out;
   REQUIRE(test::run(test::drape_command(train_args(data, model, "--weight-decay 0.01", 1)), out) == 0);
   CHECK_THAT(out, Catch::Contains("weight decay 0.01"));
