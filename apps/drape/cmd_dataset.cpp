@@ -29,9 +29,9 @@ namespace DRAPE_UNITY_ID {  // the anonymous namespace, or a unique one in a uni
 
 namespace fs = std::filesystem;
 
-const char* kMergeUsage = "drape dataset merge --out FILE SHARD... [--allow-incomplete] [--mixed-sizes] [--force]";
+const char* kMergeUsage = "drape dataset merge --out FILE SHARD... [--allow-incomplete] [--mixed-sizes] [--drop I,J] [--force]";
 const char* kInfoUsage = "drape dataset info FILE [--scene-lines N]";
-const char* kSlimUsage = "drape dataset slim FILE --out SLIM [--force]";
+const char* kSlimUsage = "drape dataset slim FILE --out SLIM [--drop I,J] [--force]";
 const char* kUnposeUsage = "drape dataset unpose FILE --out CANONICAL [--force]";
 const char* kResampleUsage = "drape dataset resample FILE --onto SCENE --out RESAMPLED [--force]";
 const char* kExpandUsage = "drape dataset expand --out FILE SLIM... [--allow-incomplete] [--mixed-sizes] [--force]";
@@ -42,6 +42,33 @@ void refuse_existing(const fs::path& out, const po::variables_map& vm) {
     throw ConfigError(SourceLocation{out.string(), 0}, "exists; pass --force to replace it");
 }
 
+constexpr const char* kDropHelp =
+    "leave out the samples of these global indices (comma-separated or repeated: the global_index statistic, as drape "
+    "generate names a drape in its report, e.g. one an independent check rejected); the output lists them in its "
+    "attribute 'dropped'";
+
+// --drop's global indices: whole numbers >= 0, comma-separated or repeated.
+std::vector<long> drop_list(const po::variables_map& vm) {
+  std::vector<long> out;
+  if (!vm.count("drop")) return out;
+  for (const std::string& arg : vm["drop"].as<std::vector<std::string>>()) {
+    std::stringstream list(arg);
+    for (std::string item; std::getline(list, item, ',');) {
+      std::size_t used = 0;
+      long g = -1;
+      try {
+        g = std::stol(item, &used);
+      } catch (const std::exception&) {
+        used = 0;
+      }
+      if (item.empty() || used != item.size() || g < 0)
+        throw UsageError("--drop: '" + item + "' is not a global index (a whole number >= 0) in '" + arg + "'");
+      out.push_back(g);
+    }
+  }
+  return out;
+}
+
 int merge(const std::vector<std::string>& args) {
   po::options_description opts("drape dataset merge");
   opts.add_options()("out,o", po::value<std::string>()->required(), "the merged dataset to write")(
@@ -50,7 +77,7 @@ int merge(const std::vector<std::string>& args) {
       "mixed-sizes", "the shards wear different sizes of one garment (their garment_size and garment_grade statistics "
                      "tell them apart; a statistic a shard lacks is filled: its size and grade from its scene, NaN "
                      "for the rest)")(
-      "force", "replace --out if it exists");
+      "drop", po::value<std::vector<std::string>>()->composing(), kDropHelp)("force", "replace --out if it exists");
   po::positional_options_description positional;
   positional.add("shards", -1);
   po::variables_map vm;
@@ -60,16 +87,18 @@ int merge(const std::vector<std::string>& args) {
   std::vector<fs::path> shards;
   for (const auto& s : vm["shards"].as<std::vector<std::string>>()) shards.emplace_back(s);
   refuse_existing(out, vm);
-  const std::size_t n = merge_datasets(shards, out, !vm.count("allow-incomplete"), vm.count("mixed-sizes") > 0);
+  const std::vector<long> drop = drop_list(vm);
+  const std::size_t n = merge_datasets(shards, out, !vm.count("allow-incomplete"), vm.count("mixed-sizes") > 0, drop);
   std::cout << "merged " << n << " samples from " << shards.size() << " shard" << (shards.size() == 1 ? "" : "s")
-            << " into " << out.string() << "\n";
+            << " into " << out.string() << (drop.empty() ? "" : " (" + std::to_string(drop.size()) + " dropped)") << "\n";
   return 0;
 }
 
 int slim(const std::vector<std::string>& args) {
   po::options_description opts("drape dataset slim");
   opts.add_options()("file", po::value<std::string>()->required(), "a finished dataset")(
-      "out,o", po::value<std::string>()->required(), "the slim copy to write")("force", "replace --out if it exists");
+      "out,o", po::value<std::string>()->required(), "the slim copy to write")(
+      "drop", po::value<std::vector<std::string>>()->composing(), kDropHelp)("force", "replace --out if it exists");
   po::positional_options_description positional;
   positional.add("file", 1);
   po::variables_map vm;
@@ -78,8 +107,10 @@ int slim(const std::vector<std::string>& args) {
   const OutputLock lock(out, "drape dataset slim");  // before anything looks at it (output_lock.hpp)
   if (!fs::exists(in)) throw ConfigError(SourceLocation{in.string(), 0}, "no such file");
   refuse_existing(out, vm);
-  const std::size_t n = slim_dataset(in, out);
-  std::cout << "wrote " << out.string() << ": " << n << " samples without body vertices, " << fs::file_size(out) / 1024
+  const std::vector<long> drop = drop_list(vm);
+  const std::size_t n = slim_dataset(in, out, drop);
+  std::cout << "wrote " << out.string() << ": " << n << " samples without body vertices"
+            << (drop.empty() ? "" : " (" + std::to_string(drop.size()) + " dropped)") << ", " << fs::file_size(out) / 1024
             << " KiB (" << fs::file_size(in) / 1024 << " KiB with them)\n";
   return 0;
 }

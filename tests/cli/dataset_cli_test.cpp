@@ -171,6 +171,17 @@ TEST_CASE("drape dataset slim and expand: the bodies rebuilt by the scene's body
   CHECK(test::run_drape("dataset potential " + slim + " --scene " + (dir / "tiny.yaml").string(), out) == 0);
   CHECK(test::run_drape("dataset slim " + data + " --out " + slim, out) == 2);  // never overwritten silently
   CHECK_THAT(out, Catch::Contains("--force"));
+  // --drop by the generator's global index (a count of 3 numbers them 0-2): listed in the copy's info.
+  const std::string dropped = (dir / "dropped.h5").string();
+  REQUIRE(test::run_drape("dataset slim " + data + " --out " + dropped + " --drop 1", out) == 0);
+  CHECK_THAT(out, Catch::Contains("2 samples without body vertices (1 dropped)"));
+  REQUIRE(test::run_drape("dataset info " + dropped, out) == 0);
+  CHECK_THAT(out, Catch::Contains("dropped: 1"));
+  CHECK(test::run_drape("dataset slim " + data + " --out " + (dir / "x.h5").string() + " --drop 3", out) == 2);
+  CHECK_THAT(out, Catch::Contains("--drop 3: no sample"));
+  CHECK(test::run_drape("dataset slim " + data + " --out " + (dir / "x.h5").string() + " --drop 1,x", out) == 2);
+  CHECK_THAT(out, Catch::Contains("'x' is not a global index"));
+  CHECK_FALSE(fs::exists(dir / "x.h5"));
 
   REQUIRE(test::run_drape("dataset expand " + slim + " --out " + full, out) == 0);
   CHECK_THAT(out, Catch::Contains("rebuilt by body model 'parametric'"));

@@ -284,6 +284,61 @@ TEST_CASE("dataset: merging shards concatenates their samples", "[hdf5][dataset]
   CHECK_FALSE(fs::exists(dir / "bad.h5"));
 }
 
+TEST_CASE("dataset: --drop leaves out the samples of the named global indices, and the output lists them", "[hdf5][dataset]") {
+  TempDir dir;
+  // Two shards of a draw numbered as drape generate numbers it: a's rows are
+  // global samples 10-13, b's 14-16 (global_index written by hand here).
+  DatasetLayout a = small_layout(4), b = small_layout(3);
+  a.stats.push_back("global_index");
+  b.stats.push_back("global_index");
+  const auto numbered = [](const DatasetLayout& l, std::size_t i) {
+    DatasetSample s = make_sample(l, i);
+    s.stats["global_index"] = 10.0 + static_cast<double>(i);
+    return s;
+  };
+  {
+    DatasetWriter w(dir / "a.h5", a);
+    for (std::size_t i = 0; i < 4; ++i) w.write(i, numbered(a, i));
+    w.finish();
+    DatasetWriter v(dir / "b.h5", b);
+    for (std::size_t i = 0; i < 3; ++i) v.write(i, numbered(b, 4 + i));
+    v.finish();
+  }
+  // Global 11 (a's row 1) and 16 (b's last row) out: five samples, the others in order.
+  REQUIRE(merge_datasets({dir / "a.h5", dir / "b.h5"}, dir / "all.h5", true, false, {16, 11}) == 5);
+  {
+    const DatasetReader all(dir / "all.h5");
+    REQUIRE(all.size() == 5);
+    const std::vector<std::size_t> kept = {0, 2, 3, 4, 5};  // the make_sample numbers left
+    for (std::size_t r = 0; r < kept.size(); ++r) {
+      const DatasetSample got = all.sample(r);
+      CHECK(got.garment_vertices == make_sample(a, kept[r]).garment_vertices);
+      CHECK(got.stats.at("global_index") == 10.0 + static_cast<double>(kept[r]));
+    }
+    CHECK(all.layout().attributes.at("dropped") == "11,16");
+  }
+  // A slim copy with one more dropped keeps the list, and a merge of it adds to it.
+  REQUIRE(slim_dataset(dir / "a.h5", dir / "a-slim.h5", {12}) == 3);
+  CHECK(DatasetReader(dir / "a-slim.h5").layout().attributes.at("dropped") == "12");
+  REQUIRE(merge_datasets({dir / "all.h5"}, dir / "again.h5", true, false, {10}) == 4);
+  CHECK(DatasetReader(dir / "again.h5").layout().attributes.at("dropped") == "10,11,16");
+  // Without --drop, nothing is listed.
+  REQUIRE(merge_datasets({dir / "a.h5"}, dir / "plain.h5") == 4);
+  CHECK(DatasetReader(dir / "plain.h5").layout().attributes.count("dropped") == 0);
+
+  // An index no shard holds is refused, naming it; so is a shard that cannot tell its samples apart.
+  CHECK_THROWS_WITH(merge_datasets({dir / "a.h5", dir / "b.h5"}, dir / "bad.h5", true, false, {17}),
+                    Catch::Contains("--drop 17") && Catch::Contains("global index"));
+  {
+    const DatasetLayout plain = small_layout(2);
+    DatasetWriter w(dir / "plain-shard.h5", plain);
+    for (std::size_t i = 0; i < 2; ++i) w.write(i, make_sample(plain, i));
+    w.finish();
+  }
+  CHECK_THROWS_WITH(slim_dataset(dir / "plain-shard.h5", dir / "bad.h5", {0}), Catch::Contains("no global_index statistic"));
+  CHECK_FALSE(fs::exists(dir / "bad.h5"));
+}
+
 TEST_CASE("dataset: a shard made before garment_size was recorded merges with its scene's size", "[hdf5][dataset]") {
   TempDir dir;
   DatasetLayout old = small_layout(3);  // no garment_size statistic: a regular shirt by its scene

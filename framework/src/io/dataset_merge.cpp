@@ -10,6 +10,7 @@
 #include <limits>
 #include <map>
 #include <optional>
+#include <sstream>
 
 namespace fs = std::filesystem;
 
@@ -128,8 +129,58 @@ void copy_rows(const h5::File& in, bool in_has_bodies, bool in_has_witness, h5::
   out.write_rows(kDone, to, count, done.data());
 }
 
-std::size_t merge(const std::vector<fs::path>& shards, const fs::path& out, bool require_complete, bool mixed_sizes,
-                  const BodyVertices& bodies) {
+constexpr const char* kGlobalIndex = "global_index";
+constexpr const char* kDropped = "dropped";
+
+// The global indices in a file's `dropped` attribute (those an earlier merge
+// or slim left out), parsed; an empty list when it has none.
+std::vector<long> dropped_before(const DatasetLayout& layout, const fs::path& file) {
+  std::vector<long> out;
+  const auto text = layout.attributes.find(kDropped);
+  if (text == layout.attributes.end()) return out;
+  std::stringstream list(text->second);
+  for (std::string item; std::getline(list, item, ',');) {
+    std::size_t used = 0;
+    try {
+      out.push_back(std::stol(item, &used));
+    } catch (const std::exception&) {
+      used = 0;
+    }
+    if (used == 0 || used != item.size())
+      throw ConfigError(file.string() + ": attribute 'dropped' is not a list of global indices: '" + text->second + "'");
+  }
+  return out;
+}
+
+// Per shard, which rows `drop` names by the generator's global index (the
+// global_index statistic, as drape generate names a drape in its report):
+// a shard without the statistic cannot be told which, and an index no shard
+// holds is a typo, not a silent no-op.
+std::vector<std::vector<char>> rows_to_drop(const std::vector<h5::File>& files, const std::vector<DatasetLayout>& layouts,
+                                            const std::vector<fs::path>& shards, const std::vector<long>& drop) {
+  std::vector<std::vector<char>> out(files.size());
+  if (drop.empty()) return out;
+  std::vector<char> found(drop.size(), 0);
+  for (std::size_t k = 0; k < files.size(); ++k) {
+    if (!layouts[k].has_stat(kGlobalIndex))
+      throw ConfigError(shards[k].string() + ": has no global_index statistic (made before drape generate recorded it), so "
+                        "--drop cannot tell its samples apart; leave --drop out for it");
+    const std::vector<double> global = files[k].read<double>(stat_path(kGlobalIndex));
+    out[k].assign(global.size(), 0);
+    for (std::size_t r = 0; r < global.size(); ++r)
+      for (std::size_t d = 0; d < drop.size(); ++d)
+        if (global[r] == static_cast<double>(drop[d])) out[k][r] = 1, found[d] = 1;
+  }
+  for (std::size_t d = 0; d < drop.size(); ++d)
+    if (!found[d])
+      throw ConfigError("--drop " + std::to_string(drop[d]) + ": no sample of the " +
+                        (files.size() == 1 ? "file " + shards.front().string() : std::to_string(files.size()) + " files") +
+                        " has that global index (the global_index statistic: drape dataset info lists its range)");
+  return out;
+}
+
+std::size_t join_shards(const std::vector<fs::path>& shards, const fs::path& out, bool require_complete, bool mixed_sizes,
+                        const BodyVertices& bodies, const std::vector<long>& drop) {
   if (shards.empty()) throw ConfigError("merge: no shard files given");
   std::vector<h5::File> files;
   std::vector<std::vector<std::uint8_t>> done;
@@ -156,6 +207,8 @@ std::size_t merge(const std::vector<fs::path>& shards, const fs::path& out, bool
     std::sort(all_stats.begin(), all_stats.end());
     all_stats.erase(std::unique(all_stats.begin(), all_stats.end()), all_stats.end());
   }
+  const std::vector<std::vector<char>> dropped = rows_to_drop(files, layouts, shards, drop);
+  std::vector<long> dropped_all = drop;  // what the output records: these, and what its shards' merges dropped
   std::optional<SizeTable> size_chart;  // the size charts of the shards that have one, joined
   for (std::size_t k = 0; k < shards.size(); ++k) {
     const fs::path& shard = shards[k];
@@ -168,7 +221,13 @@ std::size_t merge(const std::vector<fs::path>& shards, const fs::path& out, bool
     if (has_witness.back()) check_witness_shape(files[k], layout);
     layout.body_vertices_stored = bodies.write;  // compared across shards as the output will hold them
     done.push_back(files[k].read<std::uint8_t>(kDone));
+    // (A row --drop names counts as done for require_complete, and is not copied.)
+    const std::size_t n_done = static_cast<std::size_t>(std::count(done.back().begin(), done.back().end(), 1));
+    if (!dropped[k].empty())
+      for (std::size_t r = 0; r < done.back().size(); ++r)
+        if (dropped[k][r] && done.back()[r]) done.back()[r] = 2;
     const std::size_t n = static_cast<std::size_t>(std::count(done.back().begin(), done.back().end(), 1));
+    for (const long g : dropped_before(layout, shard)) dropped_all.push_back(g);
     fills.emplace_back();
     if (mixed_sizes) {
       fills.back() = missing_stat_fills(shard, files[k], layout, all_stats);
@@ -180,8 +239,8 @@ std::size_t merge(const std::vector<fs::path>& shards, const fs::path& out, bool
     // of the merged (or expanded) file.
     join_size_chart(size_chart, layout, shard.string());
     templates += (templates.empty() ? "" : ",") + layout.template_hash;
-    if (require_complete && n != layout.samples)
-      throw ConfigError(shard.string() + ": only " + std::to_string(n) + " of " + std::to_string(layout.samples) +
+    if (require_complete && n_done != layout.samples)
+      throw ConfigError(shard.string() + ": only " + std::to_string(n_done) + " of " + std::to_string(layout.samples) +
                         " samples are done; finish generating it first");
     if (k == 0) {
       merged = layout;
@@ -213,6 +272,15 @@ std::size_t merge(const std::vector<fs::path>& shards, const fs::path& out, bool
   merged.attributes["merged_from"] = names;
   if (mixed_sizes) merged.attributes["templates"] = templates;
   if (size_chart) merged.attributes["size_chart"] = size_chart->to_text();
+  std::sort(dropped_all.begin(), dropped_all.end());
+  dropped_all.erase(std::unique(dropped_all.begin(), dropped_all.end()), dropped_all.end());
+  if (!dropped_all.empty()) {
+    std::string list;
+    for (const long g : dropped_all) list += (list.empty() ? "" : ",") + std::to_string(g);
+    merged.attributes[kDropped] = list;
+  } else {
+    merged.attributes.erase(kDropped);
+  }
 
   write_atomically(out, [&](const fs::path& tmp) {
     h5::File result = h5::File::create(tmp);
@@ -226,12 +294,12 @@ std::size_t merge(const std::vector<fs::path>& shards, const fs::path& out, bool
       constexpr std::size_t kBlock = 64;
       std::size_t i = 0;
       while (i < d.size()) {
-        if (!d[i]) {
+        if (d[i] != 1) {  // not done, or dropped
           ++i;
           continue;
         }
         std::size_t run = 1;
-        while (i + run < d.size() && d[i + run] && run < kBlock) ++run;
+        while (i + run < d.size() && d[i + run] == 1 && run < kBlock) ++run;
         copy_rows(files[s], has_bodies[s], has_witness[s], result, merged, i, to, run, fills[s], bodies);
         i += run;
         to += run;
@@ -246,21 +314,22 @@ std::size_t merge(const std::vector<fs::path>& shards, const fs::path& out, bool
 }  // namespace
 
 std::size_t merge_datasets(const std::vector<fs::path>& shards, const fs::path& out, bool require_complete,
-                           bool mixed_sizes) {
-  return merge(shards, out, require_complete, mixed_sizes, BodyVertices{});
+                           bool mixed_sizes, const std::vector<long>& drop) {
+  return join_shards(shards, out, require_complete, mixed_sizes, BodyVertices{}, drop);
 }
 
-std::size_t slim_dataset(const fs::path& in, const fs::path& out) {
+std::size_t slim_dataset(const fs::path& in, const fs::path& out, const std::vector<long>& drop) {
   {
     const h5::File file = h5::File::open(in);
     if (!read_layout(file).body_vertices_stored) throw ConfigError(in.string() + ": is a slim dataset already");
   }
-  return merge({in}, out, true, false, BodyVertices{.write = false, .rebuild = nullptr, .rebuilt = {}});
+  return join_shards({in}, out, true, false, BodyVertices{.write = false, .rebuild = nullptr, .rebuilt = {}}, drop);
 }
 
 std::size_t expand_datasets(const std::vector<fs::path>& shards, const fs::path& out, const BodyModel& body_model,
                             bool require_complete, const std::function<void()>& rebuilt, bool mixed_sizes) {
-  return merge(shards, out, require_complete, mixed_sizes, BodyVertices{.write = true, .rebuild = &body_model, .rebuilt = rebuilt});
+  return join_shards(shards, out, require_complete, mixed_sizes, BodyVertices{.write = true, .rebuild = &body_model, .rebuilt = rebuilt},
+               std::vector<long>{});
 }
 
 }  // namespace drape

@@ -226,15 +226,24 @@ std::string template_hash(const Mesh& garment, const Eigen::MatrixX3i& body_face
 // tells a graph trained on them which size each sample wears. The merged file
 // keeps the first shard's scene and template hash (a model trained on it uses
 // that template) and lists every shard's hash in the attribute `templates`.
+//
+// `drop` leaves out the samples of those global indices (the global_index
+// statistic drape generate records, and names a drape by in its report: a
+// drape an independent check rejected, e.g. a garment through itself). Each
+// must be in some shard (ConfigError otherwise, and for a shard without the
+// statistic); a dropped sample counts as done for require_complete. The
+// output lists them, with those its shards' own merges dropped, in the
+// attribute `dropped` (comma-separated global indices).
 std::size_t merge_datasets(const std::vector<std::filesystem::path>& shards, const std::filesystem::path& out,
-                           bool require_complete = true, bool mixed_sizes = false);
+                           bool require_complete = true, bool mixed_sizes = false, const std::vector<long>& drop = {});
 
 // A slim copy of a finished dataset: every array and attribute but the body
 // vertices, which the body model rebuilds from the stored shape parameters
 // (a tenth of the size for the coarse shirt on the parametric body; what the
 // repository keeps of long generations, datasets/). ConfigError when `in` has
-// samples not done or is slim already. Returns the number of samples.
-std::size_t slim_dataset(const std::filesystem::path& in, const std::filesystem::path& out);
+// samples not done or is slim already. Returns the number of samples. `drop`
+// as merge_datasets's.
+std::size_t slim_dataset(const std::filesystem::path& in, const std::filesystem::path& out, const std::vector<long>& drop = {});
 
 // merge_datasets for slim shards (full ones are copied as merge does): the
 // body vertices of each sample are rebuilt as body_model.vertices(params),
