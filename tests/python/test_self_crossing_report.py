@@ -37,3 +37,11 @@ def test_generate_names_the_drapes_that_cross_themselves(tmp_path):
                        "--out", tmp_path / "d.h5")
     assert re.search(r"1 crossing themselves \(this run\)", out), out
     assert "garments crossing themselves: sample 0 (global index)" in out
+    # The command it suggests leaves that drape out of the slim copy, and the copy says so.
+    suggested = re.search(r"`drape (dataset slim .*)` leaves them out", out).group(1)
+    words = suggested.replace("SLIM", str(tmp_path / "slim.h5")).split()
+    assert words[-2:] == ["--drop", "0"], suggested
+    slimmed, _ = run_drape(*words)
+    assert "0 samples without body vertices (1 dropped)" in slimmed
+    info, _ = run_drape("dataset", "info", tmp_path / "slim.h5")
+    assert "dropped: 0" in info
