@@ -3,7 +3,8 @@
 the generalized winding number of the garment's vertices in the body (scripts/reference/winding_number.py),
 garment-body edge-face crossings and the garment's self-crossings (scripts/count_self_crossings.py), and the
 stored `converged` flag. The dataset must hold its body vertices (a full shard, or `drape dataset expand` of a
-slim one) and its garment faces.
+slim one; a slim file is refused) and its garment faces. The drapes not clean are listed by the generator's global
+index, with the `drape dataset slim --drop` that leaves them out.
 
     /usr/bin/python3 scripts/check_dataset_drapes.py data.h5 [--body-faces body.obj] [--csv out.csv]
 
@@ -79,6 +80,9 @@ def main():
                            check=True, capture_output=True)
             _, bf = read_obj(os.path.join(tmp, "b.obj"))
     with h5py.File(a.data) as f:
+        if "bodies/vertices" not in f:
+            sys.exit(f"{a.data}: a slim dataset (its bodies are not stored): check `drape dataset expand --out "
+                     f"FULL.h5 {a.data}` instead (this script reads what was simulated, and rebuilds nothing itself)")
         gf = f["garments/faces"][:]
         body_vertices = f["bodies/vertices"].shape[1]
         if bf.max() + 1 != body_vertices:
@@ -88,18 +92,27 @@ def main():
         bodies, garments = f["bodies/vertices"], f["garments/vertices"]
         converged = f["stats/converged"][:]
         bmi = f["stats/bmi"][:]
-        rows, bad = [], 0
+        # The generator's numbering (drape generate's global_index), which `drape dataset slim --drop` takes.
+        global_index = f["stats/global_index"][:] if "stats/global_index" in f else None
+        rows, rejected = [], []
         for i in done:
             checks = drape_checks(garments[i], gf, bodies[i], bf)
-            r = dict(index=int(i), bmi=float(bmi[i]), converged=int(converged[i]), **checks)
+            r = dict(index=int(i), **({} if global_index is None else {"global_index": int(global_index[i])}),
+                     bmi=float(bmi[i]), converged=int(converged[i]), **checks)
             clean = r["converged"] == 1 and r["p"] == 0 and r["garment_body"] == 0 and r["self_crossings"] == 0
-            bad += not clean
+            if not clean:
+                rejected.append(r.get("global_index"))
             rows.append(r)
             print(f"sample {i} (BMI {r['bmi']:.1f}): {'clean' if clean else 'NOT CLEAN'}: converged {r['converged']}, "
                   f"p {r['p']:.2f} %, {r['garment_body']} garment-body crossings, {r['self_crossings']} self-crossings",
                   flush=True)
+    bad = len(rejected)
     print(f"{len(rows) - bad} of {len(rows)} drapes clean (settled, p = 0 by winding numbers, no crossing, no "
           "self-crossing)")
+    if bad and global_index is not None:
+        listed = ",".join(str(g) for g in rejected)
+        print(f"not clean: global index {listed} (`drape dataset slim {a.data} --out SLIM --drop {listed}` leaves "
+              "them out)")
     if a.csv:
         write_csv(a.csv, rows)
     return 1 if bad else 0

@@ -25,10 +25,13 @@ SHEET_V = np.array([[0.1, 1.2, 0.1], [0.9, 1.2, 0.1], [0.9, 1.2, 0.9], [0.1, 1.2
 SHEET_F = np.array([[0, 1, 2], [0, 2, 3]])
 
 
-def write_dataset(path, sheet, scene=""):
+def write_dataset(path, sheet, scene="", global_index=None, slim=False):
     with h5py.File(path, "w") as f:
         f["done"] = np.array([1], dtype=np.uint8)
-        f["bodies/vertices"] = BOX_V[None].astype(np.float32)
+        if not slim:
+            f["bodies/vertices"] = BOX_V[None].astype(np.float32)
+        if global_index is not None:
+            f["stats/global_index"] = np.array([float(global_index)])
         f["garments/vertices"] = sheet[None].astype(np.float32)
         f["garments/faces"] = SHEET_F.astype(np.int32)
         f["stats/converged"] = np.array([1.0])
@@ -60,6 +63,29 @@ def test_a_sheet_outside_is_clean_and_one_through_the_body_is_not(tmp_path):
     r = run(tmp_path / "in.h5", "--body-faces", faces)
     assert r.returncode == 1
     assert "NOT CLEAN" in r.stdout and "p 25.00 %" in r.stdout and "0 of 1 drapes clean" in r.stdout
+    assert "not clean: global index" not in r.stdout  # (a file without the generator's numbering)
+
+
+def test_a_drape_not_clean_is_named_by_its_global_index_for_slim_drop(tmp_path):
+    faces = tmp_path / "box.obj"
+    write_obj(faces, BOX_V, BOX_F)
+    inside = SHEET_V.copy()
+    inside[2, 1] = 0.5
+    write_dataset(tmp_path / "in.h5", inside, global_index=450)
+    r = run(tmp_path / "in.h5", "--body-faces", faces, "--csv", tmp_path / "c.csv")
+    assert r.returncode == 1
+    assert f"not clean: global index 450 (`drape dataset slim {tmp_path / 'in.h5'} --out SLIM --drop 450`" in r.stdout
+    header, row = (tmp_path / "c.csv").read_text().splitlines()
+    assert dict(zip(header.split(","), row.split(",")))["global_index"] == "450"
+
+
+def test_a_slim_file_is_refused_with_the_expand_that_makes_it_checkable(tmp_path):
+    write_dataset(tmp_path / "slim.h5", SHEET_V, slim=True)
+    faces = tmp_path / "box.obj"
+    write_obj(faces, BOX_V, BOX_F)
+    r = run(tmp_path / "slim.h5", "--body-faces", faces)
+    assert r.returncode != 0
+    assert "a slim dataset" in r.stderr and "drape dataset expand" in r.stderr
 
 
 def test_faces_of_another_topology_are_refused(tmp_path):
