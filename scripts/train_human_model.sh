@@ -71,7 +71,14 @@
 # the first's place was worse (docs/poses.md, "Weight decay, and 300 more drapes").
 # The shipped model since the thirty-fourth is those two cycles again, the
 # second with seed 7's shards 0-6 (shard-0[0-6]-*), after the untangle's wider
-# reach cleared the hard case (docs/poses.md, "The crumples' reach").
+# reach cleared the hard case (docs/poses.md, "The crumples' reach"). The
+# thirty-fifth session's shipped model is two more cycles from it with
+# PUSH_OUT=0.005 MONITOR=vertex_distance MIRROR_AVERAGE=1 THREADS=1: the first
+# with all of seeds 5 and 6 and seed 7's shards 0-8 and 11
+# (datasets/posespace-human-seed{5,6,7}/shard-*, before 9 and 10 were added),
+# the second from the first with all of seeds 5-7 and seed 8's shards 0-3
+# (datasets/posespace-human-seed8/shard-0[0-3]-*) added (docs/poses.md,
+# "Drapes left out by name, and 450 more").
 set -euo pipefail
 cd "$(dirname "${BASH_SOURCE[0]}")/.."
 DRAPE=${BUILD_DIR:-build}/bin/drape
