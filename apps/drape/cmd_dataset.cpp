@@ -47,25 +47,12 @@ constexpr const char* kDropHelp =
     "generate names a drape in its report, e.g. one an independent check rejected); the output lists them in its "
     "attribute 'dropped'";
 
-// --drop's global indices: whole numbers >= 0, comma-separated or repeated.
+// --drop's global indices, comma-separated or repeated.
 std::vector<long> drop_list(const po::variables_map& vm) {
   std::vector<long> out;
   if (!vm.count("drop")) return out;
-  for (const std::string& arg : vm["drop"].as<std::vector<std::string>>()) {
-    std::stringstream list(arg);
-    for (std::string item; std::getline(list, item, ',');) {
-      std::size_t used = 0;
-      long g = -1;
-      try {
-        g = std::stol(item, &used);
-      } catch (const std::exception&) {
-        used = 0;
-      }
-      if (item.empty() || used != item.size() || g < 0)
-        throw UsageError("--drop: '" + item + "' is not a global index (a whole number >= 0) in '" + arg + "'");
-      out.push_back(g);
-    }
-  }
+  for (const std::string& arg : vm["drop"].as<std::vector<std::string>>())
+    for (const long g : parse_global_indices(arg, "--drop")) out.push_back(g);
   return out;
 }
 

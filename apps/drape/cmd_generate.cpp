@@ -5,6 +5,7 @@
 #include "command.hpp"
 #include "sample_ranges.hpp"
 
+#include <drape/io/dataset.hpp>
 #include <drape/io/shipped_files.hpp>
 #include <drape/registry.hpp>
 #include <drape/services/dataset_generation.hpp>
@@ -74,14 +75,10 @@ int run(const std::vector<std::string>& args) {
               out.c_str(), done.samples, done.not_settled, done.penetrating, done.crossing, done.crossing_itself.size());
   if (!done.crossing_itself.empty()) {
     // Named, so that they can be looked at or left out (scripts/check_dataset_drapes.py counts them independently).
-    std::string which, list;
-    for (const std::size_t i : done.crossing_itself) {
-      which += (which.empty() ? "" : ", ") + std::to_string(i);
-      list += (list.empty() ? "" : ",") + std::to_string(i);
-    }
+    const std::string list = global_index_list({done.crossing_itself.begin(), done.crossing_itself.end()});
     std::printf("garments crossing themselves: sample %s (global index); `drape dataset slim %s --out SLIM --drop %s` "
                 "leaves them out\n",
-                which.c_str(), out.c_str(), list.c_str());
+                list.c_str(), out.c_str(), list.c_str());
   }
   return 0;
 }

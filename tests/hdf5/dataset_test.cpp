@@ -52,6 +52,14 @@ DatasetSample make_sample(const DatasetLayout& l, std::size_t i) {
   return s;
 }
 
+// A finished shard of layout.samples samples, the k-th made by make(layout, first + k).
+template <class Make>
+void write_shard(const fs::path& path, const DatasetLayout& layout, std::size_t first, Make make) {
+  DatasetWriter w(path, layout);
+  for (std::size_t i = 0; i < layout.samples; ++i) w.write(i, make(layout, first + i));
+  w.finish();
+}
+
 void check_sample(const DatasetReader& reader, std::size_t i) {
   const DatasetSample want = make_sample(reader.layout(), i);
   const DatasetSample got = reader.sample(i);
@@ -253,14 +261,8 @@ TEST_CASE("dataset: merging shards concatenates their samples", "[hdf5][dataset]
   TempDir dir;
   const DatasetLayout a = small_layout(4), b = small_layout(3);
   // Shard b's samples continue a's numbering: sample k of b is global sample 4 + k.
-  {
-    DatasetWriter w(dir / "a.h5", a);
-    for (std::size_t i = 0; i < 4; ++i) w.write(i, make_sample(a, i));
-    w.finish();
-    DatasetWriter v(dir / "b.h5", b);
-    for (std::size_t i = 0; i < 3; ++i) v.write(i, make_sample(b, 4 + i));
-    v.finish();
-  }
+  write_shard(dir / "a.h5", a, 0, make_sample);
+  write_shard(dir / "b.h5", b, 4, make_sample);
   CHECK(merge_datasets({dir / "a.h5", dir / "b.h5"}, dir / "all.h5") == 7);
   check_complete(dir / "all.h5", 7);
   CHECK(DatasetReader(dir / "all.h5").layout().attributes.at("merged_from") == "a.h5\nb.h5");
@@ -296,14 +298,8 @@ TEST_CASE("dataset: --drop leaves out the samples of the named global indices, a
     s.stats["global_index"] = 10.0 + static_cast<double>(i);
     return s;
   };
-  {
-    DatasetWriter w(dir / "a.h5", a);
-    for (std::size_t i = 0; i < 4; ++i) w.write(i, numbered(a, i));
-    w.finish();
-    DatasetWriter v(dir / "b.h5", b);
-    for (std::size_t i = 0; i < 3; ++i) v.write(i, numbered(b, 4 + i));
-    v.finish();
-  }
+  write_shard(dir / "a.h5", a, 0, numbered);
+  write_shard(dir / "b.h5", b, 4, numbered);
   // Global 11 (a's row 1) and 16 (b's last row) out: five samples, the others in order.
   REQUIRE(merge_datasets({dir / "a.h5", dir / "b.h5"}, dir / "all.h5", true, false, {16, 11}) == 5);
   {
@@ -329,12 +325,7 @@ TEST_CASE("dataset: --drop leaves out the samples of the named global indices, a
   // An index no shard holds is refused, naming it; so is a shard that cannot tell its samples apart.
   CHECK_THROWS_WITH(merge_datasets({dir / "a.h5", dir / "b.h5"}, dir / "bad.h5", true, false, {17}),
                     Catch::Contains("--drop 17") && Catch::Contains("global index"));
-  {
-    const DatasetLayout plain = small_layout(2);
-    DatasetWriter w(dir / "plain-shard.h5", plain);
-    for (std::size_t i = 0; i < 2; ++i) w.write(i, make_sample(plain, i));
-    w.finish();
-  }
+  write_shard(dir / "plain-shard.h5", small_layout(2), 0, make_sample);
   CHECK_THROWS_WITH(slim_dataset(dir / "plain-shard.h5", dir / "bad.h5", {0}), Catch::Contains("no global_index statistic"));
   CHECK_FALSE(fs::exists(dir / "bad.h5"));
 }

@@ -129,27 +129,19 @@ void copy_rows(const h5::File& in, bool in_has_bodies, bool in_has_witness, h5::
   out.write_rows(kDone, to, count, done.data());
 }
 
+// A row's state in `done` as the join reads it: the file's 0 and 1, and a
+// done row --drop names, which counts as done and is not copied.
+constexpr std::uint8_t kRowDone = 1, kRowDropped = 2;
+
 constexpr const char* kGlobalIndex = "global_index";
 constexpr const char* kDropped = "dropped";
 
 // The global indices in a file's `dropped` attribute (those an earlier merge
-// or slim left out), parsed; an empty list when it has none.
+// or slim left out); none when it has none.
 std::vector<long> dropped_before(const DatasetLayout& layout, const fs::path& file) {
-  std::vector<long> out;
   const auto text = layout.attributes.find(kDropped);
-  if (text == layout.attributes.end()) return out;
-  std::stringstream list(text->second);
-  for (std::string item; std::getline(list, item, ',');) {
-    std::size_t used = 0;
-    try {
-      out.push_back(std::stol(item, &used));
-    } catch (const std::exception&) {
-      used = 0;
-    }
-    if (used == 0 || used != item.size())
-      throw ConfigError(file.string() + ": attribute 'dropped' is not a list of global indices: '" + text->second + "'");
-  }
-  return out;
+  if (text == layout.attributes.end()) return {};
+  return parse_global_indices(text->second, file.string() + ": attribute 'dropped'");
 }
 
 // Per shard, which rows `drop` names by the generator's global index (the
@@ -222,11 +214,11 @@ std::size_t join_shards(const std::vector<fs::path>& shards, const fs::path& out
     layout.body_vertices_stored = bodies.write;  // compared across shards as the output will hold them
     done.push_back(files[k].read<std::uint8_t>(kDone));
     // (A row --drop names counts as done for require_complete, and is not copied.)
-    const std::size_t n_done = static_cast<std::size_t>(std::count(done.back().begin(), done.back().end(), 1));
+    const std::size_t n_done = static_cast<std::size_t>(std::count(done.back().begin(), done.back().end(), kRowDone));
     if (!dropped[k].empty())
       for (std::size_t r = 0; r < done.back().size(); ++r)
-        if (dropped[k][r] && done.back()[r]) done.back()[r] = 2;
-    const std::size_t n = static_cast<std::size_t>(std::count(done.back().begin(), done.back().end(), 1));
+        if (dropped[k][r] && done.back()[r] == kRowDone) done.back()[r] = kRowDropped;
+    const std::size_t n = static_cast<std::size_t>(std::count(done.back().begin(), done.back().end(), kRowDone));
     for (const long g : dropped_before(layout, shard)) dropped_all.push_back(g);
     fills.emplace_back();
     if (mixed_sizes) {
@@ -274,13 +266,8 @@ std::size_t join_shards(const std::vector<fs::path>& shards, const fs::path& out
   if (size_chart) merged.attributes["size_chart"] = size_chart->to_text();
   std::sort(dropped_all.begin(), dropped_all.end());
   dropped_all.erase(std::unique(dropped_all.begin(), dropped_all.end()), dropped_all.end());
-  if (!dropped_all.empty()) {
-    std::string list;
-    for (const long g : dropped_all) list += (list.empty() ? "" : ",") + std::to_string(g);
-    merged.attributes[kDropped] = list;
-  } else {
-    merged.attributes.erase(kDropped);
-  }
+  if (!dropped_all.empty()) merged.attributes[kDropped] = global_index_list(dropped_all);
+  else merged.attributes.erase(kDropped);
 
   write_atomically(out, [&](const fs::path& tmp) {
     h5::File result = h5::File::create(tmp);
@@ -294,12 +281,12 @@ std::size_t join_shards(const std::vector<fs::path>& shards, const fs::path& out
       constexpr std::size_t kBlock = 64;
       std::size_t i = 0;
       while (i < d.size()) {
-        if (d[i] != 1) {  // not done, or dropped
+        if (d[i] != kRowDone) {  // not done, or dropped
           ++i;
           continue;
         }
         std::size_t run = 1;
-        while (i + run < d.size() && d[i + run] == 1 && run < kBlock) ++run;
+        while (i + run < d.size() && d[i + run] == kRowDone && run < kBlock) ++run;
         copy_rows(files[s], has_bodies[s], has_witness[s], result, merged, i, to, run, fills[s], bodies);
         i += run;
         to += run;
@@ -312,6 +299,30 @@ std::size_t join_shards(const std::vector<fs::path>& shards, const fs::path& out
 }
 
 }  // namespace
+
+std::vector<long> parse_global_indices(const std::string& text, const std::string& what) {
+  std::vector<long> out;
+  std::stringstream list(text);
+  for (std::string item; std::getline(list, item, ',');) {
+    std::size_t used = 0;
+    long g = -1;
+    try {
+      g = std::stol(item, &used);
+    } catch (const std::exception&) {
+      used = 0;
+    }
+    if (item.empty() || used != item.size() || g < 0)
+      throw ConfigError(what + ": '" + item + "' is not a global index (a whole number >= 0) in '" + text + "'");
+    out.push_back(g);
+  }
+  return out;
+}
+
+std::string global_index_list(const std::vector<long>& indices) {
+  std::string list;
+  for (const long g : indices) list += (list.empty() ? "" : ",") + std::to_string(g);
+  return list;
+}
 
 std::size_t merge_datasets(const std::vector<fs::path>& shards, const fs::path& out, bool require_complete,
                            bool mixed_sizes, const std::vector<long>& drop) {

@@ -237,6 +237,12 @@ std::string template_hash(const Mesh& garment, const Eigen::MatrixX3i& body_face
 std::size_t merge_datasets(const std::vector<std::filesystem::path>& shards, const std::filesystem::path& out,
                            bool require_complete = true, bool mixed_sizes = false, const std::vector<long>& drop = {});
 
+// A list of global indices as --drop and the attribute `dropped` write it
+// ("450,539"): parsed (ConfigError naming `what` and the item for anything
+// but whole numbers >= 0), and written.
+std::vector<long> parse_global_indices(const std::string& text, const std::string& what);
+std::string global_index_list(const std::vector<long>& indices);
+
 // A slim copy of a finished dataset: every array and attribute but the body
 // vertices, which the body model rebuilds from the stored shape parameters
 // (a tenth of the size for the coarse shirt on the parametric body; what the
