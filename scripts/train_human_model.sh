@@ -78,7 +78,10 @@
 # (datasets/posespace-human-seed{5,6,7}/shard-*, before 9 and 10 were added),
 # the second from the first with all of seeds 5-7 and seed 8's shards 0-3
 # (datasets/posespace-human-seed8/shard-0[0-3]-*) added (docs/poses.md,
-# "Drapes left out by name, and 450 more").
+# "Drapes left out by name, and 450 more"). The thirty-sixth session's is one
+# cycle of EPOCHS=120 from it with the same settings and all of seeds 5-8
+# (datasets/posespace-human-seed{5,6,7,8}/shard-*) (docs/poses.md, "All of
+# seed 8, one long cycle").
 set -euo pipefail
 cd "$(dirname "${BASH_SOURCE[0]}")/.."
 DRAPE=${BUILD_DIR:-build}/bin/drape
