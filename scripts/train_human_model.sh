@@ -81,7 +81,10 @@
 # "Drapes left out by name, and 450 more"). The thirty-sixth session's is one
 # cycle of EPOCHS=120 from it with the same settings and all of seeds 5-8
 # (datasets/posespace-human-seed{5,6,7,8}/shard-*) (docs/poses.md, "All of
-# seed 8, one long cycle").
+# seed 8, one long cycle"). The thirty-seventh session's is one more such
+# cycle from it with seed 9's shards 0-7 added
+# (datasets/posespace-human-seed{5,6,7,8}/shard-* datasets/posespace-human-seed9/shard-0[0-7]-*)
+# (docs/poses.md, "Seed 9, one more long cycle").
 set -euo pipefail
 cd "$(dirname "${BASH_SOURCE[0]}")/.."
 DRAPE=${BUILD_DIR:-build}/bin/drape
