@@ -85,6 +85,9 @@
 # cycle from it with seed 9's shards 0-7 added
 # (datasets/posespace-human-seed{5,6,7,8}/shard-* datasets/posespace-human-seed9/shard-0[0-7]-*)
 # (docs/poses.md, "Seed 9, one more long cycle").
+# The thirty-eighth session's is one more such cycle from it with seeds 5-9
+# whole (datasets/posespace-human-seed{5,6,7,8,9}/shard-*) (docs/poses.md,
+# "Seed 9 whole, and seed 10").
 set -euo pipefail
 cd "$(dirname "${BASH_SOURCE[0]}")/.."
 DRAPE=${BUILD_DIR:-build}/bin/drape
