@@ -52,42 +52,16 @@
 #     EXTRA_SHARDS="$(echo datasets/posespace-human-seed5/shard-*)" bash scripts/train_human_model.sh work-posed-human
 # and since the thirtieth session it is stored with the mirror average on
 # (MIRROR_AVERAGE=1 above, or drape model set MODEL --set post.mirror_average=true).
-# Since the thirty-first its last two cycles are trained on ME itself, with the
-# 300 drapes of seeds 5 (shards 9-11) and 6 in the second (docs/poses.md,
-# "Training on the metric"):
+# Since the thirty-first session its cycles are trained on ME itself (the
+# graph ..._distance.yaml, `--monitor vertex_distance`) with more drapes of
+# seeds 5-9 beside the 2,000; each cycle, its data and its figures is a
+# section of docs/poses.md, from "Training on the metric" to "Seed 9 whole,
+# and seed 10" (one not shipped: "Weight decay, and 300 more drapes"). The
+# last (thirty-eighth session), from the model shipped before it:
 #   SHARD_DIR=datasets/posespace2000-human GRAPH=graphs/human/drape_posed_v2v1000_post_resampled_transfer48_margin1mm_distance.yaml \
-#     INIT=models/tshirt-coarse-posed-human.h5 LR=3e-4 MIRROR=1 PUSH_OUT=0.004 MONITOR=vertex_distance THREADS=2 MIRROR_AVERAGE=1 \
-#     EXTRA_SHARDS="$(echo datasets/posespace-human-seed5/shard-* datasets/posespace-human-seed6/shard-0[013]-*)" bash scripts/train_human_model.sh work-posed-human
-# Since the thirty-second two more cycles of the same recipe from it, the first
-# with EXTRA_SHARDS="$(echo datasets/posespace-human-seed5/shard-*
-# datasets/posespace-human-seed6/shard-0[0-4]-*)", the second from the first
-# with seed 6's shards 0-9 (shard-0*) and PUSH_OUT=0.005 (docs/poses.md,
-# "All of seed 6"). The thirty-third session trained two more from it with
-# PUSH_OUT=0.005, the first with all of seeds 5 and 6
-# (datasets/posespace-human-seed5/shard-* datasets/posespace-human-seed6/shard-*),
-# the second from the first with seed 7's shards 0-3 added
-# (datasets/posespace-human-seed7/shard-0[0-3]-*): closer (ME 1.246 cm) but not
-# shipped, as one hard case keeps edges through the shirt; WEIGHT_DECAY=0.03 in
-# the first's place was worse (docs/poses.md, "Weight decay, and 300 more drapes").
-# The shipped model since the thirty-fourth is those two cycles again, the
-# second with seed 7's shards 0-6 (shard-0[0-6]-*), after the untangle's wider
-# reach cleared the hard case (docs/poses.md, "The crumples' reach"). The
-# thirty-fifth session's shipped model is two more cycles from it with
-# PUSH_OUT=0.005 MONITOR=vertex_distance MIRROR_AVERAGE=1 THREADS=1: the first
-# with all of seeds 5 and 6 and seed 7's shards 0-8 and 11
-# (datasets/posespace-human-seed{5,6,7}/shard-*, before 9 and 10 were added),
-# the second from the first with all of seeds 5-7 and seed 8's shards 0-3
-# (datasets/posespace-human-seed8/shard-0[0-3]-*) added (docs/poses.md,
-# "Drapes left out by name, and 450 more"). The thirty-sixth session's is one
-# cycle of EPOCHS=120 from it with the same settings and all of seeds 5-8
-# (datasets/posespace-human-seed{5,6,7,8}/shard-*) (docs/poses.md, "All of
-# seed 8, one long cycle"). The thirty-seventh session's is one more such
-# cycle from it with seed 9's shards 0-7 added
-# (datasets/posespace-human-seed{5,6,7,8}/shard-* datasets/posespace-human-seed9/shard-0[0-7]-*)
-# (docs/poses.md, "Seed 9, one more long cycle").
-# The thirty-eighth session's is one more such cycle from it with seeds 5-9
-# whole (datasets/posespace-human-seed{5,6,7,8,9}/shard-*) (docs/poses.md,
-# "Seed 9 whole, and seed 10").
+#     INIT=models/tshirt-coarse-posed-human.h5 LR=3e-4 MIRROR=1 PUSH_OUT=0.005 MONITOR=vertex_distance MIRROR_AVERAGE=1 \
+#     THREADS=1 EPOCHS=120 EXTRA_SHARDS="$(echo datasets/posespace-human-seed{5,6,7,8,9}/shard-*)" \
+#     bash scripts/train_human_model.sh work-posed-human
 set -euo pipefail
 cd "$(dirname "${BASH_SOURCE[0]}")/.."
 DRAPE=${BUILD_DIR:-build}/bin/drape
