@@ -205,6 +205,9 @@ TEST_CASE("model domain: a body trained on twice (a drape and its mirror image) 
   REQUIRE(twins.samples == 2 * d.samples);
   REQUIRE(d.neighbour_limit > 0.011);  // above the 1 cm floor, so twins counted as neighbours would show
   CHECK(twins.neighbour_limit == Approx(d.neighbour_limit).epsilon(1e-12));
+  // Stored once: the twins add nothing to the model file or to a check's scan.
+  CHECK(twins.descriptors.rows() == d.descriptors.rows());
+  CHECK(twins.descriptors == d.descriptors);
 }
 
 TEST_CASE("drape model domain records it: predict warns outside it and --strict refuses", "[train][domain][cli]") {

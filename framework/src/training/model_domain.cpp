@@ -11,6 +11,8 @@
 #include <cstdio>
 #include <limits>
 #include <sstream>
+#include <string_view>
+#include <unordered_map>
 
 namespace drape {
 
@@ -122,23 +124,32 @@ ModelDomain domain_of_dataset(const DatasetReader& data, const std::string& body
   for (const Eigen::Vector3d& p : placements) d.placement += p / static_cast<double>(placements.size());
   d.placement_spread.setZero();
   for (const Eigen::Vector3d& p : placements) d.placement_spread = d.placement_spread.cwiseMax((p - d.placement).cwiseAbs());
-  // The largest gap from a training body to its nearest other one. A body
-  // trained on twice (a posed drape and its mirror image share the body at
-  // rest: scripts/mirror_dataset.py) is not its own neighbour: at distance 0
-  // it would make every gap 0 and the limit the 1 cm floor below.
-  //
-  // Each pair once, on the descriptors as contiguous columns: the model's rows
-  // are strided in memory, and 3,300 bodies' 5.4 million pairs read row by
-  // row took minutes of `drape train`.
-  const Eigen::MatrixXf columns = d.descriptors.transpose();
+  // A body trained on twice (a posed drape and its mirror image share the
+  // body at rest: scripts/mirror_dataset.py) is stored once: its copy would
+  // double the model file's descriptors and every check's scan, and as its own
+  // neighbour at distance 0 make the widest gap 0 and the limit the 1 cm floor.
+  // On the descriptors as contiguous columns: the model's rows are strided.
+  const Eigen::MatrixXf all = d.descriptors.transpose();
+  std::vector<Eigen::Index> distinct;
+  std::unordered_map<std::string_view, Eigen::Index> seen;
+  const auto bytes = [&all](Eigen::Index c) {
+    return std::string_view(reinterpret_cast<const char*>(all.col(c).data()), sizeof(float) * static_cast<std::size_t>(all.rows()));
+  };
+  for (Eigen::Index c = 0; c < all.cols(); ++c)
+    if (seen.emplace(bytes(c), c).second) distinct.push_back(c);
+  const Eigen::MatrixXf columns = all(Eigen::all, distinct);
+  d.descriptors = columns.transpose();
+  // The largest gap from a training body to its nearest other one, each pair
+  // once (3,300 bodies' 5.4 million pairs read row by row took minutes of
+  // `drape train`).
   const Eigen::Index n = columns.cols();
   std::vector<double> nearest(static_cast<std::size_t>(n), std::numeric_limits<double>::infinity());
   for (Eigen::Index i = 0; i < n; ++i)
-    for (Eigen::Index j = i + 1; j < n; ++j)
-      if (const double r = rms_distance(columns.col(i), columns.col(j)); r > 0) {
-        nearest[static_cast<std::size_t>(i)] = std::min(nearest[static_cast<std::size_t>(i)], r);
-        nearest[static_cast<std::size_t>(j)] = std::min(nearest[static_cast<std::size_t>(j)], r);
-      }
+    for (Eigen::Index j = i + 1; j < n; ++j) {
+      const double r = rms_distance(columns.col(i), columns.col(j));
+      nearest[static_cast<std::size_t>(i)] = std::min(nearest[static_cast<std::size_t>(i)], r);
+      nearest[static_cast<std::size_t>(j)] = std::min(nearest[static_cast<std::size_t>(j)], r);
+    }
   double widest = 0;
   for (const double r : nearest)
     if (std::isfinite(r)) widest = std::max(widest, r);
@@ -230,7 +241,7 @@ std::vector<std::string> domain_violations(const ModelDomain& domain, const Eige
       domain.descriptor_vertices.back() < body.rows()) {
     const double d = distance_to_training(domain, body);
     if (d > domain.neighbour_limit)
-      out.push_back("the body is " + fmt(100 * d) + " cm (RMS) from the nearest of the " + std::to_string(domain.samples) +
+      out.push_back("the body is " + fmt(100 * d) + " cm (RMS) from the nearest of the " + std::to_string(domain.descriptors.rows()) +
                     " training bodies (limit " + fmt(100 * domain.neighbour_limit) + " cm)");
   }
   return out;

@@ -11,7 +11,7 @@
 //               measure_names ("height,bmi"), samples, neighbour_limit (m)
 //   /domain/param_range     f64 [P, 2]   min, max of each shape parameter
 //   /domain/measure_range   f64 [2, 2]   min, max of height (m) and BMI
-//   /domain/descriptors     f32 [n, 3K]  K body vertices of each training body
+//   /domain/descriptors     f32 [n, 3K]  K body vertices of each distinct training body
 //   /domain/descriptor_vertices i32 [K]  which vertices
 //   /domain/placement       f64 [2, 3]   where the training bodies stood (optional)
 //   /domain/pose_range      f64 [A, 2]   min, max of each joint angle, degrees, over a
@@ -41,7 +41,7 @@ struct ModelDomain {
   std::vector<ValueRange> params;
   ValueRange height, bmi;
   std::vector<int> descriptor_vertices;
-  Eigen::MatrixXf descriptors;  // [n, 3K], centred on each body's centroid
+  Eigen::MatrixXf descriptors;  // [n, 3K], centred on each body's centroid; a body trained on twice once
   // A body farther (RMS over the descriptor vertices) from every training body
   // than this is outside: the largest distance of a training body to its
   // nearest other training body, times a margin (model_domain.cpp).
