@@ -228,6 +228,19 @@ TEST_CASE("drape model domain records it: predict warns outside it and --strict 
   REQUIRE(test::run(test::drape_command("model domain " + model.string() + " --data " + data.string()), out) == 0);
   REQUIRE(test::run(test::drape_command("model info " + model.string()), out) == 0);
   CHECK_THAT(out, Catch::Contains("8 training bodies from data.h5"));
+  {
+    // The same bodies twice (a dataset with its mirror images): the samples
+    // and the distinct bodies both said.
+    fs::create_directories(dir / "twins");
+    fs::copy_file(data, dir / "twins" / "a.h5");
+    fs::copy_file(data, dir / "twins" / "b.h5");
+    const fs::path twins = dir / "twins.h5";
+    REQUIRE(test::run(test::drape_command("model domain " + model.string() + " --data '" + (dir / "twins" / "*.h5").string() +
+                                          "' --out " + twins.string()),
+                      out) == 0);
+    REQUIRE(test::run(test::drape_command("model info " + twins.string()), out) == 0);
+    CHECK_THAT(out, Catch::Contains("16 training samples (8 distinct bodies) from"));
+  }
   // The training bodies are the mean body grown by at most 1.2: BMI 45 is far outside.
   REQUIRE(test::run(test::drape_command("predict --model " + model.string() + " --bmi 45 --out " + (dir / "g.obj").string()),
                     out) == 0);
