@@ -35,15 +35,8 @@ const char* kDomainUsage = "drape model domain MODEL --data DATA [--out FILE]";
 const char* kSetUsage = "drape model set MODEL --set node.param=value [--set ...] [--out FILE]";
 
 void print_domain(const ModelDomain& d) {
-  // A body trained on twice (a drape and its mirror image) is one row of the
-  // descriptors: the samples and the distinct bodies are both said when they differ.
-  const auto distinct = static_cast<std::size_t>(d.descriptors.rows());
-  if (distinct > 0 && distinct < d.samples)
-    std::printf("domain: body model '%s', %zu training samples (%zu distinct bodies) from %s\n", d.body_model.c_str(),
-                d.samples, distinct, d.source.empty() ? "(unknown)" : d.source.c_str());
-  else
-    std::printf("domain: body model '%s', %zu training bodies from %s\n", d.body_model.c_str(), d.samples,
-                d.source.empty() ? "(unknown)" : d.source.c_str());
+  std::printf("domain: body model '%s', %s from %s\n", d.body_model.c_str(), training_count(d).c_str(),
+              d.source.empty() ? "(unknown)" : d.source.c_str());
   std::printf("  %-10s %8.3f .. %-8.3f m\n", "height", d.height.min, d.height.max);
   std::printf("  %-10s %8.2f .. %-8.2f\n", "BMI", d.bmi.min, d.bmi.max);
   for (std::size_t p = 0; p < d.params.size(); ++p) {

@@ -136,11 +136,7 @@ int run(const std::vector<std::string>& given) {
   if (ranks && ranks->rank() != 0) return 0;
   const TrainReport& r = trained.report;
   const ModelDomain& domain = *trained.domain;  // the bodies it learnt from (model_domain.hpp)
-  const auto distinct = static_cast<std::size_t>(domain.descriptors.rows());
-  std::cout << "recorded the model's domain: " << domain.samples
-            << (distinct > 0 && distinct < domain.samples ? " training samples (" + std::to_string(distinct) + " distinct bodies)"
-                                                          : std::string(" training bodies"))
-            << ", BMI " << domain.bmi.min << "-"
+  std::cout << "recorded the model's domain: " << training_count(domain) << ", BMI " << domain.bmi.min << "-"
             << domain.bmi.max << ", height " << domain.height.min << "-" << domain.height.max << " m\n";
   std::cout << "wrote " << o.out.string() << ": best epoch " << r.best_epoch << " (loss " << r.best_loss << ") of "
             << r.epochs_done << "; ";

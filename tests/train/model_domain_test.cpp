@@ -208,6 +208,10 @@ TEST_CASE("model domain: a body trained on twice (a drape and its mirror image) 
   // Stored once: the twins add nothing to the model file or to a check's scan.
   CHECK(twins.descriptors.rows() == d.descriptors.rows());
   CHECK(twins.descriptors == d.descriptors);
+  // Said as both counts where they differ, as one where they do not.
+  CHECK(training_count(d) == std::to_string(d.samples) + " training bodies");
+  CHECK(training_count(twins) ==
+        std::to_string(2 * d.samples) + " training samples (" + std::to_string(d.descriptors.rows()) + " distinct bodies)");
 }
 
 TEST_CASE("drape model domain records it: predict warns outside it and --strict refuses", "[train][domain][cli]") {

@@ -12,7 +12,7 @@
 #include <limits>
 #include <sstream>
 #include <string_view>
-#include <unordered_map>
+#include <unordered_set>
 
 namespace drape {
 
@@ -131,12 +131,12 @@ ModelDomain domain_of_dataset(const DatasetReader& data, const std::string& body
   // On the descriptors as contiguous columns: the model's rows are strided.
   const Eigen::MatrixXf all = d.descriptors.transpose();
   std::vector<Eigen::Index> distinct;
-  std::unordered_map<std::string_view, Eigen::Index> seen;
+  std::unordered_set<std::string_view> seen;
   const auto bytes = [&all](Eigen::Index c) {
     return std::string_view(reinterpret_cast<const char*>(all.col(c).data()), sizeof(float) * static_cast<std::size_t>(all.rows()));
   };
   for (Eigen::Index c = 0; c < all.cols(); ++c)
-    if (seen.emplace(bytes(c), c).second) distinct.push_back(c);
+    if (seen.insert(bytes(c)).second) distinct.push_back(c);
   const Eigen::MatrixXf columns = all(Eigen::all, distinct);
   d.descriptors = columns.transpose();
   // The largest gap from a training body to its nearest other one, each pair
@@ -207,6 +207,13 @@ double distance_to_training(const ModelDomain& domain, const Eigen::MatrixX3d& b
   double nearest = std::numeric_limits<double>::infinity();
   if (squared.size() > 0) nearest = std::sqrt(squared.minCoeff() / (static_cast<double>(stored.cols()) / 3.0));
   return nearest;
+}
+
+std::string training_count(const ModelDomain& domain) {
+  const auto distinct = static_cast<std::size_t>(domain.descriptors.rows());
+  if (distinct > 0 && distinct < domain.samples)
+    return std::to_string(domain.samples) + " training samples (" + std::to_string(distinct) + " distinct bodies)";
+  return std::to_string(domain.samples) + " training bodies";
 }
 
 std::vector<std::string> domain_violations(const ModelDomain& domain, const Eigen::MatrixX3d& body,

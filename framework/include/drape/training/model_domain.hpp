@@ -59,6 +59,12 @@ struct ModelDomain {
   std::vector<ValueRange> pose;
 };
 
+// How many bodies the model learnt from, as `drape train` and `model info`
+// say it: "8 training bodies", or "16 training samples (8 distinct bodies)"
+// when a body was trained on twice (a drape and its mirror image), which the
+// descriptors hold once.
+std::string training_count(const ModelDomain& domain);
+
 // One line per joint angle of `pose` (degrees, full names) outside the
 // domain's trained range ("joint angle left_shoulder_abduction 120 degrees is
 // outside the trained range 25..100 degrees"); empty when inside or the
