@@ -6,9 +6,11 @@
 #include <drape/geometry/closed_shapes.hpp>
 #include <drape/geometry/closest_point.hpp>
 #include <drape/geometry/pseudo_normals.hpp>
+#include <drape/geometry/surface_crossings.hpp>
 
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <random>
 
 using drape::Mesh;
@@ -294,6 +296,36 @@ TEST_CASE("batch queries equal single queries: max_distance limits the search") 
     if (std::abs(s.signed_distance) < 0.2 * (1 - 1e-12)) CHECK(limited.signed_distance == s.signed_distance);
     if (std::abs(s.signed_distance) > 0.2 * (1 + 1e-12)) CHECK(limited.face == -1);
   }
+}
+
+TEST_CASE("faces_crossed finds every face a segment pierces, as a test of every face does") {
+  // Segments of every length and slant over the bumpy torus, some along an
+  // axis (a zero direction component in the slab test), some with an end on
+  // a vertex: the hierarchy's segment walk must not lose a face.
+  const Mesh m = bumpy_torus();
+  const BodySurface surface(m.vertices, m.faces);
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> unit(0, 1);
+  const std::vector<Eigen::Vector3d> starts = hard_points(m, rng, 600);
+  int pierced = 0;
+  for (std::size_t i = 0; i < starts.size(); ++i) {
+    const Eigen::Vector3d p = starts[i];
+    Eigen::Vector3d d = random_direction(rng);
+    if (i % 5 == 0) d = Eigen::Vector3d::Unit(static_cast<int>(i / 5 % 3));
+    const Eigen::Vector3d q = p + std::pow(10.0, -3 + 3.5 * unit(rng)) * d;
+    std::vector<int> found;
+    surface.faces_crossed(p, q, found);
+    std::sort(found.begin(), found.end());
+    std::vector<int> every;
+    for (int f = 0; f < m.num_faces(); ++f)
+      if (drape::geometry::segment_pierces_triangle(p, q, m.vertices.row(m.faces(f, 0)), m.vertices.row(m.faces(f, 1)),
+                                                    m.vertices.row(m.faces(f, 2))))
+        every.push_back(f);
+    INFO("p = " << p.transpose() << ", q = " << q.transpose());
+    CHECK(found == every);
+    pierced += !every.empty();
+  }
+  CHECK(pierced > 150);  // (the sample crosses the surface often enough to mean something)
 }
 
 TEST_CASE("bad body meshes are refused with a message naming the problem") {

@@ -366,6 +366,62 @@ TEST_CASE("push_out with edges moves an edge off a thin fold of the body it pass
   CHECK(fin.locate(y.row(1).transpose()).signed_distance >= 0.006 - 1e-9);
 }
 
+TEST_CASE("push_out with edges clears an edge a sharp ridge crosses between two ends over flat body",
+          "[geometry][push_out]") {
+  // A slab with a flat top at y = 0 and a ridge along z on it (a thin man's
+  // acromion, in small): 1 cm wide at its base, 1 cm tall, apex at x = -3
+  // mm. A 3.2 cm edge over the flat top, its ends 6.8 and 12.5 mm out, both
+  // closest to the top (the same normal: the rise between them estimated
+  // nil), passes 9.1 mm high over the apex's x: the spike goes through it.
+  // The ends' balls (6.8 + 12.5 mm < 3.2 cm) do not cover the edge, so it is
+  // tested end to end; the fold's normals point up, and it is moved up.
+  const std::vector<Eigen::Vector2d> section = {{-0.05, -0.05}, {0.05, -0.05}, {0.05, 0.0},    {0.002, 0.0},
+                                                {-0.003, 0.010}, {-0.008, 0.0}, {-0.05, 0.0}};  // counter-clockwise
+  const int n = static_cast<int>(section.size());
+  Eigen::MatrixX3d v(2 * n + 2, 3);
+  for (int k = 0; k < n; ++k) {
+    v.row(k) << section[k].x(), section[k].y(), -0.1;
+    v.row(n + k) << section[k].x(), section[k].y(), 0.1;
+  }
+  // Each cap a fan from a point every side of the section is seen from.
+  v.row(2 * n) << -0.003, -0.025, -0.1;
+  v.row(2 * n + 1) << -0.003, -0.025, 0.1;
+  Eigen::MatrixX3i f(4 * n, 3);
+  for (int k = 0; k < n; ++k) {
+    const int j = (k + 1) % n;
+    f.row(4 * k) << k, j, n + j;
+    f.row(4 * k + 1) << k, n + j, n + k;
+    f.row(4 * k + 2) << 2 * n + 1, n + k, n + j;
+    f.row(4 * k + 3) << 2 * n, j, k;
+  }
+  const BodySurface ridge(v, f);
+  Eigen::MatrixX3d x(2, 3);
+  x << -0.016, 0.0068, 0.0, 0.016, 0.0125, 0.0;
+  const SurfacePoint sa = ridge.locate(x.row(0).transpose()), sb = ridge.locate(x.row(1).transpose());
+  REQUIRE(sa.signed_distance == Approx(0.0068));
+  REQUIRE(sb.signed_distance == Approx(0.0125));
+  REQUIRE(sa.normal.dot(sb.normal) == Approx(1.0));
+  const std::vector<std::array<int, 2>> edges = {{0, 1}};
+  REQUIRE(edges_through(ridge, x, edges) == 1);
+  PushOutOptions options{.margin = 0.005, .edges = &edges};
+  Eigen::MatrixX3d y = x;
+  const PushOutReport r = push_out(ridge, y, options);
+  CHECK(r.edges_searched == 0);  // (the estimate cleared it: only the test end to end found it)
+  CHECK(r.fins_cleared == 1);
+  CHECK(edges_through(ridge, y, edges) == 0);
+  CHECK(y(0, 1) > x(0, 1));
+  CHECK(ridge.locate(y.row(0).transpose()).signed_distance >= 0.005 - 1e-9);
+  CHECK(ridge.locate(y.row(1).transpose()).signed_distance >= 0.005 - 1e-9);
+
+  // Both ends' balls covering the edge (ends 2.5 cm over the top, 2 and 2.4
+  // cm from the apex): not tested end to end, and nothing moves.
+  Eigen::MatrixX3d high = x;
+  high.col(1).setConstant(0.025);
+  const PushOutReport clear = push_out(ridge, high, options);
+  CHECK(clear.edges_tested_whole == 0);
+  CHECK(clear.moved == 0);
+}
+
 TEST_CASE("push_out with faces lifts a face that a peak of the body rises through", "[geometry][push_out]") {
   // A double cone drawn with long edges (a heavy woman's breast on the human
   // rig, in small): tips at y = +-10 cm, a ring of 8 vertices of radius 5 cm

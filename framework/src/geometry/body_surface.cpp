@@ -135,7 +135,7 @@ SurfacePoint BodySurface::locate(const Eigen::Vector3d& p, double max_distance) 
 
 void BodySurface::faces_crossed(const Eigen::Vector3d& p, const Eigen::Vector3d& q, std::vector<int>& out) const {
   const std::size_t first = out.size();
-  bvh_->overlapping(p.cwiseMin(q), p.cwiseMax(q), out);
+  bvh_->along_segment(p, q, out);
   std::size_t kept = first;
   for (std::size_t i = first; i < out.size(); ++i) {
     const int f = out[i];

@@ -296,6 +296,47 @@ void TriangleBvh::overlapping(const Eigen::Vector3d& lo, const Eigen::Vector3d& 
   }
 }
 
+void TriangleBvh::along_segment(const Eigen::Vector3d& p, const Eigen::Vector3d& q, std::vector<int>& out) const {
+  if (nodes_.empty() || !p.allFinite() || !q.allFinite()) return;
+  // The slab test in float on boxes grown by a slack far above its
+  // roundings (each ~1e-7 of the coordinates): where the segment enters and
+  // leaves each box along each axis, as parameters t of p + t (q - p). An
+  // axis the segment hardly moves along gets a tiny step of its sign, so
+  // the parameters stay finite: a box that does not span p there is then
+  // entered or left at |t| >> 1.
+  const double scale = std::max({1.0, p.cwiseAbs().maxCoeff(), q.cwiseAbs().maxCoeff()});
+  const auto slack = static_cast<float>(1e-5 * scale);
+  Lanes origin[3], inverse[3];
+  for (int k = 0; k < 3; ++k) {
+    double d = q[k] - p[k];
+    if (std::abs(d) < 1e-12) d = std::copysign(1e-12, d);
+    const auto o = static_cast<float>(p[k]), i = static_cast<float>(1.0 / d);
+    origin[k] = Lanes{o, o, o, o};
+    inverse[k] = Lanes{i, i, i, i};
+  }
+  const Lanes zero{0, 0, 0, 0}, one{1, 1, 1, 1};
+  int stack[(kWidth - 1) * kMaxDepth + kWidth];
+  int top = 0;
+  stack[top++] = 0;
+  while (top > 0) {
+    const Node& n = nodes_[static_cast<std::size_t>(stack[--top])];
+    Lanes enter = zero, leave = one;
+    auto filled = n.lo[0] <= n.hi[0];  // (an empty slot's box is lo = +inf, hi = -inf)
+    for (int k = 0; k < 3; ++k) {
+      const Lanes t1 = (n.lo[k] - slack - origin[k]) * inverse[k], t2 = (n.hi[k] + slack - origin[k]) * inverse[k];
+      const Lanes nearer = t1 < t2 ? t1 : t2, farther = t1 < t2 ? t2 : t1;
+      enter = enter > nearer ? enter : nearer;
+      leave = leave < farther ? leave : farther;
+    }
+    const auto meets = filled & (enter <= leave);
+    for (int s = 0; s < n.count; ++s) {
+      if (!meets[s]) continue;
+      if (n.leaf) out.push_back(face_of_[static_cast<std::size_t>(n.child[s])]);
+      else stack[top++] = n.child[s];
+    }
+  }
+}
+
 TrianglePoint TriangleBvh::face_point(const Eigen::Vector3d& p, int face) const {
   const int t = slot_of_face_.at(static_cast<std::size_t>(face));
   return closest_point_on_triangle(p, corners_[3 * t], corners_[3 * t + 1], corners_[3 * t + 2]);

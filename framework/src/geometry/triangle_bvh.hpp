@@ -56,6 +56,13 @@ class TriangleBvh {
   // known to hold nothing the caller looks for: height_field_nodes.hpp).
   void overlapping(const Eigen::Vector3d& lo, const Eigen::Vector3d& hi, std::vector<int>& out, int skip_node = -1) const;
 
+  // Appends to `out` every face whose box the segment [p, q] meets, and a
+  // few it only passes within a rounding slack of: the broad phase of an
+  // exact segment test. (The box of a segment across a body's curve holds
+  // faces the segment never nears: on the coarse shirt's edges over the
+  // human rig, overlapping() of each edge's box cost 5 times this.)
+  void along_segment(const Eigen::Vector3d& p, const Eigen::Vector3d& q, std::vector<int>& out) const;
+
   // The closest point of one face to p, computed as nearest() computes it.
   TrianglePoint face_point(const Eigen::Vector3d& p, int face) const;
 

@@ -25,7 +25,7 @@ struct PushOutReport {
   int edges_lifted = 0;      // edge lifts (an edge lifted in two passes counts twice)
   int edges_searched = 0;    // edge midpoints searched, over all passes
   int beyond_reach = 0;      // with edges: vertices found outside and beyond their reach, never searched in full
-  int edges_tested_whole = 0;  // with edges: edges tested against the body's faces end to end (lifted, or near it)
+  int edges_tested_whole = 0;  // with edges: edges tested against the body's faces end to end (lifted, near it, or not kept out by its ends' distances)
   int fins_cleared = 0;      // with edges: edges moved off a thin fold of the body they passed through (push_out.cpp)
   int peaks_cleared = 0;     // with faces: faces lifted off a body vertex that rose through them (push_out.cpp)
 };
@@ -48,7 +48,11 @@ struct PushOutOptions {
   // searched (max of the ends' distances - half the edge < margin / 2), and
   // of those only edges whose nearer end, less twice the sagitta of the arc
   // the body's normal turns through between the ends' closest points, is
-  // within margin / 2 (a ridge sharper than those normals show is missed).
+  // within margin / 2 (a ridge sharper than those normals show is missed
+  // there). Then every edge its ends' distances cannot keep off the body
+  // (their sum below its length) is tested end to end, exactly, and one
+  // that crosses the body is moved off it with the lifted and near edges
+  // (push_out.cpp, clear_fins).
   // An edge whose midpoint is within 0.6 margin has its quarter points
   // searched too, and is lifted by the lowest of the three (a ridge can
   // cross an edge off its middle). The last pass moves
