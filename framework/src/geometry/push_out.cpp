@@ -339,7 +339,7 @@ class PushOutRun {
   // their ends (kEdgeBend), and a ridge sharper than the ends' normals show
   // escapes it: on a BMI 11, 2.0 m man (shoulders abducted 25 deg, flexed
   // 45) a 3.2 cm edge 6.8 and 12.5 mm out at its ends, its ends' normals
-  // 31 deg apart, crossed the acromion's ridge 0.4 of the way along. The
+  // 24 deg apart, crossed the acromion's ridge 0.4 of the way along. The
   // test costs a segment query per edge near the body (tests/geometry_queries
   // /push_out_test.cpp: the ridge the estimate misses).
   void add_edges_that_may_cross(std::vector<std::size_t>& tested, std::vector<int>& crossed, PushOutReport& report) {
