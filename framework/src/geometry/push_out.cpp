@@ -338,22 +338,24 @@ class PushOutRun {
   // searches above skip edges by an estimate of the body's rise between
   // their ends (kEdgeBend), and a ridge sharper than the ends' normals show
   // escapes it: on a BMI 11, 2.0 m man (shoulders abducted 25 deg, flexed
-  // 45) a 3.2 cm edge 6.8 and 12.5 mm out at its ends, its ends' normals
+  // 45) a 3.2 cm edge 6.8 and 12.5-12.7 mm out at its ends, its normals
   // 24 deg apart, crossed the acromion's ridge 0.4 of the way along. The
   // test costs a segment query per edge near the body (tests/geometry_queries
   // /push_out_test.cpp: the ridge the estimate misses).
   void add_edges_that_may_cross(std::vector<std::size_t>& tested, std::vector<int>& crossed, PushOutReport& report) {
+    // A lower bound of each vertex's distance (a far one is beyond its
+    // reach; one never located is taken as inside).
+    const auto lower = [&](int v) {
+      const auto i = static_cast<std::size_t>(v);
+      return far_[i] ? reach_[i] : near_[i].face >= 0 ? near_[i].signed_distance - drift_[i] : -1.0;
+    };
     std::vector<char> in(options_.edges->size(), 0);
     for (const std::size_t e : tested) in[e] = 1;
     for (std::size_t e = 0; e < options_.edges->size(); ++e) {
       if (in[e]) continue;
       const auto [a, b] = (*options_.edges)[e];
-      const auto ua = static_cast<std::size_t>(a), ub = static_cast<std::size_t>(b);
       const double length = (x_.row(a) - x_.row(b)).norm();
-      const auto lower = [&](std::size_t v) {
-        return far_[v] ? reach_[v] : near_[v].face >= 0 ? near_[v].signed_distance - drift_[v] : -1.0;
-      };
-      const double la = lower(ua), lb = lower(ub);
+      const double la = lower(a), lb = lower(b);
       if (la + lb >= length || !(length > 0)) continue;  // (an edge of no length is a vertex: stepped out)
       // Only the part of the edge outside both ends' clear balls.
       const Eigen::Vector3d xa = x_.row(a).transpose(), along = (x_.row(b) - x_.row(a)).transpose() / length;

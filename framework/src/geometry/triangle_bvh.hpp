@@ -58,9 +58,10 @@ class TriangleBvh {
 
   // Appends to `out` every face whose box the segment [p, q] meets, and a
   // few it only passes within a rounding slack of: the broad phase of an
-  // exact segment test. (The box of a segment across a body's curve holds
-  // faces the segment never nears: on the coarse shirt's edges over the
-  // human rig, overlapping() of each edge's box cost 5 times this.)
+  // exact segment test. (The box of a slanted segment holds faces the
+  // segment never nears: a sweep of the coarse shirt's 2,899 edges over a
+  // thin man of the human rig, with the exact tests after, took 655 us
+  // with overlapping() of each edge's box and 545 us with this.)
   void along_segment(const Eigen::Vector3d& p, const Eigen::Vector3d& q, std::vector<int>& out) const;
 
   // The closest point of one face to p, computed as nearest() computes it.

@@ -49,15 +49,15 @@ struct PushOutOptions {
   // of those only edges whose nearer end, less twice the sagitta of the arc
   // the body's normal turns through between the ends' closest points, is
   // within margin / 2 (a ridge sharper than those normals show is missed
-  // there). Then every edge its ends' distances cannot keep off the body
-  // (their sum below its length) is tested end to end, exactly, and one
-  // that crosses the body is moved off it with the lifted and near edges
-  // (push_out.cpp, clear_fins).
-  // An edge whose midpoint is within 0.6 margin has its quarter points
-  // searched too, and is lifted by the lowest of the three (a ridge can
-  // cross an edge off its middle). The last pass moves
-  // vertices only, so every vertex keeps the margin's promise; an edge may
-  // be left crossing where the passes ran out.
+  // there). An edge whose midpoint is within 0.6 margin has its quarter
+  // points searched too, and is lifted by the lowest of the three (a ridge
+  // can cross an edge off its middle). The last pass moves vertices only, so
+  // every vertex keeps the margin's promise. After the passes every edge its
+  // ends' distances cannot keep off the body (their sum below its length) is
+  // tested end to end, exactly, and one that crosses the body is moved off
+  // it with the lifted and near edges (push_out.cpp, clear_fins); an edge is
+  // left crossing only where that move fails (the crossed faces' normals
+  // cancel, or kFinSteps margins do not clear it).
   const std::vector<std::array<int, 2>>* edges = nullptr;
   // The garment's faces. Given (with edges), a face whose vertices and edges
   // are clear but which a peak of the body rises through (the tip of a part
