@@ -4,7 +4,11 @@
 // budget): its wall time per body on one core, its mean vertex distance to the
 // converged drape (ME) and its potential L_p under the scene. Methods: the
 // simulator at several step budgets, the network alone, and the network with
-// 10/30/100 iterations of physics-enforced optimisation. Writes a Markdown
+// 10/30/100 iterations of physics-enforced optimisation. Each drape's
+// crossings are counted too (garment edges through the body, through the
+// garment's own faces: exact tests that share no code with the push-out), so
+// the rows of a model's post-processing tiers show what each guarantee
+// costs and what it buys. Writes a Markdown
 // table, optionally CSV, and an SVG chart of ME against time with the Pareto
 // front (the methods no other method beats on both axes) named.
 // The dataset's scene decides how each body is draped, as drape generate
@@ -31,6 +35,8 @@
 #include <drape/services/graded_scene.hpp>
 #include <drape/services/scene_body.hpp>
 #include <drape/io/svg_chart.hpp>
+#include <drape/geometry/self_intersection.hpp>
+#include <drape/geometry/surface_crossings.hpp>
 
 #include <algorithm>
 #include <cmath>
@@ -41,19 +47,33 @@
 namespace drape::cli {
 namespace DRAPE_UNITY_ID {  // the anonymous namespace, or a unique one in a unity build (command.hpp)
 
+// The topology every drape of the bench shares: the body model's and the
+// garment's faces (the model's template, which the dataset's scene drapes).
+struct Topology {
+  Eigen::MatrixX3i body_faces, garment_faces;
+};
+
 struct Method {
   std::string name;
   double seconds = 0, me_cm = 0, potential = 0, p_percent = 0;  // means over the bodies
+  double body_crossings = 0, self_crossings = 0;                 // edges per body: through the body, through the garment
+  int bodies_crossed = 0;                                       // bodies with a crossing of either kind
   bool pareto = false;
 
   // One body's result, as its share of the means over `bodies` bodies.
   void add(double body_seconds, const Eigen::MatrixX3d& garment, const Eigen::MatrixX3d& reference, double body_potential,
-           double penetration, std::size_t bodies) {
+           double penetration, const Eigen::MatrixX3d& body, const Topology& topology, std::size_t bodies) {
     const double n = double(bodies);
     seconds += body_seconds / n;
     me_cm += 100.0 * (garment - reference).rowwise().norm().mean() / n;
     potential += body_potential / n;
     p_percent += 100.0 * std::max(0.0, penetration) / n;
+    const int through_body =
+        geometry::surface_crossings(garment, topology.garment_faces, body, topology.body_faces).garment_edges_through_body;
+    const auto through_self = static_cast<int>(geometry::self_edge_crossings(garment, topology.garment_faces).size());
+    body_crossings += through_body / n;
+    self_crossings += through_self / n;
+    bodies_crossed += through_body + through_self > 0 ? 1 : 0;
   }
 };
 
@@ -159,14 +179,25 @@ void report_regraded(const GradedScene& graded, const DatasetReader& reader, con
 // also times the network without each, so the table shows what the
 // clearance costs and what it buys; and without the mirror average before
 // one (docs/poses.md, "The mirror average"), what the twin costs and buys.
+// A push-out node that also lifts edges or undoes the garment's crossings
+// of itself gets rows with less of that: without the untangle, and with the
+// vertices' push-out alone (the strain limit kept), each guarantee's cost in
+// time beside the crossings it leaves.
 struct PostProcessing {
   std::vector<std::string> push_outs, mirror_averages;  // node names
+  std::vector<std::pair<std::string, Model::ParamOverrides>> tiers;  // (row name, the node's parameters)
 };
 PostProcessing post_processing(const Registry& registry, const std::string& model_file) {
   PostProcessing out;
   for (const PushOutSetting& p : push_out_settings(registry, read_checkpoint(model_file).graph, model_file + " (graph)")) {
     if (p.enabled) out.push_outs.push_back(p.node);
     if (p.mirror_average) out.mirror_averages.push_back(p.node);
+    if (!p.enabled) continue;
+    if (p.untangle && p.edges)
+      out.tiers.push_back({"network, push-out " + p.node + " without its untangle", {{p.node, {{"untangle", "false"}}}}});
+    if (p.untangle || p.edges)
+      out.tiers.push_back({"network, push-out " + p.node + " of the vertices only (no edge lift, no untangle)",
+                           {{p.node, {{"edges", "false"}, {"untangle", "false"}}}}});
   }
   return out;
 }
@@ -195,11 +226,15 @@ void print_table(const std::vector<Method>& methods, std::size_t bodies, const s
         << ", one core\n\n"
         << "Reference: the scene simulated with " << ref.morph << " morph and " << ref.settle
         << " settling steps (" << ref.converged << " of " << bodies << " settled; " << ref.seconds
-        << " s per body).\n\n| method | s per body | ME to converged (cm) | L_p (J) | p (%) | Pareto |\n|---|---|---|---|---|---|\n";
+        << " s per body).\n\nCrossings: garment edges through the body, and through the garment's own faces "
+           "(sharing no vertex with them), per body; bodies with any.\n\n"
+        << "| method | s per body | ME to converged (cm) | L_p (J) | p (%) | through the body | through itself | bodies "
+           "crossed | Pareto |\n|---|---|---|---|---|---|---|---|---|\n";
   for (const Method& m : methods) {
-    char line[256];
-    std::snprintf(line, sizeof line, "| %s | %.3g | %.3f | %.5g | %.2f | %s |\n", m.name.c_str(), m.seconds, m.me_cm,
-                  m.potential, m.p_percent, m.pareto ? "yes" : "");
+    char line[512];
+    std::snprintf(line, sizeof line, "| %s | %.3g | %.3f | %.5g | %.2f | %.1f | %.1f | %d of %zu | %s |\n", m.name.c_str(),
+                  m.seconds, m.me_cm, m.potential, m.p_percent, m.body_crossings, m.self_crossings, m.bodies_crossed,
+                  bodies, m.pareto ? "yes" : "");
     table << line;
   }
   std::printf("%s", table.str().c_str());
@@ -207,10 +242,11 @@ void print_table(const std::vector<Method>& methods, std::size_t bodies, const s
 
 void write_csv(const std::vector<Method>& methods, const std::string& file) {
   std::ostringstream csv;
-  csv << "method,seconds_per_body,me_cm,potential_j,p_percent,pareto\n";
+  csv << "method,seconds_per_body,me_cm,potential_j,p_percent,pareto,body_crossing_edges,self_crossing_edges,"
+         "bodies_crossed\n";
   for (const Method& m : methods)
     csv << "\"" << m.name << "\"," << m.seconds << "," << m.me_cm << "," << m.potential << "," << m.p_percent << ","
-        << (m.pareto ? 1 : 0) << "\n";
+        << (m.pareto ? 1 : 0) << "," << m.body_crossings << "," << m.self_crossings << "," << m.bodies_crossed << "\n";
   write_text_atomically(file, csv.str());
   std::printf("wrote %s\n", file.c_str());
 }
@@ -223,9 +259,9 @@ void write_chart(const std::vector<Method>& methods, std::size_t bodies, bool po
   chart.x_label = "seconds per body on one core";
   chart.y_label = "ME to the converged simulation (cm)";
   for (const Method& m : methods) {
-    char label[200];
-    std::snprintf(label, sizeof label, "%s%s: %.3g s, ME %.2f cm, L_p %.4g J, p %.2f%%", m.pareto ? "* " : "",
-                  m.name.c_str(), m.seconds, m.me_cm, m.potential, m.p_percent);
+    char label[320];
+    std::snprintf(label, sizeof label, "%s%s: %.3g s, ME %.2f cm, L_p %.4g J, p %.2f%%, crossings %.1f + %.1f", m.pareto ? "* " : "",
+                  m.name.c_str(), m.seconds, m.me_cm, m.potential, m.p_percent, m.body_crossings, m.self_crossings);
     chart.points.push_back({m.seconds, m.me_cm, label});
   }
   chart.write(file);
@@ -241,6 +277,7 @@ struct Bench {
   const std::vector<std::size_t>& bodies;
   const std::vector<TestBody>& test_bodies;
   const std::vector<Eigen::MatrixX3d>& reference;
+  const Topology& topology;
   ProgressBar& bar;
 
   // The simulator at m morph and s settling steps.
@@ -250,7 +287,7 @@ struct Bench {
     Method row{"simulation " + std::to_string(m) + "+" + std::to_string(s) + " steps"};
     for (std::size_t b = 0; b < n; ++b) {
       const SimulationResult r = drape_test_body(simulations, test_bodies[b]);
-      row.add(r.seconds, r.garment, reference[b], r.total_energy, r.penetration, n);
+      row.add(r.seconds, r.garment, reference[b], r.total_energy, r.penetration, r.body, topology, n);
       bar.advance();
     }
     return row;
@@ -273,7 +310,8 @@ struct Bench {
       const Simulation& sim = graded.for_model(model, one, false, test_bodies[b].name);
       const double seconds = 1e-3 * prediction_ms(model, one, 5);
       const PhysicsOptimizationResult r = optimize_drape(model, sim, one, none);
-      row.add(seconds, r.before, reference[b], r.potential_before, r.penetration_before, n);
+      row.add(seconds, r.before, reference[b], r.potential_before, r.penetration_before, one.body.mat(0).cast<double>(),
+              topology, n);
       bar.advance();
     }
     return row;
@@ -291,7 +329,8 @@ struct Bench {
       SampleBatch one = read_samples(reader, {bodies[b]}, model.graph(), false);
       const Simulation& sim = graded.for_model(model, one, false, test_bodies[b].name);
       const PhysicsOptimizationResult r = optimize_drape(model, sim, one, o);
-      row.add(r.seconds, r.after, reference[b], r.potential_after, r.penetration_after, n);
+      row.add(r.seconds, r.after, reference[b], r.potential_after, r.penetration_after, one.body.mat(0).cast<double>(),
+              topology, n);
       unseparated += r.separated ? 0 : 1;
       bar.advance();
     }
@@ -338,7 +377,7 @@ int run(const std::vector<std::string>& args) {
   const OmpThreadsScope one_core(1);
   const int steps = static_cast<int>(bodies.size()) *
                     (2 + static_cast<int>(budgets.size() + iterations.size() + spectral_cuts.size() +
-                                          post.push_outs.size() + post.mirror_averages.size()));
+                                          post.push_outs.size() + post.mirror_averages.size() + post.tiers.size()));
   ProgressBar bar("accuracy-time", static_cast<std::size_t>(steps), std::cerr);
 
   // The converged reference of every body.
@@ -356,7 +395,13 @@ int run(const std::vector<std::string>& args) {
   }
 
   std::vector<Method> methods;
-  const Bench bench{registry, model_file, reader, bodies, test, reference, bar};
+  Topology topology;
+  {
+    const Model probe = Model::load(registry, model_file);
+    topology.body_faces = probe.assets().body.faces;
+    topology.garment_faces = probe.assets().garment->mesh.faces;
+  }
+  const Bench bench{registry, model_file, reader, bodies, test, reference, topology, bar};
   for (const auto& [m, s] : budgets) methods.push_back(bench.simulator(scene, m, s));
   // The network alone (its potential and p from a zero-iteration optimisation,
   // which leaves the weights alone), with its spectral branch cut to fewer
@@ -368,6 +413,7 @@ int run(const std::vector<std::string>& args) {
   for (const auto& [node, k] : spectral_cuts)
     methods.push_back(bench.network(graded, "network, spectral branch k = " + std::to_string(k),
                                     {{node, {{"use_k", std::to_string(k)}}}}));
+  for (const auto& [name, overrides] : post.tiers) methods.push_back(bench.network(graded, name, overrides));
   for (const std::string& node : post.push_outs)
     methods.push_back(bench.network(graded, "network, push-out " + node + " off", {{node, {{"enabled", "false"}}}}));
   for (const std::string& node : post.mirror_averages)

@@ -87,7 +87,8 @@ std::vector<PushOutSetting> push_out_settings(const Registry& registry, const Gr
     const Params params(registry.get(node.type).params, node.params, node.name);
     const bool grade = std::any_of(node.inputs.begin(), node.inputs.end(), [](const auto& in) { return in.first == "grade"; });
     settings.push_back({node.name, params.get_bool("enabled"), params.get_float("epsilon"), params.get_bool("edges"),
-                        params.get_float("strain_limit"), grade, params.get_bool("mirror_average")});
+                        params.get_float("strain_limit"), grade, params.get_bool("mirror_average"),
+                        params.get_bool("untangle")});
   }
   return settings;
 }

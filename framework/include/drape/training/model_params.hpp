@@ -44,6 +44,7 @@ struct PushOutSetting {
   double strain_limit = 0;      // 0: off
   bool grade_connected = false; // the input grade connected (the limit then holds each size to its own pattern)
   bool mirror_average = false;  // the model averages the network's garment with its mirror twin before it
+  bool untangle = false;        // the garment's crossings of itself undone after the push-out
 };
 std::vector<PushOutSetting> push_out_settings(const Registry& registry, const std::string& graph_text,
                                               const std::string& name_for_errors);
