@@ -47,14 +47,13 @@ std::vector<std::string> accepted_names(const std::vector<PoseAngle>& space) {
 }
 
 void check_value(const PoseAngle& a, double degrees, const std::string& what) {
+  if (degrees >= a.min && degrees <= a.max) return;  // (before any stream: a pose is checked per angle per body)
   std::ostringstream m;
   if (std::isnan(degrees))
     m << what << ": " << a.name << " is NaN; expected degrees in " << range_text(a);
-  else if (!(degrees >= a.min && degrees <= a.max))
+  else
     m << what << ": " << a.name << " = " << degrees << " is outside its range of motion " << range_text(a) << " ("
       << a.meaning << ")";
-  else
-    return;
   throw ConfigError(m.str());
 }
 
