@@ -398,6 +398,7 @@ int run(const std::vector<std::string>& args) {
   Topology topology;
   {
     const Model probe = Model::load(registry, model_file);
+    if (!probe.assets().garment) throw ConfigError(model_file + ": the model binds no garment; the bench compares garments");
     topology.body_faces = probe.assets().body.faces;
     topology.garment_faces = probe.assets().garment->mesh.faces;
   }
