@@ -260,7 +260,7 @@ void write_chart(const std::vector<Method>& methods, std::size_t bodies, bool po
   chart.y_label = "ME to the converged simulation (cm)";
   for (const Method& m : methods) {
     char label[320];
-    std::snprintf(label, sizeof label, "%s%s: %.3g s, ME %.2f cm, L_p %.4g J, p %.2f%%, crossings %.1f + %.1f", m.pareto ? "* " : "",
+    std::snprintf(label, sizeof label, "%s%s: %.3g s, ME %.2f cm, L_p %.4g J, p %.2f%%, edges crossing the body %.1f, itself %.1f", m.pareto ? "* " : "",
                   m.name.c_str(), m.seconds, m.me_cm, m.potential, m.p_percent, m.body_crossings, m.self_crossings);
     chart.points.push_back({m.seconds, m.me_cm, label});
   }
