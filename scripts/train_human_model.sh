@@ -54,15 +54,14 @@
 # (MIRROR_AVERAGE=1 above, or drape model set MODEL --set post.mirror_average=true).
 # Since the thirty-first session its cycles are trained on ME itself (the
 # graph ..._distance.yaml, `--monitor vertex_distance`) with more drapes of
-# seeds 5-12 beside the 2,000; each cycle, its data and its figures is a
-# section of docs/poses.md, from "Training on the metric" to "The push-out's
-# exact edge test, and seed 12 shipped" (one not shipped: "Weight decay, and 300 more drapes"). The
-# last (trained in the forty-first session, shipped in the forty-second),
-# from the model shipped before it (`git show ff0e157:models/tshirt-coarse-posed-human.h5
-# > shipped.h5`):
+# seeds 5-13 beside the 2,000; each cycle, its data and its figures is a
+# section of docs/poses.md, from "Training on the metric" to "Seed 13
+# trained on, and shipped" (one not shipped: "Weight decay, and 300 more drapes"). The
+# last (the forty-third session), from the model shipped before it
+# (`git show 7d9890f:models/tshirt-coarse-posed-human.h5 > shipped.h5`):
 #   SHARD_DIR=datasets/posespace2000-human GRAPH=graphs/human/drape_posed_v2v1000_post_resampled_transfer48_margin1mm_distance.yaml \
 #     INIT=shipped.h5 LR=3e-4 MIRROR=1 PUSH_OUT=0.005 MONITOR=vertex_distance MIRROR_AVERAGE=1 \
-#     THREADS=2 EPOCHS=120 EXTRA_SHARDS="$(echo datasets/posespace-human-seed{5,6,7,8,9,10,11,12}/shard-*)" \
+#     THREADS=2 EPOCHS=120 EXTRA_SHARDS="$(echo datasets/posespace-human-seed{5,6,7,8,9,10,11,12,13}/shard-*)" \
 #     bash scripts/train_human_model.sh work-posed-human
 set -euo pipefail
 cd "$(dirname "${BASH_SOURCE[0]}")/.."
