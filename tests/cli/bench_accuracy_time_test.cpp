@@ -45,6 +45,19 @@ std::vector<Row> read_csv(const fs::path& file) {
   return rows;
 }
 
+// Four drapes of a posed, sized tiny scene (every posed and sized dataset's
+// kind) in `dir`: the path of the dataset.
+std::string posed_sized_dataset(const test::TempDir& dir) {
+  std::string scene = test::tiny_simulation_scene();
+  scene.replace(scene.find("resolution: 300"), 15, "resolution: 300, size: auto");
+  std::ofstream(dir / "posed.yaml") << scene;
+  const std::string data = (dir / "d.h5").string();
+  std::string out;
+  REQUIRE(test::run_drape("generate " + (dir / "posed.yaml").string() + " --count 4 --seed 2 --bmi 15:40 --threads 1 "
+                          "--poses draw --out " + data, out) == 0);
+  return data;
+}
+
 }  // namespace
 
 TEST_CASE("bench accuracy-time measures every method against a converged drape", "[bench][accuracy-time]") {
@@ -103,13 +116,8 @@ TEST_CASE("bench accuracy-time measures every method against a converged drape",
 // be far from both.
 TEST_CASE("bench accuracy-time drapes posed bodies in their own size", "[bench][accuracy-time][pose]") {
   test::TempDir dir;
-  std::string scene = test::tiny_simulation_scene();
-  scene.replace(scene.find("resolution: 300"), 15, "resolution: 300, size: auto");
-  std::ofstream(dir / "posed.yaml") << scene;
-  const std::string data = (dir / "d.h5").string(), model = (dir / "m.h5").string();
+  const std::string data = posed_sized_dataset(dir), model = (dir / "m.h5").string();
   std::string out;
-  REQUIRE(test::run_drape("generate " + (dir / "posed.yaml").string() + " --count 4 --seed 2 --bmi 15:40 --threads 1 "
-                          "--poses draw --out " + data, out) == 0);
   REQUIRE(test::run_drape("train " + (test::source_dir() / "graphs/poses/drape_posed_sized.yaml").string() + " --data " +
                               data + " --epochs 1 --batch 2 --threads 1 --out " + model, out) == 0);
   REQUIRE(test::run_drape("eval --model " + model + " --data " + data + " --split test", out) == 0);
@@ -146,13 +154,8 @@ TEST_CASE("bench accuracy-time drapes posed bodies in their own size", "[bench][
 // drape's crossings (garment edges through the body, through itself).
 TEST_CASE("bench accuracy-time times each guarantee of a model's push-out", "[bench][accuracy-time][pose]") {
   test::TempDir dir;
-  std::string scene = test::tiny_simulation_scene();
-  scene.replace(scene.find("resolution: 300"), 15, "resolution: 300, size: auto");
-  std::ofstream(dir / "posed.yaml") << scene;
-  const std::string data = (dir / "d.h5").string(), model = (dir / "m.h5").string();
+  const std::string data = posed_sized_dataset(dir), model = (dir / "m.h5").string();
   std::string out;
-  REQUIRE(test::run_drape("generate " + (dir / "posed.yaml").string() + " --count 4 --seed 2 --bmi 15:40 --threads 1 "
-                          "--poses draw --out " + data, out) == 0);
   // (The graph's push-out is off while training, as the shipped models'.)
   REQUIRE(test::run_drape("train " + (test::source_dir() / "graphs/poses/drape_posed_sized_v2v100_post.yaml").string() +
                               " --data " + data + " --epochs 1 --batch 2 --threads 1 --out " + model, out) == 0);
