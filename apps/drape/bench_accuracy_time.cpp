@@ -144,12 +144,8 @@ SimulationResult drape_test_body(const SceneSimulations& simulations, const Test
 
 // The spectral branch (if any) at fewer eigenvectors than it was trained with:
 // (node, k) for every k of spectral_k below the node's.
-std::vector<std::pair<std::string, int>> spectral_cuts_of(const Registry& registry, const std::string& model_file,
-                                                          const DatasetReader& reader, const std::string& data,
-                                                          const std::vector<int>& spectral_k) {
+std::vector<std::pair<std::string, int>> spectral_cuts_of(Model& probe, const std::vector<int>& spectral_k) {
   std::vector<std::pair<std::string, int>> spectral_cuts;
-  Model probe = Model::load(registry, model_file);
-  check_dataset_template(reader, data, probe.assets());
   for (const auto& node : probe.graph().describe())
     if (node.type == "spectral")
       for (const auto& [port, shape] : node.outputs)
@@ -260,8 +256,10 @@ void write_chart(const std::vector<Method>& methods, std::size_t bodies, bool po
   chart.y_label = "ME to the converged simulation (cm)";
   for (const Method& m : methods) {
     char label[320];
-    std::snprintf(label, sizeof label, "%s%s: %.3g s, ME %.2f cm, L_p %.4g J, p %.2f%%, edges crossing the body %.1f, itself %.1f", m.pareto ? "* " : "",
-                  m.name.c_str(), m.seconds, m.me_cm, m.potential, m.p_percent, m.body_crossings, m.self_crossings);
+    std::snprintf(label, sizeof label,
+                  "%s%s: %.3g s, ME %.2f cm, L_p %.4g J, p %.2f%%, edges crossing the body %.1f, itself %.1f",
+                  m.pareto ? "* " : "", m.name.c_str(), m.seconds, m.me_cm, m.potential, m.p_percent, m.body_crossings,
+                  m.self_crossings);
     chart.points.push_back({m.seconds, m.me_cm, label});
   }
   chart.write(file);
@@ -370,9 +368,19 @@ int run(const std::vector<std::string>& args) {
   const Scene scene = parse_scene(reader.layout().scene);
   const std::vector<TestBody> test = test_bodies(reader, data, bodies);
   const bool posed = !reader.layout().pose_angles.empty();
-  // The spectral branch (if any) at fewer eigenvectors than it was trained with.
-  const std::vector<std::pair<std::string, int>> spectral_cuts =
-      spectral_cuts_of(registry, model_file, reader, data, spectral_k);
+  // The model once, for what every row shares: its template (checked
+  // against the dataset's; its faces count the crossings) and its graph.
+  Topology topology;
+  std::vector<std::pair<std::string, int>> spectral_cuts;
+  {
+    Model probe = Model::load(registry, model_file);  // (graph() is not const)
+    check_dataset_template(reader, data, probe.assets());
+    if (!probe.assets().garment) throw ConfigError(model_file + ": the model binds no garment; the bench compares garments");
+    topology.body_faces = probe.assets().body.faces;
+    topology.garment_faces = probe.assets().garment->mesh.faces;
+    // The spectral branch (if any) at fewer eigenvectors than it was trained with.
+    spectral_cuts = spectral_cuts_of(probe, spectral_k);
+  }
   const PostProcessing post = post_processing(registry, model_file);
   const OmpThreadsScope one_core(1);
   const int steps = static_cast<int>(bodies.size()) *
@@ -395,13 +403,6 @@ int run(const std::vector<std::string>& args) {
   }
 
   std::vector<Method> methods;
-  Topology topology;
-  {
-    const Model probe = Model::load(registry, model_file);
-    if (!probe.assets().garment) throw ConfigError(model_file + ": the model binds no garment; the bench compares garments");
-    topology.body_faces = probe.assets().body.faces;
-    topology.garment_faces = probe.assets().garment->mesh.faces;
-  }
   const Bench bench{registry, model_file, reader, bodies, test, reference, topology, bar};
   for (const auto& [m, s] : budgets) methods.push_back(bench.simulator(scene, m, s));
   // The network alone (its potential and p from a zero-iteration optimisation,
