@@ -90,7 +90,7 @@ int run(const std::vector<std::string>& args) {
   Registry& registry = Registry::load_default(plugin_path(vm));
   Model model = Model::load(registry, model_file);
   const SceneSimulations simulations(registry, load_scene(find_input_file(vm["scene"].as<std::string>())));
-  Eigen::RowVector3d moved_by;  // the drape is made where the training bodies stood; written back where the body was
+  BodyMove moved_by;  // the drape is made where (and as) the training bodies stood; written back where the body was
   SampleBatch batch = model_body(model, vm, &moved_by);
   // A model of several sizes is optimised against the garment the scene dresses this body in.
   const float chosen = batch.garment_grade.empty() ? 0.0f : batch.garment_grade(0, 0, 0);
@@ -130,15 +130,15 @@ int run(const std::vector<std::string>& args) {
   else if (!r.stopped.empty())
     std::printf("%s; the best drape before it is the result (iteration %d)\n", r.stopped.c_str(), r.best_iteration);
   Mesh body;
-  body.vertices = batch.body.mat(0).cast<double>().rowwise() + moved_by;
+  body.vertices = moved_by.back(batch.body.mat(0).cast<double>());
   body.faces = model.assets().body.faces;
   Mesh out = scene.garment().mesh;
-  out.vertices = r.after.rowwise() + moved_by;
+  out.vertices = moved_by.back(r.after);
   write_mesh(vm["out"].as<std::string>(), out);
   std::printf("wrote %s\n", vm["out"].as<std::string>().c_str());
   if (vm.count("before")) {
     Mesh before = out;
-    before.vertices = r.before.rowwise() + moved_by;
+    before.vertices = moved_by.back(r.before);
     write_mesh(vm["before"].as<std::string>(), before);
     std::printf("wrote %s\n", vm["before"].as<std::string>().c_str());
   }

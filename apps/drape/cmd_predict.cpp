@@ -54,17 +54,17 @@ int run(const std::vector<std::string>& args) {
   if (model.assets_changed())
     std::cerr << "warning: the template assets differ from the ones " << model_file
               << " was trained with (a plugin changed since?)\n";
-  Eigen::RowVector3d moved_by;  // predicted where the training bodies stood; written back where the body was
+  BodyMove moved_by;  // predicted where (and as) the training bodies stood; written back where the body was
   const SampleBatch batch = model_body(model, vm, &moved_by);
   Mesh body;
   body.faces = model.assets().body.faces;
-  body.vertices = batch.body.mat(0).cast<double>().rowwise() + moved_by;
+  body.vertices = moved_by.back(batch.body.mat(0).cast<double>());
 
   const auto start = std::chrono::steady_clock::now();
   const Tensor garment = model.predict(batch);
   const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   Mesh out = model.assets().garment->mesh;  // the template's faces and UVs
-  out.vertices = garment.mat(0).cast<double>().rowwise() + moved_by;
+  out.vertices = moved_by.back(garment.mat(0).cast<double>());
   if (!out.vertices.allFinite()) throw Error("the model predicted a non-finite vertex");
   const geometry::BodySurface surface(body.vertices, body.faces);
   double p = geometry::penetration_ratio(surface, out.vertices);

@@ -79,11 +79,11 @@ std::string model_file_or_default(const po::variables_map& vm) {
   return file;
 }
 
-SampleBatch model_body(const Model& model, const po::variables_map& vm, Eigen::RowVector3d* moved_by,
+SampleBatch model_body(const Model& model, const po::variables_map& vm, BodyMove* moved_by,
                        std::vector<std::string>* printed) {
   SampleBatch batch = model_body_batch(model, body_input(vm));
   const BodyPreparation preparation(model, read_domain(model.file()));
-  PreparedBodies prepared = preparation.prepare(batch, vm.count("strict") > 0);
+  PreparedBodies prepared = preparation.prepare(batch, vm.count("strict") > 0, "--strict", true, vm.count("body") > 0);
   // Posed after the body is measured and placed at rest (a raised arm is no girth).
   const std::optional<Pose> pose = pose_options(vm, model.body_model(), model.assets_spec().body_model);
   for (Notice& n : preparation.pose(batch, pose ? *pose : Pose{}, vm.count("strict") > 0))

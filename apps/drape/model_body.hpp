@@ -6,6 +6,7 @@
 // benchmarks.
 #include "command.hpp"
 
+#include <drape/geometry/body_heading.hpp>
 #include <drape/training/model.hpp>
 #include <drape/training/model_domain.hpp>
 
@@ -18,12 +19,12 @@ void add_model_body_options(po::options_description& options, const std::string&
 
 // One sample from --body FILE or --bmi ... (services/model_body.hpp's
 // model_body_batch), made ready by prepare_bodies: a body given away from
-// where the model's training bodies stood is moved there, with a note;
-// *moved_by (when given) is what to add to the outputs to move them back with
-// the body (zero when it was not moved). Its notes and warnings go to stderr;
+// where the model's training bodies stood is moved there, and one facing
+// another way turned to face as they did, with a note; *moved_by (when given)
+// moves the outputs back with the body (BodyMove::back). Its notes and warnings go to stderr;
 // --strict makes a body outside the training domain exit 2. `printed` (when
 // given) receives the lines printed, for a picture to show them too.
-SampleBatch model_body(const Model& model, const po::variables_map& vm, Eigen::RowVector3d* moved_by = nullptr,
+SampleBatch model_body(const Model& model, const po::variables_map& vm, BodyMove* moved_by = nullptr,
                        std::vector<std::string>* printed = nullptr);
 
 // The shipped model of posed drapes, beside the A-pose one in models/: the

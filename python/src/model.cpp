@@ -110,8 +110,8 @@ class PyModel {
   // As drape predict does: each body standing away from where the training
   // bodies stood is moved there, the domain is checked (strict: ValueError
   // outside it) and a garment too small around is noted, each notice a Python
-  // warning; returns per sample what to add to its garment to move it back.
-  std::vector<Eigen::RowVector3d> prepare(SampleBatch& b, bool strict, bool check = true) {
+  // warning; returns per sample the move that takes its garment back (BodyMove::back).
+  std::vector<BodyMove> prepare(SampleBatch& b, bool strict, bool check = true) {
     if (strict && !check) throw py::value_error("strict=True needs check=True: the domain is checked by measuring the body");
     const BodyPreparation& preparation = this->preparation();
     PreparedBodies prepared = [&] {
@@ -294,13 +294,13 @@ void register_model(py::module_& m) {
             bool batched = false;
             const std::optional<Pose> posed = pose_arg(p.model().body_model(), p.model().assets_spec().body_model, pose);
             SampleBatch b = p.batch(body, body_params, garment_size, &batched);
-            const std::vector<Eigen::RowVector3d> back = p.prepare(b, strict, check);
+            const std::vector<BodyMove> back = p.prepare(b, strict, check);
             p.pose(b, posed, strict);
             Tensor out = p.predict(b);
             // Moved back as drape predict writes it (in double), then float32 like every prediction.
             for (int i = 0; i < out.batch(); ++i)
-              if (!back[static_cast<std::size_t>(i)].isZero(0.0))
-                out.mat(i) = (out.mat(i).cast<double>().rowwise() + back[static_cast<std::size_t>(i)]).cast<float>();
+              if (const BodyMove& move = back[static_cast<std::size_t>(i)]; !move.is_identity())
+                out.mat(i) = move.back(out.mat(i).cast<double>()).cast<float>();
             return to_numpy(std::move(out), !batched);
           },
           py::arg("body_vertices"), py::arg("body_params") = py::none(), py::arg("garment_size") = py::none(),
@@ -335,7 +335,7 @@ void register_model(py::module_& m) {
             if (b.size() != 1) throw py::value_error("body_vertices: optimize takes one body [Nb, 3], got a batch of " + std::to_string(b.size()));
             if (iterations < 0) throw py::value_error("iterations: expected >= 0");
             // Optimised where the training bodies stood (as predict), the drapes moved back with the body.
-            const Eigen::RowVector3d back = p.prepare(b, false).front();
+            const BodyMove back = p.prepare(b, false).front();
             p.pose(b, posed, false);
             // A model of several sizes: against the garment the scene dresses this body in, fed that grade.
             const Simulation& simulation = GradedScene(registry(), *scene.simulations).for_model(p.model(), b, false, "optimize");
@@ -348,8 +348,8 @@ void register_model(py::module_& m) {
               std::lock_guard lock(p.mutex());
               r = optimize_drape(p.model(), simulation, b, o);
             }
-            r.before.rowwise() += back;
-            r.after.rowwise() += back;
+            r.before = back.back(r.before);
+            r.after = back.back(r.after);
             return result_dict(std::move(r));
           },
           py::arg("scene"), py::arg("body_vertices"), py::arg("body_params") = py::none(), py::arg("iterations") = 100,

@@ -23,15 +23,8 @@ TEST_CASE("simulate, predict, optimize and render refuse a body in centimetres o
   Mesh z_up = body;
   z_up.vertices.col(1).swap(z_up.vertices.col(2));
   write_mesh(dir / "z.obj", z_up);
-  std::ofstream(dir / "tiny.yaml") << test::tiny_simulation_scene();
   const std::string env = "env -u DRAPE_MODEL DRAPE_CACHE_DIR=" + dir.path().string() + " " + test::drape_program().string();
-  const std::string garment = " --out " + (dir / "g.obj").string();
-  // The mannequin's model, as the body and the tiny scene are the mannequin's (the default model is the human rig's).
-  const std::string model = " --model models/tshirt-coarse.h5";
-  for (const std::string& command :
-       {"simulate " + (dir / "tiny.yaml").string() + garment, "predict" + model + garment,
-        "render" + model + " --out " + (dir / "r.html").string(),
-        "optimize" + model + " --scene graphs/scenes/tshirt_coarse.yaml --iters 5" + garment}) {
+  for (const std::string& command : test::body_mesh_commands(dir.path())) {
     for (const char* file : {"cm.obj", "z.obj"}) {
       INFO(command << " --body " << file);
       const auto start = std::chrono::steady_clock::now();

@@ -72,6 +72,23 @@ def test_a_lifted_body_is_draped_where_the_training_bodies_stood(model, tmp_path
     np.testing.assert_allclose(garment, expected, atol=2e-5)
 
 
+def test_a_turned_and_recentred_body_is_draped_as_the_body_the_model_made():
+    # A body turned half round about the vertical and re-centred (centroid at
+    # x = 0, z = 4 mm: millimetres from where the body model stands it) gets
+    # the drape of the body as made, turned and moved with it. The human rig's
+    # model: its anchor places z exactly (the mannequin's, within its spread).
+    model = drape.Model.load(str(SOURCE / "models" / "tshirt-coarse-human.h5"))
+    body = model.body(bmi=33, sex=0.0, height=1.68).astype(np.float64)
+    t = np.radians(150.0)
+    turn = np.array([[np.cos(t), 0, np.sin(t)], [0, 1, 0], [-np.sin(t), 0, np.cos(t)]])
+    turned = body @ turn.T
+    shift = -turned.mean(axis=0) * np.array([1.0, 0.0, 1.0]) + np.array([0.0, 0.0, 0.004])
+    turned += shift
+    with pytest.warns(UserWarning, match="faces 150.0 degrees"):
+        garment = model.predict(turned.astype(np.float32))
+    np.testing.assert_allclose(garment, model.predict(body.astype(np.float32)) @ turn.T + shift, atol=1e-4)
+
+
 def test_optimize_moves_a_lifted_body_like_predict(tmp_path):
     # Its own copy: optimize changes the weights in place.
     m = drape.Model.load(str(SHIPPED))

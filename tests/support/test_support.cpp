@@ -101,6 +101,16 @@ solver: {morph_steps: 2, settle_steps: 3}
 )";
 }
 
+std::vector<std::string> body_mesh_commands(const std::filesystem::path& dir) {
+  std::ofstream(dir / "tiny.yaml") << tiny_simulation_scene();
+  const std::string garment = " --out " + (dir / "g.obj").string();
+  // The mannequin's model, as the tiny scene's body is the mannequin (the default model is the human rig's).
+  const std::string model = " --model models/tshirt-coarse.h5";
+  return {"simulate " + (dir / "tiny.yaml").string() + garment, "predict" + model + garment,
+          "render" + model + " --out " + (dir / "r.html").string(),
+          "optimize" + model + " --scene graphs/scenes/tshirt_coarse.yaml --iters 5" + garment};
+}
+
 Mesh uv_sphere(double radius, int rings, int segments) {
   Mesh m;
   m.vertices.resize(2 + (rings - 1) * segments, 3);

@@ -54,6 +54,12 @@ std::string message_of(const std::function<void()>& fn);
 // experiments, benchmarks), not good ones.
 const char* tiny_simulation_scene();
 
+// The commands that take a body mesh (append " --body FILE"): simulate (the
+// tiny scene, written into `dir`), predict, render and optimize, with the
+// mannequin's model, each writing into `dir`. For tests that a bad body is
+// refused by every one of them.
+std::vector<std::string> body_mesh_commands(const std::filesystem::path& dir);
+
 // A latitude-longitude sphere about the origin (poles on Y),
 // counter-clockwise seen from outside.
 Mesh uv_sphere(double radius, int rings, int segments);

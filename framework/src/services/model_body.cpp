@@ -20,21 +20,34 @@ namespace {
 // A batch of several bodies says which one a notice is about.
 std::string about(const SampleBatch& batch, int i) { return batch.size() > 1 ? "body " + std::to_string(i) + ": " : ""; }
 
-// The shape is what the network knows; where the body stands is only a
-// translation. Draped where the training bodies stood, the garment then
-// moves back with the body: the same drape as for the body placed right.
-Eigen::RowVector3d place(const Model& model, const ModelDomain& domain, SampleBatch& batch, int i,
-                         std::vector<Notice>& notices) {
+// The shape is what the network knows; where the body stands and which way
+// it faces are only a rigid move. Draped where, and as, the training bodies
+// stood, the garment then moves back with the body: the same drape as for
+// the body placed right. The turn needs only the model's mean body; the
+// place, the domain's record of where the training bodies stood.
+BodyMove place(const Model& model, const ModelDomain* domain, const BodyAnchor* anchor, SampleBatch& batch, int i,
+               std::vector<Notice>& notices) {
   Eigen::MatrixX3d body = batch.body.mat(i).cast<double>();
-  const std::optional<Eigen::Vector3d> offset = move_to_placement(domain, body);
-  if (!offset) return Eigen::RowVector3d::Zero();
-  batch.body.mat(i) = body.cast<float>();
-  char where[160];
-  std::snprintf(where, sizeof where, "%s's training bodies stood (centred in x and z, soles at y = %.3f)",
-                model.file().filename().string().c_str(), domain.placement[1]);
   const std::string who = batch.size() > 1 ? "body " + std::to_string(i) : "the body";
-  notices.push_back({Notice::Level::note, who + " " + placement_note(*offset, where)});
-  return offset->transpose();
+  std::string turned;
+  BodyMove move = turn_to_face(body, model.assets().body.vertices, who, &turned);
+  if (!turned.empty()) notices.push_back({Notice::Level::note, who + " " + turned});
+  const Eigen::Vector3d unknown = Eigen::Vector3d::Constant(std::numeric_limits<double>::quiet_NaN());
+  const std::optional<Eigen::Vector3d> offset = move_to_placement(domain ? domain->placement : unknown,
+                                                                  domain ? domain->placement_spread : unknown, anchor, body);
+  if (offset) {
+    move.offset = offset->transpose();
+    char where[200];
+    if (anchor)
+      std::snprintf(where, sizeof where, "%s's training bodies stood (where its body model makes them)",
+                    model.file().filename().string().c_str());
+    else
+      std::snprintf(where, sizeof where, "%s's training bodies stood (centred in x and z, soles at y = %.3f)",
+                    model.file().filename().string().c_str(), domain->placement[1]);
+    notices.push_back({Notice::Level::note, who + " " + placement_note(*offset, where)});
+  }
+  if (!move.is_identity()) batch.body.mat(i) = body.cast<float>();
+  return move;
 }
 
 void check_domain(const Model& model, const ModelDomain& domain, const SampleBatch& batch, int i, bool strict,
@@ -386,10 +399,15 @@ std::vector<Notice> BodyPreparation::choose_sizes(SampleBatch& batch) const {
   return notices;
 }
 
+const BodyAnchor& BodyPreparation::anchor() const {
+  std::call_once(anchor_->once, [this] { anchor_->anchor = find_body_anchor(model_.body_model()); });
+  return anchor_->anchor;
+}
+
 PreparedBodies BodyPreparation::prepare(SampleBatch& batch, bool strict, const std::string& strict_option,
-                                        bool measure) const {
+                                        bool measure, bool given_meshes) const {
   PreparedBodies out;
-  out.moved_by.assign(static_cast<std::size_t>(batch.size()), Eigen::RowVector3d::Zero());
+  out.moved_by.assign(static_cast<std::size_t>(batch.size()), BodyMove{});
   // A grade already in the batch was asked for (choose_sizes fills the others by the rule).
   const bool size_asked_for = size_chart_ && !batch.garment_grade.empty();
   choose_sizes(batch, strict, strict_option, out.notices);
@@ -401,10 +419,9 @@ PreparedBodies BodyPreparation::prepare(SampleBatch& batch, bool strict, const s
                                                        "told (drape model domain adds it)"});
   }
   for (int i = 0; i < batch.size(); ++i) {
-    if (domain_) {
-      out.moved_by[static_cast<std::size_t>(i)] = place(model_, *domain_, batch, i, out.notices);
-      if (measure) check_domain(model_, *domain_, batch, i, strict, strict_option, out.notices);
-    }
+    out.moved_by[static_cast<std::size_t>(i)] =
+        place(model_, domain_ ? &*domain_ : nullptr, given_meshes ? &anchor() : nullptr, batch, i, out.notices);
+    if (domain_ && measure) check_domain(model_, *domain_, batch, i, strict, strict_option, out.notices);
     if (measure && std::isfinite(garment_loop_)) note_fit(model_, garment_loop_, batch, i, out.notices);
     if (measure && size_asked_for) check_requested_size(*size_chart_, model_, batch, i, strict, strict_option, out.notices);
   }

@@ -5,6 +5,7 @@
 #include <drape/geometry/volume.hpp>
 #include <drape/io/h5.hpp>
 #include <drape/training/model_domain.hpp>
+#include <drape/bodies/body_anchor.hpp>
 
 #include <algorithm>
 #include <cmath>
@@ -188,6 +189,22 @@ std::optional<Eigen::Vector3d> move_to_placement(const Eigen::Vector3d& referenc
 
 std::optional<Eigen::Vector3d> move_to_placement(const ModelDomain& domain, Eigen::MatrixX3d& body) {
   return move_to_placement(domain.placement, domain.placement_spread, body);
+}
+
+std::optional<Eigen::Vector3d> move_to_placement(const Eigen::Vector3d& reference, const Eigen::Vector3d& spread,
+                                                 const BodyAnchor* anchor, Eigen::MatrixX3d& body) {
+  if (!anchor) return move_to_placement(reference, spread, body);
+  Eigen::Vector3d offset = placement_offset(reference, spread, body).value_or(Eigen::Vector3d::Zero());
+  const Eigen::Vector3d anchored = anchor->offset(body);
+  for (int a = 0; a < 3; ++a) {
+    // Bodies recorded standing elsewhere than the body model stands them keep that record.
+    const bool recorded = std::isfinite(reference[a]) && std::isfinite(spread[a]);
+    if (!anchor->anchors(a) || (recorded && !anchor->agrees(a, reference[a], spread[a]))) continue;
+    offset[a] = std::abs(anchored[a]) <= anchor->spread[a] + kAnchorSlack ? 0.0 : anchored[a];
+  }
+  if (offset.isZero(0.0)) return std::nullopt;
+  body.rowwise() -= offset.transpose();
+  return offset;
 }
 
 std::string placement_note(const Eigen::Vector3d& offset, const std::string& where) {

@@ -5,19 +5,24 @@
 //  - model_body_batch: one body from a mesh (vertex count, units, a graph that
 //    needs body parameters) or from the model's body plugin (a BodyRequest),
 //    with the garment size of a model trained on several.
-//  - BodyPreparation::prepare: per body of a batch, moves a body standing away from
-//    where the training bodies stood there (model_domain.hpp, placement),
+//  - BodyPreparation::prepare: per body of a batch, turns a body facing another
+//    way to face as the model's bodies face (body_heading.hpp) and moves a body
+//    standing away from where the training bodies stood there (model_domain.hpp, placement),
 //    checks the training domain, and notes a garment too small around for it
 //    (garment_size.hpp's tailor's rule); for a model of drapes in each body's
 //    own size, chooses the size by that rule unless the caller named one. What it has to say comes back as
 //    notices, for the face to print (CLI: "note: ..." on stderr) or warn
 //    (Python warnings).
+#include <drape/bodies/body_anchor.hpp>
+#include <drape/geometry/body_heading.hpp>
 #include <drape/training/model.hpp>
 #include <drape/training/model_domain.hpp>
 #include <drape/scene/size_table.hpp>
 
 #include <Eigen/Core>
 #include <array>
+#include <memory>
+#include <mutex>
 #include <optional>
 #include <string>
 #include <vector>
@@ -80,9 +85,9 @@ void require_model_body_vertices(const Eigen::MatrixX3d& vertices, const Model& 
 SampleBatch model_body_batch(const Model& model, const ModelBodyInput& input);
 
 struct PreparedBodies {
-  // Per body: added to what the model predicts for it to move it back where
-  // the body stood (zero when it was not moved).
-  std::vector<Eigen::RowVector3d> moved_by;
+  // Per body: what moves what the model predicts for it back where (and the
+  // way) the body stood (BodyMove::back; the identity when it was not moved).
+  std::vector<BodyMove> moved_by;
   std::vector<Notice> notices;
 };
 
@@ -99,8 +104,12 @@ class BodyPreparation {
   // the body (its volume, its girths over the chest band, its distance to
   // every training body: about 5 ms for the parametric body), several times
   // the coarse model's forward pass.
+  // given_meshes: the bodies were given as meshes (a file, an array), and are
+  // placed by the body model's anchor (body_anchor.hpp, found on first use:
+  // about 0.2 s); false for bodies the model's body plugin made, which stand
+  // where it makes them.
   PreparedBodies prepare(SampleBatch& batch, bool strict, const std::string& strict_option = "--strict",
-                         bool measure = true) const;
+                         bool measure = true, bool given_meshes = true) const;
   // pose_model_batch, then the pose against the domain's trained joint
   // angles: a warning per angle outside (with strict, a ConfigError starting
   // "<strict_option>: "). Run after prepare().
@@ -112,6 +121,8 @@ class BodyPreparation {
   std::vector<Notice> pose(SampleBatch& batch, const Pose& pose, bool strict,
                            const std::string& strict_option = "--strict") const;
   const std::optional<ModelDomain>& domain() const { return domain_; }
+  // Where the model's body model makes its bodies (body_anchor.hpp), found on first use.
+  const BodyAnchor& anchor() const;
 
  private:
   const Model& model_;
@@ -119,6 +130,11 @@ class BodyPreparation {
   double garment_loop_;  // m, the model garment's narrowest loop on the mean body (NaN: none, or a sized model)
   void choose_sizes(SampleBatch& batch, bool strict, const std::string& strict_option, std::vector<Notice>& notices) const;
   std::optional<SizeTable> size_chart_;  // a model taking garment_grade: its training data's size chart
+  struct AnchorOnce {
+    std::once_flag once;
+    BodyAnchor anchor;
+  };
+  std::shared_ptr<AnchorOnce> anchor_ = std::make_shared<AnchorOnce>();  // shared: a copy finds it once too
 };
 
 // For a model taking garment_grade: the grade a caller asked for, a number

@@ -1,11 +1,13 @@
 #pragma once
 // The body a scene drapes, made ready for Simulation::run: the service behind
 // `drape simulate` and `drape.simulate`, so both drape the same body the same
-// way. It checks a given body (vertex count, units), places it where the body
-// model's bodies stand (a body morphs from the mean shape, which stands there:
-// a body lifted or centred by another tool would drag the garment through the
-// air), and with `size: auto` picks the size the body's girth needs
+// way. It checks a given body (vertex count, units), places it where and as
+// the body model's bodies stand (a body morphs from the mean shape, which
+// stands there facing +z: a body lifted or centred by another tool would drag
+// the garment through the air, one turned about would morph through it;
+// body_heading.hpp), and with `size: auto` picks the size the body's girth needs
 // (garment_size.hpp). drape_scene_body runs it and moves the drape back.
+#include <drape/geometry/body_heading.hpp>
 #include <drape/scene/garment_size.hpp>
 #include <drape/scene/simulation.hpp>
 
@@ -24,9 +26,9 @@ inline constexpr double kBodyModelPlacementSpread = 0.01;
 struct SceneBody {
   const Simulation* simulation = nullptr;  // what drapes it: with size: auto, the size it wears
   Eigen::MatrixX3d vertices;               // the target body, standing where the body model's bodies stand
-  // Added to the drape (garment and body) to move it back where the given
-  // body stood; zero when it was not moved.
-  Eigen::RowVector3d moved_by = Eigen::RowVector3d::Zero();
+  // Moves the drape (garment and body) back where, and as, the given body
+  // stood (BodyMove::back); the identity when it was not moved.
+  BodyMove moved_by;
   std::optional<SizeChoice> size;  // with size: auto, the choice and its measurements
   std::optional<GradeChoice> grade;  // with grade: auto, the grade and its measure
   // A posed body (docs/poses.md): `vertices` is `unposed` in `pose`. The

@@ -30,6 +30,8 @@
 
 namespace drape {
 
+struct BodyAnchor;  // bodies/body_anchor.hpp
+
 struct ValueRange {
   double min = 0, max = 0;
 };
@@ -95,6 +97,13 @@ std::optional<Eigen::Vector3d> placement_offset(const Eigen::Vector3d& reference
 std::optional<Eigen::Vector3d> move_to_placement(const Eigen::Vector3d& reference, const Eigen::Vector3d& spread,
                                                  Eigen::MatrixX3d& body);
 std::optional<Eigen::Vector3d> move_to_placement(const ModelDomain& domain, Eigen::MatrixX3d& body);
+// With the body model's anchor (bodies/body_anchor.hpp): on the axes it
+// anchors, the body is placed by its anchor vertices, exactly where its model
+// makes bodies (moved when off by more than the anchor's spread and
+// kAnchorSlack); on the others as above. A null anchor: as above.
+constexpr double kAnchorSlack = 1e-4;
+std::optional<Eigen::Vector3d> move_to_placement(const Eigen::Vector3d& reference, const Eigen::Vector3d& spread,
+                                                 const BodyAnchor* anchor, Eigen::MatrixX3d& body);
 // "stands (+0.000, +5.000, +0.000) m from where <where>; it is draped there and
 // moved back with it": the one wording of that move for notes and warnings.
 std::string placement_note(const Eigen::Vector3d& offset, const std::string& where);

@@ -1,0 +1,102 @@
+// body_heading and turn_to_face (geometry/body_heading.hpp).
+#include <drape/errors.hpp>
+#include <drape/geometry/body_heading.hpp>
+
+#include <Eigen/SVD>
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <numbers>
+#include <string>
+
+namespace drape {
+
+namespace {
+constexpr double kDegrees = 180.0 / std::numbers::pi;
+bool turned_too(const BodyHeading& h) { return std::abs(h.turn_degrees) > kTurnToleranceDegrees; }
+}
+
+BodyHeading body_heading(const Eigen::MatrixX3d& body, const Eigen::MatrixX3d& mean) {
+  const Eigen::MatrixX3d b = body.rowwise() - body.colwise().mean();
+  const Eigen::MatrixX3d m = mean.rowwise() - mean.colwise().mean();
+  // Kabsch: the rotation R minimising sum |b_i - R m_i|^2 from the SVD of
+  // the cross-covariance, its sign fixed so that R is a rotation, not a reflection.
+  const Eigen::Matrix3d h = m.transpose() * b;
+  const Eigen::JacobiSVD<Eigen::Matrix3d> svd(h, Eigen::ComputeFullU | Eigen::ComputeFullV);
+  Eigen::Matrix3d d = Eigen::Matrix3d::Identity();
+  if ((svd.matrixV() * svd.matrixU().transpose()).determinant() < 0) d(2, 2) = -1;
+  BodyHeading out;
+  out.rotation = svd.matrixV() * d * svd.matrixU().transpose();
+  const Eigen::Vector3d up = out.rotation.col(1);
+  out.lean_degrees = std::acos(std::clamp(up.y(), -1.0, 1.0)) * kDegrees;
+  // The turn about +y: where the mean body's forward (+z) goes, seen from above.
+  const Eigen::Vector3d forward = out.rotation.col(2);
+  out.turn_degrees = std::atan2(forward.x(), forward.z()) * kDegrees;
+  return out;
+}
+
+Eigen::MatrixX3d BodyMove::placed(const Eigen::MatrixX3d& given) const {
+  if (!turned) return given.rowwise() - offset;
+  return (((given.rowwise() - pivot) * rotation).rowwise() + pivot).rowwise() - offset;
+}
+
+Eigen::MatrixX3d BodyMove::back(const Eigen::MatrixX3d& placed) const {
+  if (!turned) return placed.rowwise() + offset;
+  return (((placed.rowwise() + offset).rowwise() - pivot) * rotation.transpose()).rowwise() + pivot;
+}
+
+BodyMove turn_to_face(Eigen::MatrixX3d& body, const Eigen::MatrixX3d& mean, const std::string& what,
+                      std::string* note) {
+  BodyMove move;
+  const BodyHeading heading = body_heading(body, mean);
+  if (heading.lean_degrees > kLeanLimitDegrees) {
+    const Eigen::Vector3d up = heading.rotation.col(1);
+    const Eigen::Vector3d axis = up.cross(Eigen::Vector3d::UnitY()).normalized();
+    char line[520];
+    std::snprintf(line, sizeof line,
+                  "%s leans %.1f degrees from upright (its up axis, fitted against the body model's mean body, points "
+                  "(%+.2f, %+.2f, %+.2f)): drape drapes bodies standing upright, Y up, and a leaning body's drape is "
+                  "not its upright drape turned (gravity acts across it); stand it upright (turn it %.1f degrees about "
+                  "(%+.2f, %+.2f, %+.2f)), which drape does by itself up to %.0f degrees",
+                  what.c_str(), heading.lean_degrees, up.x(), up.y(), up.z(), heading.lean_degrees, axis.x(), axis.y(),
+                  axis.z(), kLeanLimitDegrees);
+    throw ConfigError(line);
+  }
+  if (std::abs(heading.turn_degrees) <= kTurnToleranceDegrees && heading.lean_degrees <= kLeanToleranceDegrees)
+    return move;
+  move.turned = true;
+  const bool leans = heading.lean_degrees > kLeanToleranceDegrees;
+  if (leans) {
+    move.rotation = heading.rotation;
+  } else {
+    // Only turned: about the vertical alone. The fitted rotation also holds
+    // the tilt by which the body's build differs from the mean body's (a few
+    // hundredths of a degree), which turning back would add to the body.
+    const double turn = heading.turn_degrees / kDegrees;
+    move.rotation << std::cos(turn), 0, std::sin(turn), 0, 1, 0, -std::sin(turn), 0, std::cos(turn);
+  }
+  move.pivot = body.colwise().mean();
+  body = move.placed(body);
+  if (note) {
+    std::string said;
+    char line[300];
+    if (turned_too(heading)) {
+      std::snprintf(line, sizeof line, "faces %.1f degrees from the way the body model's bodies face (turned about the "
+                    "vertical, counter-clockwise seen from above)", heading.turn_degrees);
+      said = line;
+    }
+    if (leans) {
+      std::snprintf(line, sizeof line, "leans %.1f degrees from upright (the garment then hangs along the body as on "
+                    "the body stood upright; within %.0f degrees the two barely differ)", heading.lean_degrees,
+                    kLeanLimitDegrees);
+      said += (said.empty() ? "" : " and ") + std::string(line);
+    }
+    *note = said + (leans ? turned_too(heading) ? "; it is draped stood upright, facing as they do, and the drape moved "
+                                                    "back with it"
+                                                  : "; it is draped stood upright and the drape tilted back with it"
+                          : "; it is draped turned to face as they do and the drape turned back with it");
+  }
+  return move;
+}
+
+}  // namespace drape

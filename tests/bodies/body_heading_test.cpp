@@ -1,0 +1,132 @@
+// A body given turned about the vertical, leaning, or standing a few
+// millimetres off where its model makes bodies (body_heading.hpp,
+// body_anchor.hpp): found, undone exactly, and a lean beyond the limit refused.
+#include <drape/bodies/body_anchor.hpp>
+#include <drape/errors.hpp>
+#include <drape/geometry/body_heading.hpp>
+#include <drape/training/model_domain.hpp>
+
+#include "test_support.hpp"
+
+#include <catch2/catch.hpp>
+
+#include <cmath>
+#include <numbers>
+
+using namespace drape;
+
+namespace {
+
+Eigen::Matrix3d about_y(double degrees) {
+  const double t = degrees * std::numbers::pi / 180.0;
+  Eigen::Matrix3d r;
+  r << std::cos(t), 0, std::sin(t), 0, 1, 0, -std::sin(t), 0, std::cos(t);  // +z turns towards +x
+  return r;
+}
+
+Eigen::Matrix3d about_x(double degrees) {
+  const double t = degrees * std::numbers::pi / 180.0;
+  Eigen::Matrix3d r;
+  r << 1, 0, 0, 0, std::cos(t), -std::sin(t), 0, std::sin(t), std::cos(t);
+  return r;
+}
+
+// Rows turned by r about the origin, then moved by t.
+Eigen::MatrixX3d moved(const Eigen::MatrixX3d& v, const Eigen::Matrix3d& r, const Eigen::RowVector3d& t) {
+  return (v * r.transpose()).rowwise() + t;
+}
+
+struct Bodies {
+  std::unique_ptr<BodyModel> model = test::parametric_body("{rig: human}");
+  Eigen::MatrixX3d mean = model->vertices(model->mean_shape());
+  // Far from the mean body: a heavy tall man (his centroid 2-3 mm before the mean body's).
+  Eigen::MatrixX3d heavy = model->vertices(model->solve(BodyRequest{55.0, 2.0, 1.0}));
+};
+
+const Bodies& bodies() {
+  static const Bodies b;
+  return b;
+}
+
+}  // namespace
+
+TEST_CASE("a body's heading: the turn about the vertical and the lean, against the mean body", "[bodies][heading]") {
+  const Bodies& b = bodies();
+  // As the model makes it: neither turned nor leaning, whatever its build.
+  const BodyHeading own = body_heading(b.heavy, b.mean);
+  CHECK(std::abs(own.turn_degrees) < 0.01);
+  CHECK(own.lean_degrees < 0.5);
+  for (const double turn : {10.0, -35.0, 90.0, 180.0}) {
+    const BodyHeading h = body_heading(moved(b.heavy, about_y(turn), {0.3, 1.0, -2.0}), b.mean);
+    INFO("turned " << turn);
+    CHECK(std::abs(std::remainder(h.turn_degrees - turn, 360.0)) < 0.01);
+    CHECK(h.lean_degrees < 0.5);
+  }
+  const BodyHeading leaning = body_heading(moved(b.heavy, about_x(7.0), {0, 0, 0}), b.mean);
+  CHECK(leaning.lean_degrees == Approx(7.0).margin(0.5));
+}
+
+TEST_CASE("turn_to_face undoes a turn exactly and moves the drape back; a lean past the limit is refused",
+          "[bodies][heading]") {
+  const Bodies& b = bodies();
+  SECTION("as the model makes it: left alone") {
+    Eigen::MatrixX3d body = b.heavy;
+    std::string note;
+    const BodyMove move = turn_to_face(body, b.mean, "the body", &note);
+    CHECK(move.is_identity());
+    CHECK(note.empty());
+    CHECK(body == b.heavy);
+  }
+  SECTION("turned half round: faces as the model's bodies again, up to where it stands") {
+    const Eigen::MatrixX3d given = moved(b.heavy, about_y(180.0), {0.5, 0.0, 0.2});
+    Eigen::MatrixX3d body = given;
+    std::string note;
+    const BodyMove move = turn_to_face(body, b.mean, "the body", &note);
+    CHECK(move.turned);
+    CHECK_THAT(note, Catch::Contains("faces 180.0 degrees") && Catch::Contains("turned back"));
+    // The same body as made, moved only: every vertex by the same offset.
+    const Eigen::MatrixX3d shift = body - b.heavy;
+    CHECK((shift.rowwise() - shift.row(0)).cwiseAbs().maxCoeff() < 1e-5);
+    // A drape made there goes back onto the given body; placed() and back() are inverses.
+    CHECK((move.back(body) - given).cwiseAbs().maxCoeff() < 1e-9);
+    CHECK((move.placed(given) - body).cwiseAbs().maxCoeff() < 1e-9);
+  }
+  SECTION("leaning a little: stood upright, with a note") {
+    Eigen::MatrixX3d body = moved(b.heavy, about_x(5.0), {0, 0, 0});
+    std::string note;
+    const BodyMove move = turn_to_face(body, b.mean, "the body", &note);
+    CHECK(move.turned);
+    CHECK_THAT(note, Catch::Contains("leans 5."));  // 5 and the build's own tilt against the mean body
+    CHECK(body_heading(body, b.mean).lean_degrees < 0.5);
+  }
+  SECTION("leaning past the limit: refused, naming the lean") {
+    Eigen::MatrixX3d body = moved(b.heavy, about_x(25.0), {0, 0, 0});
+    CHECK_THROWS_WITH(turn_to_face(body, b.mean, "body lean.obj"),
+                      Catch::Contains("body lean.obj leans 25.") && Catch::Contains("degrees from upright") &&
+                          Catch::Contains("stand it upright"));
+  }
+}
+
+TEST_CASE("the parametric body's anchor places a body given a few millimetres off exactly where the model made it",
+          "[bodies][heading]") {
+  const Bodies& b = bodies();
+  const BodyAnchor anchor = find_body_anchor(*b.model);
+  // x by the centroid (symmetric left to right), y by the soles, z by a few vertices.
+  CHECK(anchor.measure[0] == BodyAnchor::Measure::centroid);
+  CHECK(anchor.measure[1] == BodyAnchor::Measure::lowest);
+  CHECK(anchor.measure[2] == BodyAnchor::Measure::vertices);
+  CHECK(anchor.spread.maxCoeff() < 1e-4);
+  // The centroid, the measure before, moves with the build: that is why it is not used.
+  CHECK(std::abs(b.heavy.col(2).mean() - b.mean.col(2).mean()) > 1e-3);
+  CHECK(anchor.offset(b.heavy).cwiseAbs().maxCoeff() < 5e-5);
+  const Eigen::RowVector3d off(0.0021, -0.0013, 0.0035);
+  Eigen::MatrixX3d body = b.heavy.rowwise() + off;
+  const Eigen::Vector3d unknown = Eigen::Vector3d::Constant(std::numeric_limits<double>::quiet_NaN());
+  const auto offset = move_to_placement(unknown, unknown, &anchor, body);
+  REQUIRE(offset);
+  CHECK((offset->transpose() - off).cwiseAbs().maxCoeff() < 5e-5);
+  CHECK((body - b.heavy).cwiseAbs().maxCoeff() < 5e-5);
+  // Within the slack it is left alone.
+  Eigen::MatrixX3d near = b.heavy.rowwise() + Eigen::RowVector3d(0, 0, 0.5 * kAnchorSlack);
+  CHECK_FALSE(move_to_placement(unknown, unknown, &anchor, near));
+}
