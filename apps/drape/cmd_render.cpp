@@ -165,6 +165,10 @@ int run(const std::vector<std::string>& args) {
   Mesh truth;
   std::string what;
   std::optional<DatasetReader> data;
+  // A body given standing elsewhere or turned is drawn as given: its drape
+  // predicted where (and as) the training bodies stood and moved back, a
+  // --garment file (written by predict where the body was) drawn as it is.
+  BodyMove moved_by;
   if (vm.count("data")) {
     const DatasetReader& reader = data.emplace(vm["data"].as<std::string>());
     check_dataset_template(reader, vm["data"].as<std::string>(), model.assets());
@@ -175,12 +179,12 @@ int run(const std::vector<std::string>& args) {
     truth.vertices = reader.garment_vertices({i}).mat(0).cast<double>();
     what = "sample " + std::to_string(i) + " of " + std::filesystem::path(vm["data"].as<std::string>()).filename().string();
   } else {
-    batch = model_body(model, vm, nullptr, &notes);
+    batch = model_body(model, vm, &moved_by, &notes);
     what = vm.count("bmi") ? "BMI " + std::to_string(vm["bmi"].as<double>()).substr(0, 4) : vm["body"].as<std::string>();
   }
   Mesh body;
   body.faces = model.assets().body.faces;
-  body.vertices = batch.body.mat(0).cast<double>();
+  body.vertices = moved_by.back(batch.body.mat(0).cast<double>());
   Mesh garment = model.assets().garment->mesh;
   if (vm.count("garment")) {
     const Mesh given = read_mesh(vm["garment"].as<std::string>());
@@ -190,7 +194,7 @@ int run(const std::vector<std::string>& args) {
     garment.vertices = given.vertices;
     what = vm["garment"].as<std::string>() + " on " + what;
   } else {
-    garment.vertices = model.predict(batch).mat(0).cast<double>();
+    garment.vertices = moved_by.back(model.predict(batch).mat(0).cast<double>());
     what = "prediction of " + std::filesystem::path(model_file).filename().string() + " for " + what;
   }
 

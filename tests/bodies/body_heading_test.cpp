@@ -66,7 +66,7 @@ TEST_CASE("a body's heading: the turn about the vertical and the lean, against t
   CHECK(leaning.lean_degrees == Approx(7.0).margin(0.5));
 }
 
-TEST_CASE("turn_to_face undoes a turn exactly and moves the drape back; a lean past the limit is refused",
+TEST_CASE("turn_to_face undoes a turn exactly and moves the drape back, and refuses a lean past the limit",
           "[bodies][heading]") {
   const Bodies& b = bodies();
   SECTION("as the model makes it: left alone") {

@@ -70,6 +70,11 @@ TEST_CASE("predict and simulate drape a body turned about the vertical and re-ce
                         Catch::Contains("stands ("));
     const Eigen::MatrixX3d expected = turn.apply(read_mesh(dir / "g.obj").vertices);
     CHECK((read_mesh(dir / "gt.obj").vertices - expected).cwiseAbs().maxCoeff() < 1e-4);
+    // render draws the body as given and that garment on it (drawn on the body turned back, 24 % of it was inside).
+    REQUIRE(test::run(env + " render --model models/tshirt-coarse-human.h5 --body " + (dir / "b-turned.obj").string() +
+                          " --garment " + (dir / "gt.obj").string() + " --out " + (dir / "r.html").string() + " 2>&1",
+                      out) == 0);
+    CHECK_THAT(out, Catch::Contains("p = 0.00% of the vertices inside the body"));
   }
   SECTION("simulate (a tiny scene): the same drape, turned back") {
     // A body the scene's shirt fits: its few unsettled steps then end the same on bodies a rounding apart (on the
