@@ -2,6 +2,7 @@
 // millimetres off where its model makes bodies (body_heading.hpp,
 // body_anchor.hpp): found, undone exactly, and a lean beyond the limit refused.
 #include <drape/bodies/body_anchor.hpp>
+#include <drape/bodies/limb_turns.hpp>
 #include <drape/errors.hpp>
 #include <drape/geometry/body_heading.hpp>
 #include <drape/training/model_domain.hpp>
@@ -129,4 +130,41 @@ TEST_CASE("the parametric body's anchor places a body given a few millimetres of
   // Within the slack it is left alone.
   Eigen::MatrixX3d near = b.heavy.rowwise() + Eigen::RowVector3d(0, 0, 0.5 * kAnchorSlack);
   CHECK_FALSE(move_to_placement(unknown, unknown, &anchor, near));
+}
+
+TEST_CASE("limb_turns tells a posed body from bodies at rest of every build", "[bodies][heading]") {
+  const Bodies& b = bodies();
+  // The corners of the space at rest: no limb past the 15 degrees predict warns at.
+  for (const double bmi : {10.5, 64.5})
+    for (const double sex : {0.0, 1.0})
+      for (const double height : {1.5, 2.0}) {
+        const Eigen::MatrixX3d rest = b.model->vertices(b.model->solve(BodyRequest{bmi, height, sex}));
+        for (const LimbTurn& t : limb_turns(*b.model, b.mean, rest)) {
+          INFO("BMI " << bmi << ", sex " << sex << ", " << height << " m: " << t.bone);
+          CHECK(t.degrees < 15.0);
+        }
+      }
+  // A pose: each bent joint's bone turned by its angle, the others not.
+  Pose pose;
+  pose.angles = {{"left_elbow_flexion", 40.0}, {"right_hip_flexion", 25.0}};
+  const Eigen::MatrixX3d posed = b.model->posed(b.model->mean_shape(), pose);
+  bool forearm = false, thigh = false;
+  for (const LimbTurn& t : limb_turns(*b.model, b.mean, posed)) {
+    INFO(t.bone << " " << t.degrees);
+    if (t.bone == "left_forearm") {
+      forearm = true;
+      CHECK(t.degrees == Approx(40.0).margin(2.0));
+    } else if (t.bone == "right_thigh") {
+      thigh = true;
+      CHECK(t.degrees == Approx(25.0).margin(2.0));
+    } else {
+      CHECK(t.degrees < 2.0);
+    }
+  }
+  CHECK((forearm && thigh));
+  // Turns are relative: the whole body turned changes none of them.
+  const Eigen::MatrixX3d around = moved(posed, about_y(120.0), {1.0, 0.0, 0.0});
+  const std::vector<LimbTurn> a = limb_turns(*b.model, b.mean, posed), c = limb_turns(*b.model, b.mean, around);
+  REQUIRE(a.size() == c.size());
+  for (std::size_t k = 0; k < a.size(); ++k) CHECK(c[k].degrees == Approx(a[k].degrees).margin(1e-6));
 }

@@ -50,14 +50,19 @@ Turned human_body_and_turned(const std::string& env, const fs::path& file, const
   return turn;
 }
 
+// The program run from the source folder (models/ found there), its cache in `dir`.
+std::string drape_in_source(const test::TempDir& dir) {
+  return "cd " + test::source_dir().string() + " && env -u DRAPE_MODEL DRAPE_CACHE_DIR=" + dir.path().string() + " " +
+         test::drape_program().string();
+}
+
 }  // namespace
 
 TEST_CASE("predict and simulate drape a body turned about the vertical and re-centred as the body the model made, "
           "the drape turned back", "[cli][heading]") {
   test::TempDir dir;
   std::string out;
-  const std::string env = "cd " + test::source_dir().string() + " && env -u DRAPE_MODEL DRAPE_CACHE_DIR=" +
-                          dir.path().string() + " " + test::drape_program().string();
+  const std::string env = drape_in_source(dir);
   // The human rig, whose anchor places a body exactly (the mannequin's z is placed within its bodies' spread).
   SECTION("predict") {
     const Turned turn = human_body_and_turned(env, dir / "b.obj", "--bmi 38 --sex 0 --height 1.62");
@@ -99,8 +104,7 @@ TEST_CASE("a body leaning 30 degrees is refused by simulate, predict, optimize a
           "[cli][heading]") {
   test::TempDir dir;
   std::string out;
-  const std::string env = "cd " + test::source_dir().string() + " && env -u DRAPE_MODEL DRAPE_CACHE_DIR=" +
-                          dir.path().string() + " " + test::drape_program().string();
+  const std::string env = drape_in_source(dir);
   REQUIRE(test::run(env + " body --bmi 30 --out " + (dir / "m.obj").string(), out) == 0);
   Mesh body = read_mesh(dir / "m.obj");
   const double t = 30.0 * std::numbers::pi / 180.0;
@@ -118,4 +122,26 @@ TEST_CASE("a body leaning 30 degrees is refused by simulate, predict, optimize a
     CHECK_THAT(out, Catch::Contains("leans 30.") && Catch::Contains("stand it upright"));
     CHECK(seconds < 30);
   }
+}
+
+TEST_CASE("predict warns that a body mesh given posed looks posed, naming the limbs, and --strict refuses it",
+          "[cli][heading]") {
+  test::TempDir dir;
+  std::string out;
+  const std::string env = drape_in_source(dir);
+  REQUIRE(test::run(env + " body --param rig=human --bmi 27 --pose elbow_flexion=40 --out " + (dir / "posed.obj").string(),
+                    out) == 0);
+  const std::string predict = " predict --model models/tshirt-coarse-human.h5 --body " + (dir / "posed.obj").string();
+  REQUIRE(test::run(env + predict + " --out " + (dir / "g.obj").string() + " 2>&1", out) == 0);
+  CHECK_THAT(out, Catch::Contains("warning: the body looks posed") && Catch::Contains("left_forearm 40 degrees") &&
+                      Catch::Contains("right_forearm 40 degrees") && !Catch::Contains("left_thigh") &&
+                      Catch::Contains("drapes the A-pose only"));
+  CHECK(test::run(env + predict + " --strict --out " + (dir / "g2.obj").string() + " 2>&1", out) == 2);
+  CHECK_THAT(out, Catch::Contains("--strict: the body looks posed"));
+  // The same body at rest: no word of a pose.
+  REQUIRE(test::run(env + " body --param rig=human --bmi 27 --out " + (dir / "rest.obj").string(), out) == 0);
+  REQUIRE(test::run(env + " predict --model models/tshirt-coarse-human.h5 --body " + (dir / "rest.obj").string() +
+                        " --out " + (dir / "g3.obj").string() + " 2>&1",
+                    out) == 0);
+  CHECK_THAT(out, !Catch::Contains("posed"));
 }

@@ -46,9 +46,10 @@ Eigen::MatrixX3d BodyMove::back(const Eigen::MatrixX3d& placed) const {
 }
 
 BodyMove turn_to_face(Eigen::MatrixX3d& body, const Eigen::MatrixX3d& mean, const std::string& what,
-                      std::string* note) {
+                      std::string* note, bool posed) {
   BodyMove move;
-  const BodyHeading heading = body_heading(body, mean);
+  BodyHeading heading = body_heading(body, mean);
+  if (posed) heading.lean_degrees = 0;  // not a lean: the limbs' pose tilts the fit
   if (heading.lean_degrees > kLeanLimitDegrees) {
     const Eigen::Vector3d up = heading.rotation.col(1);
     const Eigen::Vector3d axis = up.cross(Eigen::Vector3d::UnitY()).normalized();

@@ -1,4 +1,5 @@
 // model_body_batch and prepare_bodies (services/model_body.hpp).
+#include <drape/bodies/limb_turns.hpp>
 #include <drape/geometry/adjacency.hpp>
 #include <drape/geometry/body_units.hpp>
 #include <drape/geometry/volume.hpp>
@@ -25,12 +26,12 @@ std::string about(const SampleBatch& batch, int i) { return batch.size() > 1 ? "
 // stood, the garment then moves back with the body: the same drape as for
 // the body placed right. The turn needs only the model's mean body; the
 // place, the domain's record of where the training bodies stood.
-BodyMove place(const Model& model, const ModelDomain* domain, const BodyAnchor* anchor, SampleBatch& batch, int i,
-               std::vector<Notice>& notices) {
+BodyMove place(const Model& model, const ModelDomain* domain, const BodyAnchor* anchor, bool posed, SampleBatch& batch,
+               int i, std::vector<Notice>& notices) {
   Eigen::MatrixX3d body = batch.body.mat(i).cast<double>();
   const std::string who = batch.size() > 1 ? "body " + std::to_string(i) : "the body";
   std::string turned;
-  BodyMove move = turn_to_face(body, model.assets().body.vertices, who, &turned);
+  BodyMove move = turn_to_face(body, model.assets().body.vertices, who, &turned, posed);
   if (!turned.empty()) notices.push_back({Notice::Level::note, who + " " + turned});
   const Eigen::Vector3d unknown = Eigen::Vector3d::Constant(std::numeric_limits<double>::quiet_NaN());
   const std::optional<Eigen::Vector3d> offset = move_to_placement(domain ? domain->placement : unknown,
@@ -68,6 +69,38 @@ void check_domain(const Model& model, const ModelDomain& domain, const SampleBat
     notices.push_back({Notice::Level::warning, about(batch, i) + "the body is outside what " + name + " was trained on: " + why});
   notices.push_back({Notice::Level::warning, about(batch, i) + "the prediction may be wrong without showing it (" +
                                                  strict_option + " refuses such a body)"});
+}
+
+// A body given as a mesh is taken at rest (the A-pose); one given posed gets
+// a drape for another body. Told by its limbs against the mean body's
+// (limb_turns.hpp): bodies at rest of the whole space turn a limb by at most
+// 10 degrees against the mean body (the thin bodies' thighs; arms 4, the
+// spine 7.5), a pose by its angles (an elbow bent 30 degrees: 30.2).
+constexpr double kPosedLimbDegrees = 15.0;
+
+// The limbs turned past kPosedLimbDegrees, "left_forearm 40 degrees, ...";
+// empty for a body at rest. Turns are relative (a limb against its parent),
+// so the body's own heading does not change them.
+std::string posed_limbs(const Model& model, const SampleBatch& batch, int i) {
+  std::string turned;
+  for (const LimbTurn& t : limb_turns(model.body_model(), model.assets().body.vertices, batch.body.mat(i).cast<double>()))
+    if (t.degrees > kPosedLimbDegrees) {
+      char part[96];
+      std::snprintf(part, sizeof part, "%s%s %.0f degrees", turned.empty() ? "" : ", ", t.bone.c_str(), t.degrees);
+      turned += part;
+    }
+  return turned;
+}
+
+void warn_posed(const Model& model, const SampleBatch& batch, int i, const std::string& turned, bool strict,
+                const std::string& strict_option, std::vector<Notice>& notices) {
+  const std::string text = about(batch, i) + "the body looks posed: against the mean body at rest, " + turned +
+                           " (a body at rest turns none by more than " + std::to_string(static_cast<int>(kPosedLimbDegrees)) +
+                           "); a body mesh is taken at rest (the A-pose), " +
+                           (model_takes_pose(model) ? "and posed by --pose" : "and this model drapes the A-pose only") +
+                           ": give the body at rest (drape body --out without --pose writes it) and its pose by --pose";
+  if (strict) throw ConfigError(strict_option + ": " + text);
+  notices.push_back({Notice::Level::warning, text});
 }
 
 void note_fit(const Model& model, double garment_loop, const SampleBatch& batch, int i, std::vector<Notice>& notices) {
@@ -419,8 +452,11 @@ PreparedBodies BodyPreparation::prepare(SampleBatch& batch, bool strict, const s
                                                        "told (drape model domain adds it)"});
   }
   for (int i = 0; i < batch.size(); ++i) {
+    const std::string posed = given_meshes ? posed_limbs(model_, batch, i) : std::string();
+    if (!posed.empty()) warn_posed(model_, batch, i, posed, strict, strict_option, out.notices);
     out.moved_by[static_cast<std::size_t>(i)] =
-        place(model_, domain_ ? &*domain_ : nullptr, given_meshes ? &anchor() : nullptr, batch, i, out.notices);
+        place(model_, domain_ ? &*domain_ : nullptr, given_meshes ? &anchor() : nullptr, !posed.empty(), batch, i,
+              out.notices);
     if (domain_ && measure) check_domain(model_, *domain_, batch, i, strict, strict_option, out.notices);
     if (measure && std::isfinite(garment_loop_)) note_fit(model_, garment_loop_, batch, i, out.notices);
     if (measure && size_asked_for) check_requested_size(*size_chart_, model_, batch, i, strict, strict_option, out.notices);

@@ -8,6 +8,7 @@
 #include <drape/training/model_domain.hpp>
 #include <drape/services/scene_body.hpp>
 #include <drape/bodies/body_anchor.hpp>
+#include <drape/bodies/limb_turns.hpp>
 #include <drape/scene/garment_size.hpp>
 #include <drape/errors.hpp>
 
@@ -150,7 +151,13 @@ SceneBody scene_body(const SceneSimulations& simulations, const Eigen::MatrixX3d
   SceneBody out;
   out.vertices = given;
   std::string turned;
-  out.moved_by = turn_to_face(out.vertices, design.mean_body(), "body " + name, &turned);
+  // A mesh given posed: its limbs tilt the heading's fit, so only its turn is undone (limb_turns.hpp).
+  bool posed = false;
+  for (const LimbTurn& t : limb_turns(design.body_model(), design.mean_body(), out.vertices)) posed |= t.degrees > 15.0;
+  if (posed)
+    out.notes.push_back("the body looks posed (a limb turned more than 15 degrees against the mean body at rest): it "
+                        "is morphed to as given, not along the path a pose takes (--pose poses a body at rest)");
+  out.moved_by = turn_to_face(out.vertices, design.mean_body(), "body " + name, &turned, posed);
   if (!turned.empty()) out.notes.push_back("the body " + turned);
   const Eigen::Vector3d reference = body_placement(design.mean_body());
   // Placed by the body model's anchor (about 0.2 s, against a drape's

@@ -54,7 +54,10 @@ struct BodyMove {
 // *note, one sentence saying so; nothing for a body within them. A ConfigError
 // starting with `what` ("the body", "body FILE") for a lean beyond
 // kLeanLimitDegrees, naming the lean and the turn that would stand it up.
+// `posed`: the body's limbs are turned (limb_turns.hpp), so the fit tilts
+// with them (both hips flexed 20 degrees "leaned" 10.8; a pelvis alone
+// leans 4-8 degrees with the build): only a turn is undone, the lean left.
 BodyMove turn_to_face(Eigen::MatrixX3d& body, const Eigen::MatrixX3d& mean, const std::string& what,
-                      std::string* note = nullptr);
+                      std::string* note = nullptr, bool posed = false);
 
 }  // namespace drape

@@ -1,0 +1,26 @@
+#pragma once
+// How far each limb of a body mesh is turned against its parent, compared
+// with the body model's mean body: a body given posed where a body at rest is
+// expected (drape predict --body, which poses the body it is given) is told
+// by its limbs, whatever its build.
+#include <drape/bodies/body.hpp>
+
+#include <Eigen/Core>
+#include <string>
+#include <vector>
+
+namespace drape {
+
+struct LimbTurn {
+  std::string bone;    // a joints() name: "left_forearm" turns at the elbow
+  double degrees = 0;  // its rotation against its parent's, relative to the mean body's
+};
+
+// One entry per joint of a poseable model that has pose angles and moves
+// vertices of its own (skinning weight at least 0.95), in joints() order;
+// none for a model without a skeleton. Each bone's rotation is the
+// least-squares rotation of the mean body's vertices it moves onto the
+// body's (Kabsch), taken against its parent's.
+std::vector<LimbTurn> limb_turns(const BodyModel& model, const Eigen::MatrixX3d& mean, const Eigen::MatrixX3d& body);
+
+}  // namespace drape
