@@ -29,27 +29,34 @@ double angle_degrees(const Eigen::Matrix3d& r) {
 
 }  // namespace
 
-std::vector<LimbTurn> limb_turns(const BodyModel& model, const Eigen::MatrixX3d& mean, const Eigen::MatrixX3d& body) {
-  if (!model.poseable()) return {};
-  const std::vector<BodyModel::Joint> joints = model.joints();
+LimbFit::LimbFit(const BodyModel& model) {
+  if (!model.poseable()) return;
+  joints_ = model.joints();
   const Eigen::MatrixXd weights = model.skinning_weights();
   constexpr double kOwn = 0.95;  // a vertex this bone moves (nearly) alone
-  std::vector<std::vector<int>> own(joints.size());
+  own_.resize(joints_.size());
   for (Eigen::Index v = 0; v < weights.rows(); ++v)
-    for (Eigen::Index j = 0; j < weights.cols() && j < static_cast<Eigen::Index>(joints.size()); ++j)
-      if (weights(v, j) >= kOwn) own[static_cast<std::size_t>(j)].push_back(static_cast<int>(v));
-  std::vector<Eigen::Matrix3d> rotation(joints.size(), Eigen::Matrix3d::Identity());
-  std::vector<bool> fitted(joints.size(), false);
-  for (std::size_t j = 0; j < joints.size(); ++j)
-    if (own[j].size() >= 3) rotation[j] = fitted_rotation(mean, body, own[j]), fitted[j] = true;
+    for (Eigen::Index j = 0; j < weights.cols() && j < static_cast<Eigen::Index>(joints_.size()); ++j)
+      if (weights(v, j) >= kOwn) own_[static_cast<std::size_t>(j)].push_back(static_cast<int>(v));
+}
+
+std::vector<LimbTurn> LimbFit::turns(const Eigen::MatrixX3d& mean, const Eigen::MatrixX3d& body) const {
+  std::vector<Eigen::Matrix3d> rotation(joints_.size(), Eigen::Matrix3d::Identity());
+  std::vector<bool> fitted(joints_.size(), false);
+  for (std::size_t j = 0; j < joints_.size(); ++j)
+    if (own_[j].size() >= 3) rotation[j] = fitted_rotation(mean, body, own_[j]), fitted[j] = true;
   std::vector<LimbTurn> out;
-  for (std::size_t j = 0; j < joints.size(); ++j) {
-    const int parent = joints[j].parent;
-    if (joints[j].angles.empty() || parent < 0 || !fitted[j] || !fitted[static_cast<std::size_t>(parent)]) continue;
+  for (std::size_t j = 0; j < joints_.size(); ++j) {
+    const int parent = joints_[j].parent;
+    if (joints_[j].angles.empty() || parent < 0 || !fitted[j] || !fitted[static_cast<std::size_t>(parent)]) continue;
     const Eigen::Matrix3d relative = rotation[static_cast<std::size_t>(parent)].transpose() * rotation[j];
-    out.push_back({joints[j].name, angle_degrees(relative)});
+    out.push_back({joints_[j].name, angle_degrees(relative)});
   }
   return out;
+}
+
+std::vector<LimbTurn> limb_turns(const BodyModel& model, const Eigen::MatrixX3d& mean, const Eigen::MatrixX3d& body) {
+  return LimbFit(model).turns(mean, body);
 }
 
 }  // namespace drape

@@ -1,5 +1,4 @@
 // model_body_batch and prepare_bodies (services/model_body.hpp).
-#include <drape/bodies/limb_turns.hpp>
 #include <drape/geometry/adjacency.hpp>
 #include <drape/geometry/body_units.hpp>
 #include <drape/geometry/volume.hpp>
@@ -81,9 +80,9 @@ constexpr double kPosedLimbDegrees = 15.0;
 // The limbs turned past kPosedLimbDegrees, "left_forearm 40 degrees, ...";
 // empty for a body at rest. Turns are relative (a limb against its parent),
 // so the body's own heading does not change them.
-std::string posed_limbs(const Model& model, const SampleBatch& batch, int i) {
+std::string posed_limbs(const Model& model, const LimbFit& limbs, const SampleBatch& batch, int i) {
   std::string turned;
-  for (const LimbTurn& t : limb_turns(model.body_model(), model.assets().body.vertices, batch.body.mat(i).cast<double>()))
+  for (const LimbTurn& t : limbs.turns(model.assets().body.vertices, batch.body.mat(i).cast<double>()))
     if (t.degrees > kPosedLimbDegrees) {
       char part[96];
       std::snprintf(part, sizeof part, "%s%s %.0f degrees", turned.empty() ? "" : ", ", t.bone.c_str(), t.degrees);
@@ -433,8 +432,16 @@ std::vector<Notice> BodyPreparation::choose_sizes(SampleBatch& batch) const {
 }
 
 const BodyAnchor& BodyPreparation::anchor() const {
-  std::call_once(anchor_->once, [this] { anchor_->anchor = find_body_anchor(model_.body_model()); });
+  std::call_once(anchor_->once, [this] {
+    anchor_->anchor = find_body_anchor(model_.body_model());
+    anchor_->limbs.emplace(model_.body_model());
+  });
   return anchor_->anchor;
+}
+
+const LimbFit& BodyPreparation::limbs() const {
+  anchor();
+  return *anchor_->limbs;
 }
 
 PreparedBodies BodyPreparation::prepare(SampleBatch& batch, bool strict, const std::string& strict_option,
@@ -452,7 +459,7 @@ PreparedBodies BodyPreparation::prepare(SampleBatch& batch, bool strict, const s
                                                        "told (drape model domain adds it)"});
   }
   for (int i = 0; i < batch.size(); ++i) {
-    const std::string posed = given_meshes ? posed_limbs(model_, batch, i) : std::string();
+    const std::string posed = given_meshes ? posed_limbs(model_, limbs(), batch, i) : std::string();
     if (!posed.empty()) warn_posed(model_, batch, i, posed, strict, strict_option, out.notices);
     out.moved_by[static_cast<std::size_t>(i)] =
         place(model_, domain_ ? &*domain_ : nullptr, given_meshes ? &anchor() : nullptr, !posed.empty(), batch, i,

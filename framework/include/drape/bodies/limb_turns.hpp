@@ -23,4 +23,16 @@ struct LimbTurn {
 // body's (Kabsch), taken against its parent's.
 std::vector<LimbTurn> limb_turns(const BodyModel& model, const Eigen::MatrixX3d& mean, const Eigen::MatrixX3d& body);
 
+// The same with what depends only on the model (each bone's own vertices,
+// read off the skinning weights) made once: for body after body.
+class LimbFit {
+ public:
+  explicit LimbFit(const BodyModel& model);
+  std::vector<LimbTurn> turns(const Eigen::MatrixX3d& mean, const Eigen::MatrixX3d& body) const;
+
+ private:
+  std::vector<BodyModel::Joint> joints_;
+  std::vector<std::vector<int>> own_;  // per joint: the vertices it moves (nearly) alone
+};
+
 }  // namespace drape

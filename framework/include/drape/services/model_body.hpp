@@ -14,6 +14,7 @@
 //    notices, for the face to print (CLI: "note: ..." on stderr) or warn
 //    (Python warnings).
 #include <drape/bodies/body_anchor.hpp>
+#include <drape/bodies/limb_turns.hpp>
 #include <drape/geometry/body_heading.hpp>
 #include <drape/training/model.hpp>
 #include <drape/training/model_domain.hpp>
@@ -123,6 +124,8 @@ class BodyPreparation {
   const std::optional<ModelDomain>& domain() const { return domain_; }
   // Where the model's body model makes its bodies (body_anchor.hpp), found on first use.
   const BodyAnchor& anchor() const;
+  // Its limbs, to tell a body given posed (limb_turns.hpp), made on first use.
+  const LimbFit& limbs() const;
 
  private:
   const Model& model_;
@@ -133,6 +136,7 @@ class BodyPreparation {
   struct AnchorOnce {
     std::once_flag once;
     BodyAnchor anchor;
+    std::optional<LimbFit> limbs;  // made with the anchor: the skinning weights read once
   };
   std::shared_ptr<AnchorOnce> anchor_ = std::make_shared<AnchorOnce>();  // shared: a copy finds it once too
 };
