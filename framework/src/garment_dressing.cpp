@@ -11,6 +11,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 #include <cstdio>
 #include <vector>
 
@@ -52,6 +53,34 @@ void check_garment_around_body(const Mesh& garment, const Mesh& body, const std:
                   "dressed on, in the body model's frame (Y up, metres)",
                   what.c_str(), gap.norm(), glo.x(), ghi.x(), glo.y(), ghi.y(), glo.z(), ghi.z(), blo.x(), bhi.x(), blo.y(),
                   bhi.y(), blo.z(), bhi.z());
+    throw ConfigError(line.data());
+  }
+  // Turned about the vertical: the widest way across of each, from the
+  // horizontal second moments about its centroid.
+  struct Across {
+    double degrees, ratio;  // the widest way's angle from +x (-90..90), and its spread over the narrowest way's
+  };
+  const auto across = [](const Eigen::MatrixX3d& v) {
+    const Eigen::RowVector3d c = v.colwise().mean();
+    double xx = 0, zz = 0, xz = 0;
+    for (Eigen::Index i = 0; i < v.rows(); ++i) {
+      const double x = v(i, 0) - c.x(), z = v(i, 2) - c.z();
+      xx += x * x, zz += z * z, xz += x * z;
+    }
+    const double mean = 0.5 * (xx + zz), half = std::sqrt(0.25 * (xx - zz) * (xx - zz) + xz * xz);
+    const double wide = mean + half, narrow = std::max(mean - half, 1e-300);
+    const double degrees = 0.5 * std::atan2(2.0 * xz, xx - zz) * 180.0 / std::numbers::pi;  // -90..90
+    return Across{degrees, std::sqrt(wide / narrow)};
+  };
+  constexpr double kClearlyWider = 1.3;  // a shirt with its sleeves about 2.3, the A-pose body about 2.6
+  const Across g = across(garment.vertices), b = across(body.vertices);
+  const double apart = std::min(std::abs(g.degrees - b.degrees), 180.0 - std::abs(g.degrees - b.degrees));  // 0..90
+  if (g.ratio > kClearlyWider && b.ratio > kClearlyWider && apart > 45.0) {
+    std::snprintf(line.data(), line.size(),
+                  "%s is widest across %.0f degrees from the way the body is (its widest way %.0f degrees from +x, "
+                  "%.1f times its narrowest; the body's %.0f degrees, across its shoulders and arms): it is likely "
+                  "turned about the vertical; drape reads a garment facing +z, as the body faces, modelled around it",
+                  what.c_str(), apart, std::round(g.degrees) + 0.0, g.ratio, std::round(b.degrees) + 0.0);
     throw ConfigError(line.data());
   }
 }

@@ -12,6 +12,7 @@
 #include <Eigen/Geometry>
 
 #include <cmath>
+#include <numbers>
 
 using namespace drape;
 
@@ -134,4 +135,35 @@ TEST_CASE("check_garment_around_body refuses a garment in other units or apart f
   Mesh near = garment;
   near.vertices.col(0).array() += 1.1;
   CHECK_NOTHROW(check_garment_around_body(near, body, "shell"));
+}
+
+TEST_CASE("check_garment_around_body refuses a garment turned about the vertical, and passes one round across",
+          "[garments][dressing]") {
+  // A body wider along x than deep (an A-pose body: its shoulders and arms), and a shirt-like shell wider still
+  // along x (its sleeves). Scaled spheres: the ratios of their widest to narrowest ways are 2.5 and 2.
+  Mesh body = test::uv_sphere(0.5, 12, 16);
+  body.vertices.col(2) *= 0.4;
+  Mesh shirt = test::uv_sphere(0.5, 8, 12);
+  shirt.vertices.col(0) *= 1.2;
+  shirt.vertices.col(2) *= 0.6;
+  CHECK_NOTHROW(check_garment_around_body(shirt, body, "shirt"));
+  const auto turned = [&](double degrees) {
+    const double t = degrees * std::numbers::pi / 180.0;
+    Mesh m = shirt;
+    for (Eigen::Index i = 0; i < m.vertices.rows(); ++i) {
+      const double x = shirt.vertices(i, 0), z = shirt.vertices(i, 2);
+      m.vertices(i, 0) = std::cos(t) * x + std::sin(t) * z;
+      m.vertices(i, 2) = -std::sin(t) * x + std::cos(t) * z;
+    }
+    return m;
+  };
+  CHECK_NOTHROW(check_garment_around_body(turned(30.0), body, "shirt"));   // within 45 degrees: a garment cut at a slant
+  CHECK_NOTHROW(check_garment_around_body(turned(180.0), body, "shirt"));  // its widest way along x again
+  CHECK_THAT(test::message_of([&] { check_garment_around_body(turned(90.0), body, "garment 'mesh' (shirt.obj)"); }),
+             Catch::Contains("garment 'mesh' (shirt.obj) is widest across 90 degrees from the way the body is") &&
+                 Catch::Contains("turned about the vertical"));
+  CHECK_THROWS_AS(check_garment_around_body(turned(-60.0), body, "shirt"), ConfigError);
+  // Round across (a skirt, a tube): no way to be turned, whichever way it is.
+  const Mesh tube = test::uv_sphere(0.55, 8, 12);
+  CHECK_NOTHROW(check_garment_around_body(tube, body, "tube"));
 }

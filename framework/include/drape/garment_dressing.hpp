@@ -51,6 +51,12 @@ struct DressReport {
 // back nonsense (a shirt in centimetres, 120 m tall, "settles" nowhere).
 // Throws ConfigError naming `what` (e.g. "garment 'mesh' (shirt.obj)"), the
 // sizes, and the likely scale. Checked by Simulation and the assets build.
+// Also one turned about the vertical: where both the garment and the body
+// are clearly wider one way than the other across (the body: its shoulders
+// and arms along x; a shirt: its sleeves), their widest ways more than 45
+// degrees apart (a shirt exported turned 90 degrees otherwise began with
+// 35 of its edges through the body, refused as "crossing" without a cause).
+// A garment round across (a skirt, a tube) is not checked for it.
 void check_garment_around_body(const Mesh& garment, const Mesh& body, const std::string& what);
 
 // Fits `garment.mesh.vertices` to the body; `body` answers closest-point queries.
