@@ -72,14 +72,9 @@ void check_domain(const Model& model, const ModelDomain& domain, const SampleBat
 
 // A body given as a mesh is taken at rest (the A-pose); one given posed gets
 // a drape for another body. Told by its limbs against the mean body's
-// (limb_turns.hpp): bodies at rest of the whole space turn a limb by at most
-// 10 degrees against the mean body (the thin bodies' thighs; arms 4, the
-// spine 7.5), a pose by its angles (an elbow bent 30 degrees: 30.2).
-constexpr double kPosedLimbDegrees = 15.0;
-
-// The limbs turned past kPosedLimbDegrees, "left_forearm 40 degrees, ...";
-// empty for a body at rest. Turns are relative (a limb against its parent),
-// so the body's own heading does not change them.
+// (limb_turns.hpp): the limbs turned past kPosedLimbDegrees, "left_forearm
+// 40 degrees, ...", empty for a body at rest. Turns are relative (a limb
+// against its parent), so the body's own heading does not change them.
 std::string posed_limbs(const Model& model, const LimbFit& limbs, const SampleBatch& batch, int i) {
   std::string turned;
   for (const LimbTurn& t : limbs.turns(model.assets().body.vertices, batch.body.mat(i).cast<double>()))

@@ -153,7 +153,8 @@ SceneBody scene_body(const SceneSimulations& simulations, const Eigen::MatrixX3d
   std::string turned;
   // A mesh given posed: its limbs tilt the heading's fit, so only its turn is undone (limb_turns.hpp).
   bool posed = false;
-  for (const LimbTurn& t : limb_turns(design.body_model(), design.mean_body(), out.vertices)) posed |= t.degrees > 15.0;
+  for (const LimbTurn& t : limb_turns(design.body_model(), design.mean_body(), out.vertices))
+    posed |= t.degrees > kPosedLimbDegrees;
   if (posed)
     out.notes.push_back("the body looks posed (a limb turned more than 15 degrees against the mean body at rest): it "
                         "is morphed to as given, not along the path a pose takes (--pose poses a body at rest)");

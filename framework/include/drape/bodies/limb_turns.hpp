@@ -11,6 +11,12 @@
 
 namespace drape {
 
+// A limb turned further than this against its parent, compared with the mean
+// body, is posed: bodies at rest over the parametric space turn one by at most
+// 10 degrees (the thin bodies' thighs; arms 4, the spine 7.5), a pose by its
+// angles (an elbow bent 30 degrees: 30.2).
+inline constexpr double kPosedLimbDegrees = 15.0;
+
 struct LimbTurn {
   std::string bone;    // a joints() name: "left_forearm" turns at the elbow
   double degrees = 0;  // its rotation against its parent's, relative to the mean body's
