@@ -153,19 +153,16 @@ SceneBody scene_body(const SceneSimulations& simulations, const Eigen::MatrixX3d
   std::string turned;
   // A mesh given posed: its limbs tilt the heading's fit, so only its turn is undone (limb_turns.hpp).
   bool posed = false;
-  for (const LimbTurn& t : limb_turns(design.body_model(), design.mean_body(), out.vertices))
-    posed |= t.degrees > kPosedLimbDegrees;
+  for (const LimbTurn& t : simulations.limbs().turns(design.mean_body(), out.vertices)) posed |= t.degrees > kPosedLimbDegrees;
   if (posed)
     out.notes.push_back("the body looks posed (a limb turned more than 15 degrees against the mean body at rest): it "
                         "is morphed to as given, not along the path a pose takes (--pose poses a body at rest)");
   out.moved_by = turn_to_face(out.vertices, design.mean_body(), "body " + name, &turned, posed);
   if (!turned.empty()) out.notes.push_back("the body " + turned);
   const Eigen::Vector3d reference = body_placement(design.mean_body());
-  // Placed by the body model's anchor (about 0.2 s, against a drape's
-  // seconds): exactly where the model makes the body, not only near.
-  const BodyAnchor anchor = find_body_anchor(design.body_model());
-  if (const auto offset = move_to_placement(reference, Eigen::Vector3d::Constant(kBodyModelPlacementSpread), &anchor,
-                                            out.vertices)) {
+  // Placed by the body model's anchor: exactly where the model makes the body, not only near.
+  if (const auto offset = move_to_placement(reference, Eigen::Vector3d::Constant(kBodyModelPlacementSpread),
+                                            &simulations.body_anchor(), out.vertices)) {
     out.moved_by.offset = offset->transpose();
     char where[120];
     std::snprintf(where, sizeof where, "the body model's bodies stand (soles at y = %.3f, the midline at x = 0)",
