@@ -90,9 +90,11 @@ void warn_posed(const Model& model, const SampleBatch& batch, int i, const std::
                 const std::string& strict_option, std::vector<Notice>& notices) {
   const std::string text = about(batch, i) + "the body looks posed: against the mean body at rest, " + turned +
                            " (a body at rest turns none by more than " + std::to_string(static_cast<int>(kPosedLimbDegrees)) +
-                           "); a body mesh is taken at rest (the A-pose), " +
-                           (model_takes_pose(model) ? "and posed by --pose" : "and this model drapes the A-pose only") +
-                           ": give the body at rest (drape body --out without --pose writes it) and its pose by --pose";
+                           "); a body mesh is taken at rest (the A-pose): give the body at rest (drape body --out "
+                           "without --pose writes it) " +
+                           (model_takes_pose(model) ? std::string("and its pose by --pose")
+                                                    : std::string("(this model drapes the A-pose only; a model of "
+                                                                  "posed drapes takes the pose by --pose, docs/poses.md)"));
   if (strict) throw ConfigError(strict_option + ": " + text);
   notices.push_back({Notice::Level::warning, text});
 }
