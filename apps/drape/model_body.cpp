@@ -1,11 +1,13 @@
 #include "model_body.hpp"
 #include "pose_options.hpp"
 
+#include <drape/io/checkpoint.hpp>
 #include <drape/io/shipped_files.hpp>
 #include <drape/scene/garment_size.hpp>
 #include <drape/io/mesh_io.hpp>
 #include <drape/services/model_body.hpp>
 
+#include <algorithm>
 #include <cstdlib>
 #include <filesystem>
 #include <iostream>
@@ -36,6 +38,34 @@ ModelBodyInput body_input(const po::variables_map& vm) {
   if (vm.count("garment-size")) input.garment_size = vm["garment-size"].as<std::string>();
   if (vm.count("garment-grade")) input.garment_grade = vm["garment-grade"].as<double>();
   return input;
+}
+
+// The models in `model`'s folder whose body model makes bodies of `count`
+// vertices, "tshirt-coarse.h5 and tshirt-coarse-regular.h5": for a body mesh
+// of another rig or body model than the model's (a mannequin body given to
+// the human rig's model). On the error's path only (each file is read).
+std::string models_taking(const Model& model, Eigen::Index count, const po::variables_map& vm) {
+  if (model.file().empty()) return "";
+  std::vector<std::string> found;
+  std::error_code ec;
+  for (const fs::directory_entry& entry : fs::directory_iterator(model.file().parent_path(), ec)) {
+    if (entry.path().extension() != ".h5" || fs::equivalent(entry.path(), model.file(), ec)) continue;
+    try {
+      const Checkpoint checkpoint = read_checkpoint(entry.path());
+      const auto assets = checkpoint.meta.find("assets");
+      if (assets == checkpoint.meta.end()) continue;
+      const auto body = make_body_model(Registry::load_default(plugin_path(vm)),
+                                        parse_assets_spec(assets->second, entry.path().string()));
+      if (body->num_vertices() == count) found.push_back(entry.path().filename().string());
+    } catch (const std::exception&) {
+      // Not a model, or one this build cannot read: it takes no body here.
+    }
+  }
+  std::sort(found.begin(), found.end());
+  std::string names;
+  for (std::size_t i = 0; i < found.size(); ++i)
+    names += (i == 0 ? "" : i + 1 == found.size() ? " and " : ", ") + found[i];
+  return names;
 }
 
 }  // namespace
@@ -81,7 +111,18 @@ std::string model_file_or_default(const po::variables_map& vm) {
 
 SampleBatch model_body(const Model& model, const po::variables_map& vm, BodyMove* moved_by,
                        std::vector<std::string>* printed) {
-  SampleBatch batch = model_body_batch(model, body_input(vm));
+  const ModelBodyInput input = body_input(vm);
+  SampleBatch batch;
+  try {
+    batch = model_body_batch(model, input);
+  } catch (const ConfigError& e) {
+    // A mesh of another vertex count: say which models beside this one take it.
+    if (!input.vertices || input.vertices->rows() == model.assets().body.num_vertices()) throw;
+    const std::string others = models_taking(model, input.vertices->rows(), vm);
+    if (others.empty()) throw;
+    throw ConfigError(std::string(e.what()) + "; " + others + " beside " + model.file().filename().string() +
+                      " take bodies of " + std::to_string(input.vertices->rows()) + " vertices (--model)");
+  }
   const BodyPreparation preparation(model, read_domain(model.file()));
   PreparedBodies prepared = preparation.prepare(batch, vm.count("strict") > 0, "--strict", true, vm.count("body") > 0);
   // Posed after the body is measured and placed at rest (a raised arm is no girth).

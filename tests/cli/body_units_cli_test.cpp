@@ -39,3 +39,21 @@ TEST_CASE("simulate, predict, optimize and render refuse a body in centimetres o
     }
   }
 }
+
+TEST_CASE("a body mesh of another rig than the model's is refused naming the shipped models that take it",
+          "[cli][units]") {
+  test::TempDir dir;
+  std::string out;
+  const std::string env = "cd " + test::source_dir().string() + " && env -u DRAPE_MODEL DRAPE_CACHE_DIR=" +
+                          dir.path().string() + " " + test::drape_program().string();
+  // The mannequin's body (the body model's default rig) given to the human rig's model, the default.
+  REQUIRE(test::run(env + " body --bmi 30 --out " + (dir / "mannequin.obj").string(), out) == 0);
+  const int code = test::run(env + " predict --model models/tshirt-coarse-human.h5 --body " +
+                                 (dir / "mannequin.obj").string() + " --out " + (dir / "g.obj").string() + " 2>&1",
+                             out);
+  INFO(out);
+  CHECK(code == 2);
+  CHECK_THAT(out, Catch::Contains("has 6490 vertices, expected 6904") && Catch::Contains("tshirt-coarse.h5") &&
+                      Catch::Contains("take bodies of 6490 vertices (--model)") &&
+                      !Catch::Contains("tshirt-coarse-posed-human.h5"));
+}
