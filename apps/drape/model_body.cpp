@@ -46,6 +46,7 @@ ModelBodyInput body_input(const po::variables_map& vm) {
 // the human rig's model). On the error's path only (each file is read).
 std::string models_taking(const Model& model, Eigen::Index count, const po::variables_map& vm) {
   if (model.file().empty()) return "";
+  const Registry& registry = Registry::load_default(plugin_path(vm));
   std::vector<std::string> found;
   std::error_code ec;
   for (const fs::directory_entry& entry : fs::directory_iterator(model.file().parent_path(), ec)) {
@@ -54,8 +55,7 @@ std::string models_taking(const Model& model, Eigen::Index count, const po::vari
       const Checkpoint checkpoint = read_checkpoint(entry.path());
       const auto assets = checkpoint.meta.find("assets");
       if (assets == checkpoint.meta.end()) continue;
-      const auto body = make_body_model(Registry::load_default(plugin_path(vm)),
-                                        parse_assets_spec(assets->second, entry.path().string()));
+      const auto body = make_body_model(registry, parse_assets_spec(assets->second, entry.path().string()));
       if (body->num_vertices() == count) found.push_back(entry.path().filename().string());
     } catch (const std::exception&) {
       // Not a model, or one this build cannot read: it takes no body here.

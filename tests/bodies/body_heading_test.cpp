@@ -83,7 +83,7 @@ TEST_CASE("turn_to_face undoes a turn exactly and moves the drape back, and refu
     Eigen::MatrixX3d body = given;
     std::string note;
     const BodyMove move = turn_to_face(body, b.mean, "the body", &note);
-    CHECK(move.turned);
+    CHECK(move.turned());
     CHECK_THAT(note, Catch::Contains("faces 180.0 degrees") && Catch::Contains("turned back"));
     // The same body as made, moved only: every vertex by the same offset.
     const Eigen::MatrixX3d shift = body - b.heavy;
@@ -96,7 +96,7 @@ TEST_CASE("turn_to_face undoes a turn exactly and moves the drape back, and refu
     Eigen::MatrixX3d body = moved(b.heavy, about_x(5.0), {0, 0, 0});
     std::string note;
     const BodyMove move = turn_to_face(body, b.mean, "the body", &note);
-    CHECK(move.turned);
+    CHECK(move.turned());
     CHECK_THAT(note, Catch::Contains("leans 5."));  // 5 and the build's own tilt against the mean body
     CHECK(body_heading(body, b.mean).lean_degrees < 0.5);
   }

@@ -1,6 +1,6 @@
 // body_anchor (bodies/body_anchor.hpp).
 #include <drape/bodies/body_anchor.hpp>
-#include <drape/training/model_domain.hpp>
+#include <drape/training/model_domain.hpp>  // body_placement
 
 #include <algorithm>
 #include <limits>
@@ -30,8 +30,7 @@ Eigen::Vector3d BodyAnchor::offset(const Eigen::MatrixX3d& body) const {
 }
 
 bool BodyAnchor::agrees(int axis, double placement, double spread) const {
-  constexpr double kSlack = 1e-4;  // m, as kAnchorSlack
-  return placement + spread >= placed_lo[axis] - kSlack && placement - spread <= placed_hi[axis] + kSlack;
+  return placement + spread >= placed_lo[axis] - kAnchorSlack && placement - spread <= placed_hi[axis] + kAnchorSlack;
 }
 
 namespace {

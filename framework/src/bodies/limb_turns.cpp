@@ -1,7 +1,7 @@
 // limb_turns (bodies/limb_turns.hpp).
 #include <drape/bodies/limb_turns.hpp>
 
-#include <Eigen/SVD>
+#include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
 #include <numbers>
@@ -10,22 +10,15 @@ namespace drape {
 
 namespace {
 
-// The rotation R minimising sum |b_i - c_b - R (a_i - c_a)|^2 over the rows `rows`.
+// The least-squares rotation of `a`'s rows `rows` onto `b`'s, about their centroids (Eigen's Umeyama, no scaling).
 Eigen::Matrix3d fitted_rotation(const Eigen::MatrixX3d& a, const Eigen::MatrixX3d& b, const std::vector<int>& rows) {
-  Eigen::RowVector3d ca = Eigen::RowVector3d::Zero(), cb = Eigen::RowVector3d::Zero();
-  for (int r : rows) ca += a.row(r), cb += b.row(r);
-  ca /= static_cast<double>(rows.size()), cb /= static_cast<double>(rows.size());
-  Eigen::Matrix3d h = Eigen::Matrix3d::Zero();
-  for (int r : rows) h += (a.row(r) - ca).transpose() * (b.row(r) - cb);
-  const Eigen::JacobiSVD<Eigen::Matrix3d> svd(h, Eigen::ComputeFullU | Eigen::ComputeFullV);
-  Eigen::Matrix3d d = Eigen::Matrix3d::Identity();
-  if ((svd.matrixV() * svd.matrixU().transpose()).determinant() < 0) d(2, 2) = -1;
-  return svd.matrixV() * d * svd.matrixU().transpose();
+  const Eigen::Matrix3Xd from = a(rows, Eigen::all).transpose(), to = b(rows, Eigen::all).transpose();
+  return Eigen::umeyama(from, to, false).topLeftCorner<3, 3>();
 }
 
-double angle_degrees(const Eigen::Matrix3d& r) {
-  return std::acos(std::clamp(0.5 * (r.trace() - 1.0), -1.0, 1.0)) * 180.0 / std::numbers::pi;
-}
+// Through the quaternion: acos of the trace loses half the digits near 0 (a
+// rounding of 1e-16 reads as 1e-6 degrees).
+double angle_degrees(const Eigen::Matrix3d& r) { return Eigen::AngleAxisd(r).angle() * 180.0 / std::numbers::pi; }
 
 }  // namespace
 

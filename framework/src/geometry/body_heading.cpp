@@ -2,7 +2,7 @@
 #include <drape/errors.hpp>
 #include <drape/geometry/body_heading.hpp>
 
-#include <Eigen/SVD>
+#include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -17,16 +17,10 @@ bool turned_too(const BodyHeading& h) { return std::abs(h.turn_degrees) > kTurnT
 }
 
 BodyHeading body_heading(const Eigen::MatrixX3d& body, const Eigen::MatrixX3d& mean) {
-  const Eigen::MatrixX3d b = body.rowwise() - body.colwise().mean();
-  const Eigen::MatrixX3d m = mean.rowwise() - mean.colwise().mean();
-  // Kabsch: the rotation R minimising sum |b_i - R m_i|^2 from the SVD of
-  // the cross-covariance, its sign fixed so that R is a rotation, not a reflection.
-  const Eigen::Matrix3d h = m.transpose() * b;
-  const Eigen::JacobiSVD<Eigen::Matrix3d> svd(h, Eigen::ComputeFullU | Eigen::ComputeFullV);
-  Eigen::Matrix3d d = Eigen::Matrix3d::Identity();
-  if ((svd.matrixV() * svd.matrixU().transpose()).determinant() < 0) d(2, 2) = -1;
+  // The least-squares rotation (Kabsch; Eigen's Umeyama without scaling), about both centroids.
+  const Eigen::Matrix4d fit = Eigen::umeyama(mean.transpose(), body.transpose(), false);
   BodyHeading out;
-  out.rotation = svd.matrixV() * d * svd.matrixU().transpose();
+  out.rotation = fit.topLeftCorner<3, 3>();
   const Eigen::Vector3d up = out.rotation.col(1);
   out.lean_degrees = std::acos(std::clamp(up.y(), -1.0, 1.0)) * kDegrees;
   // The turn about +y: where the mean body's forward (+z) goes, seen from above.
@@ -36,12 +30,10 @@ BodyHeading body_heading(const Eigen::MatrixX3d& body, const Eigen::MatrixX3d& m
 }
 
 Eigen::MatrixX3d BodyMove::placed(const Eigen::MatrixX3d& given) const {
-  if (!turned) return given.rowwise() - offset;
   return (((given.rowwise() - pivot) * rotation).rowwise() + pivot).rowwise() - offset;
 }
 
 Eigen::MatrixX3d BodyMove::back(const Eigen::MatrixX3d& placed) const {
-  if (!turned) return placed.rowwise() + offset;
   return (((placed.rowwise() + offset).rowwise() - pivot) * rotation.transpose()).rowwise() + pivot;
 }
 
@@ -65,7 +57,6 @@ BodyMove turn_to_face(Eigen::MatrixX3d& body, const Eigen::MatrixX3d& mean, cons
   }
   if (std::abs(heading.turn_degrees) <= kTurnToleranceDegrees && heading.lean_degrees <= kLeanToleranceDegrees)
     return move;
-  move.turned = true;
   const bool leans = heading.lean_degrees > kLeanToleranceDegrees;
   if (leans) {
     move.rotation = heading.rotation;

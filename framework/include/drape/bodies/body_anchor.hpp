@@ -54,6 +54,9 @@ struct BodyAnchor {
 // z is placed by the centroid within the training bodies' spread, as before.
 inline constexpr double kAnchorTolerance = 1e-4;
 inline constexpr int kAnchorVertices = 4;  // per axis
+// m: a body off its anchor by no more than the anchor's spread and this is
+// left where it is (a mesh writer's rounding is a micrometre).
+inline constexpr double kAnchorSlack = 1e-4;
 
 // Compares the model's mean body with two far from it (the lightest woman and
 // the heaviest man it makes, 1.55 and 1.95 m): about 0.2 s, the two bodies'

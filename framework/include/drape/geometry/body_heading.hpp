@@ -42,9 +42,9 @@ struct BodyMove {
   Eigen::Matrix3d rotation = Eigen::Matrix3d::Identity();  // given ~ rotation * placed, about pivot
   Eigen::RowVector3d pivot = Eigen::RowVector3d::Zero();
   Eigen::RowVector3d offset = Eigen::RowVector3d::Zero();
-  bool turned = false;  // rotation is not the identity
 
-  bool is_identity() const { return !turned && offset.isZero(0.0); }
+  bool turned() const { return !rotation.isIdentity(0.0); }
+  bool is_identity() const { return !turned() && offset.isZero(0.0); }
   Eigen::MatrixX3d placed(const Eigen::MatrixX3d& given) const;
   Eigen::MatrixX3d back(const Eigen::MatrixX3d& placed) const;
 };

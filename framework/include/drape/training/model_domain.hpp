@@ -101,7 +101,6 @@ std::optional<Eigen::Vector3d> move_to_placement(const ModelDomain& domain, Eige
 // anchors, the body is placed by its anchor vertices, exactly where its model
 // makes bodies (moved when off by more than the anchor's spread and
 // kAnchorSlack); on the others as above. A null anchor: as above.
-constexpr double kAnchorSlack = 1e-4;
 std::optional<Eigen::Vector3d> move_to_placement(const Eigen::Vector3d& reference, const Eigen::Vector3d& spread,
                                                  const BodyAnchor* anchor, Eigen::MatrixX3d& body);
 // "stands (+0.000, +5.000, +0.000) m from where <where>; it is draped there and
