@@ -48,6 +48,12 @@ std::vector<LimbTurn> LimbFit::turns(const Eigen::MatrixX3d& mean, const Eigen::
   return out;
 }
 
+std::vector<LimbTurn> LimbFit::posed(const Eigen::MatrixX3d& mean, const Eigen::MatrixX3d& body) const {
+  std::vector<LimbTurn> out = turns(mean, body);
+  std::erase_if(out, [](const LimbTurn& t) { return !(t.degrees > kPosedLimbDegrees); });
+  return out;
+}
+
 std::vector<LimbTurn> limb_turns(const BodyModel& model, const Eigen::MatrixX3d& mean, const Eigen::MatrixX3d& body) {
   return LimbFit(model).turns(mean, body);
 }

@@ -1,7 +1,6 @@
 #include <drape/vertex_count.hpp>
 #include <drape/scene/garment_size.hpp>
-#include <drape/bodies/body_anchor.hpp>
-#include <drape/bodies/limb_turns.hpp>
+#include <drape/bodies/given_body.hpp>
 
 #include <drape/errors.hpp>
 #include <drape/geometry/girth.hpp>
@@ -9,8 +8,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <mutex>
-#include <optional>
 #include <cstdio>
 #include <limits>
 #include <memory>
@@ -137,36 +134,17 @@ SizeChoice SizeChart::choose(const Eigen::MatrixX3d& body) const {
   return table_.choose(body_girth(body, d.body_model().faces()));
 }
 
-struct SceneSimulations::GivenBodies {
-  std::once_flag once;
-  BodyAnchor anchor;
-  std::optional<LimbFit> limbs;
-};
-
-SceneSimulations::SceneSimulations(const Registry& registry, const Scene& scene)
-    : given_(std::make_unique<GivenBodies>()), garment_(scene.garment) {
+SceneSimulations::SceneSimulations(const Registry& registry, const Scene& scene) : garment_(scene.garment) {
   if (scene.garment_grade_auto)
     grades_ = std::make_unique<AutoGrade>(registry, scene);
   else if (garment_size_is_auto(scene))
     chart_ = std::make_unique<SizeChart>(registry, scene);
   else
     own_ = std::make_unique<Simulation>(registry, scene);
+  given_ = std::make_unique<GivenBodyFrame>(design().body_model());
 }
 
 SceneSimulations::~SceneSimulations() = default;
-
-const BodyAnchor& SceneSimulations::body_anchor() const {
-  std::call_once(given_->once, [this] {
-    given_->anchor = find_body_anchor(design().body_model());
-    given_->limbs.emplace(design().body_model());
-  });
-  return given_->anchor;
-}
-
-const LimbFit& SceneSimulations::limbs() const {
-  body_anchor();
-  return *given_->limbs;
-}
 
 const Simulation& SceneSimulations::design() const {
   return chart_ ? chart_->design() : grades_ ? grades_->design() : *own_;

@@ -29,14 +29,12 @@ BodyMove place(const Model& model, const ModelDomain* domain, const BodyAnchor* 
                int i, std::vector<Notice>& notices) {
   Eigen::MatrixX3d body = batch.body.mat(i).cast<double>();
   const std::string who = batch.size() > 1 ? "body " + std::to_string(i) : "the body";
-  std::string turned;
-  BodyMove move = turn_to_face(body, model.assets().body.vertices, who, &turned, posed);
-  if (!turned.empty()) notices.push_back({Notice::Level::note, who + " " + turned});
   const Eigen::Vector3d unknown = Eigen::Vector3d::Constant(std::numeric_limits<double>::quiet_NaN());
-  const std::optional<Eigen::Vector3d> offset = move_to_placement(domain ? domain->placement : unknown,
-                                                                  domain ? domain->placement_spread : unknown, anchor, body);
-  if (offset) {
-    move.offset = offset->transpose();
+  std::string turned;
+  const BodyMove move = place_given_body(body, model.assets().body.vertices, anchor, domain ? domain->placement : unknown,
+                                         domain ? domain->placement_spread : unknown, posed, who, &turned);
+  if (!turned.empty()) notices.push_back({Notice::Level::note, who + " " + turned});
+  if (!move.offset.isZero(0.0)) {
     char where[200];
     if (anchor)
       std::snprintf(where, sizeof where, "%s's training bodies stood (where its body model makes them)",
@@ -44,7 +42,7 @@ BodyMove place(const Model& model, const ModelDomain* domain, const BodyAnchor* 
     else
       std::snprintf(where, sizeof where, "%s's training bodies stood (centred in x and z, soles at y = %.3f)",
                     model.file().filename().string().c_str(), domain->placement[1]);
-    notices.push_back({Notice::Level::note, who + " " + placement_note(*offset, where)});
+    notices.push_back({Notice::Level::note, who + " " + placement_note(move.offset.transpose(), where)});
   }
   if (!move.is_identity()) batch.body.mat(i) = body.cast<float>();
   return move;
@@ -72,17 +70,16 @@ void check_domain(const Model& model, const ModelDomain& domain, const SampleBat
 
 // A body given as a mesh is taken at rest (the A-pose); one given posed gets
 // a drape for another body. Told by its limbs against the mean body's
-// (limb_turns.hpp): the limbs turned past kPosedLimbDegrees, "left_forearm
-// 40 degrees, ...", empty for a body at rest. Turns are relative (a limb
-// against its parent), so the body's own heading does not change them.
+// (LimbFit::posed): "left_forearm 40 degrees, ...", empty for a body at rest.
+// Turns are relative (a limb against its parent), so the body's own heading
+// does not change them.
 std::string posed_limbs(const Model& model, const LimbFit& limbs, const SampleBatch& batch, int i) {
   std::string turned;
-  for (const LimbTurn& t : limbs.turns(model.assets().body.vertices, batch.body.mat(i).cast<double>()))
-    if (t.degrees > kPosedLimbDegrees) {
-      char part[96];
-      std::snprintf(part, sizeof part, "%s%s %.0f degrees", turned.empty() ? "" : ", ", t.bone.c_str(), t.degrees);
-      turned += part;
-    }
+  for (const LimbTurn& t : limbs.posed(model.assets().body.vertices, batch.body.mat(i).cast<double>())) {
+    char part[96];
+    std::snprintf(part, sizeof part, "%s%s %.0f degrees", turned.empty() ? "" : ", ", t.bone.c_str(), t.degrees);
+    turned += part;
+  }
   return turned;
 }
 
@@ -405,7 +402,8 @@ void check_requested_size(const SizeTable& chart, const Model& model, const Samp
 }  // namespace
 
 BodyPreparation::BodyPreparation(const Model& model, std::optional<ModelDomain> domain)
-    : model_(model), domain_(std::move(domain)), garment_loop_(std::numeric_limits<double>::quiet_NaN()) {
+    : model_(model), domain_(std::move(domain)), garment_loop_(std::numeric_limits<double>::quiet_NaN()),
+      given_(model.body_model()) {
   if (model.needs_input("garment_grade")) size_chart_ = model_size_chart(model);
   // A model of several sizes takes the size from its user or chooses it: no fit to note.
   if (!model.needs_input("garment_size") && !model.needs_input("garment_grade")) {
@@ -428,19 +426,6 @@ std::vector<Notice> BodyPreparation::choose_sizes(SampleBatch& batch) const {
   return notices;
 }
 
-const BodyAnchor& BodyPreparation::anchor() const {
-  std::call_once(anchor_->once, [this] {
-    anchor_->anchor = find_body_anchor(model_.body_model());
-    anchor_->limbs.emplace(model_.body_model());
-  });
-  return anchor_->anchor;
-}
-
-const LimbFit& BodyPreparation::limbs() const {
-  anchor();
-  return *anchor_->limbs;
-}
-
 PreparedBodies BodyPreparation::prepare(SampleBatch& batch, bool strict, const std::string& strict_option,
                                         bool measure, bool given_meshes) const {
   PreparedBodies out;
@@ -456,10 +441,10 @@ PreparedBodies BodyPreparation::prepare(SampleBatch& batch, bool strict, const s
                                                        "told (drape model domain adds it)"});
   }
   for (int i = 0; i < batch.size(); ++i) {
-    const std::string posed = given_meshes ? posed_limbs(model_, limbs(), batch, i) : std::string();
+    const std::string posed = given_meshes ? posed_limbs(model_, given_.limbs(), batch, i) : std::string();
     if (!posed.empty()) warn_posed(model_, batch, i, posed, strict, strict_option, out.notices);
     out.moved_by[static_cast<std::size_t>(i)] =
-        place(model_, domain_ ? &*domain_ : nullptr, given_meshes ? &anchor() : nullptr, !posed.empty(), batch, i,
+        place(model_, domain_ ? &*domain_ : nullptr, given_meshes ? &given_.anchor() : nullptr, !posed.empty(), batch, i,
               out.notices);
     if (domain_ && measure) check_domain(model_, *domain_, batch, i, strict, strict_option, out.notices);
     if (measure && std::isfinite(garment_loop_)) note_fit(model_, garment_loop_, batch, i, out.notices);

@@ -7,8 +7,7 @@
 #include <drape/io/mesh_io.hpp>
 #include <drape/training/model_domain.hpp>
 #include <drape/services/scene_body.hpp>
-#include <drape/bodies/body_anchor.hpp>
-#include <drape/bodies/limb_turns.hpp>
+#include <drape/bodies/given_body.hpp>
 #include <drape/scene/garment_size.hpp>
 #include <drape/errors.hpp>
 
@@ -150,24 +149,24 @@ SceneBody scene_body(const SceneSimulations& simulations, const Eigen::MatrixX3d
   check_body_units(given, "body " + name);
   SceneBody out;
   out.vertices = given;
-  std::string turned;
-  // A mesh given posed: its limbs tilt the heading's fit, so only its turn is undone (limb_turns.hpp).
-  bool posed = false;
-  for (const LimbTurn& t : simulations.limbs().turns(design.mean_body(), out.vertices)) posed |= t.degrees > kPosedLimbDegrees;
+  // A mesh given posed: its limbs tilt the heading's fit, so only its turn is undone.
+  const GivenBodyFrame& given_bodies = simulations.given_bodies();
+  const bool posed = !given_bodies.limbs().posed(design.mean_body(), out.vertices).empty();
   if (posed)
-    out.notes.push_back("the body looks posed (a limb turned more than 15 degrees against the mean body at rest): it "
-                        "is morphed to as given, not along the path a pose takes (--pose poses a body at rest)");
-  out.moved_by = turn_to_face(out.vertices, design.mean_body(), "body " + name, &turned, posed);
-  if (!turned.empty()) out.notes.push_back("the body " + turned);
+    out.notes.push_back("the body looks posed (a limb turned more than " + std::to_string(static_cast<int>(kPosedLimbDegrees)) +
+                        " degrees against the mean body at rest): it is morphed to as given, not along the path a pose "
+                        "takes (--pose poses a body at rest)");
   const Eigen::Vector3d reference = body_placement(design.mean_body());
+  std::string turned;
   // Placed by the body model's anchor: exactly where the model makes the body, not only near.
-  if (const auto offset = move_to_placement(reference, Eigen::Vector3d::Constant(kBodyModelPlacementSpread),
-                                            &simulations.body_anchor(), out.vertices)) {
-    out.moved_by.offset = offset->transpose();
+  out.moved_by = place_given_body(out.vertices, design.mean_body(), &given_bodies.anchor(), reference,
+                                  Eigen::Vector3d::Constant(kBodyModelPlacementSpread), posed, "body " + name, &turned);
+  if (!turned.empty()) out.notes.push_back("the body " + turned);
+  if (!out.moved_by.offset.isZero(0.0)) {
     char where[120];
     std::snprintf(where, sizeof where, "the body model's bodies stand (soles at y = %.3f, the midline at x = 0)",
                   reference[1]);
-    out.notes.push_back("the body " + placement_note(*offset, where));
+    out.notes.push_back("the body " + placement_note(out.moved_by.offset.transpose(), where));
   }
   choose_size(simulations, name, out);
   pose_chosen(simulations, pose, out);

@@ -35,6 +35,8 @@ class LimbFit {
  public:
   explicit LimbFit(const BodyModel& model);
   std::vector<LimbTurn> turns(const Eigen::MatrixX3d& mean, const Eigen::MatrixX3d& body) const;
+  // Those turned past kPosedLimbDegrees: none for a body at rest.
+  std::vector<LimbTurn> posed(const Eigen::MatrixX3d& mean, const Eigen::MatrixX3d& body) const;
 
  private:
   std::vector<BodyModel::Joint> joints_;

@@ -32,8 +32,7 @@
 
 namespace drape {
 
-struct BodyAnchor;  // bodies/body_anchor.hpp
-class LimbFit;     // bodies/limb_turns.hpp
+class GivenBodyFrame;  // bodies/given_body.hpp
 
 inline constexpr double kGirthBandLow = 0.58, kGirthBandHigh = 0.72;  // fractions of the height
 
@@ -103,15 +102,13 @@ class SceneSimulations {
   // garment ... does not fit this body: <summary>" when none fits.
   const Simulation& for_body(const Eigen::MatrixX3d& body, const std::string& what, SizeChoice* choice = nullptr,
                              GradeChoice* grade_choice = nullptr) const;
-  // What places a body given as a mesh (services/scene_body.hpp): where the
-  // scene's body model makes its bodies (body_anchor.hpp, 0.1-0.2 s) and its
-  // bones' own vertices (limb_turns.hpp), found once, on first use.
-  const BodyAnchor& body_anchor() const;
-  const LimbFit& limbs() const;
+  // What turns, places and checks a body given as a mesh
+  // (services/scene_body.hpp) for the scene's body model: found once, on
+  // first use (given_body.hpp).
+  const GivenBodyFrame& given_bodies() const { return *given_; }
 
  private:
-  struct GivenBodies;
-  std::unique_ptr<GivenBodies> given_;
+  std::unique_ptr<GivenBodyFrame> given_;
   std::string garment_;
   std::unique_ptr<SizeChart> chart_;
   std::unique_ptr<AutoGrade> grades_;

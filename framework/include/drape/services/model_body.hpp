@@ -13,17 +13,13 @@
 //    own size, chooses the size by that rule unless the caller named one. What it has to say comes back as
 //    notices, for the face to print (CLI: "note: ..." on stderr) or warn
 //    (Python warnings).
-#include <drape/bodies/body_anchor.hpp>
-#include <drape/bodies/limb_turns.hpp>
-#include <drape/geometry/body_heading.hpp>
+#include <drape/bodies/given_body.hpp>
 #include <drape/training/model.hpp>
 #include <drape/training/model_domain.hpp>
 #include <drape/scene/size_table.hpp>
 
 #include <Eigen/Core>
 #include <array>
-#include <memory>
-#include <mutex>
 #include <optional>
 #include <string>
 #include <vector>
@@ -122,10 +118,6 @@ class BodyPreparation {
   std::vector<Notice> pose(SampleBatch& batch, const Pose& pose, bool strict,
                            const std::string& strict_option = "--strict") const;
   const std::optional<ModelDomain>& domain() const { return domain_; }
-  // Where the model's body model makes its bodies (body_anchor.hpp), found on first use.
-  const BodyAnchor& anchor() const;
-  // Its limbs, to tell a body given posed (limb_turns.hpp), made on first use.
-  const LimbFit& limbs() const;
 
  private:
   const Model& model_;
@@ -133,12 +125,7 @@ class BodyPreparation {
   double garment_loop_;  // m, the model garment's narrowest loop on the mean body (NaN: none, or a sized model)
   void choose_sizes(SampleBatch& batch, bool strict, const std::string& strict_option, std::vector<Notice>& notices) const;
   std::optional<SizeTable> size_chart_;  // a model taking garment_grade: its training data's size chart
-  struct AnchorOnce {
-    std::once_flag once;
-    BodyAnchor anchor;
-    std::optional<LimbFit> limbs;  // made with the anchor: the skinning weights read once
-  };
-  std::shared_ptr<AnchorOnce> anchor_ = std::make_shared<AnchorOnce>();  // shared: a copy finds it once too
+  GivenBodyFrame given_;  // turns, places and checks bodies given as meshes (given_body.hpp)
 };
 
 // For a model taking garment_grade: the grade a caller asked for, a number

@@ -1,0 +1,43 @@
+#pragma once
+// A body mesh given for a body model (a scan, a mesh another tool left):
+// turned to face as the model's bodies face, placed where it makes them, and
+// told when posed. The one mechanism behind `drape predict`/`optimize`/
+// `render` (services/model_body.hpp) and `drape simulate` (services/
+// scene_body.hpp), in C++ and Python.
+#include <drape/bodies/body_anchor.hpp>
+#include <drape/bodies/limb_turns.hpp>
+#include <drape/geometry/body_heading.hpp>
+
+#include <Eigen/Core>
+#include <memory>
+#include <string>
+
+namespace drape {
+
+// What depends only on the body model: its anchor (body_anchor.hpp, 0.1-0.2
+// s: two bodies solved) and its limbs (limb_turns.hpp), found on first use,
+// once (thread-safe; copies share them).
+class GivenBodyFrame {
+ public:
+  explicit GivenBodyFrame(const BodyModel& model);
+  const BodyAnchor& anchor() const;
+  const LimbFit& limbs() const;
+
+ private:
+  struct State;
+  const BodyModel* model_;
+  std::shared_ptr<State> state_;
+};
+
+// Turns `body` (in place) to face as `mean` does (turn_to_face: the note of
+// the turn into *turned, a lean past the limit refused naming `who`), then
+// places it by `anchor` where its model makes bodies, on the axes the
+// anchor holds and where `reference` +- `spread` agrees, else by that record
+// (move_to_placement; NaN: no record). Returns the move a drape made there
+// takes back (its offset: where the body stood, for the caller's note).
+// `posed`: the body's limbs are turned (LimbFit::posed), its lean not read.
+BodyMove place_given_body(Eigen::MatrixX3d& body, const Eigen::MatrixX3d& mean, const BodyAnchor* anchor,
+                          const Eigen::Vector3d& reference, const Eigen::Vector3d& spread, bool posed,
+                          const std::string& who, std::string* turned);
+
+}  // namespace drape
