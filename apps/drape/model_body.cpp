@@ -1,6 +1,7 @@
 #include "model_body.hpp"
 #include "pose_options.hpp"
 
+#include <drape/bodies/limb_turns.hpp>
 #include <drape/io/checkpoint.hpp>
 #include <drape/io/shipped_files.hpp>
 #include <drape/scene/garment_size.hpp>
@@ -68,6 +69,27 @@ std::string models_taking(const Model& model, Eigen::Index count, const po::vari
   return names;
 }
 
+// Whether the body mesh of --body is posed (LimbFit::posed, against the mean
+// body of `model_file`'s body model): the default model is then the one of
+// posed drapes, which reads the pose off the mesh. Reads the model's
+// metadata, not its weights; false whenever it cannot tell (the mesh's
+// errors are reported where it is read for the prediction).
+bool body_mesh_posed(const fs::path& model_file, const po::variables_map& vm) {
+  if (!vm.count("body")) return false;
+  try {
+    const Checkpoint checkpoint = read_checkpoint(model_file);
+    const auto assets = checkpoint.meta.find("assets");
+    if (assets == checkpoint.meta.end()) return false;
+    const auto body = make_body_model(Registry::load_default(plugin_path(vm)),
+                                      parse_assets_spec(assets->second, model_file.string()));
+    const Mesh mesh = read_mesh(vm["body"].as<std::string>());
+    if (!body->poseable() || mesh.vertices.rows() != body->num_vertices()) return false;
+    return !LimbFit(*body).posed(body->vertices(body->mean_shape()), mesh.vertices).empty();
+  } catch (const std::exception&) {
+    return false;
+  }
+}
+
 }  // namespace
 
 void add_model_body_options(po::options_description& options, const std::string& body_help) {
@@ -100,9 +122,9 @@ std::string model_file_or_default(const po::variables_map& vm) {
   // A posed body goes to the shipped model of posed drapes (the A-pose model
   // refuses a pose); DRAPE_MODEL, when set, names the one model for both.
   const char* env = std::getenv("DRAPE_MODEL");
-  if (pose_given(vm) && !(env && *env))
-    if (const fs::path file = shipped_model_path(posed_model_name); !file.empty()) return file.string();
   const std::string file = default_model_path().string();
+  if (!(env && *env) && (pose_given(vm) || (!file.empty() && body_mesh_posed(file, vm))))
+    if (const fs::path posed = shipped_model_path(posed_model_name); !posed.empty()) return posed.string();
   if (file.empty())
     throw UsageError(std::string("no --model given and the shipped model (models/") + kDefaultModelFile + ") was not found: give "
                      "--model FILE from drape train, or set DRAPE_MODEL");
@@ -127,7 +149,7 @@ SampleBatch model_body(const Model& model, const po::variables_map& vm, BodyMove
   PreparedBodies prepared = preparation.prepare(batch, vm.count("strict") > 0, "--strict", true, vm.count("body") > 0);
   // Posed after the body is measured and placed at rest (a raised arm is no girth).
   const std::optional<Pose> pose = pose_options(vm, model.body_model(), model.assets_spec().body_model);
-  for (Notice& n : preparation.pose(batch, pose ? *pose : Pose{}, vm.count("strict") > 0))
+  for (Notice& n : preparation.pose(batch, pose ? *pose : Pose{}, vm.count("strict") > 0, "--strict", &prepared))
     prepared.notices.push_back(std::move(n));
   for (const Notice& n : prepared.notices) {
     const std::string line = (n.level == Notice::Level::note ? "note: " : "warning: ") + n.text;

@@ -35,7 +35,8 @@ inline constexpr const char* posed_model_name = "tshirt-coarse-posed-human.h5";
 // Whether --pose, --pose-file or --smpl-theta is given.
 bool pose_given(const po::variables_map& vm);
 
-// --model, or the shipped pretrained model: for a posed body (pose_given) the
+// --model, or the shipped pretrained model: for a posed body (pose_given, or
+// a --body mesh given posed: its limbs turned as limb_turns.hpp tells) the
 // model of posed drapes (posed_model_name) when it is shipped and DRAPE_MODEL
 // is not set, else default_model_path's; UsageError when none exists.
 std::string model_file_or_default(const po::variables_map& vm);

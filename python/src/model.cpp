@@ -111,7 +111,7 @@ class PyModel {
   // bodies stood is moved there, the domain is checked (strict: ValueError
   // outside it) and a garment too small around is noted, each notice a Python
   // warning; returns per sample the move that takes its garment back (BodyMove::back).
-  std::vector<BodyMove> prepare(SampleBatch& b, bool strict, bool check = true) {
+  PreparedBodies prepare(SampleBatch& b, bool strict, bool check = true) {
     if (strict && !check) throw py::value_error("strict=True needs check=True: the domain is checked by measuring the body");
     const BodyPreparation& preparation = this->preparation();
     PreparedBodies prepared = [&] {
@@ -119,11 +119,11 @@ class PyModel {
       return preparation.prepare(b, strict, "strict=True", check);
     }();
     for (const Notice& n : prepared.notices) warn_python(n.text);
-    return std::move(prepared.moved_by);
+    return prepared;
   }
   // Then the pose (BodyPreparation::pose): warnings for angles outside the training poses (strict: ValueError).
-  void pose(SampleBatch& b, const std::optional<Pose>& pose, bool strict) {
-    const std::vector<Notice> notices = preparation().pose(b, pose ? *pose : Pose{}, strict, "strict=True");
+  void pose(SampleBatch& b, const std::optional<Pose>& pose, bool strict, const PreparedBodies& prepared) {
+    const std::vector<Notice> notices = preparation().pose(b, pose ? *pose : Pose{}, strict, "strict=True", &prepared);
     for (const Notice& n : notices) warn_python(n.text);
   }
 
@@ -294,8 +294,9 @@ void register_model(py::module_& m) {
             bool batched = false;
             const std::optional<Pose> posed = pose_arg(p.model().body_model(), p.model().assets_spec().body_model, pose);
             SampleBatch b = p.batch(body, body_params, garment_size, &batched);
-            const std::vector<BodyMove> back = p.prepare(b, strict, check);
-            p.pose(b, posed, strict);
+            const PreparedBodies prepared = p.prepare(b, strict, check);
+            p.pose(b, posed, strict, prepared);
+            const std::vector<BodyMove>& back = prepared.moved_by;
             Tensor out = p.predict(b);
             // Moved back as drape predict writes it (in double), then float32 like every prediction.
             for (int i = 0; i < out.batch(); ++i)
@@ -335,8 +336,9 @@ void register_model(py::module_& m) {
             if (b.size() != 1) throw py::value_error("body_vertices: optimize takes one body [Nb, 3], got a batch of " + std::to_string(b.size()));
             if (iterations < 0) throw py::value_error("iterations: expected >= 0");
             // Optimised where the training bodies stood (as predict), the drapes moved back with the body.
-            const BodyMove back = p.prepare(b, false).front();
-            p.pose(b, posed, false);
+            const PreparedBodies prepared = p.prepare(b, false);
+            p.pose(b, posed, false, prepared);
+            const BodyMove back = prepared.moved_by.front();
             // A model of several sizes: against the garment the scene dresses this body in, fed that grade.
             const Simulation& simulation = GradedScene(registry(), *scene.simulations).for_model(p.model(), b, false, "optimize");
             PhysicsOptimizationOptions o;

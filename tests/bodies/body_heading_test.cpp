@@ -108,6 +108,21 @@ TEST_CASE("turn_to_face undoes a turn exactly and moves the drape back, and refu
   }
 }
 
+TEST_CASE("BodyMove::then is the two moves in turn, and back() undoes both", "[bodies][heading]") {
+  BodyMove first;
+  first.rotation = about_y(40.0) * about_x(3.0);
+  first.pivot = {0.1, 0.9, -0.2};
+  first.offset = {0.3, 0.0, 0.05};
+  BodyMove second;
+  second.rotation = about_x(-2.0) * about_y(-7.0);
+  second.pivot = {-0.4, 1.1, 0.6};
+  second.offset = {-0.02, 0.01, 0.2};
+  const Eigen::MatrixX3d x = bodies().heavy.topRows(50);
+  const BodyMove both = first.then(second);
+  CHECK((both.placed(x) - second.placed(first.placed(x))).cwiseAbs().maxCoeff() < 1e-12);
+  CHECK((both.back(both.placed(x)) - x).cwiseAbs().maxCoeff() < 1e-12);
+}
+
 TEST_CASE("the parametric body's anchor places a body given a few millimetres off exactly where the model made it",
           "[bodies][heading]") {
   const Bodies& b = bodies();

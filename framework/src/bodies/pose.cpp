@@ -9,6 +9,7 @@
 #include <yaml-cpp/yaml.h>
 
 #include <cmath>
+#include <limits>
 #include <cstdlib>
 #include <set>
 #include <sstream>
@@ -245,6 +246,10 @@ Eigen::MatrixXd BodyModel::skinning_weights() const {
   throw ConfigError("this body model has no skeleton (it makes unposed bodies only; docs/poses.md)");
 }
 Pose BodyModel::rest_pose(const Eigen::VectorXd&) const { return {}; }
+std::vector<std::pair<double, double>> BodyModel::shape_ranges() const {
+  const double inf = std::numeric_limits<double>::infinity();
+  return std::vector<std::pair<double, double>>(shape_names().size(), {-inf, inf});
+}
 Pose BodyModel::rest_pose_of(const Eigen::MatrixX3d&) const { return rest_pose(mean_shape()); }
 // The shape's body posed all the way: one definition for every model whose
 // pose does not depend on the shape beyond its mesh (posed_vertices refuses

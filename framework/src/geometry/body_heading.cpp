@@ -37,6 +37,15 @@ Eigen::MatrixX3d BodyMove::back(const Eigen::MatrixX3d& placed) const {
   return (((placed.rowwise() + offset).rowwise() - pivot) * rotation.transpose()).rowwise() + pivot;
 }
 
+BodyMove BodyMove::then(const BodyMove& next) const {
+  // placed_next(placed(x)) = (x - pivot) R R_next + (pivot - offset - pivot_next) R_next + pivot_next - offset_next.
+  BodyMove out;
+  out.rotation = rotation * next.rotation;
+  out.pivot = pivot;
+  out.offset = pivot - (pivot - offset - next.pivot) * next.rotation - next.pivot + next.offset;
+  return out;
+}
+
 BodyMove turn_to_face(Eigen::MatrixX3d& body, const Eigen::MatrixX3d& mean, const std::string& what,
                       std::string* note, bool posed) {
   BodyMove move;

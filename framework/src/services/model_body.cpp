@@ -1,4 +1,5 @@
 // model_body_batch and prepare_bodies (services/model_body.hpp).
+#include <drape/bodies/pose_fit.hpp>
 #include <drape/geometry/adjacency.hpp>
 #include <drape/geometry/body_units.hpp>
 #include <drape/geometry/volume.hpp>
@@ -13,9 +14,15 @@
 #include <iterator>
 #include <cstdio>
 #include <limits>
+#include <numbers>
 
 namespace drape {
 namespace {
+
+// A mesh unposed (pose_fit.hpp) that poses back this far from itself is told.
+constexpr double kUnposeTolerance = 1e-3;  // m
+// A posed mesh's place is read to the fit's precision; closer is not said.
+constexpr double kPosedPlacementTolerance = 5e-4;  // m
 
 // A batch of several bodies says which one a notice is about.
 std::string about(const SampleBatch& batch, int i) { return batch.size() > 1 ? "body " + std::to_string(i) + ": " : ""; }
@@ -46,6 +53,19 @@ BodyMove place(const Model& model, const ModelDomain* domain, const BodyAnchor* 
   }
   if (!move.is_identity()) batch.body.mat(i) = body.cast<float>();
   return move;
+}
+
+// The pose angles of `pose` away from the rest pose `rest` by at least half a
+// degree, rounded to a degree, for a note: "left_elbow_flexion=40,...".
+std::string posed_angles(const Pose& pose, const Pose& rest) {
+  std::string out;
+  for (const auto& [name, value] : pose.angles) {
+    if (!(std::abs(value - rest.get(name, 0.0)) >= 0.5)) continue;
+    char part[96];
+    std::snprintf(part, sizeof part, "%s%s=%.0f", out.empty() ? "" : ",", name.c_str(), value);
+    out += part;
+  }
+  return out.empty() ? "its rest pose" : out;
 }
 
 void check_domain(const Model& model, const ModelDomain& domain, const SampleBatch& batch, int i, bool strict,
@@ -87,11 +107,9 @@ void warn_posed(const Model& model, const SampleBatch& batch, int i, const std::
                 const std::string& strict_option, std::vector<Notice>& notices) {
   const std::string text = about(batch, i) + "the body looks posed: against the mean body at rest, " + turned +
                            " (a body at rest turns none by more than " + std::to_string(static_cast<int>(kPosedLimbDegrees)) +
-                           "); a body mesh is taken at rest (the A-pose): give the body at rest (drape body --out "
-                           "without --pose writes it) " +
-                           (model_takes_pose(model) ? std::string("and its pose by --pose")
-                                                    : std::string("(this model drapes the A-pose only; a model of "
-                                                                  "posed drapes takes the pose by --pose, docs/poses.md)"));
+                           "); " + model.file().filename().string() +
+                           " drapes the A-pose only, so the drape is for another body: a model of posed drapes reads the "
+                           "pose off the mesh (docs/poses.md, \"A body given posed\")";
   if (strict) throw ConfigError(strict_option + ": " + text);
   notices.push_back({Notice::Level::warning, text});
 }
@@ -299,17 +317,23 @@ bool model_takes_pose(const Model& model) {
 }
 
 void pose_model_batch(const Model& model, SampleBatch& batch, const Pose& pose) {
+  pose_model_batch(model, batch, std::vector<Pose>(static_cast<std::size_t>(batch.size()), pose));
+}
+
+void pose_model_batch(const Model& model, SampleBatch& batch, const std::vector<Pose>& poses) {
+  if (poses.size() != static_cast<std::size_t>(batch.size()))
+    throw Error("pose_model_batch: " + std::to_string(poses.size()) + " poses for " + std::to_string(batch.size()) + " bodies");
   if (!model_takes_pose(model)) {
-    if (pose.empty()) return;
+    if (std::all_of(poses.begin(), poses.end(), [](const Pose& p) { return p.empty(); })) return;
     throw ConfigError("this model drapes bodies in the A-pose only (its graph takes no pose): a posed body would get a "
                       "wrong drape; use a model trained on posed drapes (docs/poses.md), or drape simulate --pose");
   }
   const BodyModel& body_model = model.body_model();
-  check_pose(pose, body_model.pose_angles(), "pose");
+  for (const Pose& pose : poses) check_pose(pose, body_model.pose_angles(), "pose");
   const int n = batch.size();
   SampleBatch posed;
   for (int i = 0; i < n; ++i) {
-    const SampleBatch one = posed_body_batch(body_model, batch.body.mat(i).cast<double>(), pose);
+    const SampleBatch one = posed_body_batch(body_model, batch.body.mat(i).cast<double>(), poses[static_cast<std::size_t>(i)]);
     if (i == 0) {
       posed.body = Tensor(n, one.body.rows(), 3);
       posed.unposed_body = Tensor(n, one.unposed_body.rows(), 3);
@@ -327,9 +351,65 @@ void pose_model_batch(const Model& model, SampleBatch& batch, const Pose& pose) 
   batch.pose = std::move(posed.pose);
 }
 
+// A body mesh given posed: turned and placed as given (its limbs tilt the
+// fit, so no lean is read), its pose read off it and the mesh unposed
+// (pose_fit.hpp), then the body at rest placed as a body given at rest. The
+// two moves are one for the drape to go back by.
+BodyMove BodyPreparation::unpose_given(SampleBatch& batch, int i, Pose& pose, std::vector<Notice>& notices) const {
+  const ModelDomain* domain = domain_ ? &*domain_ : nullptr;
+  // Faced and placed roughly by the whole mesh, the fit taking up what is
+  // left (a trunk twisted 10 degrees turns the whole mesh's fit by 8), then
+  // the body at rest placed as a body given at rest. The notes of the three
+  // would contradict each other: one note says where the mesh stood in all.
+  std::vector<Notice> said;
+  const BodyMove as_posed = place(model_, domain, &given_.anchor(), true, batch, i, said);
+  const BodyModel& body_model = model_.body_model();
+  const PoseFit fit = fit_pose(body_model, batch.body.mat(i).cast<double>());
+  pose = fit.pose;
+  batch.body.mat(i) = fit.rest.cast<float>();
+  const BodyMove at_rest = place(model_, domain, &given_.anchor(), false, batch, i, said);
+  const BodyMove moved = as_posed.then(fit.moved).then(at_rest);
+
+  const std::string who = batch.size() > 1 ? "body " + std::to_string(i) : "the body";
+  char line[600];
+  const Eigen::Vector3d facing = moved.rotation.col(2);
+  const double turn = std::atan2(facing.x(), facing.z()) * 180.0 / std::numbers::pi;
+  if (std::abs(turn) > kTurnToleranceDegrees) {
+    std::snprintf(line, sizeof line, "%s faces %.1f degrees from the way the body model's bodies face (turned about the "
+                  "vertical, counter-clockwise seen from above); it is draped turned to face as they do and the drape "
+                  "turned back with it", who.c_str(), turn);
+    notices.push_back({Notice::Level::note, line});
+  } else if (moved.offset.norm() > kPosedPlacementTolerance) {
+    notices.push_back({Notice::Level::note, who + " " + placement_note(moved.offset.transpose(), model_.file().filename().string() +
+                                                                           "'s training bodies stood (where its body model makes them)")});
+  }
+  std::snprintf(line, sizeof line,
+                "the body mesh is posed: its pose read off it is %s (the body model so posed lies %.1f mm rms, %.1f mm at "
+                "most, from the mesh); draped in that pose on the mesh unposed (docs/poses.md, \"A body given posed\")",
+                posed_angles(fit.pose, body_model.rest_pose(fit.shape)).c_str(), 1e3 * fit.fit_rms, 1e3 * fit.fit_max);
+  notices.push_back({Notice::Level::note, about(batch, i) + line});
+  if (fit.reposed_error > kUnposeTolerance) {
+    std::snprintf(line, sizeof line,
+                  "the mesh unposed does not pose back onto itself: %.1f mm off at worst (a mesh the skinning cannot "
+                  "make, such as limbs passing through each other); the drape is for a body that far from it",
+                  1e3 * fit.reposed_error);
+    notices.push_back({Notice::Level::warning, about(batch, i) + line});
+  }
+  return moved;
+}
+
 std::vector<Notice> BodyPreparation::pose(SampleBatch& batch, const Pose& pose, bool strict,
-                                          const std::string& strict_option) const {
-  pose_model_batch(model_, batch, pose);
+                                          const std::string& strict_option, const PreparedBodies* prepared) const {
+  std::vector<Pose> poses(static_cast<std::size_t>(batch.size()), pose);
+  if (prepared)
+    for (std::size_t i = 0; i < prepared->given_poses.size() && i < poses.size(); ++i) {
+      if (prepared->given_poses[i].empty()) continue;
+      if (!pose.empty())
+        throw ConfigError(about(batch, static_cast<int>(i)) + "the body mesh is given posed and a pose is given too: give "
+                          "the posed mesh alone (its pose is read off it), or the body at rest with the pose");
+      poses[i] = prepared->given_poses[i];
+    }
+  pose_model_batch(model_, batch, poses);
   if (!model_takes_pose(model_) || !domain_ || domain_->pose_names.empty()) return {};
   std::vector<Notice> notices;
   const std::vector<PoseAngle> angles = model_.body_model().pose_angles();
@@ -432,7 +512,7 @@ PreparedBodies BodyPreparation::prepare(SampleBatch& batch, bool strict, const s
   out.moved_by.assign(static_cast<std::size_t>(batch.size()), BodyMove{});
   // A grade already in the batch was asked for (choose_sizes fills the others by the rule).
   const bool size_asked_for = size_chart_ && !batch.garment_grade.empty();
-  choose_sizes(batch, strict, strict_option, out.notices);
+  out.given_poses.assign(static_cast<std::size_t>(batch.size()), Pose{});
   if (measure && !domain_ && !model_.file().empty()) {  // an untrained model in memory has no file to record one in
     const std::string name = model_.file().filename().string();
     if (strict)
@@ -440,12 +520,24 @@ PreparedBodies BodyPreparation::prepare(SampleBatch& batch, bool strict, const s
     out.notices.push_back({Notice::Level::note, name + " records no training domain, so a body outside it cannot be "
                                                        "told (drape model domain adds it)"});
   }
+  // A body given posed to a model of posed drapes is unposed (and placed)
+  // first: the size is chosen, and the domain checked, on the body at rest
+  // (a raised arm is no girth).
+  std::vector<std::string> posed(static_cast<std::size_t>(batch.size()));
   for (int i = 0; i < batch.size(); ++i) {
-    const std::string posed = given_meshes ? posed_limbs(model_, given_.limbs(), batch, i) : std::string();
-    if (!posed.empty()) warn_posed(model_, batch, i, posed, strict, strict_option, out.notices);
-    out.moved_by[static_cast<std::size_t>(i)] =
-        place(model_, domain_ ? &*domain_ : nullptr, given_meshes ? &given_.anchor() : nullptr, !posed.empty(), batch, i,
-              out.notices);
+    const auto at = static_cast<std::size_t>(i);
+    if (given_meshes) posed[at] = posed_limbs(model_, given_.limbs(), batch, i);
+    if (!posed[at].empty() && model_takes_pose(model_))
+      out.moved_by[at] = unpose_given(batch, i, out.given_poses[at], out.notices);
+  }
+  choose_sizes(batch, strict, strict_option, out.notices);
+  for (int i = 0; i < batch.size(); ++i) {
+    const auto at = static_cast<std::size_t>(i);
+    if (out.given_poses[at].empty()) {
+      if (!posed[at].empty()) warn_posed(model_, batch, i, posed[at], strict, strict_option, out.notices);
+      out.moved_by[at] = place(model_, domain_ ? &*domain_ : nullptr, given_meshes ? &given_.anchor() : nullptr,
+                               !posed[at].empty(), batch, i, out.notices);
+    }
     if (domain_ && measure) check_domain(model_, *domain_, batch, i, strict, strict_option, out.notices);
     if (measure && std::isfinite(garment_loop_)) note_fit(model_, garment_loop_, batch, i, out.notices);
     if (measure && size_asked_for) check_requested_size(*size_chart_, model_, batch, i, strict, strict_option, out.notices);

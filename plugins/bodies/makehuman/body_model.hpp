@@ -30,6 +30,8 @@ class MakeHumanBody final : public BodyModel {
   const Eigen::MatrixX3i& faces() const override { return model_->body_faces(); }
   std::vector<std::string> shape_names() const override { return slider_names(); }
   Eigen::VectorXd mean_shape() const override;
+  // Every slider in [0, 1] (to_sliders).
+  std::vector<std::pair<double, double>> shape_ranges() const override { return {8, {0.0, 1.0}}; }
   Eigen::MatrixX3d vertices(const Eigen::VectorXd& shape) const override;
   Eigen::VectorXd solve(const BodyRequest& request) const override;
   std::pair<double, double> bmi_range() const override;

@@ -111,6 +111,11 @@ class ParametricBody final : public BodyModel {
     return names;
   }
   Eigen::VectorXd mean_shape() const override { return mean_shape_vector(); }
+  std::vector<std::pair<double, double>> shape_ranges() const override {
+    std::vector<std::pair<double, double>> out;
+    for (const auto& s : shape_specs()) out.emplace_back(s.min, s.max);
+    return out;
+  }
 
   Eigen::MatrixX3d vertices(const Eigen::VectorXd& shape) const override {
     check_shape(shape);

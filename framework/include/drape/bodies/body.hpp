@@ -32,6 +32,10 @@ class BodyModel {
   virtual const Eigen::MatrixX3i& faces() const = 0;
   virtual std::vector<std::string> shape_names() const = 0;
   virtual Eigen::VectorXd mean_shape() const = 0;
+  // Each shape parameter's accepted range, in shape_names() order, for a
+  // caller that searches the shape space (fit_pose, drape/bodies/pose_fit.hpp);
+  // unbounded by default (SMPL's betas).
+  virtual std::vector<std::pair<double, double>> shape_ranges() const;
   virtual Eigen::MatrixX3d vertices(const Eigen::VectorXd& shape) const = 0;
   // Shape parameters that reach the request; throws ConfigError (naming the
   // reachable range) when the model cannot reach it.

@@ -47,6 +47,9 @@ struct BodyMove {
   bool is_identity() const { return !turned() && offset.isZero(0.0); }
   Eigen::MatrixX3d placed(const Eigen::MatrixX3d& given) const;
   Eigen::MatrixX3d back(const Eigen::MatrixX3d& placed) const;
+  // This move, then `next` (on what this one placed): one move, placed() and
+  // back() of both in turn.
+  BodyMove then(const BodyMove& next) const;
 };
 
 // Turns `body` (in place) to face as `mean` does when it is turned or leans

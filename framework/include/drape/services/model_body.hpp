@@ -8,7 +8,8 @@
 //  - BodyPreparation::prepare: per body of a batch, turns a body facing another
 //    way to face as the model's bodies face (body_heading.hpp) and moves a body
 //    standing away from where the training bodies stood there (model_domain.hpp, placement),
-//    checks the training domain, and notes a garment too small around for it
+//    checks the training domain, reads the pose off a body mesh given posed
+//    to a model of posed drapes (pose_fit.hpp) and unposes it, and notes a garment too small around for it
 //    (garment_size.hpp's tailor's rule); for a model of drapes in each body's
 //    own size, chooses the size by that rule unless the caller named one. What it has to say comes back as
 //    notices, for the face to print (CLI: "note: ..." on stderr) or warn
@@ -54,6 +55,8 @@ struct ModelBodyInput {
 // leaves an A-pose model's batch alone; a pose for a model of A-pose bodies
 // is a ConfigError (its drapes would be silently wrong).
 void pose_model_batch(const Model& model, SampleBatch& batch, const Pose& pose);
+// The same with a pose per body (`poses`, one per body of the batch).
+void pose_model_batch(const Model& model, SampleBatch& batch, const std::vector<Pose>& poses);
 // True for a model whose graph takes the posing inputs.
 bool model_takes_pose(const Model& model);
 
@@ -85,6 +88,10 @@ struct PreparedBodies {
   // Per body: what moves what the model predicts for it back where (and the
   // way) the body stood (BodyMove::back; the identity when it was not moved).
   std::vector<BodyMove> moved_by;
+  // Per body: the pose read off a body mesh given posed to a model of posed
+  // drapes (pose_fit.hpp; its body in the batch is then the mesh unposed),
+  // empty for a body given at rest. BodyPreparation::pose drapes it so.
+  std::vector<Pose> given_poses;
   std::vector<Notice> notices;
 };
 
@@ -115,8 +122,11 @@ class BodyPreparation {
   // chooses), measured where bodies stand in a scene wherever it is given;
   // the notes naming each size. Nothing for other models or given grades.
   std::vector<Notice> choose_sizes(SampleBatch& batch) const;
+  // `prepared`: what prepare() said of this batch; a body given posed is
+  // draped in the pose read off it (PreparedBodies::given_poses), and `pose`
+  // must then be empty (ConfigError: two poses for one body).
   std::vector<Notice> pose(SampleBatch& batch, const Pose& pose, bool strict,
-                           const std::string& strict_option = "--strict") const;
+                           const std::string& strict_option = "--strict", const PreparedBodies* prepared = nullptr) const;
   const std::optional<ModelDomain>& domain() const { return domain_; }
 
  private:
@@ -125,6 +135,7 @@ class BodyPreparation {
   double garment_loop_;  // m, the model garment's narrowest loop on the mean body (NaN: none, or a sized model)
   void choose_sizes(SampleBatch& batch, bool strict, const std::string& strict_option, std::vector<Notice>& notices) const;
   std::optional<SizeTable> size_chart_;  // a model taking garment_grade: its training data's size chart
+  BodyMove unpose_given(SampleBatch& batch, int i, Pose& pose, std::vector<Notice>& notices) const;
   GivenBodyFrame given_;  // turns, places and checks bodies given as meshes (given_body.hpp)
 };
 
