@@ -2,7 +2,10 @@
 #include <drape/bodies/given_body.hpp>
 #include <drape/training/model_domain.hpp>
 
+#include <cmath>
+#include <cstdio>
 #include <mutex>
+#include <numbers>
 #include <optional>
 
 namespace drape {
@@ -35,6 +38,66 @@ BodyMove place_given_body(Eigen::MatrixX3d& body, const Eigen::MatrixX3d& mean, 
   if (const std::optional<Eigen::Vector3d> offset = move_to_placement(reference, spread, anchor, body))
     move.offset = offset->transpose();
   return move;
+}
+
+namespace {
+
+// A mesh unposed that poses back this far from itself is told.
+constexpr double kUnposeTolerance = 1e-3;  // m
+
+// The angles of `pose` at least half a degree from the rest pose `rest`,
+// rounded to a degree: "left_elbow_flexion=40,...".
+std::string posed_angles(const Pose& pose, const Pose& rest) {
+  std::string out;
+  for (const auto& [name, value] : pose.angles) {
+    if (!(std::abs(value - rest.get(name, 0.0)) >= 0.5)) continue;
+    char part[96];
+    std::snprintf(part, sizeof part, "%s%s=%.0f", out.empty() ? "" : ",", name.c_str(), value);
+    out += part;
+  }
+  return out.empty() ? "its rest pose" : out;
+}
+
+}  // namespace
+
+GivenPosedBody unpose_given_body(Eigen::MatrixX3d& body, const BodyModel& model, const Eigen::MatrixX3d& mean,
+                                 const BodyAnchor* anchor, const Eigen::Vector3d& reference,
+                                 const Eigen::Vector3d& spread, const std::string& who) {
+  // Faced and placed roughly by the whole mesh, the fit taking up what is
+  // left (a trunk twisted 10 degrees turns the whole mesh's fit by 8). The
+  // notes of the three steps would contradict each other: one says where
+  // the mesh stood in all.
+  GivenPosedBody out;
+  std::string said;
+  const BodyMove as_posed = place_given_body(body, mean, anchor, reference, spread, true, who, &said);
+  out.fit = fit_pose(model, body);
+  body = out.fit.rest;
+  const BodyMove at_rest = place_given_body(body, mean, anchor, reference, spread, false, who, &said);
+  out.moved = as_posed.then(out.fit.moved).then(at_rest);
+
+  char line[600];
+  const Eigen::Vector3d facing = out.moved.rotation.col(2);
+  const double turn = std::atan2(facing.x(), facing.z()) * 180.0 / std::numbers::pi;
+  if (std::abs(turn) > kTurnToleranceDegrees) {
+    std::snprintf(line, sizeof line, "faces %.1f degrees from the way the body model's bodies face (turned about the "
+                  "vertical, counter-clockwise seen from above); it is draped turned to face as they do and the drape "
+                  "turned back with it", turn);
+    out.turned = line;
+  }
+  std::snprintf(line, sizeof line,
+                "the body mesh is posed: its pose read off it is %s (the body model so posed lies %.1f mm rms, %.1f mm at "
+                "most, from the mesh); draped in that pose on the mesh unposed (docs/poses.md, \"A body given posed\")",
+                posed_angles(out.fit.pose, model.rest_pose(out.fit.shape)).c_str(), 1e3 * out.fit.fit_rms,
+                1e3 * out.fit.fit_max);
+  out.pose_note = line;
+  if (out.fit.reposed_error > kUnposeTolerance) {
+    std::snprintf(line, sizeof line,
+                  "the mesh unposed does not pose back onto itself: %.1f mm off at worst (a mesh the skinning cannot "
+                  "make, such as limbs passing through each other); the drape is for a body that far from it",
+                  1e3 * out.fit.reposed_error);
+    out.warning = line;
+  }
+  return out;
 }
 
 }  // namespace drape

@@ -1,5 +1,4 @@
 // model_body_batch and prepare_bodies (services/model_body.hpp).
-#include <drape/bodies/pose_fit.hpp>
 #include <drape/geometry/adjacency.hpp>
 #include <drape/geometry/body_units.hpp>
 #include <drape/geometry/volume.hpp>
@@ -14,15 +13,9 @@
 #include <iterator>
 #include <cstdio>
 #include <limits>
-#include <numbers>
 
 namespace drape {
 namespace {
-
-// A mesh unposed (pose_fit.hpp) that poses back this far from itself is told.
-constexpr double kUnposeTolerance = 1e-3;  // m
-// A posed mesh's place is read to the fit's precision; closer is not said.
-constexpr double kPosedPlacementTolerance = 5e-4;  // m
 
 // A batch of several bodies says which one a notice is about.
 std::string about(const SampleBatch& batch, int i) { return batch.size() > 1 ? "body " + std::to_string(i) + ": " : ""; }
@@ -53,19 +46,6 @@ BodyMove place(const Model& model, const ModelDomain* domain, const BodyAnchor* 
   }
   if (!move.is_identity()) batch.body.mat(i) = body.cast<float>();
   return move;
-}
-
-// The pose angles of `pose` away from the rest pose `rest` by at least half a
-// degree, rounded to a degree, for a note: "left_elbow_flexion=40,...".
-std::string posed_angles(const Pose& pose, const Pose& rest) {
-  std::string out;
-  for (const auto& [name, value] : pose.angles) {
-    if (!(std::abs(value - rest.get(name, 0.0)) >= 0.5)) continue;
-    char part[96];
-    std::snprintf(part, sizeof part, "%s%s=%.0f", out.empty() ? "" : ",", name.c_str(), value);
-    out += part;
-  }
-  return out.empty() ? "its rest pose" : out;
 }
 
 void check_domain(const Model& model, const ModelDomain& domain, const SampleBatch& batch, int i, bool strict,
@@ -356,46 +336,23 @@ void pose_model_batch(const Model& model, SampleBatch& batch, const std::vector<
 // (pose_fit.hpp), then the body at rest placed as a body given at rest. The
 // two moves are one for the drape to go back by.
 BodyMove BodyPreparation::unpose_given(SampleBatch& batch, int i, Pose& pose, std::vector<Notice>& notices) const {
-  const ModelDomain* domain = domain_ ? &*domain_ : nullptr;
-  // Faced and placed roughly by the whole mesh, the fit taking up what is
-  // left (a trunk twisted 10 degrees turns the whole mesh's fit by 8), then
-  // the body at rest placed as a body given at rest. The notes of the three
-  // would contradict each other: one note says where the mesh stood in all.
-  std::vector<Notice> said;
-  const BodyMove as_posed = place(model_, domain, &given_.anchor(), true, batch, i, said);
-  const BodyModel& body_model = model_.body_model();
-  const PoseFit fit = fit_pose(body_model, batch.body.mat(i).cast<double>());
-  pose = fit.pose;
-  batch.body.mat(i) = fit.rest.cast<float>();
-  const BodyMove at_rest = place(model_, domain, &given_.anchor(), false, batch, i, said);
-  const BodyMove moved = as_posed.then(fit.moved).then(at_rest);
-
   const std::string who = batch.size() > 1 ? "body " + std::to_string(i) : "the body";
-  char line[600];
-  const Eigen::Vector3d facing = moved.rotation.col(2);
-  const double turn = std::atan2(facing.x(), facing.z()) * 180.0 / std::numbers::pi;
-  if (std::abs(turn) > kTurnToleranceDegrees) {
-    std::snprintf(line, sizeof line, "%s faces %.1f degrees from the way the body model's bodies face (turned about the "
-                  "vertical, counter-clockwise seen from above); it is draped turned to face as they do and the drape "
-                  "turned back with it", who.c_str(), turn);
-    notices.push_back({Notice::Level::note, line});
-  } else if (moved.offset.norm() > kPosedPlacementTolerance) {
-    notices.push_back({Notice::Level::note, who + " " + placement_note(moved.offset.transpose(), model_.file().filename().string() +
+  const Eigen::Vector3d unknown = Eigen::Vector3d::Constant(std::numeric_limits<double>::quiet_NaN());
+  Eigen::MatrixX3d body = batch.body.mat(i).cast<double>();
+  const GivenPosedBody given = unpose_given_body(body, model_.body_model(), model_.assets().body.vertices, &given_.anchor(),
+                                                 domain_ ? domain_->placement : unknown,
+                                                 domain_ ? domain_->placement_spread : unknown, who);
+  batch.body.mat(i) = body.cast<float>();
+  pose = given.fit.pose;
+  if (!given.turned.empty())
+    notices.push_back({Notice::Level::note, who + " " + given.turned});
+  else if (given.moved.offset.norm() > kPosedPlacementTolerance)
+    notices.push_back({Notice::Level::note, who + " " + placement_note(given.moved.offset.transpose(),
+                                                                       model_.file().filename().string() +
                                                                            "'s training bodies stood (where its body model makes them)")});
-  }
-  std::snprintf(line, sizeof line,
-                "the body mesh is posed: its pose read off it is %s (the body model so posed lies %.1f mm rms, %.1f mm at "
-                "most, from the mesh); draped in that pose on the mesh unposed (docs/poses.md, \"A body given posed\")",
-                posed_angles(fit.pose, body_model.rest_pose(fit.shape)).c_str(), 1e3 * fit.fit_rms, 1e3 * fit.fit_max);
-  notices.push_back({Notice::Level::note, about(batch, i) + line});
-  if (fit.reposed_error > kUnposeTolerance) {
-    std::snprintf(line, sizeof line,
-                  "the mesh unposed does not pose back onto itself: %.1f mm off at worst (a mesh the skinning cannot "
-                  "make, such as limbs passing through each other); the drape is for a body that far from it",
-                  1e3 * fit.reposed_error);
-    notices.push_back({Notice::Level::warning, about(batch, i) + line});
-  }
-  return moved;
+  notices.push_back({Notice::Level::note, about(batch, i) + given.pose_note});
+  if (!given.warning.empty()) notices.push_back({Notice::Level::warning, about(batch, i) + given.warning});
+  return given.moved;
 }
 
 std::vector<Notice> BodyPreparation::pose(SampleBatch& batch, const Pose& pose, bool strict,

@@ -149,14 +149,30 @@ SceneBody scene_body(const SceneSimulations& simulations, const Eigen::MatrixX3d
   check_body_units(given, "body " + name);
   SceneBody out;
   out.vertices = given;
-  // A mesh given posed: its limbs tilt the heading's fit, so only its turn is undone.
   const GivenBodyFrame& given_bodies = simulations.given_bodies();
   const bool posed = !given_bodies.limbs().posed(design.mean_body(), out.vertices).empty();
-  if (posed)
+  const Eigen::Vector3d reference = body_placement(design.mean_body());
+  if (posed && design.body_model().poseable()) {
+    // Unposed, so that the body morphs at rest and then takes the pose along
+    // its path (Simulation::run), as a body given at rest with its pose does.
+    if (pose && !pose->empty())
+      throw ConfigError("body " + name + " is given posed and a pose is given too: give the posed mesh alone (its pose "
+                        "is read off it), or the body at rest with the pose");
+    const GivenPosedBody unposed =
+        unpose_given_body(out.vertices, design.body_model(), design.mean_body(), &given_bodies.anchor(), reference,
+                          Eigen::Vector3d::Constant(kBodyModelPlacementSpread), "body " + name);
+    out.moved_by = unposed.moved;
+    if (!unposed.turned.empty()) out.notes.push_back("the body " + unposed.turned);
+    out.notes.push_back(unposed.pose_note);
+    if (!unposed.warning.empty()) out.notes.push_back(unposed.warning);
+    choose_size(simulations, name, out);
+    pose_chosen(simulations, &unposed.fit.pose, out);
+    return out;
+  }
+  if (posed)  // a body model without a skeleton: nothing to unpose it with
     out.notes.push_back("the body looks posed (a limb turned more than " + std::to_string(static_cast<int>(kPosedLimbDegrees)) +
                         " degrees against the mean body at rest): it is morphed to as given, not along the path a pose "
-                        "takes (--pose poses a body at rest)");
-  const Eigen::Vector3d reference = body_placement(design.mean_body());
+                        "takes");
   std::string turned;
   // Placed by the body model's anchor: exactly where the model makes the body, not only near.
   out.moved_by = place_given_body(out.vertices, design.mean_body(), &given_bodies.anchor(), reference,

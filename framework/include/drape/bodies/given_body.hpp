@@ -1,11 +1,12 @@
 #pragma once
 // A body mesh given for a body model (a scan, a mesh another tool left):
 // turned to face as the model's bodies face, placed where it makes them, and
-// told when posed. The one mechanism behind `drape predict`/`optimize`/
+// told when posed, and unposed when its model can pose. The one mechanism behind `drape predict`/`optimize`/
 // `render` (services/model_body.hpp) and `drape simulate` (services/
 // scene_body.hpp), in C++ and Python.
 #include <drape/bodies/body_anchor.hpp>
 #include <drape/bodies/limb_turns.hpp>
+#include <drape/bodies/pose_fit.hpp>
 #include <drape/geometry/body_heading.hpp>
 
 #include <Eigen/Core>
@@ -39,5 +40,25 @@ class GivenBodyFrame {
 BodyMove place_given_body(Eigen::MatrixX3d& body, const Eigen::MatrixX3d& mean, const BodyAnchor* anchor,
                           const Eigen::Vector3d& reference, const Eigen::Vector3d& spread, bool posed,
                           const std::string& who, std::string* turned);
+
+// A body mesh given posed (LimbFit::posed) for a poseable body model: turned
+// and placed roughly by the whole mesh (place_given_body, no lean read), its
+// pose, turn and place read off it (fit_pose), then the mesh unposed and
+// placed as a body given at rest. `body` becomes that body at rest; posed by
+// `fit.pose` it is the given mesh moved by `moved`.
+struct GivenPosedBody {
+  BodyMove moved;  // the given mesh -> the placed body's frame; back() takes a drape there onto the mesh
+  PoseFit fit;     // its rest: the mesh unposed before the last placement
+  // For the user, one sentence each, without a prefix:
+  std::string turned;     // the mesh's turn about the vertical in all ("" within kTurnToleranceDegrees)
+  std::string pose_note;  // "the body mesh is posed: its pose read off it is left_elbow_flexion=40,... "
+  std::string warning;    // "" unless the mesh unposed misses itself posed again by over a millimetre
+};
+GivenPosedBody unpose_given_body(Eigen::MatrixX3d& body, const BodyModel& model, const Eigen::MatrixX3d& mean,
+                                 const BodyAnchor* anchor, const Eigen::Vector3d& reference,
+                                 const Eigen::Vector3d& spread, const std::string& who);
+
+// A posed mesh's place is read to the fit's precision; nearer is not said.
+inline constexpr double kPosedPlacementTolerance = 5e-4;  // m
 
 }  // namespace drape
