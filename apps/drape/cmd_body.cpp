@@ -5,6 +5,8 @@
 #include "sample_ranges.hpp"
 
 #include <drape/bodies/body.hpp>
+#include <drape/bodies/given_body.hpp>
+#include <drape/geometry/body_units.hpp>
 #include <drape/io/atomic_file.hpp>
 #include <drape/bodies/body_space.hpp>
 #include <drape/bodies/pose.hpp>
@@ -25,6 +27,7 @@
 #include <fstream>
 #include <iomanip>
 #include <iostream>
+#include <limits>
 #include <random>
 #include <sstream>
 
@@ -241,6 +244,53 @@ int sample_many(const po::variables_map& vm, const LoadedBody& loaded, const Ran
   return 0;
 }
 
+// --unpose FILE: a body mesh given posed, told apart into its pose and its
+// body at rest (pose_fit.hpp): the angles printed (and written to
+// --pose-out, a pose file --pose-file reads), the body at rest written to
+// --out where, and as, the mesh stood.
+int unpose_one(const po::variables_map& vm, const LoadedBody& loaded) {
+  const BodyModel& body = *loaded.body;
+  if (!body.poseable())
+    throw ConfigError("drape body --unpose: body " + loaded.model + " has no skeleton, so no pose can be read off a mesh");
+  const std::string file = vm["unpose"].as<std::string>();
+  const Mesh given = read_mesh(file);
+  require_vertex_count(given, body.num_vertices(), file, "body " + loaded.model + " has that many");
+  check_body_units(given.vertices, "body " + file);
+  const auto t0 = std::chrono::steady_clock::now();
+  const GivenBodyFrame frame(body);
+  Eigen::MatrixX3d rest = given.vertices;
+  const Eigen::Vector3d unknown = Eigen::Vector3d::Constant(std::numeric_limits<double>::quiet_NaN());
+  const GivenPosedBody unposed =
+      unpose_given_body(rest, body, body.vertices(body.mean_shape()), &frame.anchor(), unknown, unknown, "body " + file);
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  Pose rounded;  // to a hundredth of a degree, within the ranges the angles were fitted in
+  for (const auto& [name, degrees] : unposed.fit.pose.angles) rounded.angles[name] = std::round(degrees * 100.0) / 100.0 + 0.0;  // + 0: no -0
+  std::printf("pose: %s\n", format_pose(rounded).c_str());
+  std::printf("the body model posed so lies %.2f mm rms, %.2f mm at most, from the mesh; the mesh unposed poses back "
+              "onto it to %.3f mm (%.2f s, %d Levenberg-Marquardt steps)\n",
+              1e3 * unposed.fit.fit_rms, 1e3 * unposed.fit.fit_max, 1e3 * unposed.fit.reposed_error, seconds,
+              unposed.fit.iterations);
+  if (!unposed.turned.empty())
+    std::printf("note: the mesh faces %.1f degrees from the way the body model's bodies face (counter-clockwise seen from "
+                "above); the pose is read on it turned to face as they do, and the body at rest written turned back\n",
+                unposed.turn_degrees);
+  if (!unposed.warning.empty()) std::cerr << "warning: " << unposed.warning << "\n";
+  if (vm.count("pose-out")) {
+    std::ostringstream yaml;
+    yaml << "# drape body --unpose " << file << ": joint angles in degrees (drape body/predict --pose-file)\n";
+    for (const auto& [name, degrees] : rounded.angles) yaml << name << ": " << degrees << "\n";
+    write_text_atomically(vm["pose-out"].as<std::string>(), yaml.str());
+    std::printf("wrote %s\n", vm["pose-out"].as<std::string>().c_str());
+  }
+  if (vm.count("out")) {
+    Mesh out = given;
+    out.vertices = unposed.moved.back(rest);  // where the mesh stood, turned as it was
+    write_mesh(vm["out"].as<std::string>(), out);
+    std::printf("wrote %s (the body at rest)\n", vm["out"].as<std::string>().c_str());
+  }
+  return 0;
+}
+
 int run(const std::vector<std::string>& args) {
   po::options_description opts("drape body");
   opts.add_options()("model", po::value<std::string>()->default_value("parametric"), "body plugin")(
@@ -260,6 +310,9 @@ int run(const std::vector<std::string>& args) {
       "with --model smpl: SMPL's pose theta, 72 (root first, which must be 0) or 69 numbers in radians, text or .npy (docs/smpl.md)")(
       "poses", "with --sample: also draw a pose for each body, independently of its shape (docs/poses.md)")(
       "svg", po::value<std::string>(), "with --sample: also draw the first 16 bodies side by side (.svg, or .html: a 3D viewer)")(
+      "unpose", po::value<std::string>(),
+      "a body mesh given posed (the model's topology): print its pose, write it at rest to --out (docs/poses.md)")(
+      "pose-out", po::value<std::string>(), "with --unpose: also write the pose as a pose file (YAML, for --pose-file)")(
       "param", po::value<std::vector<std::string>>()->composing(),
       "a parameter of the body plugin, name=value (repeatable), e.g. file=smpl.h5 for --model smpl");
   add_girth_option(opts, "");
@@ -268,7 +321,8 @@ int run(const std::vector<std::string>& args) {
       "drape body --bmi 38 --height 1.80 [--sex 1] [--out body.obj]\n"
       "       drape body --sample N --bmi 10:65 [--height 1.5:2.0] [--girths 1] [--seed S] [--poses] --out-dir DIR\n"
       "       drape body --bmi 30 --pose shoulder_abduction=90,elbow_flexion=45 --out posed.obj\n"
-      "       drape body --model smpl --param file=smpl.h5 --bmi 30 --smpl-theta theta.txt --out posed.obj";
+      "       drape body --model smpl --param file=smpl.h5 --bmi 30 --smpl-theta theta.txt --out posed.obj\n"
+      "       drape body --param rig=human --unpose posed.obj [--pose-out pose.yaml] --out rest.obj";
   if (!parse(usage, args, opts, {}, vm)) return 0;
   check_mesh_outputs(vm, {"out"});
 
@@ -287,6 +341,12 @@ int run(const std::vector<std::string>& args) {
   if (vm.count("sample") && (vm.count("pose") || vm.count("pose-file") || vm.count("smpl-theta")))
     throw UsageError("--pose, --pose-file and --smpl-theta pose one body; --sample draws poses with --poses");
   if (vm.count("poses") && !vm.count("sample")) throw UsageError("--poses needs --sample");
+  if (vm.count("pose-out") && !vm.count("unpose")) throw UsageError("--pose-out goes with --unpose");
+  if (vm.count("unpose")) {
+    for (const char* other : {"sample", "pose", "pose-file", "smpl-theta", "girth"})
+      if (vm.count(other)) throw UsageError(std::string("--unpose reads the pose and the body off the mesh; leave out --") + other);
+    return unpose_one(vm, loaded);
+  }
   return vm.count("sample") ? sample_many(vm, loaded, bmi) : solve_one(vm, loaded, bmi);
 }
 

@@ -99,3 +99,32 @@ TEST_CASE("simulate morphs a body mesh given posed at rest, then poses it, to th
                       " --pose elbow_flexion=10 2>&1", out) == 2);
   CHECK_THAT(out, Catch::Contains("given posed and a pose is given too"));
 }
+
+TEST_CASE("drape body --unpose prints the pose of a body mesh, writes it at rest and a pose file that poses it back",
+          "[cli][pose][body]") {
+  test::TempDir dir;
+  std::string out;
+  const std::string env = drape_in_source(dir);
+  rest_and_posed(env, dir.path(), "--bmi 41 --sex 0 --height 1.58");
+  const std::string unpose = " body --param rig=human --unpose " + (dir / "posed.obj").string();
+  const int code = test::run(env + unpose + " --pose-out " + (dir / "pose.yaml").string() + " --out " +
+                                 (dir / "back.obj").string() + " 2>&1", out);
+  INFO(out);
+  REQUIRE(code == 0);
+  CHECK_THAT(out, Catch::Contains("left_elbow_flexion=35,") && Catch::Contains("right_shoulder_abduction=55,") &&
+                      Catch::Contains("spine_twist=12") && Catch::Contains("faces 150.0 degrees"));
+  // The body at rest, where and as the mesh stood.
+  CHECK((read_mesh(dir / "back.obj").vertices - turned(read_mesh(dir / "rest.obj").vertices)).rowwise().norm().maxCoeff() <
+        1e-3);
+  // The pose file poses the body at rest into the mesh given (before it was turned).
+  REQUIRE(test::run(env + " body --param rig=human --bmi 41 --sex 0 --height 1.58 --pose-file " +
+                        (dir / "pose.yaml").string() + " --out " + (dir / "again.obj").string(), out) == 0);
+  CHECK((turned(read_mesh(dir / "again.obj").vertices) - read_mesh(dir / "posed.obj").vertices).rowwise().norm().maxCoeff() <
+        2e-3);
+  // Bad input: one line, exit 2.
+  CHECK(test::run(env + unpose + " --pose elbow_flexion=10 2>&1", out) == 2);
+  CHECK_THAT(out, Catch::Contains("leave out --pose"));
+  REQUIRE(test::run(env + " body --bmi 30 --out " + (dir / "mannequin.obj").string(), out) == 0);
+  CHECK(test::run(env + " body --param rig=human --unpose " + (dir / "mannequin.obj").string() + " 2>&1", out) == 2);
+  CHECK_THAT(out, Catch::Contains("6490") && Catch::Contains("6904"));
+}

@@ -89,6 +89,26 @@ def test_a_turned_and_recentred_body_is_draped_as_the_body_the_model_made():
     np.testing.assert_allclose(garment, model.predict(body.astype(np.float32)) @ turn.T + shift, atol=1e-4)
 
 
+def test_predict_reads_the_pose_off_a_body_given_posed(tmp_path):
+    # A body mesh given posed to a model of posed drapes: its pose is read off
+    # it and it is draped as the same body given at rest with that pose (the
+    # posed mesh made by the drape program, which poses by the skeleton alone).
+    model = drape.Model.load(str(SOURCE / "models" / "tshirt-coarse-posed-human.h5"))
+    body = model.body(bmi=29, sex=1.0, height=1.8)
+    pose = "shoulder_abduction=70,elbow_flexion=20,spine_flexion=10"
+    expected = model.predict(body, pose=pose)
+    run_drape("body", "--param", "rig=human", "--bmi", "29", "--sex", "1", "--height", "1.8", "--pose", pose,
+              "--out", tmp_path / "posed.obj")
+    posed, _ = read_obj(tmp_path / "posed.obj")
+    with pytest.warns(UserWarning, match="the body mesh is posed: its pose read off it is") as notes:
+        garment = model.predict(posed.astype(np.float32))
+    said = " ".join(str(n.message) for n in notes)
+    assert "left_shoulder_abduction=70" in said and "spine_flexion=10" in said
+    np.testing.assert_allclose(garment, expected, atol=5e-4)
+    with pytest.raises(ValueError, match="given posed and a pose is given too"):
+        model.predict(posed.astype(np.float32), pose="elbow_flexion=10")
+
+
 def test_optimize_moves_a_lifted_body_like_predict(tmp_path):
     # Its own copy: optimize changes the weights in place.
     m = drape.Model.load(str(SHIPPED))

@@ -77,7 +77,7 @@ GivenPosedBody unpose_given_body(Eigen::MatrixX3d& body, const BodyModel& model,
 
   char line[600];
   const Eigen::Vector3d facing = out.moved.rotation.col(2);
-  const double turn = std::atan2(facing.x(), facing.z()) * 180.0 / std::numbers::pi;
+  const double turn = out.turn_degrees = std::atan2(facing.x(), facing.z()) * 180.0 / std::numbers::pi;
   if (std::abs(turn) > kTurnToleranceDegrees) {
     std::snprintf(line, sizeof line, "faces %.1f degrees from the way the body model's bodies face (turned about the "
                   "vertical, counter-clockwise seen from above); it is draped turned to face as they do and the drape "

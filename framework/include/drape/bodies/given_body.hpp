@@ -50,7 +50,8 @@ struct GivenPosedBody {
   BodyMove moved;  // the given mesh -> the placed body's frame; back() takes a drape there onto the mesh
   PoseFit fit;     // its rest: the mesh unposed before the last placement
   // For the user, one sentence each, without a prefix:
-  std::string turned;     // the mesh's turn about the vertical in all ("" within kTurnToleranceDegrees)
+  double turn_degrees = 0;  // the mesh's turn about the vertical in all (counter-clockwise seen from above)
+  std::string turned;     // saying so for a drape ("" within kTurnToleranceDegrees)
   std::string pose_note;  // "the body mesh is posed: its pose read off it is left_elbow_flexion=40,... "
   std::string warning;    // "" unless the mesh unposed misses itself posed again by over a millimetre
 };
