@@ -68,7 +68,7 @@ TEST_CASE("fit_pose reads the angles and the body at rest of bodies posed over t
   }
 }
 
-TEST_CASE("fit_pose reads a body at rest as the rest pose, and refuses a mesh of another vertex count",
+TEST_CASE("fit_pose reads a body at rest as the rest pose, and refuses a body model without a skeleton or a mesh of another vertex count",
           "[bodies][pose-fit]") {
   const BodyModel& model = human_rig();
   const Eigen::VectorXd shape = model.solve(BodyRequest{17.0, 1.58, 0.0});  // thin: her thighs turn 10 degrees at rest
@@ -81,6 +81,7 @@ TEST_CASE("fit_pose reads a body at rest as the rest pose, and refuses a mesh of
   CHECK(largest_distance(fit.rest, rest) < 1e-3);
   CHECK(fit.moved.rotation.isIdentity(1e-4));
 
+  CHECK_THROWS_WITH(fit_pose(*test::skeletonless_body(), rest), Catch::Contains("no skeleton"));
   CHECK_THROWS_AS(fit_pose(model, rest.topRows(100)), ConfigError);
   CHECK_THROWS_WITH(fit_pose(model, rest.topRows(100)), Catch::Contains("100 vertices"));
 }

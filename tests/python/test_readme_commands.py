@@ -16,6 +16,7 @@ RUN = [
     "body --param rig=human",
     "body --sample 8",
     "body --bmi 30 --pose",
+    "body --unpose posed.obj",
     "predict --bmi 35",
     "predict --bmi 30 --pose",
     "render --bmi 35",
@@ -42,8 +43,8 @@ NOT_RUN = {
     "dataset potential all.h5": "needs all.h5 from dataset merge",
     "train graphs/human": "trains on 500-odd drapes for minutes; tests/python/test_encoder_body.py trains its graph for an epoch",
     "train ": "needs data.h5 from generate; 100 epochs",
-    "predict --body scan.obj": "needs scan.obj, a user's body mesh (tests/cli/body_heading_cli_test.cpp turns, moves and "
-    "poses bodies for it)",
+    "predict --body scan.obj": "needs scan.obj, a user's body mesh (tests/cli/body_heading_cli_test.cpp and "
+    "posed_mesh_cli_test.cpp turn, move and pose bodies for it)",
     "model info model.h5": "needs model.h5 from train",
     "model set model.h5": "needs model.h5 from train; tests/python/test_model_set.py runs it on a trained model",
     "eval ": "needs model.h5 and data.h5",

@@ -292,7 +292,7 @@ PoseFit fit_pose(const BodyModel& model, const Eigen::MatrixX3d& given) {
     fit.linearise(x.shape);
     if ((fit.base() - linear).rowwise().norm().maxCoeff() < kLinearShapeTolerance) break;
   }
-  fit.minimise(x, false, out.iterations, 1e-6);  // the angles once more on the shape's true body
+  fit.minimise(x, false, out.iterations, 1e-8);  // the angles once more on the shape's true body
 
   out.pose = fit.pose_of(x.angles);
   out.shape = x.shape;
