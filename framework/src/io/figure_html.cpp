@@ -175,7 +175,8 @@ std::string SvgFigure::html() const {
        ".panel{border:1px solid #ddd;padding:6px}canvas{display:block;cursor:grab}.bar{width:320px;height:12px;"
        "background:linear-gradient(to right";
   for (int i = 0; i <= 8; ++i) o << "," << colour_map(i / 8.0);
-  o << ")}.warning{color:#b00020}</style></head>\n<body>\n<h3>" << xml_escaped(title_) << "</h3>\n";
+  // A note may hold a long unbroken run (a pose "name=deg,name=deg,..."): wrapped anywhere, not past the page.
+  o << ")}.warning{color:#b00020}.note,.warning{overflow-wrap:anywhere}</style></head>\n<body>\n<h3>" << xml_escaped(title_) << "</h3>\n";
   for (const std::string& note : notes_)
     o << "<p class=\"" << (note.rfind("warning:", 0) == 0 ? "warning" : "note") << "\">" << xml_escaped(note) << "</p>\n";
   o << "<p>Drag to turn, wheel to zoom, double-click to reset. "
