@@ -271,6 +271,7 @@ PoseFit fit_pose(const BodyModel& model, const Eigen::MatrixX3d& given) {
   if (given.rows() != model.num_vertices())
     throw ConfigError("fit_pose: the mesh has " + std::to_string(given.rows()) + " vertices, the body model " +
                       std::to_string(model.num_vertices()));
+  if (!given.allFinite()) throw ConfigError("fit_pose: the mesh has a coordinate that is not a finite number");
   Fit fit(model, given);
   Unknowns x;
   x.shape = model.mean_shape();
