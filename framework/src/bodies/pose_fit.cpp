@@ -290,8 +290,9 @@ PoseFit fit_pose(const BodyModel& model, const Eigen::MatrixX3d& given) {
     fit.minimise(x, true, out.iterations, 1e-6);
 
     const Eigen::MatrixX3d linear = fit.rest(x.shape);
-    fit.linearise(x.shape);
+    fit.rebase(x.shape);  // the true body first: its derivatives only when another round needs them
     if ((fit.base() - linear).rowwise().norm().maxCoeff() < kLinearShapeTolerance) break;
+    fit.linearise(x.shape);
   }
   fit.minimise(x, false, out.iterations, 1e-8);  // the angles once more on the shape's true body
 
