@@ -3,6 +3,8 @@
 #include "common.hpp"
 
 #include <drape/bodies/body.hpp>
+#include <drape/bodies/given_body.hpp>
+#include <drape/geometry/body_units.hpp>
 #include <drape/errors.hpp>
 #include <drape/io/shipped_files.hpp>
 #include <drape/nn/gemm.hpp>
@@ -10,7 +12,10 @@
 
 #include <yaml-cpp/yaml.h>
 
+#include <limits>
 #include <memory>
+#include <mutex>
+#include <optional>
 
 namespace drape::python {
 namespace {
@@ -32,6 +37,7 @@ class PyBodyModel {
     const PluginDescriptor& d = registry().get(name);
     if (!d.create_body) throw ConfigError("body model '" + name + "': the plugin is a " + d.kind + ", not a body model");
     model_ = registry().create_body(name, Params(d.params, plugin_params(params, "drape.BodyModel"), "body " + name));
+    frame_.emplace(*model_);
   }
 
   const std::string& name() const { return name_; }
@@ -55,11 +61,58 @@ class PyBodyModel {
     return model_->vertices(s);
   }
 
+  // The pose read off a body mesh given posed and the mesh at rest, as drape
+  // body --unpose (given_body.hpp): {"pose": {name: degrees}, "rest": float64
+  // [N, 3] where and as the mesh stood, "shape", "fit_rms", "fit_max",
+  // "reposed_error" (m), "notes": [str]}.
+  py::dict unpose(const py::handle& mesh) const {
+    auto a = py::array_t<double, py::array::forcecast | py::array::c_style>::ensure(mesh);
+    const Eigen::Index n = model_->num_vertices();
+    if (!a || a.ndim() != 2 || a.shape(0) != n || a.shape(1) != 3)
+      throw py::value_error("body_vertices: expected a float array of shape [" + std::to_string(n) + ", 3] (" + name_ +
+                            "'s vertex count)");
+    if (!model_->poseable())
+      throw ConfigError("body_vertices: body " + name_ + " has no skeleton, so no pose can be read off a mesh");
+    Eigen::MatrixX3d body = Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor>>(a.data(), n, 3);
+    GivenPosedBody read;
+    {
+      py::gil_scoped_release release;
+      check_body_units(body, "body_vertices");
+      const Eigen::Vector3d unknown = Eigen::Vector3d::Constant(std::numeric_limits<double>::quiet_NaN());
+      read = unpose_given_body(body, *model_, mean_body(), &frame_->anchor(), unknown, unknown, "body_vertices");
+    }
+    py::dict pose;
+    for (const auto& [angle, degrees] : read.fit.pose.angles) pose[py::str(angle)] = degrees;
+    py::list notes;
+    for (const std::string* note : {&read.turned, &read.pose_note, &read.warning})
+      if (!note->empty()) notes.append(*note);
+    py::dict out;
+    out["pose"] = pose;
+    out["rest"] = to_numpy(read.moved.back(body));
+    out["shape"] = to_numpy(Eigen::VectorXd(read.fit.shape));
+    out["fit_rms"] = read.fit.fit_rms;
+    out["fit_max"] = read.fit.fit_max;
+    out["reposed_error"] = read.fit.reposed_error;
+    out["notes"] = notes;
+    return out;
+  }
+
   const BodyModel& model() const { return *model_; }
 
  private:
+  const Eigen::MatrixX3d& mean_body() const {
+    std::call_once(mean_once_->flag, [this] { mean_once_->body = model_->vertices(model_->mean_shape()); });
+    return mean_once_->body;
+  }
+
   std::string name_;
   std::unique_ptr<BodyModel> model_;
+  std::optional<GivenBodyFrame> frame_;  // the anchor and limbs, found on first use
+  struct MeanOnce {
+    std::once_flag flag;
+    Eigen::MatrixX3d body;
+  };
+  std::shared_ptr<MeanOnce> mean_once_ = std::make_shared<MeanOnce>();
 };
 
 }  // namespace
@@ -89,7 +142,13 @@ void register_bodies(py::module_& m) {
           py::arg("bmi") = 24.0, py::arg("height") = 1.75, py::arg("sex") = 1.0,
           "Shape parameters reaching the BMI, height and sex with the keyword proportions (girths) held.")
       .def("vertices", [](const PyBodyModel& b, const py::handle& shape) { return to_numpy(b.vertices(shape)); },
-           py::arg("shape"), "float64 [N, 3] vertices of a shape vector");
+           py::arg("shape"), "float64 [N, 3] vertices of a shape vector")
+      .def("unpose", &PyBodyModel::unpose, py::arg("body_vertices"),
+           "The pose read off a body mesh [N, 3] given posed and the mesh at rest, as drape body --unpose: a dict of "
+           "'pose' ({angle: degrees}), 'rest' (float64 [N, 3], where and as the mesh stood), 'shape' (the body model's "
+           "shape fitted beside it), 'fit_rms' and 'fit_max' (m: the body model so posed against the mesh), "
+           "'reposed_error' (m: the rest posed again against the mesh) and 'notes' (docs/poses.md, \"A body given "
+           "posed\"). About a second; the GIL is released.");
 
   m.def(
       "body",

@@ -98,6 +98,16 @@ TEST_CASE("simulate morphs a body mesh given posed at rest, then poses it, to th
   CHECK(test::run(env + simulate + (dir / "s2.obj").string() + " --body " + (dir / "posed.obj").string() +
                       " --pose elbow_flexion=10 2>&1", out) == 2);
   CHECK_THAT(out, Catch::Contains("given posed and a pose is given too"));
+  // A scene with a pose of its own: the mesh's pose is draped, with a note.
+  const std::string human = "params: {rig: human}}";
+  scene.replace(scene.find(human), human.size(), "params: {rig: human}, pose: {elbow_flexion: 10}}");
+  std::ofstream(dir / "tiny_posed.yaml") << scene;
+  const int posed_scene = test::run(env + " simulate " + (dir / "tiny_posed.yaml").string() + " --threads 1 --out " +
+                                        (dir / "s3.obj").string() + " --body " + (dir / "posed.obj").string() + " 2>&1",
+                                    out);
+  CHECK((posed_scene == 0 || posed_scene == 1));
+  CHECK_THAT(out, Catch::Contains("the scene's own pose (") && Catch::Contains("gives way to the pose read off the body mesh") &&
+                      Catch::Contains("posed: left_elbow_flexion=3"));
 }
 
 TEST_CASE("drape body --unpose prints the pose of a body mesh, writes it at rest and a pose file that poses it back",

@@ -94,3 +94,26 @@ def test_a_body_that_passes_through_itself_is_named(tmp_path):
     assert "passes through itself" in err and "girths clash" in err
     _, err = run_drape("body", "--bmi", 10.2426, "--height", 1.77352, "--sex", 1, "--out", tmp_path / "plain.obj")
     assert "passes through itself" not in err
+
+
+def test_unpose_reads_the_pose_off_a_posed_mesh(tmp_path):
+    # A body posed and turned by the drape program; BodyModel.unpose gives back the angles it was posed by and the
+    # body at rest (drape.body's, turned the same way).
+    human = drape.BodyModel("parametric", {"rig": "human"})
+    pose = {"left_shoulder_abduction": 65, "right_elbow_flexion": 55, "neck_twist": -20, "left_knee_flexion": 30}
+    run_drape("body", "--param", "rig=human", "--bmi", "44", "--sex", "0", "--height", "1.6", "--pose",
+              ",".join(f"{k}={v}" for k, v in pose.items()), "--out", tmp_path / "posed.obj")
+    posed, _ = read_obj(tmp_path / "posed.obj")
+    t = np.radians(-70.0)
+    turn = np.array([[np.cos(t), 0, np.sin(t)], [0, 1, 0], [-np.sin(t), 0, np.cos(t)]])
+    shift = np.array([0.5, 0.0, -2.0])
+    read = human.unpose(posed @ turn.T + shift)
+    for angle, degrees in pose.items():
+        assert abs(read["pose"][angle] - degrees) < 0.5, angle
+    assert abs(read["pose"]["right_knee_flexion"]) < 0.5
+    rest, _ = drape.body(bmi=44, sex=0.0, height=1.6, params={"rig": "human"})
+    assert np.abs(read["rest"] - (rest @ turn.T + shift)).max() < 1e-3
+    assert read["fit_rms"] < 1e-3 and read["reposed_error"] < 1e-3
+    assert any("faces -70.0 degrees" in n for n in read["notes"])
+    with pytest.raises(ValueError, match=r"\[6904, 3\]"):
+        human.unpose(posed[:100])

@@ -165,6 +165,9 @@ SceneBody scene_body(const SceneSimulations& simulations, const Eigen::MatrixX3d
     if (!unposed.turned.empty()) out.notes.push_back("the body " + unposed.turned);
     out.notes.push_back(unposed.pose_note);
     if (!unposed.warning.empty()) out.notes.push_back(unposed.warning);
+    if (!design.target_pose().empty())
+      out.notes.push_back("the scene's own pose (" + format_pose(design.target_pose()) +
+                          ") gives way to the pose read off the body mesh");
     choose_size(simulations, name, out);
     pose_chosen(simulations, &unposed.fit.pose, out);
     return out;

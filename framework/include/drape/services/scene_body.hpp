@@ -48,7 +48,10 @@ struct SceneBody {
 // The body is posed in `pose`, or in the scene's pose (`body: {pose: ...}`)
 // when null: a given body is taken as unposed (the body model's A-pose);
 // ConfigError when the model has no skeleton or the pose makes the body pass
-// through itself (posed_body.hpp).
+// through itself (posed_body.hpp). A body given posed (its limbs turned,
+// limb_turns.hpp) is unposed and posed in the pose read off it
+// (unpose_given_body, given_body.hpp), the scene's pose giving way;
+// ConfigError when `pose` is given too.
 SceneBody scene_body(const SceneSimulations& simulations, const Eigen::MatrixX3d& given, const std::string& name,
                      const Pose* pose = nullptr);
 // A body of the scene's body model: the scene's target request, changed by
