@@ -94,6 +94,7 @@ class Fit {
       moved[k] += h;
       shape_columns_[static_cast<std::size_t>(k)] = (model_.vertices(moved) - base_) / h;
     };
+    if (shape.size() == 0) return;  // a model without shape parameters
     // A parametric body costs tens of milliseconds: the columns on every core.
     const Eigen::Index threads = std::clamp<Eigen::Index>(std::thread::hardware_concurrency(), 1, shape.size());
     std::vector<std::future<void>> work;
@@ -104,9 +105,8 @@ class Fit {
     for (Eigen::Index k = 0; k < shape.size(); k += threads) column(k);
     for (auto& w : work) w.get();
   }
-  // The true body at `shape`, the derivatives kept (a chord step: what the
-  // linear model missed goes into the next round's residual, at the cost of
-  // one body, not one per shape parameter).
+  // The true body at `shape`, the derivatives kept: what a round ends on,
+  // before deciding whether another round needs them renewed.
   void rebase(const Eigen::VectorXd& shape) {
     base_shape_ = shape;
     base_ = model_.vertices(shape);

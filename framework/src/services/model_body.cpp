@@ -87,7 +87,7 @@ void warn_posed(const Model& model, const SampleBatch& batch, int i, const std::
                 const std::string& strict_option, std::vector<Notice>& notices) {
   const std::string text = about(batch, i) + "the body looks posed: against the mean body at rest, " + turned +
                            " (a body at rest turns none by more than " + std::to_string(static_cast<int>(kPosedLimbDegrees)) +
-                           "); " + model.file().filename().string() +
+                           "); " + (model.file().empty() ? std::string("this model") : model.file().filename().string()) +
                            " drapes the A-pose only, so the drape is for another body: a model of posed drapes reads the "
                            "pose off the mesh (docs/poses.md, \"A body given posed\")";
   if (strict) throw ConfigError(strict_option + ": " + text);
@@ -331,10 +331,9 @@ void pose_model_batch(const Model& model, SampleBatch& batch, const std::vector<
   batch.pose = std::move(posed.pose);
 }
 
-// A body mesh given posed: turned and placed as given (its limbs tilt the
-// fit, so no lean is read), its pose read off it and the mesh unposed
-// (pose_fit.hpp), then the body at rest placed as a body given at rest. The
-// two moves are one for the drape to go back by.
+// A body mesh given posed: its pose read off it, the mesh unposed and placed
+// (unpose_given_body, given_body.hpp); the notes of where it stood and of the
+// pose read.
 BodyMove BodyPreparation::unpose_given(SampleBatch& batch, int i, Pose& pose, std::vector<Notice>& notices) const {
   const std::string who = batch.size() > 1 ? "body " + std::to_string(i) : "the body";
   const Eigen::Vector3d unknown = Eigen::Vector3d::Constant(std::numeric_limits<double>::quiet_NaN());
