@@ -437,8 +437,16 @@ SampleBatch sample_batch(const DatasetSample& sample, const DatasetLayout& layou
 
 Pose batch_pose(const SampleBatch& batch, int i, const std::vector<PoseAngle>& angles) {
   Pose pose;
-  for (std::size_t a = 0; a < angles.size(); ++a)
-    pose.angles[angles[a].name] = static_cast<double>(batch.pose(i, 0, static_cast<int>(a))) * 180.0 / M_PI;
+  for (std::size_t a = 0; a < angles.size(); ++a) {
+    double degrees = static_cast<double>(batch.pose(i, 0, static_cast<int>(a))) * 180.0 / M_PI;
+    // An angle at the end of its range comes back from float radians a few
+    // millionths of a degree past it (-90 as -90.0000034), which the range
+    // check would refuse: such a rounding is put back; anything further is not.
+    constexpr double kRounding = 1e-3;
+    if (degrees < angles[a].min && degrees > angles[a].min - kRounding) degrees = angles[a].min;
+    if (degrees > angles[a].max && degrees < angles[a].max + kRounding) degrees = angles[a].max;
+    pose.angles[angles[a].name] = degrees;
+  }
   return pose;
 }
 
