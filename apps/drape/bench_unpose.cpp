@@ -19,7 +19,6 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
-#include <limits>
 #include <numbers>
 #include <random>
 
@@ -44,10 +43,8 @@ int run(const std::vector<std::string>& args) {
   ParamValues values;
   values["rig"] = ParamValue{YAML::Node(vm["rig"].as<std::string>()), {}};
   const auto model = registry.create_body("parametric", Params(d.params, values, "body parametric"));
-  const Eigen::MatrixX3d mean = model->vertices(model->mean_shape());
   const GivenBodyFrame frame(*model);
-  frame.anchor();  // found once, not timed with the first body
-  const Eigen::Vector3d unknown = Eigen::Vector3d::Constant(std::numeric_limits<double>::quiet_NaN());
+  frame.anchor(), frame.mean();  // found once, not timed with the first body
 
   Rng rng(vm["seed"].as<unsigned>());
   std::mt19937_64 gaussian_engine(vm["seed"].as<unsigned>());
@@ -72,7 +69,7 @@ int run(const std::vector<std::string>& args) {
 
     Eigen::MatrixX3d body = given;
     const auto start = std::chrono::steady_clock::now();
-    const GivenPosedBody read = unpose_given_body(body, *model, mean, &frame.anchor(), unknown, unknown, "body");
+    const GivenPosedBody read = unpose_given_body(body, *model, frame, "body");
     seconds.push_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
 
     double worst = 0, sum = 0;

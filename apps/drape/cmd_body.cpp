@@ -27,7 +27,6 @@
 #include <fstream>
 #include <iomanip>
 #include <iostream>
-#include <limits>
 #include <random>
 #include <sstream>
 
@@ -257,11 +256,8 @@ int unpose_one(const po::variables_map& vm, const LoadedBody& loaded) {
   require_vertex_count(given, body.num_vertices(), file, "body " + loaded.model + " has that many");
   check_body_units(given.vertices, "body " + file);
   const auto t0 = std::chrono::steady_clock::now();
-  const GivenBodyFrame frame(body);
   Eigen::MatrixX3d rest = given.vertices;
-  const Eigen::Vector3d unknown = Eigen::Vector3d::Constant(std::numeric_limits<double>::quiet_NaN());
-  const GivenPosedBody unposed =
-      unpose_given_body(rest, body, body.vertices(body.mean_shape()), &frame.anchor(), unknown, unknown, "body " + file);
+  const GivenPosedBody unposed = unpose_given_body(rest, body, GivenBodyFrame(body), "body " + file);
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   Pose rounded;  // to a hundredth of a degree, within the ranges the angles were fitted in
   for (const auto& [name, degrees] : unposed.fit.pose.angles) rounded.angles[name] = std::round(degrees * 100.0) / 100.0 + 0.0;  // + 0: no -0
@@ -271,9 +267,9 @@ int unpose_one(const po::variables_map& vm, const LoadedBody& loaded) {
               1e3 * unposed.fit.fit_rms, 1e3 * unposed.fit.fit_max, 1e3 * unposed.fit.reposed_error, seconds,
               unposed.fit.iterations);
   if (!unposed.turned.empty())
-    std::printf("note: the mesh faces %.1f degrees from the way the body model's bodies face (counter-clockwise seen from "
-                "above); the pose is read on it turned to face as they do, and the body at rest written turned back\n",
-                unposed.turn_degrees);
+    std::printf("note: the mesh %s; the pose is read on it turned to face as they do, and the body at rest written "
+                "turned back\n",
+                facing_text(unposed.turn_degrees).c_str());
   if (!unposed.warning.empty()) std::cerr << "warning: " << unposed.warning << "\n";
   if (vm.count("pose-out")) {
     std::ostringstream yaml;

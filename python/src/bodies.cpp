@@ -12,9 +12,7 @@
 
 #include <yaml-cpp/yaml.h>
 
-#include <limits>
 #include <memory>
-#include <mutex>
 #include <optional>
 
 namespace drape::python {
@@ -78,8 +76,7 @@ class PyBodyModel {
     {
       py::gil_scoped_release release;
       check_body_units(body, "body_vertices");
-      const Eigen::Vector3d unknown = Eigen::Vector3d::Constant(std::numeric_limits<double>::quiet_NaN());
-      read = unpose_given_body(body, *model_, mean_body(), &frame_->anchor(), unknown, unknown, "body_vertices");
+      read = unpose_given_body(body, *model_, *frame_, "body_vertices");
     }
     py::dict pose;
     for (const auto& [angle, degrees] : read.fit.pose.angles) pose[py::str(angle)] = degrees;
@@ -100,19 +97,9 @@ class PyBodyModel {
   const BodyModel& model() const { return *model_; }
 
  private:
-  const Eigen::MatrixX3d& mean_body() const {
-    std::call_once(mean_once_->flag, [this] { mean_once_->body = model_->vertices(model_->mean_shape()); });
-    return mean_once_->body;
-  }
-
   std::string name_;
   std::unique_ptr<BodyModel> model_;
-  std::optional<GivenBodyFrame> frame_;  // the anchor and limbs, found on first use
-  struct MeanOnce {
-    std::once_flag flag;
-    Eigen::MatrixX3d body;
-  };
-  std::shared_ptr<MeanOnce> mean_once_ = std::make_shared<MeanOnce>();
+  std::optional<GivenBodyFrame> frame_;  // the mean body, anchor and limbs, found on first use
 };
 
 }  // namespace

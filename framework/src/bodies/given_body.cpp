@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <mutex>
 #include <numbers>
 #include <optional>
@@ -14,6 +15,8 @@ struct GivenBodyFrame::State {
   std::once_flag once;
   BodyAnchor anchor;
   std::optional<LimbFit> limbs;
+  std::once_flag mean_once;
+  Eigen::MatrixX3d mean;
 };
 
 GivenBodyFrame::GivenBodyFrame(const BodyModel& model) : model_(&model), state_(std::make_shared<State>()) {}
@@ -29,6 +32,11 @@ const BodyAnchor& GivenBodyFrame::anchor() const {
 const LimbFit& GivenBodyFrame::limbs() const {
   anchor();
   return *state_->limbs;
+}
+
+const Eigen::MatrixX3d& GivenBodyFrame::mean() const {
+  std::call_once(state_->mean_once, [this] { state_->mean = model_->vertices(model_->mean_shape()); });
+  return state_->mean;
 }
 
 BodyMove place_given_body(Eigen::MatrixX3d& body, const Eigen::MatrixX3d& mean, const BodyAnchor* anchor,
@@ -78,12 +86,8 @@ GivenPosedBody unpose_given_body(Eigen::MatrixX3d& body, const BodyModel& model,
   char line[600];
   const Eigen::Vector3d facing = out.moved.rotation.col(2);
   const double turn = out.turn_degrees = std::atan2(facing.x(), facing.z()) * 180.0 / std::numbers::pi;
-  if (std::abs(turn) > kTurnToleranceDegrees) {
-    std::snprintf(line, sizeof line, "faces %.1f degrees from the way the body model's bodies face (turned about the "
-                  "vertical, counter-clockwise seen from above); it is draped turned to face as they do and the drape "
-                  "turned back with it", turn);
-    out.turned = line;
-  }
+  if (std::abs(turn) > kTurnToleranceDegrees)
+    out.turned = facing_text(turn) + "; it is draped turned to face as they do and the drape turned back with it";
   std::snprintf(line, sizeof line,
                 "the body mesh is posed: its pose read off it is %s (the body model so posed lies %.1f mm rms, %.1f mm at "
                 "most, from the mesh); draped in that pose on the mesh unposed (docs/poses.md, \"A body given posed\")",
@@ -98,6 +102,12 @@ GivenPosedBody unpose_given_body(Eigen::MatrixX3d& body, const BodyModel& model,
     out.warning = line;
   }
   return out;
+}
+
+GivenPosedBody unpose_given_body(Eigen::MatrixX3d& body, const BodyModel& model, const GivenBodyFrame& frame,
+                                 const std::string& who) {
+  const Eigen::Vector3d none = Eigen::Vector3d::Constant(std::numeric_limits<double>::quiet_NaN());
+  return unpose_given_body(body, model, frame.mean(), &frame.anchor(), none, none, who);
 }
 
 }  // namespace drape

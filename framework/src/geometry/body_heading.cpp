@@ -46,6 +46,13 @@ BodyMove BodyMove::then(const BodyMove& next) const {
   return out;
 }
 
+std::string facing_text(double turn_degrees) {
+  char line[160];
+  std::snprintf(line, sizeof line, "faces %.1f degrees from the way the body model's bodies face (turned about the "
+                "vertical, counter-clockwise seen from above)", turn_degrees);
+  return line;
+}
+
 BodyMove turn_to_face(Eigen::MatrixX3d& body, const Eigen::MatrixX3d& mean, const std::string& what,
                       std::string* note, bool posed) {
   BodyMove move;
@@ -81,11 +88,7 @@ BodyMove turn_to_face(Eigen::MatrixX3d& body, const Eigen::MatrixX3d& mean, cons
   if (note) {
     std::string said;
     char line[300];
-    if (turned_too(heading)) {
-      std::snprintf(line, sizeof line, "faces %.1f degrees from the way the body model's bodies face (turned about the "
-                    "vertical, counter-clockwise seen from above)", heading.turn_degrees);
-      said = line;
-    }
+    if (turned_too(heading)) said = facing_text(heading.turn_degrees);
     if (leans) {
       std::snprintf(line, sizeof line, "leans %.1f degrees from upright (the garment then hangs along the body as on "
                     "the body stood upright; within %.0f degrees the two barely differ)", heading.lean_degrees,

@@ -20,6 +20,11 @@ namespace {
 // A batch of several bodies says which one a notice is about.
 std::string about(const SampleBatch& batch, int i) { return batch.size() > 1 ? "body " + std::to_string(i) + ": " : ""; }
 
+// Where a body placed by its model's anchor stands, for a placement note.
+std::string anchored_where(const Model& model) {
+  return model.file().filename().string() + "'s training bodies stood (where its body model makes them)";
+}
+
 // The shape is what the network knows; where the body stands and which way
 // it faces are only a rigid move. Draped where, and as, the training bodies
 // stood, the garment then moves back with the body: the same drape as for
@@ -37,8 +42,7 @@ BodyMove place(const Model& model, const ModelDomain* domain, const BodyAnchor* 
   if (!move.offset.isZero(0.0)) {
     char where[200];
     if (anchor)
-      std::snprintf(where, sizeof where, "%s's training bodies stood (where its body model makes them)",
-                    model.file().filename().string().c_str());
+      std::snprintf(where, sizeof where, "%s", anchored_where(model).c_str());
     else
       std::snprintf(where, sizeof where, "%s's training bodies stood (centred in x and z, soles at y = %.3f)",
                     model.file().filename().string().c_str(), domain->placement[1]);
@@ -346,9 +350,7 @@ BodyMove BodyPreparation::unpose_given(SampleBatch& batch, int i, Pose& pose, st
   if (!given.turned.empty())
     notices.push_back({Notice::Level::note, who + " " + given.turned});
   else if (given.moved.offset.norm() > kPosedPlacementTolerance)
-    notices.push_back({Notice::Level::note, who + " " + placement_note(given.moved.offset.transpose(),
-                                                                       model_.file().filename().string() +
-                                                                           "'s training bodies stood (where its body model makes them)")});
+    notices.push_back({Notice::Level::note, who + " " + placement_note(given.moved.offset.transpose(), anchored_where(model_))});
   notices.push_back({Notice::Level::note, about(batch, i) + given.pose_note});
   if (!given.warning.empty()) notices.push_back({Notice::Level::warning, about(batch, i) + given.warning});
   return given.moved;

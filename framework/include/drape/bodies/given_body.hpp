@@ -23,6 +23,7 @@ class GivenBodyFrame {
   explicit GivenBodyFrame(const BodyModel& model);
   const BodyAnchor& anchor() const;
   const LimbFit& limbs() const;
+  const Eigen::MatrixX3d& mean() const;  // the model's mean body, what a given body is turned to face as
 
  private:
   struct State;
@@ -58,6 +59,10 @@ struct GivenPosedBody {
 GivenPosedBody unpose_given_body(Eigen::MatrixX3d& body, const BodyModel& model, const Eigen::MatrixX3d& mean,
                                  const BodyAnchor* anchor, const Eigen::Vector3d& reference,
                                  const Eigen::Vector3d& spread, const std::string& who);
+// The same placed by the frame's anchor alone (no training placement on
+// record): drape body --unpose, BodyModel.unpose, drape bench unpose.
+GivenPosedBody unpose_given_body(Eigen::MatrixX3d& body, const BodyModel& model, const GivenBodyFrame& frame,
+                                 const std::string& who);
 
 // A posed mesh's place is read to the fit's precision; nearer is not said.
 inline constexpr double kPosedPlacementTolerance = 5e-4;  // m

@@ -60,6 +60,11 @@ struct BodyMove {
 // `posed`: the body's limbs are turned (limb_turns.hpp), so the fit tilts
 // with them (both hips flexed 20 degrees "leaned" 10.8; a pelvis alone
 // leans 4-8 degrees with the build): only a turn is undone, the lean left.
+// "faces 150.0 degrees from the way the body model's bodies face (turned
+// about the vertical, counter-clockwise seen from above)": how a note says
+// which way a body faces (turn_to_face, unpose_given_body, drape body --unpose).
+std::string facing_text(double turn_degrees);
+
 BodyMove turn_to_face(Eigen::MatrixX3d& body, const Eigen::MatrixX3d& mean, const std::string& what,
                       std::string* note = nullptr, bool posed = false);
 
