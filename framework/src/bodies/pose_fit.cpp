@@ -26,6 +26,10 @@ constexpr int kMaxRounds = 4;
 
 using Weighted = std::vector<std::pair<int, double>>;
 
+// The finite-difference step of an angle at `degrees`: kAngleStep, taken
+// backwards at the top of its range (a pose past it is refused).
+double angle_step(double degrees, const PoseAngle& range) { return degrees + kAngleStep > range.max ? -kAngleStep : kAngleStep; }
+
 // The unknowns: the pose angles (degrees), the body's turn as a whole (a
 // rotation vector, radians: the pose space has no root rotation, and a body
 // turned to face by its whole mesh is still turned a little when its trunk
@@ -126,7 +130,7 @@ class Fit {
     const std::vector<skinning::Rigid> at = model_.joint_transforms(body, pose);
     for (Eigen::Index a = 0; a < na; ++a) {
       const PoseAngle& range = space_[static_cast<std::size_t>(a)];
-      const double h = x.angles[a] + kAngleStep > range.max ? -kAngleStep : kAngleStep;
+      const double h = angle_step(x.angles[a], range);
       Pose stepped = pose;
       stepped.angles[range.name] += h;
       const std::vector<skinning::Rigid> moved = model_.joint_transforms(body, stepped);
@@ -272,6 +276,16 @@ class Fit {
 // joint by joint, from other starts.
 constexpr double kRetryMiss = 2e-3;  // m
 
+// The indices in `space` of a joint's angles that poses are drawn over
+// (a sampling range): what the retries below start again and compare.
+std::vector<Eigen::Index> drawn_angles(const std::vector<PoseAngle>& space, const BodyModel::Joint& joint) {
+  std::vector<Eigen::Index> own;
+  for (const std::string& name : joint.angles)
+    for (std::size_t a = 0; a < space.size(); ++a)
+      if (space[a].name == name && space[a].sample_hi > space[a].sample_lo) own.push_back(static_cast<Eigen::Index>(a));
+  return own;
+}
+
 // How far a joint's angles lie outside the ranges poses are drawn from
 // (squared degrees): of two sets that fit the mesh as well, the one nearer
 // what people and the training poses do is kept.
@@ -300,10 +314,7 @@ double outside_sampling(const std::vector<PoseAngle>& space, const Eigen::Vector
 double retry_joints(const Fit& fit, const BodyModel& model, Unknowns& x, double cost, bool missed, int& steps) {
   const std::vector<PoseAngle>& space = fit.space();
   for (const BodyModel::Joint& joint : model.joints()) {
-    std::vector<Eigen::Index> own;
-    for (const std::string& name : joint.angles)
-      for (std::size_t a = 0; a < space.size(); ++a)
-        if (space[a].name == name && space[a].sample_hi > space[a].sample_lo) own.push_back(static_cast<Eigen::Index>(a));
+    const std::vector<Eigen::Index> own = drawn_angles(space, joint);
     if (own.size() < 2) continue;
     const double outside = outside_sampling(space, x.angles, own);
     if (!missed && !(outside > 1.0)) continue;
@@ -332,10 +343,7 @@ void choose_equivalent_angles(const Fit& fit, const BodyModel& model, Unknowns& 
   const Eigen::MatrixX3d& body = fit.base();
   const std::vector<BodyModel::Joint> joints = model.joints();
   for (std::size_t j = 0; j < joints.size(); ++j) {
-    std::vector<Eigen::Index> own;
-    for (const std::string& name : joints[j].angles)
-      for (std::size_t a = 0; a < space.size(); ++a)
-        if (space[a].name == name && space[a].sample_hi > space[a].sample_lo) own.push_back(static_cast<Eigen::Index>(a));
+    const std::vector<Eigen::Index> own = drawn_angles(space, joints[j]);
     if (own.size() < 2 || !(outside_sampling(space, x.angles, own) > 1.0)) continue;
     const Eigen::Matrix3d target = model.joint_transforms(body, fit.pose_of(x.angles))[j].r;
     auto turn_of = [&](const Eigen::VectorXd& angles) { return model.joint_transforms(body, fit.pose_of(angles))[j].r; };
@@ -360,7 +368,7 @@ void choose_equivalent_angles(const Fit& fit, const BodyModel& model, Unknowns& 
         Eigen::MatrixXd jac(9, n);
         for (int k = 0; k < n; ++k) {
           const Eigen::Index a = own[static_cast<std::size_t>(k)];
-          const double h = angles[a] + kAngleStep > space[static_cast<std::size_t>(a)].max ? -kAngleStep : kAngleStep;
+          const double h = angle_step(angles[a], space[static_cast<std::size_t>(a)]);
           Eigen::VectorXd stepped = angles;
           stepped[a] += h;
           const Eigen::Matrix3d d = (turn_of(stepped) - now) / h;
@@ -368,9 +376,8 @@ void choose_equivalent_angles(const Fit& fit, const BodyModel& model, Unknowns& 
         }
         const Eigen::VectorXd step = (jac.transpose() * jac + 1e-12 * Eigen::MatrixXd::Identity(n, n)).ldlt().solve(-jac.transpose() * r);
         for (int k = 0; k < n; ++k) {
-          const PoseAngle& p = space[static_cast<std::size_t>(own[static_cast<std::size_t>(k)])];
-          Eigen::Index a = own[static_cast<std::size_t>(k)];
-          angles[a] = std::clamp(angles[a] + step[k], p.min, p.max);
+          const Eigen::Index a = own[static_cast<std::size_t>(k)];
+          angles[a] = std::clamp(angles[a] + step[k], space[static_cast<std::size_t>(a)].min, space[static_cast<std::size_t>(a)].max);
         }
       }
       if (!(miss(angles) < 1e-14)) continue;  // another turn (or a start that found none)
