@@ -50,19 +50,13 @@ Turned human_body_and_turned(const std::string& env, const fs::path& file, const
   return turn;
 }
 
-// The program run from the source folder (models/ found there), its cache in `dir`.
-std::string drape_in_source(const test::TempDir& dir) {
-  return "cd " + test::source_dir().string() + " && env -u DRAPE_MODEL DRAPE_CACHE_DIR=" + dir.path().string() + " " +
-         test::drape_program().string();
-}
-
 }  // namespace
 
 TEST_CASE("predict and simulate drape a body turned about the vertical and re-centred as the body the model made, "
           "the drape turned back", "[cli][heading]") {
   test::TempDir dir;
   std::string out;
-  const std::string env = drape_in_source(dir);
+  const std::string env = test::drape_in_source(dir.path());
   // The human rig, whose anchor places a body exactly (the mannequin's z is placed within its bodies' spread).
   SECTION("predict") {
     const Turned turn = human_body_and_turned(env, dir / "b.obj", "--bmi 38 --sex 0 --height 1.62");
@@ -85,8 +79,7 @@ TEST_CASE("predict and simulate drape a body turned about the vertical and re-ce
     // A body the scene's shirt fits: its few unsettled steps then end the same on bodies a rounding apart (on the
     // BMI 38 body, too small around, they part by centimetres even for a body moved by a rounding only).
     const Turned turn24 = human_body_and_turned(env, dir / "b24.obj", "--bmi 24");
-    std::string scene = test::tiny_simulation_scene();
-    scene.replace(scene.find("{model: parametric}"), 19, "{model: parametric, params: {rig: human}}");
+    std::string scene = test::tiny_human_simulation_scene();
     std::ofstream(dir / "tiny.yaml") << scene;
     const std::string simulate = " simulate " + (dir / "tiny.yaml").string() + " --threads 1 --out ";
     int code = test::run(env + simulate + (dir / "s.obj").string() + " --body " + (dir / "b24.obj").string() + " 2>&1", out);
@@ -104,7 +97,7 @@ TEST_CASE("a body leaning 30 degrees is refused by simulate, predict, optimize a
           "[cli][heading]") {
   test::TempDir dir;
   std::string out;
-  const std::string env = drape_in_source(dir);
+  const std::string env = test::drape_in_source(dir.path());
   REQUIRE(test::run(env + " body --bmi 30 --out " + (dir / "m.obj").string(), out) == 0);
   Mesh body = read_mesh(dir / "m.obj");
   const double t = 30.0 * std::numbers::pi / 180.0;
@@ -128,7 +121,7 @@ TEST_CASE("predict warns that a body mesh given posed looks posed, naming the li
           "[cli][heading]") {
   test::TempDir dir;
   std::string out;
-  const std::string env = drape_in_source(dir);
+  const std::string env = test::drape_in_source(dir.path());
   REQUIRE(test::run(env + " body --param rig=human --bmi 27 --pose elbow_flexion=40 --out " + (dir / "posed.obj").string(),
                     out) == 0);
   const std::string predict = " predict --model models/tshirt-coarse-human.h5 --body " + (dir / "posed.obj").string();

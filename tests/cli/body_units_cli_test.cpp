@@ -44,8 +44,7 @@ TEST_CASE("a body mesh of another rig than the model's is refused naming the shi
           "[cli][units]") {
   test::TempDir dir;
   std::string out;
-  const std::string env = "cd " + test::source_dir().string() + " && env -u DRAPE_MODEL DRAPE_CACHE_DIR=" +
-                          dir.path().string() + " " + test::drape_program().string();
+  const std::string env = test::drape_in_source(dir.path());
   // The mannequin's body (the body model's default rig) given to the human rig's model, the default.
   REQUIRE(test::run(env + " body --bmi 30 --out " + (dir / "mannequin.obj").string(), out) == 0);
   const int code = test::run(env + " predict --model models/tshirt-coarse-human.h5 --body " +

@@ -19,11 +19,6 @@ namespace fs = std::filesystem;
 
 namespace {
 
-std::string drape_in_source(const test::TempDir& dir) {
-  return "cd " + test::source_dir().string() + " && env -u DRAPE_MODEL DRAPE_CACHE_DIR=" + dir.path().string() + " " +
-         test::drape_program().string();
-}
-
 constexpr const char* kPose = "shoulder_abduction=55,elbow_flexion=35,spine_twist=12";
 
 // Rows turned 150 degrees about the vertical and moved, as another tool may leave a mesh.
@@ -51,7 +46,7 @@ TEST_CASE("predict drapes a body mesh given posed in the pose read off it, with 
           "[cli][pose][predict]") {
   test::TempDir dir;
   std::string out;
-  const std::string env = drape_in_source(dir);
+  const std::string env = test::drape_in_source(dir.path());
   rest_and_posed(env, dir.path(), "--bmi 33 --sex 0 --height 1.66");
   REQUIRE(test::run(env + " predict --body " + (dir / "rest.obj").string() + " --pose " + kPose + " --out " +
                         (dir / "expected.obj").string() + " 2>&1", out) == 0);
@@ -78,10 +73,9 @@ TEST_CASE("simulate morphs a body mesh given posed at rest, then poses it, to th
           "[cli][pose][simulate]") {
   test::TempDir dir;
   std::string out;
-  const std::string env = drape_in_source(dir);
+  const std::string env = test::drape_in_source(dir.path());
   rest_and_posed(env, dir.path(), "--bmi 24");
-  std::string scene = test::tiny_simulation_scene();
-  scene.replace(scene.find("{model: parametric}"), 19, "{model: parametric, params: {rig: human}}");
+  std::string scene = test::tiny_human_simulation_scene();
   std::ofstream(dir / "tiny.yaml") << scene;
   const std::string simulate = " simulate " + (dir / "tiny.yaml").string() + " --threads 1 --out ";
   const int code = test::run(env + simulate + (dir / "s.obj").string() + " --body " + (dir / "posed.obj").string() +
@@ -114,7 +108,7 @@ TEST_CASE("drape body --unpose prints the pose of a body mesh, writes it at rest
           "[cli][pose][body]") {
   test::TempDir dir;
   std::string out;
-  const std::string env = drape_in_source(dir);
+  const std::string env = test::drape_in_source(dir.path());
   rest_and_posed(env, dir.path(), "--bmi 41 --sex 0 --height 1.58");
   const std::string unpose = " body --param rig=human --unpose " + (dir / "posed.obj").string();
   const int code = test::run(env + unpose + " --pose-out " + (dir / "pose.yaml").string() + " --out " +

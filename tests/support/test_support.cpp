@@ -101,6 +101,17 @@ solver: {morph_steps: 2, settle_steps: 3}
 )";
 }
 
+std::string tiny_human_simulation_scene() {
+  std::string scene = tiny_simulation_scene();
+  const std::string body = "{model: parametric}";
+  return scene.replace(scene.find(body), body.size(), "{model: parametric, params: {rig: human}}");
+}
+
+std::string drape_in_source(const std::filesystem::path& cache) {
+  return "cd " + source_dir().string() + " && env -u DRAPE_MODEL DRAPE_CACHE_DIR=" + cache.string() + " " +
+         drape_program().string();
+}
+
 std::vector<std::string> body_mesh_commands(const std::filesystem::path& dir) {
   std::ofstream(dir / "tiny.yaml") << tiny_simulation_scene();
   const std::string garment = " --out " + (dir / "g.obj").string();

@@ -53,6 +53,12 @@ std::string message_of(const std::function<void()>& fn);
 // every effect, a few steps -- for tests that need real drapes (generate,
 // experiments, benchmarks), not good ones.
 const char* tiny_simulation_scene();
+// The same on the parametric body's human rig (the shipped default models' body).
+std::string tiny_human_simulation_scene();
+
+// A shell prefix that runs the drape program from the source folder (where
+// models/ and datasets/ are found), DRAPE_MODEL unset and its cache in `cache`.
+std::string drape_in_source(const std::filesystem::path& cache);
 
 // The commands that take a body mesh (append " --body FILE"): simulate (the
 // tiny scene, written into `dir`), predict, render and optimize, with the
