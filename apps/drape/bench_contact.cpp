@@ -66,7 +66,11 @@ int run(const std::vector<std::string>& args) {
   if (!parse("drape bench contact [--garment-level 4] [--body-level 5] [--gap 0.0007]", args, opts, {}, vm)) return 0;
   const double radius = 0.1, gap = vm["gap"].as<double>();
   if (!(gap > 0)) throw UsageError("--gap must be > 0");
-  const int repeats = std::max(1, vm["repeats"].as<int>());
+  const int repeats = vm["repeats"].as<int>();
+  if (repeats < 1) throw UsageError("--repeats " + std::to_string(repeats) + ": expected at least 1");
+  for (const char* level : {"garment-level", "body-level"})
+    if (const int l = vm[level].as<int>(); l < 0 || l > 8)
+      throw UsageError(std::string("--") + level + " " + std::to_string(l) + ": expected an icosphere level 0 to 8");
   Registry& registry = Registry::load_default(plugin_path(vm));
   const geometry::BodySurface body(geometry::icosphere(vm["body-level"].as<int>(), radius));
   // The shell's flat faces sag inside its vertices' sphere: it is scaled so

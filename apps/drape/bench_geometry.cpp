@@ -199,6 +199,7 @@ int run(const std::vector<std::string>& args) {
   std::uniform_real_distribution<double> unit(0, 1);
   std::uniform_int_distribution<int> face(0, body.num_faces() - 1);
   const double band = vm["band"].as<double>();
+  if (!(band >= 0 && band <= 1)) throw UsageError("--band " + std::to_string(band) + ": expected 0 to 1 m");
   pb.queries.resize(nq, 3);
   for (int i = 0; i < nq; ++i) {
     const int f = face(rng);

@@ -64,6 +64,8 @@ ParamValues plugin_params(const po::variables_map& vm) {
     for (const auto& item : vm["param"].as<std::vector<std::string>>()) {
       const auto eq = item.find('=');
       if (eq == std::string::npos || eq == 0) throw UsageError("--param wants name=value, got '" + item + "'");
+      if (values.count(item.substr(0, eq)))
+        throw UsageError("--param " + item.substr(0, eq) + " is given twice; give each parameter once");
       values[item.substr(0, eq)] = {YAML::Load(item.substr(eq + 1)), {"--param", 0}};
     }
   return values;
@@ -154,6 +156,29 @@ SvgLayer skin_of(const Mesh& mesh) {
   return skin;
 }
 
+// The --bmi and --height ranges of --sample against what the model
+// reaches: BMI by its range, the heights by solving the mean build at both
+// ends (a model says its reachable heights only when asked for a body).
+void check_sample_ranges(const BodyModel& body, const std::string& model, const Range& bmi, const Range& height) {
+  const auto [lightest, heaviest] = body.bmi_range();
+  if (bmi.lo < lightest || bmi.hi > heaviest) {
+    std::ostringstream m;
+    m << "--bmi " << bmi.lo << ":" << bmi.hi << " reaches outside what body " << model << " makes, BMI " << lightest
+      << " to " << heaviest;
+    throw UsageError(m.str());
+  }
+  const BodyRequest mean = body.mean_request();
+  for (const double h : {height.lo, height.hi}) {
+    try {
+      body.solve(BodyRequest{std::clamp(mean.bmi, bmi.lo, bmi.hi), h, mean.sex, {}});
+    } catch (const ConfigError& e) {
+      std::ostringstream m;
+      m << "--height " << height.lo << ":" << height.hi << ": " << e.what();
+      throw UsageError(m.str());
+    }
+  }
+}
+
 // --sample N: bodies drawn from the space, written to --out-dir with
 // bodies.csv (and the first 16 drawn side by side into --svg).
 int sample_many(const po::variables_map& vm, const LoadedBody& loaded, const Range& bmi) {
@@ -162,11 +187,18 @@ int sample_many(const po::variables_map& vm, const LoadedBody& loaded, const Ran
   const int count = vm["sample"].as<int>();
   if (count < 1) throw UsageError("--sample " + std::to_string(count) + ": expected at least 1");
   if (!vm.count("out-dir")) throw UsageError("--sample needs --out-dir");
-  if (vm.count("poses")) check_drawable(body.pose_angles(), loaded.model);  // before anything is written
+  if (vm.count("out")) throw UsageError("--out writes one body; --sample writes its bodies into --out-dir");
+  // Everything that can be refused is, before anything is written: the
+  // ranges against what the model reaches (not only the values drawn), and
+  // the folder.
+  if (vm.count("poses")) check_drawable(body.pose_angles(), loaded.model);
   const std::filesystem::path dir = vm["out-dir"].as<std::string>();
-  std::filesystem::create_directories(dir);
+  if (std::filesystem::exists(dir) && !std::filesystem::is_directory(dir))
+    throw UsageError("--out-dir " + dir.string() + " is a file, not a folder");
   const Range height = vm.count("height") ? parse_range("height", vm["height"].as<std::string>()) : Range{1.5, 2.0};
   const BodySpace space = sample_space(vm, bmi, height);
+  check_sample_ranges(body, loaded.model, bmi, height);
+  std::filesystem::create_directories(dir);
   Rng rng(vm["seed"].as<unsigned>());
   // Poses come from their own stream, so the shapes of a seed are the same
   // with --poses as without.
@@ -327,7 +359,8 @@ int run(const std::vector<std::string>& args) {
   loaded.model = vm["model"].as<std::string>();
   const PluginDescriptor& desc = reg.get(loaded.model);
   if (!desc.create_body)
-    throw ConfigError("drape body: plugin '" + loaded.model + "' is a " + desc.kind + ", not a body model");
+    throw ConfigError("plugin '" + loaded.model + "' is " + (desc.kind.find_first_of("aeiou") == 0 ? "an " : "a ") + desc.kind +
+                      ", not a body model");
   const auto t0 = std::chrono::steady_clock::now();
   const ParamValues values = plugin_params(vm);
   loaded.body = reg.create_body(loaded.model, Params(desc.params, values, "body " + loaded.model));
@@ -338,11 +371,18 @@ int run(const std::vector<std::string>& args) {
     throw UsageError("--pose, --pose-file and --smpl-theta pose one body; --sample draws poses with --poses");
   if (vm.count("poses") && !vm.count("sample")) throw UsageError("--poses needs --sample");
   if (vm.count("pose-out") && !vm.count("unpose")) throw UsageError("--pose-out goes with --unpose");
+  // An option given for another use of the command is refused, not ignored
+  // (a value left at its default counts as not given).
+  const auto given = [&](const char* option) { return vm.count(option) && !vm[option].defaulted(); };
   if (vm.count("unpose")) {
-    for (const char* other : {"sample", "pose", "pose-file", "smpl-theta", "girth"})
-      if (vm.count(other)) throw UsageError(std::string("--unpose reads the pose and the body off the mesh; leave out --") + other);
+    for (const char* other : {"sample", "pose", "pose-file", "smpl-theta", "girth", "bmi", "height", "sex", "girths", "seed",
+                              "out-dir", "svg"})
+      if (given(other)) throw UsageError(std::string("--unpose reads the pose and the body off the mesh; leave out --") + other);
     return unpose_one(vm, loaded);
   }
+  if (!vm.count("sample"))
+    for (const char* other : {"out-dir", "svg", "girths", "seed"})
+      if (given(other)) throw UsageError(std::string("--") + other + " goes with --sample (one body is written to --out)");
   return vm.count("sample") ? sample_many(vm, loaded, bmi) : solve_one(vm, loaded, bmi);
 }
 

@@ -83,6 +83,9 @@ int run(const std::vector<std::string>& args) {
   // Before anything looks at the output (output_lock.hpp).
   const OutputLock lock(vm["out"].as<std::string>(), "drape optimize");
   if (vm.count("data")) return run_on_dataset(vm);
+  for (const char* option : {"split", "threads", "shard"})
+    if (!vm[option].defaulted())
+      throw UsageError(std::string("--") + option + " goes with --data (a dataset split); one body is optimised alone");
   if (vm.count("body") == vm.count("bmi"))
     throw UsageError("give the body either as a mesh (--body FILE) or by its BMI (--bmi X), exactly one");
   const std::string model_file = model_file_or_default(vm);

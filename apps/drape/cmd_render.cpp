@@ -152,6 +152,8 @@ int run(const std::vector<std::string>& args) {
     throw UsageError("--colour must be distance, error or strain, got '" + colour + "'");
   if (colour == "error" && !vm.count("data"))
     throw UsageError("--colour error compares with a simulated drape: give --data FILE --sample I");
+  if (!vm.count("data") && !vm["sample"].defaulted())
+    throw UsageError("--sample picks a sample of --data FILE; a body given by --bmi or --body has none");
   if (vm.count("simulated") && (!vm.count("data") || vm.count("garment")))
     throw UsageError("--simulated draws a dataset's own drape: give --data FILE --sample I, and no --garment");
   Registry& registry = Registry::load_default(plugin_path(vm));

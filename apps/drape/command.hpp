@@ -41,8 +41,15 @@ struct RegisterCommand {
 // Thrown for bad command lines (drape/errors.hpp, a ConfigError); main prints it with the command's usage hint.
 using drape::UsageError;
 
+// The most --threads a command takes (0 is every core): a few per core of
+// the largest machines it runs on, beyond which threads only queue.
+inline constexpr int kMaxThreads = 1024;
+
 // Parses `args` against `options` (+ --help and --plugin-path, added here) and
-// the positional names. Returns false when --help was printed.
+// the positional names. Returns false when --help was printed. Before any
+// work, it refuses (UsageError) an output that cannot be written, two
+// outputs (--out, --body-out, --svg, --csv) naming one file, and --threads
+// outside [0, kMaxThreads].
 bool parse(const std::string& usage, const std::vector<std::string>& args, po::options_description& options,
            const po::positional_options_description& positional, po::variables_map& vm);
 
@@ -63,7 +70,7 @@ std::map<std::string, std::map<std::string, std::string>> parse_param_overrides(
 void add_push_out_option(po::options_description& options, const std::string& help);
 double push_out_margin(const po::variables_map& vm);
 
-// --girth name=value (repeatable): a proportion the body model holds while it
+// --girth name=value (repeatable, or a comma list): a proportion the body model holds while it
 // reaches the BMI and height (BodyRequest::proportions; the parametric body's
 // chest, waist, belly, hips, arms, thighs). body, simulate, predict and
 // optimize take it, so a body of the body space is named the same way by

@@ -10,6 +10,8 @@
 #include <cmath>
 #include <filesystem>
 #include <iostream>
+#include <map>
+#include <thread>
 
 namespace drape::cli {
 
@@ -46,11 +48,38 @@ bool parse(const std::string& usage, const std::vector<std::string>& args, po::o
   // Outputs are checked before any work: a drape simulated for a minute must
   // not be lost to a missing or read-only folder. A value without an
   // extension is a folder to write into (hierarchy --out), made by its command.
+  // Two outputs named alike would leave one file holding the last written
+  // (predict --out g.obj --body-out g.obj kept the body and lost the garment).
+  std::map<std::filesystem::path, std::string> written;
   for (const char* option : {"out", "body-out", "svg", "csv"}) {
     if (!vm.count(option)) continue;
     const boost::any& value = vm[option].value();
     const std::string* file = boost::any_cast<std::string>(&value);
-    if (file && std::filesystem::path(*file).has_extension()) check_writable_output(*file, std::string("--") + option);
+    if (!file) continue;
+    if (std::filesystem::path(*file).has_extension()) check_writable_output(*file, std::string("--") + option);
+    const std::filesystem::path same = std::filesystem::weakly_canonical(std::filesystem::absolute(*file));
+    if (const auto [it, fresh] = written.emplace(same, option); !fresh)
+      throw UsageError("--" + it->second + " and --" + option + " name the same file " + *file +
+                       ": each output needs its own\nusage: " + usage);
+  }
+  // A picture goes where its extension says (predict --svg o.png wrote SVG text into o.png).
+  if (vm.count("svg")) {
+    const boost::any& value = vm["svg"].value();
+    if (const std::string* file = boost::any_cast<std::string>(&value)) {
+      const std::string ext = std::filesystem::path(*file).extension().string();
+      if (ext != ".svg" && ext != ".html" && ext != ".htm")
+        throw UsageError("--svg " + *file + ": expected a .svg (a drawing) or .html (a 3D viewer) file\nusage: " + usage);
+    }
+  }
+  // --threads: more threads than a machine runs at once only queue, and
+  // tens of thousands exhausted the stacks (simulate --threads 100000
+  // crashed, 5000 hung in OpenMP's start-up).
+  if (vm.count("threads")) {
+    const boost::any& value = vm["threads"].value();
+    if (const int* threads = boost::any_cast<int>(&value); threads && (*threads < 0 || *threads > kMaxThreads))
+      throw UsageError("--threads " + std::to_string(*threads) + ": expected 0 (every core) to " +
+                       std::to_string(kMaxThreads) + " (this machine runs " +
+                       std::to_string(std::max(1u, std::thread::hardware_concurrency())) + " at once)\nusage: " + usage);
   }
   return true;
 }
@@ -90,15 +119,25 @@ double push_out_margin(const po::variables_map& vm) {
 
 void add_girth_option(po::options_description& options, const std::string& with) {
   options.add_options()("girth", po::value<std::vector<std::string>>()->composing(),
-                        (with + "a proportion held while BMI is reached, name=value (repeatable; parametric: chest, waist, "
-                                "belly, hips, arms, thighs in [-0.15, 0.15], log factors)")
+                        (with + "a proportion held while BMI is reached, name=value (repeatable, or a list a=x,b=y; "
+                                "parametric: chest, waist, belly, hips, arms, thighs in [-0.15, 0.15], log factors)")
                             .c_str());
 }
 
 std::map<std::string, double> parse_girths(const po::variables_map& vm) {
   std::map<std::string, double> out;
   if (!vm.count("girth")) return out;
-  for (const auto& item : vm["girth"].as<std::vector<std::string>>()) {
+  // Repeated (--girth chest=0.1 --girth waist=0.05) or a comma list as --pose
+  // takes (--girth chest=0.1,waist=0.05).
+  std::vector<std::string> items;
+  for (const auto& given : vm["girth"].as<std::vector<std::string>>())
+    for (std::size_t start = 0;;) {
+      const std::size_t comma = given.find(',', start);
+      items.push_back(given.substr(start, comma == std::string::npos ? std::string::npos : comma - start));
+      if (comma == std::string::npos) break;
+      start = comma + 1;
+    }
+  for (const auto& item : items) {
     const auto eq = item.find('=');
     if (eq == std::string::npos || eq == 0) throw UsageError("--girth wants name=value, got '" + item + "'");
     const std::string name = item.substr(0, eq), value = item.substr(eq + 1);

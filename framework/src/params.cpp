@@ -49,8 +49,13 @@ double scalar(const YAML::Node& n, bool integral) {
 
 std::string range_text(const ParamSpec& s) {
   std::ostringstream o;
-  o << "[" << (s.min ? std::to_string(*s.min) : std::string("-inf")) << ", "
-    << (s.max ? std::to_string(*s.max) : std::string("inf")) << "]";
+  // Numbers as written in a scene (0.5, 1e+06), not std::to_string's six decimals (0.500000).
+  o.precision(10);
+  o << "[";
+  if (s.min) o << *s.min; else o << "-inf";
+  o << ", ";
+  if (s.max) o << *s.max; else o << "inf";
+  o << "]";
   return o.str();
 }
 

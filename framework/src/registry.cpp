@@ -192,18 +192,25 @@ std::vector<const PluginDescriptor*> Registry::all() const {
   return out;
 }
 
+namespace {
+// "an energy", "an encoder", "a loss": a plugin's kind with its article.
+std::string a_kind(const std::string& kind) {
+  return (kind.find_first_of("aeiou") == 0 ? "an " : "a ") + kind;
+}
+}  // namespace
+
 // The factories run in the plugin's name (error_context.hpp): a plugin's
 // errors come out as "<name>: ..." without the plugin writing its name.
 std::unique_ptr<Node> Registry::create_node(const std::string& name, const Params& params) const {
   const PluginDescriptor& d = get(name);
   if (d.create_node) return in_context(name, [&] { return d.create_node(params); });
   if (d.create_energy) return std::make_unique<EnergyNode>(create_energy(name, params));
-  throw ConfigError("'" + name + "' is a " + d.kind + "; it cannot be a node of a graph");
+  throw ConfigError("'" + name + "' is " + a_kind(d.kind) + "; it cannot be a node of a graph");
 }
 
 std::unique_ptr<BodyModel> Registry::create_body(const std::string& name, const Params& params) const {
   const PluginDescriptor& d = get(name);
-  if (!d.create_body) throw ConfigError("'" + name + "' is a " + d.kind + ", not a body model");
+  if (!d.create_body) throw ConfigError("'" + name + "' is " + a_kind(d.kind) + ", not a body model");
   return in_context(name, [&] { return d.create_body(params); });
 }
 
@@ -227,14 +234,14 @@ class PluginGarment final : public GarmentSource {
 
 std::unique_ptr<GarmentSource> Registry::create_garment(const std::string& name, const Params& params) const {
   const PluginDescriptor& d = get(name);
-  if (!d.create_garment) throw ConfigError("'" + name + "' is a " + d.kind + ", not a garment template");
+  if (!d.create_garment) throw ConfigError("'" + name + "' is " + a_kind(d.kind) + ", not a garment template");
   return std::make_unique<PluginGarment>(name, in_context(name, [&] { return d.create_garment(params); }));
 }
 
 // Every call into the energy names the plugin in its errors (plugin_energy.hpp).
 std::unique_ptr<Energy> Registry::create_energy(const std::string& name, const Params& params) const {
   const PluginDescriptor& d = get(name);
-  if (!d.create_energy) throw ConfigError("'" + name + "' is a " + d.kind + ", not an energy");
+  if (!d.create_energy) throw ConfigError("'" + name + "' is " + a_kind(d.kind) + ", not an energy");
   return std::make_unique<PluginEnergy>(name, in_context(name, [&] { return d.create_energy(params); }));
 }
 

@@ -49,7 +49,8 @@ class PyBodyModel {
   }
 
   Eigen::MatrixX3d vertices(const py::handle& shape_arg) const {
-    auto shape = py::array_t<double, py::array::forcecast>::ensure(shape_arg);
+    // c_style: a strided view (shape[::2], shape[::-1]) is copied, not read as if contiguous.
+    auto shape = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(shape_arg);
     const auto n = static_cast<py::ssize_t>(model_->shape_names().size());
     if (!shape || shape.ndim() != 1 || shape.shape(0) != n)
       throw py::value_error("shape: expected a float array of shape [" + std::to_string(n) + "] (" + name_ +

@@ -134,3 +134,15 @@ def test_unpose_finds_the_arm_a_fit_from_rest_misses():
         assert read["fit_max"] < 1e-3, i
         worst = max(abs(read["pose"][k] - v) for k, v in truth.items())
         assert worst < 1.5, (i, worst)
+
+
+def test_vertices_of_a_strided_shape_are_those_of_its_values():
+    """A view (every other element, reversed) is read as its values: it was read as contiguous memory, a
+    different body for shape[::2] and memory before the buffer for shape[::-1]."""
+    model = drape.BodyModel("parametric")
+    shape = model.solve(bmi=30)
+    wide = np.zeros(2 * shape.size)
+    wide[::2] = shape
+    np.testing.assert_array_equal(model.vertices(wide[::2]), model.vertices(shape))
+    backwards = shape[::-1].copy()
+    np.testing.assert_array_equal(model.vertices(backwards[::-1]), model.vertices(shape))

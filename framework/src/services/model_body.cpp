@@ -1,4 +1,5 @@
 // model_body_batch and prepare_bodies (services/model_body.hpp).
+#include <drape/bodies/posed_body.hpp>
 #include <drape/geometry/adjacency.hpp>
 #include <drape/geometry/body_units.hpp>
 #include <drape/geometry/volume.hpp>
@@ -317,7 +318,16 @@ void pose_model_batch(const Model& model, SampleBatch& batch, const std::vector<
   const int n = batch.size();
   SampleBatch posed;
   for (int i = 0; i < n; ++i) {
-    const SampleBatch one = posed_body_batch(body_model, batch.body.mat(i).cast<double>(), poses[static_cast<std::size_t>(i)]);
+    const Eigen::MatrixX3d unposed = batch.body.mat(i).cast<double>();
+    const SampleBatch one = posed_body_batch(body_model, unposed, poses[static_cast<std::size_t>(i)]);
+    // A pose in which the body passes through itself (an arm into the trunk)
+    // has no drape: refused as drape body and simulate refuse it, naming the
+    // bones and the angles (a crossing the body has at rest is not the pose's).
+    const std::string crossed = describe_pose_crossings(body_model, unposed, poses[static_cast<std::size_t>(i)],
+                                                        one.body.mat(0).cast<double>());
+    if (!crossed.empty())
+      throw ConfigError((n > 1 ? "body " + std::to_string(i) + ": " : std::string()) +
+                        "this pose makes the body pass through itself: " + crossed);
     if (i == 0) {
       posed.body = Tensor(n, one.body.rows(), 3);
       posed.unposed_body = Tensor(n, one.unposed_body.rows(), 3);

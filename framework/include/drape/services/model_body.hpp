@@ -53,7 +53,10 @@ struct ModelBodyInput {
 // BodyPreparation::prepare, which measures and places the unposed body (a
 // raised arm is no girth), and posing commutes with its move. An empty pose
 // leaves an A-pose model's batch alone; a pose for a model of A-pose bodies
-// is a ConfigError (its drapes would be silently wrong).
+// is a ConfigError (its drapes would be silently wrong), and so is a pose in
+// which a body passes through itself (describe_pose_crossings, naming the
+// bones and angles, as drape body and simulate refuse it: an exact
+// triangle-triangle test of the posed body, a few milliseconds a body).
 void pose_model_batch(const Model& model, SampleBatch& batch, const Pose& pose);
 // The same with a pose per body (`poses`, one per body of the batch).
 void pose_model_batch(const Model& model, SampleBatch& batch, const std::vector<Pose>& poses);

@@ -1,0 +1,108 @@
+// Options a command cannot honour are refused before any work, not ignored,
+// clamped or left to fail half way (found by a sweep of bad input as a new
+// user would bring it, 2026-12-06): each exits 2 with one line naming the
+// option, and writes nothing.
+#include <catch2/catch.hpp>
+
+#include <filesystem>
+#include <fstream>
+
+#include "test_support.hpp"
+
+using namespace drape;
+
+TEST_CASE("a thread count beyond what any machine runs is refused before the work starts", "[cli][options]") {
+  test::TempDir dir;
+  std::string out;
+  const std::string scene = (test::source_dir() / "graphs/scenes/tshirt_coarse.yaml").string();
+  // 100,000 crashed OpenMP's start-up, 5,000 hung in it.
+  for (const std::string threads : {"100000", "5000", "-1"}) {
+    INFO(threads);
+    CHECK(test::run_drape("simulate " + scene + " --threads " + threads + " --out " + (dir / "g.obj").string(), out) == 2);
+    CHECK_THAT(out, Catch::Contains("--threads " + threads + ": expected 0 (every core) to 1024"));
+  }
+  CHECK(test::run_drape("generate " + scene + " --count 1 --threads 2000 --out " + (dir / "d.h5").string(), out) == 2);
+  CHECK_THAT(out, Catch::Contains("--threads 2000"));
+  CHECK_FALSE(std::filesystem::exists(dir / "g.obj"));
+  CHECK_FALSE(std::filesystem::exists(dir / "d.h5"));
+}
+
+TEST_CASE("two outputs naming one file are refused, however the path is spelt", "[cli][options]") {
+  test::TempDir dir;
+  std::string out;
+  const std::string a = (dir / "o.obj").string(), b = (dir / "." / "o.obj").string();
+  CHECK(test::run_drape("predict --bmi 30 --out " + a + " --body-out " + b, out) == 2);
+  CHECK_THAT(out, Catch::Contains("--out and --body-out name the same file"));
+  CHECK_FALSE(std::filesystem::exists(a));
+  // A picture needs a picture's extension: --svg o.png wrote SVG text into a .png.
+  CHECK(test::run_drape("predict --bmi 30 --out " + a + " --svg " + (dir / "o.png").string(), out) == 2);
+  CHECK_THAT(out, Catch::Contains("--svg") && Catch::Contains("expected a .svg"));
+}
+
+TEST_CASE("drape body refuses options meant for another of its uses", "[cli][options]") {
+  test::TempDir dir;
+  std::string out;
+  REQUIRE(test::run_drape("body --param rig=human --bmi 30 --out " + (dir / "b.obj").string(), out) == 0);
+  // --unpose reads the body off the mesh: a BMI, height or sex given beside it was ignored.
+  for (const std::string other : {"--bmi 30", "--height 1.8", "--sex 0", "--girths 0.5", "--out-dir d"}) {
+    INFO(other);
+    CHECK(test::run_drape("body --param rig=human --unpose " + (dir / "b.obj").string() + " " + other, out) == 2);
+    CHECK_THAT(out, Catch::Contains("--unpose reads the pose and the body off the mesh; leave out --"));
+  }
+  // One body: the options of --sample were ignored without a word.
+  CHECK(test::run_drape("body --bmi 30 --out-dir " + (dir / "d").string(), out) == 2);
+  CHECK_THAT(out, Catch::Contains("--out-dir goes with --sample"));
+  CHECK(test::run_drape("body --bmi 30 --svg " + (dir / "s.svg").string(), out) == 2);
+  CHECK_THAT(out, Catch::Contains("--svg goes with --sample"));
+  CHECK(test::run_drape("body --sample 2 --out-dir " + (dir / "d").string() + " --out " + (dir / "x.obj").string(), out) == 2);
+  CHECK_THAT(out, Catch::Contains("--sample writes its bodies into --out-dir"));
+  // A parameter given twice kept the last silently.
+  CHECK(test::run_drape("body --param rig=human --param rig=mannequin --bmi 30", out) == 2);
+  CHECK_THAT(out, Catch::Contains("--param rig is given twice"));
+  // Not a body model: one line, with the kind's article.
+  CHECK(test::run_drape("body --model barrier --bmi 30", out) == 2);
+  CHECK_THAT(out, Catch::Contains("'barrier' is an energy, not a body model") && !Catch::Contains("drape body: plugin"));
+  CHECK_FALSE(std::filesystem::exists(dir / "d"));
+  CHECK_FALSE(std::filesystem::exists(dir / "x.obj"));
+}
+
+TEST_CASE("drape body --sample checks its ranges before drawing, and writes nothing when it refuses", "[cli][options]") {
+  test::TempDir dir;
+  std::string out;
+  const std::string folder = (dir / "bodies").string();
+  // A range reaching past what the model makes is refused as given, not at
+  // the first value drawn past it (9.5:30 passed whenever no draw fell below 10).
+  CHECK(test::run_drape("body --sample 3 --bmi 9.5:30 --seed 3 --out-dir " + folder, out) == 2);
+  CHECK_THAT(out, Catch::Contains("--bmi 9.5:30 reaches outside what body parametric makes, BMI 10 to 65"));
+  CHECK(test::run_drape("body --sample 2 --height 1.0:1.6 --out-dir " + folder, out) == 2);
+  CHECK_THAT(out, Catch::Contains("--height 1:1.6") && Catch::Contains("height 1 m is outside the reachable range"));
+  CHECK(test::run_drape("body --sample 2 --girths 2 --out-dir " + folder, out) == 2);
+  CHECK_FALSE(std::filesystem::exists(folder));  // not even an empty folder
+  std::ofstream(dir / "a_file") << "x";
+  CHECK(test::run_drape("body --sample 1 --out-dir " + (dir / "a_file").string(), out) == 2);
+  CHECK_THAT(out, Catch::Contains("is a file, not a folder"));
+  // In range: written as before.
+  REQUIRE(test::run_drape("body --sample 2 --bmi 20:30 --out-dir " + folder, out) == 0);
+  CHECK(std::filesystem::exists(std::filesystem::path(folder) / "body_00001.obj"));
+}
+
+TEST_CASE("counts and options that only apply elsewhere are refused, not clamped or ignored", "[cli][options]") {
+  test::TempDir dir;
+  std::string out;
+  CHECK(test::run_drape("bench infer --model " + (test::source_dir() / "models/tshirt-coarse.h5").string() + " --repeats 0", out) == 2);
+  CHECK_THAT(out, Catch::Contains("--repeats 0: expected at least 1"));
+  CHECK(test::run_drape("bench contact --repeats -1", out) == 2);
+  CHECK(test::run_drape("bench contact --garment-level -1", out) == 2);
+  CHECK_THAT(out, Catch::Contains("--garment-level -1"));
+  CHECK(test::run_drape("render --bmi 30 --sample 5 --out " + (dir / "r.html").string(), out) == 2);
+  CHECK_THAT(out, Catch::Contains("--sample picks a sample of --data"));
+  const std::string scene = (test::source_dir() / "graphs/scenes/tshirt_coarse.yaml").string();
+  CHECK(test::run_drape("optimize --scene " + scene + " --bmi 30 --shard 3/4 --out " + (dir / "o.obj").string(), out) == 2);
+  CHECK_THAT(out, Catch::Contains("--shard goes with --data"));
+  // --girth takes a comma list as --pose does (it said "the value is not a number").
+  REQUIRE(test::run_drape("body --bmi 30 --girth chest=0.1,waist=0.05", out) == 0);
+  CHECK_THAT(out, Catch::Contains("chest = 0.1") && Catch::Contains("waist = 0.05"));
+  // A scene parameter's range as written in a scene, not with six decimals.
+  CHECK(test::run_drape("simulate " + scene + " --height 150", out) == 2);
+  CHECK_THAT(out, Catch::Contains("[0.5, 2.5]"));
+}
