@@ -18,6 +18,7 @@
 #include <drape/geometry/volume.hpp>
 #include <drape/io/mesh_io.hpp>
 #include <drape/registry.hpp>
+#include <drape/services/model_body.hpp>
 #include <drape/training/rng.hpp>
 #include <drape/io/svg_figure.hpp>
 
@@ -287,9 +288,15 @@ int unpose_one(const po::variables_map& vm, const LoadedBody& loaded) {
   const Mesh given = read_mesh(file);
   require_vertex_count(given, body.num_vertices(), file, "body " + loaded.model + " has that many");
   check_body_units(given.vertices, "body " + file);
+  const GivenBodyFrame frame(body);
+  Mesh mean;
+  mean.vertices = frame.mean();
+  mean.faces = body.faces();
+  // A mirrored, re-indexed or spiked mesh has no pose to read: refused as predict and simulate refuse it.
+  require_body_model_mesh(given.vertices, &given.faces, mean, "body " + file);
   const auto t0 = std::chrono::steady_clock::now();
   Eigen::MatrixX3d rest = given.vertices;
-  const GivenPosedBody unposed = unpose_given_body(rest, body, GivenBodyFrame(body), "body " + file);
+  const GivenPosedBody unposed = unpose_given_body(rest, body, frame, "body " + file);
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   Pose rounded;  // to a hundredth of a degree, within the ranges the angles were fitted in
   for (const auto& [name, degrees] : unposed.fit.pose.angles) rounded.angles[name] = std::round(degrees * 100.0) / 100.0 + 0.0;  // + 0: no -0

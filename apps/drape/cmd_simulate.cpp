@@ -75,7 +75,8 @@ SceneBody target_body(const SceneSimulations& simulations, const Scene& scene, c
   const Pose* posed = pose ? &*pose : nullptr;
   if (vm.count("body")) {
     const std::string file = vm["body"].as<std::string>();
-    return scene_body(simulations, read_mesh(file).vertices, file, posed);
+    const Mesh given = read_mesh(file);
+    return scene_body(simulations, given.vertices, file, posed, &given.faces);
   }
   BodyRequest request = simulations.design().target_request();
   request.proportions = parse_girths(vm);

@@ -2,6 +2,7 @@
 #include "pose_options.hpp"
 
 #include <drape/bodies/limb_turns.hpp>
+#include <drape/geometry/body_units.hpp>
 #include <drape/io/checkpoint.hpp>
 #include <drape/io/shipped_files.hpp>
 #include <drape/scene/garment_size.hpp>
@@ -84,7 +85,15 @@ bool body_mesh_posed(const fs::path& model_file, const po::variables_map& vm) {
                                       parse_assets_spec(assets->second, model_file.string()));
     const Mesh mesh = read_mesh(vm["body"].as<std::string>());
     if (!body->poseable() || mesh.vertices.rows() != body->num_vertices()) return false;
-    return !LimbFit(*body).posed(body->vertices(body->mean_shape()), mesh.vertices).empty();
+    Mesh mean;
+    mean.vertices = body->vertices(body->mean_shape());
+    mean.faces = body->faces();
+    // A mesh in other units, or one the model's faces read wrong (mirrored,
+    // re-indexed, spiked), has limbs that only look turned: not posed, and
+    // refused by the model's own checks after this.
+    check_body_units(mesh.vertices, "body");
+    require_body_model_mesh(mesh.vertices, &mesh.faces, mean, "body");
+    return !LimbFit(*body).posed(mean.vertices, mesh.vertices).empty();
   } catch (const std::exception&) {
     return false;
   }

@@ -9,6 +9,7 @@
 #include <drape/io/shipped_files.hpp>
 #include <drape/nn/gemm.hpp>
 #include <drape/params.hpp>
+#include <drape/services/model_body.hpp>
 
 #include <yaml-cpp/yaml.h>
 
@@ -77,6 +78,10 @@ class PyBodyModel {
     {
       py::gil_scoped_release release;
       check_body_units(body, "body_vertices");
+      Mesh mean;
+      mean.vertices = frame_->mean();
+      mean.faces = model_->faces();
+      require_body_model_mesh(body, nullptr, mean, "body_vertices");  // re-indexed, spiked or mirrored: refused
       read = unpose_given_body(body, *model_, *frame_, "body_vertices");
     }
     py::dict pose;

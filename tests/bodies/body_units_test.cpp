@@ -5,6 +5,7 @@
 
 #include <catch2/catch.hpp>
 
+#include <cmath>
 #include <limits>
 
 using namespace drape;
@@ -38,6 +39,30 @@ TEST_CASE("a body in centimetres or millimetres is refused with the scale that w
   const std::string dm = body_units_problem(standing_box() * 10, "body b.obj");
   CHECK_THAT(dm, Catch::Contains("scaled by 0.1 it would be 1.75 m"));
   CHECK_THROWS_AS(check_body_units(standing_box() * 100, "body"), ConfigError);
+}
+
+TEST_CASE("a body in inches or feet is named so, not as centimetres or decimetres", "[bodies][units]") {
+  // Read as a power of ten, 69 inches were "centimetres (0.689 m)", which the 0.4-2.8 m range would pass.
+  const std::string inches = body_units_problem(standing_box() / 0.0254, "body b.obj");
+  CHECK_THAT(inches, Catch::Contains("likely in inches (scaled by 0.0254 it would be 1.75 m)"));
+  const std::string feet = body_units_problem(standing_box() / 0.3048, "body b.obj");
+  CHECK_THAT(feet, Catch::Contains("likely in feet (scaled by 0.3048 it would be 1.75 m)"));
+  // Between common units (a body 3,000 times too large: 5.25 m in millimetres): the factor, no unit guessed.
+  CHECK_THAT(body_units_problem(standing_box() * 3000, "body"),
+             Catch::Contains("no common unit") && Catch::Contains("scaled by 0.000324 it would be 1.7 m"));
+}
+
+TEST_CASE("a spike is named as stray vertices, and a body at one point as no body", "[bodies][units]") {
+  // 400 points of a body 1.75 m tall, then two thrown 5 m out: the extent says 6.75 m, the body does not.
+  Eigen::MatrixX3d v(400, 3);
+  for (int i = 0; i < 400; ++i) v.row(i) << 0.25 * std::sin(i), 1.75 * (i % 97) / 96.0, 0.15 * std::cos(i);
+  v.row(7) << 0.0, 1.7, 5.0;
+  v.row(300) << 0.0, 1.0, 4.5;
+  const std::string spike = body_units_problem(v, "body b.obj");
+  CHECK_THAT(spike, Catch::Contains("body b.obj: 2 vertices lie far outside the rest of the body, which is 1.75 m tall") &&
+                        Catch::Contains("vertex 7 at (0, 1.7, 5)") && Catch::Contains("not a body in other units"));
+  const std::string point = body_units_problem(Eigen::MatrixX3d::Constant(50, 3, 0.3), "body b.obj");
+  CHECK(point == "body b.obj has every vertex at one point (0 m tall): it is no body");
 }
 
 TEST_CASE("a body lying along z or x is refused", "[bodies][units]") {

@@ -123,6 +123,26 @@ def test_loaders_refuse_damaged_files(tmp_path):
         assert refused(drape.Scene, str(bad_scene)) is not None or "time_step" in text, text
 
 
+def test_a_model_whose_weight_is_nan_is_refused_at_load_naming_the_weight(tmp_path):
+    """An h5py edit (the file unsealed) that leaves a NaN weight: refused at load, naming the file and the weight,
+    where predict failed at the push-out with "the garment has a non-finite vertex"."""
+    import h5py
+    edited = tmp_path / "nan.h5"
+    edited.write_bytes(SHIPPED.read_bytes())
+    with h5py.File(edited, "r+") as f:
+        names = []
+        f["weights"].visititems(lambda n, o: names.append(n) if isinstance(o, h5py.Dataset) else None)
+        name = sorted(names)[0]
+        w = f["weights"][name][...]
+        w.flat[0] = np.nan
+        f["weights"][name][...] = w
+    raw = bytearray(edited.read_bytes())
+    raw[:512] = bytes(512)  # unsealed, as h5py leaves a file it wrote
+    edited.write_bytes(bytes(raw))
+    e = refused(drape.Model.load, str(edited))
+    assert isinstance(e, ValueError) and f"weight {name} holds a value that is not a finite number" in str(e)
+
+
 def test_module_functions_and_the_torch_bridge_refuse_bad_input():
     for bmi in (np.nan, np.inf, -5.0, 1e308):
         assert refused(drape.body, bmi=bmi) is not None, bmi

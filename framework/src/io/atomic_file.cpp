@@ -45,8 +45,9 @@ void write_atomically(const fs::path& target, const std::function<void(const fs:
   }
   fs::rename(tmp, target, ec);
   if (ec) {
+    const std::string why = ec.message();  // (before remove() overwrites ec: it said "Success")
     fs::remove(tmp, ec);
-    throw Error("cannot move the finished file into place at '" + target.string() + "': " + ec.message());
+    throw Error("cannot move the finished file into place at '" + target.string() + "': " + why);
   }
 }
 

@@ -130,6 +130,11 @@ void load_named_weights(const fs::path& path, const NamedWeights& weights, bool 
       continue;
     }
     Tensor t = read_matrix(file, "/weights/" + name);
+    // A NaN weight (a file edited by hand, a training that diverged) would
+    // come out as a non-finite garment, far from where it came in.
+    if (!t.vec().allFinite())
+      throw ConfigError(path.string() + ": weight " + name + " holds a value that is not a finite number (NaN or inf): "
+                        "the file is damaged, or came from a training that diverged");
     const Shape from = t.shape(), to = w->value.shape();
     const bool grows = widening && from.cols == to.cols && from.rows < to.rows;
     if (from != to && !grows && rule == OtherShape::kept_initial) {

@@ -20,6 +20,7 @@ fs::path folder_of(const fs::path& file) { return file.has_parent_path() ? file.
 std::string write_failure_cause(const fs::path& file) {
   const fs::path folder = folder_of(file);
   std::error_code ec;
+  if (fs::is_directory(file, ec)) return "it is a folder; give a file name";
   if (!fs::is_directory(folder, ec)) return "folder '" + folder.string() + "' does not exist";
   struct statvfs info {};
   if (::statvfs(folder.c_str(), &info) == 0) {

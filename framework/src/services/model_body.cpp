@@ -186,16 +186,16 @@ void choose_sizes_by_chart(const SizeTable& chart, const Model& model, SampleBat
 // re-indexed them, another mesh of the same size), and every vertex would be
 // read as another part of the body. A tool may split quads the other way, so
 // nine in ten of its edges being the model's is enough.
-void require_model_topology(const Eigen::MatrixX3i& faces, const Model& model, const std::string& name) {
+void require_model_topology(const Eigen::MatrixX3i& faces, const Eigen::MatrixX3i& model_faces, const std::string& what) {
   // (edge_list gives each mesh's edges sorted and unique.)
-  const std::vector<std::array<int, 2>> model_edges = geometry::edge_list(model.assets().body.faces);
+  const std::vector<std::array<int, 2>> model_edges = geometry::edge_list(model_faces);
   const std::vector<std::array<int, 2>> edges = geometry::edge_list(faces);
   std::vector<std::array<int, 2>> common;
   std::set_intersection(edges.begin(), edges.end(), model_edges.begin(), model_edges.end(), std::back_inserter(common));
   const std::size_t shared = common.size();
   const double share = edges.empty() ? 0.0 : static_cast<double>(shared) / static_cast<double>(edges.size());
   if (share < 0.9)
-    throw ConfigError("body " + name + ": its faces are not the body model's: " + std::to_string(static_cast<int>(100 * share)) +
+    throw ConfigError(what + ": its faces are not the body model's: " + std::to_string(static_cast<int>(100 * share)) +
                       " % of its edges join vertices the model's body joins (its vertices are in another order, or it is "
                       "another mesh); give a mesh in the model's vertex order (drape body --out writes one)");
 }
@@ -241,8 +241,9 @@ void require_model_vertex_order(const Eigen::MatrixX3d& vertices, const ModelBod
 
 }  // namespace
 
-ModelBodyEdges model_body_edges(const Model& model) {
-  const Mesh& mean = model.assets().body;
+ModelBodyEdges model_body_edges(const Model& model) { return model_body_edges(model.assets().body); }
+
+ModelBodyEdges model_body_edges(const Mesh& mean) {
   ModelBodyEdges out;
   for (const auto& edge : geometry::edge_list(mean.faces)) {
     const double length = (mean.vertices.row(edge[0]) - mean.vertices.row(edge[1])).norm();
@@ -251,13 +252,28 @@ ModelBodyEdges model_body_edges(const Model& model) {
   return out;
 }
 
+namespace {
+
+void require_outward(const Eigen::MatrixX3d& vertices, const Eigen::MatrixX3i& model_faces, const std::string& what) {
+  if (geometry::mesh_volume(vertices, model_faces) < 0)
+    throw ConfigError(what + ": its surface, taken with the model's faces, turns inwards (negative "
+                      "volume): the body is mirrored or inside out; give it as the body model makes it");
+}
+
+}  // namespace
+
 void require_model_body_vertices(const Eigen::MatrixX3d& vertices, const Model& model, const std::string& what,
                                  const ModelBodyEdges* edges) {
   if (edges) require_model_vertex_order(vertices, *edges, what);
   else require_model_vertex_order(vertices, model_body_edges(model), what);
-  if (geometry::mesh_volume(vertices, model.assets().body.faces) < 0)
-    throw ConfigError(what + ": its surface, taken with the model's faces, turns inwards (negative "
-                      "volume): the body is mirrored or inside out; give it as the body model makes it");
+  require_outward(vertices, model.assets().body.faces, what);
+}
+
+void require_body_model_mesh(const Eigen::MatrixX3d& vertices, const Eigen::MatrixX3i* faces, const Mesh& mean,
+                             const std::string& what) {
+  if (faces && faces->rows() > 0) require_model_topology(*faces, mean.faces, what);
+  require_model_vertex_order(vertices, model_body_edges(mean), what);
+  require_outward(vertices, mean.faces, what);
 }
 
 SampleBatch model_body_batch(const Model& model, const ModelBodyInput& input) {
@@ -269,7 +285,7 @@ SampleBatch model_body_batch(const Model& model, const ModelBodyInput& input) {
     given.vertices = *input.vertices;
     require_vertex_count(given, model.assets().body.num_vertices(), input.name,
                          "the model's body model '" + model.assets_spec().body_model + "' has that many");
-    if (input.faces && input.faces->rows() > 0) require_model_topology(*input.faces, model, input.name);
+    if (input.faces && input.faces->rows() > 0) require_model_topology(*input.faces, model.assets().body.faces, "body " + input.name);
     check_body_units(given.vertices, "body " + input.name);
     require_model_body_vertices(given.vertices, model, "body " + input.name);
     if (model.needs_body_params())
@@ -491,21 +507,23 @@ PreparedBodies BodyPreparation::prepare(SampleBatch& batch, bool strict, const s
   // A body given posed to a model of posed drapes is unposed (and placed)
   // first: the size is chosen, and the domain checked, on the body at rest
   // (a raised arm is no girth).
+  // The others are placed (turned to face, stood upright, moved) before
+  // anything is measured too: a body upside down is refused as leaning, not
+  // as having no torso to measure.
   std::vector<std::string> posed(static_cast<std::size_t>(batch.size()));
   for (int i = 0; i < batch.size(); ++i) {
     const auto at = static_cast<std::size_t>(i);
     if (given_meshes) posed[at] = posed_limbs(model_, given_.limbs(), batch, i);
-    if (!posed[at].empty() && model_takes_pose(model_))
+    if (!posed[at].empty() && model_takes_pose(model_)) {
       out.moved_by[at] = unpose_given(batch, i, out.given_poses[at], out.notices);
+      continue;
+    }
+    if (!posed[at].empty()) warn_posed(model_, batch, i, posed[at], strict, strict_option, out.notices);
+    out.moved_by[at] = place(model_, domain_ ? &*domain_ : nullptr, given_meshes ? &given_.anchor() : nullptr,
+                             !posed[at].empty(), batch, i, out.notices);
   }
   choose_sizes(batch, strict, strict_option, out.notices);
   for (int i = 0; i < batch.size(); ++i) {
-    const auto at = static_cast<std::size_t>(i);
-    if (out.given_poses[at].empty()) {
-      if (!posed[at].empty()) warn_posed(model_, batch, i, posed[at], strict, strict_option, out.notices);
-      out.moved_by[at] = place(model_, domain_ ? &*domain_ : nullptr, given_meshes ? &given_.anchor() : nullptr,
-                               !posed[at].empty(), batch, i, out.notices);
-    }
     if (domain_ && measure) check_domain(model_, *domain_, batch, i, strict, strict_option, out.notices);
     if (measure && std::isfinite(garment_loop_)) note_fit(model_, garment_loop_, batch, i, out.notices);
     if (measure && size_asked_for) check_requested_size(*size_chart_, model_, batch, i, strict, strict_option, out.notices);

@@ -6,6 +6,7 @@
 #include <drape/geometry/girth.hpp>
 #include <drape/io/mesh_io.hpp>
 #include <drape/training/model_domain.hpp>
+#include <drape/services/model_body.hpp>
 #include <drape/services/scene_body.hpp>
 #include <drape/bodies/given_body.hpp>
 #include <drape/scene/garment_size.hpp>
@@ -140,13 +141,17 @@ void pose_chosen(const SceneSimulations& simulations, const Pose* pose, SceneBod
 }  // namespace
 
 SceneBody scene_body(const SceneSimulations& simulations, const Eigen::MatrixX3d& given, const std::string& name,
-                     const Pose* pose) {
+                     const Pose* pose, const Eigen::MatrixX3i* faces) {
   const Simulation& design = simulations.design();
   Mesh mesh;
   mesh.vertices = given;
   require_vertex_count(mesh, static_cast<int>(design.mean_body().rows()), name,
                        "the scene's body model '" + design.scene().body_model + "' has that many");
   check_body_units(given, "body " + name);
+  Mesh mean;
+  mean.vertices = design.mean_body();
+  mean.faces = design.body_model().faces();
+  require_body_model_mesh(given, faces, mean, "body " + name);
   SceneBody out;
   out.vertices = given;
   const GivenBodyFrame& given_bodies = simulations.given_bodies();

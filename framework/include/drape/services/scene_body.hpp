@@ -51,9 +51,12 @@ struct SceneBody {
 // through itself (posed_body.hpp). A body given posed (its limbs turned,
 // limb_turns.hpp) is unposed and posed in the pose read off it
 // (unpose_given_body, given_body.hpp), the scene's pose giving way;
-// ConfigError when `pose` is given too.
+// ConfigError when `pose` is given too. A mesh the body model's faces read
+// wrong is refused as predict refuses it (require_body_model_mesh: vertices
+// in another order, a spike, mirrored; with `faces`, the file's own, faces
+// that are not the model's), before anything is measured or simulated.
 SceneBody scene_body(const SceneSimulations& simulations, const Eigen::MatrixX3d& given, const std::string& name,
-                     const Pose* pose = nullptr);
+                     const Pose* pose = nullptr, const Eigen::MatrixX3i* faces = nullptr);
 // A body of the scene's body model: the scene's target request, changed by
 // the caller (a BMI, girths).
 SceneBody scene_body(const SceneSimulations& simulations, const BodyRequest& request, const std::string& name,
