@@ -129,9 +129,8 @@ int run(const std::vector<std::string>& args) {
   std::printf("| %.3f | %.3f | %.4g | %.2f |\n", best, median, macs, 2.0 * macs / (best * 1e-3) / 1e9);
   for (const std::string& note : size_notes) std::printf("garment size: %s\n", note.c_str());
   if (posing_ms >= 0)
-    std::printf("\nposing the body and its joint transforms (the inputs unposed_body, joint_transforms, pose; with the "
-                "exact test that the pose leaves the body clear of itself; not in the figures above): %.3f ms per body, "
-                "once\n",
+    std::printf("\nposing the body and its joint transforms (the inputs unposed_body, joint_transforms, pose; not in the "
+                "figures above): %.3f ms per body, once\n",
                 posing_ms);
   // Where the time goes: the median pass of each node, so a reader sees which
   // node is far from the machine's peak (memory-bound or scalar code).

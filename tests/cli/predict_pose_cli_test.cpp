@@ -168,3 +168,23 @@ TEST_CASE("a pose at the ends of the angles' ranges is draped by the shipped mod
   CHECK(code == 0);
   CHECK(read_mesh(dir / "g.obj").vertices.allFinite());
 }
+
+TEST_CASE("a pose in which the body passes through itself is named by predict, and refused with --strict",
+          "[cli][pose][predict]") {
+  // A heavy woman's arms at 30 degrees lie in her trunk: drape body and simulate
+  // refuse the pose; predict said nothing (the angles are inside the trained poses).
+  test::TempDir dir;
+  std::string out;
+  const std::string predict = "predict --bmi 64 --height 1.6 --sex 0 --pose shoulder_abduction=30,elbow_flexion=60 ";
+  REQUIRE(test::run_drape(predict + "--out " + (dir / "g.obj").string() + " 2>&1", out) == 0);
+  CHECK_THAT(out, Catch::Contains("warning: this pose makes the body pass through itself: left_upper_arm into spine") &&
+                      Catch::Contains("joints: left_shoulder_abduction=30") &&
+                      !Catch::Contains("outside the model's training poses"));
+  CHECK(test::run_drape(predict + "--strict --out " + (dir / "x.obj").string() + " 2>&1", out) == 2);
+  CHECK_THAT(out, Catch::Contains("--strict: this pose makes the body pass through itself"));
+  CHECK_FALSE(fs::exists(dir / "x.obj"));
+  // The body refuses the same pose outright.
+  CHECK(test::run_drape("body --param rig=human --bmi 64 --height 1.6 --sex 0 --pose shoulder_abduction=30,elbow_flexion=60",
+                        out) == 2);
+  CHECK_THAT(out, Catch::Contains("this pose makes the body pass through itself"));
+}

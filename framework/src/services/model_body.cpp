@@ -334,16 +334,7 @@ void pose_model_batch(const Model& model, SampleBatch& batch, const std::vector<
   const int n = batch.size();
   SampleBatch posed;
   for (int i = 0; i < n; ++i) {
-    const Eigen::MatrixX3d unposed = batch.body.mat(i).cast<double>();
-    const SampleBatch one = posed_body_batch(body_model, unposed, poses[static_cast<std::size_t>(i)]);
-    // A pose in which the body passes through itself (an arm into the trunk)
-    // has no drape: refused as drape body and simulate refuse it, naming the
-    // bones and the angles (a crossing the body has at rest is not the pose's).
-    const std::string crossed = describe_pose_crossings(body_model, unposed, poses[static_cast<std::size_t>(i)],
-                                                        one.body.mat(0).cast<double>());
-    if (!crossed.empty())
-      throw ConfigError((n > 1 ? "body " + std::to_string(i) + ": " : std::string()) +
-                        "this pose makes the body pass through itself: " + crossed);
+    const SampleBatch one = posed_body_batch(body_model, batch.body.mat(i).cast<double>(), poses[static_cast<std::size_t>(i)]);
     if (i == 0) {
       posed.body = Tensor(n, one.body.rows(), 3);
       posed.unposed_body = Tensor(n, one.unposed_body.rows(), 3);
@@ -394,17 +385,37 @@ std::vector<Notice> BodyPreparation::pose(SampleBatch& batch, const Pose& pose, 
       poses[i] = prepared->given_poses[i];
     }
   pose_model_batch(model_, batch, poses);
-  if (!model_takes_pose(model_) || !domain_ || domain_->pose_names.empty()) return {};
+  if (!model_takes_pose(model_)) return {};
   std::vector<Notice> notices;
-  const std::vector<PoseAngle> angles = model_.body_model().pose_angles();
+  if (domain_ && !domain_->pose_names.empty()) {
+    const std::vector<PoseAngle> angles = model_.body_model().pose_angles();
+    for (int i = 0; i < batch.size(); ++i) {
+      const Pose full = batch_pose(batch, i, angles);  // the angles the body is draped in, those at rest included
+      std::string lines;
+      for (const std::string& v : pose_violations(*domain_, full)) lines += (lines.empty() ? "" : "; ") + v;
+      if (lines.empty()) continue;
+      const std::string text = "the pose lies outside the model's training poses: " + lines;
+      if (strict) throw ConfigError(strict_option + ": " + text);
+      notices.push_back({Notice::Level::warning, text + " (the drape there is a guess; drape simulate --pose makes it)"});
+    }
+  }
+  // A pose in which the body passes through itself (heavy arms hanging into
+  // the trunk) has no drape there: drape body and simulate refuse it; the
+  // network still answers, so predict warns, naming the bones and angles,
+  // and --strict refuses (a crossing the body has at rest is not the pose's;
+  // a body given posed is the user's own mesh, taken as it is).
   for (int i = 0; i < batch.size(); ++i) {
-    const Pose full = batch_pose(batch, i, angles);  // the angles the body is draped in, those at rest included
-    std::string lines;
-    for (const std::string& v : pose_violations(*domain_, full)) lines += (lines.empty() ? "" : "; ") + v;
-    if (lines.empty()) continue;
-    const std::string text = "the pose lies outside the model's training poses: " + lines;
+    const Pose& asked = poses[static_cast<std::size_t>(i)];
+    if (asked.empty() || (prepared && i < static_cast<int>(prepared->given_poses.size()) &&
+                          !prepared->given_poses[static_cast<std::size_t>(i)].empty()))
+      continue;
+    const Eigen::MatrixX3d unposed = batch.unposed_body.mat(i).cast<double>(), posed = batch.body.mat(i).cast<double>();
+    const std::string crossed = describe_pose_crossings(model_.body_model(), unposed, asked, posed);
+    if (crossed.empty()) continue;
+    const std::string text = about(batch, i) + "this pose makes the body pass through itself: " + crossed;
     if (strict) throw ConfigError(strict_option + ": " + text);
-    notices.push_back({Notice::Level::warning, text + " (the drape there is a guess; drape simulate --pose makes it)"});
+    notices.push_back({Notice::Level::warning, text + " (the drape there is for a body with no inside; drape body and "
+                                                      "simulate refuse this pose)"});
   }
   return notices;
 }

@@ -143,7 +143,12 @@ class MeshGarment final : public GarmentSource {
 
   Garment build() const override {
     if (o_.file.empty() || o_.file == "none") throw ConfigError("garment mesh: give the file, e.g. params: {file: my_skirt.obj}");
-    if (!std::filesystem::exists(o_.file)) throw ConfigError(where(o_) + ": no such file");
+    if (!std::filesystem::exists(o_.file))
+      throw ConfigError(where(o_) + ": no such file" +
+                        (std::filesystem::path(o_.file).is_absolute()
+                             ? std::string()
+                             : " (a relative file is read from the folder drape runs in, " +
+                                   std::filesystem::current_path().string() + ", not the scene's)"));
     Garment g;
     // Material regions: an OBJ's `usemtl` groups or a glTF's materials (one
     // region "cloth" when the file has fewer than two).

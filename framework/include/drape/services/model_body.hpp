@@ -53,10 +53,7 @@ struct ModelBodyInput {
 // BodyPreparation::prepare, which measures and places the unposed body (a
 // raised arm is no girth), and posing commutes with its move. An empty pose
 // leaves an A-pose model's batch alone; a pose for a model of A-pose bodies
-// is a ConfigError (its drapes would be silently wrong), and so is a pose in
-// which a body passes through itself (describe_pose_crossings, naming the
-// bones and angles, as drape body and simulate refuse it: an exact
-// triangle-triangle test of the posed body, a few milliseconds a body).
+// is a ConfigError (its drapes would be silently wrong).
 void pose_model_batch(const Model& model, SampleBatch& batch, const Pose& pose);
 // The same with a pose per body (`poses`, one per body of the batch).
 void pose_model_batch(const Model& model, SampleBatch& batch, const std::vector<Pose>& poses);
@@ -128,7 +125,9 @@ class BodyPreparation {
                          bool measure = true, bool given_meshes = true) const;
   // pose_model_batch, then the pose against the domain's trained joint
   // angles: a warning per angle outside (with strict, a ConfigError starting
-  // "<strict_option>: "). Run after prepare().
+  // "<strict_option>: "), and a warning (strict: ConfigError) for a pose in
+  // which the body passes through itself (describe_pose_crossings: an exact
+  // triangle-triangle test of the posed body, about 15 ms). Run after prepare().
   // For a model that takes the garment's grade: each body of a batch that
   // has no grades in the size the tailor's rule gives it (what prepare()
   // chooses), measured where bodies stand in a scene wherever it is given;
