@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 
 import drape
-from conftest import run_drape
+from conftest import SOURCE, run_drape
 
 
 @pytest.fixture(scope="module")
@@ -77,6 +77,38 @@ def test_dataset_potential_refuses_a_nan_garment_naming_the_sample(dataset, modu
     data.write_bytes(bytes(raw))
     _, err = run_drape("dataset", "potential", data, "--scene", module_tiny_scene, "--split", "all", expect=2)
     assert "sample 1 has a non-finite garment coordinate" in err and len(err.strip().splitlines()) == 1
+
+
+def test_eval_names_the_file_of_a_nan_garment_and_a_split_code_the_format_lacks(dataset, tmp_path):
+    """h5py edits (unsealed): a NaN drape was "metrics: the ground truth has a non-finite coordinate" (exit 1, no
+    file named), and split code 7 put the sample in no split ("the all split has no samples")."""
+    def edited(name, edit):
+        data = tmp_path / name
+        shutil.copyfile(dataset, data)
+        with h5py.File(data, "r+") as f:
+            edit(f)
+        raw = bytearray(data.read_bytes())
+        raw[:512] = bytes(512)
+        data.write_bytes(bytes(raw))
+        return data
+
+    def nan_garment(f):
+        sample = f["garments/vertices"][2]
+        sample[0, 0] = np.nan
+        f["garments/vertices"][2] = sample
+
+    def split_seven(f):
+        split = f["split"][...]
+        split[1] = 7
+        f["split"][...] = split
+
+    model = SOURCE / "models" / "tshirt-coarse.h5"
+    _, err = run_drape("eval", "--model", model, "--data", edited("nan.h5", nan_garment), "--split", "all", expect=2)
+    assert "nan.h5: sample 2 has a non-finite garment coordinate" in err
+    _, err = run_drape("eval", "--model", model, "--data", edited("seven.h5", split_seven), "--split", "all", expect=2)
+    assert "seven.h5: sample 1 has split code 7 in /split (0 train, 1 val, 2 test)" in err
+    with pytest.raises(drape.Error, match="sample 1 has split code 7"):
+        drape.Dataset(str(tmp_path / "seven.h5"))
 
 
 def test_a_dataset_is_indexed_like_a_sequence(dataset):

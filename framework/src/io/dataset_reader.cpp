@@ -235,6 +235,12 @@ DatasetReader::DatasetReader(const fs::path& path) : impl_(std::make_unique<Impl
     join_size_chart(size_chart, layout, file.string());
     const std::vector<std::int8_t> split = part.file.read<std::int8_t>(kSplit);
     const std::vector<std::uint8_t> done = part.file.read<std::uint8_t>(kDone);
+    // A split code the format does not have (an edit by hand) put the sample
+    // in no split: eval then said "the all split has no samples".
+    for (std::size_t i = 0; i < split.size() && i < done.size(); ++i)
+      if (done[i] && (split[i] < 0 || split[i] > 2))
+        throw ConfigError(file.string() + ": sample " + std::to_string(i) + " has split code " + std::to_string(split[i]) +
+                          " in " + kSplit + " (0 train, 1 val, 2 test): the file was edited or is damaged");
     split_.insert(split_.end(), split.begin(), split.end());
     done_.insert(done_.end(), done.begin(), done.end());
     impl_->parts.push_back(std::move(part));
@@ -346,6 +352,13 @@ Tensor DatasetReader::garment_vertices(const std::vector<std::size_t>& indices) 
   check_indices(*this, indices, fs::path(impl_->name));
   Tensor out(static_cast<int>(indices.size()), layout_.garment_vertices, 3);
   impl_->gather(kGarmentVertices, indices, static_cast<std::size_t>(layout_.garment_vertices) * 3, out.data());
+  // A drape with a NaN (an edit by hand; a simulation never stores one) is
+  // named here, with its file, not as "metrics: the ground truth has a
+  // non-finite coordinate" further on.
+  for (std::size_t k = 0; k < indices.size(); ++k)
+    if (!out.mat(static_cast<int>(k)).allFinite())
+      throw ConfigError(impl_->files[impl_->part_of(indices[k])].string() + ": sample " + std::to_string(indices[k]) +
+                        " has a non-finite garment coordinate (NaN or inf): the file was edited or is damaged");
   return out;
 }
 
