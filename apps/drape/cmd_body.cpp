@@ -22,6 +22,7 @@
 #include <drape/training/rng.hpp>
 #include <drape/io/svg_figure.hpp>
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
@@ -276,6 +277,28 @@ int sample_many(const po::variables_map& vm, const LoadedBody& loaded, const Ran
   return 0;
 }
 
+// For a mesh of another vertex count than the body model's: the plugin's
+// other rigs (its `rig` parameter's choices) that make bodies of that count,
+// as "; the human rig's bodies have 6904: add --param rig=human" ("" when
+// none does). Only on the error's path: each rig is built to be counted.
+std::string other_rig_hint(const po::variables_map& vm, const std::string& model, Eigen::Index count) {
+  const Registry& reg = Registry::load_default(plugin_path(vm));
+  const PluginDescriptor& d = reg.get(model);
+  const auto rig = std::find_if(d.params.begin(), d.params.end(), [](const ParamSpec& p) { return p.name == "rig"; });
+  if (rig == d.params.end()) return "";
+  for (const std::string& choice : rig->choices) {
+    ParamValues values = plugin_params(vm);
+    values["rig"] = {YAML::Node(choice), {"--param", 0}};
+    try {
+      if (reg.create_body(model, Params(d.params, values, "body " + model))->num_vertices() == count)
+        return "; the " + choice + " rig's bodies have " + std::to_string(count) + ": --param rig=" + choice;
+    } catch (const std::exception&) {
+      // a rig that cannot be built here is no hint
+    }
+  }
+  return "";
+}
+
 // --unpose FILE: a body mesh given posed, told apart into its pose and its
 // body at rest (pose_fit.hpp): the angles printed (and written to
 // --pose-out, a pose file --pose-file reads), the body at rest written to
@@ -286,7 +309,9 @@ int unpose_one(const po::variables_map& vm, const LoadedBody& loaded) {
     throw ConfigError("drape body --unpose: body " + loaded.model + " has no skeleton, so no pose can be read off a mesh");
   const std::string file = vm["unpose"].as<std::string>();
   const Mesh given = read_mesh(file);
-  require_vertex_count(given, body.num_vertices(), file, "body " + loaded.model + " has that many");
+  require_vertex_count(given, body.num_vertices(), file,
+                       "body " + loaded.model + " has that many" +
+                           (given.num_vertices() == body.num_vertices() ? "" : other_rig_hint(vm, loaded.model, given.num_vertices())));
   check_body_units(given.vertices, "body " + file);
   const GivenBodyFrame frame(body);
   Mesh mean;

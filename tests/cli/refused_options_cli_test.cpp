@@ -49,6 +49,9 @@ TEST_CASE("drape body refuses options meant for another of its uses", "[cli][opt
     CHECK(test::run_drape("body --param rig=human --unpose " + (dir / "b.obj").string() + " " + other, out) == 2);
     CHECK_THAT(out, Catch::Contains("--unpose reads the pose and the body off the mesh; leave out --"));
   }
+  // The human rig's mesh to the body model's default rig: the count, and the rig that has it.
+  CHECK(test::run_drape("body --unpose " + (dir / "b.obj").string(), out) == 2);
+  CHECK_THAT(out, Catch::Contains("has 6904 vertices, expected 6490") && Catch::Contains("--param rig=human"));
   // One body: the options of --sample were ignored without a word.
   CHECK(test::run_drape("body --bmi 30 --out-dir " + (dir / "d").string(), out) == 2);
   CHECK_THAT(out, Catch::Contains("--out-dir goes with --sample"));
