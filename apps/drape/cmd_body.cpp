@@ -335,6 +335,10 @@ int unpose_one(const po::variables_map& vm, const LoadedBody& loaded) {
                 "turned back\n",
                 facing_text(unposed.turn_degrees).c_str());
   if (!unposed.warning.empty()) std::cerr << "warning: " << unposed.warning << "\n";
+  if (unposed.lean_degrees > kLeanToleranceDegrees)
+    std::printf("note: the mesh stands %.1f degrees from upright as a whole (lying, or upside down); the body at rest is "
+                "written as it stood (predict and simulate refuse a body leaning over %.0f degrees)\n",
+                unposed.lean_degrees, kLeanLimitDegrees);
   if (vm.count("pose-out")) {
     std::ostringstream yaml;
     yaml << "# drape body --unpose " << file << ": joint angles in degrees (drape body/predict --pose-file)\n";

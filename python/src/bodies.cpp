@@ -89,6 +89,9 @@ class PyBodyModel {
     py::list notes;
     for (const std::string* note : {&read.turned, &read.pose_note, &read.warning})
       if (!note->empty()) notes.append(*note);
+    if (read.lean_degrees > kLeanToleranceDegrees)
+      notes.append("the mesh stands " + std::to_string(static_cast<int>(std::lround(read.lean_degrees))) +
+                   " degrees from upright as a whole (lying, or upside down); rest is given as it stood");
     py::dict out;
     out["pose"] = pose;
     out["rest"] = to_numpy(read.moved.back(body));

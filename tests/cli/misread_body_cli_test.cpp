@@ -94,6 +94,22 @@ TEST_CASE("a body upside down is refused as leaning, and a damaged model or a fo
   CHECK(test::run(env + " predict --body " + (dir / "upside_down.obj").string() + " --out " + (dir / "g.obj").string() +
                       " 2>&1", out) == 2);
   CHECK_THAT(out, Catch::Contains("leans 180.0 degrees from upright") && !Catch::Contains("torso cross-section"));
+  // Posed and upside down: unposed, it was draped upright and the drape turned back, hanging across gravity.
+  REQUIRE(test::run(env + " body --param rig=human --bmi 30 --pose shoulder_abduction=60,elbow_flexion=40 --out " +
+                        (dir / "p.obj").string(), out) == 0);
+  Mesh posed = read_mesh(dir / "p.obj");
+  posed.vertices.col(0) *= -1;
+  posed.vertices.col(1) *= -1;
+  posed.vertices.col(1).array() += 1.75;
+  write_mesh(dir / "posed_upside_down.obj", posed);
+  CHECK(test::run(env + " predict --body " + (dir / "posed_upside_down.obj").string() + " --out " +
+                      (dir / "g.obj").string() + " 2>&1", out) == 2);
+  CHECK_THAT(out, Catch::Contains("leans 180.0 degrees from upright"));
+  // body --unpose drapes nothing: it says so and writes the body at rest as the mesh stood.
+  REQUIRE(test::run(env + " body --param rig=human --unpose " + (dir / "posed_upside_down.obj").string() + " --out " +
+                        (dir / "rest.obj").string() + " 2>&1", out) == 0);
+  CHECK_THAT(out, Catch::Contains("note: the mesh stands 180.0 degrees from upright as a whole"));
+  CHECK_FALSE(fs::exists(dir / "g.obj"));
   // A folder as a model's output: exit 2 naming it (exit 1, "cannot move the finished file into place ...: Success").
   fs::create_directories(dir / "out");
   CHECK(test::run(env + " model set models/tshirt-coarse.h5 --set post.enabled=true --out " + (dir / "out").string() +

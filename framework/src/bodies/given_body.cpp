@@ -83,6 +83,10 @@ GivenPosedBody unpose_given_body(Eigen::MatrixX3d& body, const BodyModel& model,
   const BodyMove at_rest = place_given_body(body, mean, anchor, reference, spread, false, who, &said);
   out.moved = as_posed.then(out.fit.moved).then(at_rest);
 
+  // The model's up (y in the placed frame) in the mesh's own coordinates.
+  const Eigen::Vector3d up = out.moved.rotation.col(1);
+  out.lean_degrees = std::acos(std::clamp(up.y(), -1.0, 1.0)) * 180.0 / std::numbers::pi;
+  if (out.lean_degrees > kLeanLimitDegrees) out.leaning = lean_refusal(who, out.lean_degrees, up);
   char line[600];
   const Eigen::Vector3d facing = out.moved.rotation.col(2);
   const double turn = out.turn_degrees = std::atan2(facing.x(), facing.z()) * 180.0 / std::numbers::pi;

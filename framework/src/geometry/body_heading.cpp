@@ -53,24 +53,27 @@ std::string facing_text(double turn_degrees) {
   return line;
 }
 
+std::string lean_refusal(const std::string& what, double lean_degrees, const Eigen::Vector3d& up) {
+  Eigen::Vector3d axis = up.cross(Eigen::Vector3d::UnitY());
+  // Upside down the axis is any horizontal one: about x.
+  axis = axis.norm() > 1e-9 ? axis.normalized() : Eigen::Vector3d::UnitX();
+  char line[520];
+  std::snprintf(line, sizeof line,
+                "%s leans %.1f degrees from upright (its up axis, fitted against the body model's mean body, points "
+                "(%+.2f, %+.2f, %+.2f)): drape drapes bodies standing upright, Y up, and a leaning body's drape is "
+                "not its upright drape turned (gravity acts across it); stand it upright (turn it %.1f degrees about "
+                "(%+.2f, %+.2f, %+.2f)), which drape does by itself up to %.0f degrees",
+                what.c_str(), lean_degrees, up.x(), up.y(), up.z(), lean_degrees, axis.x(), axis.y(), axis.z(),
+                kLeanLimitDegrees);
+  return line;
+}
+
 BodyMove turn_to_face(Eigen::MatrixX3d& body, const Eigen::MatrixX3d& mean, const std::string& what,
                       std::string* note, bool posed) {
   BodyMove move;
   BodyHeading heading = body_heading(body, mean);
   if (posed) heading.lean_degrees = 0;  // not a lean: the limbs' pose tilts the fit
-  if (heading.lean_degrees > kLeanLimitDegrees) {
-    const Eigen::Vector3d up = heading.rotation.col(1);
-    const Eigen::Vector3d axis = up.cross(Eigen::Vector3d::UnitY()).normalized();
-    char line[520];
-    std::snprintf(line, sizeof line,
-                  "%s leans %.1f degrees from upright (its up axis, fitted against the body model's mean body, points "
-                  "(%+.2f, %+.2f, %+.2f)): drape drapes bodies standing upright, Y up, and a leaning body's drape is "
-                  "not its upright drape turned (gravity acts across it); stand it upright (turn it %.1f degrees about "
-                  "(%+.2f, %+.2f, %+.2f)), which drape does by itself up to %.0f degrees",
-                  what.c_str(), heading.lean_degrees, up.x(), up.y(), up.z(), heading.lean_degrees, axis.x(), axis.y(),
-                  axis.z(), kLeanLimitDegrees);
-    throw ConfigError(line);
-  }
+  if (heading.lean_degrees > kLeanLimitDegrees) throw ConfigError(lean_refusal(what, heading.lean_degrees, heading.rotation.col(1)));
   if (std::abs(heading.turn_degrees) <= kTurnToleranceDegrees && heading.lean_degrees <= kLeanToleranceDegrees)
     return move;
   const bool leans = heading.lean_degrees > kLeanToleranceDegrees;

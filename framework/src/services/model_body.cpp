@@ -362,6 +362,7 @@ BodyMove BodyPreparation::unpose_given(SampleBatch& batch, int i, Pose& pose, st
   const GivenPosedBody given = unpose_given_body(body, model_.body_model(), model_.assets().body.vertices, &given_.anchor(),
                                                  domain_ ? domain_->placement : unknown,
                                                  domain_ ? domain_->placement_spread : unknown, who);
+  if (!given.leaning.empty()) throw ConfigError(given.leaning);  // draped upright and turned back, it would hang across gravity
   batch.body.mat(i) = body.cast<float>();
   pose = given.fit.pose;
   if (!given.turned.empty())

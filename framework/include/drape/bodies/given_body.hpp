@@ -55,6 +55,13 @@ struct GivenPosedBody {
   std::string turned;     // saying so for a drape ("" within kTurnToleranceDegrees)
   std::string pose_note;  // "the body mesh is posed: its pose read off it is left_elbow_flexion=40,... "
   std::string warning;    // "" unless the mesh unposed misses itself posed again by over a millimetre
+  // How far the mesh stood from upright as a whole (the fitted turn's tilt of
+  // its up axis: lying, upside down), and, beyond kLeanLimitDegrees, the
+  // refusal a drape gives (lean_refusal): predict and simulate throw it (a
+  // drape made upright and turned back would hang across gravity); drape
+  // body --unpose, which drapes nothing, says so and writes the body as it stood.
+  double lean_degrees = 0;
+  std::string leaning;
 };
 GivenPosedBody unpose_given_body(Eigen::MatrixX3d& body, const BodyModel& model, const Eigen::MatrixX3d& mean,
                                  const BodyAnchor* anchor, const Eigen::Vector3d& reference,

@@ -68,4 +68,9 @@ std::string facing_text(double turn_degrees);
 BodyMove turn_to_face(Eigen::MatrixX3d& body, const Eigen::MatrixX3d& mean, const std::string& what,
                       std::string* note = nullptr, bool posed = false);
 
+// The refusal of a body leaning `lean_degrees` (beyond kLeanLimitDegrees),
+// its up axis `up` in its own coordinates: "<what> leans 90.0 degrees from
+// upright (...): ... stand it upright (turn it 90.0 degrees about ...)".
+std::string lean_refusal(const std::string& what, double lean_degrees, const Eigen::Vector3d& up);
+
 }  // namespace drape
