@@ -214,6 +214,14 @@ int run(const std::vector<std::string>& args) {
               sim.garment().mesh.num_vertices(), static_cast<int>(target.vertices.rows()));
   for (const auto& e : sim.scene().effects) std::printf(" %s", e.name.c_str());
   std::printf("\n");
+  // A garment far finer than the shipped ones: its first step alone can take
+  // minutes, with nothing on the screen until then (a 244,606-vertex shirt
+  // looked hung); say what to expect.
+  constexpr int kLargeGarment = 20000;
+  if (const int n = sim.garment().mesh.num_vertices(); n > kLargeGarment)
+    std::printf("note: %d garment vertices, %.0f times the default shirt's 3,505 (a drape of which takes 1-2 CPU minutes; "
+                "of 14,013 vertices, 11): each step may take minutes, and the bar moves once a step\n",
+                n, n / 3505.0);
   const SimulationResult r = drape_scene_body(target, options);  // moved back where the given body stood
   if (bar) bar->finish();
   print_result(r);
