@@ -12,6 +12,7 @@
 #include <drape/errors.hpp>
 #include <drape/training/model.hpp>
 #include <drape/io/output_lock.hpp>
+#include <drape/io/write_failure.hpp>
 #include <drape/progress.hpp>
 #include <drape/registry.hpp>
 #include <drape/scene/scene.hpp>
@@ -148,6 +149,7 @@ int unpose(const std::vector<std::string>& args) {
   if (!parse(kUnposeUsage, args, opts, positional, vm)) return 0;
   const fs::path in = vm["file"].as<std::string>(), out = vm["out"].as<std::string>();
   const OutputLock lock(out, "drape dataset unpose");
+  refuse_output_among_inputs(out, dataset_files(in), "--out");  // --force removed the input before reading it
   refuse_existing(out, vm);
   if (fs::exists(out)) fs::remove(out);
   ProgressBar bar("unpose", DatasetReader(in).indices().size());
@@ -172,6 +174,7 @@ int resample(const std::vector<std::string>& args) {
   if (!parse(kResampleUsage, args, opts, positional, vm)) return 0;
   const fs::path in = vm["file"].as<std::string>(), onto = vm["onto"].as<std::string>(), out = vm["out"].as<std::string>();
   const OutputLock lock(out, "drape dataset resample");
+  refuse_output_among_inputs(out, dataset_files(in), "--out");  // --force removed the input before reading it
   refuse_existing(out, vm);
   if (fs::exists(out)) fs::remove(out);
   ProgressBar bar("resample", DatasetReader(in).indices().size());

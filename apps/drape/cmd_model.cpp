@@ -14,6 +14,7 @@
 #include <drape/io/dataset.hpp>
 #include <drape/errors.hpp>
 #include <drape/io/h5.hpp>
+#include <drape/io/write_failure.hpp>
 #include <drape/registry.hpp>
 #include <drape/training/model.hpp>
 #include <drape/training/model_domain.hpp>
@@ -177,6 +178,9 @@ int domain(const std::vector<std::string>& args) {
   if (!parse(kDomainUsage, args, opts, positional, vm)) return 0;
   const fs::path file = find_input_file(vm["model"].as<std::string>());
   const fs::path out = vm.count("out") ? fs::path(vm["out"].as<std::string>()) : file;
+  // --data X --out X turned the dataset into a model file; any other file is not replaced either.
+  refuse_output_among_inputs(out, dataset_inputs(vm["data"].as<std::string>()), "--out");
+  refuse_replacing_other_than_a_model(out, "--out");
   Registry& registry = Registry::load_default(plugin_path(vm));
   const ModelDomain d = record_model_domain(registry, file, vm["data"].as<std::string>(), out);
   std::printf("wrote %s\n", out.string().c_str());
@@ -197,6 +201,7 @@ int set(const std::vector<std::string>& args) {
   if (!vm.count("set")) throw UsageError("--set node.param=value is required\nusage: " + std::string(kSetUsage));
   const fs::path file = find_input_file(vm["model"].as<std::string>());
   const fs::path out = vm.count("out") ? fs::path(vm["out"].as<std::string>()) : file;
+  refuse_replacing_other_than_a_model(out, "--out");  // a dataset named as --out became a model file
   Registry& registry = Registry::load_default(plugin_path(vm));
   for (const std::string& change : set_model_params(registry, file, parse_param_overrides(vm), out))
     std::printf("  %s\n", change.c_str());

@@ -15,6 +15,7 @@
 #include <drape/io/mesh_io.hpp>
 #include <drape/training/model.hpp>
 #include <drape/io/output_lock.hpp>
+#include <drape/io/write_failure.hpp>
 #include <drape/training/physics_optimization.hpp>
 #include <drape/registry.hpp>
 #include <drape/scene/scene.hpp>
@@ -82,7 +83,11 @@ int run(const std::vector<std::string>& args) {
   if (!vm.count("out")) throw UsageError("--out FILE is required (the optimised garment, or dataset with --data)");
   // Before anything looks at the output (output_lock.hpp).
   const OutputLock lock(vm["out"].as<std::string>(), "drape optimize");
-  if (vm.count("data")) return run_on_dataset(vm);
+  if (vm.count("data")) {
+    // It said "delete it to generate it again", of the dataset it reads.
+    refuse_output_among_inputs(vm["out"].as<std::string>(), dataset_inputs(vm["data"].as<std::string>()), "--out");
+    return run_on_dataset(vm);
+  }
   for (const char* option : {"split", "threads", "shard"})
     if (!vm[option].defaulted())
       throw UsageError(std::string("--") + option + " goes with --data (a dataset split); one body is optimised alone");

@@ -3,7 +3,9 @@
 #include "command.hpp"
 #include "mpi_ranks.hpp"
 
+#include <drape/io/dataset.hpp>
 #include <drape/io/shipped_files.hpp>
+#include <drape/io/write_failure.hpp>
 #include <drape/training/model_domain.hpp>
 #include <drape/services/model_training.hpp>
 
@@ -98,6 +100,8 @@ int run(const std::vector<std::string>& given) {
   o.graph = find_input_file(vm["graph"].as<std::string>());  // graphs/... from anywhere
   o.data = vm["data"].as<std::string>();
   o.out = vm["out"].as<std::string>();
+  // --data X --out X --force wrote a model over the dataset after an epoch.
+  refuse_output_among_inputs(o.out, dataset_inputs(o.data), "--out");
   o.epochs = vm["epochs"].as<long>();
   o.batch = vm["batch"].as<int>();
   o.lr = vm["lr"].as<double>();

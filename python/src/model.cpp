@@ -122,8 +122,8 @@ class PyModel {
     return prepared;
   }
   // Then the pose (BodyPreparation::pose): warnings for angles outside the training poses (strict: ValueError).
-  void pose(SampleBatch& b, const std::optional<Pose>& pose, bool strict, const PreparedBodies& prepared) {
-    const std::vector<Notice> notices = preparation().pose(b, pose ? *pose : Pose{}, strict, "strict=True", &prepared);
+  void pose(SampleBatch& b, const std::optional<Pose>& pose, bool strict, const PreparedBodies& prepared, bool check = true) {
+    const std::vector<Notice> notices = preparation().pose(b, pose ? *pose : Pose{}, strict, "strict=True", &prepared, check);
     for (const Notice& n : notices) warn_python(n.text);
   }
 
@@ -295,7 +295,7 @@ void register_model(py::module_& m) {
             const std::optional<Pose> posed = pose_arg(p.model().body_model(), p.model().assets_spec().body_model, pose);
             SampleBatch b = p.batch(body, body_params, garment_size, &batched);
             const PreparedBodies prepared = p.prepare(b, strict, check);
-            p.pose(b, posed, strict, prepared);
+            p.pose(b, posed, strict, prepared, check);
             const std::vector<BodyMove>& back = prepared.moved_by;
             Tensor out = p.predict(b);
             // Moved back as drape predict writes it (in double), then float32 like every prediction.
@@ -310,9 +310,10 @@ void register_model(py::module_& m) {
           "them (pose: for a model of posed drapes, joint angles in degrees, {'shoulder_abduction': 60} or "
           "'shoulder_abduction=60,...'; the body given is unposed and posed with it, docs/poses.md): a body standing away from where the training bodies stood is draped there and its garment moved back, "
           "a body outside the training domain and a garment too small around for it are warned about (each a Python "
-          "warning; strict=True: a body outside the domain raises ValueError). check=False skips those two "
-          "measurements of the body (about 5 ms each call for the parametric body, several times the coarse "
-          "network's forward), keeping the placement. The GIL is released.")
+          "warning; strict=True: a body outside the domain raises ValueError), and so is a pose in which the body "
+          "passes through itself. check=False skips those measurements of the body (about 5 ms each call for the "
+          "parametric body, several times the coarse network's forward; the pose's test about 15 ms), keeping the "
+          "placement. The GIL is released.")
       .def(
           "domain_check",
           [](PyModel& p, const py::handle& body) {

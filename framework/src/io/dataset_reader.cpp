@@ -174,6 +174,14 @@ bool is_pattern(const fs::path& path_or_pattern) {
 
 }  // namespace
 
+std::vector<fs::path> dataset_inputs(const fs::path& path_or_pattern) {
+  try {
+    return dataset_files(path_or_pattern);
+  } catch (const Error&) {
+    return {};  // the reader names what is missing, later
+  }
+}
+
 std::vector<fs::path> dataset_files(const fs::path& path_or_pattern) {
   std::error_code ec;
   const std::string text = path_or_pattern.string();

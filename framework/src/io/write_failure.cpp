@@ -1,5 +1,6 @@
-// write_failure_cause, check_writable_output (write_failure.hpp).
+// write_failure_cause, check_writable_output, refuse_output_among_inputs (write_failure.hpp).
 #include <drape/errors.hpp>
+#include <drape/io/checkpoint.hpp>
 #include <drape/io/write_failure.hpp>
 
 #include <sys/statvfs.h>
@@ -37,6 +38,26 @@ void check_writable_output(const fs::path& file, const std::string& option) {
   if (fs::is_directory(file, ec)) throw ConfigError(option + " " + file.string() + ": is a folder; give a file name");
   const std::string cause = write_failure_cause(file);
   if (!cause.empty()) throw ConfigError(option + " " + file.string() + ": " + cause);
+}
+
+void refuse_output_among_inputs(const fs::path& out, const std::vector<fs::path>& inputs, const std::string& option) {
+  std::error_code ec;
+  if (!fs::exists(out, ec)) return;
+  for (const fs::path& in : inputs)
+    if (fs::exists(in, ec) && fs::equivalent(in, out, ec))
+      throw ConfigError(option + " " + out.string() + " is also an input (" + in.string() +
+                        "): the job would write over what it reads; name another file");
+}
+
+void refuse_replacing_other_than_a_model(const fs::path& out, const std::string& option) {
+  std::error_code ec;
+  if (!fs::exists(out, ec)) return;
+  try {
+    if (read_checkpoint(out).meta.count("assets")) return;
+  } catch (const std::exception&) {
+  }
+  throw ConfigError(option + " " + out.string() + " exists and is not a drape model (a dataset, a training state, "
+                    "another file): a model is written over a model only; name a new file, or move that one away");
 }
 
 }  // namespace drape

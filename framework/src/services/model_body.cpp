@@ -285,7 +285,8 @@ SampleBatch model_body_batch(const Model& model, const ModelBodyInput& input) {
     given.vertices = *input.vertices;
     require_vertex_count(given, model.assets().body.num_vertices(), input.name,
                          "the model's body model '" + model.assets_spec().body_model + "' has that many");
-    if (input.faces && input.faces->rows() > 0) require_model_topology(*input.faces, model.assets().body.faces, "body " + input.name);
+    if (input.faces && input.faces->rows() > 0)
+      require_model_topology(*input.faces, model.assets().body.faces, "body " + input.name);
     check_body_units(given.vertices, "body " + input.name);
     require_model_body_vertices(given.vertices, model, "body " + input.name);
     if (model.needs_body_params())
@@ -375,7 +376,8 @@ BodyMove BodyPreparation::unpose_given(SampleBatch& batch, int i, Pose& pose, st
 }
 
 std::vector<Notice> BodyPreparation::pose(SampleBatch& batch, const Pose& pose, bool strict,
-                                          const std::string& strict_option, const PreparedBodies* prepared) const {
+                                          const std::string& strict_option, const PreparedBodies* prepared,
+                                          bool check) const {
   std::vector<Pose> poses(static_cast<std::size_t>(batch.size()), pose);
   if (prepared)
     for (std::size_t i = 0; i < prepared->given_poses.size() && i < poses.size(); ++i) {
@@ -405,7 +407,7 @@ std::vector<Notice> BodyPreparation::pose(SampleBatch& batch, const Pose& pose, 
   // network still answers, so predict warns, naming the bones and angles,
   // and --strict refuses (a crossing the body has at rest is not the pose's;
   // a body given posed is the user's own mesh, taken as it is).
-  for (int i = 0; i < batch.size(); ++i) {
+  for (int i = 0; check && i < batch.size(); ++i) {
     const Pose& asked = poses[static_cast<std::size_t>(i)];
     if (asked.empty() || (prepared && i < static_cast<int>(prepared->given_poses.size()) &&
                           !prepared->given_poses[static_cast<std::size_t>(i)].empty()))

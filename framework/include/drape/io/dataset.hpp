@@ -198,6 +198,9 @@ class DatasetReader {
 // no glob characters), else the files matching it as a glob pattern, sorted.
 // ConfigError when a pattern matches nothing.
 std::vector<std::filesystem::path> dataset_files(const std::filesystem::path& path_or_pattern);
+// The same, but none (no error) when nothing matches: for the checks a
+// command makes before the reader's own error (refuse_output_among_inputs).
+std::vector<std::filesystem::path> dataset_inputs(const std::filesystem::path& path_or_pattern);
 // What a model records as the data it was trained on: a file's name, or a
 // glob pattern whole (its last component alone would cut a {a,b} alternative
 // in half: "shard-*-of-2.h5}").

@@ -5,6 +5,7 @@
 // cause this finds, naming the user's file and its folder.
 #include <filesystem>
 #include <string>
+#include <vector>
 
 namespace drape {
 
@@ -16,5 +17,17 @@ std::string write_failure_cause(const std::filesystem::path& file);
 // Before any work: throws ConfigError (exit 2) with write_failure_cause when
 // `file` cannot be written; `option` names where it was given (e.g. "--out").
 void check_writable_output(const std::filesystem::path& file, const std::string& option);
+
+// Before any work: throws ConfigError when the output `out` is one of the
+// files a job reads (the same file by any path: a symlink, a hard link,
+// ./x): its dataset, model or shards. A job writing over its own input loses
+// it whatever the outcome (dataset unpose --force deleted its input before
+// reading it; train --data X --out X wrote a model over the dataset).
+void refuse_output_among_inputs(const std::filesystem::path& out, const std::vector<std::filesystem::path>& inputs,
+                                const std::string& option);
+// Before any work: throws ConfigError when `out` exists and is not a drape
+// model file (a dataset, a mesh): model set and model domain replace a model
+// in place, never another kind of file.
+void refuse_replacing_other_than_a_model(const std::filesystem::path& out, const std::string& option);
 
 }  // namespace drape

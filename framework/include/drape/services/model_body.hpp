@@ -136,8 +136,10 @@ class BodyPreparation {
   // `prepared`: what prepare() said of this batch; a body given posed is
   // draped in the pose read off it (PreparedBodies::given_poses), and `pose`
   // must then be empty (ConfigError: two poses for one body).
+  // check = false leaves out the self-crossing test (Python's check=False).
   std::vector<Notice> pose(SampleBatch& batch, const Pose& pose, bool strict,
-                           const std::string& strict_option = "--strict", const PreparedBodies* prepared = nullptr) const;
+                           const std::string& strict_option = "--strict", const PreparedBodies* prepared = nullptr,
+                           bool check = true) const;
   const std::optional<ModelDomain>& domain() const { return domain_; }
 
  private:
