@@ -121,6 +121,15 @@ TEST_CASE("a generate job killed mid-run resumes without losing or duplicating a
   std::this_thread::sleep_for(std::chrono::milliseconds(200));
   REQUIRE(done_at_kill >= 3);
   REQUIRE_FALSE(fs::exists(file));
+  // Resumed with another seed or body range, it filled the missing rows with
+  // other drapes while the file recorded the first run's: refused, the partial kept.
+  const std::string scene = (dir / "tiny.yaml").string(), rest = " --count 8 --threads 1 --out " + file.string();
+  for (const std::string other : {" --bmi 15:50 --seed 9", " --bmi 20:30 --seed 4", " --bmi 15:50 --seed 4 --girths 1"}) {
+    INFO(other);
+    CHECK(test::run(test::drape_program().string() + " generate " + scene + other + rest, out) == 2);
+    CHECK_THAT(out, Catch::Contains("cannot resume, it was begun as") && Catch::Contains("run it as it was begun"));
+  }
+  REQUIRE(fs::exists(partial));
   // The same command again finishes the job.
   REQUIRE(test::run(cmd, out) == 0);
   CHECK_THAT(out, Catch::Contains("resuming"));
