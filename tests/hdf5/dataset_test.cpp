@@ -106,7 +106,12 @@ TEST_CASE("dataset: resume after an unfinished run loses and duplicates nothing"
   }
   {
     DatasetLayout again = layout;
-    again.attributes = {{"generator", "second run"}};  // extras are kept from the first run
+    // Another generator (how the samples are made: a seed, a model) would fill
+    // the missing rows with other samples: refused, the partial file kept.
+    again.attributes = {{"generator", "second run"}};
+    CHECK_THROWS_WITH(DatasetWriter(out, again), Catch::Contains("cannot resume, it was begun as \"unit test\" and this "
+                                                                 "run asks \"second run\""));
+    again.attributes = {{"generator", "unit test"}, {"note", "second run"}};  // other extras are kept from the first run
     DatasetWriter writer(out, again);
     CHECK(writer.resumed());
     CHECK(writer.missing() == std::vector<std::size_t>{4, 6, 7, 8, 9});

@@ -229,18 +229,6 @@ GenerateSummary generate_dataset(const Registry& registry, const Scene& scene, c
 
   DatasetLayout layout = layout_of(scene, simulations, request, poses);
   DatasetWriter writer(out, layout);
-  // A resumed run draws the rest of the same samples: another seed, body
-  // range, girth spread or shard would fill the missing rows with other
-  // drapes while the file still records the first run's (the writer checks
-  // what is draped, not how the bodies are drawn; merge joins such files).
-  if (writer.resumed()) {
-    const auto& had = writer.layout().attributes;
-    const auto begun = had.find("generator");
-    const std::string now = layout.attributes.at("generator");
-    if (begun != had.end() && begun->second != now)
-      throw ConfigError(DatasetWriter::partial_path(out).string() + ": cannot resume, it was begun as \"" + begun->second +
-                        "\" and this run asks \"" + now + "\"; run it as it was begun, or delete it to start over");
-  }
   const std::vector<std::size_t> todo = writer.missing();
   GeneratePlan plan;
   plan.out = out;

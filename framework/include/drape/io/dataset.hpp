@@ -83,7 +83,9 @@ class DatasetWriter {
   };
   // Creates `<path>.partial` for layout.samples samples, or reopens it to resume.
   // On resume the sizes, the stats names, scene and template_hash must match the
-  // file (ConfigError naming the first difference); `created` and the extra
+  // file (ConfigError naming the first difference), and so must the
+  // `generator` attribute when both have one (how the samples are made:
+  // seed, ranges, shard; model, iterations); `created` and the extra
   // attributes are kept from the first run. ConfigError when `<path>` already
   // exists (a finished dataset is never overwritten) or the partial file is
   // unreadable ("delete it to start over").
