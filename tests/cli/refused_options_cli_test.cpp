@@ -11,7 +11,7 @@
 
 using namespace drape;
 
-TEST_CASE("a thread count beyond what any machine runs is refused before the work starts", "[cli][options]") {
+TEST_CASE("a thread count beyond what any machine runs, or an output name too long for the files beside it, is refused before the work starts", "[cli][options]") {
   test::TempDir dir;
   std::string out;
   const std::string scene = (test::source_dir() / "graphs/scenes/tshirt_coarse.yaml").string();
@@ -25,6 +25,15 @@ TEST_CASE("a thread count beyond what any machine runs is refused before the wor
   CHECK_THAT(out, Catch::Contains("--threads 2000"));
   CHECK_FALSE(std::filesystem::exists(dir / "g.obj"));
   CHECK_FALSE(std::filesystem::exists(dir / "d.h5"));
+  // A name the file system takes, but not with drape's partial and temporary
+  // files beside it: train failed after an epoch ("H5Fcreate failed").
+  const std::string long_name = (dir / (std::string(230, 'x') + ".h5")).string();
+  CHECK(test::run_drape("generate " + scene + " --count 1 --out " + long_name, out) == 2);
+  CHECK_THAT(out, Catch::Contains("its name is 233 characters long") && Catch::Contains("give a shorter name"));
+  CHECK(test::run_drape("train " + (test::source_dir() / "graphs/examples/mlp_baseline.yaml").string() + " --data " +
+                            (test::source_dir() / "datasets/bodyspace2000/shard-00-of-40.h5").string() + " --epochs 1 --out " +
+                            long_name, out) == 2);
+  CHECK_THAT(out, Catch::Contains("characters long"));
 }
 
 TEST_CASE("two outputs naming one file are refused, however the path is spelt", "[cli][options]") {

@@ -14,6 +14,8 @@ namespace {
 // Below this much free space a failed write is put down to a full disk:
 // HDF5 and assimp extend a file by up to a few hundred kilobytes at a time.
 constexpr unsigned long long kNearlyFull = 1ull << 20;
+// The longest output file name: 255 (NAME_MAX) less the temporary files' additions.
+constexpr std::size_t kLongestName = 220;
 
 fs::path folder_of(const fs::path& file) { return file.has_parent_path() ? file.parent_path() : fs::path("."); }
 }  // namespace
@@ -22,6 +24,12 @@ std::string write_failure_cause(const fs::path& file) {
   const fs::path folder = folder_of(file);
   std::error_code ec;
   if (fs::is_directory(file, ec)) return "it is a folder; give a file name";
+  // A name the file system takes alone may not take drape's temporary and
+  // partial files beside it (".<name>.tmp<pid>-<n>.h5", "<name>.partial",
+  // "<name>.state"): a 240-character --out failed after a training epoch.
+  if (const std::size_t n = file.filename().string().size(); n > kLongestName)
+    return "its name is " + std::to_string(n) + " characters long; drape writes files named after it with up to " +
+           std::to_string(255 - kLongestName) + " more, past the 255 a file system takes: give a shorter name";
   if (!fs::is_directory(folder, ec)) return "folder '" + folder.string() + "' does not exist";
   struct statvfs info {};
   if (::statvfs(folder.c_str(), &info) == 0) {
