@@ -59,7 +59,7 @@ void refuse_output_among_inputs(const fs::path& out, const std::vector<fs::path>
 
 void refuse_replacing_other_than_a_model(const fs::path& out, const std::string& option) {
   std::error_code ec;
-  if (!fs::exists(out, ec)) return;
+  if (!fs::exists(out, ec) || fs::is_directory(out, ec)) return;  // a folder: the writer names it as one
   try {
     if (read_checkpoint(out).meta.count("assets")) return;
   } catch (const std::exception&) {
