@@ -314,11 +314,8 @@ int unpose_one(const po::variables_map& vm, const LoadedBody& loaded) {
                            (given.num_vertices() == body.num_vertices() ? "" : other_rig_hint(vm, loaded.model, given.num_vertices())));
   check_body_units(given.vertices, "body " + file);
   const GivenBodyFrame frame(body);
-  Mesh mean;
-  mean.vertices = frame.mean();
-  mean.faces = body.faces();
   // A mirrored, re-indexed or spiked mesh has no pose to read: refused as predict and simulate refuse it.
-  require_body_model_mesh(given.vertices, &given.faces, mean, "body " + file);
+  require_body_model_mesh(given.vertices, &given.faces, frame.mean(), body.faces(), "body " + file);
   const auto t0 = std::chrono::steady_clock::now();
   Eigen::MatrixX3d rest = given.vertices;
   const GivenPosedBody unposed = unpose_given_body(rest, body, frame, "body " + file);
@@ -394,9 +391,6 @@ int run(const std::vector<std::string>& args) {
   LoadedBody loaded;
   loaded.model = vm["model"].as<std::string>();
   const PluginDescriptor& desc = reg.get(loaded.model);
-  if (!desc.create_body)
-    throw ConfigError("plugin '" + loaded.model + "' is " + (desc.kind.find_first_of("aeiou") == 0 ? "an " : "a ") + desc.kind +
-                      ", not a body model");
   const auto t0 = std::chrono::steady_clock::now();
   const ParamValues values = plugin_params(vm);
   loaded.body = reg.create_body(loaded.model, Params(desc.params, values, "body " + loaded.model));

@@ -17,7 +17,6 @@
 
 #include <algorithm>
 #include <functional>
-#include <initializer_list>
 #include <cstdio>
 #include <iostream>
 #include <memory>
@@ -219,16 +218,10 @@ int run(const std::vector<std::string>& args) {
   // makes a drape: without stretching the cloth has no in-plane stiffness and
   // a step's Newton iterations need not end (such a run sat at its first
   // step for minutes); without contact it falls through the body.
-  const auto has = [&](std::initializer_list<const char*> names) {
-    for (const auto& e : sim.scene().effects)
-      for (const char* n : names)
-        if (e.name == n) return true;
-    return false;
-  };
-  if (!has({"stretching"}))
+  if (!sim.scene().has_effect("stretching"))
     std::printf("note: the scene has no stretching effect: the cloth resists no stretch, so a step may never settle "
                 "(each takes up to its Newton iterations)\n");
-  if (!has({"barrier", "collision"}))
+  if (!sim.scene().has_effect("barrier") && !sim.scene().has_effect("collision"))
     std::printf("note: the scene has no contact with the body (barrier or collision): the garment falls through it\n");
   // A garment far finer than the shipped ones: its first step alone can take
   // minutes, with nothing on the screen until then (a 244,606-vertex shirt

@@ -11,6 +11,7 @@
 #include <filesystem>
 #include <iostream>
 #include <map>
+#include <sstream>
 #include <thread>
 
 namespace drape::cli {
@@ -56,20 +57,15 @@ bool parse(const std::string& usage, const std::vector<std::string>& args, po::o
     const boost::any& value = vm[option].value();
     const std::string* file = boost::any_cast<std::string>(&value);
     if (!file) continue;
-    if (std::filesystem::path(*file).has_extension()) check_writable_output(*file, std::string("--") + option);
+    // A picture goes where its extension says (predict --svg o.png wrote SVG text into o.png).
+    const std::string ext = std::filesystem::path(*file).extension().string();
+    if (option == std::string("svg") && ext != ".svg" && ext != ".html" && ext != ".htm")
+      throw UsageError("--svg " + *file + ": expected a .svg (a drawing) or .html (a 3D viewer) file\nusage: " + usage);
+    if (!ext.empty()) check_writable_output(*file, std::string("--") + option);
     const std::filesystem::path same = std::filesystem::weakly_canonical(std::filesystem::absolute(*file));
     if (const auto [it, fresh] = written.emplace(same, option); !fresh)
       throw UsageError("--" + it->second + " and --" + option + " name the same file " + *file +
                        ": each output needs its own\nusage: " + usage);
-  }
-  // A picture goes where its extension says (predict --svg o.png wrote SVG text into o.png).
-  if (vm.count("svg")) {
-    const boost::any& value = vm["svg"].value();
-    if (const std::string* file = boost::any_cast<std::string>(&value)) {
-      const std::string ext = std::filesystem::path(*file).extension().string();
-      if (ext != ".svg" && ext != ".html" && ext != ".htm")
-        throw UsageError("--svg " + *file + ": expected a .svg (a drawing) or .html (a 3D viewer) file\nusage: " + usage);
-    }
   }
   // --threads: more threads than a machine runs at once only queue, and
   // tens of thousands exhausted the stacks (simulate --threads 100000
@@ -130,13 +126,10 @@ std::map<std::string, double> parse_girths(const po::variables_map& vm) {
   // Repeated (--girth chest=0.1 --girth waist=0.05) or a comma list as --pose
   // takes (--girth chest=0.1,waist=0.05).
   std::vector<std::string> items;
-  for (const auto& given : vm["girth"].as<std::vector<std::string>>())
-    for (std::size_t start = 0;;) {
-      const std::size_t comma = given.find(',', start);
-      items.push_back(given.substr(start, comma == std::string::npos ? std::string::npos : comma - start));
-      if (comma == std::string::npos) break;
-      start = comma + 1;
-    }
+  for (const auto& given : vm["girth"].as<std::vector<std::string>>()) {
+    std::istringstream list(given);
+    for (std::string item; std::getline(list, item, ',');) items.push_back(item);
+  }
   for (const auto& item : items) {
     const auto eq = item.find('=');
     if (eq == std::string::npos || eq == 0) throw UsageError("--girth wants name=value, got '" + item + "'");

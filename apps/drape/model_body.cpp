@@ -85,15 +85,13 @@ bool body_mesh_posed(const fs::path& model_file, const po::variables_map& vm) {
                                       parse_assets_spec(assets->second, model_file.string()));
     const Mesh mesh = read_mesh(vm["body"].as<std::string>());
     if (!body->poseable() || mesh.vertices.rows() != body->num_vertices()) return false;
-    Mesh mean;
-    mean.vertices = body->vertices(body->mean_shape());
-    mean.faces = body->faces();
+    const Eigen::MatrixX3d mean = body->vertices(body->mean_shape());
     // A mesh in other units, or one the model's faces read wrong (mirrored,
     // re-indexed, spiked), has limbs that only look turned: not posed, and
     // refused by the model's own checks after this.
     check_body_units(mesh.vertices, "body");
-    require_body_model_mesh(mesh.vertices, &mesh.faces, mean, "body");
-    return !LimbFit(*body).posed(mean.vertices, mesh.vertices).empty();
+    require_body_model_mesh(mesh.vertices, &mesh.faces, mean, body->faces(), "body");
+    return !LimbFit(*body).posed(mean, mesh.vertices).empty();
   } catch (const std::exception&) {
     return false;
   }

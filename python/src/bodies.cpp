@@ -78,10 +78,7 @@ class PyBodyModel {
     {
       py::gil_scoped_release release;
       check_body_units(body, "body_vertices");
-      Mesh mean;
-      mean.vertices = frame_->mean();
-      mean.faces = model_->faces();
-      require_body_model_mesh(body, nullptr, mean, "body_vertices");  // re-indexed, spiked or mirrored: refused
+      require_body_model_mesh(body, nullptr, frame_->mean(), model_->faces(), "body_vertices");  // re-indexed, spiked, mirrored
       read = unpose_given_body(body, *model_, *frame_, "body_vertices");
     }
     py::dict pose;

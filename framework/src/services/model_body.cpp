@@ -241,12 +241,14 @@ void require_model_vertex_order(const Eigen::MatrixX3d& vertices, const ModelBod
 
 }  // namespace
 
-ModelBodyEdges model_body_edges(const Model& model) { return model_body_edges(model.assets().body); }
+ModelBodyEdges model_body_edges(const Model& model) {
+  return model_body_edges(model.assets().body.vertices, model.assets().body.faces);
+}
 
-ModelBodyEdges model_body_edges(const Mesh& mean) {
+ModelBodyEdges model_body_edges(const Eigen::MatrixX3d& mean, const Eigen::MatrixX3i& model_faces) {
   ModelBodyEdges out;
-  for (const auto& edge : geometry::edge_list(mean.faces)) {
-    const double length = (mean.vertices.row(edge[0]) - mean.vertices.row(edge[1])).norm();
+  for (const auto& edge : geometry::edge_list(model_faces)) {
+    const double length = (mean.row(edge[0]) - mean.row(edge[1])).norm();
     if (length > 0) out.edges.push_back(edge), out.lengths.push_back(length);  // (a stretch of nothing measures nothing)
   }
   return out;
@@ -269,11 +271,11 @@ void require_model_body_vertices(const Eigen::MatrixX3d& vertices, const Model& 
   require_outward(vertices, model.assets().body.faces, what);
 }
 
-void require_body_model_mesh(const Eigen::MatrixX3d& vertices, const Eigen::MatrixX3i* faces, const Mesh& mean,
-                             const std::string& what) {
-  if (faces && faces->rows() > 0) require_model_topology(*faces, mean.faces, what);
-  require_model_vertex_order(vertices, model_body_edges(mean), what);
-  require_outward(vertices, mean.faces, what);
+void require_body_model_mesh(const Eigen::MatrixX3d& vertices, const Eigen::MatrixX3i* faces, const Eigen::MatrixX3d& mean,
+                             const Eigen::MatrixX3i& model_faces, const std::string& what) {
+  if (faces && faces->rows() > 0) require_model_topology(*faces, model_faces, what);
+  require_model_vertex_order(vertices, model_body_edges(mean, model_faces), what);
+  require_outward(vertices, model_faces, what);
 }
 
 SampleBatch model_body_batch(const Model& model, const ModelBodyInput& input) {

@@ -148,10 +148,7 @@ SceneBody scene_body(const SceneSimulations& simulations, const Eigen::MatrixX3d
   require_vertex_count(mesh, static_cast<int>(design.mean_body().rows()), name,
                        "the scene's body model '" + design.scene().body_model + "' has that many");
   check_body_units(given, "body " + name);
-  Mesh mean;
-  mean.vertices = design.mean_body();
-  mean.faces = design.body_model().faces();
-  require_body_model_mesh(given, faces, mean, "body " + name);
+  require_body_model_mesh(given, faces, design.mean_body(), design.body_model().faces(), "body " + name);
   SceneBody out;
   out.vertices = given;
   const GivenBodyFrame& given_bodies = simulations.given_bodies();

@@ -78,15 +78,15 @@ struct ModelBodyEdges {
 ModelBodyEdges model_body_edges(const Model& model);
 void require_model_body_vertices(const Eigen::MatrixX3d& vertices, const Model& model, const std::string& what,
                                  const ModelBodyEdges* edges = nullptr);
-// The same checks against a body model's mean body `mean` (its vertices and
-// faces) for a command with no trained model (simulate --body, body
+// The same checks against a body model's mean body `mean` with the model's
+// `model_faces`, for a command with no trained model (simulate --body, body
 // --unpose); with the mesh's own `faces` (a file's: null for an array of
 // points) also that nine in ten of its edges are the model's (ConfigError
 // otherwise: its vertices re-indexed, an STL's triangle soup welded in
 // another order).
-ModelBodyEdges model_body_edges(const Mesh& mean);
-void require_body_model_mesh(const Eigen::MatrixX3d& vertices, const Eigen::MatrixX3i* faces, const Mesh& mean,
-                             const std::string& what);
+ModelBodyEdges model_body_edges(const Eigen::MatrixX3d& mean, const Eigen::MatrixX3i& model_faces);
+void require_body_model_mesh(const Eigen::MatrixX3d& vertices, const Eigen::MatrixX3i* faces, const Eigen::MatrixX3d& mean,
+                             const Eigen::MatrixX3i& model_faces, const std::string& what);
 
 // A batch of one. ConfigError for a mesh of the wrong vertex count (saying the
 // expected one), in other units, given to a graph that takes body parameters,
