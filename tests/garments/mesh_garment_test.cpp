@@ -21,32 +21,9 @@ namespace fs = std::filesystem;
 namespace {
 
 // An open tube (a skirt) of `around` x `up` quads around the mean body's
-// hips: radius r, from y0 to y1. UVs are its unrolled pattern in metres, so
-// the seam column has its own UVs (a pattern edge sewn to the other).
+// hips, its UVs the unrolled pattern in metres (test::pattern_tube).
 Mesh tube(int around = 24, int up = 6, double r = 0.26, double y0 = 0.92, double y1 = 1.1) {
-  Mesh m;
-  m.vertices.resize(around * (up + 1), 3);
-  for (int j = 0; j <= up; ++j)
-    for (int i = 0; i < around; ++i) {
-      const double a = 2 * M_PI * i / around;
-      m.vertices.row(j * around + i) << r * std::sin(a), y0 + (y1 - y0) * j / up, r * std::cos(a);
-    }
-  m.uv.resize((around + 1) * (up + 1), 2);
-  for (int j = 0; j <= up; ++j)
-    for (int i = 0; i <= around; ++i) m.uv.row(j * (around + 1) + i) << 2 * M_PI * r * i / around, (y1 - y0) * j / up;
-  m.faces.resize(2 * around * up, 3);
-  m.uv_faces.resize(2 * around * up, 3);
-  int f = 0;
-  for (int j = 0; j < up; ++j)
-    for (int i = 0; i < around; ++i) {
-      const int a = j * around + i, b = j * around + (i + 1) % around, c = a + around, d = b + around;
-      const int ta = j * (around + 1) + i, tb = ta + 1, tc = ta + around + 1, td = tb + around + 1;
-      m.faces.row(f) << a, b, d;
-      m.uv_faces.row(f++) << ta, tb, td;
-      m.faces.row(f) << a, d, c;
-      m.uv_faces.row(f++) << ta, td, tc;
-    }
-  return m;
+  return test::pattern_tube(r, y0, y1, around, up);
 }
 
 std::string scene_text(const fs::path& file, const std::string& extra = "") {

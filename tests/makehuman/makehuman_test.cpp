@@ -266,3 +266,28 @@ TEST_CASE("MakeHuman clothes: a two-piece outfit drapes as one garment, each pie
   CHECK_THROWS_WITH(test::plugins().create_garment("makehuman_clothes", Params(d.params, values, "suit"))->build(),
                     Catch::Contains("share vertex"));
 }
+
+// An outfit name that is not a folder of clothes/ names the close ones and
+// every outfit there; a MakeHuman garment in a scene of another body model is
+// refused naming both models, before it is dressed on a body it was not fitted to.
+TEST_CASE("MakeHuman clothes: a misspelled outfit gets the close names, another body model is refused", "[makehuman]") {
+  if (!assets_present()) {
+    SUCCEED("skipped");
+    return;
+  }
+  const auto& d = test::plugins().get("makehuman_clothes");
+  ParamValues values = path_param();
+  values["outfit"] = {YAML::Node("male_casualsuit4"), {}};
+  CHECK_THROWS_WITH(test::plugins().create_garment("makehuman_clothes", Params(d.params, values, "clothes"))->build(),
+                    Catch::Contains("no MakeHuman outfit 'male_casualsuit4'") &&
+                        Catch::Contains("did you mean 'male_casualsuit04'") && Catch::Contains("(its outfits: male_casualsuit04"));
+  const std::string path = (test::shared_assets() / "makehuman").string();
+  const std::string why = test::message_of([&] {
+    Simulation(test::plugins(), parse_scene("body: {model: parametric}\n"
+                                            "garment: {template: makehuman_clothes, params: {path: " + path + ", piece: \"1\"}}\n"
+                                            "effects: {gravity: {}, stretching: {}, barrier: {}}\n",
+                                            "trousers.yaml"));
+  });
+  CHECK_THAT(why, Catch::Contains("trousers.yaml") && Catch::Contains("fitted to the body model 'makehuman'") &&
+                      Catch::Contains("this scene's body is 'parametric'") && Catch::Contains("body: {model: makehuman}"));
+}

@@ -31,6 +31,33 @@ std::unique_ptr<BodyModel> parametric_body(const std::string& params_yaml) {
                                Params(d.params, param_values_from_yaml(YAML::Load(params_yaml), "test"), "body parametric"));
 }
 
+Mesh pattern_tube(double r, double y0, double y1, int around, int up, double pattern) {
+  Mesh m;
+  m.vertices.resize(around * (up + 1), 3);
+  for (int j = 0; j <= up; ++j)
+    for (int i = 0; i < around; ++i) {
+      const double a = 2 * M_PI * i / around;
+      m.vertices.row(j * around + i) << r * std::sin(a), y0 + (y1 - y0) * j / up, r * std::cos(a);
+    }
+  m.uv.resize((around + 1) * (up + 1), 2);
+  for (int j = 0; j <= up; ++j)
+    for (int i = 0; i <= around; ++i)
+      m.uv.row(j * (around + 1) + i) << pattern * 2 * M_PI * r * i / around, pattern * (y1 - y0) * j / up;
+  m.faces.resize(2 * around * up, 3);
+  m.uv_faces.resize(2 * around * up, 3);
+  int f = 0;
+  for (int j = 0; j < up; ++j)
+    for (int i = 0; i < around; ++i) {
+      const int a = j * around + i, b = j * around + (i + 1) % around, c = a + around, d = b + around;
+      const int ta = j * (around + 1) + i, tb = ta + 1, tc = ta + around + 1, td = tb + around + 1;
+      m.faces.row(f) << a, b, d;
+      m.uv_faces.row(f++) << ta, tb, td;
+      m.faces.row(f) << a, d, c;
+      m.uv_faces.row(f++) << ta, td, tc;
+    }
+  return m;
+}
+
 std::unique_ptr<BodyModel> skeletonless_body() {
   struct Rigid final : BodyModel {
     Eigen::MatrixX3i f = Eigen::MatrixX3i::Zero(1, 3);

@@ -21,6 +21,12 @@ std::unique_ptr<BodyModel> parametric_body(const std::string& params_yaml = "{}"
 // pose must be refused by.
 std::unique_ptr<BodyModel> skeletonless_body();
 
+// An open tube of `around` x `up` quads about the y axis (a skirt, a sleeve of
+// a body): radius r, from y0 to y1. Its UVs are its unrolled pattern in
+// metres times `pattern` (1: the cloth as long as the tube), the seam column
+// with UVs of its own (a pattern edge sewn to the other).
+Mesh pattern_tube(double r, double y0, double y1, int around, int up, double pattern = 1.0);
+
 // A fresh empty directory under the system temp dir, removed at exit of the scope.
 class TempDir {
  public:

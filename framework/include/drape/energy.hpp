@@ -41,6 +41,12 @@ struct Garment {
   // garment on the body of that girth and starts its morph there (fit_body,
   // drape/bodies/fit_body.hpp).
   double fit_grade = 1.0;
+  // The body model whose mean body the template fits the garment to (a
+  // MakeHuman outfit's .mhclo binds it to MakeHuman's body); empty: it is
+  // modelled around whichever body model's mean body the scene names (the
+  // tshirt template, a mesh file). A scene with another body model is
+  // refused at once, naming both.
+  std::string body_model;
   int material_of(int face) const { return face_material.size() ? face_material[face] : 0; }
 };
 

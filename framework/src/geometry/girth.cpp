@@ -39,7 +39,8 @@ double hull_perimeter(std::vector<Eigen::Vector2d> p) {
 }  // namespace
 
 Girth horizontal_girth(const Eigen::MatrixX3d& vertices, const Eigen::MatrixX3i& faces, double height,
-                       const Eigen::Vector2d& centre) {
+                       const Eigen::Vector2d& centre, const Eigen::MatrixX2d* uv, const Eigen::MatrixX3i* uv_faces) {
+  const bool material = uv && uv_faces && uv_faces->rows() == faces.rows();
   // Off every vertex: a vertex exactly on the plane would cut its faces at a
   // corner, and the segments would not chain.
   for (bool moved = true; moved;) {
@@ -56,8 +57,13 @@ Girth horizontal_girth(const Eigen::MatrixX3d& vertices, const Eigen::MatrixX3i&
   using Edge = std::pair<int, int>;
   std::map<Edge, Eigen::Vector2d> point;
   std::map<Edge, std::vector<Edge>> next;
+  // Per face's segment (its two cut edges, in order): its length in the
+  // material space, each end mapped by the face's own corners (material
+  // coordinates may jump across a seam, so the ends are not shared).
+  std::map<std::pair<Edge, Edge>, double> material_step;
   for (Eigen::Index f = 0; f < faces.rows(); ++f) {
     Edge cut[3];
+    Eigen::Vector2d cut_uv[3];
     int cuts = 0;
     for (int k = 0; k < 3; ++k) {
       const int a = faces(f, k), b = faces(f, (k + 1) % 3);
@@ -67,9 +73,18 @@ Girth horizontal_girth(const Eigen::MatrixX3d& vertices, const Eigen::MatrixX3i&
       const double t = ya / (ya - yb);
       const Eigen::Vector3d p = vertices.row(a) + t * (vertices.row(b) - vertices.row(a));
       point.emplace(e, Eigen::Vector2d(p.x(), p.z()));
+      if (material && cuts < 3) {
+        const Eigen::Vector2d ua = uv->row((*uv_faces)(f, k)), ub = uv->row((*uv_faces)(f, (k + 1) % 3));
+        cut_uv[cuts] = ua + t * (ub - ua);
+      }
       cut[cuts++] = e;
     }
     if (cuts != 2) continue;
+    if (material) {
+      const double step = (cut_uv[1] - cut_uv[0]).norm();
+      material_step[{cut[0], cut[1]}] = step;
+      material_step[{cut[1], cut[0]}] = step;
+    }
     next[cut[0]].push_back(cut[1]);
     next[cut[1]].push_back(cut[0]);
   }
@@ -81,6 +96,11 @@ Girth horizontal_girth(const Eigen::MatrixX3d& vertices, const Eigen::MatrixX3i&
     Polygon2 loop;
     Edge current = start;
     bool closed = false;
+    double material_length = 0.0;
+    const auto material_of = [&](const Edge& a, const Edge& b) {
+      const auto it = material_step.find({a, b});
+      return it == material_step.end() ? 0.0 : it->second;
+    };
     while (!visited[current]) {
       visited[current] = true;
       loop.push_back(point.at(current));
@@ -90,8 +110,10 @@ Girth horizontal_girth(const Eigen::MatrixX3d& vertices, const Eigen::MatrixX3i&
         if (!visited[e]) step = e;  // the way back is visited already
       if (step.first < 0) {
         closed = std::find(n.begin(), n.end(), start) != n.end() && loop.size() > 2;
+        if (closed) material_length += material_of(current, start);
         break;
       }
+      material_length += material_of(current, step);
       current = step;
     }
     if (!closed) continue;
@@ -104,6 +126,7 @@ Girth horizontal_girth(const Eigen::MatrixX3d& vertices, const Eigen::MatrixX3i&
     out.found = true;
     out.length = length;
     out.tape = hull_perimeter(loop);
+    out.material_length = material ? material_length : 0.0;
   }
   return out;
 }

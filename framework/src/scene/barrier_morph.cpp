@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <string>
+#include <vector>
 
 namespace drape::scene_detail {
 
@@ -37,6 +38,8 @@ Eigen::MatrixX3d carried_with_body(const Eigen::MatrixX3d& x, const geometry::Bo
 StepReport barrier_morph_step(ClothSolver& solver, geometry::BodySurface& body, const Eigen::MatrixX3d& next, int step,
                               const BarrierMorph& settings, Eigen::MatrixX3d& x, Eigen::MatrixX3d& v,
                               SimulationResult& result) {
+  double left = 1.0;                // share of the step's move still to make
+  std::vector<double> headway;      // share of the whole step each partial move made
   for (int cuts = 0;; ++cuts) {
     const Eigen::MatrixX3d from = body.vertices();
     const Eigen::MatrixX3d carried = carried_with_body(x, body, next, settings.carry_inner, settings.carry_outer);
@@ -46,11 +49,17 @@ StepReport barrier_morph_step(ClothSolver& solver, geometry::BodySurface& body, 
       body.update(next);
       return solver.step(x, v);
     }
-    if (cuts >= settings.max_cuts)
-      throw Error("simulate: the body grows into the garment faster than the contact can push it away (morph step " +
-                  std::to_string(step) + " still blocked after " + std::to_string(settings.max_cuts) +
-                  " partial moves); the garment does not fit this body");
+    double recent = 0.0;
+    for (std::size_t k = headway.size() >= kStallCuts ? headway.size() - kStallCuts : 0; k < headway.size(); ++k)
+      recent += headway[k];
+    const bool stalled = headway.size() >= static_cast<std::size_t>(kStallCuts) && recent < kStallShare;
+    if (cuts >= settings.max_cuts || stalled)
+      throw MorphBlocked("simulate: the body grows into the garment faster than the contact can push it away (morph step " +
+                             std::to_string(step) + " still blocked after " + std::to_string(cuts) + " partial moves)",
+                         step, cuts, 1.0 - left, recent, stalled);
     ++result.morph_substeps;
+    headway.push_back(alpha * left);
+    left *= 1.0 - alpha;
     x += alpha * (carried - x);
     body.update(from + alpha * (next - from));
     // The cut left a pair close: the cloth gets the settling budget to move

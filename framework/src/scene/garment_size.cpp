@@ -27,11 +27,13 @@ const ParamSpec* size_spec(const Registry& registry, const Scene& scene) {
 // The girths of a mesh at the band's heights of `body` (from its soles), those
 // where a loop goes around the vertical axis.
 std::vector<geometry::Girth> band_girths(const Eigen::MatrixX3d& vertices, const Eigen::MatrixX3i& faces,
-                                         const Eigen::MatrixX3d& body) {
+                                         const Eigen::MatrixX3d& body, const Mesh* material = nullptr) {
   const double y0 = body.col(1).minCoeff(), h = geometry::body_height(body);
   std::vector<geometry::Girth> out;
   for (double f = kGirthBandLow; f <= kGirthBandHigh + 1e-9; f += kBandStep) {
-    const geometry::Girth g = geometry::horizontal_girth(vertices, faces, y0 + f * h, {0.0, 0.0});
+    const geometry::Girth g = geometry::horizontal_girth(vertices, faces, y0 + f * h, {0.0, 0.0},
+                                                         material ? &material->uv : nullptr,
+                                                         material ? &material->uv_faces : nullptr);
     if (g.found) out.push_back(g);
   }
   return out;
@@ -84,6 +86,14 @@ double garment_girth(const Eigen::MatrixX3d& garment, const Eigen::MatrixX3i& ga
   double narrowest = std::numeric_limits<double>::infinity();
   for (const geometry::Girth& g : band_girths(garment, garment_faces, mean_body)) narrowest = std::min(narrowest, g.length);
   return narrowest;
+}
+
+double garment_material_girth(const Mesh& garment, const Eigen::MatrixX3d& mean_body) {
+  if (!garment.has_uv()) return std::numeric_limits<double>::quiet_NaN();
+  double narrowest = std::numeric_limits<double>::infinity();
+  for (const geometry::Girth& g : band_girths(garment.vertices, garment.faces, mean_body, &garment))
+    narrowest = std::min(narrowest, g.material_length);
+  return std::isfinite(narrowest) ? narrowest : std::numeric_limits<double>::quiet_NaN();
 }
 
 double garment_ease(const Eigen::MatrixX3d& garment, const Eigen::MatrixX3i& garment_faces,

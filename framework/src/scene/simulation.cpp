@@ -14,6 +14,7 @@
 #include <drape/error_context.hpp>
 
 #include "barrier_morph.hpp"
+#include "cloth_fit.hpp"
 #include "body_overlap.hpp"
 #include "scene_materials.hpp"
 #include "separated_start.hpp"
@@ -115,7 +116,7 @@ void settle(ClothSolver& solver, Eigen::MatrixX3d& x, Eigen::MatrixX3d& v, const
 // not), and how far it is inside the body.
 void measure_drape(const ClothSolver& solver, std::vector<NamedEnergy>& energies, const Eigen::MatrixX3d& x,
                    const Eigen::MatrixX3d& target_body, const Mesh& garment, const Eigen::MatrixX3d& mean_body,
-                   const Eigen::MatrixX3i& body_faces, int morph_steps, const SimulationOptions& options,
+                   const Eigen::MatrixX3i& body_faces, int morph_steps, bool sized, const SimulationOptions& options,
                    std::unique_ptr<geometry::BodySurface>& surface, SimulationResult& result) {
   const double settle_tolerance = solver.settings().settle_tolerance;
   const double at_rest_limit = solver.settings().kink_tolerance;
@@ -129,7 +130,8 @@ void measure_drape(const ClothSolver& solver, std::vector<NamedEnergy>& energies
   if (!result.converged) {
     const double ease = garment_ease(garment.vertices, garment.faces, mean_body, target_body, body_faces);
     result.unsettled =
-        scene_detail::why_unsettled(result, x, settle_tolerance, result.steps - morph_steps, at_rest_limit, ease, target_body);
+        scene_detail::why_unsettled(result, x, settle_tolerance, result.steps - morph_steps, at_rest_limit, ease, target_body,
+                                    sized);
   }
   result.garment = x;
   result.body = target_body;
@@ -158,7 +160,14 @@ Simulation::Simulation(const Registry& registry, Scene scene) : registry_(regist
   mean_body_ = body_model_->vertices(body_model_->mean_shape());
 
   const PluginDescriptor& gd = registry_.get(scene_.garment);
+  for (const ParamSpec& p : gd.params) sized_ = sized_ || (p.name == "size" && !p.choices.empty());
   Garment garment = garment_of_scene(registry_, scene_, gd)->build();
+  if (!garment.body_model.empty() && garment.body_model != scene_.body_model)
+    throw ConfigError({scene_.file, 0}, "garment '" + scene_.garment + "' is fitted to the body model '" +
+                                            garment.body_model + "' (its mean body is what the garment is modelled "
+                                            "around), and this scene's body is '" + scene_.body_model +
+                                            "': set body: {model: " + garment.body_model + "}, or give a garment "
+                                            "made for '" + scene_.body_model + "'");
   design_loop_ = garment_girth(garment.mesh.vertices, garment.mesh.faces, mean_body_);
   const bool graded = scene_.garment_grade != 1.0;
   const Eigen::MatrixX3d ungraded = graded ? garment.mesh.vertices : Eigen::MatrixX3d();  // for place_graded_garment
@@ -207,6 +216,17 @@ Simulation::Simulation(const Registry& registry, Scene scene) : registry_(regist
     const PluginDescriptor& d = registry_.get(e.name);
     effect_params_.emplace_back(d.params, e.params, "effect '" + e.name + "'");
     needs_body_ = needs_body_ || registry_.create_energy(e.name, effect_params_.back())->needs_body();
+  }
+  // A garment whose cloth cannot go around the body it is put on, said now
+  // (run() refuses it before any work; cloth_fit.hpp).
+  if (needs_body_) {
+    scene_detail::PatternSource pattern;
+    for (const ParamSpec& p : gd.params) pattern.has_uv_scale = pattern.has_uv_scale || p.name == "uv_scale";
+    const Params garment_params(gd.params, scene_.garment_params, "garment '" + scene_.garment + "'");
+    if (pattern.has_uv_scale) pattern.uv_scale = garment_params.get_float("uv_scale");
+    for (const ParamSpec& p : gd.params)
+      if (p.name == "material_space") pattern.from_shape = garment_params.get_string("material_space") == "rest";
+    start_refusal_ = scene_detail::cloth_too_short(*garment_, fit_body_, body_model_->faces(), mean_body_, pattern);
   }
   const Params solver(scene_solver_specs(), scene_.solver, "solver");
   morph_steps_ = static_cast<int>(solver.get_int("morph_steps"));
@@ -308,6 +328,7 @@ SimulationResult Simulation::run(const Eigen::MatrixX3d& target_body, const Simu
                        "the scene's body model '" + scene_.body_model + "'");
   check_body_units(target_body, "the target body");
   if (options.start_body) check_body_units(*options.start_body, "the start body");
+  if (!options.start_garment && !options.start_body && !start_refusal_.empty()) throw ConfigError(start_refusal_);
   const Eigen::MatrixX3d& body_start = options.start_body ? *options.start_body : fit_body_;
   const Eigen::MatrixX3d& garment_start = options.start_garment ? *options.start_garment : garment_->mesh.vertices;
   if (body_start.rows() != mean_body_.rows() || garment_start.rows() != garment_->mesh.vertices.rows())
@@ -367,7 +388,12 @@ SimulationResult Simulation::run(const Eigen::MatrixX3d& target_body, const Simu
     const Eigen::MatrixX3d next = body_at(t);
     if (barrier) {
       // The body's move is checked too (barrier_morph.hpp).
-      record(k, true, scene_detail::barrier_morph_step(solver, *surface, next, k, barrier_morph, x, v, result), -1);
+      try {
+        record(k, true, scene_detail::barrier_morph_step(solver, *surface, next, k, barrier_morph, x, v, result), -1);
+      } catch (const scene_detail::MorphBlocked& blocked) {
+        throw Error(scene_detail::why_morph_blocked(blocked, morph_steps_, *garment_, surface->vertices(),
+                                                    body_model_->faces(), mean_body_, solver.settings(), sized_));
+      }
     } else {
       if (surface) surface->update(next);
       record(k, true, solver.step(x, v), -1);
@@ -379,8 +405,8 @@ SimulationResult Simulation::run(const Eigen::MatrixX3d& target_body, const Simu
   }
   solver.set_max_newton_iterations(settle_newton);
   settle(solver, x, v, target_body, morph_steps_, settle_steps_, settle_check_ == "iteration", record, result);
-  measure_drape(solver, energies, x, target_body, garment_->mesh, mean_body_, body_model_->faces(), morph_steps_, options,
-                surface, result);
+  measure_drape(solver, energies, x, target_body, garment_->mesh, mean_body_, body_model_->faces(), morph_steps_, sized_,
+                options, surface, result);
   result.seconds = since(start);
   return result;
 }

@@ -16,7 +16,7 @@ bool fell_off_body(const Eigen::MatrixX3d& x, const Eigen::MatrixX3d& body) {
 }
 
 std::string why_unsettled(const SimulationResult& result, const Eigen::MatrixX3d& x, double tolerance, int settle_steps,
-                          double at_rest_limit, double ease, const Eigen::MatrixX3d& body) {
+                          double at_rest_limit, double ease, const Eigen::MatrixX3d& body, bool sized) {
   if (fell_off_body(x, body)) {
     char fell[400];
     std::snprintf(fell, sizeof fell,
@@ -63,8 +63,10 @@ std::string why_unsettled(const SimulationResult& result, const Eigen::MatrixX3d
     char fit[300];
     std::snprintf(fit, sizeof fit,
                   "; the garment is %.1f %% smaller around than the body's chest or belly, so it is stretched onto the "
-                  "body (size: auto chooses a size at least as large as the body)",
-                  -100.0 * ease);
+                  "body (%s)",
+                  -100.0 * ease,
+                  sized ? "size: auto chooses a size at least as large as the body"
+                        : "grade: auto grades it to each body; the garment has no sizes to choose from");
     out += fit;
   }
   return out;

@@ -12,7 +12,7 @@
 namespace drape::scene_detail {
 
 std::string why_unsettled(const SimulationResult& result, const Eigen::MatrixX3d& x, double tolerance, int settle_steps,
-                          double at_rest_limit, double ease, const Eigen::MatrixX3d& body);
+                          double at_rest_limit, double ease, const Eigen::MatrixX3d& body, bool sized);
 
 // The garment has fallen off the body: all of it below the body's lowest
 // point (a loose tube slides down over the hips and legs: the contact has no

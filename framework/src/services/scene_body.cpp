@@ -237,6 +237,10 @@ SimulationResult drape_scene_body(const SceneBody& body, SimulationOptions optio
     options.target_pose = &body.pose;
     options.unposed_target = &body.unposed;
   }
+  // Refused as the cloth's own measure says, before start_fit_hint's (the
+  // garment's 3D shape, which a pattern cut small can share with one that fits).
+  if (!options.start_garment && !options.start_body && !body.simulation->start_refusal().empty())
+    throw ConfigError(body.simulation->start_refusal());
   SimulationResult r = [&] {
     try {
       return body.simulation->run(body.vertices, options);

@@ -5,7 +5,9 @@
 
 #include <Eigen/Geometry>
 
+#include <algorithm>
 #include <numeric>
+#include <system_error>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -87,9 +89,27 @@ std::vector<int> part_of_vertex(const PolygonMesh& outfit, const std::vector<std
   return part;
 }
 
+// An outfit folder that is not there: the outfits that are, and the close
+// ones first (a misspelled name otherwise reads as a missing .obj).
+void require_outfit(const fs::path& dir) {
+  std::error_code ec;
+  if (fs::is_directory(dir, ec)) return;
+  const fs::path clothes = dir.parent_path();
+  std::vector<std::string> outfits;
+  for (const fs::directory_entry& e : fs::directory_iterator(clothes, ec))
+    if (e.is_directory(ec)) outfits.push_back(e.path().filename().string());
+  std::sort(outfits.begin(), outfits.end());
+  std::string text = "no MakeHuman outfit '" + dir.filename().string() + "' in " + clothes.string();
+  if (outfits.empty()) throw ConfigError(text + " (the folder has no outfits" + (ec ? ": " + ec.message() : std::string()) + ")");
+  text += " (its outfits:";
+  for (const std::string& o : outfits) text += " " + o;
+  throw ConfigError(text + ")" + did_you_mean(dir.filename().string(), outfits));
+}
+
 }  // namespace
 
 Garment load_clothes(const Model& model, const fs::path& dir, const Sliders& body, const std::string& piece_text) {
+  require_outfit(dir);
   const std::string name = dir.filename().string();
   const fs::path obj = dir / (name + ".obj"), clo = dir / (name + ".mhclo");
   const PolygonMesh outfit = read_obj_polygons(obj);
@@ -110,6 +130,7 @@ Garment load_clothes(const Model& model, const fs::path& dir, const Sliders& bod
 
   const Eigen::MatrixX3d fitted = model.to_body_frame(fit_clothes(binding, morphed), morphed);
   Garment g;
+  g.body_model = "makehuman";  // the .mhclo binds it to MakeHuman's body (the plugin's body name)
   g.mesh.vertices.resize(static_cast<Eigen::Index>(kept.size()), 3);
   for (std::size_t i = 0; i < kept.size(); ++i) g.mesh.vertices.row(static_cast<Eigen::Index>(i)) = fitted.row(kept[i]);
   std::vector<Eigen::Vector3i> faces, uv_faces;

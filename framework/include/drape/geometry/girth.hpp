@@ -16,11 +16,19 @@ struct Girth {
   double tape = 0.0;      // m: perimeter of the loop's convex hull
   double length = 0.0;    // m: the loop's own length
   int loops = 0;          // closed loops the plane cut (arms, legs, ...)
+  // m: the loop's length in the mesh's material space (the cloth at rest:
+  // what the loop measures unstretched), when a material space is given;
+  // else 0. A garment crumpled in 3D keeps its material length, one whose
+  // pattern is cut small has a short one.
+  double material_length = 0.0;
 };
 
 // Faces lying in the plane or touching it at a single vertex add nothing; the
 // height is nudged by 1e-9 m off any vertex so that every cut is a clean one.
+// With `uv` and `uv_faces` (a material coordinate per corner, in metres, as
+// a garment's Mesh has them), the loop's material_length is measured too.
 Girth horizontal_girth(const Eigen::MatrixX3d& vertices, const Eigen::MatrixX3i& faces, double height,
-                       const Eigen::Vector2d& centre);
+                       const Eigen::Vector2d& centre, const Eigen::MatrixX2d* uv = nullptr,
+                       const Eigen::MatrixX3i* uv_faces = nullptr);
 
 }  // namespace drape::geometry

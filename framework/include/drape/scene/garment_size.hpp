@@ -49,6 +49,13 @@ double body_girth(const Eigen::MatrixX3d& body, const Eigen::MatrixX3i& faces);
 // it goes around the body there.
 double garment_girth(const Eigen::MatrixX3d& garment, const Eigen::MatrixX3i& garment_faces,
                      const Eigen::MatrixX3d& mean_body);
+// The same loops measured in the garment's material space (its cloth at
+// rest, Mesh::uv in metres): the narrowest over the band, NaN when the
+// garment has no material space or no loop goes around the body. What the
+// cloth spans unstretched, where garment_girth measures the 3D shape (a
+// pattern cut small but modelled around the body, or a full one crumpled
+// inside it, differ there).
+double garment_material_girth(const Mesh& garment, const Eigen::MatrixX3d& mean_body);
 // The garment's ease on `body`: garment_girth / body_girth - 1 (negative: the
 // garment is smaller than the body). NaN when either cannot be measured.
 double garment_ease(const Eigen::MatrixX3d& garment, const Eigen::MatrixX3i& garment_faces,

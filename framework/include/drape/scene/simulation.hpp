@@ -113,6 +113,11 @@ class Simulation {
   // girth with the mean proportions (drape/bodies/fit_body.hpp).
   const Eigen::MatrixX3d& fit_body() const { return fit_body_; }
   const BodyRequest& fit_request() const { return fit_request_; }
+  // Why the garment cannot be put on fit_body() ("" when it can): its
+  // cloth, measured at rest in its material space, is shorter around than
+  // the body by more than a garment is stretched to be put on. run()
+  // refuses such a start before any work (a caller's own start state aside).
+  const std::string& start_refusal() const { return start_refusal_; }
   // The scene's target body as a request (its shape: BMI, height, sex), to
   // change before solving (a command line's --girth adds proportions).
   BodyRequest target_request() const;
@@ -156,6 +161,8 @@ class Simulation {
   double design_loop_ = 0.0, placed_loop_ = 0.0;
   Eigen::MatrixX3d fit_body_;
   BodyRequest fit_request_;
+  std::string start_refusal_;
+  bool sized_ = false;  // the garment has sizes to choose from (size: auto); else grade: auto is the remedy named
   std::vector<Params> effect_params_;
   bool needs_body_ = false;
   int morph_steps_ = 0, settle_steps_ = 0, morph_newton_ = 3;

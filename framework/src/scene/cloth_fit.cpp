@@ -1,0 +1,147 @@
+// The garment's cloth around a body, in words (cloth_fit.hpp).
+#include "cloth_fit.hpp"
+
+#include <drape/materials/materials.hpp>
+#include <drape/scene/garment_size.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+
+namespace drape::scene_detail {
+namespace {
+
+// A material's stretching stiffness at rest (N/m): the larger of its warp
+// and weft coefficients, as ArcSim's tables and drape's linear model give them.
+double stretch_stiffness(const Material& m) {
+  const Eigen::Vector4d& k = m.model == Material::Model::Arcsim ? m.arcsim.stretching[0] : m.stretch;
+  return std::max(std::abs(k[0]), std::abs(k[2]));
+}
+
+// The cloth's narrowest loop at rest over the chest band against `body`'s
+// chest or belly: ease = loop / girth - 1. NaN when either cannot be measured.
+double cloth_ease(const Garment& garment, const Eigen::MatrixX3d& body, const Eigen::MatrixX3i& body_faces,
+                  const Eigen::MatrixX3d& mean_body, double* loop = nullptr, double* around = nullptr) {
+  const double l = garment_material_girth(garment.mesh, mean_body);
+  if (!std::isfinite(l)) return std::numeric_limits<double>::quiet_NaN();
+  double g = 0.0;
+  try {
+    g = body_girth(body, body_faces);
+  } catch (const ConfigError&) {
+    return std::numeric_limits<double>::quiet_NaN();
+  }
+  if (loop) *loop = l;
+  if (around) *around = g;
+  return l / g - 1.0;
+}
+
+}  // namespace
+
+std::string cloth_too_short(const Garment& garment, const Eigen::MatrixX3d& start_body, const Eigen::MatrixX3i& body_faces,
+                            const Eigen::MatrixX3d& mean_body, const PatternSource& pattern) {
+  double loop = 0.0, around = 0.0;
+  const double ease = cloth_ease(garment, start_body, body_faces, mean_body, &loop, &around);
+  if (!std::isfinite(ease) || around / loop - 1.0 <= kMaxStartStretch) return "";
+  char text[700];
+  std::snprintf(text, sizeof text,
+                "the garment's cloth is %.1f %% shorter around than the body it is put on before the body morphs (its "
+                "narrowest loop over the chest band measures %.3f m at rest, in its material space; the body's chest or "
+                "belly %.3f m): it would start stretched by %.0f %% around, more than the %.0f %% a garment is put on "
+                "with, so it cannot be put on; ",
+                -100.0 * ease, loop, around, 100.0 * (around / loop - 1.0), 100.0 * kMaxStartStretch);
+  std::string out = text;
+  if (pattern.has_uv_scale && !pattern.from_shape) {
+    // The uv_scale whose cloth is as long around as the body, rounded up in its second digit.
+    const double wanted = pattern.uv_scale * around / loop;
+    const double step = std::pow(10.0, std::floor(std::log10(wanted)) - 1);
+    std::snprintf(text, sizeof text,
+                  "garment: {params: {uv_scale: %.3g}} makes its cloth as long around as the body (its UVs times "
+                  "uv_scale are its pattern in metres)",
+                  std::ceil(wanted / step - 1e-9) * step);
+    return out + text;
+  }
+  if (pattern.from_shape)
+    return out + "its shape, laid flat, is its cloth (material_space: rest): model it around the body model's mean "
+                 "body (drape body writes it), not inside it";
+  return out + "its pattern is cut smaller than the body (a grade does not change that: a graded garment is put on a "
+               "body graded alike)";
+}
+
+std::string why_morph_blocked(const MorphBlocked& blocked, int morph_steps, const Garment& garment,
+                              const Eigen::MatrixX3d& body_now, const Eigen::MatrixX3i& body_faces,
+                              const Eigen::MatrixX3d& mean_body, const SolverSettings& solver, bool sized) {
+  char text[900];
+  std::snprintf(text, sizeof text,
+                "simulate: the body grows into the garment faster than the contact can push it away: morph step %d of %d "
+                "is blocked after %d partial moves, which took the body %.1f %% of the step's way",
+                blocked.step, morph_steps, blocked.cuts, 100.0 * blocked.done);
+  std::string out = text;
+  if (blocked.stalled) {
+    std::snprintf(text, sizeof text, " (the last %d together %.2g %%: stopped there, as the cloth no longer gives way)",
+                  kStallCuts, 100.0 * blocked.last_moves);
+    out += text;
+  }
+  double loop = 0.0, around = 0.0;
+  const double ease = cloth_ease(garment, body_now, body_faces, mean_body, &loop, &around);
+  if (std::isfinite(ease) && ease < 0) {
+    std::snprintf(text, sizeof text,
+                  "; the garment's cloth is %.1f %% shorter around than the body where it stopped (its narrowest loop "
+                  "%.3f m at rest, the body's chest or belly %.3f m): the garment does not fit this body (%s)",
+                  -100.0 * ease, loop, around,
+                  sized ? "size: auto chooses a size at least as large as the body" : "grade: auto grades it to each body");
+    return out + text;
+  }
+  if (std::isfinite(ease)) {
+    std::snprintf(text, sizeof text,
+                  "; the garment's cloth is %.1f %% longer around than the body there, so its girth is not what blocks it",
+                  100.0 * ease);
+    out += text;
+  }
+  // What keeps the cloth from getting out of the body's way.
+  std::vector<std::string> causes;
+  const Material knit = MaterialTable::builtin().get("gray-interlock");
+  double stiffest = 0.0;
+  std::string stiffest_name;
+  for (const Material& m : garment.materials)
+    if (stretch_stiffness(m) > stiffest) stiffest = stretch_stiffness(m), stiffest_name = m.name;
+  const double ratio = stiffest / stretch_stiffness(knit);
+  if (ratio > 10) {
+    std::snprintf(text, sizeof text,
+                  "its material '%s' is %.3g times as stiff in stretching as ArcSim's knit (gray-interlock): a cloth that "
+                  "barely stretches must be cut larger than the body everywhere, and is pushed out only as fast as it bends",
+                  stiffest_name.c_str(), ratio);
+    causes.emplace_back(text);
+  }
+  const double default_step = SolverSettings{}.time_step;
+  if (solver.time_step < 0.1 * default_step) {
+    std::snprintf(text, sizeof text,
+                  "the time step %.3g s (the default %.3g s) lets the cloth move only so far a step against its inertia",
+                  solver.time_step, default_step);
+    causes.emplace_back(text);
+  }
+  double edges = 0.0;
+  int count = 0;
+  const Eigen::MatrixX3d& x = garment.mesh.vertices;
+  for (Eigen::Index f = 0; f < garment.mesh.faces.rows(); ++f)
+    for (int k = 0; k < 3; ++k, ++count)
+      edges += (x.row(garment.mesh.faces(f, k)) - x.row(garment.mesh.faces(f, (k + 1) % 3))).norm();
+  const double mean_edge = count ? edges / count : 0.0;
+  if (mean_edge > 0.06) {  // about twice the coarse shirt's
+    std::snprintf(text, sizeof text,
+                  "its faces are long (edges %.1f cm on average, the coarse shirt's 3.3 cm): a flat face spans the "
+                  "body's curves, and the body's growth meets it before the contact can tilt it",
+                  100.0 * mean_edge);
+    causes.emplace_back(text);
+  }
+  if (causes.empty()) {
+    out += "; nothing in the scene's material, time step or mesh stands out";
+  } else {
+    out += "; ";
+    for (std::size_t i = 0; i < causes.size(); ++i) out += (i ? "; and " : "") + causes[i];
+  }
+  std::snprintf(text, sizeof text, " (more morph_steps, now %d, give the contact smaller moves to make)", morph_steps);
+  return out + text;
+}
+
+}  // namespace drape::scene_detail

@@ -1,0 +1,55 @@
+#pragma once
+// What a garment's cloth measures around (its material space: the cloth at
+// rest) against a body, in words, for the two places a scene learns that a
+// garment does not go on: before the first step (the body it is put on is
+// larger around than the cloth can be stretched to) and when a morph step
+// stalls (barrier_morph.hpp), where the girth says whether the garment is
+// too small or something else holds the cloth back.
+#include "barrier_morph.hpp"
+
+#include <drape/energy.hpp>
+#include <drape/physics/solver.hpp>
+
+#include <Eigen/Core>
+
+#include <string>
+
+namespace drape::scene_detail {
+
+// A garment must go around the body it is put on, stretched by at most
+// this much around (its cloth's narrowest loop over the chest band at
+// least 1 / 1.25 = 80 % of the body's chest or belly). Measured: the coarse
+// shirt cut to 0.7 of its pattern (a loop of 0.787 m at rest around the
+// mean body's 1.016 m, 29 % to stretch) dressed without crossing, then took
+// 55 s to a drape whose edges were stretched by 11 % at the median and up
+// to 107 %; every shipped garment starts with 0.7-9.6 % more cloth around
+// than the body.
+inline constexpr double kMaxStartStretch = 0.25;
+
+// How a scene's garment gets its material space, for the remedy a refusal
+// names. A grade is not one: a graded garment is put on the body of its
+// girth (fit_body.hpp), so its cloth and that body grow alike.
+struct PatternSource {
+  bool has_uv_scale = false;  // the template takes uv_scale (the mesh garment)
+  double uv_scale = 1.0;      // its value in the scene
+  bool from_shape = false;    // material_space: rest (the shape laid flat is the cloth)
+};
+
+// "" when the garment's cloth goes around `start_body` (the body the morph
+// starts from) stretched by no more than kMaxStartStretch, or cannot be
+// measured (no material space, or no loop around the torso); else why not,
+// with what makes the cloth as long around as the body.
+std::string cloth_too_short(const Garment& garment, const Eigen::MatrixX3d& start_body,
+                            const Eigen::MatrixX3i& body_faces, const Eigen::MatrixX3d& mean_body,
+                            const PatternSource& pattern);
+
+// Why the morph stalled, in words: what the body made of the step, the
+// cloth's girth against the body's there, and when that is not the cause,
+// what in the scene keeps the cloth from giving way (a stiff material, a
+// short time step, long faces). `sized`: the garment has sizes to choose
+// from (else grade: auto is the remedy to name).
+std::string why_morph_blocked(const MorphBlocked& blocked, int morph_steps, const Garment& garment,
+                              const Eigen::MatrixX3d& body_now, const Eigen::MatrixX3i& body_faces,
+                              const Eigen::MatrixX3d& mean_body, const SolverSettings& solver, bool sized);
+
+}  // namespace drape::scene_detail

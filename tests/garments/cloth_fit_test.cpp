@@ -1,0 +1,171 @@
+// What a garment's cloth measures around at rest, and the two refusals built
+// on it: a garment whose cloth cannot go around the body it is put on
+// (refused before any work, with the uv_scale that fits), and a morph the
+// contact cannot finish (said in words: too small, or what else holds the
+// cloth back). The loops' lengths are checked against the unrolled pattern
+// by hand; the refusals against garments made small in their pattern only,
+// in their shape only, or in both.
+#include <drape/geometry/girth.hpp>
+#include <drape/io/mesh_io.hpp>
+#include <drape/materials/materials.hpp>
+#include <drape/scene/scene.hpp>
+#include <drape/scene/simulation.hpp>
+
+#include <catch2/catch.hpp>
+
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <string>
+
+#include "../../framework/src/scene/cloth_fit.hpp"
+#include "test_support.hpp"
+
+using namespace drape;
+namespace fs = std::filesystem;
+
+namespace {
+
+// A tube about the y axis whose pattern is `pattern` times its own unrolled
+// length (test::pattern_tube).
+Mesh fit_tube(double r, double y0, double y1, double pattern = 1.0, int around = 32, int up = 8) {
+  return test::pattern_tube(r, y0, y1, around, up, pattern);
+}
+
+std::string fit_scene_text(const fs::path& file, const std::string& extra = "", const std::string& params = "") {
+  return "body: {model: parametric}\n"
+         "garment: {template: mesh, params: {file: " + file.string() + params + "}}\n"
+         "effects: {gravity: {}, stretching: {}, bending: {}, barrier: {}}\n"
+         "solver: {morph_steps: 2, settle_steps: 2}\n" + extra;
+}
+
+}  // namespace
+
+TEST_CASE("girth: a loop's material length is the pattern's, whatever the 3D shape", "[geometry][girth]") {
+  const double r = 0.3;
+  const int around = 32;
+  const double chords = 2 * around * r * std::sin(M_PI / around);  // the 3D loop, by hand
+  for (const double pattern : {1.0, 0.7}) {
+    const Mesh m = fit_tube(r, 0.0, 1.0, pattern, around);
+    const geometry::Girth g = geometry::horizontal_girth(m.vertices, m.faces, 0.43, {0, 0}, &m.uv, &m.uv_faces);
+    REQUIRE(g.found);
+    CHECK(g.length == Approx(chords).epsilon(1e-9));
+    CHECK(g.material_length == Approx(pattern * 2 * M_PI * r).epsilon(1e-9));  // the unrolled pattern
+  }
+  // Shrunk in 3D (a full pattern crumpled smaller): the material length stays.
+  Mesh small = fit_tube(r, 0.0, 1.0);
+  small.vertices.col(0) *= 0.5;
+  small.vertices.col(2) *= 0.5;
+  const geometry::Girth g = geometry::horizontal_girth(small.vertices, small.faces, 0.43, {0, 0}, &small.uv, &small.uv_faces);
+  CHECK(g.length == Approx(0.5 * chords).epsilon(1e-9));
+  CHECK(g.material_length == Approx(2 * M_PI * r).epsilon(1e-9));
+  // Without a material space: 0.
+  CHECK(geometry::horizontal_girth(small.vertices, small.faces, 0.43, {0, 0}).material_length == 0.0);
+}
+
+TEST_CASE("a garment whose cloth is cut too small to go around the body is refused before any work", "[garments][fit]") {
+  test::TempDir dir;
+  // A tube about the mean body's chest (its band: 58-72 % of 1.75 m), 1.76 m
+  // around in 3D, clear of the torso.
+  const double r = 0.24, y0 = 1.0, y1 = 1.22;
+  write_mesh(dir / "fits.obj", fit_tube(r, y0, y1));
+  write_mesh(dir / "cut_small.obj", fit_tube(r, y0, y1, 0.4));  // its pattern 0.603 m around
+  const Simulation fits(test::plugins(), parse_scene(fit_scene_text(dir / "fits.obj")));
+  CHECK(fits.start_refusal().empty());
+  const Simulation small(test::plugins(), parse_scene(fit_scene_text(dir / "cut_small.obj")));
+  const std::string why = small.start_refusal();
+  CHECK_THAT(why, Catch::Contains("cannot be put on") && Catch::Contains("0.603 m at rest"));
+  // The uv_scale named makes the pattern as long around as the body: 0.4 x scale x 2 pi r >= the body's girth.
+  const double body = body_girth(small.fit_body(), small.body_model().faces());
+  const double scale = std::stod(why.substr(why.find("uv_scale: ") + 10));
+  CHECK(scale * 0.4 * 2 * M_PI * r >= body);
+  CHECK(scale * 0.4 * 2 * M_PI * r < 1.01 * body);
+  // run() refuses it before the first step (a step would be seen by on_step).
+  int steps = 0;
+  SimulationOptions options;
+  options.on_step = [&](const SimulationStep&) { ++steps; };
+  CHECK_THROWS_WITH(small.run(small.body_vertices(small.target_shape()), options), Catch::Contains("cannot be put on"));
+  CHECK(steps == 0);
+  // Scaled as told, its cloth goes around the body.
+  char scaled[80];
+  std::snprintf(scaled, sizeof scaled, ", uv_scale: %.6g", scale);
+  CHECK(Simulation(test::plugins(), parse_scene(fit_scene_text(dir / "cut_small.obj", "", scaled))).start_refusal().empty());
+  // The shape laid flat as its cloth (material_space: rest), modelled inside the body: told to model it around it.
+  Mesh inside = fit_tube(0.4 * r, y0, y1);
+  write_mesh(dir / "inside.obj", inside);
+  CHECK_THAT(Simulation(test::plugins(), parse_scene(fit_scene_text(dir / "inside.obj", "", ", material_space: rest")))
+                 .start_refusal(),
+             Catch::Contains("cannot be put on") && Catch::Contains("model it around"));
+  // A full pattern modelled smaller than the body (its 3D loop 0.6 of the
+  // tube's, inside the torso): its cloth goes around, so this is not why it
+  // would be refused.
+  Mesh crumpled = fit_tube(r, y0, y1);
+  crumpled.vertices.col(0) *= 0.6;
+  crumpled.vertices.col(2) *= 0.6;
+  write_mesh(dir / "crumpled.obj", crumpled);
+  CHECK(Simulation(test::plugins(), parse_scene(fit_scene_text(dir / "crumpled.obj"))).start_refusal().empty());
+}
+
+// The words of a blocked morph, on what each cause measures: a cloth shorter
+// around than the body, a stiff material, a short time step, long faces.
+TEST_CASE("a blocked morph names its cause: too small, a stiff material, a short step or long faces", "[garments][fit]") {
+  test::TempDir dir;
+  const double r = 0.24, y0 = 1.0, y1 = 1.22;
+  write_mesh(dir / "fits.obj", fit_tube(r, y0, y1));
+  const Simulation sim(test::plugins(), parse_scene(fit_scene_text(dir / "fits.obj")));
+  const Eigen::MatrixX3d& body = sim.fit_body();
+  const Eigen::MatrixX3i& faces = sim.body_model().faces();
+  const scene_detail::MorphBlocked stalled("", 1, 9, 0.651, 2e-4, true);
+  Garment garment = sim.garment();
+  SolverSettings solver;
+  // The tube's cloth (1.51 m) is longer around than the mean body: not the girth, and nothing else stands out.
+  std::string why = scene_detail::why_morph_blocked(stalled, 2, garment, body, faces, sim.mean_body(), solver, false);
+  CHECK_THAT(why, Catch::Contains("morph step 1 of 2") && Catch::Contains("65.1 %") &&
+                      Catch::Contains("stopped there") && Catch::Contains("girth is not what blocks it") &&
+                      Catch::Contains("nothing in the scene"));
+  // Aluminium: 1.8e6 N/m against the knit's 34.477 (ArcSim's tables, by hand: 52,200 times).
+  garment.materials[0] = MaterialTable::builtin().get("aluminium");
+  why = scene_detail::why_morph_blocked(stalled, 2, garment, body, faces, sim.mean_body(), solver, false);
+  CHECK_THAT(why, Catch::Contains("5.22e+04 times as stiff"));
+  // A time step a thousandth of the default.
+  garment = sim.garment();
+  solver.time_step = 1e-4;
+  why = scene_detail::why_morph_blocked(stalled, 2, garment, body, faces, sim.mean_body(), solver, false);
+  CHECK_THAT(why, Catch::Contains("the time step 0.0001 s"));
+  CHECK_THAT(why, !Catch::Contains("times as stiff"));
+  // The cloth cut to 0.4 of the body: too small, and the remedy named for a garment without sizes.
+  solver = SolverSettings{};
+  garment.mesh.uv *= 0.4;
+  why = scene_detail::why_morph_blocked(stalled, 2, garment, body, faces, sim.mean_body(), solver, false);
+  CHECK_THAT(why, Catch::Contains("does not fit this body") && Catch::Contains("grade: auto"));
+  why = scene_detail::why_morph_blocked(stalled, 2, garment, body, faces, sim.mean_body(), solver, true);
+  CHECK_THAT(why, Catch::Contains("size: auto"));
+  // Long faces: the tube with 8 columns around (edges about 18 cm).
+  write_mesh(dir / "coarse.obj", fit_tube(r, y0, y1, 1.0, 8, 2));
+  const Simulation coarse(test::plugins(), parse_scene(fit_scene_text(dir / "coarse.obj")));
+  why = scene_detail::why_morph_blocked(stalled, 2, coarse.garment(), body, faces, sim.mean_body(), solver, false);
+  CHECK_THAT(why, Catch::Contains("its faces are long"));
+}
+
+// The coarse shirt in aluminium foil on the mean body (it fits the knit):
+// the body's last centimetres of growth meet foil that cannot stretch, the
+// cloth stops giving way after the first cut, and the run stops at the
+// stall, within a few cuts instead of 64 (100 s before), naming the
+// material's stiffness, not the girth.
+TEST_CASE("a morph into cloth that no longer gives way stops at the stall and says why", "[garments][fit]") {
+  test::TempDir dir;
+  std::ofstream(dir / "foil.yaml") << "base: " << (test::source_dir() / "graphs/scenes/tshirt_coarse.yaml").string()
+                                   << "\nsolver: {morph_steps: 2, settle_steps: 2}\nmaterials: {knit: aluminium}\n";
+  const Simulation sim(test::plugins(), load_scene(dir / "foil.yaml"));
+  int steps = 0;
+  SimulationOptions options;
+  options.on_step = [&](const SimulationStep&) { ++steps; };
+  const std::string why = test::message_of([&] { sim.run(sim.body_vertices(sim.target_shape()), options); });
+  INFO(why);
+  CHECK_THAT(why, Catch::Contains("stopped there") && Catch::Contains("girth is not what blocks it") &&
+                      Catch::Contains("times as stiff"));
+  const int cuts = std::stoi(why.substr(why.find("blocked after ") + 14));
+  CHECK(cuts < 64);
+  CHECK(cuts >= scene_detail::kStallCuts);
+  CHECK(steps == 0);  // stopped in the first morph step
+}
