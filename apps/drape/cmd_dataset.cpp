@@ -57,6 +57,26 @@ std::vector<long> drop_list(const po::variables_map& vm) {
   return out;
 }
 
+// The done rows of dataset files (a shard's unfinished samples are not
+// copied, so they are not counted as dropped either).
+std::size_t done_rows(const std::vector<fs::path>& files) {
+  std::size_t n = 0;
+  for (const fs::path& f : files) n += DatasetReader(f).indices().size();
+  return n;
+}
+
+// " (--drop: N global indices, M rows)": the rows a drop removed, which are
+// more than the indices named when a merge of the same shard twice (the
+// oversampling of docs/training.md) repeats an index.
+std::string dropped_text(std::size_t indices, std::size_t rows_before, std::size_t rows_after) {
+  if (indices == 0) return "";
+  const std::size_t rows = rows_before >= rows_after ? rows_before - rows_after : 0;
+  std::string out = " (" + std::to_string(indices) + " global ind" + (indices == 1 ? "ex" : "ices") + " dropped: " +
+                    std::to_string(rows) + " row" + (rows == 1 ? "" : "s");
+  if (rows > indices) out += ", as an index repeats among the inputs";
+  return out + ")";
+}
+
 int merge(const std::vector<std::string>& args) {
   po::options_description opts("drape dataset merge");
   opts.add_options()("out,o", po::value<std::string>()->required(), "the merged dataset to write")(
@@ -76,9 +96,10 @@ int merge(const std::vector<std::string>& args) {
   for (const auto& s : vm["shards"].as<std::vector<std::string>>()) shards.emplace_back(s);
   refuse_existing(out, vm);
   const std::vector<long> drop = drop_list(vm);
+  const std::size_t before = drop.empty() ? 0 : done_rows(shards);
   const std::size_t n = merge_datasets(shards, out, !vm.count("allow-incomplete"), vm.count("mixed-sizes") > 0, drop);
   std::cout << "merged " << n << " samples from " << shards.size() << " shard" << (shards.size() == 1 ? "" : "s")
-            << " into " << out.string() << (drop.empty() ? "" : " (" + std::to_string(drop.size()) + " dropped)") << "\n";
+            << " into " << out.string() << dropped_text(drop.size(), before, n) << "\n";
   return 0;
 }
 
@@ -96,9 +117,10 @@ int slim(const std::vector<std::string>& args) {
   if (!fs::exists(in)) throw ConfigError(SourceLocation{in.string(), 0}, "no such file");
   refuse_existing(out, vm);
   const std::vector<long> drop = drop_list(vm);
+  const std::size_t before = drop.empty() ? 0 : done_rows({in});
   const std::size_t n = slim_dataset(in, out, drop);
   std::cout << "wrote " << out.string() << ": " << n << " samples without body vertices"
-            << (drop.empty() ? "" : " (" + std::to_string(drop.size()) + " dropped)") << ", " << fs::file_size(out) / 1024
+            << dropped_text(drop.size(), before, n) << ", " << fs::file_size(out) / 1024
             << " KiB (" << fs::file_size(in) / 1024 << " KiB with them)\n";
   return 0;
 }

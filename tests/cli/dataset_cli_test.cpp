@@ -174,7 +174,10 @@ TEST_CASE("drape dataset slim and expand: the bodies rebuilt by the scene's body
   // --drop by the generator's global index (a count of 3 numbers them 0-2): listed in the copy's info.
   const std::string dropped = (dir / "dropped.h5").string();
   REQUIRE(test::run_drape("dataset slim " + data + " --out " + dropped + " --drop 1", out) == 0);
-  CHECK_THAT(out, Catch::Contains("2 samples without body vertices (1 dropped)"));
+  CHECK_THAT(out, Catch::Contains("2 samples without body vertices (1 global index dropped: 1 row)"));
+  // The same file merged twice (oversampling) repeats each index: a drop removes both rows, and says so.
+  REQUIRE(test::run_drape("dataset merge " + data + " " + data + " --out " + (dir / "twice.h5").string() + " --drop 1", out) == 0);
+  CHECK_THAT(out, Catch::Contains("merged 4 samples") && Catch::Contains("(1 global index dropped: 2 rows, as an index repeats"));
   REQUIRE(test::run_drape("dataset info " + dropped, out) == 0);
   CHECK_THAT(out, Catch::Contains("dropped: 1"));
   CHECK(test::run_drape("dataset slim " + data + " --out " + (dir / "x.h5").string() + " --drop 3", out) == 2);

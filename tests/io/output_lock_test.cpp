@@ -41,3 +41,20 @@ TEST_CASE("an output in a missing folder is refused before the lock is taken", "
   CHECK_THROWS_WITH(OutputLock(dir / "missing" / "m.h5", "drape train"), Catch::Contains("folder") && Catch::Contains("does not exist"));
   CHECK_FALSE(fs::exists(dir / "missing"));
 }
+
+// The lock covers <out>; drape's own working files of <out> are refused as
+// outputs, so that no job writes over another's unfinished dataset, lock or
+// training state (a merge --out z.h5.partial --force once replaced a
+// running generate's partial file).
+TEST_CASE("an output named as another output's working file is refused", "[io][lock]") {
+  test::TempDir dir;
+  CHECK_THROWS_WITH(OutputLock(dir / "z.h5.partial", "drape dataset merge"),
+                    Catch::Contains("unfinished file a job writing '" + (dir / "z.h5").string()) &&
+                        Catch::Contains("another name"));
+  CHECK_THROWS_WITH(OutputLock(dir / "z.h5.lock", "drape dataset merge"), Catch::Contains("the lock of a job"));
+  CHECK_THROWS_WITH(OutputLock(dir / "m.h5.state", "drape dataset merge"), Catch::Contains("training state of the model"));
+  CHECK_FALSE(fs::exists(dir / "z.h5.partial.lock"));
+  // Names that only look alike are a user's own.
+  CHECK_NOTHROW(OutputLock(dir / "notes.state", "drape x"));
+  CHECK_NOTHROW(OutputLock(dir / "partial.h5", "drape x"));
+}

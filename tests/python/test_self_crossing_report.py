@@ -42,6 +42,6 @@ def test_generate_names_the_drapes_that_cross_themselves(tmp_path):
     words = suggested.replace("SLIM", str(tmp_path / "slim.h5")).split()
     assert words[-2:] == ["--drop", "0"], suggested
     slimmed, _ = run_drape(*words)
-    assert "0 samples without body vertices (1 dropped)" in slimmed
+    assert "0 samples without body vertices (1 global index dropped: 1 row)" in slimmed
     info, _ = run_drape("dataset", "info", tmp_path / "slim.h5")
     assert "dropped: 0" in info

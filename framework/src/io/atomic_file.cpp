@@ -2,15 +2,66 @@
 #include <drape/errors.hpp>
 #include <drape/io/write_failure.hpp>
 
+#include <signal.h>
 #include <unistd.h>
 
 #include <atomic>
+#include <cerrno>
+#include <climits>
 #include <fstream>
 #include <string>
 
 namespace fs = std::filesystem;
 
 namespace drape {
+namespace {
+
+// This machine's name, in the temporaries' names: on a folder shared by the
+// machines of a cluster, a process is known alive or dead only on its own.
+std::string host_name() {
+  char name[HOST_NAME_MAX + 1] = {};
+  if (::gethostname(name, sizeof name - 1) != 0 || !name[0]) return "host";
+  std::string out = name;
+  for (char& c : out)
+    if (c == '/' || c == '@') c = '_';
+  return out;
+}
+
+// A temporary of `target` left by a process of this machine that is gone (a
+// job killed mid-write: the rename that would have moved it into place never
+// came). Named as write_atomically names them: .<stem>.tmp<pid>-<n>@<host><ext>.
+bool stale_temporary(const std::string& name, const fs::path& target, const std::string& host) {
+  const std::string head = "." + target.stem().string() + ".tmp", tail = "@" + host + target.extension().string();
+  if (name.size() <= head.size() + tail.size() || name.compare(0, head.size(), head) != 0 ||
+      name.compare(name.size() - tail.size(), tail.size(), tail) != 0)
+    return false;
+  const std::string middle = name.substr(head.size(), name.size() - head.size() - tail.size());  // <pid>-<n>
+  const std::size_t dash = middle.find('-');
+  if (dash == 0 || dash == std::string::npos || middle.find_first_not_of("0123456789-") != std::string::npos) return false;
+  long pid = 0;
+  try {
+    pid = std::stol(middle.substr(0, dash));
+  } catch (const std::exception&) {
+    return false;
+  }
+  if (pid <= 0 || pid == ::getpid()) return false;
+  return ::kill(static_cast<pid_t>(pid), 0) != 0 && errno == ESRCH;  // (EPERM: alive, another user's)
+}
+
+// Removes the temporaries of `target` that killed jobs of this machine left
+// in its folder (a killed expand of a full dataset left 18 MB a kill).
+void remove_stale_temporaries(const fs::path& dir, const fs::path& target, const std::string& host) {
+  std::error_code ec;
+  for (fs::directory_iterator it(dir, ec), end; !ec && it != end; it.increment(ec)) {
+    const std::string name = it->path().filename().string();
+    if (stale_temporary(name, target, host)) {
+      std::error_code ignored;
+      fs::remove(it->path(), ignored);
+    }
+  }
+}
+
+}  // namespace
 
 void write_atomically(const fs::path& target, const std::function<void(const fs::path&)>& write) {
   static std::atomic<unsigned> counter{0};
@@ -19,9 +70,11 @@ void write_atomically(const fs::path& target, const std::function<void(const fs:
   // A missing or read-only folder is the user's to fix: ConfigError (exit 2).
   if (const std::string cause = write_failure_cause(target); !cause.empty())
     throw ConfigError("cannot write '" + target.string() + "': " + cause);
+  static const std::string host = host_name();
+  remove_stale_temporaries(dir, target, host);
   // Keep the extension last: some writers (assimp) pick the format from it.
   const fs::path tmp = dir / ("." + target.stem().string() + ".tmp" + std::to_string(::getpid()) + "-" +
-                              std::to_string(counter++) + target.extension().string());
+                              std::to_string(counter++) + "@" + host + target.extension().string());
   try {
     write(tmp);
   } catch (const Error& e) {

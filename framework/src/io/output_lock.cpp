@@ -17,7 +17,31 @@ namespace drape {
 
 fs::path OutputLock::lock_file(const fs::path& output) { return fs::path(output.string() + ".lock"); }
 
+namespace {
+
+// An output named as one of drape's working files of another output: a
+// job's unfinished dataset (<out>.partial), its lock (<out>.lock), a
+// training's state (<model>.h5.state). The lock below covers <out>, not
+// them, so a merge --out z.h5.partial --force replaced a running generate's
+// partial file and the generate then sealed another run's drapes as its own.
+void refuse_working_file_name(const fs::path& output) {
+  const std::string name = output.filename().string();
+  for (const std::string suffix : {".partial", ".lock", ".state"}) {
+    if (name.size() <= suffix.size() || name.compare(name.size() - suffix.size(), suffix.size(), suffix) != 0) continue;
+    const fs::path owner = output.parent_path() / name.substr(0, name.size() - suffix.size());
+    if (suffix == ".state" && owner.extension() != ".h5") continue;  // (a user's own .state file)
+    const std::string what = suffix == ".partial" ? "the unfinished file a job writing '" + owner.string() + "' keeps"
+                             : suffix == ".lock"  ? "the lock of a job writing '" + owner.string() + "'"
+                                                  : "the training state of the model '" + owner.string() + "'";
+    throw ConfigError("cannot write '" + output.string() + "': that name is drape's own, " + what +
+                      " (the job's lock does not cover it); give the output another name");
+  }
+}
+
+}  // namespace
+
 OutputLock::OutputLock(const fs::path& output, const std::string& command) : path_(lock_file(output)) {
+  refuse_working_file_name(output);
   if (const std::string cause = write_failure_cause(output); !cause.empty())
     throw ConfigError("cannot write '" + output.string() + "': " + cause);
   for (;;) {
