@@ -180,6 +180,10 @@ std::optional<Pose> pose_arg(const BodyModel& model, const std::string& model_na
   for (const auto& [name, value] : pose.cast<py::dict>()) {
     if (!py::isinstance<py::str>(name)) throw ConfigError("pose: joint angle names are strings");
     double degrees = 0;
+    // (A bool casts to 0 or 1 degree: True is a mistake, not an angle.)
+    if (py::isinstance<py::bool_>(value))
+      throw ConfigError("pose: " + name.cast<std::string>() + " wants a number of degrees, not " +
+                        (value.cast<bool>() ? "True" : "False"));
     try {
       degrees = value.cast<double>();
     } catch (const py::cast_error&) {

@@ -13,6 +13,7 @@ namespace {
 std::vector<std::size_t> indices_arg(const DatasetReader& r, const py::handle& value) {
   const std::string expected = "an integer array of sample indices [n] (0 <= i < " + std::to_string(r.size()) + ", done samples)";
   py::array a = py::array::ensure(value);
+  if (a && a.ndim() == 1 && a.size() == 0) return {};  // [] (NumPy makes an empty list float): no samples
   if (!a || (a.dtype().kind() != 'i' && a.dtype().kind() != 'u') || a.ndim() != 1)
     throw py::value_error("indices: expected " + expected + (a ? ", got " + describe(a) : std::string()));
   auto i64 = py::array_t<long long, py::array::c_style | py::array::forcecast>::ensure(a);

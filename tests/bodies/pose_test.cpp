@@ -302,6 +302,8 @@ TEST_CASE("bad joint angles are refused in one line", "[bodies][pose]") {
   CHECK(message("left_elbow_flexion=nan").find("left_elbow_flexion is NaN; expected degrees in [0, 150]") != std::string::npos);
   CHECK(message("elbow_flexion=170").find("left_elbow_flexion = 170 is outside its range of motion [0, 150] degrees") !=
         std::string::npos);
+  // Just past a bound, printed as given (it read "= 150 is outside ... [0, 150]").
+  CHECK(message("elbow_flexion=150.0000001").find("= 150.0000001 is outside its range of motion [0, 150]") != std::string::npos);
   CHECK(message("elbow_flexion=abc") == "--pose: elbow_flexion = 'abc' is not a number of degrees");
   // strtod reads C's hexadecimal numbers: 0x10 was taken for 16 degrees.
   CHECK(message("elbow_flexion=0x10") == "--pose: elbow_flexion = '0x10' is not a number of degrees");

@@ -88,6 +88,9 @@ TEST_CASE("drape body --sample checks its ranges before drawing, and writes noth
   CHECK_THAT(out, Catch::Contains("--bmi 9.5:30 reaches outside what body parametric makes, BMI 10 to 65"));
   CHECK(test::run_drape("body --sample 2 --height 1.0:1.6 --out-dir " + folder, out) == 2);
   CHECK_THAT(out, Catch::Contains("--height 1:1.6") && Catch::Contains("height 1 m is outside the reachable range"));
+  // Just past a bound, printed as given ("sex 1 is outside [0, 1]" before).
+  CHECK(test::run_drape("body --bmi 30 --sex 1.0000001 --out " + (dir / "b.obj").string(), out) == 2);
+  CHECK_THAT(out, Catch::Contains("sex 1.0000001 is outside [0, 1]"));
   CHECK(test::run_drape("body --sample 2 --girths 2 --out-dir " + folder, out) == 2);
   CHECK_FALSE(std::filesystem::exists(folder));  // not even an empty folder
   std::ofstream(dir / "a_file") << "x";

@@ -41,6 +41,7 @@ TEST_CASE("size table: a size's grade is its girth over the design size's", "[si
   CHECK(t.grade("large") == Approx(1.2));
   CHECK(t.grade("small") == Approx(0.9));
   CHECK_THROWS_WITH(t.grade("huge"), Catch::Contains("small, regular, large"));
+  CHECK_THROWS_WITH(t.grade("LARGE"), Catch::Contains("did you mean 'large'"));  // (sizes are lower case)
 }
 
 TEST_CASE("size table: its text reads back exactly, and other text is refused by name", "[sizes]") {

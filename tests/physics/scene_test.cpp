@@ -114,6 +114,11 @@ TEST_CASE("scene errors name the file, the line and the key", "[scene]") {
              !Catch::Contains("recursive alias"));
   CHECK_THAT(message_of([] { parse_scene("solver:\n  time_step: 0.1\n  time_step: 0.2\n", "s.yaml"); }),
              Catch::Contains("s.yaml:3") && Catch::Contains("'time_step'"));
+  // A solver setting among the effects is named as one (it read "effect 'morph_steps' must be a map").
+  CHECK_THAT(message_of([] { parse_scene("effects:\n  gravity: {}\n  morph_steps: 4\n", "s.yaml"); }),
+             Catch::Contains("s.yaml:3") && Catch::Contains("'morph_steps' is a solver setting") && Catch::Contains("solver:"));
+  CHECK_THAT(message_of([] { parse_scene("effects: [gravity, {settle_steps: 4}]\n", "s.yaml"); }),
+             Catch::Contains("'settle_steps' is a solver setting"));
   TempDir dir;
   write(dir / "a.yaml", "base: b.yaml\n");
   write(dir / "b.yaml", "base: a.yaml\n");

@@ -56,6 +56,9 @@ def test_bad_indices_and_files(dataset, tmp_path):
         d.read(np.array([0, 4]))
     with pytest.raises(ValueError, match=r"indices: expected an integer array"):
         d.read(np.array([0.5]))
+    # An empty list (NumPy makes it float) reads no samples.
+    empty = d.read([])
+    assert empty["garment"].shape[0] == 0 and empty["indices"].shape == (0,)
     with pytest.raises(drape.ConfigError, match="split"):
         d.indices("tset")
     with pytest.raises(drape.Error, match="missing.h5"):

@@ -343,6 +343,9 @@ def test_predict_takes_a_pose_for_a_model_of_posed_drapes():
     assert np.array_equal(m.predict(body, check=False, pose="shoulder_abduction=100"), raised)
     with pytest.raises(ValueError, match="no joint angle 'shoulder_abdution'"):
         m.predict(body, pose={"shoulder_abdution": 100})
+    # A bool is not an angle (it cast to 1 degree).
+    with pytest.raises(ValueError, match="shoulder_abduction wants a number of degrees, not True"):
+        m.predict(body, pose={"shoulder_abduction": True})
     with pytest.raises(ValueError, match="A-pose only"):
         drape.Model.load(str(SHIPPED)).predict(body, pose={"shoulder_abduction": 100})
     # Arms hanging into the trunk: no inside to drape there. A warning naming the bones (drape body and simulate

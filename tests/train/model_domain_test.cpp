@@ -329,6 +329,15 @@ TEST_CASE("model domain: a parameter at the edge of the range its bodies were dr
   REQUIRE(low.size() == 1);
   // The range printed to four digits, so that the reader sees why 1.49 is out.
   CHECK_THAT(low.front(), Catch::Contains("shape parameter 'height' 1.49 is outside the trained range 1.502..1.999"));
+  // When the measured height is out too, the parameter that is the height says nothing more: one warning, not two.
+  {
+    ModelDomain tall = d;
+    tall.height = {10.0, 20.0};
+    const Eigen::VectorXd params = Eigen::VectorXd::Constant(1, 1.49);
+    const auto both = domain_violations(tall, assets->body.vertices, assets->body.faces, &params);
+    REQUIRE(both.size() == 1);
+    CHECK_THAT(both.front(), Catch::StartsWith("height "));
+  }
 
   // The A-pose model of 2,289 bodies: its tallest is 1.99956 m, 0.44 mm
   // short of 2.00, twice the mean shortfall 0.5 / 2290 = 0.22 mm (as likely

@@ -50,6 +50,7 @@ std::vector<std::string> accepted_names(const std::vector<PoseAngle>& space) {
 void check_value(const PoseAngle& a, double degrees, const std::string& what) {
   if (degrees >= a.min && degrees <= a.max) return;  // (before any stream: a pose is checked per angle per body)
   std::ostringstream m;
+  m.precision(10);  // a value just past a bound is not printed as the bound ("= 180 is outside [0, 180]")
   if (std::isnan(degrees))
     m << what << ": " << a.name << " is NaN; expected degrees in " << range_text(a);
   else

@@ -51,6 +51,15 @@ void set_effect(Scene& s, const std::string& name, ParamValues params, const Sou
     *it = {name, std::move(params), where};
 }
 
+// A solver setting written among the effects (`effects: {morph_steps: 4}`)
+// is named as one, before its value is read as an effect's parameters.
+void refuse_solver_key_as_effect(const std::string& file, const YAML::Node& key) {
+  const std::string name = key.as<std::string>();
+  for (const ParamSpec& p : scene_solver_specs())
+    if (p.name == name)
+      throw ConfigError(yaml::at(file, key), "'" + name + "' is a solver setting, not an effect: write it under `solver:`");
+}
+
 void parse_effects(Scene& s, const std::string& file, const YAML::Node& n) {
   if (n.IsSequence()) {  // a list replaces the base's effects
     s.effects.clear();
@@ -59,6 +68,7 @@ void parse_effects(Scene& s, const std::string& file, const YAML::Node& n) {
         set_effect(s, e.Scalar(), {}, yaml::at(file, e));
       } else if (e.IsMap() && e.size() == 1) {
         const auto kv = *e.begin();
+        refuse_solver_key_as_effect(file, kv.first);
         ParamValues p;
         merge_values(p, file, kv.second, "effect '" + kv.first.as<std::string>() + "'");
         set_effect(s, kv.first.as<std::string>(), std::move(p), yaml::at(file, kv.first));
@@ -69,6 +79,7 @@ void parse_effects(Scene& s, const std::string& file, const YAML::Node& n) {
   } else if (n.IsMap()) {  // a map adds, overrides or (with null) removes single effects
     for (const auto& kv : n) {
       const auto name = kv.first.as<std::string>();
+      refuse_solver_key_as_effect(file, kv.first);
       if (kv.second.IsNull()) {  // `name: null` (or `name:`) removes it; `name: {}` adds it with defaults
         s.effects.erase(std::remove_if(s.effects.begin(), s.effects.end(), [&](const SceneEffect& e) { return e.name == name; }),
                         s.effects.end());

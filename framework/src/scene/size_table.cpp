@@ -62,7 +62,11 @@ double SizeTable::grade(const std::string& size) const {
     if (name == size) of_size = g;
     if (name == design) of_design = g;
   }
-  if (!(of_size > 0.0)) throw ConfigError("garment size '" + size + "': the garment's sizes are " + names());
+  if (!(of_size > 0.0)) {
+    std::vector<std::string> sizes;
+    for (const auto& [name, g] : girth) sizes.push_back(name);
+    throw ConfigError("garment size '" + size + "': the garment's sizes are " + names() + did_you_mean(size, sizes));
+  }
   if (!(of_design > 0.0)) throw ConfigError("the size chart names no girth for its design size '" + design + "'");
   return of_size / of_design;
 }

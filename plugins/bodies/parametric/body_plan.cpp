@@ -57,6 +57,7 @@ void check_shape(const Eigen::VectorXd& shape) {
     const ShapeSpec& s = shape_specs()[static_cast<std::size_t>(i)];
     if (!(shape[i] >= s.min && shape[i] <= s.max)) {
       std::ostringstream m;
+      m.precision(10);
       m << "body parametric: shape parameter '" << s.name << "' = " << shape[i] << " is outside [" << s.min << ", "
         << s.max << "]";
       throw ConfigError(m.str());

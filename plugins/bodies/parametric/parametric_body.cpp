@@ -130,6 +130,7 @@ class ParametricBody final : public BodyModel {
   Eigen::VectorXd solve(const BodyRequest& req) const override {
     const ShapeSpec& h = shape_specs()[kHeight];
     std::ostringstream bad;
+    bad.precision(10);  // a value just past a bound is not printed as the bound ("sex 1 is outside [0, 1]")
     if (!(req.bmi >= kBmiMin && req.bmi <= kBmiMax))
       bad << "BMI " << req.bmi << " is outside the reachable range [" << kBmiMin << ", " << kBmiMax << "]";
     else if (!(req.height >= h.min && req.height <= h.max))
