@@ -14,6 +14,8 @@
 #include <drape/warnings.hpp>
 #include <drape/training/trainer.hpp>
 
+#include "data_fingerprint.hpp"
+
 #include <unistd.h>
 
 #include <algorithm>
@@ -263,8 +265,10 @@ void check_monitor(const GraphSpec& spec, const TrainOptions& o) {
 
 // What a resumed run must share with the interrupted one.
 std::map<std::string, std::string> resume_settings(const TrainOptions& o, const TrainingData& data,
-                                                   const DatasetLayout& layout, int ranks) {
+                                                   const DatasetReader& reader, int ranks) {
+  const DatasetLayout& layout = reader.layout();
   std::map<std::string, std::string> settings{
+      {"training_data", training_data_fingerprint(reader, data.train_idx, data.val_idx)},
       {"assets", data.assets_spec.yaml()},
       {"dataset_template_hash", layout.template_hash},
       {"train_samples", std::to_string(data.train_idx.size())},
@@ -310,6 +314,13 @@ void check_resumable(const Checkpoint& st, const fs::path& state_path, const std
     throw ConfigError(state_path.string() + ": not a drape training state");
   for (const auto& [key, value] : settings) {
     const auto it = st.meta.find(key);
+    // A state written before the fingerprint (2026-12-06) resumes on the split sizes as it did.
+    if (key == "training_data" && it == st.meta.end()) continue;
+    if (key == "training_data" && it->second != value)
+      throw ConfigError(state_path.string() + ": cannot resume: the interrupted run learnt from other drapes" +
+                        (st.meta.count("dataset") ? " (" + st.meta.at("dataset") + ")" : std::string()) +
+                        " than --data gives now (fingerprint of its training and validation drapes " + it->second +
+                        " then, " + value + " now); give the same dataset, or --force to start over");
     const std::string was = it == st.meta.end() ? "(none)" : it->second;
     if (was != value)
       throw ConfigError(state_path.string() + ": cannot resume: the interrupted run had " + key + " " + was +
@@ -613,7 +624,7 @@ TrainReport train(const Registry& registry, const TrainOptions& given) {
   }
   Learner learner{Adam(graph.weights(), AdamOptions{.weight_decay = o.weight_decay}), EarlyStopping({o.patience, 0.0}),
                   lr_schedule(o), WeightCopy(graph.weights()), History()};
-  const std::map<std::string, std::string> settings = resume_settings(o, data, reader.layout(), ranks);
+  const std::map<std::string, std::string> settings = resume_settings(o, data, reader, ranks);
 
   // Start over, or continue.
   if (o.force) start_over(o, state_path, rank, ranks);
