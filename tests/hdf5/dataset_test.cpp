@@ -242,6 +242,9 @@ TEST_CASE("dataset: reading splits and gathering rows in the order asked", "[hdf
   CHECK(reader.indices("test") == reader.indices(Split::Test));
   CHECK(reader.indices("all") == reader.indices());
   CHECK_THROWS_WITH(reader.indices("train,tset"), Catch::Contains("unknown split 'tset'"));
+  CHECK_THROWS_WITH(reader.indices("Test"), Catch::Contains("did you mean 'test'"));
+  // The finished name of a file still partial: said so, not "no such file" alone.
+  CHECK_THROWS_WITH(DatasetReader(out), Catch::Contains("data.h5.partial is there") && Catch::Contains("still running or interrupted"));
   CHECK_THROWS_AS(DatasetReader::check_splits("train,"), ConfigError);
   const std::vector<std::size_t> order = {8, 2, 3, 5, 6};
   const Tensor garments = reader.garment_vertices(order);
@@ -502,6 +505,9 @@ TEST_CASE("dataset: a glob pattern reads its files as one with their faces", "[h
   for (std::size_t i = 0; i < 6; ++i) CHECK(all.sample(i).garment_vertices == make_sample(l, i).garment_vertices);
   // Two rows across the files' boundary in one read.
   CHECK(all.garment_vertices({2, 3}).mat(1) == make_sample(l, 3).garment_vertices);
+  // drape's lock files match a wide pattern too ('part-0.h5*'), and are no dataset: passed over.
+  std::ofstream(dir / "part-0.h5.lock") << "pid 1, drape generate\n";
+  CHECK(DatasetReader((dir / "part-0.h5*").string()).files().size() == 1);
 
   DatasetLayout other = small_layout(3);
   other.garment_vertices = 6;  // another garment: not one dataset with the others

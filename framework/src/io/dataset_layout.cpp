@@ -28,7 +28,8 @@ const char* to_string(Split split) {
 Split parse_split(const std::string& name) {
   for (Split s : {Split::Train, Split::Val, Split::Test})
     if (name == to_string(s)) return s;
-  throw ConfigError("unknown split '" + name + "' (expected train, val or test)");
+  throw ConfigError("unknown split '" + name + "' (expected train, val or test)" +
+                    did_you_mean(name, {"train", "val", "test"}));
 }
 
 namespace dataset_detail {

@@ -188,9 +188,18 @@ std::vector<fs::path> dataset_files(const fs::path& path_or_pattern) {
   if (fs::exists(path_or_pattern, ec)) return {path_or_pattern};
   if (!is_pattern(path_or_pattern)) {
     const fs::path shipped = locate_shipped_file(path_or_pattern);  // datasets/... from a build tree
-    return {shipped.empty() ? path_or_pattern : shipped};           // else h5's "no such file"
+    if (!shipped.empty()) return {shipped};
+    // Only its unfinished file: a generation running or interrupted.
+    if (const fs::path partial = DatasetWriter::partial_path(path_or_pattern); fs::exists(partial, ec))
+      throw ConfigError(text + ": no such file, but " + partial.string() +
+                        " is there: a generation still running or interrupted (rerun it to finish; its done samples "
+                        "read from the .partial file as they are)");
+    return {path_or_pattern};  // h5's "no such file"
   }
   std::vector<fs::path> files = glob_files(text);
+  // (A pattern such as 'q.h5*' also matches drape's lock files, which hold no dataset.)
+  files.erase(std::remove_if(files.begin(), files.end(), [](const fs::path& f) { return f.extension() == ".lock"; }),
+              files.end());
   if (files.empty())
     for (const auto& dir : shipped_data_dirs())
       if (!path_or_pattern.is_absolute() && (files = glob_files((dir / path_or_pattern).string()), !files.empty())) break;
@@ -201,6 +210,8 @@ std::vector<fs::path> dataset_files(const fs::path& path_or_pattern) {
 std::string dataset_name(const fs::path& path_or_pattern) {
   return is_pattern(path_or_pattern) ? path_or_pattern.string() : path_or_pattern.filename().string();
 }
+
+const std::string& DatasetReader::name() const { return impl_->name; }
 
 DatasetReader::DatasetReader(const fs::path& path) : impl_(std::make_unique<Impl>()) {
   impl_->name = path.string();

@@ -5,6 +5,7 @@
 #include <drape/geometry/push_out.hpp>
 
 #include <algorithm>
+#include <cstdio>
 #include <array>
 #include <cmath>
 #include <chrono>
@@ -104,6 +105,14 @@ SplitEvaluation evaluate_model(Model& model, const DatasetReader& reader, const 
                             push_out_margin, worn);
 }
 
+namespace {
+std::string source_text(double v) {
+  char text[40];
+  std::snprintf(text, sizeof text, "%.17g", v);
+  return text;
+}
+}  // namespace
+
 std::vector<std::size_t> drape_sources(const DatasetReader& truth, const DatasetReader& drapes,
                                        const std::vector<std::size_t>& drape_indices) {
   if (!drapes.layout().has_stat("source_index"))
@@ -112,8 +121,9 @@ std::vector<std::size_t> drape_sources(const DatasetReader& truth, const Dataset
   std::vector<std::size_t> out;
   for (std::size_t i = 0; i < source.size(); ++i) {
     if (!(source[i] >= 0 && source[i] < double(truth.layout().samples)) || source[i] != std::floor(source[i]))
-      throw ConfigError("drape sample " + std::to_string(drape_indices[i]) + ": source_index " + std::to_string(source[i]) +
-                        " is not a sample of the dataset (" + std::to_string(truth.layout().samples) + " samples)");
+      throw ConfigError(drapes.name() + ": drape sample " + std::to_string(drape_indices[i]) + ": source_index " +
+                        source_text(source[i]) + " is not a sample of " + truth.name() + " (" +
+                        std::to_string(truth.layout().samples) + " samples): the drapes were optimised from another dataset");
     out.push_back(static_cast<std::size_t>(source[i]));
   }
   return out;
@@ -123,7 +133,7 @@ SplitEvaluation evaluate_drapes(const Assets& assets, const DatasetReader& truth
                                 const std::vector<std::size_t>& drape_indices, ProgressBar* progress,
                                 const WornGarments* worn) {
   const std::vector<std::size_t> sources = drape_sources(truth, drapes, drape_indices);
-  const auto name = [&](std::size_t k) { return "drape sample " + std::to_string(drape_indices[k]); };
+  const auto name = [&](std::size_t k) { return drapes.name() + ": drape sample " + std::to_string(drape_indices[k]); };
   const auto load = [&](std::size_t first, std::size_t last) {
     const std::vector<std::size_t> part = slice(drape_indices, first, last), source = slice(sources, first, last);
     MeasuredBatch batch{drapes.garment_vertices(part), truth.garment_vertices(source), drapes.body_vertices(part)};
@@ -132,7 +142,7 @@ SplitEvaluation evaluate_drapes(const Assets& assets, const DatasetReader& truth
     for (std::size_t b = 0; b < part.size(); ++b)
       if ((batch.bodies.mat(int(b)) - truth_bodies.mat(int(b))).cwiseAbs().maxCoeff() > 1e-5f)
         throw ConfigError(name(first + b) + ": its body is not the body of sample " + std::to_string(source[b]) +
-                          " of the dataset");
+                          " of " + truth.name() + " (the drapes were optimised from another dataset)");
     return batch;
   };
   return measure_in_batches(assets, drape_indices.size(), 16, progress, load, name, -1, worn);

@@ -145,6 +145,7 @@ class DatasetReader {
 
   const DatasetLayout& layout() const { return layout_; }
   std::size_t size() const { return layout_.samples; }
+  const std::string& name() const;  // the path or pattern it was opened with, for messages
   const std::vector<std::filesystem::path>& files() const;  // the file, or the pattern's files in order
   // Of files(), the slim ones that keep the witness of their simulated bodies
   // (/bodies/witness, docs/formats.md): their rebuilt bodies are checked.
