@@ -10,6 +10,7 @@
 #include <drape/materials/materials.hpp>
 #include <drape/scene/scene.hpp>
 #include <drape/scene/simulation.hpp>
+#include <drape/services/scene_body.hpp>
 
 #include <catch2/catch.hpp>
 
@@ -168,4 +169,38 @@ TEST_CASE("a morph into cloth that no longer gives way stops at the stall and sa
   CHECK(cuts < 64);
   CHECK(cuts >= scene_detail::kStallCuts);
   CHECK(steps == 0);  // stopped in the first morph step
+}
+
+// A garment modelled half again as large around as its cloth (a uv_scale
+// meant for another file): said before anything is simulated, with the
+// uv_scale that makes the cloth the size of the shape, and its fit told by
+// the cloth, not by the shape that pulls in as it settles.
+TEST_CASE("a garment modelled much larger than its cloth is told so, and its fit measured on the cloth", "[garments][fit]") {
+  test::TempDir dir;
+  const double r = 0.24, y0 = 1.0, y1 = 1.22;
+  write_mesh(dir / "tube.obj", fit_tube(r, y0, y1, 1.0 / 1.5));  // the pattern 2/3 of the shape around
+  const SceneSimulations sims(test::plugins(), parse_scene(fit_scene_text(dir / "tube.obj")));
+  const Simulation& sim = sims.design();
+  CHECK(sim.cloth_loop() == Approx(2 * M_PI * r / 1.5).epsilon(1e-6));  // the pattern's loop, by hand
+  const std::string& note = sim.shape_note();
+  CHECK_THAT(note, Catch::Contains("modelled 5") && Catch::Contains("longer around than its cloth"));
+  CHECK(std::stod(note.substr(note.find("uv_scale: ") + 10)) == Approx(1.5).margin(0.05));
+  BodyRequest heavy = sim.target_request();
+  heavy.bmi = 40;
+  const SceneBody body = scene_body(sims, heavy, "bmi 40");
+  REQUIRE_FALSE(body.notes.empty());
+  CHECK(body.notes.front() == note);
+  // The cloth (1.005 m) against this body's girth, not the shape (1.51 m).
+  const double girth = body_girth(body.vertices, sim.body_model().faces());
+  const double cloth_ease = 2 * M_PI * r / 1.5 / girth - 1;
+  bool told = false;
+  for (const std::string& n : body.notes) {
+    char ease[40];
+    std::snprintf(ease, sizeof ease, "%+.1f %% ease here", 100 * cloth_ease);
+    told = told || n.find(ease) != std::string::npos;
+  }
+  CHECK(told);
+  // A tube whose shape is its cloth: no such note.
+  write_mesh(dir / "plain.obj", fit_tube(r, y0, y1));
+  CHECK(Simulation(test::plugins(), parse_scene(fit_scene_text(dir / "plain.obj"))).shape_note().empty());
 }

@@ -68,6 +68,26 @@ std::string cloth_too_short(const Garment& garment, const Eigen::MatrixX3d& star
                "body graded alike)";
 }
 
+std::string shape_larger_than_cloth(const Garment& garment, double shape_loop, const Eigen::MatrixX3d& mean_body,
+                                    const PatternSource& pattern) {
+  const double cloth = garment_material_girth(garment.mesh, mean_body);
+  if (!std::isfinite(cloth) || !std::isfinite(shape_loop) || !(cloth > 0) || shape_loop / cloth - 1.0 <= kMaxStartStretch)
+    return "";
+  char text[600];
+  std::snprintf(text, sizeof text,
+                "the garment is modelled %.0f %% longer around than its cloth (its narrowest loop over the chest band "
+                "%.3f m as modelled, %.3f m at rest in its material space): it starts stretched by that much and pulls "
+                "in as it settles; its fit is told by its cloth",
+                100.0 * (shape_loop / cloth - 1.0), shape_loop, cloth);
+  std::string out = text;
+  if (pattern.has_uv_scale && !pattern.from_shape) {
+    std::snprintf(text, sizeof text, " (garment: {params: {uv_scale: %.3g}} makes the cloth the size of the shape)",
+                  pattern.uv_scale * shape_loop / cloth);
+    out += text;
+  }
+  return out;
+}
+
 std::string why_morph_blocked(const MorphBlocked& blocked, int morph_steps, const Garment& garment,
                               const Eigen::MatrixX3d& body_now, const Eigen::MatrixX3i& body_faces,
                               const Eigen::MatrixX3d& mean_body, const SolverSettings& solver, bool sized) {

@@ -43,6 +43,15 @@ std::string cloth_too_short(const Garment& garment, const Eigen::MatrixX3d& star
                             const Eigen::MatrixX3i& body_faces, const Eigen::MatrixX3d& mean_body,
                             const PatternSource& pattern);
 
+// A garment modelled much larger around than its cloth (its 3D loop over the
+// chest band more than kMaxStartStretch longer than the same loop at rest):
+// it starts stretched by that much and pulls in as it settles, which is
+// seldom what a user meant (UVs in another unit, a uv_scale for another
+// file). "" otherwise, or when either loop cannot be measured; else a note
+// with the uv_scale that makes the cloth the size of the shape.
+std::string shape_larger_than_cloth(const Garment& garment, double shape_loop, const Eigen::MatrixX3d& mean_body,
+                                    const PatternSource& pattern);
+
 // Why the morph stalled, in words: what the body made of the step, the
 // cloth's girth against the body's there, and when that is not the cause,
 // what in the scene keeps the cloth from giving way (a stiff material, a

@@ -227,7 +227,9 @@ Simulation::Simulation(const Registry& registry, Scene scene) : registry_(regist
     for (const ParamSpec& p : gd.params)
       if (p.name == "material_space") pattern.from_shape = garment_params.get_string("material_space") == "rest";
     start_refusal_ = scene_detail::cloth_too_short(*garment_, fit_body_, body_model_->faces(), mean_body_, pattern);
+    shape_note_ = scene_detail::shape_larger_than_cloth(*garment_, placed_loop_, mean_body_, pattern);
   }
+  cloth_loop_ = garment_material_girth(garment_->mesh, mean_body_);
   const Params solver(scene_solver_specs(), scene_.solver, "solver");
   morph_steps_ = static_cast<int>(solver.get_int("morph_steps"));
   settle_steps_ = static_cast<int>(solver.get_int("settle_steps"));

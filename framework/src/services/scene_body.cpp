@@ -90,11 +90,16 @@ void note_length(const Simulation& design, SceneBody& out) {
 void note_fit(const Simulation& design, SceneBody& out) {
   const Mesh& garment = design.garment().mesh;
   const Eigen::MatrixX3i& body_faces = design.body_model().faces();
+  // A garment modelled much larger than its cloth: said, and its fit told by
+  // the cloth (its shape would call it far looser than it settles).
+  const bool by_cloth = !design.shape_note().empty();
+  if (by_cloth) out.notes.push_back(design.shape_note());
   // A graded garment as graded, before dressing pushed it about (design_loop).
-  const double loop = design.scene().garment_grade == 1.0 ? garment_girth(garment.vertices, garment.faces, design.mean_body())
-                                                         : design.placed_loop();
+  const double loop = by_cloth                                  ? design.cloth_loop()
+                      : design.scene().garment_grade == 1.0 ? garment_girth(garment.vertices, garment.faces, design.mean_body())
+                                                             : design.placed_loop();
   const double ease = garment_ease(loop, out.vertices, body_faces);
-  const double loop0 = design_loop(design);
+  const double loop0 = by_cloth ? design.cloth_loop() / design.scene().garment_grade : design_loop(design);
   const double design_ease = garment_ease(loop0, design.mean_body(), body_faces);
   if (!std::isfinite(ease) || !std::isfinite(design_ease) || std::abs(ease - design_ease) <= 0.05) return;
   char text[400];

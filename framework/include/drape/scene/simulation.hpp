@@ -118,6 +118,13 @@ class Simulation {
   // the body by more than a garment is stretched to be put on. run()
   // refuses such a start before any work (a caller's own start state aside).
   const std::string& start_refusal() const { return start_refusal_; }
+  // A note when the garment is modelled much larger around than its cloth
+  // ("" otherwise): it starts stretched and pulls in (cloth_fit.hpp). Its
+  // fit notes then measure the cloth (cloth_loop), not the shape.
+  const std::string& shape_note() const { return shape_note_; }
+  // The garment's narrowest loop over the mean body's chest band at rest, in
+  // its material space (garment_material_girth); NaN when it has none.
+  double cloth_loop() const { return cloth_loop_; }
   // The scene's target body as a request (its shape: BMI, height, sex), to
   // change before solving (a command line's --girth adds proportions).
   BodyRequest target_request() const;
@@ -161,7 +168,8 @@ class Simulation {
   double design_loop_ = 0.0, placed_loop_ = 0.0;
   Eigen::MatrixX3d fit_body_;
   BodyRequest fit_request_;
-  std::string start_refusal_;
+  std::string start_refusal_, shape_note_;
+  double cloth_loop_ = 0.0;
   bool sized_ = false;  // the garment has sizes to choose from (size: auto); else grade: auto is the remedy named
   std::vector<Params> effect_params_;
   bool needs_body_ = false;
