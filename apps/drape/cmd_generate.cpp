@@ -70,6 +70,10 @@ int run(const std::vector<std::string>& args) {
     std::fflush(stdout);
   };
   const GenerateSummary done = generate_dataset(registry, load_scene(find_input_file(vm["scene"].as<std::string>())), request, out, observer);
+  if (done.already_finished) {
+    std::printf("nothing to do: %s is finished (%zu samples), made by this same request\n", out.c_str(), done.samples);
+    return 0;
+  }
   std::printf("wrote %s: %zu samples; %d not settled, %d with a vertex inside the body, %d with crossing surfaces, "
               "%zu crossing themselves (this run)\n",
               out.c_str(), done.samples, done.not_settled, done.penetrating, done.crossing, done.crossing_itself.size());

@@ -83,6 +83,7 @@ py::dict generate(const PyScene& scene, const std::string& out, std::size_t coun
   d["crossing"] = done.crossing;
   d["crossing_itself"] = done.crossing_itself;
   d["ranges"] = plan.ranges;
+  d["already_finished"] = done.already_finished;  // this same request had finished it: nothing simulated
   return d;
 }
 

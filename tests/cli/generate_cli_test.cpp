@@ -65,9 +65,18 @@ TEST_CASE("generate writes every sample once, with stats and the 8:1:1 split, an
     for (double v : r.stat(stat, r.indices())) CHECK(std::isfinite(v));
   for (double bmi : r.stat("bmi", r.indices())) CHECK((bmi >= 15 && bmi <= 50));
   CHECK(garments(dir / "a.h5").flat().allFinite());
-  // A finished dataset is never overwritten.
-  CHECK(test::run(generate(dir / "tiny.yaml", "--count 10 --out " + (dir / "a.h5").string()), out) == 2);
-  CHECK_THAT(out, Catch::Contains("exists"));
+  // A finished dataset is never overwritten. The same job again (a job array's retry) has nothing to do and
+  // succeeds, without touching it; another job is refused, naming the difference.
+  const auto written = fs::last_write_time(dir / "a.h5");
+  CHECK(test::run(generate(dir / "tiny.yaml", "--count 10 --threads 2 --out " + (dir / "a.h5").string()), out) == 0);
+  CHECK_THAT(out, Catch::Contains("nothing to do") && Catch::Contains("finished (10 samples)"));
+  CHECK(fs::last_write_time(dir / "a.h5") == written);
+  CHECK(test::run(test::drape_program().string() + " generate " + (dir / "tiny.yaml").string() +
+                      " --bmi 15:40 --seed 4 --count 10 --out " + (dir / "a.h5").string(),
+                  out) == 2);
+  CHECK_THAT(out, Catch::Contains("already exists, a finished dataset made otherwise") && Catch::Contains("bmi 15:40"));
+  CHECK(test::run(generate(dir / "tiny.yaml", "--count 12 --out " + (dir / "a.h5").string()), out) == 2);
+  CHECK_THAT(out, Catch::Contains("made otherwise"));
 }
 
 TEST_CASE("shards made separately merge into the same set one job makes", "[generate]") {

@@ -137,7 +137,14 @@ def test_generate_draws_poses_and_the_dataset_gives_them(module_tiny_scene, tmp_
     out = tmp_path / "posed.h5"
     done = drape.generate(str(module_tiny_scene), str(out), 2, bmi=(20, 30), seed=3, threads=1, progress=False,
                           poses="draw", pose_ranges={"shoulder_abduction": (50, 60)})
-    assert done["samples"] == 2
+    assert done["samples"] == 2 and not done["already_finished"]
+    # The same request again finds it finished: nothing to do; another is refused.
+    again = drape.generate(str(module_tiny_scene), str(out), 2, bmi=(20, 30), seed=3, threads=1, progress=False,
+                           poses="draw", pose_ranges={"shoulder_abduction": (50, 60)})
+    assert again["already_finished"] and again["samples"] == 2
+    with pytest.raises(drape.ConfigError, match="made otherwise"):
+        drape.generate(str(module_tiny_scene), str(out), 2, bmi=(20, 31), seed=3, threads=1, progress=False,
+                       poses="draw", pose_ranges={"shoulder_abduction": (50, 60)})
     d = drape.Dataset(str(out))
     names = d.layout["pose_angles"]
     assert "left_shoulder_abduction" in names and "spine_twist" in names

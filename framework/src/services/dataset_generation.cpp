@@ -8,6 +8,8 @@
 #include <drape/services/scene_body.hpp>
 #include <drape/training/model.hpp>
 #include <drape/io/output_lock.hpp>
+
+#include "../io/dataset_internal.hpp"
 #include <drape/io/parallel_samples.hpp>
 #include <drape/progress.hpp>
 #include <drape/training/rng.hpp>
@@ -228,6 +230,25 @@ GenerateSummary generate_dataset(const Registry& registry, const Scene& scene, c
   const std::vector<Split> split = splits(request.count, request.seed);
 
   DatasetLayout layout = layout_of(scene, simulations, request, poses);
+  // A finished output: this same job done before (a job array's retry) has
+  // nothing to do, as train --resume on a finished run; any other is refused.
+  if (std::error_code ec; std::filesystem::exists(out, ec)) {
+    const DatasetReader finished(out);
+    std::string difference = dataset_detail::layout_difference(finished.layout(), layout);
+    const auto& made = finished.layout().attributes;
+    const auto begun = made.find("generator");
+    const auto asked = layout.attributes.find("generator");
+    if (difference.empty() && begun != made.end() && asked != layout.attributes.end() &&
+        begun->second != asked->second)
+      difference = "it was made as \"" + begun->second + "\" and this run asks \"" + asked->second + "\"";
+    if (!difference.empty())
+      throw ConfigError(out + ": already exists, a finished dataset made otherwise (" + difference +
+                        "); delete it to generate it again, or give another --out");
+    GenerateSummary summary;
+    summary.samples = finished.size();
+    summary.already_finished = true;
+    return summary;
+  }
   DatasetWriter writer(out, layout);
   const std::vector<std::size_t> todo = writer.missing();
   GeneratePlan plan;
@@ -319,7 +340,13 @@ GenerateSummary generate_dataset(const Registry& registry, const Scene& scene, c
     };
   });
   std::sort(crossing_itself.begin(), crossing_itself.end());
-  return GenerateSummary{layout.samples, not_settled.load(), penetrating.load(), crossing.load(), std::move(crossing_itself)};
+  GenerateSummary summary;
+  summary.samples = layout.samples;
+  summary.not_settled = not_settled.load();
+  summary.penetrating = penetrating.load();
+  summary.crossing = crossing.load();
+  summary.crossing_itself = std::move(crossing_itself);
+  return summary;
 }
 
 }  // namespace drape

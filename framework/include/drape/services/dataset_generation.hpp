@@ -96,6 +96,9 @@ struct GeneratePlan {
 // What the run did (this run's samples only).
 struct GenerateSummary {
   std::size_t samples = 0;  // in the file
+  // The output was finished already, by this same request: nothing was
+  // simulated (a retry of a job that had completed). The counts are 0.
+  bool already_finished = false;
   int not_settled = 0, penetrating = 0, crossing = 0;
   // Drapes whose garment crosses itself (SimulationResult::self_crossings),
   // by their index in the whole set, ascending. Not a statistic of the file:
