@@ -5,8 +5,9 @@
 #    ROUNDS times (default 20) for generate, train, optimize and dataset
 #    merge, without flags. Whatever the timing, exactly one may run: the
 #    other finds the output locked ("is in use") or, if the first has
-#    already ended, the output there ("exists"). The output must load and
-#    the lock file must be gone with its job.
+#    already ended, the output there ("exists"; a generate of the same
+#    request then has "nothing to do" and exits 0, simulating nothing). The
+#    output must load and the lock file must be gone with its job.
 # 2. Held lock: while the lock is held, every command is refused with
 #    exit 2 and "is in use" whatever its flags (--force, --resume), and the
 #    output is not touched. The holder is flock(1) for each command (no
@@ -77,6 +78,8 @@ race() {
       else
         invalid=$((invalid + 1)); echo "round $r of $name: $(cat "$refused")" >&2
       fi
+    elif [[ $a$b == 00 ]] && grep -q "nothing to do" "$WORK/a.log" "$WORK/b.log" && $check "$out" && [[ ! -e $out.lock ]]; then
+      ok=$((ok + 1))  # the second found the first's finished output, made by the same request: nothing to do (generate)
     elif [[ $a$b == 00 ]]; then both_ran=$((both_ran + 1))
     else both_refused=$((both_refused + 1)); echo "round $r of $name: exits $a $b: $(cat "$WORK/a.log" "$WORK/b.log")" >&2; fi
   done
