@@ -90,10 +90,9 @@ void note_length(const Simulation& design, SceneBody& out) {
 void note_fit(const Simulation& design, SceneBody& out) {
   const Mesh& garment = design.garment().mesh;
   const Eigen::MatrixX3i& body_faces = design.body_model().faces();
-  // A garment modelled much larger than its cloth: said, and its fit told by
-  // the cloth (its shape would call it far looser than it settles).
+  // A garment modelled much larger than its cloth (said by choose_size): its
+  // fit told by the cloth (its shape would call it far looser than it settles).
   const bool by_cloth = !design.shape_note().empty();
-  if (by_cloth) out.notes.push_back(design.shape_note());
   // A graded garment as graded, before dressing pushed it about (design_loop).
   const double loop = by_cloth                                  ? design.cloth_loop()
                       : design.scene().garment_grade == 1.0 ? garment_girth(garment.vertices, garment.faces, design.mean_body())
@@ -116,6 +115,8 @@ void note_fit(const Simulation& design, SceneBody& out) {
 
 // The size a body wears with size: auto (the design size's simulation otherwise).
 void choose_size(const SceneSimulations& simulations, const std::string& name, SceneBody& out) {
+  // A garment modelled much larger around than its cloth, whatever its size or grade (cloth_fit.hpp).
+  if (const std::string& note = simulations.design().shape_note(); !note.empty()) out.notes.push_back(note);
   if (simulations.auto_grade()) {  // graded to this body's girth; lengths grow by the grading rule
     GradeChoice choice;
     out.simulation = &simulations.for_body(out.vertices, name, nullptr, &choice);
