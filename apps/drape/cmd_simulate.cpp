@@ -106,6 +106,23 @@ std::function<void(const SimulationStep&)> step_printer(bool verbose, std::uniqu
   };
 }
 
+// A morph step the contact cuts into partial moves can take minutes: the
+// bar's status (or, with --verbose, a line every 8 moves) says how far it is.
+std::function<void(int, int, int, double)> partial_move_printer(bool verbose, std::unique_ptr<ProgressBar>& bar) {
+  if (!verbose)
+    return [&bar](int step, int total_steps, int moves, double done) {
+      if (!bar) bar = std::make_unique<ProgressBar>("simulate", static_cast<std::size_t>(total_steps));
+      char status[120];
+      std::snprintf(status, sizeof status, "morph step %d: %d partial moves, the body %.1f %% of the step's way", step,
+                    moves, 100.0 * done);
+      bar->set_status(status);
+    };
+  return [](int step, int, int moves, double done) {
+    if (moves % 8 == 0)
+      std::printf("step %3d: %d partial moves, the body %.1f %% of the step's way\n", step, moves, 100.0 * done);
+  };
+}
+
 // Whether it settled, its energies, balance, contact and where the time went.
 void print_result(const SimulationResult& r) {
   std::printf("%s after %d steps, %d Newton iterations (%d line-search stops), %s Cholesky\n",
@@ -210,6 +227,7 @@ int run(const std::vector<std::string>& args) {
   SimulationOptions options;
   std::unique_ptr<ProgressBar> bar;
   options.on_step = step_printer(verbose, bar);
+  options.on_partial_move = partial_move_printer(verbose, bar);
   std::printf("simulating %s: garment %d vertices, body %d vertices, effects:", sim.scene().file.c_str(),
               sim.garment().mesh.num_vertices(), static_cast<int>(target.vertices.rows()));
   for (const auto& e : sim.scene().effects) std::printf(" %s", e.name.c_str());

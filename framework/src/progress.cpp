@@ -127,7 +127,9 @@ void ProgressBar::set_status(std::string status) {
   if (finished_) return;
   status_ = std::move(status);
   const double now = options_.clock();
-  if (terminal_ && now - last_draw_ >= kTerminalInterval) draw_locked(now, false);
+  // (In a log, a status alone is written every 30 s too: an item that takes
+  // minutes still shows what it is doing.)
+  if (now - last_draw_ >= (terminal_ ? kTerminalInterval : kLogInterval)) draw_locked(now, false);
 }
 
 void ProgressBar::finish() {

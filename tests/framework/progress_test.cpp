@@ -152,3 +152,23 @@ TEST_CASE("progress: durations and an empty job", "[progress]") {
   bar.finish();
   CHECK(out.str() == "nothing [##########] 0/0 100% 0.0 s elapsed\n");
 }
+
+// An item that takes minutes (a morph step the contact cuts into partial
+// moves) shows what it is doing in a log too: a status set 30 s after the
+// last line is written, one set sooner waits.
+TEST_CASE("progress: off a terminal, a status is written when 30 s have passed since the last line", "[progress]") {
+  FakeClock clock;
+  std::ostringstream out;
+  ProgressBar bar("simulate", 4, out, plain(clock));
+  clock.now += 5;
+  bar.set_status("morph step 1: 3 partial moves");
+  CHECK(out.str().empty());
+  clock.now += 26;  // 31 s since the start
+  bar.set_status("morph step 1: 40 partial moves");
+  const auto lines = lines_of(out.str());
+  REQUIRE(lines.size() == 1);
+  CHECK_THAT(lines[0], Catch::StartsWith("simulate [..........] 0/4 0%") && Catch::EndsWith("morph step 1: 40 partial moves"));
+  clock.now += 10;
+  bar.set_status("morph step 1: 50 partial moves");
+  CHECK(lines_of(out.str()).size() == 1);
+}

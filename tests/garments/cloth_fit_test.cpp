@@ -158,11 +158,21 @@ TEST_CASE("a morph into cloth that no longer gives way stops at the stall and sa
   std::ofstream(dir / "foil.yaml") << "base: " << (test::source_dir() / "graphs/scenes/tshirt_coarse.yaml").string()
                                    << "\nsolver: {morph_steps: 2, settle_steps: 2}\nmaterials: {knit: aluminium}\n";
   const Simulation sim(test::plugins(), load_scene(dir / "foil.yaml"));
-  int steps = 0;
+  int steps = 0, last_moves = 0;
+  double last_done = -1;
+  bool told_in_order = true;
   SimulationOptions options;
   options.on_step = [&](const SimulationStep&) { ++steps; };
+  // Each partial move is told (a progress bar shows them): in order, the body's share of the way never falling.
+  options.on_partial_move = [&](int step, int total, int moves, double done) {
+    told_in_order = told_in_order && step == 1 && total == 4 && moves == last_moves + 1 && done >= last_done && done <= 1;
+    last_moves = moves;
+    last_done = done;
+  };
   const std::string why = test::message_of([&] { sim.run(sim.body_vertices(sim.target_shape()), options); });
   INFO(why);
+  CHECK(told_in_order);
+  CHECK(last_moves == std::stoi(why.substr(why.find("blocked after ") + 14)));
   CHECK_THAT(why, Catch::Contains("stopped there") && Catch::Contains("girth is not what blocks it") &&
                       Catch::Contains("times as stiff"));
   const int cuts = std::stoi(why.substr(why.find("blocked after ") + 14));

@@ -38,7 +38,9 @@ class ProgressBar {
 
   // n more items done (clamped at total).
   void advance(std::size_t n = 1);
-  // Free text after the numbers, e.g. the current losses.
+  // Free text after the numbers, e.g. the current losses. Redrawn on a
+  // terminal as advance() is; in a log, written when 30 s have passed since
+  // the last line (a long item's progress within it).
   void set_status(std::string status);
   // Writes the final line (no ETA) and ends it. Later calls do nothing.
   void finish();

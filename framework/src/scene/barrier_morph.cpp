@@ -69,6 +69,7 @@ StepReport barrier_morph_step(ClothSolver& solver, geometry::BodySurface& body, 
     solver.set_max_newton_iterations(settings.morph_newton);
     result.iterations += r.iterations;
     result.line_search_failures += r.line_search_failures;
+    if (settings.on_partial_move) settings.on_partial_move(cuts + 1, 1.0 - left);
   }
 }
 

@@ -20,6 +20,7 @@
 
 #include <Eigen/Core>
 
+#include <functional>
 #include <string>
 
 namespace drape::scene_detail {
@@ -28,6 +29,9 @@ struct BarrierMorph {
   double carry_inner = 0.005, carry_outer = 0.02;  // m
   int max_cuts = 64;
   int morph_newton = 3, settle_newton = 8;  // Newton budgets: a whole step, a step after a cut
+  // Told after each partial move: the moves so far in this step and the
+  // share of its way the body has made (SimulationOptions::on_partial_move).
+  std::function<void(int moves, double done)> on_partial_move;
 };
 
 // A morph step the contact could not finish: how far the body got. Thrown as

@@ -386,6 +386,10 @@ SimulationResult Simulation::run(const Eigen::MatrixX3d& target_body, const Simu
   barrier_morph.settle_newton = settle_newton;
   std::tie(barrier_morph.carry_inner, barrier_morph.carry_outer) = morph_carry_;
   for (int k = 1; k <= morph_steps_; ++k) {
+    if (options.on_partial_move)
+      barrier_morph.on_partial_move = [&, k](int moves, double done) {
+        options.on_partial_move(k, morph_steps_ + settle_steps_, moves, done);
+      };
     const double t = static_cast<double>(k) / morph_steps_;
     const Eigen::MatrixX3d next = body_at(t);
     if (barrier) {

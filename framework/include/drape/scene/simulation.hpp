@@ -79,6 +79,11 @@ struct SimulationResult {
 struct SimulationOptions {
   bool measure_penetration = true;  // p and the surface crossings at the end (measurements: one closest-point pass, one crossing count)
   std::function<void(const SimulationStep&)> on_step;
+  // Each partial move of a morph step the contact cut (barrier_morph.hpp):
+  // the step (1-based), the run's steps, the moves so far in this step and
+  // the share of the step's way the body has made. A blocked step can take
+  // minutes in these; a progress bar over the steps alone sat still.
+  std::function<void(int step, int total_steps, int moves, double done)> on_partial_move;
   // Overrides the start state (default: the garment dressed on the body it
   // is cut for, Simulation::fit_body(): the mean body for the regular size).
   const Eigen::MatrixX3d* start_garment = nullptr;
