@@ -104,7 +104,10 @@ TEST_CASE("a garment whose cloth is cut too small to go around the body is refus
   crumpled.vertices.col(0) *= 0.6;
   crumpled.vertices.col(2) *= 0.6;
   write_mesh(dir / "crumpled.obj", crumpled);
-  CHECK(Simulation(test::plugins(), parse_scene(fit_scene_text(dir / "crumpled.obj"))).start_refusal().empty());
+  const Simulation inside_body(test::plugins(), parse_scene(fit_scene_text(dir / "crumpled.obj")));
+  CHECK(inside_body.start_refusal().empty());
+  // Should its start cross the body, the hint says it is modelled inside it (a grade would name its own, 1.00).
+  CHECK_THAT(start_fit_hint(inside_body), Catch::Contains("modelled inside the body") && !Catch::Contains("grade:"));
 }
 
 // The words of a blocked morph, on what each cause measures: a cloth shorter

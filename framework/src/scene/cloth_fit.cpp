@@ -47,7 +47,7 @@ std::string cloth_too_short(const Garment& garment, const Eigen::MatrixX3d& star
   std::snprintf(text, sizeof text,
                 "the garment's cloth is %.1f %% shorter around than the body it is put on before the body morphs (its "
                 "narrowest loop over the chest band measures %.3f m at rest, in its material space; the body's chest or "
-                "belly %.3f m): it would start stretched by %.0f %% around, more than the %.0f %% a garment is put on "
+                "belly %.3f m): it would start stretched by %.1f %% around, more than the %.0f %% a garment is put on "
                 "with, so it cannot be put on; ",
                 -100.0 * ease, loop, around, 100.0 * (around / loop - 1.0), 100.0 * kMaxStartStretch);
   std::string out = text;

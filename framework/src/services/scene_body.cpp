@@ -219,12 +219,27 @@ std::string start_fit_hint(const Simulation& design) {
   if (!(ease < 0)) return "";  // fits the body it is dressed on, or does not go around the torso
   const double loop0 = design_loop(design);
   const double design_ease = garment_ease(loop0, design.mean_body(), body_faces);
-  char text[300];
+  const double around = loop / (1.0 + ease);
+  char text[600];
+  // Its cloth long enough (the start refusal passed it: cloth_fit.hpp) and
+  // no other grade to name (an ungraded garment's design is itself): the
+  // shape is what lies inside the body. A grade hint would name its own grade.
+  const double grade = (1.0 + design_ease) * around / loop0;
+  if (std::isfinite(design.cloth_loop()) && std::isfinite(grade) &&
+      std::abs(grade - design.scene().garment_grade) < 0.03) {
+    std::snprintf(text, sizeof text,
+                  "the garment as modelled is %.1f %% smaller around than the body it is put on before the body morphs "
+                  "(its narrowest loop over the chest band %.3f m, the body's chest or belly %.3f m), though its cloth "
+                  "at rest is %.3f m around: it is modelled inside the body; model it around the body model's mean body "
+                  "(drape body writes it), not inside it",
+                  -100.0 * ease, loop, around, design.cloth_loop());
+    return text;
+  }
   std::snprintf(text, sizeof text,
                 "the garment is %.1f %% smaller around than the body it is put on before the body morphs (its "
                 "narrowest loop over the chest band %.3f m, the body's chest or belly %.3f m), so it cannot be put on; ",
-                -100.0 * ease, loop, loop / (1.0 + ease));
-  return text + (std::isfinite(design_ease) ? grade_text(loop0, design_ease, loop / (1.0 + ease)) : std::string("grade it up"));
+                -100.0 * ease, loop, around);
+  return text + (std::isfinite(design_ease) ? grade_text(loop0, design_ease, around) : std::string("grade it up"));
 }
 
 SimulationResult drape_scene_body(const SceneBody& body, SimulationOptions options) {
