@@ -46,9 +46,12 @@ def test_generate_writes_the_same_samples_from_the_program_and_from_python(drape
         assert cli_layout[key] == py_layout[key], key
     # Three different bodies, so equality is not that of three copies of one.
     assert len({float(b) for b in cli_stats["bmi"]}) == 3
-    # A second run resumes nothing: both faces see the finished file the same way.
-    with pytest.raises(drape_module.ConfigError, match="exists"):
-        drape_module.generate(tiny_scene, tmp_path / "cli.h5", progress=False, **args)
+    # A second run resumes nothing: both faces see the finished file the same way. The same request (Python's on
+    # the program's file) has nothing to do; another is refused.
+    again = drape_module.generate(tiny_scene, tmp_path / "cli.h5", progress=False, **args)
+    assert again["already_finished"] and again["samples"] == 3
+    with pytest.raises(drape_module.ConfigError, match="exists, a finished dataset made otherwise"):
+        drape_module.generate(tiny_scene, tmp_path / "cli.h5", progress=False, **dict(args, seed=8))
 
 
 @pytest.fixture

@@ -49,10 +49,10 @@ StepReport barrier_morph_step(ClothSolver& solver, geometry::BodySurface& body, 
       body.update(next);
       return solver.step(x, v);
     }
+    constexpr auto window = static_cast<std::size_t>(kStallCuts);
     double recent = 0.0;
-    for (std::size_t k = headway.size() >= kStallCuts ? headway.size() - kStallCuts : 0; k < headway.size(); ++k)
-      recent += headway[k];
-    const bool stalled = headway.size() >= static_cast<std::size_t>(kStallCuts) && recent < kStallShare;
+    for (std::size_t k = headway.size() >= window ? headway.size() - window : 0; k < headway.size(); ++k) recent += headway[k];
+    const bool stalled = headway.size() >= window && recent < kStallShare;
     if (cuts >= settings.max_cuts || stalled)
       throw MorphBlocked("simulate: the body grows into the garment faster than the contact can push it away (morph step " +
                              std::to_string(step) + " still blocked after " + std::to_string(cuts) + " partial moves)",

@@ -49,8 +49,9 @@ struct MorphBlocked : Error {
 
 // A move blocked this many partial moves in a row that together took the
 // body less than kStallShare of its step's way has stalled: the cloth gives
-// way no more (aluminium: after the first cut each move took 1e-7 to 4e-5
-// of the step, for 64 cuts and 100 s), and the step is given up at once.
+// way no more (aluminium: after the first cut each move took 1e-7 to 8e-4
+// of what was left of the step, for 64 cuts and 100 s), and the step is
+// given up at once.
 inline constexpr int kStallCuts = 8;
 inline constexpr double kStallShare = 1e-3;
 
