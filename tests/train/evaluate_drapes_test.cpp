@@ -32,10 +32,12 @@ TEST_CASE("stored drapes are measured against the simulations their source_index
   // A drape on another body than its source's, and a source outside the dataset.
   test::write_shifted_drapes(dir / "other_body.h5", truth, sources, shift, 2);
   CHECK_THROWS_WITH(evaluate_drapes(*test::tiny_assets(), truth, DatasetReader(dir / "other_body.h5"), rows),
-                    Catch::Contains("drape sample 2") && Catch::Contains("not the body of sample 5"));
+                    Catch::Contains("other_body.h5: drape sample 2") && Catch::Contains("not the body of sample 5 of") &&
+                        Catch::Contains("truth.h5"));
   test::write_tiny_dataset(dir / "small.h5", 4, 2, 1);
   CHECK_THROWS_WITH(evaluate_drapes(*test::tiny_assets(), DatasetReader(dir / "small.h5"), drapes, rows),
-                    Catch::Contains("source_index 5") && Catch::Contains("4 samples"));
+                    Catch::Contains("drapes.h5: drape sample 0: source_index 5 is not a sample of") &&
+                        Catch::Contains("small.h5 (4 samples)"));
   // A dataset without source_index is no optimiser output.
   CHECK_THROWS_WITH(evaluate_drapes(*test::tiny_assets(), truth, truth, rows), Catch::Contains("no statistic source_index"));
 }
