@@ -120,34 +120,35 @@ TEST_CASE("a blocked morph names its cause: too small, a stiff material, a short
   const Eigen::MatrixX3d& body = sim.fit_body();
   const Eigen::MatrixX3i& faces = sim.body_model().faces();
   const scene_detail::MorphBlocked stalled("", 1, 9, 0.651, 2e-4, true);
+  const auto loop_of = [&](const Garment& g) { return garment_material_girth(g.mesh, sim.mean_body()); };
   Garment garment = sim.garment();
   SolverSettings solver;
   // The tube's cloth (1.51 m) is longer around than the mean body: not the girth, and nothing else stands out.
-  std::string why = scene_detail::why_morph_blocked(stalled, 2, garment, body, faces, sim.mean_body(), solver, false);
+  std::string why = scene_detail::why_morph_blocked(stalled, 2, garment, loop_of(garment), body, faces, solver, false);
   CHECK_THAT(why, Catch::Contains("morph step 1 of 2") && Catch::Contains("65.1 %") &&
                       Catch::Contains("stopped there") && Catch::Contains("girth is not what blocks it") &&
                       Catch::Contains("nothing in the scene"));
   // Aluminium: 1.8e6 N/m against the knit's 34.477 (ArcSim's tables, by hand: 52,200 times).
   garment.materials[0] = MaterialTable::builtin().get("aluminium");
-  why = scene_detail::why_morph_blocked(stalled, 2, garment, body, faces, sim.mean_body(), solver, false);
+  why = scene_detail::why_morph_blocked(stalled, 2, garment, loop_of(garment), body, faces, solver, false);
   CHECK_THAT(why, Catch::Contains("5.22e+04 times as stiff"));
   // A time step a thousandth of the default.
   garment = sim.garment();
   solver.time_step = 1e-4;
-  why = scene_detail::why_morph_blocked(stalled, 2, garment, body, faces, sim.mean_body(), solver, false);
+  why = scene_detail::why_morph_blocked(stalled, 2, garment, loop_of(garment), body, faces, solver, false);
   CHECK_THAT(why, Catch::Contains("the time step 0.0001 s"));
   CHECK_THAT(why, !Catch::Contains("times as stiff"));
   // The cloth cut to 0.4 of the body: too small, and the remedy named for a garment without sizes.
   solver = SolverSettings{};
   garment.mesh.uv *= 0.4;
-  why = scene_detail::why_morph_blocked(stalled, 2, garment, body, faces, sim.mean_body(), solver, false);
+  why = scene_detail::why_morph_blocked(stalled, 2, garment, loop_of(garment), body, faces, solver, false);
   CHECK_THAT(why, Catch::Contains("does not fit this body") && Catch::Contains("grade: auto"));
-  why = scene_detail::why_morph_blocked(stalled, 2, garment, body, faces, sim.mean_body(), solver, true);
+  why = scene_detail::why_morph_blocked(stalled, 2, garment, loop_of(garment), body, faces, solver, true);
   CHECK_THAT(why, Catch::Contains("size: auto"));
   // Long faces: the tube with 8 columns around (edges about 18 cm).
   write_mesh(dir / "coarse.obj", fit_tube(r, y0, y1, 1.0, 8, 2));
   const Simulation coarse(test::plugins(), parse_scene(fit_scene_text(dir / "coarse.obj")));
-  why = scene_detail::why_morph_blocked(stalled, 2, coarse.garment(), body, faces, sim.mean_body(), solver, false);
+  why = scene_detail::why_morph_blocked(stalled, 2, coarse.garment(), loop_of(coarse.garment()), body, faces, solver, false);
   CHECK_THAT(why, Catch::Contains("its faces are long"));
 }
 

@@ -2,6 +2,7 @@
 // rename never came). The next write of that target removes the temporaries
 // of processes of this machine that are gone, and keeps those of a live
 // process, of another machine sharing the folder, and of other targets.
+#include <drape/fnv1a.hpp>
 #include <drape/io/atomic_file.hpp>
 
 #include <catch2/catch.hpp>
@@ -29,10 +30,11 @@ pid_t dead_pid() {
   return child;
 }
 
+// The machine's tag in the temporaries' names: eight hex digits of its name's FNV-1a hash.
 std::string this_host() {
   char name[HOST_NAME_MAX + 1] = {};
   ::gethostname(name, sizeof name - 1);
-  return name;
+  return drape::Fnv1a().text(name).hex().substr(0, 8);
 }
 
 void touch(const fs::path& file) { std::ofstream(file) << "left by a killed job"; }
@@ -42,6 +44,7 @@ void touch(const fs::path& file) { std::ofstream(file) << "left by a killed job"
 TEST_CASE("a write removes the temporaries killed jobs left of its target, and only those", "[io][atomic]") {
   test::TempDir dir;
   const std::string host = this_host();
+  REQUIRE(host.size() == 8);
   REQUIRE(host.find('/') == std::string::npos);
   REQUIRE(host.find('@') == std::string::npos);
   const std::string dead = std::to_string(dead_pid()), alive = std::to_string(::getppid());

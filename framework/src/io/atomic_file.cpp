@@ -1,5 +1,6 @@
 #include <drape/io/atomic_file.hpp>
 #include <drape/errors.hpp>
+#include <drape/fnv1a.hpp>
 #include <drape/io/write_failure.hpp>
 
 #include <signal.h>
@@ -16,20 +17,20 @@ namespace fs = std::filesystem;
 namespace drape {
 namespace {
 
-// This machine's name, in the temporaries' names: on a folder shared by the
+// This machine, in the temporaries' names: on a folder shared by the
 // machines of a cluster, a process is known alive or dead only on its own.
-std::string host_name() {
+// Eight hex digits of its name's hash, not the name (up to 64 characters):
+// the temporary's name must stay within what write_failure_cause allows for
+// (255 less kLongestName's 220).
+std::string host_tag() {
   char name[HOST_NAME_MAX + 1] = {};
-  if (::gethostname(name, sizeof name - 1) != 0 || !name[0]) return "host";
-  std::string out = name;
-  for (char& c : out)
-    if (c == '/' || c == '@') c = '_';
-  return out;
+  if (::gethostname(name, sizeof name - 1) != 0) name[0] = '\0';
+  return Fnv1a().text(name).hex().substr(0, 8);
 }
 
 // A temporary of `target` left by a process of this machine that is gone (a
 // job killed mid-write: the rename that would have moved it into place never
-// came). Named as write_atomically names them: .<stem>.tmp<pid>-<n>@<host><ext>.
+// came). Named as write_atomically names them: .<stem>.tmp<pid>-<n>@<host tag><ext>.
 bool stale_temporary(const std::string& name, const fs::path& target, const std::string& host) {
   const std::string head = "." + target.stem().string() + ".tmp", tail = "@" + host + target.extension().string();
   if (name.size() <= head.size() + tail.size() || name.compare(0, head.size(), head) != 0 ||
@@ -70,7 +71,7 @@ void write_atomically(const fs::path& target, const std::function<void(const fs:
   // A missing or read-only folder is the user's to fix: ConfigError (exit 2).
   if (const std::string cause = write_failure_cause(target); !cause.empty())
     throw ConfigError("cannot write '" + target.string() + "': " + cause);
-  static const std::string host = host_name();
+  static const std::string host = host_tag();
   remove_stale_temporaries(dir, target, host);
   // Keep the extension last: some writers (assimp) pick the format from it.
   const fs::path tmp = dir / ("." + target.stem().string() + ".tmp" + std::to_string(::getpid()) + "-" +

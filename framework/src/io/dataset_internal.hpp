@@ -66,6 +66,12 @@ DatasetLayout read_layout(const h5::File& file);
 // "" when `now` may continue / be merged with `have`, else the first difference
 // ("body_vertices is 100 in the file, 120 now").
 std::string layout_difference(const DatasetLayout& have, const DatasetLayout& now);
+// "" when a file of layout `have` was made as `now` asks: the same layout and
+// the same `generator` attribute (how the samples are made: generate's seed,
+// body ranges and shard; optimize's model, iterations and learning rate),
+// else the first difference. What a resume and a rerun on a finished file
+// must share (not merge, which joins shards made alike in all but these).
+std::string made_difference(const DatasetLayout& have, const DatasetLayout& now);
 // Empty when two layouts are A-pose and posed drapes of one scene, which
 // DatasetReader reads as one (the A-pose bodies at their rest angles): one
 // has pose angles and the other none, their scenes differ at most in the

@@ -199,6 +199,15 @@ DatasetLayout read_layout(const h5::File& file) {
   return layout;
 }
 
+std::string made_difference(const DatasetLayout& have, const DatasetLayout& now) {
+  if (std::string difference = layout_difference(have, now); !difference.empty()) return difference;
+  const auto begun = have.attributes.find("generator");
+  const auto asked = now.attributes.find("generator");
+  if (begun != have.attributes.end() && asked != now.attributes.end() && begun->second != asked->second)
+    return "it was begun as \"" + begun->second + "\" and this run asks \"" + asked->second + "\"";
+  return "";
+}
+
 std::string layout_difference(const DatasetLayout& have, const DatasetLayout& now) {
   auto number = [](const char* what, std::size_t a, std::size_t b) {
     return a == b ? std::string() : std::string(what) + " is " + std::to_string(a) + " in the file, " + std::to_string(b) + " now";

@@ -36,18 +36,14 @@ DatasetWriter::DatasetWriter(const fs::path& path, const DatasetLayout& layout, 
       }
     }();
     const DatasetLayout have = read_layout(file);
-    const std::string difference = layout_difference(have, layout);
-    if (!difference.empty())
+    // How the samples are made must be the same too: another generator would
+    // fill the missing rows with other drapes while the file records the
+    // first run's (made_difference).
+    if (const std::string difference = layout_difference(have, layout); !difference.empty())
       throw ConfigError(partial.string() + ": cannot resume, " + difference + "; delete it to start over");
-    // How the samples are made (the `generator` attribute: generate's seed,
-    // body ranges and shard; optimize's model, iterations and learning rate)
-    // must be the same too: another would fill the missing rows with other
-    // drapes while the file records the first run's. (Not a layout
-    // difference: merge joins shards made alike in all but these.)
-    const auto begun = have.attributes.find("generator"), asked = layout.attributes.find("generator");
-    if (begun != have.attributes.end() && asked != layout.attributes.end() && begun->second != asked->second)
-      throw ConfigError(partial.string() + ": cannot resume, it was begun as \"" + begun->second + "\" and this run asks \"" +
-                        asked->second + "\"; run it as it was begun, or delete it to start over");
+    if (const std::string difference = made_difference(have, layout); !difference.empty())
+      throw ConfigError(partial.string() + ": cannot resume, " + difference + "; run it as it was begun, or delete it to "
+                        "start over");
     layout_ = have;  // keeps `created` and the extra attributes of the first run
     impl_ = std::make_unique<Impl>(Impl{std::move(file)});
     resumed_ = true;

@@ -19,29 +19,12 @@ double stretch_stiffness(const Material& m) {
   return std::max(std::abs(k[0]), std::abs(k[2]));
 }
 
-// The cloth's narrowest loop at rest over the chest band against `body`'s
-// chest or belly: ease = loop / girth - 1. NaN when either cannot be measured.
-double cloth_ease(const Garment& garment, const Eigen::MatrixX3d& body, const Eigen::MatrixX3i& body_faces,
-                  const Eigen::MatrixX3d& mean_body, double* loop = nullptr, double* around = nullptr) {
-  const double l = garment_material_girth(garment.mesh, mean_body);
-  if (!std::isfinite(l)) return std::numeric_limits<double>::quiet_NaN();
-  double g = 0.0;
-  try {
-    g = body_girth(body, body_faces);
-  } catch (const ConfigError&) {
-    return std::numeric_limits<double>::quiet_NaN();
-  }
-  if (loop) *loop = l;
-  if (around) *around = g;
-  return l / g - 1.0;
-}
-
 }  // namespace
 
-std::string cloth_too_short(const Garment& garment, const Eigen::MatrixX3d& start_body, const Eigen::MatrixX3i& body_faces,
-                            const Eigen::MatrixX3d& mean_body, const PatternSource& pattern) {
-  double loop = 0.0, around = 0.0;
-  const double ease = cloth_ease(garment, start_body, body_faces, mean_body, &loop, &around);
+std::string cloth_too_short(double loop, const Eigen::MatrixX3d& start_body, const Eigen::MatrixX3i& body_faces,
+                            const PatternSource& pattern) {
+  const double ease = garment_ease(loop, start_body, body_faces);  // NaN when either is not measured
+  const double around = loop / (1.0 + ease);
   if (!std::isfinite(ease) || around / loop - 1.0 <= kMaxStartStretch) return "";
   char text[700];
   std::snprintf(text, sizeof text,
@@ -68,9 +51,7 @@ std::string cloth_too_short(const Garment& garment, const Eigen::MatrixX3d& star
                "body graded alike)";
 }
 
-std::string shape_larger_than_cloth(const Garment& garment, double shape_loop, const Eigen::MatrixX3d& mean_body,
-                                    const PatternSource& pattern) {
-  const double cloth = garment_material_girth(garment.mesh, mean_body);
+std::string shape_larger_than_cloth(double cloth, double shape_loop, const PatternSource& pattern) {
   if (!std::isfinite(cloth) || !std::isfinite(shape_loop) || !(cloth > 0) || shape_loop / cloth - 1.0 <= kMaxStartStretch)
     return "";
   char text[600];
@@ -88,9 +69,9 @@ std::string shape_larger_than_cloth(const Garment& garment, double shape_loop, c
   return out;
 }
 
-std::string why_morph_blocked(const MorphBlocked& blocked, int morph_steps, const Garment& garment,
+std::string why_morph_blocked(const MorphBlocked& blocked, int morph_steps, const Garment& garment, double loop,
                               const Eigen::MatrixX3d& body_now, const Eigen::MatrixX3i& body_faces,
-                              const Eigen::MatrixX3d& mean_body, const SolverSettings& solver, bool sized) {
+                              const SolverSettings& solver, bool sized) {
   char text[900];
   std::snprintf(text, sizeof text,
                 "simulate: the body grows into the garment faster than the contact can push it away: morph step %d of %d "
@@ -102,8 +83,8 @@ std::string why_morph_blocked(const MorphBlocked& blocked, int morph_steps, cons
                   kStallCuts, 100.0 * blocked.last_moves);
     out += text;
   }
-  double loop = 0.0, around = 0.0;
-  const double ease = cloth_ease(garment, body_now, body_faces, mean_body, &loop, &around);
+  const double ease = garment_ease(loop, body_now, body_faces);  // NaN when either is not measured
+  const double around = loop / (1.0 + ease);
   if (std::isfinite(ease) && ease < 0) {
     std::snprintf(text, sizeof text,
                   "; the garment's cloth is %.1f %% shorter around than the body where it stopped (its narrowest loop "

@@ -39,8 +39,9 @@ struct PatternSource {
 // starts from) stretched by no more than kMaxStartStretch, or cannot be
 // measured (no material space, or no loop around the torso); else why not,
 // with what makes the cloth as long around as the body.
-std::string cloth_too_short(const Garment& garment, const Eigen::MatrixX3d& start_body,
-                            const Eigen::MatrixX3i& body_faces, const Eigen::MatrixX3d& mean_body,
+// `loop`: the cloth's narrowest loop at rest (garment_material_girth, NaN
+// when it has none), measured once by the caller for every question here.
+std::string cloth_too_short(double loop, const Eigen::MatrixX3d& start_body, const Eigen::MatrixX3i& body_faces,
                             const PatternSource& pattern);
 
 // A garment modelled much larger around than its cloth (its 3D loop over the
@@ -49,16 +50,15 @@ std::string cloth_too_short(const Garment& garment, const Eigen::MatrixX3d& star
 // seldom what a user meant (UVs in another unit, a uv_scale for another
 // file). "" otherwise, or when either loop cannot be measured; else a note
 // with the uv_scale that makes the cloth the size of the shape.
-std::string shape_larger_than_cloth(const Garment& garment, double shape_loop, const Eigen::MatrixX3d& mean_body,
-                                    const PatternSource& pattern);
+std::string shape_larger_than_cloth(double cloth_loop, double shape_loop, const PatternSource& pattern);
 
 // Why the morph stalled, in words: what the body made of the step, the
 // cloth's girth against the body's there, and when that is not the cause,
 // what in the scene keeps the cloth from giving way (a stiff material, a
 // short time step, long faces). `sized`: the garment has sizes to choose
 // from (else grade: auto is the remedy to name).
-std::string why_morph_blocked(const MorphBlocked& blocked, int morph_steps, const Garment& garment,
+std::string why_morph_blocked(const MorphBlocked& blocked, int morph_steps, const Garment& garment, double cloth_loop,
                               const Eigen::MatrixX3d& body_now, const Eigen::MatrixX3i& body_faces,
-                              const Eigen::MatrixX3d& mean_body, const SolverSettings& solver, bool sized);
+                              const SolverSettings& solver, bool sized);
 
 }  // namespace drape::scene_detail

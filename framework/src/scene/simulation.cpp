@@ -217,6 +217,7 @@ Simulation::Simulation(const Registry& registry, Scene scene) : registry_(regist
     effect_params_.emplace_back(d.params, e.params, "effect '" + e.name + "'");
     needs_body_ = needs_body_ || registry_.create_energy(e.name, effect_params_.back())->needs_body();
   }
+  cloth_loop_ = garment_material_girth(garment_->mesh, mean_body_);  // once, for every fit question below and in run()
   // A garment whose cloth cannot go around the body it is put on, said now
   // (run() refuses it before any work; cloth_fit.hpp).
   if (needs_body_) {
@@ -226,10 +227,9 @@ Simulation::Simulation(const Registry& registry, Scene scene) : registry_(regist
     if (pattern.has_uv_scale) pattern.uv_scale = garment_params.get_float("uv_scale");
     for (const ParamSpec& p : gd.params)
       if (p.name == "material_space") pattern.from_shape = garment_params.get_string("material_space") == "rest";
-    start_refusal_ = scene_detail::cloth_too_short(*garment_, fit_body_, body_model_->faces(), mean_body_, pattern);
-    shape_note_ = scene_detail::shape_larger_than_cloth(*garment_, placed_loop_, mean_body_, pattern);
+    start_refusal_ = scene_detail::cloth_too_short(cloth_loop_, fit_body_, body_model_->faces(), pattern);
+    shape_note_ = scene_detail::shape_larger_than_cloth(cloth_loop_, placed_loop_, pattern);
   }
-  cloth_loop_ = garment_material_girth(garment_->mesh, mean_body_);
   const Params solver(scene_solver_specs(), scene_.solver, "solver");
   morph_steps_ = static_cast<int>(solver.get_int("morph_steps"));
   settle_steps_ = static_cast<int>(solver.get_int("settle_steps"));
@@ -397,8 +397,8 @@ SimulationResult Simulation::run(const Eigen::MatrixX3d& target_body, const Simu
       try {
         record(k, true, scene_detail::barrier_morph_step(solver, *surface, next, k, barrier_morph, x, v, result), -1);
       } catch (const scene_detail::MorphBlocked& blocked) {
-        throw Error(scene_detail::why_morph_blocked(blocked, morph_steps_, *garment_, surface->vertices(),
-                                                    body_model_->faces(), mean_body_, solver.settings(), sized_));
+        throw Error(scene_detail::why_morph_blocked(blocked, morph_steps_, *garment_, cloth_loop_, surface->vertices(),
+                                                    body_model_->faces(), solver.settings(), sized_));
       }
     } else {
       if (surface) surface->update(next);

@@ -234,13 +234,7 @@ GenerateSummary generate_dataset(const Registry& registry, const Scene& scene, c
   // nothing to do, as train --resume on a finished run; any other is refused.
   if (std::error_code ec; std::filesystem::exists(out, ec)) {
     const DatasetReader finished(out);
-    std::string difference = dataset_detail::layout_difference(finished.layout(), layout);
-    const auto& made = finished.layout().attributes;
-    const auto begun = made.find("generator");
-    const auto asked = layout.attributes.find("generator");
-    if (difference.empty() && begun != made.end() && asked != layout.attributes.end() &&
-        begun->second != asked->second)
-      difference = "it was made as \"" + begun->second + "\" and this run asks \"" + asked->second + "\"";
+    const std::string difference = dataset_detail::made_difference(finished.layout(), layout);
     if (!difference.empty())
       throw ConfigError(out + ": already exists, a finished dataset made otherwise (" + difference +
                         "); delete it to generate it again, or give another --out");

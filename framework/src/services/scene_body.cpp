@@ -212,6 +212,9 @@ SceneBody scene_body(const SceneSimulations& simulations, const BodyRequest& req
 }
 
 std::string start_fit_hint(const Simulation& design) {
+  // A pattern cut too small was refused by its cloth's own measure (run()):
+  // nothing to add from the 3D shape, which it may share with one that fits.
+  if (!design.start_refusal().empty()) return "";
   const Eigen::MatrixX3i& body_faces = design.body_model().faces();
   const double loop = design.placed_loop();  // before dressing pushed it out onto the body
   // Put on the body it is cut for: the mean body, or its size's fit body (fit_body.hpp).
@@ -258,10 +261,6 @@ SimulationResult drape_scene_body(const SceneBody& body, SimulationOptions optio
     options.target_pose = &body.pose;
     options.unposed_target = &body.unposed;
   }
-  // Refused as the cloth's own measure says, before start_fit_hint's (the
-  // garment's 3D shape, which a pattern cut small can share with one that fits).
-  if (!options.start_garment && !options.start_body && !body.simulation->start_refusal().empty())
-    throw ConfigError(body.simulation->start_refusal());
   SimulationResult r = [&] {
     try {
       return body.simulation->run(body.vertices, options);

@@ -1,36 +1,27 @@
 // training_data_fingerprint (data_fingerprint.hpp).
 #include "data_fingerprint.hpp"
 
+#include <drape/fnv1a.hpp>
 #include <drape/tensor.hpp>
 
 #include <algorithm>
-#include <cstdint>
-#include <cstdio>
 
 namespace drape {
 namespace {
 
-struct Fnv1a {
-  std::uint64_t h = 0xcbf29ce484222325ULL;
-  void add(const void* data, std::size_t bytes) {
-    const auto* p = static_cast<const unsigned char*>(data);
-    for (std::size_t i = 0; i < bytes; ++i) h = (h ^ p[i]) * 0x100000001b3ULL;
-  }
-};
-
 void add_samples(Fnv1a& f, const DatasetReader& reader, const std::vector<std::size_t>& rows) {
   const std::uint64_t count = rows.size();
-  f.add(&count, sizeof count);
+  f.bytes(&count, sizeof count);
   constexpr std::size_t kChunk = 256;  // drapes read at once (991 vertices: 3 MB)
   for (std::size_t start = 0; start < rows.size(); start += kChunk) {
     const std::vector<std::size_t> chunk(rows.begin() + static_cast<std::ptrdiff_t>(start),
                                          rows.begin() + static_cast<std::ptrdiff_t>(std::min(rows.size(), start + kChunk)));
     for (const std::size_t r : chunk) {
       const std::uint64_t row = r;
-      f.add(&row, sizeof row);
+      f.bytes(&row, sizeof row);
     }
     const Tensor g = reader.garment_vertices(chunk);
-    f.add(g.data(), g.size() * sizeof(float));
+    f.bytes(g.data(), g.size() * sizeof(float));
   }
 }
 
@@ -41,9 +32,7 @@ std::string training_data_fingerprint(const DatasetReader& reader, const std::ve
   Fnv1a f;
   add_samples(f, reader, train);
   add_samples(f, reader, val);
-  char text[17];
-  std::snprintf(text, sizeof text, "%016llx", static_cast<unsigned long long>(f.h));
-  return text;
+  return f.hex();
 }
 
 }  // namespace drape

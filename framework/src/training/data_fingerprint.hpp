@@ -12,7 +12,7 @@
 
 namespace drape {
 
-// FNV-1a (64 bit) over the training and validation samples' indices and
+// FNV-1a (64 bit, drape/fnv1a.hpp) over the training and validation samples' indices and
 // their drapes' vertices as stored (float32), in that order; 16 hex digits.
 // The same drapes in another file (a merge of the same shards, a copy) give
 // the same fingerprint.
