@@ -105,8 +105,9 @@ TEST_CASE("grade auto gives each body the design ease and refuses a body beyond 
 TEST_CASE("grade auto's steps are a size chart that chooses as it does", "[garments][grade]") {
   const SceneSimulations sims(test::plugins(), parse_scene(kAuto, "auto.yaml"));
   const SizeTable& t = sims.grades()->table();
-  REQUIRE(t.girth.size() == 31);
-  CHECK(t.girth.front().first == "g0.50");
+  // From the first step the parametric body dresses (g0.60: below, the thinnest grade auto's test below) to g2.00.
+  REQUIRE(t.girth.size() == 29);
+  CHECK(t.girth.front().first == "g0.60");
   CHECK(t.girth.back().first == "g2.00");
   CHECK(t.design == "g1.00");
   CHECK(t.grade("g1.35") == Approx(1.35).epsilon(1e-12));
@@ -124,4 +125,56 @@ TEST_CASE("grade auto's steps are a size chart that chooses as it does", "[garme
     CHECK(c.grade == Approx(t.grade(t.choose(c.body_girth).size)));
     CHECK(std::abs(c.grade - c.exact) <= kAutoGradeStep / 2 + 1e-9);
   }
+}
+
+TEST_CASE("grade auto's smallest step is one the body model dresses: the thinnest body starts", "[garments][grade]") {
+  // Before, the chart began at g0.50 whatever the body model, and a BMI 10
+  // body (chest 0.553 m) was given g0.55: a garment tighter than the thinnest
+  // body the model makes at its mean height, which every graded garment is
+  // dressed on and morphs from, so every such drape was refused at its start
+  // as a crossing.
+  const char* text = "garment: {template: tshirt, params: {resolution: coarse}, grade: auto}\n"
+                     "effects: [gravity, stretching, bending, barrier]\n"
+                     "solver: {morph_steps: 1, settle_steps: 1, max_newton_iterations: 5}\n";
+  const SceneSimulations sims(test::plugins(), parse_scene(text, "thin.yaml"));
+  const Simulation& design = sims.design();
+  const BodyModel& model = design.body_model();
+  const Eigen::MatrixX3i& faces = model.faces();
+  // The thinnest body at the mean height and sex, measured by this file's tape.
+  BodyRequest thinnest_request = model.mean_request();
+  thinnest_request.bmi = model.bmi_range().first;
+  const double thinnest = chest_or_belly(design.body_vertices(model.solve(thinnest_request)), faces) /
+                          chest_or_belly(design.mean_body(), faces);
+  INFO("the thinnest body's girth over the mean body's: " << thinnest);
+  REQUIRE(thinnest > 0.55);  // the case this is about: thinner grades exist in 0.5-2 that no body wears
+  const SizeTable& t = sims.grades()->table();
+  const double smallest = t.grade(t.girth.front().first);
+  CHECK(smallest >= thinnest - 0.005);
+  CHECK(smallest - kAutoGradeStep < thinnest);
+
+  // A short thin woman needs less than that step: she wears it, and is told why.
+  BodyRequest thin = model.mean_request();
+  thin.bmi = 10, thin.height = 1.5, thin.sex = 0;
+  const Eigen::MatrixX3d body = design.body_vertices(design.shape_for(thin));
+  GradeChoice choice;
+  const Simulation& graded = sims.for_body(body, "thin", nullptr, &choice);
+  CHECK(choice.exact < smallest - kAutoGradeStep / 2);
+  CHECK(choice.grade == Approx(smallest));
+  CHECK(choice.at_smallest);
+  CHECK_THAT(choice.summary(), Catch::Contains("the smallest grade the body model dresses"));
+  // It starts: dressed on its fit body with no crossing, and a step is taken.
+  int steps = 0;
+  SimulationOptions options;
+  options.on_step = [&](const SimulationStep&) { ++steps; };
+  const SimulationResult result = graded.run(body, options);
+  CHECK(steps >= 1);
+  REQUIRE(result.crossings);
+  CHECK(result.crossings->total() == 0);
+  // A body that needs a step the chart has is not told so.
+  BodyRequest mean = model.mean_request();
+  mean.bmi = 18;
+  GradeChoice usual;
+  sims.for_body(design.body_vertices(design.shape_for(mean)), "usual", nullptr, &usual);
+  CHECK_FALSE(usual.at_smallest);
+  CHECK_THAT(usual.summary(), !Catch::Contains("smallest"));
 }

@@ -1,11 +1,13 @@
 // grade: auto (scene/auto_grade.hpp).
 #include <drape/scene/auto_grade.hpp>
 
+#include <drape/bodies/fit_body.hpp>
 #include <drape/errors.hpp>
 #include <drape/garment_grading.hpp>
 #include <drape/scene/garment_size.hpp>
 #include <drape/vertex_count.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 
@@ -26,7 +28,13 @@ std::string GradeChoice::summary() const {
   char text[200];
   std::snprintf(text, sizeof text, "the body's chest or belly %.3f m; grade %.3f gives the design ease, %.2f worn",
                 body_girth, exact, grade);
-  return text;
+  std::string line = text;
+  if (at_smallest) {
+    std::snprintf(text, sizeof text, " (the smallest grade the body model dresses: its thinnest body is %.2f of the "
+                  "mean body's girth)", thinnest);
+    line += text;
+  }
+  return line;
 }
 
 AutoGrade::AutoGrade(const Registry& registry, const Scene& scene) : registry_(registry), scene_(scene) {
@@ -46,7 +54,18 @@ AutoGrade::AutoGrade(const Registry& registry, const Scene& scene) : registry_(r
                                            scene.garment + "' does not (trousers, a skirt): give it a grade");
   table_.design = step_name(grade_key(1.0));
   table_.design_ease = design_ease_;
-  for (long key = grade_key(kMinGrade); key <= grade_key(kMaxGrade); ++key)
+  // A grade is dressed on the body of its girth (fit_body.hpp) and every
+  // morph starts there. Below the thinnest body the model reaches (the
+  // parametric body at its mean height: 0.56 of the mean girth at BMI 10) a
+  // graded garment would start tighter than that body, and every drape in
+  // it was refused at the start as a crossing. So the chart starts at the
+  // first step the model dresses; a body thinner still wears that step, a
+  // little looser than designed (GradeChoice::at_smallest says so).
+  const double fit_grade = design_->garment().fit_grade;
+  thinnest_ = fit_body(design_->body_model(), kMinGrade * fit_grade).girth_ratio / fit_grade;
+  // fit_body meets a girth to 0.2 %: a step that close above the thinnest is dressed on it.
+  smallest_key_ = std::max(grade_key(kMinGrade), static_cast<long>(std::ceil(thinnest_ * (1 - 2e-3) / kAutoGradeStep)));
+  for (long key = smallest_key_; key <= grade_key(kMaxGrade); ++key)
     table_.girth.emplace_back(step_name(key), design_loop_ * kAutoGradeStep * static_cast<double>(key));
 }
 
@@ -71,7 +90,12 @@ GradeChoice AutoGrade::choose(const Eigen::MatrixX3d& body, const std::string& w
                   what.c_str(), scene_.garment.c_str(), choice.body_girth, design_loop_, 100.0 * design_ease_, choice.exact);
     throw ConfigError(text);
   }
-  choice.grade = kAutoGradeStep * static_cast<double>(grade_key(table_.grade(step.size)));
+  const long key = grade_key(table_.grade(step.size));
+  choice.grade = kAutoGradeStep * static_cast<double>(key);
+  // Worn looser than the design ease only because no smaller grade can be dressed.
+  choice.at_smallest = key == smallest_key_ && smallest_key_ > grade_key(kMinGrade) &&
+                       choice.exact < choice.grade - kAutoGradeStep / 2;
+  choice.thinnest = thinnest_;
   return choice;
 }
 

@@ -15,8 +15,10 @@
 // outside 0.5-2 is refused before anything is simulated, with its measure and
 // the grade it would need: the garment cannot fit it.
 //
-// The steps are a size chart (size_table.hpp) of 31 sizes named g0.50 ...
-// g2.00, each of the design loop times its grade, chosen by the chart's own
+// The steps are a size chart (size_table.hpp) of sizes named g0.50 ...
+// g2.00 (from the first step the body model can dress: g0.60 for the
+// parametric body, whose thinnest body at its mean height has 0.56 of the
+// mean girth), each of the design loop times its grade, chosen by the chart's own
 // rule (nearest the design ease among those not smaller than the body): a
 // dataset keeps it as its size_chart, so that a model trained on the drapes
 // chooses each body's grade by the same rule (drape predict, --garment-size
@@ -41,6 +43,11 @@ struct GradeChoice {
   double body_girth = 0;   // m, the body's chest or belly
   double exact = 1;        // the grade that gives the design ease exactly
   double grade = 1;        // the chart's step nearest the design ease: what the body wears
+  // The body needs a grade below the smallest the body model can dress (its
+  // thinnest body's girth, over the mean body's, is `thinnest`), so it wears
+  // that one, looser than designed.
+  bool at_smallest = false;
+  double thinnest = 0;
   std::string summary() const;  // one line: the measure and the grade
 };
 
@@ -67,6 +74,8 @@ class AutoGrade {
   Scene scene_;  // grade 1, garment_grade_auto off: what each grade is built from
   std::unique_ptr<Simulation> design_;
   double design_loop_ = 0, design_ease_ = 0;
+  double thinnest_ = 0;     // the thinnest fit body's girth over the mean body's (per unit of the garment's fit grade)
+  long smallest_key_ = 0;   // the chart's first step, in kAutoGradeStep
   SizeTable table_;
   mutable std::mutex mutex_;
   mutable std::map<long, std::unique_ptr<Simulation>> graded_;  // by grade / kAutoGradeStep
