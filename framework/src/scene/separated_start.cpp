@@ -2,6 +2,7 @@
 #include "separated_start.hpp"
 
 #include <drape/errors.hpp>
+#include <drape/garment_dressing.hpp>
 #include <drape/geometry/surface_crossings.hpp>
 #include <drape/geometry/topology.hpp>
 #include <drape/geometry/winding.hpp>
@@ -11,12 +12,16 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdlib>
 
 namespace drape::scene_detail {
 
 namespace {
 // How far (m) a start body may be shrunk along its normals, tried in turn.
 constexpr std::array<double, 7> kShrinkDepths{0.0, 0.005, 0.01, 0.02, 0.03, 0.04, 0.06};
+// m: clear_offset_hint counts each garment vertex's distance from the body up to this.
+constexpr double kFarEnough = 0.10;
+constexpr double kInsideWeight = 10.0;
 
 // Whether a body's winding number tells inside from outside: it needs a
 // closed, consistently oriented surface (every shipped body model's). The
@@ -89,6 +94,65 @@ Eigen::MatrixX3d separated_start_body(const Eigen::MatrixX3d& x, const Eigen::Ma
   }
   check_separated_start(x, original, garment_faces);  // throws, naming the region
   return body;
+}
+
+std::string clear_offset_hint(const Garment& garment, const Eigen::MatrixX3d& undressed, const Eigen::MatrixX3d& body,
+                              const Eigen::MatrixX3i& body_faces) {
+  const geometry::BodySurface surface(body, body_faces);
+  // How far the garment lies from the body, translated by t: the mean
+  // distance of its vertices outside, each counted up to 10 cm (a sleeve
+  // hanging off an arm does not outweigh the torso), and of those inside
+  // kInsideWeight times (a shirt moved down onto its shoulders' seams is no
+  // closer). A garment modelled around the body lies closest to it where it
+  // was modelled.
+  const auto apart_of = [&](const Eigen::MatrixX3d& points, const Eigen::RowVector3d& t) {
+    const Eigen::VectorXd d = surface.signed_distances(points.rowwise() + t);
+    return d.unaryExpr([](double s) { return s < 0 ? -kInsideWeight * s : std::min(s, kFarEnough); }).mean();
+  };
+  // A grid of 5 cm steps over every fourth vertex (40 cm up and down, 20
+  // across and front to back: one axis at a time is misled, a garment moved
+  // forward fits best moved up and aside), then 1 cm steps about the best
+  // over all of them.
+  Eigen::MatrixX3d some(undressed.rows() / 4 + 1, 3);
+  Eigen::Index n = 0;
+  for (Eigen::Index v = 0; v < undressed.rows(); v += 4) some.row(n++) = undressed.row(v);
+  some.conservativeResize(n, 3);
+  Eigen::RowVector3d best = Eigen::RowVector3d::Zero();
+  const auto search = [&](const Eigen::MatrixX3d& points, const Eigen::RowVector3d& centre, const Eigen::Vector3i& steps,
+                          double step) {
+    double best_apart = apart_of(points, best);
+    for (int i = -steps[0]; i <= steps[0]; ++i)
+      for (int j = -steps[1]; j <= steps[1]; ++j)
+        for (int k = -steps[2]; k <= steps[2]; ++k) {
+          const Eigen::RowVector3d t = centre + step * Eigen::RowVector3d(i, j, k);
+          if (const double a = apart_of(points, t); a < best_apart) best_apart = a, best = t;
+        }
+  };
+  search(some, best, Eigen::Vector3i(4, 8, 4), 0.05);
+  search(undressed, best, Eigen::Vector3i(3, 3, 3), 0.01);
+  if (best.norm() < 0.015) return "";  // where it was modelled: displacement is not what keeps it from starting
+  // Said only when the translated garment, dressed as a run's start is,
+  // starts clear of the body (or of it shrunk, as a run may start).
+  Garment moved = garment;
+  moved.mesh.vertices = undressed.rowwise() + best;
+  dress(moved, Mesh{body, body_faces, {}, {}});
+  try {
+    separated_start_body(moved.mesh.vertices, body, body_faces, garment.mesh.faces);
+  } catch (const ConfigError&) {
+    return "";
+  }
+  std::string where;
+  constexpr std::array<const char*, 3> kPositive{"left (+x)", "up", "forward (+z)"};
+  constexpr std::array<const char*, 3> kNegative{"right (-x)", "down", "back (-z)"};
+  for (const int axis : {1, 0, 2}) {
+    const long cm = std::lround(100 * best[axis]);
+    if (cm == 0) continue;
+    where += (where.empty() ? "" : ", ") + std::to_string(std::labs(cm)) + " cm " +
+             (cm > 0 ? kPositive : kNegative)[static_cast<std::size_t>(axis)];
+  }
+  return "moved about " + where + ", the garment would lie closest around the body and start clear of it: is it "
+         "placed for another body or origin? A garment is modelled around the scene body model's mean body, in "
+         "metres, Y up, facing +Z (docs/garments.md, \"`mesh`: your own garment from a file\")";
 }
 
 }  // namespace drape::scene_detail

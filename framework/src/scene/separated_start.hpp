@@ -4,6 +4,7 @@
 // reached from the start without crossing). So a run with a barrier starts
 // only from a garment with no vertex inside the body and no surface crossing
 // (geometry::surface_crossings), and says where it fails otherwise.
+#include <drape/energy.hpp>
 #include <drape/geometry/closest_point.hpp>
 
 #include <Eigen/Core>
@@ -33,5 +34,18 @@ void check_separated_start(const Eigen::MatrixX3d& x, const geometry::BodySurfac
 Eigen::MatrixX3d separated_start_body(const Eigen::MatrixX3d& x, const Eigen::MatrixX3d& body,
                                       const Eigen::MatrixX3i& body_faces, const Eigen::MatrixX3i& garment_faces,
                                       double* shrink = nullptr);
+
+// After a refused start (separated_start_body threw): the nearest
+// translation of the garment as placed before dressing (`undressed`, the
+// vertices of `garment`), along one axis at a time (up and down first, up to
+// 40 cm; then sideways and front to back, up to 25 cm), that, dressed on
+// `body` as a run's start is, starts clear of it; said as a hint ("moved 20
+// cm down it would start clear of the body ..."). A mesh garment modelled
+// around another body or with another origin is refused as crossing; this
+// names the offset. Empty when no such translation clears it (a garment too
+// small, one through a limb). It dresses a few dozen copies: seconds, on a
+// run that was refused.
+std::string clear_offset_hint(const Garment& garment, const Eigen::MatrixX3d& undressed, const Eigen::MatrixX3d& body,
+                              const Eigen::MatrixX3i& body_faces);
 
 }  // namespace drape::scene_detail

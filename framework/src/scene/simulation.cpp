@@ -193,6 +193,7 @@ Simulation::Simulation(const Registry& registry, Scene scene) : registry_(regist
   const bool below_every_body = fit.clamped && fit.girth_ratio > garment.fit_grade;
   const bool may_grow = graded && !below_every_body;
   const Garment undressed = may_grow ? garment : Garment{};
+  undressed_ = garment.mesh.vertices;  // where the file or template placed it, for a refused start's offset hint
   dress_on(fit, *body_model_, garment, dressed_what);
   if (may_grow) {
     bool scaled_starts = true;
@@ -245,6 +246,18 @@ Simulation::Simulation(const Registry& registry, Scene scene) : registry_(regist
 }
 
 Simulation::~Simulation() = default;
+
+void Simulation::rethrow_with_offset_hint(const ConfigError& refused, const SimulationOptions& options) const {
+  // Only for the scene's own start (the garment dressed on its fit body),
+  // and not for a garment too small to go around it (start_fit_hint's case:
+  // no translation clears it, and the search would cost seconds for nothing).
+  if (options.start_garment || options.start_body || !undressed_.rows() ||
+      garment_ease(placed_loop_, fit_body_, body_model_->faces()) < 0)
+    throw refused;
+  const std::string hint = scene_detail::clear_offset_hint(*garment_, undressed_, fit_body_, body_model_->faces());
+  if (hint.empty()) throw refused;
+  throw ConfigError(std::string(refused.what()) + "; " + hint);
+}
 
 SolverSettings Simulation::solver_settings() const {
   const Params p(scene_solver_specs(), scene_.solver, "solver");
@@ -373,11 +386,19 @@ SimulationResult Simulation::run(const Eigen::MatrixX3d& target_body, const Simu
     // body along its normals (by a few centimetres at most) until the garment
     // is clear of it; the morph then grows it to the target under the
     // barrier. A start that cuts through the body is refused, naming where.
-    separated_body = scene_detail::separated_start_body(x, body_start, body_model_->faces(), garment_->mesh.faces,
-                                                        &result.start_shrink);
+    try {
+      separated_body = scene_detail::separated_start_body(x, body_start, body_model_->faces(), garment_->mesh.faces,
+                                                          &result.start_shrink);
+    } catch (const ConfigError& e) {
+      rethrow_with_offset_hint(e, options);
+    }
     surface->update(separated_body);
   } else if (barrier) {
-    scene_detail::check_separated_start(x, *surface, garment_->mesh.faces);
+    try {
+      scene_detail::check_separated_start(x, *surface, garment_->mesh.faces);
+    } catch (const ConfigError& e) {
+      rethrow_with_offset_hint(e, options);
+    }
   }
   const Eigen::MatrixX3d& morph_from = separated_body.rows() ? separated_body : body_start;
   const std::function<Eigen::MatrixX3d(double)> body_at = body_path(options, morph_from, target_body);

@@ -10,6 +10,7 @@
 // closest-point hierarchy only when an effect needs the body, the per-face
 // material map only when the garment's faces differ in material.
 #include <drape/bodies/body.hpp>
+#include <drape/errors.hpp>
 #include <drape/geometry/surface_crossings.hpp>
 #include <drape/scene/scene.hpp>
 #include <drape/scene/scene_pose.hpp>
@@ -172,6 +173,8 @@ class Simulation {
   Eigen::MatrixX3d mean_body_;
   double design_loop_ = 0.0, placed_loop_ = 0.0;
   Eigen::MatrixX3d fit_body_;
+  Eigen::MatrixX3d undressed_;  // the garment's vertices before dressing on fit_body_ (before a graded garment's placing)
+  [[noreturn]] void rethrow_with_offset_hint(const ConfigError& refused, const SimulationOptions& options) const;
   BodyRequest fit_request_;
   std::string start_refusal_, shape_note_;
   double cloth_loop_ = 0.0;

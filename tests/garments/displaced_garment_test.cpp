@@ -1,0 +1,97 @@
+// A mesh garment placed for another body or origin is refused at its start
+// as a crossing; the refusal names the translation that puts it back around
+// the body (separated_start.hpp, clear_offset_hint), and only when that
+// translation, dressed as a run's start is, starts clear of the body.
+#include <drape/io/mesh_io.hpp>
+#include <drape/scene/scene.hpp>
+#include <drape/scene/simulation.hpp>
+
+#include <catch2/catch.hpp>
+
+#include <cmath>
+#include <regex>
+#include <string>
+
+#include "test_support.hpp"
+
+using namespace drape;
+namespace fs = std::filesystem;
+
+namespace {
+
+std::string placed_scene_text(const fs::path& file) {
+  return "body: {model: parametric}\n"
+         "garment: {template: mesh, params: {file: " + file.string() + "}}\n"
+         "effects: {gravity: {}, stretching: {}, bending: {}, barrier: {}}\n"
+         "solver: {morph_steps: 1, settle_steps: 1, max_newton_iterations: 3}\n";
+}
+
+// The refusal of a run of the garment in `file` on the mean body ("" when it
+// starts: it takes a step, or part of one, whatever comes of the short run).
+std::string start_refusal_of(const fs::path& file) {
+  const Simulation sim(test::plugins(), parse_scene(placed_scene_text(file), "placed.yaml"));
+  bool started = false;
+  SimulationOptions options;
+  options.on_step = [&](const SimulationStep&) { started = true; };
+  options.on_partial_move = [&](int, int, int, double) { started = true; };
+  try {
+    sim.run(sim.mean_body(), options);
+  } catch (const Error& e) {  // (a blocked morph is an Error of its own: it started)
+    return started ? "" : e.what();
+  }
+  return "";
+}
+
+}  // namespace
+
+TEST_CASE("a garment placed 20 cm too high is told how far it is displaced", "[garments][fit]") {
+  test::TempDir dir;
+  // The coarse T-shirt as it starts around the mean body: a garment modelled
+  // where it belongs, written out as a user's mesh file.
+  const Simulation shirt(test::plugins(), parse_scene("garment: {template: tshirt, params: {resolution: coarse}}\neffects: [gravity, stretching, barrier]\n"));
+  Mesh placed = shirt.garment().mesh;
+  write_mesh(dir / "placed.obj", placed);
+  CHECK(start_refusal_of(dir / "placed.obj").empty());
+
+  // Exported from a scene whose floor was 20 cm lower: refused as crossing, and told.
+  Mesh high = placed;
+  high.vertices.col(1).array() += 0.20;
+  write_mesh(dir / "high.obj", high);
+  const std::string why = start_refusal_of(dir / "high.obj");
+  INFO(why);
+  CHECK_THAT(why, Catch::Contains("starts crossing the body surface") && Catch::Contains("placed for another body or origin"));
+  std::smatch m;
+  REQUIRE(std::regex_search(why, m, std::regex("moved about (\\d+) cm down")));
+  const int cm = std::stoi(m[1]);
+  CHECK(cm >= 17);
+  CHECK(cm <= 23);
+  // Moved as told, it starts.
+  Mesh back = high;
+  back.vertices.col(1).array() -= 0.01 * cm;
+  write_mesh(dir / "back.obj", back);
+  CHECK(start_refusal_of(dir / "back.obj").empty());
+}
+
+TEST_CASE("a garment through the body where it belongs is not told it is displaced", "[garments][fit]") {
+  test::TempDir dir;
+  const Simulation shirt(test::plugins(), parse_scene("garment: {template: tshirt, params: {resolution: coarse}}\n"
+                                                      "effects: [gravity, stretching, barrier]\n"));
+  // Its sleeves turned 40 degrees down about the shoulders (a shirt modelled
+  // for arms by the sides): through the arms and the trunk, which no
+  // translation undoes.
+  Mesh arms_down = shirt.garment().mesh;
+  const double shoulder_x = 0.17, shoulder_y = arms_down.vertices.col(1).maxCoeff() - 0.08;
+  const double turn = 40 * M_PI / 180;
+  for (Eigen::Index v = 0; v < arms_down.vertices.rows(); ++v) {
+    const double x = arms_down.vertices(v, 0), y = arms_down.vertices(v, 1);
+    if (std::abs(x) < shoulder_x) continue;
+    const double side = x > 0 ? 1 : -1, dx = std::abs(x) - shoulder_x, dy = y - shoulder_y;
+    arms_down.vertices(v, 0) = side * (shoulder_x + dx * std::cos(turn) + dy * std::sin(turn));
+    arms_down.vertices(v, 1) = shoulder_y - dx * std::sin(turn) + dy * std::cos(turn);
+  }
+  write_mesh(dir / "arms_down.obj", arms_down);
+  const std::string why = start_refusal_of(dir / "arms_down.obj");
+  INFO(why);
+  CHECK_THAT(why, Catch::Contains("the garment starts"));
+  CHECK_THAT(why, !Catch::Contains("placed for another body"));
+}
