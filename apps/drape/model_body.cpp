@@ -1,6 +1,7 @@
 #include "model_body.hpp"
 #include "pose_options.hpp"
 
+#include <drape/bodies/given_body.hpp>
 #include <drape/bodies/limb_turns.hpp>
 #include <drape/geometry/body_units.hpp>
 #include <drape/io/checkpoint.hpp>
@@ -91,7 +92,7 @@ bool body_mesh_posed(const fs::path& model_file, const po::variables_map& vm) {
     // refused by the model's own checks after this.
     check_body_units(mesh.vertices, "body");
     require_body_model_mesh(mesh.vertices, &mesh.faces, mean, body->faces(), "body");
-    return !LimbFit(*body).posed(mean, mesh.vertices).empty();
+    return !posed_in_words(mesh.vertices, *body, GivenBodyFrame(*body)).empty();
   } catch (const std::exception&) {
     return false;
   }
@@ -153,7 +154,8 @@ SampleBatch model_body(const Model& model, const po::variables_map& vm, BodyMove
                       " take bodies of " + std::to_string(input.vertices->rows()) + " vertices (--model)");
   }
   const BodyPreparation preparation(model, read_domain(model.file()));
-  PreparedBodies prepared = preparation.prepare(batch, vm.count("strict") > 0, "--strict", true, vm.count("body") > 0);
+  PreparedBodies prepared =
+      preparation.prepare(batch, vm.count("strict") > 0, "--strict", true, vm.count("body") > 0, pose_given(vm));
   // Posed after the body is measured and placed at rest (a raised arm is no girth).
   const std::optional<Pose> pose = pose_options(vm, model.body_model(), model.assets_spec().body_model);
   for (Notice& n : preparation.pose(batch, pose ? *pose : Pose{}, vm.count("strict") > 0, "--strict", &prepared))

@@ -111,12 +111,12 @@ class PyModel {
   // bodies stood is moved there, the domain is checked (strict: ValueError
   // outside it) and a garment too small around is noted, each notice a Python
   // warning; returns per sample the move that takes its garment back (BodyMove::back).
-  PreparedBodies prepare(SampleBatch& b, bool strict, bool check = true) {
+  PreparedBodies prepare(SampleBatch& b, bool strict, bool check = true, bool pose_given = false) {
     if (strict && !check) throw py::value_error("strict=True needs check=True: the domain is checked by measuring the body");
     const BodyPreparation& preparation = this->preparation();
     PreparedBodies prepared = [&] {
       py::gil_scoped_release release;
-      return preparation.prepare(b, strict, "strict=True", check);
+      return preparation.prepare(b, strict, "strict=True", check, true, pose_given);
     }();
     for (const Notice& n : prepared.notices) warn_python(n.text);
     return prepared;
@@ -294,7 +294,7 @@ void register_model(py::module_& m) {
             bool batched = false;
             const std::optional<Pose> posed = pose_arg(p.model().body_model(), p.model().assets_spec().body_model, pose);
             SampleBatch b = p.batch(body, body_params, garment_size, &batched);
-            const PreparedBodies prepared = p.prepare(b, strict, check);
+            const PreparedBodies prepared = p.prepare(b, strict, check, posed.has_value());
             p.pose(b, posed, strict, prepared, check);
             const std::vector<BodyMove>& back = prepared.moved_by;
             Tensor out = p.predict(b);
@@ -337,7 +337,7 @@ void register_model(py::module_& m) {
             if (b.size() != 1) throw py::value_error("body_vertices: optimize takes one body [Nb, 3], got a batch of " + std::to_string(b.size()));
             if (iterations < 0) throw py::value_error("iterations: expected >= 0");
             // Optimised where the training bodies stood (as predict), the drapes moved back with the body.
-            const PreparedBodies prepared = p.prepare(b, false);
+            const PreparedBodies prepared = p.prepare(b, false, true, posed.has_value());
             p.pose(b, posed, false, prepared);
             const BodyMove back = prepared.moved_by.front();
             // A model of several sizes: against the garment the scene dresses this body in, fed that grade.

@@ -132,3 +132,46 @@ TEST_CASE("drape body --unpose prints the pose of a body mesh, writes it at rest
   CHECK(test::run(env + " body --param rig=human --unpose " + (dir / "mannequin.obj").string() + " 2>&1", out) == 2);
   CHECK_THAT(out, Catch::Contains("6490") && Catch::Contains("6904"));
 }
+
+TEST_CASE("a body mesh in a pose too mild for its limbs' turns is read as posed and not draped as if at rest",
+          "[cli][pose][predict]") {
+  // A spine bent 10 degrees and knees bent 10 turn their bones no more than a
+  // thin body's thighs turn at rest, under the 15 degrees that told a pose
+  // from a build: the mesh was draped as if at rest (its drape 15 mm on
+  // average, 30 at most, from the drape in its pose), the A-pose model gave
+  // no warning, and --strict let it through.
+  test::TempDir dir;
+  std::string out;
+  const std::string env = test::drape_in_source(dir.path());
+  const std::string mild = "spine_flexion=10,knee_flexion=10";
+  REQUIRE(test::run(env + " body --param rig=human --bmi 24 --out " + (dir / "rest.obj").string(), out) == 0);
+  REQUIRE(test::run(env + " body --param rig=human --bmi 24 --pose " + mild + " --out " + (dir / "mild.obj").string(),
+                    out) == 0);
+  REQUIRE(test::run(env + " predict --body " + (dir / "rest.obj").string() + " --pose " + mild + " --out " +
+                        (dir / "expected.obj").string() + " 2>&1", out) == 0);
+  // No --model: the model of posed drapes, the pose read, the drape the one of the body at rest with that pose.
+  int code = test::run(env + " predict --body " + (dir / "mild.obj").string() + " --out " + (dir / "g.obj").string() +
+                           " 2>&1", out);
+  INFO(out);
+  REQUIRE(code == 0);
+  CHECK_THAT(out, Catch::Contains("model of posed drapes") && Catch::Contains("the body mesh is posed") &&
+                      Catch::Contains("spine_flexion=10") && Catch::Contains("left_knee_flexion=10"));
+  CHECK((read_mesh(dir / "g.obj").vertices - read_mesh(dir / "expected.obj").vertices).rowwise().norm().maxCoeff() < 5e-4);
+  // With a pose as well: two poses for one body (it was posed twice).
+  CHECK(test::run(env + " predict --body " + (dir / "mild.obj").string() + " --pose elbow_flexion=20 --out " +
+                      (dir / "twice.obj").string() + " 2>&1", out) == 2);
+  CHECK_THAT(out, Catch::Contains("given posed and a pose is given too"));
+  // The A-pose model warns, naming the angles read, and --strict refuses.
+  const std::string a_pose = " predict --model models/tshirt-coarse-human.h5 --body " + (dir / "mild.obj").string();
+  REQUIRE(test::run(env + a_pose + " --out " + (dir / "a.obj").string() + " 2>&1", out) == 0);
+  CHECK_THAT(out, Catch::Contains("warning: the body looks posed: its pose read off it is") &&
+                      Catch::Contains("spine_flexion=10") && Catch::Contains("drapes the A-pose only"));
+  CHECK(test::run(env + a_pose + " --strict --out " + (dir / "a2.obj").string() + " 2>&1", out) == 2);
+  CHECK_THAT(out, Catch::Contains("--strict: the body looks posed"));
+  // A thin woman at rest turns her thighs as much: read, and found at rest (no word of a pose).
+  REQUIRE(test::run(env + " body --param rig=human --bmi 11 --height 1.55 --sex 0 --out " + (dir / "thin.obj").string(),
+                    out) == 0);
+  code = test::run(env + " predict --body " + (dir / "thin.obj").string() + " --out " + (dir / "t.obj").string() + " 2>&1", out);
+  REQUIRE(code == 0);
+  CHECK_THAT(out, !Catch::Contains("posed"));
+}

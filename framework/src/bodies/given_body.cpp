@@ -2,6 +2,7 @@
 #include <drape/bodies/given_body.hpp>
 #include <drape/training/model_domain.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <limits>
@@ -53,6 +54,8 @@ namespace {
 // A mesh unposed that poses back this far from itself is told.
 constexpr double kUnposeTolerance = 1e-3;  // m
 
+constexpr const char* kAtRest = "its rest pose";
+
 // The angles of `pose` at least half a degree from the rest pose `rest`,
 // rounded to a degree: "left_elbow_flexion=40,...".
 std::string posed_angles(const Pose& pose, const Pose& rest) {
@@ -63,7 +66,7 @@ std::string posed_angles(const Pose& pose, const Pose& rest) {
     std::snprintf(part, sizeof part, "%s%s=%.0f", out.empty() ? "" : ",", name.c_str(), value);
     out += part;
   }
-  return out.empty() ? "its rest pose" : out;
+  return out.empty() ? kAtRest : out;
 }
 
 }  // namespace
@@ -92,11 +95,22 @@ GivenPosedBody unpose_given_body(Eigen::MatrixX3d& body, const BodyModel& model,
   const double turn = out.turn_degrees = std::atan2(facing.x(), facing.z()) * 180.0 / std::numbers::pi;
   if (std::abs(turn) > kTurnToleranceDegrees)
     out.turned = facing_text(turn) + "; it is draped turned to face as they do and the drape turned back with it";
-  std::snprintf(line, sizeof line,
-                "the body mesh is posed: its pose read off it is %s (the body model so posed lies %.1f mm rms, %.1f mm at "
-                "most, from the mesh); draped in that pose on the mesh unposed (docs/poses.md, \"A body given posed\")",
-                posed_angles(out.fit.pose, model.rest_pose(out.fit.shape)).c_str(), 1e3 * out.fit.fit_rms,
-                1e3 * out.fit.fit_max);
+  const Pose rest = model.rest_pose(out.fit.shape);
+  const std::string angles = posed_angles(out.fit.pose, rest);
+  out.at_rest = true;
+  for (const auto& [name, value] : out.fit.pose.angles)
+    out.at_rest = out.at_rest && !(std::abs(value - rest.get(name, 0.0)) > kPosedAngleDegrees);
+  if (angles == kAtRest)
+    std::snprintf(line, sizeof line,
+                  "the body mesh is at rest: its pose read off it is within half a degree of the rest pose at every "
+                  "joint (the body model so posed lies %.1f mm rms, %.1f mm at most, from the mesh)",
+                  1e3 * out.fit.fit_rms, 1e3 * out.fit.fit_max);
+  else
+    std::snprintf(line, sizeof line,
+                  "the body mesh is posed: its pose read off it is %s (the body model so posed lies %.1f mm rms, %.1f mm "
+                  "at most, from the mesh); draped in that pose on the mesh unposed (docs/poses.md, \"A body given "
+                  "posed\")",
+                  angles.c_str(), 1e3 * out.fit.fit_rms, 1e3 * out.fit.fit_max);
   out.pose_note = line;
   if (out.fit.reposed_error > kUnposeTolerance) {
     std::snprintf(line, sizeof line,
@@ -112,6 +126,30 @@ GivenPosedBody unpose_given_body(Eigen::MatrixX3d& body, const BodyModel& model,
                                  const std::string& who) {
   const Eigen::Vector3d none = Eigen::Vector3d::Constant(std::numeric_limits<double>::quiet_NaN());
   return unpose_given_body(body, model, frame.mean(), &frame.anchor(), none, none, who);
+}
+
+std::string posed_in_words(const Eigen::MatrixX3d& mesh, const BodyModel& model, const GivenBodyFrame& frame) {
+  double most = 0;
+  std::string turned;
+  for (const LimbTurn& t : frame.limbs().turns(frame.mean(), mesh)) {
+    most = std::max(most, t.degrees);
+    if (!(t.degrees > kPosedLimbDegrees)) continue;
+    char part[96];
+    std::snprintf(part, sizeof part, "%s%s %.0f degrees", turned.empty() ? "" : ", ", t.bone.c_str(), t.degrees);
+    turned += part;
+  }
+  if (!turned.empty())
+    return "against the mean body at rest, " + turned + " (a body at rest turns none by more than " +
+           std::to_string(static_cast<int>(kPosedLimbDegrees)) + ")";
+  if (!(most > kMildLimbDegrees) || !model.poseable()) return "";
+  Eigen::MatrixX3d copy = mesh;
+  const GivenPosedBody read = unpose_given_body(copy, model, frame, "the body");
+  if (read.at_rest) return "";
+  const Pose rest = model.rest_pose(read.fit.shape);
+  char more[40];
+  std::snprintf(more, sizeof more, "%.0f", kPosedAngleDegrees);
+  return "its pose read off it is " + posed_angles(read.fit.pose, rest) + " (more than " + more +
+         " degrees from the rest pose)";
 }
 
 }  // namespace drape

@@ -73,26 +73,10 @@ void check_domain(const Model& model, const ModelDomain& domain, const SampleBat
                                                  strict_option + " refuses such a body)"});
 }
 
-// A body given as a mesh is taken at rest (the A-pose); one given posed gets
-// a drape for another body. Told by its limbs against the mean body's
-// (LimbFit::posed): "left_forearm 40 degrees, ...", empty for a body at rest.
-// Turns are relative (a limb against its parent), so the body's own heading
-// does not change them.
-std::string posed_limbs(const Model& model, const LimbFit& limbs, const SampleBatch& batch, int i) {
-  std::string turned;
-  for (const LimbTurn& t : limbs.posed(model.assets().body.vertices, batch.body.mat(i).cast<double>())) {
-    char part[96];
-    std::snprintf(part, sizeof part, "%s%s %.0f degrees", turned.empty() ? "" : ", ", t.bone.c_str(), t.degrees);
-    turned += part;
-  }
-  return turned;
-}
-
 void warn_posed(const Model& model, const SampleBatch& batch, int i, const std::string& turned, bool strict,
                 const std::string& strict_option, std::vector<Notice>& notices) {
-  const std::string text = about(batch, i) + "the body looks posed: against the mean body at rest, " + turned +
-                           " (a body at rest turns none by more than " + std::to_string(static_cast<int>(kPosedLimbDegrees)) +
-                           "); " + (model.file().empty() ? std::string("this model") : model.file().filename().string()) +
+  const std::string text = about(batch, i) + "the body looks posed: " + turned + "; " +
+                           (model.file().empty() ? std::string("this model") : model.file().filename().string()) +
                            " drapes the A-pose only, so the drape is for another body: a model of posed drapes reads the "
                            "pose off the mesh (docs/poses.md, \"A body given posed\")";
   if (strict) throw ConfigError(strict_option + ": " + text);
@@ -358,7 +342,8 @@ void pose_model_batch(const Model& model, SampleBatch& batch, const std::vector<
 // A body mesh given posed: its pose read off it, the mesh unposed and placed
 // (unpose_given_body, given_body.hpp); the notes of where it stood and of the
 // pose read.
-BodyMove BodyPreparation::unpose_given(SampleBatch& batch, int i, Pose& pose, std::vector<Notice>& notices) const {
+BodyMove BodyPreparation::unpose_given(SampleBatch& batch, int i, Pose& pose, bool& at_rest,
+                                       std::vector<Notice>& notices) const {
   const std::string who = batch.size() > 1 ? "body " + std::to_string(i) : "the body";
   const Eigen::Vector3d unknown = Eigen::Vector3d::Constant(std::numeric_limits<double>::quiet_NaN());
   Eigen::MatrixX3d body = batch.body.mat(i).cast<double>();
@@ -368,6 +353,7 @@ BodyMove BodyPreparation::unpose_given(SampleBatch& batch, int i, Pose& pose, st
   if (!given.leaning.empty()) throw ConfigError(given.leaning);  // draped upright and turned back, it would hang across gravity
   batch.body.mat(i) = body.cast<float>();
   pose = given.fit.pose;
+  at_rest = given.at_rest;
   if (!given.turned.empty())
     notices.push_back({Notice::Level::note, who + " " + given.turned});
   else if (given.moved.offset.norm() > kPosedPlacementTolerance)
@@ -384,6 +370,8 @@ std::vector<Notice> BodyPreparation::pose(SampleBatch& batch, const Pose& pose, 
   if (prepared)
     for (std::size_t i = 0; i < prepared->given_poses.size() && i < poses.size(); ++i) {
       if (prepared->given_poses[i].empty()) continue;
+      // A mesh read at rest given with a pose: the pose given (on the mesh unposed).
+      if (!pose.empty() && i < prepared->given_at_rest.size() && prepared->given_at_rest[i]) continue;
       if (!pose.empty())
         throw ConfigError(about(batch, static_cast<int>(i)) + "the body mesh is given posed and a pose is given too: give "
                           "the posed mesh alone (its pose is read off it), or the body at rest with the pose");
@@ -506,13 +494,21 @@ std::vector<Notice> BodyPreparation::choose_sizes(SampleBatch& batch) const {
   return notices;
 }
 
+double BodyPreparation::most_turned(const SampleBatch& batch, int i) const {
+  double most = 0;
+  for (const LimbTurn& t : given_.limbs().turns(model_.assets().body.vertices, batch.body.mat(i).cast<double>()))
+    most = std::max(most, t.degrees);
+  return most;
+}
+
 PreparedBodies BodyPreparation::prepare(SampleBatch& batch, bool strict, const std::string& strict_option,
-                                        bool measure, bool given_meshes) const {
+                                        bool measure, bool given_meshes, bool pose_given) const {
   PreparedBodies out;
   out.moved_by.assign(static_cast<std::size_t>(batch.size()), BodyMove{});
   // A grade already in the batch was asked for (choose_sizes fills the others by the rule).
   const bool size_asked_for = size_chart_ && !batch.garment_grade.empty();
   out.given_poses.assign(static_cast<std::size_t>(batch.size()), Pose{});
+  out.given_at_rest.assign(static_cast<std::size_t>(batch.size()), 0);
   if (measure && !domain_ && !model_.file().empty()) {  // an untrained model in memory has no file to record one in
     const std::string name = model_.file().filename().string();
     if (strict)
@@ -529,11 +525,22 @@ PreparedBodies BodyPreparation::prepare(SampleBatch& batch, bool strict, const s
   std::vector<std::string> posed(static_cast<std::size_t>(batch.size()));
   for (int i = 0; i < batch.size(); ++i) {
     const auto at = static_cast<std::size_t>(i);
-    if (given_meshes) posed[at] = posed_limbs(model_, given_.limbs(), batch, i);
-    if (!posed[at].empty() && model_takes_pose(model_)) {
-      out.moved_by[at] = unpose_given(batch, i, out.given_poses[at], out.notices);
+    // A model of posed drapes reads the pose off every mesh given: a pose
+    // too mild for the limbs' turns to tell from a build (a spine bent 10
+    // degrees, the knees 10: turns of 10 degrees, as a thin body's thighs
+    // have at rest) was draped as if at rest, 15 mm from its drape on
+    // average (its pose read costs about a second). With a pose given, only
+    // a mesh whose bones turn past kMildLimbDegrees is read (a posed one is
+    // refused in pose(): two poses for one body).
+    if (given_meshes && model_takes_pose(model_) && (!pose_given || most_turned(batch, i) > kMildLimbDegrees)) {
+      bool at_rest = false;
+      out.moved_by[at] = unpose_given(batch, i, out.given_poses[at], at_rest, out.notices);
+      out.given_at_rest[at] = at_rest;
       continue;
     }
+    // A body given as a mesh is taken at rest (the A-pose); one given posed
+    // gets a drape for another body: told (posed_in_words), and --strict refuses it.
+    if (given_meshes) posed[at] = posed_in_words(batch.body.mat(i).cast<double>(), model_.body_model(), given_);
     if (!posed[at].empty()) warn_posed(model_, batch, i, posed[at], strict, strict_option, out.notices);
     out.moved_by[at] = place(model_, domain_ ? &*domain_ : nullptr, given_meshes ? &given_.anchor() : nullptr,
                              !posed[at].empty(), batch, i, out.notices);

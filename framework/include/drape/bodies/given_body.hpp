@@ -54,6 +54,7 @@ struct GivenPosedBody {
   double turn_degrees = 0;  // the mesh's turn about the vertical in all (counter-clockwise seen from above)
   std::string turned;     // saying so for a drape ("" within kTurnToleranceDegrees)
   std::string pose_note;  // "the body mesh is posed: its pose read off it is left_elbow_flexion=40,... "
+  bool at_rest = false;   // its pose read lies within kPosedAngleDegrees of the rest pose at every joint
   std::string warning;    // "" unless the mesh unposed misses itself posed again by over a millimetre
   // How far the mesh stood from upright as a whole (the fitted turn's tilt of
   // its up axis: lying, upside down), and, beyond kLeanLimitDegrees, the
@@ -70,6 +71,20 @@ GivenPosedBody unpose_given_body(Eigen::MatrixX3d& body, const BodyModel& model,
 // record): drape body --unpose, BodyModel.unpose, drape bench unpose.
 GivenPosedBody unpose_given_body(Eigen::MatrixX3d& body, const BodyModel& model, const GivenBodyFrame& frame,
                                  const std::string& who);
+
+// Whether a body mesh is posed, in words for a warning ("" at rest): the
+// limbs turned past kPosedLimbDegrees against the mean body (LimbFit::posed:
+// "against the mean body at rest, left_forearm 40 degrees, ... (a body at
+// rest turns none by more than 15)"); or, where the largest turn lies
+// between kMildLimbDegrees and that (a pose too mild for the turns to tell
+// from a build: a thin body's thighs turn 10 degrees at rest, a spine bent 10
+// degrees as much), its pose read off it (unpose_given_body on a copy, about
+// a second) when it lies more than kPosedAngleDegrees from the rest pose at
+// some joint ("its pose read off it is spine_flexion=10,..."). A body model
+// without a skeleton: by the turns alone.
+inline constexpr double kMildLimbDegrees = 4.0;
+inline constexpr double kPosedAngleDegrees = 3.0;
+std::string posed_in_words(const Eigen::MatrixX3d& mesh, const BodyModel& model, const GivenBodyFrame& frame);
 
 // A posed mesh's place is read to the fit's precision; nearer is not said.
 inline constexpr double kPosedPlacementTolerance = 5e-4;  // m

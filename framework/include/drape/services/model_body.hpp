@@ -101,6 +101,9 @@ struct PreparedBodies {
   // drapes (pose_fit.hpp; its body in the batch is then the mesh unposed),
   // empty for a body given at rest. BodyPreparation::pose drapes it so.
   std::vector<Pose> given_poses;
+  // Per body: its mesh was read at rest (within kPosedAngleDegrees of the
+  // rest pose at every joint): a pose given with it is the body's pose.
+  std::vector<char> given_at_rest;
   std::vector<Notice> notices;
 };
 
@@ -120,9 +123,12 @@ class BodyPreparation {
   // given_meshes: the bodies were given as meshes (a file, an array), and are
   // placed by the body model's anchor (body_anchor.hpp, found on first use:
   // about 0.2 s); false for bodies the model's body plugin made, which stand
-  // where it makes them.
+  // where it makes them. A model of posed drapes reads the pose off each
+  // mesh given (pose_fit.hpp, about a second a body) unless pose_given (the
+  // caller gives the bodies' pose, so a body is at rest unless its limbs
+  // turn past kPosedLimbDegrees: refused then in pose(), two poses for one body).
   PreparedBodies prepare(SampleBatch& batch, bool strict, const std::string& strict_option = "--strict",
-                         bool measure = true, bool given_meshes = true) const;
+                         bool measure = true, bool given_meshes = true, bool pose_given = false) const;
   // pose_model_batch, then the pose against the domain's trained joint
   // angles: a warning per angle outside (with strict, a ConfigError starting
   // "<strict_option>: "), and a warning (strict: ConfigError) for a pose in
@@ -148,7 +154,9 @@ class BodyPreparation {
   double garment_loop_;  // m, the model garment's narrowest loop on the mean body (NaN: none, or a sized model)
   void choose_sizes(SampleBatch& batch, bool strict, const std::string& strict_option, std::vector<Notice>& notices) const;
   std::optional<SizeTable> size_chart_;  // a model taking garment_grade: its training data's size chart
-  BodyMove unpose_given(SampleBatch& batch, int i, Pose& pose, std::vector<Notice>& notices) const;
+  BodyMove unpose_given(SampleBatch& batch, int i, Pose& pose, bool& at_rest, std::vector<Notice>& notices) const;
+  // The largest turn of a bone of body i against the mean body's (LimbFit::turns), degrees.
+  double most_turned(const SampleBatch& batch, int i) const;
   GivenBodyFrame given_;  // turns, places and checks bodies given as meshes (given_body.hpp)
 };
 
