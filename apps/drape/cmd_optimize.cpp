@@ -97,9 +97,10 @@ int run(const std::vector<std::string>& args) {
 
   Registry& registry = Registry::load_default(plugin_path(vm));
   Model model = Model::load(registry, model_file);
-  const SceneSimulations simulations(registry, load_scene(find_input_file(vm["scene"].as<std::string>())));
   BodyMove moved_by;  // the drape is made where (and as) the training bodies stood; written back where the body was
+  // The body and its pose before the scene (seconds to build): a bad one is refused at once.
   SampleBatch batch = model_body(model, vm, &moved_by);
+  const SceneSimulations simulations(registry, load_scene(find_input_file(vm["scene"].as<std::string>())));
   // A model of several sizes is optimised against the garment the scene dresses this body in.
   const float chosen = batch.garment_grade.empty() ? 0.0f : batch.garment_grade(0, 0, 0);
   const Simulation& scene = GradedScene(registry, simulations)
@@ -118,6 +119,10 @@ int run(const std::vector<std::string>& args) {
   std::printf("optimised %s for %s: %d iterations in %.2f s (%.1f ms each), best at iteration %d\n", model_file.c_str(),
               vm["scene"].as<std::string>().c_str(), o.iterations, r.seconds, 1000.0 * r.seconds / std::max(1, o.iterations),
               r.best_iteration);
+  if (!model.push_out_node().empty())
+    std::printf("before: the network's own drape; the push-out that predict applies after it (node '%s') is not "
+                "learnt, so the weights are optimised for the network's drape, and the barrier keeps it off the body\n",
+                model.push_out_node().c_str());
   print_terms("before", r.energies_before, r.potential_before, r.penetration_before);
   print_terms("after", r.energies_after, r.potential_after, r.penetration_after);
   // Counted by exact segment-triangle tests that share no code with the contact energies.

@@ -5,6 +5,9 @@
 #include <drape/bodies/posed_body.hpp>
 #include <drape/bodies/smpl_theta.hpp>
 
+#include <filesystem>
+#include <system_error>
+
 namespace drape::cli {
 
 std::optional<Pose> pose_options(const po::variables_map& vm, const BodyModel& model, const std::string& model_name) {
@@ -26,7 +29,13 @@ std::optional<Pose> pose_options(const po::variables_map& vm, const BodyModel& m
       throw UsageError("--pose is empty: give name=degrees,... (docs/poses.md), or leave it out for the rest pose");
     return parse_pose(text, model.pose_angles(), "--pose");
   }
-  if (vm.count("pose-file")) return read_pose_file(vm["pose-file"].as<std::string>(), model.pose_angles());
+  if (vm.count("pose-file")) {
+    const std::string file = vm["pose-file"].as<std::string>();
+    std::error_code ec;
+    if (!std::filesystem::is_regular_file(file, ec))
+      throw ConfigError("--pose-file " + file + ": " + (std::filesystem::exists(file, ec) ? "not a file" : "no such file"));
+    return read_pose_file(file, model.pose_angles());
+  }
   const std::string file = vm["smpl-theta"].as<std::string>();
   return pose_from_theta(read_theta_file(file), model, "--smpl-theta " + file);
 }

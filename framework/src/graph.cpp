@@ -676,6 +676,23 @@ void Graph::backward_from_output(const std::string& output, const Tensor& grad) 
   throw Error("backward_from_output: no output named '" + output + "'");
 }
 
+void Graph::backward_from_fed(const std::string& node, const std::string& port, const Tensor& grad) {
+  Impl& g = *impl_;
+  const Source& s = g.feeding(node, port);  // (a graph input is refused)
+  reset_grads(g);
+  Impl::Built& source = g.nodes[static_cast<std::size_t>(s.node)];
+  const Tensor& value = source.outputs[s.port];
+  if (value.shape() != grad.shape() || value.batch() != grad.batch())
+    throw Error("backward_from_fed: gradient " + grad.shape_str() + " does not match " + node + "." + port + " " +
+                value.shape_str());
+  if (!source.requires_grad) return;  // no weights upstream of it
+  Tensor& target = source.out_grads[s.port];
+  if (target.shape() != grad.shape() || target.batch() != grad.batch()) target = Tensor(grad.batch(), grad.rows(), grad.cols());
+  target.vec() = grad.vec();
+  source.grad_written[s.port] = true;
+  run_backward(g);
+}
+
 const Tensor& Graph::output(const std::string& name) const {
   for (const auto& [n, s] : impl_->outputs)
     if (n == name) return impl_->value_of(s);

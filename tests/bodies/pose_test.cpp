@@ -307,7 +307,12 @@ TEST_CASE("bad joint angles are refused in one line", "[bodies][pose]") {
   CHECK(message("elbow_flexion=abc") == "--pose: elbow_flexion = 'abc' is not a number of degrees");
   // strtod reads C's hexadecimal numbers: 0x10 was taken for 16 degrees.
   CHECK(message("elbow_flexion=0x10") == "--pose: elbow_flexion = '0x10' is not a number of degrees");
-  CHECK(message("elbow_flexion=10,left_elbow_flexion=20").find("left_elbow_flexion is set twice") != std::string::npos);
+  // Both names that set it (it said "by 'left_elbow_flexion' and before").
+  CHECK(message("elbow_flexion=10,left_elbow_flexion=20") ==
+        "--pose: left_elbow_flexion is set twice (by 'elbow_flexion' and by 'left_elbow_flexion')");
+  // An overflow is said as written (it said "= inf is outside ...").
+  CHECK(message("shoulder_abduction=1e400") ==
+        "--pose: shoulder_abduction = 1e400 is beyond any angle (degrees within its range of motion)");
   CHECK(message("knee").find("expected name=degrees") != std::string::npos);
   for (const char* text : {"sholder_abduction=40", "elbow_flexion=nan", "elbow_flexion=170"})
     CHECK(message(text).find('\n') == std::string::npos);
@@ -326,6 +331,8 @@ TEST_CASE("a pose file is read and checked like --pose", "[bodies][pose]") {
     std::ofstream(dir / "bad.yaml") << "shoulder_abduction: 80\nknee_flexion: 200\n";
     std::ofstream(dir / "list.yaml") << "[1, 2, 3]\n";
     std::ofstream(dir / "twice.yaml") << "left_elbow_flexion: 30\nleft_elbow_flexion: 60\n";
+    std::ofstream(dir / "both.yaml") << "elbow_flexion: 30\nleft_elbow_flexion: 60\n";
+    std::ofstream(dir / "nested.yaml") << "# my pose\npose:\n  shoulder_abduction: 60\n";
   }
   const Pose p = read_pose_file((dir / "pose.yaml").string(), posed_model().pose_angles());
   CHECK(p.angles.size() == 3);
@@ -336,6 +343,11 @@ TEST_CASE("a pose file is read and checked like --pose", "[bodies][pose]") {
   // An angle written twice is refused at its second line, not kept once.
   CHECK(test::message_of([&] { read_pose_file((dir / "twice.yaml").string(), posed_model().pose_angles()); })
             .find("twice.yaml:2: 'left_elbow_flexion' is defined twice") != std::string::npos);
+  CHECK_THAT(test::message_of([&] { read_pose_file((dir / "both.yaml").string(), posed_model().pose_angles()); }),
+             Catch::Contains("both.yaml:2: left_elbow_flexion is set twice (by 'elbow_flexion' and by 'left_elbow_flexion')"));
+  // A map nested under a key that is no angle: the key named, at its own line (it said "k.yaml:3: pose wants one number").
+  CHECK_THAT(test::message_of([&] { read_pose_file((dir / "nested.yaml").string(), posed_model().pose_angles()); }),
+             Catch::Contains("nested.yaml:2: no joint angle 'pose'"));
 }
 
 TEST_CASE("a body model without a skeleton refuses a pose naming itself", "[bodies][pose]") {

@@ -107,6 +107,9 @@ TEST_CASE("drape simulate refuses bad or impossible poses before simulating", "[
   CHECK(out.find("--pose: no joint angle 'elbo_flexion'; did you mean 'elbow_flexion'") != std::string::npos);
   CHECK(test::run_drape("simulate " + scene + " --pose elbow_flexion=30 --pose-file p.yaml" + obj, out) == 2);
   CHECK(out.find("--pose, --pose-file and --smpl-theta: give one") != std::string::npos);
+  // A pose file that is not there is named with its option (it said "cannot read 'p.yaml'").
+  CHECK(test::run_drape("simulate " + scene + " --pose-file " + (dir / "none.yaml").string() + obj, out) == 2);
+  CHECK(out.find("--pose-file " + (dir / "none.yaml").string() + ": no such file") != std::string::npos);
   CHECK(test::run_drape("simulate " + scene + " --bmi 40 --pose shoulder_abduction=0" + obj, out) == 2);
   CHECK(out.find("left_upper_arm into spine_upper (") != std::string::npos);
   // A scene's pose is refused at its line.

@@ -115,6 +115,9 @@ class Graph {
   void backward();
   // Reverse mode from a given gradient of an output (no losses involved).
   void backward_from_output(const std::string& output, const Tensor& grad);
+  // Reverse mode from a given gradient of what `node` reads at `port` (after
+  // forward_until(..., node): `node` need not have run).
+  void backward_from_fed(const std::string& node, const std::string& port, const Tensor& grad);
 
   const Tensor& output(const std::string& name) const;
   std::vector<std::string> output_names() const;

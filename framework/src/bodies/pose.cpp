@@ -10,6 +10,7 @@
 
 #include <cmath>
 #include <limits>
+#include <map>
 #include <cstdlib>
 #include <set>
 #include <sstream>
@@ -60,8 +61,10 @@ void check_value(const PoseAngle& a, double degrees, const std::string& what) {
 }
 
 // Sets `name` (sided or both sides) to `degrees`, checking all of it.
+// `setters` (optional): the name that set each angle so far, to say which
+// two names set one angle twice (elbow_flexion and left_elbow_flexion).
 void set_angle(Pose& pose, const std::string& name, double degrees, const std::vector<PoseAngle>& space,
-               const std::string& what) {
+               const std::string& what, std::map<std::string, std::string>* setters = nullptr) {
   const auto set = targets(name, space);
   if (set.empty()) {
     std::string msg = what + ": no joint angle '" + name + "'" + did_you_mean(name, accepted_names(space));
@@ -74,8 +77,13 @@ void set_angle(Pose& pose, const std::string& name, double degrees, const std::v
   }
   for (const PoseAngle* a : set) {
     check_value(*a, degrees, what);
-    if (!pose.angles.emplace(a->name, degrees).second)
+    if (!pose.angles.emplace(a->name, degrees).second) {
+      const auto before = setters ? setters->find(a->name) : std::map<std::string, std::string>::iterator{};
+      if (setters && before != setters->end())
+        throw ConfigError(what + ": " + a->name + " is set twice (by '" + before->second + "' and by '" + name + "')");
       throw ConfigError(what + ": " + a->name + " is set twice (by '" + name + "' and before)");
+    }
+    if (setters) (*setters)[a->name] = name;
   }
 }
 
@@ -86,6 +94,9 @@ double parse_degrees(const std::string& name, const std::string& text, const std
   // (strtod also reads C's hexadecimal numbers: 0x10 would be 16 degrees.)
   if (text.empty() || end == begin || *end != '\0' || text.find_first_of("xX") != std::string::npos)
     throw ConfigError(what + ": " + name + " = '" + text + "' is not a number of degrees");
+  // (strtod reads 1e400 as infinity: said as written, not as "inf".)
+  if (std::isinf(v) && text.find_first_of("iI") == std::string::npos)
+    throw ConfigError(what + ": " + name + " = " + text + " is beyond any angle (degrees within its range of motion)");
   return v;
 }
 
@@ -128,6 +139,7 @@ Pose mirrored_pose(const Pose& pose, const std::vector<PoseAngle>& space) {
 
 Pose parse_pose(const std::string& text, const std::vector<PoseAngle>& space, const std::string& what) {
   Pose pose;
+  std::map<std::string, std::string> setters;
   std::stringstream items(text);
   std::string item;
   while (std::getline(items, item, ',')) {
@@ -137,7 +149,7 @@ Pose parse_pose(const std::string& text, const std::vector<PoseAngle>& space, co
     if (eq == std::string::npos || eq == 0)
       throw ConfigError(what + ": expected name=degrees, got '" + item + "'");
     const std::string name = trim(item.substr(0, eq));
-    set_angle(pose, name, parse_degrees(name, trim(item.substr(eq + 1)), what), space, what);
+    set_angle(pose, name, parse_degrees(name, trim(item.substr(eq + 1)), what), space, what, &setters);
   }
   return pose;
 }
@@ -148,14 +160,27 @@ Pose read_pose_file(const std::string& path, const std::vector<PoseAngle>& space
   const YAML::Node root = yaml::load_file(path);
   if (!root.IsMap()) throw ConfigError("pose file " + path + ": expected a map of joint angle names to degrees");
   Pose pose;
-  for (const auto& kv : root)
-    add_pose_entry(pose, kv.first.as<std::string>(), kv.second, space, "pose file " + yaml::at(path, kv.second).str());
+  std::map<std::string, std::string> setters;
+  for (const auto& kv : root) {
+    const std::string name = kv.first.as<std::string>();
+    const std::string what = "pose file " + yaml::at(path, kv.first).str();
+    if (!kv.second.IsScalar()) add_pose_entry(pose, name, kv.second, space, what);  // (throws, naming the key)
+    const std::string text = kv.second.Scalar() == ".nan" ? "nan" : kv.second.Scalar();
+    set_angle(pose, name, parse_degrees(name, text, what), space, what, &setters);
+  }
   return pose;
 }
 
 void add_pose_entry(Pose& pose, const std::string& name, const YAML::Node& value, const std::vector<PoseAngle>& space,
                     const std::string& what) {
-  if (!value.IsScalar()) throw ConfigError(what + ": " + name + " wants one number of degrees");
+  if (!value.IsScalar()) {
+    // A key that is no angle (a map nested under `pose:`) is named as such first.
+    if (targets(name, space).empty()) {
+      Pose unused;
+      set_angle(unused, name, 0.0, space, what);  // throws, naming the close matches
+    }
+    throw ConfigError(what + ": " + name + " wants one number of degrees");
+  }
   const std::string text = value.Scalar() == ".nan" ? "nan" : value.Scalar();
   set_angle(pose, name, parse_degrees(name, text, what), space, what);
 }

@@ -247,6 +247,11 @@ Model Model::build(const Registry& registry, const GraphSpec& graph, const Asset
 // through the mean body's mirror map (mirrored_batch).
 void Model::set_up_mirror_average(const Registry& registry, const GraphSpec& graph) {
   mirror_node_.clear();
+  post_node_.clear();
+  for (const auto& [name, ref] : graph.outputs)
+    if (name == output_)
+      for (const PushOutSetting& post : push_out_settings(registry, graph))
+        if (post.node == ref.node && post.enabled) post_node_ = post.node;
   garment_mirror_.reset();
   body_mirror_.reset();
   twin_reads_posed_body_ = true;
@@ -488,6 +493,12 @@ const Tensor& Model::forward(const std::map<std::string, Tensor>& inputs, const 
     graph_->forward(inputs, false);
     return graph_->output(output_);
   }
+  mirror_mean(inputs, twin_inputs);
+  graph_->forward_from(mirror_node_);
+  return graph_->output(output_);
+}
+
+Tensor& Model::mirror_mean(const std::map<std::string, Tensor>& inputs, const std::map<std::string, Tensor>* twin_inputs) {
   if (!twin_inputs) throw Error("Model::forward: the mirror average needs the twin's inputs");
   // The twin first, so that what the push-out then reads (the body, the
   // grade) is the batch's own.
@@ -501,25 +512,47 @@ const Tensor& Model::forward(const std::map<std::string, Tensor>& inputs, const 
     const Eigen::MatrixX3d reflected = geometry::mirrored(*garment_mirror_, twin.mat(b).cast<double>());
     garment.mat(b) = (0.5 * (garment.mat(b).cast<double>() + reflected)).cast<float>();
   }
-  graph_->forward_from(mirror_node_);
-  return graph_->output(output_);
+  return garment;
+}
+
+const Tensor& Model::forward_network(const std::map<std::string, Tensor>& inputs,
+                                     const std::map<std::string, Tensor>* twin_inputs) {
+  if (post_node_.empty()) return forward(inputs, twin_inputs);
+  if (mirror_node_.empty()) {
+    graph_->forward_until(inputs, post_node_);
+    return std::as_const(*graph_).fed_into(post_node_, "x");
+  }
+  if (mirror_node_ != post_node_) return forward(inputs, twin_inputs);  // (a graph with nodes between the two)
+  return mirror_mean(inputs, twin_inputs);
 }
 
 void Model::backward(const Tensor& grad, const std::map<std::string, Tensor>* twin_inputs) {
+  backward_pass(grad, twin_inputs, false);
+}
+
+void Model::backward_network(const Tensor& grad, const std::map<std::string, Tensor>* twin_inputs) {
+  backward_pass(grad, twin_inputs, !post_node_.empty() && (mirror_node_.empty() || mirror_node_ == post_node_));
+}
+
+void Model::backward_pass(const Tensor& grad, const std::map<std::string, Tensor>* twin_inputs, bool from_post_input) {
+  const auto from = [&](const Tensor& g) {
+    if (from_post_input) graph_->backward_from_fed(post_node_, "x", g);
+    else graph_->backward_from_output(output_, g);
+  };
   if (mirror_node_.empty()) {
-    graph_->backward_from_output(output_, grad);
+    from(grad);
     return;
   }
   if (!twin_inputs) throw Error("Model::backward: the mirror average needs the twin's inputs");
   Tensor half = grad;
   half.vec() *= 0.5f;
-  graph_->backward_from_output(output_, half);
+  from(half);
   // The twin's pass again (the graph holds the batch's), then its share: the
   // push-out is not run for it, and its backward only passes the gradient on.
   graph_->forward_until(*twin_inputs, mirror_node_, true);
   for (int b = 0; b < grad.batch(); ++b)
     half.mat(b) = (0.5 * geometry::mirrored_adjoint(*garment_mirror_, grad.mat(b).cast<double>(), grad.rows())).cast<float>();
-  graph_->backward_from_output(output_, half);
+  from(half);
 }
 
 SampleBatch Model::body_for(const BodyRequest& request) const { return body_batch(*body_model_, request); }

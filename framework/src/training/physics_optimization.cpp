@@ -220,7 +220,8 @@ class DrapeOptimization {
 };
 
 Eigen::MatrixX3d DrapeOptimization::predict() {
-  const Tensor& garment = model_.forward(inputs_, twin_inputs_.empty() ? nullptr : &twin_inputs_);
+  // The network's own drape: the push-out after it is not learnt (Model::forward_network).
+  const Tensor& garment = model_.forward_network(inputs_, twin_inputs_.empty() ? nullptr : &twin_inputs_);
   Eigen::MatrixX3d out = garment.mat(0).cast<double>();
   if (!out.allFinite())
     throw Error("optimize: the network predicted a non-finite vertex at iteration " + std::to_string(r_.history.size()));
@@ -232,7 +233,7 @@ Eigen::MatrixX3d DrapeOptimization::predict() {
 void DrapeOptimization::backward() {
   graph_.zero_grad();
   grad_.mat(0) = gradient_.cast<float>();
-  model_.backward(grad_, twin_inputs_.empty() ? nullptr : &twin_inputs_);
+  model_.backward_network(grad_, twin_inputs_.empty() ? nullptr : &twin_inputs_);
 }
 
 void DrapeOptimization::evaluate(int it) {

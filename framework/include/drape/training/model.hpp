@@ -178,6 +178,18 @@ class Model {
   // again for its activations: twice the cost of one backward. The push-out
   // passes the gradient straight through.
   void backward(const Tensor& grad, const std::map<std::string, Tensor>* twin);
+  // As forward, but the garment the push-out is fed (the network's own
+  // drape: with the mirror average, the mean), the push-out not run; forward
+  // itself when the output is not a push_out node's. backward() takes its
+  // gradient as it is (the push-out passes it straight through). What the
+  // physics optimisation moves: the push-out is not learnt, and a gradient
+  // taken where it moved vertices, passed to the weights as if they had
+  // moved them, is not the potential's (docs/optimization.md).
+  const Tensor& forward_network(const std::map<std::string, Tensor>& inputs, const std::map<std::string, Tensor>* twin);
+  // After forward_network: `grad`, a gradient of that drape, into the weights' gradients.
+  void backward_network(const Tensor& grad, const std::map<std::string, Tensor>* twin);
+  // The push_out node (enabled) whose output is the model's; empty when none.
+  const std::string& push_out_node() const { return post_node_; }
   // The batch's bodies at rest in their mirrored poses (mirrored_pose): what
   // the mirror average feeds the network. The joints' transforms and the
   // angles are the mirrored pose's; the posed body is too when the network
@@ -214,6 +226,12 @@ class Model {
   // The mirror average: the push_out node it runs before, and the garment
   // template's mirror map (empty name: off).
   std::string mirror_node_;
+  std::string post_node_;  // the push_out node (enabled) whose output is the model's output (empty: none)
+  // With the mirror average: the graph run to the mirror node for the twin
+  // and then the batch, and the garment it is fed made their mean (returned).
+  Tensor& mirror_mean(const std::map<std::string, Tensor>& inputs, const std::map<std::string, Tensor>* twin_inputs);
+  // backward and backward_network: from the output, or from what the push-out is fed.
+  void backward_pass(const Tensor& grad, const std::map<std::string, Tensor>* twin_inputs, bool from_post_input);
   std::shared_ptr<const geometry::MirrorMap> garment_mirror_;
   std::shared_ptr<const geometry::MirrorMap> body_mirror_;  // of the mean body: a user's asymmetric body reflected
   bool twin_reads_posed_body_ = true;  // a node before the mirror node reads `body` (else the twin's is not posed)
