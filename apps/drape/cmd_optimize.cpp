@@ -120,8 +120,8 @@ int run(const std::vector<std::string>& args) {
               vm["scene"].as<std::string>().c_str(), o.iterations, r.seconds, 1000.0 * r.seconds / std::max(1, o.iterations),
               r.best_iteration);
   if (!model.push_out_node().empty())
-    std::printf("before: the network's own drape; the push-out that predict applies after it (node '%s') is not "
-                "learnt, so the weights are optimised for the network's drape, and the barrier keeps it off the body\n",
+    std::printf("the weights are optimised for the network's own drape: the push-out that predict applies after it "
+                "(node '%s') is not learnt (before: the prediction with it; iteration 0 of -v: the network's own)\n",
                 model.push_out_node().c_str());
   print_terms("before", r.energies_before, r.potential_before, r.penetration_before);
   print_terms("after", r.energies_after, r.potential_after, r.penetration_after);

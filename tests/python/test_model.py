@@ -119,12 +119,8 @@ def test_optimize_moves_a_lifted_body_like_predict(tmp_path):
     scene = drape.Scene(str(SOURCE / "graphs" / "scenes" / "tshirt_coarse.yaml"))
     with pytest.warns(UserWarning, match="stands"):
         r = m.optimize(scene, lifted, iterations=0)
-    # The regular scene's garment: a model of sizes predicts that one there
-    # (docs/garments.md). What is optimised is the network's own drape, the
-    # push-out after it off (docs/optimization.md).
-    network = drape.Model.load(str(SHIPPED), overrides={"post": {"enabled": "false"}})
-    np.testing.assert_allclose(r["before"] - np.array([0.0, 5.0, 0.0]), network.predict(body, garment_size="regular"),
-                               atol=2e-5)
+    # The regular scene's garment: a model of sizes predicts that one there (docs/garments.md).
+    np.testing.assert_allclose(r["before"] - np.array([0.0, 5.0, 0.0]), m.predict(body, garment_size="regular"), atol=2e-5)
     np.testing.assert_allclose(r["after"], r["before"], atol=0)
 
 
@@ -207,12 +203,17 @@ def test_optimize_lowers_the_scene_potential(tmp_path):
     after = sum(e.value(r["after"]) for e in energies.values())
     assert after == pytest.approx(r["potential_after"], rel=1e-9)
     assert r["potential_after"] <= r["potential_before"]
-    # The model itself changed: predicting again gives the optimised drape,
-    # the push-out off (on, it moves it only where it lies within its margin of the body).
-    model.save(str(tmp_path / "tuned.h5"), {"note": "optimised in a test"})
-    network = drape.Model.load(str(tmp_path / "tuned.h5"), overrides={"post": {"enabled": "false"}})
-    np.testing.assert_allclose(network.predict(body), r["after"], atol=1e-5)
-    assert np.abs(model.predict(body) - r["after"]).max() < 0.01
+    # The model itself changed: predicting again gives the optimised drape.
+    # The optimisation moves the network's own drape (the push-out is not
+    # learnt: docs/optimization.md), so a drape of a later iteration is the
+    # network's, the push-out off; at iteration 0 the result is the
+    # prediction itself, the push-out on.
+    if r["best_iteration"] == 0:
+        np.testing.assert_allclose(model.predict(body), r["after"], atol=1e-5)
+    else:
+        model.save(str(tmp_path / "tuned.h5"), {"note": "optimised in a test"})
+        network = drape.Model.load(str(tmp_path / "tuned.h5"), overrides={"post": {"enabled": "false"}})
+        np.testing.assert_allclose(network.predict(body), r["after"], atol=1e-5)
 
 
 def test_changed_weights_save_and_load_back(tmp_path):

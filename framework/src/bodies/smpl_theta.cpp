@@ -105,8 +105,9 @@ Pose pose_from_theta(const std::vector<double>& theta, const BodyModel& model, c
                                    : a.size() == 3 && a[0] == joints[j].name + "_x" && a[1] == joints[j].name + "_y" &&
                                          a[2] == joints[j].name + "_z";
     if (!model.poseable() || !axis_angle)
-      throw ConfigError(what + ": this body model's joints do not take SMPL's axis-angle theta (--model smpl does, with a "
-                        "file that has its pose datasets; docs/smpl.md)");
+      throw ConfigError(what + ": this body model's joints do not take SMPL's axis-angle theta (the SMPL body model does: "
+                        "drape body --model smpl with a file that has its pose datasets, or a model trained on SMPL "
+                        "bodies; docs/smpl.md)");
   }
   if (theta.size() != 3 * k && theta.size() != 3 * (k - 1))
     throw ConfigError(what + ": " + std::to_string(theta.size()) + " numbers; SMPL's theta for this model's " + std::to_string(k) +

@@ -65,8 +65,12 @@ AutoGrade::AutoGrade(const Registry& registry, const Scene& scene) : registry_(r
   thinnest_ = fit_body(design_->body_model(), kMinGrade * fit_grade).girth_ratio / fit_grade;
   // fit_body meets a girth to 0.2 %: a step that close above the thinnest is dressed on it.
   smallest_key_ = std::max(grade_key(kMinGrade), static_cast<long>(std::ceil(thinnest_ * (1 - 2e-3) / kAutoGradeStep)));
-  for (long key = smallest_key_; key <= grade_key(kMaxGrade); ++key)
-    table_.girth.emplace_back(step_name(key), design_loop_ * kAutoGradeStep * static_cast<double>(key));
+  every_grade_ = table_;
+  for (long key = grade_key(kMinGrade); key <= grade_key(kMaxGrade); ++key) {
+    const auto step = std::make_pair(step_name(key), design_loop_ * kAutoGradeStep * static_cast<double>(key));
+    every_grade_.girth.push_back(step);
+    if (key >= smallest_key_) table_.girth.push_back(step);
+  }
 }
 
 AutoGrade::~AutoGrade() = default;
@@ -92,9 +96,12 @@ GradeChoice AutoGrade::choose(const Eigen::MatrixX3d& body, const std::string& w
   }
   const long key = grade_key(table_.grade(step.size));
   choice.grade = kAutoGradeStep * static_cast<double>(key);
-  // Worn looser than the design ease only because no smaller grade can be dressed.
-  choice.at_smallest = key == smallest_key_ && smallest_key_ > grade_key(kMinGrade) &&
-                       choice.exact < choice.grade - kAutoGradeStep / 2;
+  // Worn looser than the rule would have it only because no smaller grade
+  // can be dressed: the rule over every grade chooses a smaller one. (A
+  // garment made tight rounds up anyway: MakeHuman's T-shirt at grade 0.861
+  // wears 0.90 either way.)
+  const SizeChoice unbounded = every_grade_.choose(choice.body_girth);
+  choice.at_smallest = !unbounded.size.empty() && grade_key(every_grade_.grade(unbounded.size)) < key;
   choice.thinnest = thinnest_;
   return choice;
 }
