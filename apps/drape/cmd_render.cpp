@@ -183,6 +183,13 @@ int run(const std::vector<std::string>& args) {
   } else {
     batch = model_body(model, vm, &moved_by, &notes);
     what = vm.count("bmi") ? "BMI " + std::to_string(vm["bmi"].as<double>()).substr(0, 4) : vm["body"].as<std::string>();
+    // The page's title says which body: its height, sex and pose as asked.
+    char more[64];
+    if (vm.count("bmi") && vm.count("height")) std::snprintf(more, sizeof more, ", %.2f m", vm["height"].as<double>()), what += more;
+    if (vm.count("bmi") && vm.count("sex")) std::snprintf(more, sizeof more, ", sex %g", vm["sex"].as<double>()), what += more;
+    if (vm.count("pose")) what += ", posed " + vm["pose"].as<std::string>();
+    if (vm.count("pose-file")) what += ", posed by " + vm["pose-file"].as<std::string>();
+    if (vm.count("smpl-theta")) what += ", posed by SMPL theta " + vm["smpl-theta"].as<std::string>();
   }
   Mesh body;
   body.faces = model.assets().body.faces;

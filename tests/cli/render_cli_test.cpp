@@ -47,6 +47,11 @@ TEST_CASE("render writes an HTML viewer and an SVG of a predicted drape, with th
   CHECK(page.find("https://") == std::string::npos);
   REQUIRE(test::run(drape + "--bmi 30 --out " + (dir / "d.svg").string(), out) == 0);
   CHECK_THAT(read(dir / "d.svg"), Catch::Contains("<svg"));
+  // The title names the body as asked: its height, sex and pose (it said "for BMI 30.0" whatever they were).
+  REQUIRE(test::run(drape + "--bmi 30 --height 1.6 --sex 0 --pose shoulder_abduction=60 --out " + (dir / "p.html").string(),
+                    out) == 0);
+  CHECK_THAT(read(dir / "p.html"), Catch::Contains("<title>drape render: prediction of tshirt-coarse-posed-human.h5 for "
+                                                   "BMI 30.0, 1.60 m, sex 0, posed shoulder_abduction=60</title>"));
   CHECK_THAT(out, Catch::Contains("p = "));
 
   CHECK(test::run(drape + "--bmi 30 --colour heat --out " + (dir / "x.html").string(), out) == 2);
