@@ -120,8 +120,8 @@ int run(const std::vector<std::string>& args) {
               vm["scene"].as<std::string>().c_str(), o.iterations, r.seconds, 1000.0 * r.seconds / std::max(1, o.iterations),
               r.best_iteration);
   if (!model.push_out_node().empty())
-    std::printf("the weights are optimised for the network's own drape: the push-out that predict applies after it "
-                "(node '%s') is not learnt (before: the prediction with it; iteration 0 of -v: the network's own)\n",
+    std::printf("the push-out that predict applies after the network (node '%s') is not learnt: the drape optimised "
+                "is the network's own plus the push-out's correction of the prediction, held fixed\n",
                 model.push_out_node().c_str());
   print_terms("before", r.energies_before, r.potential_before, r.penetration_before);
   print_terms("after", r.energies_after, r.potential_after, r.penetration_after);
@@ -133,9 +133,10 @@ int run(const std::vector<std::string>& args) {
   std::printf("surface crossings (garment + body edges through the other's faces): before %d, after %d\n",
               crossings(r.before), crossings(r.after));
   if (r.start_shrink > 0)
-    std::printf("barrier: the prediction crosses the body, so the contact started on the body shrunk by %.1f cm, "
-                "grown back as the cloth moved out%s\n", 100 * r.start_shrink,
-                r.grown_iteration > 0 ? (" by iteration " + std::to_string(r.grown_iteration)).c_str() : "");
+    std::printf("barrier: the %s crosses the body, so the contact started on the body shrunk by %.1f cm, %s\n",
+                "prediction", 100 * r.start_shrink,
+                r.grown_iteration > 0 ? ("grown back as the cloth moved out by iteration " + std::to_string(r.grown_iteration)).c_str()
+                                      : "not grown back by the last iteration");
   if (r.refused_steps > 0)
     std::printf("%d steps undone because they would have crossed the body (each retried shorter)\n",
                 r.refused_steps);

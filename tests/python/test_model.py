@@ -203,17 +203,15 @@ def test_optimize_lowers_the_scene_potential(tmp_path):
     after = sum(e.value(r["after"]) for e in energies.values())
     assert after == pytest.approx(r["potential_after"], rel=1e-9)
     assert r["potential_after"] <= r["potential_before"]
-    # The model itself changed: predicting again gives the optimised drape.
-    # The optimisation moves the network's own drape (the push-out is not
-    # learnt: docs/optimization.md), so a drape of a later iteration is the
-    # network's, the push-out off; at iteration 0 the result is the
-    # prediction itself, the push-out on.
-    if r["best_iteration"] == 0:
-        np.testing.assert_allclose(model.predict(body), r["after"], atol=1e-5)
-    else:
-        model.save(str(tmp_path / "tuned.h5"), {"note": "optimised in a test"})
-        network = drape.Model.load(str(tmp_path / "tuned.h5"), overrides={"post": {"enabled": "false"}})
-        np.testing.assert_allclose(network.predict(body), r["after"], atol=1e-5)
+    # The model itself changed. The drape optimised is the network's own plus
+    # the push-out's correction of the prediction, held fixed (the push-out
+    # is not learnt: docs/optimization.md): the network's drape, push-out
+    # off, moved as much as the optimised drape moved.
+    untuned = drape.Model.load(str(SHIPPED), overrides={"post": {"enabled": "false"}})
+    model.save(str(tmp_path / "tuned.h5"), {"note": "optimised in a test"})
+    tuned = drape.Model.load(str(tmp_path / "tuned.h5"), overrides={"post": {"enabled": "false"}})
+    np.testing.assert_allclose(tuned.predict(body) - untuned.predict(body), r["after"] - r["before"], atol=2e-5)
+    assert r["best_iteration"] > 0
 
 
 def test_changed_weights_save_and_load_back(tmp_path):

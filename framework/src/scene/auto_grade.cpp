@@ -30,8 +30,8 @@ std::string GradeChoice::summary() const {
                 body_girth, exact, grade);
   std::string line = text;
   if (at_smallest) {
-    std::snprintf(text, sizeof text, " (the smallest grade the body model dresses: its thinnest body is %.2f of the "
-                  "mean body's girth)", thinnest);
+    std::snprintf(text, sizeof text, " (the smallest grade the body model dresses: the thinnest body it makes at its "
+                  "mean height, where a grade is dressed, has %.2f of the mean body's girth)", thinnest);
     line += text;
   }
   return line;

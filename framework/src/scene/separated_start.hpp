@@ -35,16 +35,16 @@ Eigen::MatrixX3d separated_start_body(const Eigen::MatrixX3d& x, const Eigen::Ma
                                       const Eigen::MatrixX3i& body_faces, const Eigen::MatrixX3i& garment_faces,
                                       double* shrink = nullptr);
 
-// After a refused start (separated_start_body threw): the nearest
+// After a refused start (separated_start_body threw): the vertical
 // translation of the garment as placed before dressing (`undressed`, the
-// vertices of `garment`), along one axis at a time (up and down first, up to
-// 40 cm; then sideways and front to back, up to 25 cm), that, dressed on
-// `body` as a run's start is, starts clear of it; said as a hint ("moved 20
-// cm down it would start clear of the body ..."). A mesh garment modelled
-// around another body or with another origin is refused as crossing; this
-// names the offset. Empty when no such translation clears it (a garment too
-// small, one through a limb). It dresses a few dozen copies: seconds, on a
-// run that was refused.
+// vertices of `garment`), up to 45 cm either way, where it lies closest
+// around `body` (separated_start.cpp), said as a hint ("moved about 20 cm
+// down, the garment would lie closest around the body and start clear of
+// it ...") when it lies there at most half as far from the body and,
+// dressed on `body` as a run's start is, starts clear of it. A mesh garment
+// modelled for another body or with another floor is refused as crossing;
+// this names the offset. Empty otherwise (a garment too small, one through a
+// limb, one moved forward or aside).
 std::string clear_offset_hint(const Garment& garment, const Eigen::MatrixX3d& undressed, const Eigen::MatrixX3d& body,
                               const Eigen::MatrixX3i& body_faces);
 

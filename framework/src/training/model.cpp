@@ -248,10 +248,11 @@ Model Model::build(const Registry& registry, const GraphSpec& graph, const Asset
 void Model::set_up_mirror_average(const Registry& registry, const GraphSpec& graph) {
   mirror_node_.clear();
   post_node_.clear();
+  post_untangles_ = false;
   for (const auto& [name, ref] : graph.outputs)
     if (name == output_)
       for (const PushOutSetting& post : push_out_settings(registry, graph))
-        if (post.node == ref.node && post.enabled) post_node_ = post.node;
+        if (post.node == ref.node && post.enabled) post_node_ = post.node, post_untangles_ = post.untangle;
   garment_mirror_.reset();
   body_mirror_.reset();
   twin_reads_posed_body_ = true;

@@ -14,6 +14,7 @@
 #include <cstdio>
 #include <cmath>
 #include <memory>
+#include <optional>
 
 namespace drape {
 
@@ -168,7 +169,6 @@ class DrapeOptimization {
   }
   void grow_body();
   void start_on_shrunk_body();
-  void consider_pushed_out();
   void explain_unseparated();
 
   Model& model_;
@@ -203,7 +203,6 @@ class DrapeOptimization {
   bool grown_ = true;
   double start_gap_ = 0;  // |true body - shrunk start body|
   double best_ = INFINITY;
-  bool pushed_out_result_ = false;  // the drape with the push-out is a result (consider_pushed_out)
   // The weights of the best drape: the model is left predicting `after`, not
   // the last iterate, which can be a little worse (Adam overshoots). The run
   // ends there, so Adam's moments are not kept with them: one copy of the
@@ -219,6 +218,7 @@ class DrapeOptimization {
   const scene_detail::VertexwiseGrowth vertexwise_growth_;
   const Eigen::MatrixX3d cloth_still_;
   Accepted accepted_;
+  Eigen::MatrixX3d push_offset_;  // the push-out's correction of the prediction, added to the network's drape (start())
 };
 
 Eigen::MatrixX3d DrapeOptimization::predict() {
@@ -227,6 +227,8 @@ Eigen::MatrixX3d DrapeOptimization::predict() {
   Eigen::MatrixX3d out = garment.mat(0).cast<double>();
   if (!out.allFinite())
     throw Error("optimize: the network predicted a non-finite vertex at iteration " + std::to_string(r_.history.size()));
+  // The push-out's correction of the prediction, frozen (start()).
+  if (push_offset_.rows()) out += push_offset_;
   return out;
 }
 
@@ -249,9 +251,7 @@ void DrapeOptimization::evaluate(int it) {
     r_.energies_before = terms_;
     r_.potential_before = lp;
   }
-  // (A model with a push-out predicts the drape with it: at iteration 0 that
-  // one is the candidate, consider_pushed_out.)
-  if (grown_ && with_barrier_ == bounded_ && lp < best_ && !(it == 0 && !model_.push_out_node().empty())) {
+  if (grown_ && with_barrier_ == bounded_ && lp < best_) {
     best_ = lp;
     r_.after = x_;
     r_.energies_after = terms_;
@@ -279,37 +279,6 @@ void DrapeOptimization::grow_body() {
   }
 }
 
-// A model that ends in a push-out: `before` is its drape with the push-out
-// (what predict gives; the optimisation starts from the network's own
-// drape, history[0]). That drape is also a result from the start when it is
-// clear of the body, so that an optimisation too short to bring the
-// network's own drape off the body (a few iterations, the body shrunk under
-// it still growing back) returns it and the weights as they were, as it did
-// while the push-out was run at every iteration; a later drape replaces it
-// where its potential is lower.
-void DrapeOptimization::consider_pushed_out() {
-  if (model_.push_out_node().empty()) return;
-  const Tensor& pushed = model_.forward(inputs_, twin_inputs_.empty() ? nullptr : &twin_inputs_);
-  const Eigen::MatrixX3d drape = pushed.mat(0).cast<double>();
-  if (!drape.allFinite()) throw Error("optimize: the model's push-out gave a non-finite vertex");
-  const bool clear = !bounded_ || scene_detail::separation_problem(drape, surface_, garment_faces_).empty();
-  std::vector<EnergyTerm> terms;
-  Eigen::MatrixX3d unused;
-  // (The barrier on the true body, not yet shrunk; only where it is clear: it cannot see a crossing.)
-  const double lp = potential(energies_, drape, unused, &terms, bounded_ && clear);
-  r_.before = drape;
-  r_.energies_before = terms;
-  r_.potential_before = lp;
-  if (!clear || !(lp < best_)) return;
-  best_ = lp;
-  r_.after = drape;
-  r_.energies_after = std::move(terms);
-  r_.potential_after = lp;
-  r_.best_iteration = 0;
-  best_weights_.save(adam_);
-  pushed_out_result_ = true;
-}
-
 // A prediction that crosses the body: the barrier starts on the body shrunk
 // until it is clear of the prediction.
 void DrapeOptimization::start_on_shrunk_body() {
@@ -327,12 +296,24 @@ void DrapeOptimization::start_on_shrunk_body() {
 }
 
 void DrapeOptimization::start() {
+  // A model that ends in a push-out: the drape optimised is the network's
+  // own plus the push-out's correction of the prediction, frozen: the
+  // prediction itself at the start (clear of the body, where the push-out
+  // put it), and moved by the weights exactly as the network's drape is, so
+  // that the potential's gradient is the weights' (the push-out is not
+  // learnt, and run at every iteration it had moved vertices the gradient
+  // then credited to the weights: the potential rose; docs/optimization.md).
+  if (!model_.push_out_node().empty()) {
+    const Eigen::MatrixX3d own = predict();
+    const Tensor& pushed = model_.forward(inputs_, twin_inputs_.empty() ? nullptr : &twin_inputs_);
+    push_offset_ = pushed.mat(0).cast<double>() - own;
+    if (!push_offset_.allFinite()) throw Error("optimize: the model's push-out gave a non-finite vertex");
+  }
   x_ = predict();
   // L_p before is the prediction's on the true body; the barrier counts in it
   // only when the prediction is clear of the body (it cannot see a crossing).
   with_barrier_ = bounded_ && scene_detail::separation_problem(x_, surface_, garment_faces_).empty();
   evaluate(0);
-  consider_pushed_out();
   if (bounded_ && !with_barrier_) start_on_shrunk_body();
   if (with_barrier_) accepted_.save(adam_);
 }
@@ -401,7 +382,7 @@ void DrapeOptimization::explain_unseparated() {
 PhysicsOptimizationResult DrapeOptimization::conclude() {
   // A stop in the growth can leave `grown` set with no drape evaluated on the
   // true body: only an evaluated best is a result.
-  r_.separated = !bounded_ || pushed_out_result_ || (with_barrier_ && grown_ && std::isfinite(best_));
+  r_.separated = !bounded_ || (with_barrier_ && grown_ && std::isfinite(best_));
   // After a stop the model holds the weights of the step that failed.
   const bool weights_past_last_drape = !r_.stopped.empty();
   if (r_.separated && (weights_past_last_drape || r_.best_iteration + 1 != static_cast<int>(r_.history.size())))

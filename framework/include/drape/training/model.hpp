@@ -190,6 +190,8 @@ class Model {
   void backward_network(const Tensor& grad, const std::map<std::string, Tensor>* twin);
   // The push_out node (enabled) whose output is the model's; empty when none.
   const std::string& push_out_node() const { return post_node_; }
+  // That push-out also undoes the garment's crossings of itself (its `untangle`).
+  bool push_out_untangles() const { return post_untangles_; }
   // The batch's bodies at rest in their mirrored poses (mirrored_pose): what
   // the mirror average feeds the network. The joints' transforms and the
   // angles are the mirrored pose's; the posed body is too when the network
@@ -227,6 +229,7 @@ class Model {
   // template's mirror map (empty name: off).
   std::string mirror_node_;
   std::string post_node_;  // the push_out node (enabled) whose output is the model's output (empty: none)
+  bool post_untangles_ = false;
   // With the mirror average: the graph run to the mirror node for the twin
   // and then the batch, and the garment it is fed made their mean (returned).
   Tensor& mirror_mean(const std::map<std::string, Tensor>& inputs, const std::map<std::string, Tensor>* twin_inputs);

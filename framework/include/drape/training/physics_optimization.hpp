@@ -25,15 +25,15 @@ struct PhysicsOptimizationOptions {
 
 struct PhysicsOptimizationResult {
   // Garment vertices: the model's prediction (as predict gives it: with the
-  // push-out of a model that ends in one), the optimised drape. The
-  // optimisation itself moves the network's own drape (the push-out is not
-  // learnt: Model::forward_network), history[0]; the prediction with the
-  // push-out is a result from the start when it is clear of the body.
+  // push-out of a model that ends in one), the optimised drape. With a
+  // push-out the drape optimised is the network's own (Model::forward_network)
+  // plus the push-out's correction of the prediction, held fixed: the
+  // prediction at the start, moved by the weights as the network's drape is.
   Eigen::MatrixX3d before, after;
   std::vector<EnergyTerm> energies_before, energies_after;  // each effect, J
   double potential_before = 0, potential_after = 0;         // L_p, J
   double penetration_before = 0, penetration_after = 0;     // fraction of garment vertices inside the body
-  std::vector<double> history;  // L_p at every iteration of the network's own drape (history[0]: before the first step)
+  std::vector<double> history;  // L_p at every iteration, history[0] = before
   int best_iteration = 0;       // the iterate returned as `after` (the lowest L_p seen)
   double seconds = 0;
   // With a barrier in the scene: the shrink of the body that separated the
