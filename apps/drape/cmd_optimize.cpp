@@ -133,8 +133,8 @@ int run(const std::vector<std::string>& args) {
   std::printf("surface crossings (garment + body edges through the other's faces): before %d, after %d\n",
               crossings(r.before), crossings(r.after));
   if (r.start_shrink > 0)
-    std::printf("barrier: the %s crosses the body, so the contact started on the body shrunk by %.1f cm, %s\n",
-                "prediction", 100 * r.start_shrink,
+    std::printf("barrier: the prediction crosses the body, so the contact started on the body shrunk by %.1f cm, %s\n",
+                100 * r.start_shrink,
                 r.grown_iteration > 0 ? ("grown back as the cloth moved out by iteration " + std::to_string(r.grown_iteration)).c_str()
                                       : "not grown back by the last iteration");
   if (r.refused_steps > 0)

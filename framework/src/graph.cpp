@@ -655,42 +655,34 @@ void Graph::backward() {
   run_backward(g);
 }
 
-void Graph::backward_from_output(const std::string& output, const Tensor& grad) {
-  Impl& g = *impl_;
+namespace {
+
+// Reverse mode from `grad`, a gradient of the tensor `s` names (a node's
+// output), into every weight upstream; `what` names the tensor in errors.
+void backward_from_source(Graph::Impl& g, const Source& s, const Tensor& grad, const std::string& what) {
   reset_grads(g);
-  for (const auto& [name, s] : g.outputs) {
-    if (name != output) continue;
-    if (s.node < 0) return;  // an input passed through: no weights involved
-    const Tensor& value = g.nodes[s.node].outputs[s.port];
-    if (value.shape() != grad.shape() || value.batch() != grad.batch())
-      throw Error("backward_from_output: gradient " + grad.shape_str() + " does not match output " + value.shape_str());
-    if (!g.nodes[s.node].requires_grad) return;  // no weights upstream of it
-    Tensor& target = g.nodes[s.node].out_grads[s.port];
-    if (target.shape() != grad.shape() || target.batch() != grad.batch())
-      throw Error("backward_from_output: gradient " + grad.shape_str() + " does not match output " + target.shape_str());
-    target.vec() = grad.vec();
-    g.nodes[s.node].grad_written[s.port] = true;
-    run_backward(g);
-    return;
-  }
+  if (s.node < 0) return;  // an input passed through: no weights involved
+  Graph::Impl::Built& source = g.nodes[static_cast<std::size_t>(s.node)];
+  const Tensor& value = source.outputs[s.port];
+  if (value.shape() != grad.shape() || value.batch() != grad.batch())
+    throw Error("backward: gradient " + grad.shape_str() + " does not match " + what + " " + value.shape_str());
+  if (!source.requires_grad) return;  // no weights upstream of it
+  Tensor& target = source.out_grads[s.port];  // (reset_grads sized it as the output)
+  target.vec() = grad.vec();
+  source.grad_written[s.port] = true;
+  run_backward(g);
+}
+
+}  // namespace
+
+void Graph::backward_from_output(const std::string& output, const Tensor& grad) {
+  for (const auto& [name, s] : impl_->outputs)
+    if (name == output) return backward_from_source(*impl_, s, grad, "output " + output);
   throw Error("backward_from_output: no output named '" + output + "'");
 }
 
 void Graph::backward_from_fed(const std::string& node, const std::string& port, const Tensor& grad) {
-  Impl& g = *impl_;
-  const Source& s = g.feeding(node, port);  // (a graph input is refused)
-  reset_grads(g);
-  Impl::Built& source = g.nodes[static_cast<std::size_t>(s.node)];
-  const Tensor& value = source.outputs[s.port];
-  if (value.shape() != grad.shape() || value.batch() != grad.batch())
-    throw Error("backward_from_fed: gradient " + grad.shape_str() + " does not match " + node + "." + port + " " +
-                value.shape_str());
-  if (!source.requires_grad) return;  // no weights upstream of it
-  Tensor& target = source.out_grads[s.port];
-  if (target.shape() != grad.shape() || target.batch() != grad.batch()) target = Tensor(grad.batch(), grad.rows(), grad.cols());
-  target.vec() = grad.vec();
-  source.grad_written[s.port] = true;
-  run_backward(g);
+  backward_from_source(*impl_, impl_->feeding(node, port), grad, node + "." + port);  // (feeding refuses a graph input)
 }
 
 const Tensor& Graph::output(const std::string& name) const {

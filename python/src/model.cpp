@@ -359,9 +359,9 @@ void register_model(py::module_& m) {
           py::arg("learning_rate") = 1e-4, py::arg("pose") = py::none(),
           "The seed's physics-enforced optimisation (as drape optimize): fine-tunes this model's weights in place so that "
           "its drape of one body minimises the scene's potential. Returns before/after garments, energies, p and the "
-          "history. 'before' is the prediction as predict gives it; a model that ends in a push-out has the network's "
-          "own drape optimised (the push-out is not learnt), history[0] being its potential (docs/optimization.md). "
-          "The GIL is released.")
+          "history (history[0]: before's potential). 'before' is the prediction as predict gives it; with a push-out "
+          "the drape optimised is the network's own plus the push-out's correction of the prediction, held fixed (the "
+          "push-out is not learnt; docs/optimization.md). The GIL is released.")
       .def(
           "save",
           [](PyModel& p, const std::string& path, const std::map<std::string, std::string>& meta) {

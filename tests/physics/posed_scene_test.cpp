@@ -69,6 +69,9 @@ TEST_CASE("a scene's bad pose is refused at its file and line", "[scene][pose]")
         std::string::npos);
   CHECK(scene_error("  pose: {elbow_flexion: 30, left_elbow_flexion: 20}").find("left_elbow_flexion is set twice") !=
         std::string::npos);
+  // Both names that set it, as --pose and a pose file say.
+  CHECK(scene_error("  pose: {elbow_flexion: 30, left_elbow_flexion: 20}")
+            .find("(by 'elbow_flexion' and by 'left_elbow_flexion')") != std::string::npos);
   CHECK(scene_error("  pose: [30]").find("posed.yaml:4: body `pose` must be a map of name: value") != std::string::npos);
 }
 

@@ -54,10 +54,8 @@ namespace {
 // A mesh unposed that poses back this far from itself is told.
 constexpr double kUnposeTolerance = 1e-3;  // m
 
-constexpr const char* kAtRest = "its rest pose";
-
 // The angles of `pose` at least half a degree from the rest pose `rest`,
-// rounded to a degree: "left_elbow_flexion=40,...".
+// rounded to a degree: "left_elbow_flexion=40,..."; "" when there are none.
 std::string posed_angles(const Pose& pose, const Pose& rest) {
   std::string out;
   for (const auto& [name, value] : pose.angles) {
@@ -66,7 +64,7 @@ std::string posed_angles(const Pose& pose, const Pose& rest) {
     std::snprintf(part, sizeof part, "%s%s=%.0f", out.empty() ? "" : ",", name.c_str(), value);
     out += part;
   }
-  return out.empty() ? kAtRest : out;
+  return out;
 }
 
 }  // namespace
@@ -100,7 +98,7 @@ GivenPosedBody unpose_given_body(Eigen::MatrixX3d& body, const BodyModel& model,
   out.at_rest = true;
   for (const auto& [name, value] : out.fit.pose.angles)
     out.at_rest = out.at_rest && !(std::abs(value - rest.get(name, 0.0)) > kPosedAngleDegrees);
-  if (angles == kAtRest)
+  if (angles.empty())
     std::snprintf(line, sizeof line,
                   "the body mesh is at rest: its pose read off it is within half a degree of the rest pose at every "
                   "joint (the body model so posed lies %.1f mm rms, %.1f mm at most, from the mesh)",

@@ -163,16 +163,13 @@ Pose read_pose_file(const std::string& path, const std::vector<PoseAngle>& space
   std::map<std::string, std::string> setters;
   for (const auto& kv : root) {
     const std::string name = kv.first.as<std::string>();
-    const std::string what = "pose file " + yaml::at(path, kv.first).str();
-    if (!kv.second.IsScalar()) add_pose_entry(pose, name, kv.second, space, what);  // (throws, naming the key)
-    const std::string text = kv.second.Scalar() == ".nan" ? "nan" : kv.second.Scalar();
-    set_angle(pose, name, parse_degrees(name, text, what), space, what, &setters);
+    add_pose_entry(pose, name, kv.second, space, "pose file " + yaml::at(path, kv.first).str(), &setters);
   }
   return pose;
 }
 
 void add_pose_entry(Pose& pose, const std::string& name, const YAML::Node& value, const std::vector<PoseAngle>& space,
-                    const std::string& what) {
+                    const std::string& what, std::map<std::string, std::string>* setters) {
   if (!value.IsScalar()) {
     // A key that is no angle (a map nested under `pose:`) is named as such first.
     if (targets(name, space).empty()) {
@@ -182,7 +179,7 @@ void add_pose_entry(Pose& pose, const std::string& name, const YAML::Node& value
     throw ConfigError(what + ": " + name + " wants one number of degrees");
   }
   const std::string text = value.Scalar() == ".nan" ? "nan" : value.Scalar();
-  set_angle(pose, name, parse_degrees(name, text, what), space, what);
+  set_angle(pose, name, parse_degrees(name, text, what), space, what, setters);
 }
 
 void check_pose(const Pose& pose, const std::vector<PoseAngle>& space, const std::string& what) {

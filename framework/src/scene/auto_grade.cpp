@@ -64,12 +64,12 @@ AutoGrade::AutoGrade(const Registry& registry, const Scene& scene) : registry_(r
   const double fit_grade = design_->garment().fit_grade;
   thinnest_ = fit_body(design_->body_model(), kMinGrade * fit_grade).girth_ratio / fit_grade;
   // fit_body meets a girth to 0.2 %: a step that close above the thinnest is dressed on it.
-  smallest_key_ = std::max(grade_key(kMinGrade), static_cast<long>(std::ceil(thinnest_ * (1 - 2e-3) / kAutoGradeStep)));
+  const long smallest_key = std::max(grade_key(kMinGrade), static_cast<long>(std::ceil(thinnest_ * (1 - 2e-3) / kAutoGradeStep)));
   every_grade_ = table_;
   for (long key = grade_key(kMinGrade); key <= grade_key(kMaxGrade); ++key) {
     const auto step = std::make_pair(step_name(key), design_loop_ * kAutoGradeStep * static_cast<double>(key));
     every_grade_.girth.push_back(step);
-    if (key >= smallest_key_) table_.girth.push_back(step);
+    if (key >= smallest_key) table_.girth.push_back(step);
   }
 }
 

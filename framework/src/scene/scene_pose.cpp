@@ -18,8 +18,9 @@ Pose scene_pose(const Scene& scene, const BodyModel& model) {
                                           : "cannot be posed: " + reason));
   }
   const std::vector<PoseAngle> space = model.pose_angles();
+  std::map<std::string, std::string> setters;
   for (const auto& [name, value] : scene.pose)
-    add_pose_entry(pose, name, value.node, space, value.where.str() + ": body `pose`");
+    add_pose_entry(pose, name, value.node, space, value.where.str() + ": body `pose`", &setters);
   return pose;
 }
 

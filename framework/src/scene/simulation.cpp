@@ -251,8 +251,7 @@ void Simulation::rethrow_with_offset_hint(const ConfigError& refused, const Simu
   // Only for the scene's own start (the garment dressed on its fit body),
   // and not for a garment too small to go around it (start_fit_hint's case:
   // no translation clears it, and the search would cost seconds for nothing).
-  if (options.start_garment || options.start_body || !undressed_.rows() ||
-      garment_ease(placed_loop_, fit_body_, body_model_->faces()) < 0)
+  if (options.start_garment || options.start_body || garment_ease(placed_loop_, fit_body_, body_model_->faces()) < 0)
     throw refused;
   const std::string hint = scene_detail::clear_offset_hint(*garment_, undressed_, fit_body_, body_model_->faces());
   if (hint.empty()) throw refused;
@@ -381,24 +380,20 @@ SimulationResult Simulation::run(const Eigen::MatrixX3d& target_body, const Simu
   // the dressed start cuts through it); without morph steps the target itself
   // must be separated.
   Eigen::MatrixX3d separated_body;
-  if (barrier && morph_steps_ > 0) {
-    // A start a little inside the body is rescued by shrinking the start
-    // body along its normals (by a few centimetres at most) until the garment
-    // is clear of it; the morph then grows it to the target under the
-    // barrier. A start that cuts through the body is refused, naming where.
-    try {
+  try {  // a start refused: with the offset that would clear it, when there is one
+    if (barrier && morph_steps_ > 0) {
+      // A start a little inside the body is rescued by shrinking the start
+      // body along its normals (by a few centimetres at most) until the garment
+      // is clear of it; the morph then grows it to the target under the
+      // barrier. A start that cuts through the body is refused, naming where.
       separated_body = scene_detail::separated_start_body(x, body_start, body_model_->faces(), garment_->mesh.faces,
                                                           &result.start_shrink);
-    } catch (const ConfigError& e) {
-      rethrow_with_offset_hint(e, options);
-    }
-    surface->update(separated_body);
-  } else if (barrier) {
-    try {
+      surface->update(separated_body);
+    } else if (barrier) {
       scene_detail::check_separated_start(x, *surface, garment_->mesh.faces);
-    } catch (const ConfigError& e) {
-      rethrow_with_offset_hint(e, options);
     }
+  } catch (const ConfigError& e) {
+    rethrow_with_offset_hint(e, options);
   }
   const Eigen::MatrixX3d& morph_from = separated_body.rows() ? separated_body : body_start;
   const std::function<Eigen::MatrixX3d(double)> body_at = body_path(options, morph_from, target_body);

@@ -248,15 +248,11 @@ Model Model::build(const Registry& registry, const GraphSpec& graph, const Asset
 void Model::set_up_mirror_average(const Registry& registry, const GraphSpec& graph) {
   mirror_node_.clear();
   post_node_.clear();
-  post_untangles_ = false;
-  for (const auto& [name, ref] : graph.outputs)
-    if (name == output_)
-      for (const PushOutSetting& post : push_out_settings(registry, graph))
-        if (post.node == ref.node && post.enabled) post_node_ = post.node, post_untangles_ = post.untangle;
+  const std::vector<PushOutSetting> posts = push_out_settings(registry, graph);
   garment_mirror_.reset();
   body_mirror_.reset();
   twin_reads_posed_body_ = true;
-  for (const PushOutSetting& post : push_out_settings(registry, graph)) {
+  for (const PushOutSetting& post : posts) {
     if (!post.mirror_average) continue;
     const std::string what = "node '" + post.node + "' mirror_average: ";
     if (!mirror_node_.empty()) throw ConfigError(what + "the mirror average is already done before node '" + mirror_node_ + "'");
@@ -275,6 +271,14 @@ void Model::set_up_mirror_average(const Registry& registry, const GraphSpec& gra
         geometry::mirror_map(assets_->garment->mesh.vertices, assets_->garment->mesh.faces));
     body_mirror_ = std::make_shared<const geometry::MirrorMap>(geometry::mirror_map(assets_->body.vertices, assets_->body.faces));
   }
+  // The push-out the network's drape is fed to, as the model's output; not
+  // one with nodes between it and the mirror average (forward_network could
+  // not give its input as predict makes it).
+  for (const auto& [name, ref] : graph.outputs)
+    if (name == output_)
+      for (const PushOutSetting& post : posts)
+        if (post.node == ref.node && post.enabled && (mirror_node_.empty() || mirror_node_ == post.node))
+          post_node_ = post.node;
 }
 
 SampleBatch Model::mirrored_batch(const SampleBatch& batch) const {
@@ -519,12 +523,9 @@ Tensor& Model::mirror_mean(const std::map<std::string, Tensor>& inputs, const st
 const Tensor& Model::forward_network(const std::map<std::string, Tensor>& inputs,
                                      const std::map<std::string, Tensor>* twin_inputs) {
   if (post_node_.empty()) return forward(inputs, twin_inputs);
-  if (mirror_node_.empty()) {
-    graph_->forward_until(inputs, post_node_);
-    return std::as_const(*graph_).fed_into(post_node_, "x");
-  }
-  if (mirror_node_ != post_node_) return forward(inputs, twin_inputs);  // (a graph with nodes between the two)
-  return mirror_mean(inputs, twin_inputs);
+  if (!mirror_node_.empty()) return mirror_mean(inputs, twin_inputs);  // (fed to post_node_, which is the mirror node)
+  graph_->forward_until(inputs, post_node_);
+  return std::as_const(*graph_).fed_into(post_node_, "x");
 }
 
 void Model::backward(const Tensor& grad, const std::map<std::string, Tensor>* twin_inputs) {
@@ -532,7 +533,7 @@ void Model::backward(const Tensor& grad, const std::map<std::string, Tensor>* tw
 }
 
 void Model::backward_network(const Tensor& grad, const std::map<std::string, Tensor>* twin_inputs) {
-  backward_pass(grad, twin_inputs, !post_node_.empty() && (mirror_node_.empty() || mirror_node_ == post_node_));
+  backward_pass(grad, twin_inputs, !post_node_.empty());
 }
 
 void Model::backward_pass(const Tensor& grad, const std::map<std::string, Tensor>* twin_inputs, bool from_post_input) {

@@ -14,7 +14,6 @@
 #include <cstdio>
 #include <cmath>
 #include <memory>
-#include <optional>
 
 namespace drape {
 
@@ -303,13 +302,16 @@ void DrapeOptimization::start() {
   // that the potential's gradient is the weights' (the push-out is not
   // learnt, and run at every iteration it had moved vertices the gradient
   // then credited to the weights: the potential rose; docs/optimization.md).
+  // (The prediction is own + correction: the network is not run a third time.)
   if (!model_.push_out_node().empty()) {
     const Eigen::MatrixX3d own = predict();
     const Tensor& pushed = model_.forward(inputs_, twin_inputs_.empty() ? nullptr : &twin_inputs_);
     push_offset_ = pushed.mat(0).cast<double>() - own;
     if (!push_offset_.allFinite()) throw Error("optimize: the model's push-out gave a non-finite vertex");
+    x_ = own + push_offset_;
+  } else {
+    x_ = predict();
   }
-  x_ = predict();
   // L_p before is the prediction's on the true body; the barrier counts in it
   // only when the prediction is clear of the body (it cannot see a crossing).
   with_barrier_ = bounded_ && scene_detail::separation_problem(x_, surface_, garment_faces_).empty();

@@ -66,8 +66,11 @@ Pose read_pose_file(const std::string& path, const std::vector<PoseAngle>& space
 // One `name: degrees` entry of a YAML map (a pose file, a scene's `body:
 // {pose: ...}`) added to `pose` with the checks of parse_pose, and an angle
 // the pose already holds refused; `what` begins the message ("scene.yaml:12").
+// `setters` (optional, one map for all the entries of one pose): the name
+// that set each angle, so that an angle set twice names both names
+// ("by 'elbow_flexion' and by 'left_elbow_flexion'").
 void add_pose_entry(Pose& pose, const std::string& name, const YAML::Node& value, const std::vector<PoseAngle>& space,
-                    const std::string& what);
+                    const std::string& what, std::map<std::string, std::string>* setters = nullptr);
 // The checks of parse_pose on a pose built in code.
 void check_pose(const Pose& pose, const std::vector<PoseAngle>& space, const std::string& what);
 // "left_elbow_flexion=30,..." in the order of the map; parse_pose reads it back.

@@ -75,7 +75,6 @@ class AutoGrade {
   std::unique_ptr<Simulation> design_;
   double design_loop_ = 0, design_ease_ = 0;
   double thinnest_ = 0;     // the thinnest fit body's girth over the mean body's (per unit of the garment's fit grade)
-  long smallest_key_ = 0;   // the chart's first step, in kAutoGradeStep
   SizeTable table_;
   SizeTable every_grade_;  // the chart from kMinGrade, as if every grade could be dressed (GradeChoice::at_smallest)
   mutable std::mutex mutex_;

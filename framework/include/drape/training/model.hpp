@@ -180,7 +180,7 @@ class Model {
   void backward(const Tensor& grad, const std::map<std::string, Tensor>* twin);
   // As forward, but the garment the push-out is fed (the network's own
   // drape: with the mirror average, the mean), the push-out not run; forward
-  // itself when the output is not a push_out node's. backward() takes its
+  // itself when there is no push_out node (push_out_node()). backward() takes its
   // gradient as it is (the push-out passes it straight through). What the
   // physics optimisation moves: the push-out is not learnt, and a gradient
   // taken where it moved vertices, passed to the weights as if they had
@@ -190,8 +190,6 @@ class Model {
   void backward_network(const Tensor& grad, const std::map<std::string, Tensor>* twin);
   // The push_out node (enabled) whose output is the model's; empty when none.
   const std::string& push_out_node() const { return post_node_; }
-  // That push-out also undoes the garment's crossings of itself (its `untangle`).
-  bool push_out_untangles() const { return post_untangles_; }
   // The batch's bodies at rest in their mirrored poses (mirrored_pose): what
   // the mirror average feeds the network. The joints' transforms and the
   // angles are the mirrored pose's; the posed body is too when the network
@@ -228,8 +226,9 @@ class Model {
   // The mirror average: the push_out node it runs before, and the garment
   // template's mirror map (empty name: off).
   std::string mirror_node_;
-  std::string post_node_;  // the push_out node (enabled) whose output is the model's output (empty: none)
-  bool post_untangles_ = false;
+  // The push_out node (enabled) whose output is the model's output, and, with
+  // the mirror average, the mirror node itself (empty: none).
+  std::string post_node_;
   // With the mirror average: the graph run to the mirror node for the twin
   // and then the batch, and the garment it is fed made their mean (returned).
   Tensor& mirror_mean(const std::map<std::string, Tensor>& inputs, const std::map<std::string, Tensor>* twin_inputs);
