@@ -12,6 +12,7 @@
 #include "../train/train_test_util.hpp"
 
 #include <cmath>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -27,6 +28,20 @@ double weighted_sum(const Tensor& garment, const Tensor& g) {
   return s;
 }
 
+// A body of BMI `bmi` at rest posed by `angles`, as the model is fed it
+// (at the design grade).
+SampleBatch posed_batch(const Model& model, double bmi, const std::map<std::string, double>& angles) {
+  BodyRequest request;
+  request.bmi = bmi;
+  const SampleBatch rest = model.body_for(request);
+  Pose pose;
+  pose.angles = angles;
+  SampleBatch batch = posed_body_batch(model.body_model(), rest.body.mat(0).cast<double>(), pose);
+  batch.body_params = rest.body_params;
+  batch.garment_grade = Tensor(1, 1, 1, 1.0f);
+  return batch;
+}
+
 }  // namespace
 
 TEST_CASE("the mirror average's backward matches central differences of the averaged garment", "[model][mirror]") {
@@ -38,15 +53,8 @@ TEST_CASE("the mirror average's backward matches central differences of the aver
   Model model = Model::load(plugins(), file, {{"post", {{"enabled", "false"}, {"mirror_average", "true"}}}},
                             assets_cache());
   REQUIRE(model.mirror_average_node() == "post");
-  BodyRequest request;
-  request.bmi = 28;
-  const SampleBatch rest = model.body_for(request);
-  Pose pose;
-  pose.angles = {{"left_shoulder_abduction", 75}, {"right_shoulder_abduction", 40}, {"spine_twist", 15},
-                 {"left_elbow_flexion", 30}};
-  SampleBatch batch = posed_body_batch(model.body_model(), rest.body.mat(0).cast<double>(), pose);
-  batch.body_params = rest.body_params;
-  batch.garment_grade = Tensor(1, 1, 1, 1.0f);
+  const SampleBatch batch = posed_batch(model, 28, {{"left_shoulder_abduction", 75}, {"right_shoulder_abduction", 40},
+                                                    {"spine_twist", 15}, {"left_elbow_flexion", 30}});
   Graph& graph = model.graph();
   const auto inputs = graph_inputs(graph, batch, false);
   const auto twin = graph_inputs(graph, model.mirrored_batch(batch), false);
@@ -117,14 +125,7 @@ TEST_CASE("backward_network from what the push-out is fed gives backward's gradi
   }
   Model model = Model::load(plugins(), file, assets_cache());
   REQUIRE(model.push_out_node() == "post");
-  BodyRequest request;
-  request.bmi = 33;
-  const SampleBatch rest = model.body_for(request);
-  Pose pose;
-  pose.angles = {{"left_shoulder_abduction", 60}, {"right_elbow_flexion", 40}, {"spine_twist", -10}};
-  SampleBatch batch = posed_body_batch(model.body_model(), rest.body.mat(0).cast<double>(), pose);
-  batch.body_params = rest.body_params;
-  batch.garment_grade = Tensor(1, 1, 1, 1.0f);
+  const SampleBatch batch = posed_batch(model, 33, {{"left_shoulder_abduction", 60}, {"right_elbow_flexion", 40}, {"spine_twist", -10}});
   Graph& graph = model.graph();
   const auto inputs = graph_inputs(graph, batch, false);
   const auto twin = graph_inputs(graph, model.mirrored_batch(batch), false);
