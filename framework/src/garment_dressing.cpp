@@ -85,8 +85,58 @@ void check_garment_around_body(const Mesh& garment, const Mesh& body, const std:
   }
 }
 
+namespace {
+// A garment's outward normal at each vertex (area-weighted; zero where the
+// way out is unknown). The way out is a property of the garment alone, not
+// of where it lies against the body: each piece's faces, with their normals,
+// face away from the piece's centroid on the whole (a shirt's panels and
+// sleeves, a skirt, each leg of trousers with its outer side), and the
+// piece's normals are flipped where its faces are wound the other way. A
+// piece whose faces point as much in as out (a flat patch, a piece wound
+// inconsistently) gets no normals.
+Eigen::MatrixX3d outward_normals(const Mesh& garment) {
+  constexpr double kLeastAgreement = 0.2;  // |sum of n.(c_f - c)| over sum of |...|, below which the way out is unknown
+  const Eigen::MatrixX3d& x = garment.vertices;
+  const Eigen::MatrixX3i& faces = garment.faces;
+  const std::vector<int> piece = garment_pieces(faces, static_cast<int>(x.rows()));
+  const int pieces = piece.empty() ? 0 : *std::max_element(piece.begin(), piece.end()) + 1;
+  Eigen::MatrixX3d area_normal(faces.rows(), 3), centre(faces.rows(), 3);
+  std::vector<Eigen::RowVector3d> centroid(static_cast<std::size_t>(pieces), Eigen::RowVector3d::Zero());
+  std::vector<double> area(static_cast<std::size_t>(pieces), 0.0), out(area), total(area);
+  for (Eigen::Index f = 0; f < faces.rows(); ++f) {
+    const Eigen::RowVector3d a = x.row(faces(f, 0)), b = x.row(faces(f, 1)), c = x.row(faces(f, 2));
+    area_normal.row(f) = 0.5 * (b - a).cross(c - a);
+    centre.row(f) = (a + b + c) / 3.0;
+    const auto p = static_cast<std::size_t>(piece[static_cast<std::size_t>(f)]);
+    const double af = area_normal.row(f).norm();
+    centroid[p] += af * centre.row(f), area[p] += af;
+  }
+  for (int p = 0; p < pieces; ++p)
+    if (area[static_cast<std::size_t>(p)] > 0) centroid[static_cast<std::size_t>(p)] /= area[static_cast<std::size_t>(p)];
+  for (Eigen::Index f = 0; f < faces.rows(); ++f) {
+    const auto p = static_cast<std::size_t>(piece[static_cast<std::size_t>(f)]);
+    const double lever = area_normal.row(f).dot(centre.row(f) - centroid[p]);
+    out[p] += lever, total[p] += std::abs(lever);
+  }
+  Eigen::MatrixX3d normal = Eigen::MatrixX3d::Zero(x.rows(), 3);
+  for (Eigen::Index f = 0; f < faces.rows(); ++f) {
+    const auto p = static_cast<std::size_t>(piece[static_cast<std::size_t>(f)]);
+    if (!(std::abs(out[p]) > kLeastAgreement * total[p])) continue;
+    const double sign = out[p] > 0 ? 1.0 : -1.0;
+    for (int k = 0; k < 3; ++k) normal.row(faces(f, k)) += sign * area_normal.row(f);
+  }
+  for (Eigen::Index v = 0; v < x.rows(); ++v)
+    if (const double n = normal.row(v).norm(); n > 0) normal.row(v) /= n;
+  return normal;
+}
+}  // namespace
+
 DressReport dress(Garment& garment, const BodyQuery& body, const DressOptions& options) {
   Eigen::MatrixX3d& x = garment.mesh.vertices;
+  // A vertex deep inside whose cloth faces away from the way out is pushed
+  // through the body (DressReport::pushed_through): more than 60 degrees apart.
+  constexpr double kFacingAway = -0.5;
+  const Eigen::MatrixX3d outward = outward_normals(garment.mesh);
   const Eigen::MatrixX3d start = x;
   const int nv = static_cast<int>(x.rows());
   std::vector<std::vector<int>> nb(static_cast<std::size_t>(nv));
@@ -101,6 +151,10 @@ DressReport dress(Garment& garment, const BodyQuery& body, const DressOptions& o
     for (int v = 0; v < nv; ++v) {
       const BodyQuery::Hit hit = body.closest(x.row(v).transpose());
       if (first && hit.signed_distance < 0) ++report.inside_before, report.deepest_before = std::max(report.deepest_before, -hit.signed_distance);
+      if (first && hit.signed_distance < -kThroughDepth && outward.row(v).dot(hit.normal.transpose()) < kFacingAway) {
+        report.pushed_through.push_back(v);
+        report.deepest_through = std::max(report.deepest_through, -hit.signed_distance);
+      }
       // The micrometre of slack keeps a vertex just placed at the clearance from
       // being pushed again forever by rounding.
       if (hit.signed_distance < options.margin - 1e-6) {

@@ -92,6 +92,52 @@ TEST_CASE("a garment through the body where it belongs is not told it is displac
   write_mesh(dir / "arms_down.obj", arms_down);
   const std::string why = start_refusal_of(dir / "arms_down.obj");
   INFO(why);
-  CHECK_THAT(why, Catch::Contains("the garment starts"));
+  // (Its sleeves lie in the trunk facing away from the way out: placed through the body.)
+  CHECK_THAT(why, Catch::Contains("the garment is placed through the body"));
   CHECK_THAT(why, !Catch::Contains("placed for another body"));
+}
+
+TEST_CASE("a garment placed through the body is refused before it goes on inside out", "[garments][fit]") {
+  test::TempDir dir;
+  const Simulation shirt(test::plugins(), parse_scene("garment: {template: tshirt, params: {resolution: coarse}}\n"
+                                                      "effects: [gravity, stretching, barrier]\n"));
+  const Mesh placed = shirt.garment().mesh;
+  // Its faces wound the other way: the way out is the garment's own (each
+  // piece's faces on the whole face away from its centroid), so it starts too.
+  Mesh flipped = placed;
+  flipped.faces.col(1).swap(flipped.faces.col(2));
+  write_mesh(dir / "flipped.obj", flipped);
+  CHECK(start_refusal_of(dir / "flipped.obj").empty());
+
+  // Moved 15 cm forward, its back panel lies in the torso, nearer the chest
+  // than the back: dressing pushed it out through the chest, and the shirt
+  // went on as an apron in front of the body, clear of it, and "settled".
+  // Refused, naming the panel, wound either way.
+  for (const double forward : {0.15, -0.15}) {
+    for (const Mesh* mesh : {&placed, static_cast<const Mesh*>(&flipped)}) {
+      Mesh moved = *mesh;
+      moved.vertices.col(2).array() += forward;
+      write_mesh(dir / "moved.obj", moved);
+      const std::string why = start_refusal_of(dir / "moved.obj");
+      INFO(forward << (mesh == &flipped ? " flipped: " : ": ") << why);
+      CHECK_THAT(why, Catch::Contains("the garment is placed through the body") &&
+                          Catch::Contains("with their cloth facing the other way"));
+      // The panel named lies in the torso: its vertices' centre within the body's depth.
+      std::smatch m;
+      REQUIRE(std::regex_search(why, m, std::regex("(\\d+) garment vertices around \\(([-0-9.]+), ([-0-9.]+), ([-0-9.]+)\\) m")));
+      CHECK(std::stoi(m[1]) >= 50);
+      CHECK(std::abs(std::stod(m[4])) < 0.10);
+    }
+  }
+
+  // Shrunk to half about its centre: inside the torso, its sleeves in the
+  // chest. Dressing turned it inside out where it was pushed out through the
+  // far side; it settled with its collar 19 cm low. Refused.
+  Mesh half = placed;
+  const Eigen::RowVector3d centre = half.vertices.colwise().mean();
+  half.vertices = ((half.vertices.rowwise() - centre) * 0.5).rowwise() + centre;
+  write_mesh(dir / "half.obj", half);
+  const std::string why = start_refusal_of(dir / "half.obj");
+  INFO(why);
+  CHECK_THAT(why, Catch::Contains("the garment is placed through the body"));
 }

@@ -87,10 +87,10 @@ FitBody dress_on_fit_body(const BodyModel& model, Garment& garment, const std::s
   return body;
 }
 
-void dress_on(const FitBody& body, const BodyModel& model, Garment& garment, const std::string& what) {
+DressReport dress_on(const FitBody& body, const BodyModel& model, Garment& garment, const std::string& what) {
   const Mesh mesh{body.vertices, model.faces(), {}, {}};
   check_garment_around_body(garment.mesh, mesh, what);
-  dress(garment, mesh);
+  return dress(garment, mesh);
 }
 
 }  // namespace drape

@@ -130,7 +130,7 @@ std::string clear_offset_hint(const Garment& garment, const Eigen::MatrixX3d& un
   // starts clear of the body (or of it shrunk, as a run may start).
   Garment moved = garment;
   moved.mesh.vertices = undressed.rowwise() + best;
-  dress(moved, Mesh{body, body_faces, {}, {}});
+  if (placed_through(dress(moved, Mesh{body, body_faces, {}, {}}))) return "";
   try {
     separated_start_body(moved.mesh.vertices, body, body_faces, garment.mesh.faces);
   } catch (const ConfigError&) {

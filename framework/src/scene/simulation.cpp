@@ -15,6 +15,7 @@
 
 #include "barrier_morph.hpp"
 #include "cloth_fit.hpp"
+#include "garment_region.hpp"
 #include "body_overlap.hpp"
 #include "scene_materials.hpp"
 #include "separated_start.hpp"
@@ -22,6 +23,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cstdio>
 #include <tuple>
 #include <utility>
 
@@ -194,7 +196,7 @@ Simulation::Simulation(const Registry& registry, Scene scene) : registry_(regist
   const bool may_grow = graded && !below_every_body;
   const Garment undressed = may_grow ? garment : Garment{};
   undressed_ = garment.mesh.vertices;  // where the file or template placed it, for a refused start's offset hint
-  dress_on(fit, *body_model_, garment, dressed_what);
+  DressReport dressed = dress_on(fit, *body_model_, garment, dressed_what);
   if (may_grow) {
     bool scaled_starts = true;
     try {
@@ -205,9 +207,11 @@ Simulation::Simulation(const Registry& registry, Scene scene) : registry_(regist
     if (!scaled_starts) {
       garment = undressed;
       place_graded_garment(garment, ungraded, mean_body_, fit.vertices, body_model_->faces(), scene_.garment_grade);
-      dress_on(fit, *body_model_, garment, dressed_what);
+      dressed = dress_on(fit, *body_model_, garment, dressed_what);
     }
   }
+  // Refused in run(), where a refused start gets its offset hint.
+  if (placed_through(dressed)) placed_through_ = dressed.pushed_through, placed_through_depth_ = dressed.deepest_through;
   fit_body_ = std::move(fit.vertices);
   fit_request_ = fit.request;
   scene_detail::apply_scene_materials(garment, scene_);
@@ -381,6 +385,18 @@ SimulationResult Simulation::run(const Eigen::MatrixX3d& target_body, const Simu
   // must be separated.
   Eigen::MatrixX3d separated_body;
   try {  // a start refused: with the offset that would clear it, when there is one
+    // A garment placed through the body went on inside out where it passed
+    // through (its panel pushed out of the body's far side), whatever the contact.
+    if (!placed_through_.empty() && !options.start_garment) {
+      char depth[32];
+      std::snprintf(depth, sizeof depth, "%.1f", 100 * placed_through_depth_);
+      throw ConfigError("simulate: the garment is placed through the body: " +
+                        scene_detail::describe_region(undressed_, placed_through_) + " lie up to " + depth +
+                        " cm inside it with their cloth facing the other way, so dressing would push them out through "
+                        "the body's far side and the garment would start inside out there (a panel pushed out in front "
+                        "of or behind the torso drapes as an apron or falls off); it must be placed around the body it "
+                        "is dressed on, in the body model's frame");
+    }
     if (barrier && morph_steps_ > 0) {
       // A start a little inside the body is rescued by shrinking the start
       // body along its normals (by a few centimetres at most) until the garment

@@ -1,4 +1,5 @@
 #pragma once
+#include <drape/garment_dressing.hpp>
 // The body a graded garment is cut for. A garment made for the mean body
 // (fit_grade 1) is dressed on it and every drape's morph starts there; a
 // larger size is cut for a larger body, so it is dressed on, and morphs
@@ -38,7 +39,8 @@ FitBody fit_body(const BodyModel& model, double fit_grade);
 // (drape::dress) and returns that body. What Simulation and the assets build do.
 FitBody dress_on_fit_body(const BodyModel& model, Garment& garment, const std::string& what);
 // The same on a fit body already found (fit_body), for a caller that places
-// the garment on it first (place_graded_garment, drape/garment_grading.hpp).
-void dress_on(const FitBody& body, const BodyModel& model, Garment& garment, const std::string& what);
+// the garment on it first (place_graded_garment, drape/garment_grading.hpp);
+// what the dressing found (a garment placed through the body: placed_through).
+DressReport dress_on(const FitBody& body, const BodyModel& model, Garment& garment, const std::string& what);
 
 }  // namespace drape

@@ -174,6 +174,8 @@ class Simulation {
   double design_loop_ = 0.0, placed_loop_ = 0.0;
   Eigen::MatrixX3d fit_body_;
   Eigen::MatrixX3d undressed_;  // the garment's vertices before dressing on fit_body_ (before a graded garment's placing)
+  std::vector<int> placed_through_;  // dressing found these vertices placed through the body (DressReport::pushed_through; empty below kThroughCount)
+  double placed_through_depth_ = 0;  // m, the deepest of them
   [[noreturn]] void rethrow_with_offset_hint(const ConfigError& refused, const SimulationOptions& options) const;
   BodyRequest fit_request_;
   std::string start_refusal_, shape_note_;
