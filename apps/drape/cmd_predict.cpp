@@ -3,6 +3,7 @@
 #include "command.hpp"
 #include "model_body.hpp"
 
+#include <drape/geometry/self_intersection.hpp>
 #include <drape/geometry/penetration.hpp>
 #include <drape/geometry/adjacency.hpp>
 #include <drape/geometry/push_out.hpp>
@@ -83,8 +84,17 @@ int run(const std::vector<std::string>& args) {
   // outside (a thin body's ridge), so the crossings are counted too (exact
   // edge-triangle tests, code shared with no contact or push-out).
   const geometry::SurfaceCrossings crossings = geometry::surface_crossings(out.vertices, out.faces, body.vertices, body.faces);
-  std::printf("wrote %s: %d garment vertices predicted in %.2f ms; p = %.2f%% of them inside the body, %d edges crossing it\n",
-              vm["out"].as<std::string>().c_str(), out.num_vertices(), ms, 100.0 * p, crossings.total());
+  // And the cloth through itself, as simulate counts it (an outside check
+  // found a sleeve crumpled through the shirt told "0 edges crossing it").
+  constexpr std::size_t kCountAtMost = 100000;
+  const std::size_t self = geometry::self_edge_crossings(out.vertices, out.faces, kCountAtMost).size();
+  std::printf("wrote %s: %d garment vertices predicted in %.2f ms; p = %.2f%% of them inside the body, %d edges crossing it, "
+              "the garment through itself %zu edges\n",
+              vm["out"].as<std::string>().c_str(), out.num_vertices(), ms, 100.0 * p, crossings.total(), self);
+  if (self > 0)
+    std::cerr << "warning: the garment passes through itself: " << self
+              << " of its edges through its own faces (a fold or a sleeve the network drew through the cloth; the "
+                 "model's push-out untangles what it can, and a pose or body outside its training leaves more)\n";
   if (crossings.total() > 0)
     std::cerr << "warning: the garment and the body cross: " << crossings.garment_edges_through_body
               << " garment edges through the body, " << crossings.body_edges_through_garment

@@ -9,6 +9,8 @@
 #include <drape/assets/dataset_assets.hpp>
 #include <drape/garment_sizes.hpp>
 #include <drape/io/dataset.hpp>
+#include <drape/geometry/surface_crossings.hpp>
+#include <drape/geometry/self_intersection.hpp>
 #include <drape/geometry/closest_point.hpp>
 #include <drape/geometry/penetration.hpp>
 #include <drape/io/mesh_io.hpp>
@@ -80,7 +82,7 @@ void draw(const po::variables_map& vm, const std::string& colour, const std::str
   const double p = geometry::penetration_ratio(surface, garment.vertices);
   Eigen::VectorXd values;
   SvgColourScale scale;
-  char caption[160];
+  char caption[256];
   if (colour == "distance") {
     values = (100.0 * surface.signed_distances(garment.vertices)).cwiseMax(0.0);
     scale = {"distance of the garment to the body (cm)", 0.0, 5.0};
@@ -94,6 +96,14 @@ void draw(const po::variables_map& vm, const std::string& colour, const std::str
     scale = {"edge length change against the material space (%)", 0.0, 10.0};
     std::snprintf(caption, sizeof caption, "mean strain %.2f%%, max %.2f%%, p = %.2f%%", values.mean(), values.maxCoeff(), 100.0 * p);
   }
+  // What p leaves out, as predict and simulate count it: edges through the
+  // body with both ends outside, and the cloth through itself.
+  constexpr std::size_t kCountAtMost = 100000;
+  const int crossing = geometry::surface_crossings(garment.vertices, garment.faces, body.vertices, body.faces).total();
+  const std::size_t self = geometry::self_edge_crossings(garment.vertices, garment.faces, kCountAtMost).size();
+  const std::string counted = std::string(caption) + ", " + std::to_string(crossing) + " edges crossing the body, " +
+                              std::to_string(self) + " through the garment itself";
+  std::snprintf(caption, sizeof caption, "%s", counted.c_str());
   figure.add_panel(drape_panel(caption, body, garment, std::move(values)));
   figure.set_colour_scale(scale);
   figure.write(vm["out"].as<std::string>());
