@@ -6,7 +6,7 @@ namespace drape {
 
 SvgPanel drape_panel(const std::string& caption, const Mesh& body, const Mesh& garment, Eigen::VectorXd garment_values) {
   return {caption,
-          {SvgLayer{body.vertices, body.faces, "#c9b8a8", {}, true},
+          {SvgLayer{body.vertices, body.faces, "#c9b8a8", {}, true, 0.0, true},
            SvgLayer{garment.vertices, garment.faces, "", std::move(garment_values), false, 0.02}}};
 }
 

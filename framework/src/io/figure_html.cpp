@@ -80,7 +80,8 @@ const char* kScript = R"JS(
         const len = Math.hypot(nx, ny, nz) || 1;
         const shade = 0.35 + 0.65 * Math.abs(nz) / len;
         const k = f;  // face index x 3 into the colours
-        tris.push([(p[a + 2] + p[b + 2] + p[c + 2]) / 3 + scale * layer.bias, p[a], p[a + 1], p[b], p[b + 1], p[c], p[c + 1],
+        const depth = layer.under ? Math.min(p[a + 2], p[b + 2], p[c + 2]) : (p[a + 2] + p[b + 2] + p[c + 2]) / 3;
+        tris.push([depth + scale * layer.bias, p[a], p[a + 1], p[b], p[b + 1], p[c], p[c + 1],
                    Math.round(layer.c[k] * shade), Math.round(layer.c[k + 1] * shade), Math.round(layer.c[k + 2] * shade)]);
       }
     }
@@ -147,7 +148,8 @@ std::string SvgFigure::html() const {
     data << (p ? "," : "") << "{\"title\":" << json_string(panel.title) << ",\"layers\":[";
     for (std::size_t l = 0; l < panel.layers.size(); ++l) {
       const SvgLayer& layer = panel.layers[l];
-      data << (l ? "," : "") << "{\"cull\":" << (layer.cull_back_faces ? "true" : "false") << ",\"bias\":";
+      data << (l ? "," : "") << "{\"cull\":" << (layer.cull_back_faces ? "true" : "false")
+           << ",\"under\":" << (layer.under ? "true" : "false") << ",\"bias\":";
       append_fixed(data, layer.depth_bias, "%.4f");
       data << ",\"v\":[";
       for (Eigen::Index i = 0; i < layer.vertices.rows(); ++i)

@@ -130,7 +130,8 @@ std::string SvgFigure::svg() const {
         const double shade = 0.45 + 0.55 * std::abs(n.dot(light));
         std::array<double, 3> rgb = colours[static_cast<std::size_t>(f)];
         for (double& ch : rgb) ch *= shade;
-        triangles.push_back({(a(2) + b(2) + c(2)) / 3 + l.depth_bias, {to_pixels(a), to_pixels(b), to_pixels(c)}, hex_of(rgb)});
+        const double depth = l.under ? std::min({a(2), b(2), c(2)}) : (a(2) + b(2) + c(2)) / 3;
+        triangles.push_back({depth + l.depth_bias, {to_pixels(a), to_pixels(b), to_pixels(c)}, hex_of(rgb)});
       }
     }
     std::sort(triangles.begin(), triangles.end(), [](const Triangle& x, const Triangle& y) { return x.depth < y.depth; });
