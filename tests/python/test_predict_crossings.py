@@ -1,4 +1,4 @@
-"""drape predict counts the edges where its garment and the body cross (p counts vertices only: an edge can pass
+"""drape predict counts the edges where its garment and the body cross, and its garment's own edges through its faces (p counts vertices only: an edge can pass
 through a thin ridge of the body with both ends outside) and warns when there are any. Checked against edge-face
 tests in numpy (scripts/count_self_crossings.py) that share no code with drape."""
 import re
@@ -12,6 +12,7 @@ sys.path.insert(0, str(SOURCE / "scripts"))
 from count_self_crossings import crossings  # numpy edge-face tests  # noqa: E402
 
 COUNT = re.compile(r"p = [0-9.]+% of them inside the body, (\d+) edges crossing it")
+SELF = re.compile(r"edges crossing it, the garment through itself (\d+) edges")
 
 
 def crossing_edges(garment, garment_faces, body, body_faces):
@@ -41,6 +42,10 @@ def test_a_crossing_prediction_is_counted_and_warned(tmp_path, drape_module):
     assert int(COUNT.search(out).group(1)) == through_body + through_garment
     assert (f"warning: the garment and the body cross: {through_body} garment edges through the body, "
             f"{through_garment} body edges through the garment") in err
+    # The garment through itself, (edge, face) pairs as simulate counts them: numpy's count of the shirt alone.
+    self_pairs = len(crossings(g, np.asarray(gf))[0])
+    assert int(SELF.search(out).group(1)) == self_pairs
+    assert (f"warning: the garment passes through itself: {self_pairs} of its edges" in err) == (self_pairs > 0)
 
 
 def test_the_shipped_model_reports_no_crossing(tmp_path):
@@ -51,3 +56,5 @@ def test_the_shipped_model_reports_no_crossing(tmp_path):
     assert crossing_edges(g, np.asarray(gf), b, np.asarray(bf)) == (0, 0)
     assert int(COUNT.search(out).group(1)) == 0
     assert "warning: the garment and the body cross" not in err
+    assert len(crossings(g, np.asarray(gf))[0]) == 0
+    assert int(SELF.search(out).group(1)) == 0 and "passes through itself" not in err
