@@ -157,6 +157,26 @@ TEST_CASE("mesh garment: bad garments are refused naming the file and the elemen
     write_mesh(dir / "flat.obj", flat);
     CHECK_THAT(build_error(dir / "flat.obj"), Catch::Contains("flat.obj': face ") && Catch::Contains("degenerate in material space"));
   }
+  SECTION("a vertex no face uses") {
+    Mesh loose = tube();
+    const int n = loose.num_vertices();
+    loose.vertices.conservativeResize(n + 1, 3);
+    loose.vertices.row(n) << 0.0, 1.3, 1.5;  // 1.5 m in front of the body, where nothing would move it
+    write_mesh(dir / "loose.obj", loose);
+    CHECK_THAT(build_error(dir / "loose.obj"), Catch::Contains("loose.obj': vertex " + std::to_string(n) + " (at 0.000, 1.300, 1.500) is used by no face (1 such vertex)"));
+  }
+  SECTION("a sliver of the rest shape: its area in figures, and no advice to use the material space in use") {
+    Mesh sliver = tube();
+    // Face 5's third corner onto the middle of its first edge, a micrometre off it.
+    const Eigen::RowVector3d a = sliver.vertices.row(sliver.faces(5, 0)), b = sliver.vertices.row(sliver.faces(5, 1));
+    sliver.vertices.row(sliver.faces(5, 2)) = 0.5 * (a + b) + Eigen::RowVector3d(0, 1e-6, 0);
+    write_mesh(dir / "sliver.obj", sliver);
+    const std::string why = build_error(dir / "sliver.obj", ", material_space: rest");
+    INFO(why);
+    CHECK_THAT(why, Catch::Contains("degenerate in material space (its rest triangle has area ") &&
+                        Catch::Contains("e-0") && Catch::Contains("collapse or remesh it") &&
+                        !Catch::Contains("use material_space: rest") && !Catch::Contains("area 0.000000"));
+  }
   SECTION("a material space it does not know, and a scale out of range") {
     write_mesh(dir / "skirt.obj", tube());
     CHECK_THAT(build_error(dir / "skirt.obj", ", material_space: sideways"), Catch::Contains("material_space") && Catch::Contains("uv"));

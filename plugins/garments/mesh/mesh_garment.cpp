@@ -22,6 +22,7 @@
 #include <Eigen/Geometry>
 
 #include <algorithm>
+#include <cstdio>
 #include <cmath>
 #include <filesystem>
 #include <string>
@@ -103,6 +104,23 @@ void check_manifold(const Mesh& mesh, const MeshGarmentOptions& o) {
                       std::to_string(t.nonmanifold_edges) + " such edges); cloth needs every edge on one or two faces");
 }
 
+// A vertex no face uses is no cloth: it would be written back where it was,
+// untouched by gravity or contact, and counted in p. Refused, naming it (the
+// file's vertex order is the garment's, so it is not dropped silently).
+void check_every_vertex_used(const Mesh& mesh, const MeshGarmentOptions& o) {
+  std::vector<char> used(static_cast<std::size_t>(mesh.num_vertices()), 0);
+  for (int f = 0; f < mesh.num_faces(); ++f)
+    for (int c = 0; c < 3; ++c) used[static_cast<std::size_t>(mesh.faces(f, c))] = 1;
+  const auto unused = static_cast<int>(std::count(used.begin(), used.end(), 0));
+  if (unused == 0) return;
+  const auto first = static_cast<int>(std::find(used.begin(), used.end(), 0) - used.begin());
+  char at[96];
+  std::snprintf(at, sizeof at, " (at %.3f, %.3f, %.3f)", mesh.vertices(first, 0), mesh.vertices(first, 1), mesh.vertices(first, 2));
+  throw ConfigError(where(o) + ": vertex " + std::to_string(first) + at + " is used by no face (" + std::to_string(unused) +
+                    (unused == 1 ? " such vertex" : " such vertices") +
+                    "): a loose point is no cloth; remove it from the file");
+}
+
 // Per-corner material coordinates (metres) of the rest shape: each triangle
 // laid flat with its first edge along u.
 void rest_shape_material_space(Mesh& mesh) {
@@ -129,11 +147,14 @@ void check_material_space(const Mesh& mesh, const MeshGarmentOptions& o) {
     const Eigen::Vector2d e1 = b - a, e2 = c - a;
     const double area = 0.5 * std::abs(e1.x() * e2.y() - e1.y() * e2.x());
     const double longest = std::max({e1.norm(), e2.norm(), (c - b).norm()});
-    if (!(area > 1e-4 * longest * longest))
+    if (!(area > 1e-4 * longest * longest)) {
+      char sizes[96];
+      std::snprintf(sizes, sizeof sizes, " has area %.3g m^2 for a longest side of %.3g m", area, longest);
       throw ConfigError(where(o) + ": face " + std::to_string(f) + " is degenerate in material space (" +
-                        (o.material_space == "uv" ? "its UV triangle" : "its rest triangle") + " has area " +
-                        std::to_string(area) + " m^2 for a longest side of " + std::to_string(longest) +
-                        " m): fix its UVs, or use material_space: rest");
+                        (o.material_space == "uv" ? "its UV triangle" : "its rest triangle") + sizes + "): " +
+                        (o.material_space == "uv" ? "fix its UVs, or use material_space: rest"
+                                                  : "the mesh's triangle is a sliver; collapse or remesh it"));
+    }
   }
 }
 
@@ -170,6 +191,7 @@ class MeshGarment final : public GarmentSource {
     }
     handle_duplicates(g.mesh, o_);
     check_manifold(g.mesh, o_);
+    check_every_vertex_used(g.mesh, o_);
     if (o_.material_space == "rest") rest_shape_material_space(g.mesh);
     check_material_space(g.mesh, o_);
     // Every region starts as the knit; the scene's `materials:` names each
