@@ -99,6 +99,7 @@ void settle(ClothSolver& solver, Eigen::MatrixX3d& x, Eigen::MatrixX3d& v, const
   // stall change nothing (tried: on a stalled BMI 65 body 54 more steps only
   // found no decrease). Whether that counts as settled is decided below.
   const double at_rest_limit = solver.settings().kink_tolerance;
+  result.settle_tolerance = settle_tolerance, result.rest_tolerance = at_rest_limit;
   for (int k = 1; k <= settle_steps && (result.stationarity > settle_tolerance || result.sliding()) && !result.at_rest; ++k) {
     // The step ends at the Newton iteration where the drape balances, not at
     // the end of the step (stationarity <= the step's balance, see solver.hpp).

@@ -60,6 +60,8 @@ struct SimulationResult {
   // residual cannot fall further; stationarity counts both pushes.
   bool converged = false;
   bool at_rest = false;        // settled by the rest criterion
+  double settle_tolerance = 0;  // the solver's, for the summary: at rest may settle above it
+  double rest_tolerance = 0;    // the kink_tolerance at rest settles within
   double slip_ratio = 0;       // with friction: the fastest contact's slip in the last step / the slip friction holds
   bool sliding() const { return slip_ratio >= 1; }  // with friction: some contact still slid (not settled)
   // When not settled: why, in words (how far from balance, where the largest
