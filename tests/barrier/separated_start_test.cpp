@@ -93,5 +93,10 @@ TEST_CASE("separated start: the least shrink that frees a band pushed 2.5 cm int
   // A band 7 cm inside (3 cm from the centre) is beyond every shrink.
   band(0.03, 0.0, 48, x, faces);
   CHECK_THROWS_WITH(scene_detail::separated_start_body(x, ball.vertices, ball.faces, faces),
-                    Catch::Contains("the garment starts inside the body (96 garment vertices"));
+                    Catch::Contains("the garment starts inside the body (96 garment vertices") &&
+                        Catch::Contains("a start body shrunk by up to 6 cm was tried too"));
+  // A scene without morph steps tries no shrunk body, and says so, naming the setting.
+  CHECK_THROWS_WITH(scene_detail::check_separated_start(x, geometry::BodySurface(ball.vertices, ball.faces), faces, false),
+                    Catch::Contains("the garment starts inside the body") && Catch::Contains("morph_steps: 0") &&
+                        !Catch::Contains("was tried too"));
 }

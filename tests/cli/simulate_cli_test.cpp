@@ -128,3 +128,24 @@ TEST_CASE("a drape settled at rest above the settle tolerance asked for says so 
   // (What this scene does today: it comes to rest above 1e-6.)
   CHECK(stationarity > 1e-6);
 }
+
+TEST_CASE("a drape not settled under a solver setting far from its default names the setting", "[cli][simulate]") {
+  // (An outside check's time step of 1e-5 s was told only of a pinched garment.)
+  test::TempDir dir;
+  std::string scene = test::tiny_simulation_scene();
+  const std::string solver = "solver: {morph_steps: 2, settle_steps: 3}";
+  REQUIRE(scene.find(solver) != std::string::npos);
+  scene.replace(scene.find(solver), solver.size(), "solver: {morph_steps: 2, settle_steps: 3, time_step: 1.0e-5, max_newton_iterations: 2}");
+  std::ofstream(dir / "slow.yaml") << scene;
+  std::string out;
+  const int code = test::run(test::drape_program().string() + " simulate " + (dir / "slow.yaml").string(), out);
+  INFO(out);
+  CHECK(code == 1);
+  CHECK_THAT(out, Catch::Contains("NOT settled") &&
+                      Catch::Contains("the time step 1e-05 s (the default 0.1 s) moves the cloth only so far a step") &&
+                      Catch::Contains("max_newton_iterations 2 (the default 15)"));
+  // The tiny scene as it is names neither.
+  std::ofstream(dir / "tiny.yaml") << test::tiny_simulation_scene();
+  test::run(test::drape_program().string() + " simulate " + (dir / "tiny.yaml").string(), out);
+  CHECK_THAT(out, !Catch::Contains("the time step") && !Catch::Contains("max_newton_iterations"));
+}

@@ -112,7 +112,7 @@ TEST_CASE("a garment whose cloth is cut too small to go around the body is refus
 
 // The words of a blocked morph, on what each cause measures: a cloth shorter
 // around than the body, a stiff material, a short time step, long faces.
-TEST_CASE("a blocked morph names its cause: too small, a stiff material, a short step or long faces", "[garments][fit]") {
+TEST_CASE("a blocked morph names its cause: too small, a stiff material, a short step, few Newton iterations or long faces", "[garments][fit]") {
   test::TempDir dir;
   const double r = 0.24, y0 = 1.0, y1 = 1.22;
   write_mesh(dir / "fits.obj", fit_tube(r, y0, y1));
@@ -138,6 +138,11 @@ TEST_CASE("a blocked morph names its cause: too small, a stiff material, a short
   why = scene_detail::why_morph_blocked(stalled, 2, garment, loop_of(garment), body, faces, solver, false);
   CHECK_THAT(why, Catch::Contains("the time step 0.0001 s"));
   CHECK_THAT(why, !Catch::Contains("times as stiff"));
+  // One Newton iteration a morph step (the solver's budget while morphing).
+  solver = SolverSettings{};
+  solver.max_newton_iterations = 1;
+  why = scene_detail::why_morph_blocked(stalled, 2, garment, loop_of(garment), body, faces, solver, false);
+  CHECK_THAT(why, Catch::Contains("each morph step gets 1 Newton iteration (") && !Catch::Contains("nothing in the scene"));
   // The cloth cut to 0.4 of the body: too small, and the remedy named for a garment without sizes.
   solver = SolverSettings{};
   garment.mesh.uv *= 0.4;

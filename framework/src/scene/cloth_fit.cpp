@@ -121,6 +121,17 @@ std::string why_morph_blocked(const MorphBlocked& blocked, int morph_steps, cons
                   solver.time_step, default_step);
     causes.emplace_back(text);
   }
+  // The morph's Newton budget (solver.max_newton_iterations here: the least
+  // of max_newton_iterations and morph_newton_iterations): each iteration
+  // lets the contact push the cloth out once.
+  constexpr int kMorphNewtonDefault = 3;  // the scene's morph_newton_iterations default (scene_validate.cpp)
+  if (solver.max_newton_iterations < kMorphNewtonDefault) {
+    std::snprintf(text, sizeof text,
+                  "each morph step gets %d Newton iteration%s (the least of the solver's max_newton_iterations and "
+                  "morph_newton_iterations; %d by default) to push the cloth out of the body's way",
+                  solver.max_newton_iterations, solver.max_newton_iterations == 1 ? "" : "s", kMorphNewtonDefault);
+    causes.emplace_back(text);
+  }
   double edges = 0.0;
   int count = 0;
   const Eigen::MatrixX3d& x = garment.mesh.vertices;

@@ -73,14 +73,17 @@ std::string separation_problem(const Eigen::MatrixX3d& x, const geometry::BodySu
   return problem_with(x, body, garment_faces, encloses(body.faces(), body.vertices().rows()));
 }
 
-void check_separated_start(const Eigen::MatrixX3d& x, const geometry::BodySurface& body, const Eigen::MatrixX3i& garment_faces) {
+void check_separated_start(const Eigen::MatrixX3d& x, const geometry::BodySurface& body, const Eigen::MatrixX3i& garment_faces,
+                           bool morphs) {
   const std::string problem = separation_problem(x, body, garment_faces);
+  const std::string shrink = std::to_string(static_cast<int>(100 * kShrinkDepths.back()));
   if (!problem.empty())
-    throw ConfigError("simulate: " + problem +
-                      "; the barrier contact keeps surfaces apart but cannot pull them apart (when the scene morphs, "
-                      "a start body shrunk by up to " + std::to_string(static_cast<int>(100 * kShrinkDepths.back())) +
-                      " cm was tried too): start from a garment clear of the body, or use the penalty contact (effect "
-                      "`collision`) for this start");
+    throw ConfigError("simulate: " + problem + "; the barrier contact keeps surfaces apart but cannot pull them apart (" +
+                      (morphs ? "a start body shrunk by up to " + shrink + " cm was tried too"
+                              : "the scene's solver has morph_steps: 0, so the garment must start clear of the body "
+                                "itself; a scene that morphs tries a start body shrunk by up to " + shrink + " cm") +
+                      "): start from a garment clear of the body, or use the penalty contact (effect `collision`) for "
+                      "this start");
 }
 
 Eigen::MatrixX3d separated_start_body(const Eigen::MatrixX3d& x, const Eigen::MatrixX3d& body,

@@ -20,8 +20,11 @@ namespace drape::scene_detail {
 std::string separation_problem(const Eigen::MatrixX3d& x, const geometry::BodySurface& body,
                                const Eigen::MatrixX3i& garment_faces);
 
-// Throws ConfigError with separation_problem's words when there is one.
-void check_separated_start(const Eigen::MatrixX3d& x, const geometry::BodySurface& body, const Eigen::MatrixX3i& garment_faces);
+// Throws ConfigError with separation_problem's words when there is one;
+// `morphs`: the run tried start bodies shrunk first (separated_start_body),
+// else it has no morph steps and says so.
+void check_separated_start(const Eigen::MatrixX3d& x, const geometry::BodySurface& body, const Eigen::MatrixX3i& garment_faces,
+                           bool morphs = true);
 
 // A body the garment x is separated from, to start the morph with: `body`
 // itself when it is, else `body` shrunk along its vertex normals by the least
