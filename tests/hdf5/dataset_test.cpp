@@ -7,6 +7,7 @@
 #include <drape/bodies/body.hpp>
 #include <drape/io/dataset.hpp>
 #include <drape/io/h5.hpp>
+#include <drape/warnings.hpp>
 
 #include <algorithm>
 #include <csignal>
@@ -518,4 +519,82 @@ TEST_CASE("dataset: a glob pattern reads its files as one with their faces", "[h
   }
   CHECK_THROWS_WITH(DatasetReader((dir / "part-*.h5").string()), Catch::Contains("part-2.h5") && Catch::Contains("garment_vertices is 5"));
   CHECK_THROWS_WITH(DatasetReader((dir / "none-*.h5").string()), Catch::Contains("no dataset file matches"));
+}
+
+TEST_CASE("dataset: a resumed run makes again a kept sample that no longer reads back as written", "[hdf5][dataset]") {
+  // An outside check flipped bytes in a .partial's garment rows: the resume
+  // kept them, and the finished file, sealed, held a vertex at 158 m.
+  TempDir dir;
+  const fs::path out = dir / "data.h5";
+  const DatasetLayout layout = small_layout(5);
+  {
+    DatasetWriter writer(out, layout);
+    for (std::size_t i : {0, 1, 2}) writer.write(i, make_sample(layout, i));
+  }
+  {
+    auto file = h5::File::open(DatasetWriter::partial_path(out), h5::Access::ReadWrite);
+    std::vector<float> row(layout.garment_vertices * 3);
+    file.read_rows("/garments/vertices", 1, 1, row.data());
+    row[4] = 158.3f;
+    file.write_rows("/garments/vertices", 1, 1, row.data());
+  }
+  std::vector<std::string> warnings;
+  const WarningHandler before = set_warning_handler([&](const std::string& text) { warnings.push_back(text); });
+  {
+    DatasetWriter writer(out, layout);
+    set_warning_handler(before);
+    CHECK(writer.resumed());
+    CHECK(writer.missing() == std::vector<std::size_t>{1, 3, 4});
+    REQUIRE(warnings.size() == 1);
+    CHECK_THAT(warnings[0], Catch::Contains("1 of the samples the interrupted run wrote no longer read back as written") &&
+                                Catch::Contains("sample 1)") && Catch::Contains("made again"));
+    for (std::size_t i : writer.missing()) writer.write(i, make_sample(layout, i));
+    writer.finish();
+  }
+  set_warning_handler(before);
+  check_complete(out, 5);
+  // Untouched, a resume keeps every sample and says nothing.
+  warnings.clear();
+  {
+    DatasetWriter writer(dir / "clean.h5", layout);
+    for (std::size_t i : {0, 1}) writer.write(i, make_sample(layout, i));
+  }
+  set_warning_handler([&](const std::string& text) { warnings.push_back(text); });
+  const DatasetWriter writer(dir / "clean.h5", layout);
+  set_warning_handler(before);
+  CHECK(writer.missing() == std::vector<std::size_t>{2, 3, 4});
+  CHECK(warnings.empty());
+}
+
+TEST_CASE("dataset: merging refuses one run's drapes twice and names the shards a run lacks", "[hdf5][dataset]") {
+  TempDir dir;
+  const auto shard_layout = [](const std::string& run, int index, int count) {
+    DatasetLayout l = small_layout(2);
+    l.attributes = {{"generator", "drape generate: " + run + ", shard " + std::to_string(index) + "/" + std::to_string(count)}};
+    return l;
+  };
+  write_shard(dir / "s0.h5", shard_layout("seed 0, count 4", 0, 2), 0, make_sample);
+  write_shard(dir / "s1.h5", shard_layout("seed 0, count 4", 1, 2), 2, make_sample);
+  write_shard(dir / "again0.h5", shard_layout("seed 0, count 4", 0, 2), 0, make_sample);
+  write_shard(dir / "other.h5", shard_layout("seed 7, count 2", 0, 1), 0, make_sample);
+  // The same file twice, and the same shard of one run made twice.
+  CHECK_THROWS_WITH(merge_datasets({dir / "s0.h5", dir / "s0.h5", dir / "s1.h5"}, dir / "x.h5"),
+                    Catch::Contains("given twice"));
+  CHECK_THROWS_WITH(merge_datasets({dir / "s0.h5", dir / "s1.h5", dir / "again0.h5"}, dir / "x.h5"),
+                    Catch::Contains("again0.h5: the same shard 0/2 of the same run as") &&
+                        Catch::Contains("merged twice"));
+  CHECK_FALSE(fs::exists(dir / "x.h5"));
+  // The whole run: no warning, and the output says which shards it holds.
+  std::vector<std::string> warnings;
+  const WarningHandler before = set_warning_handler([&](const std::string& text) { warnings.push_back(text); });
+  CHECK(merge_datasets({dir / "s0.h5", dir / "s1.h5"}, dir / "all.h5") == 4);
+  CHECK(warnings.empty());
+  CHECK(DatasetReader(dir / "all.h5").layout().attributes.at("generator") == "drape generate: seed 0, count 4, shards 0,1 of 2");
+  // Half a run: merged, and told; another run beside it: merged, both named.
+  CHECK(merge_datasets({dir / "s0.h5", dir / "other.h5"}, dir / "half.h5") == 4);
+  set_warning_handler(before);
+  REQUIRE(warnings.size() == 1);
+  CHECK_THAT(warnings[0], Catch::Contains("merging shard 0 of the 2 of one run (drape generate: seed 0, count 4)"));
+  CHECK(DatasetReader(dir / "half.h5").layout().attributes.at("generator") ==
+        "drape generate: seed 0, count 4, shard 0 of 2 + drape generate: seed 7, count 2, shard 0 of 1");
 }

@@ -23,6 +23,11 @@ inline constexpr const char* kGarmentVertices = "/garments/vertices";
 inline constexpr const char* kGarmentFaces = "/garments/faces";  // int32 [F, 3]; absent in files before 2026-11-29
 inline constexpr const char* kSplit = "/split";
 inline constexpr const char* kDone = "/done";
+// int64 [N]: the CRC-32 of each sample's rows as the writer wrote them
+// (params, body vertices, pose, garment vertices, split, stats, in that
+// order), checked when a `.partial` is resumed; 0 for a sample not written
+// (or by a writer before 2026-12-07, which had none: not checked).
+inline constexpr const char* kSampleCrc = "/sample_crc";
 inline constexpr const char* kStats = "/stats";
 // A slim dataset's witness of the bodies it left out (float64 [N, B, 4], B =
 // witness_blocks(Nb); slim files made before 2026-12-01 have none): for each

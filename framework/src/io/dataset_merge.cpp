@@ -5,11 +5,13 @@
 #include <drape/bodies/body.hpp>
 #include <drape/training/model.hpp>
 #include <drape/scene/scene.hpp>
+#include <drape/warnings.hpp>
 
 #include <algorithm>
 #include <limits>
 #include <map>
 #include <optional>
+#include <regex>
 #include <sstream>
 
 namespace fs = std::filesystem;
@@ -171,6 +173,57 @@ std::vector<std::vector<char>> rows_to_drop(const std::vector<h5::File>& files, 
   return out;
 }
 
+// The run a shard is part of (its generator attribute without the shard)
+// and which shard of it; an empty run for a file without one (made before
+// the attribute, or by a merge).
+struct RunShard {
+  std::string run;
+  long index = -1, count = -1;
+};
+RunShard run_of(const DatasetLayout& layout) {
+  RunShard out;
+  const auto generator = layout.attributes.find("generator");
+  if (generator == layout.attributes.end()) return out;
+  static const std::regex shard(", shard (\\d+)/(\\d+)");
+  std::smatch m;
+  if (!std::regex_search(generator->second, m, shard)) return out;
+  out.run = m.prefix().str() + m.suffix().str();
+  out.index = std::stol(m[1]), out.count = std::stol(m[2]);
+  return out;
+}
+
+// Shards that would put one run's drapes in twice are refused: a file given
+// twice, or two files of the same shard of one run (the same command run
+// twice). One run's shards not all given is said (the merged set lacks
+// their samples); shards of different runs merge (their global indices
+// repeat). An outside check merged s0 s0 s1 into 6 samples of a set of 4.
+void check_runs(const std::vector<fs::path>& shards, const std::vector<DatasetLayout>& layouts) {
+  for (std::size_t a = 0; a < shards.size(); ++a)
+    for (std::size_t b = a + 1; b < shards.size(); ++b)
+      if (std::error_code ec; fs::equivalent(shards[a], shards[b], ec))
+        throw ConfigError(shards[b].string() + ": given twice (also as " + shards[a].string() +
+                          "): its samples would be merged twice");
+  std::map<std::string, std::map<long, std::size_t>> runs;  // run -> shard index -> input
+  std::map<std::string, long> counts;
+  for (std::size_t k = 0; k < shards.size(); ++k) {
+    const RunShard r = run_of(layouts[k]);
+    if (r.run.empty()) continue;
+    const auto [at, fresh] = runs[r.run].emplace(r.index, k);
+    if (!fresh)
+      throw ConfigError(shards[k].string() + ": the same shard " + std::to_string(r.index) + "/" + std::to_string(r.count) +
+                        " of the same run as " + shards[at->second].string() + " (" + r.run +
+                        "): the same drapes would be merged twice");
+    counts[r.run] = r.count;
+  }
+  for (const auto& [run, given] : runs)
+    if (static_cast<long>(given.size()) < counts[run]) {
+      std::string which;
+      for (const auto& [index, input] : given) which += (which.empty() ? "" : ", ") + std::to_string(index);
+      warn("merging shard" + std::string(given.size() > 1 ? "s " : " ") + which + " of the " + std::to_string(counts[run]) +
+           " of one run (" + run + "): the merged set lacks the other shards' samples");
+    }
+}
+
 std::size_t join_shards(const std::vector<fs::path>& shards, const fs::path& out, bool require_complete, bool mixed_sizes,
                         const BodyVertices& bodies, const std::vector<long>& drop) {
   if (shards.empty()) throw ConfigError("merge: no shard files given");
@@ -190,6 +243,7 @@ std::size_t join_shards(const std::vector<fs::path>& shards, const fs::path& out
     layouts.push_back(read_layout(files.back()));
     for (const std::string& name : layouts.back().stats) all_stats.push_back(name);
   }
+  check_runs(shards, layouts);
   if (mixed_sizes) {
     // The size flag always; the grade when a shard has it (shards made before
     // it existed merge among themselves as before).
@@ -262,6 +316,32 @@ std::size_t join_shards(const std::vector<fs::path>& shards, const fs::path& out
     names += shard.filename().string();
   }
   merged.attributes["merged_from"] = names;
+  // How the samples were made: the one run's settings with the shards it
+  // holds ("..., shards 0,1 of 2"), or every run's (it named the first
+  // shard's alone); no longer "shard i/N", which merges read as one shard.
+  {
+    std::map<std::string, std::vector<long>> held;  // run -> shard indices
+    std::map<std::string, long> counts;
+    std::vector<std::string> others;  // generators without a shard
+    for (const DatasetLayout& layout : layouts) {
+      const RunShard r = run_of(layout);
+      if (!r.run.empty()) held[r.run].push_back(r.index), counts[r.run] = r.count;
+      else if (const auto g = layout.attributes.find("generator"); g != layout.attributes.end()) others.push_back(g->second);
+    }
+    std::vector<std::string> texts;
+    for (auto& [run, indices] : held) {
+      std::sort(indices.begin(), indices.end());
+      std::string list;
+      for (const long i : indices) list += (list.empty() ? "" : ",") + std::to_string(i);
+      texts.push_back(run + ", shard" + (indices.size() > 1 ? "s " : " ") + list + " of " + std::to_string(counts[run]));
+    }
+    std::sort(others.begin(), others.end());
+    others.erase(std::unique(others.begin(), others.end()), others.end());
+    texts.insert(texts.end(), others.begin(), others.end());
+    std::string generator;
+    for (const std::string& t : texts) generator += (generator.empty() ? "" : " + ") + t;
+    if (!generator.empty()) merged.attributes["generator"] = generator;
+  }
   if (mixed_sizes) merged.attributes["templates"] = templates;
   if (size_chart) merged.attributes["size_chart"] = size_chart->to_text();
   std::sort(dropped_all.begin(), dropped_all.end());

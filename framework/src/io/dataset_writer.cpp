@@ -2,8 +2,14 @@
 #include "dataset_internal.hpp"
 
 #include <drape/io/atomic_file.hpp>
+#include <drape/warnings.hpp>
+
+#include <zlib.h>
 
 #include <cmath>
+#include <cstdint>
+#include <string>
+#include <vector>
 
 namespace fs = std::filesystem;
 
@@ -14,6 +20,53 @@ using namespace dataset_detail;
 struct DatasetWriter::Impl {
   h5::File file;
 };
+
+namespace {
+
+// A sample's rows as bytes, in the order kSampleCrc's CRC covers them.
+class SampleCrc {
+ public:
+  template <class T> void add(const T* data, std::size_t count) {
+    crc_ = crc32(crc_, reinterpret_cast<const Bytef*>(data), static_cast<uInt>(count * sizeof(T)));
+  }
+  // Never 0, which marks a sample without one.
+  std::int64_t value() const { return crc_ == 0 ? 1 : static_cast<std::int64_t>(crc_); }
+
+ private:
+  uLong crc_ = crc32(0L, Z_NULL, 0);
+};
+
+// The CRC of sample `index` as it reads back from the file now.
+std::int64_t stored_crc(const h5::File& file, const DatasetLayout& layout, std::size_t index) {
+  SampleCrc crc;
+  std::vector<float> floats(static_cast<std::size_t>(layout.body_params));
+  file.read_rows(kParams, index, 1, floats.data());
+  crc.add(floats.data(), floats.size());
+  if (layout.body_vertices_stored) {
+    floats.resize(3 * static_cast<std::size_t>(layout.body_vertices));
+    file.read_rows(kBodyVertices, index, 1, floats.data());
+    crc.add(floats.data(), floats.size());
+  }
+  if (!layout.pose_angles.empty()) {
+    floats.resize(layout.pose_angles.size());
+    file.read_rows(kPose, index, 1, floats.data());
+    crc.add(floats.data(), floats.size());
+  }
+  floats.resize(3 * static_cast<std::size_t>(layout.garment_vertices));
+  file.read_rows(kGarmentVertices, index, 1, floats.data());
+  crc.add(floats.data(), floats.size());
+  std::int8_t split = 0;
+  file.read_rows(kSplit, index, 1, &split);
+  crc.add(&split, 1);
+  for (const auto& name : layout.stats) {
+    double value = 0;
+    file.read_rows(stat_path(name), index, 1, &value);
+    crc.add(&value, 1);
+  }
+  return crc.value();
+}
+
+}  // namespace
 
 fs::path DatasetWriter::partial_path(const fs::path& path) { return path.string() + ".partial"; }
 
@@ -47,6 +100,7 @@ DatasetWriter::DatasetWriter(const fs::path& path, const DatasetLayout& layout, 
     layout_ = have;  // keeps `created` and the extra attributes of the first run
     impl_ = std::make_unique<Impl>(Impl{std::move(file)});
     resumed_ = true;
+    check_kept_samples();
   } else {
     if (layout.created.empty()) layout_.created = now_utc();
     // Created whole in a temporary file, then renamed: `<out>.partial` exists
@@ -54,6 +108,7 @@ DatasetWriter::DatasetWriter(const fs::path& path, const DatasetLayout& layout, 
     write_atomically(partial, [&](const fs::path& tmp) {
       h5::File file = h5::File::create(tmp);
       create_layout(file, layout_);
+      file.create<std::int64_t>(kSampleCrc, {layout_.samples}, {.preallocate = true, .fill = 0.0});
       file.flush(options_.sync);
       file.close();
     });
@@ -79,22 +134,59 @@ void DatasetWriter::write(std::size_t index, const DatasetSample& sample) {
     file.flush(options_.sync);
     done_[index] = 0;
   }
+  SampleCrc crc;
   file.write_rows(kParams, index, 1, sample.body_params.data());
-  file.write_rows(kBodyVertices, index, 1, sample.body_vertices.data());
-  if (!layout_.pose_angles.empty()) file.write_rows(kPose, index, 1, sample.pose.data());
+  crc.add(sample.body_params.data(), static_cast<std::size_t>(sample.body_params.size()));
+  if (layout_.body_vertices_stored) {
+    file.write_rows(kBodyVertices, index, 1, sample.body_vertices.data());
+    crc.add(sample.body_vertices.data(), static_cast<std::size_t>(sample.body_vertices.size()));
+  }
+  if (!layout_.pose_angles.empty()) {
+    file.write_rows(kPose, index, 1, sample.pose.data());
+    crc.add(sample.pose.data(), static_cast<std::size_t>(sample.pose.size()));
+  }
   file.write_rows(kGarmentVertices, index, 1, sample.garment_vertices.data());
+  crc.add(sample.garment_vertices.data(), static_cast<std::size_t>(sample.garment_vertices.size()));
   const auto split = static_cast<std::int8_t>(sample.split);
   file.write_rows(kSplit, index, 1, &split);
+  crc.add(&split, 1);
   for (const auto& name : layout_.stats) {
     const auto it = sample.stats.find(name);
     const double value = it == sample.stats.end() ? std::nan("") : it->second;
     file.write_rows(stat_path(name), index, 1, &value);
+    crc.add(&value, 1);
+  }
+  if (file.exists(kSampleCrc)) {
+    const std::int64_t value = crc.value();
+    file.write_rows(kSampleCrc, index, 1, &value);
   }
   // Everything above reaches the file before the flag that says it is valid.
   file.flush(options_.sync);
   file.write_rows(kDone, index, 1, &done);
   file.flush(options_.sync);
   done_[index] = 1;
+}
+
+void DatasetWriter::check_kept_samples() {
+  h5::File& file = impl_->file;
+  done_ = file.read<std::uint8_t>(kDone);
+  if (!file.exists(kSampleCrc)) return;  // begun by a writer without checksums: kept as it is
+  const std::vector<std::int64_t> written = file.read<std::int64_t>(kSampleCrc);
+  std::vector<std::size_t> changed;
+  for (std::size_t i = 0; i < done_.size() && i < written.size(); ++i)
+    if (done_[i] && written[i] != 0 && stored_crc(file, layout_, i) != written[i]) changed.push_back(i);
+  if (changed.empty()) return;
+  const std::uint8_t not_done = 0;
+  std::string which;
+  for (std::size_t k = 0; k < changed.size(); ++k) {
+    file.write_rows(kDone, changed[k], 1, &not_done);
+    done_[changed[k]] = 0;
+    if (k < 8) which += (k ? ", " : "") + std::to_string(changed[k]);
+  }
+  file.flush(options_.sync);
+  warn(partial_path(path_).string() + ": " + std::to_string(changed.size()) + " of the samples the interrupted run "
+       "wrote no longer read back as written (the file was changed since: sample" + (changed.size() > 1 ? "s " : " ") +
+       which + (changed.size() > 8 ? ", ..." : "") + "); they are made again");
 }
 
 std::vector<std::size_t> DatasetWriter::missing() const {

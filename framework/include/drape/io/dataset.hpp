@@ -113,6 +113,11 @@ class DatasetWriter {
   struct Impl;
 
  private:
+  // On resume: each done sample read back against the CRC written with it
+  // (/sample_crc); one that differs (the file changed since) is marked not
+  // done, to be made again, and a warning names it.
+  void check_kept_samples();
+
   std::filesystem::path path_;
   DatasetLayout layout_;
   Options options_;
