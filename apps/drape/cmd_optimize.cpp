@@ -81,6 +81,16 @@ int run(const std::vector<std::string>& args) {
   if (!vm.count("data")) check_mesh_outputs(vm, {"out"});  // with --data, --out is a dataset
   if (!vm.count("scene")) throw UsageError("--scene FILE is required (its effects and materials make the potential)");
   if (!vm.count("out")) throw UsageError("--out FILE is required (the optimised garment, or dataset with --data)");
+  // Before any file is made (an outside check: with --data they were refused
+  // after the output's .partial was begun, whose resume then refused the
+  // corrected command), naming the option.
+  if (vm["iters"].as<int>() < 0)
+    throw UsageError("--iters " + std::to_string(vm["iters"].as<int>()) + ": expected 0 or more Adam iterations");
+  if (const double lr = vm["lr"].as<double>(); !(lr > 0) || !std::isfinite(lr)) {
+    char text[96];
+    std::snprintf(text, sizeof text, "--lr %g: Adam's learning rate must be a finite number above 0", lr);
+    throw UsageError(text);
+  }
   // Before anything looks at the output (output_lock.hpp).
   const OutputLock lock(vm["out"].as<std::string>(), "drape optimize");
   if (vm.count("data")) {

@@ -7,6 +7,8 @@
 #include <drape/io/write_failure.hpp>
 
 #include <algorithm>
+#include <cstdint>
+#include <typeinfo>
 #include <cmath>
 #include <filesystem>
 #include <iostream>
@@ -45,6 +47,21 @@ bool parse(const std::string& usage, const std::vector<std::string>& args, po::o
     throw UsageError(std::string(e.what()) + hint + "\nusage: " + usage);
   } catch (const po::error& e) {
     throw UsageError(std::string(e.what()) + "\nusage: " + usage);
+  }
+  // An unsigned option given a negative number: Boost reads "-1" as 2^64 - 1
+  // (an outside check's --seed -1 ran as seed 18446744073709551615).
+  for (const auto& [name, value] : vm) {
+    const boost::any& held = value.value();
+    if (held.type() != typeid(std::uint64_t) && held.type() != typeid(unsigned)) continue;
+    for (std::size_t i = 0; i < args.size(); ++i) {
+      const std::string flag = "--" + name;
+      std::string given;
+      if (args[i] == flag && i + 1 < args.size()) given = args[i + 1];
+      else if (args[i].rfind(flag + "=", 0) == 0) given = args[i].substr(flag.size() + 1);
+      const std::size_t start = given.find_first_not_of(" \t");
+      if (start != std::string::npos && given[start] == '-')
+        throw UsageError(flag + " " + given + ": expected a whole number 0 or more\nusage: " + usage);
+    }
   }
   // Outputs are checked before any work: a drape simulated for a minute must
   // not be lost to a missing or read-only folder. A value without an

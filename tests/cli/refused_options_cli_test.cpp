@@ -121,3 +121,29 @@ TEST_CASE("counts and options that only apply elsewhere are refused, not clamped
   CHECK(test::run_drape("simulate " + scene + " --height 150", out) == 2);
   CHECK_THAT(out, Catch::Contains("[0.5, 2.5]"));
 }
+
+TEST_CASE("generate and optimize refuse bad values before their output is begun, naming the option", "[cli][options]") {
+  // Found by an outside check: these were refused after the output's
+  // .partial was made, whose resume then refused the corrected command.
+  test::TempDir dir;
+  std::string out;
+  const std::string scene = (test::source_dir() / "graphs/scenes/tshirt_coarse.yaml").string();
+  const std::string generate = "generate " + scene + " --count 2 --threads 1 --out " + (dir / "a.h5").string();
+  CHECK(test::run_drape(generate + " --height 0.2", out) == 2);
+  CHECK_THAT(out, Catch::Contains("height 0.2:0.2: body parametric: height 0.2 m is outside the reachable range"));
+  CHECK(test::run_drape(generate + " --sex 2", out) == 2);
+  CHECK_THAT(out, Catch::Contains("sex 2:2: body parametric: sex 2 is outside [0, 1]"));
+  // More shards than samples: some shard would be an empty dataset sealed complete.
+  CHECK(test::run_drape(generate + " --shard 0/4", out) == 2);
+  CHECK_THAT(out, Catch::Contains("shard 0/4: 4 shards of a set of 2 samples leave some shards empty"));
+  // A negative seed was read as 2^64 - 1.
+  CHECK(test::run_drape(generate + " --seed -1", out) == 2);
+  CHECK_THAT(out, Catch::Contains("--seed -1: expected a whole number 0 or more"));
+  for (const std::string bad : {"--iters -1", "--lr -1", "--lr 0"}) {
+    INFO(bad);
+    CHECK(test::run_drape("optimize --scene " + scene + " --data " + (dir / "none.h5").string() + " " + bad + " --out " +
+                              (dir / "o.h5").string(), out) == 2);
+    CHECK_THAT(out, Catch::Contains(bad.substr(0, bad.find(' ')) + " "));
+  }
+  for (const auto& entry : std::filesystem::directory_iterator(dir.path())) FAIL_CHECK("left behind: " << entry.path());
+}

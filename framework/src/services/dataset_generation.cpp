@@ -48,21 +48,43 @@ void check_request(const GenerateRequest& r) {
   if (r.shard.count == 0 || r.shard.index >= r.shard.count)
     throw ConfigError("shard " + std::to_string(r.shard.index) + "/" + std::to_string(r.shard.count) +
                       ": expected i/N with 0 <= i < N");
+  // (A shard of no sample wrote an empty dataset sealed complete: an outside check.)
+  if (r.shard.count > r.count)
+    throw ConfigError("shard " + std::to_string(r.shard.index) + "/" + std::to_string(r.shard.count) + ": " +
+                      std::to_string(r.shard.count) + " shards of a set of " + std::to_string(r.count) +
+                      " samples leave some shards empty; give at most as many shards as --count");
   if (!(r.girths >= 0 && r.girths <= 1)) throw ConfigError("girths: expected a fraction in [0, 1]");
   for (const auto& [name, range] : {std::pair{"bmi", r.bmi}, std::pair{"height", r.height}, std::pair{"sex", r.sex}})
     if (!(range.lo <= range.hi)) throw ConfigError(std::string(name) + " range: expected lo <= hi");
   if (r.threads < 0) throw ConfigError("threads: expected 0 (all cores) or a count");
 }
 
-// The BMI range against what the scene's body model reaches.
-void check_bmi_range(const GenerateRequest& r, const Simulation& sim, const Scene& scene) {
-  const auto [bmi_lo, bmi_hi] = sim.body_model().bmi_range();
+// The BMI range against what the scene's body model reaches; the height
+// and sex ranges by solving the body at each end (the others at the mean
+// body's), so that a range the model cannot make is refused before the
+// output is begun (an outside check: --height 0.2 was refused at the first
+// sample, leaving a .partial whose resume then refused the corrected command).
+void check_body_ranges(const GenerateRequest& r, const Simulation& sim, const Scene& scene) {
+  const BodyModel& model = sim.body_model();
+  const auto [bmi_lo, bmi_hi] = model.bmi_range();
   if (r.bmi.lo < bmi_lo - 1e-9 || r.bmi.hi > bmi_hi + 1e-9) {
     std::ostringstream o;
     o << "bmi " << r.bmi.lo << ":" << r.bmi.hi << " is outside what body model '" << scene.body_model << "' reaches ("
       << bmi_lo << ":" << bmi_hi << ")";
     throw ConfigError(o.str());
   }
+  for (const auto& [name, range] : {std::pair{"height", r.height}, std::pair{"sex", r.sex}})
+    for (const double end : {range.lo, range.hi}) {
+      BodyRequest request = model.mean_request();  // the others as the model's mean body has them: one range at a time
+      (std::string(name) == "height" ? request.height : request.sex) = end;
+      try {
+        model.solve(request);
+      } catch (const ConfigError& e) {
+        std::ostringstream o;
+        o << name << " " << range.lo << ":" << range.hi << ": " << e.what();
+        throw ConfigError(o.str());
+      }
+    }
 }
 
 std::string ranges_text(const GenerateRequest& r) {
@@ -220,7 +242,7 @@ GenerateSummary generate_dataset(const Registry& registry, const Scene& scene, c
   // sizes share its topology), each sample records its size in garment_size.
   const SceneSimulations simulations(registry, scene);
   const Simulation& sim = simulations.design();
-  check_bmi_range(request, sim, scene);
+  check_body_ranges(request, sim, scene);
   const PoseSource poses = pose_source(request, sim, scene);
   // The size flag of a graph trained on several sizes (garment_size_flag).
   const double design_size = garment_size_flag(sim.scene());
