@@ -17,6 +17,7 @@
 #include <drape/io/write_failure.hpp>
 #include <drape/registry.hpp>
 #include <drape/training/model.hpp>
+#include <drape/graph.hpp>
 #include <drape/training/model_domain.hpp>
 #include <drape/training/model_params.hpp>
 #include <drape/scene/size_table.hpp>
@@ -35,7 +36,15 @@ const char* kInfoUsage = "drape model info MODEL";
 const char* kDomainUsage = "drape model domain MODEL --data DATA [--out FILE]";
 const char* kSetUsage = "drape model set MODEL --set node.param=value [--set ...] [--out FILE]";
 
-void print_domain(const ModelDomain& d) {
+// Whether a model's graph reads a pose (what model_takes_pose asks of a loaded model).
+bool graph_takes_pose(const std::string& graph_text, const std::string& where) {
+  const GraphSpec spec = parse_graph_text(graph_text, where);
+  for (const auto& [name, input] : spec.inputs)
+    if (name == "pose" || name == "unposed_body" || name == "joint_transforms") return true;
+  return false;
+}
+
+void print_domain(const ModelDomain& d, bool takes_pose = true) {
   std::printf("domain: body model '%s', %s from %s\n", d.body_model.c_str(), training_count(d).c_str(),
               d.source.empty() ? "(unknown)" : d.source.c_str());
   std::printf("  %-10s %8.3f .. %-8.3f m\n", "height", d.height.min, d.height.max);
@@ -56,6 +65,12 @@ void print_domain(const ModelDomain& d) {
     std::printf("  where the training bodies stood is not recorded (drape model domain adds it)\n");
   if (d.pose_names.empty()) {
     std::printf("  poses: the A-pose only (predict refuses a pose)\n");
+    return;
+  }
+  if (!takes_pose) {  // trained on posed drapes by a graph that reads no pose
+    std::printf("  poses: the A-pose only (its graph takes no pose; predict refuses a pose), though the drapes it was "
+                "trained on were posed (%zu joint angles), which it could not tell apart\n",
+                d.pose_names.size());
     return;
   }
   std::printf("  poses (degrees; predict --pose warns outside, --strict refuses; measures above on the bodies at rest):\n");
@@ -159,7 +174,7 @@ int info(const std::vector<std::string>& args) {
   }
   print_post_processing(Registry::load_default(plugin_path(vm)), c.graph, file.string() + " (graph)");
   if (auto chart = c.meta.find("size_chart"); chart != c.meta.end()) print_size_chart(chart->second, file.string());
-  if (auto domain = read_domain(file)) print_domain(*domain);
+  if (auto domain = read_domain(file)) print_domain(*domain, graph_takes_pose(c.graph, file.string() + " (graph)"));
   else
     std::printf("domain: not recorded (a model written before drape recorded it): predict cannot tell a body outside "
                 "it; add it with `drape model domain %s --data DATASET`\n",

@@ -38,7 +38,20 @@ TEST_CASE("drape predict --pose poses the body and the drape of a posed model", 
     const auto at = out.find("(loss ");
     REQUIRE(at != std::string::npos);
     CHECK(std::isfinite(std::stod(out.substr(at + 6))));
+    CHECK(out.find("holds drapes on posed bodies") == std::string::npos);  // they read the pose
   }
+  // A graph of A-pose drapes trains on them, told that it cannot tell the
+  // poses apart; its model info and eval on posed drapes say so too (an
+  // outside check trained one silently, and its info listed the poses).
+  const std::string aposed = (dir / "aposed.h5").string();
+  REQUIRE(test::run_drape("train " + (test::source_dir() / "graphs/examples/mlp_baseline.yaml").string() + " --data " +
+                              (dir / "d.h5").string() + " --epochs 1 --batch 2 --threads 1 --out " + aposed, out) == 0);
+  CHECK_THAT(out, Catch::Contains("holds drapes on posed bodies (") && Catch::Contains("takes no pose"));
+  REQUIRE(test::run_drape("model info " + aposed, out) == 0);
+  CHECK_THAT(out, Catch::Contains("poses: the A-pose only (its graph takes no pose; predict refuses a pose), though the "
+                                  "drapes it was trained on were posed"));
+  REQUIRE(test::run_drape("eval --model " + aposed + " --data " + (dir / "d.h5").string() + " --split all", out) == 0);
+  CHECK_THAT(out, Catch::Contains("drapes bodies in the A-pose only (its graph takes no pose): it is measured draping"));
   // The ME-gap row differs from drape_unposed.yaml in the V2V loss's weight;
   // the shipped models' last cycles (the *_post graphs) weight it 100 or 1000
   // and end in the push-out node `post`.
