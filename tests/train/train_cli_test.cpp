@@ -281,6 +281,17 @@ TEST_CASE("drape optimize improves one drape, and every sample of a split into a
   CHECK(test::run(test::drape_command("optimize --model " + t.model.string() + " --scene " + scene + " --data " +
                                       t.data.string() + " --split tain --out " + (t.dir / "x.h5").string()),
                   out) == 2);
+  // A scene of another body model than the dataset's bodies (the human rig's
+  // over the mannequin's) is refused, naming both counts: it wrote a file
+  // whose scene and bodies disagree (an outside check).
+  std::ofstream(t.dir / "human.yaml") << "base: " << scene << "\nbody: {model: parametric, params: {rig: human}}\n";
+  CHECK(test::run(test::drape_command("optimize --model " + t.model.string() + " --scene " + (t.dir / "human.yaml").string() +
+                                      " --data " + t.data.string() + " --split train --iters 1 --out " +
+                                      (t.dir / "h.h5").string()),
+                  out) == 2);
+  CHECK_THAT(out, Catch::Contains("has 6904 vertices, the bodies of") && Catch::Contains(" 6490: give the scene"));
+  CHECK_FALSE(fs::exists(t.dir / "h.h5"));
+  CHECK_FALSE(fs::exists(t.dir / "h.h5.partial"));
 }
 
 TEST_CASE("drape eval prints every metric and writes them as JSON or CSV", "[train][cli]") {

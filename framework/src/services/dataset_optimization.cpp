@@ -112,6 +112,15 @@ std::size_t optimize_dataset(const Registry& registry, const OptimizeDatasetOpti
     const Model probe = Model::load(registry, o.model);
     check_dataset_template(reader, o.data, probe.assets());
   }
+  // The scene's body model makes the dataset's bodies (an outside check's
+  // human-rig scene over mannequin bodies wrote a file whose scene and
+  // bodies disagree, which eval then took).
+  if (const int scene_vertices = simulations.design().body_model().num_vertices();
+      scene_vertices != reader.layout().body_vertices)
+    throw ConfigError(o.scene_file.string() + ": its body model '" + scene.body_model + "' has " +
+                      std::to_string(scene_vertices) + " vertices, the bodies of " + o.data.string() + " " +
+                      std::to_string(reader.layout().body_vertices) + ": give the scene the dataset was made in (its "
+                      "stored scene: drape dataset info)");
   const std::vector<std::string> carried = carried_stats(reader);
   const DatasetLayout layout = optimized_layout(reader, scene, o, source.size(), carried);
   DatasetWriter writer(o.out, layout);
