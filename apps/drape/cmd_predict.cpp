@@ -89,11 +89,11 @@ int run(const std::vector<std::string>& args) {
   constexpr std::size_t kCountAtMost = 100000;
   const std::size_t self = geometry::self_edge_crossings(out.vertices, out.faces, kCountAtMost).size();
   std::printf("wrote %s: %d garment vertices predicted in %.2f ms; p = %.2f%% of them inside the body, %d edges crossing it, "
-              "the garment through itself %zu edges\n",
+              "the garment through itself %zu edge-face pairs\n",
               vm["out"].as<std::string>().c_str(), out.num_vertices(), ms, 100.0 * p, crossings.total(), self);
   if (self > 0)
     std::cerr << "warning: the garment passes through itself: " << self
-              << " of its edges through its own faces (a fold or a sleeve the network drew through the cloth; the "
+              << " pairs of an edge and a face it passes through (a fold or a sleeve the network drew through the cloth; the "
                  "model's push-out untangles what it can, and a pose or body outside its training leaves more)\n";
   if (crossings.total() > 0)
     std::cerr << "warning: the garment and the body cross: " << crossings.garment_edges_through_body

@@ -102,7 +102,7 @@ void draw(const po::variables_map& vm, const std::string& colour, const std::str
   const int crossing = geometry::surface_crossings(garment.vertices, garment.faces, body.vertices, body.faces).total();
   const std::size_t self = geometry::self_edge_crossings(garment.vertices, garment.faces, kCountAtMost).size();
   const std::string counted = std::string(caption) + ", " + std::to_string(crossing) + " edges crossing the body, " +
-                              std::to_string(self) + " through the garment itself";
+                              std::to_string(self) + " edge-face pairs of the garment through itself";
   std::snprintf(caption, sizeof caption, "%s", counted.c_str());
   figure.add_panel(drape_panel(caption, body, garment, std::move(values)));
   figure.set_colour_scale(scale);

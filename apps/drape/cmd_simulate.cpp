@@ -38,7 +38,7 @@ std::string crossings_summary(const SimulationResult& r) {
   if (!r.crossings) return "surface crossings not measured";
   return "surface crossings " + std::to_string(r.crossings->garment_edges_through_body) + " garment edges / " +
          std::to_string(r.crossings->body_edges_through_garment) + " body edges" +
-         (r.self_crossings ? ", the garment through itself " + std::to_string(*r.self_crossings) + " edges" : "");
+         (r.self_crossings ? ", the garment through itself " + std::to_string(*r.self_crossings) + " edge-face pairs" : "");
 }
 
 // The command line: every option, parsed into vm; false after --help.

@@ -22,7 +22,7 @@ TEST_CASE("drape simulate reports the surface crossings next to p", "[cli][simul
   INFO(out);
   CHECK((code == 0 || code == 1));  // 1: not settled within the tiny scene's few steps, still reported
   CHECK(std::regex_search(out, std::regex("penetration p = [0-9.]+% of garment vertices, surface crossings [0-9]+ garment "
-                                          "edges / [0-9]+ body edges, the garment through itself [0-9]+ edges, time")));
+                                          "edges / [0-9]+ body edges, the garment through itself [0-9]+ edge-face pairs, time")));
   std::ifstream svg(dir / "drape.svg");
   const std::string picture((std::istreambuf_iterator<char>(svg)), std::istreambuf_iterator<char>());
   CHECK(std::regex_search(picture, std::regex("p = [0-9.]+%, [0-9]+ surface crossings")));

@@ -119,6 +119,14 @@ TEST_CASE("scene errors name the file, the line and the key", "[scene]") {
              Catch::Contains("s.yaml:3") && Catch::Contains("'morph_steps' is a solver setting") && Catch::Contains("solver:"));
   CHECK_THAT(message_of([] { parse_scene("effects: [gravity, {settle_steps: 4}]\n", "s.yaml"); }),
              Catch::Contains("'settle_steps' is a solver setting"));
+  // An effect listed twice was merged without a word (the map form's key twice is refused above).
+  CHECK_THAT(message_of([] { parse_scene("effects: [gravity, stretching, gravity]\n", "s.yaml"); }),
+             Catch::Contains("s.yaml:1") && Catch::Contains("effect 'gravity' is listed twice (first at line 1)"));
+  CHECK_THAT(message_of([] { parse_scene("effects:\n  - gravity\n  - {gravity: {g: 5}}\n", "s.yaml"); }),
+             Catch::Contains("s.yaml:3") && Catch::Contains("listed twice (first at line 2)"));
+  // `effects:` with nothing under it kept the base's effects unseen.
+  CHECK_THAT(message_of([] { parse_scene("body: {model: parametric}\neffects:\n", "s.yaml"); }),
+             Catch::Contains("s.yaml:2") && Catch::Contains("`effects` has nothing under it"));
   TempDir dir;
   write(dir / "a.yaml", "base: b.yaml\n");
   write(dir / "b.yaml", "base: a.yaml\n");

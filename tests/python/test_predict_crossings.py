@@ -12,7 +12,7 @@ sys.path.insert(0, str(SOURCE / "scripts"))
 from count_self_crossings import crossings  # numpy edge-face tests  # noqa: E402
 
 COUNT = re.compile(r"p = [0-9.]+% of them inside the body, (\d+) edges crossing it")
-SELF = re.compile(r"edges crossing it, the garment through itself (\d+) edges")
+SELF = re.compile(r"edges crossing it, the garment through itself (\d+) edge-face pairs")
 
 
 def crossing_edges(garment, garment_faces, body, body_faces):
@@ -45,7 +45,7 @@ def test_a_crossing_prediction_is_counted_and_warned(tmp_path, drape_module):
     # The garment through itself, (edge, face) pairs as simulate counts them: numpy's count of the shirt alone.
     self_pairs = len(crossings(g, np.asarray(gf))[0])
     assert int(SELF.search(out).group(1)) == self_pairs
-    assert (f"warning: the garment passes through itself: {self_pairs} of its edges" in err) == (self_pairs > 0)
+    assert (f"warning: the garment passes through itself: {self_pairs} pairs of an edge and a face" in err) == (self_pairs > 0)
 
 
 def test_the_shipped_model_reports_no_crossing(tmp_path):

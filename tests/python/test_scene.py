@@ -25,7 +25,7 @@ def test_simulate_matches_the_program(tiny_scene, tmp_path):
     np.testing.assert_array_equal(faces, scene.garment_faces)
     # The garment's edges through its own faces, as the program counts them (tests/python/test_self_crossing_report.py
     # checks the count against an independent one).
-    assert r["self_crossings"] == int(re.search(r"the garment through itself (\d+) edges", out).group(1))
+    assert r["self_crossings"] == int(re.search(r"the garment through itself (\d+) edge-face pairs", out).group(1))
     assert set(r["energies"]) == {"gravity", "stretching", "bending", "self_contact"}
     assert r["total_energy"] == pytest.approx(sum(r["energies"].values()), rel=1e-12)
     # The per-effect energies of the result are the scene's energies at the drape.

@@ -7,6 +7,7 @@
 #include "../yaml_util.hpp"
 
 #include <algorithm>
+#include <map>
 #include <fstream>
 #include <sstream>
 
@@ -63,7 +64,16 @@ void refuse_solver_key_as_effect(const std::string& file, const YAML::Node& key)
 void parse_effects(Scene& s, const std::string& file, const YAML::Node& n) {
   if (n.IsSequence()) {  // a list replaces the base's effects
     s.effects.clear();
+    std::map<std::string, YAML::Node> listed;  // name -> where: an effect listed twice is refused, as the map form's key
     for (const auto& e : n) {
+      const YAML::Node name_node = e.IsMap() && e.size() == 1 ? e.begin()->first : e;
+      if (name_node.IsScalar()) {
+        const auto [first, fresh] = listed.emplace(name_node.Scalar(), name_node);
+        if (!fresh)
+          throw ConfigError(yaml::at(file, name_node), "effect '" + name_node.Scalar() + "' is listed twice (first at line " +
+                                                           std::to_string(first->second.Mark().line + 1) +
+                                                           "): list each effect once, with its parameters");
+      }
       if (e.IsScalar()) {
         set_effect(s, e.Scalar(), {}, yaml::at(file, e));
       } else if (e.IsMap() && e.size() == 1) {
@@ -90,7 +100,7 @@ void parse_effects(Scene& s, const std::string& file, const YAML::Node& n) {
       merge_values(p, file, kv.second, "effect '" + name + "'");
       set_effect(s, name, std::move(p), yaml::at(file, kv.first));
     }
-  } else if (!n.IsNull()) {
+  } else {
     throw ConfigError(yaml::at(file, n), "`effects` must be a list of energy names or a map name: {params}");
   }
 }
@@ -152,7 +162,17 @@ void apply(Scene& s, const fs::path& path, const std::string& file, const YAML::
         *it = std::move(m);
     }
   }
-  if (const YAML::Node effects = root["effects"]) parse_effects(s, file, effects);
+  if (const YAML::Node effects = root["effects"]) {
+    // `effects: null` (or `effects:` with nothing under it) kept the base's
+    // effects without a word (an outside check): named at its key.
+    if (effects.IsNull())
+      for (const auto& kv : root)
+        if (kv.first.IsScalar() && kv.first.Scalar() == "effects")
+          throw ConfigError(yaml::at(file, kv.first), "`effects` has nothing under it: give a list of energy names or a "
+                                                      "map name: {params} (in a derived scene, a map entry `name: null` "
+                                                      "removes one effect of the base)");
+    parse_effects(s, file, effects);
+  }
   merge_values(s.solver, file, root["solver"], "`solver`");
 }
 
