@@ -142,6 +142,21 @@ class Energy:
         return f"<drape.Energy {self.name}>"
 
 
+def _materials_against(scene, folder):
+    """The dict scene with each material file it names (a region's value that is a path: it has a folder or ends
+    in .json) made absolute against `folder`, as a scene file's are against its own."""
+    materials = scene.get("materials")
+    if not isinstance(materials, dict):
+        return scene
+
+    def absolute(value):
+        if isinstance(value, str) and (_os.sep in value or value.endswith(".json")) and not _os.path.isabs(value):
+            return _os.path.join(folder, value)
+        return value
+
+    return dict(scene, materials={region: absolute(value) for region, value in materials.items()})
+
+
 class Scene:
     """A simulation scene (graphs/scenes/*.yaml, docs/scenes.md) made runnable: a path, or a dict laid out as the
     YAML file (a relative `base:` is resolved against base_dir, default the current folder)."""
@@ -161,17 +176,27 @@ class Scene:
                 if not (base_dir or _os.path.isabs(path) and _os.path.exists(path)):
                     path = find_file(_os.fspath(base))
                 scene["base"] = _os.path.abspath(path)
+                # A material file is read against the scene file's folder: a dict's folder is base_dir, or the
+                # current folder (the temporary file's would find nothing: an outside check).
+                scene = _materials_against(scene, base_dir or _os.getcwd())
                 with _tempfile.TemporaryDirectory(prefix="drape-scene-") as tmp:
                     path = _os.path.join(tmp, "scene.yaml")
                     with open(path, "w") as f:
                         _json.dump(scene, f)
-                    self._s = _drape._Scene.from_file(path)
+                    try:
+                        self._s = _drape._Scene.from_file(path)
+                    except (ConfigError, Error) as e:
+                        # The temporary file (one line of JSON) is gone: the dict is what to name.
+                        text = str(e).replace(path + ":1: ", "the scene dict: ").replace(path, "the scene dict")
+                        raise type(e)(text) from None
         elif isinstance(scene, (str, _os.PathLike)):
             self._s = _drape._Scene.from_file(_os.fspath(scene))
         else:
             raise TypeError(f"scene: expected a path or a dict, got {type(scene).__name__}")
 
     def __getattr__(self, name):
+        if name == "_s":  # (a Scene whose construction failed: no recursion through __getattr__)
+            raise AttributeError(name)
         return getattr(self._s, name)
 
     def energies(self, body_vertices=None):

@@ -45,6 +45,28 @@ def test_a_scene_from_a_dict_is_the_file(tiny_scene):
         drape.Scene({"effects": {"strething": {}}})
 
 
+def test_a_dict_scene_with_a_base_reads_its_material_files_where_it_is_made(tiny_scene, tmp_path, monkeypatch):
+    """A material file named in a dict with `base:` is read against base_dir or the current folder, as a scene
+    file's are against its own (it was read in the temporary file's folder and not found: an outside check), and an
+    error names the dict, not that deleted file."""
+    import shutil
+    from conftest import SOURCE
+    shutil.copy(SOURCE / "graphs" / "materials" / "screen-print.json", tmp_path / "my.json")
+    base = str(tiny_scene.parent / "tiny.yaml")
+    monkeypatch.chdir(tmp_path)
+    here = drape.Scene({"base": base, "materials": {"knit": "my.json"}})
+    elsewhere = tmp_path / "elsewhere"
+    elsewhere.mkdir()
+    monkeypatch.chdir(elsewhere)
+    there = drape.Scene({"base": base, "materials": {"knit": "my.json"}}, base_dir=str(tmp_path))
+    assert here.effects == there.effects
+    with pytest.raises(drape.ConfigError) as refused:
+        drape.Scene({"base": base, "materials": {"knit": "my.json"}})  # not in this folder
+    assert "the scene dict" in str(refused.value) and "drape-scene-" not in str(refused.value)
+    with pytest.raises(drape.ConfigError, match=r"^the scene dict: .*barrier"):
+        drape.Scene({"base": base, "effects": {"barrier": {"distance": 0.5}}}, base_dir=str(tmp_path))
+
+
 @pytest.fixture(scope="module")
 def contact_energies():
     """Every energy of the contact scene on the mean body, at the dressed garment moved a little."""
