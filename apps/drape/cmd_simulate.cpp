@@ -241,15 +241,7 @@ int run(const std::vector<std::string>& args) {
               sim.garment().mesh.num_vertices(), static_cast<int>(target.vertices.rows()));
   for (const auto& e : sim.scene().effects) std::printf(" %s", e.name.c_str());
   std::printf("\n");
-  // A scene may leave effects out (docs/scenes.md), but two of them are what
-  // makes a drape: without stretching the cloth has no in-plane stiffness and
-  // a step's Newton iterations need not end (such a run sat at its first
-  // step for minutes); without contact it falls through the body.
-  if (!sim.scene().has_effect("stretching"))
-    std::printf("note: the scene has no stretching effect: the cloth resists no stretch, so a step may never settle "
-                "(each takes up to its Newton iterations)\n");
-  if (!sim.scene().has_effect("barrier") && !sim.scene().has_effect("collision"))
-    std::printf("note: the scene has no contact with the body (barrier or collision): the garment falls through it\n");
+  for (const std::string& note : sim.effect_notes()) std::printf("note: %s\n", note.c_str());
   // A garment far finer than the shipped ones: its first step alone can take
   // minutes, with nothing on the screen until then (a 244,606-vertex shirt
   // looked hung); say what to expect.

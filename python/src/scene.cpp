@@ -203,6 +203,7 @@ void register_scene(py::module_& m) {
              const py::handle& start_body, const py::handle& pose) {
             const SceneBody target = scene_body_arg(s, body, pose);
             for (const std::string& note : target.notes) warn_python(note);
+            for (const std::string& note : s.simulation->effect_notes()) warn_python(note);  // as the program's notes
             Eigen::MatrixX3d start, start_b;
             SimulationOptions o;
             o.measure_penetration = measure_penetration;

@@ -100,6 +100,14 @@ TEST_CASE("a scene without stretching or contact is said to be so before it is s
   test::run_drape("simulate " + (dir / "bare.yaml").string() + " --out " + (dir / "g.obj").string(), out);
   CHECK_THAT(out, Catch::Contains("note: the scene has no stretching effect") &&
                       Catch::Contains("note: the scene has no contact with the body"));
+  // A penalty contact of no margin (or no stiffness), no barrier: it keeps nothing out (an outside check's
+  // margin 0 "settled" with a third of the garment inside the body).
+  std::ofstream(dir / "nomargin.yaml") << "base: " << (test::source_dir() / "graphs/scenes/tshirt_coarse.yaml").string()
+                                       << "\neffects: {barrier: null, self_contact: null, collision: {margin: 0}}\n"
+                                          "solver: {morph_steps: 1, settle_steps: 0, max_newton_iterations: 2}\n";
+  test::run_drape("simulate " + (dir / "nomargin.yaml").string() + " --out " + (dir / "m.obj").string(), out);
+  CHECK_THAT(out, Catch::Contains("note: the collision effect's margin is 0 and the scene has no barrier") &&
+                      !Catch::Contains("collision effect's stiffness"));
   // The shipped scenes have both: no such note.
   std::ofstream(dir / "quick.yaml") << "base: " << (test::source_dir() / "graphs/scenes/tshirt_coarse.yaml").string()
                                     << "\nsolver: {morph_steps: 1, settle_steps: 0, max_newton_iterations: 2}\n";

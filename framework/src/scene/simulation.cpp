@@ -278,6 +278,30 @@ void Simulation::rethrow_with_offset_hint(const ConfigError& refused, const Simu
   throw ConfigError(std::string(refused.what()) + "; " + hint);
 }
 
+std::vector<std::string> Simulation::effect_notes() const {
+  std::vector<std::string> notes;
+  // A scene may leave effects out (docs/scenes.md), but two of them are what
+  // makes a drape: without stretching the cloth has no in-plane stiffness and
+  // a step's Newton iterations need not end (such a run sat at its first
+  // step for minutes); without contact it falls through the body.
+  if (!scene_.has_effect("stretching"))
+    notes.push_back("the scene has no stretching effect: the cloth resists no stretch, so a step may never settle "
+                    "(each takes up to its Newton iterations)");
+  const bool barrier = scene_.has_effect("barrier");
+  if (!barrier && !scene_.has_effect("collision"))
+    notes.push_back("the scene has no contact with the body (barrier or collision): the garment falls through it");
+  // A penalty contact of no stiffness or no margin keeps nothing out (an
+  // outside check's margin 0 "settled" with a third of the garment inside).
+  for (std::size_t i = 0; i < scene_.effects.size() && !barrier; ++i) {
+    if (scene_.effects[i].name != "collision") continue;
+    for (const char* zero : {"stiffness", "margin"})
+      if (effect_params_[i].get_float(zero) == 0.0)
+        notes.push_back(std::string("the collision effect's ") + zero +
+                        " is 0 and the scene has no barrier: nothing keeps the garment out of the body");
+  }
+  return notes;
+}
+
 SolverSettings Simulation::solver_settings() const {
   const Params p(scene_solver_specs(), scene_.solver, "solver");
   SolverSettings s;

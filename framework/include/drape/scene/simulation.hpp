@@ -154,6 +154,11 @@ class Simulation {
   // body of its own that starts shrunk, while a penalty keeps the true one.
   std::vector<NamedEnergy> make_energies(const BodyQuery* body, const BodyQuery* step_bounding_body = nullptr) const;
   bool needs_body() const { return needs_body_; }
+  // What the scene's effects leave out that a drape needs, in words (empty:
+  // nothing): no stretching (a step may never settle), no contact with the
+  // body, or a penalty contact whose stiffness or margin is 0 (the garment
+  // falls through). The drape program prints each as a note; Python warns.
+  std::vector<std::string> effect_notes() const;
 
   SolverSettings solver_settings() const;
 
