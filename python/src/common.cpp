@@ -59,6 +59,14 @@ Eigen::MatrixX3d vertices_arg(const py::handle& value, const std::string& name, 
   return m;
 }
 
+Eigen::MatrixX3d finite_vertices_arg(const py::handle& value, const std::string& name, int rows) {
+  Eigen::MatrixX3d m = vertices_arg(value, name, rows);
+  for (Eigen::Index i = 0; i < m.rows(); ++i)
+    if (!m.row(i).allFinite())
+      throw ConfigError(name + ": vertex " + std::to_string(i) + " has a non-finite coordinate (NaN or inf)");
+  return m;
+}
+
 Tensor vertices_batch_arg(const py::handle& value, const std::string& name, int rows, bool* batched) {
   const std::string expected = "a float array of shape [" + rows_text(rows) + ", 3] or [batch, " + std::to_string(rows) + ", 3]";
   py::array a = as_array(value, name, expected);

@@ -36,6 +36,8 @@ std::string describe(const py::array& a);  // "float32 [2, 1665, 3]"
 // A float array of vertices: [rows, 3] (rows < 0: any). Returned as double,
 // copied only when the dtype or layout differs. Throws ValueError naming `name`.
 Eigen::MatrixX3d vertices_arg(const py::handle& value, const std::string& name, int rows = -1);
+// The same, and ConfigError (a ValueError) naming the argument and the row when a coordinate is not finite.
+Eigen::MatrixX3d finite_vertices_arg(const py::handle& value, const std::string& name, int rows = -1);
 // Float vertices batched as a Tensor [n, rows, 3] from [rows, 3] (n = 1) or
 // [n, rows, 3]; `batched` says which was given.
 Tensor vertices_batch_arg(const py::handle& value, const std::string& name, int rows, bool* batched);

@@ -116,7 +116,7 @@ SceneBody scene_body_arg(const PyScene& s, const py::handle& body, const py::han
 Eigen::MatrixX3d body_or_target(const Simulation& sim, const py::handle& body) {
   if (body.is_none())  // the scene's own body, in the scene's pose
     return pose_vertices(sim.body_model(), sim.scene().body_model, sim.body_vertices(sim.target_shape()), sim.target_pose());
-  return vertices_arg(body, "body_vertices", static_cast<int>(sim.mean_body().rows()));
+  return finite_vertices_arg(body, "body_vertices", static_cast<int>(sim.mean_body().rows()));
 }
 
 // The simulation whose energies act on `body`: with size: auto the size it wears.
@@ -208,11 +208,11 @@ void register_scene(py::module_& m) {
             SimulationOptions o;
             o.measure_penetration = measure_penetration;
             if (!start_garment.is_none()) {
-              start = vertices_arg(start_garment, "start_garment", s.simulation->garment().mesh.num_vertices());
+              start = finite_vertices_arg(start_garment, "start_garment", s.simulation->garment().mesh.num_vertices());
               o.start_garment = &start;
             }
             if (!start_body.is_none()) {
-              start_b = vertices_arg(start_body, "start_body", static_cast<int>(s.simulation->mean_body().rows()));
+              start_b = finite_vertices_arg(start_body, "start_body", static_cast<int>(s.simulation->mean_body().rows()));
               o.start_body = &start_b;
             }
             SimulationResult r;

@@ -205,3 +205,20 @@ def test_simulate_takes_a_pose_as_the_program(tiny_scene, tmp_path):
 def test_a_bad_pose_is_refused_before_simulating(tiny_scene, pose, message):
     with pytest.raises(ValueError, match=re.escape(message)):
         drape.Scene(str(tiny_scene)).simulate(pose=pose)
+
+
+def test_a_non_finite_body_or_start_is_refused_naming_the_argument(tiny_scene):
+    """Scene.energies(body) and simulate(start_garment=, start_body=) with a NaN raised drape.Error from deep inside
+    ("body surface: the vertices are not all finite", "winding numbers: a query point is not finite"): now a
+    ConfigError (a ValueError) naming the argument and the row, as simulate's body_vertices was already."""
+    scene = drape.Scene(str(tiny_scene))
+    body = np.array(scene.mean_body)
+    body[5, 0] = np.nan
+    with pytest.raises(ValueError, match=r"body_vertices: vertex 5 has a non-finite coordinate"):
+        scene.energies(body)
+    garment = np.array(scene.garment_vertices)
+    garment[3, 2] = np.inf
+    with pytest.raises(ValueError, match=r"start_garment: vertex 3 has a non-finite coordinate"):
+        scene.simulate(start_garment=garment)
+    with pytest.raises(ValueError, match=r"start_body: vertex 5 has a non-finite coordinate"):
+        scene.simulate(start_body=body)
