@@ -130,9 +130,9 @@ TEST_CASE("generate and optimize refuse bad values before their output is begun,
   const std::string scene = (test::source_dir() / "graphs/scenes/tshirt_coarse.yaml").string();
   const std::string generate = "generate " + scene + " --count 2 --threads 1 --out " + (dir / "a.h5").string();
   CHECK(test::run_drape(generate + " --height 0.2", out) == 2);
-  CHECK_THAT(out, Catch::Contains("height 0.2:0.2: body parametric: height 0.2 m is outside the reachable range"));
+  CHECK_THAT(out, Catch::Contains("height 0.2:0.2, sex 1:1: body parametric: height 0.2 m is outside the reachable range"));
   CHECK(test::run_drape(generate + " --sex 2", out) == 2);
-  CHECK_THAT(out, Catch::Contains("sex 2:2: body parametric: sex 2 is outside [0, 1]"));
+  CHECK_THAT(out, Catch::Contains("height 1.75:1.75, sex 2:2: body parametric: sex 2 is outside [0, 1]"));
   // More shards than samples: some shard would be an empty dataset sealed complete.
   CHECK(test::run_drape(generate + " --shard 0/4", out) == 2);
   CHECK_THAT(out, Catch::Contains("shard 0/4: 4 shards of a set of 2 samples leave some shards empty"));

@@ -566,7 +566,7 @@ TEST_CASE("dataset: a resumed run makes again a kept sample that no longer reads
   CHECK(warnings.empty());
 }
 
-TEST_CASE("dataset: merging refuses one run's drapes twice and names the shards a run lacks", "[hdf5][dataset]") {
+TEST_CASE("dataset: merging says when one run's drapes go in twice, and which shards of a run are missing", "[hdf5][dataset]") {
   TempDir dir;
   const auto shard_layout = [](const std::string& run, int index, int count) {
     DatasetLayout l = small_layout(2);
@@ -577,20 +577,33 @@ TEST_CASE("dataset: merging refuses one run's drapes twice and names the shards 
   write_shard(dir / "s1.h5", shard_layout("seed 0, count 4", 1, 2), 2, make_sample);
   write_shard(dir / "again0.h5", shard_layout("seed 0, count 4", 0, 2), 0, make_sample);
   write_shard(dir / "other.h5", shard_layout("seed 7, count 2", 0, 1), 0, make_sample);
-  // The same file twice, and the same shard of one run made twice.
-  CHECK_THROWS_WITH(merge_datasets({dir / "s0.h5", dir / "s0.h5", dir / "s1.h5"}, dir / "x.h5"),
-                    Catch::Contains("given twice"));
-  CHECK_THROWS_WITH(merge_datasets({dir / "s0.h5", dir / "s1.h5", dir / "again0.h5"}, dir / "x.h5"),
-                    Catch::Contains("again0.h5: the same shard 0/2 of the same run as") &&
-                        Catch::Contains("merged twice"));
-  CHECK_FALSE(fs::exists(dir / "x.h5"));
-  // The whole run: no warning, and the output says which shards it holds.
+  // The same command in another scene (another size of the garment): another run.
+  for (const int index : {0, 1}) {
+    DatasetLayout other_scene = shard_layout("seed 0, count 4", index, 2);
+    other_scene.scene += "# another size\n";
+    write_shard(dir / ("small" + std::to_string(index) + ".h5"), other_scene, 2 * index, make_sample);
+  }
   std::vector<std::string> warnings;
   const WarningHandler before = set_warning_handler([&](const std::string& text) { warnings.push_back(text); });
+  // The same file twice (oversampling, a use) and the same shard of one run made twice (an outside
+  // check merged a full run with a copy of it): merged, and said.
+  CHECK(merge_datasets({dir / "s0.h5", dir / "s0.h5", dir / "s1.h5"}, dir / "twice.h5") == 6);
+  REQUIRE(warnings.size() == 1);
+  CHECK_THAT(warnings[0], Catch::Contains("s0.h5 is given twice") && Catch::Contains("merged twice, each counting twice"));
+  warnings.clear();
+  CHECK(merge_datasets({dir / "s0.h5", dir / "s1.h5", dir / "again0.h5"}, dir / "again.h5") == 6);
+  REQUIRE(warnings.size() == 1);
+  CHECK_THAT(warnings[0], Catch::Contains("again0.h5 is the same shard 0/2 of the same run as") &&
+                              Catch::Contains("the same drapes are merged twice"));
+  // The whole run, and a shard of it in another scene (another size): nothing to say, and the output
+  // says which shards it holds.
+  warnings.clear();
   CHECK(merge_datasets({dir / "s0.h5", dir / "s1.h5"}, dir / "all.h5") == 4);
+  CHECK(merge_datasets({dir / "s0.h5", dir / "s1.h5", dir / "small0.h5", dir / "small1.h5"}, dir / "sizes.h5", true, true) == 8);
   CHECK(warnings.empty());
   CHECK(DatasetReader(dir / "all.h5").layout().attributes.at("generator") == "drape generate: seed 0, count 4, shards 0,1 of 2");
   // Half a run: merged, and told; another run beside it: merged, both named.
+  warnings.clear();
   CHECK(merge_datasets({dir / "s0.h5", dir / "other.h5"}, dir / "half.h5") == 4);
   set_warning_handler(before);
   REQUIRE(warnings.size() == 1);

@@ -24,7 +24,7 @@ def scene_without_self_contact(tmp_path):
 def test_simulate_counts_the_edges_through_the_garment_as_the_independent_test_does(tmp_path):
     scene = scene_without_self_contact(tmp_path)
     out, _ = run_drape("simulate", scene, "--bmi", 45, "--out", tmp_path / "g.obj", "--threads", 1, expect=(0, 1))
-    reported = int(re.search(r"the garment through itself (\d+) edges", out).group(1))
+    reported = int(re.search(r"the garment through itself (\d+) edge-face pairs", out).group(1))
     v, f = read_obj(tmp_path / "g.obj")
     pairs, _ = crossings(np.asarray(v, float), np.asarray(f))
     assert len(pairs) > 0  # the fold this scene is chosen for

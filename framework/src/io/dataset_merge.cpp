@@ -173,11 +173,13 @@ std::vector<std::vector<char>> rows_to_drop(const std::vector<h5::File>& files, 
   return out;
 }
 
-// The run a shard is part of (its generator attribute without the shard)
-// and which shard of it; an empty run for a file without one (made before
-// the attribute, or by a merge).
+// The run a shard is part of (its generator attribute without the shard,
+// with the scene and template it was made in: sizes of one garment are
+// made by one command each) and which shard of it; an empty run for a file
+// without one (made before the attribute, or by a merge).
 struct RunShard {
-  std::string run;
+  std::string run;       // the generator without the shard, as said
+  std::string identity;  // run, scene and template: what makes two shards one run
   long index = -1, count = -1;
 };
 RunShard run_of(const DatasetLayout& layout) {
@@ -188,39 +190,43 @@ RunShard run_of(const DatasetLayout& layout) {
   std::smatch m;
   if (!std::regex_search(generator->second, m, shard)) return out;
   out.run = m.prefix().str() + m.suffix().str();
+  out.identity = out.run + "\n" + layout.template_hash + "\n" + layout.scene;
   out.index = std::stol(m[1]), out.count = std::stol(m[2]);
   return out;
 }
 
-// Shards that would put one run's drapes in twice are refused: a file given
-// twice, or two files of the same shard of one run (the same command run
-// twice). One run's shards not all given is said (the merged set lacks
-// their samples); shards of different runs merge (their global indices
-// repeat). An outside check merged s0 s0 s1 into 6 samples of a set of 4.
+// One run's drapes merged twice (a file given twice, or two files of the
+// same shard of one run) are said: oversampling is a use (the same file
+// merged twice), but merging one full run with a copy of it, or a shard
+// twice by mistake, gave every drape twice without a word (an outside
+// check). One run's shards not all given are said too (the merged set lacks
+// their samples); shards of different runs merge quietly (their global
+// indices repeat).
 void check_runs(const std::vector<fs::path>& shards, const std::vector<DatasetLayout>& layouts) {
   for (std::size_t a = 0; a < shards.size(); ++a)
     for (std::size_t b = a + 1; b < shards.size(); ++b)
       if (std::error_code ec; fs::equivalent(shards[a], shards[b], ec))
-        throw ConfigError(shards[b].string() + ": given twice (also as " + shards[a].string() +
-                          "): its samples would be merged twice");
-  std::map<std::string, std::map<long, std::size_t>> runs;  // run -> shard index -> input
-  std::map<std::string, long> counts;
+        warn(shards[b].string() + " is given twice (also as " + shards[a].string() +
+             "): its drapes are merged twice, each counting twice (oversampling)");
+  std::map<std::string, std::map<long, std::size_t>> runs;  // run identity -> shard index -> input
+  std::map<std::string, RunShard> named;
   for (std::size_t k = 0; k < shards.size(); ++k) {
     const RunShard r = run_of(layouts[k]);
     if (r.run.empty()) continue;
-    const auto [at, fresh] = runs[r.run].emplace(r.index, k);
-    if (!fresh)
-      throw ConfigError(shards[k].string() + ": the same shard " + std::to_string(r.index) + "/" + std::to_string(r.count) +
-                        " of the same run as " + shards[at->second].string() + " (" + r.run +
-                        "): the same drapes would be merged twice");
-    counts[r.run] = r.count;
+    const auto [at, fresh] = runs[r.identity].emplace(r.index, k);
+    if (!fresh && !fs::equivalent(shards[k], shards[at->second]))
+      warn(shards[k].string() + " is the same shard " + std::to_string(r.index) + "/" + std::to_string(r.count) +
+           " of the same run as " + shards[at->second].string() + " (" + r.run +
+           "): the same drapes are merged twice, each counting twice");
+    named[r.identity] = r;
   }
-  for (const auto& [run, given] : runs)
-    if (static_cast<long>(given.size()) < counts[run]) {
+  for (const auto& [identity, given] : runs)
+    if (static_cast<long>(given.size()) < named[identity].count) {
       std::string which;
       for (const auto& [index, input] : given) which += (which.empty() ? "" : ", ") + std::to_string(index);
-      warn("merging shard" + std::string(given.size() > 1 ? "s " : " ") + which + " of the " + std::to_string(counts[run]) +
-           " of one run (" + run + "): the merged set lacks the other shards' samples");
+      warn("merging shard" + std::string(given.size() > 1 ? "s " : " ") + which + " of the " +
+           std::to_string(named[identity].count) + " of one run (" + named[identity].run +
+           "): the merged set lacks the other shards' samples");
     }
 }
 
@@ -331,6 +337,7 @@ std::size_t join_shards(const std::vector<fs::path>& shards, const fs::path& out
     std::vector<std::string> texts;
     for (auto& [run, indices] : held) {
       std::sort(indices.begin(), indices.end());
+      indices.erase(std::unique(indices.begin(), indices.end()), indices.end());
       std::string list;
       for (const long i : indices) list += (list.empty() ? "" : ",") + std::to_string(i);
       texts.push_back(run + ", shard" + (indices.size() > 1 ? "s " : " ") + list + " of " + std::to_string(counts[run]));

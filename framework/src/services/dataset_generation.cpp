@@ -60,10 +60,12 @@ void check_request(const GenerateRequest& r) {
 }
 
 // The BMI range against what the scene's body model reaches; the height
-// and sex ranges by solving the body at each end (the others at the mean
-// body's), so that a range the model cannot make is refused before the
-// output is begun (an outside check: --height 0.2 was refused at the first
-// sample, leaving a .partial whose resume then refused the corrected command).
+// and sex ranges by solving the body at each pair of their ends (every
+// height between the ends is drawn with either end of the sex range), at
+// the mean body's BMI, so that a range the model cannot make is refused
+// before the output is begun (an outside check: --height 0.2 was refused at
+// the first sample, leaving a .partial whose resume then refused the
+// corrected command).
 void check_body_ranges(const GenerateRequest& r, const Simulation& sim, const Scene& scene) {
   const BodyModel& model = sim.body_model();
   const auto [bmi_lo, bmi_hi] = model.bmi_range();
@@ -73,15 +75,15 @@ void check_body_ranges(const GenerateRequest& r, const Simulation& sim, const Sc
       << bmi_lo << ":" << bmi_hi << ")";
     throw ConfigError(o.str());
   }
-  for (const auto& [name, range] : {std::pair{"height", r.height}, std::pair{"sex", r.sex}})
-    for (const double end : {range.lo, range.hi}) {
-      BodyRequest request = model.mean_request();  // the others as the model's mean body has them: one range at a time
-      (std::string(name) == "height" ? request.height : request.sex) = end;
+  for (const double sex : {r.sex.lo, r.sex.hi})
+    for (const double height : {r.height.lo, r.height.hi}) {
+      BodyRequest request = model.mean_request();
+      request.height = height, request.sex = sex;
       try {
         model.solve(request);
       } catch (const ConfigError& e) {
         std::ostringstream o;
-        o << name << " " << range.lo << ":" << range.hi << ": " << e.what();
+        o << "height " << r.height.lo << ":" << r.height.hi << ", sex " << r.sex.lo << ":" << r.sex.hi << ": " << e.what();
         throw ConfigError(o.str());
       }
     }
