@@ -108,6 +108,12 @@ TEST_CASE("a scene without stretching or contact is said to be so before it is s
   test::run_drape("simulate " + (dir / "nomargin.yaml").string() + " --out " + (dir / "m.obj").string(), out);
   CHECK_THAT(out, Catch::Contains("note: the collision effect's margin is 0 and the scene has no barrier") &&
                       !Catch::Contains("collision effect's stiffness"));
+  // Stretching of no stiffness is no stretching.
+  std::ofstream(dir / "limp.yaml") << "base: " << (test::source_dir() / "graphs/scenes/tshirt_coarse.yaml").string()
+                                   << "\neffects: {stretching: {stiffness_scale: 0}}\n"
+                                      "solver: {morph_steps: 1, settle_steps: 0, max_newton_iterations: 2}\n";
+  test::run_drape("simulate " + (dir / "limp.yaml").string() + " --out " + (dir / "l.obj").string(), out);
+  CHECK_THAT(out, Catch::Contains("note: the stretching effect's stiffness_scale is 0"));
   // The shipped scenes have both: no such note.
   std::ofstream(dir / "quick.yaml") << "base: " << (test::source_dir() / "graphs/scenes/tshirt_coarse.yaml").string()
                                     << "\nsolver: {morph_steps: 1, settle_steps: 0, max_newton_iterations: 2}\n";

@@ -264,6 +264,11 @@ TEST_CASE("dataset: reading splits and gathering rows in the order asked", "[hdf
   CHECK_THROWS_WITH(reader.stat("energi", {0}), Catch::Contains("did you mean 'energy'"));
   CHECK(parse_split("val") == Split::Val);
   CHECK_THROWS_AS(parse_split("validation"), ConfigError);
+  // A list of splits also takes `all`, and its refusal says so (it said "expected train, val or test").
+  CHECK_THROWS_WITH(DatasetReader::check_splits("train,tst"),
+                    Catch::Contains("unknown split 'tst'") && Catch::Contains("did you mean 'test'") &&
+                        Catch::Contains("joins train, val and test with commas, or is all"));
+  CHECK_NOTHROW(DatasetReader::check_splits("all"));
 }
 
 TEST_CASE("dataset: merging shards concatenates their samples", "[hdf5][dataset]") {

@@ -304,7 +304,11 @@ std::vector<bool> wanted_splits(const std::string& splits) {
   std::size_t start = 0;
   while (start <= splits.size()) {
     const std::size_t comma = std::min(splits.find(',', start), splits.size());
-    wanted[static_cast<std::size_t>(parse_split(splits.substr(start, comma - start)))] = true;
+    try {
+      wanted[static_cast<std::size_t>(parse_split(splits.substr(start, comma - start)))] = true;
+    } catch (const ConfigError& e) {  // (a list of splits also takes `all`, which one split is not)
+      throw ConfigError(std::string(e.what()) + "; a list of splits joins train, val and test with commas, or is all");
+    }
     start = comma + 1;
   }
   return wanted;

@@ -287,6 +287,10 @@ std::vector<std::string> Simulation::effect_notes() const {
   if (!scene_.has_effect("stretching"))
     notes.push_back("the scene has no stretching effect: the cloth resists no stretch, so a step may never settle "
                     "(each takes up to its Newton iterations)");
+  for (std::size_t i = 0; i < scene_.effects.size(); ++i)
+    if (scene_.effects[i].name == "stretching" && effect_params_[i].get_float("stiffness_scale") == 0.0)
+      notes.push_back("the stretching effect's stiffness_scale is 0: the cloth resists no stretch, so a step may never "
+                      "settle (each takes up to its Newton iterations)");
   const bool barrier = scene_.has_effect("barrier");
   if (!barrier && !scene_.has_effect("collision"))
     notes.push_back("the scene has no contact with the body (barrier or collision): the garment falls through it");

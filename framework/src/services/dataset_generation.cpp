@@ -22,6 +22,7 @@
 #endif
 
 #include <algorithm>
+#include <cmath>
 #include <atomic>
 #include <fstream>
 #include <iomanip>
@@ -55,7 +56,8 @@ void check_request(const GenerateRequest& r) {
                       " samples leave some shards empty; give at most as many shards as --count");
   if (!(r.girths >= 0 && r.girths <= 1)) throw ConfigError("girths: expected a fraction in [0, 1]");
   for (const auto& [name, range] : {std::pair{"bmi", r.bmi}, std::pair{"height", r.height}, std::pair{"sex", r.sex}})
-    if (!(range.lo <= range.hi)) throw ConfigError(std::string(name) + " range: expected lo <= hi");
+    if (std::isnan(range.lo) || std::isnan(range.hi)) throw ConfigError(std::string(name) + " range: not a number (NaN)");
+    else if (!(range.lo <= range.hi)) throw ConfigError(std::string(name) + " range: expected lo <= hi");
   if (r.threads < 0) throw ConfigError("threads: expected 0 (all cores) or a count");
 }
 
