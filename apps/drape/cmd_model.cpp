@@ -36,12 +36,11 @@ const char* kInfoUsage = "drape model info MODEL";
 const char* kDomainUsage = "drape model domain MODEL --data DATA [--out FILE]";
 const char* kSetUsage = "drape model set MODEL --set node.param=value [--set ...] [--out FILE]";
 
-// Whether a model's graph reads a pose (what model_takes_pose asks of a loaded model).
+// Whether a model's graph reads a pose, from its stored text (without loading its weights).
 bool graph_takes_pose(const std::string& graph_text, const std::string& where) {
-  const GraphSpec spec = parse_graph_text(graph_text, where);
-  for (const auto& [name, input] : spec.inputs)
-    if (name == "pose" || name == "unposed_body" || name == "joint_transforms") return true;
-  return false;
+  std::vector<std::string> inputs;
+  for (const auto& [name, input] : parse_graph_text(graph_text, where).inputs) inputs.push_back(name);
+  return reads_pose(inputs);
 }
 
 void print_domain(const ModelDomain& d, bool takes_pose = true) {

@@ -301,7 +301,7 @@ SampleBatch model_body_batch(const Model& model, const ModelBodyInput& input) {
 }
 
 bool model_takes_pose(const Model& model) {
-  return model.needs_input("unposed_body") || model.needs_input("joint_transforms") || model.needs_input("pose");
+  return reads_pose(model.graph().input_names());
 }
 
 void pose_model_batch(const Model& model, SampleBatch& batch, const Pose& pose) {

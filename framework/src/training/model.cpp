@@ -321,6 +321,12 @@ bool takes(const Graph& graph, const std::string& input) {
 
 bool Model::needs_input(const std::string& name) const { return takes(*graph_, name); }
 
+bool reads_pose(const std::vector<std::string>& graph_inputs) {
+  return std::any_of(graph_inputs.begin(), graph_inputs.end(), [](const std::string& name) {
+    return name == "pose" || name == "unposed_body" || name == "joint_transforms";
+  });
+}
+
 namespace {
 
 // The flag of each size: the seed's 0 regular, 1 small, then the larger grades,

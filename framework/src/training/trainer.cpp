@@ -619,11 +619,7 @@ TrainReport train(const Registry& registry, const TrainOptions& given) {
   // pose as if the body stood at rest (an outside check trained one silently,
   // and its `model info` listed the poses predict then refused).
   if (rank == 0 && !reader.layout().pose_angles.empty()) {
-    const std::vector<std::string> inputs = graph.input_names();
-    const bool reads_pose = std::any_of(inputs.begin(), inputs.end(), [](const std::string& name) {
-      return name == "pose" || name == "unposed_body" || name == "joint_transforms";
-    });
-    if (!reads_pose)
+    if (!reads_pose(graph.input_names()))
       warn(fs::path(o.data).string() + " holds drapes on posed bodies (" + std::to_string(reader.layout().pose_angles.size()) +
            " joint angles a sample) and the graph " + fs::path(o.graph).string() + " takes no pose (no input pose, unposed_body or "
            "joint_transforms): the model learns each drape as if its body stood at rest and drapes the A-pose only; "

@@ -117,6 +117,11 @@ std::string garment_size_choices();
 // stored scene's grade. ConfigError otherwise.
 std::vector<double> garment_grades(const DatasetReader& reader, const std::vector<std::size_t>& indices);
 
+// Whether a graph with these inputs drapes posed bodies: any of the inputs
+// that carry a pose (pose, unposed_body, joint_transforms). What
+// model_takes_pose, train's warning and `model info` ask of a graph.
+bool reads_pose(const std::vector<std::string>& graph_inputs);
+
 class Model {
  public:
   // Reads the model file, rebuilds the assets (from `cache_dir`, see
@@ -150,6 +155,7 @@ class Model {
   const std::shared_ptr<const GarmentSizes>& garment_sizes() const { return garment_sizes_; }
   const BodyModel& body_model() const { return *body_model_; }
   Graph& graph() { return *graph_; }
+  const Graph& graph() const { return *graph_; }
   const std::string& output() const { return output_; }
   bool needs_body_params() const;
   bool needs_input(const std::string& name) const;
