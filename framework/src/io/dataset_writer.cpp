@@ -23,47 +23,53 @@ struct DatasetWriter::Impl {
 
 namespace {
 
-// A sample's rows as bytes, in the order kSampleCrc's CRC covers them.
-class SampleCrc {
- public:
-  template <class T> void add(const T* data, std::size_t count) {
-    crc_ = crc32(crc_, reinterpret_cast<const Bytef*>(data), static_cast<uInt>(count * sizeof(T)));
+// A statistic's stored value: NaN when the sample has none.
+double stat_value(const DatasetSample& sample, const std::string& name) {
+  const auto it = sample.stats.find(name);
+  return it == sample.stats.end() ? std::nan("") : it->second;
+}
+
+// The CRC-32 of a sample's rows as `write` stores them (kSampleCrc): params,
+// body vertices (when stored), pose (when posed), garment vertices, split,
+// stats in the layout's order. Never 0, which marks a sample without one.
+std::int64_t sample_crc(const DatasetLayout& layout, const DatasetSample& sample) {
+  uLong crc = crc32(0L, Z_NULL, 0);
+  const auto add = [&](const auto* data, std::size_t count) {
+    crc = crc32(crc, reinterpret_cast<const Bytef*>(data), static_cast<uInt>(count * sizeof(*data)));
+  };
+  add(sample.body_params.data(), static_cast<std::size_t>(sample.body_params.size()));
+  if (layout.body_vertices_stored) add(sample.body_vertices.data(), static_cast<std::size_t>(sample.body_vertices.size()));
+  if (!layout.pose_angles.empty()) add(sample.pose.data(), static_cast<std::size_t>(sample.pose.size()));
+  add(sample.garment_vertices.data(), static_cast<std::size_t>(sample.garment_vertices.size()));
+  const auto split = static_cast<std::int8_t>(sample.split);
+  add(&split, 1);
+  for (const auto& name : layout.stats) {
+    const double value = stat_value(sample, name);
+    add(&value, 1);
   }
-  // Never 0, which marks a sample without one.
-  std::int64_t value() const { return crc_ == 0 ? 1 : static_cast<std::int64_t>(crc_); }
+  return crc == 0 ? 1 : static_cast<std::int64_t>(crc);
+}
 
- private:
-  uLong crc_ = crc32(0L, Z_NULL, 0);
-};
-
-// The CRC of sample `index` as it reads back from the file now.
-std::int64_t stored_crc(const h5::File& file, const DatasetLayout& layout, std::size_t index) {
-  SampleCrc crc;
-  std::vector<float> floats(static_cast<std::size_t>(layout.body_params));
-  file.read_rows(kParams, index, 1, floats.data());
-  crc.add(floats.data(), floats.size());
+// Sample `index`'s rows as they read back from the file now (what sample_crc hashes).
+DatasetSample stored_sample(const h5::File& file, const DatasetLayout& layout, std::size_t index) {
+  DatasetSample sample;
+  sample.body_params.resize(layout.body_params);
+  file.read_rows(kParams, index, 1, sample.body_params.data());
   if (layout.body_vertices_stored) {
-    floats.resize(3 * static_cast<std::size_t>(layout.body_vertices));
-    file.read_rows(kBodyVertices, index, 1, floats.data());
-    crc.add(floats.data(), floats.size());
+    sample.body_vertices.resize(layout.body_vertices, 3);
+    file.read_rows(kBodyVertices, index, 1, sample.body_vertices.data());
   }
   if (!layout.pose_angles.empty()) {
-    floats.resize(layout.pose_angles.size());
-    file.read_rows(kPose, index, 1, floats.data());
-    crc.add(floats.data(), floats.size());
+    sample.pose.resize(static_cast<Eigen::Index>(layout.pose_angles.size()));
+    file.read_rows(kPose, index, 1, sample.pose.data());
   }
-  floats.resize(3 * static_cast<std::size_t>(layout.garment_vertices));
-  file.read_rows(kGarmentVertices, index, 1, floats.data());
-  crc.add(floats.data(), floats.size());
+  sample.garment_vertices.resize(layout.garment_vertices, 3);
+  file.read_rows(kGarmentVertices, index, 1, sample.garment_vertices.data());
   std::int8_t split = 0;
   file.read_rows(kSplit, index, 1, &split);
-  crc.add(&split, 1);
-  for (const auto& name : layout.stats) {
-    double value = 0;
-    file.read_rows(stat_path(name), index, 1, &value);
-    crc.add(&value, 1);
-  }
-  return crc.value();
+  sample.split = static_cast<Split>(split);
+  for (const auto& name : layout.stats) file.read_rows(stat_path(name), index, 1, &sample.stats[name]);
+  return sample;
 }
 
 }  // namespace
@@ -134,31 +140,19 @@ void DatasetWriter::write(std::size_t index, const DatasetSample& sample) {
     file.flush(options_.sync);
     done_[index] = 0;
   }
-  SampleCrc crc;
   file.write_rows(kParams, index, 1, sample.body_params.data());
-  crc.add(sample.body_params.data(), static_cast<std::size_t>(sample.body_params.size()));
-  if (layout_.body_vertices_stored) {
-    file.write_rows(kBodyVertices, index, 1, sample.body_vertices.data());
-    crc.add(sample.body_vertices.data(), static_cast<std::size_t>(sample.body_vertices.size()));
-  }
-  if (!layout_.pose_angles.empty()) {
-    file.write_rows(kPose, index, 1, sample.pose.data());
-    crc.add(sample.pose.data(), static_cast<std::size_t>(sample.pose.size()));
-  }
+  if (layout_.body_vertices_stored) file.write_rows(kBodyVertices, index, 1, sample.body_vertices.data());
+  if (!layout_.pose_angles.empty()) file.write_rows(kPose, index, 1, sample.pose.data());
   file.write_rows(kGarmentVertices, index, 1, sample.garment_vertices.data());
-  crc.add(sample.garment_vertices.data(), static_cast<std::size_t>(sample.garment_vertices.size()));
   const auto split = static_cast<std::int8_t>(sample.split);
   file.write_rows(kSplit, index, 1, &split);
-  crc.add(&split, 1);
   for (const auto& name : layout_.stats) {
-    const auto it = sample.stats.find(name);
-    const double value = it == sample.stats.end() ? std::nan("") : it->second;
+    const double value = stat_value(sample, name);
     file.write_rows(stat_path(name), index, 1, &value);
-    crc.add(&value, 1);
   }
   if (file.exists(kSampleCrc)) {
-    const std::int64_t value = crc.value();
-    file.write_rows(kSampleCrc, index, 1, &value);
+    const std::int64_t crc = sample_crc(layout_, sample);
+    file.write_rows(kSampleCrc, index, 1, &crc);
   }
   // Everything above reaches the file before the flag that says it is valid.
   file.flush(options_.sync);
@@ -174,7 +168,7 @@ void DatasetWriter::check_kept_samples() {
   const std::vector<std::int64_t> written = file.read<std::int64_t>(kSampleCrc);
   std::vector<std::size_t> changed;
   for (std::size_t i = 0; i < done_.size() && i < written.size(); ++i)
-    if (done_[i] && written[i] != 0 && stored_crc(file, layout_, i) != written[i]) changed.push_back(i);
+    if (done_[i] && written[i] != 0 && sample_crc(layout_, stored_sample(file, layout_, i)) != written[i]) changed.push_back(i);
   if (changed.empty()) return;
   const std::uint8_t not_done = 0;
   std::string which;
