@@ -1,6 +1,8 @@
 // The garment's cloth around a body, in words (cloth_fit.hpp).
 #include "cloth_fit.hpp"
 
+#include <functional>
+
 #include <drape/materials/materials.hpp>
 #include <drape/scene/garment_size.hpp>
 
@@ -69,6 +71,19 @@ std::string shape_larger_than_cloth(double cloth, double shape_loop, const Patte
   return out;
 }
 
+std::vector<std::string> slow_solver_settings(const SolverSettings& solver, const std::function<std::string(int)>& newton) {
+  std::vector<std::string> out;
+  const SolverSettings defaults;
+  if (solver.time_step < 0.1 * defaults.time_step) {
+    char text[160];
+    std::snprintf(text, sizeof text, "the time step %.3g s (the default %.3g s) moves the cloth only so far a step",
+                  solver.time_step, defaults.time_step);
+    out.emplace_back(text);
+  }
+  if (solver.max_newton_iterations < kFewNewtonIterations) out.push_back(newton(solver.max_newton_iterations));
+  return out;
+}
+
 std::string why_morph_blocked(const MorphBlocked& blocked, int morph_steps, const Garment& garment, double loop,
                               const Eigen::MatrixX3d& body_now, const Eigen::MatrixX3i& body_faces,
                               const SolverSettings& solver, bool sized) {
@@ -114,24 +129,14 @@ std::string why_morph_blocked(const MorphBlocked& blocked, int morph_steps, cons
                   stiffest_name.c_str(), ratio);
     causes.emplace_back(text);
   }
-  const double default_step = SolverSettings{}.time_step;
-  if (solver.time_step < 0.1 * default_step) {
-    std::snprintf(text, sizeof text,
-                  "the time step %.3g s (the default %.3g s) lets the cloth move only so far a step against its inertia",
-                  solver.time_step, default_step);
-    causes.emplace_back(text);
-  }
-  // The morph's Newton budget (solver.max_newton_iterations here: the least
-  // of max_newton_iterations and morph_newton_iterations): each iteration
-  // lets the contact push the cloth out once.
-  constexpr int kMorphNewtonDefault = 3;  // the scene's morph_newton_iterations default (scene_validate.cpp)
-  if (solver.max_newton_iterations < kMorphNewtonDefault) {
-    std::snprintf(text, sizeof text,
-                  "each morph step gets %d Newton iteration%s (the least of the solver's max_newton_iterations and "
-                  "morph_newton_iterations; %d by default) to push the cloth out of the body's way",
-                  solver.max_newton_iterations, solver.max_newton_iterations == 1 ? "" : "s", kMorphNewtonDefault);
-    causes.emplace_back(text);
-  }
+  // The morph's Newton budget is solver.max_newton_iterations here: the
+  // least of max_newton_iterations and morph_newton_iterations.
+  for (std::string& slow : slow_solver_settings(solver, [](int n) {
+         return "each morph step gets " + std::to_string(n) + " Newton iteration" + (n == 1 ? "" : "s") +
+                " (the least of the solver's max_newton_iterations and morph_newton_iterations; 3 by default) to push "
+                "the cloth out of the body's way";
+       }))
+    causes.push_back(std::move(slow));
   double edges = 0.0;
   int count = 0;
   const Eigen::MatrixX3d& x = garment.mesh.vertices;

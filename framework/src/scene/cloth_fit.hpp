@@ -12,7 +12,9 @@
 
 #include <Eigen/Core>
 
+#include <functional>
 #include <string>
+#include <vector>
 
 namespace drape::scene_detail {
 
@@ -51,6 +53,15 @@ std::string cloth_too_short(double loop, const Eigen::MatrixX3d& start_body, con
 // file). "" otherwise, or when either loop cannot be measured; else a note
 // with the uv_scale that makes the cloth the size of the shape.
 std::string shape_larger_than_cloth(double cloth_loop, double shape_loop, const PatternSource& pattern);
+
+// Solver settings far from their defaults that keep the cloth from moving
+// far a step, in words for a run's "why": a time step under a tenth of the
+// default, a Newton budget under kFewNewtonIterations (the morph's default
+// budget), said by `newton` given the count (the morph's budget and the
+// settling's are named differently). An outside check's time step of 1e-5 s
+// was told of a pinched garment.
+inline constexpr int kFewNewtonIterations = 3;
+std::vector<std::string> slow_solver_settings(const SolverSettings& solver, const std::function<std::string(int)>& newton);
 
 // Why the morph stalled, in words: what the body made of the step, the
 // cloth's girth against the body's there, and when that is not the cause,

@@ -135,21 +135,12 @@ void measure_drape(const ClothSolver& solver, std::vector<NamedEnergy>& energies
     result.unsettled =
         scene_detail::why_unsettled(result, x, settle_tolerance, result.steps - morph_steps, at_rest_limit, ease, target_body,
                                     sized);
-    // A solver setting far from its default, named: a settling step moves the
-    // cloth as far as its time step lets it and its Newton budget takes it
-    // (an outside check's time step of 1e-5 s was told of a pinched garment).
-    const SolverSettings defaults;
-    char setting[200];
-    if (solver.settings().time_step < 0.1 * defaults.time_step) {
-      std::snprintf(setting, sizeof setting, "; the time step %.3g s (the default %.3g s) moves the cloth only so far a step",
-                    solver.settings().time_step, defaults.time_step);
-      result.unsettled += setting;
-    }
-    if (solver.settings().max_newton_iterations < 3) {
-      std::snprintf(setting, sizeof setting, "; max_newton_iterations %d (the default %d) ends each step after so few iterations",
-                    solver.settings().max_newton_iterations, defaults.max_newton_iterations);
-      result.unsettled += setting;
-    }
+    // A solver setting far from its default, named (cloth_fit.hpp).
+    for (const std::string& slow : scene_detail::slow_solver_settings(solver.settings(), [](int n) {
+           return "max_newton_iterations " + std::to_string(n) + " (the default " +
+                  std::to_string(SolverSettings{}.max_newton_iterations) + ") ends each step after so few iterations";
+         }))
+      result.unsettled += "; " + slow;
   }
   result.garment = x;
   result.body = target_body;
