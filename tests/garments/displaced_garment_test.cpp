@@ -3,6 +3,7 @@
 // the body (separated_start.hpp, clear_offset_hint), and only when that
 // translation, dressed as a run's start is, starts clear of the body.
 #include <drape/io/mesh_io.hpp>
+#include <drape/scene/garment_size.hpp>
 #include <drape/scene/scene.hpp>
 #include <drape/scene/simulation.hpp>
 
@@ -140,4 +141,42 @@ TEST_CASE("a garment placed through the body is refused before it goes on inside
   const std::string why = start_refusal_of(dir / "half.obj");
   INFO(why);
   CHECK_THAT(why, Catch::Contains("the garment is placed through the body"));
+}
+
+TEST_CASE("a garment placed beside the body is refused as not going around it", "[garments][fit]") {
+  test::TempDir dir;
+  const Simulation shirt(test::plugins(), parse_scene("garment: {template: tshirt, params: {resolution: coarse}}\n"
+                                                      "effects: [gravity, stretching, barrier]\n"));
+  const Mesh placed = shirt.garment().mesh;
+  // Moved 25 cm or more forward, back or aside, both panels lie clear of the
+  // torso: dressing and the start checks passed it, and it drapes as an
+  // apron. Refused, saying where its cloth lies.
+  struct Move {
+    int axis;
+    double by;
+    const char* where;
+  };
+  for (const Move& m : {Move{2, 0.25, "in front"}, Move{2, 0.40, "in front"}, Move{2, -0.30, "behind"}, Move{0, -0.70, "right"}}) {
+    Mesh moved = placed;
+    moved.vertices.col(m.axis).array() += m.by;
+    write_mesh(dir / "beside.obj", moved);
+    const std::string why = start_refusal_of(dir / "beside.obj");
+    INFO(m.axis << " by " << m.by << ": " << why);
+    CHECK_THAT(why, Catch::Contains("the garment does not go around the body") && Catch::Contains(m.where));
+  }
+  // Its torso cut away below the armpits, the sleeves left: no loop of it
+  // at the chest is a torso's, so nothing is said of going around (a pair
+  // of sleeves on their own lies beside the body by design).
+  const Mesh& sleeves = placed;
+  std::vector<Eigen::RowVector3i> kept;
+  for (Eigen::Index f = 0; f < sleeves.faces.rows(); ++f) {
+    bool arm = true;
+    for (int k = 0; k < 3; ++k) arm = arm && std::abs(sleeves.vertices(sleeves.faces(f, k), 0)) > 0.22;
+    if (arm) kept.push_back(sleeves.faces.row(f));
+  }
+  REQUIRE(kept.size() > 20);
+  CHECK(garment_beside_body(placed.vertices, placed.faces, shirt.mean_body(), shirt.body_model().faces()).empty());
+  Eigen::MatrixX3i arm_faces(static_cast<Eigen::Index>(kept.size()), 3);
+  for (std::size_t f = 0; f < kept.size(); ++f) arm_faces.row(static_cast<Eigen::Index>(f)) = kept[f];
+  CHECK(garment_beside_body(placed.vertices, arm_faces, shirt.mean_body(), shirt.body_model().faces()).empty());
 }

@@ -118,10 +118,11 @@ Girth horizontal_girth(const Eigen::MatrixX3d& vertices, const Eigen::MatrixX3i&
     }
     if (!closed) continue;
     ++out.loops;
-    if (!point_in_polygon(loop, centre)) continue;
     Polygon2 ring = loop;
     ring.push_back(loop.front());
     const double length = polyline_length(ring);
+    out.longest_loop = std::max(out.longest_loop, length);
+    if (!point_in_polygon(loop, centre)) continue;
     if (out.found && length <= out.length) continue;  // of nested loops, the outer one
     out.found = true;
     out.length = length;

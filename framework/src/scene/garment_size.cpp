@@ -88,6 +88,38 @@ double garment_girth(const Eigen::MatrixX3d& garment, const Eigen::MatrixX3i& ga
   return narrowest;
 }
 
+std::string garment_beside_body(const Eigen::MatrixX3d& garment, const Eigen::MatrixX3i& garment_faces,
+                                const Eigen::MatrixX3d& mean_body, const Eigen::MatrixX3i& body_faces) {
+  const double y0 = mean_body.col(1).minCoeff(), h = geometry::body_height(mean_body);
+  double loop = 0.0, around = 0.0;  // the longest torso-sized loop beside the body, and the body's girth there
+  for (double f = kGirthBandLow; f <= kGirthBandHigh + 1e-9; f += kBandStep) {
+    const geometry::Girth cloth = geometry::horizontal_girth(garment, garment_faces, y0 + f * h, {0.0, 0.0});
+    if (cloth.found) return "";
+    const geometry::Girth body = geometry::horizontal_girth(mean_body, body_faces, y0 + f * h, {0.0, 0.0});
+    if (body.found && cloth.longest_loop >= 0.5 * body.length && cloth.longest_loop > loop)
+      loop = cloth.longest_loop, around = body.length;
+  }
+  if (loop == 0.0) return "";
+  // Where the cloth over the band lies: the mean of its vertices there.
+  Eigen::Vector2d centre = Eigen::Vector2d::Zero();
+  int count = 0;
+  for (Eigen::Index v = 0; v < garment.rows(); ++v) {
+    const double f = (garment(v, 1) - y0) / h;
+    if (f < kGirthBandLow || f > kGirthBandHigh) continue;
+    centre += Eigen::Vector2d(garment(v, 0), garment(v, 2));
+    ++count;
+  }
+  if (count > 0) centre /= count;
+  char text[320];
+  std::snprintf(text, sizeof text,
+                "no loop of it between %.0f and %.0f %% of the body's height encloses the body, while a loop there is "
+                "%.0f cm long against the body's %.0f cm around: it lies beside the body, its cloth there centred "
+                "%.0f cm %s and %.0f cm %s of the body's axis",
+                100 * kGirthBandLow, 100 * kGirthBandHigh, 100 * loop, 100 * around, 100 * std::abs(centre.y()),
+                centre.y() >= 0 ? "in front" : "behind", 100 * std::abs(centre.x()), centre.x() >= 0 ? "left" : "right");
+  return text;
+}
+
 double garment_material_girth(const Mesh& garment, const Eigen::MatrixX3d& mean_body) {
   if (!garment.has_uv()) return std::numeric_limits<double>::quiet_NaN();
   double narrowest = std::numeric_limits<double>::infinity();

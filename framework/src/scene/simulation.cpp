@@ -203,6 +203,7 @@ Simulation::Simulation(const Registry& registry, Scene scene) : registry_(regist
   const bool may_grow = graded && !below_every_body;
   const Garment undressed = may_grow ? garment : Garment{};
   undressed_ = garment.mesh.vertices;  // where the file or template placed it, for a refused start's offset hint
+  beside_body_ = garment_beside_body(undressed_, garment.mesh.faces, mean_body_, body_model_->faces());  // refused in run()
   DressReport dressed = dress_on(fit, *body_model_, garment, dressed_what);
   if (may_grow) {
     bool scaled_starts = true;
@@ -432,6 +433,12 @@ SimulationResult Simulation::run(const Eigen::MatrixX3d& target_body, const Simu
                         "of or behind the torso drapes as an apron or falls off); it must be placed around the body it "
                         "is dressed on, in the body model's frame");
     }
+    // (After: a garment through the body there is said so, where it is.)
+    if (!beside_body_.empty() && !options.start_garment)
+      throw ConfigError("simulate: the garment does not go around the body: " + beside_body_ +
+                        "; dressing cannot bring it round, and its drape would hang beside the body as an apron or "
+                        "fall off: it must be placed around the body it is dressed on, in the body model's frame "
+                        "(metres, Y up, facing +Z)");
     if (barrier && morph_steps_ > 0) {
       // A start a little inside the body is rescued by shrinking the start
       // body along its normals (by a few centimetres at most) until the garment

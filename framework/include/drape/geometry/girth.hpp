@@ -16,6 +16,7 @@ struct Girth {
   double tape = 0.0;      // m: perimeter of the loop's convex hull
   double length = 0.0;    // m: the loop's own length
   int loops = 0;          // closed loops the plane cut (arms, legs, ...)
+  double longest_loop = 0.0;  // m: the longest closed loop's own length, whether it encloses the centre or not
   // m: the loop's length in the mesh's material space (the cloth at rest:
   // what the loop measures unstretched), when a material space is given;
   // else 0. A garment crumpled in 3D keeps its material length, one whose

@@ -56,6 +56,17 @@ double garment_girth(const Eigen::MatrixX3d& garment, const Eigen::MatrixX3i& ga
 // pattern cut small but modelled around the body, or a full one crumpled
 // inside it, differ there).
 double garment_material_girth(const Mesh& garment, const Eigen::MatrixX3d& mean_body);
+// Whether a garment dressed on `mean_body` lies beside its torso instead of
+// around it: no loop of it over the band encloses the body's vertical axis
+// while one of its loops there is at least half as long as the body's girth
+// at that height (a torso's tube of cloth beside the body: a top placed 25
+// cm in front of it, both panels clear of the chest, passes dressing and the
+// start checks, and its drape hangs as an apron). Empty when it goes around,
+// or has no torso-sized loop there (trousers, a sleeve); else what was
+// measured, for a refusal: the loop, the body's girth and where the cloth's
+// centre lies from the body's axis.
+std::string garment_beside_body(const Eigen::MatrixX3d& garment, const Eigen::MatrixX3i& garment_faces,
+                                const Eigen::MatrixX3d& mean_body, const Eigen::MatrixX3i& body_faces);
 // The garment's ease on `body`: garment_girth / body_girth - 1 (negative: the
 // garment is smaller than the body). NaN when either cannot be measured.
 double garment_ease(const Eigen::MatrixX3d& garment, const Eigen::MatrixX3i& garment_faces,

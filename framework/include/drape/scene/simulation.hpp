@@ -183,6 +183,7 @@ class Simulation {
   Eigen::MatrixX3d undressed_;  // the garment's vertices before dressing on fit_body_ (before a graded garment's placing)
   std::vector<int> placed_through_;  // dressing found these vertices placed through the body (DressReport::pushed_through; empty below kThroughCount)
   double placed_through_depth_ = 0;  // m, the deepest of them
+  std::string beside_body_;          // garment_beside_body of the garment as placed: empty when it goes around the body
   [[noreturn]] void rethrow_with_offset_hint(const ConfigError& refused, const SimulationOptions& options) const;
   BodyRequest fit_request_;
   std::string start_refusal_, shape_note_;
