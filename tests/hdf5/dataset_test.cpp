@@ -616,3 +616,43 @@ TEST_CASE("dataset: merging says when one run's drapes go in twice, and which sh
   CHECK(DatasetReader(dir / "half.h5").layout().attributes.at("generator") ==
         "drape generate: seed 0, count 4, shard 0 of 2 + drape generate: seed 7, count 2, shard 0 of 1");
 }
+
+TEST_CASE("dataset: a killed run's samples are kept by the resume whatever the order of its statistics", "[hdf5][dataset]") {
+  // An outside check: the generator lists its statistics in its own order
+  // (energy_gravity, ..., penetration), the file lists them alphabetically,
+  // and each sample's checksum was taken in the order of whichever layout
+  // the writer had: a resume found every sample of a killed run changed and
+  // made them all again. Its finished file had no checksum either.
+  TempDir dir;
+  const fs::path out = dir / "data.h5";
+  DatasetLayout layout = small_layout(5);
+  layout.stats = {"seconds", "penetration", "energy"};
+  {
+    DatasetWriter writer(out, layout);
+    for (std::size_t i : {0, 1, 2}) writer.write(i, make_sample(layout, i));
+  }  // (closed unfinished; a SIGKILL leaves the same rows, see the test above)
+  std::vector<std::string> warnings;
+  const WarningHandler before = set_warning_handler([&](const std::string& text) { warnings.push_back(text); });
+  {
+    DatasetWriter writer(out, layout);
+    set_warning_handler(before);
+    CHECK(writer.missing() == std::vector<std::size_t>{3, 4});
+    writer.write(3, make_sample(layout, 3));
+  }
+  set_warning_handler([&](const std::string& text) { warnings.push_back(text); });
+  {
+    DatasetWriter writer(out, layout);  // resumed twice: the second run's sample too
+    set_warning_handler(before);
+    CHECK(writer.missing() == std::vector<std::size_t>{4});
+    writer.write(4, make_sample(layout, 4));
+    writer.finish();
+  }
+  set_warning_handler(before);
+  CHECK(warnings.empty());
+  check_complete(out, 5);
+  // Finished by a resumed writer, the file is sealed as a run's own would be.
+  std::ifstream in(out, std::ios::binary);
+  std::string head(19, '\0');
+  in.read(head.data(), 19);
+  CHECK(head == "drape sealed hdf5 1");
+}

@@ -6,6 +6,7 @@
 
 #include <zlib.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <string>
@@ -31,7 +32,10 @@ double stat_value(const DatasetSample& sample, const std::string& name) {
 
 // The CRC-32 of a sample's rows as `write` stores them (kSampleCrc): params,
 // body vertices (when stored), pose (when posed), garment vertices, split,
-// stats in the layout's order. Never 0, which marks a sample without one.
+// stats by name. Never 0, which marks a sample without one. By name, not in
+// the layout's order: a resumed writer's layout is the file's (read_layout
+// lists the stats as HDF5 does, alphabetically), the first run's the
+// generator's, and a resume found every sample of a killed run changed.
 std::int64_t sample_crc(const DatasetLayout& layout, const DatasetSample& sample) {
   uLong crc = crc32(0L, Z_NULL, 0);
   const auto add = [&](const auto* data, std::size_t count) {
@@ -43,7 +47,9 @@ std::int64_t sample_crc(const DatasetLayout& layout, const DatasetSample& sample
   add(sample.garment_vertices.data(), static_cast<std::size_t>(sample.garment_vertices.size()));
   const auto split = static_cast<std::int8_t>(sample.split);
   add(&split, 1);
-  for (const auto& name : layout.stats) {
+  std::vector<std::string> names = layout.stats;
+  std::sort(names.begin(), names.end());
+  for (const auto& name : names) {
     const double value = stat_value(sample, name);
     add(&value, 1);
   }

@@ -194,6 +194,10 @@ File File::open(const fs::path& path, Access access) {
     seal::unseal(path);
     impl->sealed = true;
   }
+  // Made to be sealed and not sealed yet (its writer was killed): sealed by
+  // this writer's close(), as its first writer's close() would have. (An
+  // outside check found a resumed dataset finished without its checksum.)
+  if (impl->writable && !sealed && seal::state(path) == seal::State::Pending) impl->sealed = true;
   try {
     guarded(*impl, true, "cannot open the HDF5 file, it is truncated or corrupt", [&] {
       impl->file.openFile(path.string(), impl->writable ? H5F_ACC_RDWR : H5F_ACC_RDONLY);

@@ -105,12 +105,12 @@ State state(const std::filesystem::path& path) {
   // finished (or was killed): as valid as any unsealed file.
   for (std::size_t i = 0; i < kUserBlock; ++i)
     if (head[i] != 0) return State::Damaged;
-  return State::Unsealed;
+  return State::Pending;
 }
 
 bool verify(const std::filesystem::path& path) {
   const State s = state(path);
-  if (s == State::Unsealed) return false;
+  if (s == State::Unsealed || s == State::Pending) return false;
   const std::string corrupt = path.string() + ": is corrupt: ";
   if (s == State::Damaged) throw ConfigError(corrupt + "its checksum header is damaged");
   Fd f{::open(path.c_str(), O_RDONLY | O_CLOEXEC)};

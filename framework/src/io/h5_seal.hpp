@@ -17,7 +17,8 @@ namespace drape::h5::seal {
 constexpr std::size_t kUserBlock = 512;
 
 enum class State {
-  Unsealed,  // no user block, or one of zeros
+  Unsealed,  // no user block
+  Pending,   // a user block of zeros: made to be sealed, its writer not finished (or killed first)
   Sealed,    // the magic line is there
   Damaged,   // a user block that is neither
 };
@@ -26,7 +27,7 @@ State state(const std::filesystem::path& path);
 
 // ConfigError naming the file when it is sealed and its bytes, length or
 // header do not match. True for a sealed file that matches, false for an
-// unsealed one.
+// unsealed or pending one.
 bool verify(const std::filesystem::path& path);
 
 // Writes the header of a closed file created with a user block; fsyncs.
