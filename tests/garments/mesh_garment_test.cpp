@@ -132,11 +132,16 @@ TEST_CASE("mesh garment: bad garments are refused naming the file and the elemen
     for (int f = 0; f < split.num_faces(); f += 2)
       for (int k = 0; k < 3; ++k)
         if (split.faces(f, k) == 0) split.faces(f, k) = copy;
-    write_mesh(dir / "split.obj", split);
-    CHECK_THAT(build_error(dir / "split.obj"),
-               Catch::Contains("split.obj': 1 vertices duplicate an earlier one (vertex " + std::to_string(copy) + " sits on vertex 0)"));
-    const Simulation sim(test::plugins(), parse_scene(scene_text(dir / "split.obj", ", weld: true")));
-    CHECK(sim.garment().mesh.num_vertices() == copy);
+    // The same as a PLY (read through assimp, which welded it without a
+    // word and renumbered every vertex after it). (Not as a glTF: assimp's
+    // exporter joins it on writing, assimp_mesh_writer.cpp.)
+    for (const std::string name : {"split.obj", "split.ply"}) {
+      write_mesh(dir / name, split);
+      CHECK_THAT(build_error(dir / name), Catch::Contains(name + "': 1 vertices duplicate an earlier one (vertex " +
+                                                          std::to_string(copy) + " sits on vertex 0)"));
+      const Simulation sim(test::plugins(), parse_scene(scene_text(dir / name, ", weld: true")));
+      CHECK(sim.garment().mesh.num_vertices() == copy);
+    }
   }
   SECTION("an edge of three faces") {
     Mesh fin = tube();

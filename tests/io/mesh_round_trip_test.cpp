@@ -144,6 +144,33 @@ TEST_CASE("a triangle soup read through assimp is merged back in first-occurrenc
   CHECK(m.vertices.row(3) == Eigen::RowVector3d(0, 1, 0));
 }
 
+TEST_CASE("a PLY vertex at the same place as another is a vertex of its own unless it is a copy", "[io]") {
+  // An outside check: a body PLY of 6,904 vertices two of which coincide was
+  // read as 6,903, and a garment PLY with one vertex split in two was read
+  // renumbered from it on, where its OBJ is refused by the mesh garment.
+  TempDir dir;
+  // Two triangles sharing an edge, and vertex 4 where vertex 1 is (a third triangle uses it).
+  drape::test::write_text(dir / "twin.ply",
+                          "ply\nformat ascii 1.0\nelement vertex 5\nproperty float x\nproperty float y\n"
+                          "property float z\nelement face 3\nproperty list uchar int vertex_indices\nend_header\n"
+                          "0 0 0\n1 0 0\n1 1 0\n0 1 0\n1 0 0\n3 0 1 2\n3 0 2 3\n3 4 2 0\n");
+  const Mesh twin = read_mesh(dir / "twin.ply");
+  REQUIRE(twin.num_vertices() == 5);
+  CHECK(twin.faces.row(2) == Eigen::RowVector3i(4, 2, 0));
+  // With texture coordinates: the copy with another UV is a seam copy, merged;
+  // one with the same UV a vertex of its own.
+  const std::string header =
+      "ply\nformat ascii 1.0\nelement vertex 5\nproperty float x\nproperty float y\nproperty float z\n"
+      "property float s\nproperty float t\nelement face 3\nproperty list uchar int vertex_indices\nend_header\n";
+  const std::string faces = "3 0 1 2\n3 0 2 3\n3 4 2 0\n";
+  drape::test::write_text(dir / "seam.ply", header + "0 0 0 0 0\n1 0 0 1 0\n1 1 0 1 1\n0 1 0 0 1\n1 0 0 0.5 0\n" + faces);
+  const Mesh seam = read_mesh(dir / "seam.ply");
+  CHECK(seam.num_vertices() == 4);
+  CHECK(seam.faces.row(2) == Eigen::RowVector3i(1, 2, 0));
+  drape::test::write_text(dir / "same_uv.ply", header + "0 0 0 0 0\n1 0 0 1 0\n1 1 0 1 1\n0 1 0 0 1\n1 0 0 1 0\n" + faces);
+  CHECK(read_mesh(dir / "same_uv.ply").num_vertices() == 5);
+}
+
 TEST_CASE("a PLY with a quad and an unused vertex keeps the vertex and fans the quad", "[io]") {
   TempDir dir;
   drape::test::write_text(dir / "quad.ply",

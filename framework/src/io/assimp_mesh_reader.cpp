@@ -10,10 +10,16 @@
 //   order; JoinIdenticalVertices then splits at UV seams, so the `v` order is lost.
 // - STL and similar "triangle soup" formats: one vertex per corner.
 // So the rule is: vertices in assimp's order, and a vertex whose position is
-// bit-identical to an earlier one is merged into that first occurrence. This
-// undoes per-corner copies and UV-seam copies (which write_mesh appends after
-// the original vertices, see assimp_mesh_writer.cpp). Its price: two distinct
-// vertices at exactly the same position become one (none in the MakeHuman assets).
+// bit-identical to an earlier one is merged into that first occurrence when
+// it is a copy the format makes: a corner of a triangle soup (STL, or any
+// mesh whose every vertex is one face's corner), a UV-seam copy (its texture coordinate differs; write_mesh appends
+// them after the original vertices, see assimp_mesh_writer.cpp), or the same
+// vertex in another of the file's meshes (a glTF primitive per material).
+// Any other vertex at the same position is a vertex of its own, as an OBJ's
+// `v` line is: a body of 6,904 vertices two of which coincide keeps 6,904,
+// and a garment's is refused by the mesh garment as its OBJ is (its `weld`
+// merges them). An outside check found a PLY garment with one such vertex
+// read renumbered from it on, without a word, where the OBJ was refused.
 // Node transforms are ignored: vertices stay in mesh coordinates. Each aiMesh
 // has one material: with MaterialMesh, its name labels the mesh's triangles.
 #include <drape/errors.hpp>
@@ -134,7 +140,12 @@ Mesh read_with_assimp(const std::filesystem::path& file, MaterialMesh* materials
   bool with_uv = true;
   for (unsigned m = 0; m < scene->mNumMeshes; ++m) with_uv = with_uv && scene->mMeshes[m]->HasTextureCoords(0);
 
-  std::unordered_map<PositionKey, int, PositionHash> first_at;
+  struct First {
+    int vertex;        // ours
+    unsigned mesh;     // the aiMesh it came from
+    aiVector3D uv;     // its texture coordinate (with UVs)
+  };
+  std::unordered_map<PositionKey, First, PositionHash> first_at;
   std::vector<double> positions, uvs;
   std::vector<int> faces, uv_faces;
   std::vector<int> merged;  // aiMesh vertex -> our vertex, for the current aiMesh
@@ -156,15 +167,26 @@ Mesh read_with_assimp(const std::filesystem::path& file, MaterialMesh* materials
       }
       region = it->second;
     }
+    // A triangle soup (STL, or a PLY written so): every corner its own
+    // vertex, nothing but its position to join it by.
+    std::vector<unsigned> corners(mesh->mNumVertices, 0);
+    for (unsigned f = 0; f < mesh->mNumFaces; ++f)
+      for (unsigned k = 0; k < mesh->mFaces[f].mNumIndices; ++k)
+        if (mesh->mFaces[f].mIndices[k] < mesh->mNumVertices) ++corners[mesh->mFaces[f].mIndices[k]];
+    const bool soup = extension == ".stl" || std::all_of(corners.begin(), corners.end(), [](unsigned c) { return c == 1; });
     merged.assign(mesh->mNumVertices, 0);
     for (unsigned i = 0; i < mesh->mNumVertices; ++i) {
       const aiVector3D& p = mesh->mVertices[i];
       if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z))
         throw ConfigError(where, "vertex " + std::to_string(i) + " of mesh " + std::to_string(m) +
                                      " has a coordinate that is not a finite number");
-      const auto [it, added] = first_at.try_emplace(key_of(p), static_cast<int>(positions.size() / 3));
-      if (added) positions.insert(positions.end(), {p.x, p.y, p.z});
-      merged[i] = it->second;
+      const aiVector3D uv = with_uv ? mesh->mTextureCoords[0][i] : aiVector3D();
+      const auto next = static_cast<int>(positions.size() / 3);
+      const auto [it, added] = first_at.try_emplace(key_of(p), First{next, m, uv});
+      const First& first = it->second;
+      const bool copy = soup || first.mesh != m || (with_uv && (first.uv.x != uv.x || first.uv.y != uv.y));
+      if (added || !copy) positions.insert(positions.end(), {p.x, p.y, p.z});
+      merged[i] = added || !copy ? next : first.vertex;
       if (with_uv) {
         const aiVector3D& t = mesh->mTextureCoords[0][i];
         if (!std::isfinite(t.x) || !std::isfinite(t.y))
