@@ -68,8 +68,18 @@ bool parse(const std::string& usage, const std::vector<std::string>& args, po::o
   // extension is a folder to write into (hierarchy --out), made by its command.
   // Two outputs named alike would leave one file holding the last written
   // (predict --out g.obj --body-out g.obj kept the body and lost the garment).
+  // A path given empty is a shell variable never set: said as such (it was
+  // "filesystem error: cannot make absolute path", exit 1).
+  for (const char* option : {"out", "body-out", "svg", "csv", "pose-out", "out-dir", "write-garment", "body", "unpose",
+                             "data", "model", "pose-file", "smpl-theta", "drapes", "init", "mesh", "graph", "scene",
+                             "data-dir", "cache-dir", "work"}) {
+    if (!vm.count(option)) continue;
+    const boost::any& value = vm[option].value();
+    if (const std::string* given = boost::any_cast<std::string>(&value); given && given->empty())
+      throw UsageError(std::string("--") + option + " is empty (a shell variable never set?): give a path\nusage: " + usage);
+  }
   std::map<std::filesystem::path, std::string> written;
-  for (const char* option : {"out", "body-out", "svg", "csv"}) {
+  for (const char* option : {"out", "body-out", "svg", "csv", "pose-out", "write-garment"}) {
     if (!vm.count(option)) continue;
     const boost::any& value = vm[option].value();
     const std::string* file = boost::any_cast<std::string>(&value);
@@ -83,6 +93,20 @@ bool parse(const std::string& usage, const std::vector<std::string>& args, po::o
     if (const auto [it, fresh] = written.emplace(same, option); !fresh)
       throw UsageError("--" + it->second + " and --" + option + " name the same file " + *file +
                        ": each output needs its own\nusage: " + usage);
+  }
+  // An output naming an input file would replace it (predict --body b.obj
+  // --out b.obj wrote the garment over the user's body; body --unpose's
+  // --pose-out its own mesh).
+  for (const char* option : {"body", "unpose", "data", "model", "pose-file", "smpl-theta", "drapes", "init", "mesh"}) {
+    if (!vm.count(option)) continue;
+    const boost::any& value = vm[option].value();
+    const std::string* file = boost::any_cast<std::string>(&value);
+    std::error_code ec;
+    if (!file || !std::filesystem::is_regular_file(*file, ec)) continue;
+    for (const auto& [path, output] : written)
+      if (std::filesystem::exists(path, ec) && std::filesystem::equivalent(path, *file, ec))
+        throw UsageError("--" + output + " " + path.string() + " is also an input (--" + option + " " + *file +
+                         "): the job would write over what it reads; name another file\nusage: " + usage);
   }
   // --threads: more threads than a machine runs at once only queue, and
   // tens of thousands exhausted the stacks (simulate --threads 100000

@@ -55,3 +55,33 @@ TEST_CASE("a job writing over its own input is refused, and the input kept", "[c
   fs::copy_file(test::source_dir() / "models/tshirt-coarse.h5", dir / "m.h5");
   CHECK(test::run_drape("model set " + (dir / "m.h5").string() + " --set post.enabled=true", out) == 0);
 }
+
+TEST_CASE("a mesh or pose output naming the input file is refused, and an empty path is named", "[cli]") {
+  // An outside check: predict --body b.obj --out b.obj wrote the garment over
+  // the user's body, and body --unpose's --pose-out replaced its own mesh.
+  test::TempDir dir;
+  std::string out;
+  const std::string body = (dir / "b.obj").string(), posed = (dir / "p.obj").string();
+  REQUIRE(test::run_drape("body --bmi 30 --out " + body, out) == 0);
+  REQUIRE(test::run_drape("body --param rig=human --bmi 30 --pose shoulder_abduction=60 --out " + posed, out) == 0);
+  const std::string body_bytes = bytes_of(body), posed_bytes = bytes_of(posed);
+  CHECK(test::run_drape("predict --model " + (test::source_dir() / "models/tshirt-coarse.h5").string() + " --body " +
+                            body + " --out " + (dir / "." / "b.obj").string(), out) == 2);
+  CHECK_THAT(out, Catch::Contains("--out") && Catch::Contains("is also an input (--body"));
+  CHECK(bytes_of(body) == body_bytes);
+  CHECK(test::run_drape("body --param rig=human --unpose " + posed + " --out " + (dir / "r.obj").string() +
+                            " --pose-out " + posed, out) == 2);
+  CHECK_THAT(out, Catch::Contains("--pose-out") && Catch::Contains("is also an input (--unpose"));
+  CHECK(bytes_of(posed) == posed_bytes);
+  CHECK_FALSE(fs::exists(dir / "r.obj"));
+  // Two outputs alike, as predict's --out and --body-out were already.
+  CHECK(test::run_drape("body --param rig=human --unpose " + posed + " --out " + (dir / "r.obj").string() +
+                            " --pose-out " + (dir / "r.obj").string(), out) == 2);
+  CHECK_THAT(out, Catch::Contains("--out and --pose-out name the same file"));
+  // A path given empty (a shell variable never set): exit 2, named, not a filesystem error.
+  for (const std::string command : {"body --bmi 30 --out ''", "predict --bmi 30 --out ''", "body --sample 2 --out-dir ''"}) {
+    INFO(command);
+    CHECK(test::run_drape(command, out) == 2);
+    CHECK_THAT(out, Catch::Contains("is empty (a shell variable never set?)"));
+  }
+}
