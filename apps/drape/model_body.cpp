@@ -11,6 +11,8 @@
 #include <drape/services/model_body.hpp>
 
 #include <algorithm>
+#include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <iostream>
@@ -141,7 +143,26 @@ std::string model_file_or_default(const po::variables_map& vm) {
 
 SampleBatch model_body(const Model& model, const po::variables_map& vm, BodyMove* moved_by,
                        std::vector<std::string>* printed) {
-  const ModelBodyInput input = body_input(vm);
+  ModelBodyInput input = body_input(vm);
+  // A body far from the origin (a scene's or a survey's coordinates) moved
+  // near it in double before the network's single precision rounds it: at
+  // 1e6 m a float holds a coordinate to 6 cm, and an outside check's body
+  // there was draped 3-12 cm off and through itself, its size misread.
+  // The drape is moved back with the body (the composed move below).
+  BodyMove near_origin;
+  if (input.vertices && input.vertices->allFinite() && input.vertices->cwiseAbs().maxCoeff() > kFloatExactReach) {
+    // Whole kilometres: what is left is within 500 m on each axis (0.015 mm
+    // in a float), and an axis the body stands well on keeps its place.
+    near_origin.offset = (input.vertices->colwise().mean().array() / kFloatExactReach).round().matrix() * kFloatExactReach;
+    *input.vertices = near_origin.placed(*input.vertices);
+    char note[256];
+    std::snprintf(note, sizeof note,
+                  "note: the body stands %.0f m from the origin; it is draped moved near it in double precision (the "
+                  "network's single precision holds coordinates that far only to %.1f mm) and the drape moved back",
+                  near_origin.offset.norm(), 1e3 * std::ldexp(1.0, std::ilogb(near_origin.offset.cwiseAbs().maxCoeff()) - 24));
+    std::cerr << note << "\n";
+    if (printed) printed->push_back(note);
+  }
   SampleBatch batch;
   try {
     batch = model_body_batch(model, input);
@@ -165,7 +186,7 @@ SampleBatch model_body(const Model& model, const po::variables_map& vm, BodyMove
     std::cerr << line << "\n";
     if (printed) printed->push_back(line);
   }
-  if (moved_by) *moved_by = prepared.moved_by.front();
+  if (moved_by) *moved_by = near_origin.then(prepared.moved_by.front());
   return batch;
 }
 

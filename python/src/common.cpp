@@ -7,10 +7,14 @@
 #include <drape/warnings.hpp>
 
 #include <drape/errors.hpp>
+#include <drape/geometry/body_units.hpp>
 #include <drape/bodies/pose.hpp>
 
 #include <Python.h>
 
+#include <cmath>
+#include <cstdio>
+#include <limits>
 #include <sstream>
 
 namespace drape::python {
@@ -76,10 +80,35 @@ Tensor vertices_batch_arg(const py::handle& value, const std::string& name, int 
       (three && a.shape(0) < 1))
     bad_argument(name, expected, a);
   if (batched) *batched = three;
-  auto f = py::array_t<float, py::array::c_style | py::array::forcecast>::ensure(a);
-  Tensor t(three ? static_cast<int>(f.shape(0)) : 1, rows, 3);
-  std::copy(f.data(), f.data() + t.size(), t.data());
-  if (!t.vec().allFinite()) throw py::value_error(name + ": non-finite vertex coordinates");
+  // Read in double and checked before narrowing: a coordinate float32 cannot
+  // hold (1e308) was "non-finite vertex coordinates" with no vertex named,
+  // and one 1e6 m out was rounded to 6 cm before anything could say so.
+  auto d = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(a);
+  const int n = three ? static_cast<int>(d.shape(0)) : 1;
+  Tensor t(n, rows, 3);
+  const double* in = d.data();
+  for (std::size_t k = 0; k < t.size(); ++k) {
+    const double x = in[k];
+    // (Beyond 1e9 m a coordinate is absurd in metres, and check_body_units says so.)
+    if (std::isfinite(x) && (std::abs(x) <= kFloatExactReach || (std::abs(x) > 1e9 && std::abs(x) <= std::numeric_limits<float>::max()))) {
+      t.data()[k] = static_cast<float>(x);
+      continue;
+    }
+    const std::size_t vertex = k / 3 % static_cast<std::size_t>(rows), sample = k / 3 / static_cast<std::size_t>(rows);
+    char at[96];
+    std::snprintf(at, sizeof at, "vertex %zu (%c = %g)", vertex, "xyz"[k % 3], x);
+    const std::string batch = three ? "[" + std::to_string(sample) + "]" : std::string();
+    if (!std::isfinite(x) || std::abs(x) > std::numeric_limits<float>::max())
+      throw py::value_error(name + ": non-finite coordinate in float32 at " + (three ? batch + " " : "") + at);
+    const std::string what = name + batch + ": " + at;
+    char far[400];
+    std::snprintf(far, sizeof far,
+                  "%s lies %.0f m from the origin: drape's arrays are float32, which hold coordinates that far only "
+                  "to %.2g mm; move it within %.0f m of the origin (and what comes back by the same offset; drape "
+                  "predict's command line does this itself)",
+                  what.c_str(), std::abs(x), 1e3 * std::ldexp(1.0, std::ilogb(std::abs(x)) - 24), kFloatExactReach);
+    throw py::value_error(far);
+  }
   return t;
 }
 

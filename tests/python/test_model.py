@@ -258,6 +258,19 @@ def test_predict_refuses_a_body_in_other_units_and_arguments_that_would_do_nothi
     bad[1, 3, 0] = np.nan
     with pytest.raises(ValueError, match=r"body_vertices: non-finite"):
         model.predict(bad)
+    # Named, with the vertex, where float32 cannot hold the value (an outside
+    # check's 1e308 was "non-finite vertex coordinates"), and a body too far
+    # from the origin for float32 to hold it to the millimetre (1e6 m was
+    # rounded to 6 cm, then refused as vertices out of the model's order).
+    bad[1, 3, 0] = 1e308
+    with pytest.raises(ValueError, match=r"body_vertices: non-finite coordinate in float32 at \[1\] vertex 3 \(x = 1e\+308\)"):
+        model.predict(bad)
+    far = body.astype(np.float64) + np.array([1e6, 0.0, 0.0])
+    with pytest.raises(ValueError, match=r"body_vertices: vertex 0 \(x = 1e\+06\) lies 1000000 m from the origin: "
+                                         r"drape's arrays are float32.*move it within 1000 m"):
+        model.predict(far)
+    near = model.predict(body.astype(np.float64) + np.array([600.0, 0.0, 0.0]))  # within reach: 0.06 mm steps
+    assert np.abs(near - 600.0 * np.array([1, 0, 0]) - model.predict(body)).max() < 1e-3
     swapped = np.stack([body, body])
     swapped[1, [100, 5000]] = body[[5000, 100]]  # two rows of one end of the body and the other exchanged
     with pytest.raises(ValueError, match=r"body_vertices\[1\]: its vertices are not in the body model's order"):

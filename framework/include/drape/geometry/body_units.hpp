@@ -16,6 +16,13 @@ struct HeightRange {
   static constexpr double min = 0.4, max = 2.8;
 };
 
+// m: the farthest a body's coordinates may lie from the origin for the
+// network's single precision to hold them to 0.03 mm (half a float's step
+// below 1,024 m). A body mesh beyond it is moved near the origin in double
+// before it is narrowed (drape predict), or refused where what is returned
+// is single precision itself (the Python module's float32 arrays).
+inline constexpr double kFloatExactReach = 1000.0;
+
 // "" when the body passes; else one line that starts with `what` and gives
 // the likely cause: a non-finite or absurd coordinate (named), a size in
 // other units (with the power of ten that would fit), or a body lying along
