@@ -105,7 +105,17 @@ void refuse_dangling_last_line(const std::string& text, const std::string& file)
 YAML::Node load_text(const std::string& text, const std::string& name_for_errors) {
   YAML::Node root;
   try {
-    root = YAML::Load(text);
+    // Every document, so that a second one is refused: YAML::Load reads the
+    // first and drops the rest without a word (an outside check's pose file
+    // `shoulder_abduction: 60`, `---`, `elbow_flexion: 500` posed the
+    // shoulders and never checked the elbows).
+    const std::vector<YAML::Node> documents = YAML::LoadAll(text);
+    if (!documents.empty()) root = documents.front();
+    for (std::size_t d = 1; d < documents.size(); ++d)
+      if (!documents[d].IsNull())
+        throw ConfigError({name_for_errors, documents[d].Mark().line + 1},
+                          "a second YAML document (after '---' or '...'): drape reads one document a file, and would "
+                          "leave this one out; put its keys in the first");
   } catch (const YAML::Exception& e) {
     throw ConfigError({name_for_errors, e.mark.line + 1}, "malformed YAML: " + e.msg);
   }

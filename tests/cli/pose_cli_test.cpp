@@ -69,6 +69,17 @@ TEST_CASE("drape body refuses bad or impossible poses in one line", "[cli][pose]
   CHECK(out.find("left_upper_arm into spine_upper (") != std::string::npos);
   CHECK(out.find("joints: left_shoulder_abduction=0)") != std::string::npos);
   CHECK(!std::filesystem::exists(dir / "b.obj"));
+  // Two shell variables never set ("$A,$B"), or one among others: refused (they were the rest pose).
+  for (const std::string pose : {",", "elbow_flexion=30,,knee_flexion=10", "elbow_flexion=30,"}) {
+    CHECK(test::run_drape("body --pose '" + pose + "'" + obj, out) == 2);
+    CHECK_THAT(out, Catch::Contains("--pose: an empty item between commas in '" + pose + "'"));
+  }
+  // A pose file's second YAML document was left out without a word (an
+  // elbow of 500 degrees never checked): refused at its line.
+  std::ofstream(dir / "two.yaml") << "shoulder_abduction: 60\n...\nelbow_flexion: 500\n";
+  CHECK(test::run_drape("body --pose-file " + (dir / "two.yaml").string() + obj, out) == 2);
+  CHECK_THAT(out, Catch::Contains("two.yaml:3: a second YAML document"));
+  CHECK(!std::filesystem::exists(dir / "b.obj"));
   // A MakeHuman folder without its rig (rigs/default.mhskel, rigs/default_weights.mhw): refused naming them.
   const auto makehuman = test::shared_assets() / "makehuman";
   if (test::shared_assets().empty() || !std::filesystem::exists(makehuman / "base/base.obj")) return;

@@ -140,16 +140,23 @@ Pose mirrored_pose(const Pose& pose, const std::vector<PoseAngle>& space) {
 Pose parse_pose(const std::string& text, const std::vector<PoseAngle>& space, const std::string& what) {
   Pose pose;
   std::map<std::string, std::string> setters;
-  std::stringstream items(text);
-  std::string item;
-  while (std::getline(items, item, ',')) {
-    item = trim(item);
-    if (item.empty()) continue;
+  // Empty text is the rest pose (Python's pose=""; the command line refuses
+  // it first). An empty item among others is refused: `--pose "$A,$B"` with
+  // neither set was the rest pose without a word.
+  if (trim(text).empty()) return pose;
+  for (std::size_t start = 0;;) {
+    const std::size_t comma = text.find(',', start);
+    std::string item = trim(text.substr(start, comma == std::string::npos ? std::string::npos : comma - start));
+    if (item.empty())
+      throw ConfigError(what + ": an empty item between commas in '" + text +
+                        "' (a shell variable never set?): expected name=degrees,... (docs/poses.md)");
     const auto eq = item.find('=');
     if (eq == std::string::npos || eq == 0)
       throw ConfigError(what + ": expected name=degrees, got '" + item + "'");
     const std::string name = trim(item.substr(0, eq));
     set_angle(pose, name, parse_degrees(name, trim(item.substr(eq + 1)), what), space, what, &setters);
+    if (comma == std::string::npos) break;
+    start = comma + 1;
   }
   return pose;
 }
