@@ -319,6 +319,8 @@ int unpose_one(const po::variables_map& vm, const LoadedBody& loaded) {
   const auto t0 = std::chrono::steady_clock::now();
   Eigen::MatrixX3d rest = given.vertices;
   const GivenPosedBody unposed = unpose_given_body(rest, body, frame, "body " + file);
+  // (A rest body of the wrong height was written with exit 0.)
+  if (!unposed.outside.empty()) throw ConfigError(unposed.outside);
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   Pose rounded;  // to a hundredth of a degree, within the ranges the angles were fitted in
   for (const auto& [name, degrees] : unposed.fit.pose.angles) rounded.angles[name] = std::round(degrees * 100.0) / 100.0 + 0.0;  // + 0: no -0

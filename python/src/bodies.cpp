@@ -81,6 +81,7 @@ class PyBodyModel {
       require_body_model_mesh(body, nullptr, frame_->mean(), model_->faces(), "body_vertices");  // re-indexed, spiked, mirrored
       read = unpose_given_body(body, *model_, *frame_, "body_vertices");
     }
+    if (!read.outside.empty()) throw ConfigError(read.outside);
     py::dict pose;
     for (const auto& [angle, degrees] : read.fit.pose.angles) pose[py::str(angle)] = degrees;
     py::list notes;

@@ -131,6 +131,24 @@ TEST_CASE("drape body --unpose prints the pose of a body mesh, writes it at rest
   REQUIRE(test::run(env + " body --bmi 30 --out " + (dir / "mannequin.obj").string(), out) == 0);
   CHECK(test::run(env + " body --param rig=human --unpose " + (dir / "mannequin.obj").string() + " 2>&1", out) == 2);
   CHECK_THAT(out, Catch::Contains("6490") && Catch::Contains("6904"));
+  // Scaled to 1.2 m, below the human rig's 1.4: an outside check's mesh was
+  // read as leaning 15 degrees with every angle wrong, and --unpose wrote a
+  // rest body 1.39 m tall with exit 0. Refused, naming the height, by both.
+  Mesh small = read_mesh(dir / "posed.obj");
+  const double y0 = small.vertices.col(1).minCoeff();
+  small.vertices.col(1).array() -= y0;
+  small.vertices *= 1.2 / small.vertices.col(1).maxCoeff();
+  write_mesh(dir / "small.obj", small);
+  for (const std::string command : {" body --param rig=human --unpose " + (dir / "small.obj").string() + " --out " +
+                                        (dir / "small_rest.obj").string(),
+                                    " predict --body " + (dir / "small.obj").string() + " --out " + (dir / "g.obj").string()}) {
+    CHECK(test::run(env + command + " 2>&1", out) == 2);
+    INFO(out);
+    CHECK_THAT(out, Catch::Contains("is not a body the body model can make") && Catch::Contains("height at 1.4 (its range 1.4 to 2.1)"));
+    CHECK_THAT(out, !Catch::Contains("leans"));
+  }
+  CHECK_FALSE(fs::exists(dir / "small_rest.obj"));
+  CHECK_FALSE(fs::exists(dir / "g.obj"));
 }
 
 TEST_CASE("a body mesh in a pose too mild for its limbs' turns is read as posed and not draped as if at rest",

@@ -84,6 +84,28 @@ GivenPosedBody unpose_given_body(Eigen::MatrixX3d& body, const BodyModel& model,
   const BodyMove at_rest = place_given_body(body, mean, anchor, reference, spread, false, who, &said);
   out.moved = as_posed.then(out.fit.moved).then(at_rest);
 
+  if (out.fit.fit_rms > kOutsideFitRms) {
+    const std::vector<std::string> names = model.shape_names();
+    const std::vector<std::pair<double, double>> ranges = model.shape_ranges();
+    std::string held;
+    for (std::size_t i = 0; i < names.size() && i < ranges.size() && static_cast<Eigen::Index>(i) < out.fit.shape.size(); ++i) {
+      const auto [lo, hi] = ranges[i];
+      const double v = out.fit.shape[static_cast<Eigen::Index>(i)], slack = 1e-3 * std::max(1.0, hi - lo);
+      if (!(std::isfinite(lo) && std::isfinite(hi)) || (v > lo + slack && v < hi - slack)) continue;
+      char part[160];
+      std::snprintf(part, sizeof part, "%s%s at %g (its range %g to %g)", held.empty() ? "" : ", ", names[i].c_str(), v, lo, hi);
+      held += part;
+    }
+    if (!held.empty()) {
+      char line[700];
+      std::snprintf(line, sizeof line,
+                    "%s is not a body the body model can make: the closest it makes, posed, holds %s and still lies "
+                    "%.1f mm rms from the mesh, so the pose read off it would be wrong (a body of another height or "
+                    "build than the model's range? A mesh like it at rest is draped with a warning)",
+                    who.c_str(), held.c_str(), 1e3 * out.fit.fit_rms);
+      out.outside = line;
+    }
+  }
   // The model's up (y in the placed frame) in the mesh's own coordinates.
   const Eigen::Vector3d up = out.moved.rotation.col(1);
   out.lean_degrees = std::acos(std::clamp(up.y(), -1.0, 1.0)) * 180.0 / std::numbers::pi;

@@ -350,6 +350,7 @@ BodyMove BodyPreparation::unpose_given(SampleBatch& batch, int i, Pose& pose, bo
   const GivenPosedBody given = unpose_given_body(body, model_.body_model(), model_.assets().body.vertices, &given_.anchor(),
                                                  domain_ ? domain_->placement : unknown,
                                                  domain_ ? domain_->placement_spread : unknown, who);
+  if (!given.outside.empty()) throw ConfigError(given.outside);  // (its lean and pose are misread too)
   if (!given.leaning.empty()) throw ConfigError(given.leaning);  // draped upright and turned back, it would hang across gravity
   batch.body.mat(i) = body.cast<float>();
   pose = given.fit.pose;

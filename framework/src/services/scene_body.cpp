@@ -169,6 +169,7 @@ SceneBody scene_body(const SceneSimulations& simulations, const Eigen::MatrixX3d
     const GivenPosedBody unposed =
         unpose_given_body(out.vertices, design.body_model(), design.mean_body(), &given_bodies.anchor(), reference,
                           Eigen::Vector3d::Constant(kBodyModelPlacementSpread), "body " + name);
+    if (!unposed.outside.empty()) throw ConfigError(unposed.outside);  // (its lean and pose are misread too)
     if (!unposed.leaning.empty()) throw ConfigError(unposed.leaning);  // gravity would act across the drape
     out.moved_by = unposed.moved;
     if (!unposed.turned.empty()) out.notes.push_back("the body " + unposed.turned);

@@ -63,7 +63,18 @@ struct GivenPosedBody {
   // body --unpose, which drapes nothing, says so and writes the body as it stood.
   double lean_degrees = 0;
   std::string leaning;
+  // The mesh is a body the model cannot make: the fit holds a shape
+  // parameter at the edge of its range and still lies over
+  // kOutsideFitRms from the mesh (a body of 1.2 m against the human rig's
+  // 1.4-2.1 m was read as leaning 15 degrees, its pose wrong at every
+  // joint). Then the pose read off it is wrong too, and the lean: the
+  // refusal, naming the parameter and its range; every caller throws it,
+  // before the lean's (a mesh that size at rest is draped with a warning).
+  std::string outside;
 };
+// m rms: the fit of a body the model makes lies within a millimetre of it;
+// 1.3 and 1.2 m bodies (the human rig's heights start at 1.4) lie 24 and 47.
+inline constexpr double kOutsideFitRms = 0.01;
 GivenPosedBody unpose_given_body(Eigen::MatrixX3d& body, const BodyModel& model, const Eigen::MatrixX3d& mean,
                                  const BodyAnchor* anchor, const Eigen::Vector3d& reference,
                                  const Eigen::Vector3d& spread, const std::string& who);
