@@ -8,6 +8,8 @@
 
 #include <catch2/catch.hpp>
 
+#include <fstream>
+
 #include <cstdint>
 #include <cstring>
 #include <string>
@@ -159,6 +161,15 @@ TEST_CASE("a PLY cut short is a ConfigError, not a smaller mesh", "[io]") {
   CHECK_THAT(config_error([&] { read_mesh(dir / "binary.ply"); }), Catch::Contains("binary.ply") && Catch::Contains("cut short"));
   drape::test::write_text(dir / "nan.ply", header + "nan 0 0\n1 0 0\n0 1 0\n3 0 1 2\n");
   CHECK_THAT(config_error([&] { read_mesh(dir / "nan.ply"); }), Catch::Contains("nan.ply") && Catch::Contains("finite"));
+  // The other way (an outside check): a face count short of the faces that
+  // follow was read without the rest, a hole and no message.
+  drape::test::write_text(dir / "more.ply", header + "0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n3 0 2 1\n");
+  CHECK_THAT(config_error([&] { read_mesh(dir / "more.ply"); }),
+             Catch::Contains("more.ply") && Catch::Contains("declares 4 elements but 5 lines follow"));
+  write_mesh(dir / "long.ply", drape::test::shuffled_grid(4, 4, 3));
+  std::ofstream(dir / "long.ply", std::ios::app | std::ios::binary) << std::string("\x03\0\0\0\0\x01\0\0\0\x02\0\0\0", 13);
+  CHECK_THAT(config_error([&] { read_mesh(dir / "long.ply"); }),
+             Catch::Contains("long.ply") && Catch::Contains("a count in the header is short"));
 }
 
 // Found by fuzzing the command line: libassimp's PLY reader loops forever on a

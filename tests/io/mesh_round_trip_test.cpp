@@ -9,6 +9,9 @@
 
 #include <catch2/catch.hpp>
 
+#include <fstream>
+#include <iterator>
+
 using namespace drape;
 using drape::test::TempDir;
 
@@ -183,4 +186,29 @@ TEST_CASE("a PLY with a quad and an unused vertex keeps the vertex and fans the 
   REQUIRE(m.num_faces() == 2);
   CHECK(m.faces.row(0) == Eigen::RowVector3i(1, 2, 3));
   CHECK(m.faces.row(1) == Eigen::RowVector3i(1, 3, 4));
+}
+
+TEST_CASE("a glTF node's transform places its mesh, as every viewer shows it", "[io]") {
+  // An outside check: node transforms were ignored, so a garment in
+  // centimetres scaled to metres by its node was refused as 82 m across,
+  // and one its node moved 2 m aside was draped on the body as if not moved.
+  TempDir dir;
+  const Mesh grid = drape::test::shuffled_grid(4, 4, 3);
+  write_mesh(dir / "plain.gltf", grid);
+  std::ifstream in(dir / "plain.gltf");
+  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const std::string node = "\"mesh\": 0";
+  const std::size_t at = text.find(node);
+  REQUIRE(at != std::string::npos);
+  const auto with_node = [&](const std::string& transform) {
+    std::string moved = text;
+    moved.replace(at, node.size(), node + ", " + transform);
+    return moved;
+  };
+  drape::test::write_text(dir / "moved.gltf", with_node("\"translation\": [2.0, 0.5, -1.0], \"scale\": [0.01, 0.01, 0.01]"));
+  const Mesh plain = read_mesh(dir / "plain.gltf"), moved = read_mesh(dir / "moved.gltf");
+  REQUIRE(moved.num_vertices() == plain.num_vertices());
+  CHECK(moved.faces == plain.faces);
+  const Eigen::MatrixX3d expected = (plain.vertices * 0.01).rowwise() + Eigen::RowVector3d(2.0, 0.5, -1.0);
+  CHECK((moved.vertices - expected).cwiseAbs().maxCoeff() < 1e-6);
 }

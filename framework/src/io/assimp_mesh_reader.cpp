@@ -20,8 +20,12 @@
 // and a garment's is refused by the mesh garment as its OBJ is (its `weld`
 // merges them). An outside check found a PLY garment with one such vertex
 // read renumbered from it on, without a word, where the OBJ was refused.
-// Node transforms are ignored: vertices stay in mesh coordinates. Each aiMesh
-// has one material: with MaterialMesh, its name labels the mesh's triangles.
+// Node transforms are applied (in double): a glTF in centimetres scaled by
+// its node to metres, or moved aside by it, is read where every viewer
+// shows it (an outside check: it was refused as 82 m across, or draped on
+// the body as if not moved). A mesh placed by two nodes (an instance) is
+// refused: its vertices would be two meshes. Each aiMesh has one
+// material: with MaterialMesh, its name labels the mesh's triangles.
 #include <drape/errors.hpp>
 
 #include "mesh_io_internal.hpp"
@@ -137,6 +141,21 @@ Mesh read_with_assimp(const std::filesystem::path& file, MaterialMesh* materials
     throw ConfigError(where, "the file is damaged: " + one_line(lost) + " (assimp would read on without them)");
   if (scene->mNumMeshes == 0) throw ConfigError(where, "the file holds no mesh");
 
+  // Each mesh's placement: the product of the transforms of the nodes above it.
+  std::vector<aiMatrix4x4> placement(scene->mNumMeshes);
+  std::vector<int> placed_by(scene->mNumMeshes, 0);
+  const auto place = [&](const auto& self, const aiNode* node, const aiMatrix4x4& above) -> void {
+    const aiMatrix4x4 here = above * node->mTransformation;
+    for (unsigned k = 0; k < node->mNumMeshes; ++k)
+      if (const unsigned m = node->mMeshes[k]; m < scene->mNumMeshes) placement[m] = here, ++placed_by[m];
+    for (unsigned c = 0; c < node->mNumChildren; ++c) self(self, node->mChildren[c], here);
+  };
+  if (scene->mRootNode) place(place, scene->mRootNode, aiMatrix4x4());
+  for (unsigned m = 0; m < scene->mNumMeshes; ++m)
+    if (placed_by[m] > 1)
+      throw ConfigError(where, "mesh " + std::to_string(m) + " is placed by " + std::to_string(placed_by[m]) +
+                                   " nodes (instances): drape reads one surface a mesh; give each copy its own mesh");
+
   bool with_uv = true;
   for (unsigned m = 0; m < scene->mNumMeshes; ++m) with_uv = with_uv && scene->mMeshes[m]->HasTextureCoords(0);
 
@@ -175,6 +194,8 @@ Mesh read_with_assimp(const std::filesystem::path& file, MaterialMesh* materials
         if (mesh->mFaces[f].mIndices[k] < mesh->mNumVertices) ++corners[mesh->mFaces[f].mIndices[k]];
     const bool soup = extension == ".stl" || std::all_of(corners.begin(), corners.end(), [](unsigned c) { return c == 1; });
     merged.assign(mesh->mNumVertices, 0);
+    const aiMatrix4x4& t = placement[m];
+    const bool moved = !t.IsIdentity();
     for (unsigned i = 0; i < mesh->mNumVertices; ++i) {
       const aiVector3D& p = mesh->mVertices[i];
       if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z))
@@ -182,10 +203,16 @@ Mesh read_with_assimp(const std::filesystem::path& file, MaterialMesh* materials
                                      " has a coordinate that is not a finite number");
       const aiVector3D uv = with_uv ? mesh->mTextureCoords[0][i] : aiVector3D();
       const auto next = static_cast<int>(positions.size() / 3);
-      const auto [it, added] = first_at.try_emplace(key_of(p), First{next, m, uv});
+      // Where the vertex is placed (in double: a float's rounding would move an unplaced mesh's vertices too).
+      double xyz[3] = {p.x, p.y, p.z};
+      if (moved)
+        xyz[0] = t.a1 * p.x + t.a2 * p.y + t.a3 * p.z + t.a4, xyz[1] = t.b1 * p.x + t.b2 * p.y + t.b3 * p.z + t.b4,
+        xyz[2] = t.c1 * p.x + t.c2 * p.y + t.c3 * p.z + t.c4;
+      const aiVector3D placed(static_cast<float>(xyz[0]), static_cast<float>(xyz[1]), static_cast<float>(xyz[2]));
+      const auto [it, added] = first_at.try_emplace(key_of(moved ? placed : p), First{next, m, uv});
       const First& first = it->second;
       const bool copy = soup || first.mesh != m || (with_uv && (first.uv.x != uv.x || first.uv.y != uv.y));
-      if (added || !copy) positions.insert(positions.end(), {p.x, p.y, p.z});
+      if (added || !copy) positions.insert(positions.end(), {xyz[0], xyz[1], xyz[2]});
       merged[i] = added || !copy ? next : first.vertex;
       if (with_uv) {
         const aiVector3D& t = mesh->mTextureCoords[0][i];

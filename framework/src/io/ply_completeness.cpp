@@ -2,6 +2,10 @@
 // fills the missing vertices and faces with garbage instead of failing. The
 // header says how many elements follow, which gives a lower bound on the size
 // of the body (binary) or on its number of lines (ASCII, one element a line).
+// The other way, a count short of what follows (a face count of 1,900 over
+// 1,906 faces) had assimp read the first 1,900 and leave a hole without a
+// word: data after the last element the header declares is refused too
+// (binary: the elements walked list by list; ASCII: one line an element).
 #include <drape/errors.hpp>
 
 #include "mesh_io_internal.hpp"
@@ -24,6 +28,40 @@ long type_size(const std::string& type) {
   return it == sizes.end() ? 0 : it->second;
 }
 
+// One element's property as the header declares it.
+struct Property {
+  long size = 0;                  // a scalar's bytes, or a list's item bytes
+  long count_size = 0;            // a list's count bytes (0: a scalar)
+};
+struct Element {
+  long count = 0;
+  std::vector<Property> properties;
+};
+
+// The bytes the binary body's elements take, walked list by list (-1 when
+// the body ends first, or a type is unknown).
+long binary_extent(const std::string& body, const std::vector<Element>& elements, bool big_endian) {
+  std::size_t at = 0;
+  for (const Element& e : elements)
+    for (long i = 0; i < e.count; ++i)
+      for (const Property& p : e.properties) {
+        if (p.size == 0) return -1;
+        if (p.count_size == 0) {
+          at += static_cast<std::size_t>(p.size);
+          continue;
+        }
+        if (at + static_cast<std::size_t>(p.count_size) > body.size()) return -1;
+        unsigned long long n = 0;
+        for (long b = 0; b < p.count_size; ++b) {
+          const auto byte = static_cast<unsigned char>(body[at + static_cast<std::size_t>(big_endian ? b : p.count_size - 1 - b)]);
+          n = (n << 8) | byte;
+        }
+        at += static_cast<std::size_t>(p.count_size) + n * static_cast<std::size_t>(p.size);
+        if (at > body.size()) return -1;
+      }
+  return at > body.size() ? -1 : static_cast<long>(at);
+}
+
 }  // namespace
 
 void require_complete_ply(const std::filesystem::path& file) {
@@ -44,6 +82,7 @@ void require_complete_ply(const std::filesystem::path& file) {
   std::string line, format;
   long elements = 0, min_bytes = 0, element_count = 0;
   std::string element;
+  std::vector<Element> declared;
   while (std::getline(header, line)) {
     std::istringstream words(line);
     std::string keyword;
@@ -53,6 +92,7 @@ void require_complete_ply(const std::filesystem::path& file) {
     } else if (keyword == "element") {
       words >> element >> element_count;
       elements += std::max(element_count, 0L);
+      declared.push_back({std::max(element_count, 0L), {}});
     } else if (keyword == "property") {
       std::string type, count_type, item_type, name;
       words >> type;
@@ -61,8 +101,10 @@ void require_complete_ply(const std::filesystem::path& file) {
         // A face has at least three corners; other lists may be empty.
         const long items = (element == "face" && (name == "vertex_indices" || name == "vertex_index")) ? 3 : 0;
         min_bytes += element_count * (type_size(count_type) + items * type_size(item_type));
+        if (!declared.empty()) declared.back().properties.push_back({type_size(item_type), type_size(count_type)});
       } else {
         min_bytes += element_count * type_size(type);
+        if (!declared.empty()) declared.back().properties.push_back({type_size(type), 0});
       }
     }
   }
@@ -75,9 +117,18 @@ void require_complete_ply(const std::filesystem::path& file) {
     if (lines < elements)
       throw ConfigError(where, "the header declares " + std::to_string(elements) + " elements but only " +
                                    std::to_string(lines) + " lines follow (is the file cut short?)");
+    if (lines > elements)
+      throw ConfigError(where, "the header declares " + std::to_string(elements) + " elements but " +
+                                   std::to_string(lines) + " lines follow: a count in the header is short, and "
+                                   "what follows it would be left out");
   } else if (static_cast<long>(body.size()) < min_bytes) {
     throw ConfigError(where, "the header declares at least " + std::to_string(min_bytes) + " bytes of data but only " +
                                  std::to_string(body.size()) + " follow (is the file cut short?)");
+  } else if (const long used = binary_extent(body, declared, format == "binary_big_endian");
+             used >= 0 && static_cast<long>(body.size()) > used) {
+    throw ConfigError(where, "the header's elements take " + std::to_string(used) + " bytes but " +
+                                 std::to_string(body.size()) + " follow: a count in the header is short, and what "
+                                 "follows it would be left out");
   }
 }
 
