@@ -22,6 +22,11 @@ namespace {
 // in A-pose) is in other units: the longest real garment (a gown, a cape)
 // stays within about 1.2 body heights.
 constexpr double kLargestGarmentToBody = 3.0;
+// ... or this small a share of it: the smallest garment (a bow tie, a
+// glove) is about a twentieth of a body's height; an outside check's shirt
+// in decimetres (7 cm across, at the feet) simulated, "fell off the body",
+// and was told to add friction.
+constexpr double kSmallestGarmentToBody = 0.05;
 // A typical garment is about half the body's size across (a shirt 0.8 m on a
 // 1.75 m body, a skirt 0.5 m): the suggested unit scale brings it nearest.
 constexpr double kTypicalGarmentToBody = 0.5;
@@ -34,9 +39,9 @@ void check_garment_around_body(const Mesh& garment, const Mesh& body, const std:
   const double garment_size = (ghi - glo).maxCoeff(), body_size = (bhi - blo).maxCoeff();
   // Room for the numbers beside `what`, which names a file of any length.
   std::vector<char> line(what.size() + 512);
-  if (garment_size > kLargestGarmentToBody * body_size) {
+  if (garment_size > kLargestGarmentToBody * body_size || garment_size < kSmallestGarmentToBody * body_size) {
     // The power of ten that brings it nearest a typical garment's size: 0.01
-    // for centimetres, 0.001 for millimetres.
+    // for centimetres, 0.001 for millimetres, 10 for decimetres read as metres.
     const double scale = std::pow(10.0, -std::round(std::log10(garment_size / (kTypicalGarmentToBody * body_size))));
     std::snprintf(line.data(), line.size(),
                   "%s is %.3g m across, the body %.3g m: drape reads metres, so the garment is likely in other units "

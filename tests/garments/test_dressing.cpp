@@ -127,6 +127,15 @@ TEST_CASE("check_garment_around_body refuses a garment in other units or apart f
   const std::string message = test::message_of([&] { check_garment_around_body(cm, body, "garment 'x' (shell.obj)"); });
   CHECK_THAT(message, Catch::Contains("garment 'x' (shell.obj) is 110 m across, the body 1 m") &&
                           Catch::Contains("scaled by 0.01 it would be 1.1 m"));
+  // The other way (an outside check: decimetres read as metres, 7 cm across
+  // at the feet, simulated until it "fell off"): refused with the factor.
+  Mesh dm = garment;
+  dm.vertices *= 0.04;
+  CHECK_THAT(test::message_of([&] { check_garment_around_body(dm, body, "shell"); }),
+             Catch::Contains("shell is 0.044 m across, the body 1 m") && Catch::Contains("scaled by 10 it would be 0.44 m"));
+  Mesh glove = garment;  // a tenth of the body across: a glove's share, still a garment
+  glove.vertices *= 0.1;
+  CHECK_NOTHROW(check_garment_around_body(glove, body, "glove"));
   // Moved 0.2 m clear of the body's box: refused, with both boxes; 5 cm is within the slack.
   Mesh apart = garment;
   apart.vertices.col(0).array() += 1.3;
