@@ -223,3 +223,26 @@ TEST_CASE("a garment modelled much larger than its cloth is told so, and its fit
   write_mesh(dir / "plain.obj", fit_tube(r, y0, y1));
   CHECK(Simulation(test::plugins(), parse_scene(fit_scene_text(dir / "plain.obj"))).shape_note().empty());
 }
+
+TEST_CASE("a cloth a grade below the design size cuts too small is told the grade that puts it on", "[garments][fit]") {
+  // An outside check: `grade: 0.5` on a garment that drapes at grade 1 was
+  // told its pattern was cut smaller than the body and that a grade would
+  // not change that.
+  test::TempDir dir;
+  write_mesh(dir / "fits.obj", fit_tube(0.24, 1.0, 1.22));
+  const Simulation fits(test::plugins(), parse_scene(fit_scene_text(dir / "fits.obj")));
+  const double girth = body_girth(fits.fit_body(), fits.body_model().faces());
+  scene_detail::PatternSource pattern;
+  pattern.grade = 0.5;
+  const double loop = 0.6 * girth;  // what grade 0.5 left of a cloth 1.2 times the body around
+  const std::string why = scene_detail::cloth_too_short(loop, fits.fit_body(), fits.body_model().faces(), pattern);
+  INFO(why);
+  REQUIRE_THAT(why, Catch::Contains("cannot be put on") && Catch::Contains("garment: {grade: 0.5} cuts its cloth that small"));
+  CHECK_THAT(why, !Catch::Contains("a grade does not change that"));
+  const double grade = std::stod(why.substr(why.find("grade ", why.find("that small")) + 6));
+  // At that grade the cloth is put on (within the start stretch allowed), a hundredth below it is not.
+  const auto loop_at = [&](double g) { return loop * g / pattern.grade; };
+  scene_detail::PatternSource design;
+  CHECK(scene_detail::cloth_too_short(loop_at(grade), fits.fit_body(), fits.body_model().faces(), design).empty());
+  CHECK_FALSE(scene_detail::cloth_too_short(loop_at(grade - 0.01), fits.fit_body(), fits.body_model().faces(), design).empty());
+}

@@ -36,6 +36,17 @@ std::string cloth_too_short(double loop, const Eigen::MatrixX3d& start_body, con
                 "with, so it cannot be put on; ",
                 -100.0 * ease, loop, around, 100.0 * (around / loop - 1.0), 100.0 * kMaxStartStretch);
   std::string out = text;
+  if (pattern.grade < 1.0) {
+    // A grade below the design size cut it short (an outside check's
+    // grade 0.5 was told its pattern was too small and a grade would not
+    // help): the grade that puts it on, rounded up in its second decimal.
+    const double wanted = pattern.grade * around / (loop * (1.0 + kMaxStartStretch));
+    std::snprintf(text, sizeof text,
+                  "the scene's garment: {grade: %.3g} cuts its cloth that small: grade %.2f or more puts it on this "
+                  "body (1 is its design size)",
+                  pattern.grade, std::ceil(wanted * 100.0 - 1e-9) / 100.0);
+    return out + text;
+  }
   if (pattern.has_uv_scale && !pattern.from_shape) {
     // The uv_scale whose cloth is as long around as the body, rounded up in its second digit.
     const double wanted = pattern.uv_scale * around / loop;

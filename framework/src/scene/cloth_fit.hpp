@@ -35,6 +35,7 @@ struct PatternSource {
   bool has_uv_scale = false;  // the template takes uv_scale (the mesh garment)
   double uv_scale = 1.0;      // its value in the scene
   bool from_shape = false;    // material_space: rest (the shape laid flat is the cloth)
+  double grade = 1.0;         // the scene's garment grade (garment: {grade: g}), which scales the cloth
 };
 
 // "" when the garment's cloth goes around `start_body` (the body the morph

@@ -238,6 +238,7 @@ Simulation::Simulation(const Registry& registry, Scene scene) : registry_(regist
     for (const ParamSpec& p : gd.params) pattern.has_uv_scale = pattern.has_uv_scale || p.name == "uv_scale";
     const Params garment_params(gd.params, scene_.garment_params, "garment '" + scene_.garment + "'");
     if (pattern.has_uv_scale) pattern.uv_scale = garment_params.get_float("uv_scale");
+    pattern.grade = scene_.garment_grade;
     for (const ParamSpec& p : gd.params)
       if (p.name == "material_space") pattern.from_shape = garment_params.get_string("material_space") == "rest";
     start_refusal_ = scene_detail::cloth_too_short(cloth_loop_, fit_body_, body_model_->faces(), pattern);
