@@ -471,7 +471,15 @@ TEST_CASE("drape body poses an SMPL body by a theta file", "[smpl][pose][cli]") 
                             drawn_dir.string(),
                         out) == 2);
   CHECK(out.find("body model 'smpl' has no pose distribution to draw from") != std::string::npos);
+  // (It named --pose-range, which only drape generate has.)
+  CHECK(out.find("drape generate takes one as --pose-range") != std::string::npos);
   CHECK_FALSE(std::filesystem::exists(drawn_dir));
+  // No SMPL file: where it looked, and how to bring one (it said only "no such file").
+  CHECK(test::run_drape("body --model smpl --param file=" + (dir / "none.h5").string() + " --bmi 25 --out " +
+                            (dir / "b.obj").string(), out) == 2);
+  CHECK(out.find("none.h5: no such file (looked for it from ") != std::string::npos);
+  CHECK(out.find("--param file=smpl.h5") != std::string::npos);
+  CHECK(out.find("docs/smpl.md converts it") != std::string::npos);
   refused("body --model smpl --param file=" + (dir / "shape_only.h5").string() + " --bmi " + std::to_string(bmi) +
               " --pose left_elbow_x=10",
           "docs/smpl.md shows how to convert them");

@@ -210,8 +210,8 @@ void check_drawable(const std::vector<PoseAngle>& space, const std::string& mode
   for (const PoseAngle& a : space)
     if (a.sample_hi > a.sample_lo) return;
   throw ConfigError("body model '" + model +
-                    "' has no pose distribution to draw from (no angle has a sampling range): give one with "
-                    "--pose-range name=lo:hi,... (degrees), or pose the bodies explicitly");
+                    "' has no pose distribution to draw from (no angle has a sampling range): drape generate takes "
+                    "one as --pose-range name=lo:hi,... (degrees); drape body poses one body at a time with --pose");
 }
 
 Pose draw_pose(const std::vector<PoseAngle>& space, Rng& rng) {

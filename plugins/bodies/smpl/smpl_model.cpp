@@ -6,11 +6,20 @@
 #include <drape/io/h5.hpp>
 
 #include <cmath>
+#include <filesystem>
 #include <sstream>
 
 namespace drape::smpl {
 
 SmplData read_smpl_h5(const std::filesystem::path& file) {
+  // SMPL's licence keeps it out of drape: a user converts their own copy.
+  // Without one, say so, not only "no such file" (an outside check).
+  std::error_code ec;
+  if (!std::filesystem::exists(file, ec))
+    throw ConfigError(file.string() + ": no such file (looked for it from " + std::filesystem::current_path(ec).string() +
+                      "): the SMPL body needs a model file converted from SMPL's own, which its licence keeps out of "
+                      "drape: --param file=smpl.h5 (in Python, params={'file': ...}) names yours, and docs/smpl.md "
+                      "converts it");
   const h5::File f = h5::File::open(file);
   SmplData d;
   h5::Dims vt_shape, sd_shape, f_shape;
