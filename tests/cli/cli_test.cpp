@@ -38,6 +38,14 @@ TEST_CASE("configuration errors exit 2 with file, line and close matches", "[cli
 
   CHECK(test::run_drape("graph check --no-assets " + (dir / "missing.yaml").string(), out) == 2);
   CHECK_THAT(out, Catch::Contains("missing.yaml"));
+
+  // A scene's body model and garment template named at their lines (an outside check: the file only).
+  std::ofstream(dir / "body.yaml") << "effects: [gravity]\nbody: {model: parametrik}\n";
+  CHECK(test::run_drape("simulate " + (dir / "body.yaml").string() + " --out " + (dir / "x.obj").string(), out) == 2);
+  CHECK_THAT(out, Catch::Contains("body.yaml:2: unknown body model 'parametrik'; did you mean 'parametric'"));
+  std::ofstream(dir / "garment.yaml") << "effects: [gravity]\n\ngarment: {template: tshrit}\n";
+  CHECK(test::run_drape("simulate " + (dir / "garment.yaml").string() + " --out " + (dir / "x.obj").string(), out) == 2);
+  CHECK_THAT(out, Catch::Contains("garment.yaml:3: unknown garment template 'tshrit'; did you mean 'tshirt'"));
 }
 
 TEST_CASE("usage errors exit 2, help exits 0", "[cli]") {

@@ -126,6 +126,7 @@ void apply(Scene& s, const fs::path& path, const std::string& file, const YAML::
       const std::string model = yaml::scalar(file, body["model"], "body `model`");
       if (model != s.body_model) s.body_params.clear();  // another model's parameters do not carry over
       s.body_model = model;
+      s.body_model_where = yaml::at(file, body["model"]);
     }
     merge_values(s.body_params, file, body["params"], "body `params`");
     merge_values(s.shape, file, body["shape"], "body `shape`");
@@ -139,6 +140,7 @@ void apply(Scene& s, const fs::path& path, const std::string& file, const YAML::
       const std::string t = yaml::scalar(file, garment["template"], "garment `template`");
       if (t != s.garment) s.garment_params.clear();
       s.garment = t;
+      s.garment_where = yaml::at(file, garment["template"]);
     }
     merge_values(s.garment_params, file, garment["params"], "garment `params`");
     if (const YAML::Node grade = garment["grade"]) {

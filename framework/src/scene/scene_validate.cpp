@@ -133,10 +133,11 @@ const PluginDescriptor& plugin_of_kind(const Registry& registry, const std::stri
 
 void validate_scene(const Scene& scene, const Registry& registry) {
   const SourceLocation file{scene.file, 0};
-  const PluginDescriptor& body = plugin_of_kind(registry, scene.body_model, "body", "body model", file);
+  const auto or_file = [&](const SourceLocation& at) { return at.file.empty() ? file : at; };
+  const PluginDescriptor& body = plugin_of_kind(registry, scene.body_model, "body", "body model", or_file(scene.body_model_where));
   Params(body.params, scene.body_params, "body '" + scene.body_model + "'");
   Params(scene_shape_specs(), scene.shape, "body shape");
-  const PluginDescriptor& garment = plugin_of_kind(registry, scene.garment, "garment", "garment template", file);
+  const PluginDescriptor& garment = plugin_of_kind(registry, scene.garment, "garment", "garment template", or_file(scene.garment_where));
   Params(garment.params, scene.garment_params, "garment '" + scene.garment + "'");
   if (scene.effects.empty()) throw ConfigError(file, "the scene names no effects: list the energies to simulate under `effects:`");
   for (const SceneEffect& e : scene.effects) {

@@ -42,12 +42,14 @@ struct Scene {
   std::string file;         // where it was read from ("<text>" for strings)
   std::string description;
   std::string body_model = "parametric";
+  SourceLocation body_model_where;  // where `body: {model: ...}` was set (file only: the default)
   ParamValues body_params;  // the body plugin's parameters
   ParamValues shape;        // bmi, height, sex: the body the garment is draped on
   // Joint angles by name, degrees (`body: {pose: {shoulder_abduction: 20}}`,
   // docs/poses.md): the target body is posed; empty: the A-pose.
   ParamValues pose;
   std::string garment = "tshirt";
+  SourceLocation garment_where;  // where `garment: {template: ...}` was set (file only: the default)
   ParamValues garment_params;
   double garment_grade = 1.0;  // the garment graded by this factor (garment_grading.hpp; `garment: {grade: g}`)
   // `garment: {grade: auto}`: each body gets the grade that gives it the
