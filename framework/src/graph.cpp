@@ -283,8 +283,11 @@ void Graph::Impl::wire_node(const GraphSpec& spec, Built& b) const {
 
 // Wire inputs: positional, named, and (for losses) bound by port name.
 void Graph::Impl::wire_inputs(const GraphSpec& spec) {
-  for (auto& b : nodes) wire_node(spec, b);
+  // The outputs first: a loss reads the first of them by default, and an
+  // output naming no node was blamed on that loss ("node 'l2' (l2): unknown
+  // input 'shiftd'") instead of on the `outputs:` entry that names it.
   for (const auto& [name, ref] : spec.outputs) outputs.emplace_back(name, resolve(spec, ref, "output '" + name + "'", 0));
+  for (auto& b : nodes) wire_node(spec, b);
 }
 
 // Topological order (depth-first), reporting a cycle as a path.

@@ -89,7 +89,17 @@ void apply_node(GraphSpec& spec, const std::string& file, const YAML::Node& key,
       if (existing && type != n.type) n.params.clear();  // another plugin: the old params mean nothing to it
       n.type = type;
     } else if (!existing) {
-      if (!loss) throw ConfigError(where, "node '" + name + "' has no `type`");
+      if (!loss) {
+        // An entry without a type overrides a node of the base graph: a
+        // misspelt name is named as one (an outside check got "has no `type`" only).
+        std::vector<std::string> nodes;
+        for (const NodeSpec& other : spec.nodes)
+          if (!other.is_loss) nodes.push_back(other.name);
+        const std::string close = did_you_mean(name, nodes);
+        throw ConfigError(where, "node '" + name + "' has no `type`" +
+                                     (close.empty() ? std::string()
+                                                    : " and overrides no node of the base graph" + close));
+      }
       n.type = name;
     }
     if (body["in"]) n.inputs = parse_inputs(file, body["in"]);

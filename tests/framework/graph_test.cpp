@@ -176,6 +176,16 @@ TEST_CASE("an ablation overrides a few nodes and loss weights of its base", "[gr
   write(dir / "ablations" / "typo.yaml", "base: ../base.yaml\nnodes:\n  twice: { type: scalee }\n");
   CHECK_THROWS_WITH(Graph(parse_graph_file(dir / "ablations" / "typo.yaml"), test::registry_with_test_nodes(), {{{"n", 2}}}),
                     Catch::Contains("typo.yaml:3") && Catch::Contains("did you mean 'scale'"));
+  // An override of a node the base lacks (a misspelt name): named as one, with the close match.
+  write(dir / "ablations" / "missing.yaml", "base: ../base.yaml\nnodes:\n  twcie: { params: { factor: 3.0 } }\n");
+  CHECK_THROWS_WITH(parse_graph_file(dir / "ablations" / "missing.yaml"),
+                    Catch::Contains("missing.yaml:3") && Catch::Contains("overrides no node of the base graph") &&
+                        Catch::Contains("did you mean 'twice'"));
+  // An output naming no node is blamed on the `outputs:` entry, not on the loss that reads it.
+  write(dir / "ablations" / "output.yaml", "base: ../base.yaml\noutputs: { garment: summ }\n");
+  CHECK_THROWS_WITH(Graph(parse_graph_file(dir / "ablations" / "output.yaml"), test::registry_with_test_nodes(), {{{"n", 2}}}),
+                    Catch::Contains("output.yaml:2") && Catch::Contains("output 'garment': unknown input 'summ'") &&
+                        Catch::Contains("did you mean 'sum'"));
   write(dir / "loop.yaml", "base: loop.yaml\n");
   CHECK_THROWS_WITH(parse_graph_file(dir / "loop.yaml"), Catch::Contains("loops back"));
 }
