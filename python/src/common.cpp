@@ -76,9 +76,9 @@ Tensor vertices_batch_arg(const py::handle& value, const std::string& name, int 
   py::array a = as_array(value, name, expected);
   require_float(a, name, expected);
   const bool three = a.ndim() == 3;
-  if ((a.ndim() != 2 && !three) || a.shape(a.ndim() - 1) != 3 || a.shape(a.ndim() - 2) != rows ||
-      (three && a.shape(0) < 1))
+  if ((a.ndim() != 2 && !three) || a.shape(a.ndim() - 1) != 3 || a.shape(a.ndim() - 2) != rows)
     bad_argument(name, expected, a);
+  if (three && a.shape(0) < 1) throw py::value_error(name + ": the batch is empty (" + describe(a) + "): give one body or more");
   if (batched) *batched = three;
   // Read in double and checked before narrowing: a coordinate float32 cannot
   // hold (1e308) was "non-finite vertex coordinates" with no vertex named,

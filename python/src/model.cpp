@@ -24,6 +24,17 @@ namespace {
 
 namespace fs = std::filesystem;
 
+// A notice of the shared preparation says what to change as the command
+// line's flag; here, as predict's argument (an outside check's Python user
+// was told "--garment-size names another").
+std::string in_python_words(std::string text) {
+  for (const auto& [flag, argument] : {std::pair<std::string, std::string>{"--garment-size", "garment_size="}}) {
+    for (std::size_t at = text.find(flag); at != std::string::npos; at = text.find(flag, at + argument.size()))
+      text.replace(at, flag.size(), argument);
+  }
+  return text;
+}
+
 class PyModel {
  public:
   explicit PyModel(Model model) : model_(std::make_unique<Model>(std::move(model))) {}
@@ -118,13 +129,13 @@ class PyModel {
       py::gil_scoped_release release;
       return preparation.prepare(b, strict, "strict=True", check, true, pose_given);
     }();
-    for (const Notice& n : prepared.notices) warn_python(n.text);
+    for (const Notice& n : prepared.notices) warn_python(in_python_words(n.text));
     return prepared;
   }
   // Then the pose (BodyPreparation::pose): warnings for angles outside the training poses (strict: ValueError).
   void pose(SampleBatch& b, const std::optional<Pose>& pose, bool strict, const PreparedBodies& prepared, bool check = true) {
     const std::vector<Notice> notices = preparation().pose(b, pose ? *pose : Pose{}, strict, "strict=True", &prepared, check);
-    for (const Notice& n : notices) warn_python(n.text);
+    for (const Notice& n : notices) warn_python(in_python_words(n.text));
   }
 
   // dL/dweights for a gradient of the garment, accumulated into the weights'

@@ -327,6 +327,8 @@ def test_a_model_of_every_size_chooses_the_size_like_the_program(tmp_path):
     np.testing.assert_allclose(chosen, expected, atol=2e-5)
     size = str(notes[0].message).split("size ")[1].split(" ")[0]
     assert "size " + size + " by the tailor's rule" in printed
+    # Told as predict's argument, not the command line's flag (an outside check).
+    assert "garment_size= names another" in str(notes[0].message) and "--garment-size" not in str(notes[0].message)
     np.testing.assert_array_equal(sized.predict(body, garment_size=size), chosen)
     np.testing.assert_array_equal(sized.predict(body, garment_size="regular"), sized.predict(body, garment_size=1.0))
     assert not np.array_equal(sized.predict(body, garment_size="regular"), chosen)

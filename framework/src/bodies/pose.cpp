@@ -202,7 +202,7 @@ void check_pose(const Pose& pose, const std::vector<PoseAngle>& space, const std
 std::string format_pose(const Pose& pose) {
   std::ostringstream s;
   s.precision(10);
-  for (const auto& [name, degrees] : pose.angles) s << (s.tellp() > 0 ? "," : "") << name << "=" << degrees;
+  for (const auto& [name, degrees] : pose.angles) s << (s.tellp() > 0 ? "," : "") << name << "=" << degrees + 0.0;  // (+ 0: no "-0")
   return s.str();
 }
 

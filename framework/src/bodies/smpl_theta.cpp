@@ -35,7 +35,8 @@ std::vector<double> parse_npy(const std::string& bytes, const std::string& name)
   const std::string header = bytes.substr(8 + len_bytes, header_len);
   std::smatch m;
   if (!std::regex_search(header, m, std::regex("'descr'\\s*:\\s*'([<|=]?)(f8|f4)'")))
-    throw ConfigError(bad + "expected a little-endian float64 or float32 .npy array, the header says " + header);
+    throw ConfigError(bad + "expected a little-endian float64 or float32 .npy array, the header says " +
+                      header.substr(0, header.find_last_not_of(" \n") + 1));  // (numpy pads it with spaces and a newline)
   const bool f8 = m[2] == "f8";
   if (std::regex_search(header, std::regex("'fortran_order'\\s*:\\s*True")) &&
       !std::regex_search(header, std::regex("'shape'\\s*:\\s*\\(\\s*\\d*\\s*,?\\s*\\)")))

@@ -1,7 +1,10 @@
 #pragma once
 // Reading and writing triangle meshes without ever changing vertex order or
 // count, because the vertex order is the identity of a fixed-topology mesh
-// (a body model, a garment template).
+// (a body model, a garment template). (A PLY or glTF of a mesh with UV seams
+// holds more rows than the mesh: one UV a row, so a seam vertex gets a copy
+// per other UV, appended after all the mesh's own vertices, which keep their
+// order; read_mesh merges the copies back. docs/formats.md, "Meshes".)
 //
 // Formats: .obj is parsed and written by our own code (assimp reorders OBJ
 // vertices per face corner). Everything else assimp reads (.ply, .gltf, .glb,
