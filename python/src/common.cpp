@@ -12,10 +12,12 @@
 
 #include <Python.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <limits>
 #include <sstream>
+#include <vector>
 
 namespace drape::python {
 
@@ -87,10 +89,23 @@ Tensor vertices_batch_arg(const py::handle& value, const std::string& name, int 
   const int n = three ? static_cast<int>(d.shape(0)) : 1;
   Tensor t(n, rows, 3);
   const double* in = d.data();
+  // A sample whose own extent is far beyond a body's is in other units, which
+  // the caller's units check names better ("likely millimetres"): only a body
+  // of a body's size lying far out is refused here as beyond float32.
+  std::vector<char> body_sized(static_cast<std::size_t>(n), 1);
+  for (int b = 0; b < n; ++b)
+    for (int axis = 0; axis < 3; ++axis) {
+      double lo = std::numeric_limits<double>::infinity(), hi = -lo;
+      for (int r = 0; r < rows; ++r) {
+        const double x = in[(static_cast<std::size_t>(b) * static_cast<std::size_t>(rows) + static_cast<std::size_t>(r)) * 3 + static_cast<std::size_t>(axis)];
+        lo = std::min(lo, x), hi = std::max(hi, x);
+      }
+      if (hi - lo > 0.1 * kFloatExactReach) body_sized[static_cast<std::size_t>(b)] = 0;
+    }
   for (std::size_t k = 0; k < t.size(); ++k) {
     const double x = in[k];
-    // (Beyond 1e9 m a coordinate is absurd in metres, and check_body_units says so.)
-    if (std::isfinite(x) && (std::abs(x) <= kFloatExactReach || (std::abs(x) > 1e9 && std::abs(x) <= std::numeric_limits<float>::max()))) {
+    const bool fits_float = std::isfinite(x) && std::abs(x) <= std::numeric_limits<float>::max();
+    if (fits_float && (std::abs(x) <= kFloatExactReach || !body_sized[k / 3 / static_cast<std::size_t>(rows)])) {
       t.data()[k] = static_cast<float>(x);
       continue;
     }

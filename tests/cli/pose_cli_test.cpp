@@ -70,7 +70,7 @@ TEST_CASE("drape body refuses bad or impossible poses in one line", "[cli][pose]
   CHECK(out.find("joints: left_shoulder_abduction=0)") != std::string::npos);
   CHECK(!std::filesystem::exists(dir / "b.obj"));
   // Two shell variables never set ("$A,$B"), or one among others: refused (they were the rest pose).
-  for (const std::string pose : {",", "elbow_flexion=30,,knee_flexion=10", "elbow_flexion=30,"}) {
+  for (const std::string pose : {",", "elbow_flexion=30,,knee_flexion=10", ",elbow_flexion=30", ",,"}) {
     CHECK(test::run_drape("body --pose '" + pose + "'" + obj, out) == 2);
     CHECK_THAT(out, Catch::Contains("--pose: an empty item between commas in '" + pose + "'"));
   }

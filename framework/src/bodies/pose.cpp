@@ -142,11 +142,14 @@ Pose parse_pose(const std::string& text, const std::vector<PoseAngle>& space, co
   std::map<std::string, std::string> setters;
   // Empty text is the rest pose (Python's pose=""; the command line refuses
   // it first). An empty item among others is refused: `--pose "$A,$B"` with
-  // neither set was the rest pose without a word.
+  // neither set was the rest pose without a word. One comma after the last
+  // item is allowed (a list joined in a loop writes one).
   if (trim(text).empty()) return pose;
+  std::string items = trim(text);
+  if (items.size() > 1 && items.back() == ',') items.pop_back();
   for (std::size_t start = 0;;) {
-    const std::size_t comma = text.find(',', start);
-    std::string item = trim(text.substr(start, comma == std::string::npos ? std::string::npos : comma - start));
+    const std::size_t comma = items.find(',', start);
+    std::string item = trim(items.substr(start, comma == std::string::npos ? std::string::npos : comma - start));
     if (item.empty())
       throw ConfigError(what + ": an empty item between commas in '" + text +
                         "' (a shell variable never set?): expected name=degrees,... (docs/poses.md)");
