@@ -9,6 +9,8 @@
 
 #include <catch2/catch.hpp>
 
+#include <Eigen/Geometry>
+
 #include <cmath>
 #include <regex>
 #include <string>
@@ -179,4 +181,28 @@ TEST_CASE("a garment placed beside the body is refused as not going around it", 
   Eigen::MatrixX3i arm_faces(static_cast<Eigen::Index>(kept.size()), 3);
   for (std::size_t f = 0; f < kept.size(); ++f) arm_faces.row(static_cast<Eigen::Index>(f)) = kept[f];
   CHECK(garment_beside_body(placed.vertices, arm_faces, shirt.mean_body(), shirt.body_model().faces()).empty());
+}
+
+TEST_CASE("a garment turned through the body is told the turn that puts it back", "[garments][fit]") {
+  // An outside check: a shirt tilted 20 degrees about x or z, or turned 30
+  // about the vertical, was refused as crossing the body with no word of its turn.
+  test::TempDir dir;
+  const Simulation shirt(test::plugins(), parse_scene("garment: {template: tshirt, params: {resolution: coarse}}\n"
+                                                      "effects: [gravity, stretching, barrier]\n"));
+  const Mesh placed = shirt.garment().mesh;
+  const Eigen::RowVector3d centre = placed.vertices.colwise().mean();
+  struct Turn {
+    int axis, degrees;
+    const char* told;
+  };
+  for (const Turn& t : {Turn{0, 20, "turned about 20 degrees clockwise about x"}, Turn{2, -20, "turned about 20 degrees counter-clockwise about z"},
+                        Turn{1, 30, "turned about 30 degrees clockwise about y"}}) {
+    const Eigen::Matrix3d turn = Eigen::AngleAxisd(t.degrees * M_PI / 180.0, Eigen::Vector3d::Unit(t.axis)).toRotationMatrix();
+    Mesh turned = placed;
+    turned.vertices = ((placed.vertices.rowwise() - centre) * turn.transpose()).rowwise() + centre;
+    write_mesh(dir / "turned.obj", turned);
+    const std::string why = start_refusal_of(dir / "turned.obj");
+    INFO(t.axis << " by " << t.degrees << ": " << why);
+    CHECK_THAT(why, Catch::Contains(t.told) && Catch::Contains("is it turned?"));
+  }
 }

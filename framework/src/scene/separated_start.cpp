@@ -9,10 +9,13 @@
 
 #include "garment_region.hpp"
 
+#include <Eigen/Geometry>
+
 #include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdlib>
+#include <numbers>
 
 namespace drape::scene_detail {
 
@@ -126,24 +129,53 @@ std::string clear_offset_hint(const Garment& garment, const Eigen::MatrixX3d& un
     const Eigen::RowVector3d t(0.0, 0.01 * cm, 0.0);
     if (const double a = apart_of(undressed, t); a < best_apart) best_apart = a, best = t;
   }
-  // Said only where the garment lies much closer around the body there.
-  if (!(best_apart < kCloserShare * at_start)) return "";
-  if (best.norm() < 0.015) return "";  // where it was modelled: displacement is not what keeps it from starting
-  // Said only when the translated garment, dressed as a run's start is,
+  // Said only when the garment so placed, dressed as a run's start is,
   // starts clear of the body (or of it shrunk, as a run may start).
-  Garment moved = garment;
-  moved.mesh.vertices = undressed.rowwise() + best;
-  if (placed_through(dress(moved, Mesh{body, body_faces, {}, {}}))) return "";
-  try {
-    separated_start_body(moved.mesh.vertices, body, body_faces, garment.mesh.faces);
-  } catch (const ConfigError&) {
-    return "";
+  const auto starts_clear = [&](const Eigen::MatrixX3d& placed) {
+    Garment moved = garment;
+    moved.mesh.vertices = placed;
+    if (placed_through(dress(moved, Mesh{body, body_faces, {}, {}}))) return false;
+    try {
+      separated_start_body(moved.mesh.vertices, body, body_faces, garment.mesh.faces);
+    } catch (const ConfigError&) {
+      return false;
+    }
+    return true;
+  };
+  const std::string modelled = "A garment is modelled around the scene body model's mean body, in metres, Y up, facing +Z "
+                               "(docs/garments.md, \"`mesh`: your own garment from a file\")";
+  // Said only where the garment lies much closer around the body there, and
+  // not where it was modelled (displacement is not what keeps it from starting).
+  if (best_apart < kCloserShare * at_start && best.norm() >= 0.015 && starts_clear(undressed.rowwise() + best)) {
+    const long cm = std::lround(100 * best[1]);
+    const std::string where = std::to_string(std::labs(cm)) + (cm > 0 ? " cm up" : " cm down");
+    return "moved about " + where + ", the garment would lie closest around the body and start clear of it: is it "
+           "placed for another body or origin? " + modelled;
   }
-  const long cm = std::lround(100 * best[1]);
-  const std::string where = std::to_string(std::labs(cm)) + (cm > 0 ? " cm up" : " cm down");
-  return "moved about " + where + ", the garment would lie closest around the body and start clear of it: is it "
-         "placed for another body or origin? A garment is modelled around the scene body model's mean body, in "
-         "metres, Y up, facing +Z (docs/garments.md, \"`mesh`: your own garment from a file\")";
+  // Turned: about each axis through its centroid, 5 to 45 degrees each way
+  // (an outside check's shirt tilted 20 degrees about x or z, or turned 30
+  // about y, was refused as crossing the body with no word of its turn).
+  const Eigen::RowVector3d centre = undressed.colwise().mean();
+  double turned_apart = at_start;
+  int best_axis = -1, best_degrees = 0;
+  for (int axis = 0; axis < 3; ++axis)
+    for (int degrees = -45; degrees <= 45; degrees += 5) {
+      if (degrees == 0) continue;
+      const Eigen::Matrix3d turn = Eigen::AngleAxisd(degrees * std::numbers::pi / 180.0, Eigen::Vector3d::Unit(axis)).toRotationMatrix();
+      const Eigen::MatrixX3d placed = ((undressed.rowwise() - centre) * turn.transpose()).rowwise() + centre;
+      if (const double a = apart_of(placed, Eigen::RowVector3d::Zero()); a < turned_apart)
+        turned_apart = a, best_axis = axis, best_degrees = degrees;
+    }
+  if (best_axis < 0 || !(turned_apart < kCloserShare * at_start)) return "";
+  const Eigen::Matrix3d turn =
+      Eigen::AngleAxisd(best_degrees * std::numbers::pi / 180.0, Eigen::Vector3d::Unit(best_axis)).toRotationMatrix();
+  if (!starts_clear(((undressed.rowwise() - centre) * turn.transpose()).rowwise() + centre)) return "";
+  static const char* const axes[] = {"x (the body's left-right axis: tipped forward or back)",
+                                     "y (the vertical: facing elsewhere)", "z (the body's front-back axis: leaning sideways)"};
+  return "turned about " + std::to_string(std::abs(best_degrees)) + " degrees " +
+         (best_degrees > 0 ? "counter-clockwise" : "clockwise") + " about " + axes[best_axis] +
+         " through its centre (seen from the axis' positive end), the garment would lie closest around the body and "
+         "start clear of it: is it turned? " + modelled;
 }
 
 }  // namespace drape::scene_detail
