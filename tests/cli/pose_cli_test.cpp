@@ -79,6 +79,10 @@ TEST_CASE("drape body refuses bad or impossible poses in one line", "[cli][pose]
   std::ofstream(dir / "two.yaml") << "shoulder_abduction: 60\n...\nelbow_flexion: 500\n";
   CHECK(test::run_drape("body --pose-file " + (dir / "two.yaml").string() + obj, out) == 2);
   CHECK_THAT(out, Catch::Contains("two.yaml:3: a second YAML document"));
+  // YAML's infinity read as YAML means it, as its NaN is (it was "not a number of degrees").
+  std::ofstream(dir / "inf.yaml") << "elbow_flexion: -.inf\n";
+  CHECK(test::run_drape("body --pose-file " + (dir / "inf.yaml").string() + obj, out) == 2);
+  CHECK_THAT(out, Catch::Contains("left_elbow_flexion = -inf is outside its range of motion"));
   CHECK(!std::filesystem::exists(dir / "b.obj"));
   // A MakeHuman folder without its rig (rigs/default.mhskel, rigs/default_weights.mhw): refused naming them.
   const auto makehuman = test::shared_assets() / "makehuman";

@@ -188,7 +188,13 @@ void add_pose_entry(Pose& pose, const std::string& name, const YAML::Node& value
     }
     throw ConfigError(what + ": " + name + " wants one number of degrees");
   }
-  const std::string text = value.Scalar() == ".nan" ? "nan" : value.Scalar();
+  // YAML's own spellings of NaN and infinity, read as YAML means them (`.inf`
+  // was "not a number of degrees" where `.nan` was "is NaN").
+  std::string text = value.Scalar();
+  for (const auto& [yaml_word, c_word] : {std::pair<const char*, const char*>{".nan", "nan"}, {".NaN", "nan"}, {".NAN", "nan"},
+                                          {".inf", "inf"}, {".Inf", "inf"}, {".INF", "inf"}, {"+.inf", "inf"},
+                                          {"-.inf", "-inf"}, {"-.Inf", "-inf"}, {"-.INF", "-inf"}})
+    if (text == yaml_word) text = c_word;
   set_angle(pose, name, parse_degrees(name, text, what), space, what, setters);
 }
 
