@@ -248,6 +248,29 @@ TEST_CASE("the shipped model optimised with the contact scene ends clear of a he
   CHECK(garment.vertices.allFinite());
 }
 
+TEST_CASE("drape optimize counts the garment through itself as predict does, and warns", "[train][cli][shipped][optimize]") {
+  // An outside check: a thin man's optimised drape crossed itself at 19
+  // edge-face pairs (as predict's warning said of the same prediction), and
+  // optimize printed only the crossings with the body.
+  test::TempDir dir;
+  std::string out, predicted;
+  const std::string env = "env -u DRAPE_MODEL DRAPE_CACHE_DIR=" + dir.path().string() + " " + test::drape_program().string();
+  const std::string model = (test::source_dir() / "models/tshirt-coarse-regular.h5").string();
+  REQUIRE(test::run(env + " predict --model " + model + " --bmi 16.1 --out " + (dir / "p.obj").string() + " 2>&1", predicted) == 0);
+  std::smatch m;
+  REQUIRE(std::regex_search(predicted, m, std::regex("the garment through itself ([0-9]+) edge-face pairs")));
+  const int pairs = std::stoi(m[1]);
+  REQUIRE(test::run(env + " optimize --model " + model + " --scene " +
+                        (test::source_dir() / "graphs/scenes/tshirt_coarse_contact.yaml").string() +
+                        " --bmi 16.1 --iters 0 --out " + (dir / "o.obj").string() + " 2>&1",
+                    out) == 0);
+  INFO(predicted << out);
+  CHECK_THAT(out, Catch::Contains("the garment through itself (edge-face pairs): before " + std::to_string(pairs) +
+                                  ", after " + std::to_string(pairs)));
+  CHECK_THAT(out, Catch::Contains("0 iterations, the prediction measured"));
+  if (pairs > 0) CHECK_THAT(out, Catch::Contains("warning: the optimised garment passes through itself"));
+}
+
 TEST_CASE("drape optimize improves one drape, and every sample of a split into a resumable dataset", "[train][cli][optimize]") {
   Trained t;
   std::ofstream(t.dir / "scene.yaml") << "body: {model: parametric}\n"
@@ -273,6 +296,9 @@ TEST_CASE("drape optimize improves one drape, and every sample of a split into a
   REQUIRE(opt.size() == source.indices(Split::Train).size());
   const auto after = opt.stat("energy_total", opt.indices()), before = opt.stat("energy_total_before", opt.indices());
   for (std::size_t i = 0; i < after.size(); ++i) CHECK(after[i] <= before[i]);
+  // Each optimised garment's crossings of itself, recorded (and warned of at the end when any).
+  for (const double pairs : opt.stat("self_crossings", opt.indices())) CHECK(pairs >= 0);
+  CHECK(opt.stat("self_crossings_before", opt.indices()).size() == after.size());
   // The bodies are the source's, in order.
   CHECK((opt.body_vertices({0}).vec() - source.body_vertices({source.indices(Split::Train).front()}).vec())
             .cwiseAbs().maxCoeff() == 0.0f);
