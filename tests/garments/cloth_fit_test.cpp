@@ -132,6 +132,15 @@ TEST_CASE("a blocked morph names its cause: too small, a stiff material, a short
   garment.materials[0] = MaterialTable::builtin().get("aluminium");
   why = scene_detail::why_morph_blocked(stalled, 2, garment, loop_of(garment), body, faces, solver, false);
   CHECK_THAT(why, Catch::Contains("5.22e+04 times as stiff"));
+  // The knit 500 times as heavy (an outside check's, told nothing stood out),
+  // and what the scene's effects leave out (its notes before the run).
+  garment = sim.garment();
+  const double knit_density = MaterialTable::builtin().get("gray-interlock").density;
+  garment.materials[0].density = 500 * knit_density;
+  why = scene_detail::why_morph_blocked(stalled, 2, garment, loop_of(garment), body, faces, solver, false,
+                                        {"the stretching effect's stiffness_scale is 0"});
+  CHECK_THAT(why, Catch::Contains("500 times as heavy as ArcSim's knit") &&
+                      Catch::Contains("and the stretching effect's stiffness_scale is 0") && !Catch::Contains("nothing in the scene"));
   // A time step a thousandth of the default.
   garment = sim.garment();
   solver.time_step = 1e-4;

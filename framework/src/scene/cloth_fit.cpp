@@ -97,7 +97,7 @@ std::vector<std::string> slow_solver_settings(const SolverSettings& solver, cons
 
 std::string why_morph_blocked(const MorphBlocked& blocked, int morph_steps, const Garment& garment, double loop,
                               const Eigen::MatrixX3d& body_now, const Eigen::MatrixX3i& body_faces,
-                              const SolverSettings& solver, bool sized) {
+                              const SolverSettings& solver, bool sized, const std::vector<std::string>& effect_notes) {
   char text[900];
   std::snprintf(text, sizeof text,
                 "simulate: the body grows into the garment faster than the contact can push it away: morph step %d of %d "
@@ -140,6 +140,23 @@ std::string why_morph_blocked(const MorphBlocked& blocked, int morph_steps, cons
                   stiffest_name.c_str(), ratio);
     causes.emplace_back(text);
   }
+  // A cloth far heavier than a knit is held down on the body's rising
+  // shoulders by its weight (an outside check's knit 500 times as heavy was
+  // told nothing stood out).
+  double heaviest = 0.0;
+  std::string heaviest_name;
+  for (const Material& m : garment.materials)
+    if (m.density > heaviest) heaviest = m.density, heaviest_name = m.name;
+  if (const double heavier = heaviest / knit.density; heavier > 10) {
+    std::snprintf(text, sizeof text,
+                  "its material '%s' is %.3g times as heavy as ArcSim's knit (%.3g kg/m2 against %.3g): its weight holds "
+                  "it down on the body's rising shoulders, against the contact",
+                  heaviest_name.c_str(), heavier, heaviest, knit.density);
+    causes.emplace_back(text);
+  }
+  // What the scene said of its effects before the run (a stretching of no
+  // stiffness, no contact): a cause here too.
+  for (const std::string& note : effect_notes) causes.push_back(note);
   // The morph's Newton budget is solver.max_newton_iterations here: the
   // least of max_newton_iterations and morph_newton_iterations.
   for (std::string& slow : slow_solver_settings(solver, [](int n) {

@@ -67,10 +67,11 @@ std::vector<std::string> slow_solver_settings(const SolverSettings& solver, cons
 // Why the morph stalled, in words: what the body made of the step, the
 // cloth's girth against the body's there, and when that is not the cause,
 // what in the scene keeps the cloth from giving way (a stiff material, a
-// short time step, long faces). `sized`: the garment has sizes to choose
-// from (else grade: auto is the remedy to name).
+// short time step, long faces, a heavy material, and `effect_notes`:
+// Simulation::effect_notes, what the scene's effects leave out). `sized`:
+// the garment has sizes to choose from (else grade: auto is the remedy to name).
 std::string why_morph_blocked(const MorphBlocked& blocked, int morph_steps, const Garment& garment, double cloth_loop,
                               const Eigen::MatrixX3d& body_now, const Eigen::MatrixX3i& body_faces,
-                              const SolverSettings& solver, bool sized);
+                              const SolverSettings& solver, bool sized, const std::vector<std::string>& effect_notes = {});
 
 }  // namespace drape::scene_detail

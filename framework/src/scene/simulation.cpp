@@ -473,7 +473,7 @@ SimulationResult Simulation::run(const Eigen::MatrixX3d& target_body, const Simu
         record(k, true, scene_detail::barrier_morph_step(solver, *surface, next, k, barrier_morph, x, v, result), -1);
       } catch (const scene_detail::MorphBlocked& blocked) {
         throw Error(scene_detail::why_morph_blocked(blocked, morph_steps_, *garment_, cloth_loop_, surface->vertices(),
-                                                    body_model_->faces(), solver.settings(), sized_));
+                                                    body_model_->faces(), solver.settings(), sized_, effect_notes()));
       }
     } else {
       if (surface) surface->update(next);
