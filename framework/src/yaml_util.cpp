@@ -117,7 +117,12 @@ YAML::Node load_text(const std::string& text, const std::string& name_for_errors
                           "a second YAML document (after '---' or '...'): drape reads one document a file, and would "
                           "leave this one out; put its keys in the first");
   } catch (const YAML::Exception& e) {
-    throw ConfigError({name_for_errors, e.mark.line + 1}, "malformed YAML: " + e.msg);
+    // A flow left open is found at the end of the text, which yaml-cpp
+    // counts as the line after the last newline: said as the file's last line.
+    int lines = static_cast<int>(std::count(text.begin(), text.end(), '\n')) + (text.empty() || text.back() == '\n' ? 0 : 1);
+    const int line = std::min(e.mark.line + 1, std::max(lines, 1));
+    throw ConfigError({name_for_errors, line},
+                      "malformed YAML: " + e.msg + (e.mark.line + 1 > lines ? " (at the end of the file)" : ""));
   }
   std::vector<YAML::Node> open;
   refuse_repeated_keys_and_cycles(root, name_for_errors, open);

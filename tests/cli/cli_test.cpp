@@ -46,6 +46,14 @@ TEST_CASE("configuration errors exit 2 with file, line and close matches", "[cli
   std::ofstream(dir / "garment.yaml") << "effects: [gravity]\n\ngarment: {template: tshrit}\n";
   CHECK(test::run_drape("simulate " + (dir / "garment.yaml").string() + " --out " + (dir / "x.obj").string(), out) == 2);
   CHECK_THAT(out, Catch::Contains("garment.yaml:3: unknown garment template 'tshrit'; did you mean 'tshirt'"));
+  // A flow left open is named on the file's last line, not the one after it;
+  // an empty scene as empty, not as a scene without effects.
+  std::ofstream(dir / "open.yaml") << "effects: [gravity]\nsolver: {morph_steps: 2\n";
+  CHECK(test::run_drape("simulate " + (dir / "open.yaml").string() + " --out " + (dir / "x.obj").string(), out) == 2);
+  CHECK_THAT(out, Catch::Contains("open.yaml:2: malformed YAML") && Catch::Contains("(at the end of the file)"));
+  std::ofstream(dir / "empty.yaml") << "# nothing yet\n";
+  CHECK(test::run_drape("simulate " + (dir / "empty.yaml").string() + " --out " + (dir / "x.obj").string(), out) == 2);
+  CHECK_THAT(out, Catch::Contains("empty.yaml: the file is empty (or only comments)"));
 }
 
 TEST_CASE("usage errors exit 2, help exits 0", "[cli]") {

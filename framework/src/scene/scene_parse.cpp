@@ -228,7 +228,12 @@ Scene load_scene(const fs::path& file) {
   Scene s;
   s.file = file.string();
   std::vector<fs::path> chain{fs::canonical(file)};
-  apply(s, file, file.string(), yaml::load_file(file), chain);
+  const YAML::Node root = yaml::load_file(file);
+  // (It said "the scene names no effects" of a file with nothing in it.)
+  if (root.IsNull())
+    throw ConfigError(file.string() + ": the file is empty (or only comments): a scene names at least its effects "
+                      "(docs/scenes.md)");
+  apply(s, file, file.string(), root, chain);
   return s;
 }
 
