@@ -9,7 +9,9 @@
 #include <unistd.h>
 
 #include <cerrno>
+#include <csignal>
 #include <cstring>
+#include <mutex>
 
 namespace fs = std::filesystem;
 
@@ -36,6 +38,40 @@ void refuse_working_file_name(const fs::path& output) {
     throw ConfigError("cannot write '" + output.string() + "': that name is drape's own, " + what +
                       " (the job's lock does not cover it); give the output another name");
   }
+}
+
+// The lock files this process holds, for the signal handler below: a job
+// stopped with Ctrl-C or SIGTERM left its <out>.lock next to an output it
+// never wrote (an outside check), which looks like an output in use. The
+// kernel drops the lock itself; the file is removed here, with unlink (safe
+// in a handler), before the signal's default action ends the process.
+constexpr int kHeldLocks = 8;
+constexpr std::size_t kLockPath = 4096;
+char held_locks[kHeldLocks][kLockPath];
+volatile std::sig_atomic_t held_in_use[kHeldLocks];
+
+extern "C" void remove_held_locks(int signal) {
+  for (int i = 0; i < kHeldLocks; ++i)
+    if (held_in_use[i]) ::unlink(held_locks[i]);
+  std::signal(signal, SIG_DFL);
+  std::raise(signal);
+}
+
+int hold_for_signals(const fs::path& lock) {
+  static std::once_flag installed;
+  std::call_once(installed, [] {
+    for (const int signal : {SIGINT, SIGTERM})
+      if (std::signal(signal, remove_held_locks) == SIG_IGN) std::signal(signal, SIG_IGN);  // (kept ignored if it was)
+  });
+  const std::string path = lock.string();
+  if (path.size() >= kLockPath) return -1;
+  for (int i = 0; i < kHeldLocks; ++i)
+    if (!held_in_use[i]) {
+      std::memcpy(held_locks[i], path.c_str(), path.size() + 1);
+      held_in_use[i] = 1;
+      return i;
+    }
+  return -1;
 }
 
 }  // namespace
@@ -70,6 +106,7 @@ OutputLock::OutputLock(const fs::path& output, const std::string& command) : pat
         // The lock holds without its note; the message then says "another process".
       }
       fd_ = fd;
+      slot_ = hold_for_signals(path_);
       return;
     }
     ::close(fd);
@@ -78,6 +115,7 @@ OutputLock::OutputLock(const fs::path& output, const std::string& command) : pat
 
 OutputLock::~OutputLock() {
   if (fd_ < 0) return;
+  if (slot_ >= 0) held_in_use[slot_] = 0;
   // Removed while still held: a process that opened it just now finds, once
   // it gets the lock, that the path no longer names it, and starts again.
   ::unlink(path_.c_str());

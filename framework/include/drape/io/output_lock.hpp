@@ -5,7 +5,7 @@
 // output is refused whatever its flags (--resume or --force would otherwise
 // rewrite a file another process is writing). The kernel drops the lock when
 // the process ends, killed or not; the lock file itself is removed on a
-// normal end.
+// normal end, and on SIGINT or SIGTERM (not on SIGKILL, which nothing sees).
 #include <filesystem>
 #include <string>
 
@@ -26,6 +26,7 @@ class OutputLock {
  private:
   std::filesystem::path path_;
   int fd_ = -1;
+  int slot_ = -1;  // its place among the locks a SIGINT or SIGTERM removes (output_lock.cpp)
 };
 
 }  // namespace drape
