@@ -58,10 +58,20 @@ extern "C" void remove_held_locks(int signal) {
 }
 
 int hold_for_signals(const fs::path& lock) {
+  // Only where the signal would end the process anyway (its default
+  // action): one ignored stays ignored, and one a host handles (Python's
+  // SIGINT, a KeyboardInterrupt) is the host's; removing the file there
+  // while the job goes on would let a second writer in.
   static std::once_flag installed;
   std::call_once(installed, [] {
-    for (const int signal : {SIGINT, SIGTERM})
-      if (std::signal(signal, remove_held_locks) == SIG_IGN) std::signal(signal, SIG_IGN);  // (kept ignored if it was)
+    for (const int signal : {SIGINT, SIGTERM}) {
+      struct sigaction now {};
+      if (::sigaction(signal, nullptr, &now) != 0 || (now.sa_flags & SA_SIGINFO) || now.sa_handler != SIG_DFL) continue;
+      struct sigaction ours {};
+      ours.sa_handler = remove_held_locks;
+      sigemptyset(&ours.sa_mask);
+      ::sigaction(signal, &ours, nullptr);
+    }
   });
   const std::string path = lock.string();
   if (path.size() >= kLockPath) return -1;
