@@ -258,8 +258,10 @@ def _native_scene(scene):
 _Model_optimize = Model.optimize
 
 
-def _optimize(self, scene, body_vertices, body_params=None, iterations=100, learning_rate=1e-4, pose=None):
-    return _Model_optimize(self, _native_scene(scene), body_vertices, body_params, iterations, learning_rate, pose)
+def _optimize(self, scene, body_vertices, body_params=None, iterations=100, learning_rate=1e-4, pose=None,
+              garment_size=None):
+    return _Model_optimize(self, _native_scene(scene), body_vertices, body_params, iterations, learning_rate, pose,
+                           garment_size)
 
 
 _optimize.__doc__ = _Model_optimize.__doc__

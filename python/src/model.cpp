@@ -341,10 +341,10 @@ void register_model(py::module_& m) {
       .def(
           "optimize",
           [](PyModel& p, const PyScene& scene, const py::handle& body, const py::handle& body_params, int iterations,
-             double learning_rate, const py::handle& pose) {
+             double learning_rate, const py::handle& pose, const py::handle& garment_size) {
             bool batched = false;
             const std::optional<Pose> posed = pose_arg(p.model().body_model(), p.model().assets_spec().body_model, pose);
-            SampleBatch b = p.batch(body, body_params, py::none(), &batched);
+            SampleBatch b = p.batch(body, body_params, garment_size, &batched);
             if (b.size() != 1) throw py::value_error("body_vertices: optimize takes one body [Nb, 3], got a batch of " + std::to_string(b.size()));
             if (iterations < 0) throw py::value_error("iterations: expected >= 0");
             // Optimised where the training bodies stood (as predict), the drapes moved back with the body.
@@ -352,7 +352,19 @@ void register_model(py::module_& m) {
             p.pose(b, posed, false, prepared);
             const BodyMove back = prepared.moved_by.front();
             // A model of several sizes: against the garment the scene dresses this body in, fed that grade.
-            const Simulation& simulation = GradedScene(registry(), *scene.simulations).for_model(p.model(), b, false, "optimize");
+            // The grade the rule chose (or the one asked for), and the scene's: said when they differ, as drape
+            // optimize says it (an outside check's Python user was told "size large" of a drape optimised in regular).
+            const float chosen = b.garment_grade.empty() ? 0.0f : b.garment_grade(0, 0, 0);
+            const Simulation& simulation =
+                GradedScene(registry(), *scene.simulations).for_model(p.model(), b, !garment_size.is_none(), "optimize");
+            if (!b.garment_grade.empty() && std::abs(b.garment_grade(0, 0, 0) - chosen) > 1e-3f) {
+              char note[200];
+              std::snprintf(note, sizeof note,
+                            "the scene dresses this body in grade %.3f (its garment), so the model predicts and is "
+                            "optimised in that garment instead",
+                            static_cast<double>(b.garment_grade(0, 0, 0)));
+              warn_python(note);
+            }
             PhysicsOptimizationOptions o;
             o.iterations = iterations;
             o.learning_rate = learning_rate;
@@ -367,7 +379,7 @@ void register_model(py::module_& m) {
             return result_dict(std::move(r));
           },
           py::arg("scene"), py::arg("body_vertices"), py::arg("body_params") = py::none(), py::arg("iterations") = 100,
-          py::arg("learning_rate") = 1e-4, py::arg("pose") = py::none(),
+          py::arg("learning_rate") = 1e-4, py::arg("pose") = py::none(), py::arg("garment_size") = py::none(),
           "The seed's physics-enforced optimisation (as drape optimize): fine-tunes this model's weights in place so that "
           "its drape of one body minimises the scene's potential. Returns before/after garments, energies, p and the "
           "history (history[0]: before's potential). 'before' is the prediction as predict gives it; with a push-out "

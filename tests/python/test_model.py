@@ -396,3 +396,17 @@ def test_the_default_model_drapes_the_human_rig_and_names_its_body():
     assert np.isfinite(sum(e.value(default.predict(body)) for e in energies.values()))
     with pytest.raises(Exception, match="6490"):
         drape.Scene({"garment": garment, "effects": {"collision": {}}}).energies(body)
+
+
+def test_optimize_says_the_garment_the_scene_dresses_the_body_in_and_takes_a_size():
+    """An outside check: Model.optimize warned only "size large by the tailor's rule" of a drape it optimised in the
+    regular shirt of a fixed-size scene (the program's second note never reached Python), and took no garment_size."""
+    m = drape.Model.load(str(SOURCE / "models" / "tshirt-coarse.h5"))
+    body = m.body(bmi=30)
+    scene = str(SOURCE / "graphs" / "scenes" / "tshirt_coarse_contact.yaml")
+    with pytest.warns(drape.DrapeWarning, match=r"the scene dresses this body in grade 1\.000"):
+        r = m.optimize(scene, body, iterations=0)
+    np.testing.assert_allclose(r["before"], drape.Model.load(str(SOURCE / "models" / "tshirt-coarse.h5")).predict(
+        body, garment_size="regular"), atol=1e-6)
+    with pytest.raises(drape.ConfigError, match="the scene dresses this body in grade 1.000"):
+        m.optimize(scene, body, iterations=0, garment_size="large")

@@ -148,7 +148,8 @@ GivenPosedBody unpose_given_body(Eigen::MatrixX3d& body, const BodyModel& model,
   return unpose_given_body(body, model, frame.mean(), &frame.anchor(), none, none, who);
 }
 
-std::string posed_in_words(const Eigen::MatrixX3d& mesh, const BodyModel& model, const GivenBodyFrame& frame) {
+std::string posed_in_words(const Eigen::MatrixX3d& mesh, const BodyModel& model, const GivenBodyFrame& frame,
+                           bool read_mild) {
   double most = 0;
   std::string turned;
   for (const LimbTurn& t : frame.limbs().turns(frame.mean(), mesh)) {
@@ -161,7 +162,7 @@ std::string posed_in_words(const Eigen::MatrixX3d& mesh, const BodyModel& model,
   if (!turned.empty())
     return "against the mean body at rest, " + turned + " (a body at rest turns none by more than " +
            std::to_string(static_cast<int>(kPosedLimbDegrees)) + ")";
-  if (!(most > kMildLimbDegrees) || !model.poseable()) return "";
+  if (!(most > kMildLimbDegrees) || !model.poseable() || !read_mild) return "";
   Eigen::MatrixX3d copy = mesh;
   const GivenPosedBody read = unpose_given_body(copy, model, frame, "the body");
   if (read.at_rest) return "";

@@ -541,7 +541,8 @@ PreparedBodies BodyPreparation::prepare(SampleBatch& batch, bool strict, const s
     }
     // A body given as a mesh is taken at rest (the A-pose); one given posed
     // gets a drape for another body: told (posed_in_words), and --strict refuses it.
-    if (given_meshes) posed[at] = posed_in_words(batch.body.mat(i).cast<double>(), model_.body_model(), given_);
+    // (Without measure, the limbs' turns alone: a mild pose's read is a fit of about a second.)
+    if (given_meshes) posed[at] = posed_in_words(batch.body.mat(i).cast<double>(), model_.body_model(), given_, measure);
     if (!posed[at].empty()) warn_posed(model_, batch, i, posed[at], strict, strict_option, out.notices);
     out.moved_by[at] = place(model_, domain_ ? &*domain_ : nullptr, given_meshes ? &given_.anchor() : nullptr,
                              !posed[at].empty(), batch, i, out.notices);

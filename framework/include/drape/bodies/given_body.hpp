@@ -92,10 +92,13 @@ GivenPosedBody unpose_given_body(Eigen::MatrixX3d& body, const BodyModel& model,
 // degrees as much), its pose read off it (unpose_given_body on a copy, about
 // a second) when it lies more than kPosedAngleDegrees from the rest pose at
 // some joint ("its pose read off it is spine_flexion=10,..."). A body model
-// without a skeleton: by the turns alone.
+// without a skeleton, or read_mild false: by the turns alone (Python's
+// predict with check=False: an outside check's heavy bodies, whose arms turn
+// past kMildLimbDegrees at rest, cost 0.5-0.9 s a call in the fit).
 inline constexpr double kMildLimbDegrees = 4.0;
 inline constexpr double kPosedAngleDegrees = 3.0;
-std::string posed_in_words(const Eigen::MatrixX3d& mesh, const BodyModel& model, const GivenBodyFrame& frame);
+std::string posed_in_words(const Eigen::MatrixX3d& mesh, const BodyModel& model, const GivenBodyFrame& frame,
+                           bool read_mild = true);
 
 // A posed mesh's place is read to the fit's precision; nearer is not said.
 inline constexpr double kPosedPlacementTolerance = 5e-4;  // m
