@@ -157,6 +157,26 @@ def _materials_against(scene, folder):
     return dict(scene, materials={region: absolute(value) for region, value in materials.items()})
 
 
+def _scene_json(scene):
+    """A scene dict as JSON (which is YAML), NumPy's scalars and arrays as the numbers and lists they hold (an outside
+    check's np.int64 step count was "Object of type int64 is not JSON serializable"); anything else is named with
+    its key."""
+    def plain(value, key):
+        if isinstance(value, dict):
+            return {k: plain(v, f"{key}.{k}" if key else str(k)) for k, v in value.items()}
+        if isinstance(value, (list, tuple)):
+            return [plain(v, f"{key}[{i}]") for i, v in enumerate(value)]
+        if hasattr(value, "tolist") and hasattr(value, "dtype"):  # a NumPy scalar or array
+            return value.tolist()
+        if value is None or isinstance(value, (str, bool, int, float)):
+            return value
+        if isinstance(value, _os.PathLike):
+            return _os.fspath(value)
+        raise ConfigError(f"the scene dict: {key} = {value!r} is a {type(value).__name__}: a scene holds numbers, "
+                          "strings, booleans, lists and maps")
+    return _json.dumps(plain(scene, ""))
+
+
 class Scene:
     """A simulation scene (graphs/scenes/*.yaml, docs/scenes.md) made runnable: a path, or a dict laid out as the
     YAML file (a relative `base:` is resolved against base_dir, default the current folder)."""
@@ -168,7 +188,10 @@ class Scene:
             scene = dict(scene)
             base = scene.get("base")
             if base is None:
-                self._s = _drape._Scene.from_text(_json.dumps(scene), "<dict>")  # JSON is YAML
+                try:
+                    self._s = _drape._Scene.from_text(_scene_json(scene), "the scene dict")  # JSON is YAML
+                except (ConfigError, Error) as e:  # (its one line of JSON: the dict is what to name)
+                    raise type(e)(str(e).replace("the scene dict:1: ", "the scene dict: ")) from None
             else:
                 # drape follows `base:` only from a file: the dict goes through one (JSON is YAML).
                 # A relative base: against base_dir, else the current folder, else a shipped scene by name.
@@ -182,9 +205,10 @@ class Scene:
                 with _tempfile.TemporaryDirectory(prefix="drape-scene-") as tmp:
                     path = _os.path.join(tmp, "scene.yaml")
                     with open(path, "w") as f:
-                        _json.dump(scene, f)
+                        f.write(_scene_json(scene))
                     try:
                         self._s = _drape._Scene.from_file(path)
+                        self._dict_based_on = scene["base"]  # (its file, a temporary one, is gone: file names the dict)
                     except (ConfigError, Error) as e:
                         # The temporary file (one line of JSON) is gone: the dict is what to name.
                         text = str(e).replace(path + ":1: ", "the scene dict: ").replace(path, "the scene dict")
@@ -195,9 +219,18 @@ class Scene:
             raise TypeError(f"scene: expected a path or a dict, got {type(scene).__name__}")
 
     def __getattr__(self, name):
-        if name == "_s":  # (a Scene whose construction failed: no recursion through __getattr__)
+        if name in ("_s", "_dict_based_on"):  # (a Scene whose construction failed, or from a file: no recursion)
             raise AttributeError(name)
         return getattr(self._s, name)
+
+    @property
+    def file(self):
+        """The scene's file; a dict's is named as the dict (with the scene it is based on), not as the temporary
+        file drape read it through, which is gone (an outside check)."""
+        try:
+            return f"the scene dict (base: {self._dict_based_on})"
+        except AttributeError:
+            return self._s.file
 
     def energies(self, body_vertices=None):
         """{effect name: drape.Energy} bound to the garment and this body (default: the scene's own target body)."""
@@ -220,7 +253,7 @@ class Scene:
         return self._s.simulate(body_vertices, start_garment, measure_penetration, start_body, pose)
 
     def __repr__(self):
-        return f"<drape.Scene {self._s.file}: {', '.join(self._s.effects)}>"
+        return f"<drape.Scene {self.file}: {', '.join(self._s.effects)}>"
 
 
 def simulate(scene, body_vertices=None, **options):

@@ -135,11 +135,18 @@ py::array_t<float> to_numpy(Tensor&& t, bool drop_batch) {
   return py::array_t<float>(shape, owned->data(), free_it);
 }
 
+// [N, 3] arrays are C-ordered (x0, y0, z0, x1, ...), as the predictions and
+// the datasets are: Eigen's column-major order came back Fortran-ordered,
+// which np.frombuffer and C readers of the buffer take as x0, x1, ... (an
+// outside check). One copy of N x 3 numbers.
+using RowMajor3d = Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor>;
+using RowMajor3i = Eigen::Matrix<int, Eigen::Dynamic, 3, Eigen::RowMajor>;
+
 py::array_t<double> to_numpy(Eigen::MatrixX3d&& m) {
-  auto* owned = new Eigen::MatrixX3d(std::move(m));
-  py::capsule free_it(owned, [](void* p) { delete static_cast<Eigen::MatrixX3d*>(p); });
+  auto* owned = new RowMajor3d(m);
+  py::capsule free_it(owned, [](void* p) { delete static_cast<RowMajor3d*>(p); });
   const auto n = static_cast<py::ssize_t>(owned->rows());
-  return py::array_t<double>({n, py::ssize_t{3}}, {py::ssize_t{sizeof(double)}, static_cast<py::ssize_t>(n * sizeof(double))},
+  return py::array_t<double>({n, py::ssize_t{3}}, {static_cast<py::ssize_t>(3 * sizeof(double)), py::ssize_t{sizeof(double)}},
                              owned->data(), free_it);
 }
 
@@ -150,10 +157,10 @@ py::array_t<double> to_numpy(Eigen::VectorXd&& v) {
 }
 
 py::array_t<int> to_numpy(Eigen::MatrixX3i&& m) {
-  auto* owned = new Eigen::MatrixX3i(std::move(m));
-  py::capsule free_it(owned, [](void* p) { delete static_cast<Eigen::MatrixX3i*>(p); });
+  auto* owned = new RowMajor3i(m);
+  py::capsule free_it(owned, [](void* p) { delete static_cast<RowMajor3i*>(p); });
   const auto n = static_cast<py::ssize_t>(owned->rows());
-  return py::array_t<int>({n, py::ssize_t{3}}, {py::ssize_t{sizeof(int)}, static_cast<py::ssize_t>(n * sizeof(int))},
+  return py::array_t<int>({n, py::ssize_t{3}}, {static_cast<py::ssize_t>(3 * sizeof(int)), py::ssize_t{sizeof(int)}},
                           owned->data(), free_it);
 }
 

@@ -8,7 +8,7 @@ import numpy as np
 import pytest
 
 import drape
-from conftest import CONTACT, read_obj, run_drape
+from conftest import CONTACT, SOURCE, read_obj, run_drape
 
 
 def test_simulate_matches_the_program(tiny_scene, tmp_path):
@@ -222,3 +222,27 @@ def test_a_non_finite_body_or_start_is_refused_naming_the_argument(tiny_scene):
         scene.simulate(start_garment=garment)
     with pytest.raises(ValueError, match=r"start_body: vertex 5 has a non-finite coordinate"):
         scene.simulate(start_body=body)
+
+
+def test_a_dict_scene_takes_numpy_numbers_and_names_itself():
+    """An outside check: a dict scene with np.int64 or np.float32 values was "Object of type int64 is not JSON
+    serializable", naming no key, and a dict scene based on a file named the temporary file it was read through."""
+    steps = np.arange(10, 100, 10)
+    based = drape.Scene({"base": str(SOURCE / "graphs" / "scenes" / "tshirt_coarse.yaml"),
+                         "solver": {"settle_steps": steps[3], "time_step": np.float32(0.25)}})
+    assert "the scene dict (base: " in based.file and "tshirt_coarse.yaml" in repr(based)
+    plain = drape.Scene({"effects": ["gravity"], "solver": {"settle_steps": np.int64(3)}})
+    assert plain.file == "the scene dict"
+    with pytest.raises(drape.ConfigError, match=r"the scene dict: solver\.settle_steps = .* is a object"):
+        drape.Scene({"effects": ["gravity"], "solver": {"settle_steps": object()}})
+
+
+def test_returned_vertex_arrays_are_c_ordered():
+    """An outside check: the energies' gradients and simulate's garment came back Fortran-ordered [N, 3] arrays,
+    which np.frombuffer and C readers of the buffer take as x0, x1, ..."""
+    scene = drape.Scene(str(CONTACT))
+    x = np.ascontiguousarray(scene.garment_vertices)
+    for name, energy in scene.energies().items():
+        gradient = energy.gradient(x)
+        assert gradient.flags["C_CONTIGUOUS"], name
+        assert np.array_equal(np.frombuffer(gradient.tobytes(order="A"), dtype=gradient.dtype).reshape(-1, 3), gradient)
