@@ -44,7 +44,7 @@ def test_a_scene_from_a_dict_is_the_file(tiny_scene):
     inline = drape.Scene({"garment": {"template": "tshirt", "params": {"resolution": "coarse"}},
                           "effects": {"gravity": {}, "stretching": {}}})
     assert inline.effects == ["gravity", "stretching"]
-    with pytest.raises(drape.ConfigError, match=r"<dict>:1.*effect 'strething'.*did you mean 'stretching'"):
+    with pytest.raises(drape.ConfigError, match=r"the scene dict: .*effect 'strething'.*did you mean 'stretching'"):
         drape.Scene({"effects": {"strething": {}}})
 
 
