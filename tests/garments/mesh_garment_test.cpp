@@ -139,6 +139,8 @@ TEST_CASE("mesh garment: bad garments are refused naming the file and the elemen
       write_mesh(dir / name, split);
       CHECK_THAT(build_error(dir / name), Catch::Contains(name + "': 1 vertices duplicate an earlier one (vertex " +
                                                           std::to_string(copy) + " sits on vertex 0)"));
+      // Placed at the scene's line that names the file (a garment's build named no scene line: an outside check).
+      CHECK_THAT(build_error(dir / name), Catch::StartsWith("<scene>:2: "));
       const Simulation sim(test::plugins(), parse_scene(scene_text(dir / name, ", weld: true")));
       CHECK(sim.garment().mesh.num_vertices() == copy);
     }

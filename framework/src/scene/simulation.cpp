@@ -34,16 +34,37 @@ namespace {
 // The scene's garment template. A plugin's own check of its parameters (the
 // T-shirt's resolution) knows no file: its error is placed at the garment's
 // parameters (the first written), else at the scene's file.
+// Where a garment's error is placed: its parameters (the first written in
+// the scene's own file, else the first of its `base:`), else the scene's file.
+SourceLocation garment_params_where(const Scene& scene) {
+  SourceLocation where{scene.file, 0};
+  for (const auto& [name, value] : scene.garment_params) {
+    const bool own = value.where.file == scene.file, held_own = where.line > 0 && where.file == scene.file;
+    if (where.line == 0 || (own && !held_own) || (own == held_own && value.where.file == where.file && value.where.line < where.line))
+      where = value.where;
+  }
+  return where;
+}
+
 std::unique_ptr<GarmentSource> garment_of_scene(const Registry& registry, const Scene& scene,
                                                 const PluginDescriptor& descriptor) {
   const Params params(descriptor.params, scene.garment_params, "garment '" + scene.garment + "'");  // placed itself
   try {
     return registry.create_garment(scene.garment, params);
   } catch (...) {
-    SourceLocation where{scene.file, 0};
-    for (const auto& [name, value] : scene.garment_params)
-      if (where.line == 0 || (value.where.file == where.file && value.where.line < where.line)) where = value.where;
-    rethrow_at(where, scene.garment);  // the registry's "tshirt: ..." already names it
+    rethrow_at(garment_params_where(scene), scene.garment);  // the registry's "tshirt: ..." already names it
+  }
+}
+
+// The garment built, its errors placed as garment_of_scene's are (an outside
+// check: MakeHuman clothes' "no piece 9" named the asset's .obj, not the
+// scene's line that asked for it).
+Garment build_garment(const Registry& registry, const Scene& scene, const PluginDescriptor& descriptor) {
+  const std::unique_ptr<GarmentSource> source = garment_of_scene(registry, scene, descriptor);
+  try {
+    return source->build();
+  } catch (...) {
+    rethrow_at(garment_params_where(scene), scene.garment);  // (the plugin's "makehuman_clothes: ..." names it)
   }
 }
 
@@ -170,7 +191,7 @@ Simulation::Simulation(const Registry& registry, Scene scene) : registry_(regist
 
   const PluginDescriptor& gd = registry_.get(scene_.garment);
   for (const ParamSpec& p : gd.params) sized_ = sized_ || (p.name == "size" && !p.choices.empty());
-  Garment garment = garment_of_scene(registry_, scene_, gd)->build();
+  Garment garment = build_garment(registry_, scene_, gd);
   if (!garment.body_model.empty() && garment.body_model != scene_.body_model)
     throw ConfigError({scene_.file, 0}, "garment '" + scene_.garment + "' is fitted to the body model '" +
                                             garment.body_model + "' (its mean body is what the garment is modelled "
