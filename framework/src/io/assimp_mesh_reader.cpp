@@ -194,7 +194,7 @@ Mesh read_with_assimp(const std::filesystem::path& file, MaterialMesh* materials
         if (mesh->mFaces[f].mIndices[k] < mesh->mNumVertices) ++corners[mesh->mFaces[f].mIndices[k]];
     const bool soup = extension == ".stl" || std::all_of(corners.begin(), corners.end(), [](unsigned c) { return c == 1; });
     merged.assign(mesh->mNumVertices, 0);
-    const aiMatrix4x4& t = placement[m];
+    const aiMatrix4x4& t = placement[m];  // (identity for a mesh no node moves)
     const bool moved = !t.IsIdentity();
     for (unsigned i = 0; i < mesh->mNumVertices; ++i) {
       const aiVector3D& p = mesh->mVertices[i];
@@ -205,21 +205,23 @@ Mesh read_with_assimp(const std::filesystem::path& file, MaterialMesh* materials
       const auto next = static_cast<int>(positions.size() / 3);
       // Where the vertex is placed (in double: a float's rounding would move an unplaced mesh's vertices too).
       double xyz[3] = {p.x, p.y, p.z};
-      if (moved)
-        xyz[0] = t.a1 * p.x + t.a2 * p.y + t.a3 * p.z + t.a4, xyz[1] = t.b1 * p.x + t.b2 * p.y + t.b3 * p.z + t.b4,
+      if (moved) {
+        xyz[0] = t.a1 * p.x + t.a2 * p.y + t.a3 * p.z + t.a4;
+        xyz[1] = t.b1 * p.x + t.b2 * p.y + t.b3 * p.z + t.b4;
         xyz[2] = t.c1 * p.x + t.c2 * p.y + t.c3 * p.z + t.c4;
+      }
+      // Keyed where it is placed (unmoved: its own float bits).
       const aiVector3D placed(static_cast<float>(xyz[0]), static_cast<float>(xyz[1]), static_cast<float>(xyz[2]));
-      const auto [it, added] = first_at.try_emplace(key_of(moved ? placed : p), First{next, m, uv});
+      const auto [it, added] = first_at.try_emplace(key_of(placed), First{next, m, uv});
       const First& first = it->second;
       const bool copy = soup || first.mesh != m || (with_uv && (first.uv.x != uv.x || first.uv.y != uv.y));
       if (added || !copy) positions.insert(positions.end(), {xyz[0], xyz[1], xyz[2]});
       merged[i] = added || !copy ? next : first.vertex;
       if (with_uv) {
-        const aiVector3D& t = mesh->mTextureCoords[0][i];
-        if (!std::isfinite(t.x) || !std::isfinite(t.y))
+        if (!std::isfinite(uv.x) || !std::isfinite(uv.y))
           throw ConfigError(where, "texture coordinate of vertex " + std::to_string(i) + " of mesh " +
                                        std::to_string(m) + " is not a finite number");
-        uvs.insert(uvs.end(), {t.x, t.y});
+        uvs.insert(uvs.end(), {uv.x, uv.y});
       }
     }
     for (unsigned f = 0; f < mesh->mNumFaces; ++f) {

@@ -1,8 +1,6 @@
 // The garment's cloth around a body, in words (cloth_fit.hpp).
 #include "cloth_fit.hpp"
 
-#include <functional>
-
 #include <drape/materials/materials.hpp>
 #include <drape/scene/garment_size.hpp>
 

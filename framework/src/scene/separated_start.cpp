@@ -156,20 +156,17 @@ std::string clear_offset_hint(const Garment& garment, const Eigen::MatrixX3d& un
   // (an outside check's shirt tilted 20 degrees about x or z, or turned 30
   // about y, was refused as crossing the body with no word of its turn).
   const Eigen::RowVector3d centre = undressed.colwise().mean();
+  const auto turned = [&](int axis, int degrees) -> Eigen::MatrixX3d {
+    const Eigen::Matrix3d turn = Eigen::AngleAxisd(degrees * std::numbers::pi / 180.0, Eigen::Vector3d::Unit(axis)).toRotationMatrix();
+    return ((undressed.rowwise() - centre) * turn.transpose()).rowwise() + centre;
+  };
   double turned_apart = at_start;
   int best_axis = -1, best_degrees = 0;
   for (int axis = 0; axis < 3; ++axis)
-    for (int degrees = -45; degrees <= 45; degrees += 5) {
-      if (degrees == 0) continue;
-      const Eigen::Matrix3d turn = Eigen::AngleAxisd(degrees * std::numbers::pi / 180.0, Eigen::Vector3d::Unit(axis)).toRotationMatrix();
-      const Eigen::MatrixX3d placed = ((undressed.rowwise() - centre) * turn.transpose()).rowwise() + centre;
-      if (const double a = apart_of(placed, Eigen::RowVector3d::Zero()); a < turned_apart)
+    for (int degrees = -45; degrees <= 45; degrees += 5)
+      if (const double a = degrees == 0 ? at_start : apart_of(turned(axis, degrees), Eigen::RowVector3d::Zero()); a < turned_apart)
         turned_apart = a, best_axis = axis, best_degrees = degrees;
-    }
-  if (best_axis < 0 || !(turned_apart < kCloserShare * at_start)) return "";
-  const Eigen::Matrix3d turn =
-      Eigen::AngleAxisd(best_degrees * std::numbers::pi / 180.0, Eigen::Vector3d::Unit(best_axis)).toRotationMatrix();
-  if (!starts_clear(((undressed.rowwise() - centre) * turn.transpose()).rowwise() + centre)) return "";
+  if (best_axis < 0 || !(turned_apart < kCloserShare * at_start) || !starts_clear(turned(best_axis, best_degrees))) return "";
   static const char* const axes[] = {"x (the body's left-right axis: tipped forward or back)",
                                      "y (the vertical: facing elsewhere)", "z (the body's front-back axis: leaning sideways)"};
   return "turned about " + std::to_string(std::abs(best_degrees)) + " degrees " +

@@ -31,21 +31,19 @@ namespace drape {
 
 namespace {
 
-// The scene's garment template. A plugin's own check of its parameters (the
-// T-shirt's resolution) knows no file: its error is placed at the garment's
-// parameters (the first written), else at the scene's file.
-// Where a garment's error is placed: its parameters (the first written in
-// the scene's own file, else the first of its `base:`), else the scene's file.
+// Where a garment's own error (a plugin knows no file) is placed: at the
+// first of its parameters written in the scene's own file, else in the file
+// of the first one (a `base:`), else at the scene's file.
 SourceLocation garment_params_where(const Scene& scene) {
   SourceLocation where{scene.file, 0};
   for (const auto& [name, value] : scene.garment_params) {
-    const bool own = value.where.file == scene.file, held_own = where.line > 0 && where.file == scene.file;
-    if (where.line == 0 || (own && !held_own) || (own == held_own && value.where.file == where.file && value.where.line < where.line))
-      where = value.where;
+    const bool better_file = value.where.file == scene.file && where.file != scene.file;
+    if (where.line == 0 || better_file || (value.where.file == where.file && value.where.line < where.line)) where = value.where;
   }
   return where;
 }
 
+// The scene's garment template, its parameter checks placed (garment_params_where).
 std::unique_ptr<GarmentSource> garment_of_scene(const Registry& registry, const Scene& scene,
                                                 const PluginDescriptor& descriptor) {
   const Params params(descriptor.params, scene.garment_params, "garment '" + scene.garment + "'");  // placed itself
@@ -224,7 +222,10 @@ Simulation::Simulation(const Registry& registry, Scene scene) : registry_(regist
   const bool may_grow = graded && !below_every_body;
   const Garment undressed = may_grow ? garment : Garment{};
   undressed_ = garment.mesh.vertices;  // where the file or template placed it, for a refused start's offset hint
-  beside_body_ = garment_beside_body(undressed_, garment.mesh.faces, mean_body_, body_model_->faces());  // refused in run()
+  // (Only a garment no loop of which goes around the body, placed_loop_
+  // infinite, can lie beside it: the same loops, measured once above.)
+  if (!std::isfinite(placed_loop_))
+    beside_body_ = garment_beside_body(undressed_, garment.mesh.faces, mean_body_, body_model_->faces());  // refused in run()
   DressReport dressed = dress_on(fit, *body_model_, garment, dressed_what);
   if (may_grow) {
     bool scaled_starts = true;
