@@ -159,7 +159,7 @@ SampleBatch model_body(const Model& model, const po::variables_map& vm, BodyMove
     std::snprintf(note, sizeof note,
                   "note: the body stands %.0f m from the origin; it is draped moved near it in double precision (the "
                   "network's single precision holds coordinates that far only to %.1f mm) and the drape moved back",
-                  near_origin.offset.norm(), 1e3 * std::ldexp(1.0, std::ilogb(near_origin.offset.cwiseAbs().maxCoeff()) - 24));
+                  near_origin.offset.norm(), 1e3 * float_rounding(near_origin.offset.cwiseAbs().maxCoeff()));
     std::cerr << note << "\n";
     if (printed) printed->push_back(note);
   }

@@ -92,16 +92,12 @@ Tensor vertices_batch_arg(const py::handle& value, const std::string& name, int 
   // A sample whose own extent is far beyond a body's is in other units, which
   // the caller's units check names better ("likely millimetres"): only a body
   // of a body's size lying far out is refused here as beyond float32.
-  std::vector<char> body_sized(static_cast<std::size_t>(n), 1);
-  for (int b = 0; b < n; ++b)
-    for (int axis = 0; axis < 3; ++axis) {
-      double lo = std::numeric_limits<double>::infinity(), hi = -lo;
-      for (int r = 0; r < rows; ++r) {
-        const double x = in[(static_cast<std::size_t>(b) * static_cast<std::size_t>(rows) + static_cast<std::size_t>(r)) * 3 + static_cast<std::size_t>(axis)];
-        lo = std::min(lo, x), hi = std::max(hi, x);
-      }
-      if (hi - lo > 0.1 * kFloatExactReach) body_sized[static_cast<std::size_t>(b)] = 0;
-    }
+  using Rows = Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor>>;
+  std::vector<char> body_sized(static_cast<std::size_t>(n));
+  for (int b = 0; b < n; ++b) {
+    const Rows sample(in + static_cast<std::ptrdiff_t>(b) * rows * 3, rows, 3);
+    body_sized[static_cast<std::size_t>(b)] = (sample.colwise().maxCoeff() - sample.colwise().minCoeff()).maxCoeff() <= 0.1 * kFloatExactReach;
+  }
   for (std::size_t k = 0; k < t.size(); ++k) {
     const double x = in[k];
     const bool fits_float = std::isfinite(x) && std::abs(x) <= std::numeric_limits<float>::max();
@@ -121,7 +117,7 @@ Tensor vertices_batch_arg(const py::handle& value, const std::string& name, int 
                   "%s lies %.0f m from the origin: drape's arrays are float32, which hold coordinates that far only "
                   "to %.2g mm; move it within %.0f m of the origin (and what comes back by the same offset; drape "
                   "predict's command line does this itself)",
-                  what.c_str(), std::abs(x), 1e3 * std::ldexp(1.0, std::ilogb(std::abs(x)) - 24), kFloatExactReach);
+                  what.c_str(), std::abs(x), 1e3 * float_rounding(x), kFloatExactReach);
     throw py::value_error(far);
   }
   return t;

@@ -120,4 +120,6 @@ void check_body_units(const Eigen::MatrixX3d& body, const std::string& what) {
   if (!problem.empty()) throw ConfigError(problem);
 }
 
+double float_rounding(double x) { return x == 0.0 ? 0.0 : std::ldexp(1.0, std::ilogb(std::abs(x)) - 24); }
+
 }  // namespace drape
