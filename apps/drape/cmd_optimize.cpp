@@ -135,13 +135,11 @@ int run(const std::vector<std::string>& args) {
               << ": the body is the model's, the scene gives the garment, its energies and the contact\n";
   }
   // A model of several sizes is optimised against the garment the scene dresses this body in.
-  const float chosen = batch.garment_grade.empty() ? 0.0f : batch.garment_grade(0, 0, 0);
+  std::string regraded;
   const Simulation& scene = GradedScene(registry, simulations)
-                                .for_model(model, batch, vm.count("garment-size") || vm.count("garment-grade"), "drape optimize");
-  if (!batch.garment_grade.empty() && std::abs(batch.garment_grade(0, 0, 0) - chosen) > 1e-3f)
-    std::printf("note: the scene dresses this body in grade %.3f (its garment), so the model predicts and is optimised "
-                "in that garment instead\n",
-                static_cast<double>(batch.garment_grade(0, 0, 0)));
+                                .for_model(model, batch, vm.count("garment-size") || vm.count("garment-grade"),
+                                           "drape optimize", &regraded);
+  if (!regraded.empty()) std::printf("note: %s\n", regraded.c_str());
 
   PhysicsOptimizationOptions o;
   o.iterations = vm["iters"].as<int>();
@@ -172,9 +170,8 @@ int run(const std::vector<std::string>& args) {
   // And the cloth through itself, as simulate and predict count it (an
   // outside check's optimised drape crossed itself at 19 pairs unsaid; the
   // self-contact barrier keeps layers apart, it cannot undo a crossing).
-  constexpr std::size_t kCountAtMost = 100000;
-  const std::size_t self_before = geometry::self_edge_crossings(r.before, scene.garment().mesh.faces, kCountAtMost).size(),
-                    self_after = geometry::self_edge_crossings(r.after, scene.garment().mesh.faces, kCountAtMost).size();
+  const std::size_t self_before = geometry::self_edge_crossings(r.before, scene.garment().mesh.faces, geometry::kCrossingsCountedAtMost).size(),
+                    self_after = geometry::self_edge_crossings(r.after, scene.garment().mesh.faces, geometry::kCrossingsCountedAtMost).size();
   std::printf("the garment through itself (edge-face pairs): before %zu, after %zu\n", self_before, self_after);
   if (self_after > 0)
     std::cerr << "warning: the optimised garment passes through itself: " << self_after

@@ -86,8 +86,7 @@ int run(const std::vector<std::string>& args) {
   const geometry::SurfaceCrossings crossings = geometry::surface_crossings(out.vertices, out.faces, body.vertices, body.faces);
   // And the cloth through itself, as simulate counts it (an outside check
   // found a sleeve crumpled through the shirt told "0 edges crossing it").
-  constexpr std::size_t kCountAtMost = 100000;
-  const std::size_t self = geometry::self_edge_crossings(out.vertices, out.faces, kCountAtMost).size();
+  const std::size_t self = geometry::self_edge_crossings(out.vertices, out.faces, geometry::kCrossingsCountedAtMost).size();
   std::printf("wrote %s: %d garment vertices predicted in %.2f ms; p = %.2f%% of them inside the body, %d edges crossing it, "
               "the garment through itself %zu edge-face pairs\n",
               vm["out"].as<std::string>().c_str(), out.num_vertices(), ms, 100.0 * p, crossings.total(), self);

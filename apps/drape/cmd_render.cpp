@@ -98,9 +98,8 @@ void draw(const po::variables_map& vm, const std::string& colour, const std::str
   }
   // What p leaves out, as predict and simulate count it: edges through the
   // body with both ends outside, and the cloth through itself.
-  constexpr std::size_t kCountAtMost = 100000;
   const int crossing = geometry::surface_crossings(garment.vertices, garment.faces, body.vertices, body.faces).total();
-  const std::size_t self = geometry::self_edge_crossings(garment.vertices, garment.faces, kCountAtMost).size();
+  const std::size_t self = geometry::self_edge_crossings(garment.vertices, garment.faces, geometry::kCrossingsCountedAtMost).size();
   const std::string counted = std::string(caption) + ", " + std::to_string(crossing) + " edges crossing the body, " +
                               std::to_string(self) + " edge-face pairs of the garment through itself";
   std::snprintf(caption, sizeof caption, "%s", counted.c_str());

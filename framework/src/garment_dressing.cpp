@@ -207,10 +207,9 @@ DressReport dress(Garment& garment, const BodyQuery& body, const DressOptions& o
   // every displacement, pushed vertices' included; it left 5-13 edges of a
   // graded MakeHuman shirt's armpits through faces.)
   if (options.untangle_rounds > 0) {
-    constexpr std::size_t kCountAtMost = 100000;
     constexpr int kRings = 2, kSmoothing = 2;
     const Eigen::MatrixX3i& faces = garment.mesh.faces;
-    auto crossings = geometry::self_edge_crossings(x, faces, kCountAtMost);
+    auto crossings = geometry::self_edge_crossings(x, faces, geometry::kCrossingsCountedAtMost);
     std::size_t tangled = crossings.size();
     report.tangled_before = static_cast<int>(tangled);
     if (tangled > 0) {
@@ -240,7 +239,7 @@ DressReport dress(Garment& garment, const BodyQuery& body, const DressOptions& o
         }
         for (int k = 0; k < options.max_iterations && push(false) > 0; ++k) {
         }  // until no vertex needs a push (at a crease one push can land close to the other side)
-        crossings = geometry::self_edge_crossings(x, faces, kCountAtMost);
+        crossings = geometry::self_edge_crossings(x, faces, geometry::kCrossingsCountedAtMost);
         if (crossings.size() < tangled) best = x, tangled = crossings.size(), report.untangle_rounds = round;
       }
       x = best;

@@ -178,10 +178,9 @@ std::size_t optimize_dataset(const Registry& registry, const OptimizeDatasetOpti
       // A model of several sizes: each sample against the garment it wears, which must be the scene's for its body.
       const Simulation& simulation = graded.for_model(*model, batch, true, o.data.string() + " sample " + std::to_string(index));
       const PhysicsOptimizationResult r = optimize_drape(*model, simulation, batch, o.optimization);
-      constexpr std::size_t kCountAtMost = 100000;
       const Eigen::MatrixX3i& faces = simulation.garment().mesh.faces;
-      const std::size_t self_after = geometry::self_edge_crossings(r.after, faces, kCountAtMost).size();
-      store_result(sample, r, carried, index, geometry::self_edge_crossings(r.before, faces, kCountAtMost).size(), self_after);
+      const std::size_t self_after = geometry::self_edge_crossings(r.after, faces, geometry::kCrossingsCountedAtMost).size();
+      store_result(sample, r, carried, index, geometry::self_edge_crossings(r.before, faces, geometry::kCrossingsCountedAtMost).size(), self_after);
       {
         const std::lock_guard<std::mutex> lock(io);
         writer.write(local, sample);

@@ -18,6 +18,10 @@ bool triangles_intersect(const Eigen::Vector3d& a0, const Eigen::Vector3d& a1, c
 std::vector<std::pair<int, int>> self_intersections(const Eigen::MatrixX3d& vertices, const Eigen::MatrixX3i& faces,
                                                     std::size_t max_pairs = 100);
 
+// The bound a count of a garment's crossings of itself is taken to (predict,
+// render, optimize, dressing): far above any drape's, so a count is a count.
+inline constexpr std::size_t kCrossingsCountedAtMost = 100000;
+
 // (edge, face) pairs where an edge of the mesh (its two vertex indices, each
 // undirected edge once) passes through one of its faces that shares no vertex
 // with the edge (segment_pierces_triangle, surface_crossings.hpp: touching
