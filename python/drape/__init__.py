@@ -182,8 +182,9 @@ class Scene:
     YAML file (a relative `base:` is resolved against base_dir, default the current folder)."""
 
     def __init__(self, scene, base_dir=None):
+        self._name = None  # a dict read through a temporary file: what `file` says instead of that gone file
         if isinstance(scene, Scene):
-            self._s = scene._s
+            self._s, self._name = scene._s, scene._name
         elif isinstance(scene, dict):
             scene = dict(scene)
             base = scene.get("base")
@@ -208,7 +209,7 @@ class Scene:
                         f.write(_scene_json(scene))
                     try:
                         self._s = _drape._Scene.from_file(path)
-                        self._dict_based_on = scene["base"]  # (its file, a temporary one, is gone: file names the dict)
+                        self._name = f"the scene dict (base: {scene['base']})"
                     except (ConfigError, Error) as e:
                         # The temporary file (one line of JSON) is gone: the dict is what to name.
                         text = str(e).replace(path + ":1: ", "the scene dict: ").replace(path, "the scene dict")
@@ -219,7 +220,7 @@ class Scene:
             raise TypeError(f"scene: expected a path or a dict, got {type(scene).__name__}")
 
     def __getattr__(self, name):
-        if name in ("_s", "_dict_based_on"):  # (a Scene whose construction failed, or from a file: no recursion)
+        if name in ("_s", "_name"):  # (a Scene whose construction failed: no recursion through __getattr__)
             raise AttributeError(name)
         return getattr(self._s, name)
 
@@ -227,10 +228,7 @@ class Scene:
     def file(self):
         """The scene's file; a dict's is named as the dict (with the scene it is based on), not as the temporary
         file drape read it through, which is gone (an outside check)."""
-        try:
-            return f"the scene dict (base: {self._dict_based_on})"
-        except AttributeError:
-            return self._s.file
+        return self._name or self._s.file
 
     def energies(self, body_vertices=None):
         """{effect name: drape.Energy} bound to the garment and this body (default: the scene's own target body)."""

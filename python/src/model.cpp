@@ -28,10 +28,9 @@ namespace fs = std::filesystem;
 // line's flag; here, as predict's argument (an outside check's Python user
 // was told "--garment-size names another").
 std::string in_python_words(std::string text) {
-  for (const auto& [flag, argument] : {std::pair<std::string, std::string>{"--garment-size", "garment_size="}}) {
-    for (std::size_t at = text.find(flag); at != std::string::npos; at = text.find(flag, at + argument.size()))
-      text.replace(at, flag.size(), argument);
-  }
+  const std::string flag = "--garment-size", argument = "garment_size=";
+  for (std::size_t at = text.find(flag); at != std::string::npos; at = text.find(flag, at + argument.size()))
+    text.replace(at, flag.size(), argument);
   return text;
 }
 
@@ -352,19 +351,12 @@ void register_model(py::module_& m) {
             p.pose(b, posed, false, prepared);
             const BodyMove back = prepared.moved_by.front();
             // A model of several sizes: against the garment the scene dresses this body in, fed that grade.
-            // The grade the rule chose (or the one asked for), and the scene's: said when they differ, as drape
-            // optimize says it (an outside check's Python user was told "size large" of a drape optimised in regular).
-            const float chosen = b.garment_grade.empty() ? 0.0f : b.garment_grade(0, 0, 0);
-            const Simulation& simulation =
-                GradedScene(registry(), *scene.simulations).for_model(p.model(), b, !garment_size.is_none(), "optimize");
-            if (!b.garment_grade.empty() && std::abs(b.garment_grade(0, 0, 0) - chosen) > 1e-3f) {
-              char note[200];
-              std::snprintf(note, sizeof note,
-                            "the scene dresses this body in grade %.3f (its garment), so the model predicts and is "
-                            "optimised in that garment instead",
-                            static_cast<double>(b.garment_grade(0, 0, 0)));
-              warn_python(note);
-            }
+            // Another garment than the rule chose, said as drape optimize says it (an outside check's Python
+            // user was told "size large" of a drape optimised in regular).
+            std::string regraded;
+            const Simulation& simulation = GradedScene(registry(), *scene.simulations)
+                                               .for_model(p.model(), b, !garment_size.is_none(), "optimize", &regraded);
+            if (!regraded.empty()) warn_python(regraded);
             PhysicsOptimizationOptions o;
             o.iterations = iterations;
             o.learning_rate = learning_rate;

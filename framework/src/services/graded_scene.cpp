@@ -38,7 +38,7 @@ double GradedScene::grade_for(const Eigen::MatrixX3d& body, const std::string& w
 }
 
 const Simulation& GradedScene::for_model(const Model& model, SampleBatch& batch, bool grade_given,
-                                         const std::string& what) const {
+                                         const std::string& what, std::string* regraded) const {
   if (!model.needs_input("garment_grade")) return simulations_.design();
   // The size is chosen on the body at rest, as a posed scene chooses it.
   const Tensor& rest = batch.unposed_body.empty() ? batch.body : batch.unposed_body;
@@ -52,6 +52,14 @@ const Simulation& GradedScene::for_model(const Model& model, SampleBatch& batch,
                   "size to the scene",
                   what.c_str(), static_cast<double>(batch.garment_grade(0, 0, 0)), grade);
     throw ConfigError(text);
+  }
+  if (regraded && !batch.garment_grade.empty() && std::abs(batch.garment_grade(0, 0, 0) - grade) > 1e-3) {
+    char text[200];
+    std::snprintf(text, sizeof text,
+                  "the scene dresses this body in grade %.3f (its garment), so the model predicts and is optimised in "
+                  "that garment instead",
+                  grade);
+    *regraded = text;
   }
   batch.garment_grade = Tensor(batch.size(), 1, 1, static_cast<float>(grade));
   return *simulation;

@@ -34,7 +34,11 @@ class GradedScene {
   // `grade_given` (the user's --garment-size/--garment-grade, a dataset
   // sample's own) and it differs from the scene's, ConfigError "<what>: ...".
   // Other models: the scene's design simulation, the batch untouched.
-  const Simulation& for_model(const Model& model, SampleBatch& batch, bool grade_given, const std::string& what) const;
+  // *regraded (when given): a note, when the batch held a grade the rule
+  // chose and the scene dresses the body in another ("" otherwise), which
+  // drape optimize prints and Python warns.
+  const Simulation& for_model(const Model& model, SampleBatch& batch, bool grade_given, const std::string& what,
+                              std::string* regraded = nullptr) const;
 
  private:
   const SceneSimulations& simulations_;
