@@ -133,13 +133,18 @@ TEST_CASE("OBJ details: negative indices, v//vn corners, comments, CRLF, unused 
   CHECK(m.vertices(3, 2) == 5.0);
 }
 
+// An ASCII PLY header: float x y z (and s t with `uv`) per vertex, a list of int corners per face.
+static std::string ascii_ply_header(int vertices, int faces, bool uv = false) {
+  return "ply\nformat ascii 1.0\nelement vertex " + std::to_string(vertices) +
+         "\nproperty float x\nproperty float y\nproperty float z\n" +
+         (uv ? "property float s\nproperty float t\n" : "") + "element face " + std::to_string(faces) +
+         "\nproperty list uchar int vertex_indices\nend_header\n";
+}
+
 TEST_CASE("a triangle soup read through assimp is merged back in first-occurrence order", "[io]") {
   TempDir dir;
   // Two triangles sharing an edge, written with one vertex per corner.
-  drape::test::write_text(dir / "soup.ply",
-                          "ply\nformat ascii 1.0\nelement vertex 6\nproperty float x\nproperty float y\n"
-                          "property float z\nelement face 2\nproperty list uchar int vertex_indices\nend_header\n"
-                          "0 0 0\n1 0 0\n1 1 0\n0 0 0\n1 1 0\n0 1 0\n3 0 1 2\n3 3 4 5\n");
+  drape::test::write_text(dir / "soup.ply", ascii_ply_header(6, 2) + "0 0 0\n1 0 0\n1 1 0\n0 0 0\n1 1 0\n0 1 0\n3 0 1 2\n3 3 4 5\n");
   const Mesh m = read_mesh(dir / "soup.ply");
   REQUIRE(m.num_vertices() == 4);
   CHECK(m.faces.row(0) == Eigen::RowVector3i(0, 1, 2));
@@ -153,18 +158,13 @@ TEST_CASE("a PLY vertex at the same place as another is a vertex of its own unle
   // renumbered from it on, where its OBJ is refused by the mesh garment.
   TempDir dir;
   // Two triangles sharing an edge, and vertex 4 where vertex 1 is (a third triangle uses it).
-  drape::test::write_text(dir / "twin.ply",
-                          "ply\nformat ascii 1.0\nelement vertex 5\nproperty float x\nproperty float y\n"
-                          "property float z\nelement face 3\nproperty list uchar int vertex_indices\nend_header\n"
-                          "0 0 0\n1 0 0\n1 1 0\n0 1 0\n1 0 0\n3 0 1 2\n3 0 2 3\n3 4 2 0\n");
+  drape::test::write_text(dir / "twin.ply", ascii_ply_header(5, 3) + "0 0 0\n1 0 0\n1 1 0\n0 1 0\n1 0 0\n3 0 1 2\n3 0 2 3\n3 4 2 0\n");
   const Mesh twin = read_mesh(dir / "twin.ply");
   REQUIRE(twin.num_vertices() == 5);
   CHECK(twin.faces.row(2) == Eigen::RowVector3i(4, 2, 0));
   // With texture coordinates: the copy with another UV is a seam copy, merged;
   // one with the same UV a vertex of its own.
-  const std::string header =
-      "ply\nformat ascii 1.0\nelement vertex 5\nproperty float x\nproperty float y\nproperty float z\n"
-      "property float s\nproperty float t\nelement face 3\nproperty list uchar int vertex_indices\nend_header\n";
+  const std::string header = ascii_ply_header(5, 3, true);
   const std::string faces = "3 0 1 2\n3 0 2 3\n3 4 2 0\n";
   drape::test::write_text(dir / "seam.ply", header + "0 0 0 0 0\n1 0 0 1 0\n1 1 0 1 1\n0 1 0 0 1\n1 0 0 0.5 0\n" + faces);
   const Mesh seam = read_mesh(dir / "seam.ply");
