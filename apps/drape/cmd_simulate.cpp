@@ -142,8 +142,9 @@ void print_result(const SimulationResult& r) {
     std::printf("barrier contact: start body shrunk by %.1f cm to separate it from the garment, %d morph steps cut short\n",
                 100.0 * r.start_shrink, r.morph_substeps);
   std::printf("  %-12s %14s\n", "energy", "J");
-  for (const auto& t : r.energies) std::printf("  %-12s %14.6g\n", t.name.c_str(), t.value);
-  std::printf("  %-12s %14.6g\n", "total", r.total_energy);
+  // (+ 0.0: an energy of -0, gravity with g = 0, printed as 0)
+  for (const auto& t : r.energies) std::printf("  %-12s %14.6g\n", t.name.c_str(), t.value + 0.0);
+  std::printf("  %-12s %14.6g\n", "total", r.total_energy + 0.0);
   std::printf("residual |grad E|/|weight| = %.2e (stationarity %.2e), penetration p = %.3f%% of garment vertices, %s, time %.2f s\n",
               r.residual, r.stationarity,
               100.0 * r.penetration, crossings_summary(r).c_str(), r.seconds);

@@ -2,6 +2,8 @@
 #include <drape/error_context.hpp>
 #include <drape/errors.hpp>
 
+#include <new>
+
 namespace drape {
 namespace {
 
@@ -30,6 +32,12 @@ void rethrow_with_context(const std::string& name) {
   } catch (const ConfigError& e) {
     throw ConfigError(with_context(name, e.what()));
   } catch (const Error& e) {
+    throw Error(with_context(name, e.what()));
+  } catch (const std::bad_alloc&) {
+    throw;  // out of memory: said as such by whoever catches it
+  } catch (const std::exception& e) {
+    // A plugin's std::out_of_range from .at() or an Eigen or standard
+    // library failure: an Error, so that the message says whose it was.
     throw Error(with_context(name, e.what()));
   }
 }

@@ -114,12 +114,12 @@ void Registry::load_file(const fs::path& file) {
     lib->handle.load(canonical.string(), boost::dll::load_mode::rtld_now | boost::dll::load_mode::rtld_local);
   } catch (const std::exception& e) {
     refused_.push_back(canonical.string() + ": cannot be loaded (" + e.what() + ")");
-    warn("plugin " + refused_.back());
+    warn("refused plugin " + refused_.back());
     return;
   }
   if (!lib->handle.has("drape_plugin_abi_version") || !lib->handle.has("drape_plugin_factory")) {
     refused_.push_back(canonical.string() + ": not a drape plugin (missing drape_plugin_abi_version/factory)");
-    warn("plugin " + refused_.back());
+    warn("refused plugin " + refused_.back());
     return;
   }
   // Checked before calling anything else: the factory's return type is only
@@ -132,7 +132,17 @@ void Registry::load_file(const fs::path& file) {
     return;
   }
   auto factory = lib->handle.get_alias<PluginFactory>("drape_plugin_factory");
-  PluginList list = factory();
+  PluginList list;
+  // A library whose list fails to build is refused like one that cannot be
+  // loaded: one bad file on the path must not stop a command that does not
+  // use it, nor `drape plugins`, the command that finds it.
+  try {
+    list = factory();
+  } catch (const std::exception& e) {
+    refused_.push_back(canonical.string() + ": its plugin list failed to build (" + e.what() + ")");
+    warn("refused plugin " + refused_.back());
+    return;
+  }
   for (auto& d : list) {
     d.file = canonical.string();
     validate(d);
@@ -181,8 +191,13 @@ const PluginDescriptor& Registry::get(const std::string& name) const {
   if (const auto* d = find(name)) return *d;
   std::string msg = "unknown plugin type '" + name + "'" + did_you_mean(name, names());
   if (plugins_.empty()) msg += " (no plugins are loaded: check --plugin-path or DRAPE_PLUGIN_PATH)";
-  for (const auto& r : refused_) msg += "\n  note: refused " + r;
-  throw ConfigError(msg);
+  throw ConfigError(msg + refused_notes());
+}
+
+std::string Registry::refused_notes() const {
+  std::string notes;
+  for (const auto& r : refused_) notes += "\n  note: refused " + r;
+  return notes;
 }
 
 std::vector<const PluginDescriptor*> Registry::all() const {

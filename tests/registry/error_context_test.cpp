@@ -30,6 +30,10 @@ class Grumpy final : public Energy {
     throw UsageError("grumpy: already named");
   }
   void add_hessian(const Eigen::MatrixX3d&, Triplets&, bool) const override { throw std::bad_alloc(); }
+  double max_step(const Eigen::MatrixX3d&, const Eigen::MatrixX3d&, const Eigen::MatrixX3d*,
+                  const Eigen::MatrixX3d*) const override {
+    return std::vector<double>().at(3);  // a standard library's error, not drape's
+  }
 };
 
 class GrumpyGarment final : public GarmentSource {
@@ -82,7 +86,11 @@ TEST_CASE("a plugin's errors and warnings name the plugin once", "[registry]") {
   CHECK_THROWS_AS(energy->add_gradient(x, g), UsageError);  // the kind is kept
   CHECK(message_of([&] { energy->add_gradient(x, g); }) == "grumpy: already named");
   Triplets h;
-  CHECK_THROWS_AS(energy->add_hessian(x, h, true), std::bad_alloc);  // not a drape error: passed on as it is
+  CHECK_THROWS_AS(energy->add_hessian(x, h, true), std::bad_alloc);  // out of memory: passed on as it is
+  // Any other exception becomes a drape Error that says whose it was.
+  CHECK_THROWS_AS(energy->max_step(x, x, nullptr, nullptr), Error);
+  CHECK_THAT(message_of([&] { energy->max_step(x, x, nullptr, nullptr); }),
+             Catch::StartsWith("grumpy: ") && Catch::Contains("vector"));
 
   auto garment = registry.create_garment("sulky", Params());
   CHECK(message_of([&] { garment->build(); }) == "sulky: no pattern");

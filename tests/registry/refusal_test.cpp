@@ -70,3 +70,20 @@ TEST_CASE("drape plugins reports a refused library and fails on duplicates", "[r
   CHECK(test::run(drape + " --plugin-path " + (kFixtures / "duplicate").string(), out) == 2);
   CHECK_THAT(out, Catch::Contains("libdrape_plugin_twin_a.so") && Catch::Contains("libdrape_plugin_twin_b.so"));
 }
+
+TEST_CASE("a library whose factory throws is refused with its path and the reason", "[registry]") {
+  const fs::path dir = kFixtures / "failing_factory";
+  const fs::path file = fs::canonical(dir / "libdrape_plugin_failing_factory.so");
+  Registry registry;
+  // The other libraries on the path still load: one bad file does not stop a command that does not use it.
+  REQUIRE_NOTHROW(registry.load_path({dir, kFixtures / "duplicate" / "libdrape_plugin_twin_a.so"}));
+  CHECK(registry.names() == std::vector<std::string>{"twin"});
+  REQUIRE(registry.refused().size() == 1);
+  CHECK_THAT(registry.refused().front(), Catch::Contains(file.string()) && Catch::Contains("the parameter table has no row 7"));
+  CHECK_THROWS_WITH(registry.get("failing"), Catch::Contains("note: refused " + file.string()));
+
+  std::string out;
+  const std::string drape = "env -u DRAPE_PLUGIN_PATH " + test::drape_program().string() + " plugins --brief --plugin-path ";
+  REQUIRE(test::run(drape + dir.string(), out) == 0);  // the command that finds the bad file still runs
+  CHECK_THAT(out, Catch::Contains("refused " + file.string()) && Catch::Contains("no row 7") && Catch::Contains("energy gravity"));
+}

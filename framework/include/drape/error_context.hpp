@@ -14,7 +14,8 @@ std::string with_context(const std::string& name, const std::string& message);
 
 // Inside a catch block: rethrows the exception being handled with
 // with_context(name, what()) as its message, keeping its type (UsageError,
-// ConfigError or Error); anything else is rethrown unchanged.
+// ConfigError or Error); any other std::exception but std::bad_alloc becomes
+// an Error so named; anything else is rethrown unchanged.
 [[noreturn]] void rethrow_with_context(const std::string& name);
 
 // Inside a catch block: a ConfigError (or UsageError) that names no file yet

@@ -39,6 +39,9 @@ class Registry {
 
   // Libraries that were found but not loaded, with the reason.
   const std::vector<std::string>& refused() const { return refused_; }
+  // "\n  note: refused <file>: <reason>" for each: added to every "unknown
+  // plugin" error, since the plugin asked for may be one of them.
+  std::string refused_notes() const;
 
   // A node for `name`; energies come wrapped as EnergyNode.
   std::unique_ptr<Node> create_node(const std::string& name, const Params& params) const;

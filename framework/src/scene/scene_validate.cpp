@@ -124,7 +124,8 @@ const PluginDescriptor& plugin_of_kind(const Registry& registry, const std::stri
   if (!d || d->kind != kind) {
     const auto known = names_of_kind(registry, kind);
     throw ConfigError(where, "unknown " + what + " '" + name + "'" + did_you_mean(name, known) + "; known " + what +
-                                 "s: " + (known.empty() ? "none (no " + kind + " plugin was loaded)" : joined(known)));
+                                 "s: " + (known.empty() ? "none (no " + kind + " plugin was loaded)" : joined(known)) +
+                                 registry.refused_notes());
   }
   return *d;
 }

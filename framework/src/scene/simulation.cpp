@@ -16,6 +16,7 @@
 #include "barrier_morph.hpp"
 #include "cloth_fit.hpp"
 #include "garment_region.hpp"
+#include "gradient_consistency.hpp"
 #include "body_overlap.hpp"
 #include "scene_materials.hpp"
 #include "separated_start.hpp"
@@ -154,6 +155,9 @@ void measure_drape(const ClothSolver& solver, std::vector<NamedEnergy>& energies
     result.unsettled =
         scene_detail::why_unsettled(result, x, settle_tolerance, result.steps - morph_steps, at_rest_limit, ease, target_body,
                                     sized);
+    // Steps that found no decrease: an energy whose gradient is not its
+    // value's derivative is one cause (a plugin's mistake), named.
+    if (result.line_search_failures > 0) result.unsettled += scene_detail::inconsistent_gradients(energies, x, gradient);
     // A solver setting far from its default, named (cloth_fit.hpp).
     for (const std::string& slow : scene_detail::slow_solver_settings(solver.settings(), [](int n) {
            return "max_newton_iterations " + std::to_string(n) + " (the default " +
