@@ -24,6 +24,7 @@
 #include <drape/training/model_params.hpp>
 #include <drape/training/data_parallel.hpp>
 #include <drape/io/dataset.hpp>
+#include <drape/services/dataset_poses.hpp>
 #include <drape/training/evaluation.hpp>
 #include <drape/training/model.hpp>
 #include <drape/training/physics_optimization.hpp>
@@ -357,7 +358,6 @@ int run(const std::vector<std::string>& args) {
   if (!parse(usage, args, opts, {}, vm)) return 0;
   if (!vm.count("data")) throw UsageError("--data FILE is required (its test bodies are the held-out bodies)");
   const std::string data = vm["data"].as<std::string>();
-  const std::string model_file = model_file_or_default(vm);
   const std::vector<std::pair<int, int>> budgets = simulator_budgets(vm);
   const std::vector<int> iterations = int_list(vm, "iterations"), spectral_k = int_list(vm, "spectral-k");
   Registry& registry = Registry::load_default(plugin_path(vm));
@@ -365,6 +365,7 @@ int run(const std::vector<std::string>& args) {
   std::vector<std::size_t> bodies = reader.indices(Split::Test);
   bodies.resize(std::min<std::size_t>(bodies.size(), static_cast<std::size_t>(std::max(1, vm["bodies"].as<int>()))));
   if (bodies.empty()) throw ConfigError(data + ": the test split is empty");
+  const std::string model_file = model_file_for_samples(vm, registry, reader, bodies);
   const Scene scene = parse_scene(reader.layout().scene);
   const std::vector<TestBody> test = test_bodies(reader, data, bodies);
   const bool posed = !reader.layout().pose_angles.empty();
@@ -375,6 +376,7 @@ int run(const std::vector<std::string>& args) {
   {
     Model probe = Model::load(registry, model_file);  // (graph() is not const)
     check_dataset_template(reader, data, probe.assets());
+    check_model_takes_dataset_poses(probe, reader, bodies);
     if (!probe.assets().garment) throw ConfigError(model_file + ": the model binds no garment; the bench compares garments");
     topology.body_faces = probe.assets().body.faces;
     topology.garment_faces = probe.assets().garment->mesh.faces;

@@ -7,6 +7,7 @@
 
 #include <drape/assets/dataset_assets.hpp>
 #include <drape/io/dataset.hpp>
+#include <drape/services/dataset_poses.hpp>
 #include <drape/training/evaluation.hpp>
 #include <drape/training/model.hpp>
 #include <drape/registry.hpp>
@@ -34,6 +35,7 @@ Row measure(const Registry& registry, const std::string& file, const DatasetRead
             const std::vector<std::size_t>& indices, int repeats) {
   Model model = Model::load(registry, file);
   check_dataset_template(reader, file, model.assets());
+  check_model_takes_dataset_poses(model, reader, indices);
   Row row;
   row.name = std::filesystem::path(file).stem().string();
   const SplitEvaluation evaluation = evaluate_model(model, reader, indices);

@@ -17,6 +17,7 @@
 #include <drape/training/model.hpp>
 #include <drape/registry.hpp>
 #include <drape/io/svg_figure.hpp>
+#include <drape/services/dataset_poses.hpp>
 #include <drape/services/model_body.hpp>
 #include <drape/services/worn_garments.hpp>
 #include <drape/training/metrics.hpp>
@@ -165,26 +166,36 @@ int run(const std::vector<std::string>& args) {
     throw UsageError("--sample picks a sample of --data FILE; a body given by --bmi or --body has none");
   if (vm.count("simulated") && (!vm.count("data") || vm.count("garment")))
     throw UsageError("--simulated draws a dataset's own drape: give --data FILE --sample I, and no --garment");
+  if (vm.count("simulated") && colour == "error")
+    throw UsageError("--colour error compares a prediction with the dataset's simulated drape; --simulated draws that "
+                     "drape itself (its error is 0): leave one out");
   Registry& registry = Registry::load_default(plugin_path(vm));
   // A dataset's own drape is drawn on its own template (the scene it
   // records: the human rig's drapes on the human rig's body), no model needed.
   if (vm.count("simulated")) return render_simulated(registry, vm, colour);
-  const std::string model_file = model_file_or_default(vm);
+  // A dataset's posed body goes to the model of posed drapes, as a posed --body does.
+  std::optional<DatasetReader> data;
+  if (vm.count("data")) {
+    data.emplace(vm["data"].as<std::string>());
+    if (sample_index(vm) >= data->size())
+      throw UsageError("--sample " + std::to_string(sample_index(vm)) + ": the dataset has " + std::to_string(data->size()) + " samples");
+  }
+  const std::string model_file =
+      data ? model_file_for_samples(vm, registry, *data, {sample_index(vm)}) : model_file_or_default(vm);
   Model model = Model::load(registry, model_file);
   std::vector<std::string> notes;  // what model_body printed, shown on the page too
   SampleBatch batch;
   Mesh truth;
   std::string what;
-  std::optional<DatasetReader> data;
   // A body given standing elsewhere or turned is drawn as given: its drape
   // predicted where (and as) the training bodies stood and moved back, a
   // --garment file (written by predict where the body was) drawn as it is.
   BodyMove moved_by;
-  if (vm.count("data")) {
-    const DatasetReader& reader = data.emplace(vm["data"].as<std::string>());
+  if (data) {
+    const DatasetReader& reader = *data;
     check_dataset_template(reader, vm["data"].as<std::string>(), model.assets());
     const std::size_t i = sample_index(vm);
-    if (i >= reader.size()) throw UsageError("--sample " + std::to_string(i) + ": the dataset has " + std::to_string(reader.size()) + " samples");
+    check_model_takes_dataset_poses(model, reader, {i});
     batch = read_samples(reader, {i}, model.graph(), false);
     truth = model.assets().garment->mesh;
     truth.vertices = reader.garment_vertices({i}).mat(0).cast<double>();

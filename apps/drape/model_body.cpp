@@ -8,6 +8,7 @@
 #include <drape/io/shipped_files.hpp>
 #include <drape/scene/garment_size.hpp>
 #include <drape/io/mesh_io.hpp>
+#include <drape/services/dataset_poses.hpp>
 #include <drape/services/model_body.hpp>
 
 #include <algorithm>
@@ -139,6 +140,21 @@ std::string model_file_or_default(const po::variables_map& vm) {
     throw UsageError(std::string("no --model given and the shipped model (models/") + kDefaultModelFile + ") was not found: give "
                      "--model FILE from drape train, or set DRAPE_MODEL");
   return file;
+}
+
+std::string model_file_for_samples(const po::variables_map& vm, const Registry& registry, const DatasetReader& data,
+                                   const std::vector<std::size_t>& indices) {
+  const std::string file = model_file_or_default(vm);
+  const char* env = std::getenv("DRAPE_MODEL");
+  if (vm.count("model") || (env && *env) || data.layout().pose_angles.empty()) return file;
+  const Model model = Model::load(registry, file);
+  if (!drapes_a_pose_only(model)) return file;
+  const std::optional<std::string> posed = first_posed_sample(data, indices, model.body_model());
+  const fs::path posed_model = shipped_model_path(posed_model_name);
+  if (!posed || posed_model.empty()) return file;  // (the check after loading says why not)
+  std::cerr << "note: " << *posed << ": draped by the shipped model of posed drapes, " << posed_model.string()
+            << " (--model names another)\n";
+  return posed_model.string();
 }
 
 SampleBatch model_body(const Model& model, const po::variables_map& vm, BodyMove* moved_by,

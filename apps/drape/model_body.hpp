@@ -7,6 +7,8 @@
 #include "command.hpp"
 
 #include <drape/geometry/body_heading.hpp>
+#include <drape/io/dataset.hpp>
+#include <drape/registry.hpp>
 #include <drape/training/model.hpp>
 #include <drape/training/model_domain.hpp>
 
@@ -40,5 +42,12 @@ bool pose_given(const po::variables_map& vm);
 // model of posed drapes (posed_model_name) when it is shipped and DRAPE_MODEL
 // is not set, else default_model_path's; UsageError when none exists.
 std::string model_file_or_default(const po::variables_map& vm);
+
+// model_file_or_default for a dataset's samples: without --model (and with
+// DRAPE_MODEL unset), the shipped model of posed drapes when the default
+// model drapes the A-pose only and one of `indices` is posed (said on
+// stderr); the A-pose model drew a posed held-out set's bodies torn.
+std::string model_file_for_samples(const po::variables_map& vm, const Registry& registry, const DatasetReader& data,
+                                   const std::vector<std::size_t>& indices);
 
 }  // namespace drape::cli
