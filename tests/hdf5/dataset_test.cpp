@@ -571,6 +571,38 @@ TEST_CASE("dataset: a resumed run makes again a kept sample that no longer reads
   CHECK(warnings.empty());
 }
 
+TEST_CASE("dataset: a sample flagged done that was never written is made by the resume", "[hdf5][dataset]") {
+  // An outside check set one bit of a killed run's /done: the resume kept an
+  // all-zero drape with NaN statistics and sealed it into a complete file.
+  TempDir dir;
+  const fs::path out = dir / "data.h5";
+  const DatasetLayout layout = small_layout(5);
+  {
+    DatasetWriter writer(out, layout);
+    for (std::size_t i : {0, 1, 2}) writer.write(i, make_sample(layout, i));
+  }
+  {
+    auto file = h5::File::open(DatasetWriter::partial_path(out), h5::Access::ReadWrite);
+    const std::uint8_t done = 1;
+    file.write_rows("/done", 3, 1, &done);
+  }
+  std::vector<std::string> warnings;
+  const WarningHandler before = set_warning_handler([&](const std::string& text) { warnings.push_back(text); });
+  {
+    DatasetWriter writer(out, layout);
+    set_warning_handler(before);
+    CHECK(writer.missing() == std::vector<std::size_t>{3, 4});
+    REQUIRE(warnings.size() == 1);
+    CHECK_THAT(warnings[0], Catch::Contains("sample 3)"));
+    for (std::size_t i : writer.missing()) writer.write(i, make_sample(layout, i));
+    writer.finish();
+  }
+  set_warning_handler(before);
+  check_complete(out, 5);
+  const DatasetReader reader(out);
+  CHECK(reader.garment_vertices({3}).mat(0).isApprox(make_sample(layout, 3).garment_vertices));
+}
+
 TEST_CASE("dataset: merging says when one run's drapes go in twice, and which shards of a run are missing", "[hdf5][dataset]") {
   TempDir dir;
   const auto shard_layout = [](const std::string& run, int index, int count) {
@@ -598,7 +630,7 @@ TEST_CASE("dataset: merging says when one run's drapes go in twice, and which sh
   warnings.clear();
   CHECK(merge_datasets({dir / "s0.h5", dir / "s1.h5", dir / "again0.h5"}, dir / "again.h5") == 6);
   REQUIRE(warnings.size() == 1);
-  CHECK_THAT(warnings[0], Catch::Contains("again0.h5 is the same shard 0/2 of the same run as") &&
+  CHECK_THAT(warnings[0], Catch::Contains("again0.h5 (shard 0/2) holds drapes of the same run as") &&
                               Catch::Contains("the same drapes are merged twice"));
   // The whole run, and a shard of it in another scene (another size): nothing to say, and the output
   // says which shards it holds.
@@ -607,6 +639,28 @@ TEST_CASE("dataset: merging says when one run's drapes go in twice, and which sh
   CHECK(merge_datasets({dir / "s0.h5", dir / "s1.h5", dir / "small0.h5", dir / "small1.h5"}, dir / "sizes.h5", true, true) == 8);
   CHECK(warnings.empty());
   CHECK(DatasetReader(dir / "all.h5").layout().attributes.at("generator") == "drape generate: seed 0, count 4, shards 0,1 of 2");
+  // A merged file holds its shards too: merged again with one of them (an
+  // outside check: 18 rows of 12 drapes, and a warning that shards were
+  // missing), the repeat is said, not a lack.
+  CHECK(merge_datasets({dir / "all.h5", dir / "s1.h5"}, dir / "repeat.h5") == 6);
+  REQUIRE(warnings.size() == 1);
+  CHECK_THAT(warnings[0], Catch::Contains("s1.h5 (shard 1/2) holds drapes of the same run as") &&
+                              Catch::Contains("(shards 0,1 of 2;") && Catch::Contains("merged twice"));
+  warnings.clear();
+  // One shard slimmed (one file: a copy, not a merge) lacks nothing, and a
+  // copy's "shard 0 of 2" (what a slim copy of shard 0/2 says) is still shard
+  // 0 of the run: with shard 1 it is the whole run, with shard 0 a repeat.
+  CHECK(slim_dataset(dir / "s0.h5", dir / "s0.slim.h5") == 2);
+  CHECK(warnings.empty());
+  DatasetLayout copied = shard_layout("seed 0, count 4", 0, 2);
+  copied.attributes["generator"] = "drape generate: seed 0, count 4, shard 0 of 2";
+  write_shard(dir / "copy0.h5", copied, 0, make_sample);
+  CHECK(merge_datasets({dir / "copy0.h5", dir / "s1.h5"}, dir / "whole.h5") == 4);
+  CHECK(warnings.empty());
+  CHECK(merge_datasets({dir / "s0.h5", dir / "copy0.h5", dir / "s1.h5"}, dir / "copy.h5") == 6);
+  REQUIRE(warnings.size() == 1);
+  CHECK_THAT(warnings[0], Catch::Contains("copy0.h5 (shard 0/2) holds drapes of the same run as"));
+  warnings.clear();
   // Half a run: merged, and told; another run beside it: merged, both named.
   warnings.clear();
   CHECK(merge_datasets({dir / "s0.h5", dir / "other.h5"}, dir / "half.h5") == 4);

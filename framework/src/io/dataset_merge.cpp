@@ -12,6 +12,7 @@
 #include <map>
 #include <optional>
 #include <regex>
+#include <set>
 #include <sstream>
 
 namespace fs = std::filesystem;
@@ -173,25 +174,38 @@ std::vector<std::vector<char>> rows_to_drop(const std::vector<h5::File>& files, 
   return out;
 }
 
-// The run a shard is part of (its generator attribute without the shard,
-// with the scene and template it was made in: sizes of one garment are
-// made by one command each) and which shard of it; an empty run for a file
-// without one (made before the attribute, or by a merge).
+// The run a file's drapes come from (its generator attribute without the
+// shards, with the scene and template it was made in: sizes of one garment
+// are made by one command each) and which of its shards the file holds:
+// generate's "shard i/N", or a merge's "shards i,j of N" (a slim or
+// expanded copy's "shard i of N"); an empty run for a file without one
+// (made before the attribute, or a merge of several runs).
 struct RunShard {
-  std::string run;       // the generator without the shard, as said
-  std::string identity;  // run, scene and template: what makes two shards one run
-  long index = -1, count = -1;
+  std::string run;       // the generator without the shards, as said
+  std::string identity;  // run, scene and template: what makes two files one run
+  std::vector<long> indices;
+  long count = -1;
+  std::string shards() const {  // "shard 1/2", "shards 0,1 of 2"
+    if (indices.size() == 1) return "shard " + std::to_string(indices.front()) + "/" + std::to_string(count);
+    std::string list;
+    for (const long i : indices) list += (list.empty() ? "" : ",") + std::to_string(i);
+    return "shards " + list + " of " + std::to_string(count);
+  }
 };
 RunShard run_of(const DatasetLayout& layout) {
   RunShard out;
   const auto generator = layout.attributes.find("generator");
-  if (generator == layout.attributes.end()) return out;
-  static const std::regex shard(", shard (\\d+)/(\\d+)");
+  if (generator == layout.attributes.end() || generator->second.find(" + ") != std::string::npos) return out;
+  static const std::regex shard(", shards? ([0-9,]+)(?:/| of )(\\d+)");
   std::smatch m;
   if (!std::regex_search(generator->second, m, shard)) return out;
+  std::stringstream list(m[1].str());
+  for (std::string item; std::getline(list, item, ',');)
+    if (!item.empty()) out.indices.push_back(std::stol(item));
+  if (out.indices.empty()) return out;
   out.run = m.prefix().str() + m.suffix().str();
   out.identity = out.run + "\n" + layout.template_hash + "\n" + layout.scene;
-  out.index = std::stol(m[1]), out.count = std::stol(m[2]);
+  out.count = std::stol(m[2]);
   return out;
 }
 
@@ -213,15 +227,19 @@ void check_runs(const std::vector<fs::path>& shards, const std::vector<DatasetLa
   for (std::size_t k = 0; k < shards.size(); ++k) {
     const RunShard r = run_of(layouts[k]);
     if (r.run.empty()) continue;
-    const auto [at, fresh] = runs[r.identity].emplace(r.index, k);
-    if (!fresh && !fs::equivalent(shards[k], shards[at->second]))
-      warn(shards[k].string() + " is the same shard " + std::to_string(r.index) + "/" + std::to_string(r.count) +
-           " of the same run as " + shards[at->second].string() + " (" + r.run +
-           "): the same drapes are merged twice, each counting twice");
+    std::set<std::size_t> again;  // earlier inputs holding one of this file's shards
+    for (const long index : r.indices) {
+      const auto [at, fresh] = runs[r.identity].emplace(index, k);
+      if (!fresh && at->second != k && !fs::equivalent(shards[k], shards[at->second])) again.insert(at->second);
+    }
+    for (const std::size_t earlier : again)
+      warn(shards[k].string() + " (" + r.shards() + ") holds drapes of the same run as " + shards[earlier].string() +
+           " (" + run_of(layouts[earlier]).shards() + "; " + r.run + "): the same drapes are merged twice, each counting twice");
     named[r.identity] = r;
   }
+  // (One file alone is copied, slimmed or expanded, not merged: nothing is lacking.)
   for (const auto& [identity, given] : runs)
-    if (static_cast<long>(given.size()) < named[identity].count) {
+    if (shards.size() > 1 && static_cast<long>(given.size()) < named[identity].count) {
       std::string which;
       for (const auto& [index, input] : given) which += (which.empty() ? "" : ", ") + std::to_string(index);
       warn("merging shard" + std::string(given.size() > 1 ? "s " : " ") + which + " of the " +
@@ -331,7 +349,7 @@ std::size_t join_shards(const std::vector<fs::path>& shards, const fs::path& out
     std::vector<std::string> others;  // generators without a shard
     for (const DatasetLayout& layout : layouts) {
       const RunShard r = run_of(layout);
-      if (!r.run.empty()) held[r.run].push_back(r.index), counts[r.run] = r.count;
+      if (!r.run.empty()) held[r.run].insert(held[r.run].end(), r.indices.begin(), r.indices.end()), counts[r.run] = r.count;
       else if (const auto g = layout.attributes.find("generator"); g != layout.attributes.end()) others.push_back(g->second);
     }
     std::vector<std::string> texts;

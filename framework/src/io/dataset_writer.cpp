@@ -173,8 +173,12 @@ void DatasetWriter::check_kept_samples() {
   if (!file.exists(kSampleCrc)) return;  // begun by a writer without checksums: kept as it is
   const std::vector<std::int64_t> written = file.read<std::int64_t>(kSampleCrc);
   std::vector<std::size_t> changed;
+  // A checksum of 0 is one never written (sample_crc gives 1 for a CRC of
+  // 0, and the file was created with this dataset): a sample flagged done
+  // without it was never written, whatever its flag says (a flipped bit of
+  // /done kept an all-zero drape, sealed into a "complete" file).
   for (std::size_t i = 0; i < done_.size() && i < written.size(); ++i)
-    if (done_[i] && written[i] != 0 && sample_crc(layout_, stored_sample(file, layout_, i)) != written[i]) changed.push_back(i);
+    if (done_[i] && (written[i] == 0 || sample_crc(layout_, stored_sample(file, layout_, i)) != written[i])) changed.push_back(i);
   if (changed.empty()) return;
   const std::uint8_t not_done = 0;
   std::string which;
