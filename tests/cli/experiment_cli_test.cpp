@@ -5,6 +5,7 @@
 
 #include <drape/io/dataset.hpp>
 #include <drape/experiment/experiment.hpp>
+#include <drape/io/checkpoint.hpp>
 
 #include <fstream>
 #include <sstream>
@@ -140,4 +141,36 @@ TEST_CASE("experiment files: errors name the file, the line and the key", "[expe
              Catch::Contains("p is not among the columns"));
   CHECK_THAT(error_of("name: e\ndatasets: {shirts: {scene: tiny.yaml, count: 10}}\ncolumns: [ME\n"),
              Catch::Contains("malformed YAML"));
+}
+
+TEST_CASE("experiment: a row whose graph file was edited is trained again", "[experiment]") {
+  // An outside check edited a row's graph after its run: the next run stopped
+  // with "cannot resume: the interrupted run trained another graph ... (or
+  // --force)", an option drape experiment does not have.
+  test::TempDir dir;
+  std::ofstream(dir / "tiny.yaml") << test::tiny_simulation_scene();
+  std::string graph = read(test::source_dir() / "graphs/examples/mlp_baseline.yaml");
+  std::ofstream(dir / "mine.yaml") << graph;
+  std::ofstream(dir / "exp.yaml") << "name: edited\n"
+                                     "datasets:\n"
+                                     "  shirts: {scene: tiny.yaml, count: 10, bmi: \"15:40\", seed: 2}\n"
+                                     "training: {epochs: 1, batch: 4, lr: 1.0e-3, schedule: constant, patience: 5, seed: 0}\n"
+                                     "columns: [ME]\n"
+                                     "rows:\n"
+                                     "  - {name: mine, train: mine.yaml}\n";
+  const std::string command = "cd " + dir.path().string() + " && " + test::drape_program().string() + " experiment exp.yaml --threads 2";
+  std::string out;
+  REQUIRE(test::run(command, out) == 0);
+  // Unchanged: reused.
+  REQUIRE(test::run(command, out) == 0);
+  CHECK_THAT(out, Catch::Contains("trained already") && !Catch::Contains("$ drape train"));
+  // Edited: trained again, on the new graph.
+  const std::size_t at = graph.find("edge: 0.1");
+  REQUIRE(at != std::string::npos);
+  graph.replace(at, 9, "edge: 0.2");
+  std::ofstream(dir / "mine.yaml") << graph;
+  REQUIRE(test::run(command, out) == 0);
+  INFO(out);
+  CHECK_THAT(out, Catch::Contains("mine.yaml was edited since it was trained: trained again") && Catch::Contains("--force"));
+  CHECK_THAT(read_checkpoint(dir / "runs/edited/mine.h5").graph, Catch::Contains("weight: 0.2"));
 }

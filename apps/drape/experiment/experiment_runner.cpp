@@ -209,11 +209,16 @@ class Runner {
       trained_.insert(row.name);
       return model;
     }
+    // A model of another graph (edited since), finished or not, is no run to
+    // resume: drape train --resume refused it, and the row stopped there.
+    const bool edited = fs::exists(model) && read_checkpoint(model).graph != parse_graph_file(row.graph).text;
+    if (edited) std::printf("model %s: %s was edited since it was trained: trained again\n", model.c_str(), row.graph.c_str());
     std::vector<std::string> args{"train", row.graph.string(), "--data", data.string(), "--out", model.string(), "--epochs",
                                   std::to_string(epochs), "--batch", std::to_string(t.batch), "--lr", exact(t.lr), "--schedule",
                                   t.schedule, "--patience", std::to_string(t.patience), "--seed", std::to_string(t.seed),
                                   "--fraction", exact(row.fraction), "--threads", threads(), "--resume"};
     if (!t.monitor.empty()) args.insert(args.end(), {"--monitor", t.monitor});
+    if (edited) args.push_back("--force");
     if (announce(args)) {
       TrainOptions o;
       o.graph = row.graph;
@@ -229,6 +234,7 @@ class Runner {
       o.train_fraction = row.fraction;
       o.threads = o_.threads;
       o.resume = true;
+      o.force = edited;
       o.log = &std::cout;
       o.progress = &std::cerr;
       train_model(registry(), o);
