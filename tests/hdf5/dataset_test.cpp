@@ -710,3 +710,32 @@ TEST_CASE("dataset: a killed run's samples are kept by the resume whatever the o
   in.read(head.data(), 19);
   CHECK(head == "drape sealed hdf5 1");
 }
+
+TEST_CASE("dataset: a NaN in a sample's body or shape parameters is named with its file and sample", "[hdf5][dataset]") {
+  // An outside check put a NaN in a body vertex: training ran until "the
+  // training loss is nan (try a smaller --lr)"; one in /bodies/params was
+  // taken silently into the model's domain.
+  TempDir dir;
+  const fs::path out = dir / "data.h5";
+  const DatasetLayout layout = small_layout(4);
+  {
+    DatasetWriter writer(out, layout);
+    for (std::size_t i : {0, 1, 2}) writer.write(i, make_sample(layout, i));
+  }
+  const fs::path partial = DatasetWriter::partial_path(out);
+  {
+    auto file = h5::File::open(partial, h5::Access::ReadWrite);
+    std::vector<float> body(layout.body_vertices * 3), params(layout.body_params);
+    file.read_rows("/bodies/vertices", 1, 1, body.data());
+    body[10] = std::numeric_limits<float>::quiet_NaN();
+    file.write_rows("/bodies/vertices", 1, 1, body.data());
+    file.read_rows("/bodies/params", 2, 1, params.data());
+    params[0] = std::numeric_limits<float>::infinity();
+    file.write_rows("/bodies/params", 2, 1, params.data());
+  }
+  const DatasetReader reader(partial);
+  CHECK_NOTHROW(reader.body_vertices({0, 2}));
+  CHECK_NOTHROW(reader.body_params({0, 1}));
+  CHECK_THROWS_WITH(reader.body_vertices({0, 1}), Catch::Contains(partial.string() + ": sample 1 has a non-finite body coordinate"));
+  CHECK_THROWS_WITH(reader.body_params({2}), Catch::Contains("sample 2 has a non-finite body shape parameter"));
+}

@@ -339,10 +339,18 @@ void check_indices(const DatasetReader& reader, const std::vector<std::size_t>& 
 
 }  // namespace
 
+// A sample with a NaN or inf among `what` (an edit by hand: a simulation
+// never stores one), named with its file: a body's NaN was trained on until
+// "the training loss is nan (try a smaller --lr)", a shape parameter's was
+// taken silently into the model's domain.
+static void check_finite(const Tensor& rows, const std::vector<std::size_t>& indices, const DatasetReader::Impl& impl,
+                  const std::string& what);
+
 Tensor DatasetReader::body_params(const std::vector<std::size_t>& indices) const {
   check_indices(*this, indices, fs::path(impl_->name));
   Tensor out(static_cast<int>(indices.size()), 1, layout_.body_params);
   impl_->gather(kParams, indices, static_cast<std::size_t>(layout_.body_params), out.data());
+  check_finite(out, indices, *impl_, "body shape parameter");
   return out;
 }
 
@@ -352,6 +360,7 @@ Tensor DatasetReader::body_vertices(const std::vector<std::size_t>& indices) con
   Tensor out(static_cast<int>(indices.size()), layout_.body_vertices, 3);
   if (layout_.body_vertices_stored) {
     impl_->gather(kBodyVertices, indices, row_size, out.data());
+    check_finite(out, indices, *impl_, "body coordinate");
     return out;
   }
   // Some file is slim: stored rows read as they are, the others rebuilt (once each).
@@ -368,6 +377,7 @@ Tensor DatasetReader::body_vertices(const std::vector<std::size_t>& indices) con
       std::copy(body.begin(), body.end(), out.data() + k * row_size);
     }
   }
+  check_finite(out, indices, *impl_, "body coordinate");
   return out;
 }
 
@@ -375,14 +385,18 @@ Tensor DatasetReader::garment_vertices(const std::vector<std::size_t>& indices) 
   check_indices(*this, indices, fs::path(impl_->name));
   Tensor out(static_cast<int>(indices.size()), layout_.garment_vertices, 3);
   impl_->gather(kGarmentVertices, indices, static_cast<std::size_t>(layout_.garment_vertices) * 3, out.data());
-  // A drape with a NaN (an edit by hand; a simulation never stores one) is
-  // named here, with its file, not as "metrics: the ground truth has a
-  // non-finite coordinate" further on.
-  for (std::size_t k = 0; k < indices.size(); ++k)
-    if (!out.mat(static_cast<int>(k)).allFinite())
-      throw ConfigError(impl_->files[impl_->part_of(indices[k])].string() + ": sample " + std::to_string(indices[k]) +
-                        " has a non-finite garment coordinate (NaN or inf): the file was edited or is damaged");
+  // (Named here, with its file, not as "metrics: the ground truth has a
+  // non-finite coordinate" further on.)
+  check_finite(out, indices, *impl_, "garment coordinate");
   return out;
+}
+
+void check_finite(const Tensor& rows, const std::vector<std::size_t>& indices, const DatasetReader::Impl& impl,
+                  const std::string& what) {
+  for (std::size_t k = 0; k < indices.size(); ++k)
+    if (!rows.mat(static_cast<int>(k)).allFinite())
+      throw ConfigError(impl.files[impl.part_of(indices[k])].string() + ": sample " + std::to_string(indices[k]) +
+                        " has a non-finite " + what + " (NaN or inf): the file was edited or is damaged");
 }
 
 DatasetReader::Posing DatasetReader::posing(const std::vector<std::size_t>& indices) const {
