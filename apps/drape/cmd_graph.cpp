@@ -4,6 +4,11 @@
 #include <drape/assets/assets.hpp>
 #include <drape/graph.hpp>
 #include <drape/io/shipped_files.hpp>
+#include <drape/bodies/body.hpp>
+#include <drape/params.hpp>
+#include <drape/training/model.hpp>
+
+#include <algorithm>
 
 #include <iomanip>
 #include <iostream>
@@ -44,6 +49,10 @@ int run(const std::vector<std::string>& args) {
   GraphOptions options;
   if (vm.count("dim")) options.dims = parse_dims(vm["dim"].as<std::vector<std::string>>());
   const GraphSpec spec = parse_graph_file(find_input_file(vm["file"].as<std::string>()));
+  // A model's graph (checked on a template's assets): the inputs drape
+  // feeds, as drape train checks them (an outside check's input `extra` was
+  // "ok" here and refused by train). --no-assets checks any graph's wiring.
+  if (!vm.count("no-assets")) check_graph_inputs(spec);
   // Sizes such as garment_vertices and the garment itself come from the
   // template's assets (cached after the first build); --dim overrides.
   std::shared_ptr<const Assets> assets;
@@ -55,15 +64,27 @@ int run(const std::vector<std::string>& args) {
     assets = build_assets(reg, as);
     options.assets = assets.get();
     for (const auto& [name, size] : assets->dims()) options.dims.emplace(name, size);
+    // body_params: the template's body model's shape parameters, which a
+    // dataset of it stores (train takes the size from the dataset).
+    if (!options.dims.count("body_params")) {
+      const PluginDescriptor& body = reg.get(as.body_model);
+      options.dims["body_params"] =
+          static_cast<int>(reg.create_body(as.body_model, Params(body.params, {}, "body '" + as.body_model + "'"))->shape_names().size());
+    }
   }
   const Graph graph(spec, reg, options);
 
   std::cout << spec.file << ": ok\n";
+  // What drape train refuses beyond the graph's wiring (check_trainable): said, since a graph may be meant
+  // for a forward pass alone.
+  const auto& nodes = spec.nodes;
+  if (std::none_of(nodes.begin(), nodes.end(), [](const NodeSpec& n) { return n.is_loss && n.weight != 0.0; }))
+    std::cout << "  note: no loss has a weight above 0, so drape train refuses this graph (nothing to train with)\n";
   for (const auto& name : graph.input_names()) std::cout << "  input  " << name << " " << graph.input_shape(name).str() << "\n";
   std::size_t total = 0;
   for (const auto& n : graph.describe()) {
     std::cout << "  " << (n.is_loss ? "loss   " : "node   ") << std::left << std::setw(16) << n.name << std::setw(16)
-              << n.type << n.kind;
+              << n.type << " " << n.kind;
     if (n.is_loss) std::cout << " (weight " << n.weight << ")";
     if (n.weight_count) std::cout << ", " << n.weight_count << " weights";
     std::cout << "\n";

@@ -79,6 +79,32 @@ TEST_CASE("drape graph check takes sizes and the garment from the template's ass
   // Without a template the symbolic sizes are unknown: a configuration error.
   CHECK(test::run_drape("graph check " + graph + " --no-assets", out) == 2);
   CHECK_THAT(out, Catch::Contains("unknown size 'body_vertices'"));
+
+  // It agrees with drape train (an outside check found three graphs "ok" here that train refused or took):
+  // an input drape does not feed is refused; body_params, which train sizes from its dataset, is sized
+  // from the template's body model; a graph with no loss to train with is said.
+  const std::string text = test::read_file(graph);
+  const auto with = [&](const std::string& from, const std::string& to) {
+    std::string changed = text;
+    const std::size_t at = changed.find(from);
+    REQUIRE(at != std::string::npos);
+    return changed.replace(at, from.size(), to);
+  };
+  const std::string check = "env DRAPE_CACHE_DIR=" + cache.path().string() + " " + test::drape_program().string() +
+                            " graph check --resolution coarse --k 16 ";
+  std::ofstream(cache / "extra.yaml") << with("inputs:\n", "inputs:\n  extra: [5, 3]\n");
+  CHECK(test::run(check + (cache / "extra.yaml").string(), out) == 2);
+  CHECK_THAT(out, Catch::Contains("graph input 'extra' is not one drape feeds"));
+  std::ofstream(cache / "params.yaml") << with("inputs:\n", "inputs:\n  body_params: [1, body_params]\n");
+  REQUIRE(test::run(check + (cache / "params.yaml").string(), out) == 0);
+  CHECK_THAT(out, Catch::Contains("input  body_params [1, 9]"));  // the mannequin's 9 shape parameters
+  std::string zero = with("edge: 0.1", "edge: 0");
+  zero.replace(zero.find("l2: 1.0"), 7, "l2: 0");
+  std::ofstream(cache / "zero.yaml") << zero;
+  REQUIRE(test::run(check + (cache / "zero.yaml").string(), out) == 0);
+  CHECK_THAT(out, Catch::Contains("note: no loss has a weight above 0, so drape train refuses this graph"));
+  REQUIRE(test::run(cmd, out) == 0);
+  CHECK_THAT(out, !Catch::Contains("note: no loss"));
 }
 
 TEST_CASE("a mistyped flag is refused with the command's closest flags", "[cli]") {
