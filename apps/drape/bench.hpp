@@ -37,4 +37,9 @@ BestAndMedian best_and_median(std::vector<double> times);
 // weights (--graph FILE) take exactly one of the two (UsageError otherwise).
 void require_model_or_graph(const po::variables_map& vm);
 
+// The int option `name` (a count: repeats, steps, a batch, iterations), at
+// least 1; UsageError otherwise (some benches took 0 and -1 as 1 without a
+// word, others refused them).
+int count_option(const po::variables_map& vm, const std::string& name);
+
 }  // namespace drape::cli

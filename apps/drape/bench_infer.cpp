@@ -3,6 +3,8 @@
 // graph's multiply-adds per sample (Node::flops_per_sample) and the rate.
 #include "bench.hpp"
 
+#include <drape/io/shipped_files.hpp>
+
 #include <drape/training/data_parallel.hpp>
 #include <drape/training/model.hpp>
 #include <drape/services/model_body.hpp>
@@ -49,8 +51,8 @@ int run(const std::vector<std::string>& args) {
   fresh_assets.garment_params["resolution"] = vm["resolution"].as<std::string>();
   fresh_assets.eigen_k = vm["k"].as<int>();
   Model model = vm.count("model")
-                    ? Model::load(registry, vm["model"].as<std::string>())
-                    : Model::untrained(registry, parse_graph_file(vm["graph"].as<std::string>()), fresh_assets);
+                    ? Model::load(registry, find_input_file(vm["model"].as<std::string>()))
+                    : Model::untrained(registry, parse_graph_file(find_input_file(vm["graph"].as<std::string>())), fresh_assets);
   Graph& graph = model.graph();
   const Assets& assets = model.assets();
   const std::string& output = model.output();

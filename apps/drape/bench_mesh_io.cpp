@@ -36,7 +36,7 @@ int run(const std::vector<std::string>& args) {
   po::variables_map vm;
   if (!parse("drape bench mesh-io FILE [--repeats N]", args, opts, positional, vm)) return 0;
   const fs::path file = vm["file"].as<std::string>();
-  const int repeats = std::max(1, vm["repeats"].as<int>());
+  const int repeats = count_option(vm, "repeats");
 
   Mesh mesh;
   const double read_ms = best_ms(repeats, [&] { mesh = read_mesh(file); });

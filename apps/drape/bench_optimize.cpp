@@ -7,6 +7,8 @@
 // Several runs from the same weights: the best and the median are shown.
 #include "bench.hpp"
 
+#include <drape/io/shipped_files.hpp>
+
 #include <drape/training/model.hpp>
 #include <drape/training/physics_optimization.hpp>
 #include <drape/registry.hpp>
@@ -34,11 +36,12 @@ int run(const std::vector<std::string>& args) {
       "drape bench optimize (--graph graphs/drape.yaml | --model model.h5) [--scene graphs/scenes/tshirt.yaml] [--iterations 100]";
   if (!parse(usage, args, opts, {}, vm)) return 0;
   require_model_or_graph(vm);
+  const int iterations = count_option(vm, "iterations"), repeats = count_option(vm, "repeats");
   Registry& registry = Registry::load_default(plugin_path(vm));
-  const Scene scene = load_scene(vm["scene"].as<std::string>());
+  const Scene scene = load_scene(find_input_file(vm["scene"].as<std::string>()));
   const Simulation simulation(registry, scene);
-  Model model = vm.count("model") ? Model::load(registry, vm["model"].as<std::string>())
-                                  : Model::untrained(registry, parse_graph_file(vm["graph"].as<std::string>()),
+  Model model = vm.count("model") ? Model::load(registry, find_input_file(vm["model"].as<std::string>()))
+                                  : Model::untrained(registry, parse_graph_file(find_input_file(vm["graph"].as<std::string>())),
                                                      assets_spec_for(scene, vm["k"].as<int>()));
   BodyRequest request;
   request.bmi = vm["bmi"].as<double>();
@@ -54,8 +57,7 @@ int run(const std::vector<std::string>& args) {
   PhysicsOptimizationOptions o;
   o.iterations = 1;
   optimize_drape(model, simulation, body, o);  // warm-up: allocations, caches
-  o.iterations = vm["iterations"].as<int>();
-  const int repeats = std::max(1, vm["repeats"].as<int>());
+  o.iterations = iterations;
   std::vector<double> seconds;
   PhysicsOptimizationResult r;
   for (int k = 0; k < repeats; ++k) {

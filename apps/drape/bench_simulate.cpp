@@ -5,6 +5,8 @@
 // built (its energy, the body's closest-point hierarchy for collision).
 #include "bench.hpp"
 
+#include <drape/io/shipped_files.hpp>
+
 #include <drape/bodies/posed_body.hpp>
 #include <drape/geometry/closest_point.hpp>
 #include <drape/registry.hpp>
@@ -120,21 +122,21 @@ int run(const std::vector<std::string>& args) {
              vm))
     return 0;
 #ifdef _OPENMP
-  omp_set_num_threads(std::max(1, vm["threads"].as<int>()));
+  omp_set_num_threads(count_option(vm, "threads"));
 #endif
-  const int repeats = std::max(1, vm["repeats"].as<int>());
+  const int repeats = count_option(vm, "repeats");
   Registry& registry = Registry::load_default(plugin_path(vm));
   std::ostringstream md;
   std::string report;  // everything printed, for --out
 
   // (1) Whole drapes.
   // A drape is deterministic: repeated runs differ only in how busy the machine was.
-  const int drape_repeats = std::max(1, vm["drape-repeats"].as<int>());
+  const int drape_repeats = count_option(vm, "drape-repeats");
   md << "## Whole drapes (BMI " << vm["bmi"].as<double>() << ", " << vm["threads"].as<int>() << " thread)\n\n"
      << "| scene | garment vertices | steps | Newton iterations | settled | p (%) | time (s), best of " << drape_repeats
      << " | median |\n|---|---|---|---|---|---|---|---|\n";
   Eigen::MatrixX3d body, draped;
-  std::vector<std::string> scenes{vm["scene"].as<std::string>()};
+  std::vector<std::string> scenes{find_input_file(vm["scene"].as<std::string>()).string()};
   if (!vm["coarse-scene"].as<std::string>().empty()) scenes.push_back(vm["coarse-scene"].as<std::string>());
   for (std::size_t k = 0; k < scenes.size(); ++k) {
     Scene scene = load_scene(scenes[k]);

@@ -7,6 +7,7 @@
 
 #include <drape/assets/dataset_assets.hpp>
 #include <drape/io/dataset.hpp>
+#include <drape/io/shipped_files.hpp>
 #include <drape/services/dataset_poses.hpp>
 #include <drape/training/evaluation.hpp>
 #include <drape/training/model.hpp>
@@ -33,8 +34,9 @@ double mean(const std::vector<double>& v) {
 
 Row measure(const Registry& registry, const std::string& file, const DatasetReader& reader,
             const std::vector<std::size_t>& indices, int repeats) {
-  Model model = Model::load(registry, file);
-  check_dataset_template(reader, file, model.assets());
+  Model model = Model::load(registry, find_input_file(file));  // models/... from anywhere
+  // (The dataset is named: "has 991 garment and 6904 body vertices per sample" is its count, not the model's.)
+  check_dataset_template(reader, reader.name(), model.assets());
   check_model_takes_dataset_poses(model, reader, indices);
   Row row;
   row.name = std::filesystem::path(file).stem().string();
@@ -70,7 +72,7 @@ int run(const std::vector<std::string>& args) {
 
   std::vector<Row> rows;
   for (const std::string& file : vm["model"].as<std::vector<std::string>>())
-    rows.push_back(measure(registry, file, reader, indices, std::max(1, vm["repeats"].as<int>())));
+    rows.push_back(measure(registry, file, reader, indices, count_option(vm, "repeats")));
   if (reader.layout().has_stat("seconds") && reader.layout().has_stat("penetration"))
     rows.push_back({"simulation (the ground truth)", 1000.0 * mean(reader.stat("seconds", indices)), 0.0,
                     100.0 * mean(reader.stat("penetration", indices))});

@@ -12,6 +12,8 @@
 // train split) comes first, unless --cold.
 #include "bench.hpp"
 
+#include <drape/io/shipped_files.hpp>
+
 #include <drape/assets/dataset_assets.hpp>
 #include <drape/training/data_parallel.hpp>
 #include <drape/io/dataset.hpp>
@@ -175,7 +177,7 @@ int run(const std::vector<std::string>& args) {
   if (!parse(usage, args, opts, {}, vm)) return 0;
   require_model_or_graph(vm);
   if (!vm.count("data")) throw UsageError("--data FILE is required");
-  const int batch_size = std::max(1, vm["batch"].as<int>()), steps = std::max(1, vm["steps"].as<int>());
+  const int batch_size = count_option(vm, "batch"), steps = count_option(vm, "steps");
   int threads = vm["threads"].as<int>();
   if (threads <= 0) threads = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
   const std::string data = vm["data"].as<std::string>();
@@ -186,13 +188,13 @@ int run(const std::vector<std::string>& args) {
   std::shared_ptr<const Assets> assets;
   std::unique_ptr<Model> model;
   if (vm.count("model")) {
-    model = std::make_unique<Model>(Model::load(registry, vm["model"].as<std::string>()));
+    model = std::make_unique<Model>(Model::load(registry, find_input_file(vm["model"].as<std::string>())));
     assets = model->shared_assets();
     check_dataset_template(reader, data, *assets);
     spec = model->graph().spec();
   } else {
     assets = assets_for_dataset(registry, reader, data, vm["k"].as<int>(), default_cache_dir());
-    spec = parse_graph_file(vm["graph"].as<std::string>());
+    spec = parse_graph_file(find_input_file(vm["graph"].as<std::string>()));
     check_graph_inputs(spec);
   }
   GraphOptions options;

@@ -19,6 +19,12 @@ BestAndMedian best_and_median(std::vector<double> times) {
   return {times.front(), times[times.size() / 2]};
 }
 
+int count_option(const po::variables_map& vm, const std::string& name) {
+  const int n = vm[name].as<int>();
+  if (n < 1) throw UsageError("--" + name + " " + std::to_string(n) + ": expected at least 1");
+  return n;
+}
+
 void require_model_or_graph(const po::variables_map& vm) {
   if (vm.count("model") == vm.count("graph")) throw UsageError("give exactly one of --model FILE and --graph FILE");
 }

@@ -41,6 +41,27 @@ TEST_CASE("drape bench geometry and mesh-io run on tiny inputs", "[cli][bench]")
                       Catch::Contains("order and count kept"));
   CHECK(out.find("CHANGED") == std::string::npos);
   CHECK(test::run_drape("bench mesh-io " + (dir / "absent.obj").string(), out) == 2);
+  // A count below 1 is refused by every bench (some ran 0 and -1 as 1 without a word).
+  for (const std::string& bad : {"mesh-io " + (dir / "quad.obj").string() + " --repeats 0", std::string("train --graph g.yaml --data d.h5 --steps -1"),
+                                 std::string("optimize --graph g.yaml --iterations 0"), std::string("simulate --drape-repeats 0")}) {
+    CHECK(test::run_drape("bench " + bad, out) == 2);
+    CHECK_THAT(out, Catch::Contains(": expected at least 1"));
+  }
+}
+
+TEST_CASE("the benches find shipped models, graphs and scenes by name from any folder", "[cli][bench]") {
+  // An outside check ran them outside the source tree: models/... and
+  // graphs/scenes/... (the defaults of bench optimize and simulate) were not
+  // found, where predict and render find them.
+  test::TempDir dir;
+  std::string out;
+  const std::string in_dir = "cd " + dir.path().string() + " && " + test::drape_program().string() + " bench ";
+  REQUIRE(test::run(in_dir + "infer --model models/tshirt-coarse-human.h5 --repeats 1", out) == 0);
+  CHECK_THAT(out, Catch::Contains("tshirt-coarse-human.h5") && Catch::Contains("ms per body"));
+  // A dataset of another body model than the model's: the dataset's counts, said of the dataset.
+  const fs::path human = test::source_dir() / "datasets/bodyspace2000-human/shard-00-of-40.h5";
+  CHECK(test::run(in_dir + "tradeoff --data " + human.string() + " --model models/tshirt-coarse.h5", out) == 2);
+  CHECK_THAT(out, Catch::Contains(human.string() + " has 991 garment and 6904 body vertices per sample"));
 }
 
 TEST_CASE("bench simulate reports whole drapes (best and median of repeated runs) and one iteration per effect",
