@@ -2,6 +2,8 @@
 // garment template and prints its sizes and what each part cost.
 #include "command.hpp"
 
+#include <drape/io/write_failure.hpp>
+
 #include <drape/energy.hpp>
 #include <drape/assets/assets.hpp>
 #include <drape/garment_dressing.hpp>
@@ -55,6 +57,7 @@ int run(const std::vector<std::string>& args) {
   const std::filesystem::path cache =
       vm.count("no-cache") ? std::filesystem::path() : vm.count("cache-dir") ? std::filesystem::path(vm["cache-dir"].as<std::string>())
                                                                            : default_cache_dir();
+  if (!cache.empty()) check_output_folder(cache, vm.count("cache-dir") ? "--cache-dir" : "the cache folder");
   AssetsTimings t;
   const auto a = build_assets(reg, spec, cache, &t);
 
@@ -83,7 +86,14 @@ int run(const std::vector<std::string>& args) {
             << g.uv.rows() << " uvs, " << a->garment->materials.size() << " materials, " << print_faces << " print faces\n";
   std::cout << "  hierarchy:";
   for (const auto& level : a->hierarchy.levels) std::cout << " " << level.mesh.num_vertices();
-  std::cout << " vertices\n  spectral: k = " << a->eigenvalues.size() << ", eigenvalues " << a->eigenvalues[0] << " .. "
+  std::cout << " vertices";
+  const auto& levels = a->hierarchy.levels;
+  for (std::size_t l = 1; l < levels.size(); ++l)
+    if (levels[l].mesh.num_vertices() == levels[l - 1].mesh.num_vertices()) {
+      std::cout << " (levels " << l << " on repeat level " << l - 1 << ": the mesh coarsens no further; --levels " << l << ")";
+      break;
+    }
+  std::cout << "\n  spectral: k = " << a->eigenvalues.size() << ", eigenvalues " << a->eigenvalues[0] << " .. "
             << a->eigenvalues[a->eigenvalues.size() - 1] << "\n";
   std::cout << "  time: garment+body " << t.garment << " s, correspondences " << t.correspondence << " s, hierarchy "
             << t.hierarchy << " s, eigenbasis " << t.eigenbasis << " s, cache load " << t.load << " s\n";

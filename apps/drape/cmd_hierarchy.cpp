@@ -5,6 +5,7 @@
 #include <drape/errors.hpp>
 #include <drape/geometry/hierarchy.hpp>
 #include <drape/io/mesh_io.hpp>
+#include <drape/io/write_failure.hpp>
 
 #include <Eigen/Geometry>
 
@@ -42,6 +43,8 @@ int run(const std::vector<std::string>& args) {
       "out", po::value<std::string>(), "folder to write level<l>.obj into");
   po::variables_map vm;
   if (!parse("drape hierarchy --mesh garment.obj [--levels 4] [--ratio 4] [--out folder]", args, opts, {}, vm)) return 0;
+  // The output folder checked before the work (a file there, or /proc, failed after it with a raw filesystem error).
+  if (vm.count("out")) check_output_folder(vm["out"].as<std::string>(), "--out");
   const Mesh mesh = read_mesh(vm["mesh"].as<std::string>());
   geometry::HierarchyOptions options;
   options.levels = vm["levels"].as<int>();
@@ -62,6 +65,13 @@ int run(const std::vector<std::string>& args) {
                 q.mean_edge, q.min, q.mean);
   }
   std::printf("built in %.3f s\n", seconds);
+  // Levels that repeat the one before (ratio 1.00 each, without a word before).
+  for (int l = 1; l < h.num_levels(); ++l)
+    if (h.levels[l].mesh.num_vertices() == h.levels[l - 1].mesh.num_vertices()) {
+      std::printf("note: levels %d to %d repeat level %d (%d vertices): the mesh coarsens no further; --levels %d\n", l,
+                  h.num_levels() - 1, l - 1, h.levels[l - 1].mesh.num_vertices(), l);
+      break;
+    }
   if (vm.count("out")) {
     const std::filesystem::path out = vm["out"].as<std::string>();
     std::filesystem::create_directories(out);

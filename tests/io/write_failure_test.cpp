@@ -71,3 +71,17 @@ TEST_CASE("a missing folder is a usage error naming the folder", "[io][write-fai
   CHECK_THROWS_AS(write_text_atomically(dir / "nope" / "x.txt", "a"), ConfigError);
   CHECK_THROWS_WITH(check_writable_output(dir.path(), "--out"), Catch::Contains("is a folder"));
 }
+
+TEST_CASE("an output folder that is a file or lies under one is refused before the work", "[io][write-failure]") {
+  // hierarchy --out and assets --cache-dir failed after the work with "filesystem error: cannot create directories".
+  test::TempDir dir;
+  std::ofstream(dir / "afile.txt") << "x";
+  CHECK_THROWS_WITH(check_output_folder(dir / "afile.txt", "--out"), Catch::Contains("--out " + (dir / "afile.txt").string() + ": is a file, not a folder"));
+  CHECK_THROWS_WITH(check_output_folder(dir / "afile.txt" / "sub", "--out"), Catch::Contains("is a file, not a folder"));
+  CHECK_NOTHROW(check_output_folder(dir.path(), "--out"));
+  CHECK_NOTHROW(check_output_folder(dir / "new" / "deeper", "--out"));  // made when the job writes
+  CHECK_FALSE(std::filesystem::exists(dir / "new"));                    // (not by the check)
+  // /proc has no blocks: not "no space left", which it said.
+  if (std::filesystem::is_directory("/proc/self"))
+    CHECK_THAT(write_failure_cause("/proc/x.html"), Catch::Contains("a virtual file system"));
+}

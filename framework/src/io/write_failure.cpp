@@ -34,6 +34,8 @@ std::string write_failure_cause(const fs::path& file) {
   struct statvfs info {};
   if (::statvfs(folder.c_str(), &info) == 0) {
     if (info.f_flag & ST_RDONLY) return "cannot write in '" + folder.string() + "' (read-only file system)";
+    // /proc, /sys: no blocks at all, not a full disk.
+    if (info.f_blocks == 0) return "cannot write files in '" + folder.string() + "' (a virtual file system, such as /proc)";
     if (static_cast<unsigned long long>(info.f_bavail) * info.f_frsize < kNearlyFull)
       return "no space left on '" + folder.string() + "'";
   }
@@ -46,6 +48,21 @@ void check_writable_output(const fs::path& file, const std::string& option) {
   if (fs::is_directory(file, ec)) throw ConfigError(option + " " + file.string() + ": is a folder; give a file name");
   const std::string cause = write_failure_cause(file);
   if (!cause.empty()) throw ConfigError(option + " " + file.string() + ": " + cause);
+}
+
+void check_output_folder(const fs::path& folder, const std::string& option) {
+  std::error_code ec;
+  if (fs::exists(folder, ec) && !fs::is_directory(folder, ec))
+    throw ConfigError(option + " " + folder.string() + ": is a file, not a folder");
+  // The nearest folder that exists: the output's files go there, or the folders made in it.
+  fs::path existing = folder.empty() ? fs::path(".") : folder;
+  while (!fs::exists(existing, ec) && existing.has_parent_path() && existing.parent_path() != existing)
+    existing = existing.parent_path();
+  if (!fs::exists(existing, ec)) existing = ".";
+  if (!fs::is_directory(existing, ec))
+    throw ConfigError(option + " " + folder.string() + ": '" + existing.string() + "' is a file, not a folder");
+  const std::string cause = write_failure_cause(existing / "probe");
+  if (!cause.empty()) throw ConfigError(option + " " + folder.string() + ": " + cause);
 }
 
 void refuse_output_among_inputs(const fs::path& out, const std::vector<fs::path>& inputs, const std::string& option) {

@@ -18,6 +18,12 @@ std::string write_failure_cause(const std::filesystem::path& file);
 // `file` cannot be written; `option` names where it was given (e.g. "--out").
 void check_writable_output(const std::filesystem::path& file, const std::string& option);
 
+// Before any work: throws ConfigError when the output folder `folder` (made
+// with its missing parents when the job writes) is a file, lies under one,
+// or cannot be written in (write_failure_cause of the nearest folder that
+// exists).
+void check_output_folder(const std::filesystem::path& folder, const std::string& option);
+
 // Before any work: throws ConfigError when the output `out` is one of the
 // files a job reads (the same file by any path: a symlink, a hard link,
 // ./x): its dataset, model or shards. A job writing over its own input loses
