@@ -45,16 +45,14 @@ double peak_memory_mib() {
 }
 
 // A batch of the dataset's samples, as training reads it.
+// What drape train reads for a graph (read_samples): the body, the target,
+// and the inputs the graph takes beyond them (body_params, a sized graph's
+// garment_grade or garment_size, a posed graph's pose inputs). It read the
+// first two alone, and no sized or posed model could be timed.
 struct BatchReader {
   const DatasetReader& reader;
-  bool params;  // the graph takes body_params
-  SampleBatch operator()(const std::vector<std::size_t>& indices) const {
-    SampleBatch batch;
-    batch.body = reader.body_vertices(indices);
-    batch.target = reader.garment_vertices(indices);
-    if (params) batch.body_params = reader.body_params(indices);
-    return batch;
-  }
+  const Graph& graph;
+  SampleBatch operator()(const std::vector<std::size_t>& indices) const { return read_samples(reader, indices, graph, true); }
 };
 
 // Every sample of the file, the training split first: a benchmark has no
@@ -169,7 +167,9 @@ int run(const std::vector<std::string>& args) {
       "steps", po::value<int>()->default_value(10), "timed steps (after one untimed)")(
       "pool", po::value<int>()->default_value(64), "samples of the train split the batches are drawn from (0: all)")(
       "cold", po::bool_switch(), "time the first epoch's steps (nothing cached yet) instead of the later ones'")(
-      "k", po::value<int>()->default_value(1000), "with --graph: eigenvectors in the assets");
+      "k", po::value<int>()->default_value(1000), "with --graph: eigenvectors in the assets")(
+      "encoder-body", po::value<std::string>(),
+      "with --graph: the body model whose vertices the encoder reads (as drape train --encoder-body; the human rig's graphs)");
   po::variables_map vm;
   const std::string usage =
       "drape bench train (--model model.h5 | --graph g.yaml) --data data.h5 [--batch 8] [--threads 1] [--steps 10] "
@@ -193,7 +193,8 @@ int run(const std::vector<std::string>& args) {
     check_dataset_template(reader, data, *assets);
     spec = model->graph().spec();
   } else {
-    assets = assets_for_dataset(registry, reader, data, vm["k"].as<int>(), default_cache_dir());
+    assets = assets_for_dataset(registry, reader, data, vm["k"].as<int>(), default_cache_dir(), nullptr,
+                                vm.count("encoder-body") ? vm["encoder-body"].as<std::string>() : std::string());
     spec = parse_graph_file(find_input_file(vm["graph"].as<std::string>()));
     check_graph_inputs(spec);
   }
@@ -207,12 +208,10 @@ int run(const std::vector<std::string>& args) {
     dp.sync_weights();
   }
   Adam adam(dp.graph().weights());
-  const auto inputs = dp.graph().input_names();
-  const bool params = std::find(inputs.begin(), inputs.end(), "body_params") != inputs.end();
 
   const std::vector<std::size_t> pool = sample_pool(reader, data, vm["pool"].as<int>(), batch_size);
   const OmpThreadsScope one(1);
-  const BatchReader read_batch{reader, params};
+  const BatchReader read_batch{reader, dp.graph()};
   // The first epoch, untimed: training sees every sample before it sees one again.
   if (!vm["cold"].as<bool>())
     for (std::size_t first = 0; first < pool.size(); first += batch_size) {

@@ -62,6 +62,15 @@ TEST_CASE("the benches find shipped models, graphs and scenes by name from any f
   const fs::path human = test::source_dir() / "datasets/bodyspace2000-human/shard-00-of-40.h5";
   CHECK(test::run(in_dir + "tradeoff --data " + human.string() + " --model models/tshirt-coarse.h5", out) == 2);
   CHECK_THAT(out, Catch::Contains(human.string() + " has 991 garment and 6904 body vertices per sample"));
+  // bench train times the shipped models of sizes and poses: their batches carry the grade and the pose
+  // (it read the body and the target alone: "the graph takes input 'garment_grade', which is not available here").
+  REQUIRE(test::run(in_dir + "train --model models/tshirt-coarse-human.h5 --data " + human.string() +
+                        " --batch 2 --steps 1 --pool 2", out) == 0);
+  CHECK_THAT(out, Catch::Contains("Training throughput") && Catch::Contains("samples/s per core"));
+  const fs::path posed = test::source_dir() / "datasets/posespace-human-heldout/heldout-30.h5";
+  REQUIRE(test::run(in_dir + "train --model models/tshirt-coarse-posed-human.h5 --data " + posed.string() +
+                        " --batch 2 --steps 1 --pool 2", out) == 0);
+  CHECK_THAT(out, Catch::Contains("Training throughput"));
 }
 
 TEST_CASE("bench simulate reports whole drapes (best and median of repeated runs) and one iteration per effect",
