@@ -164,6 +164,12 @@ int run(const std::vector<std::string>& args) {
     throw UsageError("--colour error compares with a simulated drape: give --data FILE --sample I");
   if (!vm.count("data") && !vm["sample"].defaulted())
     throw UsageError("--sample picks a sample of --data FILE; a body given by --bmi or --body has none");
+  // A dataset's sample is its own body and pose: a body option beside --data was ignored without a word.
+  if (vm.count("data"))
+    for (const char* option : {"height", "sex", "girth", "pose", "pose-file", "smpl-theta", "smpl", "garment-size", "garment-grade"})
+      if (vm.count(option) && !vm[option].defaulted())
+        throw UsageError(std::string("--") + option + " describes a body given by --bmi or --body; a sample of --data "
+                         "has its own body, pose and garment: leave --" + option + " out");
   if (vm.count("simulated") && (!vm.count("data") || vm.count("garment")))
     throw UsageError("--simulated draws a dataset's own drape: give --data FILE --sample I, and no --garment");
   if (vm.count("simulated") && colour == "error")
@@ -202,7 +208,9 @@ int run(const std::vector<std::string>& args) {
     what = "sample " + std::to_string(i) + " of " + std::filesystem::path(vm["data"].as<std::string>()).filename().string();
   } else {
     batch = model_body(model, vm, &moved_by, &notes);
-    what = vm.count("bmi") ? "BMI " + std::to_string(vm["bmi"].as<double>()).substr(0, 4) : vm["body"].as<std::string>();
+    char bmi[32];
+    if (vm.count("bmi")) std::snprintf(bmi, sizeof bmi, "BMI %g", vm["bmi"].as<double>());  // (18.75 was "18.7")
+    what = vm.count("bmi") ? std::string(bmi) : vm["body"].as<std::string>();
     // The page's title says which body: its height, sex and pose as asked.
     char more[64];
     if (vm.count("bmi") && vm.count("height")) std::snprintf(more, sizeof more, ", %.2f m", vm["height"].as<double>()), what += more;
@@ -210,6 +218,7 @@ int run(const std::vector<std::string>& args) {
     if (vm.count("pose")) what += ", posed " + vm["pose"].as<std::string>();
     if (vm.count("pose-file")) what += ", posed by " + vm["pose-file"].as<std::string>();
     if (vm.count("smpl-theta")) what += ", posed by SMPL theta " + vm["smpl-theta"].as<std::string>();
+    if (vm.count("garment-size")) what += ", size " + vm["garment-size"].as<std::string>();
   }
   Mesh body;
   body.faces = model.assets().body.faces;

@@ -166,7 +166,12 @@ SampleBatch model_body(const Model& model, const po::variables_map& vm, BodyMove
   // there was draped 3-12 cm off and through itself, its size misread.
   // The drape is moved back with the body (the composed move below).
   BodyMove near_origin;
-  if (input.vertices && input.vertices->allFinite() && input.vertices->cwiseAbs().maxCoeff() > kFloatExactReach) {
+  // (A body in other units, millimetres, is no far body: the units check refuses it, without this note first.)
+  const auto body_sized = [](const Eigen::MatrixX3d& v) {
+    return (v.colwise().maxCoeff() - v.colwise().minCoeff()).maxCoeff() <= 2 * HeightRange::max;
+  };
+  if (input.vertices && input.vertices->allFinite() && input.vertices->cwiseAbs().maxCoeff() > kFloatExactReach &&
+      body_sized(*input.vertices)) {
     // Whole kilometres: what is left is within 500 m on each axis (0.015 mm
     // in a float), and an axis the body stands well on keeps its place.
     near_origin.offset = (input.vertices->colwise().mean().array() / kFloatExactReach).round().matrix() * kFloatExactReach;

@@ -38,6 +38,13 @@ TEST_CASE("simulate, predict, optimize and render refuse a body in centimetres o
       CHECK(seconds < 30);  // the refusal comes before any simulation or optimisation
     }
   }
+  // In millimetres its coordinates pass 1 km: refused as millimetres, without the far body's note first.
+  Mesh mm = body;
+  mm.vertices *= 1000;
+  write_mesh(dir / "mm.obj", mm);
+  CHECK(test::run("cd " + test::source_dir().string() + " && " + env + " predict --model models/tshirt-coarse.h5 --out " + (dir / "g.obj").string() +
+                      " --body " + (dir / "mm.obj").string() + " 2>&1", out) == 2);
+  CHECK_THAT(out, Catch::Contains("likely in millimetres") && !Catch::Contains("from the origin"));
 }
 
 TEST_CASE("a body mesh of another rig than the model's is refused naming the shipped models that take it",

@@ -51,7 +51,7 @@ TEST_CASE("render writes an HTML viewer and an SVG of a predicted drape, with th
   REQUIRE(test::run(drape + "--bmi 30 --height 1.6 --sex 0 --pose shoulder_abduction=60 --out " + (dir / "p.html").string(),
                     out) == 0);
   CHECK_THAT(read(dir / "p.html"), Catch::Contains("<title>drape render: prediction of tshirt-coarse-posed-human.h5 for "
-                                                   "BMI 30.0, 1.60 m, sex 0, posed shoulder_abduction=60</title>"));
+                                                   "BMI 30, 1.60 m, sex 0, posed shoulder_abduction=60</title>"));
   CHECK_THAT(out, Catch::Contains("p = "));
 
   CHECK(test::run(drape + "--bmi 30 --colour heat --out " + (dir / "x.html").string(), out) == 2);
@@ -191,4 +191,7 @@ TEST_CASE("a posed dataset's body is drawn with the model of posed drapes and re
   const std::string expanded = (dir / "human.h5").string();
   REQUIRE(test::run(drape + "dataset expand --out " + expanded + " " + a_pose_data.string(), out) == 0);
   CHECK(test::run(drape + "render --data " + expanded + a_pose + " --sample 1 --out " + (dir / "h.svg").string(), out) == 0);
+  // A body option beside --data was ignored without a word.
+  CHECK(test::run(drape + "render --data " + expanded + " --sample 1 --height 1.2 --out " + (dir / "x.svg").string(), out) == 2);
+  CHECK_THAT(out, Catch::Contains("--height describes a body given by --bmi or --body"));
 }
