@@ -130,3 +130,33 @@ TEST_CASE("a scatter chart places labelled points on a log time axis with decade
   CHECK_THROWS_WITH(chart.svg(), Catch::Contains("log axis"));
   CHECK_THROWS_AS(ScatterChart{}.svg(), Error);
 }
+
+TEST_CASE("a long panel caption is wrapped inside the picture and the colour bar's stops are the faces' eighths", "[svg]") {
+  // An outside check: render's caption ran past the 528 px picture's right edge, and the
+  // bar's stops were rounded to 0.1, 0.2, 0.4 while the faces take the eighths' colours.
+  SvgFigure figure("title");
+  const std::string caption = "ME 1.39 cm, max 5.62 cm, p = 0.00%, 0 edges crossing the body, 0 edge-face pairs of the "
+                              "garment through itself";
+  figure.add_panel({caption, {cube()}});
+  figure.set_colour_scale({"distance (cm)", 0.0, 5.0});
+  const std::string svg = figure.svg();
+  std::smatch m;
+  REQUIRE(std::regex_search(svg, m, std::regex("width=\"([0-9.]+)\"")));
+  const double width = std::stod(m[1]);
+  // Each caption line at 12 px (about 6.6 px a character) ends inside the picture, and together they say it all.
+  std::string joined;
+  const std::regex line("<text x=\"([0-9.]+)\" y=\"[0-9.]+\" font-size=\"12\">([^<]*)</text>");
+  int lines = 0;
+  for (auto it = std::sregex_iterator(svg.begin(), svg.end(), line); it != std::sregex_iterator(); ++it) {
+    ++lines;
+    CHECK(std::stod((*it)[1]) + 6.6 * static_cast<double>((*it)[2].length()) <= width);
+    joined += (joined.empty() ? "" : " ") + (*it)[2].str();
+  }
+  CHECK(lines >= 2);
+  CHECK(joined == caption);
+  for (int i = 0; i <= 8; ++i) {
+    char stop[64];
+    std::snprintf(stop, sizeof stop, "<stop offset=\"%.3f\" stop-color=\"%s\"/>", i / 8.0, colour_map(i / 8.0).c_str());
+    CHECK_THAT(svg, Catch::Contains(stop));
+  }
+}

@@ -33,6 +33,25 @@ std::string hex_of(const std::array<double, 3>& c) {
   return out;
 }
 
+// About how wide a character of the sans-serif font is, per pixel of its size.
+constexpr double kCharWidth = 0.55;
+constexpr double kCaptionLine = 14;  // a panel caption's line (12 px text)
+
+// `text` in lines of at most `chars` characters, broken at spaces (a word
+// longer than a line stands alone): a panel's caption (the drape's figures,
+// its crossings) ran past the picture's right edge.
+std::vector<std::string> wrapped(const std::string& text, std::size_t chars) {
+  std::vector<std::string> lines;
+  std::istringstream words(text);
+  std::string line;
+  for (std::string word; words >> word;) {
+    if (!line.empty() && line.size() + 1 + word.size() > chars) lines.push_back(line), line.clear();
+    line += (line.empty() ? "" : " ") + word;
+  }
+  if (!line.empty() || lines.empty()) lines.push_back(line);
+  return lines;
+}
+
 struct Triangle {
   double depth;
   std::array<Eigen::Vector2d, 3> corners;  // in panel pixels
@@ -83,9 +102,15 @@ std::string SvgFigure::svg() const {
       }
   if (!(extent > 0)) throw Error("svg: nothing to draw");
   const double scale = 1.0 / extent;
-  const double panel_height = tallest * scale + 30;  // the drawing, then the panel's title
-  // Wide enough for the title too (about 8 px a character at 15 px), so a one-panel figure does not cut it.
-  const double width = std::max(kMargin + panels_.size() * (kPanelWidth + kMargin), 2 * kMargin + 8.0 * title_.size());
+  // The panels' captions wrapped to their width: the drawing starts below the longest.
+  const auto caption_chars = static_cast<std::size_t>((kPanelWidth - 8) / (12 * kCharWidth));
+  std::size_t caption_lines = 1;
+  for (const SvgPanel& p : panels_) caption_lines = std::max(caption_lines, wrapped(p.title, caption_chars).size());
+  const double caption_extra = kCaptionLine * static_cast<double>(caption_lines - 1);
+  const double panel_height = tallest * scale + 30 + caption_extra;  // the drawing, then the panel's title
+  // Wide enough for the title and the notes too (15 and 12 px text), so a one-panel figure does not cut them.
+  double width = std::max(kMargin + panels_.size() * (kPanelWidth + kMargin), 2 * kMargin + 8.0 * title_.size());
+  for (const std::string& note : notes_) width = std::max(width, 2 * kMargin + 12 * kCharWidth * static_cast<double>(note.size()));
   const double notes_height = kNoteHeight * static_cast<double>(notes_.size());
   const double height = kTitleHeight + notes_height + panel_height + (scale_ ? kBarHeight : 0) + kMargin;
   std::ostringstream o;
@@ -114,7 +139,7 @@ std::string SvgFigure::svg() const {
       }
     const double cx = 0.5 * (lo(0) + hi(0));
     auto to_pixels = [&](const Eigen::RowVector3d& v) {
-      return Eigen::Vector2d(left + kPanelWidth / 2 + (v(0) - cx) * scale, top + 24 + (hi(1) - v(1)) * scale);
+      return Eigen::Vector2d(left + kPanelWidth / 2 + (v(0) - cx) * scale, top + 24 + caption_extra + (hi(1) - v(1)) * scale);
     };
     std::vector<Triangle> triangles;
     for (const SvgLayer& l : panel.layers) {
@@ -135,8 +160,11 @@ std::string SvgFigure::svg() const {
       }
     }
     std::sort(triangles.begin(), triangles.end(), [](const Triangle& x, const Triangle& y) { return x.depth < y.depth; });
-    o << "<g>\n<text x=\"" << left + 4 << "\" y=\"" << top + 14 << "\" font-size=\"12\">" << xml_escaped(panel.title)
-      << "</text>\n";
+    o << "<g>\n";
+    const std::vector<std::string> caption = wrapped(panel.title, caption_chars);
+    for (std::size_t line = 0; line < caption.size(); ++line)
+      o << "<text x=\"" << left + 4 << "\" y=\"" << top + 14 + kCaptionLine * static_cast<double>(line)
+        << "\" font-size=\"12\">" << xml_escaped(caption[line]) << "</text>\n";
     for (const Triangle& t : triangles) {
       o << "<path d=\"M" << t.corners[0].x() << " " << t.corners[0].y() << "L" << t.corners[1].x() << " "
         << t.corners[1].y() << "L" << t.corners[2].x() << " " << t.corners[2].y() << "Z\" fill=\"" << t.fill
@@ -147,6 +175,7 @@ std::string SvgFigure::svg() const {
   if (scale_) {
     const double y = kTitleHeight + notes_height + panel_height + 8, x0 = kMargin, w = std::min(360.0, width - 2 * kMargin);
     o << "<defs><linearGradient id=\"cmap\">";
+    o.precision(3);  // (the eighths, not 0.1, 0.2, 0.4: the faces' colours are the eighths')
     for (int i = 0; i <= 8; ++i) o << "<stop offset=\"" << i / 8.0 << "\" stop-color=\"" << colour_map(i / 8.0) << "\"/>";
     o << "</linearGradient></defs>\n";
     o << "<rect x=\"" << x0 << "\" y=\"" << y << "\" width=\"" << w << "\" height=\"12\" fill=\"url(#cmap)\"/>\n";
