@@ -41,7 +41,7 @@ int run(const std::vector<std::string>& args) {
   const Registry& registry = Registry::load_default(plugin_path(vm));
   const PluginDescriptor& d = registry.get("parametric");
   ParamValues values;
-  values["rig"] = ParamValue{YAML::Node(vm["rig"].as<std::string>()), {}};
+  values["rig"] = ParamValue{YAML::Node(vm["rig"].as<std::string>()), {"--rig", 0}};  // (named in its errors, not "<unknown>")
   const auto model = registry.create_body("parametric", Params(d.params, values, "body parametric"));
   const GivenBodyFrame frame(*model);
   frame.anchor(), frame.mean();  // found once, not timed with the first body

@@ -22,7 +22,7 @@ int run(const std::vector<std::string>& args) {
   po::options_description opts("drape assets");
   opts.add_options()("body", po::value<std::string>()->default_value("parametric"), "body plugin (its mean shape)")(
       "garment", po::value<std::string>()->default_value("tshirt"), "garment template plugin")(
-      "size", po::value<std::string>(), "garment size (tshirt: regular | small)")(
+      "size", po::value<std::string>(), "garment size (tshirt: 3xsmall ... small, regular, large ... 6xlarge, auto; `drape plugins --kind garment` lists them)")(
       "resolution", po::value<std::string>(), "garment resolution (tshirt: default | coarse | a vertex count)")(
       "print", "add the front print material region")(
       "garment-param", po::value<std::vector<std::string>>()->composing(),
