@@ -83,6 +83,12 @@ TEST_CASE("drape train stops at the hidden epoch limit, refuses to overwrite and
   fs::remove(other);
   CHECK(test::run(test::drape_command(train_args(data, other)), out) == 2);
   CHECK_THAT(out, Catch::Contains(training_state_path(other).string() + " exists"));
+  // The state given where a model goes is named as such (it was "missing dataset /weights/...").
+  const std::string state = training_state_path(other).string();
+  CHECK(test::run(test::drape_command("predict --bmi 30 --out " + (dir / "g.obj").string() + " --model " + state), out) == 2);
+  CHECK_THAT(out, Catch::Contains(state + ": is drape train's training state") && Catch::Contains("(" + other.string() + ")"));
+  CHECK(test::run(test::drape_command(train_args(data, dir / "third.h5", "--init " + state)), out) == 2);
+  CHECK_THAT(out, Catch::Contains("--init " + state + ": is drape train's training state"));
 }
 
 TEST_CASE_METHOD(SmallData, "drape train --monitor: the log, drape model info and a name the graph lacks", "[train][cli]") {

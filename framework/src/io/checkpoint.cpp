@@ -75,6 +75,15 @@ void save_checkpoint(const fs::path& path, Graph& graph, const std::map<std::str
   save_checkpoint(path, graph.weights(), c);
 }
 
+void refuse_training_state(const Checkpoint& checkpoint, const fs::path& file, const std::string& option) {
+  const auto kind = checkpoint.meta.find("kind");
+  if (kind == checkpoint.meta.end() || kind->second != kTrainingStateKind) return;
+  std::string model = file.string();
+  if (file.extension() == ".state") model = file.parent_path().empty() ? file.stem().string() : (file.parent_path() / file.stem()).string();
+  throw ConfigError(option + file.string() + ": is drape train's training state (what --resume continues from), not a "
+                    "model: give the model it was written beside (" + model + ")");
+}
+
 Checkpoint read_checkpoint(const fs::path& path) {
   const h5::File file = h5::File::open(path);
   check_format(file);

@@ -171,6 +171,7 @@ Model Model::load(const Registry& registry, const fs::path& file, const fs::path
 
 Model Model::load(const Registry& registry, const fs::path& file, const ParamOverrides& overrides, const fs::path& cache_dir) {
   Checkpoint checkpoint = read_checkpoint(file);
+  refuse_training_state(checkpoint, file, "");
   const auto& meta = checkpoint.meta;
   const auto assets = meta.find("assets");
   if (assets == meta.end())

@@ -34,8 +34,6 @@ namespace {
 using Clock = std::chrono::steady_clock;
 double since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
 
-constexpr const char* kModelKind = "drape model";
-constexpr const char* kStateKind = "drape training state";
 
 // Round-trips a double exactly through text (meta values are strings).
 std::string exact(double v) {
@@ -203,6 +201,7 @@ void warn_of_other_assets(const Registry& registry, const TrainOptions& o, const
 // first that is missing or has another shape: a model of another graph).
 void load_init_weights(const TrainOptions& o, DataParallelGraph& dp) {
   if (!fs::exists(o.init)) throw ConfigError("--init " + o.init.string() + ": no such file");
+  refuse_training_state(read_checkpoint(o.init), o.init, "--init ");
   if (!o.init_widen && !o.init_partial) {
     load_weights(o.init, dp.graph());
   } else {
@@ -310,7 +309,7 @@ struct Progress {
 // ranks and graph.
 void check_resumable(const Checkpoint& st, const fs::path& state_path, const std::map<std::string, std::string>& settings,
                      int ranks, const GraphSpec& graph_spec, const fs::path& graph_file) {
-  if (st.meta.count("kind") == 0 || st.meta.at("kind") != kStateKind)
+  if (st.meta.count("kind") == 0 || st.meta.at("kind") != kTrainingStateKind)
     throw ConfigError(state_path.string() + ": not a drape training state");
   for (const auto& [key, value] : settings) {
     const auto it = st.meta.find(key);
@@ -416,7 +415,7 @@ void save(const Run& run) {
   save_checkpoint(o.out, learner.best.named(""), model);
   Checkpoint state{run.graph_spec.text, meta, learner.adam.state(), learner.history.series};
   for (const auto& [key, value] : run.settings) state.meta[key] = value;
-  state.meta["kind"] = kStateKind;
+  state.meta["kind"] = kTrainingStateKind;
   for (const auto& [key, value] : learner.stopper.state()) state.meta["early_stopping." + key] = exact(value);
   NamedWeights all = prefixed(run.dp.graph().weights(), "current/");
   for (const auto& w : learner.best.named("best/")) all.push_back(w);

@@ -36,6 +36,16 @@ void save_checkpoint(const std::filesystem::path& path, Graph& graph, const std:
 // Everything but the weights.
 Checkpoint read_checkpoint(const std::filesystem::path& path);
 
+// /meta kind of drape train's two outputs: the model (--out) and the state it
+// resumes from (<out>.state).
+inline constexpr const char* kModelKind = "drape model";
+inline constexpr const char* kTrainingStateKind = "drape training state";
+
+// ConfigError when `checkpoint` (read from `file`, given as `option`) is a
+// training state: one given as --model or --init failed with "missing
+// dataset /weights/encoder/conv0_b".
+void refuse_training_state(const Checkpoint& checkpoint, const std::filesystem::path& file, const std::string& option);
+
 // Fills every weight from the file, all or nothing. ConfigError naming the
 // weight that is missing ("model.h5: missing dataset /weights/encoder/w"), has
 // another shape, or (unless allow_extra) is in the file but not in `weights`.
