@@ -3,6 +3,8 @@
 
 #include <drape/registry.hpp>
 
+#include <algorithm>
+#include <cctype>
 #include <iostream>
 
 namespace drape::cli {
@@ -15,7 +17,9 @@ int run(const std::vector<std::string>& args) {
   po::variables_map vm;
   if (!parse("drape plugins [--kind K] [--brief]", args, opts, {}, vm)) return 0;
   const Registry& reg = Registry::load_default(plugin_path(vm));
-  const std::string kind = vm.count("kind") ? vm["kind"].as<std::string>() : "";
+  std::string kind = vm.count("kind") ? vm["kind"].as<std::string>() : "";
+  // Kinds in any case ("Loss"), and a misspelt one answered with the kinds there are.
+  std::transform(kind.begin(), kind.end(), kind.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
   std::size_t shown = 0;
   for (const PluginDescriptor* d : reg.all()) {
     if (!kind.empty() && d->kind != kind) continue;
@@ -38,7 +42,12 @@ int run(const std::vector<std::string>& args) {
   }
   for (const auto& r : reg.refused()) std::cout << "refused " << r << "\n";
   if (!kind.empty() && shown == 0) {
-    std::cerr << "drape plugins: no plugin of kind '" << kind << "'\n";
+    std::vector<std::string> kinds;
+    for (const PluginDescriptor* d : reg.all())
+      if (std::find(kinds.begin(), kinds.end(), d->kind) == kinds.end()) kinds.push_back(d->kind);
+    std::string list;
+    for (const std::string& k : kinds) list += (list.empty() ? "" : ", ") + k;
+    std::cerr << "drape plugins: no plugin of kind '" << kind << "'" << did_you_mean(kind, kinds) << " (kinds: " << list << ")\n";
     return 2;
   }
   std::cout << shown << " plugins\n";

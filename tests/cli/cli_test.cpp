@@ -15,6 +15,11 @@ TEST_CASE("drape plugins lists plugins with kind, ports and parameters", "[cli]"
   CHECK_THAT(out, Catch::Contains("op add"));
   CHECK(out.find("loss l2") == std::string::npos);
   CHECK(test::run_drape("plugins --kind nosuchkind", out) == 2);
+  // A kind in capitals is the kind; a misspelt one is answered with the kinds there are.
+  REQUIRE(test::run_drape("plugins --kind Loss --brief", out) == 0);
+  CHECK_THAT(out, Catch::Contains("loss l2"));
+  CHECK(test::run_drape("plugins --kind lose", out) == 2);
+  CHECK_THAT(out, Catch::Contains("did you mean 'loss'") && Catch::Contains("kinds: ") && Catch::Contains("energy"));
 }
 
 TEST_CASE("drape graph check validates a shipped graph", "[cli]") {

@@ -111,6 +111,10 @@ TEST_CASE("experiment: every kind of row runs, the table is written, and a secon
     if (entry.path().extension() == ".h5") generated = entry.path();
   REQUIRE_FALSE(generated.empty());
   std::string given;
+  // A misspelt key is refused before any work, with the keys there are.
+  std::string typo;
+  CHECK(test::run(command + " --data shrits=" + generated.string(), typo) == 2);
+  CHECK_THAT(typo, Catch::Contains("no dataset 'shrits'; did you mean 'shirts'?"));
   REQUIRE(test::run(command + " --data shirts=" + generated.string(), given) == 0);
   INFO(given);
   const std::string given_md = read(work / "table.md");

@@ -48,9 +48,13 @@ const std::vector<ExperimentColumn>& experiment_columns() {
 }
 
 const ExperimentDataset& ExperimentSpec::dataset(const std::string& key) const {
-  for (const auto& d : datasets)
+  std::vector<std::string> keys;
+  for (const auto& d : datasets) {
     if (d.key == key) return d;
-  throw ConfigError(file.string() + ": no dataset '" + key + "'");
+    keys.push_back(d.key);
+  }
+  throw ConfigError(file.string() + ": no dataset '" + key + "'" + did_you_mean(key, keys) +
+                    (keys.empty() ? std::string(" (it lists none)") : " (its datasets: " + yaml::joined(keys) + ")"));
 }
 
 const ExperimentRow& ExperimentSpec::row(const std::string& row_name) const {
