@@ -131,6 +131,9 @@ YAML::Node load_text(const std::string& text, const std::string& name_for_errors
 }
 
 YAML::Node load_file(const std::filesystem::path& path) {
+  // (A folder opens as an empty stream: it read as "DIR:1: a graph file must be a YAML map".)
+  if (std::error_code ec; std::filesystem::is_directory(path, ec))
+    throw ConfigError("'" + path.string() + "' is a folder, not a YAML file");
   std::ifstream in(path);
   if (!in) throw ConfigError("cannot read '" + path.string() + "'");
   std::stringstream ss;

@@ -43,6 +43,8 @@ TEST_CASE("configuration errors exit 2 with file, line and close matches", "[cli
 
   CHECK(test::run_drape("graph check --no-assets " + (dir / "missing.yaml").string(), out) == 2);
   CHECK_THAT(out, Catch::Contains("missing.yaml"));
+  CHECK(test::run_drape("graph check --no-assets " + dir.path().string(), out) == 2);  // a folder (it was "not a YAML map")
+  CHECK_THAT(out, Catch::Contains("is a folder, not a YAML file"));
 
   // A scene's body model and garment template named at their lines (an outside check: the file only).
   std::ofstream(dir / "body.yaml") << "effects: [gravity]\nbody: {model: parametrik}\n";
