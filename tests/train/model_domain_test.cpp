@@ -143,6 +143,10 @@ TEST_CASE("model domain: ranges of a dataset's training bodies, and the bodies o
     // Inside by shape, the lifted body is not a violation: it is only moved.
     CHECK(domain_violations(d, lifted, faces, nullptr).empty());
 
+    // The note says a move under a centimetre in millimetres (it said "(+0.000, +0.000, +0.000) m").
+    CHECK_THAT(placement_note({0.3, 0, 0}, "x"), Catch::StartsWith("stands (+0.300, +0.000, +0.000) m from where x"));
+    CHECK_THAT(placement_note({0.0004, 0, -0.00125}, "x"), Catch::StartsWith("stands (+0.40, +0.00, -1.25) mm from where x"));
+
     ModelDomain unrecorded = d;
     unrecorded.placement.setConstant(std::numeric_limits<double>::quiet_NaN());
     CHECK_FALSE(placement_offset(unrecorded, lifted));

@@ -209,7 +209,11 @@ std::optional<Eigen::Vector3d> move_to_placement(const Eigen::Vector3d& referenc
 
 std::string placement_note(const Eigen::Vector3d& offset, const std::string& where) {
   char moved[96];
-  std::snprintf(moved, sizeof moved, "stands (%+.3f, %+.3f, %+.3f) m from where ", offset[0], offset[1], offset[2]);
+  // A move under a centimetre in millimetres: "(+0.000, +0.000, +0.000) m" said a move that changed the drape.
+  if (offset.cwiseAbs().maxCoeff() < 0.01)
+    std::snprintf(moved, sizeof moved, "stands (%+.2f, %+.2f, %+.2f) mm from where ", 1e3 * offset[0], 1e3 * offset[1], 1e3 * offset[2]);
+  else
+    std::snprintf(moved, sizeof moved, "stands (%+.3f, %+.3f, %+.3f) m from where ", offset[0], offset[1], offset[2]);
   return moved + where + "; it is draped there and moved back with it";
 }
 
