@@ -4,8 +4,6 @@
 #include <drape/graph.hpp>
 #include <drape/io/h5.hpp>
 
-#include "h5_seal.hpp"
-
 #include <algorithm>
 #include <set>
 
@@ -87,13 +85,6 @@ void refuse_training_state(const Checkpoint& checkpoint, const fs::path& file, c
 }
 
 Checkpoint read_checkpoint(const fs::path& path) {
-  // A checkpoint is written whole in a temporary file, sealed, then renamed:
-  // none is ever left with a blank checksum block under its own name. One
-  // with a blank block had it zeroed, which hid any change to its weights (an
-  // outside check flipped a byte, zeroed the block, and evaluated the model).
-  if (h5::seal::state(path) == h5::seal::State::Pending)
-    throw ConfigError(path.string() + ": is corrupt: its checksum block is blank, so nothing shows whether it was "
-                      "changed since drape wrote it (drape seals every model and state it writes)");
   const h5::File file = h5::File::open(path);
   check_format(file);
   Checkpoint c;
