@@ -138,6 +138,8 @@ Eigen::MatrixX3d outward_normals(const Mesh& garment) {
 
 DressReport dress(Garment& garment, const BodyQuery& body, const DressOptions& options) {
   Eigen::MatrixX3d& x = garment.mesh.vertices;
+  // Where it was cut, kept for the self-contact (Garment::cut_vertices): the first dressing's start.
+  if (garment.cut_vertices.rows() != x.rows()) garment.cut_vertices = x;
   // A vertex deep inside whose cloth faces away from the way out is pushed
   // through the body (DressReport::pushed_through): more than 60 degrees apart.
   constexpr double kFacingAway = -0.5;

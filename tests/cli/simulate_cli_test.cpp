@@ -2,6 +2,7 @@
 // tiny scene's drape, so only the format is checked, not the values).
 #include <catch2/catch.hpp>
 
+#include <drape/geometry/self_intersection.hpp>
 #include <drape/io/mesh_io.hpp>
 
 #include <fstream>
@@ -164,4 +165,37 @@ TEST_CASE("a drape not settled under a solver setting far from its default names
   std::ofstream(dir / "tiny.yaml") << test::tiny_simulation_scene();
   test::run(test::drape_program().string() + " simulate " + (dir / "tiny.yaml").string(), out);
   CHECK_THAT(out, !Catch::Contains("the time step") && !Catch::Contains("max_newton_iterations"));
+}
+
+TEST_CASE("a mesh garment placed through the body is dressed and morphed without crossing itself",
+          "[cli][simulate][self_contact]") {
+  // An outside check squeezed the coarse shirt's drape on the mean body to
+  // 0.8 of its width and depth (through the body) and simulated it as a mesh
+  // garment: dressing pushed vertices 14 mm apart together onto the body, the
+  // self-contact left the pairs between them out as rest neighbours, and 10
+  // passed through each other in the armpit during the morph, "settled".
+  test::TempDir dir;
+  std::string out;
+  const std::string drape = test::drape_program().string();
+  REQUIRE(test::run(drape + " simulate " + (test::source_dir() / "graphs/scenes/tshirt_coarse.yaml").string() +
+                        " --sex 0.5 --threads 1 --out " + (dir / "mean.obj").string(), out) == 0);
+  Mesh squeezed = read_mesh(dir / "mean.obj");
+  REQUIRE(squeezed.has_uv());
+  const Eigen::RowVector3d centre = squeezed.vertices.colwise().mean();
+  for (const int axis : {0, 2})
+    squeezed.vertices.col(axis) = (centre(axis) + 0.8 * (squeezed.vertices.col(axis).array() - centre(axis))).matrix();
+  write_mesh(dir / "squeezed.obj", squeezed);
+  std::ofstream(dir / "squeezed.yaml")
+      << "body: {model: parametric, shape: {bmi: 24, height: 1.75, sex: 0.5}}\n"
+         "garment: {template: mesh, params: {file: " << (dir / "squeezed.obj").string() << ", material_space: uv}}\n"
+         "materials: {cloth: gray-interlock}\n"
+         "effects: {gravity: {}, stretching: {compressive_stiffness: 1.0}, bending: {potential: product}, barrier: {}, "
+         "self_contact: {}}\n"
+         "solver: {time_step: 0.1, morph_steps: 20, settle_steps: 0}\n";
+  test::run(drape + " simulate " + (dir / "squeezed.yaml").string() + " --threads 1 --out " + (dir / "s.obj").string(), out);
+  INFO(out);
+  REQUIRE_THAT(out, Catch::Contains("barrier contact: start body shrunk"));  // it did start through the body
+  const Mesh morphed = read_mesh(dir / "s.obj");
+  // Counted by the geometry's own edge-face test, not the simulation's report.
+  CHECK(geometry::self_edge_crossings(morphed.vertices, morphed.faces, geometry::kCrossingsCountedAtMost).empty());
 }

@@ -233,6 +233,29 @@ TEST_CASE("a garment modelled much larger than its cloth is told so, and its fit
   CHECK(Simulation(test::plugins(), parse_scene(fit_scene_text(dir / "plain.obj"))).shape_note().empty());
 }
 
+TEST_CASE("a cloth many times as long around as its shape (UVs in centimetres) is refused before any work", "[garments][fit]") {
+  // An outside check's vest with UVs in centimetres ran 330 s before its
+  // morph failed ("10260.6 % longer around"); in decimetres 36 s.
+  test::TempDir dir;
+  const double r = 0.24, y0 = 1.0, y1 = 1.22;
+  for (const double unit : {100.0, 10.0}) {
+    write_mesh(dir / "tube.obj", fit_tube(r, y0, y1, unit));
+    const Simulation sim(test::plugins(), parse_scene(fit_scene_text(dir / "tube.obj")));
+    const std::string why = sim.start_refusal();
+    INFO(why);
+    CHECK_THAT(why, Catch::Contains("times as long around as the garment as modelled") && Catch::Contains("another unit"));
+    CHECK(std::stod(why.substr(why.find("uv_scale: ") + 10)) == Approx(1.0 / unit).epsilon(1e-9));  // the unit's power of ten
+    int steps = 0;
+    SimulationOptions options;
+    options.on_step = [&](const SimulationStep&) { ++steps; };
+    CHECK_THROWS_WITH(sim.run(sim.body_vertices(sim.target_shape()), options), Catch::Contains("another unit"));
+    CHECK(steps == 0);
+  }
+  // Cloth half again as long as the shape (gathers, a loose cut) is no other unit: simulated.
+  write_mesh(dir / "loose.obj", fit_tube(r, y0, y1, 1.5));
+  CHECK(Simulation(test::plugins(), parse_scene(fit_scene_text(dir / "loose.obj"))).start_refusal().empty());
+}
+
 TEST_CASE("a cloth a grade below the design size cuts too small is told the grade that puts it on", "[garments][fit]") {
   // An outside check: `grade: 0.5` on a garment that drapes at grade 1 was
   // told its pattern was cut smaller than the body and that a grade would

@@ -59,7 +59,13 @@ TEST_CASE("dress pushes a garment out of a sphere and keeps it smooth", "[garmen
   int inside = 0;
   for (int v = 0; v < g.mesh.num_vertices(); ++v) inside += inside_by_parity(ball, g.mesh.vertices.row(v));
   REQUIRE(inside > 100);
+  const Eigen::MatrixX3d cut = g.mesh.vertices;
   const DressReport r = dress(g, ball, {0.01, 30, 3});
+  // Where it was cut is kept (Garment::cut_vertices: the self-contact's rest neighbours), and a second dressing keeps the first's.
+  CHECK(g.cut_vertices == cut);
+  CHECK_FALSE(g.mesh.vertices.isApprox(cut));
+  dress(g, ball, {0.02, 30, 3});
+  CHECK(g.cut_vertices == cut);
   CHECK(r.inside_before == inside);
   CHECK(r.min_distance_after >= 0.01 - 2e-6);
   for (int v = 0; v < g.mesh.num_vertices(); ++v) REQUIRE_FALSE(inside_by_parity(ball, g.mesh.vertices.row(v)));

@@ -47,7 +47,16 @@ struct Garment {
   // tshirt template, a mesh file). A scene with another body model is
   // refused at once, naming both.
   std::string body_model;
+  // The vertices as the template or file placed them, before dress() moved
+  // them out of the body ([V, 3]; empty: mesh.vertices). Where the
+  // self-contact finds the fabric neighbours it leaves out (close at rest):
+  // dressed, a garment placed through the body had vertices 14 mm apart
+  // pushed together onto the body, and the pairs between them, left out,
+  // passed through each other in the morph. (ABI 11.)
+  Eigen::MatrixX3d cut_vertices;
   int material_of(int face) const { return face_material.size() ? face_material[face] : 0; }
+  // cut_vertices, or mesh.vertices when it holds none.
+  const Eigen::MatrixX3d& as_cut() const { return cut_vertices.rows() == mesh.vertices.rows() ? cut_vertices : mesh.vertices; }
 };
 
 struct EnergyContext {

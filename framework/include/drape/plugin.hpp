@@ -16,7 +16,7 @@
 #include <vector>
 
 // Bump whenever a type in a public header changes layout or a virtual signature.
-#define DRAPE_ABI_VERSION 10
+#define DRAPE_ABI_VERSION 11
 
 namespace drape {
 

@@ -80,6 +80,27 @@ std::string shape_larger_than_cloth(double cloth, double shape_loop, const Patte
   return out;
 }
 
+std::string cloth_far_longer_than_shape(double cloth, double shape_loop, const PatternSource& pattern) {
+  if (!std::isfinite(cloth) || !std::isfinite(shape_loop) || !(shape_loop > 0) || cloth / shape_loop <= kMaxClothOverShape)
+    return "";
+  char text[600];
+  std::snprintf(text, sizeof text,
+                "the garment's cloth is %.3g times as long around as the garment as modelled (its narrowest loop over "
+                "the chest band %.3f m at rest in its material space, %.3f m as modelled): its pattern is likely in "
+                "another unit than metres",
+                cloth / shape_loop, cloth, shape_loop);
+  std::string out = text;
+  if (pattern.has_uv_scale && !pattern.from_shape) {
+    // A power of ten when it is within a tenth of one (UVs in centimetres: 0.01, not 0.00998).
+    const double exact = pattern.uv_scale * shape_loop / cloth;
+    const double ten = std::pow(10.0, std::round(std::log10(exact)));
+    std::snprintf(text, sizeof text, "; garment: {params: {uv_scale: %.3g}} makes the cloth the size of the shape",
+                  std::abs(exact / ten - 1.0) < 0.1 ? ten : exact);
+    out += text;
+  }
+  return out;
+}
+
 std::vector<std::string> slow_solver_settings(const SolverSettings& solver, const std::function<std::string(int)>& newton) {
   std::vector<std::string> out;
   const SolverSettings defaults;

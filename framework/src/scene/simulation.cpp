@@ -268,6 +268,7 @@ Simulation::Simulation(const Registry& registry, Scene scene) : registry_(regist
     for (const ParamSpec& p : gd.params)
       if (p.name == "material_space") pattern.from_shape = garment_params.get_string("material_space") == "rest";
     start_refusal_ = scene_detail::cloth_too_short(cloth_loop_, fit_body_, body_model_->faces(), pattern);
+    if (start_refusal_.empty()) start_refusal_ = scene_detail::cloth_far_longer_than_shape(cloth_loop_, placed_loop_, pattern);
     shape_note_ = scene_detail::shape_larger_than_cloth(cloth_loop_, placed_loop_, pattern);
   }
   const Params solver(scene_solver_specs(), scene_.solver, "solver");

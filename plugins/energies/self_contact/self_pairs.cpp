@@ -114,12 +114,14 @@ SelfTopology make_topology(const Garment& garment, double exclusion, double thin
   t.edge_area = std::move(edges.area);
   t.edge_rest2 = std::move(edges.length2);
   mark_tangles(mesh, t);
-  // Excluded: fabric neighbours closer than `exclusion` in the rest mesh.
-  // Boxes grown by half of it overlap for every pair that close (and more).
-  for (const SelfPair& c : candidate_pairs(t, mesh.vertices, nullptr, 0.5 * exclusion)) {
+  // Excluded: fabric neighbours closer than `exclusion` in the rest mesh as
+  // cut (Garment::as_cut: before dressing pushed vertices together onto the
+  // body). Boxes grown by half of it overlap for every pair that close (and more).
+  const Eigen::MatrixX3d& cut = garment.as_cut();
+  for (const SelfPair& c : candidate_pairs(t, cut, nullptr, 0.5 * exclusion)) {
     const std::array<int, 4> v = t.vertices_of(c.kind, c.a, c.b);
     if (!fabric_neighbours(t, v, c.kind == PairKind::VertexFace ? 1 : 2)) continue;
-    const double d2 = pair_distance2(c.kind, points(mesh.vertices, v));
+    const double d2 = pair_distance2(c.kind, points(cut, v));
     if (!(d2 < exclusion * exclusion)) continue;
     // A pair touching at rest (a nanometre) cannot be kept off itself: left out.
     // One at least twice the usual d_hat apart keeps the usual barrier (which
