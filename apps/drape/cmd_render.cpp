@@ -9,6 +9,7 @@
 #include <drape/assets/dataset_assets.hpp>
 #include <drape/garment_sizes.hpp>
 #include <drape/io/dataset.hpp>
+#include <drape/geometry/body_units.hpp>
 #include <drape/geometry/surface_crossings.hpp>
 #include <drape/geometry/self_intersection.hpp>
 #include <drape/geometry/closest_point.hpp>
@@ -139,7 +140,9 @@ int render_simulated(Registry& registry, const po::variables_map& vm, const std:
 int run(const std::vector<std::string>& args) {
   po::options_description opts("drape render");
   opts.add_options()("model", po::value<std::string>(), "model file (default: the shipped model); its template gives the faces (--simulated draws on the dataset's own template, no model)")(
-      "garment", po::value<std::string>(), "draw this garment mesh (the model's template topology) instead of a prediction")(
+      "garment", po::value<std::string>(),
+      "draw this garment mesh instead of a prediction: the model's template topology, or with --body any garment "
+      "(a mesh garment simulate wrote, on its --body-out), drawn as the files give them and coloured by distance")(
       "data", po::value<std::string>(), "or take body (and the simulated garment, for --colour error) from a dataset")(
       "sample", po::value<long>()->default_value(0), "with --data: the sample index")(
       "simulated", "with --data: draw the dataset's simulated garment instead of a prediction")(
@@ -197,6 +200,25 @@ int run(const std::vector<std::string>& args) {
   // predicted where (and as) the training bodies stood and moved back, a
   // --garment file (written by predict where the body was) drawn as it is.
   BodyMove moved_by;
+  // A garment of another topology than the model's template on a body mesh
+  // (a user's mesh garment simulate wrote, on its --body-out): drawn as the
+  // files give them. It was refused ("has 2136 vertices, but the model's
+  // garment template has 991"), and simulate --svg was the only picture.
+  if (vm.count("garment") && vm.count("body")) {
+    const std::string garment_file = vm["garment"].as<std::string>(), body_file = vm["body"].as<std::string>();
+    const Mesh given = read_mesh(garment_file);
+    if (given.num_vertices() != model.assets().garment->mesh.num_vertices()) {
+      if (colour != "distance")
+        throw UsageError("--colour " + colour + " compares with the model's template or a dataset's drape; " +
+                         garment_file + " is another garment (" + std::to_string(given.num_vertices()) +
+                         " vertices), drawn as it is: --colour distance");
+      const Mesh body = read_mesh(body_file);
+      if (body.num_faces() == 0) throw ConfigError(body_file + ": has no faces to draw or measure against");
+      check_body_units(body.vertices, "body " + body_file);
+      draw(vm, colour, garment_file + " on " + body_file, {}, body, given, given, {});
+      return 0;
+    }
+  }
   if (data) {
     const DatasetReader& reader = *data;
     check_dataset_template(reader, vm["data"].as<std::string>(), model.assets());

@@ -195,3 +195,22 @@ TEST_CASE("a posed dataset's body is drawn with the model of posed drapes and re
   CHECK(test::run(drape + "render --data " + expanded + " --sample 1 --height 1.2 --out " + (dir / "x.svg").string(), out) == 2);
   CHECK_THAT(out, Catch::Contains("--height describes a body given by --bmi or --body"));
 }
+
+TEST_CASE("render draws a garment of its own topology on a body mesh, as the files give them", "[render]") {
+  // An outside check could not look at its own mesh garment: "has 2136
+  // vertices, but the model's garment template has 991".
+  test::TempDir dir;
+  std::string out;
+  REQUIRE(test::run_drape("body --bmi 30 --out " + (dir / "b.obj").string(), out) == 0);
+  write_mesh(dir / "tube.obj", test::pattern_tube(0.2, 0.9, 1.3, 24, 6, 1.0));
+  const std::string svg = (dir / "t.svg").string();
+  REQUIRE(test::run_drape("render --body " + (dir / "b.obj").string() + " --garment " + (dir / "tube.obj").string() +
+                              " --out " + svg, out) == 0);
+  INFO(out);
+  CHECK_THAT(out, Catch::Contains("tube.obj on " + (dir / "b.obj").string()));
+  CHECK(read(svg).find("<path ") != std::string::npos);
+  // Strain and error need the model's template or a dataset's drape.
+  CHECK(test::run_drape("render --body " + (dir / "b.obj").string() + " --garment " + (dir / "tube.obj").string() +
+                            " --colour strain --out " + (dir / "s.svg").string(), out) == 2);
+  CHECK_THAT(out, Catch::Contains("--colour distance"));
+}

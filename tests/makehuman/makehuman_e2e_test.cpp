@@ -52,3 +52,24 @@ TEST_CASE("MakeHuman T-shirt: simulate, generate, train, predict and optimise th
   CHECK((optimized == 0 || optimized == 1));
   CHECK_THAT(out, Catch::Contains("wrote "));
 }
+
+TEST_CASE("a MakeHuman outfit fitted to another body by its sliders is told to keep their defaults", "[makehuman][cli]") {
+  // An outside check's gender: 0 (a women's outfit's natural value) was
+  // refused as "modelled inside the body; model it around the body model's
+  // mean body": the user had modelled nothing, and the slider went unnamed.
+  const fs::path data_dir = test::shared_assets().empty() ? fs::path() : test::shared_assets() / "makehuman";
+  if (data_dir.empty() || !fs::exists(data_dir / "clothes/male_casualsuit04/male_casualsuit04.obj")) {
+    WARN("SKIPPED: ../shared/assets/makehuman (with clothes/male_casualsuit04) is absent; this test needs it");
+    return;
+  }
+  test::TempDir dir;
+  std::ofstream(dir / "gender0.yaml") << "base: " << (test::source_dir() / "graphs/scenes/makehuman_tshirt.yaml").string()
+                                      << "\ngarment: {template: makehuman_clothes, params: {outfit: male_casualsuit04, "
+                                         "piece: \"0\", gender: 0}}\nmaterials: {knit: gray-interlock}\n";
+  std::string out;
+  CHECK(test::run("env DRAPE_MAKEHUMAN_DIR=" + data_dir.string() + " " + test::drape_program().string() + " simulate " +
+                      (dir / "gender0.yaml").string() + " --bmi 25 --sex 0 --out " + (dir / "g.obj").string(),
+                  out) == 2);
+  CHECK_THAT(out, Catch::Contains("its parameter gender: 0 (default 1.0) fit it to another body") &&
+                      Catch::Contains("keep the default") && !Catch::Contains("model it around"));
+}

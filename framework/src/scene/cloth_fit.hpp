@@ -57,9 +57,11 @@ std::string shape_larger_than_cloth(double cloth_loop, double shape_loop, const 
 
 // Cloth this many times as long around as the garment's shape is no garment
 // as modelled (every shipped garment's cloth is within 10 % of its shape):
-// its UVs are in another unit. An outside check's vest with UVs in
-// centimetres ran 330 s before the morph failed, "10260.6 % longer around".
-inline constexpr double kMaxClothOverShape = 2.0;
+// its UVs are in another unit (feet to metres is 3.28, the nearest). An
+// outside check's vest with UVs in centimetres ran 330 s before the morph
+// failed, "10260.6 % longer around". A shape shrunk to half its pattern (2x)
+// is left to the placement's own refusal (placed through the body).
+inline constexpr double kMaxClothOverShape = 3.0;
 
 // The refusal, with the uv_scale that makes the cloth the size of the shape,
 // when the cloth's narrowest loop at rest is more than kMaxClothOverShape

@@ -12,6 +12,7 @@
 #include <drape/registry.hpp>
 #include <drape/scene/simulation.hpp>
 #include <drape/error_context.hpp>
+#include <drape/warnings.hpp>
 
 #include "barrier_morph.hpp"
 #include "cloth_fit.hpp"
@@ -164,6 +165,14 @@ void measure_drape(const ClothSolver& solver, std::vector<NamedEnergy>& energies
                   std::to_string(SolverSettings{}.max_newton_iterations) + ") ends each step after so few iterations";
          }))
       result.unsettled += "; " + slow;
+  }
+  // A piece that slid down the body (a two-piece outfit's skirt at the
+  // feet) is no drape of it, settled or not: said (a garment that fell off
+  // whole is said by why_unsettled).
+  if (!scene_detail::fell_off_body(x, target_body)) {
+    const std::string slid = scene_detail::pieces_slid_down(garment.vertices, mean_body, x, target_body, garment.faces);
+    if (!slid.empty() && result.converged) warn(slid);
+    else if (!slid.empty()) result.unsettled += "; " + slid;
   }
   result.garment = x;
   result.body = target_body;

@@ -3,6 +3,7 @@
 
 #include "garment_region.hpp"
 
+#include <drape/garment_layers.hpp>
 #include <drape/scene/garment_size.hpp>
 
 #include <algorithm>
@@ -13,6 +14,41 @@ namespace drape::scene_detail {
 
 bool fell_off_body(const Eigen::MatrixX3d& x, const Eigen::MatrixX3d& body) {
   return x.rows() > 0 && body.rows() > 0 && x.col(1).maxCoeff() < body.col(1).minCoeff();
+}
+
+std::string pieces_slid_down(const Eigen::MatrixX3d& start, const Eigen::MatrixX3d& start_body, const Eigen::MatrixX3d& x,
+                             const Eigen::MatrixX3d& body, const Eigen::MatrixX3i& faces) {
+  if (start.rows() != x.rows() || x.rows() == 0 || start_body.rows() == 0 || body.rows() == 0) return "";
+  const double sole0 = start_body.col(1).minCoeff(), height0 = start_body.col(1).maxCoeff() - sole0;
+  const double sole = body.col(1).minCoeff(), height = body.col(1).maxCoeff() - sole;
+  if (!(height0 > 0) || !(height > 0)) return "";
+  const auto n = static_cast<int>(x.rows());
+  const std::vector<int> face_piece = garment_pieces(faces, n);
+  const int pieces = face_piece.empty() ? 0 : *std::max_element(face_piece.begin(), face_piece.end()) + 1;
+  std::vector<int> piece(static_cast<std::size_t>(n), -1);
+  for (Eigen::Index f = 0; f < faces.rows(); ++f)
+    for (int k = 0; k < 3; ++k) piece[static_cast<std::size_t>(faces(f, k))] = face_piece[static_cast<std::size_t>(f)];
+  std::string out;
+  for (int p = 0; p < pieces; ++p) {
+    // The piece's mean height, as a share of its body's height above the soles, at the start and now.
+    double was = 0, now = 0;
+    int count = 0, first = n, last = -1;
+    for (int v = 0; v < n; ++v)
+      if (piece[static_cast<std::size_t>(v)] == p) {
+        was += (start(v, 1) - sole0) / height0, now += (x(v, 1) - sole) / height;
+        ++count, first = std::min(first, v), last = std::max(last, v);
+      }
+    if (count == 0 || !((was - now) / count > kSlidShare)) continue;
+    char text[400];
+    std::snprintf(text, sizeof text,
+                  "%s%s (vertices %d-%d) slid %.2f m down the body from where it was put on, nothing holding it up (a "
+                  "garment stays on only if it hangs from the shoulders, grips the body, or its contact has friction "
+                  "enough: the barrier's `friction`, a smaller size)",
+                  out.empty() ? "" : "; ", pieces > 1 ? ("piece " + std::to_string(p + 1) + " of " + std::to_string(pieces)).c_str() : "the garment",
+                  first, last, (was - now) / count * height);
+    out += text;
+  }
+  return out;
 }
 
 std::string why_unsettled(const SimulationResult& result, const Eigen::MatrixX3d& x, double tolerance, int settle_steps,

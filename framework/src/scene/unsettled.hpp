@@ -20,4 +20,16 @@ std::string why_unsettled(const SimulationResult& result, const Eigen::MatrixX3d
 // body stays on it). Nothing can bring it back, so the settling stops.
 bool fell_off_body(const Eigen::MatrixX3d& x, const Eigen::MatrixX3d& body);
 
+// A piece of the garment that slid down the body by more than
+// kSlidShare of its height from where it was put on (a skirt of a two-piece
+// outfit that slid from the hips to the feet "settled" beside a vest that
+// stayed, with no word: fell_off_body asks the whole garment to be below
+// the soles). Heights are measured from each body's soles, as shares of its
+// height, so a body that grows or shrinks in the morph moves nothing. One
+// sentence per such piece ("piece 2 of 2 (vertices 1048-2135) slid 0.75 m
+// down ..."), "" when none.
+inline constexpr double kSlidShare = 0.15;
+std::string pieces_slid_down(const Eigen::MatrixX3d& start, const Eigen::MatrixX3d& start_body, const Eigen::MatrixX3d& x,
+                             const Eigen::MatrixX3d& body, const Eigen::MatrixX3i& faces);
+
 }  // namespace drape::scene_detail

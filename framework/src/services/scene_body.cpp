@@ -11,6 +11,7 @@
 #include <drape/bodies/given_body.hpp>
 #include <drape/scene/garment_size.hpp>
 #include <drape/errors.hpp>
+#include <drape/registry.hpp>
 
 #include <cmath>
 #include <cstdio>
@@ -212,6 +213,36 @@ SceneBody scene_body(const SceneSimulations& simulations, const BodyRequest& req
   return out;
 }
 
+namespace {
+
+// "its parameter gender: 0 (default 1) fits it to another body than ..." for
+// each garment parameter whose plugin asks to keep its default (a
+// MakeHuman outfit's body sliders: the outfit is fitted to the body a drape
+// starts from) that the scene sets otherwise; "" when none. An outside
+// check's gender: 0 was told to model the outfit around the mean body.
+std::string body_sliders_moved(const Scene& scene) {
+  const PluginDescriptor* garment = Registry::load_default().find(scene.garment);
+  if (!garment) return "";
+  std::string out;
+  for (const ParamSpec& spec : garment->params) {
+    const auto set = scene.garment_params.find(spec.name);
+    if (set == scene.garment_params.end() || spec.doc.find("keep the default") == std::string::npos) continue;
+    const std::string value = set->second.node.IsScalar() ? set->second.node.Scalar() : std::string("?");
+    bool same = value == spec.default_value;
+    try {
+      same = same || std::stod(value) == std::stod(spec.default_value);
+    } catch (const std::exception&) {
+    }
+    if (same) continue;
+    out += (out.empty() ? "" : ", ") + spec.name + ": " + value + " (default " + spec.default_value + ")";
+  }
+  if (out.empty()) return "";
+  return "its parameter" + std::string(out.find(", ") == std::string::npos ? " " : "s ") + out +
+         " fit it to another body than the one a drape starts from (the body model's mean shape): keep the default";
+}
+
+}  // namespace
+
 std::string start_fit_hint(const Simulation& design) {
   // A pattern cut too small was refused by its cloth's own measure (run()):
   // nothing to add from the 3D shape, which it may share with one that fits.
@@ -229,6 +260,14 @@ std::string start_fit_hint(const Simulation& design) {
   // no other grade to name (an ungraded garment's design is itself): the
   // shape is what lies inside the body. A grade hint would name its own grade.
   const double grade = (1.0 + design_ease) * around / loop0;
+  // A template fitted to another body by its parameters: that is the cause, and keeping their defaults the remedy.
+  if (const std::string sliders = body_sliders_moved(design.scene()); !sliders.empty()) {
+    std::snprintf(text, sizeof text,
+                  "the garment as modelled is %.1f %% smaller around than the body it is put on before the body morphs "
+                  "(its narrowest loop over the chest band %.3f m, the body's chest or belly %.3f m): ",
+                  -100.0 * ease, loop, around);
+    return text + sliders;
+  }
   if (std::isfinite(design.cloth_loop()) && std::isfinite(grade) &&
       std::abs(grade - design.scene().garment_grade) < 0.03) {
     std::snprintf(text, sizeof text,
