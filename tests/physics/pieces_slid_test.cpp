@@ -21,7 +21,7 @@ Eigen::MatrixX3d body(double height) {
 
 }  // namespace
 
-TEST_CASE("a piece that slid down the body is named, with how far; one that stayed, or grew with the body, is not",
+TEST_CASE("a piece that slid down the body is named with how far and one that stayed or grew with the body is not",
           "[physics][unsettled]") {
   // Two pieces of one triangle each: a vest at 1.3 m, a skirt at 0.9 m, on a body 1.75 m tall.
   Eigen::MatrixX3d start(6, 3);
