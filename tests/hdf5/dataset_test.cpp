@@ -526,16 +526,23 @@ TEST_CASE("dataset: a glob pattern reads its files as one with their faces", "[h
   CHECK_THROWS_WITH(DatasetReader((dir / "none-*.h5").string()), Catch::Contains("no dataset file matches"));
 }
 
+namespace {
+
+// A run killed after writing samples 0, 1 and 2 of `layout`: its .partial file.
+void write_first_three(const fs::path& out, const DatasetLayout& layout) {
+  DatasetWriter writer(out, layout);
+  for (std::size_t i : {0, 1, 2}) writer.write(i, make_sample(layout, i));
+}
+
+}  // namespace
+
 TEST_CASE("dataset: a resumed run makes again a kept sample that no longer reads back as written", "[hdf5][dataset]") {
   // An outside check flipped bytes in a .partial's garment rows: the resume
   // kept them, and the finished file, sealed, held a vertex at 158 m.
   TempDir dir;
   const fs::path out = dir / "data.h5";
   const DatasetLayout layout = small_layout(5);
-  {
-    DatasetWriter writer(out, layout);
-    for (std::size_t i : {0, 1, 2}) writer.write(i, make_sample(layout, i));
-  }
+  write_first_three(out, layout);  // a run killed after three samples
   {
     auto file = h5::File::open(DatasetWriter::partial_path(out), h5::Access::ReadWrite);
     std::vector<float> row(layout.garment_vertices * 3);
@@ -577,10 +584,7 @@ TEST_CASE("dataset: a sample flagged done that was never written is made by the 
   TempDir dir;
   const fs::path out = dir / "data.h5";
   const DatasetLayout layout = small_layout(5);
-  {
-    DatasetWriter writer(out, layout);
-    for (std::size_t i : {0, 1, 2}) writer.write(i, make_sample(layout, i));
-  }
+  write_first_three(out, layout);  // a run killed after three samples
   {
     auto file = h5::File::open(DatasetWriter::partial_path(out), h5::Access::ReadWrite);
     const std::uint8_t done = 1;
@@ -718,10 +722,7 @@ TEST_CASE("dataset: a NaN in a sample's body or shape parameters is named with i
   TempDir dir;
   const fs::path out = dir / "data.h5";
   const DatasetLayout layout = small_layout(4);
-  {
-    DatasetWriter writer(out, layout);
-    for (std::size_t i : {0, 1, 2}) writer.write(i, make_sample(layout, i));
-  }
+  write_first_three(out, layout);  // a run killed after three samples
   const fs::path partial = DatasetWriter::partial_path(out);
   {
     auto file = h5::File::open(partial, h5::Access::ReadWrite);
