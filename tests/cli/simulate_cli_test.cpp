@@ -111,12 +111,15 @@ TEST_CASE("a scene without stretching or contact is said to be so before it is s
   test::run_drape("simulate " + (dir / "nomargin.yaml").string() + " --out " + (dir / "m.obj").string(), out);
   CHECK_THAT(out, Catch::Contains("note: the collision effect's margin is 0 and the scene has no barrier") &&
                       !Catch::Contains("collision effect's stiffness"));
-  // Stretching of no stiffness is no stretching.
+  // Stretching of no stiffness is no stretching: noted, and under the barrier's morph refused before any work (an
+  // outside check's run crawled at morph step 3 of 20 after 3 minutes, ETA 3 h 35 min).
   std::ofstream(dir / "limp.yaml") << "base: " << (test::source_dir() / "graphs/scenes/tshirt_coarse.yaml").string()
                                    << "\neffects: {stretching: {stiffness_scale: 0}}\n"
                                       "solver: {morph_steps: 1, settle_steps: 0, max_newton_iterations: 2}\n";
-  test::run_drape("simulate " + (dir / "limp.yaml").string() + " --out " + (dir / "l.obj").string(), out);
-  CHECK_THAT(out, Catch::Contains("note: the stretching effect's stiffness_scale is 0"));
+  CHECK(test::run_drape("simulate " + (dir / "limp.yaml").string() + " --out " + (dir / "l.obj").string(), out) == 2);
+  CHECK_THAT(out, Catch::Contains("note: the stretching effect's stiffness_scale is 0") &&
+                      Catch::Contains("the barrier cannot carry it as the body morphs"));
+  CHECK_FALSE(std::filesystem::exists(dir / "l.obj"));
   // The shipped scenes have both: no such note.
   std::ofstream(dir / "quick.yaml") << "base: " << (test::source_dir() / "graphs/scenes/tshirt_coarse.yaml").string()
                                     << "\nsolver: {morph_steps: 1, settle_steps: 0, max_newton_iterations: 2}\n";

@@ -159,6 +159,9 @@ class Simulation {
   // body, or a penalty contact whose stiffness or margin is 0 (the garment
   // falls through). The drape program prints each as a note; Python warns.
   std::vector<std::string> effect_notes() const;
+  // The scene has a stretching effect of a stiffness_scale above 0: the
+  // cloth holds its shape in the plane (a barrier morph needs it).
+  bool stretches() const;
 
   SolverSettings solver_settings() const;
 
