@@ -280,3 +280,22 @@ TEST_CASE("a cloth a grade below the design size cuts too small is told the grad
   CHECK(scene_detail::cloth_too_short(loop_at(grade), fits.fit_body(), fits.body_model().faces(), design).empty());
   CHECK_FALSE(scene_detail::cloth_too_short(loop_at(grade - 0.01), fits.fit_body(), fits.body_model().faces(), design).empty());
 }
+
+TEST_CASE("a barrier set far below its defaults is among the causes a blocked morph names", "[garments][fit]") {
+  // An outside check's distance 1e-5 m and stiffness 1e-3 Pa (both in range) blocked the morph, which said
+  // "nothing in the scene's material, time step or mesh stands out".
+  const auto notes_of = [](const std::string& barrier) {
+    std::string all;
+    for (const std::string& note :
+         Simulation(test::plugins(), parse_scene("garment: {template: tshirt, params: {resolution: coarse}}\n"
+                                                 "effects: {gravity: {}, stretching: {}, barrier: " + barrier + "}\n"))
+             .effect_notes())
+      all += note + "\n";
+    return all;
+  };
+  const std::string low = notes_of("{distance: 1.0e-5, stiffness: 1.0e-3}");
+  CHECK_THAT(low, Catch::Contains("the barrier's distance is 1e-05, under a tenth of its default 0.001") &&
+                      Catch::Contains("the barrier's stiffness is 0.001, under a tenth of its default 1000"));
+  CHECK_THAT(notes_of("{}"), !Catch::Contains("the barrier's"));
+  CHECK_THAT(notes_of("{distance: 5.0e-4}"), !Catch::Contains("the barrier's"));  // half the default: a choice, not a cause
+}

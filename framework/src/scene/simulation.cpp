@@ -13,6 +13,7 @@
 #include <drape/scene/simulation.hpp>
 #include <drape/error_context.hpp>
 #include <drape/warnings.hpp>
+#include <drape/physics/barrier_function.hpp>
 
 #include "barrier_morph.hpp"
 #include "cloth_fit.hpp"
@@ -327,6 +328,25 @@ std::vector<std::string> Simulation::effect_notes() const {
       notes.push_back("the stretching effect's stiffness_scale is 0: the cloth resists no stretch, so a step may never "
                       "settle (each takes up to its Newton iterations)");
   const bool barrier = scene_.has_effect("barrier");
+  // A barrier set far below its defaults leaves the morph little room: a
+  // blocked morph said "nothing in the scene stands out" of an outside
+  // check's distance 1e-5 m and stiffness 1e-3 Pa, both in range.
+  for (std::size_t i = 0; i < scene_.effects.size(); ++i) {
+    if (scene_.effects[i].name != "barrier") continue;
+    for (const ParamSpec& spec : barrier_param_specs("")) {
+      if (spec.name == "min_separation") continue;
+      const double value = effect_params_[i].get_float(spec.name), usual = std::stod(spec.default_value);
+      if (!(value < 0.1 * usual)) continue;
+      char note[300];
+      std::snprintf(note, sizeof note,
+                    "the barrier's %s is %g, under a tenth of its default %g: %s", spec.name.c_str(), value, usual,
+                    spec.name == "distance" ? "the cloth is pushed off the body only within that gap, so the body's growth "
+                                              "meets it before it can move"
+                                            : "its push is so weak that the body's growth presses into the cloth before "
+                                              "it gives way");
+      notes.emplace_back(note);
+    }
+  }
   if (!barrier && !scene_.has_effect("collision"))
     notes.push_back("the scene has no contact with the body (barrier or collision): the garment falls through it");
   // A penalty contact of no stiffness or no margin keeps nothing out (an
