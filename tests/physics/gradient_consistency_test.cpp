@@ -92,4 +92,8 @@ TEST_CASE("the gradient check says nothing where a value cannot be differenced o
   CHECK(scene_detail::inconsistent_gradients(list, x, total_gradient(list, x)).empty());
   const auto springs = energies(2.0);
   CHECK(scene_detail::inconsistent_gradients(springs, x, Eigen::MatrixX3d::Zero(4, 3)).empty());  // balanced: no direction
+  // The wall skipped, the energies after it are still checked.
+  list.push_back({"spring", std::make_unique<Spring>(40.0, 2.0, 0.0)});
+  CHECK_THAT(scene_detail::inconsistent_gradients(list, x, total_gradient(list, x)),
+             Catch::Contains("energy 'spring'") && !Catch::Contains("energy 'wall'"));
 }

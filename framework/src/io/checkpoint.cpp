@@ -78,10 +78,10 @@ void save_checkpoint(const fs::path& path, Graph& graph, const std::map<std::str
 void refuse_training_state(const Checkpoint& checkpoint, const fs::path& file, const std::string& option) {
   const auto kind = checkpoint.meta.find("kind");
   if (kind == checkpoint.meta.end() || kind->second != kTrainingStateKind) return;
-  std::string model = file.string();
-  if (file.extension() == ".state") model = file.parent_path().empty() ? file.stem().string() : (file.parent_path() / file.stem()).string();
+  // (<out>.state is written beside <out>.)
+  const fs::path model = file.extension() == ".state" ? fs::path(file).replace_extension() : file;
   throw ConfigError(option + file.string() + ": is drape train's training state (what --resume continues from), not a "
-                    "model: give the model it was written beside (" + model + ")");
+                    "model: give the model it was written beside (" + model.string() + ")");
 }
 
 Checkpoint read_checkpoint(const fs::path& path) {

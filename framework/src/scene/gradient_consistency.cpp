@@ -28,12 +28,16 @@ std::string inconsistent_gradients(const std::vector<NamedEnergy>& energies, con
     Eigen::MatrixX3d g = Eigen::MatrixX3d::Zero(x.rows(), 3);
     e.energy->add_gradient(x, g);
     const double slope = (g.array() * d.array()).sum();
-    bool disagrees = true;
+    bool disagrees = std::isfinite(slope);
     double difference = 0;
     for (const double h : kSteps) {
+      if (!disagrees) break;
       const double up = e.energy->value(x + h * d), down = e.energy->value(x - h * d);
-      // (A barrier's infinity one step away, or a plugin's NaN: nothing to compare.)
-      if (!std::isfinite(up) || !std::isfinite(down) || !std::isfinite(slope)) return out;
+      // (A barrier's infinity one step away, or a plugin's NaN: nothing to compare for this energy; the others still are.)
+      if (!std::isfinite(up) || !std::isfinite(down)) {
+        disagrees = false;
+        break;
+      }
       difference = (up - down) / (2 * h);
       const double rounding = 64 * std::numeric_limits<double>::epsilon() * (std::abs(up) + std::abs(down)) / (2 * h);
       disagrees = disagrees && std::abs(slope - difference) > kDisagreement * std::max(std::abs(slope), std::abs(difference)) + rounding;

@@ -24,29 +24,36 @@ std::string pieces_slid_down(const Eigen::MatrixX3d& start, const Eigen::MatrixX
   if (!(height0 > 0) || !(height > 0)) return "";
   const auto n = static_cast<int>(x.rows());
   const std::vector<int> face_piece = garment_pieces(faces, n);
-  const int pieces = face_piece.empty() ? 0 : *std::max_element(face_piece.begin(), face_piece.end()) + 1;
+  const std::size_t pieces = face_piece.empty() ? 0 : static_cast<std::size_t>(*std::max_element(face_piece.begin(), face_piece.end())) + 1;
   std::vector<int> piece(static_cast<std::size_t>(n), -1);
   for (Eigen::Index f = 0; f < faces.rows(); ++f)
     for (int k = 0; k < 3; ++k) piece[static_cast<std::size_t>(faces(f, k))] = face_piece[static_cast<std::size_t>(f)];
+  // Each piece's drop in one pass over the vertices: the sum of its heights,
+  // as shares of its body's height above the soles, at the start less now.
+  struct Drop {
+    double sum = 0;
+    int count = 0, first = -1, last = -1;
+  };
+  std::vector<Drop> drops(pieces);
+  for (int v = 0; v < n; ++v) {
+    if (piece[static_cast<std::size_t>(v)] < 0) continue;  // (a vertex no face uses)
+    Drop& d = drops[static_cast<std::size_t>(piece[static_cast<std::size_t>(v)])];
+    d.sum += (start(v, 1) - sole0) / height0 - (x(v, 1) - sole) / height;
+    if (d.count++ == 0) d.first = v;
+    d.last = v;
+  }
   std::string out;
-  for (int p = 0; p < pieces; ++p) {
-    // The piece's mean height, as a share of its body's height above the soles, at the start and now.
-    double was = 0, now = 0;
-    int count = 0, first = n, last = -1;
-    for (int v = 0; v < n; ++v)
-      if (piece[static_cast<std::size_t>(v)] == p) {
-        was += (start(v, 1) - sole0) / height0, now += (x(v, 1) - sole) / height;
-        ++count, first = std::min(first, v), last = std::max(last, v);
-      }
-    if (count == 0 || !((was - now) / count > kSlidShare)) continue;
+  for (std::size_t p = 0; p < pieces; ++p) {
+    const Drop& d = drops[p];
+    if (d.count == 0 || !(d.sum / d.count > kSlidShare)) continue;
+    const std::string which = pieces > 1 ? "piece " + std::to_string(p + 1) + " of " + std::to_string(pieces) : "the garment";
     char text[400];
     std::snprintf(text, sizeof text,
-                  "%s%s (vertices %d-%d) slid %.2f m down the body from where it was put on, nothing holding it up (a "
+                  "%s (vertices %d-%d) slid %.2f m down the body from where it was put on, nothing holding it up (a "
                   "garment stays on only if it hangs from the shoulders, grips the body, or its contact has friction "
                   "enough: the barrier's `friction`, a smaller size)",
-                  out.empty() ? "" : "; ", pieces > 1 ? ("piece " + std::to_string(p + 1) + " of " + std::to_string(pieces)).c_str() : "the garment",
-                  first, last, (was - now) / count * height);
-    out += text;
+                  which.c_str(), d.first, d.last, d.sum / d.count * height);
+    out += (out.empty() ? "" : "; ") + std::string(text);
   }
   return out;
 }

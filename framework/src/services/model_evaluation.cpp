@@ -74,10 +74,10 @@ ModelEvaluation evaluate_on_dataset(Model& model, const DatasetReader& data, con
   if (drapes) check_dataset_template(*drapes, request.drapes_file, model.assets());
   const std::vector<std::size_t> indices = selected_samples(data, drapes, request);
   ModelEvaluation result;
-  // An A-pose model on posed bodies: refused, not measured (dataset_poses.hpp).
-  check_model_takes_dataset_poses(model, data, drapes ? drape_sources(data, *drapes, indices) : indices);
   // The strain against the garment each body wore (a size: auto dataset's sizes).
   result.samples = drapes ? drape_sources(data, *drapes, indices) : indices;
+  // An A-pose model on posed bodies: refused, not measured (dataset_poses.hpp).
+  check_model_takes_dataset_poses(model, data, result.samples);
   const WornGarments worn = worn_garments(Registry::load_default(), data, result.samples);
   if (drapes) {
     // Drapes that drape optimize did not finish on the true body are not results (docs/optimization.md).

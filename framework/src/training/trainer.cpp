@@ -34,7 +34,6 @@ namespace {
 using Clock = std::chrono::steady_clock;
 double since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
 
-
 // Round-trips a double exactly through text (meta values are strings).
 std::string exact(double v) {
   char b[40];
