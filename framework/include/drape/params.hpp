@@ -24,6 +24,10 @@ struct ParamSpec {
   std::optional<double> min{};  // inclusive bounds, applied to every element of lists
   std::optional<double> max{};
   std::vector<std::string> choices{};  // allowed values of a String parameter (empty: any)
+  // A garment's parameter that fits it to another body than the one a drape
+  // starts from when set off its default (a MakeHuman outfit's body
+  // sliders): a start that fails names it, with the default to keep (ABI 11).
+  bool fits_start_body = false;
 };
 
 // A raw YAML value and where it was written.

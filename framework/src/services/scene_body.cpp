@@ -216,17 +216,17 @@ SceneBody scene_body(const SceneSimulations& simulations, const BodyRequest& req
 namespace {
 
 // "its parameter gender: 0 (default 1) fits it to another body than ..." for
-// each garment parameter whose plugin asks to keep its default (a
-// MakeHuman outfit's body sliders: the outfit is fitted to the body a drape
-// starts from) that the scene sets otherwise; "" when none. An outside
-// check's gender: 0 was told to model the outfit around the mean body.
+// each garment parameter that fits the garment to the body a drape starts
+// from (ParamSpec::fits_start_body: a MakeHuman outfit's body sliders) and
+// that the scene sets off its default; "" when none. An outside check's
+// gender: 0 was told to model the outfit around the mean body.
 std::string body_sliders_moved(const Scene& scene) {
   const PluginDescriptor* garment = Registry::load_default().find(scene.garment);
   if (!garment) return "";
   std::string out;
   for (const ParamSpec& spec : garment->params) {
     const auto set = scene.garment_params.find(spec.name);
-    if (set == scene.garment_params.end() || spec.doc.find("keep the default") == std::string::npos) continue;
+    if (!spec.fits_start_body || set == scene.garment_params.end()) continue;
     const std::string value = set->second.node.IsScalar() ? set->second.node.Scalar() : std::string("?");
     bool same = value == spec.default_value;
     try {

@@ -45,15 +45,15 @@ std::vector<ParamSpec> slider_params() {
   // the defaults, for a women's outfit too (docs/garments.md).
   const std::string why = "; keep the default: the garment is fitted to the body a drape starts from, the mean shape";
   return {{.name = "gender", .type = ParamType::Float, .default_value = "1.0",
-           .doc = "gender slider of the body the garment is fitted to (0 female, 1 male)" + why, .min = 0.0, .max = 1.0},
+           .doc = "gender slider of the body the garment is fitted to (0 female, 1 male)" + why, .min = 0.0, .max = 1.0, .fits_start_body = true},
           {.name = "muscle", .type = ParamType::Float, .default_value = "0.5",
-           .doc = "muscle slider of that body" + why, .min = 0.0, .max = 1.0},
+           .doc = "muscle slider of that body" + why, .min = 0.0, .max = 1.0, .fits_start_body = true},
           {.name = "weight", .type = ParamType::Float, .default_value = "0.5",
-           .doc = "weight slider of that body" + why, .min = 0.0, .max = 1.0},
+           .doc = "weight slider of that body" + why, .min = 0.0, .max = 1.0, .fits_start_body = true},
           {.name = "height", .type = ParamType::Float, .default_value = "0.5",
-           .doc = "height slider of that body" + why, .min = 0.0, .max = 1.0},
+           .doc = "height slider of that body" + why, .min = 0.0, .max = 1.0, .fits_start_body = true},
           {.name = "proportions", .type = ParamType::Float, .default_value = "0.5",
-           .doc = "proportions slider of that body" + why, .min = 0.0, .max = 1.0}};
+           .doc = "proportions slider of that body" + why, .min = 0.0, .max = 1.0, .fits_start_body = true}};
 }
 
 class ClothesSource final : public GarmentSource {
