@@ -105,15 +105,20 @@ int run(const std::vector<std::string>& args) {
       throw UsageError(std::string("--") + option + " goes with --data (a dataset split); one body is optimised alone");
   if (vm.count("body") == vm.count("bmi"))
     throw UsageError("give the body either as a mesh (--body FILE) or by its BMI (--bmi X), exactly one");
-  const std::string model_file = model_file_or_default(vm);
+  // The scene's text first (its simulations take seconds to build): its
+  // `body: pose:` poses the body when no --pose is given, as in drape
+  // simulate, and sends it to the model of posed drapes.
+  const std::filesystem::path scene_file = find_input_file(vm["scene"].as<std::string>());
+  Scene scene_spec = load_scene(scene_file);
+  const std::string model_file = model_file_or_default(vm, !pose_given(vm) && !scene_spec.pose.empty());
 
   Registry& registry = Registry::load_default(plugin_path(vm));
   Model model = Model::load(registry, model_file);
   BodyMove moved_by;  // the drape is made where (and as) the training bodies stood; written back where the body was
-  // The body and its pose before the scene (seconds to build): a bad one is refused at once.
-  SampleBatch batch = model_body(model, vm, &moved_by);
-  const std::filesystem::path scene_file = find_input_file(vm["scene"].as<std::string>());
-  const SceneSimulations simulations(registry, load_scene(scene_file));
+  // The body and its pose before the scene is built: a bad one is refused at once.
+  const Pose scene_posed = pose_given(vm) ? Pose{} : scene_pose(scene_spec, model.body_model());
+  SampleBatch batch = model_body(model, vm, &moved_by, nullptr, &scene_posed, "the scene " + scene_file.string());
+  const SceneSimulations simulations(registry, std::move(scene_spec));
   // The body optimised on is the model's; the scene gives the garment's
   // energies and the contact. A scene on another rig (another vertex count)
   // was taken without a word when its size is fixed, and refused with "the

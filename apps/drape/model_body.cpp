@@ -3,6 +3,7 @@
 
 #include <drape/bodies/given_body.hpp>
 #include <drape/bodies/limb_turns.hpp>
+#include <drape/bodies/pose.hpp>
 #include <drape/geometry/body_units.hpp>
 #include <drape/io/checkpoint.hpp>
 #include <drape/io/shipped_files.hpp>
@@ -128,13 +129,13 @@ bool pose_given(const po::variables_map& vm) {
   return vm.count("pose") + vm.count("pose-file") + vm.count("smpl-theta") > 0;
 }
 
-std::string model_file_or_default(const po::variables_map& vm) {
+std::string model_file_or_default(const po::variables_map& vm, bool posed_elsewhere) {
   if (vm.count("model")) return find_input_file(vm["model"].as<std::string>()).string();  // models/... from anywhere
   // A posed body goes to the shipped model of posed drapes (the A-pose model
   // refuses a pose); DRAPE_MODEL, when set, names the one model for both.
   const char* env = std::getenv("DRAPE_MODEL");
   const std::string file = default_model_path().string();
-  if (!(env && *env) && (pose_given(vm) || (!file.empty() && body_mesh_posed(file, vm))))
+  if (!(env && *env) && (pose_given(vm) || posed_elsewhere || (!file.empty() && body_mesh_posed(file, vm))))
     if (const fs::path posed = shipped_model_path(posed_model_name); !posed.empty()) return posed.string();
   if (file.empty())
     throw UsageError(std::string("no --model given and the shipped model (models/") + kDefaultModelFile + ") was not found: give "
@@ -158,7 +159,7 @@ std::string model_file_for_samples(const po::variables_map& vm, const Registry& 
 }
 
 SampleBatch model_body(const Model& model, const po::variables_map& vm, BodyMove* moved_by,
-                       std::vector<std::string>* printed) {
+                       std::vector<std::string>* printed, const Pose* fallback_pose, const std::string& fallback_source) {
   ModelBodyInput input = body_input(vm);
   // A body far from the origin (a scene's or a survey's coordinates) moved
   // near it in double before the network's single precision rounds it: at
@@ -199,9 +200,32 @@ SampleBatch model_body(const Model& model, const po::variables_map& vm, BodyMove
   PreparedBodies prepared =
       preparation.prepare(batch, vm.count("strict") > 0, "--strict", true, vm.count("body") > 0, pose_given(vm));
   // Posed after the body is measured and placed at rest (a raised arm is no girth).
-  const std::optional<Pose> pose = pose_options(vm, model.body_model(), model.assets_spec().body_model);
-  for (Notice& n : preparation.pose(batch, pose ? *pose : Pose{}, vm.count("strict") > 0, "--strict", &prepared))
-    prepared.notices.push_back(std::move(n));
+  std::optional<Pose> pose = pose_options(vm, model.body_model(), model.assets_spec().body_model);
+  // The fallback (a scene's pose) where no option gives one: a drape
+  // optimised on the unposed body while the scene named a pose was measured
+  // p = 0 against a body the user never asked for (an outside check: 109
+  // vertices inside the scene's posed body).
+  bool fallen_back = false;
+  if (!pose && fallback_pose && !fallback_pose->empty()) {
+    // (A mesh read at rest has a pose read too, within half a degree of rest: given_at_rest.)
+    const bool mesh_posed = !prepared.given_poses.empty() && !prepared.given_poses.front().empty() &&
+                            !(prepared.given_at_rest.size() == 1 && prepared.given_at_rest.front());
+    if (mesh_posed) {
+      prepared.notices.push_back({Notice::Level::note, "the body mesh is posed: it is draped in its own pose, not in " +
+                                                           fallback_source + "'s (" + format_pose(*fallback_pose) + ")"});
+    } else {
+      pose = *fallback_pose, fallen_back = true;
+      prepared.notices.push_back({Notice::Level::note, "the body is posed as " + fallback_source + " sets: " +
+                                                           format_pose(*fallback_pose) + " (--pose replaces it)"});
+    }
+  }
+  try {
+    for (Notice& n : preparation.pose(batch, pose ? *pose : Pose{}, vm.count("strict") > 0, "--strict", &prepared))
+      prepared.notices.push_back(std::move(n));
+  } catch (const ConfigError& e) {
+    if (!fallen_back) throw;
+    throw ConfigError(fallback_source + " poses the body (" + format_pose(*pose) + "): " + e.what());
+  }
   for (const Notice& n : prepared.notices) {
     const std::string line = (n.level == Notice::Level::note ? "note: " : "warning: ") + n.text;
     std::cerr << line << "\n";

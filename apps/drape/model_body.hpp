@@ -26,8 +26,13 @@ void add_model_body_options(po::options_description& options, const std::string&
 // moves the outputs back with the body (BodyMove::back). Its notes and warnings go to stderr;
 // --strict makes a body outside the training domain exit 2. `printed` (when
 // given) receives the lines printed, for a picture to show them too.
+// `fallback_pose` (optional): the pose the command takes from elsewhere when
+// none of --pose, --pose-file and --smpl-theta is given (optimize: its
+// scene's `body: pose:`), with `fallback_source` naming it in the note and in
+// a refusal; a body mesh given posed keeps its own pose (said).
 SampleBatch model_body(const Model& model, const po::variables_map& vm, BodyMove* moved_by = nullptr,
-                       std::vector<std::string>* printed = nullptr);
+                       std::vector<std::string>* printed = nullptr, const Pose* fallback_pose = nullptr,
+                       const std::string& fallback_source = "");
 
 // The shipped model of posed drapes, beside the A-pose one in models/: the
 // human rig's, as the A-pose default is (since 2026-12-02; the mannequin's
@@ -41,7 +46,9 @@ bool pose_given(const po::variables_map& vm);
 // a --body mesh given posed: its limbs turned as limb_turns.hpp tells) the
 // model of posed drapes (posed_model_name) when it is shipped and DRAPE_MODEL
 // is not set, else default_model_path's; UsageError when none exists.
-std::string model_file_or_default(const po::variables_map& vm);
+// posed_elsewhere: the body is posed by something other than these options
+// (optimize's scene), and goes to the model of posed drapes too.
+std::string model_file_or_default(const po::variables_map& vm, bool posed_elsewhere = false);
 
 // model_file_or_default for a dataset's samples: without --model (and with
 // DRAPE_MODEL unset), the shipped model of posed drapes when the default

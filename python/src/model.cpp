@@ -14,6 +14,8 @@
 #include <drape/training/physics_optimization.hpp>
 #include <drape/services/graded_scene.hpp>
 #include <drape/services/model_body.hpp>
+#include <drape/scene/scene_pose.hpp>
+#include <drape/bodies/pose.hpp>
 
 #include <chrono>
 #include <filesystem>
@@ -342,13 +344,26 @@ void register_model(py::module_& m) {
           [](PyModel& p, const PyScene& scene, const py::handle& body, const py::handle& body_params, int iterations,
              double learning_rate, const py::handle& pose, const py::handle& garment_size) {
             bool batched = false;
-            const std::optional<Pose> posed = pose_arg(p.model().body_model(), p.model().assets_spec().body_model, pose);
+            std::optional<Pose> posed = pose_arg(p.model().body_model(), p.model().assets_spec().body_model, pose);
             SampleBatch b = p.batch(body, body_params, garment_size, &batched);
             if (b.size() != 1) throw py::value_error("body_vertices: optimize takes one body [Nb, 3], got a batch of " + std::to_string(b.size()));
             if (iterations < 0) throw py::value_error("iterations: expected >= 0");
             // Optimised where the training bodies stood (as predict), the drapes moved back with the body.
             const PreparedBodies prepared = p.prepare(b, false, true, posed.has_value());
-            p.pose(b, posed, false, prepared);
+            // pose=None: the scene's `body: pose:`, as drape optimize takes it (it optimised the unposed
+            // body and measured p = 0 against it); a body given posed keeps its own.
+            bool scene_posed = false;
+            const bool mesh_posed = !prepared.given_poses.empty() && !prepared.given_poses.front().empty() &&
+                                    !(prepared.given_at_rest.size() == 1 && prepared.given_at_rest.front());
+            if (!posed && !mesh_posed)
+              if (Pose from_scene = scene_pose(scene.simulations->design().scene(), p.model().body_model()); !from_scene.empty())
+                posed = std::move(from_scene), scene_posed = true;
+            try {
+              p.pose(b, posed, false, prepared);
+            } catch (const ConfigError& e) {
+              if (!scene_posed) throw;
+              throw ConfigError("the scene's body: pose: (" + format_pose(*posed) + ", pose= replaces it): " + e.what());
+            }
             const BodyMove back = prepared.moved_by.front();
             // A model of several sizes: against the garment the scene dresses this body in, fed that grade.
             // Another garment than the rule chose, said as drape optimize says it (an outside check's Python
@@ -373,7 +388,8 @@ void register_model(py::module_& m) {
           py::arg("scene"), py::arg("body_vertices"), py::arg("body_params") = py::none(), py::arg("iterations") = 100,
           py::arg("learning_rate") = 1e-4, py::arg("pose") = py::none(), py::arg("garment_size") = py::none(),
           "The seed's physics-enforced optimisation (as drape optimize): fine-tunes this model's weights in place so that "
-          "its drape of one body minimises the scene's potential. Returns before/after garments, energies, p and the "
+          "its drape of one body minimises the scene's potential. pose=None poses the body as the scene's body: pose: "
+          "does (a body given posed keeps its own pose). Returns before/after garments, energies, p and the "
           "history (history[0]: before's potential). 'before' is the prediction as predict gives it; with a push-out "
           "the drape optimised is the network's own plus the push-out's correction of the prediction, held fixed (the "
           "push-out is not learnt; docs/optimization.md). The GIL is released.")

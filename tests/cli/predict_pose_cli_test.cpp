@@ -201,3 +201,37 @@ TEST_CASE("a pose in which the body passes through itself is named by predict, a
                         out) == 2);
   CHECK_THAT(out, Catch::Contains("this pose makes the body pass through itself"));
 }
+
+// The scene's `body: pose:` poses the body optimize works on when no --pose
+// is given (as drape simulate takes it): an outside check's optimize of the
+// shipped posed scene drew the unposed body's drape and measured it p = 0
+// against that body, 109 of its vertices inside the scene's posed body.
+TEST_CASE("optimize poses the body as its scene does unless --pose replaces it", "[cli][pose][optimize]") {
+  test::TempDir dir;
+  std::string out;
+  const std::string scene = " --scene graphs/scenes/tshirt_coarse_posed.yaml";
+  const std::string optimize = "optimize --model models/tshirt-coarse-posed.h5" + scene + " --iters 0 ";
+  const std::string predict = "predict --model models/tshirt-coarse-posed.h5 --bmi 30 ";
+  // The scene file's own pose, written out here (not read from drape).
+  const std::string scene_pose = "shoulder_abduction=25,elbow_flexion=30,spine_twist=10";
+  REQUIRE(test::run_drape(optimize + "--bmi 30 --out " + (dir / "o.obj").string() + " --before " + (dir / "s.obj").string(), out) == 0);
+  INFO(out);
+  CHECK_THAT(out, Catch::Contains("the body is posed as the scene") && Catch::Contains("(--pose replaces it)"));
+  REQUIRE(test::run_drape(predict + "--pose " + scene_pose + " --out " + (dir / "p.obj").string(), out) == 0);
+  REQUIRE(test::run_drape(predict + "--out " + (dir / "rest.obj").string(), out) == 0);
+  const Eigen::MatrixX3d scene_drape = read_mesh(dir / "s.obj").vertices;
+  CHECK((scene_drape - read_mesh(dir / "p.obj").vertices).cwiseAbs().maxCoeff() < 1e-6);
+  CHECK((scene_drape - read_mesh(dir / "rest.obj").vertices).cwiseAbs().maxCoeff() > 0.02);
+  // --pose replaces the scene's.
+  REQUIRE(test::run_drape(optimize + "--bmi 30 --pose shoulder_abduction=40 --out " + (dir / "o2.obj").string() +
+                              " --before " + (dir / "s2.obj").string(), out) == 0);
+  CHECK(out.find("posed as the scene") == std::string::npos);
+  REQUIRE(test::run_drape(predict + "--pose shoulder_abduction=40 --out " + (dir / "p2.obj").string(), out) == 0);
+  CHECK((read_mesh(dir / "s2.obj").vertices - read_mesh(dir / "p2.obj").vertices).cwiseAbs().maxCoeff() < 1e-6);
+  // A model of A-pose drapes is refused, the scene named as what posed the body.
+  CHECK(test::run_drape("optimize --model models/tshirt-coarse.h5" + scene + " --iters 0 --bmi 30 --out " +
+                            (dir / "o3.obj").string(), out) == 2);
+  CHECK_THAT(out, Catch::Contains("tshirt_coarse_posed.yaml poses the body (") &&
+                      Catch::Contains("this model drapes bodies in the A-pose only"));
+  CHECK(!fs::exists(dir / "o3.obj"));
+}

@@ -124,6 +124,27 @@ def test_optimize_moves_a_lifted_body_like_predict(tmp_path):
     np.testing.assert_allclose(r["after"], r["before"], atol=0)
 
 
+def test_optimize_poses_the_body_as_the_scene_does():
+    # pose=None takes the scene's body: pose: (as drape optimize); an outside
+    # check's optimize of the shipped posed scene drew the unposed body's drape.
+    m = drape.Model.load(str(SOURCE / "models" / "tshirt-coarse-posed.h5"))
+    body = m.body(bmi=30)
+    scene = drape.Scene(str(SOURCE / "graphs" / "scenes" / "tshirt_coarse_posed.yaml"))
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        before = m.optimize(scene, body, iterations=0)["before"]
+        posed = m.predict(body, pose="shoulder_abduction=25,elbow_flexion=30,spine_twist=10")  # the scene file's pose
+        rest = m.predict(body)
+        explicit_rest = m.optimize(scene, body, iterations=0, pose="")["before"]
+    # (The body given as an array is read for its pose first: to 0.5 mm, as predict's body given at rest.)
+    np.testing.assert_allclose(before, posed, atol=1e-3)
+    assert np.abs(before - rest).max() > 0.02
+    np.testing.assert_allclose(explicit_rest, rest, atol=1e-3)
+    apose = drape.Model.load(str(SHIPPED))
+    with pytest.raises(ValueError, match="the scene's body: pose:"):
+        apose.optimize(scene, apose.body(bmi=30), iterations=0)
+
+
 def test_domain_check_names_what_lies_outside(model):
     body = model.body(bmi=30)
     assert model.domain_check(body) == []
