@@ -54,8 +54,10 @@ int run_on_dataset(const po::variables_map& vm) {
   if (o.threads <= 0) o.threads = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
   o.optimization.iterations = vm["iters"].as<int>();
   o.optimization.learning_rate = vm["lr"].as<double>();
+  std::error_code ec;
+  const bool finished_before = std::filesystem::exists(o.out, ec);  // (then "nothing to do", or refused)
   const std::size_t n = optimize_dataset(Registry::load_default(plugin_path(vm)), o);
-  std::printf("wrote %s: %zu samples optimised in this run\n", o.out.c_str(), n);
+  if (!finished_before) std::printf("wrote %s: %zu samples optimised in this run\n", o.out.c_str(), n);
   return 0;
 }
 

@@ -13,8 +13,9 @@ shards=${2:?$usage}
 [[ "$shards" =~ ^[1-9][0-9]*$ ]] || { echo "$0: SHARDS must be a positive number, got '$shards'" >&2; exit 2; }
 : "${OUT:?OUT (the merged dataset to make) is required}"
 here=$(cd "$(dirname "$0")" && pwd)
+# (${extra[@]+...} below: an empty array under set -u aborts bash before 4.4, e.g. RHEL 7's 4.2.)
 read -r -a extra <<< "${SBATCH_OPTIONS:-}"
-array=$(sbatch --parsable "${extra[@]}" --array="0-$((shards - 1))" --export="ALL,SHARDS=$shards" "$here/$stage.sbatch")
+array=$(sbatch --parsable ${extra[@]+"${extra[@]}"} --array="0-$((shards - 1))" --export="ALL,SHARDS=$shards" "$here/$stage.sbatch")
 array=${array%%;*}  # "id;cluster" on federated clusters
-merge=$(sbatch --parsable "${extra[@]}" --dependency="afterok:$array" --export="ALL,SHARDS=$shards" "$here/merge.sbatch")
+merge=$(sbatch --parsable ${extra[@]+"${extra[@]}"} --dependency="afterok:$array" --export="ALL,SHARDS=$shards" "$here/merge.sbatch")
 echo "queued $stage array job $array ($shards tasks) and merge job ${merge%%;*} into $OUT"

@@ -45,9 +45,15 @@ TEST_CASE("cluster scripts: a generate array of 3 tasks and its merge make the s
     INFO(out);
   }
   CHECK(fs::exists(dir / "all.h5.shards/shard-2-of-3.h5"));
-  // A requeued task whose shard is finished leaves it alone.
+  // A requeued task whose shard is finished leaves it alone; the array run
+  // again with another seed into the same OUT is refused, saying how the
+  // shard was made (the script skipped any shard that existed, and an
+  // outside check's rerun merged seed 3's shards with seed 4's).
   REQUIRE(test::run(task(env, 1, 3, "generate.sbatch"), out) == 0);
-  CHECK_THAT(out, Catch::Contains("is finished"));
+  CHECK_THAT(out, Catch::Contains("nothing to do: ") && Catch::Contains("made by this same request"));
+  const std::string reseeded = std::string(env).replace(env.find("SEED=4"), 6, "SEED=5");
+  CHECK(test::run(task(reseeded, 1, 3, "generate.sbatch"), out) == 2);
+  CHECK_THAT(out, Catch::Contains("already exists, a finished dataset made otherwise ("));
   REQUIRE(test::run("env DRAPE=" + test::drape_program().string() + " SHARDS=3 " + env + " bash " + script("merge.sbatch"), out) == 0);
   INFO(out);
   REQUIRE(test::run(test::drape_program().string() + " generate " + (dir / "tiny.yaml").string() +
@@ -77,6 +83,12 @@ TEST_CASE("cluster scripts: an optimize array of 2 tasks and its merge make the 
     REQUIRE(test::run(task(settings + " OUT=" + (dir / "opt.h5").string(), id, 2, "optimize.sbatch"), out) == 0);
     INFO(out);
   }
+  // Requeued: nothing to do; with other iterations: refused.
+  REQUIRE(test::run(task(settings + " OUT=" + (dir / "opt.h5").string(), 0, 2, "optimize.sbatch"), out) == 0);
+  CHECK_THAT(out, Catch::Contains("nothing to do: "));
+  const std::string more = std::string(settings).replace(settings.find("ITERS=2"), 7, "ITERS=3");
+  CHECK(test::run(task(more + " OUT=" + (dir / "opt.h5").string(), 0, 2, "optimize.sbatch"), out) == 2);
+  CHECK_THAT(out, Catch::Contains("made otherwise (") && Catch::Contains("3 iterations"));
   REQUIRE(test::run("env DRAPE=" + test::drape_program().string() + " SHARDS=2 OUT=" + (dir / "opt.h5").string() + " bash " +
                         script("merge.sbatch"),
                     out) == 0);

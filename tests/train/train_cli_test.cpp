@@ -308,8 +308,14 @@ TEST_CASE("drape optimize improves one drape, and every sample of a split into a
   // The bodies are the source's, in order.
   CHECK((opt.body_vertices({0}).vec() - source.body_vertices({source.indices(Split::Train).front()}).vec())
             .cwiseAbs().maxCoeff() == 0.0f);
-  // A finished dataset is never overwritten; a misspelt split is refused.
-  CHECK(test::run(test::drape_command(batch), out) == 2);
+  // A finished dataset is never overwritten: the same request again (a job
+  // array's retry) has nothing to do, one made otherwise is refused saying
+  // how. A misspelt split is refused.
+  REQUIRE(test::run(test::drape_command(batch), out) == 0);
+  CHECK_THAT(out, Catch::Contains("nothing to do: ") && Catch::Contains("made by this same request"));
+  CHECK(test::run(test::drape_command(std::string(batch).replace(batch.find("--iters 4"), 9, "--iters 5")), out) == 2);
+  CHECK_THAT(out, Catch::Contains("already exists, a finished dataset made otherwise (") && Catch::Contains("5 iterations"));
+  CHECK(DatasetReader(t.dir / "opt.h5").size() == source.indices(Split::Train).size());
   CHECK(test::run(test::drape_command("optimize --model " + t.model.string() + " --scene " + scene + " --data " +
                                       t.data.string() + " --split tain --out " + (t.dir / "x.h5").string()),
                   out) == 2);

@@ -1,5 +1,7 @@
 #include <drape/services/dataset_optimization.hpp>
 
+#include "../io/dataset_internal.hpp"
+
 #include <drape/io/parallel_samples.hpp>
 
 #include <drape/assets/dataset_assets.hpp>
@@ -13,6 +15,8 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <filesystem>
+#include <system_error>
 #include <iomanip>
 #include <map>
 #include <memory>
@@ -144,6 +148,20 @@ std::size_t optimize_dataset(const Registry& registry, const OptimizeDatasetOpti
                       "stored scene: drape dataset info)");
   const std::vector<std::string> carried = carried_stats(reader);
   const DatasetLayout layout = optimized_layout(reader, scene, o, source.size(), carried);
+  // A finished output: this same job done before (a job array's retry, or
+  // the whole array resubmitted) has nothing to do, as drape generate; one
+  // made otherwise is refused, saying how. (The cluster scripts skipped any
+  // task whose shard existed, and an outside check's rerun with other
+  // settings merged the old shards with the new without a word.)
+  if (std::error_code ec; std::filesystem::exists(o.out, ec)) {
+    const DatasetReader finished(o.out);
+    const std::string difference = dataset_detail::made_difference(finished.layout(), layout);
+    if (!difference.empty())
+      throw ConfigError(o.out.string() + ": already exists, a finished dataset made otherwise (" + difference +
+                        "); delete it to optimise again, or give another --out");
+    std::printf("nothing to do: %s is finished (%zu samples), made by this same request\n", o.out.c_str(), finished.size());
+    return 0;
+  }
   DatasetWriter writer(o.out, layout);
   const std::vector<std::size_t> todo = writer.missing();
   const int threads = std::max(1, std::min(o.threads, static_cast<int>(todo.size())));
