@@ -15,6 +15,7 @@
 #include <cmath>
 #include <cstdint>
 #include <fstream>
+#include <limits>
 #include <random>
 
 #include "test_support.hpp"
@@ -421,6 +422,41 @@ TEST_CASE("SMPL pose datasets of inconsistent sizes are named", "[smpl][pose]") 
   CHECK(with_bad("/kintree_table", {2, 23}).find("/kintree_table is [2, 23] but " + jr) != std::string::npos);
   CHECK(with_bad("/J_regressor", {24, n - 1}).find("/J_regressor is [24, " + std::to_string(n - 1) + "], expected [K, " +
                                                     std::to_string(n) + "]") != std::string::npos);
+}
+
+// Values a file's shapes cannot catch, refused at load naming the file and
+// the dataset: skinning weights that do not sum to 1 (doubled, they posed an
+// outside check's arm 9.8 cm too far, said nowhere), NaN in the shape
+// datasets (drape body printed "beta0 = nan" and exit 1 at the write), and a
+// face list with no triangles (refused as "the shape blend shapes do not
+// change the volume").
+TEST_CASE("SMPL weights that do not sum to 1 and NaN shapes are refused at load", "[smpl][pose]") {
+  test::TempDir dir;
+  SyntheticSmpl m = make_synthetic(kSmplParents, 17);
+  write_synthetic(m, dir / "good.h5");
+  CHECK_NOTHROW(load_smpl(dir / "good.h5"));
+  SyntheticSmpl doubled = m;
+  doubled.weights.row(5) *= 2.0;
+  write_synthetic(doubled, dir / "doubled.h5");
+  CHECK_THAT(test::message_of([&] { load_smpl(dir / "doubled.h5"); }),
+             Catch::Contains("doubled.h5: /weights row 5 sums to 2.0") && Catch::Contains("must sum to 1"));
+  SyntheticSmpl nan_template = m;
+  nan_template.v_template(3, 1) = std::nan("");
+  write_synthetic(nan_template, dir / "vt.h5");
+  CHECK_THAT(test::message_of([&] { load_smpl(dir / "vt.h5"); }), Catch::Contains("vt.h5: /v_template holds NaN"));
+  SyntheticSmpl nan_shapes = m;
+  nan_shapes.shapedirs(7, 1) = std::numeric_limits<double>::infinity();
+  write_synthetic(nan_shapes, dir / "sd.h5");
+  CHECK_THAT(test::message_of([&] { load_smpl(dir / "sd.h5"); }), Catch::Contains("sd.h5: /shapedirs holds NaN or infinite"));
+  SyntheticSmpl no_faces = m;
+  no_faces.faces.resize(0, 3);
+  write_synthetic(no_faces, dir / "f.h5");
+  CHECK_THAT(test::message_of([&] { load_smpl(dir / "f.h5"); }), Catch::Contains("f.h5: /f holds no triangles"));
+  SyntheticSmpl flat = m;
+  flat.shapedirs.setZero();
+  write_synthetic(flat, dir / "flat.h5");
+  CHECK_THAT(test::message_of([&] { load_smpl(dir / "flat.h5"); }),
+             Catch::Contains("flat.h5: the shape blend shapes (/shapedirs) do not change the body's volume"));
 }
 
 TEST_CASE("drape body poses an SMPL body by a theta file", "[smpl][pose][cli]") {

@@ -8,6 +8,7 @@
 #include <cmath>
 #include <filesystem>
 #include <sstream>
+#include <utility>
 
 namespace drape::smpl {
 
@@ -31,6 +32,13 @@ SmplData read_smpl_h5(const std::filesystem::path& file) {
     throw ConfigError(file.string() + ": /shapedirs must be [N, 3, B] with N = " + std::to_string(n));
   const std::vector<std::int64_t> faces = f.read<std::int64_t>("/f", &f_shape);
   if (f_shape.size() != 2 || f_shape[1] != 3) throw ConfigError(file.string() + ": /f must be [F, 3]");
+  // (An empty /f was refused later as "the shape blend shapes do not change
+  // the volume", and a NaN in the shape datasets as a non-finite body when
+  // written, naming neither the file nor the dataset: outside checks.)
+  if (f_shape[0] == 0) throw ConfigError(file.string() + ": /f holds no triangles (expected [F, 3], F > 0)");
+  for (const auto& [name, values] : {std::pair{"/v_template", &vt}, std::pair{"/shapedirs", &sd}})
+    for (const double x : *values)
+      if (!std::isfinite(x)) throw ConfigError(file.string() + ": " + name + " holds NaN or infinite values");
   d.v_template = Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor>>(vt.data(), n, 3);
   const auto b = static_cast<Eigen::Index>(sd_shape[2]);
   d.shapedirs = Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>>(sd.data(), 3 * n, b);
@@ -65,7 +73,9 @@ SmplBody::SmplBody(SmplData data, int num_betas) : data_(std::move(data)) {
     s[i] = -0.5;
     direction_[i] = plus - geometry::mesh_volume(vertices(s), data_.faces);
   }
-  if (direction_.norm() == 0.0) throw ConfigError("the SMPL shape blend shapes do not change the volume");
+  if (direction_.norm() == 0.0)
+    throw ConfigError(data_.file.string() + ": the shape blend shapes (/shapedirs) do not change the body's volume, so no "
+                      "BMI can be reached");
   direction_.normalize();
   if (data_.rig) {
     const Eigen::Index n = num_vertices();
