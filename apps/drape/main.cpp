@@ -1,4 +1,5 @@
 #include "command.hpp"
+#include "mpi_ranks.hpp"
 
 #include <drape/errors.hpp>
 #include <drape/geometry/push_out.hpp>
@@ -223,6 +224,7 @@ int main(int argc, char** argv) {
   for (const auto& c : commands()) {
     if (c.name != name) continue;
     try {
+      refuse_parallel_launch(name);
       return c.run(args);
     } catch (const UsageError& e) {
       std::cerr << "drape " << name << ": " << e.what() << "\n";

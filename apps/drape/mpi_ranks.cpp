@@ -89,6 +89,15 @@ std::unique_ptr<Ranks> mpi_ranks_if_launched() {
 #endif
 }
 
+void refuse_parallel_launch(const std::string& command) {
+  if (command == "train") return;
+  if (const int launched = launched_processes(); launched > 1)
+    throw UsageError("started by an MPI launcher as one of " + std::to_string(launched) + " processes, but drape " + command +
+                     " is not MPI-parallel (drape train is): each process would run the whole job on the same "
+                     "outputs. Run it once; to make a dataset in parallel, give each process its own shard (drape "
+                     "generate --shard i/N, then drape dataset merge: scripts/cluster/, docs/cluster.md)");
+}
+
 void abort_all_ranks(int code) {
 #ifdef DRAPE_HAVE_MPI
   MPI_Abort(MPI_COMM_WORLD, code);

@@ -151,3 +151,27 @@ TEST_CASE("mpirun -np 2 drape train with the six losses shares closest points an
   CHECK(read_checkpoint(dir / "mpi.h5").history.at("train_loss") == read_checkpoint(dir / "threads2.h5").history.at("train_loss"));
   CHECK(read_checkpoint(dir / "mpi.h5").history.at("val_loss") == read_checkpoint(dir / "threads2.h5").history.at("val_loss"));
 }
+
+// Only train is MPI-parallel: any other command started as one of several
+// processes is refused before it makes anything (an outside check's mpirun
+// -np 2 drape generate ran the whole job twice on one output: rank 1 died on
+// its lock, an empty .partial left). The launcher's variables are set by
+// hand, so this runs without mpirun.
+TEST_CASE("a command other than train started as one of several MPI processes is refused", "[train][mpi]") {
+  test::TempDir dir;
+  std::ofstream(dir / "tiny.yaml") << test::tiny_simulation_scene();
+  std::string out;
+  const std::string generate = test::drape_program().string() + " generate " + (dir / "tiny.yaml").string() +
+                               " --count 2 --seed 1 --threads 1 --out " + (dir / "d.h5").string();
+  for (const char* launcher : {"OMPI_COMM_WORLD_SIZE=2", "PMI_SIZE=3"}) {
+    INFO(launcher);
+    CHECK(test::run(std::string("env ") + launcher + " " + generate, out) == 2);
+    CHECK_THAT(out, Catch::Contains("drape generate is not MPI-parallel (drape train is)") &&
+                        Catch::Contains("--shard i/N"));
+    CHECK_FALSE(fs::exists(dir / "d.h5"));
+    CHECK_FALSE(fs::exists(dir / "d.h5.partial"));
+  }
+  // One process of one (a launcher's single rank) runs as without it.
+  REQUIRE(test::run("env OMPI_COMM_WORLD_SIZE=1 " + generate, out) == 0);
+  CHECK(fs::exists(dir / "d.h5"));
+}
