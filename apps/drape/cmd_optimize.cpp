@@ -43,8 +43,12 @@ void print_terms(const char* when, const std::vector<EnergyTerm>& terms, double 
 int run_on_dataset(const po::variables_map& vm) {
   if (vm.count("body") || vm.count("bmi")) throw UsageError("--data optimises the dataset's bodies: drop --body/--bmi");
   OptimizeDatasetOptions o;
-  o.model = model_file_or_default(vm);
   o.data = vm["data"].as<std::string>();
+  {
+    // Without --model, the shipped model of the dataset's rig and poses.
+    const DatasetReader data(o.data);
+    o.model = model_file_for_samples(vm, Registry::load_default(plugin_path(vm)), data, data.indices());
+  }
   o.out = vm["out"].as<std::string>();
   o.scene_file = find_input_file(vm["scene"].as<std::string>());
   o.split = vm["split"].as<std::string>();

@@ -31,7 +31,11 @@ void check_dataset_template(const DatasetReader& reader, const fs::path& data, c
   if (layout.garment_vertices != ng || layout.body_vertices != nb)
     throw ConfigError(data.string() + " has " + std::to_string(layout.garment_vertices) + " garment and " +
                       std::to_string(layout.body_vertices) + " body vertices per sample, but the template has " +
-                      std::to_string(ng) + " and " + std::to_string(nb));
+                      std::to_string(ng) + " and " + std::to_string(nb) +
+                      (layout.body_vertices != nb
+                           ? " (bodies of another rig or body model: give a model or scene of the dataset's; the "
+                             "shipped models of each rig are listed in docs/bodies.md)"
+                           : ""));
   const std::string hash = template_hash(assets.garment->mesh, assets.body.faces);
   if (!layout.template_hash.empty() && layout.template_hash != hash)
     throw ConfigError(data.string() + ": made for template " + layout.template_hash + ", but the template here is " +
