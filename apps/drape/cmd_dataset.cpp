@@ -194,7 +194,8 @@ int resample(const std::vector<std::string>& args) {
   positional.add("file", 1);
   po::variables_map vm;
   if (!parse(kResampleUsage, args, opts, positional, vm)) return 0;
-  const fs::path in = vm["file"].as<std::string>(), onto = vm["onto"].as<std::string>(), out = vm["out"].as<std::string>();
+  const fs::path in = vm["file"].as<std::string>(), out = vm["out"].as<std::string>();
+  const fs::path onto = find_input_file(vm["onto"].as<std::string>());  // graphs/scenes/... from any folder
   const OutputLock lock(out, "drape dataset resample");
   refuse_output_among_inputs(out, dataset_files(in), "--out");  // --force removed the input before reading it
   refuse_existing(out, vm);

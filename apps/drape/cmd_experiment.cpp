@@ -47,7 +47,7 @@ int run(const std::vector<std::string>& args) {
     }
 
   Registry::load_default(plugin_path(vm));
-  const ExperimentSpec spec = parse_experiment_file(vm["file"].as<std::string>());
+  const ExperimentSpec spec = parse_experiment_file(find_input_file(vm["file"].as<std::string>()));
   for (const auto& [key, file] : o.data_files) spec.dataset(key);  // a misspelt key fails before any work
   if (vm.count("work")) o.work_dir = vm["work"].as<std::string>();
   const auto work = experiment_work_dir(spec, o);

@@ -126,3 +126,21 @@ TEST_CASE("drape bench contact times both contacts on a small shell, and the bar
   CHECK(std::regex_search(out, std::regex("\\| collision \\|.*alpha 1\\.000 \\|")));
   CHECK(test::run_drape("bench contact --gap 0", out) == 2);
 }
+
+// The README's commands as written from another folder: an experiment file
+// and dataset resample's --onto scene by their names in the source tree
+// (they were "cannot read 'graphs/experiments/table_6_4.yaml'" and "scene
+// file ... does not exist" there, an outside check).
+TEST_CASE("experiment and dataset resample find shipped files by name from any folder", "[cli]") {
+  test::TempDir dir;
+  std::string out;
+  const std::string in_dir = "cd " + dir.path().string() + " && " + test::drape_program().string() + " ";
+  REQUIRE(test::run(in_dir + "experiment graphs/experiments/table_6_4.yaml --dry-run", out) == 0);
+  CHECK_THAT(out, Catch::Contains("experiment table_6_4"));
+  const fs::path human = test::source_dir() / "datasets/bodyspace2000-human/shard-00-of-40.h5";
+  REQUIRE(test::run(in_dir + "dataset resample " + human.string() + " --onto graphs/scenes/tshirt_coarse_sized.yaml --out r.h5",
+                    out) == 0);
+  CHECK_THAT(out, Catch::Contains("read at the 6490 vertices of tshirt_coarse_sized.yaml's template body"));
+  CHECK(test::run(in_dir + "experiment graphs/experiments/no_such.yaml --dry-run", out) == 2);
+  CHECK_THAT(out, Catch::Contains("no_such.yaml: no such file (looked in " + dir.path().string()));
+}

@@ -132,6 +132,25 @@ TEST_CASE("scene errors name the file, the line and the key", "[scene]") {
   write(dir / "b.yaml", "base: a.yaml\n");
   CHECK_THAT(message_of([&] { load_scene(dir / "a.yaml"); }), Catch::Contains("loops back"));
   CHECK_THAT(message_of([&] { load_scene(dir / "missing.yaml"); }), Catch::Contains("does not exist"));
+  // A user's scene elsewhere names a shipped one by its path in the source
+  // tree or by its name among the shipped scenes (it said "base scene ...
+  // does not exist"); one found nowhere names where it was looked for.
+  write(dir / "by_path.yaml", "base: graphs/scenes/tshirt_coarse.yaml\nbody: {shape: {bmi: 31}}\n");
+  write(dir / "by_name.yaml", "base: tshirt_coarse.yaml\nbody: {shape: {bmi: 31}}\n");
+  const Scene shipped = load_scene(test::source_dir() / "graphs/scenes/tshirt_coarse.yaml");
+  for (const char* name : {"by_path.yaml", "by_name.yaml"}) {
+    INFO(name);
+    const Scene s = load_scene(dir / name);
+    CHECK(s.shape.at("bmi").node.as<double>() == 31);
+    CHECK(s.effects.size() == shipped.effects.size());
+    CHECK(s.garment_params.at("resolution").node.as<std::string>() ==
+          shipped.garment_params.at("resolution").node.as<std::string>());
+  }
+  write(dir / "nowhere.yaml", "base: no_such_scene.yaml\n");
+  CHECK_THAT(message_of([&] { load_scene(dir / "nowhere.yaml"); }),
+             Catch::Contains("nowhere.yaml:1") && Catch::Contains("base scene 'no_such_scene.yaml' does not exist (looked in " +
+                                                                   dir.path().string()) &&
+                 Catch::Contains("graphs/scenes"));
 }
 
 TEST_CASE("a misspelt effect is refused with the list of known effects", "[scene]") {

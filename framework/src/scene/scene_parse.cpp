@@ -1,4 +1,5 @@
 // Reading scene files (see scene.hpp): YAML -> Scene, following `base:` chains.
+#include <drape/io/shipped_files.hpp>
 #include <drape/garment_grading.hpp>
 #include <drape/materials/materials.hpp>
 #include <drape/registry.hpp>
@@ -110,9 +111,26 @@ void apply(Scene& s, const fs::path& path, const std::string& file, const YAML::
   yaml::check_keys(file, root, {"base", "description", "body", "garment", "materials", "effects", "solver"}, "scene");
   if (root["base"]) {
     if (path.empty()) throw ConfigError(yaml::at(file, root["base"]), "`base:` needs a scene file (relative to it)");
-    const fs::path base = path.parent_path() / yaml::scalar(file, root["base"], "`base`");
+    const fs::path named = yaml::scalar(file, root["base"], "`base`");
+    fs::path base = path.parent_path() / named;
     std::error_code ec;
-    if (!fs::exists(base, ec)) throw ConfigError(yaml::at(file, root["base"]), "base scene '" + base.string() + "' does not exist");
+    if (!fs::exists(base, ec)) {
+      // A user's scene elsewhere may name a shipped one, by its path in the
+      // source tree or by its name among the shipped scenes (it said only
+      // "does not exist": an outside check's `base: tshirt_coarse.yaml`).
+      fs::path shipped;
+      if (named.is_relative()) {
+        shipped = locate_shipped_file(named);
+        if (shipped.empty()) shipped = locate_shipped_file(fs::path("graphs/scenes") / named);
+      }
+      if (shipped.empty()) {
+        std::string where = path.parent_path().empty() ? std::string(".") : path.parent_path().string();
+        if (named.is_relative())
+          for (const auto& dir : shipped_data_dirs()) where += ", " + (dir / "graphs/scenes").string() + ", " + dir.string();
+        throw ConfigError(yaml::at(file, root["base"]), "base scene '" + named.string() + "' does not exist (looked in " + where + ")");
+      }
+      base = shipped;
+    }
     const fs::path canonical = fs::canonical(base);
     if (std::find(chain.begin(), chain.end(), canonical) != chain.end())
       throw ConfigError(yaml::at(file, root["base"]), "`base:` chain loops back to '" + base.string() + "'");
