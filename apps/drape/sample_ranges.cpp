@@ -1,5 +1,7 @@
 #include "sample_ranges.hpp"
 
+#include <cmath>
+
 #include "command.hpp"
 
 namespace drape::cli {
@@ -10,16 +12,18 @@ Range parse_range(const std::string& option, const std::string& text) {
     const auto colon = text.find(':');
     if (colon == std::string::npos) {
       const double v = std::stod(text, &used);
-      if (used == text.size()) return {v, v};
+      // (NaN is no number here: "--bmi nan" was told "a range needs --sample", NaN != NaN.)
+      if (used == text.size() && std::isfinite(v)) return {v, v};
     } else {
       const double lo = std::stod(text.substr(0, colon), &used);
       std::size_t used2 = 0;
       const double hi = std::stod(text.substr(colon + 1), &used2);
-      if (used == colon && used2 == text.size() - colon - 1 && lo <= hi) return {lo, hi};
+      if (used == colon && used2 == text.size() - colon - 1 && std::isfinite(lo) && std::isfinite(hi) && lo <= hi)
+        return {lo, hi};
     }
   } catch (const std::exception&) {
   }
-  throw UsageError("--" + option + " '" + text + "': expected a number or a range lo:hi with lo <= hi");
+  throw UsageError("--" + option + " '" + text + "': expected a finite number or a range lo:hi with lo <= hi");
 }
 
 Shard parse_shard(const std::string& text) {

@@ -73,6 +73,12 @@ TEST_CASE("usage errors exit 2, help exits 0", "[cli]") {
   CHECK_THAT(out, Catch::Contains("usage: drape graph check"));
   CHECK(test::run_drape("--help", out) == 0);
   CHECK_THAT(out, Catch::Contains("plugins") && Catch::Contains("graph"));
+  // NaN is no number (it was told "a range needs --sample": NaN != NaN).
+  for (const char* bad : {"--bmi nan", "--height nan", "--bmi 20:nan"}) {
+    INFO(bad);
+    CHECK(test::run_drape(std::string("body ") + bad + " --out x.obj", out) == 2);
+    CHECK_THAT(out, Catch::Contains("expected a finite number or a range lo:hi"));
+  }
 }
 
 TEST_CASE("drape graph check takes sizes and the garment from the template's assets", "[cli]") {
