@@ -2,6 +2,8 @@
 // drape.BodyModel (any body plugin by name), drape.plugins(), drape.load_plugins().
 #include "common.hpp"
 
+#include <drape/bodies/posed_body.hpp>
+
 #include <drape/bodies/body.hpp>
 #include <drape/bodies/given_body.hpp>
 #include <drape/geometry/body_units.hpp>
@@ -146,21 +148,26 @@ void register_bodies(py::module_& m) {
 
   m.def(
       "body",
-      [](double bmi, double height, double sex, const std::string& model, const py::dict& params, const py::kwargs& girths) {
+      [](double bmi, double height, double sex, const std::string& model, const py::dict& params, const py::handle& pose,
+         const py::kwargs& girths) {
         PyBodyModel b(model, params);
+        // (pose= was read as a girth named "pose": "expected a number (a proportion ...)", an outside check.)
+        const std::optional<Pose> posed = pose_arg(b.model(), model, pose);
         const Eigen::VectorXd shape = b.solve(bmi, height, sex, girths);
         Eigen::MatrixX3d v;
         {
           py::gil_scoped_release release;
-          v = b.model().vertices(shape);
+          v = posed ? pose_body(b.model(), model, shape, *posed) : b.model().vertices(shape);
         }
         return py::make_tuple(to_numpy(std::move(v)), to_numpy(Eigen::MatrixX3i(b.model().faces())));
       },
       py::arg("bmi") = 24.0, py::arg("height") = 1.75, py::arg("sex") = 1.0, py::kw_only(), py::arg("model") = "parametric",
-      py::arg("params") = py::dict(),
+      py::arg("params") = py::dict(), py::arg("pose") = py::none(),
       "(vertices float64 [N, 3], faces int32 [F, 3]) of a body of that BMI, height (m) and sex (0 female ... 1 male)\n"
       "from a body plugin. Other keywords are proportions held while the BMI is reached, as drape body --girth\n"
-      "(the parametric model's girths: chest, waist, belly, hips, arms, thighs, log factors in [-0.15, 0.15]).");
+      "(the parametric model's girths: chest, waist, belly, hips, arms, thighs, log factors in [-0.15, 0.15]).\n"
+      "pose: joint angles in degrees ({'shoulder_abduction': 40} or 'shoulder_abduction=40,...'), as drape body --pose:\n"
+      "the body posed by its skeleton; a pose in which it passes through itself raises ValueError naming the joints.");
 
   m.def(
       "plugins",

@@ -213,6 +213,9 @@ BodyRequest body_request(double bmi, double height, double sex, const py::dict& 
   request.height = height;
   request.sex = sex;
   for (const auto& [key, value] : girths) {
+    if (key.cast<std::string>() == "pose")
+      throw py::value_error("pose: this makes the body at rest (its shape); pose it with drape.body(..., pose=...), or "
+                            "give the pose to Model.predict(body, pose=...), which poses the body at rest (docs/poses.md)");
     if (!py::isinstance<py::float_>(value) && !py::isinstance<py::int_>(value))
       throw py::value_error(key.cast<std::string>() + ": expected a number (a proportion of body model '" + model_name +
                             "'), got " + py::str(py::type::of(value)).cast<std::string>());

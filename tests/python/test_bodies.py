@@ -27,6 +27,21 @@ def mesh_bmi(v, f):
     return volume * 985 / height**2
 
 
+def test_a_posed_body_matches_the_program(tmp_path):
+    # drape.body(pose=...) is drape body --pose (pose= was read as a girth named "pose").
+    out = tmp_path / "posed.obj"
+    run_drape("body", "--bmi", 30, "--pose", "shoulder_abduction=40,left_elbow_flexion=30", "--out", out)
+    v_cli, _ = read_obj(out)
+    v, _ = drape.body(bmi=30, pose={"shoulder_abduction": 40, "left_elbow_flexion": 30})
+    np.testing.assert_allclose(v, v_cli, atol=1e-12)
+    assert np.abs(v - drape.body(bmi=30)[0]).max() > 0.1  # the arms moved
+    with pytest.raises(ValueError, match="pass through itself"):
+        drape.body(bmi=60, sex=0, pose="shoulder_abduction=0")
+    model = drape.Model.load(str(SOURCE / "models" / "tshirt-coarse-posed.h5"))
+    with pytest.raises(ValueError, match="makes the body at rest"):
+        model.body(bmi=30, pose="shoulder_abduction=40")
+
+
 def test_girths_are_held_while_the_bmi_is_reached(tmp_path):
     model = drape.BodyModel("parametric")
     assert set(model.proportions) == {"chest", "waist", "belly", "hips", "arms", "thighs"}
