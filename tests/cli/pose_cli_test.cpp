@@ -69,6 +69,9 @@ TEST_CASE("drape body refuses bad or impossible poses in one line", "[cli][pose]
   CHECK(out.find("left_upper_arm into spine_upper (") != std::string::npos);
   CHECK(out.find("joints: left_shoulder_abduction=0)") != std::string::npos);
   CHECK(!std::filesystem::exists(dir / "b.obj"));
+  // An angle several joints share (the spine's bend) is named once (it was "spine_bend=15 spine_bend=15").
+  CHECK(test::run_drape("body --bmi 60 --sex 0 --pose spine_bend=15,shoulder_abduction=5" + obj, out) == 2);
+  CHECK_THAT(out, Catch::Contains("joints: spine_bend=15 left_shoulder_abduction=5)") && !Catch::Contains("spine_bend=15 spine_bend"));
   // Two shell variables never set ("$A,$B"), or one among others: refused (they were the rest pose).
   for (const std::string pose : {",", "elbow_flexion=30,,knee_flexion=10", ",elbow_flexion=30", ",,"}) {
     CHECK(test::run_drape("body --pose '" + pose + "'" + obj, out) == 2);

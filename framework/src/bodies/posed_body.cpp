@@ -85,9 +85,10 @@ std::string describe_pose_crossings(const BodyModel& model, const Eigen::MatrixX
       if (!in_b.count(j)) moved.insert(j);
     if (bones.first == bones.second) moved.insert(bones.first);  // folded at its own joint
     std::vector<std::string> angles;
+    std::set<std::string> named;  // an angle several joints share (the spine's bend) named once
     for (int j : moved)
       for (const std::string& a : joints[static_cast<std::size_t>(j)].angles)
-        if (pose.angles.count(a)) {
+        if (pose.angles.count(a) && named.insert(a).second) {
           std::ostringstream angle;
           angle << a << "=" << pose.angles.at(a);
           angles.push_back(angle.str());
