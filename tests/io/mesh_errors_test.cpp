@@ -118,6 +118,12 @@ TEST_CASE("missing, corrupt and unknown mesh files give a ConfigError naming the
   CHECK_THAT(config_error([&] { read_mesh(dir / "junk.glb"); }), Contains("junk.glb"));
   drape::test::write_text(dir / "junk.gltf", "{ \"asset\": ");
   CHECK_THAT(config_error([&] { read_mesh(dir / "junk.gltf"); }), Contains("junk.gltf"));
+  // A glTF cut in half: damaged, not a format drape does not read (assimp
+  // says "no suitable reader found", an outside check read it so).
+  const std::string whole = square_gltf({0, 1, 2, 0, 2, 3});
+  drape::test::write_text(dir / "half.gltf", whole.substr(0, whole.size() / 2));
+  CHECK_THAT(config_error([&] { read_mesh(dir / "half.gltf"); }),
+             Contains("half.gltf") && Contains("the file is damaged or truncated, or is not the format its name says"));
   drape::test::write_text(dir / "mesh.qqq", "1 2 3\n");
   CHECK_THAT(config_error([&] { read_mesh(dir / "mesh.qqq"); }), Contains("mesh.qqq") && Contains("unknown mesh format '.qqq'"));
 }

@@ -136,7 +136,17 @@ Mesh read_with_assimp(const std::filesystem::path& file, MaterialMesh* materials
     throw ConfigError(where, "cannot read this mesh: it asks for more memory than there is (a vertex or face count in "
                              "it far larger than the file?)");
   }
-  if (!scene) throw ConfigError(where, "cannot read this mesh: " + one_line(importer.GetErrorString()));
+  if (!scene) {
+    const std::string error = one_line(importer.GetErrorString());
+    // assimp picks a reader by the contents as well as the name: a glTF cut
+    // short or with a flipped bit in its JSON is "no suitable reader found",
+    // which reads as a format drape does not take (an outside check).
+    if (error.find("No suitable reader found") != std::string::npos && importer.IsExtensionSupported(extension))
+      throw ConfigError(where, "cannot read this mesh: no " + extension.substr(1) + " reader accepts its contents, though " +
+                                   extension + " is a format drape reads: the file is damaged or truncated, or is not " +
+                                   "the format its name says (" + error + ")");
+    throw ConfigError(where, "cannot read this mesh: " + error);
+  }
   if (const std::string lost = warning_of_lost_data(); !lost.empty())
     throw ConfigError(where, "the file is damaged: " + one_line(lost) + " (assimp would read on without them)");
   if (scene->mNumMeshes == 0) throw ConfigError(where, "the file holds no mesh");
