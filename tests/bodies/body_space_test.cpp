@@ -162,5 +162,5 @@ TEST_CASE("body space: proportions a model lacks or out of range are refused by 
     Eigen::MatrixX3i f;
   } plain;
   CHECK_THAT(test::message_of([&] { check_proportions(plain, "plain", BodyRequest{24, 1.75, 1, {{"chest", 0.1}}}); }),
-             Catch::Contains("takes BMI, height and sex only"));
+             Catch::Contains("offers no proportions: BMI and height shape it"));
 }

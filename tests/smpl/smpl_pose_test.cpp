@@ -8,6 +8,7 @@
 #include <drape/bodies/posed_body.hpp>
 #include <drape/bodies/smpl_theta.hpp>
 #include <drape/io/h5.hpp>
+#include <drape/warnings.hpp>
 
 #include <catch2/catch.hpp>
 
@@ -457,6 +458,29 @@ TEST_CASE("SMPL weights that do not sum to 1 and NaN shapes are refused at load"
   write_synthetic(flat, dir / "flat.h5");
   CHECK_THAT(test::message_of([&] { load_smpl(dir / "flat.h5"); }),
              Catch::Contains("flat.h5: the shape blend shapes (/shapedirs) do not change the body's volume"));
+}
+
+// An SMPL file is one sex: a sex asked for is said not to be used, once
+// (it made the same body without a word).
+TEST_CASE("SMPL says once that a requested sex is not used", "[smpl]") {
+  test::TempDir dir;
+  write_synthetic(make_synthetic(kSmplParents, 18), dir / "m.h5");
+  const auto body = load_smpl(dir / "m.h5");
+  std::vector<std::string> said;
+  const WarningHandler before = set_warning_handler([&](const std::string& text) { said.push_back(text); });
+  const auto [lo, hi] = body->bmi_range();
+  BodyRequest request;
+  request.bmi = 0.5 * (lo + hi);
+  request.height = 1.7;
+  const Eigen::VectorXd as_default = body->solve(request);
+  CHECK(said.empty());
+  request.sex = 0.0;
+  const Eigen::VectorXd female = body->solve(request);
+  body->solve(request);
+  set_warning_handler(before);
+  REQUIRE(said.size() == 1);
+  CHECK_THAT(said[0], Catch::Contains("an SMPL file is one sex, so the sex asked for (0.0") && Catch::Contains("m.h5"));
+  CHECK((female - as_default).cwiseAbs().maxCoeff() == 0.0);  // the same body: the warning is the truth
 }
 
 TEST_CASE("drape body poses an SMPL body by a theta file", "[smpl][pose][cli]") {

@@ -57,7 +57,7 @@ void check_proportions(const BodyModel& model, const std::string& model_name, co
       std::string names;
       for (const auto& p : offered) names += (names.empty() ? "" : ", ") + p.name;
       throw ConfigError("body " + model_name + ": no proportion '" + name + "'" +
-                        (names.empty() ? " (this model takes BMI, height and sex only)" : " (it has: " + names + ")"));
+                        (names.empty() ? " (this model offers no proportions: BMI and height shape it)" : " (it has: " + names + ")"));
     }
     if (!(value >= found->min && value <= found->max)) {
       char m[160];

@@ -4,6 +4,7 @@
 #include <drape/errors.hpp>
 #include <drape/geometry/volume.hpp>
 #include <drape/io/h5.hpp>
+#include <drape/warnings.hpp>
 
 #include <cmath>
 #include <filesystem>
@@ -184,6 +185,15 @@ std::pair<double, double> SmplBody::bmi_range() const { return {bmi_at(-t_max_, 
 
 Eigen::VectorXd SmplBody::solve(const BodyRequest& r) const {
   check_proportions(*this, "smpl", r);  // it offers none: a request with girths is refused
+  // An SMPL file is one sex (SMPL ships female, male and neutral files): a
+  // sex asked for made the same body without a word, and a generated
+  // dataset recorded sexes its bodies did not have (an outside check). The
+  // request's default (1) is no request.
+  if (r.sex != BodyRequest{}.sex)
+    std::call_once(sex_warned_, [&] {
+      warn("smpl: an SMPL file is one sex, so the sex asked for (" + std::to_string(r.sex) + ") is not used: " +
+           data_.file.filename().string() + " makes its own; give SMPL's female or male file for another (docs/smpl.md)");
+    });
   if (!(r.height > 0.5 && r.height < 3.0)) throw ConfigError("height must be in meters (0.5 - 3.0)");
   double lo = -t_max_, hi = t_max_;
   const double bmi_lo = bmi_at(lo, r.height), bmi_hi = bmi_at(hi, r.height);

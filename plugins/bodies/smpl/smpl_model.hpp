@@ -15,6 +15,7 @@
 #include <Eigen/QR>
 
 #include <filesystem>
+#include <mutex>
 #include <optional>
 
 namespace drape::smpl {
@@ -68,6 +69,7 @@ class SmplBody final : public BodyModel {
   // [v_template | shapedirs (the betas used) | unit translations], 3N rows,
   // factored once when the model is poseable (scale_of).
   std::optional<Eigen::ColPivHouseholderQR<Eigen::MatrixXd>> scale_fit_;
+  mutable std::once_flag sex_warned_;  // a requested sex is not used: said once per model
 };
 
 }  // namespace drape::smpl
