@@ -3,8 +3,8 @@
 #include <algorithm>
 #include <fstream>
 #include <map>
-#include <vector>
 #include <sstream>
+#include <vector>
 
 namespace drape::yaml {
 
@@ -121,8 +121,23 @@ YAML::Node load_text(const std::string& text, const std::string& name_for_errors
     // counts as the line after the last newline: said as the file's last line.
     int lines = static_cast<int>(std::count(text.begin(), text.end(), '\n')) + (text.empty() || text.back() == '\n' ? 0 : 1);
     const int line = std::min(e.mark.line + 1, std::max(lines, 1));
+    // A tab in a line's indentation (YAML indents with spaces only) makes
+    // yaml-cpp say "illegal map value" or "end of map not found", a line or
+    // more off: the first such line at or before the error is named.
+    std::string tab;
+    {
+      std::istringstream in(text);
+      std::string row;
+      for (int n = 1; std::getline(in, row) && n <= line; ++n) {
+        const std::size_t indent_end = row.find_first_not_of(" \t");
+        if (row.substr(0, indent_end == std::string::npos ? row.size() : indent_end).find('\t') != std::string::npos) {
+          tab = " (line " + std::to_string(n) + " is indented with a tab: YAML indents with spaces only)";
+          break;
+        }
+      }
+    }
     throw ConfigError({name_for_errors, line},
-                      "malformed YAML: " + e.msg + (e.mark.line + 1 > lines ? " (at the end of the file)" : ""));
+                      "malformed YAML: " + e.msg + (e.mark.line + 1 > lines ? " (at the end of the file)" : "") + tab);
   }
   std::vector<YAML::Node> open;
   refuse_repeated_keys_and_cycles(root, name_for_errors, open);

@@ -61,6 +61,11 @@ TEST_CASE("configuration errors exit 2 with file, line and close matches", "[cli
   std::ofstream(dir / "empty.yaml") << "# nothing yet\n";
   CHECK(test::run_drape("simulate " + (dir / "empty.yaml").string() + " --out " + (dir / "x.obj").string(), out) == 2);
   CHECK_THAT(out, Catch::Contains("empty.yaml: the file is empty (or only comments)"));
+  // A tab in the indentation is named (yaml-cpp says "illegal map value").
+  std::ofstream(dir / "tab.yaml") << "effects: [gravity]\nbody:\n\tshape: {bmi: 30}\n";
+  CHECK(test::run_drape("simulate " + (dir / "tab.yaml").string() + " --out " + (dir / "x.obj").string(), out) == 2);
+  CHECK_THAT(out, Catch::Contains("tab.yaml:3: malformed YAML") &&
+                      Catch::Contains("(line 3 is indented with a tab: YAML indents with spaces only)"));
 }
 
 TEST_CASE("usage errors exit 2, help exits 0", "[cli]") {
