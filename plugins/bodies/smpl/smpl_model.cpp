@@ -22,6 +22,11 @@ SmplData read_smpl_h5(const std::filesystem::path& file) {
                       "): the SMPL body needs a model file converted from SMPL's own, which its licence keeps out of "
                       "drape: --param file=smpl.h5 (in Python, params={'file': ...}) names yours, and docs/smpl.md "
                       "converts it");
+  // SMPL's own files (.pkl, .npz) are not HDF5: said with the way there
+  // (it was "not an HDF5 file" alone, an outside check).
+  if (const std::string ext = file.extension().string(); ext == ".pkl" || ext == ".npz" || ext == ".npy")
+    throw ConfigError(file.string() + ": SMPL's own " + ext + " files are read after converting them to HDF5 with the "
+                      "script in docs/smpl.md (\"Converting the official file\"); --param file= names the .h5 it writes");
   const h5::File f = h5::File::open(file);
   SmplData d;
   h5::Dims vt_shape, sd_shape, f_shape;
