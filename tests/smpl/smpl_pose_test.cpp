@@ -454,7 +454,7 @@ TEST_CASE("SMPL weights that do not sum to 1 and NaN shapes are refused at load"
   write_synthetic(no_faces, dir / "f.h5");
   CHECK_THAT(test::message_of([&] { load_smpl(dir / "f.h5"); }), Catch::Contains("f.h5: /f holds no triangles"));
   // SMPL's own files are pointed to the conversion (they were "not an HDF5 file").
-  test::write_text(dir / "smpl.pkl", "not hdf5");
+  std::ofstream(dir / "smpl.pkl") << "not hdf5";
   CHECK_THAT(test::message_of([&] { load_smpl(dir / "smpl.pkl"); }),
              Catch::Contains("smpl.pkl: SMPL's own .pkl files are read after converting them to HDF5"));
   SyntheticSmpl flat = m;
