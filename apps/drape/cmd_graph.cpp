@@ -38,6 +38,11 @@ int run(const std::vector<std::string>& args) {
       "garment", po::value<std::string>()->default_value("tshirt"), "garment template whose assets give the sizes")(
       "resolution", po::value<std::string>(), "garment resolution (tshirt: default | coarse | a vertex count)")(
       "k", po::value<int>()->default_value(1000), "eigenvectors in the assets")(
+      "body-param", po::value<std::vector<std::string>>()->composing(),
+      "a parameter of the template's body model, name=value (repeatable): rig=human for the human rig's graphs")(
+      "encoder-body", po::value<std::string>(),
+      "a body model whose vertices the encoder reads, as drape train --encoder-body (a graph with a resample_body node: "
+      "the human rig's graphs/human/*.yaml take parametric)")(
       "no-assets", "bind no garment template: every symbolic size must come from --dim");
   po::positional_options_description pos;
   pos.add("action", 1).add("file", 1);
@@ -61,6 +66,14 @@ int run(const std::vector<std::string>& args) {
     as.garment = vm["garment"].as<std::string>();
     if (vm.count("resolution")) as.garment_params["resolution"] = vm["resolution"].as<std::string>();
     as.eigen_k = vm["k"].as<int>();
+    if (vm.count("encoder-body")) as.encoder_body = vm["encoder-body"].as<std::string>();
+    if (vm.count("body-param"))
+      for (const std::string& item : vm["body-param"].as<std::vector<std::string>>()) {
+        const auto eq = item.find('=');
+        if (eq == std::string::npos || eq == 0)
+          throw UsageError("--body-param '" + item + "': expected name=value (e.g. rig=human)");
+        as.body_params[item.substr(0, eq)] = item.substr(eq + 1);
+      }
     assets = build_assets(reg, as);
     options.assets = assets.get();
     for (const auto& [name, size] : assets->dims()) options.dims.emplace(name, size);

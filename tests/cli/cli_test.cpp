@@ -68,6 +68,20 @@ TEST_CASE("configuration errors exit 2 with file, line and close matches", "[cli
                       Catch::Contains("(line 3 is indented with a tab: YAML indents with spaces only)"));
 }
 
+// The human rig's graphs read the body resampled onto the mannequin's
+// vertices: graph check takes the encoder body and the rig as train does
+// (they could not be checked: "the template assets name no encoder body").
+TEST_CASE("graph check checks the human rig's graphs with --encoder-body and --body-param", "[cli]") {
+  std::string out;
+  const std::string graph = "graph check graphs/human/drape_grade_v2v1000_post_resampled.yaml --resolution coarse";
+  CHECK(test::run_drape(graph, out) == 2);
+  CHECK_THAT(out, Catch::Contains("give --encoder-body"));
+  REQUIRE(test::run_drape(graph + " --encoder-body parametric --body-param rig=human", out) == 0);
+  CHECK_THAT(out, Catch::Contains(": ok") && Catch::Contains("input  body [6904, 3]"));
+  CHECK(test::run_drape(graph + " --encoder-body parametric --body-param rig", out) == 2);
+  CHECK_THAT(out, Catch::Contains("--body-param 'rig': expected name=value"));
+}
+
 TEST_CASE("usage errors exit 2, help exits 0", "[cli]") {
   std::string out;
   CHECK(test::run_drape("plugnis", out) == 2);

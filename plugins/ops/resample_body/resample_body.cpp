@@ -25,7 +25,7 @@ class ResampleBody final : public Node {
     if (!context.assets) throw ConfigError("needs the template assets (their encoder body), but none are bound");
     const geometry::BodyResampling& r = context.assets->encoder_resampling;
     if (r.size() == 0)
-      throw ConfigError("the template assets name no encoder body: train with --encoder-body (e.g. parametric) so "
+      throw ConfigError("the template assets name no encoder body: give --encoder-body (e.g. parametric; drape train and graph check take it) so "
                         "that the assets resample the body onto that body model's vertices");
     const Shape x = in.at("x");
     if (x.cols != 3 || x.rows != r.source_vertices)
