@@ -54,11 +54,13 @@ const Simulation& GradedScene::for_model(const Model& model, SampleBatch& batch,
     throw ConfigError(text);
   }
   if (regraded && !batch.garment_grade.empty() && std::abs(batch.garment_grade(0, 0, 0) - grade) > 1e-3) {
-    char text[200];
+    // (Said after the tailor's rule's note of the size the body would wear,
+    // which it overrides: both read as the answer, an outside check.)
+    char text[320];
     std::snprintf(text, sizeof text,
-                  "the scene dresses this body in grade %.3f (its garment), so the model predicts and is optimised in "
-                  "that garment instead",
-                  grade);
+                  "the scene dresses this body in grade %.3f (its own garment), not the grade %.3f of the size the "
+                  "tailor's rule gives it: the model predicts and is optimised in the scene's garment",
+                  grade, static_cast<double>(batch.garment_grade(0, 0, 0)));
     *regraded = text;
   }
   batch.garment_grade = Tensor(batch.size(), 1, 1, static_cast<float>(grade));
