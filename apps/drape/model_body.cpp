@@ -190,15 +190,19 @@ std::string model_file_for_samples(const po::variables_map& vm, const Registry& 
   // under the human rig's default model): its twin there, said. (optimize
   // --data refused the README's own mannequin dataset, "but the template
   // has 991 and 6904", an outside check.)
-  std::optional<Model> posed_one;
-  const Model& chosen = fs::path(file) == model.file() ? model : posed_one.emplace(Model::load(registry, file));
-  if (const std::string twin = rig_twin(registry, chosen, data.layout().body_vertices); !twin.empty()) {
-    std::cerr << "note: " << data.name() << " holds bodies of " << data.layout().body_vertices
-              << " vertices (another rig than " << fs::path(file).filename().string() << "'s): draped by the shipped "
-              << twin << ", the model of that rig (--model names another)\n";
-    file = twin;
-  }
-  return file;
+  return model_file_for_rig(vm, registry, file, data.layout().body_vertices, data.name());
+}
+
+std::string model_file_for_rig(const po::variables_map& vm, const Registry& registry, const std::string& file,
+                               Eigen::Index body_vertices, const std::string& what) {
+  const char* env = std::getenv("DRAPE_MODEL");
+  if (vm.count("model") || (env && *env)) return file;
+  const std::string twin = rig_twin(registry, Model::load(registry, file), body_vertices);
+  if (twin.empty()) return file;
+  std::cerr << "note: " << what << " holds bodies of " << body_vertices << " vertices (another rig than "
+            << fs::path(file).filename().string() << "'s): draped by the shipped " << twin
+            << ", the model of that rig (--model names another)\n";
+  return twin;
 }
 
 SampleBatch model_body(const Model& model, const po::variables_map& vm, BodyMove* moved_by,

@@ -228,6 +228,14 @@ TEST_CASE("optimize poses the body as its scene does unless --pose replaces it",
   CHECK(out.find("posed as the scene") == std::string::npos);
   REQUIRE(test::run_drape(predict + "--pose shoulder_abduction=40 --out " + (dir / "p2.obj").string(), out) == 0);
   CHECK((read_mesh(dir / "s2.obj").vertices - read_mesh(dir / "p2.obj").vertices).cwiseAbs().maxCoeff() < 1e-6);
+  // Without --model: the shipped model of posed drapes of the scene's rig
+  // (the default, the human rig's, was refused: "another rig").
+  REQUIRE(test::run_drape("optimize" + scene + " --iters 0 --bmi 30 --out " + (dir / "o4.obj").string() + " --before " +
+                              (dir / "s4.obj").string(), out) == 0);
+  CHECK_THAT(out, Catch::Contains("holds bodies of 6490 vertices (another rig than tshirt-coarse-posed-human.h5's): draped "
+                                  "by the shipped ") &&
+                      Catch::Contains("tshirt-coarse-posed.h5, the model of that rig"));
+  CHECK((read_mesh(dir / "s4.obj").vertices - scene_drape).cwiseAbs().maxCoeff() < 1e-6);
   // A model of A-pose drapes is refused, the scene named as what posed the body.
   CHECK(test::run_drape("optimize --model models/tshirt-coarse.h5" + scene + " --iters 0 --bmi 30 --out " +
                             (dir / "o3.obj").string(), out) == 2);
