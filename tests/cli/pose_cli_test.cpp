@@ -69,6 +69,10 @@ TEST_CASE("drape body refuses bad or impossible poses in one line", "[cli][pose]
   CHECK(out.find("left_upper_arm into spine_upper (") != std::string::npos);
   CHECK(out.find("joints: left_shoulder_abduction=0)") != std::string::npos);
   CHECK(!std::filesystem::exists(dir / "b.obj"));
+  // An elbow folded into its own crease names the elbow (the crease's faces
+  // are the upper arm's: "left_upper_arm into itself" named no joint).
+  CHECK(test::run_drape("body --bmi 30 --param rig=human --pose left_elbow_flexion=150" + obj, out) == 2);
+  CHECK_THAT(out, Catch::Contains("left_upper_arm into itself (") && Catch::Contains("joints: left_elbow_flexion=150)"));
   // An angle several joints share (the spine's bend) is named once (it was "spine_bend=15 spine_bend=15").
   CHECK(test::run_drape("body --bmi 60 --sex 0 --pose spine_bend=15,shoulder_abduction=5" + obj, out) == 2);
   CHECK_THAT(out, Catch::Contains("joints: spine_bend=15 left_shoulder_abduction=5)") && !Catch::Contains("spine_bend=15 spine_bend"));

@@ -83,7 +83,16 @@ std::string describe_pose_crossings(const BodyModel& model, const Eigen::MatrixX
     const std::set<int> in_b(cb.begin(), cb.end());
     for (int j : ca)
       if (!in_b.count(j)) moved.insert(j);
-    if (bones.first == bones.second) moved.insert(bones.first);  // folded at its own joint
+    if (bones.first == bones.second) {
+      // Folded at its own joint, or at a joint below it: a bone's faces near
+      // its child's joint blend with the child (the elbow's crease is the
+      // upper arm's faces), so the child joints' angles are named too (an
+      // elbow at 150 degrees on the human rig was refused as "left_upper_arm
+      // into itself" naming no joint, an outside check).
+      moved.insert(bones.first);
+      for (std::size_t j = 0; j < joints.size(); ++j)
+        if (joints[j].parent == bones.first) moved.insert(static_cast<int>(j));
+    }
     std::vector<std::string> angles;
     std::set<std::string> named;  // an angle several joints share (the spine's bend) named once
     for (int j : moved)

@@ -12,8 +12,12 @@ Pose scene_pose(const Scene& scene, const BodyModel& model) {
   if (scene.pose.empty()) return pose;
   if (!model.poseable()) {
     const std::string reason = unposeable_reason(model);  // an SMPL file without its pose datasets says so
+    // Both places named: the pose may come from a base scene and the model
+    // from the user's (it pointed at the installed base's pose alone).
+    const std::string model_set_at =
+        scene.body_model_where.line > 0 ? " (set at " + scene.body_model_where.str() + ")" : "";
     throw ConfigError(scene.pose.begin()->second.where,
-                      "body `pose`: body model '" + scene.body_model + "' " +
+                      "body `pose`: body model '" + scene.body_model + "'" + model_set_at + " " +
                           (reason.empty() ? "has no skeleton, so it cannot be posed (docs/poses.md says which models can)"
                                           : "cannot be posed: " + reason));
   }
