@@ -100,6 +100,7 @@ TEST_CASE("a model without a skeleton refuses a scene's pose at its line", "[sce
   const BodyModel& rigid = *body;
   Scene s = parse_scene(kPosed, "posed.yaml");
   s.body_model = "rigid";
+  s.body_model_where = {};  // (set here, not in the file: no place to name)
   CHECK(message_of([&] { scene_pose(s, rigid); }) ==
         "posed.yaml:4: body `pose`: body model 'rigid' has no skeleton, so it cannot be posed (docs/poses.md says which "
         "models can)");
