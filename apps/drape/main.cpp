@@ -227,7 +227,9 @@ int main(int argc, char** argv) {
       refuse_parallel_launch(name);
       return c.run(args);
     } catch (const UsageError& e) {
-      std::cerr << "drape " << name << ": " << e.what() << "\n";
+      // "error:" as a ConfigError says it (an outside check read "drape
+      // predict: --pose ..." as something other than the refusal it is).
+      std::cerr << "drape " << name << ": error: " << e.what() << "\n";
       return 2;
     } catch (const drape::ConfigError& e) {
       std::cerr << "drape " << name << ": error: " << e.what() << "\n";

@@ -87,6 +87,7 @@ TEST_CASE("usage errors exit 2, help exits 0", "[cli]") {
   CHECK(test::run_drape("plugnis", out) == 2);
   CHECK_THAT(out, Catch::Contains("did you mean 'plugins'"));
   CHECK(test::run_drape("plugins --no-such-flag", out) == 2);
+  CHECK_THAT(out, Catch::StartsWith("drape plugins: error: "));  // as a ConfigError is said (it had no "error:")
   CHECK(test::run_drape("graph", out) == 2);
   CHECK(test::run_drape("graph check --help", out) == 0);
   CHECK_THAT(out, Catch::Contains("usage: drape graph check"));
