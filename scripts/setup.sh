@@ -29,6 +29,7 @@ PACKAGES=(
   libboost-dev libboost-program-options-dev libboost-filesystem-dev
   catch2 libnanoflann-dev libopenblas-dev libsuitesparse-dev
   chromium  # headless, for the test that the 3D viewer pages of drape render draw
+  valgrind  # tests/memcheck.sh: the energies' derivatives under memcheck
   # the Python package (python/, docs/python.md): built for Debian's /usr/bin/python3; tests and example
   pybind11-dev python3-dev python3-numpy python3-scipy python3-h5py python3-pytest python3-torch
   python3-yaml  # scripts/check_dataset_drapes.py reads the scene a dataset records

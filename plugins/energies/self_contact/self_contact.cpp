@@ -109,7 +109,11 @@ S SelfContact::pair_energy(const SelfPair& pair, const std::array<Vec3<S>, 4>& q
   const S s = geometry::typed_distance2(pair.type, q);
   const BarrierValue bv = log_barrier(primal(s) / dhat2);
   S e = chain(s, bv.b, bv.db / dhat2, bv.d2b / (dhat2 * dhat2));
-  double area = t.vertex_area[pair.a];
+  // (pair.a is a vertex of a vertex-face pair and an edge of an edge-edge
+  // one: the vertex's area was read for both, past the end of vertex_area
+  // for an edge numbered beyond the vertices, then overwritten; valgrind
+  // found the read, and it crashed 2 of 8 resumed optimisations.)
+  double area = pair.kind == PairKind::EdgeEdge ? 0.0 : t.vertex_area[pair.a];
   if (pair.kind == PairKind::EdgeEdge) {
     const Vec3<S> n = cross(q[1] - q[0], q[3] - q[2]);
     const S c = dot(n, n);
