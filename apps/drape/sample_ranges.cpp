@@ -7,6 +7,7 @@
 namespace drape::cli {
 
 Range parse_range(const std::string& option, const std::string& text) {
+  bool nan = false;
   try {
     std::size_t used = 0;
     const auto colon = text.find(':');
@@ -14,15 +15,18 @@ Range parse_range(const std::string& option, const std::string& text) {
       const double v = std::stod(text, &used);
       // (NaN is no number here: "--bmi nan" was told "a range needs --sample", NaN != NaN.)
       if (used == text.size() && std::isfinite(v)) return {v, v};
+      nan = std::isnan(v);
     } else {
       const double lo = std::stod(text.substr(0, colon), &used);
       std::size_t used2 = 0;
       const double hi = std::stod(text.substr(colon + 1), &used2);
       if (used == colon && used2 == text.size() - colon - 1 && std::isfinite(lo) && std::isfinite(hi) && lo <= hi)
         return {lo, hi};
+      nan = std::isnan(lo) || std::isnan(hi);
     }
   } catch (const std::exception&) {
   }
+  if (nan) throw UsageError("--" + option + " '" + text + "': not a number (NaN)");
   throw UsageError("--" + option + " '" + text + "': expected a finite number or a range lo:hi with lo <= hi");
 }
 

@@ -97,8 +97,10 @@ TEST_CASE("usage errors exit 2, help exits 0", "[cli]") {
   for (const char* bad : {"--bmi nan", "--height nan", "--bmi 20:nan"}) {
     INFO(bad);
     CHECK(test::run_drape(std::string("body ") + bad + " --out x.obj", out) == 2);
-    CHECK_THAT(out, Catch::Contains("expected a finite number or a range lo:hi"));
+    CHECK_THAT(out, Catch::Contains("': not a number (NaN)"));
   }
+  CHECK(test::run_drape("body --bmi inf --out x.obj", out) == 2);
+  CHECK_THAT(out, Catch::Contains("--bmi 'inf': expected a finite number or a range lo:hi"));
 }
 
 TEST_CASE("drape graph check takes sizes and the garment from the template's assets", "[cli]") {

@@ -134,7 +134,7 @@ TEST_CASE("generate and optimize refuse bad values before their output is begun,
   CHECK(test::run_drape(generate + " --sex 2", out) == 2);
   CHECK_THAT(out, Catch::Contains("height 1.75:1.75, sex 2:2: body parametric: sex 2 is outside [0, 1]"));
   CHECK(test::run_drape(generate + " --bmi nan", out) == 2);  // it said "expected lo <= hi"
-  CHECK_THAT(out, Catch::Contains("bmi range: not a number (NaN)"));
+  CHECK_THAT(out, Catch::Contains("--bmi 'nan': not a number (NaN)"));
   // More shards than samples: some shard would be an empty dataset sealed complete.
   CHECK(test::run_drape(generate + " --shard 0/4", out) == 2);
   CHECK_THAT(out, Catch::Contains("shard 0/4: 4 shards of a set of 2 samples leave some shards empty"));

@@ -49,7 +49,7 @@ NOT_RUN = {
     "model set model.h5": "needs model.h5 from train; tests/python/test_model_set.py runs it on a trained model",
     "eval ": "needs model.h5 and data.h5",
     "optimize --scene graphs/scenes/tshirt_coarse_contact.yaml --bmi 35": "100 Adam iterations through the potential: a minute",
-    "optimize --scene graphs/scenes/tshirt_coarse.yaml --data": "needs data.h5",
+    "optimize --model models/tshirt-coarse.h5 --scene graphs/scenes/tshirt_coarse.yaml --data": "needs data.h5",
     "experiment ": "trains and evaluates models: hours",
 }
 
