@@ -316,6 +316,30 @@ TEST_CASE("drape optimize improves one drape, and every sample of a split into a
   CHECK(test::run(test::drape_command(std::string(batch).replace(batch.find("--iters 4"), 9, "--iters 5")), out) == 2);
   CHECK_THAT(out, Catch::Contains("already exists, a finished dataset made otherwise (") && Catch::Contains("5 iterations"));
   CHECK(DatasetReader(t.dir / "opt.h5").size() == source.indices(Split::Train).size());
+  // The model retrained in place (other weights, the same file name) and
+  // another dataset under the data's name: refused by their contents (a
+  // resume mixed two models' drapes in one file, an outside check).
+  {
+    const fs::path other = t.dir / "other.h5", kept = t.dir / "kept.h5";
+    auto o2 = test::tiny_training(t.data, other);
+    o2.epochs = 1;
+    o2.seed = 11;
+    train(test::plugins(), o2);
+    fs::copy_file(t.model, kept);
+    fs::copy_file(other, t.model, fs::copy_options::overwrite_existing);
+    CHECK(test::run(test::drape_command(batch), out) == 2);
+    CHECK_THAT(out, Catch::Contains("the model's weights differ from the run that began it"));
+    fs::copy_file(kept, t.model, fs::copy_options::overwrite_existing);
+    const fs::path data_kept = t.dir / "data_kept.h5";
+    fs::rename(t.data, data_kept);
+    test::write_tiny_dataset(t.data, 14, 8, 3, 9);  // the same size, other drapes
+    CHECK(test::run(test::drape_command(batch), out) == 2);
+    CHECK_THAT(out, Catch::Contains("the source dataset's drapes differ from the run that began it"));
+    fs::remove(t.data);
+    fs::rename(data_kept, t.data);
+    REQUIRE(test::run(test::drape_command(batch), out) == 0);
+    CHECK_THAT(out, Catch::Contains("nothing to do: "));
+  }
   CHECK(test::run(test::drape_command("optimize --model " + t.model.string() + " --scene " + scene + " --data " +
                                       t.data.string() + " --split tain --out " + (t.dir / "x.h5").string()),
                   out) == 2);

@@ -2,6 +2,7 @@
 #include "dataset_internal.hpp"
 
 #include <algorithm>
+#include <utility>
 #include <cmath>
 #include <ctime>
 #include <set>
@@ -205,6 +206,15 @@ std::string made_difference(const DatasetLayout& have, const DatasetLayout& now)
   const auto asked = now.attributes.find("generator");
   if (begun != have.attributes.end() && asked != now.attributes.end() && begun->second != asked->second)
     return "it was begun as \"" + begun->second + "\" and this run asks \"" + asked->second + "\"";
+  // What the generator names by file only, by content (optimize --data: a
+  // model retrained in place, or another dataset of the same file name,
+  // resumed into the same output and mixed, an outside check).
+  for (const auto& [key, what] : {std::pair{"source_drapes", "the source dataset's drapes"},
+                                  std::pair{"model_weights", "the model's weights"}}) {
+    const auto a = have.attributes.find(key), b = now.attributes.find(key);
+    if (a != have.attributes.end() && b != now.attributes.end() && a->second != b->second)
+      return std::string(what) + " differ from the run that began it (fingerprint " + a->second + ", now " + b->second + ")";
+  }
   return "";
 }
 

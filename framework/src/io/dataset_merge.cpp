@@ -340,6 +340,9 @@ std::size_t join_shards(const std::vector<fs::path>& shards, const fs::path& out
     names += shard.filename().string();
   }
   merged.attributes["merged_from"] = names;
+  // Each shard's own source drapes' fingerprint (optimize --data) says
+  // nothing of the merged set: left out.
+  merged.attributes.erase("source_drapes");
   // How the samples were made: the one run's settings with the shards it
   // holds ("..., shards 0,1 of 2"), or every run's (it named the first
   // shard's alone); no longer "shard i/N", which merges read as one shard.

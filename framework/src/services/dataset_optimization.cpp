@@ -1,11 +1,13 @@
 #include <drape/services/dataset_optimization.hpp>
 
 #include "../io/dataset_internal.hpp"
+#include "../training/data_fingerprint.hpp"
 
 #include <drape/io/parallel_samples.hpp>
 
 #include <drape/assets/dataset_assets.hpp>
 #include <drape/geometry/self_intersection.hpp>
+#include <drape/fnv1a.hpp>
 #include <drape/io/dataset.hpp>
 #include <drape/progress.hpp>
 #include <drape/registry.hpp>
@@ -53,7 +55,9 @@ std::vector<std::string> carried_stats(const DatasetReader& reader) {
 // The optimised dataset: the source's sizes and template, the optimisation's
 // statistics, the scene whose energy was minimised, and how it was made.
 DatasetLayout optimized_layout(const DatasetReader& reader, const Scene& scene, const OptimizeDatasetOptions& o,
-                               std::size_t samples, const std::vector<std::string>& carried) {
+                               const std::vector<std::size_t>& source, const std::string& model_weights,
+                               const std::vector<std::string>& carried) {
+  const std::size_t samples = source.size();
   DatasetLayout layout;
   layout.samples = samples;
   layout.body_params = reader.layout().body_params;
@@ -75,6 +79,11 @@ DatasetLayout optimized_layout(const DatasetReader& reader, const Scene& scene, 
        << o.split << (o.shard.count > 1 ? ", shard " + std::to_string(o.shard.index) + "/" + std::to_string(o.shard.count) : "")
        << "), " << o.optimization.iterations << " iterations, lr " << o.optimization.learning_rate;
   layout.attributes["generator"] = what.str();
+  // The generator names the model and the data by file; these name them by
+  // content, so that a resume or a rerun with other weights or drapes under
+  // the same names is refused (dataset_layout.cpp, made_difference).
+  layout.attributes["source_drapes"] = training_data_fingerprint(reader, source, {});
+  layout.attributes["model_weights"] = model_weights;
   return layout;
 }
 
@@ -133,9 +142,14 @@ std::size_t optimize_dataset(const Registry& registry, const OptimizeDatasetOpti
   const Scene scene = load_scene(o.scene_file);
   const SceneSimulations simulations(registry, scene);
   const GradedScene graded(registry, simulations);
+  std::string model_weights;
   {
-    const Model probe = Model::load(registry, o.model);
+    Model probe = Model::load(registry, o.model);
     check_dataset_template(reader, o.data, probe.assets());
+    Fnv1a f;
+    for (auto& [name, weight] : probe.graph().weights())
+      f.text(name).bytes(weight->value.data(), weight->value.size() * sizeof(float));
+    model_weights = f.hex();
   }
   // The scene's body model makes the dataset's bodies (an outside check's
   // human-rig scene over mannequin bodies wrote a file whose scene and
@@ -147,7 +161,7 @@ std::size_t optimize_dataset(const Registry& registry, const OptimizeDatasetOpti
                       std::to_string(reader.layout().body_vertices) + ": give the scene the dataset was made in (its "
                       "stored scene: drape dataset info)");
   const std::vector<std::string> carried = carried_stats(reader);
-  const DatasetLayout layout = optimized_layout(reader, scene, o, source.size(), carried);
+  const DatasetLayout layout = optimized_layout(reader, scene, o, source, model_weights, carried);
   // A finished output: this same job done before (a job array's retry, or
   // the whole array resubmitted) has nothing to do, as drape generate; one
   // made otherwise is refused, saying how. (The cluster scripts skipped any
