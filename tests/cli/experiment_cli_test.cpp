@@ -7,6 +7,7 @@
 #include <drape/experiment/experiment.hpp>
 #include <drape/io/checkpoint.hpp>
 
+#include <chrono>
 #include <fstream>
 #include <sstream>
 
@@ -177,4 +178,39 @@ TEST_CASE("experiment: a row whose graph file was edited is trained again", "[ex
   INFO(out);
   CHECK_THAT(out, Catch::Contains("mine.yaml was edited since it was trained: trained again") && Catch::Contains("--force"));
   CHECK_THAT(read_checkpoint(dir / "runs/edited/mine.h5").graph, Catch::Contains("weight: 0.2"));
+}
+
+TEST_CASE("experiment: a row trained on other data than given now is trained again", "[experiment]") {
+  // An outside check ran an experiment again with another --data in the same
+  // work folder: "trained already" (the shipped datasets are older than any
+  // model, and only file times were compared), and the table kept the old
+  // data's metrics under the new data's name. Outputs now record what they
+  // were made from, by content.
+  test::TempDir dir;
+  std::ofstream(dir / "tiny.yaml") << test::tiny_simulation_scene();
+  std::ofstream(dir / "exp.yaml") << "name: data\n"
+                                     "datasets:\n"
+                                     "  shirts: {scene: tiny.yaml, count: 10, bmi: \"15:40\", seed: 2}\n"
+                                     "training: {epochs: 1, batch: 4, lr: 1.0e-3, schedule: constant, patience: 5, seed: 0}\n"
+                                     "columns: [ME]\n"
+                                     "rows:\n"
+                                     "  - {name: mlp, train: " +
+                                         (test::source_dir() / "graphs/examples/mlp_baseline.yaml").string() + "}\n";
+  const std::string in_dir = "cd " + dir.path().string() + " && " + test::drape_program().string();
+  const std::string command = in_dir + " experiment exp.yaml --threads 2";
+  std::string out;
+  REQUIRE(test::run(command, out) == 0);
+  REQUIRE(test::run(command, out) == 0);
+  CHECK_THAT(out, Catch::Contains("trained already"));
+  const std::string first_eval = read(dir / "runs/data/mlp.eval.json");
+  // Other drapes of the same size, made before the model (older, as a shipped dataset is).
+  REQUIRE(test::run(in_dir + " generate tiny.yaml --count 10 --bmi 15:40 --seed 3 --threads 2 --out other.h5", out) == 0);
+  fs::last_write_time(dir / "other.h5", fs::last_write_time(dir / "runs/data/mlp.h5") - std::chrono::hours(24));
+  REQUIRE(test::run(command + " --data shirts=other.h5", out) == 0);
+  INFO(out);
+  CHECK_THAT(out, Catch::Contains("trained on other data than other.h5: trained again") && Catch::Contains("--force"));
+  CHECK(read(dir / "runs/data/mlp.eval.json") != first_eval);
+  // The same data again: reused.
+  REQUIRE(test::run(command + " --data shirts=other.h5", out) == 0);
+  CHECK_THAT(out, Catch::Contains("trained already") && !Catch::Contains("$ drape eval"));
 }

@@ -3,6 +3,8 @@
 #include "../command.hpp"
 #include "../sample_ranges.hpp"
 
+#include <drape/fnv1a.hpp>
+#include <drape/io/atomic_file.hpp>
 #include <drape/io/checkpoint.hpp>
 #include <drape/graph.hpp>
 #include <drape/io/dataset.hpp>
@@ -26,6 +28,7 @@
 #include <cstdio>
 #include <fstream>
 #include <iostream>
+#include <iterator>
 #include <set>
 #include <sstream>
 #include <thread>
@@ -61,12 +64,56 @@ std::string exact(double v) {
   return o.str();
 }
 
-// An output is up to date when it exists and is newer than every input.
+// What an output was made from, by content: each input file (each file of
+// a dataset pattern) by name and an FNV-1a of its bytes, one per line. File
+// times alone said a model trained on another dataset was up to date (the
+// shipped datasets are older than any model), and the table took its
+// metrics under the new data's name (an outside check).
+std::string inputs_identity(const std::vector<fs::path>& inputs) {
+  std::string out;
+  for (const auto& in : inputs) {
+    std::error_code ec;
+    const std::vector<fs::path> files = fs::exists(in, ec) ? std::vector<fs::path>{in} : dataset_files(in);
+    for (const fs::path& file : files) {
+      Fnv1a f;
+      std::ifstream bytes(file, std::ios::binary);
+      std::vector<char> buffer(1 << 20);
+      while (bytes) {
+        bytes.read(buffer.data(), static_cast<std::streamsize>(buffer.size()));
+        f.bytes(buffer.data(), static_cast<std::size_t>(bytes.gcount()));
+      }
+      out += file.filename().string() + " " + f.hex() + "\n";
+    }
+  }
+  return out;
+}
+
+// Beside each output, what it was made from (inputs_identity).
+fs::path stamp_file(const fs::path& out) { return fs::path(out.string() + ".inputs"); }
+
+void stamp(const fs::path& out, const std::vector<fs::path>& inputs) {
+  if (fs::exists(out)) write_text_atomically(stamp_file(out), inputs_identity(inputs));
+}
+
+// An output is up to date when it exists and was made from these inputs as
+// they are now (its stamp); an output of an earlier drape without a stamp
+// when it is newer than every input.
 bool up_to_date(const fs::path& out, const std::vector<fs::path>& inputs) {
   if (!fs::exists(out)) return false;
+  if (fs::exists(stamp_file(out))) {
+    std::ifstream in(stamp_file(out));
+    const std::string recorded((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    return recorded == inputs_identity(inputs);
+  }
   for (const auto& in : inputs)
     if (fs::exists(in) && fs::last_write_time(in) > fs::last_write_time(out)) return false;
   return true;
+}
+
+// A stamp that exists and names other inputs: the output was made from
+// something else (not merely before the stamps).
+bool made_from_other(const fs::path& out, const std::vector<fs::path>& inputs) {
+  return fs::exists(out) && fs::exists(stamp_file(out)) && !up_to_date(out, inputs);
 }
 
 double mean(const std::vector<double>& v) {
@@ -211,14 +258,18 @@ class Runner {
     }
     // A model of another graph (edited since), finished or not, is no run to
     // resume: drape train --resume refused it, and the row stopped there.
+    // Nor is one trained on other data (its stamp).
     const bool edited = fs::exists(model) && read_checkpoint(model).graph != parse_graph_file(row.graph).text;
+    const bool other_data = !edited && made_from_other(model, {data});
     if (edited) std::printf("model %s: %s was edited since it was trained: trained again\n", model.c_str(), row.graph.c_str());
+    if (other_data)
+      std::printf("model %s: trained on other data than %s: trained again\n", model.c_str(), data.c_str());
     std::vector<std::string> args{"train", row.graph.string(), "--data", data.string(), "--out", model.string(), "--epochs",
                                   std::to_string(epochs), "--batch", std::to_string(t.batch), "--lr", exact(t.lr), "--schedule",
                                   t.schedule, "--patience", std::to_string(t.patience), "--seed", std::to_string(t.seed),
                                   "--fraction", exact(row.fraction), "--threads", threads(), "--resume"};
     if (!t.monitor.empty()) args.insert(args.end(), {"--monitor", t.monitor});
-    if (edited) args.push_back("--force");
+    if (edited || other_data) args.push_back("--force");
     if (announce(args)) {
       TrainOptions o;
       o.graph = row.graph;
@@ -234,10 +285,11 @@ class Runner {
       o.train_fraction = row.fraction;
       o.threads = o_.threads;
       o.resume = true;
-      o.force = edited;
+      o.force = edited || other_data;
       o.log = &std::cout;
       o.progress = &std::cerr;
       train_model(registry(), o);
+      stamp(model, {data});
     }
     trained_.insert(row.name);
     return model;
@@ -281,6 +333,7 @@ class Runner {
     o.optimization.iterations = iterations;
     const std::size_t n = optimize_dataset(registry(), o);
     std::printf("wrote %s: %zu samples optimised in this run\n", out.c_str(), n);
+    stamp(out, {model, data});
   }
 
   // The model's metrics on the test split, written to `report` by the evaluation service.
@@ -336,6 +389,7 @@ class Runner {
     const DatasetReader r(dataset(row.test));
     const double best = prediction_ms(m, read_samples(r, {r.indices(Split::Test).front()}, m.graph(), false));
     std::ofstream(cache) << exact(best) << "\n";
+    stamp(cache, {model});
     return best;
   }
 
@@ -387,7 +441,10 @@ class Runner {
       overrides[key.substr(0, key.find('.'))][key.substr(key.find('.') + 1)] = value;
       out.provenance += " with " + key + "=" + value;
     }
-    if (!up_to_date(eval, {model, test})) evaluate(row, model, test, overrides, eval);
+    if (!up_to_date(eval, {model, test})) {
+      evaluate(row, model, test, overrides, eval);
+      stamp(eval, {model, test});
+    }
     fs::path physics;
     if (!row.physics.empty() && row.kind == ExperimentRowKind::Train) {
       physics = work_ / (slug(row.name) + ".physics.h5");
