@@ -7,6 +7,8 @@
 #include <drape/io/shipped_files.hpp>
 #include <drape/geometry/body_units.hpp>
 #include <drape/io/checkpoint.hpp>
+#include <drape/io/h5.hpp>
+#include <drape/io/atomic_file.hpp>
 #include <drape/errors.hpp>
 #include <drape/graph.hpp>
 #include <drape/training/model.hpp>
@@ -405,9 +407,21 @@ void register_model(py::module_& m) {
             c.meta["assets"] = m.assets_spec().yaml();
             c.meta["assets_hash"] = m.assets().hash;
             c.meta["output"] = m.output();
+            // The training domain of the file it was loaded from, kept as
+            // drape model set keeps it (it was dropped: model info then said
+            // "written before drape recorded it", predict warned of no body
+            // outside it and --strict refused every body; an outside check).
+            const std::optional<ModelDomain> domain = m.file().empty() ? std::nullopt : read_domain(m.file());
             py::gil_scoped_release release;
             std::lock_guard lock(p.mutex());
-            save_checkpoint(path, m.graph().weights(), c);
+            write_atomically(path, [&](const std::filesystem::path& tmp) {
+              save_checkpoint(tmp, m.graph().weights(), c);
+              if (domain) {
+                h5::File f = h5::File::open(tmp, h5::Access::ReadWrite);
+                write_domain(f, *domain);
+                f.close();
+              }
+            });
           },
           py::arg("path"), py::arg("meta") = std::map<std::string, std::string>{},
           "Writes the model with its current weights (after optimize or a PyTorch loop) as a model file, atomically; "

@@ -263,6 +263,12 @@ def test_changed_weights_save_and_load_back(tmp_path):
     with h5py.File(out, "r") as f:
         text = lambda v: v.decode() if isinstance(v, bytes) else v
         assert text(f["meta"].attrs["note"]) == "scaled in a test" and text(f["meta"].attrs["kind"]) == "drape model"
+        # The training domain of the file it was loaded from is kept (it was
+        # dropped, and --strict then refused every body).
+        assert "domain" in f
+    info, _ = run_drape("model", "info", out)
+    assert "training bodies from" in info and "written before drape recorded it" not in info
+    run_drape("predict", "--model", out, "--body", tmp_path / "body.obj", "--strict", "--out", tmp_path / "s.obj")
 
 
 def test_openblas_kernels_follow_the_variable_set_before_python_starts():
