@@ -25,12 +25,21 @@ def _numpy(t):
     return t.detach().cpu().numpy()
 
 
+def _require_floating(t, argument):
+    """ValueError for integer or boolean vertices, as the module refuses them (docs/python.md): they were
+    converted to floats silently and then refused for what followed ("vertices are not in the body model's
+    order", "vertex 0 and face 4 touch"), an outside check."""
+    if isinstance(t, torch.Tensor) and not (t.is_floating_point()):
+        raise ValueError(f"{argument}: expected floating-point vertices in metres, got {t.dtype}")
+
+
 class EnergyFunction(torch.autograd.Function):
     """E(x) of one drape.Energy for garment vertices x [Ng, 3] (or a batch [n, Ng, 3] -> [n]); backward
     multiplies drape's analytic gradient dE/dx."""
 
     @staticmethod
     def forward(ctx, x, energy):
+        _require_floating(x, "x")
         xs = _numpy(x).astype(np.float64, copy=False)
         batched = xs.ndim == 3
         values, grads = [], []
@@ -100,20 +109,24 @@ class ModelFunction(torch.autograd.Function):
         body_np = np.ascontiguousarray(_numpy(body), dtype=np.float32)
         garment, forward_id = model._forward(body_np)
         ctx.model, ctx.names, ctx.forward_id, ctx.body = model, names, forward_id, body_np
-        ctx.weights = [w.detach() for w in weights]  # references: the values at backward are the forward's
+        # Saved as torch saves its own: a weight changed in place between this forward and its backward (an
+        # optimiser step, weights()[...] *= 2) raises at backward, as torch's modules do. detach() alone
+        # shares the memory, and such a gradient was neither the forward's nor the new weights' (an outside check).
+        ctx.save_for_backward(*weights)
         return torch.from_numpy(garment).to(device=body.device)
 
     @staticmethod
     @torch.autograd.function.once_differentiable
     def backward(ctx, grad_garment):
+        weights = ctx.saved_tensors  # (raises when one was changed in place since the forward)
         g = np.ascontiguousarray(_numpy(grad_garment), dtype=np.float32)
         if ctx.model._last_forward != ctx.forward_id:
             # Another forward ran since (a gradient check's perturbations): the graph is run again on this
             # forward's weights, which go back into drape's memory first.
-            ModelFunction._load(ctx.model, ctx.names, ctx.weights)
+            ModelFunction._load(ctx.model, ctx.names, weights)
         ctx.model._backward(g, ctx.forward_id, ctx.body)
         grads = ctx.model.grads()
-        out = [torch.from_numpy(np.array(grads[n])).to(dtype=w.dtype) for n, w in zip(ctx.names, ctx.weights)]
+        out = [torch.from_numpy(np.array(grads[n])).to(dtype=w.dtype) for n, w in zip(ctx.names, weights)]
         return (None, None, None, *out)
 
 
@@ -133,6 +146,7 @@ class DrapeModel(torch.nn.Module):
         return dict(zip(self._names, self._params))
 
     def forward(self, body):
+        _require_floating(body, "body")
         if not isinstance(body, torch.Tensor):
             body = torch.as_tensor(np.asarray(body, dtype=np.float32))
         return ModelFunction.apply(body, self.model, self._names, *self._params)

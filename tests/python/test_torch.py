@@ -101,3 +101,22 @@ def test_parameters_are_drapes_weights_and_a_torch_loop_trains_them():
         opt.step()
         losses.append(loss.item())
     assert losses[-1] < 0.2 * losses[0]
+
+
+def test_a_weight_changed_in_place_before_backward_raises_and_integer_vertices_are_refused(scene, state):
+    # An in-place change between forward and backward gave a gradient that was neither the forward's nor the
+    # new weights' (the saved weights were detach()ed aliases); torch's modules raise, and so does this.
+    model = drape.Model.untrained(TINY_GRAPH, {"resolution": "coarse"}, seed=4)
+    net = dt.DrapeModel(model)
+    body = torch.from_numpy(model.body(bmi=30))
+    loss = net(body).square().sum()
+    with torch.no_grad():
+        next(iter(net.parameters())).mul_(2.0)
+    with pytest.raises(RuntimeError, match="modified by an inplace operation"):
+        loss.backward()
+    # Integer vertices: one ValueError naming the argument and the dtype (they were converted silently and
+    # refused for what followed).
+    with pytest.raises(ValueError, match=r"body: expected floating-point vertices in metres, got torch.int64"):
+        net(body.long())
+    with pytest.raises(ValueError, match=r"x: expected floating-point vertices in metres, got torch.int64"):
+        dt.SceneEnergy(scene)(state.long())
