@@ -62,6 +62,20 @@ struct Trained {
 
 }  // namespace
 
+// A finished cosine schedule cannot be continued for more epochs (its rate
+// depends on the total): said as such, with the ways on (it was refused as
+// an "interrupted run" of other settings); a constant one can.
+TEST_CASE("drape train says a finished cosine schedule cannot be extended", "[train][cli]") {
+  test::TempDir dir;
+  const fs::path data = dir / "data.h5", model = dir / "model.h5";
+  test::write_tiny_dataset(data, 10, 6, 2);
+  std::string out;
+  REQUIRE(test::run(test::drape_command(train_args(data, model, "--schedule cosine", 2)), out) == 0);
+  CHECK(test::run(test::drape_command(train_args(data, model, "--schedule cosine --resume", 3)), out) == 2);
+  CHECK_THAT(out, Catch::Contains("cannot continue: its cosine schedule was planned for 2 epochs") &&
+                      Catch::Contains("--init " + model.string()) && !Catch::Contains("interrupted"));
+}
+
 TEST_CASE("drape train stops at the hidden epoch limit, refuses to overwrite and continues with --resume", "[train][cli]") {
   test::TempDir dir;
   const fs::path data = dir / "data.h5", model = dir / "model.h5";

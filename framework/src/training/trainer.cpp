@@ -320,6 +320,14 @@ void check_resumable(const Checkpoint& st, const fs::path& state_path, const std
                         " than --data gives now (fingerprint of its training and validation drapes " + it->second +
                         " then, " + value + " now); give the same dataset, or --force to start over");
     const std::string was = it == st.meta.end() ? "(none)" : it->second;
+    // A cosine schedule's rate depends on the epochs planned: one cannot be
+    // continued for more (it was refused as an "interrupted run" with other
+    // settings, of a finished one; an outside check).
+    if (key == "epochs" && was != value)
+      throw ConfigError(state_path.string() + ": cannot continue: its cosine schedule was planned for " + was +
+                        " epochs, and its learning rate at each epoch depends on that total, so it cannot be extended to " +
+                        value + " (a constant schedule can be; --force starts over, or --init " +
+                        (state_path.parent_path() / state_path.stem()).string() + " starts a new cycle from its weights)");
     if (was != value)
       throw ConfigError(state_path.string() + ": cannot resume: the interrupted run had " + key + " " + was +
                         ", this one has " + key + " " + value + " (rerun with the same settings, or --force to start over)");
