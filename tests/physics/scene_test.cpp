@@ -74,6 +74,12 @@ solver: {morph_steps: 0}
   CHECK(again.effects.size() == 3);
   CHECK(again.shape.at("bmi").node.as<double>() == 65);
   CHECK(again.materials.size() == 2);
+  // Removing an effect the scene does not have (a misspelling) is refused:
+  // it left the effect running without a word.
+  write(dir / "typo.yaml", "base: base.yaml\neffects: {colision: null}\n");
+  CHECK_THAT(message_of([&] { load_scene(dir / "typo.yaml"); }),
+             Catch::Contains("typo.yaml:2") && Catch::Contains("removes effect 'colision', which the scene does not have") &&
+                 Catch::Contains("did you mean 'collision'"));
 }
 
 TEST_CASE("an effects list in a derived scene replaces the base's", "[scene]") {

@@ -92,8 +92,18 @@ void parse_effects(Scene& s, const std::string& file, const YAML::Node& n) {
       const auto name = kv.first.as<std::string>();
       refuse_solver_key_as_effect(file, kv.first);
       if (kv.second.IsNull()) {  // `name: null` (or `name:`) removes it; `name: {}` adds it with defaults
-        s.effects.erase(std::remove_if(s.effects.begin(), s.effects.end(), [&](const SceneEffect& e) { return e.name == name; }),
-                        s.effects.end());
+        // One the scene does not have: a misspelt removal left the effect
+        // running without a word (`self_contat: null`, an outside check).
+        const auto it = std::find_if(s.effects.begin(), s.effects.end(), [&](const SceneEffect& e) { return e.name == name; });
+        if (it == s.effects.end()) {
+          std::vector<std::string> names;
+          std::string list;
+          for (const SceneEffect& e : s.effects) names.push_back(e.name), list += (list.empty() ? "" : ", ") + e.name;
+          throw ConfigError(yaml::at(file, kv.first), "`" + name + ": null` removes effect '" + name +
+                                                          "', which the scene does not have" + did_you_mean(name, names) +
+                                                          " (it has: " + (list.empty() ? "none" : list) + ")");
+        }
+        s.effects.erase(it);
         continue;
       }
       auto existing = std::find_if(s.effects.begin(), s.effects.end(), [&](const SceneEffect& e) { return e.name == name; });
