@@ -11,6 +11,7 @@ Errors are drape.ConfigError (also a ValueError: bad input, exit code 2 of the
 drape program) and drape.Error (a RuntimeError: anything else), with the
 program's one-line messages. The PyTorch bridge is drape.torch_bridge.
 """
+import contextlib as _contextlib
 import json as _json
 import operator as _operator
 import os as _os
@@ -152,6 +153,10 @@ def _materials_against(scene, folder):
     def absolute(value):
         if isinstance(value, str) and (_os.sep in value or value.endswith(".json")) and not _os.path.isabs(value):
             return _os.path.join(folder, value)
+        # A region given as a map names its file under `file:` (it was read from the temporary folder, which is
+        # gone: an outside check).
+        if isinstance(value, dict) and isinstance(value.get("file"), str) and not _os.path.isabs(value["file"]):
+            return dict(value, file=_os.path.join(folder, value["file"]))
         return value
 
     return dict(scene, materials={region: absolute(value) for region, value in materials.items()})
@@ -183,8 +188,9 @@ class Scene:
 
     def __init__(self, scene, base_dir=None):
         self._name = None  # a dict read through a temporary file: what `file` says instead of that gone file
+        self._read_through = None  # that temporary file, named in errors raised later as the dict
         if isinstance(scene, Scene):
-            self._s, self._name = scene._s, scene._name
+            self._s, self._name, self._read_through = scene._s, scene._name, scene._read_through
         elif isinstance(scene, dict):
             scene = dict(scene)
             base = scene.get("base")
@@ -210,6 +216,7 @@ class Scene:
                     try:
                         self._s = _drape._Scene.from_file(path)
                         self._name = f"the scene dict (base: {scene['base']})"
+                        self._read_through = path
                     except (ConfigError, Error) as e:
                         # The temporary file (one line of JSON) is gone: the dict is what to name.
                         text = str(e).replace(path + ":1: ", "the scene dict: ").replace(path, "the scene dict")
@@ -220,7 +227,7 @@ class Scene:
             raise TypeError(f"scene: expected a path or a dict, got {type(scene).__name__}")
 
     def __getattr__(self, name):
-        if name in ("_s", "_name"):  # (a Scene whose construction failed: no recursion through __getattr__)
+        if name in ("_s", "_name", "_read_through"):  # (a Scene whose construction failed: no recursion through __getattr__)
             raise AttributeError(name)
         return getattr(self._s, name)
 
@@ -232,8 +239,21 @@ class Scene:
 
     def energies(self, body_vertices=None):
         """{effect name: drape.Energy} bound to the garment and this body (default: the scene's own target body)."""
-        native = self._s.energies(body_vertices)
+        with self._errors_name_the_dict():
+            native = self._s.energies(body_vertices)
         return {name: Energy(native, name) for name in native.names}
+
+    @_contextlib.contextmanager
+    def _errors_name_the_dict(self):
+        """Errors raised after construction name a dict as the dict, not the temporary file drape read it through
+        (gone: "/tmp/drape-scene-.../scene.yaml: the cloth has no stretching", an outside check)."""
+        try:
+            yield
+        except (ConfigError, Error) as e:
+            if not self._read_through or self._read_through not in str(e):
+                raise
+            text = str(e).replace(self._read_through + ":1: ", "the scene dict: ").replace(self._read_through, "the scene dict")
+            raise type(e)(text) from None
 
     def simulate(self, body_vertices=None, start_garment=None, measure_penetration=True, start_body=None, pose=None):
         """Drapes the garment on the body (default: the scene's own): a dict of garment and body (float64
@@ -248,7 +268,8 @@ class Scene:
         its girth for a larger one). pose: joint angles in degrees, {"shoulder_abduction": 20} or
         "shoulder_abduction=20,elbow_flexion=30" (docs/poses.md), instead of the scene's own `body: {pose: ...}`; a
         given body is taken as unposed and posed too; the result's `pose` is the pose draped. The GIL is released."""
-        return self._s.simulate(body_vertices, start_garment, measure_penetration, start_body, pose)
+        with self._errors_name_the_dict():
+            return self._s.simulate(body_vertices, start_garment, measure_penetration, start_body, pose)
 
     def __repr__(self):
         return f"<drape.Scene {self.file}: {', '.join(self._s.effects)}>"

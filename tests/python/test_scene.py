@@ -68,6 +68,15 @@ def test_a_dict_scene_with_a_base_reads_its_material_files_where_it_is_made(tiny
     assert "the scene dict" in str(refused.value) and "drape-scene-" not in str(refused.value)
     with pytest.raises(drape.ConfigError, match=r"^the scene dict: .*barrier"):
         drape.Scene({"base": base, "effects": {"barrier": {"distance": 0.5}}}, base_dir=str(tmp_path))
+    # A region given as a map names its file under `file:`, read the same way (it was read from the gone
+    # temporary folder), and an error raised later, by simulate, names the dict too.
+    mapped = drape.Scene({"base": base, "materials": {"knit": {"file": "my.json", "multipliers": {"bend": 2}}}},
+                         base_dir=str(tmp_path))
+    assert mapped.effects == there.effects
+    with pytest.raises(drape.ConfigError) as later:
+        drape.Scene({"base": str(SOURCE / "graphs/scenes/tshirt_coarse.yaml"), "effects": ["gravity", "barrier"]}).simulate()
+    assert str(later.value).startswith("the scene dict: ") and "no stretching" in str(later.value)
+    assert "drape-scene-" not in str(later.value)
 
 
 @pytest.fixture(scope="module")
