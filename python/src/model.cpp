@@ -411,7 +411,10 @@ void register_model(py::module_& m) {
             // drape model set keeps it (it was dropped: model info then said
             // "written before drape recorded it", predict warned of no body
             // outside it and --strict refused every body; an outside check).
-            const std::optional<ModelDomain> domain = m.file().empty() ? std::nullopt : read_domain(m.file());
+            // (An untrained model's "file" names its graph text: no domain.)
+            std::error_code exists_ec;
+            const std::optional<ModelDomain> domain =
+                std::filesystem::is_regular_file(m.file(), exists_ec) ? read_domain(m.file()) : std::nullopt;
             py::gil_scoped_release release;
             std::lock_guard lock(p.mutex());
             write_atomically(path, [&](const std::filesystem::path& tmp) {
