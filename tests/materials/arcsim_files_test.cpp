@@ -204,6 +204,9 @@ TEST_CASE("arcsim files: bad files are rejected naming the file, the line and th
   // Values.
   e = file_error(dir, "m.json", arcsim_text(5, "    [40, 50, \"stiff\", -30],"));
   CHECK_THAT(e, Catch::Contains("m.json:5") && Catch::Contains("`stretching[1][2]` must be a number, got 'stiff'"));
+  // A quoted number is text (it was read as the number).
+  e = file_error(dir, "m.json", arcsim_text(2, "  \"density\": \"0.187\","));
+  CHECK_THAT(e, Catch::Contains("m.json:2") && Catch::Contains("`density` must be a number, got the text \"0.187\""));
   e = file_error(dir, "m.json", arcsim_text(7, "    [120, .nan, 360, 40],"));
   CHECK_THAT(e, Catch::Contains("m.json:7") && Catch::Contains("`stretching[3][1]` must be a finite number"));
   e = file_error(dir, "m.json", arcsim_text(12, "    [20e-6, 30e-6, .inf, 40e-6, 20e-6],"));

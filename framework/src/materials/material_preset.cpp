@@ -49,6 +49,11 @@ double number(const std::string& file, const YAML::Node& n, const std::string& o
   } catch (const YAML::Exception&) {
     throw ConfigError(yaml::at(file, n), owner + ": `" + key + "` must be a number, got '" + n.Scalar() + "'");
   }
+  // A quoted number is text, in JSON as in YAML: "0.187" was read as the
+  // number (an outside check), where the docs ask for numbers.
+  if (n.Tag() == "!")
+    throw ConfigError(yaml::at(file, n), owner + ": `" + key + "` must be a number, got the text \"" + n.Scalar() +
+                                             "\" (write it without quotes)");
   if (!std::isfinite(v))
     throw ConfigError(yaml::at(file, n), owner + ": `" + key + "` must be a finite number, got " + n.Scalar());
   return v;
