@@ -7,6 +7,7 @@
 #include <drape/geometry/penetration.hpp>
 #include <drape/geometry/adjacency.hpp>
 #include <drape/geometry/push_out.hpp>
+#include <drape/geometry/untangle.hpp>
 #include <drape/geometry/surface_crossings.hpp>
 #include <drape/io/mesh_io.hpp>
 #include <drape/training/model.hpp>
@@ -79,8 +80,25 @@ int run(const std::vector<std::string>& args) {
     options.edges = &edges;
     options.faces = &out.faces;
     const geometry::PushOutReport pushed = geometry::push_out(surface, out.vertices, options);
-    std::printf("pushed out: %d vertices moved (at most %.2f cm), from p = %.2f%% of them inside the body\n",
-                pushed.moved, 100.0 * pushed.largest_move, 100.0 * p);
+    // Then the garment's crossings of itself undone, as the models' push-out
+    // does (geometry::Untangler, each round's moves pushed out again): the
+    // push-out moves the cloth off the body, not off itself, and a posed
+    // BMI 50 body's shirt left it crossing itself at 13 edge-face pairs.
+    geometry::Untangler untangler(out.faces, out.num_vertices());
+    geometry::UntangleOptions untangling;
+    untangling.gap = 1e-3;
+    untangling.max_rounds = 6;
+    untangling.rest = &model.assets().garment->mesh.vertices;  // the template: where two layers belong
+    untangling.after_round = [&](Eigen::MatrixX3d& now, std::vector<char>& moved) {
+      const Eigen::MatrixX3d before = now;
+      geometry::push_out(surface, now, options);
+      for (Eigen::Index v = 0; v < now.rows(); ++v)
+        if (now.row(v) != before.row(v)) moved[static_cast<std::size_t>(v)] = 1;
+    };
+    const geometry::UntangleReport untangled = untangler.run(out.vertices, untangling);
+    std::printf("pushed out: %d vertices moved (at most %.2f cm), from p = %.2f%% of them inside the body; the garment's "
+                "crossings of itself undone: %d edge-face pairs before, %d after\n",
+                pushed.moved, 100.0 * pushed.largest_move, 100.0 * p, untangled.crossings_before, untangled.crossings_after);
     p = geometry::penetration_ratio(surface, out.vertices);
   }
   write_mesh(vm["out"].as<std::string>(), out);
