@@ -224,7 +224,7 @@ int main(int argc, char** argv) {
   for (const auto& c : commands()) {
     if (c.name != name) continue;
     try {
-      refuse_parallel_launch(name);
+      refuse_parallel_launch(name, args);
       return c.run(args);
     } catch (const UsageError& e) {
       // "error:" as a ConfigError says it (an outside check read "drape

@@ -10,6 +10,7 @@
 #include <mpi.h>
 #endif
 
+#include <algorithm>
 #include <cstdlib>
 #include <stdexcept>
 #include <string>
@@ -89,13 +90,17 @@ std::unique_ptr<Ranks> mpi_ranks_if_launched() {
 #endif
 }
 
-void refuse_parallel_launch(const std::string& command) {
-  if (command == "train") return;
+void refuse_parallel_launch(const std::string& command, const std::vector<std::string>& args) {
+  const auto has = [&](const std::string& flag) {
+    return std::any_of(args.begin(), args.end(), [&](const std::string& a) { return a == flag || a.rfind(flag + "=", 0) == 0; });
+  };
+  const bool whole_set = (command == "generate" || (command == "optimize" && has("--data"))) && !has("--shard");
+  if (!whole_set || has("--help") || has("-h")) return;
   if (const int launched = launched_processes(); launched > 1)
     throw UsageError("started by an MPI launcher as one of " + std::to_string(launched) + " processes, but drape " + command +
-                     " is not MPI-parallel (drape train is): each process would run the whole job on the same "
-                     "outputs. Run it once; to make a dataset in parallel, give each process its own shard (drape "
-                     "generate --shard i/N, then drape dataset merge: scripts/cluster/, docs/cluster.md)");
+                     " is not MPI-parallel (drape train is): each process would make the whole set into the same "
+                     "output. Run it once, or give each process its own shard (--shard i/" + std::to_string(launched) +
+                     ", then drape dataset merge: scripts/cluster/, docs/cluster.md)");
 }
 
 void abort_all_ranks(int code) {

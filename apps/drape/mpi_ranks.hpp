@@ -4,6 +4,7 @@
 
 #include <memory>
 #include <string>
+#include <vector>
 
 namespace drape::cli {
 
@@ -13,11 +14,14 @@ namespace drape::cli {
 // UsageError: each would train the whole model on its own.
 std::unique_ptr<Ranks> mpi_ranks_if_launched();
 
-// UsageError when this process is one of several an MPI launcher started
-// and `command` is not MPI-parallel (only train is): each process would run
-// the whole job on the same outputs (an outside check's mpirun -np 2 drape
-// generate: rank 1 died on the output's lock, an empty .partial left).
-void refuse_parallel_launch(const std::string& command);
+// UsageError when this process is one of several an MPI launcher started to
+// make one dataset whole: `generate` or `optimize --data` without --shard
+// (only train is MPI-parallel). Each process would make the whole set into
+// the same output (an outside check's mpirun -np 2 drape generate: rank 1
+// died on the output's lock, an empty .partial left). Every other command,
+// and these with a shard each (srun -n N ... --shard $SLURM_PROCID/N), runs
+// as one process would.
+void refuse_parallel_launch(const std::string& command, const std::vector<std::string>& args);
 
 // Ends every rank of the job with this exit code (after an error on one rank,
 // which would leave the others waiting in a collective for ever).

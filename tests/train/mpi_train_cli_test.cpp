@@ -167,11 +167,18 @@ TEST_CASE("a command other than train started as one of several MPI processes is
     INFO(launcher);
     CHECK(test::run(std::string("env ") + launcher + " " + generate, out) == 2);
     CHECK_THAT(out, Catch::Contains("drape generate is not MPI-parallel (drape train is)") &&
-                        Catch::Contains("--shard i/N"));
+                        Catch::Contains("give each process its own shard (--shard i/"));
     CHECK_FALSE(fs::exists(dir / "d.h5"));
     CHECK_FALSE(fs::exists(dir / "d.h5.partial"));
   }
   // One process of one (a launcher's single rank) runs as without it.
   REQUIRE(test::run("env OMPI_COMM_WORLD_SIZE=1 " + generate, out) == 0);
   CHECK(fs::exists(dir / "d.h5"));
+  // A shard each (srun -n N ... --shard $SLURM_PROCID/N), --help, and any
+  // other command run as one process would (an outside check found them refused).
+  REQUIRE(test::run("env PMI_SIZE=2 " + generate.substr(0, generate.find(" --out")) + " --shard 1/2 --out " +
+                        (dir / "s1.h5").string(), out) == 0);
+  CHECK(fs::exists(dir / "s1.h5"));
+  CHECK(test::run("env PMI_SIZE=2 " + test::drape_program().string() + " generate --help", out) == 0);
+  CHECK(test::run("env PMI_SIZE=2 " + test::drape_program().string() + " plugins --kind energy --brief", out) == 0);
 }
