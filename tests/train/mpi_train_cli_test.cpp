@@ -152,12 +152,12 @@ TEST_CASE("mpirun -np 2 drape train with the six losses shares closest points an
   CHECK(read_checkpoint(dir / "mpi.h5").history.at("val_loss") == read_checkpoint(dir / "threads2.h5").history.at("val_loss"));
 }
 
-// Only train is MPI-parallel: any other command started as one of several
-// processes is refused before it makes anything (an outside check's mpirun
+// Only train is MPI-parallel: generate or optimize --data started as one of several
+// processes without a shard is refused before it makes anything (an outside check's mpirun
 // -np 2 drape generate ran the whole job twice on one output: rank 1 died on
 // its lock, an empty .partial left). The launcher's variables are set by
 // hand, so this runs without mpirun.
-TEST_CASE("a command other than train started as one of several MPI processes is refused", "[train][mpi]") {
+TEST_CASE("a dataset made whole by several MPI processes is refused and a shard each runs", "[train][mpi]") {
   test::TempDir dir;
   std::ofstream(dir / "tiny.yaml") << test::tiny_simulation_scene();
   std::string out;
