@@ -353,6 +353,18 @@ TEST_CASE("drape optimize improves one drape, and every sample of a split into a
     fs::rename(data_kept, t.data);
     REQUIRE(test::run(test::drape_command(batch), out) == 0);
     CHECK_THAT(out, Catch::Contains("nothing to do: "));
+    // Shards optimised by two models do not merge (they merged without a
+    // word), and one file slimmed keeps its source's fingerprint.
+    const std::string shard = "optimize --scene " + scene + " --data " + t.data.string() + " --split train --iters 1 --threads 1 ";
+    REQUIRE(test::run(test::drape_command(shard + "--model " + t.model.string() + " --shard 0/2 --out " + (t.dir / "s0.h5").string()), out) == 0);
+    REQUIRE(test::run(test::drape_command(shard + "--model " + other.string() + " --shard 1/2 --out " + (t.dir / "s1.h5").string()), out) == 0);
+    CHECK(test::run(test::drape_command("dataset merge --out " + (t.dir / "m.h5").string() + " " + (t.dir / "s0.h5").string() +
+                                        " " + (t.dir / "s1.h5").string()),
+                    out) == 2);
+    CHECK_THAT(out, Catch::Contains("its drapes were optimised by other model weights"));
+    REQUIRE(test::run(test::drape_command("dataset slim " + (t.dir / "opt.h5").string() + " --out " + (t.dir / "slim.h5").string()), out) == 0);
+    CHECK(DatasetReader(t.dir / "slim.h5").layout().attributes.at("source_drapes") ==
+          DatasetReader(t.dir / "opt.h5").layout().attributes.at("source_drapes"));
   }
   CHECK(test::run(test::drape_command("optimize --model " + t.model.string() + " --scene " + scene + " --data " +
                                       t.data.string() + " --split tain --out " + (t.dir / "x.h5").string()),

@@ -322,6 +322,14 @@ std::size_t join_shards(const std::vector<fs::path>& shards, const fs::path& out
         same.template_hash = merged.template_hash;
         same.attributes = merged.attributes;
       }
+      // Drapes optimised by other weights (a model retrained between two
+      // shards' runs) are two experiments in one file: merged without a word
+      // until an outside check (optimize --data records model_weights).
+      if (const auto a = merged.attributes.find("model_weights"), b = layout.attributes.find("model_weights");
+          a != merged.attributes.end() && b != layout.attributes.end() && a->second != b->second)
+        throw ConfigError(shard.string() + ": cannot merge with " + shards.front().string() +
+                          ": its drapes were optimised by other model weights (fingerprint " + b->second + ", " +
+                          shards.front().filename().string() + "'s " + a->second + ")");
       const std::string difference = layout_difference(merged, same);
       const bool other_garment = same.scene != merged.scene || same.template_hash != merged.template_hash;
       if (!difference.empty())
@@ -341,8 +349,9 @@ std::size_t join_shards(const std::vector<fs::path>& shards, const fs::path& out
   }
   merged.attributes["merged_from"] = names;
   // Each shard's own source drapes' fingerprint (optimize --data) says
-  // nothing of the merged set: left out.
-  merged.attributes.erase("source_drapes");
+  // nothing of a set of several: left out (one file slimmed or expanded
+  // keeps its own, which a rerun of its request is checked against).
+  if (shards.size() > 1) merged.attributes.erase("source_drapes");
   // How the samples were made: the one run's settings with the shards it
   // holds ("..., shards 0,1 of 2"), or every run's (it named the first
   // shard's alone); no longer "shard i/N", which merges read as one shard.
