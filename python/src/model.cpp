@@ -40,7 +40,13 @@ std::string in_python_words(std::string text) {
 
 class PyModel {
  public:
-  explicit PyModel(Model model) : model_(std::make_unique<Model>(std::move(model))) {}
+  // The file's training domain is read here, with the weights: a domain read
+  // later (at save) was another model's when the file had been overwritten
+  // since, and none when it had been deleted (an outside check).
+  explicit PyModel(Model model) : model_(std::make_unique<Model>(std::move(model))) {
+    std::error_code ec;
+    if (!model_->file().empty() && fs::is_regular_file(model_->file(), ec)) domain_at_load_ = read_domain(model_->file());
+  }
 
   Model& model() { return *model_; }
   std::mutex& mutex() { return mutex_; }
@@ -112,14 +118,11 @@ class PyModel {
   // written before domains were recorded) and the garment's loop.
   const BodyPreparation& preparation() {
     std::lock_guard lock(mutex_);
-    if (!preparation_) {
-      std::optional<ModelDomain> domain;
-      if (!model_->file().empty() && fs::exists(model_->file())) domain = read_domain(model_->file());
-      preparation_.emplace(*model_, std::move(domain));
-    }
+    if (!preparation_) preparation_.emplace(*model_, domain_at_load_);
     return *preparation_;
   }
   const std::optional<ModelDomain>& domain() { return preparation().domain(); }
+  const std::optional<ModelDomain>& domain_at_load() const { return domain_at_load_; }
 
   // As drape predict does: each body standing away from where the training
   // bodies stood is moved there, the domain is checked (strict: ValueError
@@ -169,6 +172,7 @@ class PyModel {
   std::mutex mutex_;
   std::uint64_t forwards_ = 0, forward_id_ = 0;
   std::optional<BodyPreparation> preparation_;
+  std::optional<ModelDomain> domain_at_load_;  // the file's, read with the weights (none: untrained, or not recorded)
   // The mean body's edges for the vertex-order check, made at the first body.
   std::once_flag body_edges_once_;
   ModelBodyEdges body_edges_;
@@ -411,10 +415,8 @@ void register_model(py::module_& m) {
             // drape model set keeps it (it was dropped: model info then said
             // "written before drape recorded it", predict warned of no body
             // outside it and --strict refused every body; an outside check).
-            // (An untrained model's "file" names its graph text: no domain.)
-            std::error_code exists_ec;
-            const std::optional<ModelDomain> domain =
-                std::filesystem::is_regular_file(m.file(), exists_ec) ? read_domain(m.file()) : std::nullopt;
+            // (Read when the model was loaded; an untrained model has none.)
+            const std::optional<ModelDomain> domain = p.domain_at_load();
             py::gil_scoped_release release;
             std::lock_guard lock(p.mutex());
             write_atomically(path, [&](const std::filesystem::path& tmp) {

@@ -271,6 +271,23 @@ def test_changed_weights_save_and_load_back(tmp_path):
     run_drape("predict", "--model", out, "--body", tmp_path / "body.obj", "--strict", "--out", tmp_path / "s.obj")
 
 
+def test_save_keeps_the_domain_read_when_the_model_was_loaded(tmp_path):
+    # Read at save time, it was another model's when the file had been overwritten since, and none when deleted.
+    import shutil
+    copy = tmp_path / "a.h5"
+    shutil.copy(SHIPPED, copy)
+    model = drape.Model.load(str(copy))
+    shutil.copy(SOURCE / "models" / "tshirt-coarse-posed.h5", copy)
+    model.save(str(tmp_path / "b.h5"))
+    copy.unlink()
+    model.save(str(tmp_path / "c.h5"))
+    expected, _ = run_drape("model", "info", SHIPPED)
+    domain = lambda text: text[text.index("domain:"):].split("\n")[0]
+    for saved in ("b.h5", "c.h5"):
+        info, _ = run_drape("model", "info", tmp_path / saved)
+        assert domain(info) == domain(expected)
+
+
 def test_openblas_kernels_follow_the_variable_set_before_python_starts():
     import os
     import subprocess
