@@ -113,12 +113,25 @@ class ModelFunction(torch.autograd.Function):
         # optimiser step, weights()[...] *= 2) raises at backward, as torch's modules do. detach() alone
         # shares the memory, and such a gradient was neither the forward's nor the new weights' (an outside check).
         ctx.save_for_backward(*weights)
+        # A change through drape's own memory (model.weights()[...] *= 2, Model.optimize) bumps no torch version
+        # counter: the forward's values are kept to compare at backward (a copy of the weights, when a gradient of
+        # them is asked for at all).
+        ctx.snapshot = [w.detach().clone() for w in weights] if any(ctx.needs_input_grad[3:]) else None
         return torch.from_numpy(garment).to(device=body.device)
 
     @staticmethod
     @torch.autograd.function.once_differentiable
     def backward(ctx, grad_garment):
-        weights = ctx.saved_tensors  # (raises when one was changed in place since the forward)
+        weights = ctx.saved_tensors  # (raises when one was changed in place through torch since the forward)
+        if ctx.snapshot is not None:
+            # The tensors given to the forward against their values then (a DrapeModel's parameters are views of
+            # drape's memory, so a change through drape shows here; a copy given, as a gradient check gives, is
+            # unchanged by the other forwards that load their weights into drape).
+            for name, kept, w in zip(ctx.names, ctx.snapshot, weights):
+                if not torch.equal(kept, w):
+                    raise RuntimeError(f"weight {name!r} of the drape model was changed in place between this forward and "
+                                       "its backward (through drape.Model.weights() or Model.optimize): its gradient "
+                                       "would be neither the forward's nor the new weights'; run the forward again")
         g = np.ascontiguousarray(_numpy(grad_garment), dtype=np.float32)
         if ctx.model._last_forward != ctx.forward_id:
             # Another forward ran since (a gradient check's perturbations): the graph is run again on this

@@ -114,6 +114,11 @@ def test_a_weight_changed_in_place_before_backward_raises_and_integer_vertices_a
         next(iter(net.parameters())).mul_(2.0)
     with pytest.raises(RuntimeError, match="modified by an inplace operation"):
         loss.backward()
+    # And through drape's own memory, which bumps no torch version counter.
+    loss = net(body).square().sum()
+    model.weights()[next(iter(model.weights()))][...] += 0.5  # (a bias starts at zero: add, not scale)
+    with pytest.raises(RuntimeError, match="changed in place between this forward and its backward"):
+        loss.backward()
     # Integer vertices: one ValueError naming the argument and the dtype (they were converted silently and
     # refused for what followed).
     with pytest.raises(ValueError, match=r"body: expected floating-point vertices in metres, got torch.int64"):
