@@ -214,3 +214,40 @@ TEST_CASE("experiment: a row trained on other data than given now is trained aga
   REQUIRE(test::run(command + " --data shirts=other.h5", out) == 0);
   CHECK_THAT(out, Catch::Contains("trained already") && !Catch::Contains("$ drape eval"));
 }
+
+TEST_CASE("experiment: an interrupted training on other data is trained again", "[experiment]") {
+  // An outside check killed a run that was training a row again on new
+  // data, then ran the experiment with the old data: the old stamp was still
+  // there, and the half-trained model of the new data was resumed, then
+  // refused with "--force to start over", which drape experiment lacks.
+  test::TempDir dir;
+  std::ofstream(dir / "tiny.yaml") << test::tiny_simulation_scene();
+  std::ofstream(dir / "exp.yaml") << "name: killed\n"
+                                     "datasets:\n"
+                                     "  shirts: {scene: tiny.yaml, count: 10, bmi: \"15:40\", seed: 2}\n"
+                                     "training: {epochs: 2, batch: 4, lr: 1.0e-3, schedule: constant, patience: 5, seed: 0}\n"
+                                     "columns: [ME]\n"
+                                     "rows:\n"
+                                     "  - {name: mlp, train: " +
+                                         (test::source_dir() / "graphs/examples/mlp_baseline.yaml").string() + "}\n";
+  const std::string in_dir = "cd " + dir.path().string() + " && " + test::drape_program().string();
+  std::string out;
+  REQUIRE(test::run(in_dir + " experiment exp.yaml --threads 2", out) == 0);
+  // The row's own train command, as the run printed it, on other data and cut after an epoch.
+  const auto at = out.find("$ drape train ");
+  REQUIRE(at != std::string::npos);
+  std::string train = out.substr(at + 8, out.find('\n', at) - at - 8);
+  const auto data_at = train.find("--data ") + 7;
+  train.replace(data_at, train.find(' ', data_at) - data_at, "other.h5");
+  REQUIRE(test::run(in_dir + " generate tiny.yaml --count 10 --bmi 15:40 --seed 3 --threads 2 --out other.h5", out) == 0);
+  fs::remove(dir / "runs/killed/mlp.h5.inputs");  // as the killed retraining left it
+  train.replace(train.find(" --resume"), 9, " --force");
+  REQUIRE(test::run(in_dir + " " + train + " --max-epochs-this-run 1", out) == 0);
+  CHECK_THAT(out, Catch::Contains("interrupted after 1 epochs"));
+  REQUIRE(test::run(in_dir + " experiment exp.yaml --threads 2", out) == 0);
+  INFO(out);
+  CHECK_THAT(out, Catch::Contains("its interrupted training cannot be resumed (") && Catch::Contains("trained again"));
+  CHECK(fs::exists(dir / "runs/killed/mlp.h5.inputs"));
+  REQUIRE(test::run(in_dir + " experiment exp.yaml --threads 2", out) == 0);
+  CHECK_THAT(out, Catch::Contains("trained already"));
+}

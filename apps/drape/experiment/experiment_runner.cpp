@@ -267,9 +267,10 @@ class Runner {
     std::vector<std::string> args{"train", row.graph.string(), "--data", data.string(), "--out", model.string(), "--epochs",
                                   std::to_string(epochs), "--batch", std::to_string(t.batch), "--lr", exact(t.lr), "--schedule",
                                   t.schedule, "--patience", std::to_string(t.patience), "--seed", std::to_string(t.seed),
-                                  "--fraction", exact(row.fraction), "--threads", threads(), "--resume"};
+                                  "--fraction", exact(row.fraction), "--threads", threads()};
     if (!t.monitor.empty()) args.insert(args.end(), {"--monitor", t.monitor});
-    if (edited || other_data) args.push_back("--force");
+    // (drape train takes one of them: the line printed is one a user can run.)
+    args.push_back(edited || other_data ? "--force" : "--resume");
     if (announce(args)) {
       TrainOptions o;
       o.graph = row.graph;
@@ -288,7 +289,24 @@ class Runner {
       o.force = edited || other_data;
       o.log = &std::cout;
       o.progress = &std::cerr;
-      train_model(registry(), o);
+      // The stamp goes first: a run killed while training again would leave
+      // the old one, and the next run with the old data would resume the
+      // half-trained model of the new (an outside check).
+      std::error_code ec;
+      fs::remove(stamp_file(model), ec);
+      try {
+        train_model(registry(), o);
+      } catch (const ConfigError& e) {
+        // An interrupted training of other data or settings than the row's
+        // now (its state says which): the row is trained again, as drape
+        // experiment has no --force to say so (it stopped with "--force to
+        // start over").
+        const std::string why = e.what();
+        if (o.force || why.find("cannot resume") == std::string::npos) throw;
+        std::printf("model %s: its interrupted training cannot be resumed (%s): trained again\n", model.c_str(), why.c_str());
+        o.force = true;
+        train_model(registry(), o);
+      }
       stamp(model, {data});
     }
     trained_.insert(row.name);
