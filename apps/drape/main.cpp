@@ -241,7 +241,7 @@ int main(int argc, char** argv) {
   }
   std::vector<std::string> names;
   for (const auto& c : commands()) names.push_back(c.name);
-  std::cerr << "drape: unknown command '" << name << "'" << drape::did_you_mean(name, names)
+  std::cerr << "drape: error: unknown command '" << name << "'" << drape::did_you_mean(name, names)
             << " (drape --help lists them)\n";
   return 2;
 }

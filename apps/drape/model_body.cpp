@@ -19,6 +19,7 @@
 #include <filesystem>
 #include <optional>
 #include <iostream>
+#include <utility>
 
 namespace drape::cli {
 
@@ -39,6 +40,10 @@ ModelBodyInput body_input(const po::variables_map& vm) {
     BodyRequest request;
     request.bmi = vm["bmi"].as<double>();
     if (vm.count("height")) request.height = vm["height"].as<double>();
+    // (NaN was "BMI nan is outside the reachable range", where drape body says what it is.)
+    for (const auto& [option, value] : {std::pair{"--bmi", request.bmi}, std::pair{"--height", request.height}})
+      if (!std::isfinite(value))
+        throw UsageError(std::string(option) + " " + std::to_string(value) + ": not a finite number");
     if (vm.count("sex")) request.sex = vm["sex"].as<double>();
     request.proportions = parse_girths(vm);
     input.request = request;

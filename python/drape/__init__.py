@@ -350,6 +350,8 @@ def write_obj(path, vertices, faces):
     array reads back bit for bit; %.6f lost up to 5e-7 m of a float32 body."""
     vertices = _np.asarray(vertices, dtype=_np.float64)
     faces = _np.asarray(faces)
+    if not _np.isfinite(vertices).all():  # (an OBJ of "nan" no reader takes back)
+        raise ValueError(f"vertices: {int((~_np.isfinite(vertices)).any(axis=-1).sum())} rows hold NaN or inf")
     tmp = f"{path}.tmp{_os.getpid()}"
     with open(tmp, "w") as f:
         _np.savetxt(f, vertices, fmt="v %.17g %.17g %.17g")

@@ -31,6 +31,8 @@ def _require_floating(t, argument):
     order", "vertex 0 and face 4 touch"), an outside check."""
     if isinstance(t, torch.Tensor) and not (t.is_floating_point()):
         raise ValueError(f"{argument}: expected floating-point vertices in metres, got {t.dtype}")
+    if isinstance(t, np.ndarray) and not np.issubdtype(t.dtype, np.floating):
+        raise ValueError(f"{argument}: expected floating-point vertices in metres, got {t.dtype}")
 
 
 class EnergyFunction(torch.autograd.Function):

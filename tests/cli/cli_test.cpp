@@ -99,6 +99,14 @@ TEST_CASE("usage errors exit 2, help exits 0", "[cli]") {
     CHECK(test::run_drape(std::string("body ") + bad + " --out x.obj", out) == 2);
     CHECK_THAT(out, Catch::Contains("': not a number (NaN)"));
   }
+  for (const char* command : {"predict --bmi nan --out x.obj", "optimize --scene graphs/scenes/tshirt_coarse.yaml --bmi nan --out x.obj",
+                              "predict --bmi 30 --height nan --out x.obj"}) {
+    INFO(command);
+    CHECK(test::run_drape(command, out) == 2);
+    CHECK_THAT(out, Catch::Contains(": not a finite number"));  // (it was "BMI nan is outside the reachable range")
+  }
+  CHECK(test::run_drape("plugnis", out) == 2);
+  CHECK_THAT(out, Catch::StartsWith("drape: error: unknown command 'plugnis'"));
   CHECK(test::run_drape("body --bmi inf --out x.obj", out) == 2);
   CHECK_THAT(out, Catch::Contains("--bmi 'inf': expected a finite number or a range lo:hi"));
 }

@@ -34,6 +34,9 @@ def test_write_obj_reads_back_bit_for_bit(model, tmp_path):
     drape.write_obj(tmp_path / "b.obj", body, model.assets.body_faces)
     back, faces = read_obj(tmp_path / "b.obj")
     assert np.array_equal(back.astype(np.float32), body)
+    with pytest.raises(ValueError, match="1 rows hold NaN or inf"):
+        drape.write_obj(tmp_path / "nan.obj", np.where(np.arange(len(body))[:, None] == 3, np.nan, body), model.assets.body_faces)
+    assert not (tmp_path / "nan.obj").exists()
     np.testing.assert_array_equal(faces, model.assets.body_faces)
 
 

@@ -125,3 +125,5 @@ def test_a_weight_changed_in_place_before_backward_raises_and_integer_vertices_a
         net(body.long())
     with pytest.raises(ValueError, match=r"x: expected floating-point vertices in metres, got torch.int64"):
         dt.SceneEnergy(scene)(state.long())
+    with pytest.raises(ValueError, match=r"body: expected floating-point vertices in metres, got int64"):
+        net(body.numpy().astype(np.int64))

@@ -453,6 +453,15 @@ TEST_CASE("SMPL weights that do not sum to 1 and NaN shapes are refused at load"
   no_faces.faces.resize(0, 3);
   write_synthetic(no_faces, dir / "f.h5");
   CHECK_THAT(test::message_of([&] { load_smpl(dir / "f.h5"); }), Catch::Contains("f.h5: /f holds no triangles"));
+  SyntheticSmpl negative = m;
+  negative.weights.row(4).setZero();
+  negative.weights(4, 0) = -0.2, negative.weights(4, 1) = 1.2;  // a row summing to 1 with a weight below 0
+  write_synthetic(negative, dir / "negative.h5");
+  CHECK_THAT(test::message_of([&] { load_smpl(dir / "negative.h5"); }),
+             Catch::Contains("negative.h5: /weights row 4 holds a negative weight"));
+  // An HDF5 file named .pkl is read by its contents.
+  std::filesystem::copy_file(dir / "good.h5", dir / "really_hdf5.pkl");
+  CHECK_NOTHROW(load_smpl(dir / "really_hdf5.pkl"));
   // SMPL's own files are pointed to the conversion (they were "not an HDF5 file").
   std::ofstream(dir / "smpl.pkl") << "not hdf5";
   CHECK_THAT(test::message_of([&] { load_smpl(dir / "smpl.pkl"); }),
@@ -483,7 +492,7 @@ TEST_CASE("SMPL says once that a requested sex is not used", "[smpl]") {
   body->solve(request);
   set_warning_handler(before);
   REQUIRE(said.size() == 1);
-  CHECK_THAT(said[0], Catch::Contains("an SMPL file is one sex, so the sex asked for (0.0") && Catch::Contains("m.h5"));
+  CHECK_THAT(said[0], Catch::Contains("an SMPL file is one sex, so the sex asked for or drawn (0.0") && Catch::Contains("m.h5"));
   CHECK((female - as_default).cwiseAbs().maxCoeff() == 0.0);  // the same body: the warning is the truth
 }
 

@@ -8,6 +8,7 @@
 
 #include <cmath>
 #include <filesystem>
+#include <fstream>
 #include <sstream>
 #include <utility>
 
@@ -24,7 +25,20 @@ SmplData read_smpl_h5(const std::filesystem::path& file) {
                       "converts it");
   // SMPL's own files (.pkl, .npz) are not HDF5: said with the way there
   // (it was "not an HDF5 file" alone, an outside check).
-  if (const std::string ext = file.extension().string(); ext == ".pkl" || ext == ".npz" || ext == ".npy")
+  // (By the contents: an HDF5 file named .pkl is read; HDF5's signature
+  // starts the file, or a user block of 512 bytes.)
+  const auto is_hdf5 = [&] {
+    std::ifstream in(file, std::ios::binary);
+    const std::string signature = "\x89HDF\r\n\x1a\n";
+    for (const std::streamoff at : {0, 512}) {
+      std::string head(signature.size(), '\0');
+      in.clear();
+      in.seekg(at);
+      if (in.read(head.data(), static_cast<std::streamsize>(head.size())) && head == signature) return true;
+    }
+    return false;
+  };
+  if (const std::string ext = file.extension().string(); (ext == ".pkl" || ext == ".npz" || ext == ".npy") && !is_hdf5())
     throw ConfigError(file.string() + ": SMPL's own " + ext + " files are read after converting them to HDF5 with the "
                       "script in docs/smpl.md (\"Converting the official file\"); --param file= names the .h5 it writes");
   const h5::File f = h5::File::open(file);
@@ -196,7 +210,7 @@ Eigen::VectorXd SmplBody::solve(const BodyRequest& r) const {
   // request's default (1) is no request.
   if (r.sex != BodyRequest{}.sex)
     std::call_once(sex_warned_, [&] {
-      warn("smpl: an SMPL file is one sex, so the sex asked for (" + std::to_string(r.sex) + ") is not used: " +
+      warn("smpl: an SMPL file is one sex, so the sex asked for or drawn (" + std::to_string(r.sex) + ") is not used: " +
            data_.file.filename().string() + " makes its own; give SMPL's female or male file for another (docs/smpl.md)");
     });
   if (!(r.height > 0.5 && r.height < 3.0)) throw ConfigError("height must be in meters (0.5 - 3.0)");

@@ -80,10 +80,15 @@ std::optional<SmplRig> read_smpl_rig(const h5::File& f, Eigen::Index n) {
   // rotation (doubled weights moved an outside check's arm 9.8 cm further at
   // a 20 degree elbow, without a word). SMPL's own rows sum to 1 within
   // float rounding; 1e-3 leaves room for any converter's.
-  for (Eigen::Index v = 0; v < rig.weights.rows(); ++v)
+  for (Eigen::Index v = 0; v < rig.weights.rows(); ++v) {
+    // (A negative weight pulls the vertex away from its joint's move: no SMPL file has one.)
+    if (const double least = rig.weights.row(v).minCoeff(); least < -1e-6)
+      throw ConfigError(file + ": /weights row " + std::to_string(v) + " holds a negative weight (" + std::to_string(least) +
+                        "); skinning weights are 0 or more and sum to 1 (docs/smpl.md)");
     if (const double sum = rig.weights.row(v).sum(); !(std::abs(sum - 1.0) <= 1e-3))
       throw ConfigError(file + ": /weights row " + std::to_string(v) + " sums to " + std::to_string(sum) +
                         "; each vertex's skinning weights must sum to 1 (docs/smpl.md)");
+  }
   return rig;
 }
 
