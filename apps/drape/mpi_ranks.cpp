@@ -91,8 +91,14 @@ std::unique_ptr<Ranks> mpi_ranks_if_launched() {
 }
 
 void refuse_parallel_launch(const std::string& command, const std::vector<std::string>& args) {
+  // An option as the command's parser takes it: whole, with "=value", or
+  // cut short to a prefix of it ("--dat", "--sh"; the parser takes any
+  // unambiguous one, and an outside check's "--dat" got past a whole-name test).
   const auto has = [&](const std::string& flag) {
-    return std::any_of(args.begin(), args.end(), [&](const std::string& a) { return a == flag || a.rfind(flag + "=", 0) == 0; });
+    return std::any_of(args.begin(), args.end(), [&](const std::string& a) {
+      const std::string name = a.substr(0, a.find('='));
+      return name.size() > 2 && name.rfind("--", 0) == 0 && flag.rfind(name, 0) == 0;
+    });
   };
   const bool whole_set = (command == "generate" || (command == "optimize" && has("--data"))) && !has("--shard");
   if (!whole_set || has("--help") || has("-h")) return;

@@ -118,7 +118,7 @@ class ModelFunction(torch.autograd.Function):
         # A change through drape's own memory (model.weights()[...] *= 2, Model.optimize) bumps no torch version
         # counter: the forward's values are kept to compare at backward (a copy of the weights, when a gradient of
         # them is asked for at all).
-        ctx.snapshot = [w.detach().clone() for w in weights] if any(ctx.needs_input_grad[3:]) else None
+        ctx.snapshot = [w.detach().contiguous().clone() for w in weights] if any(ctx.needs_input_grad[3:]) else None
         return torch.from_numpy(garment).to(device=body.device)
 
     @staticmethod
@@ -130,7 +130,8 @@ class ModelFunction(torch.autograd.Function):
             # drape's memory, so a change through drape shows here; a copy given, as a gradient check gives, is
             # unchanged by the other forwards that load their weights into drape).
             for name, kept, w in zip(ctx.names, ctx.snapshot, weights):
-                if not torch.equal(kept, w):
+                # (Bit for bit: a NaN of a diverged training equals itself here, as it does not under ==.)
+                if not torch.equal(kept.view(torch.uint8), w.detach().contiguous().view(torch.uint8)):
                     raise RuntimeError(f"weight {name!r} of the drape model was changed in place between this forward and "
                                        "its backward (through drape.Model.weights() or Model.optimize): its gradient "
                                        "would be neither the forward's nor the new weights'; run the forward again")

@@ -213,6 +213,14 @@ TEST_CASE("experiment: a row trained on other data than given now is trained aga
   // The same data again: reused.
   REQUIRE(test::run(command + " --data shirts=other.h5", out) == 0);
   CHECK_THAT(out, Catch::Contains("trained already") && !Catch::Contains("$ drape eval"));
+  // A dry run with the first data stamps nothing: the real run after it
+  // evaluates again (the old report was stamped as current and reused).
+  const std::string second_eval = read(dir / "runs/data/mlp.eval.json");
+  REQUIRE(test::run(command + " --dry-run", out) == 0);
+  REQUIRE(test::run(command, out) == 0);
+  CHECK_THAT(out, Catch::Contains("$ drape eval"));
+  CHECK(read(dir / "runs/data/mlp.eval.json") == first_eval);
+  CHECK(second_eval != first_eval);
 }
 
 TEST_CASE("experiment: an interrupted training on other data is trained again", "[experiment]") {

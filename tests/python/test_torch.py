@@ -119,6 +119,12 @@ def test_a_weight_changed_in_place_before_backward_raises_and_integer_vertices_a
     model.weights()[next(iter(model.weights()))][...] += 0.5  # (a bias starts at zero: add, not scale)
     with pytest.raises(RuntimeError, match="changed in place between this forward and its backward"):
         loss.backward()
+    # A weight that is NaN (a diverged training) is no change (NaN equals itself bit for bit): what is said is
+    # the garment's NaN, not "changed in place".
+    with torch.no_grad():
+        next(iter(net.parameters())).fill_(float("nan"))
+    with pytest.raises(ValueError, match="grad_garment: non-finite coordinate"):
+        net(body).square().sum().backward()
     # Integer vertices: one ValueError naming the argument and the dtype (they were converted silently and
     # refused for what followed).
     with pytest.raises(ValueError, match=r"body: expected floating-point vertices in metres, got torch.int64"):

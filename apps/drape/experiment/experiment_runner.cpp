@@ -172,9 +172,16 @@ class Runner {
     std::fflush(stdout);
     return !o_.dry_run;
   }
+  // Quoted where a shell would read it otherwise (a dataset pattern's `*`
+  // expanded to several files, and the line pasted did not run).
   static std::string command_line(const std::vector<std::string>& args) {
     std::string line = "drape";
-    for (const auto& a : args) line += " " + a;
+    for (const auto& a : args) {
+      const bool plain = !a.empty() && a.find_first_of(" \t*?[]{}$'\"\\;&|<>()!#~") == std::string::npos;
+      std::string quoted = "'";
+      for (const char c : a) quoted += c == '\'' ? std::string("'\\''") : std::string(1, c);
+      line += " " + (plain ? a : quoted + "'");
+    }
     return line;
   }
 
@@ -349,7 +356,19 @@ class Runner {
     o.split = split;
     o.threads = o_.threads;
     o.optimization.iterations = iterations;
-    const std::size_t n = optimize_dataset(registry(), o);
+    std::size_t n = 0;
+    try {
+      n = optimize_dataset(registry(), o);
+    } catch (const ConfigError& e) {
+      // A partial file of an earlier model (the row trained again since it
+      // was killed): begun again, as experiment has no way to say so (it
+      // stopped with "delete it to start over", an outside check).
+      const fs::path partial = out.string() + ".partial";
+      if (!fs::exists(partial) || std::string(e.what()).find("cannot resume") == std::string::npos) throw;
+      std::printf("%s: made from another model or data than now (%s): begun again\n", partial.c_str(), e.what());
+      fs::remove(partial);
+      n = optimize_dataset(registry(), o);
+    }
     std::printf("wrote %s: %zu samples optimised in this run\n", out.c_str(), n);
     stamp(out, {model, data});
   }
@@ -461,7 +480,9 @@ class Runner {
     }
     if (!up_to_date(eval, {model, test})) {
       evaluate(row, model, test, overrides, eval);
-      stamp(eval, {model, test});
+      // (Not on a dry run: nothing ran, and the old report stamped with the
+      // new inputs was taken as current by the next real run, an outside check.)
+      if (!o_.dry_run) stamp(eval, {model, test});
     }
     fs::path physics;
     if (!row.physics.empty() && row.kind == ExperimentRowKind::Train) {

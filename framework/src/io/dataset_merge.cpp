@@ -280,6 +280,9 @@ std::size_t join_shards(const std::vector<fs::path>& shards, const fs::path& out
   const std::vector<std::vector<char>> dropped = rows_to_drop(files, layouts, shards, drop);
   std::vector<long> dropped_all = drop;  // what the output records: these, and what its shards' merges dropped
   std::optional<SizeTable> size_chart;  // the size charts of the shards that have one, joined
+  std::string weights_seen;                 // optimize --data's model_weights, of the first shard recording them
+  fs::path weights_from;
+  std::vector<std::string> unweighed;       // shards recording none
   for (std::size_t k = 0; k < shards.size(); ++k) {
     const fs::path& shard = shards[k];
     DatasetLayout layout = layouts[k];
@@ -312,6 +315,22 @@ std::size_t join_shards(const std::vector<fs::path>& shards, const fs::path& out
     if (require_complete && n_done != layout.samples)
       throw ConfigError(shard.string() + ": only " + std::to_string(n_done) + " of " + std::to_string(layout.samples) +
                         " samples are done; finish generating it first");
+    // Drapes optimised by other weights (a model retrained between two
+    // shards' runs) are two experiments in one file: merged without a word
+    // until an outside check (optimize --data records model_weights). Each
+    // shard against the first that records them (a file made before the
+    // fingerprints, first in the list, let every other through).
+    if (const auto w = layout.attributes.find("model_weights"); w != layout.attributes.end() && !w->second.empty()) {
+      if (weights_seen.empty()) {
+        weights_seen = w->second, weights_from = shard;
+      } else if (w->second != weights_seen) {
+        throw ConfigError(shard.string() + ": cannot merge with " + weights_from.string() +
+                          ": its drapes were optimised by other model weights (fingerprint " + w->second + ", " +
+                          weights_from.filename().string() + "'s " + weights_seen + ")");
+      }
+    } else {
+      unweighed.push_back(shard.filename().string());
+    }
     if (k == 0) {
       merged = layout;
     } else {
@@ -322,14 +341,6 @@ std::size_t join_shards(const std::vector<fs::path>& shards, const fs::path& out
         same.template_hash = merged.template_hash;
         same.attributes = merged.attributes;
       }
-      // Drapes optimised by other weights (a model retrained between two
-      // shards' runs) are two experiments in one file: merged without a word
-      // until an outside check (optimize --data records model_weights).
-      if (const auto a = merged.attributes.find("model_weights"), b = layout.attributes.find("model_weights");
-          a != merged.attributes.end() && b != layout.attributes.end() && a->second != b->second)
-        throw ConfigError(shard.string() + ": cannot merge with " + shards.front().string() +
-                          ": its drapes were optimised by other model weights (fingerprint " + b->second + ", " +
-                          shards.front().filename().string() + "'s " + a->second + ")");
       const std::string difference = layout_difference(merged, same);
       const bool other_garment = same.scene != merged.scene || same.template_hash != merged.template_hash;
       if (!difference.empty())
@@ -348,6 +359,15 @@ std::size_t join_shards(const std::vector<fs::path>& shards, const fs::path& out
     names += shard.filename().string();
   }
   merged.attributes["merged_from"] = names;
+  // The weights are the set's only when every file records the same.
+  if (!weights_seen.empty() && unweighed.empty()) merged.attributes["model_weights"] = weights_seen;
+  else merged.attributes.erase("model_weights");
+  if (!weights_seen.empty() && !unweighed.empty()) {
+    std::string list;
+    for (const std::string& name : unweighed) list += (list.empty() ? "" : ", ") + name;
+    warn("merge: " + list + " record no model weights (optimised before drape recorded them), " +
+         weights_from.filename().string() + " does: whether they were optimised by the same model cannot be told");
+  }
   // Each shard's own source drapes' fingerprint (optimize --data) says
   // nothing of a set of several: left out (one file slimmed or expanded
   // keeps its own, which a rerun of its request is checked against).
