@@ -29,6 +29,7 @@
 #include <fstream>
 #include <iostream>
 #include <iterator>
+#include <map>
 #include <set>
 #include <sstream>
 #include <thread>
@@ -69,21 +70,38 @@ std::string exact(double v) {
 // times alone said a model trained on another dataset was up to date (the
 // shipped datasets are older than any model), and the table took its
 // metrics under the new data's name (an outside check).
+// The FNV-1a of a file's bytes, read once per run while its size and time
+// stay the same: a row checks its dataset before and after training, and
+// every row of an experiment shares the same datasets (hundreds of MB).
+std::string file_digest(const fs::path& file) {
+  struct Known {
+    std::uintmax_t size;
+    fs::file_time_type time;
+    std::string digest;
+  };
+  static std::map<std::string, Known> known;
+  std::error_code ec;
+  const std::uintmax_t size = fs::file_size(file, ec);
+  const fs::file_time_type time = fs::last_write_time(file, ec);
+  const std::string key = fs::absolute(file, ec).string();
+  if (const auto it = known.find(key); it != known.end() && it->second.size == size && it->second.time == time)
+    return it->second.digest;
+  Fnv1a f;
+  std::ifstream bytes(file, std::ios::binary);
+  std::vector<char> buffer(1 << 20);
+  while (bytes) {
+    bytes.read(buffer.data(), static_cast<std::streamsize>(buffer.size()));
+    f.bytes(buffer.data(), static_cast<std::size_t>(bytes.gcount()));
+  }
+  return (known[key] = Known{size, time, f.hex()}).digest;
+}
+
 std::string inputs_identity(const std::vector<fs::path>& inputs) {
   std::string out;
   for (const auto& in : inputs) {
     std::error_code ec;
     const std::vector<fs::path> files = fs::exists(in, ec) ? std::vector<fs::path>{in} : dataset_files(in);
-    for (const fs::path& file : files) {
-      Fnv1a f;
-      std::ifstream bytes(file, std::ios::binary);
-      std::vector<char> buffer(1 << 20);
-      while (bytes) {
-        bytes.read(buffer.data(), static_cast<std::streamsize>(buffer.size()));
-        f.bytes(buffer.data(), static_cast<std::size_t>(bytes.gcount()));
-      }
-      out += file.filename().string() + " " + f.hex() + "\n";
-    }
+    for (const fs::path& file : files) out += file.filename().string() + " " + file_digest(file) + "\n";
   }
   return out;
 }
@@ -303,14 +321,13 @@ class Runner {
       fs::remove(stamp_file(model), ec);
       try {
         train_model(registry(), o);
-      } catch (const ConfigError& e) {
+      } catch (const ResumeRefused& e) {
         // An interrupted training of other data or settings than the row's
         // now (its state says which): the row is trained again, as drape
         // experiment has no --force to say so (it stopped with "--force to
         // start over").
-        const std::string why = e.what();
-        if (o.force || why.find("cannot resume") == std::string::npos) throw;
-        std::printf("model %s: its interrupted training cannot be resumed (%s): trained again\n", model.c_str(), why.c_str());
+        if (o.force) throw;
+        std::printf("model %s: its interrupted training cannot be resumed (%s): trained again\n", model.c_str(), e.what());
         o.force = true;
         train_model(registry(), o);
       }
@@ -359,12 +376,11 @@ class Runner {
     std::size_t n = 0;
     try {
       n = optimize_dataset(registry(), o);
-    } catch (const ConfigError& e) {
+    } catch (const ResumeRefused& e) {
       // A partial file of an earlier model (the row trained again since it
       // was killed): begun again, as experiment has no way to say so (it
       // stopped with "delete it to start over", an outside check).
       const fs::path partial = out.string() + ".partial";
-      if (!fs::exists(partial) || std::string(e.what()).find("cannot resume") == std::string::npos) throw;
       std::printf("%s: made from another model or data than now (%s): begun again\n", partial.c_str(), e.what());
       fs::remove(partial);
       n = optimize_dataset(registry(), o);

@@ -36,6 +36,15 @@ class UsageError : public ConfigError {
   using ConfigError::ConfigError;
 };
 
+// An interrupted run (a training state, a dataset's partial file) made with
+// other inputs or settings than the command asks now, so it cannot be
+// continued: what a caller that may start over (drape experiment) catches,
+// rather than reading "cannot resume" in a message.
+class ResumeRefused : public ConfigError {
+ public:
+  using ConfigError::ConfigError;
+};
+
 // Up to `max_count` candidates closest to `name` by edit distance (case-insensitive),
 // only those close enough to be plausible typos, best first.
 std::vector<std::string> closest_matches(const std::string& name,

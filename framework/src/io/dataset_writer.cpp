@@ -105,9 +105,9 @@ DatasetWriter::DatasetWriter(const fs::path& path, const DatasetLayout& layout, 
     // fill the missing rows with other drapes while the file records the
     // first run's (made_difference).
     if (const std::string difference = layout_difference(have, layout); !difference.empty())
-      throw ConfigError(partial.string() + ": cannot resume, " + difference + "; delete it to start over");
+      throw ResumeRefused(partial.string() + ": cannot resume, " + difference + "; delete it to start over");
     if (const std::string difference = made_difference(have, layout); !difference.empty())
-      throw ConfigError(partial.string() + ": cannot resume, " + difference + "; run it as it was begun, or delete it to "
+      throw ResumeRefused(partial.string() + ": cannot resume, " + difference + "; run it as it was begun, or delete it to "
                         "start over");
     layout_ = have;  // keeps `created` and the extra attributes of the first run
     impl_ = std::make_unique<Impl>(Impl{std::move(file)});

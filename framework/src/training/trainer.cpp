@@ -315,7 +315,7 @@ void check_resumable(const Checkpoint& st, const fs::path& state_path, const std
     // A state written before the fingerprint (2026-12-06) resumes on the split sizes as it did.
     if (key == "training_data" && it == st.meta.end()) continue;
     if (key == "training_data" && it->second != value)
-      throw ConfigError(state_path.string() + ": cannot resume: the interrupted run learnt from other drapes" +
+      throw ResumeRefused(state_path.string() + ": cannot resume: the interrupted run learnt from other drapes" +
                         (st.meta.count("dataset") ? " (" + st.meta.at("dataset") + ")" : std::string()) +
                         " than --data gives now (fingerprint of its training and validation drapes " + it->second +
                         " then, " + value + " now); give the same dataset, or --force to start over");
@@ -324,29 +324,29 @@ void check_resumable(const Checkpoint& st, const fs::path& state_path, const std
     // continued for more (it was refused as an "interrupted run" with other
     // settings, of a finished one; an outside check).
     if (key == "epochs" && was != value)
-      throw ConfigError(state_path.string() + ": cannot continue: its cosine schedule was planned for " + was +
+      throw ResumeRefused(state_path.string() + ": cannot continue: its cosine schedule was planned for " + was +
                         " epochs, and its learning rate at each epoch depends on that total, so it cannot be extended to " +
                         value + " (a constant schedule can be; --force starts over, or --init " +
                         (state_path.parent_path() / state_path.stem()).string() + " starts a new cycle from its weights)");
     if (was != value)
-      throw ConfigError(state_path.string() + ": cannot resume: the interrupted run had " + key + " " + was +
+      throw ResumeRefused(state_path.string() + ": cannot resume: the interrupted run had " + key + " " + was +
                         ", this one has " + key + " " + value + " (rerun with the same settings, or --force to start over)");
   }
   // Settings a run records only when given: one the interrupted run had and
   // this one lacks is a change too.
   for (const char* key : {"init", "init_widen", "init_partial", "monitor_loss", "weight_decay"})
     if (st.meta.count(key) && !settings.count(key))
-      throw ConfigError(state_path.string() + ": cannot resume: the interrupted run had " + key + " " +
+      throw ResumeRefused(state_path.string() + ": cannot resume: the interrupted run had " + key + " " +
                         st.meta.at(key) + ", this one has none (rerun with the same settings, or --force to start over)");
   // Settings only multi-rank runs record (absent: one process).
   const auto had_ranks = st.meta.find("ranks");
   const std::string was_ranks = had_ranks == st.meta.end() ? "1" : had_ranks->second;
   if (was_ranks != std::to_string(ranks))
-    throw ConfigError(state_path.string() + ": cannot resume: the interrupted run had ranks " + was_ranks +
+    throw ResumeRefused(state_path.string() + ": cannot resume: the interrupted run had ranks " + was_ranks +
                       ", this one has ranks " + std::to_string(ranks) +
                       " (rerun with the same mpirun -np, or --force to start over)");
   if (st.graph != graph_spec.text)
-    throw ConfigError(state_path.string() + ": cannot resume: the interrupted run trained another graph than " +
+    throw ResumeRefused(state_path.string() + ": cannot resume: the interrupted run trained another graph than " +
                       graph_file.string() + " (or --force to start over)");
 }
 
