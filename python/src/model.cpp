@@ -7,8 +7,6 @@
 #include <drape/io/shipped_files.hpp>
 #include <drape/geometry/body_units.hpp>
 #include <drape/io/checkpoint.hpp>
-#include <drape/io/h5.hpp>
-#include <drape/io/atomic_file.hpp>
 #include <drape/errors.hpp>
 #include <drape/graph.hpp>
 #include <drape/training/model.hpp>
@@ -359,9 +357,7 @@ void register_model(py::module_& m) {
             // pose=None: the scene's `body: pose:`, as drape optimize takes it (it optimised the unposed
             // body and measured p = 0 against it); a body given posed keeps its own.
             bool scene_posed = false;
-            const bool mesh_posed = !prepared.given_poses.empty() && !prepared.given_poses.front().empty() &&
-                                    !(prepared.given_at_rest.size() == 1 && prepared.given_at_rest.front());
-            if (!posed && !mesh_posed)
+            if (!posed && !prepared.given_posed(0))
               if (Pose from_scene = scene_pose(scene.simulations->design().scene(), p.model().body_model()); !from_scene.empty())
                 posed = std::move(from_scene), scene_posed = true;
             try {
@@ -416,17 +412,9 @@ void register_model(py::module_& m) {
             // "written before drape recorded it", predict warned of no body
             // outside it and --strict refused every body; an outside check).
             // (Read when the model was loaded; an untrained model has none.)
-            const std::optional<ModelDomain> domain = p.domain_at_load();
             py::gil_scoped_release release;
             std::lock_guard lock(p.mutex());
-            write_atomically(path, [&](const std::filesystem::path& tmp) {
-              save_checkpoint(tmp, m.graph().weights(), c);
-              if (domain) {
-                h5::File f = h5::File::open(tmp, h5::Access::ReadWrite);
-                write_domain(f, *domain);
-                f.close();
-              }
-            });
+            save_model_file(path, m.graph().weights(), c, p.domain_at_load());
           },
           py::arg("path"), py::arg("meta") = std::map<std::string, std::string>{},
           "Writes the model with its current weights (after optimize or a PyTorch loop) as a model file, atomically; "

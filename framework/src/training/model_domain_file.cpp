@@ -58,4 +58,15 @@ ModelDomain record_model_domain(const Registry& registry, const fs::path& model_
   return d;
 }
 
+void save_model_file(const fs::path& path, const NamedWeights& weights, const Checkpoint& checkpoint,
+                     const std::optional<ModelDomain>& domain) {
+  write_atomically(path, [&](const fs::path& tmp) {
+    save_checkpoint(tmp, weights, checkpoint);
+    if (!domain) return;
+    h5::File f = h5::File::open(tmp, h5::Access::ReadWrite);
+    write_domain(f, *domain);
+    f.close();
+  });
+}
+
 }  // namespace drape

@@ -5,9 +5,7 @@
 #include <drape/graph.hpp>
 #include <drape/params.hpp>
 #include <drape/registry.hpp>
-#include <drape/io/atomic_file.hpp>
 #include <drape/io/checkpoint.hpp>
-#include <drape/io/h5.hpp>
 #include <drape/training/model_domain.hpp>
 
 #include <yaml-cpp/yaml.h>
@@ -63,15 +61,7 @@ std::vector<std::string> set_model_params(const Registry& registry, const fs::pa
   Checkpoint c = model.checkpoint();
   std::vector<std::string> changes;
   c.graph = graph_with_overrides(c.graph, overrides, model_file.string(), &changes);
-  const std::optional<ModelDomain> domain = read_domain(model_file);
-  write_atomically(out, [&](const fs::path& tmp) {
-    save_checkpoint(tmp, model.graph().weights(), c);
-    if (domain) {
-      h5::File f = h5::File::open(tmp, h5::Access::ReadWrite);
-      write_domain(f, *domain);
-      f.close();
-    }
-  });
+  save_model_file(out, model.graph().weights(), c, read_domain(model_file));
   return changes;
 }
 

@@ -105,6 +105,11 @@ struct PreparedBodies {
   // rest pose at every joint): a pose given with it is the body's pose.
   std::vector<char> given_at_rest;
   std::vector<Notice> notices;
+  // Body i was given as a mesh in a pose of its own (read off it, and not
+  // the rest pose): no other pose applies to it.
+  bool given_posed(std::size_t i) const {
+    return i < given_poses.size() && !given_poses[i].empty() && !(i < given_at_rest.size() && given_at_rest[i]);
+  }
 };
 
 // Makes batches ready for one model: built once per model (what does not

@@ -18,6 +18,7 @@
 //                                        posed dataset's training bodies; attribute
 //                                        pose_names (comma-joined). Absent: A-pose bodies
 #include <drape/bodies/pose.hpp>
+#include <drape/io/checkpoint.hpp>
 #include <drape/io/dataset.hpp>
 
 #include <Eigen/Core>
@@ -141,5 +142,10 @@ class File;
 void write_domain(h5::File& file, const ModelDomain& domain);
 std::optional<ModelDomain> read_domain(const h5::File& file);
 std::optional<ModelDomain> read_domain(const std::filesystem::path& model_file);
+// A model file written atomically: save_checkpoint, and the domain when there
+// is one (drape model set, Python's Model.save: a rewritten model keeps the
+// domain of the file it came from).
+void save_model_file(const std::filesystem::path& path, const NamedWeights& weights, const Checkpoint& checkpoint,
+                     const std::optional<ModelDomain>& domain);
 
 }  // namespace drape
