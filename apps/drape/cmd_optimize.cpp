@@ -121,13 +121,9 @@ int run(const std::vector<std::string>& args) {
   // Without --model, the shipped model of the scene's rig when the default
   // drapes the other (optimize --scene graphs/scenes/tshirt_coarse_posed.yaml
   // --bmi 30 was refused: "another rig", a scene of sizes).
-  if (!vm.count("body")) {
-    const PluginDescriptor& body = registry.get(scene_spec.body_model);
-    const Eigen::Index scene_vertices =
-        registry.create_body(scene_spec.body_model, Params(body.params, scene_spec.body_params, "body '" + scene_spec.body_model + "'"))
-            ->num_vertices();
-    model_file = model_file_for_rig(vm, registry, model_file, scene_vertices, "the scene " + scene_file.string());
-  }
+  if (!vm.count("body") && !vm.count("model"))  // (the scene's body is made only to be counted)
+    model_file = model_file_for_rig(vm, registry, model_file, make_scene_body_model(registry, scene_spec)->num_vertices(),
+                                    "the scene " + scene_file.string());
   Model model = Model::load(registry, model_file);
   BodyMove moved_by;  // the drape is made where (and as) the training bodies stood; written back where the body was
   // The body and its pose before the scene is built: a bad one is refused at once.

@@ -57,6 +57,20 @@ ModelBodyInput body_input(const po::variables_map& vm) {
 // vertices, "tshirt-coarse.h5 and tshirt-coarse-regular.h5": for a body mesh
 // of another rig or body model than the model's (a mannequin body given to
 // the human rig's model). On the error's path only (each file is read).
+// The vertex count of the bodies a model file drapes, from its metadata and
+// its body model alone (not its weights, assets or graph); -1 for a file
+// that is no model this build reads.
+Eigen::Index model_body_vertices(const Registry& registry, const fs::path& file) {
+  try {
+    const Checkpoint checkpoint = read_checkpoint(file);
+    const auto assets = checkpoint.meta.find("assets");
+    if (assets == checkpoint.meta.end()) return -1;
+    return make_body_model(registry, parse_assets_spec(assets->second, file.string()))->num_vertices();
+  } catch (const std::exception&) {
+    return -1;  // not a model, or one this build cannot read: it takes no body here
+  }
+}
+
 std::string models_taking(const Model& model, Eigen::Index count, const po::variables_map& vm) {
   if (model.file().empty()) return "";
   const Registry& registry = Registry::load_default(plugin_path(vm));
@@ -64,15 +78,7 @@ std::string models_taking(const Model& model, Eigen::Index count, const po::vari
   std::error_code ec;
   for (const fs::directory_entry& entry : fs::directory_iterator(model.file().parent_path(), ec)) {
     if (entry.path().extension() != ".h5" || fs::equivalent(entry.path(), model.file(), ec)) continue;
-    try {
-      const Checkpoint checkpoint = read_checkpoint(entry.path());
-      const auto assets = checkpoint.meta.find("assets");
-      if (assets == checkpoint.meta.end()) continue;
-      const auto body = make_body_model(registry, parse_assets_spec(assets->second, entry.path().string()));
-      if (body->num_vertices() == count) found.push_back(entry.path().filename().string());
-    } catch (const std::exception&) {
-      // Not a model, or one this build cannot read: it takes no body here.
-    }
+    if (model_body_vertices(registry, entry.path()) == count) found.push_back(entry.path().filename().string());
   }
   std::sort(found.begin(), found.end());
   std::string names;
@@ -156,21 +162,18 @@ namespace {
 constexpr std::pair<const char*, const char*> kRigTwins[] = {{kDefaultModelFile, "tshirt-coarse.h5"},
                                                              {posed_model_name, "tshirt-coarse-posed.h5"}};
 
-// The shipped twin of `file` (same pose space, the other rig) when its body
-// model makes bodies of `count` vertices and `file`'s does not; empty else.
-std::string rig_twin(const Registry& registry, const Model& model, Eigen::Index count) {
-  if (model.assets().body.num_vertices() == count) return "";
-  const std::string name = model.file().filename().string();
+// The shipped twin of model file `file` (same pose space, the other rig)
+// when its body model makes bodies of `count` vertices and `file`'s does
+// not; empty else. (A file unreadable here: the check after loading names
+// the mismatch.)
+std::string rig_twin(const Registry& registry, const fs::path& file, Eigen::Index count) {
+  if (model_body_vertices(registry, file) == count) return "";
+  const std::string name = file.filename().string();
   for (const auto& [a, b] : kRigTwins) {
     const std::string twin = name == a ? b : name == b ? a : "";
     if (twin.empty()) continue;
     const fs::path path = shipped_model_path(twin);
-    if (path.empty()) return "";
-    try {
-      if (Model::load(registry, path.string()).assets().body.num_vertices() == count) return path.string();
-    } catch (const std::exception&) {
-      // (Not readable here: the check after loading names the mismatch.)
-    }
+    if (!path.empty() && model_body_vertices(registry, path) == count) return path.string();
   }
   return "";
 }
@@ -202,7 +205,7 @@ std::string model_file_for_rig(const po::variables_map& vm, const Registry& regi
                                Eigen::Index body_vertices, const std::string& what) {
   const char* env = std::getenv("DRAPE_MODEL");
   if (vm.count("model") || (env && *env)) return file;
-  const std::string twin = rig_twin(registry, Model::load(registry, file), body_vertices);
+  const std::string twin = rig_twin(registry, file, body_vertices);
   if (twin.empty()) return file;
   std::cerr << "note: " << what << " holds bodies of " << body_vertices << " vertices (another rig than "
             << fs::path(file).filename().string() << "'s): draped by the shipped " << twin
@@ -259,10 +262,7 @@ SampleBatch model_body(const Model& model, const po::variables_map& vm, BodyMove
   // vertices inside the scene's posed body).
   bool fallen_back = false;
   if (!pose && fallback_pose && !fallback_pose->empty()) {
-    // (A mesh read at rest has a pose read too, within half a degree of rest: given_at_rest.)
-    const bool mesh_posed = !prepared.given_poses.empty() && !prepared.given_poses.front().empty() &&
-                            !(prepared.given_at_rest.size() == 1 && prepared.given_at_rest.front());
-    if (mesh_posed) {
+    if (prepared.given_posed(0)) {
       prepared.notices.push_back({Notice::Level::note, "the body mesh is posed: it is draped in its own pose, not in " +
                                                            fallback_source + "'s (" + format_pose(*fallback_pose) + ")"});
     } else {

@@ -50,16 +50,18 @@ bool pose_given(const po::variables_map& vm);
 // (optimize's scene), and goes to the model of posed drapes too.
 std::string model_file_or_default(const po::variables_map& vm, bool posed_elsewhere = false);
 
-// model_file_or_default for a dataset's samples: without --model (and with
-// DRAPE_MODEL unset), the shipped model of posed drapes when the default
-// model drapes the A-pose only and one of `indices` is posed (said on
-// stderr); the A-pose model drew a posed held-out set's bodies torn.
 // Without --model (and DRAPE_MODEL unset): the shipped twin of `file` on the
 // other rig when that one drapes bodies of `body_vertices` and `file` does not
-// (said on stderr, naming `what` holds such bodies); else `file`.
+// (said on stderr, naming `what` holds such bodies); else `file`. Reads the
+// models' metadata, not their weights.
 std::string model_file_for_rig(const po::variables_map& vm, const Registry& registry, const std::string& file,
                                Eigen::Index body_vertices, const std::string& what);
 
+// model_file_or_default for a dataset's samples: without --model (and with
+// DRAPE_MODEL unset), the shipped model of posed drapes when the default
+// model drapes the A-pose only and one of `indices` is posed (said on
+// stderr; the A-pose model drew a posed held-out set's bodies torn), then
+// model_file_for_rig for the dataset's bodies.
 std::string model_file_for_samples(const po::variables_map& vm, const Registry& registry, const DatasetReader& data,
                                    const std::vector<std::size_t>& indices);
 

@@ -197,8 +197,7 @@ Simulation::Simulation(const Registry& registry, Scene scene) : registry_(regist
   if (scene_.garment_grade_auto)
     throw ConfigError({scene_.file, 0}, "garment `grade: auto` is chosen per body; a Simulation takes one grade "
                                         "(drape simulate, drape generate and Python's drape.Scene choose it)");
-  const PluginDescriptor& bd = registry_.get(scene_.body_model);
-  body_model_ = registry_.create_body(scene_.body_model, Params(bd.params, scene_.body_params, "body '" + scene_.body_model + "'"));
+  body_model_ = make_scene_body_model(registry_, scene_);
   mean_body_ = body_model_->vertices(body_model_->mean_shape());
 
   const PluginDescriptor& gd = registry_.get(scene_.garment);
@@ -560,6 +559,11 @@ SimulationResult Simulation::run(const Eigen::MatrixX3d& target_body, const Simu
                 options, surface, result);
   result.seconds = since(start);
   return result;
+}
+
+std::unique_ptr<BodyModel> make_scene_body_model(const Registry& registry, const Scene& scene) {
+  const PluginDescriptor& bd = registry.get(scene.body_model);
+  return registry.create_body(scene.body_model, Params(bd.params, scene.body_params, "body '" + scene.body_model + "'"));
 }
 
 }  // namespace drape

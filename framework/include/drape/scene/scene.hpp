@@ -18,12 +18,14 @@
 #include <drape/params.hpp>
 
 #include <filesystem>
+#include <memory>
 #include <string>
 #include <vector>
 
 namespace drape {
 
 class Registry;
+class BodyModel;
 
 struct SceneEffect {
   std::string name;  // an energy plugin
@@ -78,5 +80,10 @@ const std::vector<ParamSpec>& scene_shape_specs();
 // known ones listed when not), the body and garment plugins exist, and every
 // plugin's parameters are valid. Throws ConfigError at the scene's line.
 void validate_scene(const Scene& scene, const Registry& registry);
+
+// The scene's body model, made by its plugin with the scene's parameters
+// (what a Simulation drapes on; drape optimize asks it for its rig's vertex
+// count before choosing a model).
+std::unique_ptr<BodyModel> make_scene_body_model(const Registry& registry, const Scene& scene);
 
 }  // namespace drape
