@@ -77,6 +77,11 @@ std::string layout_difference(const DatasetLayout& have, const DatasetLayout& no
 // else the first difference. What a resume and a rerun on a finished file
 // must share (not merge, which joins shards made alike in all but these).
 std::string made_difference(const DatasetLayout& have, const DatasetLayout& now);
+// A finished output `out` of a job that would make `now`: nullopt when there
+// is none; its sample count when the same request made it (a job array's
+// retry has nothing to do); else a ConfigError naming the difference, and
+// `redo` ("generate it again") in the advice to delete it.
+std::optional<std::size_t> finished_by_same_request(const std::string& out, const DatasetLayout& now, const std::string& redo);
 // Empty when two layouts are A-pose and posed drapes of one scene, which
 // DatasetReader reads as one (the A-pose bodies at their rest angles): one
 // has pose angles and the other none, their scenes differ at most in the

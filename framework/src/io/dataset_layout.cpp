@@ -2,12 +2,15 @@
 #include "dataset_internal.hpp"
 
 #include <algorithm>
-#include <utility>
 #include <cmath>
 #include <ctime>
+#include <filesystem>
+#include <optional>
 #include <set>
 #include <sstream>
 #include <stdexcept>
+#include <system_error>
+#include <utility>
 
 #include <yaml-cpp/yaml.h>
 
@@ -216,6 +219,15 @@ std::string made_difference(const DatasetLayout& have, const DatasetLayout& now)
       return std::string(what) + " differ from the run that began it (fingerprint " + a->second + ", now " + b->second + ")";
   }
   return "";
+}
+
+std::optional<std::size_t> finished_by_same_request(const std::string& out, const DatasetLayout& now, const std::string& redo) {
+  if (std::error_code ec; !std::filesystem::exists(out, ec)) return std::nullopt;
+  const DatasetReader finished(out);
+  if (const std::string difference = made_difference(finished.layout(), now); !difference.empty())
+    throw ConfigError(out + ": already exists, a finished dataset made otherwise (" + difference + "); delete it to " + redo +
+                      ", or give another --out");
+  return finished.size();
 }
 
 std::string layout_difference(const DatasetLayout& have, const DatasetLayout& now) {

@@ -258,14 +258,9 @@ GenerateSummary generate_dataset(const Registry& registry, const Scene& scene, c
   DatasetLayout layout = layout_of(scene, simulations, request, poses);
   // A finished output: this same job done before (a job array's retry) has
   // nothing to do, as train --resume on a finished run; any other is refused.
-  if (std::error_code ec; std::filesystem::exists(out, ec)) {
-    const DatasetReader finished(out);
-    const std::string difference = dataset_detail::made_difference(finished.layout(), layout);
-    if (!difference.empty())
-      throw ConfigError(out + ": already exists, a finished dataset made otherwise (" + difference +
-                        "); delete it to generate it again, or give another --out");
+  if (const std::optional<std::size_t> done = dataset_detail::finished_by_same_request(out, layout, "generate it again")) {
     GenerateSummary summary;
-    summary.samples = finished.size();
+    summary.samples = *done;
     summary.already_finished = true;
     return summary;
   }

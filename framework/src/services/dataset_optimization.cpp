@@ -167,13 +167,8 @@ std::size_t optimize_dataset(const Registry& registry, const OptimizeDatasetOpti
   // made otherwise is refused, saying how. (The cluster scripts skipped any
   // task whose shard existed, and an outside check's rerun with other
   // settings merged the old shards with the new without a word.)
-  if (std::error_code ec; std::filesystem::exists(o.out, ec)) {
-    const DatasetReader finished(o.out);
-    const std::string difference = dataset_detail::made_difference(finished.layout(), layout);
-    if (!difference.empty())
-      throw ConfigError(o.out.string() + ": already exists, a finished dataset made otherwise (" + difference +
-                        "); delete it to optimise again, or give another --out");
-    std::printf("nothing to do: %s is finished (%zu samples), made by this same request\n", o.out.c_str(), finished.size());
+  if (const std::optional<std::size_t> done = dataset_detail::finished_by_same_request(o.out.string(), layout, "optimise again")) {
+    std::printf("nothing to do: %s is finished (%zu samples), made by this same request\n", o.out.c_str(), *done);
     return 0;
   }
   DatasetWriter writer(o.out, layout);
