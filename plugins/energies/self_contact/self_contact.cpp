@@ -109,17 +109,18 @@ S SelfContact::pair_energy(const SelfPair& pair, const std::array<Vec3<S>, 4>& q
   const S s = geometry::typed_distance2(pair.type, q);
   const BarrierValue bv = log_barrier(primal(s) / dhat2);
   S e = chain(s, bv.b, bv.db / dhat2, bv.d2b / (dhat2 * dhat2));
-  // (pair.a is a vertex of a vertex-face pair and an edge of an edge-edge
-  // one: the vertex's area was read for both, past the end of vertex_area
-  // for an edge numbered beyond the vertices, then overwritten; valgrind
-  // found the read, and it crashed 2 of 8 resumed optimisations.)
-  double area = pair.kind == PairKind::EdgeEdge ? 0.0 : t.vertex_area[pair.a];
-  if (pair.kind == PairKind::EdgeEdge) {
+  // The area the pair stands for: the vertex's of a vertex-face pair, the
+  // two edges' mean (symmetric in them) of an edge-edge one. (pair.a is an
+  // edge there: the vertex's area was read for both, past the end of
+  // vertex_area for an edge numbered beyond the vertices; valgrind found
+  // the read, and it crashed 2 of 8 resumed optimisations.)
+  const bool edges = pair.kind == PairKind::EdgeEdge;
+  const double area = edges ? 0.5 * (t.edge_area[pair.a] + t.edge_area[pair.b]) : t.vertex_area[pair.a];
+  if (edges) {
     const Vec3<S> n = cross(q[1] - q[0], q[3] - q[2]);
     const S c = dot(n, n);
     const MollifierValue mv = edge_mollifier(primal(c), 1e-3 * t.edge_rest2[pair.a] * t.edge_rest2[pair.b]);
     if (mv.m != 1) e = chain(c, mv.m, mv.dm, mv.d2m) * e;
-    area = 0.5 * (t.edge_area[pair.a] + t.edge_area[pair.b]);  // symmetric in the two edges
   }
   // A thin pair keeps the scale of the others (kappa d_hat): its barrier, as
   // thin as its rest distance allows, pushes harder where it acts.
