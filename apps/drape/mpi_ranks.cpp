@@ -97,7 +97,7 @@ void refuse_parallel_launch(const std::string& command, const std::vector<std::s
   const auto has = [&](const std::string& flag) {
     return std::any_of(args.begin(), args.end(), [&](const std::string& a) {
       const std::string name = a.substr(0, a.find('='));
-      return name.size() > 2 && name.rfind("--", 0) == 0 && flag.rfind(name, 0) == 0;
+      return name == flag || (name.size() > 2 && name.rfind("--", 0) == 0 && flag.rfind(name, 0) == 0);
     });
   };
   const bool whole_set = (command == "generate" || (command == "optimize" && has("--data"))) && !has("--shard");

@@ -180,6 +180,7 @@ TEST_CASE("a dataset made whole by several MPI processes is refused and a shard 
                         (dir / "s1.h5").string(), out) == 0);
   CHECK(fs::exists(dir / "s1.h5"));
   CHECK(test::run("env PMI_SIZE=2 " + test::drape_program().string() + " generate --help", out) == 0);
+  CHECK(test::run("env PMI_SIZE=2 " + test::drape_program().string() + " generate -h", out) == 0);
   // Options cut short as the parser takes them ("--sh 1/2" is a shard; "--dat" is --data).
   REQUIRE(test::run("env PMI_SIZE=2 " + generate.substr(0, generate.find(" --out")) + " --sh 0/2 --out " +
                         (dir / "s0.h5").string(), out) == 0);
