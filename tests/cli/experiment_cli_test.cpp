@@ -36,6 +36,21 @@ std::string tiny_experiment() {
          "  - {name: tn-post, evaluate: tn, set: {post.enabled: 'true', post.epsilon: 0.003}}\n";
 }
 
+// tiny.yaml and exp.yaml in `dir`: one dataset of 10 tiny drapes and one
+// row training the MLP baseline on it for `epochs` (its outputs in runs/<name>/).
+void write_one_row_experiment(const fs::path& dir, const std::string& name, int epochs) {
+  std::ofstream(dir / "tiny.yaml") << test::tiny_simulation_scene();
+  std::ofstream(dir / "exp.yaml") << "name: " << name << "\n"
+                                  << "datasets:\n"
+                                     "  shirts: {scene: tiny.yaml, count: 10, bmi: \"15:40\", seed: 2}\n"
+                                  << "training: {epochs: " << epochs
+                                  << ", batch: 4, lr: 1.0e-3, schedule: constant, patience: 5, seed: 0}\n"
+                                     "columns: [ME]\n"
+                                     "rows:\n"
+                                     "  - {name: mlp, train: "
+                                  << (test::source_dir() / "graphs/examples/mlp_baseline.yaml").string() << "}\n";
+}
+
 std::string read(const fs::path& file) {
   std::ifstream in(file);
   std::stringstream s;
@@ -187,15 +202,7 @@ TEST_CASE("experiment: a row trained on other data than given now is trained aga
   // data's metrics under the new data's name. Outputs now record what they
   // were made from, by content.
   test::TempDir dir;
-  std::ofstream(dir / "tiny.yaml") << test::tiny_simulation_scene();
-  std::ofstream(dir / "exp.yaml") << "name: data\n"
-                                     "datasets:\n"
-                                     "  shirts: {scene: tiny.yaml, count: 10, bmi: \"15:40\", seed: 2}\n"
-                                     "training: {epochs: 1, batch: 4, lr: 1.0e-3, schedule: constant, patience: 5, seed: 0}\n"
-                                     "columns: [ME]\n"
-                                     "rows:\n"
-                                     "  - {name: mlp, train: " +
-                                         (test::source_dir() / "graphs/examples/mlp_baseline.yaml").string() + "}\n";
+  write_one_row_experiment(dir.path(), "data", 1);
   const std::string in_dir = "cd " + dir.path().string() + " && " + test::drape_program().string();
   const std::string command = in_dir + " experiment exp.yaml --threads 2";
   std::string out;
@@ -229,15 +236,7 @@ TEST_CASE("experiment: an interrupted training on other data is trained again", 
   // there, and the half-trained model of the new data was resumed, then
   // refused with "--force to start over", which drape experiment lacks.
   test::TempDir dir;
-  std::ofstream(dir / "tiny.yaml") << test::tiny_simulation_scene();
-  std::ofstream(dir / "exp.yaml") << "name: killed\n"
-                                     "datasets:\n"
-                                     "  shirts: {scene: tiny.yaml, count: 10, bmi: \"15:40\", seed: 2}\n"
-                                     "training: {epochs: 2, batch: 4, lr: 1.0e-3, schedule: constant, patience: 5, seed: 0}\n"
-                                     "columns: [ME]\n"
-                                     "rows:\n"
-                                     "  - {name: mlp, train: " +
-                                         (test::source_dir() / "graphs/examples/mlp_baseline.yaml").string() + "}\n";
+  write_one_row_experiment(dir.path(), "killed", 2);
   const std::string in_dir = "cd " + dir.path().string() + " && " + test::drape_program().string();
   std::string out;
   REQUIRE(test::run(in_dir + " experiment exp.yaml --threads 2", out) == 0);

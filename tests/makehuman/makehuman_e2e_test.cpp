@@ -14,12 +14,22 @@
 using namespace drape;
 namespace fs = std::filesystem;
 
-TEST_CASE("MakeHuman T-shirt: simulate, generate, train, predict and optimise through the program", "[makehuman][cli]") {
+namespace {
+
+// ../shared/assets/makehuman with the outfit these tests drape, or an empty
+// path after saying the test is skipped.
+fs::path makehuman_assets_or_skip() {
   const fs::path data_dir = test::shared_assets().empty() ? fs::path() : test::shared_assets() / "makehuman";
-  if (data_dir.empty() || !fs::exists(data_dir / "clothes/male_casualsuit04/male_casualsuit04.obj")) {
-    WARN("SKIPPED: ../shared/assets/makehuman (with clothes/male_casualsuit04) is absent; this test needs it");
-    return;
-  }
+  if (!data_dir.empty() && fs::exists(data_dir / "clothes/male_casualsuit04/male_casualsuit04.obj")) return data_dir;
+  WARN("SKIPPED: ../shared/assets/makehuman (with clothes/male_casualsuit04) is absent; this test needs it");
+  return {};
+}
+
+}  // namespace
+
+TEST_CASE("MakeHuman T-shirt: simulate, generate, train, predict and optimise through the program", "[makehuman][cli]") {
+  const fs::path data_dir = makehuman_assets_or_skip();
+  if (data_dir.empty()) return;
   test::TempDir dir;
   const std::string drape = "env DRAPE_MAKEHUMAN_DIR=" + data_dir.string() + " DRAPE_CACHE_DIR=" + (dir / "cache").string() +
                             " " + test::drape_program().string();
@@ -57,11 +67,8 @@ TEST_CASE("a MakeHuman outfit fitted to another body by its sliders is told to k
   // An outside check's gender: 0 (a women's outfit's natural value) was
   // refused as "modelled inside the body; model it around the body model's
   // mean body": the user had modelled nothing, and the slider went unnamed.
-  const fs::path data_dir = test::shared_assets().empty() ? fs::path() : test::shared_assets() / "makehuman";
-  if (data_dir.empty() || !fs::exists(data_dir / "clothes/male_casualsuit04/male_casualsuit04.obj")) {
-    WARN("SKIPPED: ../shared/assets/makehuman (with clothes/male_casualsuit04) is absent; this test needs it");
-    return;
-  }
+  const fs::path data_dir = makehuman_assets_or_skip();
+  if (data_dir.empty()) return;
   test::TempDir dir;
   std::ofstream(dir / "gender0.yaml") << "base: " << (test::source_dir() / "graphs/scenes/makehuman_tshirt.yaml").string()
                                       << "\ngarment: {template: makehuman_clothes, params: {outfit: male_casualsuit04, "
