@@ -5,9 +5,7 @@
 
 #include <drape/geometry/self_intersection.hpp>
 #include <drape/geometry/penetration.hpp>
-#include <drape/geometry/adjacency.hpp>
-#include <drape/geometry/push_out.hpp>
-#include <drape/geometry/untangle.hpp>
+#include <drape/geometry/garment_clearance.hpp>
 #include <drape/geometry/surface_crossings.hpp>
 #include <drape/io/mesh_io.hpp>
 #include <drape/training/model.hpp>
@@ -71,31 +69,17 @@ int run(const std::vector<std::string>& args) {
   const geometry::BodySurface surface(body.vertices, body.faces);
   double p = geometry::penetration_ratio(surface, out.vertices);
   if (pushed_to >= 0) {
-    const std::vector<std::array<int, 2>> edges = geometry::edge_list(out.faces);
-    geometry::PushOutOptions options;
-    options.margin = pushed_to;
-    // The garment's edges lifted too, and its faces off the body's peaks, as
-    // the push_out node does (without the faces a heavy body's peaks stayed
-    // through the shirt: "6 body edges through the garment", an outside check).
-    options.edges = &edges;
-    options.faces = &out.faces;
-    const geometry::PushOutReport pushed = geometry::push_out(surface, out.vertices, options);
-    // Then the garment's crossings of itself undone, as the models' push-out
-    // does (geometry::Untangler, each round's moves pushed out again): the
-    // push-out moves the cloth off the body, not off itself, and a posed
-    // BMI 50 body's shirt left it crossing itself at 13 edge-face pairs.
-    geometry::Untangler untangler(out.faces, out.num_vertices());
-    geometry::UntangleOptions untangling;
-    untangling.gap = 1e-3;
-    untangling.max_rounds = 6;
-    untangling.rest = &model.assets().garment->mesh.vertices;  // the template: where two layers belong
-    untangling.after_round = [&](Eigen::MatrixX3d& now, std::vector<char>& moved) {
-      const Eigen::MatrixX3d before = now;
-      geometry::push_out(surface, now, options);
-      for (Eigen::Index v = 0; v < now.rows(); ++v)
-        if (now.row(v) != before.row(v)) moved[static_cast<std::size_t>(v)] = 1;
-    };
-    const geometry::UntangleReport untangled = untangler.run(out.vertices, untangling);
+    // The garment's edges lifted too, its faces kept off the body's peaks,
+    // and then its crossings of itself undone, each round's moves pushed out
+    // again, as the models' push_out node does (geometry::GarmentClearance:
+    // without the faces a heavy body's peaks stayed through the shirt, "6
+    // body edges through the garment", and without the untangle a posed BMI
+    // 50 body's shirt was left crossing itself at 13 edge-face pairs).
+    geometry::GarmentClearanceOptions clearing;
+    clearing.margin = pushed_to;
+    geometry::GarmentClearance clearance(out.faces, out.num_vertices(), clearing);
+    // The template: where two layers belong.
+    const auto [pushed, untangled] = clearance.run(surface, out.vertices, &model.assets().garment->mesh.vertices);
     std::printf("pushed out: %d vertices moved (at most %.2f cm), from p = %.2f%% of them inside the body; the garment's "
                 "crossings of itself undone: %d edge-face pairs before, %d after\n",
                 pushed.moved, 100.0 * pushed.largest_move, 100.0 * p, untangled.crossings_before, untangled.crossings_after);

@@ -30,12 +30,10 @@
 // parameters because it changes what this node is fed and nothing else:
 // `drape model set post.mirror_average=true` and `--set` turn it on and off.
 #include <drape/assets/assets.hpp>
-#include <drape/geometry/adjacency.hpp>
 #include <drape/garment_grading.hpp>
 #include <drape/garment_sizes.hpp>
-#include <drape/geometry/push_out.hpp>
+#include <drape/geometry/garment_clearance.hpp>
 #include <drape/geometry/strain_limit.hpp>
-#include <drape/geometry/untangle.hpp>
 #include <drape/plugin.hpp>
 
 #include <array>
@@ -50,13 +48,6 @@ namespace {
 
 using namespace drape;
 
-// The cloth's thickness in the shipped scenes' self-contact: the gap an
-// untangled patch is given beyond the cloth it went through.
-constexpr double kSelfGap = 1e-3;
-// Rounds of the untangle at most, each followed by the push-out of what it
-// moved (an open curve at a sleeve's cuff took three on the human rig's
-// heavy test bodies, a closed one one: docs/bodies.md).
-constexpr int kRounds = 6;
 // Rounds of the strain limit after the push-out, each followed by the
 // push-out of what it moved, until no edge is strained beyond the limit by
 // more than kLimitSlack: the limit and the push-out pull against each other
@@ -77,11 +68,14 @@ class PushOut final : public Node {
   ShapeMap setup(const ShapeMap& in, const NodeContext& context) override {
     if (!context.assets) throw ConfigError("push_out needs the body's faces: no template assets are bound");
     faces_ = context.assets->body.faces;
-    edges_.clear();
-    untangler_.reset();
+    clearance_.reset();
     rest_lengths_.clear();
     sizes_.reset();
     garment_.reset();
+    geometry::GarmentClearanceOptions clearing;
+    clearing.margin = epsilon_;
+    clearing.lift_edges = lift_edges_;
+    clearing.untangle = untangle_;
     if (lift_edges_ || untangle_ || strain_limit_ > 0) {
       const std::string which = lift_edges_ ? "edges: true" : untangle_ ? "untangle: true" : "strain_limit";
       if (!context.assets->garment) throw ConfigError("push_out with " + which + " needs the garment's faces: no garment is bound");
@@ -91,9 +85,7 @@ class PushOut final : public Node {
                           " rows, the bound garment " + std::to_string(garment_vertices) +
                           " vertices (edges: false and untangle: false push out the vertices of any mesh)");
       garment_ = context.assets->garment;
-      edges_ = geometry::edge_list(garment_->mesh.faces);
-      if (untangle_) untangler_.emplace(garment_->mesh.faces, garment_vertices);
-      if (untangle_ || strain_limit_ > 0) adjacency_ = geometry::vertex_adjacency(edges_, garment_vertices);
+      clearance_.emplace(garment_->mesh.faces, garment_vertices, clearing);
       if (strain_limit_ > 0) {
         // A garment without UVs is refused here, not at the first body
         // (without building a size of the model's chart).
@@ -106,8 +98,9 @@ class PushOut final : public Node {
     }
     if (const auto grade = in.find("grade"); grade != in.end() && (grade->second.rows != 1 || grade->second.cols != 1))
       throw ConfigError("input 'grade' must be [1, 1] (the garment's grade), got " + grade->second.str());
+    // The vertices of any mesh: no faces, so no edges nor untangle.
+    if (!clearance_) clearance_.emplace(Eigen::MatrixX3i(0, 3), in.at("x").rows, clearing);
     surface_.reset();  // built again for these faces at the next forward
-    closest_faces_.clear();
     const Shape body = in.at("body");
     if (body.rows != context.assets->body.num_vertices() || body.cols != 3)
       throw ConfigError("input 'body' must be [" + std::to_string(context.assets->body.num_vertices()) + ", 3], got " + body.str());
@@ -136,76 +129,24 @@ class PushOut final : public Node {
       if (strain_limit_ > 0) {
         const auto grade = in.find("grade");
         rest = &rest_for(grade != in.end() ? (*grade->second)(b, 0, 0) : 1.0f);
-        geometry::limit_strain(points, edges_, *rest, strain_limit_, kLimitSweeps, kLimitSlack / 2);
+        geometry::limit_strain(points, clearance_->edges(), *rest, strain_limit_, kLimitSweeps, kLimitSlack / 2);
       }
-      geometry::PushOutOptions options;
-      options.margin = epsilon_;
-      options.closest_faces = &closest_faces_;
-      if (lift_edges_) options.edges = &edges_, options.faces = &garment_->mesh.faces;
-      geometry::push_out(*surface_, points, options);
+      clearance_->push_out(*surface_, points);
       // The push-out stretches again the edges whose ends it moved apart (a
       // vertex deep in the body lifted out, its neighbour left where it was):
       // limited again, and what that moved pushed out again (kLimitRounds).
       for (int round = 0; rest && round < kLimitRounds; ++round) {
-        if (geometry::worst_strain(points, edges_, *rest) <= strain_limit_ + kLimitSlack) break;
+        const std::vector<std::array<int, 2>>& edges = clearance_->edges();
+        if (geometry::worst_strain(points, edges, *rest) <= strain_limit_ + kLimitSlack) break;
         std::vector<char> moved(static_cast<std::size_t>(points.rows()), 0);
-        if (geometry::limit_strain(points, edges_, *rest, strain_limit_, kLimitSweeps, kLimitSlack / 2, &moved).shortened == 0)
+        if (geometry::limit_strain(points, edges, *rest, strain_limit_, kLimitSweeps, kLimitSlack / 2, &moved).shortened == 0)
           break;
-        push_out_moved(points, moved);
+        clearance_->push_out_moved(*surface_, points, moved);
       }
-      if (untangle_) {
-        geometry::UntangleOptions untangling;
-        untangling.gap = kSelfGap;
-        untangling.max_rounds = kRounds;
-        // The template dressed on the mean body: where two layers the network
-        // pinched through each other belong (UntangleOptions::rest).
-        untangling.rest = &garment_->mesh.vertices;
-        // After each round, the patches it moved kept off the body.
-        untangling.after_round = [this](Eigen::MatrixX3d& now, std::vector<char>& moved) { push_out_moved(now, moved); };
-        untangler_->run(points, untangling);
-      }
+      // The template dressed on the mean body: where two layers the network
+      // pinched through each other belong (UntangleOptions::rest).
+      if (untangle_) clearance_->untangle(*surface_, points, &garment_->mesh.vertices);
       y.mat(b) = points.cast<float>();
-    }
-  }
-
-  // The push-out again on the vertices an untangle round moved and their
-  // neighbours only (with the edges among them): the rest did not move since
-  // the push-out cleared them, and a few dozen searches cost a hundredth of
-  // a whole push-out. `moved` flags the round's vertices; those this moves
-  // are flagged too.
-  void push_out_moved(Eigen::MatrixX3d& points, std::vector<char>& moved) {
-    const auto n = static_cast<int>(points.rows());
-    std::vector<int> local(static_cast<std::size_t>(n), -1), chosen;
-    const auto take = [&](int v) {
-      if (local[static_cast<std::size_t>(v)] < 0) local[static_cast<std::size_t>(v)] = static_cast<int>(chosen.size()), chosen.push_back(v);
-    };
-    for (int v = 0; v < n; ++v)
-      if (moved[static_cast<std::size_t>(v)]) {
-        take(v);
-        for (int k = adjacency_.start[static_cast<std::size_t>(v)]; k < adjacency_.start[static_cast<std::size_t>(v) + 1]; ++k)
-          take(adjacency_.neighbours[static_cast<std::size_t>(k)]);
-      }
-    Eigen::MatrixX3d part(static_cast<Eigen::Index>(chosen.size()), 3);
-    std::vector<int> hints(chosen.size());
-    for (std::size_t i = 0; i < chosen.size(); ++i) {
-      part.row(static_cast<Eigen::Index>(i)) = points.row(chosen[i]);
-      hints[i] = closest_faces_[static_cast<std::size_t>(chosen[i])];  // (the whole push-out just set every vertex's)
-    }
-    std::vector<std::array<int, 2>> part_edges;
-    if (lift_edges_)
-      for (const auto& [a, b] : edges_)
-        if (local[static_cast<std::size_t>(a)] >= 0 && local[static_cast<std::size_t>(b)] >= 0)
-          part_edges.push_back({local[static_cast<std::size_t>(a)], local[static_cast<std::size_t>(b)]});
-    geometry::PushOutOptions options;
-    options.margin = epsilon_;
-    options.closest_faces = &hints;
-    if (lift_edges_) options.edges = &part_edges;
-    geometry::push_out(*surface_, part, options);
-    for (std::size_t i = 0; i < chosen.size(); ++i) {
-      const auto row = static_cast<Eigen::Index>(i);
-      if (part.row(row) == points.row(chosen[i])) continue;
-      points.row(chosen[i]) = part.row(row);
-      moved[static_cast<std::size_t>(chosen[i])] = 1;
     }
   }
 
@@ -218,11 +159,11 @@ class PushOut final : public Node {
     if (const auto it = rest_lengths_.find(g); it != rest_lengths_.end()) return it->second;
     std::vector<double> lengths;
     if (const std::optional<std::size_t> size = sizes_ ? sizes_->find(g) : std::nullopt) {
-      lengths = geometry::material_edge_lengths(sizes_->material(*size), edges_);
+      lengths = geometry::material_edge_lengths(sizes_->material(*size), clearance_->edges());
     } else {
       Mesh graded = garment_->mesh;
       grade_material(graded, static_cast<double>(g));
-      lengths = geometry::material_edge_lengths(graded, edges_);
+      lengths = geometry::material_edge_lengths(graded, clearance_->edges());
     }
     return rest_lengths_.emplace(g, std::move(lengths)).first->second;
   }
@@ -242,13 +183,13 @@ class PushOut final : public Node {
   // material space (the strain limit's rest lengths).
   std::shared_ptr<const Garment> garment_;
   std::shared_ptr<const GarmentSizes> sizes_;          // the model's sizes, when strain_limit_ > 0 (may be null)
-  std::map<float, std::vector<double>> rest_lengths_;  // of edges_, by grade: the grades met so far
-  Eigen::MatrixX3i faces_;
-  std::optional<geometry::Untangler> untangler_;  // the garment's, when untangle_
-  geometry::VertexAdjacency adjacency_;           // of edges_, when untangle_ or strain_limit_
-  std::vector<std::array<int, 2>> edges_;  // the garment's, when lift_edges_ or untangle_
+  std::map<float, std::vector<double>> rest_lengths_;  // of the clearance's edges, by grade: the grades met so far
+  Eigen::MatrixX3i faces_;                              // the body's
+  // The garment's push-out and untangle (with its edges, and each vertex's
+  // closest face on the last body); of faceless vertices when no garment is
+  // needed.
+  std::optional<geometry::GarmentClearance> clearance_;
   std::optional<geometry::BodySurface> surface_;  // the last body's, refitted to the next
-  std::vector<int> closest_faces_;                // the last body's closest face of each garment vertex
 };
 
 PluginList plugins() {
