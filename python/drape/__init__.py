@@ -136,7 +136,12 @@ class Energy:
         return sparse(self._e.hessian(self.name, x, bool(project_psd)))
 
     def max_step(self, x, dx):
-        """The largest fraction of the move x -> x + dx along which the energy stays finite (1 except for a barrier)."""
+        """The fraction in [0, 1] of the move x -> x + dx a line search may start from (ConfigError for a NaN or
+        infinite position or step). 1 for the energies finite everywhere. For a barrier contact (barrier,
+        self_contact) it is a conservative share of the first time of contact found by continuous collision
+        detection: no pair comes closer than a safe share of its distance before it, so a line search from it never
+        lets the surfaces cross. It is not where the energy turns infinite: the energy is still finite well beyond it,
+        and the straight move past a contact may even end finite on the other side."""
         return self._e.max_step(self.name, x, dx)
 
     def __repr__(self):
@@ -298,6 +303,11 @@ def generate(scene, out, count, bmi=(10, 65), height=1.75, sex=1.0, girths=0.0, 
         raise ValueError(f"poses={poses!r}: expected 'scene' or 'draw'")
     if isinstance(pose_ranges, dict):
         pose_ranges = ",".join(f"{k}={lo}:{hi}" for k, (lo, hi) in pose_ranges.items())
+    # Named here: the native call's own refusal of a negative number is a
+    # dump of its private signature.
+    for name, value in (("count", count), ("seed", seed), ("threads", threads)):
+        if isinstance(value, bool) or int(value) != value or int(value) < 0:
+            raise ConfigError(f"{name}={value!r}: expected a whole number >= 0")
     return _drape._generate(_native_scene(scene), _os.fspath(out), int(count), bmi, height, sex, float(girths),
                             int(seed), tuple(shard), int(threads), bool(progress), poses == "draw",
                             pose_ranges or "")
@@ -318,6 +328,29 @@ def _optimize(self, scene, body_vertices, body_params=None, iterations=100, lear
 
 _optimize.__doc__ = _Model_optimize.__doc__
 Model.optimize = _optimize
+
+
+# What each native object is, at a glance (they are not picklable nor
+# deep-copyable: docs/python.md, "Objects").
+def _model_repr(self):
+    return (f"<drape.Model {self.file or '(untrained)'}: {self.garment_vertex_count} garment vertices, "
+            f"body {self.body_vertex_count} vertices>")
+
+
+def _body_model_repr(self):
+    return (f"<drape.BodyModel {self.name!r}: {self.vertex_count} vertices, "
+            f"{len(self.shape_names)} shape parameters>")
+
+
+def _dataset_repr(self):
+    files = self.files
+    where = files[0] if len(files) == 1 else f"{len(files)} files from {files[0]}"
+    return f"<drape.Dataset {where}: {len(self)} done samples of {self.size}>"
+
+
+Model.__repr__ = _model_repr
+BodyModel.__repr__ = _body_model_repr
+Dataset.__repr__ = _dataset_repr
 
 
 def _dataset_getitem(self, i):

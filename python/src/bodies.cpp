@@ -53,7 +53,12 @@ class PyBodyModel {
 
   Eigen::MatrixX3d vertices(const py::handle& shape_arg) const {
     // c_style: a strided view (shape[::2], shape[::-1]) is copied, not read as if contiguous.
-    auto shape = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(shape_arg);
+    // Real numbers only: a complex array's imaginary part was dropped without a word.
+    const py::array given = py::array::ensure(shape_arg);
+    const char kind = given ? given.dtype().kind() : 'O';
+    auto shape = kind == 'f' || kind == 'i' || kind == 'u'
+                     ? py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(given)
+                     : py::array_t<double, py::array::c_style | py::array::forcecast>();
     const auto n = static_cast<py::ssize_t>(model_->shape_names().size());
     if (!shape || shape.ndim() != 1 || shape.shape(0) != n)
       throw py::value_error("shape: expected a float array of shape [" + std::to_string(n) + "] (" + name_ +
@@ -68,14 +73,12 @@ class PyBodyModel {
   // [N, 3] where and as the mesh stood, "shape", "fit_rms", "fit_max",
   // "reposed_error" (m), "notes": [str]}.
   py::dict unpose(const py::handle& mesh) const {
-    auto a = py::array_t<double, py::array::forcecast | py::array::c_style>::ensure(mesh);
-    const Eigen::Index n = model_->num_vertices();
-    if (!a || a.ndim() != 2 || a.shape(0) != n || a.shape(1) != 3)
-      throw py::value_error("body_vertices: expected a float array of shape [" + std::to_string(n) + ", 3] (" + name_ +
-                            "'s vertex count)");
+    // A float array (integer vertices were read on and refused as "not in the
+    // body model's order").
+    const auto n = static_cast<int>(model_->num_vertices());
+    Eigen::MatrixX3d body = vertices_arg(mesh, "body_vertices", n);
     if (!model_->poseable())
       throw ConfigError("body_vertices: body " + name_ + " has no skeleton, so no pose can be read off a mesh");
-    Eigen::MatrixX3d body = Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor>>(a.data(), n, 3);
     GivenPosedBody read;
     {
       py::gil_scoped_release release;
@@ -185,8 +188,29 @@ void register_bodies(py::module_& m) {
       "Every plugin loaded: dicts of name, kind and file (as `drape plugins`).");
   m.def(
       "load_plugins",
-      [](const std::string& dir) { registry().load_path({std::filesystem::path(dir)}); },
-      py::arg("path"), "Loads the plugins of a folder (or one plugin file), as --plugin-path does.");
+      [](const std::string& path) {
+        // Asked for by name, so a folder that is not there or a file that is
+        // no plugin is an error (--plugin-path and $DRAPE_PLUGIN_PATH only
+        // warn: a stale entry must not stop every command), and so is a
+        // plugin file refused (another ABI, missing symbols).
+        const std::filesystem::path p(path);
+        std::error_code ec;
+        if (!std::filesystem::exists(p, ec))
+          throw ConfigError("load_plugins: " + path + ": no such folder or file");
+        const std::size_t refused_before = registry().refused().size();
+        if (!std::filesystem::is_directory(p, ec)) {
+          const std::string name = p.filename().string();
+          if (!(name.rfind("libdrape_plugin_", 0) == 0 && p.extension() == ".so"))
+            throw ConfigError("load_plugins: " + path + ": not a folder nor a plugin file (libdrape_plugin_<name>.so)");
+        }
+        registry().load_path({p});
+        if (registry().refused().size() > refused_before && !std::filesystem::is_directory(p, ec))
+          throw ConfigError("load_plugins: refused " + registry().refused().back());
+      },
+      py::arg("path"),
+      "Loads the plugins of a folder (or one plugin file, libdrape_plugin_<name>.so), as --plugin-path does; "
+      "ConfigError when the path does not exist, is no plugin file, or the one file given is refused (a "
+      "plugin refused in a folder is a DrapeWarning, as with --plugin-path).");
   m.def("blas_corename", []() { return std::string(nn::blas_corename()); },
         "The kernel set OpenBLAS chose for this process ('' for another BLAS), e.g. 'Prescott' or 'SkylakeX'.");
   m.def(

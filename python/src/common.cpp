@@ -32,7 +32,7 @@ std::string describe(const py::array& a) {
 }
 
 void bad_argument(const std::string& name, const std::string& expected, const py::array& got) {
-  throw py::value_error(name + ": expected " + expected + ", got " + describe(got));
+  throw ConfigError(name + ": expected " + expected + ", got " + describe(got));
 }
 
 namespace {
@@ -41,8 +41,16 @@ py::array as_array(const py::handle& value, const std::string& name, const std::
   if (py::isinstance<py::array>(value)) return py::reinterpret_borrow<py::array>(value);
   // Lists and objects exposing __array__ (a CPU torch tensor) become arrays; anything else is refused.
   py::array a = py::array::ensure(value);
-  if (!a) throw py::value_error(name + ": expected " + expected + ", got " + py::str(py::type::of(value)).cast<std::string>());
-  return a;
+  if (a) return a;
+  std::string why;
+  try {
+    // (ensure clears NumPy's own reason: asked again, it is kept, e.g. a
+    // torch tensor that requires grad, or a bfloat16 one.)
+    py::module_::import("numpy").attr("asarray")(value);
+  } catch (py::error_already_set& e) {
+    why = " (NumPy cannot read it: " + std::string(py::str(e.value())) + ")";
+  }
+  throw ConfigError(name + ": expected " + expected + ", got " + py::str(py::type::of(value)).cast<std::string>() + why);
 }
 
 std::string rows_text(int rows) { return rows < 0 ? "N" : "N = " + std::to_string(rows); }
@@ -80,7 +88,7 @@ Tensor vertices_batch_arg(const py::handle& value, const std::string& name, int 
   const bool three = a.ndim() == 3;
   if ((a.ndim() != 2 && !three) || a.shape(a.ndim() - 1) != 3 || a.shape(a.ndim() - 2) != rows)
     bad_argument(name, expected, a);
-  if (three && a.shape(0) < 1) throw py::value_error(name + ": the batch is empty (" + describe(a) + "): give one body or more");
+  if (three && a.shape(0) < 1) throw ConfigError(name + ": the batch is empty (" + describe(a) + "): give one body or more");
   if (batched) *batched = three;
   // Read in double and checked before narrowing: a coordinate float32 cannot
   // hold (1e308) was "non-finite vertex coordinates" with no vertex named,
@@ -110,7 +118,7 @@ Tensor vertices_batch_arg(const py::handle& value, const std::string& name, int 
     std::snprintf(at, sizeof at, "vertex %zu (%c = %g)", vertex, "xyz"[k % 3], x);
     const std::string batch = three ? "[" + std::to_string(sample) + "]" : std::string();
     if (!std::isfinite(x) || std::abs(x) > std::numeric_limits<float>::max())
-      throw py::value_error(name + ": non-finite coordinate in float32 at " + (three ? batch + " " : "") + at);
+      throw ConfigError(name + ": non-finite coordinate in float32 at " + (three ? batch + " " : "") + at);
     const std::string what = name + batch + ": " + at;
     char far[400];
     std::snprintf(far, sizeof far,
@@ -118,7 +126,7 @@ Tensor vertices_batch_arg(const py::handle& value, const std::string& name, int 
                   "to %.2g mm; move it within %.0f m of the origin (and what comes back by the same offset; drape "
                   "predict's command line does this itself)",
                   what.c_str(), std::abs(x), 1e3 * float_rounding(x), kFloatExactReach);
-    throw py::value_error(far);
+    throw ConfigError(far);
   }
   return t;
 }
@@ -207,6 +215,14 @@ void register_errors(py::module_& m) {
   });
 }
 
+std::optional<double> real_number(const py::handle& value) {
+  if (py::isinstance<py::bool_>(value)) return std::nullopt;
+  const py::module_ numpy = py::module_::import("numpy");
+  if (py::isinstance(value, numpy.attr("bool_"))) return std::nullopt;
+  if (!py::isinstance(value, py::module_::import("numbers").attr("Real"))) return std::nullopt;
+  return value.cast<double>();
+}
+
 BodyRequest body_request(double bmi, double height, double sex, const py::dict& girths, const std::string& model_name) {
   BodyRequest request;
   request.bmi = bmi;
@@ -214,12 +230,13 @@ BodyRequest body_request(double bmi, double height, double sex, const py::dict& 
   request.sex = sex;
   for (const auto& [key, value] : girths) {
     if (key.cast<std::string>() == "pose")
-      throw py::value_error("pose: this makes the body at rest (its shape); pose it with drape.body(..., pose=...), or "
+      throw ConfigError("pose: this makes the body at rest (its shape); pose it with drape.body(..., pose=...), or "
                             "give the pose to Model.predict(body, pose=...), which poses the body at rest (docs/poses.md)");
-    if (!py::isinstance<py::float_>(value) && !py::isinstance<py::int_>(value))
-      throw py::value_error(key.cast<std::string>() + ": expected a number (a proportion of body model '" + model_name +
+    const std::optional<double> number = real_number(value);
+    if (!number)
+      throw ConfigError(key.cast<std::string>() + ": expected a number (a proportion of body model '" + model_name +
                             "'), got " + py::str(py::type::of(value)).cast<std::string>());
-    request.proportions[key.cast<std::string>()] = value.cast<double>();
+    request.proportions[key.cast<std::string>()] = *number;
   }
   return request;
 }

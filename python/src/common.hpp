@@ -44,6 +44,10 @@ Tensor vertices_batch_arg(const py::handle& value, const std::string& name, int 
 
 // A body request from Python's arguments: keywords are proportions (girths)
 // held while the BMI is reached; ValueError for one that is not a number.
+// A real number as Python counts one (numbers.Real: float, int, NumPy's
+// float32, int64, ...), not a bool (True is a mistake, not 1.0); none
+// otherwise (a string, a complex, an array).
+std::optional<double> real_number(const py::handle& value);
 BodyRequest body_request(double bmi, double height, double sex, const py::dict& girths, const std::string& model_name);
 
 // Arrays that keep drape's buffers alive through a capsule: no copy.

@@ -36,7 +36,9 @@ py::array_t<long long> index_array(const std::vector<std::size_t>& v) {
 SampleRange range_arg(const py::handle& value, const std::string& name) {
   const std::string expected = "a number or a (lo, hi) pair with lo <= hi";
   try {
-    if (py::isinstance<py::tuple>(value) || py::isinstance<py::list>(value)) {
+    // A pair as a tuple, a list or a NumPy array of two.
+    if (py::isinstance<py::tuple>(value) || py::isinstance<py::list>(value) ||
+        (py::isinstance<py::array>(value) && py::reinterpret_borrow<py::array>(value).ndim() == 1)) {
       const auto pair = value.cast<std::vector<double>>();
       if (pair.size() == 2 && pair[0] <= pair[1]) return {pair[0], pair[1]};
     } else {

@@ -86,8 +86,7 @@ class PyModel {
       std::optional<std::string> size;
       std::optional<double> grade;
       if (py::isinstance<py::str>(garment_size)) size = garment_size.cast<std::string>();
-      else if (py::isinstance<py::float_>(garment_size) || py::isinstance<py::int_>(garment_size))
-        grade = garment_size.cast<double>();
+      else if (const std::optional<double> number = real_number(garment_size)) grade = number;
       else if (!garment_size.is_none())
         throw py::value_error("garment_size: a size name, \"auto\" or a grade (a number), got " +
                               py::repr(garment_size).cast<std::string>());
@@ -178,9 +177,13 @@ class PyModel {
 
 Model::ParamOverrides overrides_of(const py::dict& d) {
   Model::ParamOverrides out;
-  for (const auto& [node, params] : d)
+  for (const auto& [node, params] : d) {
+    if (!py::isinstance<py::str>(node) || !py::isinstance<py::dict>(params))
+      throw ConfigError("overrides: expected {node: {param: value}}, e.g. {'post': {'enabled': False}}; got " +
+                        py::repr(node).cast<std::string>() + ": " + py::repr(params).cast<std::string>());
     for (const auto& [name, value] : params.cast<py::dict>())
-      out[node.cast<std::string>()][name.cast<std::string>()] = py::str(value).cast<std::string>();
+      out[node.cast<std::string>()][py::str(name).cast<std::string>()] = py::str(value).cast<std::string>();
+  }
   return out;
 }
 
@@ -241,8 +244,12 @@ void register_model(py::module_& m) {
           "untrained",
           [](const std::string& graph, const py::dict& garment_params, int eigen_k, std::uint64_t seed,
              const std::optional<std::string>& cache_dir) {
-            const bool is_file = graph.find('\n') == std::string::npos && fs::exists(graph);
-            const GraphSpec spec = is_file ? parse_graph_file(graph) : parse_graph_text(graph, "<graph text>");
+            // A one-line string is a file's name, looked up as Scene and
+            // Model.load look theirs up (shipped graphs from any folder; a
+            // name found nowhere is "no such file", not YAML text that is no
+            // map); YAML text has a newline, or a brace on its one line.
+            const bool is_text = graph.find('\n') != std::string::npos || graph.find('{') != std::string::npos;
+            const GraphSpec spec = is_text ? parse_graph_text(graph, "<graph text>") : parse_graph_file(find_input_file(graph));
             AssetsSpec assets;
             for (const auto& [k, v] : garment_params) assets.garment_params[k.cast<std::string>()] = py::str(v).cast<std::string>();
             assets.eigen_k = eigen_k;
@@ -251,8 +258,9 @@ void register_model(py::module_& m) {
           },
           py::arg("graph"), py::arg("garment_params") = py::dict(), py::arg("eigen_k") = 1000, py::arg("seed") = 0,
           py::arg("cache_dir") = py::none(),
-          "A graph (a YAML file or its text) with freshly initialised weights on the template's assets, e.g. "
-          "garment_params={'resolution': 'coarse'}.")
+          "A graph (a YAML file, a shipped one by its name such as 'graphs/examples/mlp_baseline.yaml', or the "
+          "YAML text itself, several lines or one in braces) with freshly initialised weights on the template's "
+          "assets, e.g. garment_params={'resolution': 'coarse'}.")
       .def_property_readonly("file", [](PyModel& p) { return p.model().file().string(); })
       .def_property_readonly("assets", [](PyModel& p) { return wrap_assets(p.model().shared_assets()); })
       .def_property_readonly("body_vertex_count", [](PyModel& p) { return p.model().assets().body.num_vertices(); })

@@ -79,7 +79,10 @@ class PyEnergies {
   }
   double max_step(const std::string& name, const py::handle& x_arg, const py::handle& dx_arg) const {
     const Energy& e = get(name);
-    const Eigen::MatrixX3d x = state(x_arg), dx = vertices_arg(dx_arg, "step", garment_vertices());
+    // Finite only: a NaN position or step was "1.0", every step safe, from
+    // the energies finite everywhere, where value() refuses it.
+    const Eigen::MatrixX3d x = finite_vertices_arg(x_arg, "garment_vertices", garment_vertices()),
+                          dx = finite_vertices_arg(dx_arg, "step", garment_vertices());
     py::gil_scoped_release release;
     return e.max_step(x, dx);
   }

@@ -342,7 +342,7 @@ void pose_model_batch(const Model& model, SampleBatch& batch, const std::vector<
 // A body mesh given posed: its pose read off it, the mesh unposed and placed
 // (unpose_given_body, given_body.hpp); the notes of where it stood and of the
 // pose read.
-BodyMove BodyPreparation::unpose_given(SampleBatch& batch, int i, Pose& pose, bool& at_rest,
+BodyMove BodyPreparation::unpose_given(SampleBatch& batch, int i, Pose& pose, bool& at_rest, bool pose_given,
                                        std::vector<Notice>& notices) const {
   const std::string who = batch.size() > 1 ? "body " + std::to_string(i) : "the body";
   const Eigen::Vector3d unknown = Eigen::Vector3d::Constant(std::numeric_limits<double>::quiet_NaN());
@@ -359,7 +359,9 @@ BodyMove BodyPreparation::unpose_given(SampleBatch& batch, int i, Pose& pose, bo
     notices.push_back({Notice::Level::note, who + " " + given.turned});
   else if (given.moved.offset.norm() > kPosedPlacementTolerance)
     notices.push_back({Notice::Level::note, who + " " + placement_note(given.moved.offset.transpose(), anchored_where(model_))});
-  notices.push_back({Notice::Level::note, about(batch, i) + given.pose_note});
+  // (A mesh at rest given with a pose is the documented call: Python turned
+  // this note into a DrapeWarning on every such predict.)
+  if (!(pose_given && at_rest)) notices.push_back({Notice::Level::note, about(batch, i) + given.pose_note});
   if (!given.warning.empty()) notices.push_back({Notice::Level::warning, about(batch, i) + given.warning});
   return given.moved;
 }
@@ -535,7 +537,7 @@ PreparedBodies BodyPreparation::prepare(SampleBatch& batch, bool strict, const s
     // refused in pose(): two poses for one body).
     if (given_meshes && model_takes_pose(model_) && (!pose_given || most_turned(batch, i) > kMildLimbDegrees)) {
       bool at_rest = false;
-      out.moved_by[at] = unpose_given(batch, i, out.given_poses[at], at_rest, out.notices);
+      out.moved_by[at] = unpose_given(batch, i, out.given_poses[at], at_rest, pose_given, out.notices);
       out.given_at_rest[at] = at_rest;
       continue;
     }

@@ -159,7 +159,10 @@ class BodyPreparation {
   double garment_loop_;  // m, the model garment's narrowest loop on the mean body (NaN: none, or a sized model)
   void choose_sizes(SampleBatch& batch, bool strict, const std::string& strict_option, std::vector<Notice>& notices) const;
   std::optional<SizeTable> size_chart_;  // a model taking garment_grade: its training data's size chart
-  BodyMove unpose_given(SampleBatch& batch, int i, Pose& pose, bool& at_rest, std::vector<Notice>& notices) const;
+  // pose_given: a pose is asked for this body, so a mesh read at rest is as
+  // expected and not noted.
+  BodyMove unpose_given(SampleBatch& batch, int i, Pose& pose, bool& at_rest, bool pose_given,
+                        std::vector<Notice>& notices) const;
   // The largest turn of a bone of body i against the mean body's (LimbFit::turns), degrees.
   double most_turned(const SampleBatch& batch, int i) const;
   GivenBodyFrame given_;  // turns, places and checks bodies given as meshes (given_body.hpp)
