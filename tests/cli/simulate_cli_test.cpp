@@ -202,3 +202,23 @@ TEST_CASE("a mesh garment placed through the body is dressed and morphed without
   // Counted by the geometry's own edge-face test, not the simulation's report.
   CHECK(geometry::self_edge_crossings(morphed.vertices, morphed.faces, geometry::kCrossingsCountedAtMost).empty());
 }
+
+TEST_CASE("a body the body model cannot reach is refused naming the scene line or the option", "[cli][simulate]") {
+  // The body model's own refusal ("height 0.5 m is outside the reachable range") named no file, line or key,
+  // where every other bad value of a scene names all three (an outside check).
+  test::TempDir dir;
+  std::string out;
+  std::ofstream(dir / "short.yaml") << "base: " << (test::source_dir() / "graphs/scenes/tshirt_coarse.yaml").string()
+                                    << "\nbody:\n  shape: {height: 0.5}\n";
+  CHECK(test::run_drape("simulate " + (dir / "short.yaml").string() + " --out " + (dir / "g.obj").string(), out) == 2);
+  CHECK_THAT(out, Catch::Contains("short.yaml:3: body shape: height:") && Catch::Contains("reachable range"));
+  std::ofstream(dir / "heavy.yaml") << "base: " << (test::source_dir() / "graphs/scenes/tshirt_coarse.yaml").string()
+                                    << "\nbody:\n  shape:\n    bmi: 80\n";
+  CHECK(test::run_drape("simulate " + (dir / "heavy.yaml").string() + " --out " + (dir / "g.obj").string(), out) == 2);
+  CHECK_THAT(out, Catch::Contains("heavy.yaml:4: body shape: bmi:"));
+  CHECK(test::run_drape("simulate " + (test::source_dir() / "graphs/scenes/tshirt_coarse.yaml").string() +
+                            " --girth belly=0.5 --out " + (dir / "g.obj").string(),
+                        out) == 2);
+  CHECK_THAT(out, Catch::Contains("command line: --girth:") && Catch::Contains("'belly'"));
+  CHECK_FALSE(std::filesystem::exists(dir / "g.obj"));
+}

@@ -299,3 +299,23 @@ TEST_CASE("a barrier set far below its defaults is among the causes a blocked mo
   CHECK_THAT(notes_of("{}"), !Catch::Contains("the barrier's"));
   CHECK_THAT(notes_of("{distance: 5.0e-4}"), !Catch::Contains("the barrier's"));  // half the default: a choice, not a cause
 }
+
+TEST_CASE("a material's thickness set in a scene is noted as read by no effect", "[garments][fit]") {
+  // An outside check's shirt ten times as thick draped bit for bit as the default, without a word.
+  const auto notes_of = [](const std::string& materials) {
+    std::string all;
+    for (const std::string& note :
+         Simulation(test::plugins(), parse_scene("garment: {template: tshirt, params: {resolution: coarse}}\n"
+                                                 "effects: {gravity: {}, stretching: {}, barrier: {}}\n" + materials))
+             .effect_notes())
+      all += note + "\n";
+    return all;
+  };
+  CHECK_THAT(notes_of("materials: {knit: {base: gray-interlock, thickness: 5.0e-3}}\n"),
+             Catch::Contains("knit's thickness is kept with the material, but no effect reads it"));
+  CHECK_THAT(notes_of("materials: {knit: {base: gray-interlock, multipliers: {thickness: 2}}}\n"),
+             Catch::Contains("knit's thickness is kept"));
+  CHECK_THAT(notes_of("materials: {knit: {base: gray-interlock, multipliers: {stretch: 2}}}\n"),
+             !Catch::Contains("thickness"));
+  CHECK_THAT(notes_of(""), !Catch::Contains("thickness"));
+}

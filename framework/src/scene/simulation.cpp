@@ -348,6 +348,16 @@ std::vector<std::string> Simulation::effect_notes() const {
   }
   if (!barrier && !scene_.has_effect("collision"))
     notes.push_back("the scene has no contact with the body (barrier or collision): the garment falls through it");
+  // A material's thickness is kept with it (ArcSim's format has the key) but
+  // no effect reads it: an outside check's ten times thicker shirt draped bit
+  // for bit as the default, without a word.
+  for (const SceneMaterial& m : scene_.materials) {
+    const bool sets = m.spec.IsMap() && (m.spec["thickness"] || (m.spec["multipliers"].IsMap() && m.spec["multipliers"]["thickness"]));
+    if (sets)
+      notes.push_back("materials: " + m.region + "'s thickness is kept with the material, but no effect reads it: the "
+                      "cloth's distances are the barrier's distance (off the body) and self_contact's thickness (off "
+                      "itself), set on those effects (docs/materials.md)");
+  }
   // A penalty contact of no stiffness or no margin keeps nothing out (an
   // outside check's margin 0 "settled" with a third of the garment inside).
   for (std::size_t i = 0; i < scene_.effects.size() && !barrier; ++i) {

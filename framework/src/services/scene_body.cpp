@@ -21,6 +21,29 @@
 namespace drape {
 namespace {
 
+// The request's shape, a value the body model cannot reach named where it
+// was written (the scene's file and line, or the command line): the body
+// model's own refusal ("height 0.5 m is outside the reachable range") named
+// no file, line nor key, which an outside check found for height, BMI and
+// --girth, where every other bad value of a scene names all three.
+Eigen::VectorXd solve_where_written(const Simulation& design, const BodyRequest& request) {
+  try {
+    return design.shape_for(request);
+  } catch (const ConfigError& e) {
+    const std::string what = e.what();
+    const auto& shape = design.scene().shape;
+    for (const auto& [key, word] : {std::pair<const char*, const char*>{"bmi", "BMI"}, {"height", "height"}, {"sex", "sex"}}) {
+      if (what.find(word) == std::string::npos) continue;
+      const auto it = shape.find(key);
+      const SourceLocation where = it != shape.end() ? it->second.where : SourceLocation{design.scene().file, 0};
+      throw ConfigError(where, std::string("body shape: ") + key + ": " + what);
+    }
+    if (!request.proportions.empty())
+      throw ConfigError(SourceLocation{"command line", 0}, "--girth: " + what);
+    throw;
+  }
+}
+
 // How a garment of one size fits this body, told before anything is
 // simulated: its ease (garment_size.hpp's tailor's rule, on any garment that
 // goes around the torso) against the ease it has on the mean body it was
@@ -207,7 +230,7 @@ SceneBody scene_body(const SceneSimulations& simulations, const BodyRequest& req
                      const Pose* pose) {
   const Simulation& design = simulations.design();
   SceneBody out;
-  out.vertices = design.body_vertices(design.shape_for(request));
+  out.vertices = design.body_vertices(solve_where_written(design, request));
   choose_size(simulations, name, out);
   pose_chosen(simulations, pose, out);
   return out;
