@@ -4,6 +4,7 @@
 // process, of another machine sharing the folder, and of other targets.
 #include <drape/fnv1a.hpp>
 #include <drape/io/atomic_file.hpp>
+#include <drape/io/output_lock.hpp>
 
 #include <catch2/catch.hpp>
 
@@ -74,4 +75,23 @@ TEST_CASE("a write removes the temporaries killed jobs left of its target, and o
   std::string text;
   in >> text;
   CHECK(text == "done");
+}
+
+TEST_CASE("a job's lock removes its output's dead temporaries before it checks for room", "[io][atomic]") {
+  // A training killed by a full disk left its 4.8 MB state temporary filling it, and the next run (--force
+  // too) was refused "no space left" by the check made before any write could remove it.
+  test::TempDir dir;
+  const std::string host = this_host(), dead = std::to_string(dead_pid());
+  const fs::path state = dir / (".m.h5.tmp" + dead + "-1@" + host + ".state");
+  const fs::path model = dir / (".m.tmp" + dead + "-0@" + host + ".h5");
+  const fs::path partial = dir / (".m.h5.tmp" + dead + "-2@" + host + ".partial");
+  const fs::path other = dir / (".n.h5.tmp" + dead + "-1@" + host + ".state");
+  for (const fs::path& f : {state, model, partial, other}) touch(f);
+  {
+    const drape::OutputLock lock(dir / "m.h5", "drape train");
+    CHECK_FALSE(fs::exists(state));
+    CHECK_FALSE(fs::exists(model));
+    CHECK_FALSE(fs::exists(partial));
+    CHECK(fs::exists(other));  // another output's
+  }
 }

@@ -34,13 +34,6 @@ std::string train_args(const fs::path& data, const fs::path& out, const std::str
          std::to_string(test::kTinyK) + " " + more;
 }
 
-std::map<std::string, std::vector<float>> weights_of(const fs::path& file) {
-  const h5::File f = h5::File::open(file);
-  std::map<std::string, std::vector<float>> w;
-  for (const auto& name : f.datasets_below("/weights")) w[name] = f.read<float>("/weights/" + name);
-  return w;
-}
-
 // A small dataset for a training through the command, and where its model goes.
 struct SmallData {
   test::TempDir dir;
@@ -150,8 +143,8 @@ TEST_CASE("a training killed with SIGKILL continues with --resume to the uninter
   CHECK(std::stol(read_checkpoint(training_state_path(killed)).meta.at("epoch")) < 6);  // it was stopped mid-way
   REQUIRE(test::run(test::drape_command(args + " --resume"), out) == 0);
   INFO(out);
-  CHECK(weights_of(killed) == weights_of(whole));
-  CHECK(weights_of(training_state_path(killed)) == weights_of(training_state_path(whole)));
+  CHECK(test::weights_of(killed) == test::weights_of(whole));
+  CHECK(test::weights_of(training_state_path(killed)) == test::weights_of(training_state_path(whole)));
   CHECK(read_checkpoint(killed).history.at("val_loss") == read_checkpoint(whole).history.at("val_loss"));
 }
 
@@ -557,7 +550,7 @@ TEST_CASE("with the seed's six losses a resumed run (no cached or warm-started c
   REQUIRE(test::run(test::drape_command(args(resumed, 1)), out) == 0);
   REQUIRE(test::run(test::drape_command(args(resumed, 3) + " --resume"), out) == 0);
   INFO(out);
-  CHECK(weights_of(resumed) == weights_of(whole));
+  CHECK(test::weights_of(resumed) == test::weights_of(whole));
   CHECK(read_checkpoint(resumed).history.at("train_loss") == read_checkpoint(whole).history.at("train_loss"));
 }
 

@@ -18,18 +18,10 @@ namespace fs = std::filesystem;
 
 namespace {
 
-// Every /weights array of a checkpoint, by name.
-std::map<std::string, std::vector<float>> weights_of(const fs::path& file) {
-  const h5::File f = h5::File::open(file);
-  std::map<std::string, std::vector<float>> out;
-  for (const auto& name : f.datasets_below("/weights")) out[name] = f.read<float>("/weights/" + name);
-  return out;
-}
-
 // The largest |weight| of a checkpoint.
 float largest_weight(const fs::path& file) {
   float largest = 0;
-  for (const auto& [name, w] : weights_of(file))
+  for (const auto& [name, w] : test::weights_of(file))
     for (const float x : w) largest = std::max(largest, std::abs(x));
   return largest;
 }
@@ -133,10 +125,10 @@ TEST_CASE("a seed reproduces the weights bit for bit and another seed does not",
   o.out = d.dir / "c.h5";
   o.seed = 6;
   train(test::plugins(), o);
-  CHECK(weights_of(d.dir / "a.h5") == weights_of(d.dir / "b.h5"));
-  CHECK(weights_of(d.dir / "a.h5.state") == weights_of(d.dir / "b.h5.state"));
+  CHECK(test::weights_of(d.dir / "a.h5") == test::weights_of(d.dir / "b.h5"));
+  CHECK(test::weights_of(d.dir / "a.h5.state") == test::weights_of(d.dir / "b.h5.state"));
   CHECK(history_of(d.dir / "a.h5") == history_of(d.dir / "b.h5"));
-  CHECK(weights_of(d.dir / "a.h5") != weights_of(d.dir / "c.h5"));
+  CHECK(test::weights_of(d.dir / "a.h5") != test::weights_of(d.dir / "c.h5"));
 }
 
 TEST_CASE("an interrupted training resumed gives the uninterrupted result", "[train]") {
@@ -164,8 +156,8 @@ TEST_CASE("an interrupted training resumed gives the uninterrupted result", "[tr
   CHECK(third.best_epoch == whole.best_epoch);
   CHECK(third.best_loss == whole.best_loss);
 
-  CHECK(weights_of(d.dir / "whole.h5") == weights_of(d.dir / "parts.h5"));
-  CHECK(weights_of(d.dir / "whole.h5.state") == weights_of(d.dir / "parts.h5.state"));
+  CHECK(test::weights_of(d.dir / "whole.h5") == test::weights_of(d.dir / "parts.h5"));
+  CHECK(test::weights_of(d.dir / "whole.h5.state") == test::weights_of(d.dir / "parts.h5.state"));
   CHECK(history_of(d.dir / "whole.h5") == history_of(d.dir / "parts.h5"));
   const auto adam_whole = read_checkpoint(d.dir / "whole.h5.state").optimizer;
   const auto adam_parts = read_checkpoint(d.dir / "parts.h5.state").optimizer;
@@ -184,7 +176,7 @@ TEST_CASE("an interrupted training resumed gives the uninterrupted result", "[tr
   auto longer = test::tiny_training(d.data, d.dir / "longer.h5");
   longer.epochs = 7;
   train(test::plugins(), longer);
-  CHECK(weights_of(d.dir / "longer.h5") == weights_of(d.dir / "parts.h5"));
+  CHECK(test::weights_of(d.dir / "longer.h5") == test::weights_of(d.dir / "parts.h5"));
   CHECK(history_of(d.dir / "longer.h5") == history_of(d.dir / "parts.h5"));
 }
 
@@ -202,8 +194,8 @@ TEST_CASE("training stops early after `patience` epochs without a better validat
   CHECK(c.meta.at("status") == "early stopped");
   CHECK(c.history.at("val_loss").size() == static_cast<std::size_t>(r.epochs_done));
   // The model keeps the best epoch's weights; the state has them and the last ones.
-  const auto model = weights_of(o.out);
-  const auto state = weights_of(training_state_path(o.out));
+  const auto model = test::weights_of(o.out);
+  const auto state = test::weights_of(training_state_path(o.out));
   bool last_differs = false;
   for (const auto& [name, w] : model) {
     CHECK(state.at("best/" + name) == w);
@@ -250,8 +242,8 @@ TEST_CASE("train with a monitor: one loss by name chooses the best epoch, and a 
   o2.lr = 0.05;
   o2.max_epochs_this_run = by_l2;
   train(test::plugins(), o2);
-  const auto cut = weights_of(training_state_path(o2.out));
-  for (const auto& [name, w] : weights_of(o.out)) CHECK(cut.at("current/" + name) == w);
+  const auto cut = test::weights_of(training_state_path(o2.out));
+  for (const auto& [name, w] : test::weights_of(o.out)) CHECK(cut.at("current/" + name) == w);
 
   // A run resumes only with the same monitor.
   auto o3 = o;

@@ -6,11 +6,14 @@
 // 0.5 a_i^2 -- a smooth function of the body that a network can learn.
 #include <drape/assets/assets.hpp>
 #include <drape/io/dataset.hpp>
+#include <drape/io/h5.hpp>
 #include <drape/training/model.hpp>
 #include <drape/training/rng.hpp>
 #include <drape/training/trainer.hpp>
 
 #include <fstream>
+#include <map>
+#include <vector>
 #include <string>
 
 #include "test_support.hpp"
@@ -108,6 +111,14 @@ inline TrainOptions tiny_training(const std::filesystem::path& data, const std::
   o.cache_dir = assets_cache();
   o.assets = tiny_assets();
   return o;
+}
+
+// Every /weights array of a checkpoint, by name.
+inline std::map<std::string, std::vector<float>> weights_of(const std::filesystem::path& file) {
+  const h5::File f = h5::File::open(file);
+  std::map<std::string, std::vector<float>> out;
+  for (const auto& name : f.datasets_below("/weights")) out[name] = f.read<float>("/weights/" + name);
+  return out;
 }
 
 // The drape program with the test's assets cache.

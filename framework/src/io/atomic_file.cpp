@@ -64,6 +64,11 @@ void remove_stale_temporaries(const fs::path& dir, const fs::path& target, const
 
 }  // namespace
 
+void remove_stale_temporaries(const fs::path& target) {
+  static const std::string host = host_tag();
+  remove_stale_temporaries(target.has_parent_path() ? target.parent_path() : fs::path("."), target, host);
+}
+
 void write_atomically(const fs::path& target, const std::function<void(const fs::path&)>& write) {
   static std::atomic<unsigned> counter{0};
   const fs::path dir = target.has_parent_path() ? target.parent_path() : fs::path(".");

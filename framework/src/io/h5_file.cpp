@@ -4,11 +4,13 @@
 
 #include <fcntl.h>
 #include <sys/file.h>
+#include <sys/mman.h>
 #include <unistd.h>
 
 #include <cerrno>
 
 #include <algorithm>
+#include <memory>
 #include <functional>
 #include <numeric>
 
@@ -168,12 +170,73 @@ void File::Impl::require_writable(const std::string& what) const {
 File::File(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {}
 File::File(File&&) noexcept = default;
 File& File::operator=(File&&) noexcept = default;
+namespace {
+
+// A file HDF5 could not write (its disk full) is closed in memory, not on
+// disk: HDF5 1.10 cannot close a file whose last flush fails (it leaves the
+// file's identifier registered over structures it already freed), and the
+// next close of it -- H5::H5File's destructor, or HDF5's own at exit --
+// crashed the process (an outside check: `drape train` on a full disk ended
+// in SIGSEGV, and Python's Model.save took the interpreter with it). So the
+// descriptor HDF5 writes through is moved onto an in-memory copy of the file
+// (memfd), where the close's last writes succeed; the file on disk keeps
+// what was written before the failure (a temporary its writer removes, or a
+// partial dataset whose checksums tell the samples written whole).
+void detach_to_memory(H5::H5File& file) {
+  void* handle = nullptr;
+  try {
+    file.getVFDHandle(&handle);  // the default (sec2) driver hands out an int* file descriptor
+  } catch (const H5::Exception&) {
+    return;
+  }
+  if (!handle) return;
+  const int fd = *static_cast<int*>(handle);
+  const int memory = ::memfd_create("drape-unwritable-hdf5", MFD_CLOEXEC);
+  if (memory < 0) return;
+  // The bytes written so far, so that what HDF5 reads back while closing is what it wrote.
+  char buffer[1 << 16];
+  for (off_t at = 0;;) {
+    const ssize_t n = ::pread(fd, buffer, sizeof buffer, at);
+    if (n <= 0 || ::pwrite(memory, buffer, static_cast<std::size_t>(n), at) != n) break;
+    at += n;
+  }
+  ::dup2(memory, fd);
+  ::close(memory);
+}
+
+// As a last resort (the close failed even so): the object given up without
+// its destructor, and a fresh, empty one in its place.
+void abandon(H5::H5File& file) { std::construct_at(&file); }  // (the old one's storage reused: no destructor runs)
+
+// Closes the file; a write to it failed (now, flushing before the close, or
+// before): closed in memory (detach_to_memory), and Error saying so.
+void close_safely(File::Impl& impl) {
+  if (impl.writable && !impl.write_failed) {
+    try {
+      impl.file.flush(H5F_SCOPE_GLOBAL);
+    } catch (const H5::Exception&) {
+      impl.write_failed = true;
+    }
+  }
+  if (impl.write_failed) detach_to_memory(impl.file);
+  try {
+    impl.file.close();
+  } catch (const H5::Exception&) {
+    abandon(impl.file);
+    throw;
+  }
+  if (impl.write_failed)
+    throw Error(impl.name() + ": a write to it failed (a full disk?), so the file is incomplete");
+}
+
+}  // namespace
+
 File::~File() {
   if (!impl_ || !impl_->open) return;
   detail::quiet();
   try {
-    impl_->file.close();
-  } catch (const H5::Exception&) {
+    close_safely(*impl_);
+  } catch (...) {  // (H5::Exception is no std::exception)
     // Nothing sensible to do in a destructor; explicit close() reports it.
   }
 }
@@ -259,7 +322,7 @@ void File::flush(bool sync_to_disk) {
 void File::close() {
   if (!is_open()) return;
   impl_->open = false;
-  guarded(*impl_, false, "closing failed", [&] { impl_->file.close(); });
+  guarded(*impl_, false, "closing failed", [&] { close_safely(*impl_); });  // (Error when a write failed: not sealed)
   if (impl_->writable && impl_->sealed) seal::seal(impl_->path);
 }
 

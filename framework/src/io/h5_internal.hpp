@@ -9,6 +9,8 @@
 
 #include <filesystem>
 #include <memory>
+#include <cerrno>
+#include <cstring>
 #include <string>
 #include <variant>
 
@@ -28,6 +30,9 @@ struct File::Impl {
   bool writable = false;
   bool open = true;
   bool sealed = false;  // close() writes the file's checksum (h5_seal.hpp)
+  // A write to it failed (a full disk): it is closed in memory, not on disk
+  // (h5_file.cpp, detach_to_memory): HDF5 crashed closing such a file.
+  mutable bool write_failed = false;
 
   std::string name() const { return path.string(); }
   bool has(const std::string& path) const;  // a link at every level of path
@@ -57,13 +62,26 @@ auto guarded(const File::Impl& impl, bool user_file, const std::string& what, F&
   try {
     return fn();
   } catch (const H5::Exception& e) {
+    const int error = errno;  // (a failed write's: HDF5's stack does not always keep it, e.g. H5Fcreate's)
     std::string detail = innermost_error();
     if (detail.empty()) detail = e.getDetailMsg();
+    // A failed system call's account spans lines of times, addresses and
+    // byte counts: its operation and the system's message are what count
+    // ("file write failed: No space left on device").
+    if (const auto at = detail.find("error message = '"); at != std::string::npos) {
+      const auto from = at + 17, to = detail.find('\'', from);
+      detail = detail.substr(0, detail.find(':')) + ": " + detail.substr(from, to == std::string::npos ? to : to - from);
+    } else if (!user_file && (error == ENOSPC || error == EDQUOT || error == EFBIG || error == EIO)) {
+      detail += std::string(detail.empty() ? "" : ": ") + std::strerror(error);
+    }
     const std::string message = impl.name() + ": " + what + (detail.empty() ? "" : " (" + detail + ")");
     if (user_file) throw ConfigError(message);
+    impl.write_failed = true;
     // A write that failed: a full disk or a read-only folder says so.
+    // (HDF5's own account of it, several lines of buffer addresses and
+    // byte counts, adds nothing to that.)
     const std::string cause = write_failure_cause(impl.path);
-    throw Error(cause.empty() ? message : cause + ": " + message);
+    throw Error(cause.empty() ? message : cause + ": " + impl.name() + ": " + what);
   }
 }
 

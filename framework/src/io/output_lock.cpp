@@ -1,5 +1,6 @@
 // OutputLock (output_lock.hpp).
 #include <drape/errors.hpp>
+#include <drape/io/atomic_file.hpp>
 #include <drape/io/output_lock.hpp>
 #include <drape/io/write_failure.hpp>
 
@@ -88,6 +89,10 @@ int hold_for_signals(const fs::path& lock) {
 
 OutputLock::OutputLock(const fs::path& output, const std::string& command) : path_(lock_file(output)) {
   refuse_working_file_name(output);
+  // A dead run's temporaries of this output and of its working files (a
+  // training state, a partial dataset) first: on a full disk they are what
+  // fills it.
+  for (const char* working : {"", ".state", ".partial"}) remove_stale_temporaries(output.string() + working);
   if (const std::string cause = write_failure_cause(output); !cause.empty())
     throw ConfigError("cannot write '" + output.string() + "': " + cause);
   for (;;) {

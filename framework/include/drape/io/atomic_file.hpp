@@ -13,6 +13,13 @@ namespace drape {
 void write_atomically(const std::filesystem::path& target,
                       const std::function<void(const std::filesystem::path& tmp)>& write);
 
+// Removes the temporaries of `target` that processes of this machine, now
+// gone, left beside it (killed mid-write); write_atomically does so itself.
+// A job's lock (output_lock.hpp) does it for its output's files before it
+// checks the folder has room: a job that died of a full disk left its
+// temporary filling it, and the next run was refused "no space left".
+void remove_stale_temporaries(const std::filesystem::path& target);
+
 // A text file (reports, pictures), atomically; Error when it cannot be written.
 void write_text_atomically(const std::filesystem::path& target, const std::string& text);
 
