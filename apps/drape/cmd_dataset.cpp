@@ -41,6 +41,7 @@ void refuse_existing(const fs::path& out, const po::variables_map& vm) {
   // A finished dataset is never overwritten by accident (as DatasetWriter does).
   if (fs::exists(out) && !vm.count("force"))
     throw ConfigError(SourceLocation{out.string(), 0}, "exists; pass --force to replace it");
+  refuse_replacing_a_model(out, "--out");  // --force replaces a dataset, not a model
 }
 
 constexpr const char* kDropHelp =

@@ -74,15 +74,18 @@ int run(const std::vector<std::string>& args) {
     std::printf("nothing to do: %s is finished (%zu samples), made by this same request\n", out.c_str(), done.samples);
     return 0;
   }
-  std::printf("wrote %s: %zu samples; %d not settled, %d with a vertex inside the body, %d with crossing surfaces, "
-              "%zu crossing themselves (this run)\n",
-              out.c_str(), done.samples, done.not_settled, done.penetrating, done.crossing, done.crossing_itself.size());
+  std::printf("wrote %s: %zu samples; this run's: %d not settled, %d with a vertex inside the body, %d with crossing "
+              "surfaces; %zu crossing themselves%s\n",
+              out.c_str(), done.samples, done.not_settled, done.penetrating, done.crossing, done.crossing_itself.size(),
+              done.checked_again > 0 ? (" (with the " + std::to_string(done.checked_again) +
+                                        " drapes of earlier runs, read back from the file)").c_str()
+                                     : "");
   if (!done.crossing_itself.empty()) {
     // Named, so that they can be looked at or left out (scripts/check_dataset_drapes.py counts them independently).
     const std::string list = global_index_list({done.crossing_itself.begin(), done.crossing_itself.end()});
     std::printf("garments crossing themselves: sample %s (global index); `drape dataset slim %s --out SLIM --drop %s` "
                 "leaves them out\n",
-                list.c_str(), out.c_str(), list.c_str());
+                list.c_str(), shell_word(out).c_str(), list.c_str());
   }
   return 0;
 }

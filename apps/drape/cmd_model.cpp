@@ -14,6 +14,7 @@
 #include <drape/io/dataset.hpp>
 #include <drape/errors.hpp>
 #include <drape/io/h5.hpp>
+#include <drape/io/output_lock.hpp>
 #include <drape/io/write_failure.hpp>
 #include <drape/registry.hpp>
 #include <drape/training/model.hpp>
@@ -194,6 +195,9 @@ int domain(const std::vector<std::string>& args) {
   const fs::path out = vm.count("out") ? fs::path(vm["out"].as<std::string>()) : file;
   // --data X --out X turned the dataset into a model file; any other file is not replaced either.
   refuse_output_among_inputs(out, dataset_inputs(vm["data"].as<std::string>()), "--out");
+  // One writer per output (a generate running on it took its lock: this
+  // wrote the model, then generate renamed its dataset over it).
+  const OutputLock lock(out, "drape model domain");
   refuse_replacing_other_than_a_model(out, "--out");
   Registry& registry = Registry::load_default(plugin_path(vm));
   const ModelDomain d = record_model_domain(registry, file, vm["data"].as<std::string>(), out);
@@ -215,6 +219,7 @@ int set(const std::vector<std::string>& args) {
   if (!vm.count("set")) throw UsageError("--set node.param=value is required\nusage: " + std::string(kSetUsage));
   const fs::path file = find_input_file(vm["model"].as<std::string>());
   const fs::path out = vm.count("out") ? fs::path(vm["out"].as<std::string>()) : file;
+  const OutputLock lock(out, "drape model set");  // one writer per output
   refuse_replacing_other_than_a_model(out, "--out");  // a dataset named as --out became a model file
   Registry& registry = Registry::load_default(plugin_path(vm));
   for (const std::string& change : set_model_params(registry, file, parse_param_overrides(vm), out))

@@ -58,6 +58,11 @@ bool parse(const std::string& usage, const std::vector<std::string>& args, po::o
 // every output's folder already; this adds the mesh format.
 void check_mesh_outputs(const po::variables_map& vm, std::initializer_list<const char*> options);
 
+// A word of a command line drape prints for the user to paste: as it is when
+// a shell reads it so, else in single quotes (a path with a space, a
+// dataset pattern's `*`).
+std::string shell_word(const std::string& word);
+
 // The plugin search directories given with --plugin-path.
 std::vector<std::string> plugin_path(const po::variables_map& vm);
 

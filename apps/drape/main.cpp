@@ -127,6 +127,13 @@ void check_mesh_outputs(const po::variables_map& vm, std::initializer_list<const
     if (vm.count(option)) check_mesh_output(vm[option].as<std::string>());
 }
 
+std::string shell_word(const std::string& word) {
+  if (!word.empty() && word.find_first_of(" \t\n*?[]{}$'\"\\;&|<>()!#~`") == std::string::npos) return word;
+  std::string quoted = "'";
+  for (const char c : word) quoted += c == '\'' ? std::string("'\\''") : std::string(1, c);
+  return quoted + "'";
+}
+
 std::vector<std::string> plugin_path(const po::variables_map& vm) {
   return vm.count("plugin-path") ? vm["plugin-path"].as<std::vector<std::string>>() : std::vector<std::string>{};
 }

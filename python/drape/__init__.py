@@ -293,7 +293,7 @@ def generate(scene, out, count, bmi=(10, 65), height=1.75, sex=1.0, girths=0.0, 
     (a number, or a (lo, hi) range; sex draws one of its two ends), girths spread as a fraction of the body model's
     range, the 8:1:1 split from `seed`; shard=(i, N) makes part i of N. Returns a dict of what was done:
     samples, not_settled, penetrating, crossing, crossing_itself (the global indices of the drapes whose garment
-    crosses itself), resumed_with (done by an earlier run), threads, ranges, already_finished (True when `out` was
+    crosses itself, on a resume those of earlier runs too: checked_again of them read back from the file), resumed_with (done by an earlier run), threads, ranges, already_finished (True when `out` was
     finished by this same request: nothing is simulated; a finished `out` made otherwise raises ConfigError).
     poses="scene" drapes every body in the scene's pose (its A-pose when it has none); poses="draw" draws each
     body's pose from the body model's pose space (docs/poses.md), with pose_ranges ({"shoulder_abduction": (60, 90)}

@@ -84,6 +84,7 @@ py::dict generate(const PyScene& scene, const std::string& out, std::size_t coun
   d["penetrating"] = done.penetrating;
   d["crossing"] = done.crossing;
   d["crossing_itself"] = done.crossing_itself;
+  d["checked_again"] = done.checked_again;  // drapes of earlier runs read back to count those crossing themselves
   d["ranges"] = plan.ranges;
   d["already_finished"] = done.already_finished;  // this same request had finished it: nothing simulated
   return d;

@@ -4,7 +4,9 @@
 // the predicted garment to the weights.
 #include "common.hpp"
 
+#include <drape/io/output_lock.hpp>
 #include <drape/io/shipped_files.hpp>
+#include <drape/io/write_failure.hpp>
 #include <drape/geometry/body_units.hpp>
 #include <drape/io/checkpoint.hpp>
 #include <drape/errors.hpp>
@@ -422,10 +424,15 @@ void register_model(py::module_& m) {
             // (Read when the model was loaded; an untrained model has none.)
             py::gil_scoped_release release;
             std::lock_guard lock(p.mutex());
+            // As drape model set writes one: the output's lock (a drape
+            // train running on it wrote over this save at its next epoch),
+            // and over a model only (a dataset named here was replaced).
+            const OutputLock output(path, "Model.save");
+            refuse_replacing_other_than_a_model(path, "save:");
             save_model_file(path, m.graph().weights(), c, p.domain_at_load());
           },
           py::arg("path"), py::arg("meta") = std::map<std::string, std::string>{},
-          "Writes the model with its current weights (after optimize or a PyTorch loop) as a model file, atomically; "
+          "Writes the model with its current weights (after optimize or a PyTorch loop) as a model file, atomically, over nothing but a model and not while another job writes the path (ConfigError); "
           "meta: extra string attributes for /meta.")
       .def(
           "weights",

@@ -9,6 +9,7 @@
 #include <cstdio>
 #include <csignal>
 #include <fstream>
+#include <regex>
 #include <sstream>
 #include <thread>
 
@@ -104,23 +105,22 @@ TEST_CASE("shards made separately merge into the same set one job makes", "[gene
   CHECK(DatasetReader(dir / "all.h5").splits() == DatasetReader(dir / "merged.h5").splits());
 }
 
-TEST_CASE("a generate job killed mid-run resumes without losing or duplicating a sample", "[generate]") {
-  test::TempDir dir;
-  std::ofstream(dir / "tiny.yaml") << test::tiny_simulation_scene();
-  const fs::path file = dir / "k.h5", partial = dir / "k.h5.partial";
+// Starts `command` (a generate of `count` samples) in the background and
+// kills it (-9) once its progress says `samples` or more are done; how many
+// were done by then.
+std::size_t start_and_kill_after(const std::string& command, const test::TempDir& dir, std::size_t samples, std::size_t count) {
   std::string out;
-  // Start in the background, wait until some (not all) samples are done, kill -9.
-  const std::string cmd = generate(dir / "tiny.yaml", "--count 8 --threads 1 --out " + file.string());
-  REQUIRE(test::run("(" + cmd + " > " + (dir / "log").string() + " 2>&1 & echo $! > " + (dir / "pid").string() + ")", out) == 0);
+  REQUIRE(test::run("(" + command + " > " + (dir / "log").string() + " 2>&1 & echo $! > " + (dir / "pid").string() + ")", out) == 0);
   // The progress lines (one per sample at this size) say how many are done.
-  std::size_t done_at_kill = 0;
-  for (int k = 0; k < 1200 && done_at_kill < 3; ++k) {
+  std::size_t done = 0;
+  const std::string format = " %zu/" + std::to_string(count);
+  for (int k = 0; k < 1200 && done < samples; ++k) {
     std::this_thread::sleep_for(std::chrono::milliseconds(50));
     std::ifstream log(dir / "log");
     std::string line;
     while (std::getline(log, line, ']')) {
       std::size_t n = 0;
-      if (std::sscanf(line.c_str(), " %zu/8", &n) == 1) done_at_kill = std::max(done_at_kill, n);
+      if (std::sscanf(line.c_str(), format.c_str(), &n) == 1) done = std::max(done, n);
     }
   }
   long pid = 0;
@@ -128,7 +128,17 @@ TEST_CASE("a generate job killed mid-run resumes without losing or duplicating a
   REQUIRE(pid > 0);
   ::kill(static_cast<pid_t>(pid), SIGKILL);
   std::this_thread::sleep_for(std::chrono::milliseconds(200));
-  REQUIRE(done_at_kill >= 3);
+  return done;
+}
+
+TEST_CASE("a generate job killed mid-run resumes without losing or duplicating a sample", "[generate]") {
+  test::TempDir dir;
+  std::ofstream(dir / "tiny.yaml") << test::tiny_simulation_scene();
+  const fs::path file = dir / "k.h5", partial = dir / "k.h5.partial";
+  std::string out;
+  // Start in the background, wait until some (not all) samples are done, kill -9.
+  const std::string cmd = generate(dir / "tiny.yaml", "--count 8 --threads 1 --out " + file.string());
+  REQUIRE(start_and_kill_after(cmd, dir, 3, 8) >= 3);
   REQUIRE_FALSE(fs::exists(file));
   // Resumed with another seed or body range, it filled the missing rows with
   // other drapes while the file recorded the first run's: refused, the partial kept.
@@ -148,6 +158,31 @@ TEST_CASE("a generate job killed mid-run resumes without losing or duplicating a
   REQUIRE(a.flat().size() == b.flat().size());
   CHECK((a.flat() - b.flat()).cwiseAbs().maxCoeff() == 0.0f);
   CHECK(DatasetReader(file).indices().size() == 8);
+}
+
+TEST_CASE("a resumed generate names the drapes of earlier runs that cross themselves", "[generate]") {
+  // The resumed run named only its own (an outside check: "--drop 7" where the uninterrupted run said
+  // "--drop 0,3,7"); the earlier runs' are now read back from the file and named with them.
+  test::TempDir dir;
+  std::ofstream(dir / "tiny.yaml") << test::tiny_simulation_scene();
+  const auto run_of = [&](const std::string& out_name) {
+    return test::drape_program().string() + " generate " + (dir / "tiny.yaml").string() + " --count 8 --threads 1 --out " +
+           (dir / out_name).string();
+  };
+  std::string whole, resumed;
+  REQUIRE(test::run(run_of("ref.h5"), whole) == 0);
+  const std::regex named("garments crossing themselves: sample ([0-9,]+)");
+  std::smatch in_whole, in_resumed;
+  REQUIRE(std::regex_search(whole, in_whole, named));  // this scene's seed 0 has some (samples 2 and 3)
+  const std::size_t first_crossing = std::stoul(in_whole[1].str());
+  const std::size_t done = start_and_kill_after(run_of("k.h5"), dir, first_crossing + 2, 8);
+  REQUIRE(done > first_crossing);
+  REQUIRE(done < 8);
+  REQUIRE(test::run(run_of("k.h5"), resumed) == 0);
+  INFO(resumed);
+  REQUIRE(std::regex_search(resumed, in_resumed, named));
+  CHECK(in_resumed[1].str() == in_whole[1].str());
+  CHECK_THAT(resumed, Catch::Contains("drapes of earlier runs, read back from the file"));
 }
 
 // The issue's case on a scene that drapes in a second: the barrier contact (as

@@ -740,3 +740,21 @@ TEST_CASE("dataset: a NaN in a sample's body or shape parameters is named with i
   CHECK_THROWS_WITH(reader.body_vertices({0, 1}), Catch::Contains(partial.string() + ": sample 1 has a non-finite body coordinate"));
   CHECK_THROWS_WITH(reader.body_params({2}), Catch::Contains("sample 2 has a non-finite body shape parameter"));
 }
+
+TEST_CASE("dataset: a file that appears at the output while a set is made is not replaced by it", "[hdf5][dataset]") {
+  // <out> is never overwritten: checked at the start, it was not at the end, and a model written there meanwhile
+  // (by a command that took no lock) was replaced by the finished dataset without a word (an outside check).
+  TempDir dir;
+  const fs::path out = dir / "data.h5";
+  const DatasetLayout layout = small_layout(3);
+  DatasetWriter writer(out, layout);
+  for (std::size_t i = 0; i < layout.samples; ++i) writer.write(i, make_sample(layout, i));
+  std::ofstream(out) << "written meanwhile";
+  CHECK_THROWS_WITH(writer.finish(), Catch::Contains("appeared while the dataset was made") &&
+                                         Catch::Contains(DatasetWriter::partial_path(out).string()));
+  std::ifstream in(out);
+  std::string kept;
+  std::getline(in, kept);
+  CHECK(kept == "written meanwhile");
+  check_complete(DatasetWriter::partial_path(out), 3);
+}

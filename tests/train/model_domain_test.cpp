@@ -4,6 +4,8 @@
 // body outside named by measure, and predict warning or refusing (--strict).
 #include <catch2/catch.hpp>
 
+#include <drape/io/output_lock.hpp>
+
 #include "train_test_util.hpp"
 
 #include <drape/geometry/volume.hpp>
@@ -233,6 +235,20 @@ TEST_CASE("drape model domain records it: predict warns outside it and --strict 
                     out) == 2);
   CHECK_THAT(out, Catch::Contains("records no training domain"));
 
+  {
+    // One writer per output: a job holding the output's lock (a generate making a set of that name) is not
+    // written over (model domain wrote its model, then the generate renamed its dataset over it).
+    const OutputLock busy(dir / "busy.h5", "drape generate");
+    CHECK(test::run(test::drape_command("model domain " + model.string() + " --data " + data.string() + " --out " +
+                                        (dir / "busy.h5").string()),
+                    out) == 2);
+    CHECK_THAT(out, Catch::Contains("drape generate"));
+    CHECK(test::run(test::drape_command("model set " + model.string() + " --set post.enabled=false --out " +
+                                        (dir / "busy.h5").string()),
+                    out) == 2);
+    CHECK_THAT(out, Catch::Contains("drape generate"));
+    CHECK_FALSE(fs::exists(dir / "busy.h5"));
+  }
   REQUIRE(test::run(test::drape_command("model domain " + model.string() + " --data " + data.string()), out) == 0);
   REQUIRE(test::run(test::drape_command("model info " + model.string()), out) == 0);
   CHECK_THAT(out, Catch::Contains("8 training bodies from data.h5"));

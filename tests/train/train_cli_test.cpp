@@ -605,3 +605,20 @@ TEST_CASE("the shipped model dresses each body in the size the tailor's rule giv
   CHECK(rank(sizes[0]) < rank(sizes[1]));
   CHECK(rank(sizes[1]) < rank(sizes[2]));
 }
+
+TEST_CASE_METHOD(SmallData, "train and dataset slim with --force replace a file of their own kind only", "[train][cli]") {
+  // An outside check: train --force turned a dataset into a model, and dataset slim --force a model into a
+  // dataset, without a word.
+  std::string out;
+  const fs::path other = dir / "other.h5";
+  fs::copy_file(data, other);
+  CHECK(test::run(test::drape_command(train_args(data, other, "--force", 1)), out) == 2);
+  CHECK_THAT(out, Catch::Contains("is not a drape model") && Catch::Contains("a model is written over a model only"));
+  CHECK(DatasetReader(other).size() == 10);  // still the dataset
+  REQUIRE(test::run(test::drape_command(train_args(data, model, "", 1)), out) == 0);
+  REQUIRE(test::run(test::drape_command(train_args(data, model, "--force", 1)), out) == 0);  // a model over a model
+  CHECK(test::run(test::drape_program().string() + " dataset slim " + data.string() + " --out " + model.string() + " --force",
+                  out) == 2);
+  CHECK_THAT(out, Catch::Contains(model.string() + " is a drape model"));
+  CHECK_NOTHROW(read_checkpoint(model));
+}

@@ -194,12 +194,7 @@ class Runner {
   // expanded to several files, and the line pasted did not run).
   static std::string command_line(const std::vector<std::string>& args) {
     std::string line = "drape";
-    for (const auto& a : args) {
-      const bool plain = !a.empty() && a.find_first_of(" \t*?[]{}$'\"\\;&|<>()!#~") == std::string::npos;
-      std::string quoted = "'";
-      for (const char c : a) quoted += c == '\'' ? std::string("'\\''") : std::string(1, c);
-      line += " " + (plain ? a : quoted + "'");
-    }
+    for (const auto& a : args) line += " " + shell_word(a);
     return line;
   }
 

@@ -220,6 +220,13 @@ void DatasetWriter::finish() {
   if (impl_) impl_->file.flush(true);
   close();
   std::error_code ec;
+  // <out> is never overwritten (checked at the start too): a file that
+  // appeared there meanwhile was made by something that took no lock (an
+  // outside check's `model domain --out` of the same name, before it took
+  // one), and is kept, the finished dataset beside it.
+  if (fs::exists(path_, ec))
+    throw Error(path_.string() + " appeared while the dataset was made (written by another program?), and is not "
+                "replaced: the finished dataset is " + partial_path(path_).string() + "; move one of them and rename it");
   fs::rename(partial_path(path_), path_, ec);
   if (ec) throw Error(path_.string() + ": cannot rename the finished dataset into place: " + ec.message());
 }

@@ -85,4 +85,17 @@ void refuse_replacing_other_than_a_model(const fs::path& out, const std::string&
                     "another file): a model is written over a model only; name a new file, or move that one away");
 }
 
+void refuse_replacing_a_model(const fs::path& out, const std::string& option) {
+  std::error_code ec;
+  if (!fs::is_regular_file(out, ec)) return;
+  bool model = false;
+  try {
+    model = read_checkpoint(out).meta.count("assets") > 0;
+  } catch (const std::exception&) {
+  }
+  if (model)
+    throw ConfigError(option + " " + out.string() + " is a drape model: --force replaces a file of this command's "
+                      "kind, not a model; name another file, or move that one away");
+}
+
 }  // namespace drape

@@ -10,6 +10,7 @@
 #include <drape/assets/dataset_assets.hpp>
 #include <drape/assets/weight_ties.hpp>
 #include <drape/io/checkpoint.hpp>
+#include <drape/io/write_failure.hpp>
 #include <drape/training/model.hpp>
 #include <drape/warnings.hpp>
 #include <drape/training/trainer.hpp>
@@ -133,6 +134,9 @@ void check_earlier_run(const TrainOptions& o, const fs::path& state_path) {
     throw ConfigError((fs::exists(o.out) ? o.out : state_path).string() +
                       " exists (from an earlier or interrupted training): pass --resume to continue it, or --force to "
                       "start over");
+  // --force replaces an earlier training's model, never another kind of
+  // file (an outside check's --force turned a dataset into a model).
+  if (o.force) refuse_replacing_other_than_a_model(o.out, "--out");
   if (!o.force && o.resume && fs::exists(o.out) && !fs::exists(state_path))
     throw ConfigError(o.out.string() + " exists, but there is no " + state_path.filename().string() +
                       " to resume it from: --force to start over");

@@ -35,5 +35,9 @@ void refuse_output_among_inputs(const std::filesystem::path& out, const std::vec
 // model file (a dataset, a mesh): model set and model domain replace a model
 // in place, never another kind of file.
 void refuse_replacing_other_than_a_model(const std::filesystem::path& out, const std::string& option);
+// The other way round: ConfigError when `out` is a drape model file (dataset
+// slim, merge, expand ... --force replace a dataset, never a model: an
+// outside check's --force replaced a model with a dataset without a word).
+void refuse_replacing_a_model(const std::filesystem::path& out, const std::string& option);
 
 }  // namespace drape

@@ -101,9 +101,12 @@ struct GenerateSummary {
   bool already_finished = false;
   int not_settled = 0, penetrating = 0, crossing = 0;
   // Drapes whose garment crosses itself (SimulationResult::self_crossings),
-  // by their index in the whole set, ascending. Not a statistic of the file:
-  // the shards made before it have none, and the sets merge.
+  // by their index in the whole set, ascending: this run's, and on a resumed
+  // run those of earlier runs, checked again in the finished file
+  // (checked_again of them). Not a statistic of the file: the shards made
+  // before it have none, and the sets merge.
   std::vector<std::size_t> crossing_itself;
+  std::size_t checked_again = 0;
 };
 
 struct GenerateObserver {
