@@ -41,24 +41,27 @@ TEST_CASE("two writers on one output: one runs, the other is refused", "[cli][lo
     CHECK_THAT(verdicts, Catch::Contains("held " + held));
 }
 
-TEST_CASE("a job stopped by SIGTERM leaves no lock file beside the output it never wrote", "[cli][lock]") {
+TEST_CASE("a job stopped by SIGTERM or SIGHUP or SIGPIPE leaves no lock file beside the output it never wrote", "[cli][lock]") {
   // An outside check: an optimisation stopped with Ctrl-C left o.obj.lock
   // (holding "pid N, drape optimize") next to an o.obj that was never
-  // written. The kernel dropped the lock; the file now goes too.
+  // written. The kernel dropped the lock; the file now goes too. Another:
+  // `drape train ... | head -1` (SIGPIPE) left it, and so would a closed terminal (SIGHUP).
   test::TempDir dir;
   std::string out;
   const std::string job = test::drape_program().string() + " optimize --model " +
                           (test::source_dir() / "models/tshirt-coarse.h5").string() + " --scene " +
                           (test::source_dir() / "graphs/scenes/tshirt_coarse.yaml").string() +
                           " --bmi 30 --iters 1000000 --out " + (dir / "o.obj").string();
-  CHECK(test::run("env -u DRAPE_MODEL DRAPE_CACHE_DIR=" + dir.path().string() + " " + job +
-                      " > /dev/null 2>&1 & pid=$!; for i in $(seq 100); do [ -e " + (dir / "o.obj.lock").string() +
-                      " ] && break; sleep 0.1; done; sleep 1; kill -TERM $pid; wait $pid; echo \"status $?\"",
-                  out) == 0);
-  INFO(out);
-  CHECK_THAT(out, Catch::Contains("status 143"));  // ended by the signal's default action (128 + 15)
-  CHECK_FALSE(fs::exists(dir / "o.obj.lock"));
-  CHECK_FALSE(fs::exists(dir / "o.obj"));
+  for (const auto& [signal, status] : {std::pair<const char*, int>{"TERM", 143}, {"HUP", 129}, {"PIPE", 141}}) {
+    CHECK(test::run("env -u DRAPE_MODEL DRAPE_CACHE_DIR=" + dir.path().string() + " " + job +
+                        " > /dev/null 2>&1 & pid=$!; for i in $(seq 100); do [ -e " + (dir / "o.obj.lock").string() +
+                        " ] && break; sleep 0.1; done; sleep 1; kill -" + signal + " $pid; wait $pid; echo \"status $?\"",
+                    out) == 0);
+    INFO(signal << ": " << out);
+    CHECK_THAT(out, Catch::Contains("status " + std::to_string(status)));  // ended by the signal's default action
+    CHECK_FALSE(fs::exists(dir / "o.obj.lock"));
+    CHECK_FALSE(fs::exists(dir / "o.obj"));
+  }
 }
 
 TEST_CASE("outputs are checked before any work: a missing folder, an unknown mesh format", "[cli][outputs]") {

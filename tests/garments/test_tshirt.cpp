@@ -77,6 +77,15 @@ TEST_CASE("tshirt: a bad resolution or print polygon is one clear config error",
   CHECK_THROWS_AS(build_tshirt("{resolution: '12'}"), ConfigError);
   CHECK_THROWS_WITH(build_tshirt("{print: true, print_polygon: [0.1, 0.1, 0.5]}"), Catch::Contains("print_polygon"));
   CHECK_THROWS_AS(build_tshirt("{size: huge}"), ConfigError);
+  // An outside check's degenerate polygons were taken without a word: a bow tie (which side is the print?), a
+  // loop of no area, and one too small to hold a face's centre.
+  CHECK_THROWS_WITH(build_tshirt("{print: true, print_polygon: [0.3, 0.5, 0.7, 0.7, 0.7, 0.5, 0.3, 0.7]}"),
+                    Catch::Contains("print_polygon: the loop crosses itself"));
+  CHECK_THROWS_WITH(build_tshirt("{print: true, print_polygon: [0.3, 0.5, 0.5, 0.5, 0.7, 0.5]}"),
+                    Catch::Contains("encloses no area"));
+  CHECK_THROWS_WITH(build_tshirt("{print: true, print_polygon: [0.5, 0.5, 0.5001, 0.5, 0.5, 0.5001]}"),
+                    Catch::Contains("holds the centre of no face"));
+  CHECK_NOTHROW(build_tshirt("{print: true, print_polygon: [0.3, 0.5, 0.7, 0.5, 0.7, 0.7, 0.3, 0.7]}"));
 }
 
 TEST_CASE("tshirt: one manifold surface with collar, two sleeve and hem openings", "[garments][tshirt]") {

@@ -65,7 +65,9 @@ int hold_for_signals(const fs::path& lock) {
   // while the job goes on would let a second writer in.
   static std::once_flag installed;
   std::call_once(installed, [] {
-    for (const int signal : {SIGINT, SIGTERM}) {
+    // (SIGPIPE: `drape train ... | head -1` ended the job and left its lock;
+    // SIGHUP: the terminal it ran in closed.)
+    for (const int signal : {SIGINT, SIGTERM, SIGPIPE, SIGHUP}) {
       struct sigaction now {};
       if (::sigaction(signal, nullptr, &now) != 0 || (now.sa_flags & SA_SIGINFO) || now.sa_handler != SIG_DFL) continue;
       struct sigaction ours {};

@@ -179,6 +179,11 @@ TshirtResult build_tshirt(const TshirtOptions& options) {
       const Eigen::Vector2d n((c.x() - box.lo.x()) / width, (c.y() - box.lo.y()) / (box.hi.y() - box.lo.y()));
       if (geometry::point_in_polygon(options.print_polygon, n)) result.garment.face_material[f] = kPrint;
     }
+    // A print asked for on no face (a polygon smaller than a triangle) was
+    // simulated as plain knit without a word (an outside check).
+    if ((result.garment.face_material.head(nff).array() != kPrint).all())
+      throw ConfigError("print_polygon holds the centre of no face of the front panel at this resolution: draw it "
+                        "larger (in the panel's [0, 1] box), or leave print out");
   }
   return result;
 }
