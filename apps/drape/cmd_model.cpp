@@ -77,6 +77,13 @@ void print_domain(const ModelDomain& d, bool takes_pose = true) {
   for (std::size_t a = 0; a < d.pose_names.size(); ++a)
     std::printf("    %-26s %8.1f .. %-8.1f%s\n", d.pose_names[a].c_str(), d.pose[a].min, d.pose[a].max,
                 d.pose[a].min == d.pose[a].max ? "  (fixed)" : "");
+  // Each range is of one angle over all the training bodies: a heavy body's
+  // arms meet its trunk well inside the abduction range (an outside check
+  // read the box as trained for every body; BMI 62 at 26 degrees had no
+  // drape to learn from).
+  std::printf("  (each range is one angle's over all training bodies: not every pose inside them was trained on every "
+              "body; a heavy body's arms meet its trunk at small abductions, where the training drew none: predict "
+              "warns that the body passes through itself, simulate refuses it)\n");
 }
 
 // The sizes a model of drapes in each body's own size chooses from.
