@@ -252,7 +252,7 @@ void write_csv(const std::vector<Method>& methods, const std::string& file) {
 void write_chart(const std::vector<Method>& methods, std::size_t bodies, bool posed, const std::string& file) {
   ScatterChart chart;
   chart.title = "What accuracy costs in time (" + std::to_string(bodies) + (posed ? " posed" : "") +
-                " test bodies, one core); * = Pareto front";
+                (bodies == 1 ? " test body" : " test bodies") + ", one core); * and dashed = Pareto front";
   chart.x_label = "seconds per body on one core";
   chart.y_label = "ME to the converged simulation (cm)";
   for (const Method& m : methods) {
@@ -261,7 +261,7 @@ void write_chart(const std::vector<Method>& methods, std::size_t bodies, bool po
                   "%s%s: %.3g s, ME %.2f cm, L_p %.4g J, p %.2f%%, edges crossing the body %.1f, itself %.1f",
                   m.pareto ? "* " : "", m.name.c_str(), m.seconds, m.me_cm, m.potential, m.p_percent, m.body_crossings,
                   m.self_crossings);
-    chart.points.push_back({m.seconds, m.me_cm, label});
+    chart.points.push_back({m.seconds, m.me_cm, label, m.pareto});
   }
   chart.write(file);
   std::printf("wrote %s\n", file.c_str());

@@ -230,17 +230,7 @@ int run(const std::vector<std::string>& args) {
     what = "sample " + std::to_string(i) + " of " + std::filesystem::path(vm["data"].as<std::string>()).filename().string();
   } else {
     batch = model_body(model, vm, &moved_by, &notes);
-    char bmi[32];
-    if (vm.count("bmi")) std::snprintf(bmi, sizeof bmi, "BMI %g", vm["bmi"].as<double>());  // (18.75 was "18.7")
-    what = vm.count("bmi") ? std::string(bmi) : vm["body"].as<std::string>();
-    // The page's title says which body: its height, sex and pose as asked.
-    char more[64];
-    if (vm.count("bmi") && vm.count("height")) std::snprintf(more, sizeof more, ", %.2f m", vm["height"].as<double>()), what += more;
-    if (vm.count("bmi") && vm.count("sex")) std::snprintf(more, sizeof more, ", sex %g", vm["sex"].as<double>()), what += more;
-    if (vm.count("pose")) what += ", posed " + vm["pose"].as<std::string>();
-    if (vm.count("pose-file")) what += ", posed by " + vm["pose-file"].as<std::string>();
-    if (vm.count("smpl-theta")) what += ", posed by SMPL theta " + vm["smpl-theta"].as<std::string>();
-    if (vm.count("garment-size")) what += ", size " + vm["garment-size"].as<std::string>();
+    what = asked_body_words(vm);  // the page's title says which body: its height, sex and pose as asked
   }
   Mesh body;
   body.faces = model.assets().body.faces;

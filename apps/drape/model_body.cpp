@@ -137,6 +137,20 @@ void add_model_body_options(po::options_description& options, const std::string&
       "smpl-theta", po::value<std::string>(), "the same as SMPL's θ from a text file (SMPL body models)");
 }
 
+std::string asked_body_words(const po::variables_map& vm) {
+  char bmi[32];
+  if (vm.count("bmi")) std::snprintf(bmi, sizeof bmi, "BMI %g", vm["bmi"].as<double>());  // (18.75 was "18.7")
+  std::string what = vm.count("bmi") ? std::string(bmi) : vm["body"].as<std::string>();
+  char more[64];
+  if (vm.count("bmi") && vm.count("height")) std::snprintf(more, sizeof more, ", %.2f m", vm["height"].as<double>()), what += more;
+  if (vm.count("bmi") && vm.count("sex")) std::snprintf(more, sizeof more, ", sex %g", vm["sex"].as<double>()), what += more;
+  if (vm.count("pose")) what += ", posed " + vm["pose"].as<std::string>();
+  if (vm.count("pose-file")) what += ", posed by " + vm["pose-file"].as<std::string>();
+  if (vm.count("smpl-theta")) what += ", posed by SMPL theta " + vm["smpl-theta"].as<std::string>();
+  if (vm.count("garment-size")) what += ", size " + vm["garment-size"].as<std::string>();
+  return what;
+}
+
 bool pose_given(const po::variables_map& vm) {
   return vm.count("pose") + vm.count("pose-file") + vm.count("smpl-theta") > 0;
 }

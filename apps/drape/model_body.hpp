@@ -34,6 +34,11 @@ SampleBatch model_body(const Model& model, const po::variables_map& vm, BodyMove
                        std::vector<std::string>* printed = nullptr, const Pose* fallback_pose = nullptr,
                        const std::string& fallback_source = "");
 
+// The body asked for in words, for a picture's title: "BMI 30, 1.60 m, sex 0,
+// posed shoulder_abduction=40, size large" (--bmi and what goes with it), or
+// the --body file.
+std::string asked_body_words(const po::variables_map& vm);
+
 // The shipped model of posed drapes, beside the A-pose one in models/: the
 // human rig's, as the A-pose default is (since 2026-12-02; the mannequin's
 // is models/tshirt-coarse-posed.h5).

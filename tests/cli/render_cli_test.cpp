@@ -218,3 +218,17 @@ TEST_CASE("render draws a garment of its own topology on a body mesh, as the fil
                             " --colour strain --out " + (dir / "s.svg").string(), out) == 2);
   CHECK_THAT(out, Catch::Contains("--colour distance"));
 }
+
+TEST_CASE("predict's picture shows the body asked for and the warnings the command prints", "[cli][svg]") {
+  // An outside check: its caption said "p = 0.00%" beside a 6xlarge shirt on a BMI 15 body that the command
+  // reported 32 edges through the body and through itself at 44 pairs; render showed them, predict did not.
+  test::TempDir dir;
+  std::string out;
+  REQUIRE(test::run("env -u DRAPE_MODEL " + test::drape_program().string() + " predict --bmi 15 --garment-size 6xlarge --out " +
+                        (dir / "g.obj").string() + " --svg " + (dir / "p.svg").string(),
+                    out) == 0);
+  REQUIRE_THAT(out, Catch::Contains("warning: the garment passes through itself"));
+  const std::string svg = test::read_file(dir / "p.svg");
+  CHECK_THAT(svg, Catch::Contains("for BMI 15, size 6xlarge") && Catch::Contains("warning: the garment passes through") &&
+                      Catch::Contains("crossing the body, through itself"));  // (wrapped: the words, not the line)
+}

@@ -160,3 +160,48 @@ TEST_CASE("a long panel caption is wrapped inside the picture and the colour bar
     CHECK_THAT(svg, Catch::Contains(stop));
   }
 }
+
+TEST_CASE("a scatter chart's point numbers do not run into each other and its front is drawn", "[svg][chart]") {
+  // An outside check: numbers of points close together read "109" and "812", one point's number was hidden,
+  // the y ticks were not round numbers, and the promised Pareto front was not drawn.
+  ScatterChart chart;
+  chart.title = "t";
+  for (int i = 0; i < 12; ++i)  // a cluster: twelve points a few pixels apart (as the accuracy-time chart's tiers)
+    chart.points.push_back({1.0 + 0.12 * i, 0.70 + 0.01 * (i % 3), "p" + std::to_string(i), i % 5 == 0});
+  chart.points.push_back({100.0, 0.1, "far", true});
+  const std::string s = chart.svg();
+  // The numbers' boxes (7.5 px a digit, 12 px high), from the bold texts.
+  const std::regex number("<text x=\"([0-9.]+)\" y=\"([0-9.]+)\" font-weight=\"bold\"( text-anchor=\"end\")?>([0-9]+)</text>");
+  struct Box {
+    double x0, y0, x1, y1;
+  };
+  std::vector<Box> boxes;
+  for (auto it = std::sregex_iterator(s.begin(), s.end(), number); it != std::sregex_iterator(); ++it) {
+    const double x = std::stod((*it)[1]), y = std::stod((*it)[2]), width = 7.5 * (*it)[4].length();
+    const double left = (*it)[3].matched ? x - width : x;
+    boxes.push_back({left, y - 10, left + width, y + 2});
+  }
+  REQUIRE(boxes.size() == 13);
+  int overlapping = 0;
+  for (std::size_t a = 0; a < boxes.size(); ++a)
+    for (std::size_t b = a + 1; b < boxes.size(); ++b)
+      overlapping += std::min(boxes[a].x1, boxes[b].x1) > std::max(boxes[a].x0, boxes[b].x0) &&
+                     std::min(boxes[a].y1, boxes[b].y1) > std::max(boxes[a].y0, boxes[b].y0);
+  CHECK(overlapping == 0);
+  // Round y ticks: 0, 0.2, 0.4, ... (the top point 0.72 * 1.15 rounded up to a tick).
+  for (const char* tick : {">0<", ">0.2<", ">0.4<", ">0.6<", ">0.8<"}) CHECK(s.find(tick) != std::string::npos);
+  CHECK(s.find("stroke-dasharray") != std::string::npos);  // the front through the four points on it
+}
+
+TEST_CASE("a long note or title is wrapped to the picture's width", "[svg]") {
+  // An outside check: a warning of one line made a one-panel render 4,000 px wide, its drape a speck.
+  SvgFigure figure("drape render: prediction of a model with a long name for a body described at length " +
+                   std::string(60, 'x'));
+  figure.add_note("warning: " + std::string(20, 'w') + " " + std::string(400, 'a').replace(0, 400, std::string(80, 'a') + " " + std::string(80, 'b') + " " + std::string(80, 'c')));
+  figure.add_panel({"caption", {cube()}});
+  const std::string svg = figure.svg();
+  std::smatch m;
+  REQUIRE(std::regex_search(svg, m, std::regex("width=\"([0-9.]+)\"")));
+  CHECK(std::stod(m[1]) < 700);
+  CHECK(std::regex_search(svg, std::regex("fill=\"#b00020\">[^<]*bbbb")));  // the warning's later lines still red
+}

@@ -108,28 +108,46 @@ std::string SvgFigure::svg() const {
   for (const SvgPanel& p : panels_) caption_lines = std::max(caption_lines, wrapped(p.title, caption_chars).size());
   const double caption_extra = kCaptionLine * static_cast<double>(caption_lines - 1);
   const double panel_height = tallest * scale + 30 + caption_extra;  // the drawing, then the panel's title
-  // Wide enough for the title and the notes too (15 and 12 px text), so a one-panel figure does not cut them.
-  double width = std::max(kMargin + panels_.size() * (kPanelWidth + kMargin), 2 * kMargin + 8.0 * title_.size());
-  for (const std::string& note : notes_) width = std::max(width, 2 * kMargin + 12 * kCharWidth * static_cast<double>(note.size()));
-  const double notes_height = kNoteHeight * static_cast<double>(notes_.size());
-  const double height = kTitleHeight + notes_height + panel_height + (scale_ ? kBarHeight : 0) + kMargin;
+  // The panels' width, or a line of kNoteChars characters of notes when that
+  // is wider; the title and the notes wrapped to it (a warning of one line
+  // made a one-panel picture 4,000 px wide and its drape a speck, and a long
+  // title ran past the right edge: an outside check).
+  constexpr double kNoteChars = 90;
+  // At most kColumns panels a row (a grid of 16 sampled bodies was one row
+  // 5,000 px wide: an outside check).
+  constexpr std::size_t kColumns = 6;
+  const std::size_t columns = std::min(panels_.size(), kColumns), rows = (panels_.size() + kColumns - 1) / kColumns;
+  const double width = std::max(kMargin + static_cast<double>(columns) * (kPanelWidth + kMargin),
+                                2 * kMargin + 12 * kCharWidth * kNoteChars);
+  const std::vector<std::string> title_lines = wrapped(title_, static_cast<std::size_t>((width - 2 * kMargin) / (15 * kCharWidth)));
+  std::vector<std::pair<std::string, bool>> note_lines;  // (a line, of a warning)
+  for (const std::string& note : notes_)
+    for (const std::string& line : wrapped(note, static_cast<std::size_t>((width - 2 * kMargin) / (12 * kCharWidth))))
+      note_lines.emplace_back(line, note.rfind("warning:", 0) == 0);
+  const double title_height = kTitleHeight + kNoteHeight * static_cast<double>(title_lines.size() - 1);
+  const double notes_height = kNoteHeight * static_cast<double>(note_lines.size());
+  const double panels_height = static_cast<double>(rows) * panel_height + static_cast<double>(rows - 1) * kMargin;
+  const double height = title_height + notes_height + panels_height + (scale_ ? kBarHeight : 0) + kMargin;
   std::ostringstream o;
   o.setf(std::ios::fixed);
   o.precision(1);
   o << "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" << width << "\" height=\"" << height << "\" viewBox=\"0 0 "
     << width << " " << height << "\" font-family=\"sans-serif\">\n";
   o << "<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n";
-  o << "<text x=\"" << kMargin << "\" y=\"20\" font-size=\"15\">" << xml_escaped(title_) << "</text>\n";
-  for (std::size_t i = 0; i < notes_.size(); ++i)
-    o << "<text x=\"" << kMargin << "\" y=\"" << kTitleHeight + kNoteHeight * (static_cast<double>(i) + 0.5)
-      << "\" font-size=\"12\" fill=\"" << (notes_[i].rfind("warning:", 0) == 0 ? "#b00020" : "#444") << "\">"
-      << xml_escaped(notes_[i]) << "</text>\n";
+  for (std::size_t i = 0; i < title_lines.size(); ++i)
+    o << "<text x=\"" << kMargin << "\" y=\"" << 20 + kNoteHeight * static_cast<double>(i) << "\" font-size=\"15\">"
+      << xml_escaped(title_lines[i]) << "</text>\n";
+  for (std::size_t i = 0; i < note_lines.size(); ++i)
+    o << "<text x=\"" << kMargin << "\" y=\"" << title_height + kNoteHeight * (static_cast<double>(i) + 0.5)
+      << "\" font-size=\"12\" fill=\"" << (note_lines[i].second ? "#b00020" : "#444") << "\">"
+      << xml_escaped(note_lines[i].first) << "</text>\n";
 
   const Eigen::Vector3d light = Eigen::Vector3d(0.3, 0.4, 1.0).normalized();
 
   for (std::size_t pi = 0; pi < panels_.size(); ++pi) {
     const SvgPanel& panel = panels_[pi];
-    const double left = kMargin + pi * (kPanelWidth + kMargin), top = kTitleHeight + notes_height;
+    const double left = kMargin + static_cast<double>(pi % kColumns) * (kPanelWidth + kMargin),
+                 top = title_height + notes_height + static_cast<double>(pi / kColumns) * (panel_height + kMargin);
     // Centre the panel's content horizontally, its top a little below the title.
     Eigen::RowVector3d lo = Eigen::RowVector3d::Constant(1e30), hi = Eigen::RowVector3d::Constant(-1e30);
     for (const SvgLayer& l : panel.layers)
@@ -173,7 +191,7 @@ std::string SvgFigure::svg() const {
     o << "</g>\n";
   }
   if (scale_) {
-    const double y = kTitleHeight + notes_height + panel_height + 8, x0 = kMargin, w = std::min(360.0, width - 2 * kMargin);
+    const double y = title_height + notes_height + panels_height + 8, x0 = kMargin, w = std::min(360.0, width - 2 * kMargin);
     o << "<defs><linearGradient id=\"cmap\">";
     o.precision(3);  // (the eighths, not 0.1, 0.2, 0.4: the faces' colours are the eighths')
     for (int i = 0; i <= 8; ++i) o << "<stop offset=\"" << i / 8.0 << "\" stop-color=\"" << colour_map(i / 8.0) << "\"/>";

@@ -10,6 +10,7 @@ namespace drape {
 struct ChartPoint {
   double x = 0, y = 0;
   std::string label;
+  bool on_front = false;  // joined to the other points on it by a dashed line, in x order (a Pareto front)
 };
 
 struct ScatterChart {
