@@ -36,6 +36,8 @@
 #include <drape/services/graded_scene.hpp>
 #include <drape/services/scene_body.hpp>
 #include <drape/io/svg_chart.hpp>
+#include <fstream>
+#include <limits>
 #include <drape/geometry/self_intersection.hpp>
 #include <drape/geometry/surface_crossings.hpp>
 
@@ -257,11 +259,14 @@ void write_chart(const std::vector<Method>& methods, std::size_t bodies, bool po
   chart.y_label = "ME to the converged simulation (cm)";
   for (const Method& m : methods) {
     char label[320];
-    std::snprintf(label, sizeof label,
-                  "%s%s: %.3g s, ME %.2f cm, L_p %.4g J, p %.2f%%, edges crossing the body %.1f, itself %.1f",
-                  m.pareto ? "* " : "", m.name.c_str(), m.seconds, m.me_cm, m.potential, m.p_percent, m.body_crossings,
-                  m.self_crossings);
-    chart.points.push_back({m.seconds, m.me_cm, label, m.pareto});
+    std::snprintf(label, sizeof label, "%s%s: %.3g s, ME %.2f cm, L_p %.4g J, p %.2f%%", m.pareto ? "* " : "",
+                  m.name.c_str(), m.seconds, m.me_cm, m.potential, m.p_percent);
+    std::string text = label;
+    if (std::isfinite(m.body_crossings)) {  // (unknown in a replotted CSV of before they were counted)
+      std::snprintf(label, sizeof label, ", edges crossing the body %.1f, itself %.1f", m.body_crossings, m.self_crossings);
+      text += label;
+    }
+    chart.points.push_back({m.seconds, m.me_cm, text, m.pareto});
   }
   chart.write(file);
   std::printf("wrote %s\n", file.c_str());
@@ -340,6 +345,45 @@ struct Bench {
   }
 };
 
+// The rows of a CSV this bench wrote (write_csv), to draw its chart again
+// without the hours of drapes behind it (--replot).
+std::vector<Method> read_csv(const std::string& file) {
+  std::ifstream in(file);
+  if (!in) throw ConfigError(file + ": cannot be read");
+  std::string line;
+  std::getline(in, line);
+  if (line.rfind("method,seconds_per_body,me_cm,potential_j,p_percent,pareto", 0) != 0)
+    throw ConfigError(file + ":1: not a CSV of drape bench accuracy-time (its header: method,seconds_per_body,me_cm,...)");
+  std::vector<Method> methods;
+  for (int number = 2; std::getline(in, line); ++number) {
+    if (line.empty()) continue;
+    const std::size_t close = line.size() > 1 && line[0] == '"' ? line.find('"', 1) : std::string::npos;
+    if (close == std::string::npos || close + 1 >= line.size() || line[close + 1] != ',')
+      throw ConfigError(file + ":" + std::to_string(number) + ": expected \"method\",numbers...");
+    Method m;
+    m.name = line.substr(1, close - 1);
+    std::istringstream rest(line.substr(close + 2));
+    std::vector<double> v;
+    for (std::string field; std::getline(rest, field, ',');) {
+      try {
+        v.push_back(std::stod(field));
+      } catch (const std::exception&) {
+        throw ConfigError(file + ":" + std::to_string(number) + ": '" + field + "' is not a number");
+      }
+    }
+    // (A CSV of before the crossings were counted has five numbers: they are unknown there.)
+    if (v.size() != 5 && v.size() < 8)
+      throw ConfigError(file + ":" + std::to_string(number) + ": expected 5 or 8 numbers after the method");
+    m.seconds = v[0], m.me_cm = v[1], m.potential = v[2], m.p_percent = v[3], m.pareto = v[4] != 0;
+    const double unknown = std::numeric_limits<double>::quiet_NaN();
+    m.body_crossings = v.size() >= 8 ? v[5] : unknown, m.self_crossings = v.size() >= 8 ? v[6] : unknown;
+    m.bodies_crossed = v.size() >= 8 ? static_cast<int>(v[7]) : 0;
+    methods.push_back(m);
+  }
+  if (methods.empty()) throw ConfigError(file + ": no rows");
+  return methods;
+}
+
 int run(const std::vector<std::string>& args) {
   po::options_description opts("drape bench accuracy-time");
   opts.add_options()("data", po::value<std::string>(), "dataset whose test bodies are draped (its scene is the simulator's)")(
@@ -352,10 +396,19 @@ int run(const std::vector<std::string>& args) {
       "spectral-k", po::value<std::string>()->default_value("16,64,256"),
       "the spectral branch cut to these eigenvector counts (its use_k), comma-separated")(
       "csv", po::value<std::string>(), "also write the table as CSV")(
-      "svg", po::value<std::string>(), "also draw ME against time with the Pareto front");
+      "svg", po::value<std::string>(), "also draw ME against time with the Pareto front")(
+      "replot", po::value<std::string>(), "draw --svg from a CSV this bench wrote instead (with --bodies, --posed as it ran)")(
+      "posed", "with --replot: the bodies were posed (the chart's title says so)");
   po::variables_map vm;
-  const std::string usage = "drape bench accuracy-time --data data.h5 [--model model.h5] [--bodies 4] [--svg chart.svg]";
+  const std::string usage = "drape bench accuracy-time --data data.h5 [--model model.h5] [--bodies 4] [--svg chart.svg]\n"
+                            "       drape bench accuracy-time --replot results.csv --svg chart.svg [--bodies 4] [--posed]";
   if (!parse(usage, args, opts, {}, vm)) return 0;
+  if (vm.count("replot")) {
+    if (!vm.count("svg")) throw UsageError("--replot needs --svg (the chart to draw)");
+    write_chart(read_csv(vm["replot"].as<std::string>()), static_cast<std::size_t>(std::max(1, vm["bodies"].as<int>())),
+                vm.count("posed") > 0, vm["svg"].as<std::string>());
+    return 0;
+  }
   if (!vm.count("data")) throw UsageError("--data FILE is required (its test bodies are the held-out bodies)");
   const std::string data = vm["data"].as<std::string>();
   const std::vector<std::pair<int, int>> budgets = simulator_budgets(vm);

@@ -184,3 +184,31 @@ TEST_CASE("bench accuracy-time times each guarantee of a model's push-out", "[be
   for (int r : {1, 2, 3}) CHECK(rows[r].p == 0);
   CHECK(rows[1].body_crossings <= rows[4].body_crossings);
 }
+
+TEST_CASE("bench accuracy-time --replot draws a chart from the CSV it wrote", "[cli][bench]") {
+  // Without the hours of drapes behind it: the shipped figures were drawn again so when their numbers ran into
+  // each other (an outside check). A CSV of before the crossings were counted has five numbers a row.
+  test::TempDir dir;
+  std::ofstream(dir / "new.csv") << "method,seconds_per_body,me_cm,potential_j,p_percent,pareto,body_crossing_edges,"
+                                    "self_crossing_edges,bodies_crossed\n"
+                                    "\"simulation 2+4 steps\",8.04,2.05,3.52,0,1,0,0,0\n"
+                                    "\"network, push-out post off\",0.00119,1.49,4.84,0.09,1,22.4,0,3\n";
+  std::ofstream(dir / "old.csv") << "method,seconds_per_body,me_cm,potential_j,p_percent,pareto\n"
+                                    "\"network\",0.004,1.5,4.9,0,1\n";
+  std::string out;
+  REQUIRE(test::run_drape("bench accuracy-time --replot " + (dir / "new.csv").string() + " --svg " + (dir / "new.svg").string() +
+                              " --bodies 8 --posed",
+                          out) == 0);
+  const std::string svg = test::read_file(dir / "new.svg");
+  CHECK_THAT(svg, Catch::Contains("8 posed test bodies") && Catch::Contains("network, push-out post off: 0.00119 s") &&
+                      Catch::Contains("edges crossing the body 22.4") && Catch::Contains("stroke-dasharray"));
+  REQUIRE(test::run_drape("bench accuracy-time --replot " + (dir / "old.csv").string() + " --svg " + (dir / "old.svg").string() +
+                              " --bodies 1",
+                          out) == 0);
+  const std::string old = test::read_file(dir / "old.svg");
+  CHECK_THAT(old, Catch::Contains("1 test body,") && Catch::Contains("network: 0.004 s") && !Catch::Contains("crossing"));
+  std::ofstream(dir / "bad.csv") << "a,b\n1,2\n";
+  CHECK(test::run_drape("bench accuracy-time --replot " + (dir / "bad.csv").string() + " --svg " + (dir / "b.svg").string(),
+                        out) == 2);
+  CHECK_THAT(out, Catch::Contains("bad.csv:1: not a CSV of drape bench accuracy-time"));
+}
