@@ -85,3 +85,19 @@ TEST_CASE("outputs are checked before any work: a missing folder, an unknown mes
   CHECK_THAT(out, Catch::Contains("unknown mesh format '.stl'") && !Catch::Contains("predicted"));
   CHECK_FALSE(fs::exists(dir / "missing"));
 }
+
+TEST_CASE("a job stopped by SIGTERM while it writes its output leaves no temporary of it", "[cli][lock]") {
+  // An outside check: a dataset expand stopped by Ctrl-C left its 18 MB temporary until the next write of that
+  // output. The signal's handler removes the temporaries being written with the lock.
+  test::TempDir dir;
+  std::string out;
+  const std::string shards = (test::source_dir() / "datasets/bodyspace2000-human/shard-0[0-3]-of-40.h5").string();
+  const std::string job = test::drape_program().string() + " dataset expand --out " + (dir / "ex.h5").string() + " " + shards;
+  CHECK(test::run(job + " > /dev/null 2>&1 & pid=$!; for i in $(seq 200); do ls -a " + dir.path().string() +
+                      " | grep -q '^\\.ex\\.tmp' && break; sleep 0.05; done; kill -TERM $pid; wait $pid; echo \"status $?\"",
+                  out) == 0);
+  INFO(out);
+  CHECK_THAT(out, Catch::Contains("status 143"));
+  for (const auto& e : fs::directory_iterator(dir.path())) CHECK(e.path().filename().string().find(".tmp") == std::string::npos);
+  CHECK_FALSE(fs::exists(dir / "ex.h5.lock"));
+}

@@ -7,6 +7,9 @@
 #include <unistd.h>
 
 #include <atomic>
+#include <mutex>
+#include <cstring>
+#include <csignal>
 #include <cerrno>
 #include <climits>
 #include <fstream>
@@ -62,7 +65,51 @@ void remove_stale_temporaries(const fs::path& dir, const fs::path& target, const
   }
 }
 
+// The temporaries being written now, for a terminating signal's handler
+// (output_lock.cpp): a job stopped by Ctrl-C or SIGTERM mid-write left its
+// temporary (18 MB for a dataset expand; an outside check) until the next
+// write of that target. Fixed slots of plain characters: unlink is safe in a
+// handler, and nothing there allocates.
+constexpr int kInFlight = 16;
+constexpr std::size_t kPath = 4096;
+char in_flight[kInFlight][kPath];
+volatile std::sig_atomic_t in_flight_used[kInFlight];
+std::mutex in_flight_mutex;
+
+// A slot holding `tmp` for the write's duration, or none (-1) when all are
+// taken or the path is too long: then only the next write removes it.
+class InFlight {
+ public:
+  explicit InFlight(const fs::path& tmp) {
+    const std::string path = tmp.string();
+    if (path.size() >= kPath) return;
+    const std::lock_guard<std::mutex> lock(in_flight_mutex);
+    for (int i = 0; i < kInFlight; ++i)
+      if (!in_flight_used[i]) {
+        std::memcpy(in_flight[i], path.c_str(), path.size() + 1);
+        in_flight_used[i] = 1;
+        slot_ = i;
+        return;
+      }
+  }
+  ~InFlight() {
+    if (slot_ < 0) return;
+    const std::lock_guard<std::mutex> lock(in_flight_mutex);
+    in_flight_used[slot_] = 0;
+  }
+  InFlight(const InFlight&) = delete;
+  InFlight& operator=(const InFlight&) = delete;
+
+ private:
+  int slot_ = -1;
+};
+
 }  // namespace
+
+void unlink_temporaries_in_flight() noexcept {
+  for (int i = 0; i < kInFlight; ++i)
+    if (in_flight_used[i]) ::unlink(in_flight[i]);
+}
 
 void remove_stale_temporaries(const fs::path& target) {
   static const std::string host = host_tag();
@@ -81,6 +128,7 @@ void write_atomically(const fs::path& target, const std::function<void(const fs:
   // Keep the extension last: some writers (assimp) pick the format from it.
   const fs::path tmp = dir / ("." + target.stem().string() + ".tmp" + std::to_string(::getpid()) + "-" +
                               std::to_string(counter++) + "@" + host + target.extension().string());
+  const InFlight held(tmp);  // (removed by a terminating signal's handler too)
   try {
     write(tmp);
   } catch (const Error& e) {

@@ -54,6 +54,7 @@ volatile std::sig_atomic_t held_in_use[kHeldLocks];
 extern "C" void remove_held_locks(int signal) {
   for (int i = 0; i < kHeldLocks; ++i)
     if (held_in_use[i]) ::unlink(held_locks[i]);
+  unlink_temporaries_in_flight();  // (the output being written, half done)
   std::signal(signal, SIG_DFL);
   std::raise(signal);
 }

@@ -20,6 +20,11 @@ void write_atomically(const std::filesystem::path& target,
 // temporary filling it, and the next run was refused "no space left".
 void remove_stale_temporaries(const std::filesystem::path& target);
 
+// Unlinks the temporaries write_atomically is writing now. Safe in a signal
+// handler (unlink only): a job's terminating signal removes them with its
+// lock (output_lock.cpp), instead of leaving them to the next write.
+void unlink_temporaries_in_flight() noexcept;
+
 // A text file (reports, pictures), atomically; Error when it cannot be written.
 void write_text_atomically(const std::filesystem::path& target, const std::string& text);
 
