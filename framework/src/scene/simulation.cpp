@@ -133,8 +133,9 @@ void settle(ClothSolver& solver, Eigen::MatrixX3d& x, Eigen::MatrixX3d& v, const
     if (scene_detail::fell_off_body(x, target_body)) break;  // falling on: nothing can bring it back
   }
   // At rest counts only near equilibrium: a stall with large unbalanced forces is not a drape.
-  result.converged = (result.stationarity <= settle_tolerance && !result.sliding()) ||
-                     (result.at_rest && result.stationarity <= at_rest_limit);
+  result.converged = ((result.stationarity <= settle_tolerance && !result.sliding()) ||
+                      (result.at_rest && result.stationarity <= at_rest_limit)) &&
+                     !scene_detail::fell_off_body(x, target_body);  // (at rest on the feet is no drape)
 }
 
 // The settled drape's energies and forces, why it did not settle (when it did
@@ -279,6 +280,27 @@ Simulation::Simulation(const Registry& registry, Scene scene) : registry_(regist
     start_refusal_ = scene_detail::cloth_too_short(cloth_loop_, fit_body_, body_model_->faces(), pattern);
     if (start_refusal_.empty()) start_refusal_ = scene_detail::cloth_far_longer_than_shape(cloth_loop_, placed_loop_, pattern);
     shape_note_ = scene_detail::shape_larger_than_cloth(cloth_loop_, placed_loop_, pattern);
+  }
+  // A cloth whose rest shape is the mesh as given (material_space: rest)
+  // is made through itself where that mesh passes through itself: the
+  // self-contact leaves pairs near each other at rest alone, so they cross
+  // freely (an outside check's mesh crossing itself at 33 edges "settled" at
+  // 58, exit 0). Dressing untangles the start, not the cloth's rest shape.
+  bool rest_from_shape = false;
+  for (const ParamSpec& p : gd.params)
+    if (p.name == "material_space")
+      rest_from_shape = Params(gd.params, scene_.garment_params, "garment '" + scene_.garment + "'").get_string("material_space") == "rest";
+  if (start_refusal_.empty() && rest_from_shape) {
+    const auto crossed = geometry::self_edge_crossings(undressed_, garment_->mesh.faces, 1000);
+    if (!crossed.empty()) {
+      std::vector<int> where;
+      for (const auto& [edge, face] : crossed) where.push_back(edge.first), where.push_back(edge.second);
+      start_refusal_ = "simulate: the garment's mesh passes through itself: " + std::to_string(crossed.size()) +
+                       (crossed.size() >= 1000 ? " or more" : "") + " of its edges through its own faces (" +
+                       scene_detail::describe_region(undressed_, where) +
+                       "), and with material_space: rest that mesh is the cloth at rest, so the cloth would be made "
+                       "crossed there; give a mesh that does not cross itself, or UVs for its material space";
+    }
   }
   const Params solver(scene_solver_specs(), scene_.solver, "solver");
   morph_steps_ = static_cast<int>(solver.get_int("morph_steps"));

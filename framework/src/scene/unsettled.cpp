@@ -9,11 +9,16 @@
 #include <algorithm>
 #include <cstdio>
 #include <numeric>
+#include <vector>
 
 namespace drape::scene_detail {
 
 bool fell_off_body(const Eigen::MatrixX3d& x, const Eigen::MatrixX3d& body) {
-  return x.rows() > 0 && body.rows() > 0 && x.col(1).maxCoeff() < body.col(1).minCoeff();
+  if (x.rows() == 0 || body.rows() == 0) return false;
+  std::vector<double> heights(x.col(1).data(), x.col(1).data() + x.rows());
+  auto middle = heights.begin() + static_cast<std::ptrdiff_t>(heights.size() / 2);
+  std::nth_element(heights.begin(), middle, heights.end());
+  return *middle < body.col(1).minCoeff();
 }
 
 std::string pieces_slid_down(const Eigen::MatrixX3d& start, const Eigen::MatrixX3d& start_body, const Eigen::MatrixX3d& x,
@@ -63,11 +68,16 @@ std::string why_unsettled(const SimulationResult& result, const Eigen::MatrixX3d
   if (fell_off_body(x, body)) {
     char fell[400];
     std::snprintf(fell, sizeof fell,
-                  "the garment fell off the body: all of it is below the body's lowest point (its top %.2f m below the "
-                  "soles after %d settling steps). Nothing held it up: a garment stays on only if it hangs from the "
+                  "the garment fell off the body: half of it or more is below the body's lowest point (its middle %.2f m "
+                  "below the soles after %d settling steps). Nothing held it up: a garment stays on only if it hangs from the "
                   "shoulders, grips the body tightly enough, or its contact has friction enough (a smaller size, a "
                   "garment that reaches the shoulders, or the barrier's `friction`, 0 by default)",
-                  body.col(1).minCoeff() - x.col(1).maxCoeff(), settle_steps);
+                  [&] {
+                    std::vector<double> heights(x.col(1).data(), x.col(1).data() + x.rows());
+                    std::nth_element(heights.begin(), heights.begin() + static_cast<std::ptrdiff_t>(heights.size() / 2), heights.end());
+                    return body.col(1).minCoeff() - heights[heights.size() / 2];
+                  }(),
+                  settle_steps);
     return fell;
   }
   char head[320];

@@ -14,10 +14,13 @@ namespace drape::scene_detail {
 std::string why_unsettled(const SimulationResult& result, const Eigen::MatrixX3d& x, double tolerance, int settle_steps,
                           double at_rest_limit, double ease, const Eigen::MatrixX3d& body, bool sized);
 
-// The garment has fallen off the body: all of it below the body's lowest
-// point (a loose tube slides down over the hips and legs: the contact has no
-// friction, so only a garment that hangs from the shoulders or grips the
-// body stays on it). Nothing can bring it back, so the settling stops.
+// The garment has fallen off the body: half of it or more below the body's
+// lowest point (a loose tube slides down over the hips and legs: the contact
+// has no friction, so only a garment that hangs from the shoulders or grips
+// the body stays on it; a skirt that slid to the ankles and hung from the
+// feet "settled" with exit 0 while all of it had to be below the soles: an
+// outside check). Nothing can bring it back, so the settling stops, and it
+// is no drape.
 bool fell_off_body(const Eigen::MatrixX3d& x, const Eigen::MatrixX3d& body);
 
 // A piece of the garment that slid down the body by more than
