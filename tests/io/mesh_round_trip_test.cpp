@@ -9,6 +9,7 @@
 
 #include <catch2/catch.hpp>
 
+#include <cmath>
 #include <fstream>
 #include <iterator>
 
@@ -80,6 +81,30 @@ TEST_CASE("quads are split into a fan that keeps the corner order", "[io]") {
   CHECK(cube.faces.row(10) == Eigen::RowVector3i(4, 5, 1));
   CHECK(cube.faces.row(11) == Eigen::RowVector3i(4, 1, 0));
   CHECK(cube.uv_faces.row(11) == Eigen::RowVector3i(13, 1, 0));
+}
+
+TEST_CASE("a polygon whose first corners lie on a line is split from a corner that leaves no triangle flat", "[io]") {
+  // An outside check: a convex hexagon whose first three corners lie on one row (of the mesh and of the UVs)
+  // was fanned from corner 1 into a triangle of no area and refused as "face 0 is degenerate".
+  TempDir dir;
+  drape::test::write_text(dir / "hex.obj",
+                          "v 0 0 0\nv 1 0 0\nv 2 0 0\nv 2 1 0\nv 1 1 0\nv 0 1 0\n"
+                          "vt 0 0\nvt 0.5 0\nvt 1 0\nvt 1 1\nvt 0.5 1\nvt 0 1\n"
+                          "f 1/1 2/2 3/3 4/4 5/5 6/6\n");
+  const Mesh hex = read_mesh(dir / "hex.obj");
+  REQUIRE(hex.num_faces() == 4);
+  double area = 0;
+  for (Eigen::Index f = 0; f < hex.num_faces(); ++f) {
+    const Eigen::Vector3d a = hex.vertices.row(hex.faces(f, 0)), b = hex.vertices.row(hex.faces(f, 1)),
+                          c = hex.vertices.row(hex.faces(f, 2));
+    const Eigen::Vector3d n = (b - a).cross(c - a);
+    CHECK(n.norm() > 1e-6);  // no flat triangle
+    CHECK(n.z() > 0);        // the polygon's orientation kept
+    area += 0.5 * n.norm();
+    const Eigen::Vector2d ua = hex.uv.row(hex.uv_faces(f, 0)), ub = hex.uv.row(hex.uv_faces(f, 1)), uc = hex.uv.row(hex.uv_faces(f, 2));
+    CHECK(std::abs((ub - ua).x() * (uc - ua).y() - (ub - ua).y() * (uc - ua).x()) > 1e-6);
+  }
+  CHECK(area == Approx(2.0));  // the whole hexagon, once
 }
 
 TEST_CASE("a cube with UV seams stays 8 vertices in every format", "[io]") {
