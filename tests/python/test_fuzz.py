@@ -161,10 +161,16 @@ def test_core_warnings_are_python_warnings(tmp_path):
     # drape::warn's channel (drape/warnings.hpp) becomes drape.DrapeWarning, a UserWarning that filters see.
     import drape
     assert issubclass(drape.DrapeWarning, UserWarning)
-    with pytest.warns(drape.DrapeWarning, match="is not a directory"):
-        drape.load_plugins(str(tmp_path / "no-such-folder"))
+    # (A folder holding a file named as a plugin that is none: refused with a warning, as --plugin-path does;
+    # a path that does not exist is a ConfigError since the fifty-third session, test_arguments.py.)
+    folder = tmp_path / "plugins"
+    folder.mkdir()
+    (folder / "libdrape_plugin_fake.so").write_bytes(b"not a library")
+    with pytest.warns(drape.DrapeWarning, match="refused plugin"):
+        drape.load_plugins(str(folder))
+    (folder / "libdrape_plugin_fake2.so").write_bytes(b"not a library either")
     import warnings
     with warnings.catch_warnings():
         warnings.simplefilter("error", drape.DrapeWarning)
         with pytest.raises(drape.DrapeWarning):
-            drape.load_plugins(str(tmp_path / "no-such-folder"))
+            drape.load_plugins(str(folder))
