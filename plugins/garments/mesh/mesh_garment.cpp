@@ -13,6 +13,7 @@
 // each is the knit unless the scene's materials say otherwise.
 // Bad input is refused with one line naming the file and the element.
 #include <drape/errors.hpp>
+#include <drape/geometry/adjacency.hpp>
 #include <drape/geometry/topology.hpp>
 #include <drape/materials/materials.hpp>
 #include <drape/io/mesh_io.hpp>
@@ -22,6 +23,9 @@
 #include <Eigen/Geometry>
 
 #include <algorithm>
+#include <array>
+#include <map>
+#include <functional>
 #include <cstdio>
 #include <cmath>
 #include <filesystem>
@@ -44,8 +48,9 @@ std::string where(const MeshGarmentOptions& o) { return "garment mesh '" + o.fil
 
 // Vertices closer than `distance` to an earlier one: the seams of a garment
 // exported with split vertices. Returns, per vertex, the vertex it merges into
-// (itself when kept).
-std::vector<int> duplicates(const Eigen::MatrixX3d& v, double distance) {
+// (itself when kept). `may_merge(i, j)` says whether two such vertices are
+// a seam's two copies.
+std::vector<int> duplicates(const Eigen::MatrixX3d& v, double distance, const std::function<bool(int, int)>& may_merge) {
   std::vector<int> order(static_cast<std::size_t>(v.rows()));
   for (int i = 0; i < v.rows(); ++i) order[static_cast<std::size_t>(i)] = i;
   std::sort(order.begin(), order.end(), [&](int a, int b) { return v(a, 0) < v(b, 0) || (v(a, 0) == v(b, 0) && a < b); });
@@ -54,7 +59,7 @@ std::vector<int> duplicates(const Eigen::MatrixX3d& v, double distance) {
   for (std::size_t a = 0; a < order.size(); ++a)
     for (std::size_t b = a + 1; b < order.size() && v(order[b], 0) - v(order[a], 0) <= distance; ++b) {
       const int i = order[a], j = order[b];
-      if ((v.row(i) - v.row(j)).norm() <= distance) {
+      if ((v.row(i) - v.row(j)).norm() <= distance && may_merge(i, j)) {
         const int keep = std::min(into[static_cast<std::size_t>(i)], into[static_cast<std::size_t>(j)]);
         into[static_cast<std::size_t>(std::max(i, j))] = keep;
       }
@@ -64,7 +69,36 @@ std::vector<int> duplicates(const Eigen::MatrixX3d& v, double distance) {
 
 // Welds split seam vertices (weld: true) or refuses them, naming the first pair.
 void handle_duplicates(Mesh& mesh, const MeshGarmentOptions& o) {
-  const std::vector<int> into = duplicates(mesh.vertices, o.weld_distance);
+  // A seam's two copies lie on the borders of their pieces, joined by no
+  // edge, within a hair of each other: a thousandth of the mesh's median
+  // edge (1 um at least). An exporter's rounding split them by microns (an
+  // outside check's copies 5-20 um apart were taken as an open seam, and
+  // the skirt fell off through it); two vertices of one edge are a short
+  // edge, never a seam's copies.
+  const std::vector<std::array<int, 2>> edges = geometry::edge_list(mesh.faces);
+  std::vector<double> lengths;
+  for (const auto& [a, b] : edges) lengths.push_back((mesh.vertices.row(a) - mesh.vertices.row(b)).norm());
+  double median = 0;
+  if (!lengths.empty()) {
+    std::nth_element(lengths.begin(), lengths.begin() + static_cast<std::ptrdiff_t>(lengths.size() / 2), lengths.end());
+    median = lengths[lengths.size() / 2];
+  }
+  const double distance = std::max(o.weld_distance, 1e-3 * median);
+  std::map<std::array<int, 2>, int> uses;  // each edge's faces
+  for (int f = 0; f < mesh.num_faces(); ++f)
+    for (int k = 0; k < 3; ++k) {
+      const int a = mesh.faces(f, k), b = mesh.faces(f, (k + 1) % 3);
+      ++uses[{std::min(a, b), std::max(a, b)}];
+    }
+  std::vector<char> on_border(static_cast<std::size_t>(mesh.num_vertices()), 0);
+  for (const auto& [edge, count] : uses)
+    if (count == 1) on_border[static_cast<std::size_t>(edge[0])] = on_border[static_cast<std::size_t>(edge[1])] = 1;
+  const auto seam_copies = [&](int i, int j) {
+    if ((mesh.vertices.row(i) - mesh.vertices.row(j)).norm() <= o.weld_distance) return true;  // (on one spot: as ever)
+    return on_border[static_cast<std::size_t>(i)] && on_border[static_cast<std::size_t>(j)] &&
+           !uses.count({std::min(i, j), std::max(i, j)});
+  };
+  const std::vector<int> into = duplicates(mesh.vertices, distance, seam_copies);
   int merged = 0, first = -1;
   for (int i = 0; i < mesh.num_vertices(); ++i)
     if (into[static_cast<std::size_t>(i)] != i) {
@@ -75,6 +109,12 @@ void handle_duplicates(Mesh& mesh, const MeshGarmentOptions& o) {
   if (!o.weld)
     throw ConfigError(where(o) + ": " + std::to_string(merged) + " vertices duplicate an earlier one (vertex " +
                       std::to_string(first) + " sits on vertex " + std::to_string(into[static_cast<std::size_t>(first)]) +
+                      [&] {
+                        const double apart = (mesh.vertices.row(first) - mesh.vertices.row(into[static_cast<std::size_t>(first)])).norm();
+                        char text[96] = "";
+                        if (apart > 0) std::snprintf(text, sizeof text, ", %.3g um from it, both on the border", 1e6 * apart);
+                        return std::string(text);
+                      }() +
                       "): a seam exported with split vertices would let the garment fall apart there; set weld: true "
                       "to merge them (the garment then has fewer vertices than the file)");
   std::vector<int> index(static_cast<std::size_t>(mesh.num_vertices()), -1);
