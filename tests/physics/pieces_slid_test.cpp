@@ -52,3 +52,16 @@ TEST_CASE("a piece that slid down the body is named with how far and one that st
   down.col(1).array() -= 0.6;
   CHECK_THAT(scene_detail::pieces_slid_down(single, standing, down, standing, one), Catch::StartsWith("the garment (vertices 0-2) slid 0.60 m"));
 }
+
+TEST_CASE("a garment that slid is told of more friction when its scene has some", "[physics]") {
+  // An outside check's scene set friction 0.3 and was told of "the barrier's `friction`, 0 by default".
+  Eigen::MatrixX3d standing(2, 3), start(3, 3), down(3, 3);
+  standing << 0, 0, 0, 0, 1.7, 0;
+  start << 0, 1.0, 0, 0.1, 1.0, 0, 0, 1.1, 0;
+  down << 0, 0.4, 0, 0.1, 0.4, 0, 0, 0.5, 0;
+  Eigen::MatrixX3i one(1, 3);
+  one << 0, 1, 2;
+  CHECK_THAT(scene_detail::pieces_slid_down(start, standing, down, standing, one), Catch::Contains("0 by default"));
+  CHECK_THAT(scene_detail::pieces_slid_down(start, standing, down, standing, one, true),
+             Catch::Contains("more friction than the scene's") && !Catch::Contains("0 by default"));
+}

@@ -153,11 +153,13 @@ void measure_drape(const ClothSolver& solver, std::vector<NamedEnergy>& energies
   for (const NamedEnergy& e : energies)
     if (const Dissipation* d = e.energy->dissipation()) d->add_gradient(x, gradient);
   result.vertex_force = gradient.rowwise().norm();
+  const bool has_friction =
+      std::any_of(energies.begin(), energies.end(), [](const NamedEnergy& e) { return e.energy->dissipation() != nullptr; });
   if (!result.converged) {
     const double ease = garment_ease(garment.vertices, garment.faces, mean_body, target_body, body_faces);
     result.unsettled =
         scene_detail::why_unsettled(result, x, settle_tolerance, result.steps - morph_steps, at_rest_limit, ease, target_body,
-                                    sized);
+                                    sized, has_friction);
     // Steps that found no decrease: an energy whose gradient is not its
     // value's derivative is one cause (a plugin's mistake), named.
     if (result.line_search_failures > 0) result.unsettled += scene_detail::inconsistent_gradients(energies, x, gradient);
@@ -172,7 +174,7 @@ void measure_drape(const ClothSolver& solver, std::vector<NamedEnergy>& energies
   // feet) is no drape of it, settled or not: said (a garment that fell off
   // whole is said by why_unsettled).
   if (!scene_detail::fell_off_body(x, target_body)) {
-    const std::string slid = scene_detail::pieces_slid_down(garment.vertices, mean_body, x, target_body, garment.faces);
+    const std::string slid = scene_detail::pieces_slid_down(garment.vertices, mean_body, x, target_body, garment.faces, has_friction);
     if (!slid.empty() && result.converged) warn(slid);
     else if (!slid.empty()) result.unsettled += "; " + slid;
   }

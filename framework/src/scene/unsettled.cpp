@@ -21,8 +21,14 @@ bool fell_off_body(const Eigen::MatrixX3d& x, const Eigen::MatrixX3d& body) {
   return *middle < body.col(1).minCoeff();
 }
 
+namespace {
+const char* friction_advice(bool has_friction) {
+  return has_friction ? "more friction than the scene's (the barrier's `friction`)" : "the barrier's `friction`, 0 by default";
+}
+}  // namespace
+
 std::string pieces_slid_down(const Eigen::MatrixX3d& start, const Eigen::MatrixX3d& start_body, const Eigen::MatrixX3d& x,
-                             const Eigen::MatrixX3d& body, const Eigen::MatrixX3i& faces) {
+                             const Eigen::MatrixX3d& body, const Eigen::MatrixX3i& faces, bool has_friction) {
   if (start.rows() != x.rows() || x.rows() == 0 || start_body.rows() == 0 || body.rows() == 0) return "";
   const double sole0 = start_body.col(1).minCoeff(), height0 = start_body.col(1).maxCoeff() - sole0;
   const double sole = body.col(1).minCoeff(), height = body.col(1).maxCoeff() - sole;
@@ -56,28 +62,28 @@ std::string pieces_slid_down(const Eigen::MatrixX3d& start, const Eigen::MatrixX
     std::snprintf(text, sizeof text,
                   "%s (vertices %d-%d) slid %.2f m down the body from where it was put on, nothing holding it up (a "
                   "garment stays on only if it hangs from the shoulders, grips the body, or its contact has friction "
-                  "enough: the barrier's `friction`, a smaller size)",
-                  which.c_str(), d.first, d.last, d.sum / d.count * height);
+                  "enough: %s, a smaller size)",
+                  which.c_str(), d.first, d.last, d.sum / d.count * height, friction_advice(has_friction));
     out += (out.empty() ? "" : "; ") + std::string(text);
   }
   return out;
 }
 
 std::string why_unsettled(const SimulationResult& result, const Eigen::MatrixX3d& x, double tolerance, int settle_steps,
-                          double at_rest_limit, double ease, const Eigen::MatrixX3d& body, bool sized) {
+                          double at_rest_limit, double ease, const Eigen::MatrixX3d& body, bool sized, bool has_friction) {
   if (fell_off_body(x, body)) {
     char fell[400];
     std::snprintf(fell, sizeof fell,
                   "the garment fell off the body: half of it or more is below the body's lowest point (its middle %.2f m "
                   "below the soles after %d settling steps). Nothing held it up: a garment stays on only if it hangs from the "
                   "shoulders, grips the body tightly enough, or its contact has friction enough (a smaller size, a "
-                  "garment that reaches the shoulders, or the barrier's `friction`, 0 by default)",
+                  "garment that reaches the shoulders, or %s)",
                   [&] {
                     std::vector<double> heights(x.col(1).data(), x.col(1).data() + x.rows());
                     std::nth_element(heights.begin(), heights.begin() + static_cast<std::ptrdiff_t>(heights.size() / 2), heights.end());
                     return body.col(1).minCoeff() - heights[heights.size() / 2];
                   }(),
-                  settle_steps);
+                  settle_steps, friction_advice(has_friction));
     return fell;
   }
   char head[320];

@@ -12,7 +12,8 @@
 namespace drape::scene_detail {
 
 std::string why_unsettled(const SimulationResult& result, const Eigen::MatrixX3d& x, double tolerance, int settle_steps,
-                          double at_rest_limit, double ease, const Eigen::MatrixX3d& body, bool sized);
+                          double at_rest_limit, double ease, const Eigen::MatrixX3d& body, bool sized,
+                          bool has_friction = false);
 
 // The garment has fallen off the body: half of it or more below the body's
 // lowest point (a loose tube slides down over the hips and legs: the contact
@@ -32,7 +33,10 @@ bool fell_off_body(const Eigen::MatrixX3d& x, const Eigen::MatrixX3d& body);
 // sentence per such piece ("piece 2 of 2 (vertices 1048-2135) slid 0.75 m
 // down ..."), "" when none.
 inline constexpr double kSlidShare = 0.15;
+// has_friction: the scene's contact has friction already, so the advice
+// asks for more, not for some (an outside check's scene set 0.3 and was told
+// of "the barrier's `friction`, 0 by default").
 std::string pieces_slid_down(const Eigen::MatrixX3d& start, const Eigen::MatrixX3d& start_body, const Eigen::MatrixX3d& x,
-                             const Eigen::MatrixX3d& body, const Eigen::MatrixX3i& faces);
+                             const Eigen::MatrixX3d& body, const Eigen::MatrixX3i& faces, bool has_friction = false);
 
 }  // namespace drape::scene_detail
