@@ -205,3 +205,14 @@ TEST_CASE("a long note or title is wrapped to the picture's width", "[svg]") {
   CHECK(std::stod(m[1]) < 700);
   CHECK(std::regex_search(svg, std::regex("fill=\"#b00020\">[^<]*bbbb")));  // the warning's later lines still red
 }
+
+TEST_CASE("the HTML page's panels are as wide as their canvases", "[svg]") {
+  // An outside check: a panel's one-line caption made it twice as wide as its canvas, the drape in its left quarter.
+  SvgFigure figure("title");
+  figure.add_panel({"p = 0.00% of the vertices inside the body, 0 edges crossing it, " + std::string(200, 'x'), {cube()}});
+  const std::string html = figure.html();
+  std::smatch canvas, panel;
+  REQUIRE(std::regex_search(html, canvas, std::regex("canvas\\.width = ([0-9]+)")));
+  REQUIRE(std::regex_search(html, panel, std::regex("\\.panel\\{[^}]*width:([0-9]+)px")));
+  CHECK(canvas[1].str() == panel[1].str());
+}

@@ -174,7 +174,7 @@ std::string SvgFigure::html() const {
   std::ostringstream o;
   o << "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\"><title>" << xml_escaped(title_)
     << "</title>\n<style>body{font:14px sans-serif;margin:16px;color:#222}#panels{display:flex;flex-wrap:wrap;gap:12px}"
-       ".panel{border:1px solid #ddd;padding:6px}canvas{display:block;cursor:grab}.bar{width:320px;height:12px;"
+       ".panel{border:1px solid #ddd;padding:6px;width:420px;overflow-wrap:anywhere}canvas{display:block;cursor:grab}.bar{width:320px;height:12px;"
        "background:linear-gradient(to right";
   for (int i = 0; i <= 8; ++i) o << "," << colour_map(i / 8.0);
   // A note may hold a long unbroken run (a pose "name=deg,name=deg,..."): wrapped anywhere, not past the page.
