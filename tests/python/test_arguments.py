@@ -132,3 +132,12 @@ def test_a_body_at_rest_given_with_a_pose_is_not_noted_as_at_rest():
         warnings.simplefilter("always")
         posed.predict(body, pose={"left_shoulder_abduction": 40, "right_shoulder_abduction": 70, "elbow_flexion": 30})
     assert not [w for w in seen if "is at rest" in str(w.message)], [str(w.message) for w in seen]
+
+
+def test_an_unsigned_index_past_int64_is_named_as_given():
+    shard = next((SOURCE / "datasets").rglob("*.h5"), None)
+    if shard is None:
+        pytest.skip("no shipped dataset")
+    d = drape.Dataset(str(shard))
+    with pytest.raises(ValueError, match=f"sample {2**63 + 5} is not a done sample"):
+        d.read(np.array([2**63 + 5], dtype=np.uint64))
