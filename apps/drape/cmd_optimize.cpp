@@ -86,7 +86,9 @@ int run(const std::vector<std::string>& args) {
       "--out garment.obj\n       drape optimize [--model model.h5] --scene scene.yaml --data data.h5 [--split train] "
       "--out optimized.h5 [--threads T] [--shard i/N]";
   if (!parse(usage, args, opts, {}, vm)) return 0;
-  if (!vm.count("data")) check_mesh_outputs(vm, {"out"});  // with --data, --out is a dataset
+  // (--before too: an outside check's --before in a missing folder was
+  // refused after the optimisation, its --out written.)
+  if (!vm.count("data")) check_mesh_outputs(vm, {"out", "before"});  // with --data, --out is a dataset
   if (!vm.count("scene")) throw UsageError("--scene FILE is required (its effects and materials make the potential)");
   if (!vm.count("out")) throw UsageError("--out FILE is required (the optimised garment, or dataset with --data)");
   // Before any file is made (an outside check: with --data they were refused

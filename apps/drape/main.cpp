@@ -71,7 +71,7 @@ bool parse(const std::string& usage, const std::vector<std::string>& args, po::o
   // (predict --out g.obj --body-out g.obj kept the body and lost the garment).
   // A path given empty is a shell variable never set: said as such (it was
   // "filesystem error: cannot make absolute path", exit 1).
-  for (const char* option : {"out", "body-out", "svg", "csv", "pose-out", "out-dir", "write-garment", "body", "unpose",
+  for (const char* option : {"out", "body-out", "before", "svg", "csv", "pose-out", "out-dir", "write-garment", "body", "unpose",
                              "data", "model", "pose-file", "smpl-theta", "drapes", "init", "mesh", "graph", "scene",
                              "data-dir", "cache-dir", "work"}) {
     if (!vm.count(option)) continue;
@@ -80,7 +80,7 @@ bool parse(const std::string& usage, const std::vector<std::string>& args, po::o
       throw UsageError(std::string("--") + option + " is empty (a shell variable never set?): give a path\nusage: " + usage);
   }
   std::map<std::filesystem::path, std::string> written;
-  for (const char* option : {"out", "body-out", "svg", "csv", "pose-out", "write-garment"}) {
+  for (const char* option : {"out", "body-out", "before", "svg", "csv", "pose-out", "write-garment"}) {
     if (!vm.count(option)) continue;
     const boost::any& value = vm[option].value();
     const std::string* file = boost::any_cast<std::string>(&value);

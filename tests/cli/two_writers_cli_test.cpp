@@ -74,7 +74,10 @@ TEST_CASE("outputs are checked before any work: a missing folder, an unknown mes
        {" simulate " + (dir / "tiny.yaml").string() + " --bmi 30 --out " + missing, " predict --bmi 30 --out " + missing,
         " predict --bmi 30 --out " + (dir / "g.obj").string() + " --body-out " + missing, " body --bmi 30 --out " + missing,
         " train graphs/examples/mlp_baseline.yaml --data none.h5 --out " + (dir / "missing" / "m.h5").string(),
-        " generate " + (dir / "tiny.yaml").string() + " --count 2 --out " + (dir / "missing" / "d.h5").string()}) {
+        " generate " + (dir / "tiny.yaml").string() + " --count 2 --out " + (dir / "missing" / "d.h5").string(),
+        // (--before was refused after the optimisation, its --out written: an outside check.)
+        " optimize --scene graphs/scenes/tshirt_coarse.yaml --bmi 30 --iters 1 --out " + (dir / "o.obj").string() +
+            " --before " + missing}) {
     INFO(command);
     CHECK(test::run("cd " + test::source_dir().string() + " && " + drape + command, out) == 2);
     INFO(out);
@@ -84,6 +87,7 @@ TEST_CASE("outputs are checked before any work: a missing folder, an unknown mes
   CHECK(test::run(drape + " predict --bmi 30 --out " + (dir / "g.stl").string(), out) == 2);
   CHECK_THAT(out, Catch::Contains("unknown mesh format '.stl'") && !Catch::Contains("predicted"));
   CHECK_FALSE(fs::exists(dir / "missing"));
+  CHECK_FALSE(fs::exists(dir / "o.obj"));  // optimize's --out not written before its --before was refused
 }
 
 TEST_CASE("a job stopped by SIGTERM while it writes its output leaves no temporary of it", "[cli][lock]") {
