@@ -32,7 +32,9 @@ int run(const std::vector<std::string>& args) {
   if (!vm.count("file")) throw UsageError("an experiment file is required, e.g. graphs/experiments/table_6_1.yaml");
   ExperimentOptions o;
   o.scale = vm["scale"].as<double>();
-  if (!(o.scale > 0)) throw UsageError("--scale must be positive");
+  // (inf and 1e300 planned 10-body sets in a folder named "-xinf": an outside check.)
+  if (!(o.scale > 0) || !(o.scale <= 1000))
+    throw UsageError("--scale must be a number in (0, 1000] (the dataset sizes times it; 20 for the seed's 20,000 bodies)");
   o.epochs = vm["epochs"].as<long>();
   if (o.epochs < 0) throw UsageError("--epochs must be >= 0");
   o.threads = vm["threads"].as<int>();

@@ -96,9 +96,9 @@ int run(const std::vector<std::string>& args) {
   // corrected command), naming the option.
   if (vm["iters"].as<int>() < 0)
     throw UsageError("--iters " + std::to_string(vm["iters"].as<int>()) + ": expected 0 or more Adam iterations");
-  if (const double lr = vm["lr"].as<double>(); !(lr > 0) || !std::isfinite(lr)) {
+  if (const double lr = vm["lr"].as<double>(); !(lr > 0) || !(lr <= 1)) {  // (1e300 ran and kept its first drape)
     char text[96];
-    std::snprintf(text, sizeof text, "--lr %g: Adam's learning rate must be a finite number above 0", lr);
+    std::snprintf(text, sizeof text, "--lr %g: Adam's learning rate must be a number in (0, 1]", lr);
     throw UsageError(text);
   }
   // Before anything looks at the output (output_lock.hpp).

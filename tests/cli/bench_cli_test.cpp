@@ -145,6 +145,11 @@ TEST_CASE("experiment and dataset resample find shipped files by name from any f
   REQUIRE(test::run(in_dir + "dataset resample " + human.string() + " --onto graphs/scenes/tshirt_coarse_sized.yaml --out r.h5",
                     out) == 0);
   CHECK_THAT(out, Catch::Contains("read at the 6490 vertices of tshirt_coarse_sized.yaml's template body"));
+  // A scale of nothing sensible (an outside check's inf planned 10-body sets in a folder named "-xinf").
+  for (const std::string scale : {"inf", "1e300", "0", "-1"}) {
+    CHECK(test::run(in_dir + "experiment graphs/experiments/table_6_4.yaml --dry-run --scale " + scale, out) == 2);
+    CHECK_THAT(out, Catch::Contains("--scale must be a number in (0, 1000]"));
+  }
   CHECK(test::run(in_dir + "experiment graphs/experiments/no_such.yaml --dry-run", out) == 2);
   CHECK_THAT(out, Catch::Contains("no_such.yaml: no such file (looked in " + dir.path().string()));
 }

@@ -141,7 +141,7 @@ TEST_CASE("generate and optimize refuse bad values before their output is begun,
   // A negative seed was read as 2^64 - 1.
   CHECK(test::run_drape(generate + " --seed -1", out) == 2);
   CHECK_THAT(out, Catch::Contains("--seed -1: expected a whole number 0 or more"));
-  for (const std::string bad : {"--iters -1", "--lr -1", "--lr 0"}) {
+  for (const std::string bad : {"--iters -1", "--lr -1", "--lr 0", "--lr 1e300"}) {
     INFO(bad);
     CHECK(test::run_drape("optimize --scene " + scene + " --data " + (dir / "none.h5").string() + " " + bad + " --out " +
                               (dir / "o.h5").string(), out) == 2);

@@ -317,7 +317,13 @@ TEST_CASE("train refuses to overwrite, resumes only with the same settings, and 
   bad = test::tiny_training(d.data, other / "m.h5");
   bad.lr = -1;
   CHECK_THROWS_AS(train(test::plugins(), bad), ConfigError);
+  // Nonsense above too (an outside check's 1e300 trained and wrote a model), and a decay that turns weights' signs.
+  bad.lr = 1e300;
+  CHECK_THROWS_WITH(train(test::plugins(), bad), Catch::Contains("--lr must be a number in (0, 1]"));
   bad.lr = 1e-3;
+  bad.weight_decay = 2e3;
+  CHECK_THROWS_WITH(train(test::plugins(), bad), Catch::Contains("1 - lr * weight_decay"));
+  bad.weight_decay = 0;
   bad.schedule = "linear";
   CHECK_THROWS_WITH(train(test::plugins(), bad), Catch::Contains("constant or cosine"));
 }

@@ -91,9 +91,16 @@ void check_options(const TrainOptions& o) {
   auto bad = [](const std::string& what) { throw ConfigError(what); };
   if (o.epochs < 1) bad("--epochs must be at least 1, got " + std::to_string(o.epochs));
   if (o.batch < 1) bad("--batch must be at least 1, got " + std::to_string(o.batch));
-  if (!(o.lr > 0) || !std::isfinite(o.lr)) bad("--lr must be a positive number, got " + exact(o.lr));
+  // (Bounded above too: an outside check's --lr 1e300 and --weight-decay
+  // 1e300 trained and wrote a model. Adam moves a weight by up to about lr a
+  // step, and AdamW scales it by 1 - lr * weight_decay, which must not turn
+  // its sign.)
+  if (!(o.lr > 0) || !(o.lr <= 1)) bad("--lr must be a number in (0, 1] (Adam's step), got " + exact(o.lr));
   if (!(o.weight_decay >= 0) || !std::isfinite(o.weight_decay))
     bad("--weight-decay must be a number >= 0, got " + exact(o.weight_decay));
+  if (o.lr * o.weight_decay > 1)
+    bad("--weight-decay " + exact(o.weight_decay) + " with --lr " + exact(o.lr) + ": AdamW scales each weight by 1 - lr * "
+        "weight_decay a step, below 0 here; give lr * weight_decay <= 1");
   if (o.patience < 1) bad("--patience must be at least 1, got " + std::to_string(o.patience));
   if (o.threads < 1) bad("--threads must be at least 1, got " + std::to_string(o.threads));
   if (o.eigen_k < 1) bad("--k must be at least 1, got " + std::to_string(o.eigen_k));
