@@ -239,10 +239,14 @@ void print_table(const std::vector<Method>& methods, std::size_t bodies, const s
   std::printf("%s", table.str().c_str());
 }
 
+// The CSV's columns, which --replot reads back (read_csv). A CSV of before
+// the crossings were counted ends after `pareto`.
+constexpr const char* kCsvColumns = "method,seconds_per_body,me_cm,potential_j,p_percent,pareto";
+constexpr const char* kCsvCrossingColumns = ",body_crossing_edges,self_crossing_edges,bodies_crossed";
+
 void write_csv(const std::vector<Method>& methods, const std::string& file) {
   std::ostringstream csv;
-  csv << "method,seconds_per_body,me_cm,potential_j,p_percent,pareto,body_crossing_edges,self_crossing_edges,"
-         "bodies_crossed\n";
+  csv << kCsvColumns << kCsvCrossingColumns << "\n";
   for (const Method& m : methods)
     csv << "\"" << m.name << "\"," << m.seconds << "," << m.me_cm << "," << m.potential << "," << m.p_percent << ","
         << (m.pareto ? 1 : 0) << "," << m.body_crossings << "," << m.self_crossings << "," << m.bodies_crossed << "\n";
@@ -352,8 +356,8 @@ std::vector<Method> read_csv(const std::string& file) {
   if (!in) throw ConfigError(file + ": cannot be read");
   std::string line;
   std::getline(in, line);
-  if (line.rfind("method,seconds_per_body,me_cm,potential_j,p_percent,pareto", 0) != 0)
-    throw ConfigError(file + ":1: not a CSV of drape bench accuracy-time (its header: method,seconds_per_body,me_cm,...)");
+  if (line.rfind(kCsvColumns, 0) != 0)
+    throw ConfigError(file + ":1: not a CSV of drape bench accuracy-time (its header: " + kCsvColumns + "...)");
   std::vector<Method> methods;
   for (int number = 2; std::getline(in, line); ++number) {
     if (line.empty()) continue;

@@ -53,10 +53,6 @@ ModelBodyInput body_input(const po::variables_map& vm) {
   return input;
 }
 
-// The models in `model`'s folder whose body model makes bodies of `count`
-// vertices, "tshirt-coarse.h5 and tshirt-coarse-regular.h5": for a body mesh
-// of another rig or body model than the model's (a mannequin body given to
-// the human rig's model). On the error's path only (each file is read).
 // The vertex count of the bodies a model file drapes, from its metadata and
 // its body model alone (not its weights, assets or graph); -1 for a file
 // that is no model this build reads.
@@ -71,6 +67,10 @@ Eigen::Index model_body_vertices(const Registry& registry, const fs::path& file)
   }
 }
 
+// The models in `model`'s folder whose body model makes bodies of `count`
+// vertices, "tshirt-coarse.h5 and tshirt-coarse-regular.h5": for a body mesh
+// of another rig or body model than the model's (a mannequin body given to
+// the human rig's model). On the error's path only (each file is read).
 std::string models_taking(const Model& model, Eigen::Index count, const po::variables_map& vm) {
   if (model.file().empty()) return "";
   const Registry& registry = Registry::load_default(plugin_path(vm));

@@ -6,6 +6,7 @@
 #include <drape/services/dataset_generation.hpp>
 
 #include <iostream>
+#include <type_traits>
 
 namespace drape::python {
 namespace {
@@ -16,24 +17,26 @@ std::vector<std::size_t> indices_arg(const DatasetReader& r, const py::handle& v
   if (a && a.ndim() == 1 && a.size() == 0) return {};  // [] (NumPy makes an empty list float): no samples
   if (!a || (a.dtype().kind() != 'i' && a.dtype().kind() != 'u') || a.ndim() != 1)
     throw py::value_error("indices: expected " + expected + (a ? ", got " + describe(a) : std::string()));
-  // Unsigned indices past int64's range are no sample either: refused as
-  // they are (forcecast to int64 made 2**63 + 5 "sample -9223372036854775803").
-  if (a.dtype().kind() == 'u') {
-    const auto u64 = py::array_t<unsigned long long, py::array::c_style | py::array::forcecast>::ensure(a);
-    for (py::ssize_t k = 0; k < u64.shape(0); ++k)
-      if (u64.data()[k] >= r.size())
-        throw py::value_error("indices: sample " + std::to_string(u64.data()[k]) + " is not a done sample of this dataset (it has " +
-                              std::to_string(r.size()) + ")");
-  }
-  auto i64 = py::array_t<long long, py::array::c_style | py::array::forcecast>::ensure(a);
   std::vector<std::size_t> out;
-  for (py::ssize_t k = 0; k < i64.shape(0); ++k) {
-    const long long i = i64.data()[k];
-    if (i < 0 || static_cast<std::size_t>(i) >= r.size() || !r.done()[static_cast<std::size_t>(i)])
-      throw py::value_error("indices: sample " + std::to_string(i) + " is not a done sample of this dataset (it has " +
-                            std::to_string(r.size()) + ")");
-    out.push_back(static_cast<std::size_t>(i));
-  }
+  // Each index read in its own signedness: forcecast to int64, an unsigned
+  // 2**63 + 5 was refused as "sample -9223372036854775803".
+  const auto take_all = [&](auto tag) {
+    using Index = decltype(tag);
+    const auto indices = py::array_t<Index, py::array::c_style | py::array::forcecast>::ensure(a);
+    for (py::ssize_t k = 0; k < indices.shape(0); ++k) {
+      const Index i = indices.data()[k];
+      bool done = false;
+      if constexpr (std::is_signed_v<Index>) done = i >= 0 && static_cast<std::size_t>(i) < r.size();
+      else done = i < r.size();
+      done = done && r.done()[static_cast<std::size_t>(i)];
+      if (!done)
+        throw py::value_error("indices: sample " + std::to_string(i) + " is not a done sample of this dataset (it has " +
+                              std::to_string(r.size()) + ")");
+      out.push_back(static_cast<std::size_t>(i));
+    }
+  };
+  if (a.dtype().kind() == 'u') take_all(static_cast<unsigned long long>(0));
+  else take_all(static_cast<long long>(0));
   return out;
 }
 

@@ -2,6 +2,8 @@
 
 #include <drape/errors.hpp>
 
+#include "exact_orientation.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <string>
@@ -78,15 +80,10 @@ Polygon2 polygon_from_flat(const std::vector<double>& flat, const char* what) {
   // A loop that crosses itself (a bow tie) or encloses nothing was taken
   // without a word (an outside check): which region it means is not clear.
   const std::size_t n = out.size();
-  const auto cross = [](const Eigen::Vector2d& a, const Eigen::Vector2d& b, const Eigen::Vector2d& c) {
-    return (b - a).x() * (c - a).y() - (b - a).y() * (c - a).x();
-  };
   for (std::size_t i = 0; i < n; ++i)
     for (std::size_t j = i + 2; j < n; ++j) {
       if (i == 0 && j == n - 1) continue;  // neighbours through the loop's closing edge
-      const Eigen::Vector2d &a = out[i], &b = out[(i + 1) % n], &c = out[j], &d = out[(j + 1) % n];
-      const double d1 = cross(a, b, c), d2 = cross(a, b, d), d3 = cross(c, d, a), d4 = cross(c, d, b);
-      if (((d1 > 0) != (d2 > 0)) && ((d3 > 0) != (d4 > 0)) && d1 != 0 && d2 != 0 && d3 != 0 && d4 != 0)
+      if (exact::segments_meet_2d(out[i], out[(i + 1) % n], out[j], out[(j + 1) % n]))
         throw ConfigError(std::string(what) + ": the loop crosses itself (its edge from point " + std::to_string(i + 1) +
                           " and its edge from point " + std::to_string(j + 1) + "): give the corners in order around the region");
     }

@@ -12,6 +12,7 @@
 #include <cerrno>
 #include <cstring>
 #include <string>
+#include <string_view>
 #include <variant>
 
 namespace drape::h5 {
@@ -68,8 +69,9 @@ auto guarded(const File::Impl& impl, bool user_file, const std::string& what, F&
     // A failed system call's account spans lines of times, addresses and
     // byte counts: its operation and the system's message are what count
     // ("file write failed: No space left on device").
-    if (const auto at = detail.find("error message = '"); at != std::string::npos) {
-      const auto from = at + 17, to = detail.find('\'', from);
+    constexpr std::string_view kSystemMessage = "error message = '";
+    if (const auto at = detail.find(kSystemMessage); at != std::string::npos) {
+      const auto from = at + kSystemMessage.size(), to = detail.find('\'', from);
       detail = detail.substr(0, detail.find(':')) + ": " + detail.substr(from, to == std::string::npos ? to : to - from);
     } else if (!user_file && (error == ENOSPC || error == EDQUOT || error == EFBIG || error == EIO)) {
       detail += std::string(detail.empty() ? "" : ": ") + std::strerror(error);

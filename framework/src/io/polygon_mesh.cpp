@@ -26,25 +26,30 @@ int fan_apex(const PolygonMesh& polygons, int f, bool with_uv) {
     const Eigen::RowVector2d t = polygons.uv.row(polygons.corner_uv[c]);
     return {t.x(), t.y(), 0.0};
   };
-  // The smallest triangle of the fan from `apex`, as a share of the polygon's extent squared (in space, and in the UVs).
+  // The polygon's extent squared, in space and in the UVs.
+  double extent2[2] = {1e-300, 1e-300};
+  for (const bool uv : {false, true}) {
+    if (uv && !with_uv) continue;
+    Eigen::Vector3d lo = corner(0, uv), hi = lo;
+    for (int k = 1; k < n; ++k) lo = lo.cwiseMin(corner(k, uv)), hi = hi.cwiseMax(corner(k, uv));
+    extent2[uv] = std::max((hi - lo).squaredNorm(), 1e-300);
+  }
+  // The smallest triangle of the fan from `apex`, as a share of that extent (in space, and in the UVs).
   const auto smallest = [&](int apex) {
     double least = 1e300;
     for (const bool uv : {false, true}) {
       if (uv && !with_uv) continue;
-      Eigen::Vector3d lo = corner(0, uv), hi = lo;
-      for (int k = 1; k < n; ++k) lo = lo.cwiseMin(corner(k, uv)), hi = hi.cwiseMax(corner(k, uv));
-      const double extent2 = std::max((hi - lo).squaredNorm(), 1e-300);
       for (int k = 1; k + 1 < n; ++k) {
         const Eigen::Vector3d a = corner(apex, uv), b = corner(apex + k, uv), c = corner(apex + k + 1, uv);
-        least = std::min(least, 0.5 * (b - a).cross(c - a).norm() / extent2);
+        least = std::min(least, 0.5 * (b - a).cross(c - a).norm() / extent2[uv]);
       }
     }
     return least;
   };
   constexpr double kNoArea = 1e-6;
-  if (smallest(0) > kNoArea) return 0;
   int best = 0;
   double best_area = smallest(0);
+  if (best_area > kNoArea) return 0;
   for (int apex = 1; apex < n; ++apex)
     if (const double a = smallest(apex); a > best_area) best = apex, best_area = a;
   return best;

@@ -126,21 +126,23 @@ std::string ScatterChart::svg() const {
       double dx, dy;
       bool end;
     };
+    const auto box_at = [&](const Place& c) {
+      const double left = c.end ? x + c.dx - text_width : x + c.dx;
+      return Box{left, y + c.dy - text_height + 2, left + text_width, y + c.dy + 2};
+    };
     double best_cost = 1e300;
     Place best{7, -6, false};
     for (const Place c : {Place{7, -6, false}, Place{-7, -6, true}, Place{7, 16, false}, Place{-7, 16, true},
                           Place{9, 5, false}, Place{-9, 5, true}, Place{7, -18, false}, Place{-7, -18, true},
                           Place{7, 28, false}, Place{-7, 28, true}}) {
-      const double left = c.end ? x + c.dx - text_width : x + c.dx;
-      const Box box{left, y + c.dy - text_height + 2, left + text_width, y + c.dy + 2};
+      const Box box = box_at(c);
       double cost = 0;
       for (const Box& t : taken) cost += t.overlap(box);
       if (box.x0 < kLeft || box.x1 > kLeft + w || box.y0 < kTop || box.y1 > kTop + h) cost += 1e4;  // off the plot
       if (cost < best_cost) best_cost = cost, best = c;
       if (cost == 0) break;
     }
-    const double left = best.end ? x + best.dx - text_width : x + best.dx;
-    taken.push_back({left, y + best.dy - text_height + 2, left + text_width, y + best.dy + 2});
+    taken.push_back(box_at(best));
     o << "<text x=\"" << x + best.dx << "\" y=\"" << y + best.dy << "\" font-weight=\"bold\""
       << (best.end ? " text-anchor=\"end\"" : "") << ">" << i + 1 << "</text>\n";
     o << "<text x=\"" << kLeft << "\" y=\"" << kHeight + legend_line * static_cast<double>(i) << "\"><tspan font-weight=\"bold\">"

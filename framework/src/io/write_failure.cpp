@@ -74,26 +74,29 @@ void refuse_output_among_inputs(const fs::path& out, const std::vector<fs::path>
                         "): the job would write over what it reads; name another file");
 }
 
+namespace {
+// A drape model file (a checkpoint that records its assets); anything that
+// does not read as one is not.
+bool is_drape_model(const fs::path& file) {
+  try {
+    return read_checkpoint(file).meta.count("assets") > 0;
+  } catch (const std::exception&) {
+    return false;
+  }
+}
+}  // namespace
+
 void refuse_replacing_other_than_a_model(const fs::path& out, const std::string& option) {
   std::error_code ec;
   if (!fs::exists(out, ec) || fs::is_directory(out, ec)) return;  // a folder: the writer names it as one
-  try {
-    if (read_checkpoint(out).meta.count("assets")) return;
-  } catch (const std::exception&) {
-  }
+  if (is_drape_model(out)) return;
   throw ConfigError(option + " " + out.string() + " exists and is not a drape model (a dataset, a training state, "
                     "another file): a model is written over a model only; name a new file, or move that one away");
 }
 
 void refuse_replacing_a_model(const fs::path& out, const std::string& option) {
   std::error_code ec;
-  if (!fs::is_regular_file(out, ec)) return;
-  bool model = false;
-  try {
-    model = read_checkpoint(out).meta.count("assets") > 0;
-  } catch (const std::exception&) {
-  }
-  if (model)
+  if (fs::is_regular_file(out, ec) && is_drape_model(out))
     throw ConfigError(option + " " + out.string() + " is a drape model: --force replaces a file of this command's "
                       "kind, not a model; name another file, or move that one away");
 }

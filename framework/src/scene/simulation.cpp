@@ -269,16 +269,20 @@ Simulation::Simulation(const Registry& registry, Scene scene) : registry_(regist
     needs_body_ = needs_body_ || registry_.create_energy(e.name, effect_params_.back())->needs_body();
   }
   cloth_loop_ = garment_material_girth(garment_->mesh, mean_body_);  // once, for every fit question below and in run()
+  // Where the garment's cloth at rest comes from: its UVs, or its mesh as
+  // given (a garment plugin's material_space: rest).
+  const Params garment_params(gd.params, scene_.garment_params, "garment '" + scene_.garment + "'");
+  bool rest_from_shape = false;
+  for (const ParamSpec& p : gd.params)
+    if (p.name == "material_space") rest_from_shape = garment_params.get_string("material_space") == "rest";
   // A garment whose cloth cannot go around the body it is put on, said now
   // (run() refuses it before any work; cloth_fit.hpp).
   if (needs_body_) {
     scene_detail::PatternSource pattern;
     for (const ParamSpec& p : gd.params) pattern.has_uv_scale = pattern.has_uv_scale || p.name == "uv_scale";
-    const Params garment_params(gd.params, scene_.garment_params, "garment '" + scene_.garment + "'");
     if (pattern.has_uv_scale) pattern.uv_scale = garment_params.get_float("uv_scale");
     pattern.grade = scene_.garment_grade;
-    for (const ParamSpec& p : gd.params)
-      if (p.name == "material_space") pattern.from_shape = garment_params.get_string("material_space") == "rest";
+    pattern.from_shape = rest_from_shape;
     start_refusal_ = scene_detail::cloth_too_short(cloth_loop_, fit_body_, body_model_->faces(), pattern);
     if (start_refusal_.empty()) start_refusal_ = scene_detail::cloth_far_longer_than_shape(cloth_loop_, placed_loop_, pattern);
     shape_note_ = scene_detail::shape_larger_than_cloth(cloth_loop_, placed_loop_, pattern);
@@ -288,10 +292,6 @@ Simulation::Simulation(const Registry& registry, Scene scene) : registry_(regist
   // self-contact leaves pairs near each other at rest alone, so they cross
   // freely (an outside check's mesh crossing itself at 33 edges "settled" at
   // 58, exit 0). Dressing untangles the start, not the cloth's rest shape.
-  bool rest_from_shape = false;
-  for (const ParamSpec& p : gd.params)
-    if (p.name == "material_space")
-      rest_from_shape = Params(gd.params, scene_.garment_params, "garment '" + scene_.garment + "'").get_string("material_space") == "rest";
   if (start_refusal_.empty() && rest_from_shape) {
     const auto crossed = geometry::self_edge_crossings(undressed_, garment_->mesh.faces, 1000);
     if (!crossed.empty()) {

@@ -13,19 +13,25 @@
 
 namespace drape::scene_detail {
 
-bool fell_off_body(const Eigen::MatrixX3d& x, const Eigen::MatrixX3d& body) {
-  if (x.rows() == 0 || body.rows() == 0) return false;
+namespace {
+
+// The height below which half of the garment's vertices lie (x not empty).
+double median_height(const Eigen::MatrixX3d& x) {
   std::vector<double> heights(x.col(1).data(), x.col(1).data() + x.rows());
-  auto middle = heights.begin() + static_cast<std::ptrdiff_t>(heights.size() / 2);
+  const auto middle = heights.begin() + static_cast<std::ptrdiff_t>(heights.size() / 2);
   std::nth_element(heights.begin(), middle, heights.end());
-  return *middle < body.col(1).minCoeff();
+  return *middle;
 }
 
-namespace {
 const char* friction_advice(bool has_friction) {
   return has_friction ? "more friction than the scene's (the barrier's `friction`)" : "the barrier's `friction`, 0 by default";
 }
+
 }  // namespace
+
+bool fell_off_body(const Eigen::MatrixX3d& x, const Eigen::MatrixX3d& body) {
+  return x.rows() > 0 && body.rows() > 0 && median_height(x) < body.col(1).minCoeff();
+}
 
 std::string pieces_slid_down(const Eigen::MatrixX3d& start, const Eigen::MatrixX3d& start_body, const Eigen::MatrixX3d& x,
                              const Eigen::MatrixX3d& body, const Eigen::MatrixX3i& faces, bool has_friction) {
@@ -78,12 +84,7 @@ std::string why_unsettled(const SimulationResult& result, const Eigen::MatrixX3d
                   "below the soles after %d settling steps). Nothing held it up: a garment stays on only if it hangs from the "
                   "shoulders, grips the body tightly enough, or its contact has friction enough (a smaller size, a "
                   "garment that reaches the shoulders, or %s)",
-                  [&] {
-                    std::vector<double> heights(x.col(1).data(), x.col(1).data() + x.rows());
-                    std::nth_element(heights.begin(), heights.begin() + static_cast<std::ptrdiff_t>(heights.size() / 2), heights.end());
-                    return body.col(1).minCoeff() - heights[heights.size() / 2];
-                  }(),
-                  settle_steps, friction_advice(has_friction));
+                  body.col(1).minCoeff() - median_height(x), settle_steps, friction_advice(has_friction));
     return fell;
   }
   char head[320];

@@ -17,9 +17,29 @@
 #include <cstdio>
 #include <limits>
 #include <string>
+#include <utility>
+#include <vector>
 
 namespace drape {
 namespace {
+
+// Which of the request's values lies outside what the body model declares
+// it reaches (its BMI range, a shape parameter of that name's range, a
+// proportion's range): "bmi", "height", "sex", "girth", or none.
+std::string unreachable_value(const BodyModel& model, const BodyRequest& request) {
+  const auto [bmi_lo, bmi_hi] = model.bmi_range();
+  if (!(request.bmi >= bmi_lo && request.bmi <= bmi_hi)) return "bmi";
+  const std::vector<std::string> names = model.shape_names();
+  const std::vector<std::pair<double, double>> ranges = model.shape_ranges();
+  for (const auto& [key, value] : {std::pair<const char*, double>{"height", request.height}, {"sex", request.sex}})
+    for (std::size_t i = 0; i < names.size() && i < ranges.size(); ++i)
+      if (names[i] == key && !(value >= ranges[i].first && value <= ranges[i].second)) return key;
+  for (const BodyModel::Proportion& p : model.proportions())
+    if (const auto it = request.proportions.find(p.name);
+        it != request.proportions.end() && !(it->second >= p.min && it->second <= p.max))
+      return "girth";
+  return "";
+}
 
 // The request's shape, a value the body model cannot reach named where it
 // was written (the scene's file and line, or the command line): the body
@@ -30,17 +50,13 @@ Eigen::VectorXd solve_where_written(const Simulation& design, const BodyRequest&
   try {
     return design.shape_for(request);
   } catch (const ConfigError& e) {
-    const std::string what = e.what();
+    const std::string key = unreachable_value(design.body_model(), request);
+    if (key.empty()) throw;
+    if (key == "girth") throw ConfigError(SourceLocation{"command line", 0}, std::string("--girth: ") + e.what());
     const auto& shape = design.scene().shape;
-    for (const auto& [key, word] : {std::pair<const char*, const char*>{"bmi", "BMI"}, {"height", "height"}, {"sex", "sex"}}) {
-      if (what.find(word) == std::string::npos) continue;
-      const auto it = shape.find(key);
-      const SourceLocation where = it != shape.end() ? it->second.where : SourceLocation{design.scene().file, 0};
-      throw ConfigError(where, std::string("body shape: ") + key + ": " + what);
-    }
-    if (!request.proportions.empty())
-      throw ConfigError(SourceLocation{"command line", 0}, "--girth: " + what);
-    throw;
+    const auto it = shape.find(key);
+    throw ConfigError(it != shape.end() ? it->second.where : SourceLocation{design.scene().file, 0},
+                      "body shape: " + key + ": " + e.what());
   }
 }
 

@@ -24,7 +24,6 @@
 
 #include <algorithm>
 #include <array>
-#include <map>
 #include <functional>
 #include <cstdio>
 #include <cmath>
@@ -84,19 +83,18 @@ void handle_duplicates(Mesh& mesh, const MeshGarmentOptions& o) {
     median = lengths[lengths.size() / 2];
   }
   const double distance = std::max(o.weld_distance, 1e-3 * median);
-  std::map<std::array<int, 2>, int> uses;  // each edge's faces
-  for (int f = 0; f < mesh.num_faces(); ++f)
-    for (int k = 0; k < 3; ++k) {
-      const int a = mesh.faces(f, k), b = mesh.faces(f, (k + 1) % 3);
-      ++uses[{std::min(a, b), std::max(a, b)}];
-    }
+  // The border: the corners of each face's edge with no face across it.
   std::vector<char> on_border(static_cast<std::size_t>(mesh.num_vertices()), 0);
-  for (const auto& [edge, count] : uses)
-    if (count == 1) on_border[static_cast<std::size_t>(edge[0])] = on_border[static_cast<std::size_t>(edge[1])] = 1;
+  const std::vector<std::array<int, 3>> across = geometry::face_neighbours(mesh.faces);
+  for (int f = 0; f < mesh.num_faces(); ++f)
+    for (int k = 0; k < 3; ++k)
+      if (across[static_cast<std::size_t>(f)][static_cast<std::size_t>(k)] < 0)
+        on_border[static_cast<std::size_t>(mesh.faces(f, k))] = on_border[static_cast<std::size_t>(mesh.faces(f, (k + 1) % 3))] = 1;
   const auto seam_copies = [&](int i, int j) {
     if ((mesh.vertices.row(i) - mesh.vertices.row(j)).norm() <= o.weld_distance) return true;  // (on one spot: as ever)
+    // (edge_list's edges are sorted, each lower vertex first.)
     return on_border[static_cast<std::size_t>(i)] && on_border[static_cast<std::size_t>(j)] &&
-           !uses.count({std::min(i, j), std::max(i, j)});
+           !std::binary_search(edges.begin(), edges.end(), std::array<int, 2>{std::min(i, j), std::max(i, j)});
   };
   const std::vector<int> into = duplicates(mesh.vertices, distance, seam_copies);
   int merged = 0, first = -1;

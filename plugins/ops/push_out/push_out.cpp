@@ -145,7 +145,8 @@ class PushOut final : public Node {
       }
       // The template dressed on the mean body: where two layers the network
       // pinched through each other belong (UntangleOptions::rest).
-      if (untangle_) clearance_->untangle(*surface_, points, &garment_->mesh.vertices);
+      // (Nothing when the node's untangle is off: the clearance was made without it.)
+      if (garment_) clearance_->untangle(*surface_, points, &garment_->mesh.vertices);
       y.mat(b) = points.cast<float>();
     }
   }
