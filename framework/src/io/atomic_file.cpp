@@ -145,6 +145,8 @@ void write_atomically(const fs::path& target, const std::function<void(const fs:
       if (dynamic_cast<const ConfigError*>(&e)) throw ConfigError(message);  // the kind of error is kept
       throw Error(message);
     }
+    // (The writer's message may begin with the cause already: said once.)
+    if (message.rfind(cause + ": ", 0) == 0) message.erase(0, cause.size() + 2);
     throw Error("cannot write '" + target.string() + "': " + cause + " (" + message + ")");
   } catch (...) {
     fs::remove(tmp, ec);
