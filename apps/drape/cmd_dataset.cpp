@@ -237,6 +237,8 @@ int info(const std::vector<std::string>& args) {
   positional.add("file", 1);
   po::variables_map vm;
   if (!parse(kInfoUsage, args, opts, positional, vm)) return 0;
+  if (vm["scene-lines"].as<int>() < 0)
+    throw UsageError("--scene-lines " + std::to_string(vm["scene-lines"].as<int>()) + ": expected 0 or more lines");
   const fs::path path = vm["file"].as<std::string>();
   const DatasetReader reader(path);  // a file or a glob pattern ("no such file" / "no dataset file matches")
   const DatasetLayout& layout = reader.layout();
@@ -283,7 +285,7 @@ int info(const std::vector<std::string>& args) {
   std::istringstream scene(layout.scene);
   std::vector<std::string> lines;
   for (std::string line; std::getline(scene, line);) lines.push_back(line);
-  const std::size_t shown = std::min(lines.size(), static_cast<std::size_t>(std::max(0, vm["scene-lines"].as<int>())));
+  const std::size_t shown = std::min(lines.size(), static_cast<std::size_t>(vm["scene-lines"].as<int>()));
   std::cout << "  scene     " << lines.size() << " line" << (lines.size() == 1 ? "" : "s") << (shown ? ":" : "") << "\n";
   for (std::size_t i = 0; i < shown; ++i) std::cout << "    | " << lines[i] << "\n";
   if (shown < lines.size()) std::cout << "    | ... (" << lines.size() - shown << " more)\n";

@@ -57,6 +57,8 @@ int run(const std::vector<std::string>& args) {
   if (poses != "scene" && poses != "draw") throw UsageError("--poses " + poses + ": expected scene or draw");
   request.draw_poses = poses == "draw";
   request.pose_ranges = vm["pose-range"].as<std::string>();
+  if (!vm["pose-range"].defaulted() && request.pose_ranges.find_first_not_of(" \t") == std::string::npos)
+    throw UsageError("--pose-range is empty (a shell variable never set?): give name=lo:hi, e.g. shoulder_abduction=60:90");
   request.threads = vm["threads"].as<int>();
   const std::string out = vm["out"].as<std::string>();
 

@@ -9,6 +9,8 @@
 #include <drape/training/model.hpp>
 
 #include <algorithm>
+#include <cctype>
+#include <set>
 
 #include <iomanip>
 #include <iostream>
@@ -54,6 +56,19 @@ int run(const std::vector<std::string>& args) {
   GraphOptions options;
   if (vm.count("dim")) options.dims = parse_dims(vm["dim"].as<std::vector<std::string>>());
   const GraphSpec spec = parse_graph_file(find_input_file(vm["file"].as<std::string>()));
+  // A --dim the graph's inputs never name sizes nothing (a misspelt
+  // --dim garmnet_vertices=991 was taken and the template's size used).
+  std::set<std::string> symbolic;
+  for (const auto& input : spec.inputs)
+    for (const std::string& d : input.second.first)
+      if (!d.empty() && !std::isdigit(static_cast<unsigned char>(d[0]))) symbolic.insert(d);
+  for (const auto& [name, size] : options.dims)
+    if (!symbolic.count(name)) {
+      std::string known;
+      for (const std::string& s : symbolic) known += (known.empty() ? "" : ", ") + s;
+      throw UsageError("--dim " + name + ": the graph's inputs use no size of that name (" +
+                       (known.empty() ? std::string("they use none") : "they use " + known) + ")");
+    }
   // A model's graph (checked on a template's assets): the inputs drape
   // feeds, as drape train checks them (an outside check's input `extra` was
   // "ok" here and refused by train). --no-assets checks any graph's wiring.

@@ -64,6 +64,17 @@ bool parse(const std::string& usage, const std::vector<std::string>& args, po::o
         throw UsageError(flag + " " + given + ": expected a whole number 0 or more\nusage: " + usage);
     }
   }
+  // A number option given NaN or infinity: no option means either (spectral
+  // --unit inf printed "inf mm" errors, hierarchy --ratio inf ran on).
+  for (const auto& [name, value] : vm) {
+    const boost::any& held = value.value();
+    double number = 0;
+    if (const double* d = boost::any_cast<double>(&held)) number = *d;
+    else if (const float* f = boost::any_cast<float>(&held)) number = *f;
+    else continue;
+    if (!std::isfinite(number))
+      throw UsageError("--" + name + " " + std::to_string(number) + ": expected a finite number\nusage: " + usage);
+  }
   // Outputs are checked before any work: a drape simulated for a minute must
   // not be lost to a missing or read-only folder. A value without an
   // extension is a folder to write into (hierarchy --out), made by its command.
@@ -179,6 +190,8 @@ std::map<std::string, double> parse_girths(const po::variables_map& vm) {
     std::istringstream list(given);
     for (std::string item; std::getline(list, item, ',');) items.push_back(item);
   }
+  // An empty value is a shell variable never set, not "no girths".
+  if (items.empty()) throw UsageError("--girth is empty: give name=value (e.g. --girth belly=0.1)");
   for (const auto& item : items) {
     const auto eq = item.find('=');
     if (eq == std::string::npos || eq == 0) throw UsageError("--girth wants name=value, got '" + item + "'");

@@ -149,3 +149,33 @@ TEST_CASE("generate and optimize refuse bad values before their output is begun,
   }
   for (const auto& entry : std::filesystem::directory_iterator(dir.path())) FAIL_CHECK("left behind: " << entry.path());
 }
+
+TEST_CASE("a number option given infinity or NaN and an empty or unused list are refused", "[cli][options]") {
+  test::TempDir dir;
+  std::string out;
+  const std::string mesh = (dir / "quad.obj").string();
+  std::ofstream(mesh) << "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3\nf 1 3 4\n";
+  // spectral printed "inf mm" errors; hierarchy took an infinite ratio.
+  CHECK(test::run_drape("spectral --mesh " + mesh + " --unit inf", out) == 2);
+  CHECK_THAT(out, Catch::Contains("--unit inf: expected a finite number"));
+  CHECK(test::run_drape("hierarchy --mesh " + mesh + " --ratio nan --out " + (dir / "h").string(), out) == 2);
+  CHECK_THAT(out, Catch::Contains("--ratio") && Catch::Contains("expected a finite number"));
+  CHECK_FALSE(std::filesystem::exists(dir / "h"));
+  CHECK(test::run_drape("predict --bmi inf --out " + (dir / "g.obj").string(), out) == 2);
+  CHECK_THAT(out, Catch::Contains("--bmi inf: expected a finite number"));
+  // An empty list was the default: a shell variable never set.
+  CHECK(test::run_drape("body --bmi 30 --girth '' --out " + (dir / "b.obj").string(), out) == 2);
+  CHECK_THAT(out, Catch::Contains("--girth is empty"));
+  CHECK(test::run_drape("generate " + (test::source_dir() / "graphs/scenes/tshirt_coarse.yaml").string() +
+                            " --count 1 --poses draw --pose-range '' --out " + (dir / "d.h5").string(), out) == 2);
+  CHECK_THAT(out, Catch::Contains("--pose-range is empty"));
+  CHECK_FALSE(std::filesystem::exists(dir / "b.obj"));
+  CHECK_FALSE(std::filesystem::exists(dir / "d.h5"));
+  // A size the graph never names sized nothing.
+  CHECK(test::run_drape("graph check " + (test::source_dir() / "graphs/drape.yaml").string() + " --dim garmnet_vertices=991", out) == 2);
+  CHECK_THAT(out, Catch::Contains("--dim garmnet_vertices: the graph's inputs use no size of that name") &&
+                      Catch::Contains("garment_vertices"));
+  CHECK(test::run_drape("dataset info " + (test::source_dir() / "datasets/bodyspace2000/shard-00-of-40.h5").string() +
+                            " --scene-lines -1", out) == 2);
+  CHECK_THAT(out, Catch::Contains("--scene-lines -1: expected 0 or more"));
+}
