@@ -91,6 +91,7 @@ int merge(const std::vector<std::string>& args) {
   positional.add("shards", -1);
   po::variables_map vm;
   if (!parse(kMergeUsage, args, opts, positional, vm)) return 0;
+  check_hdf5_outputs(vm, {"out"});
   const fs::path out = vm["out"].as<std::string>();
   const OutputLock lock(out, "drape dataset merge");  // before anything looks at it (output_lock.hpp)
   std::vector<fs::path> shards;
@@ -113,6 +114,7 @@ int slim(const std::vector<std::string>& args) {
   positional.add("file", 1);
   po::variables_map vm;
   if (!parse(kSlimUsage, args, opts, positional, vm)) return 0;
+  check_hdf5_outputs(vm, {"out"});
   const fs::path in = vm["file"].as<std::string>(), out = vm["out"].as<std::string>();
   const OutputLock lock(out, "drape dataset slim");  // before anything looks at it (output_lock.hpp)
   if (!fs::exists(in)) throw ConfigError(SourceLocation{in.string(), 0}, "no such file");
@@ -137,6 +139,7 @@ int expand(const std::vector<std::string>& args) {
   positional.add("shards", -1);
   po::variables_map vm;
   if (!parse(kExpandUsage, args, opts, positional, vm)) return 0;
+  check_hdf5_outputs(vm, {"out"});
   const fs::path out = vm["out"].as<std::string>();
   const OutputLock lock(out, "drape dataset expand");  // before anything looks at it (output_lock.hpp)
   std::vector<fs::path> shards;
@@ -170,6 +173,7 @@ int unpose(const std::vector<std::string>& args) {
   positional.add("file", 1);
   po::variables_map vm;
   if (!parse(kUnposeUsage, args, opts, positional, vm)) return 0;
+  check_hdf5_outputs(vm, {"out"});
   const fs::path in = vm["file"].as<std::string>(), out = vm["out"].as<std::string>();
   const OutputLock lock(out, "drape dataset unpose");
   refuse_output_among_inputs(out, dataset_files(in), "--out");  // --force removed the input before reading it
@@ -195,6 +199,7 @@ int resample(const std::vector<std::string>& args) {
   positional.add("file", 1);
   po::variables_map vm;
   if (!parse(kResampleUsage, args, opts, positional, vm)) return 0;
+  check_hdf5_outputs(vm, {"out"});
   const fs::path in = vm["file"].as<std::string>(), out = vm["out"].as<std::string>();
   const fs::path onto = find_input_file(vm["onto"].as<std::string>());  // graphs/scenes/... from any folder
   const OutputLock lock(out, "drape dataset resample");

@@ -42,6 +42,7 @@ int run(const std::vector<std::string>& args) {
   const std::string usage =
       "drape generate [SCENE.yaml] --count N --bmi 10:65 --seed S --out data.h5 [--poses draw] [--shard i/N] [--threads T]";
   if (!parse(usage, args, opts, pos, vm)) return 0;
+  check_hdf5_outputs(vm, {"out"});
   // (a long, so that -1 is refused instead of wrapping to 2^64 - 1 samples)
   if (!vm.count("count") || vm["count"].as<long>() < 1) throw UsageError("--count N (N >= 1) is required");
   if (!vm.count("out")) throw UsageError("--out FILE is required");

@@ -198,6 +198,7 @@ int domain(const std::vector<std::string>& args) {
   positional.add("model", 1);
   po::variables_map vm;
   if (!parse(kDomainUsage, args, opts, positional, vm)) return 0;
+  check_hdf5_outputs(vm, {"out"});
   const fs::path file = find_input_file(vm["model"].as<std::string>());
   const fs::path out = vm.count("out") ? fs::path(vm["out"].as<std::string>()) : file;
   // --data X --out X turned the dataset into a model file; any other file is not replaced either.
@@ -223,6 +224,7 @@ int set(const std::vector<std::string>& args) {
   positional.add("model", 1);
   po::variables_map vm;
   if (!parse(kSetUsage, args, opts, positional, vm)) return 0;
+  check_hdf5_outputs(vm, {"out"});
   if (!vm.count("set")) throw UsageError("--set node.param=value is required\nusage: " + std::string(kSetUsage));
   const fs::path file = find_input_file(vm["model"].as<std::string>());
   const fs::path out = vm.count("out") ? fs::path(vm["out"].as<std::string>()) : file;

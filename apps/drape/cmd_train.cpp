@@ -93,6 +93,7 @@ int run(const std::vector<std::string>& given) {
       std::string(built_with_mpi() ? "\n       mpirun -np N drape train ... (built with MPI: N ranks, each on a part of every batch)"
                                    : "\n       (built without MPI: one process)");
   if (!parse(usage, args, opts, pos, vm)) return 0;
+  check_hdf5_outputs(vm, {"out"});
   if (!vm.count("graph")) throw UsageError("a graph file is required, e.g. graphs/examples/mlp_baseline.yaml");
   if (!vm.count("data")) throw UsageError("--data FILE is required (a dataset from drape generate)");
   if (!vm.count("out")) throw UsageError("--out FILE is required (the model file to write)");

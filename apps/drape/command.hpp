@@ -58,6 +58,12 @@ bool parse(const std::string& usage, const std::vector<std::string>& args, po::o
 // every output's folder already; this adds the mesh format.
 void check_mesh_outputs(const po::variables_map& vm, std::initializer_list<const char*> options);
 
+// Before any work: each of these options that was given names an HDF5 file
+// (a dataset, a model), not a file another format's extension promises
+// (generate --out drapes.obj wrote HDF5 into a .obj). Any other extension,
+// or none, is taken.
+void check_hdf5_outputs(const po::variables_map& vm, std::initializer_list<const char*> options);
+
 // A word of a command line drape prints for the user to paste: as it is when
 // a shell reads it so, else in single quotes (a path with a space, a
 // dataset pattern's `*`).

@@ -8,12 +8,14 @@
 #include <drape/io/write_failure.hpp>
 
 #include <algorithm>
+#include <cctype>
 #include <cstdint>
 #include <typeinfo>
 #include <cmath>
 #include <filesystem>
 #include <iostream>
 #include <map>
+#include <set>
 #include <sstream>
 #include <thread>
 
@@ -136,6 +138,21 @@ bool parse(const std::string& usage, const std::vector<std::string>& args, po::o
 void check_mesh_outputs(const po::variables_map& vm, std::initializer_list<const char*> options) {
   for (const char* option : options)
     if (vm.count(option)) check_mesh_output(vm[option].as<std::string>());
+}
+
+void check_hdf5_outputs(const po::variables_map& vm, std::initializer_list<const char*> options) {
+  static const std::set<std::string> other_formats = {".obj", ".ply", ".gltf", ".glb", ".stl", ".off", ".fbx", ".dae",
+                                                      ".svg", ".html", ".htm", ".png", ".jpg", ".csv", ".json",
+                                                      ".yaml", ".yml", ".txt", ".md", ".npy", ".npz", ".pt"};
+  for (const char* option : options) {
+    if (!vm.count(option)) continue;
+    const std::filesystem::path file = vm[option].as<std::string>();
+    std::string ext = file.extension().string();
+    std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+    if (other_formats.count(ext))
+      throw UsageError(std::string("--") + option + " " + file.string() + ": drape writes an HDF5 file here, not a " + ext + " file" +
+                       ": name it " + file.stem().string() + ".h5");
+  }
 }
 
 std::string shell_word(const std::string& word) {

@@ -179,3 +179,22 @@ TEST_CASE("a number option given infinity or NaN and an empty or unused list are
                             " --scene-lines -1", out) == 2);
   CHECK_THAT(out, Catch::Contains("--scene-lines -1: expected 0 or more"));
 }
+
+TEST_CASE("an HDF5 output named with another format's extension is refused before any work", "[cli][options]") {
+  test::TempDir dir;
+  std::string out;
+  const std::string data = (test::source_dir() / "datasets/bodyspace2000/shard-00-of-40.h5").string();
+  // generate --out drapes.obj wrote a dataset into a file every mesh viewer then failed to read.
+  CHECK(test::run_drape("generate " + (test::source_dir() / "graphs/scenes/tshirt_coarse.yaml").string() +
+                            " --count 1 --out " + (dir / "drapes.OBJ").string(), out) == 2);
+  CHECK_THAT(out, Catch::Contains("drape writes an HDF5 file here, not a .obj file: name it drapes.h5"));
+  CHECK(test::run_drape("dataset slim " + data + " --out " + (dir / "s.ply").string(), out) == 2);
+  CHECK_THAT(out, Catch::Contains("not a .ply file"));
+  CHECK(test::run_drape("train " + (test::source_dir() / "graphs/examples/mlp_baseline.yaml").string() + " --data " + data +
+                            " --epochs 1 --out " + (dir / "m.yaml").string(), out) == 2);
+  CHECK_THAT(out, Catch::Contains("not a .yaml file"));
+  CHECK(test::run_drape("model set " + (test::source_dir() / "models/tshirt-coarse.h5").string() +
+                            " --set post.enabled=false --out " + (dir / "m.json").string(), out) == 2);
+  CHECK_THAT(out, Catch::Contains("not a .json file"));
+  CHECK(std::filesystem::is_empty(dir.path()));
+}
