@@ -203,6 +203,25 @@ std::string emit(const GraphSpec& spec) {
   return std::string(out.c_str()) + "\n";
 }
 
+// A graph's words: a node named as a graph input took the input's place in
+// every node that read it (a loss's `body` fed the node's garment), and a '.'
+// in a node's name cannot be referred to (node.port). Said where the node is
+// written.
+void check_names(const GraphSpec& spec) {
+  for (const auto& [name, shape] : spec.inputs)
+    if (name.find('.') != std::string::npos)
+      throw ConfigError(shape.second, "input '" + name + "': a name cannot hold '.' (it separates a node from its port)");
+  for (const NodeSpec& n : spec.nodes) {
+    const char* what = n.is_loss ? "loss '" : "node '";
+    if (n.name.find('.') != std::string::npos)
+      throw ConfigError(n.where, what + n.name + "': a name cannot hold '.' (it separates a node from its port)");
+    for (const auto& [name, shape] : spec.inputs)
+      if (name == n.name)
+        throw ConfigError(n.where, what + n.name + "' has the name of a graph input (" + shape.second.str() +
+                                       "), which every node reading it would then read instead: rename one of them");
+  }
+}
+
 }  // namespace
 
 GraphSpec parse_graph_file(const fs::path& file) {
@@ -212,6 +231,7 @@ GraphSpec parse_graph_file(const fs::path& file) {
   std::error_code ec;
   if (fs::exists(file, ec)) chain.insert(fs::canonical(file));
   apply_file(spec, file, yaml::load_file(file), chain);
+  check_names(spec);
   spec.text = emit(spec);
   return spec;
 }
@@ -223,6 +243,7 @@ GraphSpec parse_graph_text(const std::string& yaml, const std::string& name_for_
   if (root.IsMap() && root["base"]) throw ConfigError({name_for_errors, 1}, "`base:` is only allowed in graph files");
   std::set<fs::path> chain;
   apply_file(spec, name_for_errors, root, chain);
+  check_names(spec);
   spec.text = emit(spec);
   return spec;
 }

@@ -11,6 +11,7 @@
 #include <boost/dll/import.hpp>
 
 #include <algorithm>
+#include <cctype>
 #include <cstdlib>
 #include <iostream>
 #include <set>
@@ -99,6 +100,39 @@ void Registry::load_path(const std::vector<fs::path>& dirs) {
   }
 }
 
+namespace {
+
+// What makes a descriptor unusable, whatever else is on the path.
+void check_descriptor(const PluginDescriptor& d) {
+  // A graph, a scene and a model's file name plugins by these words: one
+  // that is empty, or holds a space or a '.' (node.param), cannot be written there.
+  const bool word = !d.name.empty() && std::all_of(d.name.begin(), d.name.end(), [](unsigned char c) {
+    return std::isalnum(c) || c == '_' || c == '-';
+  });
+  if (!word)
+    throw ConfigError(d.file + ": plugin name '" + d.name +
+                      "' is not a word of letters, digits, '_' and '-' (a graph names its plugins by it)");
+  if (d.abi_version != kAbiVersion)
+    throw ConfigError(d.file + ": plugin '" + d.name + "' declares ABI " + std::to_string(d.abi_version) +
+                      " but this drape uses ABI " + std::to_string(kAbiVersion));
+  const int factories = !!d.create_node + !!d.create_energy + !!d.create_body + !!d.create_garment;
+  if (factories != 1)
+    throw ConfigError(d.file + ": plugin '" + d.name +
+                      "' must define exactly one of create_node, create_energy, create_body, create_garment");
+  // Its defaults, as a graph that sets none would take them: a default its
+  // own type or range refuses failed at the first graph that used the
+  // plugin, blamed on "<default>" in the user's graph.
+  try {
+    const Params defaults(d.params, {}, "plugin '" + d.name + "'");
+  } catch (const std::exception& e) {
+    std::string why = e.what();
+    if (why.rfind("<default>: ", 0) == 0) why.erase(0, 11);
+    throw ConfigError(d.file + ": " + why + " (the plugin's own default)");
+  }
+}
+
+}  // namespace
+
 void Registry::load_file(const fs::path& file) {
   std::error_code ec;
   const fs::path canonical = fs::canonical(file, ec);
@@ -143,10 +177,32 @@ void Registry::load_file(const fs::path& file) {
     warn("refused plugin " + refused_.back());
     return;
   }
+  // A descriptor the framework cannot use (no factory, a name no graph can
+  // write, a default its own parameter refuses, a name given twice in the
+  // list) refuses its library, as above: an outside check's one bad
+  // descriptor stopped every command, `drape plugins` too. A name another
+  // library on the path already has stays an error (exit 2, both files
+  // named): which of the two a graph meant cannot be told.
+  std::set<std::string> listed;
   for (auto& d : list) {
     d.file = canonical.string();
-    validate(d);
+    std::string fault;
+    if (!listed.insert(d.name).second) fault = "it lists two plugins named '" + d.name + "'";
+    else
+      try {
+        check_descriptor(d);
+      } catch (const std::exception& e) {
+        fault = e.what();
+      }
+    if (!fault.empty()) {
+      const std::string prefix = canonical.string() + ": ";
+      if (fault.rfind(prefix, 0) == 0) fault.erase(0, prefix.size());
+      refused_.push_back(canonical.string() + ": " + fault);
+      warn("refused plugin " + refused_.back());
+      return;
+    }
   }
+  for (auto& d : list) validate(d);
   libraries_.push_back(std::move(lib));
   for (auto& d : list) plugins_.push_back(std::move(d));
 }
@@ -158,13 +214,7 @@ void Registry::add(PluginDescriptor d) {
 }
 
 void Registry::validate(PluginDescriptor& d) const {
-  if (d.abi_version != kAbiVersion)
-    throw ConfigError(d.file + ": plugin '" + d.name + "' declares ABI " + std::to_string(d.abi_version) +
-                      " but this drape uses ABI " + std::to_string(kAbiVersion));
-  const int factories = !!d.create_node + !!d.create_energy + !!d.create_body + !!d.create_garment;
-  if (factories != 1)
-    throw ConfigError(d.file + ": plugin '" + d.name +
-                      "' must define exactly one of create_node, create_energy, create_body, create_garment");
+  check_descriptor(d);
   if (d.create_energy && d.inputs.empty() && d.outputs.empty()) {  // the EnergyNode adapter's ports
     d.inputs = {{"x", "garment vertex positions [vertices, 3]"}};
     d.outputs = {{"energy", "the energy of each sample [1, 1]"}};
@@ -173,6 +223,7 @@ void Registry::validate(PluginDescriptor& d) const {
     throw ConfigError("two plugins are named '" + d.name + "': " + other->file + " and " + d.file +
                       "; remove one from the plugin path");
 }
+
 
 const PluginDescriptor* Registry::find(const std::string& name) const {
   for (const auto& d : plugins_)
@@ -208,6 +259,14 @@ std::vector<const PluginDescriptor*> Registry::all() const {
 }
 
 namespace {
+// What a plugin's factory made, or a ConfigError naming it when it made
+// nothing (a null node crashed drape and the Python interpreter).
+template <class T>
+std::unique_ptr<T> not_null(const std::string& name, const char* factory, std::unique_ptr<T> made) {
+  if (!made) throw ConfigError("plugin '" + name + "': its " + factory + " returned nothing (a null pointer)");
+  return made;
+}
+
 // "an energy", "an encoder", "a loss": a plugin's kind with its article.
 std::string a_kind(const std::string& kind) {
   return (kind.find_first_of("aeiou") == 0 ? "an " : "a ") + kind;
@@ -218,7 +277,7 @@ std::string a_kind(const std::string& kind) {
 // errors come out as "<name>: ..." without the plugin writing its name.
 std::unique_ptr<Node> Registry::create_node(const std::string& name, const Params& params) const {
   const PluginDescriptor& d = get(name);
-  if (d.create_node) return in_context(name, [&] { return d.create_node(params); });
+  if (d.create_node) return not_null(name, "create_node", in_context(name, [&] { return d.create_node(params); }));
   if (d.create_energy) return std::make_unique<EnergyNode>(create_energy(name, params));
   throw ConfigError("'" + name + "' is " + a_kind(d.kind) + "; it cannot be a node of a graph");
 }
@@ -226,7 +285,7 @@ std::unique_ptr<Node> Registry::create_node(const std::string& name, const Param
 std::unique_ptr<BodyModel> Registry::create_body(const std::string& name, const Params& params) const {
   const PluginDescriptor& d = get(name);
   if (!d.create_body) throw ConfigError("'" + name + "' is " + a_kind(d.kind) + ", not a body model");
-  return in_context(name, [&] { return d.create_body(params); });
+  return not_null(name, "create_body", in_context(name, [&] { return d.create_body(params); }));
 }
 
 namespace {
@@ -250,14 +309,14 @@ class PluginGarment final : public GarmentSource {
 std::unique_ptr<GarmentSource> Registry::create_garment(const std::string& name, const Params& params) const {
   const PluginDescriptor& d = get(name);
   if (!d.create_garment) throw ConfigError("'" + name + "' is " + a_kind(d.kind) + ", not a garment template");
-  return std::make_unique<PluginGarment>(name, in_context(name, [&] { return d.create_garment(params); }));
+  return std::make_unique<PluginGarment>(name, not_null(name, "create_garment", in_context(name, [&] { return d.create_garment(params); })));
 }
 
 // Every call into the energy names the plugin in its errors (plugin_energy.hpp).
 std::unique_ptr<Energy> Registry::create_energy(const std::string& name, const Params& params) const {
   const PluginDescriptor& d = get(name);
   if (!d.create_energy) throw ConfigError("'" + name + "' is " + a_kind(d.kind) + ", not an energy");
-  return std::make_unique<PluginEnergy>(name, in_context(name, [&] { return d.create_energy(params); }));
+  return std::make_unique<PluginEnergy>(name, not_null(name, "create_energy", in_context(name, [&] { return d.create_energy(params); })));
 }
 
 }  // namespace drape

@@ -135,6 +135,16 @@ TEST_CASE("graph errors name the file, the line and the node", "[graph]") {
                Catch::Contains("g.yaml:") && Catch::Contains("finite number >= 0"));
   // A bare word as the last line (a file cut in the middle of a key): yaml-cpp reads it as a key with no value.
   CHECK_THAT(error_of(std::string(kGraph) + "  mse\n"), Catch::Contains("'mse' has no value"));
+  // A node named as a graph input: every node reading the input read the
+  // node instead (a loss's bound `body` was fed a garment), or a cycle was
+  // reported.
+  e = error_of("inputs: { rest: [n, 3], body: [n, 3] }\nnodes:\n  body: { type: scale, in: rest }\noutputs: [body]\n");
+  CHECK_THAT(e, Catch::Contains("g.yaml:3") && Catch::Contains("node 'body' has the name of a graph input (g.yaml:1)"));
+  e = error_of("inputs: { rest: [n, 3] }\nnodes:\n  rest: { type: scale, in: rest }\noutputs: [rest]\n");
+  CHECK_THAT(e, Catch::Contains("g.yaml:3") && Catch::Contains("has the name of a graph input") && !Catch::Contains("cycle"));
+  // A '.' in a node's name: no reference can name it (node.port).
+  e = error_of("inputs: { rest: [n, 3] }\nnodes:\n  a.b: { type: scale, in: rest }\noutputs: [a.b]\n");
+  CHECK_THAT(e, Catch::Contains("g.yaml:3") && Catch::Contains("node 'a.b': a name cannot hold '.'"));
 }
 
 TEST_CASE("malformed YAML names the file and line", "[graph]") {

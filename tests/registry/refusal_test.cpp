@@ -87,3 +87,35 @@ TEST_CASE("a library whose factory throws is refused with its path and the reaso
   REQUIRE(test::run(drape + dir.string(), out) == 0);  // the command that finds the bad file still runs
   CHECK_THAT(out, Catch::Contains("refused " + file.string()) && Catch::Contains("no row 7") && Catch::Contains("energy gravity"));
 }
+
+TEST_CASE("a library with a descriptor the framework cannot use is refused and the rest of the path loads", "[registry]") {
+  // One bad descriptor stopped every command, drape plugins too (an outside check).
+  const std::vector<std::pair<std::string, std::string>> faults = {
+      {"no_factory", "must define exactly one of create_node"},
+      {"listed_twice", "it lists two plugins named 'faulty'"},
+      {"bad_name", "plugin name 'has space' is not a word"},
+      {"bad_default", "parameter 'factor' (float): 1 is outside the allowed range"}};
+  for (const auto& [fault, why] : faults) {
+    INFO(fault);
+    const fs::path file = fs::canonical(kFixtures / "faulty" / fault / "libdrape_plugin_faulty.so");
+    Registry registry;
+    REQUIRE_NOTHROW(registry.load_path({file, kFixtures / "duplicate" / "libdrape_plugin_twin_a.so"}));
+    CHECK(registry.names() == std::vector<std::string>{"twin"});
+    REQUIRE(registry.refused().size() == 1);
+    CHECK_THAT(registry.refused().front(), Catch::Contains(file.string()) && Catch::Contains(why));
+    std::string out;
+    REQUIRE(test::run("env -u DRAPE_PLUGIN_PATH " + test::drape_program().string() + " plugins --brief --plugin-path " +
+                          file.string(), out) == 0);
+    CHECK_THAT(out, Catch::Contains("refused " + file.string()) && Catch::Contains("energy gravity"));
+  }
+}
+
+TEST_CASE("a factory that makes nothing is an error naming the plugin, not a crash", "[registry]") {
+  // twin's create_node returns a null pointer: graph check and Python's
+  // Model.untrained crashed on it.
+  Registry registry;
+  registry.load_file(kFixtures / "duplicate" / "libdrape_plugin_twin_a.so");
+  CHECK_THROWS_AS(registry.create_node("twin", Params({}, {}, "twin")), ConfigError);
+  CHECK_THROWS_WITH(registry.create_node("twin", Params({}, {}, "twin")),
+                    Catch::Contains("plugin 'twin'") && Catch::Contains("create_node returned nothing"));
+}
