@@ -69,6 +69,10 @@ TEST_CASE("drape predict --pose poses the body and the drape of a posed model", 
     CHECK((out.find("  node   post            push_out") != std::string::npos) ==
           (std::string(graph).find("_post") != std::string::npos));
   }
+  // The model takes a grade and records no chart to choose one by: the
+  // refusal names the option (it said "give the grade").
+  REQUIRE(test::run_drape("predict --model " + (dir / "m.h5").string() + " --bmi 25 --out " + (dir / "none.obj").string(), out) == 2);
+  CHECK_THAT(out, Catch::Contains("give the grade (drape predict --garment-grade 1.2"));
   const std::string predict = "predict --model " + (dir / "m.h5").string() + " --bmi 25 --garment-grade 1 ";
   const std::string pose = "shoulder_abduction=80,left_elbow_flexion=40";
   REQUIRE(test::run_drape(predict + "--pose " + pose + " --out " + (dir / "g.obj").string() + " --body-out " +

@@ -487,7 +487,8 @@ void BodyPreparation::choose_sizes(SampleBatch& batch, bool strict, const std::s
                                    std::vector<Notice>& notices) const {
   if (!model_.needs_input("garment_grade") || !batch.garment_grade.empty()) return;
   if (!size_chart_)
-    throw ConfigError("this model takes the garment's grade and records no size chart to choose one by: give the grade");
+    throw ConfigError("this model takes the garment's grade and records no size chart to choose one by: give the grade "
+                      "(drape predict --garment-grade 1.2, in Python predict(..., garment_size=1.2); 1 is the garment as designed)");
   choose_sizes_by_chart(*size_chart_, model_, batch, strict, strict_option, notices);
 }
 
