@@ -126,6 +126,7 @@ int run(const std::vector<std::string>& args) {
   if (!vm.count("body") && !vm.count("model"))  // (the scene's body is made only to be counted)
     model_file = model_file_for_rig(vm, registry, model_file, make_scene_body_model(registry, scene_spec)->num_vertices(),
                                     "the scene " + scene_file.string());
+  else model_file = model_file_for_body(vm, registry, model_file);
   Model model = Model::load(registry, model_file);
   BodyMove moved_by;  // the drape is made where (and as) the training bodies stood; written back where the body was
   // The body and its pose before the scene is built: a bad one is refused at once.

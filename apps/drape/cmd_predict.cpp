@@ -40,10 +40,10 @@ int run(const std::vector<std::string>& args) {
       "[--body-out body.obj]";
   if (!parse(usage, args, opts, {}, vm)) return 0;
   check_mesh_outputs(vm, {"out", "body-out"});
-  const std::string model_file = model_file_or_default(vm);
+  const std::string model_file = model_file_for_body(vm, Registry::load_default(plugin_path(vm)), model_file_or_default(vm));
   if (!vm.count("model"))
     std::printf("model: %s (the shipped pretrained model%s; --model chooses another)\n", model_file.c_str(),
-                model_file.ends_with(posed_model_name) ? " of posed drapes" : "");
+                std::filesystem::path(model_file).filename().string().find("posed") != std::string::npos ? " of posed drapes" : "");
   if (!vm.count("out")) throw UsageError("--out FILE is required (the garment mesh to write)");
   if (vm.count("body") == vm.count("bmi"))
     throw UsageError("give the body either as a mesh (--body FILE) or by its BMI (--bmi X), exactly one");

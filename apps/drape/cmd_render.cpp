@@ -190,7 +190,7 @@ int run(const std::vector<std::string>& args) {
       throw UsageError("--sample " + std::to_string(sample_index(vm)) + ": the dataset has " + std::to_string(data->size()) + " samples");
   }
   const std::string model_file =
-      data ? model_file_for_samples(vm, registry, *data, {sample_index(vm)}) : model_file_or_default(vm);
+      data ? model_file_for_samples(vm, registry, *data, {sample_index(vm)}) : model_file_for_body(vm, registry, model_file_or_default(vm));
   Model model = Model::load(registry, model_file);
   std::vector<std::string> notes;  // what model_body printed, shown on the page too
   SampleBatch batch;

@@ -227,6 +227,28 @@ std::string model_file_for_rig(const po::variables_map& vm, const Registry& regi
   return twin;
 }
 
+std::string model_file_for_body(const po::variables_map& vm, const Registry& registry, const std::string& file) {
+  const char* env = std::getenv("DRAPE_MODEL");
+  if (!vm.count("body") || vm.count("model") || (env && *env)) return file;
+  Eigen::Index count = 0;
+  try {
+    count = read_mesh(vm["body"].as<std::string>()).num_vertices();
+  } catch (const std::exception&) {
+    return file;  // (read again with the model, which says what is wrong with it)
+  }
+  std::string twin = rig_twin(registry, file, count);
+  if (twin.empty()) return file;
+  // A posed body of the other rig: that rig's model of posed drapes (its
+  // A-pose model would drape it warning that it looks posed).
+  if (fs::path(twin).filename() == "tshirt-coarse.h5" && !pose_given(vm) && body_mesh_posed(twin, vm))
+    if (const fs::path posed = shipped_model_path(posed_model_name); !posed.empty())
+      if (const std::string posed_twin = rig_twin(registry, posed, count); !posed_twin.empty()) twin = posed_twin;
+  std::cerr << "note: the body " << vm["body"].as<std::string>() << " has " << count << " vertices (another rig than "
+            << fs::path(file).filename().string() << "'s): draped by the shipped " << twin
+            << ", the model of that rig (--model names another)\n";
+  return twin;
+}
+
 SampleBatch model_body(const Model& model, const po::variables_map& vm, BodyMove* moved_by,
                        std::vector<std::string>* printed, const Pose* fallback_pose, const std::string& fallback_source) {
   ModelBodyInput input = body_input(vm);

@@ -62,6 +62,13 @@ std::string model_file_or_default(const po::variables_map& vm, bool posed_elsewh
 std::string model_file_for_rig(const po::variables_map& vm, const Registry& registry, const std::string& file,
                                Eigen::Index body_vertices, const std::string& what);
 
+// With --body and without --model (and DRAPE_MODEL unset): the shipped
+// model of the body mesh's rig, by its vertex count, as model_file_for_rig
+// (a mannequin body went to the human rig's model and was refused by its
+// count, where --bmi on a mannequin scene found the mannequin's model); a
+// posed body of that rig goes to its model of posed drapes. Else `file`.
+std::string model_file_for_body(const po::variables_map& vm, const Registry& registry, const std::string& file);
+
 // model_file_or_default for a dataset's samples: without --model (and with
 // DRAPE_MODEL unset), the shipped model of posed drapes when the default
 // model drapes the A-pose only and one of `indices` is posed (said on

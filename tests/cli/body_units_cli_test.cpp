@@ -64,6 +64,34 @@ TEST_CASE("a body mesh of another rig than the model's is refused naming the shi
                       !Catch::Contains("tshirt-coarse-posed-human.h5"));
 }
 
+TEST_CASE("without --model a body mesh of the mannequin rig is draped by the mannequin's shipped models", "[cli][units]") {
+  // The default model is the human rig's: a mannequin body given with --body
+  // was refused by its count (predict, optimize, render), where --bmi on a
+  // mannequin scene found the mannequin's model (an outside check following
+  // docs/optimization.md).
+  test::TempDir dir;
+  std::string out;
+  const std::string env = test::drape_in_source(dir.path());
+  REQUIRE(test::run(env + " body --bmi 30 --out " + (dir / "rest.obj").string(), out) == 0);
+  REQUIRE(test::run(env + " body --bmi 30 --pose shoulder_abduction=60 --out " + (dir / "posed.obj").string(), out) == 0);
+  REQUIRE(test::run(env + " predict --body " + (dir / "rest.obj").string() + " --out " + (dir / "g.obj").string() + " 2>&1", out) == 0);
+  CHECK_THAT(out, Catch::Contains("has 6490 vertices (another rig than tshirt-coarse-human.h5's): draped by the shipped") &&
+                      Catch::Contains("models/tshirt-coarse.h5, the model of that rig"));
+  // Posed: the mannequin's model of posed drapes, the pose read off the mesh.
+  REQUIRE(test::run(env + " predict --body " + (dir / "posed.obj").string() + " --out " + (dir / "p.obj").string() + " 2>&1", out) == 0);
+  CHECK_THAT(out, Catch::Contains("models/tshirt-coarse-posed.h5, the model of that rig") &&
+                      Catch::Contains("model: ") && Catch::Contains("of posed drapes") &&
+                      Catch::Contains("the body mesh is posed"));
+  // optimize on the mannequin's scene, as docs/optimization.md shows it.
+  REQUIRE(test::run(env + " optimize --scene graphs/scenes/tshirt_coarse_contact.yaml --body " + (dir / "rest.obj").string() +
+                        " --iters 2 --out " + (dir / "o.obj").string() + " 2>&1", out) == 0);
+  CHECK_THAT(out, Catch::Contains("models/tshirt-coarse.h5, the model of that rig"));
+  // The human rig's body keeps the default.
+  REQUIRE(test::run(env + " body --param rig=human --bmi 30 --out " + (dir / "human.obj").string(), out) == 0);
+  REQUIRE(test::run(env + " predict --body " + (dir / "human.obj").string() + " --out " + (dir / "h.obj").string() + " 2>&1", out) == 0);
+  CHECK_THAT(out, Catch::Contains("tshirt-coarse-human.h5") && !Catch::Contains("another rig"));
+}
+
 TEST_CASE("predict drapes a body a thousand kilometres from the origin as it drapes it at the origin", "[cli][units]") {
   // An outside check: the body was rounded to single precision before it was
   // moved near where the training bodies stood; at 1e6 m its drape came out
