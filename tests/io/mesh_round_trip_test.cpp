@@ -158,6 +158,19 @@ TEST_CASE("OBJ details: negative indices, v//vn corners, comments, CRLF, unused 
   CHECK(m.vertices(3, 2) == 5.0);
 }
 
+TEST_CASE("an OBJ that starts with a byte-order mark keeps its first vertex and a face index 0 is named", "[io]") {
+  // The mark made the first statement's keyword unknown: the first vertex was
+  // dropped without a word (an outside check's body read 6,903 of 6,904).
+  TempDir dir;
+  drape::test::write_text(dir / "bom.obj", "\xEF\xBB\xBFv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
+  const Mesh m = read_mesh(dir / "bom.obj");
+  REQUIRE(m.num_vertices() == 3);
+  CHECK(m.vertices.row(1) == Eigen::RowVector3d(1, 0, 0));
+  CHECK(m.faces.row(0) == Eigen::RowVector3i(0, 1, 2));
+  drape::test::write_text(dir / "zero.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 0 1 2\n");
+  CHECK_THROWS_WITH(read_mesh(dir / "zero.obj"), Catch::Contains("zero.obj:4") && Catch::Contains("they count from 1"));
+}
+
 // An ASCII PLY header: float x y z (and s t with `uv`) per vertex, a list of int corners per face.
 static std::string ascii_ply_header(int vertices, int faces, bool uv = false) {
   return "ply\nformat ascii 1.0\nelement vertex " + std::to_string(vertices) +

@@ -82,7 +82,10 @@ class LineCursor {
 int resolve_index(long index, std::size_t count, const char* kind, const char* kinds, const SourceLocation& where) {
   const long n = static_cast<long>(count);
   const long resolved = index > 0 ? index - 1 : n + index;
-  if (index == 0 || resolved < 0 || resolved >= n)
+  if (index == 0)
+    throw ConfigError(where, "face refers to " + std::string(kind) + " 0, which no OBJ index names (they count from 1, or "
+                             "back from -1)");
+  if (resolved < 0 || resolved >= n)
     throw ConfigError(where, "face refers to " + std::string(kind) + " " + std::to_string(index) + " but " +
                                  std::to_string(n) + " " + (n == 1 ? kind : kinds) + (n == 1 ? " is" : " are") +
                                  " defined before this line");
@@ -178,6 +181,10 @@ struct ObjParser {
   void parse(const std::string& text) {
     const char* p = text.data();
     const char* const end = p + text.size();
+    // A UTF-8 byte-order mark (an editor's save): the first statement's
+    // keyword read "\xEF\xBB\xBFv", unknown, and the first vertex was
+    // dropped without a word (then "face refers to vertex 6904 but 6903 ...").
+    if (text.size() >= 3 && std::memcmp(p, "\xEF\xBB\xBF", 3) == 0) p += 3;
     SourceLocation where{path, 0};
     while (p < end) {
       ++where.line;
