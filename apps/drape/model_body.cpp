@@ -9,6 +9,7 @@
 #include <drape/io/shipped_files.hpp>
 #include <drape/scene/garment_size.hpp>
 #include <drape/io/mesh_io.hpp>
+#include <drape/scene/scene.hpp>
 #include <drape/services/dataset_poses.hpp>
 #include <drape/services/model_body.hpp>
 
@@ -19,7 +20,11 @@
 #include <filesystem>
 #include <optional>
 #include <iostream>
+#include <map>
+#include <set>
 #include <utility>
+
+#include <yaml-cpp/yaml.h>
 
 namespace drape::cli {
 
@@ -84,6 +89,35 @@ std::string models_taking(const Model& model, Eigen::Index count, const po::vari
   std::string names;
   for (std::size_t i = 0; i < found.size(); ++i)
     names += (i == 0 ? "" : i + 1 == found.size() ? " and " : ", ") + found[i];
+  return names;
+}
+
+// The shipped scenes whose body model makes bodies of `count` vertices (a
+// MakeHuman body given to the parametric body's model: no model drapes it,
+// a scene of it simulates it), as "graphs/scenes/a.yaml, ..."; "" for none.
+// Builds each scene's body model: the error's path only.
+std::string scenes_taking(const Registry& registry, Eigen::Index count) {
+  std::set<std::string> found;
+  std::map<std::string, Eigen::Index> counts;  // by the scene's body model and its parameters
+  for (const fs::path& root : shipped_data_dirs()) {
+    std::error_code ec;
+    for (const fs::directory_entry& entry : fs::directory_iterator(root / "graphs" / "scenes", ec)) {
+      if (entry.path().extension() != ".yaml") continue;
+      try {
+        const Scene scene = load_scene(entry.path());
+        std::string key = scene.body_model;
+        for (const auto& [name, value] : scene.body_params) key += "," + name + "=" + YAML::Dump(value.node);
+        auto it = counts.find(key);
+        if (it == counts.end()) it = counts.emplace(key, make_scene_body_model(registry, scene)->num_vertices()).first;
+        if (it->second == count) found.insert("graphs/scenes/" + entry.path().filename().string());
+      } catch (const std::exception&) {
+        // (a scene whose body model cannot be made here, MakeHuman's without its assets: not one that takes it)
+      }
+    }
+    if (!found.empty()) break;
+  }
+  std::string names;
+  for (const std::string& f : found) names += (names.empty() ? "" : ", ") + f;
   return names;
 }
 
@@ -283,7 +317,13 @@ SampleBatch model_body(const Model& model, const po::variables_map& vm, BodyMove
     // A mesh of another vertex count: say which models beside this one take it.
     if (!input.vertices || input.vertices->rows() == model.assets().body.num_vertices()) throw;
     const std::string others = models_taking(model, input.vertices->rows(), vm);
-    if (others.empty()) throw;
+    if (others.empty()) {
+      const std::string scenes = scenes_taking(Registry::load_default(plugin_path(vm)), input.vertices->rows());
+      if (scenes.empty()) throw;
+      throw ConfigError(std::string(e.what()) + "; no shipped model drapes bodies of " +
+                        std::to_string(input.vertices->rows()) + " vertices, the body model of " + scenes +
+                        " makes them: drape simulate SCENE --body simulates the garment on it");
+    }
     throw ConfigError(std::string(e.what()) + "; " + others + " beside " + model.file().filename().string() +
                       " take bodies of " + std::to_string(input.vertices->rows()) + " vertices (--model)");
   }

@@ -97,11 +97,12 @@ GivenPosedBody unpose_given_body(Eigen::MatrixX3d& body, const BodyModel& model,
       held += part;
     }
     if (!held.empty()) {
-      char line[700];
+      char line[900];
       std::snprintf(line, sizeof line,
                     "%s is not a body the body model can make: the closest it makes, posed, holds %s and still lies "
                     "%.1f mm rms from the mesh, so the pose read off it would be wrong (a body of another height or "
-                    "build than the model's range? A mesh like it at rest is draped with a warning)",
+                    "build than the model's range? If it stands at rest, a model of A-pose drapes drapes it with a warning: "
+                    "--model models/tshirt-coarse-human.h5)",
                     who.c_str(), held.c_str(), 1e3 * out.fit.fit_rms);
       out.outside = line;
     }
