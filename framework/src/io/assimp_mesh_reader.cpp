@@ -264,6 +264,15 @@ Mesh read_with_assimp(const std::filesystem::path& file, MaterialMesh* materials
     out.uv_faces = Eigen::Map<const RowMajor3i>(uv_faces.data(), static_cast<Eigen::Index>(uv_faces.size() / 3), 3);
   }
   if (out.num_vertices() == 0) throw ConfigError(where, "the file holds no vertices");
+  // A PLY written in double: its positions as written, where assimp kept each
+  // vertex (one mesh, no vertex merged: the counts agree) and the float it
+  // read is the double rounded.
+  if (extension == ".ply" && scene->mNumMeshes == 1)
+    if (const std::optional<Eigen::MatrixX3d> exact = read_ply_double_positions(file);
+        exact && exact->rows() == out.num_vertices() &&
+        ((exact->cast<float>().cast<double>() - out.vertices).cwiseAbs().array() <=
+         1e-6 * out.vertices.cwiseAbs().array().max(1.0)).all())
+      out.vertices = *exact;
   return out;
 }
 

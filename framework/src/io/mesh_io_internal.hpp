@@ -3,7 +3,10 @@
 #include <drape/mesh.hpp>
 #include <drape/io/mesh_io.hpp>
 
+#include <Eigen/Core>
+
 #include <filesystem>
+#include <optional>
 #include <string>
 
 namespace drape::mesh_io {
@@ -17,6 +20,10 @@ Mesh read_with_assimp(const std::filesystem::path& file, MaterialMesh* materials
 void require_complete_ply(const std::filesystem::path& file);
 // The same for an ASCII OFF file: its counts against the lines that follow.
 void require_complete_off(const std::filesystem::path& file);
+// A PLY's vertex positions in double when its header declares x, y and z
+// double (assimp reads them into floats); nullopt for float positions or a
+// file it cannot walk (assimp's reading stands then).
+std::optional<Eigen::MatrixX3d> read_ply_double_positions(const std::filesystem::path& file);
 
 // These write straight to `file` (the temporary of write_atomically).
 // `format_id` is assimp's exporter id: "plyb", "gltf2" or "glb2".
