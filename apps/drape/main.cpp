@@ -48,6 +48,15 @@ bool parse(const std::string& usage, const std::vector<std::string>& args, po::o
     for (const std::string& match : closest_matches(name, known)) hint += (hint.empty() ? "; did you mean " : ", ") + ("--" + match);
     if (!hint.empty()) hint += "?";
     throw UsageError(std::string(e.what()) + hint + "\nusage: " + usage);
+  } catch (const po::required_option& e) {
+    // A missing positional argument was "the option '--file' is required",
+    // an option the usage line never shows.
+    std::string name = e.get_option_name();
+    while (!name.empty() && name.front() == '-') name.erase(name.begin());
+    for (unsigned i = 0; i < positional.max_total_count() && i < 16; ++i)
+      if (positional.name_for_position(i) == name)
+        throw UsageError("missing " + name + ": give it after the command (its place in the usage line)\nusage: " + usage);
+    throw UsageError(std::string(e.what()) + "\nusage: " + usage);
   } catch (const po::error& e) {
     throw UsageError(std::string(e.what()) + "\nusage: " + usage);
   }

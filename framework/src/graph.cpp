@@ -142,6 +142,11 @@ void Graph::Impl::add_inputs(const GraphSpec& spec, const GraphOptions& options)
         if (used != d.size()) throw std::invalid_argument(d);
       } catch (const std::exception&) {
         auto it = options.dims.find(d);
+        // A number too large for a size was "unknown size '99999999999'".
+        if (it == options.dims.end() && !d.empty() &&
+            d.find_first_not_of("0123456789") == std::string::npos)
+          throw ConfigError(dims.second, "input '" + name + "': size " + d + " is too large (at most " +
+                                             std::to_string(std::numeric_limits<int>::max()) + ")");
         if (it == options.dims.end()) {
           std::vector<std::string> known;
           for (const auto& [k, v] : options.dims) known.push_back(k);

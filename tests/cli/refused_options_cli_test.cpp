@@ -198,3 +198,15 @@ TEST_CASE("an HDF5 output named with another format's extension is refused befor
   CHECK_THAT(out, Catch::Contains("not a .json file"));
   CHECK(std::filesystem::is_empty(dir.path()));
 }
+
+TEST_CASE("a missing positional argument is named as the usage line shows it", "[cli][options]") {
+  std::string out;
+  // It was "the option '--file' is required", an option the usage line never shows.
+  CHECK(test::run_drape("graph check", out) == 2);
+  CHECK_THAT(out, Catch::Contains("missing file: give it after the command") && !Catch::Contains("'--file'"));
+  CHECK(test::run_drape("dataset info", out) == 2);
+  CHECK_THAT(out, Catch::Contains("missing file"));
+  // Ranges as a scene writes numbers (they were [1.000000, 4096.000000]).
+  REQUIRE(test::run_drape("plugins --kind encoder", out) == 0);
+  CHECK_THAT(out, Catch::Contains("range [1, 4096]") && !Catch::Contains(".000000"));
+}

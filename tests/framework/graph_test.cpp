@@ -118,6 +118,9 @@ TEST_CASE("graph errors name the file, the line and the node", "[graph]") {
   // Shape mismatch.
   e = error_of("inputs: { rest: [n, 3], other: [n, 2] }\nnodes:\n  a: { type: add, in: [rest, other] }\noutputs: [a]\n");
   CHECK_THAT(e, Catch::Contains("g.yaml:3") && Catch::Contains("node 'a' (add)") && Catch::Contains("cannot add"));
+  // A number too large for a size (it was "unknown size").
+  e = error_of("inputs: { rest: [99999999999, 3] }\nnodes:\n  a: { type: scale, in: rest }\noutputs: [a]\n");
+  CHECK_THAT(e, Catch::Contains("size 99999999999 is too large") && !Catch::Contains("unknown size"));
   // Unknown symbolic size.
   e = error_of("inputs: { rest: [m, 3] }\nnodes:\n  a: { type: scale, in: rest }\noutputs: [a]\n");
   CHECK_THAT(e, Catch::Contains("unknown size 'm'"));
