@@ -1,6 +1,7 @@
 #include "yaml_util.hpp"
 
 #include <algorithm>
+#include <cstdio>
 #include <fstream>
 #include <map>
 #include <sstream>
@@ -103,6 +104,11 @@ void refuse_dangling_last_line(const std::string& text, const std::string& file)
 }  // namespace
 
 YAML::Node load_text(const std::string& text, const std::string& name_for_errors) {
+  // A binary file (a library, an HDF5 file given for a YAML one) made
+  // yaml-cpp print one of its control bytes raw into the message.
+  if (const std::size_t nul = text.find('\0'); nul != std::string::npos)
+    throw ConfigError({name_for_errors, static_cast<int>(std::count(text.begin(), text.begin() + static_cast<long>(nul), '\n')) + 1},
+                      "not a text file (a zero byte at offset " + std::to_string(nul) + "): give a YAML file");
   YAML::Node root;
   try {
     // Every document, so that a second one is refused: YAML::Load reads the
@@ -136,8 +142,19 @@ YAML::Node load_text(const std::string& text, const std::string& name_for_errors
         }
       }
     }
+    // Control bytes in yaml-cpp's message (the character it stopped at) written as \xNN, not sent to the terminal.
+    std::string message;
+    for (const char c : e.msg) {
+      if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f) {
+        char hex[8];
+        std::snprintf(hex, sizeof hex, "\\x%02x", static_cast<unsigned char>(c));
+        message += hex;
+      } else {
+        message += c;
+      }
+    }
     throw ConfigError({name_for_errors, line},
-                      "malformed YAML: " + e.msg + (e.mark.line + 1 > lines ? " (at the end of the file)" : "") + tab);
+                      "malformed YAML: " + message + (e.mark.line + 1 > lines ? " (at the end of the file)" : "") + tab);
   }
   std::vector<YAML::Node> open;
   refuse_repeated_keys_and_cycles(root, name_for_errors, open);

@@ -159,6 +159,9 @@ TEST_CASE("malformed YAML names the file and line", "[graph]") {
   } catch (const ConfigError& e) {
     CHECK_THAT(e.what(), Catch::Contains("bad.yaml:2") && Catch::Contains("malformed YAML"));
   }
+  // A binary file: yaml-cpp's message carried one of its control bytes raw to the terminal.
+  write(dir / "binary.yaml", std::string("\x7f" "ELF\x02\x01\n\x01\0\0\0\x1b[31m", 16));
+  CHECK_THROWS_WITH(parse_graph_file(dir / "binary.yaml"), Catch::Contains("binary.yaml:2") && Catch::Contains("not a text file"));
 }
 
 TEST_CASE("an ablation overrides a few nodes and loss weights of its base", "[graph]") {
