@@ -118,6 +118,7 @@ void apply_file(GraphSpec& spec, const fs::path& path, const YAML::Node& root, s
 void apply_file(GraphSpec& spec, const fs::path& path, const YAML::Node& root, std::set<fs::path>& chain) {
   const std::string file = path.string();
   if (!root.IsMap()) throw ConfigError({file, 1}, "a graph file must be a YAML map (inputs, nodes, outputs, losses)");
+  yaml::check_file_kind(file, root, "graph");
   yaml::check_keys(file, root, {"base", "description", "inputs", "nodes", "outputs", "losses"}, "graph");
   if (root["base"]) {
     const fs::path base = path.parent_path() / yaml::scalar(file, root["base"], "`base`");

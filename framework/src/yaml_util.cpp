@@ -33,6 +33,36 @@ void check_keys(const std::string& file, const YAML::Node& map, const std::vecto
   }
 }
 
+void check_file_kind(const std::string& file, const YAML::Node& root, const std::string& expected) {
+  if (!root.IsMap()) return;
+  // Each kind by the top-level keys only it has, and the command that reads it.
+  struct Kind {
+    const char* name;
+    std::vector<std::string> keys;
+    const char* read_by;
+  };
+  static const std::vector<Kind> kinds = {
+      {"graph", {"inputs", "nodes", "outputs", "losses"}, "drape graph check, train"},
+      {"scene", {"body", "garment", "materials", "effects", "solver"}, "drape simulate, generate"},
+      {"experiment", {"datasets", "columns", "rows", "training"}, "drape experiment"}};
+  const auto keys_of = [&](const Kind& k) {
+    std::vector<std::string> found;
+    for (const auto& kv : root)
+      if (kv.first.IsScalar() && std::find(k.keys.begin(), k.keys.end(), kv.first.Scalar()) != k.keys.end())
+        found.push_back(kv.first.Scalar());
+    return found;
+  };
+  const auto own = std::find_if(kinds.begin(), kinds.end(), [&](const Kind& k) { return expected == k.name; });
+  if (own == kinds.end() || !keys_of(*own).empty()) return;
+  for (const Kind& k : kinds) {
+    const std::vector<std::string> found = keys_of(k);
+    if (&k == &*own || found.empty()) continue;
+    throw ConfigError({file, 1}, "this is " + std::string(k.name[0] == 'e' ? "an " : "a ") + k.name + " file (its keys " +
+                                     joined(found) + "), which " + k.read_by + " read; " +
+                                     (own->name[0] == 'e' ? "an " : "a ") + own->name + " file has " + joined(own->keys));
+  }
+}
+
 namespace {
 
 // yaml-cpp keeps one of two equal keys of a map without a word, so a scene

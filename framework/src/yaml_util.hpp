@@ -26,6 +26,13 @@ std::string scalar(const std::string& file, const YAML::Node& n, const std::stri
 void check_keys(const std::string& file, const YAML::Node& map, const std::vector<std::string>& allowed,
                 const std::string& owner);
 
+// A drape file of another kind than `expected` ("graph", "scene",
+// "experiment") given where that kind is read: ConfigError at line 1 naming
+// the kind its top-level keys are, and the command that reads it (an
+// experiment given to graph check was "unknown key 'name'; did you mean
+// 'base'?"). Nothing when the file has a key of its own kind.
+void check_file_kind(const std::string& file, const YAML::Node& root, const std::string& expected);
+
 // Parse YAML; ConfigError "malformed YAML" at file:line on a syntax error, at
 // the second's line for a key given twice in one map (yaml-cpp would keep one
 // silently), and for load_file also when the file cannot be read.

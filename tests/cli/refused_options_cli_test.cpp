@@ -210,3 +210,17 @@ TEST_CASE("a missing positional argument is named as the usage line shows it", "
   REQUIRE(test::run_drape("plugins --kind encoder", out) == 0);
   CHECK_THAT(out, Catch::Contains("range [1, 4096]") && !Catch::Contains(".000000"));
 }
+
+TEST_CASE("a drape file of another kind is named as what it is and the command that reads it", "[cli][options]") {
+  // An experiment given to graph check was "unknown key 'name'; did you mean 'base'?".
+  std::string out;
+  const auto file = [](const char* name) { return (test::source_dir() / name).string(); };
+  CHECK(test::run_drape("graph check " + file("graphs/experiments/table_6_6.yaml"), out) == 2);
+  CHECK_THAT(out, Catch::Contains("table_6_6.yaml:1: this is an experiment file") && Catch::Contains("drape experiment"));
+  CHECK(test::run_drape("graph check " + file("graphs/scenes/tshirt_coarse.yaml"), out) == 2);
+  CHECK_THAT(out, Catch::Contains("this is a scene file") && Catch::Contains("drape simulate"));
+  CHECK(test::run_drape("simulate " + file("graphs/drape.yaml") + " --bmi 30", out) == 2);
+  CHECK_THAT(out, Catch::Contains("this is a graph file") && Catch::Contains("a scene file has body, garment"));
+  CHECK(test::run_drape("experiment " + file("graphs/scenes/tshirt.yaml") + " --dry-run", out) == 2);
+  CHECK_THAT(out, Catch::Contains("this is a scene file"));
+}

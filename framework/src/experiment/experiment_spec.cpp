@@ -284,6 +284,7 @@ ExperimentSpec parse_experiment_file(const fs::path& file) {
   const Reader r{file.string(), file.parent_path()};
   ExperimentSpec spec;
   spec.file = file;
+  yaml::check_file_kind(r.file, root, "experiment");
   yaml::check_keys(r.file, root, {"name", "title", "note", "datasets", "training", "columns", "rows"}, "experiment");
   for (const char* key : {"name", "datasets", "columns", "rows"})
     if (!root[key]) throw ConfigError(r.at(root), std::string("experiment: '") + key + "' is required");

@@ -118,6 +118,7 @@ void parse_effects(Scene& s, const std::string& file, const YAML::Node& n) {
 
 void apply(Scene& s, const fs::path& path, const std::string& file, const YAML::Node& root, std::vector<fs::path>& chain) {
   if (!root || root.IsNull()) return;
+  yaml::check_file_kind(file, root, "scene");
   yaml::check_keys(file, root, {"base", "description", "body", "garment", "materials", "effects", "solver"}, "scene");
   if (root["base"]) {
     if (path.empty()) throw ConfigError(yaml::at(file, root["base"]), "`base:` needs a scene file (relative to it)");
