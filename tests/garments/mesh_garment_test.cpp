@@ -172,8 +172,9 @@ TEST_CASE("mesh garment: bad garments are refused naming the file and the elemen
     // exporter joins it on writing, assimp_mesh_writer.cpp.)
     for (const std::string name : {"split.obj", "split.ply"}) {
       write_mesh(dir / name, split);
-      CHECK_THAT(build_error(dir / name), Catch::Contains(name + "': 1 vertices duplicate an earlier one (vertex " +
-                                                          std::to_string(copy) + " sits on vertex 0)"));
+      CHECK_THAT(build_error(dir / name), Catch::Contains(name + "': 1 vertices duplicate an earlier one (vertex " + std::to_string(copy) +
+                                                          " (from 0: the file's vertex " + std::to_string(copy + 1) +
+                                                          ") sits on vertex 0 (from 0: the file's vertex 1))"));
       // Placed at the scene's line that names the file (a garment's build named no scene line: an outside check).
       CHECK_THAT(build_error(dir / name), Catch::StartsWith("<scene>:2: "));
       const Simulation sim(test::plugins(), parse_scene(scene_text(dir / name, ", weld: true")));
@@ -183,8 +184,9 @@ TEST_CASE("mesh garment: bad garments are refused naming the file and the elemen
     // through (an outside check's copies 5-20 um apart were taken as an open seam and the skirt fell off).
     split.vertices(copy, 0) += 2e-5;
     write_mesh(dir / "near.obj", split);
-    CHECK_THAT(build_error(dir / "near.obj"), Catch::Contains("1 vertices duplicate an earlier one (vertex " +
-                                                              std::to_string(copy) + " sits on vertex 0, 20 um from it"));
+    CHECK_THAT(build_error(dir / "near.obj"), Catch::Contains("1 vertices duplicate an earlier one (vertex " + std::to_string(copy) +
+                                                              " (from 0: the file's vertex " + std::to_string(copy + 1) +
+                                                              ") sits on vertex 0 (from 0: the file's vertex 1), 20 um from it"));
     const Simulation welded(test::plugins(), parse_scene(scene_text(dir / "near.obj", ", weld: true")));
     CHECK(welded.garment().mesh.num_vertices() == copy);
   }
@@ -209,13 +211,13 @@ TEST_CASE("mesh garment: bad garments are refused naming the file and the elemen
     fin.uv_faces.conservativeResize(fin.faces.rows(), 3);
     fin.uv_faces.row(fin.faces.rows() - 1) << 0, 1, 30;
     write_mesh(dir / "fin.obj", fin);
-    CHECK_THAT(build_error(dir / "fin.obj"), Catch::Contains("fin.obj': the edge between vertices") && Catch::Contains("non-manifold"));
+    CHECK_THAT(build_error(dir / "fin.obj"), Catch::Contains("fin.obj': the edge between vertex ") && Catch::Contains("(from 0: the file's vertex") && Catch::Contains("non-manifold"));
   }
   SECTION("a degenerate UV triangle") {
     Mesh flat = tube();
     flat.uv.row(flat.uv_faces(5, 2)) = flat.uv.row(flat.uv_faces(5, 0));
     write_mesh(dir / "flat.obj", flat);
-    CHECK_THAT(build_error(dir / "flat.obj"), Catch::Contains("flat.obj': face ") && Catch::Contains("degenerate in material space"));
+    CHECK_THAT(build_error(dir / "flat.obj"), Catch::Contains("flat.obj': face ") && Catch::Contains("(from 0: the file's triangle ") && Catch::Contains("degenerate in material space"));
   }
   SECTION("a vertex no face uses") {
     Mesh loose = tube();
@@ -223,7 +225,8 @@ TEST_CASE("mesh garment: bad garments are refused naming the file and the elemen
     loose.vertices.conservativeResize(n + 1, 3);
     loose.vertices.row(n) << 0.0, 1.3, 1.5;  // 1.5 m in front of the body, where nothing would move it
     write_mesh(dir / "loose.obj", loose);
-    CHECK_THAT(build_error(dir / "loose.obj"), Catch::Contains("loose.obj': vertex " + std::to_string(n) + " (at 0.000, 1.300, 1.500) is used by no face (1 such vertex)"));
+    CHECK_THAT(build_error(dir / "loose.obj"), Catch::Contains("loose.obj': vertex " + std::to_string(n) + " (from 0: the file's vertex " +
+                                                               std::to_string(n + 1) + ") (at 0.000, 1.300, 1.500) is used by no face (1 such vertex)"));
   }
   SECTION("a sliver of the rest shape: its area in figures, and no advice to use the material space in use") {
     Mesh sliver = tube();

@@ -45,6 +45,14 @@ struct MeshGarmentOptions {
 
 std::string where(const MeshGarmentOptions& o) { return "garment mesh '" + o.file + "'"; }
 
+// A vertex or face as the messages name it: drape counts from 0, an OBJ's
+// lines from 1 (an outside check read "face 1907" as the 1,907th f line).
+// A face is a triangle of the file's polygons in order, as the reader splits them.
+std::string vertex_name(int v) { return "vertex " + std::to_string(v) + " (from 0: the file's vertex " + std::to_string(v + 1) + ")"; }
+std::string face_name(int f) {
+  return "face " + std::to_string(f) + " (from 0: the file's triangle " + std::to_string(f + 1) + ", its polygons split in order)";
+}
+
 // Vertices closer than `distance` to an earlier one: the seams of a garment
 // exported with split vertices. Returns, per vertex, the vertex it merges into
 // (itself when kept). `may_merge(i, j)` says whether two such vertices are
@@ -105,8 +113,8 @@ void handle_duplicates(Mesh& mesh, const MeshGarmentOptions& o) {
     }
   if (merged == 0) return;
   if (!o.weld)
-    throw ConfigError(where(o) + ": " + std::to_string(merged) + " vertices duplicate an earlier one (vertex " +
-                      std::to_string(first) + " sits on vertex " + std::to_string(into[static_cast<std::size_t>(first)]) +
+    throw ConfigError(where(o) + ": " + std::to_string(merged) + " vertices duplicate an earlier one (" + vertex_name(first) + " sits on " +
+                      vertex_name(into[static_cast<std::size_t>(first)]) +
                       [&] {
                         const double apart = (mesh.vertices.row(first) - mesh.vertices.row(into[static_cast<std::size_t>(first)])).norm();
                         char text[96] = "";
@@ -133,12 +141,12 @@ void handle_duplicates(Mesh& mesh, const MeshGarmentOptions& o) {
 void check_manifold(const Mesh& mesh, const MeshGarmentOptions& o) {
   for (int f = 0; f < mesh.num_faces(); ++f) {
     const int a = mesh.faces(f, 0), b = mesh.faces(f, 1), c = mesh.faces(f, 2);
-    if (a == b || b == c || a == c) throw ConfigError(where(o) + ": face " + std::to_string(f) + " uses a vertex twice");
+    if (a == b || b == c || a == c) throw ConfigError(where(o) + ": " + face_name(f) + " uses a vertex twice");
   }
   const geometry::TopologyReport t = geometry::check_topology(mesh.faces, mesh.num_vertices());
   if (t.nonmanifold_edges > 0)
-    throw ConfigError(where(o) + ": the edge between vertices " + std::to_string(t.first_nonmanifold_edge[0]) + " and " +
-                      std::to_string(t.first_nonmanifold_edge[1]) + " is shared by 3 or more faces (non-manifold; " +
+    throw ConfigError(where(o) + ": the edge between " + vertex_name(t.first_nonmanifold_edge[0]) + " and " +
+                      vertex_name(t.first_nonmanifold_edge[1]) + " is shared by 3 or more faces (non-manifold; " +
                       std::to_string(t.nonmanifold_edges) + " such edges); cloth needs every edge on one or two faces");
 }
 
@@ -154,7 +162,7 @@ void check_every_vertex_used(const Mesh& mesh, const MeshGarmentOptions& o) {
   const auto first = static_cast<int>(std::find(used.begin(), used.end(), 0) - used.begin());
   char at[96];
   std::snprintf(at, sizeof at, " (at %.3f, %.3f, %.3f)", mesh.vertices(first, 0), mesh.vertices(first, 1), mesh.vertices(first, 2));
-  throw ConfigError(where(o) + ": vertex " + std::to_string(first) + at + " is used by no face (" + std::to_string(unused) +
+  throw ConfigError(where(o) + ": " + vertex_name(first) + at + " is used by no face (" + std::to_string(unused) +
                     (unused == 1 ? " such vertex" : " such vertices") +
                     "): a loose point is no cloth; remove it from the file");
 }
@@ -188,7 +196,7 @@ void check_material_space(const Mesh& mesh, const MeshGarmentOptions& o) {
     if (!(area > 1e-4 * longest * longest)) {
       char sizes[96];
       std::snprintf(sizes, sizeof sizes, " has area %.3g m^2 for a longest side of %.3g m", area, longest);
-      throw ConfigError(where(o) + ": face " + std::to_string(f) + " is degenerate in material space (" +
+      throw ConfigError(where(o) + ": " + face_name(f) + " is degenerate in material space (" +
                         (o.material_space == "uv" ? "its UV triangle" : "its rest triangle") + sizes + "): " +
                         (o.material_space == "uv" ? "fix its UVs, or use material_space: rest"
                                                   : "the mesh's triangle is a sliver; collapse or remesh it"));
