@@ -12,6 +12,7 @@
 #include <drape/io/mesh_io.hpp>
 #include <drape/progress.hpp>
 #include <drape/registry.hpp>
+#include <drape/scene/rode_up.hpp>
 #include <drape/services/scene_body.hpp>
 #include <drape/io/svg_figure.hpp>
 
@@ -254,6 +255,9 @@ int run(const std::vector<std::string>& args) {
   const SimulationResult r = drape_scene_body(target, options);  // moved back where the given body stood
   if (bar) bar->finish();
   print_result(r);
+  // (a garment far smaller round than the body settles as a band round the chest, p = 0)
+  if (const std::string note = garment_rode_up(sim.garment().mesh.vertices, r.garment); !note.empty())
+    std::printf("note: %s\n", note.c_str());
   if (verbose) print_imbalance(r);
   write_outputs(vm, sim, r);
   return r.converged ? 0 : 1;

@@ -3,6 +3,7 @@
 // turns into an autograd Function. Physics in double, as in the simulator.
 #include "common.hpp"
 
+#include <drape/scene/rode_up.hpp>
 #include <drape/io/shipped_files.hpp>
 #include <drape/bodies/pose.hpp>
 #include <drape/bodies/posed_body.hpp>
@@ -223,6 +224,9 @@ void register_scene(py::module_& m) {
               py::gil_scoped_release release;
               r = drape_scene_body(target, o);
             }
+            // As drape simulate notes it: a garment too small round the body rode up into a band.
+            if (const std::string note = garment_rode_up(target.simulation->garment().mesh.vertices, r.garment); !note.empty())
+              warn_python(note);
             py::dict d = result_dict(std::move(r));
             d["size"] = target.size ? py::cast(target.size->summary()) : py::none();
             d["garment_size"] = target.size ? py::cast(target.size->size) : py::none();
