@@ -5,13 +5,51 @@
 #include "command.hpp"
 #include "experiment/experiment_runner.hpp"
 
+#include <drape/experiment/experiment.hpp>
+#include <drape/graph.hpp>
 #include <drape/registry.hpp>
 
+#include <algorithm>
 #include <cstdio>
 #include <thread>
 
 namespace drape::cli {
 namespace DRAPE_UNITY_ID {  // the anonymous namespace, or a unique one in a unity build (command.hpp)
+
+// Each evaluate row's `set: {node.param: value}` against the graph of the
+// row that trains its model: a node the graph lacks, or a parameter its
+// plugin lacks, failed only after every row before it had run (an outside
+// check's `postt.enabled` after an hour's training, and `post.enabeld`
+// blamed on line 36 of the model's graph). --dry-run says it too.
+void check_evaluate_sets(const ExperimentSpec& spec, const Registry& registry) {
+  for (const ExperimentRow& row : spec.rows) {
+    if (row.kind != ExperimentRowKind::Evaluate || row.set.empty()) continue;
+    // The row whose graph made the model (an optimize row's model is its source's).
+    const ExperimentRow* trained = &row;
+    for (int hops = 0; trained->kind != ExperimentRowKind::Train && !trained->source.empty() && hops < 64; ++hops)
+      trained = &spec.row(trained->source);
+    if (trained->kind != ExperimentRowKind::Train) continue;
+    const GraphSpec graph = parse_graph_file(trained->graph);
+    std::vector<std::string> nodes;
+    for (const NodeSpec& n : graph.nodes) nodes.push_back(n.name);
+    for (const auto& [key, value] : row.set) {
+      const std::string node = key.substr(0, key.find('.')), param = key.substr(key.find('.') + 1);
+      const auto it = std::find_if(graph.nodes.begin(), graph.nodes.end(), [&](const NodeSpec& n) { return n.name == node; });
+      const std::string at = "row '" + row.name + "' set '" + key + "': ";
+      if (it == graph.nodes.end())
+        throw ConfigError(row.where, at + "the graph of row '" + trained->name + "' (" + trained->graph.string() +
+                                         ") has no node '" + node + "'" + did_you_mean(node, nodes));
+      if (param.find('.') != std::string::npos) continue;  // (in.PORT: an input connected, not a parameter)
+      const PluginDescriptor* d = registry.find(it->type);
+      if (!d) continue;  // (an unknown type is the training's own error)
+      std::vector<std::string> params;
+      for (const ParamSpec& p : d->params) params.push_back(p.name);
+      if (std::find(params.begin(), params.end(), param) == params.end())
+        throw ConfigError(row.where, at + "node '" + node + "' (" + it->type + ") has no parameter '" + param + "'" +
+                                         did_you_mean(param, params));
+    }
+  }
+}
 
 int run(const std::vector<std::string>& args) {
   po::options_description opts("drape experiment");
@@ -51,6 +89,7 @@ int run(const std::vector<std::string>& args) {
   Registry::load_default(plugin_path(vm));
   const ExperimentSpec spec = parse_experiment_file(find_input_file(vm["file"].as<std::string>()));
   for (const auto& [key, file] : o.data_files) spec.dataset(key);  // a misspelt key fails before any work
+  check_evaluate_sets(spec, Registry::load_default(plugin_path(vm)));
   if (vm.count("work")) o.work_dir = vm["work"].as<std::string>();
   const auto work = experiment_work_dir(spec, o);
   std::printf("experiment %s -> %s\n", spec.name.c_str(), work.c_str());

@@ -84,7 +84,7 @@ bool parse(const std::string& usage, const std::vector<std::string>& args, po::o
     else if (const float* f = boost::any_cast<float>(&held)) number = *f;
     else continue;
     if (!std::isfinite(number))
-      throw UsageError("--" + name + " " + std::to_string(number) + ": expected a finite number\nusage: " + usage);
+      throw UsageError("--" + name + " " + std::to_string(number) + ": not a finite number\nusage: " + usage);
   }
   // Outputs are checked before any work: a drape simulated for a minute must
   // not be lost to a missing or read-only folder. A value without an

@@ -163,6 +163,37 @@ TEST_CASE("experiment files: errors name the file, the line and the key", "[expe
              Catch::Contains("malformed YAML"));
 }
 
+TEST_CASE("experiment: a set of a node or parameter the row's graph lacks and a reversed BMI range fail before any work", "[experiment]") {
+  // They failed only after every row before them had run (an outside check),
+  // and the BMI range as generate's "--bmi", an option never typed.
+  test::TempDir dir;
+  std::ofstream(dir / "tiny.yaml") << test::tiny_simulation_scene();
+  const std::string graph = (test::source_dir() / "graphs/baselines/tailornet_no_anchor.yaml").string();
+  const auto run = [&](const std::string& bmi, const std::string& set) {
+    std::ofstream(dir / "e.yaml") << "name: e\ndatasets:\n  shirts: {scene: tiny.yaml, count: 10, bmi: \"" << bmi
+                                  << "\"}\ncolumns: [ME]\nrows:\n  - {name: TN, train: " << graph
+                                  << "}\n  - {name: TN-post, evaluate: TN, set: {" << set << ": \"true\"}}\n";
+    std::string out;
+    const int code = test::run(test::drape_program().string() + " experiment " + (dir / "e.yaml").string() + " --dry-run --work " +
+                                   (dir / "w").string(), out);
+    return std::make_pair(code, out);
+  };
+  auto [code, out] = run("20:40", "postt.enabled");
+  CHECK(code == 2);
+  CHECK_THAT(out, Catch::Contains("e.yaml:7: row 'TN-post' set 'postt.enabled'") && Catch::Contains("has no node 'postt'") &&
+                      Catch::Contains("did you mean 'post'"));
+  std::tie(code, out) = run("20:40", "post.enabeld");
+  CHECK(code == 2);
+  CHECK_THAT(out, Catch::Contains("node 'post' (push_out) has no parameter 'enabeld'; did you mean 'enabled'"));
+  std::tie(code, out) = run("40:20", "post.enabled");
+  CHECK(code == 2);
+  CHECK_THAT(out, Catch::Contains("e.yaml:3") && Catch::Contains(".bmi '40:20': expected a BMI or a range lo:hi"));
+  // Right, a dry run plans it.
+  std::tie(code, out) = run("20:40", "post.enabled");
+  CHECK(code == 0);
+  CHECK_FALSE(std::filesystem::exists(dir / "w" / "table.md"));
+}
+
 TEST_CASE("experiment: a row whose graph file was edited is trained again", "[experiment]") {
   // An outside check edited a row's graph after its run: the next run stopped
   // with "cannot resume: the interrupted run trained another graph ... (or
