@@ -60,8 +60,10 @@ std::string table_markdown(const ExperimentTable& t) {
     for (const auto& c : t.columns) {
       const auto ours = row.values.find(c);
       const auto seed = t.seed[r].find(c);
-      std::string cell = ours == row.values.end() ? "—" : number(ours->second);
-      if (c == "infer" && ours != row.values.end()) cell += " " + row.infer_unit;
+      // (A value not measured for any body -- an optimize row whose drapes are all "not results" -- is NaN: no number.)
+      const bool measured = ours != row.values.end() && std::isfinite(ours->second);
+      std::string cell = measured ? number(ours->second) : "—";
+      if (c == "infer" && measured) cell += " " + row.infer_unit;
       if (!column(c).not_as_the_seed) {
         cell += " / ";
         cell += seed == t.seed[r].end() ? "—" : number(seed->second);
@@ -78,8 +80,11 @@ std::string table_markdown(const ExperimentTable& t) {
     for (std::size_t r = 0; r < t.rows.size(); ++r)
       if (const auto seed = t.seed[r].find(c); seed != t.seed[r].end())
         values += (values.empty() ? "" : ", ") + t.rows[r].name + " " + number(seed->second);
-    if (values.empty()) continue;
-    o << "\n* The seed's " << col.header << " (" << values << ") does not compare with ours: " << col.not_as_the_seed << ".\n";
+    // (Said whether or not the seed gives numbers here: the * promises it below the table.)
+    if (values.empty())
+      o << "\n* " << col.header << " holds ours alone: the seed's " << col.header << " is another quantity: " << col.not_as_the_seed << ".\n";
+    else
+      o << "\n* The seed's " << col.header << " (" << values << ") does not compare with ours: " << col.not_as_the_seed << ".\n";
   }
   o << "\nColumns: ";
   for (std::size_t i = 0; i < t.columns.size(); ++i) {
@@ -103,7 +108,7 @@ std::string table_csv(const ExperimentTable& t) {
       const auto seed = t.seed[r].find(c);
       char b[40];
       o << ",";
-      if (ours != row.values.end()) {
+      if (ours != row.values.end() && std::isfinite(ours->second)) {
         std::snprintf(b, sizeof b, "%.9g", ours->second);
         o << b;
       }
