@@ -54,13 +54,17 @@ TEST_CASE("a job stopped by SIGTERM or SIGHUP or SIGPIPE leaves no lock file bes
                           " --bmi 30 --iters 1000000 --out " + (dir / "o.obj").string();
   for (const auto& [signal, status] : {std::pair<const char*, int>{"TERM", 143}, {"HUP", 129}, {"PIPE", 141}}) {
     CHECK(test::run("env -u DRAPE_MODEL DRAPE_CACHE_DIR=" + dir.path().string() + " " + job +
-                        " > /dev/null 2>&1 & pid=$!; for i in $(seq 100); do [ -e " + (dir / "o.obj.lock").string() +
+                        " > /dev/null 2> " + (dir / "err.txt").string() + " & pid=$!; for i in $(seq 100); do [ -e " + (dir / "o.obj.lock").string() +
                         " ] && break; sleep 0.1; done; sleep 1; kill -" + signal + " $pid; wait $pid; echo \"status $?\"",
                     out) == 0);
     INFO(signal << ": " << out);
     CHECK_THAT(out, Catch::Contains("status " + std::to_string(status)));  // ended by the signal's default action
     CHECK_FALSE(fs::exists(dir / "o.obj.lock"));
     CHECK_FALSE(fs::exists(dir / "o.obj"));
+    // And it says why it ended (an experiment stopped so ended with no word: an outside check).
+    if (std::string(signal) != "PIPE")
+      CHECK_THAT(test::read_file(dir / "err.txt"),
+                 Catch::Contains(std::string("drape: stopped by SIG") + signal + ": what was finished is kept"));
   }
 }
 

@@ -55,6 +55,18 @@ extern "C" void remove_held_locks(int signal) {
   for (int i = 0; i < kHeldLocks; ++i)
     if (held_in_use[i]) ::unlink(held_locks[i]);
   unlink_temporaries_in_flight();  // (the output being written, half done)
+  // One line of why the job ended (an outside check's experiment ended by
+  // SIGTERM with exit 143 and no word). write(2) is safe in a handler.
+  const char* name = signal == SIGINT ? "SIGINT" : signal == SIGTERM ? "SIGTERM" : signal == SIGHUP ? "SIGHUP" : nullptr;
+  if (name) {
+    constexpr const char head[] = "\ndrape: stopped by ";
+    constexpr const char tail[] = ": what was finished is kept; run the same command again to go on (drape train: with --resume)\n";
+    [[maybe_unused]] ssize_t ignored = ::write(2, head, sizeof head - 1);
+    std::size_t length = 0;
+    while (name[length] != '\0') ++length;
+    ignored = ::write(2, name, length);
+    ignored = ::write(2, tail, sizeof tail - 1);
+  }
   std::signal(signal, SIG_DFL);
   std::raise(signal);
 }
