@@ -87,6 +87,13 @@ TEST_CASE("a garment whose cloth is cut too small to go around the body is refus
   options.on_step = [&](const SimulationStep&) { ++steps; };
   CHECK_THROWS_WITH(small.run(small.body_vertices(small.target_shape()), options), Catch::Contains("cannot be put on"));
   CHECK(steps == 0);
+  // No fit note before that refusal: it advised a grade, which is refused alike (an outside check).
+  {
+    const SceneSimulations sims(test::plugins(), parse_scene(fit_scene_text(dir / "cut_small.obj")));
+    const BodyModel& model = sims.design().body_model();
+    const SceneBody target = scene_body(sims, model.vertices(model.solve(BodyRequest{45.0, 1.75, 1.0})), "bmi 45");
+    for (const std::string& note : target.notes) CHECK_THAT(note, !Catch::Contains("gives it its design ease"));
+  }
   // Scaled as told, its cloth goes around the body.
   char scaled[80];
   std::snprintf(scaled, sizeof scaled, ", uv_scale: %.6g", scale);

@@ -165,6 +165,10 @@ void choose_size(const SceneSimulations& simulations, const std::string& name, S
   }
   if (!simulations.auto_size()) {
     out.simulation = &simulations.design();
+    // A garment whose cloth cannot be put on its start body is refused when
+    // it runs, saying what to change (its pattern's scale, its grade): a fit
+    // note first advised a grade that is refused the same way (an outside check).
+    if (!simulations.design().start_refusal().empty()) return;
     note_fit(simulations.design(), out);
     note_length(simulations.design(), out);
     return;
