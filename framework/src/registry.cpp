@@ -152,7 +152,12 @@ void Registry::load_file(const fs::path& file) {
     return;
   }
   if (!lib->handle.has("drape_plugin_abi_version") || !lib->handle.has("drape_plugin_factory")) {
-    refused_.push_back(canonical.string() + ": not a drape plugin (missing drape_plugin_abi_version/factory)");
+    const bool abi = lib->handle.has("drape_plugin_abi_version"), factory = lib->handle.has("drape_plugin_factory");
+    const std::string missing = !abi && !factory ? "drape_plugin_abi_version and drape_plugin_factory"
+                                : !abi           ? "drape_plugin_abi_version"
+                                                 : "drape_plugin_factory";
+    refused_.push_back(canonical.string() + ": not a drape plugin (it exports no " + missing +
+                       "; DRAPE_PLUGIN_EXPORT(plugins) defines both)");
     warn("refused plugin " + refused_.back());
     return;
   }

@@ -119,3 +119,12 @@ TEST_CASE("a factory that makes nothing is an error naming the plugin, not a cra
   CHECK_THROWS_WITH(registry.create_node("twin", Params({}, {}, "twin")),
                     Catch::Contains("plugin 'twin'") && Catch::Contains("create_node returned nothing"));
 }
+
+TEST_CASE("a library that exports no plugin symbols is refused naming what it lacks", "[registry]") {
+  const fs::path file = fs::canonical(kFixtures / "no_exports" / "libdrape_plugin_no_exports.so");
+  Registry registry;
+  REQUIRE_NOTHROW(registry.load_path({file.parent_path()}));
+  REQUIRE(registry.refused().size() == 1);
+  CHECK_THAT(registry.refused().front(), Catch::Contains(file.string()) &&
+                                             Catch::Contains("exports no drape_plugin_abi_version and drape_plugin_factory"));
+}
