@@ -741,6 +741,35 @@ TEST_CASE("dataset: a NaN in a sample's body or shape parameters is named with i
   CHECK_THROWS_WITH(reader.body_params({2}), Catch::Contains("sample 2 has a non-finite body shape parameter"));
 }
 
+TEST_CASE("dataset: a sample whose vertices lie beyond a kilometre or all at one point is named with its file", "[hdf5][dataset]") {
+  // An outside check: a coordinate of 1e30 (an exponent's bit flipped) was
+  // trained on to a loss of 1e27; a row marked done but never written (zeros)
+  // trained at five times the others' loss and made a potential of inf.
+  TempDir dir;
+  const fs::path out = dir / "data.h5";
+  const DatasetLayout layout = small_layout(4);
+  write_first_three(out, layout);
+  const fs::path partial = DatasetWriter::partial_path(out);
+  {
+    auto file = h5::File::open(partial, h5::Access::ReadWrite);
+    std::vector<float> garment(layout.garment_vertices * 3), body(layout.body_vertices * 3);
+    file.read_rows("/garments/vertices", 1, 1, garment.data());
+    garment[4] = 1e30f;
+    file.write_rows("/garments/vertices", 1, 1, garment.data());
+    std::fill(garment.begin(), garment.end(), 0.0f);
+    file.write_rows("/garments/vertices", 2, 1, garment.data());
+    file.read_rows("/bodies/vertices", 0, 1, body.data());
+    body[7] = -2e3f;
+    file.write_rows("/bodies/vertices", 0, 1, body.data());
+  }
+  const DatasetReader reader(partial);
+  CHECK_NOTHROW(reader.garment_vertices({0}));
+  CHECK_THROWS_WITH(reader.garment_vertices({1}),
+                    Catch::Contains(partial.string() + ": sample 1 has a garment coordinate of 1e+30 m, beyond a kilometre"));
+  CHECK_THROWS_WITH(reader.garment_vertices({2}), Catch::Contains("sample 2: every garment vertex lies at one point"));
+  CHECK_THROWS_WITH(reader.body_vertices({0}), Catch::Contains("sample 0 has a body coordinate of 2e+03 m"));
+}
+
 TEST_CASE("dataset: a file that appears at the output while a set is made is not replaced by it", "[hdf5][dataset]") {
   // <out> is never overwritten: checked at the start, it was not at the end, and a model written there meanwhile
   // (by a command that took no lock) was replaced by the finished dataset without a word (an outside check).

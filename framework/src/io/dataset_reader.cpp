@@ -11,6 +11,7 @@
 #include <glob.h>
 
 #include <algorithm>
+#include <cstdio>
 #include <cmath>
 #include <exception>
 #include <mutex>
@@ -345,6 +346,13 @@ void check_indices(const DatasetReader& reader, const std::vector<std::size_t>& 
 // taken silently into the model's domain.
 static void check_finite(const Tensor& rows, const std::vector<std::size_t>& indices, const DatasetReader::Impl& impl,
                   const std::string& what);
+// And for vertices (`what` a coordinate): none beyond a kilometre (a flipped
+// exponent's 1e30 was trained on to a loss of 1e27 and measured as an ME of
+// 2e27 cm: an outside check), and not every vertex at one point (a row marked
+// done that was never written holds HDF5's fill value, zeros: its training
+// loss five times the others', its potential inf).
+static void check_vertices(const Tensor& rows, const std::vector<std::size_t>& indices, const DatasetReader::Impl& impl,
+                           const std::string& what);
 
 Tensor DatasetReader::body_params(const std::vector<std::size_t>& indices) const {
   check_indices(*this, indices, fs::path(impl_->name));
@@ -360,7 +368,7 @@ Tensor DatasetReader::body_vertices(const std::vector<std::size_t>& indices) con
   Tensor out(static_cast<int>(indices.size()), layout_.body_vertices, 3);
   if (layout_.body_vertices_stored) {
     impl_->gather(kBodyVertices, indices, row_size, out.data());
-    check_finite(out, indices, *impl_, "body coordinate");
+    check_vertices(out, indices, *impl_, "body coordinate");
     return out;
   }
   // Some file is slim: stored rows read as they are, the others rebuilt (once each).
@@ -377,7 +385,7 @@ Tensor DatasetReader::body_vertices(const std::vector<std::size_t>& indices) con
       std::copy(body.begin(), body.end(), out.data() + k * row_size);
     }
   }
-  check_finite(out, indices, *impl_, "body coordinate");
+  check_vertices(out, indices, *impl_, "body coordinate");
   return out;
 }
 
@@ -387,7 +395,7 @@ Tensor DatasetReader::garment_vertices(const std::vector<std::size_t>& indices) 
   impl_->gather(kGarmentVertices, indices, static_cast<std::size_t>(layout_.garment_vertices) * 3, out.data());
   // (Named here, with its file, not as "metrics: the ground truth has a
   // non-finite coordinate" further on.)
-  check_finite(out, indices, *impl_, "garment coordinate");
+  check_vertices(out, indices, *impl_, "garment coordinate");
   return out;
 }
 
@@ -397,6 +405,26 @@ void check_finite(const Tensor& rows, const std::vector<std::size_t>& indices, c
     if (!rows.mat(static_cast<int>(k)).allFinite())
       throw ConfigError(impl.files[impl.part_of(indices[k])].string() + ": sample " + std::to_string(indices[k]) +
                         " has a non-finite " + what + " (NaN or inf): the file was edited or is damaged");
+}
+
+void check_vertices(const Tensor& rows, const std::vector<std::size_t>& indices, const DatasetReader::Impl& impl,
+                    const std::string& what) {
+  check_finite(rows, indices, impl, what);
+  constexpr float kFarthest = 1000.0f;  // m
+  for (std::size_t k = 0; k < indices.size(); ++k) {
+    const auto row = rows.mat(static_cast<int>(k));
+    const std::string where = impl.files[impl.part_of(indices[k])].string() + ": sample " + std::to_string(indices[k]);
+    if (const float far = row.cwiseAbs().maxCoeff(); far > kFarthest) {
+      char text[160];
+      std::snprintf(text, sizeof text, " has a %s of %.3g m, beyond a kilometre: the file was edited or is damaged", what.c_str(),
+                    static_cast<double>(far));
+      throw ConfigError(where + text);
+    }
+    if (row.rows() > 1 && (row.colwise().maxCoeff() - row.colwise().minCoeff()).maxCoeff() == 0.0f)
+      throw ConfigError(where + ": every " + what.substr(0, what.find(' ')) + " vertex lies at one point (" +
+                        std::to_string(row(0, 0)) + ", " + std::to_string(row(0, 1)) + ", " + std::to_string(row(0, 2)) +
+                        "): a row marked done that was never written, or the file was edited or is damaged");
+  }
 }
 
 DatasetReader::Posing DatasetReader::posing(const std::vector<std::size_t>& indices) const {
