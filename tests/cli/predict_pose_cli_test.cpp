@@ -206,6 +206,15 @@ TEST_CASE("a pose in which the body passes through itself is named by predict, a
   CHECK(test::run_drape("body --param rig=human --bmi 64 --height 1.6 --sex 0 --pose shoulder_abduction=30,elbow_flexion=60",
                         out) == 2);
   CHECK_THAT(out, Catch::Contains("this pose makes the body pass through itself"));
+  // The same body given as a mesh at rest, with the pose: checked alike (it
+  // was skipped, and --strict let it through: an outside check).
+  REQUIRE(test::run_drape("body --param rig=human --bmi 64 --height 1.6 --sex 0 --out " + (dir / "rest.obj").string(), out) == 0);
+  const std::string given = "predict --body " + (dir / "rest.obj").string() + " --pose shoulder_abduction=30,elbow_flexion=60 ";
+  REQUIRE(test::run_drape(given + "--out " + (dir / "m.obj").string() + " 2>&1", out) == 0);
+  CHECK_THAT(out, Catch::Contains("warning: this pose makes the body pass through itself: left_upper_arm into spine"));
+  CHECK(test::run_drape(given + "--strict --out " + (dir / "y.obj").string() + " 2>&1", out) == 2);
+  CHECK_THAT(out, Catch::Contains("--strict: this pose makes the body pass through itself"));
+  CHECK_FALSE(fs::exists(dir / "y.obj"));
 }
 
 // The scene's `body: pose:` poses the body optimize works on when no --pose

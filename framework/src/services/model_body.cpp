@@ -433,10 +433,15 @@ std::vector<Notice> BodyPreparation::pose(SampleBatch& batch, const Pose& pose, 
   // and --strict refuses (a crossing the body has at rest is not the pose's;
   // a body given posed is the user's own mesh, taken as it is).
   for (int i = 0; check && i < batch.size(); ++i) {
-    const Pose& asked = poses[static_cast<std::size_t>(i)];
-    if (asked.empty() || (prepared && i < static_cast<int>(prepared->given_poses.size()) &&
-                          !prepared->given_poses[static_cast<std::size_t>(i)].empty()))
-      continue;
+    const auto u = static_cast<std::size_t>(i);
+    const Pose& asked = poses[u];
+    // The pose read off a posed mesh is the user's own; a mesh read at rest
+    // and given a pose is checked as a body made with --bmi is (it was
+    // skipped too: a BMI 60 body given as a mesh with shoulder_abduction=25
+    // passed --strict and Python's strict=True, an outside check).
+    const bool read_off_mesh = prepared && u < prepared->given_poses.size() && !prepared->given_poses[u].empty() &&
+                               !(!pose.empty() && u < prepared->given_at_rest.size() && prepared->given_at_rest[u]);
+    if (asked.empty() || read_off_mesh) continue;
     const Eigen::MatrixX3d unposed = batch.unposed_body.mat(i).cast<double>(), posed = batch.body.mat(i).cast<double>();
     const std::string crossed = describe_pose_crossings(model_.body_model(), unposed, asked, posed);
     if (crossed.empty()) continue;
