@@ -215,6 +215,14 @@ TEST_CASE("a pose in which the body passes through itself is named by predict, a
   CHECK(test::run_drape(given + "--strict --out " + (dir / "y.obj").string() + " 2>&1", out) == 2);
   CHECK_THAT(out, Catch::Contains("--strict: this pose makes the body pass through itself"));
   CHECK_FALSE(fs::exists(dir / "y.obj"));
+  // optimize refuses such a pose before any work, as body and simulate do (it
+  // ran, "NOT separated", exit 1: an outside check); the mannequin's arms at
+  // its sides lie in its trunk.
+  CHECK(test::run_drape("optimize --scene " + (test::source_dir() / "graphs/scenes/tshirt_coarse_posed.yaml").string() +
+                            " --bmi 30 --pose shoulder_abduction=0 --iters 1 --out " +
+                            (dir / "o.obj").string() + " 2>&1", out) == 2);
+  CHECK_THAT(out, Catch::Contains("error: this pose makes the body pass through itself") && !Catch::Contains("iterations in"));
+  CHECK_FALSE(fs::exists(dir / "o.obj"));
 }
 
 // The scene's `body: pose:` poses the body optimize works on when no --pose
