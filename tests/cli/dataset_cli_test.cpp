@@ -184,6 +184,9 @@ TEST_CASE("drape dataset slim and expand: the bodies rebuilt by the scene's body
   CHECK_THAT(out, Catch::Contains("--drop 3: no sample"));
   CHECK(test::run_drape("dataset slim " + data + " --out " + (dir / "x.h5").string() + " --drop 1,x", out) == 2);
   CHECK_THAT(out, Catch::Contains("'x' is not a global index"));
+  // An empty list dropped nothing without a word (a shell variable never set: an outside check).
+  CHECK(test::run_drape("dataset slim " + data + " --out " + (dir / "x.h5").string() + " --drop ''", out) == 2);
+  CHECK_THAT(out, Catch::Contains("--drop is empty"));
   CHECK_FALSE(fs::exists(dir / "x.h5"));
 
   REQUIRE(test::run_drape("dataset expand " + slim + " --out " + full, out) == 0);

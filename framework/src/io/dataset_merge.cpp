@@ -143,7 +143,7 @@ constexpr const char* kDropped = "dropped";
 // or slim left out); none when it has none.
 std::vector<long> dropped_before(const DatasetLayout& layout, const fs::path& file) {
   const auto text = layout.attributes.find(kDropped);
-  if (text == layout.attributes.end()) return {};
+  if (text == layout.attributes.end() || text->second.find_first_not_of(" \t") == std::string::npos) return {};
   return parse_global_indices(text->second, file.string() + ": attribute 'dropped'");
 }
 
@@ -438,6 +438,10 @@ std::size_t join_shards(const std::vector<fs::path>& shards, const fs::path& out
 }  // namespace
 
 std::vector<long> parse_global_indices(const std::string& text, const std::string& what) {
+  // Nothing to drop is a shell variable never set (`--drop "$BAD"`): it
+  // dropped nothing without a word (an outside check).
+  if (text.find_first_not_of(" \t") == std::string::npos)
+    throw ConfigError(what + " is empty (a shell variable never set?): give global indices, e.g. 3,17");
   std::vector<long> out;
   std::stringstream list(text);
   for (std::string item; std::getline(list, item, ',');) {

@@ -348,9 +348,9 @@ static void check_finite(const Tensor& rows, const std::vector<std::size_t>& ind
                   const std::string& what);
 // And for vertices (`what` a coordinate): none beyond a thousand kilometres (a flipped
 // exponent's 1e30 was trained on to a loss of 1e27 and measured as an ME of
-// 2e27 cm: an outside check), and not every vertex at one point (a row marked
-// done that was never written holds HDF5's fill value, zeros: its training
-// loss five times the others', its potential inf).
+// 2e27 cm: an outside check), and not every vertex at the origin (a row
+// marked done that was never written holds HDF5's fill value, zeros: its
+// training loss five times the others', its potential inf).
 static void check_vertices(const Tensor& rows, const std::vector<std::size_t>& indices, const DatasetReader::Impl& impl,
                            const std::string& what);
 
@@ -423,10 +423,10 @@ void check_vertices(const Tensor& rows, const std::vector<std::size_t>& indices,
                     static_cast<double>(far));
       throw ConfigError(where + text);
     }
-    if (row.rows() > 1 && (row.colwise().maxCoeff() - row.colwise().minCoeff()).maxCoeff() == 0.0f)
-      throw ConfigError(where + ": every " + what.substr(0, what.find(' ')) + " vertex lies at one point (" +
-                        std::to_string(row(0, 0)) + ", " + std::to_string(row(0, 1)) + ", " + std::to_string(row(0, 2)) +
-                        "): a row marked done that was never written, or the file was edited or is damaged");
+    if (row.rows() > 1 && row.cwiseAbs().maxCoeff() == 0.0f)
+      throw ConfigError(where + ": every " + what.substr(0, what.find(' ')) +
+                        " vertex is at (0, 0, 0), HDF5's fill value: a row marked done that was never written (the file "
+                        "was edited or is damaged)");
   }
 }
 
