@@ -113,6 +113,27 @@ def test_eval_names_the_file_of_a_nan_garment_and_a_split_code_the_format_lacks(
     with pytest.raises(drape.Error, match="sample 1 has split code 7"):
         drape.Dataset(str(tmp_path / "seven.h5"))
 
+    # A vertex a flipped exponent sent past 1e30, and a row of zeros marked done (never written): taken until an
+    # outside check (a training loss of 1e27; an ME five times the others').
+    def far_vertex(f):
+        sample = f["garments/vertices"][1]
+        sample[5, 1] = 1e30
+        f["garments/vertices"][1] = sample
+
+    def unwritten_row(f):
+        f["garments/vertices"][3] = np.zeros_like(f["garments/vertices"][3])
+
+    def garbage_scene(f):
+        f.attrs["scene"] = "{unclosed: [1, 2"
+
+    _, err = run_drape("eval", "--model", model, "--data", edited("far.h5", far_vertex), "--split", "all", expect=2)
+    assert "far.h5: sample 1 has a garment coordinate of 1e+30 m, beyond a thousand kilometres" in err
+    _, err = run_drape("eval", "--model", model, "--data", edited("zeros.h5", unwritten_row), "--split", "all", expect=2)
+    assert "zeros.h5: sample 3: every garment vertex is at (0, 0, 0)" in err
+    # eval named "the dataset's stored scene", not the file.
+    _, err = run_drape("eval", "--model", model, "--data", edited("scene.h5", garbage_scene), "--split", "all", expect=2)
+    assert "scene.h5 (scene attribute):1: malformed YAML" in err
+
 
 def test_a_dataset_is_indexed_like_a_sequence(dataset):
     # The module's 4-sample dataset (this test used to generate a 3-sample one of its own: the same checks).

@@ -19,7 +19,7 @@ namespace drape {
 WornGarments worn_garments(const Registry& registry, const DatasetReader& data, const std::vector<std::size_t>& indices) {
   const DatasetLayout& layout = data.layout();
   if (!layout.has_stat("garment_size") || layout.scene.empty()) return {};
-  const Scene scene = parse_scene(layout.scene, "the dataset's stored scene");
+  const Scene scene = parse_scene(layout.scene, data.name() + " (scene attribute)");
   const std::vector<double> flags = data.stat("garment_size", indices);
   // (With size: auto the template is the design size's: no sample of the design size is graded.)
   const float design_flag = garment_size_is_auto(scene) ? garment_size_flag(default_garment_size(registry, scene))

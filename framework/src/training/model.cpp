@@ -392,7 +392,7 @@ std::vector<double> garment_grades(const DatasetReader& reader, const std::vecto
   if (!design_size)
     throw ConfigError("the graph takes garment_grade, but the dataset has no garment_grade statistic and its samples wear "
                       "other sizes than the design size (made before drape generate recorded it): generate it again");
-  const Scene scene = parse_scene(layout.scene, "the dataset's stored scene");
+  const Scene scene = parse_scene(layout.scene, reader.name() + " (scene attribute)");
   return std::vector<double>(indices.size(), scene.garment_grade);
 }
 
