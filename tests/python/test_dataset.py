@@ -130,6 +130,14 @@ def test_eval_names_the_file_of_a_nan_garment_and_a_split_code_the_format_lacks(
     assert "far.h5: sample 1 has a garment coordinate of 1e+30 m, beyond a thousand kilometres" in err
     _, err = run_drape("eval", "--model", model, "--data", edited("zeros.h5", unwritten_row), "--split", "all", expect=2)
     assert "zeros.h5: sample 3: every garment vertex is at (0, 0, 0)" in err
+    # Garments written as whole millimetres: converted without a word (an ME of 1.3e5 cm).
+    def int_garments(f):
+        g = f["garments/vertices"][...]
+        del f["garments/vertices"]
+        f.create_dataset("garments/vertices", data=(g * 1000).astype("i4"))
+
+    _, err = run_drape("eval", "--model", model, "--data", edited("int.h5", int_garments), "--split", "all", expect=2)
+    assert "int.h5: /garments/vertices holds i32 values, expected floating point (f32)" in err
     # eval named "the dataset's stored scene", not the file.
     _, err = run_drape("eval", "--model", model, "--data", edited("scene.h5", garbage_scene), "--split", "all", expect=2)
     assert "scene.h5 (scene attribute):1: malformed YAML" in err

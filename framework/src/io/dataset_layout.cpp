@@ -145,7 +145,19 @@ DatasetLayout read_layout(const h5::File& file) {
   if (split.size() != 1) throw ConfigError(name + ": " + kSplit + " has shape " + h5::to_string(split) + ", expected [N]");
   layout.samples = split[0];
   const std::size_t n = layout.samples;
+  // Coordinates and parameters are floats (f32; f64 reads the same): an
+  // array written as integers (garments in int32 millimetres) was converted
+  // without a word and measured as an ME of 1.3e5 cm (an outside check).
+  auto expect_type = [&](const char* path, bool floating) {
+    const h5::DType t = file.dtype(path);
+    const bool is_float = t == h5::DType::F32 || t == h5::DType::F64;
+    if (is_float != floating)
+      throw ConfigError(name + ": " + path + " holds " + h5::to_string(t) + " values, expected " +
+                        (floating ? "floating point (f32)" : "whole numbers (i8 or u8)") +
+                        ": the file was edited or is damaged (docs/formats.md lists each array's type)");
+  };
   auto expect = [&](const char* path, std::size_t rank, std::size_t last) {
+    expect_type(path, true);
     const h5::Dims d = file.shape(path);
     if (d.size() != rank || d[0] != n || (rank == 3 && d[2] != last))
       throw ConfigError(name + ": " + path + " has shape " + h5::to_string(d) + ", expected [" + std::to_string(n) +
@@ -182,6 +194,8 @@ DatasetLayout read_layout(const h5::File& file) {
   }
   layout.garment_vertices = expect(kGarmentVertices, 3, 3);
   if (file.exists(kGarmentFaces)) layout.garment_faces = read_faces(file, layout.garment_vertices);
+  expect_type(kSplit, false);
+  expect_type(kDone, false);
   if (file.shape(kDone) != h5::Dims{n})
     throw ConfigError(name + ": " + kDone + " has shape " + h5::to_string(file.shape(kDone)) + ", expected [" + std::to_string(n) + "]");
   if (file.is_group(kStats)) {
