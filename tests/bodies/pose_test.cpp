@@ -299,7 +299,7 @@ TEST_CASE("bad joint angles are refused in one line", "[bodies][pose]") {
   CHECK(message("sholder_abduction=40") ==
         "--pose: no joint angle 'sholder_abduction'; did you mean 'shoulder_abduction', 'left_shoulder_abduction', "
         "'right_shoulder_abduction'?");
-  CHECK(message("left_elbow_flexion=nan").find("left_elbow_flexion is NaN; expected degrees in [0, 150]") != std::string::npos);
+  CHECK(message("left_elbow_flexion=nan").find("left_elbow_flexion is NaN; expected a number in [0, 150] degrees") != std::string::npos);
   CHECK(message("elbow_flexion=170").find("left_elbow_flexion = 170 is outside its range of motion [0, 150] degrees") !=
         std::string::npos);
   // Just past a bound, printed as given (it read "= 150 is outside ... [0, 150]").

@@ -53,7 +53,7 @@ void check_value(const PoseAngle& a, double degrees, const std::string& what) {
   std::ostringstream m;
   m.precision(10);  // a value just past a bound is not printed as the bound ("= 180 is outside [0, 180]")
   if (std::isnan(degrees))
-    m << what << ": " << a.name << " is NaN; expected degrees in " << range_text(a);
+    m << what << ": " << a.name << " is NaN; expected a number in " << range_text(a);
   else
     m << what << ": " << a.name << " = " << degrees << " is outside its range of motion " << range_text(a) << " ("
       << a.meaning << ")";
