@@ -95,7 +95,10 @@ int merge(const std::vector<std::string>& args) {
   const fs::path out = vm["out"].as<std::string>();
   const OutputLock lock(out, "drape dataset merge");  // before anything looks at it (output_lock.hpp)
   std::vector<fs::path> shards;
-  for (const auto& s : vm["shards"].as<std::vector<std::string>>()) shards.emplace_back(s);
+  // A quoted pattern is expanded as the readers expand it ('shards/shard-*.h5'
+  // was "no such file": an outside check), one that matches nothing refused.
+  for (const auto& s : vm["shards"].as<std::vector<std::string>>())
+    for (const fs::path& file : dataset_files(s)) shards.push_back(file);
   refuse_existing(out, vm);
   const std::vector<long> drop = drop_list(vm);
   const std::size_t before = drop.empty() ? 0 : done_rows(shards);
@@ -143,7 +146,10 @@ int expand(const std::vector<std::string>& args) {
   const fs::path out = vm["out"].as<std::string>();
   const OutputLock lock(out, "drape dataset expand");  // before anything looks at it (output_lock.hpp)
   std::vector<fs::path> shards;
-  for (const auto& s : vm["shards"].as<std::vector<std::string>>()) shards.emplace_back(s);
+  // A quoted pattern is expanded as the readers expand it ('shards/shard-*.h5'
+  // was "no such file": an outside check), one that matches nothing refused.
+  for (const auto& s : vm["shards"].as<std::vector<std::string>>())
+    for (const fs::path& file : dataset_files(s)) shards.push_back(file);
   refuse_existing(out, vm);
   // The body model of the first shard's own scene, with its parameters: the
   // one that generated the bodies (the others must agree, as in a merge).

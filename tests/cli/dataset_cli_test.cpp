@@ -68,6 +68,9 @@ TEST_CASE("drape dataset merge joins shards in order", "[cli][dataset]") {
   CHECK_THAT(out, Catch::Contains("all.h5") && Catch::Contains("--force"));
   REQUIRE(test::run_drape("dataset merge --force -o " + all + " " + b, out) == 0);
   CHECK(DatasetReader(all).size() == 2);
+  // A quoted pattern joins the files it matches, in order, as the readers read it.
+  REQUIRE(test::run_drape("dataset merge --force --out " + all + " '" + (dir / "[ab].h5").string() + "'", out) == 0);
+  CHECK_THAT(out, Catch::Contains("merged 5 samples from 2 shards"));
 }
 
 TEST_CASE("drape dataset merge refuses unfinished or mismatched shards", "[cli][dataset]") {
@@ -184,6 +187,9 @@ TEST_CASE("drape dataset slim and expand: the bodies rebuilt by the scene's body
   CHECK_THAT(out, Catch::Contains("--drop 3: no sample"));
   CHECK(test::run_drape("dataset slim " + data + " --out " + (dir / "x.h5").string() + " --drop 1,x", out) == 2);
   CHECK_THAT(out, Catch::Contains("'x' is not a global index"));
+  // A quoted pattern of shards is expanded as the readers expand it (it was "no such file": an outside check).
+  CHECK(test::run_drape("dataset merge --out " + (dir / "p.h5").string() + " '" + (dir / "nomatch-*.h5").string() + "'", out) == 2);
+  CHECK_THAT(out, Catch::Contains("no dataset file matches this pattern"));
   // An empty list dropped nothing without a word (a shell variable never set: an outside check).
   CHECK(test::run_drape("dataset slim " + data + " --out " + (dir / "x.h5").string() + " --drop ''", out) == 2);
   CHECK_THAT(out, Catch::Contains("--drop is empty"));
