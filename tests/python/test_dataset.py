@@ -138,6 +138,14 @@ def test_eval_names_the_file_of_a_nan_garment_and_a_split_code_the_format_lacks(
 
     _, err = run_drape("eval", "--model", model, "--data", edited("int.h5", int_garments), "--split", "all", expect=2)
     assert "int.h5: /garments/vertices holds i32 values, expected floating point (f32)" in err
+    # A short /split: it blamed the intact /bodies/params.
+    def short_split(f):
+        split = f["split"][...]
+        del f["split"]
+        f.create_dataset("split", data=split[:-1])
+
+    _, err = run_drape("eval", "--model", model, "--data", edited("short.h5", short_split), "--split", "all", expect=2)
+    assert "short.h5: /split has 3 rows, /done and /garments/vertices 4" in err
     # eval named "the dataset's stored scene", not the file.
     _, err = run_drape("eval", "--model", model, "--data", edited("scene.h5", garbage_scene), "--split", "all", expect=2)
     assert "scene.h5 (scene attribute):1: malformed YAML" in err
