@@ -131,6 +131,18 @@ void check_descriptor(const PluginDescriptor& d) {
   }
 }
 
+// The energy adapter's ports, and a name another plugin already has (an
+// error naming both files: which one a graph meant cannot be told).
+void complete_descriptor(const Registry& registry, PluginDescriptor& d) {
+  if (d.create_energy && d.inputs.empty() && d.outputs.empty()) {  // the EnergyNode adapter's ports
+    d.inputs = {{"x", "garment vertex positions [vertices, 3]"}};
+    d.outputs = {{"energy", "the energy of each sample [1, 1]"}};
+  }
+  if (const PluginDescriptor* other = registry.find(d.name))
+    throw ConfigError("two plugins are named '" + d.name + "': " + other->file + " and " + d.file +
+                      "; remove one from the plugin path");
+}
+
 }  // namespace
 
 void Registry::load_file(const fs::path& file) {
@@ -207,7 +219,7 @@ void Registry::load_file(const fs::path& file) {
       return;
     }
   }
-  for (auto& d : list) validate(d);
+  for (auto& d : list) complete_descriptor(*this, d);  // (each checked above)
   libraries_.push_back(std::move(lib));
   for (auto& d : list) plugins_.push_back(std::move(d));
 }
@@ -220,15 +232,8 @@ void Registry::add(PluginDescriptor d) {
 
 void Registry::validate(PluginDescriptor& d) const {
   check_descriptor(d);
-  if (d.create_energy && d.inputs.empty() && d.outputs.empty()) {  // the EnergyNode adapter's ports
-    d.inputs = {{"x", "garment vertex positions [vertices, 3]"}};
-    d.outputs = {{"energy", "the energy of each sample [1, 1]"}};
-  }
-  if (const PluginDescriptor* other = find(d.name))
-    throw ConfigError("two plugins are named '" + d.name + "': " + other->file + " and " + d.file +
-                      "; remove one from the plugin path");
+  complete_descriptor(*this, d);
 }
-
 
 const PluginDescriptor* Registry::find(const std::string& name) const {
   for (const auto& d : plugins_)

@@ -414,17 +414,20 @@ void check_vertices(const Tensor& rows, const std::vector<std::size_t>& indices,
   // place (what a flipped exponent gives: 1e30, 5e15), and leaves room for
   // files of made-up rows (the tests' run to 1e4).
   constexpr float kFarthest = 1e6f;
+  // (Every batch of a training reads through here: the message is made only for a row refused.)
+  const auto where = [&](std::size_t k) {
+    return impl.files[impl.part_of(indices[k])].string() + ": sample " + std::to_string(indices[k]);
+  };
   for (std::size_t k = 0; k < indices.size(); ++k) {
-    const auto row = rows.mat(static_cast<int>(k));
-    const std::string where = impl.files[impl.part_of(indices[k])].string() + ": sample " + std::to_string(indices[k]);
-    if (const float far = row.cwiseAbs().maxCoeff(); far > kFarthest) {
+    const float far = rows.mat(static_cast<int>(k)).cwiseAbs().maxCoeff();
+    if (far > kFarthest) {
       char text[160];
-      std::snprintf(text, sizeof text, " has a %s of %.3g m, beyond a thousand kilometres: the file was edited or is damaged", what.c_str(),
-                    static_cast<double>(far));
-      throw ConfigError(where + text);
+      std::snprintf(text, sizeof text, " has a %s of %.3g m, beyond a thousand kilometres: the file was edited or is damaged",
+                    what.c_str(), static_cast<double>(far));
+      throw ConfigError(where(k) + text);
     }
-    if (row.rows() > 1 && row.cwiseAbs().maxCoeff() == 0.0f)
-      throw ConfigError(where + ": every " + what.substr(0, what.find(' ')) +
+    if (far == 0.0f && rows.rows() > 1)
+      throw ConfigError(where(k) + ": every " + what.substr(0, what.find(' ')) +
                         " vertex is at (0, 0, 0), HDF5's fill value: a row marked done that was never written (the file "
                         "was edited or is damaged)");
   }
