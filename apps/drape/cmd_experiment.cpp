@@ -4,6 +4,7 @@
 // the seed's numbers. Interrupted runs resume with the same command.
 #include "command.hpp"
 #include "experiment/experiment_runner.hpp"
+#include "sample_ranges.hpp"
 
 #include <drape/experiment/experiment.hpp>
 #include <drape/graph.hpp>
@@ -51,6 +52,20 @@ void check_evaluate_sets(const ExperimentSpec& spec, const Registry& registry) {
   }
 }
 
+// Each dataset's `bmi:` as the runner hands it to generate (parse_range): a
+// reversed "40:20" failed as generate's "--bmi '40:20'", an option never
+// typed, after every row before it had run (an outside check).
+void check_dataset_ranges(const ExperimentSpec& spec) {
+  for (const ExperimentDataset& d : spec.datasets) {
+    if (!d.merge.empty()) continue;  // (its parts' own)
+    try {
+      parse_range("bmi", d.bmi);
+    } catch (const UsageError&) {
+      throw ConfigError(d.where, "dataset '" + d.key + "'.bmi '" + d.bmi + "': expected a BMI or a range lo:hi with lo <= hi");
+    }
+  }
+}
+
 int run(const std::vector<std::string>& args) {
   po::options_description opts("drape experiment");
   opts.add_options()("file", po::value<std::string>(), "experiment file (graphs/experiments/*.yaml)")(
@@ -89,6 +104,7 @@ int run(const std::vector<std::string>& args) {
   Registry::load_default(plugin_path(vm));
   const ExperimentSpec spec = parse_experiment_file(find_input_file(vm["file"].as<std::string>()));
   for (const auto& [key, file] : o.data_files) spec.dataset(key);  // a misspelt key fails before any work
+  check_dataset_ranges(spec);
   check_evaluate_sets(spec, Registry::load_default(plugin_path(vm)));
   if (vm.count("work")) o.work_dir = vm["work"].as<std::string>();
   const auto work = experiment_work_dir(spec, o);

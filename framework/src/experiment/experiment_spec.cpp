@@ -3,7 +3,6 @@
 #include "../yaml_util.hpp"
 
 #include <algorithm>
-#include <cstdlib>
 #include <cmath>
 
 namespace drape {
@@ -321,23 +320,7 @@ ExperimentSpec parse_experiment_file(const fs::path& file) {
     d.scene = r.path(kv.second["scene"], owner + ".scene");
     d.count = r.number<long>(kv.second["count"], owner + ".count");
     if (d.count < 10) throw ConfigError(r.at(kv.second["count"]), owner + ".count must be at least 10 (an 8:1:1 split)");
-    if (kv.second["bmi"]) {
-      d.bmi = r.text(kv.second["bmi"], owner + ".bmi");
-      // A number or lo:hi with lo <= hi, as drape generate takes it: "40:20"
-      // failed as generate's "--bmi '40:20'" after every row before it ran.
-      const auto number = [](const std::string& t, double& v) {
-        char* end = nullptr;
-        v = std::strtod(t.c_str(), &end);
-        return !t.empty() && end == t.c_str() + t.size() && std::isfinite(v);
-      };
-      const auto colon = d.bmi.find(':');
-      double lo = 0, hi = 0;
-      const bool ok = colon == std::string::npos
-                          ? number(d.bmi, lo)
-                          : number(d.bmi.substr(0, colon), lo) && number(d.bmi.substr(colon + 1), hi) && lo <= hi;
-      if (!ok)
-        throw ConfigError(r.at(kv.second["bmi"]), owner + ".bmi '" + d.bmi + "': expected a BMI or a range lo:hi with lo <= hi");
-    }
+    if (kv.second["bmi"]) d.bmi = r.text(kv.second["bmi"], owner + ".bmi");  // (checked as generate reads it: cmd_experiment.cpp)
     if (kv.second["seed"]) d.seed = r.number<std::uint64_t>(kv.second["seed"], owner + ".seed");
     spec.datasets.push_back(d);
   }
