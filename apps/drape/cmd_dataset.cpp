@@ -49,6 +49,16 @@ constexpr const char* kDropHelp =
     "generate names a drape in its report, e.g. one an independent check rejected); the output lists them in its "
     "attribute 'dropped'";
 
+// The positional shards, each a file or a quoted pattern expanded as the
+// readers expand it ('shards/shard-*.h5' was "no such file": an outside
+// check); one that matches nothing is refused.
+std::vector<fs::path> shard_files(const po::variables_map& vm) {
+  std::vector<fs::path> shards;
+  for (const auto& given : vm["shards"].as<std::vector<std::string>>())
+    for (const fs::path& file : dataset_files(given)) shards.push_back(file);
+  return shards;
+}
+
 // --drop's global indices, comma-separated or repeated.
 std::vector<long> drop_list(const po::variables_map& vm) {
   std::vector<long> out;
@@ -94,11 +104,7 @@ int merge(const std::vector<std::string>& args) {
   check_hdf5_outputs(vm, {"out"});
   const fs::path out = vm["out"].as<std::string>();
   const OutputLock lock(out, "drape dataset merge");  // before anything looks at it (output_lock.hpp)
-  std::vector<fs::path> shards;
-  // A quoted pattern is expanded as the readers expand it ('shards/shard-*.h5'
-  // was "no such file": an outside check), one that matches nothing refused.
-  for (const auto& s : vm["shards"].as<std::vector<std::string>>())
-    for (const fs::path& file : dataset_files(s)) shards.push_back(file);
+  const std::vector<fs::path> shards = shard_files(vm);
   refuse_existing(out, vm);
   const std::vector<long> drop = drop_list(vm);
   const std::size_t before = drop.empty() ? 0 : done_rows(shards);
@@ -145,11 +151,7 @@ int expand(const std::vector<std::string>& args) {
   check_hdf5_outputs(vm, {"out"});
   const fs::path out = vm["out"].as<std::string>();
   const OutputLock lock(out, "drape dataset expand");  // before anything looks at it (output_lock.hpp)
-  std::vector<fs::path> shards;
-  // A quoted pattern is expanded as the readers expand it ('shards/shard-*.h5'
-  // was "no such file": an outside check), one that matches nothing refused.
-  for (const auto& s : vm["shards"].as<std::vector<std::string>>())
-    for (const fs::path& file : dataset_files(s)) shards.push_back(file);
+  const std::vector<fs::path> shards = shard_files(vm);
   refuse_existing(out, vm);
   // The body model of the first shard's own scene, with its parameters: the
   // one that generated the bodies (the others must agree, as in a merge).
