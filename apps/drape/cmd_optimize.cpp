@@ -5,11 +5,9 @@
 #include "command.hpp"
 
 #include "model_body.hpp"
-#include "pose_options.hpp"
 #include "sample_ranges.hpp"
 
 #include <drape/services/dataset_optimization.hpp>
-#include <drape/bodies/posed_body.hpp>
 
 #include <drape/io/shipped_files.hpp>
 #include <drape/io/dataset.hpp>
@@ -133,25 +131,10 @@ int run(const std::vector<std::string>& args) {
   BodyMove moved_by;  // the drape is made where (and as) the training bodies stood; written back where the body was
   // The body and its pose before the scene is built: a bad one is refused at once.
   const Pose scene_posed = pose_given(vm) ? Pose{} : scene_pose(scene_spec, model.body_model());
-  SampleBatch batch = model_body(model, vm, &moved_by, nullptr, &scene_posed, "the scene " + scene_file.string());
-  // A pose in which the body passes through itself: predict warns of it, but
-  // the contact cannot keep cloth off a body with no inside, so it is refused
-  // before any work, as drape body and simulate refuse it (an outside check's
-  // optimize ran on one and ended "NOT separated"). A posed mesh's own pose is
-  // the user's, taken as it is.
-  if (pose_given(vm) || (!vm.count("body") && !scene_posed.empty())) {
-    std::optional<Pose> asked = pose_options(vm, model.body_model(), model.assets_spec().body_model);
-    if (!asked) asked = scene_posed;
-    const Eigen::MatrixX3d unposed = batch.unposed_body.size() > 0 ? Eigen::MatrixX3d(batch.unposed_body.mat(0).cast<double>())
-                                                                   : Eigen::MatrixX3d();
-    if (!asked->empty() && unposed.rows() > 0)
-      if (const std::string crossed =
-              describe_pose_crossings(model.body_model(), unposed, *asked, Eigen::MatrixX3d(batch.body.mat(0).cast<double>()));
-          !crossed.empty())
-        throw ConfigError("this pose makes the body pass through itself: " + crossed +
-                          "; the contact cannot keep the cloth off a body with no inside, so it is not optimised (drape "
-                          "body and simulate refuse this pose too)");
-  }
+  // A pose in which the body passes through itself is refused before any
+  // work, as drape body and simulate refuse it (an outside check's optimize
+  // ran on one and ended "NOT separated"); predict only warns.
+  SampleBatch batch = model_body(model, vm, &moved_by, nullptr, &scene_posed, "the scene " + scene_file.string(), true);
   const SceneSimulations simulations(registry, std::move(scene_spec));
   // The body optimised on is the model's; the scene gives the garment's
   // energies and the contact. A scene on another rig (another vertex count)

@@ -284,7 +284,8 @@ std::string model_file_for_body(const po::variables_map& vm, const Registry& reg
 }
 
 SampleBatch model_body(const Model& model, const po::variables_map& vm, BodyMove* moved_by,
-                       std::vector<std::string>* printed, const Pose* fallback_pose, const std::string& fallback_source) {
+                       std::vector<std::string>* printed, const Pose* fallback_pose, const std::string& fallback_source,
+                       bool refuse_crossing) {
   ModelBodyInput input = body_input(vm);
   // A body far from the origin (a scene's or a survey's coordinates) moved
   // near it in double before the network's single precision rounds it: at
@@ -348,7 +349,8 @@ SampleBatch model_body(const Model& model, const po::variables_map& vm, BodyMove
     }
   }
   try {
-    for (Notice& n : preparation.pose(batch, pose ? *pose : Pose{}, vm.count("strict") > 0, "--strict", &prepared))
+    for (Notice& n : preparation.pose(batch, pose ? *pose : Pose{}, vm.count("strict") > 0, "--strict", &prepared, true,
+                                      refuse_crossing))
       prepared.notices.push_back(std::move(n));
   } catch (const ConfigError& e) {
     if (!fallen_back) throw;

@@ -32,7 +32,7 @@ void add_model_body_options(po::options_description& options, const std::string&
 // a refusal; a body mesh given posed keeps its own pose (said).
 SampleBatch model_body(const Model& model, const po::variables_map& vm, BodyMove* moved_by = nullptr,
                        std::vector<std::string>* printed = nullptr, const Pose* fallback_pose = nullptr,
-                       const std::string& fallback_source = "");
+                       const std::string& fallback_source = "", bool refuse_crossing = false);
 
 // The body asked for in words, for a picture's title: "BMI 30, 1.60 m, sex 0,
 // posed shoulder_abduction=40, size large" (--bmi and what goes with it), or

@@ -138,8 +138,10 @@ class PyModel {
     return prepared;
   }
   // Then the pose (BodyPreparation::pose): warnings for angles outside the training poses (strict: ValueError).
-  void pose(SampleBatch& b, const std::optional<Pose>& pose, bool strict, const PreparedBodies& prepared, bool check = true) {
-    const std::vector<Notice> notices = preparation().pose(b, pose ? *pose : Pose{}, strict, "strict=True", &prepared, check);
+  void pose(SampleBatch& b, const std::optional<Pose>& pose, bool strict, const PreparedBodies& prepared, bool check = true,
+            bool refuse_crossing = false) {
+    const std::vector<Notice> notices =
+        preparation().pose(b, pose ? *pose : Pose{}, strict, "strict=True", &prepared, check, refuse_crossing);
     for (const Notice& n : notices) warn_python(in_python_words(n.text));
   }
 
@@ -371,7 +373,7 @@ void register_model(py::module_& m) {
               if (Pose from_scene = scene_pose(scene.simulations->design().scene(), p.model().body_model()); !from_scene.empty())
                 posed = std::move(from_scene), scene_posed = true;
             try {
-              p.pose(b, posed, false, prepared);
+              p.pose(b, posed, false, prepared, true, true);  // (an optimisation refuses a pose through the body, as optimize does)
             } catch (const ConfigError& e) {
               if (!scene_posed) throw;
               throw ConfigError("the scene's body: pose: (" + format_pose(*posed) + ", pose= replaces it): " + e.what());

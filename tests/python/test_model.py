@@ -156,6 +156,12 @@ def test_optimize_poses_the_body_as_the_scene_does():
     apose = drape.Model.load(str(SHIPPED))
     with pytest.raises(ValueError, match="the scene's body: pose:"):
         apose.optimize(scene, apose.body(bmi=30), iterations=0)
+    # A pose in which the body passes through itself (the mannequin's arms at its sides lie in its trunk) is
+    # refused, as drape optimize, body and simulate refuse it; predict only warns.
+    with pytest.raises(drape.ConfigError, match="pass through itself.*not optimised"):
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore")
+            m.optimize(scene, body, iterations=0, pose="shoulder_abduction=0")
 
 
 def test_domain_check_names_what_lies_outside(model):

@@ -400,7 +400,7 @@ BodyMove BodyPreparation::unpose_given(SampleBatch& batch, int i, Pose& pose, bo
 
 std::vector<Notice> BodyPreparation::pose(SampleBatch& batch, const Pose& pose, bool strict,
                                           const std::string& strict_option, const PreparedBodies* prepared,
-                                          bool check) const {
+                                          bool check, bool refuse_crossing) const {
   std::vector<Pose> poses(static_cast<std::size_t>(batch.size()), pose);
   if (prepared)
     for (std::size_t i = 0; i < prepared->given_poses.size() && i < poses.size(); ++i) {
@@ -446,6 +446,9 @@ std::vector<Notice> BodyPreparation::pose(SampleBatch& batch, const Pose& pose, 
     const std::string crossed = describe_pose_crossings(model_.body_model(), unposed, asked, posed);
     if (crossed.empty()) continue;
     const std::string text = about(batch, i) + "this pose makes the body pass through itself: " + crossed;
+    if (refuse_crossing)
+      throw ConfigError(text + "; the contact cannot keep the cloth off a body with no inside, so it is not optimised "
+                               "(drape body and simulate refuse this pose too)");
     if (strict) throw ConfigError(strict_option + ": " + text);
     notices.push_back({Notice::Level::warning, text + " (the drape there is for a body with no inside; drape body and "
                                                       "simulate refuse this pose)"});

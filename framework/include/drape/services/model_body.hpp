@@ -147,10 +147,13 @@ class BodyPreparation {
   // `prepared`: what prepare() said of this batch; a body given posed is
   // draped in the pose read off it (PreparedBodies::given_poses), and `pose`
   // must then be empty (ConfigError: two poses for one body).
-  // check = false leaves out the self-crossing test (Python's check=False).
+  // check = false leaves out the self-crossing test (Python's check=False);
+  // refuse_crossing makes a pose in which the body passes through itself a
+  // ConfigError whatever `strict` (an optimisation: the contact cannot keep
+  // cloth off a body with no inside, as drape body and simulate refuse it).
   std::vector<Notice> pose(SampleBatch& batch, const Pose& pose, bool strict,
                            const std::string& strict_option = "--strict", const PreparedBodies* prepared = nullptr,
-                           bool check = true) const;
+                           bool check = true, bool refuse_crossing = false) const;
   const std::optional<ModelDomain>& domain() const { return domain_; }
 
  private:
