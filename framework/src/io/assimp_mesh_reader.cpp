@@ -126,7 +126,8 @@ Mesh read_with_assimp(const std::filesystem::path& file, MaterialMesh* materials
   // Checked before assimp reads: a PLY header cut short loops its reader
   // forever, and counts far beyond the file make it reserve gigabytes.
   const std::string extension = lower_extension(file);
-  if (extension == ".ply") require_complete_ply(file);
+  std::string ply_bytes;  // (read once: checked here, its double positions read at the end)
+  if (extension == ".ply") ply_bytes = require_complete_ply(file);
   if (extension == ".off") require_complete_off(file);
   const aiScene* scene = nullptr;
   collect_assimp_warnings();
@@ -268,7 +269,7 @@ Mesh read_with_assimp(const std::filesystem::path& file, MaterialMesh* materials
   // vertex (one mesh, no vertex merged: the counts agree) and the float it
   // read is the double rounded.
   if (extension == ".ply" && scene->mNumMeshes == 1)
-    if (const std::optional<Eigen::MatrixX3d> exact = read_ply_double_positions(file);
+    if (const std::optional<Eigen::MatrixX3d> exact = read_ply_double_positions(ply_bytes);
         exact && exact->rows() == out.num_vertices() &&
         ((exact->cast<float>().cast<double>() - out.vertices).cwiseAbs().array() <=
          1e-6 * out.vertices.cwiseAbs().array().max(1.0)).all())

@@ -17,13 +17,15 @@ Mesh read_with_assimp(const std::filesystem::path& file, MaterialMesh* materials
 
 // assimp reads a PLY that is cut short without complaint (it fills in what is
 // missing), so the body's size is checked against the header: ConfigError if short.
-void require_complete_ply(const std::filesystem::path& file);
+// Returns the file's bytes (read once: read_ply_double_positions takes them).
+std::string require_complete_ply(const std::filesystem::path& file);
 // The same for an ASCII OFF file: its counts against the lines that follow.
 void require_complete_off(const std::filesystem::path& file);
 // A PLY's vertex positions in double when its header declares x, y and z
 // double (assimp reads them into floats); nullopt for float positions or a
-// file it cannot walk (assimp's reading stands then).
-std::optional<Eigen::MatrixX3d> read_ply_double_positions(const std::filesystem::path& file);
+// file it cannot walk (assimp's reading stands then). `bytes`: the file's, as
+// require_complete_ply checked them (its vertices the first element).
+std::optional<Eigen::MatrixX3d> read_ply_double_positions(const std::string& bytes);
 
 // These write straight to `file` (the temporary of write_atomically).
 // `format_id` is assimp's exporter id: "plyb", "gltf2" or "glb2".

@@ -18,7 +18,7 @@
 
 namespace drape::mesh_io {
 
-void require_complete_ply(const std::filesystem::path& file) {
+std::string require_complete_ply(const std::filesystem::path& file) {
   const std::string bytes = read_file_bytes(file);
   const SourceLocation where{file.string(), 0};
   PlyHeader header;
@@ -27,7 +27,7 @@ void require_complete_ply(const std::filesystem::path& file) {
     // loop (libassimp 5.2); refused before assimp sees it.
     if (bytes.rfind("ply", 0) == 0)
       throw ConfigError(where, "the PLY header has no end_header line (is the file cut short?)");
-    return;  // not a PLY file: assimp says what it is
+    return bytes;  // not a PLY file: assimp says what it is
   }
   long elements = 0, min_bytes = 0;
   for (const PlyElement& e : header.elements) {
@@ -73,6 +73,7 @@ void require_complete_ply(const std::filesystem::path& file) {
                                  std::to_string(body.size()) + " follow: a count in the header is short, and what "
                                  "follows it would be left out");
   }
+  return bytes;
 }
 
 void require_complete_off(const std::filesystem::path& file) {

@@ -16,6 +16,13 @@ long ply_type_size(const std::string& type) {
   return it == sizes.end() ? 0 : it->second;
 }
 
+unsigned long long ply_unsigned(const std::string& body, std::size_t at, long size, bool big_endian) {
+  unsigned long long n = 0;
+  for (long b = 0; b < size; ++b)
+    n = (n << 8) | static_cast<unsigned char>(body[at + static_cast<std::size_t>(big_endian ? b : size - 1 - b)]);
+  return n;
+}
+
 long ply_binary_extent(const std::string& body, const std::vector<PlyElement>& elements, bool big_endian) {
   std::size_t at = 0;
   for (const PlyElement& e : elements)
@@ -28,11 +35,7 @@ long ply_binary_extent(const std::string& body, const std::vector<PlyElement>& e
           continue;
         }
         if (at + static_cast<std::size_t>(count_size) > body.size()) return -1;
-        unsigned long long n = 0;
-        for (long b = 0; b < count_size; ++b) {
-          const auto byte = static_cast<unsigned char>(body[at + static_cast<std::size_t>(big_endian ? b : count_size - 1 - b)]);
-          n = (n << 8) | byte;
-        }
+        const unsigned long long n = ply_unsigned(body, at, count_size, big_endian);
         at += static_cast<std::size_t>(count_size) + n * static_cast<std::size_t>(size);
         if (at > body.size()) return -1;
       }

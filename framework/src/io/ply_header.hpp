@@ -28,6 +28,10 @@ struct PlyHeader {
 // The bytes of one value of a PLY type (char ... double, int8 ... float64); 0 for an unknown type.
 long ply_type_size(const std::string& type);
 
+// An unsigned value of `size` bytes at `at` of a binary body, in its byte order
+// (a list's count; a double's raw bits).
+unsigned long long ply_unsigned(const std::string& body, std::size_t at, long size, bool big_endian);
+
 // The bytes a binary body's elements take from its start, walked list by
 // list (-1 when the body ends first, or a type is unknown).
 long ply_binary_extent(const std::string& body, const std::vector<PlyElement>& elements, bool big_endian);
