@@ -1,12 +1,12 @@
 // `drape plugins`: every plugin found on the search path, with its ports and parameters.
 #include "command.hpp"
 
+#include <drape/param_range.hpp>
 #include <drape/registry.hpp>
 
 #include <algorithm>
 #include <cctype>
 #include <iostream>
-#include <sstream>
 
 namespace drape::cli {
 namespace DRAPE_UNITY_ID {  // the anonymous namespace, or a unique one in a unity build (command.hpp)
@@ -32,17 +32,7 @@ int run(const std::vector<std::string>& args) {
     for (const auto& p : d->outputs) std::cout << "  out  " << p.name << ": " << p.doc << "\n";
     for (const auto& p : d->params) {
       std::cout << "  param " << p.name << " (" << to_string(p.type) << ", default " << p.default_value;
-      if (p.min || p.max)
-      {
-        // As a scene writes numbers: [1, 4096], not std::to_string's [1.000000, 4096.000000].
-        std::ostringstream range;
-        range.precision(10);
-        range << ", range [";
-        if (p.min) range << *p.min; else range << "-inf";
-        range << ", ";
-        if (p.max) range << *p.max; else range << "inf";
-        std::cout << range.str() << "]";
-      }
+      if (p.min || p.max) std::cout << ", range " << range_text(p);
       if (!p.choices.empty()) {
         std::cout << ", one of";
         for (const auto& c : p.choices) std::cout << " " << c;

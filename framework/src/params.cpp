@@ -1,4 +1,5 @@
 #include <drape/params.hpp>
+#include <drape/param_range.hpp>
 
 #include <cmath>
 #include <sstream>
@@ -28,6 +29,18 @@ ParamValues param_values_from_yaml(const YAML::Node& map, const std::string& fil
   return out;
 }
 
+std::string range_text(const ParamSpec& s) {
+  std::ostringstream o;
+  // Numbers as written in a scene (0.5, 1e+06), not std::to_string's six decimals (0.500000).
+  o.precision(10);
+  o << "[";
+  if (s.min) o << *s.min; else o << "-inf";
+  o << ", ";
+  if (s.max) o << *s.max; else o << "inf";
+  o << "]";
+  return o.str();
+}
+
 namespace {
 
 // Converts and range-checks one scalar; throws a message without location.
@@ -47,17 +60,6 @@ double scalar(const YAML::Node& n, bool integral) {
   return v;
 }
 
-std::string range_text(const ParamSpec& s) {
-  std::ostringstream o;
-  // Numbers as written in a scene (0.5, 1e+06), not std::to_string's six decimals (0.500000).
-  o.precision(10);
-  o << "[";
-  if (s.min) o << *s.min; else o << "-inf";
-  o << ", ";
-  if (s.max) o << *s.max; else o << "inf";
-  o << "]";
-  return o.str();
-}
 
 void check_range(const ParamSpec& s, double v) {
   if ((s.min && v < *s.min) || (s.max && v > *s.max)) {
