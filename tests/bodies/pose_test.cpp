@@ -310,9 +310,13 @@ TEST_CASE("bad joint angles are refused in one line", "[bodies][pose]") {
   // Both names that set it (it said "by 'left_elbow_flexion' and before").
   CHECK(message("elbow_flexion=10,left_elbow_flexion=20") ==
         "--pose: left_elbow_flexion is set twice (by 'elbow_flexion' and by 'left_elbow_flexion')");
-  // An overflow is said as written (it said "= inf is outside ...").
+  // An overflow is said as written (it said "= inf is outside ..."), with
+  // the range (docs/poses.md's table: 0 ... 180 and 0 ... 135; it named none).
   CHECK(message("shoulder_abduction=1e400") ==
-        "--pose: shoulder_abduction = 1e400 is beyond any angle (degrees within its range of motion)");
+        "--pose: shoulder_abduction = 1e400 is beyond any angle; expected a number in [0, 180] degrees");
+  CHECK(message("right_knee_flexion=-1e309") ==
+        "--pose: right_knee_flexion = -1e309 is beyond any angle; expected a number in [0, 135] degrees");
+  CHECK(message("sholder_abduction=1e400").find("did you mean") != std::string::npos);
   CHECK(message("knee").find("expected name=degrees") != std::string::npos);
   for (const char* text : {"sholder_abduction=40", "elbow_flexion=nan", "elbow_flexion=170"})
     CHECK(message(text).find('\n') == std::string::npos);

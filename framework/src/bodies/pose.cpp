@@ -87,7 +87,8 @@ void set_angle(Pose& pose, const std::string& name, double degrees, const std::v
   }
 }
 
-double parse_degrees(const std::string& name, const std::string& text, const std::string& what) {
+double parse_degrees(const std::string& name, const std::string& text, const std::string& what,
+                     const std::vector<PoseAngle>& space) {
   const char* begin = text.c_str();
   char* end = nullptr;
   const double v = std::strtod(begin, &end);
@@ -95,8 +96,16 @@ double parse_degrees(const std::string& name, const std::string& text, const std
   if (text.empty() || end == begin || *end != '\0' || text.find_first_of("xX") != std::string::npos)
     throw ConfigError(what + ": " + name + " = '" + text + "' is not a number of degrees");
   // (strtod reads 1e400 as infinity: said as written, not as "inf".)
-  if (std::isinf(v) && text.find_first_of("iI") == std::string::npos)
-    throw ConfigError(what + ": " + name + " = " + text + " is beyond any angle (degrees within its range of motion)");
+  if (std::isinf(v) && text.find_first_of("iI") == std::string::npos) {
+    // The range the angle takes, as a value just outside it is told (an unknown name: its own refusal first).
+    const auto set = targets(name, space);
+    if (set.empty()) {
+      Pose unused;
+      set_angle(unused, name, 0.0, space, what);  // throws, naming the close matches
+    }
+    throw ConfigError(what + ": " + name + " = " + text + " is beyond any angle; expected a number in " +
+                      range_text(*set.front()));
+  }
   return v;
 }
 
@@ -157,7 +166,7 @@ Pose parse_pose(const std::string& text, const std::vector<PoseAngle>& space, co
     if (eq == std::string::npos || eq == 0)
       throw ConfigError(what + ": expected name=degrees, got '" + item + "'");
     const std::string name = trim(item.substr(0, eq));
-    set_angle(pose, name, parse_degrees(name, trim(item.substr(eq + 1)), what), space, what, &setters);
+    set_angle(pose, name, parse_degrees(name, trim(item.substr(eq + 1)), what, space), space, what, &setters);
     if (comma == std::string::npos) break;
     start = comma + 1;
   }
@@ -195,7 +204,7 @@ void add_pose_entry(Pose& pose, const std::string& name, const YAML::Node& value
                                           {".inf", "inf"}, {".Inf", "inf"}, {".INF", "inf"}, {"+.inf", "inf"},
                                           {"-.inf", "-inf"}, {"-.Inf", "-inf"}, {"-.INF", "-inf"}})
     if (text == yaml_word) text = c_word;
-  set_angle(pose, name, parse_degrees(name, text, what), space, what, setters);
+  set_angle(pose, name, parse_degrees(name, text, what, space), space, what, setters);
 }
 
 void check_pose(const Pose& pose, const std::vector<PoseAngle>& space, const std::string& what) {
@@ -317,8 +326,8 @@ std::vector<PoseAngle> with_sampling_ranges(std::vector<PoseAngle> space, const 
     const std::string name = trim(item.substr(0, eq));
     const std::string range = trim(item.substr(eq + 1));
     const auto colon = range.find(':');
-    const double lo = parse_degrees(name, trim(range.substr(0, colon)), what);
-    const double hi = colon == std::string::npos ? lo : parse_degrees(name, trim(range.substr(colon + 1)), what);
+    const double lo = parse_degrees(name, trim(range.substr(0, colon)), what, space);
+    const double hi = colon == std::string::npos ? lo : parse_degrees(name, trim(range.substr(colon + 1)), what, space);
     std::vector<PoseAngle*> set;
     for (const PoseAngle* a : targets(name, space))
       for (PoseAngle& b : space)
