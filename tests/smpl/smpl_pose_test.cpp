@@ -89,7 +89,10 @@ SyntheticSmpl make_synthetic(const std::vector<int>& parents, unsigned seed) {
 
 // The file as docs/smpl.md's converter writes it; `with_pose` false leaves
 // out the four pose datasets.
-void write_synthetic(const SyntheticSmpl& m, const std::filesystem::path& file, bool with_pose = true) {
+// `indices_as_doubles`: /f and /kintree_table written as f64, as a
+// converter that forgets their type does.
+void write_synthetic(const SyntheticSmpl& m, const std::filesystem::path& file, bool with_pose = true,
+                     bool indices_as_doubles = false) {
   const auto n = static_cast<std::size_t>(m.v_template.rows()), k = m.parents.size();
   using RowMajor = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
   h5::File h = h5::File::create(file);
@@ -97,7 +100,12 @@ void write_synthetic(const SyntheticSmpl& m, const std::filesystem::path& file, 
   h.write("/v_template", {n, 3}, vt.data());
   h.write("/shapedirs", {n, 3, 2}, sd.data());
   const Eigen::Matrix<std::int32_t, Eigen::Dynamic, 3, Eigen::RowMajor> f = m.faces;
-  h.write("/f", {static_cast<std::size_t>(f.rows()), 3}, f.data());
+  if (indices_as_doubles) {
+    const Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor> fd = f.cast<double>();
+    h.write("/f", {static_cast<std::size_t>(f.rows()), 3}, fd.data());
+  } else {
+    h.write("/f", {static_cast<std::size_t>(f.rows()), 3}, f.data());
+  }
   if (with_pose) {
     const RowMajor jr = m.j_regressor, w = m.weights, pd = m.posedirs;
     h.write("/J_regressor", {k, n}, jr.data());
@@ -107,7 +115,12 @@ void write_synthetic(const SyntheticSmpl& m, const std::filesystem::path& file, 
       tree[j] = m.parents[j] < 0 ? 4294967295LL : m.parents[j];  // as SMPL's pickles hold it
       tree[k + j] = static_cast<std::int64_t>(j);
     }
-    h.write("/kintree_table", {2, k}, tree.data());
+    if (indices_as_doubles) {
+      const std::vector<double> tree_d(tree.begin(), tree.end());
+      h.write("/kintree_table", {2, k}, tree_d.data());
+    } else {
+      h.write("/kintree_table", {2, k}, tree.data());
+    }
     h.write("/posedirs", {n, 3, 9 * (k - 1)}, pd.data());
   }
   h.close();
@@ -471,6 +484,44 @@ TEST_CASE("SMPL weights that do not sum to 1 and NaN shapes are refused at load"
   write_synthetic(flat, dir / "flat.h5");
   CHECK_THAT(test::message_of([&] { load_smpl(dir / "flat.h5"); }),
              Catch::Contains("flat.h5: the shape blend shapes (/shapedirs) do not change the body's volume"));
+}
+
+// What an outside check's own SMPL files met (2026-12-07): a parent index
+// 15.9 stored as a float was read as 15 (the elbow hung from the head, the
+// posed body 0.33 m off SMPL's, without a word); NaN in a pose dataset was
+// "the pose datasets hold NaN" without naming which; a mesh wound inward
+// reached "BMI -26.8 to -20.9"; 3 betas of a file's 2 were cut to 2.
+TEST_CASE("SMPL datasets of the wrong kind are refused naming the dataset", "[smpl][pose]") {
+  test::TempDir dir;
+  const SyntheticSmpl m = make_synthetic(kSmplParents, 19);
+  write_synthetic(m, dir / "whole.h5", true, true);  // integral values in a float dataset: still refused
+  CHECK_THAT(test::message_of([&] { load_smpl(dir / "whole.h5"); }),
+             Catch::Contains("whole.h5: dataset /f holds floating-point numbers; it must hold integers"));
+  SyntheticSmpl posedirs_nan = m;
+  posedirs_nan.posedirs(2, 5) = std::nan("");
+  write_synthetic(posedirs_nan, dir / "pd.h5");
+  CHECK_THAT(test::message_of([&] { load_smpl(dir / "pd.h5"); }), Catch::Contains("pd.h5: /posedirs holds NaN or infinite"));
+  SyntheticSmpl jr_inf = m;
+  jr_inf.j_regressor(1, 0) = std::numeric_limits<double>::infinity();
+  write_synthetic(jr_inf, dir / "jr.h5");
+  CHECK_THAT(test::message_of([&] { load_smpl(dir / "jr.h5"); }), Catch::Contains("jr.h5: /J_regressor holds NaN or infinite"));
+  SyntheticSmpl inward = m;
+  inward.faces.col(1).swap(inward.faces.col(2));
+  write_synthetic(inward, dir / "inward.h5");
+  CHECK_THAT(test::message_of([&] { load_smpl(dir / "inward.h5"); }),
+             Catch::Contains("inward.h5: the mean body") && Catch::Contains("its triangles (/f) face inward"));
+  // The file's 2 shape directions: 2 and the default are taken, 3 is refused with both counts.
+  write_synthetic(m, dir / "good.h5");
+  const auto& d = test::plugins().get("smpl");
+  const auto with_betas = [&](int betas) {
+    return test::plugins().create_body("smpl", Params(d.params, {{"file", {YAML::Node((dir / "good.h5").string()), {}}},
+                                                                 {"betas", {YAML::Node(betas), {}}}},
+                                                      "smpl"));
+  };
+  CHECK(with_betas(2)->shape_names().size() == 3);
+  CHECK(load_smpl(dir / "good.h5")->shape_names().size() == 3);  // beta0, beta1, scale
+  CHECK_THAT(test::message_of([&] { with_betas(3); }),
+             Catch::Contains("betas 3 asked for, but /shapedirs holds 2 shape directions"));
 }
 
 // An SMPL file is one sex: a sex asked for is said not to be used, once

@@ -26,6 +26,27 @@ std::size_t element_size(DType type) {
   return 1;
 }
 
+bool is_integer(DType type) { return type != DType::F32 && type != DType::F64; }
+
+// What the dataset holds, where HDF5 would convert it without a word or
+// fail as if the file were damaged: floating-point numbers read as integers
+// are cut (a parent index 15.9 of a user's SMPL file was read as 15, a
+// vertex index 3.4 as 3), and text or records are not numbers at all (it
+// said "the file is corrupt or truncated"). Integers read as floats are
+// exact, and an enum (h5py's bool) is left to HDF5's own conversion.
+void check_element_class(const H5::DataSet& ds, const std::string& file, const std::string& p, DType type) {
+  const H5T_class_t cls = ds.getTypeClass();
+  if (cls == H5T_INTEGER || cls == H5T_ENUM) return;
+  if (cls == H5T_FLOAT) {
+    if (is_integer(type))
+      throw ConfigError(file + ": dataset " + p + " holds floating-point numbers; it must hold integers (" +
+                        to_string(type) + ": indices and counts are stored as an integer type)");
+    return;
+  }
+  const char* what = cls == H5T_STRING ? "text" : cls == H5T_COMPOUND ? "records (a compound type)" : "a non-numeric type";
+  throw ConfigError(file + ": dataset " + p + " holds " + what + ", not numbers (expected " + to_string(type) + ")");
+}
+
 }  // namespace
 
 void File::write_raw(const std::string& dataset, const Dims& shape, DType type, const void* data) {
@@ -50,6 +71,7 @@ void File::read_raw(const std::string& dataset, const Dims& expected, DType type
   if (have != expected)
     throw ConfigError(impl_->name() + ": dataset " + p + " has shape " + to_string(have) + ", expected " + to_string(expected));
   const H5::DataSet ds = impl_->open_dataset(p);
+  guarded(*impl_, true, "cannot read the type of " + p, [&] { check_element_class(ds, impl_->name(), p, type); });
   guarded(*impl_, true, "cannot read " + p + ", the file is corrupt or truncated", [&] {
     if (element_count(have) > 0) ds.read(out, detail::memory_type(type));
   });
@@ -119,6 +141,7 @@ void File::rows_raw(const std::string& dataset, std::size_t first, std::size_t c
                 " are out of range (it has " + std::to_string(dims[0]) + ")");
   if (count == 0) return;
   const H5::DataSet ds = impl_->open_dataset(p);
+  if (!write) guarded(*impl_, true, "cannot read the type of " + p, [&] { check_element_class(ds, impl_->name(), p, type); });
   const std::string what = (write ? "writing rows of " : "cannot read rows of ") + p + (write ? " failed" : ", the file is corrupt or truncated");
   guarded(*impl_, !write, what, [&] {
     std::vector<hsize_t> start(dims.size(), 0), extent = to_hsize(dims);

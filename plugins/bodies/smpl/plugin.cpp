@@ -4,6 +4,9 @@
 #include <drape/bodies/body.hpp>
 #include <drape/plugin.hpp>
 
+#include <algorithm>
+#include <utility>
+
 namespace {
 
 drape::PluginList plugins() {
@@ -15,10 +18,15 @@ drape::PluginList plugins() {
           "J_regressor, weights, kintree_table, posedirs; BMI along the volume direction.";
   d.params = {{.name = "file", .type = ParamType::String, .default_value = "smpl_neutral.h5",
                .doc = "the converted model (docs/smpl.md)"},
-              {.name = "betas", .type = ParamType::Int, .default_value = "10",
-               .doc = "how many shape coefficients to use", .min = 1.0, .max = 300.0}};
+              {.name = "betas", .type = ParamType::Int, .default_value = "0",
+               .doc = "how many shape coefficients to use, at most the file's /shapedirs count (0: all of them up to 10, "
+                      "SMPL's own count)",
+               .min = 0.0, .max = 300.0}};
   d.create_body = [](const Params& p) {
-    return std::make_unique<smpl::SmplBody>(smpl::read_smpl_h5(p.get_string("file")), static_cast<int>(p.get_int("betas")));
+    smpl::SmplData data = smpl::read_smpl_h5(p.get_string("file"));
+    const auto asked = static_cast<int>(p.get_int("betas"));
+    const int betas = asked > 0 ? asked : std::min<int>(10, static_cast<int>(data.shapedirs.cols()));
+    return std::make_unique<smpl::SmplBody>(std::move(data), betas);
   };
   return {d};
 }

@@ -82,8 +82,24 @@ double bmi_of(const Eigen::MatrixX3d& v, const Eigen::MatrixX3i& f) {
 }  // namespace
 
 SmplBody::SmplBody(SmplData data, int num_betas) : data_(std::move(data)) {
-  betas_ = std::min<int>(num_betas, static_cast<int>(data_.shapedirs.cols()));
-  if (betas_ < 1) throw ConfigError("an SMPL model needs at least one shape blend shape");
+  // More betas than the file has shape directions were cut to its count
+  // without a word (an outside check asked for 20 of a file's 10).
+  if (num_betas > data_.shapedirs.cols())
+    throw ConfigError(data_.file.string() + ": betas " + std::to_string(num_betas) + " asked for, but /shapedirs holds " +
+                      std::to_string(data_.shapedirs.cols()) + " shape directions; give betas <= " +
+                      std::to_string(data_.shapedirs.cols()));
+  betas_ = num_betas;
+  if (betas_ < 1)
+    throw ConfigError(data_.file.string() + ": an SMPL model needs at least one shape blend shape (/shapedirs is [N, 3, " +
+                      std::to_string(data_.shapedirs.cols()) + "], betas " + std::to_string(num_betas) + ")");
+  // The body's triangles face outward, as SMPL's do: a mesh wound inward has
+  // a negative volume, and BMIs from it were negative ("reaches BMI -26.8 to
+  // -20.9"), which no request can meet and nothing explained.
+  if (const double volume = geometry::mesh_volume(vertices(mean_shape()), data_.faces); !(volume > 0))
+    throw ConfigError(data_.file.string() + ": the mean body (/v_template with /f) encloses a volume of " +
+                      std::to_string(volume) + " m^3; " +
+                      (volume < 0 ? "its triangles (/f) face inward: give each triangle's corners in the other order"
+                                  : "it encloses nothing (in meters, /f a closed surface)"));
   // d volume / d beta_i by central differences at the mean: the "weight" direction.
   direction_ = Eigen::VectorXd::Zero(betas_);
   for (int i = 0; i < betas_; ++i) {

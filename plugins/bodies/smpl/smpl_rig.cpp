@@ -73,8 +73,9 @@ std::optional<SmplRig> read_smpl_rig(const h5::File& f, Eigen::Index n) {
   rig.j_regressor = Eigen::Map<const RowMajor>(jr.data(), kk, n);
   rig.weights = Eigen::Map<const RowMajor>(w.data(), n, kk);
   rig.posedirs = Eigen::Map<const RowMajor>(pdirs.data(), 3 * n, static_cast<Eigen::Index>(features));
-  for (const auto* m : {&rig.j_regressor, &rig.weights, &rig.posedirs})
-    if (!m->allFinite()) throw ConfigError(file + ": the pose datasets hold NaN or infinite values");
+  for (const auto& [name, m] : {std::pair{"/J_regressor", &rig.j_regressor}, std::pair{"/weights", &rig.weights},
+                                std::pair{"/posedirs", &rig.posedirs}})
+    if (!m->allFinite()) throw ConfigError(file + ": " + name + " holds NaN or infinite values");
   // Linear blend skinning moves a vertex by the weighted sum of its joints'
   // transforms: weights that do not sum to 1 scale the vertex with the
   // rotation (doubled weights moved an outside check's arm 9.8 cm further at
