@@ -300,7 +300,7 @@ def generate(scene, out, count, bmi=(10, 65), height=1.75, sex=1.0, girths=0.0, 
     or "shoulder_abduction=60:90") replacing sampling ranges; the joint angles are stored (Dataset.read's "pose").
     The GIL is released while it runs; a progress bar goes to stderr unless progress=False."""
     if poses not in ("scene", "draw"):
-        raise ValueError(f"poses={poses!r}: expected 'scene' or 'draw'")
+        raise ConfigError(f"poses={poses!r}: expected 'scene' or 'draw'")
     if isinstance(pose_ranges, dict):
         pose_ranges = ",".join(f"{k}={lo}:{hi}" for k, (lo, hi) in pose_ranges.items())
     # Named here: the native call's own refusal of a negative number is a
@@ -383,10 +383,28 @@ def write_obj(path, vertices, faces):
     array reads back bit for bit; %.6f lost up to 5e-7 m of a float32 body."""
     vertices = _np.asarray(vertices, dtype=_np.float64)
     faces = _np.asarray(faces)
+    if vertices.ndim != 2 or vertices.shape[1] != 3:
+        raise ConfigError(f"vertices: expected [N, 3], got shape {list(vertices.shape)}")
     if not _np.isfinite(vertices).all():  # (an OBJ of "nan" no reader takes back)
-        raise ValueError(f"vertices: {int((~_np.isfinite(vertices)).any(axis=-1).sum())} rows hold NaN or inf")
+        raise ConfigError(f"vertices: {int((~_np.isfinite(vertices)).any(axis=-1).sum())} rows hold NaN or inf")
+    if faces.ndim != 2 or faces.shape[1] != 3:
+        raise ConfigError(f"faces: expected [F, 3] 0-based vertex indices, got shape {list(faces.shape)}")
+    # Indices are whole numbers within the vertices: a float index was cut, and
+    # one out of range or negative was written as it stood (OBJ reads a
+    # negative index as counted from the end), making a file no reader takes.
+    if faces.size and not _np.issubdtype(faces.dtype, _np.integer):
+        if not _np.issubdtype(faces.dtype, _np.floating) or not _np.array_equal(faces, _np.round(faces)):
+            raise ConfigError(f"faces: expected whole vertex indices, got {faces.dtype} values that are not")
+        faces = faces.astype(_np.int64)
+    if faces.size and (faces.min() < 0 or faces.max() >= len(vertices)):
+        bad = int(faces.min()) if faces.min() < 0 else int(faces.max())
+        raise ConfigError(f"faces: index {bad} is outside the {len(vertices)} vertices (0-based: 0 to {len(vertices) - 1})")
     tmp = f"{path}.tmp{_os.getpid()}"
-    with open(tmp, "w") as f:
-        _np.savetxt(f, vertices, fmt="v %.17g %.17g %.17g")
-        _np.savetxt(f, faces + 1, fmt="f %d %d %d")
-    _os.replace(tmp, path)
+    try:
+        with open(tmp, "w") as f:
+            _np.savetxt(f, vertices, fmt="v %.17g %.17g %.17g")
+            _np.savetxt(f, faces + 1, fmt="f %d %d %d")
+        _os.replace(tmp, path)
+    finally:
+        if _os.path.exists(tmp):  # (a failed write leaves nothing beside the path)
+            _os.remove(tmp)

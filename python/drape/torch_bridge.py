@@ -26,13 +26,13 @@ def _numpy(t):
 
 
 def _require_floating(t, argument):
-    """ValueError for integer or boolean vertices, as the module refuses them (docs/python.md): they were
+    """drape.ConfigError (a ValueError) for integer or boolean vertices, as the module refuses them (docs/python.md): they were
     converted to floats silently and then refused for what followed ("vertices are not in the body model's
     order", "vertex 0 and face 4 touch"), an outside check."""
     if isinstance(t, torch.Tensor) and not (t.is_floating_point()):
-        raise ValueError(f"{argument}: expected floating-point vertices in metres, got {t.dtype}")
+        raise drape.ConfigError(f"{argument}: expected floating-point vertices in metres, got {t.dtype}")
     if isinstance(t, np.ndarray) and not np.issubdtype(t.dtype, np.floating):
-        raise ValueError(f"{argument}: expected floating-point vertices in metres, got {t.dtype}")
+        raise drape.ConfigError(f"{argument}: expected floating-point vertices in metres, got {t.dtype}")
 
 
 class EnergyFunction(torch.autograd.Function):
@@ -77,7 +77,7 @@ class SceneEnergy(torch.nn.Module):
         self.energies = self.scene.energies(None if body_vertices is None else _as_numpy(body_vertices))
         unknown = [n for n in (names or []) if n not in self.energies]
         if unknown:
-            raise ValueError(f"names: the scene has no effect {unknown[0]!r} (it has {', '.join(self.energies)})")
+            raise drape.ConfigError(f"names: the scene has no effect {unknown[0]!r} (it has {', '.join(self.energies)})")
         self.names = list(names or self.energies)
 
     def terms(self, x):

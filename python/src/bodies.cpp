@@ -45,7 +45,7 @@ class PyBodyModel {
   std::vector<std::string> shape_names() const { return model_->shape_names(); }
 
   // The shape vector that reaches the request with the named proportions (girths) held, as drape body --girth.
-  Eigen::VectorXd solve(double bmi, double height, double sex, const py::dict& girths) const {
+  Eigen::VectorXd solve(const py::handle& bmi, const py::handle& height, const py::handle& sex, const py::dict& girths) const {
     const BodyRequest request = body_request(bmi, height, sex, girths, name_);
     py::gil_scoped_release release;
     return model_->solve(request);  // ConfigError naming the proportions the model takes, or their range
@@ -61,7 +61,7 @@ class PyBodyModel {
                      : py::array_t<double, py::array::c_style | py::array::forcecast>();
     const auto n = static_cast<py::ssize_t>(model_->shape_names().size());
     if (!shape || shape.ndim() != 1 || shape.shape(0) != n)
-      throw py::value_error("shape: expected a float array of shape [" + std::to_string(n) + "] (" + name_ +
+      throw ConfigError("shape: expected a float array of shape [" + std::to_string(n) + "] (" + name_ +
                             "'s shape parameters, BodyModel.shape_names)");
     Eigen::VectorXd s = Eigen::Map<const Eigen::VectorXd>(shape.data(), n);
     py::gil_scoped_release release;
@@ -135,7 +135,7 @@ void register_bodies(py::module_& m) {
                              "int32 [F, 3], counter-clockwise seen from outside")
       .def(
           "solve",
-          [](const PyBodyModel& b, double bmi, double height, double sex, const py::kwargs& girths) {
+          [](const PyBodyModel& b, const py::handle& bmi, const py::handle& height, const py::handle& sex, const py::kwargs& girths) {
             return to_numpy(b.solve(bmi, height, sex, girths));
           },
           py::arg("bmi") = 24.0, py::arg("height") = 1.75, py::arg("sex") = 1.0,
@@ -151,7 +151,7 @@ void register_bodies(py::module_& m) {
 
   m.def(
       "body",
-      [](double bmi, double height, double sex, const std::string& model, const py::dict& params, const py::handle& pose,
+      [](const py::handle& bmi, const py::handle& height, const py::handle& sex, const std::string& model, const py::dict& params, const py::handle& pose,
          const py::kwargs& girths) {
         PyBodyModel b(model, params);
         // (pose= was read as a girth named "pose": "expected a number (a proportion ...)", an outside check.)

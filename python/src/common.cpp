@@ -21,6 +21,12 @@
 
 namespace drape::python {
 
+void check_python_signals() {
+  py::gil_scoped_acquire gil;
+  if (PyErr_CheckSignals() != 0) throw PythonSignal{};
+}
+
+
 Registry& registry() { return Registry::load_default(); }
 
 std::string describe(const py::array& a) {
@@ -223,11 +229,19 @@ std::optional<double> real_number(const py::handle& value) {
   return value.cast<double>();
 }
 
-BodyRequest body_request(double bmi, double height, double sex, const py::dict& girths, const std::string& model_name) {
+double number_arg(const py::handle& value, const std::string& name) {
+  if (const std::optional<double> number = real_number(value)) return *number;
+  throw ConfigError(name + ": expected a number, got " + py::str(py::type::of(value)).cast<std::string>() +
+                    (py::isinstance<py::bool_>(value) ? " (True is not 1.0 here)" : ""));
+}
+
+BodyRequest body_request(const py::handle& bmi, const py::handle& height, const py::handle& sex, const py::dict& girths,
+                         const std::string& model_name) {
   BodyRequest request;
-  request.bmi = bmi;
-  request.height = height;
-  request.sex = sex;
+  // (Typed double, a bool was taken: sex=True made a man, bmi=True was "BMI 1 is outside the range": an outside check.)
+  request.bmi = number_arg(bmi, "bmi");
+  request.height = number_arg(height, "height");
+  request.sex = number_arg(sex, "sex");
   for (const auto& [key, value] : girths) {
     if (key.cast<std::string>() == "pose")
       throw ConfigError("pose: this makes the body at rest (its shape); pose it with drape.body(..., pose=...), or "

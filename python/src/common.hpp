@@ -48,7 +48,19 @@ Tensor vertices_batch_arg(const py::handle& value, const std::string& name, int 
 // float32, int64, ...), not a bool (True is a mistake, not 1.0); none
 // otherwise (a string, a complex, an array).
 std::optional<double> real_number(const py::handle& value);
-BodyRequest body_request(double bmi, double height, double sex, const py::dict& girths, const std::string& model_name);
+// bmi, height and sex likewise: real numbers, ConfigError naming the one that is not (a bool, a string).
+double number_arg(const py::handle& value, const std::string& name);
+BodyRequest body_request(const py::handle& bmi, const py::handle& height, const py::handle& sex, const py::dict& girths, const std::string& model_name);
+
+// Ctrl-C in a long call that runs without the GIL (Scene.simulate,
+// Model.optimize): the job's own callbacks (a solver step, an iteration)
+// take the GIL and ask Python whether a signal is pending; one is, and
+// PythonSignal unwinds the job. The binding catches it where it holds the
+// GIL again and raises Python's own exception (KeyboardInterrupt), which
+// PyErr_CheckSignals left set. (A simulation ran on to its end, 87 s, and
+// its result was thrown away: an outside check.)
+struct PythonSignal {};
+void check_python_signals();  // throws PythonSignal; call without the GIL
 
 // Arrays that keep drape's buffers alive through a capsule: no copy.
 py::array_t<float> to_numpy(Tensor&& t, bool drop_batch);

@@ -5,6 +5,7 @@
 #include <drape/io/dataset.hpp>
 #include <drape/services/dataset_generation.hpp>
 
+#include <cmath>
 #include <iostream>
 #include <type_traits>
 
@@ -16,7 +17,7 @@ std::vector<std::size_t> indices_arg(const DatasetReader& r, const py::handle& v
   py::array a = py::array::ensure(value);
   if (a && a.ndim() == 1 && a.size() == 0) return {};  // [] (NumPy makes an empty list float): no samples
   if (!a || (a.dtype().kind() != 'i' && a.dtype().kind() != 'u') || a.ndim() != 1)
-    throw py::value_error("indices: expected " + expected + (a ? ", got " + describe(a) : std::string()));
+    throw ConfigError("indices: expected " + expected + (a ? ", got " + describe(a) : std::string()));
   std::vector<std::size_t> out;
   // Each index read in its own signedness: forcecast to int64, an unsigned
   // 2**63 + 5 was refused as "sample -9223372036854775803".
@@ -30,7 +31,7 @@ std::vector<std::size_t> indices_arg(const DatasetReader& r, const py::handle& v
       else done = i < r.size();
       done = done && r.done()[static_cast<std::size_t>(i)];
       if (!done)
-        throw py::value_error("indices: sample " + std::to_string(i) + " is not a done sample of this dataset (it has " +
+        throw ConfigError("indices: sample " + std::to_string(i) + " is not a done sample of this dataset (it has " +
                               std::to_string(r.size()) + ")");
       out.push_back(static_cast<std::size_t>(i));
     }
@@ -51,15 +52,19 @@ SampleRange range_arg(const py::handle& value, const std::string& name) {
     // A pair as a tuple, a list or a NumPy array of two.
     if (py::isinstance<py::tuple>(value) || py::isinstance<py::list>(value) ||
         (py::isinstance<py::array>(value) && py::reinterpret_borrow<py::array>(value).ndim() == 1)) {
-      const auto pair = value.cast<std::vector<double>>();
+      // (Each a real number: True was taken as 1.0, as it was for one number.)
+      const py::sequence items = py::reinterpret_borrow<py::sequence>(value);
+      std::vector<double> pair;
+      for (const py::handle item : items)
+        if (const std::optional<double> number = real_number(item)) pair.push_back(*number);
+        else pair.push_back(std::nan(""));
       if (pair.size() == 2 && pair[0] <= pair[1]) return {pair[0], pair[1]};
-    } else {
-      const double v = value.cast<double>();
-      if (v == v) return {v, v};
+    } else if (const std::optional<double> v = real_number(value); v && *v == *v) {
+      return {*v, *v};
     }
   } catch (const py::cast_error&) {
   }
-  throw py::value_error(name + ": expected " + expected + ", got " + py::repr(value).cast<std::string>());
+  throw ConfigError(name + ": expected " + expected + ", got " + py::repr(value).cast<std::string>());
 }
 
 py::dict generate(const PyScene& scene, const std::string& out, std::size_t count, const py::handle& bmi,

@@ -67,20 +67,20 @@ class PyModel {
       const int p = model_->graph().input_shape("body_params").cols;
       const std::string expected = "a float array of shape [" + std::to_string(p) + "] or [" + std::to_string(n) + ", " +
                                    std::to_string(p) + "] (this model's graph takes the body parameters: Model.body_params())";
-      if (body_params.is_none()) throw py::value_error("body_params: expected " + expected + ", got None");
+      if (body_params.is_none()) throw ConfigError("body_params: expected " + expected + ", got None");
       py::array a = py::array::ensure(body_params);
       if (!a || a.dtype().kind() != 'f' || a.shape(a.ndim() - 1) != p || a.ndim() > 2 || (a.ndim() == 2 && a.shape(0) != n))
-        throw py::value_error("body_params: expected " + expected + (a ? ", got " + describe(a) : std::string()));
+        throw ConfigError("body_params: expected " + expected + (a ? ", got " + describe(a) : std::string()));
       auto f = py::array_t<float, py::array::c_style | py::array::forcecast>::ensure(a);
       b.body_params = Tensor(n, 1, p);
       for (int i = 0; i < n; ++i) std::copy(f.data() + (a.ndim() == 2 ? i * p : 0), f.data() + (a.ndim() == 2 ? i * p : 0) + p, &b.body_params(i, 0, 0));
     }
     if (!model_->needs_body_params() && !body_params.is_none())
-      throw py::value_error("body_params: this model's graph takes no body parameters (it reads the body's vertices); "
+      throw ConfigError("body_params: this model's graph takes no body parameters (it reads the body's vertices); "
                             "leave body_params out");
     if (model_->needs_input("garment_size")) {
       if (garment_size.is_none())
-        throw py::value_error("garment_size: this model was trained on several garment sizes, give one of " + garment_size_choices());
+        throw ConfigError("garment_size: this model was trained on several garment sizes, give one of " + garment_size_choices());
       b.garment_size = Tensor(n, 1, 1, garment_size_flag(garment_size.cast<std::string>()));
     } else if (model_->needs_input("garment_grade")) {
       // A size name of the model's chart, "auto"/None (chosen per body by
@@ -90,15 +90,15 @@ class PyModel {
       if (py::isinstance<py::str>(garment_size)) size = garment_size.cast<std::string>();
       else if (const std::optional<double> number = real_number(garment_size)) grade = number;
       else if (!garment_size.is_none())
-        throw py::value_error("garment_size: a size name, \"auto\" or a grade (a number), got " +
+        throw ConfigError("garment_size: a size name, \"auto\" or a grade (a number), got " +
                               py::repr(garment_size).cast<std::string>());
       try {
         if (const auto g = requested_garment_grade(*model_, size, grade)) b.garment_grade = Tensor(n, 1, 1, static_cast<float>(*g));
       } catch (const ConfigError& e) {
-        throw py::value_error(std::string("garment_size: ") + e.what());
+        throw ConfigError(std::string("garment_size: ") + e.what());
       }
     } else if (!garment_size.is_none()) {
-      throw py::value_error("garment_size: this model was trained on one garment size and takes none; leave garment_size out");
+      throw ConfigError("garment_size: this model was trained on one garment size and takes none; leave garment_size out");
     }
     return b;
   }
@@ -128,7 +128,7 @@ class PyModel {
   // outside it) and a garment too small around is noted, each notice a Python
   // warning; returns per sample the move that takes its garment back (BodyMove::back).
   PreparedBodies prepare(SampleBatch& b, bool strict, bool check = true, bool pose_given = false) {
-    if (strict && !check) throw py::value_error("strict=True needs check=True: the domain is checked by measuring the body");
+    if (strict && !check) throw ConfigError("strict=True needs check=True: the domain is checked by measuring the body");
     const BodyPreparation& preparation = this->preparation();
     PreparedBodies prepared = [&] {
       py::gil_scoped_release release;
@@ -154,7 +154,7 @@ class PyModel {
     bool batched = false;
     const Tensor g = vertices_batch_arg(grad, "grad_garment", ng, &batched);
     if (g.batch() != b.body.batch())
-      throw py::value_error("grad_garment: expected " + std::to_string(b.body.batch()) + " samples like the forward, got " +
+      throw ConfigError("grad_garment: expected " + std::to_string(b.body.batch()) + " samples like the forward, got " +
                             std::to_string(g.batch()));
     const BodyPreparation& preparation = this->preparation();  // before the lock, which it takes
     py::gil_scoped_release release;
@@ -288,7 +288,7 @@ void register_model(py::module_& m) {
       .def_property_readonly("graph", [](PyModel& p) { return p.model().checkpoint().graph; }, "the resolved graph, YAML")
       .def(
           "body",
-          [](PyModel& p, double bmi, double height, double sex, const py::kwargs& girths) {
+          [](PyModel& p, const py::handle& bmi, const py::handle& height, const py::handle& sex, const py::kwargs& girths) {
             const BodyRequest r = body_request(bmi, height, sex, girths, p.model().assets_spec().body_model);
             SampleBatch b;
             {
@@ -301,7 +301,7 @@ void register_model(py::module_& m) {
           "float32 [Nb, 3]: a body of the model's own body plugin; keywords are proportions held (girths, as drape.body)")
       .def(
           "body_params",
-          [](PyModel& p, double bmi, double height, double sex, const py::kwargs& girths) {
+          [](PyModel& p, const py::handle& bmi, const py::handle& height, const py::handle& sex, const py::kwargs& girths) {
             const BodyRequest r = body_request(bmi, height, sex, girths, p.model().assets_spec().body_model);
             SampleBatch b;
             {
@@ -347,7 +347,7 @@ void register_model(py::module_& m) {
           [](PyModel& p, const py::handle& body) {
             bool batched = false;
             const Tensor t = vertices_batch_arg(body, "body_vertices", p.model().assets().body.num_vertices(), &batched);
-            if (t.batch() != 1) throw py::value_error("body_vertices: domain_check takes one body [Nb, 3]");
+            if (t.batch() != 1) throw ConfigError("body_vertices: domain_check takes one body [Nb, 3]");
             const std::optional<ModelDomain>& d = p.domain();
             if (!d) return std::vector<std::string>{"the model records no training domain (drape model domain adds it)"};
             return domain_violations(*d, t.mat(0).cast<double>(), p.model().assets().body.faces, nullptr);
@@ -362,8 +362,8 @@ void register_model(py::module_& m) {
             bool batched = false;
             std::optional<Pose> posed = pose_arg(p.model().body_model(), p.model().assets_spec().body_model, pose);
             SampleBatch b = p.batch(body, body_params, garment_size, &batched);
-            if (b.size() != 1) throw py::value_error("body_vertices: optimize takes one body [Nb, 3], got a batch of " + std::to_string(b.size()));
-            if (iterations < 0) throw py::value_error("iterations: expected >= 0");
+            if (b.size() != 1) throw ConfigError("body_vertices: optimize takes one body [Nb, 3], got a batch of " + std::to_string(b.size()));
+            if (iterations < 0) throw ConfigError("iterations: expected >= 0");
             // Optimised where the training bodies stood (as predict), the drapes moved back with the body.
             const PreparedBodies prepared = p.prepare(b, false, true, posed.has_value());
             // pose=None: the scene's `body: pose:`, as drape optimize takes it (it optimised the unposed
@@ -389,11 +389,24 @@ void register_model(py::module_& m) {
             PhysicsOptimizationOptions o;
             o.iterations = iterations;
             o.learning_rate = learning_rate;
+            o.on_iteration = [](int, double) { check_python_signals(); };
             PhysicsOptimizationResult r;
-            {
+            // The weights as they were, put back when Ctrl-C stops the
+            // optimisation (else the model kept an iteration's half-made weights).
+            std::vector<Tensor> before;
+            for (const auto& weight : p.model().graph().weights()) before.push_back(weight.second->value);
+            try {
               py::gil_scoped_release release;
               std::lock_guard lock(p.mutex());
               r = optimize_drape(p.model(), simulation, b, o);
+            } catch (const PythonSignal&) {
+              {
+                py::gil_scoped_release release;
+                std::lock_guard lock(p.mutex());
+                std::size_t k = 0;
+                for (const auto& weight : p.model().graph().weights()) weight.second->value = before[k++];
+              }
+              throw py::error_already_set();  // KeyboardInterrupt, as PyErr_CheckSignals set it
             }
             r.before = back.back(r.before);
             r.after = back.back(r.after);
@@ -406,7 +419,8 @@ void register_model(py::module_& m) {
           "does (a body given posed keeps its own pose). Returns before/after garments, energies, p and the "
           "history (history[0]: before's potential). 'before' is the prediction as predict gives it; with a push-out "
           "the drape optimised is the network's own plus the push-out's correction of the prediction, held fixed (the "
-          "push-out is not learnt; docs/optimization.md). The GIL is released.")
+          "push-out is not learnt; docs/optimization.md). The GIL is released; Ctrl-C stops it (KeyboardInterrupt) with the "
+          "model's weights as they were before the call.")
       .def(
           "save",
           [](PyModel& p, const std::string& path, const std::map<std::string, std::string>& meta) {

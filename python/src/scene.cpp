@@ -186,12 +186,13 @@ void register_scene(py::module_& m) {
       .def_property_readonly("body_faces", [](py::object self) { return view(self.cast<PyScene&>().simulation->body_model().faces(), self); })
       .def(
           "body",
-          [](const PyScene& s, const std::optional<double>& bmi, const std::optional<double>& height, const std::optional<double>& sex) {
-            if (!bmi && !height && !sex) return to_numpy(s.simulation->body_vertices(s.simulation->target_shape()));
+          [](const PyScene& s, const py::handle& bmi, const py::handle& height, const py::handle& sex) {
+            if (bmi.is_none() && height.is_none() && sex.is_none())
+              return to_numpy(s.simulation->body_vertices(s.simulation->target_shape()));
             BodyRequest r;
-            if (bmi) r.bmi = *bmi;
-            if (height) r.height = *height;
-            if (sex) r.sex = *sex;
+            if (!bmi.is_none()) r.bmi = number_arg(bmi, "bmi");
+            if (!height.is_none()) r.height = number_arg(height, "height");
+            if (!sex.is_none()) r.sex = number_arg(sex, "sex");
             Eigen::MatrixX3d v;
             {
               py::gil_scoped_release release;
@@ -219,10 +220,14 @@ void register_scene(py::module_& m) {
               start_b = finite_vertices_arg(start_body, "start_body", static_cast<int>(s.simulation->mean_body().rows()));
               o.start_body = &start_b;
             }
+            o.on_step = [](const SimulationStep&) { check_python_signals(); };
+            o.on_partial_move = [](int, int, int, double) { check_python_signals(); };
             SimulationResult r;
-            {
+            try {
               py::gil_scoped_release release;
               r = drape_scene_body(target, o);
+            } catch (const PythonSignal&) {
+              throw py::error_already_set();  // KeyboardInterrupt, as PyErr_CheckSignals set it
             }
             // As drape simulate notes it: a garment too small round the body rode up into a band.
             if (const std::string note = garment_rode_up(target.simulation->garment().mesh.vertices, r.garment); !note.empty())

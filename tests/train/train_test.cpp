@@ -298,6 +298,23 @@ TEST_CASE("train refuses to overwrite, resumes only with the same settings, and 
   o.force = false;
   o.resume = true;
   CHECK_THROWS_WITH(train(test::plugins(), o), Catch::Contains("no model.h5.state to resume it from"));
+  // The first epoch's model without its state (a kill between the two
+  // writes): --resume starts that run over, to the same model as a run never
+  // stopped; a later epoch's model without its state is still refused (above).
+  auto first = test::tiny_training(d.data, d.dir / "first.h5");
+  first.epochs = 2;
+  first.max_epochs_this_run = 1;
+  train(test::plugins(), first);
+  fs::remove(training_state_path(first.out));
+  first.max_epochs_this_run = 0;
+  first.resume = true;
+  CHECK(train(test::plugins(), first).epochs_done == 2);
+  auto whole = test::tiny_training(d.data, d.dir / "whole.h5");
+  whole.epochs = 2;
+  train(test::plugins(), whole);
+  CHECK(fs::exists(training_state_path(first.out)));
+  CHECK(read_checkpoint(first.out).meta.at("epoch") == "2");
+  CHECK(read_checkpoint(first.out).meta.at("best_loss") == read_checkpoint(whole.out).meta.at("best_loss"));
 
   // A dataset whose template hash differs from the scene's template.
   test::TempDir other;

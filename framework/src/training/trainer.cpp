@@ -144,9 +144,25 @@ void check_earlier_run(const TrainOptions& o, const fs::path& state_path) {
   // --force replaces an earlier training's model, never another kind of
   // file (an outside check's --force turned a dataset into a model).
   if (o.force) refuse_replacing_other_than_a_model(o.out, "--out");
-  if (!o.force && o.resume && fs::exists(o.out) && !fs::exists(state_path))
-    throw ConfigError(o.out.string() + " exists, but there is no " + state_path.filename().string() +
-                      " to resume it from: --force to start over");
+  if (!o.force && o.resume && fs::exists(o.out) && !fs::exists(state_path)) {
+    // The first epoch's model, written just before its first state (save):
+    // a kill or a full disk between the two left a model no --resume would
+    // continue, so a job array's retry failed for ever (an outside check).
+    // Redone from the start it is the same run; any later model without its
+    // state is another story, and kept.
+    bool first_epoch = false;
+    try {
+      const Checkpoint earlier = read_checkpoint(o.out);
+      const auto meta = [&](const char* key) { return earlier.meta.count(key) ? earlier.meta.at(key) : std::string(); };
+      first_epoch = meta("kind") == kModelKind && meta("epoch") == "1";
+    } catch (const std::exception&) {
+    }
+    if (!first_epoch)
+      throw ConfigError(o.out.string() + " exists, but there is no " + state_path.filename().string() +
+                        " to resume it from: --force to start over");
+    warn(o.out.string() + " is the first epoch's model of a run stopped before its state was written: --resume "
+                          "starts that run over");
+  }
 }
 
 // The dataset's template (its assets) and the samples to train and validate on.
