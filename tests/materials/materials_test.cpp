@@ -194,6 +194,13 @@ TEST_CASE("materials: bad values name file, line and key", "[materials]") {
   CHECK_THAT(e, Catch::Contains("m.yaml:3") && Catch::Contains("`multipliers.stretch` must be > 0"));
   e = load_error(dir, "m.yaml", "a:\n  base: gray-interlock-linear\n  density: 0.3\n  multipliers: {density: 2}\n");
   CHECK_THAT(e, Catch::Contains("m.yaml:4") && Catch::Contains("`multipliers.density` and `density` both given"));
+  // A density no cloth has: set (an outside check's 1e-30 kg/m^2 shirt tore and was reported settled), or
+  // reached by a multiplier from the knit's 0.187 kg/m^2 (x 1e-4: 1.87e-5); chiffon (0.02) is taken.
+  e = load_error(dir, "m.yaml", "a:\n  base: gray-interlock-linear\n  density: 1.0e-30\n");
+  CHECK_THAT(e, Catch::Contains("m.yaml:3") && Catch::Contains("density is 1e-30 kg/m^2, below any cloth"));
+  e = load_error(dir, "m.yaml", "a:\n  base: gray-interlock-linear\n  multipliers: {density: 1.0e-4}\n");
+  CHECK_THAT(e, Catch::Contains("m.yaml:3") && Catch::Contains("density is 1.87e-05 kg/m^2"));
+  CHECK(load_error(dir, "m.yaml", "a:\n  base: gray-interlock-linear\n  density: 0.02\n") == "(no exception)");
 }
 
 TEST_CASE("materials: bases must exist, not loop, and presets without one must be complete", "[materials]") {

@@ -32,6 +32,18 @@ SourceLocation where_of(const MaterialPreset& p, const std::string& field) {
 // The value the simulator will use must be valid whatever chain produced it
 // (positive factors keep valid values valid; checked anyway).
 void check_resolved(const Material& m, const MaterialPreset& p) {
+  // A density no cloth has (set, or a base's scaled): the solver's measures
+  // of balance divide by the cloth's weight, and an outside check's 1e-30
+  // kg/m^2 shirt was torn apart (edges 17 times their length) and reported
+  // settled, its weight below the floor the solver keeps for a weightless
+  // cloth.
+  if (!(m.density >= materials_detail::kMinDensity)) {
+    std::ostringstream s;
+    s << owner_of(p) << ": its density is " << m.density << " kg/m^2, below any cloth drape simulates (at least "
+      << materials_detail::kMinDensity << " kg/m^2; chiffon, among the lightest fabrics, is about 0.02, ArcSim's "
+      << "materials 0.07-0.32): a unit mistake, or a multiplier too small?";
+    throw ConfigError(where_of(p, p.density ? "density" : "multipliers"), s.str());
+  }
   if (m.model == Model::Linear)
     materials_detail::check_stretch(m.stretch, where_of(p, "stretch"), owner_of(p));
   else

@@ -27,6 +27,7 @@ std::string owner_of(const std::string& preset_name);
 // ArcSim's materials span 0.07-0.32 kg/m^2, 170-1.8e6 N/m and up to 4e-4 N*m;
 // a 1 mm steel sheet is 7.8 kg/m^2, 2e8 N/m and 17 N*m.
 inline constexpr double kMaxDensity = 100;     // kg/m^2
+inline constexpr double kMinDensity = 1e-4;    // kg/m^2: 200 times lighter than chiffon (about 0.02)
 inline constexpr double kMaxStretch = 1e9;     // N/m, any stretching coefficient's magnitude
 inline constexpr double kMaxBending = 1e3;     // N*m
 inline constexpr double kMaxMultiplier = 1e6;  // a `multipliers` factor (the shipped print is 100x stiffer)
