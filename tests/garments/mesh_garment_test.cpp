@@ -199,6 +199,15 @@ TEST_CASE("mesh garment: bad garments are refused naming the file and the elemen
     short_edge.vertices.row(0) = mid - 1e-5 * (short_edge.vertices.row(1) - mid).normalized();
     write_mesh(dir / "short.obj", short_edge);
     CHECK_THAT(build_error(dir / "short.obj"), !Catch::Contains("duplicate an earlier one"));
+    // Within the weld distance (1 nm, an outside check's): an edge collapsed in 3D, not a seam either (it was
+    // "duplicate ... both on the border", and weld: true then made a face use a vertex twice). Its rest shape
+    // comes from the UVs, where it is whole: the garment is built, welded or not, with every vertex.
+    short_edge.vertices.row(0) = mid - 5e-10 * (short_edge.vertices.row(1) - mid).normalized();
+    short_edge.vertices.row(1) = mid + 5e-10 * (short_edge.vertices.row(1) - mid).normalized();
+    write_mesh(dir / "collapsed.obj", short_edge);
+    CHECK_THAT(build_error(dir / "collapsed.obj"), !Catch::Contains("duplicate an earlier one"));
+    const Simulation welded(test::plugins(), parse_scene(scene_text(dir / "collapsed.obj", ", weld: true")));
+    CHECK(welded.garment().mesh.num_vertices() == short_edge.num_vertices());
   }
   SECTION("an edge of three faces") {
     Mesh fin = tube();

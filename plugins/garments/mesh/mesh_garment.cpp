@@ -99,10 +99,14 @@ void handle_duplicates(Mesh& mesh, const MeshGarmentOptions& o) {
       if (across[static_cast<std::size_t>(f)][static_cast<std::size_t>(k)] < 0)
         on_border[static_cast<std::size_t>(mesh.faces(f, k))] = on_border[static_cast<std::size_t>(mesh.faces(f, (k + 1) % 3))] = 1;
   const auto seam_copies = [&](int i, int j) {
-    if ((mesh.vertices.row(i) - mesh.vertices.row(j)).norm() <= o.weld_distance) return true;  // (on one spot: as ever)
+    // Two ends of one edge are never a seam's copies, however near: an edge
+    // collapsed to a point was "a seam exported with split vertices ... both
+    // on the border", and weld: true then made a face use a vertex twice (an
+    // outside check). Left apart, the mesh's quality check names the face.
     // (edge_list's edges are sorted, each lower vertex first.)
-    return on_border[static_cast<std::size_t>(i)] && on_border[static_cast<std::size_t>(j)] &&
-           !std::binary_search(edges.begin(), edges.end(), std::array<int, 2>{std::min(i, j), std::max(i, j)});
+    if (std::binary_search(edges.begin(), edges.end(), std::array<int, 2>{std::min(i, j), std::max(i, j)})) return false;
+    if ((mesh.vertices.row(i) - mesh.vertices.row(j)).norm() <= o.weld_distance) return true;  // (on one spot: as ever)
+    return on_border[static_cast<std::size_t>(i)] && on_border[static_cast<std::size_t>(j)];
   };
   const std::vector<int> into = duplicates(mesh.vertices, distance, seam_copies);
   int merged = 0, first = -1;
