@@ -86,8 +86,8 @@ void draw(const po::variables_map& vm, const std::string& colour, const std::str
   SvgColourScale scale;
   char caption[256];
   if (colour == "distance") {
-    values = (100.0 * surface.signed_distances(garment.vertices)).cwiseMax(0.0);
-    scale = {"distance of the garment to the body (cm)", 0.0, 5.0};
+    values = 100.0 * surface.signed_distances(garment.vertices);  // (inside: its own colour, as drape_figure's)
+    scale = {"distance of the garment to the body (cm)", 0.0, 5.0, "inside the body"};
     std::snprintf(caption, sizeof caption, "p = %.2f%% of the vertices inside the body", 100.0 * p);
   } else if (colour == "error") {
     values = 100.0 * (garment.vertices - truth.vertices).rowwise().norm();

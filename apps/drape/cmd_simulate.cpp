@@ -1,6 +1,7 @@
 // `drape simulate scene.yaml --out garment.obj`: drape the scene's garment on
 // its body (or on --body FILE), the body morphing from the mean shape.
 #include "command.hpp"
+#include "model_body.hpp"
 #include "pose_options.hpp"
 
 #ifdef _OPENMP
@@ -184,7 +185,9 @@ void print_imbalance(const SimulationResult& r) {
 }
 
 // --out, --body-out and --svg, where the given body stood.
-void write_outputs(const po::variables_map& vm, const Simulation& sim, const SimulationResult& r) {
+// `notes`: what the run printed about its body and garment, drawn on the picture too.
+void write_outputs(const po::variables_map& vm, const Simulation& sim, const SimulationResult& r,
+                   const std::vector<std::string>& notes) {
   Mesh garment = sim.garment().mesh;
   garment.vertices = r.garment;
   if (vm.count("out")) {
@@ -203,7 +206,11 @@ void write_outputs(const po::variables_map& vm, const Simulation& sim, const Sim
     std::snprintf(caption, sizeof caption, "%s, %d iterations, %.1f s, p = %.2f%%, %d surface crossings",
                   r.converged ? "settled" : "NOT settled", r.iterations, r.seconds, 100.0 * r.penetration,
                   r.crossings ? r.crossings->total() : -1);
-    drape_figure("drape simulate: " + vm["scene"].as<std::string>(), caption, body, garment).write(vm["svg"].as<std::string>());
+    // Which body, as predict's picture says it (the title was the scene alone, and the fit note only on the terminal).
+    const std::string which = vm.count("bmi") || vm.count("body") ? asked_body_words(vm) : "the scene's own body";
+    SvgFigure figure = drape_figure("drape simulate: " + vm["scene"].as<std::string>() + " on " + which, caption, body, garment);
+    for (const std::string& note : notes) figure.add_note(note);
+    figure.write(vm["svg"].as<std::string>());
     std::printf("wrote %s\n", vm["svg"].as<std::string>().c_str());
   }
 }
@@ -228,10 +235,12 @@ int run(const std::vector<std::string>& args) {
   // the design size's, then runs in the size its girth needs (garment_size.hpp).
   const SceneSimulations simulations(registry, scene);
   const SceneBody target = target_body(simulations, scene, vm);
-  for (const std::string& note : target.notes) std::printf("note: %s\n", note.c_str());
-  if (target.size) std::printf("size auto: %s\n", target.size->summary().c_str());
-  if (target.grade) std::printf("grade auto: %s\n", target.grade->summary().c_str());
-  if (!target.pose.empty()) std::printf("posed: %s; every other angle at rest\n", format_pose(target.pose).c_str());
+  std::vector<std::string> notes;  // (each printed, and drawn on --svg's picture)
+  for (const std::string& note : target.notes) notes.push_back("note: " + note);
+  if (target.size) notes.push_back("size auto: " + target.size->summary());
+  if (target.grade) notes.push_back("grade auto: " + target.grade->summary());
+  if (!target.pose.empty()) notes.push_back("posed: " + format_pose(target.pose) + "; every other angle at rest");
+  for (const std::string& note : notes) std::printf("%s\n", note.c_str());
   const Simulation& sim = *target.simulation;
 
   const bool verbose = vm["verbose"].as<bool>();
@@ -243,7 +252,10 @@ int run(const std::vector<std::string>& args) {
               sim.garment().mesh.num_vertices(), static_cast<int>(target.vertices.rows()));
   for (const auto& e : sim.scene().effects) std::printf(" %s", e.name.c_str());
   std::printf("\n");
-  for (const std::string& note : sim.effect_notes()) std::printf("note: %s\n", note.c_str());
+  for (const std::string& note : sim.effect_notes()) {
+    std::printf("note: %s\n", note.c_str());
+    notes.push_back("note: " + note);
+  }
   // A garment far finer than the shipped ones: its first step alone can take
   // minutes, with nothing on the screen until then (a 244,606-vertex shirt
   // looked hung); say what to expect.
@@ -256,10 +268,12 @@ int run(const std::vector<std::string>& args) {
   if (bar) bar->finish();
   print_result(r);
   // (a garment far smaller round than the body settles as a band round the chest, p = 0)
-  if (const std::string note = garment_rode_up(sim.garment().mesh.vertices, r.garment); !note.empty())
+  if (const std::string note = garment_rode_up(sim.garment().mesh.vertices, r.garment); !note.empty()) {
     std::printf("note: %s\n", note.c_str());
+    notes.push_back("note: " + note);
+  }
   if (verbose) print_imbalance(r);
-  write_outputs(vm, sim, r);
+  write_outputs(vm, sim, r, notes);
   return r.converged ? 0 : 1;
 }
 

@@ -18,7 +18,7 @@ TEST_CASE("drape simulate reports the surface crossings next to p", "[cli][simul
   std::ofstream(dir / "tiny.yaml") << test::tiny_simulation_scene();
   std::string out;
   const int code = test::run(test::drape_program().string() + " simulate " + (dir / "tiny.yaml").string() + " --svg " +
-                                 (dir / "drape.svg").string(),
+                                 (dir / "drape.svg").string() + " --bmi 27 --height 1.8",
                              out);
   INFO(out);
   CHECK((code == 0 || code == 1));  // 1: not settled within the tiny scene's few steps, still reported
@@ -29,6 +29,8 @@ TEST_CASE("drape simulate reports the surface crossings next to p", "[cli][simul
   // The words the picture shows, its caption's lines joined (a caption is wrapped to its panel).
   const std::string words = std::regex_replace(std::regex_replace(picture, std::regex("<[^>]*>"), " "), std::regex("\\s+"), " ");
   CHECK(std::regex_search(words, std::regex("p = [0-9.]+%, [0-9]+ surface crossings")));
+  // Which body, as predict's picture names it (the title was the scene alone: an outside check).
+  CHECK(words.find("tiny.yaml on BMI 27, 1.80 m") != std::string::npos);
 }
 
 TEST_CASE("drape simulate with the barrier contact refuses a garment that starts through the body, naming where",

@@ -216,3 +216,28 @@ TEST_CASE("the HTML page's panels are as wide as their canvases", "[svg]") {
   REQUIRE(std::regex_search(html, panel, std::regex("\\.panel\\{[^}]*width:([0-9]+)px")));
   CHECK(canvas[1].str() == panel[1].str());
 }
+
+TEST_CASE("values below the scale take the below colour and the legend names it when the scale has one", "[svg]") {
+  // An outside check: cloth 81 % inside the body was clamped to the map's 0 (its darkest purple) and read as a
+  // tight fit. With a below label a face under lo is drawn in the scale's own colour (red, shaded: red well
+  // above green and blue), never a map colour, and the legend has its swatch and words; without one, as before.
+  SvgLayer l = cube();
+  l.values = Eigen::VectorXd::Constant(8, -1.0);
+  const std::regex fill("fill=\"#([0-9a-f]{2})([0-9a-f]{2})([0-9a-f]{2})\" stroke");
+  for (const bool labelled : {true, false}) {
+    SvgFigure f("inside");
+    f.add_panel({"cube", {l}});
+    f.set_colour_scale({"distance (cm)", 0.0, 5.0, labelled ? "inside the body" : ""});
+    const std::string s = f.svg();
+    CHECK((s.find("inside the body</text>") != std::string::npos) == labelled);
+    CHECK((s.find("fill=\"#e4002b\"/>") != std::string::npos) == labelled);  // the swatch
+    int faces = 0;
+    for (auto it = std::sregex_iterator(s.begin(), s.end(), fill); it != std::sregex_iterator(); ++it, ++faces) {
+      const int r = std::stoi((*it)[1], nullptr, 16), g = std::stoi((*it)[2], nullptr, 16), b = std::stoi((*it)[3], nullptr, 16);
+      if (labelled) CHECK((r > 3 * g && r > 3 * b));
+      else CHECK(b > r);  // viridis at 0: dark purple, blue above red
+    }
+    CHECK(faces == 12);
+    CHECK((f.html().find("inside the body</p>") != std::string::npos) == labelled);
+  }
+}

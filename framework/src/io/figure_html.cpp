@@ -188,6 +188,9 @@ std::string SvgFigure::html() const {
     char range[96];
     std::snprintf(range, sizeof range, "%.3g &mdash; &ge; %.3g", scale_->lo, scale_->hi);
     o << "<p>" << xml_escaped(scale_->label) << ": " << range << "</p><div class=\"bar\"></div>\n";
+    if (!scale_->below_label.empty())
+      o << "<p><span style=\"display:inline-block;width:12px;height:12px;background:" << scale_->below_colour
+        << "\"></span> " << xml_escaped(scale_->below_label) << "</p>\n";
   }
   o << "<div id=\"panels\"></div>\n<script type=\"application/json\" id=\"figure-data\">" << data.str()
     << "</script>\n<script>" << kScript << "</script>\n</body></html>\n";

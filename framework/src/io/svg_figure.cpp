@@ -84,7 +84,9 @@ std::vector<std::array<double, 3>> SvgFigure::face_colours(const SvgLayer& l) co
   for (Eigen::Index f = 0; f < l.faces.rows(); ++f) {
     const double v = (l.values(l.faces(f, 0)) + l.values(l.faces(f, 1)) + l.values(l.faces(f, 2))) / 3;
     out[static_cast<std::size_t>(f)] =
-        colour_map_rgb(scale_ ? (v - scale_->lo) / std::max(scale_->hi - scale_->lo, 1e-30) : v);
+        scale_ && !scale_->below_label.empty() && v < scale_->lo
+            ? rgb_of(scale_->below_colour)
+            : colour_map_rgb(scale_ ? (v - scale_->lo) / std::max(scale_->hi - scale_->lo, 1e-30) : v);
   }
   return out;
 }
@@ -204,6 +206,11 @@ std::string SvgFigure::svg() const {
     // The label on a line of its own: on a one-panel figure the bar is too short for it between the two ends.
     o << "<text x=\"" << x0 + w / 2 << "\" y=\"" << y + 42 << "\" font-size=\"11\" text-anchor=\"middle\">"
       << xml_escaped(scale_->label) << "</text>\n";
+    // Beside the bar (a figure is at least 90 characters of notes wide: room for both).
+    if (!scale_->below_label.empty())
+      o << "<rect x=\"" << x0 + w + 12 << "\" y=\"" << y << "\" width=\"12\" height=\"12\" fill=\"" << scale_->below_colour
+        << "\"/>\n<text x=\"" << x0 + w + 28 << "\" y=\"" << y + 11 << "\" font-size=\"11\">"
+        << xml_escaped(scale_->below_label) << "</text>\n";
   }
   o << "</svg>\n";
   return o.str();

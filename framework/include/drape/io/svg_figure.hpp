@@ -11,6 +11,7 @@
 #include <filesystem>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace drape {
@@ -37,8 +38,16 @@ struct SvgPanel {
 };
 
 struct SvgColourScale {
+  SvgColourScale() = default;
+  SvgColourScale(std::string label, double lo, double hi, std::string below_label = "")
+      : label(std::move(label)), lo(lo), hi(hi), below_label(std::move(below_label)) {}
   std::string label;  // e.g. "error (cm)"
   double lo = 0, hi = 1;
+  // Non-empty: a face whose value is below lo is drawn in `below_colour`
+  // ("#rrggbb", outside the colour map) and the legend names it, instead of
+  // taking lo's colour: cloth inside the body looked like a tight fit.
+  std::string below_label;
+  std::string below_colour = "#e4002b";
 };
 
 class SvgFigure {
@@ -83,7 +92,8 @@ struct Mesh;
 // garment coloured by a value per vertex, drawn a little in front of the skin.
 SvgPanel drape_panel(const std::string& caption, const Mesh& body, const Mesh& garment, Eigen::VectorXd garment_values);
 // One drape as a figure: the body, and the garment coloured by its signed
-// distance to the body (0 to 5 cm; a vertex inside the body shows as 0).
+// distance to the body (0 to 5 cm; a face inside the body in red, named in
+// the legend, drawn over the skin so it shows).
 SvgFigure drape_figure(const std::string& title, const std::string& caption, const Mesh& body, const Mesh& garment);
 
 }  // namespace drape
