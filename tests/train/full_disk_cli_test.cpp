@@ -44,3 +44,24 @@ TEST_CASE("a training whose disk fills up ends in an error, leaving no temporary
     if (fs::exists(work / "m.h5")) CHECK_NOTHROW(drape::read_checkpoint(work / "m.h5"));
   }
 }
+
+TEST_CASE("a nearly full disk refuses a job before it starts only when no byte is free", "[cli]") {
+  // An outside check: with 936 KB free every output was refused "no space left" before any work, a 150 KB
+  // OBJ and a finished job with nothing to write alike. The megabyte below which a failed write is put down
+  // to a full disk explains a failure; before one, only a disk with no byte free is refused.
+  const fs::path preload = test::binary_dir() / "test-fixtures/preload/libfull_disk.so";
+  REQUIRE(fs::exists(preload));
+  test::TempDir dir;
+  std::string out;
+  const auto body_with_free = [&](const std::string& free) {
+    return test::run("cd " + dir.path().string() + " && DRAPE_TEST_FREE_BYTES=" + free + " LD_PRELOAD=" +
+                         preload.string() + " " + test::drape_command("body --bmi 30 --out b.obj"),
+                     out);
+  };
+  CHECK(body_with_free("500000") == 0);
+  CHECK(fs::exists(dir / "b.obj"));
+  fs::remove(dir / "b.obj");
+  CHECK(body_with_free("0") == 2);
+  CHECK_THAT(out, Catch::Contains("no space left on"));
+  CHECK(!fs::exists(dir / "b.obj"));
+}

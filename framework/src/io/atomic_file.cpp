@@ -121,7 +121,7 @@ void write_atomically(const fs::path& target, const std::function<void(const fs:
   const fs::path dir = target.has_parent_path() ? target.parent_path() : fs::path(".");
   std::error_code ec;
   // A missing or read-only folder is the user's to fix: ConfigError (exit 2).
-  if (const std::string cause = write_failure_cause(target); !cause.empty())
+  if (const std::string cause = write_failure_cause(target, false); !cause.empty())
     throw ConfigError("cannot write '" + target.string() + "': " + cause);
   static const std::string host = host_tag();
   remove_stale_temporaries(dir, target, host);

@@ -126,7 +126,7 @@ std::string writer_format(const fs::path& file) {
 
 void check_mesh_output(const fs::path& file) {
   writer_format(file);
-  if (const std::string cause = write_failure_cause(file); !cause.empty())
+  if (const std::string cause = write_failure_cause(file, false); !cause.empty())
     throw ConfigError("cannot write '" + file.string() + "': " + cause);
 }
 

@@ -108,7 +108,7 @@ OutputLock::OutputLock(const fs::path& output, const std::string& command) : pat
   // training state, a partial dataset) first: on a full disk they are what
   // fills it.
   for (const char* working : {"", ".state", ".partial"}) remove_stale_temporaries(output.string() + working);
-  if (const std::string cause = write_failure_cause(output); !cause.empty())
+  if (const std::string cause = write_failure_cause(output, false); !cause.empty())
     throw ConfigError("cannot write '" + output.string() + "': " + cause);
   for (;;) {
     const int fd = ::open(path_.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);

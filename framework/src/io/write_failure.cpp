@@ -20,7 +20,7 @@ constexpr std::size_t kLongestName = 220;
 fs::path folder_of(const fs::path& file) { return file.has_parent_path() ? file.parent_path() : fs::path("."); }
 }  // namespace
 
-std::string write_failure_cause(const fs::path& file) {
+std::string write_failure_cause(const fs::path& file, bool failed) {
   const fs::path folder = folder_of(file);
   std::error_code ec;
   if (fs::is_directory(file, ec)) return "it is a folder; give a file name";
@@ -36,7 +36,7 @@ std::string write_failure_cause(const fs::path& file) {
     if (info.f_flag & ST_RDONLY) return "cannot write in '" + folder.string() + "' (read-only file system)";
     // /proc, /sys: no blocks at all, not a full disk.
     if (info.f_blocks == 0) return "cannot write files in '" + folder.string() + "' (a virtual file system, such as /proc)";
-    if (static_cast<unsigned long long>(info.f_bavail) * info.f_frsize < kNearlyFull)
+    if (static_cast<unsigned long long>(info.f_bavail) * info.f_frsize < (failed ? kNearlyFull : 1ull))
       return "no space left on '" + folder.string() + "'";
   }
   if (::access(folder.c_str(), W_OK) != 0) return "cannot write in '" + folder.string() + "' (permission denied)";
@@ -46,7 +46,7 @@ std::string write_failure_cause(const fs::path& file) {
 void check_writable_output(const fs::path& file, const std::string& option) {
   std::error_code ec;
   if (fs::is_directory(file, ec)) throw ConfigError(option + " " + file.string() + ": is a folder; give a file name");
-  const std::string cause = write_failure_cause(file);
+  const std::string cause = write_failure_cause(file, false);
   if (!cause.empty()) throw ConfigError(option + " " + file.string() + ": " + cause);
 }
 
@@ -61,7 +61,7 @@ void check_output_folder(const fs::path& folder, const std::string& option) {
   if (!fs::exists(existing, ec)) existing = ".";
   if (!fs::is_directory(existing, ec))
     throw ConfigError(option + " " + folder.string() + ": '" + existing.string() + "' is a file, not a folder");
-  const std::string cause = write_failure_cause(existing / "probe");
+  const std::string cause = write_failure_cause(existing / "probe", false);
   if (!cause.empty()) throw ConfigError(option + " " + folder.string() + ": " + cause);
 }
 

@@ -12,7 +12,12 @@ namespace drape {
 // "no space left on <folder>", "cannot write in <folder> (read-only file
 // system)", "cannot write in <folder> (permission denied)" or "folder <folder>
 // does not exist" for the folder `file` is written in; "" when none holds.
-std::string write_failure_cause(const std::filesystem::path& file);
+// After a write failed (`failed`), a folder with less than a megabyte free is
+// full (HDF5 and assimp extend a file by up to a few hundred kilobytes at a
+// time); before any work, only a folder with no byte free is: a small output,
+// or a finished job with nothing to write, goes ahead (they were refused with
+// 936 KB free: an outside check).
+std::string write_failure_cause(const std::filesystem::path& file, bool failed = true);
 
 // Before any work: throws ConfigError (exit 2) with write_failure_cause when
 // `file` cannot be written; `option` names where it was given (e.g. "--out").
