@@ -223,6 +223,23 @@ std::size_t optimize_dataset(const Registry& registry, const OptimizeDatasetOpti
       bar.advance();
     };
   });
+  // A resumed run's samples of earlier runs, read back from the finished
+  // file (its statistic self_crossings): the warning named only this run's
+  // (a kill and resume said "5" where the uninterrupted run said "1, 5": an
+  // outside check), as generate's does (dataset_generation.cpp).
+  if (todo.size() < source.size()) {
+    std::vector<char> made_now(source.size(), 0);
+    for (const std::size_t local : todo) made_now[local] = 1;
+    std::vector<std::size_t> earlier;
+    for (std::size_t local = 0; local < source.size(); ++local)
+      if (!made_now[local]) earlier.push_back(local);
+    const DatasetReader finished(o.out);
+    if (finished.layout().has_stat("self_crossings")) {
+      const std::vector<double> pairs = finished.stat("self_crossings", earlier);
+      for (std::size_t k = 0; k < earlier.size(); ++k)
+        if (pairs[k] > 0) crossing.emplace_back(source[earlier[k]], static_cast<std::size_t>(pairs[k]));
+    }
+  }
   report_stopped(stopped);
   report_self_crossing(crossing);
   return todo.size();
