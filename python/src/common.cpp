@@ -45,6 +45,8 @@ namespace {
 
 py::array as_array(const py::handle& value, const std::string& name, const std::string& expected) {
   if (py::isinstance<py::array>(value)) return py::reinterpret_borrow<py::array>(value);
+  // (NumPy makes an object array of None: it said "got object []".)
+  if (value.is_none()) throw ConfigError(name + ": expected " + expected + ", got None");
   // Lists and objects exposing __array__ (a CPU torch tensor) become arrays; anything else is refused.
   py::array a = py::array::ensure(value);
   if (a) return a;
@@ -123,8 +125,11 @@ Tensor vertices_batch_arg(const py::handle& value, const std::string& name, int 
     char at[96];
     std::snprintf(at, sizeof at, "vertex %zu (%c = %g)", vertex, "xyz"[k % 3], x);
     const std::string batch = three ? "[" + std::to_string(sample) + "]" : std::string();
-    if (!std::isfinite(x) || std::abs(x) > std::numeric_limits<float>::max())
-      throw ConfigError(name + ": non-finite coordinate in float32 at " + (three ? batch + " " : "") + at);
+    if (!std::isfinite(x))
+      throw ConfigError(name + ": non-finite coordinate at " + (three ? batch + " " : "") + at);
+    if (std::abs(x) > std::numeric_limits<float>::max())  // (finite: it was called non-finite)
+      throw ConfigError(name + ": a coordinate beyond float32's range at " + (three ? batch + " " : "") + at +
+                        " (metres: a body is about 2 m tall)");
     const std::string what = name + batch + ": " + at;
     char far[400];
     std::snprintf(far, sizeof far,

@@ -326,8 +326,11 @@ def test_predict_refuses_a_body_in_other_units_and_arguments_that_would_do_nothi
     # from the origin for float32 to hold it to the millimetre (1e6 m was
     # rounded to 6 cm, then refused as vertices out of the model's order).
     bad[1, 3, 0] = 1e308
-    with pytest.raises(ValueError, match=r"body_vertices: non-finite coordinate in float32 at \[1\] vertex 3 \(x = 1e\+308\)"):
+    # (Finite, so said as beyond float32's range: it was called non-finite, an outside check.)
+    with pytest.raises(ValueError, match=r"body_vertices: a coordinate beyond float32's range at \[1\] vertex 3 \(x = 1e\+308\)"):
         model.predict(bad)
+    with pytest.raises(drape.ConfigError, match="body_vertices: expected .*, got None"):
+        model.predict(None)
     far = body.astype(np.float64) + np.array([1e6, 0.0, 0.0])
     with pytest.raises(ValueError, match=r"body_vertices: vertex 0 \(x = 1e\+06\) lies 1000000 m from the origin: "
                                          r"drape's arrays are float32.*move it within 1000 m"):
