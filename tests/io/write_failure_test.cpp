@@ -8,6 +8,7 @@
 #include <catch2/catch.hpp>
 
 #include <sys/mount.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <filesystem>
@@ -84,4 +85,29 @@ TEST_CASE("an output folder that is a file or lies under one is refused before t
   // /proc has no blocks: not "no space left", which it said.
   if (std::filesystem::is_directory("/proc/self"))
     CHECK_THAT(write_failure_cause("/proc/x.html"), Catch::Contains("a virtual file system"));
+}
+
+TEST_CASE("an output named by a link is written through it, and a device or pipe is refused", "[io][write-failure]") {
+  // An outside check: the rename over the output replaced a symbolic link with a file (the link's target left
+  // as it was, and a job on the link and one on its target took different locks), and a device node made with
+  // mknod with a regular file (as root, --out /dev/null would replace the system's /dev/null).
+  test::TempDir dir;
+  std::ofstream(dir / "real.obj") << "old";
+  fs::create_symlink(dir / "real.obj", dir / "link.obj");
+  write_text_atomically(dir / "link.obj", "new");
+  CHECK(fs::is_symlink(dir / "link.obj"));
+  CHECK(test::read_file(dir / "real.obj") == "new");
+  CHECK(output_target(dir / "link.obj") == fs::weakly_canonical(dir / "real.obj"));
+  CHECK(output_target(dir / "real.obj") == dir / "real.obj");
+  // A link to a file not yet made: written as that file.
+  fs::create_symlink(dir / "later.obj", dir / "to_later.obj");
+  write_text_atomically(dir / "to_later.obj", "made");
+  CHECK(fs::is_symlink(dir / "to_later.obj"));
+  CHECK(test::read_file(dir / "later.obj") == "made");
+  // A pipe (no root needed, unlike a device node) and a character device.
+  REQUIRE(::mkfifo((dir / "pipe.obj").c_str(), 0644) == 0);
+  CHECK_THROWS_WITH(write_text_atomically(dir / "pipe.obj", "x"),
+                    Catch::Contains("pipe.obj': it is a device, a pipe or a socket, not a file"));
+  CHECK(fs::is_fifo(dir / "pipe.obj"));
+  CHECK_THROWS_AS(output_target("/dev/null"), ConfigError);
 }

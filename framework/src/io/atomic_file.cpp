@@ -116,7 +116,26 @@ void remove_stale_temporaries(const fs::path& target) {
   remove_stale_temporaries(target.has_parent_path() ? target.parent_path() : fs::path("."), target, host);
 }
 
-void write_atomically(const fs::path& target, const std::function<void(const fs::path&)>& write) {
+fs::path output_target(const fs::path& given) {
+  std::error_code ec;
+  fs::path target = given;
+  // Followed link by link (a link to a file not yet made has no canonical
+  // path); a chain longer than the system's own limit is left as given.
+  for (int hop = 0; hop < 40 && fs::is_symlink(fs::symlink_status(target, ec)); ++hop) {
+    const fs::path next = fs::read_symlink(target, ec);
+    if (ec) break;
+    target = next.is_absolute() ? next : target.parent_path() / next;
+  }
+  if (target != given)
+    if (fs::path resolved = fs::weakly_canonical(target, ec); !ec) target = std::move(resolved);
+  const fs::file_status status = fs::status(target, ec);
+  if (fs::exists(status) && !fs::is_regular_file(status) && !fs::is_directory(status))
+    throw ConfigError("cannot write '" + given.string() + "': it is a device, a pipe or a socket, not a file; name a file");
+  return target;
+}
+
+void write_atomically(const fs::path& given, const std::function<void(const fs::path&)>& write) {
+  const fs::path target = output_target(given);
   static std::atomic<unsigned> counter{0};
   const fs::path dir = target.has_parent_path() ? target.parent_path() : fs::path(".");
   std::error_code ec;

@@ -7,6 +7,14 @@
 
 namespace drape {
 
+// The file an output named `given` is written to: a symbolic link's target
+// (the link is kept; renaming over it replaced the link with a file, and a
+// job on the link and one on its target did not share a lock), else `given`.
+// ConfigError for a device, a pipe or a socket there: renamed over, it was
+// replaced by a regular file (as root, `--out /dev/null` would have replaced
+// the system's /dev/null); an outside check.
+std::filesystem::path output_target(const std::filesystem::path& given);
+
 // Calls write(tmp_path), then renames tmp_path to `target`. If write throws,
 // the temporary file is removed and the exception propagates; `target` is untouched.
 // The temporary lives in the same directory (rename is atomic only within a filesystem).
