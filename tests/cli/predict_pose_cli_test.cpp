@@ -215,6 +215,24 @@ TEST_CASE("a pose in which the body passes through itself is named by predict, a
   CHECK(test::run_drape(given + "--strict --out " + (dir / "y.obj").string() + " 2>&1", out) == 2);
   CHECK_THAT(out, Catch::Contains("--strict: this pose makes the body pass through itself"));
   CHECK_FALSE(fs::exists(dir / "y.obj"));
+  // The same body given posed, as a user's tool would export it (posed by the
+  // skinning, no check): the mesh itself is tested (it was draped without a
+  // word, the pose read off it taken as the user's: an outside check).
+  {
+    const auto model = test::parametric_body("{rig: human}");
+    BodyRequest request;
+    request.bmi = 64, request.height = 1.6, request.sex = 0;
+    Pose pose;
+    for (const char* side : {"left_", "right_"})
+      pose.angles[std::string(side) + "shoulder_abduction"] = 30, pose.angles[std::string(side) + "elbow_flexion"] = 60;
+    Mesh posed{model->posed_vertices(model->vertices(model->solve(request)), pose, 1.0), model->faces()};
+    write_mesh(dir / "posed.obj", posed);
+  }
+  const std::string mesh = "predict --body " + (dir / "posed.obj").string() + " ";
+  REQUIRE(test::run_drape(mesh + "--out " + (dir / "p.obj").string() + " 2>&1", out) == 0);
+  CHECK_THAT(out, Catch::Contains("warning: the body mesh given passes through itself: left_upper_arm into spine"));
+  CHECK(test::run_drape(mesh + "--strict --out " + (dir / "z.obj").string() + " 2>&1", out) == 2);
+  CHECK_FALSE(fs::exists(dir / "z.obj"));
   // optimize refuses such a pose before any work, as body and simulate do (it
   // ran, "NOT separated", exit 1: an outside check); the mannequin's arms at
   // its sides lie in its trunk.

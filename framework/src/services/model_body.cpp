@@ -430,8 +430,11 @@ std::vector<Notice> BodyPreparation::pose(SampleBatch& batch, const Pose& pose, 
   // A pose in which the body passes through itself (heavy arms hanging into
   // the trunk) has no drape there: drape body and simulate refuse it; the
   // network still answers, so predict warns, naming the bones and angles,
-  // and --strict refuses (a crossing the body has at rest is not the pose's;
-  // a body given posed is the user's own mesh, taken as it is).
+  // and --strict refuses (a crossing the body has at rest is not the pose's).
+  // A body given posed is tested as it is given, against its own mesh
+  // unposed: a user's mesh with the thighs through each other was draped
+  // without a word, where the pose read off it was refused by drape body
+  // (an outside check).
   for (int i = 0; check && i < batch.size(); ++i) {
     const auto u = static_cast<std::size_t>(i);
     const Pose& asked = poses[u];
@@ -441,11 +444,13 @@ std::vector<Notice> BodyPreparation::pose(SampleBatch& batch, const Pose& pose, 
     // passed --strict and Python's strict=True, an outside check).
     const bool read_off_mesh = prepared && u < prepared->given_poses.size() && !prepared->given_poses[u].empty() &&
                                !(!pose.empty() && u < prepared->given_at_rest.size() && prepared->given_at_rest[u]);
-    if (asked.empty() || read_off_mesh) continue;
+    if (asked.empty()) continue;
     const Eigen::MatrixX3d unposed = batch.unposed_body.mat(i).cast<double>(), posed = batch.body.mat(i).cast<double>();
     const std::string crossed = describe_pose_crossings(model_.body_model(), unposed, asked, posed);
     if (crossed.empty()) continue;
-    const std::string text = about(batch, i) + "this pose makes the body pass through itself: " + crossed;
+    const std::string text = about(batch, i) + (read_off_mesh ? "the body mesh given passes through itself: "
+                                                              : "this pose makes the body pass through itself: ") +
+                             crossed;
     if (refuse_crossing)
       throw ConfigError(text + "; the contact cannot keep the cloth off a body with no inside, so it is not optimised "
                                "(drape body and simulate refuse this pose too)");
