@@ -188,3 +188,40 @@ TEST_CASE("a dataset made whole by several MPI processes is refused and a shard 
   CHECK_THAT(out, Catch::Contains("drape optimize is not MPI-parallel"));
   CHECK(test::run("env PMI_SIZE=2 " + test::drape_program().string() + " plugins --kind energy --brief", out) == 0);
 }
+
+// Ranks given another training (an outside check: another --batch or
+// --epochs ended in MPI_ERR_TRUNCATE, a corrupted heap or a hang; another
+// --seed or --data trained a model of neither; a rank that could not see
+// <out>.state started afresh while rank 0 resumed, then hung): refused by
+// every rank before the first step, naming what differs. A wrapper gives
+// rank 1 its own arguments, as a job script might by mistake.
+TEST_CASE("mpirun -np 2 drape train refuses ranks given different settings or an unshared state", "[train][mpi]") {
+  if (skipped_without_mpi()) return;
+  test::TempDir dir;
+  const fs::path data = dir / "data.h5";
+  test::write_tiny_dataset(data, 10, 8, 2);
+  const fs::path wrapper = dir / "per_rank.sh";
+  std::ofstream(wrapper) << "#!/bin/sh\n"
+                            "if [ \"$OMPI_COMM_WORLD_RANK\" = 1 ]; then exec \"$@\" $RANK1; else exec \"$@\" $RANK0; fi\n";
+  fs::permissions(wrapper, fs::perms::owner_all);
+  std::string out;
+  const auto per_rank = [&](const std::string& args, const std::string& rank0, const std::string& rank1) {
+    const std::string command = mpirun(args);
+    const std::size_t program = command.find(test::drape_program().string());
+    return "timeout 300 env RANK0='" + rank0 + "' RANK1='" + rank1 + "' " + command.substr(0, program) + wrapper.string() +
+           " " + command.substr(program);
+  };
+  CHECK(test::run(per_rank(mpi_train_args(data, dir / "p.h5", "--threads 1"), "--patience 20", "--patience 21"), out) == 2);
+  CHECK_THAT(out, Catch::Contains("rank 1 differs from rank 0 in --patience or --monitor"));
+  CHECK_FALSE(fs::exists(dir / "p.h5"));
+  // A state only rank 0 sees: rank 1's --out in a folder of its own.
+  REQUIRE(test::run(mpirun(mpi_train_args(data, dir / "m.h5", "--threads 1 --max-epochs-this-run 1")), out) == 0);
+  fs::create_directories(dir / "own");
+  std::string resume = mpi_train_args(data, "OUT", "--threads 1 --resume");
+  resume.erase(resume.find(" --out OUT"), std::string(" --out OUT").size());
+  CHECK(test::run(per_rank(resume, "--out " + (dir / "m.h5").string(),
+                           "--out " + (dir / "own" / "m.h5").string()),
+                  out) == 2);
+  CHECK_THAT(out, Catch::Contains("differs from rank 0 in the earlier run's state m.h5.state") &&
+                      Catch::Contains("a file system every rank shares"));
+}

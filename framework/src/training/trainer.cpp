@@ -14,6 +14,7 @@
 #include <drape/training/model.hpp>
 #include <drape/warnings.hpp>
 #include <drape/training/trainer.hpp>
+#include <drape/fnv1a.hpp>
 
 #include "data_fingerprint.hpp"
 
@@ -23,6 +24,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <iostream>
 #include <memory>
 #include <thread>
@@ -312,6 +314,51 @@ std::map<std::string, std::string> resume_settings(const TrainOptions& o, const 
   if (o.init_partial) settings["init_partial"] = "1";
   if (ranks > 1) settings["ranks"] = std::to_string(ranks);  // like threads, they change the sums' rounding
   return settings;
+}
+
+// Every rank of an MPI run trains one run: the same data, settings, graph
+// and epochs, and the same earlier state to resume from. Ranks given other
+// --batch or --epochs paired a loss gather with a gradient gather (Open
+// MPI's MPI_ERR_TRUNCATE, a corrupted heap, or a hang); another --seed,
+// --lr or --data trained a model of neither, recorded as rank 0's; and a
+// rank that could not see <out>.state (a node's own disk) started afresh
+// while rank 0 resumed, then hung (an outside check). Compared before the
+// first collective of the training, each named; every rank refuses alike.
+void check_ranks_agree(const Ranks& ranks, const std::map<std::string, std::string>& settings, const TrainOptions& o,
+                       const GraphSpec& graph, const fs::path& state_path) {
+  const auto setting = [&](const char* key) {
+    const auto it = settings.find(key);
+    return it == settings.end() ? std::string() : it->second;
+  };
+  std::error_code ec;
+  const std::vector<std::pair<std::string, std::string>> items{
+      {"--data (the drapes trained and validated on)", setting("training_data") + setting("assets")},
+      {"--seed", setting("seed")},
+      {"--batch", setting("batch")},
+      {"--threads", setting("threads")},
+      {"--lr", setting("lr") + " " + setting("schedule") + " " + setting("weight_decay")},
+      {"--epochs", std::to_string(o.epochs) + " " + std::to_string(o.max_epochs_this_run)},
+      {"--patience or --monitor", setting("patience") + " " + setting("monitor_loss")},
+      {"the graph", graph.text},
+      {"--init", setting("init") + setting("init_widen") + setting("init_partial")},
+      {"--resume or --force", std::string(o.resume ? "resume" : "") + (o.force ? "force" : "")},
+      {"the earlier run's state " + state_path.filename().string() +
+           " (seen by some ranks only: <out> must be on a file system every rank shares, docs/cluster.md)",
+       fs::exists(state_path, ec) ? "there" : "absent"}};
+  const std::size_t n = items.size();
+  std::vector<double> mine(n), all(n * static_cast<std::size_t>(ranks.size()));
+  // (A 64-bit hash in a double's bits: all_gather moves bytes, not values.)
+  for (std::size_t k = 0; k < n; ++k) {
+    const std::uint64_t h = Fnv1a().text(items[k].second).value();
+    std::memcpy(&mine[k], &h, sizeof h);
+  }
+  ranks.all_gather(reinterpret_cast<const std::uint8_t*>(mine.data()), n * sizeof(double),
+                   reinterpret_cast<std::uint8_t*>(all.data()));
+  for (int r = 1; r < ranks.size(); ++r)
+    for (std::size_t k = 0; k < n; ++k)
+      if (std::memcmp(&all[static_cast<std::size_t>(r) * n + k], &all[k], sizeof(double)) != 0)
+        throw ConfigError("the ranks of this MPI run were not given the same training: rank " + std::to_string(r) +
+                          " differs from rank 0 in " + items[k].first + "; every rank must run the same command");
 }
 
 // --force: the earlier run's files go.
@@ -668,6 +715,7 @@ TrainReport train(const Registry& registry, const TrainOptions& given) {
   Learner learner{Adam(graph.weights(), AdamOptions{.weight_decay = o.weight_decay}), EarlyStopping({o.patience, 0.0}),
                   lr_schedule(o), WeightCopy(graph.weights()), History()};
   const std::map<std::string, std::string> settings = resume_settings(o, data, reader, ranks);
+  if (ranks > 1) check_ranks_agree(*o.ranks, settings, o, graph_spec, state_path);
 
   // Start over, or continue.
   if (o.force) start_over(o, state_path, rank, ranks);
