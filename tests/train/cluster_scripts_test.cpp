@@ -4,6 +4,8 @@
 // run against a stand-in sbatch that records what it was asked to queue.
 #include <catch2/catch.hpp>
 
+#include <chrono>
+
 #include <drape/io/dataset.hpp>
 
 #include <fstream>
@@ -60,6 +62,15 @@ TEST_CASE("cluster scripts: a generate array of 3 tasks and its merge make the s
                         " --count 5 --bmi 15:50 --seed 4 --threads 2 --out " + (dir / "one.h5").string(),
                     out) == 0);
   same_samples(dir / "all.h5", dir / "one.h5");
+  // The merge queued again: nothing to do. A shard newer than the merged set
+  // (a rerun of the array into the same OUT): the old set is refused, not
+  // kept ("nothing to merge", exit 0, the old seed's set: an outside check).
+  const std::string merge = "env DRAPE=" + test::drape_program().string() + " SHARDS=3 " + env + " bash " + script("merge.sbatch");
+  REQUIRE(test::run(merge, out) == 0);
+  CHECK_THAT(out, Catch::Contains("nothing to merge"));
+  fs::last_write_time(dir / "all.h5.shards/shard-1-of-3.h5", fs::last_write_time(dir / "all.h5") + std::chrono::seconds(5));
+  CHECK(test::run(merge + " 2>&1", out) == 2);
+  CHECK_THAT(out, Catch::Contains("all.h5 is older than") && Catch::Contains("shard-1-of-3.h5"));
   // Outside an array the script says what it needs.
   CHECK(test::run("env " + env + " bash " + script("generate.sbatch"), out) != 0);
   CHECK_THAT(out, Catch::Contains("sbatch --array"));
