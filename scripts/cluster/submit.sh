@@ -12,6 +12,14 @@ shards=${2:?$usage}
 [[ "$stage" == generate || "$stage" == optimize ]] || { echo "$0: unknown stage '$stage': $usage" >&2; exit 2; }
 [[ "$shards" =~ ^[1-9][0-9]*$ ]] || { echo "$0: SHARDS must be a positive number, got '$shards'" >&2; exit 2; }
 : "${OUT:?OUT (the merged dataset to make) is required}"
+# What the stage's tasks require, checked before anything is queued (a
+# missing COUNT, DATA or SCENE was queued, and every task of the array failed).
+if [[ "$stage" == generate ]]; then
+  : "${COUNT:?COUNT (samples in the whole set) is required for generate}"
+else
+  : "${DATA:?DATA (the dataset to optimise) is required for optimize}"
+  : "${SCENE:?SCENE (the scene of the potential) is required for optimize}"
+fi
 here=$(cd "$(dirname "$0")" && pwd)
 # (${extra[@]+...} below: an empty array under set -u aborts bash before 4.4, e.g. RHEL 7's 4.2.)
 read -r -a extra <<< "${SBATCH_OPTIONS:-}"

@@ -131,4 +131,16 @@ TEST_CASE("cluster scripts: submit.sh queues the array and a merge that waits fo
   CHECK_THAT(second, Catch::Contains("--dependency=afterok:42") && Catch::Contains("merge.sbatch"));
   CHECK_THAT(out, Catch::Contains("array job 42") && Catch::Contains("merge job 43"));
   CHECK(test::run("env PATH=" + dir.path().string() + ":$PATH OUT=/scratch/x.h5 bash " + script("submit.sh") + " train 4", out) == 2);
+  // What the stage's tasks need is checked before anything is queued (a
+  // missing COUNT was queued, and every task of the array failed).
+  fs::remove(dir / "calls");
+  CHECK(test::run("env -u COUNT PATH=" + dir.path().string() + ":$PATH OUT=/scratch/x.h5 bash " + script("submit.sh") +
+                      " generate 4 2>&1",
+                  out) != 0);
+  CHECK_THAT(out, Catch::Contains("COUNT (samples in the whole set) is required for generate"));
+  CHECK(test::run("env -u DATA -u SCENE PATH=" + dir.path().string() + ":$PATH OUT=/scratch/x.h5 bash " +
+                      script("submit.sh") + " optimize 4 2>&1",
+                  out) != 0);
+  CHECK_THAT(out, Catch::Contains("DATA (the dataset to optimise) is required for optimize"));
+  CHECK_FALSE(fs::exists(dir / "calls"));  // nothing queued
 }

@@ -118,9 +118,12 @@ TEST_CASE("mpirun -np 2 drape train resumes to the uninterrupted result and refu
   REQUIRE(test::run(mpirun(mpi_train_args(data, dir / "whole.h5", "--threads 1")), out) == 0);
   REQUIRE(test::run(mpirun(mpi_train_args(data, model, "--threads 1 --max-epochs-this-run 1")), out) == 0);
   CHECK(std::stol(read_checkpoint(training_state_path(model)).meta.at("epoch")) == 1);
-  // One process cannot continue what two ranks started: its sums round differently.
+  // One process cannot continue what two ranks started: its sums round differently. Said first, whatever
+  // its threads (two threads were refused as "threads 1 ... threads 2": an outside check).
   CHECK(test::run(test::drape_command(mpi_train_args(data, model, "--threads 1 --resume")), out) == 2);
   CHECK_THAT(out, Catch::Contains("ranks"));
+  CHECK(test::run(test::drape_command(mpi_train_args(data, model, "--threads 2 --resume")), out) == 2);
+  CHECK_THAT(out, Catch::Contains("the interrupted run had ranks 2, this one has ranks 1"));
   REQUIRE(test::run(mpirun(mpi_train_args(data, model, "--threads 1 --resume")), out) == 0);
   INFO(out);
   CHECK_THAT(out, Catch::Contains("resuming"));

@@ -384,6 +384,16 @@ void check_resumable(const Checkpoint& st, const fs::path& state_path, const std
                      int ranks, const GraphSpec& graph_spec, const fs::path& graph_file) {
   if (st.meta.count("kind") == 0 || st.meta.at("kind") != kTrainingStateKind)
     throw ConfigError(state_path.string() + ": not a drape training state");
+  // The ranks first: an MPI run's state resumed by one process with two
+  // threads was refused as "threads 1 ... threads 2", and only the next try
+  // named the ranks (an outside check). Recorded by multi-rank runs only
+  // (absent: one process).
+  const auto had_ranks = st.meta.find("ranks");
+  const std::string was_ranks = had_ranks == st.meta.end() ? "1" : had_ranks->second;
+  if (was_ranks != std::to_string(ranks))
+    throw ResumeRefused(state_path.string() + ": cannot resume: the interrupted run had ranks " + was_ranks +
+                      ", this one has ranks " + std::to_string(ranks) +
+                      " (rerun with the same mpirun -np, or --force to start over)");
   for (const auto& [key, value] : settings) {
     const auto it = st.meta.find(key);
     // A state written before the fingerprint (2026-12-06) resumes on the split sizes as it did.
@@ -412,13 +422,6 @@ void check_resumable(const Checkpoint& st, const fs::path& state_path, const std
     if (st.meta.count(key) && !settings.count(key))
       throw ResumeRefused(state_path.string() + ": cannot resume: the interrupted run had " + key + " " +
                         st.meta.at(key) + ", this one has none (rerun with the same settings, or --force to start over)");
-  // Settings only multi-rank runs record (absent: one process).
-  const auto had_ranks = st.meta.find("ranks");
-  const std::string was_ranks = had_ranks == st.meta.end() ? "1" : had_ranks->second;
-  if (was_ranks != std::to_string(ranks))
-    throw ResumeRefused(state_path.string() + ": cannot resume: the interrupted run had ranks " + was_ranks +
-                      ", this one has ranks " + std::to_string(ranks) +
-                      " (rerun with the same mpirun -np, or --force to start over)");
   if (st.graph != graph_spec.text)
     throw ResumeRefused(state_path.string() + ": cannot resume: the interrupted run trained another graph than " +
                       graph_file.string() + " (or --force to start over)");
