@@ -101,11 +101,11 @@ int run(const std::vector<std::string>& args) {
       o.data_files[kv.substr(0, eq)] = kv.substr(eq + 1);
     }
 
-  Registry::load_default(plugin_path(vm));
+  const Registry& registry = Registry::load_default(plugin_path(vm));
   const ExperimentSpec spec = parse_experiment_file(find_input_file(vm["file"].as<std::string>()));
   for (const auto& [key, file] : o.data_files) spec.dataset(key);  // a misspelt key fails before any work
   check_dataset_ranges(spec);
-  check_evaluate_sets(spec, Registry::load_default(plugin_path(vm)));
+  check_evaluate_sets(spec, registry);
   if (vm.count("work")) o.work_dir = vm["work"].as<std::string>();
   const auto work = experiment_work_dir(spec, o);
   std::printf("experiment %s -> %s\n", spec.name.c_str(), work.c_str());

@@ -86,8 +86,8 @@ void draw(const po::variables_map& vm, const std::string& colour, const std::str
   SvgColourScale scale;
   char caption[256];
   if (colour == "distance") {
-    values = 100.0 * surface.signed_distances(garment.vertices);  // (inside: its own colour, as drape_figure's)
-    scale = {"distance of the garment to the body (cm)", 0.0, 5.0, "inside the body"};
+    values = 100.0 * surface.signed_distances(garment.vertices);
+    scale = clearance_scale();  // (inside the body: its own colour, as every drape picture's)
     std::snprintf(caption, sizeof caption, "p = %.2f%% of the vertices inside the body", 100.0 * p);
   } else if (colour == "error") {
     values = 100.0 * (garment.vertices - truth.vertices).rowwise().norm();

@@ -21,6 +21,11 @@
 
 namespace drape::python {
 
+bool in_python_main_thread() {
+  const py::module_ threading = py::module_::import("threading");
+  return threading.attr("current_thread")().is(threading.attr("main_thread")());
+}
+
 void check_python_signals() {
   py::gil_scoped_acquire gil;
   if (PyErr_CheckSignals() != 0) throw PythonSignal{};

@@ -61,6 +61,11 @@ BodyRequest body_request(const py::handle& bmi, const py::handle& height, const 
 // its result was thrown away: an outside check.)
 struct PythonSignal {};
 void check_python_signals();  // throws PythonSignal; call without the GIL
+// Whether a signal can reach this call: Python runs its handlers in the
+// main thread only (PyErr_CheckSignals does nothing in another), so a call
+// from a worker thread installs no check and takes no GIL at each step.
+// Call with the GIL.
+bool in_python_main_thread();
 
 // Arrays that keep drape's buffers alive through a capsule: no copy.
 py::array_t<float> to_numpy(Tensor&& t, bool drop_batch);

@@ -389,23 +389,25 @@ void register_model(py::module_& m) {
             PhysicsOptimizationOptions o;
             o.iterations = iterations;
             o.learning_rate = learning_rate;
-            o.on_iteration = [](int, double) { check_python_signals(); };
+            const bool interruptible = in_python_main_thread();
+            if (interruptible) o.on_iteration = [](int, double) { check_python_signals(); };
             PhysicsOptimizationResult r;
-            // The weights as they were, put back when Ctrl-C stops the
-            // optimisation (else the model kept an iteration's half-made weights).
-            std::vector<Tensor> before;
-            for (const auto& weight : p.model().graph().weights()) before.push_back(weight.second->value);
             try {
               py::gil_scoped_release release;
               std::lock_guard lock(p.mutex());
-              r = optimize_drape(p.model(), simulation, b, o);
-            } catch (const PythonSignal&) {
-              {
-                py::gil_scoped_release release;
-                std::lock_guard lock(p.mutex());
+              // The weights as they were (taken under the model's lock), put back when
+              // Ctrl-C stops the optimisation: the model kept an iteration's half-made weights.
+              std::vector<Tensor> before;
+              if (interruptible)
+                for (const auto& weight : p.model().graph().weights()) before.push_back(weight.second->value);
+              try {
+                r = optimize_drape(p.model(), simulation, b, o);
+              } catch (const PythonSignal&) {
                 std::size_t k = 0;
                 for (const auto& weight : p.model().graph().weights()) weight.second->value = before[k++];
+                throw;
               }
+            } catch (const PythonSignal&) {
               throw py::error_already_set();  // KeyboardInterrupt, as PyErr_CheckSignals set it
             }
             r.before = back.back(r.before);

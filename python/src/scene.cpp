@@ -220,8 +220,10 @@ void register_scene(py::module_& m) {
               start_b = finite_vertices_arg(start_body, "start_body", static_cast<int>(s.simulation->mean_body().rows()));
               o.start_body = &start_b;
             }
-            o.on_step = [](const SimulationStep&) { check_python_signals(); };
-            o.on_partial_move = [](int, int, int, double) { check_python_signals(); };
+            if (in_python_main_thread()) {
+              o.on_step = [](const SimulationStep&) { check_python_signals(); };
+              o.on_partial_move = [](int, int, int, double) { check_python_signals(); };
+            }
             SimulationResult r;
             try {
               py::gil_scoped_release release;

@@ -60,22 +60,27 @@ void check_value(const PoseAngle& a, double degrees, const std::string& what) {
   throw ConfigError(m.str());
 }
 
+// targets(), or a ConfigError naming the close matches (or every angle)
+// when `name` is no angle of the space.
+std::vector<const PoseAngle*> known_targets(const std::string& name, const std::vector<PoseAngle>& space,
+                                            const std::string& what) {
+  auto set = targets(name, space);
+  if (!set.empty()) return set;
+  std::string msg = what + ": no joint angle '" + name + "'" + did_you_mean(name, accepted_names(space));
+  if (msg.find("did you mean") == std::string::npos) {
+    msg += "; the angles are";
+    for (const std::string& n : accepted_names(space)) msg += " " + n;
+    msg += " (left_/right_ prefix for one side)";
+  }
+  throw ConfigError(msg);
+}
+
 // Sets `name` (sided or both sides) to `degrees`, checking all of it.
 // `setters` (optional): the name that set each angle so far, to say which
 // two names set one angle twice (elbow_flexion and left_elbow_flexion).
 void set_angle(Pose& pose, const std::string& name, double degrees, const std::vector<PoseAngle>& space,
                const std::string& what, std::map<std::string, std::string>* setters = nullptr) {
-  const auto set = targets(name, space);
-  if (set.empty()) {
-    std::string msg = what + ": no joint angle '" + name + "'" + did_you_mean(name, accepted_names(space));
-    if (msg.find("did you mean") == std::string::npos) {
-      msg += "; the angles are";
-      for (const std::string& n : accepted_names(space)) msg += " " + n;
-      msg += " (left_/right_ prefix for one side)";
-    }
-    throw ConfigError(msg);
-  }
-  for (const PoseAngle* a : set) {
+  for (const PoseAngle* a : known_targets(name, space, what)) {
     check_value(*a, degrees, what);
     if (!pose.angles.emplace(a->name, degrees).second) {
       const auto before = setters ? setters->find(a->name) : std::map<std::string, std::string>::iterator{};
@@ -98,13 +103,8 @@ double parse_degrees(const std::string& name, const std::string& text, const std
   // (strtod reads 1e400 as infinity: said as written, not as "inf".)
   if (std::isinf(v) && text.find_first_of("iI") == std::string::npos) {
     // The range the angle takes, as a value just outside it is told (an unknown name: its own refusal first).
-    const auto set = targets(name, space);
-    if (set.empty()) {
-      Pose unused;
-      set_angle(unused, name, 0.0, space, what);  // throws, naming the close matches
-    }
     throw ConfigError(what + ": " + name + " = " + text + " is beyond any angle; expected a number in " +
-                      range_text(*set.front()));
+                      range_text(*known_targets(name, space, what).front()));
   }
   return v;
 }
@@ -191,10 +191,7 @@ void add_pose_entry(Pose& pose, const std::string& name, const YAML::Node& value
                     const std::string& what, std::map<std::string, std::string>* setters) {
   if (!value.IsScalar()) {
     // A key that is no angle (a map nested under `pose:`) is named as such first.
-    if (targets(name, space).empty()) {
-      Pose unused;
-      set_angle(unused, name, 0.0, space, what);  // throws, naming the close matches
-    }
+    known_targets(name, space, what);
     throw ConfigError(what + ": " + name + " wants one number of degrees");
   }
   // YAML's own spellings of NaN and infinity, read as YAML means them (`.inf`
@@ -329,13 +326,9 @@ std::vector<PoseAngle> with_sampling_ranges(std::vector<PoseAngle> space, const 
     const double lo = parse_degrees(name, trim(range.substr(0, colon)), what, space);
     const double hi = colon == std::string::npos ? lo : parse_degrees(name, trim(range.substr(colon + 1)), what, space);
     std::vector<PoseAngle*> set;
-    for (const PoseAngle* a : targets(name, space))
+    for (const PoseAngle* a : known_targets(name, space, what))
       for (PoseAngle& b : space)
         if (&b == a) set.push_back(&b);
-    if (set.empty()) {
-      Pose unused;
-      set_angle(unused, name, 0.0, space, what);  // throws, naming the close matches
-    }
     for (PoseAngle* a : set) {
       if (!(lo <= hi)) throw ConfigError(what + ": " + a->name + " range " + range + ": expected lo <= hi");
       check_value(*a, lo, what);

@@ -103,7 +103,8 @@ int hold_for_signals(const fs::path& lock) {
 }  // namespace
 
 OutputLock::OutputLock(const fs::path& given, const std::string& command) : path_(lock_file(output_target(given))) {
-  const fs::path output = output_target(given);  // (a link's target: one lock for both names)
+  // The output the lock is of: a link's target, so that both names share one lock.
+  const fs::path output = fs::path(path_).replace_extension();
   refuse_working_file_name(output);
   // A dead run's temporaries of this output and of its working files (a
   // training state, a partial dataset) first: on a full disk they are what

@@ -438,10 +438,9 @@ std::vector<Notice> BodyPreparation::pose(SampleBatch& batch, const Pose& pose, 
   for (int i = 0; check && i < batch.size(); ++i) {
     const auto u = static_cast<std::size_t>(i);
     const Pose& asked = poses[u];
-    // The pose read off a posed mesh is the user's own; a mesh read at rest
-    // and given a pose is checked as a body made with --bmi is (it was
-    // skipped too: a BMI 60 body given as a mesh with shoulder_abduction=25
-    // passed --strict and Python's strict=True, an outside check).
+    // Said of the mesh when its pose was read off it; of the pose when one
+    // was given (with --bmi, or with a mesh read at rest: a BMI 60 body given
+    // as a mesh with shoulder_abduction=25 once passed --strict unchecked).
     const bool read_off_mesh = prepared && u < prepared->given_poses.size() && !prepared->given_poses[u].empty() &&
                                !(!pose.empty() && u < prepared->given_at_rest.size() && prepared->given_at_rest[u]);
     if (asked.empty()) continue;

@@ -336,7 +336,7 @@ void check_ranks_agree(const Ranks& ranks, const std::map<std::string, std::stri
       {"--seed", setting("seed")},
       {"--batch", setting("batch")},
       {"--threads", setting("threads")},
-      {"--lr", setting("lr") + " " + setting("schedule") + " " + setting("weight_decay")},
+      {"--lr, --schedule or --weight-decay", setting("lr") + " " + setting("schedule") + " " + setting("weight_decay")},
       {"--epochs", std::to_string(o.epochs) + " " + std::to_string(o.max_epochs_this_run)},
       {"--patience or --monitor", setting("patience") + " " + setting("monitor_loss")},
       {"the graph", graph.text},

@@ -91,6 +91,9 @@ struct Mesh;
 // One drape as a panel: the body (skin colour, back faces culled) and the
 // garment coloured by a value per vertex, drawn a little in front of the skin.
 SvgPanel drape_panel(const std::string& caption, const Mesh& body, const Mesh& garment, Eigen::VectorXd garment_values);
+// The garment's signed distance to the body in cm: 0 to 5, a face inside
+// the body in the below colour, named (drape_figure's, drape render's).
+SvgColourScale clearance_scale();
 // One drape as a figure: the body, and the garment coloured by its signed
 // distance to the body (0 to 5 cm; a face inside the body in red, named in
 // the legend, drawn over the skin so it shows).
