@@ -453,7 +453,19 @@ TEST_CASE("SMPL weights that do not sum to 1 and NaN shapes are refused at load"
   doubled.weights.row(5) *= 2.0;
   write_synthetic(doubled, dir / "doubled.h5");
   CHECK_THAT(test::message_of([&] { load_smpl(dir / "doubled.h5"); }),
-             Catch::Contains("doubled.h5: /weights row 5 sums to 2.0") && Catch::Contains("must sum to 1"));
+             Catch::Contains("doubled.h5: /weights row 5 sums to 2;") && Catch::Contains("must sum to 1"));
+  // A joint regressor row that is no average places its joint off the body;
+  // a weight of 1e300 is printed as such, not as a 300-digit sum.
+  SyntheticSmpl scaled_joint = m;
+  scaled_joint.j_regressor.row(3) *= 1.5;
+  write_synthetic(scaled_joint, dir / "jr_scaled.h5");
+  CHECK_THAT(test::message_of([&] { load_smpl(dir / "jr_scaled.h5"); }),
+             Catch::Contains("jr_scaled.h5: /J_regressor row 3 (joint spine1) sums to 1.5;") &&
+                 Catch::Contains("its row summing to 1"));
+  SyntheticSmpl huge = m;
+  huge.weights(6, 0) = 1e300;
+  write_synthetic(huge, dir / "huge.h5");
+  CHECK_THAT(test::message_of([&] { load_smpl(dir / "huge.h5"); }), Catch::Contains("/weights row 6 sums to 1e+300;"));
   SyntheticSmpl nan_template = m;
   nan_template.v_template(3, 1) = std::nan("");
   write_synthetic(nan_template, dir / "vt.h5");

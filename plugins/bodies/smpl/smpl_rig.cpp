@@ -6,6 +6,7 @@
 
 #include <cmath>
 #include <cstdint>
+#include <cstdio>
 
 namespace drape::smpl {
 namespace {
@@ -76,6 +77,17 @@ std::optional<SmplRig> read_smpl_rig(const h5::File& f, Eigen::Index n) {
   for (const auto& [name, m] : {std::pair{"/J_regressor", &rig.j_regressor}, std::pair{"/weights", &rig.weights},
                                 std::pair{"/posedirs", &rig.posedirs}})
     if (!m->allFinite()) throw ConfigError(file + ": " + name + " holds NaN or infinite values");
+  // Each joint is a weighted average of vertices, so that it follows the body
+  // as drape scales it and stands it on y = 0: a row summing to 2 puts its
+  // joint twice as far from the origin, and every vertex skinned to it turns
+  // about the wrong centre. SMPL's rows sum to 1 within float rounding.
+  for (Eigen::Index j = 0; j < rig.j_regressor.rows(); ++j)
+    if (const double sum = rig.j_regressor.row(j).sum(); !(std::abs(sum - 1.0) <= 1e-3)) {
+      char text[64];
+      std::snprintf(text, sizeof text, "%.6g", sum);
+      throw ConfigError(file + ": /J_regressor row " + std::to_string(j) + " (joint " + rig.names[static_cast<std::size_t>(j)] +
+                        ") sums to " + text + "; each joint is a weighted average of vertices, its row summing to 1 (docs/smpl.md)");
+    }
   // Linear blend skinning moves a vertex by the weighted sum of its joints'
   // transforms: weights that do not sum to 1 scale the vertex with the
   // rotation (doubled weights moved an outside check's arm 9.8 cm further at
@@ -86,9 +98,12 @@ std::optional<SmplRig> read_smpl_rig(const h5::File& f, Eigen::Index n) {
     if (const double least = rig.weights.row(v).minCoeff(); least < -1e-6)
       throw ConfigError(file + ": /weights row " + std::to_string(v) + " holds a negative weight (" + std::to_string(least) +
                         "); skinning weights are 0 or more and sum to 1 (docs/smpl.md)");
-    if (const double sum = rig.weights.row(v).sum(); !(std::abs(sum - 1.0) <= 1e-3))
-      throw ConfigError(file + ": /weights row " + std::to_string(v) + " sums to " + std::to_string(sum) +
+    if (const double sum = rig.weights.row(v).sum(); !(std::abs(sum - 1.0) <= 1e-3)) {
+      char text[64];  // %g: a weight of 1e300 printed by std::to_string was a 300-digit sum
+      std::snprintf(text, sizeof text, "%.6g", sum);
+      throw ConfigError(file + ": /weights row " + std::to_string(v) + " sums to " + text +
                         "; each vertex's skinning weights must sum to 1 (docs/smpl.md)");
+    }
   }
   return rig;
 }
