@@ -52,6 +52,24 @@ void check_evaluate_sets(const ExperimentSpec& spec, const Registry& registry) {
   }
 }
 
+// Every node of a training row's graph names a plugin that is loaded: a
+// misspelt type in a row's graph passed --dry-run and stopped the run when
+// that row began, after the rows before it had trained (an outside check).
+void check_row_plugins(const ExperimentSpec& spec, const Registry& registry) {
+  for (const ExperimentRow& row : spec.rows) {
+    if (row.kind != ExperimentRowKind::Train) continue;
+    for (const NodeSpec& node : parse_graph_file(row.graph).nodes) {
+      if (registry.find(node.type)) continue;
+      try {
+        registry.get(node.type);  // throws, with the close matches
+      } catch (const ConfigError& e) {
+        throw ConfigError(node.where, "row '" + row.name + "': " + (node.is_loss ? "loss '" : "node '") + node.name +
+                                          "': " + e.what());
+      }
+    }
+  }
+}
+
 // Each dataset's `bmi:` as the runner hands it to generate (parse_range): a
 // reversed "40:20" failed as generate's "--bmi '40:20'", an option never
 // typed, after every row before it had run (an outside check).
@@ -106,6 +124,7 @@ int run(const std::vector<std::string>& args) {
   for (const auto& [key, file] : o.data_files) spec.dataset(key);  // a misspelt key fails before any work
   check_dataset_ranges(spec);
   check_evaluate_sets(spec, registry);
+  check_row_plugins(spec, registry);
   if (vm.count("work")) o.work_dir = vm["work"].as<std::string>();
   const auto work = experiment_work_dir(spec, o);
   std::printf("experiment %s -> %s\n", spec.name.c_str(), work.c_str());

@@ -149,6 +149,7 @@ TEST_CASE("experiment files: errors name the file, the line and the key", "[expe
   };
   const std::string head = "name: e\ndatasets:\n  shirts: {scene: tiny.yaml, count: 10}\ncolumns: [ME]\n";
   CHECK_THAT(error_of(head + "rows:\n  - {name: a, train: nowhere.yaml}\n"), Catch::Contains("e.yaml:6") && Catch::Contains("no file"));
+  CHECK_THAT(error_of(head + "rows:\n  - {name: a, train: tiny.yml}\n"), Catch::Contains("did you mean 'tiny.yaml'"));
   CHECK_THAT(error_of(head + "rows:\n  - {name: a, simulation: shrits}\n"),
              Catch::Contains("e.yaml:6") && Catch::Contains("did you mean 'shirts'"));
   CHECK_THAT(error_of(head + "rows:\n  - {name: a, simulation: shirts, fraktion: 1}\n"),
@@ -226,6 +227,76 @@ TEST_CASE("experiment: a row whose graph file was edited is trained again", "[ex
   CHECK_THAT(read_checkpoint(dir / "runs/edited/mine.h5").graph, Catch::Contains("weight: 0.2"));
 }
 
+TEST_CASE("experiment: a row whose training settings changed is trained again with them", "[experiment]") {
+  // An outside check changed the lr (and the batch, seed, patience) of a
+  // finished row: every row said "trained already" while the table's heading
+  // named the new lr, and the model recorded the old one.
+  test::TempDir dir;
+  std::ofstream(dir / "tiny.yaml") << test::tiny_simulation_scene();
+  const auto write = [&](const std::string& training) {
+    std::ofstream(dir / "exp.yaml") << "name: settings\n"
+                                       "datasets:\n"
+                                       "  shirts: {scene: tiny.yaml, count: 10, bmi: \"15:40\", seed: 2}\n"
+                                       "training: {" << training << "}\n"
+                                       "columns: [ME]\n"
+                                       "rows:\n"
+                                       "  - {name: mlp, train: "
+                                    << (test::source_dir() / "graphs/examples/mlp_baseline.yaml").string() << "}\n";
+  };
+  const std::string in_dir = "cd " + dir.path().string() + " && " + test::drape_program().string() + " experiment exp.yaml";
+  const std::string command = in_dir + " --threads 2";
+  const fs::path model = dir / "runs/settings/mlp.h5";
+  std::string out;
+  write("epochs: 1, batch: 4, lr: 1.0e-3, schedule: constant, patience: 5, seed: 0");
+  REQUIRE(test::run(command, out) == 0);
+  CHECK(std::stod(read_checkpoint(model).meta.at("lr")) == 0.001);
+  write("epochs: 1, batch: 4, lr: 5.0e-3, schedule: constant, patience: 5, seed: 0");
+  REQUIRE(test::run(command, out) == 0);
+  INFO(out);
+  CHECK_THAT(out, Catch::Contains("trained with lr 0.001 where the row now gives 0.005: trained again") &&
+                      Catch::Contains("--force") && !Catch::Contains("trained already"));
+  CHECK(std::stod(read_checkpoint(model).meta.at("lr")) == 0.005);
+  write("epochs: 1, batch: 2, lr: 5.0e-3, schedule: constant, patience: 5, seed: 3");
+  REQUIRE(test::run(command, out) == 0);
+  CHECK_THAT(out, Catch::Contains("trained with batch 4 where the row now gives 2, seed 0 where the row now gives 3"));
+  CHECK(read_checkpoint(model).meta.at("batch") == "2");
+  // The same settings again: reused, whatever --threads.
+  REQUIRE(test::run(in_dir + " --threads 1", out) == 0);
+  CHECK_THAT(out, Catch::Contains("trained already") && !Catch::Contains("$ drape train"));
+}
+
+TEST_CASE("experiment: a monitor no loss of a row's graph and a misspelt plugin fail on a dry run at their lines", "[experiment]") {
+  // Both passed --dry-run; the monitor failed when its row began, after the
+  // rows before it had trained, without the file or line (an outside check).
+  test::TempDir dir;
+  std::ofstream(dir / "tiny.yaml") << test::tiny_simulation_scene();
+  std::string graph = read(test::source_dir() / "graphs/examples/mlp_baseline.yaml");
+  std::ofstream(dir / "mine.yaml") << graph;
+  const auto dry_run = [&](const std::string& monitor) {
+    std::ofstream(dir / "e.yaml") << "name: e\ndatasets:\n  shirts: {scene: tiny.yaml, count: 10}\ncolumns: [ME]\n"
+                                     "training: {epochs: 1, monitor: "
+                                  << monitor << "}\nrows:\n  - {name: first, train: mine.yaml}\n";
+    std::string out;
+    const int code = test::run("cd " + dir.path().string() + " && " + test::drape_program().string() +
+                                   " experiment e.yaml --dry-run --work w", out);
+    return std::make_pair(code, out);
+  };
+  auto [code, out] = dry_run("l22");
+  CHECK(code == 2);
+  CHECK_THAT(out, Catch::Contains("e.yaml:5") && Catch::Contains("monitor 'l22' is no loss of") &&
+                      Catch::Contains("did you mean 'l2'"));
+  std::tie(code, out) = dry_run("l2");
+  CHECK(code == 0);
+  const std::size_t at = graph.find("type: mlp");
+  REQUIRE(at != std::string::npos);
+  graph.replace(at, 9, "type: mpl");
+  std::ofstream(dir / "mine.yaml") << graph;
+  std::tie(code, out) = dry_run("l2");
+  CHECK(code == 2);
+  CHECK_THAT(out, Catch::Contains("mine.yaml:") && Catch::Contains("row 'first'") &&
+                      Catch::Contains("unknown plugin type 'mpl'") && Catch::Contains("did you mean 'mlp'"));
+}
+
 TEST_CASE("experiment: a row trained on other data than given now is trained again", "[experiment]") {
   // An outside check ran an experiment again with another --data in the same
   // work folder: "trained already" (the shipped datasets are older than any
@@ -284,7 +355,7 @@ TEST_CASE("experiment: an interrupted training on other data is trained again", 
   CHECK_THAT(out, Catch::Contains("interrupted after 1 epochs"));
   REQUIRE(test::run(in_dir + " experiment exp.yaml --threads 2", out) == 0);
   INFO(out);
-  CHECK_THAT(out, Catch::Contains("its interrupted training cannot be resumed (") && Catch::Contains("trained again"));
+  CHECK_THAT(out, Catch::Contains("its earlier training cannot be resumed (") && Catch::Contains("trained again"));
   CHECK(fs::exists(dir / "runs/killed/mlp.h5.inputs"));
   REQUIRE(test::run(in_dir + " experiment exp.yaml --threads 2", out) == 0);
   CHECK_THAT(out, Catch::Contains("trained already"));

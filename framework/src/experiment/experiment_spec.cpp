@@ -2,6 +2,8 @@
 
 #include "../yaml_util.hpp"
 
+#include <drape/graph.hpp>
+
 #include <algorithm>
 #include <cmath>
 
@@ -85,7 +87,14 @@ struct Reader {
   // A path relative to the experiment file that must exist.
   fs::path path(const YAML::Node& n, const std::string& what) const {
     const fs::path p = dir / text(n, what);
-    if (!fs::exists(p)) throw ConfigError(at(n), what + ": no file " + p.string());
+    if (!fs::exists(p)) {
+      // The files beside the one named, for a misspelt name (g/enk.yaml for g/enc.yaml).
+      std::vector<std::string> beside;
+      std::error_code ec;
+      for (const auto& entry : fs::directory_iterator(p.parent_path().empty() ? "." : p.parent_path(), ec))
+        if (entry.is_regular_file(ec)) beside.push_back(entry.path().filename().string());
+      throw ConfigError(at(n), what + ": no file " + p.string() + did_you_mean(p.filename().string(), beside));
+    }
     return p.lexically_normal();
   }
 
@@ -97,7 +106,7 @@ struct Reader {
     if (n["schedule"]) t.schedule = text(n["schedule"], owner + ".schedule");
     if (n["patience"]) t.patience = number<int>(n["patience"], owner + ".patience");
     if (n["seed"]) t.seed = number<std::uint64_t>(n["seed"], owner + ".seed");
-    if (n["monitor"]) t.monitor = text(n["monitor"], owner + ".monitor");
+    if (n["monitor"]) t.monitor = text(n["monitor"], owner + ".monitor"), t.monitor_where = at(n["monitor"]);
     if (t.epochs < 1 || t.batch < 1 || !(t.lr > 0) || t.patience < 1)
       throw ConfigError(at(n), owner + ": epochs, batch, lr and patience must be positive");
     if (t.schedule != "constant" && t.schedule != "cosine")
@@ -143,6 +152,7 @@ class RowParser {
       simulation_row();
     }
     common_settings();
+    check_monitor();
     return row;
   }
 
@@ -208,6 +218,22 @@ class RowParser {
       if (!n["test"]) row.test = row.data;
     }
     if (n["physics"]) row.physics = r.path(n["physics"], owner + ".physics");
+  }
+
+  // A training row's monitor names one of its graph's losses, checked here
+  // so that --dry-run sees it: at the run, the row stopped with "--monitor
+  // v2vv: not a loss of ..." after the rows before it had trained, naming
+  // neither this file nor the line (an outside check).
+  void check_monitor() const {
+    const ExperimentTraining& t = row.training;
+    if (row.kind != ExperimentRowKind::Train || t.monitor.empty()) return;
+    std::vector<std::string> losses;
+    for (const NodeSpec& node : parse_graph_file(row.graph).nodes)
+      if (node.is_loss && node.weight != 0.0) losses.push_back(node.name);
+    if (std::find(losses.begin(), losses.end(), t.monitor) == losses.end())
+      throw ConfigError(t.monitor_where, owner + ": monitor '" + t.monitor + "' is no loss of " + row.graph.string() +
+                                             " (its losses of nonzero weight: " + yaml::joined(losses) + ")" +
+                                             did_you_mean(t.monitor, losses));
   }
 
   void optimize_row() {

@@ -308,6 +308,7 @@ std::map<std::string, std::string> resume_settings(const TrainOptions& o, const 
       {"patience", std::to_string(o.patience)}};
   if (!o.monitor.empty()) settings["monitor_loss"] = o.monitor;  // absent: the total, as before the option
   if (o.weight_decay != 0.0) settings["weight_decay"] = exact(o.weight_decay);  // absent: 0, as before the option
+  if (o.train_fraction != 1.0) settings["train_fraction"] = exact(o.train_fraction);  // absent: 1, as before it was recorded
   if (o.schedule == "cosine") settings["epochs"] = std::to_string(o.epochs);
   if (!o.init.empty()) settings["init"] = o.init.string();
   if (o.init_widen) settings["init_widen"] = "1";

@@ -48,6 +48,7 @@ struct ExperimentTraining {
   int patience = 20;
   std::uint64_t seed = 0;
   std::string monitor;  // drape train --monitor: a loss of each row's graph that chooses the best epoch; "": the total
+  SourceLocation monitor_where;  // where monitor was given (it names a loss of each training row's graph: checked at load)
 };
 
 enum class ExperimentRowKind {
