@@ -13,6 +13,12 @@ TEST_CASE("closest matches find typos, not unrelated names", "[errors]") {
   CHECK(closest_matches("pointent", names).front() == "pointnet");
   CHECK(closest_matches("zzzzzzzz", names).empty());
   CHECK(did_you_mean("mpl", names) == "; did you mean 'mlp'?");
+  // Among the whole registry 'mpl' is also inside 'add_template', 'resample_body'
+  // and 'smpl': those three were offered and 'mlp' was not (an outside check).
+  const std::vector<std::string> registry = {"add_template", "mlp", "resample_body", "smpl", "spectral"};
+  CHECK(closest_matches("mpl", registry).front() == "mlp");
+  // A swap of two neighbours is one edit: within the limit of a short name.
+  CHECK(closest_matches("gnc", {"gcn", "sum"}) == std::vector<std::string>{"gcn"});
 }
 
 TEST_CASE("tensor views are row-major per sample", "[tensor]") {
