@@ -86,10 +86,13 @@ py::dict generate(const PyScene& scene, const std::string& out, std::size_t coun
   if (progress) observer.progress = &std::cerr;
   GeneratePlan plan;
   observer.on_start = [&](const GeneratePlan& p) { plan = p; };
+  if (in_python_main_thread()) observer.poll = [] { check_python_signals(); };
   GenerateSummary done;
-  {
+  try {
     py::gil_scoped_release release;
     done = generate_dataset(registry(), scene.simulation->scene(), request, out, observer);
+  } catch (const PythonSignal&) {
+    throw py::error_already_set();  // KeyboardInterrupt, as PyErr_CheckSignals set it; the samples done are kept
   }
   py::dict d;
   d["out"] = out;

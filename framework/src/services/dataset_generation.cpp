@@ -289,6 +289,20 @@ GenerateSummary generate_dataset(const Registry& registry, const Scene& scene, c
   std::mutex write_mutex;
   std::atomic<int> not_settled{0}, penetrating{0}, crossing{0};
   std::vector<std::size_t> crossing_itself;  // (under write_mutex)
+  // The caller's poll stops the simulations under way too, not only the
+  // samples not begun: a coarse drape takes 10-60 s.
+  std::atomic<bool> polled_stop{false};
+  struct StoppedByPoll {};
+  std::function<void()> poll;
+  if (observer.poll)
+    poll = [&] {
+      try {
+        observer.poll();
+      } catch (...) {
+        polled_stop = true;
+        throw;
+      }
+    };
   make_samples_in_parallel(writer, bar, todo, plan.threads, [&]() -> SampleWorker {
 #ifdef _OPENMP
     omp_set_num_threads(1);  // parallel over samples, not inside one
@@ -328,6 +342,14 @@ GenerateSummary generate_dataset(const Registry& registry, const Scene& scene, c
       const SimulationResult r = [&] {
         try {
           SimulationOptions options;
+          if (poll) {
+            options.on_step = [&](const SimulationStep&) {
+              if (polled_stop) throw StoppedByPoll{};
+            };
+            options.on_partial_move = [&](int, int, int, double) {
+              if (polled_stop) throw StoppedByPoll{};
+            };
+          }
           if (poses.posed) {
             options.target_pose = &pose;
             options.unposed_target = &body;
@@ -354,7 +376,7 @@ GenerateSummary generate_dataset(const Registry& registry, const Scene& scene, c
       bar.set_status(status.str());
       bar.advance();
     };
-  });
+  }, poll);
   // A resumed run's drapes of earlier runs are counted too, read back from
   // the finished file (the garment through itself is no statistic of the
   // file): a resume after a kill named only its own ("--drop 7" where the

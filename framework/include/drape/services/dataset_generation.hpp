@@ -112,6 +112,11 @@ struct GenerateSummary {
 struct GenerateObserver {
   std::function<void(const GeneratePlan&)> on_start;  // after the output is opened, before the first sample
   std::ostream* progress = nullptr;                   // a progress bar there; none when null
+  // Called on the calling thread every tenth of a second while samples are
+  // made; when it throws, every simulation under way stops at its next step,
+  // the samples done are kept to resume, and its exception is rethrown
+  // (Python's Ctrl-C: its handlers run in the main thread only).
+  std::function<void()> poll;
 };
 
 // Generates (or resumes) `out`. Takes the output's lock first (output_lock.hpp),
