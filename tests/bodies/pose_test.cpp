@@ -405,3 +405,12 @@ TEST_CASE("poses are drawn only from a space with a sampling range", "[bodies][p
   CHECK_NOTHROW(check_drawable(space, "smpl"));
   CHECK_NOTHROW(check_drawable(human_pose_angles(), "parametric"));
 }
+
+TEST_CASE("a sampling range with a NaN bound is named as NaN", "[bodies][pose]") {
+  // It was "range nan:90: expected lo <= hi" (an outside check).
+  const std::vector<PoseAngle> space = human_pose_angles();
+  CHECK_THROWS_WITH(with_sampling_ranges(space, "shoulder_abduction=nan:90", "--pose-range"),
+                    Catch::Contains("--pose-range: left_shoulder_abduction is NaN; expected a number in"));
+  CHECK_THROWS_WITH(with_sampling_ranges(space, "shoulder_abduction=90:30", "--pose-range"),
+                    Catch::Contains("range 90:30: expected lo <= hi"));
+}

@@ -74,6 +74,41 @@ TEST_CASE("cluster scripts: a generate array of 3 tasks and its merge make the s
   // Outside an array the script says what it needs.
   CHECK(test::run("env " + env + " bash " + script("generate.sbatch"), out) != 0);
   CHECK_THAT(out, Catch::Contains("sbatch --array"));
+  // A SHARDS that is not the array's: its shards are not there, said so
+  // (with OUT merged before it was "nothing to merge", exit 0), and one that
+  // is no count is named (bash's "abc: unbound variable").
+  const std::string four = std::string(merge).replace(merge.find("SHARDS=3"), 8, "SHARDS=4");
+  CHECK(test::run(four + " 2>&1", out) == 2);
+  CHECK_THAT(out, Catch::Contains("no shard ") && Catch::Contains("shard-0-of-4.h5") && Catch::Contains("SHARDS=4 must be"));
+  const std::string letters = std::string(merge).replace(merge.find("SHARDS=3"), 8, "SHARDS=abc");
+  CHECK(test::run(letters + " 2>&1", out) == 2);
+  CHECK_THAT(out, Catch::Contains("SHARDS='abc': expected the number of tasks"));
+  CHECK(test::run(task(env + " SHARDS=0", 0, 3, "generate.sbatch") + " 2>&1", out) == 2);
+  CHECK_THAT(out, Catch::Contains("SHARDS='0': expected the number of tasks"));
+  CHECK(test::run(task(env + " POSES=random", 0, 3, "generate.sbatch") + " 2>&1", out) == 2);
+  CHECK_THAT(out, Catch::Contains("POSES='random': expected scene or draw"));
+}
+
+TEST_CASE("cluster scripts: POSES=draw makes a posed set as drape generate --poses draw does", "[cluster]") {
+  // generate.sbatch had no way to pass --poses draw: with the pose-space
+  // scene it wrote an A-pose set, exit 0, and POSES=draw was ignored (an
+  // outside check).
+  test::TempDir dir;
+  std::ofstream(dir / "tiny.yaml") << test::tiny_simulation_scene();
+  const std::string env = "SCENE=" + (dir / "tiny.yaml").string() + " COUNT=2 BMI=20:30 SEED=4 POSES=draw " +
+                          "POSE_RANGE=shoulder_abduction=50:60 OUT=" + (dir / "posed.h5").string();
+  std::string out;
+  REQUIRE(test::run(task(env, 0, 1, "generate.sbatch"), out) == 0);
+  INFO(out);
+  REQUIRE(test::run("env DRAPE=" + test::drape_program().string() + " SHARDS=1 " + env + " bash " + script("merge.sbatch"), out) == 0);
+  REQUIRE(test::run(test::drape_program().string() + " generate " + (dir / "tiny.yaml").string() +
+                        " --count 2 --bmi 20:30 --seed 4 --poses draw --pose-range shoulder_abduction=50:60 --threads 2 --out " +
+                        (dir / "one.h5").string(),
+                    out) == 0);
+  same_samples(dir / "posed.h5", dir / "one.h5");
+  const DatasetReader posed(dir / "posed.h5");
+  REQUIRE_FALSE(posed.layout().pose_angles.empty());
+  CHECK((posed.poses(posed.indices()).flat() - DatasetReader(dir / "one.h5").poses(posed.indices()).flat()).cwiseAbs().maxCoeff() == 0.0f);
 }
 
 TEST_CASE("cluster scripts: an optimize array of 2 tasks and its merge make the set one job makes", "[cluster]") {

@@ -330,9 +330,9 @@ std::vector<PoseAngle> with_sampling_ranges(std::vector<PoseAngle> space, const 
       for (PoseAngle& b : space)
         if (&b == a) set.push_back(&b);
     for (PoseAngle* a : set) {
-      if (!(lo <= hi)) throw ConfigError(what + ": " + a->name + " range " + range + ": expected lo <= hi");
-      check_value(*a, lo, what);
+      check_value(*a, lo, what);  // first: a NaN bound is named as NaN, not as lo > hi
       check_value(*a, hi, what);
+      if (!(lo <= hi)) throw ConfigError(what + ": " + a->name + " range " + range + ": expected lo <= hi");
       if (!seen.insert(a->name).second) throw ConfigError(what + ": " + a->name + " is given twice");
       a->sample_lo = lo;
       a->sample_hi = hi;
