@@ -268,3 +268,56 @@ TEST_CASE("place_graded_garment carries a garment with its body's growth, outsid
   Garment other = plain.garment();
   CHECK_THROWS(place_graded_garment(other, ungraded.topRows(10), plain.mean_body(), fit.vertices, model.faces(), 1.3));
 }
+
+TEST_CASE("grading an outfit keeps the trousers' lengths and the floor and passes no piece through another", "[garments][grade]") {
+  // MakeHuman's suit (a shirt and jeans) at grade 1.35 had its jeans' hems
+  // graded 16 cm down about the shirt's top, through the feet and the floor,
+  // and its start was refused (an outside check); graded about their own top
+  // instead, the shirt's hem went through the jeans' waist.
+  const Simulation plain(test::plugins(), parse_scene(kCoarse, "plain.yaml"));
+  const Garment shirt = plain.garment();
+  const Eigen::Index n = shirt.mesh.vertices.rows();
+  // The outfit: the shirt, and a second piece under it hanging from its hem
+  // height down to 2 cm above the floor (a copy of the shirt taken in to
+  // 0.8 of its girth and stretched down: a skirt as far as grading sees it).
+  const double floor = 0.0, crotch = 0.8;
+  const double shirt_top = shirt.mesh.vertices.col(1).maxCoeff(), shirt_low = shirt.mesh.vertices.col(1).minCoeff();
+  Garment outfit = shirt;
+  outfit.mesh.vertices.resize(2 * n, 3);
+  outfit.mesh.vertices.topRows(n) = shirt.mesh.vertices;
+  const double cx = shirt.mesh.vertices.col(0).mean(), cz = shirt.mesh.vertices.col(2).mean();
+  for (Eigen::Index v = 0; v < n; ++v) {
+    const Eigen::RowVector3d p = shirt.mesh.vertices.row(v);
+    const double t = (p.y() - shirt_low) / (shirt_top - shirt_low);  // 0 at the hem, 1 at the top
+    outfit.mesh.vertices.row(n + v) << cx + 0.8 * (p.x() - cx), 0.02 + t * (shirt_low + 0.1 - 0.02), cz + 0.8 * (p.z() - cz);
+  }
+  outfit.mesh.faces.resize(2 * shirt.mesh.faces.rows(), 3);
+  outfit.mesh.faces << shirt.mesh.faces, (shirt.mesh.faces.array() + static_cast<int>(n)).matrix();
+  outfit.mesh.uv.resize(2 * shirt.mesh.uv.rows(), 2);
+  outfit.mesh.uv << shirt.mesh.uv, shirt.mesh.uv;
+  outfit.mesh.uv_faces.resize(2 * shirt.mesh.uv_faces.rows(), 3);
+  outfit.mesh.uv_faces << shirt.mesh.uv_faces, (shirt.mesh.uv_faces.array() + static_cast<int>(shirt.mesh.uv.rows())).matrix();
+  const Garment before = outfit;
+  grade_garment(outfit, 1.35, crotch, floor);
+  const auto& x0 = before.mesh.vertices;
+  const auto& x1 = outfit.mesh.vertices;
+  // The floor is kept: the lower piece's hem stays above it.
+  CHECK(x1.bottomRows(n).col(1).minCoeff() >= floor);
+  CHECK(x1.bottomRows(n).col(1).minCoeff() <= x0.bottomRows(n).col(1).minCoeff());
+  // The shirt, above the crotch, is graded as it is alone.
+  Garment alone = shirt;
+  grade_garment(alone, 1.35);
+  CHECK((x1.topRows(n) - alone.mesh.vertices).cwiseAbs().maxCoeff() < 1e-12);
+  // One map of heights for every piece: what lay above another still does.
+  for (Eigen::Index v = 0; v < 2 * n; v += 37)
+    for (Eigen::Index w = 0; w < 2 * n; w += 41)
+      if (x0(v, 1) < x0(w, 1)) CHECK(x1(v, 1) <= x1(w, 1));
+  // The lower piece's cloth keeps its lengths along its rise (v) and grows around (u) by 1.35; the shirt's grows along v.
+  const auto span = [](const Eigen::MatrixX2d& uv) { return Eigen::Vector2d(uv.colwise().maxCoeff() - uv.colwise().minCoeff()); };
+  const Eigen::Index m = shirt.mesh.uv.rows();
+  const Eigen::Vector2d lower0 = span(before.mesh.uv.bottomRows(m)), lower1 = span(outfit.mesh.uv.bottomRows(m));
+  const Eigen::Vector2d upper0 = span(before.mesh.uv.topRows(m)), upper1 = span(outfit.mesh.uv.topRows(m));
+  CHECK(upper1.y() > 1.05 * upper0.y());
+  CHECK(lower1.y() < upper1.y() / upper0.y() * lower0.y() - 1e-6);
+  CHECK(lower1.x() == Approx(upper1.x() / upper0.x() * lower0.x()).epsilon(1e-3));  // (the charts' slopes mix u a little)
+}

@@ -110,7 +110,7 @@ TEST_CASE("a training fraction trains on the first part of the training split on
   // Resuming with another fraction is another run: refused.
   o.resume = true;
   o.train_fraction = 0.5;
-  CHECK_THROWS_WITH(train(test::plugins(), o), Catch::Contains("train_samples 3"));
+  CHECK_THROWS_WITH(train(test::plugins(), o), Catch::Contains("had train_fraction 0.25, this one has train_fraction 0.5"));
   o.train_fraction = 0.0;
   CHECK_THROWS_WITH(train(test::plugins(), o), Catch::Contains("--fraction must be in (0, 1]"));
 }

@@ -18,6 +18,8 @@
 // scene text.
 #include <drape/energy.hpp>  // Garment
 
+#include <limits>
+
 namespace drape {
 
 inline constexpr double kMinGrade = 0.5, kMaxGrade = 2.0;
@@ -27,7 +29,18 @@ inline constexpr double kLengthPerGirth = 0.3;
 inline double grade_length(double g) { return 1.0 + kLengthPerGirth * (g - 1.0); }
 
 // Grades `garment` in place by `grade` (ConfigError outside [kMinGrade, kMaxGrade]).
-void grade_garment(Garment& garment, double grade);
+// `legs_below` and `floor` (m, heights: the crotch and the soles of the
+// mean body the garment is modelled around; NaN: not known): when a piece
+// of the garment (a connected part of its mesh) reaches below the crotch --
+// trousers, a dress -- the heights below the crotch are taken in evenly
+// between where the length grade puts the crotch and the floor, which is
+// kept, and that piece's cloth keeps its lengths (an inseam does not grow
+// with the waist). One map of heights for all pieces, so that grading passes
+// no piece through another. Graded about its top alone, MakeHuman's suit at
+// grade 1.35 had its jeans' hems 16 cm down, through the feet and the floor,
+// and its start was refused (an outside check).
+void grade_garment(Garment& garment, double grade, double legs_below = std::numeric_limits<double>::quiet_NaN(),
+                   double floor = std::numeric_limits<double>::quiet_NaN());
 
 // Grades only the material space (UVs) of `mesh` (its vertices at rest, read
 // for the charts' rise) as grade_garment grades a garment's, by any grade
@@ -47,7 +60,10 @@ void grade_material(Mesh& mesh, double grade);
 // shirt graded to 1.35 started through its fit body's chest (docs/garments.md,
 // "A user's MakeHuman top over BMI 15-32"). The material space is
 // grade_garment's, untouched.
+// Lengths as grade_garment's (`legs_below` and `floor` likewise).
 void place_graded_garment(Garment& garment, const Eigen::MatrixX3d& ungraded, const Eigen::MatrixX3d& mean_body,
-                          const Eigen::MatrixX3d& fit_body, const Eigen::MatrixX3i& body_faces, double grade);
+                          const Eigen::MatrixX3d& fit_body, const Eigen::MatrixX3i& body_faces, double grade,
+                          double legs_below = std::numeric_limits<double>::quiet_NaN(),
+                          double floor = std::numeric_limits<double>::quiet_NaN());
 
 }  // namespace drape

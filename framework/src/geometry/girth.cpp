@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <map>
 #include <utility>
 #include <vector>
@@ -130,6 +131,24 @@ Girth horizontal_girth(const Eigen::MatrixX3d& vertices, const Eigen::MatrixX3i&
     out.material_length = material ? material_length : 0.0;
   }
   return out;
+}
+
+double crotch_height(const Eigen::MatrixX3d& body, const Eigen::MatrixX3i& faces) {
+  const double y0 = body.col(1).minCoeff(), h = body.col(1).maxCoeff() - y0;
+  // The centre line in depth: midway between the front and the back of the
+  // trunk at the waist (a strip 5 % of the height either side of the middle,
+  // at 55-65 % of the height), not the mean z of the whole body, which toes,
+  // face and hands pull forward: MakeHuman's mean body has its mean z 0.139 m,
+  // in front of its belly at 0.134, and no cut enclosed it (crotch NaN).
+  const double xmid = 0.5 * (body.col(0).minCoeff() + body.col(0).maxCoeff());
+  double front = -std::numeric_limits<double>::infinity(), back = std::numeric_limits<double>::infinity();
+  for (Eigen::Index v = 0; v < body.rows(); ++v)
+    if (body(v, 1) >= y0 + 0.55 * h && body(v, 1) <= y0 + 0.65 * h && std::abs(body(v, 0) - xmid) <= 0.05 * h)
+      front = std::max(front, body(v, 2)), back = std::min(back, body(v, 2));
+  const Eigen::Vector2d centre(xmid, back <= front ? 0.5 * (front + back) : body.col(2).mean());
+  for (double f = 0.25; f <= 0.65; f += 0.0025)
+    if (horizontal_girth(body, faces, y0 + f * h, centre).found) return f * h;
+  return std::numeric_limits<double>::quiet_NaN();
 }
 
 }  // namespace drape::geometry

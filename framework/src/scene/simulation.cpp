@@ -4,6 +4,7 @@
 #include <drape/bodies/body.hpp>
 #include <drape/bodies/fit_body.hpp>
 #include <drape/geometry/body_units.hpp>
+#include <drape/geometry/girth.hpp>
 #include <drape/garment_dressing.hpp>
 #include <drape/garment_grading.hpp>
 #include <drape/scene/garment_size.hpp>
@@ -27,6 +28,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
+#include <limits>
 #include <tuple>
 #include <utility>
 
@@ -215,7 +217,11 @@ Simulation::Simulation(const Registry& registry, Scene scene) : registry_(regist
   design_loop_ = garment_girth(garment.mesh.vertices, garment.mesh.faces, mean_body_);
   const bool graded = scene_.garment_grade != 1.0;
   const Eigen::MatrixX3d ungraded = graded ? garment.mesh.vertices : Eigen::MatrixX3d();  // for place_graded_garment
-  grade_garment(garment, scene_.garment_grade);  // before dressing: the graded garment is what goes around the body
+  // Trousers and dresses (pieces reaching below the mean body's crotch) keep their lengths.
+  const double legs_below = graded ? mean_body_.col(1).minCoeff() + geometry::crotch_height(mean_body_, body_model_->faces())
+                                   : std::numeric_limits<double>::quiet_NaN();
+  const double floor = mean_body_.col(1).minCoeff();
+  grade_garment(garment, scene_.garment_grade, legs_below, floor);  // before dressing: the graded garment is what goes around the body
   placed_loop_ = scene_.garment_grade == 1.0 ? design_loop_ : garment_girth(garment.mesh.vertices, garment.mesh.faces, mean_body_);
   std::string what = "garment '" + scene_.garment + "'";
   if (const auto file = scene_.garment_params.find("file"); file != scene_.garment_params.end() && file->second.node.IsScalar())
@@ -252,7 +258,8 @@ Simulation::Simulation(const Registry& registry, Scene scene) : registry_(regist
     }
     if (!scaled_starts) {
       garment = undressed;
-      place_graded_garment(garment, ungraded, mean_body_, fit.vertices, body_model_->faces(), scene_.garment_grade);
+      place_graded_garment(garment, ungraded, mean_body_, fit.vertices, body_model_->faces(), scene_.garment_grade,
+                           legs_below, floor);
       dressed = dress_on(fit, *body_model_, garment, dressed_what);
     }
   }

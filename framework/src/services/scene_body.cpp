@@ -86,17 +86,6 @@ std::string grade_text(double design_loop, double design_ease, double around) {
   return text;
 }
 
-// Height of the crotch above the soles: the lowest horizontal cut, going up
-// from a quarter of the height, whose loop goes around the body's vertical
-// centre line (below it, the cut passes between the legs). NaN when none does.
-double crotch_height(const Eigen::MatrixX3d& body, const Eigen::MatrixX3i& faces) {
-  const double y0 = body.col(1).minCoeff(), h = body.col(1).maxCoeff() - y0;
-  const Eigen::Vector2d centre(0.5 * (body.col(0).minCoeff() + body.col(0).maxCoeff()), body.col(2).mean());
-  for (double f = 0.25; f <= 0.65; f += 0.0025)
-    if (geometry::horizontal_girth(body, faces, y0 + f * h, centre).found) return f * h;
-  return std::numeric_limits<double>::quiet_NaN();
-}
-
 // How far down a top reaches on this body against the mean body it was made
 // for (the tailor's rule's other measure): its length from its neckline as
 // a share of the torso from there to the crotch. The neckline rides at the
@@ -111,7 +100,7 @@ void note_length(const Simulation& design, SceneBody& out) {
   const Eigen::MatrixX3d& mean = design.mean_body();
   const double soles0 = mean.col(1).minCoeff(), height0 = mean.col(1).maxCoeff() - soles0;
   const double top = garment.vertices.col(1).maxCoeff() - soles0, hem = garment.vertices.col(1).minCoeff() - soles0;
-  const double crotch0 = crotch_height(mean, faces), crotch = crotch_height(out.vertices, faces);
+  const double crotch0 = geometry::crotch_height(mean, faces), crotch = geometry::crotch_height(out.vertices, faces);
   if (!std::isfinite(crotch0) || !std::isfinite(crotch) || hem <= crotch0 || top <= crotch0) return;
   const double height = out.vertices.col(1).maxCoeff() - out.vertices.col(1).minCoeff();
   const double length = top - hem, top_here = top * height / height0;

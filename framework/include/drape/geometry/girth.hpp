@@ -32,4 +32,10 @@ Girth horizontal_girth(const Eigen::MatrixX3d& vertices, const Eigen::MatrixX3i&
                        const Eigen::Vector2d& centre, const Eigen::MatrixX2d* uv = nullptr,
                        const Eigen::MatrixX3i* uv_faces = nullptr);
 
+// Height of a body's crotch above its soles (m): the lowest horizontal cut,
+// going up from a quarter of the height, whose loop goes around the body's
+// vertical centre line (below it, the cut passes between the legs). NaN
+// when none does.
+double crotch_height(const Eigen::MatrixX3d& body, const Eigen::MatrixX3i& faces);
+
 }  // namespace drape::geometry
