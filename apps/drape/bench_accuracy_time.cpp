@@ -80,17 +80,22 @@ struct Method {
   }
 };
 
-// "10,30,100" -> {10, 30, 100}; UsageError naming the option otherwise.
-std::vector<int> int_list(const po::variables_map& vm, const char* option) {
+// "10,30,100" -> {10, 30, 100}; UsageError naming the option otherwise, and
+// for a value below `least` (--spectral-k 0 was dropped without a word).
+std::vector<int> int_list(const po::variables_map& vm, const char* option, int least) {
   std::vector<int> out;
   for (std::stringstream s(vm[option].as<std::string>()); s.good();) {
     std::string item;
     std::getline(s, item, ',');
+    std::size_t used = 0;
     try {
-      out.push_back(std::stoi(item));
+      out.push_back(std::stoi(item, &used));
     } catch (const std::exception&) {
-      throw UsageError(std::string("--") + option + ": '" + item + "' is not a number");
+      used = 0;
     }
+    if (used == 0 || used != item.size()) throw UsageError(std::string("--") + option + ": '" + item + "' is not a whole number");
+    if (out.back() < least)
+      throw UsageError(std::string("--") + option + ": " + item + " is below " + std::to_string(least) + ", the least it takes");
   }
   return out;
 }
@@ -153,8 +158,13 @@ std::vector<std::pair<std::string, int>> spectral_cuts_of(Model& probe, const st
     if (node.type == "spectral")
       for (const auto& [port, shape] : node.outputs)
         if (port == "coefficients")  // [k, 3]
-          for (int k : spectral_k)
-            if (k > 0 && k < shape.rows) spectral_cuts.push_back({node.name, k});
+          for (int k : spectral_k) {
+            if (k == 0) continue;  // (the documented "none")
+            if (k < shape.rows) spectral_cuts.push_back({node.name, k});
+            else  // (no cut: the branch has no more eigenvectors than that; said, not dropped without a word)
+              std::fprintf(stderr, "note: --spectral-k %d: the spectral branch '%s' has %d eigenvectors; a cut must be fewer, so no row for it\n",
+                           k, node.name.c_str(), static_cast<int>(shape.rows));
+          }
   return spectral_cuts;
 }
 
@@ -398,7 +408,7 @@ int run(const std::vector<std::string>& args) {
       "simulator budgets, morph_steps:settle_steps, comma-separated")(
       "iterations", po::value<std::string>()->default_value("10,30,100"), "optimisation iterations, comma-separated")(
       "spectral-k", po::value<std::string>()->default_value("16,64,256"),
-      "the spectral branch cut to these eigenvector counts (its use_k), comma-separated")(
+      "the spectral branch cut to these eigenvector counts (its use_k), comma-separated; 0: no such rows")(
       "csv", po::value<std::string>(), "also write the table as CSV")(
       "svg", po::value<std::string>(), "also draw ME against time with the Pareto front")(
       "replot", po::value<std::string>(), "draw --svg from a CSV this bench wrote instead (with --bodies, --posed as it ran)")(
@@ -407,20 +417,22 @@ int run(const std::vector<std::string>& args) {
   const std::string usage = "drape bench accuracy-time --data data.h5 [--model model.h5] [--bodies 4] [--svg chart.svg]\n"
                             "       drape bench accuracy-time --replot results.csv --svg chart.svg [--bodies 4] [--posed]";
   if (!parse(usage, args, opts, {}, vm)) return 0;
+  // (--bodies 0 and -1 ran one body, and titled a replotted chart of two "1 test body".)
+  if (vm["bodies"].as<int>() < 1) throw UsageError("--bodies " + std::to_string(vm["bodies"].as<int>()) + ": expected 1 or more test bodies");
   if (vm.count("replot")) {
     if (!vm.count("svg")) throw UsageError("--replot needs --svg (the chart to draw)");
-    write_chart(read_csv(vm["replot"].as<std::string>()), static_cast<std::size_t>(std::max(1, vm["bodies"].as<int>())),
+    write_chart(read_csv(vm["replot"].as<std::string>()), static_cast<std::size_t>(vm["bodies"].as<int>()),
                 vm.count("posed") > 0, vm["svg"].as<std::string>());
     return 0;
   }
   if (!vm.count("data")) throw UsageError("--data FILE is required (its test bodies are the held-out bodies)");
   const std::string data = vm["data"].as<std::string>();
   const std::vector<std::pair<int, int>> budgets = simulator_budgets(vm);
-  const std::vector<int> iterations = int_list(vm, "iterations"), spectral_k = int_list(vm, "spectral-k");
+  const std::vector<int> iterations = int_list(vm, "iterations", 0), spectral_k = int_list(vm, "spectral-k", 0);
   Registry& registry = Registry::load_default(plugin_path(vm));
   const DatasetReader reader(data);
   std::vector<std::size_t> bodies = reader.indices(Split::Test);
-  bodies.resize(std::min<std::size_t>(bodies.size(), static_cast<std::size_t>(std::max(1, vm["bodies"].as<int>()))));
+  bodies.resize(std::min<std::size_t>(bodies.size(), static_cast<std::size_t>(vm["bodies"].as<int>())));
   if (bodies.empty()) throw ConfigError(data + ": the test split is empty");
   const std::string model_file = model_file_for_samples(vm, registry, reader, bodies);
   const Scene scene = parse_scene(reader.layout().scene);

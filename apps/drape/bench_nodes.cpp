@@ -99,6 +99,8 @@ int run(const std::vector<std::string>& args) {
   const int batch = vm["batch"].as<int>(), repeats = std::max(1, vm["repeats"].as<int>()), channels = vm["channels"].as<int>();
   if (batch < 1 || channels < 1 || vm["k"].as<int>() < 1) throw UsageError("--batch, --channels and --k must be at least 1");
   const Registry& reg = Registry::load_default(plugin_path(vm));
+  // Every name first (with its close matches): an unknown one failed after the nodes before it were timed.
+  for (const std::string& name : split(vm["nodes"].as<std::string>())) reg.get(name);
   AssetsSpec spec;
   spec.garment_params["resolution"] = vm["resolution"].as<std::string>();
   spec.eigen_k = vm["k"].as<int>();

@@ -79,7 +79,8 @@ TEST_CASE("bench accuracy-time measures every method against a converged drape",
   const auto rows = read_csv(dir / "t.csv");
   std::vector<std::string> names;
   for (const auto& r : rows) names.push_back(r.name);
-  // Two budgets, the network, its spectral branch at k = 4 (1000 is more than it has: no row), one optimisation.
+  // Two budgets, the network, its spectral branch at k = 4 (1000 is more than it has: no row, said), one optimisation.
+  CHECK_THAT(out, Catch::Contains("note: --spectral-k 1000: the spectral branch") && Catch::Contains("eigenvectors; a cut must be fewer"));
   CHECK(names == std::vector<std::string>{"simulation 1+1 steps", "simulation 2+3 steps", "network",
                                           "network, spectral branch k = 4", "network + 2 optimisation iterations"});
   for (const auto& r : rows) {
@@ -211,4 +212,23 @@ TEST_CASE("bench accuracy-time --replot draws a chart from the CSV it wrote", "[
   CHECK(test::run_drape("bench accuracy-time --replot " + (dir / "bad.csv").string() + " --svg " + (dir / "b.svg").string(),
                         out) == 2);
   CHECK_THAT(out, Catch::Contains("bad.csv:1: not a CSV of drape bench accuracy-time"));
+  // A count of bodies below 1 ran one body and titled the chart "1 test body" (an outside check); a
+  // negative or fractional eigenvector count was not refused.
+  CHECK(test::run_drape("bench accuracy-time --replot " + (dir / "new.csv").string() + " --svg " + (dir / "z.svg").string() +
+                            " --bodies 0",
+                        out) == 2);
+  CHECK_THAT(out, Catch::Contains("--bodies 0: expected 1 or more test bodies"));
+  CHECK_FALSE(std::filesystem::exists(dir / "z.svg"));
+  CHECK(test::run_drape("bench accuracy-time --data nowhere.h5 --spectral-k 16,-4", out) == 2);
+  CHECK_THAT(out, Catch::Contains("--spectral-k: -4 is below 0"));
+  CHECK(test::run_drape("bench accuracy-time --data nowhere.h5 --spectral-k 16.5", out) == 2);
+  CHECK_THAT(out, Catch::Contains("--spectral-k: '16.5' is not a whole number"));
+}
+
+TEST_CASE("bench nodes names an unknown node before timing any", "[cli][bench]") {
+  // It timed and printed the nodes before it, then failed (an outside check).
+  std::string out;
+  CHECK(test::run_drape("bench nodes --nodes cnn1d,v2v,mpl --repeats 1", out) == 2);
+  CHECK_THAT(out, Catch::Contains("unknown plugin type 'mpl'") && Catch::Contains("did you mean 'mlp'") &&
+                      !Catch::Contains("forward ms"));
 }
