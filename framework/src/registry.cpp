@@ -87,7 +87,9 @@ void Registry::load_path(const std::vector<fs::path>& dirs) {
     std::error_code ec;
     if (!fs::is_directory(dir, ec)) {
       if (fs::exists(dir, ec) && is_plugin_file(dir)) load_file(dir);
-      else warn("plugin path entry '" + dir.string() + "' is not a directory");
+      // (A single plugin file is an entry too: say which of the two it is not.)
+      else if (!fs::exists(dir, ec)) warn("plugin path entry '" + dir.string() + "' does not exist");
+      else warn("plugin path entry '" + dir.string() + "' is neither a folder nor a plugin library (" + kPrefix + "<name>.so)");
       continue;
     }
     const fs::path canonical = fs::canonical(dir, ec);

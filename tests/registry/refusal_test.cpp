@@ -3,6 +3,8 @@
 // and two plugins of one name (an error naming both files).
 #include <catch2/catch.hpp>
 
+#include <fstream>
+
 #include <drape/registry.hpp>
 
 #include <filesystem>
@@ -69,6 +71,18 @@ TEST_CASE("drape plugins reports a refused library and fails on duplicates", "[r
 
   CHECK(test::run(drape + " --plugin-path " + (kFixtures / "duplicate").string(), out) == 2);
   CHECK_THAT(out, Catch::Contains("libdrape_plugin_twin_a.so") && Catch::Contains("libdrape_plugin_twin_b.so"));
+}
+
+TEST_CASE("a plugin path entry that is no folder says whether it is missing or no plugin file", "[registry][cli]") {
+  // A single plugin file is an entry too; both were "is not a directory" (an outside check).
+  test::TempDir dir;
+  std::ofstream(dir / "notes.txt") << "not a plugin";
+  std::string out;
+  const std::string drape = "env -u DRAPE_PLUGIN_PATH " + test::drape_program().string() + " plugins --brief --plugin-path ";
+  REQUIRE(test::run(drape + (dir / "libdrape_plugin_gone.so").string(), out) == 0);
+  CHECK_THAT(out, Catch::Contains("libdrape_plugin_gone.so' does not exist"));
+  REQUIRE(test::run(drape + (dir / "notes.txt").string(), out) == 0);
+  CHECK_THAT(out, Catch::Contains("notes.txt' is neither a folder nor a plugin library (libdrape_plugin_<name>.so)"));
 }
 
 TEST_CASE("a library whose factory throws is refused with its path and the reason", "[registry]") {

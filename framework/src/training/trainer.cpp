@@ -545,9 +545,23 @@ LossValues train_epoch(const Run& run, DistributedGraph& distributed, ProgressBa
     std::vector<std::size_t> indices;
     for (std::size_t k = first; k < std::min(order.size(), first + batch); ++k) indices.push_back(train_idx[order[k]]);
     const LossValues l = distributed.gradients(indices);
-    if (!std::isfinite(l.total))
+    if (!std::isfinite(l.total)) {
+      // Which loss, and whether a step was ever taken: a loss plugin that
+      // returned NaN at the first batch was told to try a smaller --lr, and
+      // that the output kept an epoch that was never written (an outside check).
+      std::string which;
+      for (const auto& [name, value] : l.terms)
+        if (!std::isfinite(value)) which += (which.empty() ? "" : ", ") + name + " " + brief(value);
+      const bool first_step = e == 0 && first == 0 && run.progress.epochs_done == 0;
+      std::error_code ec;
       throw Error("the training loss is " + brief(l.total) + " in epoch " + std::to_string(e + 1) +
-                  " (try a smaller --lr); " + o.out.string() + " keeps the last finished epoch");
+                  (which.empty() ? "" : " (" + which + ")") +
+                  (first_step ? " at the first batch, before any step: the losses or the data give it, not the learning rate"
+                              : " (try a smaller --lr)") +
+                  "; " +
+                  (fs::exists(o.out, ec) ? o.out.string() + " keeps the last finished epoch"
+                                         : "no epoch finished, so nothing was written to " + o.out.string()));
+    }
     {
       const OmpThreadsScope all(o.threads);  // Adam is element-wise: threads do not change its result
       run.learner.adam.step(lr);
