@@ -115,6 +115,31 @@ TEST_CASE("a training fraction trains on the first part of the training split on
   CHECK_THROWS_WITH(train(test::plugins(), o), Catch::Contains("--fraction must be in (0, 1]"));
 }
 
+TEST_CASE("a loss that is NaN at the first batch is named and nothing is written", "[train]") {
+  // A user's loss plugin returning NaN was told "try a smaller --lr; m.h5
+  // keeps the last finished epoch": no step had been taken, no file written,
+  // and the loss was not named (an outside check).
+  TinyData d;
+  std::string graph = test::read_file(test::baseline_graph());
+  const std::size_t at = graph.find("losses:\n");
+  REQUIRE(at != std::string::npos);
+  graph.insert(at + 8, "  nan_loss: 1.0\n");
+  std::ofstream(d.dir / "nan.yaml") << graph;
+  auto o = test::tiny_training(d.data, d.dir / "nan.h5");
+  o.graph = d.dir / "nan.yaml";
+  static Registry* registry = [] {  // kept loaded for the run, as test::plugins()
+    auto* r = new Registry;
+    r->load_path({test::plugin_dir().string()});
+    r->load_file(test::binary_dir() / "test-fixtures/nan_loss/libdrape_plugin_nan_loss.so");
+    return r;
+  }();
+  CHECK_THROWS_WITH(train(*registry, o), Catch::Contains("the training loss is nan in epoch 1 (nan_loss nan) at the first batch, "
+                                                         "before any step") &&
+                                             Catch::Contains("no epoch finished, so nothing was written") &&
+                                             !Catch::Contains("--lr"));
+  CHECK_FALSE(fs::exists(d.dir / "nan.h5"));
+}
+
 TEST_CASE("a seed reproduces the weights bit for bit and another seed does not", "[train]") {
   TinyData d;
   auto o = test::tiny_training(d.data, d.dir / "a.h5");
