@@ -1,6 +1,7 @@
 // grade_garment (garment_grading.hpp).
 #include <drape/errors.hpp>
 #include <drape/garment_grading.hpp>
+#include <drape/garment_layers.hpp>
 #include <drape/geometry/adjacency.hpp>
 #include <drape/geometry/closest_point.hpp>
 
@@ -58,30 +59,26 @@ struct LengthGrade {
     const double at_crotch = top + length * (legs_below - top);
     return floor + (y - floor) * (at_crotch - floor) / (legs_below - floor);
   }
+  // height(y) - y, as place_graded_garment has always added it above the legs.
+  double shift(double y) const { return !legs || y >= legs_below ? (length - 1.0) * (y - top) : height(y) - y; }
 };
-LengthGrade length_grade(const Mesh& mesh, double g, double legs_below, double floor) {
-  const Eigen::Index n = mesh.vertices.rows();
+LengthGrade length_grade(const Eigen::MatrixX3d& x, const Eigen::MatrixX3i& faces, double g, double legs_below,
+                         double floor) {
+  const Eigen::Index n = x.rows();
   LengthGrade out;
   out.length = grade_length(g);
-  out.top = n > 0 ? mesh.vertices.col(1).maxCoeff() : 0.0;
+  out.top = n > 0 ? x.col(1).maxCoeff() : 0.0;
   out.cloth = Eigen::VectorXd::Constant(n, out.length);
   if (!std::isfinite(legs_below) || !std::isfinite(floor) || !(floor < legs_below) || n == 0) return out;
-  std::vector<int> parent(static_cast<std::size_t>(n));
-  std::iota(parent.begin(), parent.end(), 0);
-  auto find = [&](int x) {
-    while (parent[static_cast<std::size_t>(x)] != x)
-      x = parent[static_cast<std::size_t>(x)] = parent[static_cast<std::size_t>(parent[static_cast<std::size_t>(x)])];
-    return x;
-  };
-  for (Eigen::Index f = 0; f < mesh.faces.rows(); ++f)
-    for (int k = 1; k < 3; ++k) parent[static_cast<std::size_t>(find(mesh.faces(f, k)))] = find(mesh.faces(f, 0));
-  std::vector<double> low(static_cast<std::size_t>(n), std::numeric_limits<double>::infinity());
-  for (Eigen::Index v = 0; v < n; ++v) {
-    const auto r = static_cast<std::size_t>(find(static_cast<int>(v)));
-    low[r] = std::min(low[r], mesh.vertices(v, 1));
-  }
-  for (Eigen::Index v = 0; v < n; ++v)
-    if (low[static_cast<std::size_t>(find(static_cast<int>(v)))] < legs_below) out.cloth(v) = 1.0, out.legs = true;
+  const std::vector<int> piece = garment_pieces(faces, static_cast<int>(n));  // per face
+  const int pieces = piece.empty() ? 0 : *std::max_element(piece.begin(), piece.end()) + 1;
+  std::vector<char> reaches_legs(static_cast<std::size_t>(pieces), 0);
+  for (Eigen::Index f = 0; f < faces.rows(); ++f)
+    for (int k = 0; k < 3; ++k)
+      if (x(faces(f, k), 1) < legs_below) reaches_legs[static_cast<std::size_t>(piece[static_cast<std::size_t>(f)])] = 1;
+  for (Eigen::Index f = 0; f < faces.rows(); ++f)
+    if (reaches_legs[static_cast<std::size_t>(piece[static_cast<std::size_t>(f)])])
+      for (int k = 0; k < 3; ++k) out.cloth(faces(f, k)) = 1.0, out.legs = true;
   out.legs_below = legs_below;
   out.floor = floor;
   return out;
@@ -152,7 +149,7 @@ void grade_garment(Garment& garment, double grade, double legs_below, double flo
   garment.fit_grade *= grade;
   Eigen::MatrixX3d& x = garment.mesh.vertices;
   if (x.rows() == 0) return;
-  const LengthGrade lengths = length_grade(garment.mesh, grade, legs_below, floor);
+  const LengthGrade lengths = length_grade(x, garment.mesh.faces, grade, legs_below, floor);
   if (garment.mesh.has_uv()) grade_material_space(garment.mesh, grade, lengths.cloth);  // reads the ungraded heights
   const double cx = x.col(0).mean(), cz = x.col(2).mean();  // around the garment's centre line
   for (Eigen::Index v = 0; v < x.rows(); ++v) {
@@ -169,23 +166,15 @@ void place_graded_garment(Garment& garment, const Eigen::MatrixX3d& ungraded, co
     throw Error("place_graded_garment: the garment or the bodies do not match in size");
   if (ungraded.rows() == 0) return;
   const geometry::BodySurface mean(mean_body, body_faces);
-
-  Mesh ungraded_mesh;
-  ungraded_mesh.vertices = ungraded;
-  ungraded_mesh.faces = garment.mesh.faces;
-  const LengthGrade lengths = length_grade(ungraded_mesh, grade, legs_below, floor);
-  // Each vertex first takes its length grade (down, as the uniform grade
-  // moves it), then follows the body point nearest it there: lowered after
-  // it was carried, a hem kept the offset of the height it came from.
-  Eigen::MatrixX3d lengthened = ungraded;
-  for (Eigen::Index v = 0; v < ungraded.rows(); ++v) lengthened(v, 1) = lengths.height(ungraded(v, 1));
-  const std::vector<geometry::SurfacePoint> on_mean = mean.locate_all(lengthened);
+  const std::vector<geometry::SurfacePoint> on_mean = mean.locate_all(ungraded);
+  const LengthGrade lengths = length_grade(ungraded, garment.mesh.faces, grade, legs_below, floor);
   Eigen::MatrixX3d moved(ungraded.rows(), 3);
   for (Eigen::Index v = 0; v < ungraded.rows(); ++v) {
     const geometry::SurfacePoint& s = on_mean[static_cast<std::size_t>(v)];
     Eigen::Vector3d carried = Eigen::Vector3d::Zero();
     for (int k = 0; k < 3; ++k) carried += s.barycentric[k] * fit_body.row(body_faces(s.face, k)).transpose();
-    const Eigen::Vector3d p = carried + grade * (lengthened.row(v).transpose() - s.point);
+    Eigen::Vector3d p = carried + grade * (ungraded.row(v).transpose() - s.point);
+    p.y() += lengths.shift(ungraded(v, 1));  // the length grade, as grade_garment's
     moved.row(v) = p.transpose() - ungraded.row(v);
   }
   // Neighbours nearest different parts of the body (an armpit's cloth, between
