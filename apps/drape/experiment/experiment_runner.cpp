@@ -31,10 +31,10 @@
 #include <iostream>
 #include <iterator>
 #include <map>
+#include <optional>
 #include <set>
 #include <sstream>
 #include <thread>
-#include <tuple>
 
 namespace drape::cli {
 namespace fs = std::filesystem;
@@ -272,12 +272,28 @@ class Runner {
     fs::path data = dataset(row.data);
     if (!row.on_optimized.empty()) data = optimized_training_data(row);
     const ExperimentTraining& t = row.training;
-    const long epochs = o_.epochs > 0 ? o_.epochs : t.epochs;
+    TrainOptions o;
+    o.graph = row.graph;
+    o.data = data;
+    o.out = model;
+    o.epochs = o_.epochs > 0 ? o_.epochs : t.epochs;
+    o.batch = t.batch;
+    o.lr = t.lr;
+    o.schedule = t.schedule;
+    o.patience = t.patience;
+    o.monitor = t.monitor;
+    o.seed = t.seed;
+    o.train_fraction = row.fraction;
+    o.threads = o_.threads;
+    o.resume = true;
+    o.log = &std::cout;
+    o.progress = &std::cerr;
+    const std::optional<Checkpoint> earlier = fs::exists(model) ? std::optional(read_checkpoint(model)) : std::nullopt;
     // A model trained with other settings than the row's now is no model of
     // this row: a changed lr, batch, seed or patience was "trained already"
     // while the table's heading named the new value (an outside check).
-    const std::string changed = fs::exists(model) ? changed_settings(read_checkpoint(model), row) : "";
-    if (changed.empty() && finished_training(model, row.graph, data, epochs)) {
+    const std::string changed = earlier ? changed_settings(*earlier, o) : "";
+    if (changed.empty() && finished_training(model, earlier, row.graph, data, o.epochs)) {
       std::printf("model %s: trained already\n", model.c_str());
       trained_.insert(row.name);
       return model;
@@ -285,38 +301,22 @@ class Runner {
     // A model of another graph (edited since), finished or not, is no run to
     // resume: drape train --resume refused it, and the row stopped there.
     // Nor is one trained on other data (its stamp), or with other settings.
-    const bool edited = fs::exists(model) && read_checkpoint(model).graph != parse_graph_file(row.graph).text;
+    const bool edited = earlier && earlier->graph != parse_graph_file(row.graph).text;
     const bool other_data = !edited && made_from_other(model, {data});
     const bool other_settings = !edited && !other_data && !changed.empty();
     if (edited) std::printf("model %s: %s was edited since it was trained: trained again\n", model.c_str(), row.graph.c_str());
     if (other_data)
       std::printf("model %s: trained on other data than %s: trained again\n", model.c_str(), data.c_str());
     if (other_settings) std::printf("model %s: trained with %s: trained again\n", model.c_str(), changed.c_str());
+    o.force = edited || other_data || other_settings;
     std::vector<std::string> args{"train", row.graph.string(), "--data", data.string(), "--out", model.string(), "--epochs",
-                                  std::to_string(epochs), "--batch", std::to_string(t.batch), "--lr", exact(t.lr), "--schedule",
+                                  std::to_string(o.epochs), "--batch", std::to_string(t.batch), "--lr", exact(t.lr), "--schedule",
                                   t.schedule, "--patience", std::to_string(t.patience), "--seed", std::to_string(t.seed),
                                   "--fraction", exact(row.fraction), "--threads", threads()};
     if (!t.monitor.empty()) args.insert(args.end(), {"--monitor", t.monitor});
     // (drape train takes one of them: the line printed is one a user can run.)
-    args.push_back(edited || other_data || other_settings ? "--force" : "--resume");
+    args.push_back(o.force ? "--force" : "--resume");
     if (announce(args)) {
-      TrainOptions o;
-      o.graph = row.graph;
-      o.data = data;
-      o.out = model;
-      o.epochs = epochs;
-      o.batch = t.batch;
-      o.lr = t.lr;
-      o.schedule = t.schedule;
-      o.patience = t.patience;
-      o.monitor = t.monitor;
-      o.seed = t.seed;
-      o.train_fraction = row.fraction;
-      o.threads = o_.threads;
-      o.resume = true;
-      o.force = edited || other_data || other_settings;
-      o.log = &std::cout;
-      o.progress = &std::cerr;
       // The stamp goes first: a run killed while training again would leave
       // the old one, and the next run with the old data would resume the
       // half-trained model of the new (an outside check).
@@ -342,49 +342,50 @@ class Runner {
 
   // A model whose training ended (all epochs, or stopped early) on this data;
   // anything else goes back to drape train --resume, which checks the settings.
-  // The settings a model records (drape train's resume settings) that
-  // differ from the row's, in words ("lr 0.001 where the row now gives
-  // 0.005, ..."); "" when none does. Threads are not compared: they change
-  // the sums' rounding only, and a rerun may be given another --threads.
-  static std::string changed_settings(const Checkpoint& c, const ExperimentRow& row) {
-    const ExperimentTraining& t = row.training;
-    const auto recorded = [&](const char* key, const std::string& absent) {
-      const auto it = c.meta.find(key);
-      return it == c.meta.end() ? absent : it->second;
-    };
-    const std::vector<std::tuple<const char*, std::string, std::string>> settings{
-        {"lr", recorded("lr", ""), exact(t.lr)},
-        {"batch", recorded("batch", ""), std::to_string(t.batch)},
-        {"seed", recorded("seed", ""), std::to_string(t.seed)},
-        {"schedule", recorded("schedule", ""), t.schedule},
-        {"patience", recorded("patience", ""), std::to_string(t.patience)},
-        {"monitor", recorded("monitor_loss", ""), t.monitor},
-        {"fraction", recorded("train_fraction", exact(1.0)), exact(row.fraction)}};
-    // Compared exactly, shown short (0.005, not 0.0050000000000000001).
-    const auto shown = [](const std::string& value) -> std::string {
-      if (value.empty()) return "(none)";
-      if (value.find_first_of(".eE") == std::string::npos) return value;  // a count or seed, as written
-      char* end = nullptr;
-      const double v = std::strtod(value.c_str(), &end);
-      if (end == value.c_str() || *end != '\0') return value;
-      char b[32];
-      std::snprintf(b, sizeof b, "%.6g", v);
-      return b;
-    };
+  // The settings a model records (drape train's recorded_settings) that
+  // differ from those the row trains with, in words ("lr 0.001 where the row
+  // now gives 0.005, ..."); "" when none does. Threads are not compared: they
+  // change the sums' rounding only, and a rerun may be given another --threads.
+  static std::string changed_settings(const Checkpoint& c, const TrainOptions& o) {
+    std::map<std::string, std::string> now = recorded_settings(o);
+    // Every key a model may record: those of options with each optional setting given.
+    TrainOptions every = o;
+    every.monitor = "m", every.weight_decay = 1, every.train_fraction = 0.5, every.schedule = "cosine", every.init = "i";
+    every.init_widen = every.init_partial = true;
     std::string out;
-    for (const auto& [name, was, now] : settings)
-      if (was != now) out += std::string(out.empty() ? "" : ", ") + name + " " + shown(was) + " where the row now gives " + shown(now);
+    for (const auto& [key, unused] : recorded_settings(every)) {
+      // (Epochs are finished_training's: every model records its planned
+      // epochs, and with a constant schedule more of them resume.)
+      if (key == "threads" || key == "epochs") continue;
+      const auto was = c.meta.find(key);
+      const auto is = now.find(key);
+      const std::string before = was == c.meta.end() ? "" : was->second, after = is == now.end() ? "" : is->second;
+      if (before != after)
+        out += std::string(out.empty() ? "" : ", ") + key + " " + shown(before) + " where the row now gives " + shown(after);
+    }
     return out;
   }
+  // Compared exactly, shown short (0.005, not 0.0050000000000000001).
+  static std::string shown(const std::string& value) {
+    if (value.empty()) return "(none)";
+    if (value.find_first_of(".eE") == std::string::npos) return value;  // a count or seed, as written
+    char* end = nullptr;
+    const double v = std::strtod(value.c_str(), &end);
+    if (end == value.c_str() || *end != '\0') return value;
+    char b[32];
+    std::snprintf(b, sizeof b, "%.6g", v);
+    return b;
+  }
 
-  static bool finished_training(const fs::path& model, const fs::path& graph, const fs::path& data, long epochs) {
-    if (!fs::exists(model) || !up_to_date(model, {data})) return false;
-    const Checkpoint c = read_checkpoint(model);
-    if (c.graph != parse_graph_file(graph).text) return false;  // the graph was edited since
-    const auto status = c.meta.find("status");
-    const auto planned = c.meta.find("epochs");
-    return status != c.meta.end() && (status->second == "finished" || status->second == "early stopped") &&
-           planned != c.meta.end() && planned->second == std::to_string(epochs);
+  // `earlier`: the model file's checkpoint, read once by the caller (none: no file).
+  static bool finished_training(const fs::path& model, const std::optional<Checkpoint>& earlier, const fs::path& graph,
+                                const fs::path& data, long epochs) {
+    if (!earlier || !up_to_date(model, {data})) return false;
+    if (earlier->graph != parse_graph_file(graph).text) return false;  // the graph was edited since
+    const auto status = earlier->meta.find("status");
+    const auto planned = earlier->meta.find("epochs");
+    return status != earlier->meta.end() && (status->second == "finished" || status->second == "early stopped") &&
+           planned != earlier->meta.end() && planned->second == std::to_string(epochs);
   }
 
   // The source row's model optimised on every train and validation body: the seed's retraining data.

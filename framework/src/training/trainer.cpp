@@ -294,25 +294,12 @@ void check_monitor(const GraphSpec& spec, const TrainOptions& o) {
 std::map<std::string, std::string> resume_settings(const TrainOptions& o, const TrainingData& data,
                                                    const DatasetReader& reader, int ranks) {
   const DatasetLayout& layout = reader.layout();
-  std::map<std::string, std::string> settings{
-      {"training_data", training_data_fingerprint(reader, data.train_idx, data.val_idx)},
-      {"assets", data.assets_spec.yaml()},
-      {"dataset_template_hash", layout.template_hash},
-      {"train_samples", std::to_string(data.train_idx.size())},
-      {"val_samples", std::to_string(data.val_idx.size())},
-      {"seed", std::to_string(o.seed)},
-      {"batch", std::to_string(o.batch)},
-      {"threads", std::to_string(o.threads)},
-      {"lr", exact(o.lr)},
-      {"schedule", o.schedule},
-      {"patience", std::to_string(o.patience)}};
-  if (!o.monitor.empty()) settings["monitor_loss"] = o.monitor;  // absent: the total, as before the option
-  if (o.weight_decay != 0.0) settings["weight_decay"] = exact(o.weight_decay);  // absent: 0, as before the option
-  if (o.train_fraction != 1.0) settings["train_fraction"] = exact(o.train_fraction);  // absent: 1, as before it was recorded
-  if (o.schedule == "cosine") settings["epochs"] = std::to_string(o.epochs);
-  if (!o.init.empty()) settings["init"] = o.init.string();
-  if (o.init_widen) settings["init_widen"] = "1";
-  if (o.init_partial) settings["init_partial"] = "1";
+  std::map<std::string, std::string> settings = recorded_settings(o);
+  settings["training_data"] = training_data_fingerprint(reader, data.train_idx, data.val_idx);
+  settings["assets"] = data.assets_spec.yaml();
+  settings["dataset_template_hash"] = layout.template_hash;
+  settings["train_samples"] = std::to_string(data.train_idx.size());
+  settings["val_samples"] = std::to_string(data.val_idx.size());
   if (ranks > 1) settings["ranks"] = std::to_string(ranks);  // like threads, they change the sums' rounding
   return settings;
 }
@@ -757,6 +744,23 @@ TrainReport train(const Registry& registry, const TrainOptions& given) {
   report.finished = progress.status != "training";
   report.seconds = since(run_start);
   return report;
+}
+
+std::map<std::string, std::string> recorded_settings(const TrainOptions& o) {
+  std::map<std::string, std::string> settings{{"seed", std::to_string(o.seed)},
+                                              {"batch", std::to_string(o.batch)},
+                                              {"threads", std::to_string(o.threads)},
+                                              {"lr", exact(o.lr)},
+                                              {"schedule", o.schedule},
+                                              {"patience", std::to_string(o.patience)}};
+  if (!o.monitor.empty()) settings["monitor_loss"] = o.monitor;  // absent: the total, as before the option
+  if (o.weight_decay != 0.0) settings["weight_decay"] = exact(o.weight_decay);  // absent: 0, as before the option
+  if (o.train_fraction != 1.0) settings["train_fraction"] = exact(o.train_fraction);  // absent: 1, as before it was recorded
+  if (o.schedule == "cosine") settings["epochs"] = std::to_string(o.epochs);
+  if (!o.init.empty()) settings["init"] = o.init.string();
+  if (o.init_widen) settings["init_widen"] = "1";
+  if (o.init_partial) settings["init_partial"] = "1";
+  return settings;
 }
 
 }  // namespace drape

@@ -19,6 +19,7 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <map>
 #include <iosfwd>
 #include <memory>
 #include <string>
@@ -101,6 +102,12 @@ struct TrainReport {
 // an existing output without resume/force, or a state that belongs to other
 // settings; Error when the loss stops being finite.
 TrainReport train(const Registry& registry, const TrainOptions& options);
+
+// The settings of `options` a model and its training state record in their
+// metadata (lr, batch, seed, schedule, patience, monitor_loss, ...; those at
+// their old defaults left out, as files made before them lack them), which a
+// resume must match; the data's own fingerprints are added by train().
+std::map<std::string, std::string> recorded_settings(const TrainOptions& options);
 
 // "<out>.state"
 std::filesystem::path training_state_path(const std::filesystem::path& out);
