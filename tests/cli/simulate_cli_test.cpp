@@ -224,3 +224,20 @@ TEST_CASE("a body the body model cannot reach is refused naming the scene line o
   CHECK_THAT(out, Catch::Contains("command line: --girth:") && Catch::Contains("'belly'"));
   CHECK_FALSE(std::filesystem::exists(dir / "g.obj"));
 }
+
+TEST_CASE("an energy plugin that is NaN is named by drape simulate and not taken for blocked contact", "[cli][simulate]") {
+  test::TempDir dir;
+  std::string scene = test::tiny_simulation_scene();
+  scene.insert(scene.find("solver:"), "  nan_energy: {}\n");
+  std::ofstream(dir / "nan.yaml") << scene;
+  std::string out;
+  const int code = test::run(test::drape_program().string() + " simulate " + (dir / "nan.yaml").string() +
+                                 " --plugin-path " + (test::binary_dir() / "test-fixtures/nan_energy").string() +
+                                 " --out " + (dir / "g.obj").string(),
+                             out);
+  INFO(out);
+  CHECK(code != 0);
+  CHECK(out.find("'nan_energy' (its value is nan)") != std::string::npos);
+  CHECK(out.find("grows into the garment") == std::string::npos);
+  CHECK_FALSE(std::filesystem::exists(dir / "g.obj"));
+}

@@ -37,6 +37,23 @@ Eigen::MatrixX3d per_vertex(const Eigen::VectorXd& v) {
 
 bool finite(const Eigen::MatrixX3d& m) { return m.allFinite(); }
 
+// The energies whose value or gradient is not finite at x, each named with
+// what failed, so that a NaN from one plugin is blamed on it and not on the
+// step that met it (a drape that cannot move reads as blocked contact).
+std::string non_finite_energies(const std::vector<NamedEnergy>& energies, const Eigen::MatrixX3d& x) {
+  std::string named;
+  for (const NamedEnergy& e : energies) {
+    const double value = e.energy->value(x);
+    Eigen::MatrixX3d g = Eigen::MatrixX3d::Zero(x.rows(), 3);
+    e.energy->add_gradient(x, g);
+    std::string what;
+    if (!std::isfinite(value)) what = "its value is " + std::to_string(value);
+    if (!g.allFinite()) what += std::string(what.empty() ? "" : " and ") + "its gradient is not finite";
+    if (!what.empty()) named += std::string(named.empty() ? "" : "; ") + "'" + e.name + "' (" + what + ")";
+  }
+  return named;
+}
+
 // Scales a step so that no vertex moves farther than `limit` (a long step
 // could carry cloth through a thin limb).
 void cap_longest_move(Eigen::MatrixX3d& step, double limit) {
@@ -245,6 +262,9 @@ class ClothSolver::Impl::NewtonIterations {
   // decrease; returns Phi at the end.
   double run(double settled_below) {
     report_.phi_start = s_.phi(x_, x_hat_);
+    // An accepted state has a finite energy (a barrier is infinite only at
+    // contact, which no accepted step reaches), so NaN here is an energy's bug.
+    if (std::isnan(report_.phi_start)) fail_non_finite();
     phi_x_ = report_.phi_start;
     g_.resize(n_, 3);
     // The inertia's diagonal M / h^2 of every Newton matrix of this step.
@@ -293,6 +313,8 @@ class ClothSolver::Impl::NewtonIterations {
   StepReport& report_;
   const int n_ = static_cast<int>(x_.rows());
   const double h_ = s_.settings_.time_step, inv_h2_ = 1.0 / (h_ * h_);
+  // Names the energies that are not finite at x_ and throws.
+  [[noreturn]] void fail_non_finite() const;
   double phi_x_ = 0;
   Eigen::MatrixX3d g_;
   Eigen::VectorXd diagonal_;
@@ -306,7 +328,14 @@ void ClothSolver::Impl::NewtonIterations::gradient(const Eigen::MatrixX3d& at) {
     if (const Dissipation* d = e.energy->dissipation()) d->add_gradient(at, g_);
   }
   s_.timings_.gradient += since(t);
-  if (!finite(g_)) throw Error("solver: the gradient became non-finite (an energy produced NaN or inf)");
+  if (!finite(g_)) fail_non_finite();
+}
+
+void ClothSolver::Impl::NewtonIterations::fail_non_finite() const {
+  const std::string named = non_finite_energies(s_.energies_, x_);
+  throw Error("solver: the energy is not finite at an accepted state: " +
+              (named.empty() ? std::string("no single energy is (their sum or the inertia is)") : named) +
+              "; an energy plugin must return finite values and gradients wherever the cloth may go");
 }
 
 // The gradient at x, and whether it is small enough to stop: converged, or
