@@ -241,3 +241,18 @@ TEST_CASE("an energy plugin that is NaN is named by drape simulate and not taken
   CHECK(out.find("grows into the garment") == std::string::npos);
   CHECK_FALSE(std::filesystem::exists(dir / "g.obj"));
 }
+
+TEST_CASE("an effect's parameters refused by its own plugin are placed at the scene's line", "[cli][simulate]") {
+  test::TempDir dir;
+  std::string scene = test::tiny_simulation_scene();
+  const std::string margin = "margin: 0.004";
+  scene.replace(scene.find(margin), margin.size(), margin + ", smoothing: 0.001");  // within range, but below the margin
+  std::ofstream(dir / "smooth.yaml") << scene;
+  std::string out;
+  const int code = test::run(test::drape_program().string() + " simulate " + (dir / "smooth.yaml").string() +
+                                 " --out " + (dir / "g.obj").string(),
+                             out);
+  INFO(out);
+  CHECK(code == 2);
+  CHECK(out.find("smooth.yaml:7: collision: smoothing (0.001000 m) must exceed the margin") != std::string::npos);
+}

@@ -273,7 +273,11 @@ Simulation::Simulation(const Registry& registry, Scene scene) : registry_(regist
   for (const SceneEffect& e : scene_.effects) {
     const PluginDescriptor& d = registry_.get(e.name);
     effect_params_.emplace_back(d.params, e.params, "effect '" + e.name + "'");
-    needs_body_ = needs_body_ || registry_.create_energy(e.name, effect_params_.back())->needs_body();
+    try {
+      needs_body_ = needs_body_ || registry_.create_energy(e.name, effect_params_.back())->needs_body();
+    } catch (...) {
+      rethrow_at(e.where, e.name);  // a plugin's own check of its parameters: at the effect's line
+    }
   }
   cloth_loop_ = garment_material_girth(garment_->mesh, mean_body_);  // once, for every fit question below and in run()
   // Where the garment's cloth at rest comes from: its UVs, or its mesh as
@@ -449,7 +453,11 @@ std::vector<NamedEnergy> Simulation::make_energies(const BodyQuery* body, const 
     context.body = e->bounds_steps() && step_bounding_body ? step_bounding_body : body;
     if (e->needs_body() && !context.body)
       throw ConfigError(scene_.effects[i].where, "effect '" + name + "' needs a body and none was given");
-    e->bind(context);
+    try {
+      e->bind(context);
+    } catch (...) {
+      rethrow_at(scene_.effects[i].where, name);  // a setting the plugin refuses once it sees the garment
+    }
     energies.push_back({name, std::move(e)});
   }
   return energies;
