@@ -126,10 +126,12 @@ int run(const std::vector<std::string>& args) {
               "bodies of BMI %g and %g in turn\n\n",
               assets.garment->mesh.num_vertices(), assets.body.num_vertices(), output.c_str(), weights, batch_size,
               nn::basis_products_version(), nn::dot_rows_version(), bmi, other_bmi);
+  // Above the tables, not between them: each body's size as predict would choose it.
+  for (const std::string& note : size_notes) std::printf("- garment size: %s\n", note.c_str());
+  if (!size_notes.empty()) std::printf("\n");
   std::printf("| ms per body (best of %d) | median | multiply-adds per body | GFLOP/s (2 per multiply-add) |\n|---|---|---|---|\n",
               repeats);
   std::printf("| %.3f | %.3f | %.4g | %.2f |\n", best, median, macs, 2.0 * macs / (best * 1e-3) / 1e9);
-  for (const std::string& note : size_notes) std::printf("garment size: %s\n", note.c_str());
   if (posing_ms >= 0)
     std::printf("\nposing the body and its joint transforms (the inputs unposed_body, joint_transforms, pose; not in the "
                 "figures above): %.3f ms per body, once\n",

@@ -319,7 +319,7 @@ TEST_CASE("size auto: a model takes the grade and predict chooses the body's siz
   CHECK_THAT(out, Catch::Contains("size " + expected.size + " by the tailor's rule"));
   // bench infer times the body in that size too, not the design size.
   REQUIRE(test::run(drape + "bench infer --model " + model + " --bmi 55 --repeats 1", out) == 0);
-  CHECK_THAT(out, Catch::Contains("garment size: size " + expected.size + " by the tailor's rule"));
+  CHECK_THAT(out, Catch::Contains("- garment size: size " + expected.size + " by the tailor's rule"));
   REQUIRE(test::run(drape + "predict --model " + model + " --bmi 55 --garment-size " + expected.size + " --out " +
                         (dir / "named.obj").string(),
                     out) == 0);
