@@ -217,8 +217,8 @@ int domain(const std::vector<std::string>& args) {
 int set(const std::vector<std::string>& args) {
   po::options_description opts("drape model set");
   opts.add_options()("model", po::value<std::string>()->required(), "model file")(
-      "set", po::value<std::vector<std::string>>(), "node.param=value: a parameter of the model's graph that leaves the "
-                                                    "weights alone, e.g. post.enabled=true (repeatable)")(
+      "set", po::value<std::vector<std::string>>(), "node.param=value: a parameter of a node without learnt weights, "
+                                                    "e.g. post.enabled=true (repeatable)")(
       "out", po::value<std::string>(), "write here instead of replacing MODEL");
   po::positional_options_description positional;
   positional.add("model", 1);
@@ -248,7 +248,7 @@ int run(const std::vector<std::string>& args) {
   if (action == "--help" || action == "-h" || action == "help") {
     std::cout << usage << "\n\n  info    what a model file holds and the body domain it was trained on\n"
                           "  domain  record the domain of a dataset's training split in a model\n"
-                          "  set     store graph parameters that leave the weights alone (e.g. post.enabled=true)\n";
+                          "  set     store parameters of graph nodes without learnt weights (e.g. post.enabled=true)\n";
     return 0;
   }
   throw UsageError("unknown action '" + action + "'" + did_you_mean(action, {"info", "domain", "set"}) + "\n" + usage);

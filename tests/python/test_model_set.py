@@ -1,7 +1,8 @@
 """`drape model set`: a graph parameter that leaves the weights alone (here the push-out after the network,
 `post.enabled`) stored in a model file does what `--set` does for one run; the weights, metadata and domain stay
 as they were; a node the graph lacks, a value the node refuses or a parameter that changes a weight's shape is
-refused by name and nothing is written."""
+refused by name and nothing is written, and so is a parameter of a node with learnt weights (another stride or
+activation keeps the shapes but changes what the weights compute)."""
 import filecmp
 
 import h5py
@@ -70,6 +71,11 @@ def test_what_cannot_be_set_is_refused_and_nothing_is_written(trained, tmp_path)
     assert "enabled" in err and "true or false" in err
     _, err = run_drape("model", "set", model, "--set", "transfer.width=32", "--out", out, expect=2)
     assert "transfer" in err and "[1, 32]" in err
+    # Parameters that keep the weights' shapes but change what they compute (the outside tester's cases: a
+    # stride of 2 moved the garment 2.2 cm, a relu 0.8 cm, a tanh 58 cm, all silently).
+    for change in ("encoder.stride=2", "transfer.activation=relu", "encoder.activation=tanh"):
+        _, err = run_drape("model", "set", model, "--set", change, "--out", out, expect=2)
+        assert f"{change.split('=')[0]}: node '{change.split('.')[0]}' has learnt weights" in err, err
     assert not out.exists()
     copy = tmp_path / "copy.h5"
     copy.write_bytes(model.read_bytes())

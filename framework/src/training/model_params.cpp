@@ -11,6 +11,7 @@
 #include <yaml-cpp/yaml.h>
 
 #include <algorithm>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -58,6 +59,18 @@ std::vector<std::string> set_model_params(const Registry& registry, const fs::pa
   // fit) happens before anything is written. Its weights are the file's (all
   // or nothing) and are what is written back.
   Model model = Model::load(registry, model_file, overrides);
+  // A node with learnt weights computes what it was trained to only with the
+  // parameters it was trained with: another stride or activation keeps every
+  // weight's shape and gives another garment, silently. `--set` for one run
+  // (predict, eval) stays open for such experiments; a stored model does not.
+  std::set<std::string> learnt;
+  for (const auto& [name, weight] : model.graph().weights()) learnt.insert(name.substr(0, name.find('/')));
+  for (const auto& [node, params] : overrides)
+    if (learnt.count(node))
+      throw ConfigError(model_file.string() + ": " + node + "." + params.begin()->first + ": node '" + node +
+                        "' has learnt weights, and they were trained with its parameters as they are: a changed one "
+                        "changes what they compute. Give --set to predict or eval to try it for one run, or train again; "
+                        "model set stores parameters of nodes without weights (e.g. the push-out 'post')");
   Checkpoint c = model.checkpoint();
   std::vector<std::string> changes;
   c.graph = graph_with_overrides(c.graph, overrides, model_file.string(), &changes);
