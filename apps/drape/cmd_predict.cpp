@@ -26,7 +26,7 @@ int run(const std::vector<std::string>& args) {
                       ", on the human rig; models/tshirt-coarse.h5 is the mannequin's; with a pose, models/" +
                       posed_model_name + ", the human rig's too; models/tshirt-coarse-posed.h5 is the mannequin's)")
                          .c_str())(
-      "out", po::value<std::string>(), "garment mesh to write (.obj, .ply, .gltf, .glb): the template's faces and UVs")(
+      "out", po::value<std::string>(), "garment mesh to write (.obj, .ply, .gltf, .glb): the template's faces, the UVs of the size worn")(
       "body-out", po::value<std::string>(), "also write the body mesh")(
       "svg", po::value<std::string>(), "also draw the drape, the garment coloured by its distance to the body (.svg: front view; .html: a 3D viewer)");
   add_model_body_options(opts, "body mesh (.obj, .ply, .gltf, .glb, ...) in the model's body topology");
@@ -64,7 +64,12 @@ int run(const std::vector<std::string>& args) {
   const auto start = std::chrono::steady_clock::now();
   const Tensor garment = model.predict(batch);
   const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-  Mesh out = model.assets().garment->mesh;  // the template's faces and UVs
+  Mesh out = model.assets().garment->mesh;  // the template's faces
+  // The UVs of the pattern the body wears (its size's, for a model of drapes
+  // in each body's own size), as simulate writes them: the file's own
+  // material space, which render's strain and a user's tools read.
+  const Mesh& pattern = worn_pattern(model, batch);
+  if (pattern.has_uv()) out.uv = pattern.uv, out.uv_faces = pattern.uv_faces;
   out.vertices = moved_by.back(garment.mat(0).cast<double>());
   if (!out.vertices.allFinite()) throw Error("the model predicted a non-finite vertex");
   const geometry::BodySurface surface(body.vertices, body.faces);

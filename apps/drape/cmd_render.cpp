@@ -63,11 +63,8 @@ std::vector<double> worn_rest_lengths(const Registry& registry, const Mesh& temp
   if (reader) {
     const WornGarments worn = worn_garments(registry, *reader, {sample});
     if (const std::vector<double>* rest = worn.rest_of(0)) return *rest;
-  } else if (model && batch && !batch->garment_grade.empty() && model->garment_sizes()) {
-    // The size the push-out held the prediction to (built then, or now).
-    const GarmentSizes& sizes = *model->garment_sizes();
-    if (const std::optional<std::size_t> size = sizes.find(batch->garment_grade(0, 0, 0)))
-      return face_edge_rest_lengths(sizes.material(*size));
+  } else if (model && batch) {
+    return face_edge_rest_lengths(worn_pattern(*model, *batch));  // the size the push-out held the prediction to
   }
   return face_edge_rest_lengths(template_mesh);
 }
@@ -95,8 +92,12 @@ void draw(const po::variables_map& vm, const std::string& colour, const std::str
     std::snprintf(caption, sizeof caption, "ME %.2f cm, max %.2f cm, p = %.2f%%", values.mean(), values.maxCoeff(), 100.0 * p);
   } else {
     values = edge_strain_percent(garment, rest_lengths);
-    scale = {"edge length change against the material space (%)", 0.0, 10.0};
-    std::snprintf(caption, sizeof caption, "mean strain %.2f%%, max %.2f%%, p = %.2f%%", values.mean(), values.maxCoeff(), 100.0 * p);
+    // Per vertex, and unsigned: said on the legend and in the caption (an
+    // outside check read the max as the most strained edge, which eval's
+    // strain_max is; a torn edge is averaged with its neighbours here).
+    scale = {"mean |edge length change| at each vertex, against the material space (%)", 0.0, 10.0};
+    std::snprintf(caption, sizeof caption, "mean strain %.2f%%, max %.2f%% (vertex means of |edge length change|), p = %.2f%%",
+                  values.mean(), values.maxCoeff(), 100.0 * p);
   }
   // What p leaves out, as predict and simulate count it: edges through the
   // body with both ends outside, and the cloth through itself.
@@ -207,6 +208,8 @@ int run(const std::vector<std::string>& args) {
   if (vm.count("garment") && vm.count("body")) {
     const std::string garment_file = vm["garment"].as<std::string>(), body_file = vm["body"].as<std::string>();
     const Mesh given = read_mesh(garment_file);
+    // A cut-short file (vertices, no faces) drew the body alone, "p = 0.00%".
+    if (given.num_faces() == 0) throw ConfigError(garment_file + ": has no faces to draw or measure");
     if (given.num_vertices() != model.assets().garment->mesh.num_vertices()) {
       if (colour != "distance")
         throw UsageError("--colour " + colour + " compares with the model's template or a dataset's drape; " +
@@ -236,11 +239,23 @@ int run(const std::vector<std::string>& args) {
   body.faces = model.assets().body.faces;
   body.vertices = moved_by.back(batch.body.mat(0).cast<double>());
   Mesh garment = model.assets().garment->mesh;
+  std::vector<double> own_rest_lengths;  // a --garment file's strain against its own UVs
   if (vm.count("garment")) {
     const Mesh given = read_mesh(vm["garment"].as<std::string>());
     if (given.num_vertices() != garment.num_vertices())
       throw ConfigError(vm["garment"].as<std::string>() + " has " + std::to_string(given.num_vertices()) +
                         " vertices, but the model's garment template has " + std::to_string(garment.num_vertices()));
+    // A file's UVs are its material space (simulate and predict write the
+    // size worn): a drape simulated in size large was measured against the
+    // size the tailor's rule gives the body, 8 % strained where it was at
+    // rest. --garment-size or --garment-grade still names the pattern.
+    if (colour == "strain" && given.has_uv() && given.faces == garment.faces && !vm.count("garment-size") &&
+        !vm.count("garment-grade")) {
+      own_rest_lengths = face_edge_rest_lengths(given);
+      notes.push_back("strain against " + vm["garment"].as<std::string>() + "'s own UVs (its material space; " +
+                      "--garment-size names a size's pattern instead)");
+      std::fprintf(stderr, "note: %s\n", notes.back().c_str());
+    }
     garment.vertices = given.vertices;
     what = vm["garment"].as<std::string>() + " on " + what;
   } else {
@@ -249,9 +264,10 @@ int run(const std::vector<std::string>& args) {
   }
 
   draw(vm, colour, what, notes, body, garment, truth,
-       colour == "strain" ? worn_rest_lengths(registry, model.assets().garment->mesh, data ? &*data : nullptr,
-                                              sample_index(vm), &model, &batch)
-                          : std::vector<double>());
+       colour != "strain"          ? std::vector<double>()
+       : !own_rest_lengths.empty() ? own_rest_lengths
+                                   : worn_rest_lengths(registry, model.assets().garment->mesh, data ? &*data : nullptr,
+                                                       sample_index(vm), &model, &batch));
   return 0;
 }
 

@@ -4,6 +4,7 @@
 #include <drape/bodies/given_body.hpp>
 #include <drape/bodies/limb_turns.hpp>
 #include <drape/bodies/pose.hpp>
+#include <drape/garment_sizes.hpp>
 #include <drape/geometry/body_units.hpp>
 #include <drape/io/checkpoint.hpp>
 #include <drape/io/shipped_files.hpp>
@@ -169,6 +170,14 @@ void add_model_body_options(po::options_description& options, const std::string&
       "for a model of posed drapes: the body's pose, name=degrees,... (docs/poses.md); the body given or made is "
       "taken as unposed")("pose-file", po::value<std::string>(), "the same from a YAML map of joint angle names to degrees")(
       "smpl-theta", po::value<std::string>(), "the same as SMPL's θ from a text file (SMPL body models)");
+}
+
+const Mesh& worn_pattern(const Model& model, const SampleBatch& batch) {
+  if (!batch.garment_grade.empty() && model.garment_sizes()) {
+    const GarmentSizes& sizes = *model.garment_sizes();
+    if (const std::optional<std::size_t> size = sizes.find(batch.garment_grade(0, 0, 0))) return sizes.material(*size);
+  }
+  return model.assets().garment->mesh;
 }
 
 std::string asked_body_words(const po::variables_map& vm) {

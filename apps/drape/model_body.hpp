@@ -34,6 +34,13 @@ SampleBatch model_body(const Model& model, const po::variables_map& vm, BodyMove
                        std::vector<std::string>* printed = nullptr, const Pose* fallback_pose = nullptr,
                        const std::string& fallback_source = "", bool refuse_crossing = false);
 
+// The pattern the batch's first body wears: the material space (a mesh with
+// UVs) of the size chart's size of the grade it was fed, for a model of drapes
+// in each body's own size; else the model's template. Its UVs are what a
+// garment file written for that body carries (as simulate writes the size
+// worn), and what the garment's strain is measured against.
+const Mesh& worn_pattern(const Model& model, const SampleBatch& batch);
+
 // The body asked for in words, for a picture's title: "BMI 30, 1.60 m, sex 0,
 // posed shoulder_abduction=40, size large" (--bmi and what goes with it), or
 // the --body file.

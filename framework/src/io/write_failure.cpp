@@ -30,7 +30,9 @@ std::string write_failure_cause(const fs::path& file, bool failed) {
   if (const std::size_t n = file.filename().string().size(); n > kLongestName)
     return "its name is " + std::to_string(n) + " characters long; drape writes files named after it with up to " +
            std::to_string(255 - kLongestName) + " more, past the 255 a file system takes: give a shorter name";
-  if (!fs::is_directory(folder, ec)) return "folder '" + folder.string() + "' does not exist";
+  if (!fs::is_directory(folder, ec))
+    return fs::exists(folder, ec) ? "'" + folder.string() + "' is a file, not a folder"
+                                  : "folder '" + folder.string() + "' does not exist";
   struct statvfs info {};
   if (::statvfs(folder.c_str(), &info) == 0) {
     if (info.f_flag & ST_RDONLY) return "cannot write in '" + folder.string() + "' (read-only file system)";
