@@ -42,7 +42,7 @@ TEST_CASE("render writes an HTML viewer and an SVG of a predicted drape, with th
   const std::string page = read(dir / "d.html");
   CHECK_THAT(page, Catch::StartsWith("<!DOCTYPE html>"));
   CHECK_THAT(page, Catch::Contains("id=\"figure-data\""));
-  CHECK_THAT(page, Catch::Contains("edge length change against the material space"));
+  CHECK_THAT(page, Catch::Contains("edge length change| at each vertex, against the material space"));
   CHECK(page.find("http://") == std::string::npos);  // self-contained: nothing to fetch
   CHECK(page.find("https://") == std::string::npos);
   REQUIRE(test::run(drape + "--bmi 30 --out " + (dir / "d.svg").string(), out) == 0);
