@@ -102,7 +102,7 @@ int run(const std::vector<std::string>& args) {
     throw UsageError(text);
   }
   // Before anything looks at the output (output_lock.hpp).
-  const OutputLock lock(vm["out"].as<std::string>(), "drape optimize");
+  const OutputLock lock(vm["out"].as<std::string>(), "drape optimize", vm.count("data") > 0);  // --data: resumable
   if (vm.count("data")) {
     // It said "delete it to generate it again", of the dataset it reads.
     refuse_output_among_inputs(vm["out"].as<std::string>(), dataset_inputs(vm["data"].as<std::string>()), "--out");

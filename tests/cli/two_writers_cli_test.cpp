@@ -64,8 +64,25 @@ TEST_CASE("a job stopped by SIGTERM or SIGHUP or SIGPIPE leaves no lock file bes
     // And it says why it ended (an experiment stopped so ended with no word: an outside check).
     if (std::string(signal) != "PIPE")
       CHECK_THAT(test::read_file(dir / "err.txt"),
-                 Catch::Contains(std::string("drape: stopped by SIG") + signal + ": what was finished is kept"));
+                 Catch::Contains(std::string("drape: stopped by SIG") + signal + ": nothing was written"));  // one body: no resume
   }
+}
+
+TEST_CASE("a resumable job stopped by SIGTERM says what it kept is kept", "[cli][lock]") {
+  // The single-body optimize above keeps nothing and says so; generate keeps
+  // its finished samples in the .partial and a second run goes on.
+  test::TempDir dir;
+  std::ofstream(dir / "tiny.yaml") << test::tiny_simulation_scene();
+  std::string out;
+  const std::string job = test::drape_program().string() + " generate " + (dir / "tiny.yaml").string() +
+                          " --count 1000 --seed 1 --threads 1 --out " + (dir / "d.h5").string();
+  CHECK(test::run("env DRAPE_CACHE_DIR=" + dir.path().string() + " " + job + " > /dev/null 2> " + (dir / "err.txt").string() +
+                      " & pid=$!; for i in $(seq 100); do [ -e " + (dir / "d.h5.lock").string() +
+                      " ] && break; sleep 0.1; done; sleep 1; kill -TERM $pid; wait $pid; echo \"status $?\"",
+                  out) == 0);
+  INFO(out);
+  CHECK_THAT(out, Catch::Contains("status 143"));
+  CHECK_THAT(test::read_file(dir / "err.txt"), Catch::Contains("drape: stopped by SIGTERM: what was finished is kept"));
 }
 
 TEST_CASE("outputs are checked before any work: a missing folder, an unknown mesh format", "[cli][outputs]") {

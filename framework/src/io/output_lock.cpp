@@ -50,6 +50,7 @@ constexpr int kHeldLocks = 8;
 constexpr std::size_t kLockPath = 4096;
 char held_locks[kHeldLocks][kLockPath];
 volatile std::sig_atomic_t held_in_use[kHeldLocks];
+volatile std::sig_atomic_t held_resumable[kHeldLocks];
 
 extern "C" void remove_held_locks(int signal) {
   for (int i = 0; i < kHeldLocks; ++i)
@@ -59,19 +60,26 @@ extern "C" void remove_held_locks(int signal) {
   // SIGTERM with exit 143 and no word). write(2) is safe in a handler.
   const char* name = signal == SIGINT ? "SIGINT" : signal == SIGTERM ? "SIGTERM" : signal == SIGHUP ? "SIGHUP" : nullptr;
   if (name) {
+    // A job that writes its output whole at the end (a single-body optimize,
+    // a merge) keeps nothing: it said "what was finished is kept" and a
+    // second run started from the beginning (an outside check).
+    bool resumable = false;
+    for (int i = 0; i < kHeldLocks; ++i) resumable = resumable || (held_in_use[i] && held_resumable[i]);
     constexpr const char head[] = "\ndrape: stopped by ";
-    constexpr const char tail[] = ": what was finished is kept; run the same command again to go on (drape train: with --resume)\n";
+    constexpr const char kept[] = ": what was finished is kept; run the same command again to go on (drape train: with --resume)\n";
+    constexpr const char lost[] = ": nothing was written (the output is written whole when the job ends); run the command again to start over\n";
     [[maybe_unused]] ssize_t ignored = ::write(2, head, sizeof head - 1);
     std::size_t length = 0;
     while (name[length] != '\0') ++length;
     ignored = ::write(2, name, length);
-    ignored = ::write(2, tail, sizeof tail - 1);
+    if (resumable) ignored = ::write(2, kept, sizeof kept - 1);
+    else ignored = ::write(2, lost, sizeof lost - 1);
   }
   std::signal(signal, SIG_DFL);
   std::raise(signal);
 }
 
-int hold_for_signals(const fs::path& lock) {
+int hold_for_signals(const fs::path& lock, bool resumable) {
   // Only where the signal would end the process anyway (its default
   // action): one ignored stays ignored, and one a host handles (Python's
   // SIGINT, a KeyboardInterrupt) is the host's; removing the file there
@@ -94,6 +102,7 @@ int hold_for_signals(const fs::path& lock) {
   for (int i = 0; i < kHeldLocks; ++i)
     if (!held_in_use[i]) {
       std::memcpy(held_locks[i], path.c_str(), path.size() + 1);
+      held_resumable[i] = resumable ? 1 : 0;
       held_in_use[i] = 1;
       return i;
     }
@@ -102,7 +111,7 @@ int hold_for_signals(const fs::path& lock) {
 
 }  // namespace
 
-OutputLock::OutputLock(const fs::path& given, const std::string& command) : path_(lock_file(output_target(given))) {
+OutputLock::OutputLock(const fs::path& given, const std::string& command, bool resumable) : path_(lock_file(output_target(given))) {
   // The output the lock is of: a link's target, so that both names share one lock.
   const fs::path output = fs::path(path_).replace_extension();
   refuse_working_file_name(output);
@@ -138,7 +147,7 @@ OutputLock::OutputLock(const fs::path& given, const std::string& command) : path
         // The lock holds without its note; the message then says "another process".
       }
       fd_ = fd;
-      slot_ = hold_for_signals(path_);
+      slot_ = hold_for_signals(path_, resumable);
       return;
     }
     ::close(fd);

@@ -241,7 +241,7 @@ GenerateSummary generate_dataset(const Registry& registry, const Scene& scene, c
                                  const std::string& out, const GenerateObserver& observer) {
   check_request(request);
   // Before anything looks at the output (output_lock.hpp).
-  const OutputLock lock(out, "drape generate");
+  const OutputLock lock(out, "drape generate", true);
   // size: auto -- each body wears the size its girth needs (garment_size.hpp,
   // every size built once); the dataset's template is the design size's (the
   // sizes share its topology), each sample records its size in garment_size.

@@ -15,8 +15,10 @@ class OutputLock {
  public:
   // Throws ConfigError naming the process that holds the lock (its pid and
   // command) when another process writes `output`; `command` is recorded in
-  // the lock file for that message.
-  OutputLock(const std::filesystem::path& output, const std::string& command);
+  // the lock file for that message. `resumable`: the job keeps what it
+  // finished and a second run goes on from there (generate, train, optimize
+  // --data), which a stopped job says; else it says nothing was written.
+  OutputLock(const std::filesystem::path& output, const std::string& command, bool resumable = false);
   ~OutputLock();
   OutputLock(const OutputLock&) = delete;
   OutputLock& operator=(const OutputLock&) = delete;
