@@ -12,9 +12,12 @@
 #include <drape/errors.hpp>
 #include <drape/training/trainer.hpp>
 
+#include <chrono>
 #include <exception>
 #include <iostream>
 #include <thread>
+
+#include <unistd.h>
 
 namespace drape::cli {
 namespace DRAPE_UNITY_ID {  // the anonymous namespace, or a unique one in a unity build (command.hpp)
@@ -134,8 +137,17 @@ int run(const std::vector<std::string>& given) {
     trained = train_model(registry, o);
   } catch (const std::exception& e) {
     if (!ranks || ranks->size() == 1) throw;
+    // An error every rank meets (a missing --data) was printed by each, the
+    // lines interleaved mid-word, and a rank that aborted first had mpirun
+    // stop rank 0 with SIGTERM, whose lock then said "what was finished is
+    // kept". The other ranks wait a moment: rank 0's abort ends them before
+    // they repeat its error, and an error of their own still shows.
+    if (ranks->rank() != 0) std::this_thread::sleep_for(std::chrono::seconds(2));
+    const std::string line = "drape train: rank " + std::to_string(ranks->rank()) + " of " + std::to_string(ranks->size()) +
+                             ": " + e.what() + "\n";
+    std::cerr << std::flush;
+    [[maybe_unused]] const ssize_t written = ::write(2, line.data(), line.size());  // one write: not interleaved
     // The other ranks may be waiting for this one in a collective: end them all.
-    std::cerr << "drape train: rank " << ranks->rank() << " of " << ranks->size() << ": " << e.what() << std::endl;
     abort_all_ranks(dynamic_cast<const ConfigError*>(&e) || dynamic_cast<const UsageError*>(&e) ? 2 : 1);
   }
   if (ranks && ranks->rank() != 0) return 0;

@@ -228,3 +228,19 @@ TEST_CASE("mpirun -np 2 drape train refuses ranks given different settings or an
   CHECK_THAT(out, Catch::Contains("differs from rank 0 in the earlier run's state m.h5.state") &&
                       Catch::Contains("a file system every rank shares"));
 }
+
+TEST_CASE("an error every rank meets is printed once on one line and not followed by resume advice", "[train][mpi]") {
+  // An outside check: a missing --data under mpirun printed "drape train: rank
+  // drape train: rank 1 of 2: ..." (both ranks, interleaved mid-line), then
+  // "stopped by SIGTERM: what was finished is kept".
+  if (skipped_without_mpi()) return;
+  test::TempDir dir;
+  std::string out;
+  const int code = test::run(mpirun(mpi_train_args(dir / "missing.h5", dir / "m.h5", "")), out);
+  INFO(out);
+  CHECK(code == 2);
+  CHECK_THAT(out, Catch::Contains("drape train: rank 0 of 2: " + (dir / "missing.h5").string() + ": no such file"));
+  CHECK_THAT(out, !Catch::Contains("rank 1 of 2"));
+  CHECK_THAT(out, !Catch::Contains("stopped by SIG"));
+  CHECK_FALSE(fs::exists(dir / "m.h5"));
+}
