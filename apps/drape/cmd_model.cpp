@@ -34,7 +34,7 @@ namespace DRAPE_UNITY_ID {  // the anonymous namespace, or a unique one in a uni
 namespace fs = std::filesystem;
 
 const char* kInfoUsage = "drape model info MODEL";
-const char* kDomainUsage = "drape model domain MODEL --data DATA [--out FILE]";
+const char* kDomainUsage = "drape model domain MODEL --data DATA [--out FILE] [--force]";
 const char* kSetUsage = "drape model set MODEL --set node.param=value [--set ...] [--out FILE]";
 
 // Whether a model's graph reads a pose, from its stored text (without loading its weights).
@@ -193,7 +193,8 @@ int domain(const std::vector<std::string>& args) {
   po::options_description opts("drape model domain");
   opts.add_options()("model", po::value<std::string>()->required(), "model file")(
       "data", po::value<std::string>()->required(), "the dataset it was trained on (its training split is the domain)")(
-      "out", po::value<std::string>(), "write here instead of replacing MODEL");
+      "out", po::value<std::string>(), "write here instead of replacing MODEL")(
+      "force", po::bool_switch(), "record it although the model names another dataset as its training data");
   po::positional_options_description positional;
   positional.add("model", 1);
   po::variables_map vm;
@@ -207,6 +208,21 @@ int domain(const std::vector<std::string>& args) {
   // wrote the model, then generate renamed its dataset over it).
   const OutputLock lock(out, "drape model domain");
   refuse_replacing_other_than_a_model(out, "--out");
+  // The domain is what predict warns outside of: another shard's bodies, or a
+  // posed set's pose ranges on an A-pose model, were recorded silently (an
+  // outside check), and predict then warned about bodies the model never saw.
+  const Checkpoint c = read_checkpoint(file);
+  const std::string given = dataset_name(vm["data"].as<std::string>());
+  if (const auto trained_on = c.meta.find("dataset"); trained_on != c.meta.end() && !vm["force"].as<bool>()) {
+    const std::string name = dataset_name(trained_on->second);
+    if (name != given)
+      throw UsageError(file.string() + " was trained on " + name + " (its meta 'dataset'), not " + given +
+                       ": the domain would describe bodies it never learnt from. Give the dataset it was trained on, or "
+                       "--force to record this one anyway");
+  }
+  if (!graph_takes_pose(c.graph, file.string() + " (graph)") && !DatasetReader(vm["data"].as<std::string>()).layout().pose_angles.empty())
+    throw UsageError(given + " holds posed drapes, and " + file.string() +
+                     "'s graph takes no pose (an A-pose model): its domain is A-pose bodies; give an A-pose dataset");
   Registry& registry = Registry::load_default(plugin_path(vm));
   const ModelDomain d = record_model_domain(registry, file, vm["data"].as<std::string>(), out);
   std::printf("wrote %s\n", out.string().c_str());

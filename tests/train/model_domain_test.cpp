@@ -259,8 +259,14 @@ TEST_CASE("drape model domain records it: predict warns outside it and --strict 
     fs::copy_file(data, dir / "twins" / "a.h5");
     fs::copy_file(data, dir / "twins" / "b.h5");
     const fs::path twins = dir / "twins.h5";
+    // (Another name than the model's training data: refused unless --force.)
+    CHECK(test::run(test::drape_command("model domain " + model.string() + " --data '" + (dir / "twins" / "*.h5").string() +
+                                        "' --out " + twins.string()),
+                    out) == 2);
+    CHECK_THAT(out, Catch::Contains("was trained on data.h5 (its meta 'dataset'), not ") && Catch::Contains("--force"));
+    CHECK_FALSE(fs::exists(twins));
     REQUIRE(test::run(test::drape_command("model domain " + model.string() + " --data '" + (dir / "twins" / "*.h5").string() +
-                                          "' --out " + twins.string()),
+                                          "' --out " + twins.string() + " --force"),
                       out) == 0);
     REQUIRE(test::run(test::drape_command("model info " + twins.string()), out) == 0);
     CHECK_THAT(out, Catch::Contains("16 training samples (8 distinct bodies) from"));
@@ -367,4 +373,16 @@ TEST_CASE("model domain: a parameter at the edge of the range its bodies were dr
   CHECK(violations(2.00).empty());
   CHECK(violations(1.50).empty());
   CHECK(violations(2.002).size() == 1);
+}
+
+TEST_CASE("drape model domain refuses a posed set's domain for an A-pose model", "[train][domain][cli]") {
+  test::TempDir dir;
+  std::string out;
+  const std::string model = (test::source_dir() / "models/tshirt-coarse.h5").string();
+  CHECK(test::run(test::drape_command("model domain " + model + " --data " +
+                                      (test::source_dir() / "datasets/posespace-heldout/heldout-30.h5").string() + " --out " +
+                                      (dir / "m.h5").string() + " --force"),
+                  out) == 2);
+  CHECK_THAT(out, Catch::Contains("heldout-30.h5 holds posed drapes") && Catch::Contains("takes no pose"));
+  CHECK_FALSE(fs::exists(dir / "m.h5"));
 }
