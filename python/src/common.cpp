@@ -194,8 +194,24 @@ namespace {
 PyObject* drape_warning = nullptr;
 }  // namespace
 
+// The stack level of the first Python frame outside the drape package: a
+// warning raised through one of its Python wrappers (Model.optimize,
+// drape.simulate) named a line of drape/__init__.py, where a user's warning
+// filter by module or line could not find it (an outside check).
+namespace {
+int caller_stack_level() {
+  int level = 1;
+  for (py::object frame = py::module_::import("sys").attr("_getframe")(0); !frame.is_none();
+       frame = frame.attr("f_back"), ++level) {
+    const std::string module = py::str(frame.attr("f_globals").attr("get")("__name__", ""));
+    if (module != "drape" && module.rfind("drape.", 0) != 0) break;
+  }
+  return level;
+}
+}  // namespace
+
 void warn_python(const std::string& text) {
-  if (PyErr_WarnEx(drape_warning ? drape_warning : PyExc_UserWarning, text.c_str(), 1) != 0)
+  if (PyErr_WarnEx(drape_warning ? drape_warning : PyExc_UserWarning, text.c_str(), caller_stack_level()) != 0)
     throw py::error_already_set();  // warnings filtered as errors raise
 }
 
