@@ -207,7 +207,7 @@ int domain(const std::vector<std::string>& args) {
   // One writer per output (a generate running on it took its lock: this
   // wrote the model, then generate renamed its dataset over it).
   const OutputLock lock(out, "drape model domain");
-  refuse_replacing_other_than_a_model(out, "--out");
+  refuse_replacing_other_than_a_model(out, vm.count("out") ? "--out" : "MODEL (replaced without --out)");
   // The domain is what predict warns outside of: another shard's bodies, or a
   // posed set's pose ranges on an A-pose model, were recorded silently (an
   // outside check), and predict then warned about bodies the model never saw.
@@ -245,7 +245,9 @@ int set(const std::vector<std::string>& args) {
   const fs::path file = find_input_file(vm["model"].as<std::string>());
   const fs::path out = vm.count("out") ? fs::path(vm["out"].as<std::string>()) : file;
   const OutputLock lock(out, "drape model set");  // one writer per output
-  refuse_replacing_other_than_a_model(out, "--out");  // a dataset named as --out became a model file
+  // A dataset named as --out became a model file; one named as MODEL was
+  // said to be "--out" when no --out was given.
+  refuse_replacing_other_than_a_model(out, vm.count("out") ? "--out" : "MODEL (replaced without --out)");
   Registry& registry = Registry::load_default(plugin_path(vm));
   for (const std::string& change : set_model_params(registry, file, parse_param_overrides(vm), out))
     std::printf("  %s\n", change.c_str());

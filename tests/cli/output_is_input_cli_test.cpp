@@ -51,6 +51,10 @@ TEST_CASE("a job writing over its own input is refused, and the input kept", "[c
   CHECK(test::run_drape("model set " + src + "/models/tshirt-coarse.h5 --set post.enabled=true --out " + data.string(), out) == 2);
   CHECK_THAT(out, Catch::Contains("exists and is not a drape model"));
   CHECK(bytes_of(data) == before);
+  // A dataset given as MODEL without --out is named as MODEL (it was "--out", an option not given).
+  CHECK(test::run_drape("model set " + data.string() + " --set post.enabled=true", out) == 2);
+  CHECK_THAT(out, Catch::Contains("MODEL (replaced without --out) " + data.string()) && !Catch::Contains("--out " + data.string()));
+  CHECK(bytes_of(data) == before);
   // In place on a model (its copy), as before.
   fs::copy_file(test::source_dir() / "models/tshirt-coarse.h5", dir / "m.h5");
   CHECK(test::run_drape("model set " + (dir / "m.h5").string() + " --set post.enabled=true", out) == 0);

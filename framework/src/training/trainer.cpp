@@ -511,7 +511,7 @@ void announce(const Run& run, bool nothing_to_do) {
          << (run.ranks > 1 ? (" on each of " + std::to_string(run.ranks) + " ranks") : std::string()) << ", lr "
          << brief(o.lr) << " (" << o.schedule << ")"
          << (o.weight_decay != 0.0 ? ", weight decay " + brief(o.weight_decay) : std::string()) << ", seed " << o.seed;
-  if (report.resumed) *o.log << ", " << epochs_done << " epochs done";
+  if (report.resumed) *o.log << ", " << epochs_done << (epochs_done == 1 ? " epoch done" : " epochs done");
   if (!o.monitor.empty()) *o.log << "; the best epoch by its " << o.monitor << " loss";
   *o.log << "\n";
   if (run.data.val_idx.empty()) *o.log << "no validation samples: the training loss picks the best epoch and stops early\n";
