@@ -174,7 +174,7 @@ int run(const std::vector<std::string>& args) {
                 vm["scene"].as<std::string>().c_str(), o.iterations, r.seconds, 1000.0 * r.seconds / o.iterations,
                 r.best_iteration);
   else
-    std::printf("%s for %s: 0 iterations, the prediction measured (%.2f s)\n", model_file.c_str(),
+    std::printf("measured %s for %s: 0 iterations, the prediction as it is (%.2f s)\n", model_file.c_str(),
                 vm["scene"].as<std::string>().c_str(), r.seconds);
   if (!model.push_out_node().empty())
     std::printf("the push-out that predict applies after the network (node '%s') is not learnt: the drape optimised "
@@ -182,6 +182,12 @@ int run(const std::vector<std::string>& args) {
                 model.push_out_node().c_str());
   print_terms("before", r.energies_before, r.potential_before, r.penetration_before);
   print_terms("after", r.energies_after, r.potential_after, r.penetration_after);
+  // A body given elsewhere is draped where the training bodies stood: the
+  // figures are of that drape (an outside check summed m g y over the file
+  // written, 0.9 m lower, and found another gravity term).
+  if ((moved_by.back(r.after) - r.after).cwiseAbs().maxCoeff() > 1e-9)
+    std::printf("(the energies are of the drape where the model drapes the body; the file is moved back with the body, "
+                "which changes its gravity term by the body's vertical move and no difference between them)\n");
   // Counted by exact segment-triangle tests that share no code with the contact energies.
   const auto crossings = [&](const Eigen::MatrixX3d& g) {
     return geometry::surface_crossings(g, scene.garment().mesh.faces, batch.body.mat(0).cast<double>(), model.assets().body.faces)

@@ -282,7 +282,7 @@ TEST_CASE("drape optimize counts the garment through itself as predict does, and
   INFO(predicted << out);
   CHECK_THAT(out, Catch::Contains("the garment through itself (edge-face pairs): before " + std::to_string(pairs) +
                                   ", after " + std::to_string(pairs)));
-  CHECK_THAT(out, Catch::Contains("0 iterations, the prediction measured"));
+  CHECK_THAT(out, Catch::Contains("measured " ) && Catch::Contains(": 0 iterations, the prediction as it is"));
   if (pairs > 0) CHECK_THAT(out, Catch::Contains("warning: the optimised garment passes through itself"));
 }
 
