@@ -232,7 +232,10 @@ int run(const std::vector<std::string>& args) {
     truth.vertices = reader.garment_vertices({i}).mat(0).cast<double>();
     what = "sample " + std::to_string(i) + " of " + std::filesystem::path(vm["data"].as<std::string>()).filename().string();
   } else {
-    batch = model_body(model, vm, &moved_by, &notes);
+    // A --garment file is drawn, not predicted: what model_body says of a
+    // prediction (its size, a size the model did not learn, the domain) is
+    // not said (an outside check was warned "the prediction may be wrong").
+    batch = model_body(model, vm, &moved_by, &notes, nullptr, "", false, !vm.count("garment"));
     what = asked_body_words(vm);  // the page's title says which body: its height, sex and pose as asked
   }
   Mesh body;
@@ -254,6 +257,13 @@ int run(const std::vector<std::string>& args) {
       own_rest_lengths = face_edge_rest_lengths(given);
       notes.push_back("strain against " + vm["garment"].as<std::string>() + "'s own UVs (its material space; " +
                       "--garment-size names a size's pattern instead)");
+      std::fprintf(stderr, "note: %s\n", notes.back().c_str());
+    } else if (colour == "strain") {
+      notes.push_back(vm.count("garment-size") || vm.count("garment-grade")
+                          ? "strain against the pattern of the size asked for"
+                          : "strain against the pattern of the size the tailor's rule gives this body (" +
+                                vm["garment"].as<std::string>() +
+                                " carries no UVs on the template's faces; --garment-size names another size)");
       std::fprintf(stderr, "note: %s\n", notes.back().c_str());
     }
     garment.vertices = given.vertices;

@@ -294,7 +294,7 @@ std::string model_file_for_body(const po::variables_map& vm, const Registry& reg
 
 SampleBatch model_body(const Model& model, const po::variables_map& vm, BodyMove* moved_by,
                        std::vector<std::string>* printed, const Pose* fallback_pose, const std::string& fallback_source,
-                       bool refuse_crossing) {
+                       bool refuse_crossing, bool announce) {
   ModelBodyInput input = body_input(vm);
   // A body far from the origin (a scene's or a survey's coordinates) moved
   // near it in double before the network's single precision rounds it: at
@@ -366,6 +366,7 @@ SampleBatch model_body(const Model& model, const po::variables_map& vm, BodyMove
     throw ConfigError(fallback_source + " poses the body (" + format_pose(*pose) + "): " + e.what());
   }
   for (const Notice& n : prepared.notices) {
+    if (!announce) break;
     const std::string line = (n.level == Notice::Level::note ? "note: " : "warning: ") + n.text;
     std::cerr << line << "\n";
     if (printed) printed->push_back(line);

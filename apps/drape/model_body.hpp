@@ -30,9 +30,13 @@ void add_model_body_options(po::options_description& options, const std::string&
 // none of --pose, --pose-file and --smpl-theta is given (optimize: its
 // scene's `body: pose:`), with `fallback_source` naming it in the note and in
 // a refusal; a body mesh given posed keeps its own pose (said).
+// `announce` false: the notes and warnings about the prediction (its size,
+// the domain) are neither printed nor returned, for a command that draws a
+// garment it was given rather than one it predicts (render --garment);
+// refusals (--strict, a body it cannot take) still throw.
 SampleBatch model_body(const Model& model, const po::variables_map& vm, BodyMove* moved_by = nullptr,
                        std::vector<std::string>* printed = nullptr, const Pose* fallback_pose = nullptr,
-                       const std::string& fallback_source = "", bool refuse_crossing = false);
+                       const std::string& fallback_source = "", bool refuse_crossing = false, bool announce = true);
 
 // The pattern the batch's first body wears: the material space (a mesh with
 // UVs) of the size chart's size of the grade it was fed, for a model of drapes
