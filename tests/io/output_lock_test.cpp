@@ -5,7 +5,11 @@
 
 #include <catch2/catch.hpp>
 
+#include <sys/wait.h>
 #include <unistd.h>
+
+#include <csignal>
+#include <fstream>
 
 #include <filesystem>
 #include <memory>
@@ -57,4 +61,32 @@ TEST_CASE("an output named as another output's working file is refused", "[io][l
   // Names that only look alike are a user's own.
   CHECK_NOTHROW(OutputLock(dir / "notes.state", "drape x"));
   CHECK_NOTHROW(OutputLock(dir / "partial.h5", "drape x"));
+}
+
+TEST_CASE("a stop signal inside a DeferredStop ends the job when the scope closes and not before", "[io][lock]") {
+  // A training stopped between writing its model and its state left the
+  // model an epoch ahead of the state and the epoch's line unprinted.
+  test::TempDir dir;
+  const pid_t child = ::fork();
+  REQUIRE(child >= 0);
+  if (child == 0) {
+    std::signal(SIGTERM, SIG_DFL);  // (Catch's handler, in the test program: the lock's own is what is tested)
+    {
+      const OutputLock lock(dir / "m.h5", "drape train");
+      {
+        const DeferredStop together;
+        ::kill(::getpid(), SIGTERM);
+        std::ofstream(dir / "inside") << "written after the signal came";
+      }
+      std::ofstream(dir / "after") << "never";
+    }
+    ::_exit(0);
+  }
+  int status = 0;
+  REQUIRE(::waitpid(child, &status, 0) == child);
+  CHECK(WIFSIGNALED(status));
+  CHECK(WTERMSIG(status) == SIGTERM);
+  CHECK(fs::exists(dir / "inside"));
+  CHECK_FALSE(fs::exists(dir / "after"));
+  CHECK_FALSE(fs::exists(OutputLock::lock_file(dir / "m.h5")));  // the handler's work, done at the scope's end
 }

@@ -12,6 +12,7 @@
 #include <cerrno>
 #include <csignal>
 #include <cstring>
+#include <iostream>
 #include <mutex>
 
 namespace fs = std::filesystem;
@@ -52,7 +53,14 @@ char held_locks[kHeldLocks][kLockPath];
 volatile std::sig_atomic_t held_in_use[kHeldLocks];
 volatile std::sig_atomic_t held_resumable[kHeldLocks];
 
+volatile std::sig_atomic_t stop_deferred = 0;  // DeferredStop scopes open
+volatile std::sig_atomic_t pending_stop = 0;   // a signal that came in one
+
 extern "C" void remove_held_locks(int signal) {
+  if (stop_deferred > 0) {
+    pending_stop = signal;  // ended when the last scope closes (~DeferredStop)
+    return;
+  }
   for (int i = 0; i < kHeldLocks; ++i)
     if (held_in_use[i]) ::unlink(held_locks[i]);
   unlink_temporaries_in_flight();  // (the output being written, half done)
@@ -84,19 +92,18 @@ int hold_for_signals(const fs::path& lock, bool resumable) {
   // action): one ignored stays ignored, and one a host handles (Python's
   // SIGINT, a KeyboardInterrupt) is the host's; removing the file there
   // while the job goes on would let a second writer in.
-  static std::once_flag installed;
-  std::call_once(installed, [] {
-    // (SIGPIPE: `drape train ... | head -1` ended the job and left its lock;
-    // SIGHUP: the terminal it ran in closed.)
-    for (const int signal : {SIGINT, SIGTERM, SIGPIPE, SIGHUP}) {
-      struct sigaction now {};
-      if (::sigaction(signal, nullptr, &now) != 0 || (now.sa_flags & SA_SIGINFO) || now.sa_handler != SIG_DFL) continue;
-      struct sigaction ours {};
-      ours.sa_handler = remove_held_locks;
-      sigemptyset(&ours.sa_mask);
-      ::sigaction(signal, &ours, nullptr);
-    }
-  });
+  // At every lock, not once: a signal whose handler went back to its
+  // default since (a forked child's) gets ours again; ours stays as it is.
+  // (SIGPIPE: `drape train ... | head -1` ended the job and left its lock;
+  // SIGHUP: the terminal it ran in closed.)
+  for (const int signal : {SIGINT, SIGTERM, SIGPIPE, SIGHUP}) {
+    struct sigaction now {};
+    if (::sigaction(signal, nullptr, &now) != 0 || (now.sa_flags & SA_SIGINFO) || now.sa_handler != SIG_DFL) continue;
+    struct sigaction ours {};
+    ours.sa_handler = remove_held_locks;
+    sigemptyset(&ours.sa_mask);
+    ::sigaction(signal, &ours, nullptr);
+  }
   const std::string path = lock.string();
   if (path.size() >= kLockPath) return -1;
   for (int i = 0; i < kHeldLocks; ++i)
@@ -151,6 +158,18 @@ OutputLock::OutputLock(const fs::path& given, const std::string& command, bool r
       return;
     }
     ::close(fd);
+  }
+}
+
+DeferredStop::DeferredStop() { stop_deferred = stop_deferred + 1; }
+
+DeferredStop::~DeferredStop() {
+  stop_deferred = stop_deferred - 1;
+  if (stop_deferred == 0 && pending_stop != 0) {
+    const int signal = pending_stop;
+    pending_stop = 0;
+    std::cout.flush();  // the lines written in the scope (an epoch's log), before the process ends
+    remove_held_locks(signal);
   }
 }
 

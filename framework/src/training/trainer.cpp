@@ -14,6 +14,7 @@
 #include <drape/training/model.hpp>
 #include <drape/warnings.hpp>
 #include <drape/training/trainer.hpp>
+#include <drape/io/output_lock.hpp>
 #include <drape/fnv1a.hpp>
 
 #include "data_fingerprint.hpp"
@@ -637,6 +638,7 @@ void run_epoch(Run& run, DistributedGraph& distributed, ProgressBar* bar, bool b
   progress.status = r.stop ? "early stopped" : progress.epochs_done >= o.epochs ? "finished" : "training";
   r.seconds = since(epoch_start);
   record_history(run, r);
+  const DeferredStop together;  // the model, its state and the epoch's line: all or none
   save(run);
   if (o.log) log_epoch(run, r, bar_on_terminal);
 }

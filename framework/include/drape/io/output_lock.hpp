@@ -31,4 +31,17 @@ class OutputLock {
   int slot_ = -1;  // its place among the locks a SIGINT or SIGTERM removes (output_lock.cpp)
 };
 
+// While one lives, a SIGINT, SIGTERM or SIGHUP that would end the job (its
+// lock's handler) waits until the scope ends, so that files written together
+// stay together: a training stopped between its model and its state left the
+// model an epoch ahead and that epoch's log line unprinted (an outside
+// check). Any thread may take the signal; the handler sees the flag. Nest-safe.
+class DeferredStop {
+ public:
+  DeferredStop();
+  ~DeferredStop();
+  DeferredStop(const DeferredStop&) = delete;
+  DeferredStop& operator=(const DeferredStop&) = delete;
+};
+
 }  // namespace drape
