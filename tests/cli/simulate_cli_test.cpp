@@ -256,3 +256,20 @@ TEST_CASE("an effect's parameters refused by its own plugin are placed at the sc
   CHECK(code == 2);
   CHECK(out.find("smooth.yaml:7: collision: smoothing (0.001000 m) must exceed the margin") != std::string::npos);
 }
+
+TEST_CASE("a material a derived scene sets to null is said to leave the region in the garment's own", "[cli][simulate]") {
+  // An outside check's `knit:` left empty swapped the base's linear knit for
+  // the template's own, 23 times stiffer in stretch, without a word.
+  test::TempDir dir;
+  std::string base = test::tiny_simulation_scene();
+  base.insert(base.find("effects:"), "materials: {knit: gray-interlock-linear}\n");
+  std::ofstream(dir / "base.yaml") << base;
+  std::ofstream(dir / "derived.yaml") << "base: base.yaml\nmaterials:\n  knit:\n";
+  std::string out;
+  test::run(test::drape_program().string() + " simulate " + (dir / "derived.yaml").string() + " --out " +
+                (dir / "g.obj").string(),
+            out);
+  INFO(out);
+  CHECK_THAT(out, Catch::Contains("derived.yaml:3: `knit: null` drops the base scene's material for region 'knit' "
+                                  "(gray-interlock-linear): it wears the garment template's own"));
+}

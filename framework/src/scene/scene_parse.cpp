@@ -183,7 +183,11 @@ void apply(Scene& s, const fs::path& path, const std::string& file, const YAML::
       const auto region = kv.first.as<std::string>();
       auto it = std::find_if(s.materials.begin(), s.materials.end(), [&](const SceneMaterial& m) { return m.region == region; });
       if (kv.second.IsNull()) {
-        if (it != s.materials.end()) s.materials.erase(it);
+        if (it != s.materials.end()) {
+          s.dropped_materials.push_back(*it);
+          s.dropped_materials.back().where = yaml::at(file, kv.first);
+          s.materials.erase(it);
+        }
         continue;
       }
       SceneMaterial m{region, kv.second, file, yaml::at(file, kv.first)};

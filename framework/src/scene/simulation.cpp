@@ -267,6 +267,13 @@ Simulation::Simulation(const Registry& registry, Scene scene) : registry_(regist
   if (placed_through(dressed)) placed_through_ = dressed.pushed_through, placed_through_depth_ = dressed.deepest_through;
   fit_body_ = std::move(fit.vertices);
   fit_request_ = fit.request;
+  for (const SceneMaterial& dropped : scene_.dropped_materials)
+    for (const Material& own : garment.materials)
+      if (own.name == dropped.region)
+        material_notes_.push_back(dropped.where.str() + ": `" + dropped.region +
+                                  ": null` drops the base scene's material for region '" + dropped.region + "' (" +
+                                  (dropped.spec.IsScalar() ? dropped.spec.Scalar() : std::string("an inline preset")) +
+                                  "): it wears the garment template's own; name a preset to choose one");
   scene_detail::apply_scene_materials(garment, scene_);
   garment_ = std::make_shared<Garment>(std::move(garment));
 
@@ -349,7 +356,7 @@ bool Simulation::stretches() const {
 }
 
 std::vector<std::string> Simulation::effect_notes() const {
-  std::vector<std::string> notes;
+  std::vector<std::string> notes = material_notes_;
   // A scene may leave effects out (docs/scenes.md), but two of them are what
   // makes a drape: without stretching the cloth has no in-plane stiffness and
   // a step's Newton iterations need not end (such a run sat at its first

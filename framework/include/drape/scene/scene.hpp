@@ -58,6 +58,11 @@ struct Scene {
   // garment's design ease (drape/scene/auto_grade.hpp); garment_grade is then 1.
   bool garment_grade_auto = false;
   std::vector<SceneMaterial> materials;
+  // Materials a derived scene's `region: null` took away from its base: the
+  // region then wears the garment's own, which a simulation says (where =
+  // the null's line; an outside check's `knit:` left empty swapped a linear
+  // knit for a 23 times stiffer one without a word).
+  std::vector<SceneMaterial> dropped_materials;
   std::vector<SceneEffect> effects;
   ParamValues solver;
 

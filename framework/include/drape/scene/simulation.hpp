@@ -191,6 +191,7 @@ class Simulation {
   BodyRequest fit_request_;
   std::string start_refusal_, shape_note_;
   double cloth_loop_ = 0.0;
+  std::vector<std::string> material_notes_;  // a base's material a `region: null` dropped (effect_notes)
   bool sized_ = false;  // the garment has sizes to choose from (size: auto); else grade: auto is the remedy named
   std::vector<Params> effect_params_;
   bool needs_body_ = false;
