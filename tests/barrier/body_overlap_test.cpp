@@ -110,3 +110,19 @@ TEST_CASE("crossings in two places are named each, not by a centre between them"
   CHECK(std::abs(first_x) > 0.05);
   CHECK(first_x * second_x < 0);
 }
+
+TEST_CASE("a heavy short human-rig body whose arms pass through its sides under the sleeves is refused", "[barrier][bodies]") {
+  // An outside check: a woman of 1.40 m at BMI 55 on the human rig crosses
+  // herself at both armpits (12 face pairs, 2.6-3.1 cm from the sleeve on the
+  // mean body, beyond the faces closest to the cloth); drape body warned of
+  // it and the human scene draped her, p = 0.
+  test::TempDir dir;
+  std::string out;
+  const int code = test::run_drape("simulate " + (test::source_dir() / "graphs/scenes/tshirt_coarse_human.yaml").string() +
+                                       " --bmi 55 --height 1.4 --sex 0 --threads 1 --out " + (dir / "g.obj").string(),
+                                   out);
+  INFO(out);
+  CHECK(code == 2);
+  CHECK_THAT(out, Catch::Contains("the body intersects itself where the garment lies: 12 pairs of its faces cross"));
+  CHECK_FALSE(std::filesystem::exists(dir / "g.obj"));
+}
