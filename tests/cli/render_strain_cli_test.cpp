@@ -67,7 +67,7 @@ TEST_CASE("predict writes the UVs of the size worn and render measures a garment
   CHECK(std::stod(caption[1]) == Approx(own).margin(0.006));
 }
 
-TEST_CASE("render refuses a garment file without faces and an output under a file", "[render]") {
+TEST_CASE("render refuses a garment file without faces or far from the body and an output under a file", "[render]") {
   test::TempDir dir;
   std::string out;
   REQUIRE(test::run_drape("body --bmi 30 --out " + (dir / "b.obj").string(), out) == 0);
@@ -76,6 +76,12 @@ TEST_CASE("render refuses a garment file without faces and an output under a fil
                             " --out " + (dir / "p.html").string(), out) == 2);
   CHECK_THAT(out, Catch::Contains("points.obj: has no faces"));
   CHECK_FALSE(std::filesystem::exists(dir / "p.html"));
+  // A vertex at 1e39 m (infinite in the page's float32) drew a squashed picture, exit 0.
+  std::ofstream(dir / "far.obj") << "v 0 1 0\nv 0.1 1 0\nv 1e39 1.1 0\nf 1 2 3\n";
+  CHECK(test::run_drape("render --body " + (dir / "b.obj").string() + " --garment " + (dir / "far.obj").string() +
+                            " --out " + (dir / "f.html").string(), out) == 2);
+  CHECK_THAT(out, Catch::Contains("far.obj: vertex 2 lies 1e+39 m from the body's bounding box"));
+  CHECK_FALSE(std::filesystem::exists(dir / "f.html"));
   CHECK(test::run_drape("render --bmi 30 --out " + (dir / "b.obj" / "x.html").string(), out) == 2);
   CHECK_THAT(out, Catch::Contains("b.obj' is a file, not a folder"));
 }
