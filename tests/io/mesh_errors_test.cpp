@@ -205,6 +205,22 @@ TEST_CASE("a mesh header cut short or declaring more than the file holds is refu
   CHECK_THAT(config_error([&] { read_mesh(dir / "counts.off"); }), Catch::Contains("counts.off") && Catch::Contains("cut short"));
   drape::test::write_text(dir / "cut.off", tetrahedron.substr(0, tetrahedron.find("3 0 1 3")));
   CHECK_THAT(config_error([&] { read_mesh(dir / "cut.off"); }), Catch::Contains("cut.off") && Catch::Contains("cut short"));
+
+  // A .glb whose first chunk claims 2 GiB (assimp read for a minute at 2.1 GB),
+  // and one cut short: their lengths are read by hand (glTF 2.0's container:
+  // total length at byte 8, the first chunk's length at byte 12).
+  write_mesh(dir / "whole.glb", drape::test::shuffled_grid(4, 4, 3));
+  const std::string glb = drape::test::read_file(dir / "whole.glb");
+  REQUIRE(read_mesh(dir / "whole.glb").num_vertices() == 16);
+  std::string claims = glb;
+  const std::uint32_t two_gib = 2147483648u;
+  std::memcpy(claims.data() + 12, &two_gib, 4);  // (little-endian, as this machine)
+  drape::test::write_text(dir / "claims.glb", claims);
+  CHECK_THAT(config_error([&] { read_mesh(dir / "claims.glb"); }),
+             Catch::Contains("claims.glb") && Catch::Contains("GLB chunk 0 at byte 12 says 2147483648 bytes"));
+  drape::test::write_text(dir / "short.glb", glb.substr(0, glb.size() - 10));
+  CHECK_THAT(config_error([&] { read_mesh(dir / "short.glb"); }),
+             Catch::Contains("short.glb") && Catch::Contains("the GLB header gives the file " + std::to_string(glb.size()) + " bytes"));
 }
 
 TEST_CASE("writing into a missing folder throws and creates nothing", "[io]") {

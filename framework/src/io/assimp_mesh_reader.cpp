@@ -129,6 +129,7 @@ Mesh read_with_assimp(const std::filesystem::path& file, MaterialMesh* materials
   std::string ply_bytes;  // (read once: checked here, its double positions read at the end)
   if (extension == ".ply") ply_bytes = require_complete_ply(file);
   if (extension == ".off") require_complete_off(file);
+  if (extension == ".glb") require_complete_glb(file);
   const aiScene* scene = nullptr;
   collect_assimp_warnings();
   try {

@@ -21,6 +21,10 @@ Mesh read_with_assimp(const std::filesystem::path& file, MaterialMesh* materials
 std::string require_complete_ply(const std::filesystem::path& file);
 // The same for an ASCII OFF file: its counts against the lines that follow.
 void require_complete_off(const std::filesystem::path& file);
+
+// A .glb whose header or chunk lengths disagree with the file: refused
+// before assimp reads it (glb_completeness.cpp).
+void require_complete_glb(const std::filesystem::path& file);
 // A PLY's vertex positions in double when its header declares x, y and z
 // double (assimp reads them into floats); nullopt for float positions or a
 // file it cannot walk (assimp's reading stands then). `bytes`: the file's, as
