@@ -71,7 +71,17 @@ namespace {
 // `open` holds the nodes being walked, outermost first: an alias of a node
 // inside that node itself (`a: &x [*x]`) makes the document an endless tree,
 // which every reader after this one would walk until the stack overflows.
-void refuse_repeated_keys_and_cycles(const YAML::Node& node, const std::string& file, std::vector<YAML::Node>& open) {
+// Nodes a file may hold once its aliases are expanded: drape's files hold a
+// few thousand; a 442-byte "billion laughs" (aliases nested nine deep, nine
+// wide) expands to 9^9 and hung every walk of it (an outside check).
+constexpr std::size_t kMostNodes = 200000;
+
+void refuse_repeated_keys_and_cycles(const YAML::Node& node, const std::string& file, std::vector<YAML::Node>& open,
+                                     std::size_t& visited) {
+  if (++visited > kMostNodes)
+    throw ConfigError({file, node.Mark().line + 1},
+                      "more than " + std::to_string(kMostNodes) + " YAML nodes once its aliases ('*name') are expanded "
+                      "(aliases of aliases?): drape's files hold a few thousand; write the file out plainly");
   if (!node.IsSequence() && !node.IsMap()) return;
   for (const YAML::Node& outer : open)
     if (outer.is(node))
@@ -80,7 +90,7 @@ void refuse_repeated_keys_and_cycles(const YAML::Node& node, const std::string& 
                         "it names); write the repeated part out");
   open.push_back(node);
   if (node.IsSequence())
-    for (const auto& item : node) refuse_repeated_keys_and_cycles(item, file, open);
+    for (const auto& item : node) refuse_repeated_keys_and_cycles(item, file, open, visited);
   if (node.IsMap()) {
     std::map<std::string, int> seen;  // key -> 1-based line
     for (const auto& kv : node) {
@@ -92,8 +102,8 @@ void refuse_repeated_keys_and_cycles(const YAML::Node& node, const std::string& 
           throw ConfigError({file, line}, "'" + key + "' is defined twice (first at line " + std::to_string(it->second) +
                                               "); one map keeps one key once: merge the two");
       }
-      refuse_repeated_keys_and_cycles(kv.first, file, open);
-      refuse_repeated_keys_and_cycles(kv.second, file, open);
+      refuse_repeated_keys_and_cycles(kv.first, file, open, visited);
+      refuse_repeated_keys_and_cycles(kv.second, file, open, visited);
     }
   }
   open.pop_back();
@@ -187,7 +197,8 @@ YAML::Node load_text(const std::string& text, const std::string& name_for_errors
                       "malformed YAML: " + message + (e.mark.line + 1 > lines ? " (at the end of the file)" : "") + tab);
   }
   std::vector<YAML::Node> open;
-  refuse_repeated_keys_and_cycles(root, name_for_errors, open);
+  std::size_t visited = 0;
+  refuse_repeated_keys_and_cycles(root, name_for_errors, open, visited);
   refuse_dangling_last_line(text, name_for_errors);
   return root;
 }

@@ -115,6 +115,19 @@ TEST_CASE("scene errors name the file, the line and the key", "[scene]") {
   // A folded description over two lines is YAML, and kept.
   CHECK_THAT(message_of([] { parse_scene("description: a long\n  story\nbody: {model: parametric}\n", "s.yaml"); }),
              !Catch::Contains("has no value"));
+  // Aliases of aliases, nine deep and nine wide (a "billion laughs"): 9^9
+  // nodes once expanded, and every walk of them hung; refused at once.
+  {
+    std::string laughs = "l0: &l0 [lol, lol, lol, lol, lol, lol, lol, lol, lol]\n";
+    for (int level = 1; level <= 9; ++level) {
+      const std::string below = "*l" + std::to_string(level - 1);
+      laughs += "l" + std::to_string(level) + ": &l" + std::to_string(level) + " [" + below;
+      for (int k = 1; k < 9; ++k) laughs += ", " + below;
+      laughs += "]\n";
+    }
+    CHECK_THAT(message_of([&] { parse_scene(laughs, "s.yaml"); }),
+               Catch::Contains("s.yaml:") && Catch::Contains("more than 200000 YAML nodes once its aliases"));
+  }
   // An alias used twice side by side is no recursion.
   CHECK_THAT(message_of([] { parse_scene("x: &g [gravity]\neffects: *g\n", "s.yaml"); }),
              !Catch::Contains("recursive alias"));
