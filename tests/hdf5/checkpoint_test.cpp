@@ -4,6 +4,7 @@
 
 #include "test_support.hpp"
 
+#include <drape/io/atomic_file.hpp>
 #include <drape/io/checkpoint.hpp>
 #include <drape/graph.hpp>
 #include <drape/io/h5.hpp>
@@ -369,4 +370,23 @@ outputs: { y: encoder }
 )";
   Graph f = make_graph(13, fewer_nodes);
   CHECK_THROWS_WITH(load_weights_partial(path, f.weights()), Catch::Contains("is not in the graph"));
+}
+
+TEST_CASE("a weight stored as integers is refused by name, not read as floats", "[hdf5][checkpoint]") {
+  // An outside check rewrote a model's output layer as int32 (zeros) and
+  // resealed it: it loaded without a word and predicted, exit 0.
+  TempDir dir;
+  write_atomically(dir / "int.h5", [&](const fs::path& tmp) {
+    h5::File f = h5::File::create(tmp);
+    f.set_attribute("/", "format", std::string("drape checkpoint 1"));
+    f.create_group("/weights");
+    const std::vector<std::int32_t> zeros(6, 0);
+    f.write("/weights/w", h5::Dims{2, 3}, zeros.data());
+    f.close();
+  });
+  Weight w;
+  w.value = Tensor(1, 2, 3);
+  const NamedWeights weights = {{"w", &w}};
+  CHECK_THAT(message_of([&] { load_weights(dir / "int.h5", weights); }),
+             Catch::Contains("int.h5: /weights/w holds i32; a weight is a floating-point number"));
 }

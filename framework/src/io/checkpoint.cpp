@@ -28,6 +28,11 @@ Tensor read_matrix(const h5::File& file, const std::string& dataset) {
   const h5::Dims d = file.shape(dataset);
   if (d.size() != 2)
     throw ConfigError(file.path().string() + ": " + h5::normalize(dataset) + " has shape " + h5::to_string(d) + ", expected [rows, cols]");
+  // Integers would be read as floats without a word (an outside check's
+  // weights rewritten as int32 loaded as zeros and predicted, exit 0).
+  if (const h5::DType type = file.dtype(dataset); type != h5::DType::F32 && type != h5::DType::F64)
+    throw ConfigError(file.path().string() + ": " + h5::normalize(dataset) + " holds " + h5::to_string(type) +
+                      "; a weight is a floating-point number (float32, as drape writes it)");
   Tensor t(1, static_cast<int>(d[0]), static_cast<int>(d[1]));
   file.read(dataset, d, t.data());
   return t;
