@@ -386,3 +386,16 @@ TEST_CASE("drape model domain refuses a posed set's domain for an A-pose model",
   CHECK_THAT(out, Catch::Contains("heldout-30.h5 holds posed drapes") && Catch::Contains("takes no pose"));
   CHECK_FALSE(fs::exists(dir / "m.h5"));
 }
+
+TEST_CASE("a model whose /meta output names no output of its graph is refused naming the file", "[train][model]") {
+  // An outside check's edited model failed with exit 1 and "no graph output
+  // named 'nosuchnode'", naming no file.
+  test::TempDir dir;
+  const Model shipped = Model::load(test::plugins(), test::source_dir() / "models/tshirt-coarse.h5");
+  Checkpoint c = shipped.checkpoint();
+  c.meta["output"] = "nosuchnode";
+  Model copy = Model::load(test::plugins(), test::source_dir() / "models/tshirt-coarse.h5");
+  save_model_file(dir / "bad.h5", copy.graph().weights(), c, std::nullopt);
+  CHECK_THROWS_WITH(Model::load(test::plugins(), dir / "bad.h5"),
+                    Catch::Contains("bad.h5: /meta output 'nosuchnode' is no output of its graph"));
+}

@@ -190,7 +190,12 @@ Model Model::load(const Registry& registry, const fs::path& file, const ParamOve
   if (auto h = loaded.find("assets_hash"); h != loaded.end()) m.assets_changed_ = h->second != m.assets_->hash;
   load_weights(file, *m.graph_);
   if (const auto output = loaded.find("output"); output != loaded.end()) m.output_ = output->second;
-  m.graph_->output(m.output_);  // throws naming the outputs when it is not one
+  // Its /meta output names one of the graph's outputs (a damaged or edited
+  // file said "failed: no graph output named ...", naming no file).
+  const std::vector<std::string> outputs = m.graph_->output_names();
+  if (std::find(outputs.begin(), outputs.end(), m.output_) == outputs.end())
+    throw ConfigError(file.string() + ": /meta output '" + m.output_ + "' is no output of its graph" +
+                      did_you_mean(m.output_, outputs));
   return m;
 }
 
