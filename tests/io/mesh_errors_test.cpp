@@ -206,6 +206,13 @@ TEST_CASE("a mesh header cut short or declaring more than the file holds is refu
   drape::test::write_text(dir / "cut.off", tetrahedron.substr(0, tetrahedron.find("3 0 1 3")));
   CHECK_THAT(config_error([&] { read_mesh(dir / "cut.off"); }), Catch::Contains("cut.off") && Catch::Contains("cut short"));
 
+  // A binary PLY whose header gives one vertex too few: the last vertex is
+  // read as faces; refused with the hint to check the header's counts.
+  std::string short_count = drape::test::read_file(dir / "binary.ply");
+  short_count.replace(short_count.find(declared), declared.size(), "element vertex 15");
+  drape::test::write_text(dir / "fewer.ply", short_count);
+  CHECK_THAT(config_error([&] { read_mesh(dir / "fewer.ply"); }),
+             Catch::Contains("fewer.ply") && Catch::Contains("check the header's element counts against the data"));
   // A .glb whose first chunk claims 2 GiB (assimp read for a minute at 2.1 GB),
   // and one cut short: their lengths are read by hand (glTF 2.0's container:
   // total length at byte 8, the first chunk's length at byte 12).

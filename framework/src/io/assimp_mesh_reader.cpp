@@ -242,7 +242,13 @@ Mesh read_with_assimp(const std::filesystem::path& file, MaterialMesh* materials
         if (face.mIndices[k] >= mesh->mNumVertices)
           throw ConfigError(where, "face " + std::to_string(f) + " of mesh " + std::to_string(m) +
                                        " refers to vertex " + std::to_string(face.mIndices[k]) + " but there are " +
-                                       std::to_string(mesh->mNumVertices));
+                                       std::to_string(mesh->mNumVertices) +
+                                       // A binary PLY whose vertex count is short of its vertices reads the rest as
+                                       // faces: an index in the hundreds of millions (an outside check).
+                                       (extension == ".ply" ? " (check the header's element counts against the data: "
+                                                              "a vertex count short of the vertices that follow reads "
+                                                              "the rest as faces)"
+                                                            : ""));
       // Points and lines carry no surface; polygons become a fan like in OBJ.
       for (unsigned k = 1; k + 1 < face.mNumIndices; ++k) {
         for (unsigned c : {0u, k, k + 1}) {
