@@ -112,8 +112,10 @@ int solve_one(const po::variables_map& vm, const LoadedBody& loaded, const Range
   std::cout << std::setprecision(6) << "body " << loaded.model << " (load " << loaded.load_s << " s, solve " << solve_s
             << " s)\n";
   for (std::size_t i = 0; i < names.size(); ++i) std::cout << "  " << names[i] << " = " << shape[static_cast<Eigen::Index>(i)] << "\n";
+  // (Of the body at rest: a posed body's height is no stature, as a knee
+  // bent 115 degrees stands 1.13 m of a 1.50 m woman.)
   std::cout << "measured BMI " << got.bmi << " (requested " << bmi.lo << "), height " << got.height << " m (requested "
-            << height.lo << ")\n"
+            << height.lo << ")" << (pose.empty() ? "" : ", at rest before the pose") << "\n"
             << "vertices " << mesh.num_vertices() << ", faces " << mesh.num_faces() << "\n"
             << "consecutive indices that are mesh neighbours: " << 100 * loc.one_hop << "%, within two hops "
             << 100 * loc.two_hop << "%\n";
@@ -270,8 +272,9 @@ int sample_many(const po::variables_map& vm, const LoadedBody& loaded, const Ran
     out << csv.str();
     if (!out) throw Error("cannot write " + tmp.string());
   });
-  std::cout << "wrote " << count << " bodies and bodies.csv to " << dir.string() << " (worst |BMI error| " << worst << "; "
-            << intersecting << " self-intersecting; " << halved << " with girths halved to reach their BMI";
+  std::cout << "wrote " << count << (count == 1 ? " body" : " bodies") << " and bodies.csv to " << dir.string()
+            << " (worst |BMI error| " << worst << "; " << intersecting << " self-intersecting; " << halved
+            << " with girths halved to reach their BMI or to clear a self-intersection";
   if (poses) std::cout << "; posed, " << redrawn_total << " poses drawn again because the body passed through itself";
   std::cout << ")\n";
   return 0;
