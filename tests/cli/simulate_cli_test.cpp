@@ -273,3 +273,21 @@ TEST_CASE("a material a derived scene sets to null is said to leave the region i
   CHECK_THAT(out, Catch::Contains("derived.yaml:3: `knit: null` drops the base scene's material for region 'knit' "
                                   "(gray-interlock-linear): it wears the garment template's own"));
 }
+
+TEST_CASE("a barrier scene without stretching is refused at the effect's line", "[cli][simulate]") {
+  test::TempDir dir;
+  std::ofstream(dir / "slack.yaml") << "body: {model: parametric}\n"
+                                       "garment: {template: tshirt, params: {resolution: 300}}\n"
+                                       "effects:\n"
+                                       "  gravity: {}\n"
+                                       "  stretching: {stiffness_scale: 0}\n"
+                                       "  barrier: {}\n"
+                                       "solver: {morph_steps: 2, settle_steps: 1}\n";
+  std::string out;
+  CHECK(test::run(test::drape_program().string() + " simulate " + (dir / "slack.yaml").string() + " --out " +
+                      (dir / "g.obj").string(),
+                  out) == 2);
+  INFO(out);
+  CHECK_THAT(out, Catch::Contains("slack.yaml:5: the cloth has no stretching"));
+  CHECK_FALSE(std::filesystem::exists(dir / "g.obj"));
+}

@@ -505,10 +505,18 @@ SimulationResult Simulation::run(const Eigen::MatrixX3d& target_body, const Simu
   // under the barrier: each morph step is cut into partial moves that make
   // almost no headway (an outside check's run sat at morph step 3 of 20
   // after 3 minutes, its ETA 3 h 35 min). Refused before any work.
-  if (morph_steps_ > 0 && scene_.has_effect("barrier") && !stretches())
-    throw ConfigError({scene_.file, 0}, "the cloth has no stretching (the effect is missing, or its stiffness_scale is 0), "
+  if (morph_steps_ > 0 && scene_.has_effect("barrier") && !stretches()) {
+    // At the stretching effect's line when it is there with stiffness_scale
+    // 0, else at the barrier's (the refusal named the file alone).
+    SourceLocation where{scene_.file, 0};
+    for (const SceneEffect& e : scene_.effects)
+      if (e.name == "barrier" && where.line == 0) where = e.where;
+    for (const SceneEffect& e : scene_.effects)
+      if (e.name == "stretching") where = e.where;
+    throw ConfigError(where, "the cloth has no stretching (the effect is missing, or its stiffness_scale is 0), "
                                         "so the barrier cannot carry it as the body morphs: the run would crawl for "
                                         "hours; give the scene `stretching: {}` (a stiffness_scale above 0)");
+  }
   const Eigen::MatrixX3d& body_start = options.start_body ? *options.start_body : fit_body_;
   const Eigen::MatrixX3d& garment_start = options.start_garment ? *options.start_garment : garment_->mesh.vertices;
   if (body_start.rows() != mean_body_.rows() || garment_start.rows() != garment_->mesh.vertices.rows())
