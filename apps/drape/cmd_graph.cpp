@@ -1,6 +1,8 @@
 // `drape graph check FILE`: validates a graph as a whole and prints its nodes and shapes.
 #include "command.hpp"
 
+#include <filesystem>
+
 #include <drape/assets/assets.hpp>
 #include <drape/graph.hpp>
 #include <drape/io/shipped_files.hpp>
@@ -46,6 +48,14 @@ int run(const std::vector<std::string>& args) {
       "a body model whose vertices the encoder reads, as drape train --encoder-body (a graph with a resample_body node: "
       "the human rig's graphs/human/*.yaml take parametric)")(
       "no-assets", "bind no garment template: every symbolic size must come from --dim");
+  // `drape graph FILE` (the action left out) read FILE as the action and
+  // said "missing file" of the file it was given (an outside check).
+  if (!args.empty() && args[0] != "check" && args[0].rfind("-", 0) != 0) {
+    std::error_code ec;
+    const std::string ext = std::filesystem::path(args[0]).extension().string();
+    if (ext == ".yaml" || ext == ".yml" || std::filesystem::is_regular_file(args[0], ec))
+      throw UsageError("'" + args[0] + "' is a file, not an action: drape graph check " + args[0]);
+  }
   po::positional_options_description pos;
   pos.add("action", 1).add("file", 1);
   po::variables_map vm;

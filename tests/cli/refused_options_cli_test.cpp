@@ -224,3 +224,13 @@ TEST_CASE("a drape file of another kind is named as what it is and the command t
   CHECK(test::run_drape("experiment " + file("graphs/scenes/tshirt.yaml") + " --dry-run", out) == 2);
   CHECK_THAT(out, Catch::Contains("this is a scene file"));
 }
+
+TEST_CASE("drape graph given a file where its action goes says to put check first", "[cli][options]") {
+  // It read the file as the action and said "missing file" of the file it was given.
+  std::string out;
+  const std::string graph = (test::source_dir() / "graphs/drape.yaml").string();
+  CHECK(test::run_drape("graph " + graph, out) == 2);
+  CHECK_THAT(out, Catch::Contains("is a file, not an action: drape graph check " + graph));
+  CHECK(test::run_drape("graph chek " + graph, out) == 2);
+  CHECK_THAT(out, Catch::Contains("unknown action 'chek'"));
+}
