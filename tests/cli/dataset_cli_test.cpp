@@ -233,3 +233,23 @@ TEST_CASE("drape dataset slim and expand: the bodies rebuilt by the scene's body
   }
   CHECK_FALSE(fs::exists(dir / "bad.h5"));
 }
+
+TEST_CASE("merge --mixed-sizes refuses shards whose scenes differ in more than the garment's size", "[cli][dataset]") {
+  // An outside check: --mixed-sizes compared nothing of the scenes, and a
+  // shard without friction merged with one with it, labelled as the first.
+  test::TempDir dir;
+  std::string scene = test::tiny_simulation_scene();
+  std::ofstream(dir / "a.yaml") << scene;
+  const std::string stiffness = "stiffness: 1.0e8";
+  std::ofstream(dir / "b.yaml") << scene.replace(scene.find(stiffness), stiffness.size(), "stiffness: 2.0e8");
+  std::string out;
+  for (const char* name : {"a", "b"})
+    REQUIRE(test::run_drape("generate " + (dir / (std::string(name) + ".yaml")).string() + " --count 1 --seed 1 --threads 1 --out " +
+                                (dir / (std::string(name) + ".h5")).string(),
+                            out) == 0);
+  CHECK(test::run_drape("dataset merge --mixed-sizes --out " + (dir / "m.h5").string() + " " + (dir / "a.h5").string() + " " +
+                            (dir / "b.h5").string(),
+                        out) == 2);
+  CHECK_THAT(out, Catch::Contains("their scenes differ in more than the garment's size"));
+  CHECK_FALSE(std::filesystem::exists(dir / "m.h5"));
+}

@@ -15,6 +15,8 @@
 #include <set>
 #include <sstream>
 
+#include <yaml-cpp/yaml.h>
+
 namespace fs = std::filesystem;
 
 namespace drape {
@@ -22,6 +24,29 @@ namespace drape {
 using namespace dataset_detail;
 
 namespace {
+
+// A resolved scene (Scene::yaml()) without what differs between shards of
+// one experiment in several garment sizes: the garment's size and grade and
+// the description. --mixed-sizes compared nothing of the scenes, and a shard
+// draped without friction merged with one draped with it, labelled as the
+// first (an outside check).
+std::string scene_beyond_size(const std::string& yaml) {
+  YAML::Node scene;
+  try {
+    scene = YAML::Load(yaml);
+  } catch (const YAML::Exception&) {
+    return yaml;  // compared as text
+  }
+  if (!scene.IsMap()) return yaml;
+  scene.remove("description");
+  if (YAML::Node garment = scene["garment"]; garment && garment.IsMap()) {
+    garment.remove("grade");
+    if (YAML::Node params = garment["params"]; params && params.IsMap()) params.remove("size");
+  }
+  YAML::Emitter out;
+  out << scene;
+  return out.c_str();
+}
 
 constexpr const char* kGarmentSize = "garment_size";
 
@@ -337,6 +362,11 @@ std::size_t join_shards(const std::vector<fs::path>& shards, const fs::path& out
       DatasetLayout same = layout;
       same.samples = merged.samples;  // shards may differ in length, nothing else
       if (mixed_sizes) {             // ... and in the garment's size
+        if (scene_beyond_size(layout.scene) != scene_beyond_size(merged.scene))
+          throw ConfigError(shard.string() + ": cannot merge with " + shards.front().string() +
+                            ": their scenes differ in more than the garment's size (--mixed-sizes joins sizes of one "
+                            "scene; the effects, materials, body or solver differ):\n" + shards.front().filename().string() +
+                            ":\n" + merged.scene + "\n" + shard.filename().string() + ":\n" + layout.scene);
         same.scene = merged.scene;
         same.template_hash = merged.template_hash;
         same.attributes = merged.attributes;
