@@ -63,3 +63,10 @@ def test_a_garment_of_another_size_or_a_posed_dataset_is_refused(tmp_path):
     _, err = run_drape("dataset", "resample", posed, "--onto", MANNEQUIN, "--out", tmp_path / "y.h5", expect=2)
     assert "posed" in err
     assert not (tmp_path / "x.h5").exists() and not (tmp_path / "y.h5").exists()
+
+
+def test_a_resampled_set_is_not_slimmed(resampled, tmp_path):
+    # Its bodies are no shape of the body model: the slim copy was written (exit 0) and then refused by every reader.
+    _, err = run_drape("dataset", "slim", resampled, "--out", tmp_path / "slim.h5", expect=2)
+    assert "its bodies were resampled onto another template" in err and "slim the source set instead" in err
+    assert not (tmp_path / "slim.h5").exists()

@@ -503,7 +503,16 @@ std::size_t merge_datasets(const std::vector<fs::path>& shards, const fs::path& 
 std::size_t slim_dataset(const fs::path& in, const fs::path& out, const std::vector<long>& drop) {
   {
     const h5::File file = h5::File::open(in);
-    if (!read_layout(file).body_vertices_stored) throw ConfigError(in.string() + ": is a slim dataset already");
+    const DatasetLayout layout = read_layout(file);
+    if (!layout.body_vertices_stored) throw ConfigError(in.string() + ": is a slim dataset already");
+    // A slim file rebuilds each body from its shape parameters with the
+    // scene's body model; a resampled set's bodies are the source bodies read
+    // at another template's vertices, which no shape makes: its slim copy was
+    // written, exit 0, and refused by every reader after (an outside check).
+    if (layout.attributes.count("resampled_from"))
+      throw ConfigError(in.string() + ": its bodies were resampled onto another template (`drape dataset resample`), so "
+                        "its body model cannot rebuild them from their shape parameters: it stays whole; slim the "
+                        "source set instead");
   }
   return join_shards({in}, out, true, false, BodyVertices{.write = false, .rebuild = nullptr, .rebuilt = {}}, drop);
 }
