@@ -252,4 +252,11 @@ TEST_CASE("merge --mixed-sizes refuses shards whose scenes differ in more than t
                         out) == 2);
   CHECK_THAT(out, Catch::Contains("their scenes differ in more than the garment's size"));
   CHECK_FALSE(std::filesystem::exists(dir / "m.h5"));
+  // Without it, the difference says each value with its own file (the first
+  // shard's value was said to be "in the file" of the shard named first).
+  CHECK(test::run_drape("dataset merge --out " + (dir / "m.h5").string() + " " + (dir / "a.h5").string() + " " +
+                            (dir / "b.h5").string(),
+                        out) == 2);
+  CHECK_THAT(out, Catch::Contains("b.h5: cannot merge with ") && Catch::Contains("stiffness: 2.0e8}' here, '") &&
+                      Catch::Contains("stiffness: 1.0e8}' in a.h5"));
 }

@@ -69,8 +69,9 @@ void create_layout(h5::File& file, const DatasetLayout& layout);
 DatasetLayout read_layout(const h5::File& file);
 
 // "" when `now` may continue / be merged with `have`, else the first difference
-// ("body_vertices is 100 in the file, 120 now").
-std::string layout_difference(const DatasetLayout& have, const DatasetLayout& now);
+// ("body_vertices is 100 in the file, 120 now"; a merge says where each is).
+std::string layout_difference(const DatasetLayout& have, const DatasetLayout& now, const std::string& have_is = "in the file",
+                              const std::string& now_is = "now");
 // "" when a file of layout `have` was made as `now` asks: the same layout and
 // the same `generator` attribute (how the samples are made: generate's seed,
 // body ranges and shard; optimize's model, iterations and learning rate),

@@ -66,7 +66,8 @@ Eigen::MatrixX3i read_faces(const h5::File& file, int garment_vertices) {
 // The first line where two scene texts part, quoted from each (cut at 120
 // characters): "the scene YAML differs" alone left a user to diff the
 // files (a scene read from a working tree that changed between two shards).
-std::string first_scene_difference(const std::string& have, const std::string& now) {
+std::string first_scene_difference(const std::string& have, const std::string& now, const std::string& have_is,
+                                   const std::string& now_is) {
   std::istringstream a(have), b(now);
   std::string la, lb;
   for (int line = 1;; ++line) {
@@ -76,7 +77,7 @@ std::string first_scene_difference(const std::string& have, const std::string& n
     if (!more_b) lb = "(the end)";
     if (la != lb || !more_a || !more_b) {
       const auto cut = [](std::string s) { return s.size() > 120 ? s.substr(0, 117) + "..." : s; };
-      return ": line " + std::to_string(line) + " is '" + cut(la) + "' in the file, '" + cut(lb) + "' now";
+      return ": line " + std::to_string(line) + " is '" + cut(la) + "' " + have_is + ", '" + cut(lb) + "' " + now_is;
     }
   }
 }
@@ -253,9 +254,11 @@ std::optional<std::size_t> finished_by_same_request(const std::string& out, cons
   return finished.size();
 }
 
-std::string layout_difference(const DatasetLayout& have, const DatasetLayout& now) {
-  auto number = [](const char* what, std::size_t a, std::size_t b) {
-    return a == b ? std::string() : std::string(what) + " is " + std::to_string(a) + " in the file, " + std::to_string(b) + " now";
+std::string layout_difference(const DatasetLayout& have, const DatasetLayout& now, const std::string& have_is,
+                              const std::string& now_is) {
+  auto number = [&](const char* what, std::size_t a, std::size_t b) {
+    return a == b ? std::string()
+                  : std::string(what) + " is " + std::to_string(a) + " " + have_is + ", " + std::to_string(b) + " " + now_is;
   };
   for (const std::string& d : {number("samples", have.samples, now.samples),
                                number("body_params", to_size(have.body_params), to_size(now.body_params)),
@@ -264,14 +267,14 @@ std::string layout_difference(const DatasetLayout& have, const DatasetLayout& no
     if (!d.empty()) return d;
   if (have.body_vertices_stored != now.body_vertices_stored)
     return std::string("body vertices are ") + (have.body_vertices_stored ? "stored" : "left out (a slim dataset)") +
-           " in the file, " + (now.body_vertices_stored ? "stored" : "left out") + " now";
+           " " + have_is + ", " + (now.body_vertices_stored ? "stored" : "left out") + " " + now_is;
   if (have.pose_angles != now.pose_angles) {
     auto list = [](const std::vector<std::string>& v) {
       std::string s;
       for (const auto& a : v) s += (s.empty() ? "" : ",") + a;
       return v.empty() ? std::string("none (A-pose bodies)") : "[" + s + "]";
     };
-    return "pose angles are " + list(have.pose_angles) + " in the file, " + list(now.pose_angles) + " now";
+    return "pose angles are " + list(have.pose_angles) + " " + have_is + ", " + list(now.pose_angles) + " " + now_is;
   }
   auto sorted = [](std::vector<std::string> v) {
     std::sort(v.begin(), v.end());
@@ -281,11 +284,11 @@ std::string layout_difference(const DatasetLayout& have, const DatasetLayout& no
     std::string a, b;
     for (const auto& s : sorted(have.stats)) a += (a.empty() ? "" : ", ") + s;
     for (const auto& s : sorted(now.stats)) b += (b.empty() ? "" : ", ") + s;
-    return "stats are [" + a + "] in the file, [" + b + "] now";
+    return "stats are [" + a + "] " + have_is + ", [" + b + "] " + now_is;
   }
-  if (have.scene != now.scene) return "the scene YAML differs" + first_scene_difference(have.scene, now.scene);
+  if (have.scene != now.scene) return "the scene YAML differs" + first_scene_difference(have.scene, now.scene, have_is, now_is);
   if (have.template_hash != now.template_hash)
-    return "template_hash is '" + have.template_hash + "' in the file, '" + now.template_hash + "' now";
+    return "template_hash is '" + have.template_hash + "' " + have_is + ", '" + now.template_hash + "' " + now_is;
   return "";
 }
 

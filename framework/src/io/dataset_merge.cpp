@@ -371,7 +371,9 @@ std::size_t join_shards(const std::vector<fs::path>& shards, const fs::path& out
         same.template_hash = merged.template_hash;
         same.attributes = merged.attributes;
       }
-      const std::string difference = layout_difference(merged, same);
+      // Each value said with its file (the message named this shard first and
+      // gave the first shard's value as "in the file": an outside check).
+      const std::string difference = layout_difference(same, merged, "here", "in " + shards.front().filename().string());
       const bool other_garment = same.scene != merged.scene || same.template_hash != merged.template_hash;
       if (!difference.empty())
         throw ConfigError(shard.string() + ": cannot merge with " + shards.front().string() + ": " + difference +
