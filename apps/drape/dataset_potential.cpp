@@ -13,6 +13,7 @@
 #include <drape/geometry/closest_point.hpp>
 #include <drape/geometry/penetration.hpp>
 #include <drape/registry.hpp>
+#include <drape/scene/garment_size.hpp>
 #include <drape/scene/scene.hpp>
 #include <drape/scene/simulation.hpp>
 
@@ -24,6 +25,14 @@
 namespace drape::cli {
 
 const char* kPotentialUsage = "drape dataset potential FILE --scene S [--split test]";
+
+namespace {
+std::string brief(double value) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%g", value);
+  return text;
+}
+}  // namespace
 
 int dataset_potential(const std::vector<std::string>& args) {
   po::options_description opts("drape dataset potential");
@@ -37,8 +46,30 @@ int dataset_potential(const std::vector<std::string>& args) {
   const std::filesystem::path path = vm["file"].as<std::string>();
   // A file or a glob pattern of files; DatasetReader says "no such file" or "no dataset file matches".
   Registry& registry = Registry::load_default(plugin_path(vm));
-  const Simulation sim(registry, load_scene(find_input_file(vm["scene"].as<std::string>())));
+  // A scene of `size: auto` (a sized dataset's own) measures each drape in
+  // the size its body wore (its garment_size statistic): it was refused
+  // ("give a size"), and one size named measured every other size's drape
+  // against the wrong pattern, 400 times the stretching (an outside check).
+  const Scene scene = load_scene(find_input_file(vm["scene"].as<std::string>()));
+  const SceneSimulations simulations(registry, scene);
+  const Simulation& sim = simulations.design();
   const DatasetReader reader(path);
+  const bool sized = reader.layout().has_stat("garment_size");
+  const auto wears = [&](std::size_t index) -> const Simulation& {
+    if (!sized) return sim;
+    const double flag = reader.stat("garment_size", {index}).front();
+    if (simulations.auto_size()) {
+      for (const std::string& size : simulations.chart()->sizes())
+        if (static_cast<double>(garment_size_flag(size)) == flag) return simulations.chart()->simulation(size);
+      throw ConfigError(path.string() + ": sample " + std::to_string(index) + " wore garment_size " + brief(flag) +
+                        ", none of the scene's sizes");
+    }
+    if (static_cast<float>(flag) != garment_size_flag(scene))
+      throw ConfigError(path.string() + ": sample " + std::to_string(index) + " wore another garment size (flag " +
+                        brief(flag) + ") than the scene dresses (flag " + brief(garment_size_flag(scene)) + "): its energies would be those of another pattern; give a scene of `size: auto` (the "
+                        "dataset's own) to measure each drape in its size");
+    return sim;
+  };
   const int garment = sim.garment().mesh.num_vertices(), body = sim.body_model().num_vertices();
   if (static_cast<int>(reader.layout().garment_vertices) != garment || static_cast<int>(reader.layout().body_vertices) != body)
     throw ConfigError(SourceLocation{path.string(), 0},
@@ -61,7 +92,7 @@ int dataset_potential(const std::vector<std::string>& args) {
       throw ConfigError(path.string() + ": sample " + std::to_string(index) + " has a non-finite " +
                         (x.allFinite() ? "body" : "garment") + " coordinate; its energies are not defined");
     const geometry::BodySurface surface(b, sim.body_model().faces());
-    const std::vector<NamedEnergy> energies = sim.make_energies(&surface);
+    const std::vector<NamedEnergy> energies = wears(index).make_energies(&surface);
     if (names.empty()) {
       for (const NamedEnergy& e : energies) names.push_back(e.name);
       sums.assign(energies.size(), 0.0);

@@ -4,6 +4,7 @@
 #include <drape/io/dataset.hpp>
 #include <drape/io/h5.hpp>
 
+#include <algorithm>
 #include <fstream>
 #include <regex>
 
@@ -259,4 +260,35 @@ TEST_CASE("merge --mixed-sizes refuses shards whose scenes differ in more than t
                         out) == 2);
   CHECK_THAT(out, Catch::Contains("b.h5: cannot merge with ") && Catch::Contains("stiffness: 2.0e8}' here, '") &&
                       Catch::Contains("stiffness: 1.0e8}' in a.h5"));
+}
+
+TEST_CASE("dataset potential measures a sized dataset's drapes each in the size its body wore", "[cli][dataset]") {
+  // An outside check: the dataset's own scene (size: auto) was refused, and
+  // one size named measured every other size's drape against the wrong
+  // pattern (stretching 37.9 J where the simulator stored 0.096 J).
+  test::TempDir dir;
+  const std::filesystem::path shard = test::source_dir() / "datasets/bodyspace-thin-sized/shard-0-of-2.h5";
+  const DatasetReader reader(shard);
+  std::ofstream(dir / "own.yaml") << reader.layout().scene;
+  std::string out;
+  REQUIRE(test::run_drape("dataset potential " + shard.string() + " --scene " + (dir / "own.yaml").string() + " --split test",
+                          out) == 0);
+  INFO(out);
+  // The simulator's own energies of the same drapes, stored with them.
+  const std::vector<std::size_t> test_split = reader.indices(Split::Test);
+  REQUIRE_FALSE(test_split.empty());
+  double stored = 0;
+  for (double e : reader.stat("energy_stretching", test_split)) stored += e / static_cast<double>(test_split.size());
+  std::smatch m;
+  REQUIRE(std::regex_search(out, m, std::regex("\\| stretching \\| ([0-9.e+-]+) \\|")));
+  CHECK(std::stod(m[1]) == Approx(stored).epsilon(1e-3));
+  // One size named for all of them is refused, naming the sample.
+  std::string one = reader.layout().scene;
+  one.replace(one.find("size: auto"), 10, "size: regular");
+  std::ofstream(dir / "regular.yaml") << one;
+  const std::vector<double> sizes = reader.stat("garment_size", test_split);
+  REQUIRE(std::any_of(sizes.begin(), sizes.end(), [](double f) { return f != 0.0; }));  // some wore another size than regular (flag 0)
+  CHECK(test::run_drape("dataset potential " + shard.string() + " --scene " + (dir / "regular.yaml").string() +
+                            " --split test", out) == 2);
+  CHECK_THAT(out, Catch::Contains("wore another garment size"));
 }
