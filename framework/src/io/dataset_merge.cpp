@@ -287,7 +287,8 @@ std::size_t join_shards(const std::vector<fs::path>& shards, const fs::path& out
   std::vector<DatasetLayout> layouts;
   std::vector<std::string> all_stats;  // with --mixed-sizes: every shard's, and the size flag and grade
   for (const auto& shard : shards) {
-    if (fs::exists(out) && fs::equivalent(shard, out)) throw ConfigError(shard.string() + ": the output is also a shard");
+    if (fs::exists(out) && fs::equivalent(shard, out))
+      throw ConfigError("--out " + out.string() + " is also an input (" + shard.string() + "): the job would write over what it reads");
     files.push_back(h5::File::open(shard));
     layouts.push_back(read_layout(files.back()));
     for (const std::string& name : layouts.back().stats) all_stats.push_back(name);
