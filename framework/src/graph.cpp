@@ -10,6 +10,7 @@
 #include <limits>
 
 #include <algorithm>
+#include <new>
 #include <cstring>
 #include <functional>
 
@@ -344,6 +345,15 @@ void Graph::Impl::set_up_shapes(const GraphOptions& options) {
       std::string shapes;
       for (const auto& [p, s] : in) shapes += (shapes.empty() ? "" : ", ") + p + " " + s.str();
       throw ConfigError(b.spec.where, b.label() + ": " + e.what() + " (inputs: " + (shapes.empty() ? "none" : shapes) + ")");
+    } catch (const std::bad_alloc&) {
+      // Its weights (with their gradients) are allocated here: an mlp of
+      // widths [65536] over 20,000 rows, each value in range, ended in a bare
+      // "std::bad_alloc" naming no node (an outside check).
+      std::size_t weights = 0;
+      for (const auto& [name, w] : b.node->weights()) weights += static_cast<std::size_t>(w.value.size());
+      throw ConfigError(b.spec.where, b.label() + ": its weights need more memory than this machine gives (" +
+                                          std::to_string(weights) + " allocated before it ran out; each weight takes 8 "
+                                          "bytes with its gradient): make its layers smaller");
     }
     for (const auto& p : b.out_ports) {
       auto it = out.find(p);

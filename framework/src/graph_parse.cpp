@@ -64,11 +64,21 @@ void apply_node(GraphSpec& spec, const std::string& file, const YAML::Node& key,
   const std::string name = key.as<std::string>();
   const SourceLocation where = yaml::at(file, key);
   NodeSpec* existing = find_node(spec, name);
-  if (existing && existing->is_loss != loss)
-    throw ConfigError(where, "'" + name + "' is a " + (loss ? "node" : "loss") + " in the base graph; it cannot become a " +
-                                 (loss ? "loss" : "node"));
+  if (existing && existing->is_loss != loss) {
+    // (A node of this very file was said to be "in the base graph": an outside check's file had no base.)
+    const std::string whose = existing->where.file == file ? "at line " + std::to_string(existing->where.line) + " of this file"
+                                                           : "in the base graph (" + existing->where.str() + ")";
+    throw ConfigError(where, "'" + name + "' is a " + (loss ? "node" : "loss") + " " + whose + "; a " + (loss ? "loss" : "node") +
+                                 " needs a name of its own");
+  }
   if (body.IsNull()) {  // `name: null` or `name: ~` removes it
-    if (!existing) throw ConfigError(where, "cannot remove '" + name + "': the base graph has no such " + (loss ? "loss" : "node"));
+    if (!existing) {
+      std::vector<std::string> names;
+      for (const NodeSpec& n : spec.nodes)
+        if (n.is_loss == loss) names.push_back(n.name);
+      throw ConfigError(where, "cannot remove '" + name + "': the base graph has no such " + (loss ? "loss" : "node") +
+                                   did_you_mean(name, names));
+    }
     spec.nodes.erase(spec.nodes.begin() + (existing - spec.nodes.data()));
     return;
   }

@@ -234,3 +234,17 @@ TEST_CASE("drape graph given a file where its action goes says to put check firs
   CHECK(test::run_drape("graph chek " + graph, out) == 2);
   CHECK_THAT(out, Catch::Contains("unknown action 'chek'"));
 }
+
+TEST_CASE("a graph whose weights cannot be allocated names its node", "[cli][options]") {
+  // An mlp of widths [65536] over 20,000 rows (15 GB of weights, each value in
+  // range) ended in a bare "failed: std::bad_alloc", exit 1. Run under a 3 GB
+  // address-space limit, so the allocation fails at once, whatever the machine.
+  test::TempDir dir;
+  std::ofstream(dir / "big.yaml") << "inputs:\n  body: [body_vertices, 3]\n  target: [garment_vertices, 3]\nnodes:\n"
+                                     "  e: {type: cnn1d, in: body, params: {channels: [4]}}\n"
+                                     "  g: {type: mlp, in: e.global, params: {widths: [65536], rows: 20000}}\n"
+                                     "outputs: {garment: g}\n";
+  std::string out;
+  CHECK(test::run("ulimit -v 3000000; " + test::drape_program().string() + " graph check " + (dir / "big.yaml").string(), out) == 2);
+  CHECK_THAT(out, Catch::Contains("big.yaml:6: node 'g' (mlp): its weights need more memory than this machine gives"));
+}

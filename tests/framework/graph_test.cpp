@@ -347,3 +347,18 @@ outputs: { garment: twice }
   g.forward_until({{"rest", random_tensor(2, 3, 3, 2.0f)}, {"shift", random_tensor(2, 3, 3, 0.3f)}}, "twice", true);
   CHECK(std::as_const(g).fed_into("moved", "a").batch() == 2);
 }
+
+TEST_CASE("a loss named as a node of the same file and a misspelt removal are said as they are", "[graph]") {
+  // An outside check: the clash was blamed on a "base graph" the file did not
+  // have, and `decodr: null` offered no 'decoder'.
+  const std::string clash = "inputs:\n  target: [n, 3]\nnodes:\n  l2: {type: scale, in: target}\n"
+                            "outputs: {garment: l2}\nlosses: {l2: 1.0}\n";
+  CHECK_THAT(test::message_of([&] { parse_graph_text(clash, "g.yaml"); }),
+             Catch::Contains("g.yaml:6") && Catch::Contains("'l2' is a node at line 4 of this file; a loss needs a name of its own"));
+  test::TempDir dir;
+  std::ofstream(dir / "base.yaml") << "inputs:\n  target: [n, 3]\nnodes:\n  decoder: {type: scale, in: target}\n"
+                                      "outputs: {garment: decoder}\n";
+  std::ofstream(dir / "child.yaml") << "base: base.yaml\nnodes:\n  decodr: null\n";
+  CHECK_THAT(test::message_of([&] { parse_graph_file(dir / "child.yaml"); }),
+             Catch::Contains("child.yaml:3") && Catch::Contains("cannot remove 'decodr'") && Catch::Contains("did you mean 'decoder'"));
+}
