@@ -63,5 +63,5 @@ TEST_CASE("optimize --data takes the shipped sized drapes each in the size it wo
   const drape::DatasetReader optimised(dir / "o.h5");
   CHECK(optimised.size() == tests.size());
   // Each drape kept the size it wore.
-  CHECK(optimised.stat("garment_grade", optimised.indices()) == all.stat("garment_grade", tests));
+  CHECK(optimised.stat("garment_size", optimised.indices()) == all.stat("garment_size", tests));
 }
