@@ -22,7 +22,7 @@ int run(const std::vector<std::string>& args) {
       "count", po::value<long>(), "samples in the whole set (all shards)")(
       "bmi", po::value<std::string>()->default_value("10:65"), "BMI range lo:hi (uniform) or a value")(
       "height", po::value<std::string>()->default_value("1.75"), "height range lo:hi in m, or a value")(
-      "sex", po::value<std::string>()->default_value("1"), "0, 1, or 0:1 for a random one per sample")(
+      "sex", po::value<std::string>()->default_value("1"), "0, 1, a blend between, or 0:1 for female or male at random per sample")(
       "girths", po::value<double>()->default_value(0.0),
       "spread of the body's girths (chest, waist, belly, hips, arms, thighs) as a fraction of the body model's range, "
       "each drawn uniformly; 0 keeps the mean build (docs/bodies.md)")(
@@ -52,6 +52,13 @@ int run(const std::vector<std::string>& args) {
   request.bmi = parse_range("bmi", vm["bmi"].as<std::string>());
   request.height = parse_range("height", vm["height"].as<std::string>());
   request.sex = parse_range("sex", vm["sex"].as<std::string>());
+  // A range draws one of its two ends per sample (female or male, with equal
+  // odds): --sex 0.3:0.6 gave only 0.3 and 0.6, never a value between (an
+  // outside check); the body model's sexes between 0 and 1 are blends.
+  if (request.sex.lo != request.sex.hi && !(request.sex.lo == 0.0 && request.sex.hi == 1.0))
+    throw UsageError("--sex " + vm["sex"].as<std::string>() +
+                     ": a range draws female (0) or male (1) with equal odds, so it is 0:1; one value (a blend, say 0.5) "
+                     "gives every sample that sex");
   request.girths = vm["girths"].as<double>();  // generate_dataset checks the values
   request.seed = vm["seed"].as<std::uint64_t>();
   const std::string poses = vm["poses"].as<std::string>();

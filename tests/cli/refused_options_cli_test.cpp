@@ -133,6 +133,10 @@ TEST_CASE("generate and optimize refuse bad values before their output is begun,
   CHECK_THAT(out, Catch::Contains("height 0.2:0.2, sex 1:1: body parametric: height 0.2 m is outside the reachable range"));
   CHECK(test::run_drape(generate + " --sex 2", out) == 2);
   CHECK_THAT(out, Catch::Contains("height 1.75:1.75, sex 2:2: body parametric: sex 2 is outside [0, 1]"));
+  // A range draws one of its ends: 0.3:0.6 gave only 0.3 and 0.6 (an outside check).
+  CHECK(test::run_drape(generate + " --sex 0.3:0.6", out) == 2);
+  CHECK_THAT(out, Catch::Contains("--sex 0.3:0.6: a range draws female (0) or male (1) with equal odds, so it is 0:1"));
+  CHECK_FALSE(std::filesystem::exists(dir / "a.h5.partial"));
   CHECK(test::run_drape(generate + " --bmi nan", out) == 2);  // it said "expected lo <= hi"
   CHECK_THAT(out, Catch::Contains("--bmi 'nan': not a number (NaN)"));
   // More shards than samples: some shard would be an empty dataset sealed complete.
