@@ -54,10 +54,15 @@ int dataset_potential(const std::vector<std::string>& args) {
   const SceneSimulations simulations(registry, scene);
   const Simulation& sim = simulations.design();
   const DatasetReader reader(path);
+  const std::vector<std::size_t> samples = reader.indices(vm["split"].as<std::string>());
+  if (samples.empty()) throw ConfigError(SourceLocation{path.string(), 0}, "has no finished sample in that split");
+  // Each sample's size flag, read once for the split (not a file read per sample).
   const bool sized = reader.layout().has_stat("garment_size");
-  const auto wears = [&](std::size_t index) -> const Simulation& {
+  const std::vector<double> flags = sized ? reader.stat("garment_size", samples) : std::vector<double>();
+  const auto wears = [&](std::size_t k) -> const Simulation& {
     if (!sized) return sim;
-    const double flag = reader.stat("garment_size", {index}).front();
+    const std::size_t index = samples[k];
+    const double flag = flags[k];
     if (simulations.auto_size()) {
       for (const std::string& size : simulations.chart()->sizes())
         if (static_cast<double>(garment_size_flag(size)) == flag) return simulations.chart()->simulation(size);
@@ -76,14 +81,13 @@ int dataset_potential(const std::vector<std::string>& args) {
                       "holds garments of " + std::to_string(reader.layout().garment_vertices) + " and bodies of " +
                           std::to_string(reader.layout().body_vertices) + " vertices, but the scene's garment has " +
                           std::to_string(garment) + " and its body " + std::to_string(body));
-  const std::vector<std::size_t> samples = reader.indices(vm["split"].as<std::string>());
-  if (samples.empty()) throw ConfigError(SourceLocation{path.string(), 0}, "has no finished sample in that split");
 
   std::vector<std::string> names;  // the scene's effects, in its order (the same for every sample)
   std::vector<double> sums;        // each effect's energy, summed over the samples
   double total = 0, p_sum = 0, p_max = 0;
   std::size_t clear = 0;
-  for (std::size_t index : samples) {
+  for (std::size_t k = 0; k < samples.size(); ++k) {
+    const std::size_t index = samples[k];
     const DatasetSample s = reader.sample(index);
     const Eigen::MatrixX3d b = s.body_vertices.cast<double>(), x = s.garment_vertices.cast<double>();
     // A file edited by hand or written by a killed job may hold one: said
@@ -92,7 +96,7 @@ int dataset_potential(const std::vector<std::string>& args) {
       throw ConfigError(path.string() + ": sample " + std::to_string(index) + " has a non-finite " +
                         (x.allFinite() ? "body" : "garment") + " coordinate; its energies are not defined");
     const geometry::BodySurface surface(b, sim.body_model().faces());
-    const std::vector<NamedEnergy> energies = wears(index).make_energies(&surface);
+    const std::vector<NamedEnergy> energies = wears(k).make_energies(&surface);
     if (names.empty()) {
       for (const NamedEnergy& e : energies) names.push_back(e.name);
       sums.assign(energies.size(), 0.0);
